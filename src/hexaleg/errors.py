@@ -1,0 +1,78 @@
+"""Exceptions raised by hexaleg.
+
+Every error that hexaleg raises on bad input derives from :class:`HexalegError`, names the bad
+value and says what is allowed. Callers can catch ``HexalegError`` to handle any of them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+
+class HexalegError(Exception):
+    """Base class of every error hexaleg raises on bad input or an impossible request."""
+
+
+class RobotModelError(HexalegError):
+    """A robot description (URDF/SRDF) is missing, malformed, or lacks the expected legs/feet."""
+
+
+class UnknownNameError(HexalegError, KeyError):
+    """A name (joint, pose, robot, parameter, key, ...) is not one of the valid names.
+
+    Args:
+        kind: What the name is, e.g. ``"joint"`` or ``"pose"``.
+        name: The name that was given.
+        valid: The names that are allowed.
+    """
+
+    def __init__(self, kind: str, name: object, valid: Iterable[object]) -> None:
+        self.kind = kind
+        self.name = name
+        self.valid = sorted(str(v) for v in valid)
+        super().__init__(
+            f"unknown {kind} {name!r}; valid {kind}s are: {', '.join(self.valid) or '(none)'}"
+        )
+
+    def __str__(self) -> str:  # KeyError would repr() the message otherwise
+        return str(self.args[0])
+
+
+class InvalidParameterError(HexalegError, ValueError):
+    """A parameter value is out of its allowed range, of the wrong type, or not finite.
+
+    Args:
+        name: Parameter name.
+        value: The value that was given.
+        allowed: Human-readable description of what is allowed, e.g. ``"> 0"``.
+    """
+
+    def __init__(self, name: str, value: object, allowed: str) -> None:
+        self.name = name
+        self.value = value
+        self.allowed = allowed
+        super().__init__(f"invalid {name} = {value!r}; allowed: {allowed}")
+
+
+class ConfigError(HexalegError):
+    """A configuration file (TOML) cannot be read or has keys/values that are not allowed."""
+
+
+class UnreachableTargetError(HexalegError):
+    """A foot target lies outside the workspace of its leg."""
+
+
+class InfeasibleForcesError(HexalegError):
+    """No ground reaction forces satisfy the dynamics and the contact constraints."""
+
+
+class TorqueLimitError(HexalegError):
+    """A motor torque exceeds its limit."""
+
+
+class OutputError(HexalegError):
+    """An output file or directory cannot be written."""
+
+
+class ExecutorError(HexalegError):
+    """A sweep executor (e.g. a Dask scheduler) cannot be reached or failed."""
