@@ -1,0 +1,77 @@
+"""``Motion``: sampled whole-robot trajectories — the input of the dynamics and energy analysis.
+
+A motion is one period of a periodic (or any) trajectory sampled at ``T`` instants
+``t[k] = k · dt``; for a periodic motion the endpoint ``t = period`` is *not* stored (it equals
+sample 0 up to a base displacement), so a cycle integral of a periodic signal ``x`` is exactly
+``x.sum(axis=0) * dt`` (the trapezoidal rule on a periodic grid).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from hexaleg.errors import InvalidParameterError
+
+
+@dataclass(frozen=True, eq=False)
+class Motion:
+    """Sampled configuration, velocity and acceleration of the floating base and all joints.
+
+    Arrays are time-major and follow Pinocchio's conventions: the base velocity and acceleration
+    are expressed in the base (LOCAL) frame, ``a`` is the time derivative of ``v``.
+
+    Attributes:
+        t: Sample times, shape (T,), s, uniformly spaced by ``dt``.
+        q: Configurations, shape (T, nq) (base position, base quaternion xyzw, joint angles rad).
+        v: Generalised velocities, shape (T, nv).
+        a: Generalised accelerations, shape (T, nv).
+        stance: Which feet are on the ground, shape (T, n_legs), bool, legs in the robot's order
+            (LF LM LH RF RM RH for the hexapod).
+        feet: World foot positions, shape (T, n_legs, 3), m.
+        period: Duration of one cycle, s; for a periodic motion ``T * dt == period``.
+        distance: Distance the body travels per cycle, m (0 for motions in place).
+        periodic: Whether the motion repeats with ``period`` (up to a base displacement).
+        fixed_base: Whether the base is held by a fixture (no base equations; e.g. the paper's
+            single-joint case) rather than carried by the feet.
+        info: Free-form description of how the motion was made (e.g. gait parameters).
+    """
+
+    t: np.ndarray
+    q: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    stance: np.ndarray
+    feet: np.ndarray
+    period: float
+    distance: float = 0.0
+    periodic: bool = True
+    fixed_base: bool = False
+    info: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        n = self.t.shape[0]
+        for name in ("q", "v", "a", "stance", "feet"):
+            arr = getattr(self, name)
+            if arr.shape[0] != n:
+                raise InvalidParameterError(f"Motion.{name}", f"array of shape {arr.shape}",
+                                            f"first dimension T = {n} (the length of t)")
+        for name in ("t", "q", "v", "a", "feet"):
+            arr = getattr(self, name)
+            if not np.all(np.isfinite(arr)):
+                k = int(np.argwhere(~np.isfinite(arr.reshape(n, -1)))[0, 0])
+                raise InvalidParameterError(f"Motion.{name}", f"NaN/inf at sample {k} "
+                                            f"(t = {self.t[k] if k < len(self.t) else '?'})",
+                                            "finite values")
+
+    @property
+    def n_samples(self) -> int:
+        """Number of samples T."""
+        return int(self.t.shape[0])
+
+    @property
+    def dt(self) -> float:
+        """Sample spacing, s."""
+        return float(self.t[1] - self.t[0]) if self.n_samples > 1 else float(self.period)
