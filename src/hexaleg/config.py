@@ -60,7 +60,8 @@ def _check_type(key: str, value: Any, hint: Any) -> Any:
         raise ConfigError(f"{key} = {value!r}; expected None")
     if hint is float:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise ConfigError(f"{key} = {value!r} has type {type(value).__name__}; expected a number")
+            raise ConfigError(f"{key} = {value!r} has type {type(value).__name__}; "
+                              "expected a number")
         if not math.isfinite(value):
             raise ConfigError(f"{key} = {value!r} is not finite; expected a finite number")
         return float(value)

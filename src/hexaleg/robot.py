@@ -46,7 +46,7 @@ class LegSpec:
 HEXALEG_LEGS: tuple[LegSpec, ...] = tuple(
     LegSpec(leg, tuple(f"{leg}_{j}" for j in JOINT_KINDS), f"{leg}_foot") for leg in LEG_NAMES
 )
-"""Leg specification of the built-in hexapod: joints ``{leg}_coxa/femur/tibia``, feet ``{leg}_foot``."""
+"""Legs of the built-in hexapod: joints ``{leg}_coxa/femur/tibia``, feet ``{leg}_foot``."""
 
 
 @dataclass(frozen=True)
@@ -59,7 +59,8 @@ class Leg:
         joint_ids: Pinocchio joint ids, shape (n,).
         q_index: Indices of the leg's joints in the configuration q (nq,), shape (n,).
         v_index: Indices of the leg's joints in the velocity v (nv,), shape (n,).
-        columns: Indices of the leg's joints among the actuated joints (``v_index - 6``), shape (n,).
+        columns: Indices of the leg's joints among the actuated joints (``v_index - 6``),
+            shape (n,).
         foot_frame: Foot frame name.
         foot_frame_id: Pinocchio frame id of the foot.
     """
@@ -175,6 +176,51 @@ class Robot:
                                 self.model.frames[b.parentFrame].name))
                 hits.append((names[0], names[1]))
         return sorted(set(hits))
+
+    def max_extent(self, q: np.ndarray, geometry: str = "visual") -> float:
+        """Largest distance of any geometry point from the base origin at ``q``, m.
+
+        Exact for the primitive shapes the built-in robot uses: a box's farthest point is a
+        corner; a sphere's is at ``|c| + r``; a cylinder's lies on a rim circle, at
+        ``sqrt(|p|² + r² + 2 r |p⊥|)`` for rim centre ``p`` (``p⊥`` its part normal to the axis).
+
+        Args:
+            q: Configuration, shape (nq,).
+            geometry: ``"visual"`` or ``"collision"``.
+
+        Raises:
+            UnknownNameError: ``geometry`` is neither; or a shape is not a box, sphere or cylinder.
+        """
+        models = {"visual": self.visual_model, "collision": self.collision_model}
+        if geometry not in models:
+            raise UnknownNameError("geometry", geometry, models)
+        gmodel = models[geometry]
+        gdata = pin.GeometryData(gmodel)
+        pin.updateGeometryPlacements(self.model, self.data, gmodel, gdata,
+                                     np.asarray(q, dtype=float))
+        base = self.data.oMi[1]
+        extent = 0.0
+        for k, obj in enumerate(gmodel.geometryObjects):
+            placement = base.actInv(gdata.oMg[k])  # geometry frame in the base frame
+            shape, kind = obj.geometry, type(obj.geometry).__name__
+            c, rot = placement.translation, placement.rotation
+            if kind == "Sphere":
+                d = float(np.linalg.norm(c) + shape.radius)
+            elif kind == "Box":
+                signs = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T
+                d = float(np.max(np.linalg.norm(c + (signs * shape.halfSide) @ rot.T, axis=1)))
+            elif kind == "Cylinder":
+                axis = rot[:, 2]
+                d = 0.0
+                for s in (-1.0, 1.0):
+                    p = c + s * shape.halfLength * axis
+                    p_perp = np.linalg.norm(p - (p @ axis) * axis)
+                    d = max(d, float(np.sqrt(p @ p + shape.radius**2
+                                             + 2 * shape.radius * p_perp)))
+            else:
+                raise UnknownNameError("shape for max_extent", kind, ("Box", "Cylinder", "Sphere"))
+            extent = max(extent, d)
+        return extent
 
     def summary(self) -> str:
         """A human-readable summary: links and masses, joints and limits, legs, poses."""

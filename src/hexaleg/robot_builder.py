@@ -13,6 +13,7 @@ angles lift the distal end. With all joints at zero a leg is straight and horizo
 
 from __future__ import annotations
 
+import itertools
 import math
 import sys
 import xml.etree.ElementTree as ET
@@ -264,13 +265,14 @@ def build_srdf(params: RobotParams) -> str:
                 ET.SubElement(gs, "joint", name=f"{leg}_{jname}", value=_fmt(val))
     for leg in p.legs:
         chain = ["body", *(f"{leg}_{j}_link" for j in JOINTS), f"{leg}_foot"]
-        for a, c in zip(chain[:-1], chain[1:], strict=True):
+        for a, c in itertools.pairwise(chain):
             ET.SubElement(robot, "disable_collisions", link1=a, link2=c, reason="Adjacent")
     ET.indent(robot, space="  ")
     return '<?xml version="1.0"?>\n' + ET.tostring(robot, encoding="unicode") + "\n"
 
 
-def build(params_path: str | Path = PARAMS_PATH, out_dir: str | Path | None = None) -> tuple[Path, Path]:
+def build(params_path: str | Path = PARAMS_PATH,
+          out_dir: str | Path | None = None) -> tuple[Path, Path]:
     """Build and write ``<name>.urdf`` and ``<name>.srdf`` next to the parameter file.
 
     Args:
