@@ -1,0 +1,396 @@
+"""Dead-zone torsion springs at the joints: the paper's nonlinear elastic joint, generalised.
+
+The paper (eq. 8) puts a main torsion spring at the femur joint that only engages once the joint
+has turned past a contact angle ±θ_k; inside the dead zone only a very soft secondary spring k₂
+acts. :class:`DeadZoneSpring` generalises that law per joint, and :class:`SpringSet` assigns
+springs to any of a robot's actuated joints.
+
+The α convention
+----------------
+The paper's eq. 7 stores ``P₂ = ½ k (α Δθ)²`` in the main spring (α converts the joint rotation
+into the spring's rotation when the spring is off the joint axis), but eq. 14 applies the torque
+``k α (θ − θ_k)`` — eq. 7 differentiated gives ``k α² (θ − θ_k)``, so the two differ by a factor α.
+hexaleg offers both, each exactly conservative (torque = −dU/dq):
+
+* ``convention="eq7"`` (default, the consistent model): α is a transmission ratio between the joint
+  and the spring; the spring stores ``U = ½ k (α Δ)²`` and, by virtual work, applies
+  ``τ = −k α² Δ`` to the joint (Δ = compression past the contact angle).
+* ``convention="eq14"`` (the paper's torque): ``τ = −k α Δ`` and ``U = ½ k α Δ²``; a spring of
+  stiffness k in this convention is the eq7 spring of stiffness k/α.
+
+In both, Δθ of eq. 7 is read as the compression past the contact angle (Δ = q − q₀ − θ⁺ beyond
+θ⁺), not the whole joint angle: eq. 14 says so, and the whole-angle reading would make the
+potential jump at contact. The secondary spring k₂ acts directly on the joint (no α), linearly
+about the neutral angle everywhere; viscous damping belongs to the main spring (it acts only while
+the main spring is engaged) and goes through the same transmission factor as its stiffness.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, NamedTuple
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from hexaleg.config import from_mapping
+from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+from hexaleg.units import deg_to_rad, nmm_per_deg_to_nm_per_rad, nmms_per_deg_to_nms_per_rad
+
+if TYPE_CHECKING:
+    from hexaleg.robot import Robot
+
+CONVENTIONS: tuple[str, ...] = ("eq7", "eq14")
+"""α conventions of :class:`DeadZoneSpring` (see the module docstring)."""
+
+
+def _finite_array(name: str, x: ArrayLike) -> np.ndarray:
+    """``x`` as a float array; raise if it holds NaN or inf."""
+    try:
+        a = np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise InvalidParameterError(name, x, "an array of real numbers") from None
+    if not np.all(np.isfinite(a)):
+        bad = a[~np.isfinite(a)].ravel()[0]
+        raise InvalidParameterError(name, float(bad), "finite numbers (no NaN or inf)")
+    return a
+
+
+class TorqueBasis(NamedTuple):
+    """Per-unit-coefficient torque shapes of a spring; each array has the shape of q, N·m per unit.
+
+    The spring torque is linear in its four coefficients for fixed contact angles::
+
+        torque = k⁺·plus + k⁻·minus + k₂·k2 + c·damping
+
+    Attributes:
+        plus: Torque of the main spring beyond θ⁺ per unit k⁺ (N·m per N·m/rad).
+        minus: Torque of the main spring below θ⁻ per unit k⁻ (N·m per N·m/rad).
+        k2: Torque of the secondary spring per unit k₂ (N·m per N·m/rad).
+        damping: Damping torque per unit damping coefficient (N·m per N·m·s/rad); zero when v
+            is None.
+    """
+
+    plus: np.ndarray
+    minus: np.ndarray
+    k2: np.ndarray
+    damping: np.ndarray
+
+
+@dataclass(frozen=True)
+class DeadZoneSpring:
+    """A dead-zone torsion spring on one joint (paper eq. 7–8, generalised).
+
+    With Δ = q − neutral, the main spring is engaged for Δ > θ⁺ (stiffness k⁺) and Δ < θ⁻
+    (stiffness k⁻) and free in the dead zone θ⁻ ≤ Δ ≤ θ⁺; the secondary spring k₂ acts everywhere.
+    Potential (convention eq7, paper eq. 7 with Δθ = compression; ``a = α²``, eq14: ``a = α``)::
+
+        U = ½ a k⁺ (Δ − θ⁺)²   for Δ > θ⁺
+            ½ a k⁻ (Δ − θ⁻)²   for Δ < θ⁻      (+ ½ k₂ Δ² everywhere)
+            0                   otherwise
+
+    and the torque applied to the joint is ``−dU/dq − a c v`` (damping only while engaged).
+    The paper's symmetric spring is ``theta_k = θ_k`` with k⁺ = k⁻ = k₁.
+
+    Attributes:
+        stiffness: k⁺, N·m/rad, main spring beyond θ⁺ (and k⁻ when stiffness_minus is None).
+        theta_k: Symmetric contact angle, rad (the paper's ±θ_k); gives θ⁻/θ⁺ defaults.
+        theta_minus: θ⁻, rad, relative to neutral (default −theta_k).
+        theta_plus: θ⁺, rad, relative to neutral (default +theta_k).
+        stiffness_minus: k⁻, N·m/rad (default = stiffness).
+        k2: Secondary spring, N·m/rad, linear about neutral everywhere.
+        alpha: Angle conversion factor α (eq. 7), > 0.
+        damping: Viscous damping of the main spring, N·m·s/rad, acting while it is engaged.
+        neutral: Joint angle, rad, at the dead-zone centre (Δ = 0).
+        convention: ``"eq7"`` (torque k α² Δ, consistent with eq. 7) or ``"eq14"`` (torque k α Δ,
+            the paper's eq. 14).
+
+    Raises:
+        InvalidParameterError: a stiffness or damping is negative, α ≤ 0, θ⁻ ≥ θ⁺, a contact
+            angle is missing, a value is NaN/inf, or the convention is unknown.
+    """
+
+    stiffness: float
+    theta_k: float | None = None
+    theta_minus: float | None = None
+    theta_plus: float | None = None
+    stiffness_minus: float | None = None
+    k2: float = 0.0
+    alpha: float = 1.0
+    damping: float = 0.0
+    neutral: float = 0.0
+    convention: str = "eq7"
+
+    def __post_init__(self) -> None:
+        for name in ("stiffness", "theta_k", "theta_minus", "theta_plus", "stiffness_minus",
+                     "k2", "alpha", "damping", "neutral"):
+            value = getattr(self, name)
+            if value is None:
+                continue
+            if isinstance(value, bool) or not isinstance(value, (int, float, np.floating,
+                                                                   np.integer)):
+                raise InvalidParameterError(name, value, "a real number")
+            if not math.isfinite(value):
+                raise InvalidParameterError(name, value, "a finite number (no NaN or inf)")
+            object.__setattr__(self, name, float(value))
+        for name in ("stiffness", "stiffness_minus", "k2", "damping"):
+            value = getattr(self, name)
+            if value is not None and value < 0:
+                raise InvalidParameterError(name, value, ">= 0")
+        if self.alpha <= 0:
+            raise InvalidParameterError("alpha", self.alpha, "> 0")
+        if self.theta_k is not None and self.theta_k < 0:
+            raise InvalidParameterError("theta_k", self.theta_k, ">= 0 (the dead zone is ±theta_k)")
+        if self.theta_minus is None and self.theta_k is None:
+            raise InvalidParameterError("theta_minus", None, "a number, or give theta_k")
+        if self.theta_plus is None and self.theta_k is None:
+            raise InvalidParameterError("theta_plus", None, "a number, or give theta_k")
+        if self.th_minus >= self.th_plus:
+            raise InvalidParameterError("theta_minus", self.th_minus,
+                                        f"< theta_plus = {self.th_plus!r}")
+        if self.convention not in CONVENTIONS:
+            raise InvalidParameterError("convention", self.convention,
+                                        f"one of {', '.join(CONVENTIONS)}")
+
+    @property
+    def th_minus(self) -> float:
+        """θ⁻, rad, relative to neutral."""
+        return self.theta_minus if self.theta_minus is not None else -float(self.theta_k)
+
+    @property
+    def th_plus(self) -> float:
+        """θ⁺, rad, relative to neutral."""
+        return self.theta_plus if self.theta_plus is not None else float(self.theta_k)
+
+    @property
+    def k_minus(self) -> float:
+        """k⁻, N·m/rad."""
+        return self.stiffness if self.stiffness_minus is None else self.stiffness_minus
+
+    @property
+    def transmission(self) -> float:
+        """Factor from spring stiffness to joint stiffness: α² (eq7) or α (eq14)."""
+        return self.alpha**2 if self.convention == "eq7" else self.alpha
+
+    def _delta(self, q: ArrayLike) -> np.ndarray:
+        return _finite_array("q", q) - self.neutral
+
+    def compression(self, q: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+        """Compressions past the contact angles.
+
+        Args:
+            q: Joint angles, rad, any shape.
+
+        Returns:
+            (beyond θ⁺ ≥ 0, below θ⁻ ≤ 0), rad, each the shape of q; zero in the dead zone.
+        """
+        d = self._delta(q)
+        return np.maximum(d - self.th_plus, 0.0), np.minimum(d - self.th_minus, 0.0)
+
+    def engaged(self, q: ArrayLike) -> np.ndarray:
+        """Whether the main spring is in contact (Δ outside [θ⁻, θ⁺]), bool, shape of q."""
+        d = self._delta(q)
+        return (d > self.th_plus) | (d < self.th_minus)
+
+    def torque_basis(self, q: ArrayLike, v: ArrayLike | None = None) -> TorqueBasis:
+        """Torque shapes per unit k⁺, k⁻, k₂ and damping, for stiffness sweeps.
+
+        For fixed contact angles, α and convention the torque is linear in the coefficients:
+        ``torque(q, v) == k⁺·b.plus + k⁻·b.minus + k₂·b.k2 + c·b.damping``.
+
+        Args:
+            q: Joint angles, rad, any shape.
+            v: Joint velocities, rad/s, same shape as q, or None (no damping).
+
+        Returns:
+            The four shapes, each the shape of q.
+        """
+        d = self._delta(q)
+        a = self.transmission
+        plus = -a * np.maximum(d - self.th_plus, 0.0)
+        minus = -a * np.minimum(d - self.th_minus, 0.0)
+        if v is None:
+            damp = np.zeros_like(d)
+        else:
+            va = _finite_array("v", v)
+            if va.shape != d.shape:
+                raise InvalidParameterError("v.shape", va.shape, f"the shape of q, {d.shape}")
+            eng = (d > self.th_plus) | (d < self.th_minus)
+            damp = np.where(eng, -a * va, 0.0)
+        return TorqueBasis(plus, minus, -d, damp)
+
+    def elastic_torque(self, q: ArrayLike) -> np.ndarray:
+        """Conservative torque on the joint, N·m, shape of q; exactly −dU/dq."""
+        b = self.torque_basis(q)
+        return self.stiffness * b.plus + self.k_minus * b.minus + self.k2 * b.k2
+
+    def torque(self, q: ArrayLike, v: ArrayLike | None = None) -> np.ndarray:
+        """Torque the spring applies to the joint, N·m, shape of q (elastic + damping).
+
+        Args:
+            q: Joint angles, rad, any shape.
+            v: Joint velocities, rad/s, same shape, or None to omit damping.
+        """
+        b = self.torque_basis(q, v)
+        return (self.stiffness * b.plus + self.k_minus * b.minus + self.k2 * b.k2
+                + self.damping * b.damping)
+
+    def energy(self, q: ArrayLike) -> np.ndarray:
+        """Stored potential energy U(q), J, shape of q (eq. 7 with Δθ = compression)."""
+        d = self._delta(q)
+        up, um = np.maximum(d - self.th_plus, 0.0), np.minimum(d - self.th_minus, 0.0)
+        a = self.transmission
+        return 0.5 * a * (self.stiffness * up**2 + self.k_minus * um**2) + 0.5 * self.k2 * d**2
+
+    def with_stiffness(self, stiffness: float) -> DeadZoneSpring:
+        """A copy with k⁺ (and k⁻ if it followed k⁺) replaced, N·m/rad."""
+        return DeadZoneSpring(stiffness, self.theta_k, self.theta_minus, self.theta_plus,
+                              self.stiffness_minus, self.k2, self.alpha, self.damping,
+                              self.neutral, self.convention)
+
+    @classmethod
+    def from_paper(cls, k_nmm_per_deg: float, theta_k_deg: float, alpha: float = 1.0, *,
+                   k2_nmm_per_deg: float = 0.0, damping_nmms_per_deg: float = 0.0,
+                   neutral_deg: float = 0.0, convention: str = "eq7") -> DeadZoneSpring:
+        """A symmetric spring from the paper's units (Tables 4–5, Section 4.2).
+
+        Args:
+            k_nmm_per_deg: Main spring stiffness k₁, N·mm/deg (Table 4: 400).
+            theta_k_deg: Contact angle θ_k, deg (Section 4.2: 7.32).
+            alpha: Angle conversion factor α (Section 4.2: 1.05).
+            k2_nmm_per_deg: Secondary spring, N·mm/deg (Table 5: 0.01).
+            damping_nmms_per_deg: Main spring damping, N·mm·s/deg (Table 4: 1).
+            neutral_deg: Joint angle at the dead-zone centre, deg.
+            convention: ``"eq7"`` or ``"eq14"``.
+
+        Returns:
+            The spring in SI.
+        """
+        for name, value in (("k_nmm_per_deg", k_nmm_per_deg), ("theta_k_deg", theta_k_deg),
+                            ("k2_nmm_per_deg", k2_nmm_per_deg),
+                            ("damping_nmms_per_deg", damping_nmms_per_deg),
+                            ("neutral_deg", neutral_deg)):
+            _finite_array(name, value)
+        return cls(stiffness=float(nmm_per_deg_to_nm_per_rad(k_nmm_per_deg)),
+                   theta_k=float(deg_to_rad(theta_k_deg)), alpha=alpha,
+                   k2=float(nmm_per_deg_to_nm_per_rad(k2_nmm_per_deg)),
+                   damping=float(nmms_per_deg_to_nms_per_rad(damping_nmms_per_deg)),
+                   neutral=float(deg_to_rad(neutral_deg)), convention=convention)
+
+
+class SpringSet(Mapping[str, DeadZoneSpring]):
+    """Springs assigned to actuated joints, keyed by joint name (any number, 0 to all).
+
+    Args:
+        springs: Joint name → spring. Names are checked against a robot when it is used.
+
+    Raises:
+        InvalidParameterError: a value is not a :class:`DeadZoneSpring` or a key not a string.
+    """
+
+    def __init__(self, springs: Mapping[str, DeadZoneSpring] | None = None) -> None:
+        items = dict(springs or {})
+        for name, spring in items.items():
+            if not isinstance(name, str):
+                raise InvalidParameterError("joint name", name, "a string")
+            if not isinstance(spring, DeadZoneSpring):
+                raise InvalidParameterError(f"spring on {name}", spring, "a DeadZoneSpring")
+        self._springs = items
+
+    def __getitem__(self, name: str) -> DeadZoneSpring:
+        try:
+            return self._springs[name]
+        except KeyError:
+            raise UnknownNameError("sprung joint", name, self._springs) from None
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._springs)
+
+    def __len__(self) -> int:
+        return len(self._springs)
+
+    def __repr__(self) -> str:
+        return f"SpringSet({self._springs!r})"
+
+    @classmethod
+    def from_mapping(cls, data: Mapping[str, Mapping[str, object]], where: str = "springs"
+                     ) -> SpringSet:
+        """Springs from a TOML table of tables, SI units: ``[springs.LF_femur] stiffness = 20.0``.
+
+        Args:
+            data: Joint name → table of :class:`DeadZoneSpring` fields.
+            where: Where the table came from, for error messages.
+
+        Raises:
+            ConfigError: a value has the wrong type. UnknownNameError: an unknown field.
+            InvalidParameterError: a value is out of range.
+        """
+        if not isinstance(data, Mapping):
+            raise ConfigError(f"{where}: expected a table of joint tables, got {data!r}")
+        return cls({name: from_mapping(DeadZoneSpring, table, f"{where}.{name}")
+                    for name, table in data.items()})
+
+    def columns(self, robot: Robot) -> dict[str, int]:
+        """Column of each sprung joint in (…, robot.nj) arrays.
+
+        Raises:
+            UnknownNameError: a sprung joint is not an actuated joint of ``robot`` (the message
+                lists ``robot.joint_names``).
+        """
+        return {name: robot.column(name) for name in self._springs}
+
+    def _joint_arrays(self, robot: Robot, q: ArrayLike, v: ArrayLike | None
+                      ) -> tuple[np.ndarray, np.ndarray | None]:
+        qa = _finite_array("q", q)
+        nq, nv = robot.model.nq, robot.model.nv
+        if qa.ndim != 2 or qa.shape[1] != nq:
+            raise InvalidParameterError("q.shape", qa.shape, f"(T, {nq})")
+        qj = qa[:, nq - robot.nj:]
+        if v is None:
+            return qj, None
+        va = _finite_array("v", v)
+        if va.shape != (qa.shape[0], nv):
+            raise InvalidParameterError("v.shape", va.shape, f"({qa.shape[0]}, {nv})")
+        return qj, va[:, nv - robot.nj:]
+
+    def torques(self, robot: Robot, q: ArrayLike, v: ArrayLike | None = None) -> np.ndarray:
+        """Spring torques on every actuated joint, N·m.
+
+        Args:
+            robot: The robot (free-flyer base: joint j's angle is ``q[:, 7 + j]``).
+            q: Configurations, shape (T, nq), rad for the joints.
+            v: Velocities, shape (T, nv), or None to omit damping.
+
+        Returns:
+            Shape (T, robot.nj), columns in ``robot.joint_names`` order; zero where no spring.
+
+        Raises:
+            UnknownNameError: a sprung joint is not a joint of the robot (lists the joints).
+            InvalidParameterError: wrong shapes, NaN or inf.
+        """
+        cols = self.columns(robot)
+        qj, vj = self._joint_arrays(robot, q, v)
+        out = np.zeros_like(qj)
+        for name, c in cols.items():
+            out[:, c] = self._springs[name].torque(qj[:, c], None if vj is None else vj[:, c])
+        return out
+
+    def energies(self, robot: Robot, q: ArrayLike) -> np.ndarray:
+        """Stored spring energy per actuated joint, J, shape (T, robot.nj); zero where no spring.
+
+        Args:
+            robot: The robot.
+            q: Configurations, shape (T, nq).
+
+        Raises:
+            UnknownNameError: a sprung joint is not a joint of the robot (lists the joints).
+            InvalidParameterError: wrong shape, NaN or inf.
+        """
+        cols = self.columns(robot)
+        qj, _ = self._joint_arrays(robot, q, None)
+        out = np.zeros_like(qj)
+        for name, c in cols.items():
+            out[:, c] = self._springs[name].energy(qj[:, c])
+        return out
