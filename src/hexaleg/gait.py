@@ -1,0 +1,621 @@
+"""Whole-robot motions: the periodic leg-group gait (tripod), joint sinusoids, hexapod → sphere.
+
+* :func:`tripod_gait` — the body moves with a constant twist (forward speed, optional yaw rate);
+  legs move in groups (default the two tripods {LF, RM, LH} and {RF, LM, RH}); stance feet stay
+  fixed on the ground, swing feet follow :func:`swing_curve`; joint angles, velocities and
+  accelerations come from the leg inverse kinematics (:mod:`hexaleg.kinematics`) with exact
+  derivatives. The foot-placement and timing logic is generic in the legs and groups (a trot on a
+  quadruped is two groups of two legs).
+* :func:`joint_motion` — chosen joints follow the paper's sinusoid (eq. 16) on a fixed base; the
+  paper's single-joint experiment embedded in the robot.
+* :func:`transform_motion` — from ``stand`` to ``sphere`` with a smooth joint interpolation.
+
+All outputs are :class:`~hexaleg.motion.Motion` objects in Pinocchio's conventions: base velocity
+and acceleration in the LOCAL base frame, ``a = dv/dt``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pinocchio as pin
+
+from hexaleg.config import from_mapping, load_toml
+from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.kinematics import leg_ik
+from hexaleg.motion import Motion
+from hexaleg.robot import Robot
+
+MIN_SAMPLES = 20
+"""Fewest samples per period (or per motion) a motion may have."""
+
+TRIPODS: tuple[tuple[str, ...], ...] = (("LF", "RM", "LH"), ("RF", "LM", "RH"))
+"""The hexapod's two tripods, the default leg groups; group 0 touches down at t = 0."""
+
+
+# --------------------------------------------------------------------------- swing curves
+
+
+def smoothstep(s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The degree-7 smoothstep σ(s) = 35s⁴ − 84s⁵ + 70s⁶ − 20s⁷ and its first two derivatives.
+
+    σ rises from 0 to 1 on [0, 1] with zero first, second and third derivatives at both ends
+    (the lowest-degree polynomial with that property). Source: the "smootherstep" family of
+    Hermite polynomials, e.g. Ebert et al., *Texturing & Modeling*, 3rd ed., 2003, ch. 2.
+
+    Args:
+        s: Normalised time, any shape, in [0, 1].
+
+    Returns:
+        σ, dσ/ds, d²σ/ds², each the shape of ``s``.
+    """
+    s = np.asarray(s, dtype=float)
+    s3 = s**3
+    value = s3 * s * (35.0 + s * (-84.0 + s * (70.0 - 20.0 * s)))
+    d1 = 140.0 * s3 * (1.0 - s) ** 3
+    d2 = 420.0 * s * s * (1.0 - s) ** 2 * (1.0 - 2.0 * s)
+    return value, d1, d2
+
+
+def swing_bump(s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The lift profile b(s) = 256 s⁴ (1 − s)⁴ and its first two derivatives.
+
+    b is 0 at s = 0 and 1, peaks at b(½) = 1, and has zero first, second and third derivatives
+    at both ends. Source: chosen here (symmetric polynomial with the end conditions above).
+
+    Args:
+        s: Normalised time, any shape, in [0, 1].
+
+    Returns:
+        b, db/ds, d²b/ds², each the shape of ``s``.
+    """
+    s = np.asarray(s, dtype=float)
+    u = s * (1.0 - s)
+    du = 1.0 - 2.0 * s
+    value = 256.0 * u**4
+    d1 = 1024.0 * u**3 * du
+    d2 = 3072.0 * u**2 * du**2 - 2048.0 * u**3
+    return value, d1, d2
+
+
+def swing_curve(s: np.ndarray, lift_off: np.ndarray, touch_down: np.ndarray, height: float
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A swing foot's path: straight ground track by :func:`smoothstep`, lift by :func:`swing_bump`.
+
+    ``p(s) = p₀ + (p₁ − p₀) σ(s) + h b(s) ẑ``: the foot leaves ``lift_off`` and lands on
+    ``touch_down`` with zero velocity, acceleration and jerk, so contact switches are impact-free
+    and the joint accelerations (and inverse-dynamics torques) stay continuous across them.
+
+    Args:
+        s: Normalised swing time, shape (N,), in [0, 1].
+        lift_off: Lift-off points, shape (N, 3) or (3,), m.
+        touch_down: Touch-down points, shape (N, 3) or (3,), m.
+        height: Apex height above the straight line between them, m.
+
+    Returns:
+        p (N, 3) m, dp/ds (N, 3) m, d²p/ds² (N, 3) m.
+    """
+    sigma, d_sigma, dd_sigma = smoothstep(s)
+    bump, d_bump, dd_bump = swing_bump(s)
+    delta = np.asarray(touch_down, dtype=float) - np.asarray(lift_off, dtype=float)
+    up = np.array([0.0, 0.0, height])
+    p = lift_off + sigma[:, None] * delta + bump[:, None] * up
+    return p, d_sigma[:, None] * delta + d_bump[:, None] * up, \
+        dd_sigma[:, None] * delta + dd_bump[:, None] * up
+
+
+# --------------------------------------------------------------------------- parameters
+
+
+def _finite(name: str, value: float, allowed: str, ok: bool) -> None:
+    if not (isinstance(value, (int, float)) and not isinstance(value, bool)
+            and math.isfinite(value) and ok):
+        raise InvalidParameterError(name, value, allowed)
+
+
+@dataclass(frozen=True)
+class GaitParams:
+    """Parameters of a periodic leg-group gait (SI).
+
+    Attributes:
+        period: Cycle duration, s (> 0).
+        duty_factor: β, the fraction of the cycle each foot is in stance, in [0.5, 1).
+        stride_length: Body travel per cycle, m (≥ 0); also each foot's travel per swing. The
+            stance stroke of a foot relative to the body is β · stride.
+        speed: Forward speed, m/s. When given (not None) it **wins** over ``stride_length``:
+            the stride becomes ``speed · period``. Default None: speed = stride / period.
+        step_height: Apex height of the swing foot above the ground, m (> 0).
+        body_height: Height of the base above the ground, m (> 0); None: the depth of the feet
+            below the base in the robot's ``stand`` pose (0.0913 m for hexaleg).
+        foot_radius: Horizontal distance of each nominal foothold from the base's z axis (stance
+            width), m (> 0); None: the footholds of the ``stand`` pose (0.1889 m for hexaleg).
+        yaw_rate: Turning rate about the vertical, rad/s; the body then follows a circular arc.
+        samples: Samples per cycle (≥ ``MIN_SAMPLES``).
+        groups: Legs that move together; group i touches down at t = i · period / len(groups)
+            and every leg of the robot must be in exactly one group.
+    """
+
+    period: float = 1.0
+    duty_factor: float = 0.5
+    stride_length: float = 0.06
+    speed: float | None = None
+    step_height: float = 0.03
+    body_height: float | None = None
+    foot_radius: float | None = None
+    yaw_rate: float = 0.0
+    samples: int = 1000
+    groups: tuple[tuple[str, ...], ...] = TRIPODS
+
+    def __post_init__(self) -> None:
+        _finite("period", self.period, "a finite number > 0 (s)", self.period > 0)
+        _finite("duty_factor", self.duty_factor, "β in [0.5, 1)",
+                0.5 <= self.duty_factor < 1.0)
+        _finite("stride_length", self.stride_length, "a finite number ≥ 0 (m)",
+                self.stride_length >= 0)
+        if self.speed is not None:
+            _finite("speed", self.speed, "None or a finite number ≥ 0 (m/s)", self.speed >= 0)
+        _finite("step_height", self.step_height, "a finite number > 0 (m)",
+                self.step_height > 0)
+        for name in ("body_height", "foot_radius"):
+            value = getattr(self, name)
+            if value is not None:
+                _finite(name, value, "None or a finite number > 0 (m)", value > 0)
+        _finite("yaw_rate", self.yaw_rate, "a finite number (rad/s)", True)
+        if isinstance(self.samples, bool) or not isinstance(self.samples, int) \
+                or self.samples < MIN_SAMPLES:
+            raise InvalidParameterError("samples", self.samples,
+                                        f"an integer ≥ {MIN_SAMPLES} samples per period")
+        groups = tuple(tuple(g) for g in self.groups)
+        legs = [leg for g in groups for leg in g]
+        if not groups or any(not g for g in groups) or len(set(legs)) != len(legs) \
+                or not all(isinstance(leg, str) for leg in legs):
+            raise InvalidParameterError("groups", self.groups,
+                                        "non-empty groups of leg names, each leg in one group")
+        object.__setattr__(self, "groups", groups)
+
+    @property
+    def stride(self) -> float:
+        """Body travel per cycle, m (``speed · period`` when ``speed`` is given)."""
+        return self.speed * self.period if self.speed is not None else self.stride_length
+
+    @property
+    def velocity(self) -> float:
+        """Forward speed, m/s (``stride / period`` unless ``speed`` is given)."""
+        return self.stride / self.period
+
+    @classmethod
+    def from_toml(cls, source: str | Path | Mapping[str, Any]) -> GaitParams:
+        """Gait parameters from a TOML file or an already parsed table.
+
+        Args:
+            source: A TOML file (its ``[gait]`` table, or the top level when it has none) or a
+                mapping of field names to values.
+
+        Returns:
+            The parameters; missing keys take their defaults.
+
+        Raises:
+            ConfigError: the file cannot be read, or a value has the wrong type.
+            UnknownNameError: a key is not a field (the message lists the fields).
+            InvalidParameterError: a value is out of range.
+        """
+        if isinstance(source, Mapping):
+            return from_mapping(cls, source, "gait")
+        data = load_toml(source)
+        table = data.get("gait", data)
+        return from_mapping(cls, table, f"{source} [gait]" if "gait" in data else str(source))
+
+
+@dataclass(frozen=True)
+class Sinusoid:
+    """The paper's joint trajectory f(t) = A sin(ωt + φ) + B (eq. 16), an absolute joint angle.
+
+    Attributes:
+        amplitude: A, rad.
+        omega: ω, rad/s.
+        phase: φ, rad.
+        offset: B, rad.
+    """
+
+    amplitude: float
+    omega: float
+    phase: float = 0.0
+    offset: float = 0.0
+
+    def __post_init__(self) -> None:
+        for name in ("amplitude", "omega", "phase", "offset"):
+            _finite(f"Sinusoid.{name}", getattr(self, name), "a finite number", True)
+
+    def __call__(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Angle, angular velocity and acceleration at times ``t`` (eq. 16 and its derivatives).
+
+        Args:
+            t: Times, any shape, s.
+
+        Returns:
+            f (rad), ḟ = Aω cos(ωt + φ) (rad/s), f̈ = −Aω² sin(ωt + φ) (rad/s²), shape of ``t``.
+        """
+        arg = self.omega * np.asarray(t, dtype=float) + self.phase
+        s, c = np.sin(arg), np.cos(arg)
+        a = self.amplitude
+        return a * s + self.offset, a * self.omega * c, -a * self.omega**2 * s
+
+
+# --------------------------------------------------------------------------- the gait
+
+
+def _resolve_groups(robot: Robot, gait: GaitParams) -> np.ndarray:
+    """Touch-down phase offset (fraction of the period) of each robot leg, shape (n_legs,)."""
+    names = robot.leg_names
+    offset = {}
+    for i, group in enumerate(gait.groups):
+        for leg in group:
+            if leg not in names:
+                raise UnknownNameError("leg in GaitParams.groups", leg, names)
+            offset[leg] = i / len(gait.groups)
+    missing = [leg for leg in names if leg not in offset]
+    if missing:
+        raise InvalidParameterError("groups", gait.groups,
+                                    f"every leg of the robot in a group; missing {missing}")
+    return np.array([offset[leg] for leg in names])
+
+
+def _reference(robot: Robot) -> np.ndarray:
+    """The ``stand`` pose (or the neutral configuration), base at the origin, shape (nq,)."""
+    q = robot.pose("stand") if "stand" in robot.poses else pin.neutral(robot.model)
+    q[:7] = pin.neutral(robot.model)[:7]
+    return q
+
+
+def nominal_footholds(robot: Robot, gait: GaitParams) -> np.ndarray:
+    """Mid-stance foot positions in the base frame, shape (n_legs, 3), m.
+
+    Horizontally the footholds of the robot's ``stand`` pose (scaled to ``foot_radius`` from the
+    base z axis when given); vertically ``−body_height`` (default the stand pose's mean foot
+    depth), so the feet are on the ground z = 0 when the base is at ``body_height``.
+
+    Args:
+        robot: The robot.
+        gait: Gait parameters.
+
+    Returns:
+        Footholds in the base frame, legs in ``robot.legs`` order.
+    """
+    feet = robot.foot_positions(_reference(robot))
+    height = -float(feet[:, 2].mean()) if gait.body_height is None else gait.body_height
+    if gait.foot_radius is not None:
+        radial = np.linalg.norm(feet[:, :2], axis=1, keepdims=True)
+        feet[:, :2] *= gait.foot_radius / radial
+    feet[:, 2] = -height
+    return feet
+
+
+def _body_pose(t: np.ndarray, speed: float, yaw_rate: float, height: float
+               ) -> tuple[np.ndarray, np.ndarray]:
+    """Base position (N, 3) m and yaw (N,) rad of the constant-twist body motion at times t."""
+    yaw = yaw_rate * t
+    if yaw_rate == 0.0:
+        x, y = speed * t, np.zeros_like(t)
+    else:
+        x, y = speed / yaw_rate * np.sin(yaw), speed / yaw_rate * (1.0 - np.cos(yaw))
+    return np.stack([x, y, np.full_like(t, height)], axis=-1), yaw
+
+
+def _rotz(yaw: np.ndarray) -> np.ndarray:
+    c, s = np.cos(yaw), np.sin(yaw)
+    rot = np.zeros((*np.shape(yaw), 3, 3))
+    rot[..., 0, 0], rot[..., 0, 1], rot[..., 1, 0], rot[..., 1, 1] = c, -s, s, c
+    rot[..., 2, 2] = 1.0
+    return rot
+
+
+def _support_margin(points: np.ndarray, c: np.ndarray) -> float:
+    """Signed distance of ``c`` (2,) inside the convex hull of ``points`` (n, 2), m.
+
+    Positive inside (distance to the nearest edge), negative outside; −inf for fewer than three
+    points or a degenerate hull. Hull by Andrew's monotone chain.
+    """
+    pts = sorted(map(tuple, np.round(points, 15)))
+    if len(pts) < 3:
+        return -math.inf
+
+    def cross(o: tuple, a: tuple, b: tuple) -> float:
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+    hull: list[tuple] = []
+    for seq in (pts, pts[::-1]):
+        start = len(hull)
+        for pt in seq:
+            while len(hull) >= start + 2 and cross(hull[-2], hull[-1], pt) <= 0:
+                hull.pop()
+            hull.append(pt)
+        hull.pop()
+    if len(hull) < 3:
+        return -math.inf
+    dists = []
+    for a, b in zip(hull, hull[1:] + hull[:1], strict=True):
+        edge = math.hypot(b[0] - a[0], b[1] - a[1])
+        dists.append(cross(a, b, tuple(c)) / edge)
+    return min(dists)
+
+
+def sample_gait(robot: Robot, gait: GaitParams | None = None,
+                t: np.ndarray | None = None) -> Motion:
+    """Evaluate the periodic leg-group gait at given times (the machinery of :func:`tripod_gait`).
+
+    The base moves with the constant twist (local linear velocity ``[speed, 0, 0]``, angular
+    velocity ``[0, 0, yaw_rate]``) at ``body_height``, starting at the origin with zero yaw. A
+    leg of group i is in stance for the phase φ = (t/period − i/n_groups) mod 1 < β, its foot
+    fixed at the world image of its nominal foothold at mid-stance; in swing it moves on
+    :func:`swing_curve` from that point to the next mid-stance image (one stride ahead). The
+    foot targets are taken into the base frame with the exact rotating-frame derivatives
+    ``ṗ_b = −ω × p_b + Rᵀ ṗ − v`` and ``p̈_b = −ω × ṗ_b − ω × Rᵀ ṗ + Rᵀ p̈`` and solved by
+    :func:`hexaleg.kinematics.leg_ik`.
+
+    Args:
+        robot: The robot; joints outside the legs are held at the ``stand`` pose.
+        gait: Gait parameters; default ``GaitParams()``.
+        t: Times, shape (T,), s; default the cycle grid ``k · period / samples``.
+
+    Returns:
+        The motion (see :func:`tripod_gait` for the fields and ``info``).
+
+    Raises:
+        UnknownNameError: a leg in ``gait.groups`` is not a leg of the robot.
+        InvalidParameterError: a leg of the robot is in no group.
+        UnreachableTargetError: a foot target is out of reach (names leg, time, distance).
+    """
+    gait = GaitParams() if gait is None else gait
+    if t is None:
+        t = np.arange(gait.samples) * (gait.period / gait.samples)
+    t = np.asarray(t, dtype=float)
+    offsets = _resolve_groups(robot, gait)
+    nominal = nominal_footholds(robot, gait)
+    height = -float(nominal[0, 2])
+    speed, beta, period, omega = gait.velocity, gait.duty_factor, gait.period, gait.yaw_rate
+    n, n_legs = len(t), len(robot.legs)
+
+    base, yaw = _body_pose(t, speed, omega, height)
+    rot = _rotz(yaw)
+    v_local = np.array([speed, 0.0, 0.0])
+    w_local = np.array([0.0, 0.0, omega])
+
+    q = np.tile(_reference(robot), (n, 1))
+    q[:, :3] = base
+    q[:, 5], q[:, 6] = np.sin(yaw / 2), np.cos(yaw / 2)
+    v = np.zeros((n, robot.model.nv))
+    v[:, :3], v[:, 3:6] = v_local, w_local
+    a = np.zeros((n, robot.model.nv))
+    stance = np.zeros((n, n_legs), dtype=bool)
+    feet = np.zeros((n, n_legs, 3))
+    solvers = {}
+
+    def foothold(t_mid: np.ndarray, leg: int) -> np.ndarray:
+        pos, psi = _body_pose(t_mid, speed, omega, height)
+        return pos + np.einsum("nij,j->ni", _rotz(psi), nominal[leg])
+
+    for i, leg in enumerate(robot.legs):
+        tau = t / period - offsets[i]
+        cycle = np.floor(tau)
+        phase = tau - cycle
+        on = phase < beta
+        t_mid = (cycle + offsets[i] + beta / 2) * period
+        p_w = foothold(t_mid, i)
+        pd_w = np.zeros((n, 3))
+        pdd_w = np.zeros((n, 3))
+        sw = ~on
+        if sw.any():
+            s = (phase[sw] - beta) / (1.0 - beta)
+            t_swing = (1.0 - beta) * period
+            p_s, dp_s, ddp_s = swing_curve(s, p_w[sw], foothold(t_mid[sw] + period, i),
+                                           gait.step_height)
+            p_w[sw], pd_w[sw], pdd_w[sw] = p_s, dp_s / t_swing, ddp_s / t_swing**2
+        stance[:, i], feet[:, i] = on, p_w
+
+        rel = np.einsum("nji,nj->ni", rot, p_w - base)
+        rt_pd = np.einsum("nji,nj->ni", rot, pd_w)
+        rel_d = -np.cross(w_local, rel) + rt_pd - v_local
+        rel_dd = -np.cross(w_local, rel_d) - np.cross(w_local, rt_pd) \
+            + np.einsum("nji,nj->ni", rot, pdd_w)
+        q_leg, qd_leg, qdd_leg, solvers[leg.name] = leg_ik(robot, leg, rel, rel_d, rel_dd, t=t)
+        q[:, leg.q_index], v[:, leg.v_index], a[:, leg.v_index] = q_leg, qd_leg, qdd_leg
+
+    margins = np.full(n, -math.inf)
+    data = robot.model.createData()
+    for k in range(n):
+        com = pin.centerOfMass(robot.model, data, q[k])
+        margins[k] = _support_margin(feet[k, stance[k], :2], com[:2])
+    worst = int(np.argmin(margins))
+    info = {
+        "source": "tripod_gait",
+        "gait": {f.name: getattr(gait, f.name) for f in dataclasses.fields(gait)},
+        "stride_length": gait.stride, "speed": speed, "body_height": height,
+        "foot_radius": float(np.linalg.norm(nominal[:, :2], axis=1).mean()),
+        "min_stance_feet": int(stance.sum(axis=1).min()),
+        "static_margin": float(margins[worst]) if math.isfinite(margins[worst]) else None,
+        "static_margin_t": float(t[worst]),
+        "ik": solvers,
+    }
+    return Motion(t=t, q=q, v=v, a=a, stance=stance, feet=feet, period=period,
+                  distance=gait.stride, periodic=True, fixed_base=False, info=info)
+
+
+def tripod_gait(robot: Robot, gait: GaitParams | None = None) -> Motion:
+    """One cycle of the periodic leg-group gait (default: the hexapod's alternating tripod).
+
+    Args:
+        robot: The robot (e.g. ``load_robot()``).
+        gait: Gait parameters; default ``GaitParams()`` (period 1 s, β = 0.5, stride 0.06 m,
+            step height 0.03 m, the ``stand`` height and footprint, 1000 samples, tripods).
+
+    Returns:
+        Motion with t (T,) = k · period / T (endpoint excluded), q (T, nq), v (T, nv) and
+        a (T, nv) in Pinocchio's conventions (base velocity/acceleration in the LOCAL base
+        frame), stance (T, n_legs) bool and the world foot targets feet (T, n_legs, 3) m, legs
+        in ``robot.legs`` order; ``distance`` = stride, ``periodic`` True, ``fixed_base``
+        False. ``info`` holds ``gait`` (the parameters), ``stride_length`` m, ``speed`` m/s,
+        ``body_height`` m, ``foot_radius`` m, ``min_stance_feet``, ``static_margin`` m (the
+        smallest distance of the CoM's ground projection inside the stance feet's support
+        polygon over the cycle; None if some sample has fewer than 3 stance feet) and
+        ``static_margin_t`` s (where it occurs), and ``ik`` (solver per leg).
+
+    Raises:
+        UnknownNameError: a leg in ``gait.groups`` is not a leg of the robot.
+        InvalidParameterError: a leg of the robot is in no group.
+        UnreachableTargetError: a foot target is out of reach (names leg, time, distance).
+    """
+    return sample_gait(robot, gait)
+
+
+# --------------------------------------------------------------------------- joint-space motions
+
+
+def _base_pose(robot: Robot, base: str | np.ndarray) -> np.ndarray:
+    if isinstance(base, str):
+        return robot.pose(base)
+    q = np.asarray(base, dtype=float)
+    if q.shape != (robot.model.nq,) or not np.all(np.isfinite(q)):
+        raise InvalidParameterError("base", f"array of shape {q.shape}",
+                                    f"a pose name ({', '.join(robot.poses)}) or a finite "
+                                    f"configuration of shape ({robot.model.nq},)")
+    return q.copy()
+
+
+def _check_samples(samples: object) -> int:
+    if isinstance(samples, bool) or not isinstance(samples, int) or samples < MIN_SAMPLES:
+        raise InvalidParameterError("samples", samples, f"an integer ≥ {MIN_SAMPLES}")
+    return samples
+
+
+def _check_joint_limits(robot: Robot, q: np.ndarray, t: np.ndarray) -> None:
+    lo, hi = robot.model.lowerPositionLimit[7:], robot.model.upperPositionLimit[7:]
+    bad = (q[:, 7:] < lo) | (q[:, 7:] > hi)
+    if bad.any():
+        k, j = (int(i) for i in np.argwhere(bad)[0])
+        raise InvalidParameterError(
+            f"trajectory of joint {robot.joint_names[j]}", f"{q[k, 7 + j]:.4f} rad at t = "
+            f"{t[k]:.6g} s", f"angles within the joint limits [{lo[j]:.4f}, {hi[j]:.4f}] rad")
+
+
+def _feet(robot: Robot, q: np.ndarray) -> np.ndarray:
+    return np.stack([robot.foot_positions(qk) for qk in q])
+
+
+def joint_motion(robot: Robot, trajectories: Mapping[str, Sinusoid],
+                 base: str | np.ndarray = "stand", samples: int = 1000,
+                 period: float | None = None) -> Motion:
+    """Joints following the paper's sinusoid f(t) = A sin(ωt + φ) + B (eq. 16) on a fixed base.
+
+    This embeds the paper's single-joint experiment (eq. 25: f(t) = 0.3 sin 2t) in the robot:
+    each named joint's angle is its :class:`Sinusoid` (absolute angle, rad) with exact
+    derivatives; every other joint is held at the ``base`` pose; the base is held by a fixture.
+
+    Args:
+        robot: The robot.
+        trajectories: Joint name → sinusoid; names from ``robot.joint_names``.
+        base: Pose name (``stand``, ``sphere``, ``zero``) or a configuration (nq,).
+        samples: Samples per period T (endpoint excluded).
+        period: Duration, s; default 2π/|ω| when all sinusoids share |ω| > 0.
+
+    Returns:
+        Motion with t (T,), q (T, nq), v (T, nv), a (T, nv), stance (T, n_legs) all False, feet
+        (T, n_legs, 3) from forward kinematics; ``fixed_base`` True, ``distance`` 0,
+        ``periodic`` True when every ω · period is a multiple of 2π.
+
+    Raises:
+        UnknownNameError: a joint name is not an actuated joint.
+        InvalidParameterError: no trajectories, bad samples or period, no common period, or a
+            joint leaves its limits.
+    """
+    if not trajectories:
+        raise InvalidParameterError("trajectories", dict(trajectories),
+                                    "at least one joint name → Sinusoid")
+    for name, traj in trajectories.items():
+        robot.column(name)
+        if not isinstance(traj, Sinusoid):
+            raise InvalidParameterError(f"trajectories[{name!r}]", traj, "a Sinusoid")
+    samples = _check_samples(samples)
+    omegas = sorted({abs(s.omega) for s in trajectories.values()})
+    if period is None:
+        if len(omegas) != 1 or omegas[0] == 0.0:
+            raise InvalidParameterError("period", None, "a duration > 0 (s) when the sinusoids "
+                                        f"do not share one |ω| > 0 (|ω| = {omegas})")
+        period = 2.0 * math.pi / omegas[0]
+    _finite("period", period, "a finite number > 0 (s)", period > 0)
+    t = np.arange(samples) * (period / samples)
+    q = np.tile(_base_pose(robot, base), (samples, 1))
+    v = np.zeros((samples, robot.model.nv))
+    a = np.zeros((samples, robot.model.nv))
+    for name, traj in trajectories.items():
+        col = robot.column(name)
+        q[:, 7 + col], v[:, 6 + col], a[:, 6 + col] = traj(t)
+    _check_joint_limits(robot, q, t)
+    cycles = [w * period / (2.0 * math.pi) for w in omegas]
+    periodic = all(abs(c - round(c)) < 1e-9 for c in cycles)
+    info = {"source": "joint_motion", "base": base if isinstance(base, str) else "custom",
+            "trajectories": {k: dataclasses.asdict(s) for k, s in trajectories.items()}}
+    return Motion(t=t, q=q, v=v, a=a, stance=np.zeros((samples, len(robot.legs)), dtype=bool),
+                  feet=_feet(robot, q), period=period, distance=0.0, periodic=periodic,
+                  fixed_base=True, info=info)
+
+
+def transform_motion(robot: Robot, duration: float = 2.0, samples: int = 1000,
+                     start: str = "stand", end: str = "sphere",
+                     base_height: float | None = None) -> Motion:
+    """The hexapod → sphere transformation: joints from ``start`` to ``end``, base at rest.
+
+    Every joint moves as q(t) = q₀ + (q₁ − q₀) σ(t / duration) with the :func:`smoothstep` σ,
+    so velocity, acceleration (and jerk) are zero at both ends. "Body resting on the ground" is
+    taken to mean that the body's weight is carried by a support under it, not by the legs: the
+    base does not move and the motion is ``fixed_base`` (the fixture wrench is that support's
+    reaction), no foot is in stance, and the legs only move themselves. The base is held at
+    ``base_height`` above the ground, by default the depth of the lowest foot below the base in
+    ``start`` (0.0913 m for ``stand``), so at t = 0 the feet just touch the ground and they lift
+    off as the legs fold (``info["min_foot_height"]`` reports the lowest foot over the motion).
+
+    Args:
+        robot: The robot.
+        duration: Duration, s (> 0).
+        samples: Number of samples including both ends (≥ ``MIN_SAMPLES``).
+        start: Initial pose name.
+        end: Final pose name.
+        base_height: Height of the base above the ground, m; default as described above.
+
+    Returns:
+        Motion with t = linspace(0, duration, samples), q (T, nq), v (T, nv), a (T, nv),
+        stance (T, n_legs) all False, feet (T, n_legs, 3) world foot positions; ``periodic``
+        False, ``fixed_base`` True, ``period`` = duration.
+
+    Raises:
+        UnknownNameError: a pose name is unknown.
+        InvalidParameterError: bad duration, samples or base height.
+    """
+    _finite("duration", duration, "a finite number > 0 (s)", duration > 0)
+    samples = _check_samples(samples)
+    q0, q1 = robot.pose(start), robot.pose(end)
+    if base_height is None:
+        base_height = -float(robot.foot_positions(q0)[:, 2].min())
+    _finite("base_height", base_height, "a finite number > 0 (m)", base_height > 0)
+    t = np.linspace(0.0, duration, samples)
+    sigma, d_sigma, dd_sigma = smoothstep(t / duration)
+    delta = pin.difference(robot.model, q0, q1)[6:]
+    q = np.tile(q0, (samples, 1))
+    q[:, 2] = base_height
+    q[:, 7:] += sigma[:, None] * delta
+    v = np.zeros((samples, robot.model.nv))
+    a = np.zeros((samples, robot.model.nv))
+    v[:, 6:] = d_sigma[:, None] * delta / duration
+    a[:, 6:] = dd_sigma[:, None] * delta / duration**2
+    feet = _feet(robot, q)
+    info = {"source": "transform_motion", "start": start, "end": end,
+            "base_height": base_height, "min_foot_height": float(feet[..., 2].min())}
+    return Motion(t=t, q=q, v=v, a=a, stance=np.zeros((samples, len(robot.legs)), dtype=bool),
+                  feet=feet, period=duration, distance=0.0, periodic=False, fixed_base=True,
+                  info=info)
+

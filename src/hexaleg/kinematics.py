@@ -1,0 +1,386 @@
+"""Leg inverse kinematics: foot position, velocity and acceleration → joint angles and derivatives.
+
+Two solvers, both working in the base frame (the base's pose does not enter a leg's kinematics):
+
+* :func:`analytic_leg_ik` — closed form for hexaleg-type legs (coxa about the body z axis, femur
+  and tibia about parallel horizontal axes, see :mod:`hexaleg.robot_builder`), vectorised over
+  time. The knee branch is fixed: tibia angle ≤ 0 (knee above the foot, as in the ``stand`` and
+  ``sphere`` poses), so the branch never switches along a trajectory.
+* :func:`newton_leg_ik` — any 3-joint leg: Newton iterations on Pinocchio's forward kinematics,
+  warm-started from the previous sample, then ``q̇ = J⁻¹ ṗ`` and ``q̈ = J⁻¹ (p̈ − J̇ q̇)`` (J̇ q̇ is
+  the foot's classical acceleration at zero joint acceleration, from Pinocchio).
+
+Derivatives are exact (chain rule on the closed form, or the Jacobian relations above), never
+finite differences. :func:`leg_ik` picks the analytic solver when the leg's geometry matches it
+(checked against Pinocchio forward kinematics) and Newton otherwise.
+
+Source: standard serial-chain kinematics (Siciliano et al., *Robotics: Modelling, Planning and
+Control*, 2009, §2.12 inverse kinematics, §3.1–3.2 the geometric Jacobian and its derivative);
+the paper studies one joint and has no leg IK.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+
+from hexaleg.errors import RobotModelError, UnreachableTargetError
+from hexaleg.robot import Leg, Robot
+
+FK_CHECK_TOL = 1e-12
+"""Tolerance, m, of the check that the analytic model reproduces Pinocchio's forward kinematics."""
+NEWTON_TOL = 1e-13
+"""Foot position residual, m, at which the Newton solver stops."""
+NEWTON_MAX_ITER = 50
+"""Newton iterations allowed per sample before the target is declared unreachable."""
+
+
+@dataclass(frozen=True)
+class LegGeometry:
+    """Geometry of a hexaleg-type leg, in the base frame, SI.
+
+    The coxa joint sits at ``hip`` with its x axis yawed by ``yaw`` about the base z axis and turns
+    about z; the femur joint is ``coxa`` m further along the coxa's x axis; femur and tibia turn
+    about the leg's −y axis (positive angles lift) and have lengths ``femur`` and ``tibia``; the
+    foot is at the tibia tip.
+
+    Attributes:
+        hip: Coxa joint position in the base frame, shape (3,), m.
+        yaw: Hip yaw about the base z axis, rad.
+        coxa: Coxa length (coxa axis → femur axis), m.
+        femur: Femur length, m.
+        tibia: Tibia length (knee → foot), m.
+    """
+
+    hip: tuple[float, float, float]
+    yaw: float
+    coxa: float
+    femur: float
+    tibia: float
+
+    def __post_init__(self) -> None:
+        for name in ("coxa", "femur", "tibia"):
+            value = getattr(self, name)
+            if not (math.isfinite(value) and value >= 0.0):
+                raise RobotModelError(f"leg geometry: {name} length {value!r} must be finite "
+                                      "and ≥ 0")
+        if self.femur <= 0.0 or self.tibia <= 0.0:
+            raise RobotModelError(f"leg geometry: femur {self.femur} m and tibia {self.tibia} m "
+                                  "must be > 0")
+
+    @property
+    def reach(self) -> tuple[float, float]:
+        """Smallest and largest distance of the foot from the femur axis, m."""
+        return abs(self.femur - self.tibia), self.femur + self.tibia
+
+    def forward(self, q: np.ndarray) -> np.ndarray:
+        """Foot position in the base frame.
+
+        Args:
+            q: Joint angles (coxa, femur, tibia), shape (..., 3), rad.
+
+        Returns:
+            Foot positions, shape (..., 3), m.
+        """
+        q = np.asarray(q, dtype=float)
+        q1, q2, q3 = q[..., 0], q[..., 1], q[..., 2]
+        rho = self.coxa + self.femur * np.cos(q2) + self.tibia * np.cos(q2 + q3)
+        z = self.femur * np.sin(q2) + self.tibia * np.sin(q2 + q3)
+        c, s = math.cos(self.yaw), math.sin(self.yaw)
+        x_h, y_h = rho * np.cos(q1), rho * np.sin(q1)
+        return np.stack([self.hip[0] + c * x_h - s * y_h, self.hip[1] + s * x_h + c * y_h,
+                         self.hip[2] + z], axis=-1)
+
+    def jacobian(self, q: np.ndarray) -> np.ndarray:
+        """Derivative of :meth:`forward` with respect to the joint angles.
+
+        Args:
+            q: Joint angles, shape (..., 3), rad.
+
+        Returns:
+            ∂p/∂q, shape (..., 3, 3), m/rad (rows x y z of the base frame, columns the joints).
+        """
+        q = np.asarray(q, dtype=float)
+        q1, q2, q23 = q[..., 0], q[..., 1], q[..., 1] + q[..., 2]
+        rho = self.coxa + self.femur * np.cos(q2) + self.tibia * np.cos(q23)
+        d_rho = np.stack([np.zeros_like(q1), -self.femur * np.sin(q2) - self.tibia * np.sin(q23),
+                          -self.tibia * np.sin(q23)], axis=-1)
+        d_z = np.stack([np.zeros_like(q1), self.femur * np.cos(q2) + self.tibia * np.cos(q23),
+                        self.tibia * np.cos(q23)], axis=-1)
+        c1, s1 = np.cos(q1)[..., None], np.sin(q1)[..., None]
+        j_hip = np.stack([c1 * d_rho, s1 * d_rho, d_z], axis=-2)
+        j_hip[..., 0, 0] = -rho * np.sin(q1)
+        j_hip[..., 1, 0] = rho * np.cos(q1)
+        c, s = math.cos(self.yaw), math.sin(self.yaw)
+        rot = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        return np.einsum("ij,...jk->...ik", rot, j_hip)
+
+
+def _joint_axis(model: pin.Model, jid: int) -> np.ndarray:
+    """Rotation axis of 1-DoF joint ``jid`` in its own frame, shape (3,)."""
+    data = model.createData()
+    q = pin.neutral(model)
+    pin.computeJointJacobians(model, data, q)
+    jac = pin.getJointJacobian(model, data, jid, pin.LOCAL)
+    return np.array(jac[3:, model.joints[jid].idx_v])
+
+
+def analytic_geometry(robot: Robot, leg: Leg) -> LegGeometry | None:
+    """The :class:`LegGeometry` of ``leg`` if it is a hexaleg-type leg, else None.
+
+    The leg qualifies when it has three joints, the first hanging from the base and turning about
+    the base z axis, the femur and tibia joints turning about −y with their frames translated
+    along x only, and the foot frame on the tibia's x axis; the result is then checked against
+    Pinocchio's forward kinematics at random configurations (to ``FK_CHECK_TOL``).
+
+    Args:
+        robot: The robot.
+        leg: One of ``robot.legs``.
+
+    Returns:
+        The geometry, or None when the closed form does not apply.
+    """
+    model = robot.model
+    if len(leg.joint_ids) != 3:
+        return None
+    j1, j2, j3 = leg.joint_ids
+    foot = model.frames[leg.foot_frame_id]
+    if model.parents[j1] != 1 or model.parents[j2] != j1 or model.parents[j3] != j2 \
+            or foot.parentJoint != j3:
+        return None
+    axes = [_joint_axis(model, j) for j in (j1, j2, j3)]
+    want = [np.array([0.0, 0.0, 1.0]), np.array([0.0, -1.0, 0.0]), np.array([0.0, -1.0, 0.0])]
+    if any(not np.allclose(a, w, atol=1e-12) for a, w in zip(axes, want, strict=True)):
+        return None
+    m1 = model.jointPlacements[j1]
+    if not np.allclose(m1.rotation[2], [0.0, 0.0, 1.0], atol=1e-12):
+        return None
+    for placement in (model.jointPlacements[j2], model.jointPlacements[j3], foot.placement):
+        if not (np.allclose(placement.rotation, np.eye(3), atol=1e-12)
+                and np.allclose(placement.translation[1:], 0.0, atol=1e-12)):
+            return None
+    try:
+        geom = LegGeometry(hip=tuple(float(x) for x in m1.translation),  # type: ignore[arg-type]
+                           yaw=math.atan2(m1.rotation[1, 0], m1.rotation[0, 0]),
+                           coxa=float(model.jointPlacements[j2].translation[0]),
+                           femur=float(model.jointPlacements[j3].translation[0]),
+                           tibia=float(foot.placement.translation[0]))
+    except RobotModelError:
+        return None
+    rng = np.random.default_rng(0)
+    data = model.createData()
+    q = pin.neutral(model)
+    for _ in range(5):
+        q_leg = rng.uniform(-1.5, 1.5, 3)
+        q[leg.q_index] = q_leg
+        pin.framesForwardKinematics(model, data, q)
+        if np.linalg.norm(data.oMf[leg.foot_frame_id].translation - geom.forward(q_leg)) \
+                > FK_CHECK_TOL:
+            return None
+    return geom
+
+
+def _check_limits(robot: Robot, leg: Leg, q: np.ndarray, t: np.ndarray) -> None:
+    """Raise UnreachableTargetError at the first sample where a joint leaves its limits."""
+    lo = robot.model.lowerPositionLimit[leg.q_index]
+    hi = robot.model.upperPositionLimit[leg.q_index]
+    bad = (q < lo) | (q > hi)
+    if bad.any():
+        k, j = (int(i) for i in np.argwhere(bad)[0])
+        raise UnreachableTargetError(
+            f"leg {leg.name} at t = {t[k]:.6g} s: joint {leg.joint_names[j]} would be "
+            f"{math.degrees(q[k, j]):.2f}° (= {q[k, j]:.4f} rad), outside its limits "
+            f"[{math.degrees(lo[j]):.1f}°, {math.degrees(hi[j]):.1f}°]")
+
+
+def analytic_leg_ik(geom: LegGeometry, p: np.ndarray, pd: np.ndarray, pdd: np.ndarray, *,
+                    leg_name: str = "leg", t: np.ndarray | None = None
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Closed-form inverse kinematics of a hexaleg-type leg, with exact derivatives.
+
+    The coxa angle is the polar angle of the foot about the coxa axis; the femur and tibia solve
+    the planar two-link problem in the leg plane (law of cosines) on the branch tibia angle ≤ 0.
+    Velocities and accelerations follow by the chain rule: polar coordinates for the coxa, and
+    ``[ṙ, ż] = J₂ [q̇₂, q̇₃]``, ``[r̈, z̈] = J₂ [q̈₂, q̈₃] + J̇₂ [q̇₂, q̇₃]`` in the leg plane.
+
+    Args:
+        geom: The leg's geometry.
+        p: Foot positions in the base frame, shape (T, 3), m.
+        pd: Their time derivatives in the base frame, shape (T, 3), m/s.
+        pdd: Their second time derivatives in the base frame, shape (T, 3), m/s².
+        leg_name: Leg name for error messages.
+        t: Sample times for error messages, shape (T,), s; default the sample indices.
+
+    Returns:
+        Joint angles (T, 3) rad, velocities (T, 3) rad/s and accelerations (T, 3) rad/s², joints
+        in the order coxa, femur, tibia.
+
+    Raises:
+        UnreachableTargetError: a target is farther from (or closer to) the femur axis than the
+            leg reaches, or on the coxa axis; the message names the leg, the time and the
+            distance out of reach.
+    """
+    p, pd, pdd = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, pd, pdd))
+    t = np.arange(len(p), dtype=float) if t is None else np.asarray(t, dtype=float)
+    c, s = math.cos(geom.yaw), math.sin(geom.yaw)
+    rot_t = np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])  # base → hip frame
+    x, y, z = (rot_t @ (p - np.asarray(geom.hip)).T)
+    xd, yd, zd = rot_t @ pd.T
+    xdd, ydd, zdd = rot_t @ pdd.T
+
+    rad2 = x * x + y * y
+    rad = np.sqrt(rad2)
+    lo, hi = geom.reach
+    r = rad - geom.coxa
+    dist = np.hypot(r, z)
+    out = np.maximum(dist - hi, lo - dist)
+    bad = (out > 0) | (rad <= geom.coxa * 1e-9 + 1e-12)
+    if bad.any():
+        k = int(np.argmax(bad))
+        raise UnreachableTargetError(
+            f"leg {leg_name} at t = {t[k]:.6g} s: foot target {np.round(p[k], 6).tolist()} m is "
+            f"{max(out[k], 0.0):.6g} m out of reach (distance {dist[k]:.6g} m from the femur "
+            f"axis; the leg reaches {lo:.6g}–{hi:.6g} m, outside the coxa axis)")
+
+    l1, l2 = geom.femur, geom.tibia
+    cos3 = np.clip((dist**2 - l1**2 - l2**2) / (2.0 * l1 * l2), -1.0, 1.0)
+    q3 = -np.arccos(cos3)
+    s3 = np.sin(q3)
+    q2 = np.arctan2(z, r) - np.arctan2(l2 * s3, l1 + l2 * cos3)
+    q1 = np.arctan2(y, x)
+
+    # Coxa: polar angle and the radial distance, with exact derivatives.
+    w = x * yd - y * xd
+    u = x * xd + y * yd
+    q1d = w / rad2
+    q1dd = (x * ydd - y * xdd) / rad2 - 2.0 * w * u / rad2**2
+    rd = u / rad
+    rdd = (xd**2 + yd**2 + x * xdd + y * ydd) / rad - u**2 / rad**3
+
+    # Femur and tibia: planar two-link Jacobian J₂ (det = l1 l2 sin q3).
+    q23 = q2 + q3
+    s2, c2, s23, c23 = np.sin(q2), np.cos(q2), np.sin(q23), np.cos(q23)
+    j = np.empty((len(p), 2, 2))
+    j[:, 0, 0] = -l1 * s2 - l2 * s23
+    j[:, 0, 1] = -l2 * s23
+    j[:, 1, 0] = l1 * c2 + l2 * c23
+    j[:, 1, 1] = l2 * c23
+    qd23 = np.linalg.solve(j, np.stack([rd, zd], axis=-1)[..., None])[..., 0]
+    w2, w23 = qd23[:, 0], qd23[:, 0] + qd23[:, 1]
+    bias = np.stack([-l1 * c2 * w2**2 - l2 * c23 * w23**2, -l1 * s2 * w2**2 - l2 * s23 * w23**2],
+                    axis=-1)
+    qdd23 = np.linalg.solve(j, (np.stack([rdd, zdd], axis=-1) - bias)[..., None])[..., 0]
+
+    q = np.stack([q1, q2, q3], axis=-1)
+    qd = np.column_stack([q1d, qd23])
+    qdd = np.column_stack([q1dd, qdd23])
+    return q, qd, qdd
+
+
+def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarray, *,
+                  q0: np.ndarray | None = None, t: np.ndarray | None = None
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Inverse kinematics of any 3-joint leg by Newton's method on Pinocchio's forward kinematics.
+
+    Each sample starts from the previous solution (the first from ``q0``), so the branch stays
+    the one ``q0`` selects. Then ``q̇ = J⁻¹ ṗ`` and ``q̈ = J⁻¹ (p̈ − J̇ q̇)``, with ``J`` the
+    foot's translation Jacobian and ``J̇ q̇`` its classical acceleration at zero joint
+    acceleration (both from Pinocchio, base at rest at the origin).
+
+    Args:
+        robot: The robot.
+        leg: One of ``robot.legs``, with three joints.
+        p: Foot positions in the base frame, shape (T, 3), m.
+        pd: Their time derivatives, shape (T, 3), m/s.
+        pdd: Their second time derivatives, shape (T, 3), m/s².
+        q0: Initial guess of the leg's joint angles, shape (3,), rad; default the ``stand`` pose
+            (or Pinocchio's neutral configuration when the robot has none).
+        t: Sample times for error messages, shape (T,), s; default the sample indices.
+
+    Returns:
+        Joint angles (T, 3) rad, velocities (T, 3) rad/s, accelerations (T, 3) rad/s², in the
+        order of ``leg.joint_names``.
+
+    Raises:
+        RobotModelError: the leg does not have exactly three joints.
+        UnreachableTargetError: Newton does not reach a target (or the Jacobian is singular
+            there); the message names the leg, the time and the remaining distance.
+    """
+    if len(leg.joint_ids) != 3:
+        raise RobotModelError(f"leg {leg.name} has {len(leg.joint_ids)} joints; foot-position "
+                              "inverse kinematics needs exactly 3")
+    model = robot.model
+    data = model.createData()
+    p, pd, pdd = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, pd, pdd))
+    t = np.arange(len(p), dtype=float) if t is None else np.asarray(t, dtype=float)
+    q = robot.pose("stand") if "stand" in robot.poses else pin.neutral(model)
+    q[:7] = pin.neutral(model)[:7]
+    if q0 is not None:
+        q[leg.q_index] = q0
+    fid, iv = leg.foot_frame_id, leg.v_index
+    out_q, out_qd, out_qdd = (np.empty((len(p), 3)) for _ in range(3))
+    v = np.zeros(model.nv)
+    zero = np.zeros(model.nv)
+    for k in range(len(p)):
+        err = np.inf
+        for _ in range(NEWTON_MAX_ITER):
+            pin.framesForwardKinematics(model, data, q)
+            e = p[k] - data.oMf[fid].translation
+            err = float(np.linalg.norm(e))
+            if err <= NEWTON_TOL:
+                break
+            jac = pin.computeFrameJacobian(model, data, q, fid, pin.LOCAL_WORLD_ALIGNED)[:3, iv]
+            step = np.linalg.lstsq(jac, e, rcond=None)[0]
+            norm = float(np.linalg.norm(step))
+            q[leg.q_index] += step * min(1.0, 0.5 / norm) if norm > 0 else step
+        jac = pin.computeFrameJacobian(model, data, q, fid, pin.LOCAL_WORLD_ALIGNED)[:3, iv]
+        if err > NEWTON_TOL or np.linalg.cond(jac) > 1e8:
+            raise UnreachableTargetError(
+                f"leg {leg.name} at t = {t[k]:.6g} s: foot target {np.round(p[k], 6).tolist()} m "
+                f"is out of reach: Newton stopped {err:.6g} m from it"
+                + (" at a singular configuration" if err <= NEWTON_TOL else ""))
+        qd = np.linalg.solve(jac, pd[k])
+        v[iv] = qd
+        pin.forwardKinematics(model, data, q, v, zero)
+        bias = pin.getFrameClassicalAcceleration(model, data, fid, pin.LOCAL_WORLD_ALIGNED).linear
+        out_q[k], out_qd[k] = q[leg.q_index], qd
+        out_qdd[k] = np.linalg.solve(jac, pdd[k] - bias)
+    return out_q, out_qd, out_qdd
+
+
+def leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarray, *,
+           t: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, str]:
+    """Inverse kinematics of one leg over a trajectory: analytic when possible, else Newton.
+
+    Joint limits of the robot model are checked on the result.
+
+    Args:
+        robot: The robot.
+        leg: One of ``robot.legs``.
+        p: Foot positions in the base frame, shape (T, 3), m.
+        pd: Their time derivatives in the base frame, shape (T, 3), m/s.
+        pdd: Their second time derivatives in the base frame, shape (T, 3), m/s².
+        t: Sample times for error messages, shape (T,), s.
+
+    Returns:
+        Joint angles (T, 3) rad, velocities (T, 3) rad/s, accelerations (T, 3) rad/s², in the
+        order of ``leg.joint_names``, and the solver used (``"analytic"`` or ``"newton"``).
+
+    Raises:
+        UnreachableTargetError: a target is out of reach or needs a joint beyond its limits; the
+            message names the leg and the time.
+        RobotModelError: the leg does not have three joints.
+    """
+    t = np.arange(len(np.atleast_2d(p)), dtype=float) if t is None else np.asarray(t, float)
+    geom = analytic_geometry(robot, leg)
+    if geom is not None:
+        q, qd, qdd = analytic_leg_ik(geom, p, pd, pdd, leg_name=leg.name, t=t)
+        solver = "analytic"
+    else:
+        q, qd, qdd = newton_leg_ik(robot, leg, p, pd, pdd, t=t)
+        solver = "newton"
+    _check_limits(robot, leg, q, t)
+    return q, qd, qdd, solver
