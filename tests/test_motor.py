@@ -14,6 +14,7 @@ from hexaleg.motor import (
     DEFAULT_MOTOR,
     RPM,
     Motor,
+    catalogue_table,
     from_datasheet,
     motor,
     motor_from_mapping,
@@ -174,3 +175,12 @@ def test_motor_from_mapping() -> None:
         motor_from_mapping({"base": "AX-18A", "resistance": "3 ohm"})
     with pytest.raises(InvalidParameterError, match="gearbox_efficiency"):
         motor_from_mapping({"base": "AX-18A", "gearbox_efficiency": 1.5})
+
+
+def test_catalogue_table_lists_every_motor_and_its_datasheet() -> None:
+    text = catalogue_table()
+    for name, m in CATALOGUE.items():
+        row = next(line for line in text.splitlines() if line.startswith(name + " "))
+        assert f"{m.joule_coefficient:.3f}" in row and f"{m.gearbox_efficiency:.3f}" in row
+        assert f"{name}: {m.source}" in text
+    assert "AX-12A" not in catalogue_table({"AX-18A": motor("AX-18A")})

@@ -30,7 +30,21 @@ def _run_robot(args: argparse.Namespace) -> int:
     return 0
 
 
-SUBCOMMANDS = [_add_robot]
+def _add_motors(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("motors", help="servo catalogue: gear ratio, torque constant, resistance, "
+                                      "gearbox efficiency, Joule coefficient, datasheet")
+    p.add_argument("names", nargs="*", help="motor names (default: the whole catalogue)")
+    p.set_defaults(func=_run_motors)
+
+
+def _run_motors(args: argparse.Namespace) -> int:
+    from hexaleg.motor import catalogue_table, motor
+
+    print(catalogue_table({n: motor(n) for n in args.names} if args.names else None))
+    return 0
+
+
+SUBCOMMANDS = [_add_robot, _add_motors]
 """Parser builders, one per subcommand, in the order ``--help`` lists them."""
 
 

@@ -301,3 +301,27 @@ def motor_from_mapping(data: Mapping[str, Any], where: str = "[motor]") -> Motor
     if "source" not in data and data:
         fields["source"] = f"{base.source}; overridden in {where}: {', '.join(sorted(data))}"
     return from_mapping(Motor, {**fields, **data}, where)
+
+
+def catalogue_table(motors: Mapping[str, Motor] | None = None) -> str:
+    """A plain-text table of motors with the constants the energy model uses.
+
+    Args:
+        motors: Motors by name; default :data:`CATALOGUE`.
+
+    Returns:
+        One header line, one line per motor (G, k_t G N·m/A, R Ω, η, c W/(N·m)², stall torque
+        N·m, no-load speed rpm, regeneration) and one source line per motor.
+    """
+    motors = CATALOGUE if motors is None else motors
+    lines = [f"{'motor':<12} {'G':>7} {'k_t·G':>7} {'R':>6} {'eta':>5} {'c':>7} "
+             f"{'stall':>6} {'rpm':>5}  regen"]
+    for name, m in motors.items():
+        lines.append(f"{name:<12} {m.gear_ratio:7.1f} {m.torque_constant * m.gear_ratio:7.3f} "
+                     f"{m.resistance:6.2f} {m.gearbox_efficiency:5.3f} "
+                     f"{m.joule_coefficient:7.3f} {m.stall_torque:6.2f} "
+                     f"{m.no_load_speed / RPM:5.0f}  {'yes' if m.regeneration else 'no'}")
+    lines.append("units: k_t·G N·m/A at the output, R ohm, c = R/(k_t·G)^2 W/(N·m)^2, "
+                  "stall torque N·m; default " + DEFAULT_MOTOR)
+    lines += [f"{name}: {m.source}" for name, m in motors.items()]
+    return "\n".join(lines)
