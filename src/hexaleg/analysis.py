@@ -1,0 +1,312 @@
+"""Whole-robot inverse dynamics, springs, foot forces and motor energy: ``prepare`` → ``evaluate``.
+
+For every sample of a :class:`~hexaleg.motion.Motion`, Pinocchio's RNEA gives
+``b = M(q) a + C(q, v) v + g(q)`` and the stance feet's Jacobians ``J_i`` (3 × nv, world-aligned).
+With world foot forces ``f_i``, spring torques ``τ_s`` and motor torques ``τ_m`` the equations of
+motion split into the base rows and the joint rows::
+
+    b_base  = Σ_i J_base,iᵀ f_i                          (6 rows: the whole robot's Newton–Euler)
+    τ_m     = b_joint − Σ_i J_joint,iᵀ f_i − τ_s          (18 rows)
+
+Everything that does not depend on the springs — RNEA, Jacobians, the stance system and the
+quadratic program's gains — is computed once by :func:`prepare`; :meth:`Prepared.evaluate` then
+only evaluates the spring torques and re-solves the forces (:mod:`hexaleg.forces`). A motion with
+``fixed_base=True`` (the paper's single joint) has no contacts: the fixture carries the base rows
+and ``τ_m = b_joint − τ_s``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import pinocchio as pin
+
+from hexaleg import energy
+from hexaleg.errors import InvalidParameterError, TorqueLimitError
+from hexaleg.forces import (
+    QUADRATIC_OBJECTIVES,
+    ContactParams,
+    QuadraticGains,
+    StanceSystem,
+    check_objective,
+    quadratic_gains,
+    solve_fast,
+)
+from hexaleg.motion import Motion
+from hexaleg.motor import Motor
+from hexaleg.motor import motor as motor_by_name
+from hexaleg.robot import Robot
+from hexaleg.springs import DeadZoneSpring, SpringSet
+
+SpringsLike = SpringSet | Mapping[str, DeadZoneSpring] | None
+
+
+def _as_motor(motor: Motor | str | None) -> Motor:
+    if motor is None:
+        return motor_by_name()
+    if isinstance(motor, str):
+        return motor_by_name(motor)
+    if not isinstance(motor, Motor):
+        raise InvalidParameterError("motor", motor, "a hexaleg.Motor or a catalogue name")
+    return motor
+
+
+def _as_springs(springs: SpringsLike) -> SpringSet:
+    if springs is None:
+        return SpringSet()
+    return springs if isinstance(springs, SpringSet) else SpringSet(springs)
+
+
+@dataclass(frozen=True, eq=False)
+class Analysis:
+    """Forces, torques, powers and energy metrics of one motion with one choice of springs.
+
+    Joint columns follow the Pinocchio model's joint order (``robot.joint_names``); legs follow
+    ``robot.legs`` (LF LM LH RF RM RH for the hexapod).
+
+    Attributes:
+        robot: The robot.
+        motion: The motion analysed.
+        springs: The springs (joint name → spring).
+        motor: The servo model of every joint.
+        objective: The force-distribution objective (:data:`hexaleg.forces.OBJECTIVES`).
+        contact: Contact settings.
+        t: Sample times, shape (T,), s.
+        q: Joint angles, shape (T, nj), rad.
+        qdot: Joint velocities, shape (T, nj), rad/s.
+        forces: World-frame ground reaction forces on the feet, shape (T, n_legs, 3), N (zero for
+            swing feet).
+        tau_motor: Motor torques, shape (T, nj), N·m.
+        tau_spring: Spring torques on the joints, shape (T, nj), N·m.
+        spring_energy: Energy stored in the springs, shape (T, nj), J.
+        power: Motor mechanical power ``τ_motor q̇``, shape (T, nj), W.
+        resolved: Samples whose forces needed the exact conic solve (an inequality binds), (T,).
+        metrics: :func:`hexaleg.energy.metrics` of ``tau_motor`` (per joint and total, SI).
+        baseline: The same metrics for the same motion with no springs.
+        savings: :func:`hexaleg.energy.savings` of ``metrics`` against ``baseline`` (fraction of
+            the no-spring value saved; positive = the springs save).
+    """
+
+    robot: Robot
+    motion: Motion
+    springs: SpringSet
+    motor: Motor
+    objective: str
+    contact: ContactParams
+    t: np.ndarray
+    q: np.ndarray
+    qdot: np.ndarray
+    forces: np.ndarray
+    tau_motor: np.ndarray
+    tau_spring: np.ndarray
+    spring_energy: np.ndarray
+    power: np.ndarray
+    resolved: np.ndarray
+    metrics: dict[str, Any]
+    baseline: dict[str, Any]
+    savings: dict[str, Any]
+
+    @property
+    def tau_total(self) -> np.ndarray:
+        """Joint torque carried by motor and spring together, shape (T, nj), N·m."""
+        return self.tau_motor + self.tau_spring
+
+
+@dataclass(eq=False)
+class Prepared:
+    """The spring-independent part of the analysis of one motion (see :func:`prepare`).
+
+    Attributes:
+        robot: The robot.
+        motion: The motion.
+        motor: The servo model of every joint.
+        contact: Contact settings.
+        rnea: ``M a + h`` at every sample, shape (T, nv).
+        jacobians: Foot Jacobians (world-aligned, linear part), shape (T, n_legs, 3, nv).
+        system: The force program's linear algebra (:class:`hexaleg.forces.StanceSystem`).
+        q: Joint angles, shape (T, nj), rad.
+        qdot: Joint velocities, shape (T, nj), rad/s.
+    """
+
+    robot: Robot
+    motion: Motion
+    motor: Motor
+    contact: ContactParams
+    rnea: np.ndarray
+    jacobians: np.ndarray
+    system: StanceSystem
+    q: np.ndarray
+    qdot: np.ndarray
+    _gains: dict[str, QuadraticGains] = field(default_factory=dict, repr=False)
+    _baseline: dict[str, dict[str, Any]] = field(default_factory=dict, repr=False)
+
+    def weights(self, objective: str) -> np.ndarray:
+        """Per-joint weights of the objective: Joule coefficients, or ones for Σ τ²; (nj,)."""
+        if objective == "torque_squared":
+            return np.ones(self.robot.nj)
+        return np.full(self.robot.nj, self.motor.joule_coefficient)
+
+    def gains(self, objective: str) -> QuadraticGains:
+        """The quadratic program's gains for ``objective``, computed once and cached."""
+        if objective not in self._gains:
+            self._gains[objective] = quadratic_gains(self.system, self.weights(objective))
+        return self._gains[objective]
+
+    def spring_torques(self, springs: SpringsLike) -> np.ndarray:
+        """Spring torques on the joints along the motion, shape (T, nj), N·m."""
+        s = _as_springs(springs)
+        if not len(s):
+            return np.zeros_like(self.q)
+        return s.torques(self.robot, self.motion.q, self.motion.v)
+
+    def solve(self, tau_spring: np.ndarray, objective: str = "joule"
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Foot forces and motor torques for given spring torques (the sweep's inner step).
+
+        Args:
+            tau_spring: Spring torques, shape (T, nj), N·m.
+            objective: Force-distribution objective.
+
+        Returns:
+            ``(forces (T, n_legs, 3) N, tau_motor (T, nj) N·m, resolved (T,) bool)``.
+        """
+        check_objective(objective)
+        T, n_legs = self.system.stance.shape
+        if self.motion.fixed_base:
+            tau = self.system.b_joint - tau_spring
+            if self.contact.torque_limits:
+                over = np.abs(tau) > self.system.tau_max
+                if over.any():
+                    k, j = np.argwhere(over)[0]
+                    raise TorqueLimitError(
+                        f"motor torque limit exceeded at t = {self.motion.t[k]:.4f} s: joint "
+                        f"{self.robot.joint_names[j]} needs τ = {tau[k, j]:+.4f} N·m "
+                        f"(limit ±{self.system.tau_max[j]:.4f} N·m)")
+            return np.zeros((T, n_legs, 3)), tau, np.zeros(T, dtype=bool)
+        gains = self.gains(objective) if objective in QUADRATIC_OBJECTIVES else None
+        f, resolved = solve_fast(self.system, tau_spring, objective, self.weights(objective),
+                                 self.contact, gains)
+        return f.reshape(T, n_legs, 3), self.system.torques(f, tau_spring), resolved
+
+    def _metrics(self, tau_motor: np.ndarray) -> dict[str, Any]:
+        distance = self.motion.distance if self.motion.distance > 0 else None
+        return energy.metrics(tau_motor, self.qdot, self.motion.dt, self.motor,
+                              mass=self.robot.mass if distance else None, distance=distance,
+                              joint_names=self.robot.joint_names)
+
+    def baseline(self, objective: str = "joule") -> dict[str, Any]:
+        """Metrics of the motion with no springs, computed once per objective and cached."""
+        if objective not in self._baseline:
+            _, tau, _ = self.solve(np.zeros_like(self.q), objective)
+            self._baseline[objective] = self._metrics(tau)
+        return self._baseline[objective]
+
+    def evaluate(self, springs: SpringsLike = None, objective: str = "joule") -> Analysis:
+        """Analyse the motion with ``springs``.
+
+        Args:
+            springs: Joint name → spring (SI), a :class:`~hexaleg.springs.SpringSet`, or None.
+            objective: Force-distribution objective, one of :data:`hexaleg.forces.OBJECTIVES`.
+
+        Returns:
+            The analysis.
+
+        Raises:
+            UnknownNameError: a spring on a joint the robot does not have (lists the joints).
+            InvalidParameterError: unknown objective.
+            InfeasibleForcesError: no contact forces at some sample (names time and feet).
+            TorqueLimitError: a motor torque limit cannot be met (names joint, time, torque).
+        """
+        check_objective(objective)
+        s = _as_springs(springs)
+        tau_s = self.spring_torques(s)
+        forces, tau_m, resolved = self.solve(tau_s, objective)
+        metrics = self._metrics(tau_m)
+        baseline = self.baseline(objective)
+        stored = (s.energies(self.robot, self.motion.q) if len(s)
+                  else np.zeros_like(self.q))
+        return Analysis(robot=self.robot, motion=self.motion, springs=s, motor=self.motor,
+                        objective=objective, contact=self.contact, t=self.motion.t, q=self.q,
+                        qdot=self.qdot, forces=forces, tau_motor=tau_m, tau_spring=tau_s,
+                        spring_energy=stored, power=tau_m * self.qdot, resolved=resolved,
+                        metrics=metrics, baseline=baseline,
+                        savings=energy.savings(metrics, baseline))
+
+
+def prepare(robot: Robot, motion: Motion, *, motor: Motor | str | None = None,
+            contact: ContactParams | None = None) -> Prepared:
+    """Compute everything about ``motion`` that does not depend on the springs.
+
+    Args:
+        robot: The robot the motion was made for.
+        motion: The motion (q, v, a in Pinocchio conventions; stance flags).
+        motor: The servo of every joint: a :class:`~hexaleg.motor.Motor`, a catalogue name, or
+            None for :data:`hexaleg.motor.DEFAULT_MOTOR`.
+        contact: Contact settings (friction, cone, minimum normal force, torque limits — the
+            limit is the motor's stall torque).
+
+    Returns:
+        The prepared analysis; call :meth:`Prepared.evaluate` with springs.
+
+    Raises:
+        InvalidParameterError: the motion does not fit the robot.
+    """
+    model, data = robot.model, robot.data
+    T = motion.n_samples
+    if motion.q.shape[1] != model.nq or motion.v.shape[1] != model.nv:
+        raise InvalidParameterError("motion", f"q {motion.q.shape}, v {motion.v.shape}",
+                                    f"q (T, {model.nq}) and v (T, {model.nv}) for {robot.name}")
+    n_legs = len(robot.legs)
+    if motion.stance.shape != (T, n_legs):
+        raise InvalidParameterError("motion.stance", motion.stance.shape, f"(T, {n_legs})")
+    rnea = np.empty((T, model.nv))
+    jac = np.zeros((T, n_legs, 3, model.nv))
+    frames = [leg.foot_frame_id for leg in robot.legs]
+    lwa = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+    for k in range(T):
+        rnea[k] = pin.rnea(model, data, motion.q[k], motion.v[k], motion.a[k])
+        if motion.fixed_base or not motion.stance[k].any():
+            continue
+        pin.computeJointJacobians(model, data, motion.q[k])
+        pin.updateFramePlacements(model, data)
+        for i, fid in enumerate(frames):
+            if motion.stance[k, i]:
+                jac[k, i] = pin.getFrameJacobian(model, data, fid, lwa)[:3]
+    # Padded stance system: column block 3i:3i+3 is leg i; swing legs' blocks are zero.
+    jt = np.transpose(jac, (0, 3, 1, 2)).reshape(T, model.nv, 3 * n_legs)  # (T, nv, 3 n_legs)
+    motor = _as_motor(motor)
+    contact = contact or ContactParams()
+    # The chosen servo's stall torque limits every joint (the URDF's effort limits are those of
+    # the robot's nominal servo, which the user may be replacing).
+    tau_max = np.full(robot.nj, motor.stall_torque)
+    system = StanceSystem(stance=motion.stance.astype(bool), A=jt[:, :6], D=jt[:, 6:],
+                          b_base=rnea[:, :6], b_joint=rnea[:, 6:], qdot=motion.v[:, 6:],
+                          tau_max=tau_max, t=motion.t, leg_names=robot.leg_names,
+                          joint_names=robot.joint_names)
+    return Prepared(robot=robot, motion=motion, motor=motor, contact=contact,
+                    rnea=rnea, jacobians=jac, system=system, q=motion.q[:, 7:], qdot=motion.v[:, 6:])
+
+
+def analyze(robot: Robot, motion: Motion, springs: SpringsLike = None, *,
+            motor: Motor | str | None = None, objective: str = "joule",
+            contact: ContactParams | None = None) -> Analysis:
+    """Analyse ``motion`` with ``springs``: ``prepare(robot, motion, …).evaluate(springs, …)``.
+
+    Args:
+        robot: The robot.
+        motion: The motion.
+        springs: Joint name → spring, e.g.
+            ``{"LF_femur": hexaleg.DeadZoneSpring(stiffness=2.0, theta_k=0.13)}`` (SI), or None.
+        motor: Servo of every joint (Motor, catalogue name, or None for the default).
+        objective: Force-distribution objective (:data:`hexaleg.forces.OBJECTIVES`; default
+            ``"joule"``).
+        contact: Contact settings.
+
+    Returns:
+        The analysis: forces (T, n_legs, 3), tau_motor / tau_spring / power (T, nj), metrics.
+    """
+    check_objective(objective)
+    return prepare(robot, motion, motor=motor, contact=contact).evaluate(springs, objective)
