@@ -287,7 +287,8 @@ def prepare(robot: Robot, motion: Motion, *, motor: Motor | str | None = None,
                           tau_max=tau_max, t=motion.t, leg_names=robot.leg_names,
                           joint_names=robot.joint_names)
     return Prepared(robot=robot, motion=motion, motor=motor, contact=contact,
-                    rnea=rnea, jacobians=jac, system=system, q=motion.q[:, 7:], qdot=motion.v[:, 6:])
+                    rnea=rnea, jacobians=jac, system=system, q=motion.q[:, 7:],
+                    qdot=motion.v[:, 6:])
 
 
 def analyze(robot: Robot, motion: Motion, springs: SpringsLike = None, *,

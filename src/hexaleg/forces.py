@@ -1,4 +1,4 @@
-"""Ground reaction forces of the stance feet, chosen by a convex program that minimises motor energy.
+"""Ground reaction forces of the stance feet, chosen by a convex program minimising motor energy.
 
 The motion fixes ``b = M(q) a + h(q, v)`` (RNEA) at every sample, but not how the stance feet share
 the load: with 3 feet there are 9 force components against the 6 base equations. For each sample
@@ -139,7 +139,7 @@ class StanceSystem:
         return int(self.stance.shape[0])
 
     def torques(self, f: np.ndarray, tau_spring: np.ndarray) -> np.ndarray:
-        """Motor torques ``b_joint − D f − τ_spring``, shape (T, nj), for forces ``f`` (T, 3 n_legs)."""
+        """Motor torques ``b_joint − D f − τ_spring``, (T, nj), for forces ``f`` (T, 3 n_legs)."""
         return self.b_joint - np.einsum("tjk,tk->tj", self.D, f) - tau_spring
 
 
@@ -269,7 +269,8 @@ def _solve_sample(system: StanceSystem, k: int, tau_spring: np.ndarray, objectiv
             clarabel.NonnegativeConeT(2 * nj))
     if n_epi:
         # s ≥ 0
-        add(np.hstack([np.zeros((nj, n)), -np.eye(nj)]), np.zeros(nj), clarabel.NonnegativeConeT(nj))
+        add(np.hstack([np.zeros((nj, n)), -np.eye(nj)]), np.zeros(nj),
+            clarabel.NonnegativeConeT(nj))
         if objective == "positive_work":
             # s ≥ q̇ τ = q̇ (c − D f)  ⇔  −q̇ D f − s ≤ −q̇ c
             add(np.hstack([-qd[:, None] * D, -np.eye(nj)]), -qd * c, clarabel.NonnegativeConeT(nj))
