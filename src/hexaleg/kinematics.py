@@ -240,10 +240,13 @@ def analytic_leg_ik(geom: LegGeometry, p: np.ndarray, pd: np.ndarray, pdd: np.nd
     bad = (out > 0) | (rad <= geom.coxa * 1e-9 + 1e-12)
     if bad.any():
         k = int(np.argmax(bad))
+        where = f"leg {leg_name} at t = {t[k]:.6g} s: foot target {np.round(p[k], 6).tolist()} m"
+        if out[k] <= 0:
+            raise UnreachableTargetError(f"{where} is on the coxa axis, where the coxa angle is "
+                                         "undefined; targets must lie outward of it")
         raise UnreachableTargetError(
-            f"leg {leg_name} at t = {t[k]:.6g} s: foot target {np.round(p[k], 6).tolist()} m is "
-            f"{max(out[k], 0.0):.6g} m out of reach (distance {dist[k]:.6g} m from the femur "
-            f"axis; the leg reaches {lo:.6g}–{hi:.6g} m, outside the coxa axis)")
+            f"{where} is {out[k]:.6g} m out of reach (distance {dist[k]:.6g} m from the femur "
+            f"axis; the leg reaches {lo:.6g}–{hi:.6g} m)")
 
     l1, l2 = geom.femur, geom.tibia
     cos3 = np.clip((dist**2 - l1**2 - l2**2) / (2.0 * l1 * l2), -1.0, 1.0)
