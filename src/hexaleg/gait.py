@@ -257,7 +257,7 @@ def _resolve_groups(robot: Robot, gait: GaitParams) -> np.ndarray:
     for i, group in enumerate(gait.groups):
         for leg in group:
             if leg not in names:
-                raise UnknownNameError("leg in GaitParams.groups", leg, names)
+                raise UnknownNameError("leg", leg, names)
             offset[leg] = i / len(gait.groups)
     missing = [leg for leg in names if leg not in offset]
     if missing:
