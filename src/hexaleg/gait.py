@@ -167,10 +167,11 @@ class GaitParams:
             if value is not None:
                 _finite(name, value, "None or a finite number > 0 (m)", value > 0)
         _finite("yaw_rate", self.yaw_rate, "a finite number (rad/s)", True)
-        if isinstance(self.samples, bool) or not isinstance(self.samples, int) \
+        if isinstance(self.samples, bool) or not isinstance(self.samples, (int, np.integer)) \
                 or self.samples < MIN_SAMPLES:
             raise InvalidParameterError("samples", self.samples,
                                         f"an integer ≥ {MIN_SAMPLES} samples per period")
+        object.__setattr__(self, "samples", int(self.samples))
         groups = tuple(tuple(g) for g in self.groups)
         legs = [leg for g in groups for leg in g]
         if not groups or any(not g for g in groups) or len(set(legs)) != len(legs) \
@@ -321,7 +322,7 @@ def _support_margin(points: np.ndarray, c: np.ndarray) -> float:
     Positive inside (distance to the nearest edge), negative outside; −inf for fewer than three
     points or a degenerate hull. Hull by Andrew's monotone chain.
     """
-    pts = sorted(map(tuple, np.round(points, 15)))
+    pts = sorted(map(tuple, points))
     if len(pts) < 3:
         return -math.inf
 
@@ -488,9 +489,10 @@ def _base_pose(robot: Robot, base: str | np.ndarray) -> np.ndarray:
 
 
 def _check_samples(samples: object) -> int:
-    if isinstance(samples, bool) or not isinstance(samples, int) or samples < MIN_SAMPLES:
+    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) \
+            or samples < MIN_SAMPLES:
         raise InvalidParameterError("samples", samples, f"an integer ≥ {MIN_SAMPLES}")
-    return samples
+    return int(samples)
 
 
 def _check_joint_limits(robot: Robot, q: np.ndarray, t: np.ndarray) -> None:

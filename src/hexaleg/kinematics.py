@@ -240,7 +240,8 @@ def analytic_leg_ik(geom: LegGeometry, p: np.ndarray, pd: np.ndarray, pdd: np.nd
     bad = (out > 0) | (rad <= geom.coxa * 1e-9 + 1e-12)
     if bad.any():
         k = int(np.argmax(bad))
-        where = f"leg {leg_name} at t = {t[k]:.6g} s: foot target {np.round(p[k], 6).tolist()} m"
+        where = (f"leg {leg_name} at t = {t[k]:.6g} s: foot target "
+                 f"{np.round(p[k], 6).tolist()} m (base frame)")
         if out[k] <= 0:
             raise UnreachableTargetError(f"{where} is on the coxa axis, where the coxa angle is "
                                          "undefined; targets must lie outward of it")
@@ -343,7 +344,7 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
         if err > NEWTON_TOL or np.linalg.cond(jac) > 1e8:
             raise UnreachableTargetError(
                 f"leg {leg.name} at t = {t[k]:.6g} s: foot target {np.round(p[k], 6).tolist()} m "
-                f"is out of reach: Newton stopped {err:.6g} m from it"
+                f"(base frame) is out of reach: Newton stopped {err:.6g} m from it"
                 + (" at a singular configuration" if err <= NEWTON_TOL else ""))
         qd = np.linalg.solve(jac, pd[k])
         v[iv] = qd
