@@ -44,7 +44,42 @@ def _run_motors(args: argparse.Namespace) -> int:
     return 0
 
 
-SUBCOMMANDS = [_add_robot, _add_motors]
+def _add_paper(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("paper", help="reproduce the paper's single elastic joint: paper.json, "
+                                     "Fig. 5-13 analogues (PNG), summary.md")
+    p.add_argument("--out", default="paper-report", help="output directory (default: %(default)s)")
+    p.set_defaults(func=_run_paper)
+
+
+def _run_paper(args: argparse.Namespace) -> int:
+    from hexaleg.paper import write_report
+
+    r = write_report(args.out)
+    print(f"k_M = {r['k_M_paper_units']:.3f} (paper's eq. 19 units) = "
+          f"{r['k_M_SI_Nm_per_rad']:.4e} N·m/rad; k_E: {r['k_E']['verdict']}; "
+          f"52.81%: {r['saving_52_81']['verdict']}")
+    print(f"wrote {args.out}/paper.json, summary.md and figures")
+    return 0
+
+
+def _add_gait(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("gait", help="the tripod gait: parameters, static margin, joint ranges, "
+                                    "peak joint speeds and accelerations")
+    p.add_argument("--config", help="TOML file with a [gait] table (default: GaitParams())")
+    p.set_defaults(func=_run_gait)
+
+
+def _run_gait(args: argparse.Namespace) -> int:
+    from hexaleg.gait import GaitParams, gait_summary, tripod_gait
+    from hexaleg.robot import load_robot
+
+    robot = load_robot()
+    gait = GaitParams.from_toml(args.config) if args.config else GaitParams()
+    print(gait_summary(robot, tripod_gait(robot, gait)))
+    return 0
+
+
+SUBCOMMANDS = [_add_robot, _add_motors, _add_gait, _add_paper]
 """Parser builders, one per subcommand, in the order ``--help`` lists them."""
 
 
