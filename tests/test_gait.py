@@ -21,6 +21,7 @@ from hexaleg.errors import (
 from hexaleg.gait import (
     GaitParams,
     Sinusoid,
+    gait_summary,
     joint_motion,
     nominal_footholds,
     sample_gait,
@@ -376,6 +377,16 @@ def test_trot_on_a_quadruped_through_the_same_code(quadruped):
     assert np.abs(vel[motion.stance]).max() <= 1e-9
     assert np.abs(acc[motion.stance]).max() <= 1e-9
     assert motion.info["body_height"] == pytest.approx(0.32 * math.cos(0.8), rel=1e-9)
+
+
+def test_summary_reports_margin_and_joint_peaks(robot, walk):
+    text = gait_summary(robot, walk)
+    assert f"static margin {walk.info['static_margin']:.4f} m" in text
+    row = next(line for line in text.splitlines() if line.startswith("LF_femur"))
+    col = robot.column("LF_femur")
+    assert f"{np.abs(walk.v[:, 6 + col]).max():.3f}" in row
+    assert f"{math.degrees(walk.q[:, 7 + col].max()):.1f}" in row
+    assert len(text.splitlines()) == 4 + robot.nj
 
 
 # --------------------------------------------------------------------------- joint sinusoids
