@@ -285,7 +285,7 @@ def prepare(robot: Robot, motion: Motion, *, motor: Motor | str | None = None,
     system = StanceSystem(stance=motion.stance.astype(bool), A=jt[:, :6], D=jt[:, 6:],
                           b_base=rnea[:, :6], b_joint=rnea[:, 6:], qdot=motion.v[:, 6:],
                           tau_max=tau_max, t=motion.t, leg_names=robot.leg_names,
-                          joint_names=robot.joint_names)
+                          joint_names=robot.joint_names, efficiency=motor.gearbox_efficiency)
     return Prepared(robot=robot, motion=motion, motor=motor, contact=contact,
                     rnea=rnea, jacobians=jac, system=system, q=motion.q[:, 7:],
                     qdot=motion.v[:, 6:])

@@ -20,10 +20,12 @@ small problem per sample. Objectives, all convex in ``f`` because ``τ`` is affi
   energy is motor heat), it is strictly convex (a unique answer) and it admits the exact fast path.
 - ``"torque_squared"``: Σ_j τ_j² (identical forces to ``"joule"`` when every joint has the same
   motor).
-- ``"electrical"``: electrical energy without regeneration Σ_j max(0, τ_j q̇_j + c_j τ_j²)
-  + ε Σ_j τ_j² (Yesilevskiy & Remy, J. Mechanisms Robotics 10(3) 031008, "positive electrical
-  work"); the max is flat while a joint regenerates, so the same small regulariser ε makes the
-  answer unique.
+- ``"electrical"``: electrical energy without regeneration
+  Σ_j max(0, max(τ_j q̇_j / η, η τ_j q̇_j) + c_j τ_j²) + ε Σ_j τ_j² — the servo model of
+  :meth:`hexaleg.motor.Motor.electrical_power` (gearbox efficiency η by power-flow direction,
+  Verstraten et al., RA-L 1(1) 2016; "positive electrical work" of Yesilevskiy & Remy, J.
+  Mechanisms Robotics 10(3) 031008); the max is flat while a joint regenerates, so the same small
+  regulariser ε makes the answer unique.
 - ``"positive_work"``: positive mechanical work Σ_j max(0, τ_j q̇_j) + ε Σ_j τ_j²; the small
   regulariser ε makes the answer unique (same source).
 
@@ -121,6 +123,7 @@ class StanceSystem:
         t: Sample times, shape (T,), s (for error messages).
         leg_names: Leg names, for error messages.
         joint_names: Joint names, for error messages.
+        efficiency: Gearbox efficiency η of the motors, in (0, 1] (``"electrical"`` objective).
     """
 
     stance: np.ndarray
@@ -133,6 +136,7 @@ class StanceSystem:
     t: np.ndarray
     leg_names: tuple[str, ...]
     joint_names: tuple[str, ...]
+    efficiency: float = 1.0
 
     @property
     def n_samples(self) -> int:
@@ -275,18 +279,21 @@ def _solve_sample(system: StanceSystem, k: int, tau_spring: np.ndarray, objectiv
             # s ≥ q̇ τ = q̇ (c − D f)  ⇔  −q̇ D f − s ≤ −q̇ c
             add(np.hstack([-qd[:, None] * D, -np.eye(nj)]), -qd * c, clarabel.NonnegativeConeT(nj))
         else:
-            # s ≥ q̇ τ + c_w τ²  ⇔  ‖(2√c_w τ, y − 1)‖ ≤ y + 1 with y = s − q̇ τ (rotated cone).
+            # s ≥ κ q̇ τ + c_w τ² for κ = 1/η and κ = η  ⇔  ‖(2√c_w τ, y − 1)‖ ≤ y + 1 with
+            # y = s − κ q̇ τ (a rotated cone written as a second-order cone).
+            eta = system.efficiency
             for j in range(nj):
                 row_tau = np.concatenate([-D[j], np.zeros(n_epi)])  # τ_j = c_j + row·x
                 row_s = np.zeros(nx)
                 row_s[n + j] = 1.0
-                y_row = row_s - qd[j] * row_tau
-                y_const = -qd[j] * c[j]
                 sw = 2 * math.sqrt(weights[j])
-                # Clarabel form: s_cone = b − A x ∈ SOC with s_cone = (y + 1, 2√c τ, y − 1)
-                Arows = -np.vstack([y_row, sw * row_tau, y_row])
-                b = np.array([y_const + 1, sw * c[j], y_const - 1])
-                add(Arows, b, clarabel.SecondOrderConeT(3))
+                for kappa in {1.0 / eta, eta}:
+                    y_row = row_s - kappa * qd[j] * row_tau
+                    y_const = -kappa * qd[j] * c[j]
+                    # Clarabel form: s_cone = b − A x ∈ SOC, s_cone = (y + 1, 2√c τ, y − 1)
+                    Arows = -np.vstack([y_row, sw * row_tau, y_row])
+                    b = np.array([y_const + 1, sw * c[j], y_const - 1])
+                    add(Arows, b, clarabel.SecondOrderConeT(3))
     Amat = sp.csc_matrix(np.vstack(rows))
     bvec = np.concatenate(rhs)
     settings = clarabel.DefaultSettings()
@@ -390,6 +397,7 @@ def solve_reference(system: StanceSystem, tau_spring: np.ndarray, objective: str
     bb = cp.Parameter(6)
     c = cp.Parameter(nj)
     qd = cp.Parameter(nj)
+    qd_in, qd_out = cp.Parameter(nj), cp.Parameter(nj)  # q̇/η and η q̇ (electrical)
     mask = cp.Parameter(nf, nonneg=True)
     fmin = cp.Parameter(n_legs, nonneg=True)
     tau = cp.Variable(nj)  # a variable pinned to c − D f keeps q̇ ⊙ τ parameter-affine (DPP)
@@ -397,7 +405,8 @@ def solve_reference(system: StanceSystem, tau_spring: np.ndarray, objective: str
     if objective in QUADRATIC_OBJECTIVES:
         cost = cp.sum(cp.multiply(w, cp.square(tau)))
     elif objective == "electrical":
-        cost = (cp.sum(cp.maximum(0, cp.multiply(qd, tau) + cp.multiply(w, cp.square(tau))))
+        gearbox = cp.maximum(cp.multiply(qd_in, tau), cp.multiply(qd_out, tau))
+        cost = (cp.sum(cp.maximum(0, gearbox + cp.multiply(w, cp.square(tau))))
                 + contact.regularization * cp.sum_squares(tau))
     else:
         cost = (cp.sum(cp.maximum(0, cp.multiply(qd, tau)))
@@ -419,6 +428,8 @@ def solve_reference(system: StanceSystem, tau_spring: np.ndarray, objective: str
         A.value, D.value, bb.value = system.A[k], system.D[k], system.b_base[k]
         c.value = system.b_joint[k] - tau_spring[k]
         qd.value = system.qdot[k]
+        qd_in.value = system.qdot[k] / system.efficiency
+        qd_out.value = system.qdot[k] * system.efficiency
         mask.value = m
         fmin.value = contact.min_normal_force * system.stance[k].astype(float)
         problem.solve(solver=cp.CLARABEL, tol_gap_abs=1e-11, tol_gap_rel=1e-11, tol_feas=1e-11,

@@ -1,0 +1,161 @@
+"""Tests of hexaleg.analysis: whole-robot invariants of the prepare → evaluate pipeline."""
+
+from __future__ import annotations
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+import hexaleg
+from hexaleg.analysis import analyze, prepare
+from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.gait import Sinusoid, joint_motion, tripod_gait
+from hexaleg.springs import DeadZoneSpring
+
+
+@pytest.fixture(scope="module")
+def robot():
+    return hexaleg.load_robot()
+
+
+@pytest.fixture(scope="module")
+def motion(robot):
+    return tripod_gait(robot)
+
+
+@pytest.fixture(scope="module")
+def prepared(robot, motion):
+    return prepare(robot, motion)
+
+
+def femur_springs(robot, k=1.5, theta_k=0.1, neutral=0.5):
+    return {leg.joint_names[1]: DeadZoneSpring(stiffness=k, theta_k=theta_k, neutral=neutral)
+            for leg in robot.legs}
+
+
+@pytest.fixture(scope="module")
+def analysis(prepared, robot):
+    return prepared.evaluate(femur_springs(robot))
+
+
+def test_shapes(analysis, motion, robot):
+    T = motion.n_samples
+    assert analysis.forces.shape == (T, 6, 3)
+    for name in ("tau_motor", "tau_spring", "power", "spring_energy", "q", "qdot"):
+        assert getattr(analysis, name).shape == (T, robot.nj), name
+    assert set(analysis.metrics["total"]) >= {"joule", "positive_work", "electrical"}
+
+
+def test_newton_euler_balance_of_contact_forces(analysis, motion, robot):
+    """Σ stance forces = m (a_com − g) at every sample (the whole robot's Newton equation)."""
+    model, data = robot.model, robot.model.createData()
+    rhs = np.empty((motion.n_samples, 3))
+    for k in range(motion.n_samples):
+        pin.centerOfMass(model, data, motion.q[k], motion.v[k], motion.a[k])
+        rhs[k] = robot.mass * (data.acom[0] - model.gravity.linear)
+    total = analysis.forces.sum(axis=1)
+    assert np.max(np.abs(total - rhs)) <= 1e-8 * np.max(np.abs(rhs))
+
+
+def test_base_rows_residual(prepared, analysis, motion):
+    f = analysis.forces.reshape(motion.n_samples, -1)
+    residual = np.einsum("tik,tk->ti", prepared.system.A, f) - prepared.system.b_base
+    assert np.max(np.abs(residual)) <= 1e-9
+
+
+def test_joint_rows_reassemble_rnea(prepared, analysis, motion, robot):
+    """τ_motor + τ_spring + Σ J_jointᵀ f = (M a + h)_joints, checked with a fresh RNEA."""
+    model, data = robot.model, robot.model.createData()
+    for k in range(0, motion.n_samples, 97):
+        b = pin.rnea(model, data, motion.q[k], motion.v[k], motion.a[k])
+        pin.computeJointJacobians(model, data, motion.q[k])
+        pin.updateFramePlacements(model, data)
+        ext = np.zeros(model.nv)
+        for i, leg in enumerate(robot.legs):
+            J = pin.getFrameJacobian(model, data, leg.foot_frame_id,
+                                     pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)[:3]
+            ext += J.T @ analysis.forces[k, i]
+        assert np.allclose(b[:6], ext[:6], atol=1e-9)
+        assert np.allclose(analysis.tau_motor[k] + analysis.tau_spring[k], b[6:] - ext[6:],
+                           atol=1e-9)
+
+
+def test_zero_signed_joint_work_over_the_periodic_gait(analysis, motion):
+    """Stance feet do not move and the motion is periodic, so all joint torques do no net work."""
+    p = analysis.tau_total * analysis.qdot
+    assert abs(p.sum() * motion.dt) <= 1e-6 * np.abs(p).sum() * motion.dt
+    # ... nor does any one spring (a conservative element on a closed path); the spring torque
+    # has kinks at contact, so the periodic trapezoid rule is only O(dt²) here.
+    ps = analysis.tau_spring * analysis.qdot
+    assert np.all(np.abs(ps.sum(0)) <= 1e-4 * np.abs(ps).sum(0) + 1e-12)
+    assert np.abs(ps).sum() > 0  # the springs do engage
+
+
+def test_stored_energy_is_the_integral_of_spring_torque(analysis, motion):
+    """U(t) − U(0) = −∫ τ_s q̇ dt (trapezoid; error O(dt²))."""
+    ps = analysis.tau_spring * analysis.qdot
+    work = np.concatenate([np.zeros((1, ps.shape[1])),
+                           np.cumsum(0.5 * (ps[1:] + ps[:-1]) * motion.dt, axis=0)])
+    du = analysis.spring_energy - analysis.spring_energy[0]
+    assert np.max(np.abs(du + work)) <= 1e-3 * np.max(np.abs(analysis.spring_energy))
+
+
+def test_no_springs_saves_nothing(prepared):
+    rigid = prepared.evaluate(None)
+    assert np.all(rigid.tau_spring == 0.0)
+    assert rigid.savings["total"]["joule"] == 0.0
+    assert rigid.metrics["total"]["joule"] == pytest.approx(rigid.baseline["total"]["joule"])
+
+
+def test_two_stage_equals_one_shot(robot, motion, analysis):
+    one = analyze(robot, motion, femur_springs(robot))
+    assert np.array_equal(one.forces, analysis.forces)
+    assert one.metrics["total"]["joule"] == analysis.metrics["total"]["joule"]
+
+
+def test_saving_is_against_the_same_gait_without_springs(analysis):
+    j, j0 = analysis.metrics["total"]["joule"], analysis.baseline["total"]["joule"]
+    assert analysis.savings["total"]["joule"] == pytest.approx((j0 - j) / j0)
+
+
+def test_single_joint_embedded_in_the_robot_is_eq14(robot):
+    """One femur on eq. 16 (body fixed, gravity off): τ_motor = J_O f̈ − τ_spring(f) (eq. 14).
+
+    J_O is computed by hand from the URDF parameters: the femur (Table 6: I + m l²) plus the
+    tibia (uniform rod, 120 mm, 45 g, CoM 50 mm out) held at the stand pose's −110°.
+    """
+    free = hexaleg.load_robot()
+    free.model.gravity.linear[:] = 0.0
+    femur_q = free.pose("stand")[free.leg("LF").q_index[1]]
+    traj = Sinusoid(amplitude=0.3, omega=2.0, offset=femur_q)
+    motion = joint_motion(free, {"LF_femur": traj}, samples=400)
+    spring = DeadZoneSpring(stiffness=0.8, theta_k=0.1278, alpha=1.05, convention="eq14",
+                            neutral=femur_q)
+    an = analyze(free, motion, {"LF_femur": spring})
+    m_f, l_f, i_f = 0.03611, 0.047141, 107.059e-6
+    m_t, l_t, c_t = 0.045, 0.12, 0.05
+    tib = np.array([0.084, 0.0]) + c_t * np.array([np.cos(np.radians(-110)),
+                                                    np.sin(np.radians(-110))])
+    j_o = i_f + m_f * l_f**2 + m_t * l_t**2 / 12 + m_t * tib @ tib
+    f, _, fdd = traj(motion.t)
+    expected = j_o * fdd - spring.torque(f)
+    col = free.column("LF_femur")
+    assert np.allclose(an.tau_motor[:, col], expected, rtol=1e-9, atol=1e-12)
+    others = np.delete(np.arange(free.nj), [col, free.column("LF_tibia"), free.column("LF_coxa")])
+    assert np.all(an.tau_motor[:, others] == 0.0)
+    assert np.all(an.forces == 0.0)
+
+
+def test_bad_input(prepared, robot):
+    with pytest.raises(UnknownNameError, match="valid joints are: LF_coxa"):
+        prepared.evaluate({"LF_knee": DeadZoneSpring(stiffness=1.0, theta_k=0.1)})
+    with pytest.raises(InvalidParameterError, match="objective"):
+        prepared.evaluate(None, objective="cheapest")
+    with pytest.raises(hexaleg.HexalegError):
+        DeadZoneSpring(stiffness=-1.0, theta_k=0.1)
+    with pytest.raises(hexaleg.HexalegError):
+        DeadZoneSpring(stiffness=float("nan"), theta_k=0.1)
+    with pytest.raises(hexaleg.HexalegError):
+        DeadZoneSpring(stiffness=1.0, theta_minus=0.2, theta_plus=0.1)
+    with pytest.raises(hexaleg.HexalegError, match="motor"):
+        prepare(robot, prepared.motion, motor="NoSuchServo")
