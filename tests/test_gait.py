@@ -229,8 +229,12 @@ def test_com_stays_inside_each_tripod_and_margin_is_reported(robot, walk):
         margins.append(_inside_margin(walk.feet[k, walk.stance[k], :2], com[:2]))
     assert min(margins) > 0.05
     assert walk.info["static_margin"] == pytest.approx(min(margins), abs=1e-6)
-    # The worst instant is the contact switch, CoM β·stride/2 behind mid-stance.
+    # The worst instant is a contact switch, the CoM β·stride/2 = 0.015 m from mid-stance: the
+    # inradius R/2 of the equilateral tripod less 0.015·cos 30° towards a slanted edge.
     assert walk.info["static_margin_t"] in (0.0, 0.5)
+    radius = walk.info["foot_radius"]
+    assert walk.info["static_margin"] == pytest.approx(
+        radius / 2 - 0.5 * 0.06 / 2 * math.cos(math.radians(30)), rel=1e-4)
 
 
 def test_in_place_margin_is_the_inradius_of_the_tripod(robot):
