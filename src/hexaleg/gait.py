@@ -592,8 +592,8 @@ def joint_motion(robot: Robot, trajectories: Mapping[str, Sinusoid],
     v = np.zeros((samples, robot.model.nv))
     a = np.zeros((samples, robot.model.nv))
     for name, traj in trajectories.items():
-        col = robot.column(name)
-        q[:, 7 + col], v[:, 6 + col], a[:, 6 + col] = traj(t)
+        joint = robot.model.joints[robot.model.getJointId(name)]
+        q[:, joint.idx_q], v[:, joint.idx_v], a[:, joint.idx_v] = traj(t)
     _check_joint_limits(robot, q, t)
     cycles = [w * period / (2.0 * math.pi) for w in omegas]
     periodic = all(abs(c - round(c)) < 1e-9 for c in cycles)
@@ -643,14 +643,12 @@ def transform_motion(robot: Robot, duration: float = 2.0, samples: int = 1000,
     _finite("base_height", base_height, "a finite number > 0 (m)", base_height > 0)
     t = np.linspace(0.0, duration, samples)
     sigma, d_sigma, dd_sigma = smoothstep(t / duration)
-    delta = pin.difference(robot.model, q0, q1)[6:]
-    q = np.tile(q0, (samples, 1))
-    q[:, 2] = base_height
-    q[:, 7:] += sigma[:, None] * delta
-    v = np.zeros((samples, robot.model.nv))
-    a = np.zeros((samples, robot.model.nv))
-    v[:, 6:] = d_sigma[:, None] * delta / duration
-    a[:, 6:] = dd_sigma[:, None] * delta / duration**2
+    q0[:3], q1[:3] = (0.0, 0.0, base_height), (0.0, 0.0, base_height)
+    q1[3:7] = q0[3:7]
+    delta = pin.difference(robot.model, q0, q1)  # joints only: the base poses are equal
+    q = np.array([pin.integrate(robot.model, q0, sk * delta) for sk in sigma])
+    v = d_sigma[:, None] * delta / duration
+    a = dd_sigma[:, None] * delta / duration**2
     feet = _feet(robot, q)
     info = {"source": "transform_motion", "start": start, "end": end,
             "base_height": base_height, "min_foot_height": float(feet[..., 2].min())}
