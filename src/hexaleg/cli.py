@@ -48,13 +48,15 @@ def _add_paper(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("paper", help="reproduce the paper's single elastic joint: paper.json, "
                                      "Fig. 5-13 analogues (PNG), summary.md")
     p.add_argument("--out", default="paper-report", help="output directory (default: %(default)s)")
+    p.add_argument("--samples", type=int, default=8192,
+                   help="samples per trajectory period (default: %(default)s)")
     p.set_defaults(func=_run_paper)
 
 
 def _run_paper(args: argparse.Namespace) -> int:
     from hexaleg.paper import write_report
 
-    r = write_report(args.out)
+    r = write_report(args.out, n=args.samples)
     print(f"k_M = {r['k_M_paper_units']:.3f} (paper's eq. 19 units) = "
           f"{r['k_M_SI_Nm_per_rad']:.4e} N·m/rad; k_E: {r['k_E']['verdict']}; "
           f"52.81%: {r['saving_52_81']['verdict']}")
