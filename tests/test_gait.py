@@ -292,6 +292,14 @@ def test_bad_gait_parameters_are_rejected(kwargs, name):
     assert isinstance(err.value, hexaleg.HexalegError)
 
 
+def test_sample_times_must_be_finite(robot):
+    with pytest.raises(InvalidParameterError, match="invalid t = "):
+        sample_gait(robot, None, np.array([0.0, math.nan]))
+    with pytest.raises(InvalidParameterError, match="invalid t = "):
+        sample_gait(robot, None, np.array([]))
+    assert not sample_gait(robot, None, np.array([0.1, 0.2])).periodic
+
+
 def test_groups_must_name_every_leg_of_the_robot(robot):
     with pytest.raises(UnknownNameError, match=r"'XX'.*LF"):
         tripod_gait(robot, GaitParams(groups=(("LF", "RM", "LH"), ("RF", "LM", "XX")),

@@ -366,17 +366,23 @@ def sample_gait(robot: Robot, gait: GaitParams | None = None,
         t: Times, shape (T,), s; default the cycle grid ``k · period / samples``.
 
     Returns:
-        The motion (see :func:`tripod_gait` for the fields and ``info``).
+        The motion (see :func:`tripod_gait` for the fields and ``info``); ``periodic`` is True
+        only for the default cycle grid.
 
     Raises:
         UnknownNameError: a leg in ``gait.groups`` is not a leg of the robot.
-        InvalidParameterError: a leg of the robot is in no group.
+        InvalidParameterError: a leg of the robot is in no group, or ``t`` is not a non-empty
+            1-D array of finite times.
         UnreachableTargetError: a foot target is out of reach (names leg, time, distance).
     """
     gait = GaitParams() if gait is None else gait
+    cycle_grid = t is None
     if t is None:
         t = np.arange(gait.samples) * (gait.period / gait.samples)
     t = np.asarray(t, dtype=float)
+    if t.ndim != 1 or len(t) == 0 or not np.all(np.isfinite(t)):
+        raise InvalidParameterError("t", f"array of shape {t.shape}",
+                                    "a non-empty 1-D array of finite times (s)")
     offsets = _resolve_groups(robot, gait)
     nominal = nominal_footholds(robot, gait)
     height = -float(nominal[0, 2])
@@ -445,7 +451,7 @@ def sample_gait(robot: Robot, gait: GaitParams | None = None,
         "ik": solvers,
     }
     return Motion(t=t, q=q, v=v, a=a, stance=stance, feet=feet, period=period,
-                  distance=gait.stride, periodic=True, fixed_base=False, info=info)
+                  distance=gait.stride, periodic=cycle_grid, fixed_base=False, info=info)
 
 
 def tripod_gait(robot: Robot, gait: GaitParams | None = None) -> Motion:
