@@ -45,7 +45,7 @@ def test_fast_path_equals_cvxpy_reference(robot, motion, mu, cone, binding):
     prepared = prepare(robot, motion, contact=ContactParams(mu=mu, cone=cone))
     tau_s = prepared.spring_torques(_springs(robot))
     w = prepared.weights("joule")
-    f_fast, resolved = solve_fast(prepared.system, tau_s, "joule", w, prepared.contact)
+    f_fast, _, resolved = solve_fast(prepared.system, tau_s, "joule", w, prepared.contact)
     f_ref = solve_reference(prepared.system, tau_s, "joule", w, prepared.contact)
     assert resolved.any() == binding
     assert np.max(np.abs(f_fast - f_ref)) <= 1e-6
@@ -60,7 +60,7 @@ def test_non_smooth_objectives_match_the_reference_optimum(robot, motion, object
     eps = prepared.contact.regularization
     sys = prepared.system
     samples = np.arange(0, motion.n_samples, 10)
-    f_fast, _ = solve_fast(sys, tau_s, objective, w, prepared.contact)
+    f_fast, _, _ = solve_fast(sys, tau_s, objective, w, prepared.contact)
     f_ref = solve_reference(sys, tau_s, objective, w, prepared.contact, samples=samples)
 
     def cost(f):  # the objectives as hexaleg.motor defines them, independently of forces.py
@@ -96,7 +96,7 @@ def test_quadratic_gains_give_the_constrained_optimum(robot, motion):
 
 def test_pyramid_is_inside_the_cone(robot, motion):
     prepared = prepare(robot, motion, contact=ContactParams(mu=0.25, cone="pyramid"))
-    f, _ = solve_fast(prepared.system, np.zeros_like(prepared.q), "joule",
+    f, _, _ = solve_fast(prepared.system, np.zeros_like(prepared.q), "joule",
                       prepared.weights("joule"), prepared.contact)
     f3 = f.reshape(motion.n_samples, -1, 3)
     assert np.all(np.hypot(f3[..., 0], f3[..., 1]) <= 0.25 * f3[..., 2] + 1e-9)

@@ -187,9 +187,9 @@ class Prepared:
                         f"(limit ±{self.system.tau_max[j]:.4f} N·m)")
             return np.zeros((T, n_legs, 3)), tau, np.zeros(T, dtype=bool)
         gains = self.gains(objective) if objective in QUADRATIC_OBJECTIVES else None
-        f, resolved = solve_fast(self.system, tau_spring, objective, self.weights(objective),
-                                 self.contact, gains)
-        return f.reshape(T, n_legs, 3), self.system.torques(f, tau_spring), resolved
+        f, tau, resolved = solve_fast(self.system, tau_spring, objective,
+                                      self.weights(objective), self.contact, gains)
+        return f.reshape(T, n_legs, 3), tau, resolved
 
     def _metrics(self, tau_motor: np.ndarray) -> dict[str, Any]:
         distance = self.motion.distance if self.motion.distance > 0 else None

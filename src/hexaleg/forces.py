@@ -48,7 +48,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.sparse as sp
 
 from hexaleg.errors import InfeasibleForcesError, InvalidParameterError, TorqueLimitError
 
@@ -142,9 +141,11 @@ class StanceSystem:
     def n_samples(self) -> int:
         return int(self.stance.shape[0])
 
-    def torques(self, f: np.ndarray, tau_spring: np.ndarray) -> np.ndarray:
-        """Motor torques ``b_joint − D f − τ_spring``, (T, nj), for forces ``f`` (T, 3 n_legs)."""
-        return self.b_joint - np.einsum("tjk,tk->tj", self.D, f) - tau_spring
+    def torques(self, f: np.ndarray, tau_spring: np.ndarray,
+                rows: np.ndarray | slice = slice(None)) -> np.ndarray:
+        """Motor torques ``b_joint − D f − τ_spring`` of samples ``rows``, for their forces ``f``
+        (T', 3 n_legs) and spring torques (T', nj); shape (T', nj), N·m."""
+        return self.b_joint[rows] - (self.D[rows] @ f[..., None])[..., 0] - tau_spring
 
 
 @dataclass(frozen=True, eq=False)
@@ -152,14 +153,19 @@ class QuadraticGains:
     """Exact solution of the equality-constrained quadratic program, linear in the spring torques.
 
     For weights ``w`` (nj,) the minimiser of Σ_j w_j τ_j² subject to the base rows is
-    ``f = K (b_joint − τ_spring) + L b_base``; this holds the per-sample ``K`` (T, 3 n_legs, nj) and
-    the rigid forces ``f₀ = K b_joint + L b_base`` (T, 3 n_legs). Derived from the KKT system
-    ``[H Aᵀ; A 0] [f; λ] = [DᵀW c; b_base]`` with ``H = Dᵀ W D`` on the stance columns.
+    ``f = K (b_joint − τ_spring) + L b_base``; this holds the per-sample ``K`` (T, 3 n_legs, nj),
+    the rigid forces ``f₀ = K b_joint + L b_base`` (T, 3 n_legs), the rigid motor torques
+    ``τ₀ = b_joint − D f₀`` (T, nj) and ``G = D K − I`` (T, nj, nj), so that with springs
+    ``f = f₀ − K τ_s`` and ``τ = τ₀ + G τ_s`` — only the spring columns of ``K`` and ``G`` are
+    touched. Derived from the KKT system ``[H Aᵀ; A 0] [f; λ] = [DᵀW c; b_base]`` with
+    ``H = Dᵀ W D`` on the stance columns.
     """
 
     weights: np.ndarray
     K: np.ndarray
     f0: np.ndarray
+    tau0: np.ndarray
+    G: np.ndarray
 
 
 def quadratic_gains(system: StanceSystem, weights: np.ndarray) -> QuadraticGains:
@@ -194,7 +200,9 @@ def quadratic_gains(system: StanceSystem, weights: np.ndarray) -> QuadraticGains
         K[np.ix_(rows, cols, np.arange(nj))] = sol[:, :n, :nj]
         L[np.ix_(rows, cols, np.arange(6))] = sol[:, :n, nj:]
     f0 = np.einsum("tkj,tj->tk", K, system.b_joint) + np.einsum("tki,ti->tk", L, system.b_base)
-    return QuadraticGains(np.asarray(weights, dtype=float).copy(), K, f0)
+    G = system.D @ K - np.eye(nj)
+    return QuadraticGains(np.asarray(weights, dtype=float).copy(), K, f0,
+                          system.torques(f0, np.zeros_like(system.b_joint)), G)
 
 
 def violations(system: StanceSystem, f: np.ndarray, tau: np.ndarray, contact: ContactParams,
@@ -219,6 +227,7 @@ def _solve_sample(system: StanceSystem, k: int, tau_spring: np.ndarray, objectiv
                   weights: np.ndarray, contact: ContactParams) -> np.ndarray:
     """Solve sample ``k``'s program exactly with Clarabel; returns f padded to (3 n_legs,)."""
     import clarabel
+    import scipy.sparse as sp
 
     pattern = system.stance[k]
     cols = np.flatnonzero(np.repeat(pattern, 3))
@@ -351,8 +360,8 @@ def solve_fast(system: StanceSystem, tau_spring: np.ndarray, objective: str,
         gains: Precomputed :func:`quadratic_gains` for these weights (quadratic objectives).
 
     Returns:
-        ``(f, resolved)``: forces (T, 3 n_legs), N, world frame; and the mask (T,) of samples that
-        needed the exact conic solve.
+        ``(f, tau, resolved)``: forces (T, 3 n_legs), N, world frame; motor torques (T, nj), N·m;
+        and the mask (T,) of samples that needed the exact conic solve.
 
     Raises:
         InfeasibleForcesError: no forces satisfy a sample's constraints (names time and feet).
@@ -362,14 +371,21 @@ def solve_fast(system: StanceSystem, tau_spring: np.ndarray, objective: str,
     if objective in QUADRATIC_OBJECTIVES:
         if gains is None:
             gains = quadratic_gains(system, weights)
-        f = gains.f0 - np.einsum("tkj,tj->tk", gains.K, tau_spring)
-        bad = violations(system, f, system.torques(f, tau_spring), contact)
+        cols = np.flatnonzero(np.any(tau_spring != 0.0, axis=0))  # joints with a spring
+        ts = tau_spring[:, cols, None]
+        f = gains.f0 - (gains.K[:, :, cols] @ ts)[..., 0]
+        tau = gains.tau0 + (gains.G[:, :, cols] @ ts)[..., 0]
+        bad = violations(system, f, tau, contact)
     else:
         f = np.zeros((T, system.A.shape[2]))
         bad = system.stance.any(axis=1)
     for k in np.flatnonzero(bad):
         f[k] = _solve_sample(system, int(k), tau_spring, objective, weights, contact)
-    return f, bad
+    if objective not in QUADRATIC_OBJECTIVES:
+        tau = system.torques(f, tau_spring)
+    elif bad.any():
+        tau[bad] = system.torques(f[bad], tau_spring[bad], bad)
+    return f, tau, bad
 
 
 def solve_reference(system: StanceSystem, tau_spring: np.ndarray, objective: str,
