@@ -191,6 +191,16 @@ def test_urdf_without_the_legs_lists_the_joints_found(tmp_path):
         hexaleg.load_robot(urdf, legs=spec)
 
 
+def test_joint_classes(robot):
+    classes = robot.joint_classes
+    assert list(classes) == ["coxa", "femur", "tibia"]
+    assert classes["femur"] == tuple(f"{leg}_femur" for leg in LEG_NAMES)
+    assert robot.joints("tibia") == classes["tibia"]
+    assert robot.joints("RM_coxa") == ("RM_coxa",)
+    with pytest.raises(UnknownNameError, match="coxa, femur, tibia, LF_coxa"):
+        robot.joints("knee")
+
+
 def test_custom_leg_spec_loads():
     robot = hexaleg.load_robot(DEFAULT_URDF, DEFAULT_SRDF, legs=HEXALEG_LEGS[:2])
     assert robot.leg_names == ("LF", "LM")

@@ -90,6 +90,8 @@ class Robot:
             the origin with identity orientation.
         urdf_path: The URDF file.
         srdf_path: The SRDF file, or None.
+        joint_kinds: Name of the k-th joint of every leg (``coxa, femur, tibia`` for the
+            hexapod); the joints of one kind form a joint class (:attr:`joint_classes`).
     """
 
     name: str
@@ -101,6 +103,7 @@ class Robot:
     poses: dict[str, np.ndarray]
     urdf_path: Path
     srdf_path: Path | None
+    joint_kinds: tuple[str, ...] = JOINT_KINDS
     mass: float = field(init=False)
     joint_names: tuple[str, ...] = field(init=False)
 
@@ -113,6 +116,29 @@ class Robot:
     def nj(self) -> int:
         """Number of actuated joints (nv − 6)."""
         return self.model.nv - 6
+
+    @property
+    def joint_classes(self) -> dict[str, tuple[str, ...]]:
+        """Joint class name → the joints of that kind on every leg, in leg order.
+
+        E.g. ``{"coxa": ("LF_coxa", …), "femur": (…), "tibia": (…)}``; a spring design for a class
+        goes on all its joints (left/right symmetric).
+        """
+        return {kind: tuple(leg.joint_names[i] for leg in self.legs)
+                for i, kind in enumerate(self.joint_kinds)}
+
+    def joints(self, spec: str) -> tuple[str, ...]:
+        """Joints named by ``spec``: a joint class (``"femur"``) or one joint (``"LF_femur"``).
+
+        Raises:
+            UnknownNameError: neither; the message lists the classes and joints.
+        """
+        classes = self.joint_classes
+        if spec in classes:
+            return classes[spec]
+        if spec in self.joint_names:
+            return (spec,)
+        raise UnknownNameError("joint class or joint", spec, [*classes, *self.joint_names])
 
     @property
     def leg_names(self) -> tuple[str, ...]:
@@ -281,7 +307,8 @@ def _make_leg(model: pin.Model, spec: LegSpec) -> Leg:
 
 def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *,
                legs: Sequence[LegSpec] | None = None,
-               package_dirs: Sequence[str | Path] = ()) -> Robot:
+               package_dirs: Sequence[str | Path] = (),
+               joint_kinds: Sequence[str] = JOINT_KINDS) -> Robot:
     """Load a legged robot into Pinocchio with a free-flyer base.
 
     Args:
@@ -289,6 +316,7 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
         srdf: SRDF file with ``group_state`` poses and ``disable_collisions`` pairs, or None.
         legs: How to find the legs; default the hexaleg naming (:data:`HEXALEG_LEGS`).
         package_dirs: Directories where ``package://`` mesh URIs are resolved.
+        joint_kinds: Names of the joint classes, one per joint of a leg, from the body out.
 
     Returns:
         The robot.
@@ -314,6 +342,10 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
     except (RuntimeError, ValueError) as e:
         raise RobotModelError(f"Pinocchio cannot load URDF {urdf_path}: {e}") from e
     leg_objs = tuple(_make_leg(model, spec) for spec in (legs or HEXALEG_LEGS))
+    sizes = {len(leg.joint_names) for leg in leg_objs}
+    if sizes != {len(joint_kinds)}:
+        raise RobotModelError(f"legs have {sorted(sizes)} joints but joint_kinds names "
+                              f"{len(joint_kinds)}: {', '.join(joint_kinds)}")
 
     collision.addAllCollisionPairs()
     poses: dict[str, np.ndarray] = {}
@@ -327,4 +359,4 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
                  for name, q in ((e.key(), e.data()) for e in model.referenceConfigurations)}
     return Robot(name=model.name, model=model, data=model.createData(), visual_model=visual,
                  collision_model=collision, legs=leg_objs, poses=poses, urdf_path=urdf_path,
-                 srdf_path=srdf_path)
+                 srdf_path=srdf_path, joint_kinds=tuple(joint_kinds))
