@@ -553,8 +553,8 @@ def k_E_readings(joint: PaperJoint | None = None) -> dict[str, dict[str, object]
 def saving_readings(joint: PaperJoint | None = None) -> dict[str, float]:
     """Candidate readings of the paper's "up to 52.81%" energy saving, in percent.
 
-    Each is ``100 (1 − cost(k_opt)/cost(k = 0))`` for one energy cost, its optimal stiffness, with
-    and without gravity.
+    Each is ``100 (1 − cost(k)/cost(k = 0))`` for one energy cost at its optimal stiffness, or for
+    ε (eq. 24) at k_M and at the printed k_E read in eq. 19 units, with and without gravity.
     """
     j = joint or PaperJoint()
     out = {}
@@ -565,6 +565,8 @@ def saving_readings(joint: PaperJoint | None = None) -> dict[str, float]:
         eps0 = float(j.epsilon(0.0, g))
         k_m = j.k_M()
         out[f"epsilon_at_k_M_{tag}"] = 100 * (1 - float(j.epsilon(k_m, g)) / eps0)
+        k_e = float(paper_number_to_si(PAPER_K_E))  # the printed k_E read in eq. 19 units
+        out[f"epsilon_at_printed_k_E_{tag}"] = 100 * (1 - float(j.epsilon(k_e, g)) / eps0)
     return out
 
 
