@@ -176,3 +176,27 @@ def test_spring_set_from_toml_table():
         SpringSet.from_mapping({"LF_femur": {"stifness": 20}})
     with pytest.raises(ConfigError):
         SpringSet.from_mapping({"LF_femur": {"stiffness": "hard", "theta_k": 0.1}})
+
+
+def test_spring_on_continuous_joint_uses_its_angle(tmp_path):
+    # A continuous joint stores (cos θ, sin θ) in q; the spring must see θ.
+    from hexaleg.robot import LegSpec
+
+    inertial = ('<inertial><mass value="0.1"/><inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" '
+                'iyz="0" izz="1e-4"/></inertial>')
+    urdf = tmp_path / "one.urdf"
+    urdf.write_text(
+        f'<robot name="one"><link name="base">{inertial}</link><link name="arm">{inertial}</link>'
+        '<link name="foot"/><joint name="j" type="continuous"><parent link="base"/>'
+        '<child link="arm"/><axis xyz="0 0 1"/></joint><joint name="f" type="fixed">'
+        '<parent link="arm"/><child link="foot"/><origin xyz="0.1 0 0"/></joint></robot>')
+    one = load_robot(urdf, legs=[LegSpec("L", ("j",), "foot")], joint_kinds=("j",))
+    assert one.model.nq == 9 and one.nj == 1
+    theta = np.array([0.05, 0.5, -0.7])
+    q = np.zeros((3, 9))
+    q[:, 6] = 1.0  # identity base quaternion
+    q[:, 7], q[:, 8] = np.cos(theta), np.sin(theta)
+    s = DeadZoneSpring(2.0, theta_k=0.1)
+    springs = SpringSet({"j": s})
+    np.testing.assert_allclose(springs.torques(one, q)[:, 0], s.torque(theta))
+    np.testing.assert_allclose(springs.energies(one, q)[:, 0], s.energy(theta))

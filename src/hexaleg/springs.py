@@ -333,33 +333,53 @@ class SpringSet(Mapping[str, DeadZoneSpring]):
                     for name, table in data.items()})
 
     def columns(self, robot: Robot) -> dict[str, int]:
-        """Column of each sprung joint in (…, robot.nj) arrays.
+        """Column of each sprung joint in (…, robot.nj) arrays (its velocity index − 6).
 
         Raises:
             UnknownNameError: a sprung joint is not an actuated joint of ``robot`` (the message
                 lists ``robot.joint_names``).
+            InvalidParameterError: a sprung joint has more than one degree of freedom.
         """
-        return {name: robot.column(name) for name in self._springs}
+        cols = {}
+        for name in self._springs:
+            robot.column(name)  # raises UnknownNameError listing the joints
+            joint = robot.model.joints[robot.model.getJointId(name)]
+            if joint.nv != 1:
+                raise InvalidParameterError(f"spring on {name}", f"a joint with nv = {joint.nv}",
+                                            "a 1-DoF (revolute or continuous) joint")
+            cols[name] = joint.idx_v - (robot.model.nv - robot.nj)
+        return cols
 
-    def _joint_arrays(self, robot: Robot, q: ArrayLike, v: ArrayLike | None
-                      ) -> tuple[np.ndarray, np.ndarray | None]:
+    def _angles(self, robot: Robot, q: ArrayLike, v: ArrayLike | None
+                ) -> dict[str, tuple[int, np.ndarray, np.ndarray | None]]:
+        """Per sprung joint: (column, angle (T,) rad, velocity (T,) rad/s or None).
+
+        A continuous joint stores (cos θ, sin θ) in q (Pinocchio's RUBZ); its angle is atan2.
+        """
+        cols = self.columns(robot)
         qa = _finite_array("q", q)
         nq, nv = robot.model.nq, robot.model.nv
         if qa.ndim != 2 or qa.shape[1] != nq:
             raise InvalidParameterError("q.shape", qa.shape, f"(T, {nq})")
-        qj = qa[:, nq - robot.nj:]
-        if v is None:
-            return qj, None
-        va = _finite_array("v", v)
-        if va.shape != (qa.shape[0], nv):
-            raise InvalidParameterError("v.shape", va.shape, f"({qa.shape[0]}, {nv})")
-        return qj, va[:, nv - robot.nj:]
+        va = None
+        if v is not None:
+            va = _finite_array("v", v)
+            if va.shape != (qa.shape[0], nv):
+                raise InvalidParameterError("v.shape", va.shape, f"({qa.shape[0]}, {nv})")
+        out = {}
+        for name, c in cols.items():
+            joint = robot.model.joints[robot.model.getJointId(name)]
+            iq = joint.idx_q
+            angle = qa[:, iq] if joint.nq == 1 else np.arctan2(qa[:, iq + 1], qa[:, iq])
+            out[name] = (c, angle, None if va is None else va[:, joint.idx_v])
+        return out
 
     def torques(self, robot: Robot, q: ArrayLike, v: ArrayLike | None = None) -> np.ndarray:
         """Spring torques on every actuated joint, N·m.
 
         Args:
-            robot: The robot (free-flyer base: joint j's angle is ``q[:, 7 + j]``).
+            robot: The robot (each joint's angle and velocity found through Pinocchio's
+                ``idx_q``/``idx_v``).
             q: Configurations, shape (T, nq), rad for the joints.
             v: Velocities, shape (T, nv), or None to omit damping.
 
@@ -370,11 +390,10 @@ class SpringSet(Mapping[str, DeadZoneSpring]):
             UnknownNameError: a sprung joint is not a joint of the robot (lists the joints).
             InvalidParameterError: wrong shapes, NaN or inf.
         """
-        cols = self.columns(robot)
-        qj, vj = self._joint_arrays(robot, q, v)
-        out = np.zeros_like(qj)
-        for name, c in cols.items():
-            out[:, c] = self._springs[name].torque(qj[:, c], None if vj is None else vj[:, c])
+        angles = self._angles(robot, q, v)
+        out = np.zeros((np.shape(q)[0], robot.nj))
+        for name, (c, angle, vel) in angles.items():
+            out[:, c] = self._springs[name].torque(angle, vel)
         return out
 
     def energies(self, robot: Robot, q: ArrayLike) -> np.ndarray:
@@ -388,9 +407,8 @@ class SpringSet(Mapping[str, DeadZoneSpring]):
             UnknownNameError: a sprung joint is not a joint of the robot (lists the joints).
             InvalidParameterError: wrong shape, NaN or inf.
         """
-        cols = self.columns(robot)
-        qj, _ = self._joint_arrays(robot, q, None)
-        out = np.zeros_like(qj)
-        for name, c in cols.items():
-            out[:, c] = self._springs[name].energy(qj[:, c])
+        angles = self._angles(robot, q, None)
+        out = np.zeros((np.shape(q)[0], robot.nj))
+        for name, (c, angle, _) in angles.items():
+            out[:, c] = self._springs[name].energy(angle)
         return out
