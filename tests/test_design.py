@@ -1,0 +1,86 @@
+"""Tests of hexaleg.design: the paper's spring rules carried over to the robot's joints."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import hexaleg
+from hexaleg.design import (
+    PAPER_DEAD_ZONE_RATIO,
+    apparent_inertia,
+    centred_spring,
+    centred_springs,
+    joint_range,
+    k_M,
+    paper_style_springs,
+)
+from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.gait import Sinusoid, joint_motion
+
+
+@pytest.fixture(scope="module")
+def robot():
+    return hexaleg.load_robot()
+
+
+@pytest.fixture(scope="module")
+def gait(robot):
+    return hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=200))
+
+
+def test_paper_ratio():
+    assert PAPER_DEAD_ZONE_RATIO == pytest.approx(math.radians(7.32) / 0.3)
+    assert PAPER_DEAD_ZONE_RATIO == pytest.approx(0.4259, abs=1e-4)
+
+
+def test_eq25_on_the_robot_gives_the_papers_dead_zone(robot):
+    """f = 0.3 sin 2t (eq. 25) about the stand angle: θ_k = 7.32°, neutral = the stand angle."""
+    stand = robot.pose("stand")[robot.leg("LF").q_index[1]]
+    motion = joint_motion(robot, {"LF_femur": Sinusoid(0.3, 2.0, offset=stand)}, samples=400)
+    spring = centred_spring(robot, motion, "LF_femur", 1.0)
+    assert spring.neutral == pytest.approx(stand, abs=1e-5)
+    assert spring.th_plus == pytest.approx(math.radians(7.32), rel=1e-4)
+    assert spring.th_minus == pytest.approx(-math.radians(7.32), rel=1e-4)
+
+
+def test_apparent_inertia_of_the_tibia_is_the_rod_about_its_end(robot, gait):
+    """The tibia moves only itself: J = I_c + m c² of the 120 mm, 45 g rod with CoM at 50 mm."""
+    j = apparent_inertia(robot, gait, "LF_tibia")
+    assert j == pytest.approx(0.045 * 0.12**2 / 12 + 0.045 * 0.05**2, rel=1e-9)
+
+
+def test_k_M_is_eq19(robot, gait):
+    j = apparent_inertia(robot, gait, "LF_femur")
+    assert k_M(robot, gait, "LF_femur") == pytest.approx((2 * math.pi) ** 2 * j / 1.05)
+    with pytest.raises(InvalidParameterError, match="alpha"):
+        k_M(robot, gait, "LF_femur", alpha=0.0)
+
+
+def test_centred_springs_sit_on_each_joints_motion(robot, gait):
+    springs = centred_springs(robot, gait, "femur", 2.0, dead_zone=0.5)
+    assert set(springs) == set(robot.joint_classes["femur"])
+    for joint, spring in springs.items():
+        lo, hi = joint_range(robot, gait, joint)
+        assert spring.neutral == pytest.approx((lo + hi) / 2)
+        assert spring.th_plus == pytest.approx(0.25 * (hi - lo))
+        q = gait.q[:, 7 + robot.column(joint)]
+        engaged = spring.engaged(q)
+        assert engaged.any() and not engaged.all()
+
+
+def test_paper_style_springs_use_eq14_and_alpha(robot, gait):
+    springs = paper_style_springs(robot, gait)
+    s = springs["RM_femur"]
+    assert (s.alpha, s.convention) == (1.05, "eq14")
+    assert s.stiffness == pytest.approx(k_M(robot, gait, "RM_femur"))
+    assert np.isfinite(hexaleg.analyze(robot, gait, springs).metrics["total"]["joule"])
+
+
+def test_bad_input(robot, gait):
+    with pytest.raises(InvalidParameterError, match="dead_zone"):
+        centred_spring(robot, gait, "LF_femur", 1.0, dead_zone=1.0)
+    with pytest.raises(UnknownNameError):
+        centred_springs(robot, gait, "knee", 1.0)
