@@ -800,10 +800,9 @@ def _figures(j: PaperJoint, out: Path, n: int) -> list[str]:
         else:
             ax.plot(kp, j.epsilon(ks, False, n), label="no gravity")
             ax.set_ylabel("ε = positive work / (J · 4A)  (1/s²)")
-        for label, x in marks.items():
+        for (label, x), color in zip(marks.items(), ("C1", "C2", "C3", "C4"), strict=False):
             if x <= kmax:
-                ax.axvline(x, ls=":", color="gray")
-                ax.text(x, ax.get_ylim()[1], label, rotation=90, va="top", fontsize=7)
+                ax.axvline(x, ls=":", color=color, label=f"{label} = {x:.1f}")
         ax.set(xlabel="k (eq. 19 units, 1e-6 N·m/rad), paper convention κ = kα", title=title)
         ax.legend(fontsize=8)
         save(fig, name)
