@@ -46,6 +46,8 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq, minimize_scalar
 
 from hexaleg.errors import InvalidParameterError, OutputError
+from hexaleg.motor import Motor
+from hexaleg.motor import motor as default_motor
 from hexaleg.springs import CONVENTIONS, DeadZoneSpring
 from hexaleg.units import (
     G,
@@ -64,32 +66,6 @@ POSTURES: dict[str, float] = {"hanging": 1.0, "upright": -1.0}
 METRICS: tuple[str, ...] = ("mean_abs", "rms", "peak", "int_sq", "positive_work",
                             "absolute_work", "joule")
 """Cost functions of the motor torque over one period (see :func:`metric`)."""
-
-
-@dataclass(frozen=True)
-class MotorModel:
-    """DC motor seen at the joint: Joule loss ``R (τ / k_t)²`` (armature copper loss).
-
-    Defaults from the ROBOTIS AX-18A e-Manual (the robot's servo): stall torque 1.8 N·m at 12 V
-    and 2.2 A, so ``k_t = 1.8 / 2.2`` N·m/A at the output and ``R = 12 / 2.2`` Ω.
-
-    Attributes:
-        torque_constant: k_t at the joint (gear included), N·m/A, > 0.
-        resistance: Winding resistance R, Ω, > 0.
-    """
-
-    torque_constant: float = 1.8 / 2.2
-    resistance: float = 12.0 / 2.2
-
-    def __post_init__(self) -> None:
-        for name in ("torque_constant", "resistance"):
-            value = getattr(self, name)
-            if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-                raise InvalidParameterError(name, value, "a finite number > 0")
-
-    def joule_power(self, torque: ArrayLike) -> np.ndarray:
-        """Copper loss, W, shape of ``torque`` (N·m)."""
-        return self.resistance * (np.asarray(torque, dtype=float) / self.torque_constant) ** 2
 
 
 _TABLE6 = {"mass": 3.611e-2, "com": float(mm_to_m(47.141)), "length": float(mm_to_m(84.0)),
@@ -372,18 +348,20 @@ def _stiffness(k: ArrayLike) -> np.ndarray:
 
 
 def metric(joint: PaperJoint, name: str, k: ArrayLike, gravity: bool = True, n: int = 2048,
-           motor: MotorModel | None = None) -> np.ndarray:
+           motor: Motor | None = None) -> np.ndarray:
     """A cost of the motor torque over one period, vectorised over stiffness.
 
     Args:
         joint: The joint.
         name: One of :data:`METRICS`: ``mean_abs`` (mean |M|, N·m), ``rms`` (N·m), ``peak``
             (max |M|, N·m), ``int_sq`` (∫M² dt, N²·m²·s), ``positive_work`` (∫max(Mθ̇, 0) dt, J),
-            ``absolute_work`` (∫|Mθ̇| dt, J), ``joule`` (∫ R (M/k_t)² dt, J, with ``motor``).
+            ``absolute_work`` (∫|Mθ̇| dt, J), ``joule`` (∫ c M² dt, J, c = R/(k_t G)² of
+            ``motor``).
         k: Stiffness(es), N·m/rad, scalar or (K,).
         gravity: Include gravity.
         n: Samples per period (uniform, endpoint excluded: integrals are sums × dt).
-        motor: Motor model for ``joule`` (default :class:`MotorModel`).
+        motor: Servo for ``joule`` (default :data:`hexaleg.motor.DEFAULT_MOTOR`, the robot's
+            AX-18A).
 
     Returns:
         Scalar array or shape (K,).
@@ -407,7 +385,7 @@ def metric(joint: PaperJoint, name: str, k: ArrayLike, gravity: bool = True, n: 
         return np.maximum(tau * thd, 0.0).sum(-1) * dt
     if name == "absolute_work":
         return np.abs(tau * thd).sum(-1) * dt
-    return (motor or MotorModel()).joule_power(tau).sum(-1) * dt
+    return (motor or default_motor()).joule_power(tau).sum(-1) * dt
 
 
 @dataclass(frozen=True)
@@ -438,7 +416,7 @@ class Optimum:
 
 def optimise(joint: PaperJoint, name: str, gravity: bool = True,
              bounds: tuple[float, float] | None = None, n: int = 2048, grid: int = 801,
-             motor: MotorModel | None = None) -> Optimum:
+             motor: Motor | None = None) -> Optimum:
     """Numerically optimal stiffness for one metric: grid search, then a bounded Brent refinement.
 
     Args:
@@ -701,8 +679,8 @@ def reproduce(joint: PaperJoint | None = None, n: int = 8192) -> dict[str, objec
                   "theta_k_rad": tk, "theta_k_deg": math.degrees(tk), "alpha": j.alpha,
                   "gravity_m_per_s2": j.gravity, "convention": j.convention,
                   "period_s": j.period, "samples_per_period": n,
-                  "motor": {"torque_constant_N_m_per_A": MotorModel().torque_constant,
-                            "resistance_ohm": MotorModel().resistance}},
+                  "motor": {"name": default_motor().name,
+                            "joule_coefficient_W_per_Nm2": default_motor().joule_coefficient}},
         "k_M_paper_units": k_M_paper_number(j),
         "k_M_paper_printed": PAPER_K_M,
         "k_M_paper_units_are": "kg·mm²·s⁻²/rad = 1e-6 N·m/rad (the paper labels them N·mm/deg)",
