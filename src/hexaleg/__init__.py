@@ -31,16 +31,32 @@ __all__ = [
     "Robot",
     "Sinusoid",
     "SpringSet",
+    "ViewParams",
     "__version__",
     "analyze",
+    "animate",
     "cost_of_transport",
     "epsilon",
+    "export_html",
     "joint_motion",
     "load_robot",
     "metrics",
     "motor_from_mapping",
     "prepare",
     "savings",
+    "serve",
     "transform_motion",
     "tripod_gait",
 ]
+
+_VIEW = ("ViewParams", "animate", "export_html", "serve")
+
+
+def __getattr__(name: str) -> object:
+    """Import the browser viewer (:mod:`hexaleg.view`) on first use: it pulls in meshcat and
+    Pinocchio's visualisers, which take seconds to import."""
+    if name in _VIEW:
+        from hexaleg import view
+
+        return getattr(view, name)
+    raise AttributeError(f"module 'hexaleg' has no attribute {name!r}")

@@ -81,7 +81,66 @@ def _run_gait(args: argparse.Namespace) -> int:
     return 0
 
 
-SUBCOMMANDS = [_add_robot, _add_motors, _add_gait, _add_paper]
+_VIEW_JOINTS = {"power": ("power", "motor power (W)"),
+                "torque": ("tau_motor", "motor torque (N·m)"),
+                "spring": ("tau_spring", "spring torque (N·m)")}
+"""``hexaleg view --joints`` choice → (Analysis attribute, legend label)."""
+
+
+def _add_view(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("view", help="animate the gait or the sphere transformation in the browser "
+                                    "(Meshcat): foot forces, joints coloured by motor power")
+    p.add_argument("--config", help="TOML file with optional [gait], [springs] and [view] tables")
+    p.add_argument("--html", help="write a self-contained page that plays offline to this file "
+                                  "and exit (default: serve on localhost until Ctrl-C)")
+    p.add_argument("--motion", choices=("gait", "transform"), default="gait",
+                   help="tripod gait cycle or stand → sphere transformation "
+                        "(default: %(default)s)")
+    p.add_argument("--joints", choices=tuple(_VIEW_JOINTS), default="power",
+                   help="what colours the joints (default: %(default)s)")
+    p.set_defaults(func=_run_view)
+
+
+def _run_view(args: argparse.Namespace) -> int:
+    import signal
+    import time
+
+    from hexaleg import view
+    from hexaleg.analysis import analyze
+    from hexaleg.config import from_mapping, load_toml
+    from hexaleg.gait import GaitParams, transform_motion, tripod_gait
+    from hexaleg.robot import load_robot
+    from hexaleg.springs import SpringSet
+
+    data = load_toml(args.config) if args.config else {}
+    where = args.config or "config"
+    params = from_mapping(view.ViewParams, data.get("view", {}), f"{where} [view]")
+    springs = SpringSet.from_mapping(data.get("springs", {}), f"{where} [springs]")
+    robot = load_robot()
+    if args.motion == "gait":
+        motion = tripod_gait(robot, GaitParams.from_toml(data.get("gait", {})))
+    else:
+        motion = transform_motion(robot)
+    result = analyze(robot, motion, springs)
+    attr, label = _VIEW_JOINTS[args.joints]
+    opts = {"forces": None if motion.fixed_base else result.forces,
+            "joint_values": getattr(result, attr), "joint_label": label, "fps": params.fps,
+            "arrow_length": params.arrow_length, "marker_radius": params.marker_radius}
+    if args.html:
+        print(f"wrote {view.export_html(robot, motion, args.html, **opts)}")
+        return 0
+    print(f"serving the {args.motion} at {view.serve(robot, motion, **opts)} "
+          "(Ctrl-C to stop)", flush=True)
+    # A kill (SIGTERM) leaves like Ctrl-C, through the normal exit that stops meshcat's server.
+    signal.signal(signal.SIGTERM, signal.default_int_handler)
+    try:
+        while True:
+            time.sleep(3600)
+    except KeyboardInterrupt:
+        return 0
+
+
+SUBCOMMANDS = [_add_robot, _add_motors, _add_gait, _add_paper, _add_view]
 """Parser builders, one per subcommand, in the order ``--help`` lists them."""
 
 

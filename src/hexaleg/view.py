@@ -265,11 +265,10 @@ def _add_scene(viewer: meshcat.Visualizer, motion: Motion, ground_z: float) -> N
 
 
 def _add_forces(viewer: meshcat.Visualizer, tracks: _Tracks, robot: Robot, fr: _Frames,
-                arrow_length: float) -> float:
-    """Force arrows at the feet; returns the force drawn at full ``arrow_length``, N."""
+                fmax: float, arrow_length: float) -> None:
+    """Force arrows at the feet, ``arrow_length`` long for a force of ``fmax`` N."""
     assert fr.forces is not None
     mags = np.linalg.norm(fr.forces, axis=-1)
-    fmax = float(mags.max())
     radius = arrow_length / 25
     head = 4 * radius
     feet = np.empty(fr.forces.shape)
@@ -293,14 +292,12 @@ def _add_forces(viewer: meshcat.Visualizer, tracks: _Tracks, robot: Robot, fr: _
         tracks.set(node["shaft"], "scale",
                    np.stack([zeros + 1, np.maximum(length, 1e-6), zeros + 1], axis=1))
         tracks.set(node["head"], "position", np.stack([zeros, length + head / 2, zeros], axis=1))
-    return fmax
 
 
 def _add_joint_markers(viewer: meshcat.Visualizer, tracks: _Tracks, robot: Robot,
-                       fr: _Frames, radius: float) -> float:
-    """Binned-colour spheres at the joints; returns the half-width of the colour scale."""
+                       fr: _Frames, vmax: float, radius: float) -> None:
+    """Spheres at the joints coloured by value on the scale [−vmax, vmax] (binned)."""
     assert fr.joint_values is not None
-    vmax = float(np.abs(fr.joint_values).max())
     bins = value_bins(fr.joint_values, vmax)
     colors = cool_warm((np.arange(N_LEVELS) + 0.5) / N_LEVELS)
     data = robot.model.createData()
@@ -317,7 +314,6 @@ def _add_joint_markers(viewer: meshcat.Visualizer, tracks: _Tracks, robot: Robot
             node[f"bin{b}"].set_object(mg.Sphere(radius), mg.MeshLambertMaterial(
                 color=int(rgb[0]) << 16 | int(rgb[1]) << 8 | int(rgb[2])))
             tracks.set(node[f"bin{b}"], "visible", bins[:, c] == b)
-    return vmax
 
 
 @dataclass(frozen=True)
@@ -363,10 +359,14 @@ def _animate(robot: Robot, motion: Motion, viewer: meshcat.Visualizer, *, forces
         tracks.set(node, "quaternion", poses[:, g, 3:])
 
     _add_scene(viewer, motion, _ground(motion))
-    fmax = (_add_forces(viewer, tracks, robot, fr, params.arrow_length)
-            if forces is not None else None)
-    vmax = (_add_joint_markers(viewer, tracks, robot, fr, params.marker_radius)
-            if joint_values is not None else None)
+    # Scales from the samples themselves, so the legend reports their true maxima.
+    fmax = vmax = None
+    if forces is not None:
+        fmax = float(np.linalg.norm(forces, axis=-1).max())
+        _add_forces(viewer, tracks, robot, fr, fmax, params.arrow_length)
+    if joint_values is not None:
+        vmax = float(np.abs(joint_values).max())
+        _add_joint_markers(viewer, tracks, robot, fr, vmax, params.marker_radius)
     tracks.apply_first(viewer)
     if len(fr.frames) > 1:
         viewer.set_animation(tracks.animation(params.fps), play=True, repetitions=math.inf)
