@@ -34,6 +34,7 @@ PERIOD = 1.0
 DISTANCE = 0.1
 AMP = 0.25
 TRIPOD_A = ("LF", "LH", "RM")
+ARROW = ViewParams().arrow_length
 
 
 @pytest.fixture(scope="module")
@@ -214,7 +215,7 @@ def test_force_arrows_point_along_the_forces(robot, motion, forces, clips):
             R = pin.Quaternion(np.array(tr["quaternion"]["values"][k])).toRotationMatrix()
             # The arrow's axis is its local +y (three.js convention).
             np.testing.assert_allclose(R[:, 1], forces[k, i] / mags[k, i], atol=1e-12)
-            length = 0.1 * mags[k, i] / fmax
+            length = ARROW * mags[k, i] / fmax
             shaft = clips[node + "/shaft"]
             assert shaft["scale"]["values"][k][1] == pytest.approx(length)
             assert shaft["position"]["values"][k][1] == pytest.approx(length / 2)
@@ -239,7 +240,7 @@ def test_joint_markers_show_one_binned_colour(robot, motion, clips):
 def test_legend_names_the_scales(page, robot, forces):
     assert "joint velocity (rad/s)" in page
     fmax = np.linalg.norm(forces, axis=-1).max()
-    assert f"10 cm = {fmax:.3g} N" in page
+    assert f"{ARROW * 100:.3g} cm = {fmax:.3g} N" in page
 
 
 def test_real_gait_arrows_are_the_analysis_forces(robot, tmp_path):
@@ -269,7 +270,7 @@ def test_real_gait_arrows_are_the_analysis_forces(robot, tmp_path):
                 continue
             R = pin.Quaternion(np.array(clips[node]["quaternion"]["values"][j]))
             length = clips[node + "/shaft"]["scale"]["values"][j][1]
-            drawn = R.toRotationMatrix()[:, 1] * length / 0.1 * fmax
+            drawn = R.toRotationMatrix()[:, 1] * length / ARROW * fmax
             np.testing.assert_allclose(drawn, expected, atol=1e-9 * fmax)
             total += drawn
         assert total[2] == pytest.approx(robot.mass * 9.81, rel=0.1)

@@ -53,7 +53,7 @@ _NEUTRAL = np.array([0.865, 0.865, 0.865])
 _WARM = np.array([0.706, 0.016, 0.150])
 _GROUND_COLOR = 0xE8E4DA
 _GRID_COLOR = 0xB8B2A6
-_ARROW_COLOR = 0x2CA02C
+_ARROW_COLOR = 0x00B140
 _Y = np.array([0.0, 1.0, 0.0])
 
 
@@ -71,7 +71,7 @@ class ViewParams:
     """
 
     fps: float = 30.0
-    arrow_length: float = 0.1
+    arrow_length: float = 0.15
     marker_radius: float = 0.018
 
     def __post_init__(self) -> None:
@@ -259,7 +259,7 @@ def _add_scene(viewer: meshcat.Visualizer, motion: Motion, ground_z: float) -> N
     target = centre + np.array([0.0, 0.0, 0.05])
     viewer["/Cameras/default"].set_transform(pin.SE3(np.eye(3), target).homogeneous)
     # The camera sits in Meshcat's y-up "rotated" frame: world (x, y, z) is (x, z, -y) there.
-    eye = np.array([0.45, -0.38, 0.28]) * (1 + float(np.ptp(base[:, :2], axis=0).max()))
+    eye = np.array([0.36, -0.30, 0.24]) * (1 + float(np.ptp(base[:, :2], axis=0).max()))
     viewer["/Cameras/default/rotated/<object>"].set_property(
         "position", [float(eye[0]), float(eye[2]), float(-eye[1])])
 
@@ -269,7 +269,7 @@ def _add_forces(viewer: meshcat.Visualizer, tracks: _Tracks, robot: Robot, fr: _
     """Force arrows at the feet, ``arrow_length`` long for a force of ``fmax`` N."""
     assert fr.forces is not None
     mags = np.linalg.norm(fr.forces, axis=-1)
-    radius = arrow_length / 25
+    radius = arrow_length / 30
     head = 4 * radius
     feet = np.empty(fr.forces.shape)
     for j, q in enumerate(fr.q):
@@ -375,7 +375,7 @@ def _animate(robot: Robot, motion: Motion, viewer: meshcat.Visualizer, *, forces
 
 def animate(robot: Robot, motion: Motion, *, forces: Any = None, joint_values: Any = None,
             joint_label: str = "", viewer: meshcat.Visualizer | None = None,
-            fps: float = 30.0, arrow_length: float = 0.1,
+            fps: float = 30.0, arrow_length: float = 0.15,
             marker_radius: float = 0.018) -> MeshcatVisualizer:
     """Send a motion to a Meshcat viewer as a looping animation.
 
@@ -425,7 +425,7 @@ def _start_server() -> meshcat.Visualizer:
 
 
 def serve(robot: Robot, motion: Motion, *, forces: Any = None, joint_values: Any = None,
-          joint_label: str = "", fps: float = 30.0, arrow_length: float = 0.1,
+          joint_label: str = "", fps: float = 30.0, arrow_length: float = 0.15,
           marker_radius: float = 0.018) -> str:
     """Start a Meshcat server on localhost showing the animated motion.
 
@@ -523,7 +523,7 @@ def _legend_html(legend: _Legend) -> str:
 
 def export_html(robot: Robot, motion: Motion, path: str | Path, *, forces: Any = None,
                 joint_values: Any = None, joint_label: str = "", fps: float = 30.0,
-                arrow_length: float = 0.1, marker_radius: float = 0.018) -> Path:
+                arrow_length: float = 0.15, marker_radius: float = 0.018) -> Path:
     """Write the animated motion to one self-contained HTML page that plays offline.
 
     The page inlines Meshcat's viewer JavaScript from the installed ``meshcat`` package and
