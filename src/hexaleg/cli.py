@@ -140,7 +140,30 @@ def _run_view(args: argparse.Namespace) -> int:
         return 0
 
 
-SUBCOMMANDS = [_add_robot, _add_motors, _add_gait, _add_paper, _add_view]
+def _add_report(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("report", help="gait energy report: report.html (self-contained), "
+                                      "report.json and the plots, with and without springs")
+    p.add_argument("--config", help="TOML file with optional [gait], [motor], [contact], "
+                                    "[springs] and [report] tables (see docs/report.md)")
+    p.add_argument("--out", default="hexaleg-report",
+                   help="output directory (default: %(default)s)")
+    p.add_argument("--svg", action="store_true", help="also write every plot as SVG")
+    p.set_defaults(func=_run_report)
+
+
+def _run_report(args: argparse.Namespace) -> int:
+    from hexaleg.report import ReportConfig, write_report
+
+    config = ReportConfig.from_toml(args.config) if args.config else ReportConfig()
+    r = write_report(args.out, config, svg=args.svg)
+    e = r.data["energy"]["totals"]["electrical"]
+    print(f"electrical energy per cycle {e['with_springs']['value']:.4g} J with springs, "
+          f"{e['without_springs']['value']:.4g} J without (saving {e['saving']['value']:+.2f} %)")
+    print(f"wrote {len(r.files)} files to {args.out}; open {args.out}/report.html")
+    return 0
+
+
+SUBCOMMANDS = [_add_robot, _add_motors, _add_gait, _add_paper, _add_report, _add_view]
 """Parser builders, one per subcommand, in the order ``--help`` lists them."""
 
 
