@@ -24,7 +24,7 @@ from matplotlib.image import imread
 from hexaleg.analysis import analyze
 from hexaleg.cli import main
 from hexaleg.errors import InvalidParameterError, OutputError
-from hexaleg.gait import tripod_gait
+from hexaleg.gait import transform_motion, tripod_gait
 from hexaleg.motion import Motion
 from hexaleg.robot import load_robot
 from hexaleg.view import N_LEVELS, ViewParams, animate, cool_warm, export_html, value_bins
@@ -276,6 +276,40 @@ def test_real_gait_arrows_are_the_analysis_forces(robot, tmp_path):
         assert total[2] == pytest.approx(robot.mass * 9.81, rel=0.1)
 
 
+def test_transformation_ends_in_the_sphere_pose(robot, tmp_path):
+    """A non-periodic motion (stand → sphere, 2 s) has keyframes up to its last sample, where
+    the body shells sit as in the SRDF ``sphere`` pose (base held at the stand height)."""
+    motion = transform_motion(robot)
+    path = export_html(robot, motion, tmp_path / "t.html", fps=10)
+    clips = _clips(_scene(path.read_text()))
+    q_end = robot.pose("sphere")
+    q_end[:3] = motion.q[-1, :3]
+    data, gdata = robot.model.createData(), pin.GeometryData(robot.visual_model)
+    pin.forwardKinematics(robot.model, data, q_end)
+    pin.updateGeometryPlacements(robot.model, data, robot.visual_model, gdata)
+    for g, obj in enumerate(robot.visual_model.geometryObjects):
+        tr = clips[f"/meshcat/pinocchio/visuals/{obj.name}"]["position"]
+        assert len(tr["frames"]) == 21 and tr["frames"][-1] == pytest.approx(20)
+        np.testing.assert_allclose(tr["values"][-1], gdata.oMg[g].translation, atol=1e-9)
+
+
+def test_single_pose_is_drawn_without_animation(robot, tmp_path):
+    """One sample: no animation, the scene is set to the pose (scale 1 from the URDF)."""
+    q = robot.pose("stand")
+    motion = Motion(t=np.zeros(1), q=q[None], v=np.zeros((1, robot.model.nv)),
+                    a=np.zeros((1, robot.model.nv)), stance=np.ones((1, 6), dtype=bool),
+                    feet=robot.foot_positions(q)[None], period=1.0, periodic=False)
+    commands = _scene(export_html(robot, motion, tmp_path / "p.html").read_text())
+    assert not [c for c in commands if c["type"] == "set_animation"]
+    last = {c["path"]: c["matrix"] for c in commands if c["type"] == "set_transform"}
+    M = np.array(last["/meshcat/pinocchio/visuals/LF_foot_0"]).reshape(4, 4).T
+    data, gdata = robot.model.createData(), pin.GeometryData(robot.visual_model)
+    pin.forwardKinematics(robot.model, data, q)
+    pin.updateGeometryPlacements(robot.model, data, robot.visual_model, gdata)
+    np.testing.assert_allclose(M, gdata.oMg[robot.visual_model.getGeometryId("LF_foot_0")]
+                               .homogeneous, atol=1e-12)
+
+
 # --------------------------------------------------------------------------- bad input
 
 
@@ -304,6 +338,8 @@ def test_view_params_validate():
     assert ViewParams().fps == 30.0
     with pytest.raises(InvalidParameterError, match="arrow_length"):
         ViewParams(arrow_length=-0.1)
+    with pytest.raises(InvalidParameterError, match="fps"):
+        ViewParams(fps=True)
 
 
 # --------------------------------------------------------------------------- command line

@@ -77,7 +77,8 @@ class ViewParams:
     def __post_init__(self) -> None:
         for name in ("fps", "arrow_length", "marker_radius"):
             value = getattr(self, name)
-            if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+            if isinstance(value, bool) or not isinstance(value, (int, float)) \
+                    or not (math.isfinite(value) and value > 0):
                 raise InvalidParameterError(f"ViewParams.{name}", value, "a finite number > 0")
 
 
@@ -357,6 +358,7 @@ def _animate(robot: Robot, motion: Motion, viewer: meshcat.Visualizer, *, forces
         node = viewer[viz.getViewerNodeName(obj, pin.GeometryType.VISUAL)]
         tracks.set(node, "position", poses[:, g, :3])
         tracks.set(node, "quaternion", poses[:, g, 3:])
+        tracks.set(node, "scale", np.tile(obj.meshScale, (len(fr.q), 1)))  # as viz.display
 
     _add_scene(viewer, motion, _ground(motion))
     # Scales from the samples themselves, so the legend reports their true maxima.
