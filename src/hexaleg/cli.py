@@ -90,7 +90,8 @@ _VIEW_JOINTS = {"power": ("power", "motor power (W)"),
 def _add_view(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("view", help="animate the gait or the sphere transformation in the browser "
                                     "(Meshcat): foot forces, joints coloured by motor power")
-    p.add_argument("--config", help="TOML file with optional [gait], [springs] and [view] tables")
+    p.add_argument("--config", help="TOML file of 'hexaleg report' (gait, motor, contact, "
+                                    "springs) with an optional [view] table")
     p.add_argument("--html", help="write a self-contained page that plays offline to this file "
                                   "and exit (default: serve on localhost until Ctrl-C)")
     p.add_argument("--motion", choices=("gait", "transform"), default="gait",
@@ -108,20 +109,19 @@ def _run_view(args: argparse.Namespace) -> int:
     from hexaleg import view
     from hexaleg.analysis import analyze
     from hexaleg.config import from_mapping, load_toml
-    from hexaleg.gait import GaitParams, transform_motion, tripod_gait
+    from hexaleg.gait import transform_motion, tripod_gait
+    from hexaleg.report import ReportConfig
     from hexaleg.robot import load_robot
-    from hexaleg.springs import SpringSet
 
+    # The same file as ``hexaleg report`` (gait, motor, contact, springs), plus ``[view]``.
     data = load_toml(args.config) if args.config else {}
     where = args.config or "config"
+    config = ReportConfig.from_mapping(data, where)
     params = from_mapping(view.ViewParams, data.get("view", {}), f"{where} [view]")
-    springs = SpringSet.from_mapping(data.get("springs", {}), f"{where} [springs]")
     robot = load_robot()
-    if args.motion == "gait":
-        motion = tripod_gait(robot, GaitParams.from_toml(data.get("gait", {})))
-    else:
-        motion = transform_motion(robot)
-    result = analyze(robot, motion, springs)
+    motion = tripod_gait(robot, config.gait) if args.motion == "gait" else transform_motion(robot)
+    result = analyze(robot, motion, config.spring_set(robot, motion), motor=config.motor,
+                     objective=config.report.objective, contact=config.contact)
     attr, label = _VIEW_JOINTS[args.joints]
     opts = {"forces": None if motion.fixed_base else result.forces,
             "joint_values": getattr(result, attr), "joint_label": label, "fps": params.fps,
