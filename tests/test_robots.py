@@ -238,3 +238,17 @@ def test_knee_springs_through_the_pipeline_keep_the_invariants(quad, bob):
     for key, value in result.savings["total"].items():
         assert np.isfinite(value), key
     assert result.metrics["total"]["absolute_work"] > 0
+
+
+def test_cli_robot_option(capsys):
+    from hexaleg.cli import main
+
+    assert main(["robot", "--robot", "go2"]) == 0
+    out = capsys.readouterr().out
+    assert "nq = 19" in out and "LH: RL_hip_joint, RL_thigh_joint, RL_calf_joint → RL_foot" in out
+    assert "stand" in out.splitlines()[-1]
+    assert main(["robot", "--robot", "spot"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("hexaleg robot: error: unknown robot 'spot'") and "solo12" in err
+    assert main(["robot", "--robot", "go2", "--urdf", "x.urdf"]) == 2
+    assert "either --robot or --urdf" in capsys.readouterr().err

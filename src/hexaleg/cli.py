@@ -19,13 +19,19 @@ def _add_robot(sub: argparse._SubParsersAction) -> None:
                                      "limits, legs, poses")
     p.add_argument("--urdf", help="URDF file (default: the built-in hexaleg robot)")
     p.add_argument("--srdf", help="SRDF file with poses and disabled collision pairs")
+    p.add_argument("--robot", help="a registered robot instead of --urdf/--srdf: hexaleg, "
+                                   "solo12, anymal, go2, ... (docs/robots.md)")
     p.set_defaults(func=_run_robot)
 
 
 def _run_robot(args: argparse.Namespace) -> int:
+    from hexaleg.errors import InvalidParameterError
     from hexaleg.robot import load_robot
+    from hexaleg.robots import load
 
-    robot = load_robot(args.urdf, args.srdf)
+    if args.robot is not None and (args.urdf or args.srdf):
+        raise InvalidParameterError("--robot", args.robot, "either --robot or --urdf/--srdf")
+    robot = load(args.robot) if args.robot is not None else load_robot(args.urdf, args.srdf)
     print(robot.summary())
     return 0
 
