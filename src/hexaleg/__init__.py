@@ -10,7 +10,8 @@ from hexaleg.forces import OBJECTIVES, ContactParams
 from hexaleg.gait import GaitParams, Sinusoid, joint_motion, transform_motion, tripod_gait
 from hexaleg.motion import Motion
 from hexaleg.motor import CATALOGUE, DEFAULT_MOTOR, Motor, motor_from_mapping
-from hexaleg.robot import Leg, Robot, load_robot
+from hexaleg.robot import Leg, LegSpec, Robot, load_robot
+from hexaleg.robots import DESCRIPTIONS, RobotDescription, load
 from hexaleg.springs import DeadZoneSpring, SpringSet
 
 __version__ = "0.1.0"
@@ -18,6 +19,7 @@ __version__ = "0.1.0"
 __all__ = [
     "CATALOGUE",
     "DEFAULT_MOTOR",
+    "DESCRIPTIONS",
     "OBJECTIVES",
     "Analysis",
     "ContactParams",
@@ -25,10 +27,12 @@ __all__ = [
     "GaitParams",
     "HexalegError",
     "Leg",
+    "LegSpec",
     "Motion",
     "Motor",
     "Prepared",
     "Robot",
+    "RobotDescription",
     "Sinusoid",
     "SpringSet",
     "ViewParams",
@@ -39,6 +43,7 @@ __all__ = [
     "epsilon",
     "export_html",
     "joint_motion",
+    "load",
     "load_robot",
     "metrics",
     "motor_from_mapping",
