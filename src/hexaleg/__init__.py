@@ -10,6 +10,7 @@ from hexaleg.forces import OBJECTIVES, ContactParams
 from hexaleg.gait import GaitParams, Sinusoid, joint_motion, transform_motion, tripod_gait
 from hexaleg.motion import Motion
 from hexaleg.motor import CATALOGUE, DEFAULT_MOTOR, Motor, motor_from_mapping
+from hexaleg.report import ReportConfig, build_report, write_report
 from hexaleg.robot import Leg, LegSpec, Robot, load_robot
 from hexaleg.robots import DESCRIPTIONS, RobotDescription, load
 from hexaleg.springs import DeadZoneSpring, SpringSet
@@ -31,6 +32,7 @@ __all__ = [
     "Motion",
     "Motor",
     "Prepared",
+    "ReportConfig",
     "Robot",
     "RobotDescription",
     "Sinusoid",
@@ -39,6 +41,7 @@ __all__ = [
     "__version__",
     "analyze",
     "animate",
+    "build_report",
     "cost_of_transport",
     "epsilon",
     "export_html",
@@ -52,6 +55,7 @@ __all__ = [
     "serve",
     "transform_motion",
     "tripod_gait",
+    "write_report",
 ]
 
 _VIEW = ("ViewParams", "animate", "export_html", "serve")

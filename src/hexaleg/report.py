@@ -34,7 +34,7 @@ from typing import Any
 
 import numpy as np
 
-from hexaleg import design, energy, paper, plots
+from hexaleg import design, energy
 from hexaleg.analysis import Analysis, Prepared, prepare
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.errors import (
@@ -404,6 +404,8 @@ def stiffness_curve(prepared: Prepared, springs: SpringSet, spec: str, stiffness
 @functools.lru_cache(maxsize=4)
 def _paper_reproduction(n: int) -> str:
     """:func:`hexaleg.paper.reproduce` as JSON text, cached (it takes seconds and is constant)."""
+    from hexaleg import paper  # scipy.optimize: imported only when the report is made
+
     return json.dumps(paper.reproduce(n=n))
 
 
@@ -655,6 +657,8 @@ def build_report(config: ReportConfig | None = None, *, robot: Robot | None = No
 
 def _figures(r: Report) -> dict[str, Any]:
     """The report's figures by name (:data:`PLOTS`)."""
+    from hexaleg import plots  # matplotlib: imported only when the report is written
+
     a, robot, curve, key = r.analysis, r.robot, r.curve, BAR_METRIC
     zones = {j: (s.neutral + s.th_minus, s.neutral + s.th_plus) for j, s in a.springs.items()}
     return {
@@ -737,6 +741,8 @@ def write_report(out: str | Path = "hexaleg-report", config: ReportConfig | None
         probe.unlink()
     except OSError as e:
         raise OutputError(f"cannot write the report to the directory {out}: {e}") from e
+    from hexaleg import plots
+
     r = build_report(config, robot=robot, progress=progress)
     say = progress or (lambda _msg: None)
     files: list[Path] = []
