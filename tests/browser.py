@@ -2,7 +2,7 @@
 
 Also a script that makes the README picture from a page written by ``hexaleg view --html``::
 
-    hexaleg view --html /tmp/view.html
+    hexaleg view --joints torque --html /tmp/view.html
     python tests/browser.py /tmp/view.html docs/img/view.png
 """
 

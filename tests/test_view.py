@@ -324,6 +324,10 @@ def test_wrong_shapes_name_the_expected_shape(robot, motion, tmp_path):
         export_html(robot, motion, tmp_path / "x.html", joint_values=bad)
     with pytest.raises(InvalidParameterError, match="fps"):
         export_html(robot, motion, tmp_path / "x.html", fps=0)
+    other = Motion(t=motion.t, q=motion.q[:, :-3], v=motion.v[:, :-3], a=motion.a[:, :-3],
+                   stance=motion.stance, feet=motion.feet, period=PERIOD)
+    with pytest.raises(InvalidParameterError, match=r"q \(T, 25\) and v \(T, 24\)"):
+        export_html(robot, other, tmp_path / "x.html")
     with pytest.raises(InvalidParameterError, match="viewer"):
         animate(robot, motion, viewer="http://localhost:7000")
 
@@ -400,32 +404,54 @@ def _green(img: np.ndarray) -> np.ndarray:
 
 
 @pytest.fixture(scope="module")
-def shots(robot, motion, forces, page, tmp_path_factory):
-    """The exported page at 0.6 s and the same motion served live at 0.9 s (of a 1 s cycle),
-    with the static page's network log."""
-    if chromium() is None:
-        pytest.skip("chromium not on PATH (apt-get install chromium)")
-    d = tmp_path_factory.mktemp("shots")
-    html = d / "page.html"
-    html.write_text(page)
-    finish(start_screenshot(html.as_uri(), d / "static.png", size=SHOT, virtual_time_ms=600,
-                            net_log=d / "net.json"))
-    viz = animate(robot, motion, forces=forces, joint_values=motion.v[:, 6:], fps=T / PERIOD)
+def session(tmp_path_factory):
+    """``hexaleg view`` (gait, joints coloured by motor torque) served by a CLI subprocess and
+    written with ``--html`` by the same command in-process; the page rendered at 0.6 s (with a
+    network log) and the live server at 0.9 s of the 1 s cycle; then Ctrl-C for the server."""
+    d = tmp_path_factory.mktemp("session")
+    cmd = ["view", "--joints", "torque"]
+    proc = subprocess.Popen([sys.executable, "-m", "hexaleg.cli", *cmd], stdout=subprocess.PIPE,
+                            text=True)
+    out = {}
     try:
-        # The browser connects after the scene was sent: the server replays it.
-        finish(start_screenshot(viz.viewer.url(), d / "served.png", size=SHOT,
-                                virtual_time_ms=900))
+        assert main([*cmd, "--html", str(d / "page.html")]) == 0
+        if chromium() is not None:
+            finish(start_screenshot((d / "page.html").as_uri(), d / "static.png", size=SHOT,
+                                    virtual_time_ms=600, net_log=d / "net.json"))
+            out.update(static=imread(d / "static.png")[..., :3], net=d / "net.json")
+        out["line"] = proc.stdout.readline()
+        url = re.search(r"http://127\.0\.0\.1:\d+/static/", out["line"]).group(0)
+        with urllib.request.urlopen(url, timeout=10) as r:
+            out["index"] = r.read()
+        if chromium() is not None:
+            # The browser connects after the scene was sent: the server replays it.
+            finish(start_screenshot(url, d / "served.png", size=SHOT, virtual_time_ms=900))
+            out["served"] = imread(d / "served.png")[..., :3]
+        proc.send_signal(signal.SIGINT)
+        out["returncode"] = proc.wait(timeout=20)
+        try:
+            urllib.request.urlopen(url, timeout=5)
+            out["server_gone"] = False
+        except OSError:
+            out["server_gone"] = True
     finally:
-        viz.viewer.window.server_proc.kill()
-        viz.viewer.window.server_proc.wait()
-    return {"static": imread(d / "static.png")[..., :3],
-            "served": imread(d / "served.png")[..., :3], "net": d / "net.json"}
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    return out
+
+
+def test_cli_serves_on_localhost_until_interrupted(session):
+    assert session["line"].startswith("serving the gait at http://127.0.0.1:")
+    assert b"MeshCat" in session["index"]
+    assert session["returncode"] == 0  # Ctrl-C is a normal exit ...
+    assert session["server_gone"]  # ... that also stops the meshcat server
 
 
 @needs_chromium
 @pytest.mark.parametrize("which", ["static", "served"])
-def test_browser_draws_robot_arrows_and_joint_colours(shots, which):
-    img = shots[which].copy()
+def test_browser_draws_robot_arrows_and_joint_colours(session, which):
+    img = session[which].copy()
     assert img.shape[:2] == SHOT[::-1]
     img[-LEGEND:] = 1.0  # the static page's legend has red and blue swatches too
     n = img.shape[0] * img.shape[1]
@@ -437,32 +463,14 @@ def test_browser_draws_robot_arrows_and_joint_colours(shots, which):
 
 
 @needs_chromium
-def test_browser_plays_the_animation(shots):
+def test_browser_plays_the_animation(session):
     """Same scene and camera 0.3 s apart: the robot has moved (the legend strip is masked)."""
-    a, b = shots["static"].copy(), shots["served"].copy()
+    a, b = session["static"].copy(), session["served"].copy()
     a[-LEGEND:] = b[-LEGEND:] = 0
     moved = np.abs(a - b).max(axis=-1) > 0.1
     assert moved.sum() > 0.002 * moved.size
 
 
 @needs_chromium
-def test_browser_page_fetches_nothing(shots):
-    assert page_requests(shots["net"]) == []
-
-
-def test_cli_serves_on_localhost_until_interrupted():
-    proc = subprocess.Popen([sys.executable, "-m", "hexaleg.cli", "view", "--motion",
-                             "transform"], stdout=subprocess.PIPE, text=True)
-    try:
-        line = proc.stdout.readline()
-        url = re.search(r"http://127\.0\.0\.1:\d+/static/", line).group(0)
-        with urllib.request.urlopen(url, timeout=10) as r:
-            assert r.status == 200 and b"MeshCat" in r.read()
-        proc.send_signal(signal.SIGINT)
-        assert proc.wait(timeout=20) == 0
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-            proc.wait()
-    with pytest.raises(OSError):  # the meshcat server went with it
-        urllib.request.urlopen(url, timeout=5)
+def test_browser_page_fetches_nothing(session):
+    assert page_requests(session["net"]) == []

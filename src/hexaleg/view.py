@@ -331,9 +331,10 @@ def _animate(robot: Robot, motion: Motion, viewer: meshcat.Visualizer, *, forces
              joint_values: Any, joint_label: str, params: ViewParams
              ) -> tuple[MeshcatVisualizer, _Legend]:
     T = motion.n_samples
-    if motion.q.shape[1] != robot.model.nq:
-        raise InvalidParameterError("motion.q", f"array of shape {motion.q.shape}",
-                                    f"shape (T, {robot.model.nq}) for robot {robot.name}")
+    nq, nv = robot.model.nq, robot.model.nv
+    if motion.q.shape[1:] != (nq,) or motion.v.shape[1:] != (nv,):
+        raise InvalidParameterError("motion", f"q {motion.q.shape}, v {motion.v.shape}",
+                                    f"q (T, {nq}) and v (T, {nv}) for robot {robot.name}")
     if forces is not None:
         forces = _check_array("forces", forces, (T, len(robot.legs), 3),
                               "(T, n_legs, 3): world-frame force on each foot, N")
