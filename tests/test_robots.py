@@ -252,3 +252,34 @@ def test_cli_robot_option(capsys):
     assert err.startswith("hexaleg robot: error: unknown robot 'spot'") and "solo12" in err
     assert main(["robot", "--robot", "go2", "--urdf", "x.urdf"]) == 2
     assert "either --robot or --urdf" in capsys.readouterr().err
+
+
+def test_own_robot_from_toml(tmp_path):
+    """A TOML description of Solo-12's files (paths relative to the TOML) loads the same robot."""
+    desc = description("solo12")
+    robots_dir = desc.urdf_path.parents[2]
+    (tmp_path / "robots").symlink_to(robots_dir)
+    legs = "".join(f'[[robot.legs]]\nname = "{s.name}"\njoints = {list(s.joints)!r}\n'
+                   f'foot = "{s.foot}"\n' for s in desc.legs).replace("'", '"')
+    (tmp_path / "solo.toml").write_text(
+        '[robot]\nname = "mysolo"\ntitle = "Solo-12 by hand"\n'
+        f'urdf = "robots/{desc.urdf}"\nsrdf = "robots/{desc.srdf}"\n'
+        'stand = {FL_KFE = -1.6, FR_KFE = -1.6, HL_KFE = 1.6, HR_KFE = 1.6}\n'
+        'joint_kinds = ["haa", "hfe", "kfe"]\nspring_class = "kfe"\n'
+        f'mesh_dirs = ["{robots_dir.parents[1]}"]\n'
+        '[robot.gait]\nperiod = 0.5\ngroups = [["LF", "RH"], ["RF", "LH"]]\n' + legs)
+    own = RobotDescription.from_toml(tmp_path / "solo.toml")
+    assert own.source == "files" and own.gait.groups == TROT and own.legs == desc.legs
+    robot, ref = load(str(tmp_path / "solo.toml")), robot_of("solo12")
+    assert robot.joint_names == ref.joint_names and robot.leg_names == ref.leg_names
+    assert np.isclose(robot.mass, ref.mass, rtol=1e-12)
+    q = robot.pose("stand")
+    assert q[7 + robot.column("HL_KFE")] == 1.6 and q[7 + robot.column("FL_HFE")] == 0.0
+
+    (tmp_path / "bad.toml").write_text('[robot]\nname = "x"\nwheels = 4\n[[robot.legs]]\n'
+                                       'name = "LF"\njoints = ["a"]\nfoot = "f"\n')
+    with pytest.raises(UnknownNameError, match="wheels"):
+        RobotDescription.from_toml(tmp_path / "bad.toml")
+    (tmp_path / "nolegs.toml").write_text('[robot]\nname = "x"\n')
+    with pytest.raises(hexaleg.HexalegError, match=r"\[\[robot.legs\]\]"):
+        load(str(tmp_path / "nolegs.toml"))

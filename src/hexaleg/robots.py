@@ -21,6 +21,7 @@ network.
 from __future__ import annotations
 
 import importlib.metadata
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -29,7 +30,8 @@ from types import MappingProxyType
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.errors import InvalidParameterError, RobotModelError, UnknownNameError
+from hexaleg.config import from_mapping, load_toml
+from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError, UnknownNameError
 from hexaleg.gait import GaitParams
 from hexaleg.robot import (
     HEXALEG_LEGS,
@@ -45,7 +47,10 @@ BUILTIN = "hexaleg"
 EXAMPLE_ROBOT_DATA = "example-robot-data"
 """Files source: the installed example-robot-data distribution (paths relative to its
 ``share/example-robot-data/robots`` directory)."""
-SOURCES: tuple[str, ...] = (BUILTIN, EXAMPLE_ROBOT_DATA)
+FILES = "files"
+"""Files source: paths as given (absolute, or relative to the working directory; a TOML
+description's relative paths are made relative to its own directory)."""
+SOURCES: tuple[str, ...] = (BUILTIN, EXAMPLE_ROBOT_DATA, FILES)
 
 STAND = "stand"
 """The pose name :mod:`hexaleg.gait` uses for footholds and body height."""
@@ -84,9 +89,11 @@ class RobotDescription:
     Attributes:
         name: Registry name, e.g. ``"solo12"``.
         title: Human-readable name and maker.
-        source: Where the files come from: :data:`BUILTIN` or :data:`EXAMPLE_ROBOT_DATA`.
-        urdf: URDF path relative to the source's directory (``hexaleg.robot.URDF_DIR`` or
-            example-robot-data's ``share/example-robot-data/robots``).
+        source: Where the files come from: :data:`BUILTIN`, :data:`EXAMPLE_ROBOT_DATA` or
+            :data:`FILES`.
+        urdf: URDF path relative to the source's directory (``hexaleg.robot.URDF_DIR``,
+            example-robot-data's ``share/example-robot-data/robots``, or as given for
+            :data:`FILES`).
         srdf: SRDF path relative to the same directory, or None.
         stand: The standing pose: the name of an SRDF ``group_state`` (e.g. ``"standing"``) or
             joint name → angle (rad); joints not named stay at Pinocchio's neutral value.
@@ -96,6 +103,8 @@ class RobotDescription:
             quadrupeds; the femur, as in the paper, for hexaleg).
         gait: Default gait parameters, sized to the robot (leg groups included).
         notes: Where the description's facts come from.
+        mesh_dirs: Where ``package://`` mesh URIs resolve, for :data:`FILES` (the other sources
+            know their own).
     """
 
     name: str
@@ -109,6 +118,7 @@ class RobotDescription:
     spring_class: str
     gait: GaitParams = field(default_factory=GaitParams)
     notes: str = ""
+    mesh_dirs: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if self.source not in SOURCES:
@@ -130,10 +140,84 @@ class RobotDescription:
             raise InvalidParameterError(f"{self.name}: gait.groups", self.gait.groups,
                                         f"every leg of {sorted(names)} in exactly one group")
         if not isinstance(self.stand, str):
-            object.__setattr__(self, "stand", MappingProxyType(dict(self.stand)))
+            if not isinstance(self.stand, Mapping) or not all(
+                    isinstance(k, str) and isinstance(v, (int, float))
+                    and not isinstance(v, bool) and math.isfinite(v)
+                    for k, v in self.stand.items()):
+                raise InvalidParameterError(f"{self.name}: stand", self.stand,
+                                            "an SRDF group_state name or joint name → finite "
+                                            "angle (rad)")
+            object.__setattr__(self, "stand", MappingProxyType(
+                {k: float(v) for k, v in self.stand.items()}))
+        object.__setattr__(self, "mesh_dirs", tuple(self.mesh_dirs))
+
+    @classmethod
+    def from_toml(cls, path: str | Path) -> RobotDescription:
+        """A description of one's own robot from the ``[robot]`` table of a TOML file.
+
+        Example (relative paths are relative to the TOML file; ``source`` defaults to
+        :data:`FILES`)::
+
+            [robot]
+            name = "myquad"
+            title = "My quadruped"
+            urdf = "myquad.urdf"
+            srdf = "myquad.srdf"          # optional
+            stand = "standing"            # a group_state, or a table {joint = angle_rad}
+            joint_kinds = ["haa", "hfe", "kfe"]
+            spring_class = "kfe"
+            mesh_dirs = ["."]             # where package:// URIs resolve
+            [robot.gait]                  # GaitParams keys
+            period = 0.5
+            groups = [["LF", "RH"], ["RF", "LH"]]
+            [[robot.legs]]
+            name = "LF"
+            joints = ["LF_HAA", "LF_HFE", "LF_KFE"]
+            foot = "LF_FOOT"
+            # ... one [[robot.legs]] table per leg
+
+        Args:
+            path: The TOML file.
+
+        Returns:
+            The description (its files are not opened until :meth:`load`).
+
+        Raises:
+            ConfigError: the file cannot be read, has no ``[robot]`` table or no
+                ``[[robot.legs]]`` tables, or a value has the wrong type.
+            UnknownNameError: an unknown key (the message lists the valid keys).
+            InvalidParameterError: a value out of range.
+        """
+        path = Path(path)
+        where = f"{path} [robot]"
+        table = load_toml(path).get("robot")
+        if not isinstance(table, Mapping):
+            raise ConfigError(f"{path}: expected a [robot] table")
+        data = dict(table)
+        legs = data.get("legs")
+        if not isinstance(legs, list) or not legs or \
+                not all(isinstance(leg, Mapping) for leg in legs):
+            raise ConfigError(f"{where}: expected [[robot.legs]] tables with name, joints, foot")
+        data["legs"] = tuple(from_mapping(LegSpec, leg, f"{where} legs[{i}]")
+                             for i, leg in enumerate(legs))
+        data["gait"] = from_mapping(GaitParams, data.get("gait", {}), f"{where} gait")
+        data.setdefault("source", FILES)
+        if data["source"] == FILES:
+            for key in ("urdf", "srdf"):
+                if isinstance(data.get(key), str):
+                    data[key] = str(path.parent / data[key])
+            if isinstance(data.get("mesh_dirs"), list):
+                data["mesh_dirs"] = [str(path.parent / d) if isinstance(d, str) else d
+                                     for d in data["mesh_dirs"]]
+        if not isinstance(data.get("stand", ""), (str, Mapping)):
+            raise ConfigError(f"{where}.stand = {data['stand']!r}; expected a group_state name "
+                              "or a table of joint angles")
+        return from_mapping(cls, data, where)
 
     def _dir(self) -> Path:
-        return example_robot_data_dir() if self.source == EXAMPLE_ROBOT_DATA else URDF_DIR
+        if self.source == EXAMPLE_ROBOT_DATA:
+            return example_robot_data_dir()
+        return URDF_DIR if self.source == BUILTIN else Path()
 
     @property
     def urdf_path(self) -> Path:
@@ -149,8 +233,10 @@ class RobotDescription:
     def package_dirs(self) -> tuple[Path, ...]:
         """Where ``package://`` mesh URIs resolve: the URDFs of example-robot-data name meshes
         ``package://example-robot-data/robots/…``, so the directory holding
-        ``example-robot-data/``."""
-        return (self._dir().parent.parent,) if self.source == EXAMPLE_ROBOT_DATA else ()
+        ``example-robot-data/``; :attr:`mesh_dirs` for :data:`FILES`."""
+        if self.source == EXAMPLE_ROBOT_DATA:
+            return (self._dir().parent.parent,)
+        return tuple(Path(d) for d in self.mesh_dirs)
 
     def load(self) -> Robot:
         """Load the robot: Pinocchio model with a free-flyer base, legs, poses.
@@ -259,10 +345,11 @@ def description(name: str = DEFAULT_ROBOT) -> RobotDescription:
 
 
 def load(name: str = DEFAULT_ROBOT) -> Robot:
-    """Load a registered robot by name (``"hexaleg"``, ``"solo12"``, ``"anymal"``, …).
+    """Load a registered robot by name (``"hexaleg"``, ``"solo12"``, ``"anymal"``, …), or one's
+    own robot from a TOML description (:meth:`RobotDescription.from_toml`).
 
     Args:
-        name: A key of :data:`DESCRIPTIONS`.
+        name: A key of :data:`DESCRIPTIONS`, or a path ending in ``.toml``.
 
     Returns:
         The robot, with the standing pose as ``"stand"`` (see :meth:`RobotDescription.load`).
@@ -270,5 +357,8 @@ def load(name: str = DEFAULT_ROBOT) -> Robot:
     Raises:
         UnknownNameError: no such robot; the message lists the registered names.
         RobotModelError: the robot's files cannot be found or loaded.
+        ConfigError: a TOML description cannot be read or is malformed.
     """
+    if isinstance(name, str) and name.endswith(".toml"):
+        return RobotDescription.from_toml(name).load()
     return description(name).load()
