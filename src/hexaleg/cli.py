@@ -169,7 +169,66 @@ def _run_report(args: argparse.Namespace) -> int:
     return 0
 
 
-SUBCOMMANDS = [_add_robot, _add_motors, _add_gait, _add_paper, _add_report, _add_view]
+def _add_sweep(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("sweep", help="spring stiffness / dead-zone / placement sweep over a grid, "
+                                     "resumable, on a process pool or a Dask cluster")
+    p.add_argument("spec", nargs="?", help="TOML sweep spec (see docs/sweep.md); or use the "
+                                           "flags below for a one-group sweep")
+    p.add_argument("--out", default="sweep-results",
+                   help="output directory; rerun with the same spec to resume "
+                        "(default: %(default)s)")
+    p.add_argument("--executor", choices=("process", "serial", "dask"), default=None,
+                   help="default: dask with --scheduler, else process")
+    p.add_argument("--scheduler", help="Dask scheduler address, e.g. tcp://host:8786")
+    p.add_argument("--workers", type=int, help="local process pool size (default: all cores)")
+    p.add_argument("--joints", help="one-group sweep: joint class (coxa, femur, tibia) or joint")
+    for flag, what in (("--k", "stiffness, N·m/rad"), ("--theta-k", "contact angle θ_k, rad"),
+                       ("--dead-zone", "θ_k as a fraction of the half range of motion"),
+                       ("--offset", "neutral offset from the centre of motion, rad")):
+        p.add_argument(flag, help=f"{what}: VALUE, V1,V2,… or START:STOP:NUM[:log]")
+    p.add_argument("--period", help="gait period, s (values as above)")
+    p.add_argument("--samples", type=int, help="samples per gait cycle")
+    p.add_argument("--metric", help="metric to rank by (default: electrical)")
+    p.set_defaults(func=_run_sweep)
+
+
+def _run_sweep(args: argparse.Namespace) -> int:
+    import dataclasses
+
+    from hexaleg.errors import InvalidParameterError
+    from hexaleg.sweep import SweepSpec, parse_range, run_sweep, summary
+
+    flags = {"k": args.k, "theta_k": args.theta_k, "dead_zone": args.dead_zone,
+             "offset": args.offset}
+    if args.spec:
+        if args.joints or any(v is not None for v in flags.values()):
+            raise InvalidParameterError("--joints/--k/--theta-k/--dead-zone/--offset",
+                                        "given with a spec file", "either a spec or the flags")
+        spec = SweepSpec.from_toml(args.spec)
+    else:
+        if not args.joints or args.k is None:
+            raise InvalidParameterError("--joints/--k", (args.joints, args.k),
+                                        "a spec file, or --joints and --k")
+        params = {name: parse_range(f"--{name.replace('_', '-')}", v)
+                  for name, v in flags.items() if v is not None}
+        gait = {}
+        if args.period is not None:
+            gait["period"] = parse_range("--period", args.period)
+        if args.samples is not None:
+            gait["samples"] = args.samples
+        spec = SweepSpec(springs={args.joints: params}, gait=gait)
+    if args.metric:
+        spec = dataclasses.replace(spec, metric=args.metric)
+    executor = args.executor or ("dask" if args.scheduler else "process")
+    result = run_sweep(spec, args.out, executor=executor, workers=args.workers,
+                       scheduler=args.scheduler, progress=True)
+    print(summary(result.table, spec.metric))
+    print(f"{result.computed} points computed, {result.reused} reused; results in "
+          f"{result.directory} (manifest.json + part-*.parquet)")
+    return 0
+
+
+SUBCOMMANDS = [_add_robot, _add_motors, _add_gait, _add_paper, _add_report, _add_view, _add_sweep]
 """Parser builders, one per subcommand, in the order ``--help`` lists them."""
 
 
