@@ -104,7 +104,8 @@ def _add_view(sub: argparse._SubParsersAction) -> None:
                    help="tripod gait cycle or stand → sphere transformation "
                         "(default: %(default)s)")
     p.add_argument("--joints", choices=tuple(_VIEW_JOINTS), default="power",
-                   help="what colours the joints (default: %(default)s)")
+                   help="what colours the joints: motor power (W), motor torque or spring "
+                        "torque (N·m) (default: %(default)s)")
     p.set_defaults(func=_run_view)
 
 
