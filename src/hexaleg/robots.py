@@ -65,6 +65,9 @@ def example_robot_data_dir() -> Path:
     Found from the distribution's file list (:func:`importlib.metadata.distribution`), so it does
     not depend on where the package is installed nor on the cmeel prefix's name.
 
+    Returns:
+        The directory holding ``<robot>_description/`` folders.
+
     Raises:
         RobotModelError: example-robot-data is not installed, or its file list has no robots.
     """
@@ -335,6 +338,12 @@ DEFAULT_ROBOT = "hexaleg"
 
 def description(name: str = DEFAULT_ROBOT) -> RobotDescription:
     """The registered description called ``name``.
+
+    Args:
+        name: A key of :data:`DESCRIPTIONS`.
+
+    Returns:
+        The description.
 
     Raises:
         UnknownNameError: no such robot; the message lists the registered names.
