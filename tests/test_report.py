@@ -23,6 +23,7 @@ from hexaleg.paper import PAPER_K_M, PaperJoint, k_M_paper_number
 from hexaleg.report import (
     PLOTS,
     ReportConfig,
+    ReportParams,
     SpringDesign,
     friction_usage,
     write_report,
@@ -358,6 +359,19 @@ def test_out_of_range_values(tmp_path):
                         ('[springs]\ndesign = "linear"\n', "paper")):
         with pytest.raises((InvalidParameterError, UnknownNameError), match=match):
             ReportConfig.from_toml(_config(tmp_path, text))
+
+
+def test_direct_construction_rejects_wrong_types():
+    for kwargs, name in (({"title": 5}, "title"), ({"stiffness_points": "x"}, "stiffness_points"),
+                         ({"stiffness_min": float("nan")}, "stiffness_min"),
+                         ({"curve_metrics": "joule"}, "curve_metrics"),
+                         ({"paper_samples": 4}, "paper_samples")):
+        with pytest.raises(InvalidParameterError, match=name):
+            ReportParams(**kwargs)
+    with pytest.raises(InvalidParameterError, match="stiffness"):
+        SpringDesign("centred", stiffness="1")
+    with pytest.raises(InvalidParameterError, match="dead_zone"):
+        SpringDesign("centred", stiffness=1.0, dead_zone=1.0)
 
 
 def test_spring_tables_build_the_configured_springs(tmp_path, robot):

@@ -77,8 +77,13 @@ def _unit(metric: str) -> str:
 
 
 def _is_number(value: object) -> bool:
-    return (isinstance(value, (int, float)) and not isinstance(value, bool)
-            and math.isfinite(value))
+    """A finite real number (not a bool)."""
+    return (isinstance(value, (int, float, np.integer, np.floating))
+            and not isinstance(value, bool) and math.isfinite(value))
+
+
+def _is_int(value: object) -> bool:
+    return isinstance(value, (int, np.integer)) and not isinstance(value, bool)
 
 
 @dataclass(frozen=True)
@@ -108,8 +113,17 @@ class ReportParams:
     paper_samples: int = 1024
 
     def __post_init__(self) -> None:
-        if not self.title.strip():
+        if not (isinstance(self.title, str) and self.title.strip()):
             raise InvalidParameterError("report.title", self.title, "a non-empty string")
+        if not isinstance(self.curve_joints, str):
+            raise InvalidParameterError("report.curve_joints", self.curve_joints,
+                                        "a joint class or joint name")
+        for name in ("stiffness_points", "paper_samples"):
+            if not _is_int(getattr(self, name)):
+                raise InvalidParameterError(f"report.{name}", getattr(self, name), "an integer")
+        if not isinstance(self.curve_metrics, (tuple, list)):
+            raise InvalidParameterError("report.curve_metrics", self.curve_metrics,
+                                        "a list of metric names")
         if self.objective not in OBJECTIVES:
             raise InvalidParameterError("report.objective", self.objective,
                                         "one of " + ", ".join(OBJECTIVES))
@@ -121,10 +135,10 @@ class ReportParams:
             if m not in CURVE_METRICS:
                 raise UnknownNameError("report.curve_metrics entry", m, CURVE_METRICS)
         object.__setattr__(self, "curve_metrics", metrics)
-        if not (math.isfinite(self.stiffness_min) and self.stiffness_min >= 0):
+        if not (_is_number(self.stiffness_min) and self.stiffness_min >= 0):
             raise InvalidParameterError("report.stiffness_min", self.stiffness_min,
                                         "a finite number ≥ 0 (N·m/rad)")
-        if self.stiffness_max is not None and not (math.isfinite(self.stiffness_max)
+        if self.stiffness_max is not None and not (_is_number(self.stiffness_max)
                                                    and self.stiffness_max > self.stiffness_min):
             raise InvalidParameterError("report.stiffness_max", self.stiffness_max,
                                         f"None or a finite number > stiffness_min = "
@@ -158,15 +172,18 @@ class SpringDesign:
     dead_zone: float | None = None
 
     def __post_init__(self) -> None:
+        if not isinstance(self.joints, str):
+            raise InvalidParameterError("springs.joints", self.joints,
+                                        "a joint class or joint name")
         if self.design not in SPRING_DESIGNS:
             raise InvalidParameterError("springs.design", self.design,
                                         "one of " + ", ".join(SPRING_DESIGNS))
         if self.design == "centred":
-            if self.stiffness is None or not (math.isfinite(self.stiffness)
-                                              and self.stiffness >= 0):
+            if not (_is_number(self.stiffness) and self.stiffness >= 0):
                 raise InvalidParameterError("springs.stiffness", self.stiffness,
                                             "a finite number ≥ 0 (N·m/rad) for design = centred")
-            if self.dead_zone is not None and not 0 <= self.dead_zone < 1:
+            if self.dead_zone is not None and not (_is_number(self.dead_zone)
+                                                   and 0 <= self.dead_zone < 1):
                 raise InvalidParameterError("springs.dead_zone", self.dead_zone,
                                             "a fraction of the half range of motion in [0, 1)")
         else:
