@@ -25,7 +25,9 @@ from hexaleg.report import (
     ReportConfig,
     ReportParams,
     SpringDesign,
+    build_report,
     friction_usage,
+    render_html,
     write_report,
 )
 from hexaleg.springs import SpringSet
@@ -200,6 +202,22 @@ def test_report_invariants(data, written, robot):
                                * beyond**2, atol=1e-15)
     u = friction_usage(r.analysis.forces, r.motion.stance.astype(bool), 0.6)
     assert np.all(u[~r.motion.stance.astype(bool)] == 0)
+
+
+def test_infeasible_curve_points_are_listed_not_hidden(robot):
+    cfg = ReportConfig.from_toml({"gait": {"samples": SAMPLES},
+                                  "report": {"stiffness_points": 3, "stiffness_max": 20.0,
+                                             "paper_samples": 64}})
+    r = build_report(cfg, robot=robot)
+    c = r.data["stiffness_curve"]
+    assert [_v(p["stiffness"]) for p in c["infeasible"]] == [20.0]  # beyond the stall torque
+    assert "torque limit" in c["infeasible"][0]["error"]
+    row = c["metrics"]["electrical"]
+    assert _v(row["values"])[2] is None and _v(row["saving"])[2] is None
+    assert _v(row["best"]["stiffness"]) == 0.0  # the centred femur springs only cost energy
+    assert r.curve.feasible.tolist() == [True, True, False]
+    html = render_html(r.data | {"files": []}, dict.fromkeys(PLOTS, "data:,"))
+    assert "1 points infeasible" in html and "torque limit" in html
 
 
 def test_friction_usage_of_known_forces():

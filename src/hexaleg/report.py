@@ -39,9 +39,10 @@ from hexaleg.analysis import Analysis, Prepared, prepare
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.errors import (
     ConfigError,
-    HexalegError,
+    InfeasibleForcesError,
     InvalidParameterError,
     OutputError,
+    TorqueLimitError,
     UnknownNameError,
 )
 from hexaleg.forces import OBJECTIVES, ContactParams
@@ -402,7 +403,7 @@ def stiffness_curve(prepared: Prepared, springs: SpringSet, spec: str, stiffness
         trial = SpringSet({**springs, **{j: springs[j].with_stiffness(float(k)) for j in joints}})
         try:
             total = prepared.evaluate(trial, objective).metrics["total"]
-        except HexalegError as e:  # infeasible forces or a torque limit: recorded, not hidden
+        except (InfeasibleForcesError, TorqueLimitError) as e:  # recorded, not hidden
             errors.append(str(e))
             for m in metrics:
                 totals[m][i] = np.nan
