@@ -257,10 +257,15 @@ def _add_scene(viewer: meshcat.Visualizer, motion: Motion, ground_z: float) -> N
     points = np.column_stack([segments, np.zeros(len(segments))]) + centre
     viewer["ground_grid"].set_object(mg.LineSegments(
         mg.PointsGeometry(points.T.astype(np.float32)), mg.LineBasicMaterial(color=_GRID_COLOR)))
-    target = centre + np.array([0.0, 0.0, 0.05])
+    # Camera: looking at the middle of the travel from the front right, at a distance that
+    # scales with the robot (its feet's reach from the base plus the base's height).
+    height = float(base[0, 2] - ground_z)
+    size = float(np.linalg.norm(motion.feet[0, :, :2] - base[0, :2], axis=1).max()) + height
+    travel = float(np.ptp(base[:, :2], axis=0).max())
+    target = centre + np.array([0.0, 0.0, 0.5 * height])
     viewer["/Cameras/default"].set_transform(pin.SE3(np.eye(3), target).homogeneous)
     # The camera sits in Meshcat's y-up "rotated" frame: world (x, y, z) is (x, z, -y) there.
-    eye = np.array([0.36, -0.30, 0.24]) * (1 + float(np.ptp(base[:, :2], axis=0).max()))
+    eye = np.array([1.3, -1.07, 0.86]) * (size + 0.5 * travel)
     viewer["/Cameras/default/rotated/<object>"].set_property(
         "position", [float(eye[0]), float(eye[2]), float(-eye[1])])
 
