@@ -88,9 +88,9 @@ def test_energy_bars_heights(robot):
     np.testing.assert_allclose(heights, [*wo, *w])
 
 
-def test_save_png_svg_and_data_uri(tmp_path, series, robot):
+def test_save_png_svg_and_data_uri(tmp_path, series):
     t, q = series
-    fig = plots.joint_power(robot, t, q, q)
+    fig = plots.stiffness_curve(t, {"joule": q[:, 0]}, 0.5, "femur")
     png, files = plots.save(fig, tmp_path / "p.png", svg=True)
     assert [f.name for f in files] == ["p.png", "p.svg"]
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and (tmp_path / "p.png").read_bytes() == png

@@ -4,6 +4,7 @@ the default CLI run and bad input."""
 
 from __future__ import annotations
 
+import base64
 import json
 import re
 import subprocess
@@ -12,6 +13,7 @@ import tempfile
 import numpy as np
 import pytest
 from browser import CHROMIUM_FLAGS, chromium, finish, page_requests, start_screenshot
+from PIL import Image
 
 from hexaleg import GaitParams, analyze, load_robot, tripod_gait
 from hexaleg.cli import main
@@ -40,7 +42,6 @@ samples = {SAMPLES}
 [report]
 title = "test report"
 stiffness_points = 5
-paper_samples = 64
 
 [view]
 fps = 30
@@ -55,7 +56,8 @@ def robot():
 
 @pytest.fixture(scope="module")
 def written(tmp_path_factory, robot):
-    """The report of a 200-sample default gait, written once for the module."""
+    """The report of a 200-sample default gait, written once for the module (the paper's
+    single-joint numbers at the default samples are cached for the other runs)."""
     out = tmp_path_factory.mktemp("report")
     (out / "small.toml").write_text(SMALL)
     r = write_report(out / "out", ReportConfig.from_toml(out / "small.toml"), robot=robot,
@@ -206,8 +208,7 @@ def test_report_invariants(data, written, robot):
 
 def test_infeasible_curve_points_are_listed_not_hidden(robot):
     cfg = ReportConfig.from_toml({"gait": {"samples": SAMPLES},
-                                  "report": {"stiffness_points": 3, "stiffness_max": 20.0,
-                                             "paper_samples": 64}})
+                                  "report": {"stiffness_points": 3, "stiffness_max": 20.0}})
     r = build_report(cfg, robot=robot)
     c = r.data["stiffness_curve"]
     assert [_v(p["stiffness"]) for p in c["infeasible"]] == [20.0]  # beyond the stall torque
@@ -241,7 +242,6 @@ def test_html_has_every_section_and_embeds_every_plot(written, data):
     imgs = re.findall(r'<img[^>]*id="plot-(\w+)"[^>]*src="data:image/png;base64,([^"]+)"', html)
     assert sorted(n for n, _ in imgs) == sorted(PLOTS)
     for name, b64 in imgs:  # the embedded image is the PNG file written next to the page
-        import base64
         assert base64.b64decode(b64) == (out / f"{name}.png").read_bytes()
         assert (out / f"{name}.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert data["title"] == "test report" and "<title>test report</title>" in html
@@ -290,7 +290,6 @@ def test_browser_loads_every_plot_and_fetches_nothing(written, tmp_path):
     assert loaded, dom[:500]
     sizes = dict(item.split(":") for item in loaded.group(1).split())
     assert sorted(sizes) == sorted(f"plot-{n}" for n in PLOTS)
-    from PIL import Image
     for name in PLOTS:
         w, h = Image.open(written[1] / f"{name}.png").size
         assert sizes[f"plot-{name}"] == f"{w}x{h}"
@@ -302,7 +301,6 @@ def test_browser_screenshot_shows_coloured_plots(written, tmp_path):
     png = tmp_path / "shot.png"
     finish(start_screenshot((written[1] / "report.html").as_uri(), png, size=(1000, 1800)),
            timeout=120)
-    from PIL import Image
     rgb = np.asarray(Image.open(png).convert("RGB"), dtype=float) / 255
     sat = rgb.max(2) - rgb.min(2)
     # the plots' coloured lines (six leg colours) cover a visible part of the page; text, tables
