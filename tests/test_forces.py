@@ -134,3 +134,15 @@ def test_bad_settings():
         ContactParams(min_normal_force=-1.0)
     with pytest.raises(InvalidParameterError, match="finite"):
         ContactParams(mu=float("nan"))
+
+
+def test_two_feet_that_cannot_carry_the_body_is_a_clear_error(robot, motion):
+    """LF and LM alone: gravity has a moment about the line through them that no foot force can
+    balance (the KKT system is singular); a HexalegError names the time and feet, not numpy."""
+    stance = motion.stance.copy()
+    stance[5] = False
+    stance[5, [0, 1]] = True  # LF, LM
+    two = hexaleg.Motion(t=motion.t, q=motion.q, v=motion.v, a=motion.a, stance=stance,
+                         feet=motion.feet, period=motion.period, distance=motion.distance)
+    with pytest.raises(InfeasibleForcesError, match=r"feet LF, LM cannot produce .* sample 5\)"):
+        prepare(robot, two).evaluate()

@@ -196,7 +196,13 @@ def quadratic_gains(system: StanceSystem, weights: np.ndarray) -> QuadraticGains
         rhs = np.zeros((rows.size, n + 6, nj + 6))
         rhs[:, :n, :nj] = np.transpose(D, (0, 2, 1)) * weights  # DᵀW
         rhs[:, n:, nj:] = np.eye(6)
-        sol = np.linalg.solve(kkt, rhs)
+        try:
+            sol = np.linalg.solve(kkt, rhs)
+        except np.linalg.LinAlgError:
+            # Rank-deficient base rows (e.g. two point feet cannot push any moment about the line
+            # through them): f is still unique where the base wrench is reachable; the
+            # pseudo-inverse gives it, and solve_fast rejects samples whose base rows then fail.
+            sol = np.linalg.pinv(kkt) @ rhs
         K[np.ix_(rows, cols, np.arange(nj))] = sol[:, :n, :nj]
         L[np.ix_(rows, cols, np.arange(6))] = sol[:, :n, nj:]
     f0 = np.einsum("tkj,tj->tk", K, system.b_joint) + np.einsum("tki,ti->tk", L, system.b_base)
@@ -345,6 +351,23 @@ def _raise_infeasible(system: StanceSystem, k: int, tau_spring: np.ndarray,
         f"({contact.cone}) and normal force ≥ {contact.min_normal_force} N; solver status {status}")
 
 
+def _check_base_rows(system: StanceSystem, f: np.ndarray, tau_spring: np.ndarray,
+                     contact: ContactParams) -> None:
+    """Raise InfeasibleForcesError at the first sample whose stance feet cannot produce the base
+    wrench at all (the equality-constrained solution misses the base rows)."""
+    residual = np.abs((system.A @ f[..., None])[..., 0] - system.b_base).max(axis=1)
+    scale = 1.0 + np.abs(system.b_base).max(axis=1)
+    bad = np.flatnonzero(residual > 1e-8 * scale)
+    if bad.size:
+        k = int(bad[0])
+        feet = [system.leg_names[i] for i in np.flatnonzero(system.stance[k])]
+        raise InfeasibleForcesError(
+            f"the stance feet {', '.join(feet) or '(none)'} cannot produce the base wrench at "
+            f"t = {system.t[k]:.4f} s (sample {k}) with any forces: the best forces miss the "
+            f"base rows by {residual[k]:.3g} (N, N·m); e.g. two point feet cannot push a "
+            "moment about the line through them — the motion needs a body sway that balances it")
+
+
 def solve_fast(system: StanceSystem, tau_spring: np.ndarray, objective: str,
                weights: np.ndarray, contact: ContactParams,
                gains: QuadraticGains | None = None) -> tuple[np.ndarray, np.ndarray]:
@@ -375,6 +398,7 @@ def solve_fast(system: StanceSystem, tau_spring: np.ndarray, objective: str,
         ts = tau_spring[:, cols, None]
         f = gains.f0 - (gains.K[:, :, cols] @ ts)[..., 0]
         tau = gains.tau0 + (gains.G[:, :, cols] @ ts)[..., 0]
+        _check_base_rows(system, f, tau_spring, contact)
         bad = violations(system, f, tau, contact)
     else:
         f = np.zeros((T, system.A.shape[2]))
