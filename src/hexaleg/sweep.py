@@ -67,7 +67,7 @@ from hexaleg.errors import (
     TorqueLimitError,
     UnknownNameError,
 )
-from hexaleg.executors import open_executor
+from hexaleg.executors import default_workers, open_executor
 from hexaleg.forces import ContactParams, check_objective
 from hexaleg.gait import GaitParams, tripod_gait
 from hexaleg.motor import DEFAULT_MOTOR
@@ -742,21 +742,32 @@ def run_sweep(spec: SweepSpec, out: str | Path, *, executor: str = "process",
     done = store.finished()
     designs = spec.designs()
     todo = [i for i in range(spec.n_points) if i not in done]
-    tasks = [(gait, [(i, designs[i % len(designs)]) for i in block])
-             for gait, block in _chunks(spec, todo)]
+    tasks = ((gait, [(i, designs[i % len(designs)]) for i in block])
+             for gait, block in _chunks(spec, todo))
+    # Chunks in flight: enough to keep every worker busy, few enough that an interrupted sweep
+    # has computed little that is not on disk yet.
+    window = {"serial": 1, "process": 2 * (workers or default_workers())}.get(executor, 64)
     bar = None
-    if progress and todo:
-        from tqdm import tqdm
-
-        bar = tqdm(total=len(todo), file=sys.stderr, unit="pt", desc="sweep")
     computed = 0
     with open_executor(executor, workers=workers, scheduler=scheduler) as ex:
-        pending: set[Future] = {ex.submit(evaluate_chunk, spec.run, gait, groups, points)
-                                for gait, points in tasks}
+        pending: set[Future] = set()
+
+        def refill() -> None:
+            for gait, points in itertools.islice(tasks, window - len(pending)):
+                pending.add(ex.submit(evaluate_chunk, spec.run, gait, groups, points))
+
+        refill()
+        if progress and todo:  # after the pool has started: tqdm runs a monitor thread
+            from tqdm import tqdm
+
+            bar = tqdm(total=len(todo), file=sys.stderr, unit="pt", desc="sweep")
         try:
             while pending:
-                finished, pending = wait(pending, return_when=FIRST_COMPLETED)
-                for fut in finished:
+                finished, _ = wait(pending, return_when=FIRST_COMPLETED)
+                pending -= finished
+                refill()
+                for fut in sorted(finished, key=lambda f: int(f.result()["point"].iloc[0])
+                                  if f.exception() is None else -1):
                     rows = fut.result()
                     store.write(rows)
                     computed += len(rows)
