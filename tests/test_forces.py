@@ -144,5 +144,5 @@ def test_two_feet_that_cannot_carry_the_body_is_a_clear_error(robot, motion):
     stance[5, [0, 1]] = True  # LF, LM
     two = hexaleg.Motion(t=motion.t, q=motion.q, v=motion.v, a=motion.a, stance=stance,
                          feet=motion.feet, period=motion.period, distance=motion.distance)
-    with pytest.raises(InfeasibleForcesError, match=r"feet LF, LM cannot produce .* sample 5\)"):
+    with pytest.raises(InfeasibleForcesError, match=r"feet LF, LM cannot produce .*\(sample 5\)"):
         prepare(robot, two).evaluate()

@@ -196,13 +196,14 @@ def quadratic_gains(system: StanceSystem, weights: np.ndarray) -> QuadraticGains
         rhs = np.zeros((rows.size, n + 6, nj + 6))
         rhs[:, :n, :nj] = np.transpose(D, (0, 2, 1)) * weights  # DᵀW
         rhs[:, n:, nj:] = np.eye(6)
-        try:
+        sv = np.linalg.svd(A, compute_uv=False)
+        if np.all(sv[:, -1] > 1e-9 * sv[:, 0]):
             sol = np.linalg.solve(kkt, rhs)
-        except np.linalg.LinAlgError:
+        else:
             # Rank-deficient base rows (e.g. two point feet cannot push any moment about the line
             # through them): f is still unique where the base wrench is reachable; the
             # pseudo-inverse gives it, and solve_fast rejects samples whose base rows then fail.
-            sol = np.linalg.pinv(kkt) @ rhs
+            sol = np.linalg.pinv(kkt, rcond=1e-10) @ rhs
         K[np.ix_(rows, cols, np.arange(nj))] = sol[:, :n, :nj]
         L[np.ix_(rows, cols, np.arange(6))] = sol[:, :n, nj:]
     f0 = np.einsum("tkj,tj->tk", K, system.b_joint) + np.einsum("tki,ti->tk", L, system.b_base)
