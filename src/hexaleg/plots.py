@@ -200,7 +200,10 @@ def energy_bars(joint_names: Sequence[str], with_springs: np.ndarray,
     ax.set_xticks(x, joint_names, rotation=60, ha="right", fontsize=8)
     ax.set_ylabel(f"{metric} ({unit})")
     ax.set_title(f"{metric} per joint over one cycle", fontsize=10)
-    ax.legend(fontsize=8)
+    top = float(max(np.max(with_springs), np.max(without_springs), 0.0))
+    if top > 0:
+        ax.set_ylim(top=1.2 * top)  # room for the legend above the bars
+    ax.legend(fontsize=8, ncol=2, loc="upper center")
     ax.grid(axis="y", alpha=0.3)
     return fig
 

@@ -64,7 +64,7 @@ CURVE_METRICS: tuple[str, ...] = (*(k for k in energy.ENERGY_KEYS
                                     if k not in energy.NO_SAVING_KEYS),
                                   "electrical_bus", *energy.TORQUE_KEYS)
 """Total metrics a stiffness curve can show (keys of ``metrics["total"]``)."""
-ENERGY_TABLE_KEYS: tuple[str, ...] = ("positive_work", "absolute_work", "joule", "electrical")
+ENERGY_TABLE_KEYS: tuple[str, ...] = ("positive_work", "joule", "electrical")
 """Metrics of the per-joint energy table."""
 BAR_METRIC = "electrical"
 """Metric of the per-joint bar plot: the energy the servos draw (J)."""
@@ -611,8 +611,8 @@ def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis, r
                    "table_keys": list(ENERGY_TABLE_KEYS)},
         "cost_of_transport": {"distance": _q(motion.distance, "m"), "metrics": cot},
         "stiffness_curve": {
-            "joints": list(curve.joints), "stiffness": _q(curve.stiffness, "N·m/rad"),
-            "k_M": _q(k_M_mean, "N·m/rad"),
+            "spec": rp.curve_joints, "joints": list(curve.joints),
+            "stiffness": _q(curve.stiffness, "N·m/rad"), "k_M": _q(k_M_mean, "N·m/rad"),
             "k_M_per_joint": {j: _q(k, "N·m/rad") for j, k in curve.k_M.items()},
             "metrics": curve_metrics,
             "infeasible": [{"stiffness": _q(k, "N·m/rad"), "error": e}
