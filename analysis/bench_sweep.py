@@ -1,0 +1,142 @@
+"""Benchmark of stiffness sweeps and the spring-placement study on the default tripod gait.
+
+Run:  python analysis/bench_sweep.py [--samples 1000] [--workers N] [--out DIR]
+
+1. A 100-value stiffness sweep of one joint class (femur, centred dead zone with the paper's
+   θ_k/A, k log-spaced): serial and on the local process pool, each including the one-off gait
+   and ``prepare``; the baseline is the same designs through fresh ``analyze()`` calls (gait
+   prepared anew per design, measured on 10 designs and scaled to 100). Target ≤ 1 s.
+2. The placement study: coxa, femur and tibia × 50 k × 10 dead-zone widths (1500 points, one
+   class sprung at a time) on the process pool, then each class's optimum refined from the grid's
+   best point by Nelder–Mead, every combination of classes, and the robustness of the best design
+   to ±20 % period and stride. Target ≤ 2 min on 2 cores. The same grid is then run serially in
+   this process for the pool's speed-up (and must give the same table).
+"""
+
+from __future__ import annotations
+
+import argparse
+import shutil
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+import hexaleg
+from hexaleg.design import PAPER_DEAD_ZONE_RATIO
+from hexaleg.executors import default_workers
+from hexaleg.gait import GaitParams
+from hexaleg.sweep import (
+    RunSpec,
+    SweepSpec,
+    evaluator,
+    placement,
+    robustness,
+    run_sweep,
+)
+
+CLASSES = ("coxa", "femur", "tibia")
+
+
+def _timed(fn):
+    t0 = time.perf_counter()
+    out = fn()
+    return out, time.perf_counter() - t0
+
+
+def single_class(out: Path, samples: int, workers: int) -> None:
+    ks = tuple(float(k) for k in np.geomspace(0.01, 2.0, 100))
+    spec = SweepSpec(gait={"samples": samples},
+                     springs={"femur": {"k": ks, "dead_zone": PAPER_DEAD_ZONE_RATIO}},
+                     chunk_size=25)
+    res_pool, t_pool = _timed(lambda: run_sweep(spec, out / "single-pool", workers=workers))
+    res_serial, t_serial = _timed(lambda: run_sweep(spec, out / "single-serial",
+                                                    executor="serial"))
+    assert res_pool.table.equals(res_serial.table)
+    robot = hexaleg.load_robot()
+    gait = GaitParams(samples=samples)
+    ev = evaluator(RunSpec(), {"samples": samples})
+
+    def fresh(k: float) -> float:
+        motion = hexaleg.tripod_gait(robot, gait)
+        springs = ev.springs({"femur": robot.joints("femur")},
+                             {"femur": {"k": k, "dead_zone": PAPER_DEAD_ZONE_RATIO}})
+        return hexaleg.analyze(robot, motion, springs).metrics["total"]["electrical"]
+
+    _, t_fresh10 = _timed(lambda: [fresh(k) for k in ks[::10]])
+    t_fresh = t_fresh10 * 10
+    best = res_serial.table.loc[res_serial.table["electrical"].idxmin()]
+    print(f"1. femur stiffness sweep, 100 values, default gait ({samples} samples/cycle)")
+    print(f"   process pool ({workers} workers): {t_pool:.2f} s   serial: {t_serial:.2f} s   "
+          f"(target ≤ 1 s; both include the gait and prepare)")
+    print(f"   100 fresh analyze() calls: {t_fresh:.2f} s (10 measured ×10) → sweep is "
+          f"{t_fresh / t_serial:.1f}× (serial) and {t_fresh / t_pool:.1f}× (pool) faster; "
+          f"pool/serial = {t_pool / t_serial:.2f}")
+    print(f"   best: k = {best['femur.k']:.4g} N·m/rad, electrical saving "
+          f"{100 * best['saving.electrical']:+.2f} %")
+
+
+def placement_study(out: Path, samples: int, workers: int) -> None:
+    ks = {"start": 0.01, "stop": 2.0, "num": 50, "scale": "log"}
+    zones = {"start": 0.05, "stop": 0.9, "num": 10}
+    data = {"sweep": {"layout": "each", "chunk_size": 50}, "gait": {"samples": samples},
+            "springs": {c: {"k": ks, "dead_zone": zones} for c in CLASSES}}
+    spec = SweepSpec.from_mapping(data)
+    result, t_grid = _timed(lambda: run_sweep(spec, out / "placement", workers=workers))
+    table = result.table
+    serial, t_serial = _timed(lambda: run_sweep(spec, out / "placement-serial",
+                                                executor="serial"))
+    assert serial.table.equals(table)
+
+    ev = evaluator(RunSpec(), {"samples": samples})
+    groups = {c: ev.robot.joints(c) for c in CLASSES}
+    starts = {}
+    for c in CLASSES:
+        rows = table[(table["springs"] == c) & (table["status"] == "ok")]
+        best = rows.loc[rows["electrical"].idxmin()]
+        half = max(ev.half_range[j] for j in groups[c])
+        starts[c] = (float(best[f"{c}.k"]), float(best[f"{c}.dead_zone"]) * half)
+    (optima, combos), t_opt = _timed(lambda: placement(ev, groups, starts=starts,
+                                                       k_bounds=(0.01, 2.0)))
+    top = combos.iloc[0]
+    design = {c: optima[c].design() for c in top["springs"].split("+")}
+    robust, t_rob = _timed(lambda: robustness(RunSpec(), GaitParams(samples=samples),
+                                              groups, design, factors=(0.8, 1.0, 1.2)))
+    failed = int((table["status"] != "ok").sum())
+    print(f"2. placement study: {len(CLASSES)} classes × 50 k × 10 dead zones = "
+          f"{spec.n_points} points ({failed} without admissible forces/torques)")
+    print(f"   grid on the process pool ({workers} workers): {t_grid:.1f} s (target ≤ 120 s); "
+          f"serial {t_serial:.1f} s → pool speed-up "
+          f"{t_serial / t_grid:.2f}×")
+    print(f"   refinement + combinations: {t_opt:.1f} s; robustness ±20 %: {t_rob:.1f} s")
+    for c, o in optima.items():
+        print(f"   {c:6s} optimum k = {o.k:.4g} N·m/rad, θ_k = {o.theta_k:.4g} rad: "
+              f"electrical {o.value:.5g} J vs {o.baseline:.5g} J, saving "
+              f"{100 * o.saving:+.2f} %")
+    print("   sets of sprung classes, best first:")
+    for _, row in combos.iterrows():
+        print(f"     {row['springs']:18s} saving {100 * row['saving']:+.2f} %")
+    print(f"   robustness of {top['springs']} (design frozen on the nominal gait):")
+    for _, row in robust.iterrows():
+        print(f"     {row['parameter']:13s} ×{row['factor']:.1f}: saving "
+              f"{100 * row['saving']:+.2f} % ({row['status']})")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--samples", type=int, default=1000)
+    parser.add_argument("--workers", type=int, default=default_workers())
+    parser.add_argument("--out", help="keep the sweep directories here (default: a temp dir)")
+    args = parser.parse_args()
+    out = Path(args.out) if args.out else Path(tempfile.mkdtemp(prefix="bench-sweep-"))
+    try:
+        single_class(out, args.samples, args.workers)
+        placement_study(out, args.samples, args.workers)
+    finally:
+        if not args.out:
+            shutil.rmtree(out, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()
