@@ -137,6 +137,21 @@ def _material(robot: ET.Element, name: str, rgba: str) -> None:
     ET.SubElement(m, "color", rgba=rgba)
 
 
+def _shell(link: ET.Element, length: float, x_mid: float, offset: float,
+           tibia: dict[str, Any]) -> None:
+    """A curved shell piece along the link's x axis on its +z side: ``shell_segments`` flat
+    plates on an arc of radius ``shell_arc_radius`` about an axis parallel to x (visual only)."""
+    n, radius = int(tibia["shell_segments"]), tibia["shell_arc_radius"]
+    thick, width = tibia["shell_thickness"], tibia["shell_width"]
+    step = width / radius / n  # arc angle per plate
+    z_axis = offset + thick / 2 - radius  # the arc's axis, below the link's outer surface
+    for i in range(n):
+        phi = (i - (n - 1) / 2) * step
+        _geom(link, "visual", (x_mid, radius * math.sin(phi), z_axis + radius * math.cos(phi)),
+              (-phi, 0, 0), "box", "shell",
+              size=_vec(length, 2 * radius * math.sin(step / 2) + 1e-3, thick))
+
+
 def _cylinder_along_x(parent: ET.Element, tag: str, length: float, radius: float,
                       material: str | None = None) -> None:
     # URDF cylinders are along z; turn them by +90° about y to lie along the link's x axis.
@@ -216,11 +231,9 @@ def build_urdf(params: RobotParams) -> str:
                 i_t = mt * lt**2 / 12
                 _inertial(el, mt, (tibia["com"], 0, 0), mt * tibia["radius"] ** 2 / 2, i_t, i_t)
                 _cylinder_along_x(el, "visual", lt, tibia["radius"], "frame")
-                # The shell plate on the tibia's +z side, which faces outward whenever the tibia
-                # points down (stand, sphere): the piece that closes the ball in `sphere`.
-                _geom(el, "visual", (lt / 2, 0, tibia["radius"] + tibia["shell_thickness"] / 2),
-                      (0, 0, 0), "box", "shell",
-                      size=_vec(lt * 0.9, tibia["shell_width"], tibia["shell_thickness"]))
+                # The shell on the tibia's +z side, which faces outward whenever the tibia points
+                # down (stand, sphere): the pieces that close the ball in `sphere`.
+                _shell(el, lt * 0.9, lt / 2, tibia["radius"], tibia)
                 _cylinder_along_x(el, "collision", lt, tibia["radius"])
             parent = link
         # Foot: a fixed frame at the tibia tip; the ball's bottom touches the foot point when the
