@@ -80,7 +80,8 @@ def test_paper_style_springs_use_eq14_and_alpha(robot, gait):
 
 
 def test_bad_input(robot, gait):
-    with pytest.raises(InvalidParameterError, match="dead_zone"):
-        centred_spring(robot, gait, "LF_femur", 1.0, dead_zone=1.0)
+    for bad in (0.0, 1.0):
+        with pytest.raises(InvalidParameterError, match=r"dead_zone.*\(0, 1\)"):
+            centred_spring(robot, gait, "LF_femur", 1.0, dead_zone=bad)
     with pytest.raises(UnknownNameError):
         centred_springs(robot, gait, "knee", 1.0)

@@ -84,17 +84,18 @@ def centred_spring(robot: Robot, motion: Motion, joint: str, stiffness: float, *
         motion: The motion.
         joint: Joint name.
         stiffness: k, N·m/rad, ≥ 0.
-        dead_zone: θ_k as a fraction of the half range of motion, in [0, 1) (default the
-            paper's 0.426); at 1 or more the spring would never engage.
+        dead_zone: θ_k as a fraction of the half range of motion, in (0, 1) (default the
+            paper's 0.426); at 1 or more the spring would never engage, and a dead zone needs
+            θ⁻ < θ⁺.
         alpha: α (eq. 7).
         convention: Spring α convention (see :mod:`hexaleg.springs`).
 
     Raises:
-        InvalidParameterError: ``dead_zone`` outside [0, 1).
+        InvalidParameterError: ``dead_zone`` outside (0, 1).
     """
-    if not (isinstance(dead_zone, (int, float)) and 0 <= dead_zone < 1):
+    if not (isinstance(dead_zone, (int, float)) and 0 < dead_zone < 1):
         raise InvalidParameterError("dead_zone", dead_zone,
-                                    "a fraction of the half range of motion in [0, 1)")
+                                    "a fraction of the half range of motion in (0, 1)")
     lo, hi = joint_range(robot, motion, joint)
     return DeadZoneSpring(stiffness=stiffness, theta_k=dead_zone * (hi - lo) / 2,
                           neutral=(hi + lo) / 2, alpha=alpha, convention=convention)

@@ -163,7 +163,7 @@ class SpringDesign:
             :func:`hexaleg.design.centred_springs`) or ``"none"``.
         joints: Joint class (``"femur"``) or one joint that gets springs.
         stiffness: ``"centred"`` only (required): k, N·m/rad.
-        dead_zone: ``"centred"`` only: θ_k as a fraction of the half range of motion, [0, 1);
+        dead_zone: ``"centred"`` only: θ_k as a fraction of the half range of motion, (0, 1);
             None: the paper's 0.426.
     """
 
@@ -184,9 +184,9 @@ class SpringDesign:
                 raise InvalidParameterError("springs.stiffness", self.stiffness,
                                             "a finite number ≥ 0 (N·m/rad) for design = centred")
             if self.dead_zone is not None and not (_is_number(self.dead_zone)
-                                                   and 0 <= self.dead_zone < 1):
+                                                   and 0 < self.dead_zone < 1):
                 raise InvalidParameterError("springs.dead_zone", self.dead_zone,
-                                            "a fraction of the half range of motion in [0, 1)")
+                                            "a fraction of the half range of motion in (0, 1)")
         else:
             for name in ("stiffness", "dead_zone"):
                 if getattr(self, name) is not None:
