@@ -813,12 +813,12 @@ def summary(table: pd.DataFrame, metric: str = DEFAULT_METRIC) -> str:
 
 @dataclass(frozen=True)
 class Optimum:
-    """The optimal (k, θ_k) of one spring group for one metric on one gait.
+    """The optimal (k, θ_k[, offset]) of one spring group for one metric on one gait.
 
     Attributes:
         group: Group name. joints: Its joints. metric: The metric minimised.
         k: Stiffness, N·m/rad. theta_k: Symmetric contact angle, rad. offset: Neutral offset
-            from the centre of each joint's range of motion, rad (held fixed).
+            from the centre of each joint's range of motion, rad (fixed or optimised).
         value: The metric at the optimum (J or N·m). baseline: The metric without springs.
         saving: ``(baseline − value) / |baseline|``.
         grid_value: The best value of the starting grid. evaluations: Designs evaluated.
@@ -844,15 +844,17 @@ class Optimum:
 def optimise(ev: Evaluator, group: str, joints: Sequence[str], metric: str = DEFAULT_METRIC, *,
              k_bounds: tuple[float, float] = (1e-3, 3.0),
              theta_bounds: tuple[float, float] | None = None, offset: float = 0.0,
-             grid: tuple[int, int] = (12, 6), start: tuple[float, float] | None = None,
+             offset_bounds: tuple[float, float] | None = None,
+             grid: tuple[int, ...] = (12, 6, 5), start: Sequence[float] | None = None,
              tol: float = 1e-4) -> Optimum:
-    """The (k, θ_k) of a symmetric dead-zone spring on ``joints`` that minimises ``metric``.
+    """The (k, θ_k) — and optionally the neutral offset — minimising ``metric`` for one group.
 
-    The objective is piecewise smooth in θ_k (samples enter and leave the engaged region) and
-    k spans decades, so the search runs on (log k, θ_k) scaled to the unit square: a grid start
-    (or ``start``), then bounded Nelder–Mead (:func:`scipy.optimize.minimize`, derivative-free,
-    tolerant of the kinks; scipy ≥ 1.7 supports bounds for it). Designs without admissible forces
-    count as +inf.
+    A symmetric dead-zone spring with the same design goes on every joint of the group. The
+    objective is piecewise smooth in θ_k and the offset (samples enter and leave the engaged
+    region) and k spans decades, so the search runs on (log k, θ_k[, offset]) scaled to the unit
+    box: a grid start (or ``start``), then bounded Nelder–Mead (:func:`scipy.optimize.minimize`,
+    derivative-free, tolerant of the kinks; scipy ≥ 1.7 supports bounds for it). Designs without
+    admissible forces count as +inf.
 
     Args:
         ev: Evaluator of the gait.
@@ -861,73 +863,89 @@ def optimise(ev: Evaluator, group: str, joints: Sequence[str], metric: str = DEF
         k_bounds: Stiffness bounds, N·m/rad, 0 < low < high.
         theta_bounds: θ_k bounds, rad, 0 < low < high; default (0.01, 0.95) × the largest half
             range of motion of ``joints`` in the gait.
-        offset: Neutral offset from each joint's centre of motion, rad.
-        grid: Starting grid (n_k log-spaced, n_θ linear), each ≥ 2; ignored with ``start``.
-        start: (k, θ_k) to start from instead of the grid.
+        offset: Neutral offset from each joint's centre of motion, rad, when it is held fixed.
+        offset_bounds: (low, high) rad to optimise the offset too (a preloaded spring that
+            carries part of a steady load such as gravity); None holds it at ``offset``.
+        grid: Starting grid points per variable (k log-spaced, θ_k and offset linear), each ≥ 2;
+            the third entry is used only with ``offset_bounds``; ignored with ``start``.
+        start: (k, θ_k[, offset]) to start from instead of the grid.
         tol: Convergence tolerance on the scaled variables.
 
     Returns:
         The optimum (never worse than the start).
 
     Raises:
-        UnknownNameError: unknown metric. InvalidParameterError: bad bounds or grid.
+        UnknownNameError: unknown metric. InvalidParameterError: bad bounds, grid or start.
     """
     from scipy.optimize import minimize
 
     if metric not in METRICS:
         raise UnknownNameError("metric", metric, METRICS)
-    lo_k, hi_k = (_number("k_bounds", b) for b in k_bounds)
-    if not 0 < lo_k < hi_k:
-        raise InvalidParameterError("k_bounds", k_bounds, "0 < low < high (N·m/rad)")
     if theta_bounds is None:
         half = max(ev.half_range[j] for j in joints)
         theta_bounds = (0.01 * half, 0.95 * half)
-    lo_t, hi_t = (_number("theta_bounds", b) for b in theta_bounds)
-    if not 0 < lo_t < hi_t:
-        raise InvalidParameterError("theta_bounds", theta_bounds, "0 < low < high (rad)")
+    bounds = [k_bounds, theta_bounds] + ([offset_bounds] if offset_bounds is not None else [])
+    for name, (lo, hi) in zip(("k_bounds", "theta_bounds", "offset_bounds"), bounds,
+                              strict=False):
+        lo, hi = _number(name, lo), _number(name, hi)
+        if not lo < hi or (name != "offset_bounds" and lo <= 0):
+            raise InvalidParameterError(name, (lo, hi), "low < high" + (
+                "" if name == "offset_bounds" else ", low > 0"))
+    dims = len(bounds)
+    (lo_k, hi_k), (lo_t, hi_t) = bounds[0], bounds[1]
     groups = {group: tuple(joints)}
     count0 = ev.evaluations
 
-    def unscale(x: np.ndarray) -> tuple[float, float]:
+    def unscale(x: np.ndarray) -> dict[str, float]:
         x = np.clip(x, 0.0, 1.0)
-        return (float(lo_k * (hi_k / lo_k) ** x[0]), float(lo_t + (hi_t - lo_t) * x[1]))
+        design = {"k": float(lo_k * (hi_k / lo_k) ** x[0]),
+                  "theta_k": float(lo_t + (hi_t - lo_t) * x[1]), "offset": offset}
+        if dims == 3:
+            lo_o, hi_o = bounds[2]
+            design["offset"] = float(lo_o + (hi_o - lo_o) * x[2])
+        return design
 
-    def scale(k: float, t: float) -> np.ndarray:
-        return np.array([math.log(k / lo_k) / math.log(hi_k / lo_k), (t - lo_t) / (hi_t - lo_t)])
+    def scale(values: Sequence[float]) -> np.ndarray:
+        x = [math.log(values[0] / lo_k) / math.log(hi_k / lo_k), (values[1] - lo_t) / (hi_t - lo_t)]
+        if dims == 3:
+            x.append((values[2] - bounds[2][0]) / (bounds[2][1] - bounds[2][0]))
+        return np.clip(np.array(x), 0.0, 1.0)
 
     def f(x: np.ndarray) -> float:
-        k, t = unscale(x)
-        return ev.value(groups, {group: {"k": k, "theta_k": t, "offset": offset}}, metric)
+        return ev.value(groups, {group: unscale(x)}, metric)
 
     if start is None:
-        if any(isinstance(n, bool) or not isinstance(n, int) or n < 2 for n in grid):
-            raise InvalidParameterError("grid", grid, "two integers ≥ 2")
-        cands = [np.array([a, b]) for a in np.linspace(0, 1, grid[0])
-                 for b in np.linspace(0, 1, grid[1])]
-        step = np.array([1.0 / (grid[0] - 1), 1.0 / (grid[1] - 1)])
+        n = tuple(grid[:dims])
+        if len(n) != dims or any(isinstance(m, bool) or not isinstance(m, int) or m < 2
+                                 for m in n):
+            raise InvalidParameterError("grid", grid, f"{dims} integers ≥ 2")
+        cands = [np.array(x) for x in itertools.product(*(np.linspace(0, 1, m) for m in n))]
+        step = 1.0 / (np.array(n) - 1)
     else:
-        cands = [np.clip(scale(*start), 0.0, 1.0)]
-        step = np.array([0.05, 0.1])
+        if len(start) != dims or not all(v > 0 for v in start[:2]):
+            raise InvalidParameterError("start", start, f"{dims} values, k > 0 and θ_k > 0")
+        cands = [scale(start)]
+        step = np.full(dims, 0.1)
     values = [f(x) for x in cands]
-    best = int(np.argmin(values))
-    x0, f0 = cands[best], values[best]
-    simplex = np.array([x0, x0 + [step[0], 0.0] * np.where(x0[0] > 0.5, -1, 1),
-                        x0 + [0.0, step[1]] * np.where(x0[1] > 0.5, -1, 1)])
-    res = minimize(f, x0, method="Nelder-Mead", bounds=[(0.0, 1.0), (0.0, 1.0)],
-                   options={"initial_simplex": simplex, "xatol": tol, "fatol": 1e-12,
-                            "maxiter": 400})
+    x0, f0 = cands[int(np.argmin(values))], min(values)
+    # initial simplex: one grid step along each variable, pointing into the box
+    simplex = [x0] + [x0 + np.eye(dims)[d] * step[d] * (-1 if x0[d] > 0.5 else 1)
+                      for d in range(dims)]
+    res = minimize(f, x0, method="Nelder-Mead", bounds=[(0.0, 1.0)] * dims,
+                   options={"initial_simplex": np.array(simplex), "xatol": tol, "fatol": 1e-12,
+                            "maxiter": 200 * dims})
     x, value = (res.x, float(res.fun)) if res.fun <= f0 else (x0, f0)
-    k, t = unscale(x)
+    design = unscale(x)
     base = float(ev.baseline["total"][metric])
-    return Optimum(group=group, joints=tuple(joints), metric=metric, k=k, theta_k=t,
-                   offset=offset, value=value, baseline=base,
-                   saving=(base - value) / abs(base) if base else 0.0, grid_value=f0,
-                   evaluations=ev.evaluations - count0)
+    return Optimum(group=group, joints=tuple(joints), metric=metric, k=design["k"],
+                   theta_k=design["theta_k"], offset=design["offset"], value=value,
+                   baseline=base, saving=(base - value) / abs(base) if base else 0.0,
+                   grid_value=f0, evaluations=ev.evaluations - count0)
 
 
 def placement(ev: Evaluator, groups: Mapping[str, Sequence[str]],
               metric: str = DEFAULT_METRIC, *,
-              starts: Mapping[str, tuple[float, float]] | None = None,
+              starts: Mapping[str, Sequence[float]] | None = None,
               **options: Any) -> tuple[dict[str, Optimum], pd.DataFrame]:
     """Which groups benefit from a spring: each group's optimum, then every combination.
 
@@ -939,7 +957,8 @@ def placement(ev: Evaluator, groups: Mapping[str, Sequence[str]],
         ev: Evaluator of the gait.
         groups: Group → joints, e.g. ``{"coxa": robot.joints("coxa"), …}``.
         metric: A key of :data:`METRICS`.
-        starts: Group → (k, θ_k) to start from (e.g. a sweep's best point) instead of a grid.
+        starts: Group → (k, θ_k[, offset]) to start from (e.g. a sweep's best point) instead of
+            a grid.
         **options: More :func:`optimise` keyword arguments.
 
     Returns:
