@@ -17,6 +17,7 @@ and acceleration in the LOCAL base frame, ``a = dv/dt``.
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -26,8 +27,9 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
+from hexaleg.balance import Sway, crossing, periodic_lip_sway, support_moment, sway_direction
 from hexaleg.config import from_mapping, load_toml
-from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.errors import InfeasibleForcesError, InvalidParameterError, UnknownNameError
 from hexaleg.kinematics import leg_ik
 from hexaleg.motion import Motion
 from hexaleg.robot import Robot
@@ -38,6 +40,20 @@ MIN_SAMPLES = 20
 
 TRIPODS: tuple[tuple[str, ...], ...] = (("LF", "RM", "LH"), ("RF", "LM", "RH"))
 """The hexapod's two tripods, the default leg groups; group 0 touches down at t = 0."""
+
+BALANCE_MODES: tuple[str, ...] = ("auto", "none")
+"""``GaitParams.balance``: ``"auto"`` sways the body (:mod:`hexaleg.balance`) when some sample
+stands on exactly two feet and none on fewer; ``"none"`` keeps the constant-twist body."""
+BALANCE_TOL = 1e-10
+"""The sway iteration stops when every two-foot sample's support-line moment is at most this
+fraction of m g h (the weight's moment at the CoM height)."""
+BALANCE_MAX_ITER = 60
+"""Sway iterations allowed before the gait is declared impossible to balance."""
+ANDERSON_DEPTH = 3
+"""Previous iterates the sway iteration's Anderson acceleration combines."""
+MIN_CROSSING = 0.2
+"""Smallest |sin| of the angle between the sway direction and a support line (below it the
+sway would have to be more than five times the needed CoM shift)."""
 
 
 # --------------------------------------------------------------------------- swing curves
@@ -140,6 +156,11 @@ class GaitParams:
         samples: Samples per cycle (≥ ``MIN_SAMPLES``).
         groups: Legs that move together; group i touches down at t = i · period / len(groups)
             and every leg of the robot must be in exactly one group.
+        balance: ``"auto"`` (default): when the gait stands on exactly two feet at some sample
+            (a trot, a pace) and never on fewer, the body sways horizontally so that the two
+            feet can carry the motion (see :func:`sample_gait`); gaits with three or more feet
+            always (the hexapod's tripod) are unchanged. ``"none"``: never sway (the rigid
+            constant-twist body, whose two-foot samples have no contact forces).
     """
 
     period: float = 1.0
@@ -152,6 +173,7 @@ class GaitParams:
     yaw_rate: float = 0.0
     samples: int = 1000
     groups: tuple[tuple[str, ...], ...] = TRIPODS
+    balance: str = "auto"
 
     def __post_init__(self) -> None:
         _finite("period", self.period, "a finite number > 0 (s)", self.period > 0)
@@ -180,6 +202,8 @@ class GaitParams:
             raise InvalidParameterError("groups", self.groups,
                                         "non-empty groups of leg names, each leg in one group")
         object.__setattr__(self, "groups", groups)
+        if self.balance not in BALANCE_MODES:
+            raise InvalidParameterError("balance", self.balance, " or ".join(BALANCE_MODES))
 
     @property
     def stride(self) -> float:
@@ -347,18 +371,42 @@ def _support_margin(points: np.ndarray, c: np.ndarray) -> float:
     return min(dists)
 
 
+def _stance_counts(gait: GaitParams, offsets: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Number of stance feet at times t, shape (T,) (the stance rule of :func:`sample_gait`)."""
+    tau = t[:, None] / gait.period - offsets[None, :]
+    return ((tau - np.floor(tau)) < gait.duty_factor).sum(axis=1)
+
+
 def sample_gait(robot: Robot, gait: GaitParams | None = None,
                 t: np.ndarray | None = None) -> Motion:
     """Evaluate the periodic leg-group gait at given times (the machinery of :func:`tripod_gait`).
 
     The base moves with the constant twist (local linear velocity ``[speed, 0, 0]``, angular
-    velocity ``[0, 0, yaw_rate]``) at ``body_height``, starting at the origin with zero yaw. A
-    leg of group i is in stance for the phase φ = (t/period − i/n_groups) mod 1 < β, its foot
-    fixed at the world image of its nominal foothold at mid-stance; in swing it moves on
-    :func:`swing_curve` from that point to the next mid-stance image (one stride ahead). The
-    foot targets are taken into the base frame with the exact rotating-frame derivatives
-    ``ṗ_b = −ω × p_b + Rᵀ ṗ − v`` and ``p̈_b = −ω × ṗ_b − ω × Rᵀ ṗ + Rᵀ p̈`` and solved by
+    velocity ``[0, 0, yaw_rate]``) at ``body_height``, starting at the origin with zero yaw, plus
+    the balancing sway below. A leg of group i is in stance for the phase
+    φ = (t/period − i/n_groups) mod 1 < β (so at a switching instant the group touching down is
+    in stance and the one lifting off is not), its foot fixed at the world image of its nominal
+    foothold at mid-stance; in swing it moves on :func:`swing_curve` from that point to the next
+    mid-stance image (one stride ahead). The foot targets are taken into the base frame with the
+    exact rotating-frame derivatives ``ṗ_b = −ω × p_b + Rᵀ ṗ − v`` and
+    ``p̈_b = −ω × ṗ_b − ω × Rᵀ ṗ + Rᵀ p̈ − v̇`` and solved by
     :func:`hexaleg.kinematics.leg_ik`.
+
+    **Balance on two feet** (``gait.balance == "auto"`` and some sample of the cycle grid stands
+    on exactly two feet, none on fewer — a trot: with β = 0.5 always exactly two, switching at
+    t = 0 and t = period / 2; with β > 0.5 four-foot phases of (β − ½) · period after each
+    switch). Two point feet cannot push a moment about the line through them, so the base is
+    displaced by ``d(t) e`` along a horizontal direction e (:func:`hexaleg.balance.
+    sway_direction`: lateral for a trot), with d a trigonometric polynomial on the cycle grid
+    (exact derivatives: the base velocity gains ``e ḋ + ω ẑ × e d`` and the acceleration
+    ``e d̈ + ω ẑ × e ḋ``). d is the fixed point of: compute the exact moment M_k about each
+    two-foot sample's support line from RNEA (:func:`hexaleg.balance.support_moment`), add the
+    periodic linear-inverted-pendulum sway that cancels it, ``g δd − h δd̈ = −M / (m s)`` on the
+    two-foot samples and 0 on the others (:func:`hexaleg.balance.periodic_lip_sway`, Kajita et
+    al. ICRA 2003; h the mean CoM height, s the crossing factor), and re-sample the gait; it
+    stops when ``max |M_k| ≤ BALANCE_TOL · m g h``. The stance feet stay at rest (the footholds
+    do not move with the sway) and the swing feet follow the same world curves. At times ``t``
+    off the cycle grid the sway is the same trigonometric polynomial (balanced on the grid).
 
     Args:
         robot: The robot; joints outside the legs are held at the ``stand`` pose.
@@ -371,18 +419,91 @@ def sample_gait(robot: Robot, gait: GaitParams | None = None,
 
     Raises:
         UnknownNameError: a leg in ``gait.groups`` is not a leg of the robot.
-        InvalidParameterError: a leg of the robot is in no group, or ``t`` is not a non-empty
-            1-D array of finite times.
+        InvalidParameterError: a leg of the robot is in no group, ``t`` is not a non-empty
+            1-D array of finite times, or a support line is (nearly) parallel to every sway
+            direction.
         UnreachableTargetError: a foot target is out of reach (names leg, time, distance).
+        InfeasibleForcesError: the sway iteration does not converge (the gait is too fast or
+            its support lines too short to balance).
     """
     gait = GaitParams() if gait is None else gait
     cycle_grid = t is None
-    if t is None:
-        t = np.arange(gait.samples) * (gait.period / gait.samples)
-    t = np.asarray(t, dtype=float)
+    grid = np.arange(gait.samples) * (gait.period / gait.samples)
+    t = grid if t is None else np.asarray(t, dtype=float)
     if t.ndim != 1 or len(t) == 0 or not np.all(np.isfinite(t)):
         raise InvalidParameterError("t", f"array of shape {t.shape}",
                                     "a non-empty 1-D array of finite times (s)")
+    offsets = _resolve_groups(robot, gait)
+    counts = _stance_counts(gait, offsets, grid)
+    if gait.balance == "none" or counts.min() != 2:
+        return _sample(robot, gait, t, cycle_grid, None, {"mode": "none"})
+    motion, sway, report = _balance(robot, gait, grid)
+    if cycle_grid:
+        return motion
+    return _sample(robot, gait, t, False, sway, report)
+
+
+def _balance(robot: Robot, gait: GaitParams, grid: np.ndarray
+             ) -> tuple[Motion, Sway, dict[str, Any]]:
+    """The sway fixed point of :func:`sample_gait` on the cycle grid: (motion, sway, report)."""
+    motion = _sample(robot, gait, grid, True, None, {"mode": "none"})
+    moment, mask, axes = support_moment(robot, motion)
+    direction = sway_direction(np.unique(np.round(axes[mask], 12), axis=0))
+    model, data = robot.model, robot.model.createData()
+    height = float(np.mean([pin.centerOfMass(model, data, q)[2] for q in motion.q]))
+    mass, g = robot.mass, float(np.linalg.norm(model.gravity.linear))
+    scale = mass * g * height
+    d = np.zeros(len(grid))
+    history: list[tuple[np.ndarray, np.ndarray]] = []
+    residuals = [float(np.abs(moment).max() / scale)]
+    for _ in range(BALANCE_MAX_ITER):
+        s = crossing(axes, direction)
+        if np.abs(s[mask]).min() < MIN_CROSSING:
+            k = int(np.flatnonzero(mask)[np.argmin(np.abs(s[mask]))])
+            raise InvalidParameterError(
+                "groups", gait.groups, f"two-foot support lines that a horizontal body sway can "
+                f"cross; at t = {grid[k]:.4g} s the line has |sin| = {abs(s[k]):.3g} < "
+                f"{MIN_CROSSING} with the sway direction {np.round(direction, 3).tolist()}")
+        f = np.zeros(len(grid))
+        f[mask] = -moment[mask] / (mass * s[mask])
+        step = periodic_lip_sway(f, gait.period, height, g)
+        history.append((d + step, step))
+        d = _anderson(history[-ANDERSON_DEPTH - 1:])
+        sway = Sway.from_samples(direction, gait.period, d)
+        report = {"mode": "sway", "direction": direction.tolist(), "height": height,
+                  "iterations": len(residuals), "amplitude": sway.amplitude}
+        motion = _sample(robot, gait, grid, True, sway, report)
+        moment, mask, axes = support_moment(robot, motion)
+        residuals.append(float(np.abs(moment).max() / scale))
+        report["residual"] = residuals[-1]
+        report["residuals"] = residuals
+        if residuals[-1] <= BALANCE_TOL:
+            return motion, sway, report
+    raise InfeasibleForcesError(
+        f"the body sway that balances the two-foot phases did not converge in "
+        f"{BALANCE_MAX_ITER} iterations: support-line moment {residuals[-1]:.3g} m g h "
+        f"(allowed {BALANCE_TOL:g}); a slower gait, a smaller stride or balance = 'none'")
+
+
+def _anderson(history: list[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
+    """Anderson-accelerated next iterate from ``(G(d_i), r_i = G(d_i) − d_i)``, oldest first.
+
+    ``d⁺ = G(d_k) − ΔG γ`` with γ minimising ``‖r_k − ΔR γ‖`` over the differences of the last
+    iterates (Walker & Ni, "Anderson acceleration for fixed-point iterations", SIAM J. Numer.
+    Anal. 49(4), 2011, Algorithm AA); with one entry it is the plain fixed-point step.
+    """
+    g_k, r_k = history[-1]
+    if len(history) == 1:
+        return g_k
+    d_g = np.stack([b[0] - a[0] for a, b in itertools.pairwise(history)], axis=1)
+    d_r = np.stack([b[1] - a[1] for a, b in itertools.pairwise(history)], axis=1)
+    gamma = np.linalg.lstsq(d_r, r_k, rcond=None)[0]
+    return g_k - d_g @ gamma
+
+
+def _sample(robot: Robot, gait: GaitParams, t: np.ndarray, periodic: bool,
+            sway: Sway | None, balance: dict[str, Any]) -> Motion:
+    """The gait at times ``t`` with an optional body sway (see :func:`sample_gait`)."""
     offsets = _resolve_groups(robot, gait)
     nominal = nominal_footholds(robot, gait)
     height = -float(nominal[0, 2])
@@ -393,6 +514,13 @@ def sample_gait(robot: Robot, gait: GaitParams | None = None,
     rot = _rotz(yaw)
     v_local = np.array([speed, 0.0, 0.0])
     w_local = np.array([0.0, 0.0, omega])
+    a_local = np.zeros(3)
+    if sway is not None:
+        d, dd, ddd = sway(t)
+        e, e_perp = sway.direction, np.cross(w_local, sway.direction)
+        base = base + np.einsum("nij,j->ni", rot, e) * d[:, None]
+        v_local = v_local + e * dd[:, None] + e_perp * d[:, None]
+        a_local = e * ddd[:, None] + e_perp * dd[:, None]
 
     q = np.tile(_reference(robot), (n, 1))
     q[:, :3] = base
@@ -400,6 +528,7 @@ def sample_gait(robot: Robot, gait: GaitParams | None = None,
     v = np.zeros((n, robot.model.nv))
     v[:, :3], v[:, 3:6] = v_local, w_local
     a = np.zeros((n, robot.model.nv))
+    a[:, :3] = a_local
     stance = np.zeros((n, n_legs), dtype=bool)
     feet = np.zeros((n, n_legs, 3))
     solvers = {}
@@ -430,7 +559,7 @@ def sample_gait(robot: Robot, gait: GaitParams | None = None,
         rt_pd = np.einsum("nji,nj->ni", rot, pd_w)
         rel_d = -np.cross(w_local, rel) + rt_pd - v_local
         rel_dd = -np.cross(w_local, rel_d) - np.cross(w_local, rt_pd) \
-            + np.einsum("nji,nj->ni", rot, pdd_w)
+            + np.einsum("nji,nj->ni", rot, pdd_w) - a_local
         q_leg, qd_leg, qdd_leg, solvers[leg.name] = leg_ik(robot, leg, rel, rel_d, rel_dd, t=t)
         q[:, leg.q_index], v[:, leg.v_index], a[:, leg.v_index] = q_leg, qd_leg, qdd_leg
 
@@ -449,9 +578,10 @@ def sample_gait(robot: Robot, gait: GaitParams | None = None,
         "static_margin": float(margins[worst]) if math.isfinite(margins[worst]) else None,
         "static_margin_t": float(t[worst]),
         "ik": solvers,
+        "balance": balance,
     }
     return Motion(t=t, q=q, v=v, a=a, stance=stance, feet=feet, period=period,
-                  distance=gait.stride, periodic=cycle_grid, fixed_base=False, info=info)
+                  distance=gait.stride, periodic=periodic, fixed_base=False, info=info)
 
 
 def tripod_gait(robot: Robot, gait: GaitParams | None = None) -> Motion:

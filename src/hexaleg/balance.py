@@ -1,0 +1,220 @@
+"""Dynamic balance on two point feet: the support-line moment and the periodic body sway.
+
+Two point contacts push only along lines through the two contact points, so their forces have no
+moment about the line joining the feet. A motion whose whole-body Newton–Euler equations need such
+a moment (gravity on a centre of mass off the line, the swinging legs' momentum) has no contact
+forces. :func:`support_moment` measures that moment exactly from Pinocchio's RNEA;
+:func:`periodic_lip_sway` gives the periodic horizontal body sway that cancels a prescribed moment
+in the linear inverted pendulum model; :func:`hexaleg.gait.sample_gait` iterates the two until the
+exact moment vanishes at every two-foot sample (``GaitParams.balance``).
+
+The linear inverted pendulum (LIP): a point mass m at constant height h above the ground whose
+horizontal offset from a support line is d (along the line's horizontal normal) needs the moment
+``m (g d − h d̈)`` about that line from the contacts (Kajita et al., "Biped walking pattern
+generation by using preview control of zero-moment point", ICRA 2003, eq. 1–4: the ZMP
+``p = x − (z_c/g) ẍ``; the moment about the support line is ``m g`` times the ZMP's distance
+from it). For a body displaced by ``d(t) e`` along a horizontal direction e, only the component
+of ``e`` across the support line (direction u) matters: ``s = u · (e × ẑ)``, and the moment is
+``m s (g d − h d̈)``. Given a required correction ``M(t)`` the sway solves
+``g d − h d̈ = f(t) = −M(t) / (m s)``; its periodic solution is unique because ``g + h (nω)² > 0``
+for every harmonic n: per Fourier coefficient ``D_n = F_n / (g + h (nω)²)`` (equivalently
+``D_n = −(F_n / h) / ((nω)² + g/h)`` for ``d̈ − (g/h) d = −f/h``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+
+from hexaleg.errors import InvalidParameterError
+from hexaleg.motion import Motion
+from hexaleg.robot import Robot
+
+GRAVITY = 9.81
+"""Standard gravity used by the LIP model, m/s² (the exact moments use the model's gravity)."""
+
+
+@dataclass(frozen=True, eq=False)
+class Sway:
+    """A periodic horizontal body sway ``d(t) e``: a real trigonometric polynomial along ``e``.
+
+    ``d(t) = Re Σ_n c_n exp(i n ω t)`` over the one-sided spectrum of :func:`numpy.fft.rfft`
+    (``c_0`` and, for an even number of samples, the Nyquist term counted once, the others twice),
+    so ``d`` interpolates the samples it was made from and its derivatives are exact.
+
+    Attributes:
+        direction: Horizontal unit vector of the sway in the base frame, shape (3,) (z = 0).
+        period: Period, s.
+        coefficients: One-sided Fourier coefficients ``rfft(d_k) / N``, shape (N // 2 + 1,), m.
+        samples: N, the number of samples per period the sway interpolates.
+    """
+
+    direction: np.ndarray
+    period: float
+    coefficients: np.ndarray
+    samples: int
+
+    @classmethod
+    def from_samples(cls, direction: np.ndarray, period: float, d: np.ndarray) -> Sway:
+        """The trigonometric interpolant of sway samples ``d[k] = d(k · period / N)``.
+
+        Args:
+            direction: Horizontal unit vector of the sway in the base frame, shape (3,).
+            period: Period, s.
+            d: Sway samples on the cycle grid, shape (N,), m.
+
+        Returns:
+            The sway.
+        """
+        d = np.asarray(d, dtype=float)
+        return cls(np.asarray(direction, dtype=float), float(period),
+                   np.fft.rfft(d) / len(d), len(d))
+
+    def __call__(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Sway, its velocity and acceleration at times ``t``.
+
+        Args:
+            t: Times, shape (T,), s (any, not only the grid).
+
+        Returns:
+            d (T,) m, ḋ (T,) m/s, d̈ (T,) m/s² (exact derivatives of the trigonometric
+            polynomial).
+        """
+        t = np.asarray(t, dtype=float)
+        n = np.arange(len(self.coefficients))
+        weight = np.where((n == 0) | (2 * n == self.samples), 1.0, 2.0)
+        omega = 2.0 * math.pi / self.period * n
+        phase = np.exp(1j * np.outer(t, omega))
+        c = weight * self.coefficients
+        terms = phase * c
+        return (terms.real.sum(axis=1), (terms * (1j * omega)).real.sum(axis=1),
+                (terms * -(omega**2)).real.sum(axis=1))
+
+    @property
+    def amplitude(self) -> float:
+        """Half the peak-to-peak sway on the grid, m."""
+        d = np.fft.irfft(self.coefficients * self.samples, n=self.samples)
+        return float(np.ptp(d) / 2.0)
+
+
+def periodic_lip_sway(f: np.ndarray, period: float, height: float,
+                      gravity: float = GRAVITY) -> np.ndarray:
+    """The periodic solution of the linear inverted pendulum ``g d − h d̈ = f`` on the cycle grid.
+
+    Per Fourier harmonic n (ω = 2π / period): ``D_n = F_n / (g + h (nω)²)`` (Kajita et al., ICRA
+    2003, the LIP/cart-table model; see the module docstring). The equation then holds exactly at
+    every sample for the trigonometric interpolant :class:`Sway` of the result, the Nyquist term
+    included.
+
+    Args:
+        f: Right-hand side on the grid ``t_k = k · period / N``, shape (N,), m²/s².
+        period: Period, s (> 0).
+        height: Pendulum height h, m (> 0).
+        gravity: g, m/s² (> 0).
+
+    Returns:
+        Sway samples d_k, shape (N,), m.
+
+    Raises:
+        InvalidParameterError: a non-positive period, height or gravity.
+    """
+    for name, value in (("period", period), ("height", height), ("gravity", gravity)):
+        if not (math.isfinite(value) and value > 0):
+            raise InvalidParameterError(name, value, "a finite number > 0")
+    f = np.asarray(f, dtype=float)
+    omega = 2.0 * math.pi / period * np.arange(len(f) // 2 + 1)
+    return np.fft.irfft(np.fft.rfft(f) / (gravity + height * omega**2), n=len(f))
+
+
+def support_lines(motion: Motion) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The line through the two stance feet of every two-foot sample, in the world frame.
+
+    Args:
+        motion: A motion with ``stance`` (T, n_legs) and ``feet`` (T, n_legs, 3).
+
+    Returns:
+        ``mask`` (T,) bool, the samples with exactly two stance feet; ``point`` (T, 3) m, the
+        first stance foot (legs in robot order); ``axis`` (T, 3), the unit vector from it to the
+        second. Rows outside ``mask`` are zero.
+    """
+    mask = motion.stance.sum(axis=1) == 2
+    point = np.zeros((motion.n_samples, 3))
+    axis = np.zeros((motion.n_samples, 3))
+    for k in np.flatnonzero(mask):
+        i, j = np.flatnonzero(motion.stance[k])
+        delta = motion.feet[k, j] - motion.feet[k, i]
+        point[k], axis[k] = motion.feet[k, i], delta / np.linalg.norm(delta)
+    return mask, point, axis
+
+
+def support_moment(robot: Robot, motion: Motion) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The moment about the support line that the contacts would have to supply, per sample.
+
+    The base rows of RNEA, ``b_base = (M a + h)[:6]`` (force f_b and moment m_b about the base
+    origin, in the base frame), are the wrench the stance feet must push on the robot (whole-body
+    Newton–Euler). Its moment about the line through the two stance feet (point p, unit axis u,
+    in the base frame) is ``u · (m_b − p × f_b)``; two point feet can only supply zero.
+
+    Args:
+        robot: The robot.
+        motion: The motion (floating base).
+
+    Returns:
+        ``moment`` (T,) N·m (0 where the sample does not have exactly two stance feet), ``mask``
+        (T,) bool (the two-foot samples) and ``axis_base`` (T, 3), the support line's unit axis
+        in the base frame (0 outside ``mask``).
+    """
+    mask, point, axis = support_lines(motion)
+    model, data = robot.model, robot.model.createData()
+    moment = np.zeros(motion.n_samples)
+    axis_base = np.zeros((motion.n_samples, 3))
+    for k in np.flatnonzero(mask):
+        q = motion.q[k]
+        wrench = pin.rnea(model, data, q, motion.v[k], motion.a[k])[:6]
+        rot = pin.Quaternion(q[3:7]).toRotationMatrix()
+        p = rot.T @ (point[k] - q[:3])
+        u = rot.T @ axis[k]
+        moment[k] = u @ (wrench[3:] - np.cross(p, wrench[:3]))
+        axis_base[k] = u
+    return moment, mask, axis_base
+
+
+def sway_direction(axes: np.ndarray) -> np.ndarray:
+    """The horizontal sway direction that best crosses every support line: lateral if possible.
+
+    Chooses the unit vector e in the base frame's horizontal plane that maximises the smallest
+    ``|s| = |u · (e × ẑ)|`` (the sine of the angle between e and a support line u) over the given
+    lines, trying directions at 1° steps from the base's lateral axis y; ties keep the one closest
+    to lateral. For a trot (two diagonals mirrored about x) that is lateral; for a bound (lines
+    across the body) it is longitudinal.
+
+    Args:
+        axes: Support line directions in the base frame, shape (L, 3).
+
+    Returns:
+        e, shape (3,).
+    """
+    angles = np.deg2rad(90.0 + np.concatenate([[0.0], np.repeat(np.arange(1, 91), 2)
+                                               * np.tile([1, -1], 90)]))
+    candidates = np.stack([np.cos(angles), np.sin(angles), np.zeros_like(angles)], axis=1)
+    candidates[np.abs(candidates) < 1e-15] = 0.0  # exactly lateral/longitudinal at 90°, 0°
+    cross = np.cross(candidates, [0.0, 0.0, 1.0])  # e × ẑ
+    score = np.abs(cross @ np.asarray(axes, dtype=float).T).min(axis=1)
+    best = int(np.flatnonzero(score >= score.max() - 1e-12)[0])
+    return candidates[best]
+
+
+def crossing(axis_base: np.ndarray, direction: np.ndarray) -> np.ndarray:
+    """``s = u · (e × ẑ)`` per sample: how much a sway along e moves the CoM across line u.
+
+    Args:
+        axis_base: Support line axes in the base frame, shape (T, 3).
+        direction: Sway direction e in the base frame, shape (3,).
+
+    Returns:
+        s, shape (T,), in [−1, 1].
+    """
+    return axis_base @ np.cross(direction, [0.0, 0.0, 1.0])
