@@ -14,6 +14,7 @@ from hexaleg.report import ReportConfig, build_report, write_report
 from hexaleg.robot import Leg, LegSpec, Robot, load_robot
 from hexaleg.robots import DESCRIPTIONS, RobotDescription, load
 from hexaleg.springs import DeadZoneSpring, SpringSet
+from hexaleg.sweep import RunSpec, SweepSpec, optimise, placement, robustness, run_sweep
 
 __version__ = "0.1.0"
 
@@ -35,8 +36,10 @@ __all__ = [
     "ReportConfig",
     "Robot",
     "RobotDescription",
+    "RunSpec",
     "Sinusoid",
     "SpringSet",
+    "SweepSpec",
     "ViewParams",
     "__version__",
     "analyze",
@@ -50,7 +53,11 @@ __all__ = [
     "load_robot",
     "metrics",
     "motor_from_mapping",
+    "optimise",
+    "placement",
     "prepare",
+    "robustness",
+    "run_sweep",
     "savings",
     "serve",
     "transform_motion",

@@ -20,11 +20,12 @@ import json
 import os
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
-
-import pandas as pd
+from typing import TYPE_CHECKING, Any
 
 from hexaleg.errors import ConfigError, OutputError
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 MANIFEST = "manifest.json"
 """Name of the manifest file in a store directory."""
@@ -110,6 +111,8 @@ class ResultStore:
 
     def finished(self) -> set[int]:
         """Indices of the points whose rows are on disk."""
+        import pandas as pd
+
         done: set[int] = set()
         for part in self.parts():
             done.update(int(p) for p in pd.read_parquet(part, columns=["point"])["point"])
@@ -136,6 +139,8 @@ class ResultStore:
 
     def table(self) -> pd.DataFrame:
         """All rows on disk, one per finished point, sorted by ``point``."""
+        import pandas as pd
+
         parts = self.parts()
         if not parts:
             return pd.DataFrame()

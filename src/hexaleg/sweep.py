@@ -52,10 +52,9 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, wait
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import pandas as pd
 
 from hexaleg.analysis import Prepared, prepare
 from hexaleg.config import from_mapping, load_toml
@@ -76,6 +75,9 @@ from hexaleg.robot import Robot, load_robot
 from hexaleg.springs import DeadZoneSpring, SpringSet
 from hexaleg.store import ResultStore
 from hexaleg.units import deg_to_rad, nmm_per_deg_to_nm_per_rad
+
+if TYPE_CHECKING:  # pandas is imported where tables are made: `import hexaleg` stays light
+    import pandas as pd
 
 METRICS: tuple[str, ...] = (*ENERGY_KEYS, "electrical_bus", *TORQUE_KEYS)
 """Keys of ``Analysis.metrics["total"]`` a sweep records and may optimise (J or N·m)."""
@@ -631,6 +633,8 @@ def evaluate_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, S
         ``springs``), ``springs`` (the sprung groups joined by ``+``, or ``none``), then
         :meth:`Evaluator.row`.
     """
+    import pandas as pd
+
     ev = evaluator(run, gait)
     full = dataclasses.asdict(ev.gait)
     rows = []
@@ -682,6 +686,7 @@ class SweepResult:
 
 def software_versions() -> dict[str, str]:
     """Versions of Python and the libraries a sweep's numbers depend on."""
+    import pandas as pd
     import pinocchio
     import scipy
 
@@ -965,6 +970,8 @@ def placement(ev: Evaluator, groups: Mapping[str, Sequence[str]],
         (group → optimum, table with one row per set of sprung groups: ``springs``, ``value``,
         ``baseline``, ``saving``, ``benefits`` (saving > 0), sorted by saving, best first).
     """
+    import pandas as pd
+
     starts = starts or {}
     optima = {g: optimise(ev, g, joints, metric, start=starts.get(g), **options)
               for g, joints in groups.items()}
@@ -1009,6 +1016,8 @@ def robustness(run: RunSpec, gait: GaitParams, groups: Mapping[str, Sequence[str
         UnknownNameError: a parameter other than period / stride_length.
         InvalidParameterError: a factor ≤ 0.
     """
+    import pandas as pd
+
     for p in parameters:
         if p not in ("period", "stride_length"):
             raise UnknownNameError("robustness parameter", p, ("period", "stride_length"))
