@@ -197,8 +197,8 @@ def sway_direction(axes: np.ndarray) -> np.ndarray:
     Returns:
         e, shape (3,).
     """
-    angles = np.deg2rad(90.0 + np.concatenate([[0.0], np.repeat(np.arange(1, 91), 2)
-                                               * np.tile([1, -1], 90)]))
+    offsets = [0.0, *(sign * k for k in range(1, 90) for sign in (1.0, -1.0)), -90.0]
+    angles = np.deg2rad(90.0 + np.array(offsets))  # lateral first, then ever further from it
     candidates = np.stack([np.cos(angles), np.sin(angles), np.zeros_like(angles)], axis=1)
     candidates[np.abs(candidates) < 1e-15] = 0.0  # exactly lateral/longitudinal at 90°, 0°
     cross = np.cross(candidates, [0.0, 0.0, 1.0])  # e × ẑ
