@@ -15,8 +15,7 @@ from hexaleg.analysis import prepare
 from hexaleg.design import centred_springs, k_M
 from hexaleg.errors import RobotModelError, UnknownNameError
 from hexaleg.forces import ContactParams
-from hexaleg.gait import nominal_footholds, tripod_gait
-from hexaleg.kinematics import leg_ik
+from hexaleg.gait import tripod_gait
 from hexaleg.motion import Motion
 from hexaleg.robot import LegSpec
 from hexaleg.robots import DESCRIPTIONS, TROT, RobotDescription, description, load
@@ -129,8 +128,26 @@ def test_stand_from_joint_values():
 
 @pytest.fixture(scope="module")
 def trot(quad) -> Motion:
+    """The robot's default trot, balanced by the body sway (``GaitParams.balance = "auto"``)."""
     desc, robot = quad
     return tripod_gait(robot, dataclasses.replace(desc.gait, samples=SAMPLES))
+
+
+def _stance_feet_at_rest(robot: hexaleg.Robot, motion: Motion) -> None:
+    model, data = robot.model, robot.model.createData()
+    frame = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+    for k in range(0, motion.n_samples, 7):
+        pin.forwardKinematics(model, data, motion.q[k], motion.v[k], motion.a[k])
+        pin.updateFramePlacements(model, data)
+        for i, leg in enumerate(robot.legs):
+            pos = data.oMf[leg.foot_frame_id].translation
+            assert np.allclose(pos, motion.feet[k, i], atol=1e-9)
+            if motion.stance[k, i]:
+                fid = leg.foot_frame_id
+                assert np.allclose(pin.getFrameVelocity(model, data, fid, frame).linear, 0.0,
+                                   atol=1e-9)
+                assert np.allclose(pin.getFrameClassicalAcceleration(model, data, fid, frame)
+                                   .linear, 0.0, atol=1e-9)
 
 
 def test_trot_moves_diagonal_pairs_with_stance_feet_at_rest(quad, trot):
@@ -142,99 +159,88 @@ def test_trot_moves_diagonal_pairs_with_stance_feet_at_rest(quad, trot):
     assert np.array_equal(stance[:, legs.index("LF")], stance[:, legs.index("RH")])
     assert np.array_equal(stance[:, legs.index("RF")], stance[:, legs.index("LH")])
     assert trot.info["min_stance_feet"] == 2
-    model, data = robot.model, robot.model.createData()
-    for k in range(0, SAMPLES, 7):
-        pin.forwardKinematics(model, data, trot.q[k], trot.v[k], trot.a[k])
-        pin.updateFramePlacements(model, data)
-        for i, leg in enumerate(robot.legs):
-            pos = data.oMf[leg.foot_frame_id].translation
-            assert np.allclose(pos, trot.feet[k, i], atol=1e-9)
-            if stance[k, i]:
-                vel = pin.getFrameVelocity(model, data, leg.foot_frame_id,
-                                           pin.ReferenceFrame.LOCAL_WORLD_ALIGNED).linear
-                assert np.allclose(vel, 0.0, atol=1e-9)
+    _stance_feet_at_rest(robot, trot)
 
 
-def test_rigid_trot_on_two_point_feet_has_no_contact_forces(quad, trot):
-    """Forces at two points have no moment about the line through them; the constant-velocity
-    body of the kinematic trot needs one (gravity and the swing legs), so no contact forces
-    exist in its two-foot phases. (A dynamically consistent trot needs a body motion that keeps
-    that moment zero — not yet in :mod:`hexaleg.gait`.)"""
-    _, robot = quad
-    prepared = prepare(robot, trot, contact=NO_LIMITS)
-    system = prepared.system
+def _support_line_moment(robot: hexaleg.Robot, motion: Motion, system) -> float:
+    """The largest moment about the two stance feet's line that the base rows need, relative
+    to m g |r| (r: the first foot from the base), after checking that the two feet's forces
+    have none."""
     worst = 0.0
-    for k in np.flatnonzero(trot.stance.sum(axis=1) == 2):
-        i, j = np.flatnonzero(trot.stance[k])
-        p_i, p_j = trot.feet[k, i], trot.feet[k, j]
+    for k in np.flatnonzero(motion.stance.sum(axis=1) == 2):
+        i, j = np.flatnonzero(motion.stance[k])
+        p_i, p_j = motion.feet[k, i], motion.feet[k, j]
         axis = (p_j - p_i) / np.linalg.norm(p_j - p_i)
         # Base rows: force (3) then moment about the base origin (3), in the local base frame;
         # the moment about the support line is the one along ``axis`` at a point on it.
-        rot = pin.Quaternion(trot.q[k, 3:7]).toRotationMatrix()
-        r_i = rot.T @ (p_i - trot.q[k, :3])
+        rot = pin.Quaternion(motion.q[k, 3:7]).toRotationMatrix()
+        r_i = rot.T @ (p_i - motion.q[k, :3])
         ax = rot.T @ axis
         row = np.concatenate([np.cross(r_i, ax), ax])  # uᵀ (f, m) = axis · (m − r_i × f)
         assert np.abs(row @ system.A[k]).max() <= 1e-9 * np.abs(system.A[k]).max()
         worst = max(worst, abs(row @ system.b_base[k]) / (robot.mass * 9.81 * np.linalg.norm(
             r_i[:2])))
-    assert worst > 1e-3  # the moment the two feet cannot give, relative to m g |r|
+    return worst
 
 
-def squat(robot: hexaleg.Robot, desc: RobotDescription, depth: float, samples: int) -> Motion:
-    """Four feet on the ground at the gait's footholds, base bobbing z = h + d sin(ωt)."""
-    period = desc.gait.period
-    t = np.arange(samples) * (period / samples)
-    w = 2 * np.pi / period
-    footholds = nominal_footholds(robot, desc.gait)  # base frame, ground at −h
-    h = -footholds[0, 2]
-    q = np.tile(robot.pose("stand"), (samples, 1))
-    v = np.zeros((samples, robot.model.nv))
-    a = np.zeros_like(v)
-    q[:, 2] = h + depth * np.sin(w * t)
-    v[:, 2] = depth * w * np.cos(w * t)
-    a[:, 2] = -depth * w**2 * np.sin(w * t)
-    feet = np.zeros((samples, len(robot.legs), 3))
-    for i, leg in enumerate(robot.legs):
-        feet[:, i] = footholds[i] + [0.0, 0.0, h]
-        rel = feet[:, i] - q[:, :3]
-        q_leg, qd_leg, qdd_leg, _ = leg_ik(robot, leg, rel, -v[:, :3], -a[:, :3], t=t)
-        q[:, leg.q_index], v[:, leg.v_index], a[:, leg.v_index] = q_leg, qd_leg, qdd_leg
-    return Motion(t=t, q=q, v=v, a=a, stance=np.ones((samples, len(robot.legs)), dtype=bool),
-                  feet=feet, period=period, distance=0.0, periodic=True, fixed_base=False,
-                  info={"source": "test squat"})
+def test_rigid_trot_on_two_point_feet_has_no_contact_forces(quad):
+    """Forces at two points have no moment about the line through them; the constant-velocity
+    body of the kinematic trot (``balance="none"``) needs one (gravity and the swing legs), so
+    no contact forces exist in its two-foot phases."""
+    desc, robot = quad
+    rigid = tripod_gait(robot, dataclasses.replace(desc.gait, samples=SAMPLES, balance="none"))
+    assert rigid.info["balance"] == {"mode": "none"}
+    assert _support_line_moment(robot, rigid, prepare(robot, rigid, contact=NO_LIMITS).system) \
+        > 1e-3  # the moment the two feet cannot give, relative to m g |r|
+    with pytest.raises(hexaleg.errors.InfeasibleForcesError, match="body sway"):
+        hexaleg.analyze(robot, rigid, contact=NO_LIMITS)
+
+
+def test_balanced_trot_needs_no_moment_about_the_support_line(quad, trot):
+    """The default trot sways laterally by a few millimetres (Solo) to centimetres (ANYmal) so
+    that its two-foot phases need no support-line moment (≤ 1e-9 m g h by construction)."""
+    _, robot = quad
+    info = trot.info["balance"]
+    assert info["mode"] == "sway" and info["direction"] == [0.0, 1.0, 0.0]
+    assert info["residual"] <= 1e-9 and info["iterations"] <= 10
+    assert 1e-3 < info["amplitude"] < 0.05
+    assert _support_line_moment(robot, trot, prepare(robot, trot, contact=NO_LIMITS).system) \
+        <= 1e-9
 
 
 @pytest.fixture(scope="module")
-def bob(quad):
+def trotting(quad, trot):
     desc, robot = quad
-    motion = squat(robot, desc, depth=0.05 * -nominal_footholds(robot, desc.gait)[0, 2],
-                   samples=SAMPLES)
     knee = robot.joints(desc.spring_class)
-    springs = centred_springs(robot, motion, desc.spring_class, 4 * k_M(robot, motion, knee[0]))
-    prepared = prepare(robot, motion, contact=NO_LIMITS)
-    return motion, prepared, prepared.evaluate(springs)
+    springs = centred_springs(robot, trot, desc.spring_class, 4 * k_M(robot, trot, knee[0]))
+    prepared = prepare(robot, trot, contact=NO_LIMITS)
+    return prepared, prepared.evaluate(springs)
 
 
-def test_knee_springs_through_the_pipeline_keep_the_invariants(quad, bob):
-    """Newton–Euler of the whole robot, exact base rows, zero cyclic joint work, springs engaged."""
+def test_knee_springs_through_the_pipeline_keep_the_invariants(quad, trot, trotting):
+    """The real trot with knee springs: Newton–Euler of the whole robot, exact base rows, zero
+    cyclic joint work, springs engaged only on the knees, the stance feet push."""
     desc, robot = quad
-    motion, prepared, result = bob
+    prepared, result = trotting
     model, data = robot.model, robot.model.createData()
     rhs = np.empty((SAMPLES, 3))
     for k in range(SAMPLES):
-        pin.centerOfMass(model, data, motion.q[k], motion.v[k], motion.a[k])
+        pin.centerOfMass(model, data, trot.q[k], trot.v[k], trot.a[k])
         rhs[k] = robot.mass * (data.acom[0] - model.gravity.linear)
     total = result.forces.sum(axis=1)
     assert np.max(np.abs(total - rhs)) <= 1e-8 * np.max(np.abs(rhs))
     f = result.forces.reshape(SAMPLES, -1)
     residual = np.einsum("tik,tk->ti", prepared.system.A, f) - prepared.system.b_base
-    assert np.max(np.abs(residual)) <= 1e-9
+    # Relative to the base wrench (ANYmal's is ~300 N): the sway leaves ≤ 1e-10 m g h.
+    assert np.max(np.abs(residual)) <= 1e-9 * np.abs(prepared.system.b_base).max()
     p = result.tau_total * result.qdot
-    assert abs(p.sum() * motion.dt) <= 1e-6 * np.abs(p).sum() * motion.dt
+    assert abs(p.sum() * trot.dt) <= 1e-6 * np.abs(p).sum() * trot.dt
     knees = [robot.column(j) for j in robot.joints(desc.spring_class)]
     others = [c for c in range(robot.nj) if c not in knees]
     assert np.all(np.abs(result.tau_spring[:, knees]).max(axis=0) > 0)
     assert not result.tau_spring[:, others].any()
+    assert not result.forces[~trot.stance].any()
+    assert np.all(result.forces[..., 2][trot.stance] > 0)
     for key, value in result.savings["total"].items():
         assert np.isfinite(value), key
     assert result.metrics["total"]["absolute_work"] > 0
