@@ -249,7 +249,7 @@ def test_sigkilled_cli_sweep_resumes_to_the_same_table(tmp_path):
 [sweep]
 chunk_size = 2
 [gait]
-samples = 100
+samples = 200
 [springs.tibia]
 k = {start = 0.0, stop = 0.5, num = 40}
 theta_k = 0.02
@@ -261,7 +261,7 @@ theta_k = 0.02
     proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     deadline = time.monotonic() + 60
     while len(list(out.glob("part-*.parquet"))) < 3 and time.monotonic() < deadline:
-        time.sleep(0.02)
+        time.sleep(0.005)
     os.kill(proc.pid, signal.SIGKILL)
     proc.wait()
     assert proc.returncode == -signal.SIGKILL
@@ -300,9 +300,11 @@ def test_unreachable_scheduler_names_the_address_and_loses_nothing(tmp_path, mon
     pytest.importorskip("distributed")
     monkeypatch.setattr("hexaleg.executors.CONNECT_TIMEOUT", 1.0)
     spec = small_spec()
+    def ctrl_c(rows):
+        raise KeyboardInterrupt
+
     with pytest.raises(KeyboardInterrupt):
-        run_sweep(spec, tmp_path / "out", executor="serial",
-                  on_chunk=lambda rows: (_ for _ in ()).throw(KeyboardInterrupt))
+        run_sweep(spec, tmp_path / "out", executor="serial", on_chunk=ctrl_c)
     before = sorted(p.name for p in (tmp_path / "out").glob("part-*"))
     assert len(before) == 1
     address = "tcp://127.0.0.1:1"

@@ -771,8 +771,9 @@ def run_sweep(spec: SweepSpec, out: str | Path, *, executor: str = "process",
                 finished, _ = wait(pending, return_when=FIRST_COMPLETED)
                 pending -= finished
                 refill()
-                for fut in sorted(finished, key=lambda f: int(f.result()["point"].iloc[0])
-                                  if f.exception() is None else -1):
+                # a failed chunk first (it raises), then the others in point order
+                for fut in sorted(finished, key=lambda f: -1 if f.exception() is not None
+                                  else int(f.result()["point"].iloc[0])):
                     rows = fut.result()
                     store.write(rows)
                     computed += len(rows)
@@ -795,17 +796,19 @@ def summary(table: pd.DataFrame, metric: str = DEFAULT_METRIC) -> str:
     Raises:
         UnknownNameError: ``metric`` is not a column of the table.
     """
+    import pandas as pd
+
     if metric not in table.columns:
         raise UnknownNameError("metric", metric, [m for m in METRICS if m in table.columns])
     ok = table[table["status"] == "ok"]
     lines = [f"{len(table)} points, {len(ok)} evaluated without error; best {metric} "
              "(lower is better) per sprung-group set:"]
+    # the inputs: design columns, and the gait parameters the sweep varies
+    inputs = [c for c in table.columns if "." in c and not c.startswith(("baseline.", "saving."))
+              and (not c.startswith("gait.") or table[c].nunique() > 1)]
     for springs, rows in ok.groupby("springs", sort=False):
         best = rows.loc[rows[metric].idxmin()]
-        params = ", ".join(f"{c} = {best[c]:.4g}" for c in table.columns
-                           if "." in c and not c.startswith(("baseline.", "saving."))
-                           and not (isinstance(best[c], float) and math.isnan(best[c]))
-                           and (c.startswith("gait.") is False or table[c].nunique() > 1))
+        params = ", ".join(f"{c} = {best[c]:.4g}" for c in inputs if not pd.isna(best[c]))
         lines.append(f"  {springs}: {metric} = {best[metric]:.6g} (no springs "
                      f"{best['baseline.' + metric]:.6g}), saving "
                      f"{100 * best['saving.' + metric]:+.2f} % at point {int(best['point'])}: "
