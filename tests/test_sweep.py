@@ -431,3 +431,18 @@ def test_free_offset_preload_beats_the_centred_design_on_the_tibia():
         optimise(ev, "tibia", joints, offset_bounds=(0.5, -0.5))
     with pytest.raises(InvalidParameterError, match="start"):
         optimise(ev, "tibia", joints, offset_bounds=(-1.0, 1.0), start=(0.1, 0.01))  # no offset
+
+
+def test_gait_axis_faster_gait_gains_more_from_coxa_springs(tmp_path):
+    """Sweeping the period: the coxa joints swing the legs back and forth, so their inertial
+    torques grow like ω² while the steady load does not; a spring that stores that swing energy
+    saves a larger fraction at a faster gait."""
+    spec = SweepSpec(gait={"samples": 100, "period": (0.5, 1.0)},
+                     springs={"coxa": {"k": (0.05, 0.1, 0.2, 0.3), "theta_k": 0.002}})
+    table = run_sweep(spec, tmp_path / "gait", executor="serial").table
+    assert len(table) == 8 and list(table["gait.period"]) == [0.5] * 4 + [1.0] * 4
+    best = table.groupby("gait.period")["saving.electrical"].max()
+    assert best[0.5] > 2 * best[1.0] > 0
+    # each gait has its own baseline: the mean Joule power grows with the inertial torques
+    base = table.groupby("gait.period")["baseline.joule"].first()
+    assert base[0.5] / 0.5 > base[1.0] / 1.0
