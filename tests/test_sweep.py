@@ -179,7 +179,9 @@ def test_parse_range():
     ({"femur": {"k": 1.0, "theta_k": 0.1, "dead_zone": 0.2}}, InvalidParameterError,
      "exactly one"),
     ({"femur": {"k": -1.0, "theta_k": 0.1}}, InvalidParameterError, "femur.k"),
-    ({"femur": {"k": 1.0, "dead_zone": 1.2}}, InvalidParameterError, r"\[0, 1\)"),
+    ({"femur": {"k": 1.0, "dead_zone": 1.2}}, InvalidParameterError, r"\(0, 1\)"),
+    ({"femur": {"k": 1.0, "dead_zone": (0.0, 0.5)}}, InvalidParameterError, r"\(0, 1\)"),
+    ({"femur": {"k": 1.0, "theta_k": (0.0, 0.1)}}, InvalidParameterError, "femur.theta_k"),
     ({"femur": {"k": 1.0, "theta_minus": 0.1, "theta_plus": (0.2, 0.05)}}, InvalidParameterError,
      "theta_minus"),
 ])

@@ -13,8 +13,8 @@ A *point* is (gait parameters, spring design per joint group). A *group* is a jo
 of joints. A design gives, in SI (see :data:`SPRING_PARAMETERS`):
 
 * ``k`` (N·m/rad) and optionally ``k_minus`` (k⁻, default k);
-* the dead zone: ``theta_k`` (±θ_k, rad), or ``dead_zone`` (θ_k as a fraction of each joint's
-  half range of motion in the gait), or ``theta_minus`` and ``theta_plus`` (rad);
+* the dead zone: ``theta_k`` (±θ_k, rad, > 0), or ``dead_zone`` (θ_k as a fraction of each
+  joint's half range of motion in the gait, in (0, 1)), or ``theta_minus`` < ``theta_plus`` (rad);
 * ``offset`` (rad): the spring's neutral relative to the *centre of each joint's range of motion
   in the gait* (default 0: a "centred" design, the symmetric dead zone about the motion that the
   paper assumes, eq. 8 and eq. 25).
@@ -217,11 +217,13 @@ def parse_range(name: str, text: str) -> tuple[float, ...] | float:
 
 def _check_spring_value(name: str, param: str, values: Sequence[float]) -> None:
     lo, hi = min(values), max(values)
-    if param in ("k", "k_minus", "theta_k") and lo < 0:
-        raise InvalidParameterError(name, lo, "≥ 0")
-    if param == "dead_zone" and not (lo >= 0 and hi < 1):
-        raise InvalidParameterError(name, lo if lo < 0 else hi,
-                                    "a fraction of the half range of motion in [0, 1)")
+    if param in ("k", "k_minus") and lo < 0:
+        raise InvalidParameterError(name, lo, "≥ 0 (N·m/rad)")
+    if param == "theta_k" and lo <= 0:  # θ⁻ < θ⁺ (eq. 8 with a dead zone of positive width)
+        raise InvalidParameterError(name, lo, "> 0 (rad)")
+    if param == "dead_zone" and not (lo > 0 and hi < 1):
+        raise InvalidParameterError(name, lo if lo <= 0 else hi,
+                                    "a fraction of the half range of motion in (0, 1)")
 
 
 @dataclass(frozen=True)
