@@ -97,8 +97,9 @@ def test_stand_is_the_srdf_standing_pose_with_the_base_at_the_origin(quad):
     assert np.allclose(left * [1, -1, 1], right, atol=1e-9)
 
 
-def test_a_urdf_whose_feet_are_missing_lists_the_frames(quad):
-    desc, _ = quad
+@pytest.mark.parametrize("name", ["solo12", "go2"])  # not ANYmal: its meshes take 3.5 s to load
+def test_a_urdf_whose_feet_are_missing_lists_the_frames(name):
+    desc = description(name)
     legs = (LegSpec(desc.legs[0].name, desc.legs[0].joints, "LF_toe"), *desc.legs[1:])
     with pytest.raises(RobotModelError) as err:
         dataclasses.replace(desc, legs=legs).load()
@@ -289,3 +290,33 @@ def test_own_robot_from_toml(tmp_path):
     (tmp_path / "nolegs.toml").write_text('[robot]\nname = "x"\n')
     with pytest.raises(hexaleg.HexalegError, match=r"\[\[robot.legs\]\]"):
         load(str(tmp_path / "nolegs.toml"))
+
+
+def test_report_for_a_registry_robot(tmp_path, capsys):
+    """'hexaleg report --robot solo12': the trot from the description (the file's [gait] keys
+    on top), knee springs and stiffness curve, torque limits off with a note, all files."""
+    import json
+
+    from hexaleg.cli import main
+
+    config = tmp_path / "report.toml"
+    config.write_text("[gait]\nsamples = 40\n[report]\nstiffness_points = 3\npaper_samples = 8\n")
+    assert main(["report", "--robot", "solo12", "--config", str(config),
+                 "--out", str(tmp_path / "out")]) == 0
+    out = capsys.readouterr().out
+    assert "note: Solo-12" in out and "torque limits are off" in out and "AX-18A" in out
+    data = json.loads((tmp_path / "out" / "report.json").read_text())
+    desc, robot = description("solo12"), robot_of("solo12")
+    knees = list(robot.joints(desc.spring_class))
+    assert data["gait"]["groups"] == [list(g) for g in TROT] and data["gait"]["samples"] == 40
+    assert data["gait"]["period"]["value"] == desc.gait.period
+    assert data["gait"]["min_stance_feet"] == 2
+    assert data["contact"]["torque_limits"] is False
+    assert sorted(data["springs"]["joints"]) == sorted(knees)
+    assert data["stiffness_curve"]["joints"] == knees and not data["stiffness_curve"]["infeasible"]
+    assert data["title"].startswith("Solo-12")
+    # The stance feet carry the weight on average over the cycle.
+    weight = data["forces"]["weight"]["value"]
+    assert data["forces"]["peak_total_normal_force"]["value"] > weight
+    assert {"report.html", "report.json", "stiffness_curve.png"} <= set(data["files"])
+    assert (tmp_path / "out" / "report.html").stat().st_size > 10_000
