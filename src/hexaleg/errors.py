@@ -37,6 +37,9 @@ class UnknownNameError(HexalegError, KeyError):
     def __str__(self) -> str:  # KeyError would repr() the message otherwise
         return str(self.args[0])
 
+    def __reduce__(self) -> tuple:  # rebuild from the constructor's arguments (process pools)
+        return (type(self), (self.kind, self.name, self.valid))
+
 
 class InvalidParameterError(HexalegError, ValueError):
     """A parameter value is out of its allowed range, of the wrong type, or not finite.
@@ -52,6 +55,9 @@ class InvalidParameterError(HexalegError, ValueError):
         self.value = value
         self.allowed = allowed
         super().__init__(f"invalid {name} = {value!r}; allowed: {allowed}")
+
+    def __reduce__(self) -> tuple:  # rebuild from the constructor's arguments (process pools)
+        return (type(self), (self.name, self.value, self.allowed))
 
 
 class ConfigError(HexalegError):

@@ -1,0 +1,33 @@
+"""Tests of hexaleg.errors: messages name the value and what is allowed; errors cross processes."""
+
+from __future__ import annotations
+
+import pickle
+
+import pytest
+
+from hexaleg import errors
+
+
+def test_unknown_name_lists_the_valid_names_sorted():
+    e = errors.UnknownNameError("pose", "crouch", ["zero", "stand", "sphere"])
+    assert str(e) == "unknown pose 'crouch'; valid poses are: sphere, stand, zero"
+    assert isinstance(e, KeyError) and isinstance(e, errors.HexalegError)
+
+
+def test_invalid_parameter_names_value_and_range():
+    e = errors.InvalidParameterError("mu", -1.0, "> 0")
+    assert str(e) == "invalid mu = -1.0; allowed: > 0"
+    assert isinstance(e, ValueError)
+
+
+@pytest.mark.parametrize("error", [
+    errors.UnknownNameError("joint", "LF_knee", ["LF_femur", "LF_tibia"]),
+    errors.InvalidParameterError("period", 0.0, "> 0 s"),
+    errors.InfeasibleForcesError("no forces at t = 0.1 s"),
+])
+def test_errors_survive_pickling(error):
+    """A process pool sends a worker's exception back pickled; it must arrive intact."""
+    back = pickle.loads(pickle.dumps(error))
+    assert type(back) is type(error)
+    assert str(back) == str(error)
