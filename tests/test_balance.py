@@ -254,3 +254,16 @@ def test_balance_parameter_and_failures(solo, monkeypatch):
     monkeypatch.setattr(gait_module, "MIN_CROSSING", 0.99)
     with pytest.raises(InvalidParameterError, match="sway can cross"):
         tripod_gait(solo, gait)
+
+
+def test_gait_command_summarises_the_sway(capsys, tmp_path):
+    """'hexaleg gait --robot solo12': the robot's trot, the file's [gait] keys on top."""
+    from hexaleg.cli import main
+
+    (tmp_path / "gait.toml").write_text(f"[gait]\nsamples = {SAMPLES}\n")
+    assert main(["gait", "--robot", "solo12", "--config", str(tmp_path / "gait.toml")]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[1] == "groups: LF RH | RF LH" and f"{SAMPLES} samples" in lines[0]
+    assert "duty factor 0.6" in lines[0]
+    assert lines[3].startswith("balance: body sway ±4.2") and "[0.0, 1.0, 0.0]" in lines[3]
+    assert main(["gait", "--robot", "spot"]) == 2

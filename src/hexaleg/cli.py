@@ -78,16 +78,29 @@ def _run_paper(args: argparse.Namespace) -> int:
 def _add_gait(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("gait", help="the tripod gait: parameters, static margin, joint ranges, "
                                     "peak joint speeds and accelerations")
-    p.add_argument("--config", help="TOML file with a [gait] table (default: GaitParams())")
+    p.add_argument("--config", help="TOML file with a [gait] table; its keys replace those of "
+                                    "the robot's gait (default: hexaleg's GaitParams())")
+    p.add_argument("--robot", default="hexaleg", help="a registered robot (solo12, anymal, go2, "
+                                                      "...; default %(default)s) or a robot .toml")
     p.set_defaults(func=_run_gait)
 
 
 def _run_gait(args: argparse.Namespace) -> int:
-    from hexaleg.gait import GaitParams, gait_summary, tripod_gait
-    from hexaleg.robot import load_robot
+    import dataclasses
 
-    robot = load_robot()
-    gait = GaitParams.from_toml(args.config) if args.config else GaitParams()
+    from hexaleg.config import load_toml
+    from hexaleg.gait import GaitParams, gait_summary, tripod_gait
+    from hexaleg.robots import RobotDescription, description
+
+    desc = (RobotDescription.from_toml(args.robot) if args.robot.endswith(".toml")
+            else description(args.robot))
+    robot = desc.load()
+    gait = desc.gait
+    if args.config:  # the file's keys over the robot's gait
+        table = load_toml(args.config)
+        given = GaitParams.from_toml(args.config)
+        gait = dataclasses.replace(gait, **{k: getattr(given, k)
+                                            for k in table.get("gait", table)})
     print(gait_summary(robot, tripod_gait(robot, gait)))
     return 0
 

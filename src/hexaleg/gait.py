@@ -619,9 +619,9 @@ def gait_summary(robot: Robot, motion: Motion) -> str:
         motion: A motion from :func:`tripod_gait` or :func:`sample_gait`.
 
     Returns:
-        Text: the parameters, the stance count and static margin, and per joint the angle range
-        (deg), the peak speed against the model's velocity limit (rad/s) and the peak
-        acceleration (rad/s²).
+        Text: the parameters, the stance count and static margin, the balancing sway (when
+        there is one), and per joint the angle range (deg), the peak speed against the model's
+        velocity limit (rad/s) and the peak acceleration (rad/s²).
     """
     info, g = motion.info, motion.info["gait"]
     margin = info["static_margin"]
@@ -635,6 +635,10 @@ def gait_summary(robot: Robot, motion: Motion) -> str:
         f"stance feet per sample: min {info['min_stance_feet']}; static margin "
         + (f"{margin:.4f} m (at t = {info['static_margin_t']:g} s)" if margin is not None
            else "n/a (fewer than 3 stance feet at some sample)"),
+        *([f"balance: body sway ±{1e3 * sway['amplitude']:.2f} mm along "
+           f"{np.round(sway['direction'], 3).tolist()} (base frame), support-line moment "
+           f"{sway['residual']:.1e} m g h after {sway['iterations']} iterations"]
+          if (sway := info.get("balance", {})).get("mode") == "sway" else []),
         f"{'joint':<14} {'range deg':>17} {'peak |v| rad/s':>15} {'limit':>7} "
         f"{'peak |a| rad/s²':>16}",
     ]
