@@ -601,12 +601,19 @@ def tripod_gait(robot: Robot, gait: GaitParams | None = None) -> Motion:
         ``body_height`` m, ``foot_radius`` m, ``min_stance_feet``, ``static_margin`` m (the
         smallest distance of the CoM's ground projection inside the stance feet's support
         polygon over the cycle; None if some sample has fewer than 3 stance feet) and
-        ``static_margin_t`` s (where it occurs), and ``ik`` (solver per leg).
+        ``static_margin_t`` s (where it occurs), ``ik`` (solver per leg) and ``balance``:
+        ``{"mode": "none"}``, or for a gait balanced on two feet (see :func:`sample_gait`)
+        ``{"mode": "sway", "direction"`` (base frame, 3 floats), ``"amplitude"`` m (half the
+        peak-to-peak sway), ``"height"`` m (the LIP height), ``"iterations"``, ``"residual"``
+        (largest support-line moment / m g h) and ``"residuals"`` (per iteration, from the
+        unswayed gait)``}``.
 
     Raises:
         UnknownNameError: a leg in ``gait.groups`` is not a leg of the robot.
-        InvalidParameterError: a leg of the robot is in no group.
+        InvalidParameterError: a leg of the robot is in no group, or a support line cannot be
+            crossed by a horizontal sway.
         UnreachableTargetError: a foot target is out of reach (names leg, time, distance).
+        InfeasibleForcesError: the balancing sway does not converge.
     """
     return sample_gait(robot, gait)
 
