@@ -5,7 +5,8 @@
   fixed on the ground, swing feet follow :func:`swing_curve`; joint angles, velocities and
   accelerations come from the leg inverse kinematics (:mod:`hexaleg.kinematics`) with exact
   derivatives. The foot-placement and timing logic is generic in the legs and groups (a trot on a
-  quadruped is two groups of two legs).
+  quadruped is two groups of two legs); a gait standing on two feet is balanced by a periodic
+  body sway (:mod:`hexaleg.balance`, ``GaitParams.balance``).
 * :func:`joint_motion` — chosen joints follow the paper's sinusoid (eq. 16) on a fixed base; the
   paper's single-joint experiment embedded in the robot.
 * :func:`transform_motion` — from ``stand`` to ``sphere`` with a smooth joint interpolation.
