@@ -146,3 +146,16 @@ def test_two_feet_that_cannot_carry_the_body_is_a_clear_error(robot, motion):
                          feet=motion.feet, period=motion.period, distance=motion.distance)
     with pytest.raises(InfeasibleForcesError, match=r"feet LF, LM cannot produce .*\(sample 5\)"):
         prepare(robot, two).evaluate()
+
+
+@pytest.mark.parametrize("objective", ["joule", "positive_work"])
+def test_unreachable_wrench_is_caught_on_every_path(robot, motion, objective):
+    """Both the KKT path and the conic path (which drops redundant base rows) refuse a base
+    wrench the two stance feet cannot produce."""
+    stance = motion.stance.copy()
+    stance[5] = False
+    stance[5, [0, 1]] = True  # LF, LM
+    two = hexaleg.Motion(t=motion.t, q=motion.q, v=motion.v, a=motion.a, stance=stance,
+                         feet=motion.feet, period=motion.period, distance=motion.distance)
+    with pytest.raises(InfeasibleForcesError, match=r"\(sample 5\).*miss the base rows"):
+        prepare(robot, two).evaluate(objective=objective)

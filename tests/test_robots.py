@@ -247,6 +247,24 @@ def test_knee_springs_through_the_pipeline_keep_the_invariants(quad, trot, trott
     assert result.metrics["total"]["absolute_work"] > 0
 
 
+def test_stiff_knees_bind_friction_on_two_feet_and_stay_exact(quad, trot, trotting):
+    """Stiff knee springs push the Joule-optimal forces out of the friction cone, so two-foot
+    samples go to the conic solver (which must cope with the rank-5 base rows); the forces
+    still meet the base rows and the cone."""
+    desc, robot = quad
+    prepared, _ = trotting
+    stiff = centred_springs(robot, trot, desc.spring_class,
+                            2000 * k_M(robot, trot, robot.joints(desc.spring_class)[0]))
+    result = prepared.evaluate(stiff)
+    assert result.resolved.any()
+    f = result.forces.reshape(SAMPLES, -1)
+    residual = np.einsum("tik,tk->ti", prepared.system.A, f) - prepared.system.b_base
+    assert np.max(np.abs(residual)) <= 1e-6 * np.abs(prepared.system.b_base).max()
+    fz = result.forces[..., 2]
+    ft = np.hypot(result.forces[..., 0], result.forces[..., 1])
+    assert np.all(ft[trot.stance] <= NO_LIMITS.mu * fz[trot.stance] + 1e-6)
+
+
 def test_cli_robot_option(capsys):
     from hexaleg.cli import main
 

@@ -267,7 +267,16 @@ def _solve_sample(system: StanceSystem, k: int, tau_spring: np.ndarray, objectiv
     def pad(m: np.ndarray) -> np.ndarray:  # rows on f → rows on x
         return np.hstack([m, np.zeros((m.shape[0], n_epi))])
 
-    add(pad(A), system.b_base[k], clarabel.ZeroConeT(6))
+    # Base rows, reduced to their row space: two point feet give only 5 independent rows, and
+    # an interior-point solver stalls on redundant equalities. The part of the base wrench
+    # outside that space is what no forces can produce.
+    u, sv, _ = np.linalg.svd(A, full_matrices=False)
+    rank = int(np.sum(sv > 1e-9 * sv[0]))
+    b_in = u[:, :rank].T @ system.b_base[k]
+    missing = float(np.linalg.norm(system.b_base[k] - u[:, :rank] @ b_in))
+    if missing > 1e-8 * (1.0 + np.abs(system.b_base[k]).max()):
+        _raise_unreachable(system, k, missing)
+    add(pad(u[:, :rank].T @ A), b_in, clarabel.ZeroConeT(rank))
     n_st = n // 3
     ez = np.zeros((n_st, n))
     ez[np.arange(n_st), 3 * np.arange(n_st) + 2] = 1.0
@@ -352,21 +361,24 @@ def _raise_infeasible(system: StanceSystem, k: int, tau_spring: np.ndarray,
         f"({contact.cone}) and normal force ≥ {contact.min_normal_force} N; solver status {status}")
 
 
-def _check_base_rows(system: StanceSystem, f: np.ndarray, tau_spring: np.ndarray,
-                     contact: ContactParams) -> None:
+def _check_base_rows(system: StanceSystem, f: np.ndarray) -> None:
     """Raise InfeasibleForcesError at the first sample whose stance feet cannot produce the base
-    wrench at all (the equality-constrained solution misses the base rows)."""
+    wrench at all (the equality-constrained solution ``f`` (T, 3 n_legs) misses the base rows)."""
     residual = np.abs((system.A @ f[..., None])[..., 0] - system.b_base).max(axis=1)
     scale = 1.0 + np.abs(system.b_base).max(axis=1)
     bad = np.flatnonzero(residual > 1e-8 * scale)
     if bad.size:
-        k = int(bad[0])
-        feet = [system.leg_names[i] for i in np.flatnonzero(system.stance[k])]
-        raise InfeasibleForcesError(
-            f"the stance feet {', '.join(feet) or '(none)'} cannot produce the base wrench at "
-            f"t = {system.t[k]:.4f} s (sample {k}) with any forces: the best forces miss the "
-            f"base rows by {residual[k]:.3g} (N, N·m); e.g. two point feet cannot push a "
-            "moment about the line through them — the motion needs a body sway that balances it")
+        _raise_unreachable(system, int(bad[0]), float(residual[bad[0]]))
+
+
+def _raise_unreachable(system: StanceSystem, k: int, residual: float) -> None:
+    """Raise InfeasibleForcesError: sample ``k``'s base wrench is out of its feet's reach."""
+    feet = [system.leg_names[i] for i in np.flatnonzero(system.stance[k])]
+    raise InfeasibleForcesError(
+        f"the stance feet {', '.join(feet) or '(none)'} cannot produce the base wrench at "
+        f"t = {system.t[k]:.4f} s (sample {k}) with any forces: the best forces miss the "
+        f"base rows by {residual:.3g} (N, N·m); e.g. two point feet cannot push a moment about "
+        "the line through them — the motion needs a body sway that balances it")
 
 
 def solve_fast(system: StanceSystem, tau_spring: np.ndarray, objective: str,
@@ -399,7 +411,7 @@ def solve_fast(system: StanceSystem, tau_spring: np.ndarray, objective: str,
         ts = tau_spring[:, cols, None]
         f = gains.f0 - (gains.K[:, :, cols] @ ts)[..., 0]
         tau = gains.tau0 + (gains.G[:, :, cols] @ ts)[..., 0]
-        _check_base_rows(system, f, tau_spring, contact)
+        _check_base_rows(system, f)
         bad = violations(system, f, tau, contact)
     else:
         f = np.zeros((T, system.A.shape[2]))
