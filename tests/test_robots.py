@@ -337,4 +337,9 @@ def test_report_for_a_registry_robot(tmp_path, capsys):
     weight = data["forces"]["weight"]["value"]
     assert data["forces"]["peak_total_normal_force"]["value"] > weight
     assert {"report.html", "report.json", "stiffness_curve.png"} <= set(data["files"])
-    assert (tmp_path / "out" / "report.html").stat().st_size > 10_000
+    html = (tmp_path / "out" / "report.html").read_text()
+    assert len(html) > 10_000
+    # The caveats are on the page, not only in the terminal: motor figures and the sway.
+    assert any("torque limits are off" in n for n in data["notes"])
+    assert any(n.startswith("two-foot gait: the body sways") for n in data["notes"])
+    assert html.count('class="note"') == len(data["notes"]) == 2

@@ -9,14 +9,9 @@ from __future__ import annotations
 import argparse
 import sys
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
 
 from hexaleg import __version__
 from hexaleg.errors import HexalegError
-
-if TYPE_CHECKING:
-    from hexaleg.report import ReportConfig
-    from hexaleg.robot import Robot
 
 
 def _add_robot(sub: argparse._SubParsersAction) -> None:
@@ -179,57 +174,22 @@ def _add_report(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=_run_report)
 
 
-def _robot_report_config(name: str, path: str | None
-                         ) -> tuple[Robot, ReportConfig, list[str]]:
-    """The report config for a registry robot: the description's gait under the file's [gait]
-    keys, springs and stiffness curve on its spring class unless the file names joints, its
-    title, and no torque limits (unless the file sets them) when its URDF effort limits exceed
-    every catalogue servo's stall torque; notes to print."""
-    import dataclasses
-
+def _run_report(args: argparse.Namespace) -> int:
     from hexaleg.config import load_toml
-    from hexaleg.motor import CATALOGUE
-    from hexaleg.report import ReportConfig, SpringDesign
+    from hexaleg.report import ReportConfig, write_report
     from hexaleg.robots import RobotDescription, description
 
-    desc = RobotDescription.from_toml(name) if name.endswith(".toml") else description(name)
-    robot = desc.load()
-    data = load_toml(path) if path else {}
-    config = ReportConfig.from_mapping(data, path or "config")
-    given = {t: data.get(t, {}) for t in ("gait", "springs", "report", "contact")}
-    gait = dataclasses.replace(desc.gait, **{k: getattr(config.gait, k) for k in given["gait"]})
-    springs = config.springs
-    if isinstance(springs, SpringDesign) and "joints" not in given["springs"]:
-        springs = dataclasses.replace(springs, joints=desc.spring_class)
-    report = config.report
-    if "curve_joints" not in given["report"]:
-        report = dataclasses.replace(report, curve_joints=desc.spring_class)
-    if "title" not in given["report"]:
-        report = dataclasses.replace(report, title=f"{desc.title}: gait energy report")
-    contact, notes = config.contact, []
-    strongest = max(m.stall_torque for m in CATALOGUE.values())
-    effort = float(robot.model.effortLimit[6:].max())
-    if effort > strongest and "torque_limits" not in given["contact"]:
-        contact = dataclasses.replace(contact, torque_limits=False)
-        notes.append(f"{desc.title}: URDF joint effort limits up to {effort:g} N·m exceed every "
-                     f"servo of the motor catalogue (≤ {strongest:g} N·m), so the torque limits "
-                     f"are off; the {config.motor.name} figures (Joule, electrical energy) do "
-                     "not describe this robot's actuators — compare work and torques, or give "
-                     "a [motor] for them")
-    return robot, dataclasses.replace(config, gait=gait, springs=springs, report=report,
-                                      contact=contact), notes
-
-
-def _run_report(args: argparse.Namespace) -> int:
-    from hexaleg.report import ReportConfig, write_report
-
-    robot, notes = None, []
+    robot = None
     if args.robot is not None:
-        robot, config, notes = _robot_report_config(args.robot, args.config)
+        desc = (RobotDescription.from_toml(args.robot) if args.robot.endswith(".toml")
+                else description(args.robot))
+        robot = desc.load()
+        data = load_toml(args.config) if args.config else {}
+        config = ReportConfig.for_robot(desc, robot, data, args.config or "config")
     else:
         config = ReportConfig.from_toml(args.config) if args.config else ReportConfig()
     r = write_report(args.out, config, robot=robot, svg=args.svg)
-    for note in notes:
+    for note in config.notes:
         print(f"note: {note}")
     e = r.data["energy"]["totals"]["electrical"]
     print(f"electrical energy per cycle {e['with_springs']['value']:.4g} J with springs, "

@@ -51,6 +51,7 @@ from hexaleg.motion import Motion
 from hexaleg.motor import DEFAULT_MOTOR, Motor, motor_from_mapping
 from hexaleg.motor import motor as motor_by_name
 from hexaleg.robot import Robot, load_robot
+from hexaleg.robots import RobotDescription
 from hexaleg.springs import SpringSet
 
 TABLES: tuple[str, ...] = ("gait", "motor", "contact", "springs", "report")
@@ -236,6 +237,7 @@ class ReportConfig:
         springs: A :class:`SpringDesign` (``[springs] design = …``) or explicit per-joint springs
             in SI (``[springs.LF_femur] stiffness = …``, :meth:`SpringSet.from_mapping`).
         report: What the report shows (``[report]``).
+        notes: Caveats printed on the report page (set by :meth:`for_robot`; not a TOML table).
     """
 
     gait: GaitParams = field(default_factory=GaitParams)
@@ -243,6 +245,54 @@ class ReportConfig:
     contact: ContactParams = field(default_factory=ContactParams)
     springs: SpringDesign | SpringSet = field(default_factory=SpringDesign)
     report: ReportParams = field(default_factory=ReportParams)
+    notes: tuple[str, ...] = ()
+
+    @classmethod
+    def for_robot(cls, desc: RobotDescription, robot: Robot,
+                  data: Mapping[str, Any] | None = None, where: str = "config") -> ReportConfig:
+        """The configuration for a robot of the registry (:mod:`hexaleg.robots`).
+
+        The description's gait with the keys the file's ``[gait]`` sets on top; springs and the
+        stiffness curve on the description's spring class unless the file names joints; the
+        robot's title; and, when the URDF's joint effort limits exceed every catalogue servo's
+        stall torque (unless ``[contact]`` sets ``torque_limits``), no torque limits and a note
+        that the servo's Joule/electrical figures do not describe this robot's actuators.
+
+        Args:
+            desc: The robot description.
+            robot: The robot it loads (``desc.load()``).
+            data: A parsed config document (as for :meth:`from_mapping`), or None.
+            where: Where ``data`` came from, for error messages.
+        """
+        import dataclasses
+
+        from hexaleg.motor import CATALOGUE
+
+        data = data or {}
+        config = cls.from_mapping(data, where)
+        given = {t: data.get(t, {}) for t in ("gait", "springs", "report", "contact")}
+        gait = dataclasses.replace(desc.gait,
+                                   **{k: getattr(config.gait, k) for k in given["gait"]})
+        springs = config.springs
+        if isinstance(springs, SpringDesign) and "joints" not in given["springs"]:
+            springs = dataclasses.replace(springs, joints=desc.spring_class)
+        report = config.report
+        if "curve_joints" not in given["report"]:
+            report = dataclasses.replace(report, curve_joints=desc.spring_class)
+        if "title" not in given["report"]:
+            report = dataclasses.replace(report, title=f"{desc.title}: gait energy report")
+        contact, notes = config.contact, []
+        strongest = max(m.stall_torque for m in CATALOGUE.values())
+        effort = float(robot.model.effortLimit[6:].max())
+        if effort > strongest and "torque_limits" not in given["contact"]:
+            contact = dataclasses.replace(contact, torque_limits=False)
+            notes.append(f"{desc.title}: URDF joint effort limits up to {effort:g} N·m exceed "
+                         f"every servo of the motor catalogue (≤ {strongest:g} N·m), so the "
+                         f"torque limits are off; the {config.motor.name} figures (Joule, "
+                         "electrical energy) do not describe this robot's actuators — compare "
+                         "work and torques, or give a [motor] for them")
+        return dataclasses.replace(config, gait=gait, springs=springs, report=report,
+                                   contact=contact, notes=tuple(notes))
 
     @classmethod
     def from_mapping(cls, data: Mapping[str, Any], where: str = "config") -> ReportConfig:
@@ -575,9 +625,16 @@ def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis, r
                 "stiffness_over_k_M": _q(curve.stiffness[best] / k_M_mean, "1"),
                 "value": _q(curve.totals[m][best], _unit(m)),
                 "saving": _q(100 * curve.savings(m)[best], "%")}}
+    notes = list(cfg.notes)
+    sway = info.get("balance", {})
+    if sway.get("mode") == "sway":
+        notes.append(f"two-foot gait: the body sways ±{1e3 * sway['amplitude']:.2f} mm so that the "
+                     "two stance feet can carry it (no moment about the support line; "
+                     f"{sway['iterations']} iterations, residual {sway['residual']:.1e} m g h)")
     return {
         "title": rp.title,
         "hexaleg_version": hexaleg.__version__,
+        "notes": notes,
         "robot": {"name": robot.name, "mass": _q(robot.mass, "kg"), "joints": robot.nj,
                   "legs": list(robot.leg_names), "joint_names": list(names),
                   "joint_classes": {k: list(v) for k, v in robot.joint_classes.items()}},
