@@ -342,4 +342,4 @@ def test_report_for_a_registry_robot(tmp_path, capsys):
     # The caveats are on the page, not only in the terminal: motor figures and the sway.
     assert any("torque limits are off" in n for n in data["notes"])
     assert any(n.startswith("two-foot gait: the body sways") for n in data["notes"])
-    assert html.count('class="note"') == len(data["notes"]) == 2
+    assert html.count("<b>Note:</b>") == len(data["notes"]) == 2
