@@ -11,7 +11,30 @@ from hexaleg.cli import main
 def test_help_lists_subcommands(capsys):
     assert main([]) == 0
     out = capsys.readouterr().out
-    assert "robot" in out
+    for name in ("robot", "motors", "gait", "paper", "report", "view", "sweep"):
+        assert f"    {name} " in out, name
+
+
+def test_motors_lists_the_catalogue_with_derived_constants(capsys):
+    assert main(["motors"]) == 0
+    out = capsys.readouterr().out
+    ax18 = next(line for line in out.splitlines() if line.startswith("AX-18A"))
+    # k_t·G = 1.8 N·m / 2.2 A and c = R/(k_t G)² = (12/2.2)/(1.8/2.2)² W/(N·m)² (datasheet).
+    assert "0.818" in ax18 and "8.148" in ax18
+
+
+def test_gait_summary_reports_margin_and_joint_ranges(capsys):
+    assert main(["gait"]) == 0
+    out = capsys.readouterr().out
+    assert "groups: LF RM LH | RF LM RH" in out
+    assert "stance feet per sample: min 3" in out
+    assert "LF_femur" in out
+
+
+def test_unknown_robot_lists_the_registry(capsys):
+    assert main(["gait", "--robot", "atlas"]) == 2
+    err = capsys.readouterr().err
+    assert "unknown robot 'atlas'" in err and "solo12" in err and "Traceback" not in err
 
 
 def test_robot_summary(capsys):
