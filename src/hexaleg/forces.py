@@ -44,6 +44,7 @@ Two solvers share these definitions:
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -342,20 +343,22 @@ def _raise_infeasible(system: StanceSystem, k: int, tau_spring: np.ndarray,
     feet = [system.leg_names[i] for i in np.flatnonzero(system.stance[k])]
     where = f"t = {system.t[k]:.4f} s (sample {k}), stance feet {', '.join(feet) or '(none)'}"
     if contact.torque_limits:
-        relaxed = ContactParams(contact.mu, contact.cone, contact.min_normal_force, False,
-                                contact.regularization)
+        # Without the torque limits: if forces exist then, the limits are what failed.
+        relaxed = dataclasses.replace(contact, torque_limits=False)
         try:
             f = _solve_sample(system, k, tau_spring, "torque_squared",
                               np.ones(system.D.shape[1]), relaxed)
         except InfeasibleForcesError:
-            pass
-        else:
+            f = None
+        if f is not None:
             tau = system.b_joint[k] - system.D[k] @ f - tau_spring[k]
             j = int(np.argmax(np.abs(tau) - system.tau_max))
-            raise TorqueLimitError(
-                f"motor torque limit exceeded at {where}: joint {system.joint_names[j]} needs at "
-                f"least |τ| = {abs(tau[j]):.4f} N·m (limit {system.tau_max[j]:.4f} N·m) with the "
-                f"least-torque feasible forces; solver status {status}")
+            if abs(tau[j]) > system.tau_max[j]:
+                raise TorqueLimitError(
+                    f"motor torque limit exceeded at {where}: joint {system.joint_names[j]} "
+                    f"needs |τ| = {abs(tau[j]):.4f} N·m (limit {system.tau_max[j]:.4f} N·m) "
+                    f"with the friction-feasible forces of least Σ τ², and no forces keep every "
+                    f"joint within its limit; solver status {status}")
     raise InfeasibleForcesError(
         f"no contact forces satisfy the dynamics at {where} with friction μ = {contact.mu} "
         f"({contact.cone}) and normal force ≥ {contact.min_normal_force} N; solver status {status}")
