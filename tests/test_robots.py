@@ -310,8 +310,9 @@ def test_own_robot_from_toml(tmp_path):
         load(str(tmp_path / "nolegs.toml"))
 
 
-def test_report_for_a_registry_robot(tmp_path, capsys):
-    """'hexaleg report --robot solo12': the trot from the description (the file's [gait] keys
+@pytest.mark.parametrize("name", QUADRUPEDS)
+def test_report_for_a_registry_robot(name, tmp_path, capsys):
+    """'hexaleg report --robot NAME': the trot from the description (the file's [gait] keys
     on top), knee springs and stiffness curve, torque limits off with a note, all files."""
     import json
 
@@ -319,12 +320,13 @@ def test_report_for_a_registry_robot(tmp_path, capsys):
 
     config = tmp_path / "report.toml"
     config.write_text("[gait]\nsamples = 40\n[report]\nstiffness_points = 3\npaper_samples = 8\n")
-    assert main(["report", "--robot", "solo12", "--config", str(config),
+    assert main(["report", "--robot", name, "--config", str(config),
                  "--out", str(tmp_path / "out")]) == 0
     out = capsys.readouterr().out
-    assert "note: Solo-12" in out and "torque limits are off" in out and "AX-18A" in out
+    assert f"note: {description(name).title}" in out
+    assert "torque limits are off" in out and "AX-18A" in out
     data = json.loads((tmp_path / "out" / "report.json").read_text())
-    desc, robot = description("solo12"), robot_of("solo12")
+    desc, robot = description(name), robot_of(name)
     knees = list(robot.joints(desc.spring_class))
     assert data["gait"]["groups"] == [list(g) for g in TROT] and data["gait"]["samples"] == 40
     assert data["gait"]["period"]["value"] == desc.gait.period
@@ -332,7 +334,7 @@ def test_report_for_a_registry_robot(tmp_path, capsys):
     assert data["contact"]["torque_limits"] is False
     assert sorted(data["springs"]["joints"]) == sorted(knees)
     assert data["stiffness_curve"]["joints"] == knees and not data["stiffness_curve"]["infeasible"]
-    assert data["title"].startswith("Solo-12")
+    assert data["title"].startswith(desc.title)
     # The stance feet carry the weight on average over the cycle.
     weight = data["forces"]["weight"]["value"]
     assert data["forces"]["peak_total_normal_force"]["value"] > weight
