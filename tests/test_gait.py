@@ -475,3 +475,12 @@ def test_transform_errors(robot):
         transform_motion(robot, end="ball")
     with pytest.raises(InvalidParameterError, match="base_height"):
         transform_motion(robot, base_height=-0.1)
+
+
+def test_updated_puts_a_tables_keys_over_a_gait():
+    base = GaitParams(period=0.5, stride_length=0.08, samples=400)
+    new = base.updated({"period": 2, "step_height": 0.02})
+    assert (new.period, new.step_height) == (2.0, 0.02)
+    assert (new.stride_length, new.samples) == (0.08, 400)  # untouched keys keep base's values
+    with pytest.raises(UnknownNameError, match="'periode'"):
+        base.updated({"periode": 1.0})

@@ -81,21 +81,16 @@ def _add_gait(sub: argparse._SubParsersAction) -> None:
 
 
 def _run_gait(args: argparse.Namespace) -> int:
-    import dataclasses
-
     from hexaleg.config import load_toml
-    from hexaleg.gait import GaitParams, gait_summary, tripod_gait
-    from hexaleg.robots import RobotDescription, description
+    from hexaleg.gait import gait_summary, tripod_gait
+    from hexaleg.robots import description
 
-    desc = (RobotDescription.from_toml(args.robot) if args.robot.endswith(".toml")
-            else description(args.robot))
+    desc = description(args.robot)
     robot = desc.load()
     gait = desc.gait
     if args.config:  # the file's keys over the robot's gait
         table = load_toml(args.config)
-        given = GaitParams.from_toml(args.config)
-        gait = dataclasses.replace(gait, **{k: getattr(given, k)
-                                            for k in table.get("gait", table)})
+        gait = gait.updated(table.get("gait", table), f"{args.config} [gait]")
     print(gait_summary(robot, tripod_gait(robot, gait)))
     return 0
 
@@ -177,12 +172,11 @@ def _add_report(sub: argparse._SubParsersAction) -> None:
 def _run_report(args: argparse.Namespace) -> int:
     from hexaleg.config import load_toml
     from hexaleg.report import ReportConfig, write_report
-    from hexaleg.robots import RobotDescription, description
+    from hexaleg.robots import description
 
     robot = None
     if args.robot is not None:
-        desc = (RobotDescription.from_toml(args.robot) if args.robot.endswith(".toml")
-                else description(args.robot))
+        desc = description(args.robot)
         robot = desc.load()
         data = load_toml(args.config) if args.config else {}
         config = ReportConfig.for_robot(desc, robot, data, args.config or "config")

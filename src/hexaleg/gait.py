@@ -238,6 +238,16 @@ class GaitParams:
         table = data.get("gait", data)
         return from_mapping(cls, table, f"{source} [gait]" if "gait" in data else str(source))
 
+    def updated(self, table: Mapping[str, Any], where: str = "gait") -> GaitParams:
+        """This gait with the keys of a TOML table on top (e.g. a file's ``[gait]`` over a
+        robot's own gait); keys the table does not set keep this gait's values.
+
+        Raises:
+            UnknownNameError, ConfigError, InvalidParameterError: as :meth:`from_toml`.
+        """
+        given = from_mapping(type(self), table, where)
+        return dataclasses.replace(self, **{k: getattr(given, k) for k in table})
+
 
 @dataclass(frozen=True)
 class Sinusoid:

@@ -271,8 +271,7 @@ class ReportConfig:
         data = data or {}
         config = cls.from_mapping(data, where)
         given = {t: data.get(t, {}) for t in ("gait", "springs", "report", "contact")}
-        gait = dataclasses.replace(desc.gait,
-                                   **{k: getattr(config.gait, k) for k in given["gait"]})
+        gait = desc.gait.updated(given["gait"], f"{where} [gait]")
         springs = config.springs
         if isinstance(springs, SpringDesign) and "joints" not in given["springs"]:
             springs = dataclasses.replace(springs, joints=desc.spring_class)

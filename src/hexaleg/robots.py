@@ -337,17 +337,21 @@ DEFAULT_ROBOT = "hexaleg"
 
 
 def description(name: str = DEFAULT_ROBOT) -> RobotDescription:
-    """The registered description called ``name``.
+    """The registered description called ``name``, or one read from a TOML file.
 
     Args:
-        name: A key of :data:`DESCRIPTIONS`.
+        name: A key of :data:`DESCRIPTIONS`, or a path ending in ``.toml``
+            (:meth:`RobotDescription.from_toml`).
 
     Returns:
         The description.
 
     Raises:
         UnknownNameError: no such robot; the message lists the registered names.
+        ConfigError: a TOML description cannot be read or is malformed.
     """
+    if isinstance(name, str) and name.endswith(".toml"):
+        return RobotDescription.from_toml(name)
     if not isinstance(name, str) or name not in DESCRIPTIONS:
         raise UnknownNameError("robot", name, DESCRIPTIONS)
     return DESCRIPTIONS[name]
@@ -368,6 +372,4 @@ def load(name: str = DEFAULT_ROBOT) -> Robot:
         RobotModelError: the robot's files cannot be found or loaded.
         ConfigError: a TOML description cannot be read or is malformed.
     """
-    if isinstance(name, str) and name.endswith(".toml"):
-        return RobotDescription.from_toml(name).load()
     return description(name).load()
