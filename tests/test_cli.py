@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 
@@ -55,3 +56,16 @@ def test_console_script_runs():
     out = subprocess.run([sys.executable, "-m", "hexaleg.cli", "--version"], capture_output=True,
                          text=True, check=True).stdout
     assert out.startswith("hexaleg ")
+
+
+def test_closed_pipe_is_quiet_and_reports_sigpipe():
+    """`hexaleg robot | head -n 2`: the reader leaves early; no traceback, status 128+SIGPIPE."""
+    read_end, write_end = os.pipe()
+    os.close(read_end)  # the reader is gone before the first byte is written: deterministic
+    try:
+        proc = subprocess.run([sys.executable, "-m", "hexaleg.cli", "robot"], stdout=write_end,
+                              stderr=subprocess.PIPE, text=True, timeout=120)
+    finally:
+        os.close(write_end)
+    assert proc.stderr == ""
+    assert proc.returncode == 141

@@ -7,6 +7,7 @@ from :class:`~hexaleg.errors.HexalegError` are printed as one line and exit with
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from collections.abc import Sequence
 
@@ -271,7 +272,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``hexaleg`` console script.
 
     Returns:
-        Exit status: 0 on success, 2 on a hexaleg error (message on stderr).
+        Exit status: 0 on success, 2 on a hexaleg error (message on stderr), 141 when the
+        reader of standard output went away early (``hexaleg robot | head``), as a tool killed
+        by SIGPIPE would report, without a traceback.
     """
     parser = build_parser()
     args = parser.parse_args(argv)
@@ -279,10 +282,18 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.print_help()
         return 0
     try:
-        return int(args.func(args) or 0)
+        status = int(args.func(args) or 0)
+        sys.stdout.flush()  # a closed pipe fails here, inside the handler, not at shutdown
+        return status
     except HexalegError as e:
         print(f"hexaleg {args.command}: error: {e}", file=sys.stderr)
         return 2
+    except BrokenPipeError:
+        # Point stdout at /dev/null so the interpreter's final flush does not fail again.
+        # Recipe from the Python docs, "Note on SIGPIPE" in the signal module.
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 128 + 13  # 128 + SIGPIPE, what a shell reports for `cat big | head`
 
 
 if __name__ == "__main__":
