@@ -217,13 +217,7 @@ class Robot:
         Raises:
             UnknownNameError: ``geometry`` is neither; or a shape is not a box, sphere or cylinder.
         """
-        models = {"visual": self.visual_model, "collision": self.collision_model}
-        if geometry not in models:
-            raise UnknownNameError("geometry", geometry, models)
-        gmodel = models[geometry]
-        gdata = pin.GeometryData(gmodel)
-        pin.updateGeometryPlacements(self.model, self.data, gmodel, gdata,
-                                     np.asarray(q, dtype=float))
+        gmodel, gdata = self._geometry_at(q, geometry)
         base = self.data.oMi[1]
         extent = 0.0
         for k, obj in enumerate(gmodel.geometryObjects):
@@ -247,6 +241,89 @@ class Robot:
                 raise UnknownNameError("shape for max_extent", kind, ("Box", "Cylinder", "Sphere"))
             extent = max(extent, d)
         return extent
+
+    def lowest_point(self, q: np.ndarray, geometry: str = "visual",
+                     ignore: Sequence[str] = ()) -> tuple[float, str]:
+        """Lowest world height of any geometry at ``q``, and the geometry object it belongs to.
+
+        Exact for the primitive shapes the built-in robot uses: the support point in −z of a
+        shape with centre ``c`` and rotation ``R`` lies at ``c_z − s``, with ``s = r`` for a
+        sphere, ``s = Σ_i |R_zi| h_i`` for a box of half-sides ``h``, and
+        ``s = h |R_zz| + r sqrt(1 − R_zz²)`` for a cylinder of half-length ``h`` along its z axis.
+
+        Args:
+            q: Configuration, shape (nq,) (the base placement included).
+            geometry: ``"visual"`` or ``"collision"``.
+            ignore: Names of links whose geometry is left out (e.g. the feet, whose contact is
+                the foot point rather than the ball around it).
+
+        Returns:
+            ``(z, name)``: height in m (negative: below the ground plane z = 0) and the geometry
+            object's name.
+
+        Raises:
+            UnknownNameError: ``geometry`` is neither; or a shape is not a box, sphere or cylinder.
+        """
+        z, names = self.lowest_points(np.asarray(q, dtype=float)[None], geometry, ignore)
+        return float(z[0]), names[0]
+
+    def lowest_points(self, q: np.ndarray, geometry: str = "visual",
+                      ignore: Sequence[str] = ()) -> tuple[np.ndarray, list[str]]:
+        """:meth:`lowest_point` along a trajectory ``q`` of shape (T, nq).
+
+        Returns:
+            Heights (T,), m, and the name of the lowest geometry object at each sample.
+        """
+        models = {"visual": self.visual_model, "collision": self.collision_model}
+        if geometry not in models:
+            raise UnknownNameError("geometry", geometry, models)
+        gmodel = models[geometry]
+        objects = [(k, obj) for k, obj in enumerate(gmodel.geometryObjects)
+                   if self.model.frames[obj.parentFrame].name not in ignore]
+        if not objects:
+            raise UnknownNameError("geometry left after ignore", "(none)",
+                                   sorted({self.model.frames[o.parentFrame].name
+                                           for o in gmodel.geometryObjects}))
+        # Per object: half-extents along its local axes for |R_z·|, a rim radius, a ball radius.
+        n_obj = len(objects)
+        half, rim, ball = np.zeros((n_obj, 3)), np.zeros(n_obj), np.zeros(n_obj)
+        for n, (_, obj) in enumerate(objects):
+            kind = type(obj.geometry).__name__
+            if kind == "Sphere":
+                ball[n] = obj.geometry.radius
+            elif kind == "Box":
+                half[n] = obj.geometry.halfSide
+            elif kind == "Cylinder":
+                half[n, 2], rim[n] = obj.geometry.halfLength, obj.geometry.radius
+            else:
+                raise UnknownNameError("shape for lowest_point", kind,
+                                       ("Box", "Cylinder", "Sphere"))
+        gdata = pin.GeometryData(gmodel)
+        q = np.asarray(q, dtype=float)
+        lowest, names = np.empty(len(q)), []
+        for t, qt in enumerate(q):
+            pin.updateGeometryPlacements(self.model, self.data, gmodel, gdata, qt)
+            placements = [gdata.oMg[k] for k, _ in objects]
+            c_z = np.array([m.translation[2] for m in placements])
+            r_z = np.array([m.rotation[2] for m in placements])  # (n, 3): rows R_z·
+            z = c_z - ball - np.sum(np.abs(r_z) * half, axis=1) \
+                - rim * np.sqrt(np.maximum(0.0, 1.0 - r_z[:, 2] ** 2))
+            n = int(np.argmin(z))
+            lowest[t] = z[n]
+            names.append(objects[n][1].name)
+        return lowest, names
+
+    def _geometry_at(self, q: np.ndarray, geometry: str
+                     ) -> tuple[pin.GeometryModel, pin.GeometryData]:
+        """The visual or collision model and its placements at ``q`` (``self.data`` updated)."""
+        models = {"visual": self.visual_model, "collision": self.collision_model}
+        if geometry not in models:
+            raise UnknownNameError("geometry", geometry, models)
+        gmodel = models[geometry]
+        gdata = pin.GeometryData(gmodel)
+        pin.updateGeometryPlacements(self.model, self.data, gmodel, gdata,
+                                     np.asarray(q, dtype=float))
+        return gmodel, gdata
 
     def summary(self) -> str:
         """A human-readable summary: links and masses, joints and limits, legs, poses."""

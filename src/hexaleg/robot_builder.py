@@ -230,11 +230,14 @@ def build_urdf(params: RobotParams) -> str:
                 # Uniform rod about its CoM (assumed), plus a small long-axis term.
                 i_t = mt * lt**2 / 12
                 _inertial(el, mt, (tibia["com"], 0, 0), mt * tibia["radius"] ** 2 / 2, i_t, i_t)
-                _cylinder_along_x(el, "visual", lt, tibia["radius"], "frame")
+                # The rod ends at the foot ball's centre, so the ball caps it: a flat end at the
+                # tip would stick out below the foot point whenever the tibia is tilted.
+                rod = lt - tibia["foot_radius"]
+                _cylinder_along_x(el, "visual", rod, tibia["radius"], "frame")
                 # The shell on the tibia's +z side, which faces outward whenever the tibia points
                 # down (stand, sphere): the pieces that close the ball in `sphere`.
                 _shell(el, lt * 0.9, lt / 2, tibia["radius"], tibia)
-                _cylinder_along_x(el, "collision", lt, tibia["radius"])
+                _cylinder_along_x(el, "collision", rod, tibia["radius"])
             parent = link
         # Foot: a fixed frame at the tibia tip; the ball's bottom touches the foot point when the
         # tibia points down.
