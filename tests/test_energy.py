@@ -61,6 +61,24 @@ def test_joule_closed_form() -> None:
     assert res["duration"] == pytest.approx(period)
 
 
+def test_motion_with_both_ends_uses_the_trapezoidal_rule() -> None:
+    """τ = t, q̇ = 1 on [0, 1] with both ends stored: ∫ τ q̇ = 1/2 and ∫ τ² = 1/3 + dt²/6
+    (trapezoid on t²), RMS over the 1 s duration; Σ x dt would add dt/2 to the work."""
+    t = np.linspace(0.0, 1.0, 101)
+    dt = t[1] - t[0]
+    m = ideal()
+    res = metrics(t, np.ones_like(t), dt, m, periodic=False)
+    assert res["duration"] == pytest.approx(1.0, abs=1e-15)
+    assert res["total"]["net_work"] == pytest.approx(0.5, abs=1e-14)
+    joule = m.joule_coefficient * (1 / 3 + dt**2 / 6)
+    assert res["total"]["joule"] == pytest.approx(joule, rel=1e-12)
+    assert res["total"]["rms_torque"] == pytest.approx(math.sqrt(1 / 3 + dt**2 / 6), rel=1e-12)
+    assert res["total"]["mean_abs_torque"] == pytest.approx(0.5, rel=1e-12)
+    assert metrics(t, np.ones_like(t), dt, m)["total"]["net_work"] == pytest.approx(0.5 + dt / 2)
+    with pytest.raises(InvalidParameterError, match="T ≥ 2"):
+        metrics(t[:1], t[:1], dt, m, periodic=False)
+
+
 def test_electrical_regen_is_mechanical_plus_joule() -> None:
     rng = np.random.default_rng(3)
     tau, qdot = rng.normal(size=(300, 18)), rng.normal(size=(300, 18)) * 4

@@ -89,17 +89,23 @@ def epsilon(energy: float, inertia: float, angle: float) -> float:
 
 def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor, *,
             mass: float | None = None, distance: float | None = None,
-            joint_names: Sequence[str] | None = None) -> dict[str, Any]:
+            joint_names: Sequence[str] | None = None, periodic: bool = True) -> dict[str, Any]:
     """Energy and torque metrics of one cycle, per joint and in total.
+
+    Integrals use the trapezoidal rule: on a periodic grid (the endpoint not stored) that is
+    ``Σ x dt``; on a motion that stores both ends (``periodic=False``, e.g. stand → sphere) the
+    two end samples weigh ``dt / 2``. Means (RMS, mean |τ|) are the integrals over the duration.
 
     Args:
         tau: Motor (joint) torques, shape (T, n) or (T,) for one joint, N·m.
         qdot: Joint speeds, the shape of ``tau``, rad/s.
-        dt: Sample spacing, s, > 0 (the grid excludes the endpoint).
+        dt: Sample spacing, s, > 0.
         motor: The servo model of every joint.
         mass: Robot mass, kg, > 0; with ``distance`` > 0 adds the cost of transport.
         distance: Distance travelled in the cycle, m, ≥ 0 (0: in place, no cost of transport).
         joint_names: n names; default ``j0 … j{n-1}``.
+        periodic: Whether the samples are one period without its endpoint (duration ``T dt``)
+            or a motion with both ends stored (duration ``(T − 1) dt``, T ≥ 2).
 
     Returns:
         A dict with
@@ -132,29 +138,40 @@ def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor, *,
     if len(names) != n:
         raise InvalidParameterError("joint_names", names, f"{n} names, one per column of tau")
 
+    weight = np.full(t.shape[0], dt)  # quadrature weights (T,), s
+    if not periodic:
+        if t.shape[0] < 2:
+            raise InvalidParameterError("tau", f"{t.shape[0]} sample",
+                                        "T ≥ 2 samples for a motion with both ends stored")
+        weight[[0, -1]] = dt / 2
+
+    def integral(x: np.ndarray) -> np.ndarray:
+        return weight @ x
+
+    duration = float(weight.sum())
     p = t * w
     pe_regen = motor.electrical_power(t, w, regeneration=True)
     pe_noregen = np.maximum(pe_regen, 0.0)
     joint = {
-        "net_work": p.sum(0) * dt,
-        "positive_work": np.maximum(p, 0.0).sum(0) * dt,
-        "absolute_work": np.abs(p).sum(0) * dt,
-        "joule": motor.joule_power(t).sum(0) * dt,
-        "electrical_regen": pe_regen.sum(0) * dt,
-        "electrical_noregen": pe_noregen.sum(0) * dt,
+        "net_work": integral(p),
+        "positive_work": integral(np.maximum(p, 0.0)),
+        "absolute_work": integral(np.abs(p)),
+        "joule": integral(motor.joule_power(t)),
+        "electrical_regen": integral(pe_regen),
+        "electrical_noregen": integral(pe_noregen),
         "peak_torque": np.abs(t).max(0),
-        "rms_torque": np.sqrt((t**2).mean(0)),
-        "mean_abs_torque": np.abs(t).mean(0),
+        "rms_torque": np.sqrt(integral(t**2) / duration),
+        "mean_abs_torque": integral(np.abs(t)) / duration,
     }
     joint["electrical"] = joint["electrical_regen" if motor.regeneration else "electrical_noregen"]
     total = {key: float(joint[key].sum()) for key in ENERGY_KEYS}
-    total["electrical_bus"] = float(np.maximum(pe_regen.sum(1), 0.0).sum() * dt)
+    total["electrical_bus"] = float(integral(np.maximum(pe_regen.sum(1), 0.0)))
     total["peak_torque"] = float(np.abs(t).max())
-    total["rms_torque"] = float(np.sqrt((t**2).mean()))
-    total["mean_abs_torque"] = float(np.abs(t).mean())
+    total["rms_torque"] = float(np.sqrt(integral(t**2).sum() / (duration * n)))
+    total["mean_abs_torque"] = float(integral(np.abs(t)).sum() / (duration * n))
 
     result: dict[str, Any] = {
-        "joint_names": names, "motor": motor.name, "duration": t.shape[0] * dt,
+        "joint_names": names, "motor": motor.name, "duration": duration,
         "joint": {key: joint[key] for key in (*ENERGY_KEYS, *TORQUE_KEYS)}, "total": total,
     }
     if mass is not None:

@@ -58,7 +58,7 @@ import numpy as np
 
 from hexaleg.analysis import Prepared, prepare
 from hexaleg.config import from_mapping, load_toml
-from hexaleg.energy import ENERGY_KEYS, NO_SAVING_KEYS, TORQUE_KEYS, metrics, savings
+from hexaleg.energy import ENERGY_KEYS, NO_SAVING_KEYS, TORQUE_KEYS, savings
 from hexaleg.errors import (
     ConfigError,
     InfeasibleForcesError,
@@ -575,14 +575,7 @@ class Evaluator:
         self.evaluations += 1
         tau_s = self.spring_torques(groups, design)
         _, tau_m, _ = self.prepared.solve(tau_s, self.run.objective)
-        return self._metrics(tau_m)
-
-    def _metrics(self, tau_motor: np.ndarray) -> dict[str, Any]:
-        m = self.motion
-        return metrics(tau_motor, self.prepared.qdot, m.dt, self.prepared.motor,
-                       mass=self.robot.mass if m.distance > 0 else None,
-                       distance=m.distance if m.distance > 0 else None,
-                       joint_names=self.robot.joint_names)
+        return self.prepared.metrics(tau_m)
 
     def value(self, groups: Mapping[str, Sequence[str]], design: Design,
               metric: str = DEFAULT_METRIC) -> float:
