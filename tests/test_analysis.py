@@ -159,3 +159,38 @@ def test_bad_input(prepared, robot):
         DeadZoneSpring(stiffness=1.0, theta_minus=0.2, theta_plus=0.1)
     with pytest.raises(hexaleg.HexalegError, match="motor"):
         prepare(robot, prepared.motion, motor="NoSuchServo")
+
+
+def test_transform_feet_carry_the_sit_then_the_ground_carries_the_body(robot):
+    """stand → sphere: while sitting, Newton–Euler over the six feet; while folding (the body on
+    the ground, ``Motion.supported``) no foot is loaded, the motors drive the legs alone
+    (τ_m + τ_s = RNEA joint rows) and the ground's reaction at rest is the robot's weight. Over
+    the whole motion (at rest at both ends, the support does no work: the base does not move
+    while it carries) the joints' work equals the rise of potential energy m g Δz_com."""
+    from hexaleg.gait import transform_motion
+
+    motion = transform_motion(robot, samples=401)
+    springs = {"LF_femur": DeadZoneSpring(stiffness=0.5, theta_k=0.1)}
+    result = analyze(robot, motion, springs)
+    data = robot.model.createData()
+    sit, fold = ~motion.supported, motion.supported
+    g = robot.model.gravity.linear
+    for k in np.flatnonzero(sit):
+        pin.centerOfMass(robot.model, data, motion.q[k], motion.v[k], motion.a[k])
+        expected = robot.mass * (data.acom[0] - g)
+        assert np.abs(result.forces[k].sum(axis=0) - expected).max() <= 1e-8 * robot.mass * 9.81
+    assert result.forces[0, :, 2].sum() == pytest.approx(robot.mass * 9.81, rel=1e-12)
+    assert np.abs(result.forces[fold]).max() == 0.0
+    rnea = np.array([pin.rnea(robot.model, data, q, v, a)
+                     for q, v, a in zip(motion.q, motion.v, motion.a, strict=True)])
+    np.testing.assert_allclose((result.tau_motor + result.tau_spring)[fold], rnea[fold, 6:],
+                               rtol=0, atol=1e-12)
+    assert rnea[-1, :3] == pytest.approx([0.0, 0.0, robot.mass * 9.81], abs=1e-12)
+    work = ((result.tau_motor + result.tau_spring) * result.qdot).sum() * motion.dt
+    z = [pin.centerOfMass(robot.model, data, motion.q[k])[2] for k in (0, -1)]
+    assert work == pytest.approx(robot.mass * 9.81 * (z[1] - z[0]), rel=1e-6)
+    assert robot.mass * 9.81 * (z[1] - z[0]) > 0.05  # folding lifts the legs: not vacuous
+    # The spring is conservative: its work is minus the change of its stored energy.
+    spring_work = (result.tau_spring * result.qdot).sum() * motion.dt
+    stored = result.spring_energy[-1].sum() - result.spring_energy[0].sum()
+    assert spring_work == pytest.approx(-stored, rel=1e-6) and abs(stored) > 0.1

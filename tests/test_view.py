@@ -278,7 +278,7 @@ def test_real_gait_arrows_are_the_analysis_forces(robot, tmp_path):
 
 def test_transformation_ends_in_the_sphere_pose(robot, tmp_path):
     """A non-periodic motion (stand → sphere, 2 s) has keyframes up to its last sample, where
-    the body shells sit as in the SRDF ``sphere`` pose (base held at the stand height)."""
+    the body shells sit as in the SRDF ``sphere`` pose (the body resting on the ground)."""
     motion = transform_motion(robot)
     path = export_html(robot, motion, tmp_path / "t.html", fps=10)
     clips = _clips(_scene(path.read_text()))

@@ -12,7 +12,9 @@ Everything that does not depend on the springs — RNEA, Jacobians, the stance s
 quadratic program's gains — is computed once by :func:`prepare`; :meth:`Prepared.evaluate` then
 only evaluates the spring torques and re-solves the forces (:mod:`hexaleg.forces`). A motion with
 ``fixed_base=True`` (the paper's single joint) has no contacts: the fixture carries the base rows
-and ``τ_m = b_joint − τ_s``.
+and ``τ_m = b_joint − τ_s``. The same holds at the ``Motion.supported`` samples of any motion (the
+body resting on the ground while the legs fold): the support supplies ``b_base``, so the base
+rows there read 0 = 0, no foot carries load and ``τ_m = b_joint − τ_s``.
 """
 
 from __future__ import annotations
@@ -191,17 +193,20 @@ class Prepared:
                                       self.weights(objective), self.contact, gains)
         return f.reshape(T, n_legs, 3), tau, resolved
 
-    def _metrics(self, tau_motor: np.ndarray) -> dict[str, Any]:
+    def metrics(self, tau_motor: np.ndarray) -> dict[str, Any]:
+        """:func:`hexaleg.energy.metrics` of motor torques ``tau_motor`` (T, nj) on this motion
+        (cost of transport when it travels; end samples weighted for a non-periodic motion)."""
         distance = self.motion.distance if self.motion.distance > 0 else None
         return energy.metrics(tau_motor, self.qdot, self.motion.dt, self.motor,
                               mass=self.robot.mass if distance else None, distance=distance,
-                              joint_names=self.robot.joint_names)
+                              joint_names=self.robot.joint_names,
+                              periodic=self.motion.periodic)
 
     def baseline(self, objective: str = "joule") -> dict[str, Any]:
         """Metrics of the motion with no springs, computed once per objective and cached."""
         if objective not in self._baseline:
             _, tau, _ = self.solve(np.zeros_like(self.q), objective)
-            self._baseline[objective] = self._metrics(tau)
+            self._baseline[objective] = self.metrics(tau)
         return self._baseline[objective]
 
     def evaluate(self, springs: SpringsLike = None, objective: str = "joule") -> Analysis:
@@ -224,7 +229,7 @@ class Prepared:
         s = _as_springs(springs)
         tau_s = self.spring_torques(s)
         forces, tau_m, resolved = self.solve(tau_s, objective)
-        metrics = self._metrics(tau_m)
+        metrics = self.metrics(tau_m)
         baseline = self.baseline(objective)
         stored = (s.energies(self.robot, self.motion.q) if len(s)
                   else np.zeros_like(self.q))
@@ -268,7 +273,7 @@ def prepare(robot: Robot, motion: Motion, *, motor: Motor | str | None = None,
     lwa = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
     for k in range(T):
         rnea[k] = pin.rnea(model, data, motion.q[k], motion.v[k], motion.a[k])
-        if motion.fixed_base or not motion.stance[k].any():
+        if motion.supported[k] or not motion.stance[k].any():
             continue
         pin.computeJointJacobians(model, data, motion.q[k])
         pin.updateFramePlacements(model, data)
@@ -283,7 +288,8 @@ def prepare(robot: Robot, motion: Motion, *, motor: Motor | str | None = None,
     # the robot's nominal servo, which the user may be replacing).
     tau_max = np.full(robot.nj, motor.stall_torque)
     system = StanceSystem(stance=motion.stance.astype(bool), A=jt[:, :6], D=jt[:, 6:],
-                          b_base=rnea[:, :6], b_joint=rnea[:, 6:], qdot=motion.v[:, 6:],
+                          b_base=np.where(motion.supported[:, None], 0.0, rnea[:, :6]),
+                          b_joint=rnea[:, 6:], qdot=motion.v[:, 6:],
                           tau_max=tau_max, t=motion.t, leg_names=robot.leg_names,
                           joint_names=robot.joint_names, efficiency=motor.gearbox_efficiency)
     return Prepared(robot=robot, motion=motion, motor=motor, contact=contact,

@@ -9,7 +9,8 @@
   body sway (:mod:`hexaleg.balance`, ``GaitParams.balance``).
 * :func:`joint_motion` — chosen joints follow the paper's sinusoid (eq. 16) on a fixed base; the
   paper's single-joint experiment embedded in the robot.
-* :func:`transform_motion` — from ``stand`` to ``sphere`` with a smooth joint interpolation.
+* :func:`transform_motion` — from ``stand`` to ``sphere``: the body sits down on its feet, then
+  rests on the ground while the legs fold.
 
 All outputs are :class:`~hexaleg.motion.Motion` objects in Pinocchio's conventions: base velocity
 and acceleration in the LOCAL base frame, ``a = dv/dt``.
@@ -763,54 +764,130 @@ def joint_motion(robot: Robot, trajectories: Mapping[str, Sinusoid],
 
 
 def transform_motion(robot: Robot, duration: float = 2.0, samples: int = 1000,
-                     start: str = "stand", end: str = "sphere",
-                     base_height: float | None = None) -> Motion:
-    """The hexapod → sphere transformation: joints from ``start`` to ``end``, base at rest.
+                     start: str = "stand", end: str = "sphere", sit_fraction: float = 0.25,
+                     rest_height: float | None = None) -> Motion:
+    """The hexapod → sphere transformation: sit the body down on the feet, then fold on the ground.
 
-    Every joint moves as q(t) = q₀ + (q₁ − q₀) σ(t / duration) with the :func:`smoothstep` σ,
-    so velocity, acceleration (and jerk) are zero at both ends. "Body resting on the ground" is
-    taken to mean that the body's weight is carried by a support under it, not by the legs: the
-    base does not move and the motion is ``fixed_base`` (the fixture wrench is that support's
-    reaction), no foot is in stance, and the legs only move themselves. The base is held at
-    ``base_height`` above the ground, by default the depth of the lowest foot below the base in
-    ``start`` (0.0913 m for ``stand``), so at t = 0 the feet just touch the ground and they lift
-    off as the legs fold (``info["min_foot_height"]`` reports the lowest foot over the motion).
+    1. **Sit**, ``0 ≤ t < t_s = sit_fraction · duration``: the feet stay where they stand in
+       ``start`` (on the ground, in stance) and carry the body down vertically,
+       h(t) = h₀ + (h_r − h₀) σ(t / t_s), from the standing height h₀ (the lowest foot at z = 0)
+       to the resting height h_r; the leg joints follow from the leg inverse kinematics with
+       exact derivatives, like the gait.
+    2. **Fold**, ``t_s ≤ t ≤ duration``: the body rests on the ground at h_r
+       (``Motion.supported``: the ground carries the base, no foot is loaded) and every joint
+       moves from the seated pose q_s to ``end`` as q = q_s + (q₁ − q_s) σ((t − t_s) / t_f),
+       t_f = duration − t_s.
+
+    σ is the :func:`smoothstep`, so velocities and accelerations are zero at t = 0, on both sides
+    of t_s and at the end: q, v and a are continuous across the phase switch; only the load moves
+    from the feet to the body at t_s, at rest. The resting height h_r is by default where the
+    ``end`` pose rests on its lowest point (for the built-in robot the lower body dome, 0.0835 m
+    below the base, so the body sits 7.8 mm lower than it stands), and no geometry may pass below
+    the ground while the legs fold (checked, exactly for the primitive shapes, at every sample;
+    ``info["clearance"]`` reports the smallest height of any geometry over the fold).
 
     Args:
         robot: The robot.
         duration: Duration, s (> 0).
-        samples: Number of samples including both ends (≥ ``MIN_SAMPLES``).
-        start: Initial pose name.
+        samples: Number of samples including both ends (≥ ``MIN_SAMPLES``, and at least two in
+            each phase).
+        start: Initial pose name; its lowest feet are the stance feet of the sit phase.
         end: Final pose name.
-        base_height: Height of the base above the ground, m; default as described above.
+        sit_fraction: Share of ``duration`` spent sitting down, in (0, 1).
+        rest_height: Height of the base above the ground with the body resting, m, in
+            (0, h₀]; default as described above.
 
     Returns:
         Motion with t = linspace(0, duration, samples), q (T, nq), v (T, nv), a (T, nv),
-        stance (T, n_legs) all False, feet (T, n_legs, 3) world foot positions; ``periodic``
-        False, ``fixed_base`` True, ``period`` = duration.
+        stance (T, n_legs) (the standing feet while sitting, none while folding), supported (T,)
+        (the fold), feet (T, n_legs, 3) world foot positions; ``periodic`` False, ``period`` =
+        duration, ``distance`` 0.
 
     Raises:
         UnknownNameError: a pose name is unknown.
-        InvalidParameterError: bad duration, samples or base height.
+        InvalidParameterError: bad duration, samples, sit fraction or resting height; a geometry
+            would pass below the ground while folding (names it and the time).
+        UnreachableTargetError: a leg cannot keep its foot in place while the body sits.
     """
     _finite("duration", duration, "a finite number > 0 (s)", duration > 0)
     samples = _check_samples(samples)
+    _finite("sit_fraction", sit_fraction, "a number in (0, 1)", 0.0 < sit_fraction < 1.0)
     q0, q1 = robot.pose(start), robot.pose(end)
-    if base_height is None:
-        base_height = -float(robot.foot_positions(q0)[:, 2].min())
-    _finite("base_height", base_height, "a finite number > 0 (m)", base_height > 0)
+    q0[:7] = q1[:7] = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0)
+    stand_feet = robot.foot_positions(q0)  # base at the origin
+    h0 = -float(stand_feet[:, 2].min())
+    q0[2] = h0
+    stand_feet[:, 2] += h0  # world: the lowest feet on the ground z = 0
+    if rest_height is None:
+        rest_height = -robot.lowest_point(q1)[0]
+    _finite("rest_height", rest_height, f"a finite number in (0, {h0:.4f}] m (the {start} "
+            "height: the body sits down on its feet, it cannot rise)",
+            0.0 < rest_height <= h0 + 1e-12)
     t = np.linspace(0.0, duration, samples)
-    sigma, d_sigma, dd_sigma = smoothstep(t / duration)
-    q0[:3], q1[:3] = (0.0, 0.0, base_height), (0.0, 0.0, base_height)
-    q1[3:7] = q0[3:7]
-    delta = pin.difference(robot.model, q0, q1)  # joints only: the base poses are equal
-    q = np.array([pin.integrate(robot.model, q0, sk * delta) for sk in sigma])
-    v = d_sigma[:, None] * delta / duration
-    a = dd_sigma[:, None] * delta / duration**2
-    feet = _feet(robot, q)
-    info = {"source": "transform_motion", "start": start, "end": end,
-            "base_height": base_height, "min_foot_height": float(feet[..., 2].min())}
-    return Motion(t=t, q=q, v=v, a=a, stance=np.zeros((samples, len(robot.legs)), dtype=bool),
-                  feet=feet, period=duration, distance=0.0, periodic=False, fixed_base=True,
-                  info=info)
+    t_sit = sit_fraction * duration
+    sit = t < t_sit
+    n_sit = int(sit.sum())
+    if n_sit < 2 or samples - n_sit < 2:
+        raise InvalidParameterError("samples", samples, f"enough for two samples in each phase "
+                                    f"(sit {n_sit}, fold {samples - n_sit}); raise samples or "
+                                    "bring sit_fraction away from 0 and 1")
+    on_ground = stand_feet[:, 2] < 1e-9
+    nv = robot.model.nv
 
+    # Sit: base (0, 0, h(t)) with identity orientation, so LOCAL = world and the foot's base-frame
+    # position, velocity and acceleration are p − base, −v_base, −a_base.
+    sigma, d_sigma, dd_sigma = smoothstep(np.append(t[sit] / t_sit, 1.0))
+    height = h0 + (rest_height - h0) * sigma
+    q = np.tile(q0, (samples, 1))
+    v, a = np.zeros((samples, nv)), np.zeros((samples, nv))
+    q[:n_sit, 2] = height[:-1]
+    v[:n_sit, 2] = (rest_height - h0) * d_sigma[:-1] / t_sit
+    a[:n_sit, 2] = (rest_height - h0) * dd_sigma[:-1] / t_sit**2
+    seated = q0.copy()
+    seated[2] = rest_height
+    t_ik = np.append(t[sit], t_sit)
+    for i, leg in enumerate(robot.legs):
+        rel = stand_feet[i] - np.column_stack([np.zeros((n_sit + 1, 2)), height])
+        rel_d = -np.column_stack([np.zeros((n_sit + 1, 2)), (rest_height - h0) * d_sigma / t_sit])
+        rel_dd = -np.column_stack([np.zeros((n_sit + 1, 2)),
+                                   (rest_height - h0) * dd_sigma / t_sit**2])
+        q_leg, qd_leg, qdd_leg, _ = leg_ik(robot, leg, rel, rel_d, rel_dd, t=t_ik)
+        q[:n_sit, leg.q_index], v[:n_sit, leg.v_index] = q_leg[:-1], qd_leg[:-1]
+        a[:n_sit, leg.v_index] = qdd_leg[:-1]
+        seated[leg.q_index] = q_leg[-1]
+
+    # Fold: the base rests at rest_height; the joints interpolate from the seated pose to `end`.
+    q1[2] = rest_height
+    delta = pin.difference(robot.model, seated, q1)  # joints only: the base poses are equal
+    t_fold = duration - t_sit
+    sigma, d_sigma, dd_sigma = smoothstep((t[~sit] - t_sit) / t_fold)
+    q[n_sit:] = [pin.integrate(robot.model, seated, sk * delta) for sk in sigma]
+    v[n_sit:] = d_sigma[:, None] * delta / t_fold
+    a[n_sit:] = dd_sigma[:, None] * delta / t_fold**2
+    _check_joint_limits(robot, q, t)
+
+    # The feet are point contacts at the foot frames; the foot balls are drawn around them (a
+    # tilted ball dips r (1 − cos tilt) below its point, microns here), so the feet count by their
+    # points and every other geometry by its exact lowest point.
+    feet = _feet(robot, q)
+    foot_links = [robot.model.frames[leg.foot_frame_id].name for leg in robot.legs]
+    z, names = robot.lowest_points(q[n_sit:], ignore=foot_links)
+    k_body, k_foot = int(np.argmin(z)), int(np.argmin(feet[n_sit:, :, 2].min(axis=1)))
+    foot_z = feet[n_sit + k_foot, :, 2]
+    if foot_z.min() < z[k_body]:
+        clearance, where = float(foot_z.min()), foot_links[int(np.argmin(foot_z))]
+        k_low = n_sit + k_foot
+    else:
+        clearance, where, k_low = float(z[k_body]), names[k_body], n_sit + k_body
+    if clearance < -1e-9:
+        raise InvalidParameterError(
+            "rest_height", f"{rest_height:.4f} m ({where} reaches {-clearance * 1e3:.2f} mm "
+            f"below the ground at t = {t[k_low]:.4f} s while folding)",
+            "a resting height at which no geometry passes below the ground")
+    stance = np.zeros((samples, len(robot.legs)), dtype=bool)
+    stance[:n_sit] = on_ground
+    info = {"source": "transform_motion", "start": start, "end": end, "stand_height": h0,
+            "rest_height": rest_height, "sit_time": t_sit, "clearance": clearance,
+            "clearance_geometry": where, "clearance_t": float(t[k_low])}
+    return Motion(t=t, q=q, v=v, a=a, stance=stance, feet=feet, period=duration,
+                  distance=0.0, periodic=False, fixed_base=False, info=info, supported=~sit)

@@ -36,6 +36,11 @@ class Motion:
         periodic: Whether the motion repeats with ``period`` (up to a base displacement).
         fixed_base: Whether the base is held by a fixture (no base equations; e.g. the paper's
             single-joint case) rather than carried by the feet.
+        supported: Samples at which the base rests on a support that supplies whatever wrench
+            the base equations need — the body lying on the ground while the legs fold — shape
+            (T,), bool. No foot may be in stance at such a sample (the support carries the
+            robot; feet touching it too would make the load sharing indeterminate). ``None``
+            (the default) means every sample when ``fixed_base`` and none otherwise.
         info: Free-form description of how the motion was made (e.g. gait parameters).
     """
 
@@ -50,6 +55,7 @@ class Motion:
     periodic: bool = True
     fixed_base: bool = False
     info: dict[str, Any] = field(default_factory=dict)
+    supported: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         n = self.t.shape[0]
@@ -65,6 +71,23 @@ class Motion:
                 raise InvalidParameterError(f"Motion.{name}", f"NaN/inf at sample {k} "
                                             f"(t = {self.t[k] if k < len(self.t) else '?'})",
                                             "finite values")
+        if self.supported is None:
+            object.__setattr__(self, "supported", np.full(n, bool(self.fixed_base)))
+        supported = np.asarray(self.supported)
+        if supported.shape != (n,) or supported.dtype != bool:
+            raise InvalidParameterError("Motion.supported", f"array of shape {supported.shape}, "
+                                        f"dtype {supported.dtype}",
+                                        f"a bool array of shape ({n},)")
+        if self.fixed_base and not supported.all():
+            raise InvalidParameterError("Motion.supported", "False at some samples of a "
+                                        "fixed-base motion", "all True (a fixture holds the base "
+                                        "throughout) or fixed_base=False")
+        both = supported & np.asarray(self.stance).any(axis=1)
+        if both.any():
+            k = int(np.flatnonzero(both)[0])
+            raise InvalidParameterError("Motion.supported", f"True at sample {k} "
+                                        f"(t = {self.t[k]:.4f} s) where feet are in stance",
+                                        "a supported base with every foot in the air")
 
     @property
     def n_samples(self) -> int:
