@@ -58,6 +58,7 @@ import numpy as np
 
 from hexaleg.analysis import Prepared, prepare
 from hexaleg.config import from_mapping, load_toml
+from hexaleg.design import joint_range
 from hexaleg.energy import ENERGY_KEYS, NO_SAVING_KEYS, TORQUE_KEYS, savings
 from hexaleg.errors import (
     ConfigError,
@@ -504,11 +505,9 @@ class Evaluator:
         self.prepared: Prepared = prepare(self.robot, self.motion, motor=run.motor,
                                           contact=run.contact)
         self.baseline = self.prepared.baseline(run.objective)
-        q = self.prepared.q
-        lo, hi = q.min(axis=0), q.max(axis=0)
-        names = self.robot.joint_names
-        self.centre = {j: float((hi[c] + lo[c]) / 2) for c, j in enumerate(names)}
-        self.half_range = {j: float((hi[c] - lo[c]) / 2) for c, j in enumerate(names)}
+        ranges = {j: joint_range(self.robot, self.motion, j) for j in self.robot.joint_names}
+        self.centre = {j: (lo + hi) / 2 for j, (lo, hi) in ranges.items()}
+        self.half_range = {j: (hi - lo) / 2 for j, (lo, hi) in ranges.items()}
         self.evaluations = 0
         self._basis: OrderedDict[tuple, tuple[np.ndarray, np.ndarray]] = OrderedDict()
 
