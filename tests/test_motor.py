@@ -35,7 +35,7 @@ def ideal(eta: float = 1.0, regeneration: bool = True) -> Motor:
 
 
 def test_catalogue_matches_datasheets() -> None:
-    assert set(CATALOGUE) == set(DATASHEET)
+    assert set(CATALOGUE) == set(DATASHEET) | {"ODRI-4004"}
     for name, (ratio, tau_s, i_s, rpm) in DATASHEET.items():
         m = motor(name)
         assert m.gear_ratio == ratio
@@ -48,6 +48,17 @@ def test_catalogue_matches_datasheets() -> None:
         # Efficiency from the torque-speed line is a physical efficiency.
         assert 0 < m.gearbox_efficiency <= 1
         assert m.gearbox_efficiency == pytest.approx(tau_s * rpm * RPM / (12.0 * i_s))
+
+
+def test_odri_actuator_hand_values() -> None:
+    """Solo-12's module: 2.5 N·m at 12 A through 9 : 1; copper loss (3/2) R_s i² with
+    R_s = 0.23255 Ω; 300 rpm/V at 24 V through 9 : 1."""
+    m = motor("odri-4004")
+    assert m.current(2.5) == pytest.approx(12.0)
+    assert m.joule_power(2.5) == pytest.approx(1.5 * 0.23255 * 12.0**2)
+    assert m.joule_coefficient == pytest.approx(1.5 * 0.23255 / (2.5 / 12) ** 2)
+    assert m.no_load_speed == pytest.approx(800 * 2 * math.pi / 60)
+    assert "open_robot_actuator_hardware" in m.source and "assumed" in m.source
 
 
 def test_ax18a_hand_values() -> None:

@@ -22,8 +22,8 @@ from hexaleg.robots import DESCRIPTIONS, TROT, RobotDescription, description, lo
 
 QUADRUPEDS = ("solo12", "anymal", "go2")
 SAMPLES = 200
-# The motor catalogue holds hexaleg-sized servos (AX-18A stall torque 1.8 N·m); the quadrupeds'
-# torques are the physics under test, not a servo's limit.
+# The catalogue's actuators are hexaleg-sized servos and Solo-12's module (2.5 N·m at 12 A); the
+# quadrupeds' torques are the physics under test, not an actuator's limit.
 NO_LIMITS = ContactParams(torque_limits=False)
 
 _cache: dict[str, hexaleg.Robot] = {}
@@ -313,7 +313,9 @@ def test_own_robot_from_toml(tmp_path):
 @pytest.mark.parametrize("name", QUADRUPEDS)
 def test_report_for_a_registry_robot(name, tmp_path, capsys):
     """'hexaleg report --robot NAME': the trot from the description (the file's [gait] keys
-    on top), knee springs and stiffness curve, torque limits off with a note, all files."""
+    on top), knee springs and stiffness curve, all files; Solo-12 with its own actuator (ODRI
+    module) and torque limits on, the others with the default servo's figures, torque limits off
+    and a note saying so."""
     import json
 
     from hexaleg.cli import main
@@ -323,15 +325,18 @@ def test_report_for_a_registry_robot(name, tmp_path, capsys):
     assert main(["report", "--robot", name, "--config", str(config),
                  "--out", str(tmp_path / "out")]) == 0
     out = capsys.readouterr().out
-    assert f"note: {description(name).title}" in out
-    assert "torque limits are off" in out and "AX-18A" in out
+    own = description(name).motor is not None
+    assert own == (name == "solo12")
+    assert (f"note: {description(name).title}" in out) != own
+    assert ("torque limits are off" in out and "AX-18A" in out) != own
     data = json.loads((tmp_path / "out" / "report.json").read_text())
+    assert data["motor"]["name"] == ("ODRI-4004" if own else "AX-18A")
     desc, robot = description(name), robot_of(name)
     knees = list(robot.joints(desc.spring_class))
     assert data["gait"]["groups"] == [list(g) for g in TROT] and data["gait"]["samples"] == 40
     assert data["gait"]["period"]["value"] == desc.gait.period
     assert data["gait"]["min_stance_feet"] == 2
-    assert data["contact"]["torque_limits"] is False
+    assert data["contact"]["torque_limits"] is own
     assert sorted(data["springs"]["joints"]) == sorted(knees)
     assert data["stiffness_curve"]["joints"] == knees and not data["stiffness_curve"]["infeasible"]
     assert data["title"].startswith(desc.title)
@@ -342,6 +347,13 @@ def test_report_for_a_registry_robot(name, tmp_path, capsys):
     html = (tmp_path / "out" / "report.html").read_text()
     assert len(html) > 10_000
     # The caveats are on the page, not only in the terminal: motor figures and the sway.
-    assert any("torque limits are off" in n for n in data["notes"])
+    assert any("torque limits are off" in n for n in data["notes"]) != own
     assert any(n.startswith("two-foot gait: the body sways") for n in data["notes"])
-    assert html.count("<b>Note:</b>") == len(data["notes"]) == 2
+    assert html.count("<b>Note:</b>") == len(data["notes"]) == (1 if own else 2)
+
+
+def test_a_description_names_a_catalogue_actuator(tmp_path):
+    assert description("solo12").motor == "ODRI-4004" and description("hexaleg").motor == "AX-18A"
+    assert description("go2").motor is None
+    with pytest.raises(UnknownNameError, match=r"'T-Motor'.*ODRI-4004"):
+        dataclasses.replace(description("solo12"), motor="T-Motor")

@@ -20,6 +20,12 @@ model reproduces the stall current exactly), ``R = V / I_stall`` (includes the d
 gearbox efficiency from the ideal DC-motor torque–speed line, ``η = τ_stall ω_no_load /
 (V I_stall)``. These are crude defaults; replace them with identified values where available
 (:func:`motor_from_mapping` accepts a catalogue ``base`` plus overrides).
+
+One brushless actuator is in the catalogue too, the ODRI module that drives Solo-12 (T-Motor
+Antigravity 4004 300 kV, 9 : 1 two-stage timing belt): in the rotor (dq) frame a field-oriented
+brushless motor is this DC model with ``i`` the q-axis current, and the copper loss of a star
+winding of phase resistance ``R_s`` is ``(3/2) R_s i²`` (amplitude-invariant currents), so
+``R = (3/2) R_s`` — see :func:`odri_actuator` for the figures and what is assumed.
 """
 
 from __future__ import annotations
@@ -220,6 +226,28 @@ def _robotis(name: str, url: str, **figures: float) -> Motor:
                                        "(stall and no-load figures at 12 V)", **figures)
 
 
+def odri_actuator() -> Motor:
+    """The Open Dynamic Robot Initiative actuator module v1 of Solo-12 (Grimminger et al.,
+    "An Open Torque-Controlled Modular Robot Architecture for Legged Locomotion Research",
+    IEEE RA-L 5(2), 2020).
+
+    Figures from the module's documentation (open-dynamic-robot-initiative,
+    open_robot_actuator_hardware, "Brushless Actuator Module v1"): gear ratio 9 (3 : 1 × 3 : 1),
+    2.5 N·m at the output at 12 A (so ``k_t G = 2.5 / 12`` N·m/A, belt losses included, as for
+    the servos' stall figures), phase resistance ``R_s`` = 0.23255 Ω identified with TI
+    Motorware, motor 300 rpm/V. Assumed: the 12 A is the q-axis current amplitude, so
+    ``R = 1.5 R_s``; a 24 V supply, giving the no-load output speed 300 · 24 / 9 = 800 rpm; a
+    belt efficiency of 0.9 (two stages); 2.5 N·m, the torque at the 12 A current limit, stands
+    for the stall torque.
+    """
+    return Motor(name="ODRI-4004", gear_ratio=9.0, torque_constant=2.5 / 12.0 / 9.0,
+                 resistance=1.5 * 0.23255, gearbox_efficiency=0.9, regeneration=False,
+                 stall_torque=2.5, no_load_speed=300.0 * 24.0 / 9.0 * RPM, voltage=24.0,
+                 source="ODRI actuator module v1 (Solo-12), open-dynamic-robot-initiative/"
+                        "open_robot_actuator_hardware: 9:1, 2.5 N·m at 12 A, R_s 0.23255 Ω; "
+                        "R = 1.5 R_s, 24 V and η = 0.9 assumed")
+
+
 CATALOGUE: Mapping[str, Motor] = MappingProxyType({
     m.name: m for m in (
         _robotis("AX-12A", "https://emanual.robotis.com/docs/en/dxl/ax/ax-12a/",
@@ -237,9 +265,11 @@ CATALOGUE: Mapping[str, Motor] = MappingProxyType({
         _robotis("XM540-W270", "https://emanual.robotis.com/docs/en/dxl/x/xm540-w270/",
                  gear_ratio=272.5, stall_torque=10.6, stall_current=4.4,
                  no_load_speed_rpm=30.0, voltage=12.0),
+        odri_actuator(),
     )
 })
-"""Real servos with datasheet values (ROBOTIS e-Manual), keyed by model name."""
+"""Real actuators, keyed by model name: ROBOTIS servos with datasheet values (e-Manual) and the
+ODRI brushless module of Solo-12 (:func:`odri_actuator`)."""
 
 DEFAULT_MOTOR = "AX-18A"
 """The servo whose stall torque (1.8 N·m) and no-load speed (97 rpm) are the robot's joint limits

@@ -254,9 +254,11 @@ class ReportConfig:
 
         The description's gait with the keys the file's ``[gait]`` sets on top; springs and the
         stiffness curve on the description's spring class unless the file names joints; the
-        robot's title; and, when the URDF's joint effort limits exceed every catalogue servo's
-        stall torque (unless ``[contact]`` sets ``torque_limits``), no torque limits and a note
-        that the servo's Joule/electrical figures do not describe this robot's actuators.
+        robot's title; the robot's own actuator (``desc.motor``) unless the file has a
+        ``[motor]``; and for a robot without one whose URDF joint effort limits exceed every
+        catalogue servo's stall torque (unless ``[contact]`` sets ``torque_limits``), no torque
+        limits and a note that the servo's Joule/electrical figures do not describe its
+        actuators.
 
         Args:
             desc: The robot description.
@@ -283,7 +285,9 @@ class ReportConfig:
         contact, notes = config.contact, []
         strongest = max(m.stall_torque for m in CATALOGUE.values())
         effort = float(robot.model.effortLimit[6:].max())
-        if effort > strongest and "torque_limits" not in given["contact"]:
+        if desc.motor is not None and "motor" not in data:
+            config = dataclasses.replace(config, motor=CATALOGUE[desc.motor])
+        elif effort > strongest and "torque_limits" not in given["contact"]:
             contact = dataclasses.replace(contact, torque_limits=False)
             notes.append(f"{desc.title}: URDF joint effort limits up to {effort:g} N·m exceed "
                          f"every servo of the motor catalogue (≤ {strongest:g} N·m), so the "

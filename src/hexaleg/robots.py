@@ -106,6 +106,8 @@ class RobotDescription:
             quadrupeds; the femur, as in the paper, for hexaleg).
         gait: Default gait parameters, sized to the robot (leg groups included).
         notes: Where the description's facts come from.
+        motor: Name of the robot's actuator in :data:`hexaleg.motor.CATALOGUE`, or None when
+            the catalogue has none (the report then uses the default servo and says so).
         mesh_dirs: Where ``package://`` mesh URIs resolve, for :data:`FILES` (the other sources
             know their own).
     """
@@ -121,6 +123,7 @@ class RobotDescription:
     spring_class: str
     gait: GaitParams = field(default_factory=GaitParams)
     notes: str = ""
+    motor: str | None = None
     mesh_dirs: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
@@ -137,6 +140,11 @@ class RobotDescription:
                     f"{len(self.joint_kinds)} joints, one per kind {self.joint_kinds}")
         if self.spring_class not in self.joint_kinds:
             raise UnknownNameError("joint class", self.spring_class, self.joint_kinds)
+        if self.motor is not None:
+            from hexaleg.motor import CATALOGUE
+
+            if self.motor not in CATALOGUE:
+                raise UnknownNameError(f"{self.name}: motor", self.motor, CATALOGUE)
         names = {leg.name for leg in self.legs}
         grouped = [leg for group in self.gait.groups for leg in group]
         if sorted(grouped) != sorted(names):
@@ -290,7 +298,8 @@ DESCRIPTIONS: Mapping[str, RobotDescription] = MappingProxyType({d.name: d for d
         name="hexaleg", title="hexaleg: the switchable hexapod/sphere robot of the paper",
         source=BUILTIN, urdf="hexaleg.urdf", srdf="hexaleg.srdf", stand=STAND,
         legs=HEXALEG_LEGS, joint_kinds=JOINT_KINDS, spring_class="femur", gait=GaitParams(),
-        notes="urdf/hexaleg.toml (see docs/robot.md); the paper's spring is at the femur joint"),
+        notes="urdf/hexaleg.toml (see docs/robot.md); the paper's spring is at the femur joint",
+        motor="AX-18A"),
     RobotDescription(
         name="solo12", title="Solo-12 (Open Dynamic Robot Initiative)",
         source=EXAMPLE_ROBOT_DATA, urdf="solo_description/robots/solo12.urdf",
@@ -300,7 +309,8 @@ DESCRIPTIONS: Mapping[str, RobotDescription] = MappingProxyType({d.name: d for d
         gait=GaitParams(period=0.5, duty_factor=0.6, stride_length=0.08, step_height=0.04,
                         groups=TROT),
         notes="example-robot-data solo_description (loader Solo12Loader: robots/solo12.urdf, "
-              "srdf/solo.srdf, pose 'standing'); 2.5 kg, thigh and shank 0.16 m"),
+              "srdf/solo.srdf, pose 'standing'); 2.5 kg, thigh and shank 0.16 m",
+        motor="ODRI-4004"),
     RobotDescription(
         name="anymal", title="ANYmal B (ANYbotics), example-robot-data's 'anymal'",
         source=EXAMPLE_ROBOT_DATA, urdf="anymal_b_simple_description/robots/anymal.urdf",
