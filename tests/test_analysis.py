@@ -194,3 +194,21 @@ def test_transform_feet_carry_the_sit_then_the_ground_carries_the_body(robot):
     spring_work = (result.tau_spring * result.qdot).sum() * motion.dt
     stored = result.spring_energy[-1].sum() - result.spring_energy[0].sum()
     assert spring_work == pytest.approx(-stored, rel=1e-6) and abs(stored) > 0.1
+
+
+def test_epsilon_of_the_embedded_paper_joint_is_its_closed_form():
+    """The paper's joint in the robot (LF femur on f = 0.3 sin 2t, body fixed), gravity off: the
+    femur supplies the kinetic energy twice a cycle, E = J A² ω², over the path 4A, so eq. 24
+    gives ε = A ω² / 4 = 0.3 s⁻² whatever the distal inertia J; the inertia is M[v, v] (CRBA);
+    joints that do not move get ε = 0."""
+    robot = hexaleg.load_robot()
+    robot.model.gravity.linear[:] = 0.0
+    motion = joint_motion(robot, {"LF_femur": Sinusoid(0.3, 2.0)})
+    prepared = prepare(robot, motion)
+    eps = prepared.evaluate().metrics["epsilon"]
+    j = robot.joint_names.index("LF_femur")
+    assert eps["positive_work"][j] == pytest.approx(0.3 * 2.0**2 / 4, rel=1e-4)
+    assert eps["angle"][j] == pytest.approx(4 * 0.3, rel=1e-4)
+    M = pin.crba(robot.model, robot.model.createData(), motion.q[0])
+    assert prepared.inertia[j] == pytest.approx(M[6 + j, 6 + j], rel=1e-12)
+    assert np.count_nonzero(eps["positive_work"]) == 1

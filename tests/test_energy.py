@@ -120,10 +120,25 @@ def test_paper_single_joint_epsilon_closed_form() -> None:
     res = metrics(tau, qd, dt, motor(), joint_names=["femur"])
     # The kinetic energy ½ J A² ω² is supplied twice per cycle: positive work J A² ω².
     assert res["total"]["positive_work"] == pytest.approx(J * A**2 * OMEGA**2, rel=1e-4)
-    # Eq. 24 with the angle travelled in a cycle, 4 A: ε = J A ω² / (4 I).
-    eps = epsilon(res["total"]["positive_work"], INERTIA, 4 * A)
-    assert eps == pytest.approx(J * A * OMEGA**2 / (4 * INERTIA), rel=1e-4)
+    # Eq. 24 with the angle travelled in a cycle, 4 A, and "the moment of inertia about the
+    # rotation axis", J = m l² + I: ε = J A² ω² / (J 4 A) = A ω² / 4, whatever J is.
+    eps = epsilon(res["total"]["positive_work"], J, 4 * A)
+    assert eps == pytest.approx(A * OMEGA**2 / 4, rel=1e-4)
     assert res["joint_names"] == ("femur",)
+    # metrics() gives the same per joint from the inertia, with the angle it integrates itself.
+    per_joint = metrics(tau, qd, dt, motor(), inertia=[J])["epsilon"]
+    assert per_joint["angle"][0] == pytest.approx(4 * A, rel=1e-4)
+    assert per_joint["positive_work"][0] == pytest.approx(A * OMEGA**2 / 4, rel=1e-4)
+
+
+def test_epsilon_of_a_joint_that_does_not_move_is_zero() -> None:
+    tau, qd, dt = paper_joint()
+    two = metrics(np.column_stack([tau, tau]), np.column_stack([qd, 0 * qd]), dt, motor(),
+                  inertia=[J, J])["epsilon"]
+    assert two["angle"][1] == 0.0 and two["positive_work"][1] == 0.0
+    with pytest.raises(InvalidParameterError, match=r"inertia.*2 finite numbers > 0"):
+        metrics(np.column_stack([tau, tau]), np.column_stack([qd, qd]), dt, motor(),
+                inertia=[J, 0.0])
 
 
 def test_spring_savings_closed_form() -> None:

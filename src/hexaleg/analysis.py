@@ -27,6 +27,7 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg import energy
+from hexaleg.design import apparent_inertia
 from hexaleg.errors import InvalidParameterError, TorqueLimitError
 from hexaleg.forces import (
     QUADRATIC_OBJECTIVES,
@@ -144,6 +145,7 @@ class Prepared:
     qdot: np.ndarray
     _gains: dict[str, QuadraticGains] = field(default_factory=dict, repr=False)
     _baseline: dict[str, dict[str, Any]] = field(default_factory=dict, repr=False)
+    _inertia: np.ndarray | None = field(default=None, repr=False)
 
     def weights(self, objective: str) -> np.ndarray:
         """Per-joint weights of the objective: Joule coefficients, or ones for Σ τ²; (nj,)."""
@@ -200,7 +202,17 @@ class Prepared:
         return energy.metrics(tau_motor, self.qdot, self.motion.dt, self.motor,
                               mass=self.robot.mass if distance else None, distance=distance,
                               joint_names=self.robot.joint_names,
-                              periodic=self.motion.periodic)
+                              periodic=self.motion.periodic, inertia=self.inertia)
+
+    @property
+    def inertia(self) -> np.ndarray:
+        """Moment of inertia about each joint's axis of everything distal to it, at the motion's
+        mean posture (:func:`hexaleg.design.apparent_inertia`), shape (nj,), kg·m² — eq. 24's
+        I for the ε of :meth:`metrics`."""
+        if self._inertia is None:
+            self._inertia = np.array([apparent_inertia(self.robot, self.motion, j)
+                                      for j in self.robot.joint_names])
+        return self._inertia
 
     def baseline(self, objective: str = "joule") -> dict[str, Any]:
         """Metrics of the motion with no springs, computed once per objective and cached."""

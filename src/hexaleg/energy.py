@@ -1,10 +1,11 @@
 """Energy metrics over a motion cycle: work, Joule loss, electrical energy, torques, CoT, ε.
 
-All integrals are over the sampled grid ``t[k] = k dt`` that excludes the endpoint, so a cycle
-integral of a periodic signal is ``x.sum(0) * dt`` (the trapezoidal rule on a periodic grid; see
-:mod:`hexaleg.motion`). The electrical model is :class:`hexaleg.motor.Motor`; the paper's energy is
-the signed joint work of eq. 20, its energy consumption ratio is eq. 23 (cost of transport) and
-eq. 24 (the single-joint variant, :func:`epsilon`). ``docs/energy.md`` lists every key.
+Integrals use the trapezoidal rule: on a periodic grid ``t[k] = k dt`` that excludes the
+endpoint a cycle integral is ``x.sum(0) * dt`` (see :mod:`hexaleg.motion`); a motion that stores
+both ends (``periodic=False``) weighs the end samples ``dt / 2``. The electrical model is
+:class:`hexaleg.motor.Motor`; the paper's energy is the signed joint work of eq. 20, its energy
+consumption ratio is eq. 23 (cost of transport) and eq. 24 (the single-joint variant,
+:func:`epsilon`, and per joint in :func:`metrics`). ``docs/energy.md`` lists every key.
 """
 
 from __future__ import annotations
@@ -89,7 +90,8 @@ def epsilon(energy: float, inertia: float, angle: float) -> float:
 
 def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor, *,
             mass: float | None = None, distance: float | None = None,
-            joint_names: Sequence[str] | None = None, periodic: bool = True) -> dict[str, Any]:
+            joint_names: Sequence[str] | None = None, periodic: bool = True,
+            inertia: ArrayLike | None = None) -> dict[str, Any]:
     """Energy and torque metrics of one cycle, per joint and in total.
 
     Integrals use the trapezoidal rule: on a periodic grid (the endpoint not stored) that is
@@ -106,6 +108,8 @@ def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor, *,
         joint_names: n names; default ``j0 … j{n-1}``.
         periodic: Whether the samples are one period without its endpoint (duration ``T dt``)
             or a motion with both ends stored (duration ``(T − 1) dt``, T ≥ 2).
+        inertia: Moment of inertia about each joint's axis, shape (n,), kg·m², > 0; adds the
+            paper's ε per joint.
 
     Returns:
         A dict with
@@ -120,7 +124,12 @@ def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor, *,
           ``total`` also has ``electrical_bus`` ∫ max(0, Σ_j P_e,j), J: joints share a supply
           that takes nothing back;
         * ``cost_of_transport``: dict of floats E/(m g d) for the energies in :data:`COT_KEYS`
-          (only with ``mass`` and ``distance`` > 0).
+          (only with ``mass`` and ``distance`` > 0);
+        * ``epsilon`` (only with ``inertia``): dict of (n,) arrays ``angle`` θ = ∫ |q̇| dt (rad,
+          the angle travelled), ``inertia`` (kg·m²) and ``positive_work`` — the paper's eq. 24
+          per joint, ε = E / (I θ) with E the positive work (as :meth:`hexaleg.paper.PaperJoint.
+          epsilon`: eq. 20's signed work vanishes over a conservative cycle), 1/s²; 0 for a
+          joint that does not move (it does no work either).
 
     Raises:
         InvalidParameterError: shapes differ or are not (T, n), NaN/inf values, ``dt`` not > 0,
@@ -181,6 +190,15 @@ def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor, *,
     if mass is not None and distance is not None and distance > 0:
         result["cost_of_transport"] = {
             key: cost_of_transport(total[key], mass, distance) for key in COT_KEYS}
+    if inertia is not None:
+        inert = np.asarray(inertia, dtype=float)
+        if inert.shape != (n,) or not np.all(np.isfinite(inert)) or not np.all(inert > 0):
+            raise InvalidParameterError("inertia", inertia, f"{n} finite numbers > 0 (kg·m²)")
+        angle = integral(np.abs(w))
+        moved = angle > 0
+        eps = np.zeros(n)
+        eps[moved] = joint["positive_work"][moved] / (inert[moved] * angle[moved])
+        result["epsilon"] = {"angle": angle, "inertia": inert, "positive_work": eps}
     return result
 
 
