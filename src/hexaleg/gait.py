@@ -763,6 +763,25 @@ def joint_motion(robot: Robot, trajectories: Mapping[str, Sinusoid],
                   fixed_base=True, info=info)
 
 
+def _ground_clearance(robot: Robot, q: np.ndarray, feet: np.ndarray
+                      ) -> tuple[np.ndarray, list[str]]:
+    """Lowest height of the robot at each sample of ``q`` (T, nq), m, and what reaches it.
+
+    The feet are point contacts at the foot frames (``feet``, (T, n_legs, 3) world positions);
+    their balls are drawn around them — a tilted ball dips r (1 − cos tilt) below its point,
+    microns here — so the feet count by their points and every other shape by its exact lowest
+    point (:meth:`~hexaleg.robot.Robot.lowest_points`).
+    """
+    foot_links = [robot.model.frames[leg.foot_frame_id].name for leg in robot.legs]
+    z, names = robot.lowest_points(q, ignore=foot_links)
+    leg = np.argmin(feet[..., 2], axis=1)
+    foot_z = feet[np.arange(len(q)), leg, 2]
+    lower = foot_z < z
+    return (np.where(lower, foot_z, z),
+            [foot_links[i] if low else name for i, low, name in zip(leg, lower, names,
+                                                                      strict=True)])
+
+
 def transform_motion(robot: Robot, duration: float = 2.0, samples: int = 1000,
                      start: str = "stand", end: str = "sphere", sit_fraction: float = 0.25,
                      rest_height: float | None = None) -> Motion:
@@ -819,7 +838,8 @@ def transform_motion(robot: Robot, duration: float = 2.0, samples: int = 1000,
     q0[2] = h0
     stand_feet[:, 2] += h0  # world: the lowest feet on the ground z = 0
     if rest_height is None:
-        rest_height = -robot.lowest_point(q1)[0]
+        rest_height = -float(_ground_clearance(robot, q1[None], robot.foot_positions(q1)[None])
+                             [0][0])
     _finite("rest_height", rest_height, f"a finite number in (0, {h0:.4f}] m (the {start} "
             "height: the body sits down on its feet, it cannot rise)",
             0.0 < rest_height <= h0 + 1e-12)
@@ -866,19 +886,10 @@ def transform_motion(robot: Robot, duration: float = 2.0, samples: int = 1000,
     a[n_sit:] = dd_sigma[:, None] * delta / t_fold**2
     _check_joint_limits(robot, q, t)
 
-    # The feet are point contacts at the foot frames; the foot balls are drawn around them (a
-    # tilted ball dips r (1 − cos tilt) below its point, microns here), so the feet count by their
-    # points and every other geometry by its exact lowest point.
     feet = _feet(robot, q)
-    foot_links = [robot.model.frames[leg.foot_frame_id].name for leg in robot.legs]
-    z, names = robot.lowest_points(q[n_sit:], ignore=foot_links)
-    k_body, k_foot = int(np.argmin(z)), int(np.argmin(feet[n_sit:, :, 2].min(axis=1)))
-    foot_z = feet[n_sit + k_foot, :, 2]
-    if foot_z.min() < z[k_body]:
-        clearance, where = float(foot_z.min()), foot_links[int(np.argmin(foot_z))]
-        k_low = n_sit + k_foot
-    else:
-        clearance, where, k_low = float(z[k_body]), names[k_body], n_sit + k_body
+    z, names = _ground_clearance(robot, q[n_sit:], feet[n_sit:])
+    k_low = n_sit + int(np.argmin(z))
+    clearance, where = float(z[k_low - n_sit]), names[k_low - n_sit]
     if clearance < -1e-9:
         raise InvalidParameterError(
             "rest_height", f"{rest_height:.4f} m ({where} reaches {-clearance * 1e3:.2f} mm "
