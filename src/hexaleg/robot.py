@@ -217,7 +217,10 @@ class Robot:
         Raises:
             UnknownNameError: ``geometry`` is neither; or a shape is not a box, sphere or cylinder.
         """
-        gmodel, gdata = self._geometry_at(q, geometry)
+        gmodel = self._geometry_model(geometry)
+        gdata = pin.GeometryData(gmodel)
+        pin.updateGeometryPlacements(self.model, self.data, gmodel, gdata,
+                                     np.asarray(q, dtype=float))
         base = self.data.oMi[1]
         extent = 0.0
         for k, obj in enumerate(gmodel.geometryObjects):
@@ -274,10 +277,7 @@ class Robot:
         Returns:
             Heights (T,), m, and the name of the lowest geometry object at each sample.
         """
-        models = {"visual": self.visual_model, "collision": self.collision_model}
-        if geometry not in models:
-            raise UnknownNameError("geometry", geometry, models)
-        gmodel = models[geometry]
+        gmodel = self._geometry_model(geometry)
         objects = [(k, obj) for k, obj in enumerate(gmodel.geometryObjects)
                    if self.model.frames[obj.parentFrame].name not in ignore]
         if not objects:
@@ -313,17 +313,12 @@ class Robot:
             names.append(objects[n][1].name)
         return lowest, names
 
-    def _geometry_at(self, q: np.ndarray, geometry: str
-                     ) -> tuple[pin.GeometryModel, pin.GeometryData]:
-        """The visual or collision model and its placements at ``q`` (``self.data`` updated)."""
+    def _geometry_model(self, geometry: str) -> pin.GeometryModel:
+        """The visual or collision model, by name."""
         models = {"visual": self.visual_model, "collision": self.collision_model}
         if geometry not in models:
             raise UnknownNameError("geometry", geometry, models)
-        gmodel = models[geometry]
-        gdata = pin.GeometryData(gmodel)
-        pin.updateGeometryPlacements(self.model, self.data, gmodel, gdata,
-                                     np.asarray(q, dtype=float))
-        return gmodel, gdata
+        return models[geometry]
 
     def summary(self) -> str:
         """A human-readable summary: links and masses, joints and limits, legs, poses."""
