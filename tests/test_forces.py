@@ -53,7 +53,9 @@ def test_fast_path_equals_cvxpy_reference(robot, motion, mu, cone, binding):
 
 @pytest.mark.parametrize("objective", ["electrical", "positive_work"])
 def test_non_smooth_objectives_match_the_reference_optimum(robot, motion, objective):
-    """Same optimal value; forces to 1e-3 N: ε = 1e-4 leaves the optimum only weakly curved."""
+    """Same optimal value to 1e-8 W; forces to 1e-6 N for positive work and 1e-5 N for electrical
+    energy (measured 4e-8 and 4e-6 N): the regulariser ε = 1e-4 leaves the optimum only weakly
+    curved, so solver tolerances of 1e-10 in value move the forces by microNewtons."""
     prepared = prepare(robot, motion)
     tau_s = prepared.spring_torques(_springs(robot))
     w = prepared.weights(objective)
@@ -73,7 +75,8 @@ def test_non_smooth_objectives_match_the_reference_optimum(robot, motion, object
         return power.sum(1) + eps * (tau**2).sum(1)
 
     assert np.allclose(cost(f_fast), cost(f_ref), atol=1e-8)
-    assert np.max(np.abs(f_fast[samples] - f_ref[samples])) <= 1e-3
+    tol = 1e-6 if objective == "positive_work" else 1e-5
+    assert np.max(np.abs(f_fast[samples] - f_ref[samples])) <= tol
 
 
 def test_quadratic_gains_give_the_constrained_optimum(robot, motion):

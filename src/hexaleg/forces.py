@@ -232,6 +232,12 @@ def violations(system: StanceSystem, f: np.ndarray, tau: np.ndarray, contact: Co
     return bad
 
 
+CLARABEL_TOLERANCES = (1e-11, 1e-10, 1e-9, 1e-8, 1e-7)
+"""Clarabel gap and feasibility tolerances (absolute and relative) tried in turn, by the exact
+per-sample solves and by the cvxpy reference, until one is met: an "almost solved" answer at the
+loosest is an error, never a silent result."""
+
+
 def _solve_sample(system: StanceSystem, k: int, tau_spring: np.ndarray, objective: str,
                   weights: np.ndarray, contact: ContactParams) -> np.ndarray:
     """Solve sample ``k``'s program exactly with Clarabel; returns f padded to (3 n_legs,)."""
@@ -246,7 +252,10 @@ def _solve_sample(system: StanceSystem, k: int, tau_spring: np.ndarray, objectiv
     A = system.A[k][:, cols]
     c = system.b_joint[k] - tau_spring[k]  # τ = c − D f
     qd = system.qdot[k]
-    n_epi = nj if objective in ("electrical", "positive_work") else 0
+    # Epigraph variables after f: s (nj), the per-joint cost; and for "electrical" u (nj), an
+    # upper bound of the Joule loss c_w τ² (one rotated cone per joint, shared by both gearbox
+    # branches).
+    n_epi = {"positive_work": nj, "electrical": 2 * nj}.get(objective, 0)
     nx = n + n_epi
     P = np.zeros((nx, nx))
     q = np.zeros(nx)
@@ -256,7 +265,7 @@ def _solve_sample(system: StanceSystem, k: int, tau_spring: np.ndarray, objectiv
         w = np.full(nj, contact.regularization)
     P[:n, :n] = 2 * D.T @ (w[:, None] * D)
     q[:n] = -2 * D.T @ (w * c)
-    q[n:] = 1.0
+    q[n:n + nj] = 1.0 if n_epi else 0.0
     rows: list[np.ndarray] = []
     rhs: list[np.ndarray] = []
     cones: list = []
@@ -299,40 +308,43 @@ def _solve_sample(system: StanceSystem, k: int, tau_spring: np.ndarray, objectiv
         add(pad(np.vstack([-D, D])), np.concatenate([system.tau_max - c, system.tau_max + c]),
             clarabel.NonnegativeConeT(2 * nj))
     if n_epi:
+        eye, zero = np.eye(nj), np.zeros((nj, nj))
+        u_cols = [zero] if objective == "electrical" else []
         # s ≥ 0
-        add(np.hstack([np.zeros((nj, n)), -np.eye(nj)]), np.zeros(nj),
+        add(np.hstack([np.zeros((nj, n)), -eye, *u_cols]), np.zeros(nj),
             clarabel.NonnegativeConeT(nj))
         if objective == "positive_work":
             # s ≥ q̇ τ = q̇ (c − D f)  ⇔  −q̇ D f − s ≤ −q̇ c
-            add(np.hstack([-qd[:, None] * D, -np.eye(nj)]), -qd * c, clarabel.NonnegativeConeT(nj))
+            add(np.hstack([-qd[:, None] * D, -eye]), -qd * c, clarabel.NonnegativeConeT(nj))
         else:
-            # s ≥ κ q̇ τ + c_w τ² for κ = 1/η and κ = η  ⇔  ‖(2√c_w τ, y − 1)‖ ≤ y + 1 with
-            # y = s − κ q̇ τ (a rotated cone written as a second-order cone).
-            eta = system.efficiency
+            # s ≥ κ q̇ τ + u for κ = 1/η and κ = η  ⇔  −κ q̇ D f − s + u ≤ −κ q̇ c
+            for kappa in sorted({1.0 / system.efficiency, system.efficiency}):
+                add(np.hstack([-kappa * qd[:, None] * D, -eye, eye]), -kappa * qd * c,
+                    clarabel.NonnegativeConeT(nj))
+            # u ≥ c_w τ² ⇔ ‖(2√c_w τ, u − 1)‖ ≤ u + 1 (a rotated cone as a second-order cone);
+            # Clarabel form: b − A x = (u + 1, 2√c_w τ, u − 1) with τ = c − D f.
             for j in range(nj):
-                row_tau = np.concatenate([-D[j], np.zeros(n_epi)])  # τ_j = c_j + row·x
-                row_s = np.zeros(nx)
-                row_s[n + j] = 1.0
+                e_u = np.zeros(nx)
+                e_u[n + nj + j] = 1.0
+                row_f = np.zeros(nx)
+                row_f[:n] = D[j]
                 sw = 2 * math.sqrt(weights[j])
-                for kappa in {1.0 / eta, eta}:
-                    y_row = row_s - kappa * qd[j] * row_tau
-                    y_const = -kappa * qd[j] * c[j]
-                    # Clarabel form: s_cone = b − A x ∈ SOC, s_cone = (y + 1, 2√c τ, y − 1)
-                    Arows = -np.vstack([y_row, sw * row_tau, y_row])
-                    b = np.array([y_const + 1, sw * c[j], y_const - 1])
-                    add(Arows, b, clarabel.SecondOrderConeT(3))
+                add(np.vstack([-e_u, sw * row_f, -e_u]), np.array([1.0, sw * c[j], -1.0]),
+                    clarabel.SecondOrderConeT(3))
     Amat = sp.csc_matrix(np.vstack(rows))
     bvec = np.concatenate(rhs)
     settings = clarabel.DefaultSettings()
     settings.verbose = False
-    settings.tol_gap_abs = settings.tol_gap_rel = 1e-11
-    settings.tol_feas = 1e-11
-    settings.tol_ktratio = 1e-9
     settings.max_iter = 200
-    solution = clarabel.DefaultSolver(sp.csc_matrix(np.triu(P)), q, Amat, bvec, cones,
-                                      settings).solve()
-    status = str(solution.status)
-    if status not in ("Solved", "AlmostSolved"):
+    for tol in CLARABEL_TOLERANCES:  # the tightest tolerances Clarabel meets; never "almost"
+        settings.tol_gap_abs = settings.tol_gap_rel = settings.tol_feas = tol
+        settings.tol_ktratio = 100 * tol
+        solution = clarabel.DefaultSolver(sp.csc_matrix(np.triu(P)), q, Amat, bvec, cones,
+                                          settings).solve()
+        status = str(solution.status)
+        if status != "AlmostSolved":
+            break
+    if status != "Solved":
         _raise_infeasible(system, k, tau_spring, contact, status)
     f = np.zeros(3 * pattern.size)
     f[cols] = np.asarray(solution.x)[:n]
@@ -429,10 +441,6 @@ def solve_fast(system: StanceSystem, tau_spring: np.ndarray, objective: str,
     return f, tau, bad
 
 
-REFERENCE_TOLERANCES = (1e-11, 1e-10, 1e-9)
-"""Clarabel gap and feasibility tolerances the reference tries in turn (absolute and relative)."""
-
-
 def solve_reference(system: StanceSystem, tau_spring: np.ndarray, objective: str,
                     weights: np.ndarray, contact: ContactParams,
                     samples: np.ndarray | None = None) -> np.ndarray:
@@ -440,7 +448,7 @@ def solve_reference(system: StanceSystem, tau_spring: np.ndarray, objective: str
 
     The problem is built once with parameters (DPP) for all legs — swing legs' forces are pinned
     to zero by a mask parameter — and re-solved per sample with Clarabel at tight tolerances
-    (:data:`REFERENCE_TOLERANCES`, the tightest one Clarabel reaches; an "inaccurate" status at
+    (:data:`CLARABEL_TOLERANCES`, the tightest one Clarabel reaches; an "inaccurate" status at
     the loosest one is an error, never a silent answer).
 
     Args:
@@ -497,7 +505,7 @@ def solve_reference(system: StanceSystem, tau_spring: np.ndarray, objective: str
         fmin.value = contact.min_normal_force * system.stance[k].astype(float)
         # Tight tolerances first; where Clarabel stalls short of them ("inaccurate"), loosen
         # step by step and keep the first solve that meets its own tolerances.
-        for tol in REFERENCE_TOLERANCES:
+        for tol in CLARABEL_TOLERANCES:
             with warnings.catch_warnings():
                 warnings.filterwarnings("ignore", message="Solution may be inaccurate")
                 problem.solve(solver=cp.CLARABEL, tol_gap_abs=tol, tol_gap_rel=tol, tol_feas=tol,
