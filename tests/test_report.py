@@ -46,7 +46,8 @@ stiffness_points = 5
 [view]
 fps = 30
 """
-SECTIONS = ("summary", "angles", "torques", "power", "forces", "energy", "cot", "curve", "paper")
+SECTIONS = ("summary", "angles", "torques", "power", "forces", "energy", "cot", "transform",
+            "curve", "paper")
 
 
 @pytest.fixture(scope="module")
@@ -206,6 +207,27 @@ def test_report_invariants(data, written, robot):
     assert np.all(u[~r.motion.stance.astype(bool)] == 0)
 
 
+def test_transform_numbers_equal_the_analysis_api(data, independent, robot):
+    """The stand → sphere section: the public API's numbers for the same springs, and the
+    joints' net work equal to the rise of potential energy (both ways, springs conservative)."""
+    from hexaleg.gait import transform_motion
+
+    _, springs, _ = independent
+    fold = transform_motion(robot)
+    a = analyze(robot, fold, springs, motor=DEFAULT_MOTOR, objective="joule")
+    section = data["transform"]
+    assert set(section["totals"]) == set(a.savings["total"])
+    for key, row in section["totals"].items():
+        assert _v(row["with_springs"]) == pytest.approx(a.metrics["total"][key], rel=1e-12)
+        assert _v(row["without_springs"]) == pytest.approx(a.baseline["total"][key], rel=1e-12)
+    rise = _v(section["potential_energy_rise"])
+    assert _v(section["net_work"]["without_springs"]) == pytest.approx(rise, rel=1e-6)
+    assert rise > 0.05 and section["rest_height"] == {"value": 0.0835, "unit": "m"}
+    # Springs store energy while folding, so the motors' net work is the rise plus that energy.
+    stored = a.spring_energy[-1].sum() - a.spring_energy[0].sum()
+    assert _v(section["net_work"]["with_springs"]) == pytest.approx(rise + stored, rel=1e-6)
+
+
 def test_infeasible_curve_points_are_listed_not_hidden(robot):
     cfg = ReportConfig.from_toml({"gait": {"samples": SAMPLES},
                                   "report": {"stiffness_points": 3, "stiffness_max": 20.0}})
@@ -237,6 +259,7 @@ def test_html_has_every_section_and_embeds_every_plot(written, data):
         assert re.search(rf'<section id="{sid}">\s*<h2>', html), sid
     for heading in ("Robot and gait", "Joint angles", "motor vs spring", "Power per joint",
                     "friction usage", "with and without springs", "Cost of transport",
+                    "energy of transforming",
                     "Stiffness curve", "single joint"):
         assert heading in html
     imgs = re.findall(r'<img[^>]*id="plot-(\w+)"[^>]*src="data:image/png;base64,([^"]+)"', html)

@@ -350,6 +350,7 @@ def test_report_for_a_registry_robot(name, tmp_path, capsys):
     assert any("torque limits are off" in n for n in data["notes"]) != own
     assert any(n.startswith("two-foot gait: the body sways") for n in data["notes"])
     assert html.count("<b>Note:</b>") == len(data["notes"]) == (1 if own else 2)
+    assert data["transform"] is None and 'id="transform"' not in html  # no sphere pose
 
 
 def test_a_description_names_a_catalogue_actuator(tmp_path):

@@ -2,7 +2,8 @@
 
 :func:`build_report` runs the pipeline — robot → gait (:func:`hexaleg.gait.tripod_gait`) →
 :func:`hexaleg.analysis.prepare` once → :meth:`~hexaleg.analysis.Prepared.evaluate` with the
-springs, without them, and at every point of a stiffness curve — and collects every number in a
+springs, without them, and at every point of a stiffness curve; for a robot with ``stand`` and
+``sphere`` poses also the stand → sphere transformation — and collects every number in a
 JSON-ready dict whose quantities carry their unit (``{"value": …, "unit": "J"}``).
 :func:`write_report` renders that dict with Jinja2 (``templates/report.html.j2``) into a
 self-contained ``report.html`` (plots embedded as base64 PNG), and writes ``report.json`` and the
@@ -33,12 +34,14 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import pinocchio as pin
 
 from hexaleg import design, energy
 from hexaleg.analysis import Analysis, Prepared, prepare
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.errors import (
     ConfigError,
+    HexalegError,
     InfeasibleForcesError,
     InvalidParameterError,
     OutputError,
@@ -46,7 +49,7 @@ from hexaleg.errors import (
     UnknownNameError,
 )
 from hexaleg.forces import OBJECTIVES, ContactParams
-from hexaleg.gait import GaitParams, tripod_gait
+from hexaleg.gait import GaitParams, transform_motion, tripod_gait
 from hexaleg.motion import Motion
 from hexaleg.motor import DEFAULT_MOTOR, Motor, motor_from_mapping
 from hexaleg.motor import motor as motor_by_name
@@ -680,6 +683,42 @@ def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis, r
     }
 
 
+def transform_section(robot: Robot, cfg: ReportConfig, springs: SpringSet,
+                      objective: str) -> dict[str, Any] | None:
+    """The energy of folding from ``stand`` into ``sphere``, with the gait's springs and without.
+
+    The motion is :func:`hexaleg.gait.transform_motion` at its defaults (sit down on the feet,
+    then fold with the body on the ground), analysed with the report's motor, contact settings
+    and objective. Its joints' net work is the rise of the robot's potential energy m g Δz_com
+    (at rest at both ends; the ground under the body does no work), reported alongside.
+
+    Returns:
+        The section's numbers; ``{"error": …}`` when the springs make it infeasible (e.g. a
+        torque limit while folding); None for a robot without both poses.
+    """
+    if not {"stand", "sphere"} <= set(robot.poses):
+        return None
+    motion = transform_motion(robot)
+    try:
+        a = prepare(robot, motion, motor=cfg.motor, contact=cfg.contact).evaluate(springs,
+                                                                                  objective)
+    except HexalegError as e:
+        return {"error": str(e)}
+    data = robot.model.createData()
+    z0, z1 = (pin.centerOfMass(robot.model, data, motion.q[k])[2] for k in (0, -1))
+    g = float(np.linalg.norm(robot.model.gravity.linear))
+    met, base, sav = a.metrics["total"], a.baseline["total"], a.savings["total"]
+    info = motion.info
+    return {
+        "duration": _q(motion.period, "s"), "sit_time": _q(info["sit_time"], "s"),
+        "stand_height": _q(info["stand_height"], "m"), "rest_height": _q(info["rest_height"], "m"),
+        "potential_energy_rise": _q(robot.mass * g * (z1 - z0), "J"),
+        "net_work": {"with_springs": _q(met["net_work"], "J"),
+                     "without_springs": _q(base["net_work"], "J")},
+        "totals": {k: _comparison(met[k], base[k], sav[k], _unit(k)) for k in sav},
+    }
+
+
 def build_report(config: ReportConfig | None = None, *, robot: Robot | None = None,
                  progress: Callable[[str], None] | None = None) -> Report:
     """Compute the report: gait, analysis with and without springs, stiffness curve, paper.
@@ -726,6 +765,9 @@ def build_report(config: ReportConfig | None = None, *, robot: Robot | None = No
                             cfg.report.curve_metrics, objective, step)
     usage = friction_usage(analysis.forces, motion.stance.astype(bool), cfg.contact.mu)
     data = _report_data(cfg, robot, motion, analysis, rigid, curve, usage)
+    data["transform"] = transform_section(robot, cfg, springs, objective)
+    if data["transform"] is not None:
+        step("stand → sphere transformation analysed")
     step("paper's single-joint reference (hexaleg.paper.reproduce)")
     data["paper"] = paper_reference(cfg.report.paper_samples)
     step("numbers collected")
