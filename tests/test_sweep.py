@@ -448,3 +448,15 @@ def test_gait_axis_faster_gait_gains_more_from_coxa_springs(tmp_path):
     # each gait has its own baseline: the mean Joule power grows with the inertial torques
     base = table.groupby("gait.period")["baseline.joule"].first()
     assert base[0.5] / 0.5 > base[1.0] / 1.0
+
+
+def test_clear_cache_forgets_built_evaluators():
+    from hexaleg.sweep import clear_cache, evaluator
+
+    gait = {"samples": 40}
+    first = evaluator(RunSpec(), gait)
+    assert evaluator(RunSpec(), gait) is first  # built once per process
+    clear_cache()
+    again = evaluator(RunSpec(), gait)
+    assert again is not first and evaluator(RunSpec(), gait) is again
+    assert again.baseline["total"]["electrical"] == first.baseline["total"]["electrical"]

@@ -464,6 +464,13 @@ def _robot(urdf: str | None, srdf: str | None) -> Robot:
     return _ROBOTS[urdf, srdf]
 
 
+def clear_cache() -> None:
+    """Forget the robots and evaluators this process has built (e.g. after editing a URDF, or
+    to time a sweep from a cold start)."""
+    _ROBOTS.clear()
+    _EVALUATORS.clear()
+
+
 def evaluator(run: RunSpec, gait: Mapping[str, Any]) -> Evaluator:
     """The :class:`Evaluator` of ``gait``, built once per process and kept in a small cache.
 
@@ -746,6 +753,10 @@ def run_sweep(spec: SweepSpec, out: str | Path, *, executor: str = "process",
     # Chunks in flight: enough to keep every worker busy, few enough that an interrupted sweep
     # has computed little that is not on disk yet.
     window = {"serial": 1, "process": 2 * (workers or default_workers())}.get(executor, 64)
+    if executor == "process" and todo:
+        # Forked workers inherit this process's evaluator cache: build the first gait's
+        # evaluator (gait, prepare, baseline) once here instead of once in every worker.
+        evaluator(spec.run, spec.gaits()[todo[0] // len(designs)])
     bar = None
     computed = 0
     with open_executor(executor, workers=workers, scheduler=scheduler) as ex:
