@@ -27,7 +27,7 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg import energy
-from hexaleg.design import apparent_inertia
+from hexaleg.design import apparent_inertias
 from hexaleg.errors import InvalidParameterError, TorqueLimitError
 from hexaleg.forces import (
     QUADRATIC_OBJECTIVES,
@@ -207,11 +207,10 @@ class Prepared:
     @property
     def inertia(self) -> np.ndarray:
         """Moment of inertia about each joint's axis of everything distal to it, at the motion's
-        mean posture (:func:`hexaleg.design.apparent_inertia`), shape (nj,), kg·m² — eq. 24's
+        mean posture (:func:`hexaleg.design.apparent_inertias`), shape (nj,), kg·m² — eq. 24's
         I for the ε of :meth:`metrics`."""
         if self._inertia is None:
-            self._inertia = np.array([apparent_inertia(self.robot, self.motion, j)
-                                      for j in self.robot.joint_names])
+            self._inertia = apparent_inertias(self.robot, self.motion)
         return self._inertia
 
     def baseline(self, objective: str = "joule") -> dict[str, Any]:

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pinocchio as pin
 
 from hexaleg.errors import InvalidParameterError
@@ -43,8 +44,9 @@ def joint_range(robot: Robot, motion: Motion, joint: str) -> tuple[float, float]
     return float(q.min()), float(q.max())
 
 
-def apparent_inertia(robot: Robot, motion: Motion, joint: str) -> float:
-    """Inertia ``M[v, v]`` seen by ``joint`` at the motion's mean joint angles, kg·m².
+def apparent_inertias(robot: Robot, motion: Motion) -> np.ndarray:
+    """Inertia ``M[v, v]`` seen by every actuated joint at the motion's mean joint angles, kg·m²,
+    shape (nj,) in ``robot.joint_names`` order (one CRBA).
 
     With the base and the other joints held, this is the moment of inertia about the joint axis
     of everything distal to the joint — the paper's ``m l² + I`` (eq. 5).
@@ -52,8 +54,16 @@ def apparent_inertia(robot: Robot, motion: Motion, joint: str) -> float:
     q = motion.q[0].copy()  # the joint block of M does not depend on the base placement
     q[7:] = motion.q[:, 7:].mean(axis=0)
     M = pin.crba(robot.model, robot.data, q)
-    v = 6 + robot.column(joint)
-    return float(M[v, v])
+    return np.diag(M)[6:].copy()
+
+
+def apparent_inertia(robot: Robot, motion: Motion, joint: str) -> float:
+    """:func:`apparent_inertias` of one joint, kg·m².
+
+    Raises:
+        UnknownNameError: ``joint`` is not an actuated joint (lists them).
+    """
+    return float(apparent_inertias(robot, motion)[robot.column(joint)])
 
 
 def k_M(robot: Robot, motion: Motion, joint: str, alpha: float = PAPER_ALPHA) -> float:
