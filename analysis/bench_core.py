@@ -16,8 +16,8 @@ import time
 import numpy as np
 
 import hexaleg
-from hexaleg.analysis import prepare
-from hexaleg.forces import solve_reference
+from hexaleg.dynamics.forces import solve_reference
+from hexaleg.dynamics.prepare import prepare
 
 
 def _best(fn, repeat: int) -> float:

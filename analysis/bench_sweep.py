@@ -26,10 +26,10 @@ from pathlib import Path
 import numpy as np
 
 import hexaleg
-from hexaleg.design import PAPER_DEAD_ZONE_RATIO
-from hexaleg.executors import default_workers
-from hexaleg.gait import GaitParams
-from hexaleg.sweep import (
+from hexaleg.design.rules import PAPER_DEAD_ZONE_RATIO
+from hexaleg.motion.gait import GaitParams
+from hexaleg.studies.sweep.executors import default_workers
+from hexaleg.studies.sweep.runner import (
     RunSpec,
     SweepSpec,
     clear_cache,

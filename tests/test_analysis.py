@@ -1,4 +1,4 @@
-"""Tests of hexaleg.analysis: whole-robot invariants of the prepare → evaluate pipeline."""
+"""Tests of hexaleg.dynamics.prepare: whole-robot invariants of the prepare → evaluate pipeline."""
 
 from __future__ import annotations
 
@@ -7,10 +7,10 @@ import pinocchio as pin
 import pytest
 
 import hexaleg
-from hexaleg.analysis import analyze, prepare
+from hexaleg.dynamics.prepare import analyze, prepare
 from hexaleg.errors import InvalidParameterError, UnknownNameError
-from hexaleg.gait import Sinusoid, joint_motion, tripod_gait
-from hexaleg.springs import DeadZoneSpring
+from hexaleg.motion.gait import Sinusoid, joint_motion, tripod_gait
+from hexaleg.robot.springs import DeadZoneSpring
 
 
 @pytest.fixture(scope="module")
@@ -167,7 +167,7 @@ def test_transform_feet_carry_the_sit_then_the_ground_carries_the_body(robot):
     (τ_m + τ_s = RNEA joint rows) and the ground's reaction at rest is the robot's weight. Over
     the whole motion (at rest at both ends, the support does no work: the base does not move
     while it carries) the joints' work equals the rise of potential energy m g Δz_com."""
-    from hexaleg.gait import transform_motion
+    from hexaleg.motion.gait import transform_motion
 
     motion = transform_motion(robot, samples=401)
     springs = {"LF_femur": DeadZoneSpring(stiffness=0.5, theta_k=0.1)}

@@ -1,7 +1,7 @@
-"""Tests of hexaleg.balance and the balanced trot of hexaleg.gait: the periodic LIP sway solves its
-equation exactly, the RNEA support-line moment equals the centroidal-dynamics moment, the swayed
-trot stands on exactly two feet at rest, needs no moment about the support line and goes through
-the force program; the hexapod's tripod is untouched."""
+"""Tests of hexaleg.motion.balance and the balanced trot of hexaleg.motion.gait: the periodic LIP
+sway solves its equation exactly, the RNEA support-line moment equals the centroidal-dynamics
+moment, the swayed trot stands on exactly two feet at rest, needs no moment about the support line
+and goes through the force program; the hexapod's tripod is untouched."""
 
 from __future__ import annotations
 
@@ -13,18 +13,18 @@ import pinocchio as pin
 import pytest
 
 import hexaleg
-from hexaleg import gait as gait_module
-from hexaleg.balance import (
+from hexaleg.dynamics.forces import ContactParams
+from hexaleg.errors import InfeasibleForcesError, InvalidParameterError
+from hexaleg.motion import gait as gait_module
+from hexaleg.motion.balance import (
     Sway,
     crossing,
     periodic_lip_sway,
     support_moment,
     sway_direction,
 )
-from hexaleg.errors import InfeasibleForcesError, InvalidParameterError
-from hexaleg.forces import ContactParams
-from hexaleg.gait import BALANCE_TOL, GaitParams, sample_gait, tripod_gait
-from hexaleg.robots import TROT, description
+from hexaleg.motion.gait import BALANCE_TOL, GaitParams, sample_gait, tripod_gait
+from hexaleg.robot.registry import TROT, description
 
 SAMPLES = 100
 NO_LIMITS = ContactParams(torque_limits=False)

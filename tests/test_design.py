@@ -1,4 +1,4 @@
-"""Tests of hexaleg.design: the paper's spring rules carried over to the robot's joints."""
+"""Tests of hexaleg.design.rules: the paper's spring rules carried over to the robot's joints."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import hexaleg
-from hexaleg.design import (
+from hexaleg.design.rules import (
     PAPER_DEAD_ZONE_RATIO,
     apparent_inertia,
     centred_spring,
@@ -18,7 +18,7 @@ from hexaleg.design import (
     paper_style_springs,
 )
 from hexaleg.errors import InvalidParameterError, UnknownNameError
-from hexaleg.gait import Sinusoid, joint_motion
+from hexaleg.motion.gait import Sinusoid, joint_motion
 
 
 @pytest.fixture(scope="module")

@@ -1,4 +1,5 @@
-"""Tests of hexaleg.energy: closed-form cycle integrals, the paper's single joint, savings."""
+"""Tests of hexaleg.dynamics.energy: closed-form cycle integrals, the paper's single joint,
+savings."""
 
 from __future__ import annotations
 
@@ -8,9 +9,9 @@ import math
 import numpy as np
 import pytest
 
-from hexaleg.energy import cost_of_transport, epsilon, metrics, savings
+from hexaleg.dynamics.energy import cost_of_transport, epsilon, metrics, savings
 from hexaleg.errors import InvalidParameterError
-from hexaleg.motor import motor
+from hexaleg.robot.motor import motor
 from hexaleg.units import G, kgmm2_to_kgm2, mm_to_m
 
 # Paper Table 6 and eq. 25: f(t) = 0.3 sin(2t), l = 47.141 mm, m = 0.03611 kg, I = 107.059 kg·mm².

@@ -1,4 +1,5 @@
-"""Tests of hexaleg.forces: the energy-optimal force distribution, fast path vs cvxpy reference."""
+"""Tests of hexaleg.dynamics.forces: the energy-optimal force distribution, fast path vs cvxpy
+reference."""
 
 from __future__ import annotations
 
@@ -6,18 +7,18 @@ import numpy as np
 import pytest
 
 import hexaleg
-from hexaleg.analysis import prepare
-from hexaleg.errors import InfeasibleForcesError, InvalidParameterError, TorqueLimitError
-from hexaleg.forces import (
+from hexaleg.dynamics.forces import (
     ContactParams,
     check_objective,
     quadratic_gains,
     solve_fast,
     solve_reference,
 )
-from hexaleg.gait import GaitParams, tripod_gait
-from hexaleg.motor import CATALOGUE
-from hexaleg.springs import DeadZoneSpring
+from hexaleg.dynamics.prepare import prepare
+from hexaleg.errors import InfeasibleForcesError, InvalidParameterError, TorqueLimitError
+from hexaleg.motion.gait import GaitParams, tripod_gait
+from hexaleg.robot.motor import CATALOGUE
+from hexaleg.robot.springs import DeadZoneSpring
 
 
 @pytest.fixture(scope="module")
@@ -65,7 +66,7 @@ def test_non_smooth_objectives_match_the_reference_optimum(robot, motion, object
     f_fast, _, _ = solve_fast(sys, tau_s, objective, w, prepared.contact)
     f_ref = solve_reference(sys, tau_s, objective, w, prepared.contact, samples=samples)
 
-    def cost(f):  # the objectives as hexaleg.motor defines them, independently of forces.py
+    def cost(f):  # the objectives as hexaleg.robot.motor defines them, independently of forces.py
         tau = sys.torques(f, tau_s)[samples]
         qd = sys.qdot[samples]
         if objective == "electrical":

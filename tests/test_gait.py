@@ -1,5 +1,5 @@
-"""Tests of hexaleg.gait: the tripod gait's kinematic consistency (Pinocchio FK, stance feet at
-rest, finite differences), periodicity and static stability; the joint sinusoid (paper eq. 16,
+"""Tests of hexaleg.motion.gait: the tripod gait's kinematic consistency (Pinocchio FK, stance feet
+at rest, finite differences), periodicity and static stability; the joint sinusoid (paper eq. 16,
 25); the stand → sphere transform; parameters from TOML and the errors on bad input."""
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from hexaleg.errors import (
     UnknownNameError,
     UnreachableTargetError,
 )
-from hexaleg.gait import (
+from hexaleg.motion.gait import (
     GaitParams,
     Sinusoid,
     gait_summary,
@@ -31,7 +31,7 @@ from hexaleg.gait import (
     transform_motion,
     tripod_gait,
 )
-from hexaleg.robot import LegSpec
+from hexaleg.robot.model import LegSpec
 
 
 @pytest.fixture(scope="module")
@@ -40,12 +40,12 @@ def robot() -> hexaleg.Robot:
 
 
 @pytest.fixture(scope="module")
-def walk(robot) -> hexaleg.motion.Motion:
+def walk(robot) -> hexaleg.motion.trajectory.Motion:
     return tripod_gait(robot)
 
 
 @pytest.fixture(scope="module")
-def turn(robot) -> hexaleg.motion.Motion:
+def turn(robot) -> hexaleg.motion.trajectory.Motion:
     """A turning gait with double support (β = 0.7) and a lower body."""
     return tripod_gait(robot, GaitParams(yaw_rate=0.4, duty_factor=0.7, body_height=0.08,
                                          stride_length=0.05, period=0.8, samples=400))
@@ -450,7 +450,7 @@ def test_joint_motion_errors(robot):
 
 
 @pytest.fixture(scope="module")
-def fold(robot) -> hexaleg.motion.Motion:
+def fold(robot) -> hexaleg.motion.trajectory.Motion:
     return transform_motion(robot, duration=2.0, samples=401)
 
 

@@ -1,5 +1,5 @@
-"""Tests of hexaleg.kinematics: the analytic leg IK against Pinocchio, its exact derivatives, the
-Newton fallback, and the unreachable-target errors."""
+"""Tests of hexaleg.motion.kinematics: the analytic leg IK against Pinocchio, its exact derivatives,
+the Newton fallback, and the unreachable-target errors."""
 
 from __future__ import annotations
 
@@ -12,15 +12,15 @@ import pytest
 
 import hexaleg
 from hexaleg.errors import UnreachableTargetError
-from hexaleg.kinematics import (
+from hexaleg.motion.kinematics import (
     LegGeometry,
     analytic_geometry,
     analytic_leg_ik,
     leg_ik,
     newton_leg_ik,
 )
-from hexaleg.robot import HEXALEG_LEGS, LegSpec
-from hexaleg.robot_builder import load_params
+from hexaleg.robot.builder import load_params
+from hexaleg.robot.model import HEXALEG_LEGS, LegSpec
 
 
 @pytest.fixture(scope="module")

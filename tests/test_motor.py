@@ -1,4 +1,5 @@
-"""Tests of hexaleg.motor: datasheet reproduction, the power model's physics, convexity, errors."""
+"""Tests of hexaleg.robot.motor: datasheet reproduction, the power model's physics, convexity,
+errors."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ import numpy as np
 import pytest
 
 from hexaleg.errors import ConfigError, HexalegError, InvalidParameterError, UnknownNameError
-from hexaleg.motor import (
+from hexaleg.robot.motor import (
     CATALOGUE,
     DEFAULT_MOTOR,
     RPM,
@@ -72,7 +73,7 @@ def test_ax18a_hand_values() -> None:
 
 
 def test_default_motor_is_the_robot_joint_limit() -> None:
-    from hexaleg.robot import load_robot
+    from hexaleg.robot.model import load_robot
 
     robot = load_robot()
     m = motor(DEFAULT_MOTOR)

@@ -1,4 +1,5 @@
-"""Tests of hexaleg.paper: the paper's single elastic joint (eq. 13–24, Table 6, eq. 25)."""
+"""Tests of hexaleg.studies.paper.model: the paper's single elastic joint (eq. 13–24, Table 6, eq.
+25)."""
 
 from __future__ import annotations
 
@@ -10,7 +11,7 @@ import pytest
 
 from hexaleg.cli import main
 from hexaleg.errors import HexalegError, InvalidParameterError
-from hexaleg.paper import (
+from hexaleg.studies.paper.model import (
     PaperJoint,
     k_E_readings,
     k_M_paper_number,

@@ -1,5 +1,5 @@
-"""Tests of hexaleg.plots: what each figure draws (data of its artists), file output and errors,
-and that no figure leaks into pyplot's global state."""
+"""Tests of hexaleg.outputs.plots: what each figure draws (data of its artists), file output and
+errors, and that no figure leaks into pyplot's global state."""
 
 from __future__ import annotations
 
@@ -9,9 +9,9 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
-from hexaleg import plots
 from hexaleg.errors import OutputError
-from hexaleg.robot import load_robot
+from hexaleg.outputs import plots
+from hexaleg.robot.model import load_robot
 
 
 @pytest.fixture(scope="module")

@@ -1,6 +1,6 @@
-"""Tests of hexaleg.report: the numbers of report.json against the analysis API computed here
-independently, physical invariants of the report, the self-contained HTML, what a browser shows,
-the default CLI run and bad input."""
+"""Tests of hexaleg.studies.report.build: the numbers of report.json against the analysis API
+computed here independently, physical invariants of the report, the self-contained HTML, what a
+browser shows, the default CLI run and bad input."""
 
 from __future__ import annotations
 
@@ -17,12 +17,13 @@ from PIL import Image
 
 from hexaleg import GaitParams, analyze, load_robot, tripod_gait
 from hexaleg.cli import main
-from hexaleg.design import PAPER_ALPHA, k_M, paper_style_springs
+from hexaleg.design.rules import PAPER_ALPHA, k_M, paper_style_springs
+from hexaleg.dynamics.forces import ContactParams
 from hexaleg.errors import ConfigError, InvalidParameterError, OutputError, UnknownNameError
-from hexaleg.forces import ContactParams
-from hexaleg.motor import DEFAULT_MOTOR, motor
-from hexaleg.paper import PAPER_K_M, PaperJoint, k_M_paper_number
-from hexaleg.report import (
+from hexaleg.robot.motor import DEFAULT_MOTOR, motor
+from hexaleg.robot.springs import SpringSet
+from hexaleg.studies.paper.model import PAPER_K_M, PaperJoint, k_M_paper_number
+from hexaleg.studies.report.build import (
     PLOTS,
     ReportConfig,
     ReportParams,
@@ -32,7 +33,6 @@ from hexaleg.report import (
     render_html,
     write_report,
 )
-from hexaleg.springs import SpringSet
 
 SAMPLES = 200
 SMALL = f"""
@@ -210,7 +210,7 @@ def test_report_invariants(data, written, robot):
 def test_transform_numbers_equal_the_analysis_api(data, independent, robot):
     """The stand → sphere section: the public API's numbers for the same springs, and the
     joints' net work equal to the rise of potential energy (both ways, springs conservative)."""
-    from hexaleg.gait import transform_motion
+    from hexaleg.motion.gait import transform_motion
 
     _, springs, _ = independent
     fold = transform_motion(robot)

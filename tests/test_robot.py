@@ -1,4 +1,4 @@
-"""Tests of hexaleg.robot: the built-in hexapod/sphere model and the loader's error paths."""
+"""Tests of hexaleg.robot.model: the built-in hexapod/sphere model and the loader's error paths."""
 
 from __future__ import annotations
 
@@ -12,8 +12,8 @@ import yourdfpy
 
 import hexaleg
 from hexaleg.errors import HexalegError, RobotModelError, UnknownNameError
-from hexaleg.robot import DEFAULT_SRDF, DEFAULT_URDF, HEXALEG_LEGS, LEG_NAMES, LegSpec
-from hexaleg.robot_builder import load_params
+from hexaleg.robot.builder import load_params
+from hexaleg.robot.model import DEFAULT_SRDF, DEFAULT_URDF, HEXALEG_LEGS, LEG_NAMES, LegSpec
 from hexaleg.units import kgmm2_to_kgm2, mm_to_m
 
 # Paper Table 6, in the paper's units.

@@ -1,4 +1,4 @@
-"""Tests of hexaleg.robot_builder: one source of truth for the committed URDF/SRDF."""
+"""Tests of hexaleg.robot.builder: one source of truth for the committed URDF/SRDF."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from hexaleg.errors import ConfigError
-from hexaleg.robot_builder import build, build_srdf, build_urdf, femur_si, load_params
+from hexaleg.robot.builder import build, build_srdf, build_urdf, femur_si, load_params
 
 REPO_URDF = Path(__file__).resolve().parents[1] / "urdf"
 
@@ -15,9 +15,9 @@ REPO_URDF = Path(__file__).resolve().parents[1] / "urdf"
 def test_committed_files_equal_a_fresh_build():
     params = load_params(REPO_URDF / "hexaleg.toml")
     assert (REPO_URDF / "hexaleg.urdf").read_text() == build_urdf(params), (
-        "urdf/hexaleg.urdf is stale: run `python -m hexaleg.robot_builder`")
+        "urdf/hexaleg.urdf is stale: run `python -m hexaleg.robot.builder`")
     assert (REPO_URDF / "hexaleg.srdf").read_text() == build_srdf(params), (
-        "urdf/hexaleg.srdf is stale: run `python -m hexaleg.robot_builder`")
+        "urdf/hexaleg.srdf is stale: run `python -m hexaleg.robot.builder`")
 
 
 def test_build_writes_both_files(tmp_path):

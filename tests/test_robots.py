@@ -1,5 +1,6 @@
-"""Tests of hexaleg.robots: the registry loads Solo-12, ANYmal and Go2 from example-robot-data
-and runs them through the same gait → dynamics → forces → energy pipeline as the hexapod."""
+"""Tests of hexaleg.robot.registry: the registry loads Solo-12, ANYmal and Go2 from
+example-robot-data and runs them through the same gait → dynamics → forces → energy pipeline as the
+hexapod."""
 
 from __future__ import annotations
 
@@ -11,14 +12,14 @@ import pinocchio as pin
 import pytest
 
 import hexaleg
-from hexaleg.analysis import prepare
-from hexaleg.design import centred_springs, k_M
+from hexaleg.design.rules import centred_springs, k_M
+from hexaleg.dynamics.forces import ContactParams
+from hexaleg.dynamics.prepare import prepare
 from hexaleg.errors import RobotModelError, UnknownNameError
-from hexaleg.forces import ContactParams
-from hexaleg.gait import tripod_gait
-from hexaleg.motion import Motion
-from hexaleg.robot import LegSpec
-from hexaleg.robots import DESCRIPTIONS, TROT, RobotDescription, description, load
+from hexaleg.motion.gait import tripod_gait
+from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.model import LegSpec
+from hexaleg.robot.registry import DESCRIPTIONS, TROT, RobotDescription, description, load
 
 QUADRUPEDS = ("solo12", "anymal", "go2")
 SAMPLES = 200

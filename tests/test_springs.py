@@ -1,4 +1,4 @@
-"""Tests of hexaleg.springs: the dead-zone spring law (paper eq. 7–8) and spring sets."""
+"""Tests of hexaleg.robot.springs: the dead-zone spring law (paper eq. 7–8) and spring sets."""
 
 from __future__ import annotations
 
@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from hexaleg.errors import ConfigError, HexalegError, InvalidParameterError, UnknownNameError
-from hexaleg.robot import load_robot
-from hexaleg.springs import DeadZoneSpring, SpringSet
+from hexaleg.robot.model import load_robot
+from hexaleg.robot.springs import DeadZoneSpring, SpringSet
 
 
 @pytest.fixture(scope="module")
@@ -180,7 +180,7 @@ def test_spring_set_from_toml_table():
 
 def test_spring_on_continuous_joint_uses_its_angle(tmp_path):
     # A continuous joint stores (cos θ, sin θ) in q; the spring must see θ.
-    from hexaleg.robot import LegSpec
+    from hexaleg.robot.model import LegSpec
 
     inertial = ('<inertial><mass value="0.1"/><inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" '
                 'iyz="0" izz="1e-4"/></inertial>')

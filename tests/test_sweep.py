@@ -1,6 +1,7 @@
-"""Tests of hexaleg.sweep: sweep points agree with the core analysis, physical invariants of the
-spring designs, the optimiser against a fine grid, placement and robustness studies, resumable
-results (interrupted and SIGKILLed runs), identical tables on every executor, and bad input."""
+"""Tests of hexaleg.studies.sweep.runner: sweep points agree with the core analysis, physical
+invariants of the spring designs, the optimiser against a fine grid, placement and robustness
+studies, resumable results (interrupted and SIGKILLed runs), identical tables on every executor, and
+bad input."""
 
 from __future__ import annotations
 
@@ -16,18 +17,18 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from hexaleg.analysis import analyze
 from hexaleg.cli import main
-from hexaleg.design import joint_range
+from hexaleg.design.rules import joint_range
+from hexaleg.dynamics.prepare import analyze
 from hexaleg.errors import (
     ConfigError,
     ExecutorError,
     InvalidParameterError,
     UnknownNameError,
 )
-from hexaleg.gait import GaitParams
-from hexaleg.springs import DeadZoneSpring
-from hexaleg.sweep import (
+from hexaleg.motion.gait import GaitParams
+from hexaleg.robot.springs import DeadZoneSpring
+from hexaleg.studies.sweep.runner import (
     METRICS,
     SAVING_METRICS,
     RunSpec,
@@ -300,7 +301,7 @@ def test_same_table_on_serial_process_and_dask_executors(tmp_path):
 
 def test_unreachable_scheduler_names_the_address_and_loses_nothing(tmp_path, monkeypatch):
     pytest.importorskip("distributed")
-    monkeypatch.setattr("hexaleg.executors.CONNECT_TIMEOUT", 1.0)
+    monkeypatch.setattr("hexaleg.studies.sweep.executors.CONNECT_TIMEOUT", 1.0)
     spec = small_spec()
     def ctrl_c(rows):
         raise KeyboardInterrupt
@@ -451,7 +452,7 @@ def test_gait_axis_faster_gait_gains_more_from_coxa_springs(tmp_path):
 
 
 def test_clear_cache_forgets_built_evaluators():
-    from hexaleg.sweep import clear_cache, evaluator
+    from hexaleg.studies.sweep.runner import clear_cache, evaluator
 
     gait = {"samples": 40}
     first = evaluator(RunSpec(), gait)

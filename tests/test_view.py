@@ -1,4 +1,5 @@
-"""Tests of hexaleg.view: the scene sent to Meshcat, the offline page, and what a browser draws.
+"""Tests of hexaleg.studies.view: the scene sent to Meshcat, the offline page, and what a browser
+draws.
 
 The scene tests decode the MessagePack commands embedded in the exported page and check them
 against Pinocchio's kinematics; the browser tests render the page (and the live server) in
@@ -21,13 +22,13 @@ import umsgpack
 from browser import chromium, finish, page_requests, start_screenshot
 from matplotlib.image import imread
 
-from hexaleg.analysis import analyze
 from hexaleg.cli import main
+from hexaleg.dynamics.prepare import analyze
 from hexaleg.errors import InvalidParameterError, OutputError
-from hexaleg.gait import transform_motion, tripod_gait
-from hexaleg.motion import Motion
-from hexaleg.robot import load_robot
-from hexaleg.view import N_LEVELS, ViewParams, animate, cool_warm, export_html, value_bins
+from hexaleg.motion.gait import transform_motion, tripod_gait
+from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.model import load_robot
+from hexaleg.studies.view import N_LEVELS, ViewParams, animate, cool_warm, export_html, value_bins
 
 T = 40
 PERIOD = 1.0

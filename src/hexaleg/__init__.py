@@ -3,18 +3,16 @@
 The public surface is small: load a robot, make a motion, choose springs, analyse. See README.md.
 """
 
-from hexaleg.analysis import Analysis, Prepared, analyze, prepare
-from hexaleg.energy import cost_of_transport, epsilon, metrics, savings
+from hexaleg.dynamics.energy import cost_of_transport, epsilon, metrics, savings
+from hexaleg.dynamics.forces import OBJECTIVES, ContactParams
+from hexaleg.dynamics.prepare import Analysis, Prepared, analyze, prepare
 from hexaleg.errors import HexalegError
-from hexaleg.forces import OBJECTIVES, ContactParams
-from hexaleg.gait import GaitParams, Sinusoid, joint_motion, transform_motion, tripod_gait
-from hexaleg.motion import Motion
-from hexaleg.motor import CATALOGUE, DEFAULT_MOTOR, Motor, motor_from_mapping
-from hexaleg.report import ReportConfig, build_report, write_report
-from hexaleg.robot import Leg, LegSpec, Robot, load_robot
-from hexaleg.robots import DESCRIPTIONS, RobotDescription, load
-from hexaleg.springs import DeadZoneSpring, SpringSet
-from hexaleg.sweep import RunSpec, SweepSpec, optimise, placement, robustness, run_sweep
+from hexaleg.motion.gait import GaitParams, Sinusoid, joint_motion, transform_motion, tripod_gait
+from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.model import Leg, LegSpec, Robot, load_robot
+from hexaleg.robot.motor import CATALOGUE, DEFAULT_MOTOR, Motor, motor_from_mapping
+from hexaleg.robot.registry import DESCRIPTIONS, RobotDescription, load
+from hexaleg.robot.springs import DeadZoneSpring, SpringSet
 
 __version__ = "0.1.0"
 
@@ -65,14 +63,23 @@ __all__ = [
     "write_report",
 ]
 
-_VIEW = ("ViewParams", "animate", "export_html", "serve")
+_LAZY: dict[str, str] = {
+    **dict.fromkeys(("ReportConfig", "build_report", "write_report"),
+    "hexaleg.studies.report.build"),
+    **dict.fromkeys(("RunSpec", "SweepSpec", "optimise", "placement", "robustness", "run_sweep"),
+                    "hexaleg.studies.sweep.runner"),
+    **dict.fromkeys(("ViewParams", "animate", "export_html", "serve"), "hexaleg.studies.view"),
+}
+"""Public names whose modules are imported on first use: the report pulls in matplotlib and
+Jinja2, the sweep pandas and pyarrow, the viewer meshcat and Pinocchio's visualisers — seconds of
+import time that ``import hexaleg`` does not pay."""
 
 
 def __getattr__(name: str) -> object:
-    """Import the browser viewer (:mod:`hexaleg.view`) on first use: it pulls in meshcat and
-    Pinocchio's visualisers, which take seconds to import."""
-    if name in _VIEW:
-        from hexaleg import view
+    """Import a study's module on first use of one of its public names (PEP 562)."""
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'hexaleg' has no attribute {name!r}")
+    import importlib
 
-        return getattr(view, name)
-    raise AttributeError(f"module 'hexaleg' has no attribute {name!r}")
+    return getattr(importlib.import_module(module), name)

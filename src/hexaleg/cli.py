@@ -27,8 +27,8 @@ def _add_robot(sub: argparse._SubParsersAction) -> None:
 
 def _run_robot(args: argparse.Namespace) -> int:
     from hexaleg.errors import InvalidParameterError
-    from hexaleg.robot import load_robot
-    from hexaleg.robots import load
+    from hexaleg.robot.model import load_robot
+    from hexaleg.robot.registry import load
 
     if args.robot is not None and (args.urdf or args.srdf):
         raise InvalidParameterError("--robot", args.robot, "either --robot or --urdf/--srdf")
@@ -45,7 +45,7 @@ def _add_motors(sub: argparse._SubParsersAction) -> None:
 
 
 def _run_motors(args: argparse.Namespace) -> int:
-    from hexaleg.motor import catalogue_table, motor
+    from hexaleg.robot.motor import catalogue_table, motor
 
     print(catalogue_table({n: motor(n) for n in args.names} if args.names else None))
     return 0
@@ -61,7 +61,7 @@ def _add_paper(sub: argparse._SubParsersAction) -> None:
 
 
 def _run_paper(args: argparse.Namespace) -> int:
-    from hexaleg.paper import write_report
+    from hexaleg.studies.paper.model import write_report
 
     r = write_report(args.out, n=args.samples)
     print(f"k_M = {r['k_M_paper_units']:.3f} (paper's eq. 19 units) = "
@@ -83,8 +83,8 @@ def _add_gait(sub: argparse._SubParsersAction) -> None:
 
 def _run_gait(args: argparse.Namespace) -> int:
     from hexaleg.config import load_toml
-    from hexaleg.gait import gait_summary, tripod_gait
-    from hexaleg.robots import description
+    from hexaleg.motion.gait import gait_summary, tripod_gait
+    from hexaleg.robot.registry import description
 
     desc = description(args.robot)
     robot = desc.load()
@@ -122,12 +122,12 @@ def _run_view(args: argparse.Namespace) -> int:
     import signal
     import time
 
-    from hexaleg import view
-    from hexaleg.analysis import analyze
     from hexaleg.config import from_mapping, load_toml
-    from hexaleg.gait import transform_motion, tripod_gait
-    from hexaleg.report import ReportConfig
-    from hexaleg.robot import load_robot
+    from hexaleg.dynamics.prepare import analyze
+    from hexaleg.motion.gait import transform_motion, tripod_gait
+    from hexaleg.robot.model import load_robot
+    from hexaleg.studies import view
+    from hexaleg.studies.report.build import ReportConfig
 
     # The same file as ``hexaleg report`` (gait, motor, contact, springs), plus ``[view]``.
     data = load_toml(args.config) if args.config else {}
@@ -172,8 +172,8 @@ def _add_report(sub: argparse._SubParsersAction) -> None:
 
 def _run_report(args: argparse.Namespace) -> int:
     from hexaleg.config import load_toml
-    from hexaleg.report import ReportConfig, write_report
-    from hexaleg.robots import description
+    from hexaleg.robot.registry import description
+    from hexaleg.studies.report.build import ReportConfig, write_report
 
     robot = None
     if args.robot is not None:
@@ -220,7 +220,7 @@ def _run_sweep(args: argparse.Namespace) -> int:
     import dataclasses
 
     from hexaleg.errors import InvalidParameterError
-    from hexaleg.sweep import SweepSpec, parse_range, run_sweep, summary
+    from hexaleg.studies.sweep.runner import SweepSpec, parse_range, run_sweep, summary
 
     flags = {"k": args.k, "theta_k": args.theta_k, "dead_zone": args.dead_zone,
              "offset": args.offset}

@@ -3,17 +3,17 @@
 * :func:`tripod_gait` — the body moves with a constant twist (forward speed, optional yaw rate);
   legs move in groups (default the two tripods {LF, RM, LH} and {RF, LM, RH}); stance feet stay
   fixed on the ground, swing feet follow :func:`swing_curve`; joint angles, velocities and
-  accelerations come from the leg inverse kinematics (:mod:`hexaleg.kinematics`) with exact
+  accelerations come from the leg inverse kinematics (:mod:`hexaleg.motion.kinematics`) with exact
   derivatives. The foot-placement and timing logic is generic in the legs and groups (a trot on a
   quadruped is two groups of two legs); a gait standing on two feet is balanced by a periodic
-  body sway (:mod:`hexaleg.balance`, ``GaitParams.balance``).
+  body sway (:mod:`hexaleg.motion.balance`, ``GaitParams.balance``).
 * :func:`joint_motion` — chosen joints follow the paper's sinusoid (eq. 16) on a fixed base; the
   paper's single-joint experiment embedded in the robot.
 * :func:`transform_motion` — from ``stand`` to ``sphere``: the body sits down on its feet, then
   rests on the ground while the legs fold.
 
-All outputs are :class:`~hexaleg.motion.Motion` objects in Pinocchio's conventions: base velocity
-and acceleration in the LOCAL base frame, ``a = dv/dt``.
+All outputs are :class:`~hexaleg.motion.trajectory.Motion` objects in Pinocchio's conventions: base
+velocity and acceleration in the LOCAL base frame, ``a = dv/dt``.
 """
 
 from __future__ import annotations
@@ -29,12 +29,12 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.balance import Sway, crossing, periodic_lip_sway, support_moment, sway_direction
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.errors import InfeasibleForcesError, InvalidParameterError, UnknownNameError
-from hexaleg.kinematics import leg_ik
-from hexaleg.motion import Motion
-from hexaleg.robot import Robot
+from hexaleg.motion.balance import Sway, crossing, periodic_lip_sway, support_moment, sway_direction
+from hexaleg.motion.kinematics import leg_ik
+from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.model import Robot
 from hexaleg.units import rad_to_deg
 
 MIN_SAMPLES = 20
@@ -44,8 +44,8 @@ TRIPODS: tuple[tuple[str, ...], ...] = (("LF", "RM", "LH"), ("RF", "LM", "RH"))
 """The hexapod's two tripods, the default leg groups; group 0 touches down at t = 0."""
 
 BALANCE_MODES: tuple[str, ...] = ("auto", "none")
-"""``GaitParams.balance``: ``"auto"`` sways the body (:mod:`hexaleg.balance`) when some sample
-stands on exactly two feet and none on fewer; ``"none"`` keeps the constant-twist body."""
+"""``GaitParams.balance``: ``"auto"`` sways the body (:mod:`hexaleg.motion.balance`) when some
+sample stands on exactly two feet and none on fewer; ``"none"`` keeps the constant-twist body."""
 BALANCE_TOL = 1e-10
 """The sway iteration stops when every two-foot sample's support-line moment is at most this
 fraction of m g h (the weight's moment at the CoM height)."""
@@ -402,20 +402,20 @@ def sample_gait(robot: Robot, gait: GaitParams | None = None,
     mid-stance image (one stride ahead). The foot targets are taken into the base frame with the
     exact rotating-frame derivatives ``ṗ_b = −ω × p_b + Rᵀ ṗ − v`` and
     ``p̈_b = −ω × ṗ_b − ω × Rᵀ ṗ + Rᵀ p̈ − v̇`` and solved by
-    :func:`hexaleg.kinematics.leg_ik`.
+    :func:`hexaleg.motion.kinematics.leg_ik`.
 
     **Balance on two feet** (``gait.balance == "auto"`` and some sample of the cycle grid stands
     on exactly two feet, none on fewer — a trot: with β = 0.5 always exactly two, switching at
     t = 0 and t = period / 2; with β > 0.5 four-foot phases of (β − ½) · period after each
     switch). Two point feet cannot push a moment about the line through them, so the base is
-    displaced by ``d(t) e`` along a horizontal direction e (:func:`hexaleg.balance.
+    displaced by ``d(t) e`` along a horizontal direction e (:func:`hexaleg.motion.balance.
     sway_direction`: lateral for a trot), with d a trigonometric polynomial on the cycle grid
     (exact derivatives: the base velocity gains ``e ḋ + ω ẑ × e d`` and the acceleration
     ``e d̈ + ω ẑ × e ḋ``). d is the fixed point of: compute the exact moment M_k about each
-    two-foot sample's support line from RNEA (:func:`hexaleg.balance.support_moment`), add the
-    periodic linear-inverted-pendulum sway that cancels it, ``g δd − h δd̈ = −M / (m s)`` on the
-    two-foot samples and 0 on the others (:func:`hexaleg.balance.periodic_lip_sway`, Kajita et
-    al. ICRA 2003; h the mean CoM height, s the crossing factor), and re-sample the gait; it
+    two-foot sample's support line from RNEA (:func:`hexaleg.motion.balance.support_moment`), add
+    the periodic linear-inverted-pendulum sway that cancels it, ``g δd − h δd̈ = −M / (m s)`` on the
+    two-foot samples and 0 on the others (:func:`hexaleg.motion.balance.periodic_lip_sway`, Kajita
+    et al. ICRA 2003; h the mean CoM height, s the crossing factor), and re-sample the gait; it
     stops when ``max |M_k| ≤ BALANCE_TOL · m g h``. The stance feet stay at rest (the footholds
     do not move with the sway) and the swing feet follow the same world curves. At times ``t``
     off the cycle grid the sway is the same trigonometric polynomial (balanced on the grid).
@@ -770,7 +770,7 @@ def _ground_clearance(robot: Robot, q: np.ndarray, feet: np.ndarray
     The feet are point contacts at the foot frames (``feet``, (T, n_legs, 3) world positions);
     their balls are drawn around them — a tilted ball dips r (1 − cos tilt) below its point,
     microns here — so the feet count by their points and every other shape by its exact lowest
-    point (:meth:`~hexaleg.robot.Robot.lowest_points`).
+    point (:meth:`~hexaleg.robot.model.Robot.lowest_points`).
     """
     foot_links = [robot.model.frames[leg.foot_frame_id].name for leg in robot.legs]
     z, names = robot.lowest_points(q, ignore=foot_links)

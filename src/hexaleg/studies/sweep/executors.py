@@ -6,14 +6,15 @@
   per core. Workers are forked when the parent runs a single Python thread (fast: ~20 ms, nothing
   re-imported); otherwise — a fork of a multi-threaded parent can deadlock, see the
   :mod:`multiprocessing` documentation — they start from a ``forkserver`` that imports
-  :mod:`hexaleg.sweep` once (~3 s; the main script then needs the ``if __name__ == "__main__"``
-  guard, as with ``spawn``).
+  :mod:`hexaleg.studies.sweep.runner` once (~3 s; the main script then needs the ``if __name__ ==
+  "__main__"`` guard, as with ``spawn``).
 * ``"dask"`` — a Dask ``distributed`` cluster given by its scheduler address, through
   ``Client.get_executor()`` (Dask's own ``concurrent.futures`` adaptor). Dask is an optional
   dependency (``pip install hexaleg[dask]``) imported only here, only when asked for.
 
 Tasks must be picklable module-level callables with picklable arguments (see
-:func:`hexaleg.sweep.evaluate_chunk`); Pinocchio objects never cross process boundaries.
+:func:`hexaleg.studies.sweep.runner.evaluate_chunk`); Pinocchio objects never cross process
+boundaries.
 """
 
 from __future__ import annotations
@@ -67,7 +68,7 @@ def _process_pool(workers: int) -> ProcessPoolExecutor:
     else:
         ctx = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
         if ctx.get_start_method() == "forkserver":
-            ctx.set_forkserver_preload(["hexaleg.sweep"])
+            ctx.set_forkserver_preload(["hexaleg.studies.sweep.runner"])
     return ProcessPoolExecutor(max_workers=workers, mp_context=ctx)
 
 

@@ -1,10 +1,10 @@
 """Energy metrics over a motion cycle: work, Joule loss, electrical energy, torques, CoT, ε.
 
 Integrals use the trapezoidal rule: on a periodic grid ``t[k] = k dt`` that excludes the
-endpoint a cycle integral is ``x.sum(0) * dt`` (see :mod:`hexaleg.motion`); a motion that stores
-both ends (``periodic=False``) weighs the end samples ``dt / 2``. The electrical model is
-:class:`hexaleg.motor.Motor`; the paper's energy is the signed joint work of eq. 20, its energy
-consumption ratio is eq. 23 (cost of transport) and eq. 24 (the single-joint variant,
+endpoint a cycle integral is ``x.sum(0) * dt`` (see :mod:`hexaleg.motion.trajectory`); a motion that
+stores both ends (``periodic=False``) weighs the end samples ``dt / 2``. The electrical model is
+:class:`hexaleg.robot.motor.Motor`; the paper's energy is the signed joint work of eq. 20, its
+energy consumption ratio is eq. 23 (cost of transport) and eq. 24 (the single-joint variant,
 :func:`epsilon`, and per joint in :func:`metrics`). ``docs/energy.md`` lists every key.
 """
 
@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from hexaleg.errors import InvalidParameterError
-from hexaleg.motor import Motor, as_torque_speed
+from hexaleg.robot.motor import Motor, as_torque_speed
 from hexaleg.units import G
 
 ENERGY_KEYS = ("net_work", "positive_work", "absolute_work", "joule", "electrical",
@@ -127,9 +127,10 @@ def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor, *,
           (only with ``mass`` and ``distance`` > 0);
         * ``epsilon`` (only with ``inertia``): dict of (n,) arrays ``angle`` θ = ∫ |q̇| dt (rad,
           the angle travelled), ``inertia`` (kg·m²) and ``positive_work`` — the paper's eq. 24
-          per joint, ε = E / (I θ) with E the positive work (as :meth:`hexaleg.paper.PaperJoint.
-          epsilon`: eq. 20's signed work vanishes over a conservative cycle), 1/s²; 0 for a
-          joint that does not move (it does no work either).
+          per joint, ε = E / (I θ) with E the positive work (as
+          :meth:`hexaleg.studies.paper.model.PaperJoint. epsilon`: eq. 20's signed work vanishes
+          over a conservative cycle), 1/s²; 0 for a joint that does not move (it does no work
+          either).
 
     Raises:
         InvalidParameterError: shapes differ or are not (T, n), NaN/inf values, ``dt`` not > 0,

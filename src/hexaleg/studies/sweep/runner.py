@@ -3,8 +3,8 @@
 The paper chooses one stiffness for one joint (k_M by eq. 19, k_E by minimising the energy of
 eq. 21) and leaves "the appropriate elastic joint assembly position and the optimal stiffness" as
 future work. This module answers that for a gait and a motor: which joints should carry a
-dead-zone spring (eq. 8, :class:`hexaleg.springs.DeadZoneSpring`), with which contact angles and
-which stiffness.
+dead-zone spring (eq. 8, :class:`hexaleg.robot.springs.DeadZoneSpring`), with which contact angles
+and which stiffness.
 
 Data flow
 ---------
@@ -19,12 +19,12 @@ of joints. A design gives, in SI (see :data:`SPRING_PARAMETERS`):
   in the gait* (default 0: a "centred" design, the symmetric dead zone about the motion that the
   paper assumes, eq. 8 and eq. 25).
 
-Points sharing a gait share one :func:`hexaleg.analysis.prepare`. Workers never receive Pinocchio
-objects: a task carries a small picklable :class:`RunSpec` (robot files, motor name, force
+Points sharing a gait share one :func:`hexaleg.dynamics.prepare.prepare`. Workers never receive
+Pinocchio objects: a task carries a small picklable :class:`RunSpec` (robot files, motor name, force
 objective, contact settings) and the gait parameters, and each worker keeps an :class:`Evaluator`
 per gait in a small cache. A design then costs one force solve
-(:meth:`hexaleg.analysis.Prepared.solve`) and the energy metrics; the spring torques come from the
-spring's torque basis (linear in k⁺ and k⁻), cached per dead-zone geometry.
+(:meth:`hexaleg.dynamics.prepare.Prepared.solve`) and the energy metrics; the spring torques come
+from the spring's torque basis (linear in k⁺ and k⁻), cached per dead-zone geometry.
 
 Metric and objective
 --------------------
@@ -36,8 +36,8 @@ criterion (eq. 20–24) with a motor model. Any key of ``Analysis.metrics["total
 (:data:`METRICS`) may be chosen instead.
 
 Results are a tidy :class:`pandas.DataFrame`, one row per point, written incrementally by
-:class:`hexaleg.store.ResultStore`; executors come from :mod:`hexaleg.executors`. See
-``docs/sweep.md``.
+:class:`hexaleg.studies.sweep.store.ResultStore`; executors come from
+:mod:`hexaleg.studies.sweep.executors`. See ``docs/sweep.md``.
 """
 
 from __future__ import annotations
@@ -56,10 +56,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from hexaleg.analysis import Prepared, prepare
 from hexaleg.config import from_mapping, load_toml
-from hexaleg.design import joint_range
-from hexaleg.energy import ENERGY_KEYS, NO_SAVING_KEYS, TORQUE_KEYS, savings
+from hexaleg.design.rules import joint_range
+from hexaleg.dynamics.energy import ENERGY_KEYS, NO_SAVING_KEYS, TORQUE_KEYS, savings
+from hexaleg.dynamics.forces import ContactParams, check_objective
+from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.errors import (
     ConfigError,
     InfeasibleForcesError,
@@ -67,14 +68,13 @@ from hexaleg.errors import (
     TorqueLimitError,
     UnknownNameError,
 )
-from hexaleg.executors import default_workers, open_executor
-from hexaleg.forces import ContactParams, check_objective
-from hexaleg.gait import GaitParams, tripod_gait
-from hexaleg.motor import DEFAULT_MOTOR
-from hexaleg.motor import motor as motor_by_name
-from hexaleg.robot import Robot, load_robot
-from hexaleg.springs import DeadZoneSpring, SpringSet
-from hexaleg.store import ResultStore
+from hexaleg.motion.gait import GaitParams, tripod_gait
+from hexaleg.robot.model import Robot, load_robot
+from hexaleg.robot.motor import DEFAULT_MOTOR
+from hexaleg.robot.motor import motor as motor_by_name
+from hexaleg.robot.springs import DeadZoneSpring, SpringSet
+from hexaleg.studies.sweep.executors import default_workers, open_executor
+from hexaleg.studies.sweep.store import ResultStore
 from hexaleg.units import deg_to_rad, nmm_per_deg_to_nm_per_rad
 
 if TYPE_CHECKING:  # pandas is imported where tables are made: `import hexaleg` stays light
@@ -102,7 +102,7 @@ PAPER_UNIT_PARAMETERS: dict[str, tuple[str, Callable[[Any], Any]]] = {
 GAIT_PARAMETERS: tuple[str, ...] = ("period", "duty_factor", "stride_length", "speed",
                                     "step_height", "body_height", "foot_radius", "yaw_rate",
                                     "samples")
-"""Scalar :class:`hexaleg.gait.GaitParams` fields a sweep may fix or vary."""
+"""Scalar :class:`hexaleg.motion.gait.GaitParams` fields a sweep may fix or vary."""
 LAYOUTS: tuple[str, ...] = ("product", "each")
 """How spring groups combine: every combination of all groups' values, or one group at a time."""
 SECTIONS: tuple[str, ...] = ("sweep", "gait", "springs", "contact")
@@ -124,8 +124,8 @@ class RunSpec:
     Attributes:
         urdf: URDF file, or None for the built-in hexaleg robot.
         srdf: SRDF file, or None (the built-in one with the built-in robot).
-        motor: Catalogue name of the servo on every joint (:data:`hexaleg.motor.CATALOGUE`).
-        objective: Force-distribution objective (:data:`hexaleg.forces.OBJECTIVES`).
+        motor: Catalogue name of the servo on every joint (:data:`hexaleg.robot.motor.CATALOGUE`).
+        objective: Force-distribution objective (:data:`hexaleg.dynamics.forces.OBJECTIVES`).
         contact: Contact settings.
 
     Raises:
@@ -308,10 +308,11 @@ class SweepSpec:
 
         ``[sweep]`` holds ``metric``, ``layout``, ``chunk_size`` and the :class:`RunSpec` keys
         ``urdf``, ``srdf``, ``motor``, ``objective``; ``[contact]`` the
-        :class:`~hexaleg.forces.ContactParams`; ``[gait]`` gait parameters; ``[springs.<group>]``
-        one table per group with an optional ``joints`` list. A scalar is fixed, a list or a range
-        table ``{start, stop, num, scale = "linear" | "log"}`` is an axis. Keys in the paper's
-        units (:data:`PAPER_UNIT_PARAMETERS`) are converted to SI through :mod:`hexaleg.units`.
+        :class:`~hexaleg.dynamics.forces.ContactParams`; ``[gait]`` gait parameters;
+        ``[springs.<group>]`` one table per group with an optional ``joints`` list. A scalar is
+        fixed, a list or a range table ``{start, stop, num, scale = "linear" | "log"}`` is an axis.
+        Keys in the paper's units (:data:`PAPER_UNIT_PARAMETERS`) are converted to SI through
+        :mod:`hexaleg.units`.
 
         Raises:
             UnknownNameError: unknown table or key (lists the valid ones).
@@ -378,7 +379,7 @@ class SweepSpec:
         return [(k, v) for k, v in params.items() if isinstance(v, tuple)]
 
     def gaits(self) -> list[dict[str, Any]]:
-        """Every gait of the grid as :class:`~hexaleg.gait.GaitParams` keyword arguments."""
+        """Every gait of the grid as :class:`~hexaleg.motion.gait.GaitParams` keyword arguments."""
         fixed = {k: v for k, v in self.gait.items() if not isinstance(v, tuple)}
         axes = self._axes(self.gait)
         return [{**fixed, **dict(zip([a for a, _ in axes], combo, strict=True))}
@@ -476,7 +477,7 @@ def evaluator(run: RunSpec, gait: Mapping[str, Any]) -> Evaluator:
 
     Args:
         run: Robot, motor, objective and contact settings.
-        gait: :class:`~hexaleg.gait.GaitParams` keyword arguments.
+        gait: :class:`~hexaleg.motion.gait.GaitParams` keyword arguments.
     """
     key = (run, tuple(sorted(gait.items())))
     if key in _EVALUATORS:
@@ -498,7 +499,7 @@ class Evaluator:
 
     Attributes:
         robot: The robot. motion: The gait's motion. prepared: Its
-            :class:`~hexaleg.analysis.Prepared`. baseline: Metrics without springs.
+            :class:`~hexaleg.dynamics.prepare.Prepared`. baseline: Metrics without springs.
         centre: Joint → centre of its range of motion in the gait, rad.
         half_range: Joint → half its range of motion in the gait, rad.
         evaluations: Designs evaluated so far (for tests and benchmarks).
@@ -523,7 +524,7 @@ class Evaluator:
 
         Raises:
             InvalidParameterError: an out-of-range parameter (from
-                :class:`~hexaleg.springs.DeadZoneSpring`).
+                :class:`~hexaleg.robot.springs.DeadZoneSpring`).
         """
         theta_k = params.get("theta_k")
         if "dead_zone" in params:
@@ -573,7 +574,7 @@ class Evaluator:
         return tau
 
     def metrics(self, groups: Mapping[str, Sequence[str]], design: Design) -> dict[str, Any]:
-        """Energy metrics of the gait with ``design``, as :func:`hexaleg.energy.metrics`.
+        """Energy metrics of the gait with ``design``, as :func:`hexaleg.dynamics.energy.metrics`.
 
         Raises:
             InfeasibleForcesError, TorqueLimitError: no admissible forces or torques.
@@ -717,9 +718,10 @@ def run_sweep(spec: SweepSpec, out: str | Path, *, executor: str = "process",
 
     Args:
         spec: The sweep.
-        out: Output directory (manifest + Parquet parts, :class:`hexaleg.store.ResultStore`).
+        out: Output directory (manifest + Parquet parts,
+            :class:`hexaleg.studies.sweep.store.ResultStore`).
         executor: ``"process"`` (local pool), ``"serial"`` or ``"dask"``
-            (:func:`hexaleg.executors.open_executor`).
+            (:func:`hexaleg.studies.sweep.executors.open_executor`).
         workers: Local pool size (default: the cores available).
         scheduler: Dask scheduler address (with ``executor="dask"``).
         progress: Show a tqdm progress bar on stderr.

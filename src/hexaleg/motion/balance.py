@@ -5,8 +5,8 @@ moment about the line joining the feet. A motion whose whole-body Newton–Euler
 a moment (gravity on a centre of mass off the line, the swinging legs' momentum) has no contact
 forces. :func:`support_moment` measures that moment exactly from Pinocchio's RNEA;
 :func:`periodic_lip_sway` gives the periodic horizontal body sway that cancels a prescribed moment
-in the linear inverted pendulum model; :func:`hexaleg.gait.sample_gait` iterates the two until the
-exact moment vanishes at every two-foot sample (``GaitParams.balance``).
+in the linear inverted pendulum model; :func:`hexaleg.motion.gait.sample_gait` iterates the two
+until the exact moment vanishes at every two-foot sample (``GaitParams.balance``).
 
 The linear inverted pendulum (LIP): a point mass m at constant height h above the ground whose
 horizontal offset from a support line is d (along the line's horizontal normal) needs the moment
@@ -30,8 +30,8 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.errors import InvalidParameterError
-from hexaleg.motion import Motion
-from hexaleg.robot import Robot
+from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.model import Robot
 
 GRAVITY = 9.81
 """Standard gravity used by the LIP model, m/s² (the exact moments use the model's gravity)."""

@@ -1,4 +1,5 @@
-"""Matplotlib figures of a gait analysis, for the energy report (:mod:`hexaleg.report`).
+"""Matplotlib figures of a gait analysis, for the energy report
+(:mod:`hexaleg.studies.report.build`).
 
 Every function returns a :class:`matplotlib.figure.Figure` built with the object-oriented API
 on the Agg canvas — no ``pyplot``, so nothing is registered in pyplot's global figure manager and
@@ -21,7 +22,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from hexaleg.errors import OutputError
-from hexaleg.robot import Robot
+from hexaleg.robot.model import Robot
 from hexaleg.units import rad_to_deg
 
 LEG_COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b")

@@ -1,4 +1,4 @@
-"""Browser visualisation of a :class:`~hexaleg.motion.Motion` with Meshcat.
+"""Browser visualisation of a :class:`~hexaleg.motion.trajectory.Motion` with Meshcat.
 
 The robot's visual model is drawn by Pinocchio's :class:`pinocchio.visualize.MeshcatVisualizer`;
 on top of it this module adds a ground plane, ground-reaction-force arrows at the feet and a
@@ -42,8 +42,8 @@ from meshcat.animation import Animation, AnimationClip, AnimationTrack
 from pinocchio.visualize import MeshcatVisualizer
 
 from hexaleg.errors import InvalidParameterError, OutputError
-from hexaleg.motion import Motion
-from hexaleg.robot import Robot
+from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.model import Robot
 
 N_LEVELS = 11
 """Number of colour bins of the joint markers (odd, so that the middle bin is centred on 0)."""

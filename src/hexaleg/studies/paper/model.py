@@ -16,7 +16,7 @@ Signs and conventions (see docs/paper.md):
   with the restoring sign used here.
 * κ is the joint stiffness: ``κ = k α`` in the paper's eq. 14 convention (the default here,
   ``convention="eq14"``) and ``κ = k α²`` in the energy-consistent eq. 7 convention (``"eq7"``);
-  both come from :class:`hexaleg.springs.DeadZoneSpring`.
+  both come from :class:`hexaleg.robot.springs.DeadZoneSpring`.
 * Eq. 19 ``k_M = ω² (m l² + I) / α`` with Table 6 gives 713.547 only with m in kg, l in mm and
   I in kg·mm²: the number is in kg·mm²·s⁻²/rad = 1e-6 N·m/rad, not N·mm/deg.
   :func:`k_M_paper_number` reproduces that arithmetic; :meth:`PaperJoint.k_M` is SI.
@@ -46,9 +46,9 @@ from numpy.typing import ArrayLike
 from scipy.optimize import brentq, minimize_scalar
 
 from hexaleg.errors import InvalidParameterError, OutputError
-from hexaleg.motor import Motor
-from hexaleg.motor import motor as default_motor
-from hexaleg.springs import CONVENTIONS, DeadZoneSpring
+from hexaleg.robot.motor import Motor
+from hexaleg.robot.motor import motor as default_motor
+from hexaleg.robot.springs import CONVENTIONS, DeadZoneSpring
 from hexaleg.units import (
     G,
     deg_to_rad,
@@ -360,7 +360,7 @@ def metric(joint: PaperJoint, name: str, k: ArrayLike, gravity: bool = True, n: 
         k: Stiffness(es), N·m/rad, scalar or (K,).
         gravity: Include gravity.
         n: Samples per period (uniform, endpoint excluded: integrals are sums × dt).
-        motor: Servo for ``joule`` (default :data:`hexaleg.motor.DEFAULT_MOTOR`, the robot's
+        motor: Servo for ``joule`` (default :data:`hexaleg.robot.motor.DEFAULT_MOTOR`, the robot's
             AX-18A).
 
     Returns:
@@ -570,7 +570,7 @@ def pinocchio_femur_torque(t: ArrayLike, joint: PaperJoint | None = None, leg: s
     """
     import pinocchio as pin
 
-    from hexaleg.robot import load_robot
+    from hexaleg.robot.model import load_robot
 
     j = joint or PaperJoint()
     robot = load_robot()

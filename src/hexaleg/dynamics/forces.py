@@ -22,7 +22,7 @@ small problem per sample. Objectives, all convex in ``f`` because ``τ`` is affi
   motor).
 - ``"electrical"``: electrical energy without regeneration
   Σ_j max(0, max(τ_j q̇_j / η, η τ_j q̇_j) + c_j τ_j²) + ε Σ_j τ_j² — the servo model of
-  :meth:`hexaleg.motor.Motor.electrical_power` (gearbox efficiency η by power-flow direction,
+  :meth:`hexaleg.robot.motor.Motor.electrical_power` (gearbox efficiency η by power-flow direction,
   Verstraten et al., RA-L 1(1) 2016; "positive electrical work" of Yesilevskiy & Remy, J.
   Mechanisms Robotics 10(3) 031008); the max is flat while a joint regenerates, so the same small
   regulariser ε makes the answer unique.

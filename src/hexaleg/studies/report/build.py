@@ -1,24 +1,24 @@
 """The gait energy report (``hexaleg report``): one gait, analysed with and without springs.
 
-:func:`build_report` runs the pipeline — robot → gait (:func:`hexaleg.gait.tripod_gait`) →
-:func:`hexaleg.analysis.prepare` once → :meth:`~hexaleg.analysis.Prepared.evaluate` with the
-springs, without them, and at every point of a stiffness curve; for a robot with ``stand`` and
-``sphere`` poses also the stand → sphere transformation — and collects every number in a
+:func:`build_report` runs the pipeline — robot → gait (:func:`hexaleg.motion.gait.tripod_gait`) →
+:func:`hexaleg.dynamics.prepare.prepare` once → :meth:`~hexaleg.dynamics.prepare.Prepared.evaluate`
+with the springs, without them, and at every point of a stiffness curve; for a robot with ``stand``
+and ``sphere`` poses also the stand → sphere transformation — and collects every number in a
 JSON-ready dict whose quantities carry their unit (``{"value": …, "unit": "J"}``).
 :func:`write_report` renders that dict with Jinja2 (``templates/report.html.j2``) into a
 self-contained ``report.html`` (plots embedded as base64 PNG), and writes ``report.json`` and the
-plots (:mod:`hexaleg.plots`) as PNG and SVG.
+plots (:mod:`hexaleg.outputs.plots`) as PNG and SVG.
 
 The configuration (:class:`ReportConfig`, from TOML through :func:`hexaleg.config.from_mapping`)
 has the optional tables ``[gait]``, ``[motor]``, ``[contact]``, ``[springs]`` and ``[report]``;
 ``[view]`` is left to ``hexaleg view``, which reads the same file.
 
 Sources of the models: the springs are the paper's dead-zone springs (eq. 7–8, 14) placed by
-:mod:`hexaleg.design` (centred dead zone, θ_k/A of Section 4.2, k_M of eq. 19); the energies are
-:func:`hexaleg.energy.metrics` (work eq. 20, cost of transport eq. 23, the motor model of
-:mod:`hexaleg.motor`); the friction usage ``|f_t| / (μ f_n)`` is the load of the Coulomb
-friction cone that the force program (:mod:`hexaleg.forces`) keeps ≤ 1; the paper's single-joint
-numbers come from :func:`hexaleg.paper.reproduce`.
+:mod:`hexaleg.design.rules` (centred dead zone, θ_k/A of Section 4.2, k_M of eq. 19); the energies
+are :func:`hexaleg.dynamics.energy.metrics` (work eq. 20, cost of transport eq. 23, the motor model
+of :mod:`hexaleg.robot.motor`); the friction usage ``|f_t| / (μ f_n)`` is the load of the Coulomb
+friction cone that the force program (:mod:`hexaleg.dynamics.forces`) keeps ≤ 1; the paper's
+single-joint numbers come from :func:`hexaleg.studies.paper.model.reproduce`.
 """
 
 from __future__ import annotations
@@ -36,9 +36,11 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from hexaleg import design, energy
-from hexaleg.analysis import Analysis, Prepared, prepare
 from hexaleg.config import from_mapping, load_toml
+from hexaleg.design import rules as design
+from hexaleg.dynamics import energy
+from hexaleg.dynamics.forces import OBJECTIVES, ContactParams
+from hexaleg.dynamics.prepare import Analysis, Prepared, prepare
 from hexaleg.errors import (
     ConfigError,
     HexalegError,
@@ -48,22 +50,22 @@ from hexaleg.errors import (
     TorqueLimitError,
     UnknownNameError,
 )
-from hexaleg.forces import OBJECTIVES, ContactParams
-from hexaleg.gait import GaitParams, transform_motion, tripod_gait
-from hexaleg.motion import Motion
-from hexaleg.motor import DEFAULT_MOTOR, Motor, motor_from_mapping
-from hexaleg.motor import motor as motor_by_name
-from hexaleg.robot import Robot, load_robot
-from hexaleg.robots import RobotDescription
-from hexaleg.springs import SpringSet
+from hexaleg.motion.gait import GaitParams, transform_motion, tripod_gait
+from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.model import Robot, load_robot
+from hexaleg.robot.motor import DEFAULT_MOTOR, Motor, motor_from_mapping
+from hexaleg.robot.motor import motor as motor_by_name
+from hexaleg.robot.registry import RobotDescription
+from hexaleg.robot.springs import SpringSet
 
 TABLES: tuple[str, ...] = ("gait", "motor", "contact", "springs", "report")
 """Tables of a report config file."""
 SHARED_TABLES: tuple[str, ...] = ("view",)
 """Tables other commands read from the same config file; the report accepts and ignores them."""
 SPRING_DESIGNS: tuple[str, ...] = ("paper", "centred", "none")
-"""``[springs] design``: the paper's rule (:func:`hexaleg.design.paper_style_springs`), a centred
-dead zone with a given stiffness (:func:`hexaleg.design.centred_springs`), or no springs."""
+"""``[springs] design``: the paper's rule (:func:`hexaleg.design.rules.paper_style_springs`), a
+centred dead zone with a given stiffness (:func:`hexaleg.design.rules.centred_springs`), or no
+springs."""
 CURVE_METRICS: tuple[str, ...] = (*(k for k in energy.ENERGY_KEYS
                                     if k not in energy.NO_SAVING_KEYS),
                                   "electrical_bus", *energy.TORQUE_KEYS)
@@ -97,7 +99,7 @@ class ReportParams:
 
     Attributes:
         title: Page title.
-        objective: Force-distribution objective (:data:`hexaleg.forces.OBJECTIVES`).
+        objective: Force-distribution objective (:data:`hexaleg.dynamics.forces.OBJECTIVES`).
         curve_joints: Joint class (or one joint) whose spring stiffness the curve varies.
         curve_metrics: Total metrics on the curve (:data:`CURVE_METRICS`), one line each.
         stiffness_min: Smallest stiffness of the curve, N·m/rad, ≥ 0.
@@ -105,7 +107,7 @@ class ReportParams:
             of the curve's joints.
         stiffness_points: Points of the curve, 2 … 1001.
         paper_samples: Samples per period of the paper's single-joint model, ≥ 8
-            (:func:`hexaleg.paper.reproduce`).
+            (:func:`hexaleg.studies.paper.model.reproduce`).
     """
 
     title: str = "hexaleg gait energy report"
@@ -162,9 +164,10 @@ class SpringDesign:
 
     Attributes:
         design: ``"paper"`` (centred dead zone θ_k/A = 0.426, α = 1.05, k_M of eq. 19 per joint:
-            :func:`hexaleg.design.paper_style_springs`), ``"centred"`` (centred dead zone with the
+            :func:`hexaleg.design.rules.paper_style_springs`), ``"centred"`` (centred dead zone with
+            the
             given ``stiffness`` and ``dead_zone``, α = 1, eq. 7 convention:
-            :func:`hexaleg.design.centred_springs`) or ``"none"``.
+            :func:`hexaleg.design.rules.centred_springs`) or ``"none"``.
         joints: Joint class (``"femur"``) or one joint that gets springs.
         stiffness: ``"centred"`` only (required): k, N·m/rad.
         dead_zone: ``"centred"`` only: θ_k as a fraction of the half range of motion, (0, 1);
@@ -235,7 +238,8 @@ class ReportConfig:
 
     Attributes:
         gait: Gait parameters (``[gait]``).
-        motor: The servo of every joint (``[motor]``, :func:`hexaleg.motor.motor_from_mapping`).
+        motor: The servo of every joint (``[motor]``,
+            :func:`hexaleg.robot.motor.motor_from_mapping`).
         contact: Contact settings (``[contact]``).
         springs: A :class:`SpringDesign` (``[springs] design = …``) or explicit per-joint springs
             in SI (``[springs.LF_femur] stiffness = …``, :meth:`SpringSet.from_mapping`).
@@ -253,7 +257,7 @@ class ReportConfig:
     @classmethod
     def for_robot(cls, desc: RobotDescription, robot: Robot,
                   data: Mapping[str, Any] | None = None, where: str = "config") -> ReportConfig:
-        """The configuration for a robot of the registry (:mod:`hexaleg.robots`).
+        """The configuration for a robot of the registry (:mod:`hexaleg.robot.registry`).
 
         The description's gait with the keys the file's ``[gait]`` sets on top; springs and the
         stiffness curve on the description's spring class unless the file names joints; the
@@ -271,7 +275,7 @@ class ReportConfig:
         """
         import dataclasses
 
-        from hexaleg.motor import CATALOGUE
+        from hexaleg.robot.motor import CATALOGUE
 
         data = data or {}
         config = cls.from_mapping(data, where)
@@ -433,7 +437,7 @@ def stiffness_curve(prepared: Prepared, springs: SpringSet, spec: str, stiffness
     ``evaluate``).
 
     Args:
-        prepared: :func:`hexaleg.analysis.prepare` of the gait.
+        prepared: :func:`hexaleg.dynamics.prepare.prepare` of the gait.
         springs: The springs (from :func:`curve_springs`: every joint of ``spec`` has one).
         spec: Joint class or joint whose stiffness varies.
         stiffness: k, shape (K,), N·m/rad, each ≥ 0.
@@ -477,8 +481,11 @@ def stiffness_curve(prepared: Prepared, springs: SpringSet, spec: str, stiffness
 
 @functools.lru_cache(maxsize=4)
 def _paper_reproduction(n: int) -> str:
-    """:func:`hexaleg.paper.reproduce` as JSON text, cached (it takes seconds and is constant)."""
-    from hexaleg import paper  # scipy.optimize: imported only when the report is made
+    """:func:`hexaleg.studies.paper.model.reproduce` as JSON text, cached (it takes seconds and is
+    constant)."""
+    from hexaleg.studies.paper import (
+        model as paper,  # scipy.optimize: imported only when the report is made
+    )
 
     return json.dumps(paper.reproduce(n=n))
 
@@ -486,7 +493,8 @@ def _paper_reproduction(n: int) -> str:
 def paper_reference(n: int = 1024) -> dict[str, Any]:
     """The paper's single-joint numbers (Table 6 lever, eq. 25) for the report, with units.
 
-    Taken from :func:`hexaleg.paper.reproduce` (not recomputed): eq. 19 k_M as printed and in
+    Taken from :func:`hexaleg.studies.paper.model.reproduce` (not recomputed): eq. 19 k_M as
+    printed and in
     SI, the closed-form no-gravity optima and peak-torque saving, the numerically optimal
     stiffness and saving per metric without gravity, and the verdicts on the printed k_E and
     52.81 % saving.
@@ -687,7 +695,8 @@ def transform_section(robot: Robot, cfg: ReportConfig, springs: SpringSet,
                       objective: str) -> dict[str, Any] | None:
     """The energy of folding from ``stand`` into ``sphere``, with the gait's springs and without.
 
-    The motion is :func:`hexaleg.gait.transform_motion` at its defaults (sit down on the feet,
+    The motion is :func:`hexaleg.motion.gait.transform_motion` at its defaults (sit down on the
+    feet,
     then fold with the body on the ground), analysed with the report's motor, contact settings
     and objective. Its joints' net work is the rise of the robot's potential energy m g Δz_com
     (at rest at both ends; the ground under the body does no work), reported alongside.
@@ -726,7 +735,7 @@ def build_report(config: ReportConfig | None = None, *, robot: Robot | None = No
     Args:
         config: The configuration (default :class:`ReportConfig`: built-in robot, default tripod
             gait, default motor, paper-style femur springs).
-        robot: The robot (default :func:`hexaleg.robot.load_robot`).
+        robot: The robot (default :func:`hexaleg.robot.model.load_robot`).
         progress: Called with one status line per step (e.g. print to stderr).
 
     Returns:
@@ -768,7 +777,7 @@ def build_report(config: ReportConfig | None = None, *, robot: Robot | None = No
     data["transform"] = transform_section(robot, cfg, springs, objective)
     if data["transform"] is not None:
         step("stand → sphere transformation analysed")
-    step("paper's single-joint reference (hexaleg.paper.reproduce)")
+    step("paper's single-joint reference (hexaleg.studies.paper.model.reproduce)")
     data["paper"] = paper_reference(cfg.report.paper_samples)
     step("numbers collected")
     return Report(config=cfg, robot=robot, motion=motion, analysis=analysis, rigid=rigid,
@@ -777,7 +786,7 @@ def build_report(config: ReportConfig | None = None, *, robot: Robot | None = No
 
 def _figures(r: Report) -> dict[str, Any]:
     """The report's figures by name (:data:`PLOTS`)."""
-    from hexaleg import plots  # matplotlib: imported only when the report is written
+    from hexaleg.outputs import plots  # matplotlib: imported only when the report is written
 
     a, robot, curve, key = r.analysis, r.robot, r.curve, BAR_METRIC
     zones = {j: (s.neutral + s.th_minus, s.neutral + s.th_plus) for j, s in a.springs.items()}
@@ -808,7 +817,7 @@ def render_html(data: Mapping[str, Any], images: Mapping[str, str]) -> str:
     """
     import jinja2
 
-    env = jinja2.Environment(loader=jinja2.PackageLoader("hexaleg", "templates"),
+    env = jinja2.Environment(loader=jinja2.PackageLoader("hexaleg.outputs", "templates"),
                              autoescape=jinja2.select_autoescape(("html", "j2")),
                              undefined=jinja2.StrictUndefined, trim_blocks=True,
                              lstrip_blocks=True)
@@ -861,7 +870,7 @@ def write_report(out: str | Path = "hexaleg-report", config: ReportConfig | None
         probe.unlink()
     except OSError as e:
         raise OutputError(f"cannot write the report to the directory {out}: {e}") from e
-    from hexaleg import plots
+    from hexaleg.outputs import plots
 
     r = build_report(config, robot=robot, progress=progress)
     say = progress or (lambda _msg: None)

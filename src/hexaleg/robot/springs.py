@@ -40,7 +40,7 @@ from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.units import deg_to_rad, nmm_per_deg_to_nm_per_rad, nmms_per_deg_to_nms_per_rad
 
 if TYPE_CHECKING:
-    from hexaleg.robot import Robot
+    from hexaleg.robot.model import Robot
 
 CONVENTIONS: tuple[str, ...] = ("eq7", "eq14")
 """α conventions of :class:`DeadZoneSpring` (see the module docstring)."""

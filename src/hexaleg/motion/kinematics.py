@@ -3,7 +3,7 @@
 Two solvers, both working in the base frame (the base's pose does not enter a leg's kinematics):
 
 * :func:`analytic_leg_ik` — closed form for hexaleg-type legs (coxa about the body z axis, femur
-  and tibia about parallel horizontal axes, see :mod:`hexaleg.robot_builder`), vectorised over
+  and tibia about parallel horizontal axes, see :mod:`hexaleg.robot.builder`), vectorised over
   time. The knee branch is fixed: tibia angle ≤ 0 (knee above the foot, as in the ``stand`` and
   ``sphere`` poses), so the branch never switches along a trajectory.
 * :func:`newton_leg_ik` — any 3-joint leg: Newton iterations on Pinocchio's forward kinematics,
@@ -28,7 +28,7 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.errors import RobotModelError, UnreachableTargetError
-from hexaleg.robot import Leg, Robot
+from hexaleg.robot.model import Leg, Robot
 
 FK_CHECK_TOL = 1e-12
 """Tolerance, m, of the check that the analytic model reproduces Pinocchio's forward kinematics."""

@@ -1,6 +1,6 @@
 """Whole-robot inverse dynamics, springs, foot forces and motor energy: ``prepare`` → ``evaluate``.
 
-For every sample of a :class:`~hexaleg.motion.Motion`, Pinocchio's RNEA gives
+For every sample of a :class:`~hexaleg.motion.trajectory.Motion`, Pinocchio's RNEA gives
 ``b = M(q) a + C(q, v) v + g(q)`` and the stance feet's Jacobians ``J_i`` (3 × nv, world-aligned).
 With world foot forces ``f_i``, spring torques ``τ_s`` and motor torques ``τ_m`` the equations of
 motion split into the base rows and the joint rows::
@@ -10,11 +10,11 @@ motion split into the base rows and the joint rows::
 
 Everything that does not depend on the springs — RNEA, Jacobians, the stance system and the
 quadratic program's gains — is computed once by :func:`prepare`; :meth:`Prepared.evaluate` then
-only evaluates the spring torques and re-solves the forces (:mod:`hexaleg.forces`). A motion with
-``fixed_base=True`` (the paper's single joint) has no contacts: the fixture carries the base rows
-and ``τ_m = b_joint − τ_s``. The same holds at the ``Motion.supported`` samples of any motion (the
-body resting on the ground while the legs fold): the support supplies ``b_base``, so the base
-rows there read 0 = 0, no foot carries load and ``τ_m = b_joint − τ_s``.
+only evaluates the spring torques and re-solves the forces (:mod:`hexaleg.dynamics.forces`). A
+motion with ``fixed_base=True`` (the paper's single joint) has no contacts: the fixture carries the
+base rows and ``τ_m = b_joint − τ_s``. The same holds at the ``Motion.supported`` samples of any
+motion (the body resting on the ground while the legs fold): the support supplies ``b_base``, so the
+base rows there read 0 = 0, no foot carries load and ``τ_m = b_joint − τ_s``.
 """
 
 from __future__ import annotations
@@ -26,10 +26,9 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from hexaleg import energy
-from hexaleg.design import apparent_inertias
-from hexaleg.errors import InvalidParameterError, TorqueLimitError
-from hexaleg.forces import (
+from hexaleg.design.rules import apparent_inertias
+from hexaleg.dynamics import energy
+from hexaleg.dynamics.forces import (
     QUADRATIC_OBJECTIVES,
     ContactParams,
     QuadraticGains,
@@ -38,11 +37,12 @@ from hexaleg.forces import (
     quadratic_gains,
     solve_fast,
 )
-from hexaleg.motion import Motion
-from hexaleg.motor import Motor
-from hexaleg.motor import motor as motor_by_name
-from hexaleg.robot import Robot
-from hexaleg.springs import DeadZoneSpring, SpringSet
+from hexaleg.errors import InvalidParameterError, TorqueLimitError
+from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.model import Robot
+from hexaleg.robot.motor import Motor
+from hexaleg.robot.motor import motor as motor_by_name
+from hexaleg.robot.springs import DeadZoneSpring, SpringSet
 
 SpringsLike = SpringSet | Mapping[str, DeadZoneSpring] | None
 
@@ -75,7 +75,7 @@ class Analysis:
         motion: The motion analysed.
         springs: The springs (joint name → spring).
         motor: The servo model of every joint.
-        objective: The force-distribution objective (:data:`hexaleg.forces.OBJECTIVES`).
+        objective: The force-distribution objective (:data:`hexaleg.dynamics.forces.OBJECTIVES`).
         contact: Contact settings.
         t: Sample times, shape (T,), s.
         q: Joint angles, shape (T, nj), rad.
@@ -87,9 +87,10 @@ class Analysis:
         spring_energy: Energy stored in the springs, shape (T, nj), J.
         power: Motor mechanical power ``τ_motor q̇``, shape (T, nj), W.
         resolved: Samples whose forces needed the exact conic solve (an inequality binds), (T,).
-        metrics: :func:`hexaleg.energy.metrics` of ``tau_motor`` (per joint and total, SI).
+        metrics: :func:`hexaleg.dynamics.energy.metrics` of ``tau_motor`` (per joint and total, SI).
         baseline: The same metrics for the same motion with no springs.
-        savings: :func:`hexaleg.energy.savings` of ``metrics`` against ``baseline`` (fraction of
+        savings: :func:`hexaleg.dynamics.energy.savings` of ``metrics`` against ``baseline``
+            (fraction of
             the no-spring value saved; positive = the springs save).
     """
 
@@ -129,7 +130,7 @@ class Prepared:
         contact: Contact settings.
         rnea: ``M a + h`` at every sample, shape (T, nv).
         jacobians: Foot Jacobians (world-aligned, linear part), shape (T, n_legs, 3, nv).
-        system: The force program's linear algebra (:class:`hexaleg.forces.StanceSystem`).
+        system: The force program's linear algebra (:class:`hexaleg.dynamics.forces.StanceSystem`).
         q: Joint angles, shape (T, nj), rad.
         qdot: Joint velocities, shape (T, nj), rad/s.
     """
@@ -196,8 +197,9 @@ class Prepared:
         return f.reshape(T, n_legs, 3), tau, resolved
 
     def metrics(self, tau_motor: np.ndarray) -> dict[str, Any]:
-        """:func:`hexaleg.energy.metrics` of motor torques ``tau_motor`` (T, nj) on this motion
-        (cost of transport when it travels; end samples weighted for a non-periodic motion)."""
+        """:func:`hexaleg.dynamics.energy.metrics` of motor torques ``tau_motor`` (T, nj) on this
+        motion (cost of transport when it travels; end samples weighted for a non-periodic
+        motion)."""
         distance = self.motion.distance if self.motion.distance > 0 else None
         return energy.metrics(tau_motor, self.qdot, self.motion.dt, self.motor,
                               mass=self.robot.mass if distance else None, distance=distance,
@@ -207,7 +209,7 @@ class Prepared:
     @property
     def inertia(self) -> np.ndarray:
         """Moment of inertia about each joint's axis of everything distal to it, at the motion's
-        mean posture (:func:`hexaleg.design.apparent_inertias`), shape (nj,), kg·m² — eq. 24's
+        mean posture (:func:`hexaleg.design.rules.apparent_inertias`), shape (nj,), kg·m² — eq. 24's
         I for the ε of :meth:`metrics`."""
         if self._inertia is None:
             self._inertia = apparent_inertias(self.robot, self.motion)
@@ -224,8 +226,9 @@ class Prepared:
         """Analyse the motion with ``springs``.
 
         Args:
-            springs: Joint name → spring (SI), a :class:`~hexaleg.springs.SpringSet`, or None.
-            objective: Force-distribution objective, one of :data:`hexaleg.forces.OBJECTIVES`.
+            springs: Joint name → spring (SI), a :class:`~hexaleg.robot.springs.SpringSet`, or None.
+            objective: Force-distribution objective, one of
+                :data:`hexaleg.dynamics.forces.OBJECTIVES`.
 
         Returns:
             The analysis.
@@ -259,8 +262,8 @@ def prepare(robot: Robot, motion: Motion, *, motor: Motor | str | None = None,
     Args:
         robot: The robot the motion was made for.
         motion: The motion (q, v, a in Pinocchio conventions; stance flags).
-        motor: The servo of every joint: a :class:`~hexaleg.motor.Motor`, a catalogue name, or
-            None for :data:`hexaleg.motor.DEFAULT_MOTOR`.
+        motor: The servo of every joint: a :class:`~hexaleg.robot.motor.Motor`, a catalogue name, or
+            None for :data:`hexaleg.robot.motor.DEFAULT_MOTOR`.
         contact: Contact settings (friction, cone, minimum normal force, torque limits — the
             limit is the motor's stall torque).
 
@@ -319,7 +322,7 @@ def analyze(robot: Robot, motion: Motion, springs: SpringsLike = None, *,
         springs: Joint name → spring, e.g.
             ``{"LF_femur": hexaleg.DeadZoneSpring(stiffness=2.0, theta_k=0.13)}`` (SI), or None.
         motor: Servo of every joint (Motor, catalogue name, or None for the default).
-        objective: Force-distribution objective (:data:`hexaleg.forces.OBJECTIVES`; default
+        objective: Force-distribution objective (:data:`hexaleg.dynamics.forces.OBJECTIVES`; default
             ``"joule"``).
         contact: Contact settings.
 

@@ -3,15 +3,15 @@
 Each :class:`RobotDescription` says declaratively how to load one robot into hexaleg — in the style
 of the loaders of example-robot-data (``example_robot_data.robots_loader``) and of
 robot_descriptions: the URDF and SRDF files, the SRDF ``group_state`` (or joint values) that is
-the robot's standing pose, one :class:`~hexaleg.robot.LegSpec` per leg (joints from the body out
-and the foot frame), the names of the joint classes (``("haa", "hfe", "kfe")``), the class the
+the robot's standing pose, one :class:`~hexaleg.robot.model.LegSpec` per leg (joints from the body
+out and the foot frame), the names of the joint classes (``("haa", "hfe", "kfe")``), the class the
 paper's spring goes on by default, and gait parameters suited to the robot's size. :func:`load`
-turns a name into a :class:`~hexaleg.robot.Robot`.
+turns a name into a :class:`~hexaleg.robot.model.Robot`.
 
 Legs get hexaleg's canonical names whatever the URDF calls them (``LF RF LH RH`` for the
 quadrupeds: Solo's ``FL``/``HR`` and Go2's ``FL``/``RR`` become ``LF``/``RH``), so leg groups such
 as :data:`TROT` mean the same on every robot. The standing pose is also stored as ``"stand"``, the
-pose :mod:`hexaleg.gait` takes its footholds and body height from.
+pose :mod:`hexaleg.motion.gait` takes its footholds and body height from.
 
 The quadrupeds' files come from the installed ``example-robot-data`` distribution (a cmeel
 package without a Python module), located through :mod:`importlib.metadata`, never from the
@@ -32,8 +32,8 @@ import pinocchio as pin
 
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError, UnknownNameError
-from hexaleg.gait import GaitParams
-from hexaleg.robot import (
+from hexaleg.motion.gait import GaitParams
+from hexaleg.robot.model import (
     HEXALEG_LEGS,
     JOINT_KINDS,
     URDF_DIR,
@@ -53,7 +53,7 @@ description's relative paths are made relative to its own directory)."""
 SOURCES: tuple[str, ...] = (BUILTIN, EXAMPLE_ROBOT_DATA, FILES)
 
 STAND = "stand"
-"""The pose name :mod:`hexaleg.gait` uses for footholds and body height."""
+"""The pose name :mod:`hexaleg.motion.gait` uses for footholds and body height."""
 
 TROT: tuple[tuple[str, ...], ...] = (("LF", "RH"), ("RF", "LH"))
 """A quadruped's trot: the diagonal pairs move together, {LF, RH} touching down at t = 0."""
@@ -94,7 +94,7 @@ class RobotDescription:
         title: Human-readable name and maker.
         source: Where the files come from: :data:`BUILTIN`, :data:`EXAMPLE_ROBOT_DATA` or
             :data:`FILES`.
-        urdf: URDF path relative to the source's directory (``hexaleg.robot.URDF_DIR``,
+        urdf: URDF path relative to the source's directory (``hexaleg.robot.model.URDF_DIR``,
             example-robot-data's ``share/example-robot-data/robots``, or as given for
             :data:`FILES`).
         srdf: SRDF path relative to the same directory, or None.
@@ -106,7 +106,7 @@ class RobotDescription:
             quadrupeds; the femur, as in the paper, for hexaleg).
         gait: Default gait parameters, sized to the robot (leg groups included).
         notes: Where the description's facts come from.
-        motor: Name of the robot's actuator in :data:`hexaleg.motor.CATALOGUE`, or None when
+        motor: Name of the robot's actuator in :data:`hexaleg.robot.motor.CATALOGUE`, or None when
             the catalogue has none (the report then uses the default servo and says so).
         mesh_dirs: Where ``package://`` mesh URIs resolve, for :data:`FILES` (the other sources
             know their own).
@@ -141,7 +141,7 @@ class RobotDescription:
         if self.spring_class not in self.joint_kinds:
             raise UnknownNameError("joint class", self.spring_class, self.joint_kinds)
         if self.motor is not None:
-            from hexaleg.motor import CATALOGUE
+            from hexaleg.robot.motor import CATALOGUE
 
             if self.motor not in CATALOGUE:
                 raise UnknownNameError(f"{self.name}: motor", self.motor, CATALOGUE)

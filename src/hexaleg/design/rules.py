@@ -11,7 +11,8 @@ For a joint of the walking robot hexaleg carries that over as a *centred* design
   apparent inertia ``M[v, v]`` (Pinocchio CRBA, base fixed) at the gait's mean posture — the
   "m l² + I" of everything the joint moves.
 
-These are starting points, not optima: :mod:`hexaleg.sweep` finds the optimum for a metric.
+These are starting points, not optima: :mod:`hexaleg.studies.sweep.runner` finds the optimum for a
+metric.
 """
 
 from __future__ import annotations
@@ -22,9 +23,9 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.errors import InvalidParameterError
-from hexaleg.motion import Motion
-from hexaleg.robot import Robot
-from hexaleg.springs import DeadZoneSpring, SpringSet
+from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.model import Robot
+from hexaleg.robot.springs import DeadZoneSpring, SpringSet
 from hexaleg.units import deg_to_rad
 
 PAPER_DEAD_ZONE_RATIO: float = float(deg_to_rad(7.32)) / 0.3
@@ -98,7 +99,7 @@ def centred_spring(robot: Robot, motion: Motion, joint: str, stiffness: float, *
             paper's 0.426); at 1 or more the spring would never engage, and a dead zone needs
             θ⁻ < θ⁺.
         alpha: α (eq. 7).
-        convention: Spring α convention (see :mod:`hexaleg.springs`).
+        convention: Spring α convention (see :mod:`hexaleg.robot.springs`).
 
     Raises:
         InvalidParameterError: ``dead_zone`` outside (0, 1).

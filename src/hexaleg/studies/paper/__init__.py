@@ -1,0 +1,1 @@
+"""The paper's single joint: model, closed forms, readings of its numbers, figures."""

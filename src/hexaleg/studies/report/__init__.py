@@ -1,0 +1,1 @@
+"""The gait energy report of one robot: configuration, analysis, rendering."""
