@@ -23,11 +23,6 @@ from hexaleg.robot.builder import load_params
 from hexaleg.robot.model import HEXALEG_LEGS, LegSpec
 
 
-@pytest.fixture(scope="module")
-def robot() -> hexaleg.Robot:
-    return hexaleg.load_robot()
-
-
 def _trajectory(t: np.ndarray, centre: np.ndarray) -> tuple[np.ndarray, ...]:
     """A smooth foot path (an ellipse tilted out of the ground plane) and its exact derivatives."""
     w = 2.0 * math.pi

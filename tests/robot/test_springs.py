@@ -12,11 +12,6 @@ from hexaleg.robot.model import load_robot
 from hexaleg.robot.springs import DeadZoneSpring, SpringSet
 
 
-@pytest.fixture(scope="module")
-def robot():
-    return load_robot()
-
-
 def _asym() -> DeadZoneSpring:
     return DeadZoneSpring(stiffness=3.0, theta_minus=-0.3, theta_plus=0.1, stiffness_minus=7.0,
                           k2=0.2, alpha=1.3, damping=0.05, neutral=0.4)

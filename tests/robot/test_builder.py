@@ -9,7 +9,7 @@ import pytest
 from hexaleg.errors import ConfigError
 from hexaleg.robot.builder import build, build_srdf, build_urdf, femur_si, load_params
 
-REPO_URDF = Path(__file__).resolve().parents[1] / "urdf"
+REPO_URDF = Path(__file__).resolve().parents[2] / "urdf"
 
 
 def test_committed_files_equal_a_fresh_build():

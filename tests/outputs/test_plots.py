@@ -11,12 +11,6 @@ import pytest
 
 from hexaleg.errors import OutputError
 from hexaleg.outputs import plots
-from hexaleg.robot.model import load_robot
-
-
-@pytest.fixture(scope="module")
-def robot():
-    return load_robot()
 
 
 @pytest.fixture(scope="module")

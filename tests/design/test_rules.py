@@ -22,11 +22,6 @@ from hexaleg.motion.gait import Sinusoid, joint_motion
 
 
 @pytest.fixture(scope="module")
-def robot():
-    return hexaleg.load_robot()
-
-
-@pytest.fixture(scope="module")
 def gait(robot):
     return hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=200))
 

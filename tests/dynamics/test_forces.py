@@ -16,20 +16,14 @@ from hexaleg.dynamics.forces import (
 )
 from hexaleg.dynamics.prepare import prepare
 from hexaleg.errors import InfeasibleForcesError, InvalidParameterError, TorqueLimitError
-from hexaleg.motion.gait import GaitParams, tripod_gait
 from hexaleg.robot.motor import CATALOGUE
 from hexaleg.robot.springs import DeadZoneSpring
 
 
 @pytest.fixture(scope="module")
-def robot():
-    return hexaleg.load_robot()
-
-
-@pytest.fixture(scope="module")
-def motion(robot):
-    """The default tripod gait at 200 samples per cycle (cvxpy solves every sample)."""
-    return tripod_gait(robot, GaitParams(samples=200))
+def motion(walk200):
+    """cvxpy solves every sample: the 200-sample gait."""
+    return walk200
 
 
 def _springs(robot):

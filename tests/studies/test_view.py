@@ -27,7 +27,6 @@ from hexaleg.dynamics.prepare import analyze
 from hexaleg.errors import InvalidParameterError, OutputError
 from hexaleg.motion.gait import transform_motion, tripod_gait
 from hexaleg.motion.trajectory import Motion
-from hexaleg.robot.model import load_robot
 from hexaleg.studies.view import N_LEVELS, ViewParams, animate, cool_warm, export_html, value_bins
 
 T = 40
@@ -36,11 +35,6 @@ DISTANCE = 0.1
 AMP = 0.25
 TRIPOD_A = ("LF", "LH", "RM")
 ARROW = ViewParams().arrow_length
-
-
-@pytest.fixture(scope="module")
-def robot():
-    return load_robot()
 
 
 @pytest.fixture(scope="module")

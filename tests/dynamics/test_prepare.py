@@ -9,18 +9,13 @@ import pytest
 import hexaleg
 from hexaleg.dynamics.prepare import analyze, prepare
 from hexaleg.errors import InvalidParameterError, UnknownNameError
-from hexaleg.motion.gait import Sinusoid, joint_motion, tripod_gait
+from hexaleg.motion.gait import Sinusoid, joint_motion
 from hexaleg.robot.springs import DeadZoneSpring
 
 
 @pytest.fixture(scope="module")
-def robot():
-    return hexaleg.load_robot()
-
-
-@pytest.fixture(scope="module")
-def motion(robot):
-    return tripod_gait(robot)
+def motion(walk):
+    return walk
 
 
 @pytest.fixture(scope="module")

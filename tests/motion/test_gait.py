@@ -35,16 +35,6 @@ from hexaleg.robot.model import LegSpec
 
 
 @pytest.fixture(scope="module")
-def robot() -> hexaleg.Robot:
-    return hexaleg.load_robot()
-
-
-@pytest.fixture(scope="module")
-def walk(robot) -> hexaleg.motion.trajectory.Motion:
-    return tripod_gait(robot)
-
-
-@pytest.fixture(scope="module")
 def turn(robot) -> hexaleg.motion.trajectory.Motion:
     """A turning gait with double support (β = 0.7) and a lower body."""
     return tripod_gait(robot, GaitParams(yaw_rate=0.4, duty_factor=0.7, body_height=0.08,

@@ -20,11 +20,6 @@ from hexaleg.units import kgmm2_to_kgm2, mm_to_m
 TABLE6 = {"L_mm": 84.000, "l_mm": 47.141, "m_kg": 3.611e-2, "I_kgmm2": 107.059}
 
 
-@pytest.fixture(scope="module")
-def robot() -> hexaleg.Robot:
-    return hexaleg.load_robot()
-
-
 def test_model_dimensions(robot):
     assert robot.model.nq == 25
     assert robot.model.nv == 24

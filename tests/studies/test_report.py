@@ -15,7 +15,7 @@ import pytest
 from browser import CHROMIUM_FLAGS, chromium, finish, page_requests, start_screenshot
 from PIL import Image
 
-from hexaleg import GaitParams, analyze, load_robot, tripod_gait
+from hexaleg import GaitParams, analyze, tripod_gait
 from hexaleg.cli import main
 from hexaleg.design.rules import PAPER_ALPHA, k_M, paper_style_springs
 from hexaleg.dynamics.forces import ContactParams
@@ -48,11 +48,6 @@ fps = 30
 """
 SECTIONS = ("summary", "angles", "torques", "power", "forces", "energy", "cot", "transform",
             "curve", "paper")
-
-
-@pytest.fixture(scope="module")
-def robot():
-    return load_robot()
 
 
 @pytest.fixture(scope="module")

@@ -1,0 +1,30 @@
+"""Shared fixtures: the built-in robot and its default tripod gait, loaded once per test session.
+
+Tests must not mutate these objects (a :class:`hexaleg.Robot` carries Pinocchio ``data`` that
+kinematics calls overwrite, which is harmless; its model and the motion's arrays are never
+written). A test that needs another gait or robot builds its own.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+import hexaleg
+
+
+@pytest.fixture(scope="session")
+def robot() -> hexaleg.Robot:
+    """The built-in hexapod (``hexaleg.load_robot()``)."""
+    return hexaleg.load_robot()
+
+
+@pytest.fixture(scope="session")
+def walk(robot: hexaleg.Robot) -> hexaleg.Motion:
+    """The default tripod gait, 1000 samples per cycle."""
+    return hexaleg.tripod_gait(robot)
+
+
+@pytest.fixture(scope="session")
+def walk200(robot: hexaleg.Robot) -> hexaleg.Motion:
+    """The default tripod gait at 200 samples per cycle (where a reference solves every sample)."""
+    return hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=200))
