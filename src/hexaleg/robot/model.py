@@ -16,6 +16,7 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.errors import RobotModelError, UnknownNameError
+from hexaleg.robot import geometry as _geometry
 
 URDF_DIR = Path(__file__).resolve().parent / "urdf"
 """Directory of the packaged robot files (a link to the repository's ``urdf/``)."""
@@ -182,68 +183,15 @@ class Robot:
         return np.array([self.data.oMf[leg.foot_frame_id].translation for leg in self.legs])
 
     def self_collisions(self, q: np.ndarray) -> list[tuple[str, str]]:
-        """Pairs of links whose collision geometries intersect at ``q`` (SRDF pairs excluded).
-
-        Args:
-            q: Configuration, shape (nq,).
-
-        Returns:
-            Sorted list of (link, link) name pairs in collision; empty when collision-free.
-        """
-        gdata = pin.GeometryData(self.collision_model)
-        pin.computeCollisions(self.model, self.data, self.collision_model, gdata,
-                              np.asarray(q, dtype=float), False)
-        hits = []
-        for k, pair in enumerate(self.collision_model.collisionPairs):
-            if gdata.collisionResults[k].isCollision():
-                a = self.collision_model.geometryObjects[pair.first]
-                b = self.collision_model.geometryObjects[pair.second]
-                names = sorted((self.model.frames[a.parentFrame].name,
-                                self.model.frames[b.parentFrame].name))
-                hits.append((names[0], names[1]))
-        return sorted(set(hits))
+        """Pairs of links whose collision geometries intersect at ``q`` (nq,), SRDF pairs
+        excluded: sorted (link, link) name pairs, empty when collision-free
+        (:func:`hexaleg.robot.geometry.self_collisions`)."""
+        return _geometry.self_collisions(self.model, self.data, self.collision_model, q)
 
     def max_extent(self, q: np.ndarray, geometry: str = "visual") -> float:
-        """Largest distance of any geometry point from the base origin at ``q``, m.
-
-        Exact for the primitive shapes the built-in robot uses: a box's farthest point is a
-        corner; a sphere's is at ``|c| + r``; a cylinder's lies on a rim circle, at
-        ``sqrt(|p|² + r² + 2 r |p⊥|)`` for rim centre ``p`` (``p⊥`` its part normal to the axis).
-
-        Args:
-            q: Configuration, shape (nq,).
-            geometry: ``"visual"`` or ``"collision"``.
-
-        Raises:
-            UnknownNameError: ``geometry`` is neither; or a shape is not a box, sphere or cylinder.
-        """
-        gmodel = self._geometry_model(geometry)
-        gdata = pin.GeometryData(gmodel)
-        pin.updateGeometryPlacements(self.model, self.data, gmodel, gdata,
-                                     np.asarray(q, dtype=float))
-        base = self.data.oMi[1]
-        extent = 0.0
-        for k, obj in enumerate(gmodel.geometryObjects):
-            placement = base.actInv(gdata.oMg[k])  # geometry frame in the base frame
-            shape, kind = obj.geometry, type(obj.geometry).__name__
-            c, rot = placement.translation, placement.rotation
-            if kind == "Sphere":
-                d = float(np.linalg.norm(c) + shape.radius)
-            elif kind == "Box":
-                signs = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T
-                d = float(np.max(np.linalg.norm(c + (signs * shape.halfSide) @ rot.T, axis=1)))
-            elif kind == "Cylinder":
-                axis = rot[:, 2]
-                d = 0.0
-                for s in (-1.0, 1.0):
-                    p = c + s * shape.halfLength * axis
-                    p_perp = np.linalg.norm(p - (p @ axis) * axis)
-                    d = max(d, float(np.sqrt(p @ p + shape.radius**2
-                                             + 2 * shape.radius * p_perp)))
-            else:
-                raise UnknownNameError("shape for max_extent", kind, ("Box", "Cylinder", "Sphere"))
-            extent = max(extent, d)
-        return extent
+        """Largest distance of any ``"visual"`` or ``"collision"`` geometry point from the base
+        origin at ``q`` (nq,), m (:func:`hexaleg.robot.geometry.max_extent`)."""
+        return _geometry.max_extent(self.model, self.data, self._geometry_model(geometry), q)
 
     def lowest_point(self, q: np.ndarray, geometry: str = "visual",
                      ignore: Sequence[str] = ()) -> tuple[float, str]:
@@ -277,41 +225,8 @@ class Robot:
         Returns:
             Heights (T,), m, and the name of the lowest geometry object at each sample.
         """
-        gmodel = self._geometry_model(geometry)
-        objects = [(k, obj) for k, obj in enumerate(gmodel.geometryObjects)
-                   if self.model.frames[obj.parentFrame].name not in ignore]
-        if not objects:
-            raise UnknownNameError("geometry left after ignore", "(none)",
-                                   sorted({self.model.frames[o.parentFrame].name
-                                           for o in gmodel.geometryObjects}))
-        # Per object: half-extents along its local axes for |R_z·|, a rim radius, a ball radius.
-        n_obj = len(objects)
-        half, rim, ball = np.zeros((n_obj, 3)), np.zeros(n_obj), np.zeros(n_obj)
-        for n, (_, obj) in enumerate(objects):
-            kind = type(obj.geometry).__name__
-            if kind == "Sphere":
-                ball[n] = obj.geometry.radius
-            elif kind == "Box":
-                half[n] = obj.geometry.halfSide
-            elif kind == "Cylinder":
-                half[n, 2], rim[n] = obj.geometry.halfLength, obj.geometry.radius
-            else:
-                raise UnknownNameError("shape for lowest_point", kind,
-                                       ("Box", "Cylinder", "Sphere"))
-        gdata = pin.GeometryData(gmodel)
-        q = np.asarray(q, dtype=float)
-        lowest, names = np.empty(len(q)), []
-        for t, qt in enumerate(q):
-            pin.updateGeometryPlacements(self.model, self.data, gmodel, gdata, qt)
-            placements = [gdata.oMg[k] for k, _ in objects]
-            c_z = np.array([m.translation[2] for m in placements])
-            r_z = np.array([m.rotation[2] for m in placements])  # (n, 3): rows R_z·
-            z = c_z - ball - np.sum(np.abs(r_z) * half, axis=1) \
-                - rim * np.sqrt(np.maximum(0.0, 1.0 - r_z[:, 2] ** 2))
-            n = int(np.argmin(z))
-            lowest[t] = z[n]
-            names.append(objects[n][1].name)
-        return lowest, names
+        return _geometry.lowest_points(self.model, self.data, self._geometry_model(geometry),
+                                       np.asarray(q, dtype=float), ignore)
 
     def _geometry_model(self, geometry: str) -> pin.GeometryModel:
         """The visual or collision model, by name."""

@@ -3,7 +3,7 @@
 The paper (eq. 8) puts a main torsion spring at the femur joint that only engages once the joint
 has turned past a contact angle ±θ_k; inside the dead zone only a very soft secondary spring k₂
 acts. :class:`DeadZoneSpring` generalises that law per joint, and :class:`SpringSet` assigns
-springs to any of a robot's actuated joints.
+springs to any of a robot's actuated joints (:mod:`hexaleg.robot.springs.spring_set`).
 
 The α convention
 ----------------
@@ -28,34 +28,21 @@ the main spring is engaged) and goes through the same transmission factor as its
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from hexaleg.config import from_mapping
-from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+from hexaleg.checks import finite_array
+from hexaleg.errors import InvalidParameterError
 from hexaleg.units import deg_to_rad, nmm_per_deg_to_nm_per_rad, nmms_per_deg_to_nms_per_rad
 
 if TYPE_CHECKING:
-    from hexaleg.robot.model import Robot
+    pass
 
 CONVENTIONS: tuple[str, ...] = ("eq7", "eq14")
 """α conventions of :class:`DeadZoneSpring` (see the module docstring)."""
-
-
-def _finite_array(name: str, x: ArrayLike) -> np.ndarray:
-    """``x`` as a float array; raise if it holds NaN or inf."""
-    try:
-        a = np.asarray(x, dtype=float)
-    except (TypeError, ValueError):
-        raise InvalidParameterError(name, x, "an array of real numbers") from None
-    if not np.all(np.isfinite(a)):
-        bad = a[~np.isfinite(a)].ravel()[0]
-        raise InvalidParameterError(name, float(bad), "finite numbers (no NaN or inf)")
-    return a
 
 
 class TorqueBasis(NamedTuple):
@@ -175,7 +162,7 @@ class DeadZoneSpring:
         return self.alpha**2 if self.convention == "eq7" else self.alpha
 
     def _delta(self, q: ArrayLike) -> np.ndarray:
-        return _finite_array("q", q) - self.neutral
+        return finite_array("q", q) - self.neutral
 
     def compression(self, q: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         """Compressions past the contact angles.
@@ -214,7 +201,7 @@ class DeadZoneSpring:
         if v is None:
             damp = np.zeros_like(d)
         else:
-            va = _finite_array("v", v)
+            va = finite_array("v", v)
             if va.shape != d.shape:
                 raise InvalidParameterError("v.shape", va.shape, f"the shape of q, {d.shape}")
             eng = (d > self.th_plus) | (d < self.th_minus)
@@ -272,143 +259,9 @@ class DeadZoneSpring:
                             ("k2_nmm_per_deg", k2_nmm_per_deg),
                             ("damping_nmms_per_deg", damping_nmms_per_deg),
                             ("neutral_deg", neutral_deg)):
-            _finite_array(name, value)
+            finite_array(name, value)
         return cls(stiffness=float(nmm_per_deg_to_nm_per_rad(k_nmm_per_deg)),
                    theta_k=float(deg_to_rad(theta_k_deg)), alpha=alpha,
                    k2=float(nmm_per_deg_to_nm_per_rad(k2_nmm_per_deg)),
                    damping=float(nmms_per_deg_to_nms_per_rad(damping_nmms_per_deg)),
                    neutral=float(deg_to_rad(neutral_deg)), convention=convention)
-
-
-class SpringSet(Mapping[str, DeadZoneSpring]):
-    """Springs assigned to actuated joints, keyed by joint name (any number, 0 to all).
-
-    Args:
-        springs: Joint name → spring. Names are checked against a robot when it is used.
-
-    Raises:
-        InvalidParameterError: a value is not a :class:`DeadZoneSpring` or a key not a string.
-    """
-
-    def __init__(self, springs: Mapping[str, DeadZoneSpring] | None = None) -> None:
-        items = dict(springs or {})
-        for name, spring in items.items():
-            if not isinstance(name, str):
-                raise InvalidParameterError("joint name", name, "a string")
-            if not isinstance(spring, DeadZoneSpring):
-                raise InvalidParameterError(f"spring on {name}", spring, "a DeadZoneSpring")
-        self._springs = items
-
-    def __getitem__(self, name: str) -> DeadZoneSpring:
-        try:
-            return self._springs[name]
-        except KeyError:
-            raise UnknownNameError("sprung joint", name, self._springs) from None
-
-    def __iter__(self) -> Iterator[str]:
-        return iter(self._springs)
-
-    def __len__(self) -> int:
-        return len(self._springs)
-
-    def __repr__(self) -> str:
-        return f"SpringSet({self._springs!r})"
-
-    @classmethod
-    def from_mapping(cls, data: Mapping[str, Mapping[str, object]], where: str = "springs"
-                     ) -> SpringSet:
-        """Springs from a TOML table of tables, SI units: ``[springs.LF_femur] stiffness = 20.0``.
-
-        Args:
-            data: Joint name → table of :class:`DeadZoneSpring` fields.
-            where: Where the table came from, for error messages.
-
-        Raises:
-            ConfigError: a value has the wrong type. UnknownNameError: an unknown field.
-            InvalidParameterError: a value is out of range.
-        """
-        if not isinstance(data, Mapping):
-            raise ConfigError(f"{where}: expected a table of joint tables, got {data!r}")
-        return cls({name: from_mapping(DeadZoneSpring, table, f"{where}.{name}")
-                    for name, table in data.items()})
-
-    def columns(self, robot: Robot) -> dict[str, int]:
-        """Column of each sprung joint in (…, robot.nj) arrays (its velocity index − 6).
-
-        Raises:
-            UnknownNameError: a sprung joint is not an actuated joint of ``robot`` (the message
-                lists ``robot.joint_names``).
-            InvalidParameterError: a sprung joint has more than one degree of freedom.
-        """
-        cols = {}
-        for name in self._springs:
-            robot.column(name)  # raises UnknownNameError listing the joints
-            joint = robot.model.joints[robot.model.getJointId(name)]
-            if joint.nv != 1:
-                raise InvalidParameterError(f"spring on {name}", f"a joint with nv = {joint.nv}",
-                                            "a 1-DoF (revolute or continuous) joint")
-            cols[name] = joint.idx_v - (robot.model.nv - robot.nj)
-        return cols
-
-    def _angles(self, robot: Robot, q: ArrayLike, v: ArrayLike | None
-                ) -> dict[str, tuple[int, np.ndarray, np.ndarray | None]]:
-        """Per sprung joint: (column, angle (T,) rad, velocity (T,) rad/s or None).
-
-        A continuous joint stores (cos θ, sin θ) in q (Pinocchio's RUBZ); its angle is atan2.
-        """
-        cols = self.columns(robot)
-        qa = _finite_array("q", q)
-        nq, nv = robot.model.nq, robot.model.nv
-        if qa.ndim != 2 or qa.shape[1] != nq:
-            raise InvalidParameterError("q.shape", qa.shape, f"(T, {nq})")
-        va = None
-        if v is not None:
-            va = _finite_array("v", v)
-            if va.shape != (qa.shape[0], nv):
-                raise InvalidParameterError("v.shape", va.shape, f"({qa.shape[0]}, {nv})")
-        out = {}
-        for name, c in cols.items():
-            joint = robot.model.joints[robot.model.getJointId(name)]
-            iq = joint.idx_q
-            angle = qa[:, iq] if joint.nq == 1 else np.arctan2(qa[:, iq + 1], qa[:, iq])
-            out[name] = (c, angle, None if va is None else va[:, joint.idx_v])
-        return out
-
-    def torques(self, robot: Robot, q: ArrayLike, v: ArrayLike | None = None) -> np.ndarray:
-        """Spring torques on every actuated joint, N·m.
-
-        Args:
-            robot: The robot (each joint's angle and velocity found through Pinocchio's
-                ``idx_q``/``idx_v``).
-            q: Configurations, shape (T, nq), rad for the joints.
-            v: Velocities, shape (T, nv), or None to omit damping.
-
-        Returns:
-            Shape (T, robot.nj), columns in ``robot.joint_names`` order; zero where no spring.
-
-        Raises:
-            UnknownNameError: a sprung joint is not a joint of the robot (lists the joints).
-            InvalidParameterError: wrong shapes, NaN or inf.
-        """
-        angles = self._angles(robot, q, v)
-        out = np.zeros((np.shape(q)[0], robot.nj))
-        for name, (c, angle, vel) in angles.items():
-            out[:, c] = self._springs[name].torque(angle, vel)
-        return out
-
-    def energies(self, robot: Robot, q: ArrayLike) -> np.ndarray:
-        """Stored spring energy per actuated joint, J, shape (T, robot.nj); zero where no spring.
-
-        Args:
-            robot: The robot.
-            q: Configurations, shape (T, nq).
-
-        Raises:
-            UnknownNameError: a sprung joint is not a joint of the robot (lists the joints).
-            InvalidParameterError: wrong shape, NaN or inf.
-        """
-        angles = self._angles(robot, q, None)
-        out = np.zeros((np.shape(q)[0], robot.nj))
-        for name, (c, angle, _) in angles.items():
-            out[:, c] = self._springs[name].energy(angle)
-        return out

@@ -1,0 +1,156 @@
+"""A robot's springs: which joint carries which spring, and their torques and energies.
+
+:class:`SpringSet` maps actuated joint names to springs; given a robot it turns joint trajectories
+into the spring torque (T, nj) and stored energy (T, nj) of every joint, in the Pinocchio model's
+joint order (zero where no spring sits).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Mapping
+from typing import TYPE_CHECKING
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from hexaleg.checks import finite_array
+from hexaleg.config import from_mapping
+from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+from hexaleg.robot.springs.dead_zone import DeadZoneSpring
+
+if TYPE_CHECKING:
+    from hexaleg.robot.model import Robot
+
+
+class SpringSet(Mapping[str, DeadZoneSpring]):
+    """Springs assigned to actuated joints, keyed by joint name (any number, 0 to all).
+
+    Args:
+        springs: Joint name → spring. Names are checked against a robot when it is used.
+
+    Raises:
+        InvalidParameterError: a value is not a :class:`DeadZoneSpring` or a key not a string.
+    """
+
+    def __init__(self, springs: Mapping[str, DeadZoneSpring] | None = None) -> None:
+        items = dict(springs or {})
+        for name, spring in items.items():
+            if not isinstance(name, str):
+                raise InvalidParameterError("joint name", name, "a string")
+            if not isinstance(spring, DeadZoneSpring):
+                raise InvalidParameterError(f"spring on {name}", spring, "a DeadZoneSpring")
+        self._springs = items
+
+    def __getitem__(self, name: str) -> DeadZoneSpring:
+        try:
+            return self._springs[name]
+        except KeyError:
+            raise UnknownNameError("sprung joint", name, self._springs) from None
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._springs)
+
+    def __len__(self) -> int:
+        return len(self._springs)
+
+    def __repr__(self) -> str:
+        return f"SpringSet({self._springs!r})"
+
+    @classmethod
+    def from_mapping(cls, data: Mapping[str, Mapping[str, object]], where: str = "springs"
+                     ) -> SpringSet:
+        """Springs from a TOML table of tables, SI units: ``[springs.LF_femur] stiffness = 20.0``.
+
+        Args:
+            data: Joint name → table of :class:`DeadZoneSpring` fields.
+            where: Where the table came from, for error messages.
+
+        Raises:
+            ConfigError: a value has the wrong type. UnknownNameError: an unknown field.
+            InvalidParameterError: a value is out of range.
+        """
+        if not isinstance(data, Mapping):
+            raise ConfigError(f"{where}: expected a table of joint tables, got {data!r}")
+        return cls({name: from_mapping(DeadZoneSpring, table, f"{where}.{name}")
+                    for name, table in data.items()})
+
+    def columns(self, robot: Robot) -> dict[str, int]:
+        """Column of each sprung joint in (…, robot.nj) arrays (its velocity index − 6).
+
+        Raises:
+            UnknownNameError: a sprung joint is not an actuated joint of ``robot`` (the message
+                lists ``robot.joint_names``).
+            InvalidParameterError: a sprung joint has more than one degree of freedom.
+        """
+        cols = {}
+        for name in self._springs:
+            robot.column(name)  # raises UnknownNameError listing the joints
+            joint = robot.model.joints[robot.model.getJointId(name)]
+            if joint.nv != 1:
+                raise InvalidParameterError(f"spring on {name}", f"a joint with nv = {joint.nv}",
+                                            "a 1-DoF (revolute or continuous) joint")
+            cols[name] = joint.idx_v - (robot.model.nv - robot.nj)
+        return cols
+
+    def _angles(self, robot: Robot, q: ArrayLike, v: ArrayLike | None
+                ) -> dict[str, tuple[int, np.ndarray, np.ndarray | None]]:
+        """Per sprung joint: (column, angle (T,) rad, velocity (T,) rad/s or None).
+
+        A continuous joint stores (cos θ, sin θ) in q (Pinocchio's RUBZ); its angle is atan2.
+        """
+        cols = self.columns(robot)
+        qa = finite_array("q", q)
+        nq, nv = robot.model.nq, robot.model.nv
+        if qa.ndim != 2 or qa.shape[1] != nq:
+            raise InvalidParameterError("q.shape", qa.shape, f"(T, {nq})")
+        va = None
+        if v is not None:
+            va = finite_array("v", v)
+            if va.shape != (qa.shape[0], nv):
+                raise InvalidParameterError("v.shape", va.shape, f"({qa.shape[0]}, {nv})")
+        out = {}
+        for name, c in cols.items():
+            joint = robot.model.joints[robot.model.getJointId(name)]
+            iq = joint.idx_q
+            angle = qa[:, iq] if joint.nq == 1 else np.arctan2(qa[:, iq + 1], qa[:, iq])
+            out[name] = (c, angle, None if va is None else va[:, joint.idx_v])
+        return out
+
+    def torques(self, robot: Robot, q: ArrayLike, v: ArrayLike | None = None) -> np.ndarray:
+        """Spring torques on every actuated joint, N·m.
+
+        Args:
+            robot: The robot (each joint's angle and velocity found through Pinocchio's
+                ``idx_q``/``idx_v``).
+            q: Configurations, shape (T, nq), rad for the joints.
+            v: Velocities, shape (T, nv), or None to omit damping.
+
+        Returns:
+            Shape (T, robot.nj), columns in ``robot.joint_names`` order; zero where no spring.
+
+        Raises:
+            UnknownNameError: a sprung joint is not a joint of the robot (lists the joints).
+            InvalidParameterError: wrong shapes, NaN or inf.
+        """
+        angles = self._angles(robot, q, v)
+        out = np.zeros((np.shape(q)[0], robot.nj))
+        for name, (c, angle, vel) in angles.items():
+            out[:, c] = self._springs[name].torque(angle, vel)
+        return out
+
+    def energies(self, robot: Robot, q: ArrayLike) -> np.ndarray:
+        """Stored spring energy per actuated joint, J, shape (T, robot.nj); zero where no spring.
+
+        Args:
+            robot: The robot.
+            q: Configurations, shape (T, nq).
+
+        Raises:
+            UnknownNameError: a sprung joint is not a joint of the robot (lists the joints).
+            InvalidParameterError: wrong shape, NaN or inf.
+        """
+        angles = self._angles(robot, q, None)
+        out = np.zeros((np.shape(q)[0], robot.nj))
+        for name, (c, angle, _) in angles.items():
+            out[:, c] = self._springs[name].energy(angle)
+        return out

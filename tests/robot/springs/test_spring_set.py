@@ -1,0 +1,83 @@
+"""Tests of hexaleg.robot.springs.spring_set: springs on a robot's joints, by name and column."""
+
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+from hexaleg.robot.model import load_robot
+from hexaleg.robot.springs import DeadZoneSpring, SpringSet
+
+
+def test_spring_set_torques_columns(robot):
+    femur = DeadZoneSpring(10.0, theta_k=0.1)
+    tibia = DeadZoneSpring(4.0, theta_k=0.05, k2=0.5, damping=0.2)
+    springs = SpringSet({"LF_femur": femur, "RH_tibia": tibia})
+    T = 5
+    q = np.tile(robot.pose("stand"), (T, 1))
+    q[:, 7:] += np.linspace(0, 0.4, T)[:, None]
+    v = np.ones((T, robot.model.nv))
+    tau = springs.torques(robot, q, v)
+    assert tau.shape == (T, robot.nj)
+    cf, ct = robot.column("LF_femur"), robot.column("RH_tibia")
+    np.testing.assert_allclose(tau[:, cf], femur.torque(q[:, 7 + cf], v[:, 6 + cf]))
+    np.testing.assert_allclose(tau[:, ct], tibia.torque(q[:, 7 + ct], v[:, 6 + ct]))
+    others = np.delete(tau, [cf, ct], axis=1)
+    assert np.all(others == 0)
+    e = springs.energies(robot, q)
+    assert e.shape == (T, robot.nj)
+    np.testing.assert_allclose(e[:, cf], femur.energy(q[:, 7 + cf]))
+    # Empty set and a spring on every joint both work.
+    assert np.all(SpringSet().torques(robot, q) == 0)
+    full = SpringSet({j: femur for j in robot.joint_names})
+    assert full.torques(robot, q).shape == (T, robot.nj)
+
+
+def test_spring_set_errors(robot):
+    q = np.tile(robot.pose("zero"), (2, 1))
+    with pytest.raises(UnknownNameError, match="LF_femur") as e:
+        SpringSet({"LF_knee": DeadZoneSpring(1.0, theta_k=0.1)}).torques(robot, q)
+    assert "LF_knee" in str(e.value)
+    with pytest.raises(InvalidParameterError, match=r"q\.shape"):
+        SpringSet().torques(robot, q[:, :10])
+    bad = q.copy()
+    bad[1, 9] = np.nan
+    with pytest.raises(InvalidParameterError, match="nan"):
+        SpringSet().energies(robot, bad)
+    with pytest.raises(InvalidParameterError):
+        SpringSet({"LF_femur": 3.0})  # type: ignore[dict-item]
+
+
+def test_spring_set_from_toml_table():
+    s = SpringSet.from_mapping({"LF_femur": {"stiffness": 20, "theta_k": 0.12, "alpha": 1.05}})
+    assert s["LF_femur"].stiffness == 20.0 and s["LF_femur"].theta_k == 0.12
+    with pytest.raises(UnknownNameError, match="stiffness"):
+        SpringSet.from_mapping({"LF_femur": {"stifness": 20}})
+    with pytest.raises(ConfigError):
+        SpringSet.from_mapping({"LF_femur": {"stiffness": "hard", "theta_k": 0.1}})
+
+
+def test_spring_on_continuous_joint_uses_its_angle(tmp_path):
+    # A continuous joint stores (cos θ, sin θ) in q; the spring must see θ.
+    from hexaleg.robot.model import LegSpec
+
+    inertial = ('<inertial><mass value="0.1"/><inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" '
+                'iyz="0" izz="1e-4"/></inertial>')
+    urdf = tmp_path / "one.urdf"
+    urdf.write_text(
+        f'<robot name="one"><link name="base">{inertial}</link><link name="arm">{inertial}</link>'
+        '<link name="foot"/><joint name="j" type="continuous"><parent link="base"/>'
+        '<child link="arm"/><axis xyz="0 0 1"/></joint><joint name="f" type="fixed">'
+        '<parent link="arm"/><child link="foot"/><origin xyz="0.1 0 0"/></joint></robot>')
+    one = load_robot(urdf, legs=[LegSpec("L", ("j",), "foot")], joint_kinds=("j",))
+    assert one.model.nq == 9 and one.nj == 1
+    theta = np.array([0.05, 0.5, -0.7])
+    q = np.zeros((3, 9))
+    q[:, 6] = 1.0  # identity base quaternion
+    q[:, 7], q[:, 8] = np.cos(theta), np.sin(theta)
+    s = DeadZoneSpring(2.0, theta_k=0.1)
+    springs = SpringSet({"j": s})
+    np.testing.assert_allclose(springs.torques(one, q)[:, 0], s.torque(theta))
+    np.testing.assert_allclose(springs.energies(one, q)[:, 0], s.energy(theta))

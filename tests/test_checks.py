@@ -1,0 +1,64 @@
+"""Tests of hexaleg.checks: the validators refuse what they must and name the value."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from hexaleg import checks
+from hexaleg.errors import InvalidParameterError, UnknownNameError
+
+
+@pytest.mark.parametrize("value", [True, False, np.bool_(True), "1", None, [1.0], math.nan,
+                                   math.inf, -math.inf, np.float64("nan")])
+def test_real_refuses_non_numbers_bools_and_non_finite(value):
+    with pytest.raises(InvalidParameterError, match=r"invalid mu = .*allowed: a finite number"):
+        checks.real("mu", value)
+
+
+def test_real_returns_floats_and_checks_bounds():
+    assert checks.real("x", np.int64(3)) == 3.0 and isinstance(checks.real("x", 3), float)
+    assert checks.positive("x", 1e-300) == 1e-300
+    with pytest.raises(InvalidParameterError, match=r"x = 0.*> 0"):
+        checks.positive("x", 0)
+    assert checks.nonnegative("x", 0) == 0.0
+    with pytest.raises(InvalidParameterError, match=r">= 0 and < 1"):
+        checks.real("beta", 1.0, low=0.0, high=1.0, high_open=True)
+    assert checks.real("beta", 0.0, low=0.0, high=1.0, high_open=True) == 0.0
+    with pytest.raises(InvalidParameterError, match="the duty factor"):
+        checks.real("beta", 2.0, high=1.0, allowed="the duty factor in (0, 1)")
+
+
+@pytest.mark.parametrize("value", [1.0, 1e9, True, "3", None])
+def test_integer_refuses_floats_bools_and_strings(value):
+    with pytest.raises(InvalidParameterError, match=r"an integer >= 1"):
+        checks.integer("samples", value, low=1)
+
+
+def test_integer_bounds():
+    assert checks.integer("n", np.int32(5), low=1, high=5) == 5
+    with pytest.raises(InvalidParameterError, match=r"n = 6.*<= 5"):
+        checks.integer("n", 6, low=1, high=5)
+
+
+def test_string_and_one_of():
+    assert checks.string("name", "x") == "x"
+    with pytest.raises(InvalidParameterError, match="a string"):
+        checks.string("name", 3)
+    assert checks.one_of("cone", "soc", ("soc", "pyramid")) == "soc"
+    with pytest.raises(UnknownNameError, match=r"'cube'.*pyramid.*soc|'cube'.*soc.*pyramid"):
+        checks.one_of("cone", "cube", ("soc", "pyramid"))
+
+
+def test_finite_array_names_the_first_bad_value_and_its_index():
+    a = np.zeros((3, 2))
+    a[2, 1] = np.inf
+    with pytest.raises(InvalidParameterError, match=r"q = inf.*index \(2, 1\)"):
+        checks.finite_array("q", a)
+    with pytest.raises(InvalidParameterError, match=r"shape \(3, 2\).*shape \(2, 2\)"):
+        checks.finite_array("q", np.zeros((3, 2)), (2, 2))
+    with pytest.raises(InvalidParameterError, match="an array of real numbers"):
+        checks.finite_array("q", ["a"])
+    assert checks.finite_array("q", [1, 2]).dtype == float
