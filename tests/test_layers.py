@@ -1,0 +1,105 @@
+"""The package's shape: imports point down the layers, modules stay small, the import is light.
+
+Layers, lowest first (DESIGN.md): the top-level helpers (errors, units, config, checks) → robot →
+motion → dynamics → design → outputs → studies → cli. A module may import its own layer and the
+ones below it, at module level, inside functions or under TYPE_CHECKING alike.
+"""
+
+from __future__ import annotations
+
+import ast
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import hexaleg
+
+SRC = Path(hexaleg.__file__).resolve().parent
+RANK = {"errors": 0, "units": 0, "config": 0, "checks": 0, "robot": 1, "motion": 2,
+        "dynamics": 3, "design": 4, "outputs": 5, "studies": 6, "cli": 7}
+TOP_LEVEL = {"__init__.py", "errors.py", "units.py", "config.py", "checks.py", "cli.py"}
+MAX_LINES = 400
+DATA_TABLES: dict[str, str] = {}
+"""Modules allowed over MAX_LINES because they are data tables (path → why)."""
+MODULES = sorted(p for p in SRC.rglob("*.py") if "__pycache__" not in p.parts)
+
+
+def _layer(dotted: str) -> str:
+    return dotted.split(".")[1] if dotted.count(".") else ""
+
+
+def _imports(path: Path) -> list[tuple[int, str]]:
+    """(line, absolute dotted module) of every hexaleg import in ``path``."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    package = ".".join(("hexaleg", *path.relative_to(SRC).with_suffix("").parts[:-1]))
+    found = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            found += [(node.lineno, a.name) for a in node.names if a.name.startswith("hexaleg")]
+        elif isinstance(node, ast.ImportFrom):
+            module = node.module or ""
+            if node.level:
+                base = package.rsplit(".", node.level - 1)[0] if node.level > 1 else package
+                module = f"{base}.{module}" if module else base
+            if module == "hexaleg":  # `from hexaleg import x`: x is a module or a public name
+                found += [(node.lineno, f"hexaleg.{a.name}") for a in node.names]
+            elif module.startswith("hexaleg."):
+                found.append((node.lineno, module))
+    return found
+
+
+@pytest.mark.parametrize("path", MODULES, ids=lambda p: str(p.relative_to(SRC)))
+def test_imports_point_down_the_layers(path):
+    rel = path.relative_to(SRC)
+    if rel.name == "__init__.py" and len(rel.parts) == 1:
+        return  # the public surface imports from every layer
+    own = rel.parts[0].removesuffix(".py")
+    bad = []
+    for line, module in _imports(path):
+        target = _layer(module)
+        if target not in RANK:  # `hexaleg` itself: the public surface, for the CLI only
+            target = "the public surface"
+        if RANK.get(target, RANK["cli"]) > RANK[own]:
+            bad.append(f"line {line}: {module} ({target} is above {own})")
+    assert not bad, f"{rel} imports up the layers:\n" + "\n".join(bad)
+
+
+@pytest.mark.parametrize("path", MODULES, ids=lambda p: str(p.relative_to(SRC)))
+def test_modules_stay_under_400_lines(path):
+    rel = str(path.relative_to(SRC))
+    n = len(path.read_text(encoding="utf-8").splitlines())
+    assert n <= MAX_LINES or rel in DATA_TABLES, f"{rel}: {n} lines; split it at its seams"
+
+
+def test_at_most_six_top_level_modules():
+    top = {p.name for p in SRC.glob("*.py")}
+    assert top <= TOP_LEVEL, sorted(top - TOP_LEVEL)
+    layers = {p.name for p in SRC.iterdir() if p.is_dir() and (p / "__init__.py").exists()}
+    assert layers == {"robot", "motion", "dynamics", "design", "studies", "outputs"}
+
+
+def test_import_hexaleg_is_light():
+    """`import hexaleg` loads no study (report, sweep, view, paper) and neither matplotlib,
+    pandas nor meshcat: their public names are imported on first use."""
+    code = ("import sys, hexaleg; print('\\n'.join(m for m in sys.modules if m.startswith("
+            "('hexaleg.studies', 'hexaleg.outputs', 'matplotlib', 'pandas', 'meshcat', 'cvxpy'))))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert out == []
+
+
+def test_every_public_name_resolves():
+    for name in hexaleg.__all__:
+        assert getattr(hexaleg, name) is not None, name
+
+
+@pytest.mark.parametrize("path", [p for p in MODULES if p.name != "__init__.py"],
+                         ids=lambda p: str(p.relative_to(SRC)))
+def test_every_module_has_its_test_file(path):
+    """Tests mirror modules: src/hexaleg/<layer>/<m>.py ↔ tests/<layer>/test_<m>.py."""
+    rel = path.relative_to(SRC)
+    test = Path(__file__).resolve().parent.joinpath(*rel.parts[:-1], f"test_{rel.name}")
+    shown = test.relative_to(test.parents[len(rel.parts)])
+    assert test.is_file(), f"{rel} has no test file {shown}"
