@@ -16,8 +16,8 @@ import time
 import numpy as np
 
 import hexaleg
-from hexaleg.dynamics.forces import solve_reference
 from hexaleg.dynamics.prepare import prepare
+from hexaleg.dynamics.reference import solve_reference
 
 
 def _best(fn, repeat: int) -> float:

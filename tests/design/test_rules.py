@@ -10,15 +10,15 @@ import pytest
 import hexaleg
 from hexaleg.design.rules import (
     PAPER_DEAD_ZONE_RATIO,
-    apparent_inertia,
     centred_spring,
     centred_springs,
-    joint_range,
     k_M,
     paper_style_springs,
 )
+from hexaleg.dynamics.inertia import apparent_inertia, joint_range
 from hexaleg.errors import InvalidParameterError, UnknownNameError
-from hexaleg.motion.gait import Sinusoid, joint_motion
+from hexaleg.motion.joint_motion import joint_motion
+from hexaleg.motion.profiles import Sinusoid
 
 
 @pytest.fixture(scope="module")
@@ -39,12 +39,6 @@ def test_eq25_on_the_robot_gives_the_papers_dead_zone(robot):
     assert spring.neutral == pytest.approx(stand, abs=1e-5)
     assert spring.th_plus == pytest.approx(math.radians(7.32), rel=1e-4)
     assert spring.th_minus == pytest.approx(-math.radians(7.32), rel=1e-4)
-
-
-def test_apparent_inertia_of_the_tibia_is_the_rod_about_its_end(robot, gait):
-    """The tibia moves only itself: J = I_c + m c² of the 120 mm, 45 g rod with CoM at 50 mm."""
-    j = apparent_inertia(robot, gait, "LF_tibia")
-    assert j == pytest.approx(0.045 * 0.12**2 / 12 + 0.045 * 0.05**2, rel=1e-9)
 
 
 def test_k_M_is_eq19(robot, gait):

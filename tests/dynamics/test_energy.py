@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from hexaleg.dynamics.energy import cost_of_transport, epsilon, metrics, savings
+from hexaleg.dynamics.energy import cost_of_transport, epsilon, metrics, saving, savings
 from hexaleg.errors import InvalidParameterError
 from hexaleg.robot.motor import motor
 from hexaleg.units import G, kgmm2_to_kgm2, mm_to_m
@@ -174,6 +174,28 @@ def test_savings_reference_zero_is_not_nan() -> None:
     other = metrics(tau, tau, 0.1, motor(), joint_names=["a", "b"])
     with pytest.raises(InvalidParameterError, match="joint_names"):
         savings(other, zero)
+
+
+def test_saving_is_the_fraction_of_the_baseline_saved() -> None:
+    """(without − with) / |without|: the sign says who spends less, the denominator is the size of
+    the baseline whatever its sign."""
+    assert saving(0.75, 1.0) == pytest.approx(0.25)  # less with springs: positive
+    assert saving(3.0, 2.0) == pytest.approx(-0.5)  # more with springs: negative
+    assert saving(0.0, 2.0) == 1.0  # all of it saved
+    # A signed baseline: dividing by it instead of its size would flip the sign.
+    assert saving(-3.0, -2.0) == pytest.approx(0.5)
+    assert saving(-1.0, -2.0) == pytest.approx(-0.5)
+    assert isinstance(saving(1.0, 2.0), float)
+    np.testing.assert_allclose(saving(np.array([1.0, 2.0, 5.0]), 4.0), [0.75, 0.5, -0.25])
+
+
+def test_saving_against_a_zero_baseline() -> None:
+    """0 when both are 0; ±inf (sign of without − with) otherwise; NaN only from a NaN input."""
+    out = saving(np.array([0.0, 2.0, -1.0, 1.0]), np.array([0.0, 0.0, 0.0, 4.0]))
+    np.testing.assert_array_equal(out, [0.0, -np.inf, np.inf, 0.75])
+    assert saving(0.0, 0.0) == 0.0
+    assert saving(1e-300, 0.0) == -np.inf
+    assert math.isnan(saving(float("nan"), 1.0)) and math.isnan(saving(1.0, float("nan")))
 
 
 def test_cost_of_transport_hand_example() -> None:

@@ -9,7 +9,8 @@ import pytest
 import hexaleg
 from hexaleg.dynamics.prepare import analyze, prepare
 from hexaleg.errors import InvalidParameterError, UnknownNameError
-from hexaleg.motion.gait import Sinusoid, joint_motion
+from hexaleg.motion.joint_motion import joint_motion
+from hexaleg.motion.profiles import Sinusoid
 from hexaleg.robot.springs import DeadZoneSpring
 
 
@@ -162,7 +163,7 @@ def test_transform_feet_carry_the_sit_then_the_ground_carries_the_body(robot):
     (τ_m + τ_s = RNEA joint rows) and the ground's reaction at rest is the robot's weight. Over
     the whole motion (at rest at both ends, the support does no work: the base does not move
     while it carries) the joints' work equals the rise of potential energy m g Δz_com."""
-    from hexaleg.motion.gait import transform_motion
+    from hexaleg.motion.transform import transform_motion
 
     motion = transform_motion(robot, samples=401)
     springs = {"LF_femur": DeadZoneSpring(stiffness=0.5, theta_k=0.1)}

@@ -19,52 +19,23 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-import pinocchio as pin
-
+from hexaleg.dynamics.inertia import apparent_inertia, joint_range
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import DeadZoneSpring, SpringSet
 from hexaleg.units import deg_to_rad
 
-PAPER_DEAD_ZONE_RATIO: float = float(deg_to_rad(7.32)) / 0.3
+PAPER_THETA_K: float = float(deg_to_rad(7.32))
+"""The paper's contact angle θ_k of the dead-zone spring (eq. 8), rad: 7.32° (Section 4.2)."""
+PAPER_AMPLITUDE: float = 0.3
+"""A of the paper's trajectory A sin(ωt + φ) + B (eq. 16), rad: 0.3 (eq. 25)."""
+PAPER_OMEGA: float = 2.0
+"""ω of the paper's trajectory A sin(ωt + φ) + B (eq. 16), rad/s: 2 (eq. 25)."""
+PAPER_DEAD_ZONE_RATIO: float = PAPER_THETA_K / PAPER_AMPLITUDE
 """θ_k / A of the paper's experiment: θ_k = 7.32° (Section 4.2), A = 0.3 rad (eq. 25); ≈ 0.426."""
 PAPER_ALPHA: float = 1.05
 """The paper's angle conversion factor α (Section 4.2)."""
-
-
-def joint_range(robot: Robot, motion: Motion, joint: str) -> tuple[float, float]:
-    """Smallest and largest angle of ``joint`` over ``motion``, rad.
-
-    Raises:
-        UnknownNameError: ``joint`` is not an actuated joint (lists them).
-    """
-    col = robot.column(joint)
-    q = motion.q[:, 7 + col]
-    return float(q.min()), float(q.max())
-
-
-def apparent_inertias(robot: Robot, motion: Motion) -> np.ndarray:
-    """Inertia ``M[v, v]`` seen by every actuated joint at the motion's mean joint angles, kg·m²,
-    shape (nj,) in ``robot.joint_names`` order (one CRBA).
-
-    With the base and the other joints held, this is the moment of inertia about the joint axis
-    of everything distal to the joint — the paper's ``m l² + I`` (eq. 5).
-    """
-    q = motion.q[0].copy()  # the joint block of M does not depend on the base placement
-    q[7:] = motion.q[:, 7:].mean(axis=0)
-    M = pin.crba(robot.model, robot.data, q)
-    return np.diag(M)[6:].copy()
-
-
-def apparent_inertia(robot: Robot, motion: Motion, joint: str) -> float:
-    """:func:`apparent_inertias` of one joint, kg·m².
-
-    Raises:
-        UnknownNameError: ``joint`` is not an actuated joint (lists them).
-    """
-    return float(apparent_inertias(robot, motion)[robot.column(joint)])
 
 
 def k_M(robot: Robot, motion: Motion, joint: str, alpha: float = PAPER_ALPHA) -> float:

@@ -10,13 +10,13 @@ energy consumption ratio is eq. 23 (cost of transport) and eq. 24 (the single-jo
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
-from typing import Any
+from typing import Any, overload
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from hexaleg.checks import positive, real
 from hexaleg.errors import InvalidParameterError
 from hexaleg.robot.motor import Motor, as_torque_speed
 from hexaleg.units import G
@@ -34,20 +34,6 @@ COT_KEYS = ("positive_work", "absolute_work", "electrical", "electrical_regen",
 """Energies whose cost of transport :func:`metrics` reports."""
 
 
-def _positive(name: str, value: Any) -> float:
-    if (isinstance(value, bool) or not isinstance(value, (int, float, np.floating))
-            or not math.isfinite(value) or value <= 0):
-        raise InvalidParameterError(name, value, "a finite number > 0")
-    return float(value)
-
-
-def _finite(name: str, value: Any) -> float:
-    if (isinstance(value, bool) or not isinstance(value, (int, float, np.floating))
-            or not math.isfinite(value)):
-        raise InvalidParameterError(name, value, "a finite number")
-    return float(value)
-
-
 def cost_of_transport(energy: float, mass: float, distance: float, g: float = G) -> float:
     """Dimensionless cost of transport ``E / (m g d)`` (paper eq. 23, ``ε = E / (m_c g S)``).
 
@@ -63,8 +49,8 @@ def cost_of_transport(energy: float, mass: float, distance: float, g: float = G)
     Raises:
         InvalidParameterError: energy not finite, or mass, distance or g not > 0.
     """
-    return _finite("energy", energy) / (
-        _positive("mass", mass) * _positive("g", g) * _positive("distance", distance))
+    return real("energy", energy) / (
+        positive("mass", mass) * positive("g", g) * positive("distance", distance))
 
 
 def epsilon(energy: float, inertia: float, angle: float) -> float:
@@ -85,7 +71,7 @@ def epsilon(energy: float, inertia: float, angle: float) -> float:
     Raises:
         InvalidParameterError: energy not finite, or inertia or angle not > 0.
     """
-    return _finite("energy", energy) / (_positive("inertia", inertia) * _positive("angle", angle))
+    return real("energy", energy) / (positive("inertia", inertia) * positive("angle", angle))
 
 
 def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor, *,
@@ -128,7 +114,7 @@ def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor, *,
         * ``epsilon`` (only with ``inertia``): dict of (n,) arrays ``angle`` θ = ∫ |q̇| dt (rad,
           the angle travelled), ``inertia`` (kg·m²) and ``positive_work`` — the paper's eq. 24
           per joint, ε = E / (I θ) with E the positive work (as
-          :meth:`hexaleg.studies.paper.model.PaperJoint. epsilon`: eq. 20's signed work vanishes
+          :func:`hexaleg.studies.paper.metrics.energy_ratio`: eq. 20's signed work vanishes
           over a conservative cycle), 1/s²; 0 for a joint that does not move (it does no work
           either).
 
@@ -136,29 +122,63 @@ def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor, *,
         InvalidParameterError: shapes differ or are not (T, n), NaN/inf values, ``dt`` not > 0,
             wrong number of joint names, ``mass`` not > 0 or ``distance`` < 0.
     """
+    t, w = _columns(tau, qdot)
+    dt = positive("dt", dt)
+    n = t.shape[1]
+    names = tuple(f"j{j}" for j in range(n)) if joint_names is None else tuple(joint_names)
+    if len(names) != n:
+        raise InvalidParameterError("joint_names", names, f"{n} names, one per column of tau")
+    weight = _quadrature_weights(t.shape[0], dt, periodic)
+    joint, total = _cycle_integrals(t, w, weight, motor)
+    result: dict[str, Any] = {
+        "joint_names": names, "motor": motor.name, "duration": float(weight.sum()),
+        "joint": {key: joint[key] for key in (*ENERGY_KEYS, *TORQUE_KEYS)}, "total": total,
+    }
+    if mass is not None:
+        positive("mass", mass)
+    if distance is not None and (real("distance", distance) < 0):
+        raise InvalidParameterError("distance", distance, "≥ 0 (0 for a motion in place)")
+    if mass is not None and distance is not None and distance > 0:
+        result["cost_of_transport"] = {
+            key: cost_of_transport(total[key], mass, distance) for key in COT_KEYS}
+    if inertia is not None:
+        result["epsilon"] = _epsilon(inertia, w, weight, joint["positive_work"])
+    return result
+
+
+def _columns(tau: ArrayLike, qdot: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
+    """Torques and speeds as (T, n) arrays (a (T,) pair is one joint), checked finite and alike."""
     t, w = as_torque_speed(tau, qdot)
     if t.ndim == 1:
         t, w = t[:, None], w[:, None]
     if t.ndim != 2 or t.shape[0] == 0 or t.shape[1] == 0:
         raise InvalidParameterError("tau", f"array of shape {t.shape}",
                                     "shape (T, n) or (T,) with T, n ≥ 1")
-    dt = _positive("dt", dt)
-    n = t.shape[1]
-    names = tuple(f"j{j}" for j in range(n)) if joint_names is None else tuple(joint_names)
-    if len(names) != n:
-        raise InvalidParameterError("joint_names", names, f"{n} names, one per column of tau")
+    return t, w
 
-    weight = np.full(t.shape[0], dt)  # quadrature weights (T,), s
+
+def _quadrature_weights(n_samples: int, dt: float, periodic: bool) -> np.ndarray:
+    """Trapezoidal-rule weights (T,), s: ``dt`` on a periodic grid without its endpoint; the two
+    end samples ``dt / 2`` on a motion with both ends stored."""
+    weight = np.full(n_samples, dt)
     if not periodic:
-        if t.shape[0] < 2:
-            raise InvalidParameterError("tau", f"{t.shape[0]} sample",
+        if n_samples < 2:
+            raise InvalidParameterError("tau", f"{n_samples} sample",
                                         "T ≥ 2 samples for a motion with both ends stored")
         weight[[0, -1]] = dt / 2
+    return weight
+
+
+def _cycle_integrals(t: np.ndarray, w: np.ndarray, weight: np.ndarray, motor: Motor
+                     ) -> tuple[dict[str, np.ndarray], dict[str, float]]:
+    """The per-joint ``(n,)`` and total energies and torque statistics of :func:`metrics`, for
+    torques ``t`` and speeds ``w`` (T, n) and quadrature weights ``weight`` (T,)."""
 
     def integral(x: np.ndarray) -> np.ndarray:
         return weight @ x
 
     duration = float(weight.sum())
+    n = t.shape[1]
     p = t * w
     pe_regen = motor.electrical_power(t, w, regeneration=True)
     pe_noregen = np.maximum(pe_regen, 0.0)
@@ -179,51 +199,69 @@ def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor, *,
     total["peak_torque"] = float(np.abs(t).max())
     total["rms_torque"] = float(np.sqrt(integral(t**2).sum() / (duration * n)))
     total["mean_abs_torque"] = float(integral(np.abs(t)).sum() / (duration * n))
-
-    result: dict[str, Any] = {
-        "joint_names": names, "motor": motor.name, "duration": duration,
-        "joint": {key: joint[key] for key in (*ENERGY_KEYS, *TORQUE_KEYS)}, "total": total,
-    }
-    if mass is not None:
-        _positive("mass", mass)
-    if distance is not None and (_finite("distance", distance) < 0):
-        raise InvalidParameterError("distance", distance, "≥ 0 (0 for a motion in place)")
-    if mass is not None and distance is not None and distance > 0:
-        result["cost_of_transport"] = {
-            key: cost_of_transport(total[key], mass, distance) for key in COT_KEYS}
-    if inertia is not None:
-        inert = np.asarray(inertia, dtype=float)
-        if inert.shape != (n,) or not np.all(np.isfinite(inert)) or not np.all(inert > 0):
-            raise InvalidParameterError("inertia", inertia, f"{n} finite numbers > 0 (kg·m²)")
-        angle = integral(np.abs(w))
-        moved = angle > 0
-        eps = np.zeros(n)
-        eps[moved] = joint["positive_work"][moved] / (inert[moved] * angle[moved])
-        result["epsilon"] = {"angle": angle, "inertia": inert, "positive_work": eps}
-    return result
+    return joint, total
 
 
-def _fraction_saved(with_: np.ndarray, without: np.ndarray) -> np.ndarray:
-    """``(without − with) / |without|``; 0 where both are 0, ±inf where only ``without`` is 0."""
-    diff = without - with_
-    den = np.abs(without)
+def _epsilon(inertia: ArrayLike, w: np.ndarray, weight: np.ndarray,
+             positive_work: np.ndarray) -> dict[str, np.ndarray]:
+    """The paper's eq. 24 per joint, ε = E / (I θ), for :func:`metrics` (see there)."""
+    n = w.shape[1]
+    inert = np.asarray(inertia, dtype=float)
+    if inert.shape != (n,) or not np.all(np.isfinite(inert)) or not np.all(inert > 0):
+        raise InvalidParameterError("inertia", inertia, f"{n} finite numbers > 0 (kg·m²)")
+    angle = weight @ np.abs(w)
+    moved = angle > 0
+    eps = np.zeros(n)
+    eps[moved] = positive_work[moved] / (inert[moved] * angle[moved])
+    return {"angle": angle, "inertia": inert, "positive_work": eps}
+
+
+@overload
+def saving(with_: float, without: float) -> float: ...
+@overload
+def saving(with_: ArrayLike, without: ArrayLike) -> np.ndarray: ...
+def saving(with_: ArrayLike, without: ArrayLike) -> np.ndarray | float:
+    """Fraction of a cost saved: ``(without − with) / |without|``, elementwise (broadcast).
+
+    Positive means less energy (or torque) with the springs, 1 means all of it saved, negative
+    means more. Where ``without`` is 0 the fraction has no finite value, and the rule is:
+
+    * 0 where ``with`` is 0 too — nothing was spent either way, nothing was saved;
+    * otherwise ±inf with the sign of ``without − with``: −inf when the springs make a joint (or
+      the robot) pay for something that cost nothing without them — an unbounded relative loss,
+      which ranks below every finite saving — and +inf for a saving against a zero reference
+      (only possible for a signed quantity).
+
+    Never NaN from a zero reference (a NaN compares false with everything and would silently drop
+    out of rankings); a NaN input gives NaN.
+
+    Args:
+        with_: The cost with springs, any shape.
+        without: The same cost without springs (the baseline), broadcastable with ``with_``.
+
+    Returns:
+        The fraction (1), a float for scalar inputs, else an array of the broadcast shape.
+    """
+    diff = np.asarray(without, dtype=float) - np.asarray(with_, dtype=float)
+    den = np.abs(np.broadcast_to(np.asarray(without, dtype=float), diff.shape))
     out = np.where(diff == 0, 0.0, np.copysign(np.inf, diff))
     np.divide(diff, den, out=out, where=den > 0)
-    return out
+    out = np.where(np.isnan(diff), np.nan, out)
+    return float(out) if out.ndim == 0 else out
 
 
 def savings(metrics_with: Mapping[str, Any], metrics_without: Mapping[str, Any]
             ) -> dict[str, Any]:
     """Fraction of each metric saved by the springs against the same gait without them.
 
-    ``saving = (without − with) / |without|``: positive means less energy (or torque) with the
-    springs, 1 means all of it saved, negative means more. Where the reference is 0 the saving is
-    0 if both are 0 and ±inf otherwise (never NaN). The keys in :data:`NO_SAVING_KEYS` are left
-    out.
+    Each entry is :func:`saving` ``= (without − with) / |without|``: positive means less energy
+    (or torque) with the springs, 1 means all of it saved, negative means more. Where the
+    reference is 0 the saving is 0 if both are 0 and ±inf otherwise (never NaN). The keys in
+    :data:`NO_SAVING_KEYS` are left out.
 
     Args:
         metrics_with: :func:`metrics` of the gait with springs.
-        metrics_without: :func:`metrics` of the same gait without springs.
+        metrics_without: :func:`metrics` of the same gait without springs (the baseline).
 
     Returns:
         ``{"joint": {key: (n,) array}, "total": {key: float}}`` for the keys of both, plus
@@ -244,7 +282,6 @@ def savings(metrics_with: Mapping[str, Any], metrics_without: Mapping[str, Any]
         if set(a) != set(b):
             raise InvalidParameterError(f"metrics_with[{group!r}] keys", sorted(a),
                                         f"the keys of metrics_without, {sorted(b)}")
-        saved = {key: _fraction_saved(np.asarray(a[key], float), np.asarray(b[key], float))
-                 for key in a if key not in NO_SAVING_KEYS}
+        saved = {key: saving(a[key], b[key]) for key in a if key not in NO_SAVING_KEYS}
         out[group] = saved if group == "joint" else {k: float(v) for k, v in saved.items()}
     return out

@@ -10,7 +10,7 @@ motion split into the base rows and the joint rows::
 
 Everything that does not depend on the springs — RNEA, Jacobians, the stance system and the
 quadratic program's gains — is computed once by :func:`prepare`; :meth:`Prepared.evaluate` then
-only evaluates the spring torques and re-solves the forces (:mod:`hexaleg.dynamics.forces`). A
+only evaluates the spring torques and re-solves the forces (:mod:`hexaleg.dynamics.solver`). A
 motion with ``fixed_base=True`` (the paper's single joint) has no contacts: the fixture carries the
 base rows and ``τ_m = b_joint − τ_s``. The same holds at the ``Motion.supported`` samples of any
 motion (the body resting on the ground while the legs fold): the support supplies ``b_base``, so the
@@ -26,17 +26,15 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.design.rules import apparent_inertias
 from hexaleg.dynamics import energy
-from hexaleg.dynamics.forces import (
+from hexaleg.dynamics.contact import (
     QUADRATIC_OBJECTIVES,
     ContactParams,
-    QuadraticGains,
     StanceSystem,
     check_objective,
-    quadratic_gains,
-    solve_fast,
 )
+from hexaleg.dynamics.inertia import apparent_inertias
+from hexaleg.dynamics.solver import QuadraticGains, quadratic_gains, solve_fast
 from hexaleg.errors import InvalidParameterError, TorqueLimitError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
@@ -68,14 +66,15 @@ class Analysis:
     """Forces, torques, powers and energy metrics of one motion with one choice of springs.
 
     Joint columns follow the Pinocchio model's joint order (``robot.joint_names``); legs follow
-    ``robot.legs`` (LF LM LH RF RM RH for the hexapod).
+    ``robot.legs`` (LF LM LH RF RM RH for the hexapod). "Baseline" is the one name for the same
+    motion analysed without springs, here and in every module that compares against it.
 
     Attributes:
         robot: The robot.
         motion: The motion analysed.
         springs: The springs (joint name → spring).
         motor: The servo model of every joint.
-        objective: The force-distribution objective (:data:`hexaleg.dynamics.forces.OBJECTIVES`).
+        objective: The force-distribution objective (:data:`hexaleg.dynamics.contact.OBJECTIVES`).
         contact: Contact settings.
         t: Sample times, shape (T,), s.
         q: Joint angles, shape (T, nj), rad.
@@ -88,10 +87,10 @@ class Analysis:
         power: Motor mechanical power ``τ_motor q̇``, shape (T, nj), W.
         resolved: Samples whose forces needed the exact conic solve (an inequality binds), (T,).
         metrics: :func:`hexaleg.dynamics.energy.metrics` of ``tau_motor`` (per joint and total, SI).
-        baseline: The same metrics for the same motion with no springs.
+        baseline: The same metrics for the same motion with no springs (the baseline).
         savings: :func:`hexaleg.dynamics.energy.savings` of ``metrics`` against ``baseline``
-            (fraction of
-            the no-spring value saved; positive = the springs save).
+            (fraction of the baseline value saved, :func:`hexaleg.dynamics.energy.saving`;
+            positive = the springs save).
     """
 
     robot: Robot
@@ -123,6 +122,9 @@ class Analysis:
 class Prepared:
     """The spring-independent part of the analysis of one motion (see :func:`prepare`).
 
+    :meth:`baseline` caches the metrics of the motion without springs — "baseline" is the one
+    name for that analysis, which :meth:`evaluate` compares every spring design against.
+
     Attributes:
         robot: The robot.
         motion: The motion.
@@ -130,7 +132,7 @@ class Prepared:
         contact: Contact settings.
         rnea: ``M a + h`` at every sample, shape (T, nv).
         jacobians: Foot Jacobians (world-aligned, linear part), shape (T, n_legs, 3, nv).
-        system: The force program's linear algebra (:class:`hexaleg.dynamics.forces.StanceSystem`).
+        system: The force program's linear algebra (:class:`hexaleg.dynamics.contact.StanceSystem`).
         q: Joint angles, shape (T, nj), rad.
         qdot: Joint velocities, shape (T, nj), rad/s.
     """
@@ -209,14 +211,15 @@ class Prepared:
     @property
     def inertia(self) -> np.ndarray:
         """Moment of inertia about each joint's axis of everything distal to it, at the motion's
-        mean posture (:func:`hexaleg.design.rules.apparent_inertias`), shape (nj,), kg·m² — eq. 24's
-        I for the ε of :meth:`metrics`."""
+        mean posture (:func:`hexaleg.dynamics.inertia.apparent_inertias`), shape (nj,), kg·m² —
+        eq. 24's I for the ε of :meth:`metrics`."""
         if self._inertia is None:
             self._inertia = apparent_inertias(self.robot, self.motion)
         return self._inertia
 
     def baseline(self, objective: str = "joule") -> dict[str, Any]:
-        """Metrics of the motion with no springs, computed once per objective and cached."""
+        """Metrics of the motion with no springs (the baseline), computed once per objective and
+        cached."""
         if objective not in self._baseline:
             _, tau, _ = self.solve(np.zeros_like(self.q), objective)
             self._baseline[objective] = self.metrics(tau)
@@ -228,7 +231,7 @@ class Prepared:
         Args:
             springs: Joint name → spring (SI), a :class:`~hexaleg.robot.springs.SpringSet`, or None.
             objective: Force-distribution objective, one of
-                :data:`hexaleg.dynamics.forces.OBJECTIVES`.
+                :data:`hexaleg.dynamics.contact.OBJECTIVES`.
 
         Returns:
             The analysis.
@@ -322,8 +325,8 @@ def analyze(robot: Robot, motion: Motion, springs: SpringsLike = None, *,
         springs: Joint name → spring, e.g.
             ``{"LF_femur": hexaleg.DeadZoneSpring(stiffness=2.0, theta_k=0.13)}`` (SI), or None.
         motor: Servo of every joint (Motor, catalogue name, or None for the default).
-        objective: Force-distribution objective (:data:`hexaleg.dynamics.forces.OBJECTIVES`; default
-            ``"joule"``).
+        objective: Force-distribution objective (:data:`hexaleg.dynamics.contact.OBJECTIVES`;
+            default ``"joule"``).
         contact: Contact settings.
 
     Returns:

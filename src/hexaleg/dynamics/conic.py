@@ -1,0 +1,269 @@
+"""The exact per-sample solve of the force program (:mod:`hexaleg.dynamics.contact`) with Clarabel.
+
+One sample's program on its stance columns is written in Clarabel's conic form (an interior-point
+conic solver): the base rows as a zero cone, the normal forces and the friction pyramid as
+nonnegative cones, the friction cone as a second-order cone, and the non-smooth objectives in
+epigraph form (the electrical one with one rotated cone per joint for the Joule term, shared by
+the two gearbox branches). :func:`hexaleg.dynamics.solver.solve_fast` calls :func:`solve_sample`
+where an inequality binds and for every sample of the non-quadratic objectives; the errors raised
+here name the time, the feet and (for torque limits) the joint.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+from typing import NoReturn
+
+import numpy as np
+
+from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES, ContactParams, StanceSystem
+from hexaleg.errors import InfeasibleForcesError, TorqueLimitError
+
+CLARABEL_TOLERANCES: tuple[float, ...] = (1e-11, 1e-10, 1e-9, 1e-8, 1e-7)
+"""Clarabel gap and feasibility tolerances (absolute and relative) tried in turn, by the exact
+per-sample solves and by the cvxpy reference, until one is met: an "almost solved" answer at the
+loosest is an error, never a silent result."""
+
+
+@dataclass(eq=False)
+class _ConicProgram:
+    """One sample's program in Clarabel's form: minimise ½ xᵀ P x + qᵀ x subject to
+    ``b − A x`` in ``cones``, with ``x = (f on the stance columns (n_f), epigraph variables)``;
+    ``A`` and ``b`` are stacked from ``rows`` and ``rhs``, one block per cone."""
+
+    P: np.ndarray
+    q: np.ndarray
+    n_f: int
+    rows: list[np.ndarray] = field(default_factory=list)
+    rhs: list[np.ndarray] = field(default_factory=list)
+    cones: list[object] = field(default_factory=list)
+
+    @property
+    def n_epi(self) -> int:
+        """Number of epigraph variables after ``f``."""
+        return int(self.q.size) - self.n_f
+
+    def add(self, rows: np.ndarray, b: np.ndarray, cone: object) -> None:
+        """Constrain ``b − rows x`` to ``cone`` (``rows`` on all of ``x``)."""
+        self.rows.append(rows)
+        self.rhs.append(b)
+        self.cones.append(cone)
+
+    def add_on_f(self, rows: np.ndarray, b: np.ndarray, cone: object) -> None:
+        """Constrain ``b − rows f`` to ``cone`` (``rows`` on ``f`` only)."""
+        self.add(np.hstack([rows, np.zeros((rows.shape[0], self.n_epi))]), b, cone)
+
+
+def _objective(D: np.ndarray, c: np.ndarray, objective: str, weights: np.ndarray,
+               contact: ContactParams) -> _ConicProgram:
+    """The cost of a sample with joint rows ``D`` (nj, n) and ``τ = c − D f``: Σ w τ² (the
+    quadratic objectives, or the regulariser ε Σ τ² of the others) plus, for ``"positive_work"``
+    and ``"electrical"``, the sum of the per-joint epigraph variables ``s`` (nj); ``"electrical"``
+    also has ``u`` (nj), an upper bound of the Joule loss ``c_w τ²`` (one rotated cone per joint,
+    shared by both gearbox branches)."""
+    nj, n = D.shape
+    n_epi = {"positive_work": nj, "electrical": 2 * nj}.get(objective, 0)
+    nx = n + n_epi
+    P = np.zeros((nx, nx))
+    q = np.zeros(nx)
+    if objective in QUADRATIC_OBJECTIVES:
+        w = weights
+    else:  # the non-smooth objectives' regulariser ε Σ τ²
+        w = np.full(nj, contact.regularization)
+    P[:n, :n] = 2 * D.T @ (w[:, None] * D)
+    q[:n] = -2 * D.T @ (w * c)
+    q[n:n + nj] = 1.0 if n_epi else 0.0
+    return _ConicProgram(P, q, n)
+
+
+def _add_base_rows(program: _ConicProgram, system: StanceSystem, k: int, A: np.ndarray) -> None:
+    """Base rows ``A f = b_base`` of sample ``k``, reduced to their row space: two point feet give
+    only 5 independent rows, and an interior-point solver stalls on redundant equalities. The part
+    of the base wrench outside that space is what no forces can produce (raised here)."""
+    import clarabel
+
+    u, sv, _ = np.linalg.svd(A, full_matrices=False)
+    rank = int(np.sum(sv > 1e-9 * sv[0]))
+    b_in = u[:, :rank].T @ system.b_base[k]
+    missing = float(np.linalg.norm(system.b_base[k] - u[:, :rank] @ b_in))
+    if missing > 1e-8 * (1.0 + np.abs(system.b_base[k]).max()):
+        raise_unreachable(system, k, missing)
+    program.add_on_f(u[:, :rank].T @ A, b_in, clarabel.ZeroConeT(rank))
+
+
+def _add_contact_rows(program: _ConicProgram, contact: ContactParams) -> None:
+    """Minimum normal force and friction cone (or inscribed pyramid) of every stance foot."""
+    import clarabel
+
+    n = program.n_f
+    n_st = n // 3
+    ez = np.zeros((n_st, n))
+    ez[np.arange(n_st), 3 * np.arange(n_st) + 2] = 1.0
+    program.add_on_f(-ez, np.full(n_st, -contact.min_normal_force),
+                     clarabel.NonnegativeConeT(n_st))
+    for i in range(n_st):
+        e = np.zeros((3, n))
+        e[0, 3 * i + 2], e[1, 3 * i], e[2, 3 * i + 1] = 1.0, 1.0, 1.0
+        if contact.cone == "soc":
+            m = e.copy()
+            m[0] *= contact.mu
+            program.add_on_f(-m, np.zeros(3), clarabel.SecondOrderConeT(3))
+        else:
+            s = contact.mu / math.sqrt(2)
+            m = np.array([s * e[0] - e[1], s * e[0] + e[1], s * e[0] - e[2], s * e[0] + e[2]])
+            program.add_on_f(-m, np.zeros(4), clarabel.NonnegativeConeT(4))
+
+
+def _add_torque_limits(program: _ConicProgram, D: np.ndarray, c: np.ndarray,
+                       tau_max: np.ndarray) -> None:
+    """|τ| ≤ τ_max with ``τ = c − D f``."""
+    import clarabel
+
+    # τ ≤ τmax:  −D f ≤ τmax − c ;  −τ ≤ τmax:  D f ≤ τmax + c
+    program.add_on_f(np.vstack([-D, D]), np.concatenate([tau_max - c, tau_max + c]),
+                     clarabel.NonnegativeConeT(2 * D.shape[0]))
+
+
+def _add_positive_work(program: _ConicProgram, D: np.ndarray, c: np.ndarray,
+                       qd: np.ndarray) -> None:
+    """Epigraph of Σ_j max(0, q̇_j τ_j): ``s ≥ 0`` and ``s ≥ q̇ τ``."""
+    import clarabel
+
+    nj, n = D.shape
+    eye = np.eye(nj)
+    program.add(np.hstack([np.zeros((nj, n)), -eye]), np.zeros(nj),
+                clarabel.NonnegativeConeT(nj))  # s ≥ 0
+    # s ≥ q̇ τ = q̇ (c − D f)  ⇔  −q̇ D f − s ≤ −q̇ c
+    program.add(np.hstack([-qd[:, None] * D, -eye]), -qd * c, clarabel.NonnegativeConeT(nj))
+
+
+def _add_electrical(program: _ConicProgram, D: np.ndarray, c: np.ndarray, qd: np.ndarray,
+                    weights: np.ndarray, efficiency: float) -> None:
+    """Epigraph of Σ_j max(0, max(q̇_j τ_j / η, η q̇_j τ_j) + c_j τ_j²): ``s ≥ 0``,
+    ``s ≥ κ q̇ τ + u`` for κ = 1/η and κ = η, and ``u ≥ c_w τ²``."""
+    import clarabel
+
+    nj, n = D.shape
+    nx = program.q.size
+    eye, zero = np.eye(nj), np.zeros((nj, nj))
+    program.add(np.hstack([np.zeros((nj, n)), -eye, zero]), np.zeros(nj),
+                clarabel.NonnegativeConeT(nj))  # s ≥ 0
+    # s ≥ κ q̇ τ + u for κ = 1/η and κ = η  ⇔  −κ q̇ D f − s + u ≤ −κ q̇ c
+    for kappa in sorted({1.0 / efficiency, efficiency}):
+        program.add(np.hstack([-kappa * qd[:, None] * D, -eye, eye]), -kappa * qd * c,
+                    clarabel.NonnegativeConeT(nj))
+    # u ≥ c_w τ² ⇔ ‖(2√c_w τ, u − 1)‖ ≤ u + 1 (a rotated cone as a second-order cone);
+    # Clarabel form: b − A x = (u + 1, 2√c_w τ, u − 1) with τ = c − D f.
+    for j in range(nj):
+        e_u = np.zeros(nx)
+        e_u[n + nj + j] = 1.0
+        row_f = np.zeros(nx)
+        row_f[:n] = D[j]
+        sw = 2 * math.sqrt(weights[j])
+        program.add(np.vstack([-e_u, sw * row_f, -e_u]), np.array([1.0, sw * c[j], -1.0]),
+                    clarabel.SecondOrderConeT(3))
+
+
+def _conic_program(system: StanceSystem, k: int, tau_spring: np.ndarray, objective: str,
+                   weights: np.ndarray, contact: ContactParams) -> _ConicProgram:
+    """Sample ``k``'s program on its stance columns, for ``objective``."""
+    cols = np.flatnonzero(np.repeat(system.stance[k], 3))
+    D = system.D[k][:, cols]
+    A = system.A[k][:, cols]
+    c = system.b_joint[k] - tau_spring[k]  # τ = c − D f
+    program = _objective(D, c, objective, weights, contact)
+    _add_base_rows(program, system, k, A)
+    _add_contact_rows(program, contact)
+    if contact.torque_limits:
+        _add_torque_limits(program, D, c, system.tau_max)
+    if objective == "positive_work":
+        _add_positive_work(program, D, c, system.qdot[k])
+    elif objective == "electrical":
+        _add_electrical(program, D, c, system.qdot[k], weights, system.efficiency)
+    return program
+
+
+def _clarabel_solve(program: _ConicProgram) -> tuple[np.ndarray, str]:
+    """Solve ``program`` at the tightest of :data:`CLARABEL_TOLERANCES` that Clarabel meets (never
+    "almost solved" while a looser one remains); returns ``(x, status)``."""
+    import clarabel
+    import scipy.sparse as sp
+
+    Amat = sp.csc_matrix(np.vstack(program.rows))
+    bvec = np.concatenate(program.rhs)
+    settings = clarabel.DefaultSettings()
+    settings.verbose = False
+    settings.max_iter = 200
+    for tol in CLARABEL_TOLERANCES:
+        settings.tol_gap_abs = settings.tol_gap_rel = settings.tol_feas = tol
+        settings.tol_ktratio = 100 * tol
+        solution = clarabel.DefaultSolver(sp.csc_matrix(np.triu(program.P)), program.q, Amat,
+                                          bvec, program.cones, settings).solve()
+        status = str(solution.status)
+        if status != "AlmostSolved":
+            break
+    return np.asarray(solution.x), status
+
+
+def solve_sample(system: StanceSystem, k: int, tau_spring: np.ndarray, objective: str,
+                 weights: np.ndarray, contact: ContactParams) -> np.ndarray:
+    """Solve sample ``k``'s program exactly with Clarabel; returns f padded to (3 n_legs,), N.
+
+    Raises:
+        InfeasibleForcesError, TorqueLimitError: see :func:`raise_infeasible` and
+            :func:`raise_unreachable`.
+    """
+    program = _conic_program(system, k, tau_spring, objective, weights, contact)
+    x, status = _clarabel_solve(program)
+    if status != "Solved":
+        raise_infeasible(system, k, tau_spring, contact, status)
+    pattern = system.stance[k]
+    f = np.zeros(3 * pattern.size)
+    f[np.flatnonzero(np.repeat(pattern, 3))] = x[:program.n_f]
+    return f
+
+
+def raise_infeasible(system: StanceSystem, k: int, tau_spring: np.ndarray,
+                     contact: ContactParams, status: str) -> NoReturn:
+    """Raise the error of sample ``k`` whose program a solver found infeasible (``status``).
+
+    Raises:
+        TorqueLimitError: forces exist without the torque limits; names the joint that needs
+            the most beyond its limit, the time and the torque.
+        InfeasibleForcesError: otherwise; names the time and the stance feet.
+    """
+    feet = [system.leg_names[i] for i in np.flatnonzero(system.stance[k])]
+    where = f"t = {system.t[k]:.4f} s (sample {k}), stance feet {', '.join(feet) or '(none)'}"
+    if contact.torque_limits:
+        # Without the torque limits: if forces exist then, the limits are what failed.
+        relaxed = dataclasses.replace(contact, torque_limits=False)
+        try:
+            f = solve_sample(system, k, tau_spring, "torque_squared",
+                             np.ones(system.D.shape[1]), relaxed)
+        except InfeasibleForcesError:
+            f = None
+        if f is not None:
+            tau = system.b_joint[k] - system.D[k] @ f - tau_spring[k]
+            j = int(np.argmax(np.abs(tau) - system.tau_max))
+            if abs(tau[j]) > system.tau_max[j]:
+                raise TorqueLimitError(
+                    f"motor torque limit exceeded at {where}: joint {system.joint_names[j]} "
+                    f"needs |τ| = {abs(tau[j]):.4f} N·m (limit {system.tau_max[j]:.4f} N·m) "
+                    f"with the friction-feasible forces of least Σ τ², and no forces keep every "
+                    f"joint within its limit; solver status {status}")
+    raise InfeasibleForcesError(
+        f"no contact forces satisfy the dynamics at {where} with friction μ = {contact.mu} "
+        f"({contact.cone}) and normal force ≥ {contact.min_normal_force} N; solver status {status}")
+
+
+def raise_unreachable(system: StanceSystem, k: int, residual: float) -> NoReturn:
+    """Raise InfeasibleForcesError: sample ``k``'s base wrench is out of its feet's reach by
+    ``residual`` (N, N·m)."""
+    feet = [system.leg_names[i] for i in np.flatnonzero(system.stance[k])]
+    raise InfeasibleForcesError(
+        f"the stance feet {', '.join(feet) or '(none)'} cannot produce the base wrench at "
+        f"t = {system.t[k]:.4f} s (sample {k}) with any forces: the best forces miss the "
+        f"base rows by {residual:.3g} (N, N·m); e.g. two point feet cannot push a moment about "
+        "the line through them — the motion needs a body sway that balances it")

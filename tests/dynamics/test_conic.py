@@ -1,0 +1,36 @@
+"""Tests of hexaleg.dynamics.conic: the exact per-sample Clarabel solve and its errors."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from hexaleg.dynamics.conic import solve_sample
+from hexaleg.dynamics.contact import ContactParams
+from hexaleg.dynamics.prepare import prepare
+from hexaleg.errors import InfeasibleForcesError, TorqueLimitError
+from hexaleg.robot.motor import CATALOGUE
+
+
+def test_conic_solve_equals_the_kkt_optimum_where_nothing_binds(robot, walk200):
+    """At μ = 0.6 no inequality binds: the conic program's optimum is the KKT solution."""
+    prepared = prepare(robot, walk200)
+    sys, tau_s = prepared.system, np.zeros_like(prepared.q)
+    f0 = prepared.gains("joule").f0
+    for k in range(0, walk200.n_samples, 40):
+        f = solve_sample(sys, k, tau_s, "joule", prepared.weights("joule"), prepared.contact)
+        assert np.max(np.abs(f - f0[k])) <= 1e-6
+
+
+def test_infeasible_friction_names_time_and_feet(robot, walk200):
+    prepared = prepare(robot, walk200, contact=ContactParams(mu=0.01))
+    with pytest.raises(InfeasibleForcesError, match=r"t = \d+\.\d+ s \(sample \d+\), stance feet"):
+        prepared.evaluate()
+
+
+def test_torque_limit_names_joint_time_and_torque(robot, walk200):
+    weak = CATALOGUE["AX-18A"]
+    weak = type(weak)(**{**weak.__dict__, "stall_torque": 0.05})
+    prepared = prepare(robot, walk200, motor=weak)
+    with pytest.raises(TorqueLimitError, match=r"joint \w+_\w+ needs .* N·m \(limit 0.0500 N·m\)"):
+        prepared.evaluate()
