@@ -1,4 +1,4 @@
-"""Tests of hexaleg.motion.balance and the balanced trot of hexaleg.motion.gait: the periodic LIP
+"""Tests of hexaleg.motion.balance and the balanced trot of hexaleg.motion.legged: the periodic LIP
 sway solves its equation exactly, the RNEA support-line moment equals the centroidal-dynamics
 moment, the swayed trot stands on exactly two feet at rest, needs no moment about the support line
 and goes through the force program; the hexapod's tripod is untouched."""
@@ -13,18 +13,21 @@ import pinocchio as pin
 import pytest
 
 import hexaleg
-from hexaleg.dynamics.forces import ContactParams
+from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import InfeasibleForcesError, InvalidParameterError
-from hexaleg.motion import gait as gait_module
+from hexaleg.motion import balance as balance_module
 from hexaleg.motion.balance import (
+    BALANCE_TOL,
     Sway,
     crossing,
     periodic_lip_sway,
     support_moment,
     sway_direction,
 )
-from hexaleg.motion.gait import BALANCE_TOL, GaitParams, sample_gait, tripod_gait
+from hexaleg.motion.legged import sample_gait, tripod_gait
+from hexaleg.motion.params import GaitParams
 from hexaleg.robot.registry import TROT, description
+from hexaleg.units import G
 
 SAMPLES = 100
 NO_LIMITS = ContactParams(torque_limits=False)
@@ -36,7 +39,7 @@ def solo() -> hexaleg.Robot:
 
 
 def trot_params(**changes) -> GaitParams:
-    return dataclasses.replace(description("solo12").gait, **{"samples": SAMPLES, **changes})
+    return dataclasses.replace(GaitParams.for_robot("solo12"), **{"samples": SAMPLES, **changes})
 
 
 @pytest.fixture(scope="module", params=[0.5, 0.6, "turn"])
@@ -90,6 +93,12 @@ def test_sway_derivatives_equal_central_differences():
     _, v, a = sway(t)
     assert np.allclose((sway(t + h)[0] - sway(t - h)[0]) / (2 * h), v, rtol=1e-6, atol=1e-7)
     assert np.allclose((sway(t + h)[1] - sway(t - h)[1]) / (2 * h), a, rtol=1e-6, atol=1e-4)
+
+
+def test_lip_gravity_defaults_to_standard_gravity():
+    f = np.cos(2 * math.pi * np.arange(16) / 16)
+    assert np.array_equal(periodic_lip_sway(f, 0.5, 0.2), periodic_lip_sway(f, 0.5, 0.2, G))
+    assert G == 9.81
 
 
 def test_lip_rejects_bad_parameters():
@@ -245,13 +254,14 @@ def test_balance_parameter_and_failures(solo, monkeypatch):
     with pytest.raises(InvalidParameterError, match="auto or none"):
         GaitParams(balance="sway please")
     assert GaitParams.from_toml({"balance": "none"}).balance == "none"
-    assert description("go2").gait.groups == TROT and description("go2").gait.balance == "auto"
+    go2 = GaitParams.for_robot(description("go2"))
+    assert go2.groups == TROT and go2.balance == "auto"
     gait = trot_params(duty_factor=0.5, samples=40)
-    monkeypatch.setattr(gait_module, "BALANCE_MAX_ITER", 1)
+    monkeypatch.setattr(balance_module, "BALANCE_MAX_ITER", 1)
     with pytest.raises(InfeasibleForcesError, match="did not converge in 1 iterations"):
         tripod_gait(solo, gait)
-    monkeypatch.setattr(gait_module, "BALANCE_MAX_ITER", 60)
-    monkeypatch.setattr(gait_module, "MIN_CROSSING", 0.99)
+    monkeypatch.setattr(balance_module, "BALANCE_MAX_ITER", 60)
+    monkeypatch.setattr(balance_module, "MIN_CROSSING", 0.99)
     with pytest.raises(InvalidParameterError, match="sway can cross"):
         tripod_gait(solo, gait)
 

@@ -7,8 +7,10 @@ import dataclasses
 import numpy as np
 import pytest
 
+import hexaleg
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.trajectory import Motion
+from hexaleg.motion.transform import transform_motion
 
 
 def _motion(**changes) -> Motion:
@@ -56,3 +58,22 @@ def test_supported_samples_have_no_stance_feet():
                 supported=np.array([True, True, False, True]))
     with pytest.raises(InvalidParameterError, match="bool array of shape"):
         _motion(supported=np.zeros(4))
+
+
+@pytest.fixture(scope="module")
+def fold(robot) -> Motion:
+    """The stand → sphere transformation: its fold samples are supported by the body."""
+    return transform_motion(robot, duration=2.0, samples=401)
+
+
+def test_supported_samples_are_checked_by_motion(robot, fold):
+    fields = {f: getattr(fold, f) for f in ("t", "q", "v", "a", "stance", "feet", "period")}
+    with pytest.raises(InvalidParameterError, match=r"Motion\.supported.*shape \(3,\)"):
+        hexaleg.Motion(**fields, supported=np.ones(3, dtype=bool))
+    with pytest.raises(InvalidParameterError, match=r"sample 0 .*feet are in stance"):
+        hexaleg.Motion(**fields, supported=np.ones(fold.n_samples, dtype=bool))
+    with pytest.raises(InvalidParameterError, match="fixed-base"):
+        hexaleg.Motion(**{**fields, "stance": np.zeros_like(fold.stance)}, fixed_base=True,
+                       supported=fold.supported)
+    assert hexaleg.Motion(**{**fields, "stance": np.zeros_like(fold.stance)},
+                          fixed_base=True).supported.all()

@@ -13,13 +13,14 @@ import pytest
 
 import hexaleg
 from hexaleg.design.rules import centred_springs, k_M
-from hexaleg.dynamics.forces import ContactParams
+from hexaleg.dynamics.contact import ContactParams
 from hexaleg.dynamics.prepare import prepare
-from hexaleg.errors import RobotModelError, UnknownNameError
-from hexaleg.motion.gait import tripod_gait
+from hexaleg.errors import UnknownNameError
+from hexaleg.motion.legged import tripod_gait
+from hexaleg.motion.params import GaitParams
 from hexaleg.motion.trajectory import Motion
-from hexaleg.robot.model import LegSpec
-from hexaleg.robot.registry import DESCRIPTIONS, TROT, RobotDescription, description, load
+from hexaleg.robot.description import RobotDescription
+from hexaleg.robot.registry import DESCRIPTIONS, TROT, description, load
 
 QUADRUPEDS = ("solo12", "anymal", "go2")
 SAMPLES = 200
@@ -98,41 +99,11 @@ def test_stand_is_the_srdf_standing_pose_with_the_base_at_the_origin(quad):
     assert np.allclose(left * [1, -1, 1], right, atol=1e-9)
 
 
-@pytest.mark.parametrize("name", ["solo12", "go2"])  # not ANYmal: its meshes take 3.5 s to load
-def test_a_urdf_whose_feet_are_missing_lists_the_frames(name):
-    desc = description(name)
-    legs = (LegSpec(desc.legs[0].name, desc.legs[0].joints, "LF_toe"), *desc.legs[1:])
-    with pytest.raises(RobotModelError) as err:
-        dataclasses.replace(desc, legs=legs).load()
-    msg = str(err.value)
-    assert "'LF_toe'" in msg and "frames found" in msg
-    for spec in desc.legs:
-        assert spec.foot in msg
-
-
-def test_bad_descriptions():
-    desc = description("solo12")
-    with pytest.raises(UnknownNameError, match="kfe"):
-        dataclasses.replace(desc, spring_class="ankle")
-    with pytest.raises(hexaleg.HexalegError, match="exactly one group"):
-        dataclasses.replace(desc, gait=dataclasses.replace(desc.gait, groups=(("LF", "RH"),)))
-    with pytest.raises(UnknownNameError, match="FL_KFE"):
-        dataclasses.replace(desc, stand={"FL_knee": 1.0}).load()
-
-
-def test_stand_from_joint_values():
-    desc = description("solo12")
-    robot = dataclasses.replace(desc, stand={"FL_KFE": -1.2, "HR_KFE": 1.2}).load()
-    q = robot.pose("stand")
-    assert q[7 + robot.column("FL_KFE")] == -1.2 and q[7 + robot.column("HR_KFE")] == 1.2
-    assert np.count_nonzero(q[7:]) == 2
-
-
 @pytest.fixture(scope="module")
 def trot(quad) -> Motion:
     """The robot's default trot, balanced by the body sway (``GaitParams.balance = "auto"``)."""
     desc, robot = quad
-    return tripod_gait(robot, dataclasses.replace(desc.gait, samples=SAMPLES))
+    return tripod_gait(robot, dataclasses.replace(GaitParams.for_robot(desc), samples=SAMPLES))
 
 
 def _stance_feet_at_rest(robot: hexaleg.Robot, motion: Motion) -> None:
@@ -154,7 +125,7 @@ def _stance_feet_at_rest(robot: hexaleg.Robot, motion: Motion) -> None:
 
 def test_trot_moves_diagonal_pairs_with_stance_feet_at_rest(quad, trot):
     desc, robot = quad
-    assert desc.gait.groups == TROT
+    assert GaitParams.for_robot(desc).groups == TROT
     assert set(trot.info["ik"].values()) == {"newton"}
     legs = robot.leg_names
     stance = trot.stance
@@ -190,7 +161,8 @@ def test_rigid_trot_on_two_point_feet_has_no_contact_forces(quad):
     body of the kinematic trot (``balance="none"``) needs one (gravity and the swing legs), so
     no contact forces exist in its two-foot phases."""
     desc, robot = quad
-    rigid = tripod_gait(robot, dataclasses.replace(desc.gait, samples=SAMPLES, balance="none"))
+    rigid = tripod_gait(robot, dataclasses.replace(GaitParams.for_robot(desc), samples=SAMPLES,
+                                                   balance="none"))
     assert rigid.info["balance"] == {"mode": "none"}
     assert _support_line_moment(robot, rigid, prepare(robot, rigid, contact=NO_LIMITS).system) \
         > 1e-3  # the moment the two feet cannot give, relative to m g |r|
@@ -280,37 +252,6 @@ def test_cli_robot_option(capsys):
     assert "either --robot or --urdf" in capsys.readouterr().err
 
 
-def test_own_robot_from_toml(tmp_path):
-    """A TOML description of Solo-12's files (paths relative to the TOML) loads the same robot."""
-    desc = description("solo12")
-    robots_dir = desc.urdf_path.parents[2]
-    (tmp_path / "robots").symlink_to(robots_dir)
-    legs = "".join(f'[[robot.legs]]\nname = "{s.name}"\njoints = {list(s.joints)!r}\n'
-                   f'foot = "{s.foot}"\n' for s in desc.legs).replace("'", '"')
-    (tmp_path / "solo.toml").write_text(
-        '[robot]\nname = "mysolo"\ntitle = "Solo-12 by hand"\n'
-        f'urdf = "robots/{desc.urdf}"\nsrdf = "robots/{desc.srdf}"\n'
-        'stand = {FL_KFE = -1.6, FR_KFE = -1.6, HL_KFE = 1.6, HR_KFE = 1.6}\n'
-        'joint_kinds = ["haa", "hfe", "kfe"]\nspring_class = "kfe"\n'
-        f'mesh_dirs = ["{robots_dir.parents[1]}"]\n'
-        '[robot.gait]\nperiod = 0.5\ngroups = [["LF", "RH"], ["RF", "LH"]]\n' + legs)
-    own = RobotDescription.from_toml(tmp_path / "solo.toml")
-    assert own.source == "files" and own.gait.groups == TROT and own.legs == desc.legs
-    robot, ref = load(str(tmp_path / "solo.toml")), robot_of("solo12")
-    assert robot.joint_names == ref.joint_names and robot.leg_names == ref.leg_names
-    assert np.isclose(robot.mass, ref.mass, rtol=1e-12)
-    q = robot.pose("stand")
-    assert q[7 + robot.column("HL_KFE")] == 1.6 and q[7 + robot.column("FL_HFE")] == 0.0
-
-    (tmp_path / "bad.toml").write_text('[robot]\nname = "x"\nwheels = 4\n[[robot.legs]]\n'
-                                       'name = "LF"\njoints = ["a"]\nfoot = "f"\n')
-    with pytest.raises(UnknownNameError, match="wheels"):
-        RobotDescription.from_toml(tmp_path / "bad.toml")
-    (tmp_path / "nolegs.toml").write_text('[robot]\nname = "x"\n')
-    with pytest.raises(hexaleg.HexalegError, match=r"\[\[robot.legs\]\]"):
-        load(str(tmp_path / "nolegs.toml"))
-
-
 @pytest.mark.parametrize("name", QUADRUPEDS)
 def test_report_for_a_registry_robot(name, tmp_path, capsys):
     """'hexaleg report --robot NAME': the trot from the description (the file's [gait] keys
@@ -335,7 +276,7 @@ def test_report_for_a_registry_robot(name, tmp_path, capsys):
     desc, robot = description(name), robot_of(name)
     knees = list(robot.joints(desc.spring_class))
     assert data["gait"]["groups"] == [list(g) for g in TROT] and data["gait"]["samples"] == 40
-    assert data["gait"]["period"]["value"] == desc.gait.period
+    assert data["gait"]["period"]["value"] == GaitParams.for_robot(desc).period
     assert data["gait"]["min_stance_feet"] == 2
     assert data["contact"]["torque_limits"] is own
     assert sorted(data["springs"]["joints"]) == sorted(knees)
@@ -352,10 +293,3 @@ def test_report_for_a_registry_robot(name, tmp_path, capsys):
     assert any(n.startswith("two-foot gait: the body sways") for n in data["notes"])
     assert html.count("<b>Note:</b>") == len(data["notes"]) == (1 if own else 2)
     assert data["transform"] is None and 'id="transform"' not in html  # no sphere pose
-
-
-def test_a_description_names_a_catalogue_actuator(tmp_path):
-    assert description("solo12").motor == "ODRI-4004" and description("hexaleg").motor == "AX-18A"
-    assert description("go2").motor is None
-    with pytest.raises(UnknownNameError, match=r"'T-Motor'.*ODRI-4004"):
-        dataclasses.replace(description("solo12"), motor="T-Motor")

@@ -5,8 +5,9 @@ moment about the line joining the feet. A motion whose whole-body Newton–Euler
 a moment (gravity on a centre of mass off the line, the swinging legs' momentum) has no contact
 forces. :func:`support_moment` measures that moment exactly from Pinocchio's RNEA;
 :func:`periodic_lip_sway` gives the periodic horizontal body sway that cancels a prescribed moment
-in the linear inverted pendulum model; :func:`hexaleg.motion.gait.sample_gait` iterates the two
-until the exact moment vanishes at every two-foot sample (``GaitParams.balance``).
+in the linear inverted pendulum model; :func:`balance_sway` iterates the two (with Anderson
+acceleration) until the exact moment vanishes at every two-foot sample, for
+:func:`hexaleg.motion.legged.sample_gait` (``GaitParams.balance``).
 
 The linear inverted pendulum (LIP): a point mass m at constant height h above the ground whose
 horizontal offset from a support line is d (along the line's horizontal normal) needs the moment
@@ -23,18 +24,31 @@ for every harmonic n: per Fourier coefficient ``D_n = F_n / (g + h (nω)²)`` (e
 
 from __future__ import annotations
 
+import itertools
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.errors import InvalidParameterError
+from hexaleg.errors import InfeasibleForcesError, InvalidParameterError
+from hexaleg.motion.params import GaitParams
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
+from hexaleg.units import G
 
-GRAVITY = 9.81
-"""Standard gravity used by the LIP model, m/s² (the exact moments use the model's gravity)."""
+BALANCE_TOL = 1e-10
+"""The sway iteration stops when every two-foot sample's support-line moment is at most this
+fraction of m g h (the weight's moment at the CoM height)."""
+BALANCE_MAX_ITER = 60
+"""Sway iterations allowed before the gait is declared impossible to balance."""
+ANDERSON_DEPTH = 3
+"""Previous iterates the sway iteration's Anderson acceleration combines."""
+MIN_CROSSING = 0.2
+"""Smallest |sin| of the angle between the sway direction and a support line (below it the
+sway would have to be more than five times the needed CoM shift)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -101,7 +115,7 @@ class Sway:
 
 
 def periodic_lip_sway(f: np.ndarray, period: float, height: float,
-                      gravity: float = GRAVITY) -> np.ndarray:
+                      gravity: float = G) -> np.ndarray:
     """The periodic solution of the linear inverted pendulum ``g d − h d̈ = f`` on the cycle grid.
 
     Per Fourier harmonic n (ω = 2π / period): ``D_n = F_n / (g + h (nω)²)`` (Kajita et al., ICRA
@@ -113,7 +127,8 @@ def periodic_lip_sway(f: np.ndarray, period: float, height: float,
         f: Right-hand side on the grid ``t_k = k · period / N``, shape (N,), m²/s².
         period: Period, s (> 0).
         height: Pendulum height h, m (> 0).
-        gravity: g, m/s² (> 0).
+        gravity: g, m/s² (> 0); default :data:`hexaleg.units.G` (standard gravity; the exact
+            moments of :func:`support_moment` use the model's gravity).
 
     Returns:
         Sway samples d_k, shape (N,), m.
@@ -218,3 +233,85 @@ def crossing(axis_base: np.ndarray, direction: np.ndarray) -> np.ndarray:
         s, shape (T,), in [−1, 1].
     """
     return axis_base @ np.cross(direction, [0.0, 0.0, 1.0])
+
+
+def balance_sway(robot: Robot, gait: GaitParams, grid: np.ndarray,
+                 sample: Callable[[Sway | None, dict[str, Any]], Motion]
+                 ) -> tuple[Motion, Sway, dict[str, Any]]:
+    """The body sway that balances a two-foot gait on its cycle grid: a fixed-point iteration.
+
+    ``d`` is the fixed point of: compute the exact moment M_k about each two-foot sample's
+    support line (:func:`support_moment`), add the periodic linear-inverted-pendulum sway that
+    cancels it, ``g δd − h δd̈ = −M / (m s)`` on the two-foot samples and 0 on the others
+    (:func:`periodic_lip_sway`, Kajita et al. ICRA 2003; h the mean CoM height, s the crossing
+    factor), and re-sample the gait; the iterates are combined by Anderson acceleration
+    (:func:`_anderson`). It stops when ``max |M_k| ≤ BALANCE_TOL · m g h``.
+
+    Args:
+        robot: The robot.
+        gait: The gait's parameters (period, groups for the messages).
+        grid: The cycle grid ``k · period / samples``, shape (N,), s.
+        sample: The gait on ``grid`` with a sway (None: the constant-twist body) and the
+            ``info["balance"]`` report to store (:func:`hexaleg.motion.legged.sample_gait`).
+
+    Returns:
+        The balanced motion, its sway and the report (``mode``, ``direction``, ``height``,
+        ``iterations``, ``amplitude``, ``residual``, ``residuals``).
+
+    Raises:
+        InvalidParameterError: a support line is (nearly) parallel to the sway direction.
+        InfeasibleForcesError: the iteration does not converge in ``BALANCE_MAX_ITER`` steps.
+    """
+    motion = sample(None, {"mode": "none"})
+    moment, mask, axes = support_moment(robot, motion)
+    direction = sway_direction(np.unique(np.round(axes[mask], 12), axis=0))
+    model, data = robot.model, robot.model.createData()
+    height = float(np.mean([pin.centerOfMass(model, data, q)[2] for q in motion.q]))
+    mass, g = robot.mass, float(np.linalg.norm(model.gravity.linear))
+    scale = mass * g * height
+    d = np.zeros(len(grid))
+    history: list[tuple[np.ndarray, np.ndarray]] = []
+    residuals = [float(np.abs(moment).max() / scale)]
+    for _ in range(BALANCE_MAX_ITER):
+        s = crossing(axes, direction)
+        if np.abs(s[mask]).min() < MIN_CROSSING:
+            k = int(np.flatnonzero(mask)[np.argmin(np.abs(s[mask]))])
+            raise InvalidParameterError(
+                "groups", gait.groups, f"two-foot support lines that a horizontal body sway can "
+                f"cross; at t = {grid[k]:.4g} s the line has |sin| = {abs(s[k]):.3g} < "
+                f"{MIN_CROSSING} with the sway direction {np.round(direction, 3).tolist()}")
+        f = np.zeros(len(grid))
+        f[mask] = -moment[mask] / (mass * s[mask])
+        step = periodic_lip_sway(f, gait.period, height, g)
+        history.append((d + step, step))
+        d = _anderson(history[-ANDERSON_DEPTH - 1:])
+        sway = Sway.from_samples(direction, gait.period, d)
+        report = {"mode": "sway", "direction": direction.tolist(), "height": height,
+                  "iterations": len(residuals), "amplitude": sway.amplitude}
+        motion = sample(sway, report)
+        moment, mask, axes = support_moment(robot, motion)
+        residuals.append(float(np.abs(moment).max() / scale))
+        report["residual"] = residuals[-1]
+        report["residuals"] = residuals
+        if residuals[-1] <= BALANCE_TOL:
+            return motion, sway, report
+    raise InfeasibleForcesError(
+        f"the body sway that balances the two-foot phases did not converge in "
+        f"{BALANCE_MAX_ITER} iterations: support-line moment {residuals[-1]:.3g} m g h "
+        f"(allowed {BALANCE_TOL:g}); a slower gait, a smaller stride or balance = 'none'")
+
+
+def _anderson(history: list[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
+    """Anderson-accelerated next iterate from ``(G(d_i), r_i = G(d_i) − d_i)``, oldest first.
+
+    ``d⁺ = G(d_k) − ΔG γ`` with γ minimising ``‖r_k − ΔR γ‖`` over the differences of the last
+    iterates (Walker & Ni, "Anderson acceleration for fixed-point iterations", SIAM J. Numer.
+    Anal. 49(4), 2011, Algorithm AA); with one entry it is the plain fixed-point step.
+    """
+    g_k, r_k = history[-1]
+    if len(history) == 1:
+        return g_k
+    d_g = np.stack([b[0] - a[0] for a, b in itertools.pairwise(history)], axis=1)
+    d_r = np.stack([b[1] - a[1] for a, b in itertools.pairwise(history)], axis=1)
+    gamma = np.linalg.lstsq(d_r, r_k, rcond=None)[0]
+    return g_k - d_g @ gamma

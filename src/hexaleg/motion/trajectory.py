@@ -55,7 +55,7 @@ class Motion:
     periodic: bool = True
     fixed_base: bool = False
     info: dict[str, Any] = field(default_factory=dict)
-    supported: np.ndarray | None = None
+    supported: np.ndarray = None  # type: ignore[assignment]  # None → set in __post_init__
 
     def __post_init__(self) -> None:
         n = self.t.shape[0]

@@ -21,7 +21,8 @@ def self_collisions(model: pin.Model, data: pin.Data, collision_model: pin.Geome
     """Pairs of links whose collision geometries intersect at ``q`` (SRDF pairs excluded).
 
     Args:
-        model, data: The robot's Pinocchio model and a data for it (overwritten).
+        model: The robot's Pinocchio model.
+        data: A Pinocchio data of ``model`` (overwritten).
         collision_model: Its collision geometry, with the SRDF's disabled pairs removed.
         q: Configuration, shape (nq,).
 
@@ -51,7 +52,8 @@ def max_extent(model: pin.Model, data: pin.Data, gmodel: pin.GeometryModel,
     ``sqrt(|p|² + r² + 2 r |p⊥|)`` for rim centre ``p`` (``p⊥`` its part normal to the axis).
 
     Args:
-        model, data: The robot's Pinocchio model and a data for it (overwritten).
+        model: The robot's Pinocchio model.
+        data: A Pinocchio data of ``model`` (overwritten).
         gmodel: The visual or collision geometry model.
         q: Configuration, shape (nq,).
 
@@ -95,7 +97,8 @@ def lowest_points(model: pin.Model, data: pin.Data, gmodel: pin.GeometryModel, q
     ``s = h |R_zz| + r sqrt(1 − R_zz²)`` for a cylinder of half-length ``h`` along its z axis.
 
     Args:
-        model, data: The robot's Pinocchio model and a data for it (overwritten).
+        model: The robot's Pinocchio model.
+        data: A Pinocchio data of ``model`` (overwritten).
         gmodel: The visual or collision geometry model.
         q: Configurations (the base placement included), shape (T, nq).
         ignore: Names of links whose geometry is left out.

@@ -221,7 +221,7 @@ def from_datasheet(name: str, *, gear_ratio: float, stall_torque: float, stall_c
                  no_load_speed=no_load_speed_rpm * RPM, voltage=voltage, source=source)
 
 
-def _robotis(name: str, url: str, **figures: float) -> Motor:
+def _robotis(name: str, url: str, **figures: Any) -> Motor:
     return from_datasheet(name, source=f"ROBOTIS e-Manual, {name} specifications, {url} "
                                        "(stall and no-load figures at 12 V)", **figures)
 

@@ -1,286 +1,25 @@
-"""A registry of legged robots: which URDF, which SRDF pose is "standing", which joints make a leg.
+"""The registry of legged robots: hexaleg and the quadrupeds of example-robot-data, by name.
 
-Each :class:`RobotDescription` says declaratively how to load one robot into hexaleg — in the style
-of the loaders of example-robot-data (``example_robot_data.robots_loader``) and of
-robot_descriptions: the URDF and SRDF files, the SRDF ``group_state`` (or joint values) that is
-the robot's standing pose, one :class:`~hexaleg.robot.model.LegSpec` per leg (joints from the body
-out and the foot frame), the names of the joint classes (``("haa", "hfe", "kfe")``), the class the
-paper's spring goes on by default, and gait parameters suited to the robot's size. :func:`load`
-turns a name into a :class:`~hexaleg.robot.model.Robot`.
+:data:`DESCRIPTIONS` holds one :class:`~hexaleg.robot.description.RobotDescription` per robot;
+:func:`description` and :func:`load` turn a name (or the path of one's own robot's TOML
+description) into the description or the loaded :class:`~hexaleg.robot.model.Robot`.
 
 Legs get hexaleg's canonical names whatever the URDF calls them (``LF RF LH RH`` for the
 quadrupeds: Solo's ``FL``/``HR`` and Go2's ``FL``/``RR`` become ``LF``/``RH``), so leg groups such
-as :data:`TROT` mean the same on every robot. The standing pose is also stored as ``"stand"``, the
-pose :mod:`hexaleg.motion.gait` takes its footholds and body height from.
-
-The quadrupeds' files come from the installed ``example-robot-data`` distribution (a cmeel
-package without a Python module), located through :mod:`importlib.metadata`, never from the
-network.
+as :data:`TROT` mean the same on every robot.
 """
 
 from __future__ import annotations
 
-import importlib.metadata
-import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
-from pathlib import Path
 from types import MappingProxyType
 
-import numpy as np
-import pinocchio as pin
-
-from hexaleg.config import from_mapping, load_toml
-from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError, UnknownNameError
-from hexaleg.motion.gait import GaitParams
-from hexaleg.robot.model import (
-    HEXALEG_LEGS,
-    JOINT_KINDS,
-    URDF_DIR,
-    LegSpec,
-    Robot,
-    load_robot,
-)
-
-BUILTIN = "hexaleg"
-"""Files source of the robot shipped with hexaleg (``urdf/hexaleg.urdf`` and ``.srdf``)."""
-EXAMPLE_ROBOT_DATA = "example-robot-data"
-"""Files source: the installed example-robot-data distribution (paths relative to its
-``share/example-robot-data/robots`` directory)."""
-FILES = "files"
-"""Files source: paths as given (absolute, or relative to the working directory; a TOML
-description's relative paths are made relative to its own directory)."""
-SOURCES: tuple[str, ...] = (BUILTIN, EXAMPLE_ROBOT_DATA, FILES)
-
-STAND = "stand"
-"""The pose name :mod:`hexaleg.motion.gait` uses for footholds and body height."""
+from hexaleg.errors import UnknownNameError
+from hexaleg.robot.description import BUILTIN, EXAMPLE_ROBOT_DATA, STAND, RobotDescription
+from hexaleg.robot.model import HEXALEG_LEGS, JOINT_KINDS, LegSpec, Robot
 
 TROT: tuple[tuple[str, ...], ...] = (("LF", "RH"), ("RF", "LH"))
 """A quadruped's trot: the diagonal pairs move together, {LF, RH} touching down at t = 0."""
-
-
-def example_robot_data_dir() -> Path:
-    """The ``share/example-robot-data/robots`` directory of the installed example-robot-data.
-
-    Found from the distribution's file list (:func:`importlib.metadata.distribution`), so it does
-    not depend on where the package is installed nor on the cmeel prefix's name.
-
-    Returns:
-        The directory holding ``<robot>_description/`` folders.
-
-    Raises:
-        RobotModelError: example-robot-data is not installed, or its file list has no robots.
-    """
-    try:
-        dist = importlib.metadata.distribution(EXAMPLE_ROBOT_DATA)
-    except importlib.metadata.PackageNotFoundError:
-        raise RobotModelError("the example-robot-data package is not installed; "
-                              "pip install example-robot-data") from None
-    for f in dist.files or ():
-        parts = f.parts
-        for i in range(len(parts) - 2):
-            if parts[i:i + 3] == ("share", "example-robot-data", "robots"):
-                return Path(dist.locate_file(Path(*parts[:i + 3])))
-    raise RobotModelError(f"example-robot-data {dist.version} has no share/example-robot-data/"
-                          "robots directory in its file list")
-
-
-@dataclass(frozen=True)
-class RobotDescription:
-    """How to load one legged robot (paths, standing pose, legs, joint classes, default gait).
-
-    Attributes:
-        name: Registry name, e.g. ``"solo12"``.
-        title: Human-readable name and maker.
-        source: Where the files come from: :data:`BUILTIN`, :data:`EXAMPLE_ROBOT_DATA` or
-            :data:`FILES`.
-        urdf: URDF path relative to the source's directory (``hexaleg.robot.model.URDF_DIR``,
-            example-robot-data's ``share/example-robot-data/robots``, or as given for
-            :data:`FILES`).
-        srdf: SRDF path relative to the same directory, or None.
-        stand: The standing pose: the name of an SRDF ``group_state`` (e.g. ``"standing"``) or
-            joint name → angle (rad); joints not named stay at Pinocchio's neutral value.
-        legs: One spec per leg, with hexaleg's leg names (``LF RF LH RH`` …).
-        joint_kinds: Names of the joint classes, one per joint of a leg from the body out.
-        spring_class: The joint class the springs go on by default (the knees of the
-            quadrupeds; the femur, as in the paper, for hexaleg).
-        gait: Default gait parameters, sized to the robot (leg groups included).
-        notes: Where the description's facts come from.
-        motor: Name of the robot's actuator in :data:`hexaleg.robot.motor.CATALOGUE`, or None when
-            the catalogue has none (the report then uses the default servo and says so).
-        mesh_dirs: Where ``package://`` mesh URIs resolve, for :data:`FILES` (the other sources
-            know their own).
-    """
-
-    name: str
-    title: str
-    source: str
-    urdf: str
-    srdf: str | None
-    stand: str | Mapping[str, float]
-    legs: tuple[LegSpec, ...]
-    joint_kinds: tuple[str, ...]
-    spring_class: str
-    gait: GaitParams = field(default_factory=GaitParams)
-    notes: str = ""
-    motor: str | None = None
-    mesh_dirs: tuple[str, ...] = ()
-
-    def __post_init__(self) -> None:
-        if self.source not in SOURCES:
-            raise UnknownNameError("robot file source", self.source, SOURCES)
-        if not self.legs:
-            raise InvalidParameterError(f"{self.name}: legs", self.legs, "at least one LegSpec")
-        object.__setattr__(self, "legs", tuple(self.legs))
-        object.__setattr__(self, "joint_kinds", tuple(self.joint_kinds))
-        for leg in self.legs:
-            if len(leg.joints) != len(self.joint_kinds):
-                raise InvalidParameterError(
-                    f"{self.name}: leg {leg.name} joints", leg.joints,
-                    f"{len(self.joint_kinds)} joints, one per kind {self.joint_kinds}")
-        if self.spring_class not in self.joint_kinds:
-            raise UnknownNameError("joint class", self.spring_class, self.joint_kinds)
-        if self.motor is not None:
-            from hexaleg.robot.motor import CATALOGUE
-
-            if self.motor not in CATALOGUE:
-                raise UnknownNameError(f"{self.name}: motor", self.motor, CATALOGUE)
-        names = {leg.name for leg in self.legs}
-        grouped = [leg for group in self.gait.groups for leg in group]
-        if sorted(grouped) != sorted(names):
-            raise InvalidParameterError(f"{self.name}: gait.groups", self.gait.groups,
-                                        f"every leg of {sorted(names)} in exactly one group")
-        if not isinstance(self.stand, str):
-            if not isinstance(self.stand, Mapping) or not all(
-                    isinstance(k, str) and isinstance(v, (int, float))
-                    and not isinstance(v, bool) and math.isfinite(v)
-                    for k, v in self.stand.items()):
-                raise InvalidParameterError(f"{self.name}: stand", self.stand,
-                                            "an SRDF group_state name or joint name → finite "
-                                            "angle (rad)")
-            object.__setattr__(self, "stand", MappingProxyType(
-                {k: float(v) for k, v in self.stand.items()}))
-        object.__setattr__(self, "mesh_dirs", tuple(self.mesh_dirs))
-
-    @classmethod
-    def from_toml(cls, path: str | Path) -> RobotDescription:
-        """A description of one's own robot from the ``[robot]`` table of a TOML file.
-
-        Example (relative paths are relative to the TOML file; ``source`` defaults to
-        :data:`FILES`)::
-
-            [robot]
-            name = "myquad"
-            title = "My quadruped"
-            urdf = "myquad.urdf"
-            srdf = "myquad.srdf"          # optional
-            stand = "standing"            # a group_state, or a table {joint = angle_rad}
-            joint_kinds = ["haa", "hfe", "kfe"]
-            spring_class = "kfe"
-            mesh_dirs = ["."]             # where package:// URIs resolve
-            [robot.gait]                  # GaitParams keys
-            period = 0.5
-            groups = [["LF", "RH"], ["RF", "LH"]]
-            [[robot.legs]]
-            name = "LF"
-            joints = ["LF_HAA", "LF_HFE", "LF_KFE"]
-            foot = "LF_FOOT"
-            # ... one [[robot.legs]] table per leg
-
-        Args:
-            path: The TOML file.
-
-        Returns:
-            The description (its files are not opened until :meth:`load`).
-
-        Raises:
-            ConfigError: the file cannot be read, has no ``[robot]`` table or no
-                ``[[robot.legs]]`` tables, or a value has the wrong type.
-            UnknownNameError: an unknown key (the message lists the valid keys).
-            InvalidParameterError: a value out of range.
-        """
-        path = Path(path)
-        where = f"{path} [robot]"
-        table = load_toml(path).get("robot")
-        if not isinstance(table, Mapping):
-            raise ConfigError(f"{path}: expected a [robot] table")
-        data = dict(table)
-        legs = data.get("legs")
-        if not isinstance(legs, list) or not legs or \
-                not all(isinstance(leg, Mapping) for leg in legs):
-            raise ConfigError(f"{where}: expected [[robot.legs]] tables with name, joints, foot")
-        data["legs"] = tuple(from_mapping(LegSpec, leg, f"{where} legs[{i}]")
-                             for i, leg in enumerate(legs))
-        data["gait"] = from_mapping(GaitParams, data.get("gait", {}), f"{where} gait")
-        data.setdefault("source", FILES)
-        if data["source"] == FILES:
-            for key in ("urdf", "srdf"):
-                if isinstance(data.get(key), str):
-                    data[key] = str(path.parent / data[key])
-            if isinstance(data.get("mesh_dirs"), list):
-                data["mesh_dirs"] = [str(path.parent / d) if isinstance(d, str) else d
-                                     for d in data["mesh_dirs"]]
-        if not isinstance(data.get("stand", ""), (str, Mapping)):
-            raise ConfigError(f"{where}.stand = {data['stand']!r}; expected a group_state name "
-                              "or a table of joint angles")
-        return from_mapping(cls, data, where)
-
-    def _dir(self) -> Path:
-        if self.source == EXAMPLE_ROBOT_DATA:
-            return example_robot_data_dir()
-        return URDF_DIR if self.source == BUILTIN else Path()
-
-    @property
-    def urdf_path(self) -> Path:
-        """The URDF file, resolved in the installed source."""
-        return self._dir() / self.urdf
-
-    @property
-    def srdf_path(self) -> Path | None:
-        """The SRDF file, resolved in the installed source, or None."""
-        return None if self.srdf is None else self._dir() / self.srdf
-
-    @property
-    def package_dirs(self) -> tuple[Path, ...]:
-        """Where ``package://`` mesh URIs resolve: the URDFs of example-robot-data name meshes
-        ``package://example-robot-data/robots/…``, so the directory holding
-        ``example-robot-data/``; :attr:`mesh_dirs` for :data:`FILES`."""
-        if self.source == EXAMPLE_ROBOT_DATA:
-            return (self._dir().parent.parent,)
-        return tuple(Path(d) for d in self.mesh_dirs)
-
-    def load(self) -> Robot:
-        """Load the robot: Pinocchio model with a free-flyer base, legs, poses.
-
-        Every pose gets the base at the origin with identity orientation (the SRDFs of
-        example-robot-data put the base at the standing height), and the standing pose is also
-        stored as ``"stand"``.
-
-        Returns:
-            The robot; ``robot.joint_kinds`` is :attr:`joint_kinds`.
-
-        Raises:
-            RobotModelError: files missing or malformed, or a leg joint or foot frame not in the
-                URDF (the message lists the frames found).
-            UnknownNameError: the standing pose names an SRDF group_state or joint that does not
-                exist (the message lists the valid ones).
-        """
-        robot = load_robot(self.urdf_path, self.srdf_path, legs=self.legs,
-                           package_dirs=self.package_dirs, joint_kinds=self.joint_kinds)
-        base = pin.neutral(robot.model)[:7]
-        for q in robot.poses.values():
-            q[:7] = base
-        robot.poses[STAND] = self._stand_pose(robot)
-        return robot
-
-    def _stand_pose(self, robot: Robot) -> np.ndarray:
-        if isinstance(self.stand, str):
-            return robot.pose(self.stand)
-        q = pin.neutral(robot.model)
-        for joint, value in self.stand.items():
-            robot.column(joint)  # an unknown joint raises, listing the joints
-            q[robot.model.joints[robot.model.getJointId(joint)].idx_q] = value
-        return q
 
 
 def _legs(prefixes: Mapping[str, str], joints: tuple[str, str, str], foot: str
@@ -297,7 +36,7 @@ DESCRIPTIONS: Mapping[str, RobotDescription] = MappingProxyType({d.name: d for d
     RobotDescription(
         name="hexaleg", title="hexaleg: the switchable hexapod/sphere robot of the paper",
         source=BUILTIN, urdf="hexaleg.urdf", srdf="hexaleg.srdf", stand=STAND,
-        legs=HEXALEG_LEGS, joint_kinds=JOINT_KINDS, spring_class="femur", gait=GaitParams(),
+        legs=HEXALEG_LEGS, joint_kinds=JOINT_KINDS, spring_class="femur",
         notes="urdf/hexaleg.toml (see docs/robot.md); the paper's spring is at the femur joint",
         motor="AX-18A"),
     RobotDescription(
@@ -306,8 +45,8 @@ DESCRIPTIONS: Mapping[str, RobotDescription] = MappingProxyType({d.name: d for d
         srdf="solo_description/srdf/solo.srdf", stand="standing",
         legs=_legs({"LF": "FL", "RF": "FR", "LH": "HL", "RH": "HR"}, _HAA_HFE_KFE, "{p}_FOOT"),
         joint_kinds=("haa", "hfe", "kfe"), spring_class="kfe",
-        gait=GaitParams(period=0.5, duty_factor=0.6, stride_length=0.08, step_height=0.04,
-                        groups=TROT),
+        gait={"period": 0.5, "duty_factor": 0.6, "stride_length": 0.08, "step_height": 0.04,
+              "groups": TROT},
         notes="example-robot-data solo_description (loader Solo12Loader: robots/solo12.urdf, "
               "srdf/solo.srdf, pose 'standing'); 2.5 kg, thigh and shank 0.16 m",
         motor="ODRI-4004"),
@@ -317,8 +56,8 @@ DESCRIPTIONS: Mapping[str, RobotDescription] = MappingProxyType({d.name: d for d
         srdf="anymal_b_simple_description/srdf/anymal.srdf", stand="standing",
         legs=_legs({leg: leg for leg in ("LF", "RF", "LH", "RH")}, _HAA_HFE_KFE, "{p}_FOOT"),
         joint_kinds=("haa", "hfe", "kfe"), spring_class="kfe",
-        gait=GaitParams(period=0.8, duty_factor=0.6, stride_length=0.2, step_height=0.08,
-                        groups=TROT),
+        gait={"period": 0.8, "duty_factor": 0.6, "stride_length": 0.2, "step_height": 0.08,
+              "groups": TROT},
         notes="example-robot-data anymal_b_simple_description (loader ANYmalLoader); 30.5 kg"),
     RobotDescription(
         name="anymal_c", title="ANYmal C (ANYbotics)",
@@ -326,8 +65,8 @@ DESCRIPTIONS: Mapping[str, RobotDescription] = MappingProxyType({d.name: d for d
         srdf="anymal_c_simple_description/srdf/anymal.srdf", stand="standing",
         legs=_legs({leg: leg for leg in ("LF", "RF", "LH", "RH")}, _HAA_HFE_KFE, "{p}_FOOT"),
         joint_kinds=("haa", "hfe", "kfe"), spring_class="kfe",
-        gait=GaitParams(period=0.8, duty_factor=0.6, stride_length=0.2, step_height=0.08,
-                        groups=TROT),
+        gait={"period": 0.8, "duty_factor": 0.6, "stride_length": 0.2, "step_height": 0.08,
+              "groups": TROT},
         notes="example-robot-data anymal_c_simple_description (loader ANYmalCLoader); 52.1 kg"),
     RobotDescription(
         name="go2", title="Go2 (Unitree)",
@@ -336,8 +75,8 @@ DESCRIPTIONS: Mapping[str, RobotDescription] = MappingProxyType({d.name: d for d
         legs=_legs({"LF": "FL", "RF": "FR", "LH": "RL", "RH": "RR"},
                    ("{p}_hip_joint", "{p}_thigh_joint", "{p}_calf_joint"), "{p}_foot"),
         joint_kinds=("hip", "thigh", "knee"), spring_class="knee",
-        gait=GaitParams(period=0.6, duty_factor=0.6, stride_length=0.12, step_height=0.06,
-                        groups=TROT),
+        gait={"period": 0.6, "duty_factor": 0.6, "stride_length": 0.12, "step_height": 0.06,
+              "groups": TROT},
         notes="example-robot-data go2_description (loader Go2Loader); 16.1 kg; the knee class "
               "is the URDF's calf joints"),
 )})

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, NamedTuple
+from typing import TYPE_CHECKING, NamedTuple, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -144,12 +144,12 @@ class DeadZoneSpring:
     @property
     def th_minus(self) -> float:
         """θ⁻, rad, relative to neutral."""
-        return self.theta_minus if self.theta_minus is not None else -float(self.theta_k)
+        return self.theta_minus if self.theta_minus is not None else -cast(float, self.theta_k)
 
     @property
     def th_plus(self) -> float:
         """θ⁺, rad, relative to neutral."""
-        return self.theta_plus if self.theta_plus is not None else float(self.theta_k)
+        return self.theta_plus if self.theta_plus is not None else cast(float, self.theta_k)
 
     @property
     def k_minus(self) -> float:

@@ -1,0 +1,258 @@
+"""The periodic leg-group gait (default: the hexapod's alternating tripod).
+
+:func:`tripod_gait` — the body moves with a constant twist (forward speed, optional yaw rate);
+legs move in groups (default the two tripods {LF, RM, LH} and {RF, LM, RH}); stance feet stay
+fixed on the ground, swing feet follow :func:`~hexaleg.motion.profiles.swing_curve`; joint angles,
+velocities and accelerations come from the leg inverse kinematics
+(:mod:`hexaleg.motion.kinematics`) with exact derivatives. The foot-placement and timing logic is
+generic in the legs and groups (a trot on a quadruped is two groups of two legs); a gait standing
+on two feet is balanced by a periodic body sway (:mod:`hexaleg.motion.balance`,
+``GaitParams.balance``); the body's motion is in :mod:`hexaleg.motion.body`.
+
+All outputs are :class:`~hexaleg.motion.trajectory.Motion` objects in Pinocchio's conventions: base
+velocity and acceleration in the LOCAL base frame, ``a = dv/dt``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+import numpy as np
+
+from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.motion.balance import Sway, balance_sway
+from hexaleg.motion.body import (
+    base_state,
+    body_motion,
+    body_pose,
+    in_base_frame,
+    reference_pose,
+    rotz,
+)
+from hexaleg.motion.kinematics import leg_ik
+from hexaleg.motion.params import GaitParams
+from hexaleg.motion.profiles import swing_curve
+from hexaleg.motion.support import static_margins
+from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.model import Robot
+
+
+def sample_gait(robot: Robot, gait: GaitParams | None = None,
+                t: np.ndarray | None = None) -> Motion:
+    """Evaluate the periodic leg-group gait at given times (the machinery of :func:`tripod_gait`).
+
+    The base moves with the constant twist (local linear velocity ``[speed, 0, 0]``, angular
+    velocity ``[0, 0, yaw_rate]``) at ``body_height``, starting at the origin with zero yaw, plus
+    the balancing sway below. A leg of group i is in stance for the phase
+    φ = (t/period − i/n_groups) mod 1 < β (so at a switching instant the group touching down is
+    in stance and the one lifting off is not), its foot fixed at the world image of its nominal
+    foothold at mid-stance; in swing it moves on :func:`~hexaleg.motion.profiles.swing_curve` from
+    that point to the next mid-stance image (one stride ahead). The foot targets are taken into
+    the base frame with the exact rotating-frame derivatives ``ṗ_b = −ω × p_b + Rᵀ ṗ − v`` and
+    ``p̈_b = −ω × ṗ_b − ω × Rᵀ ṗ + Rᵀ p̈ − v̇`` and solved by
+    :func:`hexaleg.motion.kinematics.leg_ik`.
+
+    **Balance on two feet** (``gait.balance == "auto"`` and some sample of the cycle grid stands
+    on exactly two feet, none on fewer — a trot: with β = 0.5 always exactly two, switching at
+    t = 0 and t = period / 2; with β > 0.5 four-foot phases of (β − ½) · period after each
+    switch). Two point feet cannot push a moment about the line through them, so the base is
+    displaced by ``d(t) e`` along a horizontal direction e
+    (:func:`hexaleg.motion.balance.sway_direction`: lateral for a trot), with d a trigonometric
+    polynomial on the cycle grid
+    (exact derivatives: the base velocity gains ``e ḋ + ω ẑ × e d`` and the acceleration
+    ``e d̈ + ω ẑ × e ḋ``). d is the fixed point of: compute the exact moment M_k about each
+    two-foot sample's support line from RNEA (:func:`hexaleg.motion.balance.support_moment`), add
+    the periodic linear-inverted-pendulum sway that cancels it, ``g δd − h δd̈ = −M / (m s)`` on the
+    two-foot samples and 0 on the others (:func:`hexaleg.motion.balance.periodic_lip_sway`, Kajita
+    et al. ICRA 2003; h the mean CoM height, s the crossing factor), and re-sample the gait; it
+    stops when ``max |M_k| ≤ BALANCE_TOL · m g h`` (:func:`hexaleg.motion.balance.balance_sway`).
+    The stance feet stay at rest (the footholds do not move with the sway) and the swing feet
+    follow the same world curves. At times ``t`` off the cycle grid the sway is the same
+    trigonometric polynomial (balanced on the grid).
+
+    Args:
+        robot: The robot; joints outside the legs are held at the ``stand`` pose.
+        gait: Gait parameters; default ``GaitParams()``.
+        t: Times, shape (T,), s; default the cycle grid ``k · period / samples``.
+
+    Returns:
+        The motion (see :func:`tripod_gait` for the fields and ``info``); ``periodic`` is True
+        only for the default cycle grid.
+
+    Raises:
+        UnknownNameError: a leg in ``gait.groups`` is not a leg of the robot.
+        InvalidParameterError: a leg of the robot is in no group, ``t`` is not a non-empty
+            1-D array of finite times, or a support line is (nearly) parallel to every sway
+            direction.
+        UnreachableTargetError: a foot target is out of reach (names leg, time, distance).
+        InfeasibleForcesError: the sway iteration does not converge (the gait is too fast or
+            its support lines too short to balance).
+    """
+    gait = GaitParams() if gait is None else gait
+    cycle_grid = t is None
+    grid = np.arange(gait.samples) * (gait.period / gait.samples)
+    t = grid if t is None else np.asarray(t, dtype=float)
+    if t.ndim != 1 or len(t) == 0 or not np.all(np.isfinite(t)):
+        raise InvalidParameterError("t", f"array of shape {t.shape}",
+                                    "a non-empty 1-D array of finite times (s)")
+    offsets = _resolve_groups(robot, gait)
+    counts = _stance_counts(gait, offsets, grid)
+    if gait.balance == "none" or counts.min() != 2:
+        return _sample(robot, gait, t, cycle_grid, None, {"mode": "none"})
+    motion, sway, report = balance_sway(
+        robot, gait, grid, lambda sway, report: _sample(robot, gait, grid, True, sway, report))
+    if cycle_grid:
+        return motion
+    return _sample(robot, gait, t, False, sway, report)
+
+
+def tripod_gait(robot: Robot, gait: GaitParams | None = None) -> Motion:
+    """One cycle of the periodic leg-group gait (default: the hexapod's alternating tripod).
+
+    Args:
+        robot: The robot (e.g. ``load_robot()``).
+        gait: Gait parameters; default ``GaitParams()`` (period 1 s, β = 0.5, stride 0.06 m,
+            step height 0.03 m, the ``stand`` height and footprint, 1000 samples, tripods).
+
+    Returns:
+        Motion with t (T,) = k · period / T (endpoint excluded), q (T, nq), v (T, nv) and
+        a (T, nv) in Pinocchio's conventions (base velocity/acceleration in the LOCAL base
+        frame), stance (T, n_legs) bool and the world foot targets feet (T, n_legs, 3) m, legs
+        in ``robot.legs`` order; ``distance`` = stride, ``periodic`` True, ``fixed_base``
+        False. ``info`` holds ``gait`` (the parameters), ``stride_length`` m, ``speed`` m/s,
+        ``body_height`` m, ``foot_radius`` m, ``min_stance_feet``, ``static_margin`` m (the
+        smallest distance of the CoM's ground projection inside the stance feet's support
+        polygon over the cycle; None if some sample has fewer than 3 stance feet) and
+        ``static_margin_t`` s (where it occurs), ``ik`` (solver per leg) and ``balance``:
+        ``{"mode": "none"}``, or for a gait balanced on two feet (see :func:`sample_gait`)
+        ``{"mode": "sway", "direction"`` (base frame, 3 floats), ``"amplitude"`` m (half the
+        peak-to-peak sway), ``"height"`` m (the LIP height), ``"iterations"``, ``"residual"``
+        (largest support-line moment / m g h) and ``"residuals"`` (per iteration, from the
+        unswayed gait)``}``.
+
+    Raises:
+        UnknownNameError: a leg in ``gait.groups`` is not a leg of the robot.
+        InvalidParameterError: a leg of the robot is in no group, or a support line cannot be
+            crossed by a horizontal sway.
+        UnreachableTargetError: a foot target is out of reach (names leg, time, distance).
+        InfeasibleForcesError: the balancing sway does not converge.
+    """
+    return sample_gait(robot, gait)
+
+
+def _resolve_groups(robot: Robot, gait: GaitParams) -> np.ndarray:
+    """Touch-down phase offset (fraction of the period) of each robot leg, shape (n_legs,)."""
+    names = robot.leg_names
+    offset = {}
+    for i, group in enumerate(gait.groups):
+        for leg in group:
+            if leg not in names:
+                raise UnknownNameError("leg", leg, names)
+            offset[leg] = i / len(gait.groups)
+    missing = [leg for leg in names if leg not in offset]
+    if missing:
+        raise InvalidParameterError("groups", gait.groups,
+                                    f"every leg of the robot in a group; missing {missing}")
+    return np.array([offset[leg] for leg in names])
+
+
+def nominal_footholds(robot: Robot, gait: GaitParams) -> np.ndarray:
+    """Mid-stance foot positions in the base frame, shape (n_legs, 3), m.
+
+    Horizontally the footholds of the robot's ``stand`` pose (scaled to ``foot_radius`` from the
+    base z axis when given); vertically ``−body_height`` (default the stand pose's mean foot
+    depth), so the feet are on the ground z = 0 when the base is at ``body_height``.
+
+    Args:
+        robot: The robot.
+        gait: Gait parameters.
+
+    Returns:
+        Footholds in the base frame, legs in ``robot.legs`` order.
+    """
+    feet = robot.foot_positions(reference_pose(robot))
+    height = -float(feet[:, 2].mean()) if gait.body_height is None else gait.body_height
+    if gait.foot_radius is not None:
+        radial = np.linalg.norm(feet[:, :2], axis=1, keepdims=True)
+        feet[:, :2] *= gait.foot_radius / radial
+    feet[:, 2] = -height
+    return feet
+
+
+def _foot_targets(t: np.ndarray, gait: GaitParams, offset: float, nominal: np.ndarray,
+                  height: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """One foot's world target at times ``t`` (T,) (the stance and swing rule of
+    :func:`sample_gait`): stance flags (T,), p (T, 3) m, ṗ (T, 3) m/s, p̈ (T, 3) m/s².
+
+    Args:
+        t: Times, s.
+        gait: Gait parameters.
+        offset: The leg's touch-down phase offset (fraction of the period).
+        nominal: The leg's nominal foothold in the base frame, shape (3,), m.
+        height: Body height, m.
+    """
+    speed, beta, period, omega = gait.velocity, gait.duty_factor, gait.period, gait.yaw_rate
+
+    def foothold(t_mid: np.ndarray) -> np.ndarray:
+        pos, psi = body_pose(t_mid, speed, omega, height)
+        return pos + np.einsum("nij,j->ni", rotz(psi), nominal)
+
+    tau = t / period - offset
+    cycle = np.floor(tau)
+    phase = tau - cycle
+    on = phase < beta
+    t_mid = (cycle + offset + beta / 2) * period
+    p_w = foothold(t_mid)
+    pd_w = np.zeros((len(t), 3))
+    pdd_w = np.zeros((len(t), 3))
+    sw = ~on
+    if sw.any():
+        s = (phase[sw] - beta) / (1.0 - beta)
+        t_swing = (1.0 - beta) * period
+        p_s, dp_s, ddp_s = swing_curve(s, p_w[sw], foothold(t_mid[sw] + period), gait.step_height)
+        p_w[sw], pd_w[sw], pdd_w[sw] = p_s, dp_s / t_swing, ddp_s / t_swing**2
+    return on, p_w, pd_w, pdd_w
+
+
+def _stance_counts(gait: GaitParams, offsets: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Number of stance feet at times t, shape (T,) (the stance rule of :func:`sample_gait`)."""
+    tau = t[:, None] / gait.period - offsets[None, :]
+    return ((tau - np.floor(tau)) < gait.duty_factor).sum(axis=1)
+
+
+def _sample(robot: Robot, gait: GaitParams, t: np.ndarray, periodic: bool,
+            sway: Sway | None, balance: dict[str, Any]) -> Motion:
+    """The gait at times ``t`` with an optional body sway (see :func:`sample_gait`)."""
+    offsets = _resolve_groups(robot, gait)
+    nominal = nominal_footholds(robot, gait)
+    height = -float(nominal[0, 2])
+    body = body_motion(t, gait.velocity, gait.yaw_rate, height, sway)
+    q, v, a = base_state(robot, body)
+    n, n_legs = len(t), len(robot.legs)
+    stance = np.zeros((n, n_legs), dtype=bool)
+    feet = np.zeros((n, n_legs, 3))
+    solvers = {}
+    for i, leg in enumerate(robot.legs):
+        on, p_w, pd_w, pdd_w = _foot_targets(t, gait, offsets[i], nominal[i], height)
+        stance[:, i], feet[:, i] = on, p_w
+        rel, rel_d, rel_dd = in_base_frame(body, p_w, pd_w, pdd_w)
+        q_leg, qd_leg, qdd_leg, solvers[leg.name] = leg_ik(robot, leg, rel, rel_d, rel_dd, t=t)
+        q[:, leg.q_index], v[:, leg.v_index], a[:, leg.v_index] = q_leg, qd_leg, qdd_leg
+
+    margins = static_margins(robot, q, feet, stance)
+    worst = int(np.argmin(margins))
+    info = {
+        "source": "tripod_gait",
+        "gait": {f.name: getattr(gait, f.name) for f in dataclasses.fields(gait)},
+        "stride_length": gait.stride, "speed": gait.velocity, "body_height": height,
+        "foot_radius": float(np.linalg.norm(nominal[:, :2], axis=1).mean()),
+        "min_stance_feet": int(stance.sum(axis=1).min()),
+        "static_margin": float(margins[worst]) if math.isfinite(margins[worst]) else None,
+        "static_margin_t": float(t[worst]),
+        "ik": solvers,
+        "balance": balance,
+    }
+    return Motion(t=t, q=q, v=v, a=a, stance=stance, feet=feet, period=gait.period,
+                  distance=gait.stride, periodic=periodic, fixed_base=False, info=info)

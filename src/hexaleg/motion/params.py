@@ -1,0 +1,165 @@
+"""Parameters of the periodic leg-group gaits: :class:`GaitParams`, from code, TOML or a robot.
+
+A robot's description (:class:`hexaleg.robot.description.RobotDescription`) holds only plain
+overrides of these parameters (its ``gait`` mapping, e.g. Solo-12's trot);
+:meth:`GaitParams.for_robot` turns them into parameters.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from hexaleg.checks import real
+from hexaleg.config import from_mapping, load_toml
+from hexaleg.errors import InvalidParameterError
+from hexaleg.motion.limits import MIN_SAMPLES
+from hexaleg.robot.description import RobotDescription
+from hexaleg.robot.registry import description
+
+TRIPODS: tuple[tuple[str, ...], ...] = (("LF", "RM", "LH"), ("RF", "LM", "RH"))
+"""The hexapod's two tripods, the default leg groups; group 0 touches down at t = 0."""
+
+BALANCE_MODES: tuple[str, ...] = ("auto", "none")
+"""``GaitParams.balance``: ``"auto"`` sways the body (:mod:`hexaleg.motion.balance`) when some
+sample stands on exactly two feet and none on fewer; ``"none"`` keeps the constant-twist body."""
+
+
+@dataclass(frozen=True)
+class GaitParams:
+    """Parameters of a periodic leg-group gait (SI).
+
+    Attributes:
+        period: Cycle duration, s (> 0).
+        duty_factor: β, the fraction of the cycle each foot is in stance, in [0.5, 1).
+        stride_length: Body travel per cycle, m (≥ 0); also each foot's travel per swing. The
+            stance stroke of a foot relative to the body is β · stride.
+        speed: Forward speed, m/s. When given (not None) it **wins** over ``stride_length``:
+            the stride becomes ``speed · period``. Default None: speed = stride / period.
+        step_height: Apex height of the swing foot above the ground, m (> 0).
+        body_height: Height of the base above the ground, m (> 0); None: the depth of the feet
+            below the base in the robot's ``stand`` pose (0.0913 m for hexaleg).
+        foot_radius: Horizontal distance of each nominal foothold from the base's z axis (stance
+            width), m (> 0); None: the footholds of the ``stand`` pose (0.1889 m for hexaleg).
+        yaw_rate: Turning rate about the vertical, rad/s; the body then follows a circular arc.
+        samples: Samples per cycle (≥ ``MIN_SAMPLES``).
+        groups: Legs that move together; group i touches down at t = i · period / len(groups)
+            and every leg of the robot must be in exactly one group.
+        balance: ``"auto"`` (default): when the gait stands on exactly two feet at some sample
+            (a trot, a pace) and never on fewer, the body sways horizontally so that the two
+            feet can carry the motion (see :func:`hexaleg.motion.legged.sample_gait`); gaits
+            with three or more feet always (the hexapod's tripod) are unchanged. ``"none"``:
+            never sway (the rigid constant-twist body, whose two-foot samples have no contact
+            forces).
+    """
+
+    period: float = 1.0
+    duty_factor: float = 0.5
+    stride_length: float = 0.06
+    speed: float | None = None
+    step_height: float = 0.03
+    body_height: float | None = None
+    foot_radius: float | None = None
+    yaw_rate: float = 0.0
+    samples: int = 1000
+    groups: tuple[tuple[str, ...], ...] = TRIPODS
+    balance: str = "auto"
+
+    def __post_init__(self) -> None:
+        real("period", self.period, low=0.0, low_open=True, allowed="a finite number > 0 (s)")
+        real("duty_factor", self.duty_factor, low=0.5, high=1.0, high_open=True,
+             allowed="β in [0.5, 1)")
+        real("stride_length", self.stride_length, low=0.0, allowed="a finite number ≥ 0 (m)")
+        if self.speed is not None:
+            real("speed", self.speed, low=0.0, allowed="None or a finite number ≥ 0 (m/s)")
+        real("step_height", self.step_height, low=0.0, low_open=True,
+             allowed="a finite number > 0 (m)")
+        for name in ("body_height", "foot_radius"):
+            value = getattr(self, name)
+            if value is not None:
+                real(name, value, low=0.0, low_open=True,
+                     allowed="None or a finite number > 0 (m)")
+        real("yaw_rate", self.yaw_rate, allowed="a finite number (rad/s)")
+        if isinstance(self.samples, bool) or not isinstance(self.samples, (int, np.integer)) \
+                or self.samples < MIN_SAMPLES:
+            raise InvalidParameterError("samples", self.samples,
+                                        f"an integer ≥ {MIN_SAMPLES} samples per period")
+        object.__setattr__(self, "samples", int(self.samples))
+        groups = tuple(tuple(g) for g in self.groups)
+        legs = [leg for g in groups for leg in g]
+        if not groups or any(not g for g in groups) or len(set(legs)) != len(legs) \
+                or not all(isinstance(leg, str) for leg in legs):
+            raise InvalidParameterError("groups", self.groups,
+                                        "non-empty groups of leg names, each leg in one group")
+        object.__setattr__(self, "groups", groups)
+        if self.balance not in BALANCE_MODES:
+            raise InvalidParameterError("balance", self.balance, " or ".join(BALANCE_MODES))
+
+    @property
+    def stride(self) -> float:
+        """Body travel per cycle, m (``speed · period`` when ``speed`` is given)."""
+        return self.speed * self.period if self.speed is not None else self.stride_length
+
+    @property
+    def velocity(self) -> float:
+        """Forward speed, m/s (``stride / period`` unless ``speed`` is given)."""
+        return self.stride / self.period
+
+    @classmethod
+    def from_toml(cls, source: str | Path | Mapping[str, Any]) -> GaitParams:
+        """Gait parameters from a TOML file or an already parsed table.
+
+        Args:
+            source: A TOML file (its ``[gait]`` table, or the top level when it has none) or a
+                mapping of field names to values.
+
+        Returns:
+            The parameters; missing keys take their defaults.
+
+        Raises:
+            ConfigError: the file cannot be read, or a value has the wrong type.
+            UnknownNameError: a key is not a field (the message lists the fields).
+            InvalidParameterError: a value is out of range.
+        """
+        if isinstance(source, Mapping):
+            return from_mapping(cls, source, "gait")
+        data = load_toml(source)
+        table = data.get("gait", data)
+        return from_mapping(cls, table, f"{source} [gait]" if "gait" in data else str(source))
+
+    @classmethod
+    def for_robot(cls, robot: RobotDescription | str) -> GaitParams:
+        """The default gait of a robot: ``GaitParams()`` with its description's overrides on top.
+
+        Args:
+            robot: A robot description, or a name or ``.toml`` path for
+                :func:`hexaleg.robot.registry.description`.
+
+        Returns:
+            The parameters (e.g. Solo-12's trot: period 0.5 s, β = 0.6, groups ``TROT``).
+
+        Raises:
+            UnknownNameError: no such robot, or an override is not a field (the message names
+                the robot and lists the fields).
+            ConfigError, InvalidParameterError: an override has the wrong type or range, or the
+                groups do not hold every leg of the robot exactly once.
+        """
+        desc = description(robot) if isinstance(robot, str) else robot
+        gait = cls().updated(desc.gait, f"robot {desc.name!r} gait")
+        desc.check_groups(gait.groups)
+        return gait
+
+    def updated(self, table: Mapping[str, Any], where: str = "gait") -> GaitParams:
+        """This gait with the keys of a TOML table on top (e.g. a file's ``[gait]`` over a
+        robot's own gait); keys the table does not set keep this gait's values.
+
+        Raises:
+            UnknownNameError, ConfigError, InvalidParameterError: as :meth:`from_toml`.
+        """
+        given = from_mapping(type(self), table, where)
+        return dataclasses.replace(self, **{k: getattr(given, k) for k in table})

@@ -1,0 +1,41 @@
+"""Fixtures of the motion tests: Pinocchio's own foot kinematics, the independent check of the
+motions' q, v and a."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+import hexaleg
+
+FrameKinematics = Callable[[hexaleg.Robot, hexaleg.Motion],
+                           tuple[np.ndarray, np.ndarray, np.ndarray]]
+
+
+def _frame_kinematics(robot: hexaleg.Robot, motion: hexaleg.Motion
+                      ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """World position, velocity and classical acceleration (LOCAL_WORLD_ALIGNED) of every foot."""
+    data = robot.model.createData()
+    shape = (motion.n_samples, len(robot.legs), 3)
+    pos, vel, acc = np.empty(shape), np.empty(shape), np.empty(shape)
+    for k in range(motion.n_samples):
+        pin.forwardKinematics(robot.model, data, motion.q[k], motion.v[k], motion.a[k])
+        pin.updateFramePlacements(robot.model, data)
+        for i, leg in enumerate(robot.legs):
+            fid = leg.foot_frame_id
+            pos[k, i] = data.oMf[fid].translation
+            vel[k, i] = pin.getFrameVelocity(robot.model, data, fid,
+                                             pin.LOCAL_WORLD_ALIGNED).linear
+            acc[k, i] = pin.getFrameClassicalAcceleration(robot.model, data, fid,
+                                                          pin.LOCAL_WORLD_ALIGNED).linear
+    return pos, vel, acc
+
+
+@pytest.fixture(scope="session")
+def frame_kinematics() -> FrameKinematics:
+    """``frame_kinematics(robot, motion)`` → world position, velocity and classical
+    acceleration (LOCAL_WORLD_ALIGNED) of every foot, each (T, n_legs, 3)."""
+    return _frame_kinematics

@@ -1,0 +1,60 @@
+"""Tests of hexaleg.motion.body: the constant-twist body (straight and on an arc), the sway on
+top, and foot targets in the moving base frame with exact derivatives."""
+
+from __future__ import annotations
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+from hexaleg.motion.balance import Sway
+from hexaleg.motion.body import (
+    base_state,
+    body_motion,
+    body_pose,
+    in_base_frame,
+    reference_pose,
+    rotz,
+)
+
+
+def test_body_pose_is_a_straight_line_or_an_arc():
+    t = np.linspace(0.0, 1.0, 11)
+    base, yaw = body_pose(t, 0.1, 0.0, 0.09)
+    assert np.allclose(base, np.column_stack([0.1 * t, 0 * t, 0.09 + 0 * t])) and not yaw.any()
+    base, yaw = body_pose(t, 0.1, 0.5, 0.09)
+    radius = 0.1 / 0.5
+    assert np.allclose(np.hypot(base[:, 0], base[:, 1] - radius), radius)  # circle about (0, R)
+    assert np.allclose(yaw, 0.5 * t)
+    rot = rotz(yaw)
+    assert np.allclose(rot @ np.swapaxes(rot, 1, 2), np.eye(3)) and np.allclose(
+        rot[3], pin.utils.rpyToMatrix(0.0, 0.0, yaw[3]))
+
+
+def test_base_state_holds_the_legs_at_the_reference_pose(robot):
+    t = np.linspace(0.0, 1.0, 5)
+    body = body_motion(t, 0.06, 0.3, 0.09, None)
+    q, v, a = base_state(robot, body)
+    assert np.array_equal(q[:, 7:], np.tile(reference_pose(robot)[7:], (5, 1)))
+    assert np.allclose(q[:, :3], body.base)
+    assert np.allclose(2 * np.arctan2(q[:, 5], q[:, 6]), 0.3 * t)
+    assert np.allclose(v[:, :6], [0.06, 0, 0, 0, 0, 0.3]) and not a.any() and not v[:, 6:].any()
+
+
+@pytest.mark.parametrize("yaw_rate", [0.0, 0.4])
+def test_foot_targets_in_the_base_frame_have_exact_derivatives(yaw_rate):
+    """A world curve seen from the swaying, turning body: ṗ_b and p̈_b equal central
+    differences of p_b."""
+    rng = np.random.default_rng(3)
+    sway = Sway.from_samples(np.array([0.0, 1.0, 0.0]), 1.0, rng.normal(size=16) * 1e-2)
+
+    def seen(t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        p = np.column_stack([0.2 * np.sin(t), 0.1 * np.cos(2 * t), 0.03 * t**2])
+        pd = np.column_stack([0.2 * np.cos(t), -0.2 * np.sin(2 * t), 0.06 * t])
+        pdd = np.column_stack([-0.2 * np.sin(t), -0.4 * np.cos(2 * t), 0.06 + 0 * t])
+        return in_base_frame(body_motion(t, 0.08, yaw_rate, 0.09, sway), p, pd, pdd)
+
+    t, h = np.linspace(0.0, 1.0, 9), 1e-5
+    _, d1, d2 = seen(t)
+    assert np.allclose((seen(t + h)[0] - seen(t - h)[0]) / (2 * h), d1, atol=1e-8)
+    assert np.allclose((seen(t + h)[1] - seen(t - h)[1]) / (2 * h), d2, atol=1e-6)

@@ -1,0 +1,234 @@
+"""Tests of hexaleg.motion.legged: the tripod gait's kinematic consistency (Pinocchio FK, stance
+feet at rest, finite differences), periodicity, footholds, other leg groups (a wave gait, a
+quadruped's trot) and the errors on bad input."""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+import hexaleg
+from hexaleg.errors import InvalidParameterError, UnknownNameError, UnreachableTargetError
+from hexaleg.motion.legged import nominal_footholds, sample_gait, tripod_gait
+from hexaleg.motion.params import GaitParams
+from hexaleg.robot.model import LegSpec
+
+
+@pytest.fixture(scope="module")
+def turn(robot) -> hexaleg.motion.trajectory.Motion:
+    """A turning gait with double support (β = 0.7) and a lower body."""
+    return tripod_gait(robot, GaitParams(yaw_rate=0.4, duty_factor=0.7, body_height=0.08,
+                                         stride_length=0.05, period=0.8, samples=400))
+
+
+def test_default_gait_shapes_and_fields(robot, walk):
+    gait = GaitParams()
+    T = gait.samples
+    assert walk.t.shape == (T,) and walk.q.shape == (T, 25)
+    assert walk.v.shape == walk.a.shape == (T, 24)
+    assert walk.stance.shape == (T, 6) and walk.stance.dtype == bool
+    assert walk.feet.shape == (T, 6, 3)
+    assert np.allclose(walk.t, np.arange(T) * gait.period / T)
+    assert walk.period == gait.period and walk.distance == pytest.approx(0.06)
+    assert walk.periodic and not walk.fixed_base
+    info = walk.info
+    assert info["speed"] == pytest.approx(0.06)
+    assert info["body_height"] == pytest.approx(0.0913, abs=1e-4)
+    assert info["foot_radius"] == pytest.approx(0.1889, abs=1e-4)
+    assert info["gait"]["groups"] == (("LF", "RM", "LH"), ("RF", "LM", "RH"))
+    assert set(info["ik"].values()) == {"analytic"}
+    # The base moves at constant forward speed at body height, level.
+    assert np.allclose(walk.q[:, 0], 0.06 * walk.t) and np.allclose(walk.q[:, 1], 0.0)
+    assert np.allclose(walk.q[:, 2], info["body_height"])
+    assert np.allclose(walk.q[:, 3:7], [0.0, 0.0, 0.0, 1.0])
+    assert np.allclose(walk.v[:, :6], [0.06, 0, 0, 0, 0, 0]) and np.allclose(walk.a[:, :6], 0)
+
+
+@pytest.mark.parametrize("which", ["walk", "turn"])
+def test_forward_kinematics_reproduces_every_foot_target(robot, which, request, frame_kinematics):
+    motion = request.getfixturevalue(which)
+    pos, _, _ = frame_kinematics(robot, motion)
+    assert np.abs(pos - motion.feet).max() <= 1e-9
+    assert np.abs(motion.feet[..., 2][motion.stance]).max() <= 1e-12  # stance feet on the ground
+    assert np.all(motion.feet[..., 2][~motion.stance] >= 0.0)  # 0 only at lift-off
+
+
+@pytest.mark.parametrize("which", ["walk", "turn"])
+def test_stance_feet_have_zero_velocity_and_acceleration(robot, which, request,
+                                                       frame_kinematics):
+    """Pinocchio's frame velocity and classical acceleration of q, v, a: proves v, a match q."""
+    motion = request.getfixturevalue(which)
+    _, vel, acc = frame_kinematics(robot, motion)
+    assert np.abs(vel[motion.stance]).max() <= 1e-9
+    assert np.abs(acc[motion.stance]).max() <= 1e-9
+    # Swing feet really move (the check above is not vacuous).
+    assert np.abs(vel[~motion.stance]).max() > 0.1
+
+
+def test_swing_apex_is_the_step_height(walk):
+    assert walk.feet[..., 2].max() == pytest.approx(0.03, abs=1e-9)
+
+
+@pytest.mark.parametrize("gait", [GaitParams(samples=200),
+                                  GaitParams(yaw_rate=0.4, duty_factor=0.7, samples=200)])
+def test_velocity_and_acceleration_match_central_differences(robot, gait):
+    """v ≈ pin.difference(q(t−h), q(t+h)) / 2h and a ≈ (v(t+h) − v(t−h)) / 2h, error ~h²."""
+    t = np.arange(gait.samples) * gait.period / gait.samples
+    motion = sample_gait(robot, gait, t)
+    errors = []
+    for h in (2e-3, 1e-3):
+        plus, minus = sample_gait(robot, gait, t + h), sample_gait(robot, gait, t - h)
+        dq = np.array([pin.difference(robot.model, qm, qp)
+                       for qm, qp in zip(minus.q, plus.q, strict=True)]) / (2 * h)
+        dv = (plus.v - minus.v) / (2 * h)
+        errors.append((np.abs(dq - motion.v).max(), np.abs(dv - motion.a).max()))
+    (ev1, ea1), (ev2, ea2) = errors
+    assert ev1 < 1e-3 * np.abs(motion.v).max() and ea1 < 1e-2 * np.abs(motion.a).max()
+    assert 3.5 < ev1 / ev2 < 4.5 and 3.5 < ea1 / ea2 < 4.5
+
+
+def test_motion_is_periodic(robot, walk):
+    """Sample T (t = period) equals sample 0 shifted by one stride."""
+    end = sample_gait(robot, None, np.array([walk.period]))
+    assert np.allclose(end.q[0, 7:], walk.q[0, 7:], atol=1e-12)
+    assert np.allclose(end.q[0, :3], walk.q[0, :3] + [0.06, 0.0, 0.0], atol=1e-12)
+    assert np.allclose(end.v[0], walk.v[0], atol=1e-12)
+    assert np.allclose(end.a[0], walk.a[0], atol=1e-10)
+    assert np.array_equal(end.stance[0], walk.stance[0])
+    assert np.allclose(end.feet[0], walk.feet[0] + [0.06, 0.0, 0.0], atol=1e-12)
+
+
+def test_turning_motion_is_periodic_up_to_a_rigid_motion(robot, turn):
+    gait = GaitParams(**{**turn.info["gait"], "samples": 400})
+    end = sample_gait(robot, gait, np.array([turn.period]))
+    assert np.allclose(end.q[0, 7:], turn.q[0, 7:], atol=1e-12)
+    m0 = pin.XYZQUATToSE3(turn.q[0, :7])
+    m1 = pin.XYZQUATToSE3(end.q[0, :7])
+    # One cycle of the constant twist: an arc of length stride, turned by yaw_rate · period.
+    twist = pin.Motion(np.array([0.05 / 0.8, 0, 0]), np.array([0, 0, 0.4])) * 0.8
+    assert np.allclose((m0 * pin.exp6(twist)).homogeneous, m1.homogeneous, atol=1e-12)
+    assert turn.distance == pytest.approx(0.05)
+
+
+def test_tripods_alternate_and_three_feet_always_stand(robot, walk):
+    counts = walk.stance.sum(axis=1)
+    assert counts.min() >= 3 and walk.info["min_stance_feet"] == 3
+    names = robot.leg_names
+    tripod_a = [names.index(n) for n in ("LF", "RM", "LH")]
+    tripod_b = [names.index(n) for n in ("RF", "LM", "RH")]
+    first = walk.t < 0.5
+    assert walk.stance[first][:, tripod_a].all() and not walk.stance[first][:, tripod_b].any()
+    assert walk.stance[~first][:, tripod_b].all() and not walk.stance[~first][:, tripod_a].any()
+    assert _lift_offs(walk) == 2
+
+
+def _lift_offs(motion) -> int:
+    """Number of lift-offs of one leg per cycle."""
+    s = motion.stance[:, 0].astype(int)
+    return int(np.sum(np.abs(np.diff(np.r_[s, s[0]]))))
+
+
+def test_foot_radius_and_body_height_set_the_footholds(robot):
+    feet = nominal_footholds(robot, GaitParams(foot_radius=0.2, body_height=0.085))
+    assert np.allclose(np.linalg.norm(feet[:, :2], axis=1), 0.2)
+    assert np.allclose(feet[:, 2], -0.085)
+
+
+def test_unreachable_foot_target_names_leg_time_and_distance(robot):
+    gait = GaitParams(body_height=0.25, samples=40)
+    with pytest.raises(UnreachableTargetError) as err:
+        tripod_gait(robot, gait)
+    msg = str(err.value)
+    m = re.search(r"leg (\w+) at t = ([\d.e+-]+) s: .* ([\d.e+-]+) m out of reach", msg)
+    assert m, msg
+    assert m.group(1) in robot.leg_names and float(m.group(2)) >= 0.0
+    # The femur axis is at the hip height, 0.25 m above the ground; the foot is 0.0789 m out
+    # horizontally: distance √(0.0789² + 0.25²) beyond the 0.204 m reach (stance, mid-stride).
+    assert 0.0 < float(m.group(3)) <= math.hypot(0.0789 + 0.02, 0.25) - 0.204 + 1e-3
+
+
+def test_sample_times_must_be_finite(robot):
+    with pytest.raises(InvalidParameterError, match="invalid t = "):
+        sample_gait(robot, None, np.array([0.0, math.nan]))
+    with pytest.raises(InvalidParameterError, match="invalid t = "):
+        sample_gait(robot, None, np.array([]))
+    assert not sample_gait(robot, None, np.array([0.1, 0.2])).periodic
+
+
+def test_groups_must_name_every_leg_of_the_robot(robot):
+    with pytest.raises(UnknownNameError, match=r"'XX'.*LF"):
+        tripod_gait(robot, GaitParams(groups=(("LF", "RM", "LH"), ("RF", "LM", "XX")),
+                                      samples=20))
+    with pytest.raises(InvalidParameterError, match=r"missing \['RH'\]"):
+        tripod_gait(robot, GaitParams(groups=(("LF", "RM", "LH"), ("RF", "LM")), samples=20))
+
+
+def test_wave_gait_from_six_groups(robot):
+    """One leg at a time (β = 5/6): five feet always on the ground."""
+    motion = tripod_gait(robot, GaitParams(duty_factor=5 / 6, samples=120,
+                                           groups=tuple((n,) for n in robot.leg_names)))
+    assert motion.stance.sum(axis=1).min() == 5
+    assert motion.info["static_margin"] > 0.05
+
+
+QUAD_URDF = """<?xml version="1.0"?>
+<robot name="quad">
+  <link name="base"><inertial><origin xyz="0 0 0"/><mass value="1.5"/>
+    <inertia ixx="0.01" iyy="0.03" izz="0.03" ixy="0" ixz="0" iyz="0"/></inertial></link>
+{legs}
+</robot>
+"""
+QUAD_LEG = """
+  <joint name="{n}_HAA" type="revolute"><origin xyz="{x} {y} 0"/><parent link="base"/>
+    <child link="{n}_hip"/><axis xyz="1 0 0"/>
+    <limit lower="-3" upper="3" effort="3" velocity="20"/></joint>
+  <link name="{n}_hip"><inertial><origin xyz="0 0 0"/><mass value="0.1"/>
+    <inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="{n}_HFE" type="revolute"><origin xyz="0 {s} 0"/><parent link="{n}_hip"/>
+    <child link="{n}_upper"/><axis xyz="0 1 0"/>
+    <limit lower="-3" upper="3" effort="3" velocity="20"/></joint>
+  <link name="{n}_upper"><inertial><origin xyz="0 0 -0.08"/><mass value="0.15"/>
+    <inertia ixx="3e-4" iyy="3e-4" izz="1e-5" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="{n}_KFE" type="revolute"><origin xyz="0 0 -0.16"/><parent link="{n}_upper"/>
+    <child link="{n}_lower"/><axis xyz="0 1 0"/>
+    <limit lower="-3" upper="3" effort="3" velocity="20"/></joint>
+  <link name="{n}_lower"><inertial><origin xyz="0 0 -0.08"/><mass value="0.05"/>
+    <inertia ixx="1e-4" iyy="1e-4" izz="1e-5" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="{n}_foot_joint" type="fixed"><origin xyz="0 0 -0.16"/><parent link="{n}_lower"/>
+    <child link="{n}_foot"/></joint>
+  <link name="{n}_foot"/>
+"""
+QUAD = {"FL": (0.2, 0.1), "FR": (0.2, -0.1), "HL": (-0.2, 0.1), "HR": (-0.2, -0.1)}
+
+
+@pytest.fixture(scope="module")
+def quadruped(tmp_path_factory) -> hexaleg.Robot:
+    """A Solo-like quadruped (HAA about x, HFE and KFE about y): not a hexaleg-type leg."""
+    d = tmp_path_factory.mktemp("quad")
+    legs = "".join(QUAD_LEG.format(n=n, x=x, y=y, s=0.05 * np.sign(y))
+                   for n, (x, y) in QUAD.items())
+    (d / "quad.urdf").write_text(QUAD_URDF.format(legs=legs))
+    pose = "".join(f'<joint name="{n}_{j}" value="{v}"/>' for n in QUAD
+                   for j, v in (("HAA", 0.0), ("HFE", 0.8), ("KFE", -1.6)))
+    (d / "quad.srdf").write_text(f'<?xml version="1.0"?><robot name="quad">'
+                                 f'<group_state name="stand" group="all">{pose}</group_state>'
+                                 f'</robot>')
+    specs = [LegSpec(n, (f"{n}_HAA", f"{n}_HFE", f"{n}_KFE"), f"{n}_foot") for n in QUAD]
+    return hexaleg.load_robot(d / "quad.urdf", d / "quad.srdf", legs=specs)
+
+
+def test_trot_on_a_quadruped_through_the_same_code(quadruped, frame_kinematics):
+    gait = GaitParams(period=0.6, stride_length=0.1, step_height=0.04, samples=60,
+                      groups=(("FL", "HR"), ("FR", "HL")))
+    motion = tripod_gait(quadruped, gait)
+    assert set(motion.info["ik"].values()) == {"newton"}
+    assert motion.info["min_stance_feet"] == 2 and motion.info["static_margin"] is None
+    pos, vel, acc = frame_kinematics(quadruped, motion)
+    assert np.abs(pos - motion.feet).max() <= 1e-9
+    assert np.abs(vel[motion.stance]).max() <= 1e-9
+    assert np.abs(acc[motion.stance]).max() <= 1e-9
+    assert motion.info["body_height"] == pytest.approx(0.32 * math.cos(0.8), rel=1e-9)

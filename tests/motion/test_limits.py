@@ -1,0 +1,28 @@
+"""Tests of hexaleg.motion.limits: sample counts and joint limits are checked with errors that name
+the parameter (or joint), the value and what is allowed."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from hexaleg.errors import InvalidParameterError
+from hexaleg.motion.limits import MIN_SAMPLES, check_joint_limits, check_samples
+
+
+def test_check_samples():
+    assert check_samples(np.int64(MIN_SAMPLES)) == MIN_SAMPLES
+    assert type(check_samples(np.int64(40))) is int
+    for bad in (MIN_SAMPLES - 1, 100.0, True):
+        with pytest.raises(InvalidParameterError, match=rf"samples = .*≥ {MIN_SAMPLES}"):
+            check_samples(bad)
+
+
+def test_check_joint_limits_names_joint_angle_and_time(robot):
+    q = np.tile(robot.pose("stand"), (3, 1))
+    t = np.array([0.0, 0.1, 0.2])
+    check_joint_limits(robot, q, t)
+    col = robot.column("LF_femur")
+    q[2, 7 + col] = robot.model.upperPositionLimit[7 + col] + 0.1
+    with pytest.raises(InvalidParameterError, match=r"joint LF_femur = .* rad at t = 0\.2 s"):
+        check_joint_limits(robot, q, t)

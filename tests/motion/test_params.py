@@ -1,0 +1,101 @@
+"""Tests of hexaleg.motion.params: GaitParams' ranges, TOML tables, updates and a robot's own
+gait (GaitParams.for_robot from the description's overrides)."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+import hexaleg
+from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+from hexaleg.motion.legged import tripod_gait
+from hexaleg.motion.params import TRIPODS, GaitParams
+from hexaleg.robot.registry import TROT, description
+
+
+@pytest.mark.parametrize(("kwargs", "name"), [
+    ({"duty_factor": 0.4}, "duty_factor"),
+    ({"duty_factor": 1.0}, "duty_factor"),
+    ({"period": 0.0}, "period"),
+    ({"period": -1.0}, "period"),
+    ({"period": math.nan}, "period"),
+    ({"step_height": 0.0}, "step_height"),
+    ({"step_height": -0.01}, "step_height"),
+    ({"samples": 5}, "samples"),
+    ({"samples": 100.0}, "samples"),
+    ({"stride_length": -0.1}, "stride_length"),
+    ({"body_height": 0.0}, "body_height"),
+    ({"groups": (("LF", "RM"), ("LF", "RH"))}, "groups"),
+])
+def test_bad_gait_parameters_are_rejected(kwargs, name):
+    with pytest.raises(InvalidParameterError, match=rf"invalid {name} = .*allowed: ") as err:
+        GaitParams(**kwargs)
+    assert isinstance(err.value, hexaleg.HexalegError)
+
+
+@pytest.mark.parametrize("value", ["fast", None, True, math.inf])
+def test_non_numbers_are_invalid_parameters_not_type_errors(value):
+    """Values are checked through hexaleg.checks: a string or None is named, not compared."""
+    with pytest.raises(InvalidParameterError, match=r"invalid period = .*a finite number > 0"):
+        GaitParams(period=value)
+    with pytest.raises(InvalidParameterError, match=r"invalid duty_factor = .*β in \[0\.5, 1\)"):
+        GaitParams(duty_factor=value)
+
+
+def test_speed_wins_over_stride(robot):
+    gait = GaitParams(period=0.5, stride_length=0.06, speed=0.1, samples=50)
+    assert gait.stride == pytest.approx(0.05) and gait.velocity == pytest.approx(0.1)
+    motion = tripod_gait(robot, gait)
+    assert motion.distance == pytest.approx(0.05)
+    assert np.allclose(motion.q[:, 0], 0.1 * motion.t)
+
+
+def test_gait_params_from_toml(tmp_path):
+    path = tmp_path / "gait.toml"
+    path.write_text('[gait]\nperiod = 2\nduty_factor = 0.75\nstep_height = 0.02\n'
+                    'groups = [["LF"], ["RF"], ["LM"], ["RM"], ["LH"], ["RH"]]\n')
+    gait = GaitParams.from_toml(path)
+    assert gait.period == 2.0 and gait.duty_factor == 0.75 and gait.step_height == 0.02
+    assert gait.groups[2] == ("LM",) and len(gait.groups) == 6
+    assert GaitParams.from_toml({"speed": 0.05}).stride == pytest.approx(0.05)
+    with pytest.raises(UnknownNameError, match=r"'stride'.*stride_length"):
+        GaitParams.from_toml({"stride": 0.05})
+    with pytest.raises(ConfigError, match="period"):
+        GaitParams.from_toml({"period": "fast"})
+    with pytest.raises(ConfigError, match="not found"):
+        GaitParams.from_toml(tmp_path / "missing.toml")
+
+
+def test_updated_puts_a_tables_keys_over_a_gait():
+    base = GaitParams(period=0.5, stride_length=0.08, samples=400)
+    new = base.updated({"period": 2, "step_height": 0.02})
+    assert (new.period, new.step_height) == (2.0, 0.02)
+    assert (new.stride_length, new.samples) == (0.08, 400)  # untouched keys keep base's values
+    with pytest.raises(UnknownNameError, match="'periode'"):
+        base.updated({"periode": 1.0})
+
+
+def test_for_robot_puts_the_descriptions_overrides_over_the_defaults():
+    solo = GaitParams.for_robot("solo12")
+    assert solo == GaitParams.for_robot(description("solo12"))
+    assert (solo.period, solo.duty_factor, solo.stride_length, solo.step_height) == \
+        (0.5, 0.6, 0.08, 0.04)
+    assert solo.groups == TROT and solo.samples == GaitParams().samples
+    assert GaitParams.for_robot("hexaleg") == GaitParams() and GaitParams().groups == TRIPODS
+
+
+def test_for_robot_names_the_robot_of_a_bad_override():
+    desc = description("solo12")
+    with pytest.raises(UnknownNameError, match=r"robot 'solo12' gait.*'periode'"):
+        GaitParams.for_robot(dataclasses.replace(desc, gait={**desc.gait, "periode": 1.0}))
+    with pytest.raises(InvalidParameterError, match="period"):
+        GaitParams.for_robot(dataclasses.replace(desc, gait={**desc.gait, "period": -1.0}))
+    # No groups of its own: the default tripods do not fit a quadruped.
+    no_groups = {k: v for k, v in desc.gait.items() if k != "groups"}
+    with pytest.raises(InvalidParameterError, match=r"solo12: gait.groups.*exactly one group"):
+        GaitParams.for_robot(dataclasses.replace(desc, gait=no_groups))
+    with pytest.raises(UnknownNameError, match="'spot'"):
+        GaitParams.for_robot("spot")
