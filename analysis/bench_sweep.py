@@ -26,18 +26,14 @@ from pathlib import Path
 import numpy as np
 
 import hexaleg
+from hexaleg.design.evaluator import RunSpec, clear_cache, evaluator
+from hexaleg.design.placement import placement
+from hexaleg.design.robustness import robustness
 from hexaleg.design.rules import PAPER_DEAD_ZONE_RATIO
-from hexaleg.motion.gait import GaitParams
+from hexaleg.motion.params import GaitParams
 from hexaleg.studies.sweep.executors import default_workers
-from hexaleg.studies.sweep.runner import (
-    RunSpec,
-    SweepSpec,
-    clear_cache,
-    evaluator,
-    placement,
-    robustness,
-    run_sweep,
-)
+from hexaleg.studies.sweep.runner import run_sweep
+from hexaleg.studies.sweep.spec import SweepSpec
 
 CLASSES = ("coxa", "femur", "tibia")
 

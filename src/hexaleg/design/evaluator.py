@@ -1,0 +1,301 @@
+"""Metrics of spring designs on one gait: ``prepare`` once, one force solve per design.
+
+The paper chooses one stiffness for one joint (k_M by eq. 19, k_E by minimising the energy of
+eq. 21) and leaves "the appropriate elastic joint assembly position and the optimal stiffness" as
+future work. The design layer answers that for a gait and a motor: which joints should carry a
+dead-zone spring (eq. 8, :class:`hexaleg.robot.springs.DeadZoneSpring`), with which contact angles
+and which stiffness. This module evaluates one design; :mod:`hexaleg.design.optimise`,
+:mod:`hexaleg.design.placement` and :mod:`hexaleg.design.robustness` search and study designs,
+:mod:`hexaleg.studies.sweep` runs grids of them.
+
+Groups and designs
+------------------
+A *group* is a joint class (``"femur"``: the same design on all six femurs — left/right
+symmetric), one joint, or any list of joints. A design gives, in SI (see
+:data:`SPRING_PARAMETERS`):
+
+* ``k`` (N·m/rad) and optionally ``k_minus`` (k⁻, default k);
+* the dead zone: ``theta_k`` (±θ_k, rad, > 0), or ``dead_zone`` (θ_k as a fraction of each
+  joint's half range of motion in the gait, in (0, 1)), or ``theta_minus`` < ``theta_plus`` (rad);
+* ``offset`` (rad): the spring's neutral relative to the *centre of each joint's range of motion
+  in the gait* (default 0: a "centred" design, the symmetric dead zone about the motion that the
+  paper assumes, eq. 8 and eq. 25).
+
+Evaluation
+----------
+Designs on one gait share one :func:`hexaleg.dynamics.prepare.prepare`. Workers never receive
+Pinocchio objects: a task carries a small picklable :class:`RunSpec` (robot files, motor name,
+force objective, contact settings) and the gait parameters, and each process keeps an
+:class:`Evaluator` per gait in a small cache (:func:`evaluator`). A design then costs one force
+solve (:meth:`hexaleg.dynamics.prepare.Prepared.solve`) and the energy metrics; the spring torques
+come from the spring's torque basis (linear in k⁺ and k⁻), cached per dead-zone geometry.
+
+Metric and objective
+--------------------
+Forces are distributed by the core's default objective ``"joule"`` (the convex quadratic program
+with the fast exact path). Designs are ranked by :data:`DEFAULT_METRIC` = ``"electrical"``, the
+energy the servos draw over a cycle (Joule loss plus mechanical work through the gearbox, no
+regeneration unless the motor model allows it) — what the battery pays, i.e. the paper's energy
+criterion (eq. 20–24) with a motor model. Any key of ``Analysis.metrics["total"]``
+(:data:`METRICS`) may be chosen instead.
+"""
+
+from __future__ import annotations
+
+import math
+from collections import OrderedDict
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from hexaleg.dynamics.contact import ContactParams, check_objective
+from hexaleg.dynamics.energy import ENERGY_KEYS, NO_SAVING_KEYS, TORQUE_KEYS, savings
+from hexaleg.dynamics.inertia import joint_range
+from hexaleg.dynamics.prepare import Prepared, prepare
+from hexaleg.errors import (
+    InfeasibleForcesError,
+    TorqueLimitError,
+)
+from hexaleg.motion.legged import tripod_gait
+from hexaleg.motion.params import GaitParams
+from hexaleg.robot.model import Robot, load_robot
+from hexaleg.robot.motor import DEFAULT_MOTOR
+from hexaleg.robot.motor import motor as motor_by_name
+from hexaleg.robot.springs import DeadZoneSpring, SpringSet
+
+METRICS: tuple[str, ...] = (*ENERGY_KEYS, "electrical_bus", *TORQUE_KEYS)
+"""Keys of ``Analysis.metrics["total"]`` a design study records and may optimise (J or N·m)."""
+SAVING_METRICS: tuple[str, ...] = tuple(m for m in METRICS if m not in NO_SAVING_KEYS)
+"""Metrics with a saving column (``saving.<key>``; the signed net work has none)."""
+DEFAULT_METRIC = "electrical"
+"""Metric ranked and optimised by default (energy drawn by the servos per cycle, J)."""
+
+SPRING_PARAMETERS: tuple[str, ...] = ("k", "k_minus", "theta_k", "dead_zone", "theta_minus",
+                                      "theta_plus", "offset")
+"""Design parameters of a spring group, SI: N·m/rad, N·m/rad, rad, 1, rad, rad, rad."""
+CACHE_SIZE = 4
+"""Gaits whose :class:`Evaluator` a process keeps."""
+
+Design = Mapping[str, Mapping[str, float]]
+"""Spring design: group name → parameter → value (SI, :data:`SPRING_PARAMETERS`)."""
+
+
+@dataclass(frozen=True)
+class RunSpec:
+    """What a worker needs to rebuild the analysis of a gait: small and picklable.
+
+    Attributes:
+        urdf: URDF file, or None for the built-in hexaleg robot.
+        srdf: SRDF file, or None (the built-in one with the built-in robot).
+        motor: Catalogue name of the servo on every joint (:data:`hexaleg.robot.motor.CATALOGUE`).
+        objective: Force-distribution objective (:data:`hexaleg.dynamics.contact.OBJECTIVES`).
+        contact: Contact settings.
+
+    Raises:
+        UnknownNameError: unknown motor. InvalidParameterError: unknown objective.
+    """
+
+    urdf: str | None = None
+    srdf: str | None = None
+    motor: str = DEFAULT_MOTOR
+    objective: str = "joule"
+    contact: ContactParams = field(default_factory=ContactParams)
+
+    def __post_init__(self) -> None:
+        motor_by_name(self.motor)
+        check_objective(self.objective)
+
+    def robot(self) -> Robot:
+        """The robot, loaded from the URDF/SRDF (cached per process)."""
+        return _robot(self.urdf, self.srdf)
+
+
+# --------------------------------------------------------------------------- per-process cache
+
+
+_ROBOTS: dict[tuple[str | None, str | None], Robot] = {}
+_EVALUATORS: OrderedDict[tuple, Evaluator] = OrderedDict()
+
+
+def _robot(urdf: str | None, srdf: str | None) -> Robot:
+    if (urdf, srdf) not in _ROBOTS:
+        _ROBOTS[urdf, srdf] = load_robot(urdf, srdf)
+    return _ROBOTS[urdf, srdf]
+
+
+def clear_cache() -> None:
+    """Forget the robots and evaluators this process has built (e.g. after editing a URDF, or
+    to time a sweep from a cold start)."""
+    _ROBOTS.clear()
+    _EVALUATORS.clear()
+
+
+def evaluator(run: RunSpec, gait: Mapping[str, Any]) -> Evaluator:
+    """The :class:`Evaluator` of ``gait``, built once per process and kept in a small cache.
+
+    Args:
+        run: Robot, motor, objective and contact settings.
+        gait: :class:`~hexaleg.motion.params.GaitParams` keyword arguments.
+    """
+    key = (run, tuple(sorted(gait.items())))
+    if key in _EVALUATORS:
+        _EVALUATORS.move_to_end(key)
+        return _EVALUATORS[key]
+    ev = Evaluator.for_gait(run, GaitParams(**gait))
+    _EVALUATORS[key] = ev
+    while len(_EVALUATORS) > CACHE_SIZE:
+        _EVALUATORS.popitem(last=False)
+    return ev
+
+
+# --------------------------------------------------------------------------- the evaluator
+
+
+class Evaluator:
+    """Metrics of spring designs on one prepared motion: one force solve per design.
+
+    Everything that does not depend on the springs is in ``prepared`` (computed once); a design
+    costs its spring torques (from a cached torque basis, linear in the magnitudes) and one
+    :meth:`~hexaleg.dynamics.prepare.Prepared.solve`. Sweeps, the optimiser, placement,
+    robustness and the report's stiffness curve all evaluate through it.
+
+    Args:
+        prepared: The motion, prepared (:func:`hexaleg.dynamics.prepare.prepare`).
+        objective: Force-distribution objective (:data:`hexaleg.dynamics.contact.OBJECTIVES`).
+        gait: The gait parameters the motion was made from, if it is a gait (recorded by sweeps).
+
+    Attributes:
+        robot: The robot. motion: The motion. prepared: Its
+            :class:`~hexaleg.dynamics.prepare.Prepared`. baseline: Metrics without springs.
+        centre: Joint → centre of its range of motion in the gait, rad.
+        half_range: Joint → half its range of motion in the gait, rad.
+        evaluations: Designs evaluated so far (for tests and benchmarks).
+    """
+
+    def __init__(self, prepared: Prepared, objective: str = "joule",
+                 gait: GaitParams | None = None) -> None:
+        self.objective = check_objective(objective)
+        self.gait = gait
+        self.prepared = prepared
+        self.robot, self.motion = prepared.robot, prepared.motion
+        self.baseline = self.prepared.baseline(objective)
+        ranges = {j: joint_range(self.robot, self.motion, j) for j in self.robot.joint_names}
+        self.centre = {j: (lo + hi) / 2 for j, (lo, hi) in ranges.items()}
+        self.half_range = {j: (hi - lo) / 2 for j, (lo, hi) in ranges.items()}
+        self.evaluations = 0
+        self._basis: OrderedDict[tuple, tuple[np.ndarray, np.ndarray]] = OrderedDict()
+
+    @classmethod
+    def for_gait(cls, run: RunSpec, gait: GaitParams) -> Evaluator:
+        """The evaluator of ``gait`` on the robot, motor and contact settings of ``run``."""
+        robot = run.robot()
+        prepared = prepare(robot, tripod_gait(robot, gait), motor=run.motor, contact=run.contact)
+        return cls(prepared, run.objective, gait)
+
+    def spring(self, joint: str, params: Mapping[str, float]) -> DeadZoneSpring:
+        """The spring of design ``params`` on ``joint``, with its absolute neutral angle (SI).
+
+        Raises:
+            InvalidParameterError: an out-of-range parameter (from
+                :class:`~hexaleg.robot.springs.DeadZoneSpring`).
+        """
+        theta_k = params.get("theta_k")
+        if "dead_zone" in params:
+            theta_k = params["dead_zone"] * self.half_range[joint]
+        return DeadZoneSpring(stiffness=params["k"], theta_k=theta_k,
+                              theta_minus=params.get("theta_minus"),
+                              theta_plus=params.get("theta_plus"),
+                              stiffness_minus=params.get("k_minus"),
+                              neutral=self.centre[joint] + params.get("offset", 0.0))
+
+    def springs(self, groups: Mapping[str, Sequence[str]], design: Design) -> SpringSet:
+        """The springs of ``design`` on every joint of its groups (absolute neutrals, SI)."""
+        return SpringSet({j: self.spring(j, params) for g, params in design.items()
+                          for j in groups[g]})
+
+    def _unit_torques(self, joints: Sequence[str], params: Mapping[str, float]
+                      ) -> tuple[np.ndarray, np.ndarray]:
+        """Torques (T, nj) per unit k⁺ and per unit k⁻ of a group's dead-zone geometry."""
+        geometry = tuple(sorted((k, v) for k, v in params.items() if k not in ("k", "k_minus")))
+        key = (tuple(joints), geometry)
+        if key not in self._basis:
+            geo = dict(geometry)
+            q, v = self.motion.q, self.motion.v
+            plus = SpringSet({j: self.spring(j, {**geo, "k": 1.0, "k_minus": 0.0})
+                              for j in joints}).torques(self.robot, q, v)
+            minus = SpringSet({j: self.spring(j, {**geo, "k": 0.0, "k_minus": 1.0})
+                               for j in joints}).torques(self.robot, q, v)
+            self._basis[key] = (plus, minus)
+            while len(self._basis) > 64:
+                self._basis.popitem(last=False)
+        self._basis.move_to_end(key)
+        return self._basis[key]
+
+    def spring_torques(self, groups: Mapping[str, Sequence[str]], design: Design) -> np.ndarray:
+        """Spring torques of ``design`` along the gait, shape (T, nj), N·m.
+
+        Equal to ``self.springs(groups, design).torques(robot, q, v)``, through the spring's
+        torque basis (linear in k⁺ and k⁻ for a fixed dead zone), cached per dead zone.
+        """
+        tau = np.zeros_like(self.prepared.q)
+        for g, params in design.items():
+            self.springs({g: groups[g]}, {g: params})  # validates the design
+            plus, minus = self._unit_torques(groups[g], params)
+            k = params["k"]
+            k_minus = params.get("k_minus", k)
+            tau += k * plus + k_minus * minus
+        return tau
+
+    def metrics(self, groups: Mapping[str, Sequence[str]], design: Design) -> dict[str, Any]:
+        """Energy metrics of the gait with ``design``, as :func:`hexaleg.dynamics.energy.metrics`.
+
+        Raises:
+            InfeasibleForcesError, TorqueLimitError: no admissible forces or torques.
+        """
+        return self.torque_metrics(self.spring_torques(groups, design))
+
+    def torque_metrics(self, tau_spring: np.ndarray) -> dict[str, Any]:
+        """Energy metrics of the motion with spring torques ``tau_spring`` (T, nj), N·m.
+
+        Raises:
+            InfeasibleForcesError, TorqueLimitError: no admissible forces or torques.
+        """
+        self.evaluations += 1
+        _, tau_m, _ = self.prepared.solve(tau_spring, self.objective)
+        return self.prepared.metrics(tau_m)
+
+    def value(self, groups: Mapping[str, Sequence[str]], design: Design,
+              metric: str = DEFAULT_METRIC) -> float:
+        """One metric total of ``design`` (J or N·m); +inf when no forces or torques exist."""
+        try:
+            return float(self.metrics(groups, design)["total"][metric])
+        except (InfeasibleForcesError, TorqueLimitError):
+            return math.inf
+
+    def row(self, groups: Mapping[str, Sequence[str]], design: Design) -> dict[str, Any]:
+        """Every metric total, its baseline and its saving for ``design``, plus a status.
+
+        Returns:
+            ``{<metric>: …, "baseline.<metric>": …, "saving.<metric>": …, "status": "ok"}``;
+            a design with no admissible forces or torques has ``status`` = the error message
+            and NaN metrics and savings (its baselines stay).
+        """
+        out: dict[str, Any] = {}
+        try:
+            m = self.metrics(groups, design)
+            s = savings(m, self.baseline)
+            status = "ok"
+        except (InfeasibleForcesError, TorqueLimitError) as e:
+            m = {"total": dict.fromkeys(METRICS, math.nan)}
+            s = {"total": dict.fromkeys(SAVING_METRICS, math.nan)}
+            status = f"{type(e).__name__}: {e}"
+        for key in METRICS:
+            out[key] = m["total"][key]
+        for key in METRICS:
+            out[f"baseline.{key}"] = self.baseline["total"][key]
+        for key in SAVING_METRICS:
+            out[f"saving.{key}"] = s["total"][key]
+        out["status"] = status
+        return out

@@ -1,0 +1,86 @@
+"""Values of a sweep axis: a number (fixed), a list, a range table, or a command-line range.
+
+A spec file gives each gait or spring parameter as a scalar, a list or a range table
+``{start, stop, num, scale = "linear" | "log"}`` (:func:`axis_values`); the command line as
+``"0.5"``, ``"0.1,0.2,0.4"`` or ``"start:stop:num[:log]"`` (:func:`parse_range`). See
+``docs/sweep.md``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from hexaleg.checks import real
+from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+
+_VALUE = "a finite number (an axis is a list of numbers or a range table)"
+
+
+def axis_values(name: str, value: Any) -> tuple[float, ...] | float:
+    """A scalar (fixed), a list, or a range table ``{start, stop, num, scale}`` → values.
+
+    Raises:
+        UnknownNameError: an unknown range key. ConfigError: a value of the wrong type or a
+            range without start, stop or num. InvalidParameterError: an empty grid or a value
+            that is not finite.
+    """
+    if isinstance(value, Mapping):
+        allowed = ("start", "stop", "num", "scale")
+        for key in value:
+            if key not in allowed:
+                raise UnknownNameError(f"range key of {name}", key, allowed)
+        try:
+            start, stop, num = float(value["start"]), float(value["stop"]), value["num"]
+        except KeyError as e:
+            raise ConfigError(f"{name}: a range needs start, stop and num; missing {e}") from None
+        except (TypeError, ValueError):
+            raise ConfigError(f"{name} = {value!r}: start and stop must be numbers") from None
+        scale = value.get("scale", "linear")
+        return _range(name, start, stop, num, scale)
+    if isinstance(value, (list, tuple)):
+        if not value:
+            raise InvalidParameterError(name, [], "a non-empty list of values (an empty grid "
+                                        "has no points)")
+        return tuple(real(f"{name}[{i}]", v, allowed=_VALUE) for i, v in enumerate(value))
+    return real(name, value, allowed=_VALUE)
+
+
+def _range(name: str, start: float, stop: float, num: Any, scale: str = "linear"
+           ) -> tuple[float, ...]:
+    if isinstance(num, bool) or not isinstance(num, (int, np.integer)) or num < 1:
+        raise InvalidParameterError(f"{name}.num", num, "an integer ≥ 1 (an empty grid has no "
+                                    "points)")
+    if scale not in ("linear", "log"):
+        raise InvalidParameterError(f"{name}.scale", scale, "linear or log")
+    for end, v in (("start", start), ("stop", stop)):
+        if not math.isfinite(v) or (scale == "log" and v <= 0):
+            raise InvalidParameterError(f"{name}.{end}", v,
+                                        "a finite number" + (" > 0 for a log range"
+                                                             if scale == "log" else ""))
+    grid = np.geomspace(start, stop, num) if scale == "log" else np.linspace(start, stop, num)
+    return tuple(float(x) for x in grid)
+
+
+def parse_range(name: str, text: str) -> tuple[float, ...] | float:
+    """Command-line values: ``"0.5"``, ``"0.1,0.2,0.4"``, ``"start:stop:num"`` or ``"…:log"``.
+
+    Raises:
+        InvalidParameterError: not numbers, or an empty range.
+    """
+    try:
+        if ":" in text:
+            parts = text.split(":")
+            if len(parts) not in (3, 4):
+                raise ValueError(text)
+            scale = parts[3] if len(parts) == 4 else "linear"
+            return _range(name, float(parts[0]), float(parts[1]), int(parts[2]), scale)
+        if "," in text:
+            return axis_values(name, [float(x) for x in text.split(",") if x.strip()])
+        return real(name, float(text), allowed=_VALUE)
+    except ValueError:
+        raise InvalidParameterError(name, text, "a number, comma-separated numbers, or "
+                                    "start:stop:num[:log]") from None

@@ -1,0 +1,297 @@
+"""A sweep spec: fixed and varied gait parameters, spring groups and their designs, as a grid.
+
+A *point* is (gait parameters, spring design per joint group); groups and design parameters are
+those of :mod:`hexaleg.design.evaluator` (:data:`~hexaleg.design.evaluator.SPRING_PARAMETERS`,
+SI). A spec comes from TOML (``[sweep]``, ``[contact]``, ``[gait]``, ``[springs.<group>]``, see
+``docs/sweep.md``) or is built in Python; its grid is every gait × every design, gait points being
+the outer loop so all designs of one gait are consecutive.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from hexaleg.checks import string
+from hexaleg.config import from_mapping, load_toml
+from hexaleg.design.evaluator import DEFAULT_METRIC, METRICS, SPRING_PARAMETERS, RunSpec
+from hexaleg.dynamics.contact import ContactParams
+from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+from hexaleg.motion.params import GaitParams
+from hexaleg.robot.model import Robot
+from hexaleg.studies.sweep.ranges import axis_values
+from hexaleg.units import deg_to_rad, nmm_per_deg_to_nm_per_rad
+
+PAPER_UNIT_PARAMETERS: dict[str, tuple[str, Callable[[Any], Any]]] = {
+    "k_nmm_per_deg": ("k", nmm_per_deg_to_nm_per_rad),
+    "k_minus_nmm_per_deg": ("k_minus", nmm_per_deg_to_nm_per_rad),
+    "theta_k_deg": ("theta_k", deg_to_rad),
+    "theta_minus_deg": ("theta_minus", deg_to_rad),
+    "theta_plus_deg": ("theta_plus", deg_to_rad),
+    "offset_deg": ("offset", deg_to_rad),
+}
+"""Spec keys in the paper's units (N·mm/deg, deg) → (SI parameter, conversion)."""
+GAIT_PARAMETERS: tuple[str, ...] = ("period", "duty_factor", "stride_length", "speed",
+                                    "step_height", "body_height", "foot_radius", "yaw_rate",
+                                    "samples")
+"""Scalar :class:`hexaleg.motion.params.GaitParams` fields a sweep may fix or vary."""
+LAYOUTS: tuple[str, ...] = ("product", "each")
+"""How spring groups combine: every combination of all groups' values, or one group at a time."""
+SECTIONS: tuple[str, ...] = ("sweep", "gait", "springs", "contact")
+"""Top-level tables of a sweep spec file."""
+
+
+def _check_spring_value(name: str, param: str, values: Sequence[float]) -> None:
+    lo, hi = min(values), max(values)
+    if param in ("k", "k_minus") and lo < 0:
+        raise InvalidParameterError(name, lo, "≥ 0 (N·m/rad)")
+    if param == "theta_k" and lo <= 0:  # θ⁻ < θ⁺ (eq. 8 with a dead zone of positive width)
+        raise InvalidParameterError(name, lo, "> 0 (rad)")
+    if param == "dead_zone" and not (lo > 0 and hi < 1):
+        raise InvalidParameterError(name, lo if lo <= 0 else hi,
+                                    "a fraction of the half range of motion in (0, 1)")
+
+
+def _check_group(group: str, params: Mapping[str, Any]) -> None:
+    """One spring group's parameters: known, non-empty, in range, ``k`` and one dead zone."""
+    for name, value in params.items():
+        if name not in SPRING_PARAMETERS:
+            raise UnknownNameError("spring parameter", name,
+                                   (*SPRING_PARAMETERS, *PAPER_UNIT_PARAMETERS, "joints"))
+        values = value if isinstance(value, tuple) else (value,)
+        if not values:
+            raise InvalidParameterError(f"{group}.{name}", [], "a non-empty list of values")
+        _check_spring_value(f"{group}.{name}", name, values)
+    if "k" not in params:
+        raise InvalidParameterError(f"{group}.k", None, "a stiffness (N·m/rad), or "
+                                    "k_nmm_per_deg")
+    choices = [c for c in (("theta_k",), ("dead_zone",), ("theta_minus", "theta_plus"))
+               if any(p in params for p in c)]
+    if len(choices) != 1 or not all(p in params for p in choices[0]):
+        raise InvalidParameterError(f"{group} dead zone", sorted(params),
+                                    "exactly one of theta_k, dead_zone, or theta_minus with "
+                                    "theta_plus")
+    if "theta_minus" in params:
+        tm, tp = (params[p] if isinstance(params[p], tuple) else (params[p],)
+                  for p in ("theta_minus", "theta_plus"))
+        if max(tm) >= min(tp):
+            raise InvalidParameterError(f"{group}.theta_minus", max(tm),
+                                        f"< every {group}.theta_plus (min {min(tp)})")
+
+
+def _axes(params: Mapping[str, Any]) -> list[tuple[str, tuple]]:
+    return [(k, v) for k, v in params.items() if isinstance(v, tuple)]
+
+
+def _combinations(params: Mapping[str, Any]) -> list[dict[str, Any]]:
+    """Every combination of the axes (tuples) of ``params``, with its fixed values."""
+    fixed = {k: v for k, v in params.items() if not isinstance(v, tuple)}
+    axes = _axes(params)
+    return [{**fixed, **dict(zip([a for a, _ in axes], combo, strict=True))}
+            for combo in itertools.product(*(vals for _, vals in axes))]
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """A sweep: fixed and varied gait parameters, spring groups and their designs.
+
+    Attributes:
+        run: Robot, motor, force objective and contact settings.
+        gait: Gait parameters, :data:`GAIT_PARAMETERS` → a value (fixed) or a tuple (an axis).
+        springs: Group → (parameter → value or tuple of values), SI,
+            :data:`~hexaleg.design.evaluator.SPRING_PARAMETERS`.
+        joints: Group → explicit joint names; groups not listed are a joint class or one joint
+            (``Robot.joints(group)``).
+        layout: ``"product"`` (all combinations of every axis) or ``"each"`` (one sprung group
+            per point: the product of that group's axes, the other groups without springs).
+        metric: Metric the summary ranks by (:data:`~hexaleg.design.evaluator.METRICS`).
+        chunk_size: Points per task and per part file (does not change the results).
+
+    Raises:
+        UnknownNameError: an unknown gait or spring parameter, metric or layout (lists the
+            valid ones).
+        InvalidParameterError: an empty grid, a value out of range, a group without ``k`` or
+            without exactly one dead-zone choice.
+    """
+
+    run: RunSpec = field(default_factory=RunSpec)
+    gait: Mapping[str, float | tuple[float, ...]] = field(default_factory=dict)
+    springs: Mapping[str, Mapping[str, float | tuple[float, ...]]] = field(default_factory=dict)
+    joints: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
+    layout: str = "product"
+    metric: str = DEFAULT_METRIC
+    chunk_size: int = 50
+
+    def __post_init__(self) -> None:
+        for name in self.gait:
+            if name not in GAIT_PARAMETERS:
+                raise UnknownNameError("gait parameter", name, GAIT_PARAMETERS)
+        for group, params in self.springs.items():
+            _check_group(group, params)
+        for group in self.joints:
+            if group not in self.springs:
+                raise UnknownNameError("spring group", group, self.springs)
+        if self.layout not in LAYOUTS:
+            raise UnknownNameError("layout", self.layout, LAYOUTS)
+        if self.metric not in METRICS:
+            raise UnknownNameError("metric", self.metric, METRICS)
+        if isinstance(self.chunk_size, bool) or not isinstance(self.chunk_size, int) \
+                or self.chunk_size < 1:
+            raise InvalidParameterError("chunk_size", self.chunk_size, "an integer ≥ 1")
+        for g in self.gaits():  # every gait of the grid is valid (GaitParams checks ranges)
+            GaitParams(**g)
+
+    @classmethod
+    def from_mapping(cls, data: Mapping[str, Any], where: str = "sweep spec") -> SweepSpec:
+        """A spec from parsed TOML (see ``docs/sweep.md``).
+
+        ``[sweep]`` holds ``metric``, ``layout``, ``chunk_size`` and the
+        :class:`~hexaleg.design.evaluator.RunSpec` keys ``urdf``, ``srdf``, ``motor``,
+        ``objective``; ``[contact]`` the :class:`~hexaleg.dynamics.contact.ContactParams`;
+        ``[gait]`` gait parameters; ``[springs.<group>]`` one table per group with an optional
+        ``joints`` list. A scalar is fixed, a list or a range table ``{start, stop, num, scale =
+        "linear" | "log"}`` is an axis. Keys in the paper's units (:data:`PAPER_UNIT_PARAMETERS`)
+        are converted to SI through :mod:`hexaleg.units`.
+
+        Raises:
+            UnknownNameError: unknown table or key (lists the valid ones).
+            ConfigError: a value of the wrong type.
+            InvalidParameterError: an empty grid or a value out of range.
+        """
+        for name in data:
+            if name not in SECTIONS:
+                raise UnknownNameError(f"table in {where}", name, SECTIONS)
+        run, sweep = _sweep_table(data, where)
+        gait = _gait_table(data.get("gait", {}))
+        springs, joints = _spring_tables(data.get("springs", {}), where)
+        return cls(run=run, gait=gait, springs=springs, joints=joints, **sweep)
+
+    @classmethod
+    def from_toml(cls, path: str | Path) -> SweepSpec:
+        """A spec from a TOML file (see :meth:`from_mapping`)."""
+        return cls.from_mapping(load_toml(path), str(path))
+
+    # -- the grid
+
+    def gaits(self) -> list[dict[str, Any]]:
+        """Every gait of the grid as :class:`~hexaleg.motion.params.GaitParams` keywords."""
+        return _combinations(self.gait)
+
+    def designs(self) -> list[dict[str, dict[str, float]]]:
+        """Every spring design of the grid, in point order within one gait."""
+        if not self.springs:
+            return [{}]
+        per_group = {g: _combinations(self.springs[g]) for g in self.springs}
+        if self.layout == "each":
+            return [{g: d} for g in self.springs for d in per_group[g]]
+        return [dict(zip(per_group, combo, strict=True))
+                for combo in itertools.product(*per_group.values())]
+
+    @property
+    def n_points(self) -> int:
+        """Number of points: gaits × designs."""
+        return len(self.gaits()) * len(self.designs())
+
+    def groups(self, robot: Robot) -> dict[str, tuple[str, ...]]:
+        """Group → joints on ``robot``.
+
+        Raises:
+            UnknownNameError: a group is neither a joint class nor a joint, or lists a joint the
+                robot does not have (the message lists classes and joints).
+            InvalidParameterError: a joint is in two groups.
+        """
+        out: dict[str, tuple[str, ...]] = {}
+        seen: dict[str, str] = {}
+        for group in self.springs:
+            joints = self.joints.get(group)
+            if joints is None:
+                joints = robot.joints(group)
+            for j in joints:
+                robot.column(j)
+                if j in seen:
+                    raise InvalidParameterError(f"joint {j}", f"in groups {seen[j]} and {group}",
+                                                "each joint in at most one spring group")
+                seen[j] = group
+            out[group] = tuple(joints)
+        return out
+
+    def to_dict(self) -> dict[str, Any]:
+        """The spec as plain JSON-able data (identifies the sweep in a store's manifest)."""
+        def plain(v: Any) -> Any:
+            return list(v) if isinstance(v, tuple) else v
+
+        return {
+            "run": {"urdf": self.run.urdf, "srdf": self.run.srdf, "motor": self.run.motor,
+                    "objective": self.run.objective,
+                    "contact": dataclasses.asdict(self.run.contact)},
+            "gait": {k: plain(v) for k, v in self.gait.items()},
+            "springs": {g: {k: plain(v) for k, v in p.items()} for g, p in self.springs.items()},
+            "joints": {g: list(j) for g, j in self.joints.items()},
+            "layout": self.layout,
+        }
+
+
+# --------------------------------------------------------------------------- spec tables
+
+
+def _sweep_table(data: Mapping[str, Any], where: str) -> tuple[RunSpec, dict[str, Any]]:
+    """``[sweep]`` and ``[contact]`` → the run and the remaining ``[sweep]`` keys."""
+    sweep = dict(data.get("sweep", {}))
+    run_keys = {"urdf", "srdf", "motor", "objective"}
+    run_table = {k: sweep.pop(k) for k in list(sweep) if k in run_keys}
+    contact = from_mapping(ContactParams, data.get("contact", {}), f"{where} [contact]")
+    run = RunSpec(**{k: string(f"sweep.{k}", v) for k, v in run_table.items()},
+                  contact=contact)
+    allowed = ("metric", "layout", "chunk_size")
+    for key in sweep:
+        if key not in allowed:
+            raise UnknownNameError(f"key in {where} [sweep]", key, (*allowed, *run_keys))
+    return run, sweep
+
+
+def _gait_table(table: Mapping[str, Any]) -> dict[str, Any]:
+    """``[gait]`` → gait parameter → value or tuple of values (``samples`` as integers)."""
+    gait = {}
+    for name, value in table.items():
+        if name not in GAIT_PARAMETERS:
+            raise UnknownNameError("gait parameter", name, GAIT_PARAMETERS)
+        v = axis_values(f"gait.{name}", value)
+        if name == "samples":
+            v = tuple(int(x) for x in v) if isinstance(v, tuple) else int(v)
+        gait[name] = v
+    return gait
+
+
+def _spring_tables(tables: Mapping[str, Any], where: str
+                   ) -> tuple[dict[str, dict[str, Any]], dict[str, tuple[str, ...]]]:
+    """``[springs.<group>]`` tables → (group → SI parameters, group → explicit joints)."""
+    springs, joints = {}, {}
+    for group, table in tables.items():
+        if not isinstance(table, Mapping):
+            raise ConfigError(f"{where} [springs.{group}]: expected a table of parameters")
+        params = {}
+        for name, value in table.items():
+            if name == "joints":
+                if not isinstance(value, list) or not value \
+                        or not all(isinstance(j, str) for j in value):
+                    raise ConfigError(f"springs.{group}.joints = {value!r}; expected a "
+                                      "non-empty list of joint names")
+                joints[group] = tuple(value)
+                continue
+            si, convert = PAPER_UNIT_PARAMETERS.get(name, (name, None))
+            if si not in SPRING_PARAMETERS:
+                raise UnknownNameError("spring parameter", name,
+                                       (*SPRING_PARAMETERS, *PAPER_UNIT_PARAMETERS, "joints"))
+            if si in params:
+                raise ConfigError(f"springs.{group}: {si} given twice (SI and paper units)")
+            v = axis_values(f"springs.{group}.{name}", value)
+            if convert is not None:
+                v = tuple(float(convert(x)) for x in v) if isinstance(v, tuple) \
+                    else float(convert(v))
+            params[si] = v
+        springs[group] = params
+    return springs, joints

@@ -1,0 +1,82 @@
+"""Tests of hexaleg.studies.sweep.spec: spec files with tables, ranges and paper units, the grid
+(product and each layouts), and bad specs named with the valid choices."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+from hexaleg.studies.sweep.spec import SweepSpec
+from hexaleg.units import deg_to_rad, nmm_per_deg_to_nm_per_rad
+
+
+def test_spec_from_toml_tables_ranges_and_paper_units(tmp_path):
+    path = tmp_path / "spec.toml"
+    path.write_text("""
+[sweep]
+metric = "joule"
+motor = "AX-12A"
+chunk_size = 7
+[gait]
+samples = 40
+period = [0.8, 1.0]
+[springs.femur]
+k_nmm_per_deg = {start = 1, stop = 100, num = 3, scale = "log"}
+theta_k_deg = 7.32
+offset_deg = [-5, 0]
+[springs.front]
+joints = ["LF_coxa", "RF_coxa"]
+k = 0.2
+dead_zone = 0.3
+""")
+    spec = SweepSpec.from_toml(path)
+    assert spec.metric == "joule" and spec.run.motor == "AX-12A" and spec.chunk_size == 7
+    np.testing.assert_allclose(spec.springs["femur"]["k"],
+                               nmm_per_deg_to_nm_per_rad([1.0, 10.0, 100.0]))
+    assert spec.springs["femur"]["theta_k"] == pytest.approx(deg_to_rad(7.32))
+    assert spec.joints == {"front": ("LF_coxa", "RF_coxa")}
+    assert spec.n_points == 2 * 3 * 2
+    assert len(spec.gaits()) == 2 and len(spec.designs()) == 6
+    each = SweepSpec(springs=spec.springs, joints=spec.joints, layout="each")
+    assert len(each.designs()) == 6 + 1
+    assert [list(d) for d in each.designs()] == [["femur"]] * 6 + [["front"]]
+
+
+@pytest.mark.parametrize("springs, error, match", [
+    ({"femur": {"k": (), "theta_k": 0.1}}, InvalidParameterError, "non-empty"),
+    ({"femur": {"k": 1.0, "stiffnes": 2.0, "theta_k": 0.1}}, UnknownNameError,
+     "stiffnes.*valid spring parameters are:.*dead_zone.*k_nmm_per_deg.*theta_k"),
+    ({"femur": {"theta_k": 0.1}}, InvalidParameterError, "femur.k"),
+    ({"femur": {"k": 1.0}}, InvalidParameterError, "exactly one of theta_k, dead_zone"),
+    ({"femur": {"k": 1.0, "theta_k": 0.1, "dead_zone": 0.2}}, InvalidParameterError,
+     "exactly one"),
+    ({"femur": {"k": -1.0, "theta_k": 0.1}}, InvalidParameterError, "femur.k"),
+    ({"femur": {"k": 1.0, "dead_zone": 1.2}}, InvalidParameterError, r"\(0, 1\)"),
+    ({"femur": {"k": 1.0, "dead_zone": (0.0, 0.5)}}, InvalidParameterError, r"\(0, 1\)"),
+    ({"femur": {"k": 1.0, "theta_k": (0.0, 0.1)}}, InvalidParameterError, "femur.theta_k"),
+    ({"femur": {"k": 1.0, "theta_minus": 0.1, "theta_plus": (0.2, 0.05)}}, InvalidParameterError,
+     "theta_minus"),
+])
+def test_bad_spring_grids(springs, error, match):
+    with pytest.raises(error, match=match):
+        SweepSpec(springs=springs)
+
+
+def test_bad_spec_tables():
+    with pytest.raises(InvalidParameterError, match=r"empty grid"):
+        SweepSpec.from_mapping({"springs": {"femur": {"k": [], "theta_k": 0.1}}})
+    with pytest.raises(InvalidParameterError, match=r"num"):
+        SweepSpec.from_mapping({"springs": {"femur": {"k": {"start": 0, "stop": 1, "num": 0},
+                                                      "theta_k": 0.1}}})
+    with pytest.raises(UnknownNameError, match=r"gait parameter 'perod'.*period"):
+        SweepSpec.from_mapping({"gait": {"perod": [1.0]}})
+    with pytest.raises(UnknownNameError, match=r"table.*'spring'.*springs"):
+        SweepSpec.from_mapping({"spring": {}})
+    with pytest.raises(UnknownNameError, match=r"metric 'energy'.*electrical"):
+        SweepSpec(metric="energy")
+    with pytest.raises(InvalidParameterError, match=r"period"):
+        SweepSpec(gait={"period": (1.0, -1.0)})
+    with pytest.raises(ConfigError, match=r"k_nmm_per_deg|given twice"):
+        SweepSpec.from_mapping({"springs": {"femur": {"k": 1.0, "k_nmm_per_deg": 2.0,
+                                                      "theta_k": 0.1}}})
