@@ -63,10 +63,10 @@ def test_friction_usage_is_drawn_for_stance_feet_only(robot):
     assert np.ma.count_masked(y) == 5 and np.all(y[:5] == 0.5)
 
 
-def test_stiffness_curve_marks_the_best_point_and_skips_infeasible_ones():
+def test_stiffness_curve_figure_marks_the_best_point_and_skips_infeasible_ones():
     k = np.linspace(0.0, 1.0, 5)
     s = np.array([0.0, 3.0, 5.0, np.nan, 1.0])
-    fig = plots.stiffness_curve(k, {"joule": s}, 0.25, "femur")
+    fig = plots.stiffness_curve_figure(k, {"joule": s}, 0.25, "femur")
     ax = fig.axes[0]
     line, best, kline = ax.get_lines()[:3]
     np.testing.assert_allclose(line.get_xdata(), [0.0, 0.25, 0.5, 1.0])
@@ -84,7 +84,7 @@ def test_energy_bars_heights(robot):
 
 def test_save_png_svg_and_data_uri(tmp_path, series):
     t, q = series
-    fig = plots.stiffness_curve(t, {"joule": q[:, 0]}, 0.5, "femur")
+    fig = plots.stiffness_curve_figure(t, {"joule": q[:, 0]}, 0.5, "femur")
     png, files = plots.save(fig, tmp_path / "p.png", svg=True)
     assert [f.name for f in files] == ["p.png", "p.svg"]
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and (tmp_path / "p.png").read_bytes() == png
@@ -99,5 +99,5 @@ def test_no_figure_leaks_into_pyplot(robot, series):
     t, q = series
     before = plt.get_fignums()
     plots.joint_power(robot, t, q, q)
-    plots.stiffness_curve(t, {"joule": t}, 0.5, "femur")
+    plots.stiffness_curve_figure(t, {"joule": t}, 0.5, "femur")
     assert plt.get_fignums() == before

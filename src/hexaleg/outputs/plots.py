@@ -1,5 +1,5 @@
 """Matplotlib figures of a gait analysis, for the energy report
-(:mod:`hexaleg.studies.report.build`).
+(:mod:`hexaleg.studies.report.write`).
 
 Every function returns a :class:`matplotlib.figure.Figure` built with the object-oriented API
 on the Agg canvas — no ``pyplot``, so nothing is registered in pyplot's global figure manager and
@@ -82,7 +82,7 @@ def joint_angles(robot: Robot, t: np.ndarray, q: np.ndarray,
 
 
 def joint_torques(robot: Robot, t: np.ndarray, tau_motor: np.ndarray, tau_spring: np.ndarray,
-                  tau_rigid: np.ndarray) -> Figure:
+                  tau_baseline: np.ndarray) -> Figure:
     """Motor against spring torque per joint: one panel per leg (rows) and joint class (columns).
 
     Args:
@@ -90,7 +90,7 @@ def joint_torques(robot: Robot, t: np.ndarray, tau_motor: np.ndarray, tau_spring
         t: Sample times, shape (T,), s.
         tau_motor: Motor torques with the springs, shape (T, nj), N·m.
         tau_spring: Spring torques, shape (T, nj), N·m.
-        tau_rigid: Motor torques of the same gait without springs, shape (T, nj), N·m.
+        tau_baseline: Motor torques of the same gait without springs, shape (T, nj), N·m.
 
     Returns:
         The figure.
@@ -102,7 +102,7 @@ def joint_torques(robot: Robot, t: np.ndarray, tau_motor: np.ndarray, tau_spring
     for col, joints in enumerate(classes.values()):
         for row, joint in enumerate(joints):
             ax, c = axes[row, col], robot.column(joint)
-            ax.plot(t, tau_rigid[:, c], color="0.6", lw=1.0, ls="--", label="motor, no springs")
+            ax.plot(t, tau_baseline[:, c], color="0.6", lw=1.0, ls="--", label="motor, no springs")
             ax.plot(t, tau_spring[:, c], color="#2ca02c", lw=1.0, label="spring")
             ax.plot(t, tau_motor[:, c], color="#1f77b4", lw=1.2, label="motor, with springs")
             ax.axhline(0.0, color="0.3", lw=0.5)
@@ -116,7 +116,7 @@ def joint_torques(robot: Robot, t: np.ndarray, tau_motor: np.ndarray, tau_spring
     return fig
 
 
-def joint_power(robot: Robot, t: np.ndarray, power: np.ndarray, power_rigid: np.ndarray
+def joint_power(robot: Robot, t: np.ndarray, power: np.ndarray, power_baseline: np.ndarray
                 ) -> Figure:
     """Motor mechanical power per joint, one row per joint class, legs as colours.
 
@@ -124,7 +124,7 @@ def joint_power(robot: Robot, t: np.ndarray, power: np.ndarray, power_rigid: np.
         robot: The robot.
         t: Sample times, shape (T,), s.
         power: Motor power ``τ_motor q̇`` with the springs, shape (T, nj), W.
-        power_rigid: The same without springs, shape (T, nj), W (thin dashed lines).
+        power_baseline: The same without springs, shape (T, nj), W (thin dashed lines).
 
     Returns:
         The figure.
@@ -135,7 +135,7 @@ def joint_power(robot: Robot, t: np.ndarray, power: np.ndarray, power_rigid: np.
     for ax, (kind, joints) in zip(axes, classes.items(), strict=True):
         for i, joint in enumerate(joints):
             c = robot.column(joint)
-            ax.plot(t, power_rigid[:, c], color=_colour(i), lw=0.7, ls="--")
+            ax.plot(t, power_baseline[:, c], color=_colour(i), lw=0.7, ls="--")
             ax.plot(t, power[:, c], color=_colour(i), lw=1.2, label=joint.split("_")[0])
         ax.axhline(0.0, color="0.3", lw=0.5)
         ax.set_title(f"{kind} (solid: with springs, dashed: without)", fontsize=10)
@@ -179,13 +179,13 @@ def foot_forces(leg_names: Sequence[str], t: np.ndarray, forces: np.ndarray,
 
 
 def energy_bars(joint_names: Sequence[str], with_springs: np.ndarray,
-                without_springs: np.ndarray, metric: str, unit: str) -> Figure:
+                baseline: np.ndarray, metric: str, unit: str) -> Figure:
     """Per-joint bars of one metric with and without springs.
 
     Args:
         joint_names: Joint names, shape (nj,).
         with_springs: The metric per joint with the springs, shape (nj,).
-        without_springs: The same without springs, shape (nj,).
+        baseline: The same without springs, shape (nj,).
         metric: Metric name, for the title.
         unit: Unit of the metric, for the axis label.
 
@@ -196,12 +196,12 @@ def energy_bars(joint_names: Sequence[str], with_springs: np.ndarray,
     fig = _figure(10, 3.6, bottom=0.3, top=0.92)
     ax = fig.subplots()
     x = np.arange(n)
-    ax.bar(x - 0.2, without_springs, 0.4, color="0.65", label="without springs")
+    ax.bar(x - 0.2, baseline, 0.4, color="0.65", label="without springs")
     ax.bar(x + 0.2, with_springs, 0.4, color="#1f77b4", label="with springs")
     ax.set_xticks(x, joint_names, rotation=60, ha="right", fontsize=8)
     ax.set_ylabel(f"{metric} ({unit})")
     ax.set_title(f"{metric} per joint over one cycle", fontsize=10)
-    top = float(max(np.max(with_springs), np.max(without_springs), 0.0))
+    top = float(max(np.max(with_springs), np.max(baseline), 0.0))
     if top > 0:
         ax.set_ylim(top=1.2 * top)  # room for the legend above the bars
     ax.legend(fontsize=8, ncol=2, loc="upper center")
@@ -209,8 +209,8 @@ def energy_bars(joint_names: Sequence[str], with_springs: np.ndarray,
     return fig
 
 
-def stiffness_curve(stiffness: np.ndarray, savings: Mapping[str, np.ndarray], k_M: float,
-                    joints: str) -> Figure:
+def stiffness_curve_figure(stiffness: np.ndarray, savings: Mapping[str, np.ndarray],
+                           k_M: float, joints: str) -> Figure:
     """Saving of each metric against the stiffness of one joint class, k_M and minima marked.
 
     Args:

@@ -1,0 +1,58 @@
+"""HTML pages from Jinja2 templates (``hexaleg/outputs/templates/``), self-contained.
+
+:func:`render_html` renders the gait energy report (``report.html.j2``) from plain data: the
+report's JSON content, whose quantities are ``{"value": …, "unit": …}``, and the plots as
+``data:`` URIs. Two filters format numbers on the page: ``num`` (four significant digits) and
+``q`` (a quantity with its unit).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import jinja2
+
+from hexaleg.checks import is_real
+
+
+def format_number(x: Any) -> str:
+    """Four significant digits; ``—`` for a missing value."""
+    if x is None:
+        return "—"
+    if not is_real(x):
+        return str(x)
+    return f"{x:.4g}"
+
+
+def format_quantity(q: Mapping[str, Any] | None) -> str:
+    """``{"value", "unit"}`` as text; dimensionless (unit ``"1"``) values without a unit."""
+    if q is None or q["value"] is None:
+        return "—"
+    unit = "" if q["unit"] == "1" else q["unit"]
+    return f"{format_number(q['value'])} {unit}".rstrip()
+
+
+def environment() -> jinja2.Environment:
+    """The Jinja2 environment of the package's templates: HTML autoescaped, undefined names an
+    error, the ``num`` and ``q`` filters."""
+    env = jinja2.Environment(loader=jinja2.PackageLoader("hexaleg.outputs", "templates"),
+                             autoescape=jinja2.select_autoescape(("html", "j2")),
+                             undefined=jinja2.StrictUndefined, trim_blocks=True,
+                             lstrip_blocks=True)
+    env.filters["num"] = format_number
+    env.filters["q"] = format_quantity
+    return env
+
+
+def render_html(data: Mapping[str, Any], images: Mapping[str, str]) -> str:
+    """Render ``templates/report.html.j2`` with the report's numbers and embedded images.
+
+    Args:
+        data: The report's JSON content (``Report.data`` of :mod:`hexaleg.studies.report.build`).
+        images: Plot name → ``data:`` URI.
+
+    Returns:
+        The HTML page (self-contained).
+    """
+    return environment().get_template("report.html.j2").render(d=data, images=images)

@@ -1,0 +1,103 @@
+"""The report on disk: ``report.html``, ``report.json`` and the plots.
+
+:func:`write_report` computes the report (:func:`hexaleg.studies.report.build.build_report`),
+draws its figures (:mod:`hexaleg.outputs.plots`) as PNG (and SVG), renders the self-contained
+page with Jinja2 (:func:`hexaleg.outputs.html.render_html`, plots embedded as base64 PNG) and
+writes the JSON content next to it.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from collections.abc import Callable
+from pathlib import Path
+
+from matplotlib.figure import Figure
+
+from hexaleg.errors import OutputError
+from hexaleg.outputs import plots
+from hexaleg.outputs.html import render_html
+from hexaleg.robot.model import Robot
+from hexaleg.studies.report.build import Report, build_report
+from hexaleg.studies.report.config import ReportConfig
+
+BAR_METRIC = "electrical"
+"""Metric of the per-joint bar plot: the energy the servos draw (J)."""
+PLOTS: tuple[str, ...] = ("joint_angles", "joint_torques", "joint_power", "foot_forces",
+                          "energy_per_joint", "stiffness_curve")
+"""Plot names: ``<name>.png`` / ``<name>.svg`` in the output directory."""
+
+
+def _stderr_progress(message: str) -> None:
+    print(f"hexaleg report: {message}", file=sys.stderr, flush=True)
+
+
+def _figures(r: Report) -> dict[str, Figure]:
+    """The report's figures by name (:data:`PLOTS`)."""
+    a, robot, curve, key = r.analysis, r.robot, r.curve, BAR_METRIC
+    zones = {j: (s.neutral + s.th_minus, s.neutral + s.th_plus) for j, s in a.springs.items()}
+    return {
+        "joint_angles": plots.joint_angles(robot, a.t, a.q, zones),
+        "joint_torques": plots.joint_torques(robot, a.t, a.tau_motor, a.tau_spring,
+                                             r.baseline.tau_motor),
+        "joint_power": plots.joint_power(robot, a.t, a.power, r.baseline.power),
+        "foot_forces": plots.foot_forces(robot.leg_names, a.t, a.forces,
+                                         r.motion.stance.astype(bool), r.usage),
+        "energy_per_joint": plots.energy_bars(robot.joint_names, a.metrics["joint"][key],
+                                              a.baseline["joint"][key], key, "J"),
+        "stiffness_curve": plots.stiffness_curve_figure(
+            curve.stiffness, {m: 100 * curve.savings(m) for m in curve.totals},
+            r.data["stiffness_curve"]["k_M"]["value"], r.config.report.curve_joints),
+    }
+
+
+def write_report(out: str | Path = "hexaleg-report", config: ReportConfig | None = None, *,
+                 robot: Robot | None = None, svg: bool = False,
+                 progress: Callable[[str], None] | None = _stderr_progress) -> Report:
+    """Compute the report and write ``report.html``, ``report.json`` and the plots into ``out``.
+
+    Args:
+        out: Output directory (created with its parents if missing).
+        config: The configuration (default :class:`ReportConfig`).
+        robot: The robot (default the built-in one).
+        svg: Also write every plot as SVG (doubles the plotting time).
+        progress: Called with one status line per step (default: print to stderr); None: quiet.
+
+    Returns:
+        The report, with ``files`` the files written.
+
+    Raises:
+        OutputError: ``out`` cannot be created or written (checked before computing; names it).
+        HexalegError: from the computation (see :func:`build_report`).
+    """
+    out = Path(out)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        probe = out / ".hexaleg-write-test"
+        probe.write_bytes(b"")
+        probe.unlink()
+    except OSError as e:
+        raise OutputError(f"cannot write the report to the directory {out}: {e}") from e
+    r = build_report(config, robot=robot, progress=progress)
+    say = progress or (lambda _msg: None)
+    files: list[Path] = []
+    images = {}
+    for name, fig in _figures(r).items():
+        png, written = plots.save(fig, out / f"{name}.png", svg=svg)
+        images[name] = plots.data_uri(png)
+        files += written
+        say(f"plot {name}")
+    data = {**r.data, "files": [*sorted(p.name for p in files), "report.html", "report.json"]}
+    html = render_html(data, images)
+    for path, text in ((out / "report.json", json.dumps(data, indent=1, ensure_ascii=False)),
+                       (out / "report.html", html)):
+        try:
+            path.write_text(text, encoding="utf-8")
+        except OSError as e:
+            raise OutputError(f"cannot write {path}: {e}") from e
+        files.append(path)
+    say(f"wrote {out / 'report.html'}")
+    return Report(config=r.config, robot=r.robot, motion=r.motion, analysis=r.analysis,
+                  baseline=r.baseline, curve=r.curve, usage=r.usage, data=data,
+                  files=tuple(files))
