@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
+import argparse
 import os
 import subprocess
 import sys
 
-from hexaleg.cli import main
+from hexaleg.cli import build_parser, main
 
 
 def test_help_lists_subcommands(capsys):
@@ -50,6 +51,21 @@ def test_robot_bad_file_is_one_line_error(capsys, tmp_path):
     err = capsys.readouterr().err
     assert err.startswith("hexaleg robot: error: URDF file not found")
     assert "Traceback" not in err
+
+
+def test_view_choices_are_the_study_names():
+    """``view --motion/--joints`` offer the study's names, spelled out in the parser so that
+    building it imports neither the study nor meshcat."""
+    from hexaleg.studies.view import JOINT_QUANTITIES, MOTIONS
+
+    sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    choices = {a.dest: a.choices for a in sub.choices["view"]._actions}
+    assert tuple(choices["motion"]) == MOTIONS
+    assert tuple(choices["joints"]) == tuple(JOINT_QUANTITIES)
+    code = "import sys, hexaleg.cli as c; c.build_parser(); print('meshcat' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.strip() == "False"
 
 
 def test_console_script_runs():

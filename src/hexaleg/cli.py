@@ -61,9 +61,9 @@ def _add_paper(sub: argparse._SubParsersAction) -> None:
 
 
 def _run_paper(args: argparse.Namespace) -> int:
-    from hexaleg.studies.paper.model import write_report
+    from hexaleg.studies.paper.write import write_paper
 
-    r = write_report(args.out, n=args.samples)
+    r = write_paper(args.out, n=args.samples)
     print(f"k_M = {r['k_M_paper_units']:.3f} (paper's eq. 19 units) = "
           f"{r['k_M_SI_Nm_per_rad']:.4e} N·m/rad; k_E: {r['k_E']['verdict']}; "
           f"52.81%: {r['saving_52_81']['verdict']}")
@@ -83,23 +83,19 @@ def _add_gait(sub: argparse._SubParsersAction) -> None:
 
 def _run_gait(args: argparse.Namespace) -> int:
     from hexaleg.config import load_toml
-    from hexaleg.motion.gait import gait_summary, tripod_gait
+    from hexaleg.motion.legged import tripod_gait
+    from hexaleg.motion.params import GaitParams
+    from hexaleg.outputs.text import gait_summary
     from hexaleg.robot.registry import description
 
     desc = description(args.robot)
     robot = desc.load()
-    gait = desc.gait
+    gait = GaitParams.for_robot(desc)
     if args.config:  # the file's keys over the robot's gait
         table = load_toml(args.config)
         gait = gait.updated(table.get("gait", table), f"{args.config} [gait]")
     print(gait_summary(robot, tripod_gait(robot, gait)))
     return 0
-
-
-_VIEW_JOINTS = {"power": ("power", "motor power (W)"),
-                "torque": ("tau_motor", "motor torque (N·m)"),
-                "spring": ("tau_spring", "spring torque (N·m)")}
-"""``hexaleg view --joints`` choice → (Analysis attribute, legend label)."""
 
 
 def _add_view(sub: argparse._SubParsersAction) -> None:
@@ -109,10 +105,12 @@ def _add_view(sub: argparse._SubParsersAction) -> None:
                                     "springs) with an optional [view] table")
     p.add_argument("--html", help="write a self-contained page that plays offline to this file "
                                   "and exit (default: serve on localhost until Ctrl-C)")
+    # The names of hexaleg.studies.view's MOTIONS and JOINT_QUANTITIES, which also checks them
+    # (the study is not imported to build the parser: meshcat takes seconds to import).
     p.add_argument("--motion", choices=("gait", "transform"), default="gait",
                    help="tripod gait cycle or stand → sphere transformation "
                         "(default: %(default)s)")
-    p.add_argument("--joints", choices=tuple(_VIEW_JOINTS), default="power",
+    p.add_argument("--joints", choices=("power", "torque", "spring"), default="power",
                    help="what colours the joints: motor power (W), motor torque or spring "
                         "torque (N·m) (default: %(default)s)")
     p.set_defaults(func=_run_view)
@@ -122,31 +120,14 @@ def _run_view(args: argparse.Namespace) -> int:
     import signal
     import time
 
-    from hexaleg.config import from_mapping, load_toml
-    from hexaleg.dynamics.prepare import analyze
-    from hexaleg.motion.gait import transform_motion, tripod_gait
-    from hexaleg.robot.model import load_robot
-    from hexaleg.studies import view
-    from hexaleg.studies.report.build import ReportConfig
+    from hexaleg.studies.view import export_view, serve_view
 
-    # The same file as ``hexaleg report`` (gait, motor, contact, springs), plus ``[view]``.
-    data = load_toml(args.config) if args.config else {}
-    where = args.config or "config"
-    config = ReportConfig.from_mapping(data, where)
-    params = from_mapping(view.ViewParams, data.get("view", {}), f"{where} [view]")
-    robot = load_robot()
-    motion = tripod_gait(robot, config.gait) if args.motion == "gait" else transform_motion(robot)
-    result = analyze(robot, motion, config.spring_set(robot, motion), motor=config.motor,
-                     objective=config.report.objective, contact=config.contact)
-    attr, label = _VIEW_JOINTS[args.joints]
-    opts = {"forces": None if motion.fixed_base else result.forces,
-            "joint_values": getattr(result, attr), "joint_label": label, "fps": params.fps,
-            "arrow_length": params.arrow_length, "marker_radius": params.marker_radius}
+    shown = {"motion": args.motion, "joints": args.joints}
     if args.html:
-        print(f"wrote {view.export_html(robot, motion, args.html, **opts)}")
+        print(f"wrote {export_view(args.config, args.html, **shown)}")
         return 0
-    print(f"serving the {args.motion} at {view.serve(robot, motion, **opts)} "
-          "(Ctrl-C to stop)", flush=True)
+    url = serve_view(args.config, **shown)
+    print(f"serving the {args.motion} at {url} (Ctrl-C to stop)", flush=True)
     # A kill (SIGTERM) leaves like Ctrl-C, through the normal exit that stops meshcat's server.
     signal.signal(signal.SIGTERM, signal.default_int_handler)
     try:
@@ -173,7 +154,8 @@ def _add_report(sub: argparse._SubParsersAction) -> None:
 def _run_report(args: argparse.Namespace) -> int:
     from hexaleg.config import load_toml
     from hexaleg.robot.registry import description
-    from hexaleg.studies.report.build import ReportConfig, write_report
+    from hexaleg.studies.report.config import ReportConfig
+    from hexaleg.studies.report.write import write_report
 
     robot = None
     if args.robot is not None:
@@ -188,7 +170,7 @@ def _run_report(args: argparse.Namespace) -> int:
         print(f"note: {note}")
     e = r.data["energy"]["totals"]["electrical"]
     print(f"electrical energy per cycle {e['with_springs']['value']:.4g} J with springs, "
-          f"{e['without_springs']['value']:.4g} J without (saving {e['saving']['value']:+.2f} %)")
+          f"{e['baseline']['value']:.4g} J without (saving {e['saving']['value']:+.2f} %)")
     print(f"wrote {len(r.files)} files to {args.out}; open {args.out}/report.html")
     return 0
 
@@ -220,7 +202,7 @@ def _run_sweep(args: argparse.Namespace) -> int:
     import dataclasses
 
     from hexaleg.errors import InvalidParameterError
-    from hexaleg.studies.sweep.runner import SweepSpec, parse_range, run_sweep, summary
+    from hexaleg.studies.sweep import SweepSpec, parse_range, run_sweep, summary
 
     flags = {"k": args.k, "theta_k": args.theta_k, "dead_zone": args.dead_zone,
              "offset": args.offset}
