@@ -103,3 +103,15 @@ def test_every_module_has_its_test_file(path):
     test = Path(__file__).resolve().parent.joinpath(*rel.parts[:-1], f"test_{rel.name}")
     shown = test.relative_to(test.parents[len(rel.parts)])
     assert test.is_file(), f"{rel} has no test file {shown}"
+
+
+def test_lazy_names_are_declared_for_type_checkers():
+    """The `if TYPE_CHECKING:` imports of __init__ name exactly the lazily imported public names,
+    from the modules __getattr__ imports them from (so the docs and mypy see what users get)."""
+    tree = ast.parse((SRC / "__init__.py").read_text(encoding="utf-8"))
+    block = next(n for n in tree.body if isinstance(n, ast.If)
+                 and getattr(n.test, "id", None) == "TYPE_CHECKING")
+    declared = {a.name: node.module for node in block.body if isinstance(node, ast.ImportFrom)
+                for a in node.names}
+    assert declared == hexaleg._LAZY
+    assert set(declared) <= set(hexaleg.__all__)

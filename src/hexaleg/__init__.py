@@ -3,18 +3,39 @@
 The public surface is small: load a robot, make a motion, choose springs, analyse. See README.md.
 """
 
+import importlib.metadata
+from typing import TYPE_CHECKING
+
+from hexaleg.dynamics.contact import OBJECTIVES, ContactParams
 from hexaleg.dynamics.energy import cost_of_transport, epsilon, metrics, savings
-from hexaleg.dynamics.forces import OBJECTIVES, ContactParams
 from hexaleg.dynamics.prepare import Analysis, Prepared, analyze, prepare
 from hexaleg.errors import HexalegError
-from hexaleg.motion.gait import GaitParams, Sinusoid, joint_motion, transform_motion, tripod_gait
+from hexaleg.motion.joint_motion import joint_motion
+from hexaleg.motion.legged import tripod_gait
+from hexaleg.motion.params import GaitParams
+from hexaleg.motion.profiles import Sinusoid
 from hexaleg.motion.trajectory import Motion
+from hexaleg.motion.transform import transform_motion
+from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Leg, LegSpec, Robot, load_robot
 from hexaleg.robot.motor import CATALOGUE, DEFAULT_MOTOR, Motor, motor_from_mapping
-from hexaleg.robot.registry import DESCRIPTIONS, RobotDescription, load
+from hexaleg.robot.registry import DESCRIPTIONS, load
 from hexaleg.robot.springs import DeadZoneSpring, SpringSet
 
-__version__ = "0.1.0"
+if TYPE_CHECKING:  # the names __getattr__ imports on first use, for type checkers and the docs
+    from hexaleg.design.evaluator import Evaluator, RunSpec, evaluator
+    from hexaleg.design.optimise import optimise
+    from hexaleg.design.placement import placement
+    from hexaleg.design.robustness import robustness
+    from hexaleg.studies.report.build import build_report
+    from hexaleg.studies.report.config import ReportConfig
+    from hexaleg.studies.report.write import write_report
+    from hexaleg.studies.sweep.runner import run_sweep
+    from hexaleg.studies.sweep.spec import SweepSpec
+    from hexaleg.studies.view import ViewParams, animate, export_html, serve
+
+__version__ = importlib.metadata.version("hexaleg")
+"""The installed distribution's version (one source: ``pyproject.toml``)."""
 
 __all__ = [
     "CATALOGUE",
@@ -24,6 +45,7 @@ __all__ = [
     "Analysis",
     "ContactParams",
     "DeadZoneSpring",
+    "Evaluator",
     "GaitParams",
     "HexalegError",
     "Leg",
@@ -45,6 +67,7 @@ __all__ = [
     "build_report",
     "cost_of_transport",
     "epsilon",
+    "evaluator",
     "export_html",
     "joint_motion",
     "load",
@@ -64,10 +87,15 @@ __all__ = [
 ]
 
 _LAZY: dict[str, str] = {
-    **dict.fromkeys(("ReportConfig", "build_report", "write_report"),
-    "hexaleg.studies.report.build"),
-    **dict.fromkeys(("RunSpec", "SweepSpec", "optimise", "placement", "robustness", "run_sweep"),
-                    "hexaleg.studies.sweep.runner"),
+    "ReportConfig": "hexaleg.studies.report.config",
+    "build_report": "hexaleg.studies.report.build",
+    "write_report": "hexaleg.studies.report.write",
+    **dict.fromkeys(("Evaluator", "RunSpec", "evaluator"), "hexaleg.design.evaluator"),
+    "optimise": "hexaleg.design.optimise",
+    "placement": "hexaleg.design.placement",
+    "robustness": "hexaleg.design.robustness",
+    "SweepSpec": "hexaleg.studies.sweep.spec",
+    "run_sweep": "hexaleg.studies.sweep.runner",
     **dict.fromkeys(("ViewParams", "animate", "export_html", "serve"), "hexaleg.studies.view"),
 }
 """Public names whose modules are imported on first use: the report pulls in matplotlib and

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Collection
-from typing import Any
+from typing import Any, TypeGuard
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -20,13 +20,13 @@ from hexaleg.errors import InvalidParameterError, UnknownNameError
 _REALS = (int, float, np.integer, np.floating)
 
 
-def is_real(value: object) -> bool:
+def is_real(value: object) -> TypeGuard[float]:
     """True for a finite real number that is not a bool (int, float or a NumPy scalar)."""
     return (isinstance(value, _REALS) and not isinstance(value, (bool, np.bool_))
             and math.isfinite(value))
 
 
-def is_integer(value: object) -> bool:
+def is_integer(value: object) -> TypeGuard[int]:
     """True for an int or NumPy integer that is not a bool."""
     return isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_))
 
@@ -47,8 +47,10 @@ def real(name: str, value: Any, *, low: float | None = None, high: float | None 
     Args:
         name: The parameter's name, for the error.
         value: The value given.
-        low, high: Bounds, or None for none.
-        low_open, high_open: Exclude the bound itself (``> low`` rather than ``>= low``).
+        low: Lower bound, or None for none.
+        high: Upper bound, or None for none.
+        low_open: Exclude the lower bound itself (``> low`` rather than ``>= low``).
+        high_open: Exclude the upper bound itself (``< high`` rather than ``<= high``).
         allowed: What the error says is allowed; default "a finite number" and the bounds.
 
     Raises:
