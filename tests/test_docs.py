@@ -1,0 +1,134 @@
+"""The documentation site, checked without building it (the build is `mkdocs build --strict` in
+CI): every public module gets an API page from docs/gen_api.py, every docs page is in the nav."""
+
+from __future__ import annotations
+
+import importlib.util
+import pkgutil
+import sys
+from pathlib import Path
+from types import ModuleType
+
+import yaml
+
+ROOT = Path(__file__).resolve().parents[1]
+DOCS = ROOT / "docs"
+PACKAGE_DIR = ROOT / "src" / "hexaleg"
+
+
+def _gen_api() -> ModuleType:
+    """docs/gen_api.py imported as a module (it writes nothing unless run by mkdocs-gen-files)."""
+    spec = importlib.util.spec_from_file_location("gen_api", DOCS / "gen_api.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module  # dataclasses look their module up there
+    try:
+        spec.loader.exec_module(module)
+    finally:
+        del sys.modules[spec.name]
+    return module
+
+
+def _public_modules(path: Path, name: str) -> list[str]:
+    """The package and its public modules as Python finds them (pkgutil, nothing imported)."""
+    names = [name]
+    for info in pkgutil.iter_modules([str(path)]):
+        if info.name.startswith("_"):
+            continue
+        if info.ispkg:
+            names += _public_modules(path / info.name, f"{name}.{info.name}")
+        else:
+            names.append(f"{name}.{info.name}")
+    return names
+
+
+def _nav_files(node: object) -> list[str]:
+    """Every file or folder the nav of mkdocs.yml names, depth-first."""
+    if isinstance(node, str):
+        return [node]
+    if isinstance(node, list):
+        return [f for item in node for f in _nav_files(item)]
+    if isinstance(node, dict):
+        return [f for value in node.values() for f in _nav_files(value)]
+    return []
+
+
+def _mkdocs_config() -> dict:
+    return yaml.safe_load((ROOT / "mkdocs.yml").read_text())
+
+
+def test_every_public_module_gets_one_api_page():
+    gen_api = _gen_api()
+    pages = gen_api.api_pages()
+    modules = [page.module for page in pages]
+    expected = _public_modules(PACKAGE_DIR, "hexaleg")
+    assert len(expected) > 10
+    missing = sorted(set(expected) - set(modules))
+    extra = sorted(set(modules) - set(expected))
+    assert not missing, f"modules without an API page: {missing}"
+    assert not extra, f"API pages for modules that are not in the package: {extra}"
+    assert len(modules) == len(set(modules)), "a module has two pages"
+    assert len({page.path for page in pages}) == len(pages), "two modules share a page"
+
+
+def test_api_pages_start_with_the_public_surface_and_nest_by_package():
+    gen_api = _gen_api()
+    pages = gen_api.api_pages()
+    assert pages[0].module == "hexaleg" and pages[0].path == "hexaleg.md"
+    for page in pages:
+        dotted_path = page.module.replace(".", "/")
+        if page.is_package and page is not pages[0]:
+            assert page.path == f"{dotted_path}/index.md"
+            assert (ROOT / page.source).name == "__init__.py"
+        else:
+            assert page.path == f"{dotted_path}.md"
+        assert (ROOT / page.source).is_file(), page.source
+    # A package's modules follow it in the navigation (its section), never before it.
+    seen: set[str] = set()
+    for page in pages:
+        parent = page.module.rpartition(".")[0]
+        assert not parent or parent in seen, f"{page.module} comes before its package {parent}"
+        seen.add(page.module)
+    summary = gen_api.summary(pages)
+    assert summary.splitlines()[0] == "* [hexaleg](hexaleg.md)"
+    for page in pages:
+        assert summary.count(f"]({page.path})") == 1, page.path
+
+
+def test_private_modules_get_no_page(tmp_path: Path):
+    gen_api = _gen_api()
+    pkg = tmp_path / "pkg"
+    for rel in ("__init__.py", "a.py", "_private.py", "__main__.py", "sub/__init__.py",
+                "sub/b.py", "_hidden/__init__.py", "_hidden/c.py", "notapkg/d.py"):
+        (pkg / rel).parent.mkdir(parents=True, exist_ok=True)
+        (pkg / rel).write_text('"""Doc."""\n')
+    pages = gen_api.api_pages(tmp_path, "pkg")
+    assert [p.module for p in pages] == ["pkg", "pkg.a", "pkg.sub", "pkg.sub.b"]
+    assert [p.module for p in pages] == _public_modules(pkg, "pkg")
+
+
+def test_every_docs_page_is_in_the_nav():
+    config = _mkdocs_config()
+    nav = _nav_files(config["nav"])
+    pages = sorted(p.relative_to(DOCS).as_posix() for p in DOCS.rglob("*.md"))
+    assert "index.md" in pages
+    missing = [p for p in pages if p not in nav]
+    assert not missing, f"docs pages not in mkdocs.yml's nav: {missing}"
+    for entry in nav:
+        if entry == "reference/":  # generated at build time by gen_api.py
+            continue
+        assert (DOCS / entry).exists(), f"mkdocs.yml's nav names {entry}, which does not exist"
+    assert "reference/" in nav, "the generated API reference is not in the nav"
+
+
+def test_the_build_runs_the_walker_and_ci_builds_it_strict():
+    config = _mkdocs_config()
+    ci = (ROOT / ".ci" / "run").read_text()
+    assert "mkdocs build --strict" in ci and '-e ".[docs]"' in ci
+    plugins = {next(iter(p)) if isinstance(p, dict) else p: p for p in config["plugins"]}
+    assert plugins["gen-files"]["gen-files"]["scripts"] == ["docs/gen_api.py"]
+    assert "literate-nav" in plugins and "mkdocstrings" in plugins
+    handler = plugins["mkdocstrings"]["mkdocstrings"]["handlers"]["python"]
+    assert handler["paths"] == ["src"]
+    assert handler["options"]["docstring_style"] == "google"
+    assert config["theme"]["font"] is False  # no Google Fonts: the site works offline
