@@ -5,6 +5,11 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+import pytest
+
+import hexaleg
+from hexaleg import units
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -22,3 +27,181 @@ def test_ci_runs_the_readme_test_command():
 def test_readme_runs_the_report():
     blocks = _bash_blocks((ROOT / "README.md").read_text())
     assert any(b.endswith("hexaleg report") and "pip install ." in b for b in blocks)
+
+
+# --------------------------------------------------------------------------------------------
+# Golden numbers: every number "What the numbers say" quotes about the paper's joint and the
+# walking robot, recomputed through the public API and compared at the precision the README
+# prints it. Each number is read from README.md itself (a regex around its words), so editing
+# the README or the code alone fails here.
+
+README = " ".join((ROOT / "README.md").read_text().split())  # whitespace-normalised (wrapped)
+NUMBER = r"([−+]?[\d,]*\.?\d+(?:e[−+-]?\d+)?)"
+"""One number as the README prints it: sign (U+2212 or +), thousands commas, decimals, e-power."""
+
+
+def _said(pattern: str) -> tuple[str, ...]:
+    """The numbers the README says in ``pattern`` (``{n}`` stands for one number)."""
+    m = re.search(pattern.replace("{n}", NUMBER), README)
+    assert m, f"README.md no longer matches {pattern!r}: update the sentence or this test"
+    return m.groups()
+
+
+def _as_printed(value: float, printed: str) -> str:
+    """``value`` written as the README writes ``printed``: the same decimals (or significant
+    digits of an e-power, or rounding place of a comma-grouped integer) and sign style."""
+    sign = "−" if value < 0 else ("+" if printed[0] in "+−" else "")
+    body, x = printed.lstrip("+−"), abs(value)
+    if "e" in body:
+        mantissa, _ = body.split("e")
+        digits = len(mantissa.partition(".")[2])
+        m, e = f"{x:.{digits}e}".split("e")
+        text = f"{m}e{int(e)}".replace("-", "−") if "−" in body else f"{m}e{int(e)}"
+    elif "," in body:
+        zeros = len(body.replace(",", "")) - len(body.replace(",", "").rstrip("0"))
+        text = f"{round(x, -zeros):,.0f}"
+    else:
+        text = f"{x:.{len(body.partition('.')[2])}f}"
+    return sign + text
+
+
+def _check(label: str, value: float, printed: str) -> None:
+    assert _as_printed(value, printed) == printed, (
+        f"README says {label} = {printed}, the code gives {value!r} "
+        f"(= {_as_printed(value, printed)} at the README's precision)")
+
+
+def test_as_printed_rounds_like_the_readme():
+    assert _as_printed(1.7067, "1.71") == "1.71"
+    assert _as_printed(-0.0121, "−1.2") == "−0.0"
+    assert _as_printed(-1.2126, "−1.2") == "−1.2"
+    assert _as_printed(0.474, "+0.5") == "+0.5"
+    assert _as_printed(7.1354e-4, "7.14e-4") == "7.14e-4"
+    assert _as_printed(96357.0, "96,000") == "96,000"
+    assert _as_printed(8030.0, "8,000") == "8,000"
+    assert _as_printed(5.93, "6") == "6"
+
+
+@pytest.fixture(scope="module")
+def report() -> dict:
+    """``hexaleg report``'s numbers (report.json) at the defaults: built-in robot, default gait,
+    AX-18A, paper-style femur springs; with the paper's single joint."""
+    return hexaleg.build_report().data
+
+
+def test_readme_paper_k_M(report):
+    paper = report["paper"]
+    printed, si, nmm_deg = _said(r'k_M = {n} "N·mm/deg" is {n} N·m/rad\*\* \(= {n} N·mm/deg\)')
+    _check("the paper's printed k_M", paper["k_M_printed"]["value"], printed)
+    k_M = paper["k_M"]["value"]  # eq. 19 in SI, N·m/rad
+    _check("k_M (N·m/rad)", k_M, si)
+    _check("k_M (N·mm/deg)", float(units.nm_per_rad_to_nmm_per_deg(k_M)), nmm_deg)
+    (arith,) = _said(r"Table 6 gives {n} only with m in kg, l in mm and I in kg·mm²")
+    _check("eq. 19 with the paper's units", paper["k_M_paper_number"]["value"], arith)
+    assert paper["k_M_paper_units_are"].startswith("kg·mm²·s⁻²/rad = 1e-6 N·m/rad")
+
+
+def test_readme_paper_simulated_stiffnesses(report):
+    lo, hi, r_lo, r_hi = _said(r"simulates \({n}–{n} N·mm/deg\) are {n}–{n} × that")
+    k_M = report["paper"]["k_M"]["value"]
+    for k, ratio in ((lo, r_lo), (hi, r_hi)):
+        _check(f"{k} N·mm/deg / k_M", float(units.nmm_per_deg_to_nm_per_rad(float(k))) / k_M,
+               ratio)
+
+
+def test_readme_paper_k_E_and_saving_not_reproduced(report):
+    paper = report["paper"]
+    k_E, saving = _said(r"k_E = {n} and its {n} % saving are not reproduced")
+    _check("the paper's printed k_E", paper["k_E_printed"]["value"], k_E)
+    _check("the paper's printed saving", paper["saving_printed"]["value"], saving)
+    assert paper["k_E_verdict"].startswith("not reproduced")
+    assert paper["saving_verdict"].startswith("not reproduced")
+
+
+def test_readme_paper_no_gravity_savings(report):
+    paper = report["paper"]
+    peak, work = _said(r"peak torque exactly 1 − θ_k/A = {n} %, positive work {n} % at its optimum")
+    model = paper["model"]
+    ratio = 100 * (1 - model["theta_k"]["value"] / model["amplitude"]["value"])
+    _check("1 − θ_k/A (%)", ratio, peak)
+    _check("the peak-torque saving (%)", paper["peak_saving"]["value"], peak)
+    _check("the positive-work saving at its optimum (%)",
+           paper["optima_no_gravity"]["positive_work"]["saving"]["value"], work)
+
+
+def test_readme_gait_energy_and_default_design(report):
+    joule, electrical, period = _said(
+        r"\({n} J of {n} J electrical per {n} s cycle of the default gait\)")
+    assert report["gait"]["period"]["value"] == float(period)
+    totals = report["energy"]["totals"]
+    _check("Joule loss per cycle without springs (J)", totals["joule"]["baseline"]["value"], joule)
+    _check("electrical energy per cycle without springs (J)",
+           totals["electrical"]["baseline"]["value"], electrical)
+    # the report's default design is the paper's carried over: centred dead zone on the femurs
+    springs = report["springs"]
+    assert springs["design"] == "paper" and all(j.endswith("_femur") for j in springs["joints"])
+    assert all(s["theta_minus"]["value"] == -s["theta_plus"]["value"]
+               for s in springs["joints"].values())
+    (cost,) = _said(r"centred on the femur's swing — the paper's design carried over — "
+                    r"costs energy \({n} %\)")
+    _check("the paper-style femur springs' electrical saving (%)",
+           totals["electrical"]["saving"]["value"], cost)
+
+
+# The placement results: notebook 03's configuration, which the README names (samples per cycle,
+# offset bound); the same calls as the notebook, one computation per session (~25 s).
+
+CLASSES = ("coxa", "femur", "tibia")
+
+
+@pytest.fixture(scope="module")
+def placement_gait():
+    """(evaluator of notebook 03's gait, class → joints, offset bound), as the README names them."""
+    samples, bound = _said(r"notebook 03 at {n} samples per cycle, the neutral offset searched "
+                           r"within ±{n} rad")
+    ev = hexaleg.evaluator(hexaleg.RunSpec(), {"samples": int(samples)})
+    return ev, {c: ev.robot.joints(c) for c in CLASSES}, float(bound)
+
+
+@pytest.fixture(scope="module")
+def symmetric(placement_gait):
+    ev, groups, _ = placement_gait
+    return hexaleg.placement(ev, groups, "electrical")[0]
+
+
+@pytest.fixture(scope="module")
+def off_centre(placement_gait):
+    ev, groups, bound = placement_gait
+    return {c: hexaleg.optimise(ev, c, groups[c], "electrical", offset_bounds=(-bound, bound),
+                                grid=(8, 4, 7)) for c in ("femur", "tibia")}
+
+
+def test_readme_symmetric_dead_zones(symmetric):
+    (coxa,) = _said(r"symmetric dead zones save ≈ 0 % on femur and tibia \({n} % on the coxa\)")
+    _check("the optimised symmetric coxa springs' saving (%)", 100 * symmetric["coxa"].saving,
+           coxa)
+    zero = f"{0:.{len(coxa.partition('.')[2])}f}"  # "≈ 0" at the precision of the coxa's number
+    for c in ("femur", "tibia"):
+        _check(f"the optimised symmetric {c} springs' saving (%)", abs(100 * symmetric[c].saving),
+               zero)
+
+
+def test_readme_off_centre_dead_zones(placement_gait, off_centre):
+    femur, tibia = _said(r"saves {n} % \(femur\) and {n} % \(tibia\) of the electrical energy")
+    _check("the off-centre femur springs' saving (%)", 100 * off_centre["femur"].saving, femur)
+    _check("the off-centre tibia springs' saving (%)", 100 * off_centre["tibia"].saving, tibia)
+    bound = placement_gait[2]  # "where the optimum sits on the bound"
+    assert all(abs(o.offset) == pytest.approx(bound) for o in off_centre.values())
+
+
+def test_readme_tibia_design_robustness(placement_gait, off_centre):
+    ev, groups, _ = placement_gait
+    low, high, change = _said(r"the tibia design keeps {n}–{n} % when the gait period or stride "
+                              r"changes by ±{n} %")
+    f = float(change) / 100
+    rob = hexaleg.robustness(hexaleg.RunSpec(), hexaleg.GaitParams(samples=ev.gait.samples),
+                             {"tibia": groups["tibia"]}, {"tibia": off_centre["tibia"].design()},
+                             "electrical", factors=(1 - f, 1.0, 1 + f))
+    assert set(rob["parameter"]) == {"period", "stride_length"} and (rob["status"] == "ok").all()
+    _check("the tibia design's least saving (%)", 100 * rob["saving"].min(), low)
+    _check("the tibia design's largest saving (%)", 100 * rob["saving"].max(), high)
