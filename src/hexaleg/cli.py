@@ -61,12 +61,10 @@ def _add_paper(sub: argparse._SubParsersAction) -> None:
 
 
 def _run_paper(args: argparse.Namespace) -> int:
+    from hexaleg.studies.paper.summary import one_line
     from hexaleg.studies.paper.write import write_paper
 
-    r = write_paper(args.out, n=args.samples)
-    print(f"k_M = {r['k_M_paper_units']:.3f} (paper's eq. 19 units) = "
-          f"{r['k_M_SI_Nm_per_rad']:.4e} N·m/rad; k_E: {r['k_E']['verdict']}; "
-          f"52.81%: {r['saving_52_81']['verdict']}")
+    print(one_line(write_paper(args.out, n=args.samples)))
     print(f"wrote {args.out}/paper.json, summary.md and figures")
     return 0
 
@@ -152,25 +150,14 @@ def _add_report(sub: argparse._SubParsersAction) -> None:
 
 
 def _run_report(args: argparse.Namespace) -> int:
-    from hexaleg.config import load_toml
-    from hexaleg.robot.registry import description
     from hexaleg.studies.report.config import ReportConfig
     from hexaleg.studies.report.write import write_report
 
-    robot = None
-    if args.robot is not None:
-        desc = description(args.robot)
-        robot = desc.load()
-        data = load_toml(args.config) if args.config else {}
-        config = ReportConfig.for_robot(desc, robot, data, args.config or "config")
-    else:
-        config = ReportConfig.from_toml(args.config) if args.config else ReportConfig()
+    config, robot = ReportConfig.load(args.robot, args.config)
     r = write_report(args.out, config, robot=robot, svg=args.svg)
     for note in config.notes:
         print(f"note: {note}")
-    e = r.data["energy"]["totals"]["electrical"]
-    print(f"electrical energy per cycle {e['with_springs']['value']:.4g} J with springs, "
-          f"{e['baseline']['value']:.4g} J without (saving {e['saving']['value']:+.2f} %)")
+    print(r.summary())
     print(f"wrote {len(r.files)} files to {args.out}; open {args.out}/report.html")
     return 0
 
@@ -202,27 +189,15 @@ def _run_sweep(args: argparse.Namespace) -> int:
     import dataclasses
 
     from hexaleg.errors import InvalidParameterError
-    from hexaleg.studies.sweep import SweepSpec, parse_range, run_sweep, summary
+    from hexaleg.studies.sweep import SweepSpec, run_sweep, summary
 
-    flags = {"k": args.k, "theta_k": args.theta_k, "dead_zone": args.dead_zone,
-             "offset": args.offset}
-    if args.spec:
-        if args.joints or any(v is not None for v in flags.values()):
-            raise InvalidParameterError("--joints/--k/--theta-k/--dead-zone/--offset",
-                                        "given with a spec file", "either a spec or the flags")
-        spec = SweepSpec.from_toml(args.spec)
-    else:
-        if not args.joints or args.k is None:
-            raise InvalidParameterError("--joints/--k", (args.joints, args.k),
-                                        "a spec file, or --joints and --k")
-        params = {name: parse_range(f"--{name.replace('_', '-')}", v)
-                  for name, v in flags.items() if v is not None}
-        gait = {}
-        if args.period is not None:
-            gait["period"] = parse_range("--period", args.period)
-        if args.samples is not None:
-            gait["samples"] = args.samples
-        spec = SweepSpec(springs={args.joints: params}, gait=gait)
+    values = {"k": args.k, "theta_k": args.theta_k, "dead_zone": args.dead_zone,
+              "offset": args.offset}
+    if args.spec and (args.joints or any(v is not None for v in values.values())):
+        raise InvalidParameterError("--joints/--k/--theta-k/--dead-zone/--offset",
+                                    "given with a spec file", "either a spec or the flags")
+    spec = (SweepSpec.from_toml(args.spec) if args.spec else
+            SweepSpec.one_group(args.joints, values, period=args.period, samples=args.samples))
     if args.metric:
         spec = dataclasses.replace(spec, metric=args.metric)
     executor = args.executor or ("dask" if args.scheduler else "process")

@@ -8,7 +8,6 @@ and the expected type.
 from __future__ import annotations
 
 import dataclasses
-import math
 import sys
 import types
 import typing
@@ -16,6 +15,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any, TypeVar
 
+from hexaleg.checks import is_integer, is_real
 from hexaleg.errors import ConfigError, UnknownNameError
 
 if sys.version_info >= (3, 11):
@@ -59,14 +59,14 @@ def _check_type(key: str, value: Any, hint: Any) -> Any:
             return None
         raise ConfigError(f"{key} = {value!r}; expected None")
     if hint is float:
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise ConfigError(f"{key} = {value!r} has type {type(value).__name__}; "
-                              "expected a number")
-        if not math.isfinite(value):
+        if is_real(value):
+            return float(value)
+        if isinstance(value, float):  # NaN or inf
             raise ConfigError(f"{key} = {value!r} is not finite; expected a finite number")
-        return float(value)
+        raise ConfigError(f"{key} = {value!r} has type {type(value).__name__}; "
+                          "expected a number")
     if hint is int:
-        if isinstance(value, bool) or not isinstance(value, int):
+        if not is_integer(value):
             raise ConfigError(f"{key} = {value!r} has type {type(value).__name__}; "
                               "expected an integer")
         return value

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hexaleg.checks import real
+from hexaleg.checks import is_integer, real
 from hexaleg.design.evaluator import DEFAULT_METRIC, METRICS, Evaluator
 from hexaleg.dynamics.energy import saving
 from hexaleg.errors import InvalidParameterError, UnknownNameError
@@ -114,8 +114,7 @@ def _starts(box: _Box, grid: tuple[int, ...], start: Sequence[float] | None
     dims = box.dims
     if start is None:
         n = tuple(grid[:dims])
-        if len(n) != dims or any(isinstance(m, bool) or not isinstance(m, int) or m < 2
-                                 for m in n):
+        if len(n) != dims or any(not is_integer(m) or m < 2 for m in n):
             raise InvalidParameterError("grid", grid, f"{dims} integers ≥ 2")
         cands = [np.array(x) for x in itertools.product(*(np.linspace(0, 1, m) for m in n))]
         return cands, 1.0 / (np.array(n) - 1)

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 
+from hexaleg.checks import positive
 from hexaleg.dynamics.inertia import apparent_inertia, joint_range
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.trajectory import Motion
@@ -50,8 +51,7 @@ def k_M(robot: Robot, motion: Motion, joint: str, alpha: float = PAPER_ALPHA) ->
         joint: Joint name.
         alpha: α of eq. 19.
     """
-    if not (isinstance(alpha, (int, float)) and math.isfinite(alpha) and alpha > 0):
-        raise InvalidParameterError("alpha", alpha, "a finite number > 0")
+    positive("alpha", alpha)
     omega = 2 * math.pi / motion.period
     return omega**2 * apparent_inertia(robot, motion, joint) / alpha
 

@@ -40,6 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hexaleg.checks import positive, real
 from hexaleg.errors import InvalidParameterError
 
 OBJECTIVES: tuple[str, ...] = ("joule", "torque_squared", "electrical", "positive_work")
@@ -70,17 +71,14 @@ class ContactParams:
     regularization: float = 1e-4
 
     def __post_init__(self) -> None:
-        for name in ("mu", "min_normal_force", "regularization"):
-            value = getattr(self, name)
-            if not isinstance(value, (int, float)) or not math.isfinite(value):
-                raise InvalidParameterError(f"ContactParams.{name}", value, "a finite number")
-        if self.mu <= 0:
-            raise InvalidParameterError("ContactParams.mu", self.mu, "> 0")
-        if self.min_normal_force < 0:
-            raise InvalidParameterError("ContactParams.min_normal_force", self.min_normal_force,
-                                        ">= 0 N")
-        if self.regularization <= 0:
-            raise InvalidParameterError("ContactParams.regularization", self.regularization, "> 0")
+        # A bool is not a friction coefficient (mu=True is refused, not read as 1).
+        positive("ContactParams.mu", self.mu)
+        real("ContactParams.min_normal_force", self.min_normal_force, low=0.0,
+             allowed="a finite number >= 0 N")
+        positive("ContactParams.regularization", self.regularization)
+        if not isinstance(self.torque_limits, bool):
+            raise InvalidParameterError("ContactParams.torque_limits", self.torque_limits,
+                                        "True or False")
         if self.cone not in CONES:
             raise InvalidParameterError("ContactParams.cone", self.cone, " or ".join(CONES))
 

@@ -33,6 +33,7 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
+from hexaleg.checks import positive
 from hexaleg.errors import InfeasibleForcesError, InvalidParameterError
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.trajectory import Motion
@@ -137,8 +138,7 @@ def periodic_lip_sway(f: np.ndarray, period: float, height: float,
         InvalidParameterError: a non-positive period, height or gravity.
     """
     for name, value in (("period", period), ("height", height), ("gravity", gravity)):
-        if not (math.isfinite(value) and value > 0):
-            raise InvalidParameterError(name, value, "a finite number > 0")
+        positive(name, value)
     f = np.asarray(f, dtype=float)
     omega = 2.0 * math.pi / period * np.arange(len(f) // 2 + 1)
     return np.fft.irfft(np.fft.rfft(f) / (gravity + height * omega**2), n=len(f))

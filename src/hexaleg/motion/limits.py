@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from hexaleg.checks import is_integer
 from hexaleg.errors import InvalidParameterError
 from hexaleg.robot.model import Robot
 
@@ -21,8 +22,7 @@ def check_samples(samples: object) -> int:
     Raises:
         InvalidParameterError: not an integer, or fewer than :data:`MIN_SAMPLES`.
     """
-    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) \
-            or samples < MIN_SAMPLES:
+    if not is_integer(samples) or samples < MIN_SAMPLES:
         raise InvalidParameterError("samples", samples, f"an integer ≥ {MIN_SAMPLES}")
     return int(samples)
 

@@ -13,9 +13,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
-from hexaleg.checks import real
+from hexaleg.checks import is_integer, real
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.limits import MIN_SAMPLES
@@ -85,8 +83,7 @@ class GaitParams:
                 real(name, value, low=0.0, low_open=True,
                      allowed="None or a finite number > 0 (m)")
         real("yaw_rate", self.yaw_rate, allowed="a finite number (rad/s)")
-        if isinstance(self.samples, bool) or not isinstance(self.samples, (int, np.integer)) \
-                or self.samples < MIN_SAMPLES:
+        if not is_integer(self.samples) or self.samples < MIN_SAMPLES:
             raise InvalidParameterError("samples", self.samples,
                                         f"an integer ≥ {MIN_SAMPLES} samples per period")
         object.__setattr__(self, "samples", int(self.samples))

@@ -14,7 +14,6 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 import numpy as np
-from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
@@ -107,13 +106,7 @@ def mean_torque_vs_stiffness(k: np.ndarray, mean_abs: np.ndarray, marks: Mapping
         marks: Label → stiffness (eq. 19 units) drawn as a vertical line if within ``k``.
         title: Figure title.
     """
-    fig = _figure(7, 4)
-    ax = fig.subplots()
-    ax.plot(k, _MILLI * mean_abs, label="no gravity")
-    ax.set_ylabel("mean |M| over a period (mN·m)")
-    _marks_and_labels(ax, k, marks, title)
-    fig.tight_layout()
-    return fig
+    return _versus_stiffness(k, _MILLI * mean_abs, "mean |M| over a period (mN·m)", marks, title)
 
 
 def epsilon_vs_stiffness(k: np.ndarray, epsilon: np.ndarray, marks: Mapping[str, float],
@@ -121,28 +114,29 @@ def epsilon_vs_stiffness(k: np.ndarray, epsilon: np.ndarray, marks: Mapping[str,
     """Figs 12, 13 analogues: the energy ratio ε of eq. 24 against stiffness (no gravity).
 
     Args:
-        k: Stiffnesses, eq. 19 units, increasing, shape (K,).
-        epsilon: ε at each, 1/s², shape (K,).
-        marks: Label → stiffness (eq. 19 units) drawn as a vertical line if within ``k``.
-        title: Figure title.
+        k: Stiffnesses in eq. 19 units, increasing, shape (K,).
+        epsilon: ε at each stiffness, 1/s², shape (K,).
+        marks: Label → stiffness (eq. 19 units), a vertical line where within ``k``.
+        title: The figure's title.
     """
+    return _versus_stiffness(k, epsilon, "ε = positive work / (J · 4A)  (1/s²)", marks, title)
+
+
+def _versus_stiffness(k: np.ndarray, y: np.ndarray, ylabel: str, marks: Mapping[str, float],
+                      title: str) -> Figure:
+    """One no-gravity quantity against stiffness, with the marked stiffnesses as dotted lines."""
     fig = _figure(7, 4)
     ax = fig.subplots()
-    ax.plot(k, epsilon, label="no gravity")
-    ax.set_ylabel("ε = positive work / (J · 4A)  (1/s²)")
-    _marks_and_labels(ax, k, marks, title)
-    fig.tight_layout()
-    return fig
-
-
-def _marks_and_labels(ax: Axes, k: np.ndarray, marks: Mapping[str, float], title: str) -> None:
-    """Dotted vertical lines at the marked stiffnesses within ``k``, the axis labels, a legend."""
+    ax.plot(k, y, label="no gravity")
+    ax.set_ylabel(ylabel)
     kmax = k[-1]
     for (label, x), color in zip(marks.items(), _MARK_COLOURS, strict=False):
         if x <= kmax:
             ax.axvline(x, ls=":", color=color, label=f"{label} = {x:.1f}")
     ax.set(xlabel="k (eq. 19 units, 1e-6 N·m/rad), paper convention κ = kα", title=title)
     ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
 
 
 def save_png(fig: Figure, path: str | Path) -> None:

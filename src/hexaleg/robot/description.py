@@ -23,7 +23,6 @@ network.
 from __future__ import annotations
 
 import importlib.metadata
-import math
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -33,6 +32,7 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
+from hexaleg.checks import is_real
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError, UnknownNameError
 from hexaleg.robot.model import URDF_DIR, LegSpec, Robot, load_robot
@@ -148,8 +148,7 @@ class RobotDescription:
             self.check_groups(self.gait["groups"])
         if not isinstance(self.stand, str):
             if not isinstance(self.stand, Mapping) or not all(
-                    isinstance(k, str) and isinstance(v, (int, float))
-                    and not isinstance(v, bool) and math.isfinite(v)
+                    isinstance(k, str) and is_real(v)
                     for k, v in self.stand.items()):
                 raise InvalidParameterError(f"{self.name}: stand", self.stand,
                                             "an SRDF group_state name or joint name → finite "

@@ -40,6 +40,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from hexaleg.checks import positive, real
 from hexaleg.config import from_mapping
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 
@@ -112,14 +113,9 @@ class Motor:
                 raise InvalidParameterError(f"Motor.{key}", value, "a non-empty string")
         for key in ("gear_ratio", "torque_constant", "resistance", "stall_torque",
                     "no_load_speed", "voltage"):
-            value = getattr(self, key)
-            if (isinstance(value, bool) or not isinstance(value, (int, float))
-                    or not math.isfinite(value) or value <= 0):
-                raise InvalidParameterError(f"Motor.{key}", value, "a finite number > 0")
-        eta = self.gearbox_efficiency
-        if (isinstance(eta, bool) or not isinstance(eta, (int, float)) or not math.isfinite(eta)
-                or not 0 < eta <= 1):
-            raise InvalidParameterError("Motor.gearbox_efficiency", eta, "a number in (0, 1]")
+            positive(f"Motor.{key}", getattr(self, key))
+        real("Motor.gearbox_efficiency", self.gearbox_efficiency, low=0.0, low_open=True,
+             high=1.0, allowed="a number in (0, 1]")
         if not isinstance(self.regeneration, bool):
             raise InvalidParameterError("Motor.regeneration", self.regeneration, "True or False")
 

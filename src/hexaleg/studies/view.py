@@ -16,7 +16,6 @@ map of K. Moreland, "Diverging Color Maps for Scientific Visualization", ISVC 20
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -25,7 +24,7 @@ import meshcat
 import numpy as np
 from pinocchio.visualize import MeshcatVisualizer
 
-from hexaleg.checks import one_of
+from hexaleg.checks import one_of, positive
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.dynamics.prepare import analyze
 from hexaleg.errors import InvalidParameterError
@@ -65,10 +64,7 @@ class ViewParams:
 
     def __post_init__(self) -> None:
         for name in ("fps", "arrow_length", "marker_radius"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, float)) \
-                    or not (math.isfinite(value) and value > 0):
-                raise InvalidParameterError(f"ViewParams.{name}", value, "a finite number > 0")
+            positive(f"ViewParams.{name}", getattr(self, name))
 
 
 @dataclass(frozen=True)
@@ -229,17 +225,11 @@ def serve(robot: Robot, motion: Motion, *, forces: Any = None, joint_values: Any
 
     The server is a subprocess that lives as long as the calling Python process; a browser
     opened on the URL (also after this function returns, and again after a reload) receives
-    the scene and plays it.
+    the scene and plays it. The keyword arguments are those of :func:`animate`.
 
     Args:
         robot: The robot.
         motion: The motion.
-        forces: As :func:`animate`.
-        joint_values: As :func:`animate`.
-        joint_label: As :func:`animate`.
-        fps: As :func:`animate`.
-        arrow_length: As :func:`animate`.
-        marker_radius: As :func:`animate`.
 
     Returns:
         The viewer's URL, ``http://127.0.0.1:<port>/static/``.
@@ -260,18 +250,13 @@ def export_html(robot: Robot, motion: Motion, path: str | Path, *, forces: Any =
 
     The page inlines Meshcat's viewer JavaScript from the installed ``meshcat`` package and
     embeds the scene and its animation as data; it needs no server and fetches nothing over the
-    network. A legend explains the joint colours and the force-arrow scale.
+    network. A legend explains the joint colours and the force-arrow scale. The keyword
+    arguments are those of :func:`animate`.
 
     Args:
         robot: The robot.
         motion: The motion.
         path: Output file; its directory must exist.
-        forces: As :func:`animate`.
-        joint_values: As :func:`animate`.
-        joint_label: As :func:`animate`.
-        fps: As :func:`animate`.
-        arrow_length: As :func:`animate`.
-        marker_radius: As :func:`animate`.
 
     Returns:
         The written path.

@@ -110,3 +110,12 @@ def test_unknown_spring_design_lists_the_designs(tmp_path):
         with pytest.raises(InvalidParameterError,
                            match=re.escape("one of paper, centred, baseline")):
             ReportConfig.from_toml(_config(tmp_path, text))
+
+
+def test_load_picks_the_robot_and_the_file(tmp_path):
+    config, robot = ReportConfig.load()
+    assert robot is None and config == ReportConfig()
+    (tmp_path / "c.toml").write_text("[gait]\nperiod = 0.7\n")
+    config, robot = ReportConfig.load("solo12", tmp_path / "c.toml")
+    assert robot is not None and len(robot.legs) == 4
+    assert config.gait.period == 0.7 and config.gait.groups == (("LF", "RH"), ("RF", "LH"))

@@ -80,3 +80,14 @@ def test_bad_spec_tables():
     with pytest.raises(ConfigError, match=r"k_nmm_per_deg|given twice"):
         SweepSpec.from_mapping({"springs": {"femur": {"k": 1.0, "k_nmm_per_deg": 2.0,
                                                       "theta_k": 0.1}}})
+
+
+def test_one_group_from_command_line_texts():
+    spec = SweepSpec.one_group("femur", {"k": "0:1:3", "theta_k": "0.1,0.2", "offset": None},
+                               period="0.8", samples=100)
+    assert spec.springs == {"femur": {"k": (0.0, 0.5, 1.0), "theta_k": (0.1, 0.2)}}
+    assert spec.gait == {"period": 0.8, "samples": 100} and spec.n_points == 6
+    with pytest.raises(InvalidParameterError, match="--joints and --k"):
+        SweepSpec.one_group("femur", {"k": None})
+    with pytest.raises(InvalidParameterError, match="--theta-k"):
+        SweepSpec.one_group("femur", {"k": "1", "theta_k": "0.1:0.2"})

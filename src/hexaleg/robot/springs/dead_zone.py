@@ -27,14 +27,13 @@ the main spring is engaged) and goes through the same transmission factor as its
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, NamedTuple, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from hexaleg.checks import finite_array
+from hexaleg.checks import finite_array, real
 from hexaleg.errors import InvalidParameterError
 from hexaleg.units import deg_to_rad, nmm_per_deg_to_nm_per_rad, nmms_per_deg_to_nms_per_rad
 
@@ -114,14 +113,9 @@ class DeadZoneSpring:
         for name in ("stiffness", "theta_k", "theta_minus", "theta_plus", "stiffness_minus",
                      "k2", "alpha", "damping", "neutral"):
             value = getattr(self, name)
-            if value is None:
-                continue
-            if isinstance(value, bool) or not isinstance(value, (int, float, np.floating,
-                                                                   np.integer)):
-                raise InvalidParameterError(name, value, "a real number")
-            if not math.isfinite(value):
-                raise InvalidParameterError(name, value, "a finite number (no NaN or inf)")
-            object.__setattr__(self, name, float(value))
+            if value is not None:
+                object.__setattr__(self, name, real(name, value,
+                                                    allowed="a finite real number (no NaN or inf)"))
         for name in ("stiffness", "stiffness_minus", "k2", "damping"):
             value = getattr(self, name)
             if value is not None and value < 0:

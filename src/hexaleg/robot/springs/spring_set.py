@@ -7,7 +7,7 @@ joint order (zero where no spring sits).
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -132,11 +132,7 @@ class SpringSet(Mapping[str, DeadZoneSpring]):
             UnknownNameError: a sprung joint is not a joint of the robot (lists the joints).
             InvalidParameterError: wrong shapes, NaN or inf.
         """
-        angles = self._angles(robot, q, v)
-        out = np.zeros((np.shape(q)[0], robot.nj))
-        for name, (c, angle, vel) in angles.items():
-            out[:, c] = self._springs[name].torque(angle, vel)
-        return out
+        return self._per_joint(robot, q, v, lambda s, angle, vel: s.torque(angle, vel))
 
     def energies(self, robot: Robot, q: ArrayLike) -> np.ndarray:
         """Stored spring energy per actuated joint, J, shape (T, robot.nj); zero where no spring.
@@ -149,8 +145,13 @@ class SpringSet(Mapping[str, DeadZoneSpring]):
             UnknownNameError: a sprung joint is not a joint of the robot (lists the joints).
             InvalidParameterError: wrong shape, NaN or inf.
         """
-        angles = self._angles(robot, q, None)
+        return self._per_joint(robot, q, None, lambda s, angle, _: s.energy(angle))
+
+    def _per_joint(self, robot: Robot, q: ArrayLike, v: ArrayLike | None,
+                   law: Callable[[DeadZoneSpring, np.ndarray, np.ndarray | None], np.ndarray]
+                   ) -> np.ndarray:
+        """``law(spring, angle, velocity)`` of every sprung joint in its column, (T, nj)."""
         out = np.zeros((np.shape(q)[0], robot.nj))
-        for name, (c, angle, _) in angles.items():
-            out[:, c] = self._springs[name].energy(angle)
+        for name, (c, angle, vel) in self._angles(robot, q, v).items():
+            out[:, c] = law(self._springs[name], angle, vel)
         return out

@@ -44,7 +44,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import brentq
 
-from hexaleg.checks import finite_array
+from hexaleg.checks import finite_array, real
 from hexaleg.design.rules import PAPER_ALPHA, PAPER_AMPLITUDE, PAPER_OMEGA, PAPER_THETA_K
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.profiles import Sinusoid
@@ -106,11 +106,7 @@ class PaperJoint:
     def __post_init__(self) -> None:
         for name in ("mass", "com", "inertia", "length", "amplitude", "omega", "phase", "offset",
                      "theta_k", "alpha", "gravity"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, float)):
-                raise InvalidParameterError(name, value, "a real number")
-            if not math.isfinite(value):
-                raise InvalidParameterError(name, value, "a finite number (no NaN or inf)")
+            real(name, getattr(self, name), allowed="a finite real number (no NaN or inf)")
         for name in ("mass", "com", "inertia", "length", "theta_k", "gravity"):
             if getattr(self, name) < 0:
                 raise InvalidParameterError(name, getattr(self, name), ">= 0")

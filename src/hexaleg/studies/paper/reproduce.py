@@ -14,20 +14,10 @@ import math
 import numpy as np
 
 from hexaleg.robot.motor import motor as default_motor
+from hexaleg.studies.paper import readings
 from hexaleg.studies.paper.crosscheck import pinocchio_femur_torque
 from hexaleg.studies.paper.joint import PaperJoint
 from hexaleg.studies.paper.metrics import JOINT_METRICS, StiffnessOptimum, optimal_stiffness
-from hexaleg.studies.paper.readings import (
-    PAPER_K_E,
-    PAPER_K_M,
-    PAPER_RANGE_NMM_PER_DEG,
-    PAPER_SAVING,
-    PAPER_TABLE4_NMM_PER_DEG,
-    k_E_readings,
-    k_M_paper_number,
-    saving_readings,
-    stiffness_units,
-)
 from hexaleg.units import nm_per_rad_to_nmm_per_deg, nmm_per_deg_to_nm_per_rad
 
 
@@ -43,16 +33,16 @@ def reproduce(joint: PaperJoint | None = None, n: int = 8192) -> dict[str, objec
     """
     j = joint or PaperJoint()
     kM = j.k_M()
-    lo, hi = (float(nmm_per_deg_to_nm_per_rad(x)) for x in PAPER_RANGE_NMM_PER_DEG)
+    lo, hi = (float(nmm_per_deg_to_nm_per_rad(x)) for x in readings.PAPER_RANGE_NMM_PER_DEG)
     return {
         "model": _model(j, n),
-        "k_M_paper_units": k_M_paper_number(j),
-        "k_M_paper_printed": PAPER_K_M,
+        "k_M_paper_units": readings.k_M_paper_number(j),
+        "k_M_paper_printed": readings.PAPER_K_M,
         "k_M_paper_units_are": "kg·mm²·s⁻²/rad = 1e-6 N·m/rad (the paper labels them N·mm/deg)",
         "k_M_SI_Nm_per_rad": kM,
         "k_M_Nmm_per_deg": float(nm_per_rad_to_nmm_per_deg(kM)),
         "k_M_eq7_convention_SI_Nm_per_rad": kM / j.alpha if j.convention == "eq14" else kM,
-        "paper_range_Nmm_per_deg": list(PAPER_RANGE_NMM_PER_DEG),
+        "paper_range_Nmm_per_deg": list(readings.PAPER_RANGE_NMM_PER_DEG),
         "paper_range_SI_Nm_per_rad": [lo, hi],
         "paper_range_over_k_M_SI": [lo / kM, hi / kM],
         "torque_scales_Nm": _torque_scales(j),
@@ -82,8 +72,8 @@ def _model(j: PaperJoint, n: int) -> dict[str, object]:
 def _torque_scales(j: PaperJoint) -> dict[str, float]:
     """Peak torques of the inertia, gravity and springs of k_M, 400 and 100 N·mm/deg, N·m."""
     kM = j.k_M()
-    k400 = float(nmm_per_deg_to_nm_per_rad(PAPER_TABLE4_NMM_PER_DEG))
-    lo = float(nmm_per_deg_to_nm_per_rad(PAPER_RANGE_NMM_PER_DEG[0]))
+    k400 = float(nmm_per_deg_to_nm_per_rad(readings.PAPER_TABLE4_NMM_PER_DEG))
+    lo = float(nmm_per_deg_to_nm_per_rad(readings.PAPER_RANGE_NMM_PER_DEG[0]))
     a, tk = j.amplitude, j.theta_k
     return {
         "inertial_J_A_omega2": j.J * a * j.omega**2,
@@ -95,7 +85,7 @@ def _torque_scales(j: PaperJoint) -> dict[str, float]:
 
 
 def _optimum_record(opt: StiffnessOptimum) -> dict[str, object]:
-    rec: dict[str, object] = {f"k_{u}": v for u, v in stiffness_units(opt.k).items()}
+    rec: dict[str, object] = {f"k_{u}": v for u, v in readings.stiffness_units(opt.k).items()}
     rec.update({"flat_N_m_per_rad": list(opt.flat), "value": opt.value, "baseline": opt.baseline,
                 "saving_percent": 100 * opt.saving, "on_bound": opt.on_bound})
     return rec
@@ -116,19 +106,19 @@ def _closed_forms(j: PaperJoint) -> dict[str, object]:
     """The closed-form optima without gravity (see :mod:`hexaleg.studies.paper.joint`)."""
     return {"peak_flat_interval_N_m_per_rad": list(j.closed_form_peak_interval()),
             "peak_saving_percent": 100 * j.closed_form_peak_saving(),
-            "int_sq": stiffness_units(j.closed_form_int_sq()),
-            "mean_abs": stiffness_units(j.closed_form_mean_abs()),
-            "positive_and_absolute_work": stiffness_units(j.closed_form_work()),
+            "int_sq": readings.stiffness_units(j.closed_form_int_sq()),
+            "mean_abs": readings.stiffness_units(j.closed_form_mean_abs()),
+            "positive_and_absolute_work": readings.stiffness_units(j.closed_form_work()),
             "zero_work_contact_to_turning_point":
-                stiffness_units(j.closed_form_zero_work_quarter())}
+                readings.stiffness_units(j.closed_form_zero_work_quarter())}
 
 
 def _k_E(j: PaperJoint) -> dict[str, object]:
     """The readings of the printed k_E and which of them give it (within 0.5 %)."""
-    ke = k_E_readings(j)
+    ke = readings.k_E_readings(j)
     ke_hits = [k for k, r in ke.items() if r["k_paper_number"] is not None
-               and abs(float(r["k_paper_number"]) / PAPER_K_E - 1) < 5e-3]  # type: ignore[arg-type]
-    return {"paper_printed": PAPER_K_E, "readings": ke, "reproduced_by": ke_hits,
+               and abs(float(r["k_paper_number"]) / readings.PAPER_K_E - 1) < 5e-3]  # type: ignore[arg-type]
+    return {"paper_printed": readings.PAPER_K_E, "readings": ke, "reproduced_by": ke_hits,
             "verdict": ("reproduced by " + ", ".join(ke_hits)) if ke_hits else
             "not reproduced: no reading of eq. 21 over θ_k → π/4 gives 784.717 (within 0.5%)"}
 
@@ -136,11 +126,12 @@ def _k_E(j: PaperJoint) -> dict[str, object]:
 def _saving(j: PaperJoint) -> dict[str, object]:
     """The readings of the printed 52.81 % saving and which of them give it (within 0.5 points)."""
     ju = _replace(j, posture="upright")
-    sav = {**saving_readings(j), **{f"{k}_upright": v for k, v in saving_readings(ju).items()
-                                    if k.endswith("_gravity") and "no_gravity" not in k}}
+    upright = {f"{k}_upright": v for k, v in readings.saving_readings(ju).items()
+               if k.endswith("_gravity") and "no_gravity" not in k}
+    sav = {**readings.saving_readings(j), **upright}
     sav["peak_torque_flat_optimum_no_gravity"] = 100 * j.closed_form_peak_saving()
-    sav_hits = [k for k, v in sav.items() if abs(v - PAPER_SAVING) < 0.5]
-    return {"paper_printed_percent": PAPER_SAVING, "readings_percent": sav,
+    sav_hits = [k for k, v in sav.items() if abs(v - readings.PAPER_SAVING) < 0.5]
+    return {"paper_printed_percent": readings.PAPER_SAVING, "readings_percent": sav,
             "reproduced_by": sav_hits,
             "verdict": ("reproduced by " + ", ".join(sav_hits)) if sav_hits else
             "not reproduced: no energy reading gives 52.81% (within 0.5 points)"}

@@ -69,3 +69,11 @@ def markdown_summary(r: dict[str, Any], files: list[str]) -> str:
         lines.append(f"| {m} | " + " | ".join(cells) + " |")
     lines += ["", "Figures: " + ", ".join(files), ""]
     return "\n".join(lines)
+
+
+def one_line(r: dict[str, Any]) -> str:
+    """The verdicts of :func:`~hexaleg.studies.paper.reproduce.reproduce` in one line: k_M as the
+    paper prints it and in SI, and whether its k_E and 52.81 % are reproduced."""
+    return (f"k_M = {r['k_M_paper_units']:.3f} (paper's eq. 19 units) = "
+            f"{r['k_M_SI_Nm_per_rad']:.4e} N·m/rad; k_E: {r['k_E']['verdict']}; "
+            f"52.81%: {r['saving_52_81']['verdict']}")

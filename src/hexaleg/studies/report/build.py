@@ -71,6 +71,12 @@ class Report:
     data: dict[str, Any]
     files: tuple[Path, ...] = ()
 
+    def summary(self) -> str:
+        """One line: the electrical energy per cycle with the springs and without, the saving."""
+        e = self.data["energy"]["totals"]["electrical"]
+        return (f"electrical energy per cycle {e['with_springs']['value']:.4g} J with springs, "
+                f"{e['baseline']['value']:.4g} J without (saving {e['saving']['value']:+.2f} %)")
+
 
 def _report_curve(prepared: Prepared, springs: SpringSet, rp: ReportParams, objective: str,
                   step: Callable[[str], None]) -> StiffnessCurve:

@@ -28,6 +28,7 @@ from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import CATALOGUE, DEFAULT_MOTOR, Motor, motor_from_mapping
 from hexaleg.robot.motor import motor as motor_by_name
+from hexaleg.robot.registry import description
 from hexaleg.robot.springs import SpringSet
 
 TABLES: tuple[str, ...] = ("gait", "motor", "contact", "springs", "report")
@@ -245,6 +246,26 @@ class ReportConfig:
                          "work and torques, or give a [motor] for them")
         return dataclasses.replace(config, gait=gait, springs=springs, report=report,
                                    contact=contact, notes=tuple(notes))
+
+    @classmethod
+    def load(cls, robot: str | None = None, path: str | Path | None = None
+             ) -> tuple[ReportConfig, Robot | None]:
+        """The configuration of ``hexaleg report [--robot R] [--config F]``.
+
+        Args:
+            robot: A registered robot's name or a robot ``.toml``, or None for the built-in robot
+                with hexaleg's defaults.
+            path: The config file, or None.
+
+        Returns:
+            The configuration and the loaded robot (None: the built-in one, loaded by the report).
+        """
+        if robot is None:
+            return (cls.from_toml(path) if path else cls()), None
+        desc = description(robot)
+        loaded = desc.load()
+        data = load_toml(path) if path else {}
+        return cls.for_robot(desc, loaded, data, str(path) if path else "config"), loaded
 
     @classmethod
     def from_mapping(cls, data: Mapping[str, Any], where: str = "config") -> ReportConfig:

@@ -27,6 +27,7 @@ from concurrent.futures import Executor, Future, ProcessPoolExecutor
 from contextlib import contextmanager
 from typing import Any
 
+from hexaleg.checks import integer
 from hexaleg.errors import ExecutorError, InvalidParameterError
 
 EXECUTORS: tuple[str, ...] = ("process", "serial", "dask")
@@ -113,9 +114,8 @@ def open_executor(kind: str = "process", *, workers: int | None = None,
     """
     if kind not in EXECUTORS:
         raise InvalidParameterError("executor", kind, "one of " + ", ".join(EXECUTORS))
-    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
-                                or workers < 1):
-        raise InvalidParameterError("workers", workers, "an integer ≥ 1")
+    if workers is not None:
+        integer("workers", workers, low=1)
     if (kind == "dask") != (scheduler is not None):
         raise InvalidParameterError("scheduler", scheduler,
                                     "a scheduler address exactly when the executor is dask")

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from hexaleg.checks import real
+from hexaleg.checks import is_integer, real
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 
 _VALUE = "a finite number (an axis is a list of numbers or a range table)"
@@ -51,7 +51,7 @@ def axis_values(name: str, value: Any) -> tuple[float, ...] | float:
 
 def _range(name: str, start: float, stop: float, num: Any, scale: str = "linear"
            ) -> tuple[float, ...]:
-    if isinstance(num, bool) or not isinstance(num, (int, np.integer)) or num < 1:
+    if not is_integer(num) or num < 1:
         raise InvalidParameterError(f"{name}.num", num, "an integer ≥ 1 (an empty grid has no "
                                     "points)")
     if scale not in ("linear", "log"):

@@ -16,14 +16,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from hexaleg.checks import string
+from hexaleg.checks import integer, string
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.design.evaluator import DEFAULT_METRIC, METRICS, SPRING_PARAMETERS, RunSpec
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.motion.params import GaitParams
 from hexaleg.robot.model import Robot
-from hexaleg.studies.sweep.ranges import axis_values
+from hexaleg.studies.sweep.ranges import axis_values, parse_range
 from hexaleg.units import deg_to_rad, nmm_per_deg_to_nm_per_rad
 
 PAPER_UNIT_PARAMETERS: dict[str, tuple[str, Callable[[Any], Any]]] = {
@@ -139,9 +139,7 @@ class SweepSpec:
             raise UnknownNameError("layout", self.layout, LAYOUTS)
         if self.metric not in METRICS:
             raise UnknownNameError("metric", self.metric, METRICS)
-        if isinstance(self.chunk_size, bool) or not isinstance(self.chunk_size, int) \
-                or self.chunk_size < 1:
-            raise InvalidParameterError("chunk_size", self.chunk_size, "an integer ≥ 1")
+        integer("chunk_size", self.chunk_size, low=1)
         for g in self.gaits():  # every gait of the grid is valid (GaitParams checks ranges)
             GaitParams(**g)
 
@@ -174,6 +172,34 @@ class SweepSpec:
     def from_toml(cls, path: str | Path) -> SweepSpec:
         """A spec from a TOML file (see :meth:`from_mapping`)."""
         return cls.from_mapping(load_toml(path), str(path))
+
+    @classmethod
+    def one_group(cls, joints: str, values: Mapping[str, str | None], *,
+                  period: str | None = None, samples: int | None = None) -> SweepSpec:
+        """A sweep of one spring group from command-line texts (``hexaleg sweep --joints …``).
+
+        Args:
+            joints: Joint class or joint.
+            values: Spring parameter → its text (``VALUE``, ``V1,V2,…`` or
+                ``START:STOP:NUM[:log]``, :func:`~hexaleg.studies.sweep.ranges.parse_range`), or
+                None where not given; ``k`` is required.
+            period: The gait period's text, or None.
+            samples: Samples per gait cycle, or None.
+
+        Raises:
+            InvalidParameterError: no joints or no ``k``; a bad value (named by its flag).
+        """
+        if not joints or values.get("k") is None:
+            raise InvalidParameterError("--joints/--k", (joints, values.get("k")),
+                                        "a spec file, or --joints and --k")
+        params = {name: parse_range(f"--{name.replace('_', '-')}", v)
+                  for name, v in values.items() if v is not None}
+        gait: dict[str, Any] = {}
+        if period is not None:
+            gait["period"] = parse_range("--period", period)
+        if samples is not None:
+            gait["samples"] = samples
+        return cls(springs={joints: params}, gait=gait)
 
     # -- the grid
 
