@@ -11,11 +11,11 @@ from matplotlib.figure import Figure
 from hexaleg.outputs import paper_figures
 
 T = np.linspace(0.0, np.pi, 40, endpoint=False)
-RIGID = 1e-4 * np.sin(2 * T)
+BASELINE = 1e-4 * np.sin(2 * T)
 
 
 def test_rigid_torque_in_mNm():
-    torques = (RIGID, 2 * RIGID, 3 * RIGID)
+    torques = (BASELINE, 2 * BASELINE, 3 * BASELINE)
     fig = paper_figures.baseline_torque(T, *torques)
     (ax,) = fig.axes
     lines = ax.get_lines()
@@ -27,8 +27,8 @@ def test_rigid_torque_in_mNm():
 
 
 def test_table4_spring_two_panels():
-    true_units, paper_units = 5 * RIGID, 0.5 * RIGID
-    fig = paper_figures.table4_spring(T, RIGID, true_units, paper_units)
+    true_units, paper_units = 5 * BASELINE, 0.5 * BASELINE
+    fig = paper_figures.table4_spring(T, BASELINE, true_units, paper_units)
     left, right = fig.axes
     np.testing.assert_array_equal(left.get_lines()[1].get_ydata(), 1e3 * true_units)
     np.testing.assert_array_equal(right.get_lines()[1].get_ydata(), 1e3 * paper_units)
@@ -37,10 +37,11 @@ def test_table4_spring_two_panels():
 
 
 def test_torques_by_stiffness_one_line_per_stiffness():
-    tau = 3 * RIGID
-    fig = paper_figures.torques_by_stiffness(T, RIGID, [(100.0, 2 * RIGID), (700.5, tau)], "title")
+    tau = 3 * BASELINE
+    fig = paper_figures.torques_by_stiffness(T, BASELINE, [(100.0, 2 * BASELINE), (700.5, tau)],
+                                             "title")
     (ax,) = fig.axes
-    assert [line.get_label() for line in ax.get_lines()] == ["rigid (no spring)", "k = 100",
+    assert [line.get_label() for line in ax.get_lines()] == ["baseline (no spring)", "k = 100",
                                                             "k = 700.5"]
     np.testing.assert_array_equal(ax.get_lines()[2].get_ydata(), 1e3 * tau)
     assert ax.get_title() == "title"
@@ -63,7 +64,7 @@ def test_cost_curves_mark_only_stiffnesses_in_range(kind):
 
 def test_save_png_at_110_dpi_and_no_pyplot_figures(tmp_path):
     before = plt.get_fignums()
-    fig = paper_figures.baseline_torque(T, RIGID, RIGID, RIGID)
+    fig = paper_figures.baseline_torque(T, BASELINE, BASELINE, BASELINE)
     assert isinstance(fig, Figure)
     paper_figures.save_png(fig, tmp_path / "f.png")
     png = (tmp_path / "f.png").read_bytes()

@@ -50,22 +50,22 @@ def baseline_torque(t: np.ndarray, no_gravity: np.ndarray, hanging: np.ndarray,
     return fig
 
 
-def table4_spring(t: np.ndarray, rigid: np.ndarray, true_units: np.ndarray,
+def table4_spring(t: np.ndarray, baseline: np.ndarray, true_units: np.ndarray,
                   paper_units: np.ndarray) -> Figure:
     """Fig. 6 analogue: torque with Table 4's 400 N·mm/deg spring, read in both units (no gravity).
 
     Args:
         t: Times, s, shape (T,).
-        rigid: Torque without the spring, N·m, shape (T,).
+        baseline: Torque without the spring, N·m, shape (T,).
         true_units: Torque with k = 400 N·mm/deg (22.9 N·m/rad), N·m, shape (T,).
         paper_units: Torque with k = 400 eq. 19 units (4e-4 N·m/rad), N·m, shape (T,).
     """
     fig = _figure(10, 4)
     axes = fig.subplots(1, 2)
-    axes[0].plot(t, _MILLI * rigid, "k--", label="rigid")
+    axes[0].plot(t, _MILLI * baseline, "k--", label="baseline (no spring)")
     axes[0].plot(t, _MILLI * true_units, label="k = 400 N·mm/deg (22.9 N·m/rad)")
     axes[0].set(xlabel="t (s)", ylabel="M (mN·m)", title="Table 4 spring in true units")
-    axes[1].plot(t, _MILLI * rigid, "k--", label="rigid")
+    axes[1].plot(t, _MILLI * baseline, "k--", label="baseline (no spring)")
     axes[1].plot(t, _MILLI * paper_units, label="k = 400 in eq. 19 units (4e-4 N·m/rad)")
     axes[1].set(xlabel="t (s)", title="400 read in the unit of eq. 19")
     for ax in axes:
@@ -75,19 +75,19 @@ def table4_spring(t: np.ndarray, rigid: np.ndarray, true_units: np.ndarray,
     return fig
 
 
-def torques_by_stiffness(t: np.ndarray, rigid: np.ndarray,
+def torques_by_stiffness(t: np.ndarray, baseline: np.ndarray,
                          torques: Sequence[tuple[float, np.ndarray]], title: str) -> Figure:
     """Figs 7, 8, 11 analogues: the motor torque for several stiffnesses and without the spring.
 
     Args:
         t: Times, s, shape (T,).
-        rigid: Torque without the spring, N·m, shape (T,).
+        baseline: Torque without the spring, N·m, shape (T,).
         torques: (stiffness in eq. 19 units, torque N·m of shape (T,)) pairs, one line each.
         title: Figure title.
     """
     fig = _figure(7, 4)
     ax = fig.subplots()
-    ax.plot(t, _MILLI * rigid, "k--", label="rigid (no spring)")
+    ax.plot(t, _MILLI * baseline, "k--", label="baseline (no spring)")
     for kp, tau in torques:
         ax.plot(t, _MILLI * tau, label=f"k = {kp:g}")
     ax.set(xlabel="t (s)", ylabel="motor torque M (mN·m)", title=title)

@@ -36,24 +36,24 @@ def make_figures(joint: PaperJoint, n: int) -> dict[str, Figure]:
 
 
 def _torque_figures(j: PaperJoint, n: int) -> dict[str, Figure]:
-    """Figs 5–8 and 11: the motor torque over one period, rigid and with springs."""
+    """Figs 5–8 and 11: the motor torque over one period, baseline and with springs."""
     t = j.times(n)
     ju = dataclasses.replace(j, posture="upright")
     k_m = k_M_paper_number(j)
-    rigid = j.baseline_torque(t, False)
+    baseline = j.baseline_torque(t, False)
 
     def by_stiffness(title: str, ks_paper: list[float]) -> Figure:
         torques = [(kp, j.motor_torque(t, float(paper_number_to_si(kp)), False))
                    for kp in ks_paper]
-        return draw.torques_by_stiffness(t, rigid, torques, title)
+        return draw.torques_by_stiffness(t, baseline, torques, title)
 
     k400 = float(nmm_per_deg_to_nm_per_rad(PAPER_TABLE4_NMM_PER_DEG))
     k_work = float(si_to_paper_number(j.closed_form_work()))
     return {
-        "fig05_rigid_torque.png": draw.baseline_torque(t, rigid, j.baseline_torque(t, True),
-                                                    ju.baseline_torque(t, True)),
+        "fig05_rigid_torque.png": draw.baseline_torque(
+            t, baseline, j.baseline_torque(t, True), ju.baseline_torque(t, True)),
         "fig06_torque_k400.png": draw.table4_spring(
-            t, rigid, j.motor_torque(t, k400, False),
+            t, baseline, j.motor_torque(t, k400, False),
             j.motor_torque(t, float(paper_number_to_si(400.0)), False)),
         "fig07_torque_vs_stiffness.png": by_stiffness(
             "Fig. 7 analogue: 100–1200 (eq. 19 units)", [100.0, 300.0, 500.0, 700.0, 900.0,

@@ -78,7 +78,7 @@ def evaluate_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, S
         for name in GAIT_PARAMETERS:
             value = full[name]
             row[f"gait.{name}"] = math.nan if value is None else value
-        row["springs"] = "+".join(design) or "none"
+        row["springs"] = "+".join(design) or "baseline"
         row.update(_design_columns(groups, design))
         row.update(ev.row(groups, design))
         rows.append(row)
