@@ -20,9 +20,17 @@ from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Leg, LegSpec, Robot, load_robot
 from hexaleg.robot.motor import CATALOGUE, DEFAULT_MOTOR, Motor, motor_from_mapping
 from hexaleg.robot.registry import DESCRIPTIONS, load
-from hexaleg.robot.springs import DeadZoneSpring, SpringSet
+from hexaleg.robot.springs import (
+    DeadZoneSpring,
+    LinearSpring,
+    OneSidedSpring,
+    PreloadedSpring,
+    SpringSet,
+    StiffeningSpring,
+)
 
 if TYPE_CHECKING:  # the names __getattr__ imports on first use, for type checkers and the docs
+    from hexaleg.design.codesign import OptimalSprings, optimal_springs
     from hexaleg.design.evaluator import Evaluator, RunSpec, evaluator
     from hexaleg.design.optimise import optimise
     from hexaleg.design.placement import placement
@@ -50,8 +58,12 @@ __all__ = [
     "HexalegError",
     "Leg",
     "LegSpec",
+    "LinearSpring",
     "Motion",
     "Motor",
+    "OneSidedSpring",
+    "OptimalSprings",
+    "PreloadedSpring",
     "Prepared",
     "ReportConfig",
     "Robot",
@@ -59,6 +71,7 @@ __all__ = [
     "RunSpec",
     "Sinusoid",
     "SpringSet",
+    "StiffeningSpring",
     "SweepSpec",
     "ViewParams",
     "__version__",
@@ -74,6 +87,7 @@ __all__ = [
     "load_robot",
     "metrics",
     "motor_from_mapping",
+    "optimal_springs",
     "optimise",
     "placement",
     "prepare",
@@ -92,6 +106,7 @@ _LAZY: dict[str, str] = {
     "write_report": "hexaleg.studies.report.write",
     **dict.fromkeys(("Evaluator", "RunSpec", "evaluator"), "hexaleg.design.evaluator"),
     "optimise": "hexaleg.design.optimise",
+    **dict.fromkeys(("OptimalSprings", "optimal_springs"), "hexaleg.design.codesign"),
     "placement": "hexaleg.design.placement",
     "robustness": "hexaleg.design.robustness",
     "SweepSpec": "hexaleg.studies.sweep.spec",

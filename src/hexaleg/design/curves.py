@@ -115,7 +115,8 @@ def stiffness_curve(prepared: Prepared, springs: SpringSet, spec: str, stiffness
             raise UnknownNameError("curve metric", m, CURVE_METRICS)
     ks = np.asarray(stiffness, dtype=float)
     ev = Evaluator(prepared, objective)
-    tau0, tau1 = (SpringSet({**springs, **{j: springs[j].with_stiffness(k) for j in joints}})
+    zones = SpringSet(springs).dead_zones("a stiffness curve")
+    tau0, tau1 = (SpringSet({**springs, **{j: zones[j].with_stiffness(k) for j in joints}})
                   .torques(robot, motion.q, motion.v) for k in (0.0, 1.0))
     totals = {m: np.empty(ks.size) for m in metrics}
     errors: list[str | None] = []
@@ -132,7 +133,7 @@ def stiffness_curve(prepared: Prepared, springs: SpringSet, spec: str, stiffness
                 totals[m][i] = total[m]
         if progress and ((i + 1) % 10 == 0 or i + 1 == ks.size):
             progress(f"stiffness curve {i + 1}/{ks.size}")
-    k_m = {j: design.k_M(robot, motion, j, alpha=springs[j].transmission) for j in joints}
+    k_m = {j: design.k_M(robot, motion, j, alpha=zones[j].transmission) for j in joints}
     return StiffnessCurve(joints=joints, stiffness=ks, totals=totals,
                           baseline={m: ev.baseline["total"][m] for m in metrics},
                           errors=tuple(errors), k_M=k_m)

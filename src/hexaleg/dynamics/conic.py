@@ -78,19 +78,29 @@ def _objective(D: np.ndarray, c: np.ndarray, objective: str, weights: np.ndarray
     return _ConicProgram(P, q, n)
 
 
-def _add_base_rows(program: _ConicProgram, system: StanceSystem, k: int, A: np.ndarray) -> None:
-    """Base rows ``A f = b_base`` of sample ``k``, reduced to their row space: two point feet give
-    only 5 independent rows, and an interior-point solver stalls on redundant equalities. The part
-    of the base wrench outside that space is what no forces can produce (raised here)."""
-    import clarabel
+def base_row_space(system: StanceSystem, k: int, A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Base rows ``A f = b_base`` of sample ``k`` reduced to their row space, ``(rows, rhs)``:
+    two point feet give only 5 independent rows, and an interior-point solver stalls on redundant
+    equalities. The part of the base wrench outside that space is what no forces can produce.
 
+    Raises:
+        InfeasibleForcesError: that part is not zero (:func:`raise_unreachable`).
+    """
     u, sv, _ = np.linalg.svd(A, full_matrices=False)
     rank = int(np.sum(sv > 1e-9 * sv[0]))
     b_in = u[:, :rank].T @ system.b_base[k]
     missing = float(np.linalg.norm(system.b_base[k] - u[:, :rank] @ b_in))
     if missing > 1e-8 * (1.0 + np.abs(system.b_base[k]).max()):
         raise_unreachable(system, k, missing)
-    program.add_on_f(u[:, :rank].T @ A, b_in, clarabel.ZeroConeT(rank))
+    return u[:, :rank].T @ A, b_in
+
+
+def _add_base_rows(program: _ConicProgram, system: StanceSystem, k: int, A: np.ndarray) -> None:
+    """Base rows of sample ``k`` as a zero cone (:func:`base_row_space`)."""
+    import clarabel
+
+    rows, rhs = base_row_space(system, k, A)
+    program.add_on_f(rows, rhs, clarabel.ZeroConeT(rows.shape[0]))
 
 
 def _add_contact_rows(program: _ConicProgram, contact: ContactParams) -> None:
@@ -185,26 +195,41 @@ def _conic_program(system: StanceSystem, k: int, tau_spring: np.ndarray, objecti
     return program
 
 
-def _clarabel_solve(program: _ConicProgram) -> tuple[np.ndarray, str]:
-    """Solve ``program`` at the tightest of :data:`CLARABEL_TOLERANCES` that Clarabel meets (never
-    "almost solved" while a looser one remains); returns ``(x, status)``."""
-    import clarabel
-    import scipy.sparse as sp
+def clarabel_solve(P: object, q: np.ndarray, A: object, b: np.ndarray, cones: list[object]
+                   ) -> tuple[np.ndarray, str]:
+    """Minimise ½ xᵀ P x + qᵀ x subject to ``b − A x`` in ``cones`` with Clarabel, at the tightest
+    of :data:`CLARABEL_TOLERANCES` it meets (never "almost solved" while a looser one remains; a
+    stall short of the tolerances, "insufficient progress", also moves on to the next one).
 
-    Amat = sp.csc_matrix(np.vstack(program.rows))
-    bvec = np.concatenate(program.rhs)
+    Args:
+        P: The upper triangle of P (scipy.sparse CSC). q: (n,).
+        A: Constraint rows (scipy.sparse CSC, (m, n)). b: (m,). cones: Clarabel cones, in row order.
+
+    Returns:
+        ``(x, status)``.
+    """
+    import clarabel
+
     settings = clarabel.DefaultSettings()
     settings.verbose = False
     settings.max_iter = 200
     for tol in CLARABEL_TOLERANCES:
         settings.tol_gap_abs = settings.tol_gap_rel = settings.tol_feas = tol
         settings.tol_ktratio = 100 * tol
-        solution = clarabel.DefaultSolver(sp.csc_matrix(np.triu(program.P)), program.q, Amat,
-                                          bvec, program.cones, settings).solve()
+        solution = clarabel.DefaultSolver(P, q, A, b, cones, settings).solve()
         status = str(solution.status)
-        if status != "AlmostSolved":
+        if status not in ("AlmostSolved", "InsufficientProgress"):
             break
     return np.asarray(solution.x), status
+
+
+def _clarabel_solve(program: _ConicProgram) -> tuple[np.ndarray, str]:
+    """Solve one sample's ``program`` (:func:`clarabel_solve`); returns ``(x, status)``."""
+    import scipy.sparse as sp
+
+    return clarabel_solve(sp.csc_matrix(np.triu(program.P)), program.q,
+                          sp.csc_matrix(np.vstack(program.rows)), np.concatenate(program.rhs),
+                          program.cones)
 
 
 def solve_sample(system: StanceSystem, k: int, tau_spring: np.ndarray, objective: str,

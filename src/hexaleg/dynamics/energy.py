@@ -128,7 +128,7 @@ def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor, *,
     names = tuple(f"j{j}" for j in range(n)) if joint_names is None else tuple(joint_names)
     if len(names) != n:
         raise InvalidParameterError("joint_names", names, f"{n} names, one per column of tau")
-    weight = _quadrature_weights(t.shape[0], dt, periodic)
+    weight = quadrature_weights(t.shape[0], dt, periodic)
     joint, total = _cycle_integrals(t, w, weight, motor)
     result: dict[str, Any] = {
         "joint_names": names, "motor": motor.name, "duration": float(weight.sum()),
@@ -157,7 +157,7 @@ def _columns(tau: ArrayLike, qdot: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     return t, w
 
 
-def _quadrature_weights(n_samples: int, dt: float, periodic: bool) -> np.ndarray:
+def quadrature_weights(n_samples: int, dt: float, periodic: bool) -> np.ndarray:
     """Trapezoidal-rule weights (T,), s: ``dt`` on a periodic grid without its endpoint; the two
     end samples ``dt / 2`` on a motion with both ends stored."""
     weight = np.full(n_samples, dt)

@@ -40,9 +40,9 @@ from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import Motor
 from hexaleg.robot.motor import motor as motor_by_name
-from hexaleg.robot.springs import DeadZoneSpring, SpringSet
+from hexaleg.robot.springs import Spring, SpringSet
 
-SpringsLike = SpringSet | Mapping[str, DeadZoneSpring] | None
+SpringsLike = SpringSet | Mapping[str, Spring] | None
 
 
 def _as_motor(motor: Motor | str | None) -> Motor:

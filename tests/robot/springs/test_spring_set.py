@@ -8,7 +8,7 @@ import pytest
 
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.robot.model import load_robot
-from hexaleg.robot.springs import DeadZoneSpring, SpringSet
+from hexaleg.robot.springs import DeadZoneSpring, LinearSpring, SpringSet
 
 
 def test_spring_set_torques_columns(robot):
@@ -81,3 +81,16 @@ def test_spring_on_continuous_joint_uses_its_angle(tmp_path):
     springs = SpringSet({"j": s})
     np.testing.assert_allclose(springs.torques(one, q)[:, 0], s.torque(theta))
     np.testing.assert_allclose(springs.energies(one, q)[:, 0], s.energy(theta))
+
+
+def test_any_family_and_a_named_error_where_a_dead_zone_is_needed(robot):
+    s = SpringSet({"LF_femur": LinearSpring(0.5, 0.4, 0.1),
+                   "LF_tibia": DeadZoneSpring(1.0, theta_k=0.1)})
+    q = np.tile(robot.pose("stand"), (3, 1))
+    tau = s.torques(robot, q)
+    c = robot.column("LF_femur")
+    assert tau[0, c] == pytest.approx(0.1 - 0.5 * (q[0, 7 + c] - 0.4))
+    with pytest.raises(InvalidParameterError, match="LF_femur.*LinearSpring"):
+        s.dead_zones("a stiffness curve")
+    with pytest.raises(InvalidParameterError, match="spring law"):
+        SpringSet({"LF_femur": 1.0})

@@ -28,17 +28,15 @@ the main spring is engaged) and goes through the same transmission factor as its
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, NamedTuple, cast
+from typing import NamedTuple, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from hexaleg.checks import finite_array, real
 from hexaleg.errors import InvalidParameterError
+from hexaleg.robot.springs.terms import Term
 from hexaleg.units import deg_to_rad, nmm_per_deg_to_nm_per_rad, nmms_per_deg_to_nms_per_rad
-
-if TYPE_CHECKING:
-    pass
 
 CONVENTIONS: tuple[str, ...] = ("eq7", "eq14")
 """α conventions of :class:`DeadZoneSpring` (see the module docstring)."""
@@ -201,6 +199,18 @@ class DeadZoneSpring:
             eng = (d > self.th_plus) | (d < self.th_minus)
             damp = np.where(eng, -a * va, 0.0)
         return TorqueBasis(plus, minus, -d, damp)
+
+    def terms(self) -> tuple[Term, ...]:
+        """The elastic law as basis terms (:mod:`hexaleg.robot.springs.terms`): ramps at the two
+        contact angles and the secondary spring, absolute joint angles."""
+        return (Term("above", self.neutral + self.th_plus, "k_plus"),
+                Term("below", self.neutral + self.th_minus, "k_minus"),
+                Term("linear", self.neutral, "k2"))
+
+    def magnitudes(self) -> np.ndarray:
+        """Joint-side magnitudes of :meth:`terms`: a k⁺, a k⁻ (a the transmission), k₂."""
+        a = self.transmission
+        return np.array([a * self.stiffness, a * self.k_minus, self.k2])
 
     def elastic_torque(self, q: ArrayLike) -> np.ndarray:
         """Conservative torque on the joint, N·m, shape of q; exactly −dU/dq."""

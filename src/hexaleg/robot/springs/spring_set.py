@@ -17,31 +17,39 @@ from hexaleg.checks import finite_array
 from hexaleg.config import from_mapping
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.robot.springs.dead_zone import DeadZoneSpring
+from hexaleg.robot.springs.law import TermSpring
 
 if TYPE_CHECKING:
     from hexaleg.robot.model import Robot
 
+Spring = DeadZoneSpring | TermSpring
+"""Any spring law hexaleg has: the paper's dead zone (with α, k₂ and damping) or a family built
+from basis terms (linear, preloaded, one-sided, stiffening)."""
 
-class SpringSet(Mapping[str, DeadZoneSpring]):
+
+class SpringSet(Mapping[str, Spring]):
     """Springs assigned to actuated joints, keyed by joint name (any number, 0 to all).
 
     Args:
         springs: Joint name → spring. Names are checked against a robot when it is used.
 
     Raises:
-        InvalidParameterError: a value is not a :class:`DeadZoneSpring` or a key not a string.
+        InvalidParameterError: a value is not a spring law (:data:`Spring`) or a key not a
+            string.
     """
 
-    def __init__(self, springs: Mapping[str, DeadZoneSpring] | None = None) -> None:
+    def __init__(self, springs: Mapping[str, Spring] | None = None) -> None:
         items = dict(springs or {})
         for name, spring in items.items():
             if not isinstance(name, str):
                 raise InvalidParameterError("joint name", name, "a string")
-            if not isinstance(spring, DeadZoneSpring):
-                raise InvalidParameterError(f"spring on {name}", spring, "a DeadZoneSpring")
+            if not isinstance(spring, (DeadZoneSpring, TermSpring)):
+                raise InvalidParameterError(
+                    f"spring on {name}", spring, "a spring law: DeadZoneSpring, LinearSpring, "
+                    "PreloadedSpring, OneSidedSpring or StiffeningSpring")
         self._springs = items
 
-    def __getitem__(self, name: str) -> DeadZoneSpring:
+    def __getitem__(self, name: str) -> Spring:
         try:
             return self._springs[name]
         except KeyError:
@@ -55,6 +63,19 @@ class SpringSet(Mapping[str, DeadZoneSpring]):
 
     def __repr__(self) -> str:
         return f"SpringSet({self._springs!r})"
+
+    def dead_zones(self, purpose: str) -> dict[str, DeadZoneSpring]:
+        """The springs as dead-zone springs (eq. 8), for ``purpose`` that varies their stiffness.
+
+        Raises:
+            InvalidParameterError: a spring of another family; names the joint and ``purpose``.
+        """
+        for name, spring in self._springs.items():
+            if not isinstance(spring, DeadZoneSpring):
+                raise InvalidParameterError(
+                    f"spring on {name}", type(spring).__name__,
+                    f"a DeadZoneSpring ({purpose} varies a dead zone's stiffness)")
+        return {n: s for n, s in self._springs.items() if isinstance(s, DeadZoneSpring)}
 
     @classmethod
     def from_mapping(cls, data: Mapping[str, Mapping[str, object]], where: str = "springs"
@@ -148,7 +169,7 @@ class SpringSet(Mapping[str, DeadZoneSpring]):
         return self._per_joint(robot, q, None, lambda s, angle, _: s.energy(angle))
 
     def _per_joint(self, robot: Robot, q: ArrayLike, v: ArrayLike | None,
-                   law: Callable[[DeadZoneSpring, np.ndarray, np.ndarray | None], np.ndarray]
+                   law: Callable[[Spring, np.ndarray, np.ndarray | None], np.ndarray]
                    ) -> np.ndarray:
         """``law(spring, angle, velocity)`` of every sprung joint in its column, (T, nj)."""
         out = np.zeros((np.shape(q)[0], robot.nj))

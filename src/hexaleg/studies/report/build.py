@@ -87,7 +87,8 @@ def _report_curve(prepared: Prepared, springs: SpringSet, rp: ReportParams, obje
     joints = robot.joints(rp.curve_joints)
     k_hi = rp.stiffness_max
     if k_hi is None:
-        k_hi = 10 * float(np.mean([design.k_M(robot, motion, j, alpha=base[j].transmission)
+        zones = base.dead_zones("the report's stiffness curve")
+        k_hi = 10 * float(np.mean([design.k_M(robot, motion, j, alpha=zones[j].transmission)
                                    for j in joints]))
     ks = np.linspace(rp.stiffness_min, k_hi, rp.stiffness_points)
     return stiffness_curve(prepared, base, rp.curve_joints, ks, rp.curve_metrics, objective, step)

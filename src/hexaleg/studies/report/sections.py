@@ -85,7 +85,7 @@ def springs_section(robot: Robot, motion: Motion, a: Analysis,
     convention and the fraction of the cycle it is engaged."""
     cols = a.springs.columns(robot)
     rows = {}
-    for name, s in a.springs.items():
+    for name, s in a.springs.dead_zones("the report's spring section").items():
         k_m = design.k_M(robot, motion, name, alpha=s.transmission)
         angle = a.q[:, cols[name]]
         rows[name] = {

@@ -36,7 +36,8 @@ def _stderr_progress(message: str) -> None:
 def _figures(r: Report) -> dict[str, Figure]:
     """The report's figures by name (:data:`PLOTS`)."""
     a, robot, curve, key = r.analysis, r.robot, r.curve, BAR_METRIC
-    zones = {j: (s.neutral + s.th_minus, s.neutral + s.th_plus) for j, s in a.springs.items()}
+    zones = {j: (s.neutral + s.th_minus, s.neutral + s.th_plus)
+             for j, s in a.springs.dead_zones("the report's joint-angle plot").items()}
     return {
         "joint_angles": plots.joint_angles(robot, a.t, a.q, zones),
         "joint_torques": plots.joint_torques(robot, a.t, a.tau_motor, a.tau_spring,

@@ -1,0 +1,192 @@
+"""Spring families as the design program sees them: a geometry, basis terms, magnitudes.
+
+For :func:`hexaleg.design.codesign.optimal_springs` a family is split into its *geometry* —
+angles the convex program holds fixed, relative to the centre of each joint's range of motion in
+the gait (the convention of :mod:`hexaleg.design.evaluator`) — and its *magnitudes*, which are
+decision variables because the spring torque is linear in them
+(:mod:`hexaleg.robot.springs.terms`). This module says, per family, which geometry it has, which
+terms a geometry gives on a joint, which magnitudes must be ≥ 0, how each physical spring element
+deflects (for ``max_deflection``) and which spring law a solution is.
+
+=============  ============================  ====================================================
+family         geometry (rad, from centre)   magnitudes (SI)
+=============  ============================  ====================================================
+``linear``     none (the constant is free)   ``k`` ≥ 0, ``torque_at_reference`` (any sign)
+``dead_zone``  ``theta_minus < theta_plus``  ``k_plus``, ``k_minus`` ≥ 0 (eq. 8, α = 1)
+``preloaded``  ``theta_minus ≤ theta_plus``  ``k_plus``, ``k_minus``, ``preload_plus``,
+                                             ``preload_minus`` ≥ 0
+``one_sided``  ``contact``, ``side``         ``k``, ``preload`` ≥ 0
+``stiffening`` ``above_1 < above_2``,        ``k_above_1``, ``k_above_2``, ``k_below_1``,
+               ``below_1 > below_2``         ``k_below_2`` ≥ 0 (added stiffness per stage)
+=============  ============================  ====================================================
+
+A linear spring's reference angle changes nothing (τ₀ − k (q − q_r) spans the same torques for
+every q_r), so its optimum over the magnitudes is already the global one.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.robot.springs import (
+    SIDES,
+    DeadZoneSpring,
+    LinearSpring,
+    OneSidedSpring,
+    PreloadedSpring,
+    Spring,
+    StiffeningSpring,
+    Term,
+)
+
+FAMILIES: tuple[str, ...] = ("linear", "dead_zone", "preloaded", "one_sided", "stiffening")
+"""Spring families :func:`hexaleg.design.codesign.optimal_springs` designs."""
+
+Geometry = Mapping[str, float | str]
+"""A family's geometry: angle name → rad from the joint's centre of motion (and ``side``)."""
+
+
+@dataclass(frozen=True)
+class Element:
+    """One physical spring of a law, for ``max_deflection``: the indices of its stiffness term
+    and of its preload term (or None) in the family's magnitudes, and whether it is the linear
+    spring (deflection |q − q_equilibrium| on both sides) or one engaging past a contact angle."""
+
+    stiffness: int
+    preload: int | None = None
+    linear: bool = False
+
+
+@dataclass(frozen=True)
+class Family:
+    """A spring family for the design program (module docstring).
+
+    Attributes:
+        name: One of :data:`FAMILIES`.
+        angles: Names of the geometry's angles (rad, from each joint's centre of motion).
+        magnitudes: Names of the magnitudes, in term order.
+        elements: The physical springs (:class:`Element`), for ``max_deflection``.
+    """
+
+    name: str
+    angles: tuple[str, ...]
+    magnitudes: tuple[str, ...]
+    elements: tuple[Element, ...]
+
+    def check(self, geometry: Geometry, where: str) -> dict[str, float | str]:
+        """``geometry`` checked: exactly this family's angles (and ``side`` for one_sided), finite,
+        in order.
+
+        Raises:
+            UnknownNameError: a parameter the family does not have (lists the ones it has).
+            InvalidParameterError: a missing or non-finite angle, angles out of order, a bad side.
+        """
+        allowed = (*self.angles, "side") if self.name == "one_sided" else self.angles
+        for key in geometry:
+            if key not in allowed:
+                raise UnknownNameError(f"{where} geometry parameter of family {self.name}", key,
+                                       allowed)
+        out: dict[str, float | str] = {}
+        for key in self.angles:
+            value = geometry.get(key)
+            if isinstance(value, (bool, str)) or not isinstance(value, (int, float)) or \
+                    not np.isfinite(value):
+                raise InvalidParameterError(f"{where}.{key}", value, "a finite angle (rad)")
+            out[key] = float(value)
+        if self.name == "one_sided":
+            side = geometry.get("side", "above")
+            if side not in SIDES:
+                raise UnknownNameError(f"{where}.side", side, SIDES)
+            out["side"] = side
+        order = {"dead_zone": [("theta_minus", "theta_plus", False)],
+                 "preloaded": [("theta_minus", "theta_plus", True)],
+                 "stiffening": [("above_1", "above_2", False), ("below_2", "below_1", False)]}
+        for low, high, equal in order.get(self.name, []):
+            a, b = float(out[low]), float(out[high])
+            if a > b or (a == b and not equal):
+                raise InvalidParameterError(f"{where}.{low}", a,
+                                            f"{'<=' if equal else '<'} {high} = {b}")
+        return out
+
+    def terms(self, geometry: Geometry, centre: float) -> tuple[Term, ...]:
+        """The basis terms on a joint whose centre of motion is ``centre`` (rad), absolute
+        angles, in :attr:`magnitudes` order."""
+        g = {k: v for k, v in geometry.items() if k != "side"}
+        a = {k: centre + float(v) for k, v in g.items()}
+        if self.name == "linear":
+            return (Term("linear", centre, "k"), Term("constant", centre, "torque_at_reference"))
+        if self.name == "dead_zone":
+            return (Term("above", a["theta_plus"], "k_plus"),
+                    Term("below", a["theta_minus"], "k_minus"))
+        if self.name == "preloaded":
+            return (Term("above", a["theta_plus"], "k_plus"),
+                    Term("below", a["theta_minus"], "k_minus"),
+                    Term("step_above", a["theta_plus"], "preload_plus"),
+                    Term("step_below", a["theta_minus"], "preload_minus"))
+        if self.name == "one_sided":
+            side = str(geometry["side"])
+            return (Term(side, a["contact"], "k"), Term(f"step_{side}", a["contact"], "preload"))
+        return (Term("above", a["above_1"], "k_above_1"), Term("above", a["above_2"], "k_above_2"),
+                Term("below", a["below_1"], "k_below_1"), Term("below", a["below_2"], "k_below_2"))
+
+    def nonnegative(self) -> np.ndarray:
+        """Which magnitudes must be ≥ 0, shape (len(magnitudes),), bool."""
+        return np.array([m != "torque_at_reference" for m in self.magnitudes])
+
+    def spring(self, geometry: Geometry, centre: float, x: Sequence[float] | np.ndarray
+               ) -> Spring:
+        """The spring law of magnitudes ``x`` (SI, :attr:`magnitudes` order) on a joint whose
+        centre of motion is ``centre``; magnitudes a solver left a rounding error below 0 are
+        clipped to 0."""
+        m = dict(zip(self.magnitudes, x, strict=True))
+        for key in m:
+            if key != "torque_at_reference":
+                m[key] = max(float(m[key]), 0.0)
+        g = {k: v for k, v in geometry.items() if k != "side"}
+        a = {k: centre + float(v) for k, v in g.items()}
+        if self.name == "linear":
+            return LinearSpring(m["k"], centre, float(m["torque_at_reference"]))
+        if self.name == "dead_zone":
+            return DeadZoneSpring(stiffness=m["k_plus"], stiffness_minus=m["k_minus"],
+                                  theta_minus=float(g["theta_minus"]),
+                                  theta_plus=float(g["theta_plus"]), neutral=centre)
+        if self.name == "preloaded":
+            return PreloadedSpring(stiffness=m["k_plus"], preload=m["preload_plus"],
+                                   theta_minus=float(g["theta_minus"]),
+                                   theta_plus=float(g["theta_plus"]),
+                                   stiffness_minus=m["k_minus"], preload_minus=m["preload_minus"],
+                                   neutral=centre)
+        if self.name == "one_sided":
+            return OneSidedSpring(m["k"], a["contact"], str(geometry["side"]), m["preload"])
+        return StiffeningSpring(
+            above=((a["above_1"], m["k_above_1"]), (a["above_2"], m["k_above_2"])),
+            below=((a["below_1"], m["k_below_1"]), (a["below_2"], m["k_below_2"])))
+
+
+_FAMILIES = {
+    "linear": Family("linear", (), ("k", "torque_at_reference"), (Element(0, 1, linear=True),)),
+    "dead_zone": Family("dead_zone", ("theta_minus", "theta_plus"), ("k_plus", "k_minus"),
+                        (Element(0), Element(1))),
+    "preloaded": Family("preloaded", ("theta_minus", "theta_plus"),
+                        ("k_plus", "k_minus", "preload_plus", "preload_minus"),
+                        (Element(0, 2), Element(1, 3))),
+    "one_sided": Family("one_sided", ("contact",), ("k", "preload"), (Element(0, 1),)),
+    "stiffening": Family("stiffening", ("above_1", "above_2", "below_1", "below_2"),
+                         ("k_above_1", "k_above_2", "k_below_1", "k_below_2"),
+                         (Element(0), Element(1), Element(2), Element(3))),
+}
+
+
+def family(name: str) -> Family:
+    """The family called ``name``.
+
+    Raises:
+        UnknownNameError: not one of :data:`FAMILIES` (lists them).
+    """
+    if name not in _FAMILIES:
+        raise UnknownNameError("spring family", name, FAMILIES)
+    return _FAMILIES[name]

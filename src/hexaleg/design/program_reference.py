@@ -1,0 +1,120 @@
+"""The design program (:mod:`hexaleg.design.program`) in cvxpy: the reference, and the solver of
+the non-quadratic objectives.
+
+One program for the whole cycle, vectorised — no Python loop of per-sample expressions: the
+forces of all stance feet at all samples are one variable, the base and joint rows are sparse
+block-diagonal matrices, the friction cones one vectorised second-order cone, and the objective
+``Σ_t w_t E(τ(t))`` one expression over the (T·nj) motor torques. The magnitudes x are shared by
+all samples. Solved with Clarabel through cvxpy at the tolerances of
+:data:`hexaleg.dynamics.conic.CLARABEL_TOLERANCES`; for the quadratic objectives the tests
+compare it with the condensed active-set path, which never calls cvxpy.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from typing import Any
+
+import numpy as np
+
+from hexaleg.design.program import DesignProblem, DesignSolution
+from hexaleg.dynamics.conic import CLARABEL_TOLERANCES, base_row_space
+from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES
+from hexaleg.errors import InfeasibleForcesError
+
+
+def _stacked(problem: DesignProblem) -> tuple[Any, Any, np.ndarray, np.ndarray]:
+    """Sparse ``D`` (T·nj, N) and reduced base rows ``A`` (R, N) over the stance forces of all
+    samples (N of them), the base right-hand side (R,), and the stance columns' global indices of
+    the padded force vector (N,) (sample-major)."""
+    import scipy.sparse as sp
+
+    system = problem.prepared.system
+    T, nj = system.n_samples, system.D.shape[1]
+    d_blocks, a_blocks, b_rows, where = [], [], [], []
+    for k in range(T):
+        st = np.flatnonzero(np.repeat(system.stance[k], 3))
+        d_blocks.append(sp.csr_matrix(system.D[k][:, st]) if st.size else
+                        sp.csr_matrix((nj, 0)))
+        if st.size:
+            rows, rhs = base_row_space(system, k, system.A[k][:, st])
+            a_blocks.append(sp.csr_matrix(rows))
+            b_rows.append(rhs)
+        else:
+            a_blocks.append(sp.csr_matrix((0, 0)))
+        where.append(k * system.A.shape[2] + st)
+    D = sp.block_diag(d_blocks, format="csr")
+    A = sp.block_diag(a_blocks, format="csr")
+    A.resize((A.shape[0], D.shape[1]))
+    return D, A, np.concatenate(b_rows) if b_rows else np.zeros(0), np.concatenate(where)
+
+
+def solve_design_reference(problem: DesignProblem) -> DesignSolution:
+    """The global optimum of ``problem`` for any objective, by one cvxpy program.
+
+    Raises:
+        InfeasibleForcesError: cvxpy/Clarabel reports no optimal solution (names the status and
+            the design constraints).
+    """
+    import cvxpy as cp
+
+    prepared = problem.prepared
+    system, contact = prepared.system, prepared.contact
+    T, nj = system.n_samples, system.D.shape[1]
+    D, A, b_base, where = _stacked(problem)
+    N = D.shape[1]
+    f = cp.Variable(N)
+    x = cp.Variable(problem.nx)
+    Bfull = np.zeros((T, nj, problem.nx))
+    Bfull[:, problem.cols] = problem.B
+    tau = system.b_joint.reshape(-1) - D @ f - Bfull.reshape(T * nj, -1) @ x  # (T·nj,)
+    w = np.repeat(problem.sample_weights, nj)
+    c = np.tile(prepared.weights(problem.objective), T)
+    if problem.objective in QUADRATIC_OBJECTIVES:
+        cost = cp.sum(cp.multiply(w * c, cp.square(tau)))
+    else:
+        qd = system.qdot.reshape(-1)
+        if problem.objective == "electrical":
+            eta = system.efficiency
+            power = cp.maximum(cp.multiply(qd / eta, tau), cp.multiply(qd * eta, tau))
+            per_joint = cp.maximum(0, power + cp.multiply(c, cp.square(tau)))
+        else:
+            per_joint = cp.maximum(0, cp.multiply(qd, tau))
+        cost = (cp.sum(cp.multiply(w, per_joint))
+                + contact.regularization * cp.sum(cp.multiply(w, cp.square(tau))))
+    fx, fy, fz = f[0::3], f[1::3], f[2::3]  # stance columns come in (x, y, z) triples
+    cons = [fz >= contact.min_normal_force]
+    if A.shape[0]:
+        cons.append(A @ f == b_base)
+    if contact.cone == "soc":
+        cons.append(cp.SOC(contact.mu * fz, cp.vstack([fx, fy]), axis=0))
+    else:
+        s = contact.mu / math.sqrt(2)
+        cons += [cp.abs(fx) <= s * fz, cp.abs(fy) <= s * fz]
+    if contact.torque_limits:
+        cons.append(cp.abs(tau) <= np.tile(system.tau_max, T))
+    neg = np.flatnonzero(problem.nonnegative)
+    if neg.size:
+        cons.append(x[neg] >= 0)
+    if problem.G.size:
+        cons.append(problem.G @ x <= problem.h)
+    program = cp.Problem(cp.Minimize(cost), cons)
+    for tol in CLARABEL_TOLERANCES:
+        with warnings.catch_warnings():
+            warnings.filterwarnings("ignore", message="Solution may be inaccurate")
+            program.solve(solver=cp.CLARABEL, tol_gap_abs=tol, tol_gap_rel=tol, tol_feas=tol,
+                          tol_ktratio=100 * tol, max_iter=200)
+        if program.status != cp.OPTIMAL_INACCURATE:
+            break
+    if program.status != cp.OPTIMAL:
+        raise InfeasibleForcesError(
+            f"the spring design program has no solution (cvxpy: {program.status}); design "
+            f"constraints: {', '.join(sorted(set(problem.labels))) or 'none'}")
+    xv = np.asarray(x.value, dtype=float)
+    tau_v = np.asarray(tau.value, dtype=float).reshape(T, nj)
+    value = float(np.sum(problem.sample_weights[:, None] * prepared.weights(problem.objective)
+                         * tau_v**2))
+    forces = np.zeros(T * system.A.shape[2])
+    forces[where] = f.value
+    return DesignSolution(xv, value, np.arange(T), 1, forces.reshape(T, -1))

@@ -1,0 +1,106 @@
+"""The outer search over a spring family's geometry; each step is one convex solve.
+
+The magnitudes are optimal for every geometry the search visits (:mod:`hexaleg.design.program`),
+so only a few angles per group are searched: the design's value as a function of them is
+piecewise smooth (samples enter and leave the engaged regions) and bounded by the joints' range
+of motion. The search: a grid over each group's angles in turn with the other groups held (two
+rounds), then bounded Nelder–Mead over all angles together from the best grid point
+(:func:`scipy.optimize.minimize`; derivative-free, tolerant of the kinks). Ordered angles
+(θ⁻ < θ⁺, stage breakpoints) are searched as unordered pairs and sorted, so the box needs no
+ordering constraint. A one-sided spring's side is chosen per group in the grid rounds.
+"""
+
+from __future__ import annotations
+
+import itertools
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from hexaleg.errors import InfeasibleForcesError, TorqueLimitError
+
+if TYPE_CHECKING:
+    from hexaleg.design.codesign import _Setup
+    from hexaleg.design.program import DesignSolution
+
+GRID = {"dead_zone": 7, "preloaded": 7, "one_sided": 9, "stiffening": 3}
+"""Grid points per angle of the search's start, per family."""
+SEPARATION = 1e-9
+"""rad between two angles the sort made equal (a dead zone needs θ⁻ < θ⁺)."""
+MAX_EVALUATIONS = 400
+"""Convex solves the Nelder–Mead stage may spend."""
+
+
+def _geometry(name: str, u: np.ndarray, side: str) -> dict[str, float | str]:
+    """One group's geometry from its search point ``u`` (rad from the centre of motion)."""
+    if name in ("dead_zone", "preloaded"):
+        lo, hi = sorted(float(v) for v in u)
+        if name == "dead_zone" and hi - lo < SEPARATION:
+            hi = lo + SEPARATION
+        return {"theta_minus": lo, "theta_plus": hi}
+    if name == "one_sided":
+        return {"contact": float(u[0]), "side": side}
+    a1, a2 = sorted(float(v) for v in u[:2])
+    b2, b1 = sorted(float(v) for v in u[2:])
+    return {"above_1": a1, "above_2": max(a2, a1 + SEPARATION),
+            "below_1": b1, "below_2": min(b2, b1 - SEPARATION)}
+
+
+def _grid(n: int, ticks: np.ndarray) -> list[tuple[float, ...]]:
+    """Start points of one group with ``n`` angles (1, 2 or 4), in units of its half range: every
+    tick for one angle, unordered pairs for two (they are sorted), pairs of pairs for four."""
+    if n == 1:
+        return [(float(t),) for t in ticks]
+    pairs: list[tuple[float, ...]] = list(
+        itertools.combinations_with_replacement((float(t) for t in ticks), 2))
+    return pairs if n == 2 else [a + b for a, b in itertools.product(pairs, pairs)]
+
+
+def search_geometry(setup: _Setup) -> tuple[dict[str, dict[str, float | str]],
+                                            DesignSolution, int]:
+    """The best geometry found, its solution and the number of convex solves (module docstring).
+    """
+    from scipy.optimize import minimize
+
+    fam, groups = setup.fam, list(setup.groups)
+    if not fam.angles:
+        geometry: dict[str, dict[str, float | str]] = {g: {} for g in groups}
+        return geometry, setup.solve(geometry), 1
+    n = len(fam.angles)
+    half = np.array([setup.half_range(g) for g in groups])
+    sides = {g: "above" for g in groups}
+    best: dict[str, object] = {"value": np.inf}
+    count = 0
+
+    def value(u: np.ndarray) -> float:
+        nonlocal count
+        count += 1
+        geometry = {g: _geometry(fam.name, u[i * n:(i + 1) * n], sides[g])
+                    for i, g in enumerate(groups)}
+        try:
+            solution = setup.solve(geometry)
+        except (InfeasibleForcesError, TorqueLimitError):
+            return np.inf
+        if solution.value < best["value"]:  # type: ignore[operator]
+            best.update(value=solution.value, geometry=geometry, solution=solution, u=u.copy())
+        return solution.value
+
+    u = np.zeros(n * len(groups))
+    ticks = np.linspace(-1.0, 1.0, GRID[fam.name])
+    for _ in range(2):
+        for i, g in enumerate(groups):
+            options = ("above", "below") if fam.name == "one_sided" else (sides[g],)
+            for point in _grid(n, ticks):
+                for side in options:
+                    sides[g] = side
+                    trial = u.copy()
+                    trial[i * n:(i + 1) * n] = half[i] * np.ravel(point)
+                    value(trial)
+            u = np.asarray(best["u"])
+            sides.update({h: str(best["geometry"][h].get("side", "above"))  # type: ignore[index]
+                          for h in groups})
+    scale = np.repeat(half, n)
+    minimize(lambda z: value(np.clip(z, -1.0, 1.0) * scale), u / scale, method="Nelder-Mead",
+             bounds=[(-1.0, 1.0)] * u.size,
+             options={"maxfev": MAX_EVALUATIONS, "xatol": 1e-4, "fatol": 1e-12})
+    return best["geometry"], best["solution"], count  # type: ignore[return-value]

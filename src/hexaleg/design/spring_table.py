@@ -1,0 +1,36 @@
+"""A designed spring's numbers as ``{value, unit}``, in SI and in the paper's units.
+
+The paper states stiffness in N·mm/deg and angles in degrees (Tables 4–5); conversions go through
+:mod:`hexaleg.units` only.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from hexaleg.units import nm_per_rad_to_nmm_per_deg, nm_to_nmm, rad_to_deg
+
+
+def _quantity(value: Any, unit: str) -> dict[str, Any]:
+    return {"value": float(value), "unit": unit}
+
+
+def magnitudes_table(geometry: Mapping[str, float | str], magnitudes: Mapping[str, float]
+                     ) -> dict[str, Any]:
+    """``{name: {"si": {value, unit}, "paper": {value, unit}}}`` for every angle (rad, deg),
+    stiffness (``k…``: N·m/rad, N·mm/deg) and torque (preloads and the constant: N·m, N·mm);
+    a one-sided spring's ``side`` as text."""
+    out: dict[str, Any] = {}
+    for name, v in geometry.items():
+        if isinstance(v, str):
+            out[name] = v
+        else:
+            out[name] = {"si": _quantity(v, "rad"), "paper": _quantity(rad_to_deg(v), "deg")}
+    for name, v in magnitudes.items():
+        if name.startswith("k"):
+            out[name] = {"si": _quantity(v, "N·m/rad"),
+                         "paper": _quantity(nm_per_rad_to_nmm_per_deg(v), "N·mm/deg")}
+        else:
+            out[name] = {"si": _quantity(v, "N·m"), "paper": _quantity(nm_to_nmm(v), "N·mm")}
+    return out
