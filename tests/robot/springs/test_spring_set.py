@@ -90,7 +90,7 @@ def test_any_family_and_a_named_error_where_a_dead_zone_is_needed(robot):
     tau = s.torques(robot, q)
     c = robot.column("LF_femur")
     assert tau[0, c] == pytest.approx(0.1 - 0.5 * (q[0, 7 + c] - 0.4))
-    with pytest.raises(InvalidParameterError, match="LF_femur.*LinearSpring"):
+    with pytest.raises(InvalidParameterError, match=r"LF_femur.*LinearSpring"):
         s.dead_zones("a stiffness curve")
     with pytest.raises(InvalidParameterError, match="spring law"):
         SpringSet({"LF_femur": 1.0})
