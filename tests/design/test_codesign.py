@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import hexaleg
-from hexaleg.design.codesign import optimal_springs
+from hexaleg.design.codesign import design_problem, optimal_springs
 from hexaleg.design.families import FAMILIES, family
 from hexaleg.design.optimise import optimise
 from hexaleg.errors import InvalidParameterError, UnknownNameError
@@ -67,23 +67,12 @@ def test_fast_path_equals_cvxpy_for_all_18_joints(prepared200, slippery200, fam)
     for prepared in (prepared200, slippery200):
         res = optimal_springs(prepared, {j: [j] for j in joints}, fam,
                               geometry={j: GEOMETRY[fam] for j in joints})
-        problem = _problem(prepared, res)
+        problem = design_problem(prepared, res.groups, fam, res.geometry)
         fast, ref = solve_design(problem), solve_design_reference(problem)
         assert abs(fast.value - ref.value) <= 1e-6 * ref.value
         np.testing.assert_allclose(fast.x, ref.x, atol=1e-6)
         np.testing.assert_allclose(fast.forces, ref.forces, atol=1e-6)
     assert fast.explicit.size > 0  # μ = 0.3: the active set was needed
-
-
-def _problem(prepared, res):
-    from hexaleg.design.codesign import _Setup
-
-    q = {j: prepared.q[:, prepared.robot.column(j)] for j in prepared.robot.joint_names}
-    setup = _Setup(prepared, res.objective, family(res.family), res.groups,
-                   {j: (v.min() + v.max()) / 2 for j, v in q.items()},
-                   {j: v.min() for j, v in q.items()}, {j: v.max() for j, v in q.items()},
-                   None, None)
-    return setup.problem(res.geometry)
 
 
 @pytest.mark.parametrize("fam", FAMILIES)

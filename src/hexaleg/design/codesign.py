@@ -43,6 +43,10 @@ GRID = 7
 ZERO_STIFFNESS = 1e-9
 """k below this (N·m/rad) with a nonzero constant torque reads as a constant-torque spring."""
 
+ENGAGED = 1e-9
+"""A term acts over the gait where its basis exceeds this somewhere (rad of compression, or the
+unit step); below it the term is fixed at 0 instead of left to round-off."""
+
 Groups = Mapping[str, Sequence[str] | str] | Sequence[str]
 
 
@@ -147,7 +151,7 @@ class _Setup:
             for j in js:
                 terms = fam.terms(geometry[g], self.centre[j])
                 B[:, i, sl] = basis(terms, p.q[:, p.robot.column(j)])
-                engaged |= np.any(B[:, i, sl] != 0, axis=0)
+                engaged |= np.any(np.abs(B[:, i, sl]) > ENGAGED, axis=0)
                 for row, rhs, label in self._rows(terms, j):
                     full = np.zeros(B.shape[2])
                     full[sl] = row
@@ -232,23 +236,9 @@ def optimal_springs(prepared: Prepared, groups: Groups, family_name: str = "line
         InfeasibleForcesError, TorqueLimitError: the gait has no admissible forces even without
             springs (the baseline), or the program has no solution.
     """
-    fam = family(family_name)
-    check_objective(objective)
-    if max_torque is not None:
-        max_torque = real("max_torque", max_torque, low=0.0, low_open=True,
-                          allowed="a finite torque > 0 (N·m), or None")
-    if max_deflection is not None:
-        max_deflection = real("max_deflection", max_deflection, low=0.0, low_open=True,
-                              allowed="a finite angle > 0 (rad), or None")
-    resolved = resolve_groups(prepared, groups)
+    setup = _setup(prepared, groups, family_name, objective, max_torque, max_deflection)
+    resolved, fam = setup.groups, setup.fam
     baseline = float(prepared.baseline(objective)["total"][OBJECTIVE_METRIC[objective]])
-    joints = [j for js in resolved.values() for j in js]
-    qs = {j: prepared.q[:, prepared.robot.column(j)] for j in joints}
-    setup = _Setup(prepared, objective, fam, resolved,
-                   centre={j: float(q.min() + q.max()) / 2 for j, q in qs.items()},
-                   q_min={j: float(q.min()) for j, q in qs.items()},
-                   q_max={j: float(q.max()) for j, q in qs.items()},
-                   max_torque=max_torque, max_deflection=max_deflection)
     if geometry is not None:
         unknown = [g for g in geometry if g not in resolved]
         if unknown:
@@ -262,6 +252,39 @@ def optimal_springs(prepared: Prepared, groups: Groups, family_name: str = "line
     else:
         chosen, solution, evaluations = search_geometry(setup)
     return _result(setup, chosen, solution, evaluations, baseline)
+
+
+def _setup(prepared: Prepared, groups: Groups, family_name: str, objective: str,
+           max_torque: float | None, max_deflection: float | None) -> _Setup:
+    """The checked inputs of :func:`optimal_springs` and each joint's range of motion."""
+    fam = family(family_name)
+    check_objective(objective)
+    if max_torque is not None:
+        max_torque = real("max_torque", max_torque, low=0.0, low_open=True,
+                          allowed="a finite torque > 0 (N·m), or None")
+    if max_deflection is not None:
+        max_deflection = real("max_deflection", max_deflection, low=0.0, low_open=True,
+                              allowed="a finite angle > 0 (rad), or None")
+    resolved = resolve_groups(prepared, groups)
+    qs = {j: prepared.q[:, prepared.robot.column(j)] for js in resolved.values() for j in js}
+    return _Setup(prepared, objective, fam, resolved,
+                  centre={j: float(q.min() + q.max()) / 2 for j, q in qs.items()},
+                  q_min={j: float(q.min()) for j, q in qs.items()},
+                  q_max={j: float(q.max()) for j, q in qs.items()},
+                  max_torque=max_torque, max_deflection=max_deflection)
+
+
+def design_problem(prepared: Prepared, groups: Groups, family_name: str,
+                   geometry: Mapping[str, Geometry], objective: str = "joule", *,
+                   max_torque: float | None = None, max_deflection: float | None = None
+                   ) -> DesignProblem:
+    """The design program :func:`optimal_springs` solves for a given geometry (arguments as
+    there), for benchmarks and comparisons of the solvers
+    (:func:`hexaleg.design.program.solve_design`,
+    :func:`hexaleg.design.program_reference.solve_design_reference`)."""
+    setup = _setup(prepared, groups, family_name, objective, max_torque, max_deflection)
+    return setup.problem({g: setup.fam.check(geometry.get(g, {}), f"geometry[{g}]")
+                          for g in setup.groups})
 
 
 def _result(setup: _Setup, geometry: dict[str, dict[str, float | str]],
@@ -295,4 +318,5 @@ def _result(setup: _Setup, geometry: dict[str, dict[str, float | str]],
                 "geometry_evaluations": evaluations})
 
 
-__all__ = ["FAMILIES", "OBJECTIVE_METRIC", "OptimalSprings", "optimal_springs", "resolve_groups"]
+__all__ = ["FAMILIES", "OBJECTIVE_METRIC", "OptimalSprings", "design_problem", "optimal_springs",
+           "resolve_groups"]

@@ -5,22 +5,23 @@ One program for the whole cycle, vectorised — no Python loop of per-sample exp
 forces of all stance feet at all samples are one variable, the base and joint rows are sparse
 block-diagonal matrices, the friction cones one vectorised second-order cone, and the objective
 ``Σ_t w_t E(τ(t))`` one expression over the (T·nj) motor torques. The magnitudes x are shared by
-all samples. Solved with Clarabel through cvxpy at the tolerances of
-:data:`hexaleg.dynamics.conic.CLARABEL_TOLERANCES`; for the quadratic objectives the tests
+all samples. Solved with Clarabel through cvxpy
+(:func:`hexaleg.dynamics.reference.solve_clarabel`, the tolerance ladder of
+:data:`hexaleg.dynamics.conic.CLARABEL_TOLERANCES`); for the quadratic objectives the tests
 compare it with the condensed active-set path, which never calls cvxpy.
 """
 
 from __future__ import annotations
 
 import math
-import warnings
 from typing import Any
 
 import numpy as np
 
 from hexaleg.design.program import DesignProblem, DesignSolution
-from hexaleg.dynamics.conic import CLARABEL_TOLERANCES, base_row_space
+from hexaleg.dynamics.conic import base_row_space
 from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES
+from hexaleg.dynamics.reference import solve_clarabel
 from hexaleg.errors import InfeasibleForcesError
 
 
@@ -100,14 +101,7 @@ def solve_design_reference(problem: DesignProblem) -> DesignSolution:
     if problem.G.size:
         cons.append(problem.G @ x <= problem.h)
     program = cp.Problem(cp.Minimize(cost), cons)
-    for tol in CLARABEL_TOLERANCES:
-        with warnings.catch_warnings():
-            warnings.filterwarnings("ignore", message="Solution may be inaccurate")
-            program.solve(solver=cp.CLARABEL, tol_gap_abs=tol, tol_gap_rel=tol, tol_feas=tol,
-                          tol_ktratio=100 * tol, max_iter=200)
-        if program.status != cp.OPTIMAL_INACCURATE:
-            break
-    if program.status != cp.OPTIMAL:
+    if solve_clarabel(program) != cp.OPTIMAL:
         raise InfeasibleForcesError(
             f"the spring design program has no solution (cvxpy: {program.status}); design "
             f"constraints: {', '.join(sorted(set(problem.labels))) or 'none'}")

@@ -3,11 +3,14 @@
 The magnitudes are optimal for every geometry the search visits (:mod:`hexaleg.design.program`),
 so only a few angles per group are searched: the design's value as a function of them is
 piecewise smooth (samples enter and leave the engaged regions) and bounded by the joints' range
-of motion. The search: a grid over each group's angles in turn with the other groups held (two
-rounds), then bounded Nelder–Mead over all angles together from the best grid point
-(:func:`scipy.optimize.minimize`; derivative-free, tolerant of the kinks). Ordered angles
-(θ⁻ < θ⁺, stage breakpoints) are searched as unordered pairs and sorted, so the box needs no
-ordering constraint. A one-sided spring's side is chosen per group in the grid rounds.
+of motion widened by a wind-up allowance (a contact angle beyond the motion's far end is a
+spring engaged throughout, pre-wound by the distance: ``max_deflection`` when given, else
+:data:`WIND_UP`, the old optimiser's ±1 rad offset bound). The search: a grid over each group's
+angles in turn with the other groups held (two rounds), then bounded Nelder–Mead over all angles
+together from the best grid point (:func:`scipy.optimize.minimize`; derivative-free, tolerant of
+the kinks). Ordered angles (θ⁻ < θ⁺, stage breakpoints) are searched as unordered pairs and
+sorted, so the box needs no ordering constraint. A one-sided spring's side is chosen per group
+in the grid rounds.
 """
 
 from __future__ import annotations
@@ -23,10 +26,14 @@ if TYPE_CHECKING:
     from hexaleg.design.codesign import _Setup
     from hexaleg.design.program import DesignSolution
 
-GRID = {"dead_zone": 7, "preloaded": 7, "one_sided": 9, "stiffening": 3}
-"""Grid points per angle of the search's start, per family."""
+TICKS = {1: (-1.0, -0.75, -0.5, -0.25, 0.0, 0.25, 0.5, 0.75, 1.0), 2: (-1.0, -0.5, 0.0, 0.5, 1.0),
+         4: (-0.5, 0.5)}
+"""Start-grid angles within the range of motion, in units of the group's half range, by the
+number of angles of the family; the two wind-up extremes ±(half range + allowance) are added."""
 SEPARATION = 1e-9
 """rad between two angles the sort made equal (a dead zone needs θ⁻ < θ⁺)."""
+WIND_UP = 1.0
+"""rad the search box extends beyond each group's range of motion without ``max_deflection``."""
 MAX_EVALUATIONS = 400
 """Convex solves the Nelder–Mead stage may spend."""
 
@@ -47,8 +54,8 @@ def _geometry(name: str, u: np.ndarray, side: str) -> dict[str, float | str]:
 
 
 def _grid(n: int, ticks: np.ndarray) -> list[tuple[float, ...]]:
-    """Start points of one group with ``n`` angles (1, 2 or 4), in units of its half range: every
-    tick for one angle, unordered pairs for two (they are sorted), pairs of pairs for four."""
+    """Start points of one group with ``n`` angles (1, 2 or 4), rad: every tick for one angle,
+    unordered pairs for two (they are sorted), pairs of pairs for four."""
     if n == 1:
         return [(float(t),) for t in ticks]
     pairs: list[tuple[float, ...]] = list(
@@ -67,7 +74,9 @@ def search_geometry(setup: _Setup) -> tuple[dict[str, dict[str, float | str]],
         geometry: dict[str, dict[str, float | str]] = {g: {} for g in groups}
         return geometry, setup.solve(geometry), 1
     n = len(fam.angles)
-    half = np.array([setup.half_range(g) for g in groups])
+    wind = setup.max_deflection if setup.max_deflection is not None else WIND_UP
+    motion = np.array([setup.half_range(g) for g in groups])
+    half = motion + wind
     sides = {g: "above" for g in groups}
     best: dict[str, object] = {"value": np.inf}
     count = 0
@@ -86,15 +95,15 @@ def search_geometry(setup: _Setup) -> tuple[dict[str, dict[str, float | str]],
         return solution.value
 
     u = np.zeros(n * len(groups))
-    ticks = np.linspace(-1.0, 1.0, GRID[fam.name])
     for _ in range(2):
         for i, g in enumerate(groups):
             options = ("above", "below") if fam.name == "one_sided" else (sides[g],)
+            ticks = np.array([-half[i], *(motion[i] * np.array(TICKS[n])), half[i]])
             for point in _grid(n, ticks):
                 for side in options:
                     sides[g] = side
                     trial = u.copy()
-                    trial[i * n:(i + 1) * n] = half[i] * np.ravel(point)
+                    trial[i * n:(i + 1) * n] = np.ravel(point)
                     value(trial)
             u = np.asarray(best["u"])
             sides.update({h: str(best["geometry"][h].get("side", "above"))  # type: ignore[index]

@@ -92,7 +92,7 @@ def _load_sample(ref: _ReferenceProblem, system: StanceSystem, k: int, tau_sprin
     return m
 
 
-def _solve(problem: cp.Problem) -> str:
+def solve_clarabel(problem: cp.Problem) -> str:
     """Solve with Clarabel: tight tolerances first; where Clarabel stalls short of them
     ("inaccurate"), loosen step by step and keep the first solve that meets its own tolerances.
     Returns the final status."""
@@ -139,7 +139,7 @@ def solve_reference(system: StanceSystem, tau_spring: np.ndarray, objective: str
     out = np.full((T, ref.f.size), np.nan)
     for k in range(T) if samples is None else samples:
         m = _load_sample(ref, system, int(k), tau_spring, contact)
-        status = _solve(ref.problem)
+        status = solve_clarabel(ref.problem)
         if status != cp.OPTIMAL:
             raise_infeasible(system, int(k), tau_spring, contact, status)
         out[k] = ref.f.value * m

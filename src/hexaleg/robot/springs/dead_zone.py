@@ -28,13 +28,14 @@ the main spring is engaged) and goes through the same transmission factor as its
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import NamedTuple, cast
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from hexaleg.checks import finite_array, real
 from hexaleg.errors import InvalidParameterError
+from hexaleg.robot.springs.law import ContactAngles
 from hexaleg.robot.springs.terms import Term
 from hexaleg.units import deg_to_rad, nmm_per_deg_to_nm_per_rad, nmms_per_deg_to_nms_per_rad
 
@@ -64,7 +65,7 @@ class TorqueBasis(NamedTuple):
 
 
 @dataclass(frozen=True)
-class DeadZoneSpring:
+class DeadZoneSpring(ContactAngles):
     """A dead-zone torsion spring on one joint (paper eq. 7–8, generalised).
 
     With Δ = q − neutral, the main spring is engaged for Δ > θ⁺ (stiffness k⁺) and Δ < θ⁻
@@ -122,26 +123,10 @@ class DeadZoneSpring:
             raise InvalidParameterError("alpha", self.alpha, "> 0")
         if self.theta_k is not None and self.theta_k < 0:
             raise InvalidParameterError("theta_k", self.theta_k, ">= 0 (the dead zone is ±theta_k)")
-        if self.theta_minus is None and self.theta_k is None:
-            raise InvalidParameterError("theta_minus", None, "a number, or give theta_k")
-        if self.theta_plus is None and self.theta_k is None:
-            raise InvalidParameterError("theta_plus", None, "a number, or give theta_k")
-        if self.th_minus >= self.th_plus:
-            raise InvalidParameterError("theta_minus", self.th_minus,
-                                        f"< theta_plus = {self.th_plus!r}")
+        self.check_contact_angles(strict=True)
         if self.convention not in CONVENTIONS:
             raise InvalidParameterError("convention", self.convention,
                                         f"one of {', '.join(CONVENTIONS)}")
-
-    @property
-    def th_minus(self) -> float:
-        """θ⁻, rad, relative to neutral."""
-        return self.theta_minus if self.theta_minus is not None else -cast(float, self.theta_k)
-
-    @property
-    def th_plus(self) -> float:
-        """θ⁺, rad, relative to neutral."""
-        return self.theta_plus if self.theta_plus is not None else cast(float, self.theta_k)
 
     @property
     def k_minus(self) -> float:

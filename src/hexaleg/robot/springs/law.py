@@ -9,6 +9,7 @@ tested for each family).
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
+from typing import cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -59,3 +60,36 @@ class TermSpring(ABC):
         """Stored potential energy U(q), J, shape of ``q`` (zero at the angles where every term's
         potential is zero)."""
         return potentials(self.terms(), q) @ self.magnitudes()
+
+
+class ContactAngles:
+    """θ⁻ and θ⁺ of a spring with a dead zone, given as the symmetric ``theta_k`` (±θ_k) or as
+    ``theta_minus`` / ``theta_plus``, rad relative to its neutral. Mixed into the dataclasses that
+    have those three fields."""
+
+    theta_k: float | None
+    theta_minus: float | None
+    theta_plus: float | None
+
+    def check_contact_angles(self, strict: bool) -> None:
+        """Both angles given (directly or through theta_k) and θ⁻ < θ⁺ (``strict``) or ≤.
+
+        Raises:
+            InvalidParameterError: naming the missing or out-of-order angle.
+        """
+        for name in ("theta_minus", "theta_plus"):
+            if getattr(self, name) is None and self.theta_k is None:
+                raise InvalidParameterError(name, None, "a number, or give theta_k")
+        if self.th_minus > self.th_plus or (strict and self.th_minus == self.th_plus):
+            raise InvalidParameterError("theta_minus", self.th_minus,
+                                        f"{'<' if strict else '<='} theta_plus = {self.th_plus!r}")
+
+    @property
+    def th_minus(self) -> float:
+        """θ⁻, rad, relative to neutral."""
+        return self.theta_minus if self.theta_minus is not None else -cast(float, self.theta_k)
+
+    @property
+    def th_plus(self) -> float:
+        """θ⁺, rad, relative to neutral."""
+        return self.theta_plus if self.theta_plus is not None else cast(float, self.theta_k)

@@ -16,18 +16,16 @@ The torque jumps at contact; the potential is continuous, so the law is conserva
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import cast
 
 import numpy as np
 
 from hexaleg.checks import real
-from hexaleg.errors import InvalidParameterError
-from hexaleg.robot.springs.law import TermSpring, magnitude
+from hexaleg.robot.springs.law import ContactAngles, TermSpring, magnitude
 from hexaleg.robot.springs.terms import Term
 
 
 @dataclass(frozen=True)
-class PreloadedSpring(TermSpring):
+class PreloadedSpring(TermSpring, ContactAngles):
     """A preloaded dead-zone spring (module docstring).
 
     Attributes:
@@ -61,22 +59,7 @@ class PreloadedSpring(TermSpring):
         for name in ("theta_minus", "theta_plus", "neutral"):
             if getattr(self, name) is not None:
                 object.__setattr__(self, name, real(name, getattr(self, name)))
-        for name in ("theta_minus", "theta_plus"):
-            if getattr(self, name) is None and self.theta_k is None:
-                raise InvalidParameterError(name, None, "a number, or give theta_k")
-        if self.th_minus > self.th_plus:
-            raise InvalidParameterError("theta_minus", self.th_minus,
-                                        f"<= theta_plus = {self.th_plus!r}")
-
-    @property
-    def th_minus(self) -> float:
-        """θ⁻, rad, relative to neutral."""
-        return self.theta_minus if self.theta_minus is not None else -cast(float, self.theta_k)
-
-    @property
-    def th_plus(self) -> float:
-        """θ⁺, rad, relative to neutral."""
-        return self.theta_plus if self.theta_plus is not None else cast(float, self.theta_k)
+        self.check_contact_angles(strict=False)
 
     def terms(self) -> tuple[Term, ...]:
         up, down = self.neutral + self.th_plus, self.neutral + self.th_minus
