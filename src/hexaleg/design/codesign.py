@@ -25,7 +25,8 @@ from typing import Any, cast
 import numpy as np
 
 from hexaleg.checks import real
-from hexaleg.design.families import FAMILIES, Family, Geometry, family
+from hexaleg.design import families
+from hexaleg.design.families import FAMILIES, Family, Geometry
 from hexaleg.design.program import DesignProblem, DesignSolution, solve_design
 from hexaleg.design.search import search_geometry
 from hexaleg.design.spring_table import magnitudes_table
@@ -206,7 +207,7 @@ class _Setup:
         return solve_design_reference(problem)
 
 
-def optimal_springs(prepared: Prepared, groups: Groups, family_name: str = "linear",
+def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
                     objective: str = "joule", *, max_torque: float | None = None,
                     max_deflection: float | None = None,
                     geometry: Mapping[str, Geometry] | None = None) -> OptimalSprings:
@@ -216,7 +217,7 @@ def optimal_springs(prepared: Prepared, groups: Groups, family_name: str = "line
         prepared: :func:`hexaleg.prepare` of the robot's gait (motor, contact settings).
         groups: ``{name: [joints] or a joint class}`` (one shared design per group: a class, a
             mirrored pair, one joint), or a list of joint classes / joints.
-        family_name: One of :data:`hexaleg.design.families.FAMILIES`.
+        family: One of :data:`hexaleg.design.families.FAMILIES`.
         objective: The force program's objective (:data:`hexaleg.dynamics.contact.OBJECTIVES`),
             summed over the cycle; judged by :data:`OBJECTIVE_METRIC`.
         max_torque: Largest spring torque over the gait, N·m, > 0; None for no bound.
@@ -236,7 +237,7 @@ def optimal_springs(prepared: Prepared, groups: Groups, family_name: str = "line
         InfeasibleForcesError, TorqueLimitError: the gait has no admissible forces even without
             springs (the baseline), or the program has no solution.
     """
-    setup = _setup(prepared, groups, family_name, objective, max_torque, max_deflection)
+    setup = _setup(prepared, groups, family, objective, max_torque, max_deflection)
     resolved, fam = setup.groups, setup.fam
     baseline = float(prepared.baseline(objective)["total"][OBJECTIVE_METRIC[objective]])
     if geometry is not None:
@@ -254,10 +255,10 @@ def optimal_springs(prepared: Prepared, groups: Groups, family_name: str = "line
     return _result(setup, chosen, solution, evaluations, baseline)
 
 
-def _setup(prepared: Prepared, groups: Groups, family_name: str, objective: str,
+def _setup(prepared: Prepared, groups: Groups, family: str, objective: str,
            max_torque: float | None, max_deflection: float | None) -> _Setup:
     """The checked inputs of :func:`optimal_springs` and each joint's range of motion."""
-    fam = family(family_name)
+    fam = families.family(family)
     check_objective(objective)
     if max_torque is not None:
         max_torque = real("max_torque", max_torque, low=0.0, low_open=True,
@@ -274,7 +275,7 @@ def _setup(prepared: Prepared, groups: Groups, family_name: str, objective: str,
                   max_torque=max_torque, max_deflection=max_deflection)
 
 
-def design_problem(prepared: Prepared, groups: Groups, family_name: str,
+def design_problem(prepared: Prepared, groups: Groups, family: str,
                    geometry: Mapping[str, Geometry], objective: str = "joule", *,
                    max_torque: float | None = None, max_deflection: float | None = None
                    ) -> DesignProblem:
@@ -282,7 +283,7 @@ def design_problem(prepared: Prepared, groups: Groups, family_name: str,
     there), for benchmarks and comparisons of the solvers
     (:func:`hexaleg.design.program.solve_design`,
     :func:`hexaleg.design.program_reference.solve_design_reference`)."""
-    setup = _setup(prepared, groups, family_name, objective, max_torque, max_deflection)
+    setup = _setup(prepared, groups, family, objective, max_torque, max_deflection)
     return setup.problem({g: setup.fam.check(geometry.get(g, {}), f"geometry[{g}]")
                           for g in setup.groups})
 
