@@ -132,3 +132,24 @@ def test_the_build_runs_the_walker_and_ci_builds_it_strict():
     assert handler["paths"] == ["src"]
     assert handler["options"]["docstring_style"] == "google"
     assert config["theme"]["font"] is False  # no Google Fonts: the site works offline
+
+
+def test_design_page_quotes_the_design_study_log():
+    """docs/design.md's table is analysis/logs/design_hexaleg.log (itself diffed against the
+    script by test_examples): every energy and saving of the log stands in the page's table."""
+    import re
+
+    root = Path(__file__).resolve().parents[1]
+    log = (root / "analysis" / "logs" / "design_hexaleg.log").read_text()
+    page = (root / "docs" / "design.md").read_text()
+    cls = None
+    rows = 0
+    for line in log.splitlines():
+        if line in ("coxa", "femur", "tibia"):
+            cls = line
+        m = re.match(r"  (.{26}) (\S+) J  saving\s+(\S+) %", line)
+        if m and cls:
+            label, energy, saving = (g.strip() for g in m.groups())
+            assert f"| {cls} | {label} | {energy} | {saving} % |" in page, line
+            rows += 1
+    assert rows == 21
