@@ -165,8 +165,10 @@ def test_bad_input(prepared200):
                         geometry={"femur": {"theta_minus": 0.1, "theta_plus": -0.1}})
     with pytest.raises(InvalidParameterError, match="geometry of group femur"):
         optimal_springs(prepared200, ["femur"], "dead_zone", geometry={})
-    with pytest.raises(UnknownNameError, match="geometry group"):
-        optimal_springs(prepared200, ["femur"], "dead_zone", geometry={"knee": {}})
+    for solve in (optimal_springs, design_problem):  # never silently ignored
+        with pytest.raises(UnknownNameError, match="geometry group"):
+            solve(prepared200, ["femur"], "dead_zone", geometry={
+                "femur": GEOMETRY["dead_zone"], "knee": GEOMETRY["dead_zone"]})
     for value in (0.0, -1.0, float("nan")):
         with pytest.raises(InvalidParameterError, match="max_deflection"):
             optimal_springs(prepared200, ["femur"], max_deflection=value)

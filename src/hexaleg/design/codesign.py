@@ -132,6 +132,24 @@ class _Setup:
     max_torque: float | None
     max_deflection: float | None
 
+    def check_geometry(self, geometry: Mapping[str, Geometry]
+                       ) -> dict[str, dict[str, float | str]]:
+        """Every group's geometry checked by its family; no geometry for an unknown group.
+
+        Raises:
+            UnknownNameError: a group that does not exist (lists the groups), or a geometry
+                parameter the family does not have.
+            InvalidParameterError: a group without its angles, angles out of order.
+        """
+        unknown = [g for g in geometry if g not in self.groups]
+        if unknown:
+            raise UnknownNameError("geometry group", unknown[0], tuple(self.groups))
+        missing = [g for g in self.groups if g not in geometry and self.fam.angles]
+        if missing:
+            raise InvalidParameterError(f"geometry of group {missing[0]}", None,
+                                        f"the angles {', '.join(self.fam.angles)} (rad)")
+        return {g: self.fam.check(geometry.get(g, {}), f"geometry[{g}]") for g in self.groups}
+
     def half_range(self, group: str) -> float:
         return max((self.q_max[j] - self.q_min[j]) / 2 for j in self.groups[group])
 
@@ -238,17 +256,9 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
             springs (the baseline), or the program has no solution.
     """
     setup = _setup(prepared, groups, family, objective, max_torque, max_deflection)
-    resolved, fam = setup.groups, setup.fam
     baseline = float(prepared.baseline(objective)["total"][OBJECTIVE_METRIC[objective]])
     if geometry is not None:
-        unknown = [g for g in geometry if g not in resolved]
-        if unknown:
-            raise UnknownNameError("geometry group", unknown[0], tuple(resolved))
-        missing = [g for g in resolved if g not in geometry and fam.angles]
-        if missing:
-            raise InvalidParameterError(f"geometry of group {missing[0]}", None,
-                                        f"the angles {', '.join(fam.angles)} (rad)")
-        chosen = {g: fam.check(geometry.get(g, {}), f"geometry[{g}]") for g in resolved}
+        chosen = setup.check_geometry(geometry)
         solution, evaluations = setup.solve(chosen), 1
     else:
         chosen, solution, evaluations = search_geometry(setup)
@@ -284,8 +294,7 @@ def design_problem(prepared: Prepared, groups: Groups, family: str,
     (:func:`hexaleg.design.program.solve_design`,
     :func:`hexaleg.design.program_reference.solve_design_reference`)."""
     setup = _setup(prepared, groups, family, objective, max_torque, max_deflection)
-    return setup.problem({g: setup.fam.check(geometry.get(g, {}), f"geometry[{g}]")
-                          for g in setup.groups})
+    return setup.problem(setup.check_geometry(geometry))
 
 
 def _result(setup: _Setup, geometry: dict[str, dict[str, float | str]],

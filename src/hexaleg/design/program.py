@@ -26,12 +26,11 @@ the same program in cvxpy, for every objective, as the reference.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from hexaleg.dynamics.conic import base_row_space, clarabel_solve
+from hexaleg.dynamics.conic import base_row_space, clarabel_solve, contact_rows
 from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES, violations
 from hexaleg.dynamics.energy import quadrature_weights
 from hexaleg.dynamics.prepare import Prepared
@@ -136,26 +135,6 @@ class _Assembler:
         return A, np.concatenate(self.b)
 
 
-def _contact_rows(asm: _Assembler, fcols: np.ndarray, problem: DesignProblem) -> None:
-    """Minimum normal force and friction cone (or inscribed pyramid) of one sample's feet."""
-    import clarabel
-
-    contact = problem.prepared.contact
-    n_st = fcols.size // 3
-    ez = np.zeros((n_st, fcols.size))
-    ez[np.arange(n_st), 3 * np.arange(n_st) + 2] = 1.0
-    asm.add(-ez, fcols, np.full(n_st, -contact.min_normal_force), clarabel.NonnegativeConeT(n_st))
-    for i in range(n_st):
-        foot = fcols[3 * i:3 * i + 3]
-        if contact.cone == "soc":  # (μ f_z, f_x, f_y) in the second-order cone
-            m = -np.array([[0.0, 0.0, contact.mu], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
-            asm.add(m, foot, np.zeros(3), clarabel.SecondOrderConeT(3))
-        else:
-            s = contact.mu / math.sqrt(2)
-            m = -np.array([[-1.0, 0.0, s], [1.0, 0.0, s], [0.0, -1.0, s], [0.0, 1.0, s]])
-            asm.add(m, foot, np.zeros(4), clarabel.NonnegativeConeT(4))
-
-
 def _solve_once(problem: DesignProblem, explicit: np.ndarray, Q: np.ndarray, r: np.ndarray,
                 scale: float) -> tuple[np.ndarray, dict[int, np.ndarray], str]:
     """One Clarabel solve with the condensed quadratic (Q, r) and explicit forces at the samples
@@ -198,7 +177,8 @@ def _solve_once(problem: DesignProblem, explicit: np.ndarray, Q: np.ndarray, r: 
         if st.size:
             rows, rhs = base_row_space(system, k, system.A[k][:, st])
             asm.add(rows, fcols, rhs, clarabel.ZeroConeT(rows.shape[0]))
-            _contact_rows(asm, fcols, problem)
+            for rows, rhs, cone in contact_rows(st.size, prepared.contact):
+                asm.add(rows, fcols, rhs, cone)
         if prepared.contact.torque_limits:
             tmax, b = system.tau_max, system.b_joint[k]
             asm.add(np.vstack([-Z, Z]), zcols, np.concatenate([tmax - b, tmax + b]),

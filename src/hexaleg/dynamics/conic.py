@@ -103,27 +103,35 @@ def _add_base_rows(program: _ConicProgram, system: StanceSystem, k: int, A: np.n
     program.add_on_f(rows, rhs, clarabel.ZeroConeT(rows.shape[0]))
 
 
-def _add_contact_rows(program: _ConicProgram, contact: ContactParams) -> None:
-    """Minimum normal force and friction cone (or inscribed pyramid) of every stance foot."""
+def contact_rows(n_f: int, contact: ContactParams) -> list[tuple[np.ndarray, np.ndarray, object]]:
+    """Minimum normal force and friction cone (or inscribed pyramid) of ``n_f // 3`` stance feet
+    whose forces are ``f`` (n_f,) in (x, y, z) triples: blocks ``(rows (m, n_f), b, cone)`` with
+    ``b − rows f`` in the Clarabel cone."""
     import clarabel
 
-    n = program.n_f
-    n_st = n // 3
-    ez = np.zeros((n_st, n))
+    n_st = n_f // 3
+    ez = np.zeros((n_st, n_f))
     ez[np.arange(n_st), 3 * np.arange(n_st) + 2] = 1.0
-    program.add_on_f(-ez, np.full(n_st, -contact.min_normal_force),
-                     clarabel.NonnegativeConeT(n_st))
+    out: list[tuple[np.ndarray, np.ndarray, object]] = [
+        (-ez, np.full(n_st, -contact.min_normal_force), clarabel.NonnegativeConeT(n_st))]
     for i in range(n_st):
-        e = np.zeros((3, n))
+        e = np.zeros((3, n_f))
         e[0, 3 * i + 2], e[1, 3 * i], e[2, 3 * i + 1] = 1.0, 1.0, 1.0
-        if contact.cone == "soc":
+        if contact.cone == "soc":  # (μ f_z, f_x, f_y) in the second-order cone
             m = e.copy()
             m[0] *= contact.mu
-            program.add_on_f(-m, np.zeros(3), clarabel.SecondOrderConeT(3))
+            out.append((-m, np.zeros(3), clarabel.SecondOrderConeT(3)))
         else:
             s = contact.mu / math.sqrt(2)
             m = np.array([s * e[0] - e[1], s * e[0] + e[1], s * e[0] - e[2], s * e[0] + e[2]])
-            program.add_on_f(-m, np.zeros(4), clarabel.NonnegativeConeT(4))
+            out.append((-m, np.zeros(4), clarabel.NonnegativeConeT(4)))
+    return out
+
+
+def _add_contact_rows(program: _ConicProgram, contact: ContactParams) -> None:
+    """:func:`contact_rows` of one sample's program."""
+    for rows, b, cone in contact_rows(program.n_f, contact):
+        program.add_on_f(rows, b, cone)
 
 
 def _add_torque_limits(program: _ConicProgram, D: np.ndarray, c: np.ndarray,
