@@ -15,6 +15,14 @@ def test_unknown_name_lists_the_valid_names_sorted():
     assert isinstance(e, KeyError) and isinstance(e, errors.HexalegError)
 
 
+@pytest.mark.parametrize(("kind", "plural"), [
+    ("pose", "poses"), ("spring family", "spring families"), ("key in spec [sweep]",
+                                                             "keys in spec [sweep]"),
+    ("class", "classes"), ("joint or joint class", "joint or joint classes")])
+def test_unknown_name_says_the_plural(kind, plural):
+    assert f"valid {plural} are:" in str(errors.UnknownNameError(kind, "x", ["a"]))
+
+
 def test_invalid_parameter_names_value_and_range():
     e = errors.InvalidParameterError("mu", -1.0, "> 0")
     assert str(e) == "invalid mu = -1.0; allowed: > 0"

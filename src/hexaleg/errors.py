@@ -31,7 +31,8 @@ class UnknownNameError(HexalegError, KeyError):
         self.name = name
         self.valid = sorted(str(v) for v in valid)
         super().__init__(
-            f"unknown {kind} {name!r}; valid {kind}s are: {', '.join(self.valid) or '(none)'}"
+            f"unknown {kind} {name!r}; valid {_plural(kind)} are: "
+            f"{', '.join(self.valid) or '(none)'}"
         )
 
     def __str__(self) -> str:  # KeyError would repr() the message otherwise
@@ -82,3 +83,11 @@ class OutputError(HexalegError):
 
 class ExecutorError(HexalegError):
     """A sweep executor (e.g. a Dask scheduler) cannot be reached or failed."""
+
+
+def _plural(kind: str) -> str:
+    """``kind`` in the plural: "spring family" → "spring families", "key in X" → "keys in X"."""
+    head, sep, tail = kind.partition(" in ")
+    noun = (head[:-1] + "ies" if head.endswith("y") and head[-2:-1] not in "aeiou"
+            else head + ("es" if head.endswith(("s", "x", "ch", "sh")) else "s"))
+    return noun + sep + tail
