@@ -23,12 +23,14 @@ import hexaleg
 from hexaleg.design.families import FAMILIES
 
 CLASSES = ("coxa", "femur", "tibia")
+ROUND_OFF = 1e-9  # N·m/rad or N·m: a magnitude at the solver's round-off prints as 0
 
 
 def _magnitudes(res: hexaleg.OptimalSprings, group: str) -> str:
     geometry = ", ".join(f"{k} {v:+.3f}" if isinstance(v, float) else f"{k} {v}"
                          for k, v in res.geometry[group].items())
-    values = ", ".join(f"{k} {v:.4g}" for k, v in res.magnitudes[group].items())
+    values = ", ".join(f"{k} {v:.4g}" if abs(v) > ROUND_OFF else f"{k} 0"
+                       for k, v in res.magnitudes[group].items())
     return f"{values}" + (f"  [{geometry}]" if geometry else "")
 
 

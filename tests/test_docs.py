@@ -153,3 +153,22 @@ def test_design_page_quotes_the_design_study_log():
             assert f"| {cls} | {label} | {energy} | {saving} % |" in page, line
             rows += 1
     assert rows == 21
+
+
+def test_design_page_quotes_the_placement_study_log():
+    """docs/design.md's placement table is analysis/logs/placement_hexaleg.log, row by row."""
+    import re
+
+    root = Path(__file__).resolve().parents[1]
+    log = (root / "analysis" / "logs" / "placement_hexaleg.log").read_text()
+    page = (root / "docs" / "design.md").read_text()
+    family, rows = None, 0
+    for line in log.splitlines():
+        if m := re.match(r"(\w+): every set", line):
+            family = m.group(1)
+        if (m := re.match(r"  (\S+)\s+(\d\.\d{4})\s+(\S+)%\s+(\S+)%\s+(\S+)$", line)) and family:
+            springs, energy, saving, old, gap = m.groups()
+            assert f"| {family} | {springs} | {energy} | {saving} % | {old} % | {gap} |" in page, \
+                line
+            rows += 1
+    assert rows == 14

@@ -228,7 +228,8 @@ class _Setup:
 def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
                     objective: str = "joule", *, max_torque: float | None = None,
                     max_deflection: float | None = None,
-                    geometry: Mapping[str, Geometry] | None = None) -> OptimalSprings:
+                    geometry: Mapping[str, Geometry] | None = None,
+                    start: Mapping[str, Geometry] | None = None) -> OptimalSprings:
     """The optimal springs of one family on the groups' joints for a prepared gait.
 
     Args:
@@ -243,6 +244,8 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
             None for no bound (then a linear spring may come out as a constant-torque spring).
         geometry: Group → geometry (rad from each joint's centre of motion; see
             :mod:`hexaleg.design.families`); None searches it (the linear family has none).
+        start: Group → geometry to start the search from (every group; e.g. each group's
+            optimum alone): the result is never worse than it. Not with ``geometry``.
 
     Returns:
         The optimal springs, their analysis and saving; the magnitudes are the global optimum
@@ -258,10 +261,13 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
     setup = _setup(prepared, groups, family, objective, max_torque, max_deflection)
     baseline = float(prepared.baseline(objective)["total"][OBJECTIVE_METRIC[objective]])
     if geometry is not None:
+        if start is not None:
+            raise InvalidParameterError("start", dict(start), "None when the geometry is given")
         chosen = setup.check_geometry(geometry)
         solution, evaluations = setup.solve(chosen), 1
     else:
-        chosen, solution, evaluations = search_geometry(setup)
+        first = setup.check_geometry(start) if start is not None and setup.fam.angles else None
+        chosen, solution, evaluations = search_geometry(setup, first)
     return _result(setup, chosen, solution, evaluations, baseline)
 
 

@@ -1,62 +1,117 @@
-"""Which joint groups benefit from a spring: each group's optimum alone, then every combination.
+"""Where springs pay: the global optimum for every set of sprung groups, and the old search's gap.
 
-The paper leaves "the appropriate elastic joint assembly position" as future work; this study
-answers it for one gait and one motor with dead-zone springs (eq. 8) optimised per group by
-:func:`hexaleg.design.optimise.optimise`.
+The paper leaves "the appropriate elastic joint assembly position" as future work. For every
+non-empty set of the given groups (a joint class, a mirrored pair, one joint), this study designs
+the springs of one family on exactly those groups *together*, with
+:func:`hexaleg.design.codesign.optimal_springs` (each group its own design; the magnitudes the
+global optimum for the geometry, the geometry searched). A set's search starts from its groups'
+optima alone, so a set never reports less than those designs combined.
+
+Beside each set it reports how far the old design search was from it: each group's symmetric
+dead zone with its neutral offset free in ``offset_bounds`` (grid + Nelder–Mead,
+:func:`hexaleg.design.optimise.optimise`), the groups of the set each at their own old optimum.
 """
 
 from __future__ import annotations
 
 import itertools
-from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING, Any
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-from hexaleg.design.evaluator import DEFAULT_METRIC, Evaluator
+from hexaleg.design.codesign import (
+    OBJECTIVE_METRIC,
+    Groups,
+    OptimalSprings,
+    optimal_springs,
+    resolve_groups,
+)
+from hexaleg.design.evaluator import Evaluator
 from hexaleg.design.optimise import Optimum, optimise
 from hexaleg.dynamics.energy import saving
+from hexaleg.dynamics.prepare import Prepared
 
 if TYPE_CHECKING:  # pandas is imported where tables are made: `import hexaleg` stays light
     import pandas as pd
 
+OFFSET_BOUNDS = (-1.0, 1.0)
+"""rad: the neutral offset range of the old search (its default before the convex program)."""
+SEEDED = ("dead_zone", "preloaded")
+"""Families that contain the old search's offset dead zone: with the comparison, each group's
+search starts at the old optimum's contact angles, so its optimum is never worse than it."""
 
-def placement(ev: Evaluator, groups: Mapping[str, Sequence[str]],
-              metric: str = DEFAULT_METRIC, *,
-              starts: Mapping[str, Sequence[float]] | None = None,
-              **options: Any) -> tuple[dict[str, Optimum], pd.DataFrame]:
-    """Which groups benefit from a spring: each group's optimum, then every combination.
 
-    Each group is optimised alone (:func:`~hexaleg.design.optimise.optimise`, others without
-    springs); every combination of two or more groups is then evaluated with each group at its
-    own optimum (not re-optimised jointly — the groups interact only through the shared foot
-    forces).
+@dataclass(frozen=True)
+class Placement:
+    """The outcome of :func:`placement`.
+
+    Attributes:
+        table: One row per set of sprung groups, best first: ``springs`` (the groups joined by
+            ``+``), ``groups`` (how many), ``value`` (the objective's metric with the springs,
+            :data:`~hexaleg.design.codesign.OBJECTIVE_METRIC`), ``baseline``, ``saving``,
+            ``benefits`` (saving > 0); with the comparison also ``old_value``, ``old_saving``
+            (the old search, each group at its own optimum) and ``gap``
+            (``saving − old_saving``: the fraction of the baseline the old search left).
+        optima: ``springs`` → the :class:`~hexaleg.design.codesign.OptimalSprings` of that set.
+        old: Group → the old search's optimum, or empty without the comparison.
+    """
+
+    table: pd.DataFrame
+    optima: dict[str, OptimalSprings]
+    old: dict[str, Optimum]
+
+
+def placement(prepared: Prepared, groups: Groups, family: str = "preloaded",
+              objective: str = "joule", *, max_torque: float | None = None,
+              max_deflection: float | None = None, compare: bool = True,
+              offset_bounds: tuple[float, float] = OFFSET_BOUNDS) -> Placement:
+    """The global optimum of ``family`` on every set of ``groups``, and the old search's gap.
 
     Args:
-        ev: Evaluator of the gait.
-        groups: Group → joints, e.g. ``{"coxa": robot.joints("coxa"), …}``.
-        metric: A key of :data:`~hexaleg.design.evaluator.METRICS`.
-        starts: Group → (k, θ_k[, offset]) to start from (e.g. a sweep's best point) instead of
-            a grid.
-        **options: More :func:`~hexaleg.design.optimise.optimise` keyword arguments.
+        prepared: :func:`hexaleg.prepare` of the gait.
+        groups: As :func:`~hexaleg.design.codesign.optimal_springs` (``{name: joints}`` or a
+            list of classes / joints).
+        family, objective, max_torque, max_deflection: As
+            :func:`~hexaleg.design.codesign.optimal_springs`.
+        compare: Also run the old search per group (dead zone, offset free) and report its gap.
+        offset_bounds: The old search's neutral offset range, rad.
 
     Returns:
-        (group → optimum, table with one row per set of sprung groups: ``springs``, ``value``,
-        ``baseline``, ``saving``, ``benefits`` (saving > 0), sorted by saving, best first).
+        The table (best first), the optimal springs of every set, the old optima.
+
+    Raises:
+        As :func:`~hexaleg.design.codesign.optimal_springs`.
     """
     import pandas as pd
 
-    starts = starts or {}
-    optima = {g: optimise(ev, g, joints, metric, start=starts.get(g), **options)
-              for g, joints in groups.items()}
+    resolved = resolve_groups(prepared, groups)
+    ev = Evaluator(prepared, objective)
+    metric = OBJECTIVE_METRIC[objective]
+    old = {g: optimise(ev, g, js, metric, offset_bounds=offset_bounds)
+           for g, js in resolved.items()} if compare else {}
+    optima: dict[str, OptimalSprings] = {}
+    for r in range(1, len(resolved) + 1):
+        for combo in itertools.combinations(resolved, r):
+            start = None
+            if family in SEEDED and (r > 1 or old):
+                start = {g: optima[g].geometry[g] if r > 1 else
+                         {"theta_minus": old[g].offset - old[g].theta_k,
+                          "theta_plus": old[g].offset + old[g].theta_k} for g in combo}
+            elif r > 1 and family != "linear":
+                start = {g: optima[g].geometry[g] for g in combo}
+            optima["+".join(combo)] = optimal_springs(
+                prepared, {g: resolved[g] for g in combo}, family, objective,
+                max_torque=max_torque, max_deflection=max_deflection, start=start)
     rows = []
-    names = list(groups)
-    base = float(ev.baseline["total"][metric])
-    for r in range(1, len(names) + 1):
-        for combo in itertools.combinations(names, r):
-            design = {g: optima[g].design() for g in combo}
-            value = optima[combo[0]].value if r == 1 else ev.value(groups, design, metric)
-            rows.append({"springs": "+".join(combo), "value": value, "baseline": base,
-                         "saving": saving(value, base),
-                         **{f"{g}.{p}": v for g in combo for p, v in design[g].items()}})
+    for name, res in optima.items():
+        row: dict[str, object] = {"springs": name, "groups": len(res.groups), "value": res.value,
+                                  "baseline": res.baseline, "saving": res.saving}
+        if old:
+            value = (old[name].value if name in old else  # the old designs together
+                     ev.value(res.groups, {g: old[g].design() for g in res.groups}, metric))
+            row.update(old_value=value, old_saving=saving(value, res.baseline),
+                       gap=res.saving - saving(value, res.baseline))
+        rows.append(row)
     table = pd.DataFrame(rows).sort_values("saving", ascending=False, kind="stable")
     table["benefits"] = table["saving"] > 0
-    return optima, table.reset_index(drop=True)
+    return Placement(table=table.reset_index(drop=True), optima=optima, old=old)
+

@@ -10,12 +10,15 @@ angles in turn with the other groups held (two rounds), then bounded Nelder–Me
 together from the best grid point (:func:`scipy.optimize.minimize`; derivative-free, tolerant of
 the kinks). Ordered angles (θ⁻ < θ⁺, stage breakpoints) are searched as unordered pairs and
 sorted, so the box needs no ordering constraint. A one-sided spring's side is chosen per group
-in the grid rounds.
+in the grid rounds. A start geometry (say, each group's optimum alone, when the groups are then
+designed together) is evaluated first and the grid rounds start from it, so the result is never
+worse than the start.
 """
 
 from __future__ import annotations
 
 import itertools
+from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -24,6 +27,7 @@ from hexaleg.errors import InfeasibleForcesError, TorqueLimitError
 
 if TYPE_CHECKING:
     from hexaleg.design.codesign import _Setup
+    from hexaleg.design.families import Geometry
     from hexaleg.design.program import DesignSolution
 
 TICKS = {1: (-1.0, -0.75, -0.5, -0.25, 0.0, 0.25, 0.5, 0.75, 1.0), 2: (-1.0, -0.5, 0.0, 0.5, 1.0),
@@ -53,6 +57,15 @@ def _geometry(name: str, u: np.ndarray, side: str) -> dict[str, float | str]:
             "below_1": b1, "below_2": min(b2, b1 - SEPARATION)}
 
 
+def _point(name: str, geometry: Geometry) -> tuple[list[float], str]:
+    """The search point and side of one group's geometry (the inverse of :func:`_geometry`)."""
+    if name in ("dead_zone", "preloaded"):
+        return [float(geometry["theta_minus"]), float(geometry["theta_plus"])], "above"
+    if name == "one_sided":
+        return [float(geometry["contact"])], str(geometry["side"])
+    return [float(geometry[a]) for a in ("above_1", "above_2", "below_2", "below_1")], "above"
+
+
 def _grid(n: int, ticks: np.ndarray) -> list[tuple[float, ...]]:
     """Start points of one group with ``n`` angles (1, 2 or 4), rad: every tick for one angle,
     unordered pairs for two (they are sorted), pairs of pairs for four."""
@@ -63,9 +76,13 @@ def _grid(n: int, ticks: np.ndarray) -> list[tuple[float, ...]]:
     return pairs if n == 2 else [a + b for a, b in itertools.product(pairs, pairs)]
 
 
-def search_geometry(setup: _Setup) -> tuple[dict[str, dict[str, float | str]],
-                                            DesignSolution, int]:
+def search_geometry(setup: _Setup, start: Mapping[str, Geometry] | None = None
+                    ) -> tuple[dict[str, dict[str, float | str]], DesignSolution, int]:
     """The best geometry found, its solution and the number of convex solves (module docstring).
+
+    Args:
+        setup: The checked design inputs.
+        start: Group → a checked geometry to start from (every group), or None.
     """
     from scipy.optimize import minimize
 
@@ -95,6 +112,12 @@ def search_geometry(setup: _Setup) -> tuple[dict[str, dict[str, float | str]],
         return solution.value
 
     u = np.zeros(n * len(groups))
+    if start is not None:
+        for i, g in enumerate(groups):
+            u[i * n:(i + 1) * n], sides[g] = _point(fam.name, start[g])
+        value(u)
+        if "u" in best:
+            u = np.asarray(best["u"])
     for _ in range(2):
         for i, g in enumerate(groups):
             options = ("above", "below") if fam.name == "one_sided" else (sides[g],)
@@ -109,7 +132,8 @@ def search_geometry(setup: _Setup) -> tuple[dict[str, dict[str, float | str]],
             sides.update({h: str(best["geometry"][h].get("side", "above"))  # type: ignore[index]
                           for h in groups})
     scale = np.repeat(half, n)
-    minimize(lambda z: value(np.clip(z, -1.0, 1.0) * scale), u / scale, method="Nelder-Mead",
+    minimize(lambda z: value(np.clip(z, -1.0, 1.0) * scale), np.clip(u / scale, -1.0, 1.0),
+             method="Nelder-Mead",
              bounds=[(-1.0, 1.0)] * u.size,
              options={"maxfev": MAX_EVALUATIONS, "xatol": 1e-4, "fatol": 1e-12})
     return best["geometry"], best["solution"], count  # type: ignore[return-value]
