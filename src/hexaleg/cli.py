@@ -179,6 +179,12 @@ def _add_sweep(sub: argparse._SubParsersAction) -> None:
                        ("--dead-zone", "θ_k as a fraction of the half range of motion"),
                        ("--offset", "neutral offset from the centre of motion, rad")):
         p.add_argument(flag, help=f"{what}: VALUE, V1,V2,… or START:STOP:NUM[:log]")
+    p.add_argument("--family", help="instead of a grid of designs: the globally optimal spring "
+                                    "of this family on --joints at each gait (linear, dead_zone, "
+                                    "preloaded, one_sided, stiffening)")
+    p.add_argument("--max-torque", type=float, help="with --family: largest spring torque, N·m")
+    p.add_argument("--max-deflection", type=float,
+                   help="with --family: largest spring deflection from its free position, rad")
     p.add_argument("--period", help="gait period, s (values as above)")
     p.add_argument("--samples", type=int, help="samples per gait cycle")
     p.add_argument("--metric", help="metric to rank by (default: electrical)")
@@ -190,14 +196,22 @@ def _run_sweep(args: argparse.Namespace) -> int:
 
     from hexaleg.errors import InvalidParameterError
     from hexaleg.studies.sweep import SweepSpec, run_sweep, summary
+    from hexaleg.studies.sweep.optimal import OptimalSpec
 
     values = {"k": args.k, "theta_k": args.theta_k, "dead_zone": args.dead_zone,
               "offset": args.offset}
-    if args.spec and (args.joints or any(v is not None for v in values.values())):
-        raise InvalidParameterError("--joints/--k/--theta-k/--dead-zone/--offset",
+    design = (args.family, args.max_torque, args.max_deflection)
+    if args.spec and (args.joints or any(v is not None for v in (*values.values(), *design))):
+        raise InvalidParameterError("--joints/--k/--theta-k/--dead-zone/--offset/--family",
                                     "given with a spec file", "either a spec or the flags")
+    if args.family is None and (args.max_torque, args.max_deflection) != (None, None):
+        raise InvalidParameterError("--max-torque/--max-deflection", "given without --family",
+                                    "bounds of the optimal design of --family")
+    optimal = (OptimalSpec(family=(args.family,), max_torque=args.max_torque,
+                           max_deflection=args.max_deflection) if args.family else None)
     spec = (SweepSpec.from_toml(args.spec) if args.spec else
-            SweepSpec.one_group(args.joints, values, period=args.period, samples=args.samples))
+            SweepSpec.one_group(args.joints, values, period=args.period, samples=args.samples,
+                                optimal=optimal))
     if args.metric:
         spec = dataclasses.replace(spec, metric=args.metric)
     executor = args.executor or ("dask" if args.scheduler else "process")

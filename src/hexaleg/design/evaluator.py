@@ -275,27 +275,38 @@ class Evaluator:
             return math.inf
 
     def row(self, groups: Mapping[str, Sequence[str]], design: Design) -> dict[str, Any]:
-        """Every metric total, its baseline and its saving for ``design``, plus a status.
-
-        Returns:
-            ``{<metric>: …, "baseline.<metric>": …, "saving.<metric>": …, "status": "ok"}``;
-            a design with no admissible forces or torques has ``status`` = the error message
-            and NaN metrics and savings (its baselines stay).
-        """
-        out: dict[str, Any] = {}
+        """Every metric total, its baseline and its saving for ``design``, plus a status
+        (:func:`metric_row`; a design with no admissible forces or torques has the error)."""
         try:
-            m = self.metrics(groups, design)
-            s = savings(m, self.baseline)
-            status = "ok"
+            return metric_row(self.metrics(groups, design), self.baseline)
         except (InfeasibleForcesError, TorqueLimitError) as e:
-            m = {"total": dict.fromkeys(METRICS, math.nan)}
-            s = {"total": dict.fromkeys(SAVING_METRICS, math.nan)}
-            status = f"{type(e).__name__}: {e}"
-        for key in METRICS:
-            out[key] = m["total"][key]
-        for key in METRICS:
-            out[f"baseline.{key}"] = self.baseline["total"][key]
-        for key in SAVING_METRICS:
-            out[f"saving.{key}"] = s["total"][key]
-        out["status"] = status
-        return out
+            return metric_row(None, self.baseline, e)
+
+
+def metric_row(metrics: Mapping[str, Any] | None, baseline: Mapping[str, Any],
+               error: Exception | None = None) -> dict[str, Any]:
+    """A table row of the metric totals with springs, their baselines and savings.
+
+    Args:
+        metrics: :func:`hexaleg.dynamics.energy.metrics` with the springs; None with ``error``.
+        baseline: The same without springs.
+        error: Why there are no metrics (no admissible forces or torques).
+
+    Returns:
+        ``{<metric>: …, "baseline.<metric>": …, "saving.<metric>": …, "status": "ok"}`` for
+        :data:`METRICS`; with ``error``, NaN metrics and savings (the baselines stay) and the
+        error's type and message as the status.
+    """
+    m: Mapping[str, Any]
+    s: Mapping[str, Any]
+    if metrics is None:
+        m = {"total": dict.fromkeys(METRICS, math.nan)}
+        s = {"total": dict.fromkeys(SAVING_METRICS, math.nan)}
+        status = f"{type(error).__name__}: {error}"
+    else:
+        m, s, status = metrics, savings(metrics, baseline), "ok"
+    out: dict[str, Any] = {key: m["total"][key] for key in METRICS}
+    out.update({f"baseline.{key}": baseline["total"][key] for key in METRICS})
+    out.update({f"saving.{key}": s["total"][key] for key in SAVING_METRICS})
+    out["status"] = status
+    return out

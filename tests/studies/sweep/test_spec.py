@@ -87,7 +87,7 @@ def test_one_group_from_command_line_texts():
                                period="0.8", samples=100)
     assert spec.springs == {"femur": {"k": (0.0, 0.5, 1.0), "theta_k": (0.1, 0.2)}}
     assert spec.gait == {"period": 0.8, "samples": 100} and spec.n_points == 6
-    with pytest.raises(InvalidParameterError, match="--joints and --k"):
+    with pytest.raises(InvalidParameterError, match="--joints with --k or --family"):
         SweepSpec.one_group("femur", {"k": None})
     with pytest.raises(InvalidParameterError, match="--theta-k"):
         SweepSpec.one_group("femur", {"k": "1", "theta_k": "0.1:0.2"})

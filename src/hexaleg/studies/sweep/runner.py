@@ -17,6 +17,7 @@ Results are a tidy :class:`pandas.DataFrame`, one row per point, written increme
 from __future__ import annotations
 
 import dataclasses
+import functools
 import importlib.metadata
 import itertools
 import math
@@ -30,6 +31,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from hexaleg.design.codesign import optimal_springs
 from hexaleg.design.evaluator import (
     DEFAULT_METRIC,
     METRICS,
@@ -37,11 +39,13 @@ from hexaleg.design.evaluator import (
     Design,
     RunSpec,
     evaluator,
+    metric_row,
 )
-from hexaleg.errors import UnknownNameError
+from hexaleg.errors import InfeasibleForcesError, TorqueLimitError, UnknownNameError
 from hexaleg.motion.params import GaitParams
 from hexaleg.robot.model import Robot
 from hexaleg.studies.sweep.executors import default_workers, open_executor
+from hexaleg.studies.sweep.optimal import OptimalPoint, OptimalSpec
 from hexaleg.studies.sweep.spec import GAIT_PARAMETERS, SweepSpec
 from hexaleg.studies.sweep.store import ResultStore
 
@@ -63,24 +67,66 @@ def evaluate_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, S
         points: (point index, design) pairs.
 
     Returns:
-        One row per point: ``point``, the gait parameters (``gait.<name>``), the design
+        One row per point: ``point``, the gait parameters (:func:`gait_columns`), the design
         (``<group>.<parameter>``, NaN for a group without a spring at that point, see
-        ``springs``), ``springs`` (the sprung groups joined by ``+``, or ``none``), then
+        ``springs``), ``springs`` (the sprung groups joined by ``+``, or ``baseline``), then
         :meth:`~hexaleg.design.evaluator.Evaluator.row`.
     """
     import pandas as pd
 
     ev = evaluator(run, gait)
-    full = dataclasses.asdict(GaitParams(**gait))
     rows = []
     for index, design in points:
-        row: dict[str, Any] = {"point": index}
-        for name in GAIT_PARAMETERS:
-            value = full[name]
-            row[f"gait.{name}"] = math.nan if value is None else value
+        row: dict[str, Any] = {"point": index, **gait_columns(gait)}
         row["springs"] = "+".join(design) or "baseline"
         row.update(_design_columns(groups, design))
         row.update(ev.row(groups, design))
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def gait_columns(gait: Mapping[str, Any]) -> dict[str, float]:
+    """``gait.<name>`` columns: every :data:`GAIT_PARAMETERS` value of the gait, defaults filled
+    in, NaN where a parameter is None."""
+    full = dataclasses.asdict(GaitParams(**gait))
+    return {f"gait.{name}": math.nan if full[name] is None else full[name]
+            for name in GAIT_PARAMETERS}
+
+
+def optimal_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, Sequence[str]],
+                  optimal: OptimalSpec, points: Sequence[tuple[int, OptimalPoint]]
+                  ) -> pd.DataFrame:
+    """Rows of a chunk of optimal-spring points sharing one gait (the task a worker runs).
+
+    Returns:
+        One row per point: ``point``, the gait parameters, ``springs`` (the sprung groups joined
+        by ``+``), ``family``, the magnitudes and geometry (:meth:`OptimalSpec.columns`; SI,
+        angles from each joint's centre of motion, NaN where the point has none), the
+        :func:`~hexaleg.design.evaluator.metric_row` columns and ``notes``. A point whose
+        program has no solution has that error as its ``status``.
+    """
+    import pandas as pd
+
+    ev = evaluator(run, gait)
+    columns = optimal.columns(list(groups))
+    rows = []
+    for index, (fam, sprung) in points:
+        row: dict[str, Any] = {"point": index, **gait_columns(gait), "springs": "+".join(sprung),
+                               "family": fam}
+        row.update({c: (None if c.endswith(".side") else math.nan) for c in columns})
+        try:
+            res = optimal_springs(ev.prepared, {g: groups[g] for g in sprung}, fam,
+                                  run.objective, max_torque=optimal.max_torque,
+                                  max_deflection=optimal.max_deflection)
+        except (InfeasibleForcesError, TorqueLimitError) as e:
+            row.update(metric_row(None, ev.baseline, e))
+            row["notes"] = ""
+        else:
+            for g in sprung:
+                row.update({f"{g}.{n}": v for n, v in res.magnitudes[g].items()})
+                row.update({f"{g}.{n}": v for n, v in res.geometry[g].items()})
+            row.update(metric_row(res.analysis.metrics, ev.baseline))
+            row["notes"] = "; ".join(res.notes)
         rows.append(row)
     return pd.DataFrame(rows)
 
@@ -145,7 +191,7 @@ def _metadata(spec: SweepSpec, robot: Robot, groups: Mapping[str, tuple[str, ...
 
 def _chunks(spec: SweepSpec, todo: Sequence[int]) -> Iterator[tuple[dict, list[int]]]:
     """Unfinished points grouped by gait, at most ``chunk_size`` per chunk."""
-    gaits, n_designs = spec.gaits(), len(spec.designs())
+    gaits, n_designs = spec.gaits(), len(spec.points_of_gait())
     for gi, points in itertools.groupby(todo, key=lambda i: i // n_designs):
         block = list(points)
         for start in range(0, len(block), spec.chunk_size):
@@ -184,10 +230,13 @@ def run_sweep(spec: SweepSpec, out: str | Path, *, executor: str = "process",
     groups = spec.groups(robot)
     store = ResultStore(out, spec.to_dict(), _metadata(spec, robot, groups))
     done = store.finished()
-    designs = spec.designs()
+    designs = spec.points_of_gait()
     todo = [i for i in range(spec.n_points) if i not in done]
     tasks = ((gait, [(i, designs[i % len(designs)]) for i in block])
              for gait, block in _chunks(spec, todo))
+    task: Callable[..., pd.DataFrame] = (
+        functools.partial(evaluate_chunk, spec.run, groups=groups) if spec.optimal is None
+        else functools.partial(optimal_chunk, spec.run, groups=groups, optimal=spec.optimal))
     # Chunks in flight: enough to keep every worker busy, few enough that an interrupted sweep
     # has computed little that is not on disk yet.
     window = {"serial": 1, "process": 2 * (workers or default_workers())}.get(executor, 64)
@@ -196,17 +245,18 @@ def run_sweep(spec: SweepSpec, out: str | Path, *, executor: str = "process",
         # evaluator (gait, prepare, baseline) once here instead of once in every worker.
         evaluator(spec.run, spec.gaits()[todo[0] // len(designs)])
     with open_executor(executor, workers=workers, scheduler=scheduler) as ex:
-        computed = _drain(ex, spec.run, groups, tasks, window, store,
+        computed = _drain(ex, task, tasks, window, store,
                           total=len(todo) if progress else 0, on_chunk=on_chunk)
     return SweepResult(table=store.table(), directory=store.directory, computed=computed,
                        reused=len(done))
 
 
-def _drain(ex: Executor, run: RunSpec, groups: Mapping[str, tuple[str, ...]],
-           tasks: Iterable[tuple[dict, Sequence[tuple[int, Design]]]], window: int,
+def _drain(ex: Executor, task: Callable[..., pd.DataFrame],
+           tasks: Iterable[tuple[dict, Sequence[tuple[int, Any]]]], window: int,
            store: ResultStore, *, total: int,
            on_chunk: Callable[[pd.DataFrame], None] | None) -> int:
-    """Submit ``tasks`` with at most ``window`` in flight; write each finished chunk to ``store``.
+    """Submit ``task(gait, points=…)`` for each of ``tasks`` with at most ``window`` in flight;
+    write each finished chunk to ``store``.
 
     Args:
         total: Points to show on a tqdm progress bar on stderr; 0 for no bar.
@@ -219,7 +269,7 @@ def _drain(ex: Executor, run: RunSpec, groups: Mapping[str, tuple[str, ...]],
 
     def refill() -> None:
         for gait, points in itertools.islice(tasks, window - len(pending)):
-            pending.add(ex.submit(evaluate_chunk, run, gait, groups, points))
+            pending.add(ex.submit(task, gait, points=points))
 
     refill()
     bar = None
@@ -255,7 +305,8 @@ def _drain(ex: Executor, run: RunSpec, groups: Mapping[str, tuple[str, ...]],
 
 
 def summary(table: pd.DataFrame, metric: str = DEFAULT_METRIC) -> str:
-    """A text summary of a sweep table: the best point (lowest ``metric``) per sprung-group set.
+    """A text summary of a sweep table: the best point (lowest ``metric``) per sprung-group set
+    (and per family in an optimal sweep).
 
     Raises:
         UnknownNameError: ``metric`` is not a column of the table.
@@ -270,10 +321,12 @@ def summary(table: pd.DataFrame, metric: str = DEFAULT_METRIC) -> str:
     # the inputs: design columns, and the gait parameters the sweep varies
     inputs = [c for c in table.columns if "." in c and not c.startswith(("baseline.", "saving."))
               and (not c.startswith("gait.") or table[c].nunique() > 1)]
-    for springs, rows in ok.groupby("springs", sort=False):
+    keys = ["family", "springs"] if "family" in table.columns else ["springs"]
+    for key, rows in ok.groupby(keys, sort=False):
         best = rows.loc[rows[metric].idxmin()]
-        params = ", ".join(f"{c} = {best[c]:.4g}" for c in inputs if not pd.isna(best[c]))
-        lines.append(f"  {springs}: {metric} = {best[metric]:.6g} (no springs "
+        params = ", ".join(f"{c} = {best[c]}" if isinstance(best[c], str) else
+                           f"{c} = {best[c]:.4g}" for c in inputs if not pd.isna(best[c]))
+        lines.append(f"  {' '.join(key)}: {metric} = {best[metric]:.6g} (no springs "
                      f"{best['baseline.' + metric]:.6g}), saving "
                      f"{100 * best['saving.' + metric]:+.2f} % at point {int(best['point'])}: "
                      f"{params}")

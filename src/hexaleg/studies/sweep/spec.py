@@ -18,11 +18,13 @@ from typing import Any
 
 from hexaleg.checks import integer, string
 from hexaleg.config import from_mapping, load_toml
+from hexaleg.design.codesign import OBJECTIVE_METRIC
 from hexaleg.design.evaluator import DEFAULT_METRIC, METRICS, SPRING_PARAMETERS, RunSpec
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.motion.params import GaitParams
 from hexaleg.robot.model import Robot
+from hexaleg.studies.sweep.optimal import OptimalPoint, OptimalSpec
 from hexaleg.studies.sweep.ranges import axis_values, parse_range
 from hexaleg.units import deg_to_rad, nmm_per_deg_to_nm_per_rad
 
@@ -41,7 +43,7 @@ GAIT_PARAMETERS: tuple[str, ...] = ("period", "duty_factor", "stride_length", "s
 """Scalar :class:`hexaleg.motion.params.GaitParams` fields a sweep may fix or vary."""
 LAYOUTS: tuple[str, ...] = ("product", "each")
 """How spring groups combine: every combination of all groups' values, or one group at a time."""
-SECTIONS: tuple[str, ...] = ("sweep", "gait", "springs", "contact")
+SECTIONS: tuple[str, ...] = ("sweep", "gait", "springs", "contact", "optimal")
 """Top-level tables of a sweep spec file."""
 
 
@@ -110,12 +112,16 @@ class SweepSpec:
             per point: the product of that group's axes, the other groups without springs).
         metric: Metric the summary ranks by (:data:`~hexaleg.design.evaluator.METRICS`).
         chunk_size: Points per task and per part file (does not change the results).
+        optimal: With it, each point is the optimum of a spring family on a set of the groups
+            (:class:`~hexaleg.studies.sweep.optimal.OptimalSpec`) and the groups carry no design
+            parameters.
 
     Raises:
         UnknownNameError: an unknown gait or spring parameter, metric or layout (lists the
             valid ones).
         InvalidParameterError: an empty grid, a value out of range, a group without ``k`` or
-            without exactly one dead-zone choice.
+            without exactly one dead-zone choice; with ``optimal``, no group or a group with
+            design parameters.
     """
 
     run: RunSpec = field(default_factory=RunSpec)
@@ -125,13 +131,22 @@ class SweepSpec:
     layout: str = "product"
     metric: str = DEFAULT_METRIC
     chunk_size: int = 50
+    optimal: OptimalSpec | None = None
 
     def __post_init__(self) -> None:
         for name in self.gait:
             if name not in GAIT_PARAMETERS:
                 raise UnknownNameError("gait parameter", name, GAIT_PARAMETERS)
         for group, params in self.springs.items():
-            _check_group(group, params)
+            if self.optimal is None:
+                _check_group(group, params)
+            elif params:
+                raise InvalidParameterError(
+                    f"springs.{group}", sorted(params), "no design parameters in an optimal "
+                    "sweep (only joints = [...]): the program chooses them")
+        if self.optimal is not None and not self.springs:
+            raise InvalidParameterError("springs", {}, "at least one [springs.<group>] table "
+                                        "naming the joints an optimal sweep designs")
         for group in self.joints:
             if group not in self.springs:
                 raise UnknownNameError("spring group", group, self.springs)
@@ -151,9 +166,11 @@ class SweepSpec:
         :class:`~hexaleg.design.evaluator.RunSpec` keys ``urdf``, ``srdf``, ``motor``,
         ``objective``; ``[contact]`` the :class:`~hexaleg.dynamics.contact.ContactParams`;
         ``[gait]`` gait parameters; ``[springs.<group>]`` one table per group with an optional
-        ``joints`` list. A scalar is fixed, a list or a range table ``{start, stop, num, scale =
-        "linear" | "log"}`` is an axis. Keys in the paper's units (:data:`PAPER_UNIT_PARAMETERS`)
-        are converted to SI through :mod:`hexaleg.units`.
+        ``joints`` list; ``[optimal]`` (:class:`~hexaleg.studies.sweep.optimal.OptimalSpec`)
+        makes each point a family's optimum on a set of groups. A scalar is fixed, a list or a
+        range table ``{start, stop, num, scale = "linear" | "log"}`` is an axis. Keys in the
+        paper's units (:data:`PAPER_UNIT_PARAMETERS`) are converted to SI through
+        :mod:`hexaleg.units`.
 
         Raises:
             UnknownNameError: unknown table or key (lists the valid ones).
@@ -166,7 +183,11 @@ class SweepSpec:
         run, sweep = _sweep_table(data, where)
         gait = _gait_table(data.get("gait", {}))
         springs, joints = _spring_tables(data.get("springs", {}), where)
-        return cls(run=run, gait=gait, springs=springs, joints=joints, **sweep)
+        optimal = None
+        if "optimal" in data:
+            optimal = OptimalSpec.from_mapping(data["optimal"], where)
+            sweep.setdefault("metric", OBJECTIVE_METRIC[run.objective])  # what is optimised
+        return cls(run=run, gait=gait, springs=springs, joints=joints, optimal=optimal, **sweep)
 
     @classmethod
     def from_toml(cls, path: str | Path) -> SweepSpec:
@@ -175,31 +196,43 @@ class SweepSpec:
 
     @classmethod
     def one_group(cls, joints: str, values: Mapping[str, str | None], *,
-                  period: str | None = None, samples: int | None = None) -> SweepSpec:
+                  period: str | None = None, samples: int | None = None,
+                  optimal: OptimalSpec | None = None) -> SweepSpec:
         """A sweep of one spring group from command-line texts (``hexaleg sweep --joints …``).
 
         Args:
             joints: Joint class or joint.
             values: Spring parameter → its text (``VALUE``, ``V1,V2,…`` or
                 ``START:STOP:NUM[:log]``, :func:`~hexaleg.studies.sweep.ranges.parse_range`), or
-                None where not given; ``k`` is required.
+                None where not given; ``k`` is required without ``optimal``, nothing with it.
             period: The gait period's text, or None.
             samples: Samples per gait cycle, or None.
+            optimal: The family's optimum on the group at each gait instead of a grid of designs
+                (ranked by the objective's metric).
 
         Raises:
-            InvalidParameterError: no joints or no ``k``; a bad value (named by its flag).
+            InvalidParameterError: no joints, no ``k`` without ``optimal``, a design value with
+                it; a bad value (named by its flag).
         """
-        if not joints or values.get("k") is None:
+        given = {name: v for name, v in values.items() if v is not None}
+        if not joints or (optimal is None and "k" not in given):
             raise InvalidParameterError("--joints/--k", (joints, values.get("k")),
-                                        "a spec file, or --joints and --k")
+                                        "a spec file, or --joints with --k or --family")
+        if optimal is not None and given:
+            raise InvalidParameterError(
+                "/".join(f"--{n.replace('_', '-')}" for n in given), "given with --family",
+                "either a grid of designs (--k …) or the family's optimum (--family)")
         params = {name: parse_range(f"--{name.replace('_', '-')}", v)
-                  for name, v in values.items() if v is not None}
+                  for name, v in given.items()}
         gait: dict[str, Any] = {}
         if period is not None:
             gait["period"] = parse_range("--period", period)
         if samples is not None:
             gait["samples"] = samples
-        return cls(springs={joints: params}, gait=gait)
+        if optimal is None:
+            return cls(springs={joints: params}, gait=gait)
+        return cls(springs={joints: {}}, gait=gait, optimal=optimal,
+                   metric=OBJECTIVE_METRIC[RunSpec().objective])
 
     # -- the grid
 
@@ -217,10 +250,18 @@ class SweepSpec:
         return [dict(zip(per_group, combo, strict=True))
                 for combo in itertools.product(*per_group.values())]
 
+    def points_of_gait(self) -> list[Any]:
+        """The designs of one gait, in point order: :meth:`designs`, or for an optimal sweep
+        (family, sprung groups) pairs (:meth:`OptimalSpec.points`)."""
+        if self.optimal is not None:
+            points: list[OptimalPoint] = self.optimal.points(list(self.springs))
+            return points
+        return self.designs()
+
     @property
     def n_points(self) -> int:
         """Number of points: gaits × designs."""
-        return len(self.gaits()) * len(self.designs())
+        return len(self.gaits()) * len(self.points_of_gait())
 
     def groups(self, robot: Robot) -> dict[str, tuple[str, ...]]:
         """Group → joints on ``robot``.
@@ -258,6 +299,7 @@ class SweepSpec:
             "springs": {g: {k: plain(v) for k, v in p.items()} for g, p in self.springs.items()},
             "joints": {g: list(j) for g, j in self.joints.items()},
             "layout": self.layout,
+            **({"optimal": self.optimal.to_dict()} if self.optimal is not None else {}),
         }
 
 
