@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.errors import RobotModelError, UnknownNameError
+from hexaleg.errors import InvalidParameterError, RobotModelError, UnknownNameError
 from hexaleg.robot import geometry as _geometry
 
 URDF_DIR = Path(__file__).resolve().parent / "urdf"
@@ -93,6 +93,8 @@ class Robot:
         srdf_path: The SRDF file, or None.
         joint_kinds: Name of the k-th joint of every leg (``coxa, femur, tibia`` for the
             hexapod); the joints of one kind form a joint class (:attr:`joint_classes`).
+        heading: The base axis that points forward, a horizontal unit vector in the base frame,
+            shape (3,); gaits walk along it (``+x`` unless a description says otherwise).
     """
 
     name: str
@@ -105,10 +107,17 @@ class Robot:
     urdf_path: Path
     srdf_path: Path | None
     joint_kinds: tuple[str, ...] = JOINT_KINDS
+    heading: np.ndarray = field(default_factory=lambda: np.array([1.0, 0.0, 0.0]))
     mass: float = field(init=False)
     joint_names: tuple[str, ...] = field(init=False)
 
     def __post_init__(self) -> None:
+        heading = np.asarray(self.heading, dtype=float)
+        if heading.shape != (3,) or not np.all(np.isfinite(heading)) or abs(heading[2]) > 1e-12 \
+                or np.linalg.norm(heading) < 1e-9:
+            raise InvalidParameterError("heading", self.heading, "a horizontal base axis "
+                                        "[x, y, 0], not zero")
+        self.heading = heading / np.linalg.norm(heading)
         self.mass = float(pin.computeTotalMass(self.model))
         # Actuated joints: every joint after the universe (0) and the free flyer (1).
         self.joint_names = tuple(self.model.names[2:])
