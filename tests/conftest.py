@@ -7,6 +7,8 @@ written). A test that needs another gait or robot builds its own.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 import hexaleg
@@ -28,3 +30,16 @@ def walk(robot: hexaleg.Robot) -> hexaleg.Motion:
 def walk200(robot: hexaleg.Robot) -> hexaleg.Motion:
     """The default tripod gait at 200 samples per cycle (where a reference solves every sample)."""
     return hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=200))
+
+
+SPIDER = Path(__file__).resolve().parent / "data" / "spider.toml"
+"""A robot made for the tests: a hexapod URDF without foot frames, SRDF or body mesh, facing +y,
+described in five lines of TOML."""
+
+
+@pytest.fixture(scope="session")
+def spider() -> hexaleg.Robot:
+    """The test hexapod of :data:`SPIDER`, loaded from its TOML (legs and feet found)."""
+    from hexaleg.robot.registry import load
+
+    return load(str(SPIDER))

@@ -14,14 +14,17 @@ from collections.abc import Sequence
 from hexaleg import __version__
 from hexaleg.errors import HexalegError
 
+ROBOT_HELP = ("a registered robot (hexaleg, solo12, anymal, anymal_c, go2, a1) or a robot "
+              "description FILE.toml of one's own (docs/robots.md)")
+"""What ``--robot`` takes, on every command that has it."""
+
 
 def _add_robot(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("robot", help="summary of the loaded robot model: links, masses, joints, "
                                      "limits, legs, poses")
     p.add_argument("--urdf", help="URDF file (default: the built-in hexaleg robot)")
     p.add_argument("--srdf", help="SRDF file with poses and disabled collision pairs")
-    p.add_argument("--robot", help="a registered robot instead of --urdf/--srdf: hexaleg, "
-                                   "solo12, anymal, go2, ... (docs/robots.md)")
+    p.add_argument("--robot", help=ROBOT_HELP + " instead of --urdf/--srdf")
     p.set_defaults(func=_run_robot)
 
 
@@ -74,8 +77,7 @@ def _add_gait(sub: argparse._SubParsersAction) -> None:
                                     "peak joint speeds and accelerations")
     p.add_argument("--config", help="TOML file with a [gait] table; its keys replace those of "
                                     "the robot's gait (default: hexaleg's GaitParams())")
-    p.add_argument("--robot", default="hexaleg", help="a registered robot (solo12, anymal, go2, "
-                                                      "...; default %(default)s) or a robot .toml")
+    p.add_argument("--robot", default="hexaleg", help=ROBOT_HELP + " (default %(default)s)")
     p.set_defaults(func=_run_gait)
 
 
@@ -103,6 +105,7 @@ def _add_view(sub: argparse._SubParsersAction) -> None:
                                     "springs) with an optional [view] table")
     p.add_argument("--html", help="write a self-contained page that plays offline to this file "
                                   "and exit (default: serve on localhost until Ctrl-C)")
+    p.add_argument("--robot", help=ROBOT_HELP)
     # The names of hexaleg.studies.view's MOTIONS and JOINT_QUANTITIES, which also checks them
     # (the study is not imported to build the parser: meshcat takes seconds to import).
     p.add_argument("--motion", choices=("gait", "transform"), default="gait",
@@ -120,7 +123,7 @@ def _run_view(args: argparse.Namespace) -> int:
 
     from hexaleg.studies.view import export_view, serve_view
 
-    shown = {"motion": args.motion, "joints": args.joints}
+    shown = {"motion": args.motion, "joints": args.joints, "robot": args.robot}
     if args.html:
         print(f"wrote {export_view(args.config, args.html, **shown)}")
         return 0
@@ -143,9 +146,8 @@ def _add_report(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--out", default="hexaleg-report",
                    help="output directory (default: %(default)s)")
     p.add_argument("--svg", action="store_true", help="also write every plot as SVG")
-    p.add_argument("--robot", help="a registered robot (solo12, anymal, go2, ...) or a robot "
-                                   ".toml: its gait (keys [gait] does not set), springs and "
-                                   "curve on its spring class (docs/robots.md)")
+    p.add_argument("--robot", help=ROBOT_HELP + ": its gait (keys [gait] does not set), "
+                                                "springs and curve on its spring class")
     p.set_defaults(func=_run_report)
 
 
@@ -174,6 +176,7 @@ def _add_sweep(sub: argparse._SubParsersAction) -> None:
                    help="default: dask with --scheduler, else process")
     p.add_argument("--scheduler", help="Dask scheduler address, e.g. tcp://host:8786")
     p.add_argument("--workers", type=int, help="local process pool size (default: all cores)")
+    p.add_argument("--robot", help=ROBOT_HELP + " (with a spec file: its [sweep] robot)")
     p.add_argument("--joints", help="one-group sweep: joint class (coxa, femur, tibia) or joint")
     for flag, what in (("--k", "stiffness, N·m/rad"), ("--theta-k", "contact angle θ_k, rad"),
                        ("--dead-zone", "θ_k as a fraction of the half range of motion"),
@@ -204,6 +207,9 @@ def _run_sweep(args: argparse.Namespace) -> int:
     if args.spec and (args.joints or any(v is not None for v in (*values.values(), *design))):
         raise InvalidParameterError("--joints/--k/--theta-k/--dead-zone/--offset/--family",
                                     "given with a spec file", "either a spec or the flags")
+    if args.spec and args.robot:
+        raise InvalidParameterError("--robot", args.robot, "the spec file's [sweep] robot = "
+                                    "… with a spec file")
     if args.family is None and (args.max_torque, args.max_deflection) != (None, None):
         raise InvalidParameterError("--max-torque/--max-deflection", "given without --family",
                                     "bounds of the optimal design of --family")
@@ -211,7 +217,7 @@ def _run_sweep(args: argparse.Namespace) -> int:
                            max_deflection=args.max_deflection) if args.family else None)
     spec = (SweepSpec.from_toml(args.spec) if args.spec else
             SweepSpec.one_group(args.joints, values, period=args.period, samples=args.samples,
-                                optimal=optimal))
+                                optimal=optimal, robot=args.robot or "hexaleg"))
     if args.metric:
         spec = dataclasses.replace(spec, metric=args.metric)
     executor = args.executor or ("dask" if args.scheduler else "process")

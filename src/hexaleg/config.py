@@ -116,4 +116,10 @@ def from_mapping(cls: type[T], data: Mapping[str, Any], where: str = "") -> T:
             kind = f"key in {where}" if where else f"{cls.__name__} key"
             raise UnknownNameError(kind, key, fields)
         kwargs[key] = _check_type(f"{where + '.' if where else ''}{key}", value, hints[key])
+    required = [name for name, f in fields.items() if f.default is dataclasses.MISSING
+                and f.default_factory is dataclasses.MISSING]
+    missing = [name for name in required if name not in kwargs]
+    if missing:
+        raise ConfigError(f"{where or cls.__name__}: missing {', '.join(missing)}; required "
+                          f"keys: {', '.join(required)}")
     return cls(**kwargs)

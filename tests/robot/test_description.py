@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import hexaleg
-from hexaleg.errors import RobotModelError, UnknownNameError
+from hexaleg.errors import ConfigError, RobotModelError, UnknownNameError
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import LegSpec
 from hexaleg.robot.registry import TROT, description, load
@@ -74,9 +74,9 @@ def test_own_robot_from_toml(tmp_path):
                                        'name = "LF"\njoints = ["a"]\nfoot = "f"\n')
     with pytest.raises(UnknownNameError, match="wheels"):
         RobotDescription.from_toml(tmp_path / "bad.toml")
-    (tmp_path / "nolegs.toml").write_text('[robot]\nname = "x"\n')
-    with pytest.raises(hexaleg.HexalegError, match=r"\[\[robot.legs\]\]"):
-        load(str(tmp_path / "nolegs.toml"))
+    (tmp_path / "nourdf.toml").write_text('[robot]\nname = "x"\n')
+    with pytest.raises(ConfigError, match=r"missing urdf; required keys: name, urdf"):
+        load(str(tmp_path / "nourdf.toml"))
 
 
 def test_a_description_names_a_catalogue_actuator(tmp_path):

@@ -42,6 +42,7 @@ criterion (eq. 20–24) with a motor model. Any key of ``Analysis.metrics["total
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections import OrderedDict
 from collections.abc import Mapping, Sequence
@@ -60,9 +61,11 @@ from hexaleg.errors import (
 )
 from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import GaitParams
-from hexaleg.robot.model import Robot, load_robot
+from hexaleg.robot.description import RobotDescription
+from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import DEFAULT_MOTOR
 from hexaleg.robot.motor import motor as motor_by_name
+from hexaleg.robot.registry import description
 from hexaleg.robot.springs import DeadZoneSpring, SpringSet
 
 METRICS: tuple[str, ...] = (*ENERGY_KEYS, "electrical_bus", *TORQUE_KEYS)
@@ -87,42 +90,55 @@ class RunSpec:
     """What a worker needs to rebuild the analysis of a gait: small and picklable.
 
     Attributes:
-        urdf: URDF file, or None for the built-in hexaleg robot.
-        srdf: SRDF file, or None (the built-in one with the built-in robot).
-        motor: Catalogue name of the servo on every joint (:data:`hexaleg.robot.motor.CATALOGUE`).
+        robot: A registered robot's name or a robot TOML file
+            (:func:`hexaleg.robot.registry.description`).
+        motor: Catalogue name of the servo on every joint (:data:`hexaleg.robot.motor.CATALOGUE`);
+            None for the robot's own (its description's ``motor``, else
+            :data:`~hexaleg.robot.motor.DEFAULT_MOTOR`).
         objective: Force-distribution objective (:data:`hexaleg.dynamics.contact.OBJECTIVES`).
         contact: Contact settings.
 
     Raises:
-        UnknownNameError: unknown motor. InvalidParameterError: unknown objective.
+        UnknownNameError: unknown robot or motor. InvalidParameterError: unknown objective.
+        ConfigError: a robot TOML that cannot be read.
     """
 
-    urdf: str | None = None
-    srdf: str | None = None
-    motor: str = DEFAULT_MOTOR
+    robot: str = "hexaleg"
+    motor: str | None = None
     objective: str = "joule"
     contact: ContactParams = field(default_factory=ContactParams)
 
     def __post_init__(self) -> None:
-        motor_by_name(self.motor)
+        self.description()
+        if self.motor is not None:
+            motor_by_name(self.motor)
         check_objective(self.objective)
 
-    def robot(self) -> Robot:
-        """The robot, loaded from the URDF/SRDF (cached per process)."""
-        return _robot(self.urdf, self.srdf)
+    def description(self) -> RobotDescription:
+        """The robot's description (registry name or TOML file)."""
+        return description(self.robot)
+
+    def load(self) -> Robot:
+        """The robot (cached per process)."""
+        if self.robot not in _ROBOTS:
+            _ROBOTS[self.robot] = self.description().load()
+        return _ROBOTS[self.robot]
+
+    def actuator(self) -> str:
+        """The catalogue name of the servo the analysis uses (:attr:`motor`)."""
+        return self.motor or self.description().motor or DEFAULT_MOTOR
+
+    def gait(self, overrides: Mapping[str, Any]) -> GaitParams:
+        """The robot's own gait (:meth:`GaitParams.for_robot`) with ``overrides`` (field → value)
+        on top."""
+        return dataclasses.replace(GaitParams.for_robot(self.description()), **overrides)
 
 
 # --------------------------------------------------------------------------- per-process cache
 
 
-_ROBOTS: dict[tuple[str | None, str | None], Robot] = {}
+_ROBOTS: dict[str, Robot] = {}
 _EVALUATORS: OrderedDict[tuple, Evaluator] = OrderedDict()
-
-
-def _robot(urdf: str | None, srdf: str | None) -> Robot:
-    if (urdf, srdf) not in _ROBOTS:
-        _ROBOTS[urdf, srdf] = load_robot(urdf, srdf)
-    return _ROBOTS[urdf, srdf]
 
 
 def clear_cache() -> None:
@@ -143,7 +159,7 @@ def evaluator(run: RunSpec, gait: Mapping[str, Any]) -> Evaluator:
     if key in _EVALUATORS:
         _EVALUATORS.move_to_end(key)
         return _EVALUATORS[key]
-    ev = Evaluator.for_gait(run, GaitParams(**gait))
+    ev = Evaluator.for_gait(run, run.gait(gait))
     _EVALUATORS[key] = ev
     while len(_EVALUATORS) > CACHE_SIZE:
         _EVALUATORS.popitem(last=False)
@@ -190,8 +206,9 @@ class Evaluator:
     @classmethod
     def for_gait(cls, run: RunSpec, gait: GaitParams) -> Evaluator:
         """The evaluator of ``gait`` on the robot, motor and contact settings of ``run``."""
-        robot = run.robot()
-        prepared = prepare(robot, tripod_gait(robot, gait), motor=run.motor, contact=run.contact)
+        robot = run.load()
+        prepared = prepare(robot, tripod_gait(robot, gait), motor=run.actuator(),
+                           contact=run.contact)
         return cls(prepared, run.objective, gait)
 
     def spring(self, joint: str, params: Mapping[str, float]) -> DeadZoneSpring:

@@ -23,19 +23,18 @@ network.
 from __future__ import annotations
 
 import importlib.metadata
-from collections.abc import Iterator, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from types import MappingProxyType
 from typing import Any
 
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.checks import is_real
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError, UnknownNameError
-from hexaleg.robot.model import URDF_DIR, LegSpec, Robot, load_robot
+from hexaleg.robot.fields import FrozenTable, axis, check_stand, heading, legs_table, plain
+from hexaleg.robot.model import AUTO, URDF_DIR, LegSpec, Robot, load_robot
 
 BUILTIN = "hexaleg"
 """Files source of the robot shipped with hexaleg (``urdf/hexaleg.urdf`` and ``.srdf``)."""
@@ -82,59 +81,78 @@ class RobotDescription:
     """How to load one legged robot (paths, standing pose, legs, joint classes, default gait).
 
     Attributes:
-        name: Registry name, e.g. ``"solo12"``.
-        title: Human-readable name and maker.
-        source: Where the files come from: :data:`BUILTIN`, :data:`EXAMPLE_ROBOT_DATA` or
-            :data:`FILES`.
+        name: Registry name, e.g. ``"solo12"``; the loaded robot's name.
         urdf: URDF path relative to the source's directory (``hexaleg.robot.model.URDF_DIR``,
             example-robot-data's ``share/example-robot-data/robots``, or as given for
             :data:`FILES`).
+        title: Human-readable name and maker (default: the name).
+        source: Where the files come from: :data:`BUILTIN`, :data:`EXAMPLE_ROBOT_DATA` or
+            :data:`FILES` (default).
         srdf: SRDF path relative to the same directory, or None.
-        stand: The standing pose: the name of an SRDF ``group_state`` (e.g. ``"standing"``) or
-            joint name → angle (rad); joints not named stay at Pinocchio's neutral value.
-        legs: One spec per leg, with hexaleg's leg names (``LF RF LH RH`` …).
-        joint_kinds: Names of the joint classes, one per joint of a leg from the body out.
+        stand: The standing pose: the name of an SRDF ``group_state`` (e.g. ``"standing"``);
+            joint name → angle (rad), joints not named at Pinocchio's neutral value; or
+            ``{"body_height": h, "feet": {leg: [x, y]}}`` (m, base frame; ``feet`` optional),
+            solved by :func:`hexaleg.robot.stand.stand_from_feet`. None: the SRDF's
+            ``standing`` state if it has one, else the zero configuration (with a note).
+        legs: One spec per leg, with hexaleg's leg names (``LF RF LH RH`` …); None finds them
+            from the kinematic tree (:mod:`hexaleg.robot.discover`).
+        joint_kinds: Names of the joint classes, one per joint of a leg from the body out; None
+            for the found (or hexaleg's) names.
         spring_class: The joint class the springs go on by default (the knees of the
-            quadrupeds; the femur, as in the paper, for hexaleg).
+            quadrupeds; the femur, as in the paper, for hexaleg); None for the second joint of
+            a leg (the paper's "second joint"), see :meth:`spring_class_of`.
         gait: The robot's default gait as overrides of
             :class:`~hexaleg.motion.params.GaitParams` (field name → plain value, leg groups
             as tuples of leg names), sized to the robot; a read-only mapping. Keys are
             checked by ``GaitParams.for_robot``, the leg names of ``groups`` here.
         notes: Where the description's facts come from.
         motor: Name of the robot's actuator in :data:`hexaleg.robot.motor.CATALOGUE`, or None when
-            the catalogue has none (the report then uses the default servo and says so).
+            the catalogue has none.
         mesh_dirs: Where ``package://`` mesh URIs resolve, for :data:`FILES` (the other sources
             know their own).
+        heading: The base axis that points forward, ``[x, y, 0]`` (:attr:`Robot.heading`).
     """
 
     name: str
-    title: str
-    source: str
     urdf: str
-    srdf: str | None
-    stand: str | Mapping[str, float]
-    legs: tuple[LegSpec, ...]
-    joint_kinds: tuple[str, ...]
-    spring_class: str
+    title: str = ""
+    source: str = FILES
+    srdf: str | None = None
+    stand: str | Mapping[str, Any] | None = None
+    legs: tuple[LegSpec, ...] | None = None
+    joint_kinds: tuple[str, ...] | None = None
+    spring_class: str | None = None
     gait: Mapping[str, Any] = field(default_factory=lambda: FrozenTable({}))
     notes: str = ""
     motor: str | None = None
     mesh_dirs: tuple[str, ...] = ()
+    heading: tuple[float, float, float] = (1.0, 0.0, 0.0)
 
     def __post_init__(self) -> None:
         if self.source not in SOURCES:
             raise UnknownNameError("robot file source", self.source, SOURCES)
-        if not self.legs:
-            raise InvalidParameterError(f"{self.name}: legs", self.legs, "at least one LegSpec")
-        object.__setattr__(self, "legs", tuple(self.legs))
-        object.__setattr__(self, "joint_kinds", tuple(self.joint_kinds))
-        for leg in self.legs:
-            if len(leg.joints) != len(self.joint_kinds):
-                raise InvalidParameterError(
-                    f"{self.name}: leg {leg.name} joints", leg.joints,
-                    f"{len(self.joint_kinds)} joints, one per kind {self.joint_kinds}")
-        if self.spring_class not in self.joint_kinds:
-            raise UnknownNameError("joint class", self.spring_class, self.joint_kinds)
+        for key in ("name", "urdf"):
+            if not isinstance(getattr(self, key), str) or not getattr(self, key):
+                raise InvalidParameterError(f"robot.{key}", getattr(self, key), "a non-empty "
+                                            "string")
+        if self.srdf == "":
+            raise InvalidParameterError(f"{self.name}: srdf", "", "an SRDF file, or leave the "
+                                        "key out")
+        object.__setattr__(self, "title", self.title or self.name)
+        if self.legs is not None:
+            if not self.legs:
+                raise InvalidParameterError(f"{self.name}: legs", self.legs,
+                                            "at least one LegSpec, or none given to find them")
+            object.__setattr__(self, "legs", tuple(self.legs))
+        if self.joint_kinds is not None:
+            object.__setattr__(self, "joint_kinds", tuple(self.joint_kinds))
+            for leg in self.legs or ():
+                if len(leg.joints) != len(self.joint_kinds):
+                    raise InvalidParameterError(
+                        f"{self.name}: leg {leg.name} joints", leg.joints,
+                        f"{len(self.joint_kinds)} joints, one per kind {self.joint_kinds}")
+            if self.spring_class is not None and self.spring_class not in self.joint_kinds:
+                raise UnknownNameError("joint class", self.spring_class, self.joint_kinds)
         if self.motor is not None:
             from hexaleg.robot.motor import CATALOGUE
 
@@ -143,19 +161,17 @@ class RobotDescription:
         if not isinstance(self.gait, Mapping) or not all(isinstance(k, str) for k in self.gait):
             raise InvalidParameterError(f"{self.name}: gait", self.gait,
                                         "a table of GaitParams keys and values")
-        object.__setattr__(self, "gait", FrozenTable({k: _plain(v) for k, v in self.gait.items()}))
-        if "groups" in self.gait:
+        object.__setattr__(self, "gait", FrozenTable({k: plain(v) for k, v in self.gait.items()}))
+        if "groups" in self.gait and self.legs is not None:
             self.check_groups(self.gait["groups"])
-        if not isinstance(self.stand, str):
-            if not isinstance(self.stand, Mapping) or not all(
-                    isinstance(k, str) and is_real(v)
-                    for k, v in self.stand.items()):
-                raise InvalidParameterError(f"{self.name}: stand", self.stand,
-                                            "an SRDF group_state name or joint name → finite "
-                                            "angle (rad)")
-            object.__setattr__(self, "stand", MappingProxyType(
-                {k: float(v) for k, v in self.stand.items()}))
+        object.__setattr__(self, "stand", check_stand(self.name, self.stand))
         object.__setattr__(self, "mesh_dirs", tuple(self.mesh_dirs))
+        object.__setattr__(self, "heading", heading(self.name, self.heading))
+
+    def spring_class_of(self, robot: Robot) -> str:
+        """The class the springs go on by default: :attr:`spring_class`, else the loaded robot's
+        second joint class (the paper's "second joint"; the only one of one-joint legs)."""
+        return self.spring_class or robot.joint_kinds[min(1, len(robot.joint_kinds) - 1)]
 
     def check_groups(self, groups: Any) -> None:
         """Check that gait leg groups hold every leg of this robot exactly once.
@@ -166,7 +182,9 @@ class RobotDescription:
         Raises:
             InvalidParameterError: a leg is missing, repeated or not one of the robot's.
         """
-        names = {leg.name for leg in self.legs}
+        names = {leg.name for leg in self.legs or ()}
+        if self.legs is None:  # found at load: checked by GaitParams.for_robot(robot)
+            return
         try:
             grouped = sorted(leg for group in groups for leg in group)
         except TypeError:  # not groups of names: reported below
@@ -218,12 +236,11 @@ class RobotDescription:
         if not isinstance(table, Mapping):
             raise ConfigError(f"{path}: expected a [robot] table")
         data = dict(table)
-        legs = data.get("legs")
-        if not isinstance(legs, list) or not legs or \
-                not all(isinstance(leg, Mapping) for leg in legs):
-            raise ConfigError(f"{where}: expected [[robot.legs]] tables with name, joints, foot")
-        data["legs"] = tuple(from_mapping(LegSpec, leg, f"{where} legs[{i}]")
-                             for i, leg in enumerate(legs))
+        if "legs" in data:
+            data["legs"] = legs_table(data["legs"], where)
+        for key in ("joint_kinds", "mesh_dirs", "heading"):
+            if isinstance(data.get(key), list):
+                data[key] = tuple(data[key])
         data.setdefault("source", FILES)
         if data["source"] == FILES:
             for key in ("urdf", "srdf"):
@@ -233,8 +250,10 @@ class RobotDescription:
                 data["mesh_dirs"] = [str(path.parent / d) if isinstance(d, str) else d
                                      for d in data["mesh_dirs"]]
         if not isinstance(data.get("stand", ""), (str, Mapping)):
-            raise ConfigError(f"{where}.stand = {data['stand']!r}; expected a group_state name "
-                              "or a table of joint angles")
+            raise ConfigError(f"{where}.stand = {data['stand']!r}; expected a group_state name, "
+                              "a table of joint angles or {body_height, feet}")
+        if isinstance(data.get("heading"), str):
+            data["heading"] = axis(data["heading"], where)
         return from_mapping(cls, data, where)
 
     def _dir(self) -> Path:
@@ -277,54 +296,38 @@ class RobotDescription:
             UnknownNameError: the standing pose names an SRDF group_state or joint that does not
                 exist (the message lists the valid ones).
         """
-        robot = load_robot(self.urdf_path, self.srdf_path, legs=self.legs,
-                           package_dirs=self.package_dirs, joint_kinds=self.joint_kinds)
+        robot = load_robot(self.urdf_path, self.srdf_path,
+                           legs=self.legs if self.legs is not None else AUTO,
+                           package_dirs=self.package_dirs, joint_kinds=self.joint_kinds,
+                           heading=self.heading)
+        robot.name = self.name
+        if self.spring_class is not None and self.spring_class not in robot.joint_kinds:
+            raise UnknownNameError("joint class", self.spring_class, robot.joint_kinds)
         base = pin.neutral(robot.model)[:7]
         for q in robot.poses.values():
             q[:7] = base
-        robot.poses[STAND] = self._stand_pose(robot)
+        stand, note = self._stand_pose(robot)
+        robot.poses[STAND] = stand
+        if note:
+            robot.notes = (*robot.notes, note)
         return robot
 
-    def _stand_pose(self, robot: Robot) -> np.ndarray:
+    def _stand_pose(self, robot: Robot) -> tuple[np.ndarray, str | None]:
+        if self.stand is None:
+            if "standing" in robot.poses:
+                return robot.pose("standing"), None
+            return pin.neutral(robot.model), (
+                "no stand given and no SRDF 'standing' state: standing at the zero "
+                "configuration; give stand = {body_height = …} to stand on bent legs")
         if isinstance(self.stand, str):
-            return robot.pose(self.stand)
+            return robot.pose(self.stand), None
+        if "body_height" in self.stand:
+            from hexaleg.robot.stand import stand_from_feet
+
+            return stand_from_feet(robot, self.stand["body_height"],
+                                   self.stand.get("feet")), None
         q = pin.neutral(robot.model)
         for joint, value in self.stand.items():
             robot.column(joint)  # an unknown joint raises, listing the joints
             q[robot.model.joints[robot.model.getJointId(joint)].idx_q] = value
-        return q
-
-
-class FrozenTable(Mapping[str, Any]):
-    """A read-only, hashable, picklable table of plain values (a description's gait overrides).
-
-    Unlike :class:`types.MappingProxyType` it can be pickled and deep-copied, like the frozen
-    dataclasses it sits in; equal to any mapping with the same items.
-    """
-
-    __slots__ = ("_data",)
-
-    def __init__(self, data: Mapping[str, Any]) -> None:
-        self._data = dict(data)
-
-    def __getitem__(self, key: str) -> Any:
-        return self._data[key]
-
-    def __iter__(self) -> Iterator[str]:
-        return iter(self._data)
-
-    def __len__(self) -> int:
-        return len(self._data)
-
-    def __hash__(self) -> int:
-        return hash(frozenset(self._data.items()))
-
-    def __repr__(self) -> str:
-        return f"{type(self).__name__}({self._data!r})"
-
-
-def _plain(value: Any) -> Any:
-    """A TOML value with its lists (at any depth) made tuples, e.g. leg groups."""
-    if isinstance(value, (list, tuple)):
-        return tuple(_plain(v) for v in value)
-    return value
+        return q, None

@@ -17,6 +17,7 @@ import pinocchio as pin
 
 from hexaleg.errors import InvalidParameterError, RobotModelError, UnknownNameError
 from hexaleg.robot import geometry as _geometry
+from hexaleg.robot.feet import LegSpec, resolve_foot
 
 URDF_DIR = Path(__file__).resolve().parent / "urdf"
 """Directory of the packaged robot files (a link to the repository's ``urdf/``)."""
@@ -27,21 +28,6 @@ LEG_NAMES: tuple[str, ...] = ("LF", "LM", "LH", "RF", "RM", "RH")
 """The hexapod's legs in hexaleg's canonical order: left front, middle, hind; right ditto."""
 JOINT_KINDS: tuple[str, ...] = ("coxa", "femur", "tibia")
 """The joints of a hexaleg leg, from the body outward."""
-
-
-@dataclass(frozen=True)
-class LegSpec:
-    """How to find one leg in a URDF.
-
-    Attributes:
-        name: Leg name, e.g. ``"LF"``.
-        joints: Joint names from the body outward.
-        foot: Name of the foot frame (a link or a frame Pinocchio creates from a fixed joint).
-    """
-
-    name: str
-    joints: tuple[str, ...]
-    foot: str
 
 
 HEXALEG_LEGS: tuple[LegSpec, ...] = tuple(
@@ -95,6 +81,7 @@ class Robot:
             hexapod); the joints of one kind form a joint class (:attr:`joint_classes`).
         heading: The base axis that points forward, a horizontal unit vector in the base frame,
             shape (3,); gaits walk along it (``+x`` unless a description says otherwise).
+        notes: What loading found or assumed (feet found, meshes replaced, legs discovered).
     """
 
     name: str
@@ -108,6 +95,7 @@ class Robot:
     srdf_path: Path | None
     joint_kinds: tuple[str, ...] = JOINT_KINDS
     heading: np.ndarray = field(default_factory=lambda: np.array([1.0, 0.0, 0.0]))
+    notes: tuple[str, ...] = ()
     mass: float = field(init=False)
     joint_names: tuple[str, ...] = field(init=False)
 
@@ -285,7 +273,7 @@ def _make_leg(model: pin.Model, spec: LegSpec) -> Leg:
         raise RobotModelError(
             f"leg {spec.name}: joint(s) {', '.join(missing)} not in the URDF; "
             f"joints found: {', '.join(joint_names) or '(none)'}")
-    if not model.existFrame(spec.foot):
+    if spec.foot is None or not model.existFrame(spec.foot):
         frames = sorted({f.name for f in model.frames})
         raise RobotModelError(
             f"leg {spec.name}: foot frame {spec.foot!r} not in the URDF; "
@@ -301,18 +289,31 @@ def _make_leg(model: pin.Model, spec: LegSpec) -> Leg:
                int(model.getFrameId(spec.foot)))
 
 
+AUTO = "auto"
+"""``legs=AUTO``: find the legs and joint classes from the kinematic tree
+(:func:`hexaleg.robot.discover.discover_legs`)."""
+
+
 def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *,
-               legs: Sequence[LegSpec] | None = None,
+               legs: Sequence[LegSpec] | str | None = None,
                package_dirs: Sequence[str | Path] = (),
-               joint_kinds: Sequence[str] = JOINT_KINDS) -> Robot:
+               joint_kinds: Sequence[str] | None = None,
+               heading: Sequence[float] = (1.0, 0.0, 0.0)) -> Robot:
     """Load a legged robot into Pinocchio with a free-flyer base.
+
+    Meshes that cannot be found are replaced by stand-ins (:mod:`hexaleg.robot.meshes`); feet
+    given as a point on a link, or not at all, become foot frames (:mod:`hexaleg.robot.feet`).
+    What loading found or replaced is in ``robot.notes``.
 
     Args:
         urdf: URDF file; default the built-in hexaleg robot (and its SRDF when ``srdf`` is None).
         srdf: SRDF file with ``group_state`` poses and ``disable_collisions`` pairs, or None.
-        legs: How to find the legs; default the hexaleg naming (:data:`HEXALEG_LEGS`).
+        legs: How to find the legs; default the hexaleg naming (:data:`HEXALEG_LEGS`); :data:`AUTO`
+            finds them from the kinematic tree.
         package_dirs: Directories where ``package://`` mesh URIs are resolved.
-        joint_kinds: Names of the joint classes, one per joint of a leg, from the body out.
+        joint_kinds: Names of the joint classes, one per joint of a leg, from the body out;
+            default hexaleg's, or the found ones with :data:`AUTO`.
+        heading: The base axis that points forward (:attr:`Robot.heading`).
 
     Returns:
         The robot.
@@ -321,6 +322,8 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
         RobotModelError: a file is missing or malformed, or the legs/feet are not in the URDF
             (the message names what was found).
     """
+    from hexaleg.robot.meshes import with_available_meshes
+
     if urdf is None:
         urdf_path = DEFAULT_URDF
         srdf_path: Path | None = DEFAULT_SRDF if srdf is None else Path(srdf)
@@ -329,15 +332,36 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
     _check_xml(urdf_path, "URDF")
     if srdf_path is not None:
         _check_xml(srdf_path, "SRDF")
-    dirs = [str(d) for d in package_dirs]
+    dirs = [Path(d) for d in package_dirs]
+    xml, notes = with_available_meshes(urdf_path.read_text(), urdf_path.parent.resolve(), dirs)
     try:
-        model = pin.buildModelFromUrdf(str(urdf_path), pin.JointModelFreeFlyer())
-        visual = pin.buildGeomFromUrdf(model, str(urdf_path), pin.GeometryType.VISUAL, None, dirs)
-        collision = pin.buildGeomFromUrdf(model, str(urdf_path), pin.GeometryType.COLLISION,
-                                          None, dirs)
+        model = pin.buildModelFromXML(xml, pin.JointModelFreeFlyer())
+        visual = pin.buildGeomFromUrdfString(model, xml, pin.GeometryType.VISUAL, None,
+                                             [str(d) for d in dirs])
+        collision = pin.buildGeomFromUrdfString(model, xml, pin.GeometryType.COLLISION, None,
+                                                [str(d) for d in dirs])
     except (RuntimeError, ValueError) as e:
         raise RobotModelError(f"Pinocchio cannot load URDF {urdf_path}: {e}") from e
-    leg_objs = tuple(_make_leg(model, spec) for spec in (legs or HEXALEG_LEGS))
+    heading_arr = np.asarray(heading, dtype=float)
+    if isinstance(legs, str):
+        if legs != AUTO:
+            raise InvalidParameterError("legs", legs, f"leg specs or {AUTO!r}")
+        from hexaleg.robot.discover import discover_legs
+
+        specs, found_kinds, note = discover_legs(model, collision, visual,
+                                                 heading_arr / np.linalg.norm(heading_arr))
+        notes.append(note)
+        joint_kinds = joint_kinds or found_kinds
+    else:
+        resolved: list[LegSpec] = []
+        for spec in legs or HEXALEG_LEGS:
+            spec, foot_note = resolve_foot(model, collision, visual, spec)
+            resolved.append(spec)
+            if foot_note:
+                notes.append(f"foot found at the tip of the leg's last link: {foot_note}")
+        specs = tuple(resolved)
+    joint_kinds = tuple(joint_kinds or JOINT_KINDS)
+    leg_objs = tuple(_make_leg(model, spec) for spec in specs)
     sizes = {len(leg.joint_names) for leg in leg_objs}
     if sizes != {len(joint_kinds)}:
         raise RobotModelError(f"legs have {sorted(sizes)} joints but joint_kinds names "
@@ -355,4 +379,5 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
                  for name, q in ((e.key(), e.data()) for e in model.referenceConfigurations)}
     return Robot(name=model.name, model=model, data=model.createData(), visual_model=visual,
                  collision_model=collision, legs=leg_objs, poses=poses, urdf_path=urdf_path,
-                 srdf_path=srdf_path, joint_kinds=tuple(joint_kinds))
+                 srdf_path=srdf_path, joint_kinds=joint_kinds, heading=heading_arr,
+                 notes=tuple(notes))

@@ -92,12 +92,18 @@ class ViewedMotion:
                 "arrow_length": params.arrow_length, "marker_radius": params.marker_radius}
 
 
-def load_config(path: str | Path | None) -> tuple[ReportConfig, ViewParams]:
-    """The settings of ``hexaleg view --config``: the file of ``hexaleg report`` (gait, motor,
-    contact, springs) plus an optional ``[view]`` table.
+def load_config(path: str | Path | None, robot: str | None = None
+                ) -> tuple[ReportConfig, ViewParams, Robot]:
+    """The settings of ``hexaleg view [--robot R] --config F``: the file of ``hexaleg report``
+    (gait, motor, contact, springs) plus an optional ``[view]`` table, for a robot.
 
     Args:
         path: The TOML file, or None for the defaults.
+        robot: A registered robot's name or a robot ``.toml`` (its own gait, motor and spring
+            class, :meth:`ReportConfig.load`), or None for the built-in robot.
+
+    Returns:
+        The configuration, the view settings and the loaded robot.
 
     Raises:
         ConfigError, UnknownNameError, InvalidParameterError: as
@@ -105,21 +111,22 @@ def load_config(path: str | Path | None) -> tuple[ReportConfig, ViewParams]:
     """
     data = load_toml(path) if path else {}
     where = str(path) if path else "config"
-    config = ReportConfig.from_mapping(data, where)
+    config, loaded = ReportConfig.load(robot, path)
     params = from_mapping(ViewParams, data.get("view", {}), f"{where} [view]")
-    return config, params
+    return config, params, loaded if loaded is not None else load_robot()
 
 
-def view_motion(config: ReportConfig, motion: str = "gait", joints: str = "power"
-                ) -> ViewedMotion:
-    """The built-in robot's motion analysed as ``hexaleg report`` would, for the viewer.
+def view_motion(config: ReportConfig, motion: str = "gait", joints: str = "power",
+                robot: Robot | None = None) -> ViewedMotion:
+    """A robot's motion analysed as ``hexaleg report`` would, for the viewer.
 
     Args:
         config: Gait, motor, contact, springs and objective of the analysis.
-        motion: ``"gait"`` (one tripod gait cycle, ``config.gait``) or ``"transform"``
-            (stand → sphere).
+        motion: ``"gait"`` (one gait cycle, ``config.gait``) or ``"transform"`` (stand →
+            sphere, the built-in robot's).
         joints: The joint colours: ``"power"`` (motor power, W), ``"torque"`` (motor torque,
             N·m) or ``"spring"`` (spring torque, N·m).
+        robot: The robot; None for the built-in one.
 
     Raises:
         UnknownNameError: ``motion`` or ``joints`` is not one of the choices.
@@ -127,7 +134,7 @@ def view_motion(config: ReportConfig, motion: str = "gait", joints: str = "power
     """
     one_of("motion", motion, MOTIONS)
     one_of("joint quantity", joints, JOINT_QUANTITIES)
-    robot = load_robot()
+    robot = robot if robot is not None else load_robot()
     shown = tripod_gait(robot, config.gait) if motion == "gait" else transform_motion(robot)
     result = analyze(robot, shown, config.spring_set(robot, shown), motor=config.motor,
                      objective=config.report.objective, contact=config.contact)
@@ -138,7 +145,7 @@ def view_motion(config: ReportConfig, motion: str = "gait", joints: str = "power
 
 
 def export_view(config_path: str | Path | None, html: str | Path, *, motion: str = "gait",
-                joints: str = "power") -> Path:
+                joints: str = "power", robot: str | None = None) -> Path:
     """``hexaleg view --html``: :func:`view_motion` written as an offline page.
 
     Args:
@@ -146,29 +153,31 @@ def export_view(config_path: str | Path | None, html: str | Path, *, motion: str
         html: The page to write.
         motion: As :func:`view_motion`.
         joints: As :func:`view_motion`.
+        robot: As :func:`load_config`.
 
     Returns:
         The written path.
     """
-    config, params = load_config(config_path)
-    shown = view_motion(config, motion, joints)
+    config, params, loaded = load_config(config_path, robot)
+    shown = view_motion(config, motion, joints, loaded)
     return export_html(shown.robot, shown.motion, html, **shown.options(params))
 
 
 def serve_view(config_path: str | Path | None, *, motion: str = "gait",
-               joints: str = "power") -> str:
+               joints: str = "power", robot: str | None = None) -> str:
     """``hexaleg view``: :func:`view_motion` served on localhost (see :func:`serve`).
 
     Args:
         config_path: The config file (:func:`load_config`), or None.
         motion: As :func:`view_motion`.
         joints: As :func:`view_motion`.
+        robot: As :func:`load_config`.
 
     Returns:
         The viewer's URL.
     """
-    config, params = load_config(config_path)
-    shown = view_motion(config, motion, joints)
+    config, params, loaded = load_config(config_path, robot)
+    shown = view_motion(config, motion, joints, loaded)
     return serve(shown.robot, shown.motion, **shown.options(params))
 
 

@@ -226,10 +226,10 @@ class ReportConfig:
         gait = GaitParams.for_robot(desc).updated(given["gait"], f"{where} [gait]")
         springs = config.springs
         if isinstance(springs, SpringDesign) and "joints" not in given["springs"]:
-            springs = dataclasses.replace(springs, joints=desc.spring_class)
+            springs = dataclasses.replace(springs, joints=desc.spring_class_of(robot))
         report = config.report
         if "curve_joints" not in given["report"]:
-            report = dataclasses.replace(report, curve_joints=desc.spring_class)
+            report = dataclasses.replace(report, curve_joints=desc.spring_class_of(robot))
         if "title" not in given["report"]:
             report = dataclasses.replace(report, title=f"{desc.title}: gait energy report")
         contact, notes = config.contact, []

@@ -42,7 +42,6 @@ from hexaleg.design.evaluator import (
     metric_row,
 )
 from hexaleg.errors import InfeasibleForcesError, TorqueLimitError, UnknownNameError
-from hexaleg.motion.params import GaitParams
 from hexaleg.robot.model import Robot
 from hexaleg.studies.sweep.executors import default_workers, open_executor
 from hexaleg.studies.sweep.optimal import OptimalPoint, OptimalSpec
@@ -77,7 +76,7 @@ def evaluate_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, S
     ev = evaluator(run, gait)
     rows = []
     for index, design in points:
-        row: dict[str, Any] = {"point": index, **gait_columns(gait)}
+        row: dict[str, Any] = {"point": index, **gait_columns(run, gait)}
         row["springs"] = "+".join(design) or "baseline"
         row.update(_design_columns(groups, design))
         row.update(ev.row(groups, design))
@@ -85,10 +84,10 @@ def evaluate_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, S
     return pd.DataFrame(rows)
 
 
-def gait_columns(gait: Mapping[str, Any]) -> dict[str, float]:
-    """``gait.<name>`` columns: every :data:`GAIT_PARAMETERS` value of the gait, defaults filled
-    in, NaN where a parameter is None."""
-    full = dataclasses.asdict(GaitParams(**gait))
+def gait_columns(run: RunSpec, gait: Mapping[str, Any]) -> dict[str, float]:
+    """``gait.<name>`` columns: every :data:`GAIT_PARAMETERS` value of the gait (the robot's own
+    gait under the point's values), NaN where a parameter is None."""
+    full = dataclasses.asdict(run.gait(gait))
     return {f"gait.{name}": math.nan if full[name] is None else full[name]
             for name in GAIT_PARAMETERS}
 
@@ -111,7 +110,8 @@ def optimal_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, Se
     columns = optimal.columns(list(groups))
     rows = []
     for index, (fam, sprung) in points:
-        row: dict[str, Any] = {"point": index, **gait_columns(gait), "springs": "+".join(sprung),
+        row: dict[str, Any] = {"point": index, **gait_columns(run, gait),
+                               "springs": "+".join(sprung),
                                "family": fam}
         row.update({c: (None if c.endswith(".side") else math.nan) for c in columns})
         try:
@@ -180,9 +180,10 @@ def _metadata(spec: SweepSpec, robot: Robot, groups: Mapping[str, tuple[str, ...
               ) -> dict[str, Any]:
     """Manifest entries beside the spec: robot, motor, gaits, number of points, versions."""
     return {
-        "robot": {"name": robot.name, "urdf": str(robot.urdf_path), "nq": robot.model.nq,
+        "robot": {"name": robot.name, "description": spec.run.robot,
+                  "urdf": str(robot.urdf_path), "nq": robot.model.nq,
                   "nv": robot.model.nv, "mass_kg": robot.mass, "groups": groups},
-        "motor": spec.run.motor,
+        "motor": spec.run.actuator(),
         "gaits": spec.gaits(),
         "n_points": spec.n_points,
         "versions": software_versions(),
@@ -226,7 +227,7 @@ def run_sweep(spec: SweepSpec, out: str | Path, *, executor: str = "process",
         ExecutorError: the Dask scheduler cannot be reached (nothing is computed or lost).
         OutputError: results cannot be written.
     """
-    robot = spec.run.robot()
+    robot = spec.run.load()
     groups = spec.groups(robot)
     store = ResultStore(out, spec.to_dict(), _metadata(spec, robot, groups))
     done = store.finished()

@@ -22,7 +22,6 @@ from hexaleg.design.codesign import OBJECTIVE_METRIC
 from hexaleg.design.evaluator import DEFAULT_METRIC, METRICS, SPRING_PARAMETERS, RunSpec
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
-from hexaleg.motion.params import GaitParams
 from hexaleg.robot.model import Robot
 from hexaleg.studies.sweep.optimal import OptimalPoint, OptimalSpec
 from hexaleg.studies.sweep.ranges import axis_values, parse_range
@@ -156,19 +155,20 @@ class SweepSpec:
             raise UnknownNameError("metric", self.metric, METRICS)
         integer("chunk_size", self.chunk_size, low=1)
         for g in self.gaits():  # every gait of the grid is valid (GaitParams checks ranges)
-            GaitParams(**g)
+            self.run.gait(g)
 
     @classmethod
     def from_mapping(cls, data: Mapping[str, Any], where: str = "sweep spec") -> SweepSpec:
         """A spec from parsed TOML (see ``docs/sweep.md``).
 
         ``[sweep]`` holds ``metric``, ``layout``, ``chunk_size`` and the
-        :class:`~hexaleg.design.evaluator.RunSpec` keys ``urdf``, ``srdf``, ``motor``,
-        ``objective``; ``[contact]`` the :class:`~hexaleg.dynamics.contact.ContactParams`;
-        ``[gait]`` gait parameters; ``[springs.<group>]`` one table per group with an optional
-        ``joints`` list; ``[optimal]`` (:class:`~hexaleg.studies.sweep.optimal.OptimalSpec`)
-        makes each point a family's optimum on a set of groups. A scalar is fixed, a list or a
-        range table ``{start, stop, num, scale = "linear" | "log"}`` is an axis. Keys in the
+        :class:`~hexaleg.design.evaluator.RunSpec` keys ``robot`` (a registered name or a robot
+        TOML, relative to the spec's directory), ``motor``, ``objective``; ``[contact]`` the
+        :class:`~hexaleg.dynamics.contact.ContactParams`; ``[gait]`` gait parameters;
+        ``[springs.<group>]`` one table per group with an optional ``joints`` list;
+        ``[optimal]`` (:class:`~hexaleg.studies.sweep.optimal.OptimalSpec`) makes each point a
+        family's optimum on a set of groups. A scalar is fixed, a list or a range table
+        ``{start, stop, num, scale = "linear" | "log"}`` is an axis. Keys in the
         paper's units (:data:`PAPER_UNIT_PARAMETERS`) are converted to SI through
         :mod:`hexaleg.units`.
 
@@ -191,13 +191,18 @@ class SweepSpec:
 
     @classmethod
     def from_toml(cls, path: str | Path) -> SweepSpec:
-        """A spec from a TOML file (see :meth:`from_mapping`)."""
-        return cls.from_mapping(load_toml(path), str(path))
+        """A spec from a TOML file (see :meth:`from_mapping`); a robot ``.toml`` path in
+        ``[sweep]`` is relative to the spec's directory."""
+        data = load_toml(path)
+        robot = data.get("sweep", {}).get("robot")
+        if isinstance(robot, str) and robot.endswith(".toml"):
+            data["sweep"]["robot"] = str(Path(path).parent / robot)
+        return cls.from_mapping(data, str(path))
 
     @classmethod
     def one_group(cls, joints: str, values: Mapping[str, str | None], *,
                   period: str | None = None, samples: int | None = None,
-                  optimal: OptimalSpec | None = None) -> SweepSpec:
+                  optimal: OptimalSpec | None = None, robot: str = "hexaleg") -> SweepSpec:
         """A sweep of one spring group from command-line texts (``hexaleg sweep --joints …``).
 
         Args:
@@ -209,6 +214,7 @@ class SweepSpec:
             samples: Samples per gait cycle, or None.
             optimal: The family's optimum on the group at each gait instead of a grid of designs
                 (ranked by the objective's metric).
+            robot: A registered robot or a robot TOML file.
 
         Raises:
             InvalidParameterError: no joints, no ``k`` without ``optimal``, a design value with
@@ -229,10 +235,11 @@ class SweepSpec:
             gait["period"] = parse_range("--period", period)
         if samples is not None:
             gait["samples"] = samples
+        run = RunSpec(robot=robot)
         if optimal is None:
-            return cls(springs={joints: params}, gait=gait)
-        return cls(springs={joints: {}}, gait=gait, optimal=optimal,
-                   metric=OBJECTIVE_METRIC[RunSpec().objective])
+            return cls(run=run, springs={joints: params}, gait=gait)
+        return cls(run=run, springs={joints: {}}, gait=gait, optimal=optimal,
+                   metric=OBJECTIVE_METRIC[run.objective])
 
     # -- the grid
 
@@ -292,7 +299,7 @@ class SweepSpec:
             return list(v) if isinstance(v, tuple) else v
 
         return {
-            "run": {"urdf": self.run.urdf, "srdf": self.run.srdf, "motor": self.run.motor,
+            "run": {"robot": self.run.robot, "motor": self.run.motor,
                     "objective": self.run.objective,
                     "contact": dataclasses.asdict(self.run.contact)},
             "gait": {k: plain(v) for k, v in self.gait.items()},
@@ -309,7 +316,7 @@ class SweepSpec:
 def _sweep_table(data: Mapping[str, Any], where: str) -> tuple[RunSpec, dict[str, Any]]:
     """``[sweep]`` and ``[contact]`` → the run and the remaining ``[sweep]`` keys."""
     sweep = dict(data.get("sweep", {}))
-    run_keys = {"urdf", "srdf", "motor", "objective"}
+    run_keys = {"robot", "motor", "objective"}
     run_table = {k: sweep.pop(k) for k in list(sweep) if k in run_keys}
     contact = from_mapping(ContactParams, data.get("contact", {}), f"{where} [contact]")
     run = RunSpec(**{k: string(f"sweep.{k}", v) for k, v in run_table.items()},

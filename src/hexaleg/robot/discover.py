@@ -1,0 +1,108 @@
+"""Legs and joint classes found from the kinematic tree, for a URDF described in a few lines.
+
+A leg is a chain of 1-DoF joints from a child of the base to a leaf of the tree. Its foot is
+found as :mod:`hexaleg.robot.feet` does, and the legs get hexaleg's canonical names from where
+their feet are at the zero configuration, seen along the robot's heading: left or right of it,
+front to back (``LF LM LH RF RM RH`` for six legs, ``LF RF LH RH`` for four, ``L1 L2 … R1 R2 …``
+otherwise). Joint classes are named by their place in the leg: ``coxa femur tibia`` on a hexapod
+(the paper's names), ``hip thigh knee`` on other three-joint legs, ``joint1 …`` otherwise.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pinocchio as pin
+
+from hexaleg.errors import RobotModelError
+from hexaleg.robot.feet import LegSpec, resolve_foot
+
+HEXAPOD_KINDS = ("coxa", "femur", "tibia")
+THREE_JOINT_KINDS = ("hip", "thigh", "knee")
+
+
+def discover_legs(model: pin.Model, collision: pin.GeometryModel, visual: pin.GeometryModel,
+                  heading: np.ndarray) -> tuple[tuple[LegSpec, ...], tuple[str, ...], str]:
+    """The legs of a model with a free-flyer base (joint 1), named from their feet.
+
+    Args:
+        model: The model (foot frames are added to it).
+        collision, visual: Its geometry models (for the feet).
+        heading: The base axis pointing forward, shape (3,), horizontal unit vector.
+
+    Returns:
+        The legs (feet resolved, canonical order), the joint classes, and a note saying what was
+        found.
+
+    Raises:
+        RobotModelError: a joint with two children (not a chain of legs), fewer than two legs,
+            legs of different lengths, or a joint with more than one degree of freedom.
+    """
+    children: dict[int, list[int]] = {j: [] for j in range(model.njoints)}
+    for j in range(2, model.njoints):
+        children[model.parents[j]].append(j)
+    chains = []
+    for first in children[1]:
+        chain = [first]
+        while children[chain[-1]]:
+            if len(children[chain[-1]]) > 1:
+                names = [model.names[c] for c in children[chain[-1]]]
+                raise RobotModelError(
+                    f"joint {model.names[chain[-1]]} has children {names}: not a chain of leg "
+                    "joints, so legs cannot be found automatically; list them as [[robot.legs]]")
+            chain.append(children[chain[-1]][0])
+        for j in chain:
+            if model.joints[j].nv != 1:
+                raise RobotModelError(f"joint {model.names[j]} has {model.joints[j].nv} degrees "
+                                      "of freedom; legs must be chains of 1-DoF joints")
+        chains.append(chain)
+    if len(chains) < 2:
+        raise RobotModelError(f"found {len(chains)} chain(s) of joints below the base; a legged "
+                              "robot needs two or more: list the legs as [[robot.legs]]")
+    if len({len(c) for c in chains}) != 1:
+        lengths = {model.names[c[0]]: len(c) for c in chains}
+        raise RobotModelError(f"the chains below the base have different lengths {lengths}; "
+                              "list the legs as [[robot.legs]]")
+    joints = [tuple(model.names[j] for j in chain) for chain in chains]
+    probe = pin.Model(model)  # feet found on a copy to name the legs, then on the model
+    provisional = [resolve_foot(probe, collision, visual, LegSpec(f"leg{k}", js))[0]
+                   for k, js in enumerate(joints)]
+    names = _names(probe, provisional, heading)
+    legs, notes = [], []
+    for i in sorted(range(len(joints)), key=lambda i: _rank(names[i], len(joints))):
+        spec, foot_note = resolve_foot(model, collision, visual, LegSpec(names[i], joints[i]))
+        legs.append(spec)
+        notes.append(foot_note)
+    n = len(chains[0])
+    kinds = (HEXAPOD_KINDS if n == 3 and len(legs) == 6 else
+             THREE_JOINT_KINDS if n == 3 else tuple(f"joint{i + 1}" for i in range(n)))
+    found = "; ".join(f"{leg.name} = {', '.join(leg.joints)}" for leg in legs)
+    feet = [n for n in notes if n]
+    note = (f"legs found from the kinematic tree: {found}; joint classes {', '.join(kinds)}"
+            + (f"; feet found at the tip of each leg's last link: {', '.join(feet)}"
+               if feet else ""))
+    return tuple(legs), kinds, note
+
+
+def _names(model: pin.Model, specs: list[LegSpec], heading: np.ndarray) -> list[str]:
+    """Canonical names from the feet at the zero configuration (module docstring)."""
+    data = model.createData()
+    pin.framesForwardKinematics(model, data, pin.neutral(model))
+    feet = np.array([data.oMf[model.getFrameId(s.foot)].translation for s in specs])
+    left = np.cross([0.0, 0.0, 1.0], heading)
+    forward, lateral = feet @ heading, feet @ left
+    sides = {"L": [i for i in range(len(specs)) if lateral[i] > 0],
+             "R": [i for i in range(len(specs)) if lateral[i] <= 0]}
+    names = [""] * len(specs)
+    for side, members in sides.items():
+        members.sort(key=lambda i: -forward[i])
+        labels = {4: ("F", "H"), 6: ("F", "M", "H")}.get(len(specs))
+        for rank, i in enumerate(members):
+            use = labels if labels and len(members) == len(labels) else None
+            names[i] = side + (use[rank] if use else str(rank + 1))
+    return names
+
+
+def _rank(name: str, n: int) -> tuple[int, str]:
+    """hexaleg's canonical leg order: ``LF LM LH RF RM RH``, ``LF RF LH RH``, else by name."""
+    order = {6: ("LF", "LM", "LH", "RF", "RM", "RH"), 4: ("LF", "RF", "LH", "RH")}.get(n, ())
+    return (order.index(name), name) if name in order else (len(order), name)
