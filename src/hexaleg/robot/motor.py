@@ -14,38 +14,69 @@ The model (see ``docs/energy.md`` for the derivation and the sources):
   regeneration a negative ``P_e`` flows back to the supply; without it the driver burns it, so
   the drawn power is ``max(0, P_e)`` (still convex).
 
-Datasheet stall figures give the constants (ROBOTIS e-Manual, see :data:`CATALOGUE`): the
-output torque per ampere ``k_t G = τ_stall / I_stall`` (gearbox losses at stall folded in, so the
-model reproduces the stall current exactly), ``R = V / I_stall`` (includes the driver), and the
-gearbox efficiency from the ideal DC-motor torque–speed line, ``η = τ_stall ω_no_load /
-(V I_stall)``. These are crude defaults; replace them with identified values where available
-(:func:`motor_from_mapping` accepts a catalogue ``base`` plus overrides).
+Datasheet stall figures give the constants (:func:`from_datasheet`): the output torque per ampere
+``k_t G = τ_stall / I_stall`` (gearbox losses at stall folded in, so the model reproduces the
+stall current exactly), ``R = V / I_stall`` (includes the driver), and the gearbox efficiency from
+the ideal DC-motor torque–speed line, ``η = τ_stall ω_no_load / (V I_stall)``. These are crude
+defaults; replace them with identified values where available (:func:`motor_from_mapping` accepts
+a catalogue ``base`` plus overrides). An actuator known only by a URDF joint's effort and velocity
+limits gets the same relations under stated assumptions (:func:`generic_actuator`).
 
-One brushless actuator is in the catalogue too, the ODRI module that drives Solo-12 (T-Motor
-Antigravity 4004 300 kV, 9 : 1 two-stage timing belt): in the rotor (dq) frame a field-oriented
-brushless motor is this DC model with ``i`` the q-axis current, and the copper loss of a star
-winding of phase resistance ``R_s`` is ``(3/2) R_s i²`` (amplitude-invariant currents), so
-``R = (3/2) R_s`` — see :func:`odri_actuator` for the figures and what is assumed.
+The real actuators — ROBOTIS and Feetech servos from their datasheets, and the ODRI brushless
+module of Solo-12 — are in :mod:`hexaleg.robot.catalogue`. Its public names (:data:`CATALOGUE`,
+:data:`DEFAULT_MOTOR`, :func:`motor`, :func:`motor_from_mapping`, :func:`catalogue_table`,
+:func:`odri_actuator`) are importable from this module too (on first use, PEP 562), as before
+the catalogue had a module of its own.
 """
 
 from __future__ import annotations
 
-import dataclasses
+import importlib
 import math
-from collections.abc import Mapping
 from dataclasses import dataclass
-from types import MappingProxyType
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from hexaleg.checks import positive, real
-from hexaleg.config import from_mapping
-from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+from hexaleg.errors import InvalidParameterError
+
+if TYPE_CHECKING:  # the catalogue's names __getattr__ imports on first use, for mypy and the docs
+    from hexaleg.robot.catalogue import CATALOGUE as CATALOGUE
+    from hexaleg.robot.catalogue import DEFAULT_MOTOR as DEFAULT_MOTOR
+    from hexaleg.robot.catalogue import catalogue_table as catalogue_table
+    from hexaleg.robot.catalogue import motor as motor
+    from hexaleg.robot.catalogue import motor_from_mapping as motor_from_mapping
+    from hexaleg.robot.catalogue import odri_actuator as odri_actuator
+
+_FROM_CATALOGUE = ("CATALOGUE", "DEFAULT_MOTOR", "catalogue_table", "motor", "motor_from_mapping",
+                   "odri_actuator")
 
 RPM = 2.0 * math.pi / 60.0
 """One revolution per minute in rad/s (datasheets state speeds in rpm)."""
+
+GENERIC_VOLTAGE = 24.0
+"""Reference supply voltage of :func:`generic_actuator`, V (it scales only its current and
+resistance: no power or energy depends on it)."""
+
+GENERIC_GEARBOX_EFFICIENCY = 0.7
+"""Constant gearbox efficiency η of :func:`generic_actuator` (the datasheet-derived values of the
+catalogue's servos span 0.43–0.86, median about 0.66)."""
+
+GENERIC_GEAR_RATIO = 1.0
+"""Gear ratio G of :func:`generic_actuator`: its torque constant is stated at the output (G is not
+identifiable from two limits, and only ``k_t G`` enters any power)."""
+
+
+def __getattr__(name: str) -> Any:
+    """Import the catalogue's public names from :mod:`hexaleg.robot.catalogue` on first use
+    (PEP 562: the catalogue imports this module, so this module cannot import it at load time)."""
+    if name not in _FROM_CATALOGUE:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module("hexaleg.robot.catalogue"), name)
+    globals()[name] = value
+    return value
 
 
 def as_torque_speed(tau: ArrayLike, qdot: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
@@ -93,6 +124,9 @@ class Motor:
         no_load_speed: No-load speed at the output, rad/s, > 0.
         voltage: Supply voltage of the figures, V, > 0.
         source: Where the values come from (datasheet named), non-empty.
+        notes: What was derived or assumed rather than read off the source, in words and
+            numbers (e.g. ``R = V / I_stall``, an assumed efficiency), for reports to show; may
+            be empty.
     """
 
     name: str
@@ -105,6 +139,7 @@ class Motor:
     no_load_speed: float
     voltage: float
     source: str
+    notes: str = ""
 
     def __post_init__(self) -> None:
         for key in ("name", "source"):
@@ -118,6 +153,8 @@ class Motor:
              high=1.0, allowed="a number in (0, 1]")
         if not isinstance(self.regeneration, bool):
             raise InvalidParameterError("Motor.regeneration", self.regeneration, "True or False")
+        if not isinstance(self.notes, str):
+            raise InvalidParameterError("Motor.notes", self.notes, "a string (may be empty)")
 
     @property
     def joule_coefficient(self) -> float:
@@ -184,11 +221,15 @@ class Motor:
 
 def from_datasheet(name: str, *, gear_ratio: float, stall_torque: float, stall_current: float,
                    no_load_speed_rpm: float, voltage: float, source: str,
-                   regeneration: bool = False) -> Motor:
+                   regeneration: bool = False, notes: str = "") -> Motor:
     """Motor constants from the stall and no-load figures of a servo datasheet.
 
-    ``k_t = τ_stall / (G I_stall)``, ``R = V / I_stall`` and ``η = τ_stall ω_no_load / (V I_stall)``
-    (the ideal DC motor's back-EMF constant ``V / ω_no_load`` against the stall torque per ampere).
+    The ideal geared DC motor (Verstraten et al. 2016, see the module docstring) at supply voltage
+    V: at stall the winding carries ``I_stall = V / R``; at no load the back-EMF ``k_e G ω_0``
+    equals V. Hence ``k_t G = τ_stall / I_stall`` (the stall torque per ampere, gearbox losses at
+    stall included), ``R = V / I_stall`` (driver and wiring included) and
+    ``η = τ_stall ω_0 / (V I_stall)`` (the back-EMF constant ``V / ω_0`` against the stall torque
+    per ampere: ``k_t = η k_e``).
 
     Args:
         name: Model name.
@@ -199,9 +240,11 @@ def from_datasheet(name: str, *, gear_ratio: float, stall_torque: float, stall_c
         voltage: Supply voltage of the figures, V.
         source: The datasheet.
         regeneration: Whether the supply takes power back.
+        notes: Remarks on the figures (variant, voltage chosen, unit conversions); the derivation
+            of R, k_t G and η with their values is appended.
 
     Returns:
-        The motor.
+        The motor; its :attr:`Motor.notes` say which constants are derived rather than published.
 
     Raises:
         InvalidParameterError: a figure is not positive, or the figures imply η > 1 (mutually
@@ -210,144 +253,68 @@ def from_datasheet(name: str, *, gear_ratio: float, stall_torque: float, stall_c
     if not stall_current > 0:
         raise InvalidParameterError(f"{name} stall_current", stall_current, "> 0")
     eta = stall_torque * no_load_speed_rpm * RPM / (voltage * stall_current)
+    derived = (f"Derived, not datasheet values: k_t G = τ_s / I_s = "
+               f"{stall_torque / stall_current:.3f} N·m/A, R = V / I_s = "
+               f"{voltage / stall_current:.2f} Ω (driver included), η = τ_s ω_0 / (V I_s) = "
+               f"{eta:.3f}.")
     return Motor(name=name, gear_ratio=gear_ratio,
                  torque_constant=stall_torque / (gear_ratio * stall_current),
                  resistance=voltage / stall_current, gearbox_efficiency=eta,
                  regeneration=regeneration, stall_torque=stall_torque,
-                 no_load_speed=no_load_speed_rpm * RPM, voltage=voltage, source=source)
+                 no_load_speed=no_load_speed_rpm * RPM, voltage=voltage, source=source,
+                 notes=f"{notes} {derived}".strip())
 
 
-def _robotis(name: str, url: str, **figures: Any) -> Motor:
-    return from_datasheet(name, source=f"ROBOTIS e-Manual, {name} specifications, {url} "
-                                       "(stall and no-load figures at 12 V)", **figures)
+def generic_actuator(effort: float, velocity: float, *, name: str = "generic") -> Motor:
+    """An actuator known only by a URDF joint's ``<limit effort=… velocity=…>``.
 
+    Two limits cannot fix a motor, so the rest is assumed, and the motor's :attr:`Motor.notes`
+    state every assumption with the resulting values:
 
-def odri_actuator() -> Motor:
-    """The Open Dynamic Robot Initiative actuator module v1 of Solo-12 (Grimminger et al.,
-    "An Open Torque-Controlled Modular Robot Architecture for Legged Locomotion Research",
-    IEEE RA-L 5(2), 2020).
+    * the effort limit is the stall torque ``τ_s`` at the output and the velocity limit the
+      no-load speed ``ω_0`` at the output, both at the supply voltage :data:`GENERIC_VOLTAGE`;
+    * a constant gearbox efficiency :data:`GENERIC_GEARBOX_EFFICIENCY` (η), applied by the
+      direction of power flow (Verstraten et al. 2016, as for every motor here);
+    * gear ratio :data:`GENERIC_GEAR_RATIO` (G = 1: the torque constant is stated at the output);
+    * no regeneration (the catalogue's conservative default).
 
-    Figures from the module's documentation (open-dynamic-robot-initiative,
-    open_robot_actuator_hardware, "Brushless Actuator Module v1"): gear ratio 9 (3 : 1 × 3 : 1),
-    2.5 N·m at the output at 12 A (so ``k_t G = 2.5 / 12`` N·m/A, belt losses included, as for
-    the servos' stall figures), phase resistance ``R_s`` = 0.23255 Ω identified with TI
-    Motorware, motor 300 rpm/V. Assumed: the 12 A is the q-axis current amplitude, so
-    ``R = 1.5 R_s``; a 24 V supply, giving the no-load output speed 300 · 24 / 9 = 800 rpm; a
-    belt efficiency of 0.9 (two stages); 2.5 N·m, the torque at the 12 A current limit, stands
-    for the stall torque.
-    """
-    return Motor(name="ODRI-4004", gear_ratio=9.0, torque_constant=2.5 / 12.0 / 9.0,
-                 resistance=1.5 * 0.23255, gearbox_efficiency=0.9, regeneration=False,
-                 stall_torque=2.5, no_load_speed=300.0 * 24.0 / 9.0 * RPM, voltage=24.0,
-                 source="ODRI actuator module v1 (Solo-12), open-dynamic-robot-initiative/"
-                        "open_robot_actuator_hardware: 9:1, 2.5 N·m at 12 A, R_s 0.23255 Ω; "
-                        "R = 1.5 R_s, 24 V and η = 0.9 assumed")
-
-
-CATALOGUE: Mapping[str, Motor] = MappingProxyType({
-    m.name: m for m in (
-        _robotis("AX-12A", "https://emanual.robotis.com/docs/en/dxl/ax/ax-12a/",
-                 gear_ratio=254.0, stall_torque=1.5, stall_current=1.5,
-                 no_load_speed_rpm=59.0, voltage=12.0),
-        _robotis("AX-18A", "https://emanual.robotis.com/docs/en/dxl/ax/ax-18a/",
-                 gear_ratio=254.0, stall_torque=1.8, stall_current=2.2,
-                 no_load_speed_rpm=97.0, voltage=12.0),
-        _robotis("MX-28", "https://emanual.robotis.com/docs/en/dxl/mx/mx-28-2/",
-                 gear_ratio=193.0, stall_torque=2.5, stall_current=1.4,
-                 no_load_speed_rpm=55.0, voltage=12.0),
-        _robotis("XM540-W150", "https://emanual.robotis.com/docs/en/dxl/x/xm540-w150/",
-                 gear_ratio=152.3, stall_torque=7.3, stall_current=4.4,
-                 no_load_speed_rpm=53.0, voltage=12.0),
-        _robotis("XM540-W270", "https://emanual.robotis.com/docs/en/dxl/x/xm540-w270/",
-                 gear_ratio=272.5, stall_torque=10.6, stall_current=4.4,
-                 no_load_speed_rpm=30.0, voltage=12.0),
-        odri_actuator(),
-    )
-})
-"""Real actuators, keyed by model name: ROBOTIS servos with datasheet values (e-Manual) and the
-ODRI brushless module of Solo-12 (:func:`odri_actuator`)."""
-
-DEFAULT_MOTOR = "AX-18A"
-"""The servo whose stall torque (1.8 N·m) and no-load speed (97 rpm) are the robot's joint limits
-(``urdf/hexaleg.toml`` [servo])."""
-
-
-def motor(name: str = DEFAULT_MOTOR) -> Motor:
-    """Look up a servo in :data:`CATALOGUE` (case-insensitive).
+    The ideal geared DC motor (Verstraten et al. 2016; the relations of :func:`from_datasheet`)
+    then gives the back-EMF constant ``k_e G = V / ω_0``, the stall torque per ampere
+    ``k_t G = η k_e G = η V / ω_0``, the stall current ``I_s = τ_s / (k_t G) = τ_s ω_0 / (η V)``
+    and ``R = V / I_s = η V² / (τ_s ω_0)``. The Joule coefficient is ``c = R / (k_t G)² =
+    ω_0 / (η τ_s)``: neither the assumed voltage nor the gear ratio changes any power or energy.
 
     Args:
-        name: Model name, e.g. ``"AX-18A"``.
+        effort: The URDF effort limit, N·m, finite and > 0.
+        velocity: The URDF velocity limit, rad/s, finite and > 0.
+        name: The motor's name.
 
     Returns:
-        The motor.
+        The motor, with ``stall_torque == effort`` and ``no_load_speed == velocity``.
 
     Raises:
-        UnknownNameError: the name is not in the catalogue; the message lists the valid names.
+        InvalidParameterError: effort or velocity is not a finite number > 0 (a URDF that leaves
+            ``effort`` or ``velocity`` at 0 gives no limit to build a motor from), or the name is
+            empty.
     """
-    for key, value in CATALOGUE.items():
-        if isinstance(name, str) and key.lower() == name.strip().lower():
-            return value
-    raise UnknownNameError("motor", name, CATALOGUE)
-
-
-def motor_from_mapping(data: Mapping[str, Any], where: str = "[motor]") -> Motor:
-    """Build a motor from a TOML table: a catalogue ``base`` with overrides, or every field.
-
-    Example::
-
-        [motor]
-        base = "AX-18A"
-        resistance = 3.1        # identified winding resistance, Ω
-        regeneration = true
-
-    Args:
-        data: Keys are :class:`Motor` fields, plus optional ``base`` (a catalogue name).
-        where: Where the table came from, for error messages.
-
-    Returns:
-        The motor (validated).
-
-    Raises:
-        UnknownNameError: unknown key or unknown base name.
-        ConfigError: a value of the wrong type, or fields missing without a ``base``.
-        InvalidParameterError: a value out of range.
-    """
-    if not isinstance(data, Mapping):
-        raise ConfigError(f"{where}: expected a table of keys, got {data!r}")
-    data = dict(data)
-    base_name = data.pop("base", None)
-    if base_name is None:
-        missing = [f.name for f in dataclasses.fields(Motor) if f.name not in data]
-        if missing:
-            raise ConfigError(f"{where}: missing keys {', '.join(missing)} "
-                              f"(or give base = one of {', '.join(CATALOGUE)})")
-        return from_mapping(Motor, data, where)
-    base = motor(base_name)
-    fields = {f.name: getattr(base, f.name) for f in dataclasses.fields(Motor)}
-    if "source" not in data and data:
-        fields["source"] = f"{base.source}; overridden in {where}: {', '.join(sorted(data))}"
-    return from_mapping(Motor, {**fields, **data}, where)
-
-
-def catalogue_table(motors: Mapping[str, Motor] | None = None) -> str:
-    """A plain-text table of motors with the constants the energy model uses.
-
-    Args:
-        motors: Motors by name; default :data:`CATALOGUE`.
-
-    Returns:
-        One header line, one line per motor (G, k_t G N·m/A, R Ω, η, c W/(N·m)², stall torque
-        N·m, no-load speed rpm, regeneration) and one source line per motor.
-    """
-    motors = CATALOGUE if motors is None else motors
-    lines = [f"{'motor':<12} {'G':>7} {'k_t·G':>7} {'R':>6} {'eta':>5} {'c':>7} "
-             f"{'stall':>6} {'rpm':>5}  regen"]
-    for name, m in motors.items():
-        lines.append(f"{name:<12} {m.gear_ratio:7.1f} {m.torque_constant * m.gear_ratio:7.3f} "
-                     f"{m.resistance:6.2f} {m.gearbox_efficiency:5.3f} "
-                     f"{m.joule_coefficient:7.3f} {m.stall_torque:6.2f} "
-                     f"{m.no_load_speed / RPM:5.0f}  {'yes' if m.regeneration else 'no'}")
-    lines.append("units: k_t·G N·m/A at the output, R ohm, c = R/(k_t·G)^2 W/(N·m)^2, "
-                  "stall torque N·m; default " + DEFAULT_MOTOR)
-    lines += [f"{name}: {m.source}" for name, m in motors.items()]
-    return "\n".join(lines)
+    for what, value, unit in (("effort", effort, "N·m"), ("velocity", velocity, "rad/s")):
+        real(f"{name}: URDF {what} limit ({unit})", value, low=0.0, low_open=True,
+             allowed=f"a finite number > 0 (the actuator's peak {what} in {unit}; a URDF "
+                     "limit of 0 or none gives nothing to build a motor from)")
+    tau_s, omega_0 = float(effort), float(velocity)
+    v, eta, g = GENERIC_VOLTAGE, GENERIC_GEARBOX_EFFICIENCY, GENERIC_GEAR_RATIO
+    kt_g = eta * v / omega_0
+    i_s = tau_s / kt_g
+    notes = (f"Generic actuator from URDF limits only (generic_actuator). Assumed: effort "
+             f"{tau_s:g} N·m = stall torque and velocity {omega_0:g} rad/s = no-load speed, both "
+             f"at the output at {v:g} V; gearbox efficiency η = {eta:g} (constant, by power-flow "
+             f"direction); gear ratio G = {g:g} (k_t at the output; only k_t G enters the "
+             f"powers); no regeneration. Ideal DC motor (Verstraten et al., IEEE RA-L 2016): "
+             f"k_t G = η V / ω_0 = {kt_g:.4g} N·m/A, stall current τ_s ω_0 / (η V) = "
+             f"{i_s:.4g} A, R = V / I_s = {v / i_s:.4g} Ω, Joule coefficient c = ω_0 / (η τ_s) "
+             f"= {omega_0 / (eta * tau_s):.4g} W/(N·m)², independent of the assumed voltage.")
+    return Motor(name=name, gear_ratio=g, torque_constant=kt_g / g, resistance=v / i_s,
+                 gearbox_efficiency=eta, regeneration=False, stall_torque=tau_s,
+                 no_load_speed=omega_0, voltage=v,
+                 source=f"URDF joint limits: effort {tau_s:g} N·m, velocity {omega_0:g} rad/s; "
+                        "every other constant assumed (see notes)", notes=notes)

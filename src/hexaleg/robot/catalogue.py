@@ -1,0 +1,224 @@
+"""The actuator catalogue: real servos from their manufacturers' datasheets, looked up by name.
+
+Each servo is built by :func:`hexaleg.robot.motor.from_datasheet` from the figures printed on the
+manufacturer's specification page — gear ratio, stall torque and stall current at one supply
+voltage, no-load speed at that voltage. Its ``source`` names the page and quotes the figures used.
+None of these pages publishes a winding resistance or a motor torque constant, so both are derived
+as :func:`~hexaleg.robot.motor.from_datasheet` documents (``R = V / I_stall`` with the driver
+included, ``k_t G = τ_stall / I_stall``, ``η = τ_stall ω_0 / (V I_stall)``); each entry's
+``notes`` say so, with the values.
+
+* ROBOTIS DYNAMIXEL (AX, MX, X series): ROBOTIS e-Manual specification pages, figures at 12 V.
+* Feetech STS3215: the 12 V version (ST-3215-C018, 30 kg·cm), from Feetech's product page; its
+  torques are in kg·cm, read as kgf·cm (:data:`KGF_CM`), and its speed in s/60°.
+* ODRI-4004: the brushless actuator module of Solo-12 (:func:`odri_actuator`), with stated
+  assumptions.
+
+The model itself (:class:`~hexaleg.robot.motor.Motor`) and the actuator built from URDF limits
+(:func:`~hexaleg.robot.motor.generic_actuator`) are in :mod:`hexaleg.robot.motor`, which also
+exports this module's public names.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+from types import MappingProxyType
+from typing import Any
+
+from hexaleg.config import from_mapping
+from hexaleg.errors import ConfigError, UnknownNameError
+from hexaleg.robot.motor import RPM, Motor, from_datasheet
+
+KGF_CM = 9.80665e-2
+"""One kilogram-force centimetre in N·m (standard gravity g_n = 9.80665 m/s², 3rd CGPM 1901;
+hobby-servo datasheets write it "kg·cm")."""
+
+
+def _robotis(name: str, url: str, *, gear_ratio: float, stall_torque: float,
+             stall_current: float, no_load_speed_rpm: float, voltage: float = 12.0,
+             notes: str = "") -> Motor:
+    """A DYNAMIXEL from its ROBOTIS e-Manual figures at ``voltage`` (N·m, A, rpm)."""
+    figures = (f"gear ratio {gear_ratio:g} : 1, stall torque {stall_torque:g} N·m at "
+               f"{voltage:g} V and {stall_current:g} A, no-load speed {no_load_speed_rpm:g} rpm "
+               f"at {voltage:g} V")
+    return from_datasheet(name, gear_ratio=gear_ratio, stall_torque=stall_torque,
+                          stall_current=stall_current, no_load_speed_rpm=no_load_speed_rpm,
+                          voltage=voltage,
+                          source=f"ROBOTIS e-Manual, {name} specifications, {url}: {figures}",
+                          notes=f"{notes} The e-Manual publishes no winding resistance.".strip())
+
+
+def _sts3215() -> Motor:
+    """Feetech STS3215, 12 V version (ST-3215-C018), from Feetech's product page."""
+    stall_kgf_cm, seconds_per_60deg = 30.0, 0.222
+    rpm = (60.0 / 360.0) / seconds_per_60deg * 60.0  # 1/6 turn in 0.222 s → 45.05 rpm
+    return from_datasheet(
+        "STS3215-C018", gear_ratio=345.0, stall_torque=stall_kgf_cm * KGF_CM, stall_current=2.7,
+        no_load_speed_rpm=rpm, voltage=12.0,
+        source="Feetech ST-3215-C018 (STS3215, 12 V version) product page, "
+               "https://www.feetechrc.com/525603.html: peak stall torque 30 kg·cm at 12 V, stall "
+               "current 2.7 A at 12 V, no-load speed 0.222 s/60° at 12 V",
+        notes=f"The 12 V version (30 kg·cm); the 7.4 V STS3215-C001 (19.5 kg·cm) is another servo "
+              f"and not in the catalogue. 30 kg·cm read as kgf·cm = {stall_kgf_cm * KGF_CM:.3f} "
+              f"N·m; 0.222 s/60° = {rpm:.2f} rpm. The product page gives no gear ratio: 345 : 1 "
+              "is Feetech's figure for the C018 variant in its variant list (github.com/"
+              "roboninecom/SO-ARM100-101-Parallel-Gripper/issues/5); only k_t G enters the "
+              "powers, so it does not change them. Feetech publishes no winding resistance.")
+
+
+def odri_actuator() -> Motor:
+    """The Open Dynamic Robot Initiative actuator module v1 of Solo-12 (Grimminger et al.,
+    "An Open Torque-Controlled Modular Robot Architecture for Legged Locomotion Research",
+    IEEE RA-L 5(2), 2020).
+
+    Figures from the module's documentation (open-dynamic-robot-initiative,
+    open_robot_actuator_hardware, "Brushless Actuator Module v1"): gear ratio 9 (3 : 1 × 3 : 1),
+    2.5 N·m at the output at 12 A (so ``k_t G = 2.5 / 12`` N·m/A, belt losses included, as for
+    the servos' stall figures), phase resistance ``R_s`` = 0.23255 Ω identified with TI
+    Motorware, motor 300 rpm/V. In the rotor (dq) frame a field-oriented brushless motor is the DC
+    model with ``i`` the q-axis current, and a star winding loses ``(3/2) R_s i²``
+    (amplitude-invariant currents). Assumed: the 12 A is the q-axis current amplitude, so
+    ``R = 1.5 R_s``; a 24 V supply, giving the no-load output speed 300 · 24 / 9 = 800 rpm; a
+    belt efficiency of 0.9 (two stages); 2.5 N·m, the torque at the 12 A current limit, stands
+    for the stall torque.
+    """
+    return Motor(name="ODRI-4004", gear_ratio=9.0, torque_constant=2.5 / 12.0 / 9.0,
+                 resistance=1.5 * 0.23255, gearbox_efficiency=0.9, regeneration=False,
+                 stall_torque=2.5, no_load_speed=300.0 * 24.0 / 9.0 * RPM, voltage=24.0,
+                 source="ODRI actuator module v1 (Solo-12), open-dynamic-robot-initiative/"
+                        "open_robot_actuator_hardware: 9:1, 2.5 N·m at 12 A, R_s 0.23255 Ω; "
+                        "R = 1.5 R_s, 24 V and η = 0.9 assumed",
+                 notes="Assumed: the 12 A is the q-axis current amplitude, so R = 1.5 R_s = "
+                       "0.349 Ω (star winding, amplitude-invariant currents); a 24 V supply, so "
+                       "the no-load output speed is 300 rpm/V · 24 V / 9 = 800 rpm; belt "
+                       "efficiency η = 0.9 (two stages); 2.5 N·m, the torque at the 12 A current "
+                       "limit, stands for the stall torque.")
+
+
+_EMANUAL = "https://emanual.robotis.com/docs/en/dxl/"
+
+CATALOGUE: Mapping[str, Motor] = MappingProxyType({
+    m.name: m for m in (
+        _robotis("AX-12A", _EMANUAL + "ax/ax-12a/", gear_ratio=254.0, stall_torque=1.5,
+                 stall_current=1.5, no_load_speed_rpm=59.0),
+        _robotis("AX-18A", _EMANUAL + "ax/ax-18a/", gear_ratio=254.0, stall_torque=1.8,
+                 stall_current=2.2, no_load_speed_rpm=97.0),
+        _robotis("MX-28", _EMANUAL + "mx/mx-28-2/", gear_ratio=193.0, stall_torque=2.5,
+                 stall_current=1.4, no_load_speed_rpm=55.0),
+        _robotis("XM540-W150", _EMANUAL + "x/xm540-w150/", gear_ratio=152.3, stall_torque=7.3,
+                 stall_current=4.4, no_load_speed_rpm=53.0),
+        _robotis("XM540-W270", _EMANUAL + "x/xm540-w270/", gear_ratio=272.5, stall_torque=10.6,
+                 stall_current=4.4, no_load_speed_rpm=30.0),
+        _robotis("XL430-W250", _EMANUAL + "x/xl430-w250/", gear_ratio=258.5, stall_torque=1.5,
+                 stall_current=1.4, no_load_speed_rpm=61.0,
+                 notes="12 V is the top of its 6.5–12.0 V range (recommended 11.1 V: 1.4 N·m at "
+                       "1.3 A, 57 rpm); the 12 V figures match the other ROBOTIS entries."),
+        _robotis("XM430-W350", _EMANUAL + "x/xm430-w350/", gear_ratio=353.5, stall_torque=4.1,
+                 stall_current=2.3, no_load_speed_rpm=46.0),
+        _robotis("MX-64", _EMANUAL + "mx/mx-64/", gear_ratio=200.0, stall_torque=6.0,
+                 stall_current=4.1, no_load_speed_rpm=63.0,
+                 notes="MX-64T/R/AT/AR (same figures under protocol 1.0 and 2.0)."),
+        _robotis("MX-106", _EMANUAL + "mx/mx-106/", gear_ratio=225.0, stall_torque=8.4,
+                 stall_current=5.2, no_load_speed_rpm=45.0,
+                 notes="MX-106T/R (same figures under protocol 1.0 and 2.0)."),
+        _sts3215(),
+        odri_actuator(),
+    )
+})
+"""Real actuators, keyed by model name: ROBOTIS and Feetech servos with datasheet values and the
+ODRI brushless module of Solo-12 (:func:`odri_actuator`)."""
+
+DEFAULT_MOTOR = "AX-18A"
+"""The servo whose stall torque (1.8 N·m) and no-load speed (97 rpm) are the robot's joint limits
+(``urdf/hexaleg.toml`` [servo])."""
+
+
+def motor(name: str = DEFAULT_MOTOR) -> Motor:
+    """Look up a servo in :data:`CATALOGUE` (case-insensitive).
+
+    Args:
+        name: Model name, e.g. ``"AX-18A"``.
+
+    Returns:
+        The motor.
+
+    Raises:
+        UnknownNameError: the name is not in the catalogue; the message lists the valid names.
+    """
+    for key, value in CATALOGUE.items():
+        if isinstance(name, str) and key.lower() == name.strip().lower():
+            return value
+    raise UnknownNameError("motor", name, CATALOGUE)
+
+
+def motor_from_mapping(data: Mapping[str, Any], where: str = "[motor]") -> Motor:
+    """Build a motor from a TOML table: a catalogue ``base`` with overrides, or every field.
+
+    Example::
+
+        [motor]
+        base = "AX-18A"
+        resistance = 3.1        # identified winding resistance, Ω
+        regeneration = true
+
+    Args:
+        data: Keys are :class:`~hexaleg.robot.motor.Motor` fields, plus optional ``base`` (a
+            catalogue name). Without a base every field is required except ``notes``.
+        where: Where the table came from, for error messages.
+
+    Returns:
+        The motor (validated). Overrides of a base are recorded in its ``source`` and ``notes``.
+
+    Raises:
+        UnknownNameError: unknown key or unknown base name.
+        ConfigError: a value of the wrong type, or fields missing without a ``base``.
+        InvalidParameterError: a value out of range.
+    """
+    if not isinstance(data, Mapping):
+        raise ConfigError(f"{where}: expected a table of keys, got {data!r}")
+    data = dict(data)
+    base_name = data.pop("base", None)
+    if base_name is None:
+        missing = [f.name for f in dataclasses.fields(Motor)
+                   if f.default is dataclasses.MISSING and f.name not in data]
+        if missing:
+            raise ConfigError(f"{where}: missing keys {', '.join(missing)} "
+                              f"(or give base = one of {', '.join(CATALOGUE)})")
+        return from_mapping(Motor, data, where)
+    base = motor(base_name)
+    fields = {f.name: getattr(base, f.name) for f in dataclasses.fields(Motor)}
+    if data:
+        changed = ", ".join(sorted(data))
+        if "source" not in data:
+            fields["source"] = f"{base.source}; overridden in {where}: {changed}"
+        if "notes" not in data and base.notes:
+            fields["notes"] = (f"{base.notes} Overridden in {where}: {changed} (the values above "
+                               f"are {base.name}'s).")
+    return from_mapping(Motor, {**fields, **data}, where)
+
+
+def catalogue_table(motors: Mapping[str, Motor] | None = None) -> str:
+    """A plain-text table of motors with the constants the energy model uses.
+
+    Args:
+        motors: Motors by name; default :data:`CATALOGUE`.
+
+    Returns:
+        One header line, one line per motor (G, k_t G N·m/A, R Ω, η, c W/(N·m)², stall torque
+        N·m, no-load speed rpm, regeneration), a units line, one source line per motor and one
+        line of notes (what was derived or assumed) per motor that has notes.
+    """
+    motors = CATALOGUE if motors is None else motors
+    lines = [f"{'motor':<12} {'G':>7} {'k_t·G':>7} {'R':>6} {'eta':>5} {'c':>7} "
+             f"{'stall':>6} {'rpm':>5}  regen"]
+    for name, m in motors.items():
+        lines.append(f"{name:<12} {m.gear_ratio:7.1f} {m.torque_constant * m.gear_ratio:7.3f} "
+                     f"{m.resistance:6.2f} {m.gearbox_efficiency:5.3f} "
+                     f"{m.joule_coefficient:7.3f} {m.stall_torque:6.2f} "
+                     f"{m.no_load_speed / RPM:5.0f}  {'yes' if m.regeneration else 'no'}")
+    lines.append("units: k_t·G N·m/A at the output, R ohm, c = R/(k_t·G)^2 W/(N·m)^2, "
+                 "stall torque N·m; default " + DEFAULT_MOTOR)
+    lines += [f"{name}: {m.source}" for name, m in motors.items()]
+    lines += [f"{name} notes: {m.notes}" for name, m in motors.items() if m.notes]
+    return "\n".join(lines)
