@@ -85,3 +85,26 @@ def test_closed_pipe_is_quiet_and_reports_sigpipe():
         os.close(write_end)
     assert proc.stderr == ""
     assert proc.returncode == 141
+
+
+def test_robot_and_gait_print_the_sanity_checks(tmp_path, capsys):
+    """A URDF whose coxa link has a 0.5 m radius of gyration gets a warning naming the link;
+    the built-in robot gets none."""
+    import xml.etree.ElementTree as ET
+
+    from hexaleg.cli import main
+    from hexaleg.robot.model import DEFAULT_SRDF, DEFAULT_URDF
+
+    tree = ET.parse(DEFAULT_URDF)
+    link = next(e for e in tree.getroot().iter("link") if e.get("name") == "LF_coxa_link")
+    inertia = link.find("inertial/inertia")
+    assert inertia is not None
+    for key in ("ixx", "iyy", "izz"):
+        inertia.set(key, "0.01")
+    tree.write(tmp_path / "heavy.urdf")
+    assert main(["robot", "--urdf", str(tmp_path / "heavy.urdf"), "--srdf",
+                 str(DEFAULT_SRDF)]) == 0
+    out = capsys.readouterr().out
+    assert "warning: radius_of_gyration: link LF_coxa_link" in out
+    assert main(["robot"]) == 0 and "warning" not in capsys.readouterr().out
+    assert main(["gait"]) == 0 and "warning" not in capsys.readouterr().out

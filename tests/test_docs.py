@@ -172,3 +172,15 @@ def test_design_page_quotes_the_placement_study_log():
                 line
             rows += 1
     assert rows == 14
+
+
+def test_bring_your_own_robot_quotes_the_test_robot():
+    """docs/robots.md's five-line description is tests/data/spider.toml (which the tests load
+    and run through every command)."""
+    import tomllib
+
+    root = Path(__file__).resolve().parents[1]
+    page = (root / "docs" / "robots.md").read_text()
+    block = page[page.index("## Bring your own robot"):].split("```toml\n")[1].split("```")[0]
+    assert tomllib.loads(block) == tomllib.loads((root / "tests" / "data" / "spider.toml")
+                                                 .read_text())

@@ -32,12 +32,20 @@ def _run_robot(args: argparse.Namespace) -> int:
     from hexaleg.errors import InvalidParameterError
     from hexaleg.robot.model import load_robot
     from hexaleg.robot.registry import load
+    from hexaleg.robot.sanity import robot_findings
 
     if args.robot is not None and (args.urdf or args.srdf):
         raise InvalidParameterError("--robot", args.robot, "either --robot or --urdf/--srdf")
     robot = load(args.robot) if args.robot is not None else load_robot(args.urdf, args.srdf)
     print(robot.summary())
+    _warn(robot_findings(robot))
     return 0
+
+
+def _warn(findings: list) -> None:
+    """Print the sanity checks' findings (:mod:`hexaleg.robot.sanity`) as warnings."""
+    for finding in findings:
+        print(f"warning: {finding.message}")
 
 
 def _add_motors(sub: argparse._SubParsersAction) -> None:
@@ -85,8 +93,10 @@ def _run_gait(args: argparse.Namespace) -> int:
     from hexaleg.config import load_toml
     from hexaleg.motion.legged import tripod_gait
     from hexaleg.motion.params import GaitParams
+    from hexaleg.motion.sanity import motion_findings
     from hexaleg.outputs.text import gait_summary
     from hexaleg.robot.registry import description
+    from hexaleg.robot.sanity import robot_findings
 
     desc = description(args.robot)
     robot = desc.load()
@@ -94,7 +104,9 @@ def _run_gait(args: argparse.Namespace) -> int:
     if args.config:  # the file's keys over the robot's gait
         table = load_toml(args.config)
         gait = gait.updated(table.get("gait", table), f"{args.config} [gait]")
-    print(gait_summary(robot, tripod_gait(robot, gait)))
+    motion = tripod_gait(robot, gait)
+    print(gait_summary(robot, motion))
+    _warn([*robot_findings(robot), *motion_findings(robot, motion)])
     return 0
 
 

@@ -40,8 +40,8 @@ def test_point_on_a_link_is_the_given_frame(robot):
 
 def test_bad_feet_are_named(robot):
     with pytest.raises(RobotModelError, match="foot link 'nope' not in the URDF; links found"):
-        load_robot(legs=[LegSpec("LF", HEXALEG_LEGS[0].joints, "nope", (0.0, 0.0, 0.0))] +
-                   list(HEXALEG_LEGS[1:]))
+        load_robot(legs=[LegSpec("LF", HEXALEG_LEGS[0].joints, "nope", (0.0, 0.0, 0.0)),
+                         *HEXALEG_LEGS[1:]])
     with pytest.raises(RobotModelError, match=r"foot point \(1, 2\)"):
         LegSpec("LF", ("a",), "link", (1, 2))  # type: ignore[arg-type]
 

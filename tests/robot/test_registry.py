@@ -22,7 +22,7 @@ from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.registry import DESCRIPTIONS, TROT, description, load
 
-QUADRUPEDS = ("solo12", "anymal", "go2")
+QUADRUPEDS = ("solo12", "anymal", "go2", "a1")
 SAMPLES = 200
 # The catalogue's actuators are hexaleg-sized servos and Solo-12's module (2.5 N·m at 12 A); the
 # quadrupeds' torques are the physics under test, not an actuator's limit.
@@ -256,8 +256,8 @@ def test_cli_robot_option(capsys):
 def test_report_for_a_registry_robot(name, tmp_path, capsys):
     """'hexaleg report --robot NAME': the trot from the description (the file's [gait] keys
     on top), knee springs and stiffness curve, all files; Solo-12 with its own actuator (ODRI
-    module) and torque limits on, the others with the default servo's figures, torque limits off
-    and a note saying so."""
+    module), the others with a generic actuator from their URDF limits and a note giving its
+    assumptions; torque limits on for all (the actuator's stall torque)."""
     import json
 
     from hexaleg.cli import main
@@ -270,15 +270,15 @@ def test_report_for_a_registry_robot(name, tmp_path, capsys):
     own = description(name).motor is not None
     assert own == (name == "solo12")
     assert (f"note: {description(name).title}" in out) != own
-    assert ("torque limits are off" in out and "AX-18A" in out) != own
+    assert ("names no catalogue motor" in out and "Generic actuator" in out) != own
     data = json.loads((tmp_path / "out" / "report.json").read_text())
-    assert data["motor"]["name"] == ("ODRI-4004" if own else "AX-18A")
+    assert data["motor"]["name"] == ("ODRI-4004" if own else f"generic ({name} URDF limits)")
     desc, robot = description(name), robot_of(name)
     knees = list(robot.joints(desc.spring_class))
     assert data["gait"]["groups"] == [list(g) for g in TROT] and data["gait"]["samples"] == 40
     assert data["gait"]["period"]["value"] == GaitParams.for_robot(desc).period
     assert data["gait"]["min_stance_feet"] == 2
-    assert data["contact"]["torque_limits"] is own
+    assert data["contact"]["torque_limits"] is True
     assert sorted(data["springs"]["joints"]) == sorted(knees)
     assert data["stiffness_curve"]["joints"] == knees and not data["stiffness_curve"]["infeasible"]
     assert data["title"].startswith(desc.title)
@@ -289,7 +289,7 @@ def test_report_for_a_registry_robot(name, tmp_path, capsys):
     html = (tmp_path / "out" / "report.html").read_text()
     assert len(html) > 10_000
     # The caveats are on the page, not only in the terminal: motor figures and the sway.
-    assert any("torque limits are off" in n for n in data["notes"]) != own
+    assert any("names no catalogue motor" in n for n in data["notes"]) != own
     assert any(n.startswith("two-foot gait: the body sways") for n in data["notes"])
     assert html.count("<b>Note:</b>") == len(data["notes"]) == (1 if own else 2)
     assert data["transform"] is None and 'id="transform"' not in html  # no sphere pose

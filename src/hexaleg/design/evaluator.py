@@ -63,7 +63,7 @@ from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import GaitParams
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Robot
-from hexaleg.robot.motor import DEFAULT_MOTOR
+from hexaleg.robot.motor import Motor
 from hexaleg.robot.motor import motor as motor_by_name
 from hexaleg.robot.registry import description
 from hexaleg.robot.springs import DeadZoneSpring, SpringSet
@@ -93,8 +93,9 @@ class RunSpec:
         robot: A registered robot's name or a robot TOML file
             (:func:`hexaleg.robot.registry.description`).
         motor: Catalogue name of the servo on every joint (:data:`hexaleg.robot.motor.CATALOGUE`);
-            None for the robot's own (its description's ``motor``, else
-            :data:`~hexaleg.robot.motor.DEFAULT_MOTOR`).
+            None for the robot's own
+            (:meth:`~hexaleg.robot.description.RobotDescription.actuator`: its catalogue motor,
+            else a generic actuator from its URDF limits).
         objective: Force-distribution objective (:data:`hexaleg.dynamics.contact.OBJECTIVES`).
         contact: Contact settings.
 
@@ -124,9 +125,11 @@ class RunSpec:
             _ROBOTS[self.robot] = self.description().load()
         return _ROBOTS[self.robot]
 
-    def actuator(self) -> str:
-        """The catalogue name of the servo the analysis uses (:attr:`motor`)."""
-        return self.motor or self.description().motor or DEFAULT_MOTOR
+    def actuator(self) -> Motor:
+        """The actuator of every joint (:attr:`motor`)."""
+        if self.motor is not None:
+            return motor_by_name(self.motor)
+        return self.description().actuator(self.load())
 
     def gait(self, overrides: Mapping[str, Any]) -> GaitParams:
         """The robot's own gait (:meth:`GaitParams.for_robot`) with ``overrides`` (field → value)

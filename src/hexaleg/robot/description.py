@@ -26,7 +26,7 @@ import importlib.metadata
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pinocchio as pin
@@ -34,6 +34,9 @@ import pinocchio as pin
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError, UnknownNameError
 from hexaleg.robot.fields import FrozenTable, axis, check_stand, heading, legs_table, plain
+
+if TYPE_CHECKING:
+    from hexaleg.robot.motor import Motor
 from hexaleg.robot.model import AUTO, URDF_DIR, LegSpec, Robot, load_robot
 
 BUILTIN = "hexaleg"
@@ -107,7 +110,7 @@ class RobotDescription:
             checked by ``GaitParams.for_robot``, the leg names of ``groups`` here.
         notes: Where the description's facts come from.
         motor: Name of the robot's actuator in :data:`hexaleg.robot.motor.CATALOGUE`, or None when
-            the catalogue has none.
+            the catalogue has none (then :meth:`actuator` builds one from the URDF limits).
         mesh_dirs: Where ``package://`` mesh URIs resolve, for :data:`FILES` (the other sources
             know their own).
         heading: The base axis that points forward, ``[x, y, 0]`` (:attr:`Robot.heading`).
@@ -167,6 +170,25 @@ class RobotDescription:
         object.__setattr__(self, "stand", check_stand(self.name, self.stand))
         object.__setattr__(self, "mesh_dirs", tuple(self.mesh_dirs))
         object.__setattr__(self, "heading", heading(self.name, self.heading))
+
+    def actuator(self, robot: Robot) -> Motor:
+        """The robot's actuator: its catalogue :attr:`motor`, else a generic actuator from the
+        URDF's largest joint effort and velocity limits
+        (:func:`hexaleg.robot.motor.generic_actuator`, its assumptions in ``notes``); the torque
+        limits of the analysis are the actuator's stall torque.
+
+        Raises:
+            InvalidParameterError: no catalogue motor and a URDF without effort or velocity
+                limits (names the value; give ``motor = "…"`` instead).
+        """
+        from hexaleg.robot.motor import CATALOGUE, generic_actuator
+
+        if self.motor is not None:
+            return CATALOGUE[self.motor]
+        model = robot.model
+        return generic_actuator(float(model.effortLimit[6:].max()),
+                                float(model.velocityLimit[6:].max()),
+                                name=f"generic ({self.name} URDF limits)")
 
     def spring_class_of(self, robot: Robot) -> str:
         """The class the springs go on by default: :attr:`spring_class`, else the loaded robot's

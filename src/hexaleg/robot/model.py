@@ -253,7 +253,9 @@ class Robot:
         lines.append("  legs (joints → foot frame):")
         for leg in self.legs:
             lines.append(f"    {leg.name}: {', '.join(leg.joint_names)} → {leg.foot_frame}")
-        lines.append(f"  poses: {', '.join(self.poses) or '(none)'}")
+        lines.append(f"  poses: {', '.join(self.poses) or '(none)'}; heading (forward) "
+                     f"[{', '.join(f'{v:+.3g}' for v in self.heading)}] in the base frame")
+        lines += [f"  note: {n}" for n in self.notes]
         return "\n".join(lines)
 
 

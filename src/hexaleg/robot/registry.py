@@ -79,6 +79,17 @@ DESCRIPTIONS: Mapping[str, RobotDescription] = MappingProxyType({d.name: d for d
               "groups": TROT},
         notes="example-robot-data go2_description (loader Go2Loader); 16.1 kg; the knee class "
               "is the URDF's calf joints"),
+    RobotDescription(
+        name="a1", title="A1 (Unitree)",
+        source=EXAMPLE_ROBOT_DATA, urdf="a1_description/urdf/a1.urdf",
+        srdf="a1_description/srdf/a1.srdf", stand="standing",
+        legs=_legs({"LF": "FL", "RF": "FR", "LH": "RL", "RH": "RR"},
+                   ("{p}_hip_joint", "{p}_thigh_joint", "{p}_calf_joint"), "{p}_foot"),
+        joint_kinds=("hip", "thigh", "knee"), spring_class="knee",
+        gait={"period": 0.6, "duty_factor": 0.6, "stride_length": 0.12, "step_height": 0.06,
+              "groups": TROT},
+        notes="example-robot-data a1_description (loader A1Loader); thigh and calf 0.2 m; no "
+              "catalogue motor: a generic actuator from the URDF's effort and velocity limits"),
 )})
 """The registered robots by name; :data:`DEFAULT_ROBOT` first."""
 

@@ -80,3 +80,14 @@ def test_joint_rows_compare_with_the_baseline(data, independent, robot):
             np.abs(base.tau_motor[:, j]).max())
         assert _v(row["peak_power_baseline"]) == pytest.approx(np.abs(base.power[:, j]).max())
     assert data["springs"]["design"] == "paper"
+
+
+def test_notes_carry_the_sanity_findings(walk):
+    from hexaleg.robot.sanity import Finding
+    from hexaleg.studies.report.sections import notes_section
+
+    finding = Finding("joint_speed", "joint LF_femur", 9.0, "rad/s", "≤ 6 rad/s",
+                      "slow the gait: period ≥ 1.5 s")
+    notes = notes_section(("given",), walk, [finding])
+    assert notes == ["given", f"check {finding.message}"]
+    assert "LF_femur" in notes[1] and "period ≥ 1.5 s" in notes[1]

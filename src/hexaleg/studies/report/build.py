@@ -34,9 +34,12 @@ from hexaleg.design import rules as design
 from hexaleg.design.curves import StiffnessCurve, curve_springs, stiffness_curve
 from hexaleg.dynamics import contact
 from hexaleg.dynamics.prepare import Analysis, Prepared, prepare
+from hexaleg.dynamics.sanity import torque_findings
 from hexaleg.motion.legged import tripod_gait
+from hexaleg.motion.sanity import motion_findings
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot, load_robot
+from hexaleg.robot.sanity import Finding, robot_findings
 from hexaleg.robot.springs import SpringSet
 from hexaleg.studies.report import sections
 from hexaleg.studies.report.config import ReportConfig, ReportParams
@@ -94,6 +97,12 @@ def _report_curve(prepared: Prepared, springs: SpringSet, rp: ReportParams, obje
     return stiffness_curve(prepared, base, rp.curve_joints, ks, rp.curve_metrics, objective, step)
 
 
+def _findings(robot: Robot, motion: Motion, a: Analysis) -> list[Finding]:
+    """What the sanity checks find in the robot, the gait and its motor torques."""
+    return [*robot_findings(robot), *motion_findings(robot, motion),
+            *torque_findings(robot, a.tau_motor, motion.t)]
+
+
 def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis,
                  baseline: Analysis, curve: StiffnessCurve,
                  usage: np.ndarray) -> dict[str, Any]:
@@ -102,7 +111,7 @@ def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis,
     return {
         "title": cfg.report.title,
         "hexaleg_version": importlib.metadata.version("hexaleg"),
-        "notes": sections.notes_section(cfg.notes, motion),
+        "notes": sections.notes_section(cfg.notes, motion, _findings(robot, motion, a)),
         "robot": sections.robot_section(robot),
         "gait": sections.gait_section(motion, cfg.gait),
         "motor": sections.motor_section(cfg.motor),

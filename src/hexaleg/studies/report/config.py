@@ -26,7 +26,7 @@ from hexaleg.motion.params import GaitParams
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Robot
-from hexaleg.robot.motor import CATALOGUE, DEFAULT_MOTOR, Motor, motor_from_mapping
+from hexaleg.robot.motor import DEFAULT_MOTOR, Motor, motor_from_mapping
 from hexaleg.robot.motor import motor as motor_by_name
 from hexaleg.robot.registry import description
 from hexaleg.robot.springs import SpringSet
@@ -208,11 +208,10 @@ class ReportConfig:
 
         The description's gait with the keys the file's ``[gait]`` sets on top; springs and the
         stiffness curve on the description's spring class unless the file names joints; the
-        robot's title; the robot's own actuator (``desc.motor``) unless the file has a
-        ``[motor]``; and for a robot without one whose URDF joint effort limits exceed every
-        catalogue servo's stall torque (unless ``[contact]`` sets ``torque_limits``), no torque
-        limits and a note that the servo's Joule/electrical figures do not describe its
-        actuators.
+        robot's title; the robot's own actuator unless the file has a ``[motor]``
+        (:meth:`~hexaleg.robot.description.RobotDescription.actuator`: its catalogue motor, else
+        a generic actuator from its URDF limits, whose assumptions become a note on the page);
+        the robot's loading notes (feet found, meshes replaced).
 
         Args:
             desc: The robot description.
@@ -232,20 +231,14 @@ class ReportConfig:
             report = dataclasses.replace(report, curve_joints=desc.spring_class_of(robot))
         if "title" not in given["report"]:
             report = dataclasses.replace(report, title=f"{desc.title}: gait energy report")
-        contact, notes = config.contact, []
-        strongest = max(m.stall_torque for m in CATALOGUE.values())
-        effort = float(robot.model.effortLimit[6:].max())
-        if desc.motor is not None and "motor" not in data:
-            config = dataclasses.replace(config, motor=CATALOGUE[desc.motor])
-        elif effort > strongest and "torque_limits" not in given["contact"]:
-            contact = dataclasses.replace(contact, torque_limits=False)
-            notes.append(f"{desc.title}: URDF joint effort limits up to {effort:g} N·m exceed "
-                         f"every servo of the motor catalogue (≤ {strongest:g} N·m), so the "
-                         f"torque limits are off; the {config.motor.name} figures (Joule, "
-                         "electrical energy) do not describe this robot's actuators — compare "
-                         "work and torques, or give a [motor] for them")
+        notes = list(robot.notes)
+        if "motor" not in data:
+            config = dataclasses.replace(config, motor=desc.actuator(robot))
+            if desc.motor is None:
+                notes.append(f"{desc.title} names no catalogue motor: the actuator is built from "
+                             f"its URDF limits. {config.motor.notes}")
         return dataclasses.replace(config, gait=gait, springs=springs, report=report,
-                                   contact=contact, notes=tuple(notes))
+                                   notes=tuple(notes))
 
     @classmethod
     def load(cls, robot: str | None = None, path: str | Path | None = None

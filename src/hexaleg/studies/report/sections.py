@@ -10,6 +10,7 @@ Coulomb friction cone that the force program (:mod:`hexaleg.dynamics.contact`) k
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -22,6 +23,7 @@ from hexaleg.motion.params import GaitParams
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import Motor
+from hexaleg.robot.sanity import Finding
 from hexaleg.robot.springs import SpringSet
 from hexaleg.studies.report.config import SpringDesign
 from hexaleg.studies.report.quantities import comparison, metric_unit, quantity
@@ -30,9 +32,11 @@ ENERGY_TABLE_KEYS: tuple[str, ...] = ("positive_work", "joule", "electrical")
 """Metrics of the per-joint energy table."""
 
 
-def notes_section(notes: tuple[str, ...], motion: Motion) -> list[str]:
-    """The configuration's caveats, and the body sway of a gait balanced on two feet."""
-    out = list(notes)
+def notes_section(notes: tuple[str, ...], motion: Motion,
+                  findings: Sequence[Finding] = ()) -> list[str]:
+    """The configuration's caveats, the sanity checks' findings on the robot, the gait and its
+    torques (:mod:`hexaleg.robot.sanity`), and the body sway of a gait balanced on two feet."""
+    out = list(notes) + [f"check {f.message}" for f in findings]
     sway = motion.info.get("balance", {})
     if sway.get("mode") == "sway":
         out.append(f"two-foot gait: the body sways ±{1e3 * sway['amplitude']:.2f} mm so that the "
@@ -69,7 +73,7 @@ def motor_section(motor: Motor) -> dict[str, Any]:
             "joule_coefficient": quantity(motor.joule_coefficient, "W/(N·m)²"),
             "stall_torque": quantity(motor.stall_torque, "N·m"),
             "gearbox_efficiency": quantity(motor.gearbox_efficiency, "1"),
-            "regeneration": motor.regeneration, "source": motor.source}
+            "regeneration": motor.regeneration, "source": motor.source, "notes": motor.notes}
 
 
 def contact_section(contact: ContactParams) -> dict[str, Any]:

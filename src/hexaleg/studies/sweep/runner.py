@@ -183,7 +183,7 @@ def _metadata(spec: SweepSpec, robot: Robot, groups: Mapping[str, tuple[str, ...
         "robot": {"name": robot.name, "description": spec.run.robot,
                   "urdf": str(robot.urdf_path), "nq": robot.model.nq,
                   "nv": robot.model.nv, "mass_kg": robot.mass, "groups": groups},
-        "motor": spec.run.actuator(),
+        "motor": spec.run.actuator().name,
         "gaits": spec.gaits(),
         "n_points": spec.n_points,
         "versions": software_versions(),
