@@ -43,3 +43,24 @@ def spider() -> hexaleg.Robot:
     from hexaleg.robot.registry import load
 
     return load(str(SPIDER))
+
+
+@pytest.fixture
+def urdf_with_limit(tmp_path):
+    """A copy of the built-in URDF with one joint's ``<limit>`` attribute changed, loaded with
+    the built-in SRDF: ``urdf_with_limit("RF_tibia", "effort", "0")``."""
+    import xml.etree.ElementTree as ET
+
+    from hexaleg.robot.model import DEFAULT_SRDF, DEFAULT_URDF, load_robot
+
+    def make(joint: str, key: str, value: str) -> hexaleg.Robot:
+        tree = ET.parse(DEFAULT_URDF)
+        element = next(j for j in tree.getroot().iter("joint") if j.get("name") == joint)
+        limit = element.find("limit")
+        assert limit is not None
+        limit.set(key, value)
+        path = tmp_path / f"{joint}_{key}.urdf"
+        tree.write(path)
+        return load_robot(path, DEFAULT_SRDF)
+
+    return make

@@ -5,7 +5,6 @@ registry robots' default gaits stay within their limits."""
 from __future__ import annotations
 
 import dataclasses
-import xml.etree.ElementTree as ET
 
 import numpy as np
 import pytest
@@ -16,7 +15,6 @@ from hexaleg.dynamics.sanity import torque_findings
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import GaitParams
-from hexaleg.robot.model import DEFAULT_SRDF, DEFAULT_URDF, load_robot
 from hexaleg.robot.registry import DESCRIPTIONS, description, load
 
 SAMPLES = 200
@@ -67,12 +65,9 @@ def test_without_times_the_sample_is_named(robot, tau):
     assert found.where == "joint LM_femur at sample 17" and found.value == 2.5
 
 
-def test_a_joint_without_effort_limit_is_reported_and_the_others_still_checked(tmp_path, tau):
-    tree = ET.parse(DEFAULT_URDF)
-    joint = next(j for j in tree.getroot().iter("joint") if j.get("name") == "RF_tibia")
-    joint.find("limit").set("effort", "0")  # type: ignore[union-attr]
-    tree.write(tmp_path / "no_effort.urdf")
-    robot = load_robot(tmp_path / "no_effort.urdf", DEFAULT_SRDF)
+def test_a_joint_without_effort_limit_is_reported_and_the_others_still_checked(urdf_with_limit,
+                                                                              tau):
+    robot = urdf_with_limit("RF_tibia", "effort", "0")
     (missing,) = torque_findings(robot, tau)
     assert missing.check == "effort_limit_missing" and missing.where == "joint RF_tibia"
     assert missing.value == 0.0 and "<limit effort=" in missing.remedy

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import dataclasses
 import re
-import xml.etree.ElementTree as ET
 
 import numpy as np
 import pytest
@@ -20,7 +19,6 @@ from hexaleg.motion.sanity import (
     speed_findings,
     support_findings,
 )
-from hexaleg.robot.model import DEFAULT_SRDF, DEFAULT_URDF, load_robot
 from hexaleg.robot.registry import DESCRIPTIONS, description, load
 
 SAMPLES = 200
@@ -69,12 +67,8 @@ def test_scaled_velocities_are_flagged_on_every_joint_over_its_limit(robot, walk
     assert all(f.check == "joint_speed" and "slow the motion" in f.remedy for f in findings)
 
 
-def test_a_joint_without_velocity_limit_is_reported_not_skipped(tmp_path, walk200):
-    tree = ET.parse(DEFAULT_URDF)
-    joint = next(j for j in tree.getroot().iter("joint") if j.get("name") == "LM_coxa")
-    joint.find("limit").set("velocity", "0")  # type: ignore[union-attr]
-    tree.write(tmp_path / "no_velocity.urdf")
-    robot = load_robot(tmp_path / "no_velocity.urdf", DEFAULT_SRDF)
+def test_a_joint_without_velocity_limit_is_reported_not_skipped(urdf_with_limit, walk200):
+    robot = urdf_with_limit("LM_coxa", "velocity", "0")
     (found,) = motion_findings(robot, walk200)
     assert found.check == "velocity_limit_missing" and found.where == "joint LM_coxa"
     assert found.value == 0.0 and "<limit velocity=" in found.remedy

@@ -32,6 +32,22 @@ def _legs(prefixes: Mapping[str, str], joints: tuple[str, str, str], foot: str
 
 _HAA_HFE_KFE = ("{p}_HAA", "{p}_HFE", "{p}_KFE")
 
+def _unitree(name: str, title: str, *, stride: float, notes: str) -> RobotDescription:
+    """A Unitree quadruped of example-robot-data: ``<name>_description/urdf/<name>.urdf`` and
+    ``srdf/<name>.srdf``, legs ``FL FR RL RR`` with ``*_hip/thigh/calf_joint`` and ``*_foot``,
+    the knees sprung, a trot."""
+    return RobotDescription(
+        name=name, title=title, source=EXAMPLE_ROBOT_DATA,
+        urdf=f"{name}_description/urdf/{name}.urdf", srdf=f"{name}_description/srdf/{name}.srdf",
+        stand="standing",
+        legs=_legs({"LF": "FL", "RF": "FR", "LH": "RL", "RH": "RR"},
+                   ("{p}_hip_joint", "{p}_thigh_joint", "{p}_calf_joint"), "{p}_foot"),
+        joint_kinds=("hip", "thigh", "knee"), spring_class="knee",
+        gait={"period": 0.6, "duty_factor": 0.6, "stride_length": stride,
+              "step_height": stride / 2, "groups": TROT},
+        notes=notes)
+
+
 DESCRIPTIONS: Mapping[str, RobotDescription] = MappingProxyType({d.name: d for d in (
     RobotDescription(
         name="hexaleg", title="hexaleg: the switchable hexapod/sphere robot of the paper",
@@ -68,28 +84,13 @@ DESCRIPTIONS: Mapping[str, RobotDescription] = MappingProxyType({d.name: d for d
         gait={"period": 0.8, "duty_factor": 0.6, "stride_length": 0.2, "step_height": 0.08,
               "groups": TROT},
         notes="example-robot-data anymal_c_simple_description (loader ANYmalCLoader); 52.1 kg"),
-    RobotDescription(
-        name="go2", title="Go2 (Unitree)",
-        source=EXAMPLE_ROBOT_DATA, urdf="go2_description/urdf/go2.urdf",
-        srdf="go2_description/srdf/go2.srdf", stand="standing",
-        legs=_legs({"LF": "FL", "RF": "FR", "LH": "RL", "RH": "RR"},
-                   ("{p}_hip_joint", "{p}_thigh_joint", "{p}_calf_joint"), "{p}_foot"),
-        joint_kinds=("hip", "thigh", "knee"), spring_class="knee",
-        gait={"period": 0.6, "duty_factor": 0.6, "stride_length": 0.12, "step_height": 0.06,
-              "groups": TROT},
-        notes="example-robot-data go2_description (loader Go2Loader); 16.1 kg; the knee class "
-              "is the URDF's calf joints"),
-    RobotDescription(
-        name="a1", title="A1 (Unitree)",
-        source=EXAMPLE_ROBOT_DATA, urdf="a1_description/urdf/a1.urdf",
-        srdf="a1_description/srdf/a1.srdf", stand="standing",
-        legs=_legs({"LF": "FL", "RF": "FR", "LH": "RL", "RH": "RR"},
-                   ("{p}_hip_joint", "{p}_thigh_joint", "{p}_calf_joint"), "{p}_foot"),
-        joint_kinds=("hip", "thigh", "knee"), spring_class="knee",
-        gait={"period": 0.6, "duty_factor": 0.6, "stride_length": 0.12, "step_height": 0.06,
-              "groups": TROT},
-        notes="example-robot-data a1_description (loader A1Loader); thigh and calf 0.2 m; no "
-              "catalogue motor: a generic actuator from the URDF's effort and velocity limits"),
+    _unitree("go2", "Go2 (Unitree)", stride=0.12,
+             notes="example-robot-data go2_description (loader Go2Loader); 16.1 kg; the knee "
+                   "class is the URDF's calf joints"),
+    _unitree("a1", "A1 (Unitree)", stride=0.12,
+             notes="example-robot-data a1_description (loader A1Loader); thigh and calf 0.2 m; "
+                   "no catalogue motor: a generic actuator from the URDF's effort and velocity "
+                   "limits"),
 )})
 """The registered robots by name; :data:`DEFAULT_ROBOT` first."""
 
