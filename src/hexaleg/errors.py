@@ -66,7 +66,55 @@ class ConfigError(HexalegError):
 
 
 class UnreachableTargetError(HexalegError):
-    """A foot target lies outside the workspace of its leg."""
+    """A foot target lies outside the workspace of its leg (or needs a joint beyond its limits).
+
+    The leg solvers fill in what they know; a field is None when not known.
+
+    Args:
+        message: The message (names the leg, the time and the distance out of reach).
+        leg: Leg name.
+        t: Time of the sample, s.
+        index: Index of the sample in the solved trajectory.
+        target: The foot target in the base frame, (x, y, z), m.
+        distance: How far the target is out of reach (or where Newton stopped from it), m; None
+            for a joint beyond its limits or a target on the coxa axis.
+    """
+
+    def __init__(self, message: str, *, leg: str | None = None, t: float | None = None,
+                 index: int | None = None, target: tuple[float, ...] | None = None,
+                 distance: float | None = None) -> None:
+        super().__init__(message)
+        self.leg, self.t, self.index = leg, t, index
+        self.target, self.distance = target, distance
+
+
+class GaitReachError(UnreachableTargetError):
+    """A gait's foot target is out of reach: the leg, the time and phase, and what to change.
+
+    Raised by :func:`hexaleg.motion.legged.sample_gait` (diagnosis in
+    :mod:`hexaleg.motion.reach`); the solver's :class:`UnreachableTargetError` is its cause.
+
+    Args:
+        message: The message: the solver's, then the phase, the parameter and a working value.
+        phase: ``"stance"`` or ``"swing"`` at the failing sample.
+        parameter: The gait parameter most likely responsible: ``"step_height"``,
+            ``"stride_length"``, ``"speed"``, ``"body_height"``, ``"foot_radius"`` or
+            ``"stand"`` (the robot's stand pose, when its legs are at the workspace edge).
+        value: That parameter's value in the failing gait (None for ``"stand"``).
+        suggestion: ``GaitParams`` fields and values that make every leg's targets reachable,
+            e.g. ``{"step_height": 0.26}``; empty when none was found.
+        stand: For ``parameter == "stand"``: a bent-knee stand configuration (nq,) whose feet
+            are the suggested footholds, or None.
+        **data: The fields of :class:`UnreachableTargetError`.
+    """
+
+    def __init__(self, message: str, *, phase: str = "", parameter: str = "",
+                 value: float | None = None, suggestion: dict[str, float] | None = None,
+                 stand: object = None, **data: object) -> None:
+        super().__init__(message, **data)  # type: ignore[arg-type]
+        self.phase, self.parameter, self.value = phase, parameter, value
+        self.suggestion = {} if suggestion is None else suggestion
+        self.stand = stand
 
 
 class InfeasibleForcesError(HexalegError):

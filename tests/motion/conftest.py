@@ -1,8 +1,9 @@
 """Fixtures of the motion tests: Pinocchio's own foot kinematics, the independent check of the
-motions' q, v and a."""
+motions' q, v and a; a robot turned inside its base frame (a URDF facing another way)."""
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable
 
 import numpy as np
@@ -39,3 +40,26 @@ def frame_kinematics() -> FrameKinematics:
     """``frame_kinematics(robot, motion)`` → world position, velocity and classical
     acceleration (LOCAL_WORLD_ALIGNED) of every foot, each (T, n_legs, 3)."""
     return _frame_kinematics
+
+
+def _rotated(robot: hexaleg.Robot, angle: float) -> hexaleg.Robot:
+    """The same robot with its body turned by ``angle`` about the base z axis inside the base
+    frame (what a URDF facing another way looks like), its heading turned with it."""
+    model = robot.model.copy()
+    turn = pin.SE3(pin.rpy.rpyToMatrix(0.0, 0.0, angle), np.zeros(3))
+    for jid in range(2, model.njoints):
+        if model.parents[jid] == 1:
+            model.jointPlacements[jid] = turn * model.jointPlacements[jid]
+    for frame in model.frames:
+        if frame.parentJoint == 1:
+            frame.placement = turn * frame.placement
+    model.inertias[1] = model.inertias[1].se3Action(turn)
+    return dataclasses.replace(robot, model=model, data=model.createData(),
+                               heading=turn.rotation @ robot.heading)
+
+
+@pytest.fixture(scope="session")
+def rotated() -> Callable[[hexaleg.Robot, float], hexaleg.Robot]:
+    """``rotated(robot, angle)``: the robot's body turned by ``angle`` about z inside its base
+    frame, heading included — the same robot, described facing another way."""
+    return _rotated

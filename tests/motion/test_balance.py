@@ -116,6 +116,32 @@ def test_sway_direction_crosses_the_support_lines():
     assert np.allclose(np.abs(crossing(trot, np.array([0.0, 1.0, 0.0]))), 0.8)
 
 
+def test_sway_direction_is_lateral_to_the_heading():
+    """Turning the support lines and the heading together turns the sway direction with them."""
+    left = np.array([0.0, 1.0, 0.0])
+    trot = np.array([[-0.6, 0.8, 0.0], [0.6, 0.8, 0.0]])  # the trot above, heading +y
+    assert np.allclose(sway_direction(trot, left), [-1.0, 0.0, 0.0], atol=1e-15)
+    assert np.allclose(sway_direction(np.array([[1.0, 0.0, 0.0]]), left), [0.0, 1.0, 0.0],
+                       atol=1e-15)  # a bound when walking along +y
+    assert np.array_equal(sway_direction(trot, np.array([1.0, 0.0, 0.0])),
+                          sway_direction(trot))  # the default heading is x
+
+
+def test_a_trot_facing_another_way_sways_across_its_heading(solo, rotated):
+    """Solo-12 described facing +y trots the same joint motion, its sway turned with it."""
+    gait = trot_params(duty_factor=0.6)
+    forward = tripod_gait(solo, gait)
+    turned = tripod_gait(rotated(solo, math.pi / 2), gait)
+    assert np.abs(turned.q[:, 7:] - forward.q[:, 7:]).max() < 1e-8
+    assert np.abs(turned.a[:, 6:] - forward.a[:, 6:]).max() < 1e-5 * np.abs(forward.a).max()
+    d0, d1 = (np.array(m.info["balance"]["direction"]) for m in (forward, turned))
+    assert np.allclose(d0, [0.0, 1.0, 0.0]) and np.allclose(d1, [-1.0, 0.0, 0.0], atol=1e-12)
+    rot = pin.rpy.rpyToMatrix(0.0, 0.0, math.pi / 2)
+    assert np.allclose(turned.q[:, :3], forward.q[:, :3] @ rot.T, atol=1e-9)
+    assert turned.info["balance"]["amplitude"] == pytest.approx(
+        forward.info["balance"]["amplitude"], abs=1e-9)
+
+
 # --------------------------------------------------------------------------- support moment
 
 

@@ -3,15 +3,20 @@ top, and foot targets in the moving base frame with exact derivatives."""
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pinocchio as pin
 import pytest
 
+import hexaleg
+from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.balance import Sway
 from hexaleg.motion.body import (
     base_state,
     body_motion,
     body_pose,
+    heading,
     in_base_frame,
     reference_pose,
     rotz,
@@ -29,6 +34,32 @@ def test_body_pose_is_a_straight_line_or_an_arc():
     rot = rotz(yaw)
     assert np.allclose(rot @ np.swapaxes(rot, 1, 2), np.eye(3)) and np.allclose(
         rot[3], pin.utils.rpyToMatrix(0.0, 0.0, yaw[3]))
+
+
+@pytest.mark.parametrize("yaw_rate", [0.0, 0.5])
+def test_body_pose_along_a_heading_is_the_forward_pose_turned(yaw_rate):
+    t = np.linspace(0.0, 1.0, 11)
+    angle = 2.0
+    h = np.array([np.cos(angle), np.sin(angle), 0.0])
+    forward, yaw = body_pose(t, 0.1, yaw_rate, 0.09)
+    turned, yaw2 = body_pose(t, 0.1, yaw_rate, 0.09, h)
+    assert np.allclose(turned, forward @ rotz(angle).T, atol=1e-15) and np.array_equal(yaw, yaw2)
+    assert np.array_equal(body_pose(t, 0.1, yaw_rate, 0.09, np.array([1.0, 0.0, 0.0]))[0],
+                          forward)
+    body = body_motion(t, 0.1, yaw_rate, 0.09, None, h)
+    assert np.allclose(body.v, 0.1 * h) and np.allclose(body.base, turned)
+
+
+def test_heading_is_a_horizontal_unit_vector(robot):
+    assert np.array_equal(heading(robot), [1.0, 0.0, 0.0])
+    odd = dataclasses.replace(robot)
+    odd.heading = np.array([0.0, -2.0, 0.0])  # set after loading: not normalised by Robot
+    assert np.array_equal(heading(odd), [0.0, -1.0, 0.0])
+    for bad in ([0.0, 0.0, 1.0], [0.0, 0.0, 0.0], [np.nan, 1.0, 0.0], [1.0, 0.0]):
+        odd.heading = np.array(bad)
+        with pytest.raises(InvalidParameterError, match="heading"):
+            heading(odd)
+    assert isinstance(odd, hexaleg.Robot)
 
 
 def test_base_state_holds_the_legs_at_the_reference_pose(robot):

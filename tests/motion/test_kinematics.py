@@ -158,6 +158,10 @@ def test_unreachable_target_names_leg_time_and_distance(robot):
     name, when, dist = _out_of_reach(str(err.value))
     assert (name, when) == ("LM", 0.1)
     assert dist == pytest.approx(math.hypot(0.2, 0.1) - (geom.femur + geom.tibia), rel=1e-5)
+    # The error carries its data: leg, time, sample, target (base frame) and distance.
+    e = err.value
+    assert (e.leg, e.t, e.index) == ("LM", 0.1, 1) and np.allclose(e.target, p[1])
+    assert e.distance == pytest.approx(math.hypot(0.2, 0.1) - (geom.femur + geom.tibia))
     too_close = femur_axis + np.array([[0.0, 0.01, -0.01]])
     with pytest.raises(UnreachableTargetError, match=r"leg LM at t = 0 s"):
         leg_ik(robot, leg, too_close, np.zeros((1, 3)), np.zeros((1, 3)))
@@ -168,15 +172,20 @@ def test_joint_limits_are_enforced(robot):
     geom = analytic_geometry(robot, leg)
     # A reachable point that needs the coxa beyond ±150°: behind the hip.
     p = geom.forward(np.array([[math.radians(170.0), 0.3, -1.5]]))
-    with pytest.raises(UnreachableTargetError, match=r"RF_coxa .*outside its limits"):
+    with pytest.raises(UnreachableTargetError, match=r"RF_coxa .*outside its limits") as err:
         leg_ik(robot, leg, p, np.zeros((1, 3)), np.zeros((1, 3)))
+    assert (err.value.leg, err.value.index, err.value.distance) == ("RF", 0, None)
+    assert np.allclose(err.value.target, p[0])
 
 
 def test_newton_reports_unreachable_targets(robot):
     leg = robot.leg("RH")
     p = np.array([[-0.5, -0.5, 0.0]])
-    with pytest.raises(UnreachableTargetError, match=r"leg RH at t = 0 s: .*out of reach"):
+    with pytest.raises(UnreachableTargetError, match=r"leg RH at t = 0 s: .*out of reach") as err:
         newton_leg_ik(robot, leg, p, np.zeros((1, 3)), np.zeros((1, 3)))
+    # Newton's remaining distance is the data the gait's diagnosis reads.
+    assert (err.value.leg, err.value.t, err.value.index) == ("RH", 0.0, 0)
+    assert err.value.target == (-0.5, -0.5, 0.0) and err.value.distance > 0.1
 
 
 def test_leg_geometry_rejects_bad_lengths():

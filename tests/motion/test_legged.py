@@ -1,9 +1,11 @@
 """Tests of hexaleg.motion.legged: the tripod gait's kinematic consistency (Pinocchio FK, stance
 feet at rest, finite differences), periodicity, footholds, other leg groups (a wave gait, a
-quadruped's trot) and the errors on bad input."""
+quadruped's trot), the errors on bad input, the explained IK failures (parameter and a value
+that works) and walking along the robot's heading."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
 
@@ -12,7 +14,12 @@ import pinocchio as pin
 import pytest
 
 import hexaleg
-from hexaleg.errors import InvalidParameterError, UnknownNameError, UnreachableTargetError
+from hexaleg.errors import (
+    GaitReachError,
+    InvalidParameterError,
+    UnknownNameError,
+    UnreachableTargetError,
+)
 from hexaleg.motion.legged import nominal_footholds, sample_gait, tripod_gait
 from hexaleg.motion.params import GaitParams
 from hexaleg.robot.model import LegSpec
@@ -232,3 +239,158 @@ def test_trot_on_a_quadruped_through_the_same_code(quadruped, frame_kinematics):
     assert np.abs(vel[motion.stance]).max() <= 1e-9
     assert np.abs(acc[motion.stance]).max() <= 1e-9
     assert motion.info["body_height"] == pytest.approx(0.32 * math.cos(0.8), rel=1e-9)
+
+
+# --- IK failures name the leg, the time, the phase, the parameter and a value that works ---
+
+
+def _reach_error(robot, gait) -> GaitReachError:
+    with pytest.raises(GaitReachError) as err:
+        tripod_gait(robot, gait)
+    assert isinstance(err.value, UnreachableTargetError)  # old `except` clauses still catch it
+    return err.value
+
+
+def _suggested(message: str, name: str) -> float:
+    m = re.search(rf"{name} = ([\d.e+-]+) m(/s)? would work", message)
+    assert m, message
+    return float(m.group(1))
+
+
+def test_too_high_step_names_step_height_and_a_value_that_works(robot):
+    gait = GaitParams(step_height=0.3)
+    err = _reach_error(robot, gait)
+    msg = str(err)
+    m = re.match(r"leg (\w+) at t = ([\d.e+-]+) s: ", msg)
+    assert m and m.group(1) == err.leg and m.group(1) in robot.leg_names, msg
+    assert float(m.group(2)) == pytest.approx(err.t, abs=1e-5)
+    assert "in swing" in msg and err.phase == "swing"
+    assert "Most likely cause: step_height = 0.3 m" in msg and err.parameter == "step_height"
+    assert err.value == 0.3 and err.distance > 0 and len(err.target) == 3
+    value = _suggested(msg, "step_height")
+    assert err.suggestion == {"step_height": value} and 0.2 < value < 0.3
+    # The swing's apex is what the leg cannot reach: the failing target is near its top.
+    assert err.target[2] + 0.0913 > 0.5 * 0.3
+    works = tripod_gait(robot, dataclasses.replace(gait, **err.suggestion))
+    assert works.feet[..., 2].max() == pytest.approx(value, abs=1e-9)
+
+
+def test_too_long_stride_names_stride_length_and_a_value_that_works(robot):
+    gait = GaitParams(stride_length=0.6)
+    err = _reach_error(robot, gait)
+    msg = str(err)
+    assert re.match(rf"leg {err.leg} at t = [\d.e+-]+ s: ", msg) and err.leg in robot.leg_names
+    assert "stride_length = 0.6 m" in msg and err.parameter == "stride_length"
+    assert err.phase in ("stance", "swing") and f"in {err.phase}" in msg
+    value = _suggested(msg, "stride_length")
+    assert err.suggestion == {"stride_length": value} and 0.0 < value < 0.6
+    assert tripod_gait(robot, dataclasses.replace(gait, **err.suggestion)).distance == value
+    # Given as a speed, the speed is named (it wins over stride_length).
+    fast = _reach_error(robot, GaitParams(speed=0.6))
+    assert fast.parameter == "speed" and "speed = 0.6 m/s" in str(fast)
+    assert fast.suggestion == {"speed": _suggested(str(fast), "speed")}
+    tripod_gait(robot, GaitParams(speed=fast.suggestion["speed"]))
+
+
+@pytest.mark.parametrize(("height", "word"), [(0.25, "too high"), (0.01, "too low")])
+def test_body_out_of_the_legs_range_names_body_height(robot, height, word):
+    gait = GaitParams(body_height=height)
+    err = _reach_error(robot, gait)
+    assert err.parameter == "body_height" and f"the body {word}" in str(err)
+    value = _suggested(str(err), "body_height")
+    assert err.suggestion == {"body_height": value}
+    assert (value < height) if word == "too high" else (value > height)
+    tripod_gait(robot, dataclasses.replace(gait, **err.suggestion))
+
+
+def test_stand_pose_with_straight_legs_is_named_with_a_bent_knee_stand(robot):
+    straight = dataclasses.replace(robot, poses=dict(robot.poses))
+    zero = robot.pose("zero")
+    zero[:7] = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0]
+    straight.poses["stand"] = zero
+    err = _reach_error(straight, GaitParams())
+    msg = str(err)
+    assert err.parameter == "stand" and err.value is None
+    assert "Cause: the stand pose: its legs are at the edge of their workspace" in msg
+    assert "Bend the knees" in msg and "stand = {body_height = " in msg
+    assert set(err.suggestion) == {"body_height", "foot_radius"}
+    assert all(v > 0 for v in err.suggestion.values())
+    walk = tripod_gait(straight, GaitParams(**err.suggestion))
+    assert walk.info["body_height"] == err.suggestion["body_height"]
+    # The suggested stand has the feet on the suggested footholds, knees bent.
+    feet = straight.foot_positions(err.stand)
+    assert np.allclose(feet, nominal_footholds(straight, GaitParams(**err.suggestion)),
+                       atol=1e-9)
+    assert np.all(np.abs(err.stand[9::3]) > 0.5)  # tibia angles
+
+
+def test_without_a_stand_problem_straight_legs_are_not_blamed(robot):
+    """A given body height and foot radius do not come from the stand: no stand diagnosis."""
+    err = _reach_error(robot, GaitParams(step_height=0.3, body_height=0.09, foot_radius=0.19))
+    assert err.parameter == "step_height"
+
+
+@pytest.mark.parametrize("kind", ["step", "stand"])
+def test_newton_legs_get_the_same_diagnosis(quadruped, kind):
+    """A trot on the quadruped (Newton IK, balanced by a sway): the suggestion still works."""
+    gait = GaitParams(period=0.6, stride_length=0.1, step_height=0.04, samples=60,
+                      groups=(("FL", "HR"), ("FR", "HL")))
+    robot = quadruped
+    if kind == "step":
+        gait = dataclasses.replace(gait, step_height=0.4)
+    else:
+        robot = dataclasses.replace(quadruped, poses=dict(quadruped.poses))
+        robot.poses["stand"] = pin.neutral(quadruped.model)  # legs straight down
+    err = _reach_error(robot, gait)
+    assert err.parameter == ("step_height" if kind == "step" else "stand"), str(err)
+    assert err.suggestion
+    motion = tripod_gait(robot, dataclasses.replace(gait, **err.suggestion))
+    assert motion.info["balance"]["mode"] == "sway"
+
+
+# --- Gaits walk along the robot's heading ---
+
+
+@pytest.mark.parametrize("which", ["walk", "turn"])
+def test_a_robot_facing_another_way_walks_the_same_gait_along_its_heading(robot, which,
+                                                                           request, rotated):
+    motion = request.getfixturevalue(which)
+    gait = GaitParams(**motion.info["gait"])
+    turned = rotated(robot, math.pi / 2)
+    assert np.allclose(turned.heading, [0.0, 1.0, 0.0])
+    other = tripod_gait(turned, gait)
+    rot = pin.rpy.rpyToMatrix(0.0, 0.0, math.pi / 2)
+    assert np.abs(other.q[:, 7:] - motion.q[:, 7:]).max() < 1e-9  # the same joint motion
+    assert np.abs(other.v[:, 6:] - motion.v[:, 6:]).max() < 1e-8
+    assert np.abs(other.a[:, 6:] - motion.a[:, 6:]).max() < 1e-6
+    assert np.allclose(other.q[:, :3], motion.q[:, :3] @ rot.T, atol=1e-12)  # turned path
+    assert np.allclose(other.q[:, 3:7], motion.q[:, 3:7], atol=1e-15)  # same yaw
+    assert np.allclose(other.v[:, :3], motion.v[:, :3] @ rot.T, atol=1e-12)
+    assert np.allclose(other.feet, motion.feet @ rot.T, atol=1e-12)
+    assert other.info["static_margin"] == pytest.approx(motion.info["static_margin"], abs=1e-9)
+
+
+def test_heading_sideways_moves_the_base_along_it_with_feet_at_rest(robot, frame_kinematics):
+    sideways = dataclasses.replace(robot, heading=np.array([0.0, 1.0, 0.0]))
+    gait = GaitParams(samples=200)
+    motion = tripod_gait(sideways, gait)
+    end = sample_gait(sideways, gait, np.array([gait.period]))
+    assert np.allclose(end.q[0, :3] - motion.q[0, :3], [0.0, 0.06, 0.0], atol=1e-12)
+    assert np.allclose(motion.v[:, :6], [0.0, 0.06, 0.0, 0.0, 0.0, 0.0])
+    pos, vel, acc = frame_kinematics(sideways, motion)
+    assert np.abs(pos - motion.feet).max() <= 1e-9
+    assert np.abs(vel[motion.stance]).max() <= 1e-9 and np.abs(acc[motion.stance]).max() <= 1e-9
+    # LF stands on [0, T/2), swings, and touches down at t = T one stride further along +y.
+    assert motion.stance[0, 0] and not motion.stance[-1, 0] and end.stance[0, 0]
+    assert np.allclose(end.feet[0, 0] - motion.feet[0, 0], [0.0, 0.06, 0.0], atol=1e-12)
+    limit = robot.model.velocityLimit[6:]
+    assert np.all(np.abs(motion.v[:, 6:]) <= limit)
+    # Not the forward gait: the legs move differently.
+    assert np.abs(motion.q[:, 7:] - tripod_gait(robot, gait).q[:, 7:]).max() > 0.05
+
+
+def test_a_bad_heading_is_refused(robot):
+    upward = dataclasses.replace(robot)
+    upward.heading = np.array([0.0, 0.0, 1.0])  # set after loading: not checked by Robot
+    with pytest.raises(InvalidParameterError, match="invalid heading"):
+        tripod_gait(upward, GaitParams(samples=20))

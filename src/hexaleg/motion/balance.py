@@ -197,23 +197,28 @@ def support_moment(robot: Robot, motion: Motion) -> tuple[np.ndarray, np.ndarray
     return moment, mask, axis_base
 
 
-def sway_direction(axes: np.ndarray) -> np.ndarray:
+def sway_direction(axes: np.ndarray, heading: np.ndarray | None = None) -> np.ndarray:
     """The horizontal sway direction that best crosses every support line: lateral if possible.
 
     Chooses the unit vector e in the base frame's horizontal plane that maximises the smallest
     ``|s| = |u · (e × ẑ)|`` (the sine of the angle between e and a support line u) over the given
-    lines, trying directions at 1° steps from the base's lateral axis y; ties keep the one closest
-    to lateral. For a trot (two diagonals mirrored about x) that is lateral; for a bound (lines
-    across the body) it is longitudinal.
+    lines, trying directions at 1° steps from the lateral axis (ẑ × heading: the base's y axis
+    for the default heading x); ties keep the one closest to lateral. For a trot (two diagonals
+    mirrored about the heading) that is lateral; for a bound (lines across the body) it is
+    along the heading.
 
     Args:
         axes: Support line directions in the base frame, shape (L, 3).
+        heading: The robot's heading, a horizontal unit vector in the base frame, shape (3,);
+            default ``[1, 0, 0]``.
 
     Returns:
         e, shape (3,).
     """
     offsets = [0.0, *(sign * k for k in range(1, 90) for sign in (1.0, -1.0)), -90.0]
     angles = np.deg2rad(90.0 + np.array(offsets))  # lateral first, then ever further from it
+    if heading is not None and not (heading[0] == 1.0 and heading[1] == 0.0):
+        angles = angles + math.atan2(heading[1], heading[0])
     candidates = np.stack([np.cos(angles), np.sin(angles), np.zeros_like(angles)], axis=1)
     candidates[np.abs(candidates) < 1e-15] = 0.0  # exactly lateral/longitudinal at 90°, 0°
     cross = np.cross(candidates, [0.0, 0.0, 1.0])  # e × ẑ
@@ -236,8 +241,8 @@ def crossing(axis_base: np.ndarray, direction: np.ndarray) -> np.ndarray:
 
 
 def balance_sway(robot: Robot, gait: GaitParams, grid: np.ndarray,
-                 sample: Callable[[Sway | None, dict[str, Any]], Motion]
-                 ) -> tuple[Motion, Sway, dict[str, Any]]:
+                 sample: Callable[[Sway | None, dict[str, Any]], Motion],
+                 heading: np.ndarray | None = None) -> tuple[Motion, Sway, dict[str, Any]]:
     """The body sway that balances a two-foot gait on its cycle grid: a fixed-point iteration.
 
     ``d`` is the fixed point of: compute the exact moment M_k about each two-foot sample's
@@ -253,6 +258,7 @@ def balance_sway(robot: Robot, gait: GaitParams, grid: np.ndarray,
         grid: The cycle grid ``k · period / samples``, shape (N,), s.
         sample: The gait on ``grid`` with a sway (None: the constant-twist body) and the
             ``info["balance"]`` report to store (:func:`hexaleg.motion.legged.sample_gait`).
+        heading: The robot's heading in the base frame (:func:`sway_direction`); default x.
 
     Returns:
         The balanced motion, its sway and the report (``mode``, ``direction``, ``height``,
@@ -264,7 +270,7 @@ def balance_sway(robot: Robot, gait: GaitParams, grid: np.ndarray,
     """
     motion = sample(None, {"mode": "none"})
     moment, mask, axes = support_moment(robot, motion)
-    direction = sway_direction(np.unique(np.round(axes[mask], 12), axis=0))
+    direction = sway_direction(np.unique(np.round(axes[mask], 12), axis=0), heading)
     model, data = robot.model, robot.model.createData()
     height = float(np.mean([pin.centerOfMass(model, data, q)[2] for q in motion.q]))
     mass, g = robot.mass, float(np.linalg.norm(model.gravity.linear))

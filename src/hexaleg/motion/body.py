@@ -1,8 +1,10 @@
 """The body of a periodic gait: its constant-twist motion, the balancing sway, the base frame.
 
-The base moves with a constant twist (local linear velocity ``[speed, 0, 0]``, angular velocity
+The base moves with a constant twist (local linear velocity ``speed · h`` along the robot's
+heading h, :attr:`hexaleg.robot.model.Robot.heading`, default ``[1, 0, 0]``; angular velocity
 ``[0, 0, yaw_rate]``) at a constant height, starting at the origin with zero yaw, plus an
-optional horizontal sway ``d(t) e`` (:class:`hexaleg.motion.balance.Sway`). World foot targets
+optional horizontal sway ``d(t) e`` (:class:`hexaleg.motion.balance.Sway`). The legs' mid-stance
+footholds in the base frame are :func:`nominal_footholds`. World foot targets
 are taken into the base frame with the exact rotating-frame derivatives (see
 :func:`in_base_frame`), as :func:`hexaleg.motion.kinematics.leg_ik` needs them.
 """
@@ -14,8 +16,13 @@ from typing import NamedTuple
 import numpy as np
 import pinocchio as pin
 
+from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.balance import Sway
+from hexaleg.motion.params import GaitParams
 from hexaleg.robot.model import Robot
+
+FORWARD = np.array([1.0, 0.0, 0.0])
+"""The default heading: the base's x axis."""
 
 
 class Body(NamedTuple):
@@ -45,14 +52,65 @@ def reference_pose(robot: Robot) -> np.ndarray:
     return q
 
 
-def body_pose(t: np.ndarray, speed: float, yaw_rate: float, height: float
-              ) -> tuple[np.ndarray, np.ndarray]:
-    """Base position (N, 3) m and yaw (N,) rad of the constant-twist body motion at times t."""
+def heading(robot: Robot) -> np.ndarray:
+    """The robot's heading (:attr:`Robot.heading`) as a horizontal unit vector, shape (3,).
+
+    Checked here too, since the attribute can be reassigned after loading.
+
+    Raises:
+        InvalidParameterError: not a finite, non-zero horizontal 3-vector.
+    """
+    h = np.asarray(getattr(robot, "heading", FORWARD), dtype=float)
+    if h.shape != (3,) or not np.all(np.isfinite(h)) or abs(h[2]) > 1e-12 \
+            or np.hypot(h[0], h[1]) < 1e-9:
+        raise InvalidParameterError("heading", h.tolist(), "a horizontal base axis [x, y, 0], "
+                                    "not zero")
+    if h[0] == 1.0 and h[1] == 0.0:
+        return FORWARD.copy()
+    return np.array([h[0], h[1], 0.0]) / np.hypot(h[0], h[1])
+
+
+def nominal_footholds(robot: Robot, gait: GaitParams) -> np.ndarray:
+    """Mid-stance foot positions in the base frame, shape (n_legs, 3), m.
+
+    Horizontally the footholds of the robot's ``stand`` pose (scaled to ``foot_radius`` from the
+    base z axis when given); vertically ``−body_height`` (default the stand pose's mean foot
+    depth), so the feet are on the ground z = 0 when the base is at ``body_height``.
+
+    Args:
+        robot: The robot.
+        gait: Gait parameters.
+
+    Returns:
+        Footholds in the base frame, legs in ``robot.legs`` order.
+    """
+    feet = robot.foot_positions(reference_pose(robot))
+    height = -float(feet[:, 2].mean()) if gait.body_height is None else gait.body_height
+    if gait.foot_radius is not None:
+        radial = np.linalg.norm(feet[:, :2], axis=1, keepdims=True)
+        feet[:, :2] *= gait.foot_radius / radial
+    feet[:, 2] = -height
+    return feet
+
+
+def body_pose(t: np.ndarray, speed: float, yaw_rate: float, height: float,
+              direction: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Base position (N, 3) m and yaw (N,) rad of the constant-twist body motion at times t.
+
+    The local linear velocity ``speed · h`` (h = ``direction``, a horizontal unit vector in the
+    base frame, default ``[1, 0, 0]``) and angular velocity ``[0, 0, yaw_rate]`` integrate to a
+    line or a circular arc along h (rigid-body motion with a constant twist, Lynch & Park,
+    *Modern Robotics*, 2017, §3.3.3: for h = x̂, ``x = v/ω sin ωt``, ``y = v/ω (1 − cos ωt)``;
+    for another h the same path rotated about z by the angle of h).
+    """
     yaw = yaw_rate * t
     if yaw_rate == 0.0:
         x, y = speed * t, np.zeros_like(t)
     else:
         x, y = speed / yaw_rate * np.sin(yaw), speed / yaw_rate * (1.0 - np.cos(yaw))
+    if direction is not None and not (direction[0] == 1.0 and direction[1] == 0.0):
+        c, s = float(direction[0]), float(direction[1])
+        x, y = c * x - s * y, s * x + c * y
     return np.stack([x, y, np.full_like(t, height)], axis=-1), yaw
 
 
@@ -66,16 +124,17 @@ def rotz(yaw: np.ndarray) -> np.ndarray:
 
 
 def body_motion(t: np.ndarray, speed: float, yaw_rate: float, height: float,
-                sway: Sway | None) -> Body:
+                sway: Sway | None, direction: np.ndarray | None = None) -> Body:
     """The constant-twist body at times ``t`` (N,), with the sway ``d(t) e`` on top if given.
 
-    The sway adds ``R e d`` to the position, ``e ḋ + ω ẑ × e d`` to the LOCAL linear velocity
-    and makes the acceleration ``e d̈ + ω ẑ × e ḋ`` (exact derivatives of the trigonometric
-    polynomial d).
+    The body travels along ``direction`` (the heading h, base frame; default ``[1, 0, 0]``):
+    LOCAL linear velocity ``speed · h`` (:func:`body_pose`). The sway adds ``R e d`` to the
+    position, ``e ḋ + ω ẑ × e d`` to the LOCAL linear velocity and makes the acceleration
+    ``e d̈ + ω ẑ × e ḋ`` (exact derivatives of the trigonometric polynomial d).
     """
-    base, yaw = body_pose(t, speed, yaw_rate, height)
+    base, yaw = body_pose(t, speed, yaw_rate, height, direction)
     rot = rotz(yaw)
-    v_local = np.array([speed, 0.0, 0.0])
+    v_local = np.array([speed, 0.0, 0.0]) if direction is None else speed * direction
     w_local = np.array([0.0, 0.0, yaw_rate])
     a_local = np.zeros(3)
     if sway is not None:

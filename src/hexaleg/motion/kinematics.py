@@ -183,7 +183,7 @@ def analytic_geometry(robot: Robot, leg: Leg) -> LegGeometry | None:
     return geom
 
 
-def _check_limits(robot: Robot, leg: Leg, q: np.ndarray, t: np.ndarray) -> None:
+def _check_limits(robot: Robot, leg: Leg, q: np.ndarray, t: np.ndarray, p: np.ndarray) -> None:
     """Raise UnreachableTargetError at the first sample where a joint leaves its limits."""
     lo = robot.model.lowerPositionLimit[leg.q_index]
     hi = robot.model.upperPositionLimit[leg.q_index]
@@ -193,7 +193,14 @@ def _check_limits(robot: Robot, leg: Leg, q: np.ndarray, t: np.ndarray) -> None:
         raise UnreachableTargetError(
             f"leg {leg.name} at t = {t[k]:.6g} s: joint {leg.joint_names[j]} would be "
             f"{math.degrees(q[k, j]):.2f}° (= {q[k, j]:.4f} rad), outside its limits "
-            f"[{math.degrees(lo[j]):.1f}°, {math.degrees(hi[j]):.1f}°]")
+            f"[{math.degrees(lo[j]):.1f}°, {math.degrees(hi[j]):.1f}°]",
+            **_where(leg.name, t, k, np.atleast_2d(p)[k]))
+
+
+def _where(leg: str, t: np.ndarray, k: int, p: np.ndarray, dist: float | None = None) -> dict:
+    """The data fields of an :class:`UnreachableTargetError` at sample k."""
+    return {"leg": leg, "t": float(t[k]), "index": k, "target": tuple(float(x) for x in p),
+            "distance": None if dist is None else float(dist)}
 
 
 def analytic_leg_ik(geom: LegGeometry, p: np.ndarray, pd: np.ndarray, pdd: np.ndarray, *,
@@ -244,10 +251,11 @@ def analytic_leg_ik(geom: LegGeometry, p: np.ndarray, pd: np.ndarray, pdd: np.nd
                  f"{np.round(p[k], 6).tolist()} m (base frame)")
         if out[k] <= 0:
             raise UnreachableTargetError(f"{where} is on the coxa axis, where the coxa angle is "
-                                         "undefined; targets must lie outward of it")
+                                         "undefined; targets must lie outward of it",
+                                         **_where(leg_name, t, k, p[k]))
         raise UnreachableTargetError(
             f"{where} is {out[k]:.6g} m out of reach (distance {dist[k]:.6g} m from the femur "
-            f"axis; the leg reaches {lo:.6g}–{hi:.6g} m)")
+            f"axis; the leg reaches {lo:.6g}–{hi:.6g} m)", **_where(leg_name, t, k, p[k], out[k]))
 
     l1, l2 = geom.femur, geom.tibia
     cos3 = np.clip((dist**2 - l1**2 - l2**2) / (2.0 * l1 * l2), -1.0, 1.0)
@@ -345,7 +353,8 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
             raise UnreachableTargetError(
                 f"leg {leg.name} at t = {t[k]:.6g} s: foot target {np.round(p[k], 6).tolist()} m "
                 f"(base frame) is out of reach: Newton stopped {err:.6g} m from it"
-                + (" at a singular configuration" if err <= NEWTON_TOL else ""))
+                + (" at a singular configuration" if err <= NEWTON_TOL else ""),
+                **_where(leg.name, t, k, p[k], err))
         qd = np.linalg.solve(jac, pd[k])
         v[iv] = qd
         pin.forwardKinematics(model, data, q, v, zero)
@@ -386,5 +395,5 @@ def leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarra
     else:
         q, qd, qdd = newton_leg_ik(robot, leg, p, pd, pdd, t=t)
         solver = "newton"
-    _check_limits(robot, leg, q, t)
+    _check_limits(robot, leg, q, t, p)
     return q, qd, qdd, solver

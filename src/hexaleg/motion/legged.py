@@ -17,23 +17,31 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
-from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.errors import (
+    HexalegError,
+    InvalidParameterError,
+    UnknownNameError,
+    UnreachableTargetError,
+)
 from hexaleg.motion.balance import Sway, balance_sway
 from hexaleg.motion.body import (
     base_state,
     body_motion,
     body_pose,
+    heading,
     in_base_frame,
-    reference_pose,
+    nominal_footholds,
     rotz,
 )
 from hexaleg.motion.kinematics import leg_ik
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.profiles import swing_curve
+from hexaleg.motion.reach import explain
 from hexaleg.motion.support import static_margins
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
@@ -43,9 +51,10 @@ def sample_gait(robot: Robot, gait: GaitParams | None = None,
                 t: np.ndarray | None = None) -> Motion:
     """Evaluate the periodic leg-group gait at given times (the machinery of :func:`tripod_gait`).
 
-    The base moves with the constant twist (local linear velocity ``[speed, 0, 0]``, angular
-    velocity ``[0, 0, yaw_rate]``) at ``body_height``, starting at the origin with zero yaw, plus
-    the balancing sway below. A leg of group i is in stance for the phase
+    The base moves with the constant twist (local linear velocity ``speed · h`` along the
+    robot's heading h, :attr:`hexaleg.robot.model.Robot.heading`, default ``[1, 0, 0]``;
+    angular velocity ``[0, 0, yaw_rate]``) at ``body_height``, starting at the origin with zero
+    yaw, plus the balancing sway below. A leg of group i is in stance for the phase
     φ = (t/period − i/n_groups) mod 1 < β (so at a switching instant the group touching down is
     in stance and the one lifting off is not), its foot fixed at the world image of its nominal
     foothold at mid-stance; in swing it moves on :func:`~hexaleg.motion.profiles.swing_curve` from
@@ -84,28 +93,49 @@ def sample_gait(robot: Robot, gait: GaitParams | None = None,
     Raises:
         UnknownNameError: a leg in ``gait.groups`` is not a leg of the robot.
         InvalidParameterError: a leg of the robot is in no group, ``t`` is not a non-empty
-            1-D array of finite times, or a support line is (nearly) parallel to every sway
-            direction.
-        UnreachableTargetError: a foot target is out of reach (names leg, time, distance).
+            1-D array of finite times, a support line is (nearly) parallel to every sway
+            direction, or the robot's heading is not a horizontal vector.
+        GaitReachError: a foot target is out of reach (an ``UnreachableTargetError``): names
+            the leg, the time and phase, the target and its distance out of reach, the gait
+            parameter most likely responsible and a value that works
+            (:func:`hexaleg.motion.reach.explain`).
         InfeasibleForcesError: the sway iteration does not converge (the gait is too fast or
             its support lines too short to balance).
     """
-    gait = GaitParams() if gait is None else gait
-    cycle_grid = t is None
+    return _sample_gait(robot, GaitParams() if gait is None else gait, t, diagnose=True)
+
+
+def _sample_gait(robot: Robot, gait: GaitParams, times: np.ndarray | None, *, diagnose: bool
+                 ) -> Motion:
+    """:func:`sample_gait`; ``diagnose``: explain an IK failure (:mod:`hexaleg.motion.reach`),
+    checking its suggestion by generating the gait again without a diagnosis."""
+    cycle_grid = times is None
     grid = np.arange(gait.samples) * (gait.period / gait.samples)
-    t = grid if t is None else np.asarray(t, dtype=float)
+    t = grid if times is None else np.asarray(times, dtype=float)
     if t.ndim != 1 or len(t) == 0 or not np.all(np.isfinite(t)):
         raise InvalidParameterError("t", f"array of shape {t.shape}",
                                     "a non-empty 1-D array of finite times (s)")
+    verify = (lambda other: _works(robot, other, times)) if diagnose else None
     offsets = _resolve_groups(robot, gait)
     counts = _stance_counts(gait, offsets, grid)
     if gait.balance == "none" or counts.min() != 2:
-        return _sample(robot, gait, t, cycle_grid, None, {"mode": "none"})
+        return _sample(robot, gait, t, cycle_grid, None, {"mode": "none"}, verify)
     motion, sway, report = balance_sway(
-        robot, gait, grid, lambda sway, report: _sample(robot, gait, grid, True, sway, report))
+        robot, gait, grid,
+        lambda sway, report: _sample(robot, gait, grid, True, sway, report, verify),
+        heading(robot))
     if cycle_grid:
         return motion
-    return _sample(robot, gait, t, False, sway, report)
+    return _sample(robot, gait, t, False, sway, report, verify)
+
+
+def _works(robot: Robot, gait: GaitParams, times: np.ndarray | None) -> bool:
+    """Whether the gait can be generated (at ``times``, as :func:`sample_gait`)."""
+    try:
+        _sample_gait(robot, gait, times, diagnose=False)
+    except HexalegError:
+        return False
+    return True
 
 
 def tripod_gait(robot: Robot, gait: GaitParams | None = None) -> Motion:
@@ -136,7 +166,8 @@ def tripod_gait(robot: Robot, gait: GaitParams | None = None) -> Motion:
         UnknownNameError: a leg in ``gait.groups`` is not a leg of the robot.
         InvalidParameterError: a leg of the robot is in no group, or a support line cannot be
             crossed by a horizontal sway.
-        UnreachableTargetError: a foot target is out of reach (names leg, time, distance).
+        GaitReachError: a foot target is out of reach (an ``UnreachableTargetError``; names
+            the leg, the time and phase, the parameter to change and a value that works).
         InfeasibleForcesError: the balancing sway does not converge.
     """
     return sample_gait(robot, gait)
@@ -158,31 +189,9 @@ def _resolve_groups(robot: Robot, gait: GaitParams) -> np.ndarray:
     return np.array([offset[leg] for leg in names])
 
 
-def nominal_footholds(robot: Robot, gait: GaitParams) -> np.ndarray:
-    """Mid-stance foot positions in the base frame, shape (n_legs, 3), m.
-
-    Horizontally the footholds of the robot's ``stand`` pose (scaled to ``foot_radius`` from the
-    base z axis when given); vertically ``−body_height`` (default the stand pose's mean foot
-    depth), so the feet are on the ground z = 0 when the base is at ``body_height``.
-
-    Args:
-        robot: The robot.
-        gait: Gait parameters.
-
-    Returns:
-        Footholds in the base frame, legs in ``robot.legs`` order.
-    """
-    feet = robot.foot_positions(reference_pose(robot))
-    height = -float(feet[:, 2].mean()) if gait.body_height is None else gait.body_height
-    if gait.foot_radius is not None:
-        radial = np.linalg.norm(feet[:, :2], axis=1, keepdims=True)
-        feet[:, :2] *= gait.foot_radius / radial
-    feet[:, 2] = -height
-    return feet
-
-
 def _foot_targets(t: np.ndarray, gait: GaitParams, offset: float, nominal: np.ndarray,
-                  height: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                  height: float, direction: np.ndarray | None = None
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """One foot's world target at times ``t`` (T,) (the stance and swing rule of
     :func:`sample_gait`): stance flags (T,), p (T, 3) m, ṗ (T, 3) m/s, p̈ (T, 3) m/s².
 
@@ -192,11 +201,12 @@ def _foot_targets(t: np.ndarray, gait: GaitParams, offset: float, nominal: np.nd
         offset: The leg's touch-down phase offset (fraction of the period).
         nominal: The leg's nominal foothold in the base frame, shape (3,), m.
         height: Body height, m.
+        direction: The heading the body travels along (base frame); default ``[1, 0, 0]``.
     """
     speed, beta, period, omega = gait.velocity, gait.duty_factor, gait.period, gait.yaw_rate
 
     def foothold(t_mid: np.ndarray) -> np.ndarray:
-        pos, psi = body_pose(t_mid, speed, omega, height)
+        pos, psi = body_pose(t_mid, speed, omega, height, direction)
         return pos + np.einsum("nij,j->ni", rotz(psi), nominal)
 
     tau = t / period - offset
@@ -223,22 +233,32 @@ def _stance_counts(gait: GaitParams, offsets: np.ndarray, t: np.ndarray) -> np.n
 
 
 def _sample(robot: Robot, gait: GaitParams, t: np.ndarray, periodic: bool,
-            sway: Sway | None, balance: dict[str, Any]) -> Motion:
-    """The gait at times ``t`` with an optional body sway (see :func:`sample_gait`)."""
+            sway: Sway | None, balance: dict[str, Any],
+            verify: Callable[[GaitParams], bool] | None = None) -> Motion:
+    """The gait at times ``t`` with an optional body sway (see :func:`sample_gait`); an IK
+    failure is explained when ``verify`` (whether another gait works) is given."""
     offsets = _resolve_groups(robot, gait)
     nominal = nominal_footholds(robot, gait)
     height = -float(nominal[0, 2])
-    body = body_motion(t, gait.velocity, gait.yaw_rate, height, sway)
+    direction = heading(robot)
+    body = body_motion(t, gait.velocity, gait.yaw_rate, height, sway, direction)
     q, v, a = base_state(robot, body)
     n, n_legs = len(t), len(robot.legs)
     stance = np.zeros((n, n_legs), dtype=bool)
     feet = np.zeros((n, n_legs, 3))
     solvers = {}
     for i, leg in enumerate(robot.legs):
-        on, p_w, pd_w, pdd_w = _foot_targets(t, gait, offsets[i], nominal[i], height)
+        on, p_w, pd_w, pdd_w = _foot_targets(t, gait, offsets[i], nominal[i], height, direction)
         stance[:, i], feet[:, i] = on, p_w
         rel, rel_d, rel_dd = in_base_frame(body, p_w, pd_w, pdd_w)
-        q_leg, qd_leg, qdd_leg, solvers[leg.name] = leg_ik(robot, leg, rel, rel_d, rel_dd, t=t)
+        try:
+            q_leg, qd_leg, qdd_leg, solvers[leg.name] = leg_ik(robot, leg, rel, rel_d, rel_dd,
+                                                               t=t)
+        except UnreachableTargetError as err:
+            if verify is None:
+                raise
+            raise explain(robot, gait, err, i, t, on, _leg_targets(robot, offsets, t, sway),
+                          verify) from err
         q[:, leg.q_index], v[:, leg.v_index], a[:, leg.v_index] = q_leg, qd_leg, qdd_leg
 
     margins = static_margins(robot, q, feet, stance)
@@ -256,3 +276,20 @@ def _sample(robot: Robot, gait: GaitParams, t: np.ndarray, periodic: bool,
     }
     return Motion(t=t, q=q, v=v, a=a, stance=stance, feet=feet, period=gait.period,
                   distance=gait.stride, periodic=periodic, fixed_base=False, info=info)
+
+
+def _leg_targets(robot: Robot, offsets: np.ndarray, t: np.ndarray, sway: Sway | None
+                 ) -> Callable[[GaitParams, int, np.ndarray],
+                               tuple[np.ndarray, np.ndarray, np.ndarray]]:
+    """``targets(gait, leg, index)``: leg ``leg``'s base-frame targets p, ṗ, p̈ at the samples
+    ``t[index]`` of the gait ``gait`` (same sway), as :func:`_sample` solves them — what
+    :func:`hexaleg.motion.reach.explain` tries other parameters on."""
+    def targets(gait: GaitParams, leg: int, index: np.ndarray
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        nominal = nominal_footholds(robot, gait)
+        height, direction = -float(nominal[0, 2]), heading(robot)
+        body = body_motion(t[index], gait.velocity, gait.yaw_rate, height, sway, direction)
+        _, p_w, pd_w, pdd_w = _foot_targets(t[index], gait, offsets[leg], nominal[leg], height,
+                                            direction)
+        return in_base_frame(body, p_w, pd_w, pdd_w)
+    return targets
