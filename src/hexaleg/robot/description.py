@@ -34,10 +34,10 @@ import pinocchio as pin
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError, UnknownNameError
 from hexaleg.robot.fields import FrozenTable, axis, check_stand, heading, legs_table, plain
+from hexaleg.robot.model import AUTO, URDF_DIR, LegSpec, Robot, load_robot
 
 if TYPE_CHECKING:
     from hexaleg.robot.motor import Motor
-from hexaleg.robot.model import AUTO, URDF_DIR, LegSpec, Robot, load_robot
 
 BUILTIN = "hexaleg"
 """Files source of the robot shipped with hexaleg (``urdf/hexaleg.urdf`` and ``.srdf``)."""
