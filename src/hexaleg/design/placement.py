@@ -70,8 +70,10 @@ def placement(prepared: Prepared, groups: Groups, family: str = "preloaded",
         prepared: :func:`hexaleg.prepare` of the gait.
         groups: As :func:`~hexaleg.design.codesign.optimal_springs` (``{name: joints}`` or a
             list of classes / joints).
-        family, objective, max_torque, max_deflection: As
-            :func:`~hexaleg.design.codesign.optimal_springs`.
+        family: As :func:`~hexaleg.design.codesign.optimal_springs`.
+        objective: As there.
+        max_torque: As there.
+        max_deflection: As there.
         compare: Also run the old search per group (dead zone, offset free) and report its gap.
         offset_bounds: The old search's neutral offset range, rad.
 
@@ -79,7 +81,7 @@ def placement(prepared: Prepared, groups: Groups, family: str = "preloaded",
         The table (best first), the optimal springs of every set, the old optima.
 
     Raises:
-        As :func:`~hexaleg.design.codesign.optimal_springs`.
+        HexalegError: as :func:`~hexaleg.design.codesign.optimal_springs`.
     """
     import pandas as pd
 

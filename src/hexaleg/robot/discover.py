@@ -26,7 +26,8 @@ def discover_legs(model: pin.Model, collision: pin.GeometryModel, visual: pin.Ge
 
     Args:
         model: The model (foot frames are added to it).
-        collision, visual: Its geometry models (for the feet).
+        collision: Its collision geometry (for the feet).
+        visual: Its visual geometry (when the joint has no collision geometry).
         heading: The base axis pointing forward, shape (3,), horizontal unit vector.
 
     Returns:

@@ -60,7 +60,8 @@ def resolve_foot(model: pin.Model, collision: pin.GeometryModel, visual: pin.Geo
 
     Args:
         model: The robot model (a frame is added to it for a point or a found foot).
-        collision, visual: Its geometry models (searched for a found foot).
+        collision: Its collision geometry (searched for a found foot).
+        visual: Its visual geometry (when the joint has no collision geometry).
         spec: The leg.
 
     Returns:
