@@ -184,3 +184,23 @@ def test_bring_your_own_robot_quotes_the_test_robot():
     block = page[page.index("## Bring your own robot"):].split("```toml\n")[1].split("```")[0]
     assert tomllib.loads(block) == tomllib.loads((root / "tests" / "data" / "spider.toml")
                                                  .read_text())
+
+
+def test_robots_page_table_is_the_registry():
+    """docs/robots.md's registry table: a row per registered robot, its mass and stand depth (the
+    feet's mean depth below the base in the stand pose) as the loaded robot has them."""
+    import re
+
+    import numpy as np
+
+    from hexaleg.robot.registry import DESCRIPTIONS, load
+
+    page = (Path(__file__).resolve().parents[1] / "docs" / "robots.md").read_text()
+    for name in DESCRIPTIONS:
+        m = re.search(rf"^\| `{name}` \|.*\| ([\d.]+) kg \| ([\d.]+) m \|", page, re.MULTILINE)
+        assert m, f"no row for {name} in docs/robots.md"
+        robot = load(name)
+        depth = -float(np.mean(robot.foot_positions(robot.pose("stand"))[:, 2]))
+        mass, stand = m.groups()
+        assert f"{robot.mass:.{len(mass.partition('.')[2])}f}" == mass, name
+        assert f"{depth:.3g}" == stand, (name, depth)

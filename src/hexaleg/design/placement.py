@@ -86,10 +86,12 @@ def placement(prepared: Prepared, groups: Groups, family: str = "preloaded",
     import pandas as pd
 
     resolved = resolve_groups(prepared, groups)
-    ev = Evaluator(prepared, objective)
     metric = OBJECTIVE_METRIC[objective]
-    old = {g: optimise(ev, g, js, metric, offset_bounds=offset_bounds)
-           for g, js in resolved.items()} if compare else {}
+    ev, old = None, {}
+    if compare:
+        ev = Evaluator(prepared, objective)
+        old = {g: optimise(ev, g, js, metric, offset_bounds=offset_bounds)
+               for g, js in resolved.items()}
     optima: dict[str, OptimalSprings] = {}
     for r in range(1, len(resolved) + 1):
         for combo in itertools.combinations(resolved, r):
@@ -107,7 +109,7 @@ def placement(prepared: Prepared, groups: Groups, family: str = "preloaded",
     for name, res in optima.items():
         row: dict[str, object] = {"springs": name, "groups": len(res.groups), "value": res.value,
                                   "baseline": res.baseline, "saving": res.saving}
-        if old:
+        if ev is not None:
             value = (old[name].value if name in old else  # the old designs together
                      ev.value(res.groups, {g: old[g].design() for g in res.groups}, metric))
             row.update(old_value=value, old_saving=saving(value, res.baseline),

@@ -74,9 +74,10 @@ def evaluate_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, S
     import pandas as pd
 
     ev = evaluator(run, gait)
+    columns = gait_columns(run, gait)  # one gait per chunk
     rows = []
     for index, design in points:
-        row: dict[str, Any] = {"point": index, **gait_columns(run, gait)}
+        row: dict[str, Any] = {"point": index, **columns}
         row["springs"] = "+".join(design) or "baseline"
         row.update(_design_columns(groups, design))
         row.update(ev.row(groups, design))
@@ -108,10 +109,10 @@ def optimal_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, Se
 
     ev = evaluator(run, gait)
     columns = optimal.columns(list(groups))
+    gait_row = gait_columns(run, gait)  # one gait per chunk
     rows = []
     for index, (fam, sprung) in points:
-        row: dict[str, Any] = {"point": index, **gait_columns(run, gait),
-                               "springs": "+".join(sprung),
+        row: dict[str, Any] = {"point": index, **gait_row, "springs": "+".join(sprung),
                                "family": fam}
         row.update({c: (None if c.endswith(".side") else math.nan) for c in columns})
         try:
