@@ -229,7 +229,8 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
                     objective: str = "joule", *, max_torque: float | None = None,
                     max_deflection: float | None = None,
                     geometry: Mapping[str, Geometry] | None = None,
-                    start: Mapping[str, Geometry] | None = None) -> OptimalSprings:
+                    start: Mapping[str, Geometry] | Sequence[Mapping[str, Geometry]] | None = None
+                    ) -> OptimalSprings:
     """The optimal springs of one family on the groups' joints for a prepared gait.
 
     Args:
@@ -245,7 +246,8 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
         geometry: Group → geometry (rad from each joint's centre of motion; see
             :mod:`hexaleg.design.families`); None searches it (the linear family has none).
         start: Group → geometry to start the search from (every group; e.g. each group's
-            optimum alone): the result is never worse than it. Not with ``geometry``.
+            optimum alone), or a list of such: the result is never worse than any of them. Not
+            with ``geometry``.
 
     Returns:
         The optimal springs, their analysis and saving; the magnitudes are the global optimum
@@ -262,12 +264,14 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
     baseline = float(prepared.baseline(objective)["total"][OBJECTIVE_METRIC[objective]])
     if geometry is not None:
         if start is not None:
-            raise InvalidParameterError("start", dict(start), "None when the geometry is given")
+            raise InvalidParameterError("start", start, "None when the geometry is given")
         chosen = setup.check_geometry(geometry)
         solution, evaluations = setup.solve(chosen), 1
     else:
-        first = setup.check_geometry(start) if start is not None and setup.fam.angles else None
-        chosen, solution, evaluations = search_geometry(setup, first)
+        starts = [] if start is None or not setup.fam.angles else (
+            [start] if isinstance(start, Mapping) else list(start))
+        chosen, solution, evaluations = search_geometry(
+            setup, [setup.check_geometry(s) for s in starts])
     return _result(setup, chosen, solution, evaluations, baseline)
 
 

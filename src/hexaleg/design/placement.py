@@ -4,8 +4,9 @@ The paper leaves "the appropriate elastic joint assembly position" as future wor
 non-empty set of the given groups (a joint class, a mirrored pair, one joint), this study designs
 the springs of one family on exactly those groups *together*, with
 :func:`hexaleg.design.codesign.optimal_springs` (each group its own design; the magnitudes the
-global optimum for the geometry, the geometry searched). A set's search starts from its groups'
-optima alone, so a set never reports less than those designs combined.
+global optimum for the geometry, the geometry searched). A set's search starts from each of its
+subsets one group smaller at its optimum, the missing group at its own: the program may leave that
+group's magnitudes at 0, so a set never saves less than any of its subsets.
 
 Beside each set it reports how far the old design search was from it: each group's symmetric
 dead zone with its neutral offset free in ``offset_bounds`` (grid + Nelder–Mead,
@@ -26,6 +27,7 @@ from hexaleg.design.codesign import (
     resolve_groups,
 )
 from hexaleg.design.evaluator import Evaluator
+from hexaleg.design.families import Geometry
 from hexaleg.design.optimise import Optimum, optimise
 from hexaleg.dynamics.energy import saving
 from hexaleg.dynamics.prepare import Prepared
@@ -95,16 +97,19 @@ def placement(prepared: Prepared, groups: Groups, family: str = "preloaded",
     optima: dict[str, OptimalSprings] = {}
     for r in range(1, len(resolved) + 1):
         for combo in itertools.combinations(resolved, r):
-            start = None
-            if family in SEEDED and (r > 1 or old):
-                start = {g: optima[g].geometry[g] if r > 1 else
-                         {"theta_minus": old[g].offset - old[g].theta_k,
-                          "theta_plus": old[g].offset + old[g].theta_k} for g in combo}
-            elif r > 1 and family != "linear":
-                start = {g: optima[g].geometry[g] for g in combo}
+            starts: list[dict[str, Geometry]] = []
+            if r == 1 and family in SEEDED and old:
+                g = combo[0]
+                starts = [{g: {"theta_minus": old[g].offset - old[g].theta_k,
+                               "theta_plus": old[g].offset + old[g].theta_k}}]
+            elif r > 1 and family != "linear":  # each subset one smaller, the last group alone
+                for missing in combo:
+                    sub = "+".join(g for g in combo if g != missing)
+                    starts.append({**optima[sub].geometry, missing: optima[missing].geometry[
+                        missing]})
             optima["+".join(combo)] = optimal_springs(
                 prepared, {g: resolved[g] for g in combo}, family, objective,
-                max_torque=max_torque, max_deflection=max_deflection, start=start)
+                max_torque=max_torque, max_deflection=max_deflection, start=starts or None)
     rows = []
     for name, res in optima.items():
         row: dict[str, object] = {"springs": name, "groups": len(res.groups), "value": res.value,

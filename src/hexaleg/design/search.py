@@ -10,15 +10,15 @@ angles in turn with the other groups held (two rounds), then bounded Nelder–Me
 together from the best grid point (:func:`scipy.optimize.minimize`; derivative-free, tolerant of
 the kinks). Ordered angles (θ⁻ < θ⁺, stage breakpoints) are searched as unordered pairs and
 sorted, so the box needs no ordering constraint. A one-sided spring's side is chosen per group
-in the grid rounds. A start geometry (say, each group's optimum alone, when the groups are then
-designed together) is evaluated first and the grid rounds start from it, so the result is never
-worse than the start.
+in the grid rounds. Start geometries (say, each group's optimum alone, or a subset's optimum with
+the remaining group's, when the groups are then designed together) are evaluated first and the
+grid rounds start from the best of them, so the result is never worse than any start.
 """
 
 from __future__ import annotations
 
 import itertools
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -76,13 +76,13 @@ def _grid(n: int, ticks: np.ndarray) -> list[tuple[float, ...]]:
     return pairs if n == 2 else [a + b for a, b in itertools.product(pairs, pairs)]
 
 
-def search_geometry(setup: _Setup, start: Mapping[str, Geometry] | None = None
+def search_geometry(setup: _Setup, starts: Sequence[Mapping[str, Geometry]] = ()
                     ) -> tuple[dict[str, dict[str, float | str]], DesignSolution, int]:
     """The best geometry found, its solution and the number of convex solves (module docstring).
 
     Args:
         setup: The checked design inputs.
-        start: Group → a checked geometry to start from (every group), or None.
+        starts: Geometries to start from, each group → a checked geometry (every group).
     """
     from scipy.optimize import minimize
 
@@ -112,12 +112,14 @@ def search_geometry(setup: _Setup, start: Mapping[str, Geometry] | None = None
         return solution.value
 
     u = np.zeros(n * len(groups))
-    if start is not None:
+    for start in starts:
         for i, g in enumerate(groups):
             u[i * n:(i + 1) * n], sides[g] = _point(fam.name, start[g])
         value(u)
-        if "u" in best:
-            u = np.asarray(best["u"])
+    if "u" in best:
+        u = np.asarray(best["u"])
+        sides.update({h: str(best["geometry"][h].get("side", "above"))  # type: ignore[index]
+                      for h in groups})
     for _ in range(2):
         for i, g in enumerate(groups):
             options = ("above", "below") if fam.name == "one_sided" else (sides[g],)
