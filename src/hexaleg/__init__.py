@@ -19,6 +19,7 @@ from hexaleg.motion.transform import transform_motion
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Leg, LegSpec, Robot, load_robot
 from hexaleg.robot.motor import CATALOGUE, DEFAULT_MOTOR, Motor, motor_from_mapping
+from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.registry import DESCRIPTIONS, load
 from hexaleg.robot.springs import (
     DeadZoneSpring,
@@ -61,6 +62,7 @@ __all__ = [
     "LinearSpring",
     "Motion",
     "Motor",
+    "MotorSet",
     "OneSidedSpring",
     "OptimalSprings",
     "PreloadedSpring",

@@ -272,8 +272,17 @@ def test_report_for_a_registry_robot(name, tmp_path, capsys):
     assert (f"note: {description(name).title}" in out) != own
     assert ("names no catalogue motor" in out and "Generic actuator" in out) != own
     data = json.loads((tmp_path / "out" / "report.json").read_text())
-    assert data["motor"]["name"] == ("ODRI-4004" if own else f"generic ({name} URDF limits)")
     desc, robot = description(name), robot_of(name)
+    if own:
+        assert data["motor"]["name"] == "ODRI-4004"
+    else:  # one generic actuator per joint class, from that class's URDF limits
+        effort = {k: robot.model.effortLimit[[6 + robot.column(j) for j in joints]].max()
+                  for k, joints in robot.joint_classes.items()}
+        stall = {c["joint_class"]: c["stall_torque"]["value"]
+                 for c in data["motor"].get("classes", [])} or dict.fromkeys(
+                     effort, data["motor"]["stall_torque"]["value"])
+        assert stall == effort
+        assert f"generic ({name} URDF limits)" in data["motor"]["name"]
     knees = list(robot.joints(desc.spring_class))
     assert data["gait"]["groups"] == [list(g) for g in TROT] and data["gait"]["samples"] == 40
     assert data["gait"]["period"]["value"] == GaitParams.for_robot(desc).period

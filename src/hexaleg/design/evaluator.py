@@ -65,6 +65,7 @@ from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import Motor
 from hexaleg.robot.motor import motor as motor_by_name
+from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.registry import description
 from hexaleg.robot.springs import DeadZoneSpring, SpringSet
 
@@ -125,8 +126,8 @@ class RunSpec:
             _ROBOTS[self.robot] = self.description().load()
         return _ROBOTS[self.robot]
 
-    def actuator(self) -> Motor:
-        """The actuator of every joint (:attr:`motor`)."""
+    def actuator(self) -> Motor | MotorSet:
+        """The actuator of every joint (:attr:`motor`), or the robot's own per joint class."""
         if self.motor is not None:
             return motor_by_name(self.motor)
         return self.description().actuator(self.load())

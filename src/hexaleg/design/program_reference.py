@@ -77,7 +77,7 @@ def solve_design_reference(problem: DesignProblem) -> DesignSolution:
     else:
         qd = system.qdot.reshape(-1)
         if problem.objective == "electrical":
-            eta = system.efficiency
+            eta = np.tile(np.broadcast_to(system.efficiency, (nj,)), T)  # per joint
             power = cp.maximum(cp.multiply(qd / eta, tau), cp.multiply(qd * eta, tau))
             per_joint = cp.maximum(0, power + cp.multiply(c, cp.square(tau)))
         else:

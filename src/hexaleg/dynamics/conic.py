@@ -158,9 +158,9 @@ def _add_positive_work(program: _ConicProgram, D: np.ndarray, c: np.ndarray,
 
 
 def _add_electrical(program: _ConicProgram, D: np.ndarray, c: np.ndarray, qd: np.ndarray,
-                    weights: np.ndarray, efficiency: float) -> None:
-    """Epigraph of Σ_j max(0, max(q̇_j τ_j / η, η q̇_j τ_j) + c_j τ_j²): ``s ≥ 0``,
-    ``s ≥ κ q̇ τ + u`` for κ = 1/η and κ = η, and ``u ≥ c_w τ²``."""
+                    weights: np.ndarray, efficiency: float | np.ndarray) -> None:
+    """Epigraph of Σ_j max(0, max(q̇_j τ_j / η_j, η_j q̇_j τ_j) + c_j τ_j²): ``s ≥ 0``,
+    ``s ≥ κ q̇ τ + u`` for κ = 1/η and κ = η (per joint), and ``u ≥ c_w τ²``."""
     import clarabel
 
     nj, n = D.shape
@@ -169,8 +169,10 @@ def _add_electrical(program: _ConicProgram, D: np.ndarray, c: np.ndarray, qd: np
     program.add(np.hstack([np.zeros((nj, n)), -eye, zero]), np.zeros(nj),
                 clarabel.NonnegativeConeT(nj))  # s ≥ 0
     # s ≥ κ q̇ τ + u for κ = 1/η and κ = η  ⇔  −κ q̇ D f − s + u ≤ −κ q̇ c
-    for kappa in sorted({1.0 / efficiency, efficiency}):
-        program.add(np.hstack([-kappa * qd[:, None] * D, -eye, eye]), -kappa * qd * c,
+    eta = np.broadcast_to(np.asarray(efficiency, dtype=float), (nj,))
+    for kappa in (eta,) if np.all(eta == 1.0) else (eta, 1.0 / eta):
+        kq = kappa * qd
+        program.add(np.hstack([-kq[:, None] * D, -eye, eye]), -kq * c,
                     clarabel.NonnegativeConeT(nj))
     # u ≥ c_w τ² ⇔ ‖(2√c_w τ, u − 1)‖ ≤ u + 1 (a rotated cone as a second-order cone);
     # Clarabel form: b − A x = (u + 1, 2√c_w τ, u − 1) with τ = c − D f.

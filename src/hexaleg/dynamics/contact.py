@@ -60,7 +60,9 @@ class ContactParams:
         mu: Coulomb friction coefficient, > 0 (default 0.6: rubber foot on a hard floor, assumed).
         cone: ``"soc"`` (exact cone) or ``"pyramid"`` (inscribed pyramid, an inner approximation).
         min_normal_force: Smallest normal force of a stance foot, N, ≥ 0.
-        torque_limits: Constrain |τ_motor| to the URDF effort limits.
+        torque_limits: Constrain |τ_motor| to each joint's motor stall torque (the actuator
+            the analysis uses: a catalogue motor, or a generic actuator built from the
+            URDF effort limits).
         regularization: ε of the ``"positive_work"`` objective, W/(N·m)², > 0.
     """
 
@@ -113,7 +115,8 @@ class StanceSystem:
         t: Sample times, shape (T,), s (for error messages).
         leg_names: Leg names, for error messages.
         joint_names: Joint names, for error messages.
-        efficiency: Gearbox efficiency η of the motors, in (0, 1] (``"electrical"`` objective).
+        efficiency: Gearbox efficiency η of each joint's motor, shape (nj,) or a scalar for
+            all, in (0, 1] (``"electrical"`` objective).
     """
 
     stance: np.ndarray
@@ -126,7 +129,7 @@ class StanceSystem:
     t: np.ndarray
     leg_names: tuple[str, ...]
     joint_names: tuple[str, ...]
-    efficiency: float = 1.0
+    efficiency: float | np.ndarray = 1.0
 
     @property
     def n_samples(self) -> int:

@@ -19,6 +19,7 @@ from numpy.typing import ArrayLike
 from hexaleg.checks import positive, real
 from hexaleg.errors import InvalidParameterError
 from hexaleg.robot.motor import Motor, as_torque_speed
+from hexaleg.robot.motor_set import MotorSet
 from hexaleg.units import G
 
 ENERGY_KEYS = ("net_work", "positive_work", "absolute_work", "joule", "electrical",
@@ -74,7 +75,7 @@ def epsilon(energy: float, inertia: float, angle: float) -> float:
     return real("energy", energy) / (positive("inertia", inertia) * positive("angle", angle))
 
 
-def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor, *,
+def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor | MotorSet, *,
             mass: float | None = None, distance: float | None = None,
             joint_names: Sequence[str] | None = None, periodic: bool = True,
             inertia: ArrayLike | None = None) -> dict[str, Any]:
@@ -88,7 +89,8 @@ def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor, *,
         tau: Motor (joint) torques, shape (T, n) or (T,) for one joint, N·m.
         qdot: Joint speeds, the shape of ``tau``, rad/s.
         dt: Sample spacing, s, > 0.
-        motor: The servo model of every joint.
+        motor: The servo model of every joint, or a :class:`~hexaleg.robot.motor_set.MotorSet`
+            (one per joint, n of them).
         mass: Robot mass, kg, > 0; with ``distance`` > 0 adds the cost of transport.
         distance: Distance travelled in the cycle, m, ≥ 0 (0: in place, no cost of transport).
         joint_names: n names; default ``j0 … j{n-1}``.
@@ -105,7 +107,7 @@ def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor, *,
           ``net_work`` ∫ τ q̇ (eq. 20, signed), ``positive_work`` ∫ max(0, τ q̇),
           ``absolute_work`` ∫ |τ q̇|, ``joule`` ∫ c τ², ``electrical_regen`` ∫ P_e,
           ``electrical_noregen`` ∫ max(0, P_e), ``electrical`` (one of the two, by
-          ``motor.regeneration``) — all J — and ``peak_torque`` max |τ|, ``rms_torque``
+          each motor's ``regeneration``) — all J — and ``peak_torque`` max |τ|, ``rms_torque``
           √(mean τ²), ``mean_abs_torque`` mean |τ| — N·m (totals over all joints and samples);
           ``total`` also has ``electrical_bus`` ∫ max(0, Σ_j P_e,j), J: joints share a supply
           that takes nothing back;
@@ -169,7 +171,8 @@ def quadrature_weights(n_samples: int, dt: float, periodic: bool) -> np.ndarray:
     return weight
 
 
-def _cycle_integrals(t: np.ndarray, w: np.ndarray, weight: np.ndarray, motor: Motor
+def _cycle_integrals(t: np.ndarray, w: np.ndarray, weight: np.ndarray,
+                     motor: Motor | MotorSet
                      ) -> tuple[dict[str, np.ndarray], dict[str, float]]:
     """The per-joint ``(n,)`` and total energies and torque statistics of :func:`metrics`, for
     torques ``t`` and speeds ``w`` (T, n) and quadrature weights ``weight`` (T,)."""
@@ -193,7 +196,7 @@ def _cycle_integrals(t: np.ndarray, w: np.ndarray, weight: np.ndarray, motor: Mo
         "rms_torque": np.sqrt(integral(t**2) / duration),
         "mean_abs_torque": integral(np.abs(t)) / duration,
     }
-    joint["electrical"] = joint["electrical_regen" if motor.regeneration else "electrical_noregen"]
+    joint["electrical"] = integral(motor.electrical_power(t, w))  # by each motor's regeneration
     total = {key: float(joint[key].sum()) for key in ENERGY_KEYS}
     total["electrical_bus"] = float(integral(np.maximum(pe_regen.sum(1), 0.0)))
     total["peak_torque"] = float(np.abs(t).max())

@@ -40,18 +40,25 @@ from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import Motor
 from hexaleg.robot.motor import motor as motor_by_name
+from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.springs import Spring, SpringSet
 
 SpringsLike = SpringSet | Mapping[str, Spring] | None
 
 
-def _as_motor(motor: Motor | str | None) -> Motor:
+def _as_motor(motor: Motor | MotorSet | str | None, robot: Robot) -> Motor | MotorSet:
     if motor is None:
         return motor_by_name()
     if isinstance(motor, str):
         return motor_by_name(motor)
+    if isinstance(motor, MotorSet):
+        if motor.joint_names != robot.joint_names:
+            raise InvalidParameterError("motor joints", motor.joint_names,
+                                        f"the joints of {robot.name}, {robot.joint_names}")
+        return motor
     if not isinstance(motor, Motor):
-        raise InvalidParameterError("motor", motor, "a hexaleg.Motor or a catalogue name")
+        raise InvalidParameterError("motor", motor, "a hexaleg.Motor, a MotorSet or a catalogue "
+                                    "name")
     return motor
 
 
@@ -73,7 +80,7 @@ class Analysis:
         robot: The robot.
         motion: The motion analysed.
         springs: The springs (joint name → spring).
-        motor: The servo model of every joint.
+        motor: The servo model of every joint, or one per joint (a MotorSet).
         objective: The force-distribution objective (:data:`hexaleg.dynamics.contact.OBJECTIVES`).
         contact: Contact settings.
         t: Sample times, shape (T,), s.
@@ -96,7 +103,7 @@ class Analysis:
     robot: Robot
     motion: Motion
     springs: SpringSet
-    motor: Motor
+    motor: Motor | MotorSet
     objective: str
     contact: ContactParams
     t: np.ndarray
@@ -128,7 +135,7 @@ class Prepared:
     Attributes:
         robot: The robot.
         motion: The motion.
-        motor: The servo model of every joint.
+        motor: The servo model of every joint, or one per joint (a MotorSet).
         contact: Contact settings.
         rnea: ``M a + h`` at every sample, shape (T, nv).
         jacobians: Foot Jacobians (world-aligned, linear part), shape (T, n_legs, 3, nv).
@@ -139,7 +146,7 @@ class Prepared:
 
     robot: Robot
     motion: Motion
-    motor: Motor
+    motor: Motor | MotorSet
     contact: ContactParams
     rnea: np.ndarray
     jacobians: np.ndarray
@@ -191,12 +198,23 @@ class Prepared:
                     raise TorqueLimitError(
                         f"motor torque limit exceeded at t = {self.motion.t[k]:.4f} s: joint "
                         f"{self.robot.joint_names[j]} needs τ = {tau[k, j]:+.4f} N·m "
-                        f"(limit ±{self.system.tau_max[j]:.4f} N·m)")
+                        f"(limit ±{self.system.tau_max[j]:.4f} N·m). {self._limit_hint()}")
             return np.zeros((T, n_legs, 3)), tau, np.zeros(T, dtype=bool)
         gains = self.gains(objective) if objective in QUADRATIC_OBJECTIVES else None
-        f, tau, resolved = solve_fast(self.system, tau_spring, objective,
-                                      self.weights(objective), self.contact, gains)
+        try:
+            f, tau, resolved = solve_fast(self.system, tau_spring, objective,
+                                          self.weights(objective), self.contact, gains)
+        except TorqueLimitError as exc:
+            raise TorqueLimitError(f"{exc}. {self._limit_hint()}") from None
         return f.reshape(T, n_legs, 3), tau, resolved
+
+    def _limit_hint(self) -> str:
+        """Where the torque limits come from and what to change, for TorqueLimitError."""
+        return (f"The limits are the stall torques of the motor {self.motor.name}; fit a "
+                "stronger one (motor = \"…\" in the robot description, a catalogue name of "
+                "`hexaleg motors`), ask less of it (a longer period, a shorter stride_length, "
+                "springs), or analyse without limits (ContactParams(torque_limits=False), "
+                "[contact] torque_limits = false)")
 
     def metrics(self, tau_motor: np.ndarray) -> dict[str, Any]:
         """:func:`hexaleg.dynamics.energy.metrics` of motor torques ``tau_motor`` (T, nj) on this
@@ -258,17 +276,18 @@ class Prepared:
                         savings=energy.savings(metrics, baseline))
 
 
-def prepare(robot: Robot, motion: Motion, *, motor: Motor | str | None = None,
+def prepare(robot: Robot, motion: Motion, *, motor: Motor | MotorSet | str | None = None,
             contact: ContactParams | None = None) -> Prepared:
     """Compute everything about ``motion`` that does not depend on the springs.
 
     Args:
         robot: The robot the motion was made for.
         motion: The motion (q, v, a in Pinocchio conventions; stance flags).
-        motor: The servo of every joint: a :class:`~hexaleg.robot.motor.Motor`, a catalogue name, or
-            None for :data:`hexaleg.robot.motor.DEFAULT_MOTOR`.
-        contact: Contact settings (friction, cone, minimum normal force, torque limits — the
-            limit is the motor's stall torque).
+        motor: The servo of every joint: a :class:`~hexaleg.robot.motor.Motor`, a catalogue name,
+            a :class:`~hexaleg.robot.motor_set.MotorSet` (one motor per joint) or None for
+            :data:`hexaleg.robot.motor.DEFAULT_MOTOR`.
+        contact: Contact settings (friction, cone, minimum normal force, torque limits — each
+            joint's limit is its motor's stall torque).
 
     Returns:
         The prepared analysis; call :meth:`Prepared.evaluate` with springs.
@@ -299,23 +318,24 @@ def prepare(robot: Robot, motion: Motion, *, motor: Motor | str | None = None,
                 jac[k, i] = pin.getFrameJacobian(model, data, fid, lwa)[:3]
     # Padded stance system: column block 3i:3i+3 is leg i; swing legs' blocks are zero.
     jt = np.transpose(jac, (0, 3, 1, 2)).reshape(T, model.nv, 3 * n_legs)  # (T, nv, 3 n_legs)
-    motor = _as_motor(motor)
+    motor = _as_motor(motor, robot)
     contact = contact or ContactParams()
-    # The chosen servo's stall torque limits every joint (the URDF's effort limits are those of
-    # the robot's nominal servo, which the user may be replacing).
-    tau_max = np.full(robot.nj, motor.stall_torque)
+    # Each joint's servo stall torque limits it (the URDF's effort limits are those of the robot's
+    # nominal servo, which the user may be replacing; a generic actuator is built from them).
+    tau_max = np.broadcast_to(np.asarray(motor.stall_torque, dtype=float), (robot.nj,)).copy()
     system = StanceSystem(stance=motion.stance.astype(bool), A=jt[:, :6], D=jt[:, 6:],
                           b_base=np.where(motion.supported[:, None], 0.0, rnea[:, :6]),
                           b_joint=rnea[:, 6:], qdot=motion.v[:, 6:],
                           tau_max=tau_max, t=motion.t, leg_names=robot.leg_names,
-                          joint_names=robot.joint_names, efficiency=motor.gearbox_efficiency)
+                          joint_names=robot.joint_names,
+                          efficiency=np.broadcast_to(motor.gearbox_efficiency, (robot.nj,)).copy())
     return Prepared(robot=robot, motion=motion, motor=motor, contact=contact,
                     rnea=rnea, jacobians=jac, system=system, q=motion.q[:, 7:],
                     qdot=motion.v[:, 6:])
 
 
 def analyze(robot: Robot, motion: Motion, springs: SpringsLike = None, *,
-            motor: Motor | str | None = None, objective: str = "joule",
+            motor: Motor | MotorSet | str | None = None, objective: str = "joule",
             contact: ContactParams | None = None) -> Analysis:
     """Analyse ``motion`` with ``springs``: ``prepare(robot, motion, …).evaluate(springs, …)``.
 
@@ -324,7 +344,8 @@ def analyze(robot: Robot, motion: Motion, springs: SpringsLike = None, *,
         motion: The motion.
         springs: Joint name → spring, e.g.
             ``{"LF_femur": hexaleg.DeadZoneSpring(stiffness=2.0, theta_k=0.13)}`` (SI), or None.
-        motor: Servo of every joint (Motor, catalogue name, or None for the default).
+        motor: Servo of every joint (Motor, MotorSet, catalogue name, or None for the
+            default).
         objective: Force-distribution objective (:data:`hexaleg.dynamics.contact.OBJECTIVES`;
             default ``"joule"``).
         contact: Contact settings.

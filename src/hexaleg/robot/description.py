@@ -38,6 +38,7 @@ from hexaleg.robot.model import AUTO, URDF_DIR, LegSpec, Robot, load_robot
 
 if TYPE_CHECKING:
     from hexaleg.robot.motor import Motor
+    from hexaleg.robot.motor_set import MotorSet
 
 BUILTIN = "hexaleg"
 """Files source of the robot shipped with hexaleg (``urdf/hexaleg.urdf`` and ``.srdf``)."""
@@ -48,6 +49,10 @@ FILES = "files"
 """Files source: paths as given (absolute, or relative to the working directory; a TOML
 description's relative paths are made relative to its own directory)."""
 SOURCES: tuple[str, ...] = (BUILTIN, EXAMPLE_ROBOT_DATA, FILES)
+
+_FOUND_LEGS: dict[tuple[str, str, tuple[float, float, float]], tuple[str, ...]] = {}
+"""Leg names found in a URDF per (name, URDF path, heading), for
+:meth:`RobotDescription.leg_names`."""
 
 STAND = "stand"
 """The pose name :mod:`hexaleg.motion.legged` uses for footholds and body height."""
@@ -109,8 +114,10 @@ class RobotDescription:
             as tuples of leg names), sized to the robot; a read-only mapping. Keys are
             checked by ``GaitParams.for_robot``, the leg names of ``groups`` here.
         notes: Where the description's facts come from.
-        motor: Name of the robot's actuator in :data:`hexaleg.robot.motor.CATALOGUE`, or None when
-            the catalogue has none (then :meth:`actuator` builds one from the URDF limits).
+        motor: The robot's actuators from :data:`hexaleg.robot.motor.CATALOGUE`: one name for
+            every joint, or a table joint class → name (``{femur = "XM430-W350", …}``; classes
+            not named get a generic actuator); None when the catalogue has none (then
+            :meth:`actuator` builds one per class from the URDF limits).
         mesh_dirs: Where ``package://`` mesh URIs resolve, for :data:`FILES` (the other sources
             know their own).
         heading: The base axis that points forward, ``[x, y, 0]`` (:attr:`Robot.heading`).
@@ -127,7 +134,7 @@ class RobotDescription:
     spring_class: str | None = None
     gait: Mapping[str, Any] = field(default_factory=lambda: FrozenTable({}))
     notes: str = ""
-    motor: str | None = None
+    motor: str | Mapping[str, str] | None = None
     mesh_dirs: tuple[str, ...] = ()
     heading: tuple[float, float, float] = (1.0, 0.0, 0.0)
 
@@ -157,10 +164,7 @@ class RobotDescription:
             if self.spring_class is not None and self.spring_class not in self.joint_kinds:
                 raise UnknownNameError("joint class", self.spring_class, self.joint_kinds)
         if self.motor is not None:
-            from hexaleg.robot.motor import CATALOGUE
-
-            if self.motor not in CATALOGUE:
-                raise UnknownNameError(f"{self.name}: motor", self.motor, CATALOGUE)
+            object.__setattr__(self, "motor", self._check_motor(self.motor))
         if not isinstance(self.gait, Mapping) or not all(isinstance(k, str) for k in self.gait):
             raise InvalidParameterError(f"{self.name}: gait", self.gait,
                                         "a table of GaitParams keys and values")
@@ -171,29 +175,63 @@ class RobotDescription:
         object.__setattr__(self, "mesh_dirs", tuple(self.mesh_dirs))
         object.__setattr__(self, "heading", heading(self.name, self.heading))
 
-    def actuator(self, robot: Robot) -> Motor:
-        """The robot's actuator: its catalogue :attr:`motor`, else a generic actuator from the
-        URDF's largest joint effort and velocity limits
-        (:func:`hexaleg.robot.motor.generic_actuator`, its assumptions in ``notes``); the torque
-        limits of the analysis are the actuator's stall torque.
+    def _check_motor(self, motor: Any) -> str | Mapping[str, str]:
+        from hexaleg.robot.motor import CATALOGUE
+
+        names = motor.values() if isinstance(motor, Mapping) else [motor]
+        for name in names:
+            if not isinstance(name, str) or name not in CATALOGUE:
+                raise UnknownNameError(f"{self.name}: motor", name, CATALOGUE)
+        if isinstance(motor, Mapping):
+            if not motor:
+                raise InvalidParameterError(f"{self.name}: motor", "{}", "a catalogue name, or "
+                                            "a table joint class → catalogue name")
+            if self.joint_kinds is not None:
+                for kind in motor:
+                    if kind not in self.joint_kinds:
+                        raise UnknownNameError(f"{self.name}: motor joint class", kind,
+                                               self.joint_kinds)
+            return FrozenTable(dict(motor))
+        return str(motor)
+
+    def actuator(self, robot: Robot) -> Motor | MotorSet:
+        """The robot's actuators, and so the analysis' torque limits (each joint's stall torque):
+        :attr:`motor` per joint class, a generic actuator from the URDF limits for a class
+        without one (:func:`hexaleg.robot.motor_set.class_motors`).
+
+        Args:
+            robot: The loaded robot (its joint classes and URDF limits).
+
+        Returns:
+            The motor of every joint, or the motor set when the classes' motors differ.
 
         Raises:
-            InvalidParameterError: no catalogue motor and a URDF without effort or velocity
-                limits (names the value; give ``motor = "…"`` instead).
+            UnknownNameError: the motor table names a class the robot does not have.
+            InvalidParameterError: a class without a catalogue motor whose URDF joints have no
+                effort or velocity limit (names the value; give ``motor = "…"`` instead).
         """
-        from hexaleg.robot.motor import CATALOGUE, generic_actuator
+        from hexaleg.robot.motor import CATALOGUE
+        from hexaleg.robot.motor_set import class_motors
 
-        if self.motor is not None:
+        if isinstance(self.motor, str):
             return CATALOGUE[self.motor]
-        model = robot.model
-        return generic_actuator(float(model.effortLimit[6:].max()),
-                                float(model.velocityLimit[6:].max()),
-                                name=f"generic ({self.name} URDF limits)")
+        named = {kind: CATALOGUE[name] for kind, name in (self.motor or {}).items()}
+        return class_motors(robot, named, f"generic ({self.name} URDF limits)")
 
     def spring_class_of(self, robot: Robot) -> str:
         """The class the springs go on by default: :attr:`spring_class`, else the loaded robot's
         second joint class (the paper's "second joint"; the only one of one-joint legs)."""
         return self.spring_class or robot.joint_kinds[min(1, len(robot.joint_kinds) - 1)]
+
+    def leg_names(self) -> tuple[str, ...]:
+        """The robot's leg names: from :attr:`legs`, else found in the URDF (the robot is
+        loaded once per process for that, :mod:`hexaleg.robot.discover`)."""
+        if self.legs is not None:
+            return tuple(leg.name for leg in self.legs)
+        key = (self.name, str(self.urdf_path), self.heading)
+        if key not in _FOUND_LEGS:
+            _FOUND_LEGS[key] = self.load().leg_names
+        return _FOUND_LEGS[key]
 
     def check_groups(self, groups: Any) -> None:
         """Check that gait leg groups hold every leg of this robot exactly once.
@@ -204,9 +242,7 @@ class RobotDescription:
         Raises:
             InvalidParameterError: a leg is missing, repeated or not one of the robot's.
         """
-        names = {leg.name for leg in self.legs or ()}
-        if self.legs is None:  # found at load: checked by GaitParams.for_robot(robot)
-            return
+        names = set(self.leg_names())
         try:
             grouped = sorted(leg for group in groups for leg in group)
         except TypeError:  # not groups of names: reported below

@@ -28,6 +28,7 @@ from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import DEFAULT_MOTOR, Motor, motor_from_mapping
 from hexaleg.robot.motor import motor as motor_by_name
+from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.registry import description
 from hexaleg.robot.springs import SpringSet
 
@@ -186,7 +187,8 @@ class ReportConfig:
     Attributes:
         gait: Gait parameters (``[gait]``).
         motor: The servo of every joint (``[motor]``,
-            :func:`hexaleg.robot.motor.motor_from_mapping`).
+            :func:`hexaleg.robot.motor.motor_from_mapping`), or the robot's own motor per joint
+            class (a :class:`~hexaleg.robot.motor_set.MotorSet`, from its description).
         contact: Contact settings (``[contact]``).
         springs: A :class:`SpringDesign` (``[springs] design = …``) or explicit per-joint springs
             in SI (``[springs.LF_femur] stiffness = …``, :meth:`SpringSet.from_mapping`).
@@ -195,7 +197,7 @@ class ReportConfig:
     """
 
     gait: GaitParams = field(default_factory=GaitParams)
-    motor: Motor = field(default_factory=lambda: motor_by_name(DEFAULT_MOTOR))
+    motor: Motor | MotorSet = field(default_factory=lambda: motor_by_name(DEFAULT_MOTOR))
     contact: ContactParams = field(default_factory=ContactParams)
     springs: SpringDesign | SpringSet = field(default_factory=SpringDesign)
     report: ReportParams = field(default_factory=ReportParams)
@@ -234,9 +236,13 @@ class ReportConfig:
         notes = list(robot.notes)
         if "motor" not in data:
             config = dataclasses.replace(config, motor=desc.actuator(robot))
-            if desc.motor is None:
-                notes.append(f"{desc.title} names no catalogue motor: the actuator is built from "
-                             f"its URDF limits. {config.motor.notes}")
+            named = desc.motor if isinstance(desc.motor, Mapping) else {}
+            generic = [k for k in robot.joint_kinds if desc.motor is None or
+                       (not isinstance(desc.motor, str) and k not in named)]
+            if generic:
+                notes.append(f"{desc.title} names no catalogue motor for {', '.join(generic)}: "
+                             f"the actuator there is built from its URDF limits. "
+                             f"{config.motor.notes}")
         return dataclasses.replace(config, gait=gait, springs=springs, report=report,
                                    notes=tuple(notes))
 

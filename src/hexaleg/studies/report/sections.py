@@ -23,6 +23,7 @@ from hexaleg.motion.params import GaitParams
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import Motor
+from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.sanity import Finding
 from hexaleg.robot.springs import SpringSet
 from hexaleg.studies.report.config import SpringDesign
@@ -67,13 +68,23 @@ def gait_section(motion: Motion, g: GaitParams) -> dict[str, Any]:
                               if info["static_margin"] is not None else None)}
 
 
-def motor_section(motor: Motor) -> dict[str, Any]:
-    """The servo of every joint."""
-    return {"name": motor.name,
-            "joule_coefficient": quantity(motor.joule_coefficient, "W/(N·m)²"),
+def motor_section(motor: Motor | MotorSet) -> dict[str, Any]:
+    """The servo of every joint; for a :class:`~hexaleg.robot.motor_set.MotorSet` also
+    ``classes``, one entry per joint class with its motor's figures."""
+    if isinstance(motor, MotorSet):
+        classes = [{"joint_class": c, "name": m.name, **_motor_figures(m)}
+                   for c, m in motor.by_class]
+        return {"name": motor.name, "classes": classes, "source": motor.source,
+                "notes": motor.notes}
+    return {"name": motor.name, **_motor_figures(motor), "source": motor.source,
+            "notes": motor.notes}
+
+
+def _motor_figures(motor: Motor) -> dict[str, Any]:
+    return {"joule_coefficient": quantity(motor.joule_coefficient, "W/(N·m)²"),
             "stall_torque": quantity(motor.stall_torque, "N·m"),
             "gearbox_efficiency": quantity(motor.gearbox_efficiency, "1"),
-            "regeneration": motor.regeneration, "source": motor.source, "notes": motor.notes}
+            "regeneration": motor.regeneration}
 
 
 def contact_section(contact: ContactParams) -> dict[str, Any]:

@@ -1,0 +1,204 @@
+"""A robot whose joint classes carry different motors: one :class:`~hexaleg.robot.motor.Motor` per
+joint, with the same power model.
+
+Hexapod builders often fit a stronger servo where the load is (an XM430 on the femur, an XL430 on
+the coxa and tibia). A :class:`MotorSet` holds the motor of every joint and answers what the
+dynamics and the energy metrics ask of a motor — Joule coefficients, stall torques, gearbox
+efficiencies, electrical power — as per-joint arrays, by applying each joint's own
+:class:`~hexaleg.robot.motor.Motor` (the geared-DC model of Verstraten et al., IEEE RA-L 2016, see
+:mod:`hexaleg.robot.motor`) to that joint's column. Everywhere a ``motor`` argument is taken, a
+:class:`MotorSet` may stand in for a single :class:`~hexaleg.robot.motor.Motor`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.robot.model import Robot
+from hexaleg.robot.motor import Motor, as_torque_speed, generic_actuator
+
+
+@dataclass(frozen=True)
+class MotorSet:
+    """The motor of every joint, grouped by joint class.
+
+    Attributes:
+        joint_names: The robot's joints in the model's column order, n names.
+        joint_classes: The class of each joint (``"coxa"``, ``"femur"`` …), n names.
+        by_class: Joint class → its motor, as ``(class, Motor)`` pairs; every class of
+            :attr:`joint_classes` exactly once.
+    """
+
+    joint_names: tuple[str, ...]
+    joint_classes: tuple[str, ...]
+    by_class: tuple[tuple[str, Motor], ...]
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "joint_names", tuple(self.joint_names))
+        object.__setattr__(self, "joint_classes", tuple(self.joint_classes))
+        object.__setattr__(self, "by_class", tuple((str(c), m) for c, m in self.by_class))
+        if len(self.joint_names) != len(self.joint_classes) or not self.joint_names:
+            raise InvalidParameterError("MotorSet.joint_classes", self.joint_classes,
+                                        f"one class per joint, {len(self.joint_names)} names")
+        named = [c for c, _ in self.by_class]
+        for c, m in self.by_class:
+            if not isinstance(m, Motor):
+                raise InvalidParameterError(f"MotorSet motor of {c}", m, "a hexaleg.Motor")
+        if sorted(named) != sorted(set(self.joint_classes)):
+            raise InvalidParameterError("MotorSet classes", named, "each joint class of "
+                                        f"{sorted(set(self.joint_classes))} exactly once")
+
+    @classmethod
+    def per_class(cls, joint_classes: Mapping[str, tuple[str, ...]], joint_names: tuple[str, ...],
+                  motors: Mapping[str, Motor]) -> MotorSet:
+        """The motor set of a robot from its joint classes and one motor per class.
+
+        Args:
+            joint_classes: Class → its joints (:attr:`hexaleg.robot.model.Robot.joint_classes`).
+            joint_names: The robot's joints in column order.
+            motors: Class → motor, every class of ``joint_classes``.
+
+        Returns:
+            The set, in the order of ``joint_classes``.
+        """
+        of = {joint: kind for kind, joints in joint_classes.items() for joint in joints}
+        return cls(joint_names, tuple(of[j] for j in joint_names),
+                   tuple((kind, motors[kind]) for kind in joint_classes if kind in motors))
+
+    @property
+    def motors(self) -> tuple[Motor, ...]:
+        """The motor of each joint, n entries."""
+        table = dict(self.by_class)
+        return tuple(table[c] for c in self.joint_classes)
+
+    def _per_joint(self, attribute: str) -> np.ndarray:
+        return np.array([getattr(m, attribute) for m in self.motors], dtype=float)
+
+    @property
+    def name(self) -> str:
+        """``"XM430-W350 (femur) · XL430-W250 (coxa, tibia)"``: each motor and its classes."""
+        classes: dict[Motor, list[str]] = {}
+        for c, m in self.by_class:
+            classes.setdefault(m, []).append(c)
+        return " · ".join(f"{m.name} ({', '.join(cs)})" for m, cs in classes.items())
+
+    @property
+    def joule_coefficient(self) -> np.ndarray:
+        """``c = R / (k_t G)²`` of each joint's motor, shape (n,), W/(N·m)²."""
+        return self._per_joint("joule_coefficient")
+
+    @property
+    def stall_torque(self) -> np.ndarray:
+        """Stall torque of each joint's motor, shape (n,), N·m (the analysis' torque limits)."""
+        return self._per_joint("stall_torque")
+
+    @property
+    def no_load_speed(self) -> np.ndarray:
+        """No-load speed of each joint's motor, shape (n,), rad/s."""
+        return self._per_joint("no_load_speed")
+
+    @property
+    def gearbox_efficiency(self) -> np.ndarray:
+        """Gearbox efficiency η of each joint's motor, shape (n,)."""
+        return self._per_joint("gearbox_efficiency")
+
+    @property
+    def regeneration(self) -> np.ndarray:
+        """Whether each joint's motor returns negative power to the supply, shape (n,), bool."""
+        return np.array([m.regeneration for m in self.motors])
+
+    def _columns(self, method: Callable[[Motor], Callable[..., np.ndarray]],
+                 *arrays: np.ndarray) -> np.ndarray:
+        """Apply each class's motor method to its joints' columns (last axis, n)."""
+        n = len(self.joint_names)
+        if arrays[0].ndim == 0 or arrays[0].shape[-1] != n:
+            raise InvalidParameterError("tau", f"array of shape {arrays[0].shape}",
+                                        f"a last axis of {n} joints, {self.joint_names}")
+        out = np.empty(arrays[0].shape)
+        kinds = np.array(self.joint_classes)
+        for kind, motor in self.by_class:
+            cols = kinds == kind
+            out[..., cols] = method(motor)(*(a[..., cols] for a in arrays))
+        return out
+
+    def current(self, tau: ArrayLike) -> np.ndarray:
+        """Winding currents, :meth:`Motor.current` per joint; ``tau`` (..., n) N·m → A."""
+        t, _ = as_torque_speed(tau, np.zeros(np.shape(tau)))
+        return self._columns(lambda m: m.current, t)
+
+    def joule_power(self, tau: ArrayLike) -> np.ndarray:
+        """Joule loss, :meth:`Motor.joule_power` per joint; ``tau`` (..., n) N·m → W."""
+        t, _ = as_torque_speed(tau, np.zeros(np.shape(tau)))
+        return self._columns(lambda m: m.joule_power, t)
+
+    def gearbox_input_power(self, tau: ArrayLike, qdot: ArrayLike) -> np.ndarray:
+        """``max(P/η, η P)`` per joint (:meth:`Motor.gearbox_input_power`), shape (..., n), W."""
+        t, w = as_torque_speed(tau, qdot)
+        return self._columns(lambda m: m.gearbox_input_power, t, w)
+
+    def electrical_power(self, tau: ArrayLike, qdot: ArrayLike,
+                         regeneration: bool | None = None) -> np.ndarray:
+        """Electrical power per joint (:meth:`Motor.electrical_power` of each joint's motor).
+
+        Args:
+            tau: Joint torques, shape (..., n), N·m.
+            qdot: Joint speeds, the shape of ``tau``, rad/s.
+            regeneration: Whether negative power returns to the supply on every joint; ``None``
+                uses each motor's own :attr:`Motor.regeneration`.
+
+        Returns:
+            Electrical power, the shape of ``tau``, W.
+        """
+        t, w = as_torque_speed(tau, qdot)
+        return self._columns(
+            lambda m: lambda a, b: m.electrical_power(a, b, regeneration=regeneration), t, w)
+
+    @property
+    def source(self) -> str:
+        """Each motor's source, by class."""
+        return " · ".join(f"{c}: {m.source}" for c, m in self.by_class)
+
+    @property
+    def notes(self) -> str:
+        """Each motor's notes, by class (empty when none has notes)."""
+        return " · ".join(f"{c}: {m.notes}" for c, m in self.by_class if m.notes)
+
+
+def class_motors(robot: Robot, named: Mapping[str, Motor], generic: str) -> Motor | MotorSet:
+    """The motor of every joint class of ``robot``: ``named`` ones, and for the others a generic
+    actuator from the largest URDF effort and velocity limits of the class's joints
+    (:func:`hexaleg.robot.motor.generic_actuator`, its assumptions in its notes).
+
+    Args:
+        robot: The loaded robot (its joint classes and URDF limits).
+        named: Joint class → motor, for the classes that have one.
+        generic: The name of the generic actuators.
+
+    Returns:
+        The one :class:`Motor` when every class gets the same, else the :class:`MotorSet`.
+
+    Raises:
+        UnknownNameError: ``named`` has a class the robot does not have.
+        InvalidParameterError: a class without a motor whose URDF joints have no effort or
+            velocity limit.
+    """
+    for kind in named:
+        if kind not in robot.joint_kinds:
+            raise UnknownNameError(f"{robot.name}: motor joint class", kind, robot.joint_kinds)
+    motors: dict[str, Motor] = {}
+    for kind, joints in robot.joint_classes.items():
+        if kind in named:
+            motors[kind] = named[kind]
+            continue
+        cols = [6 + robot.column(j) for j in joints]
+        motors[kind] = generic_actuator(float(robot.model.effortLimit[cols].max()),
+                                        float(robot.model.velocityLimit[cols].max()),
+                                        name=generic)
+    if len(set(motors.values())) == 1:
+        return next(iter(motors.values()))
+    return MotorSet.per_class(robot.joint_classes, robot.joint_names, motors)
