@@ -12,7 +12,7 @@ import pytest
 import hexaleg
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.motion.legged import tripod_gait
-from hexaleg.motion.params import TRIPODS, GaitParams
+from hexaleg.motion.params import TRIPODS, GaitParams, default_groups
 from hexaleg.robot.registry import TROT, description
 
 
@@ -93,9 +93,45 @@ def test_for_robot_names_the_robot_of_a_bad_override():
         GaitParams.for_robot(dataclasses.replace(desc, gait={**desc.gait, "periode": 1.0}))
     with pytest.raises(InvalidParameterError, match="period"):
         GaitParams.for_robot(dataclasses.replace(desc, gait={**desc.gait, "period": -1.0}))
-    # No groups of its own: the default tripods do not fit a quadruped.
+    # No groups of its own: a quadruped trots; groups that leave a leg out are refused.
     no_groups = {k: v for k, v in desc.gait.items() if k != "groups"}
+    assert GaitParams.for_robot(dataclasses.replace(desc, gait=no_groups)).groups == TROT
     with pytest.raises(InvalidParameterError, match=r"solo12: gait.groups.*exactly one group"):
-        GaitParams.for_robot(dataclasses.replace(desc, gait=no_groups))
+        GaitParams.for_robot(dataclasses.replace(desc, gait={**no_groups, "groups": TRIPODS}))
     with pytest.raises(UnknownNameError, match="'spot'"):
         GaitParams.for_robot("spot")
+
+
+@pytest.mark.parametrize(("legs", "groups"), [
+    (("LF", "LM", "LH", "RF", "RM", "RH"), TRIPODS),
+    (("LF", "RF", "LH", "RH"), (("LF", "RH"), ("RF", "LH"))),
+    (("L1", "L2", "L3", "L4", "R1", "R2", "R3", "R4"), (("L1", "L3", "R2", "R4"),
+                                                        ("L2", "L4", "R1", "R3"))),
+    (("L1", "R1"), (("L1",), ("R1",))),
+    (("front_left", "RF"), None),
+])
+def test_default_groups_alternate_along_and_across_the_body(legs, groups):
+    assert default_groups(legs) == groups
+
+
+def test_a_found_quadruped_trots_by_default(tmp_path):
+    """A quadruped whose legs are found in the URDF (no legs, no gait in its TOML) gets the
+    trot, and walks."""
+    toml = tmp_path / "quad.toml"
+    toml.write_text('[robot]\nname = "quad"\nsource = "example-robot-data"\n'
+                    'urdf = "a1_description/urdf/a1.urdf"\nstand = {body_height = 0.25}\n')
+    gait = GaitParams.for_robot(str(toml))
+    assert gait.groups == (("LF", "RH"), ("RF", "LH"))
+    robot = hexaleg.load(str(toml))
+    motion = hexaleg.tripod_gait(robot, dataclasses.replace(gait, samples=60))
+    assert motion.stance.sum(1).min() == 2
+
+
+def test_legs_without_side_and_place_ask_for_groups(tmp_path):
+    from hexaleg.robot.description import RobotDescription
+    from hexaleg.robot.feet import LegSpec
+
+    desc = RobotDescription(name="odd", urdf="x.urdf", legs=tuple(
+        LegSpec(name=n, joints=(f"{n}_j",), foot=f"{n}_foot") for n in ("front", "back")))
+    with pytest.raises(InvalidParameterError, match=r"groups = \[\[…\], \[…\]\]"):
+        GaitParams.for_robot(desc)

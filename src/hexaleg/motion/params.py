@@ -8,7 +8,7 @@ overrides of these parameters (its ``gait`` mapping, e.g. Solo-12's trot);
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -22,6 +22,40 @@ from hexaleg.robot.registry import description
 
 TRIPODS: tuple[tuple[str, ...], ...] = (("LF", "RM", "LH"), ("RF", "LM", "RH"))
 """The hexapod's two tripods, the default leg groups; group 0 touches down at t = 0."""
+
+_POSITIONS = {"F": 0, "M": 1, "H": 2}
+
+
+def default_groups(legs: Sequence[str]) -> tuple[tuple[str, ...], ...] | None:
+    """The alternating gait of a robot's legs, the default when its description gives no
+    ``groups``: along each side, front to back, the legs alternate between two groups, and the
+    two sides start in opposite groups — every leg's neighbours (ahead, behind, across) swing
+    while it stands. That is the tripod on six legs (:data:`TRIPODS`) and the trot on four
+    (:data:`hexaleg.robot.registry.TROT`); on two, the legs alternate.
+
+    Args:
+        legs: The robot's leg names in hexaleg's convention: side ``L``/``R`` then the place
+            from front to back, ``F M H`` or ``1 2 3 …`` (:mod:`hexaleg.robot.discover`).
+
+    Returns:
+        The two groups, or None when a name does not follow the convention.
+    """
+    from hexaleg.robot.registry import TROT
+
+    ranked: list[tuple[str, int, str]] = []
+    for name in legs:
+        side, place = name[:1], name[1:]
+        rank = _POSITIONS.get(place, int(place) - 1 if place.isdigit() else None)
+        if side not in ("L", "R") or rank is None:
+            return None
+        ranked.append((side, rank, name))
+    for known in (TRIPODS, TROT):
+        if sorted(legs) == sorted(leg for group in known for leg in group):
+            return known
+    first = tuple(name for side, rank, name in ranked if (rank % 2 == 0) == (side == "L"))
+    second = tuple(name for _, _, name in ranked if name not in first)
+    return tuple(g for g in (first, second) if g)
+
 
 BALANCE_MODES: tuple[str, ...] = ("auto", "none")
 """``GaitParams.balance``: ``"auto"`` sways the body (:mod:`hexaleg.motion.balance`) when some
@@ -148,6 +182,15 @@ class GaitParams:
         """
         desc = description(robot) if isinstance(robot, str) else robot
         gait = cls().updated(desc.gait, f"robot {desc.name!r} gait")
+        if "groups" not in desc.gait:
+            legs = desc.leg_names()
+            groups = default_groups(legs)
+            if groups is None:
+                raise InvalidParameterError(
+                    f"{desc.name}: gait.groups", "none given",
+                    f"leg groups for the legs {', '.join(legs)} (their names do not say side and "
+                    "place, L/R then F M H or 1 2 …): give [robot.gait] groups = [[…], […]]")
+            gait = dataclasses.replace(gait, groups=groups)
         desc.check_groups(gait.groups)
         return gait
 
