@@ -62,3 +62,16 @@ def test_finite_array_names_the_first_bad_value_and_its_index():
     with pytest.raises(InvalidParameterError, match="an array of real numbers"):
         checks.finite_array("q", ["a"])
     assert checks.finite_array("q", [1, 2]).dtype == float
+
+
+def test_count_bounds_a_count_by_the_memory_budget():
+    high = checks.MEMORY_BUDGET // 1024
+    assert checks.count("n", np.int64(high), item_bytes=1024, item="one x") == high
+    with pytest.raises(InvalidParameterError, match=rf"n = {high + 1}; allowed: an integer in "
+                                                    rf"\[1, {high}\] \(one x costs about 1 kB.*"
+                                                    r"2 GiB\); use fewer"):
+        checks.count("n", high + 1, item_bytes=1024, item="one x", fix="use fewer")
+    for bad in (0, 1e3, True, "5", None):
+        with pytest.raises(InvalidParameterError, match=r"an integer in \[1, ") as e:
+            checks.count("n", bad, item_bytes=1024, item="one x", fix="use fewer")
+        assert "use fewer" not in str(e.value)  # the fix is for counts above the bound

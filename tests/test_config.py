@@ -56,3 +56,24 @@ def test_load_toml_errors(tmp_path):
     good = tmp_path / "good.toml"
     good.write_text("[gait]\nperiod = 2.0\n")
     assert load_toml(good) == {"gait": {"period": 2.0}}
+
+
+def test_text_files_are_regular_utf8_and_bounded(tmp_path, monkeypatch):
+    from hexaleg import config
+    from hexaleg.config import read_text
+
+    latin = tmp_path / "latin.toml"
+    latin.write_bytes("period = 1.0  # café\n".encode("latin-1"))
+    with pytest.raises(ConfigError, match=r"latin\.toml is not UTF-8 text: byte 0xe9 at offset "
+                                          r"19 .*iconv"):
+        load_toml(latin)
+    for special in ("/dev/zero", str(tmp_path)):
+        with pytest.raises(ConfigError, match=r"is not a regular file"):
+            load_toml(special)
+    big = tmp_path / "big.toml"
+    big.write_text("x = 1\n", encoding="utf-8")
+    monkeypatch.setattr(config, "MAX_TEXT_BYTES", 3)
+    with pytest.raises(ConfigError, match=r"big\.toml has 6 bytes; allowed: at most 3"):
+        read_text(big, "spec")
+    monkeypatch.undo()
+    assert read_text(big) == "x = 1\n"

@@ -95,6 +95,42 @@ def integer(name: str, value: Any, *, low: int | None = None, high: int | None =
     return int(value)
 
 
+MEMORY_BUDGET = 2 * 1024**3
+"""Bytes one computation may fill, the base of every resource bound: a count (samples,
+keyframes, sweep points) is refused before any work when that many items would take more, so a
+careless ``samples = 10**7`` is an error naming the bound instead of a ``MemoryError`` minutes
+later. Each bound is this budget over the measured cost of one item (:func:`count`)."""
+
+
+def count(name: str, value: Any, *, item_bytes: int, item: str, low: int = 1,
+          fix: str = "") -> int:
+    """``value`` as an int in ``[low, MEMORY_BUDGET // item_bytes]``: a count of things whose
+    memory grows with it.
+
+    Args:
+        name: The parameter's name, for the error.
+        value: The value given.
+        item_bytes: Bytes one item costs (measured, with a margin), B.
+        item: What one item is, e.g. ``"one gait sample"``, for the error.
+        low: Smallest allowed count.
+        fix: What to change when the count is above the bound, appended to the error.
+
+    Raises:
+        InvalidParameterError: not an integer (a bool or a float such as ``1e9`` included),
+            below ``low``, or above the bound (the message states the bound and how it
+            follows from :data:`MEMORY_BUDGET`).
+    """
+    high = MEMORY_BUDGET // item_bytes
+    allowed = (f"an integer in [{low}, {high}] ({item} costs about {item_bytes / 1024:g} kB, "
+               f"so {high} of them fill hexaleg's memory budget of "
+               f"{MEMORY_BUDGET / 1024**3:g} GiB)")
+    if not is_integer(value) or value < low:
+        raise InvalidParameterError(name, value, allowed)
+    if value > high:
+        raise InvalidParameterError(name, value, allowed + (f"; {fix}" if fix else ""))
+    return int(value)
+
+
 def string(name: str, value: Any) -> str:
     """``value`` if it is a str.
 

@@ -8,6 +8,7 @@ and the expected type.
 from __future__ import annotations
 
 import dataclasses
+import stat
 import sys
 import types
 import typing
@@ -26,19 +27,60 @@ else:  # pragma: no cover
 T = TypeVar("T")
 
 
-def load_toml(path: str | Path) -> dict[str, Any]:
-    """Read a TOML file.
+MAX_TEXT_BYTES = 16 * 1024**2
+"""Largest text file hexaleg reads (a TOML config, a URDF or SRDF), B: far beyond any real one, and
+a bound that keeps a wrong path (a log, a data set) from filling memory."""
+
+
+def read_text(path: str | Path, what: str = "config file") -> str:
+    """The text of a regular file, decoded as UTF-8 (TOML requires it; hexaleg's XML files too).
+
+    Args:
+        path: The file.
+        what: What the file is (``"config file"``, ``"URDF"``, …), for the error.
 
     Raises:
-        ConfigError: the file is missing, unreadable or not valid TOML.
+        ConfigError: the path does not exist or is not a regular file (a directory, a device
+            such as ``/dev/zero``, a pipe: refused before reading), is larger than
+            :data:`MAX_TEXT_BYTES`, cannot be read, or is not UTF-8 (the message names the
+            byte offset and how to convert the file).
     """
     path = Path(path)
     try:
-        return tomllib.loads(path.read_text())
-    except FileNotFoundError as e:
-        raise ConfigError(f"config file not found: {path}") from e
+        info = path.stat()
+    except FileNotFoundError:
+        raise ConfigError(f"{what} not found: {path}") from None
     except OSError as e:
-        raise ConfigError(f"cannot read config file {path}: {e}") from e
+        raise ConfigError(f"cannot read {what} {path}: {e}") from e
+    if not stat.S_ISREG(info.st_mode):
+        raise ConfigError(f"{what} {path} is not a regular file (a directory, device or pipe); "
+                          "give the path of a text file")
+    if info.st_size > MAX_TEXT_BYTES:
+        raise ConfigError(f"{what} {path} has {info.st_size} bytes; allowed: at most "
+                          f"{MAX_TEXT_BYTES} (is it the right file?)")
+    try:
+        data = path.read_bytes()
+    except OSError as e:
+        raise ConfigError(f"cannot read {what} {path}: {e}") from e
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise ConfigError(f"{what} {path} is not UTF-8 text: byte {data[e.start]:#04x} at offset "
+                          f"{e.start} ({e.reason}); save it as UTF-8 (e.g. iconv -f latin1 -t "
+                          "utf-8)") from None
+
+
+def load_toml(path: str | Path) -> dict[str, Any]:
+    """Read a TOML file (UTF-8, a regular file: :func:`read_text`).
+
+    Raises:
+        ConfigError: the file is missing, not a regular file, too large, unreadable, not UTF-8
+            or not valid TOML.
+    """
+    path = Path(path)
+    text = read_text(path, "config file")
+    try:
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise ConfigError(f"config file {path} is not valid TOML: {e}") from e
 

@@ -74,3 +74,12 @@ def test_bad_input(robot, gait):
             centred_spring(robot, gait, "LF_femur", 1.0, dead_zone=bad)
     with pytest.raises(UnknownNameError):
         centred_springs(robot, gait, "knee", 1.0)
+
+
+def test_a_centred_spring_on_a_joint_that_does_not_move_is_refused(robot):
+    still = hexaleg.tripod_gait(robot, hexaleg.GaitParams(stride_length=0.0, samples=40))
+    lo, hi = joint_range(robot, still, "LF_coxa")
+    assert hi - lo < 1e-9  # no stride: the coxa stands still
+    with pytest.raises(InvalidParameterError, match=r"centred spring on LF_coxa = 'a joint that "
+                                                    r"does not move.*spring another joint"):
+        centred_springs(robot, still, "coxa", 1.0)

@@ -6,16 +6,28 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from hexaleg.checks import MEMORY_BUDGET
 from hexaleg.errors import InvalidParameterError
-from hexaleg.motion.limits import MIN_SAMPLES, check_joint_limits, check_samples
+from hexaleg.motion.limits import (
+    MAX_SAMPLES,
+    MIN_SAMPLES,
+    SAMPLE_BYTES,
+    check_joint_limits,
+    check_samples,
+)
 
 
 def test_check_samples():
     assert check_samples(np.int64(MIN_SAMPLES)) == MIN_SAMPLES
     assert type(check_samples(np.int64(40))) is int
     for bad in (MIN_SAMPLES - 1, 100.0, True):
-        with pytest.raises(InvalidParameterError, match=rf"samples = .*≥ {MIN_SAMPLES}"):
+        with pytest.raises(InvalidParameterError, match=rf"samples = .*in \[{MIN_SAMPLES}, "):
             check_samples(bad)
+    assert check_samples(MAX_SAMPLES) == MAX_SAMPLES
+    with pytest.raises(InvalidParameterError, match=rf"samples = {MAX_SAMPLES + 1}; .*"
+                                                    r"memory budget of 2 GiB.*fewer samples"):
+        check_samples(MAX_SAMPLES + 1)
+    assert MAX_SAMPLES * SAMPLE_BYTES <= MEMORY_BUDGET < (MAX_SAMPLES + 1) * SAMPLE_BYTES
 
 
 def test_check_joint_limits_names_joint_angle_and_time(robot):

@@ -39,6 +39,10 @@ PAPER_ALPHA: float = 1.05
 """The paper's angle conversion factor α (Section 4.2)."""
 
 
+STILL = 1e-9
+"""A joint whose range of motion is at most this, rad, does not move (no dead zone to centre)."""
+
+
 def k_M(robot: Robot, motion: Motion, joint: str, alpha: float = PAPER_ALPHA) -> float:
     """The paper's torque-optimal stiffness for ``joint``: ω² J / α (eq. 19, SI), N·m/rad.
 
@@ -73,12 +77,19 @@ def centred_spring(robot: Robot, motion: Motion, joint: str, stiffness: float, *
         convention: Spring α convention (see :mod:`hexaleg.robot.springs`).
 
     Raises:
-        InvalidParameterError: ``dead_zone`` outside (0, 1).
+        InvalidParameterError: ``dead_zone`` outside (0, 1), or a joint that does not move in
+            ``motion`` (no range to centre a dead zone on).
     """
     if not (isinstance(dead_zone, (int, float)) and 0 < dead_zone < 1):
         raise InvalidParameterError("dead_zone", dead_zone,
                                     "a fraction of the half range of motion in (0, 1)")
     lo, hi = joint_range(robot, motion, joint)
+    if not hi - lo > STILL:
+        raise InvalidParameterError(
+            f"centred spring on {joint}", f"a joint that does not move (range [{lo:.6g}, "
+            f"{hi:.6g}] rad in this motion)", "a joint that moves: a dead zone centred on no "
+            "motion has no width; spring another joint, or give the spring its reference angle "
+            "explicitly (LinearSpring, PreloadedSpring)")
     return DeadZoneSpring(stiffness=stiffness, theta_k=dead_zone * (hi - lo) / 2,
                           neutral=(hi + lo) / 2, alpha=alpha, convention=convention)
 

@@ -8,23 +8,36 @@ from __future__ import annotations
 
 import numpy as np
 
-from hexaleg.checks import is_integer
+from hexaleg.checks import MEMORY_BUDGET, count
 from hexaleg.errors import InvalidParameterError
 from hexaleg.robot.model import Robot
 
 MIN_SAMPLES = 20
 """Fewest samples per period (or per motion) a motion may have."""
+SAMPLE_BYTES = 32 * 1024
+"""Memory one sample of a motion costs through its analysis (motion, RNEA, Jacobians, stance
+system, forces, metrics), B: 18–20 kB measured on the 24-DoF hexapod (tracemalloc peak of
+``tripod_gait`` + ``prepare`` + ``evaluate``), with a margin for larger robots."""
+MAX_SAMPLES = MEMORY_BUDGET // SAMPLE_BYTES
+"""Most samples per period (or per motion): :data:`hexaleg.checks.MEMORY_BUDGET` over
+:data:`SAMPLE_BYTES`."""
 
 
-def check_samples(samples: object) -> int:
-    """The number of samples of a motion as an int, at least :data:`MIN_SAMPLES`.
+def check_samples(samples: object, name: str = "samples") -> int:
+    """The number of samples of a motion as an int in [:data:`MIN_SAMPLES`,
+    :data:`MAX_SAMPLES`].
+
+    Args:
+        samples: The value given.
+        name: The parameter's name, for the error.
 
     Raises:
-        InvalidParameterError: not an integer, or fewer than :data:`MIN_SAMPLES`.
+        InvalidParameterError: not an integer (a bool or float included), fewer than
+            :data:`MIN_SAMPLES`, or more than :data:`MAX_SAMPLES` (the message says how that
+            bound follows from memory).
     """
-    if not is_integer(samples) or samples < MIN_SAMPLES:
-        raise InvalidParameterError("samples", samples, f"an integer ≥ {MIN_SAMPLES}")
-    return int(samples)
+    return count(name, samples, item_bytes=SAMPLE_BYTES, item="one sample",
+                 low=MIN_SAMPLES, fix="use fewer samples per period")
 
 
 def check_joint_limits(robot: Robot, q: np.ndarray, t: np.ndarray) -> None:

@@ -24,13 +24,14 @@ import meshcat
 import numpy as np
 from pinocchio.visualize import MeshcatVisualizer
 
-from hexaleg.checks import one_of, positive
+from hexaleg.checks import one_of, positive, real
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.dynamics.prepare import analyze
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.trajectory import Motion
 from hexaleg.motion.transform import transform_motion
+from hexaleg.outputs.viewer.keyframes import KEYFRAME_BYTES, MAX_FPS
 from hexaleg.outputs.viewer.page import write_page
 from hexaleg.outputs.viewer.scene import draw_motion, start_server
 from hexaleg.robot.model import Robot, load_robot
@@ -50,9 +51,10 @@ class ViewParams:
     """How a motion is drawn; the ``[view]`` table of a hexaleg config file.
 
     Attributes:
-        fps: Keyframes per second of motion time; the motion is resampled at this rate
-            (configurations interpolated on the configuration manifold, per-sample arrays
-            linearly) and the browser interpolates between keyframes.
+        fps: Keyframes per second of motion time, > 0 and at most
+            :data:`~hexaleg.outputs.viewer.keyframes.MAX_FPS` (a memory bound); the motion is
+            resampled at this rate (configurations interpolated on the configuration manifold,
+            per-sample arrays linearly) and the browser interpolates between keyframes.
         arrow_length: Length of the longest ground-reaction-force arrow, m; the others are
             scaled in proportion to the force magnitude.
         marker_radius: Radius of the coloured joint markers, m.
@@ -63,7 +65,11 @@ class ViewParams:
     marker_radius: float = 0.018
 
     def __post_init__(self) -> None:
-        for name in ("fps", "arrow_length", "marker_radius"):
+        real("ViewParams.fps", self.fps, low=0.0, low_open=True, high=MAX_FPS,
+             allowed=f"a finite number > 0 and <= {MAX_FPS} keyframes per second (one keyframe "
+                     f"costs about {KEYFRAME_BYTES // 1024} kB while the view is built, so "
+                     f"{MAX_FPS} fill hexaleg's memory budget for a 1 s motion); 30 is smooth")
+        for name in ("arrow_length", "marker_radius"):
             positive(f"ViewParams.{name}", getattr(self, name))
 
 

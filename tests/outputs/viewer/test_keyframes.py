@@ -38,3 +38,12 @@ def test_periodic_motion_closes_on_sample_zero(robot, motion, forces):
     np.testing.assert_array_equal(fr.forces[-1], forces[0])
     np.testing.assert_array_equal(fr.joint_values[-1], motion.v[0, 6:])
     np.testing.assert_allclose(fr.q[-1, :3] - fr.q[0, :3], [motion.distance, 0, 0], atol=1e-12)
+
+
+def test_keyframes_are_bounded_by_memory(robot, walk):
+    from hexaleg.errors import InvalidParameterError
+    from hexaleg.outputs.viewer.keyframes import MAX_FPS
+
+    with pytest.raises(InvalidParameterError, match=r"keyframes \(fps × motion duration\) = "
+                                                    r"\d+; .*lower fps"):
+        resample(robot, walk, 2 * MAX_FPS, None, None)

@@ -122,3 +122,13 @@ def test_bad_input():
         DeadZoneSpring(1.0, theta_k=0.1).torque(np.zeros(3), np.array([0.0, np.inf, 0.0]))
     with pytest.raises(HexalegError):
         DeadZoneSpring.from_paper(float("nan"), 7.32)
+
+
+def test_theta_k_zero_says_there_is_no_dead_zone_and_none_is_not_a_number():
+    with pytest.raises(InvalidParameterError, match=r"theta_k = 0\.0; allowed: > 0 rad.*no dead "
+                                                    r"zone at all.*LinearSpring"):
+        DeadZoneSpring(stiffness=1.0, theta_k=0)
+    assert DeadZoneSpring(stiffness=1.0, theta_k=0, theta_minus=-0.1, theta_plus=0.1).th_plus == 0.1
+    for name in ("neutral", "k2", "alpha", "damping"):
+        with pytest.raises(InvalidParameterError, match=rf"{name} = None"):
+            DeadZoneSpring(stiffness=1.0, theta_k=0.1, **{name: None})

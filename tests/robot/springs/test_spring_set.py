@@ -94,3 +94,19 @@ def test_any_family_and_a_named_error_where_a_dead_zone_is_needed(robot):
         s.dead_zones("a stiffness curve")
     with pytest.raises(InvalidParameterError, match="spring law"):
         SpringSet({"LF_femur": 1.0})
+
+
+def test_springs_must_be_a_mapping_and_a_dead_zone_must_be_able_to_engage(robot):
+    spring = DeadZoneSpring(stiffness=1.0, theta_k=0.1)
+    with pytest.raises(InvalidParameterError, match=r"invalid springs = \[DeadZoneSpring.*a "
+                                                    r"mapping joint name → spring"):
+        SpringSet([spring])  # type: ignore[arg-type]
+    q = np.tile(robot.pose("stand"), (3, 1))
+    wide = SpringSet({"LF_femur": DeadZoneSpring(stiffness=1.0, theta_k=6.0)})
+    with pytest.raises(InvalidParameterError, match=r"dead zone of the spring on LF_femur = "
+                                                    r"'\[-6, 6\] rad'.*\[-2\.618, 2\.618\] rad "
+                                                    r"\(URDF limits\).*never engage"):
+        wide.torques(robot, q)
+    # a dead zone that ends inside the range on one side may engage: accepted
+    one_side = DeadZoneSpring(stiffness=1.0, theta_k=2.0, neutral=1.0)
+    assert SpringSet({"LF_femur": one_side}).torques(robot, q).shape == (3, robot.nj)

@@ -35,3 +35,16 @@ def test_axis_values_scalars_lists_and_range_tables():
         axis_values("k", {"start": 0, "stop": 1, "num": 3, "scale": "log"})
     with pytest.raises(InvalidParameterError, match=r"finite"):
         axis_values("k", float("nan"))
+
+
+def test_a_parsed_value_out_of_range_keeps_its_own_reason():
+    with pytest.raises(InvalidParameterError, match=r"--period = nan; .*NaN and inf are not"):
+        parse_range("--period", "nan")
+    with pytest.raises(InvalidParameterError, match=r"--k\.start = 0\.0; .*> 0 for a log range"):
+        parse_range("--k", "0:1:5:log")
+    with pytest.raises(InvalidParameterError, match=r"--k\[1\] = inf"):
+        parse_range("--k", "1,inf")
+    with pytest.raises(InvalidParameterError, match=r"--k\.num = 10000000000; .*1048576"):
+        parse_range("--k", "0:1:10000000000")
+    with pytest.raises(InvalidParameterError, match=r"--k = 'x:y'; allowed: a number"):
+        parse_range("--k", "x:y")

@@ -1,24 +1,39 @@
-"""Tests of hexaleg.studies.sweep.runner: resumable sweeps (interrupted and SIGKILLed runs), a
-different spec refused, identical tables on every executor, the manifest, the summary and the CLI,
-and a gait axis."""
+"""Tests of hexaleg.studies.sweep.runner: resumable sweeps (interrupted runs; pool sweeps SIGKILLed
+at random points resume exactly and leave no process; a truncated part recomputed), one writer
+per directory, a different spec refused, identical tables on every executor, the manifest, the
+summary and the CLI, and a gait axis."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import os
+import random
 import signal
+import socket
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 
 import pandas as pd
 import pytest
+from processes import HAS_PROC, children, wait_gone
 
 from hexaleg.cli import main
-from hexaleg.errors import ConfigError, ExecutorError, InvalidParameterError, UnknownNameError
+from hexaleg.errors import (
+    ConfigError,
+    DirectoryLockedError,
+    ExecutorError,
+    HexalegWarning,
+    InvalidParameterError,
+    OutputError,
+    UnknownNameError,
+)
 from hexaleg.studies.sweep.runner import run_sweep, summary
 from hexaleg.studies.sweep.spec import SweepSpec
+from hexaleg.studies.sweep.store import MANIFEST, read_table
 
 
 def small_spec(**kw):
@@ -64,35 +79,125 @@ def test_interrupted_sweep_resumes_without_recomputing(tmp_path):
     assert third.computed == 0 and third.reused == 10
 
 
-def test_sigkilled_cli_sweep_resumes_to_the_same_table(tmp_path):
-    spec_file = tmp_path / "spec.toml"
-    spec_file.write_text("""
+KILL_SPEC = """
 [sweep]
-chunk_size = 2
+chunk_size = 1
 [gait]
-samples = 200
+samples = 60
 [springs.tibia]
-k = {start = 0.0, stop = 0.5, num = 40}
+k = {start = 0.0, stop = 0.5, num = 12}
 theta_k = 0.02
-""")
+"""
+# The sweep a trial kills: a 2-worker pool; the writer pauses after each part so that a kill
+# lands anywhere between the first part and the last, and stalls after part argv[3] so that the
+# sweep cannot finish before the kill, however loaded the machine.
+KILLED_SWEEP = """
+import sys, time
+from hexaleg.studies.sweep import SweepSpec, run_sweep
+written = []
+def pace(rows):
+    written.append(len(rows))
+    time.sleep(120 if len(written) >= int(sys.argv[3]) else 0.03)
+run_sweep(SweepSpec.from_toml(sys.argv[1]), sys.argv[2], executor="process", workers=2,
+          on_chunk=pace)
+"""
+
+
+@pytest.fixture(scope="module")
+def kill_spec(tmp_path_factory):
+    """The killed sweep's spec file and its uninterrupted table."""
+    spec_file = tmp_path_factory.mktemp("kill") / "spec.toml"
+    spec_file.write_text(KILL_SPEC)
+    full = run_sweep(SweepSpec.from_toml(spec_file), spec_file.parent / "full",
+                     executor="serial")
+    return spec_file, full.table
+
+
+def _on_disk(out):
+    """Part name → (inode, mtime) of the parts in ``out``, and the points they hold."""
+    parts = {p.name: (p.stat().st_ino, p.stat().st_mtime_ns) for p in out.glob("part-*")}
+    points = sum(len(pd.read_parquet(out / name)) for name in parts)
+    return parts, points
+
+
+@pytest.mark.skipif(not HAS_PROC, reason="finds the pool's workers in Linux /proc")
+@pytest.mark.parametrize("trial", range(4))
+def test_sigkilled_sweep_resumes_exactly_and_leaves_no_process(kill_spec, tmp_path, trial):
+    """SIGKILL at a random point of a pool sweep: the workers end with it, the resumed sweep
+    reuses every part on disk untouched, computes only the rest, and equals the uninterrupted
+    table."""
+    spec_file, full = kill_spec
+    rng = random.Random(trial)
+    target, extra = rng.randrange(0, 10), rng.uniform(0.0, 0.03)
     out = tmp_path / "killed"
-    args = [sys.executable, "-c", "import sys; from hexaleg.cli import main; "
-            "sys.exit(main(sys.argv[1:]))", "sweep", str(spec_file), "--out", str(out),
-            "--executor", "serial"]
-    proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    deadline = time.monotonic() + 60
-    while len(list(out.glob("part-*.parquet"))) < 3 and time.monotonic() < deadline:
+    proc = subprocess.Popen([sys.executable, "-c", KILLED_SWEEP, str(spec_file), str(out),
+                             str(target + 2)], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 120  # a hang guard
+    pool = set()
+    while time.monotonic() < deadline and proc.poll() is None and (
+            len(pool) < 2 or len(list(out.glob("part-*.parquet"))) < target):
+        pool = children(proc.pid)
         time.sleep(0.005)
+    time.sleep(extra)
+    pool |= children(proc.pid)
     os.kill(proc.pid, signal.SIGKILL)
     proc.wait()
-    assert proc.returncode == -signal.SIGKILL
-    n_parts = len(list(out.glob("part-*.parquet")))
-    assert 3 <= n_parts < 20  # killed half-way
-    spec = SweepSpec.from_toml(spec_file)
-    resumed = run_sweep(spec, out, executor="serial")
-    assert resumed.reused >= 6 and resumed.reused + resumed.computed == 40
-    fresh = run_sweep(spec, tmp_path / "fresh", executor="serial")
-    pd.testing.assert_frame_equal(resumed.table, fresh.table)
+    assert proc.returncode == -signal.SIGKILL, proc.stderr.read() if proc.stderr else ""
+    assert len(pool) == 2 and wait_gone(pool) == set()  # no orphan workers
+    before, points = _on_disk(out)
+    assert target <= points < 12  # killed on the way
+    with pytest.warns(HexalegWarning, match=rf"took over the lock .*pid {proc.pid}"):
+        resumed = run_sweep(SweepSpec.from_toml(spec_file), out, executor="serial")
+    assert (resumed.reused, resumed.computed) == (points, 12 - points)
+    after, _ = _on_disk(out)
+    assert {name: after[name] for name in before} == before  # no finished point recomputed
+    pd.testing.assert_frame_equal(resumed.table, full)
+    assert not list(out.glob(".*tmp")) and not (out / ".lock").exists()
+
+
+def test_two_sweeps_into_one_directory_one_runs_the_other_is_refused(kill_spec, tmp_path,
+                                                                       capsys):
+    spec_file, full = kill_spec
+    out = tmp_path / "shared"
+    started, go_on = threading.Event(), threading.Event()
+
+    def first_chunk_waits(rows):
+        started.set()
+        assert go_on.wait(60)  # a hang guard
+
+    result = {}
+    first = threading.Thread(target=lambda: result.update(table=run_sweep(
+        SweepSpec.from_toml(spec_file), out, executor="serial",
+        on_chunk=first_chunk_waits).table))
+    first.start()
+    try:
+        assert started.wait(60)
+        code = main(["sweep", str(spec_file), "--out", str(out), "--executor", "serial"])
+        err = capsys.readouterr().err
+        assert code == 2
+        assert f"another sweep (pid {os.getpid()} on host {socket.gethostname()}, started" in err
+        with pytest.raises(DirectoryLockedError):
+            run_sweep(SweepSpec.from_toml(spec_file), out, executor="serial")
+    finally:
+        go_on.set()
+        first.join(60)
+    pd.testing.assert_frame_equal(result["table"], full)
+    assert len(pd.read_parquet(out)) == 12  # not twice as many rows as points
+    assert run_sweep(SweepSpec.from_toml(spec_file), out, executor="serial").computed == 0
+
+
+def test_a_truncated_part_is_recomputed_with_a_warning(kill_spec, tmp_path):
+    spec_file, full = kill_spec
+    spec = dataclasses.replace(SweepSpec.from_toml(spec_file), chunk_size=5)
+    run_sweep(spec, tmp_path / "out", executor="serial")
+    part = tmp_path / "out" / "part-0000005-0000009.parquet"
+    part.write_bytes(part.read_bytes()[:100])
+    with pytest.raises(OutputError, match="part-0000005-0000009"):
+        read_table(tmp_path / "out")
+    with pytest.warns(HexalegWarning, match=r"part-0000005-0000009\.parquet cannot be read"):
+        again = run_sweep(spec, tmp_path / "out", executor="serial")
+    assert (again.reused, again.computed) == (7, 5)
+    pd.testing.assert_frame_equal(again.table, full)
 
 
 def test_different_spec_in_existing_directory_is_refused(tmp_path):
@@ -144,7 +249,7 @@ def test_executor_arguments_are_checked(tmp_path):
 
 def test_manifest_records_spec_robot_and_versions(tmp_path):
     run_sweep(small_spec(), tmp_path / "out", executor="serial")
-    manifest = json.loads((tmp_path / "out" / "manifest.json").read_text())
+    manifest = json.loads((tmp_path / "out" / MANIFEST).read_text())
     assert manifest["spec"]["springs"]["coxa"]["theta_k"] == [0.005, 0.03]
     assert manifest["robot"]["nv"] == 24 and manifest["motor"] == "AX-18A"
     assert set(manifest["versions"]) >= {"hexaleg", "pinocchio", "numpy", "python"}

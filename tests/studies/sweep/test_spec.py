@@ -91,3 +91,22 @@ def test_one_group_from_command_line_texts():
         SweepSpec.one_group("femur", {"k": None})
     with pytest.raises(InvalidParameterError, match="--theta-k"):
         SweepSpec.one_group("femur", {"k": "1", "theta_k": "0.1:0.2"})
+
+
+@pytest.mark.parametrize("spec", [
+    SweepSpec(),
+    SweepSpec(gait={"samples": 40, "period": (0.8, 1.0, 1.2)}),
+    SweepSpec(springs={"coxa": {"k": (0.1, 0.2), "theta_k": (0.01, 0.02, 0.03)},
+                       "femur": {"k": 1.0, "theta_k": 0.1}}, gait={"period": (0.8, 1.0)}),
+    SweepSpec(springs={"coxa": {"k": (0.1, 0.2), "theta_k": 0.01},
+                       "femur": {"k": (1.0, 2.0, 3.0), "theta_k": 0.1}}, layout="each")])
+def test_grid_size_counts_the_grid_without_listing_it(spec):
+    assert spec.grid_size() == spec.n_points
+
+
+def test_a_grid_too_large_for_memory_is_refused_naming_its_axes():
+    with pytest.raises(InvalidParameterError, match=r"sweep grid \(points: gaits × designs\) = "
+                                                    r"2000000; allowed: .*1048576\].*gait\.period "
+                                                    r"\(1000\) × coxa\.k \(2000\)"):
+        SweepSpec(gait={"period": tuple(np.linspace(0.5, 2, 1000))},
+                  springs={"coxa": {"k": tuple(np.linspace(0, 1, 2000)), "theta_k": 0.1}})

@@ -21,8 +21,17 @@ import numpy as np
 import pinocchio as pin
 from meshcat.animation import Animation, AnimationClip, AnimationTrack
 
+from hexaleg.checks import MEMORY_BUDGET, count
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
+
+KEYFRAME_BYTES = 96 * 1024
+"""Memory one keyframe costs while a view is built, B: 74 kB measured (tracemalloc peak of
+``export_html`` of the hexapod's gait, 30 vs 240 keyframes per second; its page grows by 12 kB a
+keyframe), with a margin."""
+MAX_FPS = MEMORY_BUDGET // KEYFRAME_BYTES
+"""Most keyframes per second of motion: the keyframes of one second that fill
+:data:`hexaleg.checks.MEMORY_BUDGET` (a longer motion is bounded by its keyframe count)."""
 
 
 @dataclass(frozen=True)
@@ -68,7 +77,9 @@ def resample(robot: Robot, motion: Motion, fps: float, forces: np.ndarray | None
         q = np.vstack([q, pin.integrate(model, q[-1], motion.v[-1] * motion.dt)])
         extra = [np.concatenate([a, a[:1]]) for a in extra]
     duration = float(t[-1] - t[0])
-    n = math.floor(duration * fps + 1e-9) + 1
+    n = count("keyframes (fps × motion duration)", math.floor(duration * fps + 1e-9) + 1,
+              item_bytes=KEYFRAME_BYTES, item="one keyframe",
+              fix=f"lower fps ({fps:g} per s over {duration:g} s of motion)")
     times = t[0] + np.arange(n) / fps
     if times[-1] < t[-1] - 1e-12:
         times = np.append(times, t[-1])

@@ -81,7 +81,7 @@ class DeadZoneSpring(ContactAngles):
 
     Attributes:
         stiffness: k⁺, N·m/rad, main spring beyond θ⁺ (and k⁻ when stiffness_minus is None).
-        theta_k: Symmetric contact angle, rad (the paper's ±θ_k); gives θ⁻/θ⁺ defaults.
+        theta_k: Symmetric contact angle, rad, > 0 (the paper's ±θ_k); gives θ⁻/θ⁺ defaults.
         theta_minus: θ⁻, rad, relative to neutral (default −theta_k).
         theta_plus: θ⁺, rad, relative to neutral (default +theta_k).
         stiffness_minus: k⁻, N·m/rad (default = stiffness).
@@ -93,8 +93,8 @@ class DeadZoneSpring(ContactAngles):
             the paper's eq. 14).
 
     Raises:
-        InvalidParameterError: a stiffness or damping is negative, α ≤ 0, θ⁻ ≥ θ⁺, a contact
-            angle is missing, a value is NaN/inf, or the convention is unknown.
+        InvalidParameterError: a stiffness or damping is negative, α ≤ 0, θ_k ≤ 0, θ⁻ ≥ θ⁺, a
+            contact angle is missing, a value is NaN/inf, or the convention is unknown.
     """
 
     stiffness: float
@@ -112,7 +112,7 @@ class DeadZoneSpring(ContactAngles):
         for name in ("stiffness", "theta_k", "theta_minus", "theta_plus", "stiffness_minus",
                      "k2", "alpha", "damping", "neutral"):
             value = getattr(self, name)
-            if value is not None:
+            if value is not None or name in ("stiffness", "k2", "alpha", "damping", "neutral"):
                 object.__setattr__(self, name, real(name, value,
                                                     allowed="a finite real number (no NaN or inf)"))
         for name in ("stiffness", "stiffness_minus", "k2", "damping"):
@@ -121,8 +121,12 @@ class DeadZoneSpring(ContactAngles):
                 raise InvalidParameterError(name, value, ">= 0")
         if self.alpha <= 0:
             raise InvalidParameterError("alpha", self.alpha, "> 0")
-        if self.theta_k is not None and self.theta_k < 0:
-            raise InvalidParameterError("theta_k", self.theta_k, ">= 0 (the dead zone is ±theta_k)")
+        if self.theta_k is not None and (self.theta_k < 0 or (
+                self.theta_k == 0 and (self.theta_minus is None or self.theta_plus is None))):
+            raise InvalidParameterError(
+                "theta_k", self.theta_k, "> 0 rad: the dead zone is ±theta_k about the neutral, "
+                "so 0 leaves no dead zone at all; for a spring engaged everywhere use "
+                "LinearSpring(stiffness, reference=neutral)")
         self.check_contact_angles(strict=True)
         if self.convention not in CONVENTIONS:
             raise InvalidParameterError("convention", self.convention,

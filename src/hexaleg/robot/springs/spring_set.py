@@ -27,6 +27,25 @@ Spring = DeadZoneSpring | TermSpring
 from basis terms (linear, preloaded, one-sided, stiffening)."""
 
 
+def _check_engages(joint: str, spring: Spring, robot: Robot) -> None:
+    """Refuse a dead zone that holds the joint's whole range of motion (its URDF limits): the
+    main spring could never engage, on any motion, and the "saving" would be a silent 0 %."""
+    if not isinstance(spring, DeadZoneSpring):
+        return
+    model = robot.model
+    iq = model.joints[model.getJointId(joint)].idx_q
+    lo, hi = float(model.lowerPositionLimit[iq]), float(model.upperPositionLimit[iq])
+    if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi) or abs(hi - lo) > 1e6:
+        return  # no limits: any dead zone may engage
+    low, high = spring.neutral + spring.th_minus, spring.neutral + spring.th_plus
+    if low <= lo and high >= hi:
+        raise InvalidParameterError(
+            f"dead zone of the spring on {joint}", f"[{low:.4g}, {high:.4g}] rad",
+            f"a dead zone that ends inside the joint's range [{lo:.4g}, {hi:.4g}] rad (URDF "
+            "limits): this one holds the whole range, so the spring can never engage; narrow "
+            "theta_k (or theta_minus/theta_plus) or move its neutral")
+
+
 class SpringSet(Mapping[str, Spring]):
     """Springs assigned to actuated joints, keyed by joint name (any number, 0 to all).
 
@@ -39,6 +58,10 @@ class SpringSet(Mapping[str, Spring]):
     """
 
     def __init__(self, springs: Mapping[str, Spring] | None = None) -> None:
+        if springs is not None and not isinstance(springs, Mapping):
+            raise InvalidParameterError(
+                "springs", springs, "a mapping joint name → spring, e.g. {'LF_femur': "
+                "DeadZoneSpring(stiffness=0.5, theta_k=0.1)}, a SpringSet, or None")
         items = dict(springs or {})
         for name, spring in items.items():
             if not isinstance(name, str):
@@ -111,6 +134,7 @@ class SpringSet(Mapping[str, Spring]):
                 raise InvalidParameterError(f"spring on {name}", f"a joint with nv = {joint.nv}",
                                             "a 1-DoF (revolute or continuous) joint")
             cols[name] = joint.idx_v - (robot.model.nv - robot.nj)
+            _check_engages(name, self._springs[name], robot)
         return cols
 
     def _angles(self, robot: Robot, q: ArrayLike, v: ArrayLike | None

@@ -13,6 +13,8 @@ import math
 
 import numpy as np
 
+from hexaleg.checks import count
+from hexaleg.motion.limits import SAMPLE_BYTES
 from hexaleg.robot.motor import motor as default_motor
 from hexaleg.studies.paper import readings
 from hexaleg.studies.paper.crosscheck import pinocchio_femur_torque
@@ -30,7 +32,13 @@ def reproduce(joint: PaperJoint | None = None, n: int = 8192) -> dict[str, objec
 
     Returns:
         A JSON-serialisable dict (the content of ``paper.json``).
+
+    Raises:
+        InvalidParameterError: ``n`` is not an integer in [8, the memory bound
+            :data:`hexaleg.motion.limits.MAX_SAMPLES`].
     """
+    n = count("samples", n, item_bytes=SAMPLE_BYTES, item="one sample", low=8,
+              fix="use fewer samples per period (8192 reproduces every number)")
     j = joint or PaperJoint()
     kM = j.k_M()
     lo, hi = (float(nmm_per_deg_to_nm_per_rad(x)) for x in readings.PAPER_RANGE_NMM_PER_DEG)

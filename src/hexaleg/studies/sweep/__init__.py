@@ -3,8 +3,10 @@
 :mod:`~hexaleg.studies.sweep.spec` (the grid), :mod:`~hexaleg.studies.sweep.ranges` (axis
 values), :mod:`~hexaleg.studies.sweep.optimal` (optimal-spring points),
 :mod:`~hexaleg.studies.sweep.runner` (tasks, futures, progress),
-:mod:`~hexaleg.studies.sweep.store` (Parquet parts + manifest) and
-:mod:`~hexaleg.studies.sweep.executors` (serial, process pool, Dask). Each point is evaluated by
+:mod:`~hexaleg.studies.sweep.store` (Parquet parts + manifest; one writer a directory,
+:mod:`~hexaleg.studies.sweep.lock`), :mod:`~hexaleg.studies.sweep.dead_zones` (designs refused
+up front) and :mod:`~hexaleg.studies.sweep.executors` (serial, process pool whose workers end
+with their parent, :mod:`~hexaleg.studies.sweep.workers`, and Dask). Each point is evaluated by
 :class:`hexaleg.design.evaluator.Evaluator`. See ``docs/sweep.md``.
 """
 
@@ -20,7 +22,7 @@ from hexaleg.studies.sweep.runner import (
     summary,
 )
 from hexaleg.studies.sweep.spec import SweepSpec
-from hexaleg.studies.sweep.store import ResultStore
+from hexaleg.studies.sweep.store import ResultStore, read_table
 
 __all__ = [
     "EXECUTORS",
@@ -33,6 +35,7 @@ __all__ = [
     "open_executor",
     "optimal_chunk",
     "parse_range",
+    "read_table",
     "run_sweep",
     "summary",
 ]

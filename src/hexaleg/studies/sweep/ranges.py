@@ -14,10 +14,14 @@ from typing import Any
 
 import numpy as np
 
-from hexaleg.checks import is_integer, real
+from hexaleg.checks import count, real
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 
 _VALUE = "a finite number (an axis is a list of numbers or a range table)"
+POINT_BYTES = 2048
+"""Memory one point of a sweep costs in the process that runs it, B: its row of the result table
+(≈ 60–100 columns), its design and its place in the lists of points to do. The grid's bound
+(and so an axis') is :data:`hexaleg.checks.MEMORY_BUDGET` over this."""
 
 
 def axis_values(name: str, value: Any) -> tuple[float, ...] | float:
@@ -51,15 +55,16 @@ def axis_values(name: str, value: Any) -> tuple[float, ...] | float:
 
 def _range(name: str, start: float, stop: float, num: Any, scale: str = "linear"
            ) -> tuple[float, ...]:
-    if not is_integer(num) or num < 1:
-        raise InvalidParameterError(f"{name}.num", num, "an integer ≥ 1 (an empty grid has no "
-                                    "points)")
+    count(f"{name}.num", num, item_bytes=POINT_BYTES, item="one sweep point",
+          fix="at least 1 (an empty grid has no points); split a larger sweep")
     if scale not in ("linear", "log"):
         raise InvalidParameterError(f"{name}.scale", scale, "linear or log")
     for end, v in (("start", start), ("stop", stop)):
         if not math.isfinite(v) or (scale == "log" and v <= 0):
             raise InvalidParameterError(f"{name}.{end}", v,
-                                        "a finite number" + (" > 0 for a log range"
+                                        "a finite number" + (" > 0 for a log range (a "
+                                                             "geometric grid cannot start or "
+                                                             "stop at 0 or below)"
                                                              if scale == "log" else ""))
     grid = np.geomspace(start, stop, num) if scale == "log" else np.linspace(start, stop, num)
     return tuple(float(x) for x in grid)
@@ -71,16 +76,25 @@ def parse_range(name: str, text: str) -> tuple[float, ...] | float:
     Raises:
         InvalidParameterError: not numbers, or an empty range.
     """
-    try:
+    if not isinstance(text, str):
+        raise InvalidParameterError(name, text, "a text: a number, comma-separated numbers, or "
+                                    "start:stop:num[:log]")
+    try:  # only the parsing: a parsed value that is out of range keeps its own reason
         if ":" in text:
             parts = text.split(":")
             if len(parts) not in (3, 4):
                 raise ValueError(text)
             scale = parts[3] if len(parts) == 4 else "linear"
-            return _range(name, float(parts[0]), float(parts[1]), int(parts[2]), scale)
-        if "," in text:
-            return axis_values(name, [float(x) for x in text.split(",") if x.strip()])
-        return real(name, float(text), allowed=_VALUE)
+            start, stop, num = float(parts[0]), float(parts[1]), int(parts[2])
+        elif "," in text:
+            values = [float(x) for x in text.split(",") if x.strip()]
+        else:
+            value = float(text)
     except ValueError:
         raise InvalidParameterError(name, text, "a number, comma-separated numbers, or "
                                     "start:stop:num[:log]") from None
+    if ":" in text:
+        return _range(name, start, stop, num, scale)
+    if "," in text:
+        return axis_values(name, values)
+    return real(name, value, allowed=_VALUE + " (NaN and inf are not)")

@@ -23,6 +23,7 @@ import itertools
 import math
 import platform
 import sys
+import warnings
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from concurrent.futures import FIRST_COMPLETED, Executor, Future, wait
 from dataclasses import dataclass
@@ -41,8 +42,15 @@ from hexaleg.design.evaluator import (
     evaluator,
     metric_row,
 )
-from hexaleg.errors import InfeasibleForcesError, TorqueLimitError, UnknownNameError
+from hexaleg.errors import (
+    HexalegWarning,
+    InfeasibleForcesError,
+    TorqueLimitError,
+    UnknownNameError,
+)
 from hexaleg.robot.model import Robot
+from hexaleg.studies.sweep import executors
+from hexaleg.studies.sweep.dead_zones import check_dead_zones
 from hexaleg.studies.sweep.executors import default_workers, open_executor
 from hexaleg.studies.sweep.optimal import OptimalPoint, OptimalSpec
 from hexaleg.studies.sweep.spec import GAIT_PARAMETERS, SweepSpec
@@ -74,6 +82,7 @@ def evaluate_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, S
     import pandas as pd
 
     ev = evaluator(run, gait)
+    ev.prepared.reset_warm_start(ev.objective)  # a chunk's rows do not depend on the last chunk
     columns = gait_columns(run, gait)  # one gait per chunk
     rows = []
     for index, design in points:
@@ -108,6 +117,7 @@ def optimal_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, Se
     import pandas as pd
 
     ev = evaluator(run, gait)
+    ev.prepared.reset_warm_start(ev.objective)  # a chunk's rows do not depend on the last chunk
     columns = optimal.columns(list(groups))
     gait_row = gait_columns(run, gait)  # one gait per chunk
     rows = []
@@ -206,7 +216,9 @@ def run_sweep(spec: SweepSpec, out: str | Path, *, executor: str = "process",
               on_chunk: Callable[[pd.DataFrame], None] | None = None) -> SweepResult:
     """Evaluate every point of ``spec``, writing rows to ``out`` as chunks finish; resumable.
 
-    Points already on disk (a sweep killed earlier with the same spec) are not recomputed.
+    Points already on disk (a sweep killed earlier with the same spec) are not recomputed; a
+    part file that cannot be read is set aside and its points computed again, with a
+    :class:`~hexaleg.errors.HexalegWarning` (:class:`~hexaleg.studies.sweep.store.ResultStore`).
 
     Args:
         spec: The sweep.
@@ -224,14 +236,36 @@ def run_sweep(spec: SweepSpec, out: str | Path, *, executor: str = "process",
 
     Raises:
         UnknownNameError: a group that is neither a joint class nor a joint (lists them).
+        InvalidParameterError: a dead zone too wide to ever engage
+            (:func:`~hexaleg.studies.sweep.dead_zones.check_dead_zones`).
         ConfigError: ``out`` holds a different sweep (names the differences).
+        DirectoryLockedError: another running sweep writes to ``out`` (names its pid, host and
+            start time).
         ExecutorError: the Dask scheduler cannot be reached (nothing is computed or lost).
         OutputError: results cannot be written.
     """
     robot = spec.run.load()
     groups = spec.groups(robot)
-    store = ResultStore(out, spec.to_dict(), _metadata(spec, robot, groups))
-    done = store.finished()
+    check_dead_zones(spec, robot, groups)
+    if executor == "dask" and scheduler is not None:  # before the output directory is touched
+        executors.check_scheduler(scheduler, executors.CONNECT_TIMEOUT)
+    with ResultStore(out, spec.to_dict(), _metadata(spec, robot, groups)) as store:
+        if store.lock.stale:
+            warnings.warn(f"took over the lock of a sweep that ended without releasing it "
+                          f"({store.lock.stale}); resuming where it stopped", HexalegWarning,
+                          stacklevel=2)
+        done = store.finished()
+        computed = _run(spec, store, done, groups, executor=executor, workers=workers,
+                        scheduler=scheduler, progress=progress, on_chunk=on_chunk)
+        return SweepResult(table=store.table(), directory=store.directory, computed=computed,
+                           reused=len(done))
+
+
+def _run(spec: SweepSpec, store: ResultStore, done: set[int],
+         groups: Mapping[str, tuple[str, ...]], *, executor: str, workers: int | None,
+         scheduler: str | None, progress: bool,
+         on_chunk: Callable[[pd.DataFrame], None] | None) -> int:
+    """Compute the points of ``spec`` not in ``done`` into ``store``; the points computed."""
     designs = spec.points_of_gait()
     todo = [i for i in range(spec.n_points) if i not in done]
     tasks = ((gait, [(i, designs[i % len(designs)]) for i in block])
@@ -247,10 +281,8 @@ def run_sweep(spec: SweepSpec, out: str | Path, *, executor: str = "process",
         # evaluator (gait, prepare, baseline) once here instead of once in every worker.
         evaluator(spec.run, spec.gaits()[todo[0] // len(designs)])
     with open_executor(executor, workers=workers, scheduler=scheduler) as ex:
-        computed = _drain(ex, task, tasks, window, store,
-                          total=len(todo) if progress else 0, on_chunk=on_chunk)
-    return SweepResult(table=store.table(), directory=store.directory, computed=computed,
-                       reused=len(done))
+        return _drain(ex, task, tasks, window, store, total=len(todo) if progress else 0,
+                      on_chunk=on_chunk)
 
 
 def _drain(ex: Executor, task: Callable[..., pd.DataFrame],

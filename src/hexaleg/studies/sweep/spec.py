@@ -11,12 +11,13 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
+import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from hexaleg.checks import integer, string
+from hexaleg.checks import count, integer, string
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.design.codesign import OBJECTIVE_METRIC
 from hexaleg.design.evaluator import DEFAULT_METRIC, METRICS, SPRING_PARAMETERS, RunSpec
@@ -24,7 +25,7 @@ from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.robot.model import Robot
 from hexaleg.studies.sweep.optimal import OptimalPoint, OptimalSpec
-from hexaleg.studies.sweep.ranges import axis_values, parse_range
+from hexaleg.studies.sweep.ranges import POINT_BYTES, axis_values, parse_range
 from hexaleg.units import deg_to_rad, nmm_per_deg_to_nm_per_rad
 
 PAPER_UNIT_PARAMETERS: dict[str, tuple[str, Callable[[Any], Any]]] = {
@@ -154,6 +155,9 @@ class SweepSpec:
         if self.metric not in METRICS:
             raise UnknownNameError("metric", self.metric, METRICS)
         integer("chunk_size", self.chunk_size, low=1)
+        count("sweep grid (points: gaits × designs)", self.grid_size(), item_bytes=POINT_BYTES,
+              item="one point", fix="split the sweep or use fewer values on an axis: "
+              + (" × ".join(f"{n} ({len(v)})" for n, v in self.axes()) or "no axes"))
         for g in self.gaits():  # every gait of the grid is valid (GaitParams checks ranges)
             self.run.gait(g)
 
@@ -269,6 +273,23 @@ class SweepSpec:
     def n_points(self) -> int:
         """Number of points: gaits × designs."""
         return len(self.gaits()) * len(self.points_of_gait())
+
+    def axes(self) -> list[tuple[str, tuple]]:
+        """The grid's axes, ``(name, values)``: gait parameters, then ``<group>.<parameter>``."""
+        return [*((f"gait.{k}", v) for k, v in _axes(self.gait)),
+                *((f"{g}.{k}", v) for g, p in self.springs.items() for k, v in _axes(p))]
+
+    def grid_size(self) -> int:
+        """Number of points, computed from the axes' lengths without listing the grid (so a
+        grid too large to list is refused by name, not by a ``MemoryError``)."""
+        gaits = math.prod(len(v) for _, v in _axes(self.gait))
+        if self.optimal is not None:
+            groups = len(self.springs)
+            sets = {"each": groups, "all": 1, "every": 2**groups - 1}[self.optimal.sets]
+            return gaits * len(self.optimal.family) * sets
+        per_group = [math.prod(len(v) for _, v in _axes(p)) for p in self.springs.values()]
+        designs = sum(per_group) if self.layout == "each" else math.prod(per_group)
+        return gaits * max(designs, 1) if self.springs else gaits
 
     def groups(self, robot: Robot) -> dict[str, tuple[str, ...]]:
         """Group → joints on ``robot``.

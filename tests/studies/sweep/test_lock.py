@@ -1,0 +1,143 @@
+"""Tests of hexaleg.studies.sweep.lock: one holder at a time, named to the refused; a lock left by
+a killed process is stale and taken over; released locks leave nothing; a forked child does not
+keep its parent's lock."""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+
+import pytest
+
+from hexaleg.errors import DirectoryLockedError, OutputError
+from hexaleg.studies.sweep import lock as lock_module
+from hexaleg.studies.sweep.lock import LOCK, DirectoryLock, close_inherited
+
+pytestmark = pytest.mark.skipif(lock_module.fcntl is None, reason="flock is POSIX-only")
+
+HOLD = """
+import sys, time
+from hexaleg.studies.sweep.lock import DirectoryLock
+lock = DirectoryLock(sys.argv[1])
+print("held", flush=True)
+time.sleep(120)
+"""
+
+
+def hold_in_child(directory):
+    """A child process that takes the lock and sleeps; returns it once it holds the lock."""
+    proc = subprocess.Popen([sys.executable, "-c", HOLD, str(directory)], stdout=subprocess.PIPE,
+                            text=True)
+    assert proc.stdout is not None and proc.stdout.readline().strip() == "held"
+    return proc
+
+
+def test_the_holder_is_named_to_a_second_process(tmp_path):
+    proc = hold_in_child(tmp_path)
+    try:
+        with pytest.raises(DirectoryLockedError) as e:
+            DirectoryLock(tmp_path)
+        assert e.value.pid == proc.pid and e.value.host == socket.gethostname()
+        assert f"pid {proc.pid} on host {socket.gethostname()}, started " in str(e.value)
+        assert str(tmp_path) in str(e.value) and "another --out directory" in str(e.value)
+    finally:
+        proc.kill()
+        proc.wait()
+
+
+def test_the_lock_of_a_killed_process_is_stale_and_taken_over(tmp_path):
+    proc = hold_in_child(tmp_path)
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    assert json.loads((tmp_path / LOCK).read_text())["pid"] == proc.pid  # left behind
+    lock = DirectoryLock(tmp_path)
+    assert lock.stale is not None and f"pid {proc.pid}" in lock.stale
+    assert json.loads((tmp_path / LOCK).read_text())["pid"] == os.getpid()
+    lock.release()
+    lock.release()  # idempotent
+    assert not (tmp_path / LOCK).exists()
+    again = DirectoryLock(tmp_path)
+    assert again.stale is None  # a released lock is not stale
+    again.release()
+
+
+def test_one_holder_within_one_process_too(tmp_path):
+    first = DirectoryLock(tmp_path)
+    with pytest.raises(DirectoryLockedError, match=rf"pid {os.getpid()}"):
+        DirectoryLock(tmp_path)
+    first.release()
+    DirectoryLock(tmp_path).release()
+
+
+def test_a_forked_child_closes_its_copy_and_the_lock_ends_with_the_parent(tmp_path):
+    """The parent is killed while its forked child (a pool worker) lives on: the child closed its
+    inherited descriptor, so the lock is free."""
+    script = f"""
+import os, sys, time
+from hexaleg.studies.sweep.lock import DirectoryLock, close_inherited
+lock = DirectoryLock({str(tmp_path)!r})
+child = os.fork()
+if child == 0:
+    close_inherited()
+    open({str(tmp_path / "closed")!r}, "w").close()
+    time.sleep(120)
+    os._exit(0)
+print(child, flush=True)
+time.sleep(120)
+"""
+    proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
+    assert proc.stdout is not None
+    child = int(proc.stdout.readline())
+    deadline = time.monotonic() + 60  # a hang guard
+    while not (tmp_path / "closed").exists() and time.monotonic() < deadline:
+        time.sleep(0.01)
+    try:
+        os.kill(proc.pid, signal.SIGKILL)
+        proc.wait()
+        lock = DirectoryLock(tmp_path)  # the child still runs, but holds nothing
+        assert lock.stale is not None
+        lock.release()
+    finally:
+        os.kill(child, signal.SIGKILL)
+
+
+def test_close_inherited_forgets_the_descriptors(tmp_path):
+    lock = DirectoryLock(tmp_path)
+    assert lock_module._HELD
+    fd = next(iter(lock_module._HELD))
+    duplicate = os.dup(fd)  # stands in for the copy a fork inherits
+    lock_module._HELD.add(duplicate)
+    lock_module._HELD.discard(fd)
+    close_inherited()
+    assert not lock_module._HELD
+    with pytest.raises(OSError):
+        os.fstat(duplicate)
+    lock._fd = fd
+    lock_module._HELD.add(fd)
+    lock.release()
+
+
+def test_an_unwritable_directory_is_an_output_error(tmp_path):
+    with pytest.raises(OutputError, match=r"cannot create the sweep lock"):
+        DirectoryLock(tmp_path / "missing")
+
+
+def test_a_dropped_lock_is_released_and_a_forked_copy_never_releases(tmp_path):
+    lock = DirectoryLock(tmp_path)
+    del lock
+    DirectoryLock(tmp_path).release()  # free again
+    lock = DirectoryLock(tmp_path)
+    child = os.fork()
+    if child == 0:  # the copy in a forked process: releasing it must not touch the parent's lock
+        lock.release()
+        os._exit(0 if (tmp_path / LOCK).exists() else 1)
+    _, status = os.waitpid(child, 0)
+    assert os.waitstatus_to_exitcode(status) == 0 and (tmp_path / LOCK).exists()
+    with pytest.raises(DirectoryLockedError):
+        DirectoryLock(tmp_path)
+    lock.release()

@@ -1,0 +1,363 @@
+"""A catalogue of bad and careless inputs, across the command line and the API, as a hostile or
+hurried user would give them (issue 18). Each must end in a hexaleg error of the stated class whose
+message names the bad value — never a traceback, a silent result or a hang.
+
+Command-line cases run the subcommand's handler (``args.func(args)``), so that the error's class
+is seen; :func:`hexaleg.cli.main` turns any :class:`~hexaleg.errors.HexalegError` into one line on
+stderr and exit status 2 (checked here for every command-line case too).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from pathlib import Path
+
+import pytest
+
+import hexaleg
+from hexaleg import errors
+from hexaleg.cli import build_parser, main
+from hexaleg.config import from_mapping, load_toml
+from hexaleg.robot.model import DEFAULT_SRDF, DEFAULT_URDF, load_robot
+
+DATA = Path(__file__).parent / "data"
+IPE, UNE, CE = errors.InvalidParameterError, errors.UnknownNameError, errors.ConfigError
+RME = errors.RobotModelError
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    """The bad files of the catalogue, by name."""
+    d = tmp_path_factory.mktemp("bad")
+    out = {"dir": d}
+
+    def put(name, text, encoding="utf-8"):
+        (d / name).write_bytes(text.encode(encoding))
+        out[name] = str(d / name)
+
+    put("latin1.toml", "[gait]\nperiod = 1.0  # café\n", "latin-1")
+    put("samples.toml", "[gait]\nsamples = 10000000\n")
+    put("groups.toml", '[gait]\ngroups = "LF"\n')
+    put("period_nan.toml", "[gait]\nperiod = nan\n")
+    put("period_text.toml", '[gait]\nperiod = "1"\n')
+    put("unknown_key.toml", "[gait]\nspeeed = 0.1\n")
+    put("not_toml.toml", "[gait\nperiod = 1\n")
+    put("paper_samples.toml", "[report]\npaper_samples = 1000000000\n")
+    put("paper_samples_float.toml", "[report]\npaper_samples = 1e9\n")
+    put("mu_bool.toml", "[contact]\nmu = true\n")
+    put("fps.toml", "[view]\nfps = 1e9\n")
+    put("wide.toml", "[springs.LF_femur]\nstiffness = 1.0\ntheta_k = 6.0\n")
+    put("spec_latin1.toml", "[gait]\nsamples = 40  # é\n", "latin-1")
+    put("spec_table.toml", "[sweeep]\nmetric = 'joule'\n")
+    put("spec_grid.toml", "[gait]\nsamples = 40\nperiod = {start = 0.5, stop = 1.5, num = 100000}"
+        "\n[springs.femur]\nk = {start = 0.0, stop = 1.0, num = 100000}\ntheta_k = 0.1\n")
+    put("robot_nolegs.toml", '[robot]\nname = "x"\n')
+    put("robot_key.toml", '[robot]\nname = "x"\nurdf = "x.urdf"\ncolour = "red"\n')
+    srdf = DEFAULT_SRDF.read_text(encoding="utf-8")
+    put("nan.srdf", srdf.replace('<joint name="LF_femur" value="0.3490658504"',
+                                 '<joint name="LF_femur" value="nan"', 1))
+    put("misspelt.srdf", srdf.replace('<joint name="LF_femur"', '<joint name="LF_femr"', 1))
+    urdf = (DATA / "spider.urdf").read_text(encoding="utf-8")
+    import re
+
+    put("zero.urdf", re.sub(r'<mass value="[^"]*"', '<mass value="0"', urdf))
+    put("zero.toml", '[robot]\nname = "zero"\nurdf = "zero.urdf"\nheading = "+y"\n'
+        "stand = {body_height = 0.08}\n")
+    return out
+
+
+def argv_of(argv: tuple[str, ...], f: dict) -> list[str]:
+    """``@name`` is a catalogue file, ``{dir}`` its directory."""
+    return [f[a[1:]] if a.startswith("@") else a.format(dir=f["dir"]) for a in argv]
+
+
+def cli(*argv: str) -> Callable[[dict], None]:
+    """A command line, run through its handler (``@name``: a catalogue file)."""
+    def run(f: dict) -> None:
+        args = build_parser().parse_args(argv_of(argv, f))
+        args.func(args)
+    run.argv = argv  # type: ignore[attr-defined]
+    return run
+
+
+def api(fn: Callable[..., object], *args: object, **kwargs: object) -> Callable[[dict], None]:
+    return lambda f: fn(*args, **kwargs)
+
+
+def walk(samples=40):
+    robot = hexaleg.load_robot()
+    return robot, hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=samples))
+
+
+def spring(**kw):
+    return hexaleg.DeadZoneSpring(**{"stiffness": 1.0, "theta_k": 0.1, **kw})
+
+
+def analyze_with(springs):
+    return lambda f: hexaleg.analyze(*walk(), springs)
+
+
+def sweep_spec(**kw):
+    from hexaleg.studies.sweep import SweepSpec
+
+    return lambda f: SweepSpec(**kw)
+
+
+def parse(name, text):
+    from hexaleg.studies.sweep import parse_range
+
+    return lambda f: parse_range(name, text)
+
+
+def axis(name, value):
+    from hexaleg.studies.sweep.ranges import axis_values
+
+    return lambda f: axis_values(name, value)
+
+
+def second_writer(f):
+    from hexaleg.studies.sweep.lock import DirectoryLock
+    from hexaleg.studies.sweep.store import ResultStore
+
+    lock = DirectoryLock(f["dir"])
+    try:
+        ResultStore(f["dir"], {"spec": 1})
+    finally:
+        lock.release()
+
+
+def view_params(**kw):
+    from hexaleg.studies.view import ViewParams
+
+    return lambda f: ViewParams(**kw)
+
+
+def report_params(**kw):
+    from hexaleg.studies.report.config import ReportParams
+
+    return lambda f: ReportParams(**kw)
+
+
+def executor(kind, **kw):
+    from hexaleg.studies.sweep.executors import open_executor
+
+    def run(f):
+        with open_executor(kind, **kw):
+            pass
+    return run
+
+
+def paper(n):
+    from hexaleg.studies.paper.reproduce import reproduce
+
+    return lambda f: reproduce(n=n)
+
+
+G = hexaleg.GaitParams
+C = hexaleg.ContactParams
+NAN, INF = math.nan, math.inf
+SWEEP = ("sweep", "--joints", "femur", "--executor", "serial", "--out", "{dir}/sweep")
+
+# (id, input, error class, text the message must hold: the bad value as given)
+CASES: list[tuple[str, Callable[[dict], None], type[Exception], str]] = [
+    # gait parameters (API)
+    ("gait period str", api(G, period="1"), IPE, "'1'"),
+    ("gait period bool", api(G, period=True), IPE, "True"),
+    ("gait period nan", api(G, period=NAN), IPE, "nan"),
+    ("gait period negative", api(G, period=-1.0), IPE, "-1.0"),
+    ("gait duty factor 1", api(G, duty_factor=1.0), IPE, "duty_factor = 1.0"),
+    ("gait duty factor negative", api(G, duty_factor=-0.5), IPE, "-0.5"),
+    ("gait stride negative", api(G, stride_length=-0.1), IPE, "-0.1"),
+    ("gait step height 0", api(G, step_height=0.0), IPE, "step_height = 0.0"),
+    ("gait samples 1e7", api(G, samples=10**7), IPE, "10000000"),
+    ("gait samples float", api(G, samples=100.0), IPE, "100.0"),
+    ("gait samples bool", api(G, samples=True), IPE, "True"),
+    ("gait samples 5", api(G, samples=5), IPE, "samples = 5"),
+    ("gait groups str", api(G, groups="LF"), IPE, "'LF'"),
+    ("gait groups of str", api(G, groups=("LF", "RM")), IPE, "('LF', 'RM')"),
+    ("gait groups repeated", api(G, groups=(("LF", "LF"),)), IPE, "'LF', 'LF'"),
+    ("gait balance", api(G, balance="yes"), IPE, "'yes'"),
+    ("gait yaw inf", api(G, yaw_rate=INF), IPE, "inf"),
+    ("gait speed str", api(G, speed="fast"), IPE, "'fast'"),
+    # contact (API)
+    ("contact mu bool", api(C, mu=True), IPE, "True"),
+    ("contact mu 0", api(C, mu=0), IPE, "mu = 0"),
+    ("contact mu nan", api(C, mu=NAN), IPE, "nan"),
+    ("contact cone", api(C, cone="cube"), IPE, "'cube'"),
+    ("contact torque limits int", api(C, torque_limits=1), IPE, "torque_limits = 1"),
+    ("contact min force", api(C, min_normal_force=-1.0), IPE, "-1.0"),
+    ("contact regularization", api(C, regularization=0.0), IPE, "0.0"),
+    # springs (API)
+    ("spring k negative", lambda f: spring(stiffness=-1.0), IPE, "-1.0"),
+    ("spring theta_k 0", lambda f: spring(theta_k=0), IPE, "theta_k = 0.0"),
+    ("spring theta_k negative", lambda f: spring(theta_k=-0.1), IPE, "-0.1"),
+    ("spring k str", lambda f: spring(stiffness="1"), IPE, "'1'"),
+    ("spring k bool", lambda f: spring(stiffness=True), IPE, "True"),
+    ("spring no dead zone", lambda f: hexaleg.DeadZoneSpring(stiffness=1.0), IPE, "None"),
+    ("spring alpha 0", lambda f: spring(alpha=0.0), IPE, "alpha = 0.0"),
+    ("spring convention", lambda f: spring(convention="eq9"), IPE, "'eq9'"),
+    ("spring angles reversed", lambda f: spring(theta_k=None, theta_minus=0.2, theta_plus=0.1),
+     IPE, "0.2"),
+    ("linear spring k negative", api(hexaleg.LinearSpring, stiffness=-1.0), IPE, "-1.0"),
+    ("linear spring k nan", api(hexaleg.LinearSpring, stiffness=NAN), IPE, "nan"),
+    ("spring set key", lambda f: hexaleg.SpringSet({1: spring()}), IPE, "= 1"),
+    ("analyze springs list", analyze_with([spring()]), IPE, "[DeadZoneSpring("),
+    ("analyze misspelt joint", analyze_with({"LF_femr": spring()}), UNE, "'LF_femr'"),
+    ("analyze spring not a law", analyze_with({"LF_femur": 1.0}), IPE, "1.0"),
+    ("analyze dead zone holds the range", analyze_with({"LF_femur": spring(theta_k=6.0)}), IPE,
+     "[-6, 6] rad"),
+    # robot files (API)
+    ("urdf missing", api(load_robot, "/nonexistent/robot.urdf"), RME, "/nonexistent/robot.urdf"),
+    ("urdf device", api(load_robot, "/dev/zero"), RME, "/dev/zero"),
+    ("srdf value nan", lambda f: load_robot(DEFAULT_URDF, f["nan.srdf"]), IPE, "'nan'"),
+    ("srdf misspelt joint", lambda f: load_robot(DEFAULT_URDF, f["misspelt.srdf"]), UNE,
+     "'LF_femr'"),
+    ("urdf zero mass", lambda f: load_robot(f["zero.urdf"], legs="auto"), RME, "zero.urdf"),
+    ("robot toml without urdf", lambda f: hexaleg.RobotDescription.from_toml(
+        f["robot_nolegs.toml"]), CE, "urdf"),
+    ("robot toml unknown key", lambda f: hexaleg.RobotDescription.from_toml(f["robot_key.toml"]),
+     UNE, "'colour'"),
+    # TOML files and tables (API)
+    ("toml latin-1", lambda f: load_toml(f["latin1.toml"]), CE, "0xe9"),
+    ("toml device", api(load_toml, "/dev/zero"), CE, "/dev/zero"),
+    ("toml directory", lambda f: load_toml(f["dir"]), CE, "is not a regular file"),
+    ("toml missing", api(load_toml, "/nonexistent.toml"), CE, "/nonexistent.toml"),
+    ("toml syntax", lambda f: load_toml(f["not_toml.toml"]), CE, "not_toml.toml"),
+    ("table period str", api(from_mapping, G, {"period": "1"}), CE, "'1'"),
+    ("table samples float", api(from_mapping, G, {"samples": 1e9}), CE, "1000000000.0"),
+    ("table mu bool", api(from_mapping, C, {"mu": True}), CE, "True"),
+    ("table unknown key", api(from_mapping, G, {"speeed": 1.0}), UNE, "'speeed'"),
+    # sweeps (API)
+    ("sweep grid 1e10", sweep_spec(springs={"femur": {"k": tuple(range(100000)),
+                                                      "theta_k": tuple(0.01 + i * 1e-6
+                                                                       for i in range(100000))}}),
+     IPE, "10000000000"),
+    ("sweep unknown gait key", sweep_spec(gait={"speeed": 1.0}), UNE, "'speeed'"),
+    ("sweep no dead zone", sweep_spec(springs={"femur": {"k": 1.0}}), IPE, "['k']"),
+    ("sweep k negative", sweep_spec(springs={"femur": {"k": -1.0, "theta_k": 0.1}}), IPE, "-1.0"),
+    ("sweep chunk 0", sweep_spec(chunk_size=0), IPE, "chunk_size = 0"),
+    ("range log from 0", parse("--k", "0:1:5:log"), IPE, "--k.start = 0.0"),
+    ("range nan", parse("--period", "nan"), IPE, "--period = nan"),
+    ("range text", parse("--k", "a:b"), IPE, "'a:b'"),
+    ("range empty", parse("--k", "0:1:0"), IPE, "--k.num = 0"),
+    ("range huge", parse("--k", "0:1:10000000000"), IPE, "10000000000"),
+    ("axis empty list", axis("k", []), IPE, "[]"),
+    ("axis without num", axis("k", {"start": 0, "stop": 1}), CE, "num"),
+    ("axis num 1e10", axis("k", {"start": 0, "stop": 1, "num": 1e10}), IPE, "10000000000.0"),
+    ("sweep second writer", second_writer, errors.DirectoryLockedError, "pid "),
+    ("executor kind", executor("threads"), IPE, "'threads'"),
+    ("executor workers 0", executor("process", workers=0), IPE, "workers = 0"),
+    # view, report, paper (API)
+    ("view fps 1e9", view_params(fps=1e9), IPE, "1000000000.0"),
+    ("view fps 0", view_params(fps=0), IPE, "fps = 0"),
+    ("view fps bool", view_params(fps=True), IPE, "True"),
+    ("report paper samples", report_params(paper_samples=10**9), IPE, "1000000000"),
+    ("report curve points", report_params(stiffness_points=1), IPE, "stiffness_points = 1"),
+    ("report objective", report_params(objective="fast"), IPE, "'fast'"),
+    ("paper samples", paper(10**9), IPE, "1000000000"),
+    # the command line
+    ("cli gait latin-1", cli("gait", "--config", "@latin1.toml"), CE, "0xe9"),
+    ("cli gait /dev/zero", cli("gait", "--config", "/dev/zero"), CE, "/dev/zero"),
+    ("cli gait samples", cli("gait", "--config", "@samples.toml"), IPE, "10000000"),
+    ("cli gait groups", cli("gait", "--config", "@groups.toml"), CE, "'LF'"),
+    ("cli gait period nan", cli("gait", "--config", "@period_nan.toml"), CE, "nan"),
+    ("cli gait period text", cli("gait", "--config", "@period_text.toml"), CE, "'1'"),
+    ("cli gait unknown key", cli("gait", "--config", "@unknown_key.toml"), UNE, "'speeed'"),
+    ("cli gait robot", cli("gait", "--robot", "nosuch"), UNE, "'nosuch'"),
+    ("cli robot zero mass", cli("robot", "--robot", "@zero.toml"), RME, "zero.urdf"),
+    ("cli robot /dev/zero", cli("robot", "--urdf", "/dev/zero"), RME, "/dev/zero"),
+    ("cli robot srdf nan", cli("robot", "--urdf", str(DEFAULT_URDF), "--srdf", "@nan.srdf"),
+     IPE, "'nan'"),
+    ("cli robot srdf misspelt", cli("robot", "--urdf", str(DEFAULT_URDF), "--srdf",
+                                    "@misspelt.srdf"), UNE, "'LF_femr'"),
+    ("cli report paper samples", cli("report", "--config", "@paper_samples.toml", "--out",
+                                     "{dir}/r"), IPE, "1000000000"),
+    ("cli report paper samples float", cli("report", "--config", "@paper_samples_float.toml",
+                                           "--out", "{dir}/r"), CE, "1000000000.0"),
+    ("cli report mu bool", cli("report", "--config", "@mu_bool.toml", "--out", "{dir}/r"), CE,
+     "True"),
+    ("cli report robot", cli("report", "--robot", "nosuch", "--out", "{dir}/r"), UNE,
+     "'nosuch'"),
+    ("cli view fps", cli("view", "--config", "@fps.toml", "--html", "{dir}/v.html"), IPE,
+     "1000000000.0"),
+    ("cli paper samples", cli("paper", "--samples", "1000000000", "--out", "{dir}/p"), IPE,
+     "1000000000"),
+    ("cli sweep period nan", cli(*SWEEP, "--k", "0.1", "--theta-k", "0.1", "--period", "nan"),
+     IPE, "--period = nan"),
+    ("cli sweep k log 0", cli(*SWEEP, "--k", "0:1:5:log", "--theta-k", "0.1"), IPE,
+     "--k.start = 0.0"),
+    ("cli sweep grid", cli(*SWEEP, "--k", "0.1:1:100000", "--theta-k", "0.01:0.1:100000"), IPE,
+     "10000000000"),
+    ("cli sweep wide dead zone", cli(*SWEEP, "--k", "0.1", "--theta-k", "6"), IPE,
+     "[-6, 6] rad"),
+    ("cli sweep samples", cli(*SWEEP, "--k", "0.1", "--theta-k", "0.1", "--samples",
+                              "10000000"), IPE, "10000000"),
+    ("cli sweep workers", cli(*SWEEP[:-1], "{dir}/sweep_w", "--k", "0.1", "--theta-k", "0.1",
+                              "--samples", "40", "--executor", "process", "--workers", "0"),
+     IPE, "workers = 0"),
+    ("cli sweep max torque", cli(*SWEEP, "--k", "0.1", "--theta-k", "0.1", "--max-torque",
+                                 "1"), IPE, "given without --family"),
+    ("cli sweep spec latin-1", cli("sweep", "@spec_latin1.toml", "--out", "{dir}/s"), CE,
+     "0xe9"),
+    ("cli sweep spec table", cli("sweep", "@spec_table.toml", "--out", "{dir}/s"), UNE,
+     "'sweeep'"),
+    ("cli sweep spec grid", cli("sweep", "@spec_grid.toml", "--out", "{dir}/s"), IPE,
+     "10000000000"),
+    ("cli sweep metric", cli(*SWEEP, "--k", "0.1", "--theta-k", "0.1", "--samples", "40",
+                             "--metric", "speed"), UNE, "'speed'"),
+]
+
+
+def test_the_catalogue_is_large_and_spans_cli_and_api():
+    n_cli = sum(hasattr(fn, "argv") for _, fn, _, _ in CASES)
+    assert len(CASES) >= 60 and n_cli >= 20 and len(CASES) - n_cli >= 40
+    assert len({case[0] for case in CASES}) == len(CASES)
+
+
+@pytest.mark.parametrize(("kind", "run", "error", "text"), CASES, ids=[c[0] for c in CASES])
+def test_bad_input_gets_a_named_error(files, kind, run, error, text, capsys):
+    with pytest.raises(error) as e:
+        run(files)
+    assert isinstance(e.value, errors.HexalegError)
+    message = str(e.value)
+    assert text in message, message
+    if hasattr(run, "argv"):  # the command line: one line on stderr, status 2, no traceback
+        capsys.readouterr()
+        assert main(argv_of(run.argv, files)) == 2
+        err = capsys.readouterr().err
+        assert err.startswith("hexaleg ") and ": error: " in err and "Traceback" not in err
+        assert text in err
+
+
+def test_a_truncated_sweep_part_is_a_warning_and_recomputed(files):
+    from hexaleg.studies.sweep import SweepSpec, run_sweep
+
+    spec = SweepSpec(gait={"samples": 40}, springs={"coxa": {"k": (0.0, 0.1), "theta_k": 0.01}},
+                     chunk_size=1)
+    out = files["dir"] / "truncated"
+    run_sweep(spec, out, executor="serial")
+    part = out / "part-0000001-0000001.parquet"
+    part.write_bytes(part.read_bytes()[:50])
+    with pytest.warns(errors.HexalegWarning, match="part-0000001-0000001.parquet cannot be read"):
+        again = run_sweep(spec, out, executor="serial")
+    assert (again.reused, again.computed) == (1, 1)
+
+
+def test_a_robot_toml_without_title_or_srdf_loads(files):
+    """Once a raw TypeError (RobotDescription missing title/srdf): both are optional."""
+    desc = hexaleg.RobotDescription.from_toml(DATA / "spider.toml")
+    assert desc.title == desc.name and desc.srdf is None
+
+
+def test_the_limits_page_states_the_bounds_in_force():
+    from hexaleg.checks import MEMORY_BUDGET
+    from hexaleg.config import MAX_TEXT_BYTES
+    from hexaleg.motion.limits import MAX_SAMPLES
+    from hexaleg.outputs.viewer.keyframes import MAX_FPS
+    from hexaleg.studies.sweep.ranges import POINT_BYTES
+
+    page = (Path(__file__).parents[1] / "docs" / "limits.md").read_text(encoding="utf-8")
+    assert f"{MEMORY_BUDGET / 1024**3:g} GiB" in page and f"{MAX_TEXT_BYTES // 1024**2} MiB" in page
+    for bound in (MAX_SAMPLES, MAX_FPS, MEMORY_BUDGET // POINT_BYTES):
+        assert f"{bound:,}" in page, bound
