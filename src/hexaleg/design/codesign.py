@@ -18,6 +18,7 @@ spring: deflection = moment / rate); one design shared by a group's joints.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, cast
@@ -307,6 +308,39 @@ def design_problem(prepared: Prepared, groups: Groups, family: str,
     return setup.problem(setup.check_geometry(geometry))
 
 
+def motion_centres(prepared: Prepared, joints: Sequence[str]) -> dict[str, float]:
+    """Joint → the centre of its range of motion in the gait, rad (the origin of a design's
+    angles)."""
+    q = {j: prepared.q[:, prepared.robot.column(j)] for j in joints}
+    return {j: float(v.min() + v.max()) / 2 for j, v in q.items()}
+
+
+def frozen_problem(prepared: Prepared, optimum: OptimalSprings, centres: Mapping[str, float], *,
+                   max_torque: float | None = None, max_deflection: float | None = None
+                   ) -> DesignProblem:
+    """The design program of ``optimum``'s family and geometry on another gait (a changed
+    condition), its angles frozen at the nominal ``centres`` (absolute, as built), the
+    magnitudes free; the design rows at this gait's ranges of motion. A term that never acts in
+    this gait is left free here (its "never engaged" row dropped): another condition may need
+    it.
+
+    Args:
+        prepared: The condition's prepared gait.
+        optimum: The nominal optimum (family, groups, geometry, objective).
+        centres: Joint → nominal centre of motion, rad (:func:`motion_centres`).
+        max_torque: As :func:`optimal_springs`, at this gait.
+        max_deflection: As :func:`optimal_springs`, at this gait.
+    """
+    setup = _setup(prepared, optimum.groups, optimum.family, optimum.objective, max_torque,
+                   max_deflection)
+    setup = dataclasses.replace(setup, centre={j: float(centres[j]) for j in setup.centre})
+    p = setup.problem(setup.check_geometry(optimum.geometry))
+    keep = np.array([label != "never engaged" for label in p.labels], dtype=bool)
+    return dataclasses.replace(p, G=p.G[keep] if p.G.size else p.G, h=p.h[keep],
+                               labels=tuple(lb for lb, k in zip(p.labels, keep, strict=True)
+                                            if k))
+
+
 def _result(setup: _Setup, geometry: dict[str, dict[str, float | str]],
             solution: DesignSolution, evaluations: int, baseline: float) -> OptimalSprings:
     fam, prepared = setup.fam, setup.prepared
@@ -338,5 +372,5 @@ def _result(setup: _Setup, geometry: dict[str, dict[str, float | str]],
                 "geometry_evaluations": evaluations})
 
 
-__all__ = ["FAMILIES", "OBJECTIVE_METRIC", "OptimalSprings", "design_problem", "optimal_springs",
-           "resolve_groups"]
+__all__ = ["FAMILIES", "OBJECTIVE_METRIC", "OptimalSprings", "design_problem", "frozen_problem",
+           "motion_centres", "optimal_springs", "resolve_groups"]

@@ -57,6 +57,7 @@ from hexaleg.dynamics.inertia import joint_range
 from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.errors import (
     InfeasibleForcesError,
+    InvalidParameterError,
     TorqueLimitError,
 )
 from hexaleg.motion.legged import tripod_gait
@@ -224,6 +225,12 @@ class Evaluator:
         """
         theta_k = params.get("theta_k")
         if "dead_zone" in params:
+            if not self.half_range[joint] > 0:
+                raise InvalidParameterError(
+                    f"dead_zone of the spring on {joint}", params["dead_zone"],
+                    "a joint that moves in the gait: this one does not, so a dead zone that is a "
+                    "fraction of its motion has no width; give theta_k in rad or spring "
+                    "another joint")
             theta_k = params["dead_zone"] * self.half_range[joint]
         return DeadZoneSpring(stiffness=params["k"], theta_k=theta_k,
                               theta_minus=params.get("theta_minus"),

@@ -20,21 +20,22 @@ import numpy as np
 
 from hexaleg.design.program import DesignProblem, DesignSolution
 from hexaleg.dynamics.conic import base_row_space
-from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES
+from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES, ContactParams
 from hexaleg.dynamics.reference import solve_clarabel
 from hexaleg.errors import InfeasibleForcesError
 
 
-def _stacked(problem: DesignProblem) -> tuple[Any, Any, np.ndarray, np.ndarray]:
-    """Sparse ``D`` (T·nj, N) and reduced base rows ``A`` (R, N) over the stance forces of all
-    samples (N of them), the base right-hand side (R,), and the stance columns' global indices of
-    the padded force vector (N,) (sample-major)."""
+def stacked(problem: DesignProblem, samples: np.ndarray | None = None
+            ) -> tuple[Any, Any, np.ndarray, np.ndarray]:
+    """Sparse ``D`` (S·nj, N) and reduced base rows ``A`` (R, N) over the stance forces of the
+    samples (all T, or ``samples``; N forces), the base right-hand side (R,), and the stance
+    columns' global indices of the padded force vector (N,) (sample-major)."""
     import scipy.sparse as sp
 
     system = problem.prepared.system
     T, nj = system.n_samples, system.D.shape[1]
     d_blocks, a_blocks, b_rows, where = [], [], [], []
-    for k in range(T):
+    for k in (range(T) if samples is None else (int(k) for k in samples)):
         st = np.flatnonzero(np.repeat(system.stance[k], 3))
         d_blocks.append(sp.csr_matrix(system.D[k][:, st]) if st.size else
                         sp.csr_matrix((nj, 0)))
@@ -45,10 +46,30 @@ def _stacked(problem: DesignProblem) -> tuple[Any, Any, np.ndarray, np.ndarray]:
         else:
             a_blocks.append(sp.csr_matrix((0, 0)))
         where.append(k * system.A.shape[2] + st)
+    if not d_blocks:
+        return (sp.csr_matrix((0, 0)), sp.csr_matrix((0, 0)), np.zeros(0),
+                np.zeros(0, dtype=int))
     D = sp.block_diag(d_blocks, format="csr")
     A = sp.block_diag(a_blocks, format="csr")
     A.resize((A.shape[0], D.shape[1]))
     return D, A, np.concatenate(b_rows) if b_rows else np.zeros(0), np.concatenate(where)
+
+
+def force_constraints(f: Any, A: Any, b_base: np.ndarray, contact: ContactParams) -> list:
+    """cvxpy constraints on stacked stance forces ``f`` (x, y, z triples): the base rows
+    ``A f = b_base``, normal forces ≥ the minimum, the friction cones (exact or pyramid)."""
+    import cvxpy as cp
+
+    fx, fy, fz = f[0::3], f[1::3], f[2::3]  # stance columns come in (x, y, z) triples
+    cons = [fz >= contact.min_normal_force]
+    if A.shape[0]:
+        cons.append(A @ f == b_base)
+    if contact.cone == "soc":
+        cons.append(cp.SOC(contact.mu * fz, cp.vstack([fx, fy]), axis=0))
+    else:
+        s = contact.mu / math.sqrt(2)
+        cons += [cp.abs(fx) <= s * fz, cp.abs(fy) <= s * fz]
+    return cons
 
 
 def solve_design_reference(problem: DesignProblem) -> DesignSolution:
@@ -63,7 +84,7 @@ def solve_design_reference(problem: DesignProblem) -> DesignSolution:
     prepared = problem.prepared
     system, contact = prepared.system, prepared.contact
     T, nj = system.n_samples, system.D.shape[1]
-    D, A, b_base, where = _stacked(problem)
+    D, A, b_base, where = stacked(problem)
     N = D.shape[1]
     f = cp.Variable(N)
     x = cp.Variable(problem.nx)
@@ -84,15 +105,7 @@ def solve_design_reference(problem: DesignProblem) -> DesignSolution:
             per_joint = cp.maximum(0, cp.multiply(qd, tau))
         cost = (cp.sum(cp.multiply(w, per_joint))
                 + contact.regularization * cp.sum(cp.multiply(w, cp.square(tau))))
-    fx, fy, fz = f[0::3], f[1::3], f[2::3]  # stance columns come in (x, y, z) triples
-    cons = [fz >= contact.min_normal_force]
-    if A.shape[0]:
-        cons.append(A @ f == b_base)
-    if contact.cone == "soc":
-        cons.append(cp.SOC(contact.mu * fz, cp.vstack([fx, fy]), axis=0))
-    else:
-        s = contact.mu / math.sqrt(2)
-        cons += [cp.abs(fx) <= s * fz, cp.abs(fy) <= s * fz]
+    cons = force_constraints(f, A, b_base, contact)
     if contact.torque_limits:
         cons.append(cp.abs(tau) <= np.tile(system.tau_max, T))
     neg = np.flatnonzero(problem.nonnegative)

@@ -1,8 +1,17 @@
-"""How a spring design built for one gait fares when the gait's period or amplitude changes.
+"""How a spring design built for one gait fares when the conditions change.
 
-A built spring has fixed neutral angles and contact angles (eq. 8); this study freezes a design on
-the nominal gait and re-evaluates the saving (the paper's energy criterion, eq. 20–24, with a
-motor model) on gaits with the period or the stride length scaled.
+A built spring has fixed angles: the design is frozen on the nominal gait (absolute neutral and
+contact angles) and re-evaluated — the energy metrics with the springs against the baseline
+without them (the paper's energy criterion, eq. 20–24, with a motor model) — under a changed
+:class:`Condition`: the gait's period and stride scaled, a payload on the body (a point mass at
+the base origin, :func:`hexaleg.robot.payload.with_payload`: the dynamics carry it, the joint
+motion is the same), the floor's friction μ. Gait slope and the other gait patterns are not
+conditions yet (they need the gait generator to support them).
+
+:func:`condition_prepared` builds the prepared gait of a condition, :func:`condition_savings`
+evaluates frozen springs on it; :mod:`hexaleg.design.robustness_map` runs grids of conditions and
+:mod:`hexaleg.design.robust` designs for a box of them. :func:`robustness` is the one-parameter
+table (period or stride) of a dead-zone design.
 """
 
 from __future__ import annotations
@@ -10,28 +19,149 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 from hexaleg.checks import real
 from hexaleg.design.evaluator import DEFAULT_METRIC, Design, RunSpec, evaluator
 from hexaleg.dynamics.energy import saving
+from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.errors import (
     InfeasibleForcesError,
     InvalidParameterError,
     TorqueLimitError,
     UnknownNameError,
+    UnreachableTargetError,
 )
+from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import GaitParams
+from hexaleg.robot.payload import with_payload
+from hexaleg.robot.springs import SpringSet
 
 if TYPE_CHECKING:  # pandas is imported where tables are made: `import hexaleg` stays light
     import pandas as pd
+
+CONDITIONS: tuple[str, ...] = ("period", "stride", "payload", "mu")
+"""What a condition changes: period and stride as factors of the nominal gait's, payload as a
+fraction of the robot's mass, μ absolute."""
+
+
+@dataclass(frozen=True)
+class Condition:
+    """One set of operating conditions (module docstring).
+
+    Attributes:
+        period: Factor on the gait period, > 0.
+        stride: Factor on the stride (body travel per cycle), > 0.
+        payload: Payload as a fraction of the robot's mass, ≥ 0.
+        mu: Friction coefficient, > 0; None: the run's.
+
+    Raises:
+        InvalidParameterError: a value out of range.
+    """
+
+    period: float = 1.0
+    stride: float = 1.0
+    payload: float = 0.0
+    mu: float | None = None
+
+    def __post_init__(self) -> None:
+        for name in ("period", "stride"):
+            real(name, getattr(self, name), low=0.0, low_open=True,
+                 allowed="a factor > 0 of the nominal gait's")
+        real("payload", self.payload, low=0.0, allowed="a fraction >= 0 of the robot's mass")
+        if self.mu is not None:
+            real("mu", self.mu, low=0.0, low_open=True, allowed="a friction coefficient > 0")
+
+    def label(self) -> str:
+        """Short text, e.g. ``period ×0.5, μ 0.3``; ``nominal`` when nothing changes."""
+        parts = [f"{n} ×{getattr(self, n):g}" for n in ("period", "stride")
+                 if getattr(self, n) != 1.0]
+        if self.payload:
+            parts.append(f"payload {100 * self.payload:g} %")
+        if self.mu is not None:
+            parts.append(f"μ {self.mu:g}")
+        return ", ".join(parts) or "nominal"
+
+    def short_label(self) -> str:
+        """Compact text for plot ticks: ``P×0.5 S×1 W25% μ0.3`` (nominal parts left out)."""
+        parts = [f"{k}×{getattr(self, n):g}" for k, n in (("P", "period"), ("S", "stride"))
+                 if getattr(self, n) != 1.0]
+        if self.payload:
+            parts.append(f"W{100 * self.payload:g}%")
+        if self.mu is not None:
+            parts.append(f"μ{self.mu:g}")
+        return " ".join(parts) or "nominal"
+
+
+def condition_gait(gait: GaitParams, condition: Condition) -> GaitParams:
+    """The nominal gait with the condition's period and stride factors (a gait given by its
+    speed keeps its stride factor: the speed scales by stride / period)."""
+    speed = None if gait.speed is None else gait.speed * condition.stride / condition.period
+    return dataclasses.replace(gait, period=gait.period * condition.period,
+                               stride_length=gait.stride_length * condition.stride, speed=speed)
+
+
+def condition_prepared(run: RunSpec, gait: GaitParams, condition: Condition) -> Prepared:
+    """The prepared gait of ``condition`` on the run's robot, actuator and contact settings.
+
+    Raises:
+        InvalidParameterError: the condition's gait is unreachable (names the factor, the
+            gait's error and what to change).
+    """
+    robot = run.load()
+    if condition.payload:
+        robot = with_payload(robot, condition.payload * robot.mass,
+                             note=f"payload {100 * condition.payload:g} % of the robot's mass")
+    varied = condition_gait(gait, condition)
+    try:
+        motion = tripod_gait(robot, varied)
+    except UnreachableTargetError as e:
+        which = "stride" if condition.stride != 1.0 else "period"
+        raise InvalidParameterError(
+            f"{which} factor", getattr(condition, which),
+            f"a factor whose gait the robot can reach; at {condition.label()} (period "
+            f"{varied.period:g} s, stride {varied.stride:g} m): {e} — narrow the {which} range"
+        ) from e
+    contact = run.contact if condition.mu is None else dataclasses.replace(run.contact,
+                                                                           mu=condition.mu)
+    return prepare(robot, motion, motor=run.actuator(), contact=contact)
+
+
+def condition_savings(prepared: Prepared, springs: SpringSet, objective: str,
+                      metrics: Sequence[str] = (DEFAULT_METRIC, "joule")) -> dict[str, Any]:
+    """Frozen ``springs`` on one condition: each metric with and without them and the saving.
+
+    Returns:
+        ``{"status", "<m>", "baseline.<m>", "saving.<m>"}`` per metric; status ``"ok"``,
+        ``"no baseline: …"`` (the condition has no admissible forces even without springs) or
+        ``"springs: …"`` (none with the springs); NaN where there is no number.
+    """
+    out: dict[str, Any] = {}
+    try:
+        base = prepared.baseline(objective)["total"]
+    except (InfeasibleForcesError, TorqueLimitError) as e:
+        out["status"] = f"no baseline: {type(e).__name__}: {e}"
+        for m in metrics:
+            out.update({m: math.nan, f"baseline.{m}": math.nan, f"saving.{m}": math.nan})
+        return out
+    try:
+        total = prepared.evaluate(springs, objective).metrics["total"]
+        out["status"] = "ok"
+    except (InfeasibleForcesError, TorqueLimitError) as e:
+        total, out["status"] = None, f"springs: {type(e).__name__}: {e}"
+    for m in metrics:
+        value = math.nan if total is None else float(total[m])
+        out.update({m: value, f"baseline.{m}": float(base[m]),
+                    f"saving.{m}": saving(value, float(base[m]))})
+    return out
 
 
 def robustness(run: RunSpec, gait: GaitParams, groups: Mapping[str, Sequence[str]],
                design: Design, metric: str = DEFAULT_METRIC, *,
                factors: Sequence[float] = (0.8, 0.9, 1.0, 1.1, 1.2),
                parameters: Sequence[str] = ("period", "stride_length")) -> pd.DataFrame:
-    """Saving of a fixed design when the gait's period or amplitude changes.
+    """Saving of a fixed dead-zone design when the gait's period or amplitude changes.
 
     The design is frozen on the nominal gait — its neutral angles are absolute, taken from the
     nominal ranges of motion — as a built spring would be; only the gait changes.
@@ -59,24 +189,16 @@ def robustness(run: RunSpec, gait: GaitParams, groups: Mapping[str, Sequence[str
         if p not in ("period", "stride_length"):
             raise UnknownNameError("robustness parameter", p, ("period", "stride_length"))
     for fct in factors:
-        if not real("factor", fct) > 0:
-            raise InvalidParameterError("factor", fct, "> 0")
-    nominal = evaluator(run, dataclasses.asdict(gait))
-    springs = nominal.springs(groups, design)
+        real("factor", fct, low=0.0, low_open=True, allowed="> 0")
+    springs = evaluator(run, dataclasses.asdict(gait)).springs(groups, design)
     rows = []
     for p in parameters:
         for fct in factors:
-            varied = dataclasses.replace(gait, **{p: getattr(gait, p) * fct})
-            ev = evaluator(run, dataclasses.asdict(varied))
-            base = float(ev.baseline["total"][metric])
-            try:
-                value = float(ev.prepared.evaluate(springs, run.objective)
-                              .metrics["total"][metric])
-                status = "ok"
-            except (InfeasibleForcesError, TorqueLimitError) as e:
-                value, status = math.nan, f"{type(e).__name__}: {e}"
-            rows.append({"parameter": p, "factor": float(fct), "gait value": getattr(varied, p),
-                         "value": value, "baseline": base,
-                         "saving": saving(value, base),
-                         "status": status})
+            cond = Condition(**{"period" if p == "period" else "stride": float(fct)})
+            r = condition_savings(condition_prepared(run, gait, cond), springs, run.objective,
+                                  (metric,))
+            rows.append({"parameter": p, "factor": float(fct),
+                         "gait value": getattr(condition_gait(gait, cond), p),
+                         "value": r[metric], "baseline": r[f"baseline.{metric}"],
+                         "saving": r[f"saving.{metric}"], "status": r["status"]})
     return pd.DataFrame(rows)

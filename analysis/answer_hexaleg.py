@@ -1,0 +1,83 @@
+"""The design answer for hexaleg's default robot and gait: ``hexaleg design`` with its defaults.
+
+Run:  python analysis/answer_hexaleg.py   (expected output: analysis/logs/answer_hexaleg.log)
+
+The default tripod gait at 200 samples per cycle, the robot's own actuator (AX-18A), forces of
+minimum Joule loss. Every allowed family's globally optimal springs on coxa, femur and tibia
+(one design per class, max wind-up π), ranked by the electrical energy the servos draw, net of
+the springs' mass; the recommended family's Pareto front (spring torque bounded); the torsion
+springs to buy (Shigley §10-12); the robustness maps of the recommended springs frozen; the
+robust design over the box period ×0.75…1.5, stride ×0.75…1.25, payload 0…25 %, μ 0.5…1.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from hexaleg.studies.design.build import build_design
+
+
+def pct(x: float) -> str:
+    return f"{100 * x:+7.2f} %" if np.isfinite(x) else "    n/a"
+
+
+def main() -> None:
+    r = build_design()
+    m = r.config.design.metric
+    print(f"{r.title}, {r.mass:.3f} kg, {r.actuator}; gait period {r.gait.period:g} s, "
+          f"stride {r.gait.stride:g} m, {r.gait.samples} samples")
+    print(f"without springs: {m} {r.baseline[m]:.4f} J, joule {r.baseline['joule']:.4f} J "
+          "per cycle")
+    print(f"\nfamilies ranked by {m} saving net of the springs' mass")
+    print(f"  {'design':12s} {m:>10s} {'net':>10s} {'joule':>10s} {'springs':>8s}  buildable")
+    for c in r.candidates:
+        print(f"  {c.label:12s} {pct(c.row[f'saving.{m}'])} {pct(c.net[m])} "
+              f"{pct(c.row['saving.joule'])} {1e3 * c.spring_mass:6.1f} g  "
+              f"{'yes' if c.buildable else 'no'}")
+    print(f"\nPareto front of {r.recommended.family} (spring torque bounded)")
+    print(f"  {'bound':>10s} {'peak τ_s':>9s} {'peak U':>8s} {m:>10s} {'net':>10s} {'joule':>10s}")
+    for f, c in r.pareto:
+        a = c.optimum.analysis
+        mark = "  <- recommended" if c is r.recommended else ""
+        print(f"  {f:8.2f} × {np.abs(a.tau_spring).max():7.4f} {1e3 * a.spring_energy.max():6.2f}mJ"
+              f" {pct(c.row[f'saving.{m}'])} {pct(c.net[m])} {pct(c.row['saving.joule'])}{mark}")
+    rec = r.recommended
+    print(f"\nrecommended: {rec.label}; {m} {pct(rec.row[f'saving.{m}'])}, net "
+          f"{pct(rec.net[m])} ({1e3 * rec.spring_mass:.1f} g of springs)")
+    for g, share in rec.marginal.items():
+        print(f"  {g:6s} lost without it {pct(share)}   "
+              + ", ".join(f"{k} {v:.4g}" for k, v in rec.optimum.magnitudes[g].items()))
+    print("\nsprings to buy (one per joint of the group)")
+    for p in rec.parts:
+        s = p.spring
+        if s is None:
+            print(f"  {p.group:6s} {p.side:5s} {p.role}: {p.problem}")
+            continue
+        print(f"  {p.group:6s} {p.side:5s} needs {p.rate:.4f} N·m/rad -> {s.material} "
+              f"d {1e3 * s.wire_diameter:.2f} mm, D {1e3 * s.mean_diameter:.2f} mm, OD "
+              f"{1e3 * s.outer_diameter:.2f} (≤ {1e3 * p.max_outer_diameter:.0f}) mm, "
+              f"{s.body_turns:g} turns, legs {1e3 * s.leg_length:.1f} mm, "
+              f"{s.table()['rate_nmm_per_deg']['value']:.4f} N·mm/deg, preload "
+              f"{np.degrees(s.preload_angle):.0f}°, wind-up {np.degrees(s.max_deflection):.0f}°,"
+              f" σ {s.stress / 1e6:.0f}/{s.yield_strength / 1e6:.0f} MPa, {1e3 * s.mass:.2f} g")
+    for mp in r.maps:
+        a, b = mp.axes
+        print(f"\n{m} saving of the recommended springs, % ({a} down, {b} across)")
+        print("  " + " " * 8 + "".join(f"{v:>8g}" for v in mp.values[1]))
+        for v, row in zip(mp.values[0], mp.saving[m], strict=True):
+            print(f"  {v:>8g}" + "".join(f"{100 * x:8.1f}" for x in row))
+        w, where = mp.worst(m)
+        print(f"  worst {pct(w)} at {where.label() if where else '—'}")
+    rb = r.robust
+    if rb is not None:
+        d = rb.design
+        print(f"\nrobust design ({d.mode} {d.metric} saving over {len(rb.conditions)} conditions)")
+        for metric in ("electrical", "joule"):
+            print(f"  worst {metric:10s}: robust {pct(rb.worst(metric))}, nominal "
+                  f"{pct(rb.worst(metric, 'nominal'))}")
+        for g in d.groups:
+            print(f"  {g:6s} " + ", ".join(f"{k} {v:.4g}" for k, v in d.magnitudes[g].items()))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,355 @@
+"""The robust spring design: one set of magnitudes for a box of conditions, in one convex program.
+
+A spring is bought once and the conditions change (:mod:`hexaleg.design.robustness`). For the
+nominal optimum's family and geometry — frozen, absolute angles as built — the magnitudes x
+that do best over conditions c = 1…n solve one convex program: the design program
+(:mod:`hexaleg.design.program`) of every condition stacked, x shared, each condition its own
+forces at every sample, its own friction cones, normal forces and torque limits, the design
+rows (``max_torque``, ``max_deflection``) at every condition's range of motion, and
+
+* ``mode = "worst"``: minimise ``max_c E_c(x) / E_c(0)`` — maximise the worst saving;
+* ``mode = "mean"``: minimise ``Σ_c E_c(x) / E_c(0) / n`` — maximise the mean saving.
+
+``E_c`` is the condition's energy per cycle in the chosen metric, ``E_c(0)`` its baseline; the
+forces minimise the Joule loss (the force objective ``"joule"``), as in every evaluation. Where
+no inequality of a sample binds its forces and motor torques are affine in x
+(``f = f₀ − K B x``, ``τ = τ₀ + G B x``, :class:`hexaleg.dynamics.solver.QuadraticGains`), and
+both metrics are convex in τ — the Joule loss ``Σ w c τ²`` and the electrical energy
+``Σ w max(0, c τ² + max(q̇τ/η, q̇τη))`` (:meth:`hexaleg.robot.motor.Motor.electrical_power`) —
+hence convex in x; the max and the mean of convex functions are convex, so the optimum is global
+for the geometry. Solved as :func:`~hexaleg.design.program.solve_design` does: every sample
+starts condensed; samples whose condensed forces break an inequality get explicit forces and
+their constraints, until none does (cvxpy, Clarabel). For the Joule metric that is the exact
+joint program over (x, f); for the electrical one it is exact when no sample binds (then every
+sample's forces are the Joule-optimal ones the evaluation uses; a sample that binds gets forces
+of its own in the program — the savings reported are from the exact evaluation either way).
+
+The nominal design is feasible for this program whenever its magnitudes meet the design rows at
+every condition (always without ``max_torque`` / ``max_deflection``), so the robust design's worst
+(or mean) saving over the conditions is then never below the nominal design's (tested).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from hexaleg.design.bundle import minimise
+from hexaleg.design.codesign import OptimalSprings, frozen_problem, motion_centres
+from hexaleg.design.families import family
+from hexaleg.design.program import MAX_ROUNDS, DesignProblem
+from hexaleg.design.program_reference import force_constraints, stacked
+from hexaleg.dynamics.contact import violations
+from hexaleg.dynamics.energy import saving
+from hexaleg.dynamics.prepare import Prepared
+from hexaleg.dynamics.reference import solve_clarabel
+from hexaleg.errors import InfeasibleForcesError, InvalidParameterError, TorqueLimitError
+from hexaleg.robot.springs import SpringSet
+
+MODES: tuple[str, ...] = ("worst", "mean")
+"""What the robust program maximises over the conditions: the worst or the mean saving."""
+METRICS: tuple[str, ...] = ("joule", "electrical")
+"""The savings the robust program can maximise."""
+ENGAGED = 1e-9
+TOLERANCE = 1e-8
+"""Clarabel's gap and feasibility tolerance for the robust program (savings to ~1e-8)."""
+
+
+@dataclass(frozen=True, eq=False)
+class RobustSprings:
+    """The robust design of :func:`robust_springs` and how it and the nominal fare.
+
+    Attributes:
+        family: The spring family. mode: ``"worst"`` or ``"mean"``. metric: The saving
+            maximised (:data:`METRICS`).
+        groups: Group → joints. geometry: The nominal geometry (rad from the nominal centres).
+        magnitudes: Group → magnitude name → value, SI.
+        springs: The robust springs (absolute angles), for ``Prepared.evaluate`` of any
+            condition.
+        value: The metric per cycle of each condition with the robust springs, shape (n,), J.
+        baseline: Without springs, shape (n,), J.
+        saving: Robust design's saving per condition, shape (n,).
+        nominal_saving: The nominal design's, shape (n,).
+        nominal_feasible: Whether the nominal magnitudes meet the design rows at every
+            condition (then ``worst ≥ nominal_worst`` in "worst" mode).
+        solver: Rounds, explicit samples per condition, the program's value.
+    """
+
+    family: str
+    mode: str
+    metric: str
+    groups: dict[str, tuple[str, ...]]
+    geometry: dict[str, dict[str, float | str]]
+    magnitudes: dict[str, dict[str, float]]
+    springs: SpringSet
+    value: np.ndarray
+    baseline: np.ndarray
+    saving: np.ndarray
+    nominal_saving: np.ndarray
+    nominal_feasible: bool
+    solver: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def worst(self) -> float:
+        """The robust design's worst saving over the conditions."""
+        return float(np.min(self.saving))
+
+    @property
+    def nominal_worst(self) -> float:
+        """The nominal design's worst saving over the same conditions."""
+        return float(np.min(self.nominal_saving))
+
+
+def _solve(program: Any) -> str:
+    """Clarabel at :data:`TOLERANCE`, then the tolerance ladder of
+    :func:`hexaleg.dynamics.reference.solve_clarabel` if it stalls (the ladder starts far
+    tighter, where a program this size spends its iteration limit)."""
+    import warnings
+
+    import cvxpy as cp
+
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message="Solution may be inaccurate")
+        program.solve(solver=cp.CLARABEL, tol_gap_abs=TOLERANCE, tol_gap_rel=TOLERANCE,
+                      tol_feas=TOLERANCE, max_iter=200)
+    if program.status == cp.OPTIMAL:
+        return str(program.status)
+    return solve_clarabel(program)
+
+
+class _Condition:
+    """One condition's condensed data: gains along x, baseline, the current explicit set."""
+
+    def __init__(self, problem: DesignProblem, metric: str) -> None:
+        self.problem, self.metric = problem, metric
+        p = problem.prepared
+        self.system = p.system
+        gains = p.gains("joule")
+        self.c = p.weights("joule")
+        self.w = problem.sample_weights
+        self.M = np.einsum("tjs,tsx->tjx", gains.G[:, :, problem.cols], problem.B)
+        self.F = np.einsum("tfs,tsx->tfx", gains.K[:, :, problem.cols], problem.B)
+        self.f0, self.tau0 = gains.f0, gains.tau0
+        self.root = np.sqrt(self.w[:, None] * self.c[None, :])  # (T, nj)
+        self.base = (float(np.sum(self.w[:, None] * self.c * self.tau0**2)) if metric == "joule"
+                     else float(p.baseline("joule")["total"][metric]))
+        self.condensed = np.ones(self.system.n_samples, dtype=bool)
+
+    def _electrical(self, tau: Any, samples: np.ndarray) -> Any:
+        """cvxpy electrical energy of motor torques ``tau`` (S·nj, sample-major) at ``samples``:
+        ``Σ w (c τ² + max(q̇τ/η, q̇τη))``, clipped at 0 per joint without regeneration
+        (:meth:`hexaleg.robot.motor.Motor.electrical_power`)."""
+        import cvxpy as cp
+
+        nj = self.system.D.shape[1]
+        qd = self.system.qdot[samples].reshape(-1)
+        eta = np.tile(np.broadcast_to(self.system.efficiency, (nj,)), samples.size)
+        c = np.tile(self.c, samples.size)
+        w = np.repeat(self.w[samples], nj)
+        power = cp.multiply(c, cp.square(tau)) + cp.maximum(cp.multiply(qd / eta, tau),
+                                                            cp.multiply(qd * eta, tau))
+        regen = np.tile(np.broadcast_to(np.asarray(self.problem.prepared.motor.regeneration,
+                                                   dtype=bool), (nj,)), samples.size)
+        cost = 0
+        if regen.any():
+            cost = cost + w[regen] @ power[np.flatnonzero(regen)]
+        if (~regen).any():
+            cost = cost + w[~regen] @ cp.pos(power[np.flatnonzero(~regen)])
+        return cost
+
+    def oracle(self, x: np.ndarray) -> tuple[float, np.ndarray]:
+        """The metric over the baseline at magnitudes x with every sample condensed, and its
+        gradient (a subgradient at the kinks), shape (nx,)."""
+        tau = self.tau0 + self.M @ x
+        if self.metric == "joule":
+            phi, dphi = self.c * tau**2, 2 * self.c * tau
+        else:
+            qd = self.system.qdot
+            eta = np.broadcast_to(self.system.efficiency, qd.shape[1:])
+            out = qd * tau >= 0
+            slope = np.where(out, qd / eta, qd * eta)
+            phi = self.c * tau**2 + slope * tau
+            dphi = 2 * self.c * tau + slope
+            regen = np.broadcast_to(np.asarray(self.problem.prepared.motor.regeneration,
+                                               dtype=bool), qd.shape[1:])
+            drop = ~regen & (phi < 0)
+            phi, dphi = np.where(drop, 0.0, phi), np.where(drop, 0.0, dphi)
+        value = float(np.sum(self.w[:, None] * phi)) / self.base
+        grad = np.einsum("tj,tjx->x", self.w[:, None] * dphi, self.M) / self.base
+        return value, grad
+
+    def cost(self, x: Any, cons: list) -> Any:
+        """cvxpy energy of the condition in the metric at magnitudes x; appends the explicit
+        samples' force constraints to ``cons``."""
+        import cvxpy as cp
+
+        k = self.condensed
+        nx = self.problem.nx
+        if self.metric == "joule":
+            rows = (self.root[k][:, :, None] * self.M[k]).reshape(-1, nx)
+            cost = cp.sum_squares(rows @ x + (self.root[k] * self.tau0[k]).reshape(-1))
+        else:
+            cost = self._electrical(self.M[k].reshape(-1, nx) @ x + self.tau0[k].reshape(-1),
+                                    np.flatnonzero(k))
+        explicit = np.flatnonzero(~k)
+        if explicit.size:
+            D, A, b_base, _ = stacked(self.problem, explicit)
+            f = cp.Variable(D.shape[1])
+            nj = self.system.D.shape[1]
+            Bfull = np.zeros((explicit.size, nj, nx))
+            Bfull[:, self.problem.cols] = self.problem.B[explicit]
+            tau = (self.system.b_joint[explicit].reshape(-1) - D @ f
+                   - Bfull.reshape(-1, nx) @ x)
+            cost = cost + (cp.sum_squares(cp.multiply(self.root[explicit].reshape(-1), tau))
+                           if self.metric == "joule" else self._electrical(tau, explicit))
+            cons += force_constraints(f, A, b_base, self.problem.prepared.contact)
+            if self.problem.prepared.contact.torque_limits:
+                cons.append(cp.abs(tau) <= np.tile(self.system.tau_max, explicit.size))
+        return cost
+
+    def update(self, x: np.ndarray) -> bool:
+        """Add the condensed samples whose forces at x break an inequality; True if any."""
+        f = self.f0 - self.F @ x
+        tau = self.tau0 + self.M @ x
+        bad = violations(self.system, f, tau, self.problem.prepared.contact) & self.condensed
+        self.condensed &= ~bad
+        return bool(bad.any())
+
+
+def robust_springs(optimum: OptimalSprings, nominal: Prepared, conditions: Sequence[Prepared],
+                   mode: str = "worst", metric: str = "joule", *,
+                   max_torque: float | None = None, max_deflection: float | None = None
+                   ) -> RobustSprings:
+    """The magnitudes that maximise the worst (or mean) saving over ``conditions``.
+
+    Args:
+        optimum: The nominal optimum (objective ``"joule"``): family, groups, geometry.
+        nominal: The prepared gait it was designed on (its centres of motion freeze the angles).
+        conditions: Each condition's prepared gait (:func:`hexaleg.design.robustness.
+            condition_prepared`); include the nominal one to keep it in the box.
+        mode: One of :data:`MODES`.
+        metric: One of :data:`METRICS`: the saving maximised (forces minimise the Joule loss
+            either way).
+        max_torque: Largest spring torque at every condition, N·m, or None.
+        max_deflection: Largest deflection from the free position at every condition, rad, or
+            None.
+
+    Returns:
+        The robust design and both designs' savings per condition.
+
+    Raises:
+        InvalidParameterError: an unknown mode or metric, no conditions, an objective other
+            than joule.
+        InfeasibleForcesError: the stacked program has no solution (a condition without
+            admissible forces, or design rows no magnitudes meet).
+    """
+    if mode not in MODES:
+        raise InvalidParameterError("mode", mode, " or ".join(MODES))
+    if metric not in METRICS:
+        raise InvalidParameterError("metric", metric, " or ".join(METRICS))
+    if not conditions:
+        raise InvalidParameterError("conditions", [], "at least one prepared condition")
+    if optimum.objective != "joule":
+        raise InvalidParameterError("optimum.objective", optimum.objective,
+                                    "joule (the robust program is in Joule energy)")
+    centres = motion_centres(nominal, [j for js in optimum.groups.values() for j in js])
+    data = [_Condition(frozen_problem(p, optimum, centres, max_torque=max_torque,
+                                      max_deflection=max_deflection), metric)
+            for p in conditions]
+    fam = family(optimum.family)
+    nx = data[0].problem.nx
+    x0 = np.concatenate([[optimum.magnitudes[g][m] for m in fam.magnitudes]
+                         for g in optimum.groups])
+    engaged = np.zeros(nx, dtype=bool)
+    for d in data:
+        engaged |= np.any(np.abs(d.problem.B) > ENGAGED, axis=(0, 1))
+    G = np.vstack([d.problem.G for d in data if d.problem.G.size] or [np.zeros((0, nx))])
+    h = np.concatenate([d.problem.h for d in data if d.problem.G.size] or [np.zeros(0)])
+    nonneg = data[0].problem.nonnegative
+    result = minimise([d.oracle for d in data], x0, mode, G=G, h=h, nonneg=nonneg,
+                      fixed=~engaged)
+    xv = np.where(nonneg, np.maximum(result.x, 0.0), result.x)
+    solver: dict[str, Any] = {"path": "proximal bundle, every sample condensed",
+                              "iterations": result.iterations,
+                              "serious_steps": result.serious_steps, "gap": result.gap,
+                              "program_value": float(result.values.max() if mode == "worst"
+                                                     else result.values.mean())}
+    if any([d.update(xv) for d in data]):  # some sample binds: explicit forces there
+        xv, explicit = _explicit_program(data, mode, nonneg, engaged, G, h)
+        solver.update(explicit)
+    solver["explicit_samples"] = [int((~d.condensed).sum()) for d in data]
+    return _result(optimum, mode, metric, data, xv, x0, centres, solver)
+
+
+def _explicit_program(data: list[_Condition], mode: str, nonneg: np.ndarray, engaged: np.ndarray,
+                      G: np.ndarray, h: np.ndarray) -> tuple[np.ndarray, dict[str, Any]]:
+    """The stacked program with explicit forces at the samples that bind (cvxpy, Clarabel),
+    their set grown until no condensed sample breaks an inequality (module docstring)."""
+    import cvxpy as cp
+
+    nx = data[0].problem.nx
+    for rounds in range(1, MAX_ROUNDS + 1):
+        x = cp.Variable(nx)
+        cons: list = []
+        ratios = [d.cost(x, cons) / d.base for d in data]
+        if nonneg.any():
+            cons.append(x[np.flatnonzero(nonneg)] >= 0)
+        if (~engaged).any():
+            cons.append(x[np.flatnonzero(~engaged)] == 0)
+        if G.size:
+            cons.append(G @ x <= h)
+        if mode == "worst":
+            t = cp.Variable()
+            program = cp.Problem(cp.Minimize(t), cons + [r <= t for r in ratios])
+        else:
+            program = cp.Problem(cp.Minimize(sum(ratios) / len(ratios)), cons)
+        if _solve(program) != cp.OPTIMAL:
+            raise InfeasibleForcesError(
+                f"the robust spring program has no solution (cvxpy: {program.status}); "
+                "conditions without admissible forces, or design limits no spring meets")
+        xv = np.asarray(x.value, dtype=float)
+        xv = np.where(nonneg, np.maximum(xv, 0.0), xv)
+        if not any([d.update(xv) for d in data]):  # every condition checked
+            return xv, {"path": "cvxpy with explicit forces where samples bind",
+                        "rounds": rounds, "program_value": float(program.value)}
+    raise InfeasibleForcesError(f"the robust program's active set did not settle in "
+                                f"{MAX_ROUNDS} rounds")
+
+
+def _result(optimum: OptimalSprings, mode: str, metric: str, data: list[_Condition],
+            x: np.ndarray,
+            x0: np.ndarray, centres: dict[str, float], solver: dict[str, Any]
+            ) -> RobustSprings:
+    fam = family(optimum.family)
+    nm = len(fam.magnitudes)
+    magnitudes, springs = {}, {}
+    for i, (g, js) in enumerate(optimum.groups.items()):
+        xg = x[i * nm:(i + 1) * nm]
+        magnitudes[g] = dict(zip(fam.magnitudes, (float(v) for v in xg), strict=True))
+        for j in js:
+            springs[j] = fam.spring(optimum.geometry[g], centres[j], xg)
+    robust = SpringSet(springs)
+    value, base, nominal_saving = [], [], []
+    feasible = True
+    for d in data:
+        p = d.problem.prepared
+        b = float(p.baseline("joule")["total"][metric])
+        value.append(float(p.evaluate(robust, "joule").metrics["total"][metric]))
+        base.append(b)
+        try:
+            nominal_value = float(p.evaluate(optimum.springs, "joule").metrics["total"][metric])
+        except (InfeasibleForcesError, TorqueLimitError):  # no forces: the worst there is
+            nominal_value = np.inf
+        nominal_saving.append(saving(nominal_value, b))
+        if d.problem.G.size and np.any(d.problem.G @ x0 > d.problem.h + 1e-9):
+            feasible = False
+    v, bs = np.array(value), np.array(base)
+    return RobustSprings(family=optimum.family, mode=mode, metric=metric,
+                         groups=dict(optimum.groups),
+                         geometry=optimum.geometry, magnitudes=magnitudes, springs=robust,
+                         value=v, baseline=bs, saving=saving(v, bs),
+                         nominal_saving=np.array(nominal_saving), nominal_feasible=feasible,
+                         solver=solver)

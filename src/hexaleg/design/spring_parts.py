@@ -1,0 +1,230 @@
+"""From an optimal spring design to the parts to buy: one helical torsion spring per element.
+
+A family's law is made of physical spring elements (:attr:`hexaleg.design.families.Family.
+elements`): a spring that engages past a contact angle with a stiffness k and a preload P (the
+torque where it engages), or the linear spring ``τ = τ₀ − k u`` (u the angle from the centre of
+the joint's motion). Over the group's motion — the envelope of its joints' ranges, so one part
+holds up on every joint of the group — each element becomes a :class:`TorsionRequirement`:
+
+* engaged past contact angle a (``above``: for u > a, pushing the joint down): the torque runs
+  from ``P`` at contact (or ``P + k (u_near − a)`` when engaged throughout the motion) to
+  ``P + k (u_far − a)``; free at ``a ∓ P / k``;
+* linear, its free angle ``u_f = τ₀ / k`` outside the motion: one spring pushing one way; inside
+  it: the torque changes sign, which one torsion spring cannot give (it must be loaded in the
+  sense that winds it up), so an antagonistic pair: two springs of rate k/2, each free at
+  ``u_f ∓ e`` (e the farthest the motion gets from u_f), together exactly ``τ₀ − k u``;
+* k → 0 with a torque (below :data:`~hexaleg.design.codesign.ZERO_STIFFNESS`): a constant torque,
+  which needs a constant-torque spring (spiral or constant-force), not a torsion spring: flagged.
+
+The outer diameter limit of a group is the smallest of its joints' classes
+(:func:`spring_outer_diameter`: the robot description's ``max_outer_diameter``, else the width of
+the links).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from hexaleg.design.codesign import ZERO_STIFFNESS, OptimalSprings
+from hexaleg.design.families import family
+from hexaleg.design.spring_materials import MATERIALS
+from hexaleg.design.torsion_spring import (
+    SAFETY_FACTOR,
+    TorsionRequirement,
+    TorsionSpring,
+    design_torsion_spring,
+)
+from hexaleg.dynamics.prepare import Prepared
+from hexaleg.errors import SpringDesignError
+from hexaleg.robot.description import RobotDescription
+from hexaleg.robot.model import Robot
+
+ZERO_TORQUE = 1e-9
+"""N·m: a preload or torque below this is none."""
+
+
+@dataclass(frozen=True)
+class PartOptions:
+    """How the parts are made (the fields of :class:`TorsionRequirement` the design does not
+    set): materials, design factor, arbor diameter (m), leg length (m or None)."""
+
+    materials: tuple[str, ...] = tuple(MATERIALS)
+    safety_factor: float = SAFETY_FACTOR
+    arbor_diameter: float = 0.0
+    leg_length: float | None = None
+
+
+@dataclass(frozen=True)
+class SpringPart:
+    """One physical spring of a group (every joint of the group gets one).
+
+    Attributes:
+        group: The design group. joints: Its joints.
+        side: ``"above"`` (acts at the high angles, pushes the joint down) or ``"below"``.
+        role: What it is in the law (``one-sided``, ``pair (1 of 2)``, ``stage``).
+        rate: N·m/rad (0 for a constant torque). preload_torque: Torque where it starts acting
+            in the motion, N·m. max_torque: At the far end of the motion, N·m.
+        engage: Where it starts acting, rad from the centre of motion; None: throughout.
+        free: Where it would be free, rad from the centre of motion; None: constant torque.
+        constant_torque: k → 0 with a torque: needs a constant-torque spring.
+        max_outer_diameter: The group's fit limit, m.
+        spring: The torsion spring to buy, or None. nearest: With ``problem``, the nearest one.
+        problem: Why there is no spring (empty when there is).
+    """
+
+    group: str
+    joints: tuple[str, ...]
+    side: str
+    role: str
+    rate: float
+    preload_torque: float
+    max_torque: float
+    engage: float | None
+    free: float | None
+    constant_torque: bool
+    max_outer_diameter: float
+    spring: TorsionSpring | None = None
+    nearest: TorsionSpring | None = None
+    problem: str = ""
+
+    @property
+    def mass(self) -> float:
+        """Mass of one such spring (the nearest one when none fits), kg; 0 without either."""
+        part = self.spring or self.nearest
+        return part.mass if part is not None else 0.0
+
+
+def spring_outer_diameter(desc: RobotDescription, robot: Robot, kind: str
+                          ) -> tuple[float, str]:
+    """The largest outer diameter of a spring on the joints of class ``kind``, m, and where it
+    comes from: the description's ``max_outer_diameter``, else the smallest
+    :func:`~hexaleg.robot.geometry.link_width` of the class's joints.
+
+    Raises:
+        UnknownNameError: ``kind`` is not a joint class of ``robot`` (lists them).
+        InvalidParameterError: no value given and no collision geometry to measure.
+    """
+    from hexaleg.errors import InvalidParameterError, UnknownNameError
+    from hexaleg.robot.geometry import link_width
+
+    if kind not in robot.joint_classes:
+        raise UnknownNameError("joint class", kind, robot.joint_classes)
+    if kind in desc.max_outer_diameter:
+        return float(desc.max_outer_diameter[kind]), f"{desc.name} description"
+    widths = [link_width(robot.model, robot.collision_model, j) for j in robot.joint_classes[kind]]
+    known = [w for w in widths if w is not None]
+    if len(known) < len(widths):
+        raise InvalidParameterError(f"{desc.name}: max_outer_diameter.{kind}", None,
+                                    "a diameter (m): its links have no collision geometry")
+    return min(known), "width of its links (collision geometry)"
+
+
+def _elements(fam_name: str, geometry: Mapping[str, float | str], x: np.ndarray, lo: float,
+              hi: float) -> list[dict]:
+    """The elements' requirements of one group over the relative motion [lo, hi] (rad)."""
+    fam = family(fam_name)
+    terms = fam.terms(geometry, 0.0)
+    out: list[dict] = []
+    for e in fam.elements:
+        k = float(x[e.stiffness])
+        p = float(x[e.preload]) if e.preload is not None else 0.0
+        if e.linear:
+            if k < ZERO_STIFFNESS:
+                if abs(p) > ZERO_TORQUE:
+                    out.append(dict(side="above" if p < 0 else "below", role="constant torque",
+                                    rate=0.0, preload_torque=abs(p), max_torque=abs(p),
+                                    engage=None, free=None))
+                continue
+            uf: float = p / k
+            if uf <= lo or uf >= hi:
+                side = "above" if uf <= lo else "below"
+                near, far = (lo, hi) if side == "above" else (hi, lo)
+                out.append(dict(side=side, role="one-sided", rate=k,
+                                preload_torque=k * abs(near - uf), max_torque=k * abs(far - uf),
+                                engage=None, free=uf))
+                continue
+            e_max = max(uf - lo, hi - uf)
+            for side, free, near, far in (("above", uf - e_max, lo, hi),
+                                          ("below", uf + e_max, hi, lo)):
+                out.append(dict(side=side, role="pair (1 of 2)", rate=k / 2,
+                                preload_torque=k / 2 * abs(near - free),
+                                max_torque=k / 2 * abs(far - free), engage=None, free=free))
+            continue
+        term = terms[e.stiffness]
+        a, side = float(term.angle), term.kind
+        near, far = (lo, hi) if side == "above" else (hi, lo)
+        reach = (far - a) if side == "above" else (a - far)
+        if reach <= 0 or (k < ZERO_STIFFNESS and p <= ZERO_TORQUE):
+            continue  # never engaged in the motion, or nothing there
+        before = (near - a) if side == "above" else (a - near)  # > 0: engaged throughout
+        start = p + k * max(before, 0.0)
+        role = "stage" if fam_name == "stiffening" else "one-sided"
+        free_at = None if k < ZERO_STIFFNESS else (a - p / k if side == "above" else a + p / k)
+        out.append(dict(side=side, role=role if k >= ZERO_STIFFNESS else "constant torque",
+                        rate=k if k >= ZERO_STIFFNESS else 0.0, preload_torque=start,
+                        max_torque=p + k * reach, engage=None if before > 0 else a,
+                        free=free_at))
+    return out
+
+
+def spring_parts(optimum: OptimalSprings, prepared: Prepared, outer: Mapping[str, float],
+                 options: PartOptions | None = None) -> tuple[SpringPart, ...]:
+    """The torsion springs to buy for ``optimum`` (module docstring).
+
+    Args:
+        optimum: The optimal springs.
+        prepared: The gait they were designed on (the joints' ranges of motion).
+        outer: Group → largest outer diameter of its springs, m.
+        options: Materials, design factor, arbor, leg length.
+
+    Returns:
+        One part per element of each group that acts in the motion; a part without a spring
+        says why (``problem``) and names the nearest one.
+    """
+    options = options or PartOptions()
+    parts = []
+    for g, joints in optimum.groups.items():
+        q = prepared.q[:, [prepared.robot.column(j) for j in joints]]
+        centre = (q.min(0) + q.max(0)) / 2
+        lo, hi = float((q.min(0) - centre).min()), float((q.max(0) - centre).max())
+        x = np.array([optimum.magnitudes[g][m] for m in family(optimum.family).magnitudes])
+        for el in _elements(optimum.family, optimum.geometry[g], x, lo, hi):
+            part = SpringPart(group=g, joints=tuple(joints), constant_torque=el["rate"] == 0.0,
+                              max_outer_diameter=float(outer[g]), **el)
+            parts.append(_buy(part, options))
+    return tuple(parts)
+
+
+def _buy(part: SpringPart, options: PartOptions) -> SpringPart:
+    """``part`` with its torsion spring, or the reason there is none."""
+    import dataclasses
+
+    if part.constant_torque:
+        return dataclasses.replace(part, problem=(
+            f"k → 0 with {part.max_torque:.4g} N·m: a constant torque needs a constant-torque "
+            "spring (spiral or constant-force), not a helical torsion spring; bound "
+            "max_deflection to get a torsion spring"))
+    req = TorsionRequirement(rate=part.rate, max_torque=part.max_torque,
+                             preload_torque=part.preload_torque,
+                             max_outer_diameter=part.max_outer_diameter,
+                             arbor_diameter=options.arbor_diameter, materials=options.materials,
+                             safety_factor=options.safety_factor,
+                             leg_length=options.leg_length)
+    try:
+        return dataclasses.replace(part, spring=design_torsion_spring(req))
+    except SpringDesignError as e:
+        return dataclasses.replace(part, problem=str(e),
+                                   nearest=e.nearest if isinstance(e.nearest, TorsionSpring)
+                                   else None)
+
+
+def spring_masses(parts: tuple[SpringPart, ...]) -> dict[str, float]:
+    """Joint → mass of its springs (the nearest spring where none fits), kg."""
+    out: dict[str, float] = {}
+    for part in parts:
+        for j in part.joints:
+            out[j] = out.get(j, 0.0) + part.mass
+    return out

@@ -1,0 +1,1 @@
+"""``hexaleg design``: the recommended springs for a robot, the parts to buy, robustness maps."""

@@ -1,0 +1,146 @@
+"""One family's answer: its optimal springs, the parts to buy, and what they save net of their mass.
+
+For a family, :func:`design_family` finds the global optimum of the magnitudes with the geometry
+searched (:func:`hexaleg.design.codesign.optimal_springs`, one design per joint class); for a
+mirrored or per-joint grouping it keeps each class's geometry and re-solves the magnitudes of
+the finer groups (one convex program: never worse than the class design, which it contains).
+Each spring element becomes a torsion spring (:mod:`hexaleg.design.spring_parts`); the springs'
+mass, carried at their joints (:func:`hexaleg.robot.payload.with_point_masses`), costs energy,
+so the saving is also given net of it: the gait with the springs on the heavier robot against
+the baseline of the robot as it is.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from hexaleg.design.codesign import OptimalSprings, optimal_springs
+from hexaleg.design.evaluator import RunSpec, metric_row
+from hexaleg.design.families import Geometry
+from hexaleg.design.spring_parts import PartOptions, SpringPart, spring_masses, spring_parts
+from hexaleg.dynamics.energy import saving
+from hexaleg.dynamics.prepare import Prepared, prepare
+from hexaleg.motion.legged import tripod_gait
+from hexaleg.motion.params import GaitParams
+from hexaleg.robot.payload import with_point_masses
+from hexaleg.robot.springs import SpringSet
+from hexaleg.studies.design.config import DesignParams
+
+NET_METRICS: tuple[str, ...] = ("electrical", "joule")
+"""Metrics whose saving is also given net of the springs' mass."""
+
+
+@dataclass(frozen=True, eq=False)
+class Candidate:
+    """One family's optimal design on the sprung groups and what it buys.
+
+    Attributes:
+        family: The spring family.
+        optimum: Its optimal springs (:class:`~hexaleg.design.codesign.OptimalSprings`).
+        parts: The torsion springs to buy, one per element and group.
+        row: Every metric with the springs, its baseline and saving
+            (:func:`~hexaleg.design.evaluator.metric_row`).
+        spring_mass: Mass of all the springs, kg.
+        net: Metric → saving with the springs' mass carried (:data:`NET_METRICS`).
+        marginal: Group → saving of the ranking metric lost without that group's springs
+            (fraction of the baseline).
+        notes: What the user should know (constant-torque springs, springs that do not fit).
+        max_torque: The spring torque bound it was designed with, N·m, or None.
+    """
+
+    family: str
+    optimum: OptimalSprings
+    parts: tuple[SpringPart, ...]
+    row: dict[str, Any]
+    spring_mass: float
+    net: dict[str, float]
+    marginal: dict[str, float]
+    notes: tuple[str, ...]
+    max_torque: float | None = None
+
+    @property
+    def label(self) -> str:
+        """The family, and its torque bound when it has one."""
+        bound = f", spring torque ≤ {self.max_torque:.4g} N·m" if self.max_torque else ""
+        return self.family + bound
+
+    @property
+    def buildable(self) -> bool:
+        """Every part has a torsion spring that fits and holds up."""
+        return all(p.spring is not None for p in self.parts)
+
+
+def _optimum(prepared: Prepared, groups: Mapping[str, tuple[str, ...]],
+             class_groups: Mapping[str, tuple[str, ...]], family: str, params: DesignParams,
+             start: Sequence[Mapping[str, Geometry]] = ()) -> OptimalSprings:
+    """The family's optimum on the class groups; for finer groups, their magnitudes at the
+    class geometry."""
+    bound = params.deflection_bound
+    kw: dict[str, Any] = {"max_torque": params.max_torque, "max_deflection": bound}
+    best = optimal_springs(prepared, dict(class_groups), family, "joule", start=list(start) or None,
+                           **kw)
+    if dict(groups) == dict(class_groups):
+        return best
+    owner = {j: c for c, js in class_groups.items() for j in js}
+    geometry = {g: best.geometry[owner[js[0]]] for g, js in groups.items()}
+    return optimal_springs(prepared, dict(groups), family, "joule", geometry=geometry, **kw)
+
+
+def carried(run: RunSpec, gait: GaitParams, masses: Mapping[str, float]) -> Prepared:
+    """The nominal gait of the robot carrying ``masses`` (joint → kg) at its joints."""
+    heavy = with_point_masses(run.load(), masses, note="springs' mass at their joints")
+    return prepare(heavy, tripod_gait(heavy, gait), motor=run.actuator(), contact=run.contact)
+
+
+def candidate(optimum: OptimalSprings, prepared: Prepared, run: RunSpec, gait: GaitParams,
+              outer: Mapping[str, float], params: DesignParams) -> Candidate:
+    """Parts, savings net of the springs' mass and each group's share, of one optimum."""
+    options = PartOptions(materials=params.materials, safety_factor=params.safety_factor,
+                          arbor_diameter=params.arbor_diameter, leg_length=params.leg_length)
+    parts = spring_parts(optimum, prepared, outer, options)
+    a = optimum.analysis
+    row = metric_row(a.metrics, a.baseline)
+    masses = spring_masses(parts)
+    heavy = carried(run, gait, masses).evaluate(optimum.springs, "joule").metrics["total"]
+    net = {m: saving(float(heavy[m]), float(a.baseline["total"][m])) for m in NET_METRICS}
+    marginal = {}
+    for g, joints in optimum.groups.items():
+        rest = SpringSet({j: s for j, s in optimum.springs.items() if j not in joints})
+        without = prepared.evaluate(rest, "joule").metrics["total"][params.metric]
+        marginal[g] = row[f"saving.{params.metric}"] - saving(
+            float(without), float(a.baseline["total"][params.metric]))
+    notes = list(optimum.notes)
+    for p in parts:
+        if p.problem:
+            notes.append(f"group {p.group} ({p.side}, {p.role}): {p.problem}")
+    return Candidate(family=optimum.family, optimum=optimum, parts=parts, row=row,
+                     spring_mass=sum(masses.values()), net=net, marginal=marginal,
+                     notes=tuple(notes), max_torque=params.max_torque)
+
+
+def design_family(prepared: Prepared, run: RunSpec, gait: GaitParams,
+                  groups: Mapping[str, tuple[str, ...]],
+                  class_groups: Mapping[str, tuple[str, ...]], family: str,
+                  params: DesignParams, outer: Mapping[str, float],
+                  start: Sequence[Mapping[str, Geometry]] = ()) -> Candidate:
+    """One family's :class:`Candidate` (module docstring).
+
+    Args:
+        prepared: The nominal gait, prepared.
+        run: Robot, actuator, contact (for the gait carrying the springs' mass).
+        gait: The nominal gait's parameters.
+        groups: The design groups (:func:`hexaleg.studies.design.groups.design_groups`).
+        class_groups: The same joints by class (where the geometry is searched).
+        family: The spring family.
+        params: The ``[design]`` table.
+        outer: Group → largest outer diameter of its springs, m.
+        start: Class geometries to start the geometry search from.
+
+    Raises:
+        HexalegError: as :func:`~hexaleg.design.codesign.optimal_springs` (constraints that no
+            design meets name themselves there).
+    """
+    optimum = _optimum(prepared, groups, class_groups, family, params, start)
+    return candidate(optimum, prepared, run, gait, outer, params)

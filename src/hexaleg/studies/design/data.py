@@ -1,0 +1,136 @@
+"""``design.json``: every number of a :class:`~hexaleg.studies.design.build.DesignResult` as
+``{"value": …, "unit": …}`` (savings in %, SI otherwise; a missing or non-finite number is
+``null``), and each recommended spring as ``{"family", "joint", "parameters"}``
+(:mod:`hexaleg.design.spring_json`), which ``hexaleg simulate`` reads back.
+"""
+
+from __future__ import annotations
+
+import importlib.metadata
+import math
+from typing import Any
+
+import numpy as np
+
+from hexaleg.design.evaluator import SAVING_METRICS
+from hexaleg.design.robustness_map import RobustnessMap
+from hexaleg.design.spring_json import spring_entry
+from hexaleg.design.spring_parts import SpringPart
+from hexaleg.design.spring_table import magnitudes_table
+from hexaleg.studies.design.build import DesignResult, RobustResult
+from hexaleg.studies.design.candidates import Candidate
+from hexaleg.studies.report.quantities import metric_unit, quantity
+
+AXIS_UNITS = {"period": "1", "stride": "1", "payload": "1", "mu": "1"}
+"""Units of the map axes: factors of the nominal gait, a fraction of the robot's mass, μ."""
+
+
+def _grid(values: np.ndarray, unit: str) -> dict[str, Any]:
+    """A 2-D array as ``{value: [[…]], unit}``, non-finite entries null."""
+    return {"value": [[float(v) if math.isfinite(v) else None for v in row] for row in values],
+            "unit": unit}
+
+
+def _part(p: SpringPart, source: str) -> dict[str, Any]:
+    return {
+        "group": p.group, "joints": list(p.joints), "side": p.side, "role": p.role,
+        "rate": quantity(p.rate, "N·m/rad"),
+        "preload_torque": quantity(p.preload_torque, "N·m"),
+        "max_torque": quantity(p.max_torque, "N·m"),
+        "engage": None if p.engage is None else quantity(p.engage, "rad"),
+        "free": None if p.free is None else quantity(p.free, "rad"),
+        "constant_torque": p.constant_torque,
+        "max_outer_diameter": quantity(p.max_outer_diameter, "m"),
+        "max_outer_diameter_source": source,
+        "torsion_spring": p.spring.table() if p.spring else None,
+        "nearest": p.nearest.table() if p.nearest else None,
+        "problem": p.problem,
+    }
+
+
+def candidate_data(c: Candidate, outer: dict[str, tuple[float, str]]) -> dict[str, Any]:
+    """One design: its savings (every metric, and net of the springs' mass), groups, the
+    springs (JSON entries), the parts to buy."""
+    o, a = c.optimum, c.optimum.analysis
+    return {
+        "label": c.label, "family": c.family,
+        "max_torque": None if c.max_torque is None else quantity(c.max_torque, "N·m"),
+        "buildable": c.buildable,
+        "saving": {m: quantity(100 * c.row[f"saving.{m}"], "%") for m in SAVING_METRICS},
+        "with_springs": {m: quantity(c.row[m], metric_unit(m)) for m in SAVING_METRICS},
+        "net_saving": {m: quantity(100 * v, "%") for m, v in c.net.items()},
+        "spring_mass": quantity(c.spring_mass, "kg"),
+        "peak_spring_torque": quantity(np.abs(a.tau_spring).max(), "N·m"),
+        "peak_spring_energy": quantity(a.spring_energy.max(), "J"),
+        "groups": {g: {"joints": list(js),
+                       "design": magnitudes_table(o.geometry[g], o.magnitudes[g]),
+                       "marginal_saving": quantity(100 * c.marginal[g], "%")}
+                   for g, js in o.groups.items()},
+        "springs": [spring_entry(j, s) for j, s in o.springs.items()],
+        "parts": [_part(p, outer[p.group][1]) for p in c.parts],
+        "notes": list(c.notes),
+    }
+
+
+def map_data(m: RobustnessMap) -> dict[str, Any]:
+    """One robustness map: axes, values, saving grids in %, statuses."""
+    out: dict[str, Any] = {"axes": list(m.axes),
+                           "values": {a: quantity(v, AXIS_UNITS[a])
+                                      for a, v in zip(m.axes, m.values, strict=True)},
+                           "saving": {k: _grid(100 * v, "%") for k, v in m.saving.items()},
+                           "status": [list(row) for row in m.status]}
+    out["worst"] = {}
+    for k in m.saving:
+        s, cond = m.worst(k)
+        out["worst"][k] = {"saving": quantity(100 * s, "%"),
+                           "condition": cond.label() if cond else None}
+    return out
+
+
+def robust_data(r: RobustResult, outer: dict[str, tuple[float, str]]) -> dict[str, Any]:
+    """The robust design: conditions, both designs' savings per condition and worst cases."""
+    d = r.design
+    return {
+        "mode": d.mode, "metric": d.metric, "conditions": [c.label() for c in r.conditions],
+        "saving": {m: {k: quantity(100 * v, "%") for k, v in s.items()}
+                   for m, s in r.savings.items()},
+        "worst": {m: {k: quantity(100 * r.worst(m, k), "%") for k in s}
+                  for m, s in r.savings.items()},
+        "nominal_meets_the_limits_everywhere": d.nominal_feasible,
+        "design": candidate_data(r.candidate, outer),
+        "solver": d.solver,
+    }
+
+
+def design_data(r: DesignResult) -> dict[str, Any]:
+    """The content of ``design.json`` (module docstring)."""
+    d, g = r.config.design, r.gait
+    return {
+        "title": f"{r.title}: the spring design",
+        "pays": r.pays,
+        "hexaleg_version": importlib.metadata.version("hexaleg"),
+        "robot": {"name": r.robot, "title": r.title, "mass": quantity(r.mass, "kg")},
+        "actuator": r.actuator,
+        "gait": {"period": quantity(g.period, "s"), "stride": quantity(g.stride, "m"),
+                 "duty_factor": quantity(g.duty_factor, "1"), "samples": g.samples},
+        "settings": {
+            "families": list(d.families), "classes": list(r.recommended.optimum.groups),
+            "grouping": d.grouping, "metric": d.metric, "force_objective": "joule",
+            "max_torque": None if d.max_torque is None else quantity(d.max_torque, "N·m"),
+            "max_deflection": (None if d.deflection_bound is None
+                               else quantity(d.deflection_bound, "rad")),
+            "materials": list(d.materials), "safety_factor": quantity(d.safety_factor, "1"),
+            "arbor_diameter": quantity(d.arbor_diameter, "m"),
+            "contact_mu": quantity(r.config.contact.mu, "1")},
+        "baseline": {m: quantity(r.baseline[m], metric_unit(m)) for m in SAVING_METRICS},
+        "recommended": candidate_data(r.recommended, r.outer),
+        "candidates": [candidate_data(c, r.outer) for c in r.candidates],
+        "pareto": [{"fraction": quantity(f, "1"), **candidate_data(c, r.outer)}
+                   for f, c in r.pareto],
+        "maps": [map_data(m) for m in r.maps],
+        "worst": {k: {"saving": quantity(100 * s, "%"), "condition": c}
+                  for k, (s, c) in r.worst.items()},
+        "robust": None if r.robust is None else robust_data(r.robust, r.outer),
+        "timings": {k: quantity(v, "s") for k, v in r.timings.items()},
+        "notes": list(r.notes),
+    }

@@ -1,0 +1,110 @@
+"""``hexaleg design`` on disk: ``design.json``, ``design.html`` and the plots.
+
+:func:`write_design` computes the design (:func:`hexaleg.studies.design.build.build_design`),
+draws its figures (:mod:`hexaleg.outputs.design_plots`) as PNG, renders the self-contained page
+(:func:`hexaleg.outputs.html.render_design_html`, plots embedded) and writes the JSON content
+(:func:`hexaleg.studies.design.data.design_data`) next to it. The page is its own, not a section
+of ``report.html``: the design takes seconds to tens of seconds (families, maps, the robust
+program) and the report must stay fast; the report links to it when it sits beside it.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from hexaleg.errors import OutputError
+from hexaleg.outputs import design_plots, plots
+from hexaleg.outputs.html import render_design_html
+from hexaleg.studies.design.build import DesignResult, build_design
+from hexaleg.studies.design.config import DesignConfig
+from hexaleg.studies.design.data import design_data
+
+
+@dataclass(frozen=True, eq=False)
+class WrittenDesign:
+    """A computed and written design: the result, the JSON content, the files."""
+
+    result: DesignResult
+    data: dict[str, Any]
+    files: tuple[Path, ...]
+
+
+def _stderr_progress(message: str) -> None:
+    print(f"hexaleg design: {message}", file=sys.stderr, flush=True)
+
+
+def figures(r: DesignResult) -> dict[str, Figure]:
+    """The design's figures by name: one heat map per robustness map (``map_<a>_<b>``), the
+    Pareto front and the robust design against the nominal one."""
+    m = r.config.design.metric
+    out = {f"map_{mp.axes[0]}_{mp.axes[1]}": design_plots.robustness_heatmap(
+        mp.axes, mp.values, 100 * mp.saving[m if m in mp.saving else "electrical"], m)
+        for mp in r.maps}
+    points = [c for _, c in r.pareto]
+    if points:
+        chosen = next((i for i, c in enumerate(points) if c is r.recommended), None)
+        out["pareto"] = design_plots.pareto_figure(
+            np.array([np.abs(c.optimum.analysis.tau_spring).max() for c in points]),
+            np.array([c.optimum.analysis.spring_energy.max() for c in points]),
+            {f"{m} (net)": 100 * np.array([c.net[m] for c in points]),
+             "joule": 100 * np.array([c.row["saving.joule"] for c in points])}, chosen)
+    if r.robust is not None:
+        sv = r.robust.savings
+        out["robust"] = design_plots.robust_figure(
+            [c.short_label() for c in r.robust.conditions],
+            {k: 100 * v["robust"] for k, v in sv.items()},
+            {k: 100 * v["nominal"] for k, v in sv.items()})
+    return out
+
+
+def write_design(out: str | Path = "hexaleg-design", config: DesignConfig | None = None, *,
+                 progress: Callable[[str], None] | None = _stderr_progress) -> WrittenDesign:
+    """Compute the design and write ``design.json``, ``design.html`` and the plots into ``out``.
+
+    Args:
+        out: Output directory (created with its parents if missing).
+        config: The configuration (default :class:`DesignConfig`).
+        progress: Called with one status line per step (default: print to stderr); None: quiet.
+
+    Returns:
+        The result, the JSON content and the files written.
+
+    Raises:
+        OutputError: ``out`` cannot be created or written (checked before computing; names it).
+        HexalegError: from the computation (:func:`build_design`).
+    """
+    out = Path(out)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        probe = out / ".hexaleg-write-test"
+        probe.write_bytes(b"")
+        probe.unlink()
+    except OSError as e:
+        raise OutputError(f"cannot write the design to the directory {out}: {e}") from e
+    r = build_design(config, progress=progress)
+    files: list[Path] = []
+    images = {}
+    for name, fig in figures(r).items():
+        png, written = plots.save(fig, out / f"{name}.png")
+        images[name] = plots.data_uri(png)
+        files += written
+    data = {**design_data(r), "files": [*sorted(p.name for p in files), "design.html",
+                                        "design.json"]}
+    for path, text in ((out / "design.json", json.dumps(data, indent=1, ensure_ascii=False)),
+                       (out / "design.html", render_design_html(data, images))):
+        try:
+            path.write_text(text, encoding="utf-8")
+        except OSError as e:
+            raise OutputError(f"cannot write {path}: {e}") from e
+        files.append(path)
+    if progress:
+        progress(f"wrote {out / 'design.html'}")
+    return WrittenDesign(result=r, data=data, files=tuple(files))

@@ -1,0 +1,106 @@
+"""Tests of hexaleg.studies.design.build: the recommended design, its parts, maps and robust
+design agree with fresh analyses through the public API."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+import hexaleg
+from hexaleg.design.robustness import Condition, condition_gait
+from hexaleg.design.torsion_spring import D_STEP
+from hexaleg.robot.payload import with_payload
+from hexaleg.robot.springs import SpringSet
+
+
+def _fresh(result, condition: Condition | None = None):
+    """The condition's gait prepared from scratch, through the public API."""
+    condition = condition or Condition()
+    robot = hexaleg.load_robot()
+    if condition.payload:
+        robot = with_payload(robot, condition.payload * robot.mass)
+    gait = condition_gait(result.gait, condition)
+    contact = hexaleg.ContactParams(mu=condition.mu if condition.mu else 0.6)
+    return hexaleg.prepare(robot, hexaleg.tripod_gait(robot, gait),
+                           motor=hexaleg.RunSpec().actuator(), contact=contact)
+
+
+def test_recommended_saving_equals_a_fresh_evaluation(written):
+    r = written[0].result
+    rec = r.recommended
+    a = _fresh(r).evaluate(rec.optimum.springs, "joule")
+    for m in ("electrical", "joule"):
+        assert a.savings["total"][m] == pytest.approx(rec.row[f"saving.{m}"], rel=1e-9)
+    assert rec.row["saving.electrical"] > 0.05  # the springs pay on the default robot
+    assert rec.net["electrical"] < rec.row["saving.electrical"]  # their mass costs energy
+
+
+def test_the_recommendation_is_the_best_buildable_design_evaluated(written):
+    r = written[0].result
+    pool = [*r.candidates, *(c for _, c in r.pareto)]
+    best = max((c for c in pool if c.buildable), key=lambda c: c.net["electrical"])
+    assert r.recommended.net["electrical"] == best.net["electrical"]
+    assert [c.net["electrical"] for c in r.candidates] == sorted(
+        (c.net["electrical"] for c in r.candidates), reverse=True)
+
+
+def test_every_part_is_a_spring_of_the_rate_the_design_needs(written):
+    rec = written[0].result.recommended
+    assert rec.parts and rec.buildable
+    for p in rec.parts:
+        s = p.spring
+        assert abs(s.rate / p.rate - 1) <= D_STEP / s.mean_diameter + 1e-12
+        assert s.outer_diameter <= p.max_outer_diameter
+        assert s.stress * s.design_factor <= s.yield_strength
+        assert s.preload_angle == pytest.approx(p.preload_torque / s.rate)
+
+
+def test_pareto_points_keep_their_torque_bound(written):
+    r = written[0].result
+    assert r.pareto[-1][0] == 1.0
+    for f, c in r.pareto[:-1]:
+        assert np.abs(c.optimum.analysis.tau_spring).max() <= c.max_torque * (1 + 1e-6)
+        assert f < 1
+
+
+@pytest.mark.parametrize(("index", "cell"), [(0, (0, 1)), (0, (2, 0)), (1, (1, 0))])
+def test_map_points_equal_a_fresh_analysis(written, index, cell):
+    r = written[0].result
+    mp = r.maps[index]
+    cond = mp.condition(*cell)
+    p = _fresh(r, cond)
+    a = p.evaluate(r.recommended.optimum.springs, "joule")
+    for m in ("electrical", "joule"):
+        assert mp.saving[m][cell] == pytest.approx(a.savings["total"][m], rel=1e-9)
+    worst, where = mp.worst("electrical")
+    assert worst == np.nanmin(mp.saving["electrical"]) and where is not None
+
+
+def test_robust_design_never_worse_in_its_worst_case(written):
+    rb = written[0].result.robust
+    d = rb.design
+    assert len(rb.conditions) == 5  # nominal + 4 corners
+    assert d.worst >= d.nominal_worst - 1e-9
+    np.testing.assert_allclose(rb.savings[d.metric]["robust"], d.saving, rtol=1e-9)
+    # the robust springs through a fresh analysis of one corner
+    corner = rb.conditions[-1]
+    fresh = _fresh(written[0].result, corner).evaluate(SpringSet(d.springs), "joule")
+    assert fresh.savings["total"][d.metric] == pytest.approx(d.saving[-1], rel=1e-9)
+
+
+def test_summary_names_the_design(written):
+    text = written[0].result.summary()
+    assert "fit " in text and "%" in text
+    assert dataclasses.is_dataclass(written[0].result)
+
+
+def test_a_design_that_does_not_pay_for_its_mass_says_so(written):
+    r = written[0].result
+    assert r.pays and r.summary().startswith("fit ")
+    rec = r.recommended
+    heavy = dataclasses.replace(rec, net={**rec.net, "electrical": -0.01})
+    worse = dataclasses.replace(r, recommended=heavy)
+    assert not worse.pays
+    assert worse.summary().startswith("no spring pays for its mass here")

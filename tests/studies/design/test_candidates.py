@@ -1,0 +1,53 @@
+"""Tests of hexaleg.studies.design.candidates: one family's design, its parts and net saving."""
+
+from __future__ import annotations
+
+import pytest
+
+import hexaleg
+from hexaleg.design.evaluator import RunSpec
+from hexaleg.design.robustness import Condition, condition_prepared
+from hexaleg.robot.payload import with_point_masses
+from hexaleg.studies.design.candidates import carried, design_family
+from hexaleg.studies.design.config import DesignParams
+from hexaleg.studies.design.groups import design_groups
+
+RUN = RunSpec()
+GAIT = RUN.gait({"samples": 100})
+OUTER = {"coxa": 0.03, "femur": 0.02, "tibia": 0.02}
+
+
+@pytest.fixture(scope="module")
+def nominal():
+    return condition_prepared(RUN, GAIT, Condition())
+
+
+def test_net_saving_pays_for_the_springs_mass(robot, nominal):
+    classes = design_groups(robot, ("femur", "tibia"), "class")
+    c = design_family(nominal, RUN, GAIT, classes, classes, "one_sided", DesignParams(), OUTER)
+    masses = {j: 0.0 for j in robot.joint_names}
+    for p in c.parts:
+        for j in p.joints:
+            masses[j] += p.spring.mass
+    assert c.spring_mass == pytest.approx(sum(masses.values()))
+    heavy = with_point_masses(robot, masses)
+    p = hexaleg.prepare(heavy, hexaleg.tripod_gait(heavy, GAIT), motor=RUN.actuator())
+    value = p.evaluate(c.optimum.springs).metrics["total"]["electrical"]
+    base = nominal.baseline()["total"]["electrical"]
+    assert c.net["electrical"] == pytest.approx((base - value) / base, rel=1e-9)
+    assert c.net["electrical"] < c.row["saving.electrical"]
+    assert carried(RUN, GAIT, masses).robot.mass == pytest.approx(heavy.mass)
+    # a class's share: the saving lost without it
+    assert c.marginal["tibia"] > c.marginal["femur"] > 0
+
+
+def test_mirrored_design_contains_the_class_design(robot, nominal):
+    classes = design_groups(robot, ("tibia",), "class")
+    pairs = design_groups(robot, ("tibia",), "mirrored")
+    params = DesignParams()
+    by_class = design_family(nominal, RUN, GAIT, classes, classes, "one_sided", params, OUTER)
+    outer = {g: 0.02 for g in pairs}
+    mirrored = design_family(nominal, RUN, GAIT, pairs, classes, "one_sided", params, outer)
+    assert set(mirrored.optimum.groups) == set(pairs)
+    assert mirrored.optimum.saving >= by_class.optimum.saving - 1e-9
+    assert mirrored.label == "one_sided"

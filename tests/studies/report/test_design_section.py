@@ -1,0 +1,62 @@
+"""Tests of hexaleg.studies.report.design_section: the report leads with hexaleg design's answer
+when given its design.json, and says how to get one otherwise."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from hexaleg.errors import ConfigError
+from hexaleg.outputs.html import render_html
+from hexaleg.studies.design.config import DesignConfig
+from hexaleg.studies.design.write import write_design
+from hexaleg.studies.report.build import build_report
+from hexaleg.studies.report.config import ReportConfig
+from hexaleg.studies.report.design_section import design_section
+
+TINY = {"design": {"samples": 100, "families": ["linear"], "map_period": [1.0],
+                   "map_stride": [1.0], "map_payload": [0.0], "map_mu": [0.6],
+                   "robust_period": [1.0, 1.25], "robust_stride": [1.0, 1.0],
+                   "robust_payload": [0.0, 0.0], "robust_mu": [0.6, 0.6],
+                   "pareto_fractions": []}}
+
+
+@pytest.fixture(scope="module")
+def design_json(tmp_path_factory):
+    out = tmp_path_factory.mktemp("design")
+    write_design(out, DesignConfig.from_mapping(TINY), progress=None)
+    return out / "design.json"
+
+
+def test_the_section_carries_design_json_numbers(design_json):
+    data = json.loads(design_json.read_text())
+    s = design_section(design_json)
+    assert s["label"] == data["recommended"]["label"] == "linear"
+    assert s["saving"] == data["recommended"]["saving"]
+    assert [p["group"] for p in s["parts"]] == [p["group"] for p in data["recommended"]["parts"]]
+    first = data["recommended"]["parts"][0]["torsion_spring"]
+    assert s["parts"][0]["rate_nmm_per_deg"] == first["rate_nmm_per_deg"]
+    assert s["robust"] == data["robust"]["worst"]
+    assert s["html"].endswith("design.html")
+    assert design_section(None) is None
+
+
+def test_the_report_page_leads_with_the_design(design_json):
+    cfg = ReportConfig.from_mapping({"gait": {"samples": 100},
+                                     "report": {"stiffness_points": 2, "paper_samples": 16,
+                                                "design": str(design_json)}})
+    r = build_report(cfg)
+    assert r.data["design"]["label"] == "linear"
+    plots = ("joint_angles", "joint_torques", "joint_power", "foot_forces", "energy_per_joint",
+             "stiffness_curve")
+    html = render_html({**r.data, "files": []}, dict.fromkeys(plots, ""))
+    assert html.index("Fit these springs") < html.index("Robot and gait")
+
+
+def test_a_missing_design_says_how_to_make_one(tmp_path):
+    with pytest.raises(ConfigError, match="hexaleg design --out DIR"):
+        design_section(tmp_path / "nope.json")
+    (tmp_path / "bad.json").write_text("{}")
+    with pytest.raises(ConfigError, match=r"not a design\.json"):
+        design_section(tmp_path / "bad.json")
