@@ -1,0 +1,193 @@
+"""What a simulated walk is judged by: energy, tracking, distance, drift, slip, contacts, forces.
+
+All measures are taken over the evaluated window — the last whole cycles of a run, after the
+settling cycles — from a :class:`~hexaleg.studies.simulate.stepping.Trajectory`, against the plan
+(:class:`~hexaleg.motion.trajectory.Motion`) sampled at the same instants. The energy goes through
+the analysis' own energy module (:func:`hexaleg.dynamics.energy.metrics`) with the simulated motor
+torques and joint speeds: on the simulation's grid the rectangle rule ``Σ x dt`` of a periodic
+window is the trapezoidal rule the analysis uses (:mod:`hexaleg.dynamics.energy`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from hexaleg.dynamics import energy
+from hexaleg.motion.trajectory import Motion
+from hexaleg.studies.simulate.model import SimModel
+from hexaleg.studies.simulate.stepping import Trajectory, tilt
+
+LOSS_GRACE = 0.02
+"""Fraction of a stance at its start and end where a foot not yet / no longer pressing is not
+counted as a contact loss (the handover of the load takes the contact's time constant)."""
+
+
+def planned_index(motion: Motion, t: np.ndarray) -> np.ndarray:
+    """The motion's sample at or before each time ``t`` (periodic), shape of ``t``."""
+    return np.floor(np.asarray(t) / motion.dt + 1e-9).astype(int) % motion.n_samples
+
+
+@dataclass(frozen=True)
+class Walk:
+    """The walk over the evaluated window (SI).
+
+    Attributes:
+        distance_per_cycle: Base travel along the heading per cycle, m.
+        height_drift: Mean base height minus the planned mean, m.
+        roll_max: Largest |roll|, rad. pitch_max: Largest |pitch|, rad.
+        tracking_rms: RMS joint-angle error, rad. tracking_max: Largest |error|, rad.
+        tracking_rms_joint: RMS error per joint, (nj,), rad.
+        slip_max: Largest horizontal foot travel within one stance, m.
+        slip_mean: Mean over stances of that travel, m.
+        contact_losses: Stance samples (inside the grace margins) with the foot above the
+            ground, fraction of such samples.
+        stances: Stance phases evaluated.
+    """
+
+    distance_per_cycle: float
+    height_drift: float
+    roll_max: float
+    pitch_max: float
+    tracking_rms: float
+    tracking_max: float
+    tracking_rms_joint: np.ndarray
+    slip_max: float
+    slip_mean: float
+    contact_losses: float
+    stances: int
+
+
+def walk(sim: SimModel, motion: Motion, traj: Trajectory, window: slice, cycles: int,
+         q_ref: np.ndarray) -> Walk:
+    """The walk measures of ``traj`` over ``window`` (``cycles`` whole cycles).
+
+    Args:
+        sim: The model (joint map, robot heading).
+        motion: The plan.
+        traj: The run.
+        window: The evaluated steps.
+        cycles: Whole cycles in the window, ≥ 1.
+        q_ref: Planned joint angles at every step of the run, shape (n, nj), rad.
+    """
+    qpos = traj.qpos[window]
+    heading = sim.robot.heading
+    travel = float((qpos[-1, :3] - qpos[0, :3]) @ heading)
+    # the window's last row is one step short of a whole number of cycles: add its velocity
+    travel += float(traj.qvel[window][-1, :3] @ heading) * (traj.t[1] - traj.t[0])
+    k = planned_index(motion, traj.t[window])
+    roll, pitch = tilt(qpos)
+    err = sim.joints.joints_mj(qpos) - q_ref[window]
+    dt = float(traj.t[1] - traj.t[0])
+    t = traj.t[window]
+    # the plan one step before and after the window: a stance running over its edge is cut
+    edges = planned_index(motion, np.r_[t[0] - dt, t, t[-1] + dt])
+    stance = motion.stance[edges].astype(bool)
+    slips, lost, counted = [], 0, 0
+    for leg in range(stance.shape[1]):
+        on = np.flatnonzero(np.diff(stance[:, leg].astype(int))) + 1
+        starts = [i for i in on if stance[i, leg]]
+        ends = [i for i in on if not stance[i, leg]]
+        for start in starts:
+            end = next((e for e in ends if e > start), None)
+            if end is None:  # a stance cut by the window's end
+                continue
+            start, end = start - 1, end - 1  # rows of the window
+            feet = traj.feet[window][start:end, leg, :2]
+            slips.append(float(np.max(np.linalg.norm(feet - feet[0], axis=1))))
+            grace = int(np.ceil(LOSS_GRACE * (end - start)))
+            z = traj.feet[window][start + grace:end - grace, leg, 2]
+            lost += int(np.sum(z > 0.0))
+            counted += len(z)
+    return Walk(distance_per_cycle=travel / cycles,
+                height_drift=float(qpos[:, 2].mean() - motion.q[k, 2].mean()),
+                roll_max=float(np.abs(roll).max()), pitch_max=float(np.abs(pitch).max()),
+                tracking_rms=float(np.sqrt(np.mean(err**2))), tracking_max=float(np.abs(err).max()),
+                tracking_rms_joint=np.sqrt(np.mean(err**2, axis=0)),
+                slip_max=max(slips, default=0.0),
+                slip_mean=float(np.mean(slips)) if slips else 0.0,
+                contact_losses=lost / counted if counted else 0.0, stances=len(slips))
+
+
+def cycle_energies(sim: SimModel, traj: Trajectory, window: slice, cycles: int, motor: Any
+                   ) -> list[dict[str, Any]]:
+    """:func:`hexaleg.dynamics.energy.metrics` of each evaluated cycle, from the simulated motor
+    torques and joint speeds.
+
+    Args:
+        sim: The model.
+        traj: The run.
+        window: The evaluated steps (``cycles`` whole cycles).
+        cycles: Cycles in the window.
+        motor: The motor model of the analysis (a Motor or a per-joint set).
+    """
+    tau = traj.tau_motor[window]
+    qdot = sim.joints.joints_mj(traj.qvel[window], velocity=True)
+    dt = float(traj.t[1] - traj.t[0])
+    steps = len(tau) // cycles
+    return [energy.metrics(tau[c * steps:(c + 1) * steps], qdot[c * steps:(c + 1) * steps], dt,
+                           motor, joint_names=sim.robot.joint_names)
+            for c in range(cycles)]
+
+
+def mean_metrics(cycles: list[dict[str, Any]]) -> dict[str, float]:
+    """The per-cycle totals averaged over the cycles (energies J per cycle, torques N·m)."""
+    keys = cycles[0]["total"]
+    return {key: float(np.mean([c["total"][key] for c in cycles])) for key in keys}
+
+
+def foot_forces(sim: SimModel, motion: Motion, traj: Trajectory, window: slice,
+                predicted: np.ndarray, samples: int = 200) -> dict[str, float]:
+    """Simulated ground forces on the stance feet against the analysis', at up to ``samples``
+    of the window's steps: MuJoCo's contact forces (``mj_contactForce``, world frame) of each
+    foot sphere at the recorded state.
+
+    Args:
+        sim: The model.
+        motion: The plan.
+        traj: The run.
+        window: The evaluated steps.
+        predicted: The analysis' forces, shape (T, n_legs, 3), N.
+        samples: Steps compared, ≥ 1.
+
+    Returns:
+        ``normal_rms`` and ``tangential_rms`` (N): RMS differences over planned stance feet;
+        ``weight`` (N): the robot's weight, for scale; ``normal_mean_sim`` and
+        ``normal_mean_predicted`` (N): mean normal force of a stance foot.
+    """
+    import mujoco
+
+    m = sim.model
+    assert isinstance(m, mujoco.MjModel)
+    data = mujoco.MjData(m)
+    rows = np.arange(window.start or 0, window.stop or traj.n)
+    rows = rows[np.linspace(0, len(rows) - 1, min(samples, len(rows))).astype(int)]
+    leg_of = {int(g): i for i, g in enumerate(sim.foot_geoms)}
+    sim_f = np.zeros((len(rows), len(leg_of), 3))
+    wrench = np.zeros(6)
+    for r, k in enumerate(rows):
+        data.qpos[:], data.qvel[:] = traj.qpos[k], traj.qvel[k]
+        data.ctrl[:sim.robot.nj] = traj.controls[k]
+        data.qfrc_applied[sim.joints.dof] = sim.springs.python_torque(
+            traj.qpos[k, sim.joints.qpos], traj.qvel[k, sim.joints.dof])
+        mujoco.mj_forward(m, data)
+        for c in range(data.ncon):
+            con = data.contact[c]
+            leg = leg_of.get(int(con.geom[1]), leg_of.get(int(con.geom[0]), -1))
+            if leg < 0 or con.efc_address < 0:
+                continue
+            mujoco.mj_contactForce(m, data, c, wrench)
+            frame = np.asarray(con.frame).reshape(3, 3)
+            f = frame.T @ wrench[:3]  # force on geom 2 (the foot) from geom 1 (the ground)
+            sim_f[r, leg] = f if int(con.geom[1]) in leg_of else -f
+    k = planned_index(motion, traj.t[rows])
+    stance = motion.stance[k].astype(bool)
+    pred = predicted[k]
+    diff = (sim_f - pred)[stance]
+    return {"normal_rms": float(np.sqrt(np.mean(diff[:, 2] ** 2))),
+            "tangential_rms": float(np.sqrt(np.mean(np.sum(diff[:, :2] ** 2, axis=1)))),
+            "normal_mean_sim": float(sim_f[stance][:, 2].mean()),
+            "normal_mean_predicted": float(pred[stance][:, 2].mean()),
+            "weight": float(sim.robot.mass * np.linalg.norm(m.opt.gravity))}

@@ -1,0 +1,200 @@
+"""The robot's kinematic tree as MJCF, from its Pinocchio model (the URDF as hexaleg loaded it).
+
+MuJoCo can read a URDF itself, but hexaleg's :class:`~hexaleg.robot.model.Robot` is already the URDF
+as the analysis sees it: fixed links merged into their parent joints, meshes that were missing
+replaced, feet found. Writing the MJCF from that model makes the simulated robot the analysed one
+by construction:
+
+* one ``<body>`` per Pinocchio joint, in Pinocchio's depth-first order, placed at
+  ``model.jointPlacements[i]``, with the inertia ``model.inertias[i]`` (mass, centre of mass,
+  rotational inertia about the centre of mass, in the joint frame) and the joint's rotor inertia
+  ``model.armature`` as MuJoCo armature;
+* the free flyer as ``<freejoint>``; a 1-DoF joint as a ``hinge`` (revolute, continuous) or
+  ``slide`` (prismatic) about the axis of its motion subspace ``S`` (the joint Jacobian column in
+  the joint frame at the neutral configuration: the angular part for a revolute joint, the linear
+  part for a prismatic one); joint limits are not enforced (the analysis does not either);
+* the collision geometry: boxes, spheres and cylinders as such, a mesh as the box of its local
+  bounding box (a stand-in, noted); the geometry of the foot links is left out — the foot is a
+  contact sphere centred on the foot frame (:mod:`hexaleg.studies.simulate.model`);
+* a ``<site>`` at every foot frame (foot positions are read there).
+
+The tree's shape (which joints exist, in which order) is the same in both programs, and
+:mod:`hexaleg.studies.simulate.state` maps the vectors between them by joint name.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+from xml.sax.saxutils import quoteattr
+
+import numpy as np
+import pinocchio as pin
+
+from hexaleg.errors import RobotModelError
+from hexaleg.robot.model import Robot
+
+FREE_JOINT = "root"
+"""Name of the MuJoCo free joint of the base."""
+GEOM_CLASS = "robot"
+"""MJCF default class of the robot's collision geoms (no automatic contacts: ground pairs only)."""
+FOOT_CLASS = "foot"
+"""MJCF default class of the foot contact spheres."""
+
+
+def fmt(x: object) -> str:
+    """Numbers as an MJCF attribute value: full precision (``repr``), space separated."""
+    return " ".join(repr(float(v)) for v in np.ravel(np.asarray(x, dtype=float)))
+
+
+def wxyz(rotation: np.ndarray) -> str:
+    """A rotation matrix (3, 3) as an MJCF ``quat`` (w x y z)."""
+    q = pin.Quaternion(np.asarray(rotation, dtype=float))
+    return fmt([q.w, q.x, q.y, q.z])
+
+
+def foot_geom(leg: str) -> str:
+    """Name of a leg's foot contact sphere."""
+    return f"{leg}_foot_contact"
+
+
+def foot_site(leg: str) -> str:
+    """Name of the site at a leg's foot frame."""
+    return f"{leg}_foot"
+
+
+@dataclass(frozen=True)
+class TreeXml:
+    """The robot's ``<body>`` tree and what it contains.
+
+    Attributes:
+        xml: The MJCF of the base body and its descendants (to go in ``<worldbody>``).
+        geoms: Names of the robot's collision geoms (foot spheres excluded), in XML order.
+        notes: What was replaced or approximated (a mesh as its bounding box).
+    """
+
+    xml: str
+    geoms: tuple[str, ...]
+    notes: tuple[str, ...]
+
+
+def motion_axis(robot: Robot, joint: int) -> tuple[str, np.ndarray]:
+    """The MJCF joint type and axis of a 1-DoF Pinocchio joint.
+
+    Args:
+        robot: The robot.
+        joint: Pinocchio joint id (≥ 2).
+
+    Returns:
+        ``("hinge" | "slide", axis (3,))``, the axis a unit vector in the joint frame.
+
+    Raises:
+        RobotModelError: the joint is neither a revolute nor a prismatic 1-DoF joint.
+    """
+    model = robot.model
+    jm = model.joints[joint]
+    if jm.nv != 1:
+        raise RobotModelError(f"joint {model.names[joint]} has {jm.nv} degrees of freedom; the "
+                              "simulation takes 1-DoF revolute or prismatic joints")
+    data = model.createData()
+    pin.computeJointJacobians(model, data, pin.neutral(model))
+    s = pin.getJointJacobian(model, data, joint, pin.ReferenceFrame.LOCAL)[:, jm.idx_v]
+    lin, ang = s[:3], s[3:]
+    if np.linalg.norm(ang) > 0.5 and np.linalg.norm(lin) < 1e-9:
+        return "hinge", ang / np.linalg.norm(ang)
+    if np.linalg.norm(lin) > 0.5 and np.linalg.norm(ang) < 1e-9:
+        return "slide", lin / np.linalg.norm(lin)
+    raise RobotModelError(f"joint {model.names[joint]} ({jm.shortname()}) is neither revolute "
+                          "nor prismatic; the simulation cannot build it")
+
+
+def _shape(obj: pin.GeometryObject) -> tuple[str, np.ndarray, np.ndarray, np.ndarray, str]:
+    """(MJCF type, size, position, rotation, note) of a collision object in its joint frame."""
+    g, placement = obj.geometry, obj.placement
+    kind = type(g).__name__
+    pos, rot = placement.translation.copy(), placement.rotation.copy()
+    if kind == "Box":
+        return "box", np.asarray(g.halfSide), pos, rot, ""
+    if kind == "Sphere":
+        return "sphere", np.array([g.radius]), pos, rot, ""
+    if kind == "Cylinder":
+        return "cylinder", np.array([g.radius, g.halfLength]), pos, rot, ""
+    if kind == "Capsule":
+        return "capsule", np.array([g.radius, g.halfLength]), pos, rot, ""
+    g.computeLocalAABB()
+    lo, hi = np.asarray(g.aabb_local.min_), np.asarray(g.aabb_local.max_)
+    return ("box", np.maximum((hi - lo) / 2, 1e-6), pos + rot @ ((hi + lo) / 2), rot,
+            f"{obj.name}: {kind} collision shape simulated as its bounding box")
+
+
+def _feet_links(robot: Robot) -> set[int]:
+    """Frame ids of the foot frames and of the links they are (geometry there is the foot's)."""
+    model = robot.model
+    feet = {leg.foot_frame_id for leg in robot.legs}
+    names = {model.frames[f].name for f in feet}
+    return feet | {i for i, f in enumerate(model.frames) if f.name in names}
+
+
+def tree_xml(robot: Robot, foot_radius: float) -> TreeXml:
+    """The MJCF ``<body>`` tree of ``robot`` (module docstring).
+
+    Args:
+        robot: The robot.
+        foot_radius: Radius of the foot contact spheres, m.
+
+    Returns:
+        The tree, its collision geom names and notes.
+
+    Raises:
+        RobotModelError: a joint that is not a free flyer at the root or a 1-DoF joint below.
+    """
+    model = robot.model
+    if model.joints[1].shortname() != "JointModelFreeFlyer":
+        raise RobotModelError(f"{robot.name}: the simulation needs a free-flyer base joint, "
+                              f"found {model.joints[1].shortname()}")
+    children: dict[int, list[int]] = {i: [] for i in range(model.njoints)}
+    for i in range(2, model.njoints):
+        children[model.parents[i]].append(i)
+    feet = _feet_links(robot)
+    geoms: list[str] = []
+    notes: list[str] = []
+    by_joint: dict[int, list[pin.GeometryObject]] = {}
+    for obj in robot.collision_model.geometryObjects:
+        if obj.parentFrame not in feet:
+            by_joint.setdefault(obj.parentJoint, []).append(obj)
+
+    def body(i: int) -> Iterator[str]:
+        placement, inertia = model.jointPlacements[i], model.inertias[i]
+        c = inertia.inertia
+        yield (f'<body name={quoteattr(model.names[i])} pos="{fmt(placement.translation)}" '
+               f'quat="{wxyz(placement.rotation)}">')
+        yield (f'<inertial pos="{fmt(inertia.lever)}" mass="{fmt(inertia.mass)}" fullinertia="'
+               f'{fmt([c[0, 0], c[1, 1], c[2, 2], c[0, 1], c[0, 2], c[1, 2]])}"/>')
+        if i == 1:
+            yield f'<freejoint name="{FREE_JOINT}"/>'
+        else:
+            kind, axis = motion_axis(robot, i)
+            armature = float(model.armature[model.joints[i].idx_v])
+            yield (f'<joint name={quoteattr(model.names[i])} type="{kind}" axis="{fmt(axis)}" '
+                   f'limited="false" armature="{fmt(armature)}"/>')
+        for obj in by_joint.get(i, []):
+            kind, size, pos, rot, note = _shape(obj)
+            name = f"{obj.name}"
+            geoms.append(name)
+            if note:
+                notes.append(note)
+            yield (f'<geom name={quoteattr(name)} class="{GEOM_CLASS}" type="{kind}" '
+                   f'size="{fmt(size)}" pos="{fmt(pos)}" quat="{wxyz(rot)}"/>')
+        for leg in robot.legs:
+            frame = model.frames[leg.foot_frame_id]
+            if frame.parentJoint == i:
+                p = frame.placement.translation
+                yield f'<site name="{foot_site(leg.name)}" pos="{fmt(p)}"/>'
+                yield (f'<geom name="{foot_geom(leg.name)}" class="{FOOT_CLASS}" type="sphere" '
+                       f'size="{fmt(foot_radius)}" pos="{fmt(p)}"/>')
+        for child in children[i]:
+            yield from body(child)
+        yield "</body>"
+
+    xml = "\n".join(body(1))
+    return TreeXml(xml=xml, geoms=tuple(geoms), notes=tuple(notes))

@@ -1,0 +1,315 @@
+"""The robot in MuJoCo: tree, ground, contacts, springs, servos, sensors, timestep and integrator.
+
+:func:`build_model` writes one MJCF document (:mod:`~hexaleg.studies.simulate.mjcf` for the robot's
+tree, :mod:`~hexaleg.studies.simulate.springs` for the springs,
+:mod:`~hexaleg.studies.simulate.controllers` for the servos) and compiles it:
+
+* a ground plane (the world's ``ground`` geom) and explicit contact ``<pair>``\\ s only — the foot
+  spheres, and every collision geom of the robot that stays clear of the ground over the planned
+  motion (:data:`CLEARANCE`; a geom that the plan brings closer, e.g. a shank mesh that contains
+  the foot, is left out and noted). No robot–robot contacts: the analysis has none;
+* contact parameters from :class:`~hexaleg.studies.simulate.ground.Ground` (physical K, B, μ →
+  ``solref``/``solimp``, per pair from its body's ``body_invweight0``), elliptic friction cones
+  (the analysis' ``"soc"`` cone), ``impratio`` and the optional no-slip pass;
+* sensors: each servo's actuator force and each foot site's position.
+
+**Integrator and timestep.** MuJoCo's semi-implicit (symplectic) Euler, with its implicit joint
+damping switched off (``eulerdamp`` disabled) so that the damping force recorded is the one
+applied: every force of the model — servo PD, back-EMF damping, springs, the penalty-like
+contacts — is then explicit in the state, and the recorded motor torque times the recorded speed is
+exactly the power integrated. Symplectic Euler conserves the energy of a conservative system up to
+an O(dt) oscillation without drift (Hairer, Lubich & Wanner, *Geometric Numerical Integration*,
+2006, §VI.3), which is what a run over many cycles needs; a digital servo holds its command over a
+control period anyway. An explicit scheme is stable for ``ẍ = −a ẋ − b x`` while
+``b dt² + 2 a dt < 4`` (the Jury criterion of the symplectic-Euler step matrix);
+:func:`check_timestep` asks for half of that for every servo (``a = max(kd, D)/I``,
+``b = kp/I``, I the effective inertia ``1/(M⁻¹)_jj`` at the start) and every foot contact
+(``a = BÂ``, ``b = KÂ``), and a timestep below the gait's sample spacing. The default
+:data:`TIMESTEP` meets both for the built-in robot; the convergence of the results under dt/2 is
+in ``docs/simulate.md``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import pinocchio as pin
+
+from hexaleg.checks import positive
+from hexaleg.errors import InvalidParameterError
+from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.model import Robot
+from hexaleg.robot.springs import SpringSet
+from hexaleg.studies.simulate.controllers import Servo, ServoMotor, servo_xml
+from hexaleg.studies.simulate.ground import FOOT_RADIUS, IMPRATIO, Ground
+from hexaleg.studies.simulate.mjcf import (
+    FOOT_CLASS,
+    GEOM_CLASS,
+    fmt,
+    foot_geom,
+    foot_site,
+    tree_xml,
+)
+from hexaleg.studies.simulate.springs import SpringPlan, constant_actuator, plan_springs
+from hexaleg.studies.simulate.state import JointMap
+
+TIMESTEP = 5e-4
+"""s: the default simulation timestep (half the default gait's sample spacing)."""
+CLEARANCE = 2e-3
+"""m: a robot geom gets a ground contact if it stays this far above the ground over the plan."""
+NOSLIP_ITERATIONS = 20
+"""MuJoCo ``noslip_iterations`` when :attr:`Ground.noslip` is set."""
+STABILITY = 2.0
+"""The explicit-stability bound b dt² + 2 a dt must stay below this (half the limit 4)."""
+GROUND = "ground"
+"""Name of the ground plane geom."""
+
+
+@dataclass(frozen=True, eq=False)
+class SimModel:
+    """A compiled MuJoCo model of a robot with its springs and servos.
+
+    Attributes:
+        robot: The robot.
+        model: The ``mujoco.MjModel``.
+        xml: The MJCF it was compiled from (contact ``solref`` set after compiling).
+        joints: The Pinocchio ↔ MuJoCo map.
+        springs: How the springs are built (:class:`~hexaleg.studies.simulate.springs.SpringPlan`).
+        servo: The servo settings.
+        ground: The ground.
+        kp: Position gains, (nj,), N·m/rad. kd: Velocity gains, (nj,), N·m·s/rad.
+        damping: Back-EMF damping D, (nj,), N·m·s/rad. stall: Stall torques, (nj,), N·m.
+        foot_geoms: MuJoCo geom id of each leg's foot sphere, (n_legs,), legs in robot order.
+        notes: What was approximated or left out.
+    """
+
+    robot: Robot
+    model: object
+    xml: str
+    joints: JointMap
+    springs: SpringPlan
+    servo: Servo
+    ground: Ground
+    kp: np.ndarray
+    kd: np.ndarray
+    damping: np.ndarray
+    stall: np.ndarray
+    foot_geoms: np.ndarray
+    notes: tuple[str, ...]
+
+    @property
+    def timestep(self) -> float:
+        """s."""
+        return float(self.model.opt.timestep)  # type: ignore[attr-defined]
+
+    def spring_torque(self, data: object) -> np.ndarray:
+        """The springs' torque on every joint at a computed ``mujoco.MjData`` (after
+        ``mj_forward``), shape (nj,), N·m: MuJoCo's passive spring force (joint and tendon
+        springs), the constant-torque actuators and the non-native terms."""
+        import mujoco
+
+        m, d = self.model, data
+        assert isinstance(m, mujoco.MjModel) and isinstance(d, mujoco.MjData)
+        tau = np.array(d.qfrc_spring)[self.joints.dof]
+        for joint, _ in self.springs.constants:
+            aid = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, constant_actuator(joint))
+            tau[self.robot.column(joint)] += d.actuator_force[aid]
+        return tau + self.springs.python_torque(d.qpos[self.joints.qpos],
+                                                d.qvel[self.joints.dof])
+
+    def sensor_slices(self) -> tuple[slice, slice]:
+        """Where ``sensordata`` holds the servo forces (nj) and the foot positions
+        (n_legs × 3)."""
+        nj, n_legs = self.robot.nj, len(self.robot.legs)
+        return slice(0, nj), slice(nj, nj + 3 * n_legs)
+
+
+def _lowest(kind: int, size: np.ndarray, rot: np.ndarray) -> float:
+    """Depth of a MuJoCo primitive's lowest point below its centre (rotation ``rot`` (3, 3))."""
+    import mujoco
+
+    rz = rot[2]
+    if kind == mujoco.mjtGeom.mjGEOM_SPHERE:
+        return float(size[0])
+    if kind == mujoco.mjtGeom.mjGEOM_BOX:
+        return float(np.abs(rz) @ size[:3])
+    if kind == mujoco.mjtGeom.mjGEOM_CAPSULE:
+        return float(size[1] * abs(rz[2]) + size[0])
+    return float(size[1] * abs(rz[2]) + size[0] * np.sqrt(max(0.0, 1.0 - rz[2] ** 2)))
+
+
+def _inverse_weight(model: object, geom: int) -> float:
+    """MuJoCo's ``body_invweight0`` (translation) of a geom's body, 1/kg: Â of its contacts."""
+    m: Any = model
+    weights = np.asarray(m.body_invweight0).reshape(m.nbody, 2)
+    return float(weights[int(m.geom_bodyid[geom]), 0])
+
+
+def _clear_geoms(model: object, joints: JointMap, motion: Motion, names: tuple[str, ...]
+                 ) -> tuple[list[str], list[str]]:
+    """The geoms that stay :data:`CLEARANCE` above the ground over ``motion`` (about 40 samples),
+    and the others."""
+    import mujoco
+
+    assert isinstance(model, mujoco.MjModel)
+    data = mujoco.MjData(model)
+    ids = [mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, n) for n in names]
+    low = np.full(len(ids), np.inf)
+    for k in np.linspace(0, motion.n_samples - 1, min(40, motion.n_samples)).astype(int):
+        data.qpos[:], data.qvel[:] = joints.to_mujoco(motion.q[k], motion.v[k])
+        mujoco.mj_kinematics(model, data)
+        for n, g in enumerate(ids):
+            rot = data.geom_xmat[g].reshape(3, 3)
+            z = data.geom_xpos[g][2] - _lowest(model.geom_type[g], model.geom_size[g], rot)
+            low[n] = min(low[n], z)
+    clear = [n for n, z in zip(names, low, strict=True) if z > CLEARANCE]
+    return clear, [n for n in names if n not in clear]
+
+
+def _document(robot: Robot, tree: str, plan: SpringPlan, servos: str, pairs: str,
+              sensors: str, timestep: float, ground: Ground) -> str:
+    """The MJCF document."""
+    from hexaleg.units import G
+
+    gravity = ground.gravity(robot.heading, G)
+    noslip = NOSLIP_ITERATIONS if ground.noslip else 0
+    return "\n".join([
+        f'<mujoco model="{robot.name}">',
+        '<compiler angle="radian" autolimits="true"/>',
+        f'<option timestep="{fmt(timestep)}" integrator="Euler" cone="elliptic" '
+        f'impratio="{fmt(IMPRATIO)}" noslip_iterations="{noslip}" gravity="{fmt(gravity)}">',
+        '<flag eulerdamp="disable"/></option>',
+        f'<default><default class="{GEOM_CLASS}"><geom contype="0" conaffinity="0" group="1"/>'
+        f'</default><default class="{FOOT_CLASS}"><geom contype="0" conaffinity="0" group="2"/>'
+        "</default></default>",
+        f'<worldbody><geom name="{GROUND}" type="plane" size="0 0 1" contype="0" '
+        'conaffinity="0"/>', tree, "</worldbody>",
+        plan.tendon_xml(),
+        f"<actuator>{servos}\n{plan.actuator_xml()}</actuator>",
+        f"<contact>{pairs}</contact>", f"<sensor>{sensors}</sensor>", "</mujoco>"])
+
+
+def build_model(robot: Robot, motion: Motion, motor: ServoMotor, *,
+                springs: SpringSet | None = None, servo: Servo | None = None,
+                ground: Ground | None = None, timestep: float = TIMESTEP, check: bool = True
+                ) -> SimModel:
+    """The MuJoCo model of ``robot`` for simulating ``motion`` (module docstring).
+
+    Args:
+        robot: The robot.
+        motion: The planned motion (a gait): which geoms may touch the ground, the sample
+            spacing the timestep must undercut, the inertias of the stability check.
+        motor: The servo model (stall torque and no-load speed, one or per joint).
+        springs: The springs, or None.
+        servo: Controller and gains (default :class:`Servo`).
+        ground: The ground (default :class:`Ground`).
+        timestep: Simulation timestep, s, > 0.
+        check: Check the timestep (:func:`check_timestep`); off only to find a timestep
+            (:func:`timestep_limit`).
+
+    Returns:
+        The compiled model.
+
+    Raises:
+        InvalidParameterError: a timestep that is not below the gait's sample spacing or too
+            large for explicit stability (names the limit and the joint or foot that sets it).
+        UnknownNameError: a sprung joint the robot does not have.
+        RobotModelError: a joint the simulation cannot build.
+    """
+    import mujoco
+
+    servo, ground = servo or Servo(), ground or Ground()
+    positive("timestep (s)", timestep)
+    tree = tree_xml(robot, FOOT_RADIUS)
+    plan = plan_springs(robot, springs)
+    kp, kd, damping, stall = servo.gains(motor, robot.nj)
+    servos = servo_xml(robot.joint_names, kp, kd, damping, stall)
+    sensors = "\n".join([*(f'<actuatorfrc actuator="{j}_servo"/>' for j in robot.joint_names),
+                         *(f'<framepos objtype="site" objname="{foot_site(leg.name)}"/>'
+                           for leg in robot.legs)])
+    first = mujoco.MjModel.from_xml_string(
+        _document(robot, tree.xml, plan, servos, "", sensors, timestep, ground))
+    joints = JointMap.build(robot, first)
+    clear, touching = _clear_geoms(first, joints, motion, tree.geoms)
+
+    def pair(geom: str) -> str:
+        inverse_weight = _inverse_weight(first, mujoco.mj_name2id(first, mujoco.mjtObj.mjOBJ_GEOM,
+                                                                  geom))
+        foot = geom.endswith("_foot_contact")
+        margin = f' margin="{fmt(-FOOT_RADIUS)}" gap="{fmt(FOOT_RADIUS)}"' if foot else ""
+        return (f'<pair geom1="{GROUND}" geom2="{geom}" condim="3" friction="'
+                f'{fmt([ground.mu, ground.mu, 0.005, 1e-4, 1e-4])}" '
+                f'solref="{fmt(ground.solref(inverse_weight))}" '
+                f'solreffriction="{fmt(ground.solreffriction())}" '
+                f'solimp="{fmt(ground.solimp())}"{margin}/>')
+
+    feet = [foot_geom(leg.name) for leg in robot.legs]
+    xml = _document(robot, tree.xml, plan, servos, "\n".join(pair(g) for g in feet + clear),
+                    sensors, timestep, ground)
+    model = mujoco.MjModel.from_xml_string(xml)
+    plan.apply(model)
+    model.dof_damping[joints.dof] = damping
+    for flag in ("mjDSBL_AUTORESET",):  # keep a diverged state (a verdict) instead of a reset
+        if hasattr(mujoco.mjtDisableBit, flag):
+            model.opt.disableflags |= int(getattr(mujoco.mjtDisableBit, flag))
+    sim = SimModel(robot=robot, model=model, xml=xml, joints=joints, springs=plan, servo=servo,
+                   ground=ground, kp=kp, kd=kd, damping=damping, stall=stall,
+                   foot_geoms=np.array([mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, g)
+                                        for g in feet]),
+                   notes=(*tree.notes, *(f"{g}: no ground contact (within {CLEARANCE * 1e3:g} mm "
+                                         "of the ground in the plan)" for g in touching)))
+    if check:
+        check_timestep(sim, motion)
+    return sim
+
+
+def _dt_limit(a: float, b: float) -> float:
+    """Largest dt with ``b dt² + 2 a dt ≤ STABILITY``."""
+    if b <= 0:
+        return STABILITY / (2 * a) if a > 0 else np.inf
+    return float((-2 * a + np.sqrt(4 * a * a + 4 * b * STABILITY)) / (2 * b))
+
+
+def timestep_limit(sim: SimModel, motion: Motion) -> tuple[float, str]:
+    """The largest timestep explicit integration allows (module docstring), s, and what sets it
+    (a servo or a foot contact, with its numbers)."""
+    import mujoco
+
+    robot = sim.robot
+    model, data = robot.model, robot.model.createData()
+    minv = pin.computeMinverse(model, data, motion.q[0])
+    minv = np.triu(minv) + np.triu(minv, 1).T
+    inertia = 1.0 / np.diag(minv)[6:][[robot.model.joints[robot.model.getJointId(j)].idx_v - 6
+                                       for j in robot.joint_names]]
+    limits = [(_dt_limit(max(sim.kd[i], sim.damping[i]) / inertia[i], sim.kp[i] / inertia[i]),
+               f"the servo of {j} (kp {sim.kp[i]:.3g} N·m/rad, kd {sim.kd[i]:.3g} N·m·s/rad, "
+               f"effective inertia {inertia[i]:.3g} kg·m²)")
+              for i, j in enumerate(robot.joint_names)]
+    m = sim.model
+    assert isinstance(m, mujoco.MjModel)
+    for leg, g in zip(robot.legs, sim.foot_geoms, strict=True):
+        inverse_weight = _inverse_weight(m, int(g))
+        b, a = sim.ground.explicit_rate(inverse_weight)
+        limits.append((_dt_limit(a, b), f"the ground contact of {leg.name} (K "
+                       f"{sim.ground.stiffness:.3g} N/m, B {sim.ground.damping:.3g} N·s/m, "
+                       f"body mass ≈ {1 / inverse_weight:.3g} kg)"))
+    return min(limits)
+
+
+def check_timestep(sim: SimModel, motion: Motion) -> None:
+    """Check the timestep against the gait's sample spacing and explicit stability (module
+    docstring).
+
+    Raises:
+        InvalidParameterError: names the timestep, the limit and what sets it.
+    """
+    dt = sim.timestep
+    if dt >= motion.dt:
+        raise InvalidParameterError("timestep (s)", dt, f"< the gait's sample spacing "
+                                    f"{motion.dt:.4g} s (raise the gait's samples or lower dt)")
+    limit, what = timestep_limit(sim, motion)
+    if dt > limit:
+        raise InvalidParameterError("timestep (s)", dt, f"≤ {limit:.3g} s for explicit "
+                                    f"stability of {what}; lower dt or the gains/stiffness")

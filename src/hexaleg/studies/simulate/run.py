@@ -1,0 +1,296 @@
+"""Simulate a gait with and without springs and compare the energy with the analysis' prediction.
+
+:func:`simulate` analyses the gait (:func:`hexaleg.dynamics.prepare.prepare`, the springs' and the
+baseline's motor torques — the feedforward of the ``"feedforward"`` controller), builds the MuJoCo
+model twice (:func:`hexaleg.studies.simulate.model.build_model`, with and without the springs),
+runs each for :attr:`Settings.cycles` cycles from the planned initial state, lets the first
+cycles settle and evaluates the last :attr:`Settings.evaluate`
+(:mod:`hexaleg.studies.simulate.measures`). The energy per cycle comes from the simulated motor
+torques and speeds through :func:`hexaleg.dynamics.energy.metrics`, the module the prediction uses,
+so the two differ only by what the simulation adds: contact compliance and friction, servo
+dynamics and saturation, the load handover taking time instead of one sample.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from hexaleg.checks import integer
+from hexaleg.config import from_mapping
+from hexaleg.dynamics.contact import ContactParams
+from hexaleg.dynamics.energy import saving
+from hexaleg.dynamics.prepare import Analysis, Prepared, prepare
+from hexaleg.errors import InvalidParameterError
+from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.model import Robot
+from hexaleg.robot.springs import SpringSet
+from hexaleg.studies.simulate import measures, stepping
+from hexaleg.studies.simulate.controllers import COMPLIANCE, Servo, controls, reference
+from hexaleg.studies.simulate.ground import Ground
+from hexaleg.studies.simulate.model import TIMESTEP, SimModel, build_model, timestep_limit
+
+VERDICTS: tuple[str, ...] = ("walks", "stalled", "fell", "diverged")
+"""How a run ended: it walked; it stood but covered less than :data:`STALL` of the planned
+distance; the base fell; the integration diverged."""
+STALL = 0.5
+"""A run that covers less than this fraction of the planned distance per cycle stalled."""
+
+
+@dataclass(frozen=True)
+class Settings:
+    """How to simulate (the ``[simulate]`` table of a config file; SI).
+
+    Attributes:
+        controller: ``"feedforward"`` or ``"position"``
+            (:data:`hexaleg.studies.simulate.controllers.CONTROLLERS`).
+        timestep: s, > 0, below the gait's sample spacing; None (default): automatic, the least
+            of :data:`~hexaleg.studies.simulate.model.TIMESTEP`, half the gait's sample spacing
+            and 80 % of the explicit-stability limit (:func:`automatic_timestep`). Rounded down
+            so that a cycle is a whole number of steps.
+        cycles: Cycles simulated, ≥ 2.
+        evaluate: The last cycles evaluated, in [1, cycles − 1] (the others settle).
+        stiffness: Ground contact stiffness K, N/m, > 0.
+        damping: Ground contact damping B, N·s/m, ≥ 0.
+        mu: Friction coefficient, > 0; None: the analysis' (``ContactParams.mu``).
+        noslip: MuJoCo's no-slip pass (no creep inside the friction cone).
+        incline: Ground slope, rad (uphill along the heading > 0).
+        compliance: Servo compliance angle θ_c (kp = τ_s/θ_c), rad, > 0.
+        kp_scale: Factor on kp, > 0.
+        kd_scale: Factor on kd, > 0.
+        force_samples: Steps at which the foot forces are compared with the analysis' (0: none).
+
+    Raises:
+        InvalidParameterError: a value out of range (named).
+        UnknownNameError: an unknown controller (lists them).
+    """
+
+    controller: str = "feedforward"
+    timestep: float | None = None
+    cycles: int = 4
+    evaluate: int = 2
+    stiffness: float = 2e4
+    damping: float = 100.0
+    mu: float | None = None
+    noslip: bool = False
+    incline: float = 0.0
+    compliance: float = COMPLIANCE
+    kp_scale: float = 1.0
+    kd_scale: float = 1.0
+    force_samples: int = 200
+
+    def __post_init__(self) -> None:
+        self.servo()
+        self.ground(0.6)
+        integer("cycles", self.cycles, low=2, high=10_000)
+        integer("evaluate", self.evaluate, low=1, high=self.cycles - 1)
+        integer("force_samples", self.force_samples, low=0)
+
+    def servo(self) -> Servo:
+        """The servo of these settings."""
+        return Servo(self.controller, self.compliance, self.kp_scale, self.kd_scale)
+
+    def ground(self, mu: float) -> Ground:
+        """The ground of these settings (``mu`` unless :attr:`mu` is set)."""
+        return Ground(self.stiffness, self.damping, mu if self.mu is None else self.mu,
+                      self.noslip, self.incline)
+
+    @classmethod
+    def from_mapping(cls, table: Any, where: str = "simulate") -> Settings:
+        """From a TOML table (unknown keys are an error listing the valid ones)."""
+        return from_mapping(cls, table, where)
+
+
+@dataclass(frozen=True, eq=False)
+class Run:
+    """One simulation of the gait (with the springs or without: the baseline).
+
+    Attributes:
+        name: ``"springs"`` or ``"baseline"``.
+        sim: The model.
+        trajectory: The recorded run.
+        verdict: One of :data:`VERDICTS`.
+        message: When and how a run that did not walk ended.
+        cycles: :func:`hexaleg.dynamics.energy.metrics` of each evaluated cycle (empty when it
+            fell or diverged).
+        metrics: Their totals averaged per cycle (J, N·m; empty when it fell or diverged).
+        walk: Distance, drift, tracking, slip, contacts (None when it fell or diverged).
+        forces: Foot forces against the analysis' (:func:`measures.foot_forces`), or empty.
+        wall: Wall-clock time of the stepping, s.
+    """
+
+    name: str
+    sim: SimModel
+    trajectory: stepping.Trajectory
+    verdict: str
+    message: str
+    cycles: list[dict[str, Any]] = field(default_factory=list)
+    metrics: dict[str, float] = field(default_factory=dict)
+    walk: measures.Walk | None = None
+    forces: dict[str, float] = field(default_factory=dict)
+    wall: float = 0.0
+
+    @property
+    def walks(self) -> bool:
+        """Whether the robot walked the whole run."""
+        return self.verdict == "walks"
+
+    @property
+    def realtime_factor(self) -> float:
+        """Simulated time per wall-clock time of the stepping."""
+        span = float(self.trajectory.t[-1] + self.sim.timestep) if self.trajectory.n else 0.0
+        return span / self.wall if self.wall > 0 else math.inf
+
+
+@dataclass(frozen=True, eq=False)
+class Simulation:
+    """The gait simulated with and without the springs, beside the analysis.
+
+    Attributes:
+        robot: The robot. motion: The gait. settings: How it was simulated.
+        springs: The springs simulated.
+        analysis: The analysis with the springs (its ``baseline`` metrics are without).
+        baseline_analysis: The analysis without springs.
+        with_springs: The run with the springs. baseline: The run without.
+        prepared: The prepared gait (reused by reruns with other settings).
+    """
+
+    robot: Robot
+    motion: Motion
+    settings: Settings
+    springs: SpringSet
+    analysis: Analysis
+    baseline_analysis: Analysis
+    with_springs: Run
+    baseline: Run
+    prepared: Prepared
+
+    @property
+    def walks(self) -> bool:
+        """Whether both runs walked."""
+        return self.with_springs.walks and self.baseline.walks
+
+    def predicted(self, metric: str = "electrical") -> tuple[float, float, float]:
+        """The analysis' ``(with springs, baseline, saving)`` of a metric (J or N·m per cycle,
+        saving a fraction)."""
+        a = self.analysis
+        return (a.metrics["total"][metric], a.baseline["total"][metric],
+                a.savings["total"][metric])
+
+    def simulated(self, metric: str = "electrical") -> tuple[float, float, float]:
+        """The simulation's ``(with springs, baseline, saving)`` of a metric per cycle.
+
+        Raises:
+            SimulationError: a run did not walk (its verdict and message).
+        """
+        from hexaleg.errors import SimulationError
+
+        for r in (self.with_springs, self.baseline):
+            if not r.walks:
+                raise SimulationError(f"the {r.name} run {r.verdict}: {r.message}")
+        w, b = self.with_springs.metrics[metric], self.baseline.metrics[metric]
+        return w, b, saving(w, b)
+
+
+def cycle_timestep(timestep: float, period: float) -> float:
+    """The largest timestep ≤ ``timestep`` that divides the period, s."""
+    return period / math.ceil(period / timestep - 1e-9)
+
+
+def automatic_timestep(robot: Robot, motion: Motion, motor: Any, servo: Servo,
+                       ground: Ground) -> float:
+    """The default timestep: the least of :data:`~hexaleg.studies.simulate.model.TIMESTEP`,
+    half the gait's sample spacing and 80 % of the explicit-stability limit
+    (:func:`hexaleg.studies.simulate.model.timestep_limit`), s."""
+    probe = build_model(robot, motion, motor, servo=servo, ground=ground, check=False)
+    limit, _ = timestep_limit(probe, motion)
+    return min(TIMESTEP, motion.dt / 2, 0.8 * limit)
+
+
+def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
+                 settings: Settings) -> Run:
+    """Run one model for :attr:`Settings.cycles` cycles and measure the last ones.
+
+    Args:
+        name: ``"springs"`` or ``"baseline"``.
+        sim: The model (with or without the springs).
+        motion: The gait.
+        analysis: Its analysis with the same springs (feedforward torques, predicted forces).
+        settings: The settings.
+    """
+    dt = sim.timestep
+    steps = round(motion.period / dt)
+    t = np.arange(settings.cycles * steps) * dt
+    ref = reference(motion, analysis.tau_motor, t)
+    ctrl = controls(sim.servo, ref, sim.kp, sim.kd)
+    qpos0, qvel0 = sim.joints.to_mujoco(motion.q[0], motion.v[0])
+    start = time.perf_counter()
+    traj = stepping.run(sim, ctrl, qpos0, qvel0, float(np.mean(motion.q[:, 2])))
+    wall = time.perf_counter() - start
+    if traj.verdict != "ran":
+        return Run(name, sim, traj, traj.verdict, traj.message, wall=wall)
+    window = slice((settings.cycles - settings.evaluate) * steps, settings.cycles * steps)
+    cycles = measures.cycle_energies(sim, traj, window, settings.evaluate, analysis.motor)
+    forces = (measures.foot_forces(sim, motion, traj, window, analysis.forces,
+                                   settings.force_samples) if settings.force_samples else {})
+    walked = measures.walk(sim, motion, traj, window, settings.evaluate, ref.q)
+    verdict, message = "walks", ""
+    if motion.distance > 0 and walked.distance_per_cycle < STALL * motion.distance:
+        verdict = "stalled"
+        message = (f"it covered {walked.distance_per_cycle * 1e3:.1f} mm per cycle of the "
+                   f"planned {motion.distance * 1e3:.1f} mm (under {STALL:.0%})")
+    return Run(name, sim, traj, verdict, message, cycles, measures.mean_metrics(cycles),
+               walked, forces, wall)
+
+
+def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None = None,
+             settings: Settings | None = None, *, contact: ContactParams | None = None,
+             objective: str = "joule", prepared: Prepared | None = None) -> Simulation:
+    """Simulate ``motion`` with ``springs`` and without, and analyse both (module docstring).
+
+    Args:
+        robot: The robot.
+        motion: A periodic gait of the robot.
+        motor: The motor model of every joint (a Motor or a per-joint set), as for
+            :func:`hexaleg.dynamics.prepare.prepare`.
+        springs: The springs (SI), or None for none.
+        settings: How to simulate (default :class:`Settings`).
+        contact: The analysis' contact settings (its μ is the ground's unless the settings set
+            one).
+        objective: The analysis' force objective.
+        prepared: The gait already prepared with ``motor`` and ``contact`` (saves the RNEA).
+
+    Returns:
+        Both runs and the analyses.
+
+    Raises:
+        InvalidParameterError: bad settings, a timestep too large for the gait or for explicit
+            stability, a non-periodic motion.
+        UnknownNameError: springs on joints the robot does not have.
+        InfeasibleForcesError: the analysis has no admissible contact forces.
+        TorqueLimitError: the analysis needs more than the motor's stall torque.
+    """
+    settings = settings or Settings()
+    springs = springs if springs is not None else SpringSet()
+    contact = contact or ContactParams()
+    if not motion.periodic or motion.fixed_base:
+        raise InvalidParameterError("motion", "a fixed-base or non-periodic motion",
+                                    "a periodic gait (hexaleg.tripod_gait)")
+    prepared = prepared or prepare(robot, motion, motor=motor, contact=contact)
+    analysis = prepared.evaluate(springs, objective)
+    base = prepared.evaluate(None, objective)
+    servo, ground = settings.servo(), settings.ground(contact.mu)
+    dt = cycle_timestep(settings.timestep if settings.timestep is not None else
+                        automatic_timestep(robot, motion, prepared.motor, servo, ground),
+                        motion.period)
+    runs = {}
+    for name, s, a in (("springs", springs, analysis), ("baseline", SpringSet(), base)):
+        sim = build_model(robot, motion, prepared.motor, springs=s, servo=servo, ground=ground,
+                          timestep=dt)
+        runs[name] = simulate_run(name, sim, motion, a, settings)
+    return Simulation(robot, motion, settings, springs, analysis, base, runs["springs"],
+                      runs["baseline"], prepared)

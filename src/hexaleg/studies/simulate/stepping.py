@@ -1,0 +1,188 @@
+"""Running a compiled model under a control sequence: the recorded trajectory and its verdict.
+
+The servos' controls are a function of time only (:mod:`hexaleg.studies.simulate.controllers`), so
+a run is an open-loop control sequence. When the springs are all native
+(:attr:`hexaleg.studies.simulate.springs.SpringPlan.native`) the whole run is one call of
+:func:`mujoco.rollout.rollout` (MuJoCo's C loop: ``mj_step`` then copy the state and the
+sensors); otherwise a Python loop does the same with the non-native spring torques added to
+``qfrc_applied`` before each step. Both record, per step k, the state *before* the step (at
+``t_k = k dt``) and the sensors of that state (MuJoCo computes them in ``mj_forward`` before it
+integrates), so the recorded servo torque ``τ_k`` acts over ``[t_k, t_{k+1}]`` at the recorded
+speed ``q̇_k`` — the rectangle rule of the symplectic-Euler step.
+
+A run stops early, with its verdict, when MuJoCo flags a bad acceleration (a diverged state), or
+when the base falls (:data:`FALL_HEIGHT` of the planned height, :data:`FALL_TILT` roll or pitch):
+the arrays then end there, never with NaN.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from hexaleg.studies.simulate.model import SimModel
+from hexaleg.studies.simulate.state import rotation_xyzw
+
+FALL_HEIGHT = 0.5
+"""A base below this fraction of its planned height has fallen."""
+FALL_TILT = float(np.deg2rad(45.0))
+"""rad: a base rolled or pitched beyond this has fallen."""
+MAX_STEPS = 5_000_000
+"""Steps a run may take (a bound: a long run is an error, never a hang)."""
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """A recorded run, one row per step (the state before the step).
+
+    Attributes:
+        t: Times, shape (n,), s.
+        qpos: MuJoCo configurations, shape (n, nq_mj).
+        qvel: MuJoCo velocities, shape (n, nv).
+        servo: Servo actuator forces u (the voltage as a torque, clamped), shape (n, nj), N·m.
+        tau_motor: Motor torques at the joints ``u − D q̇``, shape (n, nj), N·m.
+        feet: Foot positions (world), shape (n, n_legs, 3), m.
+        controls: The servo controls applied, shape (n, nj).
+        verdict: ``"ran"``, ``"fell"`` or ``"diverged"``.
+        message: When and how a run that did not finish ended ('' when it ran).
+    """
+
+    t: np.ndarray
+    qpos: np.ndarray
+    qvel: np.ndarray
+    servo: np.ndarray
+    tau_motor: np.ndarray
+    feet: np.ndarray
+    controls: np.ndarray
+    verdict: str = "ran"
+    message: str = ""
+
+    @property
+    def n(self) -> int:
+        """Recorded steps."""
+        return int(self.t.shape[0])
+
+
+def tilt(qpos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Roll and pitch (rad) of the base, from MuJoCo ``qpos`` (…, nq_mj): the z-y-x Euler angles
+    of the base orientation (yaw left out)."""
+    quat = np.concatenate([qpos[..., 4:7], qpos[..., 3:4]], axis=-1)
+    rot = rotation_xyzw(quat / np.linalg.norm(quat, axis=-1, keepdims=True))
+    roll = np.arctan2(rot[..., 2, 1], rot[..., 2, 2])
+    pitch = np.arcsin(np.clip(-rot[..., 2, 0], -1.0, 1.0))
+    return roll, pitch
+
+
+def _fall(qpos: np.ndarray, height: float, t: np.ndarray) -> tuple[int, str]:
+    """The first step at which the base has fallen (and how), or (n, '')."""
+    roll, pitch = tilt(qpos)
+    z = qpos[:, 2]
+    bad = ~np.all(np.isfinite(qpos), axis=1) | (z < FALL_HEIGHT * height) | \
+        (np.abs(roll) > FALL_TILT) | (np.abs(pitch) > FALL_TILT)
+    if not bad.any():
+        return len(qpos), ""
+    k = int(np.argmax(bad))
+    if not np.all(np.isfinite(qpos[k])):
+        return k, f"the state diverged (non-finite) at t = {t[k]:.4f} s"
+    how = (f"base height {z[k] * 1e3:.1f} mm < {FALL_HEIGHT:.0%} of the planned "
+           f"{height * 1e3:.1f} mm" if z[k] < FALL_HEIGHT * height else
+           f"base roll {np.degrees(roll[k]):+.1f}°, pitch {np.degrees(pitch[k]):+.1f}° beyond "
+           f"±{np.degrees(FALL_TILT):.0f}°")
+    return k, f"the robot fell at t = {t[k]:.4f} s: {how}"
+
+
+def run(sim: SimModel, controls: np.ndarray, qpos0: np.ndarray, qvel0: np.ndarray,
+        height: float) -> Trajectory:
+    """Step ``sim`` from ``(qpos0, qvel0)`` under ``controls``, one row per step.
+
+    Args:
+        sim: The model.
+        controls: Servo controls, shape (n, nj) (one row per step).
+        qpos0: Initial MuJoCo configuration, shape (nq_mj,).
+        qvel0: Initial MuJoCo velocity, shape (nv,).
+        height: Planned base height, m (for the fall check).
+
+    Returns:
+        The trajectory, cut where the run diverged or fell (its verdict says so).
+    """
+    import mujoco
+
+    m = sim.model
+    assert isinstance(m, mujoco.MjModel)
+    n, nj = controls.shape
+    if n > MAX_STEPS:
+        from hexaleg.errors import InvalidParameterError
+
+        raise InvalidParameterError("simulation steps", n, f"≤ {MAX_STEPS} (fewer cycles or a "
+                                    "larger timestep)")
+    data = mujoco.MjData(m)
+    data.qpos[:], data.qvel[:] = qpos0, qvel0
+    ctrl = np.zeros((n, m.nu))
+    ctrl[:, :nj] = controls
+    if sim.springs.native:
+        qpos, qvel, sensors = _rollout(m, data, ctrl)
+    else:
+        qpos, qvel, sensors = _python_loop(sim, data, ctrl)
+    stopped = n
+    message = ""
+    bad_acc = int(data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number)
+    if bad_acc:  # the step at which MuJoCo stopped integrating
+        stopped = min(n, round(data.time / m.opt.timestep))
+        message = f"MuJoCo flagged a diverging acceleration at t = {data.time:.4f} s"
+    t = np.arange(n) * m.opt.timestep
+    fall, how = _fall(qpos[:stopped], height, t[:stopped])
+    verdict = "ran"
+    if fall < stopped or bad_acc:
+        verdict = "fell" if how.startswith("the robot fell") else "diverged"
+        message = how or message
+        stopped = min(stopped, fall)
+    forces, feet = sim.sensor_slices()
+    servo = sensors[:stopped, forces]
+    dq = sim.joints.joints_mj(qvel[:stopped], velocity=True)
+    return Trajectory(t=t[:stopped], qpos=qpos[:stopped], qvel=qvel[:stopped], servo=servo,
+                      tau_motor=servo - sim.damping * dq,
+                      feet=sensors[:stopped, feet].reshape(stopped, -1, 3),
+                      controls=controls[:stopped], verdict=verdict, message=message)
+
+
+def _rollout(m: object, data: object, ctrl: np.ndarray
+             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """MuJoCo's rollout: pre-step states and their sensors."""
+    import mujoco
+    import mujoco.rollout
+
+    assert isinstance(m, mujoco.MjModel) and isinstance(data, mujoco.MjData)
+    spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
+    state0 = np.zeros(mujoco.mj_stateSize(m, spec))
+    mujoco.mj_getState(m, data, state0, spec)
+    state, sensordata = mujoco.rollout.rollout(m, data, state0[None], ctrl[None])
+    state, sensordata = state[0], sensordata[0]
+    nq, nv = m.nq, m.nv
+    after_q, after_v = state[:, 1:1 + nq], state[:, 1 + nq:1 + nq + nv]
+    qpos = np.concatenate([state0[None, 1:1 + nq], after_q[:-1]])
+    qvel = np.concatenate([state0[None, 1 + nq:1 + nq + nv], after_v[:-1]])
+    return qpos, qvel, sensordata
+
+
+def _python_loop(sim: SimModel, data: object, ctrl: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The same as :func:`_rollout`, step by step, with the non-native spring torques."""
+    import mujoco
+
+    m = sim.model
+    assert isinstance(m, mujoco.MjModel) and isinstance(data, mujoco.MjData)
+    n = len(ctrl)
+    qpos, qvel = np.empty((n, m.nq)), np.empty((n, m.nv))
+    sensors = np.empty((n, m.nsensordata))
+    qadr, dof = sim.joints.qpos, sim.joints.dof
+    for k in range(n):
+        qpos[k], qvel[k] = data.qpos, data.qvel
+        data.ctrl[:] = ctrl[k]
+        data.qfrc_applied[dof] = sim.springs.python_torque(data.qpos[qadr], data.qvel[dof])
+        mujoco.mj_step(m, data)
+        sensors[k] = data.sensordata
+        if data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number:
+            qpos[k + 1:], qvel[k + 1:], sensors[k + 1:] = qpos[k], qvel[k], sensors[k]
+            break
+    return qpos, qvel, sensors

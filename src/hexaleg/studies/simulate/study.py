@@ -1,0 +1,109 @@
+"""``hexaleg simulate``'s inputs: robot, gait, motor and contact, springs, settings.
+
+A registered robot (or one's own robot TOML) with its own gait, motor and contact settings; a
+config file's ``[gait]``, ``[motor]``, ``[contact]`` tables on top (as ``hexaleg report`` reads
+them, :class:`hexaleg.studies.report.config.ReportConfig`) and its ``[simulate]`` table
+(:class:`~hexaleg.studies.simulate.run.Settings`); the springs of a design file
+(:func:`~hexaleg.studies.simulate.design_file.read_design`) or, without one, the globally optimal
+linear springs on the robot's spring class (:func:`hexaleg.design.codesign.optimal_springs`, the
+design ``hexaleg sweep --family linear`` reports).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from hexaleg.config import load_toml
+from hexaleg.design.codesign import optimal_springs
+from hexaleg.dynamics.prepare import Prepared, prepare
+from hexaleg.motion.legged import tripod_gait
+from hexaleg.robot.registry import description
+from hexaleg.robot.springs import SpringSet
+from hexaleg.studies.report.config import ReportConfig
+from hexaleg.studies.simulate.design_file import read_design
+from hexaleg.studies.simulate.run import Settings, Simulation, simulate
+
+DEFAULT_FAMILY = "linear"
+"""The spring family of the default design (its optimum has no geometry to search: global)."""
+
+
+@dataclass(frozen=True, eq=False)
+class Study:
+    """Everything one ``hexaleg simulate`` runs on.
+
+    Attributes:
+        robot_name: The registered name or TOML file.
+        prepared: The gait prepared with the motor and contact settings.
+        springs: The springs simulated.
+        design: Where the springs came from, in words.
+        settings: How to simulate.
+        objective: The analysis' force objective.
+        notes: Caveats (the config's, a constant-torque optimum, …).
+    """
+
+    robot_name: str
+    prepared: Prepared
+    springs: SpringSet
+    design: str
+    settings: Settings
+    objective: str
+    notes: tuple[str, ...]
+
+    def run(self) -> Simulation:
+        """Simulate (:func:`hexaleg.studies.simulate.run.simulate`)."""
+        p = self.prepared
+        return simulate(p.robot, p.motion, p.motor, self.springs, self.settings,
+                        contact=p.contact, objective=self.objective, prepared=p)
+
+
+def load_study(robot: str = "hexaleg", config: str | Path | None = None,
+               springs: str | Path | None = None,
+               overrides: Mapping[str, Any] | None = None) -> Study:
+    """The study of ``hexaleg simulate`` (module docstring).
+
+    Args:
+        robot: A registered robot or a robot TOML file.
+        config: A TOML file with optional ``[gait]``, ``[motor]``, ``[contact]``,
+            ``[report]`` and ``[simulate]`` tables, or None.
+        springs: A design file (``design.json``), or None for the optimal linear springs.
+        overrides: :class:`Settings` fields given on the command line (over ``[simulate]``).
+
+    Raises:
+        ConfigError: a file that cannot be read or has the wrong types (named).
+        UnknownNameError: an unknown robot, table, key, family or joint (lists the valid ones).
+        InvalidParameterError: a value out of range (named).
+        InfeasibleForcesError: the gait has no admissible contact forces.
+        TorqueLimitError: the gait needs more than the motor's stall torque.
+    """
+    desc = description(robot)
+    loaded = desc.load()
+    data = dict(load_toml(config)) if config else {}
+    table = data.pop("simulate", {})
+    where = str(config) if config else "config"
+    report = ReportConfig.for_robot(desc, loaded, data, where)
+    settings = Settings.from_mapping(table, f"{where} [simulate]")
+    if overrides:
+        settings = dataclasses.replace(settings, **{k: v for k, v in overrides.items()
+                                                    if v is not None})
+    prepared = prepare(loaded, tripod_gait(loaded, report.gait), motor=report.motor,
+                       contact=report.contact)
+    objective = report.report.objective
+    notes = list(report.notes)
+    if "springs" in data:
+        notes.append(f"{where} [springs] is the report's design and is not simulated; give the "
+                     "springs to simulate with --springs design.json")
+    if springs is not None:
+        spring_set = read_design(springs, loaded, robot)
+        design = f"the design file {springs}"
+    else:
+        kind = desc.spring_class_of(loaded)
+        best = optimal_springs(prepared, [kind], DEFAULT_FAMILY, objective)
+        spring_set = best.springs
+        design = (f"the globally optimal {DEFAULT_FAMILY} springs on the {kind} joints "
+                  f"(optimal_springs, {objective} objective)")
+        notes += list(best.notes)
+    return Study(robot, prepared, spring_set, design, settings, objective, tuple(notes))

@@ -1,0 +1,108 @@
+"""The MuJoCo model is the analysed robot: inverse dynamics and the mass matrix agree with
+Pinocchio, every clear geom touches the ground, the timestep is checked."""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+
+import mujoco
+import numpy as np
+import pinocchio as pin
+import pytest
+
+import hexaleg
+from hexaleg.errors import InvalidParameterError
+from hexaleg.studies.simulate.ground import Ground
+from hexaleg.studies.simulate.model import TIMESTEP, build_model
+from hexaleg.studies.simulate.state import JointMap
+
+
+@pytest.fixture(scope="module")
+def sim(prepared):
+    return build_model(prepared.robot, prepared.motion, prepared.motor)
+
+
+def _random_states(robot: hexaleg.Robot, n: int, seed: int = 0):
+    rng = np.random.default_rng(seed)
+    m = robot.model
+    for _ in range(n):
+        q = pin.randomConfiguration(m, -np.ones(m.nq), np.ones(m.nq))
+        yield q, rng.normal(size=m.nv), rng.normal(size=m.nv)
+
+
+def _inverse(model, joints: JointMap, q, v, a) -> np.ndarray:
+    """MuJoCo's inverse dynamics (no constraints, no passive forces) of Pinocchio ``q, v, a``."""
+    m = model
+    data = mujoco.MjData(m)
+    data.qpos[:], data.qvel[:] = joints.to_mujoco(q, v)
+    data.qacc[:] = joints.acceleration_to_mujoco(q, v, a)
+    mujoco.mj_inverse(m, data)
+    return data.qfrc_inverse.copy()
+
+
+def _bare(sim) -> mujoco.MjModel:
+    """A copy of the model without contacts, constraints, springs, damping and actuation."""
+    m = copy.copy(sim.model)
+    for flag in ("CONSTRAINT", "SPRING", "DAMPER", "PASSIVE", "ACTUATION"):
+        m.opt.disableflags |= int(getattr(mujoco.mjtDisableBit, f"mjDSBL_{flag}", 0))
+    m.dof_damping[:] = 0.0
+    return m
+
+
+@pytest.mark.parametrize("which", ["robot", "spider"])
+def test_mujoco_inverse_dynamics_is_pinocchio_rnea(which, request):
+    """mj_inverse at random states = RNEA (free flyer mapped), to 1e-8 N·m: the joint order, the
+    axes, the inertias and the free flyer's velocity and force conventions all agree. The spider
+    (a test hexapod facing +y, joints found from its URDF) checks another tree."""
+    robot = request.getfixturevalue(which)
+    motion = hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=100))
+    sim = build_model(robot, motion, hexaleg.robot.motor.motor("AX-18A"), timestep=2.5e-4)
+    m = _bare(sim)
+    for q, v, a in _random_states(robot, 4):
+        tau = pin.rnea(robot.model, robot.model.createData(), q, v, a)
+        assert np.allclose(_inverse(m, sim.joints, q, v, a), sim.joints.force_to_mujoco(q, tau),
+                           rtol=0, atol=1e-8)
+
+
+def test_mass_matrices_agree(sim, robot):
+    """Columns of MuJoCo's mass matrix (inverse dynamics of unit accelerations, no velocity, no
+    gravity) are Pinocchio's CRBA mapped by the free flyer's velocity map T: M_mj = Tᵀ M T."""
+    m = _bare(sim)
+    m.opt.gravity[:] = 0.0
+    q = next(_random_states(robot, 1, seed=3))[0]
+    M = pin.crba(robot.model, robot.model.createData(), q)
+    M = np.triu(M) + np.triu(M, 1).T
+    rot = pin.Quaternion(q[3:7]).toRotationMatrix()
+    T = np.eye(robot.model.nv)
+    T[:3, :3] = rot.T  # v_pin = T v_mj
+    data = mujoco.MjData(m)
+    qpos, _ = sim.joints.to_mujoco(q, np.zeros(robot.model.nv))
+    cols = []
+    for i in range(m.nv):
+        data.qpos[:], data.qvel[:] = qpos, 0.0
+        data.qacc[:] = np.eye(m.nv)[i]
+        mujoco.mj_inverse(m, data)
+        cols.append(data.qfrc_inverse.copy())
+    assert np.allclose(np.array(cols).T, T.T @ M @ T, rtol=0, atol=1e-10)
+
+
+def test_every_geom_clear_of_the_plan_touches_the_ground(sim, robot):
+    """Body collision: the torso, coxa, femur and tibia geoms each have a ground pair, plus one
+    per foot."""
+    assert sim.model.npair == len(robot.legs) + robot.collision_model.ngeoms - len(robot.legs)
+    assert not sim.notes
+
+
+def test_timestep_must_undercut_the_gait_and_stay_stable(prepared):
+    robot, motion, motor = prepared.robot, prepared.motion, prepared.motor
+    with pytest.raises(InvalidParameterError, match="sample spacing"):
+        build_model(robot, motion, motor, timestep=motion.dt)
+    coarse = hexaleg.tripod_gait(robot, dataclasses.replace(hexaleg.GaitParams(), samples=200))
+    with pytest.raises(InvalidParameterError, match="explicit stability of the servo"):
+        build_model(robot, coarse, motor, timestep=2e-3)
+    with pytest.raises(InvalidParameterError, match="ground contact"):
+        build_model(robot, motion, motor, timestep=TIMESTEP,
+                    ground=Ground(stiffness=1e7, damping=3e3))
+    with pytest.raises(InvalidParameterError, match="timestep"):
+        build_model(robot, motion, motor, timestep=-1.0)

@@ -1,0 +1,124 @@
+"""Simulated walks: the robot walks, the saving survives, a fall is a verdict, bad settings are
+named."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+import hexaleg
+from hexaleg.errors import InvalidParameterError, SimulationError
+from hexaleg.robot.springs import DeadZoneSpring, SpringSet
+from hexaleg.studies.simulate.run import Settings, cycle_timestep, simulate
+
+QUICK = Settings(cycles=2, evaluate=1, force_samples=0)
+
+
+def test_feedforward_walks_and_keeps_the_predicted_saving(feedforward):
+    """Feedforward + PD on firm ground: distance within 2 % of the plan, no contact lost, the
+    electrical saving within 1 percentage point of the prediction and each energy within
+    −10 %…+5 % of the predicted."""
+    s = feedforward
+    assert s.walks
+    for run in (s.with_springs, s.baseline):
+        w = run.walk
+        assert abs(w.distance_per_cycle / s.motion.distance - 1) < 0.02
+        assert w.contact_losses == 0.0 and w.stances >= 6
+        assert w.tracking_rms < 2e-3 and w.slip_max < 5e-4
+        assert run.forces["normal_rms"] < 0.05 * run.forces["weight"]
+    for metric in ("electrical", "joule"):
+        predicted, simulated = s.predicted(metric), s.simulated(metric)
+        for p, q in zip(predicted[:2], simulated[:2], strict=True):
+            assert -0.10 < q / p - 1 < 0.05
+    assert abs(s.simulated()[2] - s.predicted()[2]) < 0.01
+
+
+def test_position_servo_walks_but_tracks_worse(position, feedforward):
+    """Without feedforward the servo lags: an order of magnitude more tracking error, and the
+    saving it measures differs from the prediction (reported, not asserted equal)."""
+    assert position.walks
+    assert position.baseline.walk.tracking_rms > 5 * feedforward.baseline.walk.tracking_rms
+    assert np.isfinite(position.simulated()[2])
+
+
+def test_a_conservative_spring_does_no_net_work_over_a_simulated_cycle(prepared):
+    """A dead-zone spring on the femurs (engaged both ways over the gait): its work over a
+    settled simulated cycle is zero up to the O(dt) of the rectangle rule — under 1 % of the work
+    it exchanges."""
+    robot, motion = prepared.robot, prepared.motion
+    centre = {j: float(np.mean(motion.q[:, robot.model.joints[robot.model.getJointId(j)].idx_q]))
+              for j in robot.joints("femur")}
+    springs = SpringSet({j: DeadZoneSpring(stiffness=1.0, theta_k=0.05, neutral=c)
+                         for j, c in centre.items()})
+    s = simulate(robot, motion, prepared.motor, springs, QUICK, prepared=prepared)
+    traj, sim = s.with_springs.trajectory, s.with_springs.sim
+    steps = round(motion.period / sim.timestep)
+    q, v = sim.joints.to_pinocchio(traj.qpos[-steps:], traj.qvel[-steps:])
+    power = springs.torques(robot, q) * v[:, 6:]
+    assert abs(power.sum()) < 0.01 * np.abs(power).sum()
+    assert np.abs(power).sum() * sim.timestep > 1e-3  # the spring works
+
+
+def test_a_robot_that_falls_is_a_verdict_with_when_and_how(prepared):
+    """A servo 200 times too soft lets the body sink: the run stops at the fall, says when and
+    how, and the comparison refuses to report energies."""
+    s = simulate(prepared.robot, prepared.motion, prepared.motor, None,
+                 dataclasses.replace(QUICK, controller="position", kp_scale=0.005),
+                 prepared=prepared)
+    run = s.baseline
+    assert run.verdict == "fell" and "fell at t =" in run.message and "base height" in run.message
+    assert np.all(np.isfinite(run.trajectory.qpos)) and run.trajectory.t[-1] < 2.0
+    with pytest.raises(SimulationError, match="fell"):
+        s.simulated()
+
+
+@pytest.mark.parametrize("kwargs, match", [({"cycles": 1}, "cycles"),
+                                           ({"cycles": 3, "evaluate": 3}, "evaluate"),
+                                           ({"controller": "torque"}, "controller"),
+                                           ({"kp_scale": 0.0}, "kp_scale"),
+                                           ({"stiffness": -5.0}, "stiffness")])
+def test_bad_settings_are_named(kwargs, match):
+    with pytest.raises(hexaleg.HexalegError, match=match):
+        Settings(**kwargs)
+
+
+def test_a_fixed_base_motion_is_refused(prepared):
+
+    motion = dataclasses.replace(prepared.motion, periodic=False)
+    with pytest.raises(InvalidParameterError, match="periodic gait"):
+        simulate(prepared.robot, motion, prepared.motor, None, QUICK, prepared=prepared)
+
+
+def test_the_timestep_divides_the_period():
+    assert cycle_timestep(5e-4, 1.0) == pytest.approx(5e-4)
+    dt = cycle_timestep(3e-4, 1.0)
+    assert dt <= 3e-4 and round(1.0 / dt) * dt == pytest.approx(1.0)
+
+
+def test_walking_uphill_costs_more(prepared, feedforward):
+    """An incline of 0.05 rad (gravity tilted in the ground frame): the robot still walks its
+    stride, and lifting itself costs energy the flat plan does not have."""
+    s = simulate(prepared.robot, prepared.motion, prepared.motor, None,
+                 dataclasses.replace(QUICK, incline=0.05), prepared=prepared)
+    assert s.baseline.walks
+    assert s.baseline.metrics["electrical"] > 1.02 * feedforward.baseline.metrics["electrical"]
+
+
+def test_per_joint_motors_and_the_automatic_timestep(robot, walk):
+    """A stronger servo on the femurs (a MotorSet: per-joint stall torque and speed): per-joint
+    gains, a timestep chosen below the stiffer servo's stability limit, and a walk that keeps
+    the prediction."""
+    from hexaleg.robot.motor import motor
+    from hexaleg.robot.motor_set import MotorSet
+
+    motors = MotorSet.per_class(robot.joint_classes, robot.joint_names,
+                                {"coxa": motor("AX-18A"), "femur": motor("XM430-W350"),
+                                 "tibia": motor("AX-18A")})
+    s = simulate(robot, walk, motors, None, QUICK)
+    femur = robot.column("LF_femur")
+    assert s.baseline.sim.kp[femur] > 2 * s.baseline.sim.kp[robot.column("LF_tibia")]
+    assert s.baseline.sim.timestep < 5e-4
+    assert s.baseline.walks
+    assert s.simulated()[1] == pytest.approx(s.predicted()[1], rel=0.1)

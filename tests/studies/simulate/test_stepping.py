@@ -1,0 +1,83 @@
+"""Stepping a model: MuJoCo's rollout and the Python loop agree; divergence and step bounds are
+verdicts and errors, never NaN or a hang."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from hexaleg.errors import InvalidParameterError
+from hexaleg.studies.simulate import stepping
+from hexaleg.studies.simulate.controllers import controls, reference
+from hexaleg.studies.simulate.model import build_model
+
+
+def test_a_diverging_run_stops_without_nan(prepared):
+    """Contacts made 10⁴ times stiffer after the timestep check: MuJoCo's bad acceleration or the
+    fall check ends the run; the trajectory holds finite values only."""
+    robot, motion = prepared.robot, prepared.motion
+    sim = build_model(robot, motion, prepared.motor)
+    sim.model.pair_solref[:] *= 1e4
+    t = np.arange(400) * sim.timestep
+    ref = reference(motion, prepared.evaluate(None).tau_motor, t)
+    traj = stepping.run(sim, controls(sim.servo, ref, sim.kp, sim.kd),
+                        *sim.joints.to_mujoco(motion.q[0], motion.v[0]), 0.09)
+    assert traj.verdict in ("diverged", "fell") and "t =" in traj.message
+    assert traj.n < 400 and np.all(np.isfinite(traj.qpos)) and np.all(np.isfinite(traj.servo))
+
+
+def test_python_stepping_equals_mujoco_rollout(prepared):
+    """The per-step Python loop (used for non-native springs) and MuJoCo's rollout give the same
+    run when the Python force is zero."""
+    robot, motion = prepared.robot, prepared.motion
+    sim = build_model(robot, motion, prepared.motor)
+    loop = dataclasses.replace(sim, springs=dataclasses.replace(
+        sim.springs, python=((0, (), np.zeros(0), None),)))
+    t = np.arange(300) * sim.timestep
+    ctrl = controls(sim.servo, reference(motion, prepared.evaluate(None).tau_motor, t),
+                    sim.kp, sim.kd)
+    start = sim.joints.to_mujoco(motion.q[0], motion.v[0])
+    a, b = stepping.run(sim, ctrl, *start, 0.09), stepping.run(loop, ctrl, *start, 0.09)
+    for field in ("qpos", "qvel", "servo", "feet"):
+        assert np.allclose(getattr(a, field), getattr(b, field), rtol=0, atol=1e-12), field
+
+
+def test_too_many_steps_is_an_error_not_a_hang(prepared):
+    sim = build_model(prepared.robot, prepared.motion, prepared.motor)
+    with pytest.raises(InvalidParameterError, match="simulation steps"):
+        stepping.run(sim, np.broadcast_to(np.zeros(1), (stepping.MAX_STEPS + 1, 1)),
+                     np.zeros(1), np.zeros(1), 0.09)
+
+
+def test_tilt_of_a_rolled_and_pitched_base():
+    import pinocchio as pin
+
+    quat = pin.Quaternion(pin.utils.rpyToMatrix(0.2, -0.1, 1.0)).coeffs()  # x y z w
+    qpos = np.zeros((1, 7))
+    qpos[0, 3], qpos[0, 4:7] = quat[3], quat[:3]
+    roll, pitch = stepping.tilt(qpos)
+    assert roll[0] == pytest.approx(0.2) and pitch[0] == pytest.approx(-0.1)
+
+
+def test_rows_are_the_state_before_each_step_and_its_sensors(prepared):
+    """Row k holds the state at t_k and what MuJoCo computed from it (foot sites, servo force):
+    the torque recorded with a speed is the one applied over that step."""
+    import mujoco
+
+    robot, motion = prepared.robot, prepared.motion
+    sim = build_model(robot, motion, prepared.motor)
+    t = np.arange(50) * sim.timestep
+    ctrl = controls(sim.servo, reference(motion, prepared.evaluate(None).tau_motor, t),
+                    sim.kp, sim.kd)
+    start = sim.joints.to_mujoco(motion.q[0], motion.v[0])
+    traj = stepping.run(sim, ctrl, *start, 0.09)
+    assert np.array_equal(traj.qpos[0], start[0]) and np.array_equal(traj.t, t)
+    data = mujoco.MjData(sim.model)
+    for k in (0, 17, 49):
+        data.qpos[:], data.qvel[:], data.ctrl[:18] = traj.qpos[k], traj.qvel[k], ctrl[k]
+        mujoco.mj_forward(sim.model, data)
+        assert np.allclose(traj.feet[k], [data.site(f"{leg}_foot").xpos
+                                          for leg in robot.leg_names], atol=1e-12)
+        assert np.allclose(traj.servo[k], data.actuator_force[:18], atol=1e-12)

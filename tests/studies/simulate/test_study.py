@@ -1,0 +1,40 @@
+"""hexaleg simulate's inputs: the robot's own gait and servo, a config file's tables, the
+command line over them, the default optimal springs or a design file."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from hexaleg.errors import UnknownNameError
+from hexaleg.studies.simulate.design_file import design_table
+from hexaleg.studies.simulate.study import load_study
+
+
+def test_defaults_are_the_optimal_femur_springs():
+    study = load_study("hexaleg")
+    assert set(study.springs) == set(study.prepared.robot.joints("femur"))
+    assert "optimal linear springs on the femur" in study.design
+    assert study.prepared.motor.name == "AX-18A" and study.settings.controller == "feedforward"
+
+
+def test_config_tables_and_overrides(tmp_path, optimal):
+    config = tmp_path / "c.toml"
+    config.write_text('[gait]\nsamples = 500\n[springs]\ndesign = "paper"\n[simulate]\n'
+                      'controller = "position"\ncycles = 3\nstiffness = 5e4\n')
+    design = tmp_path / "d.json"
+    design.write_text(json.dumps(design_table(optimal.springs)))
+    study = load_study("hexaleg", config, design, {"cycles": 5, "timestep": None})
+    assert study.prepared.motion.n_samples == 500
+    assert (study.settings.controller, study.settings.cycles, study.settings.stiffness) == \
+        ("position", 5, 5e4)
+    assert dict(study.springs) == dict(optimal.springs)
+    assert any("[springs]" in note and "not simulated" in note for note in study.notes)
+
+
+def test_an_unknown_table_key_is_named(tmp_path):
+    config = tmp_path / "c.toml"
+    config.write_text("[simulate]\nground = 1\n")
+    with pytest.raises(UnknownNameError, match="ground"):
+        load_study("hexaleg", config)
