@@ -89,3 +89,53 @@ def test_foot_targets_in_the_base_frame_have_exact_derivatives(yaw_rate):
     _, d1, d2 = seen(t)
     assert np.allclose((seen(t + h)[0] - seen(t - h)[0]) / (2 * h), d1, atol=1e-8)
     assert np.allclose((seen(t + h)[1] - seen(t - h)[1]) / (2 * h), d2, atol=1e-6)
+
+
+# --- GaitParams.heading: the walking direction in the base frame (crab walking) ---
+
+
+def test_walk_direction_turns_the_robots_heading():
+    from hexaleg.motion.body import walk_direction
+
+    robot = hexaleg.load_robot()
+    assert walk_direction(robot, hexaleg.GaitParams()) is not None
+    assert np.array_equal(walk_direction(robot, hexaleg.GaitParams()), [1.0, 0.0, 0.0])
+    assert np.allclose(walk_direction(robot, hexaleg.GaitParams(heading=np.pi / 2)),
+                       [0.0, 1.0, 0.0], atol=1e-15)
+    sideways = dataclasses.replace(robot, heading=np.array([0.0, 1.0, 0.0]))
+    assert np.allclose(walk_direction(sideways, hexaleg.GaitParams(heading=np.pi / 2)),
+                       [-1.0, 0.0, 0.0], atol=1e-15)
+
+
+@pytest.mark.parametrize("theta", [0.4, np.pi / 2, 2.5])
+def test_energy_at_heading_theta_equals_that_at_minus_theta(theta):
+    """The hexapod is left–right symmetric: walking at −θ is the mirror image of walking at θ
+    (the tripods swapped, half a cycle later), so every energy is the same to rounding — and
+    the crab walk really goes where it is sent, its stance feet at rest."""
+    robot = hexaleg.load_robot()
+    energies = []
+    for sign in (1.0, -1.0):
+        motion = hexaleg.gait(robot, hexaleg.GaitParams(heading=sign * theta, samples=100))
+        step = motion.q[1, :3] - motion.q[0, :3]
+        assert np.allclose(step / np.linalg.norm(step),
+                           [np.cos(theta), sign * np.sin(theta), 0.0], atol=1e-12)
+        analysis = hexaleg.prepare(robot, motion).evaluate()
+        energies.append([analysis.metrics["total"][k]
+                         for k in ("electrical", "joule", "positive_work", "absolute_work")])
+    left, right = np.array(energies)
+    assert np.all(np.abs(left - right) <= 1e-9 * np.abs(left))
+    assert left[0] > 1.0
+
+
+def test_a_robot_whose_urdf_faces_y_walks_forward_with_heading_set(robot, rotated):
+    """The body turned by 90° inside its base frame, its heading left at +x (a URDF facing +y
+    whose description does not say so): heading = π/2 walks it forward, the same joint motion
+    as the original's forward gait, along +y."""
+    facing_y = dataclasses.replace(rotated(robot, np.pi / 2), heading=np.array([1.0, 0.0, 0.0]))
+    gait = hexaleg.GaitParams(samples=100)
+    forward = hexaleg.gait(robot, gait)
+    turned = hexaleg.gait(facing_y, dataclasses.replace(gait, heading=np.pi / 2))
+    assert np.abs(turned.q[:, 7:] - forward.q[:, 7:]).max() < 1e-9
+    assert np.allclose(turned.q[:, :2], forward.q[:, [1, 0]] * [-1.0, 1.0], atol=1e-12)
+    assert turned.info["direction"] == pytest.approx([0.0, 1.0, 0.0], abs=1e-15)
+    assert np.abs(hexaleg.gait(facing_y, gait).q[:, 7:] - forward.q[:, 7:]).max() > 0.05

@@ -92,7 +92,7 @@ def test_gait_on_one_side_of_the_body_has_a_negative_static_margin(robot):
     """Hexapod groups {LF, LM, LH} and {RF, RM, RH}: three feet always stand, all on one side,
     so the CoM is outside every support triangle."""
     side = tripod_gait(robot, GaitParams(groups=(("LF", "LM", "LH"), ("RF", "RM", "RH")),
-                                         samples=SAMPLES))
+                                         samples=SAMPLES, balance="none"))
     (found,) = motion_findings(robot, side)
     assert found.check == "static_margin" and found.value < -0.05 and found.unit == "m"
     assert found.value == pytest.approx(side.info["static_margin"], rel=1e-12)
@@ -101,10 +101,12 @@ def test_gait_on_one_side_of_the_body_has_a_negative_static_margin(robot):
 
 
 def test_quadruped_crawl_with_negative_static_margin(solo):
-    """Solo-12 crawl LF → LH → RF → RH (one leg at a time, β = 0.75, no CoM shift): the pairs
-    of the same side swing back to back and the CoM leaves the support triangle."""
+    """Solo-12 crawl LF → LH → RF → RH (one leg at a time, β = 0.75, no CoM shift: balance
+    'none'): the pairs of the same side swing back to back and the CoM leaves the support
+    triangle."""
     gait = dataclasses.replace(GaitParams.for_robot(description("solo12")), duty_factor=0.75,
-                               groups=(("LF",), ("LH",), ("RF",), ("RH",)), samples=SAMPLES)
+                               groups=(("LF",), ("LH",), ("RF",), ("RH",)), samples=SAMPLES,
+                               balance="none")
     crawl = tripod_gait(solo, gait)
     assert crawl.info["min_stance_feet"] == 3
     (found,) = support_findings(solo, crawl)

@@ -11,6 +11,8 @@ are taken into the base frame with the exact rotating-frame derivatives (see
 
 from __future__ import annotations
 
+import math
+from collections.abc import Sequence
 from typing import NamedTuple
 
 import numpy as np
@@ -18,6 +20,7 @@ import pinocchio as pin
 
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.balance import Sway
+from hexaleg.motion.ground import Ground, ground_plane, level_footholds
 from hexaleg.motion.params import GaitParams
 from hexaleg.robot.model import Robot
 
@@ -30,11 +33,13 @@ class Body(NamedTuple):
 
     Attributes:
         base: Base position, shape (N, 3), m.
-        yaw: Yaw, shape (N,), rad.
-        rot: Base orientation R(yaw), shape (N, 3, 3).
+        yaw: Yaw, shape (N,), rad (about the ground's normal on a slope).
+        rot: Base orientation, shape (N, 3, 3): R(yaw) on level ground, ``R_g Rz(yaw) C`` on a
+            slope (:mod:`hexaleg.motion.ground`).
         v: Linear velocity in the base frame, shape (3,) or (N, 3), m/s.
         w: Angular velocity in the base frame, shape (3,), rad/s.
         a: Linear acceleration in the base frame, shape (3,) or (N, 3), m/s².
+        ground: The inclined ground, or None on level ground.
     """
 
     base: np.ndarray
@@ -43,6 +48,7 @@ class Body(NamedTuple):
     v: np.ndarray
     w: np.ndarray
     a: np.ndarray
+    ground: Ground | None = None
 
 
 def reference_pose(robot: Robot) -> np.ndarray:
@@ -70,12 +76,37 @@ def heading(robot: Robot) -> np.ndarray:
     return np.array([h[0], h[1], 0.0]) / np.hypot(h[0], h[1])
 
 
+def walk_direction(robot: Robot, gait: GaitParams) -> np.ndarray:
+    """The walking direction in the base frame, shape (3,): the robot's heading
+    (:func:`heading`) turned by ``gait.heading`` about z (exactly the heading when that is 0)."""
+    h = heading(robot)
+    if gait.heading == 0.0:
+        return h
+    c, s = math.cos(gait.heading), math.sin(gait.heading)
+    return np.array([c * h[0] - s * h[1], s * h[0] + c * h[1], 0.0])
+
+
+def gait_ground(robot: Robot, gait: GaitParams) -> Ground | None:
+    """The gait's inclined ground (:func:`hexaleg.motion.ground.ground_plane` along
+    :func:`walk_direction`), or None on level ground."""
+    return ground_plane(gait.slope, gait.cross_slope, gait.attitude, walk_direction(robot, gait))
+
+
+def body_height(robot: Robot, gait: GaitParams) -> float:
+    """``gait.body_height``, or the depth of the ``stand`` pose's feet below the base, m."""
+    if gait.body_height is not None:
+        return gait.body_height
+    return -float(robot.foot_positions(reference_pose(robot))[:, 2].mean())
+
+
 def nominal_footholds(robot: Robot, gait: GaitParams) -> np.ndarray:
     """Mid-stance foot positions in the base frame, shape (n_legs, 3), m.
 
     Horizontally the footholds of the robot's ``stand`` pose (scaled to ``foot_radius`` from the
     base z axis when given); vertically ``−body_height`` (default the stand pose's mean foot
-    depth), so the feet are on the ground z = 0 when the base is at ``body_height``.
+    depth), so the feet are on the ground z = 0 when the base is at ``body_height``. A level
+    body on a slope (``attitude = "level"``) puts each foot on the plane below its horizontal
+    place (:func:`hexaleg.motion.ground.level_footholds`).
 
     Args:
         robot: The robot.
@@ -90,6 +121,9 @@ def nominal_footholds(robot: Robot, gait: GaitParams) -> np.ndarray:
         radial = np.linalg.norm(feet[:, :2], axis=1, keepdims=True)
         feet[:, :2] *= gait.foot_radius / radial
     feet[:, 2] = -height
+    ground = gait_ground(robot, gait)
+    if ground is not None and ground.attitude == "level":
+        return level_footholds(ground, feet, height)
     return feet
 
 
@@ -124,26 +158,36 @@ def rotz(yaw: np.ndarray) -> np.ndarray:
 
 
 def body_motion(t: np.ndarray, speed: float, yaw_rate: float, height: float,
-                sway: Sway | None, direction: np.ndarray | None = None) -> Body:
-    """The constant-twist body at times ``t`` (N,), with the sway ``d(t) e`` on top if given.
+                sway: Sway | Sequence[Sway] | None, direction: np.ndarray | None = None,
+                ground: Ground | None = None) -> Body:
+    """The constant-twist body at times ``t`` (N,), with the sways ``d(t) e`` on top if given.
 
-    The body travels along ``direction`` (the heading h, base frame; default ``[1, 0, 0]``):
-    LOCAL linear velocity ``speed · h`` (:func:`body_pose`). The sway adds ``R e d`` to the
-    position, ``e ḋ + ω ẑ × e d`` to the LOCAL linear velocity and makes the acceleration
-    ``e d̈ + ω ẑ × e ḋ`` (exact derivatives of the trigonometric polynomial d).
+    The body travels along ``direction`` (the walking direction h, base frame; default
+    ``[1, 0, 0]``): LOCAL linear velocity ``speed · h`` (:func:`body_pose`). Each sway adds
+    ``R e d`` to the position, ``e ḋ + ω × e d`` to the LOCAL linear velocity and
+    ``e d̈ + ω × e ḋ`` to the acceleration (ω the LOCAL angular velocity; exact derivatives of
+    the trigonometric polynomial d). On a slope (``ground``, :mod:`hexaleg.motion.ground`) the
+    same motion happens in the ground frame at ``height`` from the plane along its normal: the
+    world pose is ``R_g`` times the ground-frame pose with the base attitude ``Rz(ψ) C``, and the
+    LOCAL velocities become ``Cᵀ (speed h)`` and ``Cᵀ (0, 0, ω)``.
     """
     base, yaw = body_pose(t, speed, yaw_rate, height, direction)
     rot = rotz(yaw)
     v_local = np.array([speed, 0.0, 0.0]) if direction is None else speed * direction
     w_local = np.array([0.0, 0.0, yaw_rate])
-    a_local = np.zeros(3)
-    if sway is not None:
-        d, dd, ddd = sway(t)
-        e, e_perp = sway.direction, np.cross(w_local, sway.direction)
+    if ground is not None:
+        base = base @ ground.rotation.T
+        rot = ground.rotation @ rot @ ground.tilt
+        v_local, w_local = ground.tilt.T @ v_local, ground.tilt.T @ w_local
+    a_local: np.ndarray = np.zeros(3)
+    sways = [] if sway is None else [sway] if isinstance(sway, Sway) else list(sway)
+    for one in sways:
+        d, dd, ddd = one(t)
+        e, e_perp = one.direction, np.cross(w_local, one.direction)
         base = base + np.einsum("nij,j->ni", rot, e) * d[:, None]
         v_local = v_local + e * dd[:, None] + e_perp * d[:, None]
-        a_local = e * ddd[:, None] + e_perp * dd[:, None]
-    return Body(base, yaw, rot, v_local, w_local, a_local)
+        a_local = a_local + e * ddd[:, None] + e_perp * dd[:, None]
+    return Body(base, yaw, rot, v_local, w_local, a_local, ground)
 
 
 def base_state(robot: Robot, body: Body) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -152,7 +196,10 @@ def base_state(robot: Robot, body: Body) -> tuple[np.ndarray, np.ndarray, np.nda
     n = len(body.yaw)
     q = np.tile(reference_pose(robot), (n, 1))
     q[:, :3] = body.base
-    q[:, 5], q[:, 6] = np.sin(body.yaw / 2), np.cos(body.yaw / 2)
+    if body.ground is None:
+        q[:, 5], q[:, 6] = np.sin(body.yaw / 2), np.cos(body.yaw / 2)
+    else:
+        q[:, 3:7] = body.ground.quaternions(body.yaw)
     v = np.zeros((n, robot.model.nv))
     v[:, :3], v[:, 3:6] = body.v, body.w
     a = np.zeros((n, robot.model.nv))

@@ -8,15 +8,17 @@ overrides of these parameters (its ``gait`` mapping, e.g. Solo-12's trot);
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from hexaleg.checks import is_integer, real
+from hexaleg.checks import is_real, real
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.errors import InvalidParameterError
-from hexaleg.motion.limits import MIN_SAMPLES
+from hexaleg.motion.limits import check_samples
+from hexaleg.motion.patterns import PATTERNS, check_pattern
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.registry import description
 
@@ -57,9 +59,17 @@ def default_groups(legs: Sequence[str]) -> tuple[tuple[str, ...], ...] | None:
     return tuple(g for g in (first, second) if g)
 
 
-BALANCE_MODES: tuple[str, ...] = ("auto", "none")
+BALANCE_MODES: tuple[str, ...] = ("auto", "none", "sway", "shift")
 """``GaitParams.balance``: ``"auto"`` sways the body (:mod:`hexaleg.motion.balance`) when some
-sample stands on exactly two feet and none on fewer; ``"none"`` keeps the constant-twist body."""
+sample stands on exactly two feet and none on fewer, and shifts it over the support polygon
+(:mod:`hexaleg.motion.shift`) when every sample stands on three or more feet but the static
+margin falls below ``min_static_margin``; ``"none"`` keeps the constant-twist body; ``"sway"``
+and ``"shift"`` ask for one of the two (an error where it does not apply)."""
+ATTITUDES: tuple[str, ...] = ("plane", "level")
+"""``GaitParams.attitude`` on a slope: the body parallel to the ground, or level."""
+MARGIN_FRACTION = 0.1
+"""The default ``min_static_margin``: this fraction of the nearest nominal foothold's horizontal
+distance from the base (0.0189 m for hexaleg, 0.024 m for Solo-12)."""
 
 
 @dataclass(frozen=True)
@@ -68,7 +78,9 @@ class GaitParams:
 
     Attributes:
         period: Cycle duration, s (> 0).
-        duty_factor: β, the fraction of the cycle each foot is in stance, in [0.5, 1).
+        duty_factor: β, the fraction of the cycle each foot is in stance, in (0, 1); None
+            (the default): the pattern's conventional β₀ (:data:`hexaleg.motion.patterns.PATTERNS`),
+            0.5 without a pattern. Stored resolved.
         stride_length: Body travel per cycle, m (≥ 0); also each foot's travel per swing. The
             stance stroke of a foot relative to the body is β · stride.
         speed: Forward speed, m/s. When given (not None) it **wins** over ``stride_length``:
@@ -79,7 +91,8 @@ class GaitParams:
         foot_radius: Horizontal distance of each nominal foothold from the base's z axis (stance
             width), m (> 0); None: the footholds of the ``stand`` pose (0.1889 m for hexaleg).
         yaw_rate: Turning rate about the vertical, rad/s; the body then follows a circular arc.
-        samples: Samples per cycle (≥ ``MIN_SAMPLES``).
+        samples: Samples per cycle, in [``MIN_SAMPLES``, ``MAX_SAMPLES``] (the upper bound
+            follows from memory, :data:`hexaleg.motion.limits.MAX_SAMPLES`).
         groups: Legs that move together; group i touches down at t = i · period / len(groups)
             and every leg of the robot must be in exactly one group.
         balance: ``"auto"`` (default): when the gait stands on exactly two feet at some sample
@@ -87,11 +100,31 @@ class GaitParams:
             feet can carry the motion (see :func:`hexaleg.motion.legged.sample_gait`); gaits
             with three or more feet always (the hexapod's tripod) are unchanged. ``"none"``:
             never sway (the rigid constant-twist body, whose two-foot samples have no contact
-            forces).
+            forces). ``"shift"``: shift the body over the support polygon of a gait on three or
+            more feet (a crawl) to keep ``min_static_margin`` (:mod:`hexaleg.motion.shift`;
+            ``"auto"`` does so when the margin falls below it); ``"sway"``: the two-foot sway.
+        pattern: A named pattern (:data:`hexaleg.motion.patterns.PATTERNS`: ``tripod``,
+            ``ripple``, ``wave``, ``crawl``, ``trot``, ``pace``) whose touch-down offsets come from
+            the leg names; it wins over ``groups``. None: ``groups``.
+        phases: Each leg's touch-down offset, a fraction of the period in [0, 1), in the
+            robot's leg order (custom patterns); wins over ``pattern`` and ``groups``.
+        heading: The walking direction in the base frame, rad: the angle from the robot's
+            forward axis (:attr:`hexaleg.robot.model.Robot.heading`) about the base z axis,
+            positive to the left; π/2 crab-walks to the left.
+        slope: Inclination of the ground along the walking direction, rad, in (−π/2, π/2),
+            positive uphill (:mod:`hexaleg.motion.ground`).
+        cross_slope: Inclination of the ground across the walking direction, rad, in
+            (−π/2, π/2), positive when the ground rises to the left.
+        attitude: On a slope, ``"plane"`` (the body parallel to the ground, ``body_height``
+            measured along its normal; default) or ``"level"`` (the body level,
+            ``body_height`` measured vertically; needs ``yaw_rate`` = 0).
+        min_static_margin: The static margin the body shift keeps, m (≥ 0); None: 10 % of the
+            nearest nominal foothold's horizontal distance from the base
+            (:data:`MARGIN_FRACTION`).
     """
 
     period: float = 1.0
-    duty_factor: float = 0.5
+    duty_factor: float = None  # type: ignore[assignment]  # None → β₀ in __post_init__
     stride_length: float = 0.06
     speed: float | None = None
     step_height: float = 0.03
@@ -101,11 +134,46 @@ class GaitParams:
     samples: int = 1000
     groups: tuple[tuple[str, ...], ...] = TRIPODS
     balance: str = "auto"
+    pattern: str | None = None
+    phases: tuple[float, ...] | None = None
+    heading: float = 0.0
+    slope: float = 0.0
+    cross_slope: float = 0.0
+    attitude: str = "plane"
+    min_static_margin: float | None = None
 
     def __post_init__(self) -> None:
         real("period", self.period, low=0.0, low_open=True, allowed="a finite number > 0 (s)")
-        real("duty_factor", self.duty_factor, low=0.5, high=1.0, high_open=True,
-             allowed="β in [0.5, 1)")
+        if self.pattern is not None:
+            check_pattern(self.pattern)
+        if self.duty_factor is None:
+            beta = PATTERNS[self.pattern].duty_factor if self.pattern is not None else 0.5
+            object.__setattr__(self, "duty_factor", float(beta))
+        real("duty_factor", self.duty_factor, low=0.0, high=1.0, low_open=True, high_open=True,
+             allowed="β in (0, 1), or None for the pattern's own")
+        if self.phases is not None:
+            phases = self.phases
+            if isinstance(phases, (str, bytes)) or not isinstance(phases, Sequence) \
+                    or not all(is_real(x) and 0.0 <= x < 1.0 for x in phases):
+                raise InvalidParameterError("phases", phases, "None or one touch-down offset "
+                                            "per leg, each a fraction of the period in [0, 1)")
+            if self.pattern is not None:
+                raise InvalidParameterError("phases", phases, f"None when pattern = "
+                                            f"{self.pattern!r} is given (give one of the two)")
+            object.__setattr__(self, "phases", tuple(float(x) for x in phases))
+        real("heading", self.heading, allowed="a finite angle (rad)")
+        for name in ("slope", "cross_slope"):
+            real(name, getattr(self, name), low=-math.pi / 2, high=math.pi / 2, low_open=True,
+                 high_open=True, allowed="an angle in (−π/2, π/2) rad, positive uphill")
+        if self.attitude not in ATTITUDES:
+            raise InvalidParameterError("attitude", self.attitude, " or ".join(ATTITUDES))
+        if self.attitude == "level" and self.yaw_rate != 0.0 and (self.slope or self.cross_slope):
+            raise InvalidParameterError("attitude", self.attitude, "'plane' when turning on a "
+                                        "slope (yaw_rate ≠ 0): a level body cannot follow the "
+                                        "turn about the ground's normal; or yaw_rate = 0")
+        if self.min_static_margin is not None:
+            real("min_static_margin", self.min_static_margin, low=0.0,
+                 allowed="None or a finite number ≥ 0 (m)")
         real("stride_length", self.stride_length, low=0.0, allowed="a finite number ≥ 0 (m)")
         if self.speed is not None:
             real("speed", self.speed, low=0.0, allowed="None or a finite number ≥ 0 (m/s)")
@@ -117,10 +185,13 @@ class GaitParams:
                 real(name, value, low=0.0, low_open=True,
                      allowed="None or a finite number > 0 (m)")
         real("yaw_rate", self.yaw_rate, allowed="a finite number (rad/s)")
-        if not is_integer(self.samples) or self.samples < MIN_SAMPLES:
-            raise InvalidParameterError("samples", self.samples,
-                                        f"an integer ≥ {MIN_SAMPLES} samples per period")
-        object.__setattr__(self, "samples", int(self.samples))
+        object.__setattr__(self, "samples", check_samples(self.samples))
+        if isinstance(self.groups, str) or not isinstance(self.groups, Sequence) or any(
+                isinstance(g, str) or not isinstance(g, Sequence) for g in self.groups):
+            # a string is a sequence, but "LF" is not the groups ('L',), ('F',)
+            raise InvalidParameterError("groups", self.groups, "a list of groups, each a list "
+                                        "of leg names, e.g. [['LF', 'RM', 'LH'], ['RF', 'LM', "
+                                        "'RH']]")
         groups = tuple(tuple(g) for g in self.groups)
         legs = [leg for g in groups for leg in g]
         if not groups or any(not g for g in groups) or len(set(legs)) != len(legs) \
@@ -140,6 +211,31 @@ class GaitParams:
     def velocity(self) -> float:
         """Forward speed, m/s (``stride / period`` unless ``speed`` is given)."""
         return self.stride / self.period
+
+    def balance_mode(self, fewest: int) -> str:
+        """``"sway"``, ``"shift"`` or ``"none"`` for this gait whose samples stand on at least
+        ``fewest`` feet (``balance``; ``"auto"`` picks by ``fewest``).
+
+        Args:
+            fewest: The fewest stance feet of any sample of the cycle.
+
+        Raises:
+            InvalidParameterError: ``"sway"`` asked for a gait that is not on two feet at its
+                fewest, or ``"shift"`` for one with fewer than three feet at some sample.
+        """
+        if self.balance == "none":
+            return "none"
+        if self.balance == "sway" and fewest != 2:
+            raise InvalidParameterError("balance", "sway", f"a gait on exactly two feet at its "
+                                        f"fewest (this one stands on {fewest}): 'auto', 'shift' "
+                                        "or 'none'")
+        if self.balance == "shift" and fewest < 3:
+            raise InvalidParameterError("balance", "shift", f"a gait on three or more feet at "
+                                        f"every sample (this one stands on {fewest} at its "
+                                        "fewest: no support polygon); 'auto', 'sway' or 'none'")
+        if self.balance == "auto":
+            return "sway" if fewest == 2 else "shift" if fewest >= 3 else "none"
+        return self.balance
 
     @classmethod
     def from_toml(cls, source: str | Path | Mapping[str, Any]) -> GaitParams:
@@ -182,24 +278,36 @@ class GaitParams:
         """
         desc = description(robot) if isinstance(robot, str) else robot
         gait = cls().updated(desc.gait, f"robot {desc.name!r} gait")
+        timed = gait.pattern is not None or gait.phases is not None  # groups unused
         if "groups" not in desc.gait:
             legs = desc.leg_names()
             groups = default_groups(legs)
-            if groups is None:
+            if groups is None and not timed:
                 raise InvalidParameterError(
                     f"{desc.name}: gait.groups", "none given",
                     f"leg groups for the legs {', '.join(legs)} (their names do not say side and "
                     "place, L/R then F M H or 1 2 …): give [robot.gait] groups = [[…], […]]")
-            gait = dataclasses.replace(gait, groups=groups)
-        desc.check_groups(gait.groups)
+            if groups is not None:
+                gait = dataclasses.replace(gait, groups=groups)
+        if not timed:
+            desc.check_groups(gait.groups)
         return gait
 
     def updated(self, table: Mapping[str, Any], where: str = "gait") -> GaitParams:
         """This gait with the keys of a TOML table on top (e.g. a file's ``[gait]`` over a
-        robot's own gait); keys the table does not set keep this gait's values.
+        robot's own gait); keys the table does not set keep this gait's values, except that a
+        table choosing the legs' timing (``pattern``, ``phases`` or ``groups``) clears this
+        gait's other two, and a ``pattern`` or ``phases`` without ``duty_factor`` takes the
+        pattern's own β₀ (0.5 for phases).
 
         Raises:
             UnknownNameError, ConfigError, InvalidParameterError: as :meth:`from_toml`.
         """
         given = from_mapping(type(self), table, where)
-        return dataclasses.replace(self, **{k: getattr(given, k) for k in table})
+        changes = {k: getattr(given, k) for k in table}
+        leg_keys = ("pattern", "phases", "groups")
+        if any(k in table for k in leg_keys):  # the table's choice of legs replaces this one's
+            changes.update({k: None for k in leg_keys[:2] if k not in table})
+            if "duty_factor" not in table and "groups" not in table:
+                changes["duty_factor"] = None  # the pattern's own β₀
+        return dataclasses.replace(self, **changes)

@@ -43,7 +43,7 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.errors import GaitReachError, HexalegError, UnreachableTargetError
-from hexaleg.motion.body import heading, nominal_footholds, reference_pose
+from hexaleg.motion.body import heading, nominal_footholds, reference_pose, walk_direction
 from hexaleg.motion.kinematics import leg_ik
 from hexaleg.motion.params import GaitParams
 from hexaleg.robot.model import Robot
@@ -99,7 +99,7 @@ def explain(robot: Robot, gait: GaitParams, error: UnreachableTargetError, leg: 
         return _stand_error(robot, gait, error, leg, search, data, (sigma, axis))
     nominal = nominal_footholds(robot, gait)[leg]
     p = np.asarray(error.target if error.target is not None else nominal)
-    lift, along = float(p[2] - nominal[2]), float((p - nominal) @ heading(robot))
+    lift, along = float(p[2] - nominal[2]), float((p - nominal) @ walk_direction(robot, gait))
     where = (f" — in {phase}, the foot "
              + ("on the ground" if phase == "stance" else f"{lift:.3g} m above the ground")
              + f", {abs(along):.3g} m {'ahead of' if along >= 0 else 'behind'} its mid-stance "

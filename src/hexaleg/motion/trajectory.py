@@ -42,6 +42,9 @@ class Motion:
             robot; feet touching it too would make the load sharing indeterminate). ``None``
             (the default) means every sample when ``fixed_base`` and none otherwise.
         info: Free-form description of how the motion was made (e.g. gait parameters).
+        normal: The ground's unit normal in the world frame, shape (3,): the axis of the feet's
+            friction cones (:mod:`hexaleg.dynamics.contact`). None (the default): level ground,
+            ``[0, 0, 1]``.
     """
 
     t: np.ndarray
@@ -56,6 +59,7 @@ class Motion:
     fixed_base: bool = False
     info: dict[str, Any] = field(default_factory=dict)
     supported: np.ndarray = None  # type: ignore[assignment]  # None → set in __post_init__
+    normal: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         n = self.t.shape[0]
@@ -82,6 +86,13 @@ class Motion:
             raise InvalidParameterError("Motion.supported", "False at some samples of a "
                                         "fixed-base motion", "all True (a fixture holds the base "
                                         "throughout) or fixed_base=False")
+        if self.normal is not None:
+            normal = np.asarray(self.normal, dtype=float)
+            if normal.shape != (3,) or not np.all(np.isfinite(normal)) \
+                    or abs(np.linalg.norm(normal) - 1.0) > 1e-9 or normal[2] <= 0.0:
+                raise InvalidParameterError("Motion.normal", self.normal, "None or a unit "
+                                            "3-vector pointing up (z > 0): the ground's normal")
+            object.__setattr__(self, "normal", normal)
         both = supported & np.asarray(self.stance).any(axis=1)
         if both.any():
             k = int(np.flatnonzero(both)[0])

@@ -1,0 +1,50 @@
+"""The hexapod's gait patterns: energy per metre and cost of transport vs speed, on level ground
+and on ±10° slopes, without springs and with the recommended femur springs.
+
+Run:  python analysis/gaits_hexaleg.py       (expected output: analysis/logs/gaits_hexaleg.log)
+
+The built-in hexapod walks the tripod (β = ½), ripple (⅔) and wave (⅚) patterns
+(``hexaleg.motion.patterns``; McGhee & Frank 1968) with its default stride (0.06 m) at three
+periods (2, 1 and 0.75 s: 0.03, 0.06 and 0.08 m/s), 100 samples per cycle, straight up, on and
+down a 10° slope (body parallel to the ground, ``hexaleg.motion.ground``). Per gait
+(``hexaleg.studies.gaits.gait_energy``): the AX-18A servos' electrical energy per metre
+travelled along the ground without springs, and with the preloaded femur springs that
+``hexaleg.optimal_springs`` finds for that gait (the global optimum of their magnitudes for
+least Joule loss); the cost of transport E / (m g d) (eq. 23) of both; the saving.
+"""
+
+from __future__ import annotations
+
+import math
+
+import hexaleg
+from hexaleg.studies.gaits import gait_energy
+
+PATTERNS = ("tripod", "ripple", "wave")
+PERIODS = (2.0, 1.0, 0.75)  # s, stride 0.06 m
+SLOPES = (-10.0, 0.0, 10.0)  # deg
+SAMPLES = 100
+
+
+def main() -> None:
+    robot = hexaleg.load_robot()
+    print(f"hexaleg: {robot.mass:.4g} kg, femur springs (preloaded), {SAMPLES} samples")
+    print(f"{'pattern':7s} {'v [m/s]':>7s} {'slope':>6s} {'J/m':>7s} {'CoT':>6s} "
+          f"{'J/m spr':>8s} {'CoT spr':>8s} {'saving':>7s}")
+    for pattern in PATTERNS:
+        for period in PERIODS:
+            for slope in SLOPES:
+                gait = hexaleg.GaitParams(pattern=pattern, period=period, samples=SAMPLES,
+                                          slope=math.radians(slope))
+                row = gait_energy(robot, gait, ["femur"])
+                head = f"{pattern:7s} {row.speed:7.3f} {slope:+5.0f}°"
+                if row.error is not None:
+                    print(f"{head}  {row.error.split(':')[0]}")
+                    continue
+                print(f"{head} {row.per_metre:7.2f} {row.cost_of_transport:6.2f} "
+                      f"{row.per_metre_springs:8.2f} {row.cost_of_transport_springs:8.2f} "
+                      f"{100 * row.saving:6.1f}%")
+
+
+if __name__ == "__main__":
+    main()
