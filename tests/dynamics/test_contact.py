@@ -10,7 +10,7 @@ import pytest
 from hexaleg.dynamics.contact import ContactParams, check_objective, friction_usage, violations
 from hexaleg.dynamics.prepare import prepare
 from hexaleg.dynamics.solver import solve_fast
-from hexaleg.errors import InvalidParameterError
+from hexaleg.errors import InfeasibleForcesError, InvalidParameterError
 
 
 def test_pyramid_is_inside_the_cone(robot, walk200):
@@ -65,3 +65,29 @@ def test_friction_usage_of_known_forces():
     f = np.array([[[3.0, 4.0, 10.0], [0.0, 0.0, 0.0], [1.0, 0.0, 5.0]]])
     stance = np.array([[True, True, False]])
     np.testing.assert_allclose(friction_usage(f, stance, 0.5), [[1.0, 0.0, 0.0]])
+
+
+def test_contact_frame_turns_z_onto_the_normal_and_usage_is_about_it():
+    from hexaleg.dynamics.contact import contact_frame
+
+    assert np.array_equal(contact_frame(np.array([0.0, 0.0, 1.0])), np.eye(3))
+    n = np.array([-0.3, 0.2, 1.0]) / np.linalg.norm([-0.3, 0.2, 1.0])
+    r = contact_frame(n)
+    assert np.allclose(r.T @ r, np.eye(3), atol=1e-15) and np.isclose(np.linalg.det(r), 1.0)
+    assert np.allclose(r[:, 2], n, atol=1e-15)
+    assert np.allclose(r @ np.cross([0.0, 0.0, 1.0], n), np.cross([0.0, 0.0, 1.0], n))  # axis
+    # A force along n uses no friction; one at angle atan μ from n is on the cone.
+    t = r[:, 0]
+    f = np.array([[n * 10.0, (n + 0.5 * t) * 10.0]])
+    assert np.allclose(friction_usage(f, np.ones((1, 2), bool), 0.5, n), [[0.0, 1.0]])
+    assert friction_usage(f, np.ones((1, 2), bool), 0.5)[0, 0] > 0.5  # about z it is loaded
+
+
+def test_ground_steeper_than_friction_is_refused_before_the_program():
+    from hexaleg.dynamics.contact import check_ground_friction
+
+    n = np.array([-np.sin(0.3), 0.0, np.cos(0.3)])
+    check_ground_friction(None, ContactParams(mu=1e-3))
+    check_ground_friction(n, ContactParams(mu=np.tan(0.3) + 1e-9))
+    with pytest.raises(InfeasibleForcesError, match=r"γ = 17\.2°.*tan γ = 0\.3093 > μ = 0\.3"):
+        check_ground_friction(n, ContactParams(mu=0.3))

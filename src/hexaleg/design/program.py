@@ -90,7 +90,9 @@ class DesignSolution:
         value: ``Σ_t w_t Σ_j c_j τ_j²`` at the optimum (J for ``"joule"``).
         explicit: Samples the active set solved with explicit forces, shape (|E|,).
         rounds: Clarabel solves.
-        forces: The optimal foot forces, shape (T, 3 n_legs), N (world frame, padded).
+        forces: The optimal foot forces, shape (T, 3 n_legs), N (padded; in the stance
+            system's frame: the world on level ground, the contact frame on a slope,
+            ``prepared.system.to_world(forces)`` in the world).
     """
 
     x: np.ndarray

@@ -27,6 +27,11 @@ per-sample solves and by the cvxpy reference, until one is met: an "almost solve
 loosest is an error, never a silent result."""
 
 
+UNLIMITED_FRICTION = 100.0
+"""A friction coefficient that stands for "no friction limit" when an infeasible sample is
+diagnosed (larger ones scale the cone too badly for Clarabel)."""
+
+
 @dataclass(eq=False)
 class _ConicProgram:
     """One sample's program in Clarabel's form: minimise ½ xᵀ P x + qᵀ x subject to
@@ -290,7 +295,48 @@ def raise_infeasible(system: StanceSystem, k: int, tau_spring: np.ndarray,
                     f"joint within its limit; solver status {status}")
     raise InfeasibleForcesError(
         f"no contact forces satisfy the dynamics at {where} with friction μ = {contact.mu} "
-        f"({contact.cone}) and normal force ≥ {contact.min_normal_force} N; solver status {status}")
+        f"({contact.cone}) and normal force ≥ {contact.min_normal_force} N: "
+        f"{_binding_constraint(system, k, tau_spring, contact)}; solver status {status}")
+
+
+def _feasible(system: StanceSystem, k: int, tau_spring: np.ndarray,
+              contact: ContactParams) -> np.ndarray | None:
+    """Forces of sample ``k`` under ``contact`` (least Σ τ², no torque limits), or None."""
+    relaxed = dataclasses.replace(contact, torque_limits=False)
+    program = _conic_program(system, k, tau_spring, "torque_squared", np.ones(system.D.shape[1]),
+                             relaxed)
+    x, status = _clarabel_solve(program)
+    if status != "Solved":
+        return None
+    f = np.zeros((system.stance.shape[1], 3))
+    f[system.stance[k]] = x[:program.n_f].reshape(-1, 3)
+    return f
+
+
+def _binding_constraint(system: StanceSystem, k: int, tau_spring: np.ndarray,
+                        contact: ContactParams) -> str:
+    """Which constraint makes sample ``k`` infeasible, in words: the friction cone (with the
+    least friction coefficient that would do, and the foot that needs it) or the normal forces
+    (some foot would have to pull even on a frictionless-limit floor)."""
+    loose = dataclasses.replace(contact, mu=UNLIMITED_FRICTION)
+    if _feasible(system, k, tau_spring, loose) is None:
+        return (f"the normal forces — even with unlimited friction some stance foot would have "
+                f"to push less than {contact.min_normal_force} N (pull on the ground)")
+    lo, hi = contact.mu, UNLIMITED_FRICTION
+    while hi / lo > 1.001:  # the least μ with forces, by bisection on a log scale
+        mid = math.sqrt(lo * hi)
+        if _feasible(system, k, tau_spring, dataclasses.replace(contact, mu=mid)) is None:
+            lo = mid
+        else:
+            hi = mid
+    f = _feasible(system, k, tau_spring, dataclasses.replace(contact, mu=hi))
+    feet = np.flatnonzero(system.stance[k])
+    worst = ""
+    if f is not None:
+        load = np.hypot(f[feet, 0], f[feet, 1]) / np.maximum(f[feet, 2], 1e-300)
+        worst = f", foot {system.leg_names[feet[int(np.argmax(load))]]} at its cone's edge"
+    return (f"the friction cone — the least friction that admits forces here is "
+            f"μ = {hi:.3g}{worst}")
 
 
 def raise_unreachable(system: StanceSystem, k: int, residual: float) -> NoReturn:

@@ -41,7 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hexaleg.checks import positive, real
-from hexaleg.errors import InvalidParameterError
+from hexaleg.errors import InfeasibleForcesError, InvalidParameterError
 
 OBJECTIVES: tuple[str, ...] = ("joule", "torque_squared", "electrical", "positive_work")
 """Names of the motor-energy objectives, default first."""
@@ -117,6 +117,11 @@ class StanceSystem:
         joint_names: Joint names, for error messages.
         efficiency: Gearbox efficiency η of each joint's motor, shape (nj,) or a scalar for
             all, in (0, 1] (``"electrical"`` objective).
+        frame: The contact frame on an inclined ground (:func:`contact_frame`), shape (3, 3),
+            or None on level ground. When given, the force columns of ``A`` and ``D`` act on
+            each foot's force in this frame (``f_world = frame @ f``, normal along its z), so the
+            program's cones about z are the cones about the ground's normal; every solver's
+            forces are in this frame and :meth:`to_world` takes them back.
     """
 
     stance: np.ndarray
@@ -130,10 +135,17 @@ class StanceSystem:
     leg_names: tuple[str, ...]
     joint_names: tuple[str, ...]
     efficiency: float | np.ndarray = 1.0
+    frame: np.ndarray | None = None
 
     @property
     def n_samples(self) -> int:
         return int(self.stance.shape[0])
+
+    def to_world(self, f: np.ndarray) -> np.ndarray:
+        """Forces ``f`` (T, 3 n_legs) of the program in the world frame, same shape, N."""
+        if self.frame is None:
+            return f
+        return (f.reshape(*f.shape[:-1], -1, 3) @ self.frame.T).reshape(f.shape)
 
     def torques(self, f: np.ndarray, tau_spring: np.ndarray,
                 rows: np.ndarray | slice = slice(None)) -> np.ndarray:
@@ -168,18 +180,67 @@ def violations(system: StanceSystem, f: np.ndarray, tau: np.ndarray, contact: Co
     return bad
 
 
-def friction_usage(forces: np.ndarray, stance: np.ndarray, mu: float) -> np.ndarray:
-    """Load of the Coulomb friction cone ``|f_t| / (μ f_n)`` of every foot (flat ground, z up).
+def contact_frame(normal: np.ndarray) -> np.ndarray:
+    """The contact frame of a ground with unit normal ``normal`` (3,): the rotation that turns
+    ẑ onto it about ``ẑ × n`` (Rodrigues' formula, ``R = I + [k]× + [k]×² (1 − c) / s²`` with
+    ``k = ẑ × n``, s = |k|, c = n_z; Murray, Li & Sastry, *A Mathematical Introduction to Robotic
+    Manipulation*, 1994, eq. 2.14); its columns are two tangents and the normal, (3, 3)."""
+    n = np.asarray(normal, dtype=float)
+    k = np.array([-n[1], n[0], 0.0])
+    s2, c = float(k @ k), float(n[2])
+    if s2 < 1e-30:
+        return np.eye(3)
+    kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    return np.eye(3) + kx + kx @ kx * ((1.0 - c) / s2)
+
+
+def check_ground_friction(normal: np.ndarray | None, contact: ContactParams) -> None:
+    """Refuse a ground steeper than friction allows, before any force program runs.
+
+    Over a cycle of a periodic motion the contact forces average to ``−m g`` (the CoM's
+    momentum is periodic: Newton's second law integrated over the cycle). Its component along
+    the ground is ``m g sin γ`` and across it ``m g cos γ`` (γ the ground's inclination), and
+    feet inside their cones (``|f_t| ≤ μ f_n``) sum to at most ``μ Σ f_n`` tangentially, so a
+    periodic gait on that ground needs ``μ ≥ tan γ`` — at every instant on average.
+
+    Args:
+        normal: The ground's unit normal (world), or None (level ground: nothing to check).
+        contact: The contact settings (μ).
+
+    Raises:
+        InfeasibleForcesError: ``tan γ > μ``; names γ, tan γ, μ and what to change.
+    """
+    if normal is None:
+        return
+    n_z = float(normal[2])
+    tan = math.sqrt(max(0.0, 1.0 - n_z * n_z)) / n_z
+    if tan > contact.mu:
+        raise InfeasibleForcesError(
+            f"the ground is inclined by γ = {math.degrees(math.acos(n_z)):.3g}° and the "
+            f"friction allows at most atan μ = {math.degrees(math.atan(contact.mu)):.3g}°: "
+            f"tan γ = {tan:.4g} > μ = {contact.mu:g}. Over a cycle the feet must push the "
+            "weight, whose component along the ground needs μ ≥ tan γ; raise ContactParams.mu "
+            f"([contact] mu) to ≥ {tan:.4g} or walk a gentler slope (GaitParams.slope, "
+            "cross_slope)")
+
+
+def friction_usage(forces: np.ndarray, stance: np.ndarray, mu: float,
+                   normal: np.ndarray | None = None) -> np.ndarray:
+    """Load of the Coulomb friction cone ``|f_t| / (μ f_n)`` of every foot, the cone about the
+    ground's normal n: ``f_n = f · n``, ``f_t = f − f_n n``.
 
     Args:
         forces: World-frame foot forces, shape (T, n_legs, 3), N.
         stance: Stance flags, shape (T, n_legs), bool.
         mu: Friction coefficient, > 0.
+        normal: The ground's unit normal, shape (3,); None: level ground, ``[0, 0, 1]``.
 
     Returns:
         Shape (T, n_legs), 1: 0 for swing feet and for stance feet without normal force, 1 on
         the cone's surface (the foot is about to slip).
     """
+    if normal is not None:
+        forces = forces @ contact_frame(normal)  # each foot's force in the contact frame
     fn = forces[..., 2]
     ft = np.hypot(forces[..., 0], forces[..., 1])
     out = np.zeros(fn.shape)

@@ -15,6 +15,11 @@ motion with ``fixed_base=True`` (the paper's single joint) has no contacts: the 
 base rows and ``τ_m = b_joint − τ_s``. The same holds at the ``Motion.supported`` samples of any
 motion (the body resting on the ground while the legs fold): the support supplies ``b_base``, so the
 base rows there read 0 = 0, no foot carries load and ``τ_m = b_joint − τ_s``.
+
+On an inclined ground (``Motion.normal``) the stance system's force columns are turned into the
+contact frame (:func:`hexaleg.dynamics.contact.contact_frame`: z along the ground's normal), so
+the same force program puts the friction cones about the normal; the forces come back to the
+world frame in :meth:`Prepared.solve` (``StanceSystem.to_world``).
 """
 
 from __future__ import annotations
@@ -27,11 +32,13 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.dynamics import energy
+from hexaleg.dynamics.batched import WarmStart
 from hexaleg.dynamics.contact import (
-    QUADRATIC_OBJECTIVES,
     ContactParams,
     StanceSystem,
+    check_ground_friction,
     check_objective,
+    contact_frame,
 )
 from hexaleg.dynamics.inertia import apparent_inertias
 from hexaleg.dynamics.solver import QuadraticGains, quadratic_gains, solve_fast
@@ -154,6 +161,8 @@ class Prepared:
     q: np.ndarray
     qdot: np.ndarray
     _gains: dict[str, QuadraticGains] = field(default_factory=dict, repr=False)
+    _warm: dict[str, WarmStart] = field(default_factory=dict, repr=False)
+    _warm_baseline: dict[str, WarmStart] = field(default_factory=dict, repr=False)
     _baseline: dict[str, dict[str, Any]] = field(default_factory=dict, repr=False)
     _inertia: np.ndarray | None = field(default=None, repr=False)
 
@@ -200,13 +209,13 @@ class Prepared:
                         f"{self.robot.joint_names[j]} needs τ = {tau[k, j]:+.4f} N·m "
                         f"(limit ±{self.system.tau_max[j]:.4f} N·m). {self._limit_hint()}")
             return np.zeros((T, n_legs, 3)), tau, np.zeros(T, dtype=bool)
-        gains = self.gains(objective) if objective in QUADRATIC_OBJECTIVES else None
         try:
             f, tau, resolved = solve_fast(self.system, tau_spring, objective,
-                                          self.weights(objective), self.contact, gains)
+                                          self.weights(objective), self.contact,
+                                          warm=self._warm.setdefault(objective, WarmStart()))
         except TorqueLimitError as exc:
             raise TorqueLimitError(f"{exc}. {self._limit_hint()}") from None
-        return f.reshape(T, n_legs, 3), tau, resolved
+        return self.system.to_world(f).reshape(T, n_legs, 3), tau, resolved
 
     def _limit_hint(self) -> str:
         """Where the torque limits come from and what to change, for TorqueLimitError."""
@@ -241,7 +250,23 @@ class Prepared:
         if objective not in self._baseline:
             _, tau, _ = self.solve(np.zeros_like(self.q), objective)
             self._baseline[objective] = self.metrics(tau)
+            if objective in self._warm:
+                self._warm_baseline[objective] = self._warm[objective].copy()
         return self._baseline[objective]
+
+    def reset_warm_start(self, objective: str = "joule") -> None:
+        """Start the next solve of ``objective`` from the active sets of the baseline (or cold,
+        before the baseline is computed) instead of the last solve's.
+
+        A solve starts from the last one's active sets (the warm start of a sweep,
+        :class:`~hexaleg.dynamics.batched.WarmStart`): the forces agree to rounding whatever
+        the start, but not always to the last bit. A sweep resets at the start of every chunk
+        of points, so that a chunk's rows are the same bits in any process and any order.
+        """
+        if objective in self._warm_baseline:
+            self._warm[objective] = self._warm_baseline[objective].copy()
+        else:
+            self._warm.pop(objective, None)
 
     def evaluate(self, springs: SpringsLike = None, objective: str = "joule") -> Analysis:
         """Analyse the motion with ``springs``.
@@ -294,6 +319,8 @@ def prepare(robot: Robot, motion: Motion, *, motor: Motor | MotorSet | str | Non
 
     Raises:
         InvalidParameterError: the motion does not fit the robot.
+        InfeasibleForcesError: a periodic motion on a ground steeper than the friction allows,
+            ``tan γ > μ`` (:func:`hexaleg.dynamics.contact.check_ground_friction`).
     """
     model, data = robot.model, robot.data
     T = motion.n_samples
@@ -317,9 +344,16 @@ def prepare(robot: Robot, motion: Motion, *, motor: Motor | MotorSet | str | Non
             if motion.stance[k, i]:
                 jac[k, i] = pin.getFrameJacobian(model, data, fid, lwa)[:3]
     # Padded stance system: column block 3i:3i+3 is leg i; swing legs' blocks are zero.
-    jt = np.transpose(jac, (0, 3, 1, 2)).reshape(T, model.nv, 3 * n_legs)  # (T, nv, 3 n_legs)
-    motor = _as_motor(motor, robot)
     contact = contact or ContactParams()
+    frame = None
+    if motion.normal is not None:  # forces in the contact frame: cones about the ground normal
+        if motion.periodic:
+            check_ground_friction(motion.normal, contact)
+        frame = contact_frame(motion.normal)
+        jt = np.einsum("tlkv,kj->tvlj", jac, frame).reshape(T, model.nv, 3 * n_legs)
+    else:
+        jt = np.transpose(jac, (0, 3, 1, 2)).reshape(T, model.nv, 3 * n_legs)  # (T, nv, 3 n_legs)
+    motor = _as_motor(motor, robot)
     # Each joint's servo stall torque limits it (the URDF's effort limits are those of the robot's
     # nominal servo, which the user may be replacing; a generic actuator is built from them).
     tau_max = np.broadcast_to(np.asarray(motor.stall_torque, dtype=float), (robot.nj,)).copy()
@@ -328,7 +362,8 @@ def prepare(robot: Robot, motion: Motion, *, motor: Motor | MotorSet | str | Non
                           b_joint=rnea[:, 6:], qdot=motion.v[:, 6:],
                           tau_max=tau_max, t=motion.t, leg_names=robot.leg_names,
                           joint_names=robot.joint_names,
-                          efficiency=np.broadcast_to(motor.gearbox_efficiency, (robot.nj,)).copy())
+                          efficiency=np.broadcast_to(motor.gearbox_efficiency, (robot.nj,)).copy(),
+                          frame=frame)
     return Prepared(robot=robot, motion=motion, motor=motor, contact=contact,
                     rnea=rnea, jacobians=jac, system=system, q=motion.q[:, 7:],
                     qdot=motion.v[:, 6:])

@@ -1,24 +1,35 @@
-"""The fast exact solver of the force program (:mod:`hexaleg.dynamics.contact`), batched per motion.
+"""The exact solver of the force program (:mod:`hexaleg.dynamics.contact`), batched per motion.
 
-:func:`solve_fast` is the path sweeps use. For the quadratic objectives the equality-constrained
-least-squares solution is linear in the spring torques, ``f = f₀ − K τ_spring``, with per-sample
-gains ``K`` computed once per motion (:class:`QuadraticGains`); samples where that solution
-violates a friction, normal-force or torque-limit inequality are re-solved exactly with Clarabel
-(an interior-point conic solver, :mod:`hexaleg.dynamics.conic`), as are all samples of the
-non-quadratic objectives. Where no
-inequality binds, the unconstrained optimum is feasible and hence the optimum of the convex
-program: the fast path is exact, not an approximation. :mod:`hexaleg.dynamics.reference` (cvxpy)
-is what the tests compare it against.
+:func:`solve_fast` is the path every analysis, sweep and optimiser uses. Each sample's program is
+reduced to the null space of its base rows (:mod:`hexaleg.dynamics.reduction`) and solved, all
+samples of a stance size at once, by :mod:`hexaleg.dynamics.batched`: a guess of the active set
+(the last stiffness choice's, in a sweep) is solved and *certified* by the KKT conditions of the
+whole program (:mod:`hexaleg.dynamics.active_set`), repaired where it fails, and the batched
+interior-point method (:mod:`hexaleg.dynamics.ipm`) finds the active set where no guess does.
+Certified forces are the optimum to rounding, for every objective, friction model and torque
+limit: the same solution as Clarabel through cvxpy (:mod:`hexaleg.dynamics.reference`, the tests'
+reference), without its per-sample calls. A sample nothing certifies is solved by Clarabel
+(:mod:`hexaleg.dynamics.conic`), which also raises the error that names an infeasible sample.
+
+:class:`QuadraticGains` — the unconstrained optimum of the quadratic objectives as an affine map
+of the spring torques — serves the design program (:mod:`hexaleg.design.program`), which needs it
+as a matrix.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
 
-from hexaleg.dynamics.conic import raise_unreachable, solve_sample
-from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES, ContactParams, StanceSystem, violations
+from hexaleg.dynamics.active_set import constant_rows, unconstrained_gains
+from hexaleg.dynamics.batched import Stats, WarmStart, solve_group
+from hexaleg.dynamics.blocks import Data
+from hexaleg.dynamics.conic import raise_infeasible, raise_unreachable, solve_sample
+from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES, ContactParams, StanceSystem
+from hexaleg.dynamics.pieces import pieces
+from hexaleg.dynamics.reduction import reduce
 
 
 @dataclass(frozen=True, eq=False)
@@ -85,21 +96,10 @@ def quadratic_gains(system: StanceSystem, weights: np.ndarray) -> QuadraticGains
                           system.torques(f0, np.zeros_like(system.b_joint)), G)
 
 
-def _check_base_rows(system: StanceSystem, f: np.ndarray) -> None:
-    """Raise InfeasibleForcesError at the first sample whose stance feet cannot produce the base
-    wrench at all (the equality-constrained solution ``f`` (T, 3 n_legs) misses the base rows)."""
-    residual = np.abs((system.A @ f[..., None])[..., 0] - system.b_base).max(axis=1)
-    scale = 1.0 + np.abs(system.b_base).max(axis=1)
-    bad = np.flatnonzero(residual > 1e-8 * scale)
-    if bad.size:
-        raise_unreachable(system, int(bad[0]), float(residual[bad[0]]))
-
-
 def solve_fast(system: StanceSystem, tau_spring: np.ndarray, objective: str,
-               weights: np.ndarray, contact: ContactParams,
-               gains: QuadraticGains | None = None
-               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Optimal foot forces for every sample (fast exact path).
+               weights: np.ndarray, contact: ContactParams, *,
+               warm: WarmStart | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Optimal foot forces for every sample (module docstring).
 
     Args:
         system: The motion's stance system.
@@ -108,33 +108,61 @@ def solve_fast(system: StanceSystem, tau_spring: np.ndarray, objective: str,
         weights: Joule coefficients ``c_j`` (``"joule"``, ``"electrical"``) or ones
             (``"torque_squared"``), shape (nj,), W/(N·m)².
         contact: Contact settings.
-        gains: Precomputed :func:`quadratic_gains` for these weights (quadratic objectives).
+        warm: The last solve's active sets for this motion and objective: the guess to start
+            from, replaced by this solve's (a sweep passes the same object every time).
 
     Returns:
         ``(f, tau, resolved)``: forces (T, 3 n_legs), N, world frame; motor torques (T, nj), N·m;
-        and the mask (T,) of samples that needed the exact conic solve.
+        and the mask (T,) of samples where an inequality binds (the quadratic objectives) or that
+        have stance feet (the others): those whose forces are not the unconstrained optimum.
 
     Raises:
         InfeasibleForcesError: no forces satisfy a sample's constraints (names time and feet).
         TorqueLimitError: the torque limits cannot be met (names joint, time, torque).
     """
-    T = system.n_samples
-    if objective in QUADRATIC_OBJECTIVES:
-        if gains is None:
-            gains = quadratic_gains(system, weights)
-        cols = np.flatnonzero(np.any(tau_spring != 0.0, axis=0))  # joints with a spring
-        ts = tau_spring[:, cols, None]
-        f = gains.f0 - (gains.K[:, :, cols] @ ts)[..., 0]
-        tau = gains.tau0 + (gains.G[:, :, cols] @ ts)[..., 0]
-        _check_base_rows(system, f)
-        bad = violations(system, f, tau, contact)
-    else:
-        f = np.zeros((T, system.A.shape[2]))
-        bad = np.asarray(system.stance.any(axis=1))
-    for k in np.flatnonzero(bad):
+    red = reduce(system)
+    T, n_legs = system.stance.shape
+    if not red.reachable.all():
+        k = int(np.flatnonzero(~red.reachable)[0])
+        raise_unreachable(system, k, float(red.residual[k]))
+    tau = system.b_joint - tau_spring
+    if contact.torque_limits:
+        over = red.free & (np.abs(tau) > system.tau_max * (1.0 + 1e-12))
+        if over.any():  # a swing-leg joint beyond its limit, whatever the forces
+            k = int(np.flatnonzero(over.any(axis=1))[0])
+            raise_infeasible(system, k, tau_spring, contact, "swing-leg joint beyond its limit")
+    f3 = np.zeros((T, n_legs, 3))
+    quadratic = objective in QUADRATIC_OBJECTIVES
+    resolved = np.zeros(T, bool) if quadratic else np.asarray(system.stance.any(axis=1))
+    eff = np.broadcast_to(np.asarray(system.efficiency, dtype=float), weights.shape)
+    key = (objective, weights.tobytes(), eff.tobytes(), float(contact.regularization), contact)
+    if warm is not None and (warm.key != key or len(warm.states) != len(red.groups)):
+        warm.key, warm.states = key, [None] * len(red.groups)
+    stats = warm.stats if warm is not None else Stats()
+    uncertified: list[np.ndarray] = []
+    for i, g in enumerate(red.groups):
+        J = g.joints
+        if key not in g.cache:  # the group's program for these settings, once per motion
+            base = Data(g.fp, g.N, g.E, g.tau_base,
+                        pieces(objective, weights[J], system.qdot[g.rows, J], eff[J],
+                               contact.regularization),
+                        system.tau_max[J] if contact.torque_limits else None, contact)
+            g.cache[key] = dataclasses.replace(
+                base, const=constant_rows(base),
+                Z=None if base.pieces.K else unconstrained_gains(base))
+        data = dataclasses.replace(g.cache[key], tau0=g.tau0(tau_spring))
+        guess = warm.states[i] if warm is not None else None
+        state, ok = solve_group(data, guess, stats)
+        if warm is not None:
+            warm.states[i] = state
+        f3[g.rows[None, :], g.legs] = np.transpose(g.forces(state.z), (1, 2, 0))
+        tau[g.rows[None, :], J] = g.torques(data.tau0, state.z)
+        if quadratic:
+            resolved[g.rows] = state.held.any(axis=0) | state.feet.any(axis=(0, 1))
+        uncertified.append(g.rows[~ok])
+    f = f3.reshape(T, 3 * n_legs)
+    for k in np.sort(np.concatenate(uncertified or [np.zeros(0, int)])):
         f[k] = solve_sample(system, int(k), tau_spring, objective, weights, contact)
-    if objective not in QUADRATIC_OBJECTIVES:
-        tau = system.torques(f, tau_spring)
-    elif bad.any():
-        tau[bad] = system.torques(f[bad], tau_spring[bad], bad)
-    return f, tau, bad
+        tau[k] = system.torques(f[k:k + 1], tau_spring[k:k + 1], slice(k, k + 1))[0]
+        resolved[k] = True
+    return f, tau, resolved
