@@ -108,3 +108,20 @@ def test_robot_and_gait_print_the_sanity_checks(tmp_path, capsys):
     assert "warning: radius_of_gyration: link LF_coxa_link" in out
     assert main(["robot"]) == 0 and "warning" not in capsys.readouterr().out
     assert main(["gait"]) == 0 and "warning" not in capsys.readouterr().out
+
+
+def test_hexaleg_warnings_print_as_one_line(tmp_path, capsys):
+    """A warning (here: the stale lock of a killed sweep, taken over) is one line on stderr."""
+    import json
+
+    args = ["sweep", "--joints", "coxa", "--k", "0,0.1", "--theta-k", "0.01", "--samples", "40",
+            "--executor", "serial", "--out", str(tmp_path / "out")]
+    assert main(args) == 0
+    (tmp_path / "out" / ".lock").write_text(json.dumps({"pid": 999999, "host": "gone",
+                                                        "started": "yesterday"}))
+    capsys.readouterr()
+    assert main(args) == 0
+    err = capsys.readouterr().err
+    assert "hexaleg sweep: warning: took over the lock of a sweep that ended without releasing " \
+           "it (pid 999999 on host gone, started yesterday)" in err
+    assert "HexalegWarning" not in err and "warnings.warn" not in err

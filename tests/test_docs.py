@@ -174,6 +174,15 @@ def test_design_page_quotes_the_placement_study_log():
     assert rows == 14
 
 
+def test_design_page_quotes_the_design_answer_log():
+    """docs/design.md shows analysis/logs/answer_hexaleg.log (``hexaleg design``'s answer on the
+    default robot, itself diffed against its script by test_examples) verbatim."""
+    root = Path(__file__).resolve().parents[1]
+    log = (root / "analysis" / "logs" / "answer_hexaleg.log").read_text()
+    page = (root / "docs" / "design.md").read_text()
+    assert f"```text\n{log}```" in page
+
+
 def test_bring_your_own_robot_quotes_the_test_robot():
     """docs/robots.md's five-line description is tests/data/spider.toml (which the tests load
     and run through every command)."""
@@ -204,3 +213,24 @@ def test_robots_page_table_is_the_registry():
         mass, stand = m.groups()
         assert f"{robot.mass:.{len(mass.partition('.')[2])}f}" == mass, name
         assert f"{depth:.3g}" == stand, (name, depth)
+
+
+def test_gaits_page_quotes_the_gait_study_logs():
+    """docs/gaits.md's two tables are analysis/logs/gaits_hexaleg.log and gaits_solo12.log (each
+    diffed against its script by test_examples), row by row."""
+    import re
+
+    root = Path(__file__).resolve().parents[1]
+    page = (root / "docs" / "gaits.md").read_text()
+    for name in ("gaits_hexaleg", "gaits_solo12"):
+        log = (root / "analysis" / "logs" / f"{name}.log").read_text()
+        rows = 0
+        for line in log.splitlines():
+            m = re.match(r"(\w+)\s+(\d\.\d{3})\s+([+-]\d+)°\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)\s+"
+                         r"(\S+)%$", line)
+            if m:
+                gait, v, slope, jm, cot, jm_s, cot_s, saving = m.groups()
+                assert (f"| {gait} | {v} | {slope}° | {jm} | {cot} | {jm_s} | {cot_s} | "
+                        f"{saving} % |") in page, line
+                rows += 1
+        assert rows == 27, name

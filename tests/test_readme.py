@@ -71,6 +71,27 @@ def _check(label: str, value: float, printed: str) -> None:
         f"(= {_as_printed(value, printed)} at the README's precision)")
 
 
+def test_readme_design_answer_is_the_kept_log():
+    """The Quick start's design answer is analysis/logs/answer_hexaleg.log's (the log is diffed
+    against ``hexaleg design``'s computation by test_examples)."""
+    log = (ROOT / "analysis" / "logs" / "answer_hexaleg.log").read_text()
+    readme = (ROOT / "README.md").read_text()
+    rec = re.search(r"recommended: .*; electrical\s+(\S+) %, net\s+(\S+) % \((\S+) g", log)
+    assert rec, log
+    saving, net, grams = rec.groups()
+    assert f"saving {saving} % of the energy the" in readme.replace("\n", " ")
+    assert f"({net} % net of their {grams} g)" in readme.replace("\n", " ")
+    femur = re.search(r"femur\s+above needs .* d (\S+) mm, D \S+ mm, OD (\S+) .* (\S+) turns,"
+                      r".* preload (\d+)°", log)
+    assert femur, log
+    d, od, turns, preload = femur.groups()
+    text = readme.replace("\n", " ")
+    assert f"{d} mm music wire, {turns} turns, {od} mm outer diameter, preloaded by {preload}°" \
+        in text
+    worst = re.search(r"worst\s+(\S+) % at (period ×[^\n]+)", log)
+    assert worst and f"the worst case {worst.group(1)} % at {worst.group(2)}" in text
+
+
 def test_as_printed_rounds_like_the_readme():
     assert _as_printed(1.7067, "1.71") == "1.71"
     assert _as_printed(-0.0121, "−1.2") == "−0.0"

@@ -11,7 +11,7 @@ from hexaleg.dynamics.energy import cost_of_transport, epsilon, metrics, savings
 from hexaleg.dynamics.prepare import Analysis, Prepared, analyze, prepare
 from hexaleg.errors import HexalegError
 from hexaleg.motion.joint_motion import joint_motion
-from hexaleg.motion.legged import tripod_gait
+from hexaleg.motion.legged import gait, tripod_gait
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.profiles import Sinusoid
 from hexaleg.motion.trajectory import Motion
@@ -35,7 +35,13 @@ if TYPE_CHECKING:  # the names __getattr__ imports on first use, for type checke
     from hexaleg.design.evaluator import Evaluator, RunSpec, evaluator
     from hexaleg.design.optimise import optimise
     from hexaleg.design.placement import placement
+    from hexaleg.design.robust import robust_springs
     from hexaleg.design.robustness import robustness
+    from hexaleg.design.robustness_map import robustness_map
+    from hexaleg.design.torsion_spring import TorsionRequirement, design_torsion_spring
+    from hexaleg.studies.design.build import build_design
+    from hexaleg.studies.design.config import DesignConfig
+    from hexaleg.studies.design.write import write_design
     from hexaleg.studies.report.build import build_report
     from hexaleg.studies.report.config import ReportConfig
     from hexaleg.studies.report.write import write_report
@@ -54,6 +60,7 @@ __all__ = [
     "Analysis",
     "ContactParams",
     "DeadZoneSpring",
+    "DesignConfig",
     "Evaluator",
     "GaitParams",
     "HexalegError",
@@ -75,15 +82,19 @@ __all__ = [
     "SpringSet",
     "StiffeningSpring",
     "SweepSpec",
+    "TorsionRequirement",
     "ViewParams",
     "__version__",
     "analyze",
     "animate",
+    "build_design",
     "build_report",
     "cost_of_transport",
+    "design_torsion_spring",
     "epsilon",
     "evaluator",
     "export_html",
+    "gait",
     "joint_motion",
     "load",
     "load_robot",
@@ -93,12 +104,15 @@ __all__ = [
     "optimise",
     "placement",
     "prepare",
+    "robust_springs",
     "robustness",
+    "robustness_map",
     "run_sweep",
     "savings",
     "serve",
     "transform_motion",
     "tripod_gait",
+    "write_design",
     "write_report",
 ]
 
@@ -111,6 +125,13 @@ _LAZY: dict[str, str] = {
     **dict.fromkeys(("OptimalSprings", "optimal_springs"), "hexaleg.design.codesign"),
     "placement": "hexaleg.design.placement",
     "robustness": "hexaleg.design.robustness",
+    "robustness_map": "hexaleg.design.robustness_map",
+    "robust_springs": "hexaleg.design.robust",
+    **dict.fromkeys(("TorsionRequirement", "design_torsion_spring"),
+                    "hexaleg.design.torsion_spring"),
+    "DesignConfig": "hexaleg.studies.design.config",
+    "build_design": "hexaleg.studies.design.build",
+    "write_design": "hexaleg.studies.design.write",
     "SweepSpec": "hexaleg.studies.sweep.spec",
     "run_sweep": "hexaleg.studies.sweep.runner",
     **dict.fromkeys(("ViewParams", "animate", "export_html", "serve"), "hexaleg.studies.view"),

@@ -7,12 +7,15 @@ from :class:`~hexaleg.errors.HexalegError` are printed as one line and exit with
 from __future__ import annotations
 
 import argparse
+import functools
 import os
 import sys
-from collections.abc import Sequence
+import warnings
+from collections.abc import Callable, Sequence
+from typing import TextIO
 
 from hexaleg import __version__
-from hexaleg.errors import HexalegError
+from hexaleg.errors import HexalegError, HexalegWarning
 
 ROBOT_HELP = ("a registered robot (hexaleg, solo12, anymal, anymal_c, go2, a1) or a robot "
               "description FILE.toml of one's own (docs/robots.md)")
@@ -154,12 +157,14 @@ def _add_report(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("report", help="gait energy report: report.html (self-contained), "
                                       "report.json and the plots, with and without springs")
     p.add_argument("--config", help="TOML file with optional [gait], [motor], [contact], "
-                                    "[springs] and [report] tables (see docs/report.md)")
+                                    "[springs], [report] and [payload] tables (see "
+                                    "docs/report.md, docs/gaits.md)")
     p.add_argument("--out", default="hexaleg-report",
                    help="output directory (default: %(default)s)")
     p.add_argument("--svg", action="store_true", help="also write every plot as SVG")
     p.add_argument("--robot", help=ROBOT_HELP + ": its gait (keys [gait] does not set), "
                                                 "springs and curve on its spring class")
+    p.add_argument("--design", help="a design.json of 'hexaleg design' to lead the page with")
     p.set_defaults(func=_run_report)
 
 
@@ -168,11 +173,39 @@ def _run_report(args: argparse.Namespace) -> int:
     from hexaleg.studies.report.write import write_report
 
     config, robot = ReportConfig.load(args.robot, args.config)
+    if args.design:
+        import dataclasses
+
+        config = dataclasses.replace(config, report=dataclasses.replace(config.report,
+                                                                        design=args.design))
     r = write_report(args.out, config, robot=robot, svg=args.svg)
     for note in config.notes:
         print(f"note: {note}")
     print(r.summary())
     print(f"wrote {len(r.files)} files to {args.out}; open {args.out}/report.html")
+    return 0
+
+
+def _add_design(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("design", help="which springs to fit: the globally optimal design per "
+                                      "family ranked by the energy the servos draw, torsion "
+                                      "springs to buy, robustness maps, the robust design: "
+                                      "design.html, design.json")
+    p.add_argument("--robot", default="hexaleg", help=ROBOT_HELP + " (default %(default)s)")
+    p.add_argument("--config", help="TOML file with optional [gait], [contact] and [design] "
+                                    "tables (docs/design.md)")
+    p.add_argument("--out", default="hexaleg-design",
+                   help="output directory (default: %(default)s)")
+    p.set_defaults(func=_run_design)
+
+
+def _run_design(args: argparse.Namespace) -> int:
+    from hexaleg.studies.design.config import DesignConfig
+    from hexaleg.studies.design.write import write_design
+
+    written = write_design(args.out, DesignConfig.load(args.robot, args.config))
+    print(written.result.summary())
+    print(f"wrote {len(written.files)} files to {args.out}; open {args.out}/design.html")
     return 0
 
 
@@ -237,11 +270,66 @@ def _run_sweep(args: argparse.Namespace) -> int:
                        scheduler=args.scheduler, progress=True)
     print(summary(result.table, spec.metric))
     print(f"{result.computed} points computed, {result.reused} reused; results in "
-          f"{result.directory} (manifest.json + part-*.parquet)")
+          f"{result.directory} (part-*.parquet, one table: pandas.read_parquet(DIR))")
     return 0
 
 
-SUBCOMMANDS = [_add_robot, _add_motors, _add_gait, _add_paper, _add_report, _add_view, _add_sweep]
+def _add_simulate(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("simulate", help="forward simulation in MuJoCo with and without the "
+                                        "springs: simulate.json and simulate.md, predicted vs "
+                                        "simulated energy and saving")
+    p.add_argument("--robot", default="hexaleg", help=ROBOT_HELP + " (default %(default)s)")
+    p.add_argument("--config", help="TOML file with optional [gait], [motor], [contact] and "
+                                    "[simulate] tables (docs/simulate.md)")
+    p.add_argument("--springs", help="design file (design.json: springs per joint as family and "
+                                     "parameters, docs/simulate.md); default: the globally "
+                                     "optimal linear springs on the robot's spring class")
+    # The names of hexaleg.studies.simulate.controllers.CONTROLLERS (mujoco loads lazily).
+    p.add_argument("--controller", choices=("feedforward", "position"),
+                   help="servo: torque feedforward + PD, or position-only PD "
+                        "(default: feedforward, or the config's)")
+    p.add_argument("--cycles", type=int, help="gait cycles simulated (default 4, the last 2 "
+                                              "evaluated)")
+    p.add_argument("--timestep", type=float, help="simulation timestep, s (default: 0.5 ms, "
+                                                  "or less for a fine gait or stiff servos)")
+    p.add_argument("--sensitivity", action="store_true",
+                   help="also rerun with the servo gains ×0.25…×4, the ground 4× softer and "
+                        "stiffer, half the friction, the no-slip pass and the other controller")
+    p.add_argument("--out", default="hexaleg-simulate",
+                   help="output directory (default: %(default)s)")
+    p.set_defaults(func=_run_simulate)
+
+
+def _run_simulate(args: argparse.Namespace) -> int:
+    from hexaleg.errors import SimulationError
+    from hexaleg.studies.simulate.study import load_study
+    from hexaleg.studies.simulate.write import simulation_data, summary, write_simulation
+
+    overrides = {"controller": args.controller, "cycles": args.cycles,
+                 "timestep": args.timestep}
+    if args.cycles is not None and args.cycles >= 2:
+        overrides["evaluate"] = min(2, args.cycles - 1)
+    study = load_study(args.robot, args.config, args.springs, overrides)
+    s = study.run()
+    rows = None
+    if args.sensitivity and s.walks:
+        from hexaleg.studies.simulate.sensitivity import sensitivity
+
+        rows = sensitivity(s)
+    data = simulation_data(s, design=study.design, notes=study.notes, sensitivity=rows)
+    js, md = write_simulation(args.out, data)
+    for note in study.notes:
+        print(f"note: {note}")
+    print(summary(data))
+    print(f"wrote {js} and {md}")
+    if not s.walks:
+        raise SimulationError("; ".join(f"{r.name} run {r.verdict}: {r.message}"
+                                        for r in (s.with_springs, s.baseline) if not r.walks))
+    return 0
+
+
+SUBCOMMANDS = [_add_robot, _add_motors, _add_gait, _add_paper, _add_report, _add_design,
+               _add_view, _add_sweep, _add_simulate]
 """Parser builders, one per subcommand, in the order ``--help`` lists them."""
 
 
@@ -255,6 +343,16 @@ def build_parser() -> argparse.ArgumentParser:
     for add in SUBCOMMANDS:
         add(sub)
     return parser
+
+
+def _show_warning(command: str, original: Callable[..., None], message: Warning | str,
+                  category: type[Warning], filename: str, lineno: int, file: TextIO | None = None,
+                  line: str | None = None) -> None:
+    """Print a :class:`~hexaleg.errors.HexalegWarning` as one line, others as Python does."""
+    if issubclass(category, HexalegWarning):
+        print(f"hexaleg {command}: warning: {message}", file=sys.stderr)
+    else:
+        original(message, category, filename, lineno, file, line)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -271,7 +369,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.print_help()
         return 0
     try:
-        status = int(args.func(args) or 0)
+        with warnings.catch_warnings():
+            warnings.showwarning = functools.partial(_show_warning, args.command,
+                                                     warnings.showwarning)
+            status = int(args.func(args) or 0)
         sys.stdout.flush()  # a closed pipe fails here, inside the handler, not at shutdown
         return status
     except HexalegError as e:

@@ -61,6 +61,23 @@ class InvalidParameterError(HexalegError, ValueError):
         return (type(self), (self.name, self.value, self.allowed))
 
 
+class SpringDesignError(InvalidParameterError):
+    """No buildable spring meets a requirement: names the binding limit, its value, what would
+    allow a spring, and carries the nearest spring that violates it (or None).
+
+    Args:
+        name: The binding limit (e.g. ``"max_outer_diameter"``).
+        value: Its value.
+        allowed: What would make a spring possible, naming the nearest one.
+        nearest: The nearest spring found (a
+            :class:`hexaleg.design.torsion_spring.TorsionSpring`), or None.
+    """
+
+    def __init__(self, name: str, value: object, allowed: str, nearest: object = None) -> None:
+        super().__init__(name, value, allowed)
+        self.nearest = nearest
+
+
 class ConfigError(HexalegError):
     """A configuration file (TOML) cannot be read or has keys/values that are not allowed."""
 
@@ -125,12 +142,59 @@ class TorqueLimitError(HexalegError):
     """A motor torque exceeds its limit."""
 
 
+class StaticMarginError(InvalidParameterError):
+    """A statically stable gait cannot keep the static margin asked for: no body shift keeps
+    the centre of mass that far inside every support polygon of the cycle. Raised while the
+    gait is made, before any force program runs.
+
+    Args:
+        name: The parameter (``"min_static_margin"``).
+        value: The margin asked for, m.
+        allowed: The largest margin the gait allows and what to change.
+        largest: That largest margin, m (negative: not even the polygons' edges can be kept).
+    """
+
+    def __init__(self, name: str, value: object, allowed: str, largest: float = 0.0) -> None:
+        super().__init__(name, value, allowed)
+        self.largest = largest
+
+    def __reduce__(self) -> tuple:  # rebuild from the constructor's arguments (process pools)
+        return (type(self), (self.name, self.value, self.allowed, self.largest))
+
+
 class OutputError(HexalegError):
     """An output file or directory cannot be written."""
 
 
+class DirectoryLockedError(OutputError):
+    """An output directory is being written by another running process (a sweep).
+
+    Args:
+        message: The message: who holds the directory and what to do.
+        directory: The directory.
+        pid: The holder's process id, if known.
+        host: The holder's host name, if known.
+        started: When the holder took the lock, if known.
+    """
+
+    def __init__(self, message: str, *, directory: object = None, pid: object = None,
+                 host: object = None, started: object = None) -> None:
+        super().__init__(message)
+        self.directory, self.pid, self.host, self.started = directory, pid, host, started
+
+
+class HexalegWarning(UserWarning):
+    """Something hexaleg did differently from what was asked, or a result to read with care
+    (e.g. a sweep part file that was unreadable and is recomputed); the message says why."""
+
+
 class ExecutorError(HexalegError):
     """A sweep executor (e.g. a Dask scheduler) cannot be reached or failed."""
+
+
+class SimulationError(HexalegError):
+    """A forward simulation did not walk: the robot fell or the integration diverged (the
+    message says when and how)."""
 
 
 def _plural(kind: str) -> str:

@@ -56,3 +56,16 @@ def render_html(data: Mapping[str, Any], images: Mapping[str, str]) -> str:
         The HTML page (self-contained).
     """
     return environment().get_template("report.html.j2").render(d=data, images=images)
+
+
+def render_design_html(data: Mapping[str, Any], images: Mapping[str, str]) -> str:
+    """Render ``templates/design.html.j2``: the spring design page of ``hexaleg design``.
+
+    Args:
+        data: The content of ``design.json`` (:func:`hexaleg.studies.design.data.design_data`).
+        images: Plot name → ``data:`` URI.
+
+    Returns:
+        The HTML page (self-contained).
+    """
+    return environment().get_template("design.html.j2").render(d=data, images=images)

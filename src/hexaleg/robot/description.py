@@ -33,6 +33,7 @@ import pinocchio as pin
 
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError, UnknownNameError
+from hexaleg.robot import fields
 from hexaleg.robot.fields import FrozenTable, axis, check_stand, heading, legs_table, plain
 from hexaleg.robot.model import AUTO, URDF_DIR, LegSpec, Robot, load_robot
 
@@ -121,6 +122,8 @@ class RobotDescription:
         mesh_dirs: Where ``package://`` mesh URIs resolve, for :data:`FILES` (the other sources
             know their own).
         heading: The base axis that points forward, ``[x, y, 0]`` (:attr:`Robot.heading`).
+        max_outer_diameter: Joint class → largest outer diameter of a spring on its joints, m;
+            default the links' width (:func:`hexaleg.design.spring_parts.spring_outer_diameter`).
     """
 
     name: str
@@ -137,6 +140,7 @@ class RobotDescription:
     motor: str | Mapping[str, str] | None = None
     mesh_dirs: tuple[str, ...] = ()
     heading: tuple[float, float, float] = (1.0, 0.0, 0.0)
+    max_outer_diameter: Mapping[str, float] = field(default_factory=lambda: FrozenTable({}))
 
     def __post_init__(self) -> None:
         if self.source not in SOURCES:
@@ -174,6 +178,8 @@ class RobotDescription:
         object.__setattr__(self, "stand", check_stand(self.name, self.stand))
         object.__setattr__(self, "mesh_dirs", tuple(self.mesh_dirs))
         object.__setattr__(self, "heading", heading(self.name, self.heading))
+        object.__setattr__(self, "max_outer_diameter", fields.diameters_table(
+            self.name, self.joint_kinds, self.max_outer_diameter))
 
     def _check_motor(self, motor: Any) -> str | Mapping[str, str]:
         from hexaleg.robot.motor import CATALOGUE

@@ -93,6 +93,20 @@ def legs_table(legs: Any, where: str) -> tuple[LegSpec, ...]:
     return tuple(out)
 
 
+def diameters_table(name: str, kinds: tuple[str, ...] | None, table: Any) -> FrozenTable:
+    """A description's ``max_outer_diameter`` checked: joint class → a diameter > 0 (m)."""
+    if not isinstance(table, Mapping):
+        raise InvalidParameterError(f"{name}: max_outer_diameter", table,
+                                    "a table of joint class = diameter (m)")
+    for kind, value in table.items():
+        if kinds is not None and kind not in kinds:
+            raise UnknownNameError(f"{name}: max_outer_diameter joint class", kind, kinds)
+        if not is_real(value) or value <= 0:
+            raise InvalidParameterError(f"{name}: max_outer_diameter.{kind}", value,
+                                        "a diameter > 0 (m)")
+    return FrozenTable({str(k): float(v) for k, v in table.items()})
+
+
 class FrozenTable(Mapping[str, Any]):
     """A read-only, hashable, picklable table of plain values (a description's gait overrides).
 

@@ -143,3 +143,38 @@ def lowest_points(model: pin.Model, data: pin.Data, gmodel: pin.GeometryModel, q
         lowest[t] = z[n]
         names.append(objects[n][1].name)
     return lowest, names
+
+
+def link_width(model: pin.Model, gmodel: pin.GeometryModel, joint: str) -> float | None:
+    """How wide the link a joint moves is: room for a part coaxial with the joint, m.
+
+    For every collision shape on the joint's child link (primitives and meshes alike), the
+    smallest side of its local axis-aligned bounding box (hpp-fcl's ``aabb_local``: a cylinder of
+    radius r gives 2r, a box its smallest side); the link's width is the largest of these, so a
+    thin plate beside a thick tube does not count. Falls back to the parent link when the child
+    has no collision shape.
+
+    Args:
+        model: The robot's Pinocchio model.
+        gmodel: Its collision geometry.
+        joint: A joint name of ``model``.
+
+    Returns:
+        The width, m; None when neither link has a collision shape.
+
+    Raises:
+        UnknownNameError: ``joint`` is not a joint of the model (lists them).
+    """
+    if not model.existJointName(joint):
+        raise UnknownNameError("joint", joint, list(model.names)[1:])
+    jid = model.getJointId(joint)
+    for link in (jid, model.parents[jid]):
+        widths = []
+        for obj in gmodel.geometryObjects:
+            if obj.parentJoint == link:
+                obj.geometry.computeLocalAABB()
+                box = obj.geometry.aabb_local
+                widths.append(float(np.min(np.asarray(box.max_) - np.asarray(box.min_))))
+        if widths:
+            return max(widths)
+    return None

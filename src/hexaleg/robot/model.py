@@ -15,9 +15,11 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.errors import InvalidParameterError, RobotModelError, UnknownNameError
+from hexaleg.config import read_text
+from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError, UnknownNameError
 from hexaleg.robot import geometry as _geometry
 from hexaleg.robot.feet import LegSpec, resolve_foot
+from hexaleg.robot.srdf import check_reference_poses
 
 URDF_DIR = Path(__file__).resolve().parent / "urdf"
 """Directory of the packaged robot files (a link to the repository's ``urdf/``)."""
@@ -260,8 +262,11 @@ class Robot:
 
 
 def _check_xml(path: Path, what: str) -> None:
-    if not path.is_file():
+    if not path.exists():
         raise RobotModelError(f"{what} file not found: {path}")
+    if not path.is_file():
+        raise RobotModelError(f"{what} file {path} is not a regular file (a directory, device "
+                              "or pipe); give the path of an XML file")
     try:
         ET.parse(path)
     except ET.ParseError as e:
@@ -321,8 +326,8 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
         The robot.
 
     Raises:
-        RobotModelError: a file is missing or malformed, or the legs/feet are not in the URDF
-            (the message names what was found).
+        RobotModelError: a file is missing or malformed, every link has zero mass, or the
+            legs/feet are not in the URDF (the message names what was found).
     """
     from hexaleg.robot.meshes import with_available_meshes
 
@@ -335,7 +340,11 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
     if srdf_path is not None:
         _check_xml(srdf_path, "SRDF")
     dirs = [Path(d) for d in package_dirs]
-    xml, notes = with_available_meshes(urdf_path.read_text(), urdf_path.parent.resolve(), dirs)
+    try:
+        text = read_text(urdf_path, "URDF file")
+    except ConfigError as e:
+        raise RobotModelError(str(e)) from None
+    xml, notes = with_available_meshes(text, urdf_path.parent.resolve(), dirs)
     try:
         model = pin.buildModelFromXML(xml, pin.JointModelFreeFlyer())
         visual = pin.buildGeomFromUrdfString(model, xml, pin.GeometryType.VISUAL, None,
@@ -369,9 +378,13 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
         raise RobotModelError(f"legs have {sorted(sizes)} joints but joint_kinds names "
                               f"{len(joint_kinds)}: {', '.join(joint_kinds)}")
 
+    if not pin.computeTotalMass(model) > 0:  # no body to carry: every dynamic quantity is 0
+        raise RobotModelError(f"URDF {urdf_path}: every link has zero mass (total 0 kg); give "
+                              "the links <inertial><mass value=\"…\"/> in kg")
     collision.addAllCollisionPairs()
     poses: dict[str, np.ndarray] = {}
     if srdf_path is not None:
+        check_reference_poses(model, srdf_path)  # Pinocchio skips unknown joints silently
         try:
             pin.removeCollisionPairs(model, collision, str(srdf_path))
             pin.loadReferenceConfigurations(model, str(srdf_path))

@@ -3,6 +3,8 @@ that stiffness, physical invariants of the report, infeasible curve points and f
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -89,3 +91,51 @@ def test_infeasible_curve_points_are_listed_not_hidden(robot):
     assert r.curve.feasible.tolist() == [True, True, False]
     html = render_html(r.data | {"files": []}, dict.fromkeys(PLOTS, "data:,"))
     assert "1 points infeasible" in html and "torque limit" in html
+
+
+def _crawl_config(tmp_path) -> tuple[Path, dict]:
+    """The crawl config of docs/gaits.md, as a file and parsed."""
+    import re
+
+    import tomllib
+
+    page = (Path(__file__).resolve().parents[3] / "docs" / "gaits.md").read_text()
+    text = re.search(r"```toml\n(# crawl\.toml.*?)```", page, re.S)
+    assert text, "docs/gaits.md has no crawl.toml block"
+    path = tmp_path / "crawl.toml"
+    path.write_text(text.group(1))
+    return path, tomllib.loads(text.group(1))
+
+
+def test_solo12_crawls_through_the_report_with_the_docs_config(tmp_path):
+    """``hexaleg report --robot solo12 --config crawl.toml``, the file of docs/gaits.md."""
+    import json
+
+    from hexaleg.cli import main
+
+    path, _ = _crawl_config(tmp_path)
+    assert main(["report", "--robot", "solo12", "--config", str(path),
+                 "--out", str(tmp_path / "out")]) == 0
+    data = json.loads((tmp_path / "out" / "report.json").read_text())
+    gait = data["gait"]
+    assert gait["pattern"] == "crawl" and gait["min_stance_feet"] == 3
+    assert _v(gait["static_margin"]) >= _v(gait["shift"]["target"]) > 0.02
+    assert _v(data["forces"]["peak_friction_usage"]) <= 1 + 1e-6
+    assert "crawl" in (tmp_path / "out" / "report.html").read_text()
+
+
+@pytest.mark.parametrize("name", ["anymal", "anymal_c", "go2", "a1"])
+def test_the_other_registry_quadrupeds_crawl_through_the_report(name, tmp_path):
+    from hexaleg.robot.registry import description
+
+    _, table = _crawl_config(tmp_path)
+    table["gait"]["samples"] = 60
+    table["report"].update(stiffness_points=2, paper_samples=16)
+    desc = description(name)
+    robot = desc.load()
+    report = build_report(ReportConfig.for_robot(desc, robot, table), robot=robot)
+    gait = report.data["gait"]
+    assert gait["pattern"] == "crawl" and gait["shift"] is not None
+    assert _v(gait["static_margin"]) >= _v(gait["shift"]["target"])
+    assert np.all(report.analysis.forces[..., 2][report.motion.stance] > 0)
+    assert np.isfinite(_v(report.data["energy"]["totals"]["electrical"]["baseline"]))

@@ -1,6 +1,7 @@
 """The gait energy report (``hexaleg report``): one gait, analysed with springs and without.
 
-:func:`build_report` runs the pipeline — robot → gait (:func:`hexaleg.motion.legged.tripod_gait`) →
+:func:`build_report` runs the pipeline — robot (with the configured payload,
+:class:`hexaleg.robot.payload.Payload`) → gait (:func:`hexaleg.motion.legged.gait`) →
 :func:`hexaleg.dynamics.prepare.prepare` once → :meth:`~hexaleg.dynamics.prepare.Prepared.evaluate`
 with the springs, in the baseline (no springs) and at every point of a stiffness curve
 (:mod:`hexaleg.design.curves`); for a robot with ``stand`` and ``sphere`` poses also the stand →
@@ -35,7 +36,7 @@ from hexaleg.design.curves import StiffnessCurve, curve_springs, stiffness_curve
 from hexaleg.dynamics import contact
 from hexaleg.dynamics.prepare import Analysis, Prepared, prepare
 from hexaleg.dynamics.sanity import torque_findings
-from hexaleg.motion.legged import tripod_gait
+from hexaleg.motion.legged import gait
 from hexaleg.motion.sanity import motion_findings
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot, load_robot
@@ -43,6 +44,7 @@ from hexaleg.robot.sanity import Finding, robot_findings
 from hexaleg.robot.springs import SpringSet
 from hexaleg.studies.report import sections
 from hexaleg.studies.report.config import ReportConfig, ReportParams
+from hexaleg.studies.report.design_section import design_section
 from hexaleg.studies.report.paper_section import paper_reference
 from hexaleg.studies.report.transform import transform_section
 
@@ -113,6 +115,7 @@ def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis,
         "hexaleg_version": importlib.metadata.version("hexaleg"),
         "notes": sections.notes_section(cfg.notes, motion, _findings(robot, motion, a)),
         "robot": sections.robot_section(robot),
+        "payload": sections.payload_section(cfg.payload, robot),
         "gait": sections.gait_section(motion, cfg.gait),
         "motor": sections.motor_section(cfg.motor),
         "contact": sections.contact_section(cfg.contact),
@@ -152,8 +155,10 @@ def build_report(config: ReportConfig | None = None, *, robot: Robot | None = No
         say(f"{msg} ({time.perf_counter() - t0:.1f} s)")
 
     robot = robot or load_robot()
+    if cfg.payload is not None:  # carried on the base through dynamics, forces and design
+        robot = cfg.payload.attach(robot)
     step(f"robot {robot.name}: {robot.nj} joints, {robot.mass:.3f} kg")
-    motion = tripod_gait(robot, cfg.gait)
+    motion = gait(robot, cfg.gait)
     step(f"gait: {motion.n_samples} samples over {motion.period:g} s")
     prepared = prepare(robot, motion, motor=cfg.motor, contact=cfg.contact)
     step("dynamics prepared (RNEA, Jacobians, force program)")
@@ -163,8 +168,10 @@ def build_report(config: ReportConfig | None = None, *, robot: Robot | None = No
     baseline = prepared.evaluate(None, objective)
     step(f"analysed with {len(springs)} springs and without")
     curve = _report_curve(prepared, springs, cfg.report, objective, step)
-    usage = contact.friction_usage(analysis.forces, motion.stance.astype(bool), cfg.contact.mu)
+    usage = contact.friction_usage(analysis.forces, motion.stance.astype(bool), cfg.contact.mu,
+                                   motion.normal)
     data = _report_data(cfg, robot, motion, analysis, baseline, curve, usage)
+    data["design"] = design_section(cfg.report.design)
     data["transform"] = transform_section(robot, cfg, springs, objective)
     if data["transform"] is not None:
         step("stand → sphere transformation analysed")

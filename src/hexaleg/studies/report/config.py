@@ -1,7 +1,8 @@
 """The report's configuration: ``[report]``, ``[springs]`` and the whole TOML document.
 
 :class:`ReportConfig` (from TOML through :func:`hexaleg.config.from_mapping`) has the optional
-tables ``[gait]``, ``[motor]``, ``[contact]``, ``[springs]`` and ``[report]``; ``[view]`` is left
+tables ``[gait]``, ``[motor]``, ``[contact]``, ``[springs]``, ``[report]`` and ``[payload]``
+(:class:`hexaleg.robot.payload.Payload`, carried on the base); ``[view]`` is left
 to ``hexaleg view``, which reads the same file. A ``[springs]`` table names a design
 (:class:`SpringDesign`: the paper's dead-zone springs of eq. 7–8, 14 placed by
 :mod:`hexaleg.design.rules` — centred dead zone, θ_k/A of Section 4.2, k_M of eq. 19) or lists
@@ -16,12 +17,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, cast
 
-from hexaleg.checks import is_integer, is_real
+from hexaleg.checks import count, is_integer, is_real
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.design import rules as design
 from hexaleg.design.curves import CURVE_METRICS
 from hexaleg.dynamics.contact import OBJECTIVES, ContactParams
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+from hexaleg.motion.limits import SAMPLE_BYTES
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.description import RobotDescription
@@ -29,10 +31,11 @@ from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import DEFAULT_MOTOR, Motor, motor_from_mapping
 from hexaleg.robot.motor import motor as motor_by_name
 from hexaleg.robot.motor_set import MotorSet
+from hexaleg.robot.payload import Payload
 from hexaleg.robot.registry import description
 from hexaleg.robot.springs import SpringSet
 
-TABLES: tuple[str, ...] = ("gait", "motor", "contact", "springs", "report")
+TABLES: tuple[str, ...] = ("gait", "motor", "contact", "springs", "report", "payload")
 """Tables of a report config file."""
 SHARED_TABLES: tuple[str, ...] = ("view",)
 """Tables other commands read from the same config file; the report accepts and ignores them."""
@@ -55,8 +58,11 @@ class ReportParams:
         stiffness_max: Largest stiffness, N·m/rad, > ``stiffness_min``; None: 10 × k_M (eq. 19)
             of the curve's joints.
         stiffness_points: Points of the curve, 2 … 1001.
-        paper_samples: Samples per period of the paper's single-joint model, ≥ 8
+        paper_samples: Samples per period of the paper's single-joint model, ≥ 8 and at most
+            :data:`hexaleg.motion.limits.MAX_SAMPLES`
             (:func:`hexaleg.studies.paper.reproduce.reproduce`).
+        design: A ``design.json`` of ``hexaleg design`` to lead the page with (its recommended
+            springs, :mod:`hexaleg.studies.report.design_section`), or None.
     """
 
     title: str = "hexaleg gait energy report"
@@ -67,6 +73,7 @@ class ReportParams:
     stiffness_max: float | None = None
     stiffness_points: int = 41
     paper_samples: int = 1024
+    design: str | None = None
 
     def __post_init__(self) -> None:
         if not (isinstance(self.title, str) and self.title.strip()):
@@ -102,9 +109,8 @@ class ReportParams:
         if not 2 <= self.stiffness_points <= 1001:
             raise InvalidParameterError("report.stiffness_points", self.stiffness_points,
                                         "an integer in [2, 1001]")
-        if self.paper_samples < 8:
-            raise InvalidParameterError("report.paper_samples", self.paper_samples,
-                                        "an integer ≥ 8")
+        count("report.paper_samples", self.paper_samples, item_bytes=SAMPLE_BYTES,
+              item="one sample", low=8, fix="use fewer samples per period")
 
 
 @dataclass(frozen=True)
@@ -194,6 +200,8 @@ class ReportConfig:
             in SI (``[springs.LF_femur] stiffness = …``, :meth:`SpringSet.from_mapping`).
         report: What the report shows (``[report]``).
         notes: Caveats printed on the report page (set by :meth:`for_robot`; not a TOML table).
+        payload: A payload on the base (``[payload]``: ``mass``, ``com``, ``inertia``;
+            :class:`hexaleg.robot.payload.Payload`), or None.
     """
 
     gait: GaitParams = field(default_factory=GaitParams)
@@ -202,6 +210,7 @@ class ReportConfig:
     springs: SpringDesign | SpringSet = field(default_factory=SpringDesign)
     report: ReportParams = field(default_factory=ReportParams)
     notes: tuple[str, ...] = ()
+    payload: Payload | None = None
 
     @classmethod
     def for_robot(cls, desc: RobotDescription, robot: Robot,
@@ -295,6 +304,8 @@ class ReportConfig:
             out["springs"] = _springs_from_mapping(data["springs"], f"{where} [springs]")
         if "report" in data:
             out["report"] = from_mapping(ReportParams, data["report"], f"{where} [report]")
+        if "payload" in data:
+            out["payload"] = from_mapping(Payload, data["payload"], f"{where} [payload]")
         return cls(**out)
 
     @classmethod

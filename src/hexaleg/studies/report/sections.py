@@ -24,6 +24,7 @@ from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import Motor
 from hexaleg.robot.motor_set import MotorSet
+from hexaleg.robot.payload import Payload
 from hexaleg.robot.sanity import Finding
 from hexaleg.robot.springs import SpringSet
 from hexaleg.studies.report.config import SpringDesign
@@ -54,18 +55,40 @@ def robot_section(robot: Robot) -> dict[str, Any]:
 
 
 def gait_section(motion: Motion, g: GaitParams) -> dict[str, Any]:
-    """The gait's parameters and what its sampling measured (stride, speed, static margin)."""
+    """The gait's parameters and what its sampling measured (stride, speed, static margin; the
+    legs' timing, heading and ground; the body shift of a statically stable gait)."""
     info = motion.info
+    timed = g.pattern is not None or g.phases is not None  # else the groups as given
+    groups = info.get("groups", g.groups) if timed else g.groups
+    ground = info.get("ground", {"slope": 0.0, "cross_slope": 0.0, "attitude": g.attitude})
+    balance = info.get("balance", {})
     return {"period": quantity(motion.period, "s"), "duty_factor": quantity(g.duty_factor, "1"),
             "stride_length": quantity(info["stride_length"], "m"),
             "speed": quantity(info["speed"], "m/s"), "step_height": quantity(g.step_height, "m"),
             "body_height": quantity(info["body_height"], "m"),
             "foot_radius": quantity(info["foot_radius"], "m"),
             "yaw_rate": quantity(g.yaw_rate, "rad/s"),
-            "samples": motion.n_samples, "groups": [list(x) for x in g.groups],
+            "samples": motion.n_samples, "groups": [list(x) for x in groups],
+            "pattern": g.pattern, "heading": quantity(g.heading, "rad"),
+            "slope": quantity(ground["slope"], "rad"),
+            "cross_slope": quantity(ground["cross_slope"], "rad"),
+            "attitude": ground["attitude"],
             "min_stance_feet": int(info["min_stance_feet"]),
             "static_margin": (quantity(info["static_margin"], "m")
-                              if info["static_margin"] is not None else None)}
+                              if info["static_margin"] is not None else None),
+            "shift": ({"target": quantity(balance["target"], "m"),
+                       "amplitude": quantity(balance["amplitude"], "m")}
+                      if balance.get("mode") == "shift" else None)}
+
+
+def payload_section(payload: Payload | None, robot: Robot) -> dict[str, Any] | None:
+    """The payload on the base (mass, centre of mass in the base frame, inertia about it as 9
+    values row by row) and the robot's total mass with it; None without a payload."""
+    if payload is None:
+        return None
+    return {"mass": quantity(payload.mass, "kg"), "com": quantity(list(payload.com), "m"),
+            "inertia": quantity([list(r) for r in payload.inertia], "kg·m²"),
+            "total_mass": quantity(robot.mass, "kg")}
 
 
 def motor_section(motor: Motor | MotorSet) -> dict[str, Any]:
@@ -143,9 +166,11 @@ def forces_section(robot: Robot, motion: Motion, a: Analysis,
         usage: Its friction usage ``|f_t| / (μ f_n)``, shape (T, n_legs), 1.
     """
     stance = motion.stance.astype(bool)
+    normal = np.array([0.0, 0.0, 1.0]) if motion.normal is None else motion.normal
+    f_n = a.forces @ normal  # normal components: along the ground's normal on a slope
     legs = {}
     for i, leg in enumerate(robot.leg_names):
-        fn = a.forces[:, i, 2]
+        fn = f_n[:, i]
         legs[leg] = {"stance_fraction": quantity(stance[:, i].mean(), "1"),
                      "peak_normal_force": quantity(fn.max(), "N"),
                      "mean_normal_force_in_stance": quantity(fn[stance[:, i]].mean()
@@ -154,7 +179,7 @@ def forces_section(robot: Robot, motion: Motion, a: Analysis,
     gravity = float(np.linalg.norm(robot.model.gravity.linear))
     return {"legs": legs, "peak_friction_usage": quantity(usage.max(), "1"),
             "weight": quantity(robot.mass * gravity, "N"),
-            "peak_total_normal_force": quantity(a.forces[..., 2].sum(1).max(), "N"),
+            "peak_total_normal_force": quantity(f_n.sum(1).max(), "N"),
             "resolved_samples": int(a.resolved.sum())}
 
 
