@@ -22,6 +22,7 @@ from matplotlib.figure import Figure
 
 from hexaleg.errors import OutputError
 from hexaleg.outputs import design_plots, plots
+from hexaleg.outputs.directory import writable_directory
 from hexaleg.outputs.html import render_design_html
 from hexaleg.studies.design.build import DesignResult, build_design
 from hexaleg.studies.design.config import DesignConfig
@@ -81,14 +82,7 @@ def write_design(out: str | Path = "hexaleg-design", config: DesignConfig | None
         OutputError: ``out`` cannot be created or written (checked before computing; names it).
         HexalegError: from the computation (:func:`build_design`).
     """
-    out = Path(out)
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-        probe = out / ".hexaleg-write-test"
-        probe.write_bytes(b"")
-        probe.unlink()
-    except OSError as e:
-        raise OutputError(f"cannot write the design to the directory {out}: {e}") from e
+    out = writable_directory(out, "the design")
     r = build_design(config, progress=progress)
     files: list[Path] = []
     images = {}

@@ -17,6 +17,7 @@ from matplotlib.figure import Figure
 
 from hexaleg.errors import OutputError
 from hexaleg.outputs import plots
+from hexaleg.outputs.directory import writable_directory
 from hexaleg.outputs.html import render_html
 from hexaleg.robot.model import Robot
 from hexaleg.studies.report.build import Report, build_report
@@ -72,14 +73,7 @@ def write_report(out: str | Path = "hexaleg-report", config: ReportConfig | None
         OutputError: ``out`` cannot be created or written (checked before computing; names it).
         HexalegError: from the computation (see :func:`build_report`).
     """
-    out = Path(out)
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-        probe = out / ".hexaleg-write-test"
-        probe.write_bytes(b"")
-        probe.unlink()
-    except OSError as e:
-        raise OutputError(f"cannot write the report to the directory {out}: {e}") from e
+    out = writable_directory(out, "the report")
     r = build_report(config, robot=robot, progress=progress)
     say = progress or (lambda _msg: None)
     files: list[Path] = []
