@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
-from hexaleg.dynamics.blocks import Data
-from hexaleg.dynamics.pieces import pieces
 from hexaleg.dynamics.prepare import prepare
 from hexaleg.dynamics.reduction import reduce
+from hexaleg.dynamics.solver import group_program
 
 
 def _group_data(robot, motion, contact, objective, tau_s=None):
@@ -18,12 +19,8 @@ def _group_data(robot, motion, contact, objective, tau_s=None):
     sys = prepared.system
     tau_s = np.zeros_like(prepared.q) if tau_s is None else tau_s
     g = reduce(sys).groups[0]
-    J = g.joints
-    eff = np.broadcast_to(np.asarray(sys.efficiency, dtype=float), (robot.nj,))
-    w = prepared.weights(objective)
-    data = Data(g.fp, g.N, g.E, g.tau0(tau_s),
-                pieces(objective, w[J], sys.qdot[g.rows, J], eff[J], contact.regularization),
-                sys.tau_max[J] if contact.torque_limits else None, contact)
+    data = dataclasses.replace(group_program(sys, g, objective, prepared.weights(objective),
+                                             contact), tau0=g.tau0(tau_s))
     return prepared, g, data, tau_s
 
 

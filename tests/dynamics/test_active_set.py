@@ -47,4 +47,5 @@ def test_dependent_held_joints_keep_their_given_multipliers(walk200, group_data)
     sol = solve_state(data.take(crowded), guess.take(crowded))[1]
     held = guess.held[:, crowded]
     assert np.max(np.abs(sol.tau[held] - guess.at[:, crowded][held])) <= 1e-9
-    np.testing.assert_allclose(sol.y_joint[held], guess.y[:, crowded][held], atol=1.0)
+    # measured ≤ 1.4e-10 W/(N·m) (multipliers up to 0.28)
+    np.testing.assert_allclose(sol.y_joint[held], guess.y[:, crowded][held], atol=1e-6)

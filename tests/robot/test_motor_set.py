@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 
 import numpy as np
@@ -37,10 +38,16 @@ def test_each_joint_gets_its_class_motor(robot):
 
 
 def test_metrics_per_joint_are_each_motors_own(robot, walk200):
-    """Every per-joint energy equals a one-joint metrics call with that joint's motor alone."""
+    """Every per-joint energy equals a one-joint metrics call with that joint's motor alone
+    (a regenerating femur motor: its joints' electrical energy is the regenerating one)."""
     a = hexaleg.analyze(robot, walk200)
-    motors = _set(robot)
+    motors = _set(robot, femur=dataclasses.replace(STRONG, regeneration=True))
     m = energy.metrics(a.tau_motor, a.qdot, walk200.dt, motors)
+    femur = np.array([j.endswith("femur") for j in robot.joint_names])
+    joint = m["joint"]
+    assert np.array_equal(joint["electrical"], np.where(femur, joint["electrical_regen"],
+                                                        joint["electrical_noregen"]))
+    assert np.any(joint["electrical_regen"][femur] < joint["electrical_noregen"][femur])
     for j, name in enumerate(robot.joint_names):
         alone = energy.metrics(a.tau_motor[:, j], a.qdot[:, j], walk200.dt, motors.motors[j])
         for key in energy.ENERGY_KEYS:

@@ -183,18 +183,6 @@ class Rows:
     def P(self) -> int:
         return int(self.used.shape[0])
 
-    def take(self, idx: np.ndarray) -> Rows:
-        """The rows of samples ``idx`` (indices, increasing)."""
-        T = self.used.shape[1]
-        if idx.size == T:
-            return self
-        new_t = np.full(T, -1)
-        new_t[idx] = np.arange(idx.size)
-        keep = new_t[self.t] >= 0
-        return Rows(self.slot[keep], new_t[self.t[keep]], self.cand[keep], self.kind[keep],
-                    self.used[:, idx], self.G[:, idx], self.given[:, idx], self.at[keep],
-                    self.foot[:, idx], self.Ns[:, keep[self.kind == 1]])
-
     @property
     def curved(self) -> np.ndarray:
         """Samples with a foot on its cone's surface, (T,)."""
@@ -238,9 +226,8 @@ def pack(data: Data, state: State, const: np.ndarray) -> Rows:
     return Rows(slot, t, cand, kind, used, G, given, at, foot, Ns)
 
 
-def newton(data: Data, state: State, rows: Rows, z: np.ndarray, lam: np.ndarray,
-           HJ: np.ndarray, a: np.ndarray, rho: np.ndarray
-           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def newton(data: Data, rows: Rows, z: np.ndarray, lam: np.ndarray, HJ: np.ndarray,
+           a: np.ndarray, rho: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """One Newton step on the KKT system of each sample's guess, from ``z`` (m, T).
 
     Minimise ``Σ_j a_j τ_j + ½ ρ'_j τ_j²`` (``HJ = Eᵀ diag(ρ') E``) subject to the active rows
@@ -318,10 +305,9 @@ def solution(data: Data, state: State, rows: Rows, z: np.ndarray, y: np.ndarray,
     return Solution(z, x.tau, x.f, y_all[:J], y_all[J:].reshape(R, nf, T), converged)
 
 
-def solve_state(data: Data, state: State, max_newton: int = MAX_NEWTON,
-                grow: bool = False) -> tuple[State, Solution]:
+def solve_state(data: Data, state: State, grow: bool = False) -> tuple[State, Solution]:
     """Solve the KKT system of each sample's program on its guess ``state``: one Newton step
-    from ``z = 0`` where every row is linear (exact), up to ``max_newton`` from ``state.z``
+    from ``z = 0`` where every row is linear (exact), up to :data:`MAX_NEWTON` from ``state.z``
     where a foot is on its cone's surface.
 
     With ``grow``, the foot rows that the first step's forces break join the guess at once
@@ -341,8 +327,8 @@ def solve_state(data: Data, state: State, max_newton: int = MAX_NEWTON,
     lam = np.maximum(state.lam[0], 0.0)
     y = rows.given
     converged = np.zeros(T, bool)
-    for it in range(max_newton):
-        z_new, y_new, step = newton(data, state, rows, z, lam, HJ, a, rho)
+    for it in range(MAX_NEWTON):
+        z_new, y_new, step = newton(data, rows, z, lam, HJ, a, rho)
         todo = ~converged
         z = np.where(todo, z_new, z)
         y = np.where(todo, y_new, y)
@@ -358,8 +344,7 @@ def solve_state(data: Data, state: State, max_newton: int = MAX_NEWTON,
                 hit = broken.any(axis=(0, 1))
                 state = State(state.held, state.piece, state.at,
                               np.concatenate([state.feet[:-3] | broken, state.feet[-3:]]),
-                              np.where(hit, z, state.z), state.y,
-                              np.concatenate([state.lam[:-3], state.lam[-3:]]))
+                              np.where(hit, z, state.z), state.y, state.lam.copy())
                 sol_y = solution(data, state, rows, z, y, converged)  # multipliers so far
                 state.lam[:-3] = np.where(state.feet[:-3] & ~broken, -sol_y.y_feet[:-3], 0.0)
                 rows = pack(data, state, const)  # the same slots for the samples not hit

@@ -82,10 +82,6 @@ class SocScaling:
                 Q[i, j] = Q[j, i] = (4.0 * (n2 + 1.0) * w[i] * w[j] + (i == j)) / b2
         return Q
 
-    def apply_inverse_square(self, u: np.ndarray) -> np.ndarray:
-        """``W⁻² u``."""
-        return self.apply_inverse(self.apply_inverse(u))
-
 
 def jordan(u: np.ndarray, v: np.ndarray) -> np.ndarray:
     """The SOC Jordan product ``u ∘ v = (uᵀv, u₀ v₁ + v₀ u₁)`` of (3, …) arrays."""

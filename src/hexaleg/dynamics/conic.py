@@ -5,8 +5,8 @@ conic solver): the base rows as a zero cone, the normal forces and the friction 
 nonnegative cones, the friction cone as a second-order cone, and the non-smooth objectives in
 epigraph form (the electrical one with one rotated cone per joint for the Joule term, shared by
 the two gearbox branches). :func:`hexaleg.dynamics.solver.solve_fast` calls :func:`solve_sample`
-where an inequality binds and for every sample of the non-quadratic objectives; the errors raised
-here name the time, the feet and (for torque limits) the joint.
+on a sample the batched solver does not certify (the last resort); the errors raised here name
+the time, the feet and (for torque limits) the joint.
 """
 
 from __future__ import annotations
@@ -19,6 +19,7 @@ from typing import NoReturn
 import numpy as np
 
 from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES, ContactParams, StanceSystem
+from hexaleg.dynamics.reduction import RANK_TOL, REACH_TOL
 from hexaleg.errors import InfeasibleForcesError, TorqueLimitError
 
 CLARABEL_TOLERANCES: tuple[float, ...] = (1e-11, 1e-10, 1e-9, 1e-8, 1e-7)
@@ -92,10 +93,10 @@ def base_row_space(system: StanceSystem, k: int, A: np.ndarray) -> tuple[np.ndar
         InfeasibleForcesError: that part is not zero (:func:`raise_unreachable`).
     """
     u, sv, _ = np.linalg.svd(A, full_matrices=False)
-    rank = int(np.sum(sv > 1e-9 * sv[0]))
+    rank = int(np.sum(sv > RANK_TOL * sv[0]))
     b_in = u[:, :rank].T @ system.b_base[k]
     missing = float(np.linalg.norm(system.b_base[k] - u[:, :rank] @ b_in))
-    if missing > 1e-8 * (1.0 + np.abs(system.b_base[k]).max()):
+    if missing > REACH_TOL * (1.0 + np.abs(system.b_base[k]).max()):
         raise_unreachable(system, k, missing)
     return u[:, :rank].T @ A, b_in
 

@@ -196,7 +196,9 @@ def _cycle_integrals(t: np.ndarray, w: np.ndarray, weight: np.ndarray,
         "rms_torque": np.sqrt(integral(t**2) / duration),
         "mean_abs_torque": integral(np.abs(t)) / duration,
     }
-    joint["electrical"] = integral(motor.electrical_power(t, w))  # by each motor's regeneration
+    # Each joint's motor takes back power or not (a MotorSet: per joint).
+    joint["electrical"] = np.where(motor.regeneration, joint["electrical_regen"],
+                                   joint["electrical_noregen"])
     total = {key: float(joint[key].sum()) for key in ENERGY_KEYS}
     total["electrical_bus"] = float(integral(np.maximum(pe_regen.sum(1), 0.0)))
     total["peak_torque"] = float(np.abs(t).max())

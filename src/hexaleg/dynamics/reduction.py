@@ -27,8 +27,11 @@ from hexaleg.dynamics.contact import StanceSystem
 GROUP_SIZE = 1024
 """Most samples in one group (see :func:`reduce`)."""
 RANK_TOL = 1e-9
-"""Singular values of the base rows below this fraction of the largest are zero (as in
+"""Singular values of the base rows below this fraction of the largest are zero (here and in
 :func:`hexaleg.dynamics.conic.base_row_space`)."""
+REACH_TOL = 1e-8
+"""A base wrench is reachable when the part of it outside the row space is below this, relative
+to ``1 + max |b_base|`` (N, N·m)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -167,4 +170,4 @@ def _reduce(system: StanceSystem) -> Reduction:
                 for k, v in merged.items()}
             groups.append(Group(**cut))
     scale = 1.0 + np.abs(system.b_base).max(axis=1)
-    return Reduction(tuple(groups), residual, residual <= 1e-8 * scale, free)
+    return Reduction(tuple(groups), residual, residual <= REACH_TOL * scale, free)

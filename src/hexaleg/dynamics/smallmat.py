@@ -1,11 +1,11 @@
 """Dense linear algebra on many tiny matrices at once, the batch axis last.
 
 The force programs of :mod:`hexaleg.dynamics.batched` are 1 to 12 unknowns each, thousands of them.
-``numpy.linalg`` on a (T, n, n) stack calls LAPACK once per matrix (≈ 0.1–0.2 µs of work behind
-≈ 0.15 µs of call overhead each, measured 164 µs for 1000 3 × 3 solves), and batched ``matmul`` of
-such shapes is as slow. Here a matrix is an array (n, n, T) and every step of the factorisation is
-one NumPy operation across all T matrices (structure of arrays): a 3 × 3 Cholesky factorisation
-and solve cost ≈ 25 operations on arrays of T numbers, ≈ 40 µs for T = 1000.
+``numpy.linalg`` on a (T, n, n) stack calls LAPACK once per matrix (a tiny matrix's work is less
+than the call's overhead), and batched ``matmul`` of such shapes is as slow. Here a matrix is an
+array (n, n, T) and every step of the factorisation is one NumPy operation across all T matrices
+(structure of arrays): a 3 × 3 Cholesky factorisation and solve cost ≈ 25 operations on arrays of
+T numbers.
 
 Only what the solvers need: Cholesky factorisation of symmetric positive definite matrices and the
 two triangular solves, for one or several right-hand sides.
@@ -106,16 +106,6 @@ def solve_spd(H: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Solve ``H x = b`` for symmetric positive definite ``H`` (n, n, T); ``b`` (n, T)/(n, k, T)."""
     L = cholesky(H)
     return backward(L, forward(L, b))
-
-
-def matvec(M: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """``M x`` for matrices ``M`` (r, n, T) and vectors ``x`` (n, T): shape (r, T)."""
-    return np.einsum("rnt,nt->rt", M, x)
-
-
-def rmatvec(M: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """``Mᵀ y`` for matrices ``M`` (r, n, T) and vectors ``y`` (r, T): shape (n, T)."""
-    return np.einsum("rnt,rt->nt", M, y)
 
 
 def gram(M: np.ndarray, weights: np.ndarray | None = None) -> np.ndarray:

@@ -29,7 +29,7 @@ from hexaleg.dynamics.blocks import Data
 from hexaleg.dynamics.conic import raise_infeasible, raise_unreachable, solve_sample
 from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES, ContactParams, StanceSystem
 from hexaleg.dynamics.pieces import pieces
-from hexaleg.dynamics.reduction import reduce
+from hexaleg.dynamics.reduction import Group, reduce
 
 
 @dataclass(frozen=True, eq=False)
@@ -96,6 +96,24 @@ def quadratic_gains(system: StanceSystem, weights: np.ndarray) -> QuadraticGains
                           system.torques(f0, np.zeros_like(system.b_joint)), G)
 
 
+def _efficiency(system: StanceSystem, weights: np.ndarray) -> np.ndarray:
+    return np.broadcast_to(np.asarray(system.efficiency, dtype=float), weights.shape)
+
+
+def group_program(system: StanceSystem, group: Group, objective: str, weights: np.ndarray,
+                  contact: ContactParams) -> Data:
+    """``group``'s programs for an objective, joint weights (nj,) and contact settings, with
+    ``τ₀`` that of no springs (``tau_base``; :meth:`Group.tau0` gives it for spring torques),
+    the candidate rows' gradients and, for the quadratic objectives, the unconstrained gains."""
+    J = group.joints
+    base = Data(group.fp, group.N, group.E, group.tau_base,
+                pieces(objective, weights[J], system.qdot[group.rows, J],
+                       _efficiency(system, weights)[J], contact.regularization),
+                system.tau_max[J] if contact.torque_limits else None, contact)
+    return dataclasses.replace(base, const=constant_rows(base),
+                               Z=None if base.pieces.K else unconstrained_gains(base))
+
+
 def solve_fast(system: StanceSystem, tau_spring: np.ndarray, objective: str,
                weights: np.ndarray, contact: ContactParams, *,
                warm: WarmStart | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -112,7 +130,8 @@ def solve_fast(system: StanceSystem, tau_spring: np.ndarray, objective: str,
             from, replaced by this solve's (a sweep passes the same object every time).
 
     Returns:
-        ``(f, tau, resolved)``: forces (T, 3 n_legs), N, world frame; motor torques (T, nj), N·m;
+        ``(f, tau, resolved)``: forces (T, 3 n_legs), N, in the program's frame (the world's on
+        level ground, else the contact frame: ``system.to_world``); motor torques (T, nj), N·m;
         and the mask (T,) of samples where an inequality binds (the quadratic objectives) or that
         have stance feet (the others): those whose forces are not the unconstrained optimum.
 
@@ -134,7 +153,7 @@ def solve_fast(system: StanceSystem, tau_spring: np.ndarray, objective: str,
     f3 = np.zeros((T, n_legs, 3))
     quadratic = objective in QUADRATIC_OBJECTIVES
     resolved = np.zeros(T, bool) if quadratic else np.asarray(system.stance.any(axis=1))
-    eff = np.broadcast_to(np.asarray(system.efficiency, dtype=float), weights.shape)
+    eff = _efficiency(system, weights)
     key = (objective, weights.tobytes(), eff.tobytes(), float(contact.regularization), contact)
     if warm is not None and (warm.key != key or len(warm.states) != len(red.groups)):
         warm.key, warm.states = key, [None] * len(red.groups)
@@ -143,13 +162,7 @@ def solve_fast(system: StanceSystem, tau_spring: np.ndarray, objective: str,
     for i, g in enumerate(red.groups):
         J = g.joints
         if key not in g.cache:  # the group's program for these settings, once per motion
-            base = Data(g.fp, g.N, g.E, g.tau_base,
-                        pieces(objective, weights[J], system.qdot[g.rows, J], eff[J],
-                               contact.regularization),
-                        system.tau_max[J] if contact.torque_limits else None, contact)
-            g.cache[key] = dataclasses.replace(
-                base, const=constant_rows(base),
-                Z=None if base.pieces.K else unconstrained_gains(base))
+            g.cache[key] = group_program(system, g, objective, weights, contact)
         data = dataclasses.replace(g.cache[key], tau0=g.tau0(tau_spring))
         guess = warm.states[i] if warm is not None else None
         state, ok = solve_group(data, guess, stats)

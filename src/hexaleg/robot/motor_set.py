@@ -126,20 +126,10 @@ class MotorSet:
             out[..., cols] = method(motor)(*(a[..., cols] for a in arrays))
         return out
 
-    def current(self, tau: ArrayLike) -> np.ndarray:
-        """Winding currents, :meth:`Motor.current` per joint; ``tau`` (..., n) N·m → A."""
-        t, _ = as_torque_speed(tau, np.zeros(np.shape(tau)))
-        return self._columns(lambda m: m.current, t)
-
     def joule_power(self, tau: ArrayLike) -> np.ndarray:
         """Joule loss, :meth:`Motor.joule_power` per joint; ``tau`` (..., n) N·m → W."""
         t, _ = as_torque_speed(tau, np.zeros(np.shape(tau)))
         return self._columns(lambda m: m.joule_power, t)
-
-    def gearbox_input_power(self, tau: ArrayLike, qdot: ArrayLike) -> np.ndarray:
-        """``max(P/η, η P)`` per joint (:meth:`Motor.gearbox_input_power`), shape (..., n), W."""
-        t, w = as_torque_speed(tau, qdot)
-        return self._columns(lambda m: m.gearbox_input_power, t, w)
 
     def electrical_power(self, tau: ArrayLike, qdot: ArrayLike,
                          regeneration: bool | None = None) -> np.ndarray:
