@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from hexaleg.design.bundle import minimise
+from hexaleg.errors import UnknownNameError
 
 
 def _quadratic(centre, weight=1.0):
@@ -49,3 +50,8 @@ def test_an_infeasible_start_is_projected_and_fixed_variables_stay_zero():
     r = minimise([_quadratic([1.0, 1.0])], np.array([-1.0, 5.0]),
                  nonneg=np.array([True, False]), fixed=np.array([False, True]))
     np.testing.assert_allclose(r.x, [1.0, 0.0], atol=1e-5)
+
+
+def test_an_unknown_mode_is_named():
+    with pytest.raises(UnknownNameError, match="mean, worst"):
+        minimise([_quadratic([1.0, 0.0])], np.array([0.0, 0.0]), "median")

@@ -150,7 +150,6 @@ def test_table_in_si_and_paper_units(prepared200):
 
 
 def test_bad_input(prepared200):
-    robot = prepared200.robot
     with pytest.raises(InvalidParameterError, match="group femur"):
         optimal_springs(prepared200, {"femur": []})
     with pytest.raises(InvalidParameterError, match="LF_femur"):
@@ -178,4 +177,3 @@ def test_bad_input(prepared200):
         optimal_springs(prepared200, {"a": ["knee"]})
     with pytest.raises(InvalidParameterError, match="objective"):
         optimal_springs(prepared200, ["femur"], objective="power")
-    assert robot.joints("femur")

@@ -10,6 +10,7 @@ import pytest
 from hexaleg.design.evaluator import METRICS, SAVING_METRICS, RunSpec, clear_cache, evaluator
 from hexaleg.dynamics.inertia import joint_range
 from hexaleg.dynamics.prepare import analyze
+from hexaleg.errors import UnknownNameError
 from hexaleg.robot.springs import DeadZoneSpring
 
 SAMPLES = 200
@@ -92,3 +93,9 @@ def test_clear_cache_forgets_built_evaluators():
     again = evaluator(RunSpec(), gait)
     assert again is not first and evaluator(RunSpec(), gait) is again
     assert again.baseline["total"]["electrical"] == first.baseline["total"]["electrical"]
+
+
+def test_gait_overrides_on_the_robots_gait():
+    assert RunSpec().gait({"samples": 40, "period": 2.0}).period == 2.0
+    with pytest.raises(UnknownNameError, match="duty_factor"):  # lists the fields
+        RunSpec().gait({"period_s": 2.0})

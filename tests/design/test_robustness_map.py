@@ -48,6 +48,9 @@ def test_bad_maps_are_named(springs):
         robustness_map(RUN, GAIT, springs, {"slope": [0.0], "mu": [0.6]})
     with pytest.raises(InvalidParameterError, match="two of"):
         robustness_map(RUN, GAIT, springs, {"mu": [0.6]})
+    for values in ([], 0.6, ["slippery"], [float("nan")]):
+        with pytest.raises(InvalidParameterError, match="map axis mu"):
+            robustness_map(RUN, GAIT, springs, {"period": [1.0], "mu": values})
     with pytest.raises(InvalidParameterError, match="narrow the stride range"):
         robustness_map(RUN, GAIT, springs, {"stride": [8.0], "mu": [0.6]})
     with pytest.raises(InvalidParameterError, match="factor > 0"):

@@ -43,3 +43,11 @@ def test_bad_entries_are_named():
         spring_from_entry({**entry, "parameters": {"stiffness": {"value": 1, "unit": "N·m"}}})
     with pytest.raises(UnknownNameError, match="stiffness"):
         spring_from_entry({**entry, "parameters": {"k": {"value": 1, "unit": "N·m/rad"}}})
+    with pytest.raises(UnknownNameError, match="linear"):
+        spring_from_entry({**entry, "family": ["linear"]})
+    stiffening = spring_entry("LF_femur", LAWS[-1])
+    half = [{"breakpoint": {"value": 0.1, "unit": "rad"}}]  # no stiffness
+    for above in ({"breakpoint": 0.1}, [0.1, 0.02], half):
+        bad = {**stiffening, "parameters": {**stiffening["parameters"], "above": above}}
+        with pytest.raises(ConfigError, match=r"spring\.above"):
+            spring_from_entry(bad)

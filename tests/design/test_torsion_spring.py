@@ -14,8 +14,9 @@ import numpy as np
 import pytest
 
 from hexaleg.design import torsion_spring as ts
-from hexaleg.design.spring_materials import MATERIALS, MM, Material
+from hexaleg.design.spring_materials import MATERIALS, Material
 from hexaleg.errors import InvalidParameterError, SpringDesignError, UnknownNameError
+from hexaleg.units import MM
 
 IN = 25.4e-3
 KPSI = 6.894757e6

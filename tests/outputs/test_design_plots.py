@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from hexaleg.outputs import design_plots
 from hexaleg.outputs.plots import png_bytes
@@ -24,6 +25,11 @@ def test_pareto_and_robust_figures():
     fig = design_plots.pareto_figure(np.array([0.02, 0.05, 0.08]), np.array([0.01, 0.02, 0.03]),
                                      {"electrical": np.array([9.0, 14.0, 15.0])}, chosen=2)
     assert len(fig.axes) == 2
+    for ax, x in zip(fig.axes, ([0.02, 0.05, 0.08], [10.0, 20.0, 30.0]), strict=True):
+        curve, star = ax.lines  # the front in order of torque, the recommended point starred
+        np.testing.assert_allclose(curve.get_xdata(), x)
+        np.testing.assert_allclose(curve.get_ydata(), [9.0, 14.0, 15.0])
+        assert star.get_marker() == "*" and star.get_xdata()[0] == pytest.approx(x[2])
     fig = design_plots.robust_figure(["nominal", "P×0.5"], {"joule": np.array([30.0, 20.0])},
                                      {"joule": np.array([32.0, 10.0])})
     assert "worst +20.0 %" in fig.axes[0].get_legend().get_texts()[1].get_text()

@@ -25,11 +25,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hexaleg.checks import one_of
 from hexaleg.errors import InfeasibleForcesError
 
 Oracle = Callable[[np.ndarray], tuple[float, np.ndarray]]
 """x → (f(x), a subgradient of f at x, shape (nx,))."""
+MODES: tuple[str, ...] = ("worst", "mean")
+"""Minimise the largest function or their mean."""
 MAX_ITERATIONS = 400
+"""Model steps (QPs) before it stops with the gap it reached (:attr:`BundleResult.gap`)."""
 TOLERANCE = 1e-10
 """Predicted decrease (in the units of F) at which the method stops."""
 
@@ -133,7 +137,7 @@ def minimise(oracles: Sequence[Oracle], x0: np.ndarray, mode: str = "worst", *,
     Args:
         oracles: One per function: x → (value, subgradient).
         x0: The start, shape (nx,); projected onto the constraints when it breaks them.
-        mode: ``"worst"`` or ``"mean"``.
+        mode: One of :data:`MODES`.
         G: Constraint rows ``G x ≤ h``, shape (m, nx).
         h: Their right-hand sides, shape (m,).
         nonneg: Which x must be ≥ 0, shape (nx,), bool.
@@ -141,8 +145,10 @@ def minimise(oracles: Sequence[Oracle], x0: np.ndarray, mode: str = "worst", *,
         tolerance: The predicted decrease at which it stops.
 
     Raises:
+        UnknownNameError: an unknown mode (lists them).
         InfeasibleForcesError: the constraints have no solution.
     """
+    one_of("mode", mode, MODES)
     x0 = np.asarray(x0, dtype=float)
     nx, n = x0.size, len(oracles)
     G = np.zeros((0, nx)) if G is None else np.asarray(G, dtype=float)

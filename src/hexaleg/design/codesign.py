@@ -35,7 +35,7 @@ from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES, check_objective
 from hexaleg.dynamics.energy import saving
 from hexaleg.dynamics.prepare import Analysis, Prepared
 from hexaleg.errors import InvalidParameterError, UnknownNameError
-from hexaleg.robot.springs import SpringSet, Term, basis
+from hexaleg.robot.springs import Spring, SpringSet, Term, basis
 
 OBJECTIVE_METRIC = {"joule": "joule", "torque_squared": "rms_torque", "electrical": "electrical",
                     "positive_work": "positive_work"}
@@ -288,9 +288,9 @@ def _setup(prepared: Prepared, groups: Groups, family: str, objective: str,
         max_deflection = real("max_deflection", max_deflection, low=0.0, low_open=True,
                               allowed="a finite angle > 0 (rad), or None")
     resolved = resolve_groups(prepared, groups)
-    qs = {j: prepared.q[:, prepared.robot.column(j)] for js in resolved.values() for j in js}
-    return _Setup(prepared, objective, fam, resolved,
-                  centre={j: float(q.min() + q.max()) / 2 for j, q in qs.items()},
+    joints = [j for js in resolved.values() for j in js]
+    qs = {j: prepared.q[:, prepared.robot.column(j)] for j in joints}
+    return _Setup(prepared, objective, fam, resolved, centre=motion_centres(prepared, joints),
                   q_min={j: float(q.min()) for j, q in qs.items()},
                   q_max={j: float(q.max()) for j, q in qs.items()},
                   max_torque=max_torque, max_deflection=max_deflection)
@@ -341,18 +341,29 @@ def frozen_problem(prepared: Prepared, optimum: OptimalSprings, centres: Mapping
                                             if k))
 
 
+def group_springs(fam: Family, groups: Mapping[str, Sequence[str]],
+                  geometry: Mapping[str, Geometry], centres: Mapping[str, float], x: np.ndarray
+                  ) -> tuple[dict[str, dict[str, float]], dict[str, Spring]]:
+    """Group → magnitude name → value, and joint → spring law, of the stacked magnitudes ``x``
+    (groups in order, each :attr:`Family.magnitudes`; angles from ``centres``, rad)."""
+    nm = len(fam.magnitudes)
+    magnitudes, springs = {}, {}
+    for i, (g, js) in enumerate(groups.items()):
+        xg = x[i * nm:(i + 1) * nm]
+        magnitudes[g] = dict(zip(fam.magnitudes, (float(v) for v in xg), strict=True))
+        for j in js:
+            springs[j] = fam.spring(geometry[g], centres[j], xg)
+    return magnitudes, springs
+
+
 def _result(setup: _Setup, geometry: dict[str, dict[str, float | str]],
             solution: DesignSolution, evaluations: int, baseline: float) -> OptimalSprings:
     fam, prepared = setup.fam, setup.prepared
-    nm = len(fam.magnitudes)
-    springs, magnitudes, notes = {}, {}, []
-    for g_index, (g, js) in enumerate(setup.groups.items()):
-        x = solution.x[g_index * nm:(g_index + 1) * nm]
-        x = np.where(fam.nonnegative(), np.maximum(x, 0.0), x)
-        magnitudes[g] = dict(zip(fam.magnitudes, (float(v) for v in x), strict=True))
-        for j in js:
-            springs[j] = fam.spring(geometry[g], setup.centre[j], x)
-        m = magnitudes[g]
+    nonneg = np.tile(fam.nonnegative(), len(setup.groups))
+    x = np.where(nonneg, np.maximum(solution.x, 0.0), solution.x)
+    magnitudes, springs = group_springs(fam, setup.groups, geometry, setup.centre, x)
+    notes = []
+    for g, m in magnitudes.items():
         if fam.name == "linear" and m["k"] < ZERO_STIFFNESS and abs(m["torque_at_reference"]) > 0:
             notes.append(f"group {g}: k = 0 with a constant torque of "
                          f"{m['torque_at_reference']:+.4g} N·m — a constant-torque spring; give "
@@ -373,4 +384,4 @@ def _result(setup: _Setup, geometry: dict[str, dict[str, float | str]],
 
 
 __all__ = ["FAMILIES", "OBJECTIVE_METRIC", "OptimalSprings", "design_problem", "frozen_problem",
-           "motion_centres", "optimal_springs", "resolve_groups"]
+           "group_springs", "motion_centres", "optimal_springs", "resolve_groups"]

@@ -51,6 +51,7 @@ from typing import Any
 
 import numpy as np
 
+from hexaleg.checks import one_of
 from hexaleg.dynamics.contact import ContactParams, check_objective
 from hexaleg.dynamics.energy import ENERGY_KEYS, NO_SAVING_KEYS, TORQUE_KEYS, savings
 from hexaleg.dynamics.inertia import joint_range
@@ -135,7 +136,15 @@ class RunSpec:
 
     def gait(self, overrides: Mapping[str, Any]) -> GaitParams:
         """The robot's own gait (:meth:`GaitParams.for_robot`) with ``overrides`` (field → value)
-        on top."""
+        on top.
+
+        Raises:
+            UnknownNameError: a key that is not a :class:`GaitParams` field (lists them).
+            InvalidParameterError: a value out of range.
+        """
+        fields = [f.name for f in dataclasses.fields(GaitParams) if f.init]
+        for key in overrides:
+            one_of("gait parameter", key, fields)
         return dataclasses.replace(GaitParams.for_robot(self.description()), **overrides)
 
 

@@ -31,6 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hexaleg.checks import one_of
 from hexaleg.errors import InvalidParameterError, UnknownNameError
 from hexaleg.robot.springs import (
     SIDES,
@@ -187,6 +188,4 @@ def family(name: str) -> Family:
     Raises:
         UnknownNameError: not one of :data:`FAMILIES` (lists them).
     """
-    if name not in _FAMILIES:
-        raise UnknownNameError("spring family", name, FAMILIES)
-    return _FAMILIES[name]
+    return _FAMILIES[one_of("spring family", name, FAMILIES)]

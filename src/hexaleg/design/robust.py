@@ -37,8 +37,14 @@ from typing import Any
 
 import numpy as np
 
-from hexaleg.design.bundle import minimise
-from hexaleg.design.codesign import OptimalSprings, frozen_problem, motion_centres
+from hexaleg.design.bundle import MODES, minimise
+from hexaleg.design.codesign import (
+    ENGAGED,
+    OptimalSprings,
+    frozen_problem,
+    group_springs,
+    motion_centres,
+)
 from hexaleg.design.families import family
 from hexaleg.design.program import MAX_ROUNDS, DesignProblem
 from hexaleg.design.program_reference import force_constraints, stacked
@@ -49,11 +55,8 @@ from hexaleg.dynamics.reference import solve_clarabel
 from hexaleg.errors import InfeasibleForcesError, InvalidParameterError, TorqueLimitError
 from hexaleg.robot.springs import SpringSet
 
-MODES: tuple[str, ...] = ("worst", "mean")
-"""What the robust program maximises over the conditions: the worst or the mean saving."""
 METRICS: tuple[str, ...] = ("joule", "electrical")
 """The savings the robust program can maximise."""
-ENGAGED = 1e-9
 TOLERANCE = 1e-8
 """Clarabel's gap and feasibility tolerance for the robust program (savings to ~1e-8)."""
 
@@ -134,8 +137,7 @@ class _Condition:
         self.F = np.einsum("tfs,tsx->tfx", gains.K[:, :, problem.cols], problem.B)
         self.f0, self.tau0 = gains.f0, gains.tau0
         self.root = np.sqrt(self.w[:, None] * self.c[None, :])  # (T, nj)
-        self.base = (float(np.sum(self.w[:, None] * self.c * self.tau0**2)) if metric == "joule"
-                     else float(p.baseline("joule")["total"][metric]))
+        self.base = float(p.baseline("joule")["total"][metric])  # E_c(0), exact
         self.condensed = np.ones(self.system.n_samples, dtype=bool)
 
     def _electrical(self, tau: Any, samples: np.ndarray) -> Any:
@@ -323,14 +325,8 @@ def _result(optimum: OptimalSprings, mode: str, metric: str, data: list[_Conditi
             x: np.ndarray,
             x0: np.ndarray, centres: dict[str, float], solver: dict[str, Any]
             ) -> RobustSprings:
-    fam = family(optimum.family)
-    nm = len(fam.magnitudes)
-    magnitudes, springs = {}, {}
-    for i, (g, js) in enumerate(optimum.groups.items()):
-        xg = x[i * nm:(i + 1) * nm]
-        magnitudes[g] = dict(zip(fam.magnitudes, (float(v) for v in xg), strict=True))
-        for j in js:
-            springs[j] = fam.spring(optimum.geometry[g], centres[j], xg)
+    magnitudes, springs = group_springs(family(optimum.family), optimum.groups,
+                                        optimum.geometry, centres, x)
     robust = SpringSet(springs)
     value, base, nominal_saving = [], [], []
     feasible = True

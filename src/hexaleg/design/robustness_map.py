@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hexaleg.checks import finite_array, one_of
 from hexaleg.design.evaluator import DEFAULT_METRIC, RunSpec
 from hexaleg.design.robustness import (
     CONDITIONS,
@@ -22,7 +23,7 @@ from hexaleg.design.robustness import (
     condition_prepared,
     condition_savings,
 )
-from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.params import GaitParams
 from hexaleg.robot.springs import SpringSet
 
@@ -62,16 +63,21 @@ class RobustnessMap:
         return float(s[i, j]), self.condition(int(i), int(j))
 
 
-def _check_axes(axes: Mapping[str, Sequence[float]]) -> tuple[str, str]:
+def _check_axes(axes: Mapping[str, Sequence[float]]
+                ) -> tuple[tuple[str, str], tuple[np.ndarray, np.ndarray]]:
+    """The two axis names and their values as 1-D float arrays, checked."""
     names = tuple(axes)
     if len(names) != 2:
         raise InvalidParameterError("map axes", names, f"two of {', '.join(CONDITIONS)}")
+    values = []
     for name in names:
-        if name not in CONDITIONS:
-            raise UnknownNameError("map axis", name, CONDITIONS)
-        if not len(axes[name]):
-            raise InvalidParameterError(f"map axis {name}", list(axes[name]), "values")
-    return names[0], names[1]
+        one_of("map axis", name, CONDITIONS)
+        v = finite_array(f"map axis {name}", axes[name])
+        if v.ndim != 1 or not v.size:
+            raise InvalidParameterError(f"map axis {name}", axes[name],
+                                        "a non-empty list of values")
+        values.append(v)
+    return (names[0], names[1]), (values[0], values[1])
 
 
 def robustness_map(run: RunSpec, gait: GaitParams, springs: SpringSet,
@@ -95,8 +101,7 @@ def robustness_map(run: RunSpec, gait: GaitParams, springs: SpringSet,
         InvalidParameterError: not two axes, an axis without values, a value out of range, a
             factor whose gait the robot cannot reach (names it and what to change).
     """
-    a, b = _check_axes(axes)
-    va, vb = (np.array([float(v) for v in axes[n]]) for n in (a, b))
+    (a, b), (va, vb) = _check_axes(axes)
     out = {m: np.full((va.size, vb.size), np.nan) for m in metrics}
     status = np.empty((va.size, vb.size), dtype=object)
     for i, x in enumerate(va):

@@ -21,6 +21,7 @@ import dataclasses
 from collections.abc import Mapping
 from typing import Any
 
+from hexaleg.checks import one_of
 from hexaleg.errors import ConfigError, UnknownNameError
 from hexaleg.robot.springs import (
     DeadZoneSpring,
@@ -86,10 +87,8 @@ def spring_from_entry(entry: Mapping[str, Any], where: str = "spring") -> Spring
     """
     if not isinstance(entry, Mapping) or not isinstance(entry.get("parameters"), Mapping):
         raise ConfigError(f"{where}: expected {{family, joint, parameters}}, got {entry!r}")
-    family = entry.get("family")
-    if family not in CLASSES:
-        raise UnknownNameError(f"{where} family", family, CLASSES)
-    cls = CLASSES[str(family)]
+    family = one_of(f"{where} family", entry.get("family"), CLASSES)
+    cls = CLASSES[family]
     fields = {f.name for f in dataclasses.fields(cls)}
     kwargs: dict[str, Any] = {}
     for name, value in entry["parameters"].items():
@@ -98,12 +97,19 @@ def spring_from_entry(entry: Mapping[str, Any], where: str = "spring") -> Spring
         if name in TEXT_FIELDS:
             kwargs[name] = value
         elif name in ("above", "below"):
-            kwargs[name] = tuple((_number(s["breakpoint"], "rad", f"{where}.{name}"),
-                                  _number(s["stiffness"], "N·m/rad", f"{where}.{name}"))
-                                 for s in value)
+            kwargs[name] = _stages(value, f"{where}.{name}")
         else:
             kwargs[name] = _number(value, UNITS[name], f"{where}.{name}")
     return cls(**kwargs)
+
+
+def _stages(value: Any, where: str) -> tuple[tuple[float, float], ...]:
+    """A stiffening spring's ``above`` / ``below``: ``[{"breakpoint", "stiffness"}, …]``."""
+    if not isinstance(value, list) or not all(isinstance(s, Mapping) for s in value):
+        raise ConfigError(f"{where} = {value!r}; expected a list of "
+                          "{\"breakpoint\": …, \"stiffness\": …}")
+    return tuple((_number(s.get("breakpoint"), "rad", where),
+                  _number(s.get("stiffness"), "N·m/rad", where)) for s in value)
 
 
 def _number(q: Any, unit: str, where: str) -> float:

@@ -27,9 +27,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.checks import one_of
+from hexaleg.errors import InvalidParameterError
+from hexaleg.units import MM
 
-MM = 1e-3
 IN = 25.4e-3
 """One inch in metres (Table 10-5 states diameter ranges in inches)."""
 STANDARD_GRAVITY = 9.80665
@@ -145,6 +146,4 @@ def material(name: str) -> Material:
     Raises:
         UnknownNameError: not one of :data:`MATERIALS` (lists them).
     """
-    if name not in MATERIALS:
-        raise UnknownNameError("spring material", name, MATERIALS)
-    return MATERIALS[name]
+    return MATERIALS[one_of("spring material", name, MATERIALS)]

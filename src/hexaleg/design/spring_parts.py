@@ -23,6 +23,7 @@ the links).
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -38,8 +39,9 @@ from hexaleg.design.torsion_spring import (
     design_torsion_spring,
 )
 from hexaleg.dynamics.prepare import Prepared
-from hexaleg.errors import SpringDesignError
+from hexaleg.errors import InvalidParameterError, SpringDesignError, UnknownNameError
 from hexaleg.robot.description import RobotDescription
+from hexaleg.robot.geometry import link_width
 from hexaleg.robot.model import Robot
 
 ZERO_TORQUE = 1e-9
@@ -107,9 +109,6 @@ def spring_outer_diameter(desc: RobotDescription, robot: Robot, kind: str
         UnknownNameError: ``kind`` is not a joint class of ``robot`` (lists them).
         InvalidParameterError: no value given and no collision geometry to measure.
     """
-    from hexaleg.errors import InvalidParameterError, UnknownNameError
-    from hexaleg.robot.geometry import link_width
-
     if kind not in robot.joint_classes:
         raise UnknownNameError("joint class", kind, robot.joint_classes)
     if kind in desc.max_outer_diameter:
@@ -200,8 +199,6 @@ def spring_parts(optimum: OptimalSprings, prepared: Prepared, outer: Mapping[str
 
 def _buy(part: SpringPart, options: PartOptions) -> SpringPart:
     """``part`` with its torsion spring, or the reason there is none."""
-    import dataclasses
-
     if part.constant_torque:
         return dataclasses.replace(part, problem=(
             f"k → 0 with {part.max_torque:.4g} N·m: a constant torque needs a constant-torque "

@@ -41,9 +41,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from hexaleg.checks import real
-from hexaleg.design.spring_materials import MATERIALS, MM, PREFERRED_WIRE_DIAMETERS, material
+from hexaleg.design.spring_materials import MATERIALS, PREFERRED_WIRE_DIAMETERS, material
 from hexaleg.errors import InvalidParameterError, SpringDesignError
-from hexaleg.units import nm_per_rad_to_nmm_per_deg, rad_to_deg
+from hexaleg.units import MM, nm_per_rad_to_nmm_per_deg, rad_to_deg
 
 WAHL = 10.8
 """Deflection constant with the friction between coils (Shigley §10-12, after Wahl), 1."""

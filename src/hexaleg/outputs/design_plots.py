@@ -42,7 +42,7 @@ def robustness_heatmap(axes: tuple[str, str], values: tuple[np.ndarray, np.ndarr
     for (i, j), v in np.ndenumerate(s):
         text = "n/a" if np.isnan(v) else ("infeasible" if np.isinf(v) else f"{v:+.1f}")
         ax.text(j, i, text, ha="center", va="center", fontsize=8)
-    if np.isfinite(s).any() or np.isinf(s).any():
+    if not np.isnan(s).all():
         i, j = np.unravel_index(int(np.nanargmin(np.where(np.isnan(s), np.inf, s))), s.shape)
         ax.add_patch(_outline(ax, int(i), int(j)))
     ax.set_xticks(range(len(values[1])), [f"{v:g}" for v in values[1]])

@@ -91,9 +91,14 @@ def test_robust_design_never_worse_in_its_worst_case(written):
 
 
 def test_summary_names_the_design(written):
-    text = written[0].result.summary()
-    assert "fit " in text and "%" in text
-    assert dataclasses.is_dataclass(written[0].result)
+    r = written[0].result
+    rec, text = r.recommended, r.summary()
+    assert text.startswith(f"fit {rec.label} springs on {', '.join(rec.optimum.groups)}: ")
+    assert f"electrical saving {100 * rec.row['saving.electrical']:+.2f} %" in text
+    assert f"({100 * rec.net['electrical']:+.2f} % net of {1e3 * rec.spring_mass:.1f} g" in text
+    worst, where = r.worst["electrical"]
+    assert worst == min(mp.worst("electrical")[0] for mp in r.maps)
+    assert text.endswith(f"worst case over the maps {100 * worst:+.2f} % at {where}")
 
 
 def test_a_design_that_does_not_pay_for_its_mass_says_so(written):

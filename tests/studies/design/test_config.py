@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.studies.design.config import DesignConfig, DesignParams
 
 
@@ -15,6 +15,7 @@ def test_defaults_and_the_gait_of_the_robot():
     assert c.gait.period == 1.5 and c.gait.samples == 150
     assert c.design.deflection_bound == math.pi
     assert DesignParams(max_deflection="none").deflection_bound is None
+    assert DesignParams(max_deflection=3).deflection_bound == 3.0  # an int bound is a bound
     run = c.design.run("hexaleg", c.contact)
     assert run.objective == "joule" and run.motor is None  # the robot's own actuator
 
@@ -23,6 +24,8 @@ def test_defaults_and_the_gait_of_the_robot():
     ({"design": {"families": ["spiral"]}}, UnknownNameError, "dead_zone, linear"),
     ({"design": {"materials": ["bronze"]}}, UnknownNameError, "music_wire"),
     ({"design": {"grouping": "legs"}}, UnknownNameError, "class, joint, mirrored"),
+    ({"design": {"metric": "rms_torque"}}, UnknownNameError, "electrical, joule"),
+    ({"design": 3}, ConfigError, r"\[design\]: expected a table"),
     ({"design": {"max_torque": -1.0}}, InvalidParameterError, "max_torque"),
     ({"design": {"robust_mu": [1.0, 0.5]}}, InvalidParameterError, "low <= high"),
     ({"design": {"colour": 1}}, UnknownNameError, "families"),

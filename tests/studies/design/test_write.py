@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import json
 
+import pytest
+
 from hexaleg.cli import main
 
 
@@ -30,26 +32,18 @@ def test_command_line_writes_the_design(tmp_path, capsys):
     assert "fit linear" in out and (tmp_path / "o" / "design.html").exists()
 
 
-def test_limits_without_any_saving_say_what_to_change(tmp_path, capsys):
+BASE = '[design]\nsamples = 100\nfamilies = ["linear"]\npareto_fractions = []\n'
+
+
+@pytest.mark.parametrize(("extra", "says"), [
+    ("max_torque = 1e-7\n", ["raise max_torque or max_deflection"]),  # nothing saves anything
+    ("[design.max_outer_diameter]\nfemur = 0.0003\n", ["thinnest preferred wire"]),
+    ("map_stride = [1.0, 8.0]\n", ["stride factor", "narrow the stride range"]),  # unreachable
+])
+def test_bad_design_inputs_say_what_to_change(tmp_path, capsys, extra, says):
     config = tmp_path / "d.toml"
-    config.write_text('[design]\nsamples = 100\nfamilies = ["linear"]\nmax_torque = 1e-7\n'
-                      'pareto_fractions = []\n')
-    assert main(["design", "--config", str(config), "--out", str(tmp_path / "o")]) == 2
-    assert "raise max_torque or max_deflection" in capsys.readouterr().err
-
-
-def test_an_outer_diameter_no_wire_fits_is_named(tmp_path, capsys):
-    config = tmp_path / "d.toml"
-    config.write_text('[design]\nsamples = 100\nfamilies = ["linear"]\n'
-                      'pareto_fractions = []\n[design.max_outer_diameter]\nfemur = 0.0003\n')
-    assert main(["design", "--config", str(config), "--out", str(tmp_path / "o")]) == 2
-    assert "thinnest preferred wire" in capsys.readouterr().err
-
-
-def test_an_unreachable_map_range_is_named(tmp_path, capsys):
-    config = tmp_path / "d.toml"
-    config.write_text('[design]\nsamples = 100\nfamilies = ["linear"]\npareto_fractions = []\n'
-                      'map_stride = [1.0, 8.0]\n')
+    config.write_text(BASE + extra)
     assert main(["design", "--config", str(config), "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err
-    assert "stride factor" in err and "narrow the stride range" in err
+    for text in says:
+        assert text in err

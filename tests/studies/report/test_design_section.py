@@ -57,6 +57,13 @@ def test_the_report_page_leads_with_the_design(design_json):
 def test_a_missing_design_says_how_to_make_one(tmp_path):
     with pytest.raises(ConfigError, match="hexaleg design --out DIR"):
         design_section(tmp_path / "nope.json")
-    (tmp_path / "bad.json").write_text("{}")
-    with pytest.raises(ConfigError, match=r"not a design\.json"):
-        design_section(tmp_path / "bad.json")
+    for text in ("{}", "[1]", '{"recommended": {"parts": [{"group": "femur"}]}}',
+                 '{"recommended": {"label": "linear", "parts": []}}'):
+        (tmp_path / "bad.json").write_text(text)
+        with pytest.raises(ConfigError, match=r"not a design\.json"):
+            design_section(tmp_path / "bad.json")
+    steps: list[str] = []  # the report refuses it before any work
+    cfg = ReportConfig.from_mapping({"report": {"design": str(tmp_path / "nope.json")}})
+    with pytest.raises(ConfigError, match=r"nope\.json"):
+        build_report(cfg, progress=steps.append)
+    assert steps == []

@@ -34,7 +34,6 @@ import numpy as np
 
 from hexaleg.design.evaluator import RunSpec
 from hexaleg.design.families import Geometry
-from hexaleg.design.robust import METRICS as ROBUST_METRICS
 from hexaleg.design.robust import RobustSprings, robust_springs
 from hexaleg.design.robustness import Condition, condition_prepared, condition_savings
 from hexaleg.design.robustness_map import RobustnessMap, robustness_map
@@ -43,7 +42,7 @@ from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import InfeasibleForcesError, InvalidParameterError, TorqueLimitError
 from hexaleg.motion.params import GaitParams
 from hexaleg.studies.design.candidates import Candidate, candidate, design_family
-from hexaleg.studies.design.config import DesignConfig
+from hexaleg.studies.design.config import METRICS, DesignConfig
 from hexaleg.studies.design.groups import class_of, design_groups, sprung_classes
 
 MIN_SAVING = 1e-4
@@ -59,8 +58,8 @@ class RobustResult:
         conditions: The nominal gait and the box's corners.
         design: The robust program's result (savings per condition in its metric).
         candidate: The robust magnitudes as a design on the nominal gait, with its parts.
-        savings: Metric (electrical, joule) → ``{"robust": (n,), "nominal": (n,)}`` savings
-            per condition.
+        savings: Metric (:data:`~hexaleg.studies.design.config.METRICS`) →
+            ``{"robust": (n,), "nominal": (n,)}`` savings per condition.
     """
 
     conditions: tuple[Condition, ...]
@@ -113,20 +112,20 @@ class DesignResult:
     @property
     def pays(self) -> bool:
         """Whether the recommended springs save energy net of their own mass."""
-        return bool(self.recommended.net.get(self.config.design.metric, 1.0) > 0)
+        return bool(self.recommended.net[self.config.design.metric] > 0)
 
     def summary(self) -> str:
         """One line: the recommendation and its saving."""
         r, m = self.recommended, self.config.design.metric
         head = "fit" if self.pays else "no spring pays for its mass here; the best,"
         return (f"{head} {r.label} springs on {', '.join(r.optimum.groups)}: {m} saving "
-                f"{100 * r.row[f'saving.{m}']:+.2f} % ({100 * r.net.get(m, np.nan):+.2f} % net "
+                f"{100 * r.row[f'saving.{m}']:+.2f} % ({100 * r.net[m]:+.2f} % net "
                 f"of {1e3 * r.spring_mass:.1f} g of springs); worst case over the maps "
                 f"{100 * self.worst[m][0]:+.2f} % at {self.worst[m][1]}")
 
 
 def _rank(c: Candidate, metric: str) -> float:
-    value = c.net.get(metric, c.row[f"saving.{metric}"])
+    value = c.net[metric]
     return float(value) if np.isfinite(value) else -np.inf
 
 
@@ -167,10 +166,9 @@ def _robust(cfg: DesignConfig, run: RunSpec, gait: GaitParams, prepared: Prepare
                 "design robust box corner", c.label(),
                 f"corners where the robot has admissible forces without springs ({e}); narrow "
                 "the robust_* ranges") from e
-    bound = cfg.design.deflection_bound
-    metric = cfg.design.metric if cfg.design.metric in ROBUST_METRICS else "joule"
-    design = robust_springs(rec.optimum, prepared, preps, cfg.design.robust_mode, metric,
-                            max_torque=cfg.design.max_torque, max_deflection=bound)
+    d = cfg.design
+    design = robust_springs(rec.optimum, prepared, preps, d.robust_mode, d.metric,
+                            max_torque=d.max_torque, max_deflection=d.deflection_bound)
     analysis = prepared.evaluate(design.springs, "joule")
     value = float(analysis.metrics["total"]["joule"])
     optimum = dataclasses.replace(
@@ -180,7 +178,7 @@ def _robust(cfg: DesignConfig, run: RunSpec, gait: GaitParams, prepared: Prepare
             for name, s in (("robust", design.springs), ("nominal", rec.optimum.springs))}
     savings = {m: {name: np.array([r[f"saving.{m}"] if r["status"] == "ok" else -np.inf
                                    for r in rs]) for name, rs in rows.items()}
-               for m in ("electrical", "joule")}
+               for m in METRICS}
     return RobustResult(conditions=conditions, design=design,
                         candidate=candidate(optimum, prepared, run, gait, outer, cfg.design),
                         savings=savings)
@@ -271,14 +269,14 @@ def build_design(config: DesignConfig | None = None,
             robustness_map(run, gait, rec.optimum.springs,
                            {"payload": d.map_payload, "mu": d.map_mu}))
     worst = {}
-    for m in ("electrical", "joule"):
+    for m in METRICS:
         s, c = min((mp.worst(m) for mp in maps),
                    key=lambda sc: np.inf if np.isnan(sc[0]) else sc[0])
         worst[m] = (s, c.label() if c is not None else "—")
-    step("maps", f"robustness maps: worst {d.metric} saving {100 * worst['electrical'][0]:+.2f} %")
+    step("maps", f"robustness maps: worst {d.metric} saving {100 * worst[d.metric][0]:+.2f} %")
     robust = _robust(cfg, run, gait, prepared, rec, outer)
     step("robust", "robust design over the box of conditions")
-    pays = [] if rec.net.get(d.metric, 1.0) > 0 else [
+    pays = [] if rec.net[d.metric] > 0 else [
         f"no design saves {d.metric} energy net of its springs' mass: the best saves "
         f"{100 * rec.row[f'saving.{d.metric}']:+.2f} % but {100 * rec.net[d.metric]:+.2f} % "
         "net — fitting springs does not pay on this robot and gait"]

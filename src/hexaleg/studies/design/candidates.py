@@ -26,10 +26,7 @@ from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import GaitParams
 from hexaleg.robot.payload import with_point_masses
 from hexaleg.robot.springs import SpringSet
-from hexaleg.studies.design.config import DesignParams
-
-NET_METRICS: tuple[str, ...] = ("electrical", "joule")
-"""Metrics whose saving is also given net of the springs' mass."""
+from hexaleg.studies.design.config import METRICS, DesignParams
 
 
 @dataclass(frozen=True, eq=False)
@@ -43,7 +40,8 @@ class Candidate:
         row: Every metric with the springs, its baseline and saving
             (:func:`~hexaleg.design.evaluator.metric_row`).
         spring_mass: Mass of all the springs, kg.
-        net: Metric → saving with the springs' mass carried (:data:`NET_METRICS`).
+        net: Metric (:data:`~hexaleg.studies.design.config.METRICS`) → saving with the
+            springs' mass carried.
         marginal: Group → saving of the ranking metric lost without that group's springs
             (fraction of the baseline).
         notes: What the user should know (constant-torque springs, springs that do not fit).
@@ -104,7 +102,7 @@ def candidate(optimum: OptimalSprings, prepared: Prepared, run: RunSpec, gait: G
     row = metric_row(a.metrics, a.baseline)
     masses = spring_masses(parts)
     heavy = carried(run, gait, masses).evaluate(optimum.springs, "joule").metrics["total"]
-    net = {m: saving(float(heavy[m]), float(a.baseline["total"][m])) for m in NET_METRICS}
+    net = {m: saving(float(heavy[m]), float(a.baseline["total"][m])) for m in METRICS}
     marginal = {}
     for g, joints in optimum.groups.items():
         rest = SpringSet({j: s for j, s in optimum.springs.items() if j not in joints})

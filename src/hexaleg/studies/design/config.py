@@ -18,7 +18,7 @@ from typing import Any
 
 from hexaleg.checks import integer, is_real, real
 from hexaleg.config import from_mapping, load_toml
-from hexaleg.design.evaluator import DEFAULT_METRIC, SAVING_METRICS, RunSpec
+from hexaleg.design.evaluator import DEFAULT_METRIC, RunSpec
 from hexaleg.design.families import FAMILIES, family
 from hexaleg.design.robust import MODES
 from hexaleg.design.spring_materials import MATERIALS, material
@@ -34,6 +34,10 @@ SHARED_TABLES: tuple[str, ...] = ("motor", "springs", "report", "view")
 """Tables of the same file other commands read; accepted and ignored here."""
 GROUPINGS: tuple[str, ...] = ("class", "mirrored", "joint")
 """One spring design per joint class (all legs), per left/right pair of legs, or per joint."""
+METRICS: tuple[str, ...] = ("electrical", "joule")
+"""Metrics the designs may be ranked by: those every step records — the saving net of the
+springs' mass, the robustness maps (:data:`hexaleg.design.robustness_map.METRICS`) and the robust
+program (:data:`hexaleg.design.robust.METRICS`)."""
 
 
 def _floats(name: str, values: Any, low: float, low_open: bool, what: str) -> tuple[float, ...]:
@@ -56,7 +60,8 @@ class DesignParams:
         max_deflection: Largest wind-up of a spring from its free position, rad (default π: half
             a turn), or ``"none"`` for no bound (then a design may need a constant-torque
             spring, which is flagged).
-        metric: The metric the designs are ranked by (default the energy the servos draw).
+        metric: The metric the designs are ranked by, one of :data:`METRICS` (default the
+            energy the servos draw).
         motor: A catalogue servo on every joint instead of the robot's own actuator.
         samples: Samples per gait cycle of the design and the maps.
         materials: Wire materials (:data:`~hexaleg.design.spring_materials.MATERIALS`).
@@ -122,11 +127,11 @@ class DesignParams:
             set_("max_deflection", None)
         for name, unit, off in (("max_torque", "N·m", "leave it out"),
                                 ("max_deflection", "rad", '"none" for no bound')):
-            if getattr(self, name) is not None:
-                real(f"design.{name}", getattr(self, name), low=0.0, low_open=True,
-                     allowed=f"a finite value > 0 ({unit}), or {off}")
-        if self.metric not in SAVING_METRICS:
-            raise UnknownNameError("design.metric", self.metric, SAVING_METRICS)
+            if getattr(self, name) is not None:  # as a float: an int bound is a bound too
+                set_(name, real(f"design.{name}", getattr(self, name), low=0.0, low_open=True,
+                                allowed=f"a finite value > 0 ({unit}), or {off}"))
+        if self.metric not in METRICS:
+            raise UnknownNameError("design.metric", self.metric, METRICS)
         if self.motor is not None:
             RunSpec(motor=self.motor)  # UnknownNameError listing the catalogue
         integer("design.samples", self.samples, low=MIN_SAMPLES)
@@ -221,11 +226,7 @@ class DesignConfig:
         gait = GaitParams.for_robot(run.description()).updated(data.get("gait", {}),
                                                                 f"{where} [gait]")
         contact = from_mapping(ContactParams, data.get("contact", {}), f"{where} [contact]")
-        table = dict(data.get("design", {}))
-        for key, value in table.items():
-            if isinstance(value, list):
-                table[key] = tuple(value)
-        design = from_mapping(DesignParams, table, f"{where} [design]")
+        design = from_mapping(DesignParams, data.get("design", {}), f"{where} [design]")
         return cls(robot=robot, gait=dataclasses.replace(gait, samples=design.samples),
                    contact=contact, design=design)
 

@@ -47,7 +47,7 @@ def figures(r: DesignResult) -> dict[str, Figure]:
     Pareto front and the robust design against the nominal one."""
     m = r.config.design.metric
     out = {f"map_{mp.axes[0]}_{mp.axes[1]}": design_plots.robustness_heatmap(
-        mp.axes, mp.values, 100 * mp.saving[m if m in mp.saving else "electrical"], m)
+        mp.axes, mp.values, 100 * mp.saving[m], m)
         for mp in r.maps}
     points = [c for _, c in r.pareto]
     if points:

@@ -144,6 +144,7 @@ def build_report(config: ReportConfig | None = None, *, robot: Robot | None = No
         The report (``files`` empty).
 
     Raises:
+        ConfigError: ``[report] design`` is not a readable ``design.json`` (before any work).
         HexalegError: from the gait, the springs or the analysis (unreachable foot targets,
             unknown joints, infeasible forces at the configured springs, …).
     """
@@ -154,6 +155,7 @@ def build_report(config: ReportConfig | None = None, *, robot: Robot | None = No
     def step(msg: str) -> None:
         say(f"{msg} ({time.perf_counter() - t0:.1f} s)")
 
+    design = design_section(cfg.report.design)  # a bad design.json fails before any work
     robot = robot or load_robot()
     if cfg.payload is not None:  # carried on the base through dynamics, forces and design
         robot = cfg.payload.attach(robot)
@@ -171,7 +173,7 @@ def build_report(config: ReportConfig | None = None, *, robot: Robot | None = No
     usage = contact.friction_usage(analysis.forces, motion.stance.astype(bool), cfg.contact.mu,
                                    motion.normal)
     data = _report_data(cfg, robot, motion, analysis, baseline, curve, usage)
-    data["design"] = design_section(cfg.report.design)
+    data["design"] = design
     data["transform"] = transform_section(robot, cfg, springs, objective)
     if data["transform"] is not None:
         step("stand → sphere transformation analysed")

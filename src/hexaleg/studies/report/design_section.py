@@ -37,12 +37,16 @@ def design_section(path: str | Path | None) -> dict[str, Any] | None:
         return None
     path = Path(path)
     try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-        rec = data["recommended"]
-    except (OSError, ValueError, KeyError, TypeError) as e:
+        return _section(path, json.loads(path.read_text(encoding="utf-8")))
+    except (OSError, ValueError, KeyError, TypeError, AttributeError) as e:
         raise ConfigError(f"[report] design = {str(path)!r}: not a design.json of hexaleg design "
                           f"({type(e).__name__}: {e}); write one with: hexaleg design --out DIR"
                           ) from e
+
+
+def _section(path: Path, data: dict[str, Any]) -> dict[str, Any]:
+    """The section from the parsed ``design.json`` (a missing key raises KeyError)."""
+    rec = data["recommended"]
     parts = []
     for p in rec["parts"]:
         spring = p.get("torsion_spring") or {}
