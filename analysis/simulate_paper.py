@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from hexaleg.dynamics.energy import saving
 from hexaleg.studies.paper.joint import PaperJoint
 from hexaleg.studies.paper.metrics import energy_ratio, metric
 from hexaleg.studies.paper.readings import PAPER_K_E, PAPER_K_M, paper_number_to_si
@@ -30,6 +31,8 @@ from hexaleg.studies.simulate.paper_joint import AdamsJoint, adams, open_loop, o
 JOINT = PaperJoint()
 K_GRID = np.arange(100.0, 1700.0, 100.0)  # paper units (the paper swept 100…1200)
 PAPER_MEAN_MIN, PAPER_EPS_MIN = 740.0, 800.0  # Figs 10 and 13, read off
+TOTALS = {"mean_abs": "mean_abs_torque", "peak": "peak_torque", "rms": "rms_torque"}
+"""hexaleg.studies.paper.metrics names → keys of hexaleg.dynamics.energy.metrics."""
 
 
 def analytic(name: str, k: float) -> float:
@@ -43,11 +46,7 @@ def simulated(runs: dict, name: str, k: float) -> float:
     r = runs[k]
     if name == "epsilon":
         return r.epsilon(JOINT)
-    if name == "mean_abs":
-        return r.mean_abs()
-    if name == "peak":
-        return float(np.abs(r.torque).max())
-    return float(np.sqrt(np.mean(r.torque**2)))
+    return float(r.metrics()[TOTALS[name]])
 
 
 def vertex(ks: np.ndarray, values: np.ndarray) -> float:
@@ -102,7 +101,7 @@ def main() -> None:
         base = (analytic(name, 0.0), simulated(runs, name, 0.0), simulated(fric, name, 0.0))
         best = columns.min(axis=0)
         print("  saving at the grid's best k: " + ", ".join(
-            f"{what} {100 * (1 - b / z):.1f} %" for what, b, z in
+            f"{what} {100 * saving(b, z):.1f} %" for what, b, z in
             zip(("analytic", "simulated", "with friction"), best, base, strict=True)))
     print("\nopen loop (the analysis' torque, no feedback, native dead-zone spring at k_M): "
           "max |θ − θ_plan| over a period")

@@ -80,6 +80,27 @@ def test_config_simulate_table_is_checked(tmp_path, capsys):
     assert "timestpe" in capsys.readouterr().err
 
 
+def test_controller_choices_are_the_controllers_and_mujoco_loads_lazily():
+    """``simulate --controller`` offers :data:`CONTROLLERS`, spelled out in the parser so that
+    neither building it, ``import hexaleg`` nor ``import hexaleg.studies.simulate`` loads MuJoCo
+    (it is imported where a model is built)."""
+    import argparse
+    import subprocess
+    import sys
+
+    from hexaleg.cli import build_parser
+    from hexaleg.studies.simulate.controllers import CONTROLLERS
+
+    sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    choices = {a.dest: a.choices for a in sub.choices["simulate"]._actions}
+    assert tuple(choices["controller"]) == CONTROLLERS
+    code = ("import sys, hexaleg, hexaleg.studies.simulate, hexaleg.cli as c; c.build_parser(); "
+            "print('mujoco' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.strip() == "False"
+
+
 def test_unknown_controller_is_refused_by_the_parser(capsys):
     with pytest.raises(SystemExit):
         main(["simulate", "--controller", "pid"])

@@ -21,6 +21,7 @@ def test_gains_from_the_servo_model(prepared):
     assert np.allclose(kp, motor.stall_torque / COMPLIANCE)
     assert np.allclose(kd, motor.stall_torque / motor.no_load_speed) and np.allclose(kd, damping)
     assert np.allclose(stall, motor.stall_torque)
+    assert (kp[0], kd[0]) == pytest.approx((11.11, 0.1772), rel=1e-3)  # the AX-18A, docs
     kp2, kd2, _, _ = Servo(kp_scale=4, kd_scale=0.25).gains(motor, 18)
     assert np.allclose(kp2, 4 * kp) and np.allclose(kd2, kd / 4)
 

@@ -54,6 +54,9 @@ def test_paper_units_are_converted(tmp_path, robot):
     ({"springs": {"LF_femur": {"family": "linear", "parameters": {"stiffness": 1.0}}}},
      ConfigError, "unit"),
     ({"designs": {}}, ConfigError, "springs"),
+    ({"springs": [{"family": "linear", "joint": "LF_femur", "parameters": {
+        "stiffness": {"value": 1, "unit": "N·m/rad"}}}] * 2}, ConfigError,
+     "two springs on LF_femur"),
 ])
 def test_bad_design_files_are_named(data, error, match, tmp_path, robot):
     with pytest.raises(error, match=match):

@@ -14,7 +14,7 @@ import pytest
 import hexaleg
 from hexaleg.errors import InvalidParameterError
 from hexaleg.studies.simulate.ground import Ground
-from hexaleg.studies.simulate.model import TIMESTEP, build_model
+from hexaleg.studies.simulate.model import TIMESTEP, build_model, timestep_limit
 from hexaleg.studies.simulate.state import JointMap
 
 
@@ -52,7 +52,8 @@ def _bare(sim) -> mujoco.MjModel:
 
 @pytest.mark.parametrize("which", ["robot", "spider"])
 def test_mujoco_inverse_dynamics_is_pinocchio_rnea(which, request):
-    """mj_inverse at random states = RNEA (free flyer mapped), to 1e-8 N·m: the joint order, the
+    """mj_inverse at random states = RNEA (free flyer mapped), to 1e-12 N·m (docs/simulate.md:
+    1.2e-14 of 17 N·m at 50 states): the joint order, the
     axes, the inertias and the free flyer's velocity and force conventions all agree. The spider
     (a test hexapod facing +y, joints found from its URDF) checks another tree."""
     robot = request.getfixturevalue(which)
@@ -62,7 +63,7 @@ def test_mujoco_inverse_dynamics_is_pinocchio_rnea(which, request):
     for q, v, a in _random_states(robot, 4):
         tau = pin.rnea(robot.model, robot.model.createData(), q, v, a)
         assert np.allclose(_inverse(m, sim.joints, q, v, a), sim.joints.force_to_mujoco(q, tau),
-                           rtol=0, atol=1e-8)
+                           rtol=0, atol=1e-12)
 
 
 def test_mass_matrices_agree(sim, robot):
@@ -92,6 +93,14 @@ def test_every_geom_clear_of_the_plan_touches_the_ground(sim, robot):
     per foot."""
     assert sim.model.npair == len(robot.legs) + robot.collision_model.ngeoms - len(robot.legs)
     assert not sim.notes
+
+
+def test_the_built_in_robots_limit_is_its_tibia_servo(sim, prepared):
+    """docs/simulate.md: explicit stability allows 0.73 ms on the built-in robot, set by a tibia
+    servo (kp 11.1 N·m/rad, kd 0.177 N·m·s/rad)."""
+    limit, what = timestep_limit(sim, prepared.motion)
+    assert limit == pytest.approx(7.32e-4, rel=1e-3)
+    assert what.startswith("the servo of") and "_tibia" in what
 
 
 def test_timestep_must_undercut_the_gait_and_stay_stable(prepared):

@@ -24,6 +24,18 @@ def test_rigid_joint_is_the_analytic_torque():
     assert np.allclose(run.torque, expected, rtol=0, atol=1e-15)
 
 
+def test_gravity_is_the_joints_own():
+    """With gravity the hanging lever's torque adds m g l sin θ with the joint's g (here 5 m/s²,
+    not the standard 9.81)."""
+    joint = PaperJoint(gravity=5.0)
+    model = AdamsJoint(joint=joint, gravity=True, friction=False)
+    run = adams(model, 0.0, periods=1)
+    theta, theta_dot, theta_ddot = joint.trajectory(run.t)
+    expected = joint.J * theta_ddot + joint.mass * 5.0 * joint.com * np.sin(theta) \
+        + model.stiffness_si(0.01) * theta + model.stiffness_si(1e-4) * theta_dot
+    assert np.allclose(run.torque, expected, rtol=0, atol=1e-15)
+
+
 def test_springs_as_bodies_follow_the_dead_zone_law():
     """At k_M the contact-driven spring arms reproduce the analytic mean torque within 10 %
     (impacts and the arms' inertia add the rest); the arms rest on their stops at ±θ_k and follow

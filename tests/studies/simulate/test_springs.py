@@ -1,4 +1,4 @@
-"""Every spring family in MuJoCo equals hexaleg's spring law, to 1e-12 N·m at sampled states."""
+"""Every spring family in MuJoCo equals hexaleg's spring law, to 2e-15 N·m at sampled states."""
 
 from __future__ import annotations
 
@@ -56,7 +56,7 @@ def test_simulated_spring_torque_is_the_spring_law(family, prepared):
     for k in range(40):
         data.qpos[:], data.qvel[:] = sim.joints.to_mujoco(q[k], v[k])
         mujoco.mj_forward(m, data)
-        assert np.allclose(sim.spring_torque(data), expected[k], rtol=0, atol=1e-12)
+        assert np.allclose(sim.spring_torque(data), expected[k], rtol=0, atol=2e-15)
 
 
 def test_no_springs_no_elements(prepared):

@@ -59,13 +59,14 @@ def _si(value: Any) -> Any:
 
 def _entries(data: Mapping[str, Any], where: str) -> tuple[list[Any], Any]:
     """The spring entries of a design document and the robot it names (or None)."""
-    if isinstance(data.get("recommended"), Mapping):  # hexaleg design's design.json
-        robot = data.get("robot")
-        return list(data["recommended"].get("springs", [])), (
-            robot.get("name") if isinstance(robot, Mapping) else robot)
-    springs = data.get("springs")
-    if isinstance(springs, Mapping):
-        springs = [{**t, "joint": j} if isinstance(t, Mapping) else t for j, t in springs.items()]
+    recommended = data.get("recommended")
+    if isinstance(recommended, Mapping):  # hexaleg design's design.json
+        springs = recommended.get("springs", [])
+    else:
+        springs = data.get("springs")
+        if isinstance(springs, Mapping):
+            springs = [{**t, "joint": j} if isinstance(t, Mapping) else t
+                       for j, t in springs.items()]
     if not isinstance(springs, list):
         raise ConfigError(f"{where}: expected the design.json of hexaleg design or "
                           "{\"robot\": …, \"springs\": [{family, joint, parameters}, …]}")
@@ -86,8 +87,8 @@ def read_design(path: str | Path, robot: Robot, robot_name: str | None = None) -
         The springs, SI.
 
     Raises:
-        ConfigError: the file is missing, not JSON, malformed, or a number not in its field's
-            unit (SI or the paper's).
+        ConfigError: the file is missing, not JSON, malformed, a joint given twice, or a number
+            not in its field's unit (SI or the paper's).
         InvalidParameterError: the file is for another robot, or a value is out of range.
         UnknownNameError: an unknown family, parameter or joint (lists the valid ones).
     """
@@ -110,6 +111,8 @@ def read_design(path: str | Path, robot: Robot, robot_name: str | None = None) -
         joint = entry.get("joint") if isinstance(entry, Mapping) else None
         if not isinstance(joint, str):
             raise ConfigError(f"{path}: a spring entry without its joint: {entry!r}")
+        if joint in springs:
+            raise ConfigError(f"{path}: two springs on {joint}; give one entry per joint")
         springs[joint] = spring_from_entry(_si(entry), f"{path}: springs.{joint}")
     out = SpringSet(springs)
     out.columns(robot)  # UnknownNameError listing the robot's joints

@@ -40,6 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hexaleg.checks import nonnegative, positive, real
+from hexaleg.errors import InvalidParameterError
 
 IMPEDANCE = 0.01
 """MuJoCo constraint impedance d of every ground contact (small: the soft, penalty-like regime
@@ -84,8 +85,6 @@ class Ground:
         real("ground.incline (rad)", self.incline, low=-np.pi / 2, high=np.pi / 2,
              low_open=True, high_open=True)
         if not isinstance(self.noslip, bool):
-            from hexaleg.errors import InvalidParameterError
-
             raise InvalidParameterError("ground.noslip", self.noslip, "true or false")
 
     def solref(self, inverse_weight: float) -> tuple[float, float]:

@@ -72,16 +72,14 @@ def walk(sim: SimModel, motion: Motion, traj: Trajectory, window: slice, cycles:
         cycles: Whole cycles in the window, ≥ 1.
         q_ref: Planned joint angles at every step of the run, shape (n, nj), rad.
     """
-    qpos = traj.qpos[window]
+    qpos, t, dt = traj.qpos[window], traj.t[window], sim.timestep
     heading = sim.robot.heading
     travel = float((qpos[-1, :3] - qpos[0, :3]) @ heading)
     # the window's last row is one step short of a whole number of cycles: add its velocity
-    travel += float(traj.qvel[window][-1, :3] @ heading) * (traj.t[1] - traj.t[0])
-    k = planned_index(motion, traj.t[window])
+    travel += float(traj.qvel[window][-1, :3] @ heading) * dt
+    k = planned_index(motion, t)
     roll, pitch = tilt(qpos)
     err = sim.joints.joints_mj(qpos) - q_ref[window]
-    dt = float(traj.t[1] - traj.t[0])
-    t = traj.t[window]
     # the plan one step before and after the window: a stance running over its edge is cut
     edges = planned_index(motion, np.r_[t[0] - dt, t, t[-1] + dt])
     stance = motion.stance[edges].astype(bool)
@@ -125,10 +123,9 @@ def cycle_energies(sim: SimModel, traj: Trajectory, window: slice, cycles: int, 
     """
     tau = traj.tau_motor[window]
     qdot = sim.joints.joints_mj(traj.qvel[window], velocity=True)
-    dt = float(traj.t[1] - traj.t[0])
     steps = len(tau) // cycles
-    return [energy.metrics(tau[c * steps:(c + 1) * steps], qdot[c * steps:(c + 1) * steps], dt,
-                           motor, joint_names=sim.robot.joint_names)
+    return [energy.metrics(tau[c * steps:(c + 1) * steps], qdot[c * steps:(c + 1) * steps],
+                           sim.timestep, motor, joint_names=sim.robot.joint_names)
             for c in range(cycles)]
 
 

@@ -179,11 +179,10 @@ def tree_xml(robot: Robot, foot_radius: float) -> TreeXml:
                    f'limited="false" armature="{fmt(armature)}"/>')
         for obj in by_joint.get(i, []):
             kind, size, pos, rot, note = _shape(obj)
-            name = f"{obj.name}"
-            geoms.append(name)
+            geoms.append(obj.name)
             if note:
                 notes.append(note)
-            yield (f'<geom name={quoteattr(name)} class="{GEOM_CLASS}" type="{kind}" '
+            yield (f'<geom name={quoteattr(obj.name)} class="{GEOM_CLASS}" type="{kind}" '
                    f'size="{fmt(size)}" pos="{fmt(pos)}" quat="{wxyz(rot)}"/>')
         for leg in robot.legs:
             frame = model.frames[leg.foot_frame_id]

@@ -54,6 +54,7 @@ from hexaleg.studies.simulate.mjcf import (
 )
 from hexaleg.studies.simulate.springs import SpringPlan, constant_actuator, plan_springs
 from hexaleg.studies.simulate.state import JointMap
+from hexaleg.units import G
 
 TIMESTEP = 5e-4
 """s: the default simulation timestep (half the default gait's sample spacing)."""
@@ -171,8 +172,6 @@ def _clear_geoms(model: object, joints: JointMap, motion: Motion, names: tuple[s
 def _document(robot: Robot, tree: str, plan: SpringPlan, servos: str, pairs: str,
               sensors: str, timestep: float, ground: Ground) -> str:
     """The MJCF document."""
-    from hexaleg.units import G
-
     gravity = ground.gravity(robot.heading, G)
     noslip = NOSLIP_ITERATIONS if ground.noslip else 0
     return "\n".join([
@@ -251,9 +250,8 @@ def build_model(robot: Robot, motion: Motion, motor: ServoMotor, *,
     model = mujoco.MjModel.from_xml_string(xml)
     plan.apply(model)
     model.dof_damping[joints.dof] = damping
-    for flag in ("mjDSBL_AUTORESET",):  # keep a diverged state (a verdict) instead of a reset
-        if hasattr(mujoco.mjtDisableBit, flag):
-            model.opt.disableflags |= int(getattr(mujoco.mjtDisableBit, flag))
+    if hasattr(mujoco.mjtDisableBit, "mjDSBL_AUTORESET"):  # keep a diverged state (a verdict)
+        model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_AUTORESET)
     sim = SimModel(robot=robot, model=model, xml=xml, joints=joints, springs=plan, servo=servo,
                    ground=ground, kp=kp, kd=kd, damping=damping, stall=stall,
                    foot_geoms=np.array([mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, g)
@@ -278,11 +276,8 @@ def timestep_limit(sim: SimModel, motion: Motion) -> tuple[float, str]:
     import mujoco
 
     robot = sim.robot
-    model, data = robot.model, robot.model.createData()
-    minv = pin.computeMinverse(model, data, motion.q[0])
-    minv = np.triu(minv) + np.triu(minv, 1).T
-    inertia = 1.0 / np.diag(minv)[6:][[robot.model.joints[robot.model.getJointId(j)].idx_v - 6
-                                       for j in robot.joint_names]]
+    minv = pin.computeMinverse(robot.model, robot.model.createData(), motion.q[0])
+    inertia = 1.0 / np.diag(minv)[sim.joints.pin_v]  # the diagonal: the upper triangle holds it
     limits = [(_dt_limit(max(sim.kd[i], sim.damping[i]) / inertia[i], sim.kp[i] / inertia[i]),
                f"the servo of {j} (kp {sim.kp[i]:.3g} N·m/rad, kd {sim.kd[i]:.3g} N·m·s/rad, "
                f"effective inertia {inertia[i]:.3g} kg·m²)")

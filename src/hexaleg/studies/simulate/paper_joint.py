@@ -7,7 +7,8 @@ spring (Table 5) and joint friction (Table 2). :func:`adams` rebuilds that in Mu
 
 * the lever: a hinge whose state is set to the driver's θ, θ̇ before every step (kinematic); the
   required torque is its equation of motion ``M = J θ̈ + s m g l sin θ + k₂ θ + c₂ θ̇ + Σ τ_c
-  + τ_f`` with the contact torques τ_c of the arms and the friction τ_f;
+  + τ_f`` (its first two terms :meth:`~hexaleg.studies.paper.joint.PaperJoint.baseline_torque`)
+  with the contact torques τ_c of the arms and the friction τ_f;
 * each main spring (one per side, the dead zone ±θ_k between them) is its own body: an arm on a
   hinge coaxial with the joint, with the torsion spring's stiffness and damping (joint
   ``stiffness``/``damping`` about ``springref`` ±θ_k), held at ±θ_k by a stop (a joint limit;
@@ -40,10 +41,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
 from hexaleg.checks import one_of, positive
+from hexaleg.dynamics import energy
+from hexaleg.robot.motor import motor
 from hexaleg.studies.paper.joint import POSTURES, PaperJoint
 from hexaleg.units import DEG, MM
 
@@ -86,7 +90,7 @@ class AdamsJoint:
         joint: Lever, trajectory, θ_k, α, gravity posture (Table 6, eq. 25, Section 4.2).
         tables: Tables 2–5.
         units: One of :data:`UNITS`.
-        gravity: Include gravity (the paper's analysis of k_M ignores it).
+        gravity: Include gravity, ``joint.gravity`` (the paper's analysis of k_M ignores it).
         friction: Include Table 2's joint friction.
         contact_radius: Where the lever meets an arm, m, > 0 (not in the paper: the pin radius).
         arm_inertia: Each arm's inertia about the axis, kg·m², > 0 (not in the paper, whose
@@ -126,7 +130,7 @@ class AdamsJoint:
         j, tk = self.joint, self.joint.theta_k
         kappa = float(self.stiffness_si(k) * j.transmission)
         damp = float(self.stiffness_si(self.tables.main_damping) * j.transmission)
-        g = 9.81 if self.gravity else 0.0
+        g = j.gravity if self.gravity else 0.0
         s = POSTURES[j.posture]
         arm = 1e-3  # kg: a small mass at the axis; the inertia is arm_inertia
 
@@ -169,18 +173,27 @@ class AdamsRun:
     k: float
     kappa: float
 
+    def metrics(self) -> dict[str, Any]:
+        """The totals of :func:`hexaleg.dynamics.energy.metrics` of the required torque M and
+        the lever's speed over the period (its electrical entries for the default servo,
+        :func:`hexaleg.robot.motor.motor`): ``mean_abs_torque``, ``peak_torque``,
+        ``rms_torque`` (N·m), ``positive_work`` (J), …."""
+        return energy.metrics(self.torque, self.theta_dot, float(self.t[1] - self.t[0]),
+                              motor())["total"]
+
     def mean_abs(self) -> float:
         """Mean |M| over the period (the paper's Figs 9–10: trapezoid of M over a period / T),
         N·m."""
-        return float(np.abs(self.torque).mean())
+        return float(self.metrics()["mean_abs_torque"])
 
     def positive_work(self) -> float:
         """∫ max(M θ̇, 0) dt over the period, J."""
-        return float(np.maximum(self.torque * self.theta_dot, 0.0).sum() * (self.t[1] - self.t[0]))
+        return float(self.metrics()["positive_work"])
 
     def epsilon(self, joint: PaperJoint) -> float:
-        """Eq. 24 as :func:`hexaleg.studies.paper.metrics.energy_ratio`: E⁺/(J · 4A), 1/s²."""
-        return self.positive_work() / (joint.J * 4 * joint.amplitude)
+        """Eq. 24 (:func:`hexaleg.dynamics.energy.epsilon`) as
+        :func:`hexaleg.studies.paper.metrics.energy_ratio`: E⁺/(J · 4A), 1/s²."""
+        return energy.epsilon(self.positive_work(), joint.J, 4 * joint.amplitude)
 
 
 def _step_ramp(x: np.ndarray | float, d: float) -> np.ndarray:
@@ -211,7 +224,7 @@ def adams(model: AdamsJoint, k: float, periods: int = 2) -> AdamsRun:
     c2 = model.stiffness_si(tab.secondary_damping)
     mu_s, mu_d = tab.mu_static, tab.mu_dynamic
     r_pin, v_s = tab.pin_radius * MM, tab.static_speed * MM
-    g = 9.81 if model.gravity else 0.0
+    g = j.gravity if model.gravity else 0.0
     s = POSTURES[j.posture]
     n_period = round(j.period / model.timestep)
     dt = j.period / n_period
@@ -219,6 +232,7 @@ def adams(model: AdamsJoint, k: float, periods: int = 2) -> AdamsRun:
     n = periods * n_period
     t = np.arange(n) * dt
     th, thd, thdd = j.trajectory(t)
+    lever = j.baseline_torque(t, model.gravity) + k2 * th + c2 * thd  # all but τ_c and τ_f
     arms_q = np.array([j.theta_k, -j.theta_k])
     d.qpos[1:], d.qvel[1:] = arms_q, 0.0
     out = np.zeros((n, 5))
@@ -233,8 +247,7 @@ def adams(model: AdamsJoint, k: float, periods: int = 2) -> AdamsRun:
         force = np.maximum(force, 0.0) if k > 0 else np.zeros(2)  # k = 0: no spring at all
         d.qfrc_applied[1:] = np.array([force[0], -force[1]]) * r
         tau_c = (force[0] - force[1]) * r  # load of the arms on the lever (restoring)
-        tau = j.J * thdd[i] + s * j.mass * g * j.com * math.sin(th[i]) + k2 * th[i] \
-            + c2 * thd[i] + tau_c
+        tau = lever[i] + tau_c
         friction = 0.0
         if model.friction:
             # pin reaction = m a_com − m g − F_c, in the lever's frame (radial, tangential)

@@ -25,7 +25,7 @@ from hexaleg.config import from_mapping
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.dynamics.energy import saving
 from hexaleg.dynamics.prepare import Analysis, Prepared, prepare
-from hexaleg.errors import InvalidParameterError
+from hexaleg.errors import InvalidParameterError, SimulationError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
@@ -85,7 +85,7 @@ class Settings:
 
     def __post_init__(self) -> None:
         self.servo()
-        self.ground(0.6)
+        self.ground(ContactParams().mu)
         integer("cycles", self.cycles, low=2, high=10_000)
         integer("evaluate", self.evaluate, low=1, high=self.cycles - 1)
         integer("force_samples", self.force_samples, low=0)
@@ -140,10 +140,14 @@ class Run:
         return self.verdict == "walks"
 
     @property
+    def simulated_time(self) -> float:
+        """Time the run covered (its recorded steps), s."""
+        return self.trajectory.n * self.sim.timestep
+
+    @property
     def realtime_factor(self) -> float:
         """Simulated time per wall-clock time of the stepping."""
-        span = float(self.trajectory.t[-1] + self.sim.timestep) if self.trajectory.n else 0.0
-        return span / self.wall if self.wall > 0 else math.inf
+        return self.simulated_time / self.wall if self.wall > 0 else math.inf
 
 
 @dataclass(frozen=True, eq=False)
@@ -187,8 +191,6 @@ class Simulation:
         Raises:
             SimulationError: a run did not walk (its verdict and message).
         """
-        from hexaleg.errors import SimulationError
-
         for r in (self.with_springs, self.baseline):
             if not r.walks:
                 raise SimulationError(f"the {r.name} run {r.verdict}: {r.message}")

@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from hexaleg.robot.model import Robot
-from hexaleg.robot.springs import DeadZoneSpring, SpringSet, Term
+from hexaleg.robot.springs import DeadZoneSpring, Spring, SpringSet, Term
 from hexaleg.studies.simulate.mjcf import fmt
 
 FAR = 1e6
@@ -40,8 +40,6 @@ FAR = 1e6
 FOLD = 10.0
 """rad: a constant torque c folds into a joint spring's reference (a + c/x) only while
 |c/x| ≤ this; a nearly constant-torque spring keeps its constant as an actuator."""
-NATIVE_KINDS = ("linear", "above", "below", "constant")
-"""Term kinds MuJoCo computes natively (table in the module docstring)."""
 
 
 def tendon_name(joint: str, k: int) -> str:
@@ -130,10 +128,9 @@ class SpringPlan:
         return out
 
 
-def _terms(spring: object) -> tuple[tuple[Term, ...], np.ndarray]:
+def _terms(spring: Spring) -> tuple[tuple[Term, ...], np.ndarray]:
     """A spring law's basis terms and joint-side magnitudes."""
-    terms = spring.terms()  # type: ignore[attr-defined]
-    return tuple(terms), np.asarray(spring.magnitudes(), dtype=float)  # type: ignore[attr-defined]
+    return tuple(spring.terms()), np.asarray(spring.magnitudes(), dtype=float)
 
 
 def plan_springs(robot: Robot, springs: SpringSet | None) -> SpringPlan:

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hexaleg.errors import InvalidParameterError
 from hexaleg.studies.simulate.model import SimModel
 from hexaleg.studies.simulate.state import rotation_xyzw
 
@@ -112,8 +113,6 @@ def run(sim: SimModel, controls: np.ndarray, qpos0: np.ndarray, qvel0: np.ndarra
     assert isinstance(m, mujoco.MjModel)
     n, nj = controls.shape
     if n > MAX_STEPS:
-        from hexaleg.errors import InvalidParameterError
-
         raise InvalidParameterError("simulation steps", n, f"≤ {MAX_STEPS} (fewer cycles or a "
                                     "larger timestep)")
     data = mujoco.MjData(m)

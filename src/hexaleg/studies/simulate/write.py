@@ -117,10 +117,9 @@ def simulation_data(s: Simulation, *, design: str = "", notes: tuple[str, ...] =
 
 def _realtime(s: Simulation) -> float:
     """Simulated time of both runs per wall-clock time of their stepping."""
-    wall = s.with_springs.wall + s.baseline.wall
-    span = sum(float(r.trajectory.t[-1] + r.sim.timestep) for r in (s.with_springs, s.baseline)
-               if r.trajectory.n)
-    return span / wall if wall > 0 else math.inf
+    runs = (s.with_springs, s.baseline)
+    wall = sum(r.wall for r in runs)
+    return sum(r.simulated_time for r in runs) / wall if wall > 0 else math.inf
 
 
 def _v(q: dict[str, Any], scale: float = 1.0, digits: int = 3) -> str:
