@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 
 import hexaleg
-from hexaleg.studies.gaits import gait_energy
+from hexaleg.studies.gaits import gait_energy, table_header, table_line
 
 PATTERNS = ("tripod", "ripple", "wave")
 PERIODS = (2.0, 1.0, 0.75)  # s, stride 0.06 m
@@ -29,21 +29,13 @@ SAMPLES = 100
 def main() -> None:
     robot = hexaleg.load_robot()
     print(f"hexaleg: {robot.mass:.4g} kg, femur springs (preloaded), {SAMPLES} samples")
-    print(f"{'pattern':7s} {'v [m/s]':>7s} {'slope':>6s} {'J/m':>7s} {'CoT':>6s} "
-          f"{'J/m spr':>8s} {'CoT spr':>8s} {'saving':>7s}")
+    print(table_header("pattern"))
     for pattern in PATTERNS:
         for period in PERIODS:
             for slope in SLOPES:
                 gait = hexaleg.GaitParams(pattern=pattern, period=period, samples=SAMPLES,
                                           slope=math.radians(slope))
-                row = gait_energy(robot, gait, ["femur"])
-                head = f"{pattern:7s} {row.speed:7.3f} {slope:+5.0f}°"
-                if row.error is not None:
-                    print(f"{head}  {row.error.split(':')[0]}")
-                    continue
-                print(f"{head} {row.per_metre:7.2f} {row.cost_of_transport:6.2f} "
-                      f"{row.per_metre_springs:8.2f} {row.cost_of_transport_springs:8.2f} "
-                      f"{100 * row.saving:6.1f}%")
+                print(table_line(gait_energy(robot, gait, ["femur"])))
 
 
 if __name__ == "__main__":

@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 
 import hexaleg
-from hexaleg.studies.gaits import gait_energy
+from hexaleg.studies.gaits import gait_energy, table_header, table_line
 
 ROBOT = "solo12"
 GAITS = (("crawl", (4.0, 2.0, 4.0 / 3.0)), ("trot", (1.0, 0.5, 1.0 / 3.0)),
@@ -38,21 +38,13 @@ def main() -> None:
     base = hexaleg.GaitParams.for_robot(ROBOT)
     print(f"{ROBOT}: {robot.mass:.4g} kg, knee springs (preloaded; front and hind pairs), "
           f"{SAMPLES} samples, μ = {CONTACT.mu:g}")
-    print(f"{'gait':7s} {'v [m/s]':>7s} {'slope':>6s} {'J/m':>7s} {'CoT':>6s} "
-          f"{'J/m spr':>8s} {'CoT spr':>8s} {'saving':>7s}")
+    print(table_header("gait"))
     for pattern, periods in GAITS:
         for period in periods:
             for slope in SLOPES:
                 gait = base.updated({"pattern": pattern, "period": period, "samples": SAMPLES,
                                      "slope": math.radians(slope)})
-                row = gait_energy(robot, gait, KNEES, contact=CONTACT)
-                head = f"{pattern:7s} {row.speed:7.3f} {slope:+5.0f}°"
-                if row.error is not None:
-                    print(f"{head}  {row.error.split(':')[0]}")
-                    continue
-                print(f"{head} {row.per_metre:7.2f} {row.cost_of_transport:6.2f} "
-                      f"{row.per_metre_springs:8.2f} {row.cost_of_transport_springs:8.2f} "
-                      f"{100 * row.saving:6.1f}%")
+                print(table_line(gait_energy(robot, gait, KNEES, contact=CONTACT)))
 
 
 if __name__ == "__main__":

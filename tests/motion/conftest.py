@@ -1,5 +1,6 @@
-"""Fixtures of the motion tests: Pinocchio's own foot kinematics, the independent check of the
-motions' q, v and a; a robot turned inside its base frame (a URDF facing another way)."""
+"""Fixtures of the motion tests: Pinocchio's own foot kinematics and central differences of a
+gait, the independent checks of the motions' q, v and a; a robot turned inside its base frame (a
+URDF facing another way)."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ import pinocchio as pin
 import pytest
 
 import hexaleg
+from hexaleg.motion.legged import sample_gait
 
 FrameKinematics = Callable[[hexaleg.Robot, hexaleg.Motion],
                            tuple[np.ndarray, np.ndarray, np.ndarray]]
@@ -40,6 +42,33 @@ def frame_kinematics() -> FrameKinematics:
     """``frame_kinematics(robot, motion)`` → world position, velocity and classical
     acceleration (LOCAL_WORLD_ALIGNED) of every foot, each (T, n_legs, 3)."""
     return _frame_kinematics
+
+
+def _central_differences(robot: hexaleg.Robot, gait: hexaleg.GaitParams, t: np.ndarray,
+                         columns: slice = slice(None)
+                         ) -> tuple[hexaleg.Motion, list[tuple[float, float]]]:
+    """The gait at ``t`` and, for h = 2 ms and 1 ms, the largest errors of its v and a (velocity
+    columns ``columns``) against ``pin.difference(q(t−h), q(t+h)) / 2h`` and
+    ``(v(t+h) − v(t−h)) / 2h``: second-order differences, so exact derivatives have errors
+    falling ~4× from the first h to the second."""
+    motion = sample_gait(robot, gait, t)
+    errors = []
+    for h in (2e-3, 1e-3):
+        plus, minus = sample_gait(robot, gait, t + h), sample_gait(robot, gait, t - h)
+        dq = np.array([pin.difference(robot.model, qm, qp)
+                       for qm, qp in zip(minus.q, plus.q, strict=True)]) / (2 * h)
+        dv = (plus.v - minus.v) / (2 * h)
+        errors.append((float(np.abs(dq - motion.v)[:, columns].max()),
+                       float(np.abs(dv - motion.a)[:, columns].max())))
+    return motion, errors
+
+
+@pytest.fixture(scope="session")
+def central_differences() -> Callable[..., tuple[hexaleg.Motion, list[tuple[float, float]]]]:
+    """``central_differences(robot, gait, t, columns=slice(None))`` → the gait at ``t`` and the
+    errors ``[(e_v, e_a) at h = 2 ms, (e_v, e_a) at h = 1 ms]`` of its v and a against central
+    differences of q and v (:func:`_central_differences`)."""
+    return _central_differences
 
 
 def _rotated(robot: hexaleg.Robot, angle: float) -> hexaleg.Robot:

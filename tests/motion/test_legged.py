@@ -82,17 +82,10 @@ def test_swing_apex_is_the_step_height(walk):
 
 @pytest.mark.parametrize("gait", [GaitParams(samples=200),
                                   GaitParams(yaw_rate=0.4, duty_factor=0.7, samples=200)])
-def test_velocity_and_acceleration_match_central_differences(robot, gait):
+def test_velocity_and_acceleration_match_central_differences(robot, gait, central_differences):
     """v ≈ pin.difference(q(t−h), q(t+h)) / 2h and a ≈ (v(t+h) − v(t−h)) / 2h, error ~h²."""
     t = np.arange(gait.samples) * gait.period / gait.samples
-    motion = sample_gait(robot, gait, t)
-    errors = []
-    for h in (2e-3, 1e-3):
-        plus, minus = sample_gait(robot, gait, t + h), sample_gait(robot, gait, t - h)
-        dq = np.array([pin.difference(robot.model, qm, qp)
-                       for qm, qp in zip(minus.q, plus.q, strict=True)]) / (2 * h)
-        dv = (plus.v - minus.v) / (2 * h)
-        errors.append((np.abs(dq - motion.v).max(), np.abs(dv - motion.a).max()))
+    motion, errors = central_differences(robot, gait, t)
     (ev1, ea1), (ev2, ea2) = errors
     assert ev1 < 1e-3 * np.abs(motion.v).max() and ea1 < 1e-2 * np.abs(motion.a).max()
     assert 3.5 < ev1 / ev2 < 4.5 and 3.5 < ea1 / ea2 < 4.5
@@ -268,7 +261,7 @@ def test_too_high_step_names_step_height_and_a_value_that_works(robot):
     assert "Most likely cause: step_height = 0.3 m" in msg and err.parameter == "step_height"
     assert err.value == 0.3 and err.distance > 0 and len(err.target) == 3
     value = _suggested(msg, "step_height")
-    assert err.suggestion == {"step_height": value} and 0.2 < value < 0.3
+    assert err.suggestion == {"step_height": value} and value == 0.27  # docs/gait.md quotes it
     # The swing's apex is what the leg cannot reach: the failing target is near its top.
     assert err.target[2] + 0.0913 > 0.5 * 0.3
     works = tripod_gait(robot, dataclasses.replace(gait, **err.suggestion))
@@ -283,23 +276,26 @@ def test_too_long_stride_names_stride_length_and_a_value_that_works(robot):
     assert "stride_length = 0.6 m" in msg and err.parameter == "stride_length"
     assert err.phase in ("stance", "swing") and f"in {err.phase}" in msg
     value = _suggested(msg, "stride_length")
-    assert err.suggestion == {"stride_length": value} and 0.0 < value < 0.6
+    assert err.suggestion == {"stride_length": value} and value == 0.34  # docs/gait.md
     assert tripod_gait(robot, dataclasses.replace(gait, **err.suggestion)).distance == value
     # Given as a speed, the speed is named (it wins over stride_length).
     fast = _reach_error(robot, GaitParams(speed=0.6))
     assert fast.parameter == "speed" and "speed = 0.6 m/s" in str(fast)
-    assert fast.suggestion == {"speed": _suggested(str(fast), "speed")}
+    assert fast.suggestion == {"speed": _suggested(str(fast), "speed")} == {"speed": 0.34}
     tripod_gait(robot, GaitParams(speed=fast.suggestion["speed"]))
 
 
-@pytest.mark.parametrize(("height", "word"), [(0.25, "too high"), (0.01, "too low")])
-def test_body_out_of_the_legs_range_names_body_height(robot, height, word):
-    gait = GaitParams(body_height=height)
+@pytest.mark.parametrize(("name", "given", "word", "works"), [
+    ("body_height", 0.25, "the body too high", 0.18),
+    ("body_height", 0.01, "the body too low", 0.012),
+    ("foot_radius", 0.35, "the footholds too far out", 0.27)])
+def test_body_out_of_the_legs_range_names_the_size(robot, name, given, word, works):
+    """The values docs/gait.md quotes."""
+    gait = GaitParams(**{name: given})
     err = _reach_error(robot, gait)
-    assert err.parameter == "body_height" and f"the body {word}" in str(err)
-    value = _suggested(str(err), "body_height")
-    assert err.suggestion == {"body_height": value}
-    assert (value < height) if word == "too high" else (value > height)
+    assert err.parameter == name and word in str(err)
+    value = _suggested(str(err), name)
+    assert err.suggestion == {name: value} and value == works
     tripod_gait(robot, dataclasses.replace(gait, **err.suggestion))
 
 
@@ -313,8 +309,7 @@ def test_stand_pose_with_straight_legs_is_named_with_a_bent_knee_stand(robot):
     assert err.parameter == "stand" and err.value is None
     assert "Cause: the stand pose: its legs are at the edge of their workspace" in msg
     assert "Bend the knees" in msg and "stand = {body_height = " in msg
-    assert set(err.suggestion) == {"body_height", "foot_radius"}
-    assert all(v > 0 for v in err.suggestion.values())
+    assert err.suggestion == {"body_height": 0.108, "foot_radius": 0.17}  # docs/gait.md
     walk = tripod_gait(straight, GaitParams(**err.suggestion))
     assert walk.info["body_height"] == err.suggestion["body_height"]
     # The suggested stand has the feet on the suggested footholds, knees bent.

@@ -111,6 +111,7 @@ def test_for_robot_names_the_robot_of_a_bad_override():
     (("L1", "L2", "L3", "L4", "R1", "R2", "R3", "R4"), (("L1", "L3", "R2", "R4"),
                                                         ("L2", "L4", "R1", "R3"))),
     (("L1", "R1"), (("L1",), ("R1",))),
+    (("L1", "L3", "R1", "R3"), (("L1", "R3"), ("L3", "R1"))),  # ranks along a side, not numbers
     (("front_left", "RF"), None),
 ])
 def test_default_groups_alternate_along_and_across_the_body(legs, groups):

@@ -14,7 +14,6 @@ import pytest
 
 import hexaleg
 from hexaleg.errors import InfeasibleForcesError, StaticMarginError
-from hexaleg.motion.legged import sample_gait
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.shift import required_margin
 from hexaleg.motion.support import polygon_edges, static_margins, support_margin, switch_margin
@@ -48,6 +47,14 @@ def test_polygon_edges_are_inward_half_planes():
     assert len(polygon_edges(square[:2])[1]) == 0
 
 
+@pytest.mark.parametrize(("name", "margin"), [("hexaleg", 0.0189), ("solo12", 0.0258)])
+def test_the_default_margins_of_the_registry_gaits(name, margin):
+    """MARGIN_FRACTION's docstring: 10 % of the nearest nominal foothold's distance."""
+    robot, gait = hexaleg.load(name), GaitParams.for_robot(name)
+    nominal = hexaleg.motion.body.nominal_footholds(robot, gait)
+    assert required_margin(robot, gait, nominal) == pytest.approx(margin, abs=5e-5)
+
+
 def test_the_shifted_crawl_keeps_the_margin_at_every_sample(solo, crawl, crawl_params):
     target = required_margin(solo, crawl_params, hexaleg.motion.body.nominal_footholds(
         solo, crawl_params))
@@ -65,18 +72,12 @@ def test_the_shifted_crawl_keeps_the_margin_at_every_sample(solo, crawl, crawl_p
     assert 0.02 < balance["amplitude"] < 0.15
 
 
-def test_the_shift_is_smooth_with_exact_derivatives(solo, crawl_params, frame_kinematics):
+def test_the_shift_is_smooth_with_exact_derivatives(solo, crawl_params, frame_kinematics,
+                                                     central_differences):
     """v ≈ pin.difference(q(t−h), q(t+h)) / 2h, a ≈ (v(t+h) − v(t−h)) / 2h at second order,
     off the grid too (the shift is a trigonometric polynomial), stance feet at rest."""
     t = np.linspace(0.0, crawl_params.period, 40, endpoint=False) + 0.013
-    motion = sample_gait(solo, crawl_params, t)
-    errors = []
-    for h in (2e-3, 1e-3):
-        plus, minus = sample_gait(solo, crawl_params, t + h), sample_gait(solo, crawl_params, t - h)
-        dq = np.array([pin.difference(solo.model, qm, qp)
-                       for qm, qp in zip(minus.q, plus.q, strict=True)]) / (2 * h)
-        dv = (plus.v - minus.v) / (2 * h)
-        errors.append((np.abs(dq - motion.v)[:, :6].max(), np.abs(dv - motion.a)[:, :6].max()))
+    motion, errors = central_differences(solo, crawl_params, t, slice(0, 6))
     (ev1, ea1), (ev2, ea2) = errors
     assert 3.5 < ev1 / ev2 < 4.5 and 3.5 < ea1 / ea2 < 4.5
     assert np.abs(motion.v[:, :2]).max() > 0.04  # the base does move sideways and forward
@@ -116,6 +117,7 @@ def test_a_gait_with_margin_to_spare_is_not_shifted(robot, walk200):
     per sample) is above the default target: the gait is untouched. Asked for a little more,
     it shifts; for more than 0.0815 m, it says how much it can keep."""
     assert walk200.info["balance"] == {"mode": "none"}
+    assert walk200.info["static_margin"] == pytest.approx(0.0815, abs=1e-4)
     assert switch_margin(robot, walk200) == pytest.approx(0.0813, abs=1e-4)
     assert switch_margin(robot, walk200) <= walk200.info["static_margin"]
     shifted = hexaleg.gait(robot, GaitParams(samples=200, min_static_margin=0.0813))

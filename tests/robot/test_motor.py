@@ -213,3 +213,12 @@ def test_generic_actuator_refuses_bad_limits(effort: object, velocity: object, b
 def test_generic_actuator_needs_a_name() -> None:
     with pytest.raises(InvalidParameterError, match=r"Motor\.name"):
         generic_actuator(1.0, 1.0, name=" ")
+
+
+def test_the_generic_efficiency_sits_among_the_catalogue_servos() -> None:
+    """GENERIC_GEARBOX_EFFICIENCY's docstring: the servos' datasheet-derived η span 0.43–0.86,
+    median about 0.66 (the ODRI module's η is assumed, not derived)."""
+    etas = [m.gearbox_efficiency for m in catalogue.CATALOGUE.values() if m.name != "ODRI-4004"]
+    assert (min(etas), max(etas)) == (pytest.approx(0.43, abs=5e-3), pytest.approx(0.86, abs=5e-3))
+    assert float(np.median(etas)) == pytest.approx(0.66, abs=5e-3)
+    assert min(etas) < GENERIC_GEARBOX_EFFICIENCY < max(etas)

@@ -1,6 +1,6 @@
 """Tests of hexaleg.studies.gaits: a row of the gait study equals the analyses it reports (energy
 per cycle, per metre, cost of transport, with the recommended springs), and a gait that cannot be
-made is a row with its error."""
+made is a row with its error; the table's lines show both."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import math
 import pytest
 
 import hexaleg
-from hexaleg.studies.gaits import gait_energy
+from hexaleg.studies.gaits import gait_energy, table_header, table_line
 from hexaleg.units import G
 
 
@@ -30,6 +30,13 @@ def test_a_row_is_what_the_analyses_say(robot):
     assert row.per_metre_springs == pytest.approx(sprung / 0.06, rel=1e-9)
     assert row.saving == pytest.approx(1 - sprung / baseline, rel=1e-9)
     assert 0.0 < row.saving < 1.0 and row.springs == best.magnitudes
+    line = table_line(row)
+    assert len(line) == len(table_header())  # the columns line up under their heads
+    cells = line.split()
+    assert cells[:3] == ["ripple", "0.040", "+5°"] and cells[-1] == f"{100 * row.saving:.1f}%"
+    numbers = [row.per_metre, row.cost_of_transport, row.per_metre_springs,
+               row.cost_of_transport_springs]
+    assert [float(c) for c in cells[3:7]] == pytest.approx(numbers, abs=5e-3)
 
 
 def test_a_gait_that_cannot_be_made_is_a_row_with_its_error(robot):
@@ -37,3 +44,4 @@ def test_a_gait_that_cannot_be_made_is_a_row_with_its_error(robot):
     assert row.error is not None and row.error.startswith("InvalidParameterError: ")
     assert "tripod, ripple, wave" in row.error
     assert row.energy is None and row.saving is None and row.speed == pytest.approx(0.06)
+    assert table_line(row) == "trot      0.060    +0°  InvalidParameterError"

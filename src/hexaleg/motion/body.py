@@ -18,10 +18,10 @@ from typing import NamedTuple
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.balance import Sway
 from hexaleg.motion.ground import Ground, ground_plane, level_footholds
 from hexaleg.motion.params import GaitParams
+from hexaleg.robot.fields import horizontal_axis
 from hexaleg.robot.model import Robot
 
 FORWARD = np.array([1.0, 0.0, 0.0])
@@ -61,16 +61,13 @@ def reference_pose(robot: Robot) -> np.ndarray:
 def heading(robot: Robot) -> np.ndarray:
     """The robot's heading (:attr:`Robot.heading`) as a horizontal unit vector, shape (3,).
 
-    Checked here too, since the attribute can be reassigned after loading.
+    Checked here too (:func:`hexaleg.robot.fields.horizontal_axis`), since the attribute can be
+    reassigned after loading.
 
     Raises:
         InvalidParameterError: not a finite, non-zero horizontal 3-vector.
     """
-    h = np.asarray(getattr(robot, "heading", FORWARD), dtype=float)
-    if h.shape != (3,) or not np.all(np.isfinite(h)) or abs(h[2]) > 1e-12 \
-            or np.hypot(h[0], h[1]) < 1e-9:
-        raise InvalidParameterError("heading", h.tolist(), "a horizontal base axis [x, y, 0], "
-                                    "not zero")
+    h = horizontal_axis("heading", getattr(robot, "heading", FORWARD))
     if h[0] == 1.0 and h[1] == 0.0:
         return FORWARD.copy()
     return np.array([h[0], h[1], 0.0]) / np.hypot(h[0], h[1])

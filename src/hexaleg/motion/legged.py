@@ -113,6 +113,8 @@ def sample_gait(robot: Robot, gait: GaitParams | None = None,
             (:func:`hexaleg.motion.reach.explain`).
         InfeasibleForcesError: the sway iteration does not converge (the gait is too fast or
             its support lines too short to balance).
+        StaticMarginError: the body shift cannot keep the required static margin (as
+            :func:`gait`).
     """
     return _sample_gait(robot, GaitParams() if gait is None else gait, t, diagnose=True)
 

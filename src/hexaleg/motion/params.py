@@ -18,14 +18,12 @@ from hexaleg.checks import is_real, real
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.limits import check_samples
-from hexaleg.motion.patterns import PATTERNS, check_pattern
+from hexaleg.motion.patterns import PATTERNS, check_pattern, leg_places
 from hexaleg.robot.description import RobotDescription
-from hexaleg.robot.registry import description
+from hexaleg.robot.registry import TROT, description
 
 TRIPODS: tuple[tuple[str, ...], ...] = (("LF", "RM", "LH"), ("RF", "LM", "RH"))
 """The hexapod's two tripods, the default leg groups; group 0 touches down at t = 0."""
-
-_POSITIONS = {"F": 0, "M": 1, "H": 2}
 
 
 def default_groups(legs: Sequence[str]) -> tuple[tuple[str, ...], ...] | None:
@@ -42,20 +40,15 @@ def default_groups(legs: Sequence[str]) -> tuple[tuple[str, ...], ...] | None:
     Returns:
         The two groups, or None when a name does not follow the convention.
     """
-    from hexaleg.robot.registry import TROT
-
-    ranked: list[tuple[str, int, str]] = []
-    for name in legs:
-        side, place = name[:1], name[1:]
-        rank = _POSITIONS.get(place, int(place) - 1 if place.isdigit() else None)
-        if side not in ("L", "R") or rank is None:
-            return None
-        ranked.append((side, rank, name))
+    places = leg_places(legs)
+    if places is None:
+        return None
     for known in (TRIPODS, TROT):
         if sorted(legs) == sorted(leg for group in known for leg in group):
             return known
-    first = tuple(name for side, rank, name in ranked if (rank % 2 == 0) == (side == "L"))
-    second = tuple(name for _, _, name in ranked if name not in first)
+    first = tuple(name for name, (side, rank) in zip(legs, places, strict=True)
+                  if (rank % 2 == 0) == (side == "L"))
+    second = tuple(name for name in legs if name not in first)
     return tuple(g for g in (first, second) if g)
 
 
@@ -69,7 +62,7 @@ ATTITUDES: tuple[str, ...] = ("plane", "level")
 """``GaitParams.attitude`` on a slope: the body parallel to the ground, or level."""
 MARGIN_FRACTION = 0.1
 """The default ``min_static_margin``: this fraction of the nearest nominal foothold's horizontal
-distance from the base (0.0189 m for hexaleg, 0.024 m for Solo-12)."""
+distance from the base (0.0189 m for hexaleg, 0.0258 m for Solo-12 with their own gaits)."""
 
 
 @dataclass(frozen=True)

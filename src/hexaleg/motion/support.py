@@ -19,33 +19,42 @@ from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 
 
+def _cross(o: tuple, a: tuple, b: tuple) -> float:
+    """z of (a − o) × (b − o): > 0 when o → a → b turns counter-clockwise."""
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+
+def _hull(points: np.ndarray) -> list[tuple]:
+    """The convex hull of ``points`` (n, 2), counter-clockwise, by Andrew's monotone chain
+    (pure Python: a support polygon has a handful of points); fewer than three vertices for
+    fewer than three points or a degenerate hull."""
+    pts = sorted(map(tuple, points))
+    if len(pts) < 3:
+        return []
+    hull: list[tuple] = []
+    for seq in (pts, pts[::-1]):
+        start = len(hull)
+        for pt in seq:
+            while len(hull) >= start + 2 and _cross(hull[-2], hull[-1], pt) <= 0:
+                hull.pop()
+            hull.append(pt)
+        hull.pop()
+    return hull
+
+
 def support_margin(points: np.ndarray, c: np.ndarray) -> float:
     """Signed distance of ``c`` (2,) inside the convex hull of ``points`` (n, 2), m.
 
     Positive inside (distance to the nearest edge), negative outside; −inf for fewer than three
     points or a degenerate hull. Hull by Andrew's monotone chain.
     """
-    pts = sorted(map(tuple, points))
-    if len(pts) < 3:
-        return -math.inf
-
-    def cross(o: tuple, a: tuple, b: tuple) -> float:
-        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
-
-    hull: list[tuple] = []
-    for seq in (pts, pts[::-1]):
-        start = len(hull)
-        for pt in seq:
-            while len(hull) >= start + 2 and cross(hull[-2], hull[-1], pt) <= 0:
-                hull.pop()
-            hull.append(pt)
-        hull.pop()
+    hull = _hull(points)
     if len(hull) < 3:
         return -math.inf
     dists = []
     for a, b in zip(hull, hull[1:] + hull[:1], strict=True):
         edge = math.hypot(b[0] - a[0], b[1] - a[1])
-        dists.append(cross(a, b, tuple(c)) / edge)
+        dists.append(_cross(a, b, tuple(c)) / edge)
     return min(dists)
 
 
@@ -75,24 +84,9 @@ def polygon_edges(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
     Returns:
         ν (E, 2) inward unit normals and b (E,) (Andrew's monotone chain, counter-clockwise;
-        E = 0 for fewer than three points or a degenerate hull). ``min(ν · c − b)`` is
-        :func:`support_margin` of c.
+        E = 0 for fewer than three points or a degenerate hull).
     """
-    pts = sorted(map(tuple, np.asarray(points, dtype=float)))
-    if len(pts) < 3:
-        return np.zeros((0, 2)), np.zeros(0)
-
-    def cross(o: tuple, a: tuple, b: tuple) -> float:
-        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
-
-    hull: list[tuple] = []
-    for seq in (pts, pts[::-1]):
-        start = len(hull)
-        for p in seq:
-            while len(hull) >= start + 2 and cross(hull[-2], hull[-1], p) <= 0:
-                hull.pop()
-            hull.append(p)
-        hull.pop()
+    hull = _hull(np.asarray(points, dtype=float))
     if len(hull) < 3:
         return np.zeros((0, 2)), np.zeros(0)
     a = np.array(hull)

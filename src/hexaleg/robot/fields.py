@@ -51,23 +51,37 @@ AXES = {"+x": (1.0, 0.0, 0.0), "-x": (-1.0, 0.0, 0.0), "+y": (0.0, 1.0, 0.0),
 
 
 def axis(text: str, where: str) -> tuple[float, float, float]:
+    """The heading named ``text`` (a key of :data:`AXES`)."""
     if text not in AXES:
         raise UnknownNameError(f"heading in {where}", text, (*AXES, "[x, y, 0]"))
     return AXES[text]
 
 
-def heading(name: str, heading: Any) -> tuple[float, float, float]:
-    """A heading checked: a horizontal, non-zero, finite axis, as a tuple."""
-    if isinstance(heading, str):
-        return axis(heading, name)
+def horizontal_axis(name: str, value: Any,
+                    allowed: str = "a horizontal base axis [x, y, 0], not zero") -> np.ndarray:
+    """``value`` checked as a horizontal base axis (a robot's heading), shape (3,), not
+    normalised: finite, ``|z| ≤ 1e-12`` and ``|(x, y)| ≥ 1e-9``.
+
+    Raises:
+        InvalidParameterError: otherwise, naming ``name``, the value and ``allowed``.
+    """
     try:
-        h = np.asarray(heading, dtype=float)
+        h = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
         h = np.zeros(0)
     if h.shape != (3,) or not np.all(np.isfinite(h)) or abs(h[2]) > 1e-12 or \
-            np.linalg.norm(h) < 1e-9:
-        raise InvalidParameterError(f"{name}: heading", heading, "a horizontal base axis "
-                                    "[x, y, 0] or one of +x, -x, +y, -y")
+            np.hypot(h[0], h[1]) < 1e-9:
+        raise InvalidParameterError(name, value, allowed)
+    return h
+
+
+def heading(name: str, heading: Any) -> tuple[float, float, float]:
+    """A description's heading checked (:func:`horizontal_axis`, or a name of :data:`AXES`),
+    as a tuple."""
+    if isinstance(heading, str):
+        return axis(heading, name)
+    h = horizontal_axis(f"{name}: heading", heading,
+                        "a horizontal base axis [x, y, 0] or one of +x, -x, +y, -y")
     return (float(h[0]), float(h[1]), 0.0)
 
 

@@ -19,6 +19,7 @@ from hexaleg.config import read_text
 from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError, UnknownNameError
 from hexaleg.robot import geometry as _geometry
 from hexaleg.robot.feet import LegSpec, resolve_foot
+from hexaleg.robot.fields import horizontal_axis
 from hexaleg.robot.srdf import check_reference_poses
 
 URDF_DIR = Path(__file__).resolve().parent / "urdf"
@@ -102,11 +103,7 @@ class Robot:
     joint_names: tuple[str, ...] = field(init=False)
 
     def __post_init__(self) -> None:
-        heading = np.asarray(self.heading, dtype=float)
-        if heading.shape != (3,) or not np.all(np.isfinite(heading)) or abs(heading[2]) > 1e-12 \
-                or np.linalg.norm(heading) < 1e-9:
-            raise InvalidParameterError("heading", self.heading, "a horizontal base axis "
-                                        "[x, y, 0], not zero")
+        heading = horizontal_axis("heading", self.heading)
         self.heading = heading / np.linalg.norm(heading)
         self.mass = float(pin.computeTotalMass(self.model))
         # Actuated joints: every joint after the universe (0) and the free flyer (1).
@@ -353,7 +350,7 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
                                                 [str(d) for d in dirs])
     except (RuntimeError, ValueError) as e:
         raise RobotModelError(f"Pinocchio cannot load URDF {urdf_path}: {e}") from e
-    heading_arr = np.asarray(heading, dtype=float)
+    heading_arr = horizontal_axis("heading", heading)
     if isinstance(legs, str):
         if legs != AUTO:
             raise InvalidParameterError("legs", legs, f"leg specs or {AUTO!r}")

@@ -1,5 +1,6 @@
 """The gait study: energy per metre and cost of transport of a gait, with and without the
-recommended springs (notebook 05, ``analysis/gaits_study.py``, docs/gaits.md).
+recommended springs (notebook 05, ``analysis/gaits_hexaleg.py``, ``analysis/gaits_solo12.py``,
+docs/gaits.md).
 
 For one gait (:func:`hexaleg.motion.legged.gait`: a pattern, a speed, a slope) on one robot,
 :func:`gait_energy` analyses the cycle without springs (the baseline) and with the springs of
@@ -10,11 +11,12 @@ metre travelled ``E / d`` and the cost of transport ``E / (m g d)`` (eq. 23; Gab
 Kármán, "What price speed?", Mech. Eng. 72, 1950), d the distance along the ground. A gait that
 cannot be made or analysed (a foot out of reach, no admissible forces, a margin the body shift
 cannot keep) is a row with its error, not an exception, so a table over patterns, speeds and
-slopes always completes.
+slopes always completes; :func:`table_header` and :func:`table_line` print such a table.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from hexaleg.design.codesign import Groups, optimal_springs
@@ -103,3 +105,21 @@ def gait_energy(robot: Robot, params: GaitParams, springs: Groups, *,
         per_metre_springs=with_springs / row.distance,
         cost_of_transport_springs=sprung["cost_of_transport"][METRIC],
         saving=1.0 - with_springs / energy, springs=best.magnitudes)
+
+
+def table_header(first: str = "pattern") -> str:
+    """The column heads of :func:`table_line`; ``first`` heads the first column."""
+    return (f"{first:7s} {'v [m/s]':>7s} {'slope':>6s} {'J/m':>7s} {'CoT':>6s} "
+            f"{'J/m spr':>8s} {'CoT spr':>8s} {'saving':>7s}")
+
+
+def table_line(row: GaitEnergy) -> str:
+    """One row of the study as a line: pattern, speed m/s, slope °, J/m and cost of transport
+    without and with the springs, the saving %; a row with an error shows the error's type."""
+    head = f"{row.pattern:7s} {row.speed:7.3f} {math.degrees(row.slope):+5.0f}°"
+    if row.error is not None:
+        return f"{head}  {row.error.split(':')[0]}"
+    assert row.saving is not None  # a row without an error has every number
+    return (f"{head} {row.per_metre:7.2f} {row.cost_of_transport:6.2f} "
+            f"{row.per_metre_springs:8.2f} {row.cost_of_transport_springs:8.2f} "
+            f"{100 * row.saving:6.1f}%")

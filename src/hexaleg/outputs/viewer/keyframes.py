@@ -26,9 +26,9 @@ from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 
 KEYFRAME_BYTES = 96 * 1024
-"""Memory one keyframe costs while a view is built, B: 74 kB measured (tracemalloc peak of
-``export_html`` of the hexapod's gait, 30 vs 240 keyframes per second; its page grows by 12 kB a
-keyframe), with a margin."""
+"""Memory one keyframe costs while a view is built, B: the growth of the tracemalloc peak of
+``export_html`` of the hexapod's gait between 30 and 240 keyframes per second, per keyframe,
+with a margin."""
 MAX_FPS = MEMORY_BUDGET // KEYFRAME_BYTES
 """Most keyframes per second of motion: the keyframes of one second that fill
 :data:`hexaleg.checks.MEMORY_BUDGET` (a longer motion is bounded by its keyframe count)."""
