@@ -50,6 +50,7 @@ def files(tmp_path_factory):
     put("wide.toml", "[springs.LF_femur]\nstiffness = 1.0\ntheta_k = 6.0\n")
     put("spec_latin1.toml", "[gait]\nsamples = 40  # é\n", "latin-1")
     put("spec_table.toml", "[sweeep]\nmetric = 'joule'\n")
+    put("spec_scalar.toml", "sweep = 1\n")
     put("spec_grid.toml", "[gait]\nsamples = 40\nperiod = {start = 0.5, stop = 1.5, num = 100000}"
         "\n[springs.femur]\nk = {start = 0.0, stop = 1.0, num = 100000}\ntheta_k = 0.1\n")
     put("robot_nolegs.toml", '[robot]\nname = "x"\n')
@@ -102,6 +103,12 @@ def sweep_spec(**kw):
     from hexaleg.studies.sweep import SweepSpec
 
     return lambda f: SweepSpec(**kw)
+
+
+def sweep_table(data):
+    from hexaleg.studies.sweep import SweepSpec
+
+    return lambda f: SweepSpec.from_mapping(data)
 
 
 def parse(name, text):
@@ -237,6 +244,8 @@ CASES: list[tuple[str, Callable[[dict], None], type[Exception], str]] = [
     ("sweep no dead zone", sweep_spec(springs={"femur": {"k": 1.0}}), IPE, "['k']"),
     ("sweep k negative", sweep_spec(springs={"femur": {"k": -1.0, "theta_k": 0.1}}), IPE, "-1.0"),
     ("sweep chunk 0", sweep_spec(chunk_size=0), IPE, "chunk_size = 0"),
+    ("sweep optimal not a table", sweep_table({"optimal": 1, "springs": {"femur": {}}}), CE,
+     "optimal = 1"),
     ("range log from 0", parse("--k", "0:1:5:log"), IPE, "--k.start = 0.0"),
     ("range nan", parse("--period", "nan"), IPE, "--period = nan"),
     ("range text", parse("--k", "a:b"), IPE, "'a:b'"),
@@ -302,6 +311,8 @@ CASES: list[tuple[str, Callable[[dict], None], type[Exception], str]] = [
      "0xe9"),
     ("cli sweep spec table", cli("sweep", "@spec_table.toml", "--out", "{dir}/s"), UNE,
      "'sweeep'"),
+    ("cli sweep spec section not a table", cli("sweep", "@spec_scalar.toml", "--out",
+                                               "{dir}/s"), CE, "sweep = 1; expected a table"),
     ("cli sweep spec grid", cli("sweep", "@spec_grid.toml", "--out", "{dir}/s"), IPE,
      "10000000000"),
     ("cli sweep metric", cli(*SWEEP, "--k", "0.1", "--theta-k", "0.1", "--samples", "40",
@@ -311,7 +322,7 @@ CASES: list[tuple[str, Callable[[dict], None], type[Exception], str]] = [
 
 def test_the_catalogue_is_large_and_spans_cli_and_api():
     n_cli = sum(hasattr(fn, "argv") for _, fn, _, _ in CASES)
-    assert len(CASES) >= 60 and n_cli >= 20 and len(CASES) - n_cli >= 40
+    assert len(CASES) > 100 and n_cli >= 20 and len(CASES) - n_cli >= 40  # docs/limits.md
     assert len({case[0] for case in CASES}) == len(CASES)
 
 
@@ -353,11 +364,22 @@ def test_a_robot_toml_without_title_or_srdf_loads(files):
 def test_the_limits_page_states_the_bounds_in_force():
     from hexaleg.checks import MEMORY_BUDGET
     from hexaleg.config import MAX_TEXT_BYTES
-    from hexaleg.motion.limits import MAX_SAMPLES
-    from hexaleg.outputs.viewer.keyframes import MAX_FPS
+    from hexaleg.motion.limits import MAX_SAMPLES, MIN_SAMPLES, SAMPLE_BYTES
+    from hexaleg.outputs.viewer.keyframes import KEYFRAME_BYTES, MAX_FPS
+    from hexaleg.studies.sweep.executors import CONNECT_TIMEOUT
     from hexaleg.studies.sweep.ranges import POINT_BYTES
 
-    page = (Path(__file__).parents[1] / "docs" / "limits.md").read_text(encoding="utf-8")
+    docs = Path(__file__).parents[1] / "docs"
+    page = " ".join(docs.joinpath("limits.md").read_text(encoding="utf-8").split())
     assert f"{MEMORY_BUDGET / 1024**3:g} GiB" in page and f"{MAX_TEXT_BYTES // 1024**2} MiB" in page
-    for bound in (MAX_SAMPLES, MAX_FPS, MEMORY_BUDGET // POINT_BYTES):
-        assert f"{bound:,}" in page, bound
+    assert f"| {MIN_SAMPLES} … {MAX_SAMPLES:,} | {SAMPLE_BYTES // 1024} kB (" in page
+    with pytest.raises(errors.InvalidParameterError) as e:  # the paper's joint: its own low
+        paper(0)(None)
+    low = int(str(e.value).split("an integer in [")[1].split(",")[0])
+    assert f"| {low} … {MAX_SAMPLES:,} | {SAMPLE_BYTES // 1024} kB (" in page
+    assert f"| {MAX_FPS:,} per second, and {MAX_FPS:,} in all | {KEYFRAME_BYTES // 1024} kB (" \
+        in page
+    assert f"| {MEMORY_BUDGET // POINT_BYTES:,} points | {POINT_BYTES // 1024} kB (" in page
+    for name in ("limits.md", "sweep.md"):
+        text = " ".join(docs.joinpath(name).read_text(encoding="utf-8").split())
+        assert f"within {CONNECT_TIMEOUT:g} s" in text, name

@@ -234,3 +234,44 @@ def test_gaits_page_quotes_the_gait_study_logs():
                         f"{saving} % |") in page, line
                 rows += 1
         assert rows == 27, name
+
+
+def test_simulate_page_quotes_the_simulation_logs():
+    """docs/simulate.md's tables are analysis/logs/simulate_hexaleg.log and simulate_paper.log,
+    row by row: the predicted/simulated energies, savings, distances, the sensitivity study and
+    the single joint's optima."""
+    import re
+
+    logs = ROOT / "analysis" / "logs"
+    page = (DOCS / "simulate.md").read_text()
+    flat = page.replace("−", "-")
+    rows = 0
+    controller = None
+    for line in (logs / "simulate_hexaleg.log").read_text().splitlines():
+        if m := re.match(r"(feedforward|position) servo:", line):
+            controller = m.group(1)
+        m = re.match(r"  (predicted|\d\.\d+)\s+\| (\S+) / (\S+) \| (\S+) \| (\S+) \| (\S+) \|", line)
+        if m and not (m.group(1) == "predicted" and controller == "position"):
+            dt, with_, without, saving, joule, distance = m.groups()
+            cells = [with_, without, saving, joule, f"{distance} mm"]
+            assert re.search(r"\| " + r" \| ".join(re.escape(c) for c in cells).replace(
+                re.escape(saving), r"\**" + re.escape(saving) + r"\**"), flat), line
+            rows += 1
+        m = re.match(r"    (.+?)\s+\| walks \((\w+)\) \| (\S+) \|", line)
+        if m and m.group(1) not in ("other controller", "as set"):
+            variant, _, saving = m.groups()
+            table_row = next(r for r in flat.splitlines() if r.startswith("| ")
+                             and variant.split(" (")[0] in r)
+            column = 1 if controller == "feedforward" else 2
+            assert table_row.split("|")[1 + column].strip().startswith(saving), (line, table_row)
+            rows += 1
+    assert rows == 7 + 16
+    paper = (logs / "simulate_paper.log").read_text()
+    mean, eps = re.findall(r"optimum k: analytic closed form (\S+); simulated (\S+); with "
+                           r"friction (\S+); the paper's Adams reading (\S+)", paper)
+    savings = re.findall(r"analytic (\S+) %, simulated (\S+) %, with friction (\S+) %", paper)
+    for (analytic, simulated, friction, adams), (sa, ss, sf) in zip((mean, eps), savings):
+        assert f"{analytic} (saving {sa} %)" in page or f"{analytic} ({sa} %)" in page
+        assert f"{simulated} ({ss} %)" in page
+        assert re.search(rf"\**{friction}\** \({sf} %\)", page)
+        assert re.search(rf"\**{adams}\**", page)

@@ -39,3 +39,16 @@ def test_errors_survive_pickling(error):
     back = pickle.loads(pickle.dumps(error))
     assert type(back) is type(error)
     assert str(back) == str(error)
+
+
+def test_errors_carry_their_data_across_processes():
+    """A worker's SpringDesignError keeps its nearest spring and a StaticMarginError its largest
+    margin when pickled back to the parent (not just name, value and allowed)."""
+    from hexaleg.errors import SpringDesignError, StaticMarginError
+
+    design = pickle.loads(pickle.dumps(SpringDesignError("max_outer_diameter", 0.001, "≥ 2 mm",
+                                                         nearest={"d": 0.0005})))
+    assert design.nearest == {"d": 0.0005} and design.name == "max_outer_diameter"
+    margin = pickle.loads(pickle.dumps(StaticMarginError("static_margin", 0.03, "≤ 0.021 m",
+                                                         largest=0.021)))
+    assert margin.largest == 0.021 and margin.value == 0.03

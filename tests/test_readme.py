@@ -17,16 +17,16 @@ def _bash_blocks(text: str) -> list[str]:
     return [b.strip() for b in re.findall(r"```bash\n(.*?)```", text, re.S)]
 
 
-def test_ci_runs_the_readme_test_command():
+def test_ci_runs_the_readme_quick_start_commands():
+    """The Quick start's two commands, install + the report and install + the tests, are lines
+    of .ci/run verbatim."""
     blocks = _bash_blocks((ROOT / "README.md").read_text())
-    test_cmd = next(b for b in blocks if "pytest" in b)
+    report = [b for b in blocks if b.endswith("hexaleg report") and "pip install ." in b]
+    tests = [b for b in blocks if b.endswith("pytest") and '".[test]"' in b]
+    assert len(report) == 1 and len(tests) == 1, blocks
     ci = (ROOT / ".ci" / "run").read_text().splitlines()
-    assert test_cmd in ci, f"README test command {test_cmd!r} not run verbatim by .ci/run"
-
-
-def test_readme_runs_the_report():
-    blocks = _bash_blocks((ROOT / "README.md").read_text())
-    assert any(b.endswith("hexaleg report") and "pip install ." in b for b in blocks)
+    for cmd in (*report, *tests):
+        assert cmd in ci, f"README command {cmd!r} not run verbatim by .ci/run"
 
 
 # --------------------------------------------------------------------------------------------
@@ -237,3 +237,20 @@ def test_readme_global_optimum_against_the_old_search():
     preloaded = log[log.index("preloaded: every set"):]
     m = re.search(r"coxa\+femur\+tibia\s+\S+\s+(\S+)%\s+(\S+)%", preloaded)
     assert m and m.groups() == (f"+{new}", f"+{old}")
+
+
+def test_readme_robot_flag_and_registered_robots():
+    """"Every command but `paper` and `motors` takes `--robot NAME` (…)": the parser's commands
+    and the registry's robots, in its order."""
+    import argparse
+
+    from hexaleg.cli import build_parser
+
+    m = re.search(r"Every command but `paper` and `motors` takes `--robot NAME` \(([^)]*)\)",
+                  README)
+    assert m, "README.md no longer lists the robots --robot takes: update it or this test"
+    assert m.group(1).split(", ") == list(hexaleg.DESCRIPTIONS)
+    sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    without = {name for name, p in sub.choices.items()
+               if "--robot" not in {s for a in p._actions for s in a.option_strings}}
+    assert without == {"paper", "motors"}

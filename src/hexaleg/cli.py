@@ -16,9 +16,10 @@ from typing import TextIO
 
 from hexaleg import __version__
 from hexaleg.errors import HexalegError, HexalegWarning
+from hexaleg.robot.registry import DESCRIPTIONS  # loaded by `import hexaleg` already
 
-ROBOT_HELP = ("a registered robot (hexaleg, solo12, anymal, anymal_c, go2, a1) or a robot "
-              "description FILE.toml of one's own (docs/robots.md)")
+ROBOT_HELP = (f"a registered robot ({', '.join(DESCRIPTIONS)}) or a robot description "
+              "FILE.toml of one's own (docs/robots.md)")
 """What ``--robot`` takes, on every command that has it."""
 
 

@@ -57,8 +57,9 @@ class InvalidParameterError(HexalegError, ValueError):
         self.allowed = allowed
         super().__init__(f"invalid {name} = {value!r}; allowed: {allowed}")
 
-    def __reduce__(self) -> tuple:  # rebuild from the constructor's arguments (process pools)
-        return (type(self), (self.name, self.value, self.allowed))
+    def __reduce__(self) -> tuple:  # process pools: rebuild from the constructor's arguments,
+        # then restore every attribute (a subclass's own fields, e.g. ``nearest``, included)
+        return (type(self), (self.name, self.value, self.allowed), self.__dict__)
 
 
 class SpringDesignError(InvalidParameterError):
@@ -157,9 +158,6 @@ class StaticMarginError(InvalidParameterError):
     def __init__(self, name: str, value: object, allowed: str, largest: float = 0.0) -> None:
         super().__init__(name, value, allowed)
         self.largest = largest
-
-    def __reduce__(self) -> tuple:  # rebuild from the constructor's arguments (process pools)
-        return (type(self), (self.name, self.value, self.allowed, self.largest))
 
 
 class OutputError(HexalegError):

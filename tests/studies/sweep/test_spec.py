@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+from hexaleg.studies.sweep.optimal import OptimalSpec
 from hexaleg.studies.sweep.spec import SweepSpec
 from hexaleg.units import deg_to_rad, nmm_per_deg_to_nm_per_rad
 
@@ -99,9 +100,13 @@ def test_one_group_from_command_line_texts():
     SweepSpec(springs={"coxa": {"k": (0.1, 0.2), "theta_k": (0.01, 0.02, 0.03)},
                        "femur": {"k": 1.0, "theta_k": 0.1}}, gait={"period": (0.8, 1.0)}),
     SweepSpec(springs={"coxa": {"k": (0.1, 0.2), "theta_k": 0.01},
-                       "femur": {"k": (1.0, 2.0, 3.0), "theta_k": 0.1}}, layout="each")])
+                       "femur": {"k": (1.0, 2.0, 3.0), "theta_k": 0.1}}, layout="each"),
+    *(SweepSpec(springs={"coxa": {}, "femur": {}, "tibia": {}}, gait={"period": (0.8, 1.0)},
+                optimal=OptimalSpec(family=("linear", "preloaded"), sets=sets))
+      for sets in ("each", "all", "every"))])
 def test_grid_size_counts_the_grid_without_listing_it(spec):
-    assert spec.grid_size() == spec.n_points
+    """The count from the axes' lengths (also ``n_points``) is the length of the listed grid."""
+    assert spec.grid_size() == spec.n_points == len(spec.gaits()) * len(spec.points_of_gait())
 
 
 def test_a_grid_too_large_for_memory_is_refused_naming_its_axes():
@@ -110,3 +115,18 @@ def test_a_grid_too_large_for_memory_is_refused_naming_its_axes():
                                                     r"\(1000\) × coxa\.k \(2000\)"):
         SweepSpec(gait={"period": tuple(np.linspace(0.5, 2, 1000))},
                   springs={"coxa": {"k": tuple(np.linspace(0, 1, 2000)), "theta_k": 0.1}})
+
+
+def test_a_robot_toml_in_a_spec_is_relative_to_the_spec_file(tmp_path):
+    """``robot = "spider.toml"`` in ``[sweep]`` is found beside the spec, whatever the cwd."""
+    import shutil
+    from pathlib import Path
+
+    data = Path(__file__).parents[2] / "data"
+    for name in ("spider.toml", "spider.urdf"):
+        shutil.copy(data / name, tmp_path / name)
+    path = tmp_path / "spec.toml"
+    path.write_text('[sweep]\nrobot = "spider.toml"\n[springs.femur]\nk = 0.1\ntheta_k = 0.1\n')
+    spec = SweepSpec.from_toml(path)
+    assert spec.run.robot == str(tmp_path / "spider.toml")
+    assert spec.run.description().name == "spider"

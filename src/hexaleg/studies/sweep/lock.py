@@ -39,8 +39,8 @@ _HELD: set[int] = set()
 (:func:`close_inherited`), so a worker can never keep its parent's lock alive."""
 
 
-def _alive(pid: int) -> bool:
-    """Whether process ``pid`` runs on this host."""
+def running(pid: int) -> bool:
+    """Whether process ``pid`` runs on this host (signal 0: kill(2) checks without sending)."""
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
@@ -141,7 +141,7 @@ class DirectoryLock:
             except FileExistsError:
                 old = _read(self.path)
                 if old.get("host") == socket.gethostname() and isinstance(old.get("pid"), int) \
-                        and not _alive(old["pid"]):
+                        and not running(old["pid"]):
                     self.stale = _describe(old)
                     self.path.unlink(missing_ok=True)
                     continue
@@ -162,7 +162,6 @@ class DirectoryLock:
             _HELD.discard(self._fd)
             os.close(self._fd)  # closing the descriptor drops the flock
             self._fd = None
-
 
     def __del__(self) -> None:  # a store dropped without close() still frees its directory
         with contextlib.suppress(Exception):

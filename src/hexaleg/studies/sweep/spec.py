@@ -178,12 +178,15 @@ class SweepSpec:
 
         Raises:
             UnknownNameError: unknown table or key (lists the valid ones).
-            ConfigError: a value of the wrong type.
+            ConfigError: a section that is not a table, a value of the wrong type.
             InvalidParameterError: an empty grid or a value out of range.
         """
-        for name in data:
+        for name, table in data.items():
             if name not in SECTIONS:
                 raise UnknownNameError(f"table in {where}", name, SECTIONS)
+            if not isinstance(table, Mapping):
+                raise ConfigError(f"{where}: {name} = {table!r}; expected a table, [{name}] "
+                                  "with its keys on the lines below")
         run, sweep = _sweep_table(data, where)
         gait = _gait_table(data.get("gait", {}))
         springs, joints = _spring_tables(data.get("springs", {}), where)
@@ -198,9 +201,9 @@ class SweepSpec:
         """A spec from a TOML file (see :meth:`from_mapping`); a robot ``.toml`` path in
         ``[sweep]`` is relative to the spec's directory."""
         data = load_toml(path)
-        robot = data.get("sweep", {}).get("robot")
-        if isinstance(robot, str) and robot.endswith(".toml"):
-            data["sweep"]["robot"] = str(Path(path).parent / robot)
+        sweep = data.get("sweep")
+        if isinstance(sweep, dict) and str(sweep.get("robot")).endswith(".toml"):
+            sweep["robot"] = str(Path(path).parent / sweep["robot"])
         return cls.from_mapping(data, str(path))
 
     @classmethod
@@ -271,8 +274,8 @@ class SweepSpec:
 
     @property
     def n_points(self) -> int:
-        """Number of points: gaits × designs."""
-        return len(self.gaits()) * len(self.points_of_gait())
+        """Number of points: gaits × designs (:meth:`grid_size`)."""
+        return self.grid_size()
 
     def axes(self) -> list[tuple[str, tuple]]:
         """The grid's axes, ``(name, values)``: gait parameters, then ``<group>.<parameter>``."""
@@ -289,7 +292,7 @@ class SweepSpec:
             return gaits * len(self.optimal.family) * sets
         per_group = [math.prod(len(v) for _, v in _axes(p)) for p in self.springs.values()]
         designs = sum(per_group) if self.layout == "each" else math.prod(per_group)
-        return gaits * max(designs, 1) if self.springs else gaits
+        return gaits * max(designs, 1)  # no groups: one design, the baseline
 
     def groups(self, robot: Robot) -> dict[str, tuple[str, ...]]:
         """Group → joints on ``robot``.

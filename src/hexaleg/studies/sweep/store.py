@@ -34,10 +34,10 @@ import os
 import re
 import secrets
 import warnings
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from types import TracebackType
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, BinaryIO
 
 from hexaleg.errors import ConfigError, HexalegWarning, OutputError
 from hexaleg.studies.sweep.lock import DirectoryLock
@@ -85,13 +85,25 @@ def _temporary(path: Path) -> Path:
     return path.with_name(f".{path.name}.{os.getpid()}-{secrets.token_hex(4)}.tmp")
 
 
-def _write_atomic(path: Path, payload: bytes) -> None:
+def _write_atomic(path: Path, write: Callable[[BinaryIO], object]) -> None:
+    """``write`` the file to a unique hidden temporary name, sync it and rename it to ``path``
+    (:func:`os.replace`, atomic on POSIX): readers see the whole file or none. The temporary is
+    removed on failure.
+
+    Raises:
+        OSError: the file cannot be written.
+    """
     tmp = _temporary(path)
-    with open(tmp, "wb") as f:
-        f.write(payload)
-        f.flush()
-        os.fsync(f.fileno())
-    os.replace(tmp, path)
+    try:
+        with open(tmp, "wb") as f:
+            write(f)
+            f.flush()
+            os.fsync(f.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            tmp.unlink()
+        raise
 
 
 def parts(directory: str | Path) -> list[Path]:
@@ -181,7 +193,7 @@ class ResultStore:
             return dict(manifest)
         manifest = {"spec": self.spec, **(metadata or {})}
         try:
-            _write_atomic(path, json.dumps(manifest, indent=2).encode())
+            _write_atomic(path, lambda f: f.write(json.dumps(manifest, indent=2).encode()))
         except OSError as e:
             raise OutputError(f"cannot write the sweep manifest {path}: {e}") from e
         return manifest
@@ -255,16 +267,9 @@ class ResultStore:
         table = pa.Table.from_pandas(rows, preserve_index=False)
         schema = pa.schema([f.with_type(pa.string()) if pa.types.is_null(f.type) else f
                             for f in table.schema], metadata=table.schema.metadata)
-        tmp = _temporary(path)
         try:
-            with open(tmp, "wb") as f:
-                pq.write_table(table.cast(schema), f)
-                f.flush()
-                os.fsync(f.fileno())
-            os.replace(tmp, path)
+            _write_atomic(path, lambda f: pq.write_table(table.cast(schema), f))
         except OSError as e:
-            with contextlib.suppress(OSError):
-                tmp.unlink()
             raise OutputError(f"cannot write sweep results {path}: {e}") from e
         return path
 

@@ -25,7 +25,7 @@ import sys
 import threading
 import time
 
-from hexaleg.studies.sweep.lock import close_inherited
+from hexaleg.studies.sweep.lock import close_inherited, running
 
 PR_SET_PDEATHSIG = 1
 """prctl(2) option: the signal a process receives when its parent dies (linux/prctl.h)."""
@@ -50,16 +50,6 @@ def _poll_parent(parent: int) -> None:  # pragma: no cover - only where prctl is
     os._exit(1)
 
 
-def _alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        return True
-    return True
-
-
 def watch_parent(sweep_pid: int) -> None:
     """Worker initializer: end this worker when its parent process dies.
 
@@ -71,7 +61,7 @@ def watch_parent(sweep_pid: int) -> None:
     if not _prctl_parent_death():  # pragma: no cover - not Linux
         threading.Thread(target=_poll_parent, args=(os.getppid(),), daemon=True,
                          name="hexaleg-parent-watch").start()
-    if not _alive(sweep_pid):  # the sweep died before the watch began
+    if not running(sweep_pid):  # the sweep died before the watch began
         with contextlib.suppress(Exception):
             sys.stderr.flush()
         os._exit(1)
