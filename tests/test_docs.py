@@ -250,9 +250,10 @@ def test_simulate_page_quotes_the_simulation_logs():
     for line in (logs / "simulate_hexaleg.log").read_text().splitlines():
         if m := re.match(r"(feedforward|position) servo:", line):
             controller = m.group(1)
-        m = re.match(r"  (predicted|\d\.\d+)\s+\| (\S+) / (\S+) \| (\S+) \| (\S+) \| (\S+) \|", line)
+        m = re.match(r"  (predicted|\d\.\d+)\s+\| (\S+) / (\S+) \| (\S+) \| (\S+) \| (\S+) \|",
+                     line)
         if m and not (m.group(1) == "predicted" and controller == "position"):
-            dt, with_, without, saving, joule, distance = m.groups()
+            _, with_, without, saving, joule, distance = m.groups()
             cells = [with_, without, saving, joule, f"{distance} mm"]
             assert re.search(r"\| " + r" \| ".join(re.escape(c) for c in cells).replace(
                 re.escape(saving), r"\**" + re.escape(saving) + r"\**"), flat), line
@@ -270,7 +271,8 @@ def test_simulate_page_quotes_the_simulation_logs():
     mean, eps = re.findall(r"optimum k: analytic closed form (\S+); simulated (\S+); with "
                            r"friction (\S+); the paper's Adams reading (\S+)", paper)
     savings = re.findall(r"analytic (\S+) %, simulated (\S+) %, with friction (\S+) %", paper)
-    for (analytic, simulated, friction, adams), (sa, ss, sf) in zip((mean, eps), savings):
+    for (analytic, simulated, friction, adams), (sa, ss, sf) in zip((mean, eps), savings,
+                                                                    strict=True):
         assert f"{analytic} (saving {sa} %)" in page or f"{analytic} ({sa} %)" in page
         assert f"{simulated} ({ss} %)" in page
         assert re.search(rf"\**{friction}\** \({sf} %\)", page)
