@@ -81,3 +81,32 @@ def test_rows_are_the_state_before_each_step_and_its_sensors(prepared):
         assert np.allclose(traj.feet[k], [data.site(f"{leg}_foot").xpos
                                           for leg in robot.leg_names], atol=1e-12)
         assert np.allclose(traj.servo[k], data.actuator_force[:18], atol=1e-12)
+
+
+def test_the_pgs_solver_gives_the_energies_of_mujocos_newton_solver(prepared):
+    """The model's projected Gauss–Seidel and MuJoCo's default Newton solver solve the same
+    contact program: over a cycle of the gait (two tripod handovers) the motor energy and the
+    trajectory agree to the solvers' tolerance."""
+    import copy
+
+    import mujoco
+
+    from hexaleg.dynamics.energy import metrics
+
+    robot, motion = prepared.robot, prepared.motion
+    sim = build_model(robot, motion, prepared.motor)
+    assert sim.model.opt.solver == mujoco.mjtSolver.mjSOL_PGS
+    newton = dataclasses.replace(sim, model=copy.deepcopy(sim.model))
+    newton.model.opt.solver = mujoco.mjtSolver.mjSOL_NEWTON
+    steps = round(motion.period / sim.timestep)
+    t = np.arange(steps) * sim.timestep
+    ctrl = controls(sim.servo, reference(motion, prepared.evaluate(None).tau_motor, t),
+                    sim.kp, sim.kd)
+    start = sim.joints.to_mujoco(motion.q[0], motion.v[0])
+    a, b = stepping.run(sim, ctrl, *start, 0.09), stepping.run(newton, ctrl, *start, 0.09)
+    assert a.verdict == b.verdict == "ran"
+    dq = [sim.joints.joints_mj(r.qvel, velocity=True) for r in (a, b)]
+    energy = [metrics(r.tau_motor, w, sim.timestep, prepared.motor)["total"]["electrical"]
+              for r, w in zip((a, b), dq, strict=True)]
+    assert abs(energy[0] - energy[1]) < 1e-5 * energy[1]
+    assert np.abs(a.qpos - b.qpos).max() < 1e-6
