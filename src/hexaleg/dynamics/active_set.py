@@ -30,6 +30,7 @@ import numpy as np
 
 from hexaleg.dynamics import smallmat
 from hexaleg.dynamics.blocks import Data
+from hexaleg.dynamics.pieces import pick
 
 SOC_ROWS = ("surface", "bottom", "apex_x", "apex_y", "apex_z")
 """A foot's rows with the friction cone: ``μ f_z − ‖f_t‖ ≥ 0``, ``f_z − f_min ≥ 0``, and the
@@ -116,8 +117,8 @@ def _model(data: Data, state: State) -> tuple[np.ndarray, np.ndarray]:
         return np.zeros_like(p.rho), p.rho
     if p.K == 1:
         return p.alpha[0], p.rho + 2.0 * p.gamma[0]
-    a = np.take_along_axis(p.alpha, state.piece[None], 0)[0]
-    g = np.take_along_axis(p.gamma, state.piece[None], 0)[0]
+    a = pick(p.alpha, state.piece)
+    g = pick(p.gamma, state.piece)
     return a, p.rho + 2.0 * g
 
 
@@ -161,23 +162,26 @@ class Rows:
     """The active rows of each sample's guess, packed into slots (P the most of any sample).
 
     Entry ``k`` of the flat lists is candidate row ``cand[k]`` (:func:`constant_rows`' order:
-    joints, then foot rows) of sample ``t[k]`` in slot ``slot[k]``; ``kind[k]`` is 0 for a
-    joint, 1 for a cone's surface row, 2 for a linear foot row. ``used`` (P, T) marks the slots
-    in use, ``G`` their constant gradients (P, T, m), ``given`` their multipliers in the guess
-    (P, T), ``at`` the held joints' torques (per entry), ``foot`` (n_f, T) the feet on their
-    cone's surface and ``Ns`` the null-space basis at those entries (3, n_s, m).
+    joints, then foot rows) of sample ``t[k]`` in slot ``slot[k]``; ``dst[k] = slot[k] T + t[k]``
+    is its place in a (P, T) array raveled. ``index`` holds, per kind of entry (a held joint, a
+    cone's surface row, a linear foot row), ``(dst, src)``: the entries' places in the (P, T)
+    arrays and in the raveled (J, T) joint, (n_f, T) foot or (R n_f, T) foot-row arrays their
+    values come from (flat indices: one gather per kind). ``used`` (P, T) marks the slots in
+    use, ``G`` their constant gradients (m, P, T) (zero for a surface row, whose gradient
+    :func:`newton` sets at each point), ``given`` their multipliers in the guess (P, T), ``at``
+    the held joints' torques (per held-joint entry) and ``foot`` (n_f, T) the feet on their
+    cone's surface.
     """
 
-    slot: np.ndarray
     t: np.ndarray
     cand: np.ndarray
-    kind: np.ndarray
+    dst: np.ndarray
+    index: tuple[tuple[np.ndarray, np.ndarray], ...]
     used: np.ndarray
     G: np.ndarray
     given: np.ndarray
     at: np.ndarray
     foot: np.ndarray
-    Ns: np.ndarray
 
     @property
     def P(self) -> int:
@@ -187,17 +191,6 @@ class Rows:
     def curved(self) -> np.ndarray:
         """Samples with a foot on its cone's surface, (T,)."""
         return np.asarray(self.foot.any(axis=0))
-
-    def kinds(self, J: int) -> tuple[tuple[np.ndarray, ...], ...]:
-        """Per kind of entry (joint, surface, linear foot row): ``(slot, t, candidate index)``
-        of its entries — the candidate index relative to the joints (0) or the feet (J)."""
-        if not hasattr(self, "_kinds"):
-            out = []
-            for kind, base in ((0, 0), (1, J), (2, J)):
-                sel = self.kind == kind
-                out.append((self.slot[sel], self.t[sel], self.cand[sel] - base))
-            self._kinds = tuple(out)
-        return self._kinds
 
 
 def pack(data: Data, state: State, const: np.ndarray) -> Rows:
@@ -210,20 +203,21 @@ def pack(data: Data, state: State, const: np.ndarray) -> Rows:
     P = int(count.max()) if active.size else 0
     t, cand = np.nonzero(active.T)  # by sample, then candidate
     slot = np.arange(t.size) - (np.cumsum(count) - count)[t]
+    dst = slot * T + t
     used = np.zeros((P, T), bool)
-    used[slot, t] = True
-    G = np.zeros((P, T, const.shape[1]))
-    G[slot, t] = const[cand, :, t]
+    used.ravel()[dst] = True
+    G = np.zeros((const.shape[1], P, T))
+    G[:, slot, t] = const[cand, :, t].T
     given = np.zeros((P, T))
-    given[slot, t] = np.concatenate([state.y, -state.lam.reshape(R * nf, T)])[cand, t]
-    surface = (cand >= J) & (cand < J + nf) if data.contact.cone == "soc" else cand < 0
-    kind = np.where(cand < J, 0, np.where(surface, 1, 2))
+    given.ravel()[dst] = np.concatenate([state.y, -state.lam.reshape(R * nf, T)]).ravel()[
+        cand * T + t]
+    joint = cand < J
+    surface = (~joint & (cand < J + nf)) if data.contact.cone == "soc" else np.zeros_like(joint)
+    src = (cand - np.where(joint, 0, J)) * T + t
+    index = tuple((dst[k], src[k]) for k in (joint, surface, ~joint & ~surface))
     foot = np.zeros((nf, T), bool)
-    foot[cand[surface] - J, t[surface]] = True
-    Ns = np.ascontiguousarray(np.transpose(data.N[:, cand[surface] - J, :, t[surface]],
-                                           (1, 0, 2)))  # (3, n_s, m)
-    at = np.where(cand < J, state.at[np.minimum(cand, J - 1), t], 0.0)
-    return Rows(slot, t, cand, kind, used, G, given, at, foot, Ns)
+    foot.ravel()[index[1][1]] = True
+    return Rows(t, cand, dst, index, used, G, given, state.at.ravel()[src[joint]], foot)
 
 
 def newton(data: Data, rows: Rows, z: np.ndarray, lam: np.ndarray, HJ: np.ndarray,
@@ -236,37 +230,36 @@ def newton(data: Data, rows: Rows, z: np.ndarray, lam: np.ndarray, HJ: np.ndarra
     ``Δz = −L⁻ᵀ L⁻¹ (∇F + Gᵀ y)``; rows that depend on earlier ones keep their given multipliers
     (a degenerate vertex). Returns ``(z + Δz, y (P, T), |Δz|)``.
     """
-    J, T = data.tau0.shape
+    T = data.tau0.shape[1]
     x = data.local(z, None)
     H, G = HJ, rows.G
-    P = rows.P
-    e = np.zeros((P, T))
-    (s0, t0, c0), (s1, t1, c1), (s2, t2, c2) = rows.kinds(J)
-    if t1.size:
-        f = x.f
+    m, P = G.shape[:2]
+    e = np.zeros(P * T)
+    (d0, r0), (d1, r1), (d2, r2) = rows.index
+    if r1.size:
+        f, N, mu = x.f, data.N, data.contact.mu
         ft = np.hypot(f[0], f[1])
         safe = np.where(ft > 0, ft, 1.0)
         ux, uy = f[0] / safe, f[1] / safe
-        uxs, uys = ux[c1, t1], uy[c1, t1]
-        Nx, Ny, Nz = rows.Ns
+        Nt = np.transpose(N, (0, 2, 1, 3))  # (3, m, n_f, T)
         G = G.copy()
-        G[s1, t1] = data.contact.mu * Nz - uxs[:, None] * Nx - uys[:, None] * Ny
-        e[s1, t1] = data.contact.mu * f[2][c1, t1] - ft[c1, t1]
-        r = ux[:, None] * data.N[1] - uy[:, None] * data.N[0]  # N_iᵀ t, t = (−u_y, u_x, 0)
-        w = np.where(rows.foot, lam / safe, 0.0)
-        H = HJ + np.einsum("fpt,ft,fqt->pqt", r, w, r)
+        # The surface rows' gradients μ N_zᵀ − u_x N_xᵀ − u_y N_yᵀ, every foot (m, n_f, T).
+        G.reshape(m, P * T)[:, d1] = (mu * Nt[2] - ux * Nt[0] - uy * Nt[1]).reshape(m, -1)[:, r1]
+        e[d1] = (mu * f[2] - ft).ravel()[r1]
+        r = ux * Nt[1] - uy * Nt[0]  # N_iᵀ t, t = (−u_y, u_x, 0): (m, n_f, T)
+        H = HJ + np.einsum("pft,qft->pqt", r * np.where(rows.foot, lam / safe, 0.0), r)
     dF = -np.einsum("jmt,jt->mt", data.E, a + rho * x.tau)
     L = smallmat.cholesky(H)
     u = smallmat.forward(L, dF)
     if not P:
         dz = -smallmat.backward(L, u)
         return z + dz, np.zeros((0, T)), np.abs(dz).max(axis=0)
-    if t0.size:
-        e[s0, t0] = x.tau[c0, t0] - rows.at[rows.kind == 0]
-    if t2.size:
-        feet = foot_values(data, x.f).reshape(-1, T)
-        e[s2, t2] = feet[c2, t2]
-    V = smallmat.forward(L, np.transpose(G, (2, 0, 1)))
+    if r0.size:
+        e[d0] = x.tau.ravel()[r0] - rows.at
+    if r2.size:
+        e[d2] = foot_values(data, x.f).ravel()[r2]
+    e = e.reshape(P, T)
+    V = smallmat.forward(L, G)
     S = np.einsum("mpt,mqt->pqt", V, V)
     S[np.arange(P), np.arange(P)] += ~rows.used
     # Rows that depend on earlier ones (a degenerate vertex) are dropped from the solve: they
@@ -284,12 +277,11 @@ def newton(data: Data, rows: Rows, z: np.ndarray, lam: np.ndarray, HJ: np.ndarra
     return z + dz, y, np.abs(dz).max(axis=0)
 
 
-def surface_multipliers(rows: Rows, y: np.ndarray, J: int) -> np.ndarray:
+def surface_multipliers(rows: Rows, y: np.ndarray) -> np.ndarray:
     """The surface rows' multipliers ``λ = max(0, −y)`` per foot (n_f, T), from packed ``y``."""
     lam = np.zeros(rows.foot.shape)
-    s = rows.kind == 1
-    if s.any():
-        lam[rows.cand[s] - J, rows.t[s]] = np.maximum(-y[rows.slot[s], rows.t[s]], 0.0)
+    dst, src = rows.index[1]
+    lam.ravel()[src] = np.maximum(-y.ravel()[dst], 0.0)
     return lam
 
 
@@ -300,7 +292,7 @@ def solution(data: Data, state: State, rows: Rows, z: np.ndarray, y: np.ndarray,
     R, nf = state.feet.shape[:2]
     y_all = np.zeros((J + R * nf, T))
     if rows.P:
-        y_all[rows.cand, rows.t] = y[rows.slot, rows.t]
+        y_all.ravel()[rows.cand * T + rows.t] = y.ravel()[rows.dst]
     x = data.local(z, None)
     return Solution(z, x.tau, x.f, y_all[:J], y_all[J:].reshape(R, nf, T), converged)
 
@@ -317,7 +309,7 @@ def solve_state(data: Data, state: State, grow: bool = False) -> tuple[State, So
     Returns:
         ``(state, solution)``: the guess solved (grown) and its solution.
     """
-    J, T = state.held.shape
+    T = state.held.shape[1]
     const = constant_rows(data)
     rows = pack(data, state, const)
     a, rho = _model(data, state)
@@ -332,7 +324,7 @@ def solve_state(data: Data, state: State, grow: bool = False) -> tuple[State, So
         todo = ~converged
         z = np.where(todo, z_new, z)
         y = np.where(todo, y_new, y)
-        lam = surface_multipliers(rows, y, J)
+        lam = surface_multipliers(rows, y)
         finite = np.isfinite(z).all(axis=0)
         converged |= finite & (~curved | (step <= NEWTON_TOL * (1.0 + np.abs(z).max(axis=0))))
         if grow and it == 0:

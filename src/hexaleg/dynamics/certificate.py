@@ -26,6 +26,7 @@ import numpy as np
 
 from hexaleg.dynamics.active_set import Solution, State, _model, foot_values
 from hexaleg.dynamics.blocks import Data
+from hexaleg.dynamics.pieces import pick
 
 TOL_PRIMAL = 1e-9
 """Slack allowed on an inequality at a certified optimum, N or N·m (relative above 1)."""
@@ -69,7 +70,7 @@ def verify(data: Data, state: State, sol: Solution) -> Check:
         ok &= np.all(np.abs(tau) <= data.tmax + tol_t, axis=0)
     values = p.values(tau) if p.K else np.zeros((0, J, T))
     if p.K > 1:
-        mine = np.take_along_axis(values, state.piece[None], 0)[0]
+        mine = pick(values, state.piece)
         tol_e = 1e-12 + 1e-10 * np.abs(mine)
         ok &= np.all(held | (values.max(axis=0) <= mine + tol_e), axis=0)
     rows = foot_values(data, f)
@@ -94,7 +95,7 @@ def verify(data: Data, state: State, sol: Solution) -> Check:
             lo = p.rho * state.at + np.where(on, slopes, np.inf).min(axis=0)
             hi = p.rho * state.at + np.where(on, slopes, -np.inf).max(axis=0)
             if p.K > 1:
-                ok &= np.all(~held | np.take_along_axis(on, state.piece[None], 0)[0], axis=0)
+                ok &= np.all(~held | pick(on, state.piece), axis=0)
         else:
             lo = hi = p.rho * state.at
         if data.tmax is not None:

@@ -287,6 +287,9 @@ def savings(metrics_with: Mapping[str, Any], metrics_without: Mapping[str, Any]
         if set(a) != set(b):
             raise InvalidParameterError(f"metrics_with[{group!r}] keys", sorted(a),
                                         f"the keys of metrics_without, {sorted(b)}")
-        saved = {key: saving(a[key], b[key]) for key in a if key not in NO_SAVING_KEYS}
-        out[group] = saved if group == "joint" else {k: float(v) for k, v in saved.items()}
+        keys = [key for key in a if key not in NO_SAVING_KEYS]
+        saved = saving(np.array([a[k] for k in keys], dtype=float),
+                       np.array([b[k] for k in keys], dtype=float))  # one call: a sweep's hot path
+        out[group] = (dict(zip(keys, saved, strict=True)) if group == "joint" else
+                      {k: float(v) for k, v in zip(keys, saved, strict=True)})
     return out

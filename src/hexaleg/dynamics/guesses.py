@@ -24,6 +24,7 @@ from hexaleg.dynamics.blocks import Data, FootCone, FootRows, JointRows
 from hexaleg.dynamics.certificate import Check
 from hexaleg.dynamics.cones import soc_residual
 from hexaleg.dynamics.ipm import Result
+from hexaleg.dynamics.pieces import pick
 
 KINK_TOL = 1e-6
 """A joint is at a kink only if the interior-point torque is this close to it, N·m (relative
@@ -35,8 +36,8 @@ def _kink(data: Data, p: np.ndarray, q: np.ndarray, near: np.ndarray
     """Where pieces ``p`` and ``q`` (J, T) meet nearest ``near``: ``(β, distinct)`` — 0 or
     ``−(α_p − α_q)/(γ_p − γ_q)``; ``distinct`` False where the two pieces are the same."""
     pc = data.pieces
-    ap, aq = (np.take_along_axis(pc.alpha, i[None], 0)[0] for i in (p, q))
-    gp, gq = (np.take_along_axis(pc.gamma, i[None], 0)[0] for i in (p, q))
+    ap, aq = (pick(pc.alpha, i) for i in (p, q))
+    gp, gq = (pick(pc.gamma, i) for i in (p, q))
     da, dg = ap - aq, gp - gq
     with np.errstate(divide="ignore", invalid="ignore"):
         other = np.where(dg != 0, -da / np.where(dg != 0, dg, 1.0), 0.0)
@@ -121,8 +122,8 @@ def from_interior_point(data: Data, result: Result) -> State:
     g = data.pieces.rho * at + g_limit
     if K:
         g = g + (piece_lam * data.pieces.slopes(at)).sum(axis=0)
-    pa = np.take_along_axis(data.pieces.alpha, piece[None], 0)[0] if K else 0.0
-    pg = np.take_along_axis(data.pieces.gamma, piece[None], 0)[0] if K else 0.0
+    pa = pick(data.pieces.alpha, piece) if K else 0.0
+    pg = pick(data.pieces.gamma, piece) if K else 0.0
     y = np.where(held, g - (pa + (data.pieces.rho + 2.0 * pg) * at), 0.0)
     return State(held, piece, at, feet, result.z.copy(), y, lam)
 
@@ -144,8 +145,8 @@ def repair(data: Data, state: State, sol: Solution, check: Check) -> State:
     if data.pieces.K > 1:
         best = _best_piece(data, tau)
         values = check.values
-        left = free & (np.take_along_axis(values, best[None], 0)[0]
-                       > np.take_along_axis(values, state.piece[None], 0)[0]
+        left = free & (pick(values, best)
+                       > pick(values, state.piece)
                        + 1e-12 + 1e-10 * np.abs(values).max(axis=0))
         beta, distinct = _kink(data, state.piece, best, tau)
         new.held |= left & distinct

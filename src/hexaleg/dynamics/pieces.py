@@ -60,6 +60,13 @@ class Pieces:
         return out
 
 
+def pick(stack: np.ndarray, index: np.ndarray) -> np.ndarray:
+    """``stack[index[j, t], j, t]`` for ``stack`` (K, J, T) and ``index`` (J, T): each joint's
+    entry of its piece (``np.take_along_axis`` as one flat gather, a sweep's hot path)."""
+    n = index.size
+    return stack.reshape(-1)[index.reshape(-1) * n + np.arange(n)].reshape(index.shape)
+
+
 def pieces(objective: str, weights: np.ndarray, qdot: np.ndarray, efficiency: np.ndarray,
            regularization: float) -> Pieces:
     """The :class:`Pieces` of ``objective`` for per-joint, per-sample data (J, T).

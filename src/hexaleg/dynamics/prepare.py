@@ -24,6 +24,7 @@ world frame in :meth:`Prepared.solve` (``StanceSystem.to_world``).
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -97,8 +98,6 @@ class Analysis:
             swing feet).
         tau_motor: Motor torques, shape (T, nj), N·m.
         tau_spring: Spring torques on the joints, shape (T, nj), N·m.
-        spring_energy: Energy stored in the springs, shape (T, nj), J.
-        power: Motor mechanical power ``τ_motor q̇``, shape (T, nj), W.
         resolved: Samples whose forces needed the exact conic solve (an inequality binds), (T,).
         metrics: :func:`hexaleg.dynamics.energy.metrics` of ``tau_motor`` (per joint and total, SI).
         baseline: The same metrics for the same motion with no springs (the baseline).
@@ -119,8 +118,6 @@ class Analysis:
     forces: np.ndarray
     tau_motor: np.ndarray
     tau_spring: np.ndarray
-    spring_energy: np.ndarray
-    power: np.ndarray
     resolved: np.ndarray
     metrics: dict[str, Any]
     baseline: dict[str, Any]
@@ -130,6 +127,19 @@ class Analysis:
     def tau_total(self) -> np.ndarray:
         """Joint torque carried by motor and spring together, shape (T, nj), N·m."""
         return self.tau_motor + self.tau_spring
+
+    @property
+    def power(self) -> np.ndarray:
+        """Motor mechanical power ``τ_motor q̇``, shape (T, nj), W."""
+        return self.tau_motor * self.qdot
+
+    @functools.cached_property
+    def spring_energy(self) -> np.ndarray:
+        """Energy stored in the springs, shape (T, nj), J (computed when first asked for: a
+        sweep never needs it)."""
+        if not len(self.springs):
+            return np.zeros_like(self.q)
+        return self.springs.energies(self.robot, self.motion.q)
 
 
 @dataclass(eq=False)
@@ -291,12 +301,10 @@ class Prepared:
         forces, tau_m, resolved = self.solve(tau_s, objective)
         metrics = self.metrics(tau_m)
         baseline = self.baseline(objective)
-        stored = (s.energies(self.robot, self.motion.q) if len(s)
-                  else np.zeros_like(self.q))
         return Analysis(robot=self.robot, motion=self.motion, springs=s, motor=self.motor,
                         objective=objective, contact=self.contact, t=self.motion.t, q=self.q,
                         qdot=self.qdot, forces=forces, tau_motor=tau_m, tau_spring=tau_s,
-                        spring_energy=stored, power=tau_m * self.qdot, resolved=resolved,
+                        resolved=resolved,
                         metrics=metrics, baseline=baseline,
                         savings=energy.savings(metrics, baseline))
 
