@@ -277,7 +277,7 @@ def main() -> None:
     parser.add_argument("--samples", type=int, default=1000)
     parser.add_argument("--designs", type=int, default=20)
     parser.add_argument("--peer-samples", type=int, default=100)
-    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--repeat", type=int, default=7)
     parser.add_argument("--skip", nargs="*", default=[], choices=["peers", "scaling"])
     args = parser.parse_args()
     warnings.filterwarnings("ignore", category=UserWarning)
