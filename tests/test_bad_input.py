@@ -63,6 +63,8 @@ def files(tmp_path_factory):
     import re
 
     put("zero.urdf", re.sub(r'<mass value="[^"]*"', '<mass value="0"', urdf))
+    put("mass_text.urdf", re.sub(r'<mass value="[^"]*"', '<mass value="abc"', urdf, count=1))
+    put("origin_short.urdf", re.sub(r'<origin xyz="[^"]*"', '<origin xyz="0 0"', urdf, count=1))
     put("zero.toml", '[robot]\nname = "zero"\nurdf = "zero.urdf"\nheading = "+y"\n'
         "stand = {body_height = 0.08}\n")
     return out
@@ -221,6 +223,10 @@ CASES: list[tuple[str, Callable[[dict], None], type[Exception], str]] = [
     ("srdf misspelt joint", lambda f: load_robot(DEFAULT_URDF, f["misspelt.srdf"]), UNE,
      "'LF_femr'"),
     ("urdf zero mass", lambda f: load_robot(f["zero.urdf"], legs="auto"), RME, "zero.urdf"),
+    ("urdf mass not a number", lambda f: load_robot(f["mass_text.urdf"], legs="auto"), RME,
+     '<mass value="abc">'),
+    ("urdf origin of two numbers", lambda f: load_robot(f["origin_short.urdf"], legs="auto"),
+     RME, '<origin xyz="0 0">'),
     ("robot toml without urdf", lambda f: hexaleg.RobotDescription.from_toml(
         f["robot_nolegs.toml"]), CE, "urdf"),
     ("robot toml unknown key", lambda f: hexaleg.RobotDescription.from_toml(f["robot_key.toml"]),

@@ -21,6 +21,7 @@ from hexaleg.robot import geometry as _geometry
 from hexaleg.robot.feet import LegSpec, resolve_foot
 from hexaleg.robot.fields import horizontal_axis
 from hexaleg.robot.srdf import check_reference_poses
+from hexaleg.robot.urdf_numbers import check_urdf_numbers
 
 URDF_DIR = Path(__file__).resolve().parent / "urdf"
 """Directory of the packaged robot files (a link to the repository's ``urdf/``)."""
@@ -265,9 +266,11 @@ def _check_xml(path: Path, what: str) -> None:
         raise RobotModelError(f"{what} file {path} is not a regular file (a directory, device "
                               "or pipe); give the path of an XML file")
     try:
-        ET.parse(path)
+        root = ET.parse(path).getroot()
     except ET.ParseError as e:
         raise RobotModelError(f"{what} file {path} is not well-formed XML: {e}") from e
+    if what == "URDF":
+        check_urdf_numbers(root, path)
 
 
 def _make_leg(model: pin.Model, spec: LegSpec) -> Leg:

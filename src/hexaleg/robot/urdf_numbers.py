@@ -1,0 +1,72 @@
+"""The numbers of a URDF, checked before Pinocchio reads it.
+
+Pinocchio parses a URDF with urdfdom, which on a number it cannot read (``<mass value="abc"/>``,
+``<origin xyz="0 0"/>``) prints an error to the console and drops the element: the link loads
+massless, the joint at the origin — a robot with the wrong dynamics and no exception. Every
+numeric attribute urdfdom reads (ROS URDF XML specification, wiki.ros.org/urdf/XML: ``link``,
+``joint``) is checked here instead, so that a typo is a :class:`~hexaleg.errors.RobotModelError`
+naming the link or joint, the attribute, its value and what is allowed. (Values that read as
+numbers but make no physical sense — a negative mass, an indefinite inertia — load, and
+:mod:`hexaleg.robot.sanity` reports them with a remedy.)
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+from hexaleg.errors import RobotModelError
+
+NUMBER = re.compile(r"\s*[+-]?(\d+(\.\d*)?|\.\d+)([eE][+-]?\d+)?\s*")
+"""A decimal floating-point literal as urdfdom reads one (no ``nan``, ``inf`` or ``1_000``)."""
+
+VECTORS = {"xyz": 3, "rpy": 3, "size": 3, "scale": 3}
+"""Attributes that hold a vector, and their lengths."""
+
+CHECKED: dict[str, tuple[str, ...]] = {
+    "origin": ("xyz", "rpy"),
+    "mass": ("value",),
+    "inertia": ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"),
+    "axis": ("xyz",),
+    "limit": ("lower", "upper", "effort", "velocity"),
+    "dynamics": ("damping", "friction"),
+    "box": ("size",),
+    "cylinder": ("radius", "length"),
+    "sphere": ("radius",),
+    "mesh": ("scale",),
+}
+"""Element tag → its numeric attributes (when present)."""
+
+def _numbers(text: str) -> list[float] | None:
+    """The numbers of an attribute, or None if one of its words is not a finite number."""
+    words = text.split()
+    if not all(NUMBER.fullmatch(w) for w in words):
+        return None
+    values = [float(w) for w in words]
+    return values if all(math.isfinite(v) for v in values) else None
+
+
+def check_urdf_numbers(root: ET.Element, path: Path) -> None:
+    """Check every numeric attribute of the URDF ``root`` (module docstring).
+
+    Raises:
+        RobotModelError: names the link or joint, the element, the attribute, the value and
+            what is allowed.
+    """
+    for owner in (*root.iter("link"), *root.iter("joint")):
+        name = f"{owner.tag} {owner.get('name', '(unnamed)')!r}"
+        for element in owner.iter():
+            for attribute in CHECKED.get(element.tag, ()):
+                text = element.get(attribute)
+                if text is None:
+                    continue
+                values = _numbers(text)
+                size = VECTORS.get(attribute, 1)
+                allowed = (f"{size} finite numbers" if size > 1 else "a finite number")
+                if values is None or len(values) != size:
+                    raise RobotModelError(
+                        f"URDF {path}: {name}, <{element.tag} {attribute}=\"{text}\">: expected "
+                        f"{allowed} (urdfdom would drop the element and load the robot "
+                        "without it)")
