@@ -389,3 +389,11 @@ def test_the_limits_page_states_the_bounds_in_force():
     for name in ("limits.md", "sweep.md"):
         text = " ".join(docs.joinpath(name).read_text(encoding="utf-8").split())
         assert f"within {CONNECT_TIMEOUT:g} s" in text, name
+
+
+def test_a_refused_paper_run_writes_nothing(tmp_path, capsys):
+    """The samples are checked before the output directory is created."""
+    out = tmp_path / "paper-out"
+    assert main(["paper", "--samples", str(10**9), "--out", str(out)]) == 2
+    assert "1000000000" in capsys.readouterr().err
+    assert not out.exists()

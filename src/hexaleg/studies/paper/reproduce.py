@@ -23,6 +23,17 @@ from hexaleg.studies.paper.metrics import JOINT_METRICS, StiffnessOptimum, optim
 from hexaleg.units import nm_per_rad_to_nmm_per_deg, nmm_per_deg_to_nm_per_rad
 
 
+def paper_samples(n: object) -> int:
+    """The samples per period of the paper study, checked: an integer in [8, the memory bound
+    :data:`hexaleg.motion.limits.MAX_SAMPLES`].
+
+    Raises:
+        InvalidParameterError: names the value and the bound.
+    """
+    return count("samples", n, item_bytes=SAMPLE_BYTES, item="one sample", low=8,
+                 fix="use fewer samples per period (8192 reproduces every number)")
+
+
 def reproduce(joint: PaperJoint | None = None, n: int = 8192) -> dict[str, object]:
     """Every number of the paper's Section 4.2 that this model can check, SI and paper units.
 
@@ -37,8 +48,7 @@ def reproduce(joint: PaperJoint | None = None, n: int = 8192) -> dict[str, objec
         InvalidParameterError: ``n`` is not an integer in [8, the memory bound
             :data:`hexaleg.motion.limits.MAX_SAMPLES`].
     """
-    n = count("samples", n, item_bytes=SAMPLE_BYTES, item="one sample", low=8,
-              fix="use fewer samples per period (8192 reproduces every number)")
+    n = paper_samples(n)
     j = joint or PaperJoint()
     kM = j.k_M()
     lo, hi = (float(nmm_per_deg_to_nm_per_rad(x)) for x in readings.PAPER_RANGE_NMM_PER_DEG)

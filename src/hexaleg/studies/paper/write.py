@@ -10,7 +10,7 @@ from hexaleg.errors import OutputError
 from hexaleg.outputs.paper_figures import save_png
 from hexaleg.studies.paper.figures import make_figures
 from hexaleg.studies.paper.joint import PaperJoint
-from hexaleg.studies.paper.reproduce import reproduce
+from hexaleg.studies.paper.reproduce import paper_samples, reproduce
 from hexaleg.studies.paper.summary import markdown_summary
 
 
@@ -26,8 +26,10 @@ def write_paper(out: str | Path, joint: PaperJoint | None = None, n: int = 8192)
         The content of ``paper.json``.
 
     Raises:
+        InvalidParameterError: ``n`` out of range (before anything is written).
         OutputError: the directory or a file cannot be written.
     """
+    n = paper_samples(n)
     j = joint or PaperJoint()
     out = Path(out)
     try:
