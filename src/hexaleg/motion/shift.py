@@ -241,7 +241,8 @@ def _solve(weights: np.ndarray, rows: np.ndarray, rhs: np.ndarray) -> np.ndarray
 def _largest_margin(edges: Edges, program: _Program, theta: np.ndarray, rho: float,
                     limit: float) -> float:
     """The largest m for which the constraints hold: a linear program in (θ, m); −inf when
-    some sample has no support polygon."""
+    some sample has no support polygon or Clarabel finds no solution (no margin is reachable
+    then either — the caller's error says so rather than quoting a failed solve's iterate)."""
     import clarabel
     import scipy.sparse as sp
 
@@ -258,6 +259,8 @@ def _largest_margin(edges: Edges, program: _Program, theta: np.ndarray, rho: flo
     solution = clarabel.DefaultSolver(
         sp.csc_matrix((n + 1, n + 1)), cost, sp.csc_matrix(a), -rhs,
         [clarabel.NonnegativeConeT(len(rhs))], settings).solve()
+    if str(solution.status) not in ("Solved", "AlmostSolved"):
+        return -math.inf
     return float(np.asarray(solution.x)[-1])
 
 
