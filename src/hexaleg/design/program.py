@@ -26,12 +26,18 @@ the same program in cvxpy, for every objective, as the reference.
 
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from hexaleg.dynamics.conic import base_row_space, clarabel_solve, contact_rows
-from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES, violations
+from hexaleg.dynamics.contact import (
+    QUADRATIC_OBJECTIVES,
+    ContactParams,
+    StanceSystem,
+    violations,
+)
 from hexaleg.dynamics.energy import quadrature_weights
 from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import InfeasibleForcesError, InvalidParameterError
@@ -104,9 +110,30 @@ class DesignSolution:
 
 def _coo(block: np.ndarray, rows: np.ndarray, cols: np.ndarray
          ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    r, c = np.meshgrid(rows, cols, indexing="ij")
-    keep = block != 0
-    return r[keep], c[keep], block[keep]
+    i, j = np.nonzero(block)
+    return rows[i], cols[j], block[i, j]
+
+
+_ROWS: weakref.WeakKeyDictionary[StanceSystem, dict[tuple[int, ContactParams], list]] = \
+    weakref.WeakKeyDictionary()
+"""Each stance system's per-sample constraint blocks (:func:`_sample_rows`), computed once: an
+active-set round, and every geometry of a search, asks for the same samples again."""
+
+
+def _sample_rows(system: StanceSystem, k: int, contact: ContactParams
+                 ) -> list[tuple[np.ndarray, np.ndarray, object]]:
+    """Sample ``k``'s base rows (a zero cone) and contact rows on its stance forces, as
+    ``(rows, rhs, cone)`` blocks (:func:`hexaleg.dynamics.conic.base_row_space`,
+    :func:`~hexaleg.dynamics.conic.contact_rows`), cached per system."""
+    import clarabel
+
+    cache = _ROWS.setdefault(system, {})
+    if (k, contact) not in cache:
+        st = np.flatnonzero(np.repeat(system.stance[k], 3))
+        rows, rhs = base_row_space(system, k, system.A[k][:, st])
+        cache[(k, contact)] = [(rows, rhs, clarabel.ZeroConeT(rows.shape[0])),
+                               *contact_rows(st.size, contact)]
+    return cache[(k, contact)]
 
 
 class _Assembler:
@@ -177,9 +204,7 @@ def _solve_once(problem: DesignProblem, explicit: np.ndarray, Q: np.ndarray, r: 
         q_parts[0][:nx] += qk[:nx]
         q_parts.append(qk[nx:])
         if st.size:
-            rows, rhs = base_row_space(system, k, system.A[k][:, st])
-            asm.add(rows, fcols, rhs, clarabel.ZeroConeT(rows.shape[0]))
-            for rows, rhs, cone in contact_rows(st.size, prepared.contact):
+            for rows, rhs, cone in _sample_rows(system, k, prepared.contact):
                 asm.add(rows, fcols, rhs, cone)
         if prepared.contact.torque_limits:
             tmax, b = system.tau_max, system.b_joint[k]
