@@ -19,12 +19,19 @@ Prints, in one run on the default tripod gait (femur springs, the stiffness swep
 3. Scaling: time per stiffness choice and per sample over 250 … 16000 samples.
 
 Times are process CPU time, best of ``--repeat`` runs (another process on the machine slows
-both sides alike; the ratios are what to compare).
+both sides alike; the ratios are what to compare), with one BLAS thread (below).
 """
 
 from __future__ import annotations
 
 import argparse
+import os
+
+# One BLAS thread: on 16000 samples the metrics' matrix-vector products wake OpenBLAS's threads,
+# which spin on the second core without shortening the wall time (measured: 18.5 ms wall either
+# way) and so double the process CPU time this benchmark reads. Set before NumPy loads BLAS.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
 import time
 import warnings
 
