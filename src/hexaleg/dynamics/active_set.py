@@ -162,11 +162,12 @@ class Rows:
     """The active rows of each sample's guess, packed into slots (P the most of any sample).
 
     Entry ``k`` of the flat lists is candidate row ``cand[k]`` (:func:`constant_rows`' order:
-    joints, then foot rows) of sample ``t[k]`` in slot ``slot[k]``; ``dst[k] = slot[k] T + t[k]``
-    is its place in a (P, T) array raveled. ``index`` holds, per kind of entry (a held joint, a
-    cone's surface row, a linear foot row), ``(dst, src)``: the entries' places in the (P, T)
-    arrays and in the raveled (J, T) joint, (n_f, T) foot or (R n_f, T) foot-row arrays their
-    values come from (flat indices: one gather per kind). ``used`` (P, T) marks the slots in
+    joints, then foot rows) of sample ``t[k]``, in the slot ``s`` that follows its sample's
+    earlier entries; ``dst[k] = s T + t[k]`` is its place in a (P, T) array raveled. ``index``
+    holds, per kind of entry (a held joint, a cone's surface row, a linear foot row),
+    ``(dst, src)``: the entries' places in the (P, T) arrays and in the raveled (J, T) joint,
+    (n_f, T) foot or (R n_f, T) foot-row arrays their values come from (flat indices: one gather
+    per kind). ``used`` (P, T) marks the slots in
     use, ``G`` their constant gradients (m, P, T) (zero for a surface row, whose gradient
     :func:`newton` sets at each point), ``given`` their multipliers in the guess (P, T), ``at``
     the held joints' torques (per held-joint entry) and ``foot`` (n_f, T) the feet on their
