@@ -141,3 +141,23 @@ def test_a_dropped_lock_is_released_and_a_forked_copy_never_releases(tmp_path):
     with pytest.raises(DirectoryLockedError):
         DirectoryLock(tmp_path)
     lock.release()
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_a_zombie_does_not_run():
+    """An ended process not yet reaped by its parent: kill(2) still finds it, running() does
+    not (a pool worker starting as its sweep is killed must see the sweep gone)."""
+    child = subprocess.Popen([sys.executable, "-c", "pass"])
+    deadline = time.monotonic() + 60  # a hang guard, not a speed assertion
+    while time.monotonic() < deadline:
+        with open(f"/proc/{child.pid}/stat") as f:
+            if f.read().rsplit(")", 1)[1].split()[0] == "Z":
+                break
+        time.sleep(0.01)
+    try:
+        os.kill(child.pid, 0)  # the zombie is still there for kill(2)
+        assert not lock_module.running(child.pid)
+        assert lock_module.running(os.getpid())
+    finally:
+        child.wait()
+    assert not lock_module.running(child.pid)

@@ -40,14 +40,30 @@ _HELD: set[int] = set()
 
 
 def running(pid: int) -> bool:
-    """Whether process ``pid`` runs on this host (signal 0: kill(2) checks without sending)."""
+    """Whether process ``pid`` runs on this host (signal 0: kill(2) checks without sending).
+
+    A zombie — ended, not yet reaped by its parent — does not run, though kill(2) still finds
+    it: a pool worker that starts just as its sweep is killed must see the sweep as gone
+    (:func:`hexaleg.studies.sweep.workers.watch_parent`), or it computes on as an orphan.
+    """
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
         return False
-    except PermissionError:  # it runs, as another user
-        return True
-    return True
+    except PermissionError:  # it exists, as another user
+        pass
+    return not _zombie(pid)
+
+
+def _zombie(pid: int) -> bool:
+    """Whether ``pid`` is a zombie, from its state in ``/proc/PID/stat`` (proc(5)); False where
+    there is no ``/proc`` (kill(2) has decided)."""
+    try:
+        stat = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return False
+    fields = stat[stat.rindex(")") + 2:].split()  # the command name may hold spaces and ")"
+    return bool(fields) and fields[0] in ("Z", "X")
 
 
 def _holder() -> dict[str, Any]:
