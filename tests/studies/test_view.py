@@ -140,9 +140,16 @@ def session(tmp_path_factory):
         with urllib.request.urlopen(url, timeout=10) as r:
             out["index"] = r.read()
         if chromium() is not None:
-            # The browser connects after the scene was sent: the server replays it.
-            finish(start_screenshot(url, d / "served.png", size=SHOT, virtual_time_ms=900))
-            out["served"] = imread(d / "served.png")[..., :3]
+            # The browser connects after the scene was sent: the server replays it, over a
+            # websocket in real time while the screenshot waits in page time; on a loaded
+            # machine the shot can come before the last meshes (seen once in CI: 170 of the
+            # shell's ≈ 1800 pixels). A connection replays the whole scene, so a second or third
+            # connection is the same test, not a weaker one.
+            for _ in range(3):
+                finish(start_screenshot(url, d / "served.png", size=SHOT, virtual_time_ms=900))
+                out["served"] = imread(d / "served.png")[..., :3]
+                if _orange(out["served"]).sum() > 0.005 * out["served"][..., 0].size:
+                    break
         proc.send_signal(signal.SIGINT)
         out["returncode"] = proc.wait(timeout=20)
         try:
