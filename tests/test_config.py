@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import pytest
 
-from hexaleg.config import from_mapping, load_toml
+from hexaleg.config import check_tables, from_mapping, load_toml
 from hexaleg.errors import ConfigError, UnknownNameError
 
 
@@ -77,3 +77,13 @@ def test_text_files_are_regular_utf8_and_bounded(tmp_path, monkeypatch):
         read_text(big, "spec")
     monkeypatch.undo()
     assert read_text(big) == "x = 1\n"
+
+
+def test_check_tables_names_the_bad_table_and_the_allowed_ones():
+    doc = {"gait": {}, "gaits": {}}
+    with pytest.raises(UnknownNameError, match=r"'gaits'.*gait") as e:
+        check_tables(doc, ("gait", "contact"), "run.toml")
+    assert "run.toml" in str(e.value)
+    with pytest.raises(ConfigError, match="document of tables"):
+        check_tables([1, 2], ("gait",), "run.toml")
+    assert check_tables({"gait": {}}, ("gait",), "run.toml") == {"gait": {}}

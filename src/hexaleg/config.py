@@ -133,6 +133,21 @@ def _check_type(key: str, value: Any, hint: Any) -> Any:
     return value
 
 
+def check_tables(data: object, allowed: tuple[str, ...], where: str) -> Mapping[str, Any]:
+    """A parsed TOML document whose top-level names are all in ``allowed``.
+
+    Raises:
+        ConfigError: ``data`` is not a document of tables.
+        UnknownNameError: a top-level name that is not allowed (lists the allowed ones).
+    """
+    if not isinstance(data, Mapping):
+        raise ConfigError(f"{where}: expected a TOML document of tables, got {data!r}")
+    for key in data:
+        if key not in allowed:
+            raise UnknownNameError(f"table in {where}", key, allowed)
+    return data
+
+
 def from_mapping(cls: type[T], data: Mapping[str, Any], where: str = "") -> T:
     """Build dataclass ``cls`` from ``data``, checking keys and value types.
 

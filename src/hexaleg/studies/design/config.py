@@ -17,14 +17,14 @@ from pathlib import Path
 from typing import Any
 
 from hexaleg.checks import integer, is_real, real
-from hexaleg.config import from_mapping, load_toml
+from hexaleg.config import check_tables, from_mapping, load_toml
 from hexaleg.design.evaluator import DEFAULT_METRIC, RunSpec
 from hexaleg.design.families import FAMILIES, family
 from hexaleg.design.robust import MODES
 from hexaleg.design.spring_materials import MATERIALS, material
 from hexaleg.design.torsion_spring import SAFETY_FACTOR
 from hexaleg.dynamics.contact import ContactParams
-from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+from hexaleg.errors import InvalidParameterError, UnknownNameError
 from hexaleg.motion.limits import MIN_SAMPLES
 from hexaleg.motion.params import GaitParams
 
@@ -217,11 +217,7 @@ class DesignConfig:
             ConfigError: a value of the wrong type.
             InvalidParameterError: a value out of range.
         """
-        if not isinstance(data, Mapping):
-            raise ConfigError(f"{where}: expected a TOML document of tables, got {data!r}")
-        for key in data:
-            if key not in TABLES + SHARED_TABLES:
-                raise UnknownNameError(f"table in {where}", key, TABLES + SHARED_TABLES)
+        check_tables(data, TABLES + SHARED_TABLES, where)
         run = RunSpec(robot=robot)  # UnknownNameError for an unknown robot
         gait = GaitParams.for_robot(run.description()).updated(data.get("gait", {}),
                                                                 f"{where} [gait]")

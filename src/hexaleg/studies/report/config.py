@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any, cast
 
 from hexaleg.checks import count, is_integer, is_real
-from hexaleg.config import from_mapping, load_toml
+from hexaleg.config import check_tables, from_mapping, load_toml
 from hexaleg.design import rules as design
 from hexaleg.design.curves import CURVE_METRICS
 from hexaleg.dynamics.contact import OBJECTIVES, ContactParams
@@ -288,11 +288,7 @@ class ReportConfig:
             ConfigError: a value of the wrong type.
             InvalidParameterError: a value out of range.
         """
-        if not isinstance(data, Mapping):
-            raise ConfigError(f"{where}: expected a TOML document of tables, got {data!r}")
-        for key in data:
-            if key not in TABLES + SHARED_TABLES:
-                raise UnknownNameError(f"table in {where}", key, TABLES + SHARED_TABLES)
+        check_tables(data, TABLES + SHARED_TABLES, where)
         out: dict[str, Any] = {}
         if "gait" in data:
             out["gait"] = from_mapping(GaitParams, data["gait"], f"{where} [gait]")

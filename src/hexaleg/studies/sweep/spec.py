@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from hexaleg.checks import count, integer, string
-from hexaleg.config import from_mapping, load_toml
+from hexaleg.config import check_tables, from_mapping, load_toml
 from hexaleg.design.codesign import OBJECTIVE_METRIC
 from hexaleg.design.evaluator import DEFAULT_METRIC, METRICS, SPRING_PARAMETERS, RunSpec
 from hexaleg.dynamics.contact import ContactParams
@@ -181,9 +181,7 @@ class SweepSpec:
             ConfigError: a section that is not a table, a value of the wrong type.
             InvalidParameterError: an empty grid or a value out of range.
         """
-        for name, table in data.items():
-            if name not in SECTIONS:
-                raise UnknownNameError(f"table in {where}", name, SECTIONS)
+        for name, table in check_tables(data, SECTIONS, where).items():
             if not isinstance(table, Mapping):
                 raise ConfigError(f"{where}: {name} = {table!r}; expected a table, [{name}] "
                                   "with its keys on the lines below")
