@@ -6,8 +6,8 @@ The default tripod gait with its servo (AX-18A) and the springs ``hexaleg simula
 default (the globally optimal linear springs on the femurs), simulated with and without them for
 4 cycles, the last 2 evaluated (``hexaleg.studies.simulate``):
 
-1. timestep convergence, dt = 0.5, 0.25, 0.125 ms, for the feedforward + PD servo and the
-   position-only servo: energy per cycle with and without the springs, the saving, the distance;
+1. timestep convergence, dt = 0.5, 0.25, 0.125 and 0.667 ms, for the feedforward + PD servo and
+   the position-only servo: energy per cycle with and without the springs, the saving, the distance;
 2. where in the cycle the simulated energy departs from the prediction: the electrical energy
    difference in the 50 ms after each load handover (t = 0 and T/2) and in the rest;
 3. the sensitivity table (servo gains ×0.25…×4, ground 4× softer and stiffer, half the friction,
@@ -23,7 +23,9 @@ import numpy as np
 from hexaleg.studies.simulate.sensitivity import sensitivity
 from hexaleg.studies.simulate.study import load_study
 
-TIMESTEPS = (5e-4, 2.5e-4, 1.25e-4)
+TIMESTEPS = (5e-4, 2.5e-4, 1.25e-4, 1 / 1500)
+"""s: the default, halved twice, and 2/3 ms (the timestep a 50× real-time factor would need:
+docs/simulate.md, Speed)."""
 HANDOVER = 0.05  # s after each switch of tripods
 
 

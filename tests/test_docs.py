@@ -266,7 +266,7 @@ def test_simulate_page_quotes_the_simulation_logs():
             column = 1 if controller == "feedforward" else 2
             assert table_row.split("|")[1 + column].strip().startswith(saving), (line, table_row)
             rows += 1
-    assert rows == 7 + 16
+    assert rows == 9 + 16
     paper = (logs / "simulate_paper.log").read_text()
     mean, eps = re.findall(r"optimum k: analytic closed form (\S+); simulated (\S+); with "
                            r"friction (\S+); the paper's Adams reading (\S+)", paper)
