@@ -110,3 +110,30 @@ def test_the_pgs_solver_gives_the_energies_of_mujocos_newton_solver(prepared):
               for r, w in zip((a, b), dq, strict=True)]
     assert abs(energy[0] - energy[1]) < 1e-5 * energy[1]
     assert np.abs(a.qpos - b.qpos).max() < 1e-6
+
+
+def test_switching_off_island_discovery_leaves_the_states_bitwise_equal(prepared):
+    """A walking robot's contacts couple through its base into one constraint island, so MuJoCo's
+    island search (switched off by the model, for speed) changes nothing: half a cycle of the
+    gait with it switched back on gives the same states to the last bit."""
+    import copy
+
+    import mujoco
+
+    if not hasattr(mujoco.mjtDisableBit, "mjDSBL_ISLAND"):
+        pytest.skip("this MuJoCo has no island discovery")
+    robot, motion = prepared.robot, prepared.motion
+    sim = build_model(robot, motion, prepared.motor)
+    island = int(mujoco.mjtDisableBit.mjDSBL_ISLAND)
+    assert sim.model.opt.disableflags & island
+    searched = dataclasses.replace(sim, model=copy.deepcopy(sim.model))
+    searched.model.opt.disableflags &= ~island
+    steps = round(motion.period / 2 / sim.timestep)
+    t = np.arange(steps) * sim.timestep
+    ctrl = controls(sim.servo, reference(motion, prepared.evaluate(None).tau_motor, t),
+                    sim.kp, sim.kd)
+    start = sim.joints.to_mujoco(motion.q[0], motion.v[0])
+    a, b = stepping.run(sim, ctrl, *start, 0.09), stepping.run(searched, ctrl, *start, 0.09)
+    assert a.verdict == b.verdict == "ran"
+    np.testing.assert_array_equal(a.qpos, b.qpos)
+    np.testing.assert_array_equal(a.servo, b.servo)

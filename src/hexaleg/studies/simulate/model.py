@@ -32,7 +32,10 @@ in ``docs/simulate.md``.
 problem instead of its default primal Newton solver: both solve the same strictly convex soft-
 constraint program (MuJoCo documentation, Computation → Solver), and on the built-in gait the
 energies per cycle agree to 1e-5 J (tested) while a step costs about a fifth less — with six
-point contacts the dual is 18 rows against Newton's 24 × 24 Hessian.
+point contacts the dual is 18 rows against Newton's 24 × 24 Hessian. MuJoCo's constraint-island
+discovery (on by default since 3.3) is switched off: every contact of a walking robot couples
+through its base, so there is one island and the search only costs time (about 4 % of a step;
+the states are bitwise the same, tested).
 """
 
 from __future__ import annotations
@@ -258,6 +261,8 @@ def build_model(robot: Robot, motion: Motion, motor: ServoMotor, *,
     model.dof_damping[joints.dof] = damping
     if hasattr(mujoco.mjtDisableBit, "mjDSBL_AUTORESET"):  # keep a diverged state (a verdict)
         model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_AUTORESET)
+    if hasattr(mujoco.mjtDisableBit, "mjDSBL_ISLAND"):  # one island: the search is pure cost
+        model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_ISLAND)
     sim = SimModel(robot=robot, model=model, xml=xml, joints=joints, springs=plan, servo=servo,
                    ground=ground, kp=kp, kd=kd, damping=damping, stall=stall,
                    foot_geoms=np.array([mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, g)
