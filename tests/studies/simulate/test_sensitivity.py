@@ -30,3 +30,31 @@ def test_variants_change_what_they_say(feedforward):
     assert changed["ground stiffness ×4"].stiffness == 4 * settings.stiffness
     assert changed["friction μ 0.3"].mu == 0.3 and changed["no-slip pass"].noslip
     assert changed["other controller"].controller == "position"
+
+
+def test_the_controller_check_is_the_two_controllers_simulations(prepared, optimal, feedforward,
+                                                                 position):
+    """hexaleg design's proof: one row per controller, each the saving of that controller's own
+    simulation (the unchanged variant reuses the base run instead of simulating it again)."""
+    import numpy as np
+
+    from hexaleg.studies.simulate.sensitivity import controller_check
+
+    rows = controller_check(prepared, optimal.springs, "joule", feedforward.settings)
+    assert [r["controller"] for r in rows] == ["feedforward", "position"]
+    for row, s in zip(rows, (feedforward, position), strict=True):
+        assert row["verdict"] == "walks"
+        np.testing.assert_allclose(row["simulated"], s.simulated()[2], rtol=1e-12)
+        np.testing.assert_allclose([row["predicted_electrical"], row["predicted_baseline"],
+                                    row["predicted"]], s.predicted(), rtol=1e-12)
+
+
+def test_an_unchanged_variant_reuses_the_base_simulation(feedforward, monkeypatch):
+    import hexaleg.studies.simulate.sensitivity as module
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("simulated again")
+
+    monkeypatch.setattr(module, "simulate", refuse)
+    (row,) = sensitivity(feedforward, [("as set", lambda s: s)])
+    assert row["simulated"] == feedforward.simulated()[2]

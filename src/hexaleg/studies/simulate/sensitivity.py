@@ -5,6 +5,8 @@ controller.
 :data:`VARIANTS` — the servo gains ×0.25…×4, the ground 4 × softer and stiffer, half the friction,
 MuJoCo's no-slip pass, the other controller — and tabulates the simulated saving beside the
 prediction (which none of them changes: the analysis has rigid feet and exact tracking).
+:func:`controller_check` is the short table ``hexaleg design`` proves its recommendation with:
+the springs simulated under each controller of :data:`CONTROLLER_VARIANTS`.
 """
 
 from __future__ import annotations
@@ -13,7 +15,9 @@ import dataclasses
 from collections.abc import Callable, Sequence
 from typing import Any
 
+from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import HexalegError
+from hexaleg.robot.springs import SpringSet
 from hexaleg.studies.simulate.run import Settings, Simulation, simulate
 
 Variant = tuple[str, Callable[[Settings], Settings]]
@@ -44,6 +48,13 @@ VARIANTS: tuple[Variant, ...] = (
 """The variants of :func:`sensitivity` (with the automatic timestep a stiffer variant steps finer
 where its explicit-stability limit asks for it)."""
 
+CONTROLLER_VARIANTS: tuple[Variant, ...] = (
+    ("feedforward + PD", lambda s: dataclasses.replace(s, controller="feedforward")),
+    ("position only", lambda s: dataclasses.replace(s, controller="position")),
+)
+"""The variants of :func:`controller_check`: the two controllers a servo robot runs
+(:data:`hexaleg.studies.simulate.controllers.CONTROLLERS`), the other settings the defaults."""
+
 
 def sensitivity(base: Simulation, variants: Sequence[Variant] = VARIANTS
                 ) -> list[dict[str, Any]]:
@@ -56,18 +67,22 @@ def sensitivity(base: Simulation, variants: Sequence[Variant] = VARIANTS
     Returns:
         One row per variant: ``label``, ``controller``, ``verdict`` (``"walks"`` or why not),
         ``predicted`` and ``simulated`` electrical saving (fractions; ``simulated`` None unless
-        both runs walked), ``electrical`` and ``baseline`` (J per cycle, simulated),
+        both runs walked), ``predicted_electrical`` and ``predicted_baseline`` (J per cycle, the
+        analysis'), ``electrical`` and ``baseline`` (J per cycle, simulated),
         ``distance_per_cycle`` (m), ``tracking_rms`` (rad).
     """
     p = base.analysis
     rows = []
     for label, change in variants:
-        row: dict[str, Any] = {"label": label, "predicted": p.savings["total"]["electrical"]}
+        row: dict[str, Any] = {"label": label, "predicted": p.savings["total"]["electrical"],
+                               "predicted_electrical": p.metrics["total"]["electrical"],
+                               "predicted_baseline": p.baseline["total"]["electrical"]}
         try:
             settings = change(base.settings)
             row["controller"] = settings.controller
-            s = simulate(base.robot, base.motion, p.motor, base.springs, settings,
-                         contact=p.contact, objective=p.objective, prepared=base.prepared)
+            s = base if settings == base.settings else simulate(
+                base.robot, base.motion, p.motor, base.springs, settings, contact=p.contact,
+                objective=p.objective, prepared=base.prepared)
         except HexalegError as e:
             row.update(verdict=f"{type(e).__name__}: {e}", simulated=None)
             rows.append(row)
@@ -84,3 +99,26 @@ def sensitivity(base: Simulation, variants: Sequence[Variant] = VARIANTS
             row["simulated"] = None
         rows.append(row)
     return rows
+
+
+def controller_check(prepared: Prepared, springs: SpringSet, objective: str,
+                     settings: Settings | None = None) -> list[dict[str, Any]]:
+    """``springs`` on ``prepared``'s gait simulated under each controller of
+    :data:`CONTROLLER_VARIANTS`: rows of :func:`sensitivity` (the predicted and the simulated
+    electrical saving, the energies, the walk).
+
+    Args:
+        prepared: The gait, prepared with the motor and contact settings of the design.
+        springs: The springs (SI).
+        objective: The analysis' force objective.
+        settings: The other settings (default :class:`Settings` without the foot-force
+            comparison).
+
+    Raises:
+        InvalidParameterError: a gait too coarse for the automatic timestep, a non-periodic
+            motion. InfeasibleForcesError, TorqueLimitError: from the analysis.
+    """
+    base = simulate(prepared.robot, prepared.motion, prepared.motor, springs,
+                    settings or Settings(force_samples=0), contact=prepared.contact,
+                    objective=objective, prepared=prepared)
+    return sensitivity(base, CONTROLLER_VARIANTS)

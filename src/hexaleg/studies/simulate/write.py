@@ -55,11 +55,13 @@ def _energies(values: dict[str, tuple[float, float, float]]) -> dict[str, Any]:
     return out
 
 
-def _sensitivity_row(row: dict[str, Any]) -> dict[str, Any]:
+def sensitivity_row(row: dict[str, Any]) -> dict[str, Any]:
     """A row of :func:`hexaleg.studies.simulate.sensitivity.sensitivity` as quantities."""
     out: dict[str, Any] = {"label": row["label"], "controller": row.get("controller"),
                            "verdict": row["verdict"],
-                           "predicted_saving": quantity(100 * row["predicted"], "%")}
+                           "predicted_saving": quantity(100 * row["predicted"], "%"),
+                           "predicted_electrical": quantity(row["predicted_electrical"], "J"),
+                           "predicted_baseline": quantity(row["predicted_baseline"], "J")}
     if row.get("simulated") is not None:
         out.update(simulated_saving=quantity(100 * row["simulated"], "%"),
                    electrical=quantity(row["electrical"], "J"),
@@ -102,7 +104,7 @@ def simulation_data(s: Simulation, *, design: str = "", notes: tuple[str, ...] =
         "notes": [*notes, *sim.notes],
     }
     if sensitivity is not None:
-        data["sensitivity"] = [_sensitivity_row(r) for r in sensitivity]
+        data["sensitivity"] = [sensitivity_row(r) for r in sensitivity]
     if s.walks:
         simulated = {m: s.simulated(m) for m in METRICS}
         data["simulated"] = _energies(simulated)
