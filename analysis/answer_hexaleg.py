@@ -7,7 +7,8 @@ minimum Joule loss. Every allowed family's globally optimal springs on coxa, fem
 (one design per class, max wind-up π), ranked by the electrical energy the servos draw, net of
 the springs' mass; the recommended family's Pareto front (spring torque bounded); the torsion
 springs to buy (Shigley §10-12); the robustness maps of the recommended springs frozen; the
-robust design over the box period ×0.75…1.5, stride ×0.75…1.25, payload 0…25 %, μ 0.5…1.
+robust design over the box period ×0.75…1.5, stride ×0.75…1.25, payload 0…25 %, μ 0.5…1; the
+recommendation simulated forward in MuJoCo under both controllers (predicted / simulated).
 """
 
 from __future__ import annotations
@@ -77,6 +78,19 @@ def main() -> None:
                   f"{pct(rb.worst(metric, 'nominal'))}")
         for g in d.groups:
             print(f"  {g:6s} " + ", ".join(f"{k} {v:.4g}" for k, v in d.magnitudes[g].items()))
+
+    print("\nthe recommendation simulated in MuJoCo "
+          "(electrical J per cycle, predicted / simulated)")
+    print(f"  {'controller':17s} {'with springs':>15s} {'without':>15s} {'saving':>19s} "
+          f"{'distance':>9s}  tracking RMS")
+    for row in r.simulation:
+        if row["simulated"] is None:
+            print(f"  {row['label']:17s} {row['verdict']}")
+            continue
+        print(f"  {row['label']:17s} {row['predicted_electrical']:.4f} / {row['electrical']:.4f}"
+              f" {row['predicted_baseline']:.4f} / {row['baseline']:.4f} "
+              f"{pct(row['predicted'])} / {pct(row['simulated'])} "
+              f"{1e3 * row['distance_per_cycle']:6.2f} mm  {1e3 * row['tracking_rms']:.2f} mrad")
 
 
 if __name__ == "__main__":

@@ -18,6 +18,10 @@ def test_design_html_leads_with_the_answer(written):
     assert html.index("Fit these springs") < html.index("The springs to buy")
     for plot in ("pareto", "map_period_stride", "map_payload_mu", "robust"):
         assert f'id="plot-{plot}"' in html
+    assert html.index("The springs to buy") < html.index('<section id="simulated">')
+    for row in data["simulation"]:
+        assert f'<td class="name">{row["label"]}</td>' in html
+        assert row["simulated_saving"]["unit"] == row["predicted_saving"]["unit"] == "%"
 
 
 def test_command_line_writes_the_design(tmp_path, capsys):

@@ -38,20 +38,46 @@ def test_the_section_carries_design_json_numbers(design_json):
     first = data["recommended"]["parts"][0]["torsion_spring"]
     assert s["parts"][0]["rate_nmm_per_deg"] == first["rate_nmm_per_deg"]
     assert s["robust"] == data["robust"]["worst"]
+    assert s["simulation"] == data["simulation"]
+    assert [row["controller"] for row in s["simulation"]] == ["feedforward", "position"]
     assert s["html"].endswith("design.html")
     assert design_section(None) is None
 
 
-def test_the_report_page_leads_with_the_design(design_json):
+PLOTS = ("joint_angles", "joint_torques", "joint_power", "foot_forces", "energy_per_joint",
+         "stiffness_curve")
+
+
+@pytest.fixture(scope="module")
+def report(design_json):
     cfg = ReportConfig.from_mapping({"gait": {"samples": 100},
                                      "report": {"stiffness_points": 2, "paper_samples": 16,
                                                 "design": str(design_json)}})
-    r = build_report(cfg)
+    return build_report(cfg)
+
+
+def test_the_report_page_leads_with_the_design(report):
+    r = report
     assert r.data["design"]["label"] == "linear"
-    plots = ("joint_angles", "joint_torques", "joint_power", "foot_forces", "energy_per_joint",
-             "stiffness_curve")
-    html = render_html({**r.data, "files": []}, dict.fromkeys(plots, ""))
+    html = render_html({**r.data, "files": []}, dict.fromkeys(PLOTS, ""))
     assert html.index("Fit these springs") < html.index("Robot and gait")
+    ff = r.data["design"]["simulation"][0]
+    simulated = f'{ff["simulated_saving"]["value"]:.4g} %'
+    assert html.index("Predicted and simulated") < html.index(simulated) < html.index(
+        "Robot and gait")
+
+
+def test_a_design_json_without_its_simulation_says_so(design_json, report, tmp_path):
+    """A design.json of an older hexaleg (no ``simulation``) still leads the page, which says
+    that its recommendation was not simulated."""
+    data = json.loads(design_json.read_text())
+    del data["simulation"]
+    old = tmp_path / "design.json"
+    old.write_text(json.dumps(data))
+    s = design_section(old)
+    assert s["simulation"] == []
+    html = render_html({**report.data, "design": s, "files": []}, dict.fromkeys(PLOTS, ""))
+    assert "has no forward simulation of its recommendation" in html
 
 
 def test_a_missing_design_says_how_to_make_one(tmp_path):

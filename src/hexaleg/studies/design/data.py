@@ -1,7 +1,9 @@
 """``design.json``: every number of a :class:`~hexaleg.studies.design.build.DesignResult` as
 ``{"value": …, "unit": …}`` (savings in %, SI otherwise; a missing or non-finite number is
 ``null``), and each recommended spring as ``{"family", "joint", "parameters"}``
-(:mod:`hexaleg.design.spring_json`), which ``hexaleg simulate`` reads back.
+(:mod:`hexaleg.design.spring_json`), which ``hexaleg simulate`` reads back. ``simulation`` holds
+the recommendation's forward simulation, one row per controller, as ``hexaleg simulate
+--sensitivity`` writes its rows (:func:`hexaleg.studies.simulate.write.sensitivity_row`).
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ from hexaleg.design.spring_table import magnitudes_table
 from hexaleg.studies.design.build import DesignResult, RobustResult
 from hexaleg.studies.design.candidates import Candidate
 from hexaleg.studies.report.quantities import metric_unit, quantity
+from hexaleg.studies.simulate.write import sensitivity_row
 
 AXIS_UNITS = {"period": "1", "stride": "1", "payload": "1", "mu": "1"}
 """Units of the map axes: factors of the nominal gait, a fraction of the robot's mass, μ."""
@@ -131,6 +134,7 @@ def design_data(r: DesignResult) -> dict[str, Any]:
         "worst": {k: {"saving": quantity(100 * s, "%"), "condition": c}
                   for k, (s, c) in r.worst.items()},
         "robust": None if r.robust is None else robust_data(r.robust, r.outer),
+        "simulation": [sensitivity_row(row) for row in r.simulation],
         "timings": {k: quantity(v, "s") for k, v in r.timings.items()},
         "notes": list(r.notes),
     }

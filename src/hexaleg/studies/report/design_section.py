@@ -3,7 +3,8 @@
 The design takes seconds to tens of seconds (families, maps, the robust program) and the report
 must stay fast, so the report does not recompute it: given ``[report] design = "DIR/design.json"``
 (or ``hexaleg report --design``), it copies the recommendation's numbers — the saving, the parts
-to buy, the worst case of the robustness maps, the robust design's worst case — into
+to buy, the worst case of the robustness maps, the robust design's worst case, the saving
+predicted and simulated under each controller — into
 ``report.json`` and leads the page with them; without one it says how to get one.
 """
 
@@ -27,8 +28,9 @@ def design_section(path: str | Path | None) -> dict[str, Any] | None:
         path: The ``design.json`` written by ``hexaleg design``, or None.
 
     Returns:
-        ``{source, html, label, saving, net_saving, spring_mass, parts, worst, robust}`` — every
-        number ``{value, unit}`` as in ``design.json``.
+        ``{source, html, label, saving, net_saving, spring_mass, parts, worst, robust,
+        simulation}`` — every number ``{value, unit}`` as in ``design.json`` (``simulation``
+        empty for a design.json without one).
 
     Raises:
         ConfigError: the file cannot be read or is not a ``design.json`` (says how to make one).
@@ -62,4 +64,5 @@ def _section(path: Path, data: dict[str, Any]) -> dict[str, Any]:
         "saving": rec["saving"], "net_saving": rec["net_saving"],
         "spring_mass": rec["spring_mass"], "parts": parts, "worst": data["worst"],
         "robust": None if robust is None else robust["worst"],
+        "simulation": data.get("simulation", []),
     }
