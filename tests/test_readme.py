@@ -90,6 +90,12 @@ def test_readme_design_answer_is_the_kept_log():
         in text
     worst = re.search(r"worst\s+(\S+) % at (period ×[^\n]+)", log)
     assert worst and f"the worst case {worst.group(1)} % at {worst.group(2)}" in text
+    simulated = {c: re.search(rf"{c}\s+.* / +(\S+) % +\S+ mm", log)
+                 for c in ("feedforward \\+ PD", "position only")}
+    assert all(simulated.values()), log
+    ff, pos = (m.group(1) for m in simulated.values() if m)
+    assert f"with feedforward + PD servos they save {ff} % (position-only servos: {pos} %)" \
+        in text
 
 
 def test_as_printed_rounds_like_the_readme():
