@@ -278,7 +278,7 @@ def _run_sweep(args: argparse.Namespace) -> int:
 def _add_simulate(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("simulate", help="forward simulation in MuJoCo with and without the "
                                         "springs: simulate.json and simulate.md, predicted vs "
-                                        "simulated energy and saving")
+                                        "simulated energy and saving, the motion of each run")
     p.add_argument("--robot", default="hexaleg", help=ROBOT_HELP + " (default %(default)s)")
     p.add_argument("--config", help="TOML file with optional [gait], [motor], [contact] and "
                                     "[simulate] tables (docs/simulate.md)")
@@ -303,6 +303,7 @@ def _add_simulate(sub: argparse._SubParsersAction) -> None:
 
 def _run_simulate(args: argparse.Namespace) -> int:
     from hexaleg.errors import SimulationError
+    from hexaleg.studies.simulate.motion_file import write_motions
     from hexaleg.studies.simulate.study import load_study
     from hexaleg.studies.simulate.write import simulation_data, summary, write_simulation
 
@@ -319,10 +320,11 @@ def _run_simulate(args: argparse.Namespace) -> int:
         rows = sensitivity(s)
     data = simulation_data(s, design=study.design, notes=study.notes, sensitivity=rows)
     js, md = write_simulation(args.out, data)
+    motions = ", ".join(str(m) for m in write_motions(args.out, s))
     for note in study.notes:
         print(f"note: {note}")
     print(summary(data))
-    print(f"wrote {js} and {md}")
+    print(f"wrote {js}, {md}, {motions} (replay: hexaleg view --simulation {args.out})")
     if not s.walks:
         raise SimulationError("; ".join(f"{r.name} run {r.verdict}: {r.message}"
                                         for r in (s.with_springs, s.baseline) if not r.walks))

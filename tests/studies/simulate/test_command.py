@@ -8,6 +8,7 @@ import pytest
 
 from hexaleg.cli import main
 from hexaleg.studies.simulate.design_file import design_table
+from hexaleg.studies.simulate.motion_file import FILES, RUNS, read_motion
 
 
 @pytest.fixture(scope="module")
@@ -41,6 +42,14 @@ def test_simulate_json_has_predicted_and_simulated_energies(written):
     assert all(q["unit"] for _, q in _quantities(data))
     page = (out / "simulate.md").read_text()
     assert "| electrical saving (%) |" in page and "walks" in page
+
+
+def test_the_motion_of_each_run_is_written(written):
+    """One file per run for ``hexaleg view --simulation``: 2 cycles of 1 s at 100 rows per s."""
+    out, _ = written
+    for run in RUNS:
+        m = read_motion(out / FILES[run])
+        assert (m.run, m.robot, len(m.t)) == (run, "hexaleg", 200)
 
 
 def test_a_design_file_is_simulated(written, tmp_path, prepared, optimal, capsys):

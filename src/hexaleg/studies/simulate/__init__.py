@@ -9,7 +9,9 @@ laws, :mod:`~hexaleg.studies.simulate.controllers` the servos,
 :mod:`~hexaleg.studies.simulate.stepping` runs a model, :mod:`~hexaleg.studies.simulate.measures`
 judges a run, :mod:`~hexaleg.studies.simulate.run` simulates with and without the springs beside
 the analysis, :mod:`~hexaleg.studies.simulate.study` and :mod:`~hexaleg.studies.simulate.write`
-are ``hexaleg simulate``, :mod:`~hexaleg.studies.simulate.design_file` reads ``design.json``.
+are ``hexaleg simulate``, :mod:`~hexaleg.studies.simulate.motion_file` keeps each run's motion
+for ``hexaleg view --simulation``, :mod:`~hexaleg.studies.simulate.design_file` reads
+``design.json``.
 MuJoCo is imported where a model is built, so importing this package stays light. See
 ``docs/simulate.md``.
 """

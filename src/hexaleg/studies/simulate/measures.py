@@ -10,6 +10,7 @@ window is the trapezoidal rule the analysis uses (:mod:`hexaleg.dynamics.energy`
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
@@ -135,11 +136,49 @@ def mean_metrics(cycles: list[dict[str, Any]]) -> dict[str, float]:
     return {key: float(np.mean([c["total"][key] for c in cycles])) for key in keys}
 
 
+def forward_states(sim: SimModel, traj: Trajectory, rows: np.ndarray) -> Iterator[Any]:
+    """MuJoCo's data at each recorded step of ``rows`` after ``mj_forward``: the recorded state
+    with the controls and non-native spring torques it was stepped with (one ``mujoco.MjData``,
+    refilled for each row: use it before the next)."""
+    import mujoco
+
+    m = sim.model
+    assert isinstance(m, mujoco.MjModel)
+    data = mujoco.MjData(m)
+    for k in rows:
+        data.qpos[:], data.qvel[:] = traj.qpos[k], traj.qvel[k]
+        data.ctrl[:sim.robot.nj] = traj.controls[k]
+        data.qfrc_applied[sim.joints.dof] = sim.springs.python_torque(
+            traj.qpos[k, sim.joints.qpos], traj.qvel[k, sim.joints.dof])
+        mujoco.mj_forward(m, data)
+        yield data
+
+
+def contact_forces(sim: SimModel, data: Any) -> np.ndarray:
+    """The ground's force on each foot at a computed ``mujoco.MjData`` (after ``mj_forward``):
+    MuJoCo's contact force (``mj_contactForce``) of each foot sphere, world frame, shape
+    (n_legs, 3), N, legs in the robot's order; zero for a foot without an active contact."""
+    import mujoco
+
+    leg_of = {int(g): i for i, g in enumerate(sim.foot_geoms)}
+    out = np.zeros((len(leg_of), 3))
+    wrench = np.zeros(6)
+    for c in range(data.ncon):
+        con = data.contact[c]
+        leg = leg_of.get(int(con.geom[1]), leg_of.get(int(con.geom[0]), -1))
+        if leg < 0 or con.efc_address < 0:
+            continue
+        mujoco.mj_contactForce(sim.model, data, c, wrench)
+        frame = np.asarray(con.frame).reshape(3, 3)
+        f = frame.T @ wrench[:3]  # force on geom 2 (the foot) from geom 1 (the ground)
+        out[leg] = f if int(con.geom[1]) in leg_of else -f
+    return out
+
+
 def foot_forces(sim: SimModel, motion: Motion, traj: Trajectory, window: slice,
                 predicted: np.ndarray, samples: int = 200) -> dict[str, float]:
     """Simulated ground forces on the stance feet against the analysis', at up to ``samples``
-    of the window's steps: MuJoCo's contact forces (``mj_contactForce``, world frame) of each
-    foot sphere at the recorded state.
+    of the window's steps (:func:`contact_forces` at the recorded state).
 
     Args:
         sim: The model.
@@ -154,37 +193,16 @@ def foot_forces(sim: SimModel, motion: Motion, traj: Trajectory, window: slice,
         ``weight`` (N): the robot's weight, for scale; ``normal_mean_sim`` and
         ``normal_mean_predicted`` (N): mean normal force of a stance foot.
     """
-    import mujoco
-
-    m = sim.model
-    assert isinstance(m, mujoco.MjModel)
-    data = mujoco.MjData(m)
     rows = np.arange(window.start or 0, window.stop or traj.n)
     rows = rows[np.linspace(0, len(rows) - 1, min(samples, len(rows))).astype(int)]
-    leg_of = {int(g): i for i, g in enumerate(sim.foot_geoms)}
-    sim_f = np.zeros((len(rows), len(leg_of), 3))
-    wrench = np.zeros(6)
-    for r, k in enumerate(rows):
-        data.qpos[:], data.qvel[:] = traj.qpos[k], traj.qvel[k]
-        data.ctrl[:sim.robot.nj] = traj.controls[k]
-        data.qfrc_applied[sim.joints.dof] = sim.springs.python_torque(
-            traj.qpos[k, sim.joints.qpos], traj.qvel[k, sim.joints.dof])
-        mujoco.mj_forward(m, data)
-        for c in range(data.ncon):
-            con = data.contact[c]
-            leg = leg_of.get(int(con.geom[1]), leg_of.get(int(con.geom[0]), -1))
-            if leg < 0 or con.efc_address < 0:
-                continue
-            mujoco.mj_contactForce(m, data, c, wrench)
-            frame = np.asarray(con.frame).reshape(3, 3)
-            f = frame.T @ wrench[:3]  # force on geom 2 (the foot) from geom 1 (the ground)
-            sim_f[r, leg] = f if int(con.geom[1]) in leg_of else -f
+    sim_f = np.array([contact_forces(sim, data) for data in forward_states(sim, traj, rows)])
     k = planned_index(motion, traj.t[rows])
     stance = motion.stance[k].astype(bool)
     pred = predicted[k]
     diff = (sim_f - pred)[stance]
+    gravity = np.asarray(sim.model.opt.gravity)  # type: ignore[attr-defined]
     return {"normal_rms": float(np.sqrt(np.mean(diff[:, 2] ** 2))),
             "tangential_rms": float(np.sqrt(np.mean(np.sum(diff[:, :2] ** 2, axis=1)))),
             "normal_mean_sim": float(sim_f[stance][:, 2].mean()),
             "normal_mean_predicted": float(pred[stance][:, 2].mean()),
-            "weight": float(sim.robot.mass * np.linalg.norm(m.opt.gravity))}
+            "weight": float(sim.robot.mass * np.linalg.norm(gravity))}
