@@ -115,18 +115,21 @@ def _run_gait(args: argparse.Namespace) -> int:
 
 
 def _add_view(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("view", help="animate the gait or the sphere transformation in the browser "
-                                    "(Meshcat): foot forces, joints coloured by motor power")
+    p = sub.add_parser("view", help="animate the gait, the sphere transformation or a simulated "
+                                    "run in the browser (Meshcat): foot forces, joint colours")
     p.add_argument("--config", help="TOML file of 'hexaleg report' (gait, motor, contact, "
                                     "springs) with an optional [view] table")
     p.add_argument("--html", help="write a self-contained page that plays offline to this file "
                                   "and exit (default: serve on localhost until Ctrl-C)")
-    p.add_argument("--robot", help=ROBOT_HELP)
-    # The names of hexaleg.studies.view's MOTIONS and JOINT_QUANTITIES, which also checks them
-    # (the study is not imported to build the parser: meshcat takes seconds to import).
-    p.add_argument("--motion", choices=("gait", "transform"), default="gait",
-                   help="tripod gait cycle or stand → sphere transformation "
-                        "(default: %(default)s)")
+    p.add_argument("--robot", help=ROBOT_HELP + " (with --simulation: default the file's)")
+    # The names of hexaleg.studies.view's MOTIONS, JOINT_QUANTITIES and motion_file.RUNS, which
+    # check them too (the study is not imported to build the parser: meshcat imports slowly).
+    p.add_argument("--motion", choices=("gait", "transform"),
+                   help="tripod gait cycle or stand → sphere transformation (default: gait)")
+    p.add_argument("--simulation", metavar="DIR", help="replay a run of 'hexaleg simulate "
+                                                       "--out DIR' instead (its motion files)")
+    p.add_argument("--run", choices=("springs", "baseline"), help="with --simulation: the run "
+                   "with the springs or without (default: springs)")
     p.add_argument("--joints", choices=("power", "torque", "spring"), default="power",
                    help="what colours the joints: motor power (W), motor torque or spring "
                         "torque (N·m) (default: %(default)s)")
@@ -134,24 +137,18 @@ def _add_view(sub: argparse._SubParsersAction) -> None:
 
 
 def _run_view(args: argparse.Namespace) -> int:
-    import signal
-    import time
+    from hexaleg.studies.view import export_view, serve_view, wait_until_interrupted
 
-    from hexaleg.studies.view import export_view, serve_view
-
-    shown = {"motion": args.motion, "joints": args.joints, "robot": args.robot}
+    shown = {k: getattr(args, k) for k in ("motion", "joints", "robot", "simulation", "run")}
     if args.html:
         print(f"wrote {export_view(args.config, args.html, **shown)}")
         return 0
     url = serve_view(args.config, **shown)
-    print(f"serving the {args.motion} at {url} (Ctrl-C to stop)", flush=True)
-    # A kill (SIGTERM) leaves like Ctrl-C, through the normal exit that stops meshcat's server.
-    signal.signal(signal.SIGTERM, signal.default_int_handler)
-    try:
-        while True:
-            time.sleep(3600)
-    except KeyboardInterrupt:
-        return 0
+    what = (f"{args.run or 'springs'} run of {args.simulation}" if args.simulation else
+            args.motion or "gait")
+    print(f"serving the {what} at {url} (Ctrl-C to stop)", flush=True)
+    wait_until_interrupted()
+    return 0
 
 
 def _add_report(sub: argparse._SubParsersAction) -> None:

@@ -3,7 +3,9 @@
 What is shown (:func:`view_motion`): the tripod gait or the stand → sphere transformation of
 the built-in robot, analysed with the settings of a ``hexaleg report`` config file, with the foot
 forces as arrows and one joint quantity (motor power, motor torque or spring torque) as joint
-colours. How it is shown (:mod:`hexaleg.outputs.viewer`): one looping Meshcat animation, either
+colours; or (:func:`replay_motion`) a run of ``hexaleg simulate`` replayed from its motion file
+(:mod:`hexaleg.studies.simulate.motion_file`), with the simulated contact forces and joint
+quantities. How it is shown (:mod:`hexaleg.outputs.viewer`): one looping Meshcat animation, either
 
 * served live by a Meshcat server on localhost (:func:`serve`, ``hexaleg view``), or
 * written to one self-contained HTML page that plays offline (:func:`export_html`,
@@ -16,6 +18,8 @@ map of K. Moreland, "Diverging Color Maps for Scientific Visualization", ISVC 20
 
 from __future__ import annotations
 
+import signal
+import time
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -35,7 +39,9 @@ from hexaleg.outputs.viewer.keyframes import KEYFRAME_BYTES, MAX_FPS
 from hexaleg.outputs.viewer.page import write_page
 from hexaleg.outputs.viewer.scene import draw_motion, start_server
 from hexaleg.robot.model import Robot, load_robot
+from hexaleg.robot.registry import DESCRIPTIONS, load
 from hexaleg.studies.report.config import ReportConfig
+from hexaleg.studies.simulate.motion_file import SimulatedMotion, motion_path, read_motion
 
 MOTIONS = ("gait", "transform")
 """What ``hexaleg view --motion`` can show: the tripod gait cycle or stand → sphere."""
@@ -43,7 +49,7 @@ MOTIONS = ("gait", "transform")
 JOINT_QUANTITIES = {"power": ("power", "motor power (W)"),
                     "torque": ("tau_motor", "motor torque (N·m)"),
                     "spring": ("tau_spring", "spring torque (N·m)")}
-"""``hexaleg view --joints`` choice → (Analysis attribute, legend label)."""
+"""``hexaleg view --joints`` choice → (Analysis and SimulatedMotion attribute, legend label)."""
 
 
 @dataclass(frozen=True)
@@ -150,41 +156,119 @@ def view_motion(config: ReportConfig, motion: str = "gait", joints: str = "power
                         joint_values=getattr(result, attr), joint_label=label)
 
 
-def export_view(config_path: str | Path | None, html: str | Path, *, motion: str = "gait",
-                joints: str = "power", robot: str | None = None) -> Path:
-    """``hexaleg view --html``: :func:`view_motion` written as an offline page.
+def replay_motion(directory: str | Path, run: str = "springs", joints: str = "power",
+                  robot: Robot | None = None) -> ViewedMotion:
+    """A run of ``hexaleg simulate`` for the viewer: its motion file replayed.
+
+    The simulated base and joints (the file's rows,
+    :data:`~hexaleg.studies.simulate.motion_file.RECORD_FPS` per second of simulated time,
+    resampled at the keyframes as any motion), the simulated contact forces as arrows and the
+    simulated joint quantity as colours.
 
     Args:
-        config_path: The config file (:func:`load_config`), or None.
+        directory: The out directory of ``hexaleg simulate``.
+        run: ``"springs"`` (the run with the springs) or ``"baseline"`` (without).
+        joints: As :func:`view_motion`, of the simulation.
+        robot: The robot; None: the file's own (a registered robot).
+
+    Raises:
+        UnknownNameError: ``run`` or ``joints`` is not one of the choices.
+        InvalidParameterError: the directory has no motion file of ``run``, the file is of
+            another robot, or its robot is not registered and none is given.
+        ConfigError: the file is not a motion file of ``hexaleg simulate``.
+    """
+    path = motion_path(directory, run)
+    recorded = read_motion(path)
+    return _replayed(recorded, path, joints,
+                     robot if robot is not None else load(_registered(recorded, path)))
+
+
+def _registered(recorded: SimulatedMotion, path: Path) -> str:
+    """The file's robot if it is registered (a robot TOML must be given)."""
+    if recorded.robot not in DESCRIPTIONS:
+        raise InvalidParameterError(f"{path}: robot", recorded.robot,
+                                    f"a registered robot ({', '.join(DESCRIPTIONS)}), or give "
+                                    "its description (hexaleg view --robot FILE.toml)")
+    return recorded.robot
+
+
+def _replayed(recorded: SimulatedMotion, path: Path, joints: str, robot: Robot
+              ) -> ViewedMotion:
+    """The recorded run of ``path`` on ``robot`` (checked), coloured by ``joints``."""
+    one_of("joint quantity", joints, JOINT_QUANTITIES)
+    recorded.check(robot, str(path))
+    attr, label = JOINT_QUANTITIES[joints]
+    return ViewedMotion(robot=robot, motion=recorded.motion(), forces=recorded.forces,
+                        joint_values=getattr(recorded, attr), joint_label=f"simulated {label}")
+
+
+def _shown(config_path: str | Path | None, motion: str | None, joints: str, robot: str | None,
+           simulation: str | Path | None, run: str | None) -> tuple[ViewedMotion, ViewParams]:
+    """What ``hexaleg view`` shows (:func:`view_motion` or :func:`replay_motion`) and how."""
+    if simulation is None:
+        if run is not None:
+            raise InvalidParameterError("run", run, "a run of a simulation (--simulation DIR)")
+        config, params, loaded = load_config(config_path, robot)
+        return view_motion(config, motion or "gait", joints, loaded), params
+    if motion is not None:
+        raise InvalidParameterError("motion", motion, f"none with a simulation ({simulation}): "
+                                    "the replay shows the simulated gait")
+    path = motion_path(simulation, run or "springs")
+    recorded = read_motion(path)
+    _, params, loaded = load_config(config_path, robot or _registered(recorded, path))
+    return _replayed(recorded, path, joints, loaded), params
+
+
+def export_view(config_path: str | Path | None, html: str | Path, *, motion: str | None = None,
+                joints: str = "power", robot: str | None = None,
+                simulation: str | Path | None = None, run: str | None = None) -> Path:
+    """``hexaleg view --html``: :func:`view_motion` (or :func:`replay_motion` of
+    ``simulation``) written as an offline page.
+
+    Args:
+        config_path: The config file (:func:`load_config`; only its ``[view]`` table applies to
+            a replay), or None.
         html: The page to write.
-        motion: As :func:`view_motion`.
+        motion: As :func:`view_motion` (None: the gait); not with ``simulation``.
         joints: As :func:`view_motion`.
-        robot: As :func:`load_config`.
+        robot: As :func:`load_config`; for a replay None is the motion file's robot.
+        simulation: An out directory of ``hexaleg simulate`` to replay, or None.
+        run: As :func:`replay_motion` (None: ``"springs"``); only with ``simulation``.
 
     Returns:
         The written path.
+
+    Raises:
+        InvalidParameterError: ``motion`` with ``simulation``, ``run`` without it; as
+            :func:`view_motion`, :func:`replay_motion`.
     """
-    config, params, loaded = load_config(config_path, robot)
-    shown = view_motion(config, motion, joints, loaded)
+    shown, params = _shown(config_path, motion, joints, robot, simulation, run)
     return export_html(shown.robot, shown.motion, html, **shown.options(params))
 
 
-def serve_view(config_path: str | Path | None, *, motion: str = "gait",
-               joints: str = "power", robot: str | None = None) -> str:
-    """``hexaleg view``: :func:`view_motion` served on localhost (see :func:`serve`).
-
-    Args:
-        config_path: The config file (:func:`load_config`), or None.
-        motion: As :func:`view_motion`.
-        joints: As :func:`view_motion`.
-        robot: As :func:`load_config`.
+def serve_view(config_path: str | Path | None, *, motion: str | None = None,
+               joints: str = "power", robot: str | None = None,
+               simulation: str | Path | None = None, run: str | None = None) -> str:
+    """``hexaleg view``: :func:`view_motion` (or :func:`replay_motion`) served on localhost
+    (see :func:`serve`); the arguments are those of :func:`export_view`.
 
     Returns:
         The viewer's URL.
     """
-    config, params, loaded = load_config(config_path, robot)
-    shown = view_motion(config, motion, joints, loaded)
+    shown, params = _shown(config_path, motion, joints, robot, simulation, run)
     return serve(shown.robot, shown.motion, **shown.options(params))
+
+
+def wait_until_interrupted() -> None:
+    """Block until Ctrl-C or a kill (SIGTERM), both of which then leave through the normal exit
+    that stops the Meshcat server of :func:`serve` (it lives as long as this process). Call from
+    the main thread."""
+    signal.signal(signal.SIGTERM, signal.default_int_handler)
+    try:
+        while True:
+            time.sleep(3600)
+    except KeyboardInterrupt:
+        return
 
 
 def animate(robot: Robot, motion: Motion, *, forces: Any = None, joint_values: Any = None,
