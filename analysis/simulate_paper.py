@@ -14,6 +14,8 @@ the analytic model (``hexaleg.studies.paper``), the forward simulation without f
 Table 2's friction; the simulated optimum against the analytic one and the paper's readings
 (740 for the mean torque, 800 for ε). Then the invariant of the simulation on this joint: the
 analysis' torque applied open loop follows the plan within the derived bound, at second order.
+The study itself is ``hexaleg.studies.paper.forward`` (``hexaleg paper`` writes the same as the
+``simulation`` section of paper.json); this script prints it.
 Assumed (the paper does not give them): the contact radius 10 mm and each spring arm's inertia,
 1 % of the lever's.
 """
@@ -22,42 +24,18 @@ from __future__ import annotations
 
 import numpy as np
 
-from hexaleg.dynamics.energy import saving
+from hexaleg.studies.paper.forward import CURVES, forward_study
 from hexaleg.studies.paper.joint import PaperJoint
-from hexaleg.studies.paper.metrics import energy_ratio, metric
-from hexaleg.studies.paper.readings import PAPER_K_E, PAPER_K_M, paper_number_to_si
-from hexaleg.studies.simulate.paper_joint import AdamsJoint, adams, open_loop, open_loop_bound
+from hexaleg.studies.paper.readings import PAPER_K_E, PAPER_K_M
+from hexaleg.studies.simulate.paper_joint import open_loop, open_loop_bound
 
 JOINT = PaperJoint()
-K_GRID = np.arange(100.0, 1700.0, 100.0)  # paper units (the paper swept 100…1200)
-PAPER_MEAN_MIN, PAPER_EPS_MIN = 740.0, 800.0  # Figs 10 and 13, read off
-TOTALS = {"mean_abs": "mean_abs_torque", "peak": "peak_torque", "rms": "rms_torque"}
-"""hexaleg.studies.paper.metrics names → keys of hexaleg.dynamics.energy.metrics."""
-
-
-def analytic(name: str, k: float) -> float:
-    si = float(paper_number_to_si(k))
-    if name == "epsilon":
-        return float(energy_ratio(JOINT, si, gravity=False))
-    return float(metric(JOINT, name, si, gravity=False))
-
-
-def simulated(runs: dict, name: str, k: float) -> float:
-    r = runs[k]
-    if name == "epsilon":
-        return r.epsilon(JOINT)
-    return float(r.metrics()[TOTALS[name]])
-
-
-def vertex(ks: np.ndarray, values: np.ndarray) -> float:
-    """The minimum of the parabola through the grid minimum and its neighbours."""
-    i = int(np.clip(np.argmin(values), 1, len(ks) - 2))
-    a, b, _ = np.polyfit(ks[i - 1:i + 2], values[i - 1:i + 2], 2)
-    return float(-b / (2 * a))
+UNITS = {"mean_abs": "N·m", "epsilon": "1/s²"}
 
 
 def main() -> None:
-    frictionless, table2 = AdamsJoint(friction=False), AdamsJoint()
+    study = forward_study(JOINT)
+    table2 = study.model
     K, c, d = table2.contact_si()
     print("Adams single joint in MuJoCo, the paper's units (kg, mm, s, rad): no gravity, dt "
           f"{table2.timestep:g} s")
@@ -67,42 +45,24 @@ def main() -> None:
           f"k2 = {table2.stiffness_si(0.01):.3g} N·m/rad")
     print(f"Table 2 friction: μ_s 0.5, μ_d 0.8, pin radius 10 mm, v_s 0.1 mm/s; assumed contact "
           f"radius {table2.contact_radius * 1e3:g} mm, arm inertia {table2.arm_inertia:.3g} kg·m²")
-    ks = sorted({0.0, 400.0, PAPER_K_M, PAPER_MEAN_MIN, *K_GRID})
-    runs = {k: adams(frictionless, k, periods=1) for k in ks}
-    fric = {k: adams(table2, k, periods=1) for k in ks}
-    check = adams(table2, PAPER_K_M, periods=2)
-    print(f"one period vs two (k_M, friction): mean |M| differs by "
-          f"{abs(check.mean_abs() / fric[PAPER_K_M].mean_abs() - 1):.1e} (relative)")
+    print(f"one period vs two (k_M, friction): mean |M| differs by {study.period_check:.1e} "
+          "(relative)")
     print("\nrequired torque (Figs 5, 6, 8), N·m: analytic | simulated | with friction")
-    for k, label in ((0.0, "rigid"), (400.0, "Table 4, 400"), (PAPER_K_M, "k_M 713.5"),
-                     (PAPER_MEAN_MIN, "740")):
-        cells = []
-        for name in ("peak", "mean_abs", "rms"):
-            a = analytic(name, k)
-            cells.append(f"{name} {a:.4e} | {simulated(runs, name, k):.4e} | "
-                         f"{simulated(fric, name, k):.4e}")
-        print(f"  {label:<13} " + "; ".join(cells))
-    for name, figs, paper_min in (("mean_abs", "Figs 9–10", PAPER_MEAN_MIN),
-                                  ("epsilon", "Figs 12–13", PAPER_EPS_MIN)):
-        unit = "N·m" if name == "mean_abs" else "1/s²"
-        print(f"\n{name} vs k ({figs}), {unit}: k (paper units) analytic | simulated | with "
-              "friction")
-        rows = {k: (analytic(name, k), simulated(runs, name, k), simulated(fric, name, k))
-                for k in K_GRID}
-        for k, (a, s, f) in rows.items():
+    for r in study.torques:
+        print(f"  {r.label:<13} " + "; ".join(
+            f"{name} {a:.4e} | {s:.4e} | {f:.4e}" for name, (a, s, f) in r.metrics.items()))
+    for name, (figs, _, _) in CURVES.items():
+        print(f"\n{name} vs k ({figs}), {UNITS[name]}: k (paper units) analytic | simulated | "
+              "with friction")
+        for k, (a, s, f) in zip(study.grid, study.curves[name].T, strict=True):
             print(f"  {k:6.0f}  {a:.4e} | {s:.4e} | {f:.4e}")
-        columns = np.array(list(rows.values()))
-        closed = (JOINT.closed_form_mean_abs() if name == "mean_abs"
-                  else JOINT.closed_form_work()) * 1e6
-        sim_min, fric_min = vertex(K_GRID, columns[:, 1]), vertex(K_GRID, columns[:, 2])
-        print(f"  optimum k: analytic closed form {closed:.1f}; simulated {sim_min:.0f}; with "
-              f"friction {fric_min:.0f}; the paper's Adams reading {paper_min:.0f} (k_M "
-              f"{PAPER_K_M}, k_E {PAPER_K_E})")
-        base = (analytic(name, 0.0), simulated(runs, name, 0.0), simulated(fric, name, 0.0))
-        best = columns.min(axis=0)
+        o = study.optima[name]
+        print(f"  optimum k: analytic closed form {o.closed_form:.1f}; simulated "
+              f"{o.simulated:.0f}; with friction {o.friction:.0f}; the paper's Adams reading "
+              f"{o.paper:.0f} (k_M {PAPER_K_M}, k_E {PAPER_K_E})")
         print("  saving at the grid's best k: " + ", ".join(
-            f"{what} {100 * saving(b, z):.1f} %" for what, b, z in
-            zip(("analytic", "simulated", "with friction"), best, base, strict=True)))
+            f"{what} {100 * x:.1f} %" for what, x in
+            zip(("analytic", "simulated", "with friction"), o.saving, strict=True)))
     print("\nopen loop (the analysis' torque, no feedback, native dead-zone spring at k_M): "
           "max |θ − θ_plan| over a period")
     k_m = JOINT.k_M()

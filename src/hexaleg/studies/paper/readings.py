@@ -34,6 +34,9 @@ PAPER_RANGE_NMM_PER_DEG = (100.0, 1200.0)
 """Section 4.2 / Fig. 7: the stiffnesses simulated, N·mm/deg."""
 PAPER_TABLE4_NMM_PER_DEG = 400.0
 """Table 4 / Fig. 6: the main spring's stiffness, N·mm/deg."""
+EQ19_UNIT = "kg·mm²·s⁻²/rad"
+"""The unit of the paper's stiffness numbers ("eq. 19 units", 1e-6 N·m/rad): the one in which
+eq. 19 with Table 6 gives 713.5, though the paper labels it N·mm/deg."""
 
 
 def k_M_paper_number(joint: PaperJoint | None = None) -> float:
