@@ -68,10 +68,17 @@ def _run_motors(args: argparse.Namespace) -> int:
 
 def _add_paper(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("paper", help="reproduce the paper's single elastic joint: paper.json, "
-                                     "Fig. 5-13 analogues (PNG), summary.md")
+                                     "Fig. 5-13 analogues (PNG), summary.md, and its Adams "
+                                     "experiment forward in MuJoCo beside them")
     p.add_argument("--out", default="paper-report", help="output directory (default: %(default)s)")
     p.add_argument("--samples", type=int, default=8192,
                    help="samples per trajectory period (default: %(default)s)")
+    # hexaleg.studies.paper.forward.K_GRID, which is not imported to build the parser
+    p.add_argument("--grid", type=float, nargs="+", metavar="K",
+                   help="stiffnesses of the forward run, the paper's eq. 19 units (1e-6 N·m/rad), "
+                        "at least 3, increasing (default: 100 to 1600 in steps of 100)")
+    p.add_argument("--no-simulation", dest="simulation", action="store_false",
+                   help="leave out the forward run (the analytic reproduction only)")
     p.set_defaults(func=_run_paper)
 
 
@@ -79,7 +86,8 @@ def _run_paper(args: argparse.Namespace) -> int:
     from hexaleg.studies.paper.summary import one_line
     from hexaleg.studies.paper.write import write_paper
 
-    print(one_line(write_paper(args.out, n=args.samples)))
+    print(one_line(write_paper(args.out, n=args.samples, simulation=args.simulation,
+                               grid=args.grid)))
     print(f"wrote {args.out}/paper.json, summary.md and figures")
     return 0
 

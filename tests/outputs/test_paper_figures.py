@@ -62,6 +62,44 @@ def test_cost_curves_mark_only_stiffnesses_in_range(kind):
     assert ax.get_xlabel().startswith("k (eq. 19 units")
 
 
+def test_forward_torques_one_panel_per_stiffness_three_lines_each():
+    torques = [np.array([BASELINE, 2 * BASELINE, 3 * BASELINE]) * (i + 1) for i in range(3)]
+    fig = paper_figures.forward_torques(T, [(f"panel {i}", tau) for i, tau in
+                                            enumerate(torques)], "title")
+    axes = fig.axes
+    assert [ax.get_title() for ax in axes[:3]] == ["panel 0", "panel 1", "panel 2"]
+    assert not axes[3].get_visible()  # four panels, three used
+    for ax, tau in zip(axes, torques, strict=False):
+        lines = ax.get_lines()
+        assert [line.get_label() for line in lines] == [label for _, label in
+                                                        paper_figures.FORWARD_STYLES]
+        for line, y in zip(lines, tau, strict=True):
+            np.testing.assert_array_equal(line.get_ydata(), 1e3 * y)
+    assert fig.get_suptitle() == "title" and axes[2].get_xlabel() == "t (s)"
+
+
+@pytest.mark.parametrize("kind", ["forward_mean_torque", "forward_epsilon"])
+def test_forward_curves_analytic_line_runs_as_points_marks_coloured_by_source(kind):
+    k = np.linspace(0.0, 1600.0, 17)
+    analytic = 1e-4 * (1 + (k - 1300) ** 2 / 1e6)
+    k_runs = np.array([0.0, 800.0, 1600.0])
+    runs = np.array([[1.5e-4, 1.0e-4, 0.6e-4], [1.6e-4, 1.2e-4, 1.3e-4]])
+    marks = {"closed form": 1320.1, "forward": 1350.0, "friction": 829.0, "paper": 740.0,
+             "beyond": 2000.0}
+    fig = getattr(paper_figures, kind)(k, analytic, k_runs, runs, marks, "title")
+    (ax,) = fig.axes
+    line, simulated, friction, *vertical = ax.get_lines()
+    scale = 1e3 if kind == "forward_mean_torque" else 1.0
+    np.testing.assert_array_equal(line.get_ydata(), scale * analytic)
+    np.testing.assert_array_equal(simulated.get_ydata(), scale * runs[0])
+    np.testing.assert_array_equal(friction.get_xdata(), k_runs)
+    assert simulated.get_marker() == "o" and line.get_linestyle() == "--"
+    assert [m.get_label() for m in vertical] == ["closed form = 1320", "forward = 1350",
+                                                 "friction = 829", "paper = 740"]
+    assert [m.get_color() for m in vertical] == ["k", "C0", "C3", "C4"]
+    assert ax.get_title() == "title" and ax.get_xlabel().startswith("k (eq. 19 units")
+
+
 def test_save_png_at_110_dpi_and_no_pyplot_figures(tmp_path):
     before = plt.get_fignums()
     fig = paper_figures.baseline_torque(T, BASELINE, BASELINE, BASELINE)

@@ -139,6 +139,83 @@ def _versus_stiffness(k: np.ndarray, y: np.ndarray, ylabel: str, marks: Mapping[
     return fig
 
 
+FORWARD_STYLES = (("k--", "analytic (eq. 13/14)"), ("C0-", "forward (MuJoCo)"),
+                  ("C3-", "forward, Table 2 friction"))
+"""(matplotlib format, label) of the analytic model and the two forward runs, in that order."""
+_FORWARD_MARK_COLOURS = ("k", "C0", "C3", "C4")  # the analytic, forward, friction optima, paper
+
+
+def forward_torques(t: np.ndarray, panels: Sequence[tuple[str, np.ndarray]], title: str
+                    ) -> Figure:
+    """Figs 5–8 forward: the required torque over a period, analytic beside the forward runs.
+
+    Args:
+        t: Times, s, shape (T,).
+        panels: (title, torques N·m of shape (3, T): analytic, forward, forward with friction),
+            one panel each, up to four.
+        title: Figure title.
+    """
+    fig = _figure(10, 7)
+    axes = fig.subplots(2, 2, sharex=True).ravel()
+    for ax, (name, torques) in zip(axes, panels, strict=False):
+        for tau, (fmt, label) in zip(torques, FORWARD_STYLES, strict=True):
+            ax.plot(t, _MILLI * tau, fmt, lw=1, label=label)
+        ax.set(ylabel="M (mN·m)", title=name)
+    for ax in axes[len(panels):]:
+        ax.set_visible(False)
+    for ax in axes[2:]:
+        ax.set_xlabel("t (s)")
+    axes[0].legend(fontsize=7)
+    fig.suptitle(title)
+    fig.tight_layout()
+    return fig
+
+
+def forward_mean_torque(k: np.ndarray, analytic: np.ndarray, k_runs: np.ndarray,
+                        runs: np.ndarray, marks: Mapping[str, float], title: str) -> Figure:
+    """Figs 9–10 forward: the mean |M| over a period against stiffness, the analytic curve and
+    the forward runs' points, the optima marked (no gravity).
+
+    Args:
+        k: Stiffnesses of the analytic curve, eq. 19 units, increasing, shape (K,).
+        analytic: Its mean |M|, N·m, shape (K,).
+        k_runs: Stiffnesses of the forward runs, eq. 19 units, shape (R,).
+        runs: Their mean |M| without and with friction, N·m, shape (2, R).
+        marks: Label → stiffness (eq. 19 units), a vertical line where within ``k``, coloured
+            as the analytic, forward, forward-with-friction optima and the paper's reading, in
+            that order.
+        title: The figure's title.
+    """
+    return _forward_versus(k, _MILLI * analytic, k_runs, _MILLI * np.asarray(runs),
+                           "mean |M| over a period (mN·m)", marks, title)
+
+
+def forward_epsilon(k: np.ndarray, analytic: np.ndarray, k_runs: np.ndarray, runs: np.ndarray,
+                    marks: Mapping[str, float], title: str) -> Figure:
+    """Figs 12–13 forward: the energy ratio ε of eq. 24 against stiffness, as
+    :func:`forward_mean_torque` (ε in 1/s²)."""
+    return _forward_versus(k, analytic, k_runs, runs, "ε = positive work / (J · 4A)  (1/s²)",
+                           marks, title)
+
+
+def _forward_versus(k: np.ndarray, analytic: np.ndarray, k_runs: np.ndarray, runs: np.ndarray,
+                    ylabel: str, marks: Mapping[str, float], title: str) -> Figure:
+    """The analytic curve, the forward runs' points (without, with friction), marks as lines."""
+    fig = _figure(7, 4)
+    ax = fig.subplots()
+    ax.plot(k, analytic, FORWARD_STYLES[0][0], label=FORWARD_STYLES[0][1])
+    for y, (fmt, label) in zip(runs, FORWARD_STYLES[1:], strict=True):
+        ax.plot(k_runs, y, fmt[:2] + "o-", ms=3, lw=1, label=label)
+    for (label, x), color in zip(marks.items(), _FORWARD_MARK_COLOURS, strict=False):
+        if x <= k[-1]:
+            ax.axvline(x, ls=":", color=color, label=f"{label} = {x:.0f}")
+    ax.set(xlabel="k (eq. 19 units, 1e-6 N·m/rad), paper convention κ = kα", ylabel=ylabel,
+           title=title)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    return fig
+
+
 def save_png(fig: Figure, path: str | Path) -> None:
     """Write ``fig`` as a PNG at :data:`DPI`.
 

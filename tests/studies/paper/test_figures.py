@@ -41,3 +41,33 @@ def test_curves_are_the_joints_torques_and_costs(figs):
     assert k[0] == 0.0 and k[-1] == 3000.0 and k.size == 301
     np.testing.assert_array_equal(mean.get_ydata(),
                                   1e3 * metric(J0, "mean_abs", paper_number_to_si(k), False, 64))
+
+
+def test_forward_figures_draw_the_studys_runs_beside_the_analytic(forward):
+    from hexaleg.studies.paper.figures import PANEL_TITLES, forward_figures
+    from hexaleg.studies.paper.metrics import energy_ratio
+
+    figs = forward_figures(forward, 64)
+    assert list(figs) == ["sim_fig05_08_required_torque.png",
+                          "sim_fig09_10_mean_torque_vs_stiffness.png",
+                          "sim_fig12_13_epsilon_vs_stiffness.png"]
+    panels = figs["sim_fig05_08_required_torque.png"].axes
+    for ax, r in zip(panels, forward.torques, strict=True):
+        assert ax.get_title() == PANEL_TITLES[r.key]
+        for line, tau in zip(ax.get_lines(), r.torque, strict=True):
+            np.testing.assert_array_equal(line.get_ydata(), 1e3 * tau)
+    for name, scale in (("mean_abs", 1e3), ("epsilon", 1.0)):
+        file = ("sim_fig09_10_mean_torque_vs_stiffness.png" if name == "mean_abs"
+                else "sim_fig12_13_epsilon_vs_stiffness.png")
+        analytic, simulated, friction, *marks = figs[file].axes[0].get_lines()
+        k = analytic.get_xdata()
+        expected = (metric(J0, "mean_abs", paper_number_to_si(k), False, 64) if name == "mean_abs"
+                    else energy_ratio(J0, paper_number_to_si(k), False, 64))
+        np.testing.assert_allclose(analytic.get_ydata(), scale * expected, rtol=1e-15)
+        np.testing.assert_array_equal(simulated.get_xdata(), [0.0, *forward.grid])
+        np.testing.assert_array_equal(
+            friction.get_ydata(), scale * np.array([forward.baseline[name][2],
+                                                    *forward.curves[name][2]]))
+        o = forward.optima[name]
+        assert [m.get_xdata()[0] for m in marks] == [o.closed_form, o.simulated, o.friction,
+                                                     o.paper]

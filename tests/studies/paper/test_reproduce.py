@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 
 import pytest
 
@@ -37,3 +38,41 @@ def test_optima_closed_forms_verdicts_and_crosscheck(paper_result):
     assert "not reproduced" in r["saving_52_81"]["verdict"]
     assert r["pinocchio_check"]["max_relative_error"] <= 1e-9
     json.dumps(r)  # JSON-serialisable
+
+
+def test_simulation_section_keys_units_and_the_librarys_optimum(forward):
+    """``paper.json["simulation"]``: every number a quantity in SI (stiffnesses also in eq. 19
+    units), the optimum the library's, the unit question stated."""
+    from hexaleg.studies.paper.forward import COLUMNS, NAMED
+    from hexaleg.studies.paper.readings import EQ19_UNIT, paper_number_to_si
+    from hexaleg.studies.paper.reproduce import simulation_section
+
+    sim = simulation_section(forward)
+    json.dumps(sim)
+    assert set(sim) == {"columns", "unit_question", "model", "grid", "curves",
+                        "required_torque", "optima", "period_check"}
+    assert tuple(sim["columns"]) == COLUMNS
+    assert "N·mm/deg" in sim["unit_question"] and EQ19_UNIT in sim["unit_question"]
+    assert sim["grid"]["k_paper"] == {"value": list(forward.grid), "unit": EQ19_UNIT}
+    assert sim["grid"]["k"]["unit"] == "N·m/rad"
+    assert sim["model"]["contact_stiffness"]["unit"] == "N/m^2.2"
+    assert sim["model"]["timestep"] == {"value": 2e-4, "unit": "s"}
+    units = {"mean_abs": "N·m", "epsilon": "1/s²"}
+    for name, curve in sim["curves"].items():
+        for c in COLUMNS:
+            assert curve[c]["unit"] == curve["at_k_0"][c]["unit"] == units[name]
+            assert curve[c]["value"] == list(forward.curves[name][COLUMNS.index(c)])
+    assert list(sim["required_torque"]) == [key for key, _, _ in NAMED]
+    assert sim["required_torque"]["rigid"]["peak"]["simulated"]["unit"] == "N·m"
+    for name, o in forward.optima.items():
+        section = sim["optima"][name]
+        for column, k in (("analytic_closed_form", o.closed_form), ("simulated", o.simulated),
+                          ("friction", o.friction), ("paper_adams_reading", o.paper),
+                          ("paper_printed", o.printed)):
+            assert section[column]["k_paper"] == {"value": k, "unit": EQ19_UNIT}
+            assert section[column]["k"] == {"value": paper_number_to_si(k), "unit": "N·m/rad"}
+        assert section["simulated"]["bracketed"] == o.bracketed[0]
+        assert section["saving_at_grid_best"]["friction"] == {"value": 100 * o.saving[2],
+                                                              "unit": "%"}
+    labelled = sim["optima"]["mean_abs"]["paper_adams_reading"]["read_as_N_mm_per_deg"]
+    assert labelled == {"value": pytest.approx(740 * 1e-3 * 180 / math.pi), "unit": "N·m/rad"}

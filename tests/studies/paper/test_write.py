@@ -4,19 +4,30 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
 
 from hexaleg.cli import main
-from hexaleg.errors import OutputError
+from hexaleg.errors import InvalidParameterError, OutputError
+from hexaleg.studies.paper.figures import forward_figures
+from hexaleg.studies.paper.forward import K_GRID
 from hexaleg.studies.paper.joint import PaperJoint
+from hexaleg.studies.paper.reproduce import simulation_section
 from hexaleg.studies.paper.write import write_paper
+
+from .conftest import FORWARD_GRID, FORWARD_SAMPLES
 
 J0 = PaperJoint()
 
 
-def test_report_files_and_cli(tmp_path, capsys):
-    assert main(["paper", "--out", str(tmp_path), "--samples", "512"]) == 0
-    assert "713.544" in capsys.readouterr().out
+def test_report_files_and_cli(tmp_path, capsys, forward):
+    grid = [f"{k:g}" for k in FORWARD_GRID]
+    assert main(["paper", "--out", str(tmp_path), "--samples", str(FORWARD_SAMPLES),
+                 "--grid", *grid]) == 0
+    out = capsys.readouterr().out
+    assert "713.544" in out
+    assert f"forward (MuJoCo) mean-torque optimum: {forward.optima['mean_abs'].simulated:.0f}" \
+        in out
     saved = json.loads((tmp_path / "paper.json").read_text())
     assert saved["k_M_paper_units"] == pytest.approx(713.544, abs=1e-3)
     assert saved["k_M_SI_Nm_per_rad"] == pytest.approx(J0.k_M())
@@ -27,7 +38,39 @@ def test_report_files_and_cli(tmp_path, capsys):
     assert "not reproduced" in saved["k_E"]["verdict"]
     pngs = sorted(p.name for p in tmp_path.glob("fig*.png"))
     assert [p[:5] for p in pngs] == [f"fig{i:02d}" for i in range(5, 14)]
-    assert "713.5" in (tmp_path / "summary.md").read_text()
+    assert sorted(p.name for p in tmp_path.glob("sim_*.png")) == sorted(forward_figures(forward,
+                                                                                        64))
+    summary = (tmp_path / "summary.md").read_text()
+    assert "713.5" in summary and "## The Adams experiment forward (MuJoCo)" in summary
+    assert saved["simulation"] == json.loads(json.dumps(simulation_section(forward)))
+
+
+def test_no_simulation_leaves_the_forward_run_out(tmp_path):
+    r = write_paper(tmp_path, n=64, simulation=False)
+    assert "simulation" not in r and "simulation" not in json.loads(
+        (tmp_path / "paper.json").read_text())
+    assert not list(tmp_path.glob("sim_*.png")) and len(list(tmp_path.glob("fig*.png"))) == 9
+
+
+def test_the_cli_grid_default_is_the_librarys(capsys):
+    """The parser states K_GRID without importing the study (it takes seconds to import)."""
+    with pytest.raises(SystemExit):
+        main(["paper", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    first, step = K_GRID[0], K_GRID[1] - K_GRID[0]
+    assert set(np.diff(K_GRID)) == {step}
+    assert f"default: {first:g} to {K_GRID[-1]:g} in steps of {step:g}" in text
+
+
+def test_a_bad_grid_is_refused_before_anything_is_written(tmp_path, capsys):
+    out = tmp_path / "paper-out"
+    assert main(["paper", "--grid", "0", "100", "200", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "stiffness grid value = 0.0" in err and "> 0" in err
+    assert not out.exists()
+    with pytest.raises(InvalidParameterError, match="increasing"):
+        write_paper(out, grid=[300.0, 200.0, 100.0])
+    assert not out.exists()
 
 
 def test_unwritable_directory_is_an_output_error(tmp_path):

@@ -1,16 +1,19 @@
 """The paper's single elastic joint: model and closed forms, costs and optimal stiffness, the
-readings of its printed numbers, a Pinocchio cross-check, and the files of ``hexaleg paper``.
+readings of its printed numbers, a Pinocchio cross-check, its Adams experiment forward in
+MuJoCo, and the files of ``hexaleg paper``.
 
 ``from hexaleg.studies import paper`` gives the public names below (``paper.PaperJoint``,
 ``paper.optimal_stiffness``, …). Modules: :mod:`~hexaleg.studies.paper.joint`,
 :mod:`~hexaleg.studies.paper.metrics`, :mod:`~hexaleg.studies.paper.readings`,
-:mod:`~hexaleg.studies.paper.crosscheck`, :mod:`~hexaleg.studies.paper.reproduce`,
+:mod:`~hexaleg.studies.paper.crosscheck`, :mod:`~hexaleg.studies.paper.forward`,
+:mod:`~hexaleg.studies.paper.reproduce`,
 :mod:`~hexaleg.studies.paper.figures`, :mod:`~hexaleg.studies.paper.summary`,
 :mod:`~hexaleg.studies.paper.write`.
 """
 
 from hexaleg.studies.paper.crosscheck import pinocchio_femur_torque
-from hexaleg.studies.paper.figures import make_figures
+from hexaleg.studies.paper.figures import forward_figures, make_figures
+from hexaleg.studies.paper.forward import ForwardOptimum, ForwardStudy, forward_study
 from hexaleg.studies.paper.joint import POSTURES, PaperJoint
 from hexaleg.studies.paper.metrics import (
     JOINT_METRICS,
@@ -32,7 +35,7 @@ from hexaleg.studies.paper.readings import (
     si_to_paper_number,
     stiffness_units,
 )
-from hexaleg.studies.paper.reproduce import reproduce
+from hexaleg.studies.paper.reproduce import reproduce, simulation_section
 from hexaleg.studies.paper.summary import markdown_summary
 from hexaleg.studies.paper.write import write_paper
 
@@ -44,9 +47,13 @@ __all__ = [
     "PAPER_SAVING",
     "PAPER_TABLE4_NMM_PER_DEG",
     "POSTURES",
+    "ForwardOptimum",
+    "ForwardStudy",
     "PaperJoint",
     "StiffnessOptimum",
     "energy_ratio",
+    "forward_figures",
+    "forward_study",
     "k_E_readings",
     "k_M_paper_number",
     "make_figures",
@@ -58,6 +65,7 @@ __all__ = [
     "reproduce",
     "saving_readings",
     "si_to_paper_number",
+    "simulation_section",
     "stiffness_units",
     "write_paper",
 ]

@@ -1,5 +1,6 @@
 """The data of the paper's Figs 5–13, computed on the joint and drawn by
-:mod:`hexaleg.outputs.paper_figures`.
+:mod:`hexaleg.outputs.paper_figures`; :func:`forward_figures` sets the forward runs of the Adams
+experiment (:mod:`hexaleg.studies.paper.forward`) beside the analytic curves.
 
 No gravity unless labelled; stiffnesses are given in the paper's eq. 19 units (kg·mm²·s⁻²/rad =
 1e-6 N·m/rad), the unit its 713.547 is really in, so the curves compare with its figures.
@@ -13,6 +14,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from hexaleg.outputs import paper_figures as draw
+from hexaleg.studies.paper.forward import ForwardStudy
 from hexaleg.studies.paper.joint import PaperJoint
 from hexaleg.studies.paper.metrics import energy_ratio, metric
 from hexaleg.studies.paper.readings import (
@@ -95,4 +97,46 @@ def _cost_figures(j: PaperJoint, n: int) -> dict[str, Figure]:
         "fig12_epsilon_vs_stiffness.png": epsilon(
             "Fig. 12 analogue: energy ratio ε (eq. 24)", 3000.0),
         "fig13_epsilon_around_kE.png": epsilon("Fig. 13 analogue: ε around k_E", 1800.0),
+    }
+
+
+PANEL_TITLES = {"rigid": "rigid joint (Fig. 5)", "table4_400": "k = 400, Table 4 (Fig. 6)",
+                "k_M": "k = k_M = 713.547, eq. 19 (Fig. 8)",
+                "paper_740": "k = 740, the paper's mean-torque optimum"}
+"""Panel titles of the required torques, by key of :data:`hexaleg.studies.paper.forward.NAMED`."""
+
+
+def forward_figures(study: ForwardStudy, n: int) -> dict[str, Figure]:
+    """The forward runs beside the analytic model, file name (PNG) → figure: the required torque
+    at rigid, 400, k_M and 740 (Figs 5–8), the mean |M| (Figs 9–10) and ε (Figs 12–13) against k.
+
+    Args:
+        study: :func:`~hexaleg.studies.paper.forward.forward_study`'s result.
+        n: Samples per period of the analytic curves against k.
+    """
+    j = study.model.joint
+    first = study.torques[0]
+    torques = draw.forward_torques(
+        first.t, [(PANEL_TITLES[r.key], r.torque) for r in study.torques],
+        "Figs 5–8 forward: required torque, no gravity (k in eq. 19 units)")
+    kp = np.linspace(0.0, float(study.grid[-1]), 301)
+    ks = np.asarray(paper_number_to_si(kp))
+    k_runs = np.concatenate([[0.0], study.grid])
+
+    def runs(name: str) -> np.ndarray:
+        return np.column_stack([study.baseline[name][1:], study.curves[name][1:]])
+
+    def marks(name: str) -> dict[str, float]:
+        o = study.optima[name]
+        return {"closed form": o.closed_form, "forward": o.simulated,
+                "forward, friction": o.friction, "paper's Adams reading": o.paper}
+
+    return {
+        "sim_fig05_08_required_torque.png": torques,
+        "sim_fig09_10_mean_torque_vs_stiffness.png": draw.forward_mean_torque(
+            kp, metric(j, "mean_abs", ks, False, n), k_runs, runs("mean_abs"),
+            marks("mean_abs"), "Figs 9–10 forward: average |torque|"),
+        "sim_fig12_13_epsilon_vs_stiffness.png": draw.forward_epsilon(
+            kp, energy_ratio(j, ks, False, n), k_runs, runs("epsilon"), marks("epsilon"),
+            "Figs 12–13 forward: energy ratio ε (eq. 24)"),
     }

@@ -3,13 +3,16 @@
 :func:`reproduce` gathers eq. 19's k_M (the paper's arithmetic and SI), the torque scales of the
 joint, the numerically optimal stiffness per metric (no gravity, hanging, upright), the closed
 forms, the readings of k_E and of the 52.81 % saving with their verdicts, and the Pinocchio
-cross-check of eq. 13.
+cross-check of eq. 13. :func:`simulation_section` is its ``simulation`` section: the paper's
+Adams experiment forward (:func:`hexaleg.studies.paper.forward.forward_study`), every number a
+quantity ``{"value", "unit"}``.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
+from typing import Any
 
 import numpy as np
 
@@ -18,9 +21,20 @@ from hexaleg.motion.limits import SAMPLE_BYTES
 from hexaleg.robot.motor import motor as default_motor
 from hexaleg.studies.paper import readings
 from hexaleg.studies.paper.crosscheck import pinocchio_femur_torque
+from hexaleg.studies.paper.forward import COLUMNS, ForwardOptimum, ForwardStudy
 from hexaleg.studies.paper.joint import PaperJoint
 from hexaleg.studies.paper.metrics import JOINT_METRICS, StiffnessOptimum, optimal_stiffness
-from hexaleg.units import nm_per_rad_to_nmm_per_deg, nmm_per_deg_to_nm_per_rad
+from hexaleg.studies.report.quantities import quantity
+from hexaleg.units import mm_to_m, nm_per_rad_to_nmm_per_deg, nmm_per_deg_to_nm_per_rad
+
+UNIT_QUESTION = (
+    "The paper labels its stiffnesses N·mm/deg, but eq. 19 gives its printed 713.547 from Table 6 "
+    f"only in {readings.EQ19_UNIT} = 1e-6 N·m/rad ('eq. 19 units', docs/paper.md), and only in "
+    "that unit do its 100–1200 leave the spring comparable with the joint's inertial torque. The "
+    "forward run reads Tables 2–5 and the swept k in that unit; every stiffness here is given in "
+    "it (k_paper) and in N·m/rad (k); read_as_N_mm_per_deg is the paper's reading taken as "
+    "labelled.")
+"""The unit question of the paper's stiffness numbers, stated in ``paper.json``."""
 
 
 def paper_samples(n: object) -> int:
@@ -165,3 +179,77 @@ def _pinocchio_check(j: PaperJoint) -> dict[str, object]:
     return {"max_relative_error": pin_err, "samples": int(t.size),
             "leg": "LF", "gravity": "along the femur link's +x axis at θ = 0 "
             "(hanging lever, eq. 6); tibia and foot inertia removed"}
+
+
+def _stiffness(k_paper: Any) -> dict[str, Any]:
+    """A stiffness (number or array) in eq. 19 units as ``k`` (N·m/rad) and ``k_paper``."""
+    return {"k": quantity(readings.paper_number_to_si(k_paper), "N·m/rad"),
+            "k_paper": quantity(k_paper, readings.EQ19_UNIT)}
+
+
+def _columns(values: Any, unit: str) -> dict[str, Any]:
+    """One quantity per :data:`~hexaleg.studies.paper.forward.COLUMNS`."""
+    return {c: quantity(v, unit) for c, v in zip(COLUMNS, values, strict=True)}
+
+
+def _optimum(o: ForwardOptimum) -> dict[str, object]:
+    """One optimum of the forward study, stiffnesses as :func:`_stiffness`."""
+    simulated, friction = (
+        {**_stiffness(k), "bracketed": b} for k, b in zip((o.simulated, o.friction),
+                                                          o.bracketed, strict=True))
+    return {"figures": o.figures, "analytic_closed_form": _stiffness(o.closed_form),
+            "simulated": simulated, "friction": friction,
+            "paper_adams_reading": {**_stiffness(o.paper), "read_as_N_mm_per_deg": quantity(
+                nmm_per_deg_to_nm_per_rad(o.paper), "N·m/rad")},
+            "paper_printed": _stiffness(o.printed),
+            "saving_at_grid_best": _columns([100 * x for x in o.saving], "%")}
+
+
+def simulation_section(s: ForwardStudy) -> dict[str, object]:
+    """The ``simulation`` section of ``paper.json``: the Adams experiment forward.
+
+    Args:
+        s: :func:`~hexaleg.studies.paper.forward.forward_study`'s result.
+
+    Returns:
+        ``columns`` (what the three models are), ``unit_question``, ``model`` (Tables 2–5 in SI
+        and the assumptions), ``grid``, ``curves`` (mean |M| and ε over the grid and at k = 0),
+        ``required_torque`` (peak, mean |M|, RMS at rigid, 400, k_M, 740), ``optima``,
+        ``period_check``; SI, stiffnesses also in eq. 19 units.
+    """
+    m, tab = s.model, s.model.tables
+    K, c, depth = m.contact_si()
+    kappa = m.joint.transmission  # κ = kα (eq. 14)
+    units = {"mean_abs": "N·m", "epsilon": "1/s²"}
+    return {
+        "columns": {"analytic": "eq. 13/14 (hexaleg.studies.paper.metrics), no friction",
+                    "simulated": "MuJoCo forward run, springs as bodies in Table 3 contact, "
+                                 "no friction",
+                    "friction": "the same with Table 2's joint friction"},
+        "unit_question": UNIT_QUESTION,
+        "model": {
+            "gravity": False, "periods": 1, "timestep": quantity(m.timestep, "s"),
+            "analytic_samples_per_period": s.samples,
+            "contact_stiffness": quantity(K, f"N/m^{tab.contact_exponent:g}"),
+            "contact_exponent": quantity(tab.contact_exponent, "1"),
+            "contact_damping": quantity(c, "N·s/m"),
+            "contact_full_damping_depth": quantity(depth, "m"),
+            "main_damping": quantity(m.stiffness_si(tab.main_damping) * kappa, "N·m·s/rad"),
+            "secondary_stiffness": quantity(m.stiffness_si(tab.secondary_stiffness), "N·m/rad"),
+            "mu_static": quantity(tab.mu_static, "1"),
+            "mu_dynamic": quantity(tab.mu_dynamic, "1"),
+            "pin_radius": quantity(mm_to_m(tab.pin_radius), "m"),
+            "static_speed": quantity(mm_to_m(tab.static_speed), "m/s"),
+            "contact_radius_assumed": quantity(m.contact_radius, "m"),
+            "arm_inertia_assumed": quantity(m.arm_inertia, "kg·m²")},
+        "grid": _stiffness(s.grid),
+        "curves": {name: {"figures": s.optima[name].figures,
+                          **_columns(curve, units[name]),
+                          "at_k_0": _columns(s.baseline[name], units[name])}
+                   for name, curve in s.curves.items()},
+        "required_torque": {r.key: {"label": r.label, **_stiffness(r.k),
+                                    **{name: _columns(v, "N·m") for name, v in r.metrics.items()}}
+                            for r in s.torques},
+        "optima": {name: _optimum(o) for name, o in s.optima.items()},
+        "period_check": quantity(s.period_check, "1"),
+    }

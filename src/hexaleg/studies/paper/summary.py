@@ -1,4 +1,5 @@
-"""The Markdown summary of the paper study (``summary.md``): a line per claim of the paper."""
+"""The Markdown summary of the paper study (``summary.md``): a line per claim of the paper, and
+the forward rerun of its Adams experiment when ``paper.json`` has it."""
 
 from __future__ import annotations
 
@@ -13,7 +14,8 @@ def markdown_summary(r: dict[str, Any], files: list[str]) -> str:
 
     One table row per claim of the paper (eq. 19 and Section 4.2's k_M, Fig. 7's range, the mean
     torque near 740, k_E, the 52.81 % saving, eq. 13 against Pinocchio), then the optimal
-    stiffness per metric without gravity, hanging and upright.
+    stiffness per metric without gravity, hanging and upright, then (when ``r`` has its
+    ``simulation`` section) the Adams experiment forward (:func:`simulation_lines`).
 
     Args:
         r: The content of ``paper.json``.
@@ -67,13 +69,80 @@ def markdown_summary(r: dict[str, Any], files: list[str]) -> str:
         cells = [f"{o[c][m]['k_N_m_per_rad']:.4e} ({o[c][m]['saving_percent']:.1f}%)"
                  for c in ("no_gravity", "gravity_hanging", "gravity_upright")]
         lines.append(f"| {m} | " + " | ".join(cells) + " |")
+    if "simulation" in r:
+        lines += ["", *simulation_lines(r["simulation"])]
     lines += ["", "Figures: " + ", ".join(files), ""]
     return "\n".join(lines)
 
 
+def _cell(o: dict[str, Any], column: str) -> str:
+    """An optimum in eq. 19 units with the saving at the grid's best k; a grid end flagged."""
+    k = o[column]["k_paper"]["value"]
+    digits = 1 if column == "analytic_closed_form" else 0
+    end = "" if o[column].get("bracketed", True) else ", grid end: not bracketed"
+    return f"{k:.{digits}f} ({o['saving_at_grid_best'][column.split('_')[0]]['value']:.1f} %{end})"
+
+
+def _as_labelled(o: dict[str, Any]) -> str:
+    """The paper's Adams reading taken as the N·mm/deg it is labelled, in N·m/rad and against
+    the forward optimum."""
+    labelled = o["paper_adams_reading"]["read_as_N_mm_per_deg"]["value"]
+    ratio = labelled / o["simulated"]["k"]["value"]
+    return f"{labelled:.2f} N·m/rad = {ratio:.0f} × the forward optimum"
+
+
+def simulation_lines(sim: dict[str, Any]) -> list[str]:
+    """The Markdown of ``paper.json``'s ``simulation`` section: the optimum table (mean |M| and
+    ε against k: analytic, forward, forward with friction, the paper's readings, with the unit
+    question) and the required torques at the named stiffnesses."""
+    o = sim["optima"]
+    names = ("mean_abs", "epsilon")
+    rows = [("analytic (closed form)", "analytic_closed_form"),
+            ("forward simulation", "simulated"),
+            ("forward simulation with Table 2 friction", "friction")]
+    lines = [
+        "## The Adams experiment forward (MuJoCo)",
+        "",
+        "Optimum k in eq. 19 units (kg·mm²·s⁻²/rad = 1e-6 N·m/rad) and, in brackets, the saving "
+        "at the grid's best k against no spring; no gravity.",
+        "",
+        "| | mean \\|M\\| (Figs 9–10) | ε (Figs 12–13) |",
+        "|---|---|---|",
+        *(f"| {label} | " + " | ".join(_cell(o[n], column) for n in names) + " |"
+          for label, column in rows),
+        "| the paper's Adams reading | " + " | ".join(
+            f"{o[n]['paper_adams_reading']['k_paper']['value']:g}" for n in names) + " |",
+        "| eq. 19 k_M, printed k_E | " + " | ".join(
+            f"{o[n]['paper_printed']['k_paper']['value']:g}" for n in names) + " |",
+        "| the paper's reading taken as N·mm/deg | " + " | ".join(
+            _as_labelled(o[n]) for n in names) + " |",
+        "",
+        f"Unit question: {sim['unit_question']}",
+        "",
+        "Required torque, N·m (analytic | forward | forward with friction):",
+        "",
+        "| k | peak | mean \\|M\\| | RMS |",
+        "|---|---|---|---|",
+    ]
+    for r in sim["required_torque"].values():
+        cells = [" \\| ".join(f"{r[m][c]['value']:.3e}" for c in ("analytic", "simulated",
+                                                                   "friction"))
+                 for m in ("peak", "mean_abs", "rms")]
+        lines.append(f"| {r['label']} | " + " | ".join(cells) + " |")
+    return lines
+
+
 def one_line(r: dict[str, Any]) -> str:
     """The verdicts of :func:`~hexaleg.studies.paper.reproduce.reproduce` in one line: k_M as the
-    paper prints it and in SI, and whether its k_E and 52.81 % are reproduced."""
-    return (f"k_M = {r['k_M_paper_units']:.3f} (paper's eq. 19 units) = "
+    paper prints it and in SI, and whether its k_E and 52.81 % are reproduced; with the
+    ``simulation`` section, the forward mean-torque optimum against the paper's 740."""
+    line = (f"k_M = {r['k_M_paper_units']:.3f} (paper's eq. 19 units) = "
             f"{r['k_M_SI_Nm_per_rad']:.4e} N·m/rad; k_E: {r['k_E']['verdict']}; "
             f"52.81%: {r['saving_52_81']['verdict']}")
+    if "simulation" in r:
+        o = r["simulation"]["optima"]["mean_abs"]
+        line += (f"\nforward (MuJoCo) mean-torque optimum: {o['simulated']['k_paper']['value']:.0f}"
+                 f", with Table 2 friction {o['friction']['k_paper']['value']:.0f}, analytic "
+                 f"{o['analytic_closed_form']['k_paper']['value']:.1f}, the paper's Adams "
+                 f"reading {o['paper_adams_reading']['k_paper']['value']:g} (eq. 19 units)")
+    return line

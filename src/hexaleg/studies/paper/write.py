@@ -1,46 +1,59 @@
-"""The paper study's files (``hexaleg paper``): ``paper.json``, the Figs 5–13 analogues and
-``summary.md``."""
+"""The paper study's files (``hexaleg paper``): ``paper.json``, the Figs 5–13 analogues,
+the forward rerun of the Adams experiment beside them, and ``summary.md``."""
 
 from __future__ import annotations
 
 import json
+from collections.abc import Sequence
 from pathlib import Path
 
 from hexaleg.errors import OutputError
 from hexaleg.outputs.paper_figures import save_png
-from hexaleg.studies.paper.figures import make_figures
+from hexaleg.studies.paper.figures import forward_figures, make_figures
+from hexaleg.studies.paper.forward import K_GRID, forward_study, stiffness_grid
 from hexaleg.studies.paper.joint import PaperJoint
-from hexaleg.studies.paper.reproduce import paper_samples, reproduce
+from hexaleg.studies.paper.reproduce import paper_samples, reproduce, simulation_section
 from hexaleg.studies.paper.summary import markdown_summary
 
 
-def write_paper(out: str | Path, joint: PaperJoint | None = None, n: int = 8192) -> dict:
+def write_paper(out: str | Path, joint: PaperJoint | None = None, n: int = 8192,
+                simulation: bool = True, grid: Sequence[float] | None = None) -> dict:
     """Write ``paper.json``, the Fig. 5–13 analogues (PNG) and ``summary.md`` into ``out``.
 
     Args:
         out: Output directory (created if missing).
         joint: The joint (default :class:`PaperJoint`).
         n: Samples per period.
+        simulation: Rerun the paper's Adams experiment forward
+            (:func:`~hexaleg.studies.paper.forward.forward_study`): ``paper.json`` gets its
+            ``simulation`` section, the figures ``sim_fig*``, the summary its optimum table.
+        grid: Stiffnesses of the forward run, eq. 19 units (1e-6 N·m/rad); default
+            :data:`~hexaleg.studies.paper.forward.K_GRID`.
 
     Returns:
         The content of ``paper.json``.
 
     Raises:
-        InvalidParameterError: ``n`` out of range (before anything is written).
+        InvalidParameterError: ``n`` out of range or a bad ``grid`` (before anything is
+            written).
         OutputError: the directory or a file cannot be written.
     """
     n = paper_samples(n)
+    ks = stiffness_grid(K_GRID if grid is None else grid)
     j = joint or PaperJoint()
     out = Path(out)
     try:
         out.mkdir(parents=True, exist_ok=True)
         r = reproduce(j, n)
-        files = []
-        for name, fig in make_figures(j, min(n, 2048)).items():
+        figures = make_figures(j, min(n, 2048))
+        if simulation:
+            study = forward_study(j, ks, min(n, 2048))
+            r["simulation"] = simulation_section(study)
+            figures |= forward_figures(study, min(n, 2048))
+        for name, fig in figures.items():
             save_png(fig, out / name)
-            files.append(name)
         (out / "paper.json").write_text(json.dumps(r, indent=2, ensure_ascii=False))
-        (out / "summary.md").write_text(markdown_summary(r, files))
+        (out / "summary.md").write_text(markdown_summary(r, list(figures)))
     except OSError as e:
         raise OutputError(f"cannot write the paper report to {out}: {e}") from e
     return r
