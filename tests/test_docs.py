@@ -237,9 +237,9 @@ def test_gaits_page_quotes_the_gait_study_logs():
 
 
 def test_simulate_page_quotes_the_simulation_logs():
-    """docs/simulate.md's tables are analysis/logs/simulate_hexaleg.log and simulate_paper.log,
-    row by row: the predicted/simulated energies, savings, distances, the sensitivity study and
-    the single joint's optima."""
+    """docs/simulate.md's tables are analysis/logs/simulate_hexaleg.log, row by row: the
+    predicted/simulated energies, savings, distances and the sensitivity study (the single
+    joint's tables are docs/paper.md's, below)."""
     import re
 
     logs = ROOT / "analysis" / "logs"
@@ -267,13 +267,44 @@ def test_simulate_page_quotes_the_simulation_logs():
             assert table_row.split("|")[1 + column].strip().startswith(saving), (line, table_row)
             rows += 1
     assert rows == 9 + 16
-    paper = (logs / "simulate_paper.log").read_text()
-    mean, eps = re.findall(r"optimum k: analytic closed form (\S+); simulated (\S+); with "
-                           r"friction (\S+); the paper's Adams reading (\S+)", paper)
-    savings = re.findall(r"analytic (\S+) %, simulated (\S+) %, with friction (\S+) %", paper)
-    for (analytic, simulated, friction, adams), (sa, ss, sf) in zip((mean, eps), savings,
-                                                                    strict=True):
-        assert f"{analytic} (saving {sa} %)" in page or f"{analytic} ({sa} %)" in page
-        assert f"{simulated} ({ss} %)" in page
-        assert re.search(rf"\**{friction}\** \({sf} %\)", page)
-        assert re.search(rf"\**{adams}\**", page)
+
+
+def test_paper_page_quotes_the_forward_study_log():
+    """docs/paper.md's tables of the Adams experiment forward are analysis/logs/simulate_paper.log
+    (diffed against its script by test_examples; ``hexaleg paper`` writes the same study): every
+    required-torque row verbatim, the optima and savings of both metrics, their SI values and the
+    paper's readings taken as the N·mm/deg they are labelled."""
+    import re
+
+    from hexaleg.units import nmm_per_deg_to_nm_per_rad
+
+    log = (ROOT / "analysis" / "logs" / "simulate_paper.log").read_text()
+    page = (DOCS / "paper.md").read_text()
+    rows = re.findall(r"^  (rigid|Table 4, 400|k_M 713\.5|740)\s+peak (\S+) \| (\S+) \| (\S+); "
+                      r"mean_abs (\S+) \| (\S+) \| (\S+); rms (\S+) \| (\S+) \| (\S+)$", log,
+                      re.MULTILINE)
+    assert len(rows) == 4
+    for label, *values in rows:
+        cells = [" \\| ".join(values[i:i + 3]) for i in (0, 3, 6)]
+        assert f"| {label} | " + " | ".join(cells) + " |" in page, label
+    optima = re.findall(r"optimum k: analytic closed form (\S+); simulated (\S+); with friction "
+                        r"(\S+); the paper's Adams reading (\S+) \(k_M (\S+), k_E (\S+)\)", log)
+    savings = re.findall(r"analytic (\S+) %, simulated (\S+) %, with friction (\S+) %", log)
+    assert len(optima) == len(savings) == 2
+    (m, ms), (e, es) = zip(optima, savings, strict=True)
+    bold = r"\**"
+    for label, i in (("analytic \\(closed form\\)", 0), ("forward simulation", 1),
+                     ("forward simulation with Table 2 friction", 2)):
+        assert re.search(rf"\| {label} \| {bold}{re.escape(m[i])}{bold} \({ms[i]} %\) \| "
+                         rf"{bold}{re.escape(e[i])}{bold} \({es[i]} %\) \|", page), label
+    assert re.search(rf"\| the paper's Adams reading \| {bold}{m[3]}{bold} \| {bold}{e[3]}"
+                     rf"{bold} \|", page)
+    assert f"| eq. 19 k_M, printed k_E | {m[4]} | {e[5]} |" in page
+    si = [", ".join(f"{float(x) * 1e-6:.3e}" for x in (o[1], o[2], o[3])) for o in (m, e)]
+    assert f"| in N·m/rad: forward, with friction, the paper's reading | {si[0]} | {si[1]} |" \
+        in page
+    labelled = [float(nmm_per_deg_to_nm_per_rad(float(o[3]))) for o in (m, e)]
+    ratios = [f"{round(x / (float(o[1]) * 1e-6), -2):,.0f}".replace(",", " ")
+              for x, o in zip(labelled, (m, e), strict=True)]
+    assert (f"| {labelled[0]:.2f} N·m/rad ({ratios[0]} × the forward optimum) | "
+            f"{labelled[1]:.2f} N·m/rad ({ratios[1]} ×) |") in page
