@@ -17,6 +17,7 @@ from hexaleg.studies.paper.forward import (
     PAPER_EPS_MIN,
     PAPER_MEAN_MIN,
     TORQUE_METRICS,
+    forward_study,
     parabola_vertex,
     stiffness_grid,
     without_friction,
@@ -132,3 +133,8 @@ def test_a_grid_too_long_is_refused():
     stiffness_grid(np.arange(1.0, MAX_GRID + 1))
     with pytest.raises(InvalidParameterError, match=f"3 to {MAX_GRID}"):
         stiffness_grid(np.arange(1.0, MAX_GRID + 2))
+
+
+def test_bad_samples_are_refused_before_any_run():
+    with pytest.raises(InvalidParameterError, match=r"samples = 4\b"):
+        forward_study(n=4)

@@ -36,7 +36,7 @@ from hexaleg.checks import real
 from hexaleg.dynamics.energy import saving
 from hexaleg.errors import InvalidParameterError
 from hexaleg.studies.paper.joint import PaperJoint
-from hexaleg.studies.paper.metrics import energy_ratio, metric
+from hexaleg.studies.paper.metrics import energy_ratio, metric, paper_samples
 from hexaleg.studies.paper.readings import (
     PAPER_K_E,
     PAPER_K_M,
@@ -227,15 +227,17 @@ def forward_study(joint: PaperJoint | None = None, grid: Sequence[float] | np.nd
         joint: The joint (default Table 6, eq. 25, the paper's eq. 14 convention); gravity is
             left out.
         grid: Stiffnesses, eq. 19 units (:func:`stiffness_grid`).
-        n: Samples per period of the analytic metrics.
+        n: Samples per period of the analytic metrics
+            (:func:`~hexaleg.studies.paper.metrics.paper_samples`).
 
     Returns:
         The curves, required torques and optima.
 
     Raises:
-        InvalidParameterError: a bad grid (:func:`stiffness_grid`).
+        InvalidParameterError: a bad grid (:func:`stiffness_grid`) or ``n``.
     """
     ks_grid = stiffness_grid(grid)
+    n = paper_samples(n)
     j = joint or PaperJoint()
     table2 = AdamsJoint(joint=j, arm_inertia=0.01 * j.J)
     ks = sorted({*(k for _, _, k in NAMED), *ks_grid.tolist()})

@@ -15,8 +15,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.optimize import minimize_scalar
 
+from hexaleg.checks import count
 from hexaleg.dynamics.energy import saving
 from hexaleg.errors import InvalidParameterError
+from hexaleg.motion.limits import SAMPLE_BYTES
 from hexaleg.robot.motor import Motor
 from hexaleg.robot.motor import motor as default_motor
 from hexaleg.studies.paper.joint import PaperJoint
@@ -24,6 +26,17 @@ from hexaleg.studies.paper.joint import PaperJoint
 JOINT_METRICS: tuple[str, ...] = ("mean_abs", "rms", "peak", "int_sq", "positive_work",
                                   "absolute_work", "joule")
 """Cost functions of the paper's joint's motor torque over one period (see :func:`metric`)."""
+
+
+def paper_samples(n: object) -> int:
+    """The samples per period of the paper study, checked: an integer in [8, the memory bound
+    :data:`hexaleg.motion.limits.MAX_SAMPLES`].
+
+    Raises:
+        InvalidParameterError: names the value and the bound.
+    """
+    return count("samples", n, item_bytes=SAMPLE_BYTES, item="one sample", low=8,
+                 fix="use fewer samples per period (8192 reproduces every number)")
 
 
 def metric(joint: PaperJoint, name: str, k: ArrayLike, gravity: bool = True, n: int = 2048,

@@ -16,14 +16,17 @@ from typing import Any
 
 import numpy as np
 
-from hexaleg.checks import count
-from hexaleg.motion.limits import SAMPLE_BYTES
 from hexaleg.robot.motor import motor as default_motor
 from hexaleg.studies.paper import readings
 from hexaleg.studies.paper.crosscheck import pinocchio_femur_torque
 from hexaleg.studies.paper.forward import COLUMNS, ForwardOptimum, ForwardStudy
 from hexaleg.studies.paper.joint import PaperJoint
-from hexaleg.studies.paper.metrics import JOINT_METRICS, StiffnessOptimum, optimal_stiffness
+from hexaleg.studies.paper.metrics import (
+    JOINT_METRICS,
+    StiffnessOptimum,
+    optimal_stiffness,
+    paper_samples,
+)
 from hexaleg.studies.report.quantities import quantity
 from hexaleg.units import mm_to_m, nm_per_rad_to_nmm_per_deg, nmm_per_deg_to_nm_per_rad
 
@@ -35,17 +38,6 @@ UNIT_QUESTION = (
     "it (k_paper) and in N·m/rad (k); read_as_N_mm_per_deg is the paper's reading taken as "
     "labelled.")
 """The unit question of the paper's stiffness numbers, stated in ``paper.json``."""
-
-
-def paper_samples(n: object) -> int:
-    """The samples per period of the paper study, checked: an integer in [8, the memory bound
-    :data:`hexaleg.motion.limits.MAX_SAMPLES`].
-
-    Raises:
-        InvalidParameterError: names the value and the bound.
-    """
-    return count("samples", n, item_bytes=SAMPLE_BYTES, item="one sample", low=8,
-                 fix="use fewer samples per period (8192 reproduces every number)")
 
 
 def reproduce(joint: PaperJoint | None = None, n: int = 8192) -> dict[str, object]:

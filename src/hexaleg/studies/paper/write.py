@@ -12,7 +12,8 @@ from hexaleg.outputs.paper_figures import save_png
 from hexaleg.studies.paper.figures import forward_figures, make_figures
 from hexaleg.studies.paper.forward import K_GRID, forward_study, stiffness_grid
 from hexaleg.studies.paper.joint import PaperJoint
-from hexaleg.studies.paper.reproduce import paper_samples, reproduce, simulation_section
+from hexaleg.studies.paper.metrics import paper_samples
+from hexaleg.studies.paper.reproduce import reproduce, simulation_section
 from hexaleg.studies.paper.summary import markdown_summary
 
 
