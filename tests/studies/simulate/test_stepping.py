@@ -83,28 +83,37 @@ def test_rows_are_the_state_before_each_step_and_its_sensors(prepared):
         assert np.allclose(traj.servo[k], data.actuator_force[:18], atol=1e-12)
 
 
+def _run_against_a_variant(prepared, change, cycles: float):
+    """The gait's model and a copy of it changed by ``change(model)``, each run open loop for
+    ``cycles`` of the gait from the planned start: (model, run, variant's run)."""
+    import copy
+
+    motion = prepared.motion
+    sim = build_model(prepared.robot, motion, prepared.motor)
+    variant = dataclasses.replace(sim, model=copy.deepcopy(sim.model))
+    change(variant.model)
+    t = np.arange(round(cycles * motion.period / sim.timestep)) * sim.timestep
+    ctrl = controls(sim.servo, reference(motion, prepared.evaluate(None).tau_motor, t),
+                    sim.kp, sim.kd)
+    start = sim.joints.to_mujoco(motion.q[0], motion.v[0])
+    a, b = stepping.run(sim, ctrl, *start, 0.09), stepping.run(variant, ctrl, *start, 0.09)
+    assert a.verdict == b.verdict == "ran"
+    return sim, a, b
+
+
 def test_the_pgs_solver_gives_the_energies_of_mujocos_newton_solver(prepared):
     """The model's projected Gauss–Seidel and MuJoCo's default Newton solver solve the same
     contact program: over a cycle of the gait (two tripod handovers) the motor energy and the
     trajectory agree to the solvers' tolerance."""
-    import copy
-
     import mujoco
 
     from hexaleg.dynamics.energy import metrics
 
-    robot, motion = prepared.robot, prepared.motion
-    sim = build_model(robot, motion, prepared.motor)
-    assert sim.model.opt.solver == mujoco.mjtSolver.mjSOL_PGS
-    newton = dataclasses.replace(sim, model=copy.deepcopy(sim.model))
-    newton.model.opt.solver = mujoco.mjtSolver.mjSOL_NEWTON
-    steps = round(motion.period / sim.timestep)
-    t = np.arange(steps) * sim.timestep
-    ctrl = controls(sim.servo, reference(motion, prepared.evaluate(None).tau_motor, t),
-                    sim.kp, sim.kd)
-    start = sim.joints.to_mujoco(motion.q[0], motion.v[0])
-    a, b = stepping.run(sim, ctrl, *start, 0.09), stepping.run(newton, ctrl, *start, 0.09)
-    assert a.verdict == b.verdict == "ran"
+    def newton(model):
+        assert model.opt.solver == mujoco.mjtSolver.mjSOL_PGS
+        model.opt.solver = mujoco.mjtSolver.mjSOL_NEWTON
+
+    sim, a, b = _run_against_a_variant(prepared, newton, 1.0)
     dq = [sim.joints.joints_mj(r.qvel, velocity=True) for r in (a, b)]
     energy = [metrics(r.tau_motor, w, sim.timestep, prepared.motor)["total"]["electrical"]
               for r, w in zip((a, b), dq, strict=True)]
@@ -116,24 +125,16 @@ def test_switching_off_island_discovery_leaves_the_states_bitwise_equal(prepared
     """A walking robot's contacts couple through its base into one constraint island, so MuJoCo's
     island search (switched off by the model, for speed) changes nothing: half a cycle of the
     gait with it switched back on gives the same states to the last bit."""
-    import copy
-
     import mujoco
 
     if not hasattr(mujoco.mjtDisableBit, "mjDSBL_ISLAND"):
         pytest.skip("this MuJoCo has no island discovery")
-    robot, motion = prepared.robot, prepared.motion
-    sim = build_model(robot, motion, prepared.motor)
     island = int(mujoco.mjtDisableBit.mjDSBL_ISLAND)
-    assert sim.model.opt.disableflags & island
-    searched = dataclasses.replace(sim, model=copy.deepcopy(sim.model))
-    searched.model.opt.disableflags &= ~island
-    steps = round(motion.period / 2 / sim.timestep)
-    t = np.arange(steps) * sim.timestep
-    ctrl = controls(sim.servo, reference(motion, prepared.evaluate(None).tau_motor, t),
-                    sim.kp, sim.kd)
-    start = sim.joints.to_mujoco(motion.q[0], motion.v[0])
-    a, b = stepping.run(sim, ctrl, *start, 0.09), stepping.run(searched, ctrl, *start, 0.09)
-    assert a.verdict == b.verdict == "ran"
+
+    def search(model):
+        assert model.opt.disableflags & island
+        model.opt.disableflags &= ~island
+
+    _, a, b = _run_against_a_variant(prepared, search, 0.5)
     np.testing.assert_array_equal(a.qpos, b.qpos)
     np.testing.assert_array_equal(a.servo, b.servo)
