@@ -78,3 +78,13 @@ def test_unwritable_directory_is_an_output_error(tmp_path):
     blocker.write_text("")
     with pytest.raises(OutputError, match="cannot write the paper report to"):
         write_paper(blocker / "out")
+
+
+def test_a_grid_without_the_forward_run_is_refused(tmp_path, capsys):
+    """The grid is the forward run's: with --no-simulation it would be silently ignored."""
+    out = tmp_path / "p"
+    assert main(["paper", "--no-simulation", "--grid", "100", "200", "300",
+                 "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "stiffness grid = [100.0, 200.0, 300.0]" in err and "--no-simulation" in err
+    assert not out.exists()

@@ -7,7 +7,7 @@ import json
 from collections.abc import Sequence
 from pathlib import Path
 
-from hexaleg.errors import OutputError
+from hexaleg.errors import InvalidParameterError, OutputError
 from hexaleg.outputs.paper_figures import save_png
 from hexaleg.studies.paper.figures import forward_figures, make_figures
 from hexaleg.studies.paper.forward import K_GRID, forward_study, stiffness_grid
@@ -35,11 +35,14 @@ def write_paper(out: str | Path, joint: PaperJoint | None = None, n: int = 8192,
         The content of ``paper.json``.
 
     Raises:
-        InvalidParameterError: ``n`` out of range or a bad ``grid`` (before anything is
-            written).
+        InvalidParameterError: ``n`` out of range, a bad ``grid`` or a grid without the
+            simulation (before anything is written).
         OutputError: the directory or a file cannot be written.
     """
     n = paper_samples(n)
+    if grid is not None and not simulation:
+        raise InvalidParameterError("stiffness grid", list(grid), "none without the forward run "
+                                    "(the grid is the forward run's; drop --no-simulation)")
     ks = stiffness_grid(K_GRID if grid is None else grid)
     j = joint or PaperJoint()
     out = Path(out)
