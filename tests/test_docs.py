@@ -308,3 +308,31 @@ def test_paper_page_quotes_the_forward_study_log():
               for x, o in zip(labelled, (m, e), strict=True)]
     assert (f"| {labelled[0]:.2f} N·m/rad ({ratios[0]} × the forward optimum) | "
             f"{labelled[1]:.2f} N·m/rad ({ratios[1]} ×) |") in page
+
+
+def test_the_simulated_design_answer_in_the_prose_is_the_kept_log():
+    """docs/design.md and docs/simulate.md quote the default design simulated forward (savings,
+    the energies' gap to the prediction, the distance walked) at the precision they print, from
+    analysis/logs/answer_hexaleg.log."""
+    import re
+
+    root = Path(__file__).resolve().parents[1]
+    log = (root / "analysis" / "logs" / "answer_hexaleg.log").read_text()
+    rows = {}
+    for label in ("feedforward + PD", "position only"):
+        m = re.search(re.escape(label) + r"\s+(\S+) / (\S+) (\S+) / (\S+)\s+(\S+) % /\s+(\S+) %"
+                      r"\s+(\S+) mm", log)
+        assert m, log
+        rows[label] = [float(x) for x in m.groups()]
+    ew, sw, eb, sb, predicted, ff, distance = rows["feedforward + PD"]
+    position = rows["position only"][5]
+    gaps = sorted(100 * (1 - s / e) for s, e in ((sw, ew), (sb, eb)))
+    design = " ".join((root / "docs" / "design.md").read_text().split())
+    simulate = " ".join((root / "docs" / "simulate.md").read_text().split())
+    assert (f"with feedforward + PD it saves {ff:.1f} % of the simulated electrical energy "
+            f"against {predicted:.1f} % predicted (each energy {gaps[0]:.1f}–{gaps[1]:.1f} % "
+            "below the prediction") in design
+    assert f"walking {distance:.1f} of the planned 60 mm per cycle" in design
+    assert f"position-only servo it saves {position:.1f} %, more than predicted" in design
+    assert (f"save {ff:.1f} % under feedforward + PD and {position:.1f} % under the position "
+            f"servo, against {predicted:.1f} % predicted") in simulate
