@@ -16,7 +16,7 @@ from hexaleg.robot.springs import (
     StiffeningSpring,
 )
 from hexaleg.studies.simulate.model import build_model
-from hexaleg.studies.simulate.springs import plan_springs
+from hexaleg.studies.simulate.springs import STEP_WIDTH, plan_springs
 
 FAMILIES = {
     "linear": (LinearSpring(stiffness=0.8, reference=0.3, torque_at_reference=-0.1), True),
@@ -28,8 +28,8 @@ FAMILIES = {
     "dead_zone_damped": (DeadZoneSpring(stiffness=1.2, theta_k=0.1, damping=0.02,
                                         convention="eq14", alpha=1.1, neutral=0.2), False),
     "preloaded": (PreloadedSpring(stiffness=1.0, preload=0.05, theta_minus=-0.1, theta_plus=0.2,
-                                  preload_minus=0.02, neutral=0.3), False),
-    "one_sided": (OneSidedSpring(stiffness=2.0, contact=0.5, side="below", preload=0.03), False),
+                                  preload_minus=0.02, neutral=0.3), True),
+    "one_sided": (OneSidedSpring(stiffness=2.0, contact=0.5, side="below", preload=0.03), True),
     "stiffening": (StiffeningSpring(above=((0.5, 1.0), (0.7, 2.0)), below=((0.1, 0.5),)), True),
 }
 JOINTS = ("LF_femur", "RM_tibia", "LH_coxa")
@@ -61,9 +61,32 @@ def test_simulated_spring_torque_is_the_spring_law(family, prepared):
 
 def test_no_springs_no_elements(prepared):
     plan = plan_springs(prepared.robot, SpringSet())
-    assert plan.native and not plan.tendons and not plan.stiffness and not plan.constants
+    assert plan.native and not plan.tendons and not plan.stiffness and not plan.actuators
 
 
 def test_a_spring_on_a_joint_the_robot_lacks_is_named(prepared):
     with pytest.raises(UnknownNameError, match="LF_knee"):
         plan_springs(prepared.robot, SpringSet({"LF_knee": FAMILIES["linear"][0]}))
+
+
+@pytest.mark.parametrize("side", ["above", "below"])
+def test_a_preload_step_is_exact_outside_its_nanoradian_ramp(side, prepared):
+    """The native step (a clamped affine actuator) gives the preload's full jump 10 nrad past the
+    contact angle and nothing 10 nrad before it — the law to the last bit, on both sides."""
+    spring = OneSidedSpring(stiffness=2.0, contact=0.7, side=side, preload=0.25)
+    springs = SpringSet({"LF_femur": spring})
+    robot, motion = prepared.robot, prepared.motion
+    sim = build_model(robot, motion, prepared.motor, springs=springs)
+    assert sim.springs.native and len(sim.springs.actuators) == 1
+    data = mujoco.MjData(sim.model)
+    col = robot.column("LF_femur")
+    idx = robot.model.joints[robot.model.getJointId("LF_femur")].idx_q
+    past = 1.0 if side == "above" else -1.0
+    for offset in (-1e-3, -10 * STEP_WIDTH, 10 * STEP_WIDTH, 1e-3):
+        q = motion.q[0].copy()
+        q[idx] = 0.7 + past * offset
+        data.qpos[:], data.qvel[:] = sim.joints.to_mujoco(q, np.zeros(robot.model.nv))
+        mujoco.mj_forward(sim.model, data)
+        expected = springs.torques(robot, q[None], np.zeros((1, robot.model.nv)))[0, col]
+        assert abs(expected) == (0.0 if offset < 0 else pytest.approx(0.25 + 2.0 * offset))
+        assert sim.spring_torque(data)[col] == expected

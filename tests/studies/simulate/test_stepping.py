@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from hexaleg.errors import InvalidParameterError
+from hexaleg.robot.springs import DeadZoneSpring
 from hexaleg.studies.simulate import stepping
 from hexaleg.studies.simulate.controllers import controls, reference
 from hexaleg.studies.simulate.model import build_model
@@ -34,7 +35,7 @@ def test_python_stepping_equals_mujoco_rollout(prepared):
     robot, motion = prepared.robot, prepared.motion
     sim = build_model(robot, motion, prepared.motor)
     loop = dataclasses.replace(sim, springs=dataclasses.replace(
-        sim.springs, python=((0, (), np.zeros(0), None),)))
+        sim.springs, python=((0, DeadZoneSpring(stiffness=1.0, theta_k=1e6, damping=1.0)),)))
     t = np.arange(300) * sim.timestep
     ctrl = controls(sim.servo, reference(motion, prepared.evaluate(None).tau_motor, t),
                     sim.kp, sim.kd)

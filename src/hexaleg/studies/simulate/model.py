@@ -61,7 +61,7 @@ from hexaleg.studies.simulate.mjcf import (
     foot_site,
     tree_xml,
 )
-from hexaleg.studies.simulate.springs import SpringPlan, constant_actuator, plan_springs
+from hexaleg.studies.simulate.springs import SpringPlan, plan_springs
 from hexaleg.studies.simulate.state import JointMap
 from hexaleg.units import G
 
@@ -117,15 +117,16 @@ class SimModel:
     def spring_torque(self, data: object) -> np.ndarray:
         """The springs' torque on every joint at a computed ``mujoco.MjData`` (after
         ``mj_forward``), shape (nj,), N·m: MuJoCo's passive spring force (joint and tendon
-        springs), the constant-torque actuators and the non-native terms."""
+        springs), the spring actuators (constant torques, preload steps) and the non-native
+        terms."""
         import mujoco
 
         m, d = self.model, data
         assert isinstance(m, mujoco.MjModel) and isinstance(d, mujoco.MjData)
         tau = np.array(d.qfrc_spring)[self.joints.dof]
-        for joint, _ in self.springs.constants:
-            aid = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, constant_actuator(joint))
-            tau[self.robot.column(joint)] += d.actuator_force[aid]
+        for actuator in self.springs.actuators:
+            aid = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_ACTUATOR, actuator.name)
+            tau[self.robot.column(actuator.joint)] += d.actuator_force[aid]
         return tau + self.springs.python_torque(d.qpos[self.joints.qpos],
                                                 d.qvel[self.joints.dof])
 

@@ -14,15 +14,23 @@ term            MuJoCo element                                                  
 ``above``       fixed tendon L = q, ``stiffness`` x, dead band [−∞, a]: −x (q − a)₊    yes
 ``below``       fixed tendon, dead band [a, +∞]: +x (a − q)₊                          yes
 ``constant``    (no linear term to fold into) an actuator with zero gain and bias c   yes
-``step_*``      the preload's jump at contact: added to ``qfrc_applied`` each step   no
+``step_above``  the preload's jump at contact, −x for q > a: an actuator with zero    yes
+                gain, bias S (a − q) and ``forcerange`` [−x, 0]
+``step_below``  +x for q < a: the same bias, ``forcerange`` [0, x]                    yes
 damping         of a :class:`~hexaleg.robot.springs.DeadZoneSpring` (only while       no
                 engaged): added to ``qfrc_applied`` each step
 ==============  ==================================================================  ==========
 
 "−∞"/"+∞" are ±:data:`FAR` rad, which no joint reaches. The α transmission of a dead-zone spring
-is in its magnitudes (its terms are joint-side). A set whose springs are all native runs inside
-MuJoCo's step (and :func:`mujoco.rollout.rollout`); any other term makes the run step by step in
-Python (:mod:`hexaleg.studies.simulate.run`). :func:`SpringPlan.python_torque` is that term.
+is in its magnitudes (its terms are joint-side). A step is MuJoCo's affine actuator bias clamped
+by its force range (XML reference: ``general/biastype="affine"``, ``forcerange``; MuJoCo clamps
+the actuator force after adding gain and bias, Computation → Actuation): with the slope
+S = x / :data:`STEP_WIDTH` the clamp returns exactly the step's 0 or ±x everywhere except within
+:data:`STEP_WIDTH` (1 nrad) past the contact angle, where it ramps between them — far inside the
+width of one step of a simulation (q̇ dt ≈ 1e-4 rad). A set whose springs are all native runs
+inside MuJoCo's step (and :func:`mujoco.rollout.rollout`); the damping of a dead-zone spring makes
+the run step by step in Python (:mod:`hexaleg.studies.simulate.run`):
+:func:`SpringPlan.python_torque` is that term.
 """
 
 from __future__ import annotations
@@ -37,6 +45,9 @@ from hexaleg.studies.simulate.mjcf import fmt
 
 FAR = 1e6
 """rad: the open end of a one-sided tendon dead band."""
+STEP_WIDTH = 1e-9
+"""rad: the ramp of a native preload step (module docstring). Its bias S·a − S·q is exact to
+about 1e-16·|a| rad in floating point, so the ramp sits where the step is to that precision."""
 FOLD = 10.0
 """rad: a constant torque c folds into a joint spring's reference (a + c/x) only while
 |c/x| ≤ this; a nearly constant-torque spring keeps its constant as an actuator."""
@@ -52,6 +63,44 @@ def constant_actuator(joint: str) -> str:
     return f"{joint}_spring_torque"
 
 
+def step_actuator(joint: str, k: int) -> str:
+    """Name of the k-th preload-step actuator of a joint's spring."""
+    return f"{joint}_spring_step_{k}"
+
+
+@dataclass(frozen=True)
+class SpringActuator:
+    """A spring term as a MuJoCo ``general`` actuator on its joint, without a control: force
+    ``b₀ + b₁ q``, clamped to ``force_range`` when it has one (module docstring).
+
+    Attributes:
+        name: Actuator name. joint: Its joint.
+        bias: ``(b₀, b₁)``: N·m, N·m/rad.
+        force_range: ``(low, high)``, N·m, or None (unclamped).
+    """
+
+    name: str
+    joint: str
+    bias: tuple[float, float]
+    force_range: tuple[float, float] | None = None
+
+    def xml(self) -> str:
+        """The ``<general>`` element."""
+        clamp = (f'forcelimited="true" forcerange="{fmt(self.force_range)}"'
+                 if self.force_range else 'forcelimited="false"')
+        return (f'<general name="{self.name}" joint="{self.joint}" gainprm="0" '
+                f'biastype="affine" biasprm="{fmt([*self.bias, 0.0])}" ctrllimited="false" '
+                f"{clamp}/>")
+
+
+def step(joint: str, k: int, kind: str, angle: float, x: float) -> SpringActuator:
+    """A preload step ``x ≥ 0`` at ``angle`` (a ``step_above`` or ``step_below`` term) as a
+    clamped affine actuator with the ramp :data:`STEP_WIDTH`."""
+    slope = x / STEP_WIDTH
+    force_range = (-x, 0.0) if kind == "step_above" else (0.0, x)
+    return SpringActuator(step_actuator(joint, k), joint, (slope * angle, -slope), force_range)
+
+
 @dataclass(frozen=True)
 class SpringPlan:
     """A :class:`~hexaleg.robot.springs.SpringSet` as MuJoCo elements (module docstring).
@@ -59,17 +108,15 @@ class SpringPlan:
     Attributes:
         tendons: ``(joint, low, high, stiffness)`` of each dead-band tendon (N·m/rad, rad).
         stiffness: ``(joint, stiffness, springref)`` of each joint spring (N·m/rad, rad).
-        constants: ``(joint, torque)`` of each constant-torque actuator (N·m).
-        python: ``(column, terms, magnitudes, damper)`` per joint with non-native parts: the
-            step terms with their magnitudes, and the dead-zone spring whose damping acts (or
-            None); column in ``robot.joint_names``.
+        actuators: The constant torques and preload steps as actuators.
+        python: ``(column, spring)`` of each dead-zone spring whose damping acts (non-native),
+            column in ``robot.joint_names``.
     """
 
     tendons: tuple[tuple[str, float, float, float], ...] = ()
     stiffness: tuple[tuple[str, float, float], ...] = ()
-    constants: tuple[tuple[str, float], ...] = ()
-    python: tuple[tuple[int, tuple[Term, ...], np.ndarray, DeadZoneSpring | None], ...] = field(
-        default=())
+    actuators: tuple[SpringActuator, ...] = ()
+    python: tuple[tuple[int, DeadZoneSpring], ...] = field(default=())
 
     @property
     def native(self) -> bool:
@@ -89,11 +136,8 @@ class SpringPlan:
         return "\n".join(lines)
 
     def actuator_xml(self) -> str:
-        """``<general>`` actuators of the constant torques (no control: gain 0, bias = τ)."""
-        return "\n".join(
-            f'<general name="{constant_actuator(j)}" joint="{j}" gainprm="0" biastype="affine" '
-            f'biasprm="{fmt([c, 0, 0])}" ctrllimited="false" forcelimited="false"/>'
-            for j, c in self.constants)
+        """The ``<general>`` elements of :attr:`actuators`."""
+        return "\n".join(a.xml() for a in self.actuators)
 
     def apply(self, model: object) -> None:
         """Set the joint springs (stiffness, springref) in a compiled ``mujoco.MjModel``."""
@@ -113,18 +157,10 @@ class SpringPlan:
             velocities: Joint velocities, shape (nj,), rad/s.
         """
         out = np.zeros(len(angles))
-        for column, terms, x, damper in self.python:
-            q, tau = float(angles[column]), 0.0
-            for t, xi in zip(terms, x, strict=True):  # step terms: ±x past their angle
-                if t.kind == "step_above" and q > t.angle:
-                    tau -= float(xi)
-                elif t.kind == "step_below" and q < t.angle:
-                    tau += float(xi)
-            if damper is not None:  # the main spring's damping, while engaged (eq. 8)
-                delta = q - damper.neutral
-                if delta > damper.th_plus or delta < damper.th_minus:
-                    tau -= damper.transmission * damper.damping * float(velocities[column])
-            out[column] = tau
+        for column, damper in self.python:  # the main spring's damping, while engaged (eq. 8)
+            delta = float(angles[column]) - damper.neutral
+            if delta > damper.th_plus or delta < damper.th_minus:
+                out[column] = -damper.transmission * damper.damping * float(velocities[column])
         return out
 
 
@@ -151,13 +187,12 @@ def plan_springs(robot: Robot, springs: SpringSet | None) -> SpringPlan:
     columns = springs.columns(robot)
     tendons: list[tuple[str, float, float, float]] = []
     stiffness: list[tuple[str, float, float]] = []
-    constants: list[tuple[str, float]] = []
-    python: list[tuple[int, tuple[Term, ...], np.ndarray, DeadZoneSpring | None]] = []
+    actuators: list[SpringActuator] = []
+    python: list[tuple[int, DeadZoneSpring]] = []
     for joint, spring in springs.items():
         terms, x = _terms(spring)
         linear = [i for i, t in enumerate(terms) if t.kind == "linear" and x[i] > 0]
         constant = sum(float(x[i]) for i, t in enumerate(terms) if t.kind == "constant")
-        rest: list[int] = []
         for i, t in enumerate(terms):
             if x[i] == 0 or t.kind == "constant":
                 continue
@@ -172,13 +207,11 @@ def plan_springs(robot: Robot, springs: SpringSet | None) -> SpringPlan:
                 tendons.append((joint, -FAR, t.angle, float(x[i])))
             elif t.kind == "below":
                 tendons.append((joint, t.angle, FAR, float(x[i])))
-            else:
-                rest.append(i)
+            else:  # step_above, step_below
+                actuators.append(step(joint, i, t.kind, t.angle, float(x[i])))
         if constant != 0.0:
-            constants.append((joint, constant))
-        damper = spring if isinstance(spring, DeadZoneSpring) and spring.damping > 0 else None
-        if rest or damper is not None:
-            python.append((columns[joint], tuple(terms[i] for i in rest),
-                           x[rest], damper))
-    return SpringPlan(tuple(tendons), tuple(stiffness), tuple(constants), tuple(python))
+            actuators.append(SpringActuator(constant_actuator(joint), joint, (constant, 0.0)))
+        if isinstance(spring, DeadZoneSpring) and spring.damping > 0:
+            python.append((columns[joint], spring))
+    return SpringPlan(tuple(tendons), tuple(stiffness), tuple(actuators), tuple(python))
 
