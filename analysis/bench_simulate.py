@@ -31,7 +31,6 @@ from hexaleg.robot.springs import DeadZoneSpring, PreloadedSpring, SpringSet
 from hexaleg.studies.simulate.run import simulate
 from hexaleg.studies.simulate.study import load_study
 
-
 CPU_SHARE: list[float] = []
 """This thread's CPU time over the wall time of each timed call: below ~0.9 the process waited
 for a core (other jobs on the machine), and the real-time factors are understated by as much."""
