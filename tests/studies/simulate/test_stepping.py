@@ -36,6 +36,7 @@ def test_python_stepping_equals_mujoco_rollout(prepared):
     sim = build_model(robot, motion, prepared.motor)
     loop = dataclasses.replace(sim, springs=dataclasses.replace(
         sim.springs, python=((0, DeadZoneSpring(stiffness=1.0, theta_k=1e6, damping=1.0)),)))
+    # a damper whose dead zone (±1e6 rad) no joint leaves: the Python loop with a zero force
     t = np.arange(300) * sim.timestep
     ctrl = controls(sim.servo, reference(motion, prepared.evaluate(None).tau_motor, t),
                     sim.kp, sim.kd)
