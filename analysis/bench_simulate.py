@@ -28,7 +28,7 @@ import time
 import numpy as np
 
 from hexaleg.robot.springs import DeadZoneSpring, PreloadedSpring, SpringSet
-from hexaleg.studies.simulate.run import simulate
+from hexaleg.simulation.run import simulate
 from hexaleg.studies.simulate.study import load_study
 
 CPU_SHARE: list[float] = []

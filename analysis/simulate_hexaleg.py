@@ -20,7 +20,7 @@ import dataclasses
 
 import numpy as np
 
-from hexaleg.studies.simulate.sensitivity import sensitivity
+from hexaleg.simulation.sensitivity import sensitivity
 from hexaleg.studies.simulate.study import load_study
 
 TIMESTEPS = (5e-4, 2.5e-4, 1.25e-4, 1 / 1500)

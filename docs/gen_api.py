@@ -22,7 +22,7 @@ PACKAGE = "hexaleg"
 REFERENCE = "reference"
 
 # The layers of DESIGN.md in data-flow order; a subpackage not named here follows them, by name.
-LAYER_ORDER = ("robot", "motion", "dynamics", "design", "studies", "outputs")
+LAYER_ORDER = ("robot", "motion", "dynamics", "simulation", "design", "studies", "outputs")
 
 
 @dataclass(frozen=True)

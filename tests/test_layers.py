@@ -1,8 +1,8 @@
 """The package's shape: imports point down the layers, modules stay small, the import is light.
 
 Layers, lowest first (DESIGN.md): the top-level helpers (errors, units, config, checks) → robot →
-motion → dynamics → design → outputs → studies → cli. A module may import its own layer and the
-ones below it, at module level, inside functions or under TYPE_CHECKING alike.
+motion → dynamics → simulation → design → outputs → studies → cli. A module may import its own
+layer and the ones below it, at module level, inside functions or under TYPE_CHECKING alike.
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ import hexaleg
 
 SRC = Path(hexaleg.__file__).resolve().parent
 RANK = {"errors": 0, "units": 0, "config": 0, "checks": 0, "robot": 1, "motion": 2,
-        "dynamics": 3, "design": 4, "outputs": 5, "studies": 6, "cli": 7}
+        "dynamics": 3, "simulation": 4, "design": 5, "outputs": 6, "studies": 7, "cli": 8}
 TOP_LEVEL = {"__init__.py", "errors.py", "units.py", "config.py", "checks.py", "cli.py"}
 MAX_LINES = 400
 DATA_TABLES: dict[str, str] = {}
@@ -77,7 +77,7 @@ def test_at_most_six_top_level_modules():
     top = {p.name for p in SRC.glob("*.py")}
     assert top <= TOP_LEVEL, sorted(top - TOP_LEVEL)
     layers = {p.name for p in SRC.iterdir() if p.is_dir() and (p / "__init__.py").exists()}
-    assert layers == {"robot", "motion", "dynamics", "design", "studies", "outputs"}
+    assert layers == {"robot", "motion", "dynamics", "simulation", "design", "studies", "outputs"}
 
 
 def test_import_hexaleg_is_light():

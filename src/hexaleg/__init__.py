@@ -16,9 +16,10 @@ from hexaleg.motion.params import GaitParams
 from hexaleg.motion.profiles import Sinusoid
 from hexaleg.motion.trajectory import Motion
 from hexaleg.motion.transform import transform_motion
+from hexaleg.robot.catalogue import CATALOGUE, DEFAULT_MOTOR, motor_from_mapping
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Leg, LegSpec, Robot, load_robot
-from hexaleg.robot.motor import CATALOGUE, DEFAULT_MOTOR, Motor, motor_from_mapping
+from hexaleg.robot.motor import Motor
 from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.registry import DESCRIPTIONS, load
 from hexaleg.robot.springs import (

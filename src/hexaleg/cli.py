@@ -60,7 +60,7 @@ def _add_motors(sub: argparse._SubParsersAction) -> None:
 
 
 def _run_motors(args: argparse.Namespace) -> int:
-    from hexaleg.robot.motor import catalogue_table, motor
+    from hexaleg.robot.catalogue import catalogue_table, motor
 
     print(catalogue_table({n: motor(n) for n in args.names} if args.names else None))
     return 0
@@ -290,7 +290,7 @@ def _add_simulate(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--springs", help="design file (design.json: springs per joint as family and "
                                      "parameters, docs/simulate.md); default: the globally "
                                      "optimal linear springs on the robot's spring class")
-    # The names of hexaleg.studies.simulate.controllers.CONTROLLERS (mujoco loads lazily).
+    # The names of hexaleg.simulation.controllers.CONTROLLERS (mujoco loads lazily).
     p.add_argument("--controller", choices=("feedforward", "position"),
                    help="servo: torque feedforward + PD, or position-only PD "
                         "(default: feedforward, or the config's)")
@@ -320,7 +320,7 @@ def _run_simulate(args: argparse.Namespace) -> int:
     s = study.run()
     rows = None
     if args.sensitivity and s.walks:
-        from hexaleg.studies.simulate.sensitivity import sensitivity
+        from hexaleg.simulation.sensitivity import sensitivity
 
         rows = sensitivity(s)
     data = simulation_data(s, design=study.design, notes=study.notes, sensitivity=rows)

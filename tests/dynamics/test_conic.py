@@ -9,7 +9,7 @@ from hexaleg.dynamics.conic import solve_sample
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.dynamics.prepare import prepare
 from hexaleg.errors import InfeasibleForcesError, TorqueLimitError
-from hexaleg.robot.motor import CATALOGUE
+from hexaleg.robot.catalogue import CATALOGUE
 
 
 def test_conic_solve_equals_the_kkt_optimum_where_nothing_binds(robot, walk200):

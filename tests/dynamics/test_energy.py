@@ -11,7 +11,7 @@ import pytest
 
 from hexaleg.dynamics.energy import cost_of_transport, epsilon, metrics, saving, savings
 from hexaleg.errors import InvalidParameterError
-from hexaleg.robot.motor import motor
+from hexaleg.robot.catalogue import motor
 from hexaleg.units import G, kgmm2_to_kgm2, mm_to_m
 
 # Paper Table 6 and eq. 25: f(t) = 0.3 sin(2t), l = 47.141 mm, m = 0.03611 kg, I = 107.059 kg·mm².

@@ -7,7 +7,7 @@ import pytest
 
 from hexaleg.dynamics.contact import OBJECTIVES
 from hexaleg.dynamics.pieces import pieces
-from hexaleg.robot.motor import motor
+from hexaleg.robot.catalogue import motor
 
 
 @pytest.mark.parametrize("objective", OBJECTIVES)

@@ -12,13 +12,13 @@ import pytest
 import hexaleg.robot.catalogue as catalogue
 import hexaleg.robot.motor as motor_module
 from hexaleg.errors import HexalegError, InvalidParameterError
+from hexaleg.robot.catalogue import motor
 from hexaleg.robot.motor import (
     GENERIC_GEARBOX_EFFICIENCY,
     GENERIC_VOLTAGE,
     Motor,
     from_datasheet,
     generic_actuator,
-    motor,
 )
 
 
@@ -127,22 +127,6 @@ def test_from_datasheet_states_what_it_derived() -> None:
     for text in ("k_t G = τ_s / I_s = 2.000 N·m/A", "R = V / I_s = 12.00 Ω", "η = "):
         assert text in m.notes
 
-
-def test_catalogue_names_still_import_from_the_motor_module() -> None:
-    """The catalogue moved to hexaleg.robot.catalogue; hexaleg.robot.motor hands out the same
-    objects (PEP 562), so every ``from hexaleg.robot.motor import CATALOGUE, ...`` keeps working."""
-    from hexaleg.robot.motor import (  # noqa: F401 - the import itself is under test
-        CATALOGUE,
-        DEFAULT_MOTOR,
-        catalogue_table,
-        motor_from_mapping,
-        odri_actuator,
-    )
-
-    for name in ("CATALOGUE", "DEFAULT_MOTOR", "catalogue_table", "motor", "motor_from_mapping",
-                 "odri_actuator"):
-        assert getattr(motor_module, name) is getattr(catalogue, name), name
-    assert motor is catalogue.motor and CATALOGUE is catalogue.CATALOGUE
     with pytest.raises(AttributeError, match="no_such_name"):
         motor_module.no_such_name  # noqa: B018
 

@@ -14,8 +14,9 @@ from hexaleg.dynamics.prepare import prepare
 from hexaleg.dynamics.reference import solve_reference
 from hexaleg.dynamics.solver import solve_fast
 from hexaleg.errors import InvalidParameterError, TorqueLimitError, UnknownNameError
+from hexaleg.robot.catalogue import CATALOGUE
 from hexaleg.robot.description import RobotDescription
-from hexaleg.robot.motor import CATALOGUE, generic_actuator
+from hexaleg.robot.motor import generic_actuator
 from hexaleg.robot.motor_set import MotorSet
 
 STRONG, LIGHT = CATALOGUE["XM430-W350"], CATALOGUE["XL430-W250"]

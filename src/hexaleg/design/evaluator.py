@@ -63,10 +63,10 @@ from hexaleg.errors import (
 )
 from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import GaitParams
+from hexaleg.robot.catalogue import motor as motor_by_name
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import Motor
-from hexaleg.robot.motor import motor as motor_by_name
 from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.registry import description
 from hexaleg.robot.springs import DeadZoneSpring, SpringSet
@@ -95,7 +95,7 @@ class RunSpec:
     Attributes:
         robot: A registered robot's name or a robot TOML file
             (:func:`hexaleg.robot.registry.description`).
-        motor: Catalogue name of the servo on every joint (:data:`hexaleg.robot.motor.CATALOGUE`);
+        motor: Catalogue name of the servo on every joint (:data:`hexaleg.robot.catalogue.CATALOGUE`);
             None for the robot's own
             (:meth:`~hexaleg.robot.description.RobotDescription.actuator`: its catalogue motor,
             else a generic actuator from its URDF limits).

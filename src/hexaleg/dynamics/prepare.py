@@ -45,9 +45,9 @@ from hexaleg.dynamics.inertia import apparent_inertias
 from hexaleg.dynamics.solver import QuadraticGains, quadratic_gains, solve_fast
 from hexaleg.errors import InvalidParameterError, TorqueLimitError
 from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.catalogue import motor as motor_by_name
 from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import Motor
-from hexaleg.robot.motor import motor as motor_by_name
 from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.springs import Spring, SpringSet
 
@@ -318,7 +318,7 @@ def prepare(robot: Robot, motion: Motion, *, motor: Motor | MotorSet | str | Non
         motion: The motion (q, v, a in Pinocchio conventions; stance flags).
         motor: The servo of every joint: a :class:`~hexaleg.robot.motor.Motor`, a catalogue name,
             a :class:`~hexaleg.robot.motor_set.MotorSet` (one motor per joint) or None for
-            :data:`hexaleg.robot.motor.DEFAULT_MOTOR`.
+            :data:`hexaleg.robot.catalogue.DEFAULT_MOTOR`.
         contact: Contact settings (friction, cone, minimum normal force, torque limits — each
             joint's limit is its motor's stall torque).
 

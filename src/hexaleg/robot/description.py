@@ -115,7 +115,7 @@ class RobotDescription:
             as tuples of leg names), sized to the robot; a read-only mapping. Keys are
             checked by ``GaitParams.for_robot``, the leg names of ``groups`` here.
         notes: Where the description's facts come from.
-        motor: The robot's actuators from :data:`hexaleg.robot.motor.CATALOGUE`: one name for
+        motor: The robot's actuators from :data:`hexaleg.robot.catalogue.CATALOGUE`: one name for
             every joint, or a table joint class → name (``{femur = "XM430-W350", …}``; classes
             not named get a generic actuator); None when the catalogue has none (then
             :meth:`actuator` builds one per class from the URDF limits).
@@ -182,7 +182,7 @@ class RobotDescription:
             self.name, self.joint_kinds, self.max_outer_diameter))
 
     def _check_motor(self, motor: Any) -> str | Mapping[str, str]:
-        from hexaleg.robot.motor import CATALOGUE
+        from hexaleg.robot.catalogue import CATALOGUE
 
         names = motor.values() if isinstance(motor, Mapping) else [motor]
         for name in names:
@@ -216,7 +216,7 @@ class RobotDescription:
             InvalidParameterError: a class without a catalogue motor whose URDF joints have no
                 effort or velocity limit (names the value; give ``motor = "…"`` instead).
         """
-        from hexaleg.robot.motor import CATALOGUE
+        from hexaleg.robot.catalogue import CATALOGUE
         from hexaleg.robot.motor_set import class_motors
 
         if isinstance(self.motor, str):

@@ -23,35 +23,20 @@ a catalogue ``base`` plus overrides). An actuator known only by a URDF joint's e
 limits gets the same relations under stated assumptions (:func:`generic_actuator`).
 
 The real actuators — ROBOTIS and Feetech servos from their datasheets, and the ODRI brushless
-module of Solo-12 — are in :mod:`hexaleg.robot.catalogue`. Its public names (:data:`CATALOGUE`,
-:data:`DEFAULT_MOTOR`, :func:`motor`, :func:`motor_from_mapping`, :func:`catalogue_table`,
-:func:`odri_actuator`) are importable from this module too (on first use, PEP 562), as before
-the catalogue had a module of its own.
+module of Solo-12 — are in :mod:`hexaleg.robot.catalogue`, which builds on this module (and not
+the other way round).
 """
 
 from __future__ import annotations
 
-import importlib
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from hexaleg.checks import positive, real
 from hexaleg.errors import InvalidParameterError
-
-if TYPE_CHECKING:  # the catalogue's names __getattr__ imports on first use, for mypy and the docs
-    from hexaleg.robot.catalogue import CATALOGUE as CATALOGUE
-    from hexaleg.robot.catalogue import DEFAULT_MOTOR as DEFAULT_MOTOR
-    from hexaleg.robot.catalogue import catalogue_table as catalogue_table
-    from hexaleg.robot.catalogue import motor as motor
-    from hexaleg.robot.catalogue import motor_from_mapping as motor_from_mapping
-    from hexaleg.robot.catalogue import odri_actuator as odri_actuator
-
-_FROM_CATALOGUE = ("CATALOGUE", "DEFAULT_MOTOR", "catalogue_table", "motor", "motor_from_mapping",
-                   "odri_actuator")
 
 RPM = 2.0 * math.pi / 60.0
 """One revolution per minute in rad/s (datasheets state speeds in rpm)."""
@@ -68,15 +53,6 @@ GENERIC_GEAR_RATIO = 1.0
 """Gear ratio G of :func:`generic_actuator`: its torque constant is stated at the output (G is not
 identifiable from two limits, and only ``k_t G`` enters any power)."""
 
-
-def __getattr__(name: str) -> Any:
-    """Import the catalogue's public names from :mod:`hexaleg.robot.catalogue` on first use
-    (PEP 562: the catalogue imports this module, so this module cannot import it at load time)."""
-    if name not in _FROM_CATALOGUE:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module("hexaleg.robot.catalogue"), name)
-    globals()[name] = value
-    return value
 
 
 def as_torque_speed(tau: ArrayLike, qdot: ArrayLike) -> tuple[np.ndarray, np.ndarray]:

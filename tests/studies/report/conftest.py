@@ -12,7 +12,7 @@ import pytest
 import hexaleg
 from hexaleg import analyze
 from hexaleg.design.rules import paper_style_springs
-from hexaleg.robot.motor import DEFAULT_MOTOR
+from hexaleg.robot.catalogue import DEFAULT_MOTOR
 from hexaleg.robot.springs import SpringSet
 from hexaleg.studies.report.build import Report
 from hexaleg.studies.report.config import ReportConfig

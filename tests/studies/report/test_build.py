@@ -12,7 +12,7 @@ from hexaleg import analyze
 from hexaleg.design.rules import PAPER_ALPHA, k_M
 from hexaleg.dynamics.contact import friction_usage
 from hexaleg.outputs.html import render_html
-from hexaleg.robot.motor import DEFAULT_MOTOR
+from hexaleg.robot.catalogue import DEFAULT_MOTOR
 from hexaleg.robot.springs import SpringSet
 from hexaleg.studies.report.build import build_report
 from hexaleg.studies.report.config import ReportConfig

@@ -10,7 +10,7 @@ import pytest
 from hexaleg import GaitParams, tripod_gait
 from hexaleg.cli import main
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
-from hexaleg.robot.motor import motor
+from hexaleg.robot.catalogue import motor
 from hexaleg.robot.springs import SpringSet
 from hexaleg.studies.report.config import ReportConfig, ReportParams, SpringDesign
 

@@ -9,7 +9,7 @@ import pytest
 from hexaleg import analyze
 from hexaleg.design.rules import k_M
 from hexaleg.dynamics.contact import ContactParams
-from hexaleg.robot.motor import DEFAULT_MOTOR
+from hexaleg.robot.catalogue import DEFAULT_MOTOR
 
 
 def _v(q):

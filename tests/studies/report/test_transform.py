@@ -7,7 +7,7 @@ import pytest
 
 from hexaleg import analyze
 from hexaleg.motion.transform import transform_motion
-from hexaleg.robot.motor import DEFAULT_MOTOR
+from hexaleg.robot.catalogue import DEFAULT_MOTOR
 
 
 def _v(q):

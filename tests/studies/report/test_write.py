@@ -16,7 +16,7 @@ from PIL import Image
 
 from hexaleg.cli import main
 from hexaleg.errors import OutputError
-from hexaleg.robot.motor import DEFAULT_MOTOR
+from hexaleg.robot.catalogue import DEFAULT_MOTOR
 from hexaleg.studies.report.write import PLOTS, write_report
 
 SECTIONS = ("summary", "angles", "torques", "power", "forces", "energy", "cot", "transform",

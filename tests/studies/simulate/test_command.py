@@ -98,7 +98,7 @@ def test_controller_choices_are_the_controllers_and_mujoco_loads_lazily():
     import sys
 
     from hexaleg.cli import build_parser
-    from hexaleg.studies.simulate.controllers import CONTROLLERS
+    from hexaleg.simulation.controllers import CONTROLLERS
 
     sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
     choices = {a.dest: a.choices for a in sub.choices["simulate"]._actions}

@@ -11,7 +11,7 @@ from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.robot.springs import SpringSet
 from hexaleg.studies.simulate.design_file import design_table, read_design
 
-from .test_springs import FAMILIES
+from ...simulation.test_springs import FAMILIES
 
 
 def _write(tmp_path, data) -> str:

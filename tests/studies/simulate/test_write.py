@@ -9,7 +9,7 @@ import json
 import pytest
 
 from hexaleg.errors import OutputError
-from hexaleg.studies.simulate.run import Settings, simulate
+from hexaleg.simulation.run import Settings, simulate
 from hexaleg.studies.simulate.write import page, simulation_data, summary, write_simulation
 
 

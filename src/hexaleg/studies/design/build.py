@@ -19,7 +19,7 @@ DesignConfig`):
    program), with its own parts;
 5. the proof: the recommended springs on the nominal gait simulated forward in MuJoCo, with and
    without them, under each controller a servo robot runs
-   (:func:`hexaleg.studies.simulate.sensitivity.controller_check`: feedforward + PD and position
+   (:func:`hexaleg.simulation.sensitivity.controller_check`: feedforward + PD and position
    only), the simulated saving beside the predicted one. Gross savings on both sides: the
    simulated robot does not carry the springs' mass either.
 
@@ -52,10 +52,10 @@ from hexaleg.errors import (
     TorqueLimitError,
 )
 from hexaleg.motion.params import GaitParams
+from hexaleg.simulation.sensitivity import controller_check
 from hexaleg.studies.design.candidates import Candidate, candidate, design_family
 from hexaleg.studies.design.config import METRICS, DesignConfig
 from hexaleg.studies.design.groups import class_of, design_groups, sprung_classes
-from hexaleg.studies.simulate.sensitivity import controller_check
 
 MIN_SAVING = 1e-4
 """A recommendation must save more than this fraction of the ranking metric (0.01 %); below it,
@@ -102,7 +102,7 @@ class DesignResult:
             condition's label).
         robust: The robust design, or None when the box is the nominal gait alone.
         simulation: The recommendation simulated, one row per controller
-            (:func:`~hexaleg.studies.simulate.sensitivity.controller_check`); empty when the
+            (:func:`~hexaleg.simulation.sensitivity.controller_check`); empty when the
             simulation could not run (a note says why).
         timings: Step → wall time, s. notes: What the user should know.
     """

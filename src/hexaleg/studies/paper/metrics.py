@@ -19,8 +19,8 @@ from hexaleg.checks import count
 from hexaleg.dynamics.energy import saving
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.limits import SAMPLE_BYTES
+from hexaleg.robot.catalogue import motor as default_motor
 from hexaleg.robot.motor import Motor
-from hexaleg.robot.motor import motor as default_motor
 from hexaleg.studies.paper.joint import PaperJoint
 
 JOINT_METRICS: tuple[str, ...] = ("mean_abs", "rms", "peak", "int_sq", "positive_work",
@@ -52,7 +52,7 @@ def metric(joint: PaperJoint, name: str, k: ArrayLike, gravity: bool = True, n: 
         k: Stiffness(es), N·m/rad, scalar or (K,).
         gravity: Include gravity.
         n: Samples per period (uniform, endpoint excluded: integrals are sums × dt).
-        motor: Servo for ``joule`` (default :data:`hexaleg.robot.motor.DEFAULT_MOTOR`, the robot's
+        motor: Servo for ``joule`` (default :data:`hexaleg.robot.catalogue.DEFAULT_MOTOR`, the robot's
             AX-18A).
 
     Returns:

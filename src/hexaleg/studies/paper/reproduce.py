@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from hexaleg.robot.motor import motor as default_motor
+from hexaleg.robot.catalogue import motor as default_motor
 from hexaleg.studies.paper import readings
 from hexaleg.studies.paper.crosscheck import pinocchio_femur_torque
 from hexaleg.studies.paper.forward import COLUMNS, ForwardOptimum, ForwardStudy

@@ -26,10 +26,11 @@ from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.motion.limits import SAMPLE_BYTES
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.catalogue import DEFAULT_MOTOR, motor_from_mapping
+from hexaleg.robot.catalogue import motor as motor_by_name
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Robot
-from hexaleg.robot.motor import DEFAULT_MOTOR, Motor, motor_from_mapping
-from hexaleg.robot.motor import motor as motor_by_name
+from hexaleg.robot.motor import Motor
 from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.payload import Payload
 from hexaleg.robot.registry import description
@@ -193,7 +194,7 @@ class ReportConfig:
     Attributes:
         gait: Gait parameters (``[gait]``).
         motor: The servo of every joint (``[motor]``,
-            :func:`hexaleg.robot.motor.motor_from_mapping`), or the robot's own motor per joint
+            :func:`hexaleg.robot.catalogue.motor_from_mapping`), or the robot's own motor per joint
             class (a :class:`~hexaleg.robot.motor_set.MotorSet`, from its description).
         contact: Contact settings (``[contact]``).
         springs: A :class:`SpringDesign` (``[springs] design = …``) or explicit per-joint springs

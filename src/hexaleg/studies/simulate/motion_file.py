@@ -3,7 +3,7 @@
 One NumPy ``.npz`` file per run in the out directory, :data:`FILES`: ``motion-springs.npz`` (the
 run with the springs) and ``motion-baseline.npz`` (without), every ``stride``-th simulation step
 so that the rows come at :data:`RECORD_FPS` per second of simulated time or a little more (the
-state before the step, as the run records it, :mod:`~hexaleg.studies.simulate.stepping`).
+state before the step, as the run records it, :mod:`~hexaleg.simulation.stepping`).
 Read with ``numpy.load(path)`` (no pickles) or :func:`read_motion`. Keys (K rows, SI):
 
 ==============  ==================  ===================================================
@@ -32,7 +32,7 @@ key             shape               what
 ==============  ==================  ===================================================
 
 MuJoCo's configurations are mapped to Pinocchio's by
-:meth:`~hexaleg.studies.simulate.state.JointMap.to_pinocchio`. The contact forces and spring
+:meth:`~hexaleg.simulation.state.JointMap.to_pinocchio`. The contact forces and spring
 torques are computed at the kept rows only (``mj_forward`` of the recorded state). Reading needs
 neither MuJoCo nor the model: :meth:`SimulatedMotion.check` compares the file with a robot.
 """
@@ -50,8 +50,8 @@ from hexaleg.checks import one_of
 from hexaleg.errors import ConfigError, InvalidParameterError, OutputError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
-from hexaleg.studies.simulate.measures import contact_forces, forward_states
-from hexaleg.studies.simulate.run import Run, Simulation
+from hexaleg.simulation.measures import contact_forces, forward_states
+from hexaleg.simulation.run import Run, Simulation
 
 FORMAT = "hexaleg simulated motion 1"
 """The ``format`` entry of a motion file (a reader refuses other files)."""
@@ -140,7 +140,7 @@ def record(run: Run, fps: float = RECORD_FPS) -> SimulatedMotion:
     ``floor(1 / (fps dt))``-th step, at least every step).
 
     Args:
-        run: A run of :func:`hexaleg.studies.simulate.run.simulate`.
+        run: A run of :func:`hexaleg.simulation.run.simulate`.
         fps: Rows per second, > 0.
     """
     sim, traj = run.sim, run.trajectory

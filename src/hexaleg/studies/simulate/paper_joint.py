@@ -47,7 +47,7 @@ import numpy as np
 
 from hexaleg.checks import one_of, positive
 from hexaleg.dynamics import energy
-from hexaleg.robot.motor import motor
+from hexaleg.robot.catalogue import motor
 from hexaleg.studies.paper.joint import POSTURES, PaperJoint
 from hexaleg.units import DEG, MM
 
@@ -176,7 +176,7 @@ class AdamsRun:
     def metrics(self) -> dict[str, Any]:
         """The totals of :func:`hexaleg.dynamics.energy.metrics` of the required torque M and
         the lever's speed over the period (its electrical entries for the default servo,
-        :func:`hexaleg.robot.motor.motor`): ``mean_abs_torque``, ``peak_torque``,
+        :func:`hexaleg.robot.catalogue.motor`): ``mean_abs_torque``, ``peak_torque``,
         ``rms_torque`` (N·m), ``positive_work`` (J), …."""
         return energy.metrics(self.torque, self.theta_dot, float(self.t[1] - self.t[0]),
                               motor())["total"]

@@ -3,7 +3,7 @@
 A registered robot (or one's own robot TOML) with its own gait, motor and contact settings; a
 config file's ``[gait]``, ``[motor]``, ``[contact]`` tables on top (as ``hexaleg report`` reads
 them, :class:`hexaleg.studies.report.config.ReportConfig`) and its ``[simulate]`` table
-(:class:`~hexaleg.studies.simulate.run.Settings`); the springs of a design file
+(:class:`~hexaleg.simulation.run.Settings`); the springs of a design file
 (:func:`~hexaleg.studies.simulate.design_file.read_design`) or, without one, the globally optimal
 linear springs on the robot's spring class (:func:`hexaleg.design.codesign.optimal_springs`, the
 design ``hexaleg sweep --family linear`` reports).
@@ -23,9 +23,9 @@ from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.motion.legged import tripod_gait
 from hexaleg.robot.registry import description
 from hexaleg.robot.springs import SpringSet
+from hexaleg.simulation.run import Settings, Simulation, simulate
 from hexaleg.studies.report.config import ReportConfig
 from hexaleg.studies.simulate.design_file import read_design
-from hexaleg.studies.simulate.run import Settings, Simulation, simulate
 
 DEFAULT_FAMILY = "linear"
 """The spring family of the default design (its optimum has no geometry to search: global)."""
@@ -54,7 +54,7 @@ class Study:
     notes: tuple[str, ...]
 
     def run(self) -> Simulation:
-        """Simulate (:func:`hexaleg.studies.simulate.run.simulate`)."""
+        """Simulate (:func:`hexaleg.simulation.run.simulate`)."""
         p = self.prepared
         return simulate(p.robot, p.motion, p.motor, self.springs, self.settings,
                         contact=p.contact, objective=self.objective, prepared=p)

@@ -18,9 +18,9 @@ from typing import Any
 import numpy as np
 
 from hexaleg.errors import OutputError
+from hexaleg.simulation.run import Run, Simulation
 from hexaleg.studies.report.quantities import comparison, quantity
 from hexaleg.studies.simulate.design_file import design_table
-from hexaleg.studies.simulate.run import Run, Simulation
 
 METRICS: tuple[str, ...] = ("electrical", "joule")
 """The energies compared (J per cycle)."""
@@ -56,7 +56,7 @@ def _energies(values: dict[str, tuple[float, float, float]]) -> dict[str, Any]:
 
 
 def sensitivity_row(row: dict[str, Any]) -> dict[str, Any]:
-    """A row of :func:`hexaleg.studies.simulate.sensitivity.sensitivity` as quantities."""
+    """A row of :func:`hexaleg.simulation.sensitivity.sensitivity` as quantities."""
     out: dict[str, Any] = {"label": row["label"], "controller": row.get("controller"),
                            "verdict": row["verdict"],
                            "predicted_saving": quantity(100 * row["predicted"], "%"),
@@ -79,7 +79,7 @@ def simulation_data(s: Simulation, *, design: str = "", notes: tuple[str, ...] =
         s: The simulation.
         design: Where the springs came from (a file, or the optimal design).
         notes: Caveats to record.
-        sensitivity: Rows of :func:`hexaleg.studies.simulate.sensitivity.sensitivity`, or None.
+        sensitivity: Rows of :func:`hexaleg.simulation.sensitivity.sensitivity`, or None.
     """
     st, sim = s.settings, s.with_springs.sim
     predicted = {m: s.predicted(m) for m in METRICS}

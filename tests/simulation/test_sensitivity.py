@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 
-from hexaleg.studies.simulate.sensitivity import VARIANTS, sensitivity
+from hexaleg.simulation.sensitivity import VARIANTS, sensitivity
 from hexaleg.studies.simulate.write import page, simulation_data
 
 
@@ -38,7 +38,7 @@ def test_the_controller_check_is_the_two_controllers_simulations(prepared, optim
     simulation (the unchanged variant reuses the base run instead of simulating it again)."""
     import numpy as np
 
-    from hexaleg.studies.simulate.sensitivity import controller_check
+    from hexaleg.simulation.sensitivity import controller_check
 
     rows = controller_check(prepared, optimal.springs, "joule", feedforward.settings)
     assert [r["controller"] for r in rows] == ["feedforward", "position"]
@@ -50,7 +50,7 @@ def test_the_controller_check_is_the_two_controllers_simulations(prepared, optim
 
 
 def test_an_unchanged_variant_reuses_the_base_simulation(feedforward, monkeypatch):
-    import hexaleg.studies.simulate.sensitivity as module
+    import hexaleg.simulation.sensitivity as module
 
     def refuse(*args, **kwargs):
         raise AssertionError("simulated again")

@@ -13,9 +13,9 @@ import pytest
 
 import hexaleg
 from hexaleg.errors import InvalidParameterError
-from hexaleg.studies.simulate.ground import Ground
-from hexaleg.studies.simulate.model import TIMESTEP, build_model, timestep_limit
-from hexaleg.studies.simulate.state import JointMap
+from hexaleg.simulation.ground import Ground
+from hexaleg.simulation.model import TIMESTEP, build_model, timestep_limit
+from hexaleg.simulation.state import JointMap
 
 
 @pytest.fixture(scope="module")

@@ -10,9 +10,9 @@ import pytest
 
 from hexaleg.errors import InvalidParameterError
 from hexaleg.robot.springs import DeadZoneSpring
-from hexaleg.studies.simulate import stepping
-from hexaleg.studies.simulate.controllers import controls, reference
-from hexaleg.studies.simulate.model import build_model
+from hexaleg.simulation import stepping
+from hexaleg.simulation.controllers import controls, reference
+from hexaleg.simulation.model import build_model
 
 
 def test_a_diverging_run_stops_without_nan(prepared):

@@ -7,8 +7,8 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from hexaleg.studies.simulate.model import build_model
-from hexaleg.studies.simulate.state import rotation_xyzw
+from hexaleg.simulation.model import build_model
+from hexaleg.simulation.state import rotation_xyzw
 
 
 @pytest.fixture(scope="module")

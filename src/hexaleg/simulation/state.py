@@ -1,7 +1,7 @@
 """Pinocchio ↔ MuJoCo: configurations, velocities, accelerations and forces of the same robot.
 
 The two programs order the joints alike (the MJCF is written in Pinocchio's joint order,
-:mod:`hexaleg.studies.simulate.mjcf`) but differ in the free flyer and in continuous joints:
+:mod:`hexaleg.simulation.mjcf`) but differ in the free flyer and in continuous joints:
 
 ============  ==================================  ==================================
 quantity      Pinocchio (hexaleg's convention)     MuJoCo

@@ -9,8 +9,8 @@ import pinocchio as pin
 import pytest
 
 from hexaleg.errors import RobotModelError
-from hexaleg.studies.simulate.mjcf import fmt, foot_geom, motion_axis, tree_xml, wxyz
-from hexaleg.studies.simulate.model import build_model
+from hexaleg.simulation.mjcf import fmt, foot_geom, motion_axis, tree_xml, wxyz
+from hexaleg.simulation.model import build_model
 
 
 @pytest.fixture(scope="module")

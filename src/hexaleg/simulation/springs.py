@@ -29,7 +29,7 @@ S = x / :data:`STEP_WIDTH` the clamp returns exactly the step's 0 or ±x everywh
 :data:`STEP_WIDTH` (1 nrad) past the contact angle, where it ramps between them — far inside the
 width of one step of a simulation (q̇ dt ≈ 1e-4 rad). A set whose springs are all native runs
 inside MuJoCo's step (and :func:`mujoco.rollout.rollout`); the damping of a dead-zone spring makes
-the run step by step in Python (:mod:`hexaleg.studies.simulate.run`):
+the run step by step in Python (:mod:`hexaleg.simulation.run`):
 :func:`SpringPlan.python_torque` is that term.
 """
 
@@ -41,7 +41,7 @@ import numpy as np
 
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import DeadZoneSpring, Spring, SpringSet, Term
-from hexaleg.studies.simulate.mjcf import fmt
+from hexaleg.simulation.mjcf import fmt
 
 FAR = 1e6
 """rad: the open end of a one-sided tendon dead band."""

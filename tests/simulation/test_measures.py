@@ -24,7 +24,7 @@ def test_energy_is_the_energy_module_of_the_simulated_torques(feedforward):
 
 
 def test_planned_index_wraps_the_period(walk):
-    from hexaleg.studies.simulate.measures import planned_index
+    from hexaleg.simulation.measures import planned_index
 
     h = walk.dt
     t = np.array([0.0, h, 2.5 * h, walk.period - h / 2, walk.period, 3 * walk.period + h])

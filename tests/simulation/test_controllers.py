@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from hexaleg.errors import InvalidParameterError, UnknownNameError
-from hexaleg.studies.simulate.controllers import COMPLIANCE, Servo, controls, reference
-from hexaleg.studies.simulate.model import build_model
+from hexaleg.simulation.controllers import COMPLIANCE, Servo, controls, reference
+from hexaleg.simulation.model import build_model
 
 
 def test_gains_from_the_servo_model(prepared):

@@ -18,7 +18,7 @@ from typing import Any
 from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import HexalegError
 from hexaleg.robot.springs import SpringSet
-from hexaleg.studies.simulate.run import Settings, Simulation, simulate
+from hexaleg.simulation.run import Settings, Simulation, simulate
 
 Variant = tuple[str, Callable[[Settings], Settings]]
 """A label and how it changes the settings."""
@@ -53,7 +53,7 @@ CONTROLLER_VARIANTS: tuple[Variant, ...] = (
     ("position only", lambda s: dataclasses.replace(s, controller="position")),
 )
 """The variants of :func:`controller_check`: the two controllers a servo robot runs
-(:data:`hexaleg.studies.simulate.controllers.CONTROLLERS`), the other settings the defaults."""
+(:data:`hexaleg.simulation.controllers.CONTROLLERS`), the other settings the defaults."""
 
 
 def sensitivity(base: Simulation, variants: Sequence[Variant] = VARIANTS

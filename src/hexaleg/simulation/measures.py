@@ -1,7 +1,7 @@
 """What a simulated walk is judged by: energy, tracking, distance, drift, slip, contacts, forces.
 
 All measures are taken over the evaluated window — the last whole cycles of a run, after the
-settling cycles — from a :class:`~hexaleg.studies.simulate.stepping.Trajectory`, against the plan
+settling cycles — from a :class:`~hexaleg.simulation.stepping.Trajectory`, against the plan
 (:class:`~hexaleg.motion.trajectory.Motion`) sampled at the same instants. The energy goes through
 the analysis' own energy module (:func:`hexaleg.dynamics.energy.metrics`) with the simulated motor
 torques and joint speeds: on the simulation's grid the rectangle rule ``Σ x dt`` of a periodic
@@ -18,8 +18,8 @@ import numpy as np
 
 from hexaleg.dynamics import energy
 from hexaleg.motion.trajectory import Motion
-from hexaleg.studies.simulate.model import SimModel
-from hexaleg.studies.simulate.stepping import Trajectory, tilt
+from hexaleg.simulation.model import SimModel
+from hexaleg.simulation.stepping import Trajectory, tilt
 
 LOSS_GRACE = 0.02
 """Fraction of a stance at its start and end where a foot not yet / no longer pressing is not

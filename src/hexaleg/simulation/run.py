@@ -2,10 +2,10 @@
 
 :func:`simulate` analyses the gait (:func:`hexaleg.dynamics.prepare.prepare`, the springs' and the
 baseline's motor torques — the feedforward of the ``"feedforward"`` controller), builds the MuJoCo
-model twice (:func:`hexaleg.studies.simulate.model.build_model`, with and without the springs),
+model twice (:func:`hexaleg.simulation.model.build_model`, with and without the springs),
 runs each for :attr:`Settings.cycles` cycles from the planned initial state, lets the first
 cycles settle and evaluates the last :attr:`Settings.evaluate`
-(:mod:`hexaleg.studies.simulate.measures`). The energy per cycle comes from the simulated motor
+(:mod:`hexaleg.simulation.measures`). The energy per cycle comes from the simulated motor
 torques and speeds through :func:`hexaleg.dynamics.energy.metrics`, the module the prediction uses,
 so the two differ only by what the simulation adds: contact compliance and friction, servo
 dynamics and saturation, the load handover taking time instead of one sample.
@@ -29,10 +29,10 @@ from hexaleg.errors import InvalidParameterError, SimulationError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
-from hexaleg.studies.simulate import measures, stepping
-from hexaleg.studies.simulate.controllers import COMPLIANCE, Servo, controls, reference
-from hexaleg.studies.simulate.ground import Ground
-from hexaleg.studies.simulate.model import TIMESTEP, SimModel, build_model, timestep_limit
+from hexaleg.simulation import measures, stepping
+from hexaleg.simulation.controllers import COMPLIANCE, Servo, controls, reference
+from hexaleg.simulation.ground import Ground
+from hexaleg.simulation.model import TIMESTEP, SimModel, build_model, timestep_limit
 
 VERDICTS: tuple[str, ...] = ("walks", "stalled", "fell", "diverged")
 """How a run ended: it walked; it stood but covered less than :data:`STALL` of the planned
@@ -47,9 +47,9 @@ class Settings:
 
     Attributes:
         controller: ``"feedforward"`` or ``"position"``
-            (:data:`hexaleg.studies.simulate.controllers.CONTROLLERS`).
+            (:data:`hexaleg.simulation.controllers.CONTROLLERS`).
         timestep: s, > 0, below the gait's sample spacing; None (default): automatic, the least
-            of :data:`~hexaleg.studies.simulate.model.TIMESTEP`, half the gait's sample spacing
+            of :data:`~hexaleg.simulation.model.TIMESTEP`, half the gait's sample spacing
             and 80 % of the explicit-stability limit (:func:`automatic_timestep`). Rounded down
             so that a cycle is a whole number of steps.
         cycles: Cycles simulated, ≥ 2.
@@ -205,9 +205,9 @@ def cycle_timestep(timestep: float, period: float) -> float:
 
 def automatic_timestep(robot: Robot, motion: Motion, motor: Any, servo: Servo,
                        ground: Ground) -> float:
-    """The default timestep: the least of :data:`~hexaleg.studies.simulate.model.TIMESTEP`,
+    """The default timestep: the least of :data:`~hexaleg.simulation.model.TIMESTEP`,
     half the gait's sample spacing and 80 % of the explicit-stability limit
-    (:func:`hexaleg.studies.simulate.model.timestep_limit`), s."""
+    (:func:`hexaleg.simulation.model.timestep_limit`), s."""
     probe = build_model(robot, motion, motor, servo=servo, ground=ground, check=False)
     limit, _ = timestep_limit(probe, motion)
     return min(TIMESTEP, motion.dt / 2, 0.8 * limit)

@@ -38,7 +38,7 @@ import numpy as np
 from hexaleg.checks import one_of, positive
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.trajectory import Motion
-from hexaleg.studies.simulate.mjcf import fmt
+from hexaleg.simulation.mjcf import fmt
 
 CONTROLLERS: tuple[str, ...] = ("feedforward", "position")
 """The controllers (module docstring), default first."""

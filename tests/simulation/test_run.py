@@ -11,7 +11,7 @@ import pytest
 import hexaleg
 from hexaleg.errors import InvalidParameterError, SimulationError
 from hexaleg.robot.springs import DeadZoneSpring, SpringSet
-from hexaleg.studies.simulate.run import Settings, cycle_timestep, simulate
+from hexaleg.simulation.run import Settings, cycle_timestep, simulate
 
 QUICK = Settings(cycles=2, evaluate=1, force_samples=0)
 
@@ -117,7 +117,7 @@ def test_per_joint_motors_and_the_automatic_timestep(robot, walk):
     """A stronger servo on the femurs (a MotorSet: per-joint stall torque and speed): per-joint
     gains, a timestep chosen below the stiffer servo's stability limit, and a walk that keeps
     the prediction."""
-    from hexaleg.robot.motor import motor
+    from hexaleg.robot.catalogue import motor
     from hexaleg.robot.motor_set import MotorSet
 
     motors = MotorSet.per_class(robot.joint_classes, robot.joint_names,

@@ -15,11 +15,11 @@ by construction:
   part for a prismatic one); joint limits are not enforced (the analysis does not either);
 * the collision geometry: boxes, spheres and cylinders as such, a mesh as the box of its local
   bounding box (a stand-in, noted); the geometry of the foot links is left out — the foot is a
-  contact sphere centred on the foot frame (:mod:`hexaleg.studies.simulate.model`);
+  contact sphere centred on the foot frame (:mod:`hexaleg.simulation.model`);
 * a ``<site>`` at every foot frame (foot positions are read there).
 
 The tree's shape (which joints exist, in which order) is the same in both programs, and
-:mod:`hexaleg.studies.simulate.state` maps the vectors between them by joint name.
+:mod:`hexaleg.simulation.state` maps the vectors between them by joint name.
 """
 
 from __future__ import annotations

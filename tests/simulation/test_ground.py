@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from hexaleg.errors import InvalidParameterError
-from hexaleg.studies.simulate.ground import IMPEDANCE, Ground
+from hexaleg.simulation.ground import IMPEDANCE, Ground
 
 
 def _ball(ground: Ground, mass: float, z0: float) -> tuple[mujoco.MjModel, mujoco.MjData]:

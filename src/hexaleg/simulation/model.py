@@ -1,14 +1,14 @@
 """The robot in MuJoCo: tree, ground, contacts, springs, servos, sensors, timestep and integrator.
 
-:func:`build_model` writes one MJCF document (:mod:`~hexaleg.studies.simulate.mjcf` for the robot's
-tree, :mod:`~hexaleg.studies.simulate.springs` for the springs,
-:mod:`~hexaleg.studies.simulate.controllers` for the servos) and compiles it:
+:func:`build_model` writes one MJCF document (:mod:`~hexaleg.simulation.mjcf` for the robot's
+tree, :mod:`~hexaleg.simulation.springs` for the springs,
+:mod:`~hexaleg.simulation.controllers` for the servos) and compiles it:
 
 * a ground plane (the world's ``ground`` geom) and explicit contact ``<pair>``\\ s only — the foot
   spheres, and every collision geom of the robot that stays clear of the ground over the planned
   motion (:data:`CLEARANCE`; a geom that the plan brings closer, e.g. a shank mesh that contains
   the foot, is left out and noted). No robot–robot contacts: the analysis has none;
-* contact parameters from :class:`~hexaleg.studies.simulate.ground.Ground` (physical K, B, μ →
+* contact parameters from :class:`~hexaleg.simulation.ground.Ground` (physical K, B, μ →
   ``solref``/``solimp``, per pair from its body's ``body_invweight0``), elliptic friction cones
   (the analysis' ``"soc"`` cone), ``impratio`` and the optional no-slip pass;
 * sensors: each servo's actuator force and each foot site's position.
@@ -51,9 +51,9 @@ from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
-from hexaleg.studies.simulate.controllers import Servo, ServoMotor, servo_xml
-from hexaleg.studies.simulate.ground import FOOT_RADIUS, IMPRATIO, Ground
-from hexaleg.studies.simulate.mjcf import (
+from hexaleg.simulation.controllers import Servo, ServoMotor, servo_xml
+from hexaleg.simulation.ground import FOOT_RADIUS, IMPRATIO, Ground
+from hexaleg.simulation.mjcf import (
     FOOT_CLASS,
     GEOM_CLASS,
     fmt,
@@ -61,8 +61,8 @@ from hexaleg.studies.simulate.mjcf import (
     foot_site,
     tree_xml,
 )
-from hexaleg.studies.simulate.springs import SpringPlan, plan_springs
-from hexaleg.studies.simulate.state import JointMap
+from hexaleg.simulation.springs import SpringPlan, plan_springs
+from hexaleg.simulation.state import JointMap
 from hexaleg.units import G
 
 TIMESTEP = 5e-4
@@ -86,7 +86,7 @@ class SimModel:
         model: The ``mujoco.MjModel``.
         xml: The MJCF it was compiled from (contact ``solref`` set after compiling).
         joints: The Pinocchio ↔ MuJoCo map.
-        springs: How the springs are built (:class:`~hexaleg.studies.simulate.springs.SpringPlan`).
+        springs: How the springs are built (:class:`~hexaleg.simulation.springs.SpringPlan`).
         servo: The servo settings.
         ground: The ground.
         kp: Position gains, (nj,), N·m/rad. kd: Velocity gains, (nj,), N·m·s/rad.

@@ -1,8 +1,8 @@
 """Running a compiled model under a control sequence: the recorded trajectory and its verdict.
 
-The servos' controls are a function of time only (:mod:`hexaleg.studies.simulate.controllers`), so
+The servos' controls are a function of time only (:mod:`hexaleg.simulation.controllers`), so
 a run is an open-loop control sequence. When the springs are all native
-(:attr:`hexaleg.studies.simulate.springs.SpringPlan.native`) the whole run is one call of
+(:attr:`hexaleg.simulation.springs.SpringPlan.native`) the whole run is one call of
 :func:`mujoco.rollout.rollout` (MuJoCo's C loop: ``mj_step`` then copy the state and the
 sensors); otherwise a Python loop does the same with the non-native spring torques added to
 ``qfrc_applied`` before each step. Both record, per step k, the state *before* the step (at
@@ -22,8 +22,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from hexaleg.errors import InvalidParameterError
-from hexaleg.studies.simulate.model import SimModel
-from hexaleg.studies.simulate.state import rotation_xyzw
+from hexaleg.simulation.model import SimModel
+from hexaleg.simulation.state import rotation_xyzw
 
 FALL_HEIGHT = 0.5
 """A base below this fraction of its planned height has fallen."""

@@ -111,5 +111,5 @@ class Ground:
     def explicit_rate(self, inverse_weight: float) -> tuple[float, float]:
         """``(K Â, B Â)``: the contact's stiffness and damping per unit effective mass (1/s²,
         1/s), for the explicit-integration check of
-        :func:`hexaleg.studies.simulate.model.check_timestep`."""
+        :func:`hexaleg.simulation.model.check_timestep`."""
         return self.stiffness * inverse_weight, self.damping * inverse_weight

@@ -8,7 +8,7 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.robot.springs import DeadZoneSpring, LinearSpring, SpringSet
-from hexaleg.studies.simulate.model import build_model
+from hexaleg.simulation.model import build_model
 
 
 def _energy_error(prepared, springs: SpringSet, dt: float, duration: float = 0.5) -> np.ndarray:

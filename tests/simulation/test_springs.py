@@ -15,8 +15,8 @@ from hexaleg.robot.springs import (
     SpringSet,
     StiffeningSpring,
 )
-from hexaleg.studies.simulate.model import build_model
-from hexaleg.studies.simulate.springs import STEP_WIDTH, plan_springs
+from hexaleg.simulation.model import build_model
+from hexaleg.simulation.springs import STEP_WIDTH, plan_springs
 
 FAMILIES = {
     "linear": (LinearSpring(stiffness=0.8, reference=0.3, torque_at_reference=-0.1), True),

@@ -1,0 +1,23 @@
+"""The forward-simulation engine: the robot in MuJoCo with hexaleg's springs and a servo.
+
+:mod:`~hexaleg.simulation.mjcf` and :mod:`~hexaleg.simulation.model` build the robot (its
+Pinocchio model as MJCF, a ground with contacts in physical units,
+:mod:`~hexaleg.simulation.ground`), :mod:`~hexaleg.simulation.state` maps vectors between
+Pinocchio and MuJoCo, :mod:`~hexaleg.simulation.springs` builds hexaleg's spring laws,
+:mod:`~hexaleg.simulation.controllers` the servos, :mod:`~hexaleg.simulation.stepping` runs a
+model, :mod:`~hexaleg.simulation.measures` judges a run, :mod:`~hexaleg.simulation.run`
+simulates with and without the springs beside the analysis, and
+:mod:`~hexaleg.simulation.sensitivity` reruns it under changed settings and controllers.
+
+It sits below the design layer, so a design may simulate its candidates; the command and its
+files are :mod:`hexaleg.studies.simulate`. MuJoCo is imported where a model is built, so
+importing this package stays light. See ``docs/simulate.md``.
+"""
+
+from hexaleg.simulation.controllers import CONTROLLERS, Servo
+from hexaleg.simulation.ground import Ground
+from hexaleg.simulation.model import SimModel, build_model
+from hexaleg.simulation.run import Run, Settings, Simulation, simulate
+
+__all__ = ["CONTROLLERS", "Ground", "Run", "Servo", "Settings", "SimModel", "Simulation",
+           "build_model", "simulate"]
