@@ -17,7 +17,16 @@ the tables and equations keep their numbers across these editions):
 * density from the specific weight of **Table A-5**: carbon steel 76.5 kN/m³, stainless 18-8
   76.0 kN/m³ (÷ g₀ = 9.80665 m/s²);
 * preferred wire diameters: the first-choice metric preferred sizes of **Table A-17**
-  (0.10 … 10 mm), within each material's range of Table 10-4.
+  (0.10 … 10 mm), within each material's range of Table 10-4;
+* fatigue (used by :mod:`hexaleg.design.fatigue`): **Table 10-10** (courtesy of Associated
+  Spring), the maximum recommended bending stress (K_B corrected) of helical torsion springs in
+  cyclic applications as a percentage of S_ut — ASTM A228 and type 302 stainless: 53 % at 10⁵
+  and 50 % at 10⁶ cycles not shot-peened, 62 % and 60 % shot-peened; ASTM A230 and A232: 55/53 %
+  and 64/62 % — each material names its column (:attr:`Material.fatigue_column`); and
+  **Zimmerli's** endurance data for spring steel wire under 10 mm (§10-9: size, material and
+  tensile strength have no effect on them, infinite life only), in torsion: unpeened
+  S_sa = 241 MPa, S_sm = 379 MPa (35 and 55 kpsi); peened S_sa = 398 MPa, S_sm = 534 MPa
+  (57.5 and 77.5 kpsi) (:data:`ZIMMERLI`).
 """
 
 from __future__ import annotations
@@ -42,6 +51,19 @@ PREFERRED_WIRE_DIAMETERS: tuple[float, ...] = tuple(MM * v for v in (
     10.0))
 """Shigley Table A-17, first-choice metric preferred sizes from 0.10 to 10 mm, m."""
 
+FATIGUE_COLUMNS: dict[str, dict[bool, dict[float, float]]] = {
+    "A228/302": {False: {1e5: 0.53, 1e6: 0.50}, True: {1e5: 0.62, 1e6: 0.60}},
+    "A230/A232": {False: {1e5: 0.55, 1e6: 0.53}, True: {1e5: 0.64, 1e6: 0.62}},
+}
+"""Shigley Table 10-10 (Associated Spring): column → shot-peened? → cycles → the maximum
+recommended repeated bending stress of a helical torsion spring as a fraction of S_ut ("no
+surging, springs in the as-stress-relieved condition"; peening "not always possible")."""
+ZIMMERLI: dict[bool, tuple[float, float]] = {False: (241e6, 379e6), True: (398e6, 534e6)}
+"""Zimmerli's torsional endurance strengths of spring wire under 10 mm, shot-peened? →
+(S_sa, S_sm), Pa (Shigley §10-9, infinite life)."""
+ZIMMERLI_MAX_WIRE = 10.0 * MM
+"""Zimmerli's data hold for wire under 10 mm (Shigley §10-9), m."""
+
 
 @dataclass(frozen=True)
 class Material:
@@ -57,6 +79,8 @@ class Material:
             covers every larger wire.
         yield_ratio: ``S_y / S_ut`` in bending (Eq. 10-57).
         density: kg/m³ (Table A-5).
+        fatigue_column: The column of Table 10-10 (:data:`FATIGUE_COLUMNS`) the material's
+            fatigue strengths are read from.
     """
 
     name: str
@@ -66,6 +90,12 @@ class Material:
     modulus: tuple[tuple[float, float], ...]
     yield_ratio: float
     density: float
+    fatigue_column: str = "A228/302"
+
+    def __post_init__(self) -> None:
+        if self.fatigue_column not in FATIGUE_COLUMNS:
+            raise InvalidParameterError(f"{self.name} fatigue_column", self.fatigue_column,
+                                        f"one of {', '.join(FATIGUE_COLUMNS)} (Table 10-10)")
 
     @property
     def d_max(self) -> float:
@@ -130,12 +160,13 @@ MATERIALS: dict[str, Material] = {
         strength=((6.5 * MM, _a(2211.0, 0.145), 0.145),), d_min=0.10 * MM,
         modulus=((0.032 * IN, 203.4e9), (0.063 * IN, 200.0e9), (0.125 * IN, 196.5e9),
                  (np.inf, 193.0e9)),
-        yield_ratio=0.78, density=76.5e3 / STANDARD_GRAVITY),
+        yield_ratio=0.78, density=76.5e3 / STANDARD_GRAVITY, fatigue_column="A228/302"),
     "stainless_302": Material(
         "stainless_302", "stainless steel 302, ASTM A313",
         strength=((2.5 * MM, _a(1867.0, 0.146), 0.146), (5.0 * MM, _a(2065.0, 0.263), 0.263),
                   (10.0 * MM, _a(2911.0, 0.478), 0.478)), d_min=0.3 * MM,
-        modulus=((np.inf, 193.0e9),), yield_ratio=0.61, density=76.0e3 / STANDARD_GRAVITY),
+        modulus=((np.inf, 193.0e9),), yield_ratio=0.61, density=76.0e3 / STANDARD_GRAVITY,
+        fatigue_column="A228/302"),
 }
 """The wire materials hexaleg designs torsion springs in (module docstring)."""
 
