@@ -121,6 +121,13 @@ def spring_outer_diameter(desc: RobotDescription, robot: Robot, kind: str
     return min(known), "width of its links (collision geometry)"
 
 
+def motion_centres(prepared: Prepared, joints: tuple[str, ...] | list[str]) -> dict[str, float]:
+    """Joint → the centre of its range of motion in the gait ``(min + max)/2`` (rad, absolute):
+    the origin of a part's ``engage`` and ``free`` angles on that joint."""
+    q = prepared.q[:, [prepared.robot.column(j) for j in joints]]
+    return {j: float(c) for j, c in zip(joints, (q.min(0) + q.max(0)) / 2, strict=True)}
+
+
 def _elements(fam_name: str, geometry: Mapping[str, float | str], x: np.ndarray, lo: float,
               hi: float) -> list[dict]:
     """The elements' requirements of one group over the relative motion [lo, hi] (rad)."""
