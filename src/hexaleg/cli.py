@@ -17,6 +17,7 @@ from typing import TextIO
 from hexaleg import __version__
 from hexaleg.errors import HexalegError, HexalegWarning
 from hexaleg.robot.registry import DESCRIPTIONS  # loaded by `import hexaleg` already
+from hexaleg.simulation.controllers import CONTROLLERS  # no MuJoCo: it loads with a model
 
 ROBOT_HELP = (f"a registered robot ({', '.join(DESCRIPTIONS)}) or a robot description "
               "FILE.toml of one's own (docs/robots.md)")
@@ -200,6 +201,8 @@ def _add_design(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--robot", default="hexaleg", help=ROBOT_HELP + " (default %(default)s)")
     p.add_argument("--config", help="TOML file with optional [gait], [contact] and [design] "
                                     "tables (docs/design.md)")
+    p.add_argument("--controller", choices=CONTROLLERS, help="the servo the robot runs: every "
+                   "ranked design is simulated under it (default: [design] controller)")
     p.add_argument("--out", default="hexaleg-design",
                    help="output directory (default: %(default)s)")
     p.set_defaults(func=_run_design)
@@ -209,7 +212,10 @@ def _run_design(args: argparse.Namespace) -> int:
     from hexaleg.studies.design.config import DesignConfig
     from hexaleg.studies.design.write import write_design
 
-    written = write_design(args.out, DesignConfig.load(args.robot, args.config))
+    config = DesignConfig.load(args.robot, args.config)
+    if args.controller:
+        config = config.with_controller(args.controller)
+    written = write_design(args.out, config)
     print(written.result.summary())
     print(f"wrote {len(written.files)} files to {args.out}; open {args.out}/design.html")
     return 0
@@ -290,8 +296,7 @@ def _add_simulate(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--springs", help="design file (design.json: springs per joint as family and "
                                      "parameters, docs/simulate.md); default: the globally "
                                      "optimal linear springs on the robot's spring class")
-    # The names of hexaleg.simulation.controllers.CONTROLLERS (mujoco loads lazily).
-    p.add_argument("--controller", choices=("feedforward", "position"),
+    p.add_argument("--controller", choices=CONTROLLERS,
                    help="servo: torque feedforward + PD, or position-only PD "
                         "(default: feedforward, or the config's)")
     p.add_argument("--cycles", type=int, help="gait cycles simulated (default 4, the last 2 "

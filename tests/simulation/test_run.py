@@ -129,3 +129,25 @@ def test_per_joint_motors_and_the_automatic_timestep(robot, walk):
     assert s.baseline.sim.timestep == pytest.approx(2.66e-4, rel=0.01)  # docs: 0.27 ms
     assert s.baseline.walks
     assert s.simulated()[1] == pytest.approx(s.predicted()[1], rel=0.1)
+
+
+def test_a_reused_baseline_run_gives_the_same_simulation(prepared, optimal, feedforward):
+    """Springs simulated beside a reused baseline equal a fresh simulation of both (same
+    trajectory bit for bit), and a baseline of other settings is refused by name."""
+    from conftest import SHORT
+
+    from hexaleg.design.codesign import optimal_springs
+
+    other = optimal_springs(prepared, ["tibia"], "linear").springs
+    reused = simulate(prepared.robot, prepared.motion, prepared.motor, other, SHORT,
+                      prepared=prepared, baseline=feedforward)
+    fresh = simulate(prepared.robot, prepared.motion, prepared.motor, other, SHORT,
+                     prepared=prepared)
+    assert reused.baseline is feedforward.baseline
+    np.testing.assert_array_equal(reused.with_springs.trajectory.qpos,
+                                  fresh.with_springs.trajectory.qpos)
+    assert reused.simulated() == fresh.simulated()
+    with pytest.raises(InvalidParameterError, match="baseline"):
+        simulate(prepared.robot, prepared.motion, prepared.motor, other,
+                 dataclasses.replace(SHORT, controller="position"), prepared=prepared,
+                 baseline=feedforward)

@@ -95,8 +95,8 @@ class RunSpec:
     Attributes:
         robot: A registered robot's name or a robot TOML file
             (:func:`hexaleg.robot.registry.description`).
-        motor: Catalogue name of the servo on every joint (:data:`hexaleg.robot.catalogue.CATALOGUE`);
-            None for the robot's own
+        motor: Catalogue name of the servo on every joint
+            (:data:`hexaleg.robot.catalogue.CATALOGUE`); None for the robot's own
             (:meth:`~hexaleg.robot.description.RobotDescription.actuator`: its catalogue motor,
             else a generic actuator from its URDF limits).
         objective: Force-distribution objective (:data:`hexaleg.dynamics.contact.OBJECTIVES`).

@@ -251,7 +251,8 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
 
 def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None = None,
              settings: Settings | None = None, *, contact: ContactParams | None = None,
-             objective: str = "joule", prepared: Prepared | None = None) -> Simulation:
+             objective: str = "joule", prepared: Prepared | None = None,
+             baseline: Simulation | None = None) -> Simulation:
     """Simulate ``motion`` with ``springs`` and without, and analyse both (module docstring).
 
     Args:
@@ -265,6 +266,9 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
             one).
         objective: The analysis' force objective.
         prepared: The gait already prepared with ``motor`` and ``contact`` (saves the RNEA).
+        baseline: A simulation of the same gait, motor, contact, objective and settings whose
+            baseline run (the robot without springs) is reused instead of simulated again: a
+            design that simulates many candidate springs runs the baseline once.
 
     Returns:
         Both runs and the analyses.
@@ -285,12 +289,19 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
     prepared = prepared or prepare(robot, motion, motor=motor, contact=contact)
     analysis = prepared.evaluate(springs, objective)
     base = prepared.evaluate(None, objective)
+    if baseline is not None and (baseline.settings != settings or baseline.motion is not motion
+                                 or baseline.prepared.motor is not prepared.motor):
+        raise InvalidParameterError(
+            "baseline", "a simulation of another gait, motor or settings",
+            "a simulation of this gait with this motor and these settings")
     servo, ground = settings.servo(), settings.ground(contact.mu)
-    dt = cycle_timestep(settings.timestep if settings.timestep is not None else
-                        automatic_timestep(robot, motion, prepared.motor, servo, ground),
-                        motion.period)
-    runs = {}
+    dt = baseline.baseline.sim.timestep if baseline is not None else cycle_timestep(
+        settings.timestep if settings.timestep is not None else
+        automatic_timestep(robot, motion, prepared.motor, servo, ground), motion.period)
+    runs = {} if baseline is None else {"baseline": baseline.baseline}
     for name, s, a in (("springs", springs, analysis), ("baseline", SpringSet(), base)):
+        if name in runs:
+            continue
         sim = build_model(robot, motion, prepared.motor, springs=s, servo=servo, ground=ground,
                           timestep=dt)
         runs[name] = simulate_run(name, sim, motion, a, settings)

@@ -37,11 +37,24 @@ def test_recommended_saving_equals_a_fresh_evaluation(written):
     assert rec.net["electrical"] < rec.row["saving.electrical"]  # their mass costs energy
 
 
-def test_the_recommendation_is_the_best_buildable_design_evaluated(written):
+def test_the_recommendation_is_the_best_simulated_buildable_design(written):
+    """Every family optimum and Pareto point is simulated under the design's controller (each
+    once), and the recommendation is the buildable one with the best simulated saving net of
+    its springs' mass: simulated gross + the predicted mass penalty."""
     r = written[0].result
-    pool = [*r.candidates, *(c for _, c in r.pareto)]
-    best = max((c for c in pool if c.buildable), key=lambda c: c.net["electrical"])
-    assert r.recommended.net["electrical"] == best.net["electrical"]
+    pool = {id(c) for c in [*r.candidates, *(c for _, c in r.pareto)]}
+    assert {id(row.candidate) for row in r.ranking} == pool
+    assert len(r.ranking) == len(pool)
+    assert all(row.controller == r.config.design.controller == "feedforward" for row in r.ranking)
+    walked = [row for row in r.ranking if row.simulated is not None and row.candidate.buildable]
+    best = max(walked, key=lambda row: row.net)
+    assert r.recommended is best.candidate
+    for row in walked:
+        c = row.candidate
+        assert row.net == pytest.approx(
+            row.simulated + c.net["electrical"] - c.row["saving.electrical"], abs=1e-15)
+        assert row.predicted == c.row["saving.electrical"]
+        assert row.flagged == (row.simulated < 0.5 * row.predicted)
     assert [c.net["electrical"] for c in r.candidates] == sorted(
         (c.net["electrical"] for c in r.candidates), reverse=True)
 
@@ -133,4 +146,4 @@ def test_a_design_that_does_not_pay_for_its_mass_says_so(written):
     heavy = dataclasses.replace(rec, net={**rec.net, "electrical": -0.01})
     worse = dataclasses.replace(r, recommended=heavy)
     assert not worse.pays
-    assert worse.summary().startswith("no spring pays for its mass here")
+    assert worse.summary().startswith("no springs pay here; the best would be")

@@ -8,7 +8,7 @@ import hexaleg
 from hexaleg.design.evaluator import RunSpec
 from hexaleg.design.robustness import Condition, condition_prepared
 from hexaleg.robot.payload import with_point_masses
-from hexaleg.studies.design.candidates import carried, design_family
+from hexaleg.studies.design.candidates import carried, design_family, parsimonious
 from hexaleg.studies.design.config import DesignParams
 from hexaleg.studies.design.groups import design_groups
 
@@ -51,3 +51,26 @@ def test_mirrored_design_contains_the_class_design(robot, nominal):
     assert set(mirrored.optimum.groups) == set(pairs)
     assert mirrored.optimum.saving >= by_class.optimum.saving - 1e-9
     assert mirrored.label == "one_sided"
+
+
+def test_parsimony_leaves_out_the_groups_under_the_bar(robot, nominal):
+    """Linear springs on all three classes: the coxa's adds 0.3 point, under a 1-point bar, so it
+    is left out and the rest designed again; every group kept clears the bar (or is the last);
+    the dropped group's share is the full design's. With no bar nothing is dropped."""
+    classes = design_groups(robot, ("coxa", "femur", "tibia"), "class")
+    full = parsimonious(nominal, RUN, GAIT, classes, classes, "linear",
+                        DesignParams(min_group_saving=0.0), OUTER)
+    assert set(full.optimum.groups) == set(classes) and not full.dropped
+    lean = parsimonious(nominal, RUN, GAIT, classes, classes, "linear",
+                        DesignParams(min_group_saving=0.01), OUTER)
+    assert "coxa" in lean.dropped
+    assert lean.dropped["coxa"] == pytest.approx(full.marginal["coxa"], rel=1e-12)
+    assert full.marginal["coxa"] < 0.01
+    assert not set(lean.optimum.groups) & set(lean.dropped)
+    assert len(lean.optimum.groups) == 1 or min(lean.marginal.values()) >= 0.01
+    assert any("group coxa not fitted" in n for n in lean.notes)
+    # re-designed on the rest: never worse than the full design's springs on the kept joints
+    kept = {j: s for j, s in full.optimum.springs.items()
+            if any(j in js for js in lean.optimum.groups.values())}
+    again = nominal.evaluate(hexaleg.SpringSet(kept)).savings["total"]["joule"]
+    assert lean.row["saving.joule"] >= again - 1e-9

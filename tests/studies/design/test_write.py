@@ -40,14 +40,27 @@ BASE = '[design]\nsamples = 100\nfamilies = ["linear"]\npareto_fractions = []\n'
 
 
 @pytest.mark.parametrize(("extra", "says"), [
-    ("max_torque = 1e-7\n", ["raise max_torque or max_deflection"]),  # nothing saves anything
     ("[design.max_outer_diameter]\nfemur = 0.0003\n", ["thinnest preferred wire"]),
     ("map_stride = [1.0, 8.0]\n", ["stride factor", "narrow the stride range"]),  # unreachable
 ])
 def test_bad_design_inputs_say_what_to_change(tmp_path, capsys, extra, says):
+    """Inputs no design can meet end in a named error that says what to change."""
     config = tmp_path / "d.toml"
     config.write_text(BASE + extra)
     assert main(["design", "--config", str(config), "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err
     for text in says:
         assert text in err
+
+
+def test_limits_under_which_no_spring_pays_give_that_answer(tmp_path, capsys):
+    """A spring torque bound of 0.1 µN·m leaves nothing to save: the design is written and says
+    "no springs pay" — an answer, not an error, and never a recommendation that costs energy."""
+    config = tmp_path / "d.toml"
+    config.write_text(BASE + "max_torque = 1e-7\n")
+    assert main(["design", "--config", str(config), "--out", str(tmp_path / "o")]) == 0
+    out = capsys.readouterr().out
+    assert "no springs pay here" in out
+    data = json.loads((tmp_path / "o" / "design.json").read_text())
+    assert data["pays"] is False
+    assert any(n.startswith("no springs pay") for n in data["notes"])

@@ -1,87 +1,58 @@
 """``hexaleg design``: which springs to fit, where, what to buy, and how they hold up.
 
-:func:`build_design` runs, for the robot and its gait (:class:`~hexaleg.studies.design.config.
-DesignConfig`):
+:func:`build_design` runs the stages of :mod:`hexaleg.studies.design.stages` for the robot and
+its gait (:class:`~hexaleg.studies.design.config.DesignConfig`):
 
-1. every allowed family's globally optimal springs on the sprung classes
-   (:mod:`hexaleg.studies.design.candidates`: the magnitudes the global optimum of one convex
-   program, the geometry searched), each with its torsion springs and its saving net of their
-   mass, ranked by the net saving of the ranking metric (default ``electrical``, the energy the
-   servos draw); the best buildable one is recommended;
-2. the Pareto front of the recommended family: the optimum with the spring torque bounded to
-   fractions of the recommended design's peak (a constrained optimum may find a geometry the
-   unconstrained search missed: the recommended design is then searched again from it, so it
-   never saves less than a point of its own front);
-3. robustness maps of the recommended design frozen (:mod:`hexaleg.design.robustness_map`):
-   period × stride and payload × μ, and their worst case;
-4. the robust design: the recommended geometry's magnitudes for the box of conditions
-   (:func:`hexaleg.design.robust.robust_springs`: its corners and the nominal gait, one convex
-   program), with its own parts;
-5. the proof: the recommended springs on the nominal gait simulated forward in MuJoCo, with and
-   without them, under each controller a servo robot runs
-   (:func:`hexaleg.simulation.sensitivity.controller_check`: feedforward + PD and position
-   only), the simulated saving beside the predicted one. Gross savings on both sides: the
-   simulated robot does not carry the springs' mass either.
+1. ``nominal``: the gait prepared once, the sprung classes, the design groups, the fit limits;
+2. ``candidates``: every allowed family's globally optimal springs (the magnitudes the global
+   optimum of one convex program, the geometry searched), groups whose marginal saving is under
+   ``[design] min_group_saving`` left unfitted, each with its torsion springs and its saving net
+   of their mass;
+3. ``pareto``: the best family's optimum with the spring torque bounded to fractions of its peak;
+4. ``ranking``: every family optimum and Pareto point simulated forward in MuJoCo under the
+   servo the robot runs (``[design] controller``, :mod:`hexaleg.studies.design.ranking`); the
+   recommendation is the best *simulated* buildable design net of its springs' mass, and one
+   whose simulated saving is under half its prediction is flagged;
+5. ``maps``: the recommendation frozen over period × stride and payload × μ, their worst case;
+6. ``robust``: the recommended geometry's magnitudes for a box of conditions, with its parts;
+7. ``proof``: the recommendation simulated under each controller a servo robot runs
+   (:func:`hexaleg.simulation.sensitivity.controller_check`), the simulated saving beside the
+   predicted one.
 
-The result is a frozen :class:`DesignResult`; :mod:`hexaleg.studies.design.data` turns it into
-``design.json``, :mod:`hexaleg.studies.design.write` writes the files.
+Where no design saves energy net of its springs' mass the result says so (``pays`` false and
+"no springs pay" in the summary), never a recommendation that costs energy. The result is a
+frozen :class:`DesignResult`; :mod:`hexaleg.studies.design.data` turns it into ``design.json``,
+:mod:`hexaleg.studies.design.write` writes the files.
 """
 
 from __future__ import annotations
 
-import dataclasses
-import itertools
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-import numpy as np
-
-from hexaleg.design.evaluator import RunSpec
-from hexaleg.design.families import Geometry
-from hexaleg.design.robust import RobustSprings, robust_springs
-from hexaleg.design.robustness import Condition, condition_prepared, condition_savings
-from hexaleg.design.robustness_map import RobustnessMap, robustness_map
-from hexaleg.design.spring_parts import spring_outer_diameter
-from hexaleg.dynamics.prepare import Prepared
-from hexaleg.errors import (
-    HexalegError,
-    InfeasibleForcesError,
-    InvalidParameterError,
-    TorqueLimitError,
-)
+from hexaleg.design.robustness_map import RobustnessMap
+from hexaleg.errors import HexalegError
 from hexaleg.motion.params import GaitParams
 from hexaleg.simulation.sensitivity import controller_check
-from hexaleg.studies.design.candidates import Candidate, candidate, design_family
-from hexaleg.studies.design.config import METRICS, DesignConfig
-from hexaleg.studies.design.groups import class_of, design_groups, sprung_classes
+from hexaleg.studies.design.candidates import Candidate
+from hexaleg.studies.design.config import DesignConfig
+from hexaleg.studies.design.ranking import Simulated, best_simulated, simulate_candidates
+from hexaleg.studies.design.stages import (
+    Nominal,
+    RobustResult,
+    family_candidates,
+    nominal,
+    pareto_front,
+    rank,
+    robust_design,
+    robustness_maps,
+)
 
 MIN_SAVING = 1e-4
-"""A recommendation must save more than this fraction of the ranking metric (0.01 %); below it,
-the limits leave nothing worth fitting and ``hexaleg design`` says which to change."""
-
-
-@dataclass(frozen=True, eq=False)
-class RobustResult:
-    """The robust design and both designs over the box of conditions.
-
-    Attributes:
-        conditions: The nominal gait and the box's corners.
-        design: The robust program's result (savings per condition in its metric).
-        candidate: The robust magnitudes as a design on the nominal gait, with its parts.
-        savings: Metric (:data:`~hexaleg.studies.design.config.METRICS`) →
-            ``{"robust": (n,), "nominal": (n,)}`` savings per condition.
-    """
-
-    conditions: tuple[Condition, ...]
-    design: RobustSprings
-    candidate: Candidate
-    savings: dict[str, dict[str, np.ndarray]]
-
-    def worst(self, metric: str, design: str = "robust") -> float:
-        """The worst saving of ``design`` (robust or nominal) over the conditions."""
-        return float(np.min(self.savings[metric][design]))
+"""A recommendation must save more than this fraction of the ranking metric (0.01 %) net of its
+springs' mass to pay; below it the design says that no springs pay."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -121,6 +92,7 @@ class DesignResult:
     maps: tuple[RobustnessMap, ...]
     worst: dict[str, tuple[float, str]]
     robust: RobustResult | None
+    ranking: tuple[Simulated, ...]
     simulation: tuple[dict[str, Any], ...]
     timings: dict[str, float]
     notes: tuple[str, ...]
@@ -128,12 +100,12 @@ class DesignResult:
     @property
     def pays(self) -> bool:
         """Whether the recommended springs save energy net of their own mass."""
-        return bool(self.recommended.net[self.config.design.metric] > 0)
+        return bool(self.recommended.net[self.config.design.metric] > MIN_SAVING)
 
     def summary(self) -> str:
         """One line: the recommendation and its saving."""
         r, m = self.recommended, self.config.design.metric
-        head = "fit" if self.pays else "no spring pays for its mass here; the best,"
+        head = "fit" if self.pays else "no springs pay here; the best would be"
         line = (f"{head} {r.label} springs on {', '.join(r.optimum.groups)}: {m} saving "
                 f"{100 * r.row[f'saving.{m}']:+.2f} % ({100 * r.net[m]:+.2f} % net "
                 f"of {1e3 * r.spring_mass:.1f} g of springs); worst case over the maps "
@@ -147,80 +119,16 @@ class DesignResult:
         return line
 
 
-def _rank(c: Candidate, metric: str) -> float:
-    value = c.net[metric]
-    return float(value) if np.isfinite(value) else -np.inf
-
-
-def _class_geometry(c: Candidate, class_groups: dict[str, tuple[str, ...]]
-                    ) -> dict[str, Geometry]:
-    """Class → the geometry of ``c`` (finer groups share their class's)."""
-    out: dict[str, Geometry] = {}
-    for g, js in c.optimum.groups.items():
-        owner = next(k for k, cj in class_groups.items() if js[0] in cj)
-        out.setdefault(owner, c.optimum.geometry[g])
-    return out
-
-
-def _corners(cfg: DesignConfig) -> tuple[Condition, ...]:
-    d = cfg.design
-    boxes = [sorted(set(b)) for b in (d.robust_period, d.robust_stride, d.robust_payload,
-                                      d.robust_mu)]
-    out = [Condition()]
-    for p, s, w, mu in itertools.product(*boxes):
-        c = Condition(period=p, stride=s, payload=w, mu=mu)
-        if c not in out:
-            out.append(c)
-    return tuple(out)
-
-
-def _robust(cfg: DesignConfig, run: RunSpec, gait: GaitParams, prepared: Prepared,
-            rec: Candidate, outer: dict[str, float]) -> RobustResult | None:
-    """The robust design over the box's corners and the nominal gait (module docstring)."""
-    conditions = _corners(cfg)
-    if len(conditions) == 1:
-        return None
-    preps = [condition_prepared(run, gait, c) for c in conditions]
-    for c, p in zip(conditions, preps, strict=True):
-        try:
-            p.baseline("joule")
-        except (InfeasibleForcesError, TorqueLimitError) as e:
-            raise InvalidParameterError(
-                "design robust box corner", c.label(),
-                f"corners where the robot has admissible forces without springs ({e}); narrow "
-                "the robust_* ranges") from e
-    d = cfg.design
-    design = robust_springs(rec.optimum, prepared, preps, d.robust_mode, d.metric,
-                            max_torque=d.max_torque, max_deflection=d.deflection_bound)
-    analysis = prepared.evaluate(design.springs, "joule")
-    value = float(analysis.metrics["total"]["joule"])
-    optimum = dataclasses.replace(
-        rec.optimum, magnitudes=design.magnitudes, springs=design.springs, analysis=analysis,
-        value=value, saving=float(design.saving[0]), notes=(), solver=design.solver)
-    rows = {name: [condition_savings(p, s, "joule") for p in preps]
-            for name, s in (("robust", design.springs), ("nominal", rec.optimum.springs))}
-    savings = {m: {name: np.array([r[f"saving.{m}"] if r["status"] == "ok" else -np.inf
-                                   for r in rs]) for name, rs in rows.items()}
-               for m in METRICS}
-    return RobustResult(conditions=conditions, design=design,
-                        candidate=candidate(optimum, prepared, run, gait, outer, cfg.design),
-                        savings=savings)
-
-
 def build_design(config: DesignConfig | None = None,
                  progress: Callable[[str], None] | None = None) -> DesignResult:
-    """Compute the design answer (module docstring).
+    """Compute the design answer (module docstring): the stages in order, each timed.
 
     Args:
         config: The configuration (default: the built-in robot, its gait, the defaults).
-        progress: Called with one status line per step.
-
-    Returns:
-        The result.
+        progress: Called with one status line per stage.
 
     Raises:
-        InvalidParameterError: limits under which no spring saves anything (names them and
-            what to change), a map range whose gait is unreachable, a robust box with corners
+        InvalidParameterError: a map range whose gait is unreachable, a robust box with corners
             where the robot has no admissible forces, an outer diameter no wire fits.
         UnknownNameError: an unknown robot, class, family, material or motor.
     """
@@ -237,91 +145,63 @@ def build_design(config: DesignConfig | None = None,
         last = now
         say(f"{msg} ({now - t0:.1f} s)")
 
-    run = d.run(cfg.robot, cfg.contact)
-    robot, desc, gait = run.load(), run.description(), cfg.nominal_gait
-    prepared = condition_prepared(run, gait, Condition())
-    baseline = {k: float(v) for k, v in prepared.baseline("joule")["total"].items()}
-    classes = sprung_classes(robot, d.classes)
-    class_groups = design_groups(robot, classes, "class")
-    groups = design_groups(robot, classes, d.grouping)
-    outer_src = {}
-    for g, js in groups.items():
-        kind = class_of(robot, js)
-        outer_src[g] = ((float(d.max_outer_diameter[kind]), "[design] max_outer_diameter")
-                        if kind in d.max_outer_diameter else spring_outer_diameter(desc, robot,
-                                                                                   kind))
-    outer = {g: v for g, (v, _) in outer_src.items()}
-    step("prepare", f"{robot.name}: gait of {gait.samples} samples prepared")
-    cands = []
-    for fam in d.families:
-        cands.append(design_family(prepared, run, gait, groups, class_groups, fam, d, outer))
-        step(f"family {fam}", f"{fam}: {d.metric} saving "
-             f"{100 * cands[-1].row[f'saving.{d.metric}']:+.2f} %")
-    ranked = sorted(cands, key=lambda c: -_rank(c, d.metric))
-    rec = next((c for c in ranked if c.buildable), ranked[0])
-    peak = float(np.abs(rec.optimum.analysis.tau_spring).max())
-    pareto = []
-    for f in sorted(d.pareto_fractions):
-        bounded = dataclasses.replace(d, max_torque=min(f * peak, d.max_torque or np.inf))
-        pareto.append((f, design_family(prepared, run, gait, groups, class_groups, rec.family,
-                                        bounded, outer, [_class_geometry(rec, class_groups)])))
-    best_point = max((c for _, c in pareto), key=lambda c: c.optimum.saving, default=None)
-    if best_point is not None and best_point.optimum.saving > rec.optimum.saving:
-        # a bounded optimum beat the unbounded one in the program's own objective: the geometry
-        # search missed it, so search again from both
-        again = design_family(prepared, run, gait, groups, class_groups, rec.family, d, outer,
-                              [_class_geometry(c, class_groups) for c in (rec, best_point)])
-        if again.optimum.saving > rec.optimum.saving:
-            cands = [again if c is rec else c for c in cands]
-            ranked = sorted(cands, key=lambda c: -_rank(c, d.metric))
-    # the recommendation: the best buildable design evaluated, Pareto points included (a
-    # smaller spring may save more of the ranking metric than the Joule-optimal one)
-    unbounded = next(c for c in ranked if c.family == rec.family)
-    pareto.append((1.0, unbounded))
-    pool = sorted([*ranked, *(c for _, c in pareto)], key=lambda c: -_rank(c, d.metric))
-    rec = next((c for c in pool if c.buildable), pool[0])
-    step("pareto", f"Pareto front of {rec.family} ({len(pareto)} points)")
-    if not rec.row[f"saving.{d.metric}"] > MIN_SAVING:
-        raise InvalidParameterError(
-            "design limits", {"max_torque": d.max_torque, "max_deflection": d.max_deflection,
-                              "classes": classes, "families": d.families},
-            f"limits under which some spring saves {d.metric}: none of the families saves any; "
-            "raise max_torque or max_deflection, or allow more classes or families")
-    maps = (robustness_map(run, gait, rec.optimum.springs,
-                           {"period": d.map_period, "stride": d.map_stride}),
-            robustness_map(run, gait, rec.optimum.springs,
-                           {"payload": d.map_payload, "mu": d.map_mu}))
-    worst = {}
-    for m in METRICS:
-        s, c = min((mp.worst(m) for mp in maps),
-                   key=lambda sc: np.inf if np.isnan(sc[0]) else sc[0])
-        worst[m] = (s, c.label() if c is not None else "—")
+    nom = nominal(cfg)
+    step("prepare", f"{nom.robot.name}: gait of {nom.gait.samples} samples prepared")
+    ranked = family_candidates(nom, step)
+    pareto, ranked = pareto_front(nom, ranked)
+    step("pareto", f"Pareto front of {pareto[-1][1].family} ({len(pareto)} points)")
+    pool = sorted([*ranked, *(c for _, c in pareto[:-1])], key=lambda c: -rank(c, d.metric))
+    rows, rec, notes = _ranking(nom, pool)
+    step("ranking", f"{len(rows)} designs simulated under the {d.controller} servo: "
+         f"recommended {rec.label}")
+    maps, worst = robustness_maps(nom, rec)
     step("maps", f"robustness maps: worst {d.metric} saving {100 * worst[d.metric][0]:+.2f} %")
-    robust = _robust(cfg, run, gait, prepared, rec, outer)
+    robust = robust_design(nom, rec)
     step("robust", "robust design over the box of conditions")
-    simulation, unsimulated = _simulate(prepared, rec)
+    simulation, unsimulated = _proof(nom, rec)
     step("simulate", "the recommendation simulated in MuJoCo under both controllers")
-    pays = [] if rec.net[d.metric] > 0 else [
-        f"no design saves {d.metric} energy net of its springs' mass: the best saves "
-        f"{100 * rec.row[f'saving.{d.metric}']:+.2f} % but {100 * rec.net[d.metric]:+.2f} % "
-        "net — fitting springs does not pay on this robot and gait"]
-    notes = [*pays, *unsimulated, *robot.notes, *rec.notes,
+    pays = [] if rec.net[d.metric] > MIN_SAVING else [
+        f"no springs pay: the best design saves {100 * rec.row[f'saving.{d.metric}']:+.2f} % "
+        f"of {d.metric} and {100 * rec.net[d.metric]:+.2f} % net of its springs' mass — fitting "
+        "springs does not pay on this robot and gait"]
+    notes = [*pays, *notes, *unsimulated, *nom.robot.notes, *rec.notes,
              "gait slope and the other gait patterns are not conditions of the maps yet: the "
              "gait generator walks level tripod-type gaits only",
-             f"designed at {gait.samples} samples per cycle (Joule-optimal forces); ranked by "
-             f"the {d.metric} saving net of the springs' mass"]
+             f"designed at {nom.gait.samples} samples per cycle (Joule-optimal forces); ranked "
+             f"by the {d.metric} saving net of the springs' mass, simulated under the "
+             f"{d.controller} servo"]
     return DesignResult(
-        config=cfg, robot=robot.name, title=desc.title, mass=robot.mass,
-        actuator=run.actuator().name, gait=gait, baseline=baseline, candidates=tuple(ranked),
-        recommended=rec, outer=outer_src, pareto=tuple(pareto), maps=maps, worst=worst,
-        robust=robust, simulation=simulation, timings=timings, notes=tuple(notes))
+        config=cfg, robot=nom.robot.name, title=nom.desc.title, mass=nom.robot.mass,
+        actuator=nom.run.actuator().name, gait=nom.gait, baseline=nom.baseline,
+        candidates=tuple(ranked), recommended=rec, outer=nom.outer, pareto=tuple(pareto),
+        maps=maps, worst=worst, robust=robust, ranking=tuple(rows), simulation=simulation,
+        timings=timings, notes=tuple(notes))
 
 
-def _simulate(prepared: Prepared, rec: Candidate) -> tuple[tuple[dict[str, Any], ...], list[str]]:
+def _ranking(nom: Nominal, pool: list[Candidate]
+             ) -> tuple[list[Simulated], Candidate, list[str]]:
+    """The pool simulated under the design's controller and the recommendation: the best
+    simulated buildable design, or — when none walked — the best predicted one, with a note."""
+    d = nom.config.design
+    rows = simulate_candidates(nom.prepared, pool, d.controller, d.metric)
+    best = best_simulated(rows)
+    notes = [f"{r.candidate.label}: simulated under the {r.controller} servo it saves "
+             + (f"{100 * r.simulated:+.2f} % against {100 * r.predicted:+.2f} % predicted — "
+                "under half the prediction" if r.simulated is not None
+                else f"nothing: {r.verdict}")
+             for r in rows if r.flagged and r.predicted > 0]
+    if best is not None:
+        return rows, best.candidate, notes
+    rec = next((c for c in pool if c.buildable), pool[0])
+    return rows, rec, [*notes, f"no buildable design walked under the {d.controller} servo: "
+                       "the recommendation is the best predicted one"]
+
+
+def _proof(nom: Nominal, rec: Candidate) -> tuple[tuple[dict[str, Any], ...], list[str]]:
     """The recommendation's controller check, or no rows and a note saying why it could not
     run."""
     try:
-        return tuple(controller_check(prepared, rec.optimum.springs, "joule")), []
+        return tuple(controller_check(nom.prepared, rec.optimum.springs, "joule")), []
     except HexalegError as e:
         return (), [f"the recommendation could not be simulated: {type(e).__name__}: {e}"]
 

@@ -12,8 +12,9 @@ the baseline of the robot as it is.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from hexaleg.design.codesign import OptimalSprings, optimal_springs
@@ -46,6 +47,8 @@ class Candidate:
             (fraction of the baseline).
         notes: What the user should know (constant-torque springs, springs that do not fit).
         max_torque: The spring torque bound it was designed with, N·m, or None.
+        dropped: Group → the marginal saving it would have added, for the groups left unfitted
+            because it was below ``[design] min_group_saving`` (:func:`parsimonious`).
     """
 
     family: str
@@ -57,6 +60,7 @@ class Candidate:
     marginal: dict[str, float]
     notes: tuple[str, ...]
     max_torque: float | None = None
+    dropped: Mapping[str, float] = field(default_factory=dict)
 
     @property
     def label(self) -> str:
@@ -142,3 +146,50 @@ def design_family(prepared: Prepared, run: RunSpec, gait: GaitParams,
     """
     optimum = _optimum(prepared, groups, class_groups, family, params, start)
     return candidate(optimum, prepared, run, gait, outer, params)
+
+
+def parsimonious(prepared: Prepared, run: RunSpec, gait: GaitParams,
+                 groups: Mapping[str, tuple[str, ...]],
+                 class_groups: Mapping[str, tuple[str, ...]], family: str,
+                 params: DesignParams, outer: Mapping[str, float],
+                 start: Sequence[Mapping[str, Geometry]] = ()) -> Candidate:
+    """:func:`design_family` without the groups that do not pay for their parts.
+
+    A group's marginal saving (:attr:`Candidate.marginal`: the ranking metric's saving lost
+    without its springs, the others kept) below ``params.min_group_saving`` means a part to buy,
+    mount and maintain for less than that share of the baseline: the joint class of the weakest
+    such group is left unsprung and the family designed again on the rest (the magnitudes and
+    geometry re-optimised: the other groups may take over some of its work), until every group
+    clears the bar or one class is left. The dropped groups and what they would have added are
+    in :attr:`Candidate.dropped`; the design is never one with a group under the bar unless it
+    is the last one (then the candidate's own saving says whether it pays at all).
+
+    Args: as :func:`design_family`.
+    """
+    def usable(starts: Sequence[Mapping[str, Geometry]]) -> list[dict[str, Geometry]]:
+        """The starts restricted to the classes designed (those missing one are left out)."""
+        return [{k: s[k] for k in class_groups} for s in starts
+                if all(k in s for k in class_groups)]
+
+    dropped: dict[str, float] = {}
+    start = usable(start)
+    c = design_family(prepared, run, gait, groups, class_groups, family, params, outer, start)
+    while len(class_groups) > 1:
+        weak = {g: v for g, v in c.marginal.items() if v < params.min_group_saving}
+        if not weak:
+            break
+        worst = min(weak, key=lambda g: weak[g])
+        cls = next(k for k, js in class_groups.items() if groups[worst][0] in js)
+        for g, js in groups.items():
+            if js[0] in class_groups[cls]:
+                dropped[g] = float(c.marginal[g])
+        class_groups = {k: v for k, v in class_groups.items() if k != cls}
+        groups = {g: js for g, js in groups.items() if g not in dropped}
+        start = usable(start)
+        c = design_family(prepared, run, gait, groups, class_groups, family, params, outer, start)
+    if dropped:
+        notes = [*c.notes, *(f"group {g} not fitted: it would add {100 * v:+.2f} % of "
+                             f"{params.metric} (under the {100 * params.min_group_saving:g} "
+                             "point bar, [design] min_group_saving)" for g, v in dropped.items())]
+        c = dataclasses.replace(c, dropped=dropped, notes=tuple(notes))
+    return c

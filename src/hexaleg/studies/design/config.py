@@ -27,6 +27,7 @@ from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import InvalidParameterError, UnknownNameError
 from hexaleg.motion.limits import MIN_SAMPLES
 from hexaleg.motion.params import GaitParams
+from hexaleg.simulation.controllers import CONTROLLERS
 
 TABLES: tuple[str, ...] = ("gait", "contact", "design")
 """Tables ``hexaleg design`` reads."""
@@ -82,6 +83,14 @@ class DesignParams:
             nominal gait) or ``"mean"``.
         pareto_fractions: ``max_torque`` of the Pareto points as fractions (0, 1) of the
             recommended design's peak spring torque.
+        controller: The servo the robot runs (:data:`~hexaleg.simulation.controllers.
+            CONTROLLERS`): every ranked design is simulated under it and the recommendation is
+            the best simulated one.
+        min_group_saving: A group of springs whose marginal saving of the ranking metric is
+            below this fraction of the baseline (default 0.01: one point) is not fitted.
+        stop_tolerance: How far a workshop may mount a spring's stop from its drawing, rad
+            (default 1°); the design is chosen for its worst saving within it. 0: no tolerance.
+        life_cycles: The load cycles each spring must survive (fatigue), ≥ 1 (default 10⁷).
 
     Raises:
         UnknownNameError: an unknown family, grouping, metric, material or motor.
@@ -111,6 +120,10 @@ class DesignParams:
     robust_mu: tuple[float, ...] = (0.5, 1.0)
     robust_mode: str = "worst"
     pareto_fractions: tuple[float, ...] = (0.25, 0.5, 0.75)
+    controller: str = "feedforward"
+    min_group_saving: float = 0.01
+    stop_tolerance: float = math.pi / 180
+    life_cycles: float = 1e7
 
     def __post_init__(self) -> None:
         set_ = lambda name, value: object.__setattr__(self, name, value)  # noqa: E731
@@ -168,6 +181,15 @@ class DesignParams:
                                             low_open=True, high_open=True,
                                             allowed="fractions in (0, 1)")
                                        for f in self.pareto_fractions))
+        if self.controller not in CONTROLLERS:
+            raise UnknownNameError("design.controller", self.controller, CONTROLLERS)
+        set_("min_group_saving", real("design.min_group_saving", self.min_group_saving, low=0.0,
+                                      high=1.0, allowed="a fraction in [0, 1] of the baseline"))
+        set_("stop_tolerance", real("design.stop_tolerance", self.stop_tolerance, low=0.0,
+                                    high=math.radians(10.0),
+                                    allowed="an angle in [0, 0.1745] rad (0 to 10°)"))
+        set_("life_cycles", real("design.life_cycles", self.life_cycles, low=1.0, high=1e12,
+                                 allowed="a number of cycles in [1, 1e12]"))
 
     @property
     def deflection_bound(self) -> float | None:
@@ -225,6 +247,15 @@ class DesignConfig:
         design = from_mapping(DesignParams, data.get("design", {}), f"{where} [design]")
         return cls(robot=robot, gait=dataclasses.replace(gait, samples=design.samples),
                    contact=contact, design=design)
+
+    def with_controller(self, controller: str) -> DesignConfig:
+        """The same configuration with ``[design] controller`` replaced (``--controller``).
+
+        Raises:
+            UnknownNameError: an unknown controller (lists them).
+        """
+        return dataclasses.replace(self, design=dataclasses.replace(self.design,
+                                                                    controller=controller))
 
     @property
     def nominal_gait(self) -> GaitParams:

@@ -21,6 +21,7 @@ from hexaleg.design.spring_parts import SpringPart
 from hexaleg.design.spring_table import magnitudes_table
 from hexaleg.studies.design.build import DesignResult, RobustResult
 from hexaleg.studies.design.candidates import Candidate
+from hexaleg.studies.design.ranking import Simulated
 from hexaleg.studies.report.quantities import metric_unit, quantity
 from hexaleg.studies.simulate.write import sensitivity_row
 
@@ -71,8 +72,20 @@ def candidate_data(c: Candidate, outer: dict[str, tuple[float, str]]) -> dict[st
                    for g, js in o.groups.items()},
         "springs": [spring_entry(j, s) for j, s in o.springs.items()],
         "parts": [_part(p, outer[p.group][1]) for p in c.parts],
+        "dropped_groups": {g: {"marginal_saving": quantity(100 * v, "%")}
+                           for g, v in c.dropped.items()},
         "notes": list(c.notes),
     }
+
+
+def ranking_data(r: Simulated) -> dict[str, Any]:
+    """One ranked design simulated under the design's controller."""
+    return {"label": r.candidate.label, "controller": r.controller, "verdict": r.verdict,
+            "predicted_saving": quantity(100 * r.predicted, "%"),
+            "simulated_saving": (None if r.simulated is None
+                                 else quantity(100 * r.simulated, "%")),
+            "simulated_net_saving": quantity(100 * r.net, "%"),
+            "flagged": r.flagged}
 
 
 def map_data(m: RobustnessMap) -> dict[str, Any]:
@@ -124,7 +137,8 @@ def design_data(r: DesignResult) -> dict[str, Any]:
                                else quantity(d.deflection_bound, "rad")),
             "materials": list(d.materials), "safety_factor": quantity(d.safety_factor, "1"),
             "arbor_diameter": quantity(d.arbor_diameter, "m"),
-            "contact_mu": quantity(r.config.contact.mu, "1")},
+            "contact_mu": quantity(r.config.contact.mu, "1"), "controller": d.controller,
+            "min_group_saving": quantity(100 * d.min_group_saving, "%")},
         "baseline": {m: quantity(r.baseline[m], metric_unit(m)) for m in SAVING_METRICS},
         "recommended": candidate_data(r.recommended, r.outer),
         "candidates": [candidate_data(c, r.outer) for c in r.candidates],
@@ -134,6 +148,7 @@ def design_data(r: DesignResult) -> dict[str, Any]:
         "worst": {k: {"saving": quantity(100 * s, "%"), "condition": c}
                   for k, (s, c) in r.worst.items()},
         "robust": None if r.robust is None else robust_data(r.robust, r.outer),
+        "ranking": [ranking_data(row) for row in r.ranking],
         "simulation": [sensitivity_row(row) for row in r.simulation],
         "timings": {k: quantity(v, "s") for k, v in r.timings.items()},
         "notes": list(r.notes),

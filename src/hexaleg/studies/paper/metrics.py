@@ -52,8 +52,8 @@ def metric(joint: PaperJoint, name: str, k: ArrayLike, gravity: bool = True, n: 
         k: Stiffness(es), N·m/rad, scalar or (K,).
         gravity: Include gravity.
         n: Samples per period (uniform, endpoint excluded: integrals are sums × dt).
-        motor: Servo for ``joule`` (default :data:`hexaleg.robot.catalogue.DEFAULT_MOTOR`, the robot's
-            AX-18A).
+        motor: Servo for ``joule`` (default :data:`hexaleg.robot.catalogue.DEFAULT_MOTOR`, the
+            robot's AX-18A).
 
     Returns:
         Scalar array or shape (K,).

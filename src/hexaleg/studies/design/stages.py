@@ -1,0 +1,261 @@
+"""The stages of ``hexaleg design``, each a function with its inputs and outputs.
+
+:func:`~hexaleg.studies.design.build.build_design` runs them in order (as pvlib's ModelChain
+runs its models): :func:`nominal` (the gait prepared once, the groups and the fit limits),
+:func:`family_candidates` (every family's optimum, groups that do not pay left out),
+:func:`pareto_front` (the recommended family under spring-torque bounds),
+:func:`robustness_maps` and :func:`robust_design` (the recommendation under changed conditions
+and the design for a box of them). The ranking by simulation is
+:mod:`hexaleg.studies.design.ranking`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from hexaleg.design.evaluator import RunSpec
+from hexaleg.design.families import Geometry
+from hexaleg.design.robust import RobustSprings, robust_springs
+from hexaleg.design.robustness import Condition, condition_prepared, condition_savings
+from hexaleg.design.robustness_map import RobustnessMap, robustness_map
+from hexaleg.design.spring_parts import spring_outer_diameter
+from hexaleg.dynamics.prepare import Prepared
+from hexaleg.errors import InfeasibleForcesError, InvalidParameterError, TorqueLimitError
+from hexaleg.motion.params import GaitParams
+from hexaleg.robot.description import RobotDescription
+from hexaleg.robot.model import Robot
+from hexaleg.studies.design.candidates import Candidate, candidate, parsimonious
+from hexaleg.studies.design.config import METRICS, DesignConfig, DesignParams
+from hexaleg.studies.design.groups import class_of, design_groups, sprung_classes
+
+
+@dataclass(frozen=True, eq=False)
+class Nominal:
+    """What every stage shares: the robot, its nominal gait prepared once, the groups.
+
+    Attributes:
+        config: The configuration. run: Robot, actuator, contact. robot: The robot.
+        desc: Its description. gait: The nominal gait. prepared: It, prepared.
+        baseline: Metric totals without springs (J or N·m).
+        classes: The sprung joint classes. class_groups: Class → joints (where geometries are
+            searched). groups: The design groups (``[design] grouping``).
+        outer: Group → (largest spring outer diameter, m; where it comes from).
+    """
+
+    config: DesignConfig
+    run: RunSpec
+    robot: Robot
+    desc: RobotDescription
+    gait: GaitParams
+    prepared: Prepared
+    baseline: dict[str, float]
+    classes: tuple[str, ...]
+    class_groups: dict[str, tuple[str, ...]]
+    groups: dict[str, tuple[str, ...]]
+    outer: dict[str, tuple[float, str]]
+
+    @property
+    def outer_diameters(self) -> dict[str, float]:
+        """Group → largest spring outer diameter, m."""
+        return {g: v for g, (v, _) in self.outer.items()}
+
+    def family(self, family: str, params: DesignParams | None = None,
+               start: Sequence[dict[str, Geometry]] = (), like: Candidate | None = None
+               ) -> Candidate:
+        """One family's parsimonious candidate (:func:`~hexaleg.studies.design.candidates.
+        parsimonious`) with the ``[design]`` table, or ``params`` in its place; on the groups of
+        ``like`` only when given (its classes: the others were left unfitted)."""
+        d = self.config.design if params is None else params
+        groups, classes = self.groups, self.class_groups
+        if like is not None:
+            groups = {g: js for g, js in groups.items() if g in like.optimum.groups}
+            kept = {j for js in groups.values() for j in js}
+            classes = {k: js for k, js in classes.items() if js[0] in kept}
+        return parsimonious(self.prepared, self.run, self.gait, groups, classes, family, d,
+                            self.outer_diameters, start)
+
+
+def nominal(cfg: DesignConfig) -> Nominal:
+    """The nominal gait prepared, the sprung classes, the design groups and their fit limits."""
+    d = cfg.design
+    run = d.run(cfg.robot, cfg.contact)
+    robot, desc, gait = run.load(), run.description(), cfg.nominal_gait
+    prepared = condition_prepared(run, gait, Condition())
+    baseline = {k: float(v) for k, v in prepared.baseline("joule")["total"].items()}
+    classes = sprung_classes(robot, d.classes)
+    groups = design_groups(robot, classes, d.grouping)
+    outer = {}
+    for g, js in groups.items():
+        kind = class_of(robot, js)
+        outer[g] = ((float(d.max_outer_diameter[kind]), "[design] max_outer_diameter")
+                    if kind in d.max_outer_diameter else spring_outer_diameter(desc, robot, kind))
+    return Nominal(cfg, run, robot, desc, gait, prepared, baseline, tuple(classes),
+                   design_groups(robot, classes, "class"), groups, outer)
+
+
+def rank(c: Candidate, metric: str) -> float:
+    """The predicted saving of ``metric`` net of the springs' mass (−∞ when not finite)."""
+    value = c.net[metric]
+    return float(value) if np.isfinite(value) else -np.inf
+
+
+def family_candidates(nom: Nominal, progress: Callable[[str, str], None]) -> list[Candidate]:
+    """Every allowed family's candidate, ranked by predicted net saving (best first).
+
+    Args:
+        nom: The nominal stage.
+        progress: Called with (step name, message) after each family.
+    """
+    d = nom.config.design
+    cands = []
+    for fam in d.families:
+        cands.append(nom.family(fam))
+        progress(f"family {fam}", f"{fam}: family optimum, {d.metric} saving "
+                 f"{100 * cands[-1].row[f'saving.{d.metric}']:+.2f} %")
+    return sorted(cands, key=lambda c: -rank(c, d.metric))
+
+
+def class_geometry(c: Candidate, class_groups: dict[str, tuple[str, ...]]
+                   ) -> dict[str, Geometry]:
+    """Class → the geometry of ``c`` (finer groups share their class's)."""
+    out: dict[str, Geometry] = {}
+    for g, js in c.optimum.groups.items():
+        owner = next(k for k, cj in class_groups.items() if js[0] in cj)
+        out.setdefault(owner, c.optimum.geometry[g])
+    return out
+
+
+def pareto_front(nom: Nominal, ranked: list[Candidate]
+                 ) -> tuple[list[tuple[float, Candidate]], list[Candidate]]:
+    """The best buildable family's optimum with its spring torque bounded to fractions of its
+    peak, and the families again (a bounded optimum that beats the unbounded one in the
+    program's own objective means the geometry search missed it: that family is searched again
+    from both, so it never saves less than a point of its own front).
+
+    Returns:
+        ``[(fraction, candidate)]`` ascending, the last the unbounded design (fraction 1); the
+        families ranked again.
+    """
+    d = nom.config.design
+    rec = next((c for c in ranked if c.buildable), ranked[0])
+    peak = float(np.abs(rec.optimum.analysis.tau_spring).max())
+    starts = [class_geometry(rec, nom.class_groups)]
+    pareto = []
+    for f in sorted(d.pareto_fractions):
+        if peak <= 0:
+            break
+        bounded = dataclasses.replace(d, max_torque=min(f * peak, d.max_torque or np.inf))
+        pareto.append((f, nom.family(rec.family, bounded, starts, like=rec)))
+    best = max((c for _, c in pareto), key=lambda c: c.optimum.saving, default=None)
+    if best is not None and best.optimum.saving > rec.optimum.saving:
+        again = nom.family(rec.family, None, [class_geometry(c, nom.class_groups)
+                                               for c in (rec, best)], like=rec)
+        if again.optimum.saving > rec.optimum.saving:
+            ranked = sorted([again if c is rec else c for c in ranked],
+                            key=lambda c: -rank(c, d.metric))
+            rec = again
+    pareto.append((1.0, next(c for c in ranked if c.family == rec.family)))
+    return pareto, ranked
+
+
+def robustness_maps(nom: Nominal, rec: Candidate
+                    ) -> tuple[tuple[RobustnessMap, ...], dict[str, tuple[float, str]]]:
+    """The recommendation frozen over period × stride and payload × μ, and each metric's worst
+    case (saving, its condition's label)."""
+    d = nom.config.design
+    springs = rec.optimum.springs
+    maps = (robustness_map(nom.run, nom.gait, springs, {"period": d.map_period,
+                                                         "stride": d.map_stride}),
+            robustness_map(nom.run, nom.gait, springs, {"payload": d.map_payload,
+                                                         "mu": d.map_mu}))
+    worst = {}
+    for m in METRICS:
+        s, c = min((mp.worst(m) for mp in maps),
+                   key=lambda sc: np.inf if np.isnan(sc[0]) else sc[0])
+        worst[m] = (s, c.label() if c is not None else "—")
+    return maps, worst
+
+
+@dataclass(frozen=True, eq=False)
+class RobustResult:
+    """The robust design and both designs over the box of conditions.
+
+    Attributes:
+        conditions: The nominal gait and the box's corners.
+        design: The robust program's result (savings per condition in its metric).
+        candidate: The robust magnitudes as a design on the nominal gait, with its parts.
+        savings: Metric (:data:`~hexaleg.studies.design.config.METRICS`) →
+            ``{"robust": (n,), "nominal": (n,)}`` savings per condition.
+    """
+
+    conditions: tuple[Condition, ...]
+    design: RobustSprings
+    candidate: Candidate
+    savings: dict[str, dict[str, np.ndarray]]
+
+    def worst(self, metric: str, design: str = "robust") -> float:
+        """The worst saving of ``design`` (robust or nominal) over the conditions."""
+        return float(np.min(self.savings[metric][design]))
+
+
+def corners(cfg: DesignConfig) -> tuple[Condition, ...]:
+    """The nominal gait and the corners of the robust box (duplicates once)."""
+    d = cfg.design
+    boxes = [sorted(set(b)) for b in (d.robust_period, d.robust_stride, d.robust_payload,
+                                      d.robust_mu)]
+    out = [Condition()]
+    for p, s, w, mu in itertools.product(*boxes):
+        c = Condition(period=p, stride=s, payload=w, mu=mu)
+        if c not in out:
+            out.append(c)
+    return tuple(out)
+
+
+def robust_design(nom: Nominal, rec: Candidate) -> RobustResult | None:
+    """The recommended geometry's magnitudes for the box of conditions
+    (:func:`hexaleg.design.robust.robust_springs`: its corners and the nominal gait, one convex
+    program), with its own parts; None when the box is the nominal gait alone.
+
+    Raises:
+        InvalidParameterError: a corner where the robot has no admissible forces without
+            springs (names it; narrow the ``robust_*`` ranges).
+    """
+    cfg, prepared = nom.config, nom.prepared
+    conditions = corners(cfg)
+    if len(conditions) == 1:
+        return None
+    preps = [condition_prepared(nom.run, nom.gait, c) for c in conditions]
+    for c, p in zip(conditions, preps, strict=True):
+        try:
+            p.baseline("joule")
+        except (InfeasibleForcesError, TorqueLimitError) as e:
+            raise InvalidParameterError(
+                "design robust box corner", c.label(),
+                f"corners where the robot has admissible forces without springs ({e}); narrow "
+                "the robust_* ranges") from e
+    d = cfg.design
+    design = robust_springs(rec.optimum, prepared, preps, d.robust_mode, d.metric,
+                            max_torque=d.max_torque, max_deflection=d.deflection_bound)
+    analysis = prepared.evaluate(design.springs, "joule")
+    optimum = dataclasses.replace(
+        rec.optimum, magnitudes=design.magnitudes, springs=design.springs, analysis=analysis,
+        value=float(analysis.metrics["total"]["joule"]), saving=float(design.saving[0]),
+        notes=(), solver=design.solver)
+    rows = {name: [condition_savings(p, s, "joule") for p in preps]
+            for name, s in (("robust", design.springs), ("nominal", rec.optimum.springs))}
+    savings = {m: {name: np.array([r[f"saving.{m}"] if r["status"] == "ok" else -np.inf
+                                   for r in rs]) for name, rs in rows.items()}
+               for m in METRICS}
+    return RobustResult(conditions=conditions, design=design,
+                        candidate=candidate(optimum, prepared, nom.run, nom.gait,
+                                            nom.outer_diameters, d),
+                        savings=savings)
+
+
+__all__ = ["Nominal", "RobustResult", "class_geometry", "corners", "family_candidates",
+           "nominal", "pareto_front", "rank", "robust_design", "robustness_maps"]
