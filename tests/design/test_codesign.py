@@ -177,3 +177,28 @@ def test_bad_input(prepared200):
         optimal_springs(prepared200, {"a": ["knee"]})
     with pytest.raises(InvalidParameterError, match="objective"):
         optimal_springs(prepared200, ["femur"], objective="power")
+
+
+def test_electrical_metric_beats_the_joule_design_and_every_bounded_point(prepared200):
+    """metric="electrical": on one geometry, its electrical saving (Prepared.evaluate, Joule
+    forces) ≥ the Joule-optimal magnitudes' and every torque-bounded Joule point's — strictly
+    above the Joule design's, so a Joule objective would fail."""
+    groups = {"femur": "femur", "tibia": "tibia"}
+    geometry = {"femur": {"contact": -0.2, "side": "above"},
+                "tibia": {"contact": 0.19, "side": "below"}}
+    base = prepared200.baseline("joule")["total"]["electrical"]
+
+    def electrical(o):
+        return 1 - o.analysis.metrics["total"]["electrical"] / base
+
+    best = optimal_springs(prepared200, groups, "one_sided", geometry=geometry,
+                           metric="electrical")
+    assert best.metric == "electrical" and best.solver["explicit_samples"] == 0
+    assert best.saving == pytest.approx(electrical(best), rel=1e-12)
+    joule = optimal_springs(prepared200, groups, "one_sided", geometry=geometry)
+    peak = float(np.abs(joule.analysis.tau_spring).max())
+    assert best.saving > electrical(joule) + 1e-3
+    for f in (0.25, 0.5, 0.75, 0.9):
+        bounded = optimal_springs(prepared200, groups, "one_sided", geometry=geometry,
+                                  max_torque=f * peak)
+        assert best.saving >= electrical(bounded) - 1e-9

@@ -21,35 +21,40 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, cast
+from typing import Any
 
 import numpy as np
 
-from hexaleg.checks import real
-from hexaleg.design import families
 from hexaleg.design.families import FAMILIES, Family, Geometry
-from hexaleg.design.program import DesignProblem, DesignSolution, solve_design
+from hexaleg.design.program import DesignProblem, DesignSolution
 from hexaleg.design.search import search_geometry
+from hexaleg.design.setup import (
+    ENGAGED,
+    METRICS,
+    DesignSetup,
+    Groups,
+    design_setup,
+    motion_centres,
+    resolve_groups,
+)
 from hexaleg.design.spring_table import magnitudes_table
-from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES, check_objective
+from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES
 from hexaleg.dynamics.energy import saving
 from hexaleg.dynamics.prepare import Analysis, Prepared
-from hexaleg.errors import InvalidParameterError, UnknownNameError
-from hexaleg.robot.springs import Spring, SpringSet, Term, basis
+from hexaleg.errors import InvalidParameterError
+from hexaleg.robot.springs import Spring, SpringSet
 
 OBJECTIVE_METRIC = {"joule": "joule", "torque_squared": "rms_torque", "electrical": "electrical",
                     "positive_work": "positive_work"}
 """The metric of ``Analysis.metrics["total"]`` each objective is judged by."""
+REFINE_EVALUATIONS = 40
+"""Condensed solves the metric's Nelder–Mead refinement may spend (each ~50–100 ms against the
+Joule program's ~5–10 ms: the Joule search finds the region, the metric's refines it)."""
 GRID = 7
 """Grid points per angle of the geometry search's start."""
 ZERO_STIFFNESS = 1e-9
 """k below this (N·m/rad) with a nonzero constant torque reads as a constant-torque spring."""
 
-ENGAGED = 1e-9
-"""A term acts over the gait where its basis exceeds this somewhere (rad of compression, or the
-unit step); below it the term is fixed at 0 instead of left to round-off."""
-
-Groups = Mapping[str, Sequence[str] | str] | Sequence[str]
 
 
 @dataclass(frozen=True)
@@ -89,149 +94,12 @@ class OptimalSprings:
         return {g: magnitudes_table(self.geometry[g], self.magnitudes[g]) for g in self.groups}
 
 
-def resolve_groups(prepared: Prepared, groups: Groups) -> dict[str, tuple[str, ...]]:
-    """Group name → joints, from ``{name: [joints] or a joint spec}`` or a list of joint specs.
-
-    Raises:
-        InvalidParameterError: no group, an empty group, a joint in two groups.
-        UnknownNameError: an unknown joint or class (lists them).
-    """
-    robot = prepared.robot
-    if isinstance(groups, str) or not isinstance(groups, (Mapping, Sequence)):
-        raise InvalidParameterError("groups", groups, "{name: [joints]} or a list of joint "
-                                    "classes/joints")
-    items = groups.items() if isinstance(groups, Mapping) else ((g, g) for g in groups)
-    out: dict[str, tuple[str, ...]] = {}
-    owner: dict[str, str] = {}
-    for name, spec in items:
-        joints = tuple(robot.joints(spec)) if isinstance(spec, str) else tuple(spec)
-        if not joints:
-            raise InvalidParameterError(f"group {name}", list(joints), "at least one joint")
-        for j in joints:
-            robot.column(j)  # UnknownNameError listing the joints
-            if j in owner:
-                raise InvalidParameterError(f"joint {j}", f"in groups {owner[j]} and {name}",
-                                            "each joint in one group")
-            owner[j] = name
-        out[str(name)] = joints
-    if not out:
-        raise InvalidParameterError("groups", groups, "at least one group")
-    return out
-
-
-@dataclass(frozen=True, eq=False)
-class _Setup:
-    """What does not change while the geometry is searched."""
-
-    prepared: Prepared
-    objective: str
-    fam: Family
-    groups: dict[str, tuple[str, ...]]
-    centre: dict[str, float]
-    q_min: dict[str, float]
-    q_max: dict[str, float]
-    max_torque: float | None
-    max_deflection: float | None
-
-    def check_geometry(self, geometry: Mapping[str, Geometry]
-                       ) -> dict[str, dict[str, float | str]]:
-        """Every group's geometry checked by its family; no geometry for an unknown group.
-
-        Raises:
-            UnknownNameError: a group that does not exist (lists the groups), or a geometry
-                parameter the family does not have.
-            InvalidParameterError: a group without its angles, angles out of order.
-        """
-        unknown = [g for g in geometry if g not in self.groups]
-        if unknown:
-            raise UnknownNameError("geometry group", unknown[0], tuple(self.groups))
-        missing = [g for g in self.groups if g not in geometry and self.fam.angles]
-        if missing:
-            raise InvalidParameterError(f"geometry of group {missing[0]}", None,
-                                        f"the angles {', '.join(self.fam.angles)} (rad)")
-        return {g: self.fam.check(geometry.get(g, {}), f"geometry[{g}]") for g in self.groups}
-
-    def half_range(self, group: str) -> float:
-        return max((self.q_max[j] - self.q_min[j]) / 2 for j in self.groups[group])
-
-    def problem(self, geometry: Mapping[str, Geometry]) -> DesignProblem:
-        """The design program of ``geometry`` (group → geometry)."""
-        p, fam = self.prepared, self.fam
-        nm = len(fam.magnitudes)
-        joints = [j for js in self.groups.values() for j in js]
-        cols = np.array([p.robot.column(j) for j in joints])
-        B = np.zeros((p.motion.n_samples, len(joints), nm * len(self.groups)))
-        rows: list[np.ndarray] = []
-        h: list[float] = []
-        labels: list[str] = []
-        i = 0
-        for g_index, (g, js) in enumerate(self.groups.items()):
-            sl = slice(g_index * nm, (g_index + 1) * nm)
-            engaged = np.zeros(nm, dtype=bool)
-            for j in js:
-                terms = fam.terms(geometry[g], self.centre[j])
-                B[:, i, sl] = basis(terms, p.q[:, p.robot.column(j)])
-                engaged |= np.any(np.abs(B[:, i, sl]) > ENGAGED, axis=0)
-                for row, rhs, label in self._rows(terms, j):
-                    full = np.zeros(B.shape[2])
-                    full[sl] = row
-                    rows.append(full)
-                    h.append(rhs)
-                    labels.append(label)
-                i += 1
-            for m in np.flatnonzero(~engaged):  # a term that never acts over the gait: x = 0
-                full = np.zeros(B.shape[2])
-                full[g_index * nm + m] = 1.0
-                rows.append(full)
-                h.append(0.0)
-                labels.append("never engaged")
-        G = np.array(rows) if rows else np.zeros((0, B.shape[2]))
-        return DesignProblem(p, self.objective, cols, B, np.tile(fam.nonnegative(), len(
-            self.groups)), G, np.array(h), tuple(labels))
-
-    def _rows(self, terms: tuple[Term, ...], joint: str) -> list[tuple[np.ndarray, float, str]]:
-        """Design rows ``row · x_group ≤ rhs`` on one joint (module docstring)."""
-        out = []
-        lo, hi = self.q_min[joint], self.q_max[joint]
-        if self.max_torque is not None:
-            out.append((basis(terms, lo), self.max_torque, "max_torque"))
-            out.append((-basis(terms, hi), self.max_torque, "max_torque"))
-        if self.max_deflection is not None:
-            d = self.max_deflection
-            for e in self.fam.elements:
-                if e.linear:  # |τ₀ − k (q − q_r)| ≤ k Δ at both ends of the motion
-                    for q in (lo, hi):
-                        r = terms[e.stiffness].angle
-                        for s in (1.0, -1.0):
-                            row = np.zeros(len(terms))
-                            row[e.stiffness] = -s * (q - r) - d
-                            row[cast(int, e.preload)] = s  # the linear law's constant
-                            out.append((row, 0.0, "max_deflection"))
-                    continue
-                term = terms[e.stiffness]
-                q = hi if term.kind == "above" else lo
-                row = np.zeros(len(terms))
-                row[e.stiffness] = abs(float(term.torque(np.array(q)))) - d
-                if e.preload is not None:
-                    row[e.preload] = abs(float(terms[e.preload].torque(np.array(q))))
-                out.append((row, 0.0, "max_deflection"))
-        return out
-
-    def solve(self, geometry: Mapping[str, Geometry]) -> DesignSolution:
-        problem = self.problem(geometry)
-        if self.objective in QUADRATIC_OBJECTIVES:
-            return solve_design(problem)
-        from hexaleg.design.program_reference import solve_design_reference
-
-        return solve_design_reference(problem)
-
-
 def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
                     objective: str = "joule", *, max_torque: float | None = None,
                     max_deflection: float | None = None,
                     geometry: Mapping[str, Geometry] | None = None,
-                    start: Mapping[str, Geometry] | Sequence[Mapping[str, Geometry]] | None = None
-                    ) -> OptimalSprings:
+                    start: Mapping[str, Geometry] | Sequence[Mapping[str, Geometry]] | None = None,
+                    metric: str | None = None) -> OptimalSprings:
     """The optimal springs of one family on the groups' joints for a prepared gait.
 
     Args:
@@ -249,6 +117,22 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
         start: Group → geometry to start the search from (every group; e.g. each group's
             optimum alone), or a list of such: the result is never worse than any of them. Not
             with ``geometry``.
+        metric: What the magnitudes (and the geometry search) minimise. None (default): the
+            force program's own objective, the joint program over (x, forces) above. With a
+            metric the geometry is the Joule program's search (grid rounds and Nelder–Mead),
+            then Nelder–Mead on the metric's value from its optimum and the starts
+            (:data:`REFINE_EVALUATIONS` solves): never worse in the metric than the Joule
+            geometry or a start.
+            ``"electrical"`` or ``"joule"`` (one of :data:`hexaleg.design.setup.METRICS`, with
+            objective ``"joule"``): that metric per cycle of the Joule-optimal forces — the
+            convention of ``Prepared.evaluate(springs, "joule")`` that ``hexaleg design`` ranks
+            by — through the condensed program (:mod:`hexaleg.design.condensed`): exact, and
+            the global optimum for the geometry, when no sample's friction, normal-force or
+            torque-limit inequality binds at the optimum (checked at every sample); a sample
+            that binds gets explicit forces minimising the metric there (that module's
+            docstring). x = 0, the baseline, is always feasible, so the program never costs
+            energy; should the exact evaluation still cost some (binding samples), the result
+            is no springs (x = 0), with a note.
 
     Returns:
         The optimal springs, their analysis and saving; the magnitudes are the global optimum
@@ -261,8 +145,9 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
         InfeasibleForcesError, TorqueLimitError: the gait has no admissible forces even without
             springs (the baseline), or the program has no solution.
     """
-    setup = _setup(prepared, groups, family, objective, max_torque, max_deflection)
-    baseline = float(prepared.baseline(objective)["total"][OBJECTIVE_METRIC[objective]])
+    setup = design_setup(prepared, groups, family, objective, max_torque, max_deflection,
+                         metric)
+    baseline = float(prepared.baseline(objective)["total"][metric or OBJECTIVE_METRIC[objective]])
     if geometry is not None:
         if start is not None:
             raise InvalidParameterError("start", start, "None when the geometry is given")
@@ -271,29 +156,16 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
     else:
         starts = [] if start is None or not setup.fam.angles else (
             [start] if isinstance(start, Mapping) else list(start))
-        chosen, solution, evaluations = search_geometry(
-            setup, [setup.check_geometry(s) for s in starts])
-    return _result(setup, chosen, solution, evaluations, baseline)
-
-
-def _setup(prepared: Prepared, groups: Groups, family: str, objective: str,
-           max_torque: float | None, max_deflection: float | None) -> _Setup:
-    """The checked inputs of :func:`optimal_springs` and each joint's range of motion."""
-    fam = families.family(family)
-    check_objective(objective)
-    if max_torque is not None:
-        max_torque = real("max_torque", max_torque, low=0.0, low_open=True,
-                          allowed="a finite torque > 0 (N·m), or None")
-    if max_deflection is not None:
-        max_deflection = real("max_deflection", max_deflection, low=0.0, low_open=True,
-                              allowed="a finite angle > 0 (rad), or None")
-    resolved = resolve_groups(prepared, groups)
-    joints = [j for js in resolved.values() for j in js]
-    qs = {j: prepared.q[:, prepared.robot.column(j)] for j in joints}
-    return _Setup(prepared, objective, fam, resolved, centre=motion_centres(prepared, joints),
-                  q_min={j: float(q.min()) for j, q in qs.items()},
-                  q_max={j: float(q.max()) for j, q in qs.items()},
-                  max_torque=max_torque, max_deflection=max_deflection)
+        checked = [setup.check_geometry(s) for s in starts]
+        if not setup.condensed:
+            chosen, solution, evaluations = search_geometry(setup, checked)
+        else:  # the Joule program's search, then Nelder–Mead on the metric from its optimum
+            nominal = dataclasses.replace(setup, metric=None, shifts=())
+            first, _, evaluations = search_geometry(nominal, checked)
+            chosen, _, more = search_geometry(setup, [first, *checked], rounds=0,
+                                              max_evaluations=REFINE_EVALUATIONS)
+            solution, evaluations = setup.solve(chosen), evaluations + more + 1
+    return springs_result(setup, chosen, solution, evaluations, baseline)
 
 
 def design_problem(prepared: Prepared, groups: Groups, family: str,
@@ -304,15 +176,8 @@ def design_problem(prepared: Prepared, groups: Groups, family: str,
     there), for benchmarks and comparisons of the solvers
     (:func:`hexaleg.design.program.solve_design`,
     :func:`hexaleg.design.program_reference.solve_design_reference`)."""
-    setup = _setup(prepared, groups, family, objective, max_torque, max_deflection)
+    setup = design_setup(prepared, groups, family, objective, max_torque, max_deflection)
     return setup.problem(setup.check_geometry(geometry))
-
-
-def motion_centres(prepared: Prepared, joints: Sequence[str]) -> dict[str, float]:
-    """Joint → the centre of its range of motion in the gait, rad (the origin of a design's
-    angles)."""
-    q = {j: prepared.q[:, prepared.robot.column(j)] for j in joints}
-    return {j: float(v.min() + v.max()) / 2 for j, v in q.items()}
 
 
 def frozen_problem(prepared: Prepared, optimum: OptimalSprings, centres: Mapping[str, float], *,
@@ -331,7 +196,7 @@ def frozen_problem(prepared: Prepared, optimum: OptimalSprings, centres: Mapping
         max_torque: As :func:`optimal_springs`, at this gait.
         max_deflection: As :func:`optimal_springs`, at this gait.
     """
-    setup = _setup(prepared, optimum.groups, optimum.family, optimum.objective, max_torque,
+    setup = design_setup(prepared, optimum.groups, optimum.family, optimum.objective, max_torque,
                    max_deflection)
     setup = dataclasses.replace(setup, centre={j: float(centres[j]) for j in setup.centre})
     p = setup.problem(setup.check_geometry(optimum.geometry))
@@ -356,8 +221,11 @@ def group_springs(fam: Family, groups: Mapping[str, Sequence[str]],
     return magnitudes, springs
 
 
-def _result(setup: _Setup, geometry: dict[str, dict[str, float | str]],
-            solution: DesignSolution, evaluations: int, baseline: float) -> OptimalSprings:
+def springs_result(setup: DesignSetup, geometry: dict[str, dict[str, float | str]],
+                   solution: DesignSolution, evaluations: int, baseline: float
+                   ) -> OptimalSprings:
+    """The :class:`OptimalSprings` of a solved geometry: the springs, their exact evaluation
+    (``prepared.evaluate(springs, objective)``), notes and how it was solved."""
     fam, prepared = setup.fam, setup.prepared
     nonneg = np.tile(fam.nonnegative(), len(setup.groups))
     x = np.where(nonneg, np.maximum(solution.x, 0.0), solution.x)
@@ -369,19 +237,27 @@ def _result(setup: _Setup, geometry: dict[str, dict[str, float | str]],
                          f"{m['torque_at_reference']:+.4g} N·m — a constant-torque spring; give "
                          "max_deflection to bound how far a real spring may wind")
     analysis = prepared.evaluate(springs, setup.objective)
-    metric = OBJECTIVE_METRIC[setup.objective]
+    metric = setup.metric or OBJECTIVE_METRIC[setup.objective]
     value = float(analysis.metrics["total"][metric])
+    if setup.metric is not None and value > baseline:  # never a design that costs energy
+        notes.append(f"no magnitudes of {fam.name} springs save {metric} energy here (the "
+                     f"program's best costs {100 * -saving(value, baseline):.3g} %): no springs")
+        x = np.zeros_like(x)
+        magnitudes, springs = group_springs(fam, setup.groups, geometry, setup.centre, x)
+        analysis = prepared.evaluate(springs, setup.objective)
+        value = float(analysis.metrics["total"][metric])
     return OptimalSprings(
         family=fam.name, objective=setup.objective, groups=dict(setup.groups),
         geometry=geometry, magnitudes=magnitudes, springs=SpringSet(springs), analysis=analysis,
         metric=metric, value=value, baseline=baseline, saving=saving(value, baseline),
         notes=tuple(notes),
-        solver={"path": ("active set" if setup.objective in QUADRATIC_OBJECTIVES
-                         else "cvxpy stacked program"),
+        solver={"path": ("condensed program" if setup.condensed else "active set"
+                         if setup.objective in QUADRATIC_OBJECTIVES else "cvxpy stacked program"),
                 "program_value": solution.value, "clarabel_solves": solution.rounds,
                 "explicit_samples": int(solution.explicit.size),
                 "geometry_evaluations": evaluations})
 
 
-__all__ = ["FAMILIES", "OBJECTIVE_METRIC", "OptimalSprings", "design_problem", "frozen_problem",
-           "group_springs", "motion_centres", "optimal_springs", "resolve_groups"]
+__all__ = ["ENGAGED", "FAMILIES", "METRICS", "OBJECTIVE_METRIC", "DesignSetup", "Groups",
+           "OptimalSprings", "design_problem", "frozen_problem", "group_springs",
+           "motion_centres", "optimal_springs", "resolve_groups", "springs_result"]

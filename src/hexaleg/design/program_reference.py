@@ -125,3 +125,67 @@ def solve_design_reference(problem: DesignProblem) -> DesignSolution:
     forces = np.zeros(T * system.A.shape[2])
     forces[where] = f.value
     return DesignSolution(xv, value, np.arange(T), 1, forces.reshape(T, -1))
+
+
+def solve_metric_reference(problem: DesignProblem, metric: str) -> tuple[np.ndarray, float]:
+    """The magnitudes minimising ``metric`` (``"joule"`` or ``"electrical"``) per cycle of the
+    Joule-optimal forces, by one cvxpy program that does not use the condensed gains: the forces
+    of every sample are variables held at the Joule optimum by its optimality conditions —
+    the base rows ``A f = b`` and stationarity ``Nᵀ Dᵀ C τ = 0`` with N a basis of the null
+    space of A (the KKT conditions of ``min Σ c τ²`` s.t. ``A f = b``, the multiplier
+    eliminated; no inequality, so valid where none binds) — and the
+    objective is the metric of their motor torques (electrical:
+    :meth:`hexaleg.robot.motor.Motor.electrical_power`). The reference of
+    :func:`hexaleg.design.condensed.solve_condensed`; returns ``(x, value J)``.
+
+    Raises:
+        InfeasibleForcesError: cvxpy/Clarabel reports no optimal solution.
+    """
+    import cvxpy as cp
+    import scipy.sparse as sp
+    from scipy.linalg import null_space
+
+    prepared = problem.prepared
+    system = prepared.system
+    T, nj = system.n_samples, system.D.shape[1]
+    D, A, b_base, _ = stacked(problem)
+    f, x = cp.Variable(D.shape[1]), cp.Variable(problem.nx)
+    blocks = []  # per sample Nᵀ Dᵀ, N a basis of the null space of its base rows
+    for k in range(T):
+        st = np.flatnonzero(np.repeat(system.stance[k], 3))
+        if not st.size:
+            blocks.append(sp.csr_matrix((0, nj)))
+            continue
+        rows, _ = base_row_space(system, k, system.A[k][:, st])
+        N = null_space(rows) if rows.size else np.eye(st.size)
+        blocks.append(sp.csr_matrix(N.T @ system.D[k][:, st].T))
+    Z = sp.block_diag(blocks, format="csr")
+    Bfull = np.zeros((T, nj, problem.nx))
+    Bfull[:, problem.cols] = problem.B
+    tau = system.b_joint.reshape(-1) - D @ f - Bfull.reshape(T * nj, -1) @ x
+    c = np.tile(prepared.weights("joule"), T)
+    w = np.repeat(problem.sample_weights, nj)
+    if metric == "joule":
+        cost = cp.sum(cp.multiply(w * c, cp.square(tau)))
+    else:
+        qd = system.qdot.reshape(-1)
+        eta = np.tile(np.broadcast_to(system.efficiency, (nj,)), T)
+        power = cp.multiply(c, cp.square(tau)) + cp.maximum(cp.multiply(qd / eta, tau),
+                                                            cp.multiply(qd * eta, tau))
+        regen = np.tile(np.broadcast_to(np.asarray(prepared.motor.regeneration, dtype=bool),
+                                        (nj,)), T)
+        cost = w[regen] @ power[np.flatnonzero(regen)] if regen.any() else 0
+        if (~regen).any():
+            cost = cost + w[~regen] @ cp.pos(power[np.flatnonzero(~regen)])
+    cons = [Z @ cp.multiply(c, tau) == 0, A @ f == b_base]
+    neg = np.flatnonzero(problem.nonnegative)
+    if neg.size:
+        cons.append(x[neg] >= 0)
+    if problem.G.size:
+        cons.append(problem.G @ x <= problem.h)
+    scale = float(prepared.baseline("joule")["total"][metric]) or 1.0  # O(1) for Clarabel
+    program = cp.Problem(cp.Minimize(cost / scale), cons)
+    if solve_clarabel(program) != cp.OPTIMAL:
+        raise InfeasibleForcesError(f"the {metric} design program has no solution (cvxpy: "
+                                    f"{program.status})")
+    return np.asarray(x.value, dtype=float), float(program.value) * scale

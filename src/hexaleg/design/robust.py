@@ -45,20 +45,16 @@ from hexaleg.design.codesign import (
     group_springs,
     motion_centres,
 )
+from hexaleg.design.condensed import TOLERANCE, Condensed, explicit_program
 from hexaleg.design.families import family
-from hexaleg.design.program import MAX_ROUNDS, DesignProblem
-from hexaleg.design.program_reference import force_constraints, stacked
-from hexaleg.dynamics.contact import violations
 from hexaleg.dynamics.energy import saving
 from hexaleg.dynamics.prepare import Prepared
-from hexaleg.dynamics.reference import solve_clarabel
 from hexaleg.errors import InfeasibleForcesError, InvalidParameterError, TorqueLimitError
 from hexaleg.robot.springs import SpringSet
 
 METRICS: tuple[str, ...] = ("joule", "electrical")
 """The savings the robust program can maximise."""
-TOLERANCE = 1e-8
-"""Clarabel's gap and feasibility tolerance for the robust program (savings to ~1e-8)."""
+__all__ = ["METRICS", "MODES", "TOLERANCE", "RobustSprings", "robust_springs"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -106,121 +102,6 @@ class RobustSprings:
         return float(np.min(self.nominal_saving))
 
 
-def _solve(program: Any) -> str:
-    """Clarabel at :data:`TOLERANCE`, then the tolerance ladder of
-    :func:`hexaleg.dynamics.reference.solve_clarabel` if it stalls (the ladder starts far
-    tighter, where a program this size spends its iteration limit)."""
-    import warnings
-
-    import cvxpy as cp
-
-    with warnings.catch_warnings():
-        warnings.filterwarnings("ignore", message="Solution may be inaccurate")
-        program.solve(solver=cp.CLARABEL, tol_gap_abs=TOLERANCE, tol_gap_rel=TOLERANCE,
-                      tol_feas=TOLERANCE, max_iter=200)
-    if program.status == cp.OPTIMAL:
-        return str(program.status)
-    return solve_clarabel(program)
-
-
-class _Condition:
-    """One condition's condensed data: gains along x, baseline, the current explicit set."""
-
-    def __init__(self, problem: DesignProblem, metric: str) -> None:
-        self.problem, self.metric = problem, metric
-        p = problem.prepared
-        self.system = p.system
-        gains = p.gains("joule")
-        self.c = p.weights("joule")
-        self.w = problem.sample_weights
-        self.M = np.einsum("tjs,tsx->tjx", gains.G[:, :, problem.cols], problem.B)
-        self.F = np.einsum("tfs,tsx->tfx", gains.K[:, :, problem.cols], problem.B)
-        self.f0, self.tau0 = gains.f0, gains.tau0
-        self.root = np.sqrt(self.w[:, None] * self.c[None, :])  # (T, nj)
-        self.base = float(p.baseline("joule")["total"][metric])  # E_c(0), exact
-        self.condensed = np.ones(self.system.n_samples, dtype=bool)
-
-    def _electrical(self, tau: Any, samples: np.ndarray) -> Any:
-        """cvxpy electrical energy of motor torques ``tau`` (S·nj, sample-major) at ``samples``:
-        ``Σ w (c τ² + max(q̇τ/η, q̇τη))``, clipped at 0 per joint without regeneration
-        (:meth:`hexaleg.robot.motor.Motor.electrical_power`)."""
-        import cvxpy as cp
-
-        nj = self.system.D.shape[1]
-        qd = self.system.qdot[samples].reshape(-1)
-        eta = np.tile(np.broadcast_to(self.system.efficiency, (nj,)), samples.size)
-        c = np.tile(self.c, samples.size)
-        w = np.repeat(self.w[samples], nj)
-        power = cp.multiply(c, cp.square(tau)) + cp.maximum(cp.multiply(qd / eta, tau),
-                                                            cp.multiply(qd * eta, tau))
-        regen = np.tile(np.broadcast_to(np.asarray(self.problem.prepared.motor.regeneration,
-                                                   dtype=bool), (nj,)), samples.size)
-        cost = 0
-        if regen.any():
-            cost = cost + w[regen] @ power[np.flatnonzero(regen)]
-        if (~regen).any():
-            cost = cost + w[~regen] @ cp.pos(power[np.flatnonzero(~regen)])
-        return cost
-
-    def oracle(self, x: np.ndarray) -> tuple[float, np.ndarray]:
-        """The metric over the baseline at magnitudes x with every sample condensed, and its
-        gradient (a subgradient at the kinks), shape (nx,)."""
-        tau = self.tau0 + self.M @ x
-        if self.metric == "joule":
-            phi, dphi = self.c * tau**2, 2 * self.c * tau
-        else:
-            qd = self.system.qdot
-            eta = np.broadcast_to(self.system.efficiency, qd.shape[1:])
-            out = qd * tau >= 0
-            slope = np.where(out, qd / eta, qd * eta)
-            phi = self.c * tau**2 + slope * tau
-            dphi = 2 * self.c * tau + slope
-            regen = np.broadcast_to(np.asarray(self.problem.prepared.motor.regeneration,
-                                               dtype=bool), qd.shape[1:])
-            drop = ~regen & (phi < 0)
-            phi, dphi = np.where(drop, 0.0, phi), np.where(drop, 0.0, dphi)
-        value = float(np.sum(self.w[:, None] * phi)) / self.base
-        grad = np.einsum("tj,tjx->x", self.w[:, None] * dphi, self.M) / self.base
-        return value, grad
-
-    def cost(self, x: Any, cons: list) -> Any:
-        """cvxpy energy of the condition in the metric at magnitudes x; appends the explicit
-        samples' force constraints to ``cons``."""
-        import cvxpy as cp
-
-        k = self.condensed
-        nx = self.problem.nx
-        if self.metric == "joule":
-            rows = (self.root[k][:, :, None] * self.M[k]).reshape(-1, nx)
-            cost = cp.sum_squares(rows @ x + (self.root[k] * self.tau0[k]).reshape(-1))
-        else:
-            cost = self._electrical(self.M[k].reshape(-1, nx) @ x + self.tau0[k].reshape(-1),
-                                    np.flatnonzero(k))
-        explicit = np.flatnonzero(~k)
-        if explicit.size:
-            D, A, b_base, _ = stacked(self.problem, explicit)
-            f = cp.Variable(D.shape[1])
-            nj = self.system.D.shape[1]
-            Bfull = np.zeros((explicit.size, nj, nx))
-            Bfull[:, self.problem.cols] = self.problem.B[explicit]
-            tau = (self.system.b_joint[explicit].reshape(-1) - D @ f
-                   - Bfull.reshape(-1, nx) @ x)
-            cost = cost + (cp.sum_squares(cp.multiply(self.root[explicit].reshape(-1), tau))
-                           if self.metric == "joule" else self._electrical(tau, explicit))
-            cons += force_constraints(f, A, b_base, self.problem.prepared.contact)
-            if self.problem.prepared.contact.torque_limits:
-                cons.append(cp.abs(tau) <= np.tile(self.system.tau_max, explicit.size))
-        return cost
-
-    def update(self, x: np.ndarray) -> bool:
-        """Add the condensed samples whose forces at x break an inequality; True if any."""
-        f = self.f0 - self.F @ x
-        tau = self.tau0 + self.M @ x
-        bad = violations(self.system, f, tau, self.problem.prepared.contact) & self.condensed
-        self.condensed &= ~bad
-        return bool(bad.any())
-
-
 def robust_springs(optimum: OptimalSprings, nominal: Prepared, conditions: Sequence[Prepared],
                    mode: str = "worst", metric: str = "joule", *,
                    max_torque: float | None = None, max_deflection: float | None = None
@@ -258,7 +139,7 @@ def robust_springs(optimum: OptimalSprings, nominal: Prepared, conditions: Seque
         raise InvalidParameterError("optimum.objective", optimum.objective,
                                     "joule (the robust program is in Joule energy)")
     centres = motion_centres(nominal, [j for js in optimum.groups.values() for j in js])
-    data = [_Condition(frozen_problem(p, optimum, centres, max_torque=max_torque,
+    data = [Condensed(frozen_problem(p, optimum, centres, max_torque=max_torque,
                                       max_deflection=max_deflection), metric)
             for p in conditions]
     fam = family(optimum.family)
@@ -280,48 +161,13 @@ def robust_springs(optimum: OptimalSprings, nominal: Prepared, conditions: Seque
                               "program_value": float(result.values.max() if mode == "worst"
                                                      else result.values.mean())}
     if any([d.update(xv) for d in data]):  # some sample binds: explicit forces there
-        xv, explicit = _explicit_program(data, mode, nonneg, engaged, G, h)
+        xv, explicit = explicit_program(data, mode, nonneg, engaged, G, h)
         solver.update(explicit)
     solver["explicit_samples"] = [int((~d.condensed).sum()) for d in data]
     return _result(optimum, mode, metric, data, xv, x0, centres, solver)
 
 
-def _explicit_program(data: list[_Condition], mode: str, nonneg: np.ndarray, engaged: np.ndarray,
-                      G: np.ndarray, h: np.ndarray) -> tuple[np.ndarray, dict[str, Any]]:
-    """The stacked program with explicit forces at the samples that bind (cvxpy, Clarabel),
-    their set grown until no condensed sample breaks an inequality (module docstring)."""
-    import cvxpy as cp
-
-    nx = data[0].problem.nx
-    for rounds in range(1, MAX_ROUNDS + 1):
-        x = cp.Variable(nx)
-        cons: list = []
-        ratios = [d.cost(x, cons) / d.base for d in data]
-        if nonneg.any():
-            cons.append(x[np.flatnonzero(nonneg)] >= 0)
-        if (~engaged).any():
-            cons.append(x[np.flatnonzero(~engaged)] == 0)
-        if G.size:
-            cons.append(G @ x <= h)
-        if mode == "worst":
-            t = cp.Variable()
-            program = cp.Problem(cp.Minimize(t), cons + [r <= t for r in ratios])
-        else:
-            program = cp.Problem(cp.Minimize(sum(ratios) / len(ratios)), cons)
-        if _solve(program) != cp.OPTIMAL:
-            raise InfeasibleForcesError(
-                f"the robust spring program has no solution (cvxpy: {program.status}); "
-                "conditions without admissible forces, or design limits no spring meets")
-        xv = np.asarray(x.value, dtype=float)
-        xv = np.where(nonneg, np.maximum(xv, 0.0), xv)
-        if not any([d.update(xv) for d in data]):  # every condition checked
-            return xv, {"path": "cvxpy with explicit forces where samples bind",
-                        "rounds": rounds, "program_value": float(program.value)}
-    raise InfeasibleForcesError(f"the robust program's active set did not settle in "
-                                f"{MAX_ROUNDS} rounds")
-
-
-def _result(optimum: OptimalSprings, mode: str, metric: str, data: list[_Condition],
+def _result(optimum: OptimalSprings, mode: str, metric: str, data: list[Condensed],
             x: np.ndarray,
             x0: np.ndarray, centres: dict[str, float], solver: dict[str, Any]
             ) -> RobustSprings:

@@ -23,10 +23,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from hexaleg.design.setup import DesignSetup
 from hexaleg.errors import InfeasibleForcesError, TorqueLimitError
 
 if TYPE_CHECKING:
-    from hexaleg.design.codesign import _Setup
     from hexaleg.design.families import Geometry
     from hexaleg.design.program import DesignSolution
 
@@ -76,13 +76,19 @@ def _grid(n: int, ticks: np.ndarray) -> list[tuple[float, ...]]:
     return pairs if n == 2 else [a + b for a, b in itertools.product(pairs, pairs)]
 
 
-def search_geometry(setup: _Setup, starts: Sequence[Mapping[str, Geometry]] = ()
+def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]] = (), *,
+                    rounds: int = 2, max_evaluations: int = MAX_EVALUATIONS
                     ) -> tuple[dict[str, dict[str, float | str]], DesignSolution, int]:
     """The best geometry found, its solution and the number of convex solves (module docstring).
 
     Args:
         setup: The checked design inputs.
         starts: Geometries to start from, each group → a checked geometry (every group).
+        rounds: Grid rounds over the groups (0: Nelder–Mead from the best start alone).
+        max_evaluations: Convex solves the Nelder–Mead stage may spend.
+
+    A condensed setup (another metric, stop shifts) is compared by its fast solves
+    (``setup.solve(geometry, exact=False)``); the caller certifies the chosen geometry.
     """
     from scipy.optimize import minimize
 
@@ -104,7 +110,7 @@ def search_geometry(setup: _Setup, starts: Sequence[Mapping[str, Geometry]] = ()
         geometry = {g: _geometry(fam.name, u[i * n:(i + 1) * n], sides[g])
                     for i, g in enumerate(groups)}
         try:
-            solution = setup.solve(geometry)
+            solution = setup.solve(geometry, exact=False)
         except (InfeasibleForcesError, TorqueLimitError):
             return np.inf
         if solution.value < best["value"]:  # type: ignore[operator]
@@ -120,7 +126,7 @@ def search_geometry(setup: _Setup, starts: Sequence[Mapping[str, Geometry]] = ()
         u = np.asarray(best["u"])
         sides.update({h: str(best["geometry"][h].get("side", "above"))  # type: ignore[index]
                       for h in groups})
-    for _ in range(2):
+    for _ in range(rounds):
         for i, g in enumerate(groups):
             options = ("above", "below") if fam.name == "one_sided" else (sides[g],)
             ticks = np.array([-half[i], *(motion[i] * np.array(TICKS[n])), half[i]])
@@ -137,5 +143,5 @@ def search_geometry(setup: _Setup, starts: Sequence[Mapping[str, Geometry]] = ()
     minimize(lambda z: value(np.clip(z, -1.0, 1.0) * scale), np.clip(u / scale, -1.0, 1.0),
              method="Nelder-Mead",
              bounds=[(-1.0, 1.0)] * u.size,
-             options={"maxfev": MAX_EVALUATIONS, "xatol": 1e-4, "fatol": 1e-12})
+             options={"maxfev": max_evaluations, "xatol": 1e-4, "fatol": 1e-12})
     return best["geometry"], best["solution"], count  # type: ignore[return-value]

@@ -1,0 +1,79 @@
+"""The condensed metric program: the electrical design against an independent cvxpy program,
+and no springs where none saves."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import hexaleg
+from hexaleg.design.codesign import design_problem
+from hexaleg.design.condensed import Condensed, solve_condensed
+from hexaleg.design.program import DesignProblem
+from hexaleg.design.program_reference import solve_metric_reference
+from hexaleg.errors import InvalidParameterError
+
+GEOMETRY = {"femur": {"contact": -0.18, "side": "above"},
+            "tibia": {"contact": 0.18, "side": "below"}}
+
+
+@pytest.fixture(scope="module")
+def prepared100(robot):
+    return hexaleg.prepare(robot, hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=100)))
+
+
+def test_electrical_design_matches_the_cvxpy_program(prepared100):
+    """The condensed optimum (gains K, G, bundle method) against the program written with the
+    forces as variables held Joule-optimal by their KKT conditions: same value to 1e-6."""
+    problem = design_problem(prepared100, {"femur": "femur", "tibia": "tibia"}, "linear",
+                             {"femur": {}, "tibia": {}})
+    solution = solve_condensed([problem], "electrical")
+    base = Condensed(problem, "electrical").base
+    x_ref, value_ref = solve_metric_reference(problem, "electrical")
+    assert solution.explicit == (0,)
+    assert np.count_nonzero(np.abs(solution.x) > 1e-6) >= 2  # springs that act, not the baseline
+    assert solution.values[0] * base == pytest.approx(value_ref, rel=1e-6)
+    # the reference's magnitudes are no better in the condensed function
+    assert Condensed(problem, "electrical").oracle(x_ref)[0] >= solution.values[0] - 1e-7
+    np.testing.assert_allclose(solution.x, x_ref, rtol=1e-3, atol=1e-5)
+
+
+def test_joule_metric_equals_the_active_set_optimum(prepared100):
+    from hexaleg.design.program import solve_design
+
+    problem = design_problem(prepared100, {"femur": "femur", "tibia": "tibia"}, "one_sided",
+                             GEOMETRY)
+    exact = solve_design(problem)
+    solution = solve_condensed([problem], "joule")
+    assert solution.values[0] * Condensed(problem, "joule").base == pytest.approx(exact.value,
+                                                                                  rel=1e-7)
+
+
+def test_a_spring_that_only_costs_energy_gets_magnitude_zero(prepared100):
+    """A torque that adds to the motor's wherever it acts (a swing leg's joint while it drives
+    the motion; stance forces do not depend on it): every magnitude > 0 costs electrical energy,
+    so the optimum is no spring, from any start."""
+    p = prepared100
+    col = p.robot.column(p.robot.joints("femur")[0])
+    leg = next(i for i, lg in enumerate(p.robot.legs) if col in lg.columns)
+    tau0 = p.gains("joule").tau0[:, col]
+    qd = p.system.qdot[:, col]
+    swing = ~p.motion.stance[:, leg] & (tau0 * qd > 0)
+    assert swing.sum() > 5
+    B = np.where(swing, -np.sign(tau0), 0.0)[:, None, None]  # τ = τ₀ − B x: |τ| grows
+    problem = DesignProblem(p, "joule", np.array([col]), B, np.array([True]), np.zeros((0, 1)),
+                            np.zeros(0))
+    solution = solve_condensed([problem], "electrical", x0=np.array([1.0]))
+    assert solution.x[0] == pytest.approx(0.0, abs=1e-9)
+    assert solution.values[0] == pytest.approx(1.0, abs=1e-9)  # the baseline, no cost
+
+
+def test_bad_arguments_are_named(prepared100):
+    problem = design_problem(prepared100, ["femur"], "one_sided",
+                             {"femur": GEOMETRY["femur"]})
+    with pytest.raises(InvalidParameterError, match="joule or electrical"):
+        solve_condensed([problem], "positive_work")
+    with pytest.raises(InvalidParameterError, match="worst or mean"):
+        solve_condensed([problem], "electrical", "median")
+    with pytest.raises(InvalidParameterError, match="at least one"):
+        solve_condensed([], "electrical")
