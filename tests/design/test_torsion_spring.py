@@ -168,3 +168,22 @@ def test_bad_requirements_are_named(kwargs, match):
 def test_unknown_material_lists_the_materials():
     with pytest.raises(UnknownNameError, match="music_wire, stainless_302"):
         ts.TorsionRequirement(rate=0.1, max_torque=0.1, materials=("bronze",))
+
+
+def test_the_wound_coil_clears_its_arbor_by_the_margin():
+    """D' − d ≥ arbor (1 + margin) (§10-12's clearance, Associated Spring's about 10 %): a
+    design that only just cleared the bare arbor is refused with the margin."""
+    base = dict(rate=0.0212, max_torque=0.09, preload_torque=0.058, max_outer_diameter=0.02)
+    bare = ts.design_torsion_spring(ts.TorsionRequirement(**base, arbor_diameter=4e-3,
+                                                          arbor_margin=0.0))
+    assert ts.TorsionRequirement(**base).arbor_margin == ts.ARBOR_MARGIN == 0.10
+    # an arbor the bare design just clears: with the 10 % margin that spring no longer fits
+    tight = bare.wound_inner_diameter / 1.05
+    s = ts.design_torsion_spring(ts.TorsionRequirement(**base, arbor_diameter=tight))
+    assert s.wound_inner_diameter >= 1.1 * tight * (1 - 1e-12)
+    assert s.table()["arbor_margin"] == {"value": 0.1, "unit": "1"}
+    with pytest.raises(SpringDesignError):  # no coil inside 20 mm clears 18 mm by 10 %
+        ts.design_torsion_spring(ts.TorsionRequirement(**base, arbor_diameter=18e-3))
+    for bad in (-0.1, 1.5, math.nan):
+        with pytest.raises(InvalidParameterError):
+            ts.TorsionRequirement(**base, arbor_margin=bad)

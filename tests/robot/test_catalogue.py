@@ -204,3 +204,17 @@ def test_docs_catalogue_table_matches_the_catalogue() -> None:
         assert c == round(m.joule_coefficient, 3), name
         assert tau_s == pytest.approx(m.stall_torque, abs=5e-3), name
         assert rpm == round(m.no_load_speed / RPM), name
+
+
+def test_every_catalogue_servo_states_its_output_hub_or_why_not():
+    from hexaleg.robot.catalogue import CATALOGUE, OUTPUT_HUBS, output_hub
+
+    assert set(OUTPUT_HUBS) == set(CATALOGUE)
+    for name, hub in OUTPUT_HUBS.items():
+        assert hub.source, name
+        assert hub.diameter is None or 0 < hub.diameter < 0.05, name
+        if hub.diameter is None:
+            assert "not sourced" in hub.source, name
+    assert output_hub("ax-18a") is OUTPUT_HUBS["AX-18A"]
+    with pytest.raises(UnknownNameError):
+        output_hub("SG90")

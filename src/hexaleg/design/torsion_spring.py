@@ -3,17 +3,18 @@
 Equations of Budynas & Nisbett, *Shigley's Mechanical Engineering Design* (9th–11th ed.),
 §10-12 "Helical Torsion Springs" (equation numbers of the 9th/10th editions), SI throughout:
 
-* spring index ``C = D / d`` (D mean coil diameter, d wire diameter);
-* bending-stress correction at the inner fibre, Eq. (10-43):
-  ``K_i = (4C² − C − 1) / (4C (C − 1))``, and the bending stress, Eq. (10-44):
-  ``σ = K_i 32 M / (π d³)``;
+* spring index ``C = D / d`` (D mean coil diameter, d wire diameter); bending-stress correction
+  at the inner fibre, Eq. (10-43): ``K_i = (4C² − C − 1) / (4C (C − 1))``, and the bending
+  stress, Eq. (10-44): ``σ = K_i 32 M / (π d³)``;
 * active turns with the straight legs' contribution: ``N_a = N_b + (l₁ + l₂) / (3π D)``
   (each leg a cantilever, its bending energy that of a length l/3 of coil);
 * deflection in turns ``θ' = 10.2 M D N_a / (d⁴ E)`` from beam theory (64 / 2π = 10.19), raised
   to ``θ' = 10.8 M D N_a / (d⁴ E)`` for the friction between coils (Wahl's tests), so the rate
   is ``k' = d⁴ E / (10.8 D N_a)`` N·m/turn and ``k = k' / 2π`` N·m/rad;
 * coil diameter under wind-up ``D' = N_b D / (N_b + θ'_c)``, with ``θ'_c`` the body's deflection
-  in turns (N_a → N_b above); the inside diameter ``D' − d`` must clear the arbor;
+  in turns (N_a → N_b above); the clearance over an arbor D_p, ``Δ = D' − d − D_p`` (§10-12),
+  must be ≥ :data:`ARBOR_MARGIN` D_p (Associated Spring's stock springs: "suggested mandrel
+  sizes allow about 10 % clearance"; Shigley gives Δ, not a percentage);
 * allowable bending stress for static service: the bending yield strength ``S_y`` of
   Eq. (10-57) (:mod:`hexaleg.design.spring_materials`), divided by a design factor;
 * body turns ``N_b = integer + β / 360°``: β is the angle between the legs in the free spring.
@@ -24,11 +25,10 @@ length ``d (N_b + 1 + θ'_c)`` is the spring makers' formula (e.g. Associated Sp
 
 :func:`design_torsion_spring` picks, for a required rate, torque and preload, the lightest spring
 (within :data:`MASS_TIE`, the shortest) over the materials, the preferred wire diameters and body
-turns on a quarter-turn grid, the mean
-diameter solved from the rate equation (rounded to :data:`D_STEP`), within
-``C_MIN ≤ C ≤ C_MAX`` (Shigley §10-8's recommended range), the outer diameter limit, the stress
-limit and the arbor. No spring: :class:`~hexaleg.errors.SpringDesignError` naming the binding
-limit and the nearest spring.
+turns on a quarter-turn grid, the mean diameter solved from the rate equation (rounded to
+:data:`D_STEP`), within ``C_MIN ≤ C ≤ C_MAX`` (Shigley §10-8's recommended range), the outer
+diameter limit, the stress limit and the arbor. No spring: :class:`~hexaleg.errors.
+SpringDesignError` naming the binding limit and the nearest spring.
 """
 
 from __future__ import annotations
@@ -57,6 +57,8 @@ TURN_STEP = 0.25
 """Body turns grid, turns: β in steps of 90° between the legs of the free spring."""
 D_STEP = 0.01 * MM
 """Mean coil diameter resolution, m (a drawing dimension to 0.01 mm)."""
+ARBOR_MARGIN = 0.10
+"""Default clearance of the wound coil over its arbor, a fraction of the arbor (module doc)."""
 SAFETY_FACTOR = 1.2
 """Default static design factor on S_y (Shigley §10-8 uses n_s ≥ 1.2 for static service)."""
 MASS_TIE = 0.05
@@ -134,6 +136,7 @@ class TorsionRequirement:
             free there), N·m, ≥ 0.
         max_outer_diameter: Largest outer coil diameter that fits the joint, m, > 0.
         arbor_diameter: Diameter of the pin the coil winds onto, m, ≥ 0 (0: none).
+        arbor_margin: Wound inside diameter ≥ ``arbor_diameter (1 + margin)``; ≥ 0.
         materials: Wire materials to choose from (:data:`~hexaleg.design.spring_materials.
             MATERIALS`).
         safety_factor: Design factor on the bending yield strength, ≥ 1.
@@ -153,6 +156,7 @@ class TorsionRequirement:
     materials: tuple[str, ...] = tuple(MATERIALS)
     safety_factor: float = SAFETY_FACTOR
     leg_length: float | None = None
+    arbor_margin: float = ARBOR_MARGIN
 
     def __post_init__(self) -> None:
         real("rate", self.rate, low=0.0, low_open=True,
@@ -168,6 +172,7 @@ class TorsionRequirement:
              allowed=f">= {smallest / MM:g} mm: the thinnest preferred wire ({d_min / MM:g} mm) "
                      f"wound at the smallest spring index C = {C_MIN:g}")
         real("arbor_diameter", self.arbor_diameter, low=0.0, allowed=">= 0 m")
+        real("arbor_margin", self.arbor_margin, low=0.0, high=1.0, allowed="0 … 1 (0.1: 10 %)")
         real("safety_factor", self.safety_factor, low=1.0, allowed=">= 1")
         if self.leg_length is not None:
             real("leg_length", self.leg_length, low=0.0, allowed="None or >= 0 m")
@@ -261,6 +266,7 @@ class TorsionSpring:
             "wound_outer_diameter": q(self.wound_outer_diameter, "m"),
             "wound_inner_diameter": q(self.wound_inner_diameter, "m"),
             "arbor_diameter": q(self.arbor_diameter, "m"),
+            "arbor_margin": q(self.requirement.arbor_margin, "1"),
             "max_outer_diameter": q(self.requirement.max_outer_diameter, "m"),
             "body_length": q(self.body_length, "m"), "mass": q(self.mass, "kg"),
         }
@@ -321,8 +327,8 @@ def _ratios(c: dict[str, np.ndarray], req: TorsionRequirement) -> dict[str, np.n
     return {"max_outer_diameter": (c["D"] + c["d"]) / req.max_outer_diameter,
             "max_torque": c["stress"] * req.safety_factor / c["sy"],
             "spring_index_min": C_MIN / C, "spring_index_max": C / C_MAX,
-            "arbor_diameter": np.where(inner > 0, req.arbor_diameter / np.maximum(inner, 1e-12),
-                                       np.inf)}
+            "arbor_diameter": np.where(inner > 0, req.arbor_diameter * (1 + req.arbor_margin)
+                                       / np.maximum(inner, 1e-12), np.inf)}
 
 
 def _spring(c: dict[str, np.ndarray], i: int, req: TorsionRequirement) -> TorsionSpring:
@@ -376,17 +382,15 @@ def design_torsion_spring(req: TorsionRequirement) -> TorsionSpring:
     nearest = _spring(c, i, req)
     binding = max(ratios, key=lambda n: ratios[n][i])
     what = {
-        "max_outer_diameter": (req.max_outer_diameter,
-                               f">= {nearest.outer_diameter / MM:.2f} mm (m: "
-                               f"{nearest.outer_diameter:.5f})"),
+        "max_outer_diameter": (req.max_outer_diameter, f">= {nearest.outer_diameter / MM:.2f} mm "
+                                                       f"(m: {nearest.outer_diameter:.5f})"),
         "max_torque": (req.max_torque, f"<= {req.max_torque / ratios['max_torque'][i]:.4g} N·m "
                                        "in the wire that fits (or a larger max_outer_diameter)"),
         "spring_index_min": (nearest.index, f">= {C_MIN:g}: the rate needs a coil too tight for "
                                             "the wire; lower the rate or allow a thinner wire"),
-        "spring_index_max": (nearest.index, f"<= {C_MAX:g}: the rate needs a coil too wide for "
-                                            "the wire"),
-        "arbor_diameter": (req.arbor_diameter, f"<= {nearest.wound_inner_diameter / MM:.2f} mm "
-                                               "(the coil's inside diameter wound up)"),
+        "spring_index_max": (nearest.index, f"<= {C_MAX:g}: the rate needs a coil too wide"),
+        "arbor_diameter": (req.arbor_diameter, f"<= {nearest.wound_inner_diameter / MM:.2f} mm / "
+                                               f"{1 + req.arbor_margin:g} (the clearance)"),
     }[binding]
     raise SpringDesignError(
         binding, what[0],

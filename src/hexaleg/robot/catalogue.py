@@ -14,6 +14,11 @@ included, ``k_t G = τ_stall / I_stall``, ``η = τ_stall ω_0 / (V I_stall)``);
 * ODRI-4004: the brushless actuator module of Solo-12 (:func:`odri_actuator`), with stated
   assumptions.
 
+:data:`OUTPUT_HUBS` gives, per catalogue servo, the diameter of its output hub (the horn's boss,
+the spline or the shaft a torsion spring could wind on) where a source states it as a number,
+with that source; where none does, the entry says so and holds None, and
+:func:`hexaleg.design.spring_parts.arbor_for` falls back to its stated rule.
+
 The model itself (:class:`~hexaleg.robot.motor.Motor`) and the actuator built from URDF limits
 (:func:`~hexaleg.robot.motor.generic_actuator`) are in :mod:`hexaleg.robot.motor`, which also
 exports this module's public names.
@@ -23,6 +28,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Mapping
+from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Any
 
@@ -128,6 +134,46 @@ CATALOGUE: Mapping[str, Motor] = MappingProxyType({
 })
 """Real actuators, keyed by model name: ROBOTIS and Feetech servos with datasheet values and the
 ODRI brushless module of Solo-12 (:func:`odri_actuator`)."""
+
+@dataclass(frozen=True)
+class OutputHub:
+    """What a torsion spring could wind on at a servo's output.
+
+    Attributes:
+        diameter: The hub's (horn boss, spline, shaft) outer diameter, m; None when no source
+            states it as a number.
+        source: Where the number comes from, or why there is none.
+    """
+
+    diameter: float | None
+    source: str
+
+
+_DRAWING_ONLY = ("not sourced: ROBOTIS publishes the output horn's dimensions only as drawing "
+                 "images in the e-Manual (no number in its text) and the datasheet figures "
+                 "give none; the arbor falls back to the link rule")
+
+OUTPUT_HUBS: Mapping[str, OutputHub] = MappingProxyType({
+    **{name: OutputHub(None, _DRAWING_ONLY) for name in (
+        "AX-12A", "AX-18A", "MX-28", "XM540-W150", "XM540-W270", "XL430-W250", "XM430-W350",
+        "MX-64", "MX-106")},
+    "STS3215-C018": OutputHub(None, "not sourced: Feetech's product page gives no output hub or "
+                                    "spline diameter; the arbor falls back to the link rule"),
+    "ODRI-4004": OutputHub(None, "not sourced: the ODRI actuator module's documentation gives "
+                                 "its output as CAD files, no diameter in text; the arbor falls "
+                                 "back to the link rule"),
+})
+"""Catalogue name → its :class:`OutputHub` (every entry of :data:`CATALOGUE`)."""
+
+
+def output_hub(name: str) -> OutputHub:
+    """The output hub of catalogue servo ``name`` (case-insensitive, as :func:`motor`).
+
+    Raises:
+        UnknownNameError: not in the catalogue (lists the names).
+    """
+    return OUTPUT_HUBS[motor(name).name]
+
 
 DEFAULT_MOTOR = "AX-18A"
 """The servo whose stall torque (1.8 N·m) and no-load speed (97 rpm) are the robot's joint limits
