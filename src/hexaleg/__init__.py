@@ -42,6 +42,7 @@ if TYPE_CHECKING:  # the names __getattr__ imports on first use, for type checke
     from hexaleg.design.torsion_spring import TorsionRequirement, design_torsion_spring
     from hexaleg.studies.design.build import build_design
     from hexaleg.studies.design.config import DesignConfig
+    from hexaleg.studies.design.load import LoadedDesign, load_design
     from hexaleg.studies.design.write import write_design
     from hexaleg.studies.report.build import build_report
     from hexaleg.studies.report.config import ReportConfig
@@ -68,6 +69,7 @@ __all__ = [
     "Leg",
     "LegSpec",
     "LinearSpring",
+    "LoadedDesign",
     "Motion",
     "Motor",
     "MotorSet",
@@ -98,6 +100,7 @@ __all__ = [
     "gait",
     "joint_motion",
     "load",
+    "load_design",
     "load_robot",
     "metrics",
     "motor_from_mapping",
@@ -133,6 +136,7 @@ _LAZY: dict[str, str] = {
     "DesignConfig": "hexaleg.studies.design.config",
     "build_design": "hexaleg.studies.design.build",
     "write_design": "hexaleg.studies.design.write",
+    **dict.fromkeys(("LoadedDesign", "load_design"), "hexaleg.studies.design.load"),
     "SweepSpec": "hexaleg.studies.sweep.spec",
     "run_sweep": "hexaleg.studies.sweep.runner",
     **dict.fromkeys(("ViewParams", "animate", "export_html", "serve"), "hexaleg.studies.view"),

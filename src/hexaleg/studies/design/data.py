@@ -21,6 +21,7 @@ from hexaleg.design.spring_parts import SpringPart
 from hexaleg.design.spring_table import magnitudes_table
 from hexaleg.studies.design.build import DesignResult, RobustResult
 from hexaleg.studies.design.candidates import Candidate
+from hexaleg.studies.design.load import gait_parameters
 from hexaleg.studies.design.ranking import Simulated
 from hexaleg.studies.report.quantities import metric_unit, quantity
 from hexaleg.studies.simulate.write import sensitivity_row
@@ -128,7 +129,8 @@ def design_data(r: DesignResult) -> dict[str, Any]:
         "robot": {"name": r.robot, "title": r.title, "mass": quantity(r.mass, "kg")},
         "actuator": r.actuator,
         "gait": {"period": quantity(g.period, "s"), "stride": quantity(g.stride, "m"),
-                 "duty_factor": quantity(g.duty_factor, "1"), "samples": g.samples},
+                 "duty_factor": quantity(g.duty_factor, "1"), "samples": g.samples,
+                 "parameters": gait_parameters(g)},
         "settings": {
             "families": list(d.families), "classes": list(r.recommended.optimum.groups),
             "grouping": d.grouping, "metric": d.metric, "force_objective": "joule",

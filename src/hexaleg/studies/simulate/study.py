@@ -4,7 +4,8 @@ A registered robot (or one's own robot TOML) with its own gait, motor and contac
 config file's ``[gait]``, ``[motor]``, ``[contact]`` tables on top (as ``hexaleg report`` reads
 them, :class:`hexaleg.studies.report.config.ReportConfig`) and its ``[simulate]`` table
 (:class:`~hexaleg.simulation.run.Settings`); the springs of a design file
-(:func:`~hexaleg.studies.simulate.design_file.read_design`) or, without one, the globally optimal
+(:func:`hexaleg.studies.design.load.load_design`, on the gait the design was made for unless
+the config gives a ``[gait]``) or, without one, the globally optimal
 linear springs on the robot's spring class (:func:`hexaleg.design.codesign.optimal_springs`, the
 design ``hexaleg sweep --family linear`` reports).
 """
@@ -24,8 +25,8 @@ from hexaleg.motion.legged import tripod_gait
 from hexaleg.robot.registry import description
 from hexaleg.robot.springs import SpringSet
 from hexaleg.simulation.run import Settings, Simulation, simulate
+from hexaleg.studies.design.load import load_design
 from hexaleg.studies.report.config import ReportConfig
-from hexaleg.studies.simulate.design_file import read_design
 
 DEFAULT_FAMILY = "linear"
 """The spring family of the default design (its optimum has no geometry to search: global)."""
@@ -89,15 +90,25 @@ def load_study(robot: str = "hexaleg", config: str | Path | None = None,
     if overrides:
         settings = dataclasses.replace(settings, **{k: v for k, v in overrides.items()
                                                     if v is not None})
-    prepared = prepare(loaded, tripod_gait(loaded, report.gait), motor=report.motor,
+    gait, notes = report.gait, list(report.notes)
+    designed = load_design(springs, robot) if springs is not None else None
+    if designed is not None and designed.gait is not None:
+        if "gait" in data:
+            notes.append(f"the design file's springs were designed at {designed.gait.samples} "
+                         f"samples per cycle on its own gait; {where} [gait] replaces it here "
+                         f"({gait.samples} samples), so the prediction differs from the design's")
+        else:
+            gait = designed.gait
+            notes.append(f"the gait of the design file ({gait.samples} samples per cycle), so "
+                         "the prediction is the design's own")
+    prepared = prepare(loaded, tripod_gait(loaded, gait), motor=report.motor,
                        contact=report.contact)
     objective = report.report.objective
-    notes = list(report.notes)
     if "springs" in data:
         notes.append(f"{where} [springs] is the report's design and is not simulated; give the "
                      "springs to simulate with --springs design.json")
-    if springs is not None:
-        spring_set = read_design(springs, loaded, robot)
+    if designed is not None:
+        spring_set = designed.springs
         design = f"the design file {springs}"
     else:
         kind = desc.spring_class_of(loaded)

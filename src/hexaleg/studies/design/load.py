@@ -1,0 +1,123 @@
+"""``hexaleg.load_design``: a ``design.json`` read back as the springs to fit and what they were
+designed for.
+
+``hexaleg design`` writes, beside every number, the gait it designed on as its parameters
+(``gait.parameters``, the fields of :class:`~hexaleg.motion.params.GaitParams`) and the robot
+by name. :func:`load_design` reads them back: the recommended springs as a
+:class:`~hexaleg.robot.springs.SpringSet` (the one reader,
+:func:`hexaleg.studies.simulate.design_file.read_design`, every value checked: finite, in its
+unit, on the robot's joints), the gait re-made from its parameters over the robot's own
+(checked as a ``[gait]`` table is), and the predicted saving. ``hexaleg simulate --springs
+design.json`` and ``hexaleg report --design`` use the same gait, so the three commands predict
+the same number for the same springs.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping
+from dataclasses import dataclass, fields
+from pathlib import Path
+from typing import Any
+
+from hexaleg.checks import is_real
+from hexaleg.errors import ConfigError, InvalidParameterError
+from hexaleg.motion.params import GaitParams
+from hexaleg.robot.registry import description
+from hexaleg.robot.springs import SpringSet
+from hexaleg.studies.simulate.design_file import read_design
+
+
+@dataclass(frozen=True, eq=False)
+class LoadedDesign:
+    """A design file read back.
+
+    Attributes:
+        robot: The robot's registered name or description file.
+        springs: The recommended springs, SI.
+        gait: The gait they were designed on (None for a hand-written file without one).
+        metric: The metric the design was ranked by (None without one).
+        saving: The predicted saving of that metric, fraction (None without one).
+        pays: Whether the springs pay for their mass (None without the answer).
+    """
+
+    robot: str
+    springs: SpringSet
+    gait: GaitParams | None
+    metric: str | None
+    saving: float | None
+    pays: bool | None
+
+
+def gait_parameters(gait: GaitParams) -> dict[str, Any]:
+    """The gait as a ``[gait]`` table (its set fields, JSON values): what
+    :func:`design_gait` reads back to the same :class:`GaitParams`."""
+    return json.loads(json.dumps({f.name: getattr(gait, f.name) for f in fields(gait)
+                                  if getattr(gait, f.name) is not None}))
+
+
+def design_gait(data: Mapping[str, Any], robot: str, where: str) -> GaitParams | None:
+    """The gait of a design document (``gait.parameters`` over the robot's own gait), or None
+    when it has none.
+
+    Raises:
+        ConfigError: ``gait.parameters`` not a table. UnknownNameError, InvalidParameterError:
+            a key or value a ``[gait]`` table may not have (named).
+    """
+    gait = data.get("gait")
+    table = gait.get("parameters") if isinstance(gait, Mapping) else None
+    if table is None:
+        return None
+    if not isinstance(table, Mapping):
+        raise ConfigError(f"{where}: gait.parameters must be a table of gait parameters, got "
+                          f"{type(table).__name__}")
+    return GaitParams.for_robot(description(robot)).updated(table, f"{where}: gait.parameters")
+
+
+def load_design(path: str | Path, robot: str | None = None) -> LoadedDesign:
+    """The springs a design file recommends and what they were designed for (module
+    docstring).
+
+    Args:
+        path: A ``design.json`` of ``hexaleg design`` (or a hand-written design file,
+            :mod:`hexaleg.studies.simulate.design_file`).
+        robot: The robot to load it for; default the file's (``hexaleg`` when it names none).
+
+    Raises:
+        ConfigError: the file is missing, not JSON or malformed.
+        InvalidParameterError: a design for another robot than ``robot``, a non-finite saving.
+        UnknownNameError: an unknown robot, family, parameter or joint (lists the valid ones).
+    """
+    path = Path(path)
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError as e:
+        raise ConfigError(f"design file not found: {path}") from e
+    except (OSError, ValueError) as e:
+        raise ConfigError(f"cannot read the design file {path}: {e}") from e
+    if not isinstance(data, Mapping):
+        raise ConfigError(f"{path}: expected a JSON object, got {type(data).__name__}")
+    owner = data.get("robot")
+    owner = owner.get("name") if isinstance(owner, Mapping) else owner
+    name = robot or (owner if isinstance(owner, str) else "hexaleg")
+    loaded = description(name).load()
+    springs = read_design(path, loaded, name)
+    settings = data.get("settings")
+    metric = settings.get("metric") if isinstance(settings, Mapping) else None
+    saving = None
+    rec = data.get("recommended")
+    if isinstance(rec, Mapping) and isinstance(metric, str):
+        value = rec.get("saving", {}).get(metric, {})
+        value = value.get("value") if isinstance(value, Mapping) else None
+        if value is not None:
+            if not is_real(value):
+                raise InvalidParameterError(f"{path}: recommended.saving.{metric}", value,
+                                            "a finite saving in %")
+            saving = float(value) / 100
+    pays = data.get("pays")
+    return LoadedDesign(robot=name, springs=springs, gait=design_gait(data, name, str(path)),
+                        metric=metric if isinstance(metric, str) else None, saving=saving,
+                        pays=pays if isinstance(pays, bool) else None)
+
+
+__all__ = ["LoadedDesign", "design_gait", "gait_parameters", "load_design"]
