@@ -3,18 +3,24 @@
 from __future__ import annotations
 
 import dataclasses
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 from hexaleg.design.codesign import optimal_springs
 from hexaleg.design.spring_parts import (
+    ARBOR_LINK_FRACTION,
     PartOptions,
+    arbor_for,
+    motion_centres,
     spring_masses,
     spring_outer_diameter,
     spring_parts,
 )
 from hexaleg.errors import UnknownNameError
+from hexaleg.robot.catalogue import CATALOGUE, OUTPUT_HUBS, OutputHub
+from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.registry import description
 
 OUTER = {"coxa": 0.03, "femur": 0.02, "tibia": 0.02}
@@ -86,3 +92,45 @@ def test_outer_diameter_from_the_links_or_the_description(robot):
     with pytest.raises(UnknownNameError, match="coxa, femur, tibia"):
         dataclasses.replace(desc, joint_kinds=("coxa", "femur", "tibia"),
                             max_outer_diameter={"knee": 0.01})
+
+
+def test_arbor_from_the_description_the_servo_or_the_links(robot, monkeypatch):
+    desc = description("hexaleg")
+    # (c): no servo gives its hub, so a quarter of the narrowest link, saying why
+    d, src = arbor_for(robot, desc, CATALOGUE["AX-18A"], "femur")
+    assert d == pytest.approx(ARBOR_LINK_FRACTION * 0.02) and "AX-18A output hub not sourced" in src
+    assert arbor_for(robot, desc, "ax-18a", "coxa")[0] == pytest.approx(ARBOR_LINK_FRACTION * 0.03)
+    assert "no catalogue servo" in arbor_for(robot, desc, None, "tibia")[1]
+    # (b): a catalogue servo with a sourced hub, also through a motor set
+    hubs = dict(OUTPUT_HUBS, **{"AX-18A": OutputHub(6e-3, "a drawing")})
+    monkeypatch.setattr("hexaleg.design.spring_parts.OUTPUT_HUBS", hubs)
+    assert arbor_for(robot, desc, "AX-18A", "femur") == (6e-3, "AX-18A output hub (a drawing)")
+    motors = MotorSet.per_class(robot.joint_classes, robot.joint_names,
+                                {k: CATALOGUE["AX-18A"] if k == "femur" else CATALOGUE["MX-28"]
+                                 for k in robot.joint_classes})
+    assert arbor_for(robot, desc, motors, "femur")[0] == 6e-3
+    assert arbor_for(robot, desc, motors, "tibia")[0] == pytest.approx(ARBOR_LINK_FRACTION * 0.02)
+
+    # (a): the description's own, whatever the servo (a description with the per-class field)
+    given = SimpleNamespace(name="mine", arbor_diameter={"femur": 4e-3})
+    assert arbor_for(robot, given, "AX-18A", "femur") == (4e-3, "mine description")
+    with pytest.raises(UnknownNameError, match="coxa, femur, tibia"):
+        arbor_for(robot, desc, None, "knee")
+
+
+def test_per_group_arbors_reach_the_springs(prepared200):
+    best = optimal_springs(prepared200, ["tibia"], "one_sided", max_deflection=np.pi)
+    (free,) = spring_parts(best, prepared200, OUTER)
+    arbor = 1.2 * free.spring.wound_inner_diameter  # the unconstrained coil would bind on it
+    (part,) = spring_parts(best, prepared200, OUTER, arbor={"tibia": arbor})
+    assert part.spring.arbor_diameter == arbor
+    assert part.spring.wound_inner_diameter >= 1.1 * arbor * (1 - 1e-12)
+    (loose,) = spring_parts(best, prepared200, OUTER, PartOptions(arbor_margin=0.0),
+                            arbor={"tibia": free.spring.wound_inner_diameter})
+    assert loose.spring.wound_inner_diameter >= free.spring.wound_inner_diameter * (1 - 1e-12)
+    centres = motion_centres(prepared200, best.groups["tibia"])
+    lo, hi = _relative_range(prepared200, best.groups["tibia"])
+    for j, c in centres.items():
+        q = prepared200.q[:, prepared200.robot.column(j)]
+        assert c == pytest.approx((q.min() + q.max()) / 2)
+        assert lo - 1e-12 <= q.min() - c and q.max() - c <= hi + 1e-12

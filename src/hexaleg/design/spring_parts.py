@@ -18,7 +18,11 @@ holds up on every joint of the group — each element becomes a :class:`TorsionR
 
 The outer diameter limit of a group is the smallest of its joints' classes
 (:func:`spring_outer_diameter`: the robot description's ``max_outer_diameter``, else the width of
-the links).
+the links). The arbor a class's coils wind on (:func:`arbor_for`) is the description's
+``arbor_diameter``, else the servo's output hub where the catalogue has its diameter
+(:data:`hexaleg.robot.catalogue.OUTPUT_HUBS`), else :data:`ARBOR_LINK_FRACTION` of the links'
+width; the wound coil clears it by ``arbor_margin`` (:data:`~hexaleg.design.torsion_spring.
+ARBOR_MARGIN`).
 """
 
 from __future__ import annotations
@@ -33,6 +37,7 @@ from hexaleg.design.codesign import ZERO_STIFFNESS, OptimalSprings
 from hexaleg.design.families import family
 from hexaleg.design.spring_materials import MATERIALS
 from hexaleg.design.torsion_spring import (
+    ARBOR_MARGIN,
     SAFETY_FACTOR,
     TorsionRequirement,
     TorsionSpring,
@@ -40,23 +45,33 @@ from hexaleg.design.torsion_spring import (
 )
 from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import InvalidParameterError, SpringDesignError, UnknownNameError
+from hexaleg.robot.catalogue import OUTPUT_HUBS
+from hexaleg.robot.catalogue import motor as catalogue_motor
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.geometry import link_width
 from hexaleg.robot.model import Robot
+from hexaleg.robot.motor import Motor
+from hexaleg.robot.motor_set import MotorSet
 
 ZERO_TORQUE = 1e-9
 """N·m: a preload or torque below this is none."""
+ARBOR_LINK_FRACTION = 0.25
+"""The arbor rule when neither the description nor the servo's catalogue entry gives one: a pin
+of this fraction of the class's narrowest link (assumed: 5 mm in the default robot's 20 mm femur
+and tibia links, an M5 shoulder screw through the joint)."""
 
 
 @dataclass(frozen=True)
 class PartOptions:
     """How the parts are made (the fields of :class:`TorsionRequirement` the design does not
-    set): materials, design factor, arbor diameter (m), leg length (m or None)."""
+    set): materials, design factor, arbor diameter (m; every group's unless :func:`spring_parts`
+    is given per-group arbors), leg length (m or None), the arbor's clearance margin."""
 
     materials: tuple[str, ...] = tuple(MATERIALS)
     safety_factor: float = SAFETY_FACTOR
     arbor_diameter: float = 0.0
     leg_length: float | None = None
+    arbor_margin: float = ARBOR_MARGIN
 
 
 @dataclass(frozen=True)
@@ -113,12 +128,59 @@ def spring_outer_diameter(desc: RobotDescription, robot: Robot, kind: str
         raise UnknownNameError("joint class", kind, robot.joint_classes)
     if kind in desc.max_outer_diameter:
         return float(desc.max_outer_diameter[kind]), f"{desc.name} description"
+    return _narrowest_link(robot, kind, f"{desc.name}: max_outer_diameter.{kind}"), \
+        "width of its links (collision geometry)"
+
+
+def _narrowest_link(robot: Robot, kind: str, name: str) -> float:
     widths = [link_width(robot.model, robot.collision_model, j) for j in robot.joint_classes[kind]]
     known = [w for w in widths if w is not None]
     if len(known) < len(widths):
-        raise InvalidParameterError(f"{desc.name}: max_outer_diameter.{kind}", None,
-                                    "a diameter (m): its links have no collision geometry")
-    return min(known), "width of its links (collision geometry)"
+        raise InvalidParameterError(name, None, "a diameter (m): its links have no collision "
+                                    "geometry")
+    return min(known)
+
+
+def arbor_for(robot: Robot, desc: RobotDescription, motor: Motor | MotorSet | str | None,
+              joint_class: str) -> tuple[float, str]:
+    """The diameter of the arbor a spring on ``joint_class`` winds on, m, and its source:
+
+    (a) the description's ``arbor_diameter[joint_class]`` when it has one; (b) the output hub of
+    the class's servo when :data:`~hexaleg.robot.catalogue.OUTPUT_HUBS` gives its diameter;
+    (c) :data:`ARBOR_LINK_FRACTION` of the narrowest link of the class (collision geometry),
+    the source then saying why (b) did not apply.
+
+    Args:
+        robot: The robot. desc: Its description.
+        motor: The robot's actuators (a motor, the set of the classes' motors, a catalogue
+            name) or None.
+        joint_class: The class.
+
+    Raises:
+        UnknownNameError: ``joint_class`` is not a class of ``robot`` (lists them), or an
+            unknown catalogue name.
+        InvalidParameterError: (c) is needed and the class's links have no collision geometry.
+    """
+    if joint_class not in robot.joint_classes:
+        raise UnknownNameError("joint class", joint_class, robot.joint_classes)
+    declared = getattr(desc, "arbor_diameter", None) or {}
+    if joint_class in declared:
+        return float(declared[joint_class]), f"{desc.name} description"
+    if isinstance(motor, str):
+        motor = catalogue_motor(motor)
+    if isinstance(motor, MotorSet):
+        motor = dict(motor.by_class).get(joint_class)
+    why = "no catalogue servo"
+    if motor is not None and motor.name in OUTPUT_HUBS:
+        hub = OUTPUT_HUBS[motor.name]
+        if hub.diameter is not None:
+            return hub.diameter, f"{motor.name} output hub ({hub.source})"
+        why = f"{motor.name} output hub {hub.source}"
+    elif motor is not None:
+        why = f"{motor.name} is not in the catalogue"
+    width = _narrowest_link(robot, joint_class, f"{desc.name}: arbor_diameter.{joint_class}")
+    return ARBOR_LINK_FRACTION * width, (f"{ARBOR_LINK_FRACTION:g} × the width of its links "
+                                         f"(collision geometry), assumed; {why}")
 
 
 def motion_centres(prepared: Prepared, joints: tuple[str, ...] | list[str]) -> dict[str, float]:
@@ -177,14 +239,17 @@ def _elements(fam_name: str, geometry: Mapping[str, float | str], x: np.ndarray,
 
 
 def spring_parts(optimum: OptimalSprings, prepared: Prepared, outer: Mapping[str, float],
-                 options: PartOptions | None = None) -> tuple[SpringPart, ...]:
+                 options: PartOptions | None = None, *,
+                 arbor: Mapping[str, float] | None = None) -> tuple[SpringPart, ...]:
     """The torsion springs to buy for ``optimum`` (module docstring).
 
     Args:
         optimum: The optimal springs.
         prepared: The gait they were designed on (the joints' ranges of motion).
         outer: Group → largest outer diameter of its springs, m.
-        options: Materials, design factor, arbor, leg length.
+        options: Materials, design factor, arbor, leg length, arbor margin.
+        arbor: Group → the arbor its springs wind on, m (:func:`arbor_for`); groups not named
+            (or None) get ``options.arbor_diameter``.
 
     Returns:
         One part per element of each group that acts in the motion; a part without a spring
@@ -200,11 +265,12 @@ def spring_parts(optimum: OptimalSprings, prepared: Prepared, outer: Mapping[str
         for el in _elements(optimum.family, optimum.geometry[g], x, lo, hi):
             part = SpringPart(group=g, joints=tuple(joints), constant_torque=el["rate"] == 0.0,
                               max_outer_diameter=float(outer[g]), **el)
-            parts.append(_buy(part, options))
+            parts.append(_buy(part, options, float((arbor or {}).get(
+                g, options.arbor_diameter))))
     return tuple(parts)
 
 
-def _buy(part: SpringPart, options: PartOptions) -> SpringPart:
+def _buy(part: SpringPart, options: PartOptions, arbor: float) -> SpringPart:
     """``part`` with its torsion spring, or the reason there is none."""
     if part.constant_torque:
         return dataclasses.replace(part, problem=(
@@ -214,9 +280,9 @@ def _buy(part: SpringPart, options: PartOptions) -> SpringPart:
     req = TorsionRequirement(rate=part.rate, max_torque=part.max_torque,
                              preload_torque=part.preload_torque,
                              max_outer_diameter=part.max_outer_diameter,
-                             arbor_diameter=options.arbor_diameter, materials=options.materials,
+                             arbor_diameter=arbor, materials=options.materials,
                              safety_factor=options.safety_factor,
-                             leg_length=options.leg_length)
+                             leg_length=options.leg_length, arbor_margin=options.arbor_margin)
     try:
         return dataclasses.replace(part, spring=design_torsion_spring(req))
     except SpringDesignError as e:
