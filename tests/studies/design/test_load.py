@@ -45,7 +45,10 @@ def test_a_config_gait_replaces_the_designs_and_says_so(written, tmp_path):
 
 @pytest.mark.parametrize(("edit", "error", "says"), [
     (lambda d: d["gait"].update(parameters=[1, 2]), ConfigError, "gait.parameters"),
-    (lambda d: d["gait"]["parameters"].update(period=-1.0), InvalidParameterError, "period"),
+    (lambda d: d["gait"]["parameters"]["period"].update(value=-1.0), InvalidParameterError,
+     "period"),
+    (lambda d: d["gait"]["parameters"]["period"].update(unit="ms"), InvalidParameterError,
+     "period.unit"),
     (lambda d: d["gait"]["parameters"].update(speeed=1.0), UnknownNameError, "speeed"),
     (lambda d: d["recommended"]["saving"]["electrical"].update(value="nan"),
      InvalidParameterError, "saving"),
@@ -66,3 +69,14 @@ def test_a_missing_or_unreadable_file_is_named(tmp_path):
     (tmp_path / "bad.json").write_text("{")
     with pytest.raises(ConfigError, match="cannot read"):
         hexaleg.load_design(tmp_path / "bad.json")
+
+
+def test_every_numeric_gait_field_has_its_unit():
+    """A numeric field added to GaitParams must get its unit here (design.json's rule)."""
+    import dataclasses
+
+    from hexaleg.studies.design.load import GAIT_UNITS
+
+    numeric = {f.name for f in dataclasses.fields(hexaleg.GaitParams)
+               if any(t in str(f.type) for t in ("float", "tuple[float"))}
+    assert numeric == set(GAIT_UNITS)

@@ -49,11 +49,33 @@ class LoadedDesign:
     pays: bool | None
 
 
+GAIT_UNITS: dict[str, str] = {
+    "period": "s", "duty_factor": "1", "stride_length": "m", "speed": "m/s", "step_height": "m",
+    "body_height": "m", "foot_radius": "m", "yaw_rate": "rad/s", "phases": "1", "heading": "rad",
+    "slope": "rad", "cross_slope": "rad", "min_static_margin": "m"}
+"""The SI unit of each numeric field of :class:`GaitParams` (``{value, unit}`` in JSON)."""
+
+
 def gait_parameters(gait: GaitParams) -> dict[str, Any]:
-    """The gait as a ``[gait]`` table (its set fields, JSON values): what
+    """The gait's set fields for JSON, numbers as ``{value, unit}`` (:data:`GAIT_UNITS`): what
     :func:`design_gait` reads back to the same :class:`GaitParams`."""
-    return json.loads(json.dumps({f.name: getattr(gait, f.name) for f in fields(gait)
-                                  if getattr(gait, f.name) is not None}))
+    plain = json.loads(json.dumps({f.name: getattr(gait, f.name) for f in fields(gait)
+                                   if getattr(gait, f.name) is not None}))
+    return {k: {"value": v, "unit": GAIT_UNITS[k]} if k in GAIT_UNITS else v
+            for k, v in plain.items()}
+
+
+def _plain(table: Mapping[str, Any], where: str) -> dict[str, Any]:
+    """``gait.parameters`` as a ``[gait]`` table: each ``{value, unit}`` in its SI unit."""
+    out = {}
+    for k, v in table.items():
+        if isinstance(v, Mapping) and set(v) == {"value", "unit"}:
+            if v["unit"] != GAIT_UNITS.get(k):
+                raise InvalidParameterError(f"{where}.{k}.unit", v["unit"],
+                                            GAIT_UNITS.get(k, "no unit: a plain value"))
+            v = v["value"]
+        out[k] = v
+    return out
 
 
 def design_gait(data: Mapping[str, Any], robot: str, where: str) -> GaitParams | None:
@@ -71,7 +93,8 @@ def design_gait(data: Mapping[str, Any], robot: str, where: str) -> GaitParams |
     if not isinstance(table, Mapping):
         raise ConfigError(f"{where}: gait.parameters must be a table of gait parameters, got "
                           f"{type(table).__name__}")
-    return GaitParams.for_robot(description(robot)).updated(table, f"{where}: gait.parameters")
+    where = f"{where}: gait.parameters"
+    return GaitParams.for_robot(description(robot)).updated(_plain(table, where), where)
 
 
 def load_design(path: str | Path, robot: str | None = None) -> LoadedDesign:
@@ -120,4 +143,4 @@ def load_design(path: str | Path, robot: str | None = None) -> LoadedDesign:
                         pays=pays if isinstance(pays, bool) else None)
 
 
-__all__ = ["LoadedDesign", "design_gait", "gait_parameters", "load_design"]
+__all__ = ["GAIT_UNITS", "LoadedDesign", "design_gait", "gait_parameters", "load_design"]
