@@ -5,6 +5,9 @@ Mechanical Engineering Design*, 9th/10th ed., §10-12, Example 10-9): the music-
 of Example 10-8 (0.072 in wire, D = 0.5218 in, S_ut = 294.4 kpsi, K_i = 1.115) cycled from
 M_min = 1 to M_max = 5 lbf·in, unpeened, for 10⁶ cycles (Table 10-10: S_r = 0.50 S_ut), Gerber.
 Each step is fed the book's rounded inputs, as the book chains them, and must give its digits.
+The expected digits (S_r 147.2, S_e 78.51, σ_a 60.86 kpsi, S_a 68.85 kpsi, n_f 1.13) were worked
+along the book's chain by hand from Example 10-8's printed numbers: the book's page itself was not
+at hand to compare with, so check them against a copy when one is.
 """
 
 from __future__ import annotations

@@ -32,7 +32,8 @@ so the Sines (torsion) model does not apply; the book uses the Gerber criterion 
 
 Worked check: the book's example of a torsion spring in fatigue — the music-wire spring of
 Example 10-8 loaded from M_min = 1 to M_max = 5 lbf·in, Table 10-10 at 10⁶ cycles, unpeened
-(Example 10-9 of the 9th/10th editions) — is reproduced in the tests.
+(Example 10-9 of the 9th/10th editions) — is reproduced in the tests (its digits worked along
+the book's chain; the page itself was not at hand to compare with).
 
 :func:`cycles_per_year` turns a gait period into cycles a year for a stated duty: the spring
 winds and unwinds once per step of its leg, i.e. once per gait period.
