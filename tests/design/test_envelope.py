@@ -81,6 +81,15 @@ def test_the_femur_limit_is_beyond_yield_and_a_stop_is_stated(robot, prepared):
     assert table["worst"]["source"] == ev.URDF and table["meets"] is False
 
 
+def test_parts_envelope_is_the_one_call(robot, prepared):
+    part = _gait_part(prepared)
+    turn = ("turning", {j: (0.0, 0.5) for j in FEMURS})
+    (one,) = ev.parts_envelope([part], prepared, extra=[turn])
+    by_hand = ev.part_envelope(part, motion_centres(prepared, FEMURS), ev.envelope_ranges(
+        robot, FEMURS, prepared=prepared, extra=[turn]))
+    assert one == by_hand and "turning" in one.by_source
+
+
 def test_a_spring_inside_its_gait_meets_the_factor_without_a_stop(robot, prepared):
     part = _gait_part(prepared)
     centres = motion_centres(prepared, FEMURS)

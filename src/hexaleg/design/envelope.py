@@ -35,7 +35,7 @@ from typing import Any
 
 from hexaleg.checks import real
 from hexaleg.design.spring_materials import material
-from hexaleg.design.spring_parts import SpringPart
+from hexaleg.design.spring_parts import SpringPart, motion_centres
 from hexaleg.design.torsion_spring import (
     bending_stress,
     deflection_turns,
@@ -288,3 +288,17 @@ def envelope(parts: Iterable[SpringPart], centres: Mapping[str, float],
     """:func:`part_envelope` of every part that has a spring, in order."""
     out = (part_envelope(p, centres, ranges, design_factor=design_factor) for p in parts)
     return tuple(e for e in out if e is not None)
+
+
+def parts_envelope(parts: Sequence[SpringPart], prepared: Prepared, *,
+                   extra: Sequence[tuple[str, Mapping[str, tuple[float, float]]]] = (),
+                   poses: Sequence[str] = POSES, design_factor: float | None = None
+                   ) -> tuple[PartEnvelope, ...]:
+    """The pipeline's one call: :func:`envelope` of ``parts`` with their joints' centres of
+    motion in ``prepared`` (the gait they were designed on) and every range of
+    :func:`envelope_ranges` — URDF limits, ``poses``, that gait, and the labelled ``extra``
+    ranges (turning, the robustness maps' conditions; absolute rad)."""
+    robot = prepared.robot
+    joints = sorted({j for p in parts for j in p.joints}, key=robot.column)
+    ranges = envelope_ranges(robot, joints, prepared=prepared, poses=poses, extra=extra)
+    return envelope(parts, motion_centres(prepared, joints), ranges, design_factor=design_factor)
