@@ -8,7 +8,9 @@ minimum Joule loss. Every allowed family's globally optimal springs on coxa, fem
 the springs' mass; the recommended family's Pareto front (spring torque bounded); the torsion
 springs to buy (Shigley §10-12); the robustness maps of the recommended springs frozen; the
 robust design over the box period ×0.75…1.5, stride ×0.75…1.25, payload 0…25 %, μ 0.5…1; the
-recommendation simulated forward in MuJoCo under both controllers (predicted / simulated).
+recommendation simulated forward in MuJoCo under both controllers (predicted / simulated);
+every ranked design simulated under the default servo, the recommendation designed for its stops
+mounted within ±1°, each part checked over its whole envelope and for fatigue.
 """
 
 from __future__ import annotations
@@ -42,6 +44,17 @@ def main() -> None:
         mark = "  <- recommended" if c is r.recommended else ""
         print(f"  {f:8.2f} × {np.abs(a.tau_spring).max():7.4f} {1e3 * a.spring_energy.max():6.2f}mJ"
               f" {pct(c.row[f'saving.{m}'])} {pct(c.net[m])} {pct(c.row['saving.joule'])}{mark}")
+    print(f"\nevery design simulated under the {r.config.design.controller} servo ({m} saving)")
+    print(f"  {'design':40s} {'predicted':>10s} {'simulated':>10s} {'sim. net':>10s}")
+    for row in r.ranking:
+        sim = pct(row.simulated) if row.simulated is not None else f"{row.verdict:>10s}"
+        flag = "  under half the prediction" if row.flagged else ""
+        print(f"  {row.candidate.label:40s} {pct(row.predicted)} {sim} {pct(row.net)}{flag}")
+    t = r.tolerance
+    if t is not None:
+        print(f"\nstops mounted within ±{np.degrees(t.tolerance):g}° ({m} saving): nominal / worst")
+        for name in ("tolerant", "blind"):
+            print(f"  {name:9s} {pct(t.nominal[name])} / {pct(t.worst[name])}")
     rec = r.recommended
     print(f"\nrecommended: {rec.label}; {m} {pct(rec.row[f'saving.{m}'])}, net "
           f"{pct(rec.net[m])} ({1e3 * rec.spring_mass:.1f} g of springs)")
@@ -61,6 +74,17 @@ def main() -> None:
               f"{s.table()['rate_nmm_per_deg']['value']:.4f} N·mm/deg, preload "
               f"{np.degrees(s.preload_angle):.0f}°, wind-up {np.degrees(s.max_deflection):.0f}°,"
               f" σ {s.stress / 1e6:.0f}/{s.yield_strength / 1e6:.0f} MPa, {1e3 * s.mass:.2f} g")
+    for g, share in rec.dropped.items():
+        print(f"  {g:6s} not fitted: it would add {pct(share)} (under the "
+              f"{100 * r.config.design.min_group_saving:g} point bar)")
+    print(f"\nwhole envelope (design factor {r.config.design.safety_factor:g}) and fatigue at "
+          f"{r.config.design.life_cycles:.0e} cycles")
+    for e, (p, f) in zip(r.envelope, r.fatigue, strict=True):
+        stop = ("no stop needed" if e.stop is None else
+                f"hard stop at {np.degrees(e.stop.angle_from_centre):+.1f}° from the centre, "
+                f"holding {e.stop.torque:.4f} N·m")
+        print(f"  {p.group:6s} {p.side:5s} worst S_y/σ {e.safety_factor:.2f} ({e.source}); "
+              f"{stop}; fatigue n_f {f.safety_factor:.2f}")
     for mp in r.maps:
         a, b = mp.axes
         print(f"\n{m} saving of the recommended springs, % ({a} down, {b} across)")

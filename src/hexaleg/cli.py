@@ -201,8 +201,7 @@ def _add_design(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--robot", default="hexaleg", help=ROBOT_HELP + " (default %(default)s)")
     p.add_argument("--config", help="TOML file with optional [gait], [contact] and [design] "
                                     "tables (docs/design.md)")
-    p.add_argument("--controller", choices=CONTROLLERS, help="the servo the robot runs: every "
-                   "ranked design is simulated under it (default: [design] controller)")
+    p.add_argument("--controller", choices=CONTROLLERS, help="the servo designs run under")
     p.add_argument("--out", default="hexaleg-design",
                    help="output directory (default: %(default)s)")
     p.set_defaults(func=_run_design)
@@ -212,10 +211,7 @@ def _run_design(args: argparse.Namespace) -> int:
     from hexaleg.studies.design.config import DesignConfig
     from hexaleg.studies.design.write import write_design
 
-    config = DesignConfig.load(args.robot, args.config)
-    if args.controller:
-        config = config.with_controller(args.controller)
-    written = write_design(args.out, config)
+    written = write_design(args.out, DesignConfig.load(args.robot, args.config, args.controller))
     print(written.result.summary())
     print(f"wrote {len(written.files)} files to {args.out}; open {args.out}/design.html")
     return 0

@@ -48,7 +48,12 @@ def test_the_recommendation_is_the_best_simulated_buildable_design(written):
     assert all(row.controller == r.config.design.controller == "feedforward" for row in r.ranking)
     walked = [row for row in r.ranking if row.simulated is not None and row.candidate.buildable]
     best = max(walked, key=lambda row: row.net)
-    assert r.recommended is best.candidate
+    t = r.tolerance
+    if t is None or t.worst["tolerant"] <= t.worst["blind"]:
+        assert r.recommended is best.candidate
+    else:  # the best simulated design, designed again for its stops' mounting error
+        assert r.recommended.family == best.candidate.family
+        assert r.recommended.optimum.groups == best.candidate.optimum.groups
     for row in walked:
         c = row.candidate
         assert row.net == pytest.approx(
@@ -147,3 +152,25 @@ def test_a_design_that_does_not_pay_for_its_mass_says_so(written):
     worse = dataclasses.replace(r, recommended=heavy)
     assert not worse.pays
     assert worse.summary().startswith("no springs pay here; the best would be")
+
+
+def test_the_recommendation_holds_over_its_stops_mounting_error(written):
+    """The recommendation is the tolerant design when it keeps more in its worst case; its
+    saving at every common stop shift within the tolerance, evaluated afresh, is ≥ 0.8 of the
+    nominal (the issue's bar) and its nominal is the recommendation's own saving."""
+    from hexaleg.design.setup import motion_centres
+    from hexaleg.design.tolerance import shifted_springs
+
+    r = written[0].result
+    t = r.tolerance
+    assert t is not None and t.tolerance == r.config.design.stop_tolerance
+    assert t.worst["tolerant"] > t.worst["blind"]
+    rec = r.recommended
+    assert t.nominal["tolerant"] == pytest.approx(rec.row["saving.electrical"], rel=1e-9)
+    fresh = _fresh(r)
+    joints = [j for js in rec.optimum.groups.values() for j in js]
+    centres = motion_centres(fresh, joints)
+    for shift in (-t.tolerance, t.tolerance):
+        springs = shifted_springs(rec.optimum, centres, dict.fromkeys(joints, shift))
+        kept = fresh.evaluate(springs, "joule").savings["total"]["electrical"]
+        assert kept >= 0.8 * t.nominal["tolerant"]

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 from hexaleg.design.robustness import Condition
+from hexaleg.studies.design.candidates import class_geometry
 from hexaleg.studies.design.config import DesignConfig
-from hexaleg.studies.design.stages import class_geometry, corners
+from hexaleg.studies.design.stages import corners
 
 
 def test_the_robust_box_is_its_corners_and_the_nominal_gait_once():
@@ -22,7 +23,7 @@ def test_class_geometry_is_each_class_once(written):
     r = written[0].result
     rec = r.recommended
     classes = {k: tuple(js) for k, js in rec.optimum.groups.items()}
-    assert class_geometry(rec, classes) == rec.optimum.geometry
+    assert class_geometry(rec.optimum, classes) == rec.optimum.geometry
 
 
 def test_the_stages_are_timed_in_order(written):

@@ -13,6 +13,10 @@ its gait (:class:`~hexaleg.studies.design.config.DesignConfig`):
    servo the robot runs (``[design] controller``, :mod:`hexaleg.studies.design.ranking`); the
    recommendation is the best *simulated* buildable design net of its springs' mass, and one
    whose simulated saving is under half its prediction is flagged;
+   then ``tolerance``: the recommendation designed for its worst saving over the stops' mounting
+   error within ``[design] stop_tolerance`` (:func:`hexaleg.design.tolerance.tolerant_springs`),
+   and ``envelope``: each part's stress over its joints' whole range, poses and a turn, the hard
+   stop where it would yield, and its fatigue safety at ``[design] life_cycles``;
 5. ``maps``: the recommendation frozen over period × stride and payload × μ, their worst case;
 6. ``robust``: the recommended geometry's magnitudes for a box of conditions, with its parts;
 7. ``proof``: the recommendation simulated under each controller a servo robot runs
@@ -27,12 +31,17 @@ frozen :class:`DesignResult`; :mod:`hexaleg.studies.design.data` turns it into `
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from hexaleg.design.envelope import PartEnvelope
+from hexaleg.design.fatigue import FatigueCheck
 from hexaleg.design.robustness_map import RobustnessMap
+from hexaleg.design.spring_parts import SpringPart
+from hexaleg.design.tolerance import TolerantSprings
 from hexaleg.errors import HexalegError
 from hexaleg.motion.params import GaitParams
 from hexaleg.simulation.sensitivity import controller_check
@@ -42,12 +51,14 @@ from hexaleg.studies.design.ranking import Simulated, best_simulated, simulate_c
 from hexaleg.studies.design.stages import (
     Nominal,
     RobustResult,
+    envelope_and_fatigue,
     family_candidates,
     nominal,
     pareto_front,
     rank,
     robust_design,
     robustness_maps,
+    stop_tolerance,
 )
 
 MIN_SAVING = 1e-4
@@ -72,6 +83,12 @@ class DesignResult:
         maps: The robustness maps. worst: Metric → (worst saving over the maps, its
             condition's label).
         robust: The robust design, or None when the box is the nominal gait alone.
+        ranking: Every ranked design simulated under ``[design] controller``
+            (:mod:`~hexaleg.studies.design.ranking`), in the order ranked.
+        tolerance: The recommendation against its tolerance-blind self over the stops'
+            mounting error (:class:`~hexaleg.design.tolerance.TolerantSprings`), or None.
+        envelope: Each bought part over its whole envelope, and the hard stop it needs.
+        fatigue: Each bought part and its fatigue check at ``[design] life_cycles``.
         simulation: The recommendation simulated, one row per controller
             (:func:`~hexaleg.simulation.sensitivity.controller_check`); empty when the
             simulation could not run (a note says why).
@@ -93,6 +110,9 @@ class DesignResult:
     worst: dict[str, tuple[float, str]]
     robust: RobustResult | None
     ranking: tuple[Simulated, ...]
+    tolerance: TolerantSprings | None
+    envelope: tuple[PartEnvelope, ...]
+    fatigue: tuple[tuple[SpringPart, FatigueCheck], ...]
     simulation: tuple[dict[str, Any], ...]
     timings: dict[str, float]
     notes: tuple[str, ...]
@@ -148,12 +168,20 @@ def build_design(config: DesignConfig | None = None,
     nom = nominal(cfg)
     step("prepare", f"{nom.robot.name}: gait of {nom.gait.samples} samples prepared")
     ranked = family_candidates(nom, step)
-    pareto, ranked = pareto_front(nom, ranked)
+    pareto = pareto_front(nom, next((c for c in ranked if c.buildable), ranked[0]))
     step("pareto", f"Pareto front of {pareto[-1][1].family} ({len(pareto)} points)")
     pool = sorted([*ranked, *(c for _, c in pareto[:-1])], key=lambda c: -rank(c, d.metric))
     rows, rec, notes = _ranking(nom, pool)
     step("ranking", f"{len(rows)} designs simulated under the {d.controller} servo: "
          f"recommended {rec.label}")
+    rec, tolerance = stop_tolerance(nom, rec)
+    if tolerance is not None:
+        step("tolerance", f"stops within ±{math.degrees(d.stop_tolerance):g}°: worst {d.metric} "
+             f"saving {100 * tolerance.worst['tolerant']:+.2f} % (tolerance-blind design "
+             f"{100 * tolerance.worst['blind']:+.2f} %)")
+    envelope, fatigue, envelope_notes = envelope_and_fatigue(nom, rec)
+    step("envelope", f"{len(envelope)} parts checked over their whole envelope and for fatigue "
+         f"at {d.life_cycles:.3g} cycles")
     maps, worst = robustness_maps(nom, rec)
     step("maps", f"robustness maps: worst {d.metric} saving {100 * worst[d.metric][0]:+.2f} %")
     robust = robust_design(nom, rec)
@@ -164,7 +192,7 @@ def build_design(config: DesignConfig | None = None,
         f"no springs pay: the best design saves {100 * rec.row[f'saving.{d.metric}']:+.2f} % "
         f"of {d.metric} and {100 * rec.net[d.metric]:+.2f} % net of its springs' mass — fitting "
         "springs does not pay on this robot and gait"]
-    notes = [*pays, *notes, *unsimulated, *nom.robot.notes, *rec.notes,
+    notes = [*pays, *notes, *envelope_notes, *unsimulated, *nom.robot.notes, *rec.notes,
              "gait slope and the other gait patterns are not conditions of the maps yet: the "
              "gait generator walks level tripod-type gaits only",
              f"designed at {nom.gait.samples} samples per cycle (Joule-optimal forces); ranked "
@@ -174,7 +202,8 @@ def build_design(config: DesignConfig | None = None,
         config=cfg, robot=nom.robot.name, title=nom.desc.title, mass=nom.robot.mass,
         actuator=nom.run.actuator().name, gait=nom.gait, baseline=nom.baseline,
         candidates=tuple(ranked), recommended=rec, outer=nom.outer, pareto=tuple(pareto),
-        maps=maps, worst=worst, robust=robust, ranking=tuple(rows), simulation=simulation,
+        maps=maps, worst=worst, robust=robust, ranking=tuple(rows), tolerance=tolerance,
+        envelope=envelope, fatigue=fatigue, simulation=simulation,
         timings=timings, notes=tuple(notes))
 
 

@@ -20,7 +20,13 @@ from typing import Any
 from hexaleg.design.codesign import OptimalSprings, optimal_springs
 from hexaleg.design.evaluator import RunSpec, metric_row
 from hexaleg.design.families import Geometry
-from hexaleg.design.spring_parts import PartOptions, SpringPart, spring_masses, spring_parts
+from hexaleg.design.spring_parts import (
+    PartOptions,
+    SpringPart,
+    arbor_for,
+    spring_masses,
+    spring_parts,
+)
 from hexaleg.dynamics.energy import saving
 from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.motion.legged import tripod_gait
@@ -28,6 +34,7 @@ from hexaleg.motion.params import GaitParams
 from hexaleg.robot.payload import with_point_masses
 from hexaleg.robot.springs import SpringSet
 from hexaleg.studies.design.config import METRICS, DesignParams
+from hexaleg.studies.design.groups import class_of
 
 
 @dataclass(frozen=True, eq=False)
@@ -76,18 +83,32 @@ class Candidate:
 
 def _optimum(prepared: Prepared, groups: Mapping[str, tuple[str, ...]],
              class_groups: Mapping[str, tuple[str, ...]], family: str, params: DesignParams,
-             start: Sequence[Mapping[str, Geometry]] = ()) -> OptimalSprings:
-    """The family's optimum on the class groups; for finer groups, their magnitudes at the
-    class geometry."""
+             start: Sequence[Mapping[str, Geometry]] = (),
+             geometry: Mapping[str, Geometry] | None = None) -> OptimalSprings:
+    """The family's optimum on the class groups (at ``geometry`` when given, else searched);
+    for finer groups, their magnitudes at the class geometry."""
     bound = params.deflection_bound
-    kw: dict[str, Any] = {"max_torque": params.max_torque, "max_deflection": bound}
-    best = optimal_springs(prepared, dict(class_groups), family, "joule", start=list(start) or None,
-                           **kw)
+    kw: dict[str, Any] = {"max_torque": params.max_torque, "max_deflection": bound,
+                          "metric": params.metric}
+    if geometry is not None:
+        best = optimal_springs(prepared, dict(class_groups), family, "joule",
+                               geometry=dict(geometry), **kw)
+    else:
+        best = optimal_springs(prepared, dict(class_groups), family, "joule",
+                               start=list(start) or None, **kw)
     if dict(groups) == dict(class_groups):
         return best
     owner = {j: c for c, js in class_groups.items() for j in js}
     geometry = {g: best.geometry[owner[js[0]]] for g, js in groups.items()}
     return optimal_springs(prepared, dict(groups), family, "joule", geometry=geometry, **kw)
+
+
+def arbors(run: RunSpec, groups: Mapping[str, Sequence[str]]) -> dict[str, float]:
+    """Group → the arbor its springs wind on, m (:func:`~hexaleg.design.spring_parts.arbor_for`:
+    the description's, the servo's output hub, else the stated rule from the link width)."""
+    robot, desc, motor = run.load(), run.description(), run.actuator()
+    return {g: arbor_for(robot, desc, motor, class_of(robot, tuple(js)))[0]
+            for g, js in groups.items()}
 
 
 def carried(run: RunSpec, gait: GaitParams, masses: Mapping[str, float]) -> Prepared:
@@ -101,7 +122,8 @@ def candidate(optimum: OptimalSprings, prepared: Prepared, run: RunSpec, gait: G
     """Parts, savings net of the springs' mass and each group's share, of one optimum."""
     options = PartOptions(materials=params.materials, safety_factor=params.safety_factor,
                           arbor_diameter=params.arbor_diameter, leg_length=params.leg_length)
-    parts = spring_parts(optimum, prepared, outer, options)
+    parts = spring_parts(optimum, prepared, outer, options,
+                         arbor=None if params.arbor_diameter > 0 else arbors(run, optimum.groups))
     a = optimum.analysis
     row = metric_row(a.metrics, a.baseline)
     masses = spring_masses(parts)
@@ -126,7 +148,8 @@ def design_family(prepared: Prepared, run: RunSpec, gait: GaitParams,
                   groups: Mapping[str, tuple[str, ...]],
                   class_groups: Mapping[str, tuple[str, ...]], family: str,
                   params: DesignParams, outer: Mapping[str, float],
-                  start: Sequence[Mapping[str, Geometry]] = ()) -> Candidate:
+                  start: Sequence[Mapping[str, Geometry]] = (),
+                  geometry: Mapping[str, Geometry] | None = None) -> Candidate:
     """One family's :class:`Candidate` (module docstring).
 
     Args:
@@ -139,12 +162,13 @@ def design_family(prepared: Prepared, run: RunSpec, gait: GaitParams,
         params: The ``[design]`` table.
         outer: Group → largest outer diameter of its springs, m.
         start: Class geometries to start the geometry search from.
+        geometry: Class → geometry to design the magnitudes at instead of searching it.
 
     Raises:
         HexalegError: as :func:`~hexaleg.design.codesign.optimal_springs` (constraints that no
             design meets name themselves there).
     """
-    optimum = _optimum(prepared, groups, class_groups, family, params, start)
+    optimum = _optimum(prepared, groups, class_groups, family, params, start, geometry)
     return candidate(optimum, prepared, run, gait, outer, params)
 
 
@@ -152,7 +176,8 @@ def parsimonious(prepared: Prepared, run: RunSpec, gait: GaitParams,
                  groups: Mapping[str, tuple[str, ...]],
                  class_groups: Mapping[str, tuple[str, ...]], family: str,
                  params: DesignParams, outer: Mapping[str, float],
-                 start: Sequence[Mapping[str, Geometry]] = ()) -> Candidate:
+                 start: Sequence[Mapping[str, Geometry]] = (),
+                 geometry: Mapping[str, Geometry] | None = None) -> Candidate:
     """:func:`design_family` without the groups that do not pay for their parts.
 
     A group's marginal saving (:attr:`Candidate.marginal`: the ranking metric's saving lost
@@ -160,9 +185,13 @@ def parsimonious(prepared: Prepared, run: RunSpec, gait: GaitParams,
     mount and maintain for less than that share of the baseline: the joint class of the weakest
     such group is left unsprung and the family designed again on the rest (the magnitudes and
     geometry re-optimised: the other groups may take over some of its work), until every group
-    clears the bar or one class is left. The dropped groups and what they would have added are
-    in :attr:`Candidate.dropped`; the design is never one with a group under the bar unless it
-    is the last one (then the candidate's own saving says whether it pays at all).
+    clears the bar or one class is left. The rest keep their searched geometry and get their
+    magnitudes again (one convex program: the global optimum of the magnitudes for that
+    geometry, so the kept springs may take over some of the dropped ones' work); the geometry is
+    not searched again (that would double the design's time for a change under the bar). The
+    dropped groups and what they would have added are in :attr:`Candidate.dropped`; the design
+    is never one with a group under the bar unless it is the last one (then the candidate's own
+    saving says whether it pays at all).
 
     Args: as :func:`design_family`.
     """
@@ -173,7 +202,8 @@ def parsimonious(prepared: Prepared, run: RunSpec, gait: GaitParams,
 
     dropped: dict[str, float] = {}
     start = usable(start)
-    c = design_family(prepared, run, gait, groups, class_groups, family, params, outer, start)
+    c = design_family(prepared, run, gait, groups, class_groups, family, params, outer, start,
+                      None if geometry is None else {k: geometry[k] for k in class_groups})
     while len(class_groups) > 1:
         weak = {g: v for g, v in c.marginal.items() if v < params.min_group_saving}
         if not weak:
@@ -185,11 +215,24 @@ def parsimonious(prepared: Prepared, run: RunSpec, gait: GaitParams,
                 dropped[g] = float(c.marginal[g])
         class_groups = {k: v for k, v in class_groups.items() if k != cls}
         groups = {g: js for g, js in groups.items() if g not in dropped}
-        start = usable(start)
-        c = design_family(prepared, run, gait, groups, class_groups, family, params, outer, start)
+        kept = class_geometry(c.optimum, class_groups)
+        c = design_family(prepared, run, gait, groups, class_groups, family, params, outer,
+                          geometry=kept)
     if dropped:
         notes = [*c.notes, *(f"group {g} not fitted: it would add {100 * v:+.2f} % of "
                              f"{params.metric} (under the {100 * params.min_group_saving:g} "
                              "point bar, [design] min_group_saving)" for g, v in dropped.items())]
         c = dataclasses.replace(c, dropped=dropped, notes=tuple(notes))
     return c
+
+
+def class_geometry(optimum: OptimalSprings, class_groups: Mapping[str, tuple[str, ...]]
+                    ) -> dict[str, Geometry]:
+    """Class → the geometry of ``optimum`` for the classes in ``class_groups`` (finer groups
+    share their class's; a class ``optimum`` does not spring is left out)."""
+    out: dict[str, Geometry] = {}
+    for g, js in optimum.groups.items():
+        owner = next((k for k, cj in class_groups.items() if js[0] in cj), None)
+        if owner is not None:
+            out.setdefault(owner, optimum.geometry[g])
+    return out

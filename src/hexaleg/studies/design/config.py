@@ -218,8 +218,10 @@ class DesignConfig:
     design: DesignParams = field(default_factory=DesignParams)
 
     @classmethod
-    def load(cls, robot: str | None = None, path: str | Path | None = None) -> DesignConfig:
-        """The configuration of ``hexaleg design [--robot R] [--config F]``.
+    def load(cls, robot: str | None = None, path: str | Path | None = None,
+             controller: str | None = None) -> DesignConfig:
+        """The configuration of ``hexaleg design [--robot R] [--config F] [--controller C]``
+        (``controller`` over ``[design] controller``).
 
         Raises:
             ConfigError: the file cannot be read, or a value has the wrong type.
@@ -227,7 +229,8 @@ class DesignConfig:
             InvalidParameterError: a value out of range.
         """
         data = load_toml(path) if path else {}
-        return cls.from_mapping(data, robot or "hexaleg", str(path) if path else "config")
+        cfg = cls.from_mapping(data, robot or "hexaleg", str(path) if path else "config")
+        return cfg.with_controller(controller) if controller else cfg
 
     @classmethod
     def from_mapping(cls, data: Mapping[str, Any], robot: str = "hexaleg",

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from hexaleg.design.evaluator import SAVING_METRICS
+from hexaleg.design.fatigue import cycles_per_year
 from hexaleg.design.robustness_map import RobustnessMap
 from hexaleg.design.spring_json import spring_entry
 from hexaleg.design.spring_parts import SpringPart
@@ -119,6 +120,22 @@ def robust_data(r: RobustResult, outer: dict[str, tuple[float, str]]) -> dict[st
     }
 
 
+def tolerance_data(r: DesignResult) -> dict[str, Any]:
+    """The recommendation and its tolerance-blind self over the stops' mounting error: nominal
+    and worst saving within the tolerance (worst case over a stated set of shifts and the dense
+    common-shift curve, :mod:`hexaleg.design.tolerance`), the curve saving vs common shift."""
+    t = r.tolerance
+    assert t is not None
+    return {"tolerance": quantity(t.tolerance, "rad"), "metric": t.metric,
+            "criterion": "worst case over the mounting errors within ± the tolerance",
+            "chosen": "tolerant" if t.worst["tolerant"] > t.worst["blind"] else "blind",
+            "shifts": quantity(t.shifts, "rad"),
+            **{name: {"nominal_saving": quantity(100 * t.nominal[name], "%"),
+                      "worst_saving": quantity(100 * t.worst[name], "%"),
+                      "curve": quantity(100 * t.curve[name], "%")}
+               for name in ("tolerant", "blind")}}
+
+
 def design_data(r: DesignResult) -> dict[str, Any]:
     """The content of ``design.json`` (module docstring)."""
     d, g = r.config.design, r.gait
@@ -139,6 +156,8 @@ def design_data(r: DesignResult) -> dict[str, Any]:
                                else quantity(d.deflection_bound, "rad")),
             "materials": list(d.materials), "safety_factor": quantity(d.safety_factor, "1"),
             "arbor_diameter": quantity(d.arbor_diameter, "m"),
+            "stop_tolerance": quantity(d.stop_tolerance, "rad"),
+            "life_cycles": quantity(d.life_cycles, "cycles"),
             "contact_mu": quantity(r.config.contact.mu, "1"), "controller": d.controller,
             "min_group_saving": quantity(100 * d.min_group_saving, "%")},
         "baseline": {m: quantity(r.baseline[m], metric_unit(m)) for m in SAVING_METRICS},
@@ -151,6 +170,14 @@ def design_data(r: DesignResult) -> dict[str, Any]:
                   for k, (s, c) in r.worst.items()},
         "robust": None if r.robust is None else robust_data(r.robust, r.outer),
         "ranking": [ranking_data(row) for row in r.ranking],
+        "stop_tolerance": None if r.tolerance is None else tolerance_data(r),
+        "envelope": [e.table() for e in r.envelope],
+        "fatigue": [{"group": p.group, "side": p.side, "role": p.role, **f.table(),
+                     "cycles_per_year": {
+                         "one_hour_a_day": quantity(cycles_per_year(r.gait.period, 1.0),
+                                                    "cycles"),
+                         "continuous": quantity(cycles_per_year(r.gait.period, 24.0), "cycles")}}
+                    for p, f in r.fatigue],
         "simulation": [sensitivity_row(row) for row in r.simulation],
         "timings": {k: quantity(v, "s") for k, v in r.timings.items()},
         "notes": list(r.notes),

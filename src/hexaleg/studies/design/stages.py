@@ -3,7 +3,8 @@
 :func:`~hexaleg.studies.design.build.build_design` runs them in order (as pvlib's ModelChain
 runs its models): :func:`nominal` (the gait prepared once, the groups and the fit limits),
 :func:`family_candidates` (every family's optimum, groups that do not pay left out),
-:func:`pareto_front` (the recommended family under spring-torque bounds),
+:func:`pareto_front` (the best family under spring-torque bounds), :func:`stop_tolerance` (the
+recommendation designed for its stops' mounting error),
 :func:`robustness_maps` and :func:`robust_design` (the recommendation under changed conditions
 and the design for a box of them). The ranking by simulation is
 :mod:`hexaleg.studies.design.ranking`.
@@ -18,18 +19,32 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hexaleg.design.envelope import PartEnvelope, parts_envelope
 from hexaleg.design.evaluator import RunSpec
 from hexaleg.design.families import Geometry
+from hexaleg.design.fatigue import FatigueCheck, spring_fatigue
 from hexaleg.design.robust import RobustSprings, robust_springs
 from hexaleg.design.robustness import Condition, condition_prepared, condition_savings
 from hexaleg.design.robustness_map import RobustnessMap, robustness_map
-from hexaleg.design.spring_parts import spring_outer_diameter
+from hexaleg.design.spring_parts import SpringPart, spring_outer_diameter
+from hexaleg.design.tolerance import TolerantSprings, tolerant_springs
 from hexaleg.dynamics.prepare import Prepared
-from hexaleg.errors import InfeasibleForcesError, InvalidParameterError, TorqueLimitError
+from hexaleg.errors import (
+    HexalegError,
+    InfeasibleForcesError,
+    InvalidParameterError,
+    TorqueLimitError,
+)
+from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import GaitParams
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Robot
-from hexaleg.studies.design.candidates import Candidate, candidate, parsimonious
+from hexaleg.studies.design.candidates import (
+    Candidate,
+    candidate,
+    class_geometry,
+    parsimonious,
+)
 from hexaleg.studies.design.config import METRICS, DesignConfig, DesignParams
 from hexaleg.studies.design.groups import class_of, design_groups, sprung_classes
 
@@ -65,11 +80,12 @@ class Nominal:
         return {g: v for g, (v, _) in self.outer.items()}
 
     def family(self, family: str, params: DesignParams | None = None,
-               start: Sequence[dict[str, Geometry]] = (), like: Candidate | None = None
-               ) -> Candidate:
+               start: Sequence[dict[str, Geometry]] = (), like: Candidate | None = None,
+               geometry: dict[str, Geometry] | None = None) -> Candidate:
         """One family's parsimonious candidate (:func:`~hexaleg.studies.design.candidates.
         parsimonious`) with the ``[design]`` table, or ``params`` in its place; on the groups of
-        ``like`` only when given (its classes: the others were left unfitted)."""
+        ``like`` only when given (its classes: the others were left unfitted); at ``geometry``
+        (class → geometry) when given, else searched."""
         d = self.config.design if params is None else params
         groups, classes = self.groups, self.class_groups
         if like is not None:
@@ -77,7 +93,7 @@ class Nominal:
             kept = {j for js in groups.values() for j in js}
             classes = {k: js for k, js in classes.items() if js[0] in kept}
         return parsimonious(self.prepared, self.run, self.gait, groups, classes, family, d,
-                            self.outer_diameters, start)
+                            self.outer_diameters, start, geometry)
 
 
 def nominal(cfg: DesignConfig) -> Nominal:
@@ -120,47 +136,75 @@ def family_candidates(nom: Nominal, progress: Callable[[str, str], None]) -> lis
     return sorted(cands, key=lambda c: -rank(c, d.metric))
 
 
-def class_geometry(c: Candidate, class_groups: dict[str, tuple[str, ...]]
-                   ) -> dict[str, Geometry]:
-    """Class → the geometry of ``c`` (finer groups share their class's)."""
-    out: dict[str, Geometry] = {}
-    for g, js in c.optimum.groups.items():
-        owner = next(k for k, cj in class_groups.items() if js[0] in cj)
-        out.setdefault(owner, c.optimum.geometry[g])
-    return out
-
-
-def pareto_front(nom: Nominal, ranked: list[Candidate]
-                 ) -> tuple[list[tuple[float, Candidate]], list[Candidate]]:
-    """The best buildable family's optimum with its spring torque bounded to fractions of its
-    peak, and the families again (a bounded optimum that beats the unbounded one in the
-    program's own objective means the geometry search missed it: that family is searched again
-    from both, so it never saves less than a point of its own front).
+def pareto_front(nom: Nominal, rec: Candidate) -> list[tuple[float, Candidate]]:
+    """``rec``'s geometry with its spring torque bounded to fractions of its peak: at each bound
+    the magnitudes are the global optimum of the ranking metric for that geometry (one convex
+    program each; the magnitudes optimise the metric the design ranks by, so no bounded point
+    beats the unbounded one on its own geometry).
 
     Returns:
-        ``[(fraction, candidate)]`` ascending, the last the unbounded design (fraction 1); the
-        families ranked again.
+        ``[(fraction, candidate)]`` ascending, the last ``rec`` itself (fraction 1).
     """
     d = nom.config.design
-    rec = next((c for c in ranked if c.buildable), ranked[0])
     peak = float(np.abs(rec.optimum.analysis.tau_spring).max())
-    starts = [class_geometry(rec, nom.class_groups)]
+    geometry = class_geometry(rec.optimum, nom.class_groups)
     pareto = []
     for f in sorted(d.pareto_fractions):
         if peak <= 0:
             break
         bounded = dataclasses.replace(d, max_torque=min(f * peak, d.max_torque or np.inf))
-        pareto.append((f, nom.family(rec.family, bounded, starts, like=rec)))
-    best = max((c for _, c in pareto), key=lambda c: c.optimum.saving, default=None)
-    if best is not None and best.optimum.saving > rec.optimum.saving:
-        again = nom.family(rec.family, None, [class_geometry(c, nom.class_groups)
-                                               for c in (rec, best)], like=rec)
-        if again.optimum.saving > rec.optimum.saving:
-            ranked = sorted([again if c is rec else c for c in ranked],
-                            key=lambda c: -rank(c, d.metric))
-            rec = again
-    pareto.append((1.0, next(c for c in ranked if c.family == rec.family)))
-    return pareto, ranked
+        pareto.append((f, nom.family(rec.family, bounded, like=rec, geometry=geometry)))
+    return [*pareto, (1.0, rec)]
+
+
+def stop_tolerance(nom: Nominal, rec: Candidate) -> tuple[Candidate, TolerantSprings | None]:
+    """``rec`` designed for the stops a workshop mounts within ``[design] stop_tolerance``
+    (:func:`hexaleg.design.tolerance.tolerant_springs`: the worst saving over the mounting
+    errors maximised), with its parts, when that keeps more than the tolerance-blind design's
+    worst; else ``rec``. The comparison (both designs' nominal and worst savings and curves)
+    either way; None without a tolerance or for a family without angles."""
+    d = nom.config.design
+    if d.stop_tolerance == 0 or not rec.optimum.geometry or not any(
+            rec.optimum.geometry.values()):
+        return rec, None
+    t = tolerant_springs(nom.prepared, rec.optimum, d.stop_tolerance, d.metric,
+                         max_torque=rec.max_torque, max_deflection=d.deflection_bound)
+    if t.worst["tolerant"] <= t.worst["blind"]:
+        return rec, t
+    return dataclasses.replace(candidate(t.optimum, nom.prepared, nom.run, nom.gait,
+                                         nom.outer_diameters, d), dropped=rec.dropped,
+                               max_torque=rec.max_torque), t
+
+
+TURN_RATE = 0.2
+"""rad/s: the turn whose joint ranges the envelope adds (the nominal gait turning, a gentle turn
+of about 11° a second)."""
+
+
+def envelope_and_fatigue(nom: Nominal, rec: Candidate
+                         ) -> tuple[tuple[PartEnvelope, ...], tuple[tuple[SpringPart, FatigueCheck],
+                                                                      ...], list[str]]:
+    """Each bought part's stress over everything its joints may see
+    (:func:`hexaleg.design.envelope.parts_envelope`: URDF limits, stand and sphere poses, the
+    gait, a turn at :data:`TURN_RATE`) with the hard stop it needs where it would yield, and its
+    fatigue safety at ``[design] life_cycles`` (:func:`hexaleg.design.fatigue.spring_fatigue`);
+    notes for a turn the robot cannot make."""
+    d = nom.config.design
+    parts = [p for p in rec.parts if p.spring is not None]
+    joints = sorted({j for p in parts for j in p.joints}, key=nom.robot.column)
+    extra, notes = [], []
+    try:
+        turn = tripod_gait(nom.robot, dataclasses.replace(nom.gait, yaw_rate=TURN_RATE))
+        q = {j: turn.q[:, nom.robot.column(j)] for j in joints}
+        extra.append((f"turning {TURN_RATE:g} rad/s",
+                      {j: (float(v.min()), float(v.max())) for j, v in q.items()}))
+    except HexalegError as e:
+        notes.append(f"the envelope leaves out a turn at {TURN_RATE:g} rad/s: {e}")
+    env = parts_envelope(parts, nom.prepared, extra=extra, design_factor=d.safety_factor)
+    assert all(p.spring is not None for p in parts)
+    fatigue = tuple((p, spring_fatigue(p.spring, life=d.life_cycles))  # type: ignore[arg-type]
+                    for p in parts)
+    return env, fatigue, notes
 
 
 def robustness_maps(nom: Nominal, rec: Candidate
@@ -257,5 +301,16 @@ def robust_design(nom: Nominal, rec: Candidate) -> RobustResult | None:
                         savings=savings)
 
 
-__all__ = ["Nominal", "RobustResult", "class_geometry", "corners", "family_candidates",
-           "nominal", "pareto_front", "rank", "robust_design", "robustness_maps"]
+__all__ = [
+    "Nominal",
+    "RobustResult",
+    "corners",
+    "envelope_and_fatigue",
+    "family_candidates",
+    "nominal",
+    "pareto_front",
+    "rank",
+    "robust_design",
+    "robustness_maps",
+    "stop_tolerance",
+]
