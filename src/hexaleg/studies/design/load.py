@@ -25,7 +25,7 @@ from hexaleg.errors import ConfigError, InvalidParameterError
 from hexaleg.motion.params import GaitParams
 from hexaleg.robot.registry import description
 from hexaleg.robot.springs import SpringSet
-from hexaleg.studies.simulate.design_file import read_design
+from hexaleg.studies.simulate.design_file import read_design, read_document
 
 
 @dataclass(frozen=True, eq=False)
@@ -112,14 +112,7 @@ def load_design(path: str | Path, robot: str | None = None) -> LoadedDesign:
         UnknownNameError: an unknown robot, family, parameter or joint (lists the valid ones).
     """
     path = Path(path)
-    try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError as e:
-        raise ConfigError(f"design file not found: {path}") from e
-    except (OSError, ValueError) as e:
-        raise ConfigError(f"cannot read the design file {path}: {e}") from e
-    if not isinstance(data, Mapping):
-        raise ConfigError(f"{path}: expected a JSON object, got {type(data).__name__}")
+    data = read_document(path)
     owner = data.get("robot")
     owner = owner.get("name") if isinstance(owner, Mapping) else owner
     name = robot or (owner if isinstance(owner, str) else "hexaleg")

@@ -74,6 +74,24 @@ def _entries(data: Mapping[str, Any], where: str) -> tuple[list[Any], Any]:
     return springs, robot.get("name") if isinstance(robot, Mapping) else robot
 
 
+def read_document(path: str | Path) -> Mapping[str, Any]:
+    """A design file's JSON object.
+
+    Raises:
+        ConfigError: the file is missing, unreadable, not JSON or not a JSON object.
+    """
+    path = Path(path)
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError as e:
+        raise ConfigError(f"design file not found: {path}") from e
+    except (OSError, ValueError) as e:
+        raise ConfigError(f"cannot read the design file {path}: {e}") from e
+    if not isinstance(data, Mapping):
+        raise ConfigError(f"{path}: expected a JSON object, got {type(data).__name__}")
+    return data
+
+
 def read_design(path: str | Path, robot: Robot, robot_name: str | None = None) -> SpringSet:
     """The springs of a design file (module docstring), checked against ``robot``.
 
@@ -93,14 +111,7 @@ def read_design(path: str | Path, robot: Robot, robot_name: str | None = None) -
         UnknownNameError: an unknown family, parameter or joint (lists the valid ones).
     """
     path = Path(path)
-    try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError as e:
-        raise ConfigError(f"design file not found: {path}") from e
-    except (OSError, ValueError) as e:
-        raise ConfigError(f"cannot read the design file {path}: {e}") from e
-    if not isinstance(data, Mapping):
-        raise ConfigError(f"{path}: expected a JSON object, got {type(data).__name__}")
+    data = read_document(path)
     entries, owner = _entries(data, str(path))
     names = {robot.name, *([robot_name] if robot_name else [])}
     if owner is not None and owner not in names:
