@@ -58,7 +58,7 @@ def test_mujoco_inverse_dynamics_is_pinocchio_rnea(which, request):
     (a test hexapod facing +y, joints found from its URDF) checks another tree."""
     robot = request.getfixturevalue(which)
     motion = hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=100))
-    sim = build_model(robot, motion, hexaleg.robot.motor.motor("AX-18A"), timestep=2.5e-4)
+    sim = build_model(robot, motion, hexaleg.robot.catalogue.motor("AX-18A"), timestep=2.5e-4)
     m = _bare(sim)
     for q, v, a in _random_states(robot, 4):
         tau = pin.rnea(robot.model, robot.model.createData(), q, v, a)
