@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import dataclasses
-from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -18,7 +17,7 @@ from hexaleg.design.spring_parts import (
     spring_outer_diameter,
     spring_parts,
 )
-from hexaleg.errors import UnknownNameError
+from hexaleg.errors import InvalidParameterError, UnknownNameError
 from hexaleg.robot.catalogue import CATALOGUE, OUTPUT_HUBS, OutputHub
 from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.registry import description
@@ -111,9 +110,15 @@ def test_arbor_from_the_description_the_servo_or_the_links(robot, monkeypatch):
     assert arbor_for(robot, desc, motors, "femur")[0] == 6e-3
     assert arbor_for(robot, desc, motors, "tibia")[0] == pytest.approx(ARBOR_LINK_FRACTION * 0.02)
 
-    # (a): the description's own, whatever the servo (a description with the per-class field)
-    given = SimpleNamespace(name="mine", arbor_diameter={"femur": 4e-3})
-    assert arbor_for(robot, given, "AX-18A", "femur") == (4e-3, "mine description")
+    # (a): the description's own, whatever the servo; checked like max_outer_diameter
+    given = dataclasses.replace(desc, joint_kinds=("coxa", "femur", "tibia"),
+                                arbor_diameter={"femur": 4e-3, "coxa": 0})
+    assert arbor_for(robot, given, "AX-18A", "femur") == (4e-3, "hexaleg description")
+    assert arbor_for(robot, given, "AX-18A", "coxa") == (0.0, "hexaleg description")
+    with pytest.raises(UnknownNameError, match="arbor_diameter joint class"):
+        dataclasses.replace(given, arbor_diameter={"knee": 4e-3})
+    with pytest.raises(InvalidParameterError, match=r"arbor_diameter\.femur"):
+        dataclasses.replace(given, arbor_diameter={"femur": -1e-3})
     with pytest.raises(UnknownNameError, match="coxa, femur, tibia"):
         arbor_for(robot, desc, None, "knee")
 

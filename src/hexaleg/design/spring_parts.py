@@ -163,7 +163,7 @@ def arbor_for(robot: Robot, desc: RobotDescription, motor: Motor | MotorSet | st
     """
     if joint_class not in robot.joint_classes:
         raise UnknownNameError("joint class", joint_class, robot.joint_classes)
-    declared = getattr(desc, "arbor_diameter", None) or {}
+    declared = desc.arbor_diameter
     if joint_class in declared:
         return float(declared[joint_class]), f"{desc.name} description"
     if isinstance(motor, str):

@@ -31,10 +31,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.config import from_mapping, load_toml
-from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError, UnknownNameError
+from hexaleg.errors import InvalidParameterError, RobotModelError, UnknownNameError
 from hexaleg.robot import fields
-from hexaleg.robot.fields import FrozenTable, axis, check_stand, heading, legs_table, plain
+from hexaleg.robot.fields import FrozenTable, check_stand, heading, plain
 from hexaleg.robot.model import AUTO, URDF_DIR, LegSpec, Robot, load_robot
 
 if TYPE_CHECKING:
@@ -124,6 +123,9 @@ class RobotDescription:
         heading: The base axis that points forward, ``[x, y, 0]`` (:attr:`Robot.heading`).
         max_outer_diameter: Joint class → largest outer diameter of a spring on its joints, m;
             default the links' width (:func:`hexaleg.design.spring_parts.spring_outer_diameter`).
+        arbor_diameter: Joint class → diameter of the shaft or hub a spring on its joints winds
+            on, m (0: none); default the servo's output hub, else a rule from the links' width
+            (:func:`hexaleg.design.spring_parts.arbor_for`).
     """
 
     name: str
@@ -141,6 +143,7 @@ class RobotDescription:
     mesh_dirs: tuple[str, ...] = ()
     heading: tuple[float, float, float] = (1.0, 0.0, 0.0)
     max_outer_diameter: Mapping[str, float] = field(default_factory=lambda: FrozenTable({}))
+    arbor_diameter: Mapping[str, float] = field(default_factory=lambda: FrozenTable({}))
 
     def __post_init__(self) -> None:
         if self.source not in SOURCES:
@@ -180,6 +183,8 @@ class RobotDescription:
         object.__setattr__(self, "heading", heading(self.name, self.heading))
         object.__setattr__(self, "max_outer_diameter", fields.diameters_table(
             self.name, self.joint_kinds, self.max_outer_diameter))
+        object.__setattr__(self, "arbor_diameter", fields.diameters_table(
+            self.name, self.joint_kinds, self.arbor_diameter, "arbor_diameter", low_open=False))
 
     def _check_motor(self, motor: Any) -> str | Mapping[str, str]:
         from hexaleg.robot.catalogue import CATALOGUE
@@ -259,66 +264,11 @@ class RobotDescription:
 
     @classmethod
     def from_toml(cls, path: str | Path) -> RobotDescription:
-        """A description of one's own robot from the ``[robot]`` table of a TOML file.
+        """A description of one's own robot from the ``[robot]`` table of a TOML file
+        (:func:`hexaleg.robot.description_file.read_description`: the format and its errors)."""
+        from hexaleg.robot.description_file import read_description
 
-        Example (relative paths are relative to the TOML file; ``source`` defaults to
-        :data:`FILES`)::
-
-            [robot]
-            name = "myquad"
-            title = "My quadruped"
-            urdf = "myquad.urdf"
-            srdf = "myquad.srdf"          # optional
-            stand = "standing"            # a group_state, or a table {joint = angle_rad}
-            joint_kinds = ["haa", "hfe", "kfe"]
-            spring_class = "kfe"
-            mesh_dirs = ["."]             # where package:// URIs resolve
-            [robot.gait]                  # GaitParams keys (hexaleg.motion.params)
-            period = 0.5
-            groups = [["LF", "RH"], ["RF", "LH"]]
-            [[robot.legs]]
-            name = "LF"
-            joints = ["LF_HAA", "LF_HFE", "LF_KFE"]
-            foot = "LF_FOOT"
-            # ... one [[robot.legs]] table per leg
-
-        Args:
-            path: The TOML file.
-
-        Returns:
-            The description (its files are not opened until :meth:`load`).
-
-        Raises:
-            ConfigError: the file cannot be read, has no ``[robot]`` table or no
-                ``[[robot.legs]]`` tables, or a value has the wrong type.
-            UnknownNameError: an unknown key (the message lists the valid keys).
-            InvalidParameterError: a value out of range.
-        """
-        path = Path(path)
-        where = f"{path} [robot]"
-        table = load_toml(path).get("robot")
-        if not isinstance(table, Mapping):
-            raise ConfigError(f"{path}: expected a [robot] table")
-        data = dict(table)
-        if "legs" in data:
-            data["legs"] = legs_table(data["legs"], where)
-        for key in ("joint_kinds", "mesh_dirs", "heading"):
-            if isinstance(data.get(key), list):
-                data[key] = tuple(data[key])
-        data.setdefault("source", FILES)
-        if data["source"] == FILES:
-            for key in ("urdf", "srdf"):
-                if isinstance(data.get(key), str):
-                    data[key] = str(path.parent / data[key])
-            if isinstance(data.get("mesh_dirs"), list):
-                data["mesh_dirs"] = [str(path.parent / d) if isinstance(d, str) else d
-                                     for d in data["mesh_dirs"]]
-        if not isinstance(data.get("stand", ""), (str, Mapping)):
-            raise ConfigError(f"{where}.stand = {data['stand']!r}; expected a group_state name, "
-                              "a table of joint angles or {body_height, feet}")
-        if isinstance(data.get("heading"), str):
-            data["heading"] = axis(data["heading"], where)
-        return from_mapping(cls, data, where)
+        return read_description(path)
 
     def _dir(self) -> Path:
         if self.source == EXAMPLE_ROBOT_DATA:

@@ -107,17 +107,19 @@ def legs_table(legs: Any, where: str) -> tuple[LegSpec, ...]:
     return tuple(out)
 
 
-def diameters_table(name: str, kinds: tuple[str, ...] | None, table: Any) -> FrozenTable:
-    """A description's ``max_outer_diameter`` checked: joint class → a diameter > 0 (m)."""
+def diameters_table(name: str, kinds: tuple[str, ...] | None, table: Any,
+                    key: str = "max_outer_diameter", low_open: bool = True) -> FrozenTable:
+    """A description's table of diameters checked: joint class → a diameter (m), > 0 (or ≥ 0
+    with ``low_open`` False); ``key`` names the table in the errors."""
+    allowed = f"a diameter {'>' if low_open else '>='} 0 (m)"
     if not isinstance(table, Mapping):
-        raise InvalidParameterError(f"{name}: max_outer_diameter", table,
+        raise InvalidParameterError(f"{name}: {key}", table,
                                     "a table of joint class = diameter (m)")
     for kind, value in table.items():
         if kinds is not None and kind not in kinds:
-            raise UnknownNameError(f"{name}: max_outer_diameter joint class", kind, kinds)
-        if not is_real(value) or value <= 0:
-            raise InvalidParameterError(f"{name}: max_outer_diameter.{kind}", value,
-                                        "a diameter > 0 (m)")
+            raise UnknownNameError(f"{name}: {key} joint class", kind, kinds)
+        if not is_real(value) or value < 0 or (low_open and value == 0):
+            raise InvalidParameterError(f"{name}: {key}.{kind}", value, allowed)
     return FrozenTable({str(k): float(v) for k, v in table.items()})
 
 
