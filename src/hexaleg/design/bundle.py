@@ -22,6 +22,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -73,54 +74,61 @@ class _Cuts:
         return out
 
 
+def _csc(dense: np.ndarray) -> Any:
+    """``scipy.sparse.csc_matrix(dense)`` (its nonzeros, column-major, rows sorted) without the
+    checks of the sparse constructors — the same arrays, so the same Clarabel solve."""
+    import scipy.sparse as sp
+
+    cols, rows = np.nonzero(dense.T)
+    indptr = np.zeros(dense.shape[1] + 1, dtype=np.int32)
+    np.cumsum(np.bincount(cols, minlength=dense.shape[1]), out=indptr[1:])
+    return sp.csc_matrix((dense.T[cols, rows], rows.astype(np.int32), indptr), shape=dense.shape)
+
+
 def _qp(cuts: _Cuts, n: int, mode: str, centre: np.ndarray, u: float, G: np.ndarray,
         h: np.ndarray, nonneg: np.ndarray, fixed: np.ndarray) -> np.ndarray:
     """The proximal model step: z = (x, t_1…t_n[, s]) minimising the model + (u/2)‖x − x̂‖²
-    (without cuts: the point nearest x̂ that meets the constraints)."""
+    (without cuts: the point nearest x̂ that meets the constraints). One dense block of rows
+    ``A z ≤ b`` (cuts, t_c ≤ s, G, −z_i ≤ 0) then the fixed z_i = 0, handed to Clarabel."""
     import clarabel
-    import scipy.sparse as sp
 
     from hexaleg.dynamics.conic import clarabel_solve
 
     nx = centre.size
     worst = mode == "worst" and n > 0
     nz = nx + n + (1 if worst else 0)
-    P = sp.diags(np.r_[np.full(nx, u), np.zeros(nz - nx)]).tocsc()
+    P = np.zeros((nz, nz))
+    P[np.arange(nx), np.arange(nx)] = u
     q = np.zeros(nz)
     q[:nx] = -u * centre
     if worst:
         q[-1] = 1.0
     elif n:
         q[nx:nx + n] = 1.0 / n
-    blocks, b = [], []
     k = cuts.c.size
+    neg, eq = np.flatnonzero(nonneg), np.flatnonzero(fixed)
+    m = k + (n if worst else 0) + G.shape[0] + neg.size
+    A = np.zeros((m + eq.size, nz))
+    b = np.zeros(m + eq.size)
     if k:  # f + g·(y − y_j) − t_c ≤ 0
-        rows = np.zeros((k, nz))
-        rows[:, :nx] = cuts.g
-        rows[np.arange(k), nx + cuts.c] = -1.0
-        blocks.append(rows)
-        b.append(np.sum(cuts.g * cuts.y, axis=1) - cuts.f)
+        A[:k, :nx] = cuts.g
+        A[np.arange(k), nx + cuts.c] = -1.0
+        b[:k] = np.sum(cuts.g * cuts.y, axis=1) - cuts.f
+    r = k
     if worst:  # t_c − s ≤ 0
-        rows = np.zeros((n, nz))
-        rows[np.arange(n), nx + np.arange(n)] = 1.0
-        rows[:, -1] = -1.0
-        blocks.append(rows)
-        b.append(np.zeros(n))
+        A[r + np.arange(n), nx + np.arange(n)] = 1.0
+        A[r:r + n, -1] = -1.0
+        r += n
     if G.size:
-        blocks.append(np.hstack([G, np.zeros((G.shape[0], nz - nx))]))
-        b.append(h)
-    neg = np.flatnonzero(nonneg)
-    blocks.append(-np.eye(nz)[neg])
-    b.append(np.zeros(neg.size))
-    m = sum(block.shape[0] for block in blocks)
+        A[r:r + G.shape[0], :nx] = G
+        b[r:r + G.shape[0]] = h
+    r += G.shape[0]
+    A[r + np.arange(neg.size), neg] = -1.0
+    A[m + np.arange(eq.size), eq] = 1.0
     cones = [clarabel.NonnegativeConeT(m)]
-    eq = np.flatnonzero(fixed)
     if eq.size:
-        blocks.append(np.eye(nz)[eq])
-        b.append(np.zeros(eq.size))
         cones.append(clarabel.ZeroConeT(eq.size))
-    z, status = clarabel_solve(sp.triu(P, format="csc"), q, sp.csc_matrix(np.vstack(blocks)),
-                               np.concatenate(b), cones)
+    z, status = clarabel_solve(_csc(P), q, _csc(A), b, cones)
     if status != "Solved":
         raise InfeasibleForcesError(f"the robust program's model step has no solution "
                                     f"(Clarabel: {status}); design limits no spring meets")
