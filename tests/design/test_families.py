@@ -45,3 +45,32 @@ def test_check_names_what_is_wrong():
         family("one_sided").check({"contact": 0.0, "side": "up"}, "g")
     with pytest.raises(InvalidParameterError, match=r"g\.contact"):
         family("one_sided").check({"contact": "0"}, "g")
+
+
+@pytest.mark.parametrize("name", FAMILIES)
+def test_a_mirrored_spring_is_the_reflected_law(name):
+    """mirror(): τ'(q) = −τ(2c − q) and U'(q) = U(2c − q) at random angles, for random valid
+    geometries and magnitudes; mirroring twice gives the spring back."""
+    rng = np.random.default_rng(7)
+    fam = family(name)
+    c = 0.4
+    for _ in range(5):
+        angles = np.sort(rng.uniform(-0.6, 0.6, len(fam.angles)))
+        if name == "stiffening":
+            angles = np.array([angles[0], angles[1], angles[3], angles[2]])
+        geometry = dict(zip(fam.angles, (float(a) for a in angles), strict=True))
+        if name == "one_sided":
+            geometry["side"] = str(rng.choice(["above", "below"]))
+        x = rng.uniform(0.01, 0.5, len(fam.magnitudes))
+        if name == "linear":
+            x[1] = rng.uniform(-0.3, 0.3)
+        g2, x2 = fam.mirror(geometry, x)
+        fam.check(g2, "mirrored")
+        law, image = fam.spring(geometry, c, x), fam.spring(g2, c, x2)
+        q = rng.uniform(c - 1.5, c + 1.5, 200)
+        np.testing.assert_allclose(image.torque(q), -law.torque(2 * c - q), atol=1e-12)
+        np.testing.assert_allclose(image.energy(q) - image.energy(np.array(c)),
+                                   law.energy(2 * c - q) - law.energy(np.array(c)), atol=1e-12)
+        g3, x3 = fam.mirror(g2, x2)
+        assert g3 == {k: (float(v) if k != "side" else v) for k, v in geometry.items()}
+        np.testing.assert_array_equal(x3, x)

@@ -168,6 +168,31 @@ class Family:
             below=((a["below_1"], m["k_below_1"]), (a["below_2"], m["k_below_2"])))
 
 
+    def mirror(self, geometry: Geometry, x: Sequence[float] | np.ndarray
+               ) -> tuple[dict[str, float | str], np.ndarray]:
+        """The same physical spring on a joint that counts its angle the other way round
+        (:mod:`hexaleg.robot.mirror`): the geometry and magnitudes whose law is
+        ``τ'(q) = −τ(2c − q)`` for the law ``τ`` of ``(geometry, x)`` on a joint of centre c —
+        the angles negated, above and below swapped (with their magnitudes), a linear spring's
+        constant torque negated. Its energy is ``U'(q) = U(2c − q)``, so it is conservative too.
+        """
+        g = {k: v for k, v in geometry.items() if k != "side"}
+        m = dict(zip(self.magnitudes, (float(v) for v in x), strict=True))
+        swap = {"theta_minus": "theta_plus", "theta_plus": "theta_minus",
+                "above_1": "below_1", "above_2": "below_2", "below_1": "above_1",
+                "below_2": "above_2", "contact": "contact"}
+        out: dict[str, float | str] = {swap[k]: -float(v) for k, v in g.items()}
+        if self.name == "one_sided":
+            out["side"] = "below" if geometry["side"] == "above" else "above"
+        names = {"k_plus": "k_minus", "k_minus": "k_plus", "preload_plus": "preload_minus",
+                 "preload_minus": "preload_plus", "k_above_1": "k_below_1",
+                 "k_above_2": "k_below_2", "k_below_1": "k_above_1", "k_below_2": "k_above_2"}
+        y = {names.get(k, k): v for k, v in m.items()}
+        if "torque_at_reference" in y:
+            y["torque_at_reference"] = -y["torque_at_reference"]
+        return out, np.array([y[k] for k in self.magnitudes])
+
+
 _FAMILIES = {
     "linear": Family("linear", (), ("k", "torque_at_reference"), (Element(0, 1, linear=True),)),
     "dead_zone": Family("dead_zone", ("theta_minus", "theta_plus"), ("k_plus", "k_minus"),
