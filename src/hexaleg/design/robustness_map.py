@@ -1,17 +1,21 @@
 """Robustness maps: a frozen design's saving over a grid of two conditions, and its worst case.
 
 Each cell is one :class:`~hexaleg.design.robustness.Condition` — the two mapped conditions set,
-the others nominal — prepared afresh (:func:`~hexaleg.design.robustness.condition_prepared`) and
+the others nominal — prepared afresh (:func:`~hexaleg.design.robustness.condition_walk`) and
 evaluated with the frozen springs (:func:`~hexaleg.design.robustness.condition_savings`), so a
-cell equals a fresh ``analyze`` of that condition. A cell whose gait has no admissible forces
-even without springs is outside the robot's envelope (its saving NaN, left out of the worst
-case); one where only the springs make it infeasible counts as −∞, the worst there is.
+cell equals a fresh ``analyze`` of that condition. A cell whose gait cannot be made (a foot out
+of reach, a crawl without static margin, a slope the friction cannot hold: status ``"no gait:
+…"``) or has no admissible forces even without springs (``"no baseline: …"``) is outside the
+robot's envelope (its saving NaN, left out of the worst case); one where only the springs make
+it infeasible (``"springs: …"``) counts as −∞, the worst there is. The ``pattern`` axis is the
+one whose values are names (strings); every other axis holds numbers.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -20,15 +24,30 @@ from hexaleg.design.evaluator import DEFAULT_METRIC, RunSpec
 from hexaleg.design.robustness import (
     CONDITIONS,
     Condition,
-    condition_prepared,
     condition_savings,
+    condition_walk,
 )
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.params import GaitParams
+from hexaleg.motion.patterns import PATTERNS, leg_offsets, pattern_offsets
+from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
 
 METRICS: tuple[str, ...] = (DEFAULT_METRIC, "joule")
 """Metrics a map records (the saving of each)."""
+NAMED: tuple[str, ...] = ("pattern",)
+"""Conditions whose values are names, not numbers."""
+
+
+def _value(axis: str, value: Any) -> float | str:
+    """A map value as a :class:`Condition` takes it: a name, or a float."""
+    return str(value) if axis in NAMED else float(value)
+
+
+def _condition(cells: Mapping[str, Any]) -> Condition:
+    """The condition with the mapped ``cells`` (axis → value) set, the others nominal."""
+    kwargs: dict[str, Any] = {axis: _value(axis, v) for axis, v in cells.items()}
+    return Condition(**kwargs)
 
 
 @dataclass(frozen=True, eq=False)
@@ -37,7 +56,8 @@ class RobustnessMap:
 
     Attributes:
         axes: The two conditions mapped (of :data:`~hexaleg.design.robustness.CONDITIONS`).
-        values: Their values, shapes (n₁,) and (n₂,) (factors; payload a fraction; μ).
+        values: Their values, shapes (n₁,) and (n₂,): floats (factors; payload a fraction; μ;
+            slope in rad), or for the ``pattern`` axis an object array of pattern names (str).
         saving: Metric → saving per cell, shape (n₁, n₂), fraction (NaN outside the envelope,
             −∞ where only the springs make the gait infeasible).
         status: Per cell ``"ok"`` or why there is no number, shape (n₁, n₂).
@@ -50,8 +70,7 @@ class RobustnessMap:
 
     def condition(self, i: int, j: int) -> Condition:
         """The condition of cell (i, j)."""
-        return Condition(**{self.axes[0]: float(self.values[0][i]),
-                            self.axes[1]: float(self.values[1][j])})
+        return _condition({self.axes[0]: self.values[0][i], self.axes[1]: self.values[1][j]})
 
     def worst(self, metric: str = DEFAULT_METRIC) -> tuple[float, Condition | None]:
         """The lowest saving over the cells inside the envelope, and its condition (None when
@@ -63,25 +82,67 @@ class RobustnessMap:
         return float(s[i, j]), self.condition(int(i), int(j))
 
 
-def _check_axes(axes: Mapping[str, Sequence[float]]
-                ) -> tuple[tuple[str, str], tuple[np.ndarray, np.ndarray]]:
-    """The two axis names and their values as 1-D float arrays, checked."""
+def _axis(name: str, given: Any) -> np.ndarray:
+    """One axis's values, checked: pattern names as an object array, else finite floats; each
+    value a valid :class:`Condition` (a named error before any cell runs)."""
+    one_of("map axis", name, CONDITIONS)
+    if name in NAMED:
+        if isinstance(given, (str, bytes)) or not isinstance(given, (list, tuple, np.ndarray)) \
+                or not len(given):
+            raise InvalidParameterError(f"map axis {name}", given, "a non-empty list of "
+                                        f"pattern names ({', '.join(PATTERNS)})")
+        v = np.array([str(x) if isinstance(x, str) else x for x in given], dtype=object)
+    else:
+        v = finite_array(f"map axis {name}", given)
+        if v.ndim != 1 or not v.size:
+            raise InvalidParameterError(f"map axis {name}", given, "a non-empty list of values")
+    for x in v:
+        _condition({name: x})
+    return v
+
+
+def _check_axes(axes: Mapping[str, Any]) -> tuple[tuple[str, str], tuple[np.ndarray, np.ndarray]]:
+    """The two axis names and their values (:func:`_axis`), checked."""
     names = tuple(axes)
     if len(names) != 2:
         raise InvalidParameterError("map axes", names, f"two of {', '.join(CONDITIONS)}")
-    values = []
-    for name in names:
-        one_of("map axis", name, CONDITIONS)
-        v = finite_array(f"map axis {name}", axes[name])
-        if v.ndim != 1 or not v.size:
-            raise InvalidParameterError(f"map axis {name}", axes[name],
-                                        "a non-empty list of values")
-        values.append(v)
-    return (names[0], names[1]), (values[0], values[1])
+    return (names[0], names[1]), (_axis(names[0], axes[names[0]]),
+                                  _axis(names[1], axes[names[1]]))
+
+
+def robot_patterns(robot: Robot, gait: GaitParams) -> tuple[str, ...]:
+    """The named patterns the robot's legs can walk (:data:`~hexaleg.motion.patterns.PATTERNS`
+    for its legs a side: hexapod tripod, ripple, wave; quadruped crawl, trot, pace), the
+    nominal gait's first: its ``pattern``, or the pattern whose touch-down offsets its legs'
+    equal up to a common shift of the cycle's origin (the hexapod's tripods are the tripod).
+
+    Args:
+        robot: The robot (its leg names say side and place).
+        gait: The nominal gait.
+
+    Returns:
+        Pattern names; empty when the legs' names do not say side and place.
+    """
+    legs = robot.leg_names
+    fit = {}
+    for name in PATTERNS:
+        try:
+            fit[name] = pattern_offsets(name, legs)
+        except InvalidParameterError:
+            continue
+    nominal = gait.pattern
+    if nominal is None and fit:
+        own = leg_offsets(legs, None, gait.phases, gait.groups)
+        for name, offsets in fit.items():
+            d = (own - offsets - (own[0] - offsets[0])) % 1.0
+            if np.all(np.minimum(d, 1.0 - d) < 1e-9):
+                nominal = name
+                break
+    return tuple(sorted(fit, key=lambda n: n != nominal))
 
 
 def robustness_map(run: RunSpec, gait: GaitParams, springs: SpringSet,
-                   axes: Mapping[str, Sequence[float]],
+                   axes: Mapping[str, Sequence[float] | Sequence[str]],
                    metrics: Sequence[str] = METRICS) -> RobustnessMap:
     """The saving of frozen ``springs`` over a grid of two conditions (module docstring).
 
@@ -90,25 +151,35 @@ def robustness_map(run: RunSpec, gait: GaitParams, springs: SpringSet,
         gait: The nominal gait.
         springs: The frozen springs (absolute angles).
         axes: Two conditions → their values, e.g. ``{"period": [0.5, 1, 2], "stride": [...]}``
-            (period and stride factors, payload a fraction of the robot's mass, μ absolute).
+            or ``{"slope": [-0.26, 0, 0.26], "pattern": ["tripod", "wave"]}`` (period and
+            stride factors, payload a fraction of the robot's mass, μ absolute, slope in rad
+            added to the nominal gait's, pattern names).
         metrics: Metrics whose saving is recorded.
 
     Returns:
-        The map.
+        The map; a condition the robot cannot walk is a cell with its reason (``"no gait: …"``).
 
     Raises:
-        UnknownNameError: an axis not in :data:`~hexaleg.design.robustness.CONDITIONS`.
+        UnknownNameError: an axis not in :data:`~hexaleg.design.robustness.CONDITIONS`, or an
+            unknown pattern (lists them).
         InvalidParameterError: not two axes, an axis without values, a value out of range, a
-            factor whose gait the robot cannot reach (names it and what to change).
+            pattern for other legs than the robot's (lists those that fit).
     """
     (a, b), (va, vb) = _check_axes(axes)
+    for name, values in ((a, va), (b, vb)):
+        if name == "pattern":
+            for p in values:
+                pattern_offsets(p, run.load().leg_names)
     out = {m: np.full((va.size, vb.size), np.nan) for m in metrics}
     status = np.empty((va.size, vb.size), dtype=object)
     for i, x in enumerate(va):
         for j, y in enumerate(vb):
-            cond = Condition(**{a: float(x), b: float(y)})
-            r = condition_savings(condition_prepared(run, gait, cond), springs, run.objective,
-                                  metrics)
+            cond = _condition({a: x, b: y})
+            prepared = condition_walk(run, gait, cond)
+            if isinstance(prepared, str):
+                status[i, j] = prepared
+                continue
+            r = condition_savings(prepared, springs, run.objective, metrics)
             status[i, j] = r["status"]
             for m in metrics:
                 out[m][i, j] = -np.inf if r["status"].startswith("springs") else r[f"saving.{m}"]
