@@ -2,12 +2,22 @@
 
 from __future__ import annotations
 
+import os
+import re
 from dataclasses import dataclass
+from pathlib import Path
 
 import pytest
 
-from hexaleg.config import check_tables, from_mapping, load_toml
-from hexaleg.errors import ConfigError, UnknownNameError
+from hexaleg.config import (
+    check_tables,
+    from_mapping,
+    load_toml,
+    read_bytes,
+    read_json,
+    write_file,
+)
+from hexaleg.errors import ConfigError, OutputError, UnknownNameError
 
 
 @dataclass(frozen=True)
@@ -87,3 +97,57 @@ def test_check_tables_names_the_bad_table_and_the_allowed_ones():
     with pytest.raises(ConfigError, match="document of tables"):
         check_tables([1, 2], ("gait",), "run.toml")
     assert check_tables({"gait": {}}, ("gait",), "run.toml") == {"gait": {}}
+
+
+def test_the_reader_refuses_pipes_devices_and_directories_without_blocking(tmp_path):
+    """A named pipe with no writer is refused at once (an ordinary open would wait forever)."""
+    fifo = tmp_path / "pipe.json"
+    os.mkfifo(fifo)
+    for path in (fifo, Path("/dev/zero"), tmp_path):
+        with pytest.raises(ConfigError, match=r"is not a regular file"):
+            read_bytes(path, "design file")
+
+
+def test_the_reader_bounds_what_it_reads(tmp_path):
+    big = tmp_path / "big.json"
+    big.write_bytes(b" " * 101)
+    with pytest.raises(ConfigError, match=r"has 101 bytes; allowed: at most 100"):
+        read_bytes(big, "design file", 100)
+    assert read_bytes(big, "design file", 101) == b" " * 101
+
+
+def test_links_are_refused_where_hexaleg_owns_the_directory(tmp_path):
+    target = tmp_path / "elsewhere.json"
+    target.write_text("{}")
+    link = tmp_path / "manifest.json"
+    link.symlink_to(target)
+    assert read_json(link, "sweep manifest") == {}  # a user's own path may be a link
+    with pytest.raises(ConfigError, match=r"manifest\.json is a symbolic link"):
+        read_json(link, "sweep manifest", follow=False)
+
+
+@pytest.mark.parametrize(("text", "says"), [
+    ('{"a": NaN}', "NaN is not a JSON number"), ('{"a": -Infinity}', "-Infinity is not a JSON"),
+    ('{"a": 1e400}', "1e400 is beyond the largest float"), ("[1]", "expected a JSON object"),
+    ("{", "not valid JSON"), ("", "not valid JSON")])
+def test_json_is_finite_and_an_object(tmp_path, text, says):
+    path = tmp_path / "d.json"
+    path.write_text(text)
+    with pytest.raises(ConfigError, match=re.escape(says)):
+        read_json(path, "design file")
+
+
+def test_written_files_replace_a_link_and_leave_its_target(tmp_path):
+    """A link planted where hexaleg writes is replaced by the file, never written through."""
+    target = tmp_path / "precious.txt"
+    target.write_text("keep me")
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "report.json").symlink_to(target)
+    write_file(out / "report.json", '{"ok": true}')
+    assert target.read_text() == "keep me"
+    assert not (out / "report.json").is_symlink()
+    assert (out / "report.json").read_text() == '{"ok": true}'
+    assert sorted(p.name for p in out.iterdir()) == ["report.json"]  # no temporary left
+    with pytest.raises(OutputError, match=r"cannot write the report .*nowhere"):
+        write_file(tmp_path / "nowhere" / "x.json", "{}", "the report")

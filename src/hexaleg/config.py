@@ -7,7 +7,12 @@ and the expected type.
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
+import json
+import math
+import os
+import secrets
 import stat
 import sys
 import types
@@ -17,7 +22,7 @@ from pathlib import Path
 from typing import Any, TypeVar
 
 from hexaleg.checks import is_integer, is_real
-from hexaleg.errors import ConfigError, UnknownNameError
+from hexaleg.errors import ConfigError, OutputError, UnknownNameError
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -28,46 +33,145 @@ T = TypeVar("T")
 
 
 MAX_TEXT_BYTES = 16 * 1024**2
-"""Largest text file hexaleg reads (a TOML config, a URDF or SRDF), B: far beyond any real one, and
-a bound that keeps a wrong path (a log, a data set) from filling memory."""
+"""Largest text file hexaleg reads (a TOML config, a URDF or SRDF, a design.json), B: far beyond
+any real one, and a bound that keeps a wrong path (a log, a data set) from filling memory."""
 
 
-def read_text(path: str | Path, what: str = "config file") -> str:
-    """The text of a regular file, decoded as UTF-8 (TOML requires it; hexaleg's XML files too).
+def read_bytes(path: str | Path, what: str = "config file", limit: int | None = None, *,
+               follow: bool = True) -> bytes:
+    """The bytes of a regular file of at most ``limit`` bytes: the one reader of every file
+    hexaleg takes (config, URDF/SRDF, design and simulation files, a sweep's own files).
+
+    The file is opened without blocking (a named pipe with no writer would hang an ordinary
+    open) and checked through its open descriptor, so what is checked is what is read: a
+    regular file (not a directory, device such as ``/dev/zero``, pipe or socket), no larger than
+    ``limit``; the read stops at ``limit`` + 1 bytes whatever the file claims.
 
     Args:
         path: The file.
-        what: What the file is (``"config file"``, ``"URDF"``, …), for the error.
+        what: What the file is (``"config file"``, ``"design file"``, …), for the error.
+        limit: Largest size allowed, B; default :data:`MAX_TEXT_BYTES`.
+        follow: Whether a symbolic link is followed; False for files in a directory hexaleg
+            owns (a sweep's manifest, its lock), where a link is refused.
 
     Raises:
-        ConfigError: the path does not exist or is not a regular file (a directory, a device
-            such as ``/dev/zero``, a pipe: refused before reading), is larger than
-            :data:`MAX_TEXT_BYTES`, cannot be read, or is not UTF-8 (the message names the
-            byte offset and how to convert the file).
+        ConfigError: missing, a symbolic link (``follow=False``), not a regular file, larger
+            than ``limit`` or unreadable; the message names the path and what is allowed.
     """
     path = Path(path)
+    limit = MAX_TEXT_BYTES if limit is None else limit
+    flags = os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_NOCTTY", 0) | getattr(os, "O_CLOEXEC", 0)
+    if not follow:
+        flags |= getattr(os, "O_NOFOLLOW", 0)
+        if path.is_symlink():  # O_NOFOLLOW's ELOOP says less; also where it is missing
+            raise ConfigError(f"{what} {path} is a symbolic link; hexaleg does not follow links "
+                              "in a directory it owns: remove the link")
     try:
-        info = path.stat()
+        fd = os.open(path, flags)
     except FileNotFoundError:
         raise ConfigError(f"{what} not found: {path}") from None
     except OSError as e:
-        raise ConfigError(f"cannot read {what} {path}: {e}") from e
-    if not stat.S_ISREG(info.st_mode):
-        raise ConfigError(f"{what} {path} is not a regular file (a directory, device or pipe); "
-                          "give the path of a text file")
-    if info.st_size > MAX_TEXT_BYTES:
-        raise ConfigError(f"{what} {path} has {info.st_size} bytes; allowed: at most "
-                          f"{MAX_TEXT_BYTES} (is it the right file?)")
+        raise ConfigError(f"cannot read {what} {path}: {e.strerror or e}") from e
     try:
-        data = path.read_bytes()
+        info = os.fstat(fd)
+        if not stat.S_ISREG(info.st_mode):
+            raise ConfigError(f"{what} {path} is not a regular file (a directory, device, pipe "
+                              "or socket); give the path of a file")
+        if info.st_size > limit:
+            raise ConfigError(f"{what} {path} has {info.st_size} bytes; allowed: at most "
+                              f"{limit} (is it the right file?)")
+        os.set_blocking(fd, True)
+        chunks, size = [], 0
+        while size <= limit:
+            chunk = os.read(fd, min(1 << 20, limit + 1 - size))
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
     except OSError as e:
-        raise ConfigError(f"cannot read {what} {path}: {e}") from e
+        raise ConfigError(f"cannot read {what} {path}: {e.strerror or e}") from e
+    finally:
+        os.close(fd)
+    if size > limit:  # grew while being read
+        raise ConfigError(f"{what} {path} has more than {limit} bytes; allowed: at most {limit}")
+    return b"".join(chunks)
+
+
+def read_text(path: str | Path, what: str = "config file", limit: int | None = None, *,
+              follow: bool = True) -> str:
+    """The text of a regular file (:func:`read_bytes`), decoded as UTF-8 (TOML and JSON require
+    it; hexaleg's XML files too).
+
+    Raises:
+        ConfigError: as :func:`read_bytes`, or not UTF-8 (the message names the byte offset
+            and how to convert the file).
+    """
+    data = read_bytes(path, what, limit, follow=follow)
     try:
         return data.decode("utf-8")
     except UnicodeDecodeError as e:
         raise ConfigError(f"{what} {path} is not UTF-8 text: byte {data[e.start]:#04x} at offset "
                           f"{e.start} ({e.reason}); save it as UTF-8 (e.g. iconv -f latin1 -t "
                           "utf-8)") from None
+
+
+def _no_constant(name: str) -> float:
+    raise ValueError(f"{name} is not a JSON number (JSON has no NaN or Infinity)")
+
+
+def _finite_float(text: str) -> float:
+    value = float(text)
+    if not math.isfinite(value):
+        raise ValueError(f"{text} is beyond the largest float (about 1.8e308)")
+    return value
+
+
+def read_json(path: str | Path, what: str = "JSON file", limit: int | None = None, *,
+              follow: bool = True) -> dict[str, Any]:
+    """A JSON object from a regular file (:func:`read_text`). ``NaN``, ``Infinity`` and
+    ``-Infinity`` (which Python's json accepts and JSON does not) and numbers beyond a float
+    (``1e400``) are refused, so every number read is finite.
+
+    Raises:
+        ConfigError: as :func:`read_text`, not JSON, a non-finite number, or not an object.
+    """
+    text = read_text(path, what, limit, follow=follow)
+    try:
+        data = json.loads(text, parse_constant=_no_constant, parse_float=_finite_float)
+    except (ValueError, RecursionError) as e:
+        raise ConfigError(f"cannot read {what} {path}: not valid JSON: {e}") from None
+    if not isinstance(data, dict):
+        raise ConfigError(f"{what} {path}: expected a JSON object, got {type(data).__name__}")
+    return data
+
+
+def write_file(path: str | Path, data: bytes | str, what: str = "file") -> Path:
+    """Write ``data`` to ``path`` without following a symbolic link there: to a new hidden file
+    beside it (``O_CREAT | O_EXCL | O_NOFOLLOW``), then renamed over it, so a link at ``path``
+    is replaced, never written through, and readers see the old file or the whole new one.
+
+    Raises:
+        OutputError: the file cannot be written (named).
+    """
+    path = Path(path)
+    raw = data.encode("utf-8") if isinstance(data, str) else data
+    tmp = path.with_name(f".{path.name}.{os.getpid()}-{secrets.token_hex(4)}.tmp")
+    flags = (os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0)
+             | getattr(os, "O_CLOEXEC", 0))
+    try:
+        fd = os.open(tmp, flags, 0o644)
+        try:
+            view = memoryview(raw)
+            while view:
+                view = view[os.write(fd, view):]
+        finally:
+            os.close(fd)
+        os.replace(tmp, path)
+    except OSError as e:
+        with contextlib.suppress(OSError):
+            tmp.unlink()
+        raise OutputError(f"cannot write {what} {path}: {e.strerror or e}") from e
+    return path
 
 
 def load_toml(path: str | Path) -> dict[str, Any]:
