@@ -161,3 +161,36 @@ def test_a_zombie_does_not_run():
     finally:
         child.wait()
     assert not lock_module.running(child.pid)
+
+
+def test_a_link_at_the_lock_is_refused_and_its_target_kept(tmp_path):
+    """DIR/.lock a symbolic link to another file: the sweep refuses (it used to overwrite the
+    target with its lock record and exit 0)."""
+    target = tmp_path / "precious.txt"
+    target.write_text("keep me")
+    sweep = tmp_path / "sweep"
+    sweep.mkdir()
+    (sweep / LOCK).symlink_to(target)
+    with pytest.raises(OutputError, match=r"\.lock is a symbolic link .*remove the link"):
+        DirectoryLock(sweep)
+    assert target.read_text() == "keep me"
+    (sweep / LOCK).unlink()
+    (sweep / LOCK).symlink_to(tmp_path / "missing")  # a dangling link: not created through
+    with pytest.raises(OutputError, match="symbolic link"):
+        DirectoryLock(sweep)
+    assert not (tmp_path / "missing").exists()
+
+
+def test_a_hard_link_or_a_pipe_at_the_lock_is_refused(tmp_path):
+    target = tmp_path / "precious.txt"
+    target.write_text("keep me")
+    sweep = tmp_path / "sweep"
+    sweep.mkdir()
+    os.link(target, sweep / LOCK)
+    with pytest.raises(OutputError, match=r"hard link shared with 1 other name"):
+        DirectoryLock(sweep)
+    assert target.read_text() == "keep me"
+    (sweep / LOCK).unlink()
+    os.mkfifo(sweep / LOCK)
+    with pytest.raises(OutputError, match="not a regular file"):
+        DirectoryLock(sweep)

@@ -200,3 +200,18 @@ def test_a_directory_of_the_unlocked_layout_is_resumed(tmp_path):
     with ResultStore(out, SPEC) as store:
         assert store.finished() == {0, 1}
     assert (out / MANIFEST).exists() and not (out / LEGACY_MANIFEST).exists()
+
+
+def test_a_manifest_that_is_a_link_or_a_device_is_refused(tmp_path):
+    """The manifest is read by the bounded reader, not through a link: a link to /dev/zero
+    would fill memory, one to a pipe would hang."""
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / MANIFEST).symlink_to("/dev/zero")
+    with pytest.raises(ConfigError, match=r"not a hexaleg sweep manifest: .*symbolic link"):
+        ResultStore(out, SPEC)
+    (out / MANIFEST).unlink()
+    os.mkfifo(out / MANIFEST)
+    with pytest.raises(ConfigError, match=r"not a regular file"):
+        ResultStore(out, SPEC)
+    assert not (out / ".lock").exists()  # the lock is released

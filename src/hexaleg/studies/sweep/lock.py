@@ -19,12 +19,14 @@ import contextlib
 import json
 import os
 import socket
+import stat
 import sys
 import time
 from pathlib import Path
 from typing import Any
 
-from hexaleg.errors import DirectoryLockedError, OutputError
+from hexaleg.config import read_json
+from hexaleg.errors import ConfigError, DirectoryLockedError, OutputError
 
 try:
     import fcntl
@@ -76,12 +78,37 @@ def _describe(info: dict[str, Any]) -> str:
             f"{info.get('started', '?')}")
 
 
+MAX_LOCK_BYTES = 64 * 1024
+"""Largest lock file read back, B (a holder's record is a few hundred)."""
+_NOFOLLOW = getattr(os, "O_NOFOLLOW", 0)
+
+
 def _read(path: Path) -> dict[str, Any]:
+    """The holder's record in a lock file, or {} (missing, unreadable, a link, not a record)."""
     try:
-        info = json.loads(path.read_text(encoding="utf-8") or "{}")
-    except (OSError, ValueError):
+        return read_json(path, "sweep lock", MAX_LOCK_BYTES, follow=False)
+    except ConfigError:
         return {}
-    return info if isinstance(info, dict) else {}
+
+
+def _not_a_link(path: Path) -> None:
+    """Refuse a lock path that is a symbolic link (whatever it points to)."""
+    if path.is_symlink():
+        raise OutputError(f"the sweep lock {path} is a symbolic link (to {os.readlink(path)}); "
+                          "hexaleg never writes through a link in a directory it owns: remove "
+                          "the link, or give the sweep another --out directory")
+
+
+def _check_own(path: Path, fd: int) -> None:
+    """Refuse an opened lock that is not a regular file of its own (a hard link to another
+    file would be truncated with it)."""
+    info = os.fstat(fd)
+    if not stat.S_ISREG(info.st_mode) or info.st_nlink > 1:
+        kind = ("not a regular file" if not stat.S_ISREG(info.st_mode)
+                else f"a hard link shared with {info.st_nlink - 1} other name(s)")
+        raise OutputError(f"the sweep lock {path} is {kind}; hexaleg writes its lock only into "
+                          "a file of its own: remove it, or give the sweep another --out "
+                          "directory")
 
 
 class DirectoryLock:
@@ -126,13 +153,15 @@ class DirectoryLock:
     def _acquire_flock(self) -> None:
         assert fcntl is not None
         while True:
-            fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
+            _not_a_link(self.path)
+            fd = os.open(self.path, os.O_RDWR | os.O_CREAT | os.O_NONBLOCK | _NOFOLLOW, 0o644)
             try:
+                _check_own(self.path, fd)
                 fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
             except BlockingIOError:
                 os.close(fd)
                 raise self._refuse(_read(self.path)) from None
-            except OSError:
+            except (OSError, OutputError):
                 os.close(fd)
                 raise
             try:  # the holder may have released (removed) the file between open and flock
@@ -153,7 +182,7 @@ class DirectoryLock:
     def _acquire_exclusive(self) -> None:  # pragma: no cover - Windows
         for _ in range(3):
             try:
-                fd = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o644)
+                fd = os.open(self.path, os.O_WRONLY | os.O_CREAT | os.O_EXCL | _NOFOLLOW, 0o644)
             except FileExistsError:
                 old = _read(self.path)
                 if old.get("host") == socket.gethostname() and isinstance(old.get("pid"), int) \

@@ -39,6 +39,7 @@ from pathlib import Path
 from types import TracebackType
 from typing import TYPE_CHECKING, Any, BinaryIO
 
+from hexaleg.config import read_json
 from hexaleg.errors import ConfigError, HexalegWarning, OutputError
 from hexaleg.studies.sweep.lock import DirectoryLock
 
@@ -94,8 +95,10 @@ def _write_atomic(path: Path, write: Callable[[BinaryIO], object]) -> None:
         OSError: the file cannot be written.
     """
     tmp = _temporary(path)
-    try:
-        with open(tmp, "wb") as f:
+    try:  # a new file of its own: never through a link or into an existing file
+        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0),
+                     0o644)
+        with os.fdopen(fd, "wb") as f:
             write(f)
             f.flush()
             os.fsync(f.fileno())
@@ -179,11 +182,11 @@ class ResultStore:
         path, legacy = self.directory / MANIFEST, self.directory / LEGACY_MANIFEST
         if not path.exists() and legacy.exists():
             os.replace(legacy, path)
-        if path.exists():
-            try:
-                manifest = json.loads(path.read_text(encoding="utf-8"))
+        if path.exists() or path.is_symlink():
+            try:  # bounded, a regular file, not through a link
+                manifest = read_json(path, "sweep manifest", follow=False)
                 old = manifest["spec"]
-            except (OSError, ValueError, KeyError, TypeError) as e:
+            except (ConfigError, KeyError, TypeError) as e:
                 raise ConfigError(f"{path} is not a hexaleg sweep manifest: {e}") from e
             diff = spec_differences(old, self.spec)
             if diff:
