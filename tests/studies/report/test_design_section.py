@@ -4,10 +4,11 @@ when given its design.json, and says how to get one otherwise."""
 from __future__ import annotations
 
 import json
+import os
 
 import pytest
 
-from hexaleg.errors import ConfigError
+from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.outputs.html import render_html
 from hexaleg.studies.design.config import DesignConfig
 from hexaleg.studies.design.write import write_design
@@ -93,3 +94,48 @@ def test_a_missing_design_says_how_to_make_one(tmp_path):
     with pytest.raises(ConfigError, match=r"nope\.json"):
         build_report(cfg, progress=steps.append)
     assert steps == []
+
+
+def _hand_made(robot_name="hexaleg", joint="LF_femur", saving=12.5):
+    """The keys the section reads, as hexaleg design writes them (no design run needed)."""
+    q = {"value": saving, "unit": "%"}
+    return {"robot": {"name": robot_name}, "settings": {"metric": "electrical"},
+            "gait": {"samples": 100}, "worst": {"electrical": {"saving": q, "condition": None}},
+            "recommended": {"label": "linear", "groups": ["femur"], "parts": [],
+                            "saving": {"electrical": q}, "net_saving": {"electrical": q},
+                            "spring_mass": {"value": 0.01, "unit": "kg"},
+                            "springs": [{"family": "linear", "joint": joint, "parameters": {}}]}}
+
+
+def test_a_design_for_another_robot_is_refused(tmp_path, robot):
+    """A solo12 design used to lead a hexaleg report with "Fit these springs … on haa, hfe"."""
+    path = tmp_path / "design.json"
+    path.write_text(json.dumps(_hand_made()))
+    assert design_section(path, robot)["label"] == "linear"
+    path.write_text(json.dumps(_hand_made("solo12", "FL_HFE")))
+    with pytest.raises(InvalidParameterError, match=r"robot\.name = 'solo12'; allowed: a design "
+                                                    r"of the report's robot, 'hexaleg'"):
+        design_section(path, robot)
+    path.write_text(json.dumps(_hand_made("hexaleg", "FL_HFE")))
+    with pytest.raises(UnknownNameError, match=r"'FL_HFE'; valid joints in .*LF_femur"):
+        design_section(path, robot)
+
+
+@pytest.mark.parametrize(("text", "error", "says"), [
+    ("NaN", ConfigError, "NaN is not a JSON number"),
+    ("Infinity", ConfigError, "Infinity is not a JSON number"),
+    ("1e400", ConfigError, "1e400 is beyond the largest float"),
+    ('"12 %"', InvalidParameterError, r"worst\.electrical\.saving = '12 %'")])
+def test_non_finite_numbers_are_not_copied_into_the_report(tmp_path, robot, text, error, says):
+    """NaN/inf in design.json used to reach report.json and the headline ("saving nan %")."""
+    path = tmp_path / "design.json"
+    path.write_text(json.dumps(_hand_made()).replace('"value": 12.5', f'"value": {text}', 1))
+    with pytest.raises(error, match=says):
+        design_section(path, robot)
+
+
+def test_a_design_device_or_pipe_is_refused(tmp_path):
+    os.mkfifo(tmp_path / "design.json")
+    for path in ("/dev/zero", tmp_path / "design.json"):
+        with pytest.raises(ConfigError, match=r"not a regular file.*hexaleg design --out DIR"):
+            design_section(path)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 
 import numpy as np
 import pytest
@@ -79,3 +80,37 @@ def test_missing_or_broken_files_are_config_errors(tmp_path, robot):
     (tmp_path / "bad.json").write_text("{")
     with pytest.raises(ConfigError, match="cannot read"):
         read_design(tmp_path / "bad.json", robot)
+
+
+def test_design_files_get_the_checks_config_files_get(tmp_path, robot):
+    """--springs /dev/zero used to fill memory, a named pipe to hang: refused by name."""
+    fifo = tmp_path / "design.json"
+    os.mkfifo(fifo)
+    for path in ("/dev/zero", fifo, tmp_path):
+        with pytest.raises(ConfigError, match=r"is not a regular file"):
+            read_design(path, robot)
+    nan = tmp_path / "nan.json"
+    nan.write_text('{"springs": {"LF_femur": {"family": "linear", "parameters": '
+                   '{"stiffness": {"value": NaN, "unit": "N·m/rad"}}}}}')
+    with pytest.raises(ConfigError, match=r"NaN is not a JSON number"):
+        read_design(nan, robot)
+
+
+@pytest.mark.parametrize("data", [
+    {"robot": {"name": "hexaleg"}, "recommended": {"label": "x"}},
+    {"robot": {"name": "hexaleg"}, "recommended": {"label": "x", "springs": []}},
+    {"robot": "hexaleg", "springs": []}, {"springs": {}}])
+def test_a_design_without_springs_is_refused(tmp_path, robot, data):
+    """A design.json with its springs removed used to simulate as a "springs" run with none."""
+    with pytest.raises(ConfigError, match=r"no springs .*at least one spring"):
+        read_design(_write(tmp_path, data), robot)
+
+
+def test_a_one_sided_spring_beyond_the_joint_range_is_refused_in_files(tmp_path, robot):
+    """Degrees written as radians: the contact at 90 rad lies beyond the femur's range."""
+    data = {"springs": [{"family": "one_sided", "joint": "LF_femur", "parameters": {
+        "stiffness": {"value": 0.5, "unit": "N·m/rad"}, "contact": {"value": 90.0, "unit": "rad"},
+        "side": "above"}}]}
+    with pytest.raises(InvalidParameterError, match=r"OneSidedSpring on LF_femur .*acts above "
+                                                    r"90 rad.*can never engage"):
+        read_design(_write(tmp_path, data), robot)

@@ -155,8 +155,8 @@ def build_report(config: ReportConfig | None = None, *, robot: Robot | None = No
     def step(msg: str) -> None:
         say(f"{msg} ({time.perf_counter() - t0:.1f} s)")
 
-    design = design_section(cfg.report.design)  # a bad design.json fails before any work
     robot = robot or load_robot()
+    design = design_section(cfg.report.design, robot)  # a bad design.json fails before any work
     if cfg.payload is not None:  # carried on the base through dynamics, forces and design
         robot = cfg.payload.attach(robot)
     step(f"robot {robot.name}: {robot.nj} joints, {robot.mass:.3f} kg")

@@ -23,11 +23,11 @@ entries (as ``simulate.json`` records its springs).
 
 from __future__ import annotations
 
-import json
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+from hexaleg.config import read_json
 from hexaleg.design.spring_json import spring_entry, spring_from_entry
 from hexaleg.errors import ConfigError, InvalidParameterError
 from hexaleg.robot.model import Robot
@@ -75,21 +75,16 @@ def _entries(data: Mapping[str, Any], where: str) -> tuple[list[Any], Any]:
 
 
 def read_document(path: str | Path) -> Mapping[str, Any]:
-    """A design file's JSON object.
+    """A design file's JSON object, through the one bounded reader
+    (:func:`hexaleg.config.read_json`: a regular file of at most
+    :data:`~hexaleg.config.MAX_TEXT_BYTES`, UTF-8, no NaN or Infinity).
 
     Raises:
-        ConfigError: the file is missing, unreadable, not JSON or not a JSON object.
+        ConfigError: the file is missing, not a regular file (a pipe, ``/dev/zero``, a
+            directory), too large, unreadable, not JSON, holds NaN/Infinity or is not a JSON
+            object.
     """
-    path = Path(path)
-    try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError as e:
-        raise ConfigError(f"design file not found: {path}") from e
-    except (OSError, ValueError) as e:
-        raise ConfigError(f"cannot read the design file {path}: {e}") from e
-    if not isinstance(data, Mapping):
-        raise ConfigError(f"{path}: expected a JSON object, got {type(data).__name__}")
-    return data
+    return read_json(path, "design file")
 
 
 def read_design(path: str | Path, robot: Robot, robot_name: str | None = None) -> SpringSet:
@@ -117,6 +112,11 @@ def read_design(path: str | Path, robot: Robot, robot_name: str | None = None) -
     if owner is not None and owner not in names:
         raise InvalidParameterError(f"{path}: robot", owner,
                                     f"the simulated robot ({' or '.join(sorted(names))})")
+    if not entries:
+        raise ConfigError(f"{path}: no springs (its {'recommended.' * ('recommended' in data)}"
+                          "springs is empty or missing); a design file names at least one "
+                          "spring, {family, joint, parameters}: without springs there is nothing "
+                          "to simulate or fit (the baseline is the run without them)")
     springs = {}
     for entry in entries:
         joint = entry.get("joint") if isinstance(entry, Mapping) else None
