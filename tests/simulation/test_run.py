@@ -9,9 +9,19 @@ import numpy as np
 import pytest
 
 import hexaleg
+from hexaleg.checks import MEMORY_BUDGET
 from hexaleg.errors import InvalidParameterError, SimulationError
 from hexaleg.robot.springs import DeadZoneSpring, SpringSet
-from hexaleg.simulation.run import Settings, cycle_timestep, simulate
+from hexaleg.simulation import run as run_module
+from hexaleg.simulation.run import (
+    STEP_MARGIN,
+    Settings,
+    check_steps,
+    cycle_timestep,
+    simulate,
+    step_bytes,
+)
+from hexaleg.simulation.stepping import MAX_STEPS
 
 QUICK = Settings(cycles=2, evaluate=1, force_samples=0)
 
@@ -151,3 +161,33 @@ def test_a_reused_baseline_run_gives_the_same_simulation(prepared, optimal, feed
         simulate(prepared.robot, prepared.motion, prepared.motor, other,
                  dataclasses.replace(SHORT, controller="position"), prepared=prepared,
                  baseline=feedforward)
+
+
+@pytest.mark.parametrize("timestep", [float("nan"), 0.0, float("inf"), -1e-4, True, "1e-3"])
+def test_a_timestep_that_is_not_a_positive_number_is_named(timestep):
+    """--timestep nan, 0 or inf used to end in a ValueError or ZeroDivisionError traceback."""
+    with pytest.raises(InvalidParameterError, match=r"invalid timestep = .*a finite timestep > 0"):
+        Settings(timestep=timestep)
+
+
+def test_steps_are_checked_against_the_budget_before_anything_is_allocated(robot, monkeypatch):
+    """--timestep 1e-8 and --cycles 10000 used to allocate gigabytes before any bound."""
+    cost = step_bytes(robot)
+    assert 1860 < cost / STEP_MARGIN < 2100  # 1860 B a step measured on this robot
+    high = min(MEMORY_BUDGET // cost, MAX_STEPS)
+    assert check_steps(robot, Settings(), 1.0, 5e-4) == 8000
+    with pytest.raises(InvalidParameterError, match=rf"invalid timestep = 1e-08; allowed: at most "
+                                                    rf"{high} steps .*a timestep >= "):
+        check_steps(robot, Settings(timestep=1e-8), 1.0, 1e-8)
+    with pytest.raises(InvalidParameterError, match=r"invalid cycles = 10000; .*at most \d+ "
+                                                    r"cycles at this timestep"):
+        check_steps(robot, Settings(cycles=10_000, evaluate=2), 1.0, 5e-4)
+
+    def never(*_args, **_kwargs):  # nothing is prepared, built or allocated first
+        raise AssertionError("prepared before the bound was checked")
+
+    monkeypatch.setattr(run_module, "prepare", never)
+    monkeypatch.setattr(run_module, "build_model", never)
+    motion = hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=100))
+    with pytest.raises(InvalidParameterError, match="invalid timestep = 1e-08"):
+        simulate(robot, motion, None, None, Settings(timestep=1e-8))

@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from hexaleg.checks import integer
+from hexaleg.checks import MEMORY_BUDGET, integer, real
 from hexaleg.config import from_mapping
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.dynamics.energy import saving
@@ -39,6 +39,8 @@ VERDICTS: tuple[str, ...] = ("walks", "stalled", "fell", "diverged")
 distance; the base fell; the integration diverged."""
 STALL = 0.5
 """A run that covers less than this fraction of the planned distance per cycle stalled."""
+STEP_MARGIN = 2
+"""Margin on the memory one simulation step costs (:func:`step_bytes`)."""
 
 
 @dataclass(frozen=True)
@@ -84,6 +86,9 @@ class Settings:
     force_samples: int = 200
 
     def __post_init__(self) -> None:
+        if self.timestep is not None:
+            real("timestep", self.timestep, low=0.0, low_open=True,
+                 allowed="a finite timestep > 0 s (e.g. 0.0005), or none for the automatic one")
         self.servo()
         self.ground(ContactParams().mu)
         integer("cycles", self.cycles, low=2, high=10_000)
@@ -198,6 +203,47 @@ class Simulation:
         return w, b, saving(w, b)
 
 
+def step_bytes(robot: Robot) -> int:
+    """Memory one simulation step of ``robot`` costs while it runs, B: the reference, the
+    controls, MuJoCo's states and sensors and their copies, ``6 nj + 2 (nq + nv) + nj + 3 n_legs``
+    floats (1936 B on the default robot, where 1860 B was measured with tracemalloc over a
+    whole run), times :data:`STEP_MARGIN`."""
+    floats = 7 * robot.nj + 2 * (robot.model.nq + robot.model.nv) + 3 * len(robot.legs)
+    return STEP_MARGIN * 8 * floats
+
+
+def check_steps(robot: Robot, settings: Settings, period: float, timestep: float) -> int:
+    """The steps of a run, checked against the memory budget and
+    :data:`~hexaleg.simulation.stepping.MAX_STEPS` before anything is allocated.
+
+    Args:
+        robot: The robot (the cost of a step, :func:`step_bytes`).
+        settings: The settings (:attr:`Settings.cycles`).
+        period: The gait's period, s.
+        timestep: The simulation's timestep, s.
+
+    Raises:
+        InvalidParameterError: naming the timestep (or the cycles) and the bound: the fewest
+            steps it allows and the smallest timestep that fits.
+    """
+    cost = step_bytes(robot)
+    high = min(MEMORY_BUDGET // cost, stepping.MAX_STEPS)
+    per_cycle = period / timestep
+    if settings.cycles * per_cycle <= high:
+        return settings.cycles * round(per_cycle)
+    smallest = settings.cycles * period / high
+    why = (f"at most {high} steps a run ({cost / 1024:.2f} kB a step of {robot.name} fill "
+           f"hexaleg's memory budget of {MEMORY_BUDGET / 1024**3:g} GiB at "
+           f"{MEMORY_BUDGET // cost}; {stepping.MAX_STEPS} bound the time)")
+    name, value = ("timestep", timestep) if settings.timestep is not None else (
+        "cycles", settings.cycles)
+    fix = (f"a timestep >= {smallest:.3g} s or fewer cycles" if name == "timestep" else
+           f"at most {int(high // math.ceil(per_cycle))} cycles at this timestep")
+    raise InvalidParameterError(
+        name, value, f"{why}; {settings.cycles} cycles of {period:g} s at {timestep:g} s are "
+        f"{settings.cycles * per_cycle:.3g} steps: {fix}")
+
+
 def cycle_timestep(timestep: float, period: float) -> float:
     """The largest timestep ≤ ``timestep`` that divides the period, s."""
     return period / math.ceil(period / timestep - 1e-9)
@@ -275,7 +321,9 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
 
     Raises:
         InvalidParameterError: bad settings, a timestep too large for the gait or for explicit
-            stability, a non-periodic motion.
+            stability, a run of more steps than the memory budget allows (a timestep too small
+            or too many cycles, :func:`check_steps`: refused before the analysis when the
+            timestep is given), a non-periodic motion.
         UnknownNameError: springs on joints the robot does not have.
         InfeasibleForcesError: the analysis has no admissible contact forces.
         TorqueLimitError: the analysis needs more than the motor's stall torque.
@@ -286,6 +334,8 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
     if not motion.periodic or motion.fixed_base:
         raise InvalidParameterError("motion", "a fixed-base or non-periodic motion",
                                     "a periodic gait (hexaleg.tripod_gait)")
+    if settings.timestep is not None:  # before the analysis and any model: nothing allocated
+        check_steps(robot, settings, motion.period, settings.timestep)
     prepared = prepared or prepare(robot, motion, motor=motor, contact=contact)
     analysis = prepared.evaluate(springs, objective)
     base = prepared.evaluate(None, objective)
@@ -298,6 +348,7 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
     dt = baseline.baseline.sim.timestep if baseline is not None else cycle_timestep(
         settings.timestep if settings.timestep is not None else
         automatic_timestep(robot, motion, prepared.motor, servo, ground), motion.period)
+    check_steps(robot, settings, motion.period, dt)
     runs = {} if baseline is None else {"baseline": baseline.baseline}
     for name, s, a in (("springs", springs, analysis), ("baseline", SpringSet(), base)):
         if name in runs:
