@@ -8,7 +8,14 @@ import pytest
 
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.robot.model import load_robot
-from hexaleg.robot.springs import DeadZoneSpring, LinearSpring, SpringSet
+from hexaleg.robot.springs import (
+    DeadZoneSpring,
+    LinearSpring,
+    OneSidedSpring,
+    PreloadedSpring,
+    SpringSet,
+    StiffeningSpring,
+)
 
 
 def test_spring_set_torques_columns(robot):
@@ -110,3 +117,29 @@ def test_springs_must_be_a_mapping_and_a_dead_zone_must_be_able_to_engage(robot)
     # a dead zone that ends inside the range on one side may engage: accepted
     one_side = DeadZoneSpring(stiffness=1.0, theta_k=2.0, neutral=1.0)
     assert SpringSet({"LF_femur": one_side}).torques(robot, q).shape == (3, robot.nj)
+
+
+@pytest.mark.parametrize(("spring", "says"), [
+    (OneSidedSpring(stiffness=0.5, contact=90.0), r"k acts above 90 rad"),
+    (OneSidedSpring(stiffness=0.5, contact=-3.0, side="below", preload=0.1),
+     r"k acts below -3 rad, preload acts below -3 rad"),
+    (PreloadedSpring(stiffness=0.5, preload=0.1, theta_k=3.0), r"k_plus acts above 3 rad, k_minus acts below -3 rad, preload_plus acts above 3 rad, "
+     r"preload_minus acts below -3 rad"),
+    (StiffeningSpring(above=((2.7, 1.0), (3.0, 2.0))), r"k_above_1 acts above 2\.7 rad, k_above_2 acts above 3 rad")])
+def test_every_family_must_be_able_to_engage(robot, spring, says):
+    """The rule a dead zone had, for every family: a one-sided contact outside the femur's
+    ±2.618 rad (degrees written as radians) used to be accepted and save a silent 0 %."""
+    with pytest.raises(InvalidParameterError, match=rf"on LF_femur = '{says}'; allowed: a spring "
+                                                    r"that engages inside the joint's range "
+                                                    r"\[-2\.618, 2\.618\] rad"):
+        SpringSet({"LF_femur": spring}).columns(robot)
+
+
+def test_springs_that_engage_somewhere_in_the_range_are_accepted(robot):
+    ok = {"LF_femur": OneSidedSpring(stiffness=0.5, contact=2.5),
+          "LF_tibia": OneSidedSpring(stiffness=0.5, contact=-2.5, side="below"),
+          "LF_coxa": StiffeningSpring(above=((2.5, 1.0), (3.0, 2.0))),
+          "RF_femur": PreloadedSpring(stiffness=0.5, preload=0.0, theta_plus=3.0,
+                                      theta_minus=-1.0),
+          "RF_tibia": OneSidedSpring(stiffness=0.0, contact=90.0)}  # no magnitude: no spring
+    assert len(SpringSet(ok).columns(robot)) == 5

@@ -27,23 +27,52 @@ Spring = DeadZoneSpring | TermSpring
 from basis terms (linear, preloaded, one-sided, stiffening)."""
 
 
+ENGAGES_BELOW = ("above", "step_above")
+"""Term kinds that act above their angle (the rest of their kind act below it, or everywhere)."""
+ENGAGES_ABOVE = ("below", "step_below")
+
+
+def _term_engages(kind: str, angle: float, lo: float, hi: float) -> bool:
+    """Whether a basis term acts somewhere inside the joint's range ``(lo, hi)``."""
+    if kind in ENGAGES_BELOW:
+        return angle < hi
+    if kind in ENGAGES_ABOVE:
+        return angle > lo
+    return True  # linear, constant: everywhere
+
+
 def _check_engages(joint: str, spring: Spring, robot: Robot) -> None:
-    """Refuse a dead zone that holds the joint's whole range of motion (its URDF limits): the
-    main spring could never engage, on any motion, and the "saving" would be a silent 0 %."""
-    if not isinstance(spring, DeadZoneSpring):
-        return
+    """Refuse a spring that cannot act anywhere in the joint's range of motion (its URDF
+    limits), whatever its family: a dead zone that holds the whole range, a one-sided spring
+    whose contact angle lies beyond the range on the side it engages (degrees written as
+    radians), stages or preloads past the limits. It could never engage, on any motion, and
+    the "saving" would be a silent 0 %. A spring whose magnitudes are all zero is no spring and
+    is not refused; terms of zero magnitude do not count."""
     model = robot.model
     iq = model.joints[model.getJointId(joint)].idx_q
     lo, hi = float(model.lowerPositionLimit[iq]), float(model.upperPositionLimit[iq])
     if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi) or abs(hi - lo) > 1e6:
-        return  # no limits: any dead zone may engage
-    low, high = spring.neutral + spring.th_minus, spring.neutral + spring.th_plus
-    if low <= lo and high >= hi:
-        raise InvalidParameterError(
-            f"dead zone of the spring on {joint}", f"[{low:.4g}, {high:.4g}] rad",
-            f"a dead zone that ends inside the joint's range [{lo:.4g}, {hi:.4g}] rad (URDF "
-            "limits): this one holds the whole range, so the spring can never engage; narrow "
-            "theta_k (or theta_minus/theta_plus) or move its neutral")
+        return  # no limits: any spring may engage
+    limits = f"the joint's range [{lo:.4g}, {hi:.4g}] rad (URDF limits)"
+    if isinstance(spring, DeadZoneSpring):
+        low, high = spring.neutral + spring.th_minus, spring.neutral + spring.th_plus
+        if low <= lo and high >= hi:
+            raise InvalidParameterError(
+                f"dead zone of the spring on {joint}", f"[{low:.4g}, {high:.4g}] rad",
+                f"a dead zone that ends inside {limits}: this one holds the whole range, so the "
+                "spring can never engage; narrow theta_k (or theta_minus/theta_plus) or move its "
+                "neutral")
+        return
+    acting = [(t, x) for t, x in zip(spring.terms(), spring.magnitudes(), strict=True) if x != 0]
+    if not acting or any(_term_engages(t.kind, t.angle, lo, hi) for t, _ in acting):
+        return
+    angles = ", ".join(f"{t.name or t.kind} acts {'above' if t.kind in ENGAGES_BELOW else 'below'}"
+                       f" {t.angle:.4g} rad" for t, _ in acting)
+    raise InvalidParameterError(
+        f"{type(spring).__name__} on {joint}", angles,
+        f"a spring that engages inside {limits}: this one acts only beyond the limits, so it "
+        "can never engage; give its contact angles (or breakpoints) inside the range, in "
+        "radians (absolute joint angles)")
 
 
 class SpringSet(Mapping[str, Spring]):
