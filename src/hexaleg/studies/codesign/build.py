@@ -1,0 +1,209 @@
+"""``hexaleg codesign``: the gait and its springs designed together for a required speed.
+
+:func:`codesign` runs, for one robot, speed and pattern:
+
+1. the robot's default gait at that speed (:meth:`GaitParams.for_robot`, the speed winning over
+   the stride), its static margin — the default ``min_static_margin`` — and its energy;
+2. the **co-design**: the outer search (:func:`hexaleg.design.gait_search.search`, restarted
+   Nelder–Mead) over body height, foot radius, step height, duty factor and period, each
+   candidate with the inner spring program's optimum
+   (:func:`hexaleg.design.codesign.optimal_springs` of ``family`` on every joint class,
+   electrical metric: fast and convex), at ``samples``
+   samples a cycle; and the gait alone (the same search without springs) for the row "best gait
+   without springs";
+3. the four rows at ``final_samples`` (:mod:`hexaleg.studies.codesign.result`), the sequential
+   design (the gait alone, then its springs) beside them;
+4. the curve of energy per metre against speed for the default and the co-designed gait, with
+   and without their springs (the gait's other parameters held, the stride ``v · period``);
+5. the co-designed gait simulated forward in MuJoCo with and without its springs
+   (:func:`hexaleg.simulation.run.simulate`);
+6. with ``rules``, the full spring rules of ``hexaleg design`` (tolerance, envelope, fatigue,
+   arbor, parsimony, simulated ranking: :func:`hexaleg.studies.design.build.build_design`)
+   applied to the chosen gait only — too slow for the inner loop — whose recommendation is the
+   springs to buy.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import time
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import numpy as np
+
+from hexaleg.checks import integer, real
+from hexaleg.design.gait_evaluation import (
+    PARAMETERS,
+    Constraints,
+    GaitPoint,
+    evaluate_gait,
+    with_values,
+)
+from hexaleg.design.gait_search import default_space, search
+from hexaleg.errors import HexalegError, InvalidParameterError
+from hexaleg.motion.body import body_height, nominal_footholds
+from hexaleg.motion.legged import gait
+from hexaleg.motion.params import GaitParams
+from hexaleg.motion.patterns import check_pattern
+from hexaleg.robot.model import Robot
+from hexaleg.robot.registry import description
+from hexaleg.studies.codesign.result import CodesignResult, Row, SpeedPoint
+
+SPEED_FACTORS = (0.5, 0.75, 1.0, 1.25, 1.5)
+"""The speed curve's speeds, as factors of the required speed."""
+
+
+def default_gait(robot: Robot, name: str, speed: float, pattern: str | None, samples: int
+                 ) -> GaitParams:
+    """The robot's default gait at ``speed`` with its body height and foot radius resolved
+    (the stand pose's foot depth and mean horizontal foothold distance)."""
+    base = GaitParams.for_robot(name)
+    if pattern is not None:
+        base = dataclasses.replace(base, pattern=check_pattern(pattern),
+                                   duty_factor=None)  # type: ignore[arg-type]  # → β₀
+    base = dataclasses.replace(base, samples=samples, speed=float(speed))
+    radius = float(np.linalg.norm(nominal_footholds(robot, base)[:, :2], axis=1).mean())
+    return dataclasses.replace(base, body_height=body_height(robot, base), foot_radius=radius)
+
+
+def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = None, *,
+             constraints: Constraints | None = None, family: str = "linear",
+             samples: int = 100, final_samples: int = 200, max_evaluations: int = 100,
+             restarts: int = 3, curve: bool = True, simulate: bool = True,
+             rules: bool = False, progress: Callable[[str], None] | None = None
+             ) -> CodesignResult:
+    """The gait and springs that cover a metre at ``speed`` for the least electrical energy
+    (module docstring).
+
+    Args:
+        robot: A registered robot or a description TOML.
+        speed: Required speed, m/s, > 0.
+        pattern: A gait pattern (:data:`hexaleg.motion.patterns.PATTERNS`); None: the robot's.
+        constraints: The constraints (default :class:`Constraints`: the default gait's margin).
+        family: The inner spring family (``linear``: no geometry, the fastest).
+        samples: Samples a cycle in the search (≥ 40). final_samples: in the rows (≥ samples).
+        max_evaluations: The co-design search's budget (the gait-alone search gets the same).
+        restarts: Simplex runs of each search.
+        curve: Compute the energy-vs-speed curve. simulate: Simulate the chosen gait.
+        rules: Apply ``hexaleg design``'s full spring rules to the chosen gait (~40 s).
+        progress: Called with one status line per stage.
+
+    Raises:
+        InvalidParameterError: a speed not > 0, sample counts out of range; the default gait
+            itself cannot be made at this speed (named, with its error).
+        UnknownNameError: an unknown robot, pattern or family.
+    """
+    v = real("speed", speed, low=0.0, low_open=True, allowed="a speed > 0 (m/s)")
+    n = integer("samples", samples, low=40, high=2000)
+    n_final = integer("final_samples", final_samples, low=n, high=5000)
+    c = constraints or Constraints()
+    say = progress or (lambda _msg: None)
+    t0 = time.perf_counter()
+    model = description(robot).load()
+    base = default_gait(model, robot, v, pattern, n)
+    groups = list(model.joint_classes)
+    free = functools.partial(evaluate_gait, model, family=family, constraints=c)
+    first = free(base, groups=groups, min_margin=0.0)
+    if first.error is not None:
+        raise InvalidParameterError("speed", v, f"a speed the robot's default gait can walk "
+                                    f"(it fails: {first.error})")
+    margin = c.min_static_margin if c.min_static_margin is not None \
+        else first.measures["static_margin"][0]
+    c = dataclasses.replace(c, min_static_margin=margin)
+    free = functools.partial(evaluate_gait, model, family=family, constraints=c,
+                             min_margin=margin)
+    space = default_space(base, c.min_foot_clearance)
+    say(f"{model.name}: default gait {first.per_metre:.2f} J/m at {v:g} m/s")
+    joint = search(functools.partial(free, groups=groups), base, v, space, springs=True,
+                   reference=first.per_metre, max_evaluations=max_evaluations,
+                   restarts=restarts)
+    say(f"co-design: {joint.value:.2f} J/m after {joint.evaluations} evaluations "
+        f"({joint.wall:.1f} s)")
+    alone = search(functools.partial(free, groups=None), base, v, space, springs=False,
+                   reference=first.per_metre, max_evaluations=max_evaluations,
+                   restarts=restarts)
+    say(f"gait alone: {alone.value:.2f} J/m after {alone.evaluations} evaluations")
+
+    def final(params: GaitParams, springs: bool) -> GaitPoint:
+        point = free(dataclasses.replace(params, samples=n_final),
+                     groups=groups if springs else None)
+        if point.error is not None:
+            raise InvalidParameterError("final_samples", n_final, f"a sampling at which the "
+                                        f"chosen gait still works ({point.error})")
+        return point
+
+    chosen = dataclasses.replace(joint.best.params, samples=n_final)
+    d_sprung, c_sprung = final(base, True), final(chosen, True)
+    g_sprung = final(alone.best.params, True)
+    rows = (Row.of("default gait, no springs", d_sprung, False, model.mass),
+            Row.of("default gait, its best springs", d_sprung, True, model.mass),
+            Row.of("best gait, no springs", g_sprung, False, model.mass),
+            Row.of("best gait, its springs (co-design)", c_sprung, True, model.mass))
+    sequential = Row.of("sequential: best gait alone, then its springs", g_sprung, True,
+                        model.mass)
+    say(f"rows at {n_final} samples ({time.perf_counter() - t0:.1f} s)")
+    points = speed_curve(free, groups, base, chosen, v) if curve else ()
+    simulation = simulated(model, chosen, c_sprung, c) if simulate else {}
+    buy = full_rules(robot, chosen, c, say) if rules else None
+    return CodesignResult(
+        robot=robot, title=model.name, mass=model.mass, speed=v, pattern=base.pattern,
+        family=family, constraints=c, default=dataclasses.replace(base, samples=n_final),
+        chosen=chosen, springs=c_sprung.springs, measures=c_sprung.measures, rows=rows,
+        sequential=sequential, search=joint, gait_search=alone, curve=points,
+        simulation=simulation, rules=buy, samples=n, wall=time.perf_counter() - t0)
+
+
+def speed_curve(free: Callable[..., GaitPoint], groups: Sequence[str], base: GaitParams,
+                chosen: GaitParams, speed: float) -> tuple[SpeedPoint, ...]:
+    """Energy per metre of the default and the chosen gait against speed
+    (:data:`SPEED_FACTORS`), with and without their inner-program springs (NaN where a gait
+    fails at that speed, e.g. a joint too fast)."""
+    out = []
+    for factor in SPEED_FACTORS:
+        v = factor * speed
+        for label, params in (("default", base), ("co-design", chosen)):
+            values = {p: getattr(params, p) for p in PARAMETERS}
+            point = free(with_values(dataclasses.replace(params, samples=base.samples), v,
+                                     values), groups=groups)
+            ok = point.feasible
+            out.append(SpeedPoint(label, v, point.per_metre if ok else float("nan"),
+                                  point.per_metre_springs if ok else float("nan")))
+    return tuple(out)
+
+
+def simulated(robot: Robot, chosen: GaitParams, point: GaitPoint, c: Constraints
+              ) -> dict[str, Any]:
+    """The chosen gait simulated forward in MuJoCo (feedforward + PD servos, default
+    :class:`~hexaleg.simulation.run.Settings`) with and without its springs: planned and
+    walked distance per cycle, the predicted and simulated electrical saving; or the error."""
+    from hexaleg.simulation.run import simulate
+
+    try:
+        motion = gait(robot, chosen)
+        sim = simulate(robot, motion, None, point.springs, contact=c.contact())
+        predicted = sim.predicted("electrical")[2]
+        simulated_ = sim.simulated("electrical")[2]
+        walk = sim.with_springs.walk
+        base_walk = sim.baseline.walk
+    except HexalegError as err:
+        return {"error": f"{type(err).__name__}: {err}"}
+    assert walk is not None and base_walk is not None
+    return {"planned": motion.distance, "walked": walk.distance_per_cycle,
+            "walked_baseline": base_walk.distance_per_cycle, "predicted": predicted,
+            "simulated": simulated_, "controller": sim.settings.controller}
+
+
+def full_rules(robot: str, chosen: GaitParams, c: Constraints,
+               say: Callable[[str], None]) -> Any:
+    """``hexaleg design`` (every rule of issue #30) on the chosen gait; its result."""
+    from hexaleg.studies.design.build import build_design
+    from hexaleg.studies.design.config import DesignConfig
+
+    say("full spring rules on the chosen gait (hexaleg design)")
+    return build_design(DesignConfig(robot=robot, gait=chosen, contact=c.contact()), say)
+
+
+__all__ = ["SPEED_FACTORS", "codesign", "default_gait", "full_rules", "simulated",
+           "speed_curve"]
