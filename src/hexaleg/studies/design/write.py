@@ -11,6 +11,7 @@ program) and the report must stay fast; the report links to it when it sits besi
 from __future__ import annotations
 
 import json
+import math
 import sys
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -20,6 +21,7 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
+from hexaleg.design.tolerance import TolerantSprings
 from hexaleg.errors import OutputError
 from hexaleg.outputs import design_plots, plots
 from hexaleg.outputs.directory import writable_directory
@@ -44,7 +46,8 @@ def _stderr_progress(message: str) -> None:
 
 def figures(r: DesignResult) -> dict[str, Figure]:
     """The design's figures by name: one heat map per robustness map (``map_<a>_<b>``), the
-    Pareto front and the robust design against the nominal one."""
+    Pareto front, the robust design against the nominal one and the saving against a common
+    stop shift (``tolerance``: the tolerant and the tolerance-blind design)."""
     m = r.config.design.metric
     out = {f"map_{mp.axes[0]}_{mp.axes[1]}": design_plots.robustness_heatmap(
         mp.axes, mp.values, 100 * mp.saving[m], m)
@@ -63,7 +66,22 @@ def figures(r: DesignResult) -> dict[str, Figure]:
             [c.short_label() for c in r.robust.conditions],
             {k: 100 * v["robust"] for k, v in sv.items()},
             {k: 100 * v["nominal"] for k, v in sv.items()})
+    if r.tolerance is not None:
+        out["tolerance"] = tolerance_figure(r.tolerance)
     return out
+
+
+def tolerance_figure(t: TolerantSprings) -> Figure:
+    """:func:`~hexaleg.outputs.design_plots.tolerance_figure` of ``t`` in deg and %, the design
+    recommended so named (the tolerant one when its worst case is the better, as the design
+    chooses)."""
+    chosen = "tolerant" if t.worst["tolerant"] > t.worst["blind"] else "blind"
+    names = {"tolerant": f"designed for ±{math.degrees(t.tolerance):g}°",
+             "blind": "tolerance-blind"}
+    names[chosen] += " (recommended)"
+    return design_plots.tolerance_figure(
+        np.degrees(t.shifts), {names[k]: 100 * t.curve[k] for k in names},
+        math.degrees(t.tolerance), {names[k]: 100 * t.worst[k] for k in names}, t.metric)
 
 
 def write_design(out: str | Path = "hexaleg-design", config: DesignConfig | None = None, *,
