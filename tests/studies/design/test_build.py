@@ -96,6 +96,27 @@ def test_map_points_equal_a_fresh_analysis(written, index, cell):
     assert worst == np.nanmin(mp.saving["electrical"]) and where is not None
 
 
+def test_map_slope_and_pattern_settings_are_checked():
+    import math
+
+    from hexaleg.errors import InvalidParameterError, UnknownNameError
+    from hexaleg.studies.design.config import DesignParams
+
+    d = DesignParams()
+    assert d.map_pattern is None
+    np.testing.assert_allclose(np.degrees(d.map_slope), [-15, -7.5, 0, 7.5, 15])
+    assert DesignParams(map_pattern=["wave"], map_slope=[0.1]).map_pattern == ("wave",)
+    with pytest.raises(InvalidParameterError, match=r"design\.map_slope = 1\.6.*\(−π/2, π/2\)"):
+        DesignParams(map_slope=[0.0, 1.6])
+    with pytest.raises(InvalidParameterError, match=r"design\.map_slope"):
+        DesignParams(map_slope=[-math.pi / 2])
+    with pytest.raises(UnknownNameError, match=r"design\.map_pattern 'gallop'.*tripod, trot"):
+        DesignParams(map_pattern=["tripod", "gallop"])
+    for bad in ([], "wave"):
+        with pytest.raises(InvalidParameterError, match=r"design\.map_pattern"):
+            DesignParams(map_pattern=bad)
+
+
 def test_robust_design_never_worse_in_its_worst_case(written):
     rb = written[0].result.robust
     d = rb.design

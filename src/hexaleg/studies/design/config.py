@@ -27,6 +27,7 @@ from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import InvalidParameterError, UnknownNameError
 from hexaleg.motion.limits import MIN_SAMPLES
 from hexaleg.motion.params import GaitParams
+from hexaleg.motion.patterns import PATTERNS
 from hexaleg.simulation.controllers import CONTROLLERS
 
 TABLES: tuple[str, ...] = ("gait", "contact", "design")
@@ -75,6 +76,13 @@ class DesignParams:
         map_stride: Stride factors of the period × stride map.
         map_payload: Payloads (fractions of the robot's mass) of the payload × μ map.
         map_mu: Friction coefficients of the payload × μ map.
+        map_slope: Ground slopes of the slope × pattern map, rad, positive uphill along the
+            walking direction, each in (−π/2, π/2) (default −15°, −7.5°, 0, 7.5°, 15°).
+        map_pattern: Gait patterns of the slope × pattern map
+            (:data:`~hexaleg.motion.patterns.PATTERNS`, each at its own duty factor); None
+            (default): the nominal gait's and every other the robot's legs can walk
+            (:func:`~hexaleg.design.robustness_map.robot_patterns`: tripod, ripple, wave on the
+            hexapod; trot, crawl, pace on a quadruped).
         robust_period: ``[low, high]`` period factors of the robust design's box.
         robust_stride: ``[low, high]`` stride factors of the box.
         robust_payload: ``[low, high]`` payload fractions of the box.
@@ -114,6 +122,8 @@ class DesignParams:
     map_stride: tuple[float, ...] = (0.5, 0.75, 1.0, 1.25, 1.5)
     map_payload: tuple[float, ...] = (0.0, 0.1, 0.2, 0.3, 0.4, 0.5)
     map_mu: tuple[float, ...] = (0.3, 0.45, 0.6, 0.8, 1.0)
+    map_slope: tuple[float, ...] = tuple(math.radians(a) for a in (-15.0, -7.5, 0.0, 7.5, 15.0))
+    map_pattern: tuple[str, ...] | None = None
     robust_period: tuple[float, ...] = (0.75, 1.5)
     robust_stride: tuple[float, ...] = (0.75, 1.25)
     robust_payload: tuple[float, ...] = (0.0, 0.25)
@@ -171,6 +181,23 @@ class DesignParams:
                 ("robust_payload", "fractions of the robot's mass", 0.0, False),
                 ("robust_mu", "friction coefficients", 0.0, True)):
             set_(name, _floats(name, getattr(self, name), low, low_open, what))
+        slopes = self.map_slope
+        if isinstance(slopes, (str, bytes)) or not isinstance(slopes, (list, tuple)) or not slopes:
+            raise InvalidParameterError("design.map_slope", slopes, "a non-empty list of angles "
+                                        "in (−π/2, π/2) rad, positive uphill")
+        set_("map_slope", tuple(real("design.map_slope", a, low=-math.pi / 2, high=math.pi / 2,
+                                     low_open=True, high_open=True,
+                                     allowed="angles in (−π/2, π/2) rad, positive uphill")
+                                for a in slopes))
+        if self.map_pattern is not None:
+            if isinstance(self.map_pattern, str) or not self.map_pattern:
+                raise InvalidParameterError("design.map_pattern", self.map_pattern,
+                                            f"a non-empty list of {', '.join(PATTERNS)}, or "
+                                            "leave it out for the robot's own")
+            for name in self.map_pattern:
+                if name not in PATTERNS:
+                    raise UnknownNameError("design.map_pattern", name, PATTERNS)
+            set_("map_pattern", tuple(self.map_pattern))
         for name in ("robust_period", "robust_stride", "robust_payload", "robust_mu"):
             box = getattr(self, name)
             if len(box) != 2 or box[0] > box[1]:
