@@ -62,12 +62,12 @@ def test_csc_is_scipys_own() -> None:
     same program): nonzeros column-major, rows sorted, explicit zeros dropped."""
     import scipy.sparse as sp
 
-    from hexaleg.design.bundle import _csc
+    from hexaleg.design.bundle import csc
 
     rng = np.random.default_rng(3)
     for shape in ((7, 5), (1, 3), (12, 12)):
         dense = rng.normal(size=shape) * (rng.random(shape) < 0.4)
-        ours, ref = _csc(dense), sp.csc_matrix(dense)
+        ours, ref = csc(dense), sp.csc_matrix(dense)
         for name in ("data", "indices", "indptr"):
             np.testing.assert_array_equal(getattr(ours, name), getattr(ref, name))
         np.testing.assert_array_equal(ours.toarray(), dense)

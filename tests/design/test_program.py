@@ -49,3 +49,27 @@ def test_quadratic_objectives_only(prepared200, femur_linear):
     with pytest.raises(InvalidParameterError, match="objective"):
         solve_design(bad)
     assert optimal_springs(prepared200, ["femur"]).solver["clarabel_solves"] == 1
+
+
+def test_fast_assembly_is_the_sparse_one(prepared200, femur_linear):
+    """The program without explicit samples is handed to Clarabel as the same CSC arrays the
+    scipy.sparse path builds (so the same solve, bit for bit), and the torque gains are cached
+    per problem as einsum computes them."""
+    import scipy.sparse as sp
+
+    from hexaleg.design.program import _Assembler, torque_gains
+
+    problem = femur_linear(prepared200)
+    M = torque_gains(problem)
+    assert torque_gains(problem) is M
+    G = prepared200.gains("joule").G
+    np.testing.assert_array_equal(M, np.einsum("tjs,tsx->tjx", G[:, :, problem.cols],
+                                               problem.B))
+    asm = _Assembler()
+    asm.add(-np.eye(2), np.arange(2), np.zeros(2), None)
+    asm.add(np.array([[1.0, 0.0], [0.5, -2.0]]), np.arange(2), np.ones(2), None)
+    (fast, bf), (ref, br) = asm.dense(2), asm.matrices(2)
+    assert isinstance(ref, sp.csc_matrix)
+    for name in ("data", "indices", "indptr"):
+        np.testing.assert_array_equal(getattr(fast, name), getattr(ref, name))
+    np.testing.assert_array_equal(bf, br)

@@ -74,7 +74,7 @@ class _Cuts:
         return out
 
 
-def _csc(dense: np.ndarray) -> Any:
+def csc(dense: np.ndarray) -> Any:
     """``scipy.sparse.csc_matrix(dense)`` (its nonzeros, column-major, rows sorted) without the
     checks of the sparse constructors — the same arrays, so the same Clarabel solve."""
     import scipy.sparse as sp
@@ -128,7 +128,7 @@ def _qp(cuts: _Cuts, n: int, mode: str, centre: np.ndarray, u: float, G: np.ndar
     cones = [clarabel.NonnegativeConeT(m)]
     if eq.size:
         cones.append(clarabel.ZeroConeT(eq.size))
-    z, status = clarabel_solve(_csc(P), q, _csc(A), b, cones)
+    z, status = clarabel_solve(csc(P), q, csc(A), b, cones)
     if status != "Solved":
         raise InfeasibleForcesError(f"the robust program's model step has no solution "
                                     f"(Clarabel: {status}); design limits no spring meets")

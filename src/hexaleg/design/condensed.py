@@ -38,7 +38,7 @@ import numpy as np
 
 from hexaleg.design.bundle import MODES, minimise
 from hexaleg.design.bundle import TOLERANCE as CERTIFIED
-from hexaleg.design.program import MAX_ROUNDS, DesignProblem
+from hexaleg.design.program import MAX_ROUNDS, DesignProblem, torque_gains
 from hexaleg.design.program_reference import force_constraints, stacked
 from hexaleg.dynamics.contact import violations
 from hexaleg.dynamics.reference import solve_clarabel
@@ -65,7 +65,8 @@ class Condensed:
         gains = p.gains("joule")
         self.c = p.weights("joule")
         self.w = problem.sample_weights
-        self.M = np.einsum("tjs,tsx->tjx", gains.G[:, :, problem.cols], problem.B)
+        self.M = (torque_gains(problem) if problem.objective == "joule" else  # (T, nj, nx)
+                  np.einsum("tjs,tsx->tjx", gains.G[:, :, problem.cols], problem.B))
         self._K = gains.K[:, :, problem.cols]
         self.f0, self.tau0 = gains.f0, gains.tau0
         qd = self.system.qdot

@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from hexaleg.design.bundle import csc
 from hexaleg.dynamics.conic import base_row_space, clarabel_solve, contact_rows
 from hexaleg.dynamics.contact import (
     QUADRATIC_OBJECTIVES,
@@ -114,6 +115,23 @@ def _coo(block: np.ndarray, rows: np.ndarray, cols: np.ndarray
     return rows[i], cols[j], block[i, j]
 
 
+_GAINS: weakref.WeakKeyDictionary[DesignProblem, np.ndarray] = weakref.WeakKeyDictionary()
+"""Each problem's torque gains (:func:`torque_gains`): the electrical search solves a geometry's
+Joule program (its start) and its condensed program on the same problem."""
+
+
+def torque_gains(problem: DesignProblem) -> np.ndarray:
+    """The motor torque per unit magnitude of the Joule-optimal forces, ``M = G B`` per sample
+    (``τ = τ₀ + M x``, :class:`hexaleg.dynamics.solver.QuadraticGains`), shape (T, nj, nx);
+    computed once per problem (einsum: the same bits every time, which the geometry searches'
+    comparisons need)."""
+    if problem not in _GAINS:
+        G = problem.prepared.gains(problem.objective).G
+        _GAINS[problem] = np.einsum("tjs,tsx->tjx", G[:, :, problem.cols], problem.B)
+    return _GAINS[problem]
+
+
+
 _ROWS: weakref.WeakKeyDictionary[StanceSystem, dict[tuple[int, ContactParams], list]] = \
     weakref.WeakKeyDictionary()
 """Each stance system's per-sample constraint blocks (:func:`_sample_rows`), computed once: an
@@ -155,6 +173,13 @@ class _Assembler:
         self.b.append(b)
         self.cones.append(cone)
         self.m += block.shape[0]
+
+    def dense(self, n: int) -> tuple[object, np.ndarray]:
+        """As :meth:`matrices` when no entry is given twice, without scipy.sparse's checks."""
+        A = np.zeros((self.m, n))
+        if self.r:
+            A[np.concatenate(self.r), np.concatenate(self.c)] = np.concatenate(self.v)
+        return csc(A), np.concatenate(self.b) if self.b else np.zeros(0)
 
     def matrices(self, n: int) -> tuple[object, np.ndarray]:
         import scipy.sparse as sp
@@ -211,8 +236,15 @@ def _solve_once(problem: DesignProblem, explicit: np.ndarray, Q: np.ndarray, r: 
             asm.add(np.vstack([-Z, Z]), zcols, np.concatenate([tmax - b, tmax + b]),
                     clarabel.NonnegativeConeT(2 * nj))
     rows_, cols_, vals = (np.concatenate(a) for a in zip(*P_parts, strict=True))
-    P = sp.triu(sp.csc_matrix((vals, (rows_, cols_)), shape=(n, n)), format="csc")
-    A, b = asm.matrices(n)
+    if placed:
+        P = sp.triu(sp.csc_matrix((vals, (rows_, cols_)), shape=(n, n)), format="csc")
+        A, b = asm.matrices(n)
+    else:  # no entry twice: the same CSC arrays built directly (scipy.sparse's checks cost more
+        # than the solve of a program this small)
+        dense = np.zeros((n, n))
+        dense[rows_, cols_] = vals
+        P = csc(np.triu(dense))
+        A, b = asm.dense(n)
     z, status = clarabel_solve(P, np.concatenate(q_parts), A, b, asm.cones)
     forces = {}
     for k, (st, fcols) in placed.items():
@@ -238,8 +270,7 @@ def solve_design(problem: DesignProblem) -> DesignSolution:
     c = prepared.weights(problem.objective)
     w = problem.sample_weights
     Kc = gains.K[:, :, problem.cols]
-    M = np.einsum("tjs,tsx->tjx", gains.G[:, :, problem.cols], problem.B)  # τ = τ₀ + M x
-    F = np.einsum("tfs,tsx->tfx", Kc, problem.B)  # f = f₀ − F x
+    M = torque_gains(problem)  # τ = τ₀ + M x
     Mw = M * (w[:, None, None] * c[None, :, None])
     Q_t = np.einsum("tjx,tjy->txy", Mw, M)
     r_t = np.einsum("tjx,tj->tx", Mw, gains.tau0)
@@ -253,7 +284,7 @@ def solve_design(problem: DesignProblem) -> DesignSolution:
             raise InfeasibleForcesError(
                 f"the spring design program has no solution (Clarabel: {status}); design "
                 f"constraints: {', '.join(sorted(set(problem.labels))) or 'none'}")
-        f = gains.f0 - F @ x
+        f = gains.f0 - np.matmul(Kc, (problem.B @ x)[:, :, None])[:, :, 0]  # f₀ − K B x
         tau = gains.tau0 + M @ x
         bad = violations(system, f, tau, prepared.contact) & condensed
         if not bad.any():
