@@ -197,3 +197,15 @@ def test_browser_plays_the_animation(session):
 @needs_chromium
 def test_browser_page_fetches_nothing(session):
     assert page_requests(session["net"]) == []
+
+
+def test_an_empty_simulation_file_is_named_not_a_traceback(tmp_path, capsys):
+    """view --simulation DIR with an empty motion-springs.npz used to end in an EOFError."""
+    from hexaleg.cli import main
+
+    (tmp_path / "motion-springs.npz").write_bytes(b"")
+    out = tmp_path / "view.html"
+    assert main(["view", "--simulation", str(tmp_path), "--html", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "motion-springs.npz: it is empty (0 bytes)" in err and "Traceback" not in err
+    assert not out.exists()

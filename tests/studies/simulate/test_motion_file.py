@@ -4,11 +4,14 @@ numbers, not through the mapping that wrote it), the round trip, and files that 
 from __future__ import annotations
 
 import dataclasses
+import os
+import zipfile
 
 import numpy as np
 import pytest
 
 from hexaleg.errors import ConfigError, InvalidParameterError, OutputError, UnknownNameError
+from hexaleg.studies.simulate import motion_file
 from hexaleg.studies.simulate.motion_file import (
     FILES,
     RECORD_FPS,
@@ -126,3 +129,43 @@ def test_an_unwritable_file_is_named(written, tmp_path):
     m = read_motion(written / FILES["springs"])
     with pytest.raises(OutputError, match=r"no/m\.npz"):
         write_motion(tmp_path / "no" / "m.npz", m)
+
+
+def test_empty_special_and_inflated_motion_files_are_named(written, tmp_path):
+    """view --simulation with an empty .npz used to end in an EOFError traceback."""
+    empty = tmp_path / "motion-springs.npz"
+    empty.write_bytes(b"")
+    with pytest.raises(ConfigError, match=r"motion-springs\.npz: it is empty \(0 bytes\)"):
+        read_motion(empty)
+    os.mkfifo(tmp_path / "pipe.npz")
+    for path in (tmp_path / "pipe.npz", "/dev/zero", tmp_path):
+        with pytest.raises(ConfigError, match="is not a regular file"):
+            read_motion(path)
+    bomb = tmp_path / "bomb.npz"  # 4 MB of zeros compress to a few kB
+    with zipfile.ZipFile(bomb, "w", zipfile.ZIP_DEFLATED) as z:
+        z.writestr("q.npy", b"\0" * 4_000_000)
+    original = motion_file.MAX_MOTION_BYTES
+    motion_file.MAX_MOTION_BYTES = 1_000_000
+    try:
+        with pytest.raises(ConfigError, match=r"4000000 bytes decompressed; allowed: at most "
+                                              r"1000000"):
+            read_motion(bomb)
+    finally:
+        motion_file.MAX_MOTION_BYTES = original
+
+
+def test_a_motion_file_with_nan_is_refused(written, tmp_path):
+    m = read_motion(written / FILES["springs"])
+    q = m.q.copy()
+    q[1, 3] = np.nan
+    path = write_motion(tmp_path / "nan.npz", dataclasses.replace(m, q=q))
+    with pytest.raises(ConfigError, match=r"nan\.npz: q holds NaN or inf"):
+        read_motion(path)
+
+
+def test_a_motion_file_replaces_a_link_instead_of_writing_through_it(written, tmp_path):
+    target = tmp_path / "precious.txt"
+    target.write_text("keep me")
+    (tmp_path / "m.npz").symlink_to(target)
+    write_motion(tmp_path / "m.npz", read_motion(written / FILES["springs"]))
+    assert target.read_text() == "keep me" and not (tmp_path / "m.npz").is_symlink()

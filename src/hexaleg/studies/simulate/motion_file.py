@@ -39,6 +39,7 @@ neither MuJoCo nor the model: :meth:`SimulatedMotion.check` compares the file wi
 
 from __future__ import annotations
 
+import io
 import math
 import zipfile
 from dataclasses import dataclass, fields
@@ -46,8 +47,9 @@ from pathlib import Path
 
 import numpy as np
 
-from hexaleg.checks import one_of
-from hexaleg.errors import ConfigError, InvalidParameterError, OutputError
+from hexaleg.checks import MEMORY_BUDGET, one_of
+from hexaleg.config import read_bytes, write_file
+from hexaleg.errors import ConfigError, InvalidParameterError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.simulation.measures import contact_forces, forward_states
@@ -172,12 +174,9 @@ def write_motion(path: str | Path, motion: SimulatedMotion) -> Path:
     entries = {f.name: getattr(motion, f.name) for f in fields(motion)}
     for name in ("joint_names", "legs"):
         entries[name] = np.array(entries[name], dtype=str)
-    try:
-        with path.open("wb") as fh:
-            np.savez_compressed(fh, format=FORMAT, **entries)
-    except OSError as e:
-        raise OutputError(f"cannot write the simulated motion to {path}: {e}") from e
-    return path
+    buffer = io.BytesIO()
+    np.savez_compressed(buffer, format=FORMAT, **entries)
+    return write_file(path, buffer.getvalue(), "the simulated motion")
 
 
 def write_motions(out: str | Path, s: Simulation, fps: float = RECORD_FPS) -> list[Path]:
@@ -209,21 +208,37 @@ def motion_path(directory: str | Path, run: str = "springs") -> Path:
     return path
 
 
+MAX_MOTION_BYTES = MEMORY_BUDGET // 4
+"""Largest motion file read, and the most its arrays may hold once decompressed, B: a quarter of
+hexaleg's memory budget (:data:`hexaleg.checks.MEMORY_BUDGET`); a run's file at
+:data:`RECORD_FPS` holds about 110 kB per simulated second of the hexapod."""
+
+
 def read_motion(path: str | Path) -> SimulatedMotion:
-    """Read a motion file written by :func:`write_motion`.
+    """Read a motion file written by :func:`write_motion`, through the one bounded reader
+    (:func:`hexaleg.config.read_bytes`: a regular file of at most :data:`MAX_MOTION_BYTES`),
+    its entries' decompressed sizes checked before any is inflated, every number finite.
 
     Raises:
-        ConfigError: the file is missing, not an ``.npz`` of :data:`FORMAT`, lacks a key or has
-            rows of different lengths (named).
+        ConfigError: the file is missing, not a regular file, too large (on disk or
+            decompressed), empty, not an ``.npz`` of :data:`FORMAT`, lacks a key, has rows of
+            different lengths or a value that is not finite (named).
     """
     path = Path(path)
     names = [f.name for f in fields(SimulatedMotion)]
+    raw = read_bytes(path, "motion file", MAX_MOTION_BYTES)
+    if not raw:
+        raise ConfigError(f"cannot read the motion file {path}: it is empty (0 bytes); run "
+                          "hexaleg simulate again to write it")
     try:
-        with np.load(path, allow_pickle=False) as npz:
+        with zipfile.ZipFile(io.BytesIO(raw)) as archive:
+            inflated = sum(info.file_size for info in archive.infolist())
+        if inflated > MAX_MOTION_BYTES:
+            raise ConfigError(f"{path}: its arrays hold {inflated} bytes decompressed; allowed: "
+                              f"at most {MAX_MOTION_BYTES} (is it the right file?)")
+        with np.load(io.BytesIO(raw), allow_pickle=False) as npz:
             entries = {k: npz[k] for k in npz.files}
-    except FileNotFoundError as e:
-        raise ConfigError(f"motion file not found: {path}") from e
-    except (OSError, ValueError, zipfile.BadZipFile) as e:
+    except (OSError, ValueError, EOFError, zipfile.BadZipFile) as e:
         raise ConfigError(f"cannot read the motion file {path}: {e}") from e
     if str(entries.get("format", "")) != FORMAT:
         raise ConfigError(f"{path}: not a motion file of hexaleg simulate (format "
@@ -237,13 +252,21 @@ def read_motion(path: str | Path) -> SimulatedMotion:
         raise ConfigError(f"{path}: rows of different lengths: {rows}")
     try:
         arrays = {k: np.asarray(entries[k], dtype=float) for k in ARRAYS}
-        t, q, v, tau, power, spring, feet, forces = (arrays[k] for k in ARRAYS)
-        return SimulatedMotion(
-            robot=str(entries["robot"]), run=str(entries["run"]),
-            verdict=str(entries["verdict"]), message=str(entries["message"]),
-            joint_names=tuple(str(j) for j in entries["joint_names"]),
-            legs=tuple(str(leg) for leg in entries["legs"]),
-            timestep=float(entries["timestep"]), stride=int(entries["stride"]), t=t, q=q, v=v,
-            tau_motor=tau, power=power, tau_spring=spring, feet=feet, forces=forces)
+        timestep, stride = float(entries["timestep"]), int(entries["stride"])
     except (TypeError, ValueError) as e:
         raise ConfigError(f"{path}: an entry of the wrong type: {e}") from e
+    for k, a in {**arrays, "timestep": np.array(timestep)}.items():
+        if not np.all(np.isfinite(a)):
+            raise ConfigError(f"{path}: {k} holds NaN or inf; a motion file holds finite numbers "
+                              "(run hexaleg simulate again)")
+    if timestep <= 0 or stride < 1:
+        raise ConfigError(f"{path}: timestep = {timestep!r} s, stride = {stride!r}; a motion file "
+                          "has a timestep > 0 and a stride >= 1")
+    t, q, v, tau, power, spring, feet, forces = (arrays[k] for k in ARRAYS)
+    return SimulatedMotion(
+        robot=str(entries["robot"]), run=str(entries["run"]),
+        verdict=str(entries["verdict"]), message=str(entries["message"]),
+        joint_names=tuple(str(j) for j in entries["joint_names"]),
+        legs=tuple(str(leg) for leg in entries["legs"]),
+        timestep=timestep, stride=stride, t=t, q=q, v=v,
+        tau_motor=tau, power=power, tau_spring=spring, feet=feet, forces=forces)
