@@ -67,3 +67,16 @@ def test_tolerance_figure_shades_the_tolerance_and_names_the_worst_cases():
     np.testing.assert_allclose(lines["tolerant (worst in tolerance +14.90 %)"].get_xdata(), shifts)
     assert "deg" in ax.get_xlabel() and "%" in ax.get_ylabel()
     assert png_bytes(fig)[:4] == b"\x89PNG"
+
+
+def test_heat_map_takes_named_conditions():
+    """A gait-pattern axis has names, not numbers: its ticks read the names; numbers read at 3
+    significant digits (a slope of −7.5°)."""
+    s = np.array([[5.0, 4.0, 3.0], [6.0, 2.0, 1.0]])
+    fig = design_plots.robustness_heatmap(
+        ("slope", "pattern"), (np.array([-7.5, 15.0]), np.array(["tripod", "ripple", "wave"])),
+        s, "electrical")
+    ax = fig.axes[0]
+    assert [t.get_text() for t in ax.get_xticklabels()] == ["tripod", "ripple", "wave"]
+    assert [t.get_text() for t in ax.get_yticklabels()] == ["-7.5", "15"]
+    assert ax.get_ylabel() == design_plots.AXIS_LABELS["slope"]

@@ -18,8 +18,14 @@ from matplotlib.patches import Rectangle
 from hexaleg.outputs.plots import METRIC_COLOURS, _figure
 
 AXIS_LABELS = {"period": "gait period (× nominal)", "stride": "stride (× nominal)",
-               "payload": "payload (fraction of the robot's mass)", "mu": "friction μ"}
-"""Axis titles of the map conditions."""
+               "payload": "payload (fraction of the robot's mass)", "mu": "friction μ",
+               "slope": "ground slope, deg (uphill +)", "pattern": "gait pattern"}
+"""Axis titles of the map conditions (a slope's values given in deg)."""
+
+
+def _tick(v: object) -> str:
+    """A condition's value on an axis: a number to 3 significant digits, a name as it is."""
+    return v if isinstance(v, str) else f"{float(v):.3g}"  # type: ignore[arg-type]
 
 
 def robustness_heatmap(axes: tuple[str, str], values: tuple[np.ndarray, np.ndarray],
@@ -29,7 +35,7 @@ def robustness_heatmap(axes: tuple[str, str], values: tuple[np.ndarray, np.ndarr
 
     Args:
         axes: The two conditions (rows, columns).
-        values: Their values, shapes (n₁,) and (n₂,).
+        values: Their values, shapes (n₁,) and (n₂,): numbers, or names (a gait pattern).
         saving: Saving per cell, shape (n₁, n₂), % (NaN: outside the envelope; −inf: the springs
             make the gait infeasible).
         metric: The metric's name, for the title.
@@ -46,8 +52,8 @@ def robustness_heatmap(axes: tuple[str, str], values: tuple[np.ndarray, np.ndarr
     if not np.isnan(s).all():
         i, j = np.unravel_index(int(np.nanargmin(np.where(np.isnan(s), np.inf, s))), s.shape)
         ax.add_patch(_outline(ax, int(i), int(j)))
-    ax.set_xticks(range(len(values[1])), [f"{v:g}" for v in values[1]])
-    ax.set_yticks(range(len(values[0])), [f"{v:g}" for v in values[0]])
+    ax.set_xticks(range(len(values[1])), [_tick(v) for v in values[1]])
+    ax.set_yticks(range(len(values[0])), [_tick(v) for v in values[0]])
     ax.set_xlabel(AXIS_LABELS.get(axes[1], axes[1]))
     ax.set_ylabel(AXIS_LABELS.get(axes[0], axes[0]))
     ax.set_title(f"{metric} saving of the recommended springs, % (worst outlined)", fontsize=9)

@@ -50,7 +50,7 @@ def figures(r: DesignResult) -> dict[str, Figure]:
     stop shift (``tolerance``: the tolerant and the tolerance-blind design)."""
     m = r.config.design.metric
     out = {f"map_{mp.axes[0]}_{mp.axes[1]}": design_plots.robustness_heatmap(
-        mp.axes, mp.values, 100 * mp.saving[m], m)
+        mp.axes, _map_values(mp.axes, mp.values), 100 * mp.saving[m], m)
         for mp in r.maps}
     points = [c for _, c in r.pareto]
     if points:
@@ -69,6 +69,13 @@ def figures(r: DesignResult) -> dict[str, Figure]:
     if r.tolerance is not None:
         out["tolerance"] = tolerance_figure(r.tolerance)
     return out
+
+
+def _map_values(axes: tuple[str, str], values: tuple[Any, Any]) -> tuple[Any, Any]:
+    """A map's axis values as the page plots them: a slope in deg, the rest as they are."""
+    a, b = (np.degrees(np.asarray(v, dtype=float)) if name == "slope" else v
+            for name, v in zip(axes, values, strict=True))
+    return a, b
 
 
 def tolerance_figure(t: TolerantSprings) -> Figure:
