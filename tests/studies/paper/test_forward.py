@@ -17,7 +17,9 @@ from hexaleg.studies.paper.forward import (
     PAPER_EPS_MIN,
     PAPER_MEAN_MIN,
     TORQUE_METRICS,
+    adams_model,
     forward_study,
+    max_stiffness,
     parabola_vertex,
     stiffness_grid,
     without_friction,
@@ -138,3 +140,12 @@ def test_a_grid_too_long_is_refused():
 def test_bad_samples_are_refused_before_any_run():
     with pytest.raises(InvalidParameterError, match=r"samples = 4\b"):
         forward_study(n=4)
+
+
+def test_the_stiffest_grid_value_still_integrates():
+    """max_stiffness keeps the forward run stable: at the bound its torques stay finite."""
+    model = adams_model(PaperJoint())
+    run = adams(model, max_stiffness(model), periods=1)
+    assert np.all(np.isfinite(run.torque))
+    with pytest.raises(InvalidParameterError, match=r"stiffness grid value = 1e\+100"):
+        stiffness_grid([100.0, 200.0, 1e100])

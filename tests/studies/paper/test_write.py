@@ -10,7 +10,7 @@ import pytest
 from hexaleg.cli import main
 from hexaleg.errors import InvalidParameterError, OutputError
 from hexaleg.studies.paper.figures import forward_figures
-from hexaleg.studies.paper.forward import K_GRID
+from hexaleg.studies.paper.forward import K_GRID, adams_model, max_stiffness
 from hexaleg.studies.paper.joint import PaperJoint
 from hexaleg.studies.paper.reproduce import simulation_section
 from hexaleg.studies.paper.write import write_paper
@@ -88,3 +88,16 @@ def test_a_grid_without_the_forward_run_is_refused(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "stiffness grid = [100.0, 200.0, 300.0]" in err and "--no-simulation" in err
     assert not out.exists()
+
+
+def test_a_grid_value_too_stiff_to_integrate_is_refused_before_anything_is_written(tmp_path,
+                                                                                  capsys):
+    """--grid … 1e100 used to end in a TypeError after the figures and paper.json were
+    written (the forward run diverged, its saving came out None)."""
+    out = tmp_path / "paper-out"
+    assert main(["paper", "--grid", "100", "200", "1e100", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    limit = max_stiffness(adams_model(PaperJoint()))
+    assert "stiffness grid value = 1e+100" in err and f"<= {limit:.3g}" in err
+    assert not out.exists()
+    assert 4e7 < limit < 5e7  # h·ω ≤ 1 for Table 2's arms at the 0.2 ms step

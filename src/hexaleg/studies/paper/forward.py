@@ -147,18 +147,40 @@ class ForwardStudy:
     period_check: float
 
 
-def stiffness_grid(grid: Sequence[float] | np.ndarray) -> np.ndarray:
-    """``grid`` checked: 3 to :data:`MAX_GRID` increasing stiffnesses > 0, eq. 19 units.
+def adams_model(joint: PaperJoint) -> AdamsJoint:
+    """The forward run's model of ``joint``: Table 2's, arms of 1 % of the lever's inertia."""
+    return AdamsJoint(joint=joint, arm_inertia=0.01 * joint.J)
+
+
+def max_stiffness(model: AdamsJoint) -> float:
+    """The stiffest main spring the forward run integrates stably, eq. 19 units: an arm on its
+    spring is an oscillator of ω = √(κ/I_arm), and explicit Euler at step h needs h ω < 2; the
+    bound keeps h ω ≤ 1 (a factor 4 on κ below the limit: at half the limit the runs stay
+    finite, at 0.9 of it they diverge; 4.5e7 for Table 2's joint)."""
+    per_unit = model.stiffness_si(1.0) * model.joint.transmission
+    return float(model.arm_inertia / (model.timestep**2 * per_unit))
+
+
+def stiffness_grid(grid: Sequence[float] | np.ndarray, high: float | None = None) -> np.ndarray:
+    """``grid`` checked: 3 to :data:`MAX_GRID` increasing stiffnesses > 0 and at most ``high``,
+    eq. 19 units.
+
+    Args:
+        grid: The stiffnesses.
+        high: The stiffest allowed; default :func:`max_stiffness` of Table 2's joint.
 
     Raises:
         InvalidParameterError: names the first bad value, or the grid, and what is allowed.
     """
+    high = max_stiffness(adams_model(PaperJoint())) if high is None else high
     allowed = (f"3 to {MAX_GRID} increasing stiffnesses > 0 in eq. 19 units (1e-6 N·m/rad; the "
                "paper swept 100…1200)")
     values = list(grid)
     for x in values:
-        real("stiffness grid value", x, low=0.0, low_open=True,
-             allowed="a finite stiffness > 0 in eq. 19 units (1e-6 N·m/rad)")
+        real("stiffness grid value", x, low=0.0, low_open=True, high=high,
+             allowed=f"a finite stiffness > 0 and <= {high:.3g} in eq. 19 units (1e-6 N·m/rad; "
+                     f"above {high:.3g} the forward run's explicit integration at its "
+                     "timestep is no longer stable: max_stiffness)")
     ks = np.asarray(values, dtype=float)
     if not 3 <= ks.size <= MAX_GRID or np.any(np.diff(ks) <= 0):
         raise InvalidParameterError("stiffness grid", values, allowed)
@@ -236,10 +258,10 @@ def forward_study(joint: PaperJoint | None = None, grid: Sequence[float] | np.nd
     Raises:
         InvalidParameterError: a bad grid (:func:`stiffness_grid`) or ``n``.
     """
-    ks_grid = stiffness_grid(grid)
-    n = paper_samples(n)
     j = joint or PaperJoint()
-    table2 = AdamsJoint(joint=j, arm_inertia=0.01 * j.J)
+    table2 = adams_model(j)
+    ks_grid = stiffness_grid(grid, max_stiffness(table2))
+    n = paper_samples(n)
     ks = sorted({*(k for _, _, k in NAMED), *ks_grid.tolist()})
     with_friction = {k: adams(table2, k, periods=1) for k in ks}
     runs = [{k: without_friction(r) for k, r in with_friction.items()}, with_friction]

@@ -7,10 +7,17 @@ import json
 from collections.abc import Sequence
 from pathlib import Path
 
+from hexaleg.config import write_file
 from hexaleg.errors import InvalidParameterError, OutputError
 from hexaleg.outputs.paper_figures import save_png
 from hexaleg.studies.paper.figures import forward_figures, make_figures
-from hexaleg.studies.paper.forward import K_GRID, forward_study, stiffness_grid
+from hexaleg.studies.paper.forward import (
+    K_GRID,
+    adams_model,
+    forward_study,
+    max_stiffness,
+    stiffness_grid,
+)
 from hexaleg.studies.paper.joint import PaperJoint
 from hexaleg.studies.paper.metrics import paper_samples
 from hexaleg.studies.paper.reproduce import reproduce, simulation_section
@@ -43,21 +50,26 @@ def write_paper(out: str | Path, joint: PaperJoint | None = None, n: int = 8192,
     if grid is not None and not simulation:
         raise InvalidParameterError("stiffness grid", list(grid), "none without the forward run "
                                     "(the grid is the forward run's; drop --no-simulation)")
-    ks = stiffness_grid(K_GRID if grid is None else grid)
     j = joint or PaperJoint()
+    ks = stiffness_grid(K_GRID if grid is None else grid, max_stiffness(adams_model(j)))
     out = Path(out)
-    try:
+    try:  # an unwritable place is named before the work
         out.mkdir(parents=True, exist_ok=True)
-        r = reproduce(j, n)
-        figures = make_figures(j, min(n, 2048))
-        if simulation:
-            study = forward_study(j, ks, min(n, 2048))
-            r["simulation"] = simulation_section(study)
-            figures |= forward_figures(study, min(n, 2048))
+    except OSError as e:
+        raise OutputError(f"cannot write the paper report to {out}: {e}") from e
+    r = reproduce(j, n)  # everything computed before the first file is written
+    figures = make_figures(j, min(n, 2048))
+    if simulation:
+        study = forward_study(j, ks, min(n, 2048))
+        r["simulation"] = simulation_section(study)
+        figures |= forward_figures(study, min(n, 2048))
+    summary = markdown_summary(r, list(figures))
+    text = json.dumps(r, indent=2, ensure_ascii=False)
+    try:
         for name, fig in figures.items():
             save_png(fig, out / name)
-        (out / "paper.json").write_text(json.dumps(r, indent=2, ensure_ascii=False))
-        (out / "summary.md").write_text(markdown_summary(r, list(figures)))
+        write_file(out / "paper.json", text, "the paper report")
+        write_file(out / "summary.md", summary, "the paper summary")
     except OSError as e:
         raise OutputError(f"cannot write the paper report to {out}: {e}") from e
     return r
