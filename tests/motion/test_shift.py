@@ -146,3 +146,10 @@ def test_the_shift_keeps_the_pendulums_zero_moment_point_inside_too(solo, crawl_
                for k in range(crawl.n_samples)]
     assert min(margins) > 0.95 * crawl.info["balance"]["target"]
     assert np.abs(acc[:, :2]).max() > 0.05  # the shift does accelerate the body
+
+
+def test_a_margin_lost_to_the_slope_names_the_slope(robot):
+    """Too steep a slope used to be a min_static_margin error that did not name the slope."""
+    with pytest.raises(StaticMarginError, match=r"min_static_margin.*the ground is inclined "
+                                                r"\(slope = 1\.047 rad \(60°\)\)"):
+        hexaleg.gait(robot, GaitParams(samples=100, slope=np.radians(60.0)))

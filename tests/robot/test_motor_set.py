@@ -165,3 +165,15 @@ def test_torque_limit_error_names_the_motor_and_the_remedy(robot, walk200):
     with pytest.raises(TorqueLimitError, match=r"tiny servo.*stronger") as info:
         hexaleg.analyze(robot, walk200, motor=tiny)
     assert "torque_limits" in str(info.value)
+
+
+def test_a_class_with_a_zero_urdf_effort_is_named(urdf_with_limit):
+    """The generic actuator's error used to name neither the joint class nor its joints."""
+    from hexaleg.robot.motor_set import class_motors
+
+    robot = urdf_with_limit("RF_tibia", "effort", "0")
+    for joint in robot.joint_classes["tibia"]:
+        robot.model.effortLimit[6 + robot.column(joint)] = 0.0
+    with pytest.raises(InvalidParameterError, match=r"URDF effort limit of joint class 'tibia' "
+                                                    r"\(.*RF_tibia.*\) = 0\.0; .*<limit effort="):
+        class_motors(robot, {}, "generic")

@@ -65,3 +65,26 @@ def test_every_registered_robot_passes(name):
     """The built-in robot and every example-robot-data robot of the registry load: the check
     refuses nothing urdfdom reads."""
     assert load(name).mass > 0
+
+
+@pytest.mark.parametrize("attribute", ["effort", "velocity"])
+def test_a_limit_without_effort_or_velocity_is_named(tmp_path, attribute):
+    """urdfdom refuses it with "the XML stream does not contain a valid URDF model", naming
+    neither the joint nor the attribute; hexaleg's own line names both."""
+    tree = ET.parse(DEFAULT_URDF)
+    limit = next(j for j in tree.getroot().iter("joint") if j.get("name") == "LF_coxa"
+                 ).find("limit")
+    del limit.attrib[attribute]
+    path = tmp_path / "robot.urdf"
+    tree.write(path)
+    with pytest.raises(RobotModelError, match=rf"joint 'LF_coxa', <limit> has no {attribute} "
+                                              r"attribute; urdfdom requires effort and velocity"):
+        check_urdf_numbers(ET.parse(path).getroot(), path)
+
+
+def test_a_revolute_joint_without_limit_is_named(tmp_path):
+    tree = ET.parse(DEFAULT_URDF)
+    joint = next(j for j in tree.getroot().iter("joint") if j.get("name") == "LF_coxa")
+    joint.remove(joint.find("limit"))
+    with pytest.raises(RobotModelError, match=r"joint 'LF_coxa' of type revolute has no <limit>"):
+        check_urdf_numbers(tree.getroot(), tmp_path / "robot.urdf")

@@ -200,7 +200,7 @@ def static_shift(robot: Robot, gait: GaitParams, motion: Motion, target: float,
                 f"inside ({motion.n_samples} samples, {harmonics} harmonics, shifts up to "
                 f"±{limit:.3g} m): lower min_static_margin, raise duty_factor (longer four-foot "
                 "phases to shift the body in), lengthen the period, shorten stride_length or "
-                "widen foot_radius", largest=largest)
+                f"widen foot_radius{_slope_hint(gait)}", largest=largest)
         planned = basis @ solution.reshape(2, -1).T  # (N+1, 2)
         sways = tuple(Sway.from_samples(e, gait.period, planned[:-1, i])
                       for i, e in enumerate(AXES))
@@ -219,7 +219,19 @@ def static_shift(robot: Robot, gait: GaitParams, motion: Motion, target: float,
     raise StaticMarginError(
         "min_static_margin", target, f"a margin the body shift reaches: after {MAX_ROUNDS} "
         f"rounds the gait keeps {margins[-1]:.4g} m; lower min_static_margin or raise "
-        "duty_factor", largest=margins[-1])
+        f"duty_factor{_slope_hint(gait)}", largest=margins[-1])
+
+
+def _slope_hint(gait: GaitParams) -> str:
+    """The ground's part in a margin the shift cannot keep: on a slope the body's weight
+    leans downhill over the support polygon (named, with its angle), or ''."""
+    tilted = {k: float(getattr(gait, k)) for k in ("slope", "cross_slope")
+              if getattr(gait, k, 0.0)}
+    if not tilted:
+        return ""
+    angles = ", ".join(f"{k} = {v:.4g} rad ({np.degrees(v):.3g}°)" for k, v in tilted.items())
+    return (f"; the ground is inclined ({angles}): the weight leans downhill over the feet, so "
+            "a gentler slope keeps a wider margin (angles are in radians)")
 
 
 def _solve(weights: np.ndarray, rows: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:

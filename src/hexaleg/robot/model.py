@@ -260,13 +260,10 @@ class Robot:
 
 
 def _check_xml(path: Path, what: str) -> None:
-    if not path.exists():
-        raise RobotModelError(f"{what} file not found: {path}")
-    if not path.is_file():
-        raise RobotModelError(f"{what} file {path} is not a regular file (a directory, device "
-                              "or pipe); give the path of an XML file")
-    try:
-        root = ET.parse(path).getroot()
+    try:  # the one bounded reader: a regular file, at most MAX_TEXT_BYTES, UTF-8
+        root = ET.fromstring(read_text(path, f"{what} file"))
+    except ConfigError as e:
+        raise RobotModelError(str(e)) from None
     except ET.ParseError as e:
         raise RobotModelError(f"{what} file {path} is not well-formed XML: {e}") from e
     if what == "URDF":

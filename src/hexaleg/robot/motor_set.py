@@ -12,6 +12,7 @@ efficiencies, electrical power — as per-joint arrays, by applying each joint's
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
@@ -186,9 +187,18 @@ def class_motors(robot: Robot, named: Mapping[str, Motor], generic: str) -> Moto
             motors[kind] = named[kind]
             continue
         cols = [6 + robot.column(j) for j in joints]
-        motors[kind] = generic_actuator(float(robot.model.effortLimit[cols].max()),
-                                        float(robot.model.velocityLimit[cols].max()),
-                                        name=generic)
+        limits = {"effort": float(robot.model.effortLimit[cols].max()),
+                  "velocity": float(robot.model.velocityLimit[cols].max())}
+        for what, value in limits.items():
+            if not (math.isfinite(value) and value > 0):
+                raise InvalidParameterError(
+                    f"{robot.name}: URDF {what} limit of joint class {kind!r} "
+                    f"({', '.join(joints)})", value,
+                    f"a finite number > 0 (the actuator's peak {what}; a limit of 0 or none "
+                    "gives nothing to build a motor from): give these joints <limit "
+                    f"{what}=\"…\"> in the URDF, or the class a catalogue motor (the "
+                    f"description's motor = {{{kind} = \"…\"}}, hexaleg motors lists them)")
+        motors[kind] = generic_actuator(limits["effort"], limits["velocity"], name=generic)
     if len(set(motors.values())) == 1:
         return next(iter(motors.values()))
     return MotorSet.per_class(robot.joint_classes, robot.joint_names, motors)

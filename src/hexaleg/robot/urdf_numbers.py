@@ -70,3 +70,36 @@ def check_urdf_numbers(root: ET.Element, path: Path) -> None:
                         f"URDF {path}: {name}, <{element.tag} {attribute}=\"{text}\">: expected "
                         f"{allowed} (urdfdom would drop the element and load the robot "
                         "without it)")
+    _check_limits(root, path)
+
+
+REQUIRED = ("effort", "velocity")
+"""Attributes urdfdom requires of every ``<limit>`` (wiki.ros.org/urdf/XML/joint): without one
+it refuses the whole model and says only that "the XML stream does not contain a valid URDF
+model"."""
+MEANING = {"effort": "the actuator's peak torque, N·m (N for a prismatic joint)",
+           "velocity": "its peak speed, rad/s (m/s for a prismatic joint)"}
+LIMITED = ("revolute", "prismatic")
+"""Joint types that must have a ``<limit>`` (the same specification)."""
+
+
+def _check_limits(root: ET.Element, path: Path) -> None:
+    """Every ``<limit>`` with its effort and velocity, every revolute or prismatic joint with
+    its ``<limit>``: named here, where urdfdom's refusal names neither the joint nor the
+    attribute."""
+    for joint in root.iter("joint"):
+        name = joint.get("name", "(unnamed)")
+        limit = joint.find("limit")
+        if limit is None:
+            if joint.get("type") in LIMITED:
+                raise RobotModelError(
+                    f"URDF {path}: joint {name!r} of type {joint.get('type')} has no <limit>; "
+                    "a revolute or prismatic joint needs <limit lower=\"…\" upper=\"…\" "
+                    "effort=\"…\" velocity=\"…\"/> (rad or m, N·m or N, rad/s or m/s)")
+            continue
+        for attribute in REQUIRED:
+            if limit.get(attribute) is None:
+                raise RobotModelError(
+                    f"URDF {path}: joint {name!r}, <limit> has no {attribute} attribute; "
+                    f"urdfdom requires effort and velocity on every <limit> (give {attribute}"
+                    f"=\"…\": {MEANING[attribute]}; 0 only for a joint that is not actuated)")

@@ -123,9 +123,11 @@ def test_springs_must_be_a_mapping_and_a_dead_zone_must_be_able_to_engage(robot)
     (OneSidedSpring(stiffness=0.5, contact=90.0), r"k acts above 90 rad"),
     (OneSidedSpring(stiffness=0.5, contact=-3.0, side="below", preload=0.1),
      r"k acts below -3 rad, preload acts below -3 rad"),
-    (PreloadedSpring(stiffness=0.5, preload=0.1, theta_k=3.0), r"k_plus acts above 3 rad, k_minus acts below -3 rad, preload_plus acts above 3 rad, "
+    (PreloadedSpring(stiffness=0.5, preload=0.1, theta_k=3.0),
+     r"k_plus acts above 3 rad, k_minus acts below -3 rad, preload_plus acts above 3 rad, "
      r"preload_minus acts below -3 rad"),
-    (StiffeningSpring(above=((2.7, 1.0), (3.0, 2.0))), r"k_above_1 acts above 2\.7 rad, k_above_2 acts above 3 rad")])
+    (StiffeningSpring(above=((2.7, 1.0), (3.0, 2.0))),
+     r"k_above_1 acts above 2\.7 rad, k_above_2 acts above 3 rad")])
 def test_every_family_must_be_able_to_engage(robot, spring, says):
     """The rule a dead zone had, for every family: a one-sided contact outside the femur's
     ±2.618 rad (degrees written as radians) used to be accepted and save a silent 0 %."""
