@@ -218,3 +218,123 @@ def test_invalid_contact_settings_are_named(bad):
     with pytest.raises(InvalidParameterError) as e:
         hexaleg.ContactParams(**{name: value})
     assert e.value.name == f"ContactParams.{name}"
+
+
+# --- Every reader of a file hexaleg takes, fed hostile files (#28) ------------------------------
+# Each reader gets its file truncated, empty, oversized (a sparse file past its bound), as a named
+# pipe with no writer, /dev/zero, a directory, a link to a pipe or garbage bytes: it returns (a
+# truncated TOML may still be TOML) or raises a named HexalegError — never another exception,
+# never a hang (an alarm ends the example), and nothing outside the output directory changes.
+
+def _seeds(robot: hexaleg.Robot) -> dict[str, bytes]:
+    """A valid file for each reader."""
+    import io
+    import json
+
+    from hexaleg.studies.simulate.motion_file import FORMAT
+
+    design = {"robot": {"name": robot.name}, "springs": [
+        {"family": "linear", "joint": "LF_femur", "parameters": {
+            "stiffness": {"value": 0.5, "unit": "N·m/rad"},
+            "reference": {"value": 0.3, "unit": "rad"}}}]}
+    k = 3
+    motion = io.BytesIO()
+    np.savez_compressed(motion, format=FORMAT, robot=robot.name, run="springs", verdict="ran",
+                        message="", joint_names=np.array(robot.joint_names), legs=np.array(
+                            robot.leg_names), timestep=5e-4, stride=20, t=np.arange(k) * 0.01,
+                        q=np.zeros((k, robot.model.nq)), v=np.zeros((k, robot.model.nv)),
+                        **{n: np.zeros((k, robot.nj)) for n in ("tau_motor", "power",
+                                                                 "tau_spring")},
+                        feet=np.zeros((k, 6, 3)), forces=np.zeros((k, 6, 3)))
+    return {"toml": b"[gait]\nperiod = 1.5\nsamples = 100\n",
+            "design": json.dumps(design).encode(),
+            "manifest": json.dumps({"spec": {"gait": {"samples": 50}}}).encode(),
+            "motion": motion.getvalue()}
+
+
+def _readers(robot: hexaleg.Robot) -> dict[str, tuple[str, object]]:
+    """Reader name → (its seed, a call on a path; the manifest's in an output directory)."""
+    from hexaleg.config import load_toml
+    from hexaleg.studies.report.design_section import design_section
+    from hexaleg.studies.simulate.design_file import read_design
+    from hexaleg.studies.simulate.motion_file import read_motion
+    from hexaleg.studies.sweep.store import MANIFEST, ResultStore
+
+    def store(path):
+        out = path.parent / "sweep"
+        out.mkdir(exist_ok=True)
+        (out / MANIFEST).unlink(missing_ok=True)
+        path.rename(out / MANIFEST) if not path.is_symlink() else (out / MANIFEST).symlink_to(
+            path.readlink())
+        ResultStore(out, {"gait": {"samples": 50}}).close()
+
+    return {"config": ("toml", load_toml), "design file": ("design", lambda p: read_design(
+                p, robot)),
+            "report --design": ("design", lambda p: design_section(p, robot)),
+            "motion file": ("motion", read_motion), "sweep manifest": ("manifest", store)}
+
+
+KINDS = ("truncated", "empty", "oversized", "fifo", "dev-zero", "directory", "link-to-fifo",
+         "garbage")
+
+
+@pytest.mark.parametrize("reader", ["config", "design file", "report --design", "motion file",
+                                    "sweep manifest"])
+@settings(max_examples=25, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(kind=st.sampled_from(KINDS), cut=st.floats(0.0, 1.0), junk=st.binary(max_size=64))
+def test_every_reader_names_a_hostile_file(robot, tmp_path_factory, reader, kind, cut, junk):
+    import os
+    import signal
+    from pathlib import Path
+
+    from hexaleg import config
+    from hexaleg.studies.simulate import motion_file
+
+    seed_name, read = _readers(robot)[reader]
+    seed = _seeds(robot)[seed_name]
+    base = tmp_path_factory.mktemp("hostile")
+    outside = base / "outside"
+    outside.mkdir()
+    (outside / "precious.txt").write_text("keep me")
+    work = base / "work"
+    work.mkdir()
+    path = work / "input"
+    if kind == "truncated":
+        path.write_bytes(seed[:int(cut * len(seed))])
+    elif kind == "empty":
+        path.write_bytes(b"")
+    elif kind == "oversized":
+        with open(path, "wb") as f:  # sparse: no disk used
+            limit = motion_file.MAX_MOTION_BYTES if reader == "motion file" else \
+                config.MAX_TEXT_BYTES
+            f.truncate(limit + 1)
+    elif kind == "fifo":
+        os.mkfifo(path)
+    elif kind == "dev-zero":
+        path.symlink_to("/dev/zero")
+    elif kind == "directory":
+        path.mkdir()
+    elif kind == "link-to-fifo":
+        os.mkfifo(outside / "pipe")
+        path.symlink_to(outside / "pipe")
+    else:
+        path.write_bytes(junk + seed[int(cut * len(seed)):])
+    before = {p.name: (p.stat().st_mtime_ns, p.read_bytes() if p.is_file() else b"")
+              for p in outside.iterdir()}
+
+    def hang(*_args):
+        raise TimeoutError(f"{reader} hung on a {kind} file")
+
+    old = signal.signal(signal.SIGALRM, hang)
+    signal.alarm(20)
+    try:
+        read(path)
+    except hexaleg.HexalegError:
+        pass
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
+    after = {p.name: (p.stat().st_mtime_ns, p.read_bytes() if p.is_file() else b"")
+             for p in outside.iterdir()}
+    assert after == before and Path(outside / "precious.txt").read_text() == "keep me"
