@@ -13,8 +13,9 @@ import hexaleg
 from hexaleg.cli import main
 from hexaleg.errors import InvalidParameterError, UnknownNameError
 from hexaleg.studies.sweep.optimal import OptimalSpec
-from hexaleg.studies.sweep.runner import run_sweep, summary
+from hexaleg.studies.sweep.runner import run_sweep
 from hexaleg.studies.sweep.spec import SweepSpec
+from hexaleg.studies.sweep.summary import summary
 
 SPEC = {"optimal": {"family": ["linear", "one_sided"], "sets": "every", "max_deflection": 1.5},
         "gait": {"samples": 60, "period": [0.8, 1.0]},
@@ -56,8 +57,9 @@ def test_each_row_is_the_optimum_of_its_point(swept, robot):
 
 def test_summary_per_family_and_set(swept):
     _, table = swept
-    text = summary(table, "joule")
-    assert "linear femur: joule =" in text and "one_sided femur+hind_tibiae: joule =" in text
+    text = summary(table, "joule")  # two periods: compared per metre walked
+    assert "linear femur: joule per metre =" in text
+    assert "one_sided femur+hind_tibiae: joule per metre =" in text and " J/m " in text
     assert "femur.side = " in text
 
 

@@ -31,9 +31,10 @@ from hexaleg.errors import (
     OutputError,
     UnknownNameError,
 )
-from hexaleg.studies.sweep.runner import run_sweep, summary
+from hexaleg.studies.sweep.runner import run_sweep
 from hexaleg.studies.sweep.spec import SweepSpec
 from hexaleg.studies.sweep.store import MANIFEST, read_table
+from hexaleg.studies.sweep.summary import summary
 
 
 def small_spec(**kw):

@@ -3,6 +3,7 @@
 :mod:`~hexaleg.studies.sweep.spec` (the grid), :mod:`~hexaleg.studies.sweep.ranges` (axis
 values), :mod:`~hexaleg.studies.sweep.optimal` (optimal-spring points),
 :mod:`~hexaleg.studies.sweep.runner` (tasks, futures, progress),
+:mod:`~hexaleg.studies.sweep.summary` (the best point per set, per metre across gaits),
 :mod:`~hexaleg.studies.sweep.store` (Parquet parts + manifest; one writer a directory,
 :mod:`~hexaleg.studies.sweep.lock`), :mod:`~hexaleg.studies.sweep.dead_zones` (designs refused
 up front) and :mod:`~hexaleg.studies.sweep.executors` (serial, process pool whose workers end
@@ -19,10 +20,10 @@ from hexaleg.studies.sweep.runner import (
     evaluate_chunk,
     optimal_chunk,
     run_sweep,
-    summary,
 )
 from hexaleg.studies.sweep.spec import SweepSpec
 from hexaleg.studies.sweep.store import ResultStore, read_table
+from hexaleg.studies.sweep.summary import summary
 
 __all__ = [
     "EXECUTORS",

@@ -34,8 +34,6 @@ import numpy as np
 
 from hexaleg.design.codesign import optimal_springs
 from hexaleg.design.evaluator import (
-    DEFAULT_METRIC,
-    METRICS,
     SPRING_PARAMETERS,
     Design,
     RunSpec,
@@ -46,7 +44,6 @@ from hexaleg.errors import (
     HexalegWarning,
     InfeasibleForcesError,
     TorqueLimitError,
-    UnknownNameError,
 )
 from hexaleg.robot.model import Robot
 from hexaleg.studies.sweep import executors
@@ -333,35 +330,3 @@ def _drain(ex: Executor, task: Callable[..., pd.DataFrame],
         if bar is not None:
             bar.close()
     return computed
-
-
-# --------------------------------------------------------------------------- summary
-
-
-def summary(table: pd.DataFrame, metric: str = DEFAULT_METRIC) -> str:
-    """A text summary of a sweep table: the best point (lowest ``metric``) per sprung-group set
-    (and per family in an optimal sweep).
-
-    Raises:
-        UnknownNameError: ``metric`` is not a column of the table.
-    """
-    import pandas as pd
-
-    if metric not in table.columns:
-        raise UnknownNameError("metric", metric, [m for m in METRICS if m in table.columns])
-    ok = table[table["status"] == "ok"]
-    lines = [f"{len(table)} points, {len(ok)} evaluated without error; best {metric} "
-             "(lower is better) per sprung-group set:"]
-    # the inputs: design columns, and the gait parameters the sweep varies
-    inputs = [c for c in table.columns if "." in c and not c.startswith(("baseline.", "saving."))
-              and (not c.startswith("gait.") or table[c].nunique() > 1)]
-    keys = ["family", "springs"] if "family" in table.columns else ["springs"]
-    for key, rows in ok.groupby(keys, sort=False):
-        best = rows.loc[rows[metric].idxmin()]
-        params = ", ".join(f"{c} = {best[c]}" if isinstance(best[c], str) else
-                           f"{c} = {best[c]:.4g}" for c in inputs if not pd.isna(best[c]))
-        lines.append(f"  {' '.join(key)}: {metric} = {best[metric]:.6g} (no springs "
-                     f"{best['baseline.' + metric]:.6g}), saving "
-                     f"{100 * best['saving.' + metric]:+.2f} % at point {int(best['point'])}: "
-                     f"{params}")
-    return "\n".join(lines)
