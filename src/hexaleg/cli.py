@@ -71,7 +71,7 @@ def _add_paper(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("paper", help="reproduce the paper's single elastic joint: paper.json, "
                                      "Fig. 5-13 analogues (PNG), summary.md, and its Adams "
                                      "experiment forward in MuJoCo beside them")
-    p.add_argument("--out", default="paper-report", help="output directory (default: %(default)s)")
+    p.add_argument("--out", default="hexaleg-paper", help="output directory (default: %(default)s)")
     p.add_argument("--samples", type=int, default=8192,
                    help="samples per trajectory period (default: %(default)s)")
     # hexaleg.studies.paper.forward.K_GRID, which is not imported to build the parser
@@ -84,13 +84,9 @@ def _add_paper(sub: argparse._SubParsersAction) -> None:
 
 
 def _run_paper(args: argparse.Namespace) -> int:
-    from hexaleg.studies.paper.summary import one_line
-    from hexaleg.studies.paper.write import write_paper
+    from hexaleg.studies.paper.command import run_paper
 
-    print(one_line(write_paper(args.out, n=args.samples, simulation=args.simulation,
-                               grid=args.grid)))
-    print(f"wrote {args.out}/paper.json, summary.md and figures")
-    return 0
+    return run_paper(args.out, n=args.samples, simulation=args.simulation, grid=args.grid)
 
 
 def _add_gait(sub: argparse._SubParsersAction) -> None:
@@ -338,7 +334,8 @@ def _run_simulate(args: argparse.Namespace) -> int:
 
 
 SUBCOMMANDS = [_add_robot, _add_motors, _add_gait, _add_paper, _add_report, _add_design,
-               _add_view, _add_sweep, _add_simulate]
+               _add_view, _add_sweep, _add_simulate,
+               __import__("hexaleg.studies.codesign.command", fromlist=["add"]).add]
 """Parser builders, one per subcommand, in the order ``--help`` lists them."""
 
 

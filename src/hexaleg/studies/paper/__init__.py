@@ -8,7 +8,7 @@ MuJoCo, and the files of ``hexaleg paper``.
 :mod:`~hexaleg.studies.paper.crosscheck`, :mod:`~hexaleg.studies.paper.forward`,
 :mod:`~hexaleg.studies.paper.reproduce`,
 :mod:`~hexaleg.studies.paper.figures`, :mod:`~hexaleg.studies.paper.summary`,
-:mod:`~hexaleg.studies.paper.write`.
+:mod:`~hexaleg.studies.paper.write`, :mod:`~hexaleg.studies.paper.command` (the command).
 """
 
 from hexaleg.studies.paper.crosscheck import pinocchio_femur_torque
