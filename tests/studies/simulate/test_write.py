@@ -46,3 +46,14 @@ def test_settings_in_the_json(feedforward):
     assert data["settings"]["timestep"] == {"value": 5e-4, "unit": "s"}
     assert data["settings"]["ground"]["stiffness"]["unit"] == "N/m"
     assert len(data["settings"]["servo"]["kp"]["value"]) == 18
+
+
+def test_a_link_in_the_out_directory_is_replaced_not_written_through(feedforward, tmp_path):
+    target = tmp_path / "precious.txt"
+    target.write_text("keep me")
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "simulate.json").symlink_to(target)
+    js, _ = write_simulation(out, simulation_data(feedforward))
+    assert target.read_text() == "keep me" and not js.is_symlink()
+    assert json.loads(js.read_text())["runs"]

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from matplotlib.figure import Figure
 
-from hexaleg.errors import OutputError
+from hexaleg.config import write_file
 from hexaleg.outputs import plots
 from hexaleg.outputs.directory import writable_directory
 from hexaleg.outputs.html import render_html
@@ -87,11 +87,7 @@ def write_report(out: str | Path = "hexaleg-report", config: ReportConfig | None
     html = render_html(data, images)
     for path, text in ((out / "report.json", json.dumps(data, indent=1, ensure_ascii=False)),
                        (out / "report.html", html)):
-        try:
-            path.write_text(text, encoding="utf-8")
-        except OSError as e:
-            raise OutputError(f"cannot write {path}: {e}") from e
-        files.append(path)
+        files.append(write_file(path, text, "the report"))  # never through a link there
     say(f"wrote {out / 'report.html'}")
     return Report(config=r.config, robot=r.robot, motion=r.motion, analysis=r.analysis,
                   baseline=r.baseline, curve=r.curve, usage=r.usage, data=data,

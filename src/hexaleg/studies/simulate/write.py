@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from hexaleg.config import write_file
 from hexaleg.errors import OutputError
 from hexaleg.simulation.run import Run, Simulation
 from hexaleg.studies.report.quantities import comparison, quantity
@@ -180,11 +181,11 @@ def write_simulation(out: str | Path, data: dict[str, Any]) -> tuple[Path, Path]
     out = Path(out)
     try:
         out.mkdir(parents=True, exist_ok=True)
-        js, md = out / "simulate.json", out / "simulate.md"
-        js.write_text(json.dumps(data, indent=1, ensure_ascii=False), encoding="utf-8")
-        md.write_text(page(data), encoding="utf-8")
     except OSError as e:
         raise OutputError(f"cannot write the simulation to {out}: {e}") from e
+    js, md = out / "simulate.json", out / "simulate.md"  # never through a link there
+    write_file(js, json.dumps(data, indent=1, ensure_ascii=False), "the simulation")
+    write_file(md, page(data), "the simulation")
     return js, md
 
 
