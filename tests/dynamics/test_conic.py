@@ -34,3 +34,17 @@ def test_torque_limit_names_joint_time_and_torque(robot, walk200):
     prepared = prepare(robot, walk200, motor=weak)
     with pytest.raises(TorqueLimitError, match=r"joint \w+_\w+ needs .* N·m \(limit 0.0500 N·m\)"):
         prepared.evaluate()
+
+
+def test_a_flight_phase_is_named_as_one(robot):
+    """A gait whose legs all lift together (phases all 0, β = 0.6) used to be told "the stance
+    feet (none) … the motion needs a body sway"."""
+    import hexaleg
+
+    motion = hexaleg.gait(robot, hexaleg.GaitParams(samples=100, phases=(0.0,) * 6,
+                                                   duty_factor=0.6))
+    with pytest.raises(InfeasibleForcesError, match=r"no foot is on the ground at t = 0\.6000 s "
+                                                    r"\(sample 60\): every leg is in swing "
+                                                    r"together for 40% of the samples \(a flight "
+                                                    r"phase\).*raise duty_factor"):
+        prepare(robot, motion).evaluate(None)

@@ -389,13 +389,3 @@ def test_a_bad_heading_is_refused(robot):
     upward.heading = np.array([0.0, 0.0, 1.0])  # set after loading: not checked by Robot
     with pytest.raises(InvalidParameterError, match="invalid heading"):
         tripod_gait(upward, GaitParams(samples=20))
-
-
-@pytest.mark.parametrize("duty", [0.4, 0.6])
-def test_a_gait_whose_legs_all_lift_together_is_named(robot, duty):
-    """A flight phase used to surface as "the stance feet (none) cannot produce the base
-    wrench … the motion needs a body sway" from the force program."""
-    with pytest.raises(InvalidParameterError, match=rf"invalid phases = \{{'LF': 0\.0.*every leg "
-                                                    rf"is off the ground for {100 - 100 * duty:.0f}"
-                                                    r"% of the cycle \(a flight phase"):
-        hexaleg.gait(robot, GaitParams(samples=100, phases=(0.0,) * 6, duty_factor=duty))

@@ -344,6 +344,14 @@ def raise_unreachable(system: StanceSystem, k: int, residual: float) -> NoReturn
     """Raise InfeasibleForcesError: sample ``k``'s base wrench is out of its feet's reach by
     ``residual`` (N, N·m)."""
     feet = [system.leg_names[i] for i in np.flatnonzero(system.stance[k])]
+    if not feet:  # a flight phase: named as such, not as a want of sway
+        flying = float(np.mean(~system.stance.any(axis=1)))
+        raise InfeasibleForcesError(
+            f"no foot is on the ground at t = {system.t[k]:.4f} s (sample {k}): every leg is in "
+            f"swing together for {flying:.0%} of the samples (a flight phase), and nothing "
+            "carries the body's weight there (hexaleg's gaits plan no ballistic phase); raise "
+            "duty_factor or stagger the legs' phases (pattern, phases or groups) so that a foot "
+            "is always down")
     raise InfeasibleForcesError(
         f"the stance feet {', '.join(feet) or '(none)'} cannot produce the base wrench at "
         f"t = {system.t[k]:.4f} s (sample {k}) with any forces: the best forces miss the "

@@ -131,16 +131,7 @@ def _sample_gait(robot: Robot, gait: GaitParams, times: np.ndarray | None, *, di
                                     "a non-empty 1-D array of finite times (s)")
     verify = (lambda other: _works(robot, other, times)) if diagnose else None
     offsets = _offsets(robot, gait)
-    counts = _stance_counts(gait, offsets, grid)
-    if not counts.min():  # a flight phase: nothing carries the body (named, not infeasible)
-        raise InvalidParameterError(
-            "phases", dict(zip(robot.leg_names, offsets.round(4).tolist(), strict=True)),
-            f"touch-down offsets that keep a foot on the ground at every instant: with "
-            f"duty_factor = {gait.duty_factor:g} every leg is off the ground for "
-            f"{(counts == 0).mean():.0%} of the cycle (a flight phase; hexaleg's gaits carry "
-            "the body on their feet throughout): stagger the legs' phases (a pattern such as "
-            "'tripod', 'wave' or 'trot') or raise duty_factor")
-    fewest = int(counts.min())
+    fewest = int(_stance_counts(gait, offsets, grid).min())
     mode = gait.balance_mode(fewest)
 
     def on_grid(sway: Sways, report: dict[str, Any]) -> Motion:
