@@ -7,12 +7,19 @@ section; modules and packages whose name starts with ``_`` are private and get n
 ``reference/SUMMARY.md`` is the section's navigation (read by the ``literate-nav`` plugin): the
 public surface ``hexaleg`` first, then the top-level modules, then the layers in data-flow order.
 
+The public surface's page (``hexaleg.md``) lists its functions first, then its classes, then its
+data (``CATALOGUE``, ``DESCRIPTIONS``, …) by name, type and docstring without their values: a
+mapping's source would otherwise open the reference with two screens of literals
+(:func:`root_page`).
+
 ``api_pages`` is the walker; ``tests/test_docs.py`` checks it against the package tree without
 building the site.
 """
 
 from __future__ import annotations
 
+import ast
+import re
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -20,6 +27,10 @@ ROOT = Path(__file__).resolve().parent.parent
 SRC = ROOT / "src"
 PACKAGE = "hexaleg"
 REFERENCE = "reference"
+
+# A public name's kind by PEP 8 (a test checks it against the objects): data in capitals.
+DATA_NAME = re.compile(r"^(?:[A-Z][A-Z0-9_]*|__version__)$")
+CLASS_NAME = re.compile(r"^[A-Z]\w*[a-z]\w*$")
 
 # The layers of DESIGN.md in data-flow order; a subpackage not named here follows them, by name.
 LAYER_ORDER = ("robot", "motion", "dynamics", "simulation", "design", "studies", "outputs")
@@ -128,6 +139,59 @@ def summary(pages: list[ApiPage]) -> str:
     return "".join(lines)
 
 
+def public_names(src: Path = SRC, package: str = PACKAGE) -> dict[str, list[str]]:
+    """The package's ``__all__`` split by kind, each in ``__all__``'s order.
+
+    Read from ``__init__.py``'s source (nothing imported) and sorted by name: ``DATA_NAME``
+    (constants and ``__version__``), ``CLASS_NAME`` (CamelCase), the rest functions.
+
+    Returns:
+        ``{"functions": [...], "classes": [...], "data": [...]}``.
+    """
+    tree = ast.parse((src / package / "__init__.py").read_text())
+    names: list[str] = []
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and any(
+                isinstance(t, ast.Name) and t.id == "__all__" for t in node.targets):
+            names = list(ast.literal_eval(node.value))
+    kinds: dict[str, list[str]] = {"functions": [], "classes": [], "data": []}
+    for name in names:
+        kind = "data" if DATA_NAME.match(name) else "classes" if CLASS_NAME.match(name) \
+            else "functions"
+        kinds[kind].append(name)
+    return kinds
+
+
+def _directive(module: str, members: list[str], *, first: bool, values: bool = True) -> str:
+    """One ``:::`` directive rendering ``members`` of ``module``; after the first, without the
+    module's heading and docstring again, its members one heading level down."""
+    lines = [f"::: {module}", "    options:",
+             f"      members: [{', '.join(members)}]"]
+    if not first:
+        lines += ["      show_root_heading: false", "      show_root_toc_entry: false",
+                  "      show_docstring_description: false", "      heading_level: 2"]
+    if not values:
+        lines += ["      show_attribute_values: false", "      show_source: false"]
+    return "\n".join(lines) + "\n"
+
+
+def page_text(page: ApiPage, src: Path = SRC) -> str:
+    """The Markdown of one API page: a single directive, but for the top-level package
+    (:func:`root_page`)."""
+    if page.module == PACKAGE:
+        return root_page(src)
+    return f"::: {page.module}\n"
+
+
+def root_page(src: Path = SRC, package: str = PACKAGE) -> str:
+    """The public surface's page: its docstring and functions, then its classes, then its data by
+    name, type and docstring (no values, no source)."""
+    kinds = public_names(src, package)
+    return "\n".join((_directive(package, kinds["functions"], first=True),
+                      _directive(package, kinds["classes"], first=False),
+                      _directive(package, kinds["data"], first=False, values=False)))
+
+
 def write_pages() -> None:
     """Write the pages and the navigation into the build (called by mkdocs-gen-files)."""
     import mkdocs_gen_files
@@ -136,7 +200,7 @@ def write_pages() -> None:
     for page in pages:
         full = f"{REFERENCE}/{page.path}"
         with mkdocs_gen_files.open(full, "w") as fd:
-            fd.write(f"::: {page.module}\n")
+            fd.write(page_text(page))
     with mkdocs_gen_files.open(f"{REFERENCE}/SUMMARY.md", "w") as fd:
         fd.write(summary(pages))
 
