@@ -7,6 +7,8 @@ written). A test that needs another gait or robot builds its own.
 
 from __future__ import annotations
 
+import os
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -16,6 +18,21 @@ from hexaleg.design.codesign import OptimalSprings, optimal_springs
 from hexaleg.design.evaluator import RunSpec
 from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.simulation.run import Settings, Simulation, simulate
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _outside_the_checkout(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Path]:
+    """Every test runs in a temporary working directory, so what a library writes into the
+    current directory stays out of the checkout: MuJoCo's ``MUJOCO_LOG.TXT`` (written on a
+    simulation warning, e.g. "Nan, Inf or huge value in QACC"), a command's default output
+    folder (``hexaleg-report/`` …). Paths of the repository come from ``__file__``."""
+    previous = Path.cwd()
+    cwd = tmp_path_factory.mktemp("cwd")
+    os.chdir(cwd)
+    try:
+        yield cwd
+    finally:
+        os.chdir(previous)
 
 
 @pytest.fixture(scope="session")

@@ -14,7 +14,7 @@ from hexaleg.cli import main
 from hexaleg.design.evaluator import RunSpec, evaluator
 from hexaleg.design.optimise import optimise
 
-SPIDER = "tests/data/spider.toml"
+SPIDER = str(Path(__file__).resolve().parent / "data" / "spider.toml")  # tests run elsewhere
 
 
 def test_description_is_five_lines():
