@@ -206,7 +206,6 @@ BASE = '[design]\nsamples = 100\nfamilies = ["linear"]\npareto_fractions = []\n'
 
 @pytest.mark.parametrize(("extra", "says"), [
     ("[design.max_outer_diameter]\nfemur = 0.0003\n", ["thinnest preferred wire"]),
-    ("map_stride = [1.0, 8.0]\n", ["stride factor", "narrow the stride range"]),  # unreachable
 ])
 def test_bad_design_inputs_say_what_to_change(tmp_path, capsys, extra, says):
     """Inputs no design can meet end in a named error that says what to change."""
@@ -216,6 +215,20 @@ def test_bad_design_inputs_say_what_to_change(tmp_path, capsys, extra, says):
     err = capsys.readouterr().err
     for text in says:
         assert text in err
+
+
+def test_a_map_condition_without_a_gait_is_a_cell_that_says_why(tmp_path):
+    """A stride ×8 the leg cannot reach is a map cell "no gait: …" (n/a on the plot), and the
+    page says why and what would work — not the end of the design."""
+    config = tmp_path / "d.toml"
+    config.write_text(BASE + "map_stride = [1.0, 8.0]\nmap_period = [1.0]\nmap_payload = [0.0]\n"
+                      "map_mu = [0.6]\n")
+    assert main(["design", "--config", str(config), "--out", str(tmp_path / "o")]) == 0
+    data = json.loads((tmp_path / "o" / "design.json").read_text())
+    (status,) = [m["status"] for m in data["maps"] if m["axes"] == ["period", "stride"]]
+    assert status[0][0] == "ok" and status[0][1].startswith("no gait:")
+    text = _text((tmp_path / "o" / "design.html").read_text())
+    assert "Cells marked n/a: no gait:" in text and "would work" in text
 
 
 def test_limits_under_which_no_spring_pays_give_that_answer(tmp_path, capsys):
