@@ -24,6 +24,13 @@ def pct(x: float) -> str:
     return f"{100 * x:+7.2f} %" if np.isfinite(x) else "    n/a"
 
 
+def tick(axis: str, value: object) -> str:
+    """A map axis value as printed: a pattern's name, a slope in degrees, else the number."""
+    if isinstance(value, str):
+        return value
+    return f"{np.degrees(float(value)):+g}°" if axis == "slope" else f"{float(value):g}"
+
+
 def main() -> None:
     r = build_design()
     m = r.config.design.metric
@@ -88,9 +95,9 @@ def main() -> None:
     for mp in r.maps:
         a, b = mp.axes
         print(f"\n{m} saving of the recommended springs, % ({a} down, {b} across)")
-        print("  " + " " * 8 + "".join(f"{v:>8g}" for v in mp.values[1]))
+        print("  " + " " * 8 + "".join(f"{tick(b, v):>8s}" for v in mp.values[1]))
         for v, row in zip(mp.values[0], mp.saving[m], strict=True):
-            print(f"  {v:>8g}" + "".join(f"{100 * x:8.1f}" for x in row))
+            print(f"  {tick(a, v):>8s}" + "".join(f"{100 * x:8.1f}" for x in row))
         w, where = mp.worst(m)
         print(f"  worst {pct(w)} at {where.label() if where else '—'}")
     rb = r.robust

@@ -96,6 +96,50 @@ def test_map_points_equal_a_fresh_analysis(written, index, cell):
     assert worst == np.nanmin(mp.saving["electrical"]) and where is not None
 
 
+def test_slope_pattern_map_points_equal_a_fresh_public_analysis(written):
+    """The third map: the recommended springs on each slope and pattern, analysed afresh through
+    the public API (the pattern at its own duty factor, the slope along the heading)."""
+    r = written[0].result
+    mp = r.maps[2]
+    assert mp.axes == ("slope", "pattern")
+    assert list(mp.values[1]) == ["tripod", "ripple", "wave"]  # the hexapod's, nominal first
+    assert (mp.status == "ok").all()
+    robot = hexaleg.load_robot()
+    for i, j in ((1, 2), (0, 1), (1, 0)):
+        params = r.gait.updated({"pattern": str(mp.values[1][j]),
+                                 "slope": float(mp.values[0][i])})
+        fresh = hexaleg.prepare(robot, hexaleg.gait(robot, params),
+                                motor=hexaleg.RunSpec().actuator())
+        a = fresh.evaluate(r.recommended.optimum.springs, "joule")
+        for m in ("electrical", "joule"):
+            assert mp.saving[m][i, j] == pytest.approx(a.savings["total"][m], rel=1e-9)
+    # the level tripod is the nominal gait: its cell is the recommendation's own saving
+    assert mp.saving["joule"][0, 0] == pytest.approx(r.recommended.row["saving.joule"],
+                                                     rel=1e-9)
+    assert r.worst["electrical"][0] <= mp.worst("electrical")[0]
+    assert not any("not conditions of the maps" in n for n in r.notes)
+
+
+def test_a_map_condition_the_robot_cannot_walk_is_a_cell_not_the_end(written):
+    """Out of reach (stride ×8) and steeper than the friction holds (40° at μ 0.6): cells with
+    their reasons, outside the envelope (NaN), the worst case taken over the others."""
+    from hexaleg.studies.design.config import DesignConfig
+    from hexaleg.studies.design.stages import nominal, robustness_maps
+
+    r = written[0].result
+    cfg = DesignConfig.from_mapping({"gait": {"samples": 120}, "design": {
+        "samples": 120, "map_period": [1.0], "map_stride": [1.0, 8.0], "map_payload": [0.0],
+        "map_mu": [0.6], "map_slope": [0.0, 0.7], "map_pattern": ["wave"]}})
+    maps, worst = robustness_maps(nominal(cfg), r.recommended)
+    assert maps[0].status[0, 1].startswith("no gait: GaitReachError: ")
+    assert maps[2].status[1, 0].startswith("no gait: InfeasibleForcesError: the ground is "
+                                           "inclined by γ = 40.1°")
+    assert np.isnan(maps[0].saving["electrical"][0, 1])
+    assert np.isnan(maps[2].saving["electrical"][1, 0])
+    cells = [mp.saving["electrical"][0, 0] for mp in maps]
+    assert worst["electrical"][0] == pytest.approx(min(cells))
+
+
 def test_map_slope_and_pattern_settings_are_checked():
     import math
 

@@ -17,7 +17,8 @@ its gait (:class:`~hexaleg.studies.design.config.DesignConfig`):
    error within ``[design] stop_tolerance`` (:func:`hexaleg.design.tolerance.tolerant_springs`),
    and ``envelope``: each part's stress over its joints' whole range, poses and a turn, the hard
    stop where it would yield, and its fatigue safety at ``[design] life_cycles``;
-5. ``maps``: the recommendation frozen over period × stride and payload × μ, their worst case;
+5. ``maps``: the recommendation frozen over period × stride, payload × μ and slope × gait
+   pattern (a condition the robot cannot walk is a cell with its reason), their worst case;
 6. ``robust``: the recommended geometry's magnitudes for a box of conditions, with its parts;
 7. ``proof``: the recommendation simulated under each controller a servo robot runs
    (:func:`hexaleg.simulation.sensitivity.controller_check`), the simulated saving beside the
@@ -148,7 +149,7 @@ def build_design(config: DesignConfig | None = None,
         progress: Called with one status line per stage.
 
     Raises:
-        InvalidParameterError: a map range whose gait is unreachable, a robust box with corners
+        InvalidParameterError: a robust box with corners
             where the robot has no admissible forces, an outer diameter no wire fits.
         UnknownNameError: an unknown robot, class, family, material or motor.
     """
@@ -193,8 +194,6 @@ def build_design(config: DesignConfig | None = None,
         f"of {d.metric} and {100 * rec.net[d.metric]:+.2f} % net of its springs' mass — fitting "
         "springs does not pay on this robot and gait"]
     notes = [*pays, *notes, *envelope_notes, *unsimulated, *nom.robot.notes, *rec.notes,
-             "gait slope and the other gait patterns are not conditions of the maps yet: the "
-             "gait generator walks level tripod-type gaits only",
              f"designed at {nom.gait.samples} samples per cycle (Joule-optimal forces); ranked "
              f"by the {d.metric} saving net of the springs' mass, simulated under the "
              f"{d.controller} servo"]

@@ -27,8 +27,9 @@ from hexaleg.studies.design.ranking import Simulated
 from hexaleg.studies.report.quantities import metric_unit, quantity
 from hexaleg.studies.simulate.write import sensitivity_row
 
-AXIS_UNITS = {"period": "1", "stride": "1", "payload": "1", "mu": "1"}
-"""Units of the map axes: factors of the nominal gait, a fraction of the robot's mass, μ."""
+AXIS_UNITS = {"period": "1", "stride": "1", "payload": "1", "mu": "1", "slope": "rad"}
+"""Units of the map axes: factors of the nominal gait, a fraction of the robot's mass, μ, the
+ground's slope; a ``pattern`` axis holds names (a plain list of strings, no unit)."""
 
 
 def _grid(values: np.ndarray, unit: str) -> dict[str, Any]:
@@ -93,7 +94,8 @@ def ranking_data(r: Simulated) -> dict[str, Any]:
 def map_data(m: RobustnessMap) -> dict[str, Any]:
     """One robustness map: axes, values, saving grids in %, statuses."""
     out: dict[str, Any] = {"axes": list(m.axes),
-                           "values": {a: quantity(v, AXIS_UNITS[a])
+                           "values": {a: [str(x) for x in v] if a == "pattern"
+                                      else quantity(v, AXIS_UNITS[a])
                                       for a, v in zip(m.axes, m.values, strict=True)},
                            "saving": {k: _grid(100 * v, "%") for k, v in m.saving.items()},
                            "status": [list(row) for row in m.status]}

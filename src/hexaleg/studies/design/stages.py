@@ -25,7 +25,7 @@ from hexaleg.design.families import Geometry
 from hexaleg.design.fatigue import FatigueCheck, spring_fatigue
 from hexaleg.design.robust import RobustSprings, robust_springs
 from hexaleg.design.robustness import Condition, condition_prepared, condition_savings
-from hexaleg.design.robustness_map import RobustnessMap, robustness_map
+from hexaleg.design.robustness_map import RobustnessMap, robot_patterns, robustness_map
 from hexaleg.design.spring_parts import SpringPart, spring_outer_diameter
 from hexaleg.design.tolerance import TolerantSprings, tolerant_springs
 from hexaleg.dynamics.prepare import Prepared
@@ -209,14 +209,20 @@ def envelope_and_fatigue(nom: Nominal, rec: Candidate
 
 def robustness_maps(nom: Nominal, rec: Candidate
                     ) -> tuple[tuple[RobustnessMap, ...], dict[str, tuple[float, str]]]:
-    """The recommendation frozen over period × stride and payload × μ, and each metric's worst
-    case (saving, its condition's label)."""
+    """The recommendation frozen over period × stride, payload × μ and slope × pattern (the
+    ground's slope along the walking direction; the patterns of ``[design] map_pattern``, by
+    default the nominal gait's and every other the robot's legs walk,
+    :func:`~hexaleg.design.robustness_map.robot_patterns`), and each metric's worst case
+    (saving, its condition's label) over all three."""
     d = nom.config.design
     springs = rec.optimum.springs
-    maps = (robustness_map(nom.run, nom.gait, springs, {"period": d.map_period,
-                                                         "stride": d.map_stride}),
-            robustness_map(nom.run, nom.gait, springs, {"payload": d.map_payload,
-                                                         "mu": d.map_mu}))
+    patterns = d.map_pattern or robot_patterns(nom.robot, nom.gait)
+    axes: list[dict[str, Sequence[float] | Sequence[str]]] = [
+        {"period": d.map_period, "stride": d.map_stride},
+        {"payload": d.map_payload, "mu": d.map_mu}]
+    if patterns:  # a robot whose leg names do not say side and place has no named pattern
+        axes.append({"slope": d.map_slope, "pattern": patterns})
+    maps = tuple(robustness_map(nom.run, nom.gait, springs, a) for a in axes)
     worst = {}
     for m in METRICS:
         s, c = min((mp.worst(m) for mp in maps),
