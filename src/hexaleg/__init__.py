@@ -40,6 +40,7 @@ if TYPE_CHECKING:  # the names __getattr__ imports on first use, for type checke
     from hexaleg.design.robustness import robustness
     from hexaleg.design.robustness_map import robustness_map
     from hexaleg.design.torsion_spring import TorsionRequirement, design_torsion_spring
+    from hexaleg.studies.codesign.build import codesign
     from hexaleg.studies.design.build import build_design
     from hexaleg.studies.design.config import DesignConfig
     from hexaleg.studies.design.load import LoadedDesign, load_design
@@ -92,6 +93,7 @@ __all__ = [
     "animate",
     "build_design",
     "build_report",
+    "codesign",
     "cost_of_transport",
     "design_torsion_spring",
     "epsilon",
@@ -133,6 +135,7 @@ _LAZY: dict[str, str] = {
     "robust_springs": "hexaleg.design.robust",
     **dict.fromkeys(("TorsionRequirement", "design_torsion_spring"),
                     "hexaleg.design.torsion_spring"),
+    "codesign": "hexaleg.studies.codesign.build",
     "DesignConfig": "hexaleg.studies.design.config",
     "build_design": "hexaleg.studies.design.build",
     "write_design": "hexaleg.studies.design.write",

@@ -197,12 +197,17 @@ def simulated(robot: Robot, chosen: GaitParams, point: GaitPoint, c: Constraints
 
 def full_rules(robot: str, chosen: GaitParams, c: Constraints,
                say: Callable[[str], None]) -> Any:
-    """``hexaleg design`` (every rule of issue #30) on the chosen gait; its result."""
+    """``hexaleg design`` (every rule of issue #30) on the chosen gait: its result, or the
+    error's message when it cannot run there (the inner springs then stay recommended)."""
     from hexaleg.studies.design.build import build_design
     from hexaleg.studies.design.config import DesignConfig
 
     say("full spring rules on the chosen gait (hexaleg design)")
-    return build_design(DesignConfig(robot=robot, gait=chosen, contact=c.contact()), say)
+    try:
+        return build_design(DesignConfig(robot=robot, gait=chosen, contact=c.contact()), say)
+    except HexalegError as err:  # e.g. a robustness map's gait the legs cannot reach
+        say(f"full spring rules failed on the chosen gait: {err}")
+        return f"{type(err).__name__}: {err}"
 
 
 __all__ = ["SPEED_FACTORS", "codesign", "default_gait", "full_rules", "simulated",

@@ -80,7 +80,8 @@ class CodesignResult:
         rows: The four rows. sequential: The gait alone, then its springs.
         search: The co-design search. gait_search: The gait-alone search.
         curve: Energy per metre against speed. simulation: The MuJoCo check (or its error).
-        rules: ``hexaleg design``'s result on the chosen gait, or None.
+        rules: ``hexaleg design``'s result on the chosen gait, its error's message when it
+            could not run there, or None when not asked.
         samples: Samples a cycle in the search. wall: Total wall time, s.
     """
 
@@ -116,7 +117,7 @@ class CodesignResult:
     def recommended(self) -> tuple[SpringSet, str]:
         """The springs to fit and where they come from: the full rules' recommendation when
         they ran and it pays, else the inner program's optimum on the chosen gait."""
-        if self.rules is not None and self.rules.pays:
+        if self.rules is not None and not isinstance(self.rules, str) and self.rules.pays:
             return self.rules.recommended.optimum.springs, "hexaleg design (full spring rules)"
         return self.springs, f"inner program ({self.family} family, global optimum)"
 
@@ -134,7 +135,8 @@ class CodesignResult:
                      f"{self.search.wall:.1f} s, restarts {self.search.spread:.3f} J/m apart; "
                      f"total {self.wall:.1f} s")
         if self.rules is not None:
-            lines.append(f"  full spring rules (chosen gait only): {self.rules.summary()}")
+            text = self.rules if isinstance(self.rules, str) else self.rules.summary()
+            lines.append(f"  full spring rules (chosen gait only): {text}")
         return "\n".join(lines)
 
     def to_dict(self) -> dict[str, Any]:
@@ -143,7 +145,7 @@ class CodesignResult:
         entries = [spring_entry(j, s) for j, s in springs.items()]
         row = self.rows[3]
         saving = 1.0 - row.per_metre / self.rows[2].per_metre
-        if self.rules is not None and self.rules.pays:
+        if self.rules is not None and not isinstance(self.rules, str) and self.rules.pays:
             saving = float(self.rules.recommended.row["saving.electrical"])
         return {
             "robot": {"name": self.robot, "title": self.title, "mass": q(self.mass, "kg")},
@@ -176,7 +178,8 @@ class CodesignResult:
                            for k, v in self.simulation.items()},
             "full_rules": None if self.rules is None else {
                 "applied_to": "the chosen gait only (too slow for the search's inner loop)",
-                "summary": self.rules.summary(), "pays": self.rules.pays},
+                "summary": self.rules if isinstance(self.rules, str) else self.rules.summary(),
+                "pays": False if isinstance(self.rules, str) else self.rules.pays},
             "wall": q(self.wall, "s"),
         }
 

@@ -1,0 +1,86 @@
+"""The ``hexaleg codesign`` subcommand: its parser and its run (registered in
+:data:`hexaleg.cli.SUBCOMMANDS`; kept here: ``cli.py`` is at its size limit).
+
+``--config F`` reads a ``[codesign]`` table: ``speed``, ``pattern``, ``family``, ``samples``,
+``final_samples``, ``max_evaluations``, ``restarts``, ``rules``, ``curve``, ``simulate`` and
+a ``[codesign.constraints]`` table of :class:`~hexaleg.design.gait_evaluation.Constraints`;
+the command line's ``--speed`` and ``--pattern`` win over the file.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import Any
+
+KEYS = ("speed", "pattern", "family", "samples", "final_samples", "max_evaluations",
+        "restarts", "rules", "curve", "simulate", "constraints")
+"""The keys of a ``[codesign]`` table."""
+
+
+def add(sub: argparse._SubParsersAction) -> None:
+    """Add ``codesign`` to the subcommands."""
+    p = sub.add_parser("codesign", help="the gait and its springs designed together for a "
+                                        "required speed: the four rows, the chosen gait and "
+                                        "springs, codesign.html, codesign.json")
+    p.add_argument("--robot", default="hexaleg", help="a registered robot or a description "
+                                                      "FILE.toml (default %(default)s)")
+    p.add_argument("--speed", type=float, help="required speed, m/s (default 0.06)")
+    p.add_argument("--pattern", help="gait pattern (default: the robot's)")
+    p.add_argument("--config", help="TOML file with a [codesign] table (docs/codesign.md)")
+    p.add_argument("--rules", action="store_true",
+                   help="also apply hexaleg design's full spring rules (tolerance, envelope, "
+                        "fatigue, arbor, parsimony) to the chosen gait: minutes, not seconds")
+    p.add_argument("--out", default="hexaleg-codesign",
+                   help="output directory (default: %(default)s)")
+    p.set_defaults(func=run)
+
+
+def settings(config: str | Path | None) -> dict[str, Any]:
+    """The keywords of :func:`~hexaleg.studies.codesign.build.codesign` a config file gives.
+
+    Raises:
+        ConfigError: not TOML. UnknownNameError: a key that is not in :data:`KEYS` or not a
+            constraint (lists them).
+    """
+    from hexaleg.config import from_mapping, load_toml
+    from hexaleg.design.gait_evaluation import Constraints
+    from hexaleg.errors import ConfigError, UnknownNameError
+
+    if config is None:
+        return {}
+    table = load_toml(config).get("codesign", {})
+    if not isinstance(table, dict):
+        raise ConfigError(f"{config}: [codesign] must be a table")
+    for key in table:
+        if key not in KEYS:
+            raise UnknownNameError(f"{config} [codesign] key", key, KEYS)
+    out = dict(table)
+    if "constraints" in out:
+        out["constraints"] = from_mapping(Constraints, out["constraints"],
+                                          f"{config} [codesign.constraints]")
+    return out
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run the co-design and write its files."""
+    from hexaleg.studies.codesign.write import write_codesign
+
+    kwargs = settings(args.config)
+    for key in ("speed", "pattern"):
+        if getattr(args, key) is not None:
+            kwargs[key] = getattr(args, key)
+    if args.rules:
+        kwargs["rules"] = True
+    result, files = write_codesign(args.out, robot=args.robot, progress=_progress, **kwargs)
+    print(result.summary())
+    print(f"wrote {len(files)} files to {args.out}; open {args.out}/codesign.html")
+    return 0
+
+
+def _progress(message: str) -> None:
+    print(f"hexaleg codesign: {message}", file=sys.stderr, flush=True)
+
+
+__all__ = ["KEYS", "add", "run", "settings"]
