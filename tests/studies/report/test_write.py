@@ -127,3 +127,16 @@ def test_unwritable_output_directory_is_an_output_error(tmp_path, capsys):
     assert main(["report", "--out", str(blocker / "out")]) == 2
     assert str(blocker / "out") in capsys.readouterr().err
 
+
+
+def test_a_bad_design_file_leaves_no_directory(tmp_path):
+    """A run that cannot start writes nothing: --design /dev/zero used to create --out first."""
+    from hexaleg.errors import ConfigError
+    from hexaleg.studies.report.config import ReportConfig
+    from hexaleg.studies.report.write import write_report
+
+    out = tmp_path / "report-out"
+    cfg = ReportConfig.from_mapping({"report": {"design": "/dev/zero"}})
+    with pytest.raises(ConfigError, match=r"/dev/zero is not a regular file"):
+        write_report(out, cfg, progress=None)
+    assert not out.exists()

@@ -22,6 +22,7 @@ from hexaleg.outputs.html import render_html
 from hexaleg.robot.model import Robot
 from hexaleg.studies.report.build import Report, build_report
 from hexaleg.studies.report.config import ReportConfig
+from hexaleg.studies.report.design_section import design_section
 
 BAR_METRIC = "electrical"
 """Metric of the per-joint bar plot: the energy the servos draw (J)."""
@@ -73,6 +74,8 @@ def write_report(out: str | Path = "hexaleg-report", config: ReportConfig | None
         OutputError: ``out`` cannot be created or written (checked before computing; names it).
         HexalegError: from the computation (see :func:`build_report`).
     """
+    if config is not None and config.report.design is not None:
+        design_section(config.report.design, robot)  # a bad design.json: no directory made
     out = writable_directory(out, "the report")
     r = build_report(config, robot=robot, progress=progress)
     say = progress or (lambda _msg: None)
