@@ -77,3 +77,11 @@ def test_solver_noise_prints_as_zero_and_real_values_do_not():
 def test_unknown_metric_is_named():
     with pytest.raises(UnknownNameError, match="electrical"):
         summary(_table([1.0], [0.06], [1.0]), "nope")
+
+
+def test_a_column_of_noise_prints_as_zero_beside_real_parameters():
+    """One point (the optimum of a family): its k is the solver's 1.8e-13 beside a preload."""
+    table = _table([1.0], [0.06], [1.0], k_minus=[1.838e-13])
+    text = summary(table)
+    assert "femur.k_minus = 0" in text and "e-13" not in text
+    assert "femur.k_plus = 0.0132" in text

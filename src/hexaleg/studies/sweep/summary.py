@@ -5,7 +5,7 @@ An energy metric is per cycle (J). Points of different gaits walk different dist
 times, so a lower energy per cycle may only be a shorter cycle: when the table's periods or
 distances per cycle differ, the best point is the lowest energy **per metre** walked (J/m), or per
 second (W) where a gait does not move. Torques (N·m) compare as they are. Spring parameters within
-``1e-9`` of the largest magnitude of their column are the solver's rounding and print as 0.
+``1e-9`` of the table's largest spring parameter are the solver's rounding and print as 0.
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ if TYPE_CHECKING:  # pandas is imported where tables are made: `import hexaleg` 
     import pandas as pd
 
 NOISE = 1e-9
-"""A parameter below this fraction of its column's largest magnitude prints as 0."""
+"""A spring parameter below this fraction of the table's largest prints as 0."""
 
 
 def distance_per_cycle(table: pd.DataFrame) -> pd.Series:
@@ -84,8 +84,13 @@ def summary(table: pd.DataFrame, metric: str = DEFAULT_METRIC) -> str:
     # the inputs: design columns, and the gait parameters the sweep varies
     inputs = [c for c in table.columns if "." in c and not c.startswith(("baseline.", "saving."))
               and (not c.startswith("gait.") or table[c].nunique() > 1)]
-    scales = {c: float(np.nan_to_num(ok[c].abs().max())) for c in inputs
-              if pd.api.types.is_numeric_dtype(ok[c])}
+    numeric = [c for c in inputs if pd.api.types.is_numeric_dtype(ok[c])]
+    design = [c for c in numeric if not c.startswith("gait.")]
+    # a spring parameter's noise is against the design's largest magnitude (a column may be all
+    # noise: k = 1.8e-13 beside a preload of 0.11), a gait parameter against its own column
+    spring_scale = float(np.nan_to_num(ok[design].abs().max().max())) if design else 0.0
+    scales = {c: spring_scale if c in design else float(np.nan_to_num(ok[c].abs().max()))
+              for c in numeric}
     keys = ["family", "springs"] if "family" in table.columns else ["springs"]
     for key, rows in ok.groupby(keys, sort=False):
         index = value.loc[rows.index].idxmin()
