@@ -32,3 +32,38 @@ def test_the_stages_are_timed_in_order(written):
     assert names[0] == "prepare" and names[-1] == "simulate"
     assert names.index("pareto") < names.index("ranking") < names.index("maps")
     assert all(t >= 0 for t in r.timings.values())
+
+
+def test_a_max_outer_diameter_for_a_class_the_robot_lacks_is_named():
+    """A typo in a [design] max_outer_diameter class was ignored (the springs came out larger
+    than asked); now it is an error listing the robot's classes, before anything is prepared."""
+    import pytest
+
+    from hexaleg.errors import UnknownNameError
+    from hexaleg.studies.design.stages import nominal
+
+    cfg = DesignConfig.from_mapping({"design": {"max_outer_diameter": {"femr": 0.01}}})
+    with pytest.raises(UnknownNameError, match="coxa, femur, tibia"):
+        nominal(cfg)
+
+
+def test_families_designed_in_parallel_are_the_ones_designed_in_turn(monkeypatch):
+    """The forked workers compute exactly what one process computes: the same magnitudes,
+    geometry and savings to the last bit, in the families' order of rank."""
+    import os
+
+    from hexaleg.studies.design.stages import family_candidates, nominal
+
+    cfg = DesignConfig.from_mapping({"gait": {"samples": 100}, "design": {
+        "samples": 100, "families": ["linear", "one_sided"], "classes": ["femur", "tibia"]}})
+    nom = nominal(cfg)
+    said: list[str] = []
+    parallel = family_candidates(nom, lambda name, msg: said.append(name))
+    monkeypatch.setattr(os, "cpu_count", lambda: 1)
+    serial = family_candidates(nom, lambda name, msg: None)
+    assert sorted(said) == ["family linear", "family one_sided"]
+    assert [c.family for c in parallel] == [c.family for c in serial]
+    for a, b in zip(parallel, serial, strict=True):
+        assert a.optimum.magnitudes == b.optimum.magnitudes
+        assert a.optimum.geometry == b.optimum.geometry
+        assert a.row == b.row and a.net == b.net

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from hexaleg.checks import one_of
 from hexaleg.design.envelope import PartEnvelope, parts_envelope
 from hexaleg.design.evaluator import RunSpec
 from hexaleg.design.families import Geometry
@@ -101,6 +102,8 @@ def nominal(cfg: DesignConfig) -> Nominal:
     d = cfg.design
     run = d.run(cfg.robot, cfg.contact)
     robot, desc, gait = run.load(), run.description(), cfg.nominal_gait
+    for kind in d.max_outer_diameter:  # a typo would be ignored and the springs come out larger
+        one_of("[design] max_outer_diameter joint class", kind, robot.joint_kinds)
     prepared = condition_prepared(run, gait, Condition())
     baseline = {k: float(v) for k, v in prepared.baseline("joule")["total"].items()}
     classes = sprung_classes(robot, d.classes)
@@ -120,19 +123,54 @@ def rank(c: Candidate, metric: str) -> float:
     return float(value) if np.isfinite(value) else -np.inf
 
 
+_SHARED: list[Nominal] = []
+"""The nominal stage a forked worker of :func:`family_candidates` designs on (inherited through
+``fork``, not pickled: a Pinocchio model does not pickle)."""
+
+
+def _design_family(family: str) -> Candidate:
+    return _SHARED[0].family(family)
+
+
 def family_candidates(nom: Nominal, progress: Callable[[str, str], None]) -> list[Candidate]:
     """Every allowed family's candidate, ranked by predicted net saving (best first).
 
+    The families are independent convex programs with their own geometry searches, so they run
+    in parallel, one process per core (forked: the workers inherit the prepared gait; each
+    returns its pickled candidate), the same computations as one after the other (tested bit
+    for bit); one family or one core runs in this process.
+
     Args:
         nom: The nominal stage.
-        progress: Called with (step name, message) after each family.
+        progress: Called with (step name, message) as each family ends.
     """
+    import multiprocessing
+    import os
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+
     d = nom.config.design
-    cands = []
-    for fam in d.families:
-        cands.append(nom.family(fam))
+    workers = min(len(d.families), os.cpu_count() or 1)
+    found: dict[str, Candidate] = {}
+
+    def done(fam: str, c: Candidate) -> None:
+        found[fam] = c
         progress(f"family {fam}", f"{fam}: family optimum, {d.metric} saving "
-                 f"{100 * cands[-1].row[f'saving.{d.metric}']:+.2f} %")
+                 f"{100 * c.row[f'saving.{d.metric}']:+.2f} %")
+
+    if workers < 2 or "fork" not in multiprocessing.get_all_start_methods():
+        for fam in d.families:
+            done(fam, nom.family(fam))
+    else:
+        _SHARED[:] = [nom]
+        try:
+            with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")
+                                     ) as pool:
+                jobs = {pool.submit(_design_family, fam): fam for fam in d.families}
+                for job in as_completed(jobs):
+                    done(jobs[job], job.result())
+        finally:
+            _SHARED.clear()
+    cands = [found[fam] for fam in d.families]
     return sorted(cands, key=lambda c: -rank(c, d.metric))
 
 

@@ -21,8 +21,8 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
+from hexaleg.config import write_file
 from hexaleg.design.tolerance import TolerantSprings
-from hexaleg.errors import OutputError
 from hexaleg.outputs import design_plots, plots
 from hexaleg.outputs.directory import writable_directory
 from hexaleg.outputs.html import render_design_html
@@ -119,11 +119,7 @@ def write_design(out: str | Path = "hexaleg-design", config: DesignConfig | None
                                         "design.json"]}
     for path, text in ((out / "design.json", json.dumps(data, indent=1, ensure_ascii=False)),
                        (out / "design.html", render_design_html(data, images))):
-        try:
-            path.write_text(text, encoding="utf-8")
-        except OSError as e:
-            raise OutputError(f"cannot write {path}: {e}") from e
-        files.append(path)
+        files.append(write_file(path, text, "the design"))
     if progress:
         progress(f"wrote {out / 'design.html'}")
     return WrittenDesign(result=r, data=data, files=tuple(files))
