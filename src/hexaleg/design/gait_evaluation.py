@@ -18,13 +18,13 @@ error, never an exception, so the outer search can penalise it (:mod:`hexaleg.de
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from hexaleg.checks import nonnegative, real
-from hexaleg.design.codesign import optimal_springs
+from hexaleg.design.codesign import Groups, optimal_springs
 from hexaleg.dynamics.contact import ContactParams, friction_usage
 from hexaleg.dynamics.energy import G
 from hexaleg.dynamics.prepare import Prepared, prepare
@@ -173,7 +173,9 @@ def measure(robot: Robot, motion: Motion, prepared: Prepared, tau_motor: np.ndar
     unit, ``"min"``/``"max"``). Joint speeds against the URDF velocity limits, motor torques
     against the stall torques (``τ_stall``), the friction cone's usage ``|f_t| / (μ f_n)``
     (:func:`hexaleg.dynamics.contact.friction_usage`), the static margin, the swing apex and
-    the body's clearance."""
+    the body's clearance. The static margin is over the samples on three or more feet (a trot's
+    two-foot samples are balanced dynamically by the body's sway) and absent when there are
+    none."""
     limits = np.asarray(robot.model.velocityLimit[6:], dtype=float)
     speed = np.abs(prepared.qdot).max(axis=0)
     has = (limits > 0) & (limits < 1e300)
@@ -181,21 +183,23 @@ def measure(robot: Robot, motion: Motion, prepared: Prepared, tau_motor: np.ndar
     stall = np.broadcast_to(np.asarray(prepared.motor.stall_torque, dtype=float), (robot.nj,))
     torque = float((np.abs(tau_motor).max(axis=0) / stall).max())
     usage = friction_usage(forces, prepared.motion.stance, constraints.mu)
-    margin = float(static_margins(robot, motion.q, motion.feet, motion.stance).min())
+    margins = static_margins(robot, motion.q, motion.feet, motion.stance)
+    margins = margins[np.isfinite(margins)]  # −inf: under three feet, balanced by the sway
     apex = float(motion.feet[..., 2].max())
     out = {"joint_speed": (ratio, constraints.speed_fraction, "1", "max"),
-           "static_margin": (margin, min_margin, "m", "min"),
            "foot_clearance": (apex, constraints.min_foot_clearance, "m", "min"),
            "body_clearance": (body_clearance(robot, motion), constraints.min_body_clearance,
                               "m", "min"),
            "friction": (float(np.max(usage)) if np.size(usage) else 0.0, 1.0 + 1e-6, "1",
                         "max")}
+    if margins.size:
+        out["static_margin"] = (float(margins.min()), min_margin, "m", "min")
     if constraints.torque_limits:
         out["torque"] = (torque, 1.0 + 1e-6, "1", "max")
     return out
 
 
-def evaluate_gait(robot: Robot, params: GaitParams, *, groups: Sequence[str] | None,
+def evaluate_gait(robot: Robot, params: GaitParams, *, groups: Groups | None,
                   family: str, constraints: Constraints, min_margin: float,
                   motor: object = None) -> GaitPoint:
     """Make, prepare and analyse one gait; with ``groups`` also its optimal springs of
@@ -206,7 +210,7 @@ def evaluate_gait(robot: Robot, params: GaitParams, *, groups: Sequence[str] | N
         motion = gait(robot, params)
         prepared = prepare(robot, motion, motor=motor, contact=constraints.contact())  # type: ignore[arg-type]
         if groups:
-            best = optimal_springs(prepared, list(groups), family, "joule", metric=METRIC,
+            best = optimal_springs(prepared, groups, family, "joule", metric=METRIC,
                                    max_deflection=math.pi)
             analysis, springs = best.analysis, best.springs
         else:

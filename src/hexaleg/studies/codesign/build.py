@@ -28,12 +28,13 @@ from __future__ import annotations
 import dataclasses
 import functools
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
-from hexaleg.checks import integer, real
+from hexaleg.checks import integer, one_of, real
+from hexaleg.design.codesign import Groups
 from hexaleg.design.gait_evaluation import (
     PARAMETERS,
     Constraints,
@@ -50,6 +51,7 @@ from hexaleg.motion.patterns import check_pattern
 from hexaleg.robot.model import Robot
 from hexaleg.robot.registry import description
 from hexaleg.studies.codesign.result import CodesignResult, Row, SpeedPoint
+from hexaleg.studies.design.groups import design_groups
 
 SPEED_FACTORS = (0.5, 0.75, 1.0, 1.25, 1.5)
 """The speed curve's speeds, as factors of the required speed."""
@@ -71,7 +73,8 @@ def default_gait(robot: Robot, name: str, speed: float, pattern: str | None, sam
 def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = None, *,
              constraints: Constraints | None = None, family: str = "linear",
              samples: int = 100, final_samples: int = 200, max_evaluations: int = 100,
-             restarts: int = 3, curve: bool = True, simulate: bool = True,
+             restarts: int = 3, grouping: str = "class", curve: bool = True,
+             simulate: bool = True,
              rules: bool = False, progress: Callable[[str], None] | None = None
              ) -> CodesignResult:
     """The gait and springs that cover a metre at ``speed`` for the least electrical energy
@@ -86,6 +89,9 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
         samples: Samples a cycle in the search (≥ 40). final_samples: in the rows (≥ samples).
         max_evaluations: The co-design search's budget (the gait-alone search gets the same).
         restarts: Simplex runs of each search.
+        grouping: One spring design per joint ``class`` (default), ``mirrored`` left/right
+            pair, or ``joint`` (Solo-12's front and hind knees bend opposite ways: a class
+            design cancels, so ``mirrored``).
         curve: Compute the energy-vs-speed curve. simulate: Simulate the chosen gait.
         rules: Apply ``hexaleg design``'s full spring rules to the chosen gait (~40 s).
         progress: Called with one status line per stage.
@@ -103,14 +109,15 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
     t0 = time.perf_counter()
     model = description(robot).load()
     base = default_gait(model, robot, v, pattern, n)
-    groups = list(model.joint_classes)
+    groups = design_groups(model, tuple(model.joint_classes),
+                           one_of("grouping", grouping, ("class", "mirrored", "joint")))
     free = functools.partial(evaluate_gait, model, family=family, constraints=c)
     first = free(base, groups=groups, min_margin=0.0)
     if first.error is not None:
         raise InvalidParameterError("speed", v, f"a speed the robot's default gait can walk "
                                     f"(it fails: {first.error})")
     margin = c.min_static_margin if c.min_static_margin is not None \
-        else first.measures["static_margin"][0]
+        else max(0.0, first.measures.get("static_margin", (0.0,))[0])
     c = dataclasses.replace(c, min_static_margin=margin)
     free = functools.partial(evaluate_gait, model, family=family, constraints=c,
                              min_margin=margin)
@@ -155,7 +162,7 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
         simulation=simulation, rules=buy, samples=n, wall=time.perf_counter() - t0)
 
 
-def speed_curve(free: Callable[..., GaitPoint], groups: Sequence[str], base: GaitParams,
+def speed_curve(free: Callable[..., GaitPoint], groups: Groups, base: GaitParams,
                 chosen: GaitParams, speed: float) -> tuple[SpeedPoint, ...]:
     """Energy per metre of the default and the chosen gait against speed
     (:data:`SPEED_FACTORS`), with and without their inner-program springs (NaN where a gait

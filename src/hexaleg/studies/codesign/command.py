@@ -2,9 +2,10 @@
 :data:`hexaleg.cli.SUBCOMMANDS`; kept here: ``cli.py`` is at its size limit).
 
 ``--config F`` reads a ``[codesign]`` table: ``speed``, ``pattern``, ``family``, ``samples``,
-``final_samples``, ``max_evaluations``, ``restarts``, ``rules``, ``curve``, ``simulate`` and
-a ``[codesign.constraints]`` table of :class:`~hexaleg.design.gait_evaluation.Constraints`;
-the command line's ``--speed`` and ``--pattern`` win over the file.
+``final_samples``, ``max_evaluations``, ``restarts``, ``grouping``, ``rules``, ``curve``,
+``simulate`` and a ``[codesign.constraints]`` table of
+:class:`~hexaleg.design.gait_evaluation.Constraints`; the command line's ``--speed`` and
+``--pattern`` win over the file.
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from pathlib import Path
 from typing import Any
 
 KEYS = ("speed", "pattern", "family", "samples", "final_samples", "max_evaluations",
-        "restarts", "rules", "curve", "simulate", "constraints")
+        "restarts", "grouping", "rules", "curve", "simulate", "constraints")
 """The keys of a ``[codesign]`` table."""
 
 
