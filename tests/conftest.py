@@ -66,6 +66,28 @@ def spider() -> hexaleg.Robot:
     return load(str(SPIDER))
 
 
+def flipped_spider(where: Path, joints: tuple[str, ...]) -> hexaleg.Robot:
+    """The test hexapod of :data:`SPIDER` with the named joints' axes reversed (a mirrored
+    URDF's convention), written to and loaded from ``where``."""
+    import xml.etree.ElementTree as ET
+
+    from hexaleg.robot.registry import load
+
+    tree = ET.parse(SPIDER.parent / "spider.urdf")
+    for j in tree.getroot().iter("joint"):
+        if j.get("name") in joints:
+            axis = j.find("axis")
+            assert axis is not None
+            axis.set("xyz", " ".join(str(-float(v)) for v in axis.get("xyz", "").split()))
+    tree.write(where / "spider.urdf")
+    (where / "spider.toml").write_text(SPIDER.read_text())
+    return load(str(where / "spider.toml"))
+
+
+RIGHT_PITCH = ("d_j2", "d_j3", "e_j2", "e_j3", "f_j2", "f_j3")
+"""The test hexapod's right legs' femur and tibia joints (reversed in a mirrored variant)."""
+
+
 @pytest.fixture
 def urdf_with_limit(tmp_path):
     """A copy of the built-in URDF with one joint's ``<limit>`` attribute changed, loaded with

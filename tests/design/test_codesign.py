@@ -202,3 +202,35 @@ def test_electrical_metric_beats_the_joule_design_and_every_bounded_point(prepar
         bounded = optimal_springs(prepared200, groups, "one_sided", geometry=geometry,
                                   max_torque=f * peak)
         assert best.saving >= electrical(bounded) - 1e-9
+
+
+def test_reversed_urdf_axes_do_not_change_the_physical_design(tmp_path):
+    """The same robot with its right legs' femur and tibia axes reversed (a mirrored URDF) is the
+    same machine: with the mirrored joints found (hexaleg.robot.mirror) one design per class
+    saves exactly what it saves on the unflipped robot, the springs on both sides act alike;
+    without mirroring the class design saves nothing (the two sides cancel)."""
+    import hexaleg
+    from hexaleg.motion.params import GaitParams
+    from hexaleg.robot.mirror import mirror
+    from hexaleg.robot.registry import description
+
+    from conftest import RIGHT_PITCH, SPIDER, flipped_spider
+
+    def run(robot, desc, mirrored):
+        motion = hexaleg.tripod_gait(robot, GaitParams.for_robot(desc).updated({"samples": 60}))
+        p = hexaleg.prepare(robot, motion, motor=desc.actuator(robot))
+        classes = {k: robot.joint_classes[k] for k in ("femur", "tibia")}
+        return optimal_springs(p, classes, "linear", metric="electrical", mirrored=mirrored)
+
+    plain_robot = hexaleg.robot.registry.load(str(SPIDER))
+    flipped = flipped_spider(tmp_path, RIGHT_PITCH)
+    desc = description(str(tmp_path / "spider.toml"))
+    reference = run(plain_robot, description(str(SPIDER)), mirror(plain_robot).mirrored)
+    found = run(flipped, desc, mirror(flipped).mirrored)
+    assert found.saving > 0.02
+    assert found.saving == pytest.approx(reference.saving, rel=1e-6, abs=1e-9)
+    assert found.mirrored == frozenset(RIGHT_PITCH)
+    tau = np.abs(found.analysis.tau_spring).max(axis=0)
+    for left, right in (("a_j3", "d_j3"), ("a_j2", "d_j2")):
+        assert tau[flipped.column(left)] == pytest.approx(tau[flipped.column(right)], rel=1e-6)
+    assert run(flipped, desc, ()).saving < 1e-6

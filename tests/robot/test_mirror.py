@@ -2,31 +2,12 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
-from conftest import SPIDER
+from conftest import RIGHT_PITCH, SPIDER, flipped_spider
 
-import hexaleg
 from hexaleg.robot.mirror import mirror
 from hexaleg.robot.registry import load
-
-
-def _flipped_spider(tmp_path: Path, joints: tuple[str, ...]) -> hexaleg.Robot:
-    """The test hexapod with the named joints' axes reversed (a mirrored URDF's convention)."""
-    import xml.etree.ElementTree as ET
-
-    tree = ET.parse(SPIDER.parent / "spider.urdf")
-    for j in tree.getroot().iter("joint"):
-        if j.get("name") in joints:
-            axis = j.find("axis")
-            assert axis is not None
-            axis.set("xyz", " ".join(str(-float(v)) for v in axis.get("xyz", "").split()))
-    tree.write(tmp_path / "spider.urdf")
-    toml = SPIDER.read_text()
-    (tmp_path / "spider.toml").write_text(toml)
-    return load(str(tmp_path / "spider.toml"))
 
 
 def test_the_geometric_sign_is_the_gaits_own(robot, walk):
@@ -59,9 +40,8 @@ def test_reversed_axes_are_found_on_a_robot_facing_y(tmp_path):
     mirrored, beside the coxas (vertical axes: mirrored by geometry)."""
     plain = mirror(load(str(SPIDER)))
     assert set(plain.mirrored) == {"d_j1", "e_j1", "f_j1"}
-    flipped = ("d_j2", "d_j3", "e_j2", "e_j3", "f_j2", "f_j3")
-    m = mirror(_flipped_spider(tmp_path, flipped))
-    assert set(m.mirrored) == {"d_j1", "e_j1", "f_j1", *flipped}
+    m = mirror(flipped_spider(tmp_path, RIGHT_PITCH))
+    assert set(m.mirrored) == {"d_j1", "e_j1", "f_j1", *RIGHT_PITCH}
     assert not m.notes
     assert "mirrored joints" in m.summary()
 

@@ -19,7 +19,7 @@ spring: deflection = moment / rate); one design shared by a group's joints.
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -72,6 +72,8 @@ class OptimalSprings:
             springs. baseline: Without. saving: ``(baseline − value) / |baseline|``.
         notes: What the user should know (a constant-torque spring, a spring that never engages).
         solver: How it was solved (path, Clarabel solves, explicit samples, geometry evaluations).
+        mirrored: Joints whose spring is the group's design mirrored (they count their angle
+            the other way round; geometry and magnitudes are the group's as designed).
     """
 
     family: str
@@ -87,6 +89,7 @@ class OptimalSprings:
     saving: float
     notes: tuple[str, ...] = ()
     solver: dict[str, Any] = field(default_factory=dict)
+    mirrored: frozenset[str] = frozenset()
 
     def table(self) -> dict[str, dict[str, Any]]:
         """Per group: geometry and magnitudes as ``{value, unit}``, in SI and the paper's units
@@ -99,7 +102,7 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
                     max_deflection: float | None = None,
                     geometry: Mapping[str, Geometry] | None = None,
                     start: Mapping[str, Geometry] | Sequence[Mapping[str, Geometry]] | None = None,
-                    metric: str | None = None) -> OptimalSprings:
+                    metric: str | None = None, mirrored: Iterable[str] = ()) -> OptimalSprings:
     """The optimal springs of one family on the groups' joints for a prepared gait.
 
     Args:
@@ -117,6 +120,9 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
         start: Group → geometry to start the search from (every group; e.g. each group's
             optimum alone), or a list of such: the result is never worse than any of them. Not
             with ``geometry``.
+        mirrored: Joints that count their angle the other way round from their group's design
+            (:func:`hexaleg.robot.mirror.mirror`): each gets the group's spring mirrored, so one
+            physical design serves both sides of a mirror.
         metric: What the magnitudes (and the geometry search) minimise. None (default): the
             force program's own objective, the joint program over (x, forces) above. With a
             metric the geometry is the Joule program's search (grid rounds and Nelder–Mead),
@@ -146,7 +152,7 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
             springs (the baseline), or the program has no solution.
     """
     setup = design_setup(prepared, groups, family, objective, max_torque, max_deflection,
-                         metric)
+                         metric, mirrored=mirrored)
     baseline = float(prepared.baseline(objective)["total"][metric or OBJECTIVE_METRIC[objective]])
     if geometry is not None:
         if start is not None:
@@ -197,7 +203,7 @@ def frozen_problem(prepared: Prepared, optimum: OptimalSprings, centres: Mapping
         max_deflection: As :func:`optimal_springs`, at this gait.
     """
     setup = design_setup(prepared, optimum.groups, optimum.family, optimum.objective, max_torque,
-                   max_deflection)
+                   max_deflection, mirrored=optimum.mirrored)
     setup = dataclasses.replace(setup, centre={j: float(centres[j]) for j in setup.centre})
     p = setup.problem(setup.check_geometry(optimum.geometry))
     keep = np.array([label != "never engaged" for label in p.labels], dtype=bool)
@@ -207,17 +213,23 @@ def frozen_problem(prepared: Prepared, optimum: OptimalSprings, centres: Mapping
 
 
 def group_springs(fam: Family, groups: Mapping[str, Sequence[str]],
-                  geometry: Mapping[str, Geometry], centres: Mapping[str, float], x: np.ndarray
+                  geometry: Mapping[str, Geometry], centres: Mapping[str, float], x: np.ndarray,
+                  mirrored: frozenset[str] = frozenset()
                   ) -> tuple[dict[str, dict[str, float]], dict[str, Spring]]:
     """Group → magnitude name → value, and joint → spring law, of the stacked magnitudes ``x``
-    (groups in order, each :attr:`Family.magnitudes`; angles from ``centres``, rad)."""
+    (groups in order, each :attr:`Family.magnitudes`; angles from ``centres``, rad); a joint of
+    ``mirrored`` gets its group's spring mirrored (:meth:`Family.mirror`)."""
     nm = len(fam.magnitudes)
     magnitudes, springs = {}, {}
     for i, (g, js) in enumerate(groups.items()):
         xg = x[i * nm:(i + 1) * nm]
         magnitudes[g] = dict(zip(fam.magnitudes, (float(v) for v in xg), strict=True))
         for j in js:
-            springs[j] = fam.spring(geometry[g], centres[j], xg)
+            if j in mirrored:
+                mirrored_geometry, mirrored_x = fam.mirror(geometry[g], xg)
+                springs[j] = fam.spring(mirrored_geometry, centres[j], mirrored_x)
+            else:
+                springs[j] = fam.spring(geometry[g], centres[j], xg)
     return magnitudes, springs
 
 
@@ -229,13 +241,19 @@ def springs_result(setup: DesignSetup, geometry: dict[str, dict[str, float | str
     fam, prepared = setup.fam, setup.prepared
     nonneg = np.tile(fam.nonnegative(), len(setup.groups))
     x = np.where(nonneg, np.maximum(solution.x, 0.0), solution.x)
-    magnitudes, springs = group_springs(fam, setup.groups, geometry, setup.centre, x)
+    problem = setup.problem(geometry)  # a term that never acts over the gait is exactly 0 (a
+    for row, label in zip(problem.G, problem.labels, strict=True):  # solver leaves ~1e-12)
+        if label == "never engaged":
+            x[np.flatnonzero(row)] = 0.0
+    magnitudes, springs = group_springs(fam, setup.groups, geometry, setup.centre, x,
+                                        setup.mirrored)
     notes = []
     for g, m in magnitudes.items():
         if fam.name == "linear" and m["k"] < ZERO_STIFFNESS and abs(m["torque_at_reference"]) > 0:
             notes.append(f"group {g}: k = 0 with a constant torque of "
-                         f"{m['torque_at_reference']:+.4g} N·m — a constant-torque spring; give "
-                         "max_deflection to bound how far a real spring may wind")
+                         f"{m['torque_at_reference']:+.4g} N·m — a constant-torque spring; "
+                         "bound how far a real spring may wind with max_deflection (hexaleg "
+                         "design: [design] max_deflection)")
     analysis = prepared.evaluate(springs, setup.objective)
     metric = setup.metric or OBJECTIVE_METRIC[setup.objective]
     value = float(analysis.metrics["total"][metric])
@@ -243,14 +261,15 @@ def springs_result(setup: DesignSetup, geometry: dict[str, dict[str, float | str
         notes.append(f"no magnitudes of {fam.name} springs save {metric} energy here (the "
                      f"program's best costs {100 * -saving(value, baseline):.3g} %): no springs")
         x = np.zeros_like(x)
-        magnitudes, springs = group_springs(fam, setup.groups, geometry, setup.centre, x)
+        magnitudes, springs = group_springs(fam, setup.groups, geometry, setup.centre, x,
+                                        setup.mirrored)
         analysis = prepared.evaluate(springs, setup.objective)
         value = float(analysis.metrics["total"][metric])
     return OptimalSprings(
         family=fam.name, objective=setup.objective, groups=dict(setup.groups),
         geometry=geometry, magnitudes=magnitudes, springs=SpringSet(springs), analysis=analysis,
         metric=metric, value=value, baseline=baseline, saving=saving(value, baseline),
-        notes=tuple(notes),
+        notes=tuple(notes), mirrored=setup.mirrored,
         solver={"path": ("condensed program" if setup.condensed else "active set"
                          if setup.objective in QUADRATIC_OBJECTIVES else "cvxpy stacked program"),
                 "program_value": solution.value, "clarabel_solves": solution.rounds,

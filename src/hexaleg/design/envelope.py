@@ -218,7 +218,8 @@ def _safety(sy: float, sigma: float) -> float:
 
 def part_envelope(part: SpringPart, centres: Mapping[str, float],
                   ranges: Mapping[str, Sequence[AngleRange]], *,
-                  design_factor: float | None = None) -> PartEnvelope | None:
+                  design_factor: float | None = None,
+                  mirrored: frozenset[str] = frozenset()) -> PartEnvelope | None:
     """The part's spring over its joints' envelope (module docstring).
 
     Args:
@@ -228,6 +229,8 @@ def part_envelope(part: SpringPart, centres: Mapping[str, float],
             (:func:`~hexaleg.design.spring_parts.motion_centres`).
         ranges: Joint → its angle ranges (:func:`envelope_ranges`).
         design_factor: Required S_y/σ; default the spring's design factor.
+        mirrored: Joints that count their angle the other way round from the part's design
+            (:mod:`hexaleg.robot.mirror`): their angle from the centre is ``c − q``.
 
     Raises:
         InvalidParameterError: a joint of the part without a centre or without ranges, or a
@@ -250,11 +253,12 @@ def part_envelope(part: SpringPart, centres: Mapping[str, float],
         c = float(centres[j])
         for r in ranges[j]:
             for a in (r.low, r.high):
-                w = max(pre + s * (a - c - u_p), floor)
+                rel = c - a if j in mirrored else a - c
+                w = max(pre + s * (rel - u_p), floor)
                 by_source[r.source] = min(by_source.get(r.source, math.inf),
                                           _safety(sy, float(bending_stress(k * w, d, D))))
                 if w > worst[0]:
-                    worst = (w, j, a, a - c, r.source)
+                    worst = (w, j, a, rel, r.source)
     w, joint, angle, rel, source = worst
     torque = k * w
     sigma = float(bending_stress(torque, d, D))
@@ -271,7 +275,8 @@ def part_envelope(part: SpringPart, centres: Mapping[str, float],
         else:
             u = u_p + s * (w_allow - pre)
             stop = HardStop(angle_from_centre=u,
-                            angles={j: float(centres[j]) + u for j in part.joints},
+                            angles={j: float(centres[j]) + (-u if j in mirrored else u)
+                                    for j in part.joints},
                             windup=w_allow, torque=m_allow)
     return PartEnvelope(
         group=part.group, side=part.side, role=part.role, max_windup=w, max_torque=torque,
@@ -284,21 +289,25 @@ def part_envelope(part: SpringPart, centres: Mapping[str, float],
 
 def envelope(parts: Iterable[SpringPart], centres: Mapping[str, float],
              ranges: Mapping[str, Sequence[AngleRange]], *,
-             design_factor: float | None = None) -> tuple[PartEnvelope, ...]:
+             design_factor: float | None = None,
+             mirrored: frozenset[str] = frozenset()) -> tuple[PartEnvelope, ...]:
     """:func:`part_envelope` of every part that has a spring, in order."""
-    out = (part_envelope(p, centres, ranges, design_factor=design_factor) for p in parts)
+    out = (part_envelope(p, centres, ranges, design_factor=design_factor, mirrored=mirrored)
+           for p in parts)
     return tuple(e for e in out if e is not None)
 
 
 def parts_envelope(parts: Sequence[SpringPart], prepared: Prepared, *,
                    extra: Sequence[tuple[str, Mapping[str, tuple[float, float]]]] = (),
-                   poses: Sequence[str] = POSES, design_factor: float | None = None
-                   ) -> tuple[PartEnvelope, ...]:
+                   poses: Sequence[str] = POSES, design_factor: float | None = None,
+                   mirrored: frozenset[str] = frozenset()) -> tuple[PartEnvelope, ...]:
     """The pipeline's one call: :func:`envelope` of ``parts`` with their joints' centres of
     motion in ``prepared`` (the gait they were designed on) and every range of
     :func:`envelope_ranges` — URDF limits, ``poses``, that gait, and the labelled ``extra``
-    ranges (turning, the robustness maps' conditions; absolute rad)."""
+    ranges (turning, the robustness maps' conditions; absolute rad); ``mirrored`` as
+    :func:`part_envelope`."""
     robot = prepared.robot
     joints = sorted({j for p in parts for j in p.joints}, key=robot.column)
     ranges = envelope_ranges(robot, joints, prepared=prepared, poses=poses, extra=extra)
-    return envelope(parts, motion_centres(prepared, joints), ranges, design_factor=design_factor)
+    return envelope(parts, motion_centres(prepared, joints), ranges, design_factor=design_factor,
+                    mirrored=mirrored)

@@ -172,7 +172,7 @@ def _result(optimum: OptimalSprings, mode: str, metric: str, data: list[Condense
             x0: np.ndarray, centres: dict[str, float], solver: dict[str, Any]
             ) -> RobustSprings:
     magnitudes, springs = group_springs(family(optimum.family), optimum.groups,
-                                        optimum.geometry, centres, x)
+                                        optimum.geometry, centres, x, optimum.mirrored)
     robust = SpringSet(springs)
     value, base, nominal_saving = [], [], []
     feasible = True

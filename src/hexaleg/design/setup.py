@@ -12,7 +12,7 @@ Both :mod:`hexaleg.design.codesign` and :mod:`hexaleg.design.search` import it.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import cast
 
@@ -96,6 +96,9 @@ class DesignSetup:
             joule): that metric of the Joule-optimal forces, by the condensed program.
         shifts: Stop shifts (group → rad) whose worst case the magnitudes minimise; empty: the
             geometry as given.
+        mirrored: Joints that count their angle the other way round from their group's design
+            (:mod:`hexaleg.robot.mirror`): each gets the group's spring mirrored,
+            ``τ(q) = −τ_design(2c − q)`` (:meth:`~hexaleg.design.families.Family.mirror`).
     """
 
     prepared: Prepared
@@ -109,6 +112,7 @@ class DesignSetup:
     max_deflection: float | None
     metric: str | None = None
     shifts: tuple[Shift, ...] = ()
+    mirrored: frozenset[str] = frozenset()
 
     @property
     def condensed(self) -> bool:
@@ -152,7 +156,11 @@ class DesignSetup:
             engaged = np.zeros(nm, dtype=bool)
             for j in js:
                 terms = fam.terms(geometry[g], self.centre[j])
-                B[:, i, sl] = basis(terms, p.q[:, p.robot.column(j)])
+                q = p.q[:, p.robot.column(j)]
+                if j in self.mirrored:  # the design's law reflected about the centre of motion
+                    B[:, i, sl] = -basis(terms, 2.0 * self.centre[j] - q)
+                else:
+                    B[:, i, sl] = basis(terms, q)
                 engaged |= np.any(np.abs(B[:, i, sl]) > ENGAGED, axis=0)
                 for row, rhs, label in self._rows(terms, j):
                     full = np.zeros(B.shape[2])
@@ -234,7 +242,8 @@ class DesignSetup:
 
 def design_setup(prepared: Prepared, groups: Groups, family: str, objective: str,
                  max_torque: float | None, max_deflection: float | None,
-                 metric: str | None = None, shifts: Sequence[Shift] = ()) -> DesignSetup:
+                 metric: str | None = None, shifts: Sequence[Shift] = (),
+                 mirrored: Iterable[str] = ()) -> DesignSetup:
     """The checked inputs of :func:`~hexaleg.design.codesign.optimal_springs` and each joint's
     range of motion.
 
@@ -273,4 +282,5 @@ def design_setup(prepared: Prepared, groups: Groups, family: str, objective: str
                        q_min={j: float(q.min()) for j, q in qs.items()},
                        q_max={j: float(q.max()) for j, q in qs.items()},
                        max_torque=max_torque, max_deflection=max_deflection,
-                       metric=metric, shifts=tuple(checked))
+                       metric=metric, shifts=tuple(checked),
+                       mirrored=frozenset(j for j in mirrored if j in qs))

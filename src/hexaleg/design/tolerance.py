@@ -83,7 +83,11 @@ def shifted_springs(optimum: OptimalSprings, centres: Mapping[str, float],
         x = [optimum.magnitudes[g][m] for m in fam.magnitudes]
         for j in joints:
             geo = shifted(fam, {g: optimum.geometry[g]}, {g: float(shift.get(j, 0.0))})[g]
-            out[j] = fam.spring(geo, centres[j], x)
+            if j in optimum.mirrored:  # the same physical spring, its stop shifted the same way
+                mirrored_geo, mirrored_x = fam.mirror(geo, x)
+                out[j] = fam.spring(mirrored_geo, centres[j], mirrored_x)
+            else:
+                out[j] = fam.spring(geo, centres[j], x)
     return SpringSet(out)
 
 
@@ -159,7 +163,8 @@ def tolerant_springs(prepared: Prepared, blind: OptimalSprings, tolerance: float
              allowed="an angle in (0, 0.1] rad (1° = 0.01745)")
     evaluations = integer("evaluations", evaluations, low=1)
     setup = design_setup(prepared, blind.groups, blind.family, blind.objective, max_torque,
-                         max_deflection, metric, scenarios(list(blind.groups), t))
+                         max_deflection, metric, scenarios(list(blind.groups), t),
+                         mirrored=blind.mirrored)
     fam = setup.fam
     first = [setup.check_geometry(blind.geometry)]
     if fam.angles:

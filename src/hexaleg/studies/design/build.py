@@ -45,6 +45,7 @@ from hexaleg.design.spring_parts import SpringPart
 from hexaleg.design.tolerance import TolerantSprings
 from hexaleg.errors import HexalegError
 from hexaleg.motion.params import GaitParams
+from hexaleg.robot.mirror import mirror
 from hexaleg.simulation.sensitivity import controller_check
 from hexaleg.studies.design.candidates import Candidate
 from hexaleg.studies.design.config import DesignConfig
@@ -193,7 +194,10 @@ def build_design(config: DesignConfig | None = None,
         f"no springs pay: the best design saves {100 * rec.row[f'saving.{d.metric}']:+.2f} % "
         f"of {d.metric} and {100 * rec.net[d.metric]:+.2f} % net of its springs' mass — fitting "
         "springs does not pay on this robot and gait"]
+    mirrored = mirror(nom.robot)
     notes = [*pays, *notes, *envelope_notes, *unsimulated, *nom.robot.notes, *rec.notes,
+             (mirrored.summary() + ("; each gets its group's spring mirrored" if d.mirror
+                                    and mirrored.mirrored else "")), *mirrored.notes,
              f"designed at {nom.gait.samples} samples per cycle (Joule-optimal forces); ranked "
              f"by the {d.metric} saving net of the springs' mass, simulated under the "
              f"{d.controller} servo"]

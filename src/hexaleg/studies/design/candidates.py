@@ -31,6 +31,7 @@ from hexaleg.dynamics.energy import saving
 from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import GaitParams
+from hexaleg.robot.mirror import mirror
 from hexaleg.robot.payload import with_point_masses
 from hexaleg.robot.springs import SpringSet
 from hexaleg.studies.design.config import METRICS, DesignParams
@@ -89,7 +90,8 @@ def _optimum(prepared: Prepared, groups: Mapping[str, tuple[str, ...]],
     for finer groups, their magnitudes at the class geometry."""
     bound = params.deflection_bound
     kw: dict[str, Any] = {"max_torque": params.max_torque, "max_deflection": bound,
-                          "metric": params.metric}
+                          "metric": params.metric,
+                          "mirrored": mirror(prepared.robot).mirrored if params.mirror else ()}
     if geometry is not None:
         best = optimal_springs(prepared, dict(class_groups), family, "joule",
                                geometry=dict(geometry), **kw)

@@ -99,6 +99,9 @@ class DesignParams:
         stop_tolerance: How far a workshop may mount a spring's stop from its drawing, rad
             (default 1°); the design is chosen for its worst saving within it. 0: no tolerance.
         life_cycles: The load cycles each spring must survive (fatigue), ≥ 1 (default 10⁷).
+        mirror: Share one physical design across a mirror: joints that count their angle the
+            other way round from their twin (:func:`hexaleg.robot.mirror.mirror`, from the
+            joint axes) get their group's spring mirrored (default true).
 
     Raises:
         UnknownNameError: an unknown family, grouping, metric, material or motor.
@@ -134,6 +137,7 @@ class DesignParams:
     min_group_saving: float = 0.01
     stop_tolerance: float = math.pi / 180
     life_cycles: float = 1e7
+    mirror: bool = True
 
     def __post_init__(self) -> None:
         set_ = lambda name, value: object.__setattr__(self, name, value)  # noqa: E731

@@ -238,7 +238,8 @@ def envelope_and_fatigue(nom: Nominal, rec: Candidate
                       {j: (float(v.min()), float(v.max())) for j, v in q.items()}))
     except HexalegError as e:
         notes.append(f"the envelope leaves out a turn at {TURN_RATE:g} rad/s: {e}")
-    env = parts_envelope(parts, nom.prepared, extra=extra, design_factor=d.safety_factor)
+    env = parts_envelope(parts, nom.prepared, extra=extra, design_factor=d.safety_factor,
+                         mirrored=rec.optimum.mirrored)
     assert all(p.spring is not None for p in parts)
     fatigue = tuple((p, spring_fatigue(p.spring, life=d.life_cycles))  # type: ignore[arg-type]
                     for p in parts)
