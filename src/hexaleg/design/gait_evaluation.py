@@ -65,8 +65,9 @@ class Constraints:
         min_body_clearance: Lowest point of the body's (base link's) geometry above the ground
             over the cycle, m, default 0.02 (assumed); robots whose base geometry is a mesh use
             the base origin's height.
-        Joint position limits and reach are always enforced: the gait generator refuses a
-        foot out of reach or a joint out of its URDF limits.
+
+    Joint position limits and reach are always enforced: the gait generator refuses a foot out
+    of reach or a joint out of its URDF limits.
     """
 
     min_static_margin: float | None = None
