@@ -43,9 +43,29 @@ DATASHEET = {
 }
 VOLTAGE = 12.0
 
+# TowerPro's figures: kgf·cm, s per 60°, stall current A, voltage V.
+TOWERPRO = {"MG996R": (11.0, 0.14, 2.5, 6.0), "SG90": (1.8, 0.1, 0.65, 4.8)}
+
+
+@pytest.mark.parametrize("name", TOWERPRO)
+def test_towerpro_servo_reproduces_its_datasheet(name: str) -> None:
+    """11 kgf·cm = 1.0787 N·m; 0.14 s/60° = (π/3)/0.14 rad/s; the model stalls at V/R with the
+    datasheet's torque and runs free at the datasheet's speed; the source names the figures."""
+    kgf_cm, s60, i_s, volts = TOWERPRO[name]
+    m = motor(name)
+    tau_s, omega_0 = kgf_cm * 9.80665e-2, (math.pi / 3) / s60
+    kt_g, eta = m.torque_constant * m.gear_ratio, m.gearbox_efficiency
+    assert m.voltage == volts and m.gear_ratio == 1.0
+    assert (volts / m.resistance) * kt_g == pytest.approx(tau_s, rel=1e-12)
+    assert volts / (kt_g / eta) == pytest.approx(omega_0, rel=1e-12)
+    assert m.current(tau_s) == pytest.approx(i_s, rel=1e-12)
+    assert 0.4 < eta < 0.9  # within the span of the ROBOTIS and Feetech entries
+    assert "TowerPro" in m.source and f"{kgf_cm:g} kgf·cm" in m.source
+    assert f"{s60:g} s/60°" in m.source and "G = 1" in m.notes
+
 
 def test_catalogue_holds_the_datasheet_servos_and_the_odri_module() -> None:
-    assert set(CATALOGUE) == set(DATASHEET) | {"ODRI-4004"}
+    assert set(CATALOGUE) == set(DATASHEET) | {"ODRI-4004"} | set(TOWERPRO)
     assert KGF_CM == pytest.approx(9.80665 / 100)
 
 
@@ -217,4 +237,4 @@ def test_every_catalogue_servo_states_its_output_hub_or_why_not():
             assert "not sourced" in hub.source, name
     assert output_hub("ax-18a") is OUTPUT_HUBS["AX-18A"]
     with pytest.raises(UnknownNameError):
-        output_hub("SG90")
+        output_hub("HS-311")

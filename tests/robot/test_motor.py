@@ -14,11 +14,13 @@ import hexaleg.robot.motor as motor_module
 from hexaleg.errors import HexalegError, InvalidParameterError
 from hexaleg.robot.catalogue import motor
 from hexaleg.robot.motor import (
+    GENERIC_EFFICIENCY_RANGE,
     GENERIC_GEARBOX_EFFICIENCY,
     GENERIC_VOLTAGE,
     Motor,
     from_datasheet,
     generic_actuator,
+    generic_energy_range,
 )
 
 
@@ -201,8 +203,13 @@ def test_generic_actuator_needs_a_name() -> None:
 
 def test_the_generic_efficiency_sits_among_the_catalogue_servos() -> None:
     """GENERIC_GEARBOX_EFFICIENCY's docstring: the servos' datasheet-derived η span 0.43–0.86,
-    median about 0.66 (the ODRI module's η is assumed, not derived)."""
+    median about 0.63 (the ODRI module's η is assumed, not derived); GENERIC_EFFICIENCY_RANGE is
+    that span, and generic_energy_range the factors 0.7/0.86 and 0.7/0.43 it implies."""
     etas = [m.gearbox_efficiency for m in catalogue.CATALOGUE.values() if m.name != "ODRI-4004"]
     assert (min(etas), max(etas)) == (pytest.approx(0.43, abs=5e-3), pytest.approx(0.86, abs=5e-3))
-    assert float(np.median(etas)) == pytest.approx(0.66, abs=5e-3)
+    assert float(np.median(etas)) == pytest.approx(0.63, abs=5e-3)
+    assert GENERIC_EFFICIENCY_RANGE == (round(min(etas), 2), round(max(etas), 2))
+    assert generic_energy_range() == (pytest.approx(0.7 / 0.86), pytest.approx(0.7 / 0.43))
+    notes = generic_actuator(33.5, 21.0).notes
+    assert "×0.81–×1.63" in notes and "hexaleg motors" in notes
     assert min(etas) < GENERIC_GEARBOX_EFFICIENCY < max(etas)

@@ -11,6 +11,10 @@ included, ``k_t G = τ_stall / I_stall``, ``η = τ_stall ω_0 / (V I_stall)``);
 * ROBOTIS DYNAMIXEL (AX, MX, X series): ROBOTIS e-Manual specification pages, figures at 12 V.
 * Feetech STS3215: the 12 V version (ST-3215-C018, 30 kg·cm), from Feetech's product page; its
   torques are in kg·cm, read as kgf·cm (:data:`KGF_CM`), and its speed in s/60°.
+* TowerPro MG996R and SG90 (:func:`_towerpro`): hobby PWM servos of hexapod kits and palm-sized
+  quadrupeds, from TowerPro's datasheet figures (kgf·cm, s/60°); the SG90's sheet gives no stall
+  current, so that figure is a retailer's, said in the entry. Neither publishes a gear ratio:
+  G = 1 is stated (only ``k_t G`` enters any power).
 * ODRI-4004: the brushless actuator module of Solo-12 (:func:`odri_actuator`), with stated
   assumptions.
 
@@ -73,6 +77,48 @@ def _sts3215() -> Motor:
               "powers, so it does not change them. Feetech publishes no winding resistance.")
 
 
+def _towerpro(name: str, *, stall_kgf_cm: float, seconds_per_60deg: float, stall_current: float,
+              voltage: float, source: str, notes: str) -> Motor:
+    """A TowerPro hobby servo from its datasheet figures: stall torque in kg·cm (read as kgf·cm,
+    :data:`KGF_CM`) and speed in s/60° at ``voltage``, stall current in A. No gear ratio is
+    published: G = 1 (``k_t`` stated at the output; only ``k_t G`` enters the powers)."""
+    rpm = (60.0 / 360.0) / seconds_per_60deg * 60.0
+    return from_datasheet(
+        name, gear_ratio=1.0, stall_torque=stall_kgf_cm * KGF_CM, stall_current=stall_current,
+        no_load_speed_rpm=rpm, voltage=voltage, source=source,
+        notes=(f"{stall_kgf_cm:g} kg·cm read as kgf·cm = {stall_kgf_cm * KGF_CM:.4f} N·m; "
+               f"{seconds_per_60deg:g} s/60° = {rpm:.1f} rpm. No gear ratio published: G = 1 "
+               f"(k_t at the output; powers depend on k_t G only). {notes} TowerPro publishes "
+               "no winding resistance."))
+
+
+def _mg996r() -> Motor:
+    """TowerPro MG996R at 6 V (datasheet: 11 kgf·cm, 0.14 s/60°, stall current 2.5 A)."""
+    return _towerpro(
+        "MG996R", stall_kgf_cm=11.0, seconds_per_60deg=0.14, stall_current=2.5, voltage=6.0,
+        source="TowerPro MG996R datasheet (towerpro.com.tw, 'MG996R High Torque Metal Gear Dual "
+               "Ball Bearing Servo'): stall torque 9.4 kgf·cm at 4.8 V and 11 kgf·cm at 6 V, "
+               "operating speed 0.17 s/60° at 4.8 V and 0.14 s/60° at 6 V, stall current 2.5 A "
+               "at 6 V; 55 g. Cross-checked: 11 kg·cm (wellpcb.com/mg996r.html), stall current "
+               "~2.5 A (zbotic.in/?p=596368)",
+        notes="The 6 V figures. The MG996R is widely cloned and sellers quote 9.4–15 kg·cm; "
+              "identify your own servo where it matters.")
+
+
+def _sg90() -> Motor:
+    """TowerPro SG90 micro servo at 4.8 V (datasheet: 1.8 kgf·cm, 0.1 s/60°; stall current
+    0.65 A from retailers, the datasheet gives none)."""
+    return _towerpro(
+        "SG90", stall_kgf_cm=1.8, seconds_per_60deg=0.1, stall_current=0.65, voltage=4.8,
+        source="TowerPro SG90 datasheet ('SG90 9 g Micro Servo'): stall torque 1.8 kgf·cm, "
+               "operating speed 0.1 s/60°, operating voltage 4.8 V; 9 g. Stall current ~650 mA "
+               "at 4.8 V from retailers' specification tables (musefsales.com SG90 product page; "
+               "kpower.com/blog/3205.html), not from TowerPro",
+        notes="The micro servo of palm-sized quadrupeds and hexapods. The stall current is not "
+              "a TowerPro figure (retailers' ~650 mA at 4.8 V), so R and k_t are rougher than "
+              "for the other entries.")
+
+
 def odri_actuator() -> Motor:
     """The Open Dynamic Robot Initiative actuator module v1 of Solo-12 (Grimminger et al.,
     "An Open Torque-Controlled Modular Robot Architecture for Legged Locomotion Research",
@@ -129,11 +175,13 @@ CATALOGUE: Mapping[str, Motor] = MappingProxyType({
                  stall_current=5.2, no_load_speed_rpm=45.0,
                  notes="MX-106T/R (same figures under protocol 1.0 and 2.0)."),
         _sts3215(),
+        _mg996r(),
+        _sg90(),
         odri_actuator(),
     )
 })
-"""Real actuators, keyed by model name: ROBOTIS and Feetech servos with datasheet values and the
-ODRI brushless module of Solo-12 (:func:`odri_actuator`)."""
+"""Real actuators, keyed by model name: ROBOTIS, Feetech and TowerPro servos with datasheet values
+and the ODRI brushless module of Solo-12 (:func:`odri_actuator`)."""
 
 @dataclass(frozen=True)
 class OutputHub:
@@ -153,12 +201,16 @@ _DRAWING_ONLY = ("not sourced: ROBOTIS publishes the output horn's dimensions on
                  "images in the e-Manual (no number in its text) and the datasheet figures "
                  "give none; the arbor falls back to the link rule")
 
+_TOWERPRO_HUB = ("not sourced: TowerPro's datasheets give no output hub or spline diameter as a "
+                 "number; the arbor falls back to the link rule")
+
 OUTPUT_HUBS: Mapping[str, OutputHub] = MappingProxyType({
     **{name: OutputHub(None, _DRAWING_ONLY) for name in (
         "AX-12A", "AX-18A", "MX-28", "XM540-W150", "XM540-W270", "XL430-W250", "XM430-W350",
         "MX-64", "MX-106")},
     "STS3215-C018": OutputHub(None, "not sourced: Feetech's product page gives no output hub or "
                                     "spline diameter; the arbor falls back to the link rule"),
+    **{name: OutputHub(None, _TOWERPRO_HUB) for name in ("MG996R", "SG90")},
     "ODRI-4004": OutputHub(None, "not sourced: the ODRI actuator module's documentation gives "
                                  "its output as CAD files, no diameter in text; the arbor falls "
                                  "back to the link rule"),

@@ -47,7 +47,12 @@ resistance: no power or energy depends on it)."""
 
 GENERIC_GEARBOX_EFFICIENCY = 0.7
 """Constant gearbox efficiency η of :func:`generic_actuator` (the datasheet-derived values of the
-catalogue's servos span 0.43–0.86, median about 0.66)."""
+catalogue's servos span 0.43–0.86, median about 0.63)."""
+
+GENERIC_EFFICIENCY_RANGE = (0.43, 0.86)
+"""The span of the datasheet-derived gearbox efficiencies of the catalogue's servos (AX-12A 0.43 …
+XL430-W250 0.86): the range of η a generic actuator could have, and so of the energy it implies
+(:func:`generic_energy_range`)."""
 
 GENERIC_GEAR_RATIO = 1.0
 """Gear ratio G of :func:`generic_actuator`: its torque constant is stated at the output (G is not
@@ -241,6 +246,24 @@ def from_datasheet(name: str, *, gear_ratio: float, stall_torque: float, stall_c
                  notes=f"{notes} {derived}".strip())
 
 
+def generic_energy_range() -> tuple[float, float]:
+    """The factors by which a :func:`generic_actuator`'s Joule loss could differ from the one it
+    states, over :data:`GENERIC_EFFICIENCY_RANGE`.
+
+    Its Joule coefficient is ``c = ω_0 / (η τ_s)`` (:func:`generic_actuator`), so with the URDF
+    limits taken at face value the Joule energy scales as ``η_assumed / η``: from
+    ``0.7 / 0.86 = 0.81`` to ``0.7 / 0.43 = 1.63`` times the stated value. The gearbox term
+    ``P/η`` moves by the same factors when motoring. A URDF effort limit below the real stall
+    torque (a software limit) or a velocity limit below the no-load speed moves ``c`` further, in
+    proportion to ``ω_0 / τ_s`` — not bounded by anything in the URDF.
+
+    Returns:
+        ``(low, high)``, dimensionless multipliers of the stated energy.
+    """
+    lo, hi = GENERIC_EFFICIENCY_RANGE
+    return GENERIC_GEARBOX_EFFICIENCY / hi, GENERIC_GEARBOX_EFFICIENCY / lo
+
+
 def generic_actuator(effort: float, velocity: float, *, name: str = "generic") -> Motor:
     """An actuator known only by a URDF joint's ``<limit effort=… velocity=…>``.
 
@@ -281,6 +304,7 @@ def generic_actuator(effort: float, velocity: float, *, name: str = "generic") -
     v, eta, g = GENERIC_VOLTAGE, GENERIC_GEARBOX_EFFICIENCY, GENERIC_GEAR_RATIO
     kt_g = eta * v / omega_0
     i_s = tau_s / kt_g
+    lo, hi = generic_energy_range()
     notes = (f"Generic actuator from URDF limits only (generic_actuator). Assumed: effort "
              f"{tau_s:g} N·m = stall torque and velocity {omega_0:g} rad/s = no-load speed, both "
              f"at the output at {v:g} V; gearbox efficiency η = {eta:g} (constant, by power-flow "
@@ -288,7 +312,13 @@ def generic_actuator(effort: float, velocity: float, *, name: str = "generic") -
              f"powers); no regeneration. Ideal DC motor (Verstraten et al., IEEE RA-L 2016): "
              f"k_t G = η V / ω_0 = {kt_g:.4g} N·m/A, stall current τ_s ω_0 / (η V) = "
              f"{i_s:.4g} A, R = V / I_s = {v / i_s:.4g} Ω, Joule coefficient c = ω_0 / (η τ_s) "
-             f"= {omega_0 / (eta * tau_s):.4g} W/(N·m)², independent of the assumed voltage.")
+             f"= {omega_0 / (eta * tau_s):.4g} W/(N·m)², independent of the assumed voltage. "
+             f"Range implied: with η anywhere in the catalogue's {GENERIC_EFFICIENCY_RANGE[0]:g}–"
+             f"{GENERIC_EFFICIENCY_RANGE[1]:g} the Joule energy and the motoring gearbox "
+             f"term are ×{lo:.2f}–×{hi:.2f} of the stated "
+             "ones; an effort limit below the real stall torque or a velocity limit below the "
+             "no-load speed moves them further, in proportion to ω_0 / τ_s. Give a catalogue "
+             "motor (hexaleg motors) or identified constants for energies to trust.")
     return Motor(name=name, gear_ratio=g, torque_constant=kt_g / g, resistance=v / i_s,
                  gearbox_efficiency=eta, regeneration=False, stall_torque=tau_s,
                  no_load_speed=omega_0, voltage=v,
