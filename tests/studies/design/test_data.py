@@ -44,3 +44,14 @@ def test_design_json_numbers_and_springs(written):
     assert data["recommended"]["saving"]["electrical"]["unit"] == "%"
     part = data["recommended"]["parts"][0]["torsion_spring"]
     assert part["rate_nmm_per_deg"]["unit"] == "N·mm/deg" and part["mass"]["unit"] == "kg"
+
+
+def test_design_json_says_whether_the_baseline_energy_is_plausible(written):
+    """The default hexapod (AX-18A) walks at a plausible cost of transport: design.json says so
+    with the band and the rule, and the summary line carries no warning."""
+    result, out = written
+    doc = json.loads((out / "design.json").read_text())["plausibility"]
+    assert doc["plausible"] is True and doc["flag"] is None
+    assert doc["low"]["value"] < doc["cost_of_transport"]["value"] < doc["high"]["value"]
+    assert "Taylor" in doc["rule"] and doc["message"].startswith("plausible")
+    assert "WARNING" not in result.result.summary()

@@ -43,6 +43,7 @@ from hexaleg.design.fatigue import FatigueCheck
 from hexaleg.design.robustness_map import RobustnessMap
 from hexaleg.design.spring_parts import SpringPart
 from hexaleg.design.tolerance import TolerantSprings
+from hexaleg.dynamics.plausibility import Plausibility, check_cost_of_transport, uses_generic
 from hexaleg.errors import HexalegError
 from hexaleg.motion.params import GaitParams
 from hexaleg.robot.mirror import mirror
@@ -95,6 +96,9 @@ class DesignResult:
             (:func:`~hexaleg.simulation.sensitivity.controller_check`); empty when the
             simulation could not run (a note says why).
         timings: Step → wall time, s. notes: What the user should know.
+        plausibility: The baseline's electrical cost of transport against the plausible band
+            for the robot's mass (:func:`~hexaleg.dynamics.plausibility.check_cost_of_transport`),
+            or None when the gait does not travel.
     """
 
     config: DesignConfig
@@ -118,6 +122,7 @@ class DesignResult:
     simulation: tuple[dict[str, Any], ...]
     timings: dict[str, float]
     notes: tuple[str, ...]
+    plausibility: Plausibility | None = None
 
     @property
     def pays(self) -> bool:
@@ -138,6 +143,8 @@ class DesignResult:
         if simulated:
             line += (f"; simulated electrical saving {', '.join(simulated)} (predicted "
                      f"{100 * self.simulation[0]['predicted']:+.2f} %)")
+        if self.plausibility is not None and not self.plausibility.plausible:
+            line += f"; WARNING baseline energy {self.plausibility.message}"
         return line
 
 
@@ -195,7 +202,9 @@ def build_design(config: DesignConfig | None = None,
         f"of {d.metric} and {100 * rec.net[d.metric]:+.2f} % net of its springs' mass — fitting "
         "springs does not pay on this robot and gait"]
     mirrored = mirror(nom.robot)
-    notes = [*pays, *notes, *envelope_notes, *unsimulated, *nom.robot.notes, *rec.notes,
+    plausible = _plausibility(nom)
+    flagged = () if plausible is None else (f"baseline energy {plausible.message}",)
+    notes = [*flagged, *pays, *notes, *envelope_notes, *unsimulated, *nom.robot.notes, *rec.notes,
              (mirrored.summary() + ("; each gets its group's spring mirrored" if d.mirror
                                     and mirrored.mirrored else "")), *mirrored.notes,
              f"designed at {nom.gait.samples} samples per cycle (Joule-optimal forces); ranked "
@@ -207,7 +216,16 @@ def build_design(config: DesignConfig | None = None,
         candidates=tuple(ranked), recommended=rec, outer=nom.outer, pareto=tuple(pareto),
         maps=maps, worst=worst, robust=robust, ranking=tuple(rows), tolerance=tolerance,
         envelope=envelope, fatigue=fatigue, simulation=simulation,
-        timings=timings, notes=tuple(notes))
+        timings=timings, notes=tuple(notes), plausibility=plausible)
+
+
+def _plausibility(nom: Nominal) -> Plausibility | None:
+    """The nominal gait's electrical cost of transport without springs against the plausible
+    band for the robot's mass (None for a gait in place)."""
+    cot = nom.prepared.baseline("joule").get("cost_of_transport", {}).get("electrical")
+    if cot is None:
+        return None
+    return check_cost_of_transport(cot, nom.robot.mass, generic=uses_generic(nom.run.actuator()))
 
 
 def _ranking(nom: Nominal, pool: list[Candidate]

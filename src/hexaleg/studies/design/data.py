@@ -163,6 +163,7 @@ def design_data(r: DesignResult) -> dict[str, Any]:
             "contact_mu": quantity(r.config.contact.mu, "1"), "controller": d.controller,
             "min_group_saving": quantity(100 * d.min_group_saving, "%")},
         "baseline": {m: quantity(r.baseline[m], metric_unit(m)) for m in SAVING_METRICS},
+        "plausibility": None if r.plausibility is None else r.plausibility.as_dict(),
         "recommended": candidate_data(r.recommended, r.outer),
         "candidates": [candidate_data(c, r.outer) for c in r.candidates],
         "pareto": [{"fraction": quantity(f, "1"), **candidate_data(c, r.outer)}

@@ -1,0 +1,165 @@
+"""Is a cost of transport plausible for a legged machine of this mass? One check, one rule.
+
+A result built on assumed actuator constants (a generic actuator from URDF limits,
+:func:`hexaleg.robot.motor.generic_actuator`) or a defective model can be off by orders of
+magnitude without any error. :func:`check_cost_of_transport` compares the dimensionless cost of
+transport ``E / (m g d)`` (paper eq. 23; Gabrielli & von Kármán, "What price speed?", Mechanical
+Engineering 72, 1950; Tucker, "The energetic cost of moving about", American Scientist 63(4),
+1975) against a band around the animal line of the same mass:
+
+* **Reference** (:func:`animal_cost_of_transport`): the minimum (incremental) metabolic cost of
+  transport of running animals and birds from 7 g to 250 kg, ``10.7 M^-0.316`` J/(kg·m)
+  (Taylor, Heglund & Maloiy, "Energetics and mechanics of terrestrial locomotion. I", J. Exp.
+  Biol. 97, 1982, eq. for ``E_metab / M_b`` against speed: slope ``10.7 M_b^-0.316``), divided
+  by ``g`` to be dimensionless — Tucker's line for walking and running animals.
+* **Low bound** :data:`LOW_FACTOR` × reference: the most efficient legged machines reach the
+  animal line and no further — the Cornell biped 0.2 against a human's 0.2 (Collins, Ruina,
+  Tedrake & Wisse, "Efficient bipedal robots based on passive-dynamic walkers", Science 307,
+  2005), Cornell Ranger 0.19 at 9.9 kg, 0.36 × its line (Bhounsule et al., IJRR 33(10), 2014).
+  A motor-only model (no electronics, ideal contacts) may sit below them by a small factor;
+  below a quarter of the line the energy is almost certainly missing a term (an actuator too
+  strong for its limits, a mass too small).
+* **High bound** :data:`HIGH_FACTOR` × reference: the least efficient electric legged robots of
+  the surveys sit near 10 × their line — ASIMO 3.2 at 52 kg (Collins et al. 2005; line 0.31);
+  MIT Cheetah 0.51 at 33 kg, 1.4 × (Seok et al., "Design principles for energy-efficient legged
+  locomotion and implementation on the MIT Cheetah robot", IEEE/ASME T-Mech 20(3), 2015), while
+  BigDog's 15 (hydraulic, engine-driven; quoted by Seok et al.) is outside the electric servo
+  model here. Slow statically stable gaits raise the cost (holding torque over a short
+  distance), so the bound allows twice ASIMO's ratio.
+
+The bounds are a rule to flag, not a law: a result outside them is reported as implausible with
+the numbers (``flag`` ``"low"`` or ``"high"``), never refused.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from hexaleg.checks import positive, real
+from hexaleg.robot.motor import Motor
+from hexaleg.robot.motor_set import MotorSet
+from hexaleg.units import G
+
+TAYLOR_COEFFICIENT = 10.7
+"""Minimum metabolic cost of transport of running animals at 1 kg, J/(kg·m) (Taylor, Heglund &
+Maloiy 1982)."""
+TAYLOR_EXPONENT = -0.316
+"""Its mass exponent (Taylor, Heglund & Maloiy 1982)."""
+LOW_FACTOR = 0.25
+"""Below this fraction of the animal line a cost of transport is flagged ``"low"`` (module
+docstring: the best legged machines reach 0.36 × their line)."""
+HIGH_FACTOR = 20.0
+"""Above this multiple of the animal line a cost of transport is flagged ``"high"`` (module
+docstring: ASIMO reaches about 10 × its line)."""
+
+
+def animal_cost_of_transport(mass: float) -> float:
+    """The animal line: ``10.7 M^-0.316 / g`` (Taylor, Heglund & Maloiy 1982), dimensionless.
+
+    Args:
+        mass: Body mass M, kg, > 0.
+
+    Returns:
+        The minimum cost of transport of a running animal of that mass (1).
+    """
+    return TAYLOR_COEFFICIENT * positive("mass", mass) ** TAYLOR_EXPONENT / G
+
+
+def plausible_range(mass: float) -> tuple[float, float]:
+    """``(low, high)`` cost of transport of a legged machine of ``mass`` kg (module docstring)."""
+    ref = animal_cost_of_transport(mass)
+    return LOW_FACTOR * ref, HIGH_FACTOR * ref
+
+
+def uses_generic(motor: Motor | MotorSet) -> bool:
+    """Whether any joint's actuator is a :func:`~hexaleg.robot.motor.generic_actuator` (its notes
+    open with the generic actuator's statement of assumptions)."""
+    motors = motor.motors if isinstance(motor, MotorSet) else (motor,)
+    return any(m.notes.startswith(GENERIC_MARK) for m in motors)
+
+
+GENERIC_MARK = "Generic actuator from URDF limits"
+"""How :func:`hexaleg.robot.motor.generic_actuator`'s notes begin."""
+
+
+@dataclass(frozen=True)
+class Plausibility:
+    """The verdict of :func:`check_cost_of_transport`.
+
+    Attributes:
+        cost_of_transport: The checked value E / (m g d), 1.
+        mass: The robot's mass, kg.
+        reference: The animal line at that mass, 1.
+        low: The low bound, 1. high: The high bound, 1.
+        flag: ``None`` inside the band, ``"low"`` or ``"high"`` outside.
+        message: One sentence with the numbers and, when flagged, what to check.
+    """
+
+    cost_of_transport: float
+    mass: float
+    reference: float
+    low: float
+    high: float
+    flag: str | None
+    message: str
+
+    @property
+    def plausible(self) -> bool:
+        """Whether the value is inside the band."""
+        return self.flag is None
+
+    def as_dict(self) -> dict[str, Any]:
+        """JSON form: the numbers as ``{value, unit}`` quantities, the flag and the message."""
+        def one(x: float) -> dict[str, Any]:
+            return {"value": x, "unit": "1"}
+
+        return {"cost_of_transport": one(self.cost_of_transport),
+                "mass": {"value": self.mass, "unit": "kg"}, "animal_line": one(self.reference),
+                "low": one(self.low), "high": one(self.high), "plausible": self.plausible,
+                "flag": self.flag, "message": self.message,
+                "rule": f"[{LOW_FACTOR:g}, {HIGH_FACTOR:g}] x 10.7 M^-0.316 / g (Taylor, "
+                        "Heglund & Maloiy 1982; hexaleg.dynamics.plausibility)"}
+
+
+def check_cost_of_transport(cost: float, mass: float, *, what: str = "electrical energy",
+                            generic: bool = False) -> Plausibility:
+    """Compare a cost of transport with the plausible band for a legged machine of ``mass``.
+
+    Args:
+        cost: The cost of transport E / (m g d), finite, ≥ 0.
+        mass: Robot mass, kg, > 0.
+        what: The energy it is made of, for the message.
+        generic: Whether the actuators are generic (assumed from URDF limits): the message then
+            names that as the first thing to replace.
+
+    Returns:
+        The verdict, flagged outside ``[LOW_FACTOR, HIGH_FACTOR] × animal line``.
+
+    Raises:
+        InvalidParameterError: ``cost`` negative or not finite, ``mass`` not > 0.
+    """
+    cot = real("cost of transport", cost, low=0.0, allowed="a finite number ≥ 0")
+    ref = animal_cost_of_transport(mass)
+    low, high = LOW_FACTOR * ref, HIGH_FACTOR * ref
+    head = (f"cost of transport {cot:.3g} ({what}) at {mass:.3g} kg, "
+            f"{cot / ref:.2g} x the animal line {ref:.3g}")
+    fix = ("the actuators are generic (from URDF limits): give the robot catalogue motors "
+           "(hexaleg motors) or identified constants ([motor] base = …) — "
+           if generic else "")
+    if cot < low:
+        flag: str | None = "low"
+        msg = (f"implausibly low: {head}, below {low:.3g} ({LOW_FACTOR:g} x the line, where no "
+               f"legged machine has gone); check {fix}the masses and the actuators' constants")
+    elif cot > high:
+        flag = "high"
+        msg = (f"implausibly high: {head}, above {high:.3g} ({HIGH_FACTOR:g} x the line, twice "
+               f"ASIMO's ratio); check {fix}the actuators' constants and the gait's speed")
+    else:
+        flag, msg = None, (f"plausible: {head}, within [{low:.3g}, {high:.3g}]"
+                           + (" (generic actuators: the value is an estimate)" if generic else ""))
+    return Plausibility(cot, float(mass), ref, low, high, flag, msg)
+
+
+__all__ = ["HIGH_FACTOR", "LOW_FACTOR", "Plausibility", "animal_cost_of_transport",
+           "check_cost_of_transport", "plausible_range", "uses_generic"]

@@ -1,0 +1,79 @@
+"""The cost-of-transport plausibility check: the animal line, the band, the flags, and every
+registry robot's default gait within the band or flagged."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import pytest
+
+import hexaleg
+from hexaleg.dynamics.plausibility import (
+    HIGH_FACTOR,
+    LOW_FACTOR,
+    animal_cost_of_transport,
+    check_cost_of_transport,
+    plausible_range,
+    uses_generic,
+)
+from hexaleg.errors import InvalidParameterError
+from hexaleg.motion.params import GaitParams
+from hexaleg.robot.catalogue import CATALOGUE
+from hexaleg.robot.motor import generic_actuator
+from hexaleg.robot.registry import DESCRIPTIONS
+from hexaleg.units import G
+
+
+def test_animal_line_is_taylor_1982() -> None:
+    """10.7 M^-0.316 J/(kg m) over g: 1.091 at 1 kg; at 13 kg (the Cornell biped) 0.485, so its
+    0.2 (Collins 2005) is 0.41 x the line, inside the band; ASIMO's 3.2 at 52 kg is 10 x."""
+    assert animal_cost_of_transport(1.0) == pytest.approx(10.7 / G, rel=1e-12)
+    assert animal_cost_of_transport(13.0) == pytest.approx(10.7 * 13 ** -0.316 / G)
+    assert check_cost_of_transport(0.2, 13.0).plausible
+    asimo = check_cost_of_transport(3.2, 52.0)
+    assert asimo.plausible and 9 < 3.2 / asimo.reference < 11
+    low, high = plausible_range(2.0)
+    assert (low, high) == (pytest.approx(LOW_FACTOR * animal_cost_of_transport(2.0)),
+                           pytest.approx(HIGH_FACTOR * animal_cost_of_transport(2.0)))
+
+
+def test_flags_and_messages() -> None:
+    ref = animal_cost_of_transport(12.0)
+    high = check_cost_of_transport(43.0, 12.0, generic=True)  # the issue's A1 figure
+    assert high.flag == "high" and not high.plausible
+    assert "implausibly high" in high.message and "generic" in high.message
+    low = check_cost_of_transport(0.1 * ref, 12.0)
+    assert low.flag == "low" and "implausibly low" in low.message and "generic" not in low.message
+    edge = check_cost_of_transport(HIGH_FACTOR * ref * (1 - 1e-9), 12.0)
+    assert edge.plausible and "plausible" in edge.message
+    data = high.as_dict()
+    assert data["plausible"] is False and data["flag"] == "high"
+    assert data["mass"] == {"value": 12.0, "unit": "kg"} and "Taylor" in data["rule"]
+    with pytest.raises(InvalidParameterError, match="cost of transport"):
+        check_cost_of_transport(math.nan, 12.0)
+    with pytest.raises(InvalidParameterError, match="mass"):
+        check_cost_of_transport(1.0, 0.0)
+
+
+def test_uses_generic() -> None:
+    assert uses_generic(generic_actuator(1.0, 5.0))
+    assert not uses_generic(CATALOGUE["AX-18A"])
+
+
+@pytest.mark.parametrize("name", list(DESCRIPTIONS))
+def test_every_registry_robot_is_within_the_band_or_flagged(name: str) -> None:
+    """Each robot's default gait (100 samples), its own actuators: the electrical cost of
+    transport is positive and either inside the band or flagged with a message that says so."""
+    desc = DESCRIPTIONS[name]
+    robot = desc.load()
+    gait = dataclasses.replace(GaitParams.for_robot(name), samples=100)
+    motor = desc.actuator(robot)
+    base = hexaleg.prepare(robot, hexaleg.gait(robot, gait), motor=motor).baseline("joule")
+    cot = base["cost_of_transport"]["electrical"]
+    verdict = check_cost_of_transport(cot, robot.mass, generic=uses_generic(motor))
+    assert cot > 0
+    assert verdict.plausible == (verdict.low <= cot <= verdict.high)
+    assert ("plausible:" in verdict.message) == verdict.plausible
+    if uses_generic(motor):
+        assert "generic" in verdict.message
