@@ -91,6 +91,21 @@ def test_a_robot_that_falls_is_a_verdict_with_when_and_how(prepared):
         s.simulated()
 
 
+def test_a_servo_too_weak_to_keep_the_stride_does_not_walk(prepared):
+    """A position servo at 0.15 of its gain stands and steps but covers 38 mm of the planned
+    60 mm per cycle (63 %): it said "walks" before the 10 % tolerance; now "short", with the
+    numbers, and the comparison refuses to report energies."""
+    s = simulate(prepared.robot, prepared.motion, prepared.motor, None,
+                 dataclasses.replace(QUICK, controller="position", kp_scale=0.15),
+                 prepared=prepared)
+    run = s.baseline
+    assert run.verdict == "short" and not run.walks
+    assert run.walk is not None and run.walk.distance_per_cycle < 0.9 * prepared.motion.distance
+    assert "of the planned 60.0 mm" in run.message and "outside ±10%" in run.message
+    with pytest.raises(SimulationError, match="short"):
+        s.simulated()
+
+
 @pytest.mark.parametrize("kwargs, match", [({"cycles": 1}, "cycles"),
                                            ({"cycles": 3, "evaluate": 3}, "evaluate"),
                                            ({"controller": "torque"}, "controller"),

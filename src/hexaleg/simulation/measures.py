@@ -61,6 +61,50 @@ class Walk:
     stances: int
 
 
+DISTANCE_TOLERANCE = 0.10
+"""A run "walks" only if its distance per cycle is within this fraction of the planned one (the
+tolerance #26 asks for: 10 %). Below :data:`STALL` of it the run stalled; in between, or above
+the planned distance by more than this, it fell short or overran."""
+STALL = 0.5
+"""A run that covers less than this fraction of the planned distance per cycle stalled."""
+TRACKING_BOUND = 0.1
+"""Largest RMS joint-angle tracking error of a run that "walks", rad (5.7°). A joint error e
+moves a foot by about ``l e`` for a leg of length l, so 0.1 rad misplaces the feet by about 10 %
+of the leg length — the same order as :data:`DISTANCE_TOLERANCE` of a stride. The default
+hexapod tracks at 0.4 mrad (feedforward) and 19 mrad (position servo) RMS
+(``analysis/logs/simulate_hexaleg.log``); the 546 mrad of #26's small quadruped is far out."""
+
+
+def verdict(walked: Walk, planned: float) -> tuple[str, str]:
+    """Whether a run that ran to the end walked, and if not what happened.
+
+    Args:
+        walked: Its walk over the evaluated cycles.
+        planned: The planned distance per cycle, m (0 for a gait in place: distance not judged).
+
+    Returns:
+        ``(verdict, message)``: ``"walks"`` and ``""`` when the distance per cycle is within
+        :data:`DISTANCE_TOLERANCE` of ``planned`` and the RMS tracking error at most
+        :data:`TRACKING_BOUND`; else ``"stalled"`` (under :data:`STALL` of the distance),
+        ``"short"`` (under the tolerance), ``"overran"`` (over it) or ``"untracked"`` (distance
+        within the tolerance, tracking not), with a message giving the numbers and the bounds.
+    """
+    d, rms = walked.distance_per_cycle, walked.tracking_rms
+    got = (f"it covered {d * 1e3:.1f} mm per cycle of the planned {planned * 1e3:.1f} mm "
+           f"({d / planned:.0%})" if planned > 0 else "")
+    tracking = (f"RMS joint tracking error {rms * 1e3:.0f} mrad (bound "
+                f"{TRACKING_BOUND * 1e3:.0f} mrad)")
+    if planned > 0 and d < STALL * planned:
+        return "stalled", f"{got}, under {STALL:.0%}; {tracking}"
+    if planned > 0 and abs(d / planned - 1) > DISTANCE_TOLERANCE:
+        kind = "short" if d < planned else "overran"
+        return kind, f"{got}, outside ±{DISTANCE_TOLERANCE:.0%}; {tracking}"
+    if rms > TRACKING_BOUND:
+        return "untracked", (f"the joints did not follow the gait: {tracking}"
+                             + (f"; {got}" if got else ""))
+    return "walks", ""
+
+
 def walk(sim: SimModel, motion: Motion, traj: Trajectory, window: slice, cycles: int,
          q_ref: np.ndarray) -> Walk:
     """The walk measures of ``traj`` over ``window`` (``cycles`` whole cycles).

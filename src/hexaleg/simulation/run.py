@@ -34,10 +34,14 @@ from hexaleg.simulation.controllers import COMPLIANCE, Servo, controls, referenc
 from hexaleg.simulation.ground import Ground
 from hexaleg.simulation.model import TIMESTEP, SimModel, build_model, timestep_limit
 
-VERDICTS: tuple[str, ...] = ("walks", "stalled", "fell", "diverged")
-"""How a run ended: it walked; it stood but covered less than :data:`STALL` of the planned
-distance; the base fell; the integration diverged."""
-STALL = 0.5
+VERDICTS: tuple[str, ...] = ("walks", "stalled", "short", "overran", "untracked", "fell",
+                              "diverged")
+"""How a run ended (:func:`hexaleg.simulation.measures.verdict`): it walked — the planned distance
+within :data:`~hexaleg.simulation.measures.DISTANCE_TOLERANCE` and the RMS tracking error within
+:data:`~hexaleg.simulation.measures.TRACKING_BOUND`; it stood but covered less than
+:data:`STALL` of the planned distance; it fell short of or overran the tolerance; it covered the
+distance without following the joints' gait; the base fell; the integration diverged."""
+STALL = measures.STALL
 """A run that covers less than this fraction of the planned distance per cycle stalled."""
 STEP_MARGIN = 2
 """Margin on the memory one simulation step costs (:func:`step_bytes`)."""
@@ -286,11 +290,7 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
     forces = (measures.foot_forces(sim, motion, traj, window, analysis.forces,
                                    settings.force_samples) if settings.force_samples else {})
     walked = measures.walk(sim, motion, traj, window, settings.evaluate, ref.q)
-    verdict, message = "walks", ""
-    if motion.distance > 0 and walked.distance_per_cycle < STALL * motion.distance:
-        verdict = "stalled"
-        message = (f"it covered {walked.distance_per_cycle * 1e3:.1f} mm per cycle of the "
-                   f"planned {motion.distance * 1e3:.1f} mm (under {STALL:.0%})")
+    verdict, message = measures.verdict(walked, motion.distance)
     return Run(name, sim, traj, verdict, message, cycles, measures.mean_metrics(cycles),
                walked, forces, wall)
 
