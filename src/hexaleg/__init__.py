@@ -40,6 +40,7 @@ if TYPE_CHECKING:  # the names __getattr__ imports on first use, for type checke
     from hexaleg.design.robustness import robustness
     from hexaleg.design.robustness_map import robustness_map
     from hexaleg.design.torsion_spring import TorsionRequirement, design_torsion_spring
+    from hexaleg.motion.recorded.load import load_motion
     from hexaleg.studies.codesign.build import codesign
     from hexaleg.studies.design.build import build_design
     from hexaleg.studies.design.config import DesignConfig
@@ -103,6 +104,7 @@ __all__ = [
     "joint_motion",
     "load",
     "load_design",
+    "load_motion",
     "load_robot",
     "metrics",
     "motor_from_mapping",
@@ -135,6 +137,7 @@ _LAZY: dict[str, str] = {
     "robust_springs": "hexaleg.design.robust",
     **dict.fromkeys(("TorsionRequirement", "design_torsion_spring"),
                     "hexaleg.design.torsion_spring"),
+    "load_motion": "hexaleg.motion.recorded.load",
     "codesign": "hexaleg.studies.codesign.build",
     "DesignConfig": "hexaleg.studies.design.config",
     "build_design": "hexaleg.studies.design.build",

@@ -1,0 +1,137 @@
+"""The checks of a log against its robot: columns, joint limits, stance, feet above the ground.
+
+Each failure is a named error (or, where the motion can still be analysed, a warning) that says
+what was found and what to change.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pinocchio as pin
+
+from hexaleg.errors import InvalidParameterError
+from hexaleg.motion.recorded.read import BASE_POSITION, BASE_QUATERNION, BASE_VELOCITY, Log
+from hexaleg.robot.model import Robot
+from hexaleg.units import DEG
+
+LIMIT_TOLERANCE = 0.02
+"""How far a logged joint may pass its URDF limit (servo overshoot, calibration), rad."""
+GROUND_TOLERANCE = 0.005
+"""How far below the ground (z = 0 of the logged world) a foot may seem to go, m."""
+
+
+def check_columns(robot: Robot, log: Log, contacts: bool | None, where: str) -> bool:
+    """Whether the log gives exact derivatives; checks that every joint has its column, that
+    the base's position and quaternion are whole, that derivatives are all given or none, and
+    that contact columns exist when ``contacts`` is True.
+
+    Raises:
+        InvalidParameterError: the missing columns named, with the robot's joints listed.
+    """
+    joints = robot.joint_names
+    missing = [j for j in joints if j not in log.columns]
+    if missing:
+        raise InvalidParameterError(f"{where} columns", f"missing {', '.join(missing)}",
+                                    f"one column per joint of {robot.name}: {', '.join(joints)}")
+    for group in (BASE_POSITION, BASE_QUATERNION):
+        present = [c for c in group if c in log.columns]
+        if present and len(present) != len(group):
+            raise InvalidParameterError(f"{where} columns", ", ".join(present),
+                                        f"all of {', '.join(group)} or none")
+    derivatives = [p + n for p in ("v_", "a_") for n in (*BASE_VELOCITY, *joints)]
+    present = [c for c in derivatives if c in log.columns]
+    if present and len(present) != len(derivatives):
+        absent = [c for c in derivatives if c not in log.columns]
+        raise InvalidParameterError(f"{where} derivative columns", f"missing {absent[0]} "
+                                    f"(and {len(absent) - 1} more)", "every v_ and a_ column "
+                                    "of the base and the joints, or none (then smoothed)")
+    legs = [f"contact_{leg}" for leg in robot.leg_names]
+    if contacts is True and not log.has(legs):
+        raise InvalidParameterError(
+            f"{where} contact columns", f"missing {[c for c in legs if c not in log.columns]}",
+            "a contact_<LEG> column for every leg with contacts=True; or contacts=None to "
+            "find stance from the feet's motion")
+    return bool(present)
+
+
+def check_limits(robot: Robot, q: np.ndarray, t: np.ndarray, units: dict[str, str],
+                 where: str) -> None:
+    """Every joint within its URDF limits (± :data:`LIMIT_TOLERANCE`).
+
+    Raises:
+        InvalidParameterError: the joint, its value, the time and its limits; a hint at the
+            column's unit when the values would fit in another.
+    """
+    low = robot.model.lowerPositionLimit[7:]
+    high = robot.model.upperPositionLimit[7:]
+    over = np.maximum(low - LIMIT_TOLERANCE - q, q - high - LIMIT_TOLERANCE)
+    if not np.any(over > 0):
+        return
+    k, j = (int(i) for i in np.unravel_index(np.argmax(over), over.shape))
+    name = robot.joint_names[j]
+    unit = units.get(name, "rad")
+    hint = ""
+    if unit == "rad" and np.all((q[:, j] * DEG >= low[j]) & (q[:, j] * DEG <= high[j])):
+        hint = f"; the values fit in degrees: write the header '{name} [deg]'"
+    elif unit == "deg":
+        hint = f"; the values fit in radians: write the header '{name}' or '{name} [rad]'"
+    raise InvalidParameterError(
+        f"{where} joint {name} at t = {t[k] - t[0]:.4f} s", f"{q[k, j]:.4f} rad",
+        f"within its limits [{low[j]:.4f}, {high[j]:.4f}] rad{hint} (check the column's unit "
+        "and the servo's zero offset)")
+
+
+def check_stance(robot: Robot, stance: np.ndarray, t: np.ndarray, where: str) -> list[str]:
+    """Warnings for legs never in stance.
+
+    Raises:
+        InvalidParameterError: a sample with no foot down (nothing carries the robot).
+    """
+    none = ~stance.any(axis=1)
+    if none.any():
+        k = int(np.flatnonzero(none)[0])
+        raise InvalidParameterError(
+            f"{where}: stance at t = {t[k]:.4f} s", "no foot on the ground",
+            f"at least one foot down at every sample ({int(none.sum())} samples have none): "
+            "check the contact_<LEG> columns (1 = down), or log them if the robot jumps")
+    out = []
+    for i, leg in enumerate(robot.leg_names):
+        if not stance[:, i].any():
+            out.append(f"{where}: leg {leg} is never in stance; if it walks, give a "
+                       f"contact_{leg} column (1 = down) or check its joints' units")
+    return out
+
+
+def check_ground(robot: Robot, feet: np.ndarray, t: np.ndarray, where: str) -> None:
+    """No foot below the logged world's ground z = 0 by more than :data:`GROUND_TOLERANCE`.
+
+    Raises:
+        InvalidParameterError: the foot, the depth and the time, and what to change.
+    """
+    k, i = (int(v) for v in np.unravel_index(np.argmin(feet[..., 2]), feet.shape[:2]))
+    depth = -float(feet[k, i, 2])
+    if depth > GROUND_TOLERANCE:
+        raise InvalidParameterError(
+            f"{where}: base pose at t = {t[k]:.4f} s", f"{robot.leg_names[i]} foot "
+            f"{depth * 1e3:.1f} mm underground", "feet on or above z = 0: the log's world "
+            "z = 0 must be the floor — add the offset to base_z, check its unit (base_z [mm]) "
+            "or the quaternion's order (x, y, z, w)")
+
+
+def feet_world(robot: Robot, q_joints: np.ndarray, base: np.ndarray | None) -> np.ndarray:
+    """Foot positions (T, n_legs, 3), m, for joint angles (T, nj) and base poses (T, 7) (the
+    base frame itself for None)."""
+    n = q_joints.shape[0]
+    q = np.zeros((n, robot.model.nq))
+    q[:, 6] = 1.0
+    q[:, 7:] = q_joints
+    if base is not None:
+        q[:, :7] = base
+    data = robot.model.createData()
+    frames = [leg.foot_frame_id for leg in robot.legs]
+    out = np.empty((n, len(frames), 3))
+    for k in range(n):
+        pin.framesForwardKinematics(robot.model, data, q[k])
+        for i, f in enumerate(frames):
+            out[k, i] = data.oMf[f].translation
+    return out

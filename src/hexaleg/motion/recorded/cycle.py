@@ -1,0 +1,143 @@
+"""The gait cycle of a log: its period from the joint signals, its cycles averaged into one.
+
+The period is the lag of the first peak of the joint signals' summed autocorrelation (each
+column standardised; computed by FFT, Wiener–Khinchin), refined by a parabola through the peak and
+then by the peak near the largest whole multiple of it within the log (k periods measured at
+once: the error shrinks as 1/k). The log's whole cycles are then resampled onto one phase grid
+and averaged (the ensemble average of phase-locked cycles), and their spread — the rms deviation
+of a cycle from the average — reported.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from hexaleg.errors import InvalidParameterError
+
+MIN_CORRELATION = 0.5
+"""Smallest normalised autocorrelation a period's peak must reach to count as a repeating gait."""
+
+
+@dataclass(frozen=True)
+class Cycles:
+    """A log's cycles averaged into one.
+
+    Attributes:
+        period: The period, s.
+        start: Time of the first cycle's start in the log, s.
+        count: Whole cycles averaged.
+        samples: Samples of the averaged cycle M (``period / M`` its spacing).
+        correlation: The autocorrelation at the period (1: cycles identical).
+        mean: The averaged cycle, shape (M, n).
+        spread: Rms deviation of the cycles from ``mean`` per column, shape (n,).
+    """
+
+    period: float
+    start: float
+    count: int
+    samples: int
+    correlation: float
+    mean: np.ndarray
+    spread: np.ndarray
+
+
+def _autocorrelation(x: np.ndarray) -> np.ndarray:
+    """Summed normalised autocorrelation of the columns of x (N, n) for lags 0 … N−1."""
+    n = x.shape[0]
+    z = x - x.mean(axis=0)
+    scale = np.sqrt((z**2).sum(axis=0))
+    z = z[:, scale > 0] / scale[scale > 0]
+    if z.shape[1] == 0:
+        return np.zeros(n)
+    f = np.fft.rfft(z, n=2 * n, axis=0)
+    acf = np.fft.irfft(np.abs(f) ** 2, axis=0)[:n].sum(axis=1) / z.shape[1]
+    return acf * n / np.maximum(n - np.arange(n), 1)  # unbiased: each lag by its overlap
+
+
+def _peak(acf: np.ndarray, near: int, width: int) -> tuple[float, float]:
+    """The highest peak of acf within ``width`` of lag ``near``, refined by a parabola."""
+    lo, hi = max(near - width, 1), min(near + width + 1, len(acf) - 1)
+    k = lo + int(np.argmax(acf[lo:hi]))
+    if 0 < k < len(acf) - 1:
+        a, b, c = acf[k - 1], acf[k], acf[k + 1]
+        den = a - 2 * b + c
+        shift = 0.5 * (a - c) / den if den < 0 else 0.0
+        return k + float(np.clip(shift, -0.5, 0.5)), float(b - 0.25 * (a - c) * shift)
+    return float(k), float(acf[k])
+
+
+def find_period(x: np.ndarray, dt: float, where: str = "motion log") -> tuple[float, float]:
+    """The period of the joint signals ``x`` (N, n) sampled every ``dt`` s, and its correlation.
+
+    Raises:
+        InvalidParameterError: no lag up to half the log correlates by
+            :data:`MIN_CORRELATION` (the log is shorter than two cycles, or does not repeat);
+            the message says what to give instead.
+    """
+    n = x.shape[0]
+    duration = n * dt
+    acf = _autocorrelation(np.asarray(x, dtype=float))
+    half = n // 2
+    negative = np.flatnonzero(acf[1:half] < 0)
+    if negative.size == 0 or negative[0] + 3 > half:
+        raise InvalidParameterError(
+            f"{where}: cycle='auto'", f"no repeating cycle in {duration:.3f} s",
+            "a log of at least two gait cycles; for a shorter log give the window of one "
+            "cycle, cycle=(t0, t1), or cycle='whole'")
+    first = int(negative[0]) + 1
+    seg = acf[first:half + 1]
+    peaks = np.flatnonzero((seg[1:-1] >= seg[:-2]) & (seg[1:-1] >= seg[2:])) + 1
+    if peaks.size == 0:
+        peaks = np.array([int(np.argmax(seg))])
+    best = float(seg[peaks].max())  # the first peak nearly as high as the highest is the
+    near = np.flatnonzero(seg[peaks] >= best - 0.1 * abs(best))  # period, not a multiple
+    lag = first + int(peaks[near[0]])
+    period, corr = _peak(acf, lag, 1)
+    if corr < MIN_CORRELATION:
+        raise InvalidParameterError(
+            f"{where}: cycle='auto'", f"best repeat {period * dt:.3f} s correlates "
+            f"{corr:.2f}", f"a gait that repeats (correlation >= {MIN_CORRELATION}) over at "
+            "least two cycles; give a window, cycle=(t0, t1), or cycle='whole'")
+    multiple = int((n - 1) // period) - 1
+    if multiple > 1:  # measure k periods at once
+        far, corr_far = _peak(acf, round(multiple * period), max(2, multiple))
+        if corr_far >= MIN_CORRELATION:
+            period = far / multiple
+    return period * dt, corr
+
+
+def average_cycles(t: np.ndarray, x: np.ndarray, period: float, dt: float, *,
+                   correlation: float = 1.0, start: float = 0.0) -> Cycles:
+    """The whole cycles of ``x`` from ``start`` averaged on a grid of ``round(period / dt)``
+    phases (each cycle linearly interpolated onto it).
+
+    Args:
+        t: Uniform times, shape (N,), s.
+        x: Values, shape (N, n).
+        period: The period, s.
+        dt: The log's spacing, s (the averaged cycle keeps about its rate).
+        correlation: The period's autocorrelation, reported.
+        start: Where the first cycle starts, s.
+
+    Raises:
+        InvalidParameterError: fewer than two whole cycles from ``start``.
+    """
+    count = math.floor((t[-1] - start) / period + 1e-9)
+    if count < 2:
+        raise InvalidParameterError("motion log: cycles", f"{count} whole cycle(s) of "
+                                    f"{period:.4f} s in {t[-1] - t[0]:.4f} s",
+                                    "at least two for cycle='auto'; give cycle=(t0, t1)")
+    samples = max(round(period / dt), 8)
+    phase = np.arange(samples) / samples * period
+    stacked = np.empty((count, samples, x.shape[1]))
+    for c in range(count):
+        at = start + c * period + phase
+        for j in range(x.shape[1]):
+            stacked[c, :, j] = np.interp(at, t, x[:, j])
+    mean = stacked.mean(axis=0)
+    spread = np.sqrt(((stacked - mean) ** 2).mean(axis=(0, 1)))
+    return Cycles(period=period, start=start, count=count, samples=samples,
+                  correlation=correlation, mean=mean, spread=spread)

@@ -1,0 +1,222 @@
+"""``load_motion``: a robot's own log → a :class:`~hexaleg.motion.trajectory.Motion`.
+
+The pipeline (each step its module): read (CSV/NPZ, units to SI) → resample (uniform grid) →
+cycle (period by autocorrelation, cycles averaged; or a window, or the whole log) → smooth and
+differentiate (Savitzky–Golay, cut-off from the noise) → stance (contact columns or feet
+kinematics) → base (logged pose, or leg odometry) → checks (limits, stance, feet above ground)
+and a :class:`~hexaleg.motion.recorded.quality.MotionQuality` report in ``motion.info``.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+
+from hexaleg.errors import HexalegWarning, InvalidParameterError
+from hexaleg.motion.recorded import base as _base
+from hexaleg.motion.recorded import stance as _stance
+from hexaleg.motion.recorded.checks import (
+    check_columns,
+    check_ground,
+    check_limits,
+    check_stance,
+    feet_world,
+)
+from hexaleg.motion.recorded.cycle import average_cycles, find_period
+from hexaleg.motion.recorded.quality import MotionQuality
+from hexaleg.motion.recorded.read import BASE_POSITION, BASE_QUATERNION, BASE_VELOCITY, read_log
+from hexaleg.motion.recorded.resample import resample
+from hexaleg.motion.recorded.smooth import cutoff_frequency, noise_level, smooth
+from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.model import Robot
+
+Cycle = str | tuple[float, float]
+
+
+def _window(t: np.ndarray, cycle: Cycle, where: str) -> tuple[str, slice]:
+    if cycle in ("auto", "whole"):
+        return str(cycle), slice(None)
+    if isinstance(cycle, str) or not isinstance(cycle, Sequence) or len(cycle) != 2:
+        raise InvalidParameterError("cycle", cycle, "'auto', 'whole' or a window (t0, t1) in s")
+    t0, t1 = (float(c) for c in cycle)
+    if not (0.0 <= t0 < t1 <= t[-1] + 1e-9):
+        raise InvalidParameterError("cycle", cycle, f"a window 0 <= t0 < t1 <= {t[-1]:.4f} s "
+                                    f"(the {where} from its first stamp)")
+    lo, hi = int(np.searchsorted(t, t0 - 1e-9)), int(np.searchsorted(t, t1 + 1e-9))
+    return "window", slice(lo, hi)
+
+
+def _drift(t: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """Least-squares slope of each column of x (N, n) against t (N,)."""
+    tc = t - t.mean()
+    return (tc @ (x - x.mean(axis=0))) / max(float(tc @ tc), 1e-300)
+
+
+def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
+                contacts: bool | None = None, periodic: bool | None = None,
+                max_gap: float = 0.05, ignore: Sequence[str] = ()) -> Motion:
+    """The motion a robot walked, from its log (docs/motion.md).
+
+    Args:
+        robot: The robot of the log.
+        path: A CSV or NPZ log (:mod:`hexaleg.motion.recorded.read` for the columns).
+        cycle: ``"auto"`` (the period found and the log's cycles averaged into one periodic
+            cycle), ``"whole"`` (the log as it is) or ``(t0, t1)`` (a window, s from the first
+            stamp).
+        contacts: Use the ``contact_<LEG>`` columns (True: required; False: ignored, stance
+            from the feet's motion; None: when the log has them).
+        periodic: Whether the result is periodic; default True for ``"auto"``, else False (a
+            window of exactly one cycle may say True).
+        max_gap: Longest gap (dropped rows, NaN run) interpolated, s.
+        ignore: Columns of the log to skip.
+
+    Returns:
+        The motion (q, v, a, stance, feet, period, distance); ``info["quality"]`` holds the
+        :class:`~hexaleg.motion.recorded.quality.MotionQuality` report as a dict and
+        ``info["report"]`` the dataclass.
+
+    Raises:
+        ConfigError, UnknownNameError, InvalidParameterError: the named bad input (a column
+            missing or unknown, time not increasing, a NaN run, a log shorter than two cycles,
+            joints beyond their limits, feet underground, a sample with no foot down).
+    """
+    path = Path(path)
+    where = f"motion log {path}"
+    caught: list[str] = []
+    log = read_log(robot, path, ignore=tuple(ignore))
+    rows = len(log.t)
+    res = resample(log, max_gap=max_gap)
+    log, dt = res.log, res.dt
+    joints = list(robot.joint_names)
+    legs = [f"contact_{leg}" for leg in robot.leg_names]
+    given = check_columns(robot, log, contacts, where)
+    has_base, has_quat = log.has(BASE_POSITION), log.has(BASE_QUATERNION)
+    mode, span = _window(log.t, cycle, where)
+    t = log.t[span]
+    periodic = (mode == "auto") if periodic is None else bool(periodic)
+    check_limits(robot, log.matrix(joints)[span], t, log.units, where)
+
+    # The signals averaged or windowed together: joints, base pose (drift removed), contacts.
+    signals = [log.matrix(joints)[span]]
+    rot = _base.rotation_from_quaternion(log.matrix(list(BASE_QUATERNION))[span]) \
+        if has_quat else None
+    base_cols = 0
+    if has_base or has_quat:
+        pose = np.zeros((len(t), 6))
+        if has_base:
+            pose[:, :3] = log.matrix(list(BASE_POSITION))[span]
+        if rot is not None:
+            pose[:, 3:] = _base.euler_from_rotation(rot)
+        signals.append(pose)
+        base_cols = 6
+    use_contacts = contacts is not False and log.has(legs)
+    if use_contacts:
+        signals.append(log.matrix(legs)[span])
+    if given:
+        derivative_names = [p + n for p in ("v_", "a_") for n in (*BASE_VELOCITY, *joints)]
+        signals.append(log.matrix(derivative_names)[span])
+    x = np.concatenate(signals, axis=1)
+    nj = len(joints)
+    drift = np.zeros(x.shape[1])
+    if base_cols and periodic:
+        drift[nj:nj + base_cols] = _drift(t, x[:, nj:nj + base_cols])
+    x = x - drift * t[:, None]
+    sigma = noise_level(x[:, :nj + base_cols])
+    correlation: float | None = None
+    if mode == "auto":
+        period, correlation = find_period(x[:, :nj], dt, where)
+        cycles = average_cycles(t, x, period, dt, correlation=correlation)
+        x, count = cycles.mean, cycles.count
+        spread = float(cycles.spread[:nj].max())
+        dt_c = period / cycles.samples
+        sigma = sigma / math.sqrt(count)
+    else:
+        count, spread, dt_c = 1, 0.0, dt
+        period = len(t) * dt if periodic else (len(t) - 1) * dt
+    n = x.shape[0]
+    tc = np.arange(n) * dt_c
+
+    # Smoothed joints and base pose (or the derivatives as logged).
+    if given:
+        cutoff = window = None
+        d0 = nj + base_cols + (len(legs) if use_contacts else 0)
+        nv = robot.model.nv
+        q_j, v_all, a_all = x[:, :nj], x[:, d0:d0 + nv], x[:, d0 + nv:d0 + 2 * nv]
+        pose_s = x[:, nj:nj + base_cols] + drift[nj:nj + base_cols] * tc[:, None]
+        dpose = ddpose = None
+    else:
+        f_c = cutoff_frequency(x[:, :nj + base_cols], dt_c, sigma, periodic=periodic)
+        sm = smooth(x[:, :nj + base_cols], dt_c, f_c, periodic=periodic)
+        cutoff, window = sm.cutoff, sm.window
+        q_j, v_all, a_all = sm.x[:, :nj], np.zeros((n, 6 + nj)), np.zeros((n, 6 + nj))
+        v_all[:, 6:], a_all[:, 6:] = sm.xd[:, :nj], sm.xdd[:, :nj]
+        pose_s = sm.x[:, nj:] + drift[nj:nj + base_cols] * tc[:, None]
+        dpose = sm.xd[:, nj:] + drift[nj:nj + base_cols]
+        ddpose = sm.xdd[:, nj:]
+    contact = x[:, nj + base_cols:nj + base_cols + len(legs)] if use_contacts else None
+
+    q = np.zeros((n, robot.model.nq))
+    q[:, 7:] = q_j
+    feet_b = feet_world(robot, q_j, None)
+    stance_rot = None
+    if has_quat:
+        stance_rot = _base.rotation_from_euler(pose_s[:, 3:6])
+    if contact is not None:
+        stance = _stance.from_contacts(contact)
+    elif not has_base:  # stance in the base frame (turned by the IMU's roll and pitch)
+        level = feet_b if stance_rot is None else np.einsum("tij,tlj->tli", stance_rot, feet_b)
+        stance = _stance.detect(level, _velocity(level, dt_c, periodic))
+    base_source = "log"
+    if not has_base:
+        odo = _base.leg_odometry(feet_b, stance.stance, dt_c, periodic=periodic,
+                                 rotation=stance_rot)
+        base_source = "leg odometry" + (" + IMU orientation" if has_quat else "")
+        pose_o = np.concatenate([odo.position, _base.euler_from_rotation(odo.rotation)], 1)
+        drift_o = (pose_o[n] - pose_o[0]) / (n * dt_c) if periodic else np.zeros(6)
+        residual = pose_o[:n] - drift_o * tc[:, None]
+        sm_b = smooth(residual, dt_c, cutoff or 0.5 / dt_c, periodic=periodic)
+        pose_s = sm_b.x + drift_o * tc[:, None]
+        dpose, ddpose = sm_b.xd + drift_o, sm_b.xdd
+    elif pose_s.shape[1] and not has_quat:
+        pose_s[:, 3:] = 0.0
+    q[:, :3] = pose_s[:, :3]
+    q[:, 3:7] = _base.quaternion_from_euler(pose_s[:, 3:6])
+    if dpose is not None and ddpose is not None:
+        v_all[:, :6], a_all[:, :6] = _base.twist(pose_s[:, 3:6], dpose[:, 3:6], ddpose[:, 3:6],
+                                                 dpose[:, :3], ddpose[:, :3])
+    feet = feet_world(robot, q_j, q[:, :7])
+    if contact is None and has_base:
+        stance = _stance.detect(feet, _velocity(feet, dt_c, False))
+    caught += check_stance(robot, stance.stance, tc, where)
+    if has_base:
+        check_ground(robot, feet, tc, where)
+    world_speed = np.linalg.norm(_velocity(feet, dt_c, False), axis=2)[stance.stance]
+    slip = float(np.sqrt(np.mean(world_speed**2))) if world_speed.size else 0.0
+    for message in caught:
+        warnings.warn(message, HexalegWarning, stacklevel=2)
+    quality = MotionQuality(
+        path=str(path), rows=rows, rate=1.0 / dt, resampled=res.resampled,
+        filled=int(sum(res.filled.values())), derivatives="given" if given else "smoothed",
+        noise=float(sigma[:nj].max() * (math.sqrt(count))), cutoff=cutoff, window=window,
+        cycle=mode, period=float(period), cycles=count, correlation=correlation, spread=spread,
+        stance_source=stance.source, stance_height=stance.height, stance_speed=stance.speed,
+        stance_fractions=dict(zip(robot.leg_names, stance.fractions.round(4).tolist(),
+                                  strict=True)),
+        base_source=base_source, slip=slip,
+        slip_max=float(world_speed.max()) if world_speed.size else 0.0, warnings=tuple(caught))
+    travel = (q[-1, :2] - q[0, :2]) * (n / max(n - 1, 1) if periodic else 1.0)
+    return Motion(t=tc, q=q, v=v_all, a=a_all, stance=stance.stance, feet=feet,
+                  period=float(period), distance=float(np.linalg.norm(travel)),
+                  periodic=periodic, info={"source": "load_motion", "log": str(path),
+                                           "quality": quality.to_dict(), "report": quality})
+
+
+def _velocity(p: np.ndarray, dt: float, periodic: bool) -> np.ndarray:
+    """Central differences of p (T, …) along time (wrapping around when periodic)."""
+    if periodic:
+        return (np.roll(p, -1, axis=0) - np.roll(p, 1, axis=0)) / (2.0 * dt)
+    return np.gradient(p, dt, axis=0)

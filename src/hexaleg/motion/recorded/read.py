@@ -1,0 +1,230 @@
+"""Reading a motion log: CSV with a header row or NPZ with the same names, into SI columns.
+
+Column names (docs/motion.md): ``time``; optional base pose ``base_x, base_y, base_z`` (world,
+m) and ``base_qx, base_qy, base_qz, base_qw``; one column per actuated joint named as the robot's
+joints (rad); optional ``contact_<LEG>`` (0/1); optional exact derivatives ``v_<name>`` and
+``a_<name>`` of every joint and of the base (``v_base_x … v_base_z`` the LOCAL linear velocity,
+``v_base_rx … v_base_rz`` the LOCAL angular velocity, Pinocchio's free-flyer convention; ``a_``
+their time derivatives), as :func:`hexaleg.motion.recorded.write.write_motion_log` writes them.
+A unit in brackets after a name overrides the default: ``LF_femur [deg]``, ``time [ms]``,
+``base_z [mm]``. Values are converted to SI here, through :mod:`hexaleg.units`, and nowhere else.
+"""
+
+from __future__ import annotations
+
+import io
+import re
+import zipfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from hexaleg.config import read_bytes
+from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+from hexaleg.robot.model import Robot
+from hexaleg.units import DEG, MM
+
+MAX_LOG_BYTES = 512 * 1024**2
+"""Largest log file read, B: a 10-minute log of 30 columns at 1 kHz is about 250 MB of CSV."""
+
+BASE_POSITION = ("base_x", "base_y", "base_z")
+BASE_QUATERNION = ("base_qx", "base_qy", "base_qz", "base_qw")
+BASE_VELOCITY = ("base_x", "base_y", "base_z", "base_rx", "base_ry", "base_rz")
+"""Names of the base's six generalised-velocity components after ``v_``/``a_`` (LOCAL frame)."""
+
+UNITS: dict[str, dict[str, float]] = {
+    "time": {"s": 1.0, "ms": 1e-3, "us": 1e-6},
+    "length": {"m": 1.0, "cm": 10 * MM, "mm": MM},
+    "angle": {"rad": 1.0, "deg": DEG},
+    "one": {"": 1.0, "1": 1.0},
+    "speed": {"m/s": 1.0, "mm/s": MM},
+    "rate": {"rad/s": 1.0, "deg/s": DEG},
+    "acceleration": {"m/s^2": 1.0, "mm/s^2": MM},
+    "angular acceleration": {"rad/s^2": 1.0, "deg/s^2": DEG},
+}
+"""Units allowed per kind of column → their factor to SI (the first of each is the default)."""
+
+_HEADER = re.compile(r"^\s*([^\[\]]+?)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
+
+
+@dataclass(frozen=True, eq=False)
+class Log:
+    """A motion log in SI, as read: not yet resampled or checked beyond its names.
+
+    Attributes:
+        t: Time stamps, shape (N,), s, as logged.
+        columns: Column name (without unit) → values, each shape (N,), SI (NaN where missing).
+        units: Column name → the unit the file gave (the default when none was given).
+        path: The file read.
+    """
+
+    t: np.ndarray
+    columns: dict[str, np.ndarray]
+    units: dict[str, str] = field(default_factory=dict)
+    path: str = ""
+
+    def has(self, names: tuple[str, ...] | list[str]) -> bool:
+        """Whether every name is a column."""
+        return all(n in self.columns for n in names)
+
+    def matrix(self, names: tuple[str, ...] | list[str]) -> np.ndarray:
+        """The named columns stacked, shape (N, len(names))."""
+        return np.stack([self.columns[n] for n in names], axis=1) if names else \
+            np.zeros((len(self.t), 0))
+
+
+def column_kind(robot: Robot, name: str) -> str:
+    """The kind of column ``name`` (a key of :data:`UNITS`) for ``robot``.
+
+    Raises:
+        UnknownNameError: not a column of a log of ``robot``; the message lists the valid names
+            (the robot's joints among them).
+    """
+    joints = set(robot.joint_names)
+    if name == "time":
+        return "time"
+    if name in BASE_POSITION:
+        return "length"
+    if name in BASE_QUATERNION or name in {f"contact_{leg}" for leg in robot.leg_names}:
+        return "one"
+    if name in joints:
+        return "angle"
+    for prefix, kinds in (("v_", ("speed", "rate")),
+                          ("a_", ("acceleration", "angular acceleration"))):
+        base = name.removeprefix(prefix)
+        if name.startswith(prefix) and (base in joints or base in BASE_VELOCITY):
+            return kinds[0] if base in BASE_POSITION else kinds[1]
+    valid = ["time", *BASE_POSITION, *BASE_QUATERNION, *robot.joint_names,
+             *(f"contact_{leg}" for leg in robot.leg_names), "v_<joint or base>",
+             "a_<joint or base>"]
+    raise UnknownNameError(f"column of a {robot.name} motion log", name, valid)
+
+
+def _parse_header(robot: Robot, header: list[str], ignore: tuple[str, ...], where: str
+                  ) -> list[tuple[str, str, float] | None]:
+    """(name, unit, factor) of every column, None for an ignored one."""
+    out: list[tuple[str, str, float] | None] = []
+    seen: set[str] = set()
+    for raw in header:
+        match = _HEADER.match(raw)
+        if match is None:
+            raise ConfigError(f"{where}: cannot read the column header {raw!r}; write a name "
+                              "and optionally a unit in brackets, e.g. 'LF_femur [deg]'")
+        name, unit = match.group(1), match.group(2)
+        if name in ignore:
+            out.append(None)
+            continue
+        if name in seen:
+            raise ConfigError(f"{where}: column {name!r} appears twice; keep one")
+        seen.add(name)
+        table = UNITS[column_kind(robot, name)]
+        unit = next(iter(table)) if unit is None else unit
+        if unit not in table:
+            raise InvalidParameterError(f"unit of column {name!r} in {where}", unit,
+                                        ", ".join(repr(u) for u in table))
+        out.append((name, unit, table[unit]))
+    return out
+
+
+def _csv_values(text: str, n_columns: int, where: str) -> np.ndarray:
+    """The numeric rows of a CSV body, shape (N, n_columns); empty fields and 'nan' are NaN."""
+    if not text.strip():
+        return np.zeros((0, n_columns))
+    try:
+        values = np.loadtxt(io.StringIO(text), delimiter=",", ndmin=2, dtype=float,
+                            comments="#")
+    except ValueError:
+        values = np.genfromtxt(io.StringIO(text), delimiter=",", dtype=float, comments="#",
+                               invalid_raise=False, missing_values="", filling_values=np.nan)
+        values = np.atleast_2d(values)
+        bad = [i for i, line in enumerate(text.splitlines()) if line.strip()
+               and len(line.split(",")) != n_columns]
+        if bad or values.shape[1] != n_columns:
+            row = (bad[0] if bad else 0) + 2
+            raise ConfigError(f"{where}: row {row} does not have the header's {n_columns} "
+                              "comma-separated fields; every row needs one value per column "
+                              "(leave a field empty for a missing value)") from None
+        text_bad = np.isnan(values) & ~_empty_or_nan(text, values.shape)
+        if text_bad.any():
+            r, c = (int(i) for i in np.argwhere(text_bad)[0])
+            raise ConfigError(f"{where}: row {r + 2}, column {c + 1} is not a number; write "
+                              "numbers, 'nan' or an empty field") from None
+    if values.shape[1] != n_columns:
+        raise ConfigError(f"{where}: rows have {values.shape[1]} fields, the header "
+                          f"{n_columns}; every row needs one value per column")
+    return values
+
+
+def _empty_or_nan(text: str, shape: tuple[int, ...]) -> np.ndarray:
+    """Which fields of a CSV body are written as empty or 'nan' (a missing value), (N, n)."""
+    rows = [line.split(",") for line in text.splitlines()
+            if line.strip() and not line.lstrip().startswith("#")]
+    out = np.zeros(shape, dtype=bool)
+    for i, row in enumerate(rows[:shape[0]]):
+        for j, f in enumerate(row[:shape[1]]):
+            out[i, j] = f.strip().lower() in ("", "nan")
+    return out
+
+
+def _npz_columns(data: bytes, where: str) -> tuple[list[str], np.ndarray]:
+    """Names and stacked values (N, n) of an NPZ log's 1-D arrays."""
+    try:
+        with np.load(io.BytesIO(data), allow_pickle=False) as npz:
+            arrays = {k: np.asarray(npz[k]) for k in npz.files}
+    except (ValueError, OSError, zipfile.BadZipFile) as e:
+        raise ConfigError(f"{where}: not a readable NPZ file ({e}); save it with "
+                          "numpy.savez") from None
+    names = list(arrays)
+    lengths = {arrays[k].shape for k in names}
+    if any(arrays[k].ndim != 1 or not np.issubdtype(arrays[k].dtype, np.number) for k in names) \
+            or len(lengths) > 1:
+        raise ConfigError(f"{where}: every array must be numeric, 1-D and of the same length "
+                          f"(one per column); got shapes {sorted(map(str, lengths))}")
+    values = np.stack([arrays[k].astype(float) for k in names], axis=1) if names else \
+        np.zeros((0, 0))
+    return names, values
+
+
+def read_log(robot: Robot, path: str | Path, *, ignore: tuple[str, ...] = ()) -> Log:
+    """Read a CSV (``.csv``, ``.txt``) or NPZ (``.npz``) motion log of ``robot`` into SI.
+
+    Through hexaleg's one bounded file reader (:func:`hexaleg.config.read_bytes`, at most
+    :data:`MAX_LOG_BYTES`).
+
+    Args:
+        robot: The robot the log is of (its joints and legs name the columns).
+        path: The log file.
+        ignore: Column names to skip (e.g. servo currents or temperatures the log also holds).
+
+    Raises:
+        ConfigError: unreadable, not UTF-8, malformed rows, no ``time`` column.
+        UnknownNameError: a column that is not one of a log of ``robot`` (valid names listed).
+        InvalidParameterError: a unit not allowed for its column (the allowed ones listed).
+    """
+    path = Path(path)
+    where = f"motion log {path}"
+    data = read_bytes(path, "motion log", MAX_LOG_BYTES)
+    if path.suffix.lower() == ".npz":
+        names, values = _npz_columns(data, where)
+    else:
+        try:
+            text = data.decode("utf-8")
+        except UnicodeDecodeError as e:
+            raise ConfigError(f"{where} is not UTF-8 text (byte offset {e.start}); save it as "
+                              "UTF-8 CSV, or as NPZ") from None
+        lines = text.lstrip("\ufeff").split("\n", 1)
+        names = [h for h in lines[0].strip().split(",")]
+        values = _csv_values(lines[1] if len(lines) > 1 else "", len(names), where)
+    parsed = _parse_header(robot, names, tuple(ignore), where)
+    columns: dict[str, np.ndarray] = {}
+    units: dict[str, str] = {}
+    for j, spec in enumerate(parsed):
+        if spec is not None:
+            name, unit, factor = spec
+            columns[name] = values[:, j] * factor
+            units[name] = unit
+    if "time" not in columns:
+        raise ConfigError(f"{where} has no 'time' column; the first row must name the columns, "
+                          "one of them 'time' (s, or e.g. 'time [ms]')")
+    return Log(t=columns.pop("time"), columns=columns, units=units, path=str(path))

@@ -1,0 +1,68 @@
+"""load_motion: the round trip (a hexaleg motion written and read back analyses the same) and
+a noisy 100 Hz log of a known gait (quantised like a Dynamixel) within 2 % of its energy."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import hexaleg
+from hexaleg.errors import InvalidParameterError
+from hexaleg.motion.recorded.load import load_motion
+from hexaleg.motion.recorded.write import write_motion_log
+
+
+@pytest.mark.parametrize("suffix", ["csv", "npz"])
+def test_round_trip_gives_the_same_analysis(robot, gait_100hz, tmp_path, suffix):
+    path = write_motion_log(robot, gait_100hz, tmp_path / f"gait.{suffix}")
+    back = load_motion(robot, path, cycle="whole", periodic=True)
+    a = hexaleg.prepare(robot, gait_100hz).evaluate()
+    b = hexaleg.prepare(robot, back).evaluate()
+    for key in ("electrical", "joule"):
+        x, y = a.metrics["total"][key], b.metrics["total"][key]
+        x, y = (v["value"] if isinstance(v, dict) else v for v in (x, y))
+        assert abs(y - x) <= 1e-9 * abs(x)
+    assert np.max(np.abs(a.forces - b.forces)) <= 1e-9
+    assert back.distance == pytest.approx(gait_100hz.distance, rel=1e-9)
+
+
+def _energy(robot, motion):
+    value = hexaleg.prepare(robot, motion).evaluate().metrics["total"]["electrical"]
+    return value["value"] if isinstance(value, dict) else value
+
+
+@pytest.mark.parametrize("base", [True, False], ids=["base", "odometry"])
+def test_noisy_log_with_contacts_keeps_energy_and_stance(robot, gait_100hz, tmp_path, base, logs):
+    cols = logs.noisy_log(robot, gait_100hz, base=base, contacts=True)
+    logs.write_csv(tmp_path / "log.csv", cols)
+    motion = load_motion(robot, tmp_path / "log.csv")
+    quality = motion.info["report"]
+    assert quality.period == pytest.approx(1.0, abs=1e-3) and quality.cycles >= 9
+    assert motion.n_samples == gait_100hz.n_samples
+    assert np.all((motion.stance != gait_100hz.stance).mean(axis=0) <= 0.05)
+    energy, truth = _energy(robot, motion), _energy(robot, gait_100hz)
+    assert abs(energy - truth) <= 0.02 * truth
+
+
+@pytest.mark.parametrize("base", [True, False], ids=["base", "odometry"])
+def test_noisy_log_without_contacts_finds_stance(robot, gait_100hz, tmp_path, base, logs):
+    """Kinematic stance: the impact-free swing leaves the foot within noise of the ground for a
+    few samples, so stance comes out long by up to 0.08 of the cycle and the energy ~7 % low
+    (the figures stated in the issue note; contact columns meet 0.05 and 2 %)."""
+    cols = logs.noisy_log(robot, gait_100hz, base=base, contacts=False)
+    logs.write_csv(tmp_path / "log.csv", cols)
+    motion = load_motion(robot, tmp_path / "log.csv")
+    assert motion.info["report"].stance_source == "kinematics"
+    assert np.all((motion.stance != gait_100hz.stance).mean(axis=0) <= 0.10)
+    energy, truth = _energy(robot, motion), _energy(robot, gait_100hz)
+    assert abs(energy - truth) <= 0.10 * truth
+
+
+def test_bad_window_and_short_log_are_named(robot, gait_100hz, tmp_path, logs):
+    logs.write_csv(tmp_path / "log.csv", logs.noisy_log(robot, gait_100hz, cycles=1))
+    with pytest.raises(InvalidParameterError, match="at least two"):
+        load_motion(robot, tmp_path / "log.csv")
+    with pytest.raises(InvalidParameterError, match="window"):
+        load_motion(robot, tmp_path / "log.csv", cycle=(0.5, 0.2))
+    motion = load_motion(robot, tmp_path / "log.csv", cycle="whole", periodic=True)
+    assert motion.n_samples == 100

@@ -1,0 +1,41 @@
+"""Reading logs: units in brackets, unknown columns named with the robot's joints."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.motion.recorded.read import read_log
+from hexaleg.units import DEG, MM
+
+
+def test_units_in_brackets_convert_to_si(robot, tmp_path):
+    path = tmp_path / "log.csv"
+    path.write_text("time [ms],LF_femur [deg],base_z [mm]\n0,90,100\n10,45,,\n"[:-2] + "\n")
+    log = read_log(robot, path)
+    assert np.allclose(log.t, [0.0, 0.01])
+    assert log.columns["LF_femur"] == pytest.approx([90 * DEG, 45 * DEG])
+    assert log.columns["base_z"][0] == pytest.approx(100 * MM)
+    assert np.isnan(log.columns["base_z"][1])
+
+
+def test_unknown_column_lists_the_joints(robot, tmp_path):
+    path = tmp_path / "log.csv"
+    path.write_text("time,LF_knee\n0,1\n")
+    with pytest.raises(UnknownNameError, match="LF_femur"):
+        read_log(robot, path)
+    assert read_log(robot, path, ignore=("LF_knee",)).columns == {}
+
+
+def test_bad_unit_names_the_allowed(robot, tmp_path):
+    path = tmp_path / "log.csv"
+    path.write_text("time,LF_femur [furlong]\n0,1\n")
+    with pytest.raises(InvalidParameterError, match="'deg'"):
+        read_log(robot, path)
+
+
+def test_npz_reads_the_same_names(robot, tmp_path):
+    np.savez(tmp_path / "log.npz", **{"time": np.arange(3.0), "LF_femur [deg]": np.ones(3)})
+    log = read_log(robot, tmp_path / "log.npz")
+    assert log.columns["LF_femur"] == pytest.approx(np.full(3, DEG))
