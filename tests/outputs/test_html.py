@@ -36,3 +36,28 @@ def test_environment_escapes_html_and_rejects_undefined_names():
     with pytest.raises(jinja2.UndefinedError):
         env.from_string("{{ d.missing }}").render(d={})
     assert env.get_template("report.html.j2") is not None  # shipped in the package
+
+
+def test_percentages_have_one_rule_two_decimals_signed():
+    """Every percentage of the report and design pages (simulated.html.j2 is on both) reads as
+    the design page's pct macro writes it."""
+    from hexaleg.outputs.html import format_percent
+
+    assert format_percent({"value": 15.4567, "unit": "%"}) == "+15.46 %"
+    assert format_percent({"value": -1.2149, "unit": "%"}) == "-1.21 %"
+    assert format_percent(3.676) == "+3.68 %"
+    assert format_percent({"value": None, "unit": "%"}) == format_percent(None) == "—"
+    with pytest.raises(ValueError, match="not a percentage"):
+        format_percent({"value": 0.15, "unit": "1"})
+    macro = environment().from_string('{% import "design_macros.html.j2" as mc %}'
+                                      "{{ mc.pct(x) }}|{{ x | pct }}")
+    for v in (15.4567, -1.2149, 0.0, 123.456):
+        shown = macro.render(x={"value": v, "unit": "%"}).strip().split("|")
+        assert shown[0] == shown[1], shown
+
+
+def test_float_noise_reads_zero():
+    """The net work of a conservative cycle (−2.2e-16 J) is 0 on the page, not −2.224e-16."""
+    assert format_number(-2.224e-16) == "0"
+    assert format_quantity({"value": 4.6e-16, "unit": "N·m/rad"}) == "0 N·m/rad"
+    assert format_number(2.5e-9) == "2.5e-09"  # small but real: kept

@@ -2,8 +2,9 @@
 
 :func:`render_html` renders the gait energy report (``report.html.j2``) from plain data: the
 report's JSON content, whose quantities are ``{"value": …, "unit": …}``, and the plots as
-``data:`` URIs. Two filters format numbers on the page: ``num`` (four significant digits) and
-``q`` (a quantity with its unit).
+``data:`` URIs. Three filters format numbers on the pages: ``num`` (four significant digits;
+float noise below :data:`NOISE` reads 0), ``q`` (a quantity with its unit) and ``pct`` (a
+percentage: the one precision rule of the pages, two decimals, signed).
 """
 
 from __future__ import annotations
@@ -15,14 +16,35 @@ import jinja2
 
 from hexaleg.checks import is_real
 
+NOISE = 1e-12
+"""Magnitudes below this (in the SI unit of the number) are round-off, not values: the net work
+of a conservative cycle (−2.2e-16 J), a solver's zero stiffness. They are shown as 0."""
+
 
 def format_number(x: Any) -> str:
-    """Four significant digits; ``—`` for a missing value."""
+    """Four significant digits; ``—`` for a missing value; 0 for float noise (:data:`NOISE`)."""
     if x is None:
         return "—"
     if not is_real(x):
         return str(x)
+    if abs(x) < NOISE:
+        return "0"
     return f"{x:.4g}"
+
+
+def format_percent(q: Mapping[str, Any] | float | None) -> str:
+    """A percentage (a quantity in % or a number) with two decimals and its sign, as the design
+    page's ``pct`` macro writes it: ``+15.46 %``, ``-1.21 %``; ``—`` for a missing value.
+
+    Raises:
+        ValueError: a quantity whose unit is not ``%`` (a fraction shown as a percentage).
+    """
+    x = q.get("value") if isinstance(q, Mapping) else q
+    if x is None:
+        return "—"
+    if isinstance(q, Mapping) and q.get("unit") != "%":
+        raise ValueError(f"pct: {q!r} is not a percentage")
+    return f"{float(x):+.2f} %"
 
 
 def format_quantity(q: Mapping[str, Any] | None) -> str:
@@ -35,13 +57,14 @@ def format_quantity(q: Mapping[str, Any] | None) -> str:
 
 def environment() -> jinja2.Environment:
     """The Jinja2 environment of the package's templates: HTML autoescaped, undefined names an
-    error, the ``num`` and ``q`` filters."""
+    error, the ``num``, ``q`` and ``pct`` filters."""
     env = jinja2.Environment(loader=jinja2.PackageLoader("hexaleg.outputs", "templates"),
                              autoescape=jinja2.select_autoescape(("html", "j2")),
                              undefined=jinja2.StrictUndefined, trim_blocks=True,
                              lstrip_blocks=True)
     env.filters["num"] = format_number
     env.filters["q"] = format_quantity
+    env.filters["pct"] = format_percent
     return env
 
 
