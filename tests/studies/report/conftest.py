@@ -45,6 +45,27 @@ def written(tmp_path_factory: pytest.TempPathFactory,
     return r, out / "out"
 
 
+TINY_DESIGN = {"design": {"samples": 100, "families": ["linear"], "map_period": [1.0],
+                          "map_stride": [1.0], "map_payload": [0.0], "map_mu": [0.6],
+                          "map_slope": [0.0], "map_pattern": ["tripod"],
+                          "robust_period": [1.0, 1.25], "robust_stride": [1.0, 1.0],
+                          "robust_payload": [0.0, 0.0], "robust_mu": [0.6, 0.6],
+                          "pareto_fractions": []}}
+"""``hexaleg design`` at its smallest: linear springs on the 100-sample default gait, one-cell
+maps, a two-corner robust box."""
+
+
+@pytest.fixture(scope="session")
+def design_json(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A ``design.json`` (and ``design.html``) of :data:`TINY_DESIGN`, written once a session."""
+    from hexaleg.studies.design.config import DesignConfig
+    from hexaleg.studies.design.write import write_design
+
+    out = tmp_path_factory.mktemp("design")
+    write_design(out, DesignConfig.from_mapping(TINY_DESIGN), progress=None)
+    return out / "design.json"
+
+
 @pytest.fixture(scope="session")
 def data(written: tuple[Report, Path]) -> dict[str, Any]:
     """The written ``report.json``."""

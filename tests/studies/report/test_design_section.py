@@ -10,38 +10,25 @@ import pytest
 
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.outputs.html import render_html
-from hexaleg.studies.design.config import DesignConfig
-from hexaleg.studies.design.write import write_design
 from hexaleg.studies.report.build import build_report
 from hexaleg.studies.report.config import ReportConfig
 from hexaleg.studies.report.design_section import design_section
-
-TINY = {"design": {"samples": 100, "families": ["linear"], "map_period": [1.0],
-                   "map_stride": [1.0], "map_payload": [0.0], "map_mu": [0.6],
-                   "robust_period": [1.0, 1.25], "robust_stride": [1.0, 1.0],
-                   "robust_payload": [0.0, 0.0], "robust_mu": [0.6, 0.6],
-                   "pareto_fractions": []}}
-
-
-@pytest.fixture(scope="module")
-def design_json(tmp_path_factory):
-    out = tmp_path_factory.mktemp("design")
-    write_design(out, DesignConfig.from_mapping(TINY), progress=None)
-    return out / "design.json"
 
 
 def test_the_section_carries_design_json_numbers(design_json):
     data = json.loads(design_json.read_text())
     s = design_section(design_json)
     assert s["label"] == data["recommended"]["label"] == "linear"
-    assert s["saving"] == data["recommended"]["saving"]
-    assert [p["group"] for p in s["parts"]] == [p["group"] for p in data["recommended"]["parts"]]
-    first = data["recommended"]["parts"][0]["torsion_spring"]
-    assert s["parts"][0]["rate_nmm_per_deg"] == first["rate_nmm_per_deg"]
+    assert s["origin"] == "given" and s["source"] == str(design_json)
+    metric = data["settings"]["metric"]
+    assert s["saving"] == data["recommended"]["saving"][metric]  # the headline, {value, unit}
+    assert s["savings"] == data["recommended"]["saving"]
+    assert s["parts"] == data["recommended"]["parts"]  # as design.json writes them
+    assert s["actuator"] == data["actuator"]
     assert s["robust"] == data["robust"]["worst"]
     assert s["simulation"] == data["simulation"]
     assert [row["controller"] for row in s["simulation"]] == ["feedforward", "position"]
-    assert s["html"].endswith("design.html")
+    assert s["html"] == str(design_json.with_name("design.html"))
     assert design_section(None) is None
 
 
@@ -63,7 +50,7 @@ def test_the_report_page_leads_with_the_design(report):
     html = render_html({**r.data, "files": []}, dict.fromkeys(PLOTS, ""))
     assert html.index("Fit these springs") < html.index("Robot and gait")
     ff = r.data["design"]["simulation"][0]
-    simulated = f'{ff["simulated_saving"]["value"]:.4g} %'
+    simulated = f'{ff["simulated_saving"]["value"]:+.2f} %'
     assert html.index("Predicted and simulated") < html.index(simulated) < html.index(
         "Robot and gait")
 

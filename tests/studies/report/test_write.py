@@ -4,6 +4,7 @@ browser shows, the default CLI run and an unwritable output directory."""
 from __future__ import annotations
 
 import base64
+import math
 import json
 import re
 import subprocess
@@ -51,12 +52,45 @@ def test_html_needs_no_external_url(written):
 
 
 def test_html_numbers_are_the_json_numbers(written, data):
+    """Each number as the page's rule writes it: savings signed with two decimals, spring rates
+    in N·mm/deg, angles in degrees, lengths in mm, other quantities to four figures."""
     html = (written[1] / "report.html").read_text()
     e = data["energy"]["totals"]["electrical"]
-    for q in (e["with_springs"], e["baseline"], e["saving"],
-              data["stiffness_curve"]["k_M"], data["robot"]["mass"],
+    for q in (e["with_springs"], e["baseline"], data["robot"]["mass"],
               data["forces"]["peak_friction_usage"]):
         assert f"{q['value']:.4g}" in html, q
+    assert f"saving {e['saving']['value']:+.2f} %" in html
+    assert f"<b id=\"headline-saving\">{data['design']['saving']['value']:+.2f} %</b>" in html
+    k_m = data["stiffness_curve"]["k_M"]["value"] * 1000 * math.pi / 180
+    assert f"{k_m:.4g} N·mm/deg" in html
+    lf = data["springs"]["joints"]["LF_femur"]
+    assert f"{math.degrees(lf['neutral']['value']):.1f}°" in html
+    assert f"{100 * lf['engaged_fraction']['value']:.2f} %" in html
+    assert f"{1000 * data['gait']['stride_length']['value']:.1f} mm" in html
+
+
+def _visible(html: str) -> str:
+    """The page's text as a reader sees it (no tags, no embedded images)."""
+    import html as h
+
+    return h.unescape(re.sub(r"<[^>]+>", " ", re.sub(r'src="data:[^"]*"', "", html)))
+
+
+def test_the_page_follows_the_reading_rules(written, data):
+    """#29's rules: one precision for percentages, no float noise, no SI-only numbers a spring
+    maker would convert (m, rad), one k_M of this gait."""
+    text = _visible((written[1] / "report.html").read_text())
+    own = text.split("The paper's single joint, for reference")[0]  # its verdicts are quoted
+    own = re.sub(r"≥ [\d.]+ \+ \d+ %", "", own)  # the arbor's margin setting, "+ 10 %"
+    percents = re.findall(r"([−+-]?\d+(?:\.\d+)?) %", own)
+    odd = sorted({p for p in percents if not re.fullmatch(r"[+-]?\d+\.\d\d", p)})
+    assert percents and not odd, odd
+    assert not re.search(r"\de-\d", own)  # −2.224e-16 J of net work: 0 J
+    assert abs(data["energy"]["net_work"]["with_springs"]["value"]) < 1e-12
+    assert "net_work 0 J" in " ".join(own.split())
+    assert not re.search(r"\d (?:m|rad)(?![\w/·²])|\d rad/s", own)  # mm, deg, deg/s
+    assert own.count("k_M (eq. 19) on this gait") == 1
+    assert "N·m/rad" not in own
 
 
 # --------------------------------------------------------------------------- in the browser

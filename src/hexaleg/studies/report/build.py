@@ -1,6 +1,9 @@
 """The gait energy report (``hexaleg report``): one gait, analysed with springs and without.
 
-:func:`build_report` runs the pipeline — robot (with the configured payload,
+The report leads with the answer — which springs to fit and what they save
+(:mod:`hexaleg.studies.report.answer`: a given or found ``design.json`` of ``hexaleg design``,
+else the design's quick core) — and keeps the paper's design as the reference the rest of the
+page analyses. :func:`build_report` runs the pipeline — robot (with the configured payload,
 :class:`hexaleg.robot.payload.Payload`) → gait (:func:`hexaleg.motion.legged.gait`) →
 :func:`hexaleg.dynamics.prepare.prepare` once → :meth:`~hexaleg.dynamics.prepare.Prepared.evaluate`
 with the springs, in the baseline (no springs) and at every point of a stiffness curve
@@ -43,6 +46,7 @@ from hexaleg.robot.model import Robot, load_robot
 from hexaleg.robot.sanity import Finding, robot_findings
 from hexaleg.robot.springs import SpringSet
 from hexaleg.studies.report import sections
+from hexaleg.studies.report.answer import answer_line, answer_section
 from hexaleg.studies.report.config import ReportConfig, ReportParams
 from hexaleg.studies.report.design_section import design_section
 from hexaleg.studies.report.paper_section import paper_reference
@@ -77,10 +81,17 @@ class Report:
     files: tuple[Path, ...] = ()
 
     def summary(self) -> str:
-        """One line: the electrical energy per cycle with the springs and without, the saving."""
+        """Two lines: the configured (reference) springs' electrical energy per cycle with and
+        without them and their saving; last, the answer (:func:`~hexaleg.studies.report.answer.
+        answer_line`: where it comes from, which springs, the saving)."""
         e = self.data["energy"]["totals"]["electrical"]
-        return (f"electrical energy per cycle {e['with_springs']['value']:.4g} J with springs, "
-                f"{e['baseline']['value']:.4g} J without (saving {e['saving']['value']:+.2f} %)")
+        design = self.data["springs"]["design"]
+        reference = ("the paper's design (the reference)" if design == "paper"
+                     else f"the configured springs ({design})")
+        return (f"{reference}: electrical energy per cycle {e['with_springs']['value']:.4g} J "
+                f"with its springs, {e['baseline']['value']:.4g} J without (saving "
+                f"{e['saving']['value']:+.2f} %)\n"
+                + answer_line(self.data["design"]))
 
 
 def _report_curve(prepared: Prepared, springs: SpringSet, rp: ReportParams, objective: str,
@@ -156,7 +167,7 @@ def build_report(config: ReportConfig | None = None, *, robot: Robot | None = No
         say(f"{msg} ({time.perf_counter() - t0:.1f} s)")
 
     robot = robot or load_robot()
-    design = design_section(cfg.report.design, robot)  # a bad design.json fails before any work
+    design_section(cfg.report.design, robot)  # a bad design.json fails before any work
     if cfg.payload is not None:  # carried on the base through dynamics, forces and design
         robot = cfg.payload.attach(robot)
     step(f"robot {robot.name}: {robot.nj} joints, {robot.mass:.3f} kg")
@@ -173,7 +184,11 @@ def build_report(config: ReportConfig | None = None, *, robot: Robot | None = No
     usage = contact.friction_usage(analysis.forces, motion.stance.astype(bool), cfg.contact.mu,
                                    motion.normal)
     data = _report_data(cfg, robot, motion, analysis, baseline, curve, usage)
-    data["design"] = design
+    data["design"], passed = answer_section(cfg, robot, prepared)
+    data["notes"] += passed
+    if data["design"] is not None:
+        step(f"answer: {data['design']['label']} springs ({data['design']['origin']}), "
+             f"{data['design']['metric']} saving {data['design']['saving']['value']:+.2f} %")
     data["transform"] = transform_section(robot, cfg, springs, objective)
     if data["transform"] is not None:
         step("stand → sphere transformation analysed")

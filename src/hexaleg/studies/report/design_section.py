@@ -1,11 +1,12 @@
-"""The report's lead: the springs ``hexaleg design`` recommends, read from its ``design.json``.
+"""The report's lead read from a ``design.json``: the springs ``hexaleg design`` recommends.
 
-The design takes seconds to tens of seconds (families, maps, the robust program) and the report
-must stay fast, so the report does not recompute it: given ``[report] design = "DIR/design.json"``
-(or ``hexaleg report --design``), it copies the recommendation's numbers — the saving, the parts
-to buy, the worst case of the robustness maps, the robust design's worst case, the saving
-predicted and simulated under each controller — into
-``report.json`` and leads the page with them; without one it says how to get one.
+The full design takes tens of seconds (families, maps, the robust program), so the report does
+not recompute it: given ``[report] design = "DIR/design.json"`` (or ``hexaleg report --design``),
+or finding ``hexaleg-design/design.json`` of the same robot and gait
+(:mod:`hexaleg.studies.report.answer`), it copies the recommendation's numbers — the saving, the
+parts to buy, the worst case of the robustness maps, the robust design's worst case, the saving
+predicted and simulated under each controller — into ``report.json`` and leads the page with
+them.
 """
 
 from __future__ import annotations
@@ -22,8 +23,10 @@ if TYPE_CHECKING:
     from hexaleg.robot.model import Robot
 
 PART_FIELDS = ("material", "wire_diameter", "mean_diameter", "outer_diameter", "body_turns",
-               "rate_nmm_per_deg", "preload_angle", "max_deflection", "max_torque", "mass")
-"""The torsion spring's numbers the report shows (of ``TorsionSpring.table()``)."""
+               "rate_nmm_per_deg", "preload_angle", "max_deflection", "stress", "yield_strength",
+               "safety_factor", "arbor_diameter", "arbor_margin", "wound_inner_diameter", "mass")
+"""The torsion spring's numbers the report shows (of ``TorsionSpring.table()``; the design page's
+springs-to-buy table, ``design_macros.html.j2``)."""
 
 
 def design_section(path: str | Path | None, robot: Robot | None = None) -> dict[str, Any] | None:
@@ -39,9 +42,10 @@ def design_section(path: str | Path | None, robot: Robot | None = None) -> dict[
         robot: The robot of the report; None: not checked against a robot.
 
     Returns:
-        ``{source, html, label, saving, net_saving, spring_mass, parts, worst, robust,
-        simulation}`` — every number ``{value, unit}`` as in ``design.json`` (``simulation``
-        empty for a design.json without one).
+        The section (:func:`recommendation`) with ``origin`` ``"given"``, ``source`` the path,
+        ``html`` its ``design.html`` beside it (None when missing), ``actuator``, the maps'
+        ``worst``, the ``robust`` design's worst case and the ``simulation`` rows (empty for a
+        design.json without one) — every number ``{value, unit}`` as in ``design.json``.
 
     Raises:
         ConfigError: the file cannot be read or is not a ``design.json`` (says how to make one).
@@ -60,7 +64,7 @@ def design_section(path: str | Path | None, robot: Robot | None = None) -> dict[
                           ) from e
     if robot is not None:
         _check_robot(path, data, robot)
-    for key, where in (("saving", "recommended.saving"), ("net_saving", "recommended.net_saving"),
+    for key, where in (("savings", "recommended.saving"), ("net_saving", "recommended.net_saving"),
                        ("spring_mass", "recommended.spring_mass"), ("parts", "recommended.parts"),
                        ("worst", "worst"), ("robust", "robust.worst")):
         _check_finite(path, section[key], where)
@@ -101,23 +105,52 @@ def _check_finite(path: Path, value: Any, where: str) -> None:
         raise InvalidParameterError(f"{path}: {where}", value, "a finite number")
 
 
+def recommendation(rec: Mapping[str, Any], metric: str, samples: int, pays: bool
+                   ) -> dict[str, Any]:
+    """The answer's common keys from a ``recommended`` entry of ``design.json``
+    (:func:`hexaleg.studies.design.data.candidate_data`).
+
+    Returns:
+        ``{label, family, groups, pays, metric, samples, saving, savings, net_saving,
+        spring_mass, parts, dropped_groups}``: ``saving`` the ranking metric's saving
+        ``{value, unit}`` (the headline), ``savings`` every metric's, ``parts`` the torsion
+        springs to buy as ``design.json`` writes them.
+
+    Raises:
+        KeyError: a key the page shows is missing (a part's torsion spring included).
+    """
+    parts = [dict(p) for p in rec["parts"]]
+    for i, p in enumerate(parts):
+        _require(p, ("group", "joints", "side", "role", "rate", "max_outer_diameter", "problem"),
+                 f"recommended.parts[{i}]")
+        if p.get("torsion_spring") is not None:
+            _require(p["torsion_spring"], PART_FIELDS, f"recommended.parts[{i}].torsion_spring")
+    savings = rec["saving"]
+    return {"label": rec["label"], "family": rec.get("family", rec["label"].split(",")[0]),
+            "groups": list(rec["groups"]), "pays": pays, "metric": metric, "samples": samples,
+            "saving": savings[metric], "savings": savings, "net_saving": rec["net_saving"],
+            "spring_mass": rec["spring_mass"], "parts": parts,
+            "dropped_groups": dict(rec.get("dropped_groups") or {})}
+
+
+def _require(entry: Mapping[str, Any], keys: tuple[str, ...], where: str) -> None:
+    """KeyError naming the keys of ``keys`` that ``entry`` lacks (a design.json of an older
+    hexaleg, or not one at all)."""
+    missing = [k for k in keys if k not in entry]
+    if missing:
+        raise KeyError(f"{where} has no {', '.join(missing)}")
+
+
 def _section(path: Path, data: dict[str, Any]) -> dict[str, Any]:
     """The section from the parsed ``design.json`` (a missing key raises KeyError)."""
-    rec = data["recommended"]
-    parts = []
-    for p in rec["parts"]:
-        spring = p.get("torsion_spring") or {}
-        parts.append({"group": p["group"], "side": p["side"], "role": p["role"],
-                      "joints": len(p["joints"]), "rate": p["rate"],
-                      "max_outer_diameter": p["max_outer_diameter"], "problem": p["problem"],
-                      **{k: spring.get(k) for k in PART_FIELDS}})
+    metric = data["settings"]["metric"]
+    html = path.with_name("design.html")
     robust = data.get("robust")
     return {
-        "source": str(path), "html": path.resolve().with_name("design.html").as_uri(),
-        "label": rec["label"], "groups": list(rec["groups"]), "pays": data.get("pays", True),
-        "metric": data["settings"]["metric"], "samples": data["gait"]["samples"],
-        "saving": rec["saving"], "net_saving": rec["net_saving"],
-        "spring_mass": rec["spring_mass"], "parts": parts, "worst": data["worst"],
-        "robust": None if robust is None else robust["worst"],
+        "origin": "given", "source": str(path), "html": str(html) if html.is_file() else None,
+        "actuator": data.get("actuator"),
+        **recommendation(data["recommended"], metric, data["gait"]["samples"],
+                         data.get("pays", True)),
+        "worst": data["worst"], "robust": None if robust is None else robust["worst"],
         "simulation": data.get("simulation", []),
     }

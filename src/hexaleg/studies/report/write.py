@@ -9,6 +9,8 @@ writes the JSON content next to it.
 from __future__ import annotations
 
 import json
+import math
+import os
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -29,6 +31,8 @@ BAR_METRIC = "electrical"
 PLOTS: tuple[str, ...] = ("joint_angles", "joint_torques", "joint_power", "foot_forces",
                           "energy_per_joint", "stiffness_curve")
 """Plot names: ``<name>.png`` / ``<name>.svg`` in the output directory."""
+NMM_PER_DEG = 1000 * math.pi / 180
+"""N·mm/deg per N·m/rad: the page gives spring rates in the spring makers' unit."""
 
 
 def _stderr_progress(message: str) -> None:
@@ -49,10 +53,32 @@ def _figures(r: Report) -> dict[str, Figure]:
                                          r.motion.stance.astype(bool), r.usage),
         "energy_per_joint": plots.energy_bars(robot.joint_names, a.metrics["joint"][key],
                                               a.baseline["joint"][key], key, "J"),
-        "stiffness_curve": plots.stiffness_curve_figure(
-            curve.stiffness, {m: 100 * curve.savings(m) for m in curve.totals},
-            r.data["stiffness_curve"]["k_M"]["value"], r.config.report.curve_joints),
+        "stiffness_curve": _in_nmm_per_deg(plots.stiffness_curve_figure(
+            NMM_PER_DEG * curve.stiffness, {m: 100 * curve.savings(m) for m in curve.totals},
+            NMM_PER_DEG * r.data["stiffness_curve"]["k_M"]["value"],
+            r.config.report.curve_joints)),
     }
+
+
+def _in_nmm_per_deg(fig: Figure) -> Figure:
+    """The stiffness curve drawn from rates in N·mm/deg, its labels saying so (the plot function
+    labels its axis and k_M line in N·m/rad, the unit of its arguments)."""
+    ax = fig.axes[0]
+    ax.set_xlabel(ax.get_xlabel().replace("N·m/rad", "N·mm/deg"))
+    for line in ax.get_lines():
+        line.set_label(str(line.get_label()).replace("N·m/rad", "N·mm/deg"))
+    ax.legend(fontsize=8)
+    return fig
+
+
+def _relative_link(data: dict, out: Path) -> dict:
+    """``data`` with the answer's ``design.html`` as a link relative to ``out`` (where
+    report.html is), so the pair still links when moved or served together."""
+    g = data.get("design")
+    if not g or not g.get("html"):
+        return data
+    link = Path(os.path.relpath(Path(g["html"]).resolve(), out.resolve())).as_posix()
+    return {**data, "design": {**g, "html": link}}
 
 
 def write_report(out: str | Path = "hexaleg-report", config: ReportConfig | None = None, *,
@@ -86,7 +112,8 @@ def write_report(out: str | Path = "hexaleg-report", config: ReportConfig | None
         images[name] = plots.data_uri(png)
         files += written
         say(f"plot {name}")
-    data = {**r.data, "files": [*sorted(p.name for p in files), "report.html", "report.json"]}
+    data = {**_relative_link(r.data, out),
+            "files": [*sorted(p.name for p in files), "report.html", "report.json"]}
     html = render_html(data, images)
     for path, text in ((out / "report.json", json.dumps(data, indent=1, ensure_ascii=False)),
                        (out / "report.html", html)):
