@@ -209,12 +209,12 @@ def test_reversed_urdf_axes_do_not_change_the_physical_design(tmp_path):
     same machine: with the mirrored joints found (hexaleg.robot.mirror) one design per class
     saves exactly what it saves on the unflipped robot, the springs on both sides act alike;
     without mirroring the class design saves nothing (the two sides cancel)."""
+    from conftest import RIGHT_PITCH, SPIDER, flipped_spider
+
     import hexaleg
     from hexaleg.motion.params import GaitParams
     from hexaleg.robot.mirror import mirror
     from hexaleg.robot.registry import description
-
-    from conftest import RIGHT_PITCH, SPIDER, flipped_spider
 
     def run(robot, desc, mirrored):
         motion = hexaleg.tripod_gait(robot, GaitParams.for_robot(desc).updated({"samples": 60}))
