@@ -266,7 +266,7 @@ def test_simulate_page_quotes_the_simulation_logs():
             column = 1 if controller == "feedforward" else 2
             assert table_row.split("|")[1 + column].strip().startswith(saving), (line, table_row)
             rows += 1
-    assert rows == 9 + 16
+    assert rows == 9 + 15  # one variant does not walk (the position servo at gains ×0.25)
 
 
 def test_paper_page_quotes_the_forward_study_log():
