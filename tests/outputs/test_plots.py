@@ -101,3 +101,25 @@ def test_no_figure_leaks_into_pyplot(robot, series):
     plots.joint_power(robot, t, q, q)
     plots.stiffness_curve_figure(t, {"joule": t}, 0.5, "femur")
     assert plt.get_fignums() == before
+
+
+def test_a_link_at_a_plot_path_is_replaced_not_written_through(tmp_path):
+    """#28: files hexaleg writes into its output directory do not follow a link planted there —
+    the PNG (and SVG) replace the link, the file it pointed to is untouched."""
+    from matplotlib.figure import Figure
+
+    from hexaleg.outputs.plots import save
+
+    victim = tmp_path / "victim.txt"
+    victim.write_text("keep me")
+    out = tmp_path / "out"
+    out.mkdir()
+    for name in ("plot.png", "plot.svg"):
+        (out / name).symlink_to(victim)
+    fig = Figure()
+    fig.add_subplot().plot([0, 1], [1, 0])
+    png, files = save(fig, out / "plot.png", svg=True)
+    assert victim.read_text() == "keep me"
+    assert [f.name for f in files] == ["plot.png", "plot.svg"]
+    assert not any(f.is_symlink() for f in files)
+    assert (out / "plot.png").read_bytes() == png

@@ -10,12 +10,15 @@ convention κ = kα.
 
 from __future__ import annotations
 
+import io
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+
+from hexaleg.config import write_file
 
 DPI = 110
 """Resolution of the saved PNGs, dots per inch."""
@@ -217,9 +220,11 @@ def _forward_versus(k: np.ndarray, analytic: np.ndarray, k_runs: np.ndarray, run
 
 
 def save_png(fig: Figure, path: str | Path) -> None:
-    """Write ``fig`` as a PNG at :data:`DPI`.
+    """Write ``fig`` as a PNG at :data:`DPI` (a link at ``path`` is replaced, not followed).
 
     Raises:
-        OSError: the file cannot be written (the caller names its output directory).
+        OutputError: the file cannot be written (named).
     """
-    fig.savefig(path, dpi=DPI)
+    buf = io.BytesIO()
+    fig.savefig(buf, dpi=DPI)
+    write_file(path, buf.getvalue(), "the figure")

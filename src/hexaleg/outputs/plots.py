@@ -21,7 +21,7 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from hexaleg.errors import OutputError
+from hexaleg.config import write_file
 from hexaleg.robot.model import Robot
 from hexaleg.units import rad_to_deg
 
@@ -271,12 +271,9 @@ def save(fig: Figure, path: str | Path, *, svg: bool = False) -> tuple[bytes, li
     """
     path = Path(path)
     png = png_bytes(fig)
-    files = [path]
-    try:
-        path.write_bytes(png)
-        if svg:
-            files.append(path.with_suffix(".svg"))
-            fig.savefig(files[-1], format="svg")
-    except OSError as e:
-        raise OutputError(f"cannot write the plot {files[-1]}: {e}") from e
+    files = [write_file(path, png, "the plot")]  # a link at the path is replaced, not followed
+    if svg:
+        buf = io.BytesIO()
+        fig.savefig(buf, format="svg")
+        files.append(write_file(path.with_suffix(".svg"), buf.getvalue(), "the plot"))
     return png, files
