@@ -104,7 +104,6 @@ def test_the_report_and_design_pages_fit_1400_px(pages, name, tmp_path):
     assert found["cut"] == [] and found["scrolls"] == [], found
 
 
-@needs_chromium
 def test_the_report_links_its_design_page_relatively(pages):
     page = pages["report"].read_text()
     links = set(re.findall(r'href="([^"#]+)(?:#[^"]*)?"', page))

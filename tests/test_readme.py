@@ -116,6 +116,24 @@ def report() -> dict:
     return hexaleg.build_report().data
 
 
+def test_readme_quick_start_says_what_the_report_answers(report):
+    """The line after the Quick start's first command quotes the answer ``hexaleg report``
+    prints (its last summary line, the same function over the same numbers) and the paper
+    design's saving it keeps as the reference."""
+    from hexaleg.studies.report.answer import answer_line
+
+    quick = re.search(r"```bash\n[^`]*hexaleg report\n```\n\nIt answers which springs to fit: "
+                      r"`([^`]+)` \(" + NUMBER + r" % for the paper's design",
+                      (ROOT / "README.md").read_text())
+    assert quick, "README.md's quick start lost its answer line: update it or this test"
+    quoted, paper = quick.groups()
+    assert report["design"]["origin"] == "quick" and report["design"]["saving"]["value"] > 0
+    assert answer_line(report["design"]).startswith(quoted + " ("), (
+        f"README quotes {quoted!r}; hexaleg report prints {answer_line(report['design'])!r}")
+    _check("the paper-style femur springs' electrical saving (%)",
+           report["energy"]["totals"]["electrical"]["saving"]["value"], paper)
+
+
 def test_readme_paper_k_M(report):
     paper = report["paper"]
     printed, si, nmm_deg = _said(r'k_M = {n} "N·mm/deg" is {n} N·m/rad\*\* \(= {n} N·mm/deg\)')
