@@ -4,8 +4,8 @@ browser shows, the default CLI run and an unwritable output directory."""
 from __future__ import annotations
 
 import base64
-import math
 import json
+import math
 import re
 import subprocess
 import tempfile
@@ -67,6 +67,20 @@ def test_html_numbers_are_the_json_numbers(written, data):
     assert f"{math.degrees(lf['neutral']['value']):.1f}°" in html
     assert f"{100 * lf['engaged_fraction']['value']:.2f} %" in html
     assert f"{1000 * data['gait']['stride_length']['value']:.1f} mm" in html
+
+
+def test_the_stiffness_curve_is_drawn_in_n_mm_per_deg(written):
+    """The plot's rates match the page's tables: N·mm/deg, k_M's line where the page says."""
+    from hexaleg.studies.report.write import _figures
+
+    r, _ = written
+    ax = _figures(r)["stiffness_curve"].axes[0]
+    assert "N·mm/deg" in ax.get_xlabel() and "N·m/rad" not in ax.get_xlabel()
+    k_m = r.data["stiffness_curve"]["k_M"]["value"] * 1000 * math.pi / 180
+    assert any(str(line.get_label()) == f"k_M (eq. 19) = {k_m:.4g} N·mm/deg"
+               for line in ax.get_lines())
+    assert max(ax.get_lines()[0].get_xdata()) == pytest.approx(
+        max(r.curve.stiffness) * 1000 * math.pi / 180)
 
 
 def _visible(html: str) -> str:
@@ -146,6 +160,10 @@ def test_default_cli_run_writes_the_report(tmp_path, capsys):
     printed = capsys.readouterr()
     assert "saving" in printed.out and "stiffness curve 41/41" in printed.err
     d = json.loads((out / "report.json").read_text())
+    saving = d["design"]["saving"]  # the answer the report leads with (#29): a saving > 0
+    assert saving["unit"] == "%" and saving["value"] > 0 and d["design"]["origin"] == "quick"
+    assert (f"quick answer: optimal linear springs on femur, tibia save {saving['value']:+.2f} %"
+            in printed.out)
     assert d["springs"]["design"] == "paper" and d["gait"]["samples"] == 1000
     assert d["motor"]["name"] == DEFAULT_MOTOR
     assert len(d["stiffness_curve"]["stiffness"]["value"]) == 41
