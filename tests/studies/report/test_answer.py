@@ -117,3 +117,15 @@ def test_a_payload_gets_no_answer_and_says_why(robot, tmp_path, monkeypatch):
     assert any("no quick answer: this report carries a payload" in n for n in r.data["notes"])
     assert r.summary().splitlines()[-1] == answer_line(None)
     assert "hexaleg design answers it" in answer_line(None)
+
+
+def test_a_logged_motion_gets_no_quick_answer(robot):
+    """A report of a logged motion (``--motion``) has no gait parameters a design could be
+    matched against or made on: no answer, a note saying how to get one."""
+    from types import SimpleNamespace
+
+    from hexaleg.studies.report.answer import answer_section
+
+    cfg = SimpleNamespace(report=SimpleNamespace(design=None), motion=object())
+    section, notes = answer_section(cfg, robot, None)  # type: ignore[arg-type]
+    assert section is None and "hexaleg design --motion LOG" in notes[0]

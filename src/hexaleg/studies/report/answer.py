@@ -19,8 +19,9 @@ the first of:
 
 Each answer's springs are also evaluated on the report's own gait (its samples, Joule-optimal
 forces as the design ranks them), reported beside the design's number. Where no answer can be
-had (a payload, a robot outside the registry, a motor outside the catalogue, a design that
-fails) the section is None and a note says why; the paper's design stays the page's reference.
+had (a payload, a logged motion, a robot outside the registry, a motor outside the catalogue, a
+design that fails) the section is None and a note says why; the paper's design stays the page's
+reference.
 """
 
 from __future__ import annotations
@@ -67,6 +68,9 @@ def answer_section(cfg: ReportConfig, robot: Robot, prepared: Prepared
     springs: SpringSet | None = None
     if cfg.report.design is not None:
         section = design_section(cfg.report.design, robot)
+    elif getattr(cfg, "motion", None) is not None:  # a logged motion (--motion): no gait to match
+        return None, ["no quick answer on a logged motion: hexaleg design --motion LOG designs "
+                      "on it, then hexaleg report --design DIR/design.json leads with it"]
     else:
         section, why = _found(cfg, robot)
         if why:
