@@ -66,7 +66,8 @@ def test_built_in_robot_passes(robot):
 
 @pytest.mark.parametrize("mass", [0.0, -0.045])
 def test_zero_or_negative_mass_is_flagged(tmp_path, mass):
-    robot = load_robot(broken_urdf(tmp_path, "LF_tibia_link", mass=mass), DEFAULT_SRDF)
+    robot = load_robot(broken_urdf(tmp_path, "LF_tibia_link", mass=mass), DEFAULT_SRDF,
+                       inertias="keep")
     findings = robot_findings(robot)
     assert checks(findings) == ["mass"]
     (found,) = findings
@@ -76,7 +77,8 @@ def test_zero_or_negative_mass_is_flagged(tmp_path, mass):
 
 
 def test_inertia_that_is_not_positive_definite_is_flagged(tmp_path):
-    robot = load_robot(broken_urdf(tmp_path, "LF_femur_link", ixx=-1e-6), DEFAULT_SRDF)
+    robot = load_robot(broken_urdf(tmp_path, "LF_femur_link", ixx=-1e-6), DEFAULT_SRDF,
+                       inertias="keep")
     (found,) = robot_findings(robot)
     assert found.check == "inertia_definite" and found.value == pytest.approx(-1e-6)
     assert "LF_femur_link" in found.where and "principal moments" in found.remedy
@@ -89,7 +91,8 @@ def test_triangle_inequality_of_the_principal_moments(tmp_path):
     on_the_edge = load_robot(broken_urdf(tmp_path, "RM_tibia_link", iyy=i3 - i1), DEFAULT_SRDF)
     assert robot_findings(on_the_edge) == []
     for i2 in (i3 - i1 - 2 * TRIANGLE_TOL * i3, 2e-5):
-        robot = load_robot(broken_urdf(tmp_path, "RM_tibia_link", iyy=i2), DEFAULT_SRDF)
+        robot = load_robot(broken_urdf(tmp_path, "RM_tibia_link", iyy=i2), DEFAULT_SRDF,
+                           inertias="keep")
         (found,) = robot_findings(robot)
         assert found.check == "inertia_triangle"
         assert found.value == pytest.approx((i1 + i2) / i3, rel=1e-9)

@@ -7,7 +7,6 @@ legs=...)`` loads any legged robot whose legs are chains of 1-DoF joints ending 
 
 from __future__ import annotations
 
-import xml.etree.ElementTree as ET
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,7 +20,7 @@ from hexaleg.robot import geometry as _geometry
 from hexaleg.robot.feet import LegSpec, resolve_foot
 from hexaleg.robot.fields import horizontal_axis
 from hexaleg.robot.srdf import check_reference_poses
-from hexaleg.robot.urdf_numbers import check_urdf_numbers
+from hexaleg.robot.urdf_numbers import check_xml
 
 URDF_DIR = Path(__file__).resolve().parent / "urdf"
 """Directory of the packaged robot files (a link to the repository's ``urdf/``)."""
@@ -259,17 +258,6 @@ class Robot:
         return "\n".join(lines)
 
 
-def _check_xml(path: Path, what: str) -> None:
-    try:  # the one bounded reader: a regular file, at most MAX_TEXT_BYTES, UTF-8
-        root = ET.fromstring(read_text(path, f"{what} file"))
-    except ConfigError as e:
-        raise RobotModelError(str(e)) from None
-    except ET.ParseError as e:
-        raise RobotModelError(f"{what} file {path} is not well-formed XML: {e}") from e
-    if what == "URDF":
-        check_urdf_numbers(root, path)
-
-
 def _make_leg(model: pin.Model, spec: LegSpec) -> Leg:
     joint_names = list(model.names[2:])
     missing = [j for j in spec.joints if not model.existJointName(j)]
@@ -293,6 +281,19 @@ def _make_leg(model: pin.Model, spec: LegSpec) -> Leg:
                int(model.getFrameId(spec.foot)))
 
 
+def _build(xml: str, path: Path, dirs: Sequence[Path]
+           ) -> tuple[pin.Model, pin.GeometryModel, pin.GeometryModel]:
+    """Pinocchio's model (free-flyer base), visual and collision geometry of URDF text ``xml``."""
+    try:
+        model = pin.buildModelFromXML(xml, pin.JointModelFreeFlyer())
+        visual, collision = (pin.buildGeomFromUrdfString(model, xml, kind, None,
+                                                         [str(d) for d in dirs])
+                             for kind in (pin.GeometryType.VISUAL, pin.GeometryType.COLLISION))
+        return model, visual, collision
+    except (RuntimeError, ValueError) as e:
+        raise RobotModelError(f"Pinocchio cannot load URDF {path}: {e}") from e
+
+
 AUTO = "auto"
 """``legs=AUTO``: find the legs and joint classes from the kinematic tree
 (:func:`hexaleg.robot.discover.discover_legs`)."""
@@ -302,7 +303,7 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
                legs: Sequence[LegSpec] | str | None = None,
                package_dirs: Sequence[str | Path] = (),
                joint_kinds: Sequence[str] | None = None,
-               heading: Sequence[float] = (1.0, 0.0, 0.0)) -> Robot:
+               heading: Sequence[float] = (1.0, 0.0, 0.0), inertias: str = "refuse") -> Robot:
     """Load a legged robot into Pinocchio with a free-flyer base.
 
     Meshes that cannot be found are replaced by stand-ins (:mod:`hexaleg.robot.meshes`); feet
@@ -318,14 +319,18 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
         joint_kinds: Names of the joint classes, one per joint of a leg, from the body out;
             default hexaleg's, or the found ones with :data:`AUTO`.
         heading: The base axis that points forward (:attr:`Robot.heading`).
+        inertias: What to do with a link inertia no rigid body can have: "refuse" (an error
+            naming the fix), "repair" (the box rule, noted) or "keep" (:mod:`.inertials`).
 
     Returns:
         The robot.
 
     Raises:
-        RobotModelError: a file is missing or malformed, every link has zero mass, or the
-            legs/feet are not in the URDF (the message names what was found).
+        RobotModelError: a file is missing or malformed, every link has zero mass, an impossible
+            link inertia (unless repaired or kept), or the legs/feet are not in the URDF (the
+            message names what was found).
     """
+    from hexaleg.robot.inertials import settle_inertials
     from hexaleg.robot.meshes import with_available_meshes
 
     if urdf is None:
@@ -333,23 +338,20 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
         srdf_path: Path | None = DEFAULT_SRDF if srdf is None else Path(srdf)
     else:
         urdf_path, srdf_path = Path(urdf), (Path(srdf) if srdf is not None else None)
-    _check_xml(urdf_path, "URDF")
+    check_xml(urdf_path, "URDF")
     if srdf_path is not None:
-        _check_xml(srdf_path, "SRDF")
+        check_xml(srdf_path, "SRDF")
     dirs = [Path(d) for d in package_dirs]
     try:
         text = read_text(urdf_path, "URDF file")
     except ConfigError as e:
         raise RobotModelError(str(e)) from None
     xml, notes = with_available_meshes(text, urdf_path.parent.resolve(), dirs)
-    try:
-        model = pin.buildModelFromXML(xml, pin.JointModelFreeFlyer())
-        visual = pin.buildGeomFromUrdfString(model, xml, pin.GeometryType.VISUAL, None,
-                                             [str(d) for d in dirs])
-        collision = pin.buildGeomFromUrdfString(model, xml, pin.GeometryType.COLLISION, None,
-                                                [str(d) for d in dirs])
-    except (RuntimeError, ValueError) as e:
-        raise RobotModelError(f"Pinocchio cannot load URDF {urdf_path}: {e}") from e
+    model, visual, collision = _build(xml, urdf_path, dirs)
+    repaired = settle_inertials(xml, urdf_path, inertias, model, (collision, visual))
+    if repaired is not None:  # the repaired URDF, loaded again
+        model, visual, collision = _build(repaired[0], urdf_path, dirs)
+        notes.append(repaired[1])
     heading_arr = horizontal_axis("heading", heading)
     if isinstance(legs, str):
         if legs != AUTO:

@@ -140,7 +140,7 @@ def inertia_findings(robot: Robot) -> list[Finding]:
     return found
 
 
-def _aabb_corners(obj: pin.GeometryObject) -> np.ndarray:
+def aabb_corners(obj: pin.GeometryObject) -> np.ndarray:
     """Corners of a geometry's local bounding box in its joint's frame, shape (8, 3), m
     (empty (0, 3) for unbounded or unsupported shapes)."""
     try:
@@ -167,7 +167,7 @@ def body_size(robot: Robot, joint_id: int) -> float:
     model = robot.model
     points = [np.zeros((1, 3))]
     for gmodel in (robot.visual_model, robot.collision_model):
-        points += [_aabb_corners(g) for g in gmodel.geometryObjects if g.parentJoint == joint_id]
+        points += [aabb_corners(g) for g in gmodel.geometryObjects if g.parentJoint == joint_id]
     points.append(np.array([model.jointPlacements[c].translation for c in range(1, model.njoints)
                             if model.parents[c] == joint_id]).reshape(-1, 3))
     points.append(np.array([f.placement.translation for f in model.frames

@@ -17,7 +17,8 @@ import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from hexaleg.errors import RobotModelError
+from hexaleg.config import read_text
+from hexaleg.errors import ConfigError, RobotModelError
 
 NUMBER = re.compile(r"\s*[+-]?(\d+(\.\d*)?|\.\d+)([eE][+-]?\d+)?\s*")
 """A decimal floating-point literal as urdfdom reads one (no ``nan``, ``inf`` or ``1_000``)."""
@@ -103,3 +104,20 @@ def _check_limits(root: ET.Element, path: Path) -> None:
                     f"URDF {path}: joint {name!r}, <limit> has no {attribute} attribute; "
                     f"urdfdom requires effort and velocity on every <limit> (give {attribute}"
                     f"=\"…\": {MEANING[attribute]}; 0 only for a joint that is not actuated)")
+
+
+def check_xml(path: Path, what: str) -> None:
+    """Read ``path`` (a ``"URDF"`` or ``"SRDF"`` file) as XML, and check a URDF's numbers.
+
+    Raises:
+        RobotModelError: the file cannot be read, is not well-formed XML, or has a number that
+            urdfdom would drop (:func:`check_urdf_numbers`).
+    """
+    try:  # the one bounded reader: a regular file, at most MAX_TEXT_BYTES, UTF-8
+        root = ET.fromstring(read_text(path, f"{what} file"))
+    except ConfigError as e:
+        raise RobotModelError(str(e)) from None
+    except ET.ParseError as e:
+        raise RobotModelError(f"{what} file {path} is not well-formed XML: {e}") from e
+    if what == "URDF":
+        check_urdf_numbers(root, path)
