@@ -18,6 +18,7 @@ from hexaleg import __version__
 from hexaleg.errors import HexalegError, HexalegWarning
 from hexaleg.robot.registry import DESCRIPTIONS  # loaded by `import hexaleg` already
 from hexaleg.simulation.controllers import CONTROLLERS  # no MuJoCo: it loads with a model
+from hexaleg.studies.motion_option import add_motion_option  # no loader: it loads with a log
 
 ROBOT_HELP = (f"a registered robot ({', '.join(DESCRIPTIONS)}) or a robot description "
               "FILE.toml of one's own (docs/robots.md)")
@@ -168,14 +169,14 @@ def _add_report(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--robot", help=ROBOT_HELP + ": its gait (keys [gait] does not set), "
                                                 "springs and curve on its spring class")
     p.add_argument("--design", help="a design.json of 'hexaleg design' to lead the page with")
-    p.set_defaults(func=_run_report)
+    add_motion_option(p, _run_report, "report.json")
 
 
 def _run_report(args: argparse.Namespace) -> int:
     from hexaleg.studies.report.config import ReportConfig
     from hexaleg.studies.report.write import write_report
 
-    config, robot = ReportConfig.load(args.robot, args.config)
+    config, robot = ReportConfig.load(args.robot, args.config, args.motion, args.cycle)
     if args.design:
         import dataclasses
 
@@ -200,14 +201,15 @@ def _add_design(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--controller", choices=CONTROLLERS, help="the servo designs run under")
     p.add_argument("--out", default="hexaleg-design",
                    help="output directory (default: %(default)s)")
-    p.set_defaults(func=_run_design)
+    add_motion_option(p, _run_design, "design.json")
 
 
 def _run_design(args: argparse.Namespace) -> int:
     from hexaleg.studies.design.config import DesignConfig
     from hexaleg.studies.design.write import write_design
 
-    written = write_design(args.out, DesignConfig.load(args.robot, args.config, args.controller))
+    config = DesignConfig.load(args.robot, args.config, args.controller, args.motion, args.cycle)
+    written = write_design(args.out, config)
     print(written.result.summary())
     print(f"wrote {len(written.files)} files to {args.out}; open {args.out}/design.html")
     return 0
@@ -300,7 +302,7 @@ def _add_simulate(sub: argparse._SubParsersAction) -> None:
                         "stiffer, half the friction, the no-slip pass and the other controller")
     p.add_argument("--out", default="hexaleg-simulate",
                    help="output directory (default: %(default)s)")
-    p.set_defaults(func=_run_simulate)
+    add_motion_option(p, _run_simulate, "simulate.json")
 
 
 def _run_simulate(args: argparse.Namespace) -> int:
@@ -313,7 +315,7 @@ def _run_simulate(args: argparse.Namespace) -> int:
                  "timestep": args.timestep}
     if args.cycles is not None and args.cycles >= 2:
         overrides["evaluate"] = min(2, args.cycles - 1)
-    study = load_study(args.robot, args.config, args.springs, overrides)
+    study = load_study(args.robot, args.config, args.springs, overrides, args.motion, args.cycle)
     s = study.run()
     rows = None
     if args.sensitivity and s.walks:

@@ -52,6 +52,7 @@ from hexaleg.studies.design.candidates import Candidate
 from hexaleg.studies.design.config import DesignConfig
 from hexaleg.studies.design.ranking import Simulated, best_simulated, simulate_candidates
 from hexaleg.studies.design.stages import (
+    LOGGED_SKIP,
     Nominal,
     RobustResult,
     envelope_and_fatigue,
@@ -135,8 +136,9 @@ class DesignResult:
         head = "fit" if self.pays else "no springs pay here; the best would be"
         line = (f"{head} {r.label} springs on {', '.join(r.optimum.groups)}: {m} saving "
                 f"{100 * r.row[f'saving.{m}']:+.2f} % ({100 * r.net[m]:+.2f} % net "
-                f"of {1e3 * r.spring_mass:.1f} g of springs); worst case over the maps "
-                f"{100 * self.worst[m][0]:+.2f} % at {self.worst[m][1]}")
+                f"of {1e3 * r.spring_mass:.1f} g of springs); " + (
+                    f"worst case over the maps {100 * self.worst[m][0]:+.2f} % at "
+                    f"{self.worst[m][1]}" if self.maps else "no robustness maps (logged motion)"))
         simulated = [f"{row['label']} {100 * row['simulated']:+.2f} %"
                      if row["simulated"] is not None else f"{row['label']}: {row['verdict']}"
                      for row in self.simulation]
@@ -192,7 +194,8 @@ def build_design(config: DesignConfig | None = None,
     step("envelope", f"{len(envelope)} parts checked over their whole envelope and for fatigue "
          f"at {d.life_cycles:.3g} cycles")
     maps, worst = robustness_maps(nom, rec)
-    step("maps", f"robustness maps: worst {d.metric} saving {100 * worst[d.metric][0]:+.2f} %")
+    step("maps", f"robustness maps: worst {d.metric} saving {100 * worst[d.metric][0]:+.2f} %"
+         if maps else "robustness maps and robust design left out: a logged motion")
     robust = robust_design(nom, rec)
     step("robust", "robust design over the box of conditions")
     simulation, unsimulated = _proof(nom, rec)
@@ -204,7 +207,9 @@ def build_design(config: DesignConfig | None = None,
     mirrored = mirror(nom.robot)
     plausible = _plausibility(nom)
     flagged = () if plausible is None else (f"baseline energy {plausible.message}",)
-    notes = [*flagged, *pays, *notes, *envelope_notes, *unsimulated, *nom.robot.notes, *rec.notes,
+    logged = [LOGGED_SKIP] if nom.motion is not None else []
+    notes = [*flagged, *pays, *logged, *notes, *envelope_notes, *unsimulated, *nom.robot.notes,
+             *rec.notes,
              (mirrored.summary() + ("; each gets its group's spring mirrored" if d.mirror
                                     and mirrored.mirrored else "")), *mirrored.notes,
              f"designed at {nom.gait.samples} samples per cycle (Joule-optimal forces); ranked "

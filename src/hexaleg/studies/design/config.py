@@ -241,26 +241,46 @@ class DesignConfig:
         gait: The nominal gait (the robot's, with the file's ``[gait]`` keys on top).
         contact: Contact settings (``[contact]``).
         design: The ``[design]`` table.
+        motion: A log of the robot's own gait (``--motion``: the nominal motion is its cycle,
+            :func:`hexaleg.load_motion`; ``[design] samples`` and the gait do not apply), or None.
+        cycle: Which part of the log is the cycle (``"auto"``, ``"whole"``, ``"T0:T1"``:
+            :func:`hexaleg.studies.motion_option.logged_motion`).
     """
 
     robot: str = "hexaleg"
     gait: GaitParams | None = None
     contact: ContactParams = field(default_factory=ContactParams)
     design: DesignParams = field(default_factory=DesignParams)
+    motion: str | None = None
+    cycle: str = "auto"
 
     @classmethod
     def load(cls, robot: str | None = None, path: str | Path | None = None,
-             controller: str | None = None) -> DesignConfig:
-        """The configuration of ``hexaleg design [--robot R] [--config F] [--controller C]``
-        (``controller`` over ``[design] controller``).
+             controller: str | None = None, motion: str | Path | None = None,
+             cycle: str = "auto") -> DesignConfig:
+        """The configuration of ``hexaleg design [--robot R] [--config F] [--controller C]
+        [--motion LOG]`` (``controller`` over ``[design] controller``).
 
         Raises:
             ConfigError: the file cannot be read, or a value has the wrong type.
             UnknownNameError: an unknown table, key, robot or name (lists the valid ones).
-            InvalidParameterError: a value out of range.
+            InvalidParameterError: a value out of range; a ``[gait]`` table or ``[design]
+                samples`` together with ``motion`` (named).
         """
         data = load_toml(path) if path else {}
-        cfg = cls.from_mapping(data, robot or "hexaleg", str(path) if path else "config")
+        where = str(path) if path else "config"
+        if motion is not None:
+            from hexaleg.studies.motion_option import refuse_gait_table
+
+            refuse_gait_table(data, where, motion)
+            if "samples" in data.get("design", {}):
+                raise InvalidParameterError(
+                    f"{where} [design] samples", data["design"]["samples"],
+                    f"no samples with --motion {motion}: the logged cycle keeps its own "
+                    "samples; remove the key or the --motion option")
+        cfg = cls.from_mapping(data, robot or "hexaleg", where)
+        if motion is not None:
+            cfg = dataclasses.replace(cfg, motion=str(motion), cycle=cycle)
         return cfg.with_controller(controller) if controller else cfg
 
     @classmethod

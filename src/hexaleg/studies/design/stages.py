@@ -29,7 +29,7 @@ from hexaleg.design.robustness import Condition, condition_prepared, condition_s
 from hexaleg.design.robustness_map import RobustnessMap, robot_patterns, robustness_map
 from hexaleg.design.spring_parts import SpringPart, spring_outer_diameter
 from hexaleg.design.tolerance import TolerantSprings, tolerant_springs
-from hexaleg.dynamics.prepare import Prepared
+from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.errors import (
     HexalegError,
     InfeasibleForcesError,
@@ -38,6 +38,7 @@ from hexaleg.errors import (
 )
 from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import GaitParams
+from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Robot
 from hexaleg.studies.design.candidates import (
@@ -61,6 +62,8 @@ class Nominal:
         classes: The sprung joint classes. class_groups: Class → joints (where geometries are
             searched). groups: The design groups (``[design] grouping``).
         outer: Group → (largest spring outer diameter, m; where it comes from).
+        motion: The logged motion (``--motion``) the design is made on, or None for the
+            generated gait (then ``gait`` only gives its period and samples).
     """
 
     config: DesignConfig
@@ -74,6 +77,7 @@ class Nominal:
     class_groups: dict[str, tuple[str, ...]]
     groups: dict[str, tuple[str, ...]]
     outer: dict[str, tuple[float, str]]
+    motion: Motion | None = None
 
     @property
     def outer_diameters(self) -> dict[str, float]:
@@ -97,14 +101,30 @@ class Nominal:
                             self.outer_diameters, start, geometry)
 
 
+LOGGED_SKIP = ("the robustness maps and the robust design are left out: they re-make the gait "
+               "from its parameters (period, stride, pattern) and a logged motion (--motion) has "
+               "none to vary; the candidates, ranking, stop tolerance and envelope are on the "
+               "logged cycle")
+"""The note of a design on a logged motion."""
+
+
 def nominal(cfg: DesignConfig) -> Nominal:
-    """The nominal gait prepared, the sprung classes, the design groups and their fit limits."""
+    """The nominal gait prepared (or the logged motion's cycle, ``cfg.motion``), the sprung
+    classes, the design groups and their fit limits."""
     d = cfg.design
     run = d.run(cfg.robot, cfg.contact)
     robot, desc, gait = run.load(), run.description(), cfg.nominal_gait
     for kind in d.max_outer_diameter:  # a typo would be ignored and the springs come out larger
         one_of("[design] max_outer_diameter joint class", kind, robot.joint_kinds)
-    prepared = condition_prepared(run, gait, Condition())
+    motion = None
+    if cfg.motion is not None:
+        from hexaleg.studies.motion_option import logged_motion
+
+        motion = logged_motion(robot, cfg.motion, cfg.cycle)
+        gait = dataclasses.replace(gait, samples=motion.n_samples, period=motion.period)
+        prepared = prepare(robot, motion, motor=run.actuator(), contact=run.contact)
+    else:
+        prepared = condition_prepared(run, gait, Condition())
     baseline = {k: float(v) for k, v in prepared.baseline("joule")["total"].items()}
     classes = sprung_classes(robot, d.classes)
     groups = design_groups(robot, classes, d.grouping)
@@ -114,7 +134,7 @@ def nominal(cfg: DesignConfig) -> Nominal:
         outer[g] = ((float(d.max_outer_diameter[kind]), "[design] max_outer_diameter")
                     if kind in d.max_outer_diameter else spring_outer_diameter(desc, robot, kind))
     return Nominal(cfg, run, robot, desc, gait, prepared, baseline, tuple(classes),
-                   design_groups(robot, classes, "class"), groups, outer)
+                   design_groups(robot, classes, "class"), groups, outer, motion)
 
 
 def rank(c: Candidate, metric: str) -> float:
@@ -231,13 +251,17 @@ def envelope_and_fatigue(nom: Nominal, rec: Candidate
     parts = [p for p in rec.parts if p.spring is not None]
     joints = sorted({j for p in parts for j in p.joints}, key=nom.robot.column)
     extra, notes = [], []
-    try:
-        turn = tripod_gait(nom.robot, dataclasses.replace(nom.gait, yaw_rate=TURN_RATE))
-        q = {j: turn.q[:, nom.robot.column(j)] for j in joints}
-        extra.append((f"turning {TURN_RATE:g} rad/s",
-                      {j: (float(v.min()), float(v.max())) for j, v in q.items()}))
-    except HexalegError as e:
-        notes.append(f"the envelope leaves out a turn at {TURN_RATE:g} rad/s: {e}")
+    if nom.motion is not None:
+        notes.append(f"the envelope leaves out a turn at {TURN_RATE:g} rad/s: a logged motion "
+                     "(--motion) has no gait to turn")
+    else:
+        try:
+            turn = tripod_gait(nom.robot, dataclasses.replace(nom.gait, yaw_rate=TURN_RATE))
+            q = {j: turn.q[:, nom.robot.column(j)] for j in joints}
+            extra.append((f"turning {TURN_RATE:g} rad/s",
+                          {j: (float(v.min()), float(v.max())) for j, v in q.items()}))
+        except HexalegError as e:
+            notes.append(f"the envelope leaves out a turn at {TURN_RATE:g} rad/s: {e}")
     env = parts_envelope(parts, nom.prepared, extra=extra, design_factor=d.safety_factor,
                          mirrored=rec.optimum.mirrored)
     assert all(p.spring is not None for p in parts)
@@ -252,8 +276,11 @@ def robustness_maps(nom: Nominal, rec: Candidate
     ground's slope along the walking direction; the patterns of ``[design] map_pattern``, by
     default the nominal gait's and every other the robot's legs walk,
     :func:`~hexaleg.design.robustness_map.robot_patterns`), and each metric's worst case
-    (saving, its condition's label) over all three."""
+    (saving, its condition's label) over all three; none on a logged motion (NaN worst cases,
+    :data:`LOGGED_SKIP`)."""
     d = nom.config.design
+    if nom.motion is not None:  # LOGGED_SKIP: no gait parameters to vary
+        return (), {m: (float("nan"), "not mapped (logged motion)") for m in METRICS}
     springs = rec.optimum.springs
     patterns = d.map_pattern or robot_patterns(nom.robot, nom.gait)
     axes: list[dict[str, Sequence[float] | Sequence[str]]] = [
@@ -308,7 +335,8 @@ def corners(cfg: DesignConfig) -> tuple[Condition, ...]:
 def robust_design(nom: Nominal, rec: Candidate) -> RobustResult | None:
     """The recommended geometry's magnitudes for the box of conditions
     (:func:`hexaleg.design.robust.robust_springs`: its corners and the nominal gait, one convex
-    program), with its own parts; None when the box is the nominal gait alone.
+    program), with its own parts; None when the box is the nominal gait alone or the motion is
+    logged (:data:`LOGGED_SKIP`).
 
     Raises:
         InvalidParameterError: a corner where the robot has no admissible forces without
@@ -316,7 +344,7 @@ def robust_design(nom: Nominal, rec: Candidate) -> RobustResult | None:
     """
     cfg, prepared = nom.config, nom.prepared
     conditions = corners(cfg)
-    if len(conditions) == 1:
+    if len(conditions) == 1 or nom.motion is not None:  # LOGGED_SKIP
         return None
     preps = [condition_prepared(nom.run, nom.gait, c) for c in conditions]
     for c, p in zip(conditions, preps, strict=True):
@@ -347,6 +375,7 @@ def robust_design(nom: Nominal, rec: Candidate) -> RobustResult | None:
 
 
 __all__ = [
+    "LOGGED_SKIP",
     "Nominal",
     "RobustResult",
     "corners",

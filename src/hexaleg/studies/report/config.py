@@ -203,6 +203,8 @@ class ReportConfig:
         notes: Caveats printed on the report page (set by :meth:`for_robot`; not a TOML table).
         payload: A payload on the base (``[payload]``: ``mass``, ``com``, ``inertia``;
             :class:`hexaleg.robot.payload.Payload`), or None.
+        motion: A logged motion (``--motion``, :func:`hexaleg.load_motion`) the report analyses
+            instead of the gait ``gait`` would make, or None.
     """
 
     gait: GaitParams = field(default_factory=GaitParams)
@@ -212,6 +214,7 @@ class ReportConfig:
     report: ReportParams = field(default_factory=ReportParams)
     notes: tuple[str, ...] = ()
     payload: Payload | None = None
+    motion: Motion | None = None
 
     @classmethod
     def for_robot(cls, desc: RobotDescription, robot: Robot,
@@ -257,24 +260,51 @@ class ReportConfig:
                                    notes=tuple(notes))
 
     @classmethod
-    def load(cls, robot: str | None = None, path: str | Path | None = None
+    def load(cls, robot: str | None = None, path: str | Path | None = None,
+             motion: str | Path | None = None, cycle: str = "auto"
              ) -> tuple[ReportConfig, Robot | None]:
-        """The configuration of ``hexaleg report [--robot R] [--config F]``.
+        """The configuration of ``hexaleg report [--robot R] [--config F] [--motion LOG]``.
 
         Args:
             robot: A registered robot's name or a robot ``.toml``, or None for the built-in robot
                 with hexaleg's defaults.
             path: The config file, or None.
+            motion: A log of the robot's own gait (:func:`hexaleg.load_motion`, one periodic
+                cycle) analysed instead of the generated gait, or None.
+            cycle: Which part of the log is the cycle: ``"auto"``, ``"whole"`` or ``"T0:T1"``
+                (:func:`hexaleg.studies.motion_option.logged_motion`).
 
         Returns:
             The configuration and the loaded robot (None: the built-in one, loaded by the report).
+
+        Raises:
+            InvalidParameterError: a ``[gait]`` table together with ``motion`` (named), or the
+                log's named bad input.
         """
+        where = str(path) if path else "config"
+        if motion is not None:
+            from hexaleg.studies.motion_option import (
+                logged_motion,
+                quality_note,
+                refuse_gait_table,
+            )
+
+            refuse_gait_table(load_toml(path) if path else {}, where, motion)
         if robot is None:
-            return (cls.from_toml(path) if path else cls()), None
-        desc = description(robot)
-        loaded = desc.load()
-        data = load_toml(path) if path else {}
-        return cls.for_robot(desc, loaded, data, str(path) if path else "config"), loaded
+            config, loaded = (cls.from_toml(path) if path else cls()), None
+            if motion is None:
+                return config, None
+            loaded = description("hexaleg").load()
+        else:
+            desc = description(robot)
+            loaded = desc.load()
+            data = load_toml(path) if path else {}
+            config = cls.for_robot(desc, loaded, data, where)
+        if motion is None:
+            return config, loaded
+        logged = logged_motion(loaded, motion, cycle)
+        return dataclasses.replace(config, motion=logged,
+                                   notes=(*config.notes, quality_note(logged))), loaded
 
     @classmethod
     def from_mapping(cls, data: Mapping[str, Any], where: str = "config") -> ReportConfig:

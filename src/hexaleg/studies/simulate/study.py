@@ -63,7 +63,8 @@ class Study:
 
 def load_study(robot: str = "hexaleg", config: str | Path | None = None,
                springs: str | Path | None = None,
-               overrides: Mapping[str, Any] | None = None) -> Study:
+               overrides: Mapping[str, Any] | None = None,
+               motion: str | Path | None = None, cycle: str = "auto") -> Study:
     """The study of ``hexaleg simulate`` (module docstring).
 
     Args:
@@ -72,11 +73,16 @@ def load_study(robot: str = "hexaleg", config: str | Path | None = None,
             ``[report]`` and ``[simulate]`` tables, or None.
         springs: A design file (``design.json``), or None for the optimal linear springs.
         overrides: :class:`Settings` fields given on the command line (over ``[simulate]``).
+        motion: A log of the robot's own gait played forward instead of the generated gait
+            (:func:`hexaleg.load_motion`: one periodic cycle), or None.
+        cycle: Which part of the log is the cycle (``"auto"``, ``"whole"``, ``"T0:T1"``:
+            :func:`hexaleg.studies.motion_option.logged_motion`).
 
     Raises:
         ConfigError: a file that cannot be read or has the wrong types (named).
         UnknownNameError: an unknown robot, table, key, family or joint (lists the valid ones).
-        InvalidParameterError: a value out of range (named).
+        InvalidParameterError: a value out of range (named); a ``[gait]`` table together with
+            ``motion`` (named).
         InfeasibleForcesError: the gait has no admissible contact forces.
         TorqueLimitError: the gait needs more than the motor's stall torque.
     """
@@ -85,6 +91,10 @@ def load_study(robot: str = "hexaleg", config: str | Path | None = None,
     data = dict(load_toml(config)) if config else {}
     table = data.pop("simulate", {})
     where = str(config) if config else "config"
+    if motion is not None:
+        from hexaleg.studies.motion_option import logged_motion, quality_note, refuse_gait_table
+
+        refuse_gait_table(data, where, motion)
     report = ReportConfig.for_robot(desc, loaded, data, where)
     settings = Settings.from_mapping(table, f"{where} [simulate]")
     if overrides:
@@ -92,7 +102,14 @@ def load_study(robot: str = "hexaleg", config: str | Path | None = None,
                                                     if v is not None})
     gait, notes = report.gait, list(report.notes)
     designed = load_design(springs, robot) if springs is not None else None
-    if designed is not None and designed.gait is not None:
+    if motion is not None:
+        logged = logged_motion(loaded, motion, cycle)
+        notes.append(quality_note(logged))
+        if designed is not None and designed.gait is not None:
+            notes.append(f"the design file's springs were designed on its own gait "
+                         f"({designed.gait.samples} samples per cycle); the logged motion "
+                         "replaces it here, so the prediction differs from the design's")
+    elif designed is not None and designed.gait is not None:
         if "gait" in data:
             notes.append(f"the design file's springs were designed at {designed.gait.samples} "
                          f"samples per cycle on its own gait; {where} [gait] replaces it here "
@@ -101,8 +118,8 @@ def load_study(robot: str = "hexaleg", config: str | Path | None = None,
             gait = designed.gait
             notes.append(f"the gait of the design file ({gait.samples} samples per cycle), so "
                          "the prediction is the design's own")
-    prepared = prepare(loaded, tripod_gait(loaded, gait), motor=report.motor,
-                       contact=report.contact)
+    played = logged if motion is not None else tripod_gait(loaded, gait)
+    prepared = prepare(loaded, played, motor=report.motor, contact=report.contact)
     objective = report.report.objective
     if "springs" in data:
         notes.append(f"{where} [springs] is the report's design and is not simulated; give the "
