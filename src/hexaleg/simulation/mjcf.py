@@ -135,6 +135,47 @@ def _feet_links(robot: Robot) -> set[int]:
     return feet | {i for i, f in enumerate(model.frames) if f.name in names}
 
 
+MJ_MINVAL = 1e-15
+"""MuJoCo's ``mjMINVAL``: the mass of a moving body must be larger (compiler check)."""
+MJ_EPS = 1e-14
+"""kg·m²: MuJoCo's ``mjEPS``, the absolute tolerance of its triangle inequality
+``A + B ≥ C − mjEPS`` (measured on MuJoCo 4.0: ``1 1 2`` compiles, ``1 1 2.0000000000001``
+does not)."""
+
+
+def check_inertias(robot: Robot) -> None:
+    """What MuJoCo's compiler refuses of a body's inertia, checked before compiling.
+
+    MuJoCo requires of every moving body a mass > ``mjMINVAL`` (:data:`MJ_MINVAL`), a
+    ``fullinertia`` with positive eigenvalues, and principal moments with ``A + B ≥ C − mjEPS``
+    (:data:`MJ_EPS`; MuJoCo documentation, XML reference, ``inertial`` and ``balanceinertia``).
+    The bodies are Pinocchio's (links fixed to a joint merged), as :func:`tree_xml` writes them.
+
+    Raises:
+        RobotModelError: names the body, its mass or principal moments and what MuJoCo allows.
+    """
+    from hexaleg.robot.sanity import body_name, principal_moments
+
+    model = robot.model
+    for jid in range(1, model.njoints):
+        where, mass = body_name(model, jid), float(model.inertias[jid].mass)
+        moments = principal_moments(model, jid)
+        text = ", ".join(f"{m:.6g}" for m in moments)
+        problem = ""
+        if not mass > MJ_MINVAL:
+            problem = f"mass {mass:.4g} kg (allowed: > {MJ_MINVAL:g} kg)"
+        elif not moments[0] > 0:
+            problem = f"principal moments {text} kg·m² (allowed: all > 0 kg·m²)"
+        elif moments[0] + moments[1] < moments[2] - MJ_EPS:
+            problem = (f"principal moments {text} kg·m², I1 + I2 < I3 (allowed: I1 + I2 ≥ I3 − "
+                       f"{MJ_EPS:g} kg·m², the triangle inequality)")
+        if problem:
+            raise RobotModelError(
+                f"{robot.name}: MuJoCo cannot simulate {where}: {problem}; fix the URDF "
+                "<inertial> of its link(s), or load with load_robot(..., inertias=\"repair\") "
+                "(hexaleg.robot.inertials)")
+
+
 def tree_xml(robot: Robot, foot_radius: float) -> TreeXml:
     """The MJCF ``<body>`` tree of ``robot`` (module docstring).
 
@@ -146,9 +187,11 @@ def tree_xml(robot: Robot, foot_radius: float) -> TreeXml:
         The tree, its collision geom names and notes.
 
     Raises:
-        RobotModelError: a joint that is not a free flyer at the root or a 1-DoF joint below.
+        RobotModelError: a joint that is not a free flyer at the root or a 1-DoF joint below, or
+            an inertia MuJoCo refuses (:func:`check_inertias`).
     """
     model = robot.model
+    check_inertias(robot)
     if model.joints[1].shortname() != "JointModelFreeFlyer":
         raise RobotModelError(f"{robot.name}: the simulation needs a free-flyer base joint, "
                               f"found {model.joints[1].shortname()}")

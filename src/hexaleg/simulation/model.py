@@ -47,7 +47,7 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.checks import positive
-from hexaleg.errors import InvalidParameterError
+from hexaleg.errors import InvalidParameterError, RobotModelError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
@@ -225,12 +225,14 @@ def build_model(robot: Robot, motion: Motion, motor: ServoMotor, *,
         InvalidParameterError: a timestep that is not below the gait's sample spacing or too
             large for explicit stability (names the limit and the joint or foot that sets it).
         UnknownNameError: a sprung joint the robot does not have.
-        RobotModelError: a joint the simulation cannot build.
+        RobotModelError: a joint the simulation cannot build, an inertia MuJoCo refuses, or the
+            base below the feet (:func:`check_stand`).
     """
     import mujoco
 
     servo, ground = servo or Servo(), ground or Ground()
     positive("timestep (s)", timestep)
+    check_stand(robot, motion)
     tree = tree_xml(robot, FOOT_RADIUS)
     plan = plan_springs(robot, springs)
     kp, kd, damping, stall = servo.gains(motor, robot.nj)
@@ -273,6 +275,30 @@ def build_model(robot: Robot, motion: Motion, motor: ServoMotor, *,
     if check:
         check_timestep(sim, motion)
     return sim
+
+
+def check_stand(robot: Robot, motion: Motion) -> None:
+    """The base above the feet at the motion's start, checked before anything is built.
+
+    A root frame below the feet (a URDF whose root link is a foot-level frame) places the body
+    origin under the ground at every sample: the gait is then no stand at all, and MuJoCo's
+    contacts and the measures come out empty. Requires ``z_base − mean_i z_foot,i > 0`` at
+    ``motion.q[0]`` (as :func:`hexaleg.robot.sanity.stand_findings` in the stand pose).
+
+    Raises:
+        RobotModelError: names the body height found, what is allowed and the fix.
+    """
+    q = motion.q[0]
+    height = float(q[2] - robot.foot_positions(q)[:, 2].mean())
+    if not height > 0:
+        from hexaleg.robot.sanity import body_name
+
+        root = body_name(robot.model, 1).split(" (")[0]
+        raise RobotModelError(
+            f"{robot.name}: the base origin is {height:+.4g} m above the mean foot at the "
+            "motion's start (allowed: > 0 m, the base above the feet); the simulation cannot "
+            f"stand it: move the URDF's root frame ({root}) into the body above the feet, or "
+            "pose the legs below the body in the stand pose")
 
 
 def _dt_limit(a: float, b: float) -> float:

@@ -1,0 +1,60 @@
+"""What MuJoCo would refuse, named before compiling: impossible inertias, the base below feet."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+import hexaleg
+from hexaleg.errors import RobotModelError
+from hexaleg.robot.catalogue import motor
+from hexaleg.robot.model import load_robot
+from hexaleg.robot.registry import load
+from hexaleg.simulation.mjcf import MJ_EPS, check_inertias
+from hexaleg.simulation.model import build_model
+
+DATA = Path(__file__).resolve().parents[1] / "data"
+ROOT = '<link name="base_link">'
+BELOW = ('<link name="ground_ref"/>\n  <joint name="ground_to_base" type="fixed"><parent '
+         'link="ground_ref"/><child link="base_link"/><origin xyz="0 0 0.3"/></joint>\n  ' + ROOT)
+"""A root link 0.3 m below the spider's body: the feet (0.1 m below the body at the zero
+configuration) are 0.2 m above the root."""
+
+
+def spider(tmp_path: Path, old: str, new: str, stand: str = "stand = {}") -> Path:
+    """spider.urdf/.toml copied to ``tmp_path`` with ``old`` → ``new`` in the URDF and the
+    TOML's stand replaced by ``stand``; returns the TOML."""
+    text = (DATA / "spider.urdf").read_text()
+    assert old in text
+    (tmp_path / "spider.urdf").write_text(text.replace(old, new, 1))
+    toml = (DATA / "spider.toml").read_text().replace("stand = {body_height = 0.08}", stand)
+    (tmp_path / "spider.toml").write_text(toml)
+    return tmp_path / "spider.toml"
+
+
+def test_root_below_the_feet_is_a_named_error_before_building(tmp_path):
+    robot = load(str(spider(tmp_path, ROOT, BELOW)))
+    motion = hexaleg.tripod_gait(robot)
+    with pytest.raises(RobotModelError) as info:
+        build_model(robot, motion, motor("AX-18A"))
+    text = str(info.value)
+    assert "-0.2 m above the mean foot" in text and "allowed: > 0 m" in text
+    assert "root frame (link ground_ref)" in text
+
+
+def test_kept_impossible_inertia_is_a_named_error_not_a_mujoco_traceback(tmp_path):
+    bad = '<inertia ixx="1e-06" ixy="0" ixz="0" iyy="1e-06" iyz="0" izz="5e-05"/>'
+    spider(tmp_path, '<inertia ixx="2.527e-05" ixy="0" ixz="0" iyy="2.527e-05" iyz="0" '
+           'izz="5.4e-07"/>', bad)
+    robot = load_robot(tmp_path / "spider.urdf", legs="auto", inertias="keep")
+    with pytest.raises(RobotModelError) as info:
+        check_inertias(robot)
+    text = str(info.value)
+    assert "link a_shin" in text and "I1 + I2 < I3" in text and f"{MJ_EPS:g} kg·m²" in text
+    assert 'inertias="repair"' in text
+
+
+def test_every_registry_robot_passes_the_mujoco_checks():
+    for name in ("hexaleg", "solo12", "anymal"):
+        check_inertias(load(name))
