@@ -109,3 +109,21 @@ def test_design_and_simulate_on_the_broken_description_end_in_a_named_error(
     assert main([command, "--robot", str(toml), "--out", str(out)]) == 2
     err = capsys.readouterr().err
     assert "a_shin" in err and "principal moments" in err and "Traceback" not in err
+
+
+def test_a_robot_toml_opts_into_the_repair(tmp_path):
+    """A command-line user opts in from the robot's TOML (``inertias = "repair"`` in [robot]):
+    `hexaleg robot --robot that.toml` then loads, its notes saying what was invented; an unknown
+    mode is named."""
+    from hexaleg.cli import main
+    from hexaleg.errors import InvalidParameterError
+    from hexaleg.robot.registry import load as load_registered
+
+    toml = broken_spider(tmp_path)
+    toml.write_text(toml.read_text() + 'inertias = "repair"\n')
+    robot = load_registered(str(toml))
+    assert any(n.startswith("inertias repaired") for n in robot.notes)
+    assert main(["robot", "--robot", str(toml)]) == 0
+    toml.write_text(toml.read_text().replace('"repair"', '"mend"'))
+    with pytest.raises(InvalidParameterError, match="inertias"):
+        load_registered(str(toml))

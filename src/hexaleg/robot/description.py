@@ -126,6 +126,8 @@ class RobotDescription:
         arbor_diameter: Joint class → diameter of the shaft or hub a spring on its joints winds
             on, m (0: none); default the servo's output hub, else a rule from the links' width
             (:func:`hexaleg.design.spring_parts.arbor_for`).
+        inertias: What loading does with impossible link inertias (:mod:`hexaleg.robot.
+            inertials`): ``"refuse"`` (default), ``"repair"`` (a stated box rule) or ``"keep"``.
     """
 
     name: str
@@ -144,6 +146,7 @@ class RobotDescription:
     heading: tuple[float, float, float] = (1.0, 0.0, 0.0)
     max_outer_diameter: Mapping[str, float] = field(default_factory=lambda: FrozenTable({}))
     arbor_diameter: Mapping[str, float] = field(default_factory=lambda: FrozenTable({}))
+    inertias: str = "refuse"
 
     def __post_init__(self) -> None:
         if self.source not in SOURCES:
@@ -313,7 +316,7 @@ class RobotDescription:
         robot = load_robot(self.urdf_path, self.srdf_path,
                            legs=self.legs if self.legs is not None else AUTO,
                            package_dirs=self.package_dirs, joint_kinds=self.joint_kinds,
-                           heading=self.heading)
+                           heading=self.heading, inertias=self.inertias)
         robot.name = self.name
         if self.spring_class is not None and self.spring_class not in robot.joint_kinds:
             raise UnknownNameError("joint class", self.spring_class, robot.joint_kinds)

@@ -212,8 +212,9 @@ def settle_inertials(xml: str, path: Path, mode: str, model: pin.Model,
                     "no geometry or a negative mass, so no box can stand in")
                  for b, fix in ((b, fixes[b.link]) for b in bad)]
         rule = ("" if mode == "repair" or None in fixes.values() else "; or load with "
-                "load_robot(..., inertias=\"repair\") to write that box inertia for "
-                "every bad link (an invented inertia, noted)")
+                "load_robot(..., inertias=\"repair\") (a robot TOML: inertias = "
+                "\"repair\" in [robot]) to write that box inertia for every bad link (an "
+                "invented inertia, noted)")
         raise RobotModelError(f"URDF {path}: {len(bad)} link(s) with an inertia no rigid body "
                               f"can have (MuJoCo would refuse them):\n" + "\n".join(lines)
                               + f"\nfix the URDF's <inertial> of these links{rule}")
