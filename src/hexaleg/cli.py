@@ -185,8 +185,8 @@ def _run_report(args: argparse.Namespace) -> int:
     r = write_report(args.out, config, robot=robot, svg=args.svg)
     for note in config.notes:
         print(f"note: {note}")
-    print(r.summary())
     print(f"wrote {len(r.files)} files to {args.out}; open {args.out}/report.html")
+    print(r.summary())  # its last line is the answer: which springs, and what they save
     return 0
 
 

@@ -114,6 +114,15 @@ def test_report_writes_its_files_on_the_log(log: Path, tmp_path: Path,
     data = json.loads((out / "report.json").read_text(encoding="utf-8"))
     _numbers_have_units(data["motion_quality"])
     assert data["motion_quality"]["cycle"] == "whole"
+    # the logged cycle is what was analysed: its samples, and the baseline of the same gait
+    # generated at that sampling (the log is a hexaleg gait written out)
+    assert data["gait"]["samples"] == SAMPLES and data["gait"]["logged"]
+    robot = hexaleg.load_robot()
+    generated = hexaleg.prepare(robot, hexaleg.tripod_gait(robot, hexaleg.GaitParams(
+        samples=SAMPLES))).baseline()["total"]["electrical"]
+    baseline = data["energy"]["totals"]["electrical"]["baseline"]["value"]
+    assert baseline == pytest.approx(generated, rel=1e-9)
+    assert data["gait"]["stride_length"]["value"] == pytest.approx(0.06, rel=1e-9)
 
 
 @pytest.mark.parametrize("command", ["report", "design", "simulate"])

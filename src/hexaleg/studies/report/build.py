@@ -171,8 +171,9 @@ def build_report(config: ReportConfig | None = None, *, robot: Robot | None = No
     if cfg.payload is not None:  # carried on the base through dynamics, forces and design
         robot = cfg.payload.attach(robot)
     step(f"robot {robot.name}: {robot.nj} joints, {robot.mass:.3f} kg")
-    motion = gait(robot, cfg.gait)
-    step(f"gait: {motion.n_samples} samples over {motion.period:g} s")
+    motion = cfg.motion if cfg.motion is not None else gait(robot, cfg.gait)
+    step(f"gait: {motion.n_samples} samples over {motion.period:g} s"
+         + (" (logged)" if cfg.motion is not None else ""))
     prepared = prepare(robot, motion, motor=cfg.motor, contact=cfg.contact)
     step("dynamics prepared (RNEA, Jacobians, force program)")
     springs = cfg.spring_set(robot, motion)

@@ -58,6 +58,8 @@ def gait_section(motion: Motion, g: GaitParams) -> dict[str, Any]:
     """The gait's parameters and what its sampling measured (stride, speed, static margin; the
     legs' timing, heading and ground; the body shift of a statically stable gait)."""
     info = motion.info
+    if "stride_length" not in info:  # a logged motion: what its cycle measures
+        return _logged_gait(motion, g)
     timed = g.pattern is not None or g.phases is not None  # else the groups as given
     groups = info.get("groups", g.groups) if timed else g.groups
     ground = info.get("ground", {"slope": 0.0, "cross_slope": 0.0, "attitude": g.attitude})
@@ -79,6 +81,30 @@ def gait_section(motion: Motion, g: GaitParams) -> dict[str, Any]:
             "shift": ({"target": quantity(balance["target"], "m"),
                        "amplitude": quantity(balance["amplitude"], "m")}
                       if balance.get("mode") == "shift" else None)}
+
+
+def _logged_gait(motion: Motion, g: GaitParams) -> dict[str, Any]:
+    """A logged motion's gait section: its cycle's measured figures (stride = distance per
+    cycle, speed = stride / period, duty factor = the mean stance fraction, step height = the
+    highest foot lift, body height = the base's mean height, foot radius = the feet's mean
+    horizontal distance from the base); what a log does not define (yaw rate, static margin,
+    pattern) as the generated gait's or none, and the log's source."""
+    stance, feet, q = motion.stance, motion.feet, motion.q
+    lift = feet[..., 2] - feet[..., 2].min(axis=0)
+    radius = np.linalg.norm(feet[..., :2] - q[:, None, :2], axis=-1)
+    return {"period": quantity(motion.period, "s"),
+            "duty_factor": quantity(float(stance.mean()), "1"),
+            "stride_length": quantity(motion.distance, "m"),
+            "speed": quantity(motion.distance / motion.period, "m/s"),
+            "step_height": quantity(float(lift.max()), "m"),
+            "body_height": quantity(float(q[:, 2].mean()), "m"),
+            "foot_radius": quantity(float(radius.mean()), "m"),
+            "yaw_rate": quantity(0.0, "rad/s"), "samples": motion.n_samples,
+            "groups": [list(x) for x in g.groups], "pattern": None,
+            "heading": quantity(0.0, "rad"), "slope": quantity(0.0, "rad"),
+            "cross_slope": quantity(0.0, "rad"), "attitude": g.attitude,
+            "min_stance_feet": int(stance.sum(axis=1).min()), "static_margin": None,
+            "shift": None, "logged": str(motion.info.get("log", motion.info.get("source", "")))}
 
 
 def payload_section(payload: Payload | None, robot: Robot) -> dict[str, Any] | None:
