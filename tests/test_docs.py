@@ -336,3 +336,26 @@ def test_the_simulated_design_answer_in_the_prose_is_the_kept_log():
     assert f"position-only servo it saves {position:.1f} %, more than predicted" in design
     assert (f"save {ff:.1f} % under feedforward + PD and {position:.1f} % under the position "
             f"servo, against {predicted:.1f} % predicted") in simulate
+
+
+def test_the_design_and_simulate_pages_lead_with_the_kept_answer():
+    """docs/design.md and docs/simulate.md open with the recommendation (#29), its numbers those
+    of analysis/logs/answer_hexaleg.log."""
+    import re
+
+    root = Path(__file__).resolve().parents[1]
+    log = (root / "analysis" / "logs" / "answer_hexaleg.log").read_text()
+    saving, net, grams = re.search(r"recommended: .*; electrical\s+(\S+) %, net\s+(\S+) % "
+                                   r"\((\S+) g", log).groups()
+    worst = re.search(r"tolerant\s+\S+ % /\s+(\S+) %", log).group(1)
+    ff, pos = (re.search(re.escape(c) + r"\s+.* / +(\S+) % +\S+ mm", log).group(1)
+               for c in ("feedforward + PD", "position only"))
+    stop = re.search(r"hard stop at \+?(\S+)° from the centre", log).group(1)
+    design = " ".join((root / "docs" / "design.md").read_text().split("## ")[0].split())
+    simulate = " ".join((root / "docs" / "simulate.md").read_text().split("```")[0].split())
+    assert (f"saving {saving} % of the energy the servos draw ({net} % net of their {grams} g), "
+            f"{worst} % at worst with the stops ±1° off") in design
+    assert f"they save {ff} % under feedforward + PD servos and {pos} % under" in design
+    assert f"hard stop {stop}° from the centre" in design
+    assert (f"saves {ff} % of the simulated electrical energy under feedforward + PD servos and "
+            f"{pos} % under position-only servos, against {saving} % predicted") in simulate
