@@ -7,8 +7,8 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
+from hexaleg.motion.recorded.base import rotation_from_quaternion
 from hexaleg.simulation.model import build_model
-from hexaleg.simulation.state import rotation_xyzw
 
 
 @pytest.fixture(scope="module")
@@ -26,7 +26,8 @@ def _states(robot, n, seed):
 def test_rotation_is_pinocchios():
     for q in np.random.default_rng(1).normal(size=(5, 4)):
         q /= np.linalg.norm(q)
-        assert np.allclose(rotation_xyzw(q), pin.Quaternion(q).toRotationMatrix(), atol=1e-14)
+        assert np.allclose(rotation_from_quaternion(q), pin.Quaternion(q).toRotationMatrix(),
+                           atol=1e-14)
 
 
 def test_maps_round_trip_also_in_batches(joints, robot):

@@ -31,17 +31,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from hexaleg.errors import RobotModelError
+from hexaleg.motion.recorded.base import rotation_from_quaternion
 from hexaleg.robot.model import Robot
-
-
-def rotation_xyzw(quat: np.ndarray) -> np.ndarray:
-    """Rotation matrices of unit quaternions (x, y, z, w), shape (..., 4) → (..., 3, 3)."""
-    x, y, z, w = np.moveaxis(np.asarray(quat, dtype=float), -1, 0)
-    return np.stack([
-        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], -1),
-        np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], -1),
-        np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], -1),
-    ], -2)
 
 
 @dataclass(frozen=True, eq=False)
@@ -119,7 +110,7 @@ class JointMap:
         qpos[..., 4:7] = q[..., 3:6]
         qpos[..., self.qpos] = self.joint_angles(q)
         qvel = np.zeros_like(v)
-        rot = rotation_xyzw(q[..., 3:7])
+        rot = rotation_from_quaternion(q[..., 3:7])
         qvel[..., :3] = np.einsum("...ij,...j->...i", rot, v[..., :3])
         qvel[..., 3:6] = v[..., 3:6]
         qvel[..., self.dof] = v[..., self.pin_v]
@@ -141,7 +132,7 @@ class JointMap:
             q[..., self.pin_q[c]] = np.cos(angles[..., c])
             q[..., self.pin_q[c] + 1] = np.sin(angles[..., c])
         v = np.zeros_like(qvel)
-        rot = rotation_xyzw(quat)
+        rot = rotation_from_quaternion(quat)
         v[..., :3] = np.einsum("...ji,...j->...i", rot, qvel[..., :3])
         v[..., 3:6] = qvel[..., 3:6]
         v[..., self.pin_v] = qvel[..., self.dof]
@@ -152,7 +143,7 @@ class JointMap:
         ``d(R v_b)/dt = R (a_lin + ω_b × v_b)`` for the base, the joints unchanged."""
         q, v, a = (np.asarray(x, dtype=float) for x in (q, v, a))
         out = np.zeros_like(a)
-        rot = rotation_xyzw(q[..., 3:7])
+        rot = rotation_from_quaternion(q[..., 3:7])
         out[..., :3] = np.einsum("...ij,...j->...i", rot,
                                  a[..., :3] + np.cross(v[..., 3:6], v[..., :3]))
         out[..., 3:6] = a[..., 3:6]
@@ -164,7 +155,7 @@ class JointMap:
         rotated into the world frame (``τ·v`` is the same power in both)."""
         q, tau = np.asarray(q, dtype=float), np.asarray(tau, dtype=float)
         out = np.zeros_like(tau)
-        rot = rotation_xyzw(q[..., 3:7])
+        rot = rotation_from_quaternion(q[..., 3:7])
         out[..., :3] = np.einsum("...ij,...j->...i", rot, tau[..., :3])
         out[..., 3:6] = tau[..., 3:6]
         out[..., self.dof] = tau[..., self.pin_v]

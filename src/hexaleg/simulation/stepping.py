@@ -22,8 +22,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from hexaleg.errors import InvalidParameterError
+from hexaleg.motion.recorded.base import rotation_from_quaternion
 from hexaleg.simulation.model import SimModel
-from hexaleg.simulation.state import rotation_xyzw
 
 FALL_HEIGHT = 0.5
 """A base below this fraction of its planned height has fallen."""
@@ -69,7 +69,7 @@ def tilt(qpos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Roll and pitch (rad) of the base, from MuJoCo ``qpos`` (…, nq_mj): the z-y-x Euler angles
     of the base orientation (yaw left out)."""
     quat = np.concatenate([qpos[..., 4:7], qpos[..., 3:4]], axis=-1)
-    rot = rotation_xyzw(quat / np.linalg.norm(quat, axis=-1, keepdims=True))
+    rot = rotation_from_quaternion(quat / np.linalg.norm(quat, axis=-1, keepdims=True))
     roll = np.arctan2(rot[..., 2, 1], rot[..., 2, 2])
     pitch = np.arcsin(np.clip(-rot[..., 2, 0], -1.0, 1.0))
     return roll, pitch
