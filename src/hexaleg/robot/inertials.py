@@ -120,7 +120,8 @@ def box_inertia(mass: float, lower: np.ndarray, upper: np.ndarray, com: np.ndarr
 
     Args:
         mass: kg, ≥ 0.
-        lower, upper: Opposite corners of the box, shape (3,), m (axes of the frame used).
+        lower: One corner of the box, shape (3,), m (axes of the frame used).
+        upper: The opposite corner, shape (3,), m.
         com: The point about which the inertia is taken, shape (3,), m.
 
     Returns:
