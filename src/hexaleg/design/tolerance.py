@@ -126,6 +126,12 @@ class TolerantSprings:
     nominal: dict[str, float]
     worst: dict[str, float]
 
+    @property
+    def chosen(self) -> str:
+        """``"tolerant"`` when its worst saving beats the tolerance-blind design's, else
+        ``"blind"``: the design to build."""
+        return "tolerant" if self.worst["tolerant"] > self.worst["blind"] else "blind"
+
     def to_dict(self) -> dict[str, object]:
         """JSON-ready: every number ``{value, unit}`` (design.json's ``stop_tolerance``)."""
         return {"tolerance": {"value": self.tolerance, "unit": "rad"},

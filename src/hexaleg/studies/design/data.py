@@ -130,7 +130,7 @@ def tolerance_data(r: DesignResult) -> dict[str, Any]:
     assert t is not None
     return {"tolerance": quantity(t.tolerance, "rad"), "metric": t.metric,
             "criterion": "worst case over the mounting errors within ± the tolerance",
-            "chosen": "tolerant" if t.worst["tolerant"] > t.worst["blind"] else "blind",
+            "chosen": t.chosen,
             "shifts": quantity(t.shifts, "rad"),
             **{name: {"nominal_saving": quantity(100 * t.nominal[name], "%"),
                       "worst_saving": quantity(100 * t.worst[name], "%"),

@@ -227,7 +227,7 @@ def stop_tolerance(nom: Nominal, rec: Candidate) -> tuple[Candidate, TolerantSpr
         return rec, None
     t = tolerant_springs(nom.prepared, rec.optimum, d.stop_tolerance, d.metric,
                          max_torque=rec.max_torque, max_deflection=d.deflection_bound)
-    if t.worst["tolerant"] <= t.worst["blind"]:
+    if t.chosen == "blind":
         return rec, t
     return dataclasses.replace(candidate(t.optimum, nom.prepared, nom.run, nom.gait,
                                          nom.outer_diameters, d), dropped=rec.dropped,

@@ -82,10 +82,9 @@ def tolerance_figure(t: TolerantSprings) -> Figure:
     """:func:`~hexaleg.outputs.design_plots.tolerance_figure` of ``t`` in deg and %, the design
     recommended so named (the tolerant one when its worst case is the better, as the design
     chooses)."""
-    chosen = "tolerant" if t.worst["tolerant"] > t.worst["blind"] else "blind"
     names = {"tolerant": f"designed for ±{math.degrees(t.tolerance):g}°",
              "blind": "tolerance-blind"}
-    names[chosen] += " (recommended)"
+    names[t.chosen] += " (recommended)"
     return design_plots.tolerance_figure(
         np.degrees(t.shifts), {names[k]: 100 * t.curve[k] for k in names},
         math.degrees(t.tolerance), {names[k]: 100 * t.worst[k] for k in names}, t.metric)
