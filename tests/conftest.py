@@ -8,16 +8,27 @@ written). A test that needs another gait or robot builds its own.
 from __future__ import annotations
 
 import os
+import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from hypothesis import settings
+from hypothesis.configuration import set_hypothesis_home_dir
 
 import hexaleg
 from hexaleg.design.codesign import OptimalSprings, optimal_springs
 from hexaleg.design.evaluator import RunSpec
 from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.simulation.run import Settings, Simulation, simulate
+
+set_hypothesis_home_dir(Path(tempfile.gettempdir()) / "hexaleg-hypothesis")
+settings.register_profile("hexaleg", database=None)
+settings.load_profile("hexaleg")
+"""No example database and hypothesis's cache outside the checkout: the property tests' examples
+are drawn afresh each run (their budgets are fixed), and nothing is written into the checkout
+(hypothesis would make ``.hypothesis/`` in the directory pytest starts in, before any fixture
+moves the tests elsewhere)."""
 
 
 @pytest.fixture(scope="session", autouse=True)
