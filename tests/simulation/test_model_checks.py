@@ -58,3 +58,60 @@ def test_kept_impossible_inertia_is_a_named_error_not_a_mujoco_traceback(tmp_pat
 def test_every_registry_robot_passes_the_mujoco_checks():
     for name in ("hexaleg", "solo12", "anymal"):
         check_inertias(load(name))
+
+
+THIGH_INERTIA = ('<mass value="0.04"/>\n      <inertia ixx="1.28e-06" ixy="0" ixz="0" '
+                 'iyy="2.19733e-05" iyz="0" izz="2.19733e-05"/>')
+THIGH_GEOM = ('<collision><origin xyz="0.04 0 0" rpy="0 1.5707963 0"/><geometry><cylinder '
+              'radius="0.008" length="0.08"/>')
+
+
+def mujoco_refuses(body: str) -> bool:
+    """Whether MuJoCo's compiler refuses a moving body with this MJCF inside (the reason our
+    check exists: each case below is one MuJoCo would stop on)."""
+    import mujoco
+
+    try:
+        mujoco.MjModel.from_xml_string(f"<mujoco><worldbody><body><freejoint/>{body}</body>"
+                                       "</worldbody></mujoco>")
+    except ValueError:
+        return True
+    return False
+
+
+@pytest.mark.parametrize(("new", "expected", "mjcf"), [
+    ('<mass value="0"/>\n      <inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/>',
+     "mass 0 kg (allowed: > 1e-15 kg)",
+     '<inertial pos="0 0 0" mass="0" diaginertia="0 0 0"/>'),
+    ('<mass value="0.04"/>\n      <inertia ixx="-1e-06" ixy="0" ixz="0" iyy="2.19733e-05" '
+     'iyz="0" izz="2.19733e-05"/>', "principal moments -1e-06, 2.19733e-05, 2.19733e-05 kg·m² "
+     "(allowed: all > 0 kg·m²)",
+     '<inertial pos="0 0 0" mass="0.04" fullinertia="-1e-06 2.2e-05 2.2e-05 0 0 0"/>'),
+])
+def test_each_inertia_mujoco_refuses_is_named_with_its_link(tmp_path, new, expected, mjcf):
+    """A zero mass and a negative principal moment on the thigh (kept as written): the error
+    names the link and the value, and MuJoCo itself would refuse the same body."""
+    spider(tmp_path, THIGH_INERTIA, new)
+    robot = load_robot(tmp_path / "spider.urdf", legs="auto", inertias="keep")
+    with pytest.raises(RobotModelError) as info:
+        check_inertias(robot)
+    assert "link a_thigh" in str(info.value) and expected in str(info.value)
+    assert mujoco_refuses(mjcf)
+
+
+def test_a_zero_size_geometry_is_named_before_compiling(tmp_path):
+    """A thigh cylinder of radius 0 loads in Pinocchio; MuJoCo refuses it ("size 0 must be
+    positive"): building the model names the geometry, its link and the size first."""
+    spider(tmp_path, THIGH_GEOM, THIGH_GEOM.replace('radius="0.008"', 'radius="0"'),
+           "stand = {body_height = 0.08}")
+    robot = load(str(tmp_path / "spider.toml"))
+    motion = hexaleg.tripod_gait(robot, hexaleg.GaitParams.for_robot(
+        hexaleg.robot.registry.description(str(tmp_path / "spider.toml"))).updated(
+            {"samples": 20}))
+    with pytest.raises(RobotModelError) as info:
+        build_model(robot, motion, motor("AX-18A"))
+    text = str(info.value)
+    assert "geometry a_thigh_0 of link a_thigh" in text and "cylinder size 0.0 0.04 m" in text
+    assert "allowed: all > 0 m" in text
+    assert mujoco_refuses('<inertial pos="0 0 0" mass="1" diaginertia="1 1 1"/>'
+                          '<geom type="cylinder" size="0 0.04"/>')

@@ -16,7 +16,9 @@ by construction:
 * the collision geometry: boxes, spheres and cylinders as such, a mesh as the box of its local
   bounding box (a stand-in, noted); the geometry of the foot links is left out — the foot is a
   contact sphere centred on the foot frame (:mod:`hexaleg.simulation.model`);
-* a ``<site>`` at every foot frame (foot positions are read there).
+* a ``<site>`` at every foot frame (foot positions are read there);
+* before any of it is compiled, what MuJoCo's compiler refuses (:func:`check_inertias`,
+  :func:`check_size`) as a :class:`~hexaleg.errors.RobotModelError` naming the link and value.
 
 The tree's shape (which joints exist, in which order) is the same in both programs, and
 :mod:`hexaleg.simulation.state` maps the vectors between them by joint name.
@@ -176,6 +178,26 @@ def check_inertias(robot: Robot) -> None:
                 "(hexaleg.robot.inertials)")
 
 
+def check_size(robot: Robot, obj: pin.GeometryObject, kind: str, size: np.ndarray) -> None:
+    """A geom's MJCF ``size`` as MuJoCo's compiler requires it, checked before compiling.
+
+    MuJoCo refuses a sphere, capsule, cylinder or box with a size that is not positive
+    (compiler: "size … must be positive in geom"; MuJoCo documentation, XML reference,
+    ``geom/size``); a URDF ``<sphere radius="0"/>`` or ``<box size="0.1 0 0.1"/>`` loads in
+    Pinocchio. ``size`` is :func:`_shape`'s (half-sizes and radii, m).
+
+    Raises:
+        RobotModelError: names the geometry, its link, the size and what MuJoCo allows.
+    """
+    if np.all(size > 0):
+        return
+    link = robot.model.frames[obj.parentFrame].name
+    raise RobotModelError(
+        f"{robot.name}: MuJoCo cannot simulate collision geometry {obj.name} of link {link}: "
+        f"{kind} size {fmt(size)} m (MJCF half-sizes and radii; allowed: all > 0 m); give the "
+        "URDF <collision> a positive size, or remove it")
+
+
 def tree_xml(robot: Robot, foot_radius: float) -> TreeXml:
     """The MJCF ``<body>`` tree of ``robot`` (module docstring).
 
@@ -187,8 +209,9 @@ def tree_xml(robot: Robot, foot_radius: float) -> TreeXml:
         The tree, its collision geom names and notes.
 
     Raises:
-        RobotModelError: a joint that is not a free flyer at the root or a 1-DoF joint below, or
-            an inertia MuJoCo refuses (:func:`check_inertias`).
+        RobotModelError: a joint that is not a free flyer at the root or a 1-DoF joint below, an
+            inertia MuJoCo refuses (:func:`check_inertias`) or a geom size it refuses
+            (:func:`check_size`).
     """
     model = robot.model
     check_inertias(robot)
@@ -222,6 +245,7 @@ def tree_xml(robot: Robot, foot_radius: float) -> TreeXml:
                    f'limited="false" armature="{fmt(armature)}"/>')
         for obj in by_joint.get(i, []):
             kind, size, pos, rot, note = _shape(obj)
+            check_size(robot, obj, kind, size)
             geoms.append(obj.name)
             if note:
                 notes.append(note)
