@@ -35,6 +35,7 @@ from hexaleg.errors import InvalidParameterError, RobotModelError, UnknownNameEr
 from hexaleg.robot import fields
 from hexaleg.robot.fields import FrozenTable, check_stand, heading, plain
 from hexaleg.robot.model import AUTO, URDF_DIR, LegSpec, Robot, load_robot
+from hexaleg.robot.root import check_root
 
 if TYPE_CHECKING:
     from hexaleg.robot.motor import Motor
@@ -128,6 +129,9 @@ class RobotDescription:
             (:func:`hexaleg.design.spring_parts.arbor_for`).
         inertias: What loading does with impossible link inertias (:mod:`hexaleg.robot.
             inertials`): ``"refuse"`` (default), ``"repair"`` (a stated box rule) or ``"keep"``.
+        root_offset: Where the base frame goes, ``[x, y, z]`` m in the URDF root link's frame
+            (:mod:`hexaleg.robot.root`: for a root link below the feet; stated in the notes);
+            None keeps the root link's origin.
     """
 
     name: str
@@ -147,6 +151,7 @@ class RobotDescription:
     max_outer_diameter: Mapping[str, float] = field(default_factory=lambda: FrozenTable({}))
     arbor_diameter: Mapping[str, float] = field(default_factory=lambda: FrozenTable({}))
     inertias: str = "refuse"
+    root_offset: tuple[float, float, float] | None = None
 
     def __post_init__(self) -> None:
         if self.source not in SOURCES:
@@ -183,6 +188,9 @@ class RobotDescription:
             self.check_groups(self.gait["groups"])
         object.__setattr__(self, "stand", check_stand(self.name, self.stand))
         object.__setattr__(self, "mesh_dirs", tuple(self.mesh_dirs))
+        if self.root_offset is not None:
+            object.__setattr__(self, "root_offset", fields.vector3(
+                f"{self.name}: root_offset", self.root_offset, "m, in the URDF root link's frame"))
         object.__setattr__(self, "heading", heading(self.name, self.heading))
         object.__setattr__(self, "max_outer_diameter", fields.diameters_table(
             self.name, self.joint_kinds, self.max_outer_diameter))
@@ -308,22 +316,31 @@ class RobotDescription:
             The robot; ``robot.joint_kinds`` is :attr:`joint_kinds`.
 
         Raises:
-            RobotModelError: files missing or malformed, or a leg joint or foot frame not in the
-                URDF (the message lists the frames found).
+            RobotModelError: files missing or malformed, a leg joint or foot frame not in the
+                URDF (the message lists the frames found), or the base origin below the feet
+                in the stand pose (:func:`hexaleg.robot.root.check_root`: names the fix).
             UnknownNameError: the standing pose names an SRDF group_state or joint that does not
                 exist (the message lists the valid ones).
         """
         robot = load_robot(self.urdf_path, self.srdf_path,
                            legs=self.legs if self.legs is not None else AUTO,
                            package_dirs=self.package_dirs, joint_kinds=self.joint_kinds,
-                           heading=self.heading, inertias=self.inertias)
+                           heading=self.heading, inertias=self.inertias,
+                           root_offset=self.root_offset)
         robot.name = self.name
         if self.spring_class is not None and self.spring_class not in robot.joint_kinds:
             raise UnknownNameError("joint class", self.spring_class, robot.joint_kinds)
         base = pin.neutral(robot.model)[:7]
         for q in robot.poses.values():
             q[:7] = base
-        stand, note = self._stand_pose(robot)
+        try:
+            stand, note = self._stand_pose(robot)
+        except InvalidParameterError:  # the root below the feet is the cause to name
+            if isinstance(self.stand, Mapping) and "body_height" in self.stand:
+                check_root(robot, pin.neutral(robot.model), "the zero configuration (the "
+                           "stand's feet at body_height below the base cannot be reached)")
+            raise
+        check_root(robot, stand, "the stand pose")
         robot.poses[STAND] = stand
         if note:
             robot.notes = (*robot.notes, note)

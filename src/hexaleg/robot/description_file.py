@@ -60,7 +60,7 @@ def read_description(path: str | Path) -> RobotDescription:
     data = dict(table)
     if "legs" in data:
         data["legs"] = legs_table(data["legs"], where)
-    for key in ("joint_kinds", "mesh_dirs", "heading"):
+    for key in ("joint_kinds", "mesh_dirs", "heading", "root_offset"):
         if isinstance(data.get(key), list):
             data[key] = tuple(data[key])
     data.setdefault("source", FILES)

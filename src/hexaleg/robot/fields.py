@@ -75,6 +75,17 @@ def horizontal_axis(name: str, value: Any,
     return h
 
 
+def vector3(name: str, value: Any, unit: str) -> tuple[float, float, float]:
+    """``value`` checked as three finite numbers (a point, ``unit`` says in what), as a tuple.
+
+    Raises:
+        InvalidParameterError: otherwise, naming ``name`` and the value.
+    """
+    if not (isinstance(value, (list, tuple)) and len(value) == 3 and all(map(is_real, value))):
+        raise InvalidParameterError(name, value, f"[x, y, z] ({unit}, finite)")
+    return (float(value[0]), float(value[1]), float(value[2]))
+
+
 def heading(name: str, heading: Any) -> tuple[float, float, float]:
     """A description's heading checked (:func:`horizontal_axis`, or a name of :data:`AXES`),
     as a tuple."""

@@ -303,7 +303,8 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
                legs: Sequence[LegSpec] | str | None = None,
                package_dirs: Sequence[str | Path] = (),
                joint_kinds: Sequence[str] | None = None,
-               heading: Sequence[float] = (1.0, 0.0, 0.0), inertias: str = "refuse") -> Robot:
+               heading: Sequence[float] = (1.0, 0.0, 0.0), inertias: str = "refuse",
+               root_offset: Sequence[float] | None = None) -> Robot:
     """Load a legged robot into Pinocchio with a free-flyer base.
 
     Meshes that cannot be found are replaced by stand-ins (:mod:`hexaleg.robot.meshes`); feet
@@ -321,6 +322,8 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
         heading: The base axis that points forward (:attr:`Robot.heading`).
         inertias: What to do with a link inertia no rigid body can have: "refuse" (an error
             naming the fix), "repair" (the box rule, noted) or "keep" (:mod:`.inertials`).
+        root_offset: Where the base frame goes, ``[x, y, z]`` m in the URDF root link's frame
+            (:func:`hexaleg.robot.root.with_root_offset`, noted); None keeps the root link's.
 
     Returns:
         The robot.
@@ -347,6 +350,11 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
     except ConfigError as e:
         raise RobotModelError(str(e)) from None
     xml, notes = with_available_meshes(text, urdf_path.parent.resolve(), dirs)
+    if root_offset is not None:
+        from hexaleg.robot.root import with_root_offset
+
+        xml, root_note = with_root_offset(xml, urdf_path, root_offset)
+        notes.append(root_note)
     model, visual, collision = _build(xml, urdf_path, dirs)
     repaired = settle_inertials(xml, urdf_path, inertias, model, (collision, visual))
     if repaired is not None:  # the repaired URDF, loaded again
