@@ -253,15 +253,23 @@ class GaitParams:
         return from_mapping(cls, table, f"{source} [gait]" if "gait" in data else str(source))
 
     @classmethod
-    def for_robot(cls, robot: RobotDescription | str) -> GaitParams:
-        """The default gait of a robot: ``GaitParams()`` with its description's overrides on top.
+    def for_robot(cls, robot: RobotDescription | str, *, sized: bool = True) -> GaitParams:
+        """The default gait of a robot: ``GaitParams()`` with its description's overrides on top,
+        and the period, stride and step height it leaves unset sized to the robot by dynamic
+        similarity to the default hexapod (:mod:`hexaleg.motion.scaling`; Alexander & Jayes,
+        J. Zool. 201, 1983: the same Froude number and relative stride, the period lengthened
+        where a joint would exceed its URDF velocity limit). The registered robots but hexaleg
+        set their own; hexaleg is the reference.
 
         Args:
             robot: A robot description, or a name or ``.toml`` path for
                 :func:`hexaleg.robot.registry.description`.
+            sized: False leaves the unset keys at ``GaitParams()``'s (the gait the sizing
+                starts from).
 
         Returns:
             The parameters (e.g. Solo-12's trot: period 0.5 s, β = 0.6, groups ``TROT``).
+            Sizing loads the robot and makes its gait once per description (cached).
 
         Raises:
             UnknownNameError: no such robot, or an override is not a field (the message names
@@ -284,7 +292,9 @@ class GaitParams:
                 gait = dataclasses.replace(gait, groups=groups)
         if not timed:
             desc.check_groups(gait.groups)
-        return gait
+        from hexaleg.motion.scaling import apply, needs_sizing, sized_defaults  # imports params
+
+        return apply(gait, sized_defaults(desc, gait)) if sized and needs_sizing(desc) else gait
 
     def updated(self, table: Mapping[str, Any], where: str = "gait") -> GaitParams:
         """This gait with the keys of a TOML table on top (e.g. a file's ``[gait]`` over a

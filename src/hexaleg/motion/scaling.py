@@ -1,0 +1,272 @@
+"""Default gaits sized to the robot by dynamic similarity to the default hexapod.
+
+hexaleg's default gait (:class:`~hexaleg.motion.params.GaitParams`: period 1 s, stride 6 cm, step
+height 3 cm) was chosen for the built-in hexapod, whose hips stand :data:`REFERENCE_HIP_HEIGHT`
+above the ground. A robot whose description sets no gait gets that gait **scaled**: Alexander &
+Jayes ("A dynamic similarity hypothesis for the gaits of quadrupedal mammals", J. Zool. 201,
+1983) found that animals of different sizes move in dynamically similar ways at equal Froude
+numbers ``Fr = v² / (g h)``, ``h`` the hip height, and then take equal relative strides
+``λ = s / h``. With ``k = h / h₀`` the sized gait keeps both numbers of the hexapod's:
+
+* stride ``s = λ₀ h = k s₀``, step height ``k · 0.03 m`` (geometric similarity);
+* speed ``v = √(Fr₀ g h)``, so period ``T = s / v = √k · T₀``;
+* then, when a joint of the sized gait would run faster than its URDF velocity limit (checked
+  at :data:`CHECK_SAMPLES` samples with the margin :data:`SPEED_MARGIN`), the period is
+  lengthened by the ratio of the fastest joint's peak speed to its limit (time scaling of the
+  same path divides every joint speed by the factor: Hollerbach, "Dynamic scaling of manipulator
+  trajectories", ASME J. Dyn. Syst. Meas. Control 106(1), 1984), repeated while the balance sway
+  (which depends on the period) keeps a joint over. The Froude number is then below the
+  hexapod's, and the note says by how much.
+
+Only the keys a description leaves unset are sized: a set ``stride_length`` is kept and the
+period follows the Froude number from it; a set ``period`` is never lengthened; a set ``speed``
+fixes the Froude number itself, so period and stride are then left as they are. The
+built-in hexapod is the reference and is not sized. :func:`sized_defaults` says what was chosen
+(:meth:`SizedDefaults.note`, :meth:`SizedDefaults.as_dict`); the commands print it and write it
+into their JSON.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Iterable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import pinocchio as pin
+
+from hexaleg.errors import HexalegError
+from hexaleg.motion.body import body_height, reference_pose
+from hexaleg.motion.params import GaitParams
+from hexaleg.motion.sanity import NO_LIMIT
+from hexaleg.robot.description import BUILTIN, RobotDescription
+from hexaleg.robot.model import Robot
+from hexaleg.units import G
+
+REFERENCE_HIP_HEIGHT = 0.0912703
+"""Hip height of the built-in hexapod in its stand pose, m: the mean height of the legs' first
+joints above their feet (:func:`hip_height`; pinned by a test)."""
+REFERENCE = GaitParams()
+"""The default hexapod's gait, the reference of the similarity."""
+REFERENCE_FROUDE = (REFERENCE.stride / REFERENCE.period) ** 2 / (G * REFERENCE_HIP_HEIGHT)
+"""``Fr₀ = v₀² / (g h₀)`` of the default hexapod's gait (0.0040)."""
+REFERENCE_RELATIVE_STRIDE = REFERENCE.stride / REFERENCE_HIP_HEIGHT
+"""``λ₀ = s₀ / h₀`` of the default hexapod's gait (0.657)."""
+SIZED_KEYS: tuple[str, ...] = ("period", "stride_length", "step_height")
+"""The gait parameters sized to the robot when its description leaves them unset."""
+MAX_STRETCHES = 6
+"""Times the period is lengthened at most to bring the joints within their speed limits."""
+CHECK_SAMPLES = 200
+"""Samples per cycle of the gait whose joint speeds are checked (the gait's own when fewer)."""
+SPEED_MARGIN = 0.99
+"""The checked peak speeds are brought to at most this fraction of the limits, so that the
+peaks between the checked samples (finer sampling) stay within them."""
+_CACHE: dict[tuple[str, int, int], SizedDefaults | None] = {}
+
+
+def hip_height(robot: Robot, gait: GaitParams) -> float:
+    """The mean height of the legs' first joints above the ground, m, with the base at the gait's
+    body height (:func:`hexaleg.motion.body.body_height`) in the stand pose.
+
+    Args:
+        robot: The robot (its ``stand`` pose, or the neutral configuration).
+        gait: Its gait (``body_height``, None for the stand pose's).
+    """
+    q = reference_pose(robot)
+    data = robot.model.createData()
+    pin.forwardKinematics(robot.model, data, q)
+    hips = np.array([data.oMi[leg.joint_ids[0]].translation[2] for leg in robot.legs])
+    return float(body_height(robot, gait) + hips.mean())
+
+
+def speed_ratio(robot: Robot, v: np.ndarray) -> tuple[float, str | None]:
+    """The largest ratio of a joint's peak speed to its URDF velocity limit, and that joint.
+
+    Args:
+        robot: The robot (joints without a usable limit, ≤ 0 or ≥
+            :data:`hexaleg.motion.sanity.NO_LIMIT`, are left out).
+        v: Joint-space velocities of a motion, shape (T, nv), rad/s.
+
+    Returns:
+        ``(max_k |q̇_k| / q̇_max,k, joint name)``; ``(0.0, None)`` when no joint has a limit.
+    """
+    worst, name = 0.0, None
+    for joint in robot.joint_names:
+        iv = robot.model.joints[robot.model.getJointId(joint)].idx_v
+        limit = float(robot.model.velocityLimit[iv])
+        if 0.0 < limit < NO_LIMIT:
+            ratio = float(np.abs(v[:, iv]).max()) / limit
+            if ratio > worst:
+                worst, name = ratio, joint
+    return worst, name
+
+
+@dataclass(frozen=True)
+class SizedDefaults:
+    """What the sized defaults chose for one robot (module docstring).
+
+    Attributes:
+        robot: The robot's name.
+        hip_height: Its hip height h, m.
+        keys: The gait parameters sized (those its description leaves unset).
+        period: The chosen period, s (lengthened where the speed limits need it).
+        stride: The stride, m.
+        step_height: The step height, m.
+        stretch: How much the period was lengthened for the speed limits (1: not at all).
+        fastest: The joint that set the stretch, or None.
+        speed_ratio: The fastest joint's peak speed over its limit in the chosen gait (None:
+            not checked, see ``unchecked``).
+        unchecked: Why the speed limits could not be checked (the gait could not be made), or
+            None.
+    """
+
+    robot: str
+    hip_height: float
+    keys: tuple[str, ...]
+    period: float
+    stride: float
+    step_height: float
+    stretch: float = 1.0
+    fastest: str | None = None
+    speed_ratio: float | None = None
+    unchecked: str | None = None
+
+    @property
+    def scale(self) -> float:
+        """``k = h / h₀``."""
+        return self.hip_height / REFERENCE_HIP_HEIGHT
+
+    @property
+    def froude(self) -> float:
+        """The chosen gait's Froude number ``(s / T)² / (g h)``."""
+        return (self.stride / self.period) ** 2 / (G * self.hip_height)
+
+    @property
+    def relative_stride(self) -> float:
+        """``s / h``."""
+        return self.stride / self.hip_height
+
+    def kept(self, gait: GaitParams) -> tuple[str, ...]:
+        """The sized keys that ``gait`` (the run's, after a config file's ``[gait]``) still
+        holds at their chosen value."""
+        values = {"period": self.period, "stride_length": self.stride,
+                  "step_height": self.step_height}
+        return tuple(k for k in self.keys if getattr(gait, k) == values[k]
+                     and (k != "stride_length" or gait.speed is None))
+
+    def note(self, overridden: Iterable[str] = ()) -> str | None:
+        """One line: what the defaults chose, or None when ``overridden`` (keys a config file
+        sets) covers every sized key."""
+        keys = [k for k in self.keys if k not in set(overridden)]
+        if not keys:
+            return None
+        values = {"period": f"period {self.period:.3g} s", "stride_length":
+                  f"stride {self.stride:.3g} m", "step_height": f"step height "
+                  f"{self.step_height:.3g} m"}
+        line = (f"gait defaults sized to {self.robot} (hip height {self.hip_height:.3g} m, "
+                f"x{self.scale:.3g} the default hexapod's) by dynamic similarity (Alexander & "
+                f"Jayes 1983: Froude number {REFERENCE_FROUDE:.2g}, relative stride "
+                f"{REFERENCE_RELATIVE_STRIDE:.3g}): {', '.join(values[k] for k in keys)}")
+        if self.stretch > 1.0 and "period" in keys:
+            line += (f"; period lengthened x{self.stretch:.3g} so that {self.fastest} stays "
+                     f"within its URDF velocity limit (Froude number {self.froude:.2g})")
+        if self.unchecked is not None and "period" in keys:
+            line += f"; joint speeds not checked against the limits: {self.unchecked}"
+        return line
+
+    def as_dict(self) -> dict[str, Any]:
+        """JSON form, numbers as ``{value, unit}``."""
+        def one(value: float, unit: str) -> dict[str, Any]:
+            return {"value": value, "unit": unit}
+
+        return {"robot": self.robot, "sized": list(self.keys),
+                "hip_height": one(self.hip_height, "m"), "scale": one(self.scale, "1"),
+                "period": one(self.period, "s"), "stride_length": one(self.stride, "m"),
+                "step_height": one(self.step_height, "m"),
+                "froude": one(self.froude, "1"), "reference_froude": one(REFERENCE_FROUDE, "1"),
+                "relative_stride": one(self.relative_stride, "1"),
+                "period_stretch": one(self.stretch, "1"), "fastest_joint": self.fastest,
+                "speed_ratio": None if self.speed_ratio is None else one(self.speed_ratio, "1"),
+                "unchecked": self.unchecked,
+                "source": "dynamic similarity, Alexander & Jayes, J. Zool. 201, 1983"}
+
+
+def needs_sizing(desc: RobotDescription) -> tuple[str, ...]:
+    """The keys of :data:`SIZED_KEYS` a description leaves unset (none for the built-in
+    hexapod, the reference; ``period`` and ``stride_length`` count as set when ``speed``
+    is)."""
+    if desc.source == BUILTIN and desc.name == "hexaleg":
+        return ()
+    given = set(desc.gait) | ({"period", "stride_length"} if "speed" in desc.gait else set())
+    return tuple(k for k in SIZED_KEYS if k not in given)
+
+
+def sized_defaults(desc: RobotDescription, gait: GaitParams,
+                   robot: Robot | None = None) -> SizedDefaults | None:
+    """Size the unset gait parameters of a robot (module docstring).
+
+    Args:
+        desc: The robot's description.
+        gait: Its gait before sizing: ``GaitParams()`` with the description's overrides and
+            its leg groups.
+        robot: The loaded robot, or None to load it (``desc.load()``).
+
+    Returns:
+        What was chosen, or None when the description sets every key of :data:`SIZED_KEYS`.
+        Cached per description and URDF file (its modification time).
+    """
+    keys = needs_sizing(desc)
+    if not keys:
+        return None
+    stat = desc.urdf_path.stat()
+    key = (repr(desc), stat.st_mtime_ns, stat.st_size)
+    if key not in _CACHE:
+        _CACHE[key] = _size(desc, gait, desc.load() if robot is None else robot, keys)
+    return _CACHE[key]
+
+
+def _size(desc: RobotDescription, gait: GaitParams, robot: Robot,
+          keys: tuple[str, ...]) -> SizedDefaults:
+    from hexaleg.motion.legged import gait as make_gait  # legged imports this layer's params
+
+    h = hip_height(robot, gait)
+    k = h / REFERENCE_HIP_HEIGHT
+    stride = REFERENCE.stride * k if "stride_length" in keys else gait.stride
+    step = REFERENCE.step_height * k if "step_height" in keys else gait.step_height
+    period = stride / math.sqrt(REFERENCE_FROUDE * G * h) if "period" in keys else gait.period
+    sized = SizedDefaults(robot=desc.name, hip_height=h, keys=keys, period=period,
+                          stride=stride, step_height=step)
+    if "period" not in keys or stride == 0.0:
+        return sized
+    stretch, ratio, fastest = 1.0, 0.0, None
+    for _ in range(MAX_STRETCHES):
+        trial = dataclasses.replace(gait, period=period * stretch, stride_length=stride,
+                                    step_height=step, samples=min(gait.samples, CHECK_SAMPLES))
+        try:
+            ratio, joint = speed_ratio(robot, make_gait(robot, trial).v)
+        except HexalegError as err:
+            return dataclasses.replace(sized, period=period * stretch, stretch=stretch,
+                                       fastest=fastest, unchecked=f"{type(err).__name__}: {err}")
+        if ratio <= SPEED_MARGIN:
+            break
+        stretch, fastest = stretch * ratio / SPEED_MARGIN, joint
+    return dataclasses.replace(sized, period=period * stretch, stretch=stretch, fastest=fastest,
+                               speed_ratio=ratio)
+
+
+def chosen_defaults(desc: RobotDescription) -> SizedDefaults | None:
+    """What :meth:`GaitParams.for_robot` sized for this description (None: nothing)."""
+    if not needs_sizing(desc):
+        return None
+    return sized_defaults(desc, GaitParams.for_robot(desc, sized=False))
+
+
+def apply(gait: GaitParams, sized: SizedDefaults | None) -> GaitParams:
+    """``gait`` with the sized keys set (unchanged for None)."""
+    if sized is None:
+        return gait
+    values: dict[str, Any] = {"period": sized.period, "stride_length": sized.stride,
+                              "step_height": sized.step_height}
+    return dataclasses.replace(gait, **{k: values[k] for k in sized.keys})

@@ -1,0 +1,126 @@
+"""Default gaits sized to the robot (hexaleg.motion.scaling): the test hexapod scaled ×0.5 and ×2
+keeps the default hexapod's Froude number and relative stride; set keys are kept; the period is
+lengthened until every joint is within its URDF velocity limit."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import hexaleg
+from hexaleg.motion.params import GaitParams
+from hexaleg.motion.scaling import (
+    REFERENCE_FROUDE,
+    REFERENCE_HIP_HEIGHT,
+    REFERENCE_RELATIVE_STRIDE,
+    hip_height,
+    sized_defaults,
+    speed_ratio,
+)
+from hexaleg.robot.registry import description
+from hexaleg.units import G
+
+SPIDER = Path(__file__).resolve().parents[1] / "data" / "spider.toml"
+
+
+def scaled_spider(where: Path, scale: float, *, velocity: float | None = None,
+                  gait: str = "") -> str:
+    """The test hexapod with every length ×scale (masses ×scale³, inertias ×scale⁵), optionally
+    its joints' velocity limits replaced, and a ``[robot.gait]`` table; returns the TOML path."""
+    tree = ET.parse(SPIDER.parent / "spider.urdf")
+    lengths = {"origin": ("xyz",), "box": ("size",), "cylinder": ("radius", "length")}
+    for tag, keys in lengths.items():
+        for el in tree.getroot().iter(tag):
+            for key in keys:
+                if el.get(key) is not None:
+                    el.set(key, " ".join(str(scale * float(v)) for v in el.get(key, "").split()))
+    for el in tree.getroot().iter("mass"):
+        el.set("value", str(scale ** 3 * float(el.get("value", ""))))
+    for el in tree.getroot().iter("inertia"):
+        for key, value in list(el.attrib.items()):
+            el.set(key, str(scale ** 5 * float(value)))
+    if velocity is not None:
+        for el in tree.getroot().iter("limit"):
+            el.set("velocity", str(velocity))
+    where.mkdir(parents=True, exist_ok=True)
+    tree.write(where / "spider.urdf")
+    toml = SPIDER.read_text().replace("body_height = 0.08", f"body_height = {0.08 * scale}")
+    (where / "spider.toml").write_text(toml + gait)
+    return str(where / "spider.toml")
+
+
+def froude(gait: GaitParams, h: float) -> float:
+    return gait.velocity ** 2 / (G * h)
+
+
+def test_the_reference_is_the_default_hexapod():
+    robot = hexaleg.load("hexaleg")
+    assert hip_height(robot, GaitParams()) == pytest.approx(REFERENCE_HIP_HEIGHT, rel=1e-6)
+    assert GaitParams.for_robot("hexaleg") == GaitParams()  # the reference is not sized
+    assert REFERENCE_FROUDE == pytest.approx(0.06 ** 2 / (G * REFERENCE_HIP_HEIGHT))
+
+
+@pytest.mark.parametrize("scale", [0.5, 2.0])
+def test_a_scaled_robot_keeps_the_froude_number_and_relative_stride(tmp_path, scale):
+    base, scaled = GaitParams.for_robot(str(SPIDER)), GaitParams.for_robot(
+        scaled_spider(tmp_path, scale))
+    robot = hexaleg.load(str(tmp_path / "spider.toml"))
+    h = hip_height(robot, scaled)
+    assert h == pytest.approx(0.08 * scale, rel=1e-6)  # hips at the base's height
+    assert froude(scaled, h) == pytest.approx(REFERENCE_FROUDE, rel=1e-9)
+    assert scaled.stride / h == pytest.approx(REFERENCE_RELATIVE_STRIDE, rel=1e-9)
+    assert scaled.stride == pytest.approx(scale * base.stride, rel=1e-6)
+    assert scaled.step_height == pytest.approx(scale * base.step_height, rel=1e-6)
+    assert scaled.period == pytest.approx(math.sqrt(scale) * base.period, rel=1e-6)
+    sized = sized_defaults(description(str(tmp_path / "spider.toml")), scaled)
+    assert sized is not None and sized.stretch == 1.0 and sized.speed_ratio < 1.0
+    note = sized.note()
+    assert note is not None and "Alexander & Jayes 1983" in note and "lengthened" not in note
+
+
+def test_set_parameters_are_never_overridden(tmp_path):
+    path = scaled_spider(tmp_path, 2.0, velocity=0.5,
+                         gait="[robot.gait]\nperiod = 0.7\nstep_height = 0.011\n")
+    gait = GaitParams.for_robot(path)
+    assert gait.period == 0.7 and gait.step_height == 0.011  # slow joints: kept anyway
+    assert gait.stride == pytest.approx(REFERENCE_RELATIVE_STRIDE * 0.16, rel=1e-6)
+    sized = sized_defaults(description(path), gait)
+    assert sized is not None and sized.keys == ("stride_length",)
+    assert sized.note(overridden=["stride_length"]) is None  # a config file set it
+    stride_set = GaitParams.for_robot(scaled_spider(tmp_path / "s", 2.0,
+                                                    gait="[robot.gait]\nstride_length = 0.05\n"))
+    assert stride_set.stride == 0.05  # the period follows the Froude number from it
+    assert froude(stride_set, 0.16) == pytest.approx(REFERENCE_FROUDE, rel=1e-6)
+
+
+def test_the_period_is_lengthened_to_the_joints_speed_limits(tmp_path):
+    """Joints limited to 1 rad/s: the similar gait would run them over; the chosen period brings
+    every joint within its limit at full sampling, and the note says by how much."""
+    path = scaled_spider(tmp_path, 1.0, velocity=1.0)
+    gait = GaitParams.for_robot(path)
+    free = GaitParams.for_robot(str(SPIDER))
+    robot = hexaleg.load(path)
+    sized = sized_defaults(description(path), gait)
+    assert sized is not None and sized.stretch > 1.0 and sized.fastest in robot.joint_names
+    assert gait.period == pytest.approx(free.period * sized.stretch, rel=1e-9)
+    assert gait.stride == pytest.approx(free.stride, rel=1e-9)
+    ratio, _ = speed_ratio(robot, hexaleg.tripod_gait(robot, gait).v)  # 1000 samples
+    assert ratio <= 1.0
+    before, _ = speed_ratio(robot, hexaleg.tripod_gait(
+        robot, dataclasses.replace(gait, period=free.period, samples=200)).v)
+    assert before > 1.0  # the unlengthened gait would exceed the limit
+    assert sized.froude < REFERENCE_FROUDE
+    assert f"lengthened x{sized.stretch:.3g}" in (sized.note() or "")
+    data = sized.as_dict()
+    assert data["period_stretch"]["value"] == sized.stretch and data["period"]["unit"] == "s"
+
+
+def test_speed_ratio_is_the_fastest_joint_over_its_limit(spider):
+    v = np.ones((3, spider.model.nv))
+    ratio, joint = speed_ratio(spider, v)
+    assert ratio == pytest.approx(1 / 6) and joint == spider.joint_names[0]
