@@ -50,8 +50,13 @@ def _run_robot(args: argparse.Namespace) -> int:
 
 def _warn(findings: list) -> None:
     """Print the sanity checks' findings (:mod:`hexaleg.robot.sanity`) as warnings."""
-    for finding in findings:
-        print(f"warning: {finding.message}")
+    _warn_lines([finding.message for finding in findings])
+
+
+def _warn_lines(lines: Sequence[str]) -> None:
+    """Print a run's warnings (:mod:`hexaleg.studies.run_warnings`), one ``warning:`` line each."""
+    for line in lines:
+        print(f"warning: {line}")
 
 
 def _add_motors(sub: argparse._SubParsersAction) -> None:
@@ -107,6 +112,7 @@ def _run_gait(args: argparse.Namespace) -> int:
     from hexaleg.outputs.text import gait_summary
     from hexaleg.robot.registry import description
     from hexaleg.robot.sanity import robot_findings
+    from hexaleg.studies.run_warnings import run_warnings
 
     desc = description(args.robot)
     robot = desc.load()
@@ -116,7 +122,10 @@ def _run_gait(args: argparse.Namespace) -> int:
         gait = gait.updated(table.get("gait", table), f"{args.config} [gait]")
     motion = tripod_gait(robot, gait)
     print(gait_summary(robot, motion))
-    _warn([*robot_findings(robot), *motion_findings(robot, motion)])
+    warned = run_warnings(robot, motion, desc.actuator(robot), desc=desc, gait=gait)
+    _warn_lines(warned)  # the same lines as report, design and simulate say for this run
+    _warn([f for f in (*robot_findings(robot), *motion_findings(robot, motion))
+           if f.message not in warned])
     return 0
 
 
@@ -185,6 +194,7 @@ def _run_report(args: argparse.Namespace) -> int:
     r = write_report(args.out, config, robot=robot, svg=args.svg)
     for note in config.notes:
         print(f"note: {note}")
+    _warn_lines(r.data["warnings"])
     print(f"wrote {len(r.files)} files to {args.out}; open {args.out}/report.html")
     print(r.summary())  # its last line is the answer: which springs, and what they save
     return 0
@@ -210,6 +220,7 @@ def _run_design(args: argparse.Namespace) -> int:
 
     config = DesignConfig.load(args.robot, args.config, args.controller, args.motion, args.cycle)
     written = write_design(args.out, config)
+    _warn_lines(written.data["warnings"])
     print(written.result.summary())
     print(f"wrote {len(written.files)} files to {args.out}; open {args.out}/design.html")
     return 0
@@ -322,11 +333,13 @@ def _run_simulate(args: argparse.Namespace) -> int:
         from hexaleg.simulation.sensitivity import sensitivity
 
         rows = sensitivity(s)
-    data = simulation_data(s, design=study.design, notes=study.notes, sensitivity=rows)
+    data = simulation_data(s, design=study.design, notes=study.notes, sensitivity=rows,
+                           warnings=study.warnings)
     js, md = write_simulation(args.out, data)
     motions = ", ".join(str(m) for m in write_motions(args.out, s))
     for note in study.notes:
         print(f"note: {note}")
+    _warn_lines(study.warnings)
     print(summary(data))
     print(f"wrote {js}, {md}, {motions} (replay: hexaleg view --simulation {args.out})")
     if not s.walks:

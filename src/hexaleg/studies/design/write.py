@@ -29,6 +29,7 @@ from hexaleg.outputs.html import render_design_html
 from hexaleg.studies.design.build import DesignResult, build_design
 from hexaleg.studies.design.config import DesignConfig
 from hexaleg.studies.design.data import design_data
+from hexaleg.studies.run_warnings import run_warnings
 
 
 @dataclass(frozen=True, eq=False)
@@ -90,6 +91,23 @@ def tolerance_figure(t: TolerantSprings) -> Figure:
         math.degrees(t.tolerance), {names[k]: 100 * t.worst[k] for k in names}, t.metric)
 
 
+def design_warnings(r: DesignResult) -> tuple[str, ...]:
+    """The warnings of the design's run (:func:`hexaleg.studies.run_warnings.run_warnings`):
+    its nominal gait, or the logged motion's cycle, on the robot and actuators it designed
+    with."""
+    from hexaleg.motion.legged import gait as make_gait
+
+    cfg = r.config
+    run = cfg.design.run(cfg.robot, cfg.contact)
+    robot = run.load()
+    if cfg.motion is not None:
+        from hexaleg.studies.motion_option import logged_motion
+
+        return run_warnings(robot, logged_motion(robot, cfg.motion, cfg.cycle), run.actuator())
+    return run_warnings(robot, make_gait(robot, r.gait), run.actuator(),
+                        desc=run.description(), gait=r.gait)
+
+
 def write_design(out: str | Path = "hexaleg-design", config: DesignConfig | None = None, *,
                  progress: Callable[[str], None] | None = _stderr_progress) -> WrittenDesign:
     """Compute the design and write ``design.json``, ``design.html`` and the plots into ``out``.
@@ -114,8 +132,8 @@ def write_design(out: str | Path = "hexaleg-design", config: DesignConfig | None
         png, written = plots.save(fig, out / f"{name}.png")
         images[name] = plots.data_uri(png)
         files += written
-    data = {**design_data(r), "files": [*sorted(p.name for p in files), "design.html",
-                                        "design.json"]}
+    data = {**design_data(r), "warnings": list(design_warnings(r)),
+            "files": [*sorted(p.name for p in files), "design.html", "design.json"]}
     for path, text in ((out / "design.json", json.dumps(data, indent=1, ensure_ascii=False)),
                        (out / "design.html", render_design_html(data, images))):
         files.append(write_file(path, text, "the design"))

@@ -51,6 +51,7 @@ from hexaleg.studies.report.config import ReportConfig, ReportParams
 from hexaleg.studies.report.design_section import design_section
 from hexaleg.studies.report.paper_section import paper_reference
 from hexaleg.studies.report.transform import transform_section
+from hexaleg.studies.run_warnings import run_warnings
 
 
 @dataclass(frozen=True, eq=False)
@@ -124,6 +125,8 @@ def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis,
     return {
         "title": cfg.report.title,
         "hexaleg_version": importlib.metadata.version("hexaleg"),
+        "warnings": list(run_warnings(robot, motion, cfg.motor, desc=cfg.robot_description,
+                                      gait=cfg.gait if cfg.motion is None else None)),
         "notes": sections.notes_section(cfg.notes, motion, _findings(robot, motion, a)),
         "robot": sections.robot_section(robot),
         "payload": sections.payload_section(cfg.payload, robot),

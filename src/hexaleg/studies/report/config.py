@@ -205,6 +205,9 @@ class ReportConfig:
             :class:`hexaleg.robot.payload.Payload`), or None.
         motion: A logged motion (``--motion``, :func:`hexaleg.load_motion`) the report analyses
             instead of the gait ``gait`` would make, or None.
+        robot_description: The robot's description (set by :meth:`for_robot`), for the run's
+            warnings (:mod:`hexaleg.studies.run_warnings`: what its gait's sized defaults
+            chose), or None.
     """
 
     gait: GaitParams = field(default_factory=GaitParams)
@@ -215,6 +218,7 @@ class ReportConfig:
     notes: tuple[str, ...] = ()
     payload: Payload | None = None
     motion: Motion | None = None
+    robot_description: RobotDescription | None = None
 
     @classmethod
     def for_robot(cls, desc: RobotDescription, robot: Robot,
@@ -257,7 +261,7 @@ class ReportConfig:
                              f"the actuator there is built from its URDF limits. "
                              f"{config.motor.notes}")
         return dataclasses.replace(config, gait=gait, springs=springs, report=report,
-                                   notes=tuple(notes))
+                                   notes=tuple(notes), robot_description=desc)
 
     @classmethod
     def load(cls, robot: str | None = None, path: str | Path | None = None,

@@ -27,6 +27,7 @@ from hexaleg.robot.springs import SpringSet
 from hexaleg.simulation.run import Settings, Simulation, simulate
 from hexaleg.studies.design.load import load_design
 from hexaleg.studies.report.config import ReportConfig
+from hexaleg.studies.run_warnings import run_warnings
 
 DEFAULT_FAMILY = "linear"
 """The spring family of the default design (its optimum has no geometry to search: global)."""
@@ -44,6 +45,7 @@ class Study:
         settings: How to simulate.
         objective: The analysis' force objective.
         notes: Caveats (the config's, a constant-torque optimum, …).
+        warnings: The run's warnings (:func:`hexaleg.studies.run_warnings.run_warnings`).
     """
 
     robot_name: str
@@ -53,6 +55,7 @@ class Study:
     settings: Settings
     objective: str
     notes: tuple[str, ...]
+    warnings: tuple[str, ...] = ()
 
     def run(self) -> Simulation:
         """Simulate (:func:`hexaleg.simulation.run.simulate`)."""
@@ -134,4 +137,6 @@ def load_study(robot: str = "hexaleg", config: str | Path | None = None,
         design = (f"the globally optimal {DEFAULT_FAMILY} springs on the {kind} joints "
                   f"(optimal_springs, {objective} objective)")
         notes += list(best.notes)
-    return Study(robot, prepared, spring_set, design, settings, objective, tuple(notes))
+    warned = run_warnings(prepared.robot, played, report.motor, desc=desc,
+                          gait=gait if motion is None else None)
+    return Study(robot, prepared, spring_set, design, settings, objective, tuple(notes), warned)

@@ -73,7 +73,8 @@ def sensitivity_row(row: dict[str, Any]) -> dict[str, Any]:
 
 
 def simulation_data(s: Simulation, *, design: str = "", notes: tuple[str, ...] = (),
-                    sensitivity: list[dict[str, Any]] | None = None) -> dict[str, Any]:
+                    sensitivity: list[dict[str, Any]] | None = None,
+                    warnings: tuple[str, ...] = ()) -> dict[str, Any]:
     """The content of ``simulate.json`` (module docstring).
 
     Args:
@@ -81,6 +82,7 @@ def simulation_data(s: Simulation, *, design: str = "", notes: tuple[str, ...] =
         design: Where the springs came from (a file, or the optimal design).
         notes: Caveats to record.
         sensitivity: Rows of :func:`hexaleg.simulation.sensitivity.sensitivity`, or None.
+        warnings: The run's warnings (:func:`hexaleg.studies.run_warnings.run_warnings`).
     """
     st, sim = s.settings, s.with_springs.sim
     predicted = {m: s.predicted(m) for m in METRICS}
@@ -102,6 +104,7 @@ def simulation_data(s: Simulation, *, design: str = "", notes: tuple[str, ...] =
                       "back_emf_damping": quantity(sim.damping, "N·m·s/rad"),
                       "stall_torque": quantity(sim.stall, "N·m")}},
         "runs": {"springs": _run_data(s.with_springs), "baseline": _run_data(s.baseline)},
+        "warnings": list(warnings),
         "notes": [*notes, *sim.notes],
     }
     if sensitivity is not None:
@@ -168,7 +171,8 @@ def page(data: dict[str, Any]) -> str:
                    f"{_v(r['tracking_rms'], 1e3)} |")
             lines.append(f"| {r['label']} | {r['controller'] or '—'} | {r['verdict']} | "
                          f"{_v(r['predicted_saving'])} {sim}")
-    lines += ["", *(f"- note: {n}" for n in data["notes"])]
+    lines += ["", *(f"- warning: {w}" for w in data.get("warnings", ())),
+              *(f"- note: {n}" for n in data["notes"])]
     return "\n".join(lines) + "\n"
 
 

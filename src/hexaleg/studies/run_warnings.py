@@ -1,0 +1,77 @@
+"""The warnings that apply to a run, said the same way by every command that uses the run.
+
+A run — a robot, its gait (generated or logged) and its actuators — can carry caveats that make
+its numbers less trustworthy. ``hexaleg gait``, ``report``, ``design`` and ``simulate`` call
+:func:`run_warnings` on their run, print each line as ``warning: …``, show the lines on their page
+and write them into their JSON as ``"warnings"``. In this order:
+
+1. the gait parameters the robot's description leaves unset, sized to it by dynamic similarity
+   (:mod:`hexaleg.motion.scaling`): what they chose, unless a config file set them;
+2. every joint whose peak speed exceeds its URDF velocity limit, with the period that would
+   bring it within (:func:`hexaleg.motion.sanity.speed_findings`);
+3. joints driven by a generic actuator built from the URDF's effort and velocity limits
+   (:func:`hexaleg.robot.motor.generic_actuator`): the energies rest on assumed constants and
+   on limits that may be placeholders, by the factors :func:`~hexaleg.robot.motor.
+   generic_energy_range` states and more;
+4. link inertias repaired at load (``inertias = "repair"``, :mod:`hexaleg.robot.inertials`).
+"""
+
+from __future__ import annotations
+
+from hexaleg.dynamics.plausibility import GENERIC_MARK
+from hexaleg.motion.params import GaitParams
+from hexaleg.motion.sanity import speed_findings
+from hexaleg.motion.scaling import chosen_defaults
+from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.description import RobotDescription
+from hexaleg.robot.model import Robot
+from hexaleg.robot.motor import Motor, generic_energy_range
+from hexaleg.robot.motor_set import MotorSet
+
+REPAIRED_MARK = "inertias repaired"
+"""How the robot's loading note of a repair begins (:func:`hexaleg.robot.inertials`)."""
+
+
+def generic_warning(motor: Motor | MotorSet) -> str | None:
+    """One line when some joint's actuator is generic (module docstring, 3), else None."""
+    motors = (dict(motor.by_class) if isinstance(motor, MotorSet) else {"every joint": motor})
+    generic = [kind for kind, m in motors.items() if m.notes.startswith(GENERIC_MARK)]
+    if not generic:
+        return None
+    lo, hi = generic_energy_range()
+    return (f"generic actuator on {', '.join(generic)}: its energies come from the URDF's effort "
+            f"and velocity limits with assumed constants (x{lo:.2f}-x{hi:.2f} for the "
+            "catalogue's range of gearbox efficiencies, further if the limits are "
+            "placeholders); name a catalogue motor (hexaleg motors) or identified constants "
+            "for energies to trust")
+
+
+def run_warnings(robot: Robot, motion: Motion, motor: Motor | MotorSet | None, *,
+                 desc: RobotDescription | None = None,
+                 gait: GaitParams | None = None) -> tuple[str, ...]:
+    """The warnings of one run (module docstring).
+
+    Args:
+        robot: The robot as run (its loading notes).
+        motion: The motion run (generated or logged): ``v`` (T, nv), ``t`` (T,).
+        motor: The actuators, or None where the command uses none (``hexaleg gait``).
+        desc: The robot's description, for what its gait's defaults chose; None leaves that
+            line out (a logged motion has no generated gait).
+        gait: The run's gait after any config file (which keys still hold the sized values).
+
+    Returns:
+        One line per warning, empty when there is none.
+    """
+    out: list[str] = []
+    sized = chosen_defaults(desc) if desc is not None and gait is not None else None
+    if sized is not None and gait is not None:
+        kept = sized.kept(gait)
+        note = sized.note(overridden=[k for k in sized.keys if k not in kept])
+        if note is not None:
+            out.append(note)
+    out += [f.message for f in speed_findings(robot, motion) if f.check == "joint_speed"]
+    generic = generic_warning(motor) if motor is not None else None
+    if generic is not None:
+        out.append(generic)
+    out += [n for n in robot.notes if n.startswith(REPAIRED_MARK)]
+    return tuple(out)

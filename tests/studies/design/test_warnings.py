@@ -1,0 +1,41 @@
+"""``hexaleg design`` says its run's warnings (hexaleg.studies.run_warnings): design.json's
+``warnings``, the page, the printed lines — the same lines as the other commands."""
+
+from __future__ import annotations
+
+import types
+from collections import defaultdict
+from pathlib import Path
+
+import hexaleg
+from hexaleg.motion.params import GaitParams
+from hexaleg.outputs.html import render_design_html
+from hexaleg.robot.registry import description
+from hexaleg.studies.design.config import DesignConfig
+from hexaleg.studies.design.write import design_warnings
+from hexaleg.studies.run_warnings import run_warnings
+
+SPIDER = str(Path(__file__).resolve().parents[2] / "data" / "spider.toml")
+
+
+def test_the_design_run_has_the_warnings_of_its_gait(tmp_path):
+    config = tmp_path / "fast.toml"
+    config.write_text("[gait]\nperiod = 0.25\nsamples = 40\n")
+    cfg = DesignConfig.load(SPIDER, str(config))
+    desc = description(SPIDER)
+    robot = desc.load()
+    gait = cfg.nominal_gait  # the [gait] table over the sized defaults, the design's samples
+    assert gait.period == 0.25
+    assert gait.stride == GaitParams.for_robot(desc).stride
+    expected = run_warnings(robot, hexaleg.tripod_gait(robot, gait), desc.actuator(robot),
+                            desc=desc, gait=gait)
+    assert any(w.startswith("joint_speed") for w in expected)
+    result = types.SimpleNamespace(config=cfg, gait=cfg.nominal_gait)  # what it reads
+    assert design_warnings(result) == expected  # type: ignore[arg-type]
+
+
+def test_design_json_and_page_carry_them(written):
+    result, _ = written
+    assert result.data["warnings"] == []  # hexaleg with its AX-18A: none
+    html = render_design_html({**result.data, "warnings": ["w1", "w2"]}, defaultdict(str))
+    assert html.count("<b>Warning:</b>") == 2 and "w2" in html
