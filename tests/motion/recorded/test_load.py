@@ -31,31 +31,26 @@ def _energy(robot, motion):
     return value["value"] if isinstance(value, dict) else value
 
 
+@pytest.mark.parametrize("contacts", [True, False], ids=["contacts", "kinematics"])
 @pytest.mark.parametrize("base", [True, False], ids=["base", "odometry"])
-def test_noisy_log_with_contacts_keeps_energy_and_stance(robot, gait_100hz, tmp_path, base, logs):
-    cols = logs.noisy_log(robot, gait_100hz, base=base, contacts=True)
+def test_noisy_log_keeps_energy_and_stance(robot, gait_100hz, tmp_path, base, contacts, logs):
+    """The issue's must-show: 10 cycles at 100 Hz, Dynamixel ticks and noise, with and without
+    base position and contact columns: energy per cycle within 2 % of the noise-free gait's,
+    stance within 0.05 per leg (sample for sample, so the fractions too). Measured (seed 0):
+    energy +0.16 % / +0.04 % with contacts (base / odometry), -0.05 % / -0.95 % without; stance
+    off at most 0.00 / 0.00 / 0.01 / 0.03 of the cycle per leg (the kinematic detection alone,
+    without its fitted swing edges, was -7 % and 0.07)."""
+    cols = logs.noisy_log(robot, gait_100hz, base=base, contacts=contacts)
     logs.write_csv(tmp_path / "log.csv", cols)
     motion = load_motion(robot, tmp_path / "log.csv")
     quality = motion.info["report"]
+    assert quality.stance_source == ("contacts" if contacts else "kinematics")
     assert quality.period == pytest.approx(1.0, abs=1e-3) and quality.cycles >= 9
     assert motion.n_samples == gait_100hz.n_samples
     assert np.all((motion.stance != gait_100hz.stance).mean(axis=0) <= 0.05)
+    assert np.all(np.abs(motion.stance.mean(axis=0) - gait_100hz.stance.mean(axis=0)) <= 0.05)
     energy, truth = _energy(robot, motion), _energy(robot, gait_100hz)
     assert abs(energy - truth) <= 0.02 * truth
-
-
-@pytest.mark.parametrize("base", [True, False], ids=["base", "odometry"])
-def test_noisy_log_without_contacts_finds_stance(robot, gait_100hz, tmp_path, base, logs):
-    """Kinematic stance: the impact-free swing leaves the foot within noise of the ground for a
-    few samples, so stance comes out long by up to 0.08 of the cycle and the energy ~7 % low
-    (the figures stated in the issue note; contact columns meet 0.05 and 2 %)."""
-    cols = logs.noisy_log(robot, gait_100hz, base=base, contacts=False)
-    logs.write_csv(tmp_path / "log.csv", cols)
-    motion = load_motion(robot, tmp_path / "log.csv")
-    assert motion.info["report"].stance_source == "kinematics"
-    assert np.all((motion.stance != gait_100hz.stance).mean(axis=0) <= 0.10)
-    energy, truth = _energy(robot, motion), _energy(robot, gait_100hz)
-    assert abs(energy - truth) <= 0.10 * truth
 
 
 def test_bad_window_and_short_log_are_named(robot, gait_100hz, tmp_path, logs):

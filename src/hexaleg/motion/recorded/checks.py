@@ -135,3 +135,15 @@ def feet_world(robot: Robot, q_joints: np.ndarray, base: np.ndarray | None) -> n
         for i, f in enumerate(frames):
             out[k, i] = data.oMf[f].translation
     return out
+
+
+def centre_of_mass(robot: Robot, q_joints: np.ndarray, base: np.ndarray | None) -> np.ndarray:
+    """The robot's centre of mass (T, 3), m, for joint angles (T, nj) and base poses (T, 7)
+    (the base frame itself for None)."""
+    q = np.zeros((q_joints.shape[0], robot.model.nq))
+    q[:, 6] = 1.0
+    q[:, 7:] = q_joints
+    if base is not None:
+        q[:, :7] = base
+    data = robot.model.createData()
+    return np.array([pin.centerOfMass(robot.model, data, qk) for qk in q])

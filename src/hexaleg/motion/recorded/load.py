@@ -20,6 +20,7 @@ from hexaleg.errors import HexalegWarning, InvalidParameterError
 from hexaleg.motion.recorded import base as _base
 from hexaleg.motion.recorded import stance as _stance
 from hexaleg.motion.recorded.checks import (
+    centre_of_mass,
     check_columns,
     check_ground,
     check_limits,
@@ -168,8 +169,13 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
     if contact is not None:
         stance = _stance.from_contacts(contact)
     elif not has_base:  # stance in the base frame (turned by the IMU's roll and pitch)
-        level = feet_b if stance_rot is None else np.einsum("tij,tlj->tli", stance_rot, feet_b)
-        stance = _stance.detect(level, _velocity(level, dt_c, periodic))
+        com_b = centre_of_mass(robot, q_j, None)
+        level, com_l = feet_b, com_b
+        if stance_rot is not None:
+            level = np.einsum("tij,tlj->tli", stance_rot, feet_b)
+            com_l = np.einsum("tij,tj->ti", stance_rot, com_b)
+        stance = _stance.detect(level, _velocity(level, dt_c, periodic), com_l,
+                                periodic=periodic)
     base_source = "log"
     if not has_base:
         odo = _base.leg_odometry(feet_b, stance.stance, dt_c, periodic=periodic,
@@ -190,7 +196,8 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
                                                  dpose[:, :3], ddpose[:, :3])
     feet = feet_world(robot, q_j, q[:, :7])
     if contact is None and has_base:
-        stance = _stance.detect(feet, _velocity(feet, dt_c, False))
+        stance = _stance.detect(feet, _velocity(feet, dt_c, False),
+                                centre_of_mass(robot, q_j, q[:, :7]), periodic=periodic)
     caught += check_stance(robot, stance.stance, tc, where)
     if has_base:
         check_ground(robot, feet, tc, where)
