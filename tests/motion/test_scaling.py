@@ -124,3 +124,13 @@ def test_speed_ratio_is_the_fastest_joint_over_its_limit(spider):
     v = np.ones((3, spider.model.nv))
     ratio, joint = speed_ratio(spider, v)
     assert ratio == pytest.approx(1 / 6) and joint == spider.joint_names[0]
+
+
+def test_docs_state_the_reference_and_the_spiders_line():
+    """docs/robots.md's numbers are the module's, and its example line is the spider's."""
+    page = (SPIDER.parents[2] / "docs" / "robots.md").read_text()
+    assert f"{REFERENCE_HIP_HEIGHT:.4f} m above the ground" in page
+    assert f"`{REFERENCE_RELATIVE_STRIDE:.3f} h`" in page
+    assert f"`v² / (g h)` = {REFERENCE_FROUDE:.4f}" in page
+    sized = sized_defaults(description(str(SPIDER)), GaitParams.for_robot(str(SPIDER), sized=False))
+    assert sized is not None and f"warning: {sized.note()}\n" in page
