@@ -70,6 +70,14 @@ def test_design_on_the_log_equals_the_design_on_the_generated_gait(log: Path, tm
     _numbers_have_units(quality)
     assert quality["period"] == {"value": pytest.approx(1.0, rel=1e-12), "unit": "s"}
     assert quality["stance_source"] == "contacts" and quality["derivatives"] == "given"
+    # design.json says the motion came from the log, not generated gait parameters
+    gait = data["gait"]
+    assert "parameters" not in gait and gait["motion"]["source"] == "log"
+    assert gait["motion"]["path"] == str(log) and gait["motion"]["cycle"] == "whole"
+    assert gait["motion"]["quality"] == quality and gait["samples"] == SAMPLES
+    assert gait["stride"]["value"] == pytest.approx(0.06, rel=1e-9)
+    assert gait["duty_factor"]["value"] == pytest.approx(0.5)
+    assert hexaleg.load_design(out / "design.json").gait is None
     # The invariant: the same springs as on the generated gait it was written from.
     generated = build_design(DesignConfig.from_mapping(
         {"design": {**DESIGN, "samples": SAMPLES, "map_period": [1.0], "map_stride": [1.0],
@@ -82,6 +90,8 @@ def test_design_on_the_log_equals_the_design_on_the_generated_gait(log: Path, tm
         assert data["baseline"][m]["value"] == pytest.approx(generated.baseline[m], rel=1e-9)
         assert rec["saving"][m]["value"] == pytest.approx(100 * gen.row[f"saving.{m}"],
                                                           abs=1e-4)  # %, solver tolerance
+        # net of the springs' mass: the log carried as logged, the same motion as generated
+        assert rec["net_saving"][m]["value"] == pytest.approx(100 * gen.net[m], abs=1e-4)
 
 
 def test_simulate_plays_the_log_forward(log: Path, tmp_path: Path,
@@ -158,3 +168,29 @@ def test_the_logged_cycle_is_the_generated_gait(log: Path) -> None:
     back = hexaleg.load_motion(robot, log, cycle="whole", periodic=True)
     assert back.n_samples == SAMPLES and back.period == pytest.approx(motion.period, rel=1e-12)
     assert np.abs(back.q - motion.q).max() < 1e-9
+
+
+def test_carried_keeps_the_logged_motion_and_names_a_gait_it_cannot_make(
+        log: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The springs' mass on a log: added to the robot, the logged motion unchanged; a carried
+    gait that cannot be made is an error naming the gait and the springs' mass."""
+    from hexaleg.design.evaluator import RunSpec
+    from hexaleg.errors import HexalegError, InfeasibleForcesError
+    from hexaleg.studies.design import candidates
+
+    robot = hexaleg.load_robot()
+    logged = hexaleg.load_motion(robot, log, cycle="whole", periodic=True)
+    run, gait = RunSpec(robot="hexaleg"), hexaleg.GaitParams(samples=SAMPLES)
+    heavy = candidates.carried(run, gait, {"LF_femur": 0.5}, logged)
+    assert heavy.motion is logged and heavy.robot.mass == pytest.approx(robot.mass + 0.5)
+
+    def refuse(*_args: object, **_kw: object) -> None:
+        raise InfeasibleForcesError("no contact forces at sample 3")
+
+    monkeypatch.setattr(candidates, "prepare", refuse)
+    with pytest.raises(HexalegError, match=r"logged motion .*log\.csv.*500\.0 g: LF_femur "
+                       r"500\.0 g.*InfeasibleForcesError: no contact forces"):
+        candidates.carried(run, gait, {"LF_femur": 0.5}, logged)
+    with pytest.raises(HexalegError, match=r"nominal gait \(period 1 s, stride 0\.06 m, 100 "
+                       r"samples\)"):
+        candidates.carried(run, gait, {"LF_femur": 0.5})

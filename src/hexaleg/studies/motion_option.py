@@ -61,7 +61,7 @@ def _run_with_motion(run: Callable[[argparse.Namespace], int], json_name: str,
     try:
         return run(args)
     finally:
-        motion = _LOADED.get(str(Path(args.motion))) if args.motion else None
+        motion = loaded_log(args.motion) if args.motion else None
         if motion is not None:
             for line in motion_quality(motion).lines():
                 print(f"motion: {line}")
@@ -100,6 +100,11 @@ def logged_motion(robot: Robot, path: str | Path, cycle: str = "auto") -> Motion
     motion = load_motion(robot, path, cycle=parse_cycle(cycle), periodic=True)
     _LOADED[str(Path(path))] = motion
     return motion
+
+
+def loaded_log(path: str | Path) -> Motion | None:
+    """The motion :func:`logged_motion` read from ``path`` in this process, or None."""
+    return _LOADED.get(str(Path(path)))
 
 
 def refuse_gait_table(data: Mapping[str, Any], where: str, path: str | Path) -> None:
@@ -168,5 +173,5 @@ def add_quality(path: Path, motion: Motion) -> None:
     path.write_text(json.dumps(data, indent=1, ensure_ascii=False), encoding="utf-8")
 
 
-__all__ = ["add_motion_option", "add_quality", "logged_motion", "motion_quality",
+__all__ = ["add_motion_option", "add_quality", "loaded_log", "logged_motion", "motion_quality",
            "parse_cycle", "quality_data", "quality_note", "refuse_gait_table"]

@@ -7,7 +7,7 @@ the finer groups (one convex program: never worse than the class design, which i
 Each spring element becomes a torsion spring (:mod:`hexaleg.design.spring_parts`); the springs'
 mass, carried at their joints (:func:`hexaleg.robot.payload.with_point_masses`), costs energy,
 so the saving is also given net of it: the gait with the springs on the heavier robot against
-the baseline of the robot as it is.
+the baseline of the robot as it is (a logged motion kept as logged, :func:`carried`).
 """
 
 from __future__ import annotations
@@ -29,8 +29,10 @@ from hexaleg.design.spring_parts import (
 )
 from hexaleg.dynamics.energy import saving
 from hexaleg.dynamics.prepare import Prepared, prepare
+from hexaleg.errors import HexalegError
 from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import GaitParams
+from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.mirror import mirror
 from hexaleg.robot.payload import with_point_masses
 from hexaleg.robot.springs import SpringSet
@@ -113,10 +115,29 @@ def arbors(run: RunSpec, groups: Mapping[str, Sequence[str]]) -> dict[str, float
             for g, js in groups.items()}
 
 
-def carried(run: RunSpec, gait: GaitParams, masses: Mapping[str, float]) -> Prepared:
-    """The nominal gait of the robot carrying ``masses`` (joint → kg) at its joints."""
+def carried(run: RunSpec, gait: GaitParams, masses: Mapping[str, float],
+            logged: Motion | None = None) -> Prepared:
+    """The nominal gait of the robot carrying ``masses`` (joint → kg) at its joints: the gait
+    re-made on the heavier robot, or a logged motion (``--motion``) as it was logged (a log is
+    the motion the robot walked: the mass is added to the robot, the motion unchanged).
+
+    Raises:
+        HexalegError: the gait or its forces cannot be made with the mass added; the message
+            names the gait and the springs' mass, and what was refused.
+    """
     heavy = with_point_masses(run.load(), masses, note="springs' mass at their joints")
-    return prepare(heavy, tripod_gait(heavy, gait), motor=run.actuator(), contact=run.contact)
+    which = (f"the logged motion {logged.info.get('log', '')}" if logged is not None else
+             f"the nominal gait (period {gait.period:g} s, stride {gait.stride:g} m, "
+             f"{gait.samples} samples)")
+    try:
+        motion = logged if logged is not None else tripod_gait(heavy, gait)
+        return prepare(heavy, motion, motor=run.actuator(), contact=run.contact)
+    except HexalegError as e:
+        grams = ", ".join(f"{j} {1e3 * m:.1f} g" for j, m in masses.items())
+        raise HexalegError(
+            f"the saving net of the springs' mass needs {which} on the robot carrying the "
+            f"springs ({1e3 * sum(masses.values()):.1f} g: {grams}), and it cannot be made: "
+            f"{type(e).__name__}: {e}") from e
 
 
 def candidate(optimum: OptimalSprings, prepared: Prepared, run: RunSpec, gait: GaitParams,
@@ -129,7 +150,9 @@ def candidate(optimum: OptimalSprings, prepared: Prepared, run: RunSpec, gait: G
     a = optimum.analysis
     row = metric_row(a.metrics, a.baseline)
     masses = spring_masses(parts)
-    heavy = carried(run, gait, masses).evaluate(optimum.springs, "joule").metrics["total"]
+    logged = prepared.motion if prepared.motion.info.get("source") == "load_motion" else None
+    heavy = carried(run, gait, masses, logged).evaluate(optimum.springs,
+                                                         "joule").metrics["total"]
     net = {m: saving(float(heavy[m]), float(a.baseline["total"][m])) for m in METRICS}
     marginal = {}
     for g, joints in optimum.groups.items():

@@ -138,18 +138,38 @@ def tolerance_data(r: DesignResult) -> dict[str, Any]:
                for name in ("tolerant", "blind")}}
 
 
+def gait_data(r: DesignResult) -> dict[str, Any]:
+    """``gait``: the nominal gait's period, stride, duty factor, samples and ``parameters``
+    (what ``hexaleg simulate --springs`` re-makes it from); on a logged motion (``--motion``)
+    the cycle's figures and ``motion`` — the log's path, ``--cycle`` and quality figures — in
+    place of the parameters, which a log does not have."""
+    g = r.gait
+    if r.config.motion is None:
+        return {"period": quantity(g.period, "s"), "stride": quantity(g.stride, "m"),
+                "duty_factor": quantity(g.duty_factor, "1"), "samples": g.samples,
+                "parameters": gait_parameters(g)}
+    from hexaleg.studies.motion_option import loaded_log, quality_data
+
+    logged = loaded_log(r.config.motion)
+    return {"period": quantity(g.period, "s"),
+            "stride": None if logged is None else quantity(logged.distance, "m"),
+            "duty_factor": (None if logged is None
+                            else quantity(float(logged.stance.mean()), "1")),
+            "samples": g.samples,
+            "motion": {"source": "log", "path": r.config.motion, "cycle": r.config.cycle,
+                       "quality": None if logged is None else quality_data(logged)}}
+
+
 def design_data(r: DesignResult) -> dict[str, Any]:
     """The content of ``design.json`` (module docstring)."""
-    d, g = r.config.design, r.gait
+    d = r.config.design
     return {
         "title": f"{r.title}: the spring design",
         "pays": r.pays,
         "hexaleg_version": importlib.metadata.version("hexaleg"),
         "robot": {"name": r.robot, "title": r.title, "mass": quantity(r.mass, "kg")},
         "actuator": r.actuator,
-        "gait": {"period": quantity(g.period, "s"), "stride": quantity(g.stride, "m"),
-                 "duty_factor": quantity(g.duty_factor, "1"), "samples": g.samples,
-                 "parameters": gait_parameters(g)},
+        "gait": gait_data(r),
         "settings": {
             "families": list(d.families), "classes": list(r.recommended.optimum.groups),
             "grouping": d.grouping, "metric": d.metric, "force_objective": "joule",
