@@ -33,6 +33,7 @@ import pinocchio as pin
 
 from hexaleg.errors import InvalidParameterError, RobotModelError, UnknownNameError
 from hexaleg.robot import fields
+from hexaleg.robot.feet import settle_sphere_feet
 from hexaleg.robot.fields import FrozenTable, check_stand, heading, plain
 from hexaleg.robot.model import AUTO, URDF_DIR, LegSpec, Robot, load_robot
 from hexaleg.robot.root import check_root
@@ -340,6 +341,11 @@ class RobotDescription:
                 check_root(robot, pin.neutral(robot.model), "the zero configuration (the "
                            "stand's feet at body_height below the base cannot be reached)")
             raise
+        if robot.foot_spheres:  # round feet touch at their lowest point in this stand
+            solved = isinstance(self.stand, Mapping) and "body_height" in self.stand
+            stand, sphere_note = settle_sphere_feet(
+                robot, stand, (lambda: self._stand_pose(robot)[0]) if solved else None)
+            robot.notes = (*robot.notes, sphere_note)
         check_root(robot, stand, "the stand pose")
         robot.poses[STAND] = stand
         if note:

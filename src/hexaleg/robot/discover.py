@@ -14,14 +14,15 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.errors import RobotModelError
-from hexaleg.robot.feet import LegSpec, resolve_foot
+from hexaleg.robot.feet import LegSpec, SphereFoot, resolve_foot
 
 HEXAPOD_KINDS = ("coxa", "femur", "tibia")
 THREE_JOINT_KINDS = ("hip", "thigh", "knee")
 
 
 def discover_legs(model: pin.Model, collision: pin.GeometryModel, visual: pin.GeometryModel,
-                  heading: np.ndarray) -> tuple[tuple[LegSpec, ...], tuple[str, ...], str]:
+                  heading: np.ndarray
+                  ) -> tuple[tuple[LegSpec, ...], tuple[str, ...], str, dict[str, SphereFoot]]:
     """The legs of a model with a free-flyer base (joint 1), named from their feet.
 
     Args:
@@ -31,8 +32,8 @@ def discover_legs(model: pin.Model, collision: pin.GeometryModel, visual: pin.Ge
         heading: The base axis pointing forward, shape (3,), horizontal unit vector.
 
     Returns:
-        The legs (feet resolved, canonical order), the joint classes, and a note saying what was
-        found.
+        The legs (feet resolved, canonical order), the joint classes, a note saying what was
+        found, and the round feet by leg (:class:`~hexaleg.robot.feet.SphereFoot`).
 
     Raises:
         RobotModelError: a joint with two children (not a chain of legs), fewer than two legs,
@@ -68,11 +69,14 @@ def discover_legs(model: pin.Model, collision: pin.GeometryModel, visual: pin.Ge
     provisional = [resolve_foot(probe, collision, visual, LegSpec(f"leg{k}", js))[0]
                    for k, js in enumerate(joints)]
     names = _names(probe, provisional, heading)
-    legs, notes = [], []
+    legs, notes, spheres = [], [], {}
     for i in sorted(range(len(joints)), key=lambda i: _rank(names[i], len(joints))):
-        spec, foot_note = resolve_foot(model, collision, visual, LegSpec(names[i], joints[i]))
+        spec, foot_note, sphere = resolve_foot(model, collision, visual,
+                                               LegSpec(names[i], joints[i]))
         legs.append(spec)
         notes.append(foot_note)
+        if sphere is not None:
+            spheres[spec.name] = sphere
     n = len(chains[0])
     kinds = (HEXAPOD_KINDS if n == 3 and len(legs) == 6 else
              THREE_JOINT_KINDS if n == 3 else tuple(f"joint{i + 1}" for i in range(n)))
@@ -81,7 +85,7 @@ def discover_legs(model: pin.Model, collision: pin.GeometryModel, visual: pin.Ge
     note = (f"legs found from the kinematic tree: {found}; joint classes {', '.join(kinds)}"
             + (f"; feet found at the tip of each leg's last link: {', '.join(feet)}"
                if feet else ""))
-    return tuple(legs), kinds, note
+    return tuple(legs), kinds, note, spheres
 
 
 def _names(model: pin.Model, specs: list[LegSpec], heading: np.ndarray) -> list[str]:

@@ -11,16 +11,28 @@ so everything downstream sees an ordinary foot frame.
 A shank is long and thin: its tip is where the ground touches it, on its axis, not on a rim or
 a corner (those are the farthest points of the support mappings, Ericson, *Real-Time Collision
 Detection*, 2005, §3.8, which would put the foot off the leg's axis by the shank's radius).
+
+A round foot — a sphere, or a capsule's end, at the tip — touches the ground at its lowest point,
+which depends on the leg's posture: the tip along the shank is up to a radius away from it on an
+inclined shank (2 cm on A1's feet). Such a foot is recorded as a :class:`SphereFoot` and its
+frame placed at the sphere's lowest point in the stand pose, ``c − r ẑ`` for the centre ``c``
+(:func:`place_sphere_feet`; the support point of a sphere in −z, Ericson §3.8): the foot frame is
+then a fixed point of the link, where the ground is touched when standing.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pinocchio as pin
 
 from hexaleg.errors import RobotModelError
+
+if TYPE_CHECKING:
+    from hexaleg.robot.model import Robot
 
 FOOT_SUFFIX = "_foot"
 """A generated foot frame is named ``<leg>`` + this."""
@@ -54,8 +66,23 @@ class LegSpec:
             object.__setattr__(self, "point", tuple(float(v) for v in p))
 
 
+@dataclass(frozen=True)
+class SphereFoot:
+    """A found foot that is round: a sphere, or a capsule's end, at the tip of the leg.
+
+    Attributes:
+        joint: Pinocchio id of the leg's last joint (the sphere moves with it).
+        centre: The sphere's centre in that joint's frame, m, shape (3,).
+        radius: Its radius, m, > 0.
+    """
+
+    joint: int
+    centre: np.ndarray
+    radius: float
+
+
 def resolve_foot(model: pin.Model, collision: pin.GeometryModel, visual: pin.GeometryModel,
-                 spec: LegSpec) -> tuple[LegSpec, str | None]:
+                 spec: LegSpec) -> tuple[LegSpec, str | None, SphereFoot | None]:
     """The leg spec with its foot as a frame of ``model`` (adding the frame when needed).
 
     Args:
@@ -66,17 +93,19 @@ def resolve_foot(model: pin.Model, collision: pin.GeometryModel, visual: pin.Geo
 
     Returns:
         The spec with ``foot`` a frame name and no ``point``; for a found foot a note
-        ``"<leg> at [x, y, z] m on joint <joint> (collision|visual)"``, else None.
+        ``"<leg> at [x, y, z] m on joint <joint> (collision|visual)"``, else None; and the
+        :class:`SphereFoot` when the found tip is a sphere's (or a capsule end's), else None
+        (the frame is then at the tip until :func:`place_sphere_feet` moves it).
 
     Raises:
         RobotModelError: the link of a point is not in the URDF (lists the links), or a leg
             without geometry on its last joint has no foot given.
     """
     if spec.foot is not None and spec.point is None:
-        return spec, None
+        return spec, None, None
     last = spec.joints[-1]
     if not model.existJointName(last):
-        return spec, None  # the leg's own check names the missing joint
+        return spec, None, None  # the leg's own check names the missing joint
     jid = model.getJointId(last)
     if spec.point is not None:
         assert spec.foot is not None
@@ -87,18 +116,22 @@ def resolve_foot(model: pin.Model, collision: pin.GeometryModel, visual: pin.Geo
         body = model.frames[model.getBodyId(spec.foot)]
         placement = body.placement * pin.SE3(np.eye(3), np.array(spec.point))
         name = _add_frame(model, spec.name, body.parentJoint, placement)
-        return replace(spec, foot=name, point=None), None
-    point, source = _far_end(collision, jid, "collision")
+        return replace(spec, foot=name, point=None), None, None
+    point, obj, source = _far_end(collision, jid, "collision")
     if point is None:
-        point, source = _far_end(visual, jid, "visual")
-    if point is None:
+        point, obj, source = _far_end(visual, jid, "visual")
+    if point is None or obj is None:
         raise RobotModelError(
             f"leg {spec.name}: no foot given and joint {last} carries no geometry to find it "
             f"from; give foot = \"<frame>\" or foot = {{link = \"<link>\", point = [x, y, z]}}")
     name = _add_frame(model, spec.name, jid, pin.SE3(np.eye(3), point))
-    note = (f"{spec.name} at [{', '.join(f'{v:+.4f}' for v in point)}] m on joint {last} "
-            f"({source})")
-    return replace(spec, foot=name, point=None), note
+    sphere = sphere_of_tip(obj, point, jid)
+    at = ", ".join(f"{v:+.4f}" for v in (point if sphere is None else sphere.centre))
+    note = (f"{spec.name} at [{at}] m on joint {last} ({source})" if sphere is None else
+            f"{spec.name} on the sphere of radius {sphere.radius:.4g} m centred at [{at}] m on "
+            f"joint {last} ({source}), touching the ground at its lowest point in the stand "
+            "pose")
+    return replace(spec, foot=name, point=None), note, sphere
 
 
 def _add_frame(model: pin.Model, leg: str, joint: int, placement: pin.SE3) -> str:
@@ -110,16 +143,111 @@ def _add_frame(model: pin.Model, leg: str, joint: int, placement: pin.SE3) -> st
 
 
 def _far_end(gmodel: pin.GeometryModel, joint: int, source: str
-             ) -> tuple[np.ndarray | None, str]:
-    """The point of ``joint``'s geometry farthest from its origin, in the joint frame."""
+             ) -> tuple[np.ndarray | None, pin.GeometryObject | None, str]:
+    """The point of ``joint``'s geometry farthest from its origin, in the joint frame, and the
+    geometry it is on."""
     best: np.ndarray | None = None
+    owner: pin.GeometryObject | None = None
     for obj in gmodel.geometryObjects:
         if obj.parentJoint != joint:
             continue
         for p in farthest_points(obj):
             if best is None or np.linalg.norm(p) > np.linalg.norm(best) + 1e-12:
-                best = p
-    return best, source
+                best, owner = p, obj
+    return best, owner, source
+
+
+def sphere_of_tip(obj: pin.GeometryObject, tip: np.ndarray, joint: int) -> SphereFoot | None:
+    """The sphere a tip of :func:`farthest_points` lies on: a sphere's own, or the end cap of a
+    capsule (the hemisphere of its radius centred on the axis at ``±halfLength``, on the tip's
+    side); None for the other shapes. ``tip`` and the result in the joint frame."""
+    shape, kind, m = obj.geometry, type(obj.geometry).__name__, obj.placement
+    if kind == "Sphere":
+        return SphereFoot(joint, np.array(m.translation, dtype=float), float(shape.radius))
+    if kind == "Capsule":
+        axis = m.rotation[:, 2]
+        side = 1.0 if float((tip - m.translation) @ axis) > 0 else -1.0
+        centre = m.translation + side * shape.halfLength * axis
+        return SphereFoot(joint, np.array(centre, dtype=float), float(shape.radius))
+    return None
+
+
+def place_sphere_feet(robot: Robot, q: np.ndarray) -> float:
+    """Put each round foot's frame (:attr:`Robot.foot_spheres`) at its sphere's lowest point at
+    ``q``.
+
+    With the base at the origin, identity orientation, and ``R`` the last joint's rotation in
+    the world at ``q``, the sphere's lowest point (its support point in −z) is
+    ``c + r Rᵀ(−ẑ)`` in the joint frame (Ericson, *Real-Time Collision Detection*, 2005, §3.8).
+
+    Args:
+        robot: The robot (its model's foot frames are moved).
+        q: The configuration, shape (nq,), e.g. the stand pose.
+
+    Returns:
+        The largest distance a foot frame moved, m.
+    """
+    model, data = robot.model, robot.data
+    q = np.array(q, dtype=float)
+    q[:7] = pin.neutral(model)[:7]
+    pin.forwardKinematics(model, data, q)
+    moved = 0.0
+    for leg in robot.legs:
+        sphere = robot.foot_spheres.get(leg.name)
+        if sphere is None:
+            continue
+        down = np.asarray(data.oMi[sphere.joint].rotation).T @ np.array([0.0, 0.0, -1.0])
+        point = sphere.centre + sphere.radius * down
+        frame = model.frames[leg.foot_frame_id]
+        moved = max(moved, float(np.linalg.norm(frame.placement.translation - point)))
+        frame.placement = pin.SE3(np.eye(3), point)
+        model.frames[leg.foot_frame_id] = frame
+    return moved
+
+
+SETTLE_TOLERANCE = 1e-9
+"""m: the round feet are settled when no frame moves farther (:func:`settle_sphere_feet`)."""
+SETTLE_ROUNDS = 20
+
+
+def settle_sphere_feet(robot: Robot, stand: np.ndarray,
+                       solve: Callable[[], np.ndarray] | None = None) -> tuple[np.ndarray, str]:
+    """The round feet placed at their lowest points in the stand pose, and the stand.
+
+    A stand given by joint angles does not depend on the foot frames: one placement. A stand
+    solved for foot positions (``solve``, e.g. :func:`hexaleg.robot.stand.stand_from_feet`)
+    does: it is solved again with the moved frames until no frame moves more than
+    :data:`SETTLE_TOLERANCE` (a fixed point; each round moves the frame by ``r (1 − cos δ)`` for
+    the change δ of the shank's tilt, so two or three rounds suffice).
+
+    Returns:
+        The stand, shape (nq,), and a note giving each round foot's contact point.
+
+    Raises:
+        RobotModelError: the placement does not settle in :data:`SETTLE_ROUNDS` rounds.
+    """
+    for _ in range(SETTLE_ROUNDS):
+        moved = place_sphere_feet(robot, stand)
+        if solve is None or moved <= SETTLE_TOLERANCE:
+            break
+        stand = solve()
+    else:
+        raise RobotModelError(f"{robot.name}: the round feet's lowest points did not settle in "
+                              f"{SETTLE_ROUNDS} stand solves (last move {moved:.3g} m); give "
+                              "the feet as frames or points on the links")
+    return stand, sphere_note(robot, robot.foot_spheres)
+
+
+def sphere_note(robot: Robot, spheres: Mapping[str, SphereFoot]) -> str:
+    """Where each round foot touches the ground (its frame's point in its joint's frame)."""
+    parts = []
+    for leg in robot.legs:
+        if leg.name in spheres:
+            p = robot.model.frames[leg.foot_frame_id].placement.translation
+            parts.append(f"{leg.name} [{', '.join(f'{v:+.4f}' for v in p)}]")
+    return ("round feet touch the ground at their sphere's lowest point in the stand pose (m, "
+            f"in the last joint's frame; a fixed point of the link while walking): "
+            f"{', '.join(parts)}")
 
 
 def farthest_points(obj: pin.GeometryObject) -> list[np.ndarray]:

@@ -17,7 +17,7 @@ import pinocchio as pin
 from hexaleg.config import read_text
 from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError, UnknownNameError
 from hexaleg.robot import geometry as _geometry
-from hexaleg.robot.feet import LegSpec, resolve_foot
+from hexaleg.robot.feet import LegSpec, SphereFoot, place_sphere_feet, resolve_foot
 from hexaleg.robot.fields import horizontal_axis
 from hexaleg.robot.srdf import check_reference_poses
 from hexaleg.robot.urdf_numbers import check_xml
@@ -85,6 +85,9 @@ class Robot:
         heading: The base axis that points forward, a horizontal unit vector in the base frame,
             shape (3,); gaits walk along it (``+x`` unless a description says otherwise).
         notes: What loading found or assumed (feet found, meshes replaced, legs discovered).
+        foot_spheres: Leg → its round foot, for feet found on a sphere or a capsule's end
+            (:mod:`hexaleg.robot.feet`): the foot frame is that sphere's lowest point in the
+            stand pose (:func:`~hexaleg.robot.feet.place_sphere_feet`).
     """
 
     name: str
@@ -99,6 +102,7 @@ class Robot:
     joint_kinds: tuple[str, ...] = JOINT_KINDS
     heading: np.ndarray = field(default_factory=lambda: np.array([1.0, 0.0, 0.0]))
     notes: tuple[str, ...] = ()
+    foot_spheres: dict[str, SphereFoot] = field(default_factory=dict)
     mass: float = field(init=False)
     joint_names: tuple[str, ...] = field(init=False)
 
@@ -366,17 +370,20 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
             raise InvalidParameterError("legs", legs, f"leg specs or {AUTO!r}")
         from hexaleg.robot.discover import discover_legs
 
-        specs, found_kinds, note = discover_legs(model, collision, visual,
-                                                 heading_arr / np.linalg.norm(heading_arr))
+        specs, found_kinds, note, spheres = discover_legs(
+            model, collision, visual, heading_arr / np.linalg.norm(heading_arr))
         notes.append(note)
         joint_kinds = joint_kinds or found_kinds
     else:
         resolved: list[LegSpec] = []
+        spheres = {}
         for spec in legs or HEXALEG_LEGS:
-            spec, foot_note = resolve_foot(model, collision, visual, spec)
+            spec, foot_note, sphere = resolve_foot(model, collision, visual, spec)
             resolved.append(spec)
             if foot_note:
                 notes.append(f"foot found at the tip of the leg's last link: {foot_note}")
+            if sphere is not None:
+                spheres[spec.name] = sphere
         specs = tuple(resolved)
     joint_kinds = tuple(joint_kinds or JOINT_KINDS)
     leg_objs = tuple(_make_leg(model, spec) for spec in specs)
@@ -399,7 +406,10 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
             raise RobotModelError(f"Pinocchio cannot read SRDF {srdf_path}: {e}") from e
         poses = {name: np.array(q, dtype=float)
                  for name, q in ((e.key(), e.data()) for e in model.referenceConfigurations)}
-    return Robot(name=model.name, model=model, data=model.createData(), visual_model=visual,
-                 collision_model=collision, legs=leg_objs, poses=poses, urdf_path=urdf_path,
-                 srdf_path=srdf_path, joint_kinds=joint_kinds, heading=heading_arr,
-                 notes=tuple(notes))
+    robot = Robot(name=model.name, model=model, data=model.createData(), visual_model=visual,
+                  collision_model=collision, legs=leg_objs, poses=poses, urdf_path=urdf_path,
+                  srdf_path=srdf_path, joint_kinds=joint_kinds, heading=heading_arr,
+                  notes=tuple(notes), foot_spheres=spheres)
+    if spheres:  # at the SRDF's stand, else the zero configuration, until a stand is given
+        place_sphere_feet(robot, poses.get("stand", poses.get("standing", pin.neutral(model))))
+    return robot
