@@ -99,7 +99,8 @@ def _add_gait(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("gait", help="the tripod gait: parameters, static margin, joint ranges, "
                                     "peak joint speeds and accelerations")
     p.add_argument("--config", help="TOML file with a [gait] table; its keys replace those of "
-                                    "the robot's gait (default: hexaleg's GaitParams())")
+                                    "the robot's gait (its description's, the keys it leaves "
+                                    "unset sized to it: docs/robots.md)")
     p.add_argument("--robot", default="hexaleg", help=ROBOT_HELP + " (default %(default)s)")
     p.set_defaults(func=_run_gait)
 
@@ -139,8 +140,6 @@ def _add_view(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--robot", help=ROBOT_HELP + " (with --simulation: default the file's)")
     # The names of hexaleg.studies.view's MOTIONS, JOINT_QUANTITIES and motion_file.RUNS, which
     # check them too (the study is not imported to build the parser: meshcat imports slowly).
-    p.add_argument("--motion", choices=("gait", "transform"),
-                   help="tripod gait cycle or stand → sphere transformation (default: gait)")
     p.add_argument("--simulation", metavar="DIR", help="replay a run of 'hexaleg simulate "
                                                        "--out DIR' instead (its motion files)")
     p.add_argument("--run", choices=("springs", "baseline"), help="with --simulation: the run "
@@ -148,13 +147,16 @@ def _add_view(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--joints", choices=("power", "torque", "spring"), default="power",
                    help="what colours the joints: motor power (W), motor torque or spring "
                         "torque (N·m) (default: %(default)s)")
-    p.set_defaults(func=_run_view)
+    add_motion_option(p, _run_view, None, ("gait", "transform"),
+                      "gait (the tripod gait cycle, default), transform (stand → sphere) or a "
+                      "log FILE of the robot's own gait (docs/motion.md)")
 
 
 def _run_view(args: argparse.Namespace) -> int:
     from hexaleg.studies.view import export_view, serve_view, wait_until_interrupted
 
-    shown = {k: getattr(args, k) for k in ("motion", "joints", "robot", "simulation", "run")}
+    shown = {k: getattr(args, k) for k in ("motion", "joints", "robot", "simulation", "run",
+                                           "cycle")}
     if args.html:
         print(f"wrote {export_view(args.config, args.html, **shown)}")
         return 0
