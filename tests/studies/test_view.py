@@ -88,6 +88,37 @@ def test_cli_errors_are_one_line(tmp_path, capsys):
     assert str(tmp_path / "no" / "x.html") in capsys.readouterr().err
 
 
+def test_cli_views_a_log(tmp_path, capsys):
+    """--motion FILE: the logged cycle is drawn (its period, its quality printed); a [gait]
+    table, a --motion that is neither a choice nor a file and --cycle without a log are
+    refused by name."""
+    import hexaleg
+    from hexaleg.motion.recorded.write import write_motion_log
+
+    robot = hexaleg.load_robot()
+    gait = hexaleg.tripod_gait(robot, GaitParams(period=0.8, samples=80))
+    log = write_motion_log(robot, gait, tmp_path / "walk.csv")
+    config = tmp_path / "view.toml"
+    config.write_text("[view]\nfps = 10\n")
+    out = tmp_path / "log.html"
+    assert main(["view", "--config", str(config), "--motion", str(log), "--cycle", "whole",
+                 "--html", str(out)]) == 0
+    printed = capsys.readouterr().out
+    assert f"wrote {out}" in printed and "motion: cycle whole: 0.8000 s" in printed
+    frames = clips(page_commands(out.read_text()))["/meshcat/pinocchio/visuals/body_0"][
+        "position"]["frames"]
+    assert frames[-1] == pytest.approx(10 * 0.8)  # the logged 0.8 s cycle, not the 1 s gait
+    config.write_text("[gait]\nperiod = 0.5\n")
+    assert main(["view", "--config", str(config), "--motion", str(log), "--html",
+                 str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "[gait]" in err and "period" in err and "--motion" in err
+    assert main(["view", "--motion", "gati", "--html", str(out)]) == 2
+    assert "gait, transform, or a log file" in capsys.readouterr().err
+    assert main(["view", "--motion", "transform", "--cycle", "whole", "--html", str(out)]) == 2
+    assert "--cycle only with --motion FILE" in capsys.readouterr().err
+
+
 # --------------------------------------------------------------------------- in the browser
 
 SHOT = (400, 300)

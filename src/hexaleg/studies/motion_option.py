@@ -1,11 +1,11 @@
 """``--motion FILE``: a robot's own log (:func:`hexaleg.load_motion`) instead of the generated gait.
 
-``hexaleg report``, ``design`` and ``simulate`` take it through :func:`add_motion_option`; their
-loaders read the log with :func:`logged_motion` (``cycle="auto"``: one periodic cycle, which the
-simulation needs) and refuse the gait parameters that no longer apply
-(:func:`refuse_gait_table`). After the command ran, its quality figures are printed and written
-to the command's JSON file as ``motion_quality`` (every number ``{value, unit}``,
-:func:`quality_data`).
+``hexaleg report``, ``design``, ``simulate``, ``view`` and ``sweep`` take it through
+:func:`add_motion_option`; their loaders read the log with :func:`logged_motion`
+(``cycle="auto"``: one periodic cycle, which the simulation needs) and refuse the gait
+parameters that no longer apply (:func:`refuse_gait_table`). After the command ran, its quality
+figures are printed and written to the command's JSON file as ``motion_quality`` (every number
+``{value, unit}``, :func:`quality_data`).
 """
 
 from __future__ import annotations
@@ -43,19 +43,22 @@ _LOADED: dict[str, Motion] = {}
 
 
 def add_motion_option(parser: argparse.ArgumentParser, run: Callable[[argparse.Namespace], int],
-                      json_name: str) -> None:
+                      json_name: str | None, named: tuple[str, ...] = (),
+                      help: str = MOTION_HELP) -> None:
     """Add ``--motion FILE`` to a subcommand's parser and set its ``func`` to ``run``, wrapped:
     with ``--motion``, after the command ran (or failed after writing), the log's quality
-    figures are printed and added to ``<--out>/<json_name>`` as ``motion_quality``; ``--cycle``
-    says which part of the log is the cycle (:func:`logged_motion`)."""
-    parser.add_argument("--motion", metavar="FILE", help=MOTION_HELP)
+    figures are printed and added to ``<--out>/<json_name>`` as ``motion_quality`` (None: the
+    command writes no JSON file); ``--cycle`` says which part of the log is the cycle
+    (:func:`logged_motion`). ``named``: values of ``--motion`` that name a generated motion
+    instead of a log (``hexaleg view``'s ``gait``, ``transform``)."""
+    parser.add_argument("--motion", metavar="FILE", help=help)
     parser.add_argument("--cycle", default="auto", help=CYCLE_HELP)
-    parser.set_defaults(func=functools.partial(_run_with_motion, run, json_name))
+    parser.set_defaults(func=functools.partial(_run_with_motion, run, json_name, named))
 
 
-def _run_with_motion(run: Callable[[argparse.Namespace], int], json_name: str,
-                     args: argparse.Namespace) -> int:
-    if args.motion is None and args.cycle != "auto":
+def _run_with_motion(run: Callable[[argparse.Namespace], int], json_name: str | None,
+                     named: tuple[str, ...], args: argparse.Namespace) -> int:
+    if (args.motion is None or args.motion in named) and args.cycle != "auto":
         raise InvalidParameterError("--cycle", args.cycle, "--cycle only with --motion FILE "
                                     "(the generated gait is one cycle already)")
     try:
@@ -65,7 +68,8 @@ def _run_with_motion(run: Callable[[argparse.Namespace], int], json_name: str,
         if motion is not None:
             for line in motion_quality(motion).lines():
                 print(f"motion: {line}")
-            add_quality(Path(args.out) / json_name, motion)
+            if json_name is not None:
+                add_quality(Path(args.out) / json_name, motion)
 
 
 def parse_cycle(cycle: str) -> str | tuple[float, float]:

@@ -1,9 +1,10 @@
 """The ``hexaleg view`` study: a motion with its analysis drawn in the browser with Meshcat.
 
-What is shown (:func:`view_motion`): the tripod gait or the stand → sphere transformation of
-the built-in robot, analysed with the settings of a ``hexaleg report`` config file, with the foot
-forces as arrows and one joint quantity (motor power, motor torque or spring torque) as joint
-colours; or (:func:`replay_motion`) a run of ``hexaleg simulate`` replayed from its motion file
+What is shown (:func:`view_motion`): the tripod gait (or the cycle of a log of the robot's own
+gait, ``--motion FILE``) or the stand → sphere transformation of the built-in robot, analysed
+with the settings of a ``hexaleg report`` config file, with the foot forces as arrows and one
+joint quantity (motor power, motor torque or spring torque) as joint colours; or
+(:func:`replay_motion`) a run of ``hexaleg simulate`` replayed from its motion file
 (:mod:`hexaleg.studies.simulate.motion_file`), with the simulated contact forces and joint
 quantities. How it is shown (:mod:`hexaleg.outputs.viewer`): one looping Meshcat animation, either
 
@@ -104,7 +105,8 @@ class ViewedMotion:
                 "arrow_length": params.arrow_length, "marker_radius": params.marker_radius}
 
 
-def load_config(path: str | Path | None, robot: str | None = None
+def load_config(path: str | Path | None, robot: str | None = None,
+                log: str | Path | None = None, cycle: str = "auto"
                 ) -> tuple[ReportConfig, ViewParams, Robot]:
     """The settings of ``hexaleg view [--robot R] --config F``: the file of ``hexaleg report``
     (gait, motor, contact, springs) plus an optional ``[view]`` table, for a robot.
@@ -113,17 +115,21 @@ def load_config(path: str | Path | None, robot: str | None = None
         path: The TOML file, or None for the defaults.
         robot: A registered robot's name or a robot ``.toml`` (its own gait, motor and spring
             class, :meth:`ReportConfig.load`), or None for the built-in robot.
+        log: A log of the robot's own gait (``--motion FILE``), its cycle the configuration's
+            motion (a ``[gait]`` table then refused by name), or None.
+        cycle: Which part of the log is the cycle (``--cycle``, :meth:`ReportConfig.load`).
 
     Returns:
         The configuration, the view settings and the loaded robot.
 
     Raises:
         ConfigError, UnknownNameError, InvalidParameterError: as
-            :meth:`ReportConfig.from_mapping`, and for the ``[view]`` table.
+            :meth:`ReportConfig.from_mapping`, and for the ``[view]`` table; as
+            :meth:`ReportConfig.load` for the log.
     """
     data = load_toml(path) if path else {}
     where = str(path) if path else "config"
-    config, loaded = ReportConfig.load(robot, path)
+    config, loaded = ReportConfig.load(robot, path, log, cycle)
     params = from_mapping(ViewParams, data.get("view", {}), f"{where} [view]")
     return config, params, loaded if loaded is not None else load_robot()
 
@@ -134,8 +140,9 @@ def view_motion(config: ReportConfig, motion: str = "gait", joints: str = "power
 
     Args:
         config: Gait, motor, contact, springs and objective of the analysis.
-        motion: ``"gait"`` (one gait cycle, ``config.gait``) or ``"transform"`` (stand →
-            sphere, the built-in robot's).
+        motion: ``"gait"`` (one gait cycle: ``config.gait``, or the logged cycle
+            ``config.motion`` of ``--motion FILE``) or ``"transform"`` (stand → sphere, the
+            built-in robot's).
         joints: The joint colours: ``"power"`` (motor power, W), ``"torque"`` (motor torque,
             N·m) or ``"spring"`` (spring torque, N·m).
         robot: The robot; None for the built-in one.
@@ -147,7 +154,8 @@ def view_motion(config: ReportConfig, motion: str = "gait", joints: str = "power
     one_of("motion", motion, MOTIONS)
     one_of("joint quantity", joints, JOINT_QUANTITIES)
     robot = robot if robot is not None else load_robot()
-    shown = tripod_gait(robot, config.gait) if motion == "gait" else transform_motion(robot)
+    shown = (transform_motion(robot) if motion == "transform" else config.motion
+             if config.motion is not None else tripod_gait(robot, config.gait))
     result = analyze(robot, shown, config.spring_set(robot, shown), motor=config.motor,
                      objective=config.report.objective, contact=config.contact)
     attr, label = JOINT_QUANTITIES[joints]
@@ -203,13 +211,19 @@ def _replayed(recorded: SimulatedMotion, path: Path, joints: str, robot: Robot
 
 
 def _shown(config_path: str | Path | None, motion: str | None, joints: str, robot: str | None,
-           simulation: str | Path | None, run: str | None) -> tuple[ViewedMotion, ViewParams]:
+           simulation: str | Path | None, run: str | None, cycle: str = "auto"
+           ) -> tuple[ViewedMotion, ViewParams]:
     """What ``hexaleg view`` shows (:func:`view_motion` or :func:`replay_motion`) and how."""
     if simulation is None:
         if run is not None:
             raise InvalidParameterError("run", run, "a run of a simulation (--simulation DIR)")
-        config, params, loaded = load_config(config_path, robot)
-        return view_motion(config, motion or "gait", joints, loaded), params
+        log = None if motion is None or motion in MOTIONS else motion
+        if log is not None and not Path(log).is_file():
+            raise InvalidParameterError("motion", motion, f"one of {', '.join(MOTIONS)}, or a "
+                                        "log file of the robot's own gait that exists (CSV, "
+                                        "NPZ or a ROS 2 bag; docs/motion.md)")
+        config, params, loaded = load_config(config_path, robot, log, cycle)
+        return view_motion(config, "gait" if log else motion or "gait", joints, loaded), params
     if motion is not None:
         raise InvalidParameterError("motion", motion, f"none with a simulation ({simulation}): "
                                     "the replay shows the simulated gait")
@@ -221,7 +235,8 @@ def _shown(config_path: str | Path | None, motion: str | None, joints: str, robo
 
 def export_view(config_path: str | Path | None, html: str | Path, *, motion: str | None = None,
                 joints: str = "power", robot: str | None = None,
-                simulation: str | Path | None = None, run: str | None = None) -> Path:
+                simulation: str | Path | None = None, run: str | None = None,
+                cycle: str = "auto") -> Path:
     """``hexaleg view --html``: :func:`view_motion` (or :func:`replay_motion` of
     ``simulation``) written as an offline page.
 
@@ -229,33 +244,37 @@ def export_view(config_path: str | Path | None, html: str | Path, *, motion: str
         config_path: The config file (:func:`load_config`; only its ``[view]`` table applies to
             a replay), or None.
         html: The page to write.
-        motion: As :func:`view_motion` (None: the gait); not with ``simulation``.
+        motion: As :func:`view_motion` (None: the gait), or a log of the robot's own gait
+            (``--motion FILE``: its cycle, :func:`load_config`); not with ``simulation``.
         joints: As :func:`view_motion`.
         robot: As :func:`load_config`; for a replay None is the motion file's robot.
         simulation: An out directory of ``hexaleg simulate`` to replay, or None.
         run: As :func:`replay_motion` (None: ``"springs"``); only with ``simulation``.
+        cycle: With a log: which part of it is the cycle (:func:`load_config`).
 
     Returns:
         The written path.
 
     Raises:
-        InvalidParameterError: ``motion`` with ``simulation``, ``run`` without it; as
-            :func:`view_motion`, :func:`replay_motion`.
+        InvalidParameterError: ``motion`` with ``simulation``, ``run`` without it, a ``motion``
+            that is neither a choice nor a file; as :func:`view_motion`,
+            :func:`replay_motion`, :func:`load_config`.
     """
-    shown, params = _shown(config_path, motion, joints, robot, simulation, run)
+    shown, params = _shown(config_path, motion, joints, robot, simulation, run, cycle)
     return export_html(shown.robot, shown.motion, html, **shown.options(params))
 
 
 def serve_view(config_path: str | Path | None, *, motion: str | None = None,
                joints: str = "power", robot: str | None = None,
-               simulation: str | Path | None = None, run: str | None = None) -> str:
+               simulation: str | Path | None = None, run: str | None = None,
+               cycle: str = "auto") -> str:
     """``hexaleg view``: :func:`view_motion` (or :func:`replay_motion`) served on localhost
     (see :func:`serve`); the arguments are those of :func:`export_view`.
 
     Returns:
         The viewer's URL.
     """
-    shown, params = _shown(config_path, motion, joints, robot, simulation, run)
+    shown, params = _shown(config_path, motion, joints, robot, simulation, run, cycle)
     return serve(shown.robot, shown.motion, **shown.options(params))
 
 
