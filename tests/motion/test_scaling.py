@@ -134,3 +134,14 @@ def test_docs_state_the_reference_and_the_spiders_line():
     assert f"`v² / (g h)` = {REFERENCE_FROUDE:.4f}" in page
     sized = sized_defaults(description(str(SPIDER)), GaitParams.for_robot(str(SPIDER), sized=False))
     assert sized is not None and f"warning: {sized.note()}\n" in page
+
+
+def test_a_missing_urdf_is_a_named_error_not_a_traceback(tmp_path):
+    from hexaleg.errors import RobotModelError
+
+    toml = tmp_path / "gone.toml"
+    toml.write_text('[robot]\nname = "gone"\nurdf = "gone.urdf"\n[[robot.legs]]\nname = "LF"\n'
+                    'joints = ["a"]\nfoot = "f"\n[[robot.legs]]\nname = "RF"\njoints = ["b"]\n'
+                    'foot = "g"\n')
+    with pytest.raises(RobotModelError, match=r"gone\.urdf"):
+        GaitParams.for_robot(str(toml))

@@ -216,11 +216,17 @@ def sized_defaults(desc: RobotDescription, gait: GaitParams,
     Returns:
         What was chosen, or None when the description sets every key of :data:`SIZED_KEYS`.
         Cached per description and URDF file (its modification time).
+
+    Raises:
+        RobotModelError: the robot cannot be loaded (its files named).
     """
     keys = needs_sizing(desc)
     if not keys:
         return None
-    stat = desc.urdf_path.stat()
+    try:
+        stat = desc.urdf_path.stat()
+    except OSError:  # loading names the missing file (RobotModelError)
+        return _size(desc, gait, desc.load() if robot is None else robot, keys)
     key = (repr(desc), stat.st_mtime_ns, stat.st_size)
     if key not in _CACHE:
         _CACHE[key] = _size(desc, gait, desc.load() if robot is None else robot, keys)
