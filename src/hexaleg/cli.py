@@ -255,7 +255,7 @@ def _add_sweep(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--period", help="gait period, s (values as above)")
     p.add_argument("--samples", type=int, help="samples per gait cycle")
     p.add_argument("--metric", help="metric to rank by (default: electrical)")
-    p.set_defaults(func=_run_sweep)
+    add_motion_option(p, _run_sweep, None)
 
 
 def _run_sweep(args: argparse.Namespace) -> int:
@@ -284,6 +284,10 @@ def _run_sweep(args: argparse.Namespace) -> int:
                                 optimal=optimal, robot=args.robot or "hexaleg"))
     if args.metric:
         spec = dataclasses.replace(spec, metric=args.metric)
+    if args.motion:
+        from hexaleg.studies.sweep.logged import on_log
+
+        spec = on_log(spec, args.motion, args.cycle)
     executor = args.executor or ("dask" if args.scheduler else "process")
     result = run_sweep(spec, args.out, executor=executor, workers=args.workers,
                        scheduler=args.scheduler, progress=True)

@@ -36,6 +36,7 @@ from hexaleg.design.codesign import optimal_springs
 from hexaleg.design.evaluator import (
     SPRING_PARAMETERS,
     Design,
+    Evaluator,
     RunSpec,
     evaluator,
     metric_row,
@@ -46,7 +47,7 @@ from hexaleg.errors import (
     TorqueLimitError,
 )
 from hexaleg.robot.model import Robot
-from hexaleg.studies.sweep import executors
+from hexaleg.studies.sweep import executors, logged
 from hexaleg.studies.sweep.dead_zones import check_dead_zones
 from hexaleg.studies.sweep.executors import default_workers, open_executor
 from hexaleg.studies.sweep.optimal import OptimalPoint, OptimalSpec
@@ -78,7 +79,7 @@ def evaluate_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, S
     """
     import pandas as pd
 
-    ev = evaluator(run, gait)
+    ev = _evaluator(run, gait)
     ev.prepared.reset_warm_start(ev.objective)  # a chunk's rows do not depend on the last chunk
     columns = gait_columns(run, gait)  # one gait per chunk
     rows = []
@@ -91,9 +92,17 @@ def evaluate_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, S
     return pd.DataFrame(rows)
 
 
+def _evaluator(run: RunSpec, gait: Mapping[str, Any]) -> Evaluator:
+    """The evaluator of a gait of the grid: generated, or a log (:mod:`.logged`)."""
+    return logged.log_evaluator(run, gait) if logged.is_log(gait) else evaluator(run, gait)
+
+
 def gait_columns(run: RunSpec, gait: Mapping[str, Any]) -> dict[str, float]:
     """``gait.<name>`` columns: every :data:`GAIT_PARAMETERS` value of the gait (the robot's own
-    gait under the point's values), NaN where a parameter is None."""
+    gait under the point's values), NaN where a parameter is None; of a log, what its cycle
+    measures (:func:`~hexaleg.studies.sweep.logged.log_columns`)."""
+    if logged.is_log(gait):
+        return logged.log_columns(logged.log_evaluator(run, gait), GAIT_PARAMETERS)
     full = dataclasses.asdict(run.gait(gait))
     return {f"gait.{name}": math.nan if full[name] is None else full[name]
             for name in GAIT_PARAMETERS}
@@ -113,7 +122,7 @@ def optimal_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, Se
     """
     import pandas as pd
 
-    ev = evaluator(run, gait)
+    ev = _evaluator(run, gait)
     ev.prepared.reset_warm_start(ev.objective)  # a chunk's rows do not depend on the last chunk
     columns = optimal.columns(list(groups))
     gait_row = gait_columns(run, gait)  # one gait per chunk
@@ -186,7 +195,10 @@ def software_versions() -> dict[str, str]:
 
 def _metadata(spec: SweepSpec, robot: Robot, groups: Mapping[str, tuple[str, ...]]
               ) -> dict[str, Any]:
-    """Manifest entries beside the spec: robot, motor, gaits, number of points, versions."""
+    """Manifest entries beside the spec: robot, motor, gaits, number of points, versions; a
+    logged sweep's quality figures (:func:`~hexaleg.studies.motion_option.quality_data`)."""
+    from hexaleg.studies.motion_option import quality_data
+
     return {
         "robot": {"name": robot.name, "description": spec.run.robot,
                   "urdf": str(robot.urdf_path), "nq": robot.model.nq,
@@ -195,6 +207,8 @@ def _metadata(spec: SweepSpec, robot: Robot, groups: Mapping[str, tuple[str, ...
         "gaits": spec.gaits(),
         "n_points": spec.n_points,
         "versions": software_versions(),
+        **({"motion_quality": quality_data(_evaluator(spec.run, spec.gaits()[0]).motion)}
+           if spec.motion is not None else {}),
     }
 
 
@@ -276,7 +290,7 @@ def _run(spec: SweepSpec, store: ResultStore, done: set[int],
     if executor == "process" and todo:
         # Forked workers inherit this process's evaluator cache: build the first gait's
         # evaluator (gait, prepare, baseline) once here instead of once in every worker.
-        evaluator(spec.run, spec.gaits()[todo[0] // len(designs)])
+        _evaluator(spec.run, spec.gaits()[todo[0] // len(designs)])
     with open_executor(executor, workers=workers, scheduler=scheduler) as ex:
         return _drain(ex, task, tasks, window, store, total=len(todo) if progress else 0,
                       on_chunk=on_chunk)

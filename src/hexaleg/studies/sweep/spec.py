@@ -115,6 +115,8 @@ class SweepSpec:
         optimal: With it, each point is the optimum of a spring family on a set of the groups
             (:class:`~hexaleg.studies.sweep.optimal.OptimalSpec`) and the groups carry no design
             parameters.
+        motion: A log of the robot's own gait swept instead of gaits (``--motion``,
+            :mod:`~hexaleg.studies.sweep.logged`), or None. cycle: Which part of it.
 
     Raises:
         UnknownNameError: an unknown gait or spring parameter, metric or layout (lists the
@@ -132,6 +134,8 @@ class SweepSpec:
     metric: str = DEFAULT_METRIC
     chunk_size: int = 50
     optimal: OptimalSpec | None = None
+    motion: str | None = None
+    cycle: str = "auto"
 
     def __post_init__(self) -> None:
         for name in self.gait:
@@ -158,7 +162,7 @@ class SweepSpec:
         count("sweep grid (points: gaits × designs)", self.grid_size(), item_bytes=POINT_BYTES,
               item="one point", fix="split the sweep or use fewer values on an axis: "
               + (" × ".join(f"{n} ({len(v)})" for n, v in self.axes()) or "no axes"))
-        for g in self.gaits():  # every gait of the grid is valid (GaitParams checks ranges)
+        for g in self.gaits() if self.motion is None else ():  # valid (GaitParams checks)
             self.run.gait(g)
 
     @classmethod
@@ -249,7 +253,10 @@ class SweepSpec:
     # -- the grid
 
     def gaits(self) -> list[dict[str, Any]]:
-        """Every gait of the grid as :class:`~hexaleg.motion.params.GaitParams` keywords."""
+        """Every gait of the grid as :class:`~hexaleg.motion.params.GaitParams` keywords (a
+        logged sweep: the log, ``{"motion": path, "cycle": cycle}``)."""
+        if self.motion is not None:
+            return [{"motion": self.motion, "cycle": self.cycle}]
         return _combinations(self.gait)
 
     def designs(self) -> list[dict[str, dict[str, float]]]:
@@ -329,6 +336,7 @@ class SweepSpec:
             "joints": {g: list(j) for g, j in self.joints.items()},
             "layout": self.layout,
             **({"optimal": self.optimal.to_dict()} if self.optimal is not None else {}),
+            **({"motion": {"path": self.motion, "cycle": self.cycle}} if self.motion else {}),
         }
 
 
