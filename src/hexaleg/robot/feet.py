@@ -22,7 +22,7 @@ then a fixed point of the link, where the ground is touched when standing.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
@@ -132,6 +132,21 @@ def resolve_foot(model: pin.Model, collision: pin.GeometryModel, visual: pin.Geo
             f"joint {last} ({source}), touching the ground at its lowest point in the stand "
             "pose")
     return replace(spec, foot=name, point=None), note, sphere
+
+
+def resolve_feet(model: pin.Model, collision: pin.GeometryModel, visual: pin.GeometryModel,
+                 legs: Sequence[LegSpec]
+                 ) -> tuple[tuple[LegSpec, ...], list[str], dict[str, SphereFoot]]:
+    """:func:`resolve_foot` of every leg: the specs, a note per found foot, the round feet."""
+    specs, notes, spheres = [], [], {}
+    for spec in legs:
+        spec, note, sphere = resolve_foot(model, collision, visual, spec)
+        specs.append(spec)
+        if note:
+            notes.append(f"foot found at the tip of the leg's last link: {note}")
+        if sphere is not None:
+            spheres[spec.name] = sphere
+    return tuple(specs), notes, spheres
 
 
 def _add_frame(model: pin.Model, leg: str, joint: int, placement: pin.SE3) -> str:

@@ -17,8 +17,9 @@ import pinocchio as pin
 from hexaleg.config import read_text
 from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError, UnknownNameError
 from hexaleg.robot import geometry as _geometry
-from hexaleg.robot.feet import LegSpec, SphereFoot, place_sphere_feet, resolve_foot
+from hexaleg.robot.feet import LegSpec, SphereFoot, place_sphere_feet, resolve_feet
 from hexaleg.robot.fields import horizontal_axis
+from hexaleg.robot.root import with_root_offset
 from hexaleg.robot.srdf import check_reference_poses
 from hexaleg.robot.urdf_numbers import check_xml
 
@@ -85,9 +86,8 @@ class Robot:
         heading: The base axis that points forward, a horizontal unit vector in the base frame,
             shape (3,); gaits walk along it (``+x`` unless a description says otherwise).
         notes: What loading found or assumed (feet found, meshes replaced, legs discovered).
-        foot_spheres: Leg → its round foot, for feet found on a sphere or a capsule's end
-            (:mod:`hexaleg.robot.feet`): the foot frame is that sphere's lowest point in the
-            stand pose (:func:`~hexaleg.robot.feet.place_sphere_feet`).
+        foot_spheres: Leg → its round foot (found on a sphere or capsule end), whose frame is the
+            sphere's lowest point in the stand pose (:func:`.feet.place_sphere_feet`).
     """
 
     name: str
@@ -195,12 +195,8 @@ class Robot:
 
     def lowest_point(self, q: np.ndarray, geometry: str = "visual",
                      ignore: Sequence[str] = ()) -> tuple[float, str]:
-        """Lowest world height of any geometry at ``q``, and the geometry object it belongs to.
-
-        Exact for the primitive shapes the built-in robot uses: the support point in −z of a
-        shape with centre ``c`` and rotation ``R`` lies at ``c_z − s``, with ``s = r`` for a
-        sphere, ``s = Σ_i |R_zi| h_i`` for a box of half-sides ``h``, and
-        ``s = h |R_zz| + r sqrt(1 − R_zz²)`` for a cylinder of half-length ``h`` along its z axis.
+        """Lowest world height of any geometry at ``q``, and the geometry object it belongs to
+        (exact for boxes, spheres and cylinders: :func:`hexaleg.robot.geometry.lowest_points`).
 
         Args:
             q: Configuration, shape (nq,) (the base placement included).
@@ -355,8 +351,6 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
         raise RobotModelError(str(e)) from None
     xml, notes = with_available_meshes(text, urdf_path.parent.resolve(), dirs)
     if root_offset is not None:
-        from hexaleg.robot.root import with_root_offset
-
         xml, root_note = with_root_offset(xml, urdf_path, root_offset)
         notes.append(root_note)
     model, visual, collision = _build(xml, urdf_path, dirs)
@@ -375,23 +369,14 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
         notes.append(note)
         joint_kinds = joint_kinds or found_kinds
     else:
-        resolved: list[LegSpec] = []
-        spheres = {}
-        for spec in legs or HEXALEG_LEGS:
-            spec, foot_note, sphere = resolve_foot(model, collision, visual, spec)
-            resolved.append(spec)
-            if foot_note:
-                notes.append(f"foot found at the tip of the leg's last link: {foot_note}")
-            if sphere is not None:
-                spheres[spec.name] = sphere
-        specs = tuple(resolved)
+        specs, foot_notes, spheres = resolve_feet(model, collision, visual, legs or HEXALEG_LEGS)
+        notes += foot_notes
     joint_kinds = tuple(joint_kinds or JOINT_KINDS)
     leg_objs = tuple(_make_leg(model, spec) for spec in specs)
     sizes = {len(leg.joint_names) for leg in leg_objs}
     if sizes != {len(joint_kinds)}:
         raise RobotModelError(f"legs have {sorted(sizes)} joints but joint_kinds names "
                               f"{len(joint_kinds)}: {', '.join(joint_kinds)}")
-
     if not pin.computeTotalMass(model) > 0:  # no body to carry: every dynamic quantity is 0
         raise RobotModelError(f"URDF {urdf_path}: every link has zero mass (total 0 kg); give "
                               "the links <inertial><mass value=\"…\"/> in kg")
