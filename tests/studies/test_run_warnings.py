@@ -73,6 +73,7 @@ def test_report_prints_shows_and_writes_them(config, expected, tmp_path, capsys)
     for line in expected:
         assert f"warning: {line}" in out
     assert page_text.count("<b>Warning:</b>") == len(expected)
+    assert not any("joint_speed" in n for n in data["notes"])  # said once, as a warning
 
 
 def test_simulate_prints_shows_and_writes_them(config, expected, tmp_path, capsys):

@@ -112,8 +112,10 @@ def _report_curve(prepared: Prepared, springs: SpringSet, rp: ReportParams, obje
 
 
 def _findings(robot: Robot, motion: Motion, a: Analysis) -> list[Finding]:
-    """What the sanity checks find in the robot, the gait and its motor torques."""
-    return [*robot_findings(robot), *motion_findings(robot, motion),
+    """What the sanity checks find in the robot, the gait and its motor torques (joint speeds
+    over their limits aside: the run's warnings say them, :mod:`hexaleg.studies.run_warnings`)."""
+    return [*robot_findings(robot),
+            *(f for f in motion_findings(robot, motion) if f.check != "joint_speed"),
             *torque_findings(robot, a.tau_motor, motion.t)]
 
 
