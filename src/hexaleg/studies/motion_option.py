@@ -25,8 +25,8 @@ if TYPE_CHECKING:  # the parser imports this module: the loaders only when a log
     from hexaleg.robot.model import Robot
 
 MOTION_HELP = ("a log of the robot's own gait (CSV with a header row or NPZ: time, joint angles, "
-               "optional base pose and contact_<LEG>; docs/motion.md) instead of the generated "
-               "gait")
+               "optional base pose and contact_<LEG>; or a ROS 2 bag directory; docs/motion.md) "
+               "instead of the generated gait")
 """What ``--motion`` takes."""
 CYCLE_HELP = ("with --motion: 'auto' (the period found and the log's cycles averaged into one "
               "periodic cycle), 'whole' (the log is exactly one cycle, taken as periodic) or "

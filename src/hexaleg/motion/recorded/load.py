@@ -1,10 +1,11 @@
 """``load_motion``: a robot's own log → a :class:`~hexaleg.motion.trajectory.Motion`.
 
-The pipeline (each step its module): read (CSV/NPZ, units to SI) → resample (uniform grid) →
-cycle (period by autocorrelation, cycles averaged; or a window, or the whole log) → smooth and
-differentiate (Savitzky–Golay, cut-off from the noise) → stance (contact columns or feet
-kinematics) → base (logged pose, or leg odometry) → checks (limits, stance, feet above ground)
-and a :class:`~hexaleg.motion.recorded.quality.MotionQuality` report in ``motion.info``.
+The pipeline (each step its module): read (CSV/NPZ or a ROS 2 bag, units to SI) → resample
+(uniform grid) → cycle (period by autocorrelation, cycles averaged; or a window, or the whole
+log) → smooth and differentiate (Savitzky–Golay, cut-off from the noise) → stance (contact
+columns or feet kinematics) → base (logged pose, or leg odometry) → checks (limits, stance, feet
+above ground) and a :class:`~hexaleg.motion.recorded.quality.MotionQuality` report in
+``motion.info``.
 """
 
 from __future__ import annotations
@@ -64,7 +65,8 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
 
     Args:
         robot: The robot of the log.
-        path: A CSV or NPZ log (:mod:`hexaleg.motion.recorded.read` for the columns).
+        path: A CSV or NPZ log (:mod:`hexaleg.motion.recorded.read` for the columns), or a ROS 2
+            bag (:mod:`hexaleg.motion.recorded.bag`).
         cycle: ``"auto"`` (the period found and the log's cycles averaged into one periodic
             cycle), ``"whole"`` (the log as it is) or ``(t0, t1)`` (a window, s from the first
             stamp).

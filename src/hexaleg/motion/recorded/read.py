@@ -187,15 +187,17 @@ def _npz_columns(data: bytes, where: str) -> tuple[list[str], np.ndarray]:
 
 
 def read_log(robot: Robot, path: str | Path, *, ignore: tuple[str, ...] = ()) -> Log:
-    """Read a CSV (``.csv``, ``.txt``) or NPZ (``.npz``) motion log of ``robot`` into SI.
+    """Read a CSV (``.csv``, ``.txt``) or NPZ (``.npz``) motion log of ``robot`` into SI, or a
+    ROS 2 bag (:mod:`hexaleg.motion.recorded.bag`).
 
     Through hexaleg's one bounded file reader (:func:`hexaleg.config.read_bytes`, at most
     :data:`MAX_LOG_BYTES`).
 
     Args:
         robot: The robot the log is of (its joints and legs name the columns).
-        path: The log file.
-        ignore: Column names to skip (e.g. servo currents or temperatures the log also holds).
+        path: The log file (a bag: its directory).
+        ignore: Column names to skip (e.g. servo currents or temperatures the log also holds);
+            in a bag, topics and joint names.
 
     Raises:
         ConfigError: unreadable, not UTF-8, malformed rows, no ``time`` column.
@@ -203,6 +205,10 @@ def read_log(robot: Robot, path: str | Path, *, ignore: tuple[str, ...] = ()) ->
         InvalidParameterError: a unit not allowed for its column (the allowed ones listed).
     """
     path = Path(path)
+    from hexaleg.motion.recorded.bag import bag_directory, read_bag  # it imports this module
+
+    if bag_directory(path) is not None:
+        return read_bag(robot, path, ignore=ignore)
     where = f"motion log {path}"
     data = read_bytes(path, "motion log", MAX_LOG_BYTES)
     if path.suffix.lower() == ".npz":
