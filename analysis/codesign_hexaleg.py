@@ -3,22 +3,30 @@
 Run:  python analysis/codesign_hexaleg.py
 
 :func:`hexaleg.codesign` with the default constraints (the static margin at least the default
-gait's) and the default search (restarted Nelder–Mead, 100 evaluations a search, 100 samples a
-cycle; the rows at 200): the four rows, the sequential design beside them, the chosen gait, the
-constraints on it, the check that ``hexaleg.tripod_gait`` + ``Prepared.evaluate`` of the reported
-gait and springs reproduce its energy, and the MuJoCo run. Rounded so that the log
-(analysis/logs/codesign_hexaleg.log) is the same on every run. The full spring rules of
-``hexaleg design`` are not applied here (``hexaleg codesign --rules``).
+gait's), the default search (restarted Nelder–Mead, 100 evaluations a search, 100 samples a
+cycle; the rows at 200) and the full spring rules of ``hexaleg design`` on the chosen gait (the
+default: parsimony, stop tolerance, envelope and hard stop, fatigue, arbor): the four rows, the
+sequential design beside them, the chosen gait, the constraints on it, the check that
+``hexaleg.tripod_gait`` + ``Prepared.evaluate`` of the reported gait and springs reproduce their
+energy (the inner program's and the springs to buy), the rules' figures, the springs read back
+by ``hexaleg.load_design`` from ``codesign.json``, and the MuJoCo run with the springs to buy.
+Rounded so that the log (analysis/logs/codesign_hexaleg.log) is the same on every run.
 """
 
 from __future__ import annotations
 
+import math
+import tempfile
+from pathlib import Path
+
 import hexaleg
+from hexaleg.studies.codesign.rules import per_metre
+from hexaleg.studies.codesign.write import write_result
 
 
 def main() -> None:
     r = hexaleg.codesign("hexaleg", 0.06, curve=False)
-    print(f"{r.title} at {r.speed:g} m/s, {r.family} springs on every joint class")
+    print(f"{r.title} at {r.speed:g} m/s, {r.family} springs on every joint class in the search")
     for row in (*r.rows, r.sequential):
         print(f"  {row.label:48s} {row.per_metre:6.1f} J/m  CoT {row.cost_of_transport:5.2f}")
     e0, e = r.rows[0].per_metre, r.rows[3].per_metre
@@ -33,10 +41,40 @@ def main() -> None:
     robot = hexaleg.load_robot()
     prepared = hexaleg.prepare(robot, hexaleg.tripod_gait(robot, r.chosen),
                                contact=r.constraints.contact())
-    again = prepared.evaluate(r.springs, "joule").metrics["total"]["electrical"] / r.chosen.stride
+
+    def energy(springs: hexaleg.SpringSet) -> float:
+        return prepared.evaluate(springs, "joule").metrics["total"]["electrical"] / r.chosen.stride
+
+    again = energy(r.springs)
     print(f"reproduced by tripod_gait + evaluate within 1 %: {abs(again / e - 1) < 0.01}")
+    d = r.rules
+    rec = d.recommended
+    bought = per_metre(d, r.chosen.stride)
+    print(f"\nsprings to buy (full spring rules on the chosen gait): {rec.label} on "
+          f"{', '.join(rec.optimum.groups)}; {bought:.1f} J/m, {bought / e0:.2f} of the default "
+          f"gait without springs")
+    print(f"  reproduced by tripod_gait + evaluate within 1 %: "
+          f"{abs(energy(rec.optimum.springs) / bought - 1) < 0.01}")
+    t = d.tolerance
+    print(f"  stops within ±{math.degrees(t.tolerance):g}°: worst electrical saving "
+          f"{100 * t.worst['tolerant']:.1f} % tolerant, {100 * t.worst['blind']:.1f} % "
+          f"tolerance-blind; built: {t.chosen}")
+    bar = 100 * d.config.design.min_group_saving
+    print(f"  parsimony: {len(rec.optimum.groups)} classes fitted, {len(rec.dropped)} left out "
+          f"under the {bar:g} point bar")
+    for e_, (p, f) in zip(d.envelope, d.fatigue, strict=True):
+        stop = "a hard stop" if e_.stop is not None else "no hard stop"
+        print(f"  {p.group} {p.side}: {stop} over the whole envelope; fatigue n_f >= 1: "
+              f"{f.safety_factor >= 1}; clears its arbor: {e_.clears_arbor}")
+    with tempfile.TemporaryDirectory() as out:
+        write_result(r, out)
+        loaded = hexaleg.load_design(Path(out) / "codesign.json")
+    same = set(loaded.springs) == set(rec.optimum.springs) and all(
+        type(loaded.springs[j]) is type(rec.optimum.springs[j]) for j in loaded.springs)
+    print(f"  codesign.json read back by load_design: the springs to buy {same}, the chosen "
+          f"gait {math.isclose(loaded.gait.period, r.chosen.period)}")
     sim = r.simulation
-    print(f"MuJoCo: walked within 3 % of the plan: "
+    print(f"MuJoCo with the springs to buy: walked within 3 % of the plan: "
           f"{abs(sim['walked'] / sim['planned'] - 1) < 0.03}, simulated saving within 2 points "
           f"of the predicted: {abs(sim['simulated'] - sim['predicted']) <= 0.02}")
 

@@ -93,3 +93,42 @@ def test_bad_tolerance_is_named(default):
         tolerant_springs(prepared, blind, 0.0)
     with pytest.raises(InvalidParameterError, match="stop tolerance"):
         tolerant_springs(prepared, blind, float("nan"))
+
+
+
+def test_the_certified_worst_case_holds_only_the_problems_that_set_it(monkeypatch):
+    """The explicit program of a worst case holds the problems with binding samples and those
+    near the worst (condensed.explicit_program from the condensed optimum), yet equals the
+    program over every stop shift to the solver's tolerance — also when it starts from the
+    binding problems alone and the left-out ones that set the worst case must join. Tibia
+    one-sided springs at μ 0.45, 40 samples: friction binds in some of the five shifts."""
+    from hexaleg.design import condensed
+    from hexaleg.design.bundle import minimise
+    from hexaleg.design.evaluator import RunSpec
+    from hexaleg.design.setup import design_setup
+    from hexaleg.dynamics.contact import ContactParams
+
+    run = RunSpec(objective="joule", contact=ContactParams(mu=0.45))
+    prepared = condition_prepared(run, run.gait({"samples": 40}), Condition())
+    setup = design_setup(prepared, {"tibia": "tibia"}, "one_sided", "joule", None, math.pi,
+                         "electrical", scenarios(["tibia"], TOLERANCE))
+    problems = setup.problems({"tibia": {"contact": 0.18, "side": "below"}})
+    # the whole program, as before: every problem, explicit where the bundle's optimum binds
+    data = [condensed.Condensed(p, "electrical") for p in problems]
+    G, h, nonneg, fixed = condensed.rows(problems)
+    bundle = minimise([d.oracle for d in data], np.zeros(problems[0].nx), "worst", G=G, h=h,
+                      nonneg=nonneg, fixed=fixed, tolerance=condensed.CERTIFIED)
+    for d in data:
+        d.update(np.where(nonneg, np.maximum(bundle.x, 0.0), bundle.x))
+    x, whole = condensed.explicit_program(data, "worst", nonneg, ~fixed, G, h)
+    assert "problems_in_program" not in whole
+    held = condensed.solve_condensed(problems, "electrical", "worst")
+    assert 0 < held.solver["problems_in_program"] < len(problems)
+    assert any(held.explicit) and not all(held.explicit)
+    monkeypatch.setattr(condensed, "NEAR", -1.0)  # none near the worst: the binding ones alone
+    joined = condensed.solve_condensed(problems, "electrical", "worst")
+    for r in (held, joined):
+        np.testing.assert_allclose(r.x, x, rtol=1e-5, atol=1e-7)
+        assert r.solver["program_value"] == pytest.approx(whole["program_value"], abs=1e-7)
+        assert r.explicit == tuple(int((~d.condensed).sum()) for d in data)
+    assert joined.solver["rounds"] >= 2  # solved again with the left-out problems that joined

@@ -15,6 +15,7 @@ samples = 40
 final_samples = 40
 max_evaluations = 10
 restarts = 1
+rules = false
 curve = false
 simulate = false
 [codesign.constraints]
@@ -24,7 +25,8 @@ min_body_clearance = 0.01
 
 def test_registered_with_its_options():
     args = build_parser().parse_args(["codesign", "--speed", "0.05", "--pattern", "wave"])
-    assert args.speed == 0.05 and args.pattern == "wave" and not args.rules
+    assert args.speed == 0.05 and args.pattern == "wave" and args.rules is None  # the default
+    assert build_parser().parse_args(["codesign", "--no-rules"]).rules is False
 
 
 def test_config_table_is_checked(tmp_path):
@@ -36,6 +38,11 @@ def test_config_table_is_checked(tmp_path):
     good.write_text(SMALL)
     assert settings(good)["constraints"].min_body_clearance == 0.01
     assert settings(None) == {}
+    rules = tmp_path / "rules.toml"
+    rules.write_text("[codesign.design]\nfamilies = [\"preloaded\"]\nlife_cycles = 1e6\n")
+    design = settings(rules)["design"]
+    assert design.families == ("preloaded",) and design.life_cycles == 1e6
+    assert not design.robustness
 
 
 def test_runs_and_writes(tmp_path, capsys):
@@ -46,6 +53,7 @@ def test_runs_and_writes(tmp_path, capsys):
     data = json.loads((out / "codesign.json").read_text())
     assert data["speed"] == {"value": 0.06, "unit": "m/s"}
     assert data["search"]["codesign"]["evaluations"] <= 10
+    assert data["full_rules"] is None and "inner program" in data["recommended"]["source"]
     assert "J/m" in capsys.readouterr().out
 
 

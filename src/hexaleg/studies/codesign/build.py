@@ -15,12 +15,12 @@
    design (the gait alone, then its springs) beside them;
 4. the curve of energy per metre against speed for the default and the co-designed gait, with
    and without their springs (the gait's other parameters held, the stride ``v · period``);
-5. the co-designed gait simulated forward in MuJoCo with and without its springs
-   (:func:`hexaleg.simulation.run.simulate`);
-6. with ``rules``, the full spring rules of ``hexaleg design`` (tolerance, envelope, fatigue,
-   arbor, parsimony, simulated ranking: :func:`hexaleg.studies.design.build.build_design`)
-   applied to the chosen gait only — too slow for the inner loop — whose recommendation is the
-   springs to buy.
+5. with ``rules`` (the default), the full spring rules of ``hexaleg design`` (tolerance,
+   envelope, fatigue, arbor, parsimony, simulated ranking:
+   :func:`hexaleg.studies.design.build.build_design`) applied to the chosen gait only — too
+   slow for the inner loop — whose recommendation is the springs to buy (:func:`full_rules`);
+6. the co-designed gait simulated forward in MuJoCo with and without the springs to buy
+   (:func:`hexaleg.simulation.run.simulate`).
 """
 
 from __future__ import annotations
@@ -34,6 +34,7 @@ from typing import Any
 import numpy as np
 
 from hexaleg.checks import integer, one_of, real
+from hexaleg.config import from_mapping
 from hexaleg.design.codesign import Groups
 from hexaleg.design.gait_evaluation import (
     PARAMETERS,
@@ -50,11 +51,32 @@ from hexaleg.motion.params import GaitParams
 from hexaleg.motion.patterns import check_pattern
 from hexaleg.robot.model import Robot
 from hexaleg.robot.registry import description
+from hexaleg.robot.springs import SpringSet
 from hexaleg.studies.codesign.result import CodesignResult, Row, SpeedPoint
+from hexaleg.studies.design.config import DesignParams
 from hexaleg.studies.design.groups import design_groups
 
 SPEED_FACTORS = (0.5, 0.75, 1.0, 1.25, 1.5)
 """The speed curve's speeds, as factors of the required speed."""
+RULE_FAMILIES = ("linear", "one_sided", "preloaded")
+"""The families the full rules compare on the chosen gait: ``hexaleg design``'s without
+``dead_zone``. A dead-zone spring is the preloaded family with both preloads at zero (the same
+``above``/``below`` terms, :mod:`hexaleg.design.families`), so at every geometry the preloaded
+program's optimum is at least as good; it ranked last on the default gait (+12.08 % against
++16.36 %, analysis/logs/answer_hexaleg.log) and on the co-designed one (+39.90 % against
++42.66 %), where its geometry search alone took 27–70 s (docs/codesign.md)."""
+
+
+def rule_params(**table: Any) -> DesignParams:
+    """The ``[design]`` settings of the full rules on the chosen gait: ``hexaleg design``'s
+    defaults, the families :data:`RULE_FAMILIES` and ``robustness`` false (the maps and the
+    robust box are not rules), with ``table``'s keys on top (a ``[codesign.design]`` table).
+
+    Raises:
+        UnknownNameError, ConfigError, InvalidParameterError: as ``[design]`` (named).
+    """
+    return from_mapping(DesignParams, {"families": list(RULE_FAMILIES), "robustness": False,
+                                       **table}, "[codesign.design]")
 
 
 def default_gait(robot: Robot, name: str, speed: float, pattern: str | None, samples: int
@@ -74,9 +96,8 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
              constraints: Constraints | None = None, family: str = "linear",
              samples: int = 100, final_samples: int = 200, max_evaluations: int = 100,
              restarts: int = 3, grouping: str = "class", curve: bool = True,
-             simulate: bool = True,
-             rules: bool = False, progress: Callable[[str], None] | None = None
-             ) -> CodesignResult:
+             simulate: bool = True, rules: bool = True, design: DesignParams | None = None,
+             progress: Callable[[str], None] | None = None) -> CodesignResult:
     """The gait and springs that cover a metre at ``speed`` for the least electrical energy
     (module docstring).
 
@@ -93,8 +114,11 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
             pair, or ``joint`` (Solo-12's front and hind knees bend opposite ways: a class
             design cancels, so ``mirrored``).
         curve: Compute the energy-vs-speed curve. simulate: Simulate the chosen gait.
-        rules: Apply ``hexaleg design``'s full spring rules to the chosen gait (minutes:
-            :func:`full_rules`, docs/codesign.md).
+        rules: Apply ``hexaleg design``'s full spring rules to the chosen gait and recommend
+            what they choose (:func:`full_rules`, about a minute); False: the search's answer
+            alone, the inner program's springs recommended.
+        design: The rules' ``[design]`` settings (default :func:`rule_params`); they run at
+            ``final_samples``.
         progress: Called with one status line per stage.
 
     Raises:
@@ -153,8 +177,11 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
                         model.mass)
     say(f"rows at {n_final} samples ({time.perf_counter() - t0:.1f} s)")
     points = speed_curve(free, groups, base, chosen, v) if curve else ()
-    simulation = simulated(model, chosen, c_sprung, c) if simulate else {}
-    buy = full_rules(robot, chosen, c, say) if rules else None
+    buy = full_rules(robot, chosen, c, say, design) if rules else None
+    bought = c_sprung.springs
+    if buy is not None and not isinstance(buy, str) and buy.pays:
+        bought = buy.recommended.optimum.springs
+    simulation = simulated(model, chosen, bought, c) if simulate else {}
     return CodesignResult(
         robot=robot, title=model.name, mass=model.mass, speed=v, pattern=base.pattern,
         family=family, constraints=c, default=dataclasses.replace(base, samples=n_final),
@@ -181,16 +208,17 @@ def speed_curve(free: Callable[..., GaitPoint], groups: Groups, base: GaitParams
     return tuple(out)
 
 
-def simulated(robot: Robot, chosen: GaitParams, point: GaitPoint, c: Constraints
+def simulated(robot: Robot, chosen: GaitParams, springs: SpringSet, c: Constraints
               ) -> dict[str, Any]:
     """The chosen gait simulated forward in MuJoCo (feedforward + PD servos, default
-    :class:`~hexaleg.simulation.run.Settings`) with and without its springs: planned and
-    walked distance per cycle, the predicted and simulated electrical saving; or the error."""
+    :class:`~hexaleg.simulation.run.Settings`) with and without ``springs`` (the springs to
+    buy): planned and walked distance per cycle, the predicted and simulated electrical saving;
+    or the error."""
     from hexaleg.simulation.run import simulate
 
     try:
         motion = gait(robot, chosen)
-        sim = simulate(robot, motion, None, point.springs, contact=c.contact())
+        sim = simulate(robot, motion, None, springs, contact=c.contact())
         predicted = sim.predicted("electrical")[2]
         simulated_ = sim.simulated("electrical")[2]
         walk = sim.with_springs.walk
@@ -203,29 +231,26 @@ def simulated(robot: Robot, chosen: GaitParams, point: GaitPoint, c: Constraints
             "simulated": simulated_, "controller": sim.settings.controller}
 
 
-def full_rules(robot: str, chosen: GaitParams, c: Constraints,
-               say: Callable[[str], None]) -> Any:
-    """``hexaleg design`` (every rule of issue #30) on the chosen gait: its result, or the
-    error's message when it cannot run there (the inner springs then stay recommended).
-
-    Its robust design over a box of conditions is left out (the box is the nominal gait:
-    ``robust_*`` ranges of one point): it is not one of the rules, the co-design shows and
-    recommends nothing from it, and on the co-designed gait it cost a minute — the box's
-    corners at stride ×1.25 and μ = 0.5 bind the friction cones at 102–114 of 200 samples, so
-    its program is certified with explicit forces there (docs/codesign.md)."""
+def full_rules(robot: str, chosen: GaitParams, c: Constraints, say: Callable[[str], None],
+               design: DesignParams | None = None) -> Any:
+    """``hexaleg design`` (every rule of issue #30: parsimony, stop tolerance, envelope and hard
+    stop, fatigue, arbor, the simulated ranking) on the chosen gait at its sampling, with
+    ``design`` (default :func:`rule_params`: the families of :data:`RULE_FAMILIES`, no
+    robustness maps nor robust box — neither is a rule, and on the co-designed gait the box
+    alone cost a minute); its result, or the error's message when it cannot run there (the
+    inner springs then stay recommended)."""
     from hexaleg.studies.design.build import build_design
-    from hexaleg.studies.design.config import DesignConfig, DesignParams
+    from hexaleg.studies.design.config import DesignConfig
 
-    say("full spring rules on the chosen gait (hexaleg design, no robust box)")
-    nominal_box = DesignParams(robust_period=(1.0, 1.0), robust_stride=(1.0, 1.0),
-                               robust_payload=(0.0, 0.0), robust_mu=(c.mu, c.mu))
+    params = design if design is not None else rule_params()
+    say(f"full spring rules on the chosen gait (hexaleg design: {', '.join(params.families)})")
     try:
         return build_design(DesignConfig(robot=robot, gait=chosen, contact=c.contact(),
-                                         design=nominal_box), say)
-    except HexalegError as err:  # e.g. a robustness map's gait the legs cannot reach
+                                         design=params), say)
+    except HexalegError as err:
         say(f"full spring rules failed on the chosen gait: {err}")
         return f"{type(err).__name__}: {err}"
 
 
-__all__ = ["SPEED_FACTORS", "codesign", "default_gait", "full_rules", "simulated",
-           "speed_curve"]
+__all__ = ["RULE_FAMILIES", "SPEED_FACTORS", "codesign", "default_gait", "full_rules",
+           "rule_params", "simulated", "speed_curve"]

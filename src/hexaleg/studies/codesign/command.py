@@ -3,9 +3,10 @@
 
 ``--config F`` reads a ``[codesign]`` table: ``speed``, ``pattern``, ``family``, ``samples``,
 ``final_samples``, ``max_evaluations``, ``restarts``, ``grouping``, ``rules``, ``curve``,
-``simulate`` and a ``[codesign.constraints]`` table of
-:class:`~hexaleg.design.gait_evaluation.Constraints`; the command line's ``--speed`` and
-``--pattern`` win over the file.
+``simulate``, a ``[codesign.constraints]`` table of
+:class:`~hexaleg.design.gait_evaluation.Constraints` and a ``[codesign.design]`` table of the
+full spring rules' ``[design]`` keys (:func:`~hexaleg.studies.codesign.build.rule_params`); the
+command line's ``--speed``, ``--pattern`` and ``--no-rules`` win over the file.
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 KEYS = ("speed", "pattern", "family", "samples", "final_samples", "max_evaluations",
-        "restarts", "grouping", "rules", "curve", "simulate", "constraints")
+        "restarts", "grouping", "rules", "curve", "simulate", "constraints", "design")
 """The keys of a ``[codesign]`` table."""
 
 
@@ -30,9 +31,10 @@ def add(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--speed", type=float, help="required speed, m/s (default 0.06)")
     p.add_argument("--pattern", help="gait pattern (default: the robot's)")
     p.add_argument("--config", help="TOML file with a [codesign] table (docs/codesign.md)")
-    p.add_argument("--rules", action="store_true",
-                   help="also apply hexaleg design's full spring rules (tolerance, envelope, "
-                        "fatigue, arbor, parsimony) to the chosen gait: minutes, not seconds")
+    p.add_argument("--no-rules", dest="rules", action="store_false", default=None,
+                   help="leave out hexaleg design's full spring rules (tolerance, envelope, "
+                        "fatigue, arbor, parsimony) on the chosen gait, about a minute: the "
+                        "search's answer alone, the inner program's springs recommended")
     p.add_argument("--out", default="hexaleg-codesign",
                    help="output directory (default: %(default)s)")
     p.set_defaults(func=run)
@@ -61,6 +63,12 @@ def settings(config: str | Path | None) -> dict[str, Any]:
     if "constraints" in out:
         out["constraints"] = from_mapping(Constraints, out["constraints"],
                                           f"{config} [codesign.constraints]")
+    if "design" in out:
+        from hexaleg.studies.codesign.build import rule_params
+
+        if not isinstance(out["design"], dict):
+            raise ConfigError(f"{config}: [codesign.design] must be a table")
+        out["design"] = rule_params(**out["design"])
     return out
 
 
@@ -72,8 +80,8 @@ def run(args: argparse.Namespace) -> int:
     for key in ("speed", "pattern"):
         if getattr(args, key) is not None:
             kwargs[key] = getattr(args, key)
-    if args.rules:
-        kwargs["rules"] = True
+    if args.rules is not None:
+        kwargs["rules"] = args.rules
     result, files = write_codesign(args.out, robot=args.robot, progress=_progress, **kwargs)
     print(result.summary())
     print(f"wrote {len(files)} files to {args.out}; open {args.out}/codesign.html")

@@ -7,7 +7,10 @@ gait's share is ``(E₀ − E_gait) / E₀`` and the springs' share of the co-de
 ``(E_gait − E_codesign) / E₀`` (they add up to the co-design's saving). Every number in the JSON
 is ``{value, unit}``; ``gait.parameters`` and ``recommended.springs`` are the keys
 :func:`hexaleg.load_design` reads (:mod:`hexaleg.studies.design.load`), so the chosen gait and
-springs run in ``hexaleg simulate --springs codesign.json`` and ``hexaleg report``.
+springs run in ``hexaleg simulate --springs codesign.json`` and ``hexaleg report``. The springs
+there are the ones to buy: by default those the full spring rules chose on the chosen gait
+(:mod:`hexaleg.studies.codesign.rules`, their figures in ``full_rules``), else the inner
+program's optimum (``inner_springs`` holds it either way).
 """
 
 from __future__ import annotations
@@ -22,6 +25,7 @@ from hexaleg.design.spring_json import spring_entry
 from hexaleg.dynamics.energy import G
 from hexaleg.motion.params import GaitParams
 from hexaleg.robot.springs import SpringSet
+from hexaleg.studies.codesign.rules import RULES, rule_data, rule_lines
 from hexaleg.studies.design.load import gait_parameters
 
 
@@ -80,8 +84,8 @@ class CodesignResult:
         rows: The four rows. sequential: The gait alone, then its springs.
         search: The co-design search. gait_search: The gait-alone search.
         curve: Energy per metre against speed. simulation: The MuJoCo check (or its error).
-        rules: ``hexaleg design``'s result on the chosen gait, its error's message when it
-            could not run there, or None when not asked.
+        rules: ``hexaleg design``'s result on the chosen gait (the full spring rules), its
+            error's message when it could not run there, or None when not asked.
         samples: Samples a cycle in the search. wall: Total wall time, s.
     """
 
@@ -118,7 +122,8 @@ class CodesignResult:
         """The springs to fit and where they come from: the full rules' recommendation when
         they ran and it pays, else the inner program's optimum on the chosen gait."""
         if self.rules is not None and not isinstance(self.rules, str) and self.rules.pays:
-            return self.rules.recommended.optimum.springs, "hexaleg design (full spring rules)"
+            return (self.rules.recommended.optimum.springs,
+                    f"hexaleg design's full spring rules on the chosen gait ({', '.join(RULES)})")
         return self.springs, f"inner program ({self.family} family, global optimum)"
 
     def summary(self) -> str:
@@ -134,9 +139,14 @@ class CodesignResult:
         lines.append(f"  search: {self.search.evaluations} evaluations, "
                      f"{self.search.wall:.1f} s, restarts {self.search.spread:.3f} J/m apart; "
                      f"total {self.wall:.1f} s")
-        if self.rules is not None:
-            text = self.rules if isinstance(self.rules, str) else self.rules.summary()
-            lines.append(f"  full spring rules (chosen gait only): {text}")
+        if isinstance(self.rules, str):
+            lines.append(f"  full spring rules could not run on the chosen gait ({self.rules}):"
+                         f" the inner program's springs are recommended")
+        elif self.rules is not None:
+            lines += ["  " + line for line in rule_lines(self.rules, self.chosen.stride)]
+        else:
+            lines.append("  springs: the inner program's optimum (the full spring rules were "
+                         "not applied)")
         return "\n".join(lines)
 
     def to_dict(self) -> dict[str, Any]:
@@ -176,10 +186,9 @@ class CodesignResult:
                        "per_metre_springs": q(p.per_metre_springs, "J/m")} for p in self.curve],
             "simulation": {k: (q(v, _SIM_UNITS[k]) if k in _SIM_UNITS else v)
                            for k, v in self.simulation.items()},
-            "full_rules": None if self.rules is None else {
-                "applied_to": "the chosen gait only (too slow for the search's inner loop)",
-                "summary": self.rules if isinstance(self.rules, str) else self.rules.summary(),
-                "pays": False if isinstance(self.rules, str) else self.rules.pays},
+            "full_rules": None if self.rules is None else (
+                {"applied_to": "the chosen gait only", "error": self.rules, "pays": False}
+                if isinstance(self.rules, str) else rule_data(self.rules, self.chosen.stride)),
             "wall": q(self.wall, "s"),
         }
 

@@ -53,6 +53,7 @@ from hexaleg.studies.design.config import DesignConfig
 from hexaleg.studies.design.ranking import Simulated, best_simulated, simulate_candidates
 from hexaleg.studies.design.stages import (
     LOGGED_SKIP,
+    UNMAPPED,
     Nominal,
     RobustResult,
     envelope_and_fatigue,
@@ -138,7 +139,8 @@ class DesignResult:
                 f"{100 * r.row[f'saving.{m}']:+.2f} % ({100 * r.net[m]:+.2f} % net "
                 f"of {1e3 * r.spring_mass:.1f} g of springs); " + (
                     f"worst case over the maps {100 * self.worst[m][0]:+.2f} % at "
-                    f"{self.worst[m][1]}" if self.maps else "no robustness maps (logged motion)"))
+                    f"{self.worst[m][1]}" if self.maps else "no robustness maps ("
+                    + ("logged motion" if self.config.motion is not None else "left out") + ")"))
         simulated = [f"{row['label']} {100 * row['simulated']:+.2f} %"
                      if row["simulated"] is not None else f"{row['label']}: {row['verdict']}"
                      for row in self.simulation]
@@ -195,9 +197,11 @@ def build_design(config: DesignConfig | None = None,
          f"at {d.life_cycles:.3g} cycles")
     maps, worst = robustness_maps(nom, rec)
     step("maps", f"robustness maps: worst {d.metric} saving {100 * worst[d.metric][0]:+.2f} %"
-         if maps else "robustness maps and robust design left out: a logged motion")
+         if maps else "robustness maps and robust design left out: "
+         + ("a logged motion" if nom.motion is not None else "[design] robustness = false"))
     robust = robust_design(nom, rec)
-    step("robust", "robust design over the box of conditions")
+    step("robust", "robust design over the box of conditions" if robust is not None
+         else "no robust design")
     simulation, unsimulated = _proof(nom, rec)
     step("simulate", "the recommendation simulated in MuJoCo under both controllers")
     pays = [] if rec.net[d.metric] > MIN_SAVING else [
@@ -207,7 +211,8 @@ def build_design(config: DesignConfig | None = None,
     mirrored = mirror(nom.robot)
     plausible = _plausibility(nom)
     flagged = () if plausible is None else (f"baseline energy {plausible.message}",)
-    logged = [LOGGED_SKIP] if nom.motion is not None else []
+    logged = ([LOGGED_SKIP] if nom.motion is not None
+              else [] if d.robustness else [UNMAPPED])
     notes = [*flagged, *pays, *logged, *notes, *envelope_notes, *unsimulated, *nom.robot.notes,
              *rec.notes,
              (mirrored.summary() + ("; each gets its group's spring mirrored" if d.mirror

@@ -102,6 +102,10 @@ class DesignParams:
         mirror: Share one physical design across a mirror: joints that count their angle the
             other way round from their twin (:func:`hexaleg.robot.mirror.mirror`, from the
             joint axes) get their group's spring mirrored (default true).
+        robustness: Compute the robustness maps and the robust design over the box of
+            conditions (default true). Neither is one of the spring rules — they show and design
+            for conditions other than the nominal gait — so ``hexaleg codesign``, which applies
+            the rules to the gait it chose, leaves them out (false).
 
     Raises:
         UnknownNameError: an unknown family, grouping, metric, material or motor.
@@ -138,6 +142,7 @@ class DesignParams:
     stop_tolerance: float = math.pi / 180
     life_cycles: float = 1e7
     mirror: bool = True
+    robustness: bool = True
 
     def __post_init__(self) -> None:
         set_ = lambda name, value: object.__setattr__(self, name, value)  # noqa: E731

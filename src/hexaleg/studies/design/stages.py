@@ -106,6 +106,10 @@ LOGGED_SKIP = ("the robustness maps and the robust design are left out: they re-
                "none to vary; the candidates, ranking, stop tolerance and envelope are on the "
                "logged cycle")
 """The note of a design on a logged motion."""
+UNMAPPED = ("the robustness maps and the robust design are left out ([design] robustness = "
+            "false): neither is one of the spring rules, both are about conditions other than "
+            "the nominal gait")
+"""The note of a design without them (``[design] robustness`` false)."""
 
 
 def nominal(cfg: DesignConfig) -> Nominal:
@@ -277,10 +281,11 @@ def robustness_maps(nom: Nominal, rec: Candidate
     default the nominal gait's and every other the robot's legs walk,
     :func:`~hexaleg.design.robustness_map.robot_patterns`), and each metric's worst case
     (saving, its condition's label) over all three; none on a logged motion (NaN worst cases,
-    :data:`LOGGED_SKIP`)."""
+    :data:`LOGGED_SKIP`), nor without ``[design] robustness`` (:data:`UNMAPPED`)."""
     d = nom.config.design
-    if nom.motion is not None:  # LOGGED_SKIP: no gait parameters to vary
-        return (), {m: (float("nan"), "not mapped (logged motion)") for m in METRICS}
+    if nom.motion is not None or not d.robustness:  # LOGGED_SKIP, UNMAPPED
+        why = "logged motion" if nom.motion is not None else "[design] robustness = false"
+        return (), {m: (float("nan"), f"not mapped ({why})") for m in METRICS}
     springs = rec.optimum.springs
     patterns = d.map_pattern or robot_patterns(nom.robot, nom.gait)
     axes: list[dict[str, Sequence[float] | Sequence[str]]] = [
@@ -335,8 +340,8 @@ def corners(cfg: DesignConfig) -> tuple[Condition, ...]:
 def robust_design(nom: Nominal, rec: Candidate) -> RobustResult | None:
     """The recommended geometry's magnitudes for the box of conditions
     (:func:`hexaleg.design.robust.robust_springs`: its corners and the nominal gait, one convex
-    program), with its own parts; None when the box is the nominal gait alone or the motion is
-    logged (:data:`LOGGED_SKIP`).
+    program), with its own parts; None when the box is the nominal gait alone, the motion is
+    logged (:data:`LOGGED_SKIP`) or ``[design] robustness`` is false (:data:`UNMAPPED`).
 
     Raises:
         InvalidParameterError: a corner where the robot has no admissible forces without
@@ -344,7 +349,7 @@ def robust_design(nom: Nominal, rec: Candidate) -> RobustResult | None:
     """
     cfg, prepared = nom.config, nom.prepared
     conditions = corners(cfg)
-    if len(conditions) == 1 or nom.motion is not None:  # LOGGED_SKIP
+    if len(conditions) == 1 or nom.motion is not None or not cfg.design.robustness:
         return None
     preps = [condition_prepared(nom.run, nom.gait, c) for c in conditions]
     for c, p in zip(conditions, preps, strict=True):
@@ -376,6 +381,7 @@ def robust_design(nom: Nominal, rec: Candidate) -> RobustResult | None:
 
 __all__ = [
     "LOGGED_SKIP",
+    "UNMAPPED",
     "Nominal",
     "RobustResult",
     "corners",
