@@ -1,11 +1,16 @@
 """The gait cycle of a log: its period from the joint signals, its cycles averaged into one.
 
 The period is the lag of the first peak of the joint signals' summed autocorrelation (each
-column standardised; computed by FFT, Wiener–Khinchin), refined by a parabola through the peak and
-then by the peak near the largest whole multiple of it within the log (k periods measured at
-once: the error shrinks as 1/k). The log's whole cycles are then resampled onto one phase grid
-and averaged (the ensemble average of phase-locked cycles), and their spread — the rms deviation
-of a cycle from the average — reported.
+column standardised; computed by FFT, Wiener–Khinchin), refined by a parabola through the peak.
+The autocorrelation's peak is biased by its overlap weighting (+0.0014 of the period on a
+noise-free two-cycle log), so the period is then refined where the log and its copy shifted by k
+periods differ least: the squared difference function d(τ) = Σ |x(t + τ) − x(t)|² over their
+overlap (the difference function of YIN, de Cheveigné & Kawahara, J. Acoust. Soc. Am. 111(4),
+2002, eq. 6), the shifted copy a cubic spline at fractional lags, d minimised by Brent's method
+within a sample of k times the first estimate, for the largest k that leaves a period of
+overlap (k periods measured at once: the error shrinks as 1/k). The log's whole cycles are then
+resampled onto one phase grid and averaged (the ensemble average of phase-locked cycles), and
+their spread — the rms deviation of a cycle from the average — reported.
 """
 
 from __future__ import annotations
@@ -101,12 +106,29 @@ def find_period(x: np.ndarray, dt: float, where: str = "motion log") -> tuple[fl
             f"{where}: cycle='auto'", f"best repeat {period * dt:.3f} s correlates "
             f"{corr:.2f}", f"a gait that repeats (correlation >= {MIN_CORRELATION}) over at "
             "least two cycles; give a window, cycle=(t0, t1), or cycle='whole'")
-    multiple = int((n - 1) // period) - 1
-    if multiple > 1:  # measure k periods at once
-        far, corr_far = _peak(acf, round(multiple * period), max(2, multiple))
-        if corr_far >= MIN_CORRELATION:
-            period = far / multiple
-    return period * dt, corr
+    multiple = max(int(n // period) - 1, 1)  # k periods at once, a period of overlap left
+    return _refine(np.asarray(x, dtype=float), multiple * period) / multiple * dt, corr
+
+
+def _refine(x: np.ndarray, lag: float) -> float:
+    """The lag within a sample of ``lag`` (samples) where x (N, n) and its shifted copy differ
+    least (module docstring: the squared difference function, cubic-spline shifts, Brent)."""
+    from scipy.interpolate import CubicSpline
+    from scipy.optimize import minimize_scalar
+
+    n = x.shape[0]
+    z = x - x.mean(axis=0)
+    scale = np.sqrt((z**2).mean(axis=0))
+    z = z[:, scale > 0] / scale[scale > 0]
+    spline = CubicSpline(np.arange(n), z, axis=0)
+    base = np.arange(n - math.ceil(lag + 1.0))
+
+    def difference(tau: float) -> float:
+        return float(np.mean((spline(base + tau) - z[base]) ** 2))
+
+    fit = minimize_scalar(difference, bounds=(lag - 1.0, lag + 1.0), method="bounded",
+                          options={"xatol": 1e-6})
+    return float(fit.x)
 
 
 def average_cycles(t: np.ndarray, x: np.ndarray, period: float, dt: float, *,
