@@ -147,12 +147,13 @@ def average_cycles(t: np.ndarray, x: np.ndarray, period: float, dt: float, *,
     Raises:
         InvalidParameterError: fewer than two whole cycles from ``start``.
     """
-    count = math.floor((t[-1] - start) / period + 1e-9)
+    samples = max(round(period / dt), 8)
+    # the last cycle needs its last phase, a phase step before its end, inside the log
+    count = math.floor((t[-1] - start + period / samples) / period + 1e-6)
     if count < 2:
         raise InvalidParameterError("motion log: cycles", f"{count} whole cycle(s) of "
                                     f"{period:.4f} s in {t[-1] - t[0]:.4f} s",
                                     "at least two for cycle='auto'; give cycle=(t0, t1)")
-    samples = max(round(period / dt), 8)
     phase = np.arange(samples) / samples * period
     stacked = np.empty((count, samples, x.shape[1]))
     for c in range(count):
