@@ -340,7 +340,7 @@ def _run_simulate(args: argparse.Namespace) -> int:
 
         rows = sensitivity(s)
     data = simulation_data(s, design=study.design, notes=study.notes, sensitivity=rows,
-                           warnings=study.warnings)
+                           warnings=study.warnings, gait_defaults=study.gait_defaults)
     js, md = write_simulation(args.out, data)
     motions = ", ".join(str(m) for m in write_motions(args.out, s))
     for note in study.notes:

@@ -74,6 +74,10 @@ def test_report_prints_shows_and_writes_them(config, expected, tmp_path, capsys)
         assert f"warning: {line}" in out
     assert page_text.count("<b>Warning:</b>") == len(expected)
     assert not any("joint_speed" in n for n in data["notes"])  # said once, as a warning
+    defaults = data["gait_defaults"]
+    assert defaults["kept"] == ["stride_length", "step_height"]  # the config set the period
+    assert defaults["stride_length"] == {"value": GaitParams.for_robot(SPIDER).stride,
+                                         "unit": "m"}
 
 
 def test_simulate_prints_shows_and_writes_them(config, expected, tmp_path, capsys):
@@ -82,6 +86,7 @@ def test_simulate_prints_shows_and_writes_them(config, expected, tmp_path, capsy
     out = capsys.readouterr().out
     data = json.loads((tmp_path / "simulate.json").read_text())
     assert data["warnings"] == list(expected)
+    assert data["gait_defaults"]["kept"] == ["stride_length", "step_height"]
     assert page(data).count("- warning: ") == len(expected)
     assert (tmp_path / "simulate.md").read_text() == page(data)
     for line in expected:

@@ -3,7 +3,8 @@
 A run — a robot, its gait (generated or logged) and its actuators — can carry caveats that make
 its numbers less trustworthy. ``hexaleg gait``, ``report``, ``design`` and ``simulate`` call
 :func:`run_warnings` on their run, print each line as ``warning: …``, show the lines on their page
-and write them into their JSON as ``"warnings"``. In this order:
+and write them into their JSON as ``"warnings"`` (what the sized defaults chose also as
+``"gait_defaults"``, :func:`gait_defaults`). In this order:
 
 1. the gait parameters the robot's description leaves unset, sized to it by dynamic similarity
    (:mod:`hexaleg.motion.scaling`): what they chose, unless a config file set them;
@@ -17,6 +18,8 @@ and write them into their JSON as ``"warnings"``. In this order:
 """
 
 from __future__ import annotations
+
+from typing import Any
 
 from hexaleg.dynamics.plausibility import GENERIC_MARK
 from hexaleg.motion.params import GaitParams
@@ -44,6 +47,17 @@ def generic_warning(motor: Motor | MotorSet) -> str | None:
             "catalogue's range of gearbox efficiencies, further if the limits are "
             "placeholders); name a catalogue motor (hexaleg motors) or identified constants "
             "for energies to trust")
+
+
+def gait_defaults(desc: RobotDescription | None, gait: GaitParams | None
+                  ) -> dict[str, Any] | None:
+    """What the run's sized gait defaults chose, for a command's JSON (``"gait_defaults"``:
+    :meth:`hexaleg.motion.scaling.SizedDefaults.as_dict` with ``"kept"``, the sized keys no
+    config file replaced), or None when nothing was sized or there is no generated gait."""
+    sized = chosen_defaults(desc) if desc is not None and gait is not None else None
+    if sized is None or gait is None:
+        return None
+    return {**sized.as_dict(), "kept": list(sized.kept(gait))}
 
 
 def run_warnings(robot: Robot, motion: Motion, motor: Motor | MotorSet | None, *,

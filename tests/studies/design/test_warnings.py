@@ -37,5 +37,6 @@ def test_the_design_run_has_the_warnings_of_its_gait(tmp_path):
 def test_design_json_and_page_carry_them(written):
     result, _ = written
     assert result.data["warnings"] == []  # hexaleg with its AX-18A: none
+    assert result.data["gait_defaults"] is None  # the reference robot is not sized
     html = render_design_html({**result.data, "warnings": ["w1", "w2"]}, defaultdict(str))
     assert html.count("<b>Warning:</b>") == 2 and "w2" in html

@@ -29,7 +29,7 @@ from hexaleg.outputs.html import render_design_html
 from hexaleg.studies.design.build import DesignResult, build_design
 from hexaleg.studies.design.config import DesignConfig
 from hexaleg.studies.design.data import design_data
-from hexaleg.studies.run_warnings import run_warnings
+from hexaleg.studies.run_warnings import gait_defaults, run_warnings
 
 
 @dataclass(frozen=True, eq=False)
@@ -132,7 +132,10 @@ def write_design(out: str | Path = "hexaleg-design", config: DesignConfig | None
         png, written = plots.save(fig, out / f"{name}.png")
         images[name] = plots.data_uri(png)
         files += written
+    cfg = r.config
     data = {**design_data(r), "warnings": list(design_warnings(r)),
+            "gait_defaults": gait_defaults(cfg.design.run(cfg.robot, cfg.contact).description(),
+                                           r.gait if cfg.motion is None else None),
             "files": [*sorted(p.name for p in files), "design.html", "design.json"]}
     for path, text in ((out / "design.json", json.dumps(data, indent=1, ensure_ascii=False)),
                        (out / "design.html", render_design_html(data, images))):

@@ -51,7 +51,7 @@ from hexaleg.studies.report.config import ReportConfig, ReportParams
 from hexaleg.studies.report.design_section import design_section
 from hexaleg.studies.report.paper_section import paper_reference
 from hexaleg.studies.report.transform import transform_section
-from hexaleg.studies.run_warnings import run_warnings
+from hexaleg.studies.run_warnings import gait_defaults, run_warnings
 
 
 @dataclass(frozen=True, eq=False)
@@ -129,6 +129,8 @@ def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis,
         "hexaleg_version": importlib.metadata.version("hexaleg"),
         "warnings": list(run_warnings(robot, motion, cfg.motor, desc=cfg.robot_description,
                                       gait=cfg.gait if cfg.motion is None else None)),
+        "gait_defaults": gait_defaults(cfg.robot_description,
+                                       cfg.gait if cfg.motion is None else None),
         "notes": sections.notes_section(cfg.notes, motion, _findings(robot, motion, a)),
         "robot": sections.robot_section(robot),
         "payload": sections.payload_section(cfg.payload, robot),

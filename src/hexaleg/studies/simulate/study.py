@@ -27,7 +27,7 @@ from hexaleg.robot.springs import SpringSet
 from hexaleg.simulation.run import Settings, Simulation, simulate
 from hexaleg.studies.design.load import load_design
 from hexaleg.studies.report.config import ReportConfig
-from hexaleg.studies.run_warnings import run_warnings
+from hexaleg.studies.run_warnings import gait_defaults, run_warnings
 
 DEFAULT_FAMILY = "linear"
 """The spring family of the default design (its optimum has no geometry to search: global)."""
@@ -46,6 +46,8 @@ class Study:
         objective: The analysis' force objective.
         notes: Caveats (the config's, a constant-torque optimum, …).
         warnings: The run's warnings (:func:`hexaleg.studies.run_warnings.run_warnings`).
+        gait_defaults: What its sized gait defaults chose
+            (:func:`hexaleg.studies.run_warnings.gait_defaults`), or None.
     """
 
     robot_name: str
@@ -56,6 +58,7 @@ class Study:
     objective: str
     notes: tuple[str, ...]
     warnings: tuple[str, ...] = ()
+    gait_defaults: dict[str, Any] | None = None
 
     def run(self) -> Simulation:
         """Simulate (:func:`hexaleg.simulation.run.simulate`)."""
@@ -139,4 +142,5 @@ def load_study(robot: str = "hexaleg", config: str | Path | None = None,
         notes += list(best.notes)
     warned = run_warnings(prepared.robot, played, report.motor, desc=desc,
                           gait=gait if motion is None else None)
-    return Study(robot, prepared, spring_set, design, settings, objective, tuple(notes), warned)
+    return Study(robot, prepared, spring_set, design, settings, objective, tuple(notes), warned,
+                 gait_defaults(desc, gait if motion is None else None))

@@ -74,7 +74,8 @@ def sensitivity_row(row: dict[str, Any]) -> dict[str, Any]:
 
 def simulation_data(s: Simulation, *, design: str = "", notes: tuple[str, ...] = (),
                     sensitivity: list[dict[str, Any]] | None = None,
-                    warnings: tuple[str, ...] = ()) -> dict[str, Any]:
+                    warnings: tuple[str, ...] = (),
+                    gait_defaults: dict[str, Any] | None = None) -> dict[str, Any]:
     """The content of ``simulate.json`` (module docstring).
 
     Args:
@@ -83,6 +84,8 @@ def simulation_data(s: Simulation, *, design: str = "", notes: tuple[str, ...] =
         notes: Caveats to record.
         sensitivity: Rows of :func:`hexaleg.simulation.sensitivity.sensitivity`, or None.
         warnings: The run's warnings (:func:`hexaleg.studies.run_warnings.run_warnings`).
+        gait_defaults: What the sized gait defaults chose
+            (:func:`hexaleg.studies.run_warnings.gait_defaults`), or None.
     """
     st, sim = s.settings, s.with_springs.sim
     predicted = {m: s.predicted(m) for m in METRICS}
@@ -104,7 +107,7 @@ def simulation_data(s: Simulation, *, design: str = "", notes: tuple[str, ...] =
                       "back_emf_damping": quantity(sim.damping, "N·m·s/rad"),
                       "stall_torque": quantity(sim.stall, "N·m")}},
         "runs": {"springs": _run_data(s.with_springs), "baseline": _run_data(s.baseline)},
-        "warnings": list(warnings),
+        "warnings": list(warnings), "gait_defaults": gait_defaults,
         "notes": [*notes, *sim.notes],
     }
     if sensitivity is not None:
