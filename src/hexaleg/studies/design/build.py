@@ -19,7 +19,9 @@ its gait (:class:`~hexaleg.studies.design.config.DesignConfig`):
    stop where it would yield, and its fatigue safety at ``[design] life_cycles``;
 5. ``maps``: the recommendation frozen over period × stride, payload × μ and slope × gait
    pattern (a condition the robot cannot walk is a cell with its reason), their worst case;
-6. ``robust``: the recommended geometry's magnitudes for a box of conditions, with its parts;
+6. ``robust``: the recommended geometry's magnitudes for a box of conditions, with its parts
+   (neither 5 nor 6 is one of the spring rules: ``[design] robustness = false`` leaves both
+   out, as ``hexaleg codesign`` does on the gait it chose);
 7. ``proof``: the recommendation simulated under each controller a servo robot runs
    (:func:`hexaleg.simulation.sensitivity.controller_check`), the simulated saving beside the
    predicted one.
