@@ -10,8 +10,8 @@ import pytest
 
 import hexaleg
 from hexaleg.cli import main
-from hexaleg.errors import UnknownNameError
-from hexaleg.studies.codesign.build import RULE_FAMILIES, rule_params
+from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.studies.codesign.build import RULE_FAMILIES, Background, rule_params
 from hexaleg.studies.codesign.rules import RULES, per_metre
 from hexaleg.studies.codesign.write import write_result
 
@@ -89,3 +89,21 @@ def test_rule_params_defaults_and_bad_keys():
     assert rule_params(stop_tolerance=0.0, robustness=True).robustness
     with pytest.raises(UnknownNameError, match="familes"):
         rule_params(familes=["linear"])
+
+
+def _fails():
+    raise InvalidParameterError("x", 1, "2")
+
+
+def test_the_rules_run_beside_the_search_and_come_back_whole():
+    """Background: the child's result (pickled back) or its error, raised here; close() stops a
+    child whose result was never asked for."""
+    import time
+
+    assert Background(lambda: {"a": [1.5, "b"]}).result() == {"a": [1.5, "b"]}
+    with pytest.raises(InvalidParameterError, match="x"):
+        Background(_fails).result()
+    slow = Background(lambda: time.sleep(60))
+    start = time.perf_counter()
+    slow.close()
+    assert time.perf_counter() - start < 30 and slow._process is None

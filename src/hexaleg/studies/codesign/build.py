@@ -19,6 +19,8 @@
    envelope, fatigue, arbor, parsimony, simulated ranking:
    :func:`hexaleg.studies.design.build.build_design`) applied to the chosen gait only — too
    slow for the inner loop — whose recommendation is the springs to buy (:func:`full_rules`);
+   they start as soon as the co-design search has chosen the gait, in a process beside steps
+   2's gait-alone search, 3 and 4 (:class:`Background`);
 6. the co-designed gait simulated forward in MuJoCo with and without the springs to buy
    (:func:`hexaleg.simulation.run.simulate`).
 """
@@ -58,13 +60,14 @@ from hexaleg.studies.design.groups import design_groups
 
 SPEED_FACTORS = (0.5, 0.75, 1.0, 1.25, 1.5)
 """The speed curve's speeds, as factors of the required speed."""
-RULE_FAMILIES = ("linear", "one_sided", "preloaded")
+RULE_FAMILIES = ("preloaded", "one_sided", "linear")
 """The families the full rules compare on the chosen gait: ``hexaleg design``'s without
 ``dead_zone``. A dead-zone spring is the preloaded family with both preloads at zero (the same
 ``above``/``below`` terms, :mod:`hexaleg.design.families`), so at every geometry the preloaded
 program's optimum is at least as good; it ranked last on the default gait (+12.08 % against
 +16.36 %, analysis/logs/answer_hexaleg.log) and on the co-designed one (+39.90 % against
-+42.66 %), where its geometry search alone took 27–70 s (docs/codesign.md)."""
++42.66 %), where its geometry search alone took 27–70 s (docs/codesign.md). The slowest first:
+the families run in this order on two worker processes."""
 
 
 def rule_params(**table: Any) -> DesignParams:
@@ -153,41 +156,101 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
                    restarts=restarts)
     say(f"co-design: {joint.value:.2f} J/m after {joint.evaluations} evaluations "
         f"({joint.wall:.1f} s)")
-    alone = search(functools.partial(free, groups=None), base, v, space, springs=False,
-                   reference=first.per_metre, max_evaluations=max_evaluations,
-                   restarts=restarts)
-    say(f"gait alone: {alone.value:.2f} J/m after {alone.evaluations} evaluations")
-
-    def final(params: GaitParams, springs: bool) -> GaitPoint:
-        point = free(dataclasses.replace(params, samples=n_final),
-                     groups=groups if springs else None)
-        if point.error is not None:
-            raise InvalidParameterError("final_samples", n_final, f"a sampling at which the "
-                                        f"chosen gait still works ({point.error})")
-        return point
-
     chosen = dataclasses.replace(joint.best.params, samples=n_final)
-    d_sprung, c_sprung = final(base, True), final(chosen, True)
-    g_sprung = final(alone.best.params, True)
-    rows = (Row.of("default gait, no springs", d_sprung, False, model.mass),
-            Row.of("default gait, its best springs", d_sprung, True, model.mass),
-            Row.of("best gait, no springs", g_sprung, False, model.mass),
-            Row.of("best gait, its springs (co-design)", c_sprung, True, model.mass))
-    sequential = Row.of("sequential: best gait alone, then its springs", g_sprung, True,
-                        model.mass)
-    say(f"rows at {n_final} samples ({time.perf_counter() - t0:.1f} s)")
-    points = speed_curve(free, groups, base, chosen, v) if curve else ()
-    buy = full_rules(robot, chosen, c, say, design) if rules else None
-    bought = c_sprung.springs
-    if buy is not None and not isinstance(buy, str) and buy.pays:
-        bought = buy.recommended.optimum.springs
-    simulation = simulated(model, chosen, bought, c) if simulate else {}
-    return CodesignResult(
-        robot=robot, title=model.name, mass=model.mass, speed=v, pattern=base.pattern,
-        family=family, constraints=c, default=dataclasses.replace(base, samples=n_final),
-        chosen=chosen, springs=c_sprung.springs, measures=c_sprung.measures, rows=rows,
-        sequential=sequential, search=joint, gait_search=alone, curve=points,
-        simulation=simulation, rules=buy, samples=n, wall=time.perf_counter() - t0)
+    ruled = started(robot, chosen, c, say, design) if rules else None
+    try:
+        alone = search(functools.partial(free, groups=None), base, v, space, springs=False,
+                       reference=first.per_metre, max_evaluations=max_evaluations,
+                       restarts=restarts)
+        say(f"gait alone: {alone.value:.2f} J/m after {alone.evaluations} evaluations")
+
+        def final(params: GaitParams, springs: bool) -> GaitPoint:
+            point = free(dataclasses.replace(params, samples=n_final),
+                         groups=groups if springs else None)
+            if point.error is not None:
+                raise InvalidParameterError("final_samples", n_final, "a sampling at which "
+                                            f"the chosen gait still works ({point.error})")
+            return point
+
+        d_sprung, c_sprung = final(base, True), final(chosen, True)
+        g_sprung = final(alone.best.params, True)
+        rows = (Row.of("default gait, no springs", d_sprung, False, model.mass),
+                Row.of("default gait, its best springs", d_sprung, True, model.mass),
+                Row.of("best gait, no springs", g_sprung, False, model.mass),
+                Row.of("best gait, its springs (co-design)", c_sprung, True, model.mass))
+        sequential = Row.of("sequential: best gait alone, then its springs", g_sprung, True,
+                            model.mass)
+        say(f"rows at {n_final} samples ({time.perf_counter() - t0:.1f} s)")
+        points = speed_curve(free, groups, base, chosen, v) if curve else ()
+        buy = ruled.result() if ruled is not None else None
+        bought = c_sprung.springs
+        if buy is not None and not isinstance(buy, str) and buy.pays:
+            bought = buy.recommended.optimum.springs
+        simulation = simulated(model, chosen, bought, c) if simulate else {}
+        return CodesignResult(
+            robot=robot, title=model.name, mass=model.mass, speed=v, pattern=base.pattern,
+            family=family, constraints=c, default=dataclasses.replace(base, samples=n_final),
+            chosen=chosen, springs=c_sprung.springs, measures=c_sprung.measures, rows=rows,
+            sequential=sequential, search=joint, gait_search=alone, curve=points,
+            simulation=simulation, rules=buy, samples=n, wall=time.perf_counter() - t0)
+    finally:
+        if ruled is not None:
+            ruled.close()
+
+
+class Background:
+    """:func:`full_rules` running in a forked process beside the co-design's remaining work
+    (the gait-alone search, the rows, the curve: about 10 s of a quiet run's 2 cores), or — where
+    processes cannot fork — run at :meth:`result`. The same computation either way: the child
+    is a copy of this process at the fork; its result comes back pickled (as the design's family
+    workers' do). Its progress lines are printed by the child (a callback that collects them
+    sees only those of this process)."""
+
+    def __init__(self, run: Callable[[], Any]) -> None:
+        import multiprocessing
+
+        self._run = run
+        self._process: Any = None
+        self._pipe: Any = None
+        if "fork" in multiprocessing.get_all_start_methods():
+            ctx = multiprocessing.get_context("fork")
+            self._pipe, child = ctx.Pipe(duplex=False)
+            self._process = ctx.Process(target=_send, args=(run, child))
+            self._process.start()
+            child.close()
+
+    def result(self) -> Any:
+        """The rules' result (waits for the child); re-raises what the child raised."""
+        if self._process is None or self._pipe is None:
+            return self._run()
+        ok, value = self._pipe.recv()
+        self._process.join()
+        self._process = None
+        if not ok:
+            raise value
+        return value
+
+    def close(self) -> None:
+        """Stop a child whose result was never asked for (the co-design failed first)."""
+        if self._process is not None:
+            self._process.terminate()
+            self._process.join()
+            self._process = None
+
+
+def _send(run: Callable[[], Any], pipe: Any) -> None:
+    try:
+        pipe.send((True, run()))
+    except BaseException as err:  # handed to the parent, which raises it
+        pipe.send((False, err))
+    finally:
+        pipe.close()
+
+
+def started(robot: str, chosen: GaitParams, c: Constraints, say: Callable[[str], None],
+            design: DesignParams | None) -> Background:
+    """:func:`full_rules` on the chosen gait, started beside the co-design's remaining work."""
+    return Background(functools.partial(full_rules, robot, chosen, c, say, design))
 
 
 def speed_curve(free: Callable[..., GaitPoint], groups: Groups, base: GaitParams,
@@ -252,5 +315,5 @@ def full_rules(robot: str, chosen: GaitParams, c: Constraints, say: Callable[[st
         return f"{type(err).__name__}: {err}"
 
 
-__all__ = ["RULE_FAMILIES", "SPEED_FACTORS", "codesign", "default_gait", "full_rules",
-           "rule_params", "simulated", "speed_curve"]
+__all__ = ["RULE_FAMILIES", "SPEED_FACTORS", "Background", "codesign", "default_gait",
+           "full_rules", "rule_params", "simulated", "speed_curve", "started"]
