@@ -14,6 +14,7 @@ from hexaleg.errors import InvalidParameterError, UnknownNameError
 from hexaleg.studies.codesign.build import RULE_FAMILIES, Background, rule_params
 from hexaleg.studies.codesign.rules import RULES, per_metre
 from hexaleg.studies.codesign.write import write_result
+from hexaleg.studies.design.stages import UNMAPPED
 
 from .conftest import RULES_SAMPLES
 
@@ -23,7 +24,7 @@ def test_the_springs_to_buy_are_the_rules_recommendation(ruled):
     springs, source = ruled.recommended
     assert d.pays and springs is d.recommended.optimum.springs
     assert all(rule in source for rule in RULES)
-    assert d.maps == () and d.robust is None  # not rules: left out
+    assert d.maps == () and d.robust is None and UNMAPPED in d.notes  # not rules: left out
     assert d.tolerance is not None and d.envelope and len(d.envelope) == len(d.fatigue)
     assert d.config.design.families == ("one_sided",) and d.gait.samples == RULES_SAMPLES
 
