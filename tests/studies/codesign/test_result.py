@@ -42,6 +42,14 @@ def test_load_design_reads_the_chosen_gait_and_springs(codesigned, tmp_path):
         assert getattr(loaded.gait, name) == pytest.approx(getattr(codesigned.chosen, name))
     assert set(loaded.springs) == set(codesigned.springs)
     assert "inner program" in codesigned.recommended[1]
+    # the inner springs' saving on the chosen gait (not against the gait-alone row's gait)
+    robot = hexaleg.load_robot()
+    prepared = hexaleg.prepare(robot, hexaleg.tripod_gait(robot, codesigned.chosen),
+                               contact=codesigned.constraints.contact())
+    base = prepared.baseline("joule")["total"]["electrical"]
+    sprung = prepared.evaluate(codesigned.springs, "joule").metrics["total"]["electrical"]
+    saving = codesigned.to_dict()["recommended"]["saving"]["electrical"]["value"]
+    assert saving == pytest.approx(100 * (1 - sprung / base), rel=1e-9)
 
 
 def test_summary_names_the_rows(codesigned):

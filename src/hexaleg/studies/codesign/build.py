@@ -190,7 +190,8 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
         return CodesignResult(
             robot=robot, title=model.name, mass=model.mass, speed=v, pattern=base.pattern,
             family=family, constraints=c, default=dataclasses.replace(base, samples=n_final),
-            chosen=chosen, springs=c_sprung.springs, measures=c_sprung.measures, rows=rows,
+            chosen=chosen, springs=c_sprung.springs, measures=c_sprung.measures,
+            inner_saving=1.0 - c_sprung.sprung / c_sprung.baseline, rows=rows,
             sequential=sequential, search=joint, gait_search=alone, curve=points,
             simulation=simulation, rules=buy, samples=n, wall=time.perf_counter() - t0)
     finally:

@@ -81,6 +81,7 @@ class CodesignResult:
         constraints: The constraints as used (the margin resolved).
         default: The default gait. chosen: The co-designed gait (at the rows' sampling).
         springs: Its inner-program springs. measures: Its constraints' values.
+        inner_saving: The electrical saving of those springs on the chosen gait (fraction).
         rows: The four rows. sequential: The gait alone, then its springs.
         search: The co-design search. gait_search: The gait-alone search.
         curve: Energy per metre against speed. simulation: The MuJoCo check (or its error).
@@ -100,6 +101,7 @@ class CodesignResult:
     chosen: GaitParams
     springs: SpringSet
     measures: dict[str, tuple[float, float, str, str]]
+    inner_saving: float
     rows: tuple[Row, ...]
     sequential: Row
     search: SearchResult
@@ -153,8 +155,7 @@ class CodesignResult:
         """``codesign.json`` (module docstring)."""
         springs, source = self.recommended
         entries = [spring_entry(j, s) for j, s in springs.items()]
-        row = self.rows[3]
-        saving = 1.0 - row.per_metre / self.rows[2].per_metre
+        saving = self.inner_saving
         if self.rules is not None and not isinstance(self.rules, str) and self.rules.pays:
             saving = float(self.rules.recommended.row["saving.electrical"])
         return {
