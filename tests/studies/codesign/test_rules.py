@@ -15,6 +15,7 @@ from hexaleg.studies.codesign.build import RULE_FAMILIES, Background, rule_param
 from hexaleg.studies.codesign.rules import RULES, per_metre
 from hexaleg.studies.codesign.write import write_result
 from hexaleg.studies.design.stages import UNMAPPED
+from hexaleg.studies.report.design_section import design_section
 
 from .conftest import RULES_SAMPLES
 
@@ -74,6 +75,11 @@ def test_codesign_json_springs_load_and_simulate(ruled, tmp_path, capsys):
     assert sim["verdict"] == "walks" and str(path) in sim["design"]
     assert data["recommended"]["springs"] == data["full_rules"]["recommended"]["springs"]
     capsys.readouterr()
+    # the rules' own design.json beside it, which hexaleg report --design leads its page with
+    lead = design_section(tmp_path / "out" / "design.json", hexaleg.load_robot())
+    assert lead is not None and lead["label"] == ruled.rules.recommended.label
+    assert lead["savings"]["electrical"]["value"] == pytest.approx(
+        data["full_rules"]["recommended"]["saving"]["electrical"]["value"])
 
 
 def test_rules_that_cannot_run_leave_the_inner_springs(codesigned):

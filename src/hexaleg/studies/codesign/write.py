@@ -4,7 +4,9 @@
 draws the energy-vs-speed curve (:mod:`hexaleg.outputs.codesign_plots`), renders the
 self-contained page (``templates/codesign.html.j2``, the plot embedded) and writes the JSON
 (:meth:`hexaleg.studies.codesign.result.CodesignResult.to_dict`), which ``hexaleg.load_design``
-and ``hexaleg simulate --springs`` read.
+and ``hexaleg simulate --springs`` read. When the full spring rules ran, their own
+``design.json`` (:func:`hexaleg.studies.design.data.design_data` of the design on the chosen
+gait) is written beside it, for ``hexaleg report --design``.
 """
 
 from __future__ import annotations
@@ -44,8 +46,14 @@ def write_result(result: CodesignResult, out: str | Path) -> tuple[dict[str, Any
                             directory / "speed.png")
     page = environment().get_template("codesign.html.j2").render(
         d=data, images={"speed": plots.data_uri(png)})
-    for name, text in (("codesign.json", json.dumps(data, indent=1, allow_nan=False)),
-                       ("codesign.html", page)):
+    texts = [("codesign.json", json.dumps(data, indent=1, allow_nan=False)),
+             ("codesign.html", page)]
+    if result.rules is not None and not isinstance(result.rules, str):
+        from hexaleg.studies.design.data import design_data
+
+        texts.append(("design.json", json.dumps(design_data(result.rules), indent=1,
+                                                allow_nan=False)))
+    for name, text in texts:
         try:
             (directory / name).write_text(text + "\n", encoding="utf-8")
         except OSError as err:
