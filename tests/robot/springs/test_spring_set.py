@@ -143,5 +143,7 @@ def test_springs_that_engage_somewhere_in_the_range_are_accepted(robot):
           "LF_coxa": StiffeningSpring(above=((2.5, 1.0), (3.0, 2.0))),
           "RF_femur": PreloadedSpring(stiffness=0.5, preload=0.0, theta_plus=3.0,
                                       theta_minus=-1.0),
-          "RF_tibia": OneSidedSpring(stiffness=0.0, contact=90.0)}  # no magnitude: no spring
-    assert len(SpringSet(ok).columns(robot)) == 5
+          "RF_tibia": OneSidedSpring(stiffness=0.0, contact=90.0),  # no magnitude: no spring
+          # a design's group whose dead zone holds the whole range: zero stiffness, no spring
+          "LM_femur": DeadZoneSpring(stiffness=0.0, stiffness_minus=0.0, theta_k=6.0)}
+    assert len(SpringSet(ok).columns(robot)) == 6

@@ -54,6 +54,8 @@ def _check_engages(joint: str, spring: Spring, robot: Robot) -> None:
     if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi) or abs(hi - lo) > 1e6:
         return  # no limits: any spring may engage
     limits = f"the joint's range [{lo:.4g}, {hi:.4g}] rad (URDF limits)"
+    if not np.any(spring.magnitudes()):
+        return  # no spring: e.g. a design's group whose geometry never engages in the gait
     if isinstance(spring, DeadZoneSpring):
         low, high = spring.neutral + spring.th_minus, spring.neutral + spring.th_plus
         if low <= lo and high >= hi:
