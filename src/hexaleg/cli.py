@@ -16,13 +16,9 @@ from typing import TextIO
 
 from hexaleg import __version__
 from hexaleg.errors import HexalegError, HexalegWarning
-from hexaleg.robot.registry import DESCRIPTIONS  # loaded by `import hexaleg` already
+from hexaleg.robot.registry import ROBOT_HELP  # loaded by `import hexaleg` already
 from hexaleg.simulation.controllers import CONTROLLERS  # no MuJoCo: it loads with a model
 from hexaleg.studies.motion_option import add_motion_option  # no loader: it loads with a log
-
-ROBOT_HELP = (f"a registered robot ({', '.join(DESCRIPTIONS)}) or a robot description "
-              "FILE.toml of one's own (docs/robots.md)")
-"""What ``--robot`` takes, on every command that has it."""
 
 
 def _add_robot(sub: argparse._SubParsersAction) -> None:
@@ -228,75 +224,6 @@ def _run_design(args: argparse.Namespace) -> int:
     return 0
 
 
-def _add_sweep(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("sweep", help="spring stiffness / dead-zone / placement sweep over a grid, "
-                                     "resumable, on a process pool or a Dask cluster")
-    p.add_argument("spec", nargs="?", help="TOML sweep spec (see docs/sweep.md); or use the "
-                                           "flags below for a one-group sweep")
-    p.add_argument("--out", default="sweep-results",
-                   help="output directory; rerun with the same spec to resume "
-                        "(default: %(default)s)")
-    p.add_argument("--executor", choices=("process", "serial", "dask"), default=None,
-                   help="default: dask with --scheduler, else process")
-    p.add_argument("--scheduler", help="Dask scheduler address, e.g. tcp://host:8786")
-    p.add_argument("--workers", type=int, help="local process pool size (default: all cores)")
-    p.add_argument("--robot", help=ROBOT_HELP + " (with a spec file: its [sweep] robot)")
-    p.add_argument("--joints", help="one-group sweep: joint class (coxa, femur, tibia) or joint")
-    for flag, what in (("--k", "stiffness, N·m/rad"), ("--theta-k", "contact angle θ_k, rad"),
-                       ("--dead-zone", "θ_k as a fraction of the half range of motion"),
-                       ("--offset", "neutral offset from the centre of motion, rad")):
-        p.add_argument(flag, help=f"{what}: VALUE, V1,V2,… or START:STOP:NUM[:log]")
-    p.add_argument("--family", help="instead of a grid of designs: the globally optimal spring "
-                                    "of this family on --joints at each gait (linear, dead_zone, "
-                                    "preloaded, one_sided, stiffening)")
-    p.add_argument("--max-torque", type=float, help="with --family: largest spring torque, N·m")
-    p.add_argument("--max-deflection", type=float,
-                   help="with --family: largest spring deflection from its free position, rad")
-    p.add_argument("--period", help="gait period, s (values as above)")
-    p.add_argument("--samples", type=int, help="samples per gait cycle")
-    p.add_argument("--metric", help="metric to rank by (default: electrical)")
-    add_motion_option(p, _run_sweep, None)
-
-
-def _run_sweep(args: argparse.Namespace) -> int:
-    import dataclasses
-
-    from hexaleg.errors import InvalidParameterError
-    from hexaleg.studies.sweep import SweepSpec, run_sweep, summary
-    from hexaleg.studies.sweep.optimal import OptimalSpec
-
-    values = {"k": args.k, "theta_k": args.theta_k, "dead_zone": args.dead_zone,
-              "offset": args.offset}
-    design = (args.family, args.max_torque, args.max_deflection)
-    if args.spec and (args.joints or any(v is not None for v in (*values.values(), *design))):
-        raise InvalidParameterError("--joints/--k/--theta-k/--dead-zone/--offset/--family",
-                                    "given with a spec file", "either a spec or the flags")
-    if args.spec and args.robot:
-        raise InvalidParameterError("--robot", args.robot, "the spec file's [sweep] robot = "
-                                    "… with a spec file")
-    if args.family is None and (args.max_torque, args.max_deflection) != (None, None):
-        raise InvalidParameterError("--max-torque/--max-deflection", "given without --family",
-                                    "bounds of the optimal design of --family")
-    optimal = (OptimalSpec(family=(args.family,), max_torque=args.max_torque,
-                           max_deflection=args.max_deflection) if args.family else None)
-    spec = (SweepSpec.from_toml(args.spec) if args.spec else
-            SweepSpec.one_group(args.joints, values, period=args.period, samples=args.samples,
-                                optimal=optimal, robot=args.robot or "hexaleg"))
-    if args.metric:
-        spec = dataclasses.replace(spec, metric=args.metric)
-    if args.motion:
-        from hexaleg.studies.sweep.logged import on_log
-
-        spec = on_log(spec, args.motion, args.cycle)
-    executor = args.executor or ("dask" if args.scheduler else "process")
-    result = run_sweep(spec, args.out, executor=executor, workers=args.workers,
-                       scheduler=args.scheduler, progress=True)
-    print(summary(result.table, spec.metric))
-    print(f"{result.computed} points computed, {result.reused} reused; results in "
-          f"{result.directory} (part-*.parquet, one table: pandas.read_parquet(DIR))")
-    return 0
-
-
 def _add_simulate(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("simulate", help="forward simulation in MuJoCo with and without the "
                                         "springs: simulate.json and simulate.md, predicted vs "
@@ -355,7 +282,8 @@ def _run_simulate(args: argparse.Namespace) -> int:
 
 
 SUBCOMMANDS = [_add_robot, _add_motors, _add_gait, _add_paper, _add_report, _add_design,
-               _add_view, _add_sweep, _add_simulate,
+               _add_view, __import__("hexaleg.studies.sweep.command", fromlist=["add"]).add,
+               _add_simulate,
                __import__("hexaleg.studies.codesign.command", fromlist=["add"]).add]
 """Parser builders, one per subcommand, in the order ``--help`` lists them."""
 

@@ -95,6 +95,9 @@ DESCRIPTIONS: Mapping[str, RobotDescription] = MappingProxyType({d.name: d for d
 """The registered robots by name; :data:`DEFAULT_ROBOT` first."""
 
 DEFAULT_ROBOT = "hexaleg"
+ROBOT_HELP = (f"a registered robot ({', '.join(DESCRIPTIONS)}) or a robot description "
+              "FILE.toml of one's own (docs/robots.md)")
+"""What a command's ``--robot`` takes (:func:`description`'s names), in every command's help."""
 
 
 def description(name: str = DEFAULT_ROBOT) -> RobotDescription:

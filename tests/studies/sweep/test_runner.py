@@ -257,25 +257,7 @@ def test_manifest_records_spec_robot_and_versions(tmp_path):
     assert manifest["n_points"] == 10
 
 
-# --------------------------------------------------------------------------- summary and CLI
-
-
-def test_cli_sweep_prints_summary_and_path(tmp_path, capsys):
-    out = tmp_path / "cli"
-    code = main(["sweep", "--joints", "coxa", "--k", "0,0.1,0.2", "--theta-k", "0.01",
-                 "--samples", "40", "--executor", "serial", "--out", str(out)])
-    text = capsys.readouterr().out
-    assert code == 0
-    assert "3 points" in text and "coxa: electrical =" in text and str(out) in text
-    table = pd.read_parquet(next(out.glob("part-*.parquet")))
-    assert summary(table).splitlines()[1] in text
-    assert main(["sweep", "--joints", "coxas", "--k", "0.1", "--theta-k", "0.01",
-                 "--executor", "serial", "--out", str(tmp_path / "bad")]) == 2
-    assert "coxa, femur, tibia" in capsys.readouterr().err
-    assert main(["sweep", "--joints", "coxa", "--k", "0.1", "--theta-k", "0.01",
-                 "--executor", "serial", "--out", str(tmp_path / "bad"),
-                 "--metric", "nope"]) == 2
-    assert "electrical" in capsys.readouterr().err
+# --------------------------------------------------------------------------- summary
 
 
 def test_summary_reports_saving_against_no_springs(tmp_path):

@@ -51,7 +51,8 @@ from hexaleg.studies.sweep import executors, logged
 from hexaleg.studies.sweep.dead_zones import check_dead_zones
 from hexaleg.studies.sweep.executors import default_workers, open_executor
 from hexaleg.studies.sweep.optimal import OptimalPoint, OptimalSpec
-from hexaleg.studies.sweep.spec import GAIT_PARAMETERS, SweepSpec
+from hexaleg.studies.sweep.spec import SweepSpec
+from hexaleg.studies.sweep.spec_tables import GAIT_PARAMETERS
 from hexaleg.studies.sweep.store import ResultStore
 
 if TYPE_CHECKING:  # pandas is imported where tables are made: `import hexaleg` stays light

@@ -12,35 +12,27 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from hexaleg.checks import count, integer, string
-from hexaleg.config import check_tables, from_mapping, load_toml
+from hexaleg.checks import count, integer
+from hexaleg.config import check_tables, load_toml
 from hexaleg.design.codesign import OBJECTIVE_METRIC
 from hexaleg.design.evaluator import DEFAULT_METRIC, METRICS, SPRING_PARAMETERS, RunSpec
-from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.robot.model import Robot
 from hexaleg.studies.sweep.optimal import OptimalPoint, OptimalSpec
-from hexaleg.studies.sweep.ranges import POINT_BYTES, axis_values, parse_range
-from hexaleg.units import deg_to_rad, nmm_per_deg_to_nm_per_rad
+from hexaleg.studies.sweep.ranges import POINT_BYTES, parse_range
+from hexaleg.studies.sweep.spec_tables import (
+    GAIT_PARAMETERS,
+    PAPER_UNIT_PARAMETERS,
+    gait_table,
+    spring_tables,
+    sweep_table,
+)
 
-PAPER_UNIT_PARAMETERS: dict[str, tuple[str, Callable[[Any], Any]]] = {
-    "k_nmm_per_deg": ("k", nmm_per_deg_to_nm_per_rad),
-    "k_minus_nmm_per_deg": ("k_minus", nmm_per_deg_to_nm_per_rad),
-    "theta_k_deg": ("theta_k", deg_to_rad),
-    "theta_minus_deg": ("theta_minus", deg_to_rad),
-    "theta_plus_deg": ("theta_plus", deg_to_rad),
-    "offset_deg": ("offset", deg_to_rad),
-}
-"""Spec keys in the paper's units (N·mm/deg, deg) → (SI parameter, conversion)."""
-GAIT_PARAMETERS: tuple[str, ...] = ("period", "duty_factor", "stride_length", "speed",
-                                    "step_height", "body_height", "foot_radius", "yaw_rate",
-                                    "samples")
-"""Scalar :class:`hexaleg.motion.params.GaitParams` fields a sweep may fix or vary."""
 LAYOUTS: tuple[str, ...] = ("product", "each")
 """How spring groups combine: every combination of all groups' values, or one group at a time."""
 SECTIONS: tuple[str, ...] = ("sweep", "gait", "springs", "contact", "optimal")
@@ -189,9 +181,9 @@ class SweepSpec:
             if not isinstance(table, Mapping):
                 raise ConfigError(f"{where}: {name} = {table!r}; expected a table, [{name}] "
                                   "with its keys on the lines below")
-        run, sweep = _sweep_table(data, where)
-        gait = _gait_table(data.get("gait", {}))
-        springs, joints = _spring_tables(data.get("springs", {}), where)
+        run, sweep = sweep_table(data, where)
+        gait = gait_table(data.get("gait", {}))
+        springs, joints = spring_tables(data.get("springs", {}), where)
         optimal = None
         if "optimal" in data:
             optimal = OptimalSpec.from_mapping(data["optimal"], where)
@@ -338,65 +330,3 @@ class SweepSpec:
             **({"optimal": self.optimal.to_dict()} if self.optimal is not None else {}),
             **({"motion": {"path": self.motion, "cycle": self.cycle}} if self.motion else {}),
         }
-
-
-# --------------------------------------------------------------------------- spec tables
-
-
-def _sweep_table(data: Mapping[str, Any], where: str) -> tuple[RunSpec, dict[str, Any]]:
-    """``[sweep]`` and ``[contact]`` → the run and the remaining ``[sweep]`` keys."""
-    sweep = dict(data.get("sweep", {}))
-    run_keys = {"robot", "motor", "objective"}
-    run_table = {k: sweep.pop(k) for k in list(sweep) if k in run_keys}
-    contact = from_mapping(ContactParams, data.get("contact", {}), f"{where} [contact]")
-    run = RunSpec(**{k: string(f"sweep.{k}", v) for k, v in run_table.items()},
-                  contact=contact)
-    allowed = ("metric", "layout", "chunk_size")
-    for key in sweep:
-        if key not in allowed:
-            raise UnknownNameError(f"key in {where} [sweep]", key, (*allowed, *run_keys))
-    return run, sweep
-
-
-def _gait_table(table: Mapping[str, Any]) -> dict[str, Any]:
-    """``[gait]`` → gait parameter → value or tuple of values (``samples`` as integers)."""
-    gait = {}
-    for name, value in table.items():
-        if name not in GAIT_PARAMETERS:
-            raise UnknownNameError("gait parameter", name, GAIT_PARAMETERS)
-        v = axis_values(f"gait.{name}", value)
-        if name == "samples":
-            v = tuple(int(x) for x in v) if isinstance(v, tuple) else int(v)
-        gait[name] = v
-    return gait
-
-
-def _spring_tables(tables: Mapping[str, Any], where: str
-                   ) -> tuple[dict[str, dict[str, Any]], dict[str, tuple[str, ...]]]:
-    """``[springs.<group>]`` tables → (group → SI parameters, group → explicit joints)."""
-    springs, joints = {}, {}
-    for group, table in tables.items():
-        if not isinstance(table, Mapping):
-            raise ConfigError(f"{where} [springs.{group}]: expected a table of parameters")
-        params = {}
-        for name, value in table.items():
-            if name == "joints":
-                if not isinstance(value, list) or not value \
-                        or not all(isinstance(j, str) for j in value):
-                    raise ConfigError(f"springs.{group}.joints = {value!r}; expected a "
-                                      "non-empty list of joint names")
-                joints[group] = tuple(value)
-                continue
-            si, convert = PAPER_UNIT_PARAMETERS.get(name, (name, None))
-            if si not in SPRING_PARAMETERS:
-                raise UnknownNameError("spring parameter", name,
-                                       (*SPRING_PARAMETERS, *PAPER_UNIT_PARAMETERS, "joints"))
-            if si in params:
-                raise ConfigError(f"springs.{group}: {si} given twice (SI and paper units)")
-            v = axis_values(f"springs.{group}.{name}", value)
-            if convert is not None:
-                v = tuple(float(convert(x)) for x in v) if isinstance(v, tuple) \
-                    else float(convert(v))
-            params[si] = v
-        springs[group] = params
-    return springs, joints
