@@ -38,3 +38,20 @@ def test_an_unknown_table_key_is_named(tmp_path):
     config.write_text("[simulate]\nground = 1\n")
     with pytest.raises(UnknownNameError, match="ground"):
         load_study("hexaleg", config)
+
+
+def test_a_design_made_on_a_log_says_without_motion_that_the_gait_is_not_its_own(tmp_path,
+                                                                                optimal):
+    """A design.json of ``hexaleg design --motion walk.csv`` has no gait parameters to re-make;
+    simulating it without --motion plays the generated gait, and the note says so and how to
+    play the log instead (the design's gait.motion.path)."""
+    design = tmp_path / "d.json"
+    design.write_text(json.dumps({**design_table(optimal.springs),
+                                  "gait": {"motion": {"source": "log", "path": "walk.csv",
+                                                      "cycle": "auto"}}}))
+    study = load_study("hexaleg", None, design)
+    assert any("designed on the motion log walk.csv" in n and "give --motion walk.csv" in n
+               for n in study.notes), study.notes
+    plain = tmp_path / "p.json"
+    plain.write_text(json.dumps(design_table(optimal.springs)))
+    assert not any("motion log" in n for n in load_study("hexaleg", None, plain).notes)

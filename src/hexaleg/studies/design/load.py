@@ -39,6 +39,8 @@ class LoadedDesign:
         metric: The metric the design was ranked by (None without one).
         saving: The predicted saving of that metric, fraction (None without one).
         pays: Whether the springs pay for their mass (None without the answer).
+        log: The motion log the design was made on (``gait.motion.path``), None on a generated
+            gait; such a design has no ``gait`` to re-make.
     """
 
     robot: str
@@ -47,6 +49,7 @@ class LoadedDesign:
     metric: str | None
     saving: float | None
     pays: bool | None
+    log: str | None = None
 
 
 GAIT_UNITS: dict[str, str] = {
@@ -131,9 +134,13 @@ def load_design(path: str | Path, robot: str | None = None) -> LoadedDesign:
                                             "a finite saving in %")
             saving = float(value) / 100
     pays = data.get("pays")
+    gait = data.get("gait")
+    motion = gait.get("motion") if isinstance(gait, Mapping) else None
+    log = motion.get("path") if isinstance(motion, Mapping) else None
     return LoadedDesign(robot=name, springs=springs, gait=design_gait(data, name, str(path)),
                         metric=metric if isinstance(metric, str) else None, saving=saving,
-                        pays=pays if isinstance(pays, bool) else None)
+                        pays=pays if isinstance(pays, bool) else None,
+                        log=str(log) if log is not None else None)
 
 
 __all__ = ["GAIT_UNITS", "LoadedDesign", "design_gait", "gait_parameters", "load_design"]

@@ -115,6 +115,10 @@ def load_study(robot: str = "hexaleg", config: str | Path | None = None,
             notes.append(f"the design file's springs were designed on its own gait "
                          f"({designed.gait.samples} samples per cycle); the logged motion "
                          "replaces it here, so the prediction differs from the design's")
+    elif designed is not None and designed.log is not None:
+        notes.append(f"the design file's springs were designed on the motion log {designed.log}; "
+                     "without --motion this run plays the robot's generated gait, so the "
+                     f"prediction differs from the design's (give --motion {designed.log})")
     elif designed is not None and designed.gait is not None:
         if "gait" in data:
             notes.append(f"the design file's springs were designed at {designed.gait.samples} "
