@@ -46,6 +46,7 @@ from hexaleg.errors import (
     InfeasibleForcesError,
     TorqueLimitError,
 )
+from hexaleg.robot.mirror import mirror
 from hexaleg.robot.model import Robot
 from hexaleg.studies.sweep import executors, logged
 from hexaleg.studies.sweep.dead_zones import check_dead_zones
@@ -117,7 +118,9 @@ def optimal_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, Se
     Returns:
         One row per point: ``point``, the gait parameters, ``springs`` (the sprung groups joined
         by ``+``), ``family``, the magnitudes and geometry (:meth:`OptimalSpec.columns`; SI,
-        angles from each joint's centre of motion, NaN where the point has none), the
+        angles from each joint's centre of motion, NaN where the point has none; a group's
+        mirrored joints, :func:`hexaleg.robot.mirror.mirror`, get its spring mirrored, so a
+        class shares one physical design as in ``hexaleg design``), the
         :func:`~hexaleg.design.evaluator.metric_row` columns and ``notes``. A point whose
         program has no solution has that error as its ``status``.
     """
@@ -127,6 +130,7 @@ def optimal_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, Se
     ev.prepared.reset_warm_start(ev.objective)  # a chunk's rows do not depend on the last chunk
     columns = optimal.columns(list(groups))
     gait_row = gait_columns(run, gait)  # one gait per chunk
+    mirrored = mirror(ev.robot).mirrored  # one physical spring a group, as hexaleg design
     rows = []
     for index, (fam, sprung) in points:
         row: dict[str, Any] = {"point": index, **gait_row, "springs": "+".join(sprung),
@@ -135,7 +139,7 @@ def optimal_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, Se
         try:
             res = optimal_springs(ev.prepared, {g: groups[g] for g in sprung}, fam,
                                   run.objective, max_torque=optimal.max_torque,
-                                  max_deflection=optimal.max_deflection)
+                                  max_deflection=optimal.max_deflection, mirrored=mirrored)
         except (InfeasibleForcesError, TorqueLimitError) as e:
             row.update(metric_row(None, ev.baseline, e))
             row["notes"] = ""
