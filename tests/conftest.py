@@ -31,6 +31,18 @@ are drawn afresh each run (their budgets are fixed), and nothing is written into
 moves the tests elsewhere)."""
 
 
+LONG_FIRST = ("test_examples.py", "test_notebooks.py")
+"""Modules whose tests each run a whole study (a kept example, a notebook: up to ~100 s)."""
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """The whole-study tests first, the rest in their order: pytest-xdist hands tests to its
+    workers in collection order, and these come last alphabetically, so one worker ran a
+    100-s example while the other had finished (longest-processing-time-first scheduling,
+    Graham, "Bounds on multiprocessing timing anomalies", SIAM J. Appl. Math. 17, 1969)."""
+    items.sort(key=lambda item: item.path.name not in LONG_FIRST)
+
+
 @pytest.fixture(scope="session", autouse=True)
 def _outside_the_checkout(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Path]:
     """Every test runs in a temporary working directory, so what a library writes into the
