@@ -207,6 +207,10 @@ def test_cost_of_transport_hand_example() -> None:
     for key, value in res["cost_of_transport"].items():
         assert value == pytest.approx(res["total"][key] / (1.5 * 9.81 * 0.2))
     assert "cost_of_transport" not in metrics(tau, qdot, 0.02, motor(), mass=1.5, distance=0.0)
+    # a subnormal stride (hypothesis drew one) walks in place: no inf cost, no NaN saving
+    tiny = metrics(tau, qdot, 0.02, motor(), mass=1.5, distance=5e-324)
+    assert "cost_of_transport" not in tiny
+    assert "cost_of_transport" in metrics(tau, qdot, 0.02, motor(), mass=1.5, distance=1e-6)
 
 
 @pytest.mark.parametrize("kwargs, match", [

@@ -30,6 +30,9 @@ TORQUE_KEYS = ("peak_torque", "rms_torque", "mean_abs_torque")
 NO_SAVING_KEYS = ("net_work",)
 """Keys :func:`savings` leaves out: the signed net work is ≈ 0 over a conservative periodic cycle,
 so a fraction of it is rounding noise."""
+IN_PLACE = 1e-9
+"""m a cycle up to which a motion walks in place: no cost of transport (a stride of a few
+float64 subnormals made ``E / (m g d)`` overflow to inf, and its saving inf − inf a NaN)."""
 COT_KEYS = ("positive_work", "absolute_work", "electrical", "electrical_regen",
             "electrical_noregen", "electrical_bus")
 """Energies whose cost of transport :func:`metrics` reports."""
@@ -92,7 +95,8 @@ def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor | MotorSet,
         motor: The servo model of every joint, or a :class:`~hexaleg.robot.motor_set.MotorSet`
             (one per joint, n of them).
         mass: Robot mass, kg, > 0; with ``distance`` > 0 adds the cost of transport.
-        distance: Distance travelled in the cycle, m, ≥ 0 (0: in place, no cost of transport).
+        distance: Distance travelled in the cycle, m, ≥ 0 (up to :data:`IN_PLACE`: in place,
+            no cost of transport).
         joint_names: n names; default ``j0 … j{n-1}``.
         periodic: Whether the samples are one period without its endpoint (duration ``T dt``)
             or a motion with both ends stored (duration ``(T − 1) dt``, T ≥ 2).
@@ -112,7 +116,7 @@ def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor | MotorSet,
           ``total`` also has ``electrical_bus`` ∫ max(0, Σ_j P_e,j), J: joints share a supply
           that takes nothing back;
         * ``cost_of_transport``: dict of floats E/(m g d) for the energies in :data:`COT_KEYS`
-          (only with ``mass`` and ``distance`` > 0);
+          (only with ``mass`` and ``distance`` > :data:`IN_PLACE`);
         * ``epsilon`` (only with ``inertia``): dict of (n,) arrays ``angle`` θ = ∫ |q̇| dt (rad,
           the angle travelled), ``inertia`` (kg·m²) and ``positive_work`` — the paper's eq. 24
           per joint, ε = E / (I θ) with E the positive work (as
@@ -140,7 +144,7 @@ def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor | MotorSet,
         positive("mass", mass)
     if distance is not None and (real("distance", distance) < 0):
         raise InvalidParameterError("distance", distance, "≥ 0 (0 for a motion in place)")
-    if mass is not None and distance is not None and distance > 0:
+    if mass is not None and distance is not None and distance > IN_PLACE:
         result["cost_of_transport"] = {
             key: cost_of_transport(total[key], mass, distance) for key in COT_KEYS}
     if inertia is not None:
