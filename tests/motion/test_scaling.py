@@ -14,13 +14,13 @@ import pytest
 
 import hexaleg
 from hexaleg.motion.params import GaitParams
+from hexaleg.motion.sanity import speed_ratio
 from hexaleg.motion.scaling import (
     REFERENCE_FROUDE,
     REFERENCE_HIP_HEIGHT,
     REFERENCE_RELATIVE_STRIDE,
     hip_height,
     sized_defaults,
-    speed_ratio,
 )
 from hexaleg.robot.registry import description
 from hexaleg.units import G

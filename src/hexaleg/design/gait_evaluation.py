@@ -31,6 +31,7 @@ from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.errors import HexalegError, InvalidParameterError
 from hexaleg.motion.legged import gait
 from hexaleg.motion.params import GaitParams
+from hexaleg.motion.sanity import speed_ratio
 from hexaleg.motion.support import static_margins
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
@@ -177,10 +178,7 @@ def measure(robot: Robot, motion: Motion, prepared: Prepared, tau_motor: np.ndar
     the body's clearance. The static margin is over the samples on three or more feet (a trot's
     two-foot samples are balanced dynamically by the body's sway) and absent when there are
     none."""
-    limits = np.asarray(robot.model.velocityLimit[6:], dtype=float)
-    speed = np.abs(prepared.qdot).max(axis=0)
-    has = (limits > 0) & (limits < 1e300)
-    ratio = float((speed[has] / limits[has]).max()) if has.any() else 0.0
+    ratio = speed_ratio(robot, motion.v)[0]
     stall = np.broadcast_to(np.asarray(prepared.motor.stall_torque, dtype=float), (robot.nj,))
     torque = float((np.abs(tau_motor).max(axis=0) / stall).max())
     usage = friction_usage(forces, prepared.motion.stance, constraints.mu)

@@ -45,6 +45,28 @@ def _has_limit(value: float) -> bool:
     return bool(0.0 < value < NO_LIMIT)
 
 
+def speed_ratio(robot: Robot, v: np.ndarray) -> tuple[float, str | None]:
+    """The largest ratio of a joint's peak speed to its URDF velocity limit, and that joint.
+
+    Args:
+        robot: The robot (joints without a usable limit, ≤ 0 or ≥ :data:`NO_LIMIT`, are left
+            out).
+        v: Joint-space velocities of a motion, shape (T, nv), rad/s.
+
+    Returns:
+        ``(max_k |q̇_k| / q̇_max,k, joint name)``; ``(0.0, None)`` when no joint has a limit.
+    """
+    worst, name = 0.0, None
+    for joint in robot.joint_names:
+        iv = robot.model.joints[robot.model.getJointId(joint)].idx_v
+        limit = float(robot.model.velocityLimit[iv])
+        if _has_limit(limit):
+            ratio = float(np.abs(v[:, iv]).max()) / limit
+            if ratio > worst:
+                worst, name = ratio, joint
+    return worst, name
+
+
 def speed_findings(robot: Robot, motion: Motion) -> list[Finding]:
     """Joints whose peak speed exceeds the URDF velocity limit (``model.velocityLimit``).
 

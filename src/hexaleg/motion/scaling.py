@@ -40,7 +40,7 @@ import pinocchio as pin
 from hexaleg.errors import HexalegError
 from hexaleg.motion.body import body_height, reference_pose
 from hexaleg.motion.params import GaitParams
-from hexaleg.motion.sanity import NO_LIMIT
+from hexaleg.motion.sanity import speed_ratio
 from hexaleg.robot.description import BUILTIN, RobotDescription
 from hexaleg.robot.model import Robot
 from hexaleg.units import G
@@ -79,28 +79,6 @@ def hip_height(robot: Robot, gait: GaitParams) -> float:
     pin.forwardKinematics(robot.model, data, q)
     hips = np.array([data.oMi[leg.joint_ids[0]].translation[2] for leg in robot.legs])
     return float(body_height(robot, gait) + hips.mean())
-
-
-def speed_ratio(robot: Robot, v: np.ndarray) -> tuple[float, str | None]:
-    """The largest ratio of a joint's peak speed to its URDF velocity limit, and that joint.
-
-    Args:
-        robot: The robot (joints without a usable limit, ≤ 0 or ≥
-            :data:`hexaleg.motion.sanity.NO_LIMIT`, are left out).
-        v: Joint-space velocities of a motion, shape (T, nv), rad/s.
-
-    Returns:
-        ``(max_k |q̇_k| / q̇_max,k, joint name)``; ``(0.0, None)`` when no joint has a limit.
-    """
-    worst, name = 0.0, None
-    for joint in robot.joint_names:
-        iv = robot.model.joints[robot.model.getJointId(joint)].idx_v
-        limit = float(robot.model.velocityLimit[iv])
-        if 0.0 < limit < NO_LIMIT:
-            ratio = float(np.abs(v[:, iv]).max()) / limit
-            if ratio > worst:
-                worst, name = ratio, joint
-    return worst, name
 
 
 @dataclass(frozen=True)
