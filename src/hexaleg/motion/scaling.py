@@ -63,7 +63,7 @@ CHECK_SAMPLES = 200
 SPEED_MARGIN = 0.99
 """The checked peak speeds are brought to at most this fraction of the limits, so that the
 peaks between the checked samples (finer sampling) stay within them."""
-_CACHE: dict[tuple[str, int, int], SizedDefaults | None] = {}
+_CACHE: dict[tuple[str, str, int, int], SizedDefaults | None] = {}
 
 
 def hip_height(robot: Robot, gait: GaitParams) -> float:
@@ -193,7 +193,7 @@ def sized_defaults(desc: RobotDescription, gait: GaitParams,
 
     Returns:
         What was chosen, or None when the description sets every key of :data:`SIZED_KEYS`.
-        Cached per description and URDF file (its modification time).
+        Cached per description, gait and URDF file (its modification time and size).
 
     Raises:
         RobotModelError: the robot cannot be loaded (its files named).
@@ -205,7 +205,7 @@ def sized_defaults(desc: RobotDescription, gait: GaitParams,
         stat = desc.urdf_path.stat()
     except OSError:  # loading names the missing file (RobotModelError)
         return _size(desc, gait, desc.load() if robot is None else robot, keys)
-    key = (repr(desc), stat.st_mtime_ns, stat.st_size)
+    key = (repr(desc), repr(gait), stat.st_mtime_ns, stat.st_size)
     if key not in _CACHE:
         _CACHE[key] = _size(desc, gait, desc.load() if robot is None else robot, keys)
     return _CACHE[key]
