@@ -37,7 +37,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from hexaleg.checks import positive, real
-from hexaleg.robot.motor import Motor
+from hexaleg.robot.motor import GENERIC_MARK, Motor
 from hexaleg.robot.motor_set import MotorSet
 from hexaleg.units import G
 
@@ -77,10 +77,6 @@ def uses_generic(motor: Motor | MotorSet) -> bool:
     open with the generic actuator's statement of assumptions)."""
     motors = motor.motors if isinstance(motor, MotorSet) else (motor,)
     return any(m.notes.startswith(GENERIC_MARK) for m in motors)
-
-
-GENERIC_MARK = "Generic actuator from URDF limits"
-"""How :func:`hexaleg.robot.motor.generic_actuator`'s notes begin."""
 
 
 @dataclass(frozen=True)

@@ -39,6 +39,8 @@ from hexaleg.robot.sanity import DEFINITE_TOL, TRIANGLE_TOL, aabb_corners
 MODES = ("refuse", "repair", "keep")
 """Values of ``load_robot(..., inertias=…)``."""
 KEYS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+REPAIRED_MARK = "inertias repaired"
+"""How the robot's loading note of a repair begins (what marks a run's robot as repaired)."""
 
 
 @dataclass(frozen=True)
@@ -236,4 +238,4 @@ def settle_inertials(xml: str, path: Path, mode: str, model: pin.Model,
             element.set(k, repr(float(fix[0][r, c])))
         notes.append(f"{link.get('name')} → {fix[1]}")
     return ET.tostring(root, encoding="unicode"), (
-        "inertias repaired (inertias=\"repair\"; invented, not measured): " + "; ".join(notes))
+        f"{REPAIRED_MARK} (inertias=\"repair\"; invented, not measured): " + "; ".join(notes))

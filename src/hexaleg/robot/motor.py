@@ -264,6 +264,10 @@ def generic_energy_range() -> tuple[float, float]:
     return GENERIC_GEARBOX_EFFICIENCY / hi, GENERIC_GEARBOX_EFFICIENCY / lo
 
 
+GENERIC_MARK = "Generic actuator from URDF limits"
+"""How :func:`generic_actuator`'s notes begin (what marks a run's actuator as generic)."""
+
+
 def generic_actuator(effort: float, velocity: float, *, name: str = "generic") -> Motor:
     """An actuator known only by a URDF joint's ``<limit effort=… velocity=…>``.
 
@@ -305,7 +309,7 @@ def generic_actuator(effort: float, velocity: float, *, name: str = "generic") -
     kt_g = eta * v / omega_0
     i_s = tau_s / kt_g
     lo, hi = generic_energy_range()
-    notes = (f"Generic actuator from URDF limits only (generic_actuator). Assumed: effort "
+    notes = (f"{GENERIC_MARK} only (generic_actuator). Assumed: effort "
              f"{tau_s:g} N·m = stall torque and velocity {omega_0:g} rad/s = no-load speed, both "
              f"at the output at {v:g} V; gearbox efficiency η = {eta:g} (constant, by power-flow "
              f"direction); gear ratio G = {g:g} (k_t at the output; only k_t G enters the "

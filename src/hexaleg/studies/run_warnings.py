@@ -21,18 +21,15 @@ from __future__ import annotations
 
 from typing import Any
 
-from hexaleg.dynamics.plausibility import GENERIC_MARK
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.sanity import speed_findings
 from hexaleg.motion.scaling import chosen_defaults
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.description import RobotDescription
+from hexaleg.robot.inertials import REPAIRED_MARK
 from hexaleg.robot.model import Robot
-from hexaleg.robot.motor import Motor, generic_energy_range
+from hexaleg.robot.motor import GENERIC_MARK, Motor, generic_energy_range
 from hexaleg.robot.motor_set import MotorSet
-
-REPAIRED_MARK = "inertias repaired"
-"""How the robot's loading note of a repair begins (:func:`hexaleg.robot.inertials`)."""
 
 
 def generic_warning(motor: Motor | MotorSet) -> str | None:
