@@ -39,7 +39,8 @@ UNITS: dict[str, str] = {"rows": "rows", "rate": "Hz", "filled": "values", "nois
 """The unit of each number of :class:`~hexaleg.motion.recorded.quality.MotionQuality`."""
 
 _LOADED: dict[str, Motion] = {}
-"""Log path → the motion loaded from it in this process (the quality written after the run)."""
+"""Log path → the motion a command read from it (its quality printed and written after the
+run, :func:`add_motion_option`), removed when that command ends."""
 
 
 def add_motion_option(parser: argparse.ArgumentParser, run: Callable[[argparse.Namespace], int],
@@ -63,8 +64,8 @@ def _run_with_motion(run: Callable[[argparse.Namespace], int], json_name: str | 
                                     "(the generated gait is one cycle already)")
     try:
         return run(args)
-    finally:
-        motion = loaded_log(args.motion) if args.motion else None
+    finally:  # the log read for this command only: a later command reads it afresh
+        motion = _LOADED.pop(str(Path(args.motion)), None) if args.motion else None
         if motion is not None:
             for line in motion_quality(motion).lines():
                 print(f"motion: {line}")
@@ -104,11 +105,6 @@ def logged_motion(robot: Robot, path: str | Path, cycle: str = "auto") -> Motion
     motion = load_motion(robot, path, cycle=parse_cycle(cycle), periodic=True)
     _LOADED[str(Path(path))] = motion
     return motion
-
-
-def loaded_log(path: str | Path) -> Motion | None:
-    """The motion :func:`logged_motion` read from ``path`` in this process, or None."""
-    return _LOADED.get(str(Path(path)))
 
 
 def refuse_gait_table(data: Mapping[str, Any], where: str, path: str | Path) -> None:
@@ -177,5 +173,5 @@ def add_quality(path: Path, motion: Motion) -> None:
     path.write_text(json.dumps(data, indent=1, ensure_ascii=False), encoding="utf-8")
 
 
-__all__ = ["add_motion_option", "add_quality", "loaded_log", "logged_motion", "motion_quality",
+__all__ = ["add_motion_option", "add_quality", "logged_motion", "motion_quality",
            "parse_cycle", "quality_data", "quality_note", "refuse_gait_table"]

@@ -48,6 +48,7 @@ from hexaleg.design.tolerance import TolerantSprings
 from hexaleg.dynamics.plausibility import Plausibility, check_cost_of_transport, uses_generic
 from hexaleg.errors import HexalegError
 from hexaleg.motion.params import GaitParams
+from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.mirror import mirror
 from hexaleg.simulation.sensitivity import controller_check
 from hexaleg.studies.design.candidates import Candidate
@@ -103,6 +104,7 @@ class DesignResult:
         plausibility: The baseline's electrical cost of transport against the plausible band
             for the robot's mass (:func:`~hexaleg.dynamics.plausibility.check_cost_of_transport`),
             or None when the gait does not travel.
+        motion: The logged motion designed on (``--motion``), None on a generated gait.
     """
 
     config: DesignConfig
@@ -127,6 +129,7 @@ class DesignResult:
     timings: dict[str, float]
     notes: tuple[str, ...]
     plausibility: Plausibility | None = None
+    motion: Motion | None = None
 
     @property
     def pays(self) -> bool:
@@ -228,7 +231,7 @@ def build_design(config: DesignConfig | None = None,
         candidates=tuple(ranked), recommended=rec, outer=nom.outer, pareto=tuple(pareto),
         maps=maps, worst=worst, robust=robust, ranking=tuple(rows), tolerance=tolerance,
         envelope=envelope, fatigue=fatigue, simulation=simulation,
-        timings=timings, notes=tuple(notes), plausibility=plausible)
+        timings=timings, notes=tuple(notes), plausibility=plausible, motion=nom.motion)
 
 
 def _plausibility(nom: Nominal) -> Plausibility | None:

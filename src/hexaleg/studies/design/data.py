@@ -148,9 +148,9 @@ def gait_data(r: DesignResult) -> dict[str, Any]:
         return {"period": quantity(g.period, "s"), "stride": quantity(g.stride, "m"),
                 "duty_factor": quantity(g.duty_factor, "1"), "samples": g.samples,
                 "parameters": gait_parameters(g)}
-    from hexaleg.studies.motion_option import loaded_log, quality_data
+    from hexaleg.studies.motion_option import quality_data
 
-    logged = loaded_log(r.config.motion)
+    logged = r.motion
     return {"period": quantity(g.period, "s"),
             "stride": None if logged is None else quantity(logged.distance, "m"),
             "duty_factor": (None if logged is None
