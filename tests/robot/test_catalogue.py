@@ -16,6 +16,7 @@ from hexaleg.robot.catalogue import (
     CATALOGUE,
     DEFAULT_MOTOR,
     KGF_CM,
+    OUTPUT_HUBS,
     catalogue_table,
     motor,
     motor_from_mapping,
@@ -65,8 +66,49 @@ def test_towerpro_servo_reproduces_its_datasheet(name: str) -> None:
 
 
 def test_catalogue_holds_the_datasheet_servos_and_the_odri_module() -> None:
-    assert set(CATALOGUE) == set(DATASHEET) | {"ODRI-4004"} | set(TOWERPRO)
+    assert set(CATALOGUE) == set(DATASHEET) | {"ODRI-4004", "DSS-M15S"} | set(TOWERPRO)
     assert KGF_CM == pytest.approx(9.80665 / 100)
+
+
+def test_dss_m15s_reproduces_dfrobots_figures() -> None:
+    """DFRobot wiki (SKU SER0044), 6 V: 11.5 kg·cm locking torque = 1.1278 N·m, stall current
+    1.4 A, 0.18 s/60° = 55.56 rpm, gear ratio 310 : 1. Hand values: k_t G = 1.1278 / 1.4 =
+    0.806 N·m/A, R = 6 / 1.4 = 4.29 Ω, η = 1.1278 · 5.818 / (6 · 1.4) = 0.781, c = 6.61 W/(N·m)²;
+    the 7 V figures (12 kg·cm, 1.76 A, 0.16 s/60°) would give η = 0.625."""
+    m = motor("dss-m15s")
+    assert m.gear_ratio == 310.0 and m.voltage == 6.0 and not m.regeneration
+    assert m.stall_torque == pytest.approx(1.1278, abs=1e-4)
+    assert m.no_load_speed / RPM == pytest.approx(55.56, abs=5e-3)
+    assert m.current(m.stall_torque) == pytest.approx(1.4, rel=1e-12)
+    assert (6.0 / m.resistance) * m.torque_constant * m.gear_ratio == pytest.approx(
+        m.stall_torque, rel=1e-12)  # stalled at V / R the model gives the datasheet torque
+    assert m.torque_constant * m.gear_ratio == pytest.approx(0.806, abs=5e-4)
+    assert m.resistance == pytest.approx(4.286, abs=5e-4)
+    assert m.gearbox_efficiency == pytest.approx(0.781, abs=5e-4)
+    assert m.joule_coefficient == pytest.approx(6.605, abs=5e-4)
+    for figure in ("SER0044", "0.18 sec/60 degrees", "11.5 kg·cm", "1.4 A", "310:1", "6 V"):
+        assert figure in m.source, figure
+    assert "= 0.625" in m.notes and "no winding resistance" in m.notes
+    hub = OUTPUT_HUBS["DSS-M15S"]
+    assert hub.diameter == pytest.approx(5.8e-3) and "25T/5.80" in hub.source
+
+
+def test_brushless_module_holds_odri_and_names_the_unsourced_registry_actuators() -> None:
+    """odri_actuator lives in hexaleg.robot.brushless and is re-exported by the catalogue; that
+    module says, for every registry robot left with a generic actuator, why its real one is not
+    in the catalogue."""
+    from hexaleg.robot import brushless, catalogue
+    from hexaleg.robot.registry import DESCRIPTIONS
+
+    assert catalogue.odri_actuator is brushless.odri_actuator
+    assert CATALOGUE["ODRI-4004"] == brushless.odri_actuator()
+    doc = brushless.__doc__ or ""
+    generic = [name for name, d in DESCRIPTIONS.items() if d.motor is None]
+    assert sorted(generic) == ["a1", "anymal", "anymal_c", "go2"]
+    for name in generic:
+        assert f"``{name}``" in doc, name
+    for actuator in ("A1 joint motor", "GO-M8010-6", "ANYdrive"):
+        assert actuator in doc, actuator
 
 
 @pytest.mark.parametrize("name", DATASHEET)
@@ -227,7 +269,7 @@ def test_docs_catalogue_table_matches_the_catalogue() -> None:
 
 
 def test_every_catalogue_servo_states_its_output_hub_or_why_not():
-    from hexaleg.robot.catalogue import CATALOGUE, OUTPUT_HUBS, output_hub
+    from hexaleg.robot.catalogue import output_hub
 
     assert set(OUTPUT_HUBS) == set(CATALOGUE)
     for name, hub in OUTPUT_HUBS.items():

@@ -15,8 +15,12 @@ included, ``k_t G = τ_stall / I_stall``, ``η = τ_stall ω_0 / (V I_stall)``);
   quadrupeds, from TowerPro's datasheet figures (kgf·cm, s/60°); the SG90's sheet gives no stall
   current, so that figure is a retailer's, said in the entry. Neither publishes a gear ratio:
   G = 1 is stated (only ``k_t G`` enters any power).
-* ODRI-4004: the brushless actuator module of Solo-12 (:func:`odri_actuator`), with stated
-  assumptions.
+* DFRobot DSS-M15S (:func:`_dss_m15s`): a 15 kg·cm metal-gear hobby servo whose maker publishes
+  the stall current and gear ratio with the torque and speed (DFRobot wiki, 6 V figures).
+* ODRI-4004: the brushless actuator module of Solo-12 (:func:`~hexaleg.robot.brushless.
+  odri_actuator`, in :mod:`hexaleg.robot.brushless` with the other brushless quasi-direct-drive
+  notes, re-exported here), with stated assumptions. That module also says which registry
+  robots' actuators (Unitree A1, GO-M8010-6, ANYdrive) could not be sourced, and why.
 
 :data:`OUTPUT_HUBS` gives, per catalogue servo, the diameter of its output hub (the horn's boss,
 the spline or the shaft a torsion spring could wind on) where a source states it as a number,
@@ -24,13 +28,14 @@ with that source; where none does, the entry says so and holds None, and
 :func:`hexaleg.design.spring_parts.arbor_for` falls back to its stated rule.
 
 The model itself (:class:`~hexaleg.robot.motor.Motor`) and the actuator built from URDF limits
-(:func:`~hexaleg.robot.motor.generic_actuator`) are in :mod:`hexaleg.robot.motor`, which also
-exports this module's public names.
+(:func:`~hexaleg.robot.motor.generic_actuator`) are in :mod:`hexaleg.robot.motor`, which does not
+import this module (import the catalogue's names from here).
 """
 
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
@@ -38,6 +43,7 @@ from typing import Any
 
 from hexaleg.config import from_mapping
 from hexaleg.errors import ConfigError, UnknownNameError
+from hexaleg.robot.brushless import odri_actuator
 from hexaleg.robot.motor import RPM, Motor, from_datasheet
 
 KGF_CM = 9.80665e-2
@@ -119,33 +125,29 @@ def _sg90() -> Motor:
               "for the other entries.")
 
 
-def odri_actuator() -> Motor:
-    """The Open Dynamic Robot Initiative actuator module v1 of Solo-12 (Grimminger et al.,
-    "An Open Torque-Controlled Modular Robot Architecture for Legged Locomotion Research",
-    IEEE RA-L 5(2), 2020).
+_DFROBOT_SER0044 = ("https://wiki.dfrobot.com/DSS-M15S_270°_15KG_DF_Metal_Servo_with_Analog_"
+                    "Feedback_SKU__SER0044")
 
-    Figures from the module's documentation (open-dynamic-robot-initiative,
-    open_robot_actuator_hardware, "Brushless Actuator Module v1"): gear ratio 9 (3 : 1 × 3 : 1),
-    2.5 N·m at the output at 12 A (so ``k_t G = 2.5 / 12`` N·m/A, belt losses included, as for
-    the servos' stall figures), phase resistance ``R_s`` = 0.23255 Ω identified with TI
-    Motorware, motor 300 rpm/V. In the rotor (dq) frame a field-oriented brushless motor is the DC
-    model with ``i`` the q-axis current, and a star winding loses ``(3/2) R_s i²``
-    (amplitude-invariant currents). Assumed: the 12 A is the q-axis current amplitude, so
-    ``R = 1.5 R_s``; a 24 V supply, giving the no-load output speed 300 · 24 / 9 = 800 rpm; a
-    belt efficiency of 0.9 (two stages); 2.5 N·m, the torque at the 12 A current limit, stands
-    for the stall torque.
-    """
-    return Motor(name="ODRI-4004", gear_ratio=9.0, torque_constant=2.5 / 12.0 / 9.0,
-                 resistance=1.5 * 0.23255, gearbox_efficiency=0.9, regeneration=False,
-                 stall_torque=2.5, no_load_speed=300.0 * 24.0 / 9.0 * RPM, voltage=24.0,
-                 source="ODRI actuator module v1 (Solo-12), open-dynamic-robot-initiative/"
-                        "open_robot_actuator_hardware: 9:1, 2.5 N·m at 12 A, R_s 0.23255 Ω; "
-                        "R = 1.5 R_s, 24 V and η = 0.9 assumed",
-                 notes="Assumed: the 12 A is the q-axis current amplitude, so R = 1.5 R_s = "
-                       "0.349 Ω (star winding, amplitude-invariant currents); a 24 V supply, so "
-                       "the no-load output speed is 300 rpm/V · 24 V / 9 = 800 rpm; belt "
-                       "efficiency η = 0.9 (two stages); 2.5 N·m, the torque at the 12 A current "
-                       "limit, stands for the stall torque.")
+
+def _dss_m15s() -> Motor:
+    """DFRobot DSS-M15S (270°, 15 kg metal-gear servo) at 6 V, from DFRobot's wiki page (SKU
+    SER0044, the analog-feedback version of the same servo): 11.5 kg·cm "locking torque", 1.4 A
+    stall current, 0.18 s/60° no-load, gear ratio 310 : 1."""
+    stall_kgf_cm, seconds_per_60deg = 11.5, 0.18
+    rpm = (60.0 / 360.0) / seconds_per_60deg * 60.0  # 1/6 turn in 0.18 s → 55.56 rpm
+    eta_7v = 12.0 * KGF_CM * (math.pi / 3.0 / 0.16) / (7.0 * 1.76)
+    return from_datasheet(
+        "DSS-M15S", gear_ratio=310.0, stall_torque=stall_kgf_cm * KGF_CM, stall_current=1.4,
+        no_load_speed_rpm=rpm, voltage=6.0,
+        source=f"DFRobot wiki, DSS-M15S 270° 15KG DF Metal Servo with Analog Feedback (SKU "
+               f"SER0044), {_DFROBOT_SER0044}: 6 V test environment: operating speed (no load) "
+               "0.18 sec/60 degrees, locking torque 11.5 kg·cm, stall current 1.4 A; gear ratio "
+               "310:1 (7 V: 0.16 sec/60 degrees, 12 kg·cm, 1.76 A)",
+        notes=f"The 6 V figures; the 7 V ones give η = τ_s ω_0 / (V I_s) = {eta_7v:.3f} (the "
+              f"DC model cannot match both voltages). {stall_kgf_cm:g} kg·cm read as kgf·cm = "
+              f"{stall_kgf_cm * KGF_CM:.4f} N·m (the locking torque taken as the stall torque); "
+              f"{seconds_per_60deg:g} s/60° = {rpm:.2f} rpm. DFRobot publishes no winding "
+              "resistance.")
 
 
 _EMANUAL = "https://emanual.robotis.com/docs/en/dxl/"
@@ -177,11 +179,12 @@ CATALOGUE: Mapping[str, Motor] = MappingProxyType({
         _sts3215(),
         _mg996r(),
         _sg90(),
+        _dss_m15s(),
         odri_actuator(),
     )
 })
-"""Real actuators, keyed by model name: ROBOTIS, Feetech and TowerPro servos with datasheet values
-and the ODRI brushless module of Solo-12 (:func:`odri_actuator`)."""
+"""Real actuators, keyed by model name: ROBOTIS, Feetech, TowerPro and DFRobot servos with datasheet
+values and the ODRI brushless module of Solo-12 (:func:`odri_actuator`)."""
 
 @dataclass(frozen=True)
 class OutputHub:
@@ -211,6 +214,9 @@ OUTPUT_HUBS: Mapping[str, OutputHub] = MappingProxyType({
     "STS3215-C018": OutputHub(None, "not sourced: Feetech's product page gives no output hub or "
                                     "spline diameter; the arbor falls back to the link rule"),
     **{name: OutputHub(None, _TOWERPRO_HUB) for name in ("MG996R", "SG90")},
+    "DSS-M15S": OutputHub(5.8e-3, f"DFRobot wiki SER0044 ({_DFROBOT_SER0044}): 'Gear bracket "
+                                  "spline 25T/5.80', a 25-tooth spline of 5.80 mm, read as its "
+                                  "outer diameter"),
     "ODRI-4004": OutputHub(None, "not sourced: the ODRI actuator module's documentation gives "
                                  "its output as CAD files, no diameter in text; the arbor falls "
                                  "back to the link rule"),
