@@ -28,6 +28,7 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.errors import RobotModelError, UnreachableTargetError
+from hexaleg.motion.leg_chain import LegChain, leg_chain
 from hexaleg.robot.model import Leg, Robot
 
 FK_CHECK_TOL = 1e-12
@@ -36,6 +37,10 @@ NEWTON_TOL = 1e-13
 """Foot position residual, m, at which the Newton solver stops."""
 NEWTON_MAX_ITER = 50
 """Newton iterations allowed per sample before the target is declared unreachable."""
+NEWTON_JUMP = 0.1
+"""Largest joint change, rad (or m), between consecutive samples solved all at once from the
+same start that :func:`newton_leg_ik` accepts as one continuous branch; a larger one is solved
+again sample by sample from its predecessor."""
 
 
 @dataclass(frozen=True)
@@ -295,12 +300,16 @@ def analytic_leg_ik(geom: LegGeometry, p: np.ndarray, pd: np.ndarray, pdd: np.nd
 def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarray, *,
                   q0: np.ndarray | None = None, t: np.ndarray | None = None
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Inverse kinematics of any 3-joint leg by Newton's method on Pinocchio's forward kinematics.
+    """Inverse kinematics of any 3-joint leg by Newton's method on its forward kinematics.
 
-    Each sample starts from the previous solution (the first from ``q0``), so the branch stays
-    the one ``q0`` selects. Then ``q̇ = J⁻¹ ṗ`` and ``q̈ = J⁻¹ (p̈ − J̇ q̇)``, with ``J`` the
-    foot's translation Jacobian and ``J̇ q̇`` its classical acceleration at zero joint
-    acceleration (both from Pinocchio, base at rest at the origin).
+    The leg is read from Pinocchio as a fixed chain (:func:`~hexaleg.motion.leg_chain.leg_chain`,
+    the other joints at the ``stand`` pose) and Newton runs on every sample at once from ``q0``.
+    The branch is the one ``q0`` selects: the result is kept when every sample converged and
+    consecutive samples differ by under :data:`NEWTON_JUMP` (a continuous path from the first
+    sample, so each sample is the solution Newton reaches from its predecessor); otherwise the
+    samples from the first failure on are solved one after another, each from the previous
+    solution. Then ``q̇ = J⁻¹ ṗ`` and ``q̈ = J⁻¹ (p̈ − J̇ q̇)``, with ``J`` the foot's translation
+    Jacobian and ``J̇ q̇`` its acceleration at zero joint acceleration.
 
     Args:
         robot: The robot.
@@ -317,51 +326,68 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
         order of ``leg.joint_names``.
 
     Raises:
-        RobotModelError: the leg does not have exactly three joints.
+        RobotModelError: the leg does not have exactly three 1-DoF joints in one chain.
         UnreachableTargetError: Newton does not reach a target (or the Jacobian is singular
             there); the message names the leg, the time and the remaining distance.
     """
-    if len(leg.joint_ids) != 3:
-        raise RobotModelError(f"leg {leg.name} has {len(leg.joint_ids)} joints; foot-position "
-                              "inverse kinematics needs exactly 3")
     model = robot.model
-    data = model.createData()
     p, pd, pdd = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, pd, pdd))
     t = np.arange(len(p), dtype=float) if t is None else np.asarray(t, dtype=float)
-    q = robot.pose("stand") if "stand" in robot.poses else pin.neutral(model)
-    q[:7] = pin.neutral(model)[:7]
-    if q0 is not None:
-        q[leg.q_index] = q0
-    fid, iv = leg.foot_frame_id, leg.v_index
-    out_q, out_qd, out_qdd = (np.empty((len(p), 3)) for _ in range(3))
-    v = np.zeros(model.nv)
-    zero = np.zeros(model.nv)
-    for k in range(len(p)):
-        err = np.inf
-        for _ in range(NEWTON_MAX_ITER):
-            pin.framesForwardKinematics(model, data, q)
-            e = p[k] - data.oMf[fid].translation
-            err = float(np.linalg.norm(e))
-            if err <= NEWTON_TOL:
-                break
-            jac = pin.computeFrameJacobian(model, data, q, fid, pin.LOCAL_WORLD_ALIGNED)[:3, iv]
-            step = np.linalg.lstsq(jac, e, rcond=None)[0]
-            norm = float(np.linalg.norm(step))
-            q[leg.q_index] += step * min(1.0, 0.5 / norm) if norm > 0 else step
-        jac = pin.computeFrameJacobian(model, data, q, fid, pin.LOCAL_WORLD_ALIGNED)[:3, iv]
-        if err > NEWTON_TOL or np.linalg.cond(jac) > 1e8:
-            raise UnreachableTargetError(
-                f"leg {leg.name} at t = {t[k]:.6g} s: foot target {np.round(p[k], 6).tolist()} m "
-                f"(base frame) is out of reach: Newton stopped {err:.6g} m from it"
-                + (" at a singular configuration" if err <= NEWTON_TOL else ""),
-                **_where(leg.name, t, k, p[k], err))
-        qd = np.linalg.solve(jac, pd[k])
-        v[iv] = qd
-        pin.forwardKinematics(model, data, q, v, zero)
-        bias = pin.getFrameClassicalAcceleration(model, data, fid, pin.LOCAL_WORLD_ALIGNED).linear
-        out_q[k], out_qd[k] = q[leg.q_index], qd
-        out_qdd[k] = np.linalg.solve(jac, pdd[k] - bias)
-    return out_q, out_qd, out_qdd
+    reference = robot.pose("stand") if "stand" in robot.poses else pin.neutral(model)
+    reference[:7] = pin.neutral(model)[:7]
+    chain = leg_chain(robot, leg, reference)
+    start = reference[leg.q_index] if q0 is None else np.asarray(q0, dtype=float)
+    q, err = _newton(chain, p, np.tile(start, (len(p), 1)))
+    jumps = np.abs(np.diff(q, axis=0)).max(axis=1)
+    bad = np.flatnonzero((err > NEWTON_TOL) | np.r_[False, jumps >= NEWTON_JUMP])
+    for k in range(int(bad[0]) if bad.size else len(p), len(p)):
+        q[k:k + 1], err[k:k + 1] = _newton(chain, p[k:k + 1], start[None] if k == 0 else q[k - 1:k])
+        if err[k] > NEWTON_TOL:
+            break
+    _, jac = chain.position_jacobian(q)
+    singular = np.linalg.cond(jac) > 1e8
+    failed = (err > NEWTON_TOL) | singular
+    if failed.any():
+        k = int(np.argmax(failed))
+        raise UnreachableTargetError(
+            f"leg {leg.name} at t = {t[k]:.6g} s: foot target {np.round(p[k], 6).tolist()} m "
+            f"(base frame) is out of reach: Newton stopped {err[k]:.6g} m from it"
+            + (" at a singular configuration" if err[k] <= NEWTON_TOL else ""),
+            **_where(leg.name, t, k, p[k], float(err[k])))
+    qd = np.linalg.solve(jac, pd[..., None])[..., 0]
+    qdd = np.linalg.solve(jac, (pdd - chain.bias(q, qd))[..., None])[..., 0]
+    return q, qd, qdd
+
+
+def _newton(chain: LegChain, p: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Damped Newton steps (at most 0.5 rad or m a step; least squares where the Jacobian is
+    singular) on every sample at once until each is within :data:`NEWTON_TOL` of its target or
+    :data:`NEWTON_MAX_ITER` steps.
+
+    Args:
+        chain: The leg. p: Targets, shape (T, 3), m. q: Starting joint values, shape (T, 3).
+
+    Returns:
+        The joint values reached, shape (T, 3), and their distance to the targets, shape (T,), m.
+    """
+    q = q.copy()
+    err = np.full(len(p), np.inf)
+    todo = np.arange(len(p))
+    for it in range(NEWTON_MAX_ITER + 1):
+        at, jac = chain.position_jacobian(q[todo])
+        e = p[todo] - at
+        err[todo] = np.linalg.norm(e, axis=1)
+        keep = err[todo] > NEWTON_TOL
+        todo, jac, e = todo[keep], jac[keep], e[keep]
+        if not todo.size or it == NEWTON_MAX_ITER:
+            break
+        try:
+            step = np.linalg.solve(jac, e[..., None])[..., 0]
+        except np.linalg.LinAlgError:  # a singular Jacobian: the least-squares step
+            step = (np.linalg.pinv(jac) @ e[..., None])[..., 0]
+        norm = np.linalg.norm(step, axis=1, keepdims=True)
+        q[todo] += step * np.minimum(1.0, 0.5 / np.maximum(norm, 1e-300))
+    return q, err
 
 
 def leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarray, *,

@@ -1,0 +1,219 @@
+"""A leg as a serial chain of three 1-DoF joints, with forward kinematics vectorised over samples.
+
+Pinocchio evaluates one configuration a call; a gait's inverse kinematics needs the foot of one
+leg at hundreds of samples, many times over (the body sway iterates on the whole gait). With the
+rest of the robot held at its reference pose, a leg is a fixed chain: the base → first joint
+placement, the placement of each joint in the previous joint's frame, each joint's motion
+(rotation about an axis or translation along one) and the foot in the last joint's frame. This
+module reads that chain from the Pinocchio model once (:func:`leg_chain`) and evaluates the
+foot's position, its translation Jacobian and its bias acceleration ``J̇ q̇`` for a whole stack
+of configurations with numpy.
+
+Source: the product of exponentials / screw form of serial-chain kinematics and the geometric
+Jacobian with its time derivative (Siciliano et al., *Robotics: Modelling, Planning and
+Control*, 2009, §2.9 and §3.1–3.2: the column of a revolute joint is ``z × (p − o)``, of a
+prismatic joint ``z``). :func:`leg_chain` checks the chain against Pinocchio's forward kinematics
+before it is used; the tests check the Jacobian and ``J̇ q̇`` against Pinocchio too.
+"""
+
+from __future__ import annotations
+
+import weakref
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+
+from hexaleg.errors import RobotModelError
+from hexaleg.robot.model import Leg, Robot
+
+CHAIN_CHECK_TOL = 1e-12
+"""Foot position tolerance, m, of the check of the chain against Pinocchio's forward kinematics."""
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``a × b`` over the last axis (length 3) with broadcasting: numpy's ``cross`` costs more in
+    its checks than in the arithmetic at these sizes."""
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
+
+
+def _rotations(axis: np.ndarray, angle: np.ndarray) -> np.ndarray:
+    """Rotations by ``angle`` about unit ``axis`` (Rodrigues' formula), shape (T, 3, 3)."""
+    k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
+    s, c = np.sin(angle)[:, None, None], np.cos(angle)[:, None, None]
+    return np.eye(3) + s * k + (1.0 - c) * (k @ k)
+
+
+@dataclass(frozen=True, eq=False)
+class LegChain:
+    """One leg's three joints as a fixed serial chain in the base frame (module docstring).
+
+    Attributes:
+        placements: Per joint, its frame at zero angle in the previous joint's frame (the first
+            in the base frame, with every joint before it at the reference pose): rotations,
+            shape (3, 3, 3), and translations, shape (3, 3), m.
+        angular: Per joint, its rotation axis in its own frame (zero for a prismatic joint),
+            shape (3, 3).
+        linear: Per joint, its translation axis in its own frame (zero for a revolute joint),
+            shape (3, 3).
+        foot: The foot point in the last joint's frame, shape (3,), m.
+    """
+
+    placements: tuple[np.ndarray, np.ndarray]
+    angular: np.ndarray
+    linear: np.ndarray
+    foot: np.ndarray
+
+    def frames(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """The foot and the joints' axes in the base frame.
+
+        Args:
+            q: Joint values, shape (T, 3), rad or m.
+
+        Returns:
+            Foot positions (T, 3) m; joint origins (T, 3, 3) m, angular axes (T, 3, 3) and
+            linear axes (T, 3, 3), each ``[:, i]`` of joint i, in the base frame.
+        """
+        n = len(q)
+        rot = np.broadcast_to(np.eye(3), (n, 3, 3))
+        pos = np.zeros((n, 3))
+        origins, angular, linear = (np.empty((n, 3, 3)) for _ in range(3))
+        for i in range(3):
+            pos = pos + rot @ self.placements[1][i]
+            rot = rot @ self.placements[0][i]
+            origins[:, i] = pos
+            angular[:, i] = rot @ self.angular[i]
+            linear[:, i] = rot @ self.linear[i]
+            pos = pos + linear[:, i] * q[:, i:i + 1]
+            if self.angular[i].any():
+                rot = rot @ _rotations(self.angular[i], q[:, i])
+        return pos + rot @ self.foot, origins, angular, linear
+
+    def position_jacobian(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The foot's position and its translation Jacobian ``∂p/∂q``.
+
+        Args:
+            q: Joint values, shape (T, 3).
+
+        Returns:
+            Foot positions (T, 3) m and Jacobians (T, 3, 3) (rows x y z, columns the joints).
+        """
+        p, origins, angular, linear = self.frames(q)
+        cols = linear + _cross(angular, p[:, None, :] - origins)
+        return p, np.swapaxes(cols, 1, 2)
+
+    def bias(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
+        """The foot's acceleration at zero joint acceleration, ``J̇ q̇``, in the base frame.
+
+        Each column ``c_i = l_i + a_i × (p − o_i)`` moves with the body carrying joint i, whose
+        angular velocity is ``Ω_i = Σ_{j<i} a_j q̇_j``: ``ȧ_i = Ω_i × a_i``, ``l̇_i = Ω_i × l_i``,
+        ``ȯ_i = Σ_{j<i} c_j(o_i) q̇_j`` and ``ṗ = J q̇``, so
+        ``J̇ q̇ = Σ_i q̇_i (Ω_i × l_i + (Ω_i × a_i) × (p − o_i) + a_i × (ṗ − ȯ_i))``.
+
+        Args:
+            q: Joint values, shape (T, 3).
+            qd: Joint velocities, shape (T, 3).
+
+        Returns:
+            Bias accelerations, shape (T, 3), m/s².
+        """
+        p, origins, angular, linear = self.frames(q)
+        pd = np.einsum("tjx,tj->tx", linear + _cross(angular, p[:, None, :] - origins), qd)
+        omega = np.zeros_like(p)
+        out = np.zeros_like(p)
+        for i in range(3):
+            o = origins[:, i]
+            od = sum((linear[:, j] + _cross(angular[:, j], o - origins[:, j])) * qd[:, j:j + 1]
+                     for j in range(i)) if i else np.zeros_like(p)
+            term = (_cross(omega, linear[:, i]) + _cross(_cross(omega, angular[:, i]), p - o)
+                    + _cross(angular[:, i], pd - od))
+            out += term * qd[:, i:i + 1]
+            omega = omega + angular[:, i] * qd[:, i:i + 1]
+        return out
+
+
+def _motion_axes(model: pin.Model, jid: int) -> tuple[np.ndarray, np.ndarray]:
+    """Joint ``jid``'s angular and linear axes in its own frame (its motion subspace), each (3,)."""
+    data = model.createData()
+    q = pin.neutral(model)
+    pin.computeJointJacobians(model, data, q)
+    s = np.array(pin.getJointJacobian(model, data, jid, pin.LOCAL)[:, model.joints[jid].idx_v])
+    return s[3:], s[:3]
+
+
+_Key = tuple[tuple[int, ...], int, bytes]
+_CHAINS: weakref.WeakKeyDictionary[Robot, dict[_Key, LegChain]] = weakref.WeakKeyDictionary()
+"""Chains read per robot, by the leg's joints, its foot frame and the reference pose: a gait's
+body sway solves each leg's inverse kinematics many times (a robot's kinematics do not change
+once it is loaded)."""
+
+
+def leg_chain(robot: Robot, leg: Leg, reference: np.ndarray) -> LegChain:
+    """The chain of ``leg`` with every other joint at ``reference``, checked against Pinocchio
+    (read once per robot, leg and reference, then kept while the robot lives).
+
+    Args:
+        robot: The robot.
+        leg: One of ``robot.legs``, three joints each the ancestor of the next and of the foot.
+        reference: The configuration the other joints keep, shape (nq,), base at the origin.
+
+    Returns:
+        The chain.
+
+    Raises:
+        RobotModelError: the leg does not have three 1-DoF revolute or prismatic joints in one
+            chain to its foot (the message names the joint), or the chain does not reproduce
+            Pinocchio's forward kinematics.
+    """
+    key = (leg.joint_ids, leg.foot_frame_id, np.asarray(reference, dtype=float).tobytes())
+    known = _CHAINS.setdefault(robot, {})
+    if key not in known:
+        known[key] = _read_chain(robot, leg, reference)
+    return known[key]
+
+
+def _read_chain(robot: Robot, leg: Leg, reference: np.ndarray) -> LegChain:
+    """:func:`leg_chain` without the memory."""
+    model = robot.model
+    if len(leg.joint_ids) != 3:
+        raise RobotModelError(f"leg {leg.name} has {len(leg.joint_ids)} joints; foot-position "
+                              "inverse kinematics needs exactly 3")
+    foot = model.frames[leg.foot_frame_id]
+    chain = (*leg.joint_ids, foot.parentJoint)
+    below = (*leg.joint_names[1:], f"foot frame {leg.foot_frame}")
+    for name, jid, child, child_name in zip(leg.joint_names, chain, chain[1:], below,
+                                            strict=False):
+        joint = model.joints[jid]
+        angular, linear = _motion_axes(model, jid) if joint.nq == joint.nv == 1 else (None, None)
+        if angular is None or linear is None or (angular.any() and linear.any()):
+            raise RobotModelError(f"leg {leg.name}: joint {name} is a {joint.shortname()} "
+                                  f"({joint.nq} configuration values, {joint.nv} velocities); "
+                                  "the leg's inverse kinematics needs 1-DoF revolute or "
+                                  "prismatic joints (a URDF continuous joint is not one)")
+        if jid not in model.supports[child]:
+            raise RobotModelError(f"leg {leg.name}: {child_name} does not hang below joint "
+                                  f"{name}; a leg's joints and foot must be one chain")
+    q = np.array(reference, dtype=float)
+    q[leg.q_index] = 0.0
+    data = model.createData()
+    pin.framesForwardKinematics(model, data, q)
+    frames = [pin.SE3.Identity(), *(data.oMi[j] for j in leg.joint_ids)]
+    rel = [frames[i].actInv(frames[i + 1]) for i in range(3)]
+    axes = [_motion_axes(model, j) for j in leg.joint_ids]
+    out = LegChain(placements=(np.array([m.rotation for m in rel]),
+                               np.array([m.translation for m in rel])),
+                   angular=np.array([a for a, _ in axes]), linear=np.array([b for _, b in axes]),
+                   foot=np.array(data.oMi[leg.joint_ids[2]].actInv(data.oMf[leg.foot_frame_id])
+                                 .translation))
+    rng = np.random.default_rng(0)
+    trial = rng.uniform(-1.5, 1.5, (5, 3)) * np.where(out.angular.any(axis=1), 1.0, 0.05)
+    for q_leg, p in zip(trial, out.frames(trial)[0], strict=True):
+        q[leg.q_index] = q_leg
+        pin.framesForwardKinematics(model, data, q)
+        miss = float(np.linalg.norm(data.oMf[leg.foot_frame_id].translation - p))
+        if miss > CHAIN_CHECK_TOL:
+            raise RobotModelError(f"leg {leg.name}: the chain read from the model misses "
+                                  f"Pinocchio's foot by {miss:.3g} m")
+    return out

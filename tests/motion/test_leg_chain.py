@@ -1,0 +1,162 @@
+"""Tests of hexaleg.motion.leg_chain (a leg's forward kinematics over a stack of samples) and of
+the all-samples Newton inverse kinematics built on it: Pinocchio is the independent reference,
+the bias acceleration is also checked by central differences, and the sample-by-sample path
+(the branch carried from sample to sample) is checked against the all-at-once one."""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+import hexaleg
+from hexaleg.errors import RobotModelError
+from hexaleg.motion.kinematics import NEWTON_JUMP, analytic_geometry, newton_leg_ik
+from hexaleg.motion.leg_chain import leg_chain
+from hexaleg.robot.model import LegSpec
+from hexaleg.robot.registry import load
+
+_INERTIAL = ('<inertial><mass value="0.1"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" '
+             'ixz="0" iyz="0"/></inertial>')
+POGO = f"""<robot name="pogo">
+<link name="base">{_INERTIAL}</link><link name="hip">{_INERTIAL}</link>
+<link name="thigh">{_INERTIAL}</link><link name="shank">{_INERTIAL}</link><link name="foot"/>
+<joint name="abad" type="revolute"><parent link="base"/><child link="hip"/>
+ <origin xyz="0.1 0.05 0" rpy="0 0 0.3"/><axis xyz="1 0 0"/>
+ <limit lower="-1" upper="1" effort="10" velocity="10"/></joint>
+<joint name="flex" type="revolute"><parent link="hip"/><child link="thigh"/>
+ <origin xyz="0 0.03 0" rpy="0.1 0 0"/><axis xyz="0 1 0"/>
+ <limit lower="-2" upper="2" effort="10" velocity="10"/></joint>
+<joint name="slide" type="prismatic"><parent link="thigh"/><child link="shank"/>
+ <origin xyz="0 0 -0.15" rpy="0 0.2 0"/><axis xyz="0 0 -1"/>
+ <limit lower="0" upper="0.1" effort="10" velocity="1"/></joint>
+<joint name="ankle" type="fixed"><parent link="shank"/><child link="foot"/>
+ <origin xyz="0.01 0 -0.05"/></joint>
+</robot>"""
+"""One leg with a telescopic shank: abduction, flexion and a prismatic joint (the chain's
+linear axes), every placement turned."""
+
+
+@pytest.fixture(scope="module")
+def a1() -> hexaleg.Robot:
+    return load("a1")
+
+
+@pytest.fixture(scope="module")
+def pogo(tmp_path_factory: pytest.TempPathFactory) -> hexaleg.Robot:
+    path = Path(tmp_path_factory.mktemp("pogo")) / "pogo.urdf"
+    path.write_text(POGO)
+    return hexaleg.load_robot(path, legs=[LegSpec("LF", ("abad", "flex", "slide"), "foot")],
+                              joint_kinds=("abad", "flex", "slide"))
+
+
+def _reference(robot: hexaleg.Robot) -> np.ndarray:
+    q = robot.pose("stand") if "stand" in robot.poses else pin.neutral(robot.model)
+    q[:7] = pin.neutral(robot.model)[:7]
+    return q
+
+
+def _pinocchio(robot: hexaleg.Robot, leg: hexaleg.robot.model.Leg, q_leg: np.ndarray,
+               qd_leg: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The foot's position, translation Jacobian and classical acceleration at zero joint
+    acceleration, from Pinocchio, every other joint at the reference pose."""
+    model, data = robot.model, robot.model.createData()
+    q, v = _reference(robot), np.zeros(model.nv)
+    q[leg.q_index], v[leg.v_index] = q_leg, qd_leg
+    pin.forwardKinematics(model, data, q, v, np.zeros(model.nv))
+    pin.updateFramePlacements(model, data)
+    fid = leg.foot_frame_id
+    acc = pin.getFrameClassicalAcceleration(model, data, fid, pin.LOCAL_WORLD_ALIGNED).linear
+    jac = pin.computeFrameJacobian(model, data, q, fid, pin.LOCAL_WORLD_ALIGNED)[:3, leg.v_index]
+    return data.oMf[fid].translation.copy(), jac, acc
+
+
+@pytest.mark.parametrize("which", ["a1", "pogo"])
+def test_chain_equals_pinocchio(which, request):
+    robot = request.getfixturevalue(which)
+    rng = np.random.default_rng(3)
+    for leg in robot.legs:
+        chain = leg_chain(robot, leg, _reference(robot))
+        q = _reference(robot)[leg.q_index] + rng.uniform(-0.05, 0.05, (20, 3))
+        qd = rng.normal(size=(20, 3))
+        p, jac = chain.position_jacobian(q)
+        bias = chain.bias(q, qd)
+        for k in range(20):
+            p_ref, jac_ref, acc_ref = _pinocchio(robot, leg, q[k], qd[k])
+            assert np.abs(p[k] - p_ref).max() < 1e-14
+            assert np.abs(jac[k] - jac_ref).max() < 1e-14
+            assert np.abs(bias[k] - acc_ref).max() < 1e-13
+
+
+def test_bias_is_the_derivative_of_the_jacobian_along_the_motion(pogo):
+    leg = pogo.legs[0]
+    chain = leg_chain(pogo, leg, _reference(pogo))
+    q, qd, h = np.array([[0.2, -0.4, 0.05]]), np.array([[1.3, -0.7, 0.4]]), 1e-6
+    fd = (chain.position_jacobian(q + h * qd)[1] - chain.position_jacobian(q - h * qd)[1]) / (2 * h)
+    assert np.allclose(chain.bias(q, qd), (fd @ qd[..., None])[..., 0], atol=1e-8)
+    wrong = chain.bias(q, qd) - (fd @ qd[..., None])[..., 0]
+    assert np.abs(wrong).max() < 1e-8  # the check has teeth: J̇q̇ is ~1 m/s² here
+    assert np.abs(chain.bias(q, qd)).max() > 0.1
+
+
+def _walk(robot: hexaleg.Robot, leg: hexaleg.robot.model.Leg, n: int, r: float = 0.03
+          ) -> tuple[np.ndarray, ...]:
+    """A foot circle of radius ``r`` in the sagittal plane around the stand foot, n samples, with
+    its exact derivatives."""
+    centre = leg_chain(robot, leg, _reference(robot)).frames(
+        _reference(robot)[leg.q_index][None])[0][0]
+    t = np.linspace(0.0, 1.0, n, endpoint=False)
+    w = 2 * np.pi
+    s, c = np.sin(w * t), np.cos(w * t)
+    zero = np.zeros_like(t)
+    return (centre + r * np.stack([c, zero, s], 1), r * w * np.stack([-s, zero, c], 1),
+            -r * w * w * np.stack([c, zero, s], 1))
+
+
+def test_newton_inverts_the_chain_with_exact_derivatives(a1):
+    for leg in a1.legs:
+        assert analytic_geometry(a1, leg) is None  # A1's legs go through Newton
+        p, pd, pdd = _walk(a1, leg, 100)
+        q, qd, qdd = newton_leg_ik(a1, leg, p, pd, pdd)
+        for k in range(0, 100, 7):
+            p_ref, jac, acc = _pinocchio(a1, leg, q[k], qd[k])
+            assert np.abs(p_ref - p[k]).max() < 1e-12
+            assert np.abs(jac @ qd[k] - pd[k]).max() < 1e-12
+            assert np.abs(jac @ qdd[k] + acc - pdd[k]).max() < 1e-10
+
+
+def test_coarse_samples_are_solved_each_from_the_one_before(a1):
+    leg = a1.leg("LF")
+    p, pd, pdd = _walk(a1, leg, 5, r=0.07)
+    q = newton_leg_ik(a1, leg, p, pd, pdd)[0]
+    assert np.abs(np.diff(q, axis=0)).max() > NEWTON_JUMP  # the sample-by-sample path ran
+    carried = [_reference(a1)[leg.q_index]]
+    for k in range(5):
+        carried.append(newton_leg_ik(a1, leg, p[k:k + 1], pd[k:k + 1], pdd[k:k + 1],
+                                     q0=carried[-1])[0][0])
+    assert np.abs(q - np.array(carried[1:])).max() < 1e-12
+    fine = newton_leg_ik(a1, leg, *_walk(a1, leg, 100, r=0.07))[0]
+    assert np.abs(q - fine[::20]).max() < 1e-12  # the same branch as the continuous path
+
+
+def test_a_leg_that_is_not_one_chain_is_named(a1):
+    leg = a1.leg("LF")
+    joints = ("FL_hip_joint", "FR_thigh_joint", "FL_calf_joint")
+    crossed = dataclasses.replace(leg, joint_names=joints,
+                                  joint_ids=tuple(a1.model.getJointId(j) for j in joints))
+    with pytest.raises(RobotModelError,
+                       match="FR_thigh_joint does not hang below joint FL_hip_joint"):
+        leg_chain(a1, crossed, _reference(a1))
+
+
+def test_a_joint_newton_cannot_move_is_named(tmp_path):
+    path = tmp_path / "wheel.urdf"
+    path.write_text(POGO.replace('type="prismatic"', 'type="continuous"'))
+    robot = hexaleg.load_robot(path, legs=[LegSpec("LF", ("abad", "flex", "slide"), "foot")],
+                               joint_kinds=("abad", "flex", "slide"))
+    with pytest.raises(RobotModelError, match=r"joint slide is a JointModelRevoluteUnbounded"
+                                              r".*\(2 configuration values, 1 velocities\)"):
+        leg_chain(robot, robot.legs[0], _reference(robot))
