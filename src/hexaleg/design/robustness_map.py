@@ -13,7 +13,7 @@ one whose values are names (strings); every other axis holds numbers.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -141,9 +141,34 @@ def robot_patterns(robot: Robot, gait: GaitParams) -> tuple[str, ...]:
     return tuple(sorted(fit, key=lambda n: n != nominal))
 
 
+Cell = tuple[str, dict[str, float]]
+"""One map cell: its status (``"ok"`` or why there is no number) and metric → saving."""
+Mapper = Callable[[Callable[[Condition], Cell], Sequence[Condition]], Sequence[Cell]]
+"""How a map's cells are computed: ``mapper(fn, conditions)`` is ``[fn(c) for c in conditions]``
+(e.g. spread over processes, :func:`hexaleg.studies.forked.fork_map`)."""
+
+
+def _in_turn(fn: Callable[[Condition], Cell], conditions: Sequence[Condition]) -> list[Cell]:
+    return [fn(c) for c in conditions]
+
+
+def map_cell(run: RunSpec, gait: GaitParams, springs: SpringSet, condition: Condition,
+             metrics: Sequence[str] = METRICS) -> Cell:
+    """One cell: the condition's gait prepared afresh and the frozen ``springs`` on it (NaN
+    savings where the gait cannot be made or has no baseline, −∞ where only the springs make
+    it infeasible; module docstring)."""
+    prepared = condition_walk(run, gait, condition)
+    if isinstance(prepared, str):
+        return prepared, {m: float("nan") for m in metrics}
+    r = condition_savings(prepared, springs, run.objective, metrics)
+    return r["status"], {m: -np.inf if r["status"].startswith("springs") else
+                         float(r[f"saving.{m}"]) for m in metrics}
+
+
 def robustness_map(run: RunSpec, gait: GaitParams, springs: SpringSet,
                    axes: Mapping[str, Sequence[float] | Sequence[str]],
-                   metrics: Sequence[str] = METRICS) -> RobustnessMap:
+                   metrics: Sequence[str] = METRICS, mapper: Mapper | None = None
+                   ) -> RobustnessMap:
     """The saving of frozen ``springs`` over a grid of two conditions (module docstring).
 
     Args:
@@ -155,6 +180,7 @@ def robustness_map(run: RunSpec, gait: GaitParams, springs: SpringSet,
             stride factors, payload a fraction of the robot's mass, μ absolute, slope in rad
             added to the nominal gait's, pattern names).
         metrics: Metrics whose saving is recorded.
+        mapper: How the cells are computed (:data:`Mapper`); default one after the other.
 
     Returns:
         The map; a condition the robot cannot walk is a cell with its reason (``"no gait: …"``).
@@ -170,17 +196,8 @@ def robustness_map(run: RunSpec, gait: GaitParams, springs: SpringSet,
         if name == "pattern":
             for p in values:
                 pattern_offsets(p, run.load().leg_names)
-    out = {m: np.full((va.size, vb.size), np.nan) for m in metrics}
-    status = np.empty((va.size, vb.size), dtype=object)
-    for i, x in enumerate(va):
-        for j, y in enumerate(vb):
-            cond = _condition({a: x, b: y})
-            prepared = condition_walk(run, gait, cond)
-            if isinstance(prepared, str):
-                status[i, j] = prepared
-                continue
-            r = condition_savings(prepared, springs, run.objective, metrics)
-            status[i, j] = r["status"]
-            for m in metrics:
-                out[m][i, j] = -np.inf if r["status"].startswith("springs") else r[f"saving.{m}"]
+    conditions = [_condition({a: x, b: y}) for x in va for y in vb]
+    cells = (mapper or _in_turn)(lambda c: map_cell(run, gait, springs, c, metrics), conditions)
+    out = {m: np.array([s[m] for _, s in cells]).reshape(va.size, vb.size) for m in metrics}
+    status = np.array([st for st, _ in cells], dtype=object).reshape(va.size, vb.size)
     return RobustnessMap(axes=(a, b), values=(va, vb), saving=out, status=status)

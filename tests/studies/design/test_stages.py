@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import numpy as np
+
 from hexaleg.design.robustness import Condition
 from hexaleg.studies.design.candidates import class_geometry
 from hexaleg.studies.design.config import DesignConfig
@@ -49,21 +51,32 @@ def test_a_max_outer_diameter_for_a_class_the_robot_lacks_is_named():
 
 def test_families_designed_in_parallel_are_the_ones_designed_in_turn(monkeypatch):
     """The forked workers compute exactly what one process computes: the same magnitudes,
-    geometry and savings to the last bit, in the families' order of rank."""
-    import os
-
+    geometry and savings to the last bit, in the families' order of rank; a robustness map's
+    cells too (one of them a gait the robot cannot make)."""
+    from hexaleg.design.robustness_map import robustness_map
     from hexaleg.studies.design.stages import family_candidates, nominal
+    from hexaleg.studies.sweep import executors
+
+    axes = {"period": [0.5, 1.0], "stride": [1.0, 40.0]}
 
     cfg = DesignConfig.from_mapping({"gait": {"samples": 100}, "design": {
         "samples": 100, "families": ["linear", "one_sided"], "classes": ["femur", "tibia"]}})
     nom = nominal(cfg)
     said: list[str] = []
     parallel = family_candidates(nom, lambda name, msg: said.append(name))
-    monkeypatch.setattr(os, "cpu_count", lambda: 1)
-    serial = family_candidates(nom, lambda name, msg: None)
+    with monkeypatch.context() as m:
+        m.setattr(executors, "default_workers", lambda: 1)
+        serial = family_candidates(nom, lambda name, msg: None)
+        cells = robustness_map(nom.run, nom.gait, parallel[0].optimum.springs, axes)
     assert sorted(said) == ["family linear", "family one_sided"]
     assert [c.family for c in parallel] == [c.family for c in serial]
     for a, b in zip(parallel, serial, strict=True):
         assert a.optimum.magnitudes == b.optimum.magnitudes
         assert a.optimum.geometry == b.optimum.geometry
         assert a.row == b.row and a.net == b.net
+        assert a.optimum.analysis.robot is nom.robot  # by reference, not a pickled copy
+    forked = robustness_map(nom.run, nom.gait, parallel[0].optimum.springs, axes,
+                            mapper=nom.fork_map)
+    assert forked.status.tolist() == cells.status.tolist()
+    for metric, saving in cells.saving.items():
+        assert np.array_equal(forked.saving[metric], saving, equal_nan=True)

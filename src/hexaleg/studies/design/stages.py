@@ -16,6 +16,7 @@ import dataclasses
 import itertools
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import TypeVar
 
 import numpy as np
 
@@ -49,6 +50,10 @@ from hexaleg.studies.design.candidates import (
 )
 from hexaleg.studies.design.config import METRICS, DesignConfig, DesignParams
 from hexaleg.studies.design.groups import class_of, design_groups, sprung_classes
+from hexaleg.studies.forked import fork_map, robot_objects
+
+T = TypeVar("T")
+R = TypeVar("R")
 
 
 @dataclass(frozen=True, eq=False)
@@ -100,6 +105,12 @@ class Nominal:
         return parsimonious(self.prepared, self.run, self.gait, groups, classes, family, d,
                             self.outer_diameters, start, geometry)
 
+    def fork_map(self, fn: Callable[[T], R], items: Sequence[T],
+                 done: Callable[[int, R], None] | None = None) -> list[R]:
+        """``[fn(x) for x in items]`` over one forked process per core, the results referring to
+        this robot by reference (:func:`~hexaleg.studies.forked.fork_map`)."""
+        return fork_map(fn, items, shared=robot_objects(self.robot), done=done)
+
 
 LOGGED_SKIP = ("the robustness maps and the robust design are left out: they re-make the gait "
                "from its parameters (period, stride, pattern) and a logged motion (--motion) has "
@@ -147,53 +158,28 @@ def rank(c: Candidate, metric: str) -> float:
     return float(value) if np.isfinite(value) else -np.inf
 
 
-_SHARED: list[Nominal] = []
-"""The nominal stage a forked worker of :func:`family_candidates` designs on (inherited through
-``fork``, not pickled: a Pinocchio model does not pickle)."""
-
-
-def _design_family(family: str) -> Candidate:
-    return _SHARED[0].family(family)
-
-
 def family_candidates(nom: Nominal, progress: Callable[[str, str], None]) -> list[Candidate]:
     """Every allowed family's candidate, ranked by predicted net saving (best first).
 
     The families are independent convex programs with their own geometry searches, so they run
-    in parallel, one process per core (forked: the workers inherit the prepared gait; each
-    returns its pickled candidate), the same computations as one after the other (tested bit
-    for bit); one family or one core runs in this process.
+    in parallel, one process per core (:func:`~hexaleg.studies.forked.fork_map`: the workers
+    inherit the prepared gait, each returns its candidate with the robot by reference), the
+    same computations as one after the other (tested bit for bit).
 
     Args:
         nom: The nominal stage.
         progress: Called with (step name, message) as each family ends.
     """
-    import multiprocessing
-    import os
-    from concurrent.futures import ProcessPoolExecutor, as_completed
-
     d = nom.config.design
-    workers = min(len(d.families), os.cpu_count() or 1)
     found: dict[str, Candidate] = {}
 
-    def done(fam: str, c: Candidate) -> None:
+    def done(i: int, c: Candidate) -> None:
+        fam = d.families[i]
         found[fam] = c
         progress(f"family {fam}", f"{fam}: family optimum, {d.metric} saving "
                  f"{100 * c.row[f'saving.{d.metric}']:+.2f} %")
 
-    if workers < 2 or "fork" not in multiprocessing.get_all_start_methods():
-        for fam in d.families:
-            done(fam, nom.family(fam))
-    else:
-        _SHARED[:] = [nom]
-        try:
-            with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")
-                                     ) as pool:
-                jobs = {pool.submit(_design_family, fam): fam for fam in d.families}
-                for job in as_completed(jobs):
-                    done(jobs[job], job.result())
-        finally:
-            _SHARED.clear()
+    nom.fork_map(nom.family, d.families, done=done)
     cands = [found[fam] for fam in d.families]
     return sorted(cands, key=lambda c: -rank(c, d.metric))
 
@@ -293,7 +279,8 @@ def robustness_maps(nom: Nominal, rec: Candidate
         {"payload": d.map_payload, "mu": d.map_mu}]
     if patterns:  # a robot whose leg names do not say side and place has no named pattern
         axes.append({"slope": d.map_slope, "pattern": patterns})
-    maps = tuple(robustness_map(nom.run, nom.gait, springs, a) for a in axes)
+    maps = tuple(robustness_map(nom.run, nom.gait, springs, a, mapper=nom.fork_map)
+                 for a in axes)
     worst = {}
     for m in METRICS:
         s, c = min((mp.worst(m) for mp in maps),
@@ -351,7 +338,7 @@ def robust_design(nom: Nominal, rec: Candidate) -> RobustResult | None:
     conditions = corners(cfg)
     if len(conditions) == 1 or nom.motion is not None or not cfg.design.robustness:
         return None
-    preps = [condition_prepared(nom.run, nom.gait, c) for c in conditions]
+    preps = nom.fork_map(lambda c: condition_prepared(nom.run, nom.gait, c), conditions)
     for c, p in zip(conditions, preps, strict=True):
         try:
             p.baseline("joule")
