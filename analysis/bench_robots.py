@@ -7,7 +7,8 @@ For each robot, one row:
 
 * design: the wall time of ``hexaleg design --robot R`` in this process (``write_design`` with
   the robot's defaults, into a temporary directory; imports and the first-use compilation are
-  paid by the default robot, measured first), and its two slowest stages. Target ≤ 60 s.
+  paid by the default robot, measured first), the gait the defaults chose, the recommendation
+  and its saving net of the springs' mass, and the two slowest stages. Target ≤ 60 s.
 * simulate: ``hexaleg simulate --robot R --cycles 4``'s two runs (with the optimal linear springs
   and without), simulated seconds per wall-clock second of their stepping, and the timestep
   the simulation chose (``simulation.stepping``). Target ≥ 10× real time.
@@ -46,9 +47,13 @@ def design_time(robot: str) -> tuple[float, str]:
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory() as out:
         try:
-            written = write_design(out, DesignConfig.load(robot), progress=None)
-            slowest = sorted(written.result.timings.items(), key=lambda kv: -kv[1])[:2]
-            what = (f"recommended {written.result.recommended.label} (slowest stages: "
+            r = write_design(out, DesignConfig.load(robot), progress=None).result
+            slowest = sorted(r.timings.items(), key=lambda kv: -kv[1])[:2]
+            g, m, rec = r.gait, r.config.design.metric, r.recommended
+            what = (f"gait {g.period:.3g} s / stride {1e3 * g.stride:.3g} mm / step "
+                    f"{1e3 * g.step_height:.3g} mm; recommended {rec.label} on "
+                    f"{', '.join(rec.optimum.groups)}: {m} {100 * rec.net[m]:+.2f} % net "
+                    "(slowest stages: "
                     + ", ".join(f"{k} {v:.0f} s" for k, v in slowest) + ")")
         except HexalegError as err:
             what = f"{type(err).__name__}: {str(err)[:80]}"

@@ -71,3 +71,28 @@ def test_csc_is_scipys_own() -> None:
         for name in ("data", "indices", "indptr"):
             np.testing.assert_array_equal(getattr(ours, name), getattr(ref, name))
         np.testing.assert_array_equal(ours.toarray(), dense)
+
+
+def test_a_model_step_the_solver_fails_stops_at_the_best_point(monkeypatch):
+    """A QP failure after the start (a numerical one: the start is feasible) ends the method
+    with its best point so far and says so, instead of ending the design."""
+    from hexaleg.design import bundle
+    from hexaleg.errors import InfeasibleForcesError
+
+    fs = [_quadratic([1.0, 0.0]), _quadratic([-1.0, 2.0])]
+    full = minimise(fs, np.array([3.0, -2.0]))
+    solve, calls = bundle._qp, []
+
+    def flaky(*args, **kwargs):
+        calls.append(1)
+        if len(calls) == 12:
+            raise InfeasibleForcesError("the robust program's model step has no solution "
+                                        "(Clarabel: AlmostSolved)")
+        return solve(*args, **kwargs)
+
+    monkeypatch.setattr(bundle, "_qp", flaky)
+    r = minimise(fs, np.array([3.0, -2.0]))
+    assert r.iterations == 12 and r.stopped.startswith("model step 12 failed")
+    assert r.serious_steps > 0
+    assert "AlmostSolved" in r.stopped and full.stopped == ""
+    assert full.values.max() <= r.values.max() < max(f(np.array([3.0, -2.0]))[0] for f in fs)

@@ -15,7 +15,10 @@ that lowers F by a tenth of the predicted decrease becomes x̂ (a serious step),
 cuts refine the model (a null step). It stops when the predicted decrease is below the
 tolerance — x̂ is then optimal to that tolerance (Kiwiel's proximal bundle method; e.g.
 Bonnans, Gilbert, Lemaréchal & Sagastizábal, *Numerical Optimization*, 2006, ch. 10). F never
-increases from the start: started at a feasible x₀, the result is never worse than x₀.
+increases from the start: started at a feasible x₀, the result is never worse than x₀. A model
+step the QP solver cannot solve once x̂ is feasible (its program always has a solution then: the
+model's epigraph variables are free) is a numerical failure: the method stops there with x̂ and
+says so (:attr:`BundleResult.stopped`), as it does at :data:`MAX_ITERATIONS`.
 """
 
 from __future__ import annotations
@@ -41,13 +44,15 @@ TOLERANCE = 1e-10
 
 @dataclass(frozen=True)
 class BundleResult:
-    """The minimiser, its value per function, and the work done."""
+    """The minimiser, its value per function, and the work done; ``stopped`` says why it ended
+    before the tolerance ("" when it met it or used its :data:`MAX_ITERATIONS`)."""
 
     x: np.ndarray
     values: np.ndarray
     iterations: int
     serious_steps: int
     gap: float
+    stopped: str = ""
 
 
 @dataclass
@@ -182,9 +187,13 @@ def minimise(oracles: Sequence[Oracle], x0: np.ndarray, mode: str = "worst", *,
     cuts = _Cuts(np.zeros(0, int), np.zeros(0), np.zeros((0, nx)), np.zeros((0, nx)))
     cuts.add(values, grads, y)
     best, best_values = y, values
-    u, serious, gap, it = 1.0, 0, np.inf, 0
+    u, serious, gap, it, stopped = 1.0, 0, np.inf, 0, ""
     for it in range(1, MAX_ITERATIONS + 1):  # noqa: B007 — reported
-        trial = _qp(cuts, n, mode, best, u, Gs, h, nonneg, fixed)
+        try:
+            trial = _qp(cuts, n, mode, best, u, Gs, h, nonneg, fixed)
+        except InfeasibleForcesError as e:  # x̂ meets the constraints: a numerical failure
+            stopped = f"model step {it} failed ({e}); the best point so far is kept"
+            break
         gap = total(best_values) - total(cuts.model(trial, n))
         if gap <= tolerance * max(1.0, abs(total(best_values))):
             break
@@ -197,4 +206,4 @@ def minimise(oracles: Sequence[Oracle], x0: np.ndarray, mode: str = "worst", *,
         else:
             u = min(u * 1.5, 1e6)
     return BundleResult(x=best * scale, values=best_values, iterations=it,
-                        serious_steps=serious, gap=float(gap))
+                        serious_steps=serious, gap=float(gap), stopped=stopped)

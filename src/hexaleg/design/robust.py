@@ -158,6 +158,7 @@ def robust_springs(optimum: OptimalSprings, nominal: Prepared, conditions: Seque
     solver: dict[str, Any] = {"path": "proximal bundle, every sample condensed",
                               "iterations": result.iterations,
                               "serious_steps": result.serious_steps, "gap": result.gap,
+                              "stopped": result.stopped,
                               "program_value": float(result.values.max() if mode == "worst"
                                                      else result.values.mean())}
     if any([d.update(xv) for d in data]):  # some sample binds: explicit forces there

@@ -205,6 +205,9 @@ def build_design(config: DesignConfig | None = None,
          if maps else "robustness maps and robust design left out: "
          + ("a logged motion" if nom.motion is not None else "[design] robustness = false"))
     robust = robust_design(nom, rec)
+    stalled = [] if robust is None or not robust.design.solver.get("stopped") else [
+        f"robust design: its bundle method's {robust.design.solver['stopped']} (gap "
+        f"{robust.design.solver['gap']:.3g} J left)"]
     step("robust", "robust design over the box of conditions" if robust is not None
          else "no robust design")
     simulation, unsimulated = _proof(nom, rec)
@@ -218,7 +221,8 @@ def build_design(config: DesignConfig | None = None,
     flagged = () if plausible is None else (f"baseline energy {plausible.message}",)
     logged = ([LOGGED_SKIP] if nom.motion is not None
               else [] if d.robustness else [UNMAPPED])
-    notes = [*flagged, *pays, *logged, *notes, *envelope_notes, *unsimulated, *nom.robot.notes,
+    notes = [*flagged, *pays, *logged, *notes, *envelope_notes, *stalled, *unsimulated,
+             *nom.robot.notes,
              *rec.notes,
              (mirrored.summary() + ("; each gets its group's spring mirrored" if d.mirror
                                     and mirrored.mirrored else "")), *mirrored.notes,
