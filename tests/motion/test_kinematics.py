@@ -17,8 +17,8 @@ from hexaleg.motion.kinematics import (
     analytic_geometry,
     analytic_leg_ik,
     leg_ik,
-    newton_leg_ik,
 )
+from hexaleg.motion.leg_chain import newton_leg_ik
 from hexaleg.robot.builder import load_params
 from hexaleg.robot.model import HEXALEG_LEGS, LegSpec
 

@@ -14,8 +14,8 @@ import pytest
 
 import hexaleg
 from hexaleg.errors import RobotModelError
-from hexaleg.motion.kinematics import NEWTON_JUMP, analytic_geometry, newton_leg_ik
-from hexaleg.motion.leg_chain import leg_chain
+from hexaleg.motion.kinematics import analytic_geometry
+from hexaleg.motion.leg_chain import NEWTON_JUMP, leg_chain, newton_leg_ik
 from hexaleg.robot.model import LegSpec
 from hexaleg.robot.registry import load
 

@@ -6,9 +6,9 @@ Two solvers, both working in the base frame (the base's pose does not enter a le
   and tibia about parallel horizontal axes, see :mod:`hexaleg.robot.builder`), vectorised over
   time. The knee branch is fixed: tibia angle ≤ 0 (knee above the foot, as in the ``stand`` and
   ``sphere`` poses), so the branch never switches along a trajectory.
-* :func:`newton_leg_ik` — any 3-joint leg: Newton iterations on Pinocchio's forward kinematics,
-  warm-started from the previous sample, then ``q̇ = J⁻¹ ṗ`` and ``q̈ = J⁻¹ (p̈ − J̇ q̇)`` (J̇ q̇ is
-  the foot's classical acceleration at zero joint acceleration, from Pinocchio).
+* :func:`~hexaleg.motion.leg_chain.newton_leg_ik` — any 3-joint leg: Newton iterations on the
+  leg's chain read from Pinocchio, every sample at once, then ``q̇ = J⁻¹ ṗ`` and
+  ``q̈ = J⁻¹ (p̈ − J̇ q̇)``.
 
 Derivatives are exact (chain rule on the closed form, or the Jacobian relations above), never
 finite differences. :func:`leg_ik` picks the analytic solver when the leg's geometry matches it
@@ -28,19 +28,11 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.errors import RobotModelError, UnreachableTargetError
-from hexaleg.motion.leg_chain import LegChain, leg_chain
+from hexaleg.motion.leg_chain import newton_leg_ik
 from hexaleg.robot.model import Leg, Robot
 
 FK_CHECK_TOL = 1e-12
 """Tolerance, m, of the check that the analytic model reproduces Pinocchio's forward kinematics."""
-NEWTON_TOL = 1e-13
-"""Foot position residual, m, at which the Newton solver stops."""
-NEWTON_MAX_ITER = 50
-"""Newton iterations allowed per sample before the target is declared unreachable."""
-NEWTON_JUMP = 0.1
-"""Largest joint change, rad (or m), between consecutive samples solved all at once from the
-same start that :func:`newton_leg_ik` accepts as one continuous branch; a larger one is solved
-again sample by sample from its predecessor."""
 
 
 @dataclass(frozen=True)
@@ -295,99 +287,6 @@ def analytic_leg_ik(geom: LegGeometry, p: np.ndarray, pd: np.ndarray, pdd: np.nd
     qd = np.column_stack([q1d, qd23])
     qdd = np.column_stack([q1dd, qdd23])
     return q, qd, qdd
-
-
-def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarray, *,
-                  q0: np.ndarray | None = None, t: np.ndarray | None = None
-                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Inverse kinematics of any 3-joint leg by Newton's method on its forward kinematics.
-
-    The leg is read from Pinocchio as a fixed chain (:func:`~hexaleg.motion.leg_chain.leg_chain`,
-    the other joints at the ``stand`` pose) and Newton runs on every sample at once from ``q0``.
-    The branch is the one ``q0`` selects: the result is kept when every sample converged and
-    consecutive samples differ by under :data:`NEWTON_JUMP` (a continuous path from the first
-    sample, so each sample is the solution Newton reaches from its predecessor); otherwise the
-    samples from the first failure on are solved one after another, each from the previous
-    solution. Then ``q̇ = J⁻¹ ṗ`` and ``q̈ = J⁻¹ (p̈ − J̇ q̇)``, with ``J`` the foot's translation
-    Jacobian and ``J̇ q̇`` its acceleration at zero joint acceleration.
-
-    Args:
-        robot: The robot.
-        leg: One of ``robot.legs``, with three joints.
-        p: Foot positions in the base frame, shape (T, 3), m.
-        pd: Their time derivatives, shape (T, 3), m/s.
-        pdd: Their second time derivatives, shape (T, 3), m/s².
-        q0: Initial guess of the leg's joint angles, shape (3,), rad; default the ``stand`` pose
-            (or Pinocchio's neutral configuration when the robot has none).
-        t: Sample times for error messages, shape (T,), s; default the sample indices.
-
-    Returns:
-        Joint angles (T, 3) rad, velocities (T, 3) rad/s, accelerations (T, 3) rad/s², in the
-        order of ``leg.joint_names``.
-
-    Raises:
-        RobotModelError: the leg does not have exactly three 1-DoF joints in one chain.
-        UnreachableTargetError: Newton does not reach a target (or the Jacobian is singular
-            there); the message names the leg, the time and the remaining distance.
-    """
-    model = robot.model
-    p, pd, pdd = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, pd, pdd))
-    t = np.arange(len(p), dtype=float) if t is None else np.asarray(t, dtype=float)
-    reference = robot.pose("stand") if "stand" in robot.poses else pin.neutral(model)
-    reference[:7] = pin.neutral(model)[:7]
-    chain = leg_chain(robot, leg, reference)
-    start = reference[leg.q_index] if q0 is None else np.asarray(q0, dtype=float)
-    q, err = _newton(chain, p, np.tile(start, (len(p), 1)))
-    jumps = np.abs(np.diff(q, axis=0)).max(axis=1)
-    bad = np.flatnonzero((err > NEWTON_TOL) | np.r_[False, jumps >= NEWTON_JUMP])
-    for k in range(int(bad[0]) if bad.size else len(p), len(p)):
-        q[k:k + 1], err[k:k + 1] = _newton(chain, p[k:k + 1], start[None] if k == 0 else q[k - 1:k])
-        if err[k] > NEWTON_TOL:
-            break
-    _, jac = chain.position_jacobian(q)
-    singular = np.linalg.cond(jac) > 1e8
-    failed = (err > NEWTON_TOL) | singular
-    if failed.any():
-        k = int(np.argmax(failed))
-        raise UnreachableTargetError(
-            f"leg {leg.name} at t = {t[k]:.6g} s: foot target {np.round(p[k], 6).tolist()} m "
-            f"(base frame) is out of reach: Newton stopped {err[k]:.6g} m from it"
-            + (" at a singular configuration" if err[k] <= NEWTON_TOL else ""),
-            **_where(leg.name, t, k, p[k], float(err[k])))
-    qd = np.linalg.solve(jac, pd[..., None])[..., 0]
-    qdd = np.linalg.solve(jac, (pdd - chain.bias(q, qd))[..., None])[..., 0]
-    return q, qd, qdd
-
-
-def _newton(chain: LegChain, p: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Damped Newton steps (at most 0.5 rad or m a step; least squares where the Jacobian is
-    singular) on every sample at once until each is within :data:`NEWTON_TOL` of its target or
-    :data:`NEWTON_MAX_ITER` steps.
-
-    Args:
-        chain: The leg. p: Targets, shape (T, 3), m. q: Starting joint values, shape (T, 3).
-
-    Returns:
-        The joint values reached, shape (T, 3), and their distance to the targets, shape (T,), m.
-    """
-    q = q.copy()
-    err = np.full(len(p), np.inf)
-    todo = np.arange(len(p))
-    for it in range(NEWTON_MAX_ITER + 1):
-        at, jac = chain.position_jacobian(q[todo])
-        e = p[todo] - at
-        err[todo] = np.linalg.norm(e, axis=1)
-        keep = err[todo] > NEWTON_TOL
-        todo, jac, e = todo[keep], jac[keep], e[keep]
-        if not todo.size or it == NEWTON_MAX_ITER:
-            break
-        try:
-            step = np.linalg.solve(jac, e[..., None])[..., 0]
-        except np.linalg.LinAlgError:  # a singular Jacobian: the least-squares step
-            step = (np.linalg.pinv(jac) @ e[..., None])[..., 0]
-        norm = np.linalg.norm(step, axis=1, keepdims=True)
-        q[todo] += step * np.minimum(1.0, 0.5 / np.maximum(norm, 1e-300))
-    return q, err
 
 
 def leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarray, *,
