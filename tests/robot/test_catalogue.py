@@ -93,24 +93,6 @@ def test_dss_m15s_reproduces_dfrobots_figures() -> None:
     assert hub.diameter == pytest.approx(5.8e-3) and "25T/5.80" in hub.source
 
 
-def test_brushless_module_holds_odri_and_names_the_unsourced_registry_actuators() -> None:
-    """odri_actuator lives in hexaleg.robot.brushless and is re-exported by the catalogue; that
-    module says, for every registry robot left with a generic actuator, why its real one is not
-    in the catalogue."""
-    from hexaleg.robot import brushless, catalogue
-    from hexaleg.robot.registry import DESCRIPTIONS
-
-    assert catalogue.odri_actuator is brushless.odri_actuator
-    assert CATALOGUE["ODRI-4004"] == brushless.odri_actuator()
-    doc = brushless.__doc__ or ""
-    generic = [name for name, d in DESCRIPTIONS.items() if d.motor is None]
-    assert sorted(generic) == ["a1", "anymal", "anymal_c", "go2"]
-    for name in generic:
-        assert f"``{name}``" in doc, name
-    for actuator in ("A1 joint motor", "GO-M8010-6", "ANYdrive"):
-        assert actuator in doc, actuator
-
-
 @pytest.mark.parametrize("name", DATASHEET)
 def test_servo_reproduces_its_datasheet_through_the_model(name: str) -> None:
     """At the rated voltage the model's stall torque and no-load speed are the datasheet's: with
@@ -157,18 +139,6 @@ def test_new_servos_hand_values() -> None:
     assert "7.4 V" in sts.notes and "345" in sts.notes
     xl = motor("XL430-W250")
     assert "11.1 V" in xl.notes  # the recommended voltage is named, the 12 V figures used
-
-
-def test_odri_actuator_hand_values() -> None:
-    """Solo-12's module: 2.5 N·m at 12 A through 9 : 1; copper loss (3/2) R_s i² with
-    R_s = 0.23255 Ω; 300 rpm/V at 24 V through 9 : 1."""
-    m = motor("odri-4004")
-    assert m.current(2.5) == pytest.approx(12.0)
-    assert m.joule_power(2.5) == pytest.approx(1.5 * 0.23255 * 12.0**2)
-    assert m.joule_coefficient == pytest.approx(1.5 * 0.23255 / (2.5 / 12) ** 2)
-    assert m.no_load_speed == pytest.approx(800 * 2 * math.pi / 60)
-    assert "open_robot_actuator_hardware" in m.source and "assumed" in m.source
-    assert "Assumed" in m.notes and "24 V" in m.notes and "0.9" in m.notes
 
 
 def test_ax18a_hand_values() -> None:
