@@ -24,6 +24,12 @@ def pct(x: float) -> str:
     return f"{100 * x:+7.2f} %" if np.isfinite(x) else "    n/a"
 
 
+def magnitude(v: float) -> str:
+    """A spring magnitude (N·m/rad or N·m) to 4 digits; one under 1e-12, the convex solver's
+    rounding about zero (its sign and digits change with the last bit of the inputs), as 0."""
+    return "0" if abs(v) < 1e-12 else f"{v:.4g}"
+
+
 def tick(axis: str, value: object) -> str:
     """A map axis value as printed: a pattern's name, a slope in degrees, else the number."""
     if isinstance(value, str):
@@ -67,7 +73,7 @@ def main() -> None:
           f"{pct(rec.net[m])} ({1e3 * rec.spring_mass:.1f} g of springs)")
     for g, share in rec.marginal.items():
         print(f"  {g:6s} lost without it {pct(share)}   "
-              + ", ".join(f"{k} {v:.4g}" for k, v in rec.optimum.magnitudes[g].items()))
+              + ", ".join(f"{k} {magnitude(v)}" for k, v in rec.optimum.magnitudes[g].items()))
     print("\nsprings to buy (one per joint of the group)")
     for p in rec.parts:
         s = p.spring
@@ -108,7 +114,8 @@ def main() -> None:
             print(f"  worst {metric:10s}: robust {pct(rb.worst(metric))}, nominal "
                   f"{pct(rb.worst(metric, 'nominal'))}")
         for g in d.groups:
-            print(f"  {g:6s} " + ", ".join(f"{k} {v:.4g}" for k, v in d.magnitudes[g].items()))
+            print(f"  {g:6s} " + ", ".join(f"{k} {magnitude(v)}"
+                                           for k, v in d.magnitudes[g].items()))
 
     print("\nthe recommendation simulated in MuJoCo "
           "(electrical J per cycle, predicted / simulated)")

@@ -96,3 +96,28 @@ def test_a_model_step_the_solver_fails_stops_at_the_best_point(monkeypatch):
     assert r.serious_steps > 0
     assert "AlmostSolved" in r.stopped and full.stopped == ""
     assert full.values.max() <= r.values.max() < max(f(np.array([3.0, -2.0]))[0] for f in fs)
+
+
+def test_dropping_old_cuts_keeps_the_minimum(monkeypatch):
+    """Bundle compression (cuts off the model for CUT_AGE steps dropped) finds the minimum the
+    full bundle finds, on the worst of many quadratics with constraints, with fewer cuts."""
+    from hexaleg.design import bundle
+
+    rng = np.random.default_rng(7)
+    fs = [_quadratic(rng.normal(size=6), w) for w in rng.uniform(0.5, 2.0, 15)]
+    G, h = rng.normal(size=(4, 6)), np.ones(4)
+    kept = []
+    prune = bundle._Cuts.prune
+
+    def spy(self, y, n):
+        prune(self, y, n)
+        kept.append(self.c.size)
+
+    monkeypatch.setattr(bundle._Cuts, "prune", spy)
+    short = minimise(fs, np.zeros(6), G=G, h=h)
+    monkeypatch.setattr(bundle, "CUT_AGE", 10**9)
+    kept_short, kept[:] = list(kept), []
+    full = minimise(fs, np.zeros(6), G=G, h=h)
+    assert short.values.max() == pytest.approx(full.values.max(), rel=1e-8)
+    np.testing.assert_allclose(short.x, full.x, atol=1e-5)
+    assert max(kept_short) < max(kept)  # cuts were dropped

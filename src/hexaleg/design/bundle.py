@@ -12,8 +12,10 @@ subgradient, vectorised NumPy), and the program in x is built from cutting plane
 Each iteration minimises the cutting-plane model ``max_c max_j f_c(x_j) + g_cj·(x − x_j)`` plus
 a proximal term ``(u/2)‖x − x̂‖²`` about the best point x̂ (one small QP, Clarabel); a point
 that lowers F by a tenth of the predicted decrease becomes x̂ (a serious step), otherwise its
-cuts refine the model (a null step). It stops when the predicted decrease is below the
-tolerance — x̂ is then optimal to that tolerance (Kiwiel's proximal bundle method; e.g.
+cuts refine the model (a null step); a cut that has not made the model at the last
+:data:`CUT_AGE` model steps is dropped, so that each QP stays small (bundle compression: the
+active cuts are kept, and with them the convergence). It stops when the predicted decrease is
+below the tolerance — x̂ is then optimal to that tolerance (Kiwiel's proximal bundle method; e.g.
 Bonnans, Gilbert, Lemaréchal & Sagastizábal, *Numerical Optimization*, 2006, ch. 10). F never
 increases from the start: started at a feasible x₀, the result is never worse than x₀. A model
 step the QP solver cannot solve once x̂ is feasible (its program always has a solution then: the
@@ -40,6 +42,8 @@ MAX_ITERATIONS = 400
 """Model steps (QPs) before it stops with the gap it reached (:attr:`BundleResult.gap`)."""
 TOLERANCE = 1e-10
 """Predicted decrease (in the units of F) at which the method stops."""
+CUT_AGE = 10
+"""Model steps a cutting plane may stay below its condition's model before it is dropped."""
 
 
 @dataclass(frozen=True)
@@ -57,12 +61,19 @@ class BundleResult:
 
 @dataclass
 class _Cuts:
-    """Cutting planes ``f + g·(y − y_j) ≤ t_c``: condition, value, subgradient, point."""
+    """Cutting planes ``f + g·(y − y_j) ≤ t_c``: condition, value, subgradient, point, and how
+    many model steps each has been off its condition's model (its age)."""
 
     c: np.ndarray
     f: np.ndarray
     g: np.ndarray
     y: np.ndarray
+    age: np.ndarray
+
+    @classmethod
+    def empty(cls, nx: int) -> _Cuts:
+        return cls(np.zeros(0, int), np.zeros(0), np.zeros((0, nx)), np.zeros((0, nx)),
+                   np.zeros(0, int))
 
     def add(self, values: np.ndarray, grads: list[np.ndarray], y: np.ndarray) -> None:
         n = values.size
@@ -70,6 +81,20 @@ class _Cuts:
         self.f = np.r_[self.f, values]
         self.g = np.vstack([self.g, np.array(grads)])
         self.y = np.vstack([self.y, np.tile(y, (n, 1))])
+        self.age = np.r_[self.age, np.zeros(n, int)]
+
+    def prune(self, y: np.ndarray, n: int) -> None:
+        """Age the cuts below their condition's model at the model step ``y`` (the active ones,
+        those that make the model there, become 0) and drop those older than
+        :data:`CUT_AGE`."""
+        v = self.f + np.sum(self.g * (y - self.y), axis=1)
+        top = np.full(n, -np.inf)
+        np.maximum.at(top, self.c, v)
+        active = v >= top[self.c] - 1e-9 * np.maximum(1.0, np.abs(top[self.c]))
+        self.age = np.where(active, 0, self.age + 1)
+        keep = self.age <= CUT_AGE
+        self.c, self.f, self.g, self.y, self.age = (self.c[keep], self.f[keep], self.g[keep],
+                                                    self.y[keep], self.age[keep])
 
     def model(self, y: np.ndarray, n: int) -> np.ndarray:
         """The model of each function at y, shape (n,)."""
@@ -181,14 +206,13 @@ def minimise(oracles: Sequence[Oracle], x0: np.ndarray, mode: str = "worst", *,
     y = x0 / scale
     ok = (Gs @ y <= h + 1e-12).all() and (y[nonneg] >= 0).all() and not y[fixed].any()
     if not ok:  # the closest feasible start
-        y = _qp(_Cuts(np.zeros(0, int), np.zeros(0), np.zeros((0, nx)), np.zeros((0, nx))), 0,
-                mode, y, 1.0, Gs, h, nonneg, fixed)
+        y = _qp(_Cuts.empty(nx), 0, mode, y, 1.0, Gs, h, nonneg, fixed)
     values, grads = evaluate(y)
-    cuts = _Cuts(np.zeros(0, int), np.zeros(0), np.zeros((0, nx)), np.zeros((0, nx)))
+    cuts = _Cuts.empty(nx)
     cuts.add(values, grads, y)
     best, best_values = y, values
     u, serious, gap, it, stopped = 1.0, 0, np.inf, 0, ""
-    for it in range(1, MAX_ITERATIONS + 1):  # noqa: B007 — reported
+    for it in range(1, MAX_ITERATIONS + 1):
         try:
             trial = _qp(cuts, n, mode, best, u, Gs, h, nonneg, fixed)
         except InfeasibleForcesError as e:  # x̂ meets the constraints: a numerical failure
@@ -197,6 +221,7 @@ def minimise(oracles: Sequence[Oracle], x0: np.ndarray, mode: str = "worst", *,
         gap = total(best_values) - total(cuts.model(trial, n))
         if gap <= tolerance * max(1.0, abs(total(best_values))):
             break
+        cuts.prune(trial, n)
         values, grads = evaluate(trial)
         cuts.add(values, grads, trial)
         if total(values) <= total(best_values) - 0.1 * gap:
