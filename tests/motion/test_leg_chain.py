@@ -160,3 +160,25 @@ def test_a_joint_newton_cannot_move_is_named(tmp_path):
     with pytest.raises(RobotModelError, match=r"joint slide is a JointModelRevoluteUnbounded"
                                               r".*\(2 configuration values, 1 velocities\)"):
         leg_chain(robot, robot.legs[0], _reference(robot))
+
+
+def test_a_target_that_is_not_a_number_is_named(a1):
+    leg = a1.leg("LF")
+    p, pd, pdd = _walk(a1, leg, 4)
+    p[2, 0] = np.nan
+    with pytest.raises(hexaleg.HexalegError, match=r"leg LF foot target p"):
+        newton_leg_ik(a1, leg, p, pd, pdd)
+
+
+def test_a_foot_frame_moved_in_place_is_read_again():
+    robot = load("a1")
+    leg = robot.leg("LF")
+    p, pd, pdd = _walk(robot, leg, 8)
+    q = newton_leg_ik(robot, leg, p, pd, pdd)[0]
+    frame = robot.model.frames[leg.foot_frame_id]
+    frame.placement = pin.SE3(np.eye(3), frame.placement.translation + np.array([0.0, 0.0, -0.02]))
+    robot.model.frames[leg.foot_frame_id] = frame
+    moved = newton_leg_ik(robot, leg, p, pd, pdd)[0]
+    assert np.abs(moved - q).max() > 1e-3
+    for k in range(8):
+        assert np.abs(_pinocchio(robot, leg, moved[k], np.zeros(3))[0] - p[k]).max() < 1e-12

@@ -37,3 +37,10 @@ def test_a_worker_error_is_raised_here():
 
     with pytest.raises(InvalidParameterError, match="k = 2"):
         fork_map(work, [1, 2, 3], workers=2)
+
+
+def test_a_map_inside_a_worker_of_another():
+    def inner(k: int) -> list[int]:
+        return fork_map(lambda j: 10 * k + j, [0, 1], workers=2)
+
+    assert fork_map(inner, [1, 2, 3, 4], workers=2) == [[10, 11], [20, 21], [30, 31], [40, 41]]

@@ -163,6 +163,8 @@ def robust_springs(optimum: OptimalSprings, nominal: Prepared, conditions: Seque
                                                      else result.values.mean())}
     if any([d.update(xv) for d in data]):  # some sample binds: explicit forces there
         xv, explicit = explicit_program(data, mode, nonneg, engaged, G, h)
+        for stale in ("gap", "stopped"):  # the bundle's, not the explicit program's
+            solver.pop(stale)
         solver.update(explicit)
     solver["explicit_samples"] = [int((~d.condensed).sum()) for d in data]
     return _result(optimum, mode, metric, data, xv, x0, centres, solver)

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
+from hexaleg.checks import finite_array
 from hexaleg.errors import RobotModelError, UnreachableTargetError
 from hexaleg.robot.model import Leg, Robot
 
@@ -155,9 +156,9 @@ def _motion_axes(model: pin.Model, jid: int) -> tuple[np.ndarray, np.ndarray]:
 
 _Key = tuple[tuple[int, ...], int, bytes]
 _CHAINS: weakref.WeakKeyDictionary[Robot, dict[_Key, LegChain]] = weakref.WeakKeyDictionary()
-"""Chains read per robot, by the leg's joints, its foot frame and the reference pose: a gait's
-body sway solves each leg's inverse kinematics many times (a robot's kinematics do not change
-once it is loaded)."""
+"""Chains read per robot, by the leg's joints and foot frame, the reference pose and the
+placements the chain is made of (a foot frame moved in place is read again): a gait's body sway
+solves each leg's inverse kinematics many times."""
 
 
 def leg_chain(robot: Robot, leg: Leg, reference: np.ndarray) -> LegChain:
@@ -177,7 +178,11 @@ def leg_chain(robot: Robot, leg: Leg, reference: np.ndarray) -> LegChain:
             chain to its foot (the message names the joint), or the chain does not reproduce
             Pinocchio's forward kinematics.
     """
-    key = (leg.joint_ids, leg.foot_frame_id, np.asarray(reference, dtype=float).tobytes())
+    model = robot.model
+    foot = model.frames[leg.foot_frame_id]
+    placements = [model.jointPlacements[j].homogeneous for j in model.supports[foot.parentJoint]]
+    key = (leg.joint_ids, leg.foot_frame_id, np.asarray(reference, dtype=float).tobytes()
+           + np.array([*placements, foot.placement.homogeneous]).tobytes())
     known = _CHAINS.setdefault(robot, {})
     if key not in known:
         known[key] = _read_chain(robot, leg, reference)
@@ -264,6 +269,8 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
     """
     model = robot.model
     p, pd, pdd = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, pd, pdd))
+    for name, x in (("p", p), ("pd", pd), ("pdd", pdd)):
+        finite_array(f"leg {leg.name} foot target {name}", x)
     t = np.arange(len(p), dtype=float) if t is None else np.asarray(t, dtype=float)
     reference = robot.pose("stand") if "stand" in robot.poses else pin.neutral(model)
     reference[:7] = pin.neutral(model)[:7]

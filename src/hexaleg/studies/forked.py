@@ -91,6 +91,7 @@ def fork_map(fn: Callable[[T], R], items: Sequence[T], *, shared: Iterable[objec
                 done(i, results[i])
         return [results[i] for i in range(len(items))]
     table = {id(o): o for o in shared}
+    outer = _WORK[:]  # a map inside a worker of another: that worker's work is kept
     _WORK[:] = [fn, items, table]
     try:
         with ProcessPoolExecutor(n, mp_context=multiprocessing.get_context("fork"),
@@ -107,5 +108,5 @@ def fork_map(fn: Callable[[T], R], items: Sequence[T], *, shared: Iterable[objec
                     job.cancel()
                 raise
     finally:
-        _WORK.clear()
+        _WORK[:] = outer
     return [results[i] for i in range(len(items))]
