@@ -240,3 +240,21 @@ def test_an_empty_simulation_file_is_named_not_a_traceback(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "motion-springs.npz: it is empty (0 bytes)" in err and "Traceback" not in err
     assert not out.exists()
+
+
+def test_ctrl_c_ends_the_wait_even_where_sigint_was_ignored():
+    """A server started in the background of a script inherits SIGINT ignored; Ctrl-C (SIGINT)
+    still ends its wait, as SIGTERM does."""
+    code = ("from hexaleg.studies.view import wait_until_interrupted; print('waiting', "
+            "flush=True); wait_until_interrupted(); print('stopped', flush=True)")
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True,
+                                preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_IGN))
+        try:
+            assert proc.stdout.readline() == "waiting\n"
+            proc.send_signal(sig)
+            assert proc.wait(timeout=20) == 0 and proc.stdout.read() == "stopped\n"
+        finally:
+            if proc.poll() is None:
+                proc.kill()
+                proc.wait()

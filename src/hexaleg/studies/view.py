@@ -281,7 +281,10 @@ def serve_view(config_path: str | Path | None, *, motion: str | None = None,
 def wait_until_interrupted() -> None:
     """Block until Ctrl-C or a kill (SIGTERM), both of which then leave through the normal exit
     that stops the Meshcat server of :func:`serve` (it lives as long as this process). Call from
-    the main thread."""
+    the main thread. Ctrl-C (SIGINT) is taken even where it was ignored when the process started
+    (a command run in the background of a script inherits SIGINT ignored, POSIX shell
+    semantics; Python then keeps it ignored and the server could only be killed)."""
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     signal.signal(signal.SIGTERM, signal.default_int_handler)
     try:
         while True:
