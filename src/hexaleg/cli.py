@@ -159,8 +159,8 @@ def _run_view(args: argparse.Namespace) -> int:
     url = serve_view(args.config, **shown)
     what = (f"{args.run or 'springs'} run of {args.simulation}" if args.simulation else
             args.motion or "gait")
-    print(f"serving the {what} at {url} (Ctrl-C to stop)", flush=True)
-    wait_until_interrupted()
+    wait_until_interrupted(lambda: print(f"serving the {what} at {url} (Ctrl-C to stop)",
+                                         flush=True))
     return 0
 
 

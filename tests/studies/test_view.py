@@ -244,9 +244,10 @@ def test_an_empty_simulation_file_is_named_not_a_traceback(tmp_path, capsys):
 
 def test_ctrl_c_ends_the_wait_even_where_sigint_was_ignored():
     """A server started in the background of a script inherits SIGINT ignored; Ctrl-C (SIGINT)
-    still ends its wait, as SIGTERM does."""
-    code = ("from hexaleg.studies.view import wait_until_interrupted; print('waiting', "
-            "flush=True); wait_until_interrupted(); print('stopped', flush=True)")
+    still ends its wait, as SIGTERM does, from the moment it says it is ready."""
+    code = ("from hexaleg.studies.view import wait_until_interrupted; "
+            "wait_until_interrupted(lambda: print('waiting', flush=True)); "
+            "print('stopped', flush=True)")
     for sig in (signal.SIGINT, signal.SIGTERM):
         proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True,
                                 preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_IGN))

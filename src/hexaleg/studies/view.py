@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import signal
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -278,15 +279,21 @@ def serve_view(config_path: str | Path | None, *, motion: str | None = None,
     return serve(shown.robot, shown.motion, **shown.options(params))
 
 
-def wait_until_interrupted() -> None:
+def wait_until_interrupted(ready: Callable[[], None] | None = None) -> None:
     """Block until Ctrl-C or a kill (SIGTERM), both of which then leave through the normal exit
     that stops the Meshcat server of :func:`serve` (it lives as long as this process). Call from
     the main thread. Ctrl-C (SIGINT) is taken even where it was ignored when the process started
     (a command run in the background of a script inherits SIGINT ignored, POSIX shell
-    semantics; Python then keeps it ignored and the server could only be killed)."""
+    semantics; Python then keeps it ignored and the server could only be killed).
+
+    Args:
+        ready: Called once both signals are taken (e.g. to print the URL and "Ctrl-C to stop":
+            a Ctrl-C before that line is one the process could have lost)."""
     signal.signal(signal.SIGINT, signal.default_int_handler)
     signal.signal(signal.SIGTERM, signal.default_int_handler)
     try:
+        if ready is not None:
+            ready()
         while True:
             time.sleep(3600)
     except KeyboardInterrupt:
