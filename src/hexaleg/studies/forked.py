@@ -5,7 +5,7 @@ address in both. A child's result comes back pickled, and the shared objects it 
 robot, its Pinocchio model and data, its visual and collision geometry) are written as their
 ``id`` and read back as this process's own objects (:mod:`pickle`'s persistent ids). Without
 that, a result that refers to the robot carries it: A1's visual meshes alone pickle to 400 MB,
-and the design's family workers spent 20 s of their 2 s each pickling them.
+and each of A1's design families, 2 s of work, spent 20 s pickling and unpickling them.
 
 :func:`fork_map` is the same computation as ``[fn(x) for x in items]`` (tested bit for bit); it
 runs in this process where it cannot fork or on one core.
@@ -28,7 +28,7 @@ R = TypeVar("R")
 
 _WORK: list[Any] = []
 """The function, its items and the shared objects by id that the forked workers read
-(inherited through the fork, not pickled: a Pinocchio model does not pickle)."""
+(inherited through the fork, not pickled: the function may be any closure)."""
 
 
 def robot_objects(robot: Robot) -> tuple[object, ...]:

@@ -206,8 +206,8 @@ def build_design(config: DesignConfig | None = None,
          + ("a logged motion" if nom.motion is not None else "[design] robustness = false"))
     robust = robust_design(nom, rec)
     stalled = [] if robust is None or not robust.design.solver.get("stopped") else [
-        f"robust design: its bundle method's {robust.design.solver['stopped']} (gap "
-        f"{robust.design.solver['gap']:.3g} J left)"]
+        f"robust design: its bundle method's {robust.design.solver['stopped']} (predicted "
+        f"decrease left {robust.design.solver['gap']:.3g} of the baseline's energy)"]
     step("robust", "robust design over the box of conditions" if robust is not None
          else "no robust design")
     simulation, unsimulated = _proof(nom, rec)
