@@ -4,9 +4,11 @@
 one joint) for a prepared gait. For a fixed geometry (:mod:`hexaleg.design.families`) the
 magnitudes come from one convex program over the whole cycle (:mod:`hexaleg.design.program`):
 the global optimum for that geometry. The geometry — a few angles per group — is given, or
-searched: a grid per group (rounds over the groups), then bounded Nelder–Mead over all angles
-(:func:`scipy.optimize.minimize`), each step one convex solve. The linear family has no geometry,
-so its answer is global outright.
+searched (:mod:`hexaleg.design.search`: each angle scanned over every place it can change the
+design, coordinate descent over the groups to a fixed point; deterministic), each step one
+convex solve. The linear family has no geometry, so its answer is global outright. A family
+that contains others (:data:`~hexaleg.design.families.CONTAINS`: preloaded contains one_sided,
+dead_zone and linear) starts from their optima, so it is never below them.
 
 Every design constraint is linear in the magnitudes: magnitudes ≥ 0 where the family needs it;
 ``max_torque`` (|τ_s| ≤ τ_max over the gait; the laws are non-increasing in q, so the extremes of
@@ -25,9 +27,9 @@ from typing import Any
 
 import numpy as np
 
-from hexaleg.design.families import FAMILIES, Family, Geometry
+from hexaleg.design.families import CONTAINS, FAMILIES, Family, Geometry, embed
 from hexaleg.design.program import DesignProblem, DesignSolution
-from hexaleg.design.search import search_geometry
+from hexaleg.design.search import off_angles, search_geometry
 from hexaleg.design.setup import (
     ENGAGED,
     METRICS,
@@ -41,17 +43,12 @@ from hexaleg.design.spring_table import magnitudes_table
 from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES
 from hexaleg.dynamics.energy import saving
 from hexaleg.dynamics.prepare import Analysis, Prepared
-from hexaleg.errors import InvalidParameterError
+from hexaleg.errors import HexalegError, InvalidParameterError
 from hexaleg.robot.springs import Spring, SpringSet
 
 OBJECTIVE_METRIC = {"joule": "joule", "torque_squared": "rms_torque", "electrical": "electrical",
                     "positive_work": "positive_work"}
 """The metric of ``Analysis.metrics["total"]`` each objective is judged by."""
-REFINE_EVALUATIONS = 40
-"""Condensed solves the metric's Nelder–Mead refinement may spend (each ~50–100 ms against the
-Joule program's ~5–10 ms: the Joule search finds the region, the metric's refines it)."""
-GRID = 7
-"""Grid points per angle of the geometry search's start."""
 ZERO_STIFFNESS = 1e-9
 """k below this (N·m/rad) with a nonzero constant torque reads as a constant-torque spring."""
 
@@ -102,7 +99,8 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
                     max_deflection: float | None = None,
                     geometry: Mapping[str, Geometry] | None = None,
                     start: Mapping[str, Geometry] | Sequence[Mapping[str, Geometry]] | None = None,
-                    metric: str | None = None, mirrored: Iterable[str] = ()) -> OptimalSprings:
+                    metric: str | None = None, mirrored: Iterable[str] = (),
+                    contained: Sequence[OptimalSprings | None] | None = None) -> OptimalSprings:
     """The optimal springs of one family on the groups' joints for a prepared gait.
 
     Args:
@@ -123,12 +121,15 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
         mirrored: Joints that count their angle the other way round from their group's design
             (:func:`hexaleg.robot.mirror.mirror`): each gets the group's spring mirrored, so one
             physical design serves both sides of a mirror.
+        contained: The optima of the families this one contains (same arguments; None where
+            one has none), to start from; None: designed here.
         metric: What the magnitudes (and the geometry search) minimise. None (default): the
             force program's own objective, the joint program over (x, forces) above. With a
-            metric the geometry is the Joule program's search (grid rounds and Nelder–Mead),
-            then Nelder–Mead on the metric's value from its optimum and the starts
-            (:data:`REFINE_EVALUATIONS` solves): never worse in the metric than the Joule
-            geometry or a start.
+            metric the geometry is the Joule program's search, then the best in the metric of
+            its optimum, the starts and the contained families' optima: never worse in the
+            metric than any of them. (A coordinate descent in the metric within 4 levels of
+            the Joule optimum gained at most 0.005 points on the default robot, for 4× the
+            family's time.)
             ``"electrical"`` or ``"joule"`` (one of :data:`hexaleg.design.setup.METRICS`, with
             objective ``"joule"``): that metric per cycle of the Joule-optimal forces — the
             convention of ``Prepared.evaluate(springs, "joule")`` that ``hexaleg design`` ranks
@@ -158,20 +159,50 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
         if start is not None:
             raise InvalidParameterError("start", start, "None when the geometry is given")
         chosen = setup.check_geometry(geometry)
-        solution, evaluations = setup.solve(chosen), 1
-    else:
-        starts = [] if start is None or not setup.fam.angles else (
-            [start] if isinstance(start, Mapping) else list(start))
-        checked = [setup.check_geometry(s) for s in starts]
-        if not setup.condensed:
-            chosen, solution, evaluations = search_geometry(setup, checked)
-        else:  # the Joule program's search, then Nelder–Mead on the metric from its optimum
-            nominal = dataclasses.replace(setup, metric=None, shifts=())
-            first, _, evaluations = search_geometry(nominal, checked)
-            chosen, _, more = search_geometry(setup, [first, *checked], rounds=0,
-                                              max_evaluations=REFINE_EVALUATIONS)
-            solution, evaluations = setup.solve(chosen), evaluations + more + 1
-    return springs_result(setup, chosen, solution, evaluations, baseline)
+        return springs_result(setup, chosen, setup.solve(chosen), 1, baseline)
+    starts = [] if start is None or not setup.fam.angles else (
+        [start] if isinstance(start, Mapping) else list(start))
+    checked = [setup.check_geometry(s) for s in starts]
+    if contained is None:
+        contained = [_inner(prepared, groups, inner, objective, max_torque, max_deflection,
+                            metric, mirrored) for inner in CONTAINS.get(family, ())]
+    inner_starts = [_embedded(setup, c) for c in contained if c is not None]
+    if not setup.condensed:
+        found = search_geometry(setup, [*checked, *inner_starts])
+        chosen, solution = found.geometry, found.solution
+        if setup.fam.angles:
+            solution = setup.solve(chosen)
+        searches = [found]
+    else:  # the Joule program's exhaustive search, then the metric's polish from its optimum
+        nominal = dataclasses.replace(setup, metric=None, shifts=())
+        first = search_geometry(nominal, [*checked, *inner_starts])
+        found = search_geometry(setup, [first.geometry, *checked, *inner_starts],
+                                max_sweeps=0)
+        chosen, solution, searches = found.geometry, setup.solve(found.geometry), [first, found]
+    result = springs_result(setup, chosen, solution,
+                            sum(f.evaluations for f in searches) + 1, baseline)
+    search = {"stages": [f.to_dict() for f in searches],
+              "contains": [c.family for c in contained if c is not None]}
+    return dataclasses.replace(result, solver={**result.solver, "search": search})
+
+
+def _inner(prepared: Prepared, groups: Groups, family: str, objective: str,
+           max_torque: float | None, max_deflection: float | None, metric: str | None,
+           mirrored: Iterable[str]) -> OptimalSprings | None:
+    """A contained family's optimum (a start of the containing family's search), or None where
+    it has none (its program infeasible, a constraint no design of it meets)."""
+    try:
+        return optimal_springs(prepared, groups, family, objective, max_torque=max_torque,
+                               max_deflection=max_deflection, metric=metric, mirrored=mirrored)
+    except HexalegError:
+        return None
+
+
+def _embedded(setup: DesignSetup, inner: OptimalSprings) -> dict[str, dict[str, float | str]]:
+    """``inner``'s design as a geometry of ``setup``'s family (:func:`embed`), checked."""
+    return setup.check_geometry({g: embed(setup.fam.name, inner.family, inner.geometry[g],
+                                          inner.magnitudes[g], off_angles(setup, g))
+                                 for g in setup.groups})
 
 
 def design_problem(prepared: Prepared, groups: Groups, family: str,

@@ -71,12 +71,24 @@ class Family:
         angles: Names of the geometry's angles (rad, from each joint's centre of motion).
         magnitudes: Names of the magnitudes, in term order.
         elements: The physical springs (:class:`Element`), for ``max_deflection``.
+        order: ``(low, high, strict)``: angle ``low`` ≤ (``strict``: <) angle ``high``.
+        preloaded_stops: Every stop carries a free preload ≥ 0 with its stiffness: then the
+            design's value is non-increasing in each angle between two samples' angles
+            (:mod:`hexaleg.design.search`), so a stop's best place is just before a sample.
     """
 
     name: str
     angles: tuple[str, ...]
     magnitudes: tuple[str, ...]
     elements: tuple[Element, ...]
+    order: tuple[tuple[str, str, bool], ...] = ()
+    preloaded_stops: bool = False
+
+    def side(self, angle: str, geometry: Geometry) -> str:
+        """``"above"`` when the terms at ``angle`` act on angles above it, else ``"below"``."""
+        if angle == "contact":
+            return str(geometry["side"])
+        return "above" if angle in ("theta_plus", "above_1", "above_2") else "below"
 
     def check(self, geometry: Geometry, where: str) -> dict[str, float | str]:
         """``geometry`` checked: exactly this family's angles (and ``side`` for one_sided), finite,
@@ -103,15 +115,18 @@ class Family:
             if side not in SIDES:
                 raise UnknownNameError(f"{where}.side", side, SIDES)
             out["side"] = side
-        order = {"dead_zone": [("theta_minus", "theta_plus", False)],
-                 "preloaded": [("theta_minus", "theta_plus", True)],
-                 "stiffening": [("above_1", "above_2", False), ("below_2", "below_1", False)]}
-        for low, high, equal in order.get(self.name, []):
+        for low, high, strict in self.order:
             a, b = float(out[low]), float(out[high])
-            if a > b or (a == b and not equal):
+            if a > b or (a == b and strict):
                 raise InvalidParameterError(f"{where}.{low}", a,
-                                            f"{'<=' if equal else '<'} {high} = {b}")
+                                            f"{'<' if strict else '<='} {high} = {b}")
         return out
+
+    def ordered(self, geometry: Geometry) -> bool:
+        """Whether ``geometry``'s angles are in :attr:`order`."""
+        return all(float(geometry[lo]) < float(geometry[hi]) if strict
+                   else float(geometry[lo]) <= float(geometry[hi])
+                   for lo, hi, strict in self.order)
 
     def terms(self, geometry: Geometry, centre: float) -> tuple[Term, ...]:
         """The basis terms on a joint whose centre of motion is ``centre`` (rad), absolute
@@ -196,15 +211,71 @@ class Family:
 _FAMILIES = {
     "linear": Family("linear", (), ("k", "torque_at_reference"), (Element(0, 1, linear=True),)),
     "dead_zone": Family("dead_zone", ("theta_minus", "theta_plus"), ("k_plus", "k_minus"),
-                        (Element(0), Element(1))),
+                        (Element(0), Element(1)), order=(("theta_minus", "theta_plus", True),)),
     "preloaded": Family("preloaded", ("theta_minus", "theta_plus"),
                         ("k_plus", "k_minus", "preload_plus", "preload_minus"),
-                        (Element(0, 2), Element(1, 3))),
-    "one_sided": Family("one_sided", ("contact",), ("k", "preload"), (Element(0, 1),)),
+                        (Element(0, 2), Element(1, 3)),
+                        order=(("theta_minus", "theta_plus", False),), preloaded_stops=True),
+    "one_sided": Family("one_sided", ("contact",), ("k", "preload"), (Element(0, 1),),
+                        preloaded_stops=True),
     "stiffening": Family("stiffening", ("above_1", "above_2", "below_1", "below_2"),
                          ("k_above_1", "k_above_2", "k_below_1", "k_below_2"),
-                         (Element(0), Element(1), Element(2), Element(3))),
+                         (Element(0), Element(1), Element(2), Element(3)),
+                         order=(("above_1", "above_2", True), ("below_2", "below_1", True))),
 }
+
+CONTAINS: dict[str, tuple[str, ...]] = {"preloaded": ("one_sided", "dead_zone", "linear"),
+                                        "dead_zone": ("linear",), "stiffening": ("dead_zone",)}
+"""Family → the families it contains (their every law is one of its laws, :func:`embed`; a
+linear law is a dead zone :data:`LINEAR_GAP` wide)."""
+LINEAR_REACH = 2 * np.pi
+"""rad from the centre of motion beyond which a linear spring's equilibrium (a constant torque
+where k → 0) is not taken for a dead zone's: its stops would sit turns away (the design's
+deflection bound keeps a linear spring's equilibrium within π of the motion)."""
+LINEAR_GAP = 1e-9
+"""rad: the width of the dead zone that stands for a linear spring (a dead zone needs
+θ⁻ < θ⁺); the laws differ by k·LINEAR_GAP N·m inside it."""
+
+
+def embed(outer: str, inner: str, geometry: Geometry, magnitudes: Mapping[str, float],
+          off: tuple[float, float]) -> dict[str, float | str]:
+    """The geometry of family ``outer`` whose laws include ``inner``'s law of ``geometry`` and
+    ``magnitudes`` (rad from the centre of motion).
+
+    ``off``: (an angle below, an angle above) every sample's, rad from the centre: a stop there
+    never engages. One_sided and dead_zone are preloaded with a side off or no preload; a linear
+    law τ₀ − k (q − c) is preloaded with both stops at θ = τ₀ / k (k > 0; k = 0, a constant
+    torque: both stops beyond the motion on the side whose preload gives it), and a dead zone
+    :data:`LINEAR_GAP` wide at θ (no stop engaged when θ is beyond :data:`LINEAR_REACH`);
+    dead_zone is stiffening with its second stages off.
+
+    Raises:
+        InvalidParameterError: ``outer`` does not contain ``inner`` (:data:`CONTAINS`).
+    """
+    below, above = off
+    if outer == "preloaded" and inner == "one_sided":
+        c = float(geometry["contact"])
+        return ({"theta_minus": below, "theta_plus": c} if geometry["side"] == "above"
+                else {"theta_minus": c, "theta_plus": above})
+    if outer == "preloaded" and inner == "dead_zone":
+        return {"theta_minus": float(geometry["theta_minus"]),
+                "theta_plus": float(geometry["theta_plus"])}
+    if outer == "preloaded" and inner == "linear":
+        k, torque = float(magnitudes["k"]), float(magnitudes["torque_at_reference"])
+        # k = 0: a constant torque, a preload with both stops beyond the motion on one side
+        theta = torque / k if k > 0 else above if torque > 0 else below
+        return {"theta_minus": theta, "theta_plus": theta}
+    if outer == "dead_zone" and inner == "linear":
+        k, torque = float(magnitudes["k"]), float(magnitudes["torque_at_reference"])
+        theta = torque / k if k > 0 else np.inf
+        if abs(theta) > LINEAR_REACH:  # a (nearly) constant torque is no dead-zone law
+            return {"theta_minus": below, "theta_plus": above}
+        return {"theta_minus": theta - LINEAR_GAP / 2, "theta_plus": theta + LINEAR_GAP / 2}
+    if outer == "stiffening" and inner == "dead_zone":
+        return {"above_1": float(geometry["theta_plus"]), "above_2": above,
+                "below_1": float(geometry["theta_minus"]), "below_2": below}
+    pairs = ", ".join(f"{i} in {o}" for o, ins in CONTAINS.items() for i in ins)
+    raise InvalidParameterError("embed", f"{inner} in {outer}", f"one of {pairs}")
 
 
 def family(name: str) -> Family:

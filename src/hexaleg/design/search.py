@@ -1,147 +1,321 @@
-"""The outer search over a spring family's geometry; each step is one convex solve.
+"""The outer search over a spring family's geometry: deterministic, exhaustive along each angle.
 
-The magnitudes are optimal for every geometry the search visits (:mod:`hexaleg.design.program`),
-so only a few angles per group are searched: the design's value as a function of them is
-piecewise smooth (samples enter and leave the engaged regions) and bounded by the joints' range
-of motion widened by a wind-up allowance (a contact angle beyond the motion's far end is a
-spring engaged throughout, pre-wound by the distance: ``max_deflection`` when given, else
-:data:`WIND_UP`, the old optimiser's ±1 rad offset bound). The search: a grid over each group's
-angles in turn with the other groups held (two rounds), then bounded Nelder–Mead over all angles
-together from the best grid point (:func:`scipy.optimize.minimize`; derivative-free, tolerant of
-the kinks). Ordered angles (θ⁻ < θ⁺, stage breakpoints) are searched as unordered pairs and
-sorted, so the box needs no ordering constraint. A one-sided spring's side is chosen per group
-in the grid rounds. Start geometries (say, each group's optimum alone, or a subset's optimum with
-the remaining group's, when the groups are then designed together) are evaluated first and the
-grid rounds start from the best of them, so the result is never worse than any start.
+For a fixed geometry the magnitudes are one convex program (:mod:`hexaleg.design.program`), and
+its value depends on the geometry only through the spring torque at the gait's samples. A term
+at angle θ acts on the samples on its side of θ: the samples whose angle from their joint's
+centre of motion (a mirrored joint's reflected, :mod:`hexaleg.robot.mirror`) is above θ for an
+``above`` stop, below it for a ``below`` one. That set changes only where θ crosses a sample's
+angle. These angles, merged where closer than :data:`MERGE`, are the group's *levels*; with stop
+shifts (:mod:`hexaleg.design.tolerance`) the levels moved by each shift of the group.
+
+**Families whose every stop carries a free preload** (``one_sided``, ``preloaded``:
+:attr:`~hexaleg.design.families.Family.preloaded_stops`). Between two levels the engaged samples
+are fixed, and an ``above`` stop's torque on them is −(k (r − θ) + p) = −(k r + c) with
+c = p − k θ; p ≥ 0 reads c ≥ −k θ, which only loosens as θ grows (a ``below`` stop: as θ
+falls), and every design row — the torque and deflection bounds at the motion's ends,
+k r_max + c ≤ k Δ — is a condition on k and c alone. The set of reachable torques grows as θ
+moves towards the next level, so the value is non-increasing there: the best θ with the other
+angles fixed is one of the finitely many angles :data:`EDGE` before a level (or beyond every
+sample: the stop never engages). Scanning all of them is exact along that angle — no grid
+resolution, no Lipschitz constant.
+
+**Families without** (``dead_zone``, ``stiffening``). The value is smooth between levels but
+not monotone: every level is scanned, and the interval around the best is polished by a
+bounded Brent search (:func:`scipy.optimize.minimize_scalar`, deterministic) to
+:data:`POLISH_TOLERANCE`. A stop may also sit beyond the motion's far end (engaged throughout,
+pre-wound by the distance): the scan reaches ``max_deflection`` past it, else :data:`WIND_UP`.
+
+**Over the groups**: coordinate descent to a fixed point. From the best start (the given
+geometries and "no stop engaged"), each group's angles are scanned in turn with the others held
+(a one-sided stop's side with it), until a sweep improves nothing: every angle is then optimal
+given the others (:attr:`GeometrySearch.converged`). ``window`` limits a scan to that many
+candidates on each side of the current angle — the local polish of an expensive program (the
+metric's refinement, the stop-tolerant design) from a start the exhaustive search found.
+
+Every step is a fixed sequence of convex solves compared by value, ties kept by the earlier
+candidate, so the search is deterministic; a tiny change of the gait moves the levels by as
+much and the optimum with them, not to another basin.
 """
 
 from __future__ import annotations
 
-import itertools
-from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from hexaleg.design.scan import State, relaxed_values
 from hexaleg.design.setup import DesignSetup
+from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES
 from hexaleg.errors import InfeasibleForcesError, TorqueLimitError
 
 if TYPE_CHECKING:
     from hexaleg.design.families import Geometry
     from hexaleg.design.program import DesignSolution
 
-TICKS = {1: (-1.0, -0.75, -0.5, -0.25, 0.0, 0.25, 0.5, 0.75, 1.0), 2: (-1.0, -0.5, 0.0, 0.5, 1.0),
-         4: (-0.5, 0.5)}
-"""Start-grid angles within the range of motion, in units of the group's half range, by the
-number of angles of the family; the two wind-up extremes ±(half range + allowance) are added."""
-SEPARATION = 1e-9
-"""rad between two angles the sort made equal (a dead zone needs θ⁻ < θ⁺)."""
+MERGE = 1e-7
+"""rad: sample angles closer than this form one level (a stop cannot tell them apart)."""
+EDGE = 1e-8
+"""rad before a level at which a stop is placed: it engages the whole level."""
+OFF = 0.1
+"""rad beyond every sample (and shift) where a stop never engages."""
 WIND_UP = 1.0
-"""rad the search box extends beyond each group's range of motion without ``max_deflection``."""
-MAX_EVALUATIONS = 400
-"""Convex solves the Nelder–Mead stage may spend."""
+"""rad a stop of a family without preloads may sit beyond the motion's far end without
+``max_deflection``."""
+POLISH_TOLERANCE = 1e-6
+"""rad: the Brent polish's tolerance on an angle of a family without preloads."""
+BOUND_SLACK = 1e-9
+"""Relative margin by which a candidate's lower bound must exceed the best exact value to be
+skipped unsolved (the bound and the exact value agree to ~1e-12 where no sample binds)."""
+MAX_SWEEPS = 6
+"""Sweeps over the groups before the coordinate descent stops unconverged (it says so)."""
 
 
-def _geometry(name: str, u: np.ndarray, side: str) -> dict[str, float | str]:
-    """One group's geometry from its search point ``u`` (rad from the centre of motion)."""
-    if name in ("dead_zone", "preloaded"):
-        lo, hi = sorted(float(v) for v in u)
-        if name == "dead_zone" and hi - lo < SEPARATION:
-            hi = lo + SEPARATION
-        return {"theta_minus": lo, "theta_plus": hi}
-    if name == "one_sided":
-        return {"contact": float(u[0]), "side": side}
-    a1, a2 = sorted(float(v) for v in u[:2])
-    b2, b1 = sorted(float(v) for v in u[2:])
-    return {"above_1": a1, "above_2": max(a2, a1 + SEPARATION),
-            "below_1": b1, "below_2": min(b2, b1 - SEPARATION)}
+
+@dataclass(frozen=True, eq=False)
+class GeometrySearch:
+    """The best geometry found and how (module docstring).
+
+    Attributes:
+        geometry: Group → its geometry (rad from each joint's centre of motion; ``side``).
+        solution: Its solution (the search's comparison solve).
+        evaluations: Convex solves spent (distinct geometries).
+        sweeps: Sweeps of the coordinate descent.
+        converged: The last sweep improved nothing: every angle is optimal given the others
+            (within ``window`` candidates when windowed).
+        method: One line on how the optimum was established.
+        levels: Group → number of levels (distinct sample angles) a stop may sit before.
+    """
+
+    geometry: State
+    solution: DesignSolution
+    evaluations: int
+    sweeps: int
+    converged: bool
+    method: str
+    levels: dict[str, int] = field(default_factory=dict)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready (design.json's ``search`` of each family)."""
+        return {"method": self.method, "evaluations": self.evaluations, "sweeps": self.sweeps,
+                "converged": self.converged, "levels": dict(self.levels)}
 
 
-def _point(name: str, geometry: Geometry) -> tuple[list[float], str]:
-    """The search point and side of one group's geometry (the inverse of :func:`_geometry`)."""
-    if name in ("dead_zone", "preloaded"):
-        return [float(geometry["theta_minus"]), float(geometry["theta_plus"])], "above"
-    if name == "one_sided":
-        return [float(geometry["contact"])], str(geometry["side"])
-    return [float(geometry[a]) for a in ("above_1", "above_2", "below_2", "below_1")], "above"
+def _relative(setup: DesignSetup, group: str) -> np.ndarray:
+    """Every sample's angle of the group's joints from their centre of motion, rad, shape
+    (T · joints,); a mirrored joint's reflected (the design's law sees ``2c − q``)."""
+    p = setup.prepared
+    out = []
+    for j in setup.groups[group]:
+        r = p.q[:, p.robot.column(j)] - setup.centre[j]
+        out.append(-r if j in setup.mirrored else r)
+    return np.concatenate(out)
 
 
-def _grid(n: int, ticks: np.ndarray) -> list[tuple[float, ...]]:
-    """Start points of one group with ``n`` angles (1, 2 or 4), rad: every tick for one angle,
-    unordered pairs for two (they are sorted), pairs of pairs for four."""
-    if n == 1:
-        return [(float(t),) for t in ticks]
-    pairs: list[tuple[float, ...]] = list(
-        itertools.combinations_with_replacement((float(t) for t in ticks), 2))
-    return pairs if n == 2 else [a + b for a, b in itertools.product(pairs, pairs)]
+def _levels(r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(lowest, highest) angle of each level of ``r`` (ascending), rad: sorted samples split
+    where neighbours are more than :data:`MERGE` apart."""
+    u = np.sort(r)
+    cut = np.flatnonzero(np.diff(u) > MERGE)
+    return u[np.r_[0, cut + 1]], u[np.r_[cut, u.size - 1]]
+
+
+@dataclass(frozen=True)
+class _Axis:
+    """The candidate angles of one group's stops: for an ``above`` stop just before each level
+    (every shift's), for a ``below`` one just after, ascending, and where each never engages."""
+
+    above: np.ndarray
+    below: np.ndarray
+    off: tuple[float, float]
+
+
+def _axis(setup: DesignSetup, group: str, wind: float) -> _Axis:
+    r = _relative(setup, group)
+    shifts = sorted({float(s.get(group, 0.0)) for s in setup.shifts} or {0.0})
+    lo, hi = _levels(r)
+    above = np.unique(np.concatenate([lo - s - EDGE for s in shifts]))
+    below = np.unique(np.concatenate([hi - s + EDGE for s in shifts]))
+    if not setup.fam.preloaded_stops:  # beyond the far end: engaged throughout, wound up
+        above = np.r_[above[0] - wind, above]
+        below = np.r_[below, below[-1] + wind]
+    return _Axis(above, below, off_angles(setup, group))
+
+
+def off_angles(setup: DesignSetup, group: str) -> tuple[float, float]:
+    """(an angle below, an angle above) every sample of the group and every shift, rad from the
+    centre of motion: a stop there never engages."""
+    r = _relative(setup, group)
+    reach = max((abs(float(s.get(group, 0.0))) for s in setup.shifts), default=0.0) + OFF
+    return float(r.min()) - reach, float(r.max()) + reach
+
+
+def _off_state(setup: DesignSetup, axes: Mapping[str, _Axis]) -> State:
+    """Every stop where it never engages (no spring acts): the search's own start."""
+    fam, out = setup.fam, {}
+    for g, ax in axes.items():
+        below, above = ax.off
+        geo: dict[str, float | str] = {}
+        for a in fam.angles:
+            if a == "contact":
+                geo.update(contact=above, side="above")
+            else:
+                geo[a] = above if fam.side(a, geo) == "above" else below
+        if fam.name == "stiffening":
+            geo.update(above_2=above + OFF, below_2=below - OFF)
+        out[g] = geo
+    return out
+
+
+def _thinned(cands: np.ndarray, spacing: float) -> np.ndarray:
+    """``cands`` (ascending) without those closer than ``spacing`` to the last one kept."""
+    kept: list[float] = []
+    for c in cands:
+        if not kept or c - kept[-1] >= spacing:
+            kept.append(float(c))
+    return np.array(kept)
 
 
 def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]] = (), *,
-                    rounds: int = 2, max_evaluations: int = MAX_EVALUATIONS
-                    ) -> tuple[dict[str, dict[str, float | str]], DesignSolution, int]:
-    """The best geometry found, its solution and the number of convex solves (module docstring).
+                    window: int | None = None, reach: float | None = None,
+                    spacing: float = 0.0, max_sweeps: int = MAX_SWEEPS) -> GeometrySearch:
+    """The best geometry by coordinate descent over exhaustive angle scans (module docstring).
 
     Args:
         setup: The checked design inputs.
-        starts: Geometries to start from, each group → a checked geometry (every group).
-        rounds: Grid rounds over the groups (0: Nelder–Mead from the best start alone).
-        max_evaluations: Convex solves the Nelder–Mead stage may spend.
+        starts: Geometries to start from, each group → a checked geometry (every group); the
+            result is never worse than any of them.
+        window: Candidates each scan tries on each side of the current angle; None: all.
+        reach: Only the candidates within this angle of the current one (rad); None: all.
+        spacing: With ``reach``: candidates thinned to this spacing at least (rad), the
+            nearest-below kept.
+        max_sweeps: Sweeps over the groups at most; 0: the best start alone.
 
     A condensed setup (another metric, stop shifts) is compared by its fast solves
     (``setup.solve(geometry, exact=False)``); the caller certifies the chosen geometry.
     """
-    from scipy.optimize import minimize
+    from scipy.optimize import minimize_scalar
 
     fam, groups = setup.fam, list(setup.groups)
     if not fam.angles:
-        geometry: dict[str, dict[str, float | str]] = {g: {} for g in groups}
-        return geometry, setup.solve(geometry), 1
-    n = len(fam.angles)
+        geometry: State = {g: {} for g in groups}
+        return GeometrySearch(geometry, setup.solve(geometry), 1, 0, True,
+                              "no geometry: the magnitudes' convex program is the global optimum")
     wind = setup.max_deflection if setup.max_deflection is not None else WIND_UP
-    motion = np.array([setup.half_range(g) for g in groups])
-    half = motion + wind
-    sides = {g: "above" for g in groups}
-    best: dict[str, object] = {"value": np.inf}
-    count = 0
+    axes = {g: _axis(setup, g, wind) for g in groups}
+    bounded = not setup.condensed and setup.objective in QUADRATIC_OBJECTIVES
+    seen: dict[tuple[Any, ...], float] = {}
+    solutions: dict[tuple[Any, ...], DesignSolution] = {}
 
-    def value(u: np.ndarray) -> float:
-        nonlocal count
-        count += 1
-        geometry = {g: _geometry(fam.name, u[i * n:(i + 1) * n], sides[g])
-                    for i, g in enumerate(groups)}
-        try:
-            solution = setup.solve(geometry, exact=False)
-        except (InfeasibleForcesError, TorqueLimitError):
-            return np.inf
-        if solution.value < best["value"]:  # type: ignore[operator]
-            best.update(value=solution.value, geometry=geometry, solution=solution, u=u.copy())
-        return solution.value
+    def key(state: State) -> tuple[Any, ...]:
+        return tuple((g, tuple(sorted(state[g].items()))) for g in groups)
 
-    u = np.zeros(n * len(groups))
+    def value(state: State) -> float:
+        k = key(state)
+        if k not in seen:
+            try:
+                solution = setup.solve(state, exact=False)
+                seen[k], solutions[k] = solution.value, solution
+            except (InfeasibleForcesError, TorqueLimitError):
+                seen[k] = np.inf
+        return seen[k]
+
+    def moved(state: State, g: str, angle: str, theta: float, side: str | None = None
+              ) -> State | None:
+        geo = {**state[g], angle: float(theta)}
+        if side is not None:
+            geo["side"] = side
+        return {**state, g: geo} if fam.ordered(geo) else None
+
+    def scan(state: State, g: str, angle: str) -> State:
+        """The best of ``state`` and every candidate of one angle, the others held."""
+        ax = axes[g]
+        options = ([("above", ax.above), ("below", ax.below)] if angle == "contact"
+                   else [(None, ax.above if fam.side(angle, state[g]) == "above" else ax.below)])
+        best, best_value = state, value(state)
+        current = float(state[g][angle])
+        for side, cands in options:
+            if window is not None:
+                at = int(np.searchsorted(cands, current))
+                cands = cands[max(0, at - window):at + window + 1]
+            if reach is not None:
+                cands = _thinned(cands[np.abs(cands - current) <= reach], spacing)
+            trials = [(float(t), tr) for t in cands
+                      if (tr := moved(state, g, angle, float(t), side)) is not None]
+            if not trials:
+                continue
+            values = np.full(len(trials), np.inf)
+            if bounded:  # exact solves in order of their lower bound, until none can win
+                bounds = relaxed_values(setup, state, g, angle,
+                                        np.array([t for t, _ in trials]),
+                                        side or fam.side(angle, state[g]))
+                for n in np.argsort(bounds, kind="stable"):
+                    if bounds[n] > min(best_value, values.min()) * (1 + BOUND_SLACK):
+                        break
+                    values[n] = value(trials[n][1])
+            else:
+                values = np.array([value(tr) for _, tr in trials])
+            i = int(np.argmin(values))
+            trials = [(float(v), tr) for v, (_, tr) in zip(values, trials, strict=True)]
+            if not fam.preloaded_stops:  # smooth between levels: polish around the best
+                lo = float(trials[max(i - 1, 0)][1][g][angle])
+                hi = float(trials[min(i + 1, len(trials) - 1)][1][g][angle])
+
+                def along(theta: float, side: str | None = side) -> float:
+                    trial = moved(state, g, angle, theta, side)
+                    return np.inf if trial is None else value(trial)
+
+                if hi > lo:
+                    res = minimize_scalar(along, bounds=(lo, hi), method="bounded",
+                                          options={"xatol": POLISH_TOLERANCE})
+                    polished = moved(state, g, angle, float(res.x), side)
+                    if polished is not None and value(polished) < trials[i][0]:
+                        trials.append((value(polished), polished))
+                        i = len(trials) - 1
+            if trials[i][0] < best_value:
+                best, best_value = trials[i][1], trials[i][0]
+        return best
+
+    state = _off_state(setup, axes)
     for start in starts:
-        for i, g in enumerate(groups):
-            u[i * n:(i + 1) * n], sides[g] = _point(fam.name, start[g])
-        value(u)
-    if "u" in best:
-        u = np.asarray(best["u"])
-        sides.update({h: str(best["geometry"][h].get("side", "above"))  # type: ignore[index]
-                      for h in groups})
-    for _ in range(rounds):
-        for i, g in enumerate(groups):
-            options = ("above", "below") if fam.name == "one_sided" else (sides[g],)
-            ticks = np.array([-half[i], *(motion[i] * np.array(TICKS[n])), half[i]])
-            for point in _grid(n, ticks):
-                for side in options:
-                    sides[g] = side
-                    trial = u.copy()
-                    trial[i * n:(i + 1) * n] = np.ravel(point)
-                    value(trial)
-            u = np.asarray(best["u"])
-            sides.update({h: str(best["geometry"][h].get("side", "above"))  # type: ignore[index]
-                          for h in groups})
-    scale = np.repeat(half, n)
-    minimize(lambda z: value(np.clip(z, -1.0, 1.0) * scale), np.clip(u / scale, -1.0, 1.0),
-             method="Nelder-Mead",
-             bounds=[(-1.0, 1.0)] * u.size,
-             options={"maxfev": max_evaluations, "xatol": 1e-4, "fatol": 1e-12})
-    return best["geometry"], best["solution"], count  # type: ignore[return-value]
+        candidate = {g: dict(start[g]) for g in groups}
+        if value(candidate) < value(state):
+            state = candidate
+    sweeps, converged = 0, False
+    while sweeps < max_sweeps and not converged:
+        sweeps += 1
+        before = value(state)
+        for g in groups:
+            for angle in fam.angles:
+                state = scan(state, g, angle)
+        converged = not value(state) < before
+    how = (f"every angle scanned over {window} levels each side of the current one"
+           if window is not None else
+           f"every angle scanned within {reach:.4g} rad of the current one every {spacing:.3g} rad"
+           if reach is not None else "every angle scanned over all its levels")
+    exact = ("exact along each angle (the value is monotone between levels)"
+             if fam.preloaded_stops else f"polished to {POLISH_TOLERANCE:g} rad between levels")
+    method = (f"coordinate descent over the groups, {how}, {exact}; "
+              f"{'a fixed point' if converged else 'stopped unconverged'} after {sweeps} "
+              f"sweep{'s' if sweeps > 1 else ''}") if max_sweeps else "the best of its starts"
+    k = key(state)
+    if k not in solutions:  # every candidate infeasible: the start as it is
+        solutions[k] = setup.solve(state, exact=False)
+    levels = {g: int(_levels(_relative(setup, g))[0].size) for g in groups}
+    return GeometrySearch(state, solutions[k], len(seen), sweeps, converged, method, levels)
+
+
+def search_value(setup: DesignSetup) -> Callable[[Mapping[str, Geometry]], float]:
+    """The search's comparison value of a geometry (``inf`` where no forces exist), for tests
+    and brute-force checks of :func:`search_geometry`."""
+    def value(geometry: Mapping[str, Geometry]) -> float:
+        try:
+            return setup.solve(setup.check_geometry(geometry), exact=False).value
+        except (InfeasibleForcesError, TorqueLimitError):
+            return float("inf")
+    return value
+
+
+__all__ = ["EDGE", "MAX_SWEEPS", "MERGE", "GeometrySearch", "off_angles", "search_geometry",
+           "search_value"]

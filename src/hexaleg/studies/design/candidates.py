@@ -19,7 +19,7 @@ from typing import Any
 
 from hexaleg.design.codesign import OptimalSprings, optimal_springs
 from hexaleg.design.evaluator import RunSpec, metric_row
-from hexaleg.design.families import Geometry
+from hexaleg.design.families import CONTAINS, Geometry
 from hexaleg.design.spring_parts import (
     PartOptions,
     SpringPart,
@@ -59,6 +59,9 @@ class Candidate:
         max_torque: The spring torque bound it was designed with, N·m, or None.
         dropped: Group → the marginal saving it would have added, for the groups left unfitted
             because it was below ``[design] min_group_saving`` (:func:`parsimonious`).
+        searched: The family's optimum on every sprung class as its geometry search found it
+            (before finer groups and the parsimony): where a family that contains this one
+            starts its search (:data:`~hexaleg.design.families.CONTAINS`).
     """
 
     family: str
@@ -71,6 +74,7 @@ class Candidate:
     notes: tuple[str, ...]
     max_torque: float | None = None
     dropped: Mapping[str, float] = field(default_factory=dict)
+    searched: OptimalSprings | None = None
 
     @property
     def label(self) -> str:
@@ -87,9 +91,13 @@ class Candidate:
 def _optimum(prepared: Prepared, groups: Mapping[str, tuple[str, ...]],
              class_groups: Mapping[str, tuple[str, ...]], family: str, params: DesignParams,
              start: Sequence[Mapping[str, Geometry]] = (),
-             geometry: Mapping[str, Geometry] | None = None) -> OptimalSprings:
-    """The family's optimum on the class groups (at ``geometry`` when given, else searched);
-    for finer groups, their magnitudes at the class geometry."""
+             geometry: Mapping[str, Geometry] | None = None,
+             contained: Mapping[str, OptimalSprings] | None = None
+             ) -> tuple[OptimalSprings, OptimalSprings]:
+    """The family's optimum on the class groups (at ``geometry`` when given, else searched from
+    ``start`` and the optima of the families it contains, ``contained``: family → optimum on the
+    same class groups; designed here where one is missing), and the design on ``groups``: for
+    finer groups, their magnitudes at the class geometry."""
     bound = params.deflection_bound
     kw: dict[str, Any] = {"max_torque": params.max_torque, "max_deflection": bound,
                           "metric": params.metric,
@@ -98,13 +106,17 @@ def _optimum(prepared: Prepared, groups: Mapping[str, tuple[str, ...]],
         best = optimal_springs(prepared, dict(class_groups), family, "joule",
                                geometry=dict(geometry), **kw)
     else:
+        inner = [(contained or {}).get(f) for f in CONTAINS.get(family, ())]
+        usable = all(c is not None and c.groups == dict(class_groups) for c in inner)
         best = optimal_springs(prepared, dict(class_groups), family, "joule",
-                               start=list(start) or None, **kw)
+                               start=list(start) or None,
+                               contained=inner if usable else None, **kw)
     if dict(groups) == dict(class_groups):
-        return best
+        return best, best
     owner = {j: c for c, js in class_groups.items() for j in js}
     geometry = {g: best.geometry[owner[js[0]]] for g, js in groups.items()}
-    return optimal_springs(prepared, dict(groups), family, "joule", geometry=geometry, **kw)
+    return best, optimal_springs(prepared, dict(groups), family, "joule", geometry=geometry,
+                                 **kw)
 
 
 def arbors(run: RunSpec, groups: Mapping[str, Sequence[str]]) -> dict[str, float]:
@@ -174,7 +186,8 @@ def design_family(prepared: Prepared, run: RunSpec, gait: GaitParams,
                   class_groups: Mapping[str, tuple[str, ...]], family: str,
                   params: DesignParams, outer: Mapping[str, float],
                   start: Sequence[Mapping[str, Geometry]] = (),
-                  geometry: Mapping[str, Geometry] | None = None) -> Candidate:
+                  geometry: Mapping[str, Geometry] | None = None,
+                  contained: Mapping[str, OptimalSprings] | None = None) -> Candidate:
     """One family's :class:`Candidate` (module docstring).
 
     Args:
@@ -188,13 +201,17 @@ def design_family(prepared: Prepared, run: RunSpec, gait: GaitParams,
         outer: Group → largest outer diameter of its springs, m.
         start: Class geometries to start the geometry search from.
         geometry: Class → geometry to design the magnitudes at instead of searching it.
+        contained: Family → the class-level optimum (:attr:`Candidate.searched`) of the families
+            this one contains, to start its search from.
 
     Raises:
         HexalegError: as :func:`~hexaleg.design.codesign.optimal_springs` (constraints that no
             design meets name themselves there).
     """
-    optimum = _optimum(prepared, groups, class_groups, family, params, start, geometry)
-    return candidate(optimum, prepared, run, gait, outer, params)
+    searched, optimum = _optimum(prepared, groups, class_groups, family, params, start,
+                                 geometry, contained)
+    return dataclasses.replace(candidate(optimum, prepared, run, gait, outer, params),
+                               searched=searched)
 
 
 def parsimonious(prepared: Prepared, run: RunSpec, gait: GaitParams,
@@ -202,7 +219,8 @@ def parsimonious(prepared: Prepared, run: RunSpec, gait: GaitParams,
                  class_groups: Mapping[str, tuple[str, ...]], family: str,
                  params: DesignParams, outer: Mapping[str, float],
                  start: Sequence[Mapping[str, Geometry]] = (),
-                 geometry: Mapping[str, Geometry] | None = None) -> Candidate:
+                 geometry: Mapping[str, Geometry] | None = None,
+                 contained: Mapping[str, OptimalSprings] | None = None) -> Candidate:
     """:func:`design_family` without the groups that do not pay for their parts.
 
     A group's marginal saving (:attr:`Candidate.marginal`: the ranking metric's saving lost
@@ -228,7 +246,9 @@ def parsimonious(prepared: Prepared, run: RunSpec, gait: GaitParams,
     dropped: dict[str, float] = {}
     start = usable(start)
     c = design_family(prepared, run, gait, groups, class_groups, family, params, outer, start,
-                      None if geometry is None else {k: geometry[k] for k in class_groups})
+                      None if geometry is None else {k: geometry[k] for k in class_groups},
+                      contained)
+    searched = c.searched
     while len(class_groups) > 1:
         weak = {g: v for g, v in c.marginal.items() if v < params.min_group_saving}
         if not weak:
@@ -248,7 +268,7 @@ def parsimonious(prepared: Prepared, run: RunSpec, gait: GaitParams,
                              f"{params.metric} (under the {100 * params.min_group_saving:g} "
                              "point bar, [design] min_group_saving)" for g, v in dropped.items())]
         c = dataclasses.replace(c, dropped=dropped, notes=tuple(notes))
-    return c
+    return dataclasses.replace(c, searched=searched)
 
 
 def class_geometry(optimum: OptimalSprings, class_groups: Mapping[str, tuple[str, ...]]

@@ -78,6 +78,8 @@ def candidate_data(c: Candidate, outer: dict[str, tuple[float, str]]) -> dict[st
         "dropped_groups": {g: {"marginal_saving": quantity(100 * v, "%")}
                            for g, v in c.dropped.items()},
         "notes": list(c.notes),
+        # how its geometry was found: the search's stages (method, evaluations, convergence)
+        "search": (c.searched or c.optimum).solver.get("search"),
     }
 
 
@@ -130,7 +132,7 @@ def tolerance_data(r: DesignResult) -> dict[str, Any]:
     assert t is not None
     return {"tolerance": quantity(t.tolerance, "rad"), "metric": t.metric,
             "criterion": "worst case over the mounting errors within ± the tolerance",
-            "chosen": t.chosen,
+            "chosen": t.chosen, "search": t.optimum.solver.get("search"),
             "shifts": quantity(t.shifts, "rad"),
             **{name: {"nominal_saving": quantity(100 * t.nominal[name], "%"),
                       "worst_saving": quantity(100 * t.worst[name], "%"),

@@ -14,16 +14,17 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TypeVar
 
 import numpy as np
 
 from hexaleg.checks import one_of
+from hexaleg.design.codesign import OptimalSprings
 from hexaleg.design.envelope import PartEnvelope, parts_envelope
 from hexaleg.design.evaluator import RunSpec
-from hexaleg.design.families import Geometry
+from hexaleg.design.families import CONTAINS, Geometry
 from hexaleg.design.fatigue import FatigueCheck, spring_fatigue
 from hexaleg.design.robust import RobustSprings, robust_springs
 from hexaleg.design.robustness import Condition, condition_prepared, condition_savings
@@ -91,11 +92,13 @@ class Nominal:
 
     def family(self, family: str, params: DesignParams | None = None,
                start: Sequence[dict[str, Geometry]] = (), like: Candidate | None = None,
-               geometry: dict[str, Geometry] | None = None) -> Candidate:
+               geometry: dict[str, Geometry] | None = None,
+               contained: Mapping[str, OptimalSprings] | None = None) -> Candidate:
         """One family's parsimonious candidate (:func:`~hexaleg.studies.design.candidates.
         parsimonious`) with the ``[design]`` table, or ``params`` in its place; on the groups of
         ``like`` only when given (its classes: the others were left unfitted); at ``geometry``
-        (class → geometry) when given, else searched."""
+        (class → geometry) when given, else searched (from ``contained``: family → the
+        class-level optimum of a family it contains)."""
         d = self.config.design if params is None else params
         groups, classes = self.groups, self.class_groups
         if like is not None:
@@ -103,7 +106,7 @@ class Nominal:
             kept = {j for js in groups.values() for j in js}
             classes = {k: js for k, js in classes.items() if js[0] in kept}
         return parsimonious(self.prepared, self.run, self.gait, groups, classes, family, d,
-                            self.outer_diameters, start, geometry)
+                            self.outer_diameters, start, geometry, contained)
 
     def fork_map(self, fn: Callable[[T], R], items: Sequence[T],
                  done: Callable[[int, R], None] | None = None) -> list[R]:
@@ -161,10 +164,12 @@ def rank(c: Candidate, metric: str) -> float:
 def family_candidates(nom: Nominal, progress: Callable[[str, str], None]) -> list[Candidate]:
     """Every allowed family's candidate, ranked by predicted net saving (best first).
 
-    The families are independent convex programs with their own geometry searches, so they run
-    in parallel, one process per core (:func:`~hexaleg.studies.forked.fork_map`: the workers
+    The families are convex programs with their own geometry searches, so they run in
+    parallel, one process per core (:func:`~hexaleg.studies.forked.fork_map`: the workers
     inherit the prepared gait, each returns its candidate with the robot by reference), the
-    same computations as one after the other (tested bit for bit).
+    same computations as one after the other (tested bit for bit). A family that contains
+    others (:data:`~hexaleg.design.families.CONTAINS`) runs after them and starts its search
+    from their optima, so its optimum is never below theirs.
 
     Args:
         nom: The nominal stage.
@@ -179,7 +184,23 @@ def family_candidates(nom: Nominal, progress: Callable[[str, str], None]) -> lis
         progress(f"family {fam}", f"{fam}: family optimum, {d.metric} saving "
                  f"{100 * c.row[f'saving.{d.metric}']:+.2f} %")
 
-    nom.fork_map(nom.family, d.families, done=done)
+    waves: list[list[str]] = []
+    for fam in d.families:  # a family after those it contains (transitively)
+        deps = [f for f in CONTAINS.get(fam, ()) if f in d.families]
+        at = max((i for i, w in enumerate(waves) for f in deps if f in w), default=-1) + 1
+        if at == len(waves):
+            waves.append([])
+        waves[at].append(fam)
+    for wave in waves:
+        contained = {f: c.searched for f, c in found.items() if c.searched is not None}
+
+        def one(fam: str, contained: dict[str, OptimalSprings] = contained) -> Candidate:
+            return nom.family(fam, contained=contained)
+
+        def finished(i: int, c: Candidate, wave: list[str] = wave) -> None:
+            done(d.families.index(wave[i]), c)
+
+        nom.fork_map(one, wave, done=finished)
     cands = [found[fam] for fam in d.families]
     return sorted(cands, key=lambda c: -rank(c, d.metric))
 
