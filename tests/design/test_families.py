@@ -74,3 +74,12 @@ def test_a_mirrored_spring_is_the_reflected_law(name):
         g3, x3 = fam.mirror(g2, x2)
         assert g3 == {k: (float(v) if k != "side" else v) for k, v in geometry.items()}
         np.testing.assert_array_equal(x3, x)
+
+
+def test_containment_waves_put_a_family_after_those_it_contains():
+    from hexaleg.design.families import containment_waves
+
+    assert containment_waves(["linear", "one_sided", "preloaded", "dead_zone"]) == [
+        ["linear", "one_sided"], ["dead_zone"], ["preloaded"]]
+    assert containment_waves(["preloaded", "one_sided"]) == [["one_sided"], ["preloaded"]]
+    assert containment_waves(["stiffening", "linear"]) == [["stiffening", "linear"]]

@@ -237,6 +237,18 @@ LINEAR_GAP = 1e-9
 θ⁻ < θ⁺); the laws differ by k·LINEAR_GAP N·m inside it."""
 
 
+def containment_waves(names: Sequence[str]) -> list[list[str]]:
+    """``names`` in waves, each family in a wave after every family of ``names`` it contains
+    (:data:`CONTAINS`, transitively), in their order within a wave: the families of one wave
+    can be designed side by side, each from the optima of those it contains."""
+    def depth(name: str) -> int:
+        return max((depth(f) + 1 for f in CONTAINS.get(name, ()) if f in names), default=0)
+
+    levels = [depth(n) for n in names]
+    return [[n for n, lv in zip(names, levels, strict=True) if lv == i]
+            for i in range(max(levels, default=-1) + 1)]
+
+
 def embed(outer: str, inner: str, geometry: Geometry, magnitudes: Mapping[str, float],
           off: tuple[float, float]) -> dict[str, float | str]:
     """The geometry of family ``outer`` whose laws include ``inner``'s law of ``geometry`` and

@@ -24,7 +24,7 @@ from hexaleg.checks import one_of
 from hexaleg.design.codesign import OptimalSprings
 from hexaleg.design.envelope import PartEnvelope, parts_envelope
 from hexaleg.design.evaluator import RunSpec
-from hexaleg.design.families import CONTAINS, Geometry
+from hexaleg.design.families import Geometry, containment_waves
 from hexaleg.design.fatigue import FatigueCheck, spring_fatigue
 from hexaleg.design.robust import RobustSprings, robust_springs
 from hexaleg.design.robustness import Condition, condition_prepared, condition_savings
@@ -184,14 +184,7 @@ def family_candidates(nom: Nominal, progress: Callable[[str, str], None]) -> lis
         progress(f"family {fam}", f"{fam}: family optimum, {d.metric} saving "
                  f"{100 * c.row[f'saving.{d.metric}']:+.2f} %")
 
-    waves: list[list[str]] = []
-    for fam in d.families:  # a family after those it contains (transitively)
-        deps = [f for f in CONTAINS.get(fam, ()) if f in d.families]
-        at = max((i for i, w in enumerate(waves) for f in deps if f in w), default=-1) + 1
-        if at == len(waves):
-            waves.append([])
-        waves[at].append(fam)
-    for wave in waves:
+    for wave in containment_waves(d.families):
         contained = {f: c.searched for f, c in found.items() if c.searched is not None}
 
         def one(fam: str, contained: dict[str, OptimalSprings] = contained) -> Candidate:
