@@ -2,14 +2,18 @@
 examples' logs).
 
 Each ``analysis/<study>_<robot>.py`` writes a deterministic, rounded text log to stdout; the
-expected output is kept in ``analysis/logs/<study>_<robot>.log``. Text equality: the scripts
-print a few significant digits, so a change in the code's numbers at that precision — or in the
-script — shows up here as a diff.
+expected output is kept in ``analysis/logs/<study>_<robot>.log``. The words must be the same and
+every number the same to one unit of its last printed digit (a value on a rounding boundary
+prints either way on machines whose floating-point paths differ). A number that is not a
+certified optimum — a forward simulation's (contact dynamics amplify the last bits), the
+co-design's local gait search — is compared within the tolerance :data:`TOLERANCES` states for
+its line: a property of the method, not of the machine that wrote the log.
 """
 
 from __future__ import annotations
 
 import difflib
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -20,6 +24,55 @@ ROOT = Path(__file__).resolve().parents[1]
 ANALYSIS = ROOT / "analysis"
 LOGS = ANALYSIS / "logs"
 SCRIPTS = sorted(p for p in ANALYSIS.glob("*_*.py") if not p.name.startswith("bench_"))
+NUMBER = re.compile(r"[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?")
+SIMULATED = 0.0015
+"""Relative tolerance of a forward simulation's figure: moving the gait's period by 1e-9 moves
+the simulated saving by ~0.02 points of 15 % (measured), the energies likewise."""
+TOLERANCES: dict[str, dict[str, float]] = {
+    "answer_hexaleg": {r"feedforward \+ PD|position only": SIMULATED},
+    "design_hexaleg": {},
+    "simulate_hexaleg": {r".": SIMULATED},
+    "simulate_paper": {r".": SIMULATED},
+    "codesign_hexaleg": {r".": 0.02},
+}
+"""Script → {regex of a line: relative tolerance of its numbers}; lines not matched compare to
+one unit of the last printed digit. The co-design's gait comes from a local, derivative-free
+search (:mod:`hexaleg.design.gait_search`): its figures within 2 %."""
+
+
+def _tolerance(token: str) -> float:
+    """One unit of the last digit ``token`` prints."""
+    mantissa, _, exponent = token.lower().partition("e")
+    decimals = len(mantissa.partition(".")[2])
+    return 10.0 ** (int(exponent or 0) - decimals)
+
+
+def same_line(expected: str, got: str, relative: float) -> bool:
+    """The same words, and every number within one unit of its last printed digit or
+    ``relative`` of its value."""
+    if NUMBER.split(expected) != NUMBER.split(got):
+        return False
+    a, b = NUMBER.findall(expected), NUMBER.findall(got)
+    return len(a) == len(b) and all(
+        abs(float(x) - float(y)) <= max(_tolerance(x), _tolerance(y)) * (1 + 1e-9)
+        + relative * abs(float(x)) for x, y in zip(a, b, strict=True))
+
+
+def same_log(expected: str, got: str, tolerances: dict[str, float]) -> bool:
+    """Line by line :func:`same_line`, each line with the tolerance of the first pattern of
+    ``tolerances`` it matches (else none beyond the last digit)."""
+    want, have = expected.splitlines(), got.splitlines()
+    return len(want) == len(have) and all(
+        same_line(w, h, next((t for p, t in tolerances.items() if re.search(p, w)), 0.0))
+        for w, h in zip(want, have, strict=True))
+
+
+def test_a_log_compares_numbers_to_their_printed_digit():
+    assert same_line("saving +15.46 % at 0.5 s", "saving +15.47 % at 0.5 s", 0.0)
+    assert not same_line("saving +15.46 % at 0.5 s", "saving +15.48 % at 0.5 s", 0.0)
+    assert not same_line("saving +15.46 %, preloaded", "saving +15.46 %, one_sided", 0.0)
+    assert same_line("1.4428 J", "1.4450 J", 0.0015) and not same_line("1.4428 J", "1.46 J", 0.0)
+    assert not same_log("a 1\nb 2", "a 1", {})
 
 
 def test_every_example_has_a_log_and_every_log_a_script():
@@ -36,7 +89,7 @@ def test_example_prints_its_log(script: Path, tmp_path: Path):
                          text=True, timeout=300)
     assert run.returncode == 0, f"{script.name} failed:\n{run.stderr}"
     expected = log.read_text()
-    if run.stdout != expected:
+    if not same_log(expected, run.stdout, TOLERANCES.get(script.stem, {})):
         diff = "".join(difflib.unified_diff(expected.splitlines(keepends=True),
                                             run.stdout.splitlines(keepends=True),
                                             f"analysis/logs/{log.name} (kept)",

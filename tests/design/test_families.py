@@ -80,6 +80,7 @@ def test_containment_waves_put_a_family_after_those_it_contains():
     from hexaleg.design.families import containment_waves
 
     assert containment_waves(["linear", "one_sided", "preloaded", "dead_zone"]) == [
-        ["linear", "one_sided"], ["dead_zone"], ["preloaded"]]
+        ["linear", "one_sided", "dead_zone"], ["preloaded"]]
+    assert containment_waves(["stiffening", "dead_zone"]) == [["dead_zone"], ["stiffening"]]
     assert containment_waves(["preloaded", "one_sided"]) == [["one_sided"], ["preloaded"]]
     assert containment_waves(["stiffening", "linear"]) == [["stiffening", "linear"]]

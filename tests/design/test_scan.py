@@ -56,3 +56,18 @@ def test_relaxed_values_are_the_condensed_program_and_bound_the_exact_one(
         trial = {**state, group: {**state[group], angle: float(theta)}}
         assert bound == pytest.approx(_first_round(setup, trial), rel=1e-12)
         assert bound <= setup.solve(trial).value * (1 + 1e-12)
+
+
+def test_a_weaker_bound_stands_only_where_it_cannot_win(prepared200):
+    """With ``below``, a candidate keeps the unconstrained bound only when that bound is already
+    ≥ ``below``; every value returned stays a lower bound of the exact program."""
+    family, state, group, angle, side = CASES[0]
+    setup = design_setup(prepared200, ["coxa", "femur", "tibia"], family, "joule", None, np.pi,
+                         mirrored=mirror(prepared200.robot).mirrored)
+    thetas = np.linspace(-0.25, 0.3, 12)
+    strong = relaxed_values(setup, state, group, angle, thetas, side)
+    below = float(np.median(strong))
+    mixed = relaxed_values(setup, state, group, angle, thetas, side, below=below)
+    assert np.all(mixed <= strong * (1 + 1e-12))
+    assert np.all((mixed == strong) | (mixed >= below))
+    assert np.array_equal(mixed[strong < below], strong[strong < below])

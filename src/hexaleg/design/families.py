@@ -232,17 +232,22 @@ LINEAR_REACH = 2 * np.pi
 """rad from the centre of motion beyond which a linear spring's equilibrium (a constant torque
 where k → 0) is not taken for a dead zone's: its stops would sit turns away (the design's
 deflection bound keeps a linear spring's equilibrium within π of the motion)."""
+STAGE_OFF = 0.1
+"""rad beyond the first stage (and every sample) where an unused second stage is put."""
 LINEAR_GAP = 1e-9
 """rad: the width of the dead zone that stands for a linear spring (a dead zone needs
 θ⁻ < θ⁺); the laws differ by k·LINEAR_GAP N·m inside it."""
 
 
 def containment_waves(names: Sequence[str]) -> list[list[str]]:
-    """``names`` in waves, each family in a wave after every family of ``names`` it contains
-    (:data:`CONTAINS`, transitively), in their order within a wave: the families of one wave
-    can be designed side by side, each from the optima of those it contains."""
+    """``names`` in waves, each family in a wave after every family of ``names`` with a geometry
+    it contains (:data:`CONTAINS`, transitively), in their order within a wave: the families of
+    one wave can be designed side by side, each from the optima of those it contains (one
+    without geometry, ``linear``, is one convex solve: designed again where needed rather than
+    waited for)."""
     def depth(name: str) -> int:
-        return max((depth(f) + 1 for f in CONTAINS.get(name, ()) if f in names), default=0)
+        return max((depth(f) + 1 for f in CONTAINS.get(name, ())
+                    if f in names and _FAMILIES[f].angles), default=0)
 
     levels = [depth(n) for n in names]
     return [[n for n, lv in zip(names, levels, strict=True) if lv == i]
@@ -267,8 +272,8 @@ def embed(outer: str, inner: str, geometry: Geometry, magnitudes: Mapping[str, f
     below, above = off
     if outer == "preloaded" and inner == "one_sided":
         c = float(geometry["contact"])
-        return ({"theta_minus": below, "theta_plus": c} if geometry["side"] == "above"
-                else {"theta_minus": c, "theta_plus": above})
+        return ({"theta_minus": min(below, c), "theta_plus": c} if geometry["side"] == "above"
+                else {"theta_minus": c, "theta_plus": max(above, c)})
     if outer == "preloaded" and inner == "dead_zone":
         return {"theta_minus": float(geometry["theta_minus"]),
                 "theta_plus": float(geometry["theta_plus"])}
@@ -284,8 +289,9 @@ def embed(outer: str, inner: str, geometry: Geometry, magnitudes: Mapping[str, f
             return {"theta_minus": below, "theta_plus": above}
         return {"theta_minus": theta - LINEAR_GAP / 2, "theta_plus": theta + LINEAR_GAP / 2}
     if outer == "stiffening" and inner == "dead_zone":
-        return {"above_1": float(geometry["theta_plus"]), "above_2": above,
-                "below_1": float(geometry["theta_minus"]), "below_2": below}
+        plus, minus = float(geometry["theta_plus"]), float(geometry["theta_minus"])
+        return {"above_1": plus, "above_2": max(above, plus) + STAGE_OFF,
+                "below_1": minus, "below_2": min(below, minus) - STAGE_OFF}
     pairs = ", ".join(f"{i} in {o}" for o, ins in CONTAINS.items() for i in ins)
     raise InvalidParameterError("embed", f"{inner} in {outer}", f"one of {pairs}")
 

@@ -48,6 +48,9 @@ STOP_COLUMNS: dict[str, dict[str, tuple[str, ...]]] = {
 BASIS = {"above": (0.0, -1.0), "below": (0.0, -1.0), "step_above": (-1.0, 0.0),
          "step_below": (1.0, 0.0)}
 """Term kind → (u, v): its torque on an engaged sample is u + v (r − θ) (terms module)."""
+WEAK_MARGIN = 1e-9
+"""The unconstrained bound is lowered by this fraction of the baseline's value: the
+pseudo-inverse's round-off must not lift it above the true minimum."""
 
 
 def _sums(thresholds: np.ndarray, values: np.ndarray, thetas: np.ndarray, above: bool
@@ -64,12 +67,15 @@ def _sums(thresholds: np.ndarray, values: np.ndarray, thetas: np.ndarray, above:
 
 
 def relaxed_values(setup: DesignSetup, state: State, group: str,
-                   angle: str, thetas: np.ndarray, side: str) -> np.ndarray:
+                   angle: str, thetas: np.ndarray, side: str, below: float = np.inf
+                   ) -> np.ndarray:
     """The condensed program's value (a lower bound of the exact design program's, J) with the
     stop ``angle`` of ``group`` at each of ``thetas`` (rad from the centres of motion; a
     one-sided stop on ``side``), every other angle as in ``state``; shape (len(thetas),).
-    ``inf`` where the design rows admit no magnitudes, ``-inf`` where the bound is not certain
-    (the solver stopped short)."""
+    ``inf`` where the design rows admit no magnitudes. Where the condensed program without its
+    design rows and signs (one batched pseudo-inverse, a weaker bound) is already ≥ ``below``,
+    that weaker bound is returned instead: such a candidate cannot go below ``below`` either.
+    Where Clarabel stops short of the condensed program, the weaker bound stands."""
     fam, p = setup.fam, setup.prepared
     groups = list(setup.groups)
     nm = len(fam.magnitudes)
@@ -112,26 +118,32 @@ def relaxed_values(setup: DesignSetup, state: State, group: str,
     ro = np.einsum("tio,ti,ti->o", Mo, wc, tau0)
     scale = float(np.sum(wc * tau0**2)) or 1.0
     fixed_rows = _fixed_rows(problem, gi * nm, (gi + 1) * nm, scanned)
-    out = np.empty(len(thetas))
-    for n, theta in enumerate(thetas):
-        lam = np.stack([uv[:, 0] - uv[:, 1] * theta, uv[:, 1]])  # (2, |S|)
-        Q = np.zeros((nx, nx))
-        Q[np.ix_(rest, rest)] = Qoo
-        Q[np.ix_(scanned, scanned)] = lam.T @ H[n] @ lam
-        Q[np.ix_(scanned, rest)] = lam.T @ K[n]
-        Q[np.ix_(rest, scanned)] = Q[np.ix_(scanned, rest)].T
-        rv = np.zeros(nx)
-        rv[rest], rv[scanned] = ro, lam.T @ k[n]
-        trial = {**state, group: {**geo, angle: float(theta)}}
-        G, h = _group_rows(setup, trial, group, gi * nm, nx, r, float(theta), above, scanned,
-                           kinds)
+    n = len(thetas)
+    lam = np.empty((n, 2, len(local)))  # the scanned columns = (A, R) Λ(θ)
+    lam[:, 0, :] = uv[:, 0] - uv[:, 1] * thetas[:, None]
+    lam[:, 1, :] = uv[:, 1]
+    Q = np.zeros((n, nx, nx))
+    Q[:, rest[:, None], rest] = Qoo
+    Q[:, scanned[:, None], scanned] = np.einsum("nas,nab,nbt->nst", lam, H, lam)
+    cross = np.einsum("nas,nao->nso", lam, K)
+    Q[:, scanned[:, None], rest] = cross
+    Q[:, rest[:, None], scanned] = cross.transpose(0, 2, 1)
+    rv = np.zeros((n, nx))
+    rv[:, rest], rv[:, scanned] = ro, np.einsum("nas,na->ns", lam, k)
+    # without the design rows and x ≥ 0: min xᵀQx + 2rᵀx = −rᵀQ⁺r, a weaker bound for all at once
+    out = scale - np.einsum("ni,nij,nj->n", rv, np.linalg.pinv(Q, hermitian=True), rv)
+    out -= WEAK_MARGIN * scale
+    for i in np.flatnonzero(out < below):
+        theta = float(thetas[i])
+        trial = {**state, group: {**geo, angle: theta}}
+        G, h = _group_rows(setup, trial, group, gi * nm, nx, r, theta, above, scanned, kinds)
         relaxed = dataclasses.replace(problem, G=np.vstack([fixed_rows[0], G]),
                                       h=np.concatenate([fixed_rows[1], h]))
-        x, _, status = _solve_once(relaxed, np.zeros(0, dtype=int), Q, rv, scale)
+        x, _, status = _solve_once(relaxed, np.zeros(0, dtype=int), Q[i], rv[i], scale)
         if status == "Solved":
-            out[n] = scale + float(x @ Q @ x + 2 * rv @ x)
-        else:
-            out[n] = np.inf if "Infeasible" in status else -np.inf
+            out[i] = scale + float(x @ Q[i] @ x + 2 * rv[i] @ x)
+        elif "Infeasible" in status:
+            out[i] = np.inf
     return out
 
 

@@ -28,7 +28,9 @@ pre-wound by the distance): the scan reaches ``max_deflection`` past it, else :d
 **Over the groups**: coordinate descent to a fixed point. From the best start (the given
 geometries and "no stop engaged"), each group's angles are scanned in turn with the others held
 (a one-sided stop's side with it), until a sweep improves nothing: every angle is then optimal
-given the others (:attr:`GeometrySearch.converged`). ``window`` limits a scan to that many
+given the others (:attr:`GeometrySearch.converged`). A family without preloads also descends
+from every group's first stop wound up beyond the motion (:func:`_wound_states`), and keeps the
+best of the descents. ``window`` limits a scan to that many
 candidates on each side of the current angle — the local polish of an expensive program (the
 metric's refinement, the stop-tolerant design) from a start the exhaustive search found.
 
@@ -45,13 +47,14 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from hexaleg.design.families import LINEAR_GAP
 from hexaleg.design.scan import State, relaxed_values
 from hexaleg.design.setup import DesignSetup
 from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES
 from hexaleg.errors import InfeasibleForcesError, TorqueLimitError
 
 if TYPE_CHECKING:
-    from hexaleg.design.families import Geometry
+    from hexaleg.design.families import Family, Geometry
     from hexaleg.design.program import DesignSolution
 
 MERGE = 1e-7
@@ -66,8 +69,10 @@ WIND_UP = 1.0
 POLISH_TOLERANCE = 1e-6
 """rad: the Brent polish's tolerance on an angle of a family without preloads."""
 BOUND_SLACK = 1e-9
-"""Relative margin by which a candidate's lower bound must exceed the best exact value to be
-skipped unsolved (the bound and the exact value agree to ~1e-12 where no sample binds)."""
+"""A candidate whose lower bound is not below the best exact value by this fraction is not
+solved: it cannot improve the best by more (the bound and the exact value agree to ~1e-12
+where no sample binds, and a flat stretch of candidates — a stop that does not help — would
+otherwise all be solved)."""
 MAX_SWEEPS = 6
 """Sweeps over the groups before the coordinate descent stops unconverged (it says so)."""
 
@@ -177,6 +182,33 @@ def _thinned(cands: np.ndarray, spacing: float) -> np.ndarray:
     return np.array(kept)
 
 
+def _wound_states(fam: Family, axes: Mapping[str, _Axis], wind: float) -> list[State]:
+    """Starts of a family without preloads: in every group, its first ``above`` stop (then its
+    first ``below`` one) wound up ``wind`` beyond the motion's far end — engaged throughout, a
+    linear spring pre-wound — the other stops where they never engage. A coordinate descent from
+    "no stop engaged" cannot reach them when the stops' order blocks the way."""
+    out = []
+    for side in ("above", "below"):
+        state: State = {}
+        for g, ax in axes.items():
+            below, above = ax.off
+            if side == "above":
+                first = float(ax.above[0])
+                geo = {"theta_minus": first - LINEAR_GAP, "theta_plus": first} \
+                    if fam.name == "dead_zone" else {
+                        "above_1": first, "above_2": above, "below_1": below,
+                        "below_2": below - OFF}
+            else:
+                first = float(ax.below[-1])
+                geo = {"theta_minus": first, "theta_plus": first + LINEAR_GAP} \
+                    if fam.name == "dead_zone" else {
+                        "above_1": above, "above_2": above + OFF, "below_1": first,
+                        "below_2": min(below, first) - OFF}
+            state[g] = dict(geo)
+        out.append(state)
+    return out
+
+
 def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]] = (), *,
                     window: int | None = None, reach: float | None = None,
                     spacing: float = 0.0, max_sweeps: int = MAX_SWEEPS) -> GeometrySearch:
@@ -249,10 +281,11 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
             if bounded:  # exact solves in order of their lower bound, until none can win
                 bounds = relaxed_values(setup, state, g, angle,
                                         np.array([t for t, _ in trials]),
-                                        side or fam.side(angle, state[g]))
+                                        side or fam.side(angle, state[g]),
+                                        below=best_value * (1 - BOUND_SLACK))
                 for n in np.argsort(bounds, kind="stable"):
-                    if bounds[n] > min(best_value, values.min()) * (1 + BOUND_SLACK):
-                        break
+                    if bounds[n] >= min(best_value, values.min()) * (1 - BOUND_SLACK):
+                        break  # it cannot improve on the best by more than BOUND_SLACK
                     values[n] = value(trials[n][1])
             else:
                 values = np.array([value(tr) for _, tr in trials])
@@ -277,19 +310,29 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
                 best, best_value = trials[i][1], trials[i][0]
         return best
 
+    def descend(state: State) -> tuple[State, int, bool]:
+        sweeps, converged = 0, False
+        while sweeps < max_sweeps and not converged:
+            sweeps += 1
+            before = value(state)
+            for g in groups:
+                for angle in fam.angles:
+                    state = scan(state, g, angle)
+            converged = not value(state) < before
+        return state, sweeps, converged
+
     state = _off_state(setup, axes)
     for start in starts:
         candidate = {g: dict(start[g]) for g in groups}
         if value(candidate) < value(state):
             state = candidate
-    sweeps, converged = 0, False
-    while sweeps < max_sweeps and not converged:
-        sweeps += 1
-        before = value(state)
-        for g in groups:
-            for angle in fam.angles:
-                state = scan(state, g, angle)
-        converged = not value(state) < before
+    state, sweeps, converged = descend(state)
+    if window is None and reach is None and not fam.preloaded_stops:
+        for wound in _wound_states(fam, axes, wind):  # the descents from every stop wound up
+            other, n, done = descend(wound)
+            sweeps += n
+            if value(other) < value(state):
+                state, converged = other, done
     how = (f"every angle scanned over {window} levels each side of the current one"
            if window is not None else
            f"every angle scanned within {reach:.4g} rad of the current one every {spacing:.3g} rad"
