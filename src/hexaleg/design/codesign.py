@@ -152,6 +152,7 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
         InfeasibleForcesError, TorqueLimitError: the gait has no admissible forces even without
             springs (the baseline), or the program has no solution.
     """
+    mirrored = tuple(mirrored)  # read again for the contained families
     setup = design_setup(prepared, groups, family, objective, max_torque, max_deflection,
                          metric, mirrored=mirrored)
     baseline = float(prepared.baseline(objective)["total"][metric or OBJECTIVE_METRIC[objective]])
@@ -167,13 +168,10 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
         contained = [_inner(prepared, groups, inner, objective, max_torque, max_deflection,
                             metric, mirrored) for inner in CONTAINS.get(family, ())]
     inner_starts = [_embedded(setup, c) for c in contained if c is not None]
-    if not setup.condensed:
+    if not setup.condensed:  # its comparison solves are the exact program
         found = search_geometry(setup, [*checked, *inner_starts])
-        chosen, solution = found.geometry, found.solution
-        if setup.fam.angles:
-            solution = setup.solve(chosen)
-        searches = [found]
-    else:  # the Joule program's exhaustive search, then the metric's polish from its optimum
+        chosen, solution, searches = found.geometry, found.solution, [found]
+    else:  # the Joule program's search, then the best in the metric of it and the starts
         nominal = dataclasses.replace(setup, metric=None, shifts=())
         first = search_geometry(nominal, [*checked, *inner_starts])
         found = search_geometry(setup, [first.geometry, *checked, *inner_starts],
