@@ -23,7 +23,9 @@ import hexaleg
 from hexaleg.design.families import FAMILIES
 
 CLASSES = ("coxa", "femur", "tibia")
-ROUND_OFF = 1e-9  # N·m/rad or N·m: a magnitude at the solver's round-off prints as 0
+ROUND_OFF = 1e-6
+"""N·m/rad or N·m: a magnitude at the solver's round-off prints as 0 (the interior point stops at
+~1e-8 of the largest, and those digits change with the BLAS kernels); real ones are ~1e-2."""
 
 
 def _magnitudes(res: hexaleg.OptimalSprings, group: str) -> str:

@@ -88,7 +88,8 @@ class GeometrySearch:
         evaluations: Convex solves spent (distinct geometries).
         sweeps: Sweeps of the coordinate descent.
         converged: The last sweep improved nothing: every angle is optimal given the others
-            (within ``window`` candidates when windowed).
+            (within ``window`` candidates when windowed); None when no descent ran (the best of
+            the starts).
         method: One line on how the optimum was established.
         levels: Group → number of levels (distinct sample angles) a stop may sit before.
     """
@@ -97,7 +98,7 @@ class GeometrySearch:
     solution: DesignSolution
     evaluations: int
     sweeps: int
-    converged: bool
+    converged: bool | None
     method: str
     levels: dict[str, int] = field(default_factory=dict)
 
@@ -337,8 +338,10 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
            if window is not None else
            f"every angle scanned within {reach:.4g} rad of the current one every {spacing:.3g} rad"
            if reach is not None else "every angle scanned over all its levels")
-    exact = ("exact along each angle (the value is monotone between levels)"
-             if fam.preloaded_stops else f"polished to {POLISH_TOLERANCE:g} rad between levels")
+    exact = ("the value monotone between levels" if fam.preloaded_stops
+             else f"polished to {POLISH_TOLERANCE:g} rad between levels")
+    if window is None and reach is None and fam.preloaded_stops:
+        exact = "exact along each angle (the value is monotone between levels)"
     method = (f"coordinate descent over the groups, {how}, {exact}; "
               f"{'a fixed point' if converged else 'stopped unconverged'} after {sweeps} "
               f"sweep{'s' if sweeps > 1 else ''}") if max_sweeps else "the best of its starts"
@@ -346,7 +349,8 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
     if k not in solutions:  # every candidate infeasible: the start as it is
         solutions[k] = setup.solve(state, exact=False)
     levels = {g: int(_levels(_relative(setup, g))[0].size) for g in groups}
-    return GeometrySearch(state, solutions[k], len(seen), sweeps, converged, method, levels)
+    return GeometrySearch(state, solutions[k], len(seen), sweeps,
+                          converged if max_sweeps else None, method, levels)
 
 
 def search_value(setup: DesignSetup) -> Callable[[Mapping[str, Geometry]], float]:
