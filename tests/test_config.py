@@ -151,3 +151,19 @@ def test_written_files_replace_a_link_and_leave_its_target(tmp_path):
     assert sorted(p.name for p in out.iterdir()) == ["report.json"]  # no temporary left
     with pytest.raises(OutputError, match=r"cannot write the report .*nowhere"):
         write_file(tmp_path / "nowhere" / "x.json", "{}", "the report")
+
+
+def test_keywords_are_checked_against_the_function_s_annotations():
+    from hexaleg.config import keywords
+    from hexaleg.errors import ConfigError, UnknownNameError
+
+    def f(a: int = 1, b: bool = True, c: float | None = None) -> None:
+        """A function with annotated keywords."""
+
+    assert keywords(f, {"a": 2, "b": False, "c": None}, "t") == {"a": 2, "b": False, "c": None}
+    with pytest.raises(ConfigError, match=r"t\.b = 'false'.*true or false"):
+        keywords(f, {"b": "false"}, "t")
+    with pytest.raises(UnknownNameError, match="d"):
+        keywords(f, {"d": 1}, "t")
+    with pytest.raises(UnknownNameError, match="c"):
+        keywords(f, {"c": 1.0}, "t", keys=("a", "b"))

@@ -252,6 +252,29 @@ def check_tables(data: object, allowed: tuple[str, ...], where: str) -> Mapping[
     return data
 
 
+def keywords(fn: Any, data: Mapping[str, Any], where: str,
+             keys: tuple[str, ...] | None = None) -> dict[str, Any]:
+    """``data`` checked as keyword arguments of ``fn``: each key one of ``keys`` (default: the
+    function's parameters), each value of the type its annotation says (as
+    :func:`from_mapping` checks a dataclass's fields; a key without an annotation is passed as
+    it is, for its own check).
+
+    Raises:
+        UnknownNameError: a key that is not allowed (lists the allowed ones).
+        ConfigError: a value of the wrong type (``simulate = "false"`` is not false).
+    """
+    if not isinstance(data, Mapping):
+        raise ConfigError(f"{where}: expected a table of keys, got {data!r}")
+    hints = typing.get_type_hints(fn)
+    allowed = keys if keys is not None else tuple(h for h in hints if h != "return")
+    out = {}
+    for key, value in data.items():
+        if key not in allowed:
+            raise UnknownNameError(f"{where} key", key, allowed)
+        out[key] = _check_type(f"{where}.{key}", value, hints[key]) if key in hints else value
+    return out
+
+
 def from_mapping(cls: type[T], data: Mapping[str, Any], where: str = "") -> T:
     """Build dataclass ``cls`` from ``data``, checking keys and value types.
 

@@ -7,7 +7,7 @@ import json
 import pytest
 
 from hexaleg.cli import build_parser, main
-from hexaleg.errors import UnknownNameError
+from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.studies.codesign.command import settings
 
 SMALL = """[codesign]
@@ -43,6 +43,45 @@ def test_config_table_is_checked(tmp_path):
     design = settings(rules)["design"]
     assert design.families == ("preloaded",) and design.life_cycles == 1e6
     assert not design.robustness
+
+
+@pytest.mark.parametrize(("line", "named"), [('simulate = "false"', "simulate"),
+                                             ("rules = 1", "rules"), ("curve = 0.0", "curve"),
+                                             ('samples = "40"', "samples"),
+                                             ("speed = true", "speed")])
+def test_config_values_are_type_checked_like_the_design_table(tmp_path, line, named):
+    """[codesign] values checked against codesign()'s own annotations, as [design]'s against
+    its dataclass: the string "false" is not false (it ran the simulation)."""
+    bad = tmp_path / "bad.toml"
+    bad.write_text(f"[codesign]\n{line}\n")
+    with pytest.raises(ConfigError, match=rf"\[codesign\]\.{named} = "):
+        settings(bad)
+    assert main(["codesign", "--config", str(bad), "--out", str(tmp_path / "o")]) == 2
+
+
+def test_an_unknown_family_is_named_not_blamed_on_the_speed(tmp_path):
+    from hexaleg.studies.codesign.build import codesign
+
+    with pytest.raises(UnknownNameError, match=r"\[codesign\] family.*torsion"):
+        codesign(family="torsion")
+
+
+def test_the_robot_s_own_actuator_is_used(monkeypatch):
+    """Every gait the co-design evaluates is prepared with the robot's own actuator (Solo-12's
+    ODRI module), not the catalogue's default AX-18A."""
+    from hexaleg.design.gait_evaluation import GaitPoint
+    from hexaleg.studies.codesign import build
+
+    seen = []
+
+    def refuse(robot, params, *, motor=None, **_):
+        seen.append(motor)
+        return GaitPoint(params=params, distance=params.stride, error="stop here")
+
+    monkeypatch.setattr(build, "evaluate_gait", refuse)
+    with pytest.raises(InvalidParameterError, match="stop here"):
+        build.codesign("solo12", speed=0.1)
+    assert [m.name for m in seen] == ["ODRI-4004"]
 
 
 def test_runs_and_writes(tmp_path, capsys):

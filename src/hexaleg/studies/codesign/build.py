@@ -38,6 +38,7 @@ import numpy as np
 from hexaleg.checks import integer, one_of, real
 from hexaleg.config import from_mapping
 from hexaleg.design.codesign import Groups
+from hexaleg.design.families import FAMILIES
 from hexaleg.design.gait_evaluation import (
     PARAMETERS,
     Constraints,
@@ -133,13 +134,16 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
     n = integer("samples", samples, low=40, high=2000)
     n_final = integer("final_samples", final_samples, low=n, high=5000)
     c = constraints or Constraints()
+    family = one_of("[codesign] family", family, FAMILIES)
     say = progress or (lambda _msg: None)
     t0 = time.perf_counter()
-    model = description(robot).load()
+    desc = description(robot)
+    model = desc.load()
+    motor = desc.actuator(model)  # the robot's own, as hexaleg design uses
     base = default_gait(model, robot, v, pattern, n)
     groups = design_groups(model, tuple(model.joint_classes),
                            one_of("grouping", grouping, ("class", "mirrored", "joint")))
-    free = functools.partial(evaluate_gait, model, family=family, constraints=c)
+    free = functools.partial(evaluate_gait, model, family=family, constraints=c, motor=motor)
     first = free(base, groups=groups, min_margin=0.0)
     if first.error is not None:
         raise InvalidParameterError("speed", v, f"a speed the robot's default gait can walk "
@@ -148,7 +152,7 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
         else max(0.0, first.measures.get("static_margin", (0.0,))[0])
     c = dataclasses.replace(c, min_static_margin=margin)
     free = functools.partial(evaluate_gait, model, family=family, constraints=c,
-                             min_margin=margin)
+                             min_margin=margin, motor=motor)
     space = default_space(base, c.min_foot_clearance)
     say(f"{model.name}: default gait {first.per_metre:.2f} J/m at {v:g} m/s")
     joint = search(functools.partial(free, groups=groups), base, v, space, springs=True,
@@ -186,7 +190,7 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
         bought = c_sprung.springs
         if buy is not None and not isinstance(buy, str) and buy.pays:
             bought = buy.recommended.optimum.springs
-        simulation = simulated(model, chosen, bought, c) if simulate else {}
+        simulation = simulated(model, chosen, bought, c, motor) if simulate else {}
         return CodesignResult(
             robot=robot, title=model.name, mass=model.mass, speed=v, pattern=base.pattern,
             family=family, constraints=c, default=dataclasses.replace(base, samples=n_final),
@@ -272,17 +276,17 @@ def speed_curve(free: Callable[..., GaitPoint], groups: Groups, base: GaitParams
     return tuple(out)
 
 
-def simulated(robot: Robot, chosen: GaitParams, springs: SpringSet, c: Constraints
-              ) -> dict[str, Any]:
+def simulated(robot: Robot, chosen: GaitParams, springs: SpringSet, c: Constraints,
+              motor: Any = None) -> dict[str, Any]:
     """The chosen gait simulated forward in MuJoCo (feedforward + PD servos, default
     :class:`~hexaleg.simulation.run.Settings`) with and without ``springs`` (the springs to
-    buy): planned and walked distance per cycle, the predicted and simulated electrical saving;
-    or the error."""
+    buy), the robot's ``motor`` (None: the catalogue's default): planned and walked distance per
+    cycle, the predicted and simulated electrical saving; or the error."""
     from hexaleg.simulation.run import simulate
 
     try:
         motion = gait(robot, chosen)
-        sim = simulate(robot, motion, None, springs, contact=c.contact())
+        sim = simulate(robot, motion, motor, springs, contact=c.contact())
         predicted = sim.predicted("electrical")[2]
         simulated_ = sim.simulated("electrical")[2]
         walk = sim.with_springs.walk

@@ -44,22 +44,23 @@ def settings(config: str | Path | None) -> dict[str, Any]:
     """The keywords of :func:`~hexaleg.studies.codesign.build.codesign` a config file gives.
 
     Raises:
-        ConfigError: not TOML. UnknownNameError: a key that is not in :data:`KEYS` or not a
+        ConfigError: not TOML, a value of the wrong type (checked against
+            :func:`~hexaleg.studies.codesign.build.codesign`'s annotations, as ``[design]``
+            against its dataclass). UnknownNameError: a key that is not in :data:`KEYS` or not a
             constraint (lists them).
     """
-    from hexaleg.config import from_mapping, load_toml
+    from hexaleg.config import from_mapping, keywords, load_toml
     from hexaleg.design.gait_evaluation import Constraints
-    from hexaleg.errors import ConfigError, UnknownNameError
+    from hexaleg.errors import ConfigError
+    from hexaleg.studies.codesign.build import codesign
 
     if config is None:
         return {}
     table = load_toml(config).get("codesign", {})
     if not isinstance(table, dict):
         raise ConfigError(f"{config}: [codesign] must be a table")
-    for key in table:
-        if key not in KEYS:
-            raise UnknownNameError(f"{config} [codesign] key", key, KEYS)
-    out = dict(table)
+    plain = {k: v for k, v in table.items() if k not in ("constraints", "design")}
+    out = {**table, **keywords(codesign, plain, f"{config} [codesign]", KEYS)}
     if "constraints" in out:
         out["constraints"] = from_mapping(Constraints, out["constraints"],
                                           f"{config} [codesign.constraints]")
