@@ -167,3 +167,34 @@ def test_keywords_are_checked_against_the_function_s_annotations():
         keywords(f, {"d": 1}, "t")
     with pytest.raises(UnknownNameError, match="c"):
         keywords(f, {"c": 1.0}, "t", keys=("a", "b"))
+
+
+def test_json_text_writes_non_finite_numbers_as_null_and_says_where(tmp_path):
+    import numpy as np
+
+    from hexaleg.config import NON_FINITE, json_text, read_json
+
+    text = json_text({"a": {"value": float("inf"), "unit": "Pa"},
+                      "b": [1.0, np.float64("nan"), np.float64(2.0), np.int64(3), np.bool_(True)]})
+    path = tmp_path / "x.json"
+    path.write_text(text)
+    data = read_json(path)
+    assert data["a"]["value"] is None and data["b"] == [1.0, None, 2.0, 3, True]
+    assert data[NON_FINITE]["paths"] == ["a.value", "b[1]"]
+    assert NON_FINITE not in read_json_of(tmp_path, json_text({"a": 1.0}))
+
+
+def read_json_of(tmp_path, text):
+    from hexaleg.config import read_json
+
+    path = tmp_path / "y.json"
+    path.write_text(text)
+    return read_json(path)
+
+
+def test_read_json_refuses_a_key_given_twice(tmp_path):
+    from hexaleg.errors import ConfigError
+
+    with pytest.raises(ConfigError, match="'springs' is given twice"):
+        read_json_of(tmp_path, '{"springs": [1], "title": "x", "springs": [2]}')
+    assert read_json_of(tmp_path, '{"a": {"b": 1}, "c": {"b": 2}}')["c"]["b"] == 2

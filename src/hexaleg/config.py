@@ -126,23 +126,72 @@ def _finite_float(text: str) -> float:
     return value
 
 
+def _unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    """A JSON object's pairs as a dict; a key given twice is refused (Python's json keeps the
+    last one and drops the first without a word)."""
+    out: dict[str, Any] = {}
+    for key, value in pairs:
+        if key in out:
+            raise ValueError(f"the key {key!r} is given twice in one object")
+        out[key] = value
+    return out
+
+
 def read_json(path: str | Path, what: str = "JSON file", limit: int | None = None, *,
               follow: bool = True) -> dict[str, Any]:
     """A JSON object from a regular file (:func:`read_text`). ``NaN``, ``Infinity`` and
     ``-Infinity`` (which Python's json accepts and JSON does not) and numbers beyond a float
-    (``1e400``) are refused, so every number read is finite.
+    (``1e400``) are refused, so every number read is finite; so is a key given twice in one
+    object (which Python's json would silently resolve to the last).
 
     Raises:
-        ConfigError: as :func:`read_text`, not JSON, a non-finite number, or not an object.
+        ConfigError: as :func:`read_text`, not JSON, a non-finite number, a duplicate key, or
+            not an object.
     """
     text = read_text(path, what, limit, follow=follow)
     try:
-        data = json.loads(text, parse_constant=_no_constant, parse_float=_finite_float)
+        data = json.loads(text, parse_constant=_no_constant, parse_float=_finite_float,
+                          object_pairs_hook=_unique_keys)
     except (ValueError, RecursionError) as e:
         raise ConfigError(f"cannot read {what} {path}: not valid JSON: {e}") from None
     if not isinstance(data, dict):
         raise ConfigError(f"{what} {path}: expected a JSON object, got {type(data).__name__}")
     return data
+
+
+NON_FINITE = "non_finite"
+"""The key :func:`json_text` adds to a JSON object in which it wrote a non-finite number as
+null: the paths of those values and what null means there."""
+
+
+def json_text(data: Mapping[str, Any], indent: int = 1) -> str:
+    """``data`` as the text of a JSON file: the one policy of every JSON file hexaleg writes.
+
+    JSON has no NaN or infinity (RFC 8259 §6; Python's ``json`` writes ``NaN``/``Infinity``,
+    which :func:`read_json`, and most readers, refuse). A non-finite number (a float, a NumPy
+    scalar) is written as ``null``, and :data:`NON_FINITE` lists where, so a file hexaleg writes
+    is always one it can read back.
+    """
+    where: list[str] = []
+
+    def finite(value: Any, path: str) -> Any:
+        if isinstance(value, Mapping):
+            return {str(k): finite(v, f"{path}.{k}" if path else str(k)) for k, v in value.items()}
+        if isinstance(value, (list, tuple)):
+            return [finite(v, f"{path}[{i}]") for i, v in enumerate(value)]
+        if getattr(value, "ndim", None) == 0 and hasattr(value, "item"):
+            value = value.item()  # a NumPy scalar
+        if isinstance(value, float) and not math.isfinite(value):
+            where.append(path)
+            return None
+        return value
+
+    out = finite(data, "")
+    if where:
+        out[NON_FINITE] = {"note": "null here stands for a value that is not a finite number "
+                                   "(NaN or infinite: e.g. no stress where no spring fits)",
+                           "paths": where}
+    return json.dumps(out, indent=indent, ensure_ascii=False, allow_nan=False)
 
 
 def write_file(path: str | Path, data: bytes | str, what: str = "file") -> Path:

@@ -12,11 +12,11 @@ from __future__ import annotations
 
 import argparse
 import functools
-import json
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from hexaleg.config import json_text, read_json, write_file
 from hexaleg.errors import InvalidParameterError
 
 if TYPE_CHECKING:  # the parser imports this module: the loaders only when a log is read
@@ -168,9 +168,9 @@ def add_quality(path: Path, motion: Motion) -> None:
     command wrote none, e.g. it failed before writing)."""
     if not path.is_file():
         return
-    data = json.loads(path.read_text(encoding="utf-8"))
+    data = read_json(path, "the command's JSON")
     data["motion_quality"] = quality_data(motion)
-    path.write_text(json.dumps(data, indent=1, ensure_ascii=False), encoding="utf-8")
+    write_file(path, json_text(data), "the command's JSON")  # never through a link there
 
 
 __all__ = ["add_motion_option", "add_quality", "logged_motion", "motion_quality",

@@ -242,3 +242,27 @@ def test_limits_under_which_no_spring_pays_give_that_answer(tmp_path, capsys):
     data = json.loads((tmp_path / "o" / "design.json").read_text())
     assert data["pays"] is False
     assert any(n.startswith("no springs pay") for n in data["notes"])
+
+
+def test_a_non_finite_number_is_written_as_null_and_read_back(written, tmp_path):
+    """One JSON policy (#37, #39): a part's stress that is not finite (no spring fits) goes into
+    design.json as null with a note, never ``Infinity``; load_design, report --design and the
+    design page read the file back."""
+    import hexaleg
+    from hexaleg.cli import main
+    from hexaleg.config import NON_FINITE, json_text, read_json
+    from hexaleg.studies.report.design_section import design_section
+
+    data = read_json(written[1] / "design.json")
+    data["recommended"]["parts"][0]["torsion_spring"]["stress"]["value"] = float("inf")
+    path = tmp_path / "design.json"
+    path.write_text(json_text(data))
+    text = path.read_text()
+    assert not re.search(r"[:\[,]\s*-?(?:NaN|Infinity)\b", text)  # no such JSON token
+    back = read_json(path)
+    assert back["recommended"]["parts"][0]["torsion_spring"]["stress"]["value"] is None
+    assert back[NON_FINITE]["paths"] == [
+        "recommended.parts[0].torsion_spring.stress.value"]
+    assert hexaleg.load_design(path).springs
+    assert design_section(str(path))
+    assert main(["report", "--design", str(path), "--out", str(tmp_path / "r")]) == 0

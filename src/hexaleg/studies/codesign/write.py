@@ -11,11 +11,10 @@ gait) is written beside it, for ``hexaleg report --design``.
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any
 
-from hexaleg.errors import OutputError
+from hexaleg.config import json_text, write_file
 from hexaleg.outputs import codesign_plots, plots
 from hexaleg.outputs.directory import writable_directory
 from hexaleg.outputs.html import environment
@@ -46,19 +45,13 @@ def write_result(result: CodesignResult, out: str | Path) -> tuple[dict[str, Any
                             directory / "speed.png")
     page = environment().get_template("codesign.html.j2").render(
         d=data, images={"speed": plots.data_uri(png)})
-    texts = [("codesign.json", json.dumps(data, indent=1, allow_nan=False)),
-             ("codesign.html", page)]
+    texts = [("codesign.json", json_text(data) + "\n"), ("codesign.html", page)]
     if result.rules is not None and not isinstance(result.rules, str):
         from hexaleg.studies.design.data import design_data
 
-        texts.append(("design.json", json.dumps(design_data(result.rules), indent=1,
-                                                allow_nan=False)))
-    for name, text in texts:
-        try:
-            (directory / name).write_text(text + "\n", encoding="utf-8")
-        except OSError as err:
-            raise OutputError(f"cannot write {directory / name}: {err.strerror}") from err
-        files.append(directory / name)
+        texts.append(("design.json", json_text(design_data(result.rules)) + "\n"))
+    for name, text in texts:  # never through a link there
+        files.append(write_file(directory / name, text, "the co-design"))
     return data, files
 
 

@@ -10,7 +10,6 @@ program) and the report must stay fast; the report links to it when it sits besi
 
 from __future__ import annotations
 
-import json
 import math
 import sys
 from collections.abc import Callable
@@ -21,7 +20,7 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
-from hexaleg.config import write_file
+from hexaleg.config import json_text, write_file
 from hexaleg.design.tolerance import TolerantSprings
 from hexaleg.outputs import design_plots, plots
 from hexaleg.outputs.directory import writable_directory
@@ -137,7 +136,7 @@ def write_design(out: str | Path = "hexaleg-design", config: DesignConfig | None
             "gait_defaults": gait_defaults(cfg.design.run(cfg.robot, cfg.contact).description(),
                                            r.gait if cfg.motion is None else None),
             "files": [*sorted(p.name for p in files), "design.html", "design.json"]}
-    for path, text in ((out / "design.json", json.dumps(data, indent=1, ensure_ascii=False)),
+    for path, text in ((out / "design.json", json_text(data)),
                        (out / "design.html", render_design_html(data, images))):
         files.append(write_file(path, text, "the design"))
     if progress:

@@ -3,11 +3,10 @@ the forward rerun of the Adams experiment beside them, and ``summary.md``."""
 
 from __future__ import annotations
 
-import json
 from collections.abc import Sequence
 from pathlib import Path
 
-from hexaleg.config import write_file
+from hexaleg.config import json_text, write_file
 from hexaleg.errors import InvalidParameterError, OutputError
 from hexaleg.outputs.paper_figures import save_png
 from hexaleg.studies.paper.figures import forward_figures, make_figures
@@ -64,7 +63,7 @@ def write_paper(out: str | Path, joint: PaperJoint | None = None, n: int = 8192,
         r["simulation"] = simulation_section(study)
         figures |= forward_figures(study, min(n, 2048))
     summary = markdown_summary(r, list(figures))
-    text = json.dumps(r, indent=2, ensure_ascii=False)
+    text = json_text(r, indent=2)
     try:
         for name, fig in figures.items():
             save_png(fig, out / name)

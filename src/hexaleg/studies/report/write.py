@@ -8,7 +8,6 @@ writes the JSON content next to it.
 
 from __future__ import annotations
 
-import json
 import math
 import os
 import sys
@@ -17,7 +16,7 @@ from pathlib import Path
 
 from matplotlib.figure import Figure
 
-from hexaleg.config import write_file
+from hexaleg.config import json_text, write_file
 from hexaleg.outputs import plots
 from hexaleg.outputs.directory import writable_directory
 from hexaleg.outputs.html import render_html
@@ -115,7 +114,7 @@ def write_report(out: str | Path = "hexaleg-report", config: ReportConfig | None
     data = {**_relative_link(r.data, out),
             "files": [*sorted(p.name for p in files), "report.html", "report.json"]}
     html = render_html(data, images)
-    for path, text in ((out / "report.json", json.dumps(data, indent=1, ensure_ascii=False)),
+    for path, text in ((out / "report.json", json_text(data)),
                        (out / "report.html", html)):
         files.append(write_file(path, text, "the report"))  # never through a link there
     say(f"wrote {out / 'report.html'}")

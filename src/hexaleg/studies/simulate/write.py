@@ -10,14 +10,13 @@ foot slip, contact losses, tracking, foot forces.
 
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from hexaleg.config import write_file
+from hexaleg.config import json_text, write_file
 from hexaleg.errors import OutputError
 from hexaleg.simulation.run import Run, Simulation
 from hexaleg.studies.report.quantities import comparison, quantity
@@ -191,7 +190,7 @@ def write_simulation(out: str | Path, data: dict[str, Any]) -> tuple[Path, Path]
     except OSError as e:
         raise OutputError(f"cannot write the simulation to {out}: {e}") from e
     js, md = out / "simulate.json", out / "simulate.md"  # never through a link there
-    write_file(js, json.dumps(data, indent=1, ensure_ascii=False), "the simulation")
+    write_file(js, json_text(data), "the simulation")
     write_file(md, page(data), "the simulation")
     return js, md
 
