@@ -4,10 +4,12 @@ torques are τ₀ − E z, and the groups cover the loaded samples."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 import hexaleg
 from hexaleg.dynamics.prepare import prepare
 from hexaleg.dynamics.reduction import reduce
+from hexaleg.errors import InfeasibleForcesError
 
 
 def test_null_space_forces_meet_the_base_rows_and_give_the_torques(robot, walk200):
@@ -46,6 +48,25 @@ def test_two_feet_leave_one_free_coordinate_and_an_unreachable_part(robot, walk2
     red = reduce(prepare(robot, two).system)
     assert not red.reachable[5] and red.reachable[np.arange(walk200.n_samples) != 5].all()
     assert sorted(g.m for g in red.groups) == [1, 3]
+
+
+def test_one_foot_leaves_no_free_coordinate_and_a_named_error(robot, walk200):
+    """One point foot (#38, #39): base rows of rank 3, no null space (m = 0), its force the
+    least-norm one; a motion that needs a moment about the foot is refused by name, never a
+    reshape traceback (it ended a quadruped's crawl at duty factor 0.3 and every biped)."""
+    stance = walk200.stance.copy()
+    stance[5] = False
+    stance[5, 0] = True
+    one = hexaleg.Motion(t=walk200.t, q=walk200.q, v=walk200.v, a=walk200.a, stance=stance,
+                         feet=walk200.feet, period=walk200.period, distance=walk200.distance)
+    prepared = prepare(robot, one)
+    red = reduce(prepared.system)
+    single = [g for g in red.groups if g.m == 0]
+    assert len(single) == 1 and single[0].rows.tolist() == [5] and not red.reachable[5]
+    g = single[0]
+    np.testing.assert_array_equal(g.forces(np.zeros((0, 1))), g.fp)
+    with pytest.raises(InfeasibleForcesError, match=r"one point foot \(LF\)"):
+        prepared.baseline()
 
 
 def test_long_motions_are_cut_into_cache_sized_groups(robot):

@@ -352,8 +352,14 @@ def raise_unreachable(system: StanceSystem, k: int, residual: float) -> NoReturn
             "carries the body's weight there (hexaleg's gaits plan no ballistic phase); raise "
             "duty_factor or stagger the legs' phases (pattern, phases or groups) so that a foot "
             "is always down")
+    if len(feet) == 1:  # one point foot: its force must pass through the centre of mass
+        why = (f"one point foot ({feet[0]}) pushes no moment about itself, so the body's "
+               "weight and inertia must act through it — raise duty_factor so that more feet "
+               "share the support, or give the gait the centre of mass over that foot")
+    else:
+        why = ("e.g. two point feet cannot push a moment about the line through them — the "
+               "motion needs a body sway that balances it")
     raise InfeasibleForcesError(
-        f"the stance feet {', '.join(feet) or '(none)'} cannot produce the base wrench at "
+        f"the stance feet {', '.join(feet)} cannot produce the base wrench at "
         f"t = {system.t[k]:.4f} s (sample {k}) with any forces: the best forces miss the "
-        f"base rows by {residual:.3g} (N, N·m); e.g. two point feet cannot push a moment about "
-        "the line through them — the motion needs a body sway that balances it")
+        f"base rows by {residual:.3g} (N, N·m); {why}")

@@ -149,8 +149,9 @@ def _reduce(system: StanceSystem) -> Reduction:
                 "rows": rows[sel],
                 "legs": np.broadcast_to(legs[:, None], (nf, sel.size)),
                 "joints": np.broadcast_to(joints[:, None], (joints.size, sel.size)),
-                "fp": np.transpose(fp.reshape(-1, nf, 3), (2, 1, 0)),
-                "N": np.transpose(N.reshape(-1, nf, 3, m), (2, 1, 3, 0)),
+                "fp": np.transpose(fp.reshape(sel.size, nf, 3), (2, 1, 0)),
+                # sizes spelled out: one stance foot leaves no null space (m = 0, N empty)
+                "N": np.transpose(N.reshape(sel.size, nf, 3, m), (2, 1, 3, 0)),
                 "E": np.transpose(Dj @ N, (1, 2, 0)),
                 "tau_base": (system.b_joint[rows[sel]][:, joints]
                              - np.einsum("tjn,tn->tj", Dj, fp)).T,

@@ -27,7 +27,12 @@ from hexaleg.dynamics.active_set import constant_rows, unconstrained_gains
 from hexaleg.dynamics.batched import Stats, WarmStart, solve_group
 from hexaleg.dynamics.blocks import Data
 from hexaleg.dynamics.conic import raise_infeasible, raise_unreachable, solve_sample
-from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES, ContactParams, StanceSystem
+from hexaleg.dynamics.contact import (
+    QUADRATIC_OBJECTIVES,
+    ContactParams,
+    StanceSystem,
+    violations,
+)
 from hexaleg.dynamics.pieces import pieces
 from hexaleg.dynamics.reduction import Group, reduce
 
@@ -81,12 +86,13 @@ def quadratic_gains(system: StanceSystem, weights: np.ndarray) -> QuadraticGains
         rhs[:, :n, :nj] = np.transpose(D, (0, 2, 1)) * weights  # DᵀW
         rhs[:, n:, nj:] = np.eye(6)
         sv = np.linalg.svd(A, compute_uv=False)
-        if np.all(sv[:, -1] > 1e-9 * sv[:, 0]):
+        if n >= 6 and np.all(sv[:, -1] > 1e-9 * sv[:, 0]):
             sol = np.linalg.solve(kkt, rhs)
         else:
             # Rank-deficient base rows (e.g. two point feet cannot push any moment about the line
-            # through them): f is still unique where the base wrench is reachable; the
-            # pseudo-inverse gives it, and solve_fast rejects samples whose base rows then fail.
+            # through them, one foot's three forces meet six rows): f is still unique where the
+            # base wrench is reachable; the pseudo-inverse gives it, and solve_fast rejects
+            # samples whose base rows then fail.
             sol = np.linalg.pinv(kkt, rcond=1e-10) @ rhs
         K[np.ix_(rows, cols, np.arange(nj))] = sol[:, :n, :nj]
         L[np.ix_(rows, cols, np.arange(6))] = sol[:, :n, nj:]
@@ -159,8 +165,14 @@ def solve_fast(system: StanceSystem, tau_spring: np.ndarray, objective: str,
         warm.key, warm.states = key, [None] * len(red.groups)
     stats = warm.stats if warm is not None else Stats()
     uncertified: list[np.ndarray] = []
+    fixed: list[np.ndarray] = []
     for i, g in enumerate(red.groups):
         J = g.joints
+        if g.m == 0:  # one point foot: the base rows fix its force, there is nothing to choose
+            f3[g.rows[None, :], g.legs] = np.transpose(g.fp, (1, 2, 0))
+            tau[g.rows[None, :], J] = g.tau0(tau_spring)
+            fixed.append(g.rows)
+            continue
         if key not in g.cache:  # the group's program for these settings, once per motion
             g.cache[key] = group_program(system, g, objective, weights, contact)
         data = dataclasses.replace(g.cache[key], tau0=g.tau0(tau_spring))
@@ -174,6 +186,13 @@ def solve_fast(system: StanceSystem, tau_spring: np.ndarray, objective: str,
             resolved[g.rows] = state.held.any(axis=0) | state.feet.any(axis=(0, 1))
         uncertified.append(g.rows[~ok])
     f = f3.reshape(T, 3 * n_legs)
+    if fixed:  # a fixed force outside its cone or a torque beyond its limit: the sample's
+        # own program names why (it has no other forces to offer)
+        rows = np.concatenate(fixed)
+        bad = rows[violations(system, f, tau, contact)[rows]]
+        uncertified.append(bad)
+        if not quadratic:
+            resolved[rows] = True
     for k in np.sort(np.concatenate(uncertified or [np.zeros(0, int)])):
         f[k] = solve_sample(system, int(k), tau_spring, objective, weights, contact)
         tau[k] = system.torques(f[k:k + 1], tau_spring[k:k + 1], slice(k, k + 1))[0]
