@@ -88,3 +88,29 @@ def test_a_revolute_joint_without_limit_is_named(tmp_path):
     joint.remove(joint.find("limit"))
     with pytest.raises(RobotModelError, match=r"joint 'LF_coxa' of type revolute has no <limit>"):
         check_urdf_numbers(tree.getroot(), tmp_path / "robot.urdf")
+
+
+def test_a_joint_range_upside_down_is_named():
+    """lower > upper loaded silently (#42): every range check then used an empty interval."""
+    tree = ET.fromstring(URDF)
+    limit = next(j for j in tree.iter("joint") if j.get("name") == "LF_femur").find("limit")
+    lower, upper = limit.get("lower"), limit.get("upper")
+    limit.set("lower", upper)
+    limit.set("upper", lower)
+    with pytest.raises(RobotModelError, match=r"joint 'LF_femur', <limit lower=.*lower is above "
+                                              r"upper"):
+        check_urdf_numbers(tree, Path("robot.urdf"))
+
+
+@pytest.mark.parametrize(("tag", "attribute", "value"), [
+    ("sphere", "radius", "-0.01"), ("sphere", "radius", "0"), ("cylinder", "length", "-1"),
+    ("box", "size", "0.1 -0.2 0.1")])
+def test_a_shape_of_no_size_is_named(tag, attribute, value):
+    """A foot sphere of radius −0.01 loaded and moved the body 10 mm without a word (#42)."""
+    tree = ET.fromstring(URDF)
+    link = next(iter(tree.iter("link")))
+    geometry = ET.SubElement(ET.SubElement(link, "collision"), "geometry")
+    ET.SubElement(geometry, tag, {attribute: value})
+    with pytest.raises(RobotModelError, match=rf"<{tag} {attribute}=\"{value}\">: expected "
+                                              r"sizes > 0"):
+        check_urdf_numbers(tree, Path("robot.urdf"))

@@ -72,6 +72,7 @@ def check_urdf_numbers(root: ET.Element, path: Path) -> None:
                         f"{allowed} (urdfdom would drop the element and load the robot "
                         "without it)")
     _check_limits(root, path)
+    _check_sizes(root, path)
 
 
 REQUIRED = ("effort", "velocity")
@@ -104,6 +105,29 @@ def _check_limits(root: ET.Element, path: Path) -> None:
                     f"URDF {path}: joint {name!r}, <limit> has no {attribute} attribute; "
                     f"urdfdom requires effort and velocity on every <limit> (give {attribute}"
                     f"=\"…\": {MEANING[attribute]}; 0 only for a joint that is not actuated)")
+        lower, upper = limit.get("lower"), limit.get("upper")
+        if joint.get("type") in LIMITED and lower is not None and upper is not None \
+                and float(lower) > float(upper):
+            raise RobotModelError(
+                f"URDF {path}: joint {name!r}, <limit lower=\"{lower}\" upper=\"{upper}\">: "
+                "lower is above upper; the joint's range is lower ≤ q ≤ upper (swap them)")
+
+
+SIZES = {"sphere": ("radius",), "cylinder": ("radius", "length"), "box": ("size",)}
+"""Geometry attributes that must be > 0 (a negative foot sphere's radius moved the body 10 mm
+without a word)."""
+
+
+def _check_sizes(root: ET.Element, path: Path) -> None:
+    """Every sphere, cylinder and box of a link with sizes > 0."""
+    for link in root.iter("link"):
+        for element in link.iter():
+            for attribute in SIZES.get(element.tag, ()):
+                text = element.get(attribute)
+                if text is not None and min(float(v) for v in text.split()) <= 0:
+                    raise RobotModelError(
+                        f"URDF {path}: link {link.get('name', '(unnamed)')!r}, <{element.tag} "
+                        f"{attribute}=\"{text}\">: expected sizes > 0 (m)")
 
 
 def check_xml(path: Path, what: str) -> None:

@@ -53,6 +53,8 @@ def test_a_config_gait_replaces_the_designs_and_says_so(written, tmp_path):
     (lambda d: d["recommended"]["saving"]["electrical"].update(value="nan"),
      InvalidParameterError, "saving"),
     (lambda d: d["robot"].update(name="solo12"), InvalidParameterError, "robot"),
+    (lambda d: d["recommended"].update(saving=15.4), InvalidParameterError,
+     r"recommended\.saving = 15\.4"),
 ])
 def test_a_damaged_design_file_is_named(written, tmp_path, edit, error, says):
     data = json.loads((written[1] / "design.json").read_text())

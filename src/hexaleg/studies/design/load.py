@@ -111,7 +111,8 @@ def load_design(path: str | Path, robot: str | None = None) -> LoadedDesign:
 
     Raises:
         ConfigError: the file is missing, not JSON or malformed.
-        InvalidParameterError: a design for another robot than ``robot``, a non-finite saving.
+        InvalidParameterError: a design for another robot than ``robot``, a non-finite saving,
+            a saving that is not a table of metrics.
         UnknownNameError: an unknown robot, family, parameter or joint (lists the valid ones).
     """
     path = Path(path)
@@ -126,7 +127,11 @@ def load_design(path: str | Path, robot: str | None = None) -> LoadedDesign:
     saving = None
     rec = data.get("recommended")
     if isinstance(rec, Mapping) and isinstance(metric, str):
-        value = rec.get("saving", {}).get(metric, {})
+        table = rec.get("saving", {})
+        if not isinstance(table, Mapping):
+            raise InvalidParameterError(f"{path}: recommended.saving", table,
+                                        "a table of metric = {value, unit} (design.json's)")
+        value = table.get(metric, {})
         value = value.get("value") if isinstance(value, Mapping) else None
         if value is not None:
             if not is_real(value):
