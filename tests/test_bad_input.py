@@ -397,3 +397,50 @@ def test_a_refused_paper_run_writes_nothing(tmp_path, capsys):
     assert main(["paper", "--samples", str(10**9), "--out", str(out)]) == 2
     assert "1000000000" in capsys.readouterr().err
     assert not out.exists()
+
+
+def test_public_functions_name_an_argument_of_the_wrong_type():
+    """Every function of hexaleg.__all__ checks its arguments' types (#42): None, an object, a
+    string or an array where its first parameter's annotation admits none of them is a hexaleg
+    error naming the argument and the type — never an AttributeError from deep inside."""
+    import inspect
+
+    import numpy as np
+
+    import hexaleg
+    from hexaleg.checks import _admits, _hints
+    from hexaleg.errors import HexalegError
+
+    functions = [getattr(hexaleg, n) for n in hexaleg.__all__
+                 if inspect.isfunction(getattr(hexaleg, n))]
+    assert len(functions) >= 30
+    tried = 0
+    for f in functions:
+        first = next(iter(inspect.signature(f).parameters))
+        classes = _hints(inspect.unwrap(f)).get(first)
+        for bad in (None, object(), "hexaleg-no-such", np.zeros((2, 2, 2))):
+            if classes is None or _admits(classes, bad):
+                continue
+            with pytest.raises(HexalegError, match=rf"{f.__name__}\({first}=…\)"):
+                f(bad)
+            tried += 1
+    assert tried >= 60
+
+
+@pytest.mark.parametrize("call", [
+    lambda h, r, m: h.load_motion(None, "walk.csv"),
+    lambda h, r, m: h.load_motion("hexaleg", "walk.csv"),
+    lambda h, r, m: h.load_motion(r, None),
+    lambda h, r, m: h.load_design(None),
+    lambda h, r, m: h.prepare(r, None),
+    lambda h, r, m: h.analyze("hexaleg", m),
+    lambda h, r, m: h.gait(r, "tripod"),
+    lambda h, r, m: h.design_torsion_spring(None),
+    lambda h, r, m: h.load_motion(r, "walk.csv", max_gap=-1.0),
+])
+def test_the_third_catalogue_s_raw_tracebacks_are_named(call, robot, walk200):
+    import hexaleg
+    from hexaleg.errors import HexalegError
+
+    with pytest.raises(HexalegError):
+        call(hexaleg, robot, walk200)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -75,3 +76,23 @@ def test_count_bounds_a_count_by_the_memory_budget():
         with pytest.raises(InvalidParameterError, match=r"an integer in \[1, ") as e:
             checks.count("n", bad, item_bytes=1024, item="one x", fix="use fewer")
         assert "use fewer" not in str(e.value)  # the fix is for counts above the bound
+
+
+def test_typed_checks_argument_types_against_the_annotations():
+    from hexaleg.checks import typed
+
+    @typed
+    def f(a: int, b: float | None = None, c: str | Path = "x",
+          d: np.ndarray | None = None) -> int:
+        """A public function."""
+        return a
+
+    assert f(np.int64(3), 2, Path("p"), np.zeros(2)) == 3 and f(1, None) == 1
+    for kwargs, says in ((dict(a=None), r"f\(a=…\) = None; allowed: a integer \(got a NoneType"),
+                         (dict(a=True), r"a integer \(got a bool\)"),
+                         (dict(a=1, b="x"), r"a None or number \(got a str\)"),
+                         (dict(a=1, c=3), r"a Path or str"),
+                         (dict(a=1, e=3), r"arguments of f.*unexpected keyword")):
+        with pytest.raises(InvalidParameterError, match=says):
+            f(**kwargs)
+    assert f.__doc__ == "A public function." and f.__name__ == "f"

@@ -20,7 +20,10 @@ SRC = Path(hexaleg.__file__).resolve().parent
 RANK = {"errors": 0, "units": 0, "config": 0, "checks": 0, "robot": 1, "motion": 2,
         "dynamics": 3, "simulation": 4, "design": 5, "outputs": 6, "studies": 7, "cli": 8}
 TOP_LEVEL = {"__init__.py", "errors.py", "units.py", "config.py", "checks.py", "cli.py"}
-MAX_LINES = 400
+WARN_LINES = 400
+"""Code lines over which a module is worth a look for a seam (a warning)."""
+MAX_LINES = 600
+"""Code lines over which a module fails: split it at its seams, not at the count."""
 DATA_TABLES: dict[str, str] = {}
 """Modules allowed over MAX_LINES because they are data tables (path → why)."""
 MODULES = sorted(p for p in SRC.rglob("*.py") if "__pycache__" not in p.parts)
@@ -66,11 +69,52 @@ def test_imports_point_down_the_layers(path):
     assert not bad, f"{rel} imports up the layers:\n" + "\n".join(bad)
 
 
+def code_lines(path: Path) -> int:
+    """Lines of ``path`` that hold code: not blank, not only a comment, not a docstring."""
+    import io
+    import tokenize
+
+    text = path.read_text(encoding="utf-8")
+    docs: set[int] = set()
+    for node in ast.walk(ast.parse(text)):
+        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)):
+            body = node.body
+            if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant) \
+                    and isinstance(body[0].value.value, str):
+                docs.update(range(body[0].lineno, (body[0].end_lineno or body[0].lineno) + 1))
+        if isinstance(node, (ast.Module, ast.ClassDef)):  # attribute docstrings
+            for a, b in zip(node.body, node.body[1:], strict=False):
+                if isinstance(a, (ast.Assign, ast.AnnAssign)) and isinstance(b, ast.Expr) \
+                        and isinstance(b.value, ast.Constant) and isinstance(b.value.value, str):
+                    docs.update(range(b.lineno, (b.end_lineno or b.lineno) + 1))
+    skip = {tokenize.COMMENT, tokenize.NL, tokenize.NEWLINE, tokenize.INDENT, tokenize.DEDENT,
+            tokenize.ENCODING, tokenize.ENDMARKER}
+    code: set[int] = set()
+    for tok in tokenize.generate_tokens(io.StringIO(text).readline):
+        if tok.type not in skip:
+            code.update(range(tok.start[0], tok.end[0] + 1))
+    return len(code - docs)
+
+
+def test_code_lines_leave_out_docstrings_comments_and_blanks(tmp_path):
+    path = tmp_path / "m.py"
+    path.write_text('"""Doc.\n\nMore."""\n\n# a comment\nX = 1\n"""X\'s doc."""\n\n\n'
+                    'def f(a):\n    """Doc."""\n    return (a +\n            1)  # sum\n')
+    assert code_lines(path) == 4  # X = 1, def, and the two lines of the return
+
+
 @pytest.mark.parametrize("path", MODULES, ids=lambda p: str(p.relative_to(SRC)))
-def test_modules_stay_under_400_lines(path):
+def test_modules_stay_under_the_line_limit(path):
+    """The line rule counts code lines (docstrings, comments and blank lines left out): over
+    :data:`WARN_LINES` is a warning to look for a seam, over :data:`MAX_LINES` a failure."""
+    import warnings
+
     rel = str(path.relative_to(SRC))
-    n = len(path.read_text(encoding="utf-8").splitlines())
-    assert n <= MAX_LINES or rel in DATA_TABLES, f"{rel}: {n} lines; split it at its seams"
+    n = code_lines(path)
+    assert n <= MAX_LINES or rel in DATA_TABLES, f"{rel}: {n} code lines; split it at its seams"
+    if n > WARN_LINES:
+        warnings.warn(f"{rel}: {n} code lines (over {WARN_LINES}): is there a seam?",
+                      stacklevel=1)
 
 
 def test_at_most_six_top_level_modules():

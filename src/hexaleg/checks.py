@@ -8,9 +8,16 @@ names the parameter, the value given and what is allowed. Booleans are never num
 
 from __future__ import annotations
 
+import collections.abc
+import functools
+import inspect
 import math
-from collections.abc import Collection
-from typing import Any, TypeGuard
+import numbers
+import reprlib
+import types
+import typing
+from collections.abc import Callable, Collection
+from typing import Any, TypeGuard, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -182,3 +189,95 @@ def finite_array(name: str, x: ArrayLike, shape: tuple[int, ...] | None = None,
         raise InvalidParameterError(name, float(a[index]),
                                     "finite numbers (no NaN or inf)" + what + where)
     return a
+
+
+F = TypeVar("F", bound=Callable[..., Any])
+NAMES: dict[type, str] = {numbers.Real: "number", numbers.Integral: "integer",
+                          type(None): "None"}
+"""How :func:`typed` names the classes it checks."""
+_SHORT = reprlib.Repr()
+_SHORT.maxstring = _SHORT.maxother = 80
+
+
+def _classes(hint: Any) -> tuple[type, ...] | None:
+    """The runtime classes an annotation admits, or None where it cannot be checked by
+    ``isinstance`` (Any, a type variable, a literal, a protocol such as ArrayLike's)."""
+    if hint is Any:  # a class since Python 3.11, but no isinstance target
+        return None
+    if hint is None or hint is type(None):
+        return (type(None),)
+    if hint is float:
+        return (numbers.Real,)
+    if hint is int:
+        return (numbers.Integral,)
+    origin = typing.get_origin(hint)
+    if origin in (typing.Union, types.UnionType):
+        out: list[type] = []
+        for option in typing.get_args(hint):
+            classes = _classes(option)
+            if classes is None:
+                return None
+            out += classes
+        return tuple(out)
+    if origin is collections.abc.Callable:
+        return (collections.abc.Callable,)
+    if isinstance(origin, type):
+        return (origin,)
+    if isinstance(hint, type) and not getattr(hint, "_is_protocol", False):
+        return (hint,)
+    return None
+
+
+def _admits(classes: tuple[type, ...], value: Any) -> bool:
+    if isinstance(value, (bool, np.bool_)) and bool not in classes:
+        return False  # True is no number here
+    return isinstance(value, classes)
+
+
+def _hints(fn: Callable[..., Any]) -> dict[str, tuple[type, ...]]:
+    """Parameter → the classes its annotation admits, for the annotations that can be checked
+    (one that names a type imported only for type checkers is skipped)."""
+    out = {}
+    for name, text in getattr(fn, "__annotations__", {}).items():
+        if name == "return":
+            continue
+        try:
+            hint = eval(text, fn.__globals__) if isinstance(text, str) else text
+        except Exception:  # a name imported under TYPE_CHECKING only
+            continue
+        classes = _classes(hint)
+        if classes is not None:
+            out[name] = classes
+    return out
+
+
+def typed(fn: F) -> F:
+    """``fn`` with its arguments' types checked against its annotations at every call: a public
+    entry point's wrong argument (None, a name where a robot is expected, a string where
+    parameters are) is an :class:`~hexaleg.errors.InvalidParameterError` naming the argument,
+    the type given and the types allowed — not an AttributeError from deep inside. Values are
+    still checked by the function itself (ranges, shapes: the validators above)."""
+    signature = inspect.signature(fn)
+    hints: dict[str, tuple[type, ...]] | None = None
+
+    @functools.wraps(fn)
+    def checked(*args: Any, **kwargs: Any) -> Any:
+        nonlocal hints
+        if hints is None:
+            hints = _hints(fn)
+        try:
+            bound = signature.bind_partial(*args, **kwargs)
+        except TypeError as e:  # an unknown keyword, too many arguments
+            raise InvalidParameterError(f"arguments of {fn.__name__}", f"{e}",
+                                        f"those of {fn.__name__}{signature}") from None
+        for name, value in bound.arguments.items():
+            classes = hints.get(name)
+            if classes is not None and not _admits(classes, value):
+                allowed = " or ".join(sorted({NAMES.get(c, c.__name__) for c in classes}))
+                shown = value if isinstance(value, (str, int, float, type(None))) else \
+                    _SHORT.repr(value)
+                raise InvalidParameterError(f"{fn.__name__}({name}=…)", shown,
+                                            f"a {allowed} (got a {type(value).__name__})")
+        return fn(*args, **kwargs)
+
+    return checked  # type: ignore[return-value]

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import hexaleg
@@ -11,7 +12,7 @@ from hexaleg.errors import RobotModelError
 from hexaleg.robot.catalogue import motor
 from hexaleg.robot.model import load_robot
 from hexaleg.robot.registry import load
-from hexaleg.simulation.mjcf import MJ_EPS, check_inertias
+from hexaleg.simulation.mjcf import MJ_EPS, check_inertias, check_size
 from hexaleg.simulation.model import build_model
 
 DATA = Path(__file__).resolve().parents[1] / "data"
@@ -103,18 +104,20 @@ def test_each_inertia_mujoco_refuses_is_named_with_its_link(tmp_path, new, expec
 
 
 def test_a_zero_size_geometry_is_named_before_compiling(tmp_path):
-    """A thigh cylinder of radius 0 loads in Pinocchio; MuJoCo refuses it ("size 0 must be
-    positive"): building the model names the geometry, its link and the size first."""
+    """A thigh cylinder of radius 0 loaded in Pinocchio and MuJoCo refuses it ("size 0 must be
+    positive"): the URDF check names it when the robot loads; a shape of no size made another
+    way (a flat mesh's box) is named by check_size before compiling."""
     spider(tmp_path, THIGH_GEOM, THIGH_GEOM.replace('radius="0.008"', 'radius="0"'),
            "stand = {body_height = 0.08}")
-    robot = load(str(tmp_path / "spider.toml"))
-    motion = hexaleg.tripod_gait(robot, hexaleg.GaitParams.for_robot(
-        hexaleg.robot.registry.description(str(tmp_path / "spider.toml"))).updated(
-            {"samples": 20}))
+    with pytest.raises(RobotModelError, match=r"link 'a_thigh', <cylinder radius=\"0\">: "
+                                              r"expected sizes > 0"):
+        load(str(tmp_path / "spider.toml"))
+    robot = hexaleg.load_robot()
+    obj = robot.collision_model.geometryObjects[0]
     with pytest.raises(RobotModelError) as info:
-        build_model(robot, motion, motor("AX-18A"))
+        check_size(robot, obj, "box", np.array([0.01, 0.0, 0.02]))
     text = str(info.value)
-    assert "geometry a_thigh_0 of link a_thigh" in text and "cylinder size 0.0 0.04 m" in text
+    assert f"geometry {obj.name} of link" in text and "box size 0.01 0.0 0.02 m" in text
     assert "allowed: all > 0 m" in text
     assert mujoco_refuses('<inertial pos="0 0 0" mass="1" diaginertia="1 1 1"/>'
                           '<geom type="cylinder" size="0 0.04"/>')

@@ -27,6 +27,7 @@ from typing import Any
 
 import numpy as np
 
+from hexaleg.checks import typed
 from hexaleg.design.families import CONTAINS, FAMILIES, Family, Geometry, embed
 from hexaleg.design.program import DesignProblem, DesignSolution
 from hexaleg.design.search import off_angles, search_geometry
@@ -94,6 +95,7 @@ class OptimalSprings:
         return {g: magnitudes_table(self.geometry[g], self.magnitudes[g]) for g in self.groups}
 
 
+@typed
 def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
                     objective: str = "joule", *, max_torque: float | None = None,
                     max_deflection: float | None = None,

@@ -51,7 +51,7 @@ from typing import Any
 
 import numpy as np
 
-from hexaleg.checks import one_of
+from hexaleg.checks import one_of, typed
 from hexaleg.dynamics.contact import ContactParams, check_objective
 from hexaleg.dynamics.energy import ENERGY_KEYS, NO_SAVING_KEYS, TORQUE_KEYS, savings
 from hexaleg.dynamics.inertia import joint_range
@@ -162,6 +162,7 @@ def clear_cache() -> None:
     _EVALUATORS.clear()
 
 
+@typed
 def evaluator(run: RunSpec, gait: Mapping[str, Any]) -> Evaluator:
     """The :class:`Evaluator` of ``gait``, built once per process and kept in a small cache.
 

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hexaleg.checks import is_integer, real
+from hexaleg.checks import is_integer, real, typed
 from hexaleg.design.evaluator import DEFAULT_METRIC, METRICS, Evaluator
 from hexaleg.dynamics.energy import saving
 from hexaleg.errors import InvalidParameterError, UnknownNameError
@@ -138,6 +138,7 @@ def _nelder_mead(f: Callable[[np.ndarray], float], x0: np.ndarray, step: np.ndar
     return res.x, float(res.fun)
 
 
+@typed
 def optimise(ev: Evaluator, group: str, joints: Sequence[str], metric: str = DEFAULT_METRIC, *,
              k_bounds: tuple[float, float] = (1e-3, 3.0),
              theta_bounds: tuple[float, float] | None = None, offset: float = 0.0,

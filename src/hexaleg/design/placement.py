@@ -19,6 +19,7 @@ import itertools
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from hexaleg.checks import typed
 from hexaleg.design.codesign import (
     OBJECTIVE_METRIC,
     Groups,
@@ -62,6 +63,7 @@ class Placement:
     old: dict[str, Optimum]
 
 
+@typed
 def placement(prepared: Prepared, groups: Groups, family: str = "preloaded",
               objective: str = "joule", *, max_torque: float | None = None,
               max_deflection: float | None = None, compare: bool = True,

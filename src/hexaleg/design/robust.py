@@ -37,6 +37,7 @@ from typing import Any
 
 import numpy as np
 
+from hexaleg.checks import typed
 from hexaleg.design.bundle import MODES, minimise
 from hexaleg.design.codesign import (
     ENGAGED,
@@ -102,6 +103,7 @@ class RobustSprings:
         return float(np.min(self.nominal_saving))
 
 
+@typed
 def robust_springs(optimum: OptimalSprings, nominal: Prepared, conditions: Sequence[Prepared],
                    mode: str = "worst", metric: str = "joule", *,
                    max_torque: float | None = None, max_deflection: float | None = None

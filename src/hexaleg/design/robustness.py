@@ -27,7 +27,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from hexaleg.checks import real
+from hexaleg.checks import real, typed
 from hexaleg.design.evaluator import DEFAULT_METRIC, Design, RunSpec, evaluator
 from hexaleg.dynamics.energy import saving
 from hexaleg.dynamics.prepare import Prepared, prepare
@@ -227,6 +227,7 @@ def condition_savings(prepared: Prepared, springs: SpringSet, objective: str,
     return out
 
 
+@typed
 def robustness(run: RunSpec, gait: GaitParams, groups: Mapping[str, Sequence[str]],
                design: Design, metric: str = DEFAULT_METRIC, *,
                factors: Sequence[float] = (0.8, 0.9, 1.0, 1.1, 1.2),

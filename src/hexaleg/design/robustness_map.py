@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from hexaleg.checks import finite_array, one_of
+from hexaleg.checks import finite_array, one_of, typed
 from hexaleg.design.evaluator import DEFAULT_METRIC, RunSpec
 from hexaleg.design.robustness import (
     CONDITIONS,
@@ -165,6 +165,7 @@ def map_cell(run: RunSpec, gait: GaitParams, springs: SpringSet, condition: Cond
                          float(r[f"saving.{m}"]) for m in metrics}
 
 
+@typed
 def robustness_map(run: RunSpec, gait: GaitParams, springs: SpringSet,
                    axes: Mapping[str, Sequence[float] | Sequence[str]],
                    metrics: Sequence[str] = METRICS, mapper: Mapper | None = None

@@ -40,7 +40,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from hexaleg.checks import real
+from hexaleg.checks import real, typed
 from hexaleg.design.spring_materials import MATERIALS, PREFERRED_WIRE_DIAMETERS, material
 from hexaleg.errors import InvalidParameterError, SpringDesignError
 from hexaleg.units import MM, nm_per_rad_to_nmm_per_deg, rad_to_deg
@@ -348,6 +348,7 @@ def _spring(c: dict[str, np.ndarray], i: int, req: TorsionRequirement) -> Torsio
         requirement=req)
 
 
+@typed
 def design_torsion_spring(req: TorsionRequirement) -> TorsionSpring:
     """The lightest helical torsion spring that meets ``req`` (module docstring).
 

@@ -16,7 +16,7 @@ from typing import Any, overload
 import numpy as np
 from numpy.typing import ArrayLike
 
-from hexaleg.checks import positive, real
+from hexaleg.checks import positive, real, typed
 from hexaleg.errors import InvalidParameterError
 from hexaleg.robot.motor import Motor, as_torque_speed
 from hexaleg.robot.motor_set import MotorSet
@@ -38,6 +38,7 @@ COT_KEYS = ("positive_work", "absolute_work", "electrical", "electrical_regen",
 """Energies whose cost of transport :func:`metrics` reports."""
 
 
+@typed
 def cost_of_transport(energy: float, mass: float, distance: float, g: float = G) -> float:
     """Dimensionless cost of transport ``E / (m g d)`` (paper eq. 23, ``ε = E / (m_c g S)``).
 
@@ -57,6 +58,7 @@ def cost_of_transport(energy: float, mass: float, distance: float, g: float = G)
         positive("mass", mass) * positive("g", g) * positive("distance", distance))
 
 
+@typed
 def epsilon(energy: float, inertia: float, angle: float) -> float:
     """The paper's single-joint energy consumption ratio, eq. 24: ``ε = ∫ M_k θ̇ dt / (I θ)``.
 
@@ -78,6 +80,7 @@ def epsilon(energy: float, inertia: float, angle: float) -> float:
     return real("energy", energy) / (positive("inertia", inertia) * positive("angle", angle))
 
 
+@typed
 def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor | MotorSet, *,
             mass: float | None = None, distance: float | None = None,
             joint_names: Sequence[str] | None = None, periodic: bool = True,
@@ -259,6 +262,7 @@ def saving(with_: ArrayLike, without: ArrayLike) -> np.ndarray | float:
     return float(out) if out.ndim == 0 else out
 
 
+@typed
 def savings(metrics_with: Mapping[str, Any], metrics_without: Mapping[str, Any]
             ) -> dict[str, Any]:
     """Fraction of each metric saved by the springs against the same gait without them.

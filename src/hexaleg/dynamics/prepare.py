@@ -32,6 +32,7 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
+from hexaleg.checks import typed
 from hexaleg.dynamics import energy
 from hexaleg.dynamics.batched import WarmStart
 from hexaleg.dynamics.contact import (
@@ -309,6 +310,7 @@ class Prepared:
                         savings=energy.savings(metrics, baseline))
 
 
+@typed
 def prepare(robot: Robot, motion: Motion, *, motor: Motor | MotorSet | str | None = None,
             contact: ContactParams | None = None) -> Prepared:
     """Compute everything about ``motion`` that does not depend on the springs.
@@ -377,6 +379,7 @@ def prepare(robot: Robot, motion: Motion, *, motor: Motor | MotorSet | str | Non
                     qdot=motion.v[:, 6:])
 
 
+@typed
 def analyze(robot: Robot, motion: Motion, springs: SpringsLike = None, *,
             motor: Motor | MotorSet | str | None = None, objective: str = "joule",
             contact: ContactParams | None = None) -> Analysis:

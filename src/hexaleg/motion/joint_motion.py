@@ -15,7 +15,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from hexaleg.checks import real
+from hexaleg.checks import real, typed
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.limits import check_joint_limits, check_samples
 from hexaleg.motion.profiles import Sinusoid
@@ -23,6 +23,7 @@ from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 
 
+@typed
 def joint_motion(robot: Robot, trajectories: Mapping[str, Sinusoid],
                  base: str | np.ndarray = "stand", samples: int = 1000,
                  period: float | None = None) -> Motion:

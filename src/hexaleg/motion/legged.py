@@ -24,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from hexaleg.checks import typed
 from hexaleg.errors import HexalegError, InvalidParameterError, UnreachableTargetError
 from hexaleg.motion.balance import Sway, balance_sway
 from hexaleg.motion.body import (
@@ -163,6 +164,7 @@ def _works(robot: Robot, gait: GaitParams, times: np.ndarray | None) -> bool:
     return True
 
 
+@typed
 def tripod_gait(robot: Robot, gait: GaitParams | None = None) -> Motion:
     """:func:`gait` under the name of its default, the hexapod's alternating tripod: one cycle
     of whatever gait ``gait`` describes (kept for the scripts that call it).
@@ -181,6 +183,7 @@ def tripod_gait(robot: Robot, gait: GaitParams | None = None) -> Motion:
     return sample_gait(robot, gait)
 
 
+@typed
 def gait(robot: Robot, params: GaitParams | None = None) -> Motion:
     """One cycle of a periodic gait: any pattern, heading, slope (default: the hexapod's
     alternating tripod on level ground).

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.checks import real
+from hexaleg.checks import real, typed
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.kinematics import leg_ik
 from hexaleg.motion.limits import check_joint_limits, check_samples
@@ -22,6 +22,7 @@ from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 
 
+@typed
 def transform_motion(robot: Robot, duration: float = 2.0, samples: int = 1000,
                      start: str = "stand", end: str = "sphere", sit_fraction: float = 0.25,
                      rest_height: float | None = None) -> Motion:

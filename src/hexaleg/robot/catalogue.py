@@ -41,6 +41,7 @@ from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Any
 
+from hexaleg.checks import typed
 from hexaleg.config import from_mapping
 from hexaleg.errors import ConfigError, UnknownNameError
 from hexaleg.robot.brushless import odri_actuator
@@ -256,6 +257,7 @@ def motor(name: str = DEFAULT_MOTOR) -> Motor:
     raise UnknownNameError("motor", name, CATALOGUE)
 
 
+@typed
 def motor_from_mapping(data: Mapping[str, Any], where: str = "[motor]") -> Motor:
     """Build a motor from a TOML table: a catalogue ``base`` with overrides, or every field.
 

@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
+from hexaleg.checks import typed
 from hexaleg.config import read_text
 from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError, UnknownNameError
 from hexaleg.robot import geometry as _geometry
@@ -299,6 +300,7 @@ AUTO = "auto"
 (:func:`hexaleg.robot.discover.discover_legs`)."""
 
 
+@typed
 def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *,
                legs: Sequence[LegSpec] | str | None = None,
                package_dirs: Sequence[str | Path] = (),

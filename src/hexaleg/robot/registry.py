@@ -14,6 +14,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from types import MappingProxyType
 
+from hexaleg.checks import typed
 from hexaleg.errors import UnknownNameError
 from hexaleg.robot.description import BUILTIN, EXAMPLE_ROBOT_DATA, STAND, RobotDescription
 from hexaleg.robot.model import HEXALEG_LEGS, JOINT_KINDS, LegSpec, Robot
@@ -121,6 +122,7 @@ def description(name: str = DEFAULT_ROBOT) -> RobotDescription:
     return DESCRIPTIONS[name]
 
 
+@typed
 def load(name: str = DEFAULT_ROBOT) -> Robot:
     """Load a registered robot by name (``"hexaleg"``, ``"solo12"``, ``"anymal"``, …), or one's
     own robot from a TOML description (:meth:`RobotDescription.from_toml`).

@@ -30,7 +30,7 @@ import meshcat
 import numpy as np
 from pinocchio.visualize import MeshcatVisualizer
 
-from hexaleg.checks import one_of, positive, real
+from hexaleg.checks import one_of, positive, real, typed
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.dynamics.prepare import analyze
 from hexaleg.errors import InvalidParameterError
@@ -300,6 +300,7 @@ def wait_until_interrupted(ready: Callable[[], None] | None = None) -> None:
         return
 
 
+@typed
 def animate(robot: Robot, motion: Motion, *, forces: Any = None, joint_values: Any = None,
             joint_label: str = "", viewer: meshcat.Visualizer | None = None,
             fps: float = 30.0, arrow_length: float = 0.15,
@@ -346,6 +347,7 @@ def animate(robot: Robot, motion: Motion, *, forces: Any = None, joint_values: A
     return viz
 
 
+@typed
 def serve(robot: Robot, motion: Motion, *, forces: Any = None, joint_values: Any = None,
           joint_label: str = "", fps: float = 30.0, arrow_length: float = 0.15,
           marker_radius: float = 0.018) -> str:
@@ -371,6 +373,7 @@ def serve(robot: Robot, motion: Motion, *, forces: Any = None, joint_values: Any
     return str(viz.viewer.url())
 
 
+@typed
 def export_html(robot: Robot, motion: Motion, path: str | Path, *, forces: Any = None,
                 joint_values: Any = None, joint_label: str = "", fps: float = 30.0,
                 arrow_length: float = 0.15, marker_radius: float = 0.018) -> Path:

@@ -126,3 +126,19 @@ def test_a_design_device_or_pipe_is_refused(tmp_path):
     for path in ("/dev/zero", tmp_path / "design.json"):
         with pytest.raises(ConfigError, match=r"not a regular file.*hexaleg design --out DIR"):
             design_section(path)
+
+
+@pytest.mark.parametrize(("key", "value"), [("wire_diameter", -0.0007), ("body_turns", 0),
+                                            ("mass", None)])
+def test_a_part_of_no_size_is_not_copied_into_the_parts_to_buy(design_json, tmp_path, key,
+                                                               value):
+    """A negative wire diameter in design.json went into the report's parts to buy (#42)."""
+    data = json.loads(design_json.read_text())
+    parts = [p for p in data["recommended"]["parts"] if p.get("torsion_spring")]
+    assert parts, "the tiny design buys a spring"
+    parts[0]["torsion_spring"][key]["value"] = value
+    path = tmp_path / "design.json"
+    path.write_text(json.dumps(data))
+    with pytest.raises(ConfigError, match=rf"torsion_spring\.{key} = {value}; a part to buy "
+                                          r"needs it > 0"):
+        design_section(path)

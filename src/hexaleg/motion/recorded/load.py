@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from hexaleg.checks import real, typed
 from hexaleg.errors import HexalegWarning, InvalidParameterError
 from hexaleg.motion.recorded import base as _base
 from hexaleg.motion.recorded import stance as _stance
@@ -58,6 +59,7 @@ def _drift(t: np.ndarray, x: np.ndarray) -> np.ndarray:
     return (tc @ (x - x.mean(axis=0))) / max(float(tc @ tc), 1e-300)
 
 
+@typed
 def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
                 contacts: bool | None = None, periodic: bool | None = None,
                 max_gap: float = 0.05, ignore: Sequence[str] = ()) -> Motion:
@@ -87,6 +89,7 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
             missing or unknown, time not increasing, a NaN run, a log shorter than two cycles,
             joints beyond their limits, feet underground, a sample with no foot down).
     """
+    max_gap = real("max_gap", max_gap, low=0.0, allowed="a gap >= 0 (s) to fill by interpolation")
     path = Path(path)
     where = f"motion log {path}"
     caught: list[str] = []

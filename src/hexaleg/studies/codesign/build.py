@@ -35,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-from hexaleg.checks import integer, one_of, real
+from hexaleg.checks import integer, one_of, real, typed
 from hexaleg.config import from_mapping
 from hexaleg.design.codesign import Groups
 from hexaleg.design.families import FAMILIES
@@ -96,6 +96,7 @@ def default_gait(robot: Robot, name: str, speed: float, pattern: str | None, sam
     return dataclasses.replace(base, body_height=body_height(robot, base), foot_radius=radius)
 
 
+@typed
 def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = None, *,
              constraints: Constraints | None = None, family: str = "linear",
              samples: int = 100, final_samples: int = 200, max_evaluations: int = 100,

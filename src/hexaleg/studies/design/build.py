@@ -40,6 +40,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from hexaleg.checks import typed
 from hexaleg.design.envelope import PartEnvelope
 from hexaleg.design.fatigue import FatigueCheck
 from hexaleg.design.robustness_map import RobustnessMap
@@ -157,6 +158,7 @@ class DesignResult:
         return line
 
 
+@typed
 def build_design(config: DesignConfig | None = None,
                  progress: Callable[[str], None] | None = None) -> DesignResult:
     """Compute the design answer (module docstring): the stages in order, each timed.

@@ -20,7 +20,7 @@ from dataclasses import dataclass, fields
 from pathlib import Path
 from typing import Any
 
-from hexaleg.checks import is_real
+from hexaleg.checks import is_real, typed
 from hexaleg.errors import ConfigError, InvalidParameterError
 from hexaleg.motion.params import GaitParams
 from hexaleg.robot.registry import description
@@ -100,6 +100,7 @@ def design_gait(data: Mapping[str, Any], robot: str, where: str) -> GaitParams |
     return GaitParams.for_robot(description(robot)).updated(_plain(table, where), where)
 
 
+@typed
 def load_design(path: str | Path, robot: str | None = None) -> LoadedDesign:
     """The springs a design file recommends and what they were designed for (module
     docstring).

@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
+from hexaleg.checks import typed
 from hexaleg.config import json_text, write_file
 from hexaleg.design.tolerance import TolerantSprings
 from hexaleg.outputs import design_plots, plots
@@ -107,6 +108,7 @@ def design_warnings(r: DesignResult) -> tuple[str, ...]:
                         desc=run.description(), gait=r.gait)
 
 
+@typed
 def write_design(out: str | Path = "hexaleg-design", config: DesignConfig | None = None, *,
                  progress: Callable[[str], None] | None = _stderr_progress) -> WrittenDesign:
     """Compute the design and write ``design.json``, ``design.html`` and the plots into ``out``.

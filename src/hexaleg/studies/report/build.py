@@ -34,6 +34,7 @@ from typing import Any
 
 import numpy as np
 
+from hexaleg.checks import typed
 from hexaleg.design import rules as design
 from hexaleg.design.curves import StiffnessCurve, curve_springs, stiffness_curve
 from hexaleg.dynamics import contact
@@ -147,6 +148,7 @@ def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis,
     }
 
 
+@typed
 def build_report(config: ReportConfig | None = None, *, robot: Robot | None = None,
                  progress: Callable[[str], None] | None = None) -> Report:
     """Compute the report: gait, analysis with springs and in the baseline, stiffness curve,

@@ -27,6 +27,10 @@ PART_FIELDS = ("material", "wire_diameter", "mean_diameter", "outer_diameter", "
                "safety_factor", "arbor_diameter", "arbor_margin", "wound_inner_diameter", "mass")
 """The torsion spring's numbers the report shows (of ``TorsionSpring.table()``; the design page's
 springs-to-buy table, ``design_macros.html.j2``)."""
+POSITIVE = ("wire_diameter", "mean_diameter", "outer_diameter", "body_turns", "rate_nmm_per_deg",
+            "mass")
+"""Of :data:`PART_FIELDS`, those a part to buy has > 0 (a negative wire diameter was copied
+into the parts to buy)."""
 
 
 def design_section(path: str | Path | None, robot: Robot | None = None) -> dict[str, Any] | None:
@@ -124,7 +128,13 @@ def recommendation(rec: Mapping[str, Any], metric: str, samples: int, pays: bool
         _require(p, ("group", "joints", "side", "role", "rate", "max_outer_diameter", "problem"),
                  f"recommended.parts[{i}]")
         if p.get("torsion_spring") is not None:
-            _require(p["torsion_spring"], PART_FIELDS, f"recommended.parts[{i}].torsion_spring")
+            where = f"recommended.parts[{i}].torsion_spring"
+            _require(p["torsion_spring"], PART_FIELDS, where)
+            for key in POSITIVE:  # a part to buy of no size is a damaged file, not a part
+                value = p["torsion_spring"][key]
+                number = value.get("value") if isinstance(value, Mapping) else value
+                if not (is_real(number) and number > 0):
+                    raise ValueError(f"{where}.{key} = {number!r}; a part to buy needs it > 0")
     savings = rec["saving"]
     return {"label": rec["label"], "family": rec.get("family", rec["label"].split(",")[0]),
             "groups": list(rec["groups"]), "pays": pays, "metric": metric, "samples": samples,

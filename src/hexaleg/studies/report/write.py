@@ -16,6 +16,7 @@ from pathlib import Path
 
 from matplotlib.figure import Figure
 
+from hexaleg.checks import typed
 from hexaleg.config import json_text, write_file
 from hexaleg.outputs import plots
 from hexaleg.outputs.directory import writable_directory
@@ -80,6 +81,7 @@ def _relative_link(data: dict, out: Path) -> dict:
     return {**data, "design": {**g, "html": link}}
 
 
+@typed
 def write_report(out: str | Path = "hexaleg-report", config: ReportConfig | None = None, *,
                  robot: Robot | None = None, svg: bool = False,
                  progress: Callable[[str], None] | None = _stderr_progress) -> Report:

@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from hexaleg.checks import typed
 from hexaleg.design.codesign import optimal_springs
 from hexaleg.design.evaluator import (
     SPRING_PARAMETERS,
@@ -226,6 +227,7 @@ def _chunks(spec: SweepSpec, todo: Sequence[int]) -> Iterator[tuple[dict, list[i
             yield gaits[gi], block[start:start + spec.chunk_size]
 
 
+@typed
 def run_sweep(spec: SweepSpec, out: str | Path, *, executor: str = "process",
               workers: int | None = None, scheduler: str | None = None,
               progress: bool = False,
