@@ -7,6 +7,8 @@ import os
 import subprocess
 import sys
 
+import pytest
+
 from hexaleg.cli import build_parser, main
 
 
@@ -129,3 +131,23 @@ def test_hexaleg_warnings_print_as_one_line(tmp_path, capsys):
     assert "hexaleg sweep: warning: took over the lock of a sweep that ended without releasing " \
            "it (pid 999999 on host gone, started yesterday)" in err
     assert "HexalegWarning" not in err and "warnings.warn" not in err
+
+
+@pytest.mark.parametrize(("argv", "says"), [
+    (["desing"], "invalid choice: 'desing'.*(did you mean 'design'?)"),
+    (["design", "--robt", "solo12"], "unrecognized arguments: --robt solo12 (did you mean "
+                                     "'--robot'?)"),
+])
+def test_a_misspelt_command_or_option_gets_a_suggestion(argv, says, capsys):
+    """#43: `hexaleg desing` and `--robt` said only what was wrong, not what was meant."""
+    import re
+
+    with pytest.raises(SystemExit) as e:
+        main(argv)
+    assert e.value.code == 2
+    assert re.search(re.escape(says).replace(r"\.\*", ".*"), capsys.readouterr().err)
+
+
+def test_a_name_in_the_wrong_case_gets_a_hint(capsys):
+    assert main(["robot", "--robot", "Solo12"]) == 2
+    assert "unknown robot 'Solo12' (did you mean 'solo12'?)" in capsys.readouterr().err

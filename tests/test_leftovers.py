@@ -28,3 +28,19 @@ def test_a_mujoco_warning_logs_into_the_working_directory_not_the_checkout():
     assert data.warning[mujoco.mjtWarning.mjWARN_BADQPOS].number == 1
     assert "QPOS" in (Path.cwd() / "MUJOCO_LOG.TXT").read_text()
     assert (log.stat().st_mtime_ns if log.exists() else None) == before
+
+
+def test_every_command_s_default_output_is_ignored_by_git():
+    """A command run in the checkout leaves its default output folder there: .gitignore covers
+    each (#43: `git status` was dirty after the README's commands)."""
+    from hexaleg.cli import build_parser
+
+    ignored = (ROOT / ".gitignore").read_text().splitlines()
+    parser = build_parser()
+    commands = next(a for a in parser._actions if a.choices and isinstance(a.choices, dict))
+    defaults = {name: next((a.default for a in sub._actions if a.dest == "out"), None)
+                for name, sub in commands.choices.items()}
+    outs = {d for d in defaults.values() if isinstance(d, str)}
+    assert {"hexaleg-report", "hexaleg-design", "sweep-results"} <= outs
+    for out in outs:
+        assert f"/{out}/" in ignored or f"/{out}" in ignored, out

@@ -9,13 +9,14 @@ from __future__ import annotations
 import argparse
 import functools
 import os
+import re
 import sys
 import warnings
 from collections.abc import Callable, Sequence
-from typing import TextIO
+from typing import NoReturn, TextIO
 
 from hexaleg import __version__
-from hexaleg.errors import HexalegError, HexalegWarning
+from hexaleg.errors import HexalegError, HexalegWarning, did_you_mean
 from hexaleg.robot.registry import ROBOT_HELP  # loaded by `import hexaleg` already
 from hexaleg.simulation.controllers import CONTROLLERS  # no MuJoCo: it loads with a model
 from hexaleg.studies.motion_option import add_motion_option  # no loader: it loads with a log
@@ -288,8 +289,32 @@ SUBCOMMANDS = [_add_robot, _add_motors, _add_gait, _add_paper, _add_report, _add
 """Parser builders, one per subcommand, in the order ``--help`` lists them."""
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse's parser whose usage errors suggest the command or option meant (``hexaleg
+    desing`` → ``design``; ``--robt`` → ``--robot``)."""
+
+    def error(self, message: str) -> NoReturn:
+        choice = re.search(r"invalid choice: '([^']*)' \(choose from (.*)\)", message)
+        if choice:
+            message += did_you_mean(choice.group(1), re.findall(r"'([^']*)'", choice.group(2)))
+        unknown = re.search(r"unrecognized arguments: (-[-\w]*)", message)
+        if unknown:
+            options = [o for a in self._all_actions() for o in a.option_strings]
+            message += did_you_mean(unknown.group(1), options)
+        super().error(message)
+
+    def _all_actions(self) -> list[argparse.Action]:
+        """This parser's actions and those of the subcommand parsers below it."""
+        out = list(self._actions)
+        for action in self._actions:
+            if isinstance(action.choices, dict):
+                for sub in action.choices.values():
+                    out += sub._actions
+        return out
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="hexaleg",
         description="Whole-robot dynamics and energy analysis of legged robots with nonlinear "
                     "elastic joints.")

@@ -17,6 +17,17 @@ class RobotModelError(HexalegError):
     """A robot description (URDF/SRDF) is missing, malformed, or lacks the expected legs/feet."""
 
 
+def did_you_mean(name: str, valid: Iterable[str]) -> str:
+    """``" (did you mean 'x'?)"`` for the valid name closest to ``name`` — the same but for
+    case, else the nearest by difflib's ratio ≥ 0.6 — or ``""``."""
+    import difflib
+
+    options = list(valid)
+    same = [v for v in options if v.lower() == name.lower() and v != name]
+    close = same or difflib.get_close_matches(name, options, n=1)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
 class UnknownNameError(HexalegError, KeyError):
     """A name (joint, pose, robot, parameter, key, ...) is not one of the valid names.
 
@@ -31,8 +42,8 @@ class UnknownNameError(HexalegError, KeyError):
         self.name = name
         self.valid = sorted(str(v) for v in valid)
         super().__init__(
-            f"unknown {kind} {name!r}; valid {_plural(kind)} are: "
-            f"{', '.join(self.valid) or '(none)'}"
+            f"unknown {kind} {name!r}{did_you_mean(str(name), self.valid)}; valid "
+            f"{_plural(kind)} are: {', '.join(self.valid) or '(none)'}"
         )
 
     def __str__(self) -> str:  # KeyError would repr() the message otherwise

@@ -82,3 +82,17 @@ def test_every_numeric_gait_field_has_its_unit():
     numeric = {f.name for f in dataclasses.fields(hexaleg.GaitParams)
                if any(t in str(f.type) for t in ("float", "tuple[float"))}
     assert numeric == set(GAIT_UNITS)
+
+
+def test_a_gait_with_a_speed_is_written_with_the_stride_it_walks():
+    """#41: codesign.json wrote a co-designed gait's stride_length as its unused default
+    (0.06 m) where it walks speed × period = 0.102 m a cycle; read back, it walks the same."""
+    from hexaleg.motion.params import GaitParams
+    from hexaleg.studies.design.load import design_gait, gait_parameters
+
+    gait = GaitParams(speed=0.06, period=1.7)
+    written = gait_parameters(gait)
+    assert written["stride_length"] == {"value": pytest.approx(0.102), "unit": "m"}
+    back = design_gait({"gait": {"parameters": written}}, "hexaleg", "test")
+    assert back is not None and back.stride == pytest.approx(gait.stride)
+    assert back.period == gait.period and back.speed == gait.speed

@@ -61,9 +61,13 @@ GAIT_UNITS: dict[str, str] = {
 
 def gait_parameters(gait: GaitParams) -> dict[str, Any]:
     """The gait's set fields for JSON, numbers as ``{value, unit}`` (:data:`GAIT_UNITS`): what
-    :func:`design_gait` reads back to the same :class:`GaitParams`."""
+    :func:`design_gait` reads back to a :class:`GaitParams` that walks the same. With a
+    ``speed`` the stride is ``speed × period`` (the speed wins), and ``stride_length`` is
+    written as that: the stride the gait walks, not the field's unused default (#41: 0.06 m
+    for a co-designed gait that walks 0.102 m a cycle)."""
     plain = json.loads(json.dumps({f.name: getattr(gait, f.name) for f in fields(gait)
                                    if getattr(gait, f.name) is not None}))
+    plain["stride_length"] = gait.stride
     return {k: {"value": v, "unit": GAIT_UNITS[k]} if k in GAIT_UNITS else v
             for k, v in plain.items()}
 
