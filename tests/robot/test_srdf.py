@@ -23,7 +23,8 @@ def edited_srdf(tmp_path, old, new):
 def test_a_misspelt_joint_in_a_pose_is_refused_with_the_joints(tmp_path):
     srdf = edited_srdf(tmp_path, '<joint name="LF_femur"', '<joint name="LF_femr"')
     with pytest.raises(UnknownNameError, match=r"unknown joint in SRDF .*edited\.srdf pose "
-                                               r"'\w+' 'LF_femr'; .*LF_femur"):
+                                               r"'\w+' 'LF_femr' \(did you mean 'LF_femur'\?\); "
+                                               r".*LF_femur"):
         load_robot(DEFAULT_URDF, srdf)
 
 

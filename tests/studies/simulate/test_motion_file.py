@@ -98,8 +98,8 @@ def test_a_directory_without_the_motion_file_is_named(written, tmp_path):
         motion_path(tmp_path)
     with pytest.raises(InvalidParameterError, match="does not exist"):
         motion_path(tmp_path / "nowhere")
-    with pytest.raises(UnknownNameError, match="'with_springs'; valid simulated runs are: "
-                                               "baseline, springs"):
+    with pytest.raises(UnknownNameError, match=r"'with_springs' \(did you mean 'springs'\?\); "
+                                               "valid simulated runs are: baseline, springs"):
         motion_path(written, "with_springs")
 
 
