@@ -1,4 +1,4 @@
-"""Fixtures of the force-solver tests: one group's reduced programs."""
+"""Fixtures of the force-solver tests: one group's reduced programs, a gait on one foot."""
 
 from __future__ import annotations
 
@@ -7,6 +7,7 @@ import dataclasses
 import numpy as np
 import pytest
 
+import hexaleg
 from hexaleg.dynamics.prepare import prepare
 from hexaleg.dynamics.reduction import reduce
 from hexaleg.dynamics.solver import group_program
@@ -28,3 +29,13 @@ def _group_data(robot, motion, contact, objective, tau_s=None):
 def group_data(robot):
     """``group_data(motion, contact, objective, tau_s=None)``: see :func:`_group_data`."""
     return lambda *args, **kw: _group_data(robot, *args, **kw)
+
+
+@pytest.fixture
+def one_foot(walk200):
+    """The 200-sample gait with sample 5 on the LF foot alone (a one-foot stance)."""
+    stance = walk200.stance.copy()
+    stance[5] = False
+    stance[5, 0] = True
+    return hexaleg.Motion(t=walk200.t, q=walk200.q, v=walk200.v, a=walk200.a, stance=stance,
+                          feet=walk200.feet, period=walk200.period, distance=walk200.distance)

@@ -50,16 +50,11 @@ def test_two_feet_leave_one_free_coordinate_and_an_unreachable_part(robot, walk2
     assert sorted(g.m for g in red.groups) == [1, 3]
 
 
-def test_one_foot_leaves_no_free_coordinate_and_a_named_error(robot, walk200):
+def test_one_foot_leaves_no_free_coordinate_and_a_named_error(robot, one_foot):
     """One point foot (#38, #39): base rows of rank 3, no null space (m = 0), its force the
     least-norm one; a motion that needs a moment about the foot is refused by name, never a
     reshape traceback (it ended a quadruped's crawl at duty factor 0.3 and every biped)."""
-    stance = walk200.stance.copy()
-    stance[5] = False
-    stance[5, 0] = True
-    one = hexaleg.Motion(t=walk200.t, q=walk200.q, v=walk200.v, a=walk200.a, stance=stance,
-                         feet=walk200.feet, period=walk200.period, distance=walk200.distance)
-    prepared = prepare(robot, one)
+    prepared = prepare(robot, one_foot)
     red = reduce(prepared.system)
     single = [g for g in red.groups if g.m == 0]
     assert len(single) == 1 and single[0].rows.tolist() == [5] and not red.reachable[5]

@@ -45,15 +45,10 @@ def test_unreachable_wrench_is_caught_on_every_path(robot, walk200, objective):
         prepare(robot, two).evaluate(objective=objective)
 
 
-def _one_foot(robot, walk200, force):
-    """The gait with sample 5 on the LF foot alone, its base wrench the one ``force`` gives
-    (so that it is reachable), prepared."""
-    stance = walk200.stance.copy()
-    stance[5] = False
-    stance[5, 0] = True
-    one = hexaleg.Motion(t=walk200.t, q=walk200.q, v=walk200.v, a=walk200.a, stance=stance,
-                         feet=walk200.feet, period=walk200.period, distance=walk200.distance)
-    prepared = prepare(robot, one)
+def _one_foot(robot, one_foot, force):
+    """The one-foot gait (conftest), its base wrench at sample 5 the one ``force`` gives (so
+    that it is reachable), prepared."""
+    prepared = prepare(robot, one_foot)
     f = np.zeros(prepared.system.A.shape[2])
     f[:3] = force
     prepared.system.b_base[5] = prepared.system.A[5] @ f  # before anything is reduced
@@ -61,13 +56,13 @@ def _one_foot(robot, walk200, force):
 
 
 @pytest.mark.parametrize("objective", ["joule", "torque_squared", "electrical"])
-def test_one_foot_gets_the_only_force_its_base_rows_allow(robot, walk200, objective):
+def test_one_foot_gets_the_only_force_its_base_rows_allow(robot, one_foot, objective):
     """One stance foot (#38, #39): no freedom, its force is the one the base wrench fixes — on
     the fast path, in the cvxpy reference, in the design program's gains."""
     from hexaleg.dynamics.reference import solve_reference
 
     force = np.array([0.5, 0.2, 12.0])
-    prepared = _one_foot(robot, walk200, force)
+    prepared = _one_foot(robot, one_foot, force)
     analysis = prepared.evaluate({}, objective)
     np.testing.assert_allclose(analysis.forces[5, 0], force, atol=1e-9)
     s = prepared.system
@@ -77,7 +72,7 @@ def test_one_foot_gets_the_only_force_its_base_rows_allow(robot, walk200, object
     np.testing.assert_allclose(prepared.gains("joule").f0[5, :3], force, atol=1e-9)
 
 
-def test_one_foot_outside_its_cone_is_named(robot, walk200):
-    prepared = _one_foot(robot, walk200, np.array([9.0, 0.0, 10.0]))  # 0.9 > μ = 0.6
+def test_one_foot_outside_its_cone_is_named(robot, one_foot):
+    prepared = _one_foot(robot, one_foot, np.array([9.0, 0.0, 10.0]))  # 0.9 > μ = 0.6
     with pytest.raises(InfeasibleForcesError, match=r"sample 5"):
         prepared.baseline()
