@@ -81,6 +81,7 @@ def test_every_example_has_a_log_and_every_log_a_script():
     assert sorted(p.stem for p in LOGS.glob("*.log")) == [p.stem for p in SCRIPTS]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("script", SCRIPTS, ids=lambda p: p.stem)
 def test_example_prints_its_log(script: Path, tmp_path: Path):
     log = LOGS / f"{script.stem}.log"

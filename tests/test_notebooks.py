@@ -40,6 +40,7 @@ def test_every_cell_has_an_id(path):
     assert len(set(ids)) == len(ids), f"{path.name}: two cells share an id"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.name)
 def test_executes(path, tmp_path):
     nb = nbformat.read(path, as_version=4)
