@@ -69,3 +69,20 @@ def test_bad_setup_is_named(prepared200):
     with pytest.raises(InvalidParameterError, match="stop shift of femur"):
         design_setup(prepared200, ["femur"], "one_sided", "joule", None, None, "electrical",
                      [{"femur": float("nan")}])
+
+
+def test_relative_angles_are_from_each_centre_and_reflected_where_mirrored(prepared200):
+    """The angle a design's stops are placed on: q − c, and c − q on a mirrored joint."""
+    import numpy as np
+
+    from hexaleg.design.setup import design_setup
+
+    joints = prepared200.robot.joints("femur")
+    setup = design_setup(prepared200, ["femur"], "one_sided", "joule", None, None,
+                         mirrored=[joints[0]])
+    r = setup.relative("femur")
+    q = prepared200.q[:, [prepared200.robot.column(j) for j in joints]]
+    c = (q.min(0) + q.max(0)) / 2
+    assert r.shape == q.shape
+    np.testing.assert_array_equal(r[:, 0], c[0] - q[:, 0])
+    np.testing.assert_array_equal(r[:, 1:], q[:, 1:] - c[1:])

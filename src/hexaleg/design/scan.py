@@ -96,8 +96,7 @@ def relaxed_values(setup: DesignSetup, state: State, group: str,
     joints = setup.groups[group]
     Gj = np.stack([gains.G[:, :, p.robot.column(j)] for j in joints], axis=1)  # (T, J, nj)
     sign = np.array([-1.0 if j in setup.mirrored else 1.0 for j in joints])
-    r = np.stack([(p.q[:, p.robot.column(j)] - setup.centre[j]) * s
-                  for j, s in zip(joints, sign, strict=True)], axis=1)  # (T, J)
+    r = setup.relative(group)  # (T, J)
     SG = Gj * sign[None, :, None]
     above = (side if angle == "contact" else fam.side(angle, geo)) == "above"
     # singles (t, j): the scanned columns against the fixed ones and τ₀

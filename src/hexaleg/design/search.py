@@ -108,17 +108,6 @@ class GeometrySearch:
                 "converged": self.converged, "levels": dict(self.levels)}
 
 
-def _relative(setup: DesignSetup, group: str) -> np.ndarray:
-    """Every sample's angle of the group's joints from their centre of motion, rad, shape
-    (T · joints,); a mirrored joint's reflected (the design's law sees ``2c − q``)."""
-    p = setup.prepared
-    out = []
-    for j in setup.groups[group]:
-        r = p.q[:, p.robot.column(j)] - setup.centre[j]
-        out.append(-r if j in setup.mirrored else r)
-    return np.concatenate(out)
-
-
 def _levels(r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(lowest, highest) angle of each level of ``r`` (ascending), rad: sorted samples split
     where neighbours are more than :data:`MERGE` apart."""
@@ -135,10 +124,11 @@ class _Axis:
     above: np.ndarray
     below: np.ndarray
     off: tuple[float, float]
+    levels: int
 
 
 def _axis(setup: DesignSetup, group: str, wind: float) -> _Axis:
-    r = _relative(setup, group)
+    r = setup.relative(group).ravel()
     shifts = sorted({float(s.get(group, 0.0)) for s in setup.shifts} or {0.0})
     lo, hi = _levels(r)
     above = np.unique(np.concatenate([lo - s - EDGE for s in shifts]))
@@ -146,13 +136,13 @@ def _axis(setup: DesignSetup, group: str, wind: float) -> _Axis:
     if not setup.fam.preloaded_stops:  # beyond the far end: engaged throughout, wound up
         above = np.r_[above[0] - wind, above]
         below = np.r_[below, below[-1] + wind]
-    return _Axis(above, below, off_angles(setup, group))
+    return _Axis(above, below, off_angles(setup, group), int(lo.size))
 
 
 def off_angles(setup: DesignSetup, group: str) -> tuple[float, float]:
     """(an angle below, an angle above) every sample of the group and every shift, rad from the
     centre of motion: a stop there never engages."""
-    r = _relative(setup, group)
+    r = setup.relative(group)
     reach = max((abs(float(s.get(group, 0.0))) for s in setup.shifts), default=0.0) + OFF
     return float(r.min()) - reach, float(r.max()) + reach
 
@@ -348,7 +338,7 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
     k = key(state)
     if k not in solutions:  # every candidate infeasible: the start as it is
         solutions[k] = setup.solve(state, exact=False)
-    levels = {g: int(_levels(_relative(setup, g))[0].size) for g in groups}
+    levels = {g: ax.levels for g, ax in axes.items()}
     return GeometrySearch(state, solutions[k], len(seen), sweeps,
                           converged if max_sweeps else None, method, levels)
 

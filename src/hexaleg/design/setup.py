@@ -140,6 +140,15 @@ class DesignSetup:
     def half_range(self, group: str) -> float:
         return max((self.q_max[j] - self.q_min[j]) / 2 for j in self.groups[group])
 
+    def relative(self, group: str) -> np.ndarray:
+        """Every sample's angle of the group's joints from their centre of motion, rad, shape
+        (T, joints); a mirrored joint's reflected (its spring is the design's law at
+        ``2c − q``, :meth:`problem`): the angle the design's stops are placed on."""
+        p = self.prepared
+        return np.stack([(p.q[:, p.robot.column(j)] - self.centre[j])
+                         * (-1.0 if j in self.mirrored else 1.0) for j in self.groups[group]],
+                        axis=1)
+
     def problem(self, geometry: Mapping[str, Geometry]) -> DesignProblem:
         """The design program of ``geometry`` (group → geometry)."""
         p, fam = self.prepared, self.fam
