@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from hexaleg.studies.design.build import build_design
+from hexaleg.design.chain.chain import DesignChain
 
 
 def pct(x: float) -> str:
@@ -38,7 +38,7 @@ def tick(axis: str, value: object) -> str:
 
 
 def main() -> None:
-    r = build_design()
+    r = DesignChain().run()
     m = r.config.design.metric
     print(f"{r.title}, {r.mass:.3f} kg, {r.actuator}; gait period {r.gait.period:g} s, "
           f"stride {r.gait.stride:g} m, {r.gait.samples} samples")

@@ -266,7 +266,7 @@ def scaling(robot, args, t_rnea_per_sample):
     print("   samples   joule μ = 0.6               joule μ = 0.3")
     per: dict[tuple[float, int], float] = {}
     for n in (250, 1000, 4000, 16000):
-        motion = hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=n))
+        motion = hexaleg.gait(robot, hexaleg.GaitParams(samples=n))
         cells = []
         for mu in (0.6, 0.3):
             _, t, _, _ = sweep_time(robot, motion, "joule", mu, "soc", _designs(robot, 20),
@@ -290,8 +290,8 @@ def main() -> None:
     args = parser.parse_args()
     warnings.filterwarnings("ignore", category=UserWarning)
 
-    robot = hexaleg.load_robot()
-    motion = hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=args.samples))
+    robot = hexaleg.load()
+    motion = hexaleg.gait(robot, hexaleg.GaitParams(samples=args.samples))
     designs = _designs(robot, args.designs)
     t_rnea = _best(lambda: rnea_loop(robot, motion), 5)
     t_prep = _best(lambda: prepare(robot, motion), 3)

@@ -2,21 +2,21 @@
 
 Run:  python analysis/bench_design.py [--samples 1000] [--repeat 5]
 
-For the default tripod gait and three class groups (coxa, femur, tibia; joule objective, one
-shared design per class) it times, at a fixed geometry, the fast path (condensed active set,
+For the default tripod gait and three class groups (coxa, femur, tibia; joule objective, one shared
+design per class) it times, at a fixed geometry, the fast path (condensed active set,
 :func:`hexaleg.design.program.solve_design`) and the cvxpy reference
 (:func:`hexaleg.design.program_reference.solve_design_reference`) on the same program, on a floor
-where no inequality binds (μ = 0.6) and where the friction cones bind (μ = 0.3, the paper's
-Table 3 static friction), and prints their ratio and agreement; then the whole
-``optimal_springs`` call with the geometry searched, and one stop's exhaustive scan with its
-bounds against every candidate solved (:func:`scan_ratio`). Targets (issue "Springs as decision
-variables"): ≤ 50 ms when nothing binds, ≤ 2 s otherwise. Last, the wall time of the two
-commands a user runs, each a fresh process (imports included): ``hexaleg design`` with its maps
-and robust design (target ≤ 30 s, issues "The design answer" and #30) and ``hexaleg report``
-(≤ 8 s), and ``hexaleg design``'s pipeline in this process stage by stage (``build_design``), wall
-and CPU time per stage. Each line gives its CPU share (CPU time / wall time, as
-bench_simulate.py does): on the 2-core machine other busy processes stretch the wall time, and a
-share well under 1 says by how much (the CPU time is then the better estimate of a quiet run).
+where no inequality binds (μ = 0.6) and where the friction cones bind (μ = 0.3, the paper's Table 3
+static friction), and prints their ratio and agreement; then the whole ``optimal_springs`` call with
+the geometry searched, and one stop's exhaustive scan with its bounds against every candidate solved
+(:func:`scan_ratio`). Targets (issue "Springs as decision variables"): ≤ 50 ms when nothing binds, ≤
+2 s otherwise. Last, the wall time of the two commands a user runs, each a fresh process (imports
+included): ``hexaleg design`` with its maps and robust design (target ≤ 30 s, issues "The design
+answer" and #30) and ``hexaleg report`` (≤ 8 s), and ``hexaleg design``'s pipeline in this process
+stage by stage (``DesignChain.run``), wall and CPU time per stage. Each line gives its CPU share
+(CPU time / wall time, as bench_simulate.py does): on the 2-core machine other busy processes
+stretch the wall time, and a share well under 1 says by how much (the CPU time is then the better
+estimate of a quiet run).
 
 ``--stages`` runs only the last part (the pipeline by stage and the two commands).
 """
@@ -32,7 +32,7 @@ from typing import Any
 import numpy as np
 
 import hexaleg
-from hexaleg.design.codesign import design_problem, optimal_springs
+from hexaleg.design.optimal import design_problem, optimal_springs
 from hexaleg.design.program import solve_design
 from hexaleg.design.program_reference import solve_design_reference
 
@@ -58,8 +58,8 @@ def main() -> None:
     args = parser.parse_args()
     if args.stages:
         return
-    robot = hexaleg.load_robot()
-    motion = hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=args.samples))
+    robot = hexaleg.load()
+    motion = hexaleg.gait(robot, hexaleg.GaitParams(samples=args.samples))
     print(f"default tripod gait, {motion.n_samples} samples per cycle, 3 class groups, joule")
     for mu in (0.6, 0.3):
         prepared = hexaleg.prepare(robot, motion, contact=hexaleg.ContactParams(mu=mu))
@@ -144,15 +144,15 @@ DESIGN_TARGET = 30.0
 
 
 def stages() -> None:
-    """``hexaleg design``'s pipeline (``build_design``, default robot) in this process: wall and
-    CPU time of each stage, its CPU share, and the total against the target."""
-    from hexaleg.studies.design.build import build_design
+    """``hexaleg design``'s pipeline (``DesignChain().run()``, default robot) in this process:
+    wall and CPU time of each stage, its CPU share, and the total against the target."""
+    from hexaleg.design.chain.chain import DesignChain
 
     marks: list[tuple[float, float]] = []
     marks.append((time.perf_counter(), time.process_time()))
-    result = build_design(progress=lambda _msg: marks.append((time.perf_counter(),
-                                                              time.process_time())))
-    print("hexaleg design by stage (build_design, default robot; this process)")
+    result = DesignChain(progress=lambda _msg: marks.append((time.perf_counter(),
+                                                              time.process_time()))).run()
+    print("hexaleg design by stage (DesignChain.run, default robot; this process)")
     print(f"  {'stage':<18} {'wall s':>7} {'CPU s':>7} {'CPU share':>9}")
     for name, (w0, c0), (w1, c1) in zip(result.timings, marks[:-1], marks[1:], strict=True):
         print(f"  {name:<18} {w1 - w0:7.2f} {c1 - c0:7.2f} {(c1 - c0) / (w1 - w0):9.2f}")

@@ -67,8 +67,8 @@ def timed(call: Callable[[], Any]) -> tuple[Any, float, float]:
 
 
 def main() -> None:
-    robot = hexaleg.load_robot()
-    motion = hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=RATE))
+    robot = hexaleg.load()
+    motion = hexaleg.gait(robot, hexaleg.GaitParams(samples=RATE))
     with tempfile.TemporaryDirectory() as tmp:
         d = Path(tmp)
         write_log(robot, motion, d / "warm.csv", 3, base=True)

@@ -27,11 +27,12 @@ import tempfile
 import time
 from pathlib import Path
 
+from hexaleg.commands.design.write import write_design
+from hexaleg.commands.simulate.study import load_study
+from hexaleg.design.chain.config import DesignConfig
 from hexaleg.errors import HexalegError
 from hexaleg.robot.registry import DESCRIPTIONS
-from hexaleg.studies.design.config import DesignConfig
-from hexaleg.studies.design.write import write_design
-from hexaleg.studies.simulate.study import load_study
+from hexaleg.scenario.scenario import Scenario
 
 TEST_ROBOTS = {"spider": str(Path(__file__).resolve().parents[1] / "tests" / "data" /
                              "spider.toml")}
@@ -47,7 +48,8 @@ def design_time(robot: str) -> tuple[float, str]:
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory() as out:
         try:
-            r = write_design(out, DesignConfig.load(robot), progress=None).result
+            config = DesignConfig.from_scenario(Scenario.load(robot))
+            r = write_design(out, config, progress=None).result
             slowest = sorted(r.timings.items(), key=lambda kv: -kv[1])[:2]
             g, m, rec = r.gait, r.config.design.metric, r.recommended
             what = (f"gait {g.period:.3g} s / stride {1e3 * g.stride:.3g} mm / step "
@@ -65,7 +67,7 @@ def design_time(robot: str) -> tuple[float, str]:
 def simulate_speed(robot: str) -> tuple[float, float, str]:
     """Real-time factor of the two runs' stepping, the timestep (s), the verdict."""
     try:
-        study = load_study(robot, overrides={"cycles": 4})
+        study = load_study(Scenario.load(robot), overrides={"cycles": 4})
         s = study.run()
     except HexalegError as err:
         return float("nan"), float("nan"), f"{type(err).__name__}: {str(err)[:80]}"

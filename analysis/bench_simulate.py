@@ -27,9 +27,10 @@ import time
 
 import numpy as np
 
+from hexaleg.commands.simulate.study import load_study
 from hexaleg.robot.springs import DeadZoneSpring, PreloadedSpring, SpringSet
+from hexaleg.scenario.scenario import Scenario
 from hexaleg.simulation.run import simulate
-from hexaleg.studies.simulate.study import load_study
 
 CPU_SHARE: list[float] = []
 """This thread's CPU time over the wall time of each timed call: below ~0.9 the process waited
@@ -57,7 +58,7 @@ def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--cycles", type=int, default=10)
     args = parser.parse_args()
-    study = load_study("hexaleg")
+    study = load_study(Scenario.load("hexaleg"))
     settings = dataclasses.replace(study.settings, cycles=args.cycles, evaluate=2,
                                    force_samples=0)
     print(f"hexaleg default gait, {args.cycles} cycles:")

@@ -12,9 +12,9 @@ put a foot on its friction cone's surface, issue #15).
    the same state: libraries imported, no robot or gait cached. Target ≤ 1 s.
 2. The placement study: coxa, femur and tibia × 50 k × 10 dead-zone widths (1500 points, one
    class sprung at a time) on the process pool, then each class's optimum refined from the grid's
-   best point by Nelder–Mead, every combination of classes, and the robustness of the best set
-   to ±20 % period and stride; then the global optimum of the preloaded family on every set of
-   classes (hexaleg.placement, Joule energy), beside the old search's saving. Target ≤ 20 s
+   best point by Nelder–Mead, every combination of classes, and the robustness of the best set to
+   ±20 % period and stride; then the global optimum of the preloaded family on every set of classes
+   (hexaleg.design.placement.placement, Joule energy), beside the old search's saving. Target ≤ 20 s
    on 2 cores for the grid at μ = 0.3 (issue #15). The same grid is then run serially in this
    process for the pool's speed-up (and must give the same table).
 """
@@ -32,6 +32,8 @@ from pathlib import Path
 import numpy as np
 
 import hexaleg
+import hexaleg.design.placement
+import hexaleg.dynamics.prepare
 from hexaleg.design.evaluator import RunSpec, clear_cache, evaluator
 from hexaleg.design.optimise import optimise
 from hexaleg.design.placement import placement
@@ -39,9 +41,9 @@ from hexaleg.design.robustness import robustness
 from hexaleg.design.rules import PAPER_DEAD_ZONE_RATIO
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.motion.params import GaitParams
-from hexaleg.studies.sweep.executors import default_workers
-from hexaleg.studies.sweep.runner import run_sweep
-from hexaleg.studies.sweep.spec import SweepSpec
+from hexaleg.sweep.executors import default_workers
+from hexaleg.sweep.runner import run_sweep
+from hexaleg.sweep.spec import SweepSpec
 
 CLASSES = ("coxa", "femur", "tibia")
 
@@ -67,15 +69,15 @@ def single_class(out: Path, samples: int, workers: int, run: RunSpec) -> None:
     res_serial, t_serial = _timed(lambda: run_sweep(spec, out / "single-serial",
                                                     executor="serial"))
     assert res_pool.table.equals(res_serial.table)
-    robot = hexaleg.load_robot()
+    robot = hexaleg.load()
     gait = GaitParams(samples=samples)
     ev = evaluator(run, {"samples": samples})
 
     def fresh(k: float) -> float:
-        motion = hexaleg.tripod_gait(robot, gait)
+        motion = hexaleg.gait(robot, gait)
         springs = ev.springs({"femur": robot.joints("femur")},
                              {"femur": {"k": k, "dead_zone": PAPER_DEAD_ZONE_RATIO}})
-        return hexaleg.analyze(robot, motion, springs,
+        return hexaleg.dynamics.prepare.analyze(robot, motion, springs,
                                contact=run.contact).metrics["total"]["electrical"]
 
     _, t_fresh10 = _timed(lambda: [fresh(k) for k in ks[::10]])

@@ -7,7 +7,7 @@ gait's), the default search (restarted Nelder–Mead, 100 evaluations a search, 
 cycle; the rows at 200) and the full spring rules of ``hexaleg design`` on the chosen gait (the
 default: parsimony, stop tolerance, envelope and hard stop, fatigue, arbor): the four rows, the
 sequential design beside them, the chosen gait, the constraints on it, the check that
-``hexaleg.tripod_gait`` + ``Prepared.evaluate`` of the reported gait and springs reproduce their
+``hexaleg.gait`` + ``Prepared.evaluate`` of the reported gait and springs reproduce their
 energy (the inner program's and the springs to buy), the rules' figures, the springs read back
 by ``hexaleg.load_design`` from ``codesign.json``, and the MuJoCo run with the springs to buy.
 Rounded so that the log (analysis/logs/codesign_hexaleg.log) is the same on every run.
@@ -20,8 +20,8 @@ import tempfile
 from pathlib import Path
 
 import hexaleg
-from hexaleg.studies.codesign.rules import per_metre
-from hexaleg.studies.codesign.write import write_result
+from hexaleg.commands.codesign.write import write_result
+from hexaleg.design.codesign.rules import per_metre
 
 
 def main() -> None:
@@ -38,8 +38,8 @@ def main() -> None:
                                        "duty_factor", "period")))
     held = all((v >= b) if k == "min" else (v <= b) for v, b, _u, k in r.measures.values())
     print(f"every constraint holds: {held}")
-    robot = hexaleg.load_robot()
-    prepared = hexaleg.prepare(robot, hexaleg.tripod_gait(robot, r.chosen),
+    robot = hexaleg.load()
+    prepared = hexaleg.prepare(robot, hexaleg.gait(robot, r.chosen),
                                contact=r.constraints.contact())
 
     def energy(springs: hexaleg.SpringSet) -> float:

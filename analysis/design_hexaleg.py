@@ -6,7 +6,7 @@ Run:  python analysis/design_hexaleg.py   (expected output: analysis/logs/design
 The default gait at 200 samples per cycle, AX-18A servos, minimum-Joule foot forces, μ = 0.6.
 Per joint class (the same spring on all six legs):
 
-* "Nelder–Mead": today's :func:`hexaleg.optimise` on the Joule energy — a symmetric dead zone
+* "Nelder–Mead": today's :func:`optimise` on the Joule energy — a symmetric dead zone
   (k, θ_k) with its neutral offset free in ±1 rad, grid start then Nelder–Mead;
 * "same geometry": :func:`hexaleg.optimal_springs` with the dead-zone family at exactly the
   Nelder–Mead geometry (θ⁻ = offset − θ_k, θ⁺ = offset + θ_k), k⁺ and k⁻ from the convex
@@ -20,7 +20,10 @@ Angles are from the centre of each joint's range of motion in the gait.
 from __future__ import annotations
 
 import hexaleg
+from hexaleg.design.evaluator import Evaluator
 from hexaleg.design.families import FAMILIES
+from hexaleg.design.optimal import OptimalSprings
+from hexaleg.design.optimise import optimise
 
 CLASSES = ("coxa", "femur", "tibia")
 ROUND_OFF = 1e-6
@@ -28,7 +31,7 @@ ROUND_OFF = 1e-6
 ~1e-8 of the largest, and those digits change with the BLAS kernels); real ones are ~1e-2."""
 
 
-def _magnitudes(res: hexaleg.OptimalSprings, group: str) -> str:
+def _magnitudes(res: OptimalSprings, group: str) -> str:
     geometry = ", ".join(f"{k} {v:+.3f}" if isinstance(v, float) else f"{k} {v}"
                          for k, v in res.geometry[group].items())
     values = ", ".join(f"{k} {v:.4g}" if abs(v) > ROUND_OFF else f"{k} 0"
@@ -37,15 +40,15 @@ def _magnitudes(res: hexaleg.OptimalSprings, group: str) -> str:
 
 
 def main() -> None:
-    robot = hexaleg.load_robot()
-    motion = hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=200))
+    robot = hexaleg.load()
+    motion = hexaleg.gait(robot, hexaleg.GaitParams(samples=200))
     prepared = hexaleg.prepare(robot, motion)
-    ev = hexaleg.Evaluator(prepared)
+    ev = Evaluator(prepared)
     base = prepared.baseline()["total"]["joule"]
     print(f"default tripod gait, 200 samples, joule per cycle without springs {base:.4f} J")
     for cls in CLASSES:
         print(f"\n{cls}")
-        old = hexaleg.optimise(ev, cls, robot.joints(cls), "joule", offset_bounds=(-1.0, 1.0))
+        old = optimise(ev, cls, robot.joints(cls), "joule", offset_bounds=(-1.0, 1.0))
         print(f"  {'Nelder–Mead (dead zone)':<26} {old.value:.4f} J  saving "
               f"{100 * old.saving:+6.2f} %  k {old.k:.4g}, theta_k {old.theta_k:.3f}, "
               f"offset {old.offset:+.3f}")

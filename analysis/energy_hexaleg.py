@@ -3,7 +3,7 @@ the paper's springs on the femurs.
 
 Run:  python analysis/energy_hexaleg.py      (expected output: analysis/logs/energy_hexaleg.log)
 
-The default gait (``hexaleg.tripod_gait``: period 1 s, duty factor 0.5, stride 0.06 m, 1000
+The default gait (``hexaleg.gait``: period 1 s, duty factor 0.5, stride 0.06 m, 1000
 samples) on the built-in robot with AX-18A servos; foot forces from the minimum-Joule program
 (``objective="joule"``). Per joint class, summed over the six legs, J per cycle:
 
@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import hexaleg
 from hexaleg.design.rules import paper_style_springs
+from hexaleg.robot.catalogue import DEFAULT_MOTOR
 
 METRICS = ("positive_work", "joule", "electrical")
 
@@ -40,14 +41,14 @@ def class_totals(metrics: dict, robot: hexaleg.Robot) -> dict[str, dict[str, flo
 
 
 def main() -> None:
-    robot = hexaleg.load_robot()
-    motion = hexaleg.tripod_gait(robot)
+    robot = hexaleg.load()
+    motion = hexaleg.gait(robot)
     prepared = hexaleg.prepare(robot, motion)
     springs = paper_style_springs(robot, motion, "femur")
     without = class_totals(prepared.evaluate().metrics, robot)
     with_ = class_totals(prepared.evaluate(springs).metrics, robot)
     print(f"robot {robot.name}: {robot.nj} joints, {robot.mass:.4g} kg; gait: period "
-          f"{motion.period:.4g} s, {motion.n_samples} samples; motor {hexaleg.DEFAULT_MOTOR}")
+          f"{motion.period:.4g} s, {motion.n_samples} samples; motor {DEFAULT_MOTOR}")
     lf = springs["LF_femur"]
     print(f"paper-style springs on the {len(springs)} femurs; LF_femur: k_M = {lf.stiffness:.4g} "
           f"N·m/rad, θ_k = {lf.theta_k:.4g} rad about {lf.neutral:.4g} rad")

@@ -13,8 +13,9 @@ Without gravity the motor torque is M = J θ̈ − τ_spring (eq. 13/14 with g =
 * peak |M| is flat at J ω² θ_k for κ = kα in [J ω², J ω² (A + θ_k)/(A − θ_k)]: saving 1 − θ_k/A;
 * positive work per period is least at κ = J ω² (1 + √2 θ_k/(A − θ_k)) (closed forms derived in
   docs/paper.md), checked here by a bounded scalar search on the sampled cost
-  (``hexaleg.metrics``: positive work ∫ max(0, M θ̇) dt, peak and RMS torque; sampled at 4096
-  points per period, so the peaks and the optimum agree with the closed forms to ≈ 1e-3).
+  (``hexaleg.dynamics.energy.metrics``: positive work ∫ max(0, M θ̇) dt, peak and RMS torque;
+  sampled at 4096 points per period, so the peaks and the optimum agree with the closed forms to ≈
+  1e-3).
 """
 
 from __future__ import annotations
@@ -25,12 +26,14 @@ import numpy as np
 from scipy.optimize import minimize_scalar
 
 import hexaleg
+import hexaleg.dynamics.energy
 from hexaleg import units
+from hexaleg.robot.catalogue import CATALOGUE, DEFAULT_MOTOR
 
 MASS, COM_MM, INERTIA_KGMM2 = 3.611e-2, 47.141, 107.059  # Table 6
 A, OMEGA, THETA_K_DEG, ALPHA = 0.3, 2.0, 7.32, 1.05  # eq. 25, Section 4.2
 N = 4096  # samples per period
-MOTOR = hexaleg.CATALOGUE[hexaleg.DEFAULT_MOTOR]  # only its Joule/electrical terms use it
+MOTOR = CATALOGUE[DEFAULT_MOTOR]  # only its Joule/electrical terms use it
 
 J = MASS * float(units.mm_to_m(COM_MM)) ** 2 + float(units.kgmm2_to_kgm2(INERTIA_KGMM2))
 T = np.arange(N) * (2 * math.pi / OMEGA) / N
@@ -39,10 +42,11 @@ THETA_DDOT = -(OMEGA**2) * THETA
 
 
 def metrics(k: float) -> dict[str, float]:
-    """Totals of ``hexaleg.metrics`` for the motor torque with the spring of stiffness k."""
+    """Totals of ``hexaleg.dynamics.energy.metrics`` for the motor torque with the spring of
+    stiffness k."""
     spring = hexaleg.DeadZoneSpring.from_paper(0.0, THETA_K_DEG, ALPHA, convention="eq14")
     tau = J * THETA_DDOT - spring.with_stiffness(k).torque(THETA)
-    return hexaleg.metrics(tau, THETA_DOT, T[1], MOTOR)["total"]
+    return hexaleg.dynamics.energy.metrics(tau, THETA_DOT, T[1], MOTOR)["total"]
 
 
 def main() -> None:

@@ -4,7 +4,7 @@ Run:  python analysis/simulate_hexaleg.py    (expected output: analysis/logs/sim
 
 The default tripod gait with its servo (AX-18A) and the springs ``hexaleg simulate`` uses by
 default (the globally optimal linear springs on the femurs), simulated with and without them for
-4 cycles, the last 2 evaluated (``hexaleg.studies.simulate``):
+4 cycles, the last 2 evaluated (``hexaleg.commands.simulate``):
 
 1. timestep convergence, dt = 0.5, 0.25, 0.125 and 0.667 ms, for the feedforward + PD servo and
    the position-only servo: energy per cycle with and without the springs, the saving, the distance;
@@ -20,8 +20,9 @@ import dataclasses
 
 import numpy as np
 
+from hexaleg.commands.simulate.study import load_study
+from hexaleg.scenario.scenario import Scenario
 from hexaleg.simulation.sensitivity import sensitivity
-from hexaleg.studies.simulate.study import load_study
 
 TIMESTEPS = (5e-4, 2.5e-4, 1.25e-4, 1 / 1500)
 """s: the default, halved twice, and 2/3 ms (the timestep a 50× real-time factor would need:
@@ -51,7 +52,7 @@ def where(s) -> str:
 
 
 def main() -> None:
-    study = load_study("hexaleg")
+    study = load_study(Scenario.load("hexaleg"))
     spring = next(iter(study.springs.values()))
     print(f"springs: {study.design}: {len(study.springs)} joints, stiffness "
           f"{spring.stiffness:.3g} N·m/rad, torque at reference {spring.torque_at_reference:+.4f}"

@@ -6,15 +6,15 @@ The lever of Table 6 driven along θ = 0.3 sin 2t (eq. 25; the motion driver: th
 kinematic, the required torque measured), the main torsion springs as their own bodies (Table 4
 stiffness and damping, κ = k α, resting on stops at ±θ_k), the lever–spring contact of Table 3
 (Adams IMPACT: K δ^2.2 + STEP damping, 0.1 mm), the secondary spring of Table 5 and the joint
-friction of Table 2 (``hexaleg.studies.simulate.paper_joint``), all numbers in the paper's unit
+friction of Table 2 (``hexaleg.paper.simulated_joint``), all numbers in the paper's unit
 system (kg, mm, s, rad: the one in which eq. 19 gives 713.5; 1 stiffness unit = 1e-6 N·m/rad,
 docs/paper.md). No gravity (the paper's k_M and k_E analysis leaves it out). For the required
 torque (Figs 5–8), the mean torque vs k (Figs 9–10) and the energy ratio ε vs k (Figs 12–13):
-the analytic model (``hexaleg.studies.paper``), the forward simulation without friction, and with
+the analytic model (``hexaleg.paper``), the forward simulation without friction, and with
 Table 2's friction; the simulated optimum against the analytic one and the paper's readings
 (740 for the mean torque, 800 for ε). Then the invariant of the simulation on this joint: the
 analysis' torque applied open loop follows the plan within the derived bound, at second order.
-The study itself is ``hexaleg.studies.paper.forward`` (``hexaleg paper`` writes the same as the
+The study itself is ``hexaleg.paper.forward`` (``hexaleg paper`` writes the same as the
 ``simulation`` section of paper.json); this script prints it.
 Assumed (the paper does not give them): the contact radius 10 mm and each spring arm's inertia,
 1 % of the lever's.
@@ -24,10 +24,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from hexaleg.studies.paper.forward import CURVES, forward_study
-from hexaleg.studies.paper.joint import PaperJoint
-from hexaleg.studies.paper.readings import PAPER_K_E, PAPER_K_M
-from hexaleg.studies.simulate.paper_joint import open_loop, open_loop_bound
+from hexaleg.paper.forward import CURVES, forward_study
+from hexaleg.paper.joint import PaperJoint
+from hexaleg.paper.readings import PAPER_K_E, PAPER_K_M
+from hexaleg.paper.simulated_joint import open_loop, open_loop_bound
 
 JOINT = PaperJoint()
 UNITS = {"mean_abs": "N·m", "epsilon": "1/s²"}

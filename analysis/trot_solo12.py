@@ -9,7 +9,7 @@ a moment about the line through its feet, so the gait sways the body (linear inv
 Kajita et al., ICRA 2003, refined on the exact RNEA moment; docs/robots.md). Foot forces from the
 minimum-Joule program; the servo catalogue's torque limits are for small robots and are off.
 
-Metrics per cycle (``hexaleg.metrics``, docs/energy.md): positive work ∫ max(0, τ q̇) dt (what
+Metrics per cycle (``metrics``, docs/energy.md): positive work ∫ max(0, τ q̇) dt (what
 motors that cannot recover energy must supply; the paper's E of eq. 20 taken as positive work),
 peak and RMS torque. The knee springs are the paper's dead zone (eq. 8) centred on each knee's
 range of motion with θ_k/A = 7.32°/0.3 rad (Section 4.2, eq. 25), eq. 7 convention, α = 1
@@ -24,16 +24,17 @@ import numpy as np
 
 import hexaleg
 from hexaleg.design.rules import centred_springs
+from hexaleg.robot.registry import DESCRIPTIONS
 
 ROBOT = "solo12"
 KS = np.geomspace(0.01, 10.0, 7)  # N·m/rad
 
 
 def main() -> None:
-    desc = hexaleg.DESCRIPTIONS[ROBOT]
+    desc = DESCRIPTIONS[ROBOT]
     robot = hexaleg.load(ROBOT)
     gait = dataclasses.replace(hexaleg.GaitParams.for_robot(ROBOT), samples=200)
-    motion = hexaleg.tripod_gait(robot, gait)
+    motion = hexaleg.gait(robot, gait)
     prepared = hexaleg.prepare(robot, motion, contact=hexaleg.ContactParams(torque_limits=False))
     rigid = prepared.evaluate().metrics
     g = motion.info["balance"]

@@ -11,16 +11,25 @@ import os
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import pytest
 from hypothesis import settings
 from hypothesis.configuration import set_hypothesis_home_dir
 
 import hexaleg
-from hexaleg.design.codesign import OptimalSprings, optimal_springs
 from hexaleg.design.evaluator import RunSpec
-from hexaleg.dynamics.prepare import Prepared, prepare
+from hexaleg.design.optimal import OptimalSprings, optimal_springs
+from hexaleg.dynamics.prepare import Prepared, analyze, prepare
+from hexaleg.paper.forward import ForwardStudy, forward_study
+from hexaleg.paper.joint import PaperJoint
+from hexaleg.paper.reproduce import reproduce
 from hexaleg.simulation.run import Settings, Simulation, simulate
+
+if TYPE_CHECKING:
+    from hexaleg.commands.design.write import WrittenDesign
+    from hexaleg.report.build import Report
+    from hexaleg.robot.springs import SpringSet
 
 set_hypothesis_home_dir(Path(tempfile.gettempdir()) / "hexaleg-hypothesis")
 settings.register_profile("hexaleg", database=None)
@@ -60,20 +69,20 @@ def _outside_the_checkout(tmp_path_factory: pytest.TempPathFactory) -> Iterator[
 
 @pytest.fixture(scope="session")
 def robot() -> hexaleg.Robot:
-    """The built-in hexapod (``hexaleg.load_robot()``)."""
-    return hexaleg.load_robot()
+    """The built-in hexapod (``hexaleg.load()``)."""
+    return hexaleg.load()
 
 
 @pytest.fixture(scope="session")
 def walk(robot: hexaleg.Robot) -> hexaleg.Motion:
     """The default tripod gait, 1000 samples per cycle."""
-    return hexaleg.tripod_gait(robot)
+    return hexaleg.gait(robot)
 
 
 @pytest.fixture(scope="session")
 def walk200(robot: hexaleg.Robot) -> hexaleg.Motion:
     """The default tripod gait at 200 samples per cycle (where a reference solves every sample)."""
-    return hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=200))
+    return hexaleg.gait(robot, hexaleg.GaitParams(samples=200))
 
 
 SPIDER = Path(__file__).resolve().parent / "data" / "spider.toml"
@@ -132,7 +141,7 @@ def urdf_with_limit(tmp_path):
     return make
 
 
-# The simulation's fixtures (tests/simulation and tests/studies/simulate): the built-in robot's
+# The simulation's fixtures (tests/simulation and tests/commands/simulate): the built-in robot's
 # default gait prepared with its own servo, its optimal linear femur springs, and one short
 # simulation of each controller, computed once per session.
 
@@ -166,3 +175,157 @@ def position(prepared: Prepared, optimal: OptimalSprings) -> Simulation:
 
     return simulate(prepared.robot, prepared.motion, prepared.motor, optimal.springs,
                     dataclasses.replace(SHORT, controller="position"), prepared=prepared)
+
+
+# The paper's joint (tests/paper, tests/commands/paper): one reproduction and one forward study
+# on a coarse grid, made once.
+
+@pytest.fixture(scope="session")
+def paper_result() -> dict[str, Any]:
+    """:func:`reproduce` of the default joint at 256 samples per period (``paper.json``)."""
+    return reproduce(PaperJoint(), n=256)
+
+
+FORWARD_GRID = (600.0, 800.0, 1000.0, 1300.0, 1400.0, 1500.0, 1600.0)
+"""A coarse grid (eq. 19 units) that still brackets the forward optima of mean |M| (1350, 829
+with friction) and ε (1473); ε with friction (about 300) lies below it, at the grid's end."""
+FORWARD_SAMPLES = 512
+
+
+@pytest.fixture(scope="session")
+def forward() -> ForwardStudy:
+    """:func:`forward_study` of the default joint on :data:`FORWARD_GRID` (about 2 s)."""
+    return forward_study(PaperJoint(), FORWARD_GRID, FORWARD_SAMPLES)
+
+
+# One small design (tests/design/chain, tests/commands/design), computed once per session.
+
+DESIGN_SMALL = {
+    "gait": {"samples": 120},
+    "design": {"samples": 120, "families": ["linear", "one_sided"],
+               "map_period": [0.7, 1.0, 1.4], "map_stride": [0.75, 1.0],
+               "map_payload": [0.0, 0.4], "map_mu": [0.3, 0.6],
+               "map_slope": [0.0, 0.2617993877991494],  # level and 15° up × the robot's patterns
+               "robust_period": [0.8, 1.25], "robust_stride": [1.0, 1.0],
+               "robust_payload": [0.0, 0.2], "robust_mu": [0.6, 0.6],
+               "pareto_fractions": [0.5]},
+}
+"""A design at 120 samples per cycle, two families, 3 × 2, 2 × 2 and 2 × 3 (slope × the hexapod's
+three patterns) maps, a box of 4 corners."""
+
+
+@pytest.fixture(scope="session")
+def design_written(tmp_path_factory: pytest.TempPathFactory) -> tuple[WrittenDesign, Path]:
+    """The small design, written once for the session, and its directory."""
+    from hexaleg.commands.design.write import write_design
+    from hexaleg.design.chain.config import DesignConfig
+
+    out = tmp_path_factory.mktemp("design")
+    return write_design(out, DesignConfig.from_mapping(DESIGN_SMALL), progress=None), out
+
+
+# One co-design of the default robot at 0.06 m/s (tests/design/codesign, tests/commands/codesign):
+# ~9 s on a quiet machine (50 samples a cycle in the search, 100 in the rows, 30 evaluations a
+# search, 2 restarts, the search's answer alone), and the same result with the full spring rules
+# on its chosen gait at a reduced cost (60 samples a cycle, the one-sided family alone: ~8 s).
+# The full-size run is analysis/codesign_hexaleg.py (tests/test_examples.py).
+
+BUDGET = {"samples": 50, "final_samples": 100, "max_evaluations": 30, "restarts": 2,
+          "rules": False}
+"""The reduced search of the shared co-design (the default: 100, 200, 100, 3, with the rules)."""
+RULES_SAMPLES = 60
+"""Samples a cycle of the reduced full rules (the default: the rows' 200)."""
+
+
+@pytest.fixture(scope="session")
+def codesigned():
+    from hexaleg.design.codesign.build import codesign
+
+    return codesign("hexaleg", 0.06, **BUDGET)
+
+
+@pytest.fixture(scope="session")
+def ruled(codesigned):
+    """``codesigned`` with the full spring rules (one-sided family) on its chosen gait."""
+    import dataclasses
+
+    from hexaleg.design.codesign.build import full_rules, rule_params
+
+    chosen = dataclasses.replace(codesigned.chosen, samples=RULES_SAMPLES)
+    rules = full_rules("hexaleg", chosen, codesigned.constraints, lambda _m: None,
+                       rule_params(families=["one_sided"]))
+    return dataclasses.replace(codesigned, rules=rules)
+
+
+# One small report (tests/report, tests/commands/report), written once per session, and the same
+# gait analysed through the public API without the report's modules.
+
+REPORT_SMALL = """
+[gait]
+samples = 200
+
+[report]
+title = "test report"
+stiffness_points = 5
+
+[view]
+fps = 30
+"""
+"""The report's config: the 200-sample default gait (the ``walk200`` fixture's), 5 curve
+points."""
+
+
+@pytest.fixture(scope="session")
+def report_written(tmp_path_factory: pytest.TempPathFactory,
+            robot: hexaleg.Robot) -> tuple[Report, Path]:
+    """The report of a 200-sample default gait and its directory, written once for the session
+    (the paper's single-joint numbers at the default samples are cached for the other runs)."""
+    from hexaleg.commands.report.write import write_report
+    from hexaleg.report.config import ReportConfig
+
+    out = tmp_path_factory.mktemp("report")
+    (out / "small.toml").write_text(REPORT_SMALL)
+    r = write_report(out / "out", ReportConfig.from_toml(out / "small.toml"), robot=robot,
+                     progress=None)
+    return r, out / "out"
+
+
+TINY_DESIGN = {"design": {"samples": 100, "families": ["linear"], "map_period": [1.0],
+                          "map_stride": [1.0], "map_payload": [0.0], "map_mu": [0.6],
+                          "map_slope": [0.0], "map_pattern": ["tripod"],
+                          "robust_period": [1.0, 1.25], "robust_stride": [1.0, 1.0],
+                          "robust_payload": [0.0, 0.0], "robust_mu": [0.6, 0.6],
+                          "pareto_fractions": []}}
+"""``hexaleg design`` at its smallest: linear springs on the 100-sample default gait, one-cell
+maps, a two-corner robust box."""
+
+
+@pytest.fixture(scope="session")
+def design_json(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A ``design.json`` (and ``design.html``) of :data:`TINY_DESIGN`, written once a session."""
+    from hexaleg.commands.design.write import write_design
+    from hexaleg.design.chain.config import DesignConfig
+
+    out = tmp_path_factory.mktemp("design")
+    write_design(out, DesignConfig.from_mapping(TINY_DESIGN), progress=None)
+    return out / "design.json"
+
+
+@pytest.fixture(scope="session")
+def data(report_written: tuple[Report, Path]) -> dict[str, Any]:
+    """The written ``report.json``."""
+    import json
+
+    return json.loads((report_written[1] / "report.json").read_text())
+
+
+@pytest.fixture(scope="session")
+def independent(robot: hexaleg.Robot, walk200: hexaleg.Motion
+                ) -> tuple[hexaleg.Motion, SpringSet, hexaleg.Analysis]:
+    """The same gait analysed through the public API, without the report modules."""
+    from hexaleg.design.rules import paper_style_springs
+    from hexaleg.robot.catalogue import DEFAULT_MOTOR
+
+    springs = paper_style_springs(robot, walk200, "femur")
+    a = analyze(robot, walk200, springs, motor=DEFAULT_MOTOR, objective="joule")
+    return walk200, springs, a

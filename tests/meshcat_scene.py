@@ -1,6 +1,6 @@
 """What the viewer sent to Meshcat, decoded, and the synthetic walk the viewer tests draw.
 
-Imported by the tests of :mod:`hexaleg.outputs.viewer` and :mod:`hexaleg.studies.view` (``tests``
+Imported by the tests of :mod:`hexaleg.outputs.viewer` and :mod:`hexaleg.commands.view` (``tests``
 is on the test path, like ``browser.py``).
 """
 

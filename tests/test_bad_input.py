@@ -16,6 +16,8 @@ from pathlib import Path
 import pytest
 
 import hexaleg
+import hexaleg.dynamics.prepare
+import hexaleg.robot.description
 from hexaleg import errors
 from hexaleg.cli import build_parser, main
 from hexaleg.config import from_mapping, load_toml
@@ -89,8 +91,8 @@ def api(fn: Callable[..., object], *args: object, **kwargs: object) -> Callable[
 
 
 def walk(samples=40):
-    robot = hexaleg.load_robot()
-    return robot, hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=samples))
+    robot = hexaleg.load()
+    return robot, hexaleg.gait(robot, hexaleg.GaitParams(samples=samples))
 
 
 def spring(**kw):
@@ -98,36 +100,36 @@ def spring(**kw):
 
 
 def analyze_with(springs):
-    return lambda f: hexaleg.analyze(*walk(), springs)
+    return lambda f: hexaleg.dynamics.prepare.analyze(*walk(), springs)
 
 
 def sweep_spec(**kw):
-    from hexaleg.studies.sweep import SweepSpec
+    from hexaleg.sweep import SweepSpec
 
     return lambda f: SweepSpec(**kw)
 
 
 def sweep_table(data):
-    from hexaleg.studies.sweep import SweepSpec
+    from hexaleg.sweep import SweepSpec
 
     return lambda f: SweepSpec.from_mapping(data)
 
 
 def parse(name, text):
-    from hexaleg.studies.sweep import parse_range
+    from hexaleg.sweep import parse_range
 
     return lambda f: parse_range(name, text)
 
 
 def axis(name, value):
-    from hexaleg.studies.sweep.ranges import axis_values
+    from hexaleg.sweep.ranges import axis_values
 
     return lambda f: axis_values(name, value)
 
 
 def second_writer(f):
-    from hexaleg.studies.sweep.lock import DirectoryLock
-    from hexaleg.studies.sweep.store import ResultStore
+    from hexaleg.parallel.lock import DirectoryLock
+    from hexaleg.sweep.store import ResultStore
 
     lock = DirectoryLock(f["dir"])
     try:
@@ -137,19 +139,19 @@ def second_writer(f):
 
 
 def view_params(**kw):
-    from hexaleg.studies.view import ViewParams
+    from hexaleg.commands.view import ViewParams
 
     return lambda f: ViewParams(**kw)
 
 
 def report_params(**kw):
-    from hexaleg.studies.report.config import ReportParams
+    from hexaleg.report.config import ReportParams
 
     return lambda f: ReportParams(**kw)
 
 
 def executor(kind, **kw):
-    from hexaleg.studies.sweep.executors import open_executor
+    from hexaleg.sweep.executors import open_executor
 
     def run(f):
         with open_executor(kind, **kw):
@@ -158,7 +160,7 @@ def executor(kind, **kw):
 
 
 def paper(n):
-    from hexaleg.studies.paper.reproduce import reproduce
+    from hexaleg.paper.reproduce import reproduce
 
     return lambda f: reproduce(n=n)
 
@@ -227,10 +229,10 @@ CASES: list[tuple[str, Callable[[dict], None], type[Exception], str]] = [
      '<mass value="abc">'),
     ("urdf origin of two numbers", lambda f: load_robot(f["origin_short.urdf"], legs="auto"),
      RME, '<origin xyz="0 0">'),
-    ("robot toml without urdf", lambda f: hexaleg.RobotDescription.from_toml(
+    ("robot toml without urdf", lambda f: hexaleg.robot.description.RobotDescription.from_toml(
         f["robot_nolegs.toml"]), CE, "urdf"),
-    ("robot toml unknown key", lambda f: hexaleg.RobotDescription.from_toml(f["robot_key.toml"]),
-     UNE, "'colour'"),
+    ("robot toml unknown key", lambda f: hexaleg.robot.description.RobotDescription.from_toml(
+        f["robot_key.toml"]), UNE, "'colour'"),
     # TOML files and tables (API)
     ("toml latin-1", lambda f: load_toml(f["latin1.toml"]), CE, "0xe9"),
     ("toml device", api(load_toml, "/dev/zero"), CE, "/dev/zero"),
@@ -348,7 +350,7 @@ def test_bad_input_gets_a_named_error(files, kind, run, error, text, capsys):
 
 
 def test_a_truncated_sweep_part_is_a_warning_and_recomputed(files):
-    from hexaleg.studies.sweep import SweepSpec, run_sweep
+    from hexaleg.sweep import SweepSpec, run_sweep
 
     spec = SweepSpec(gait={"samples": 40}, springs={"coxa": {"k": (0.0, 0.1), "theta_k": 0.01}},
                      chunk_size=1)
@@ -363,7 +365,7 @@ def test_a_truncated_sweep_part_is_a_warning_and_recomputed(files):
 
 def test_a_robot_toml_without_title_or_srdf_loads(files):
     """Once a raw TypeError (RobotDescription missing title/srdf): both are optional."""
-    desc = hexaleg.RobotDescription.from_toml(DATA / "spider.toml")
+    desc = hexaleg.robot.description.RobotDescription.from_toml(DATA / "spider.toml")
     assert desc.title == desc.name and desc.srdf is None
 
 
@@ -372,8 +374,8 @@ def test_the_limits_page_states_the_bounds_in_force():
     from hexaleg.config import MAX_TEXT_BYTES
     from hexaleg.motion.limits import MAX_SAMPLES, MIN_SAMPLES, SAMPLE_BYTES
     from hexaleg.outputs.viewer.keyframes import KEYFRAME_BYTES, MAX_FPS
-    from hexaleg.studies.sweep.executors import CONNECT_TIMEOUT
-    from hexaleg.studies.sweep.ranges import POINT_BYTES
+    from hexaleg.sweep.executors import CONNECT_TIMEOUT
+    from hexaleg.sweep.ranges import POINT_BYTES
 
     docs = Path(__file__).parents[1] / "docs"
     page = " ".join(docs.joinpath("limits.md").read_text(encoding="utf-8").split())
@@ -400,10 +402,12 @@ def test_a_refused_paper_run_writes_nothing(tmp_path, capsys):
 
 
 def test_public_functions_name_an_argument_of_the_wrong_type():
-    """Every function of hexaleg.__all__ checks its arguments' types (#42): None, an object, a
-    string or an array where its first parameter's annotation admits none of them is a hexaleg
-    error naming the argument and the type — never an AttributeError from deep inside."""
+    """Every function of hexaleg.__all__, and of the names it deprecates, checks its arguments'
+    types (#42): None, an object, a string or an array where its first parameter's annotation
+    admits none of them is a hexaleg error naming the argument and the type — never an
+    AttributeError from deep inside."""
     import inspect
+    import warnings
 
     import numpy as np
 
@@ -411,8 +415,11 @@ def test_public_functions_name_an_argument_of_the_wrong_type():
     from hexaleg.checks import _admits, _hints
     from hexaleg.errors import HexalegError
 
-    functions = [getattr(hexaleg, n) for n in hexaleg.__all__
-                 if inspect.isfunction(getattr(hexaleg, n))]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)
+        names = [*hexaleg.__all__, *(n for n in hexaleg._DEPRECATED if n != "build_design")]
+        functions = [getattr(hexaleg, n) for n in names
+                     if inspect.isfunction(getattr(hexaleg, n))]
     assert len(functions) >= 30
     tried = 0
     for f in functions:

@@ -59,8 +59,9 @@ def test_view_choices_are_the_study_names():
     """``view --motion/--joints/--run`` offer the study's names (``--motion`` also a log
     file), spelled out in the parser so that building it imports neither the study nor
     meshcat."""
-    from hexaleg.studies.simulate.motion_file import RUNS
-    from hexaleg.studies.view import JOINT_QUANTITIES, MOTIONS
+    from hexaleg.commands.view import MOTIONS
+    from hexaleg.outputs.viewer.show import JOINT_QUANTITIES
+    from hexaleg.simulation.motion_file import RUNS
 
     sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
     choices = {a.dest: a.choices for a in sub.choices["view"]._actions}

@@ -172,7 +172,8 @@ def test_keywords_are_checked_against_the_function_s_annotations():
 def test_json_text_writes_non_finite_numbers_as_null_and_says_where(tmp_path):
     import numpy as np
 
-    from hexaleg.config import NON_FINITE, json_text, read_json
+    from hexaleg.config import read_json
+    from hexaleg.quantities import NON_FINITE, json_text
 
     text = json_text({"a": {"value": float("inf"), "unit": "Pa"},
                       "b": [1.0, np.float64("nan"), np.float64(2.0), np.int64(3), np.bool_(True)]})

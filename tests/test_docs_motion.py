@@ -30,8 +30,8 @@ def walk_log(path: Path, seed: int = SEED, cycles: int = 5) -> Path:
     """The page's ``walk.csv``: the default tripod gait at 100 samples per 1 s cycle, repeated,
     each joint plus Gaussian noise of half a tick rounded to whole ticks, written in degrees
     (2 decimals) with time in ms and the gait's contacts."""
-    robot = hexaleg.load_robot()
-    gait = hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=100))
+    robot = hexaleg.load()
+    gait = hexaleg.gait(robot, hexaleg.GaitParams(samples=100))
     one = log_columns(robot, gait, derivatives=False)
     rng = np.random.default_rng(seed)
     cols = {"time [ms]": np.arange(cycles * gait.n_samples) * gait.dt * 1e3}

@@ -1,8 +1,10 @@
 """The package's shape: imports point down the layers, modules stay small, the import is light.
 
-Layers, lowest first (DESIGN.md): the top-level helpers (errors, units, config, checks) → robot →
-motion → dynamics → simulation → design → outputs → studies → cli. A module may import its own
-layer and the ones below it, at module level, inside functions or under TYPE_CHECKING alike.
+Layers, lowest first (docs/architecture.md): the top-level helpers (errors, units, config,
+checks, quantities) → robot → parallel → motion → dynamics → scenario → simulation → design →
+outputs → paper, sweep → report → commands → cli. A module may import its own layer and the
+ones below it, at module level, inside functions or under TYPE_CHECKING alike; a command imports
+no other command (only the shared modules at the top of ``commands/``).
 """
 
 from __future__ import annotations
@@ -17,9 +19,15 @@ import pytest
 import hexaleg
 
 SRC = Path(hexaleg.__file__).resolve().parent
-RANK = {"errors": 0, "units": 0, "config": 0, "checks": 0, "robot": 1, "motion": 2,
-        "dynamics": 3, "simulation": 4, "design": 5, "outputs": 6, "studies": 7, "cli": 8}
-TOP_LEVEL = {"__init__.py", "errors.py", "units.py", "config.py", "checks.py", "cli.py"}
+RANK = {"errors": 0, "units": 0, "config": 0, "checks": 0, "quantities": 0, "robot": 1,
+        "parallel": 2, "motion": 3, "dynamics": 4, "scenario": 5, "simulation": 6, "design": 7,
+        "outputs": 8, "paper": 9, "sweep": 9, "report": 10, "commands": 11, "cli": 12}
+"""Each layer's rank: a module imports only from layers of its rank or lower."""
+LIBRARY = ("robot", "parallel", "motion", "dynamics", "scenario", "simulation", "design",
+           "outputs", "paper", "sweep", "report")
+"""The library's packages, in the order of :data:`RANK`; ``commands`` is the command layer."""
+TOP_LEVEL = {"__init__.py", "errors.py", "units.py", "config.py", "checks.py", "quantities.py",
+             "cli.py"}
 WARN_LINES = 400
 """Code lines over which a module is worth a look for a seam (a warning)."""
 MAX_LINES = 600
@@ -117,18 +125,42 @@ def test_modules_stay_under_the_line_limit(path):
                       stacklevel=1)
 
 
-def test_at_most_six_top_level_modules():
+def test_top_level_modules_and_layers_are_the_known_ones():
     top = {p.name for p in SRC.glob("*.py")}
     assert top <= TOP_LEVEL, sorted(top - TOP_LEVEL)
     layers = {p.name for p in SRC.iterdir() if p.is_dir() and (p / "__init__.py").exists()}
-    assert layers == {"robot", "motion", "dynamics", "simulation", "design", "studies", "outputs"}
+    assert layers == {*LIBRARY, "commands"}
+
+
+@pytest.mark.parametrize("path", sorted(p for p in MODULES if "commands" in p.parts),
+                         ids=lambda p: str(p.relative_to(SRC)))
+def test_commands_do_not_import_each_other(path):
+    """A command's modules import the library, their own command's modules and the shared
+    modules at the top of ``commands/``; never another command."""
+    rel = path.relative_to(SRC)
+    own = rel.parts[1].removesuffix(".py") if len(rel.parts) > 2 else None
+    shared = {p.stem for p in (SRC / "commands").glob("*.py")} - {"__init__"}
+    bad = [f"line {line}: {module}" for line, module in _imports(path)
+           if module.startswith("hexaleg.commands.")
+           and module.split(".")[2] not in {own, *shared}]
+    assert not bad, f"{rel} imports another command:\n" + "\n".join(bad)
+
+
+def test_the_command_layer_is_thin():
+    """The command layer (``commands/`` and ``cli.py``) is at most 15 % of the package's code
+    lines: the library does the work."""
+    lines = {p: code_lines(p) for p in MODULES}
+    commands = sum(n for p, n in lines.items()
+                   if "commands" in p.relative_to(SRC).parts or p.name == "cli.py")
+    assert commands <= 0.15 * sum(lines.values()), (commands, sum(lines.values()))
 
 
 def test_import_hexaleg_is_light():
     """`import hexaleg` loads no study (report, sweep, view, paper) and neither matplotlib,
     pandas nor meshcat: their public names are imported on first use."""
     code = ("import sys, hexaleg; print('\\n'.join(m for m in sys.modules if m.startswith("
-            "('hexaleg.studies', 'hexaleg.outputs', 'matplotlib', 'pandas', 'meshcat', 'cvxpy'))))")
+            "('hexaleg.commands', 'hexaleg.report', 'hexaleg.sweep', 'hexaleg.paper', "
+            "'hexaleg.outputs', 'matplotlib', 'pandas', 'meshcat', 'cvxpy'))))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout.split()
     assert out == []

@@ -77,10 +77,10 @@ def measure(page: Path, tmp: Path) -> dict:
 @pytest.fixture(scope="module")
 def pages(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
     """design.html of a small design, and report.html of the default report led by it."""
-    from hexaleg.studies.design.config import DesignConfig
-    from hexaleg.studies.design.write import write_design
-    from hexaleg.studies.report.config import ReportConfig
-    from hexaleg.studies.report.write import write_report
+    from hexaleg.commands.design.write import write_design
+    from hexaleg.commands.report.write import write_report
+    from hexaleg.design.chain.config import DesignConfig
+    from hexaleg.report.config import ReportConfig
 
     out = tmp_path_factory.mktemp("pages")
     small = {"samples": 100, "families": ["linear", "one_sided"], "map_period": [1.0, 1.2],

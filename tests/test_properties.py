@@ -167,7 +167,7 @@ def test_invalid_gait_parameters_are_named(bad):
 
 @pytest.fixture(scope="module")
 def hexapod():
-    return hexaleg.load_robot()
+    return hexaleg.load()
 
 
 @SLOW
@@ -181,7 +181,7 @@ def test_forces_satisfy_newton_euler_for_any_gait_and_springs(hexapod, period, s
     robot = hexapod
     gait = hexaleg.GaitParams(period=period, stride_length=stride, step_height=step_height,
                               samples=40)
-    motion = hexaleg.tripod_gait(robot, gait)
+    motion = hexaleg.gait(robot, gait)
     springs = centred_springs(robot, motion, joint, k, dead_zone=min(theta / 0.3, 0.9))
     analysis = hexaleg.prepare(robot, motion, contact=hexaleg.ContactParams(
         torque_limits=False)).evaluate(springs)
@@ -231,7 +231,7 @@ def _seeds(robot: hexaleg.Robot) -> dict[str, bytes]:
     import io
     import json
 
-    from hexaleg.studies.simulate.motion_file import FORMAT
+    from hexaleg.simulation.motion_file import FORMAT
 
     design = {"robot": {"name": robot.name}, "springs": [
         {"family": "linear", "joint": "LF_femur", "parameters": {
@@ -255,10 +255,10 @@ def _seeds(robot: hexaleg.Robot) -> dict[str, bytes]:
 def _readers(robot: hexaleg.Robot) -> dict[str, tuple[str, object]]:
     """Reader name → (its seed, a call on a path; the manifest's in an output directory)."""
     from hexaleg.config import load_toml
-    from hexaleg.studies.report.design_section import design_section
-    from hexaleg.studies.simulate.design_file import read_design
-    from hexaleg.studies.simulate.motion_file import read_motion
-    from hexaleg.studies.sweep.store import MANIFEST, ResultStore
+    from hexaleg.design.chain.design_file import read_design
+    from hexaleg.report.design_section import design_section
+    from hexaleg.simulation.motion_file import read_motion
+    from hexaleg.sweep.store import MANIFEST, ResultStore
 
     def store(path):
         out = path.parent / "sweep"
@@ -289,7 +289,7 @@ def test_every_reader_names_a_hostile_file(robot, tmp_path_factory, reader, kind
     from pathlib import Path
 
     from hexaleg import config
-    from hexaleg.studies.simulate import motion_file
+    from hexaleg.simulation import motion_file
 
     seed_name, read = _readers(robot)[reader]
     seed = _seeds(robot)[seed_name]

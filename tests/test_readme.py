@@ -8,7 +8,13 @@ from pathlib import Path
 import pytest
 
 import hexaleg
+import hexaleg.design.evaluator
 from hexaleg import units
+from hexaleg.design.evaluator import RunSpec
+from hexaleg.design.optimise import optimise
+from hexaleg.design.robustness import robustness
+from hexaleg.report.build import build_report
+from hexaleg.robot.registry import DESCRIPTIONS
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -113,14 +119,14 @@ def test_as_printed_rounds_like_the_readme():
 def report() -> dict:
     """``hexaleg report``'s numbers (report.json) at the defaults: built-in robot, default gait,
     AX-18A, paper-style femur springs; with the paper's single joint."""
-    return hexaleg.build_report().data
+    return build_report().data
 
 
 def test_readme_quick_start_says_what_the_report_answers(report):
     """The line after the Quick start's first command quotes the answer ``hexaleg report``
     prints (its last summary line, the same function over the same numbers) and the paper
     design's saving it keeps as the reference."""
-    from hexaleg.studies.report.answer import answer_line
+    from hexaleg.report.answer import answer_line
 
     quick = re.search(r"```bash\n[^`]*hexaleg report\n```\n\nIt answers which springs to fit: "
                       r"`([^`]+)` \(" + NUMBER + r" % for the paper's design",
@@ -204,20 +210,20 @@ def placement_gait():
     """(evaluator of notebook 03's gait, class → joints, offset bound), as the README names them."""
     samples, bound = _said(r"notebook 03 at {n} samples per cycle, the neutral offset searched "
                            r"within ±{n} rad")
-    ev = hexaleg.evaluator(hexaleg.RunSpec(), {"samples": int(samples)})
+    ev = hexaleg.design.evaluator.evaluator(RunSpec(), {"samples": int(samples)})
     return ev, {c: ev.robot.joints(c) for c in CLASSES}, float(bound)
 
 
 @pytest.fixture(scope="module")
 def symmetric(placement_gait):
     ev, groups, _ = placement_gait
-    return {c: hexaleg.optimise(ev, c, groups[c], "electrical") for c in CLASSES}
+    return {c: optimise(ev, c, groups[c], "electrical") for c in CLASSES}
 
 
 @pytest.fixture(scope="module")
 def off_centre(placement_gait):
     ev, groups, bound = placement_gait
-    return {c: hexaleg.optimise(ev, c, groups[c], "electrical", offset_bounds=(-bound, bound),
+    return {c: optimise(ev, c, groups[c], "electrical", offset_bounds=(-bound, bound),
                                 grid=(8, 4, 7)) for c in ("femur", "tibia")}
 
 
@@ -244,7 +250,7 @@ def test_readme_tibia_design_robustness(placement_gait, off_centre):
     low, high, change = _said(r"the tibia design keeps {n}–{n} % when the gait period or stride "
                               r"changes by ±{n} %")
     f = float(change) / 100
-    rob = hexaleg.robustness(hexaleg.RunSpec(), hexaleg.GaitParams(samples=ev.gait.samples),
+    rob = robustness(RunSpec(), hexaleg.GaitParams(samples=ev.gait.samples),
                              {"tibia": groups["tibia"]}, {"tibia": off_centre["tibia"].design()},
                              "electrical", factors=(1 - f, 1.0, 1 + f))
     assert set(rob["parameter"]) == {"period", "stride_length"} and (rob["status"] == "ok").all()
@@ -273,7 +279,7 @@ def test_readme_robot_flag_and_registered_robots():
     m = re.search(r"Every command but `paper` and `motors` takes `--robot NAME` \(([^)]*)\)",
                   README)
     assert m, "README.md no longer lists the robots --robot takes: update it or this test"
-    assert m.group(1).split(", ") == list(hexaleg.DESCRIPTIONS)
+    assert m.group(1).split(", ") == list(DESCRIPTIONS)
     sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
     without = {name for name, p in sub.choices.items()
                if "--robot" not in {s for a in p._actions for s in a.option_strings}}

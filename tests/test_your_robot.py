@@ -30,13 +30,13 @@ def test_robot_and_gait_commands(capsys):
     assert "warning" not in out
     assert main(["gait", "--robot", SPIDER]) == 0
     warned = [line for line in capsys.readouterr().out.splitlines() if "warning" in line]
-    # the run's warnings only (hexaleg.studies.run_warnings), no failed check
+    # the run's warnings only (hexaleg.scenario.run_warnings), no failed check
     assert [w.split(" on ")[0].split(" to ")[0] for w in warned] == [
         "warning: gait defaults sized", "warning: generic actuator"]
 
 
 def test_the_gait_walks_along_the_heading(spider):
-    motion = hexaleg.tripod_gait(spider, hexaleg.GaitParams(samples=100))
+    motion = hexaleg.gait(spider, hexaleg.GaitParams(samples=100))
     step = motion.q[-1, :3] + (motion.q[1, :3] - motion.q[0, :3]) - motion.q[0, :3]
     params = hexaleg.GaitParams()
     assert abs(step[0]) < 1e-9 and np.isclose(step[1], params.stride_length, rtol=1e-6)

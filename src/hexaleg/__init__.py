@@ -1,27 +1,40 @@
 """hexaleg: whole-robot dynamics and energy analysis of legged robots with nonlinear elastic joints.
 
-The public surface is small: load a robot, make a motion, choose springs, analyse. See README.md.
+The public surface follows the data, one name for one thing (docs/architecture.md):
+
+* the robot: :func:`load` (a registered robot or a description TOML) → :class:`Robot`, its
+  servos :class:`Motor`;
+* its motion: :class:`GaitParams` → :func:`gait`, a log → :func:`load_motion`, stand → sphere
+  :func:`transform_motion`, each a :class:`Motion`;
+* the dynamics: :func:`prepare` (once per motion, with :class:`ContactParams`) →
+  :class:`Prepared`, whose ``evaluate(springs)`` gives an :class:`Analysis`;
+* the springs: a :class:`SpringSet` of the families :class:`LinearSpring`,
+  :class:`OneSidedSpring`, :class:`PreloadedSpring`, :class:`DeadZoneSpring`,
+  :class:`StiffeningSpring`; the global optimum of their magnitudes :func:`optimal_springs`;
+* a whole run and its design: :class:`Scenario` → :class:`DesignChain` (with
+  :class:`DesignParams`) → ``design.json``, read back by :func:`load_design`; the gait and its
+  springs together :func:`codesign`; sweeps :func:`run_sweep` of a :class:`SweepSpec`;
+* the view: :func:`animate`, :func:`export_html`.
+
+Names of earlier releases still work for one release, with a :class:`DeprecationWarning`
+saying what replaces them (:data:`_DEPRECATED`).
 """
 
+import importlib
 import importlib.metadata
-from typing import TYPE_CHECKING
+import warnings
+from typing import TYPE_CHECKING, Any
 
-from hexaleg.dynamics.contact import OBJECTIVES, ContactParams
-from hexaleg.dynamics.energy import cost_of_transport, epsilon, metrics, savings
-from hexaleg.dynamics.prepare import Analysis, Prepared, analyze, prepare
+from hexaleg.dynamics.contact import ContactParams
+from hexaleg.dynamics.prepare import Analysis, Prepared, prepare
 from hexaleg.errors import HexalegError
-from hexaleg.motion.joint_motion import joint_motion
-from hexaleg.motion.legged import gait, tripod_gait
+from hexaleg.motion.legged import gait
 from hexaleg.motion.params import GaitParams
-from hexaleg.motion.profiles import Sinusoid
 from hexaleg.motion.trajectory import Motion
 from hexaleg.motion.transform import transform_motion
-from hexaleg.robot.catalogue import CATALOGUE, DEFAULT_MOTOR, motor_from_mapping
-from hexaleg.robot.description import RobotDescription
-from hexaleg.robot.model import Leg, LegSpec, Robot, load_robot
+from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import Motor
-from hexaleg.robot.motor_set import MotorSet
-from hexaleg.robot.registry import DESCRIPTIONS, load
+from hexaleg.robot.registry import load
 from hexaleg.robot.springs import (
     DeadZoneSpring,
     LinearSpring,
@@ -32,131 +45,140 @@ from hexaleg.robot.springs import (
 )
 
 if TYPE_CHECKING:  # the names __getattr__ imports on first use, for type checkers and the docs
-    from hexaleg.design.codesign import OptimalSprings, optimal_springs
-    from hexaleg.design.evaluator import Evaluator, RunSpec, evaluator
-    from hexaleg.design.optimise import optimise
-    from hexaleg.design.placement import placement
-    from hexaleg.design.robust import robust_springs
-    from hexaleg.design.robustness import robustness
-    from hexaleg.design.robustness_map import robustness_map
-    from hexaleg.design.torsion_spring import TorsionRequirement, design_torsion_spring
+    from hexaleg.design.chain.chain import DesignChain
+    from hexaleg.design.chain.config import DesignParams
+    from hexaleg.design.chain.design_file import load_design
+    from hexaleg.design.codesign.build import codesign
+    from hexaleg.design.optimal import optimal_springs
     from hexaleg.motion.recorded.load import load_motion
-    from hexaleg.studies.codesign.build import codesign
-    from hexaleg.studies.design.build import build_design
-    from hexaleg.studies.design.config import DesignConfig
-    from hexaleg.studies.design.load import LoadedDesign, load_design
-    from hexaleg.studies.design.write import write_design
-    from hexaleg.studies.report.build import build_report
-    from hexaleg.studies.report.config import ReportConfig
-    from hexaleg.studies.report.write import write_report
-    from hexaleg.studies.sweep.runner import run_sweep
-    from hexaleg.studies.sweep.spec import SweepSpec
-    from hexaleg.studies.view import ViewParams, animate, export_html, serve
+    from hexaleg.outputs.viewer.show import animate, export_html
+    from hexaleg.scenario.scenario import Scenario
+    from hexaleg.sweep.runner import run_sweep
+    from hexaleg.sweep.spec import SweepSpec
 
 __version__ = importlib.metadata.version("hexaleg")
 """The installed distribution's version (one source: ``pyproject.toml``)."""
 
 __all__ = [
-    "CATALOGUE",
-    "DEFAULT_MOTOR",
-    "DESCRIPTIONS",
-    "OBJECTIVES",
     "Analysis",
     "ContactParams",
     "DeadZoneSpring",
-    "DesignConfig",
-    "Evaluator",
+    "DesignChain",
+    "DesignParams",
     "GaitParams",
     "HexalegError",
-    "Leg",
-    "LegSpec",
     "LinearSpring",
-    "LoadedDesign",
     "Motion",
     "Motor",
-    "MotorSet",
     "OneSidedSpring",
-    "OptimalSprings",
     "PreloadedSpring",
     "Prepared",
-    "ReportConfig",
     "Robot",
-    "RobotDescription",
-    "RunSpec",
-    "Sinusoid",
+    "Scenario",
     "SpringSet",
     "StiffeningSpring",
     "SweepSpec",
-    "TorsionRequirement",
-    "ViewParams",
     "__version__",
-    "analyze",
     "animate",
-    "build_design",
-    "build_report",
     "codesign",
-    "cost_of_transport",
-    "design_torsion_spring",
-    "epsilon",
-    "evaluator",
     "export_html",
     "gait",
-    "joint_motion",
     "load",
     "load_design",
     "load_motion",
-    "load_robot",
-    "metrics",
-    "motor_from_mapping",
     "optimal_springs",
-    "optimise",
-    "placement",
     "prepare",
-    "robust_springs",
-    "robustness",
-    "robustness_map",
     "run_sweep",
-    "savings",
-    "serve",
     "transform_motion",
-    "tripod_gait",
-    "write_design",
-    "write_report",
 ]
 
 _LAZY: dict[str, str] = {
-    "ReportConfig": "hexaleg.studies.report.config",
-    "build_report": "hexaleg.studies.report.build",
-    "write_report": "hexaleg.studies.report.write",
-    **dict.fromkeys(("Evaluator", "RunSpec", "evaluator"), "hexaleg.design.evaluator"),
-    "optimise": "hexaleg.design.optimise",
-    **dict.fromkeys(("OptimalSprings", "optimal_springs"), "hexaleg.design.codesign"),
-    "placement": "hexaleg.design.placement",
-    "robustness": "hexaleg.design.robustness",
-    "robustness_map": "hexaleg.design.robustness_map",
-    "robust_springs": "hexaleg.design.robust",
-    **dict.fromkeys(("TorsionRequirement", "design_torsion_spring"),
-                    "hexaleg.design.torsion_spring"),
+    "DesignChain": "hexaleg.design.chain.chain",
+    "DesignParams": "hexaleg.design.chain.config",
+    "load_design": "hexaleg.design.chain.design_file",
+    "codesign": "hexaleg.design.codesign.build",
+    "optimal_springs": "hexaleg.design.optimal",
     "load_motion": "hexaleg.motion.recorded.load",
-    "codesign": "hexaleg.studies.codesign.build",
-    "DesignConfig": "hexaleg.studies.design.config",
-    "build_design": "hexaleg.studies.design.build",
-    "write_design": "hexaleg.studies.design.write",
-    **dict.fromkeys(("LoadedDesign", "load_design"), "hexaleg.studies.design.load"),
-    "SweepSpec": "hexaleg.studies.sweep.spec",
-    "run_sweep": "hexaleg.studies.sweep.runner",
-    **dict.fromkeys(("ViewParams", "animate", "export_html", "serve"), "hexaleg.studies.view"),
+    **dict.fromkeys(("animate", "export_html"), "hexaleg.outputs.viewer.show"),
+    "Scenario": "hexaleg.scenario.scenario",
+    "run_sweep": "hexaleg.sweep.runner",
+    "SweepSpec": "hexaleg.sweep.spec",
 }
-"""Public names whose modules are imported on first use: the report pulls in matplotlib and
-Jinja2, the sweep pandas and pyarrow, the viewer meshcat and Pinocchio's visualisers — seconds of
-import time that ``import hexaleg`` does not pay."""
+"""Public names whose modules are imported on first use: the design pulls in the simulation,
+the sweep pandas and pyarrow, the viewer meshcat and Pinocchio's visualisers — seconds of import
+time that ``import hexaleg`` does not pay."""
+
+_DEPRECATED: dict[str, tuple[str, str, str]] = {
+    "tripod_gait": ("hexaleg.motion.legged", "tripod_gait", "hexaleg.gait"),
+    "load_robot": ("hexaleg.robot.model", "load_robot",
+                   "hexaleg.load (a registered robot or a description TOML), or "
+                   "hexaleg.robot.model.load_robot for a bare URDF"),
+    "analyze": ("hexaleg.dynamics.prepare", "analyze",
+                "hexaleg.prepare(robot, motion, ...).evaluate(springs, objective)"),
+    "metrics": ("hexaleg.dynamics.energy", "metrics", "Analysis.metrics"),
+    "savings": ("hexaleg.dynamics.energy", "savings", "Analysis.savings"),
+    "epsilon": ("hexaleg.dynamics.energy", "epsilon", "hexaleg.dynamics.energy.epsilon"),
+    "cost_of_transport": ("hexaleg.dynamics.energy", "cost_of_transport",
+                          "Analysis.metrics['cost_of_transport']"),
+    "OBJECTIVES": ("hexaleg.dynamics.contact", "OBJECTIVES", "hexaleg.dynamics.contact"),
+    "Sinusoid": ("hexaleg.motion.profiles", "Sinusoid", "hexaleg.motion.profiles"),
+    "joint_motion": ("hexaleg.motion.joint_motion", "joint_motion", "hexaleg.paper"),
+    "CATALOGUE": ("hexaleg.robot.catalogue", "CATALOGUE", "hexaleg.robot.catalogue"),
+    "DEFAULT_MOTOR": ("hexaleg.robot.catalogue", "DEFAULT_MOTOR", "hexaleg.robot.catalogue"),
+    "motor_from_mapping": ("hexaleg.robot.catalogue", "motor_from_mapping",
+                           "a [motor] table of a Scenario"),
+    "DESCRIPTIONS": ("hexaleg.robot.registry", "DESCRIPTIONS", "hexaleg.robot.registry"),
+    "RobotDescription": ("hexaleg.robot.description", "RobotDescription",
+                         "hexaleg.robot.description"),
+    "Leg": ("hexaleg.robot.model", "Leg", "Robot.legs"),
+    "LegSpec": ("hexaleg.robot.model", "LegSpec", "hexaleg.robot.model"),
+    "MotorSet": ("hexaleg.robot.motor_set", "MotorSet", "hexaleg.robot.motor_set"),
+    "OptimalSprings": ("hexaleg.design.optimal", "OptimalSprings", "optimal_springs' result"),
+    "Evaluator": ("hexaleg.design.evaluator", "Evaluator", "hexaleg.design.evaluator"),
+    "RunSpec": ("hexaleg.design.evaluator", "RunSpec", "hexaleg.Scenario"),
+    "evaluator": ("hexaleg.design.evaluator", "evaluator", "hexaleg.design.evaluator"),
+    "optimise": ("hexaleg.design.optimise", "optimise", "hexaleg.optimal_springs"),
+    "placement": ("hexaleg.design.placement", "placement", "hexaleg.optimal_springs"),
+    "robustness": ("hexaleg.design.robustness", "robustness", "DesignChain.maps"),
+    "robustness_map": ("hexaleg.design.robustness_map", "robustness_map", "DesignChain.maps"),
+    "robust_springs": ("hexaleg.design.robust", "robust_springs", "DesignChain.robust"),
+    "TorsionRequirement": ("hexaleg.design.torsion_spring", "TorsionRequirement",
+                           "hexaleg.design.torsion_spring"),
+    "design_torsion_spring": ("hexaleg.design.torsion_spring", "design_torsion_spring",
+                              "DesignChain's candidates (their parts)"),
+    "DesignConfig": ("hexaleg.design.chain.config", "DesignConfig",
+                     "DesignChain(Scenario, design=DesignParams)"),
+    "LoadedDesign": ("hexaleg.design.chain.design_file", "LoadedDesign", "load_design's result"),
+    "build_design": ("hexaleg.design.chain.chain", "build_design", "DesignChain(...).run()"),
+    "write_design": ("hexaleg.commands.design.write", "write_design", "the hexaleg design "
+                     "command, or DesignChain(...).run().to_json()"),
+    "ReportConfig": ("hexaleg.report.config", "ReportConfig", "hexaleg.report.config"),
+    "build_report": ("hexaleg.report.build", "build_report", "hexaleg.report.build"),
+    "write_report": ("hexaleg.commands.report.write", "write_report", "the hexaleg report "
+                     "command"),
+    "ViewParams": ("hexaleg.outputs.viewer.show", "ViewParams", "hexaleg.outputs.viewer.show"),
+    "serve": ("hexaleg.outputs.viewer.show", "serve", "hexaleg.outputs.viewer.show"),
+}
+"""Names of the 0.1 surface → (module, attribute, what replaces it): still importable for one
+release, with a :class:`DeprecationWarning`."""
 
 
-def __getattr__(name: str) -> object:
-    """Import a study's module on first use of one of its public names (PEP 562)."""
-    module = _LAZY.get(name)
-    if module is None:
-        raise AttributeError(f"module 'hexaleg' has no attribute {name!r}")
-    import importlib
+def __getattr__(name: str) -> Any:
+    """A public name imported on first use (PEP 562), or a deprecated one with its warning."""
+    if name in _LAZY:
+        return getattr(importlib.import_module(_LAZY[name]), name)
+    if name in _DEPRECATED:
+        module, attr, instead = _DEPRECATED[name]
+        warnings.warn(f"hexaleg.{name} is deprecated and leaves the public surface in the next "
+                      f"release: use {instead}", DeprecationWarning, stacklevel=2)
+        if name == "build_design":
+            return _build_design
+        return getattr(importlib.import_module(module), attr)
+    raise AttributeError(f"module 'hexaleg' has no attribute {name!r}")
 
-    return getattr(importlib.import_module(module), name)
+
+def _build_design(config: Any = None, progress: Any = None) -> Any:
+    """``build_design(config, progress)`` of 0.1: ``DesignChain(config, progress).run()``."""
+    from hexaleg.design.chain.chain import DesignChain
+
+    return DesignChain(config, progress).run()

@@ -16,10 +16,10 @@ from collections.abc import Callable, Sequence
 from typing import NoReturn, TextIO
 
 from hexaleg import __version__
+from hexaleg.commands.options import add_motion_option  # no loader: it loads with a run
 from hexaleg.errors import HexalegError, HexalegWarning, did_you_mean
 from hexaleg.robot.registry import ROBOT_HELP  # loaded by `import hexaleg` already
 from hexaleg.simulation.controllers import CONTROLLERS  # no MuJoCo: it loads with a model
-from hexaleg.studies.motion_option import add_motion_option  # no loader: it loads with a log
 
 
 def _add_robot(sub: argparse._SubParsersAction) -> None:
@@ -51,7 +51,8 @@ def _warn(findings: list) -> None:
 
 
 def _warn_lines(lines: Sequence[str]) -> None:
-    """Print a run's warnings (:mod:`hexaleg.studies.run_warnings`), one ``warning:`` line each."""
+    """Print a run's warnings (:meth:`hexaleg.scenario.scenario.Scenario.warnings`), one
+    ``warning:`` line each."""
     for line in lines:
         print(f"warning: {line}")
 
@@ -77,7 +78,7 @@ def _add_paper(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--out", default="hexaleg-paper", help="output directory (default: %(default)s)")
     p.add_argument("--samples", type=int, default=8192,
                    help="samples per trajectory period (default: %(default)s)")
-    # hexaleg.studies.paper.forward.K_GRID, which is not imported to build the parser
+    # hexaleg.paper.forward.K_GRID, which is not imported to build the parser
     p.add_argument("--grid", type=float, nargs="+", metavar="K",
                    help="stiffnesses of the forward run, the paper's eq. 19 units (1e-6 N·m/rad), "
                         "at least 3, increasing (default: 100 to 1600 in steps of 100)")
@@ -87,7 +88,7 @@ def _add_paper(sub: argparse._SubParsersAction) -> None:
 
 
 def _run_paper(args: argparse.Namespace) -> int:
-    from hexaleg.studies.paper.command import run_paper
+    from hexaleg.commands.paper.command import run_paper
 
     return run_paper(args.out, n=args.samples, simulation=args.simulation, grid=args.grid)
 
@@ -103,26 +104,17 @@ def _add_gait(sub: argparse._SubParsersAction) -> None:
 
 
 def _run_gait(args: argparse.Namespace) -> int:
-    from hexaleg.config import load_toml
-    from hexaleg.motion.legged import tripod_gait
-    from hexaleg.motion.params import GaitParams
+    from hexaleg.commands.options import load_run
     from hexaleg.motion.sanity import motion_findings
     from hexaleg.outputs.text import gait_summary
-    from hexaleg.robot.registry import description
     from hexaleg.robot.sanity import robot_findings
-    from hexaleg.studies.run_warnings import run_warnings
 
-    desc = description(args.robot)
-    robot = desc.load()
-    gait = GaitParams.for_robot(desc)
-    if args.config:  # the file's keys over the robot's gait
-        table = load_toml(args.config)
-        gait = gait.updated(table.get("gait", table), f"{args.config} [gait]")
-    motion = tripod_gait(robot, gait)
-    print(gait_summary(robot, motion))
-    warned = run_warnings(robot, motion, desc.actuator(robot), desc=desc, gait=gait)
+    run = load_run(args.robot, args.config)
+    motion = run.played()
+    print(gait_summary(run.model, motion))
+    warned = run.warnings(motion)
     _warn_lines(warned)  # the same lines as report, design and simulate say for this run
-    _warn([f for f in (*robot_findings(robot), *motion_findings(robot, motion))
+    _warn([f for f in (*robot_findings(run.model), *motion_findings(run.model, motion))
            if f.message not in warned])
     return 0
 
@@ -135,7 +127,7 @@ def _add_view(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--html", help="write a self-contained page that plays offline to this file "
                                   "and exit (default: serve on localhost until Ctrl-C)")
     p.add_argument("--robot", help=ROBOT_HELP + " (with --simulation: default the file's)")
-    # The names of hexaleg.studies.view's MOTIONS, JOINT_QUANTITIES and motion_file.RUNS, which
+    # The names of hexaleg.commands.view's MOTIONS, JOINT_QUANTITIES and motion_file.RUNS, which
     # check them too (the study is not imported to build the parser: meshcat imports slowly).
     p.add_argument("--simulation", metavar="DIR", help="replay a run of 'hexaleg simulate "
                                                        "--out DIR' instead (its motion files)")
@@ -150,10 +142,11 @@ def _add_view(sub: argparse._SubParsersAction) -> None:
 
 
 def _run_view(args: argparse.Namespace) -> int:
-    from hexaleg.studies.view import export_view, serve_view, wait_until_interrupted
+    from hexaleg.commands.view import export_view, serve_view, wait_until_interrupted
 
     shown = {k: getattr(args, k) for k in ("motion", "joints", "robot", "simulation", "run",
                                            "cycle")}
+    shown["args"] = args
     if args.html:
         print(f"wrote {export_view(args.config, args.html, **shown)}")
         return 0
@@ -181,10 +174,12 @@ def _add_report(sub: argparse._SubParsersAction) -> None:
 
 
 def _run_report(args: argparse.Namespace) -> int:
-    from hexaleg.studies.report.config import ReportConfig
-    from hexaleg.studies.report.write import write_report
+    from hexaleg.commands.options import load_run
+    from hexaleg.commands.report.write import write_report
+    from hexaleg.report.config import ReportConfig
 
-    config, robot = ReportConfig.load(args.robot, args.config, args.motion, args.cycle)
+    run = load_run(args.robot, args.config, args.motion, args.cycle, args)
+    config, robot = ReportConfig.from_scenario(run), run.model
     if args.design:
         import dataclasses
 
@@ -214,10 +209,12 @@ def _add_design(sub: argparse._SubParsersAction) -> None:
 
 
 def _run_design(args: argparse.Namespace) -> int:
-    from hexaleg.studies.design.config import DesignConfig
-    from hexaleg.studies.design.write import write_design
+    from hexaleg.commands.design.write import write_design
+    from hexaleg.commands.options import load_run
+    from hexaleg.design.chain.config import DesignConfig
 
-    config = DesignConfig.load(args.robot, args.config, args.controller, args.motion, args.cycle)
+    run = load_run(args.robot, args.config, args.motion, args.cycle, args)
+    config = DesignConfig.from_scenario(run, args.controller)
     written = write_design(args.out, config)
     _warn_lines(written.data["warnings"])
     print(written.result.summary())
@@ -251,16 +248,18 @@ def _add_simulate(sub: argparse._SubParsersAction) -> None:
 
 
 def _run_simulate(args: argparse.Namespace) -> int:
+    from hexaleg.commands.options import load_run
+    from hexaleg.commands.simulate.study import load_study
+    from hexaleg.commands.simulate.write import simulation_data, summary, write_simulation
     from hexaleg.errors import SimulationError
-    from hexaleg.studies.simulate.motion_file import write_motions
-    from hexaleg.studies.simulate.study import load_study
-    from hexaleg.studies.simulate.write import simulation_data, summary, write_simulation
+    from hexaleg.simulation.motion_file import write_motions
 
     overrides = {"controller": args.controller, "cycles": args.cycles,
                  "timestep": args.timestep}
     if args.cycles is not None and args.cycles >= 2:
         overrides["evaluate"] = min(2, args.cycles - 1)
-    study = load_study(args.robot, args.config, args.springs, overrides, args.motion, args.cycle)
+    run = load_run(args.robot, args.config, args.motion, args.cycle, args)
+    study = load_study(run, args.springs, overrides)
     s = study.run()
     rows = None
     if args.sensitivity and s.walks:
@@ -283,9 +282,9 @@ def _run_simulate(args: argparse.Namespace) -> int:
 
 
 SUBCOMMANDS = [_add_robot, _add_motors, _add_gait, _add_paper, _add_report, _add_design,
-               _add_view, __import__("hexaleg.studies.sweep.command", fromlist=["add"]).add,
+               _add_view, __import__("hexaleg.commands.sweep.command", fromlist=["add"]).add,
                _add_simulate,
-               __import__("hexaleg.studies.codesign.command", fromlist=["add"]).add]
+               __import__("hexaleg.commands.codesign.command", fromlist=["add"]).add]
 """Parser builders, one per subcommand, in the order ``--help`` lists them."""
 
 

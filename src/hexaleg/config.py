@@ -159,41 +159,6 @@ def read_json(path: str | Path, what: str = "JSON file", limit: int | None = Non
     return data
 
 
-NON_FINITE = "non_finite"
-"""The key :func:`json_text` adds to a JSON object in which it wrote a non-finite number as
-null: the paths of those values and what null means there."""
-
-
-def json_text(data: Mapping[str, Any], indent: int = 1) -> str:
-    """``data`` as the text of a JSON file: the one policy of every JSON file hexaleg writes.
-
-    JSON has no NaN or infinity (RFC 8259 §6; Python's ``json`` writes ``NaN``/``Infinity``,
-    which :func:`read_json`, and most readers, refuse). A non-finite number (a float, a NumPy
-    scalar) is written as ``null``, and :data:`NON_FINITE` lists where, so a file hexaleg writes
-    is always one it can read back.
-    """
-    where: list[str] = []
-
-    def finite(value: Any, path: str) -> Any:
-        if isinstance(value, Mapping):
-            return {str(k): finite(v, f"{path}.{k}" if path else str(k)) for k, v in value.items()}
-        if isinstance(value, (list, tuple)):
-            return [finite(v, f"{path}[{i}]") for i, v in enumerate(value)]
-        if getattr(value, "ndim", None) == 0 and hasattr(value, "item"):
-            value = value.item()  # a NumPy scalar
-        if isinstance(value, float) and not math.isfinite(value):
-            where.append(path)
-            return None
-        return value
-
-    out = finite(data, "")
-    if where:
-        out[NON_FINITE] = {"note": "null here stands for a value that is not a finite number "
-                                   "(NaN or infinite: e.g. no stress where no spring fits)",
-                           "paths": where}
-    return json.dumps(out, indent=indent, ensure_ascii=False, allow_nan=False)
-
-
 def write_file(path: str | Path, data: bytes | str, what: str = "file") -> Path:
     """Write ``data`` to ``path`` without following a symbolic link there: to a new hidden file
     beside it (``O_CREAT | O_EXCL | O_NOFOLLOW``), then renamed over it, so a link at ``path``

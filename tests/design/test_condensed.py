@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 import hexaleg
-from hexaleg.design.codesign import design_problem
 from hexaleg.design.condensed import Condensed, solve_condensed
+from hexaleg.design.optimal import design_problem
 from hexaleg.design.program import DesignProblem
 from hexaleg.design.program_reference import solve_metric_reference
 from hexaleg.errors import InvalidParameterError
@@ -19,7 +19,7 @@ GEOMETRY = {"femur": {"contact": -0.18, "side": "above"},
 
 @pytest.fixture(scope="module")
 def prepared100(robot):
-    return hexaleg.prepare(robot, hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=100)))
+    return hexaleg.prepare(robot, hexaleg.gait(robot, hexaleg.GaitParams(samples=100)))
 
 
 def test_electrical_design_matches_the_cvxpy_program(prepared100):

@@ -107,7 +107,7 @@ def test_the_life_the_spring_has_is_where_the_safety_factor_is_one():
     assert fa.fatigue_check(mat, d, D, m_y, m_y).safety_factor == math.inf
     table = check.table()
     assert table["safety_factor"]["unit"] == "1" and table["life"]["unit"] == "cycles"
-    assert fa.fatigue_check(mat, d, D, 0.0, 0.1 * m_y).table()["life"]["value"] == "inf"
+    assert fa.fatigue_check(mat, d, D, 0.0, 0.1 * m_y).table()["life"]["value"] == float("inf")
 
 
 def test_spring_fatigue_cycles_from_the_preload_to_the_max_torque():

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from hexaleg.design.codesign import optimal_springs
+from hexaleg.design.optimal import optimal_springs
 from hexaleg.design.program import DesignProblem, solve_design
 from hexaleg.errors import InvalidParameterError
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from hexaleg.design.codesign import optimal_springs
 from hexaleg.design.evaluator import RunSpec
 from hexaleg.design.families import family
+from hexaleg.design.optimal import optimal_springs
 from hexaleg.design.robust import robust_springs
 from hexaleg.design.robustness import Condition, condition_prepared
 from hexaleg.dynamics.energy import saving

@@ -84,7 +84,7 @@ def test_uphill_the_motors_lift_the_robot_and_pay_for_it():
     springs cost more energy in total than on the level or downhill."""
     import math
 
-    from hexaleg.design.codesign import optimal_springs
+    from hexaleg.design.optimal import optimal_springs
     from hexaleg.design.robustness import Condition, condition_prepared
     from hexaleg.units import G
 

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 import hexaleg
-from hexaleg.design.codesign import optimal_springs
 from hexaleg.design.evaluator import RunSpec
+from hexaleg.design.optimal import optimal_springs
 from hexaleg.design.robustness import (
     Condition,
     condition_gait,
@@ -33,13 +33,13 @@ def springs():
 
 def test_nominal_cell_is_the_design_and_payload_cells_carry_the_mass(springs):
     mp = robustness_map(RUN, GAIT, springs, {"payload": [0.0, 0.3], "mu": [0.6]})
-    robot = hexaleg.load_robot()
-    nominal = hexaleg.prepare(robot, hexaleg.tripod_gait(robot, GAIT))
+    robot = hexaleg.load()
+    nominal = hexaleg.prepare(robot, hexaleg.gait(robot, GAIT))
     a = nominal.evaluate(springs)
     assert mp.saving["electrical"][0, 0] == pytest.approx(a.savings["total"]["electrical"])
     heavy = with_payload(robot, 0.3 * robot.mass)
     assert heavy.mass == pytest.approx(1.3 * robot.mass)
-    b = hexaleg.prepare(heavy, hexaleg.tripod_gait(heavy, GAIT)).evaluate(springs)
+    b = hexaleg.prepare(heavy, hexaleg.gait(heavy, GAIT)).evaluate(springs)
     assert mp.saving["joule"][1, 0] == pytest.approx(b.savings["total"]["joule"])
     assert b.baseline["total"]["joule"] > a.baseline["total"]["joule"]
     assert (mp.status == "ok").all()
@@ -85,7 +85,7 @@ def test_slope_pattern_cells_equal_a_fresh_public_analysis(springs):
     assert mp.axes == ("slope", "pattern") and list(mp.values[1]) == ["tripod", "wave"]
     assert all(type(v) is str for v in mp.values[1])
     assert (mp.status == "ok").all()
-    robot = hexaleg.load_robot()
+    robot = hexaleg.load()
     for i, j in ((0, 1), (2, 1), (2, 0)):
         params = hexaleg.GaitParams(samples=100, pattern=str(mp.values[1][j]), slope=slopes[i])
         assert params.duty_factor == (5 / 6 if j else 0.5)
@@ -93,7 +93,7 @@ def test_slope_pattern_cells_equal_a_fresh_public_analysis(springs):
         for m in ("electrical", "joule"):
             assert mp.saving[m][i, j] == pytest.approx(fresh.savings["total"][m], rel=1e-9)
         assert mp.condition(i, j) == Condition(slope=slopes[i], pattern=params.pattern)
-    nominal = hexaleg.prepare(robot, hexaleg.tripod_gait(robot, GAIT)).evaluate(springs)
+    nominal = hexaleg.prepare(robot, hexaleg.gait(robot, GAIT)).evaluate(springs)
     assert mp.saving["joule"][1, 0] == pytest.approx(nominal.savings["total"]["joule"],
                                                      rel=1e-12)
     assert mp.saving["joule"][0, 1] != pytest.approx(mp.saving["joule"][0, 0], rel=1e-3)
@@ -132,7 +132,7 @@ def test_a_crawl_without_static_margin_is_a_cell():
 
 
 def test_robot_patterns_put_the_nominal_first():
-    robot = hexaleg.load_robot()
+    robot = hexaleg.load()
     assert robot_patterns(robot, GAIT) == ("tripod", "ripple", "wave")
     assert robot_patterns(robot, GAIT.updated({"pattern": "wave"})) == ("wave", "tripod",
                                                                           "ripple")

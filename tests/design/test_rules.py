@@ -16,6 +16,7 @@ from hexaleg.design.rules import (
     paper_style_springs,
 )
 from hexaleg.dynamics.inertia import apparent_inertia, joint_range
+from hexaleg.dynamics.prepare import analyze
 from hexaleg.errors import InvalidParameterError, UnknownNameError
 from hexaleg.motion.joint_motion import joint_motion
 from hexaleg.motion.profiles import Sinusoid
@@ -23,7 +24,7 @@ from hexaleg.motion.profiles import Sinusoid
 
 @pytest.fixture(scope="module")
 def gait(robot):
-    return hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=200))
+    return hexaleg.gait(robot, hexaleg.GaitParams(samples=200))
 
 
 def test_paper_ratio():
@@ -65,7 +66,7 @@ def test_paper_style_springs_use_eq14_and_alpha(robot, gait):
     s = springs["RM_femur"]
     assert (s.alpha, s.convention) == (1.05, "eq14")
     assert s.stiffness == pytest.approx(k_M(robot, gait, "RM_femur"))
-    assert np.isfinite(hexaleg.analyze(robot, gait, springs).metrics["total"]["joule"])
+    assert np.isfinite(analyze(robot, gait, springs).metrics["total"]["joule"])
 
 
 def test_bad_input(robot, gait):
@@ -77,7 +78,7 @@ def test_bad_input(robot, gait):
 
 
 def test_a_centred_spring_on_a_joint_that_does_not_move_is_refused(robot):
-    still = hexaleg.tripod_gait(robot, hexaleg.GaitParams(stride_length=0.0, samples=40))
+    still = hexaleg.gait(robot, hexaleg.GaitParams(stride_length=0.0, samples=40))
     lo, hi = joint_range(robot, still, "LF_coxa")
     assert hi - lo < 1e-9  # no stride: the coxa stands still
     with pytest.raises(InvalidParameterError, match=r"centred spring on LF_coxa = 'a joint that "

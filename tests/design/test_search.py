@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 import hexaleg
-from hexaleg.design.codesign import optimal_springs
 from hexaleg.design.families import CONTAINS
+from hexaleg.design.optimal import optimal_springs
 from hexaleg.design.search import EDGE, search_geometry, search_value
 from hexaleg.design.setup import design_setup
 from hexaleg.motion.legged import gait
@@ -108,7 +108,7 @@ def test_a_nanometre_of_step_height_moves_no_printed_digit(robot):
     far less than a micro-radian (the old local search moved by 1.9 points)."""
     out = []
     for h in (0.03, 0.03 + 1e-9):
-        motion = hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=200, step_height=h))
+        motion = hexaleg.gait(robot, hexaleg.GaitParams(samples=200, step_height=h))
         out.append(optimal_springs(hexaleg.prepare(robot, motion), ["femur", "tibia"],
                                    "preloaded", "joule", metric="electrical"))
     assert abs(out[0].saving - out[1].saving) < 1e-6

@@ -19,7 +19,7 @@ def test_search_imports_the_setup_not_codesign():
     """The old cycle: search took codesign's private setup under TYPE_CHECKING."""
     tree = ast.parse(Path(search_module.__file__).read_text(encoding="utf-8"))
     modules = {n.module for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)}
-    assert "hexaleg.design.setup" in modules and "hexaleg.design.codesign" not in modules
+    assert "hexaleg.design.setup" in modules and "hexaleg.design.optimal" not in modules
 
 
 def test_setup_ranges_and_problem(prepared200):

@@ -7,7 +7,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-from hexaleg.design.codesign import optimal_springs
+from hexaleg.design.optimal import optimal_springs
 from hexaleg.design.spring_parts import (
     ARBOR_LINK_FRACTION,
     PartOptions,

@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from hexaleg.design.codesign import optimal_springs
+from hexaleg.design.optimal import optimal_springs
 from hexaleg.design.robustness import Condition, condition_prepared
 from hexaleg.design.setup import motion_centres
 from hexaleg.design.tolerance import TOLERANCE, scenarios, shifted_springs, tolerant_springs

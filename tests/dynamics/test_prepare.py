@@ -120,7 +120,7 @@ def test_single_joint_embedded_in_the_robot_is_eq14(robot):
     J_O is computed by hand from the URDF parameters: the femur (Table 6: I + m l²) plus the
     tibia (uniform rod, 120 mm, 45 g, CoM 50 mm out) held at the stand pose's −110°.
     """
-    free = hexaleg.load_robot()
+    free = hexaleg.load()
     free.model.gravity.linear[:] = 0.0
     femur_q = free.pose("stand")[free.leg("LF").q_index[1]]
     traj = Sinusoid(amplitude=0.3, omega=2.0, offset=femur_q)
@@ -197,7 +197,7 @@ def test_epsilon_of_the_embedded_paper_joint_is_its_closed_form():
     femur supplies the kinetic energy twice a cycle, E = J A² ω², over the path 4A, so eq. 24
     gives ε = A ω² / 4 = 0.3 s⁻² whatever the distal inertia J; the inertia is M[v, v] (CRBA);
     joints that do not move get ε = 0."""
-    robot = hexaleg.load_robot()
+    robot = hexaleg.load()
     robot.model.gravity.linear[:] = 0.0
     motion = joint_motion(robot, {"LF_femur": Sinusoid(0.3, 2.0)})
     prepared = prepare(robot, motion)

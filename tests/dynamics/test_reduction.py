@@ -67,7 +67,7 @@ def test_one_foot_leaves_no_free_coordinate_and_a_named_error(robot, one_foot):
 def test_long_motions_are_cut_into_cache_sized_groups(robot):
     from hexaleg.dynamics.reduction import GROUP_SIZE
 
-    motion = hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=2 * GROUP_SIZE + 100))
+    motion = hexaleg.gait(robot, hexaleg.GaitParams(samples=2 * GROUP_SIZE + 100))
     red = reduce(prepare(robot, motion).system)
     sizes = [g.size for g in red.groups]
     assert max(sizes) <= GROUP_SIZE and len(sizes) == 3

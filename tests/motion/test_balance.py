@@ -14,6 +14,7 @@ import pytest
 
 import hexaleg
 from hexaleg.dynamics.contact import ContactParams
+from hexaleg.dynamics.prepare import analyze
 from hexaleg.errors import InfeasibleForcesError, InvalidParameterError
 from hexaleg.motion import balance as balance_module
 from hexaleg.motion.balance import (
@@ -241,9 +242,9 @@ def test_balanced_trot_goes_through_the_force_program(solo, trot):
     """The rigid trot has no contact forces; the swayed one does, with Newton–Euler exact."""
     gait, motion = trot
     with pytest.raises(InfeasibleForcesError, match="body sway"):
-        hexaleg.analyze(solo, tripod_gait(solo, dataclasses.replace(gait, balance="none")),
+        analyze(solo, tripod_gait(solo, dataclasses.replace(gait, balance="none")),
                         contact=NO_LIMITS)
-    result = hexaleg.analyze(solo, motion, contact=NO_LIMITS)
+    result = analyze(solo, motion, contact=NO_LIMITS)
     model, data = solo.model, solo.model.createData()
     for k in range(0, motion.n_samples, 3):
         pin.centerOfMass(model, data, motion.q[k], motion.v[k], motion.a[k])
@@ -269,7 +270,7 @@ def test_sampling_off_the_grid_uses_the_same_sway(solo, trot):
 
 
 def test_tripod_is_not_swayed():
-    robot = hexaleg.load_robot()
+    robot = hexaleg.load()
     motion = tripod_gait(robot, GaitParams(samples=60))
     assert motion.info["balance"] == {"mode": "none"}
     assert np.array_equal(motion.q[:, 1], np.zeros(60))

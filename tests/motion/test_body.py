@@ -97,7 +97,7 @@ def test_foot_targets_in_the_base_frame_have_exact_derivatives(yaw_rate):
 def test_walk_direction_turns_the_robots_heading():
     from hexaleg.motion.body import walk_direction
 
-    robot = hexaleg.load_robot()
+    robot = hexaleg.load()
     assert walk_direction(robot, hexaleg.GaitParams()) is not None
     assert np.array_equal(walk_direction(robot, hexaleg.GaitParams()), [1.0, 0.0, 0.0])
     assert np.allclose(walk_direction(robot, hexaleg.GaitParams(heading=np.pi / 2)),
@@ -112,7 +112,7 @@ def test_energy_at_heading_theta_equals_that_at_minus_theta(theta):
     """The hexapod is left–right symmetric: walking at −θ is the mirror image of walking at θ
     (the tripods swapped, half a cycle later), so every energy is the same to rounding — and
     the crab walk really goes where it is sent, its stance feet at rest."""
-    robot = hexaleg.load_robot()
+    robot = hexaleg.load()
     energies = []
     for sign in (1.0, -1.0):
         motion = hexaleg.gait(robot, hexaleg.GaitParams(heading=sign * theta, samples=100))

@@ -20,7 +20,7 @@ from hexaleg.motion.kinematics import (
 )
 from hexaleg.motion.leg_chain import newton_leg_ik
 from hexaleg.robot.builder import load_params
-from hexaleg.robot.model import HEXALEG_LEGS, LegSpec
+from hexaleg.robot.model import HEXALEG_LEGS, LegSpec, load_robot
 
 
 def _trajectory(t: np.ndarray, centre: np.ndarray) -> tuple[np.ndarray, ...]:
@@ -137,7 +137,7 @@ def test_newton_agrees_with_the_closed_form(robot):
 def test_legs_that_do_not_fit_the_closed_form_use_newton():
     # Foot frame at the knee: the tibia has no length, so the closed form must refuse this leg.
     legs = [LegSpec(s.name, s.joints, f"{s.name}_tibia_link") for s in HEXALEG_LEGS]
-    odd = hexaleg.load_robot(legs=legs)
+    odd = load_robot(legs=legs)
     assert all(analytic_geometry(odd, leg) is None for leg in odd.legs)
 
 

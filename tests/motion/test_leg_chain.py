@@ -16,7 +16,7 @@ import hexaleg
 from hexaleg.errors import RobotModelError
 from hexaleg.motion.kinematics import analytic_geometry
 from hexaleg.motion.leg_chain import NEWTON_JUMP, leg_chain, newton_leg_ik
-from hexaleg.robot.model import LegSpec
+from hexaleg.robot.model import Leg, LegSpec, load_robot
 from hexaleg.robot.registry import load
 
 _INERTIAL = ('<inertial><mass value="0.1"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" '
@@ -49,7 +49,7 @@ def a1() -> hexaleg.Robot:
 def pogo(tmp_path_factory: pytest.TempPathFactory) -> hexaleg.Robot:
     path = Path(tmp_path_factory.mktemp("pogo")) / "pogo.urdf"
     path.write_text(POGO)
-    return hexaleg.load_robot(path, legs=[LegSpec("LF", ("abad", "flex", "slide"), "foot")],
+    return load_robot(path, legs=[LegSpec("LF", ("abad", "flex", "slide"), "foot")],
                               joint_kinds=("abad", "flex", "slide"))
 
 
@@ -59,7 +59,7 @@ def _reference(robot: hexaleg.Robot) -> np.ndarray:
     return q
 
 
-def _pinocchio(robot: hexaleg.Robot, leg: hexaleg.robot.model.Leg, q_leg: np.ndarray,
+def _pinocchio(robot: hexaleg.Robot, leg: Leg, q_leg: np.ndarray,
                qd_leg: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The foot's position, translation Jacobian and classical acceleration at zero joint
     acceleration, from Pinocchio, every other joint at the reference pose."""
@@ -102,7 +102,7 @@ def test_bias_is_the_derivative_of_the_jacobian_along_the_motion(pogo):
     assert np.abs(chain.bias(q, qd)).max() > 0.1
 
 
-def _walk(robot: hexaleg.Robot, leg: hexaleg.robot.model.Leg, n: int, r: float = 0.03
+def _walk(robot: hexaleg.Robot, leg: Leg, n: int, r: float = 0.03
           ) -> tuple[np.ndarray, ...]:
     """A foot circle of radius ``r`` in the sagittal plane around the stand foot, n samples, with
     its exact derivatives."""
@@ -155,7 +155,7 @@ def test_a_leg_that_is_not_one_chain_is_named(a1):
 def test_a_joint_newton_cannot_move_is_named(tmp_path):
     path = tmp_path / "wheel.urdf"
     path.write_text(POGO.replace('type="prismatic"', 'type="continuous"'))
-    robot = hexaleg.load_robot(path, legs=[LegSpec("LF", ("abad", "flex", "slide"), "foot")],
+    robot = load_robot(path, legs=[LegSpec("LF", ("abad", "flex", "slide"), "foot")],
                                joint_kinds=("abad", "flex", "slide"))
     with pytest.raises(RobotModelError, match=r"joint slide is a JointModelRevoluteUnbounded"
                                               r".*\(2 configuration values, 1 velocities\)"):

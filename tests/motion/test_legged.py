@@ -22,7 +22,7 @@ from hexaleg.errors import (
 )
 from hexaleg.motion.legged import nominal_footholds, sample_gait, tripod_gait
 from hexaleg.motion.params import GaitParams
-from hexaleg.robot.model import LegSpec
+from hexaleg.robot.model import LegSpec, load_robot
 
 
 @pytest.fixture(scope="module")
@@ -218,7 +218,7 @@ def quadruped(tmp_path_factory) -> hexaleg.Robot:
                                  f'<group_state name="stand" group="all">{pose}</group_state>'
                                  f'</robot>')
     specs = [LegSpec(n, (f"{n}_HAA", f"{n}_HFE", f"{n}_KFE"), f"{n}_foot") for n in QUAD]
-    return hexaleg.load_robot(d / "quad.urdf", d / "quad.srdf", legs=specs)
+    return load_robot(d / "quad.urdf", d / "quad.srdf", legs=specs)
 
 
 def test_trot_on_a_quadruped_through_the_same_code(quadruped, frame_kinematics):

@@ -53,7 +53,7 @@ def test_a_sample_costs_less_memory_than_its_bound(robot):
     def peak(samples: int) -> int:
         tracemalloc.start()
         try:
-            motion = hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=samples))
+            motion = hexaleg.gait(robot, hexaleg.GaitParams(samples=samples))
             prepare(robot, motion).evaluate(None)
             return tracemalloc.get_traced_memory()[1]
         finally:

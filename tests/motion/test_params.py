@@ -127,7 +127,7 @@ def test_a_found_quadruped_trots_by_default(tmp_path):
     gait = GaitParams.for_robot(str(toml))
     assert gait.groups == (("LF", "RH"), ("RF", "LH"))
     robot = hexaleg.load(str(toml))
-    motion = hexaleg.tripod_gait(robot, dataclasses.replace(gait, samples=60))
+    motion = hexaleg.gait(robot, dataclasses.replace(gait, samples=60))
     assert motion.stance.sum(1).min() == 2
 
 

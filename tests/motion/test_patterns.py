@@ -83,7 +83,7 @@ def test_tripod_pattern_and_its_phases_are_the_default_gait(robot, walk200):
             assert np.array_equal(getattr(m, field), getattr(walk200, field)), field
     assert named.info["pattern"] == "tripod" and named.info["groups"] == (
         ("LF", "LH", "RM"), ("LM", "RF", "RH"))
-    assert hexaleg.tripod_gait(robot, GaitParams(pattern="tripod", samples=200)).info == \
+    assert hexaleg.gait(robot, GaitParams(pattern="tripod", samples=200)).info == \
         named.info
 
 

@@ -28,3 +28,10 @@ def test_a_bad_description_file_is_named(tmp_path, text, error, says):
     path.write_text(text)
     with pytest.raises(error, match=says):
         read_description(path)
+
+
+def test_the_reader_is_the_description_s_own():
+    """It lives with the description it makes (from_toml calls it); imported here too."""
+    from hexaleg.robot import description
+
+    assert read_description is description.read_description

@@ -59,62 +59,6 @@ def test_tip_rules_of_each_shape():
     np.testing.assert_allclose(sorted(p[2] for p in farthest_points(capsule)), [-0.11, 0.11])
 
 
-SHIN = ('<collision><origin xyz="0 0 -0.05"/><geometry><cylinder radius="0.006" length="0.10"/>'
-        '</geometry></collision>')
-BALL = ('<collision><origin xyz="0 0 -0.1"/><geometry><sphere radius="0.015"/></geometry>'
-        '</collision>')
-
-
-def round_footed_spider(tmp_path, stand="stand = {body_height = 0.08}"):
-    """The test hexapod with a 15 mm ball at the end of every shank (the shank's tip at its
-    centre), loaded from its TOML with ``stand``."""
-    from conftest import SPIDER
-
-    from hexaleg.robot.registry import load
-
-    text = (SPIDER.parent / "spider.urdf").read_text()
-    assert text.count(SHIN) == 6
-    (tmp_path / "spider.urdf").write_text(text.replace(SHIN, SHIN + BALL))
-    toml = SPIDER.read_text().replace("stand = {body_height = 0.08}", stand)
-    (tmp_path / "spider.toml").write_text(toml)
-    return load(str(tmp_path / "spider.toml"))
-
-
-@pytest.mark.parametrize("stand", ["stand = {body_height = 0.08, feet = {LF = [-0.13, 0.1], "
-                                   "RH = [0.14, -0.06]}}",
-                                   "stand = {a_j2 = 0.5, a_j3 = 0.4, d_j2 = -0.3, d_j3 = 0.9}"])
-def test_a_ball_foot_touches_at_its_lowest_point_in_the_stand(tmp_path, stand):
-    """On inclined shanks the foot is the ball's lowest point c − r ẑ, not its tip along the
-    shank: the foot frame is 15 mm straight below the ball's centre, the lowest point of the
-    robot's collision geometry (hexaleg.robot.geometry, exact for spheres) is that foot, and on
-    a solved stand the feet are at −body_height."""
-    robot = round_footed_spider(tmp_path, stand)
-    assert set(robot.foot_spheres) == set(robot.leg_names)
-    q = robot.pose("stand")
-    feet = robot.foot_positions(q)
-    tilts = []
-    for k, leg in enumerate(robot.legs):
-        sphere = robot.foot_spheres[leg.name]
-        assert sphere.radius == pytest.approx(0.015) and sphere.joint == leg.joint_ids[-1]
-        joint = robot.data.oMi[sphere.joint]
-        centre = joint.act(sphere.centre)
-        np.testing.assert_allclose(feet[k], centre - [0.0, 0.0, 0.015], atol=1e-12)
-        shank = joint.rotation @ np.array([0.0, 0.0, -1.0])
-        tilts.append(np.arccos(-shank[2]))
-        tip = centre + 0.015 * shank  # the far end the found foot used to be
-        assert np.linalg.norm(tip - feet[k]) == pytest.approx(0.03 * np.sin(tilts[-1] / 2))
-    assert max(tilts) > 0.3  # rad: inclined shanks (the tip is ≥ 4 mm off the contact)
-    lifted = q.copy()
-    lifted[2] = -feet[:, 2].min()
-    z, _ = robot.lowest_point(lifted, "collision")
-    assert z == pytest.approx(0.0, abs=1e-12)
-    if "body_height" in stand:
-        np.testing.assert_allclose(feet[:, 2], -0.08, atol=1e-9)
-    assert any("sphere of radius 0.015 m" in n for n in robot.notes)
-    assert any(n.startswith("round feet touch the ground at their sphere's lowest point")
-               for n in robot.notes)
-
-
 def test_a_capsule_end_is_the_ball_of_its_tip_side():
     from hexaleg.robot.feet import sphere_of_tip
 

@@ -63,7 +63,7 @@ def test_repair_writes_the_box_inertia_notes_it_and_the_robot_analyses(tmp_path)
     np.testing.assert_allclose(inertia.inertia, expected, rtol=1e-12)
     robot.poses["stand"] = stand_from_feet(robot, 0.08)  # as spider.toml's stand
     assert robot_findings(robot) == []
-    motion = hexaleg.tripod_gait(robot)
+    motion = hexaleg.gait(robot)
     analysis = hexaleg.prepare(robot, motion).evaluate({})
     assert np.isfinite(analysis.metrics["total"]["electrical"])
 

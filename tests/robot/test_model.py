@@ -12,7 +12,14 @@ import yourdfpy
 
 import hexaleg
 from hexaleg.errors import HexalegError, RobotModelError, UnknownNameError
-from hexaleg.robot.model import DEFAULT_SRDF, DEFAULT_URDF, HEXALEG_LEGS, LEG_NAMES, LegSpec
+from hexaleg.robot.model import (
+    DEFAULT_SRDF,
+    DEFAULT_URDF,
+    HEXALEG_LEGS,
+    LEG_NAMES,
+    LegSpec,
+    load_robot,
+)
 from hexaleg.units import kgmm2_to_kgm2, mm_to_m
 
 # Paper Table 6, in the paper's units.
@@ -133,16 +140,16 @@ def test_summary_lists_what_the_model_holds(robot):
 
 def test_missing_file(tmp_path):
     with pytest.raises(RobotModelError, match="not found"):
-        hexaleg.load_robot(tmp_path / "nope.urdf")
+        load_robot(tmp_path / "nope.urdf")
 
 
 def test_malformed_xml(tmp_path):
     bad = tmp_path / "bad.urdf"
     bad.write_text("<robot name='x'><link name='a'></robot>")
     with pytest.raises(RobotModelError, match="not well-formed"):
-        hexaleg.load_robot(bad)
+        load_robot(bad)
     with pytest.raises(RobotModelError, match="SRDF"):
-        hexaleg.load_robot(DEFAULT_URDF, bad)
+        load_robot(DEFAULT_URDF, bad)
 
 
 def test_urdf_without_the_legs_lists_the_joints_found(tmp_path):
@@ -151,10 +158,10 @@ def test_urdf_without_the_legs_lists_the_joints_found(tmp_path):
       <joint name="shoulder" type="revolute"><parent link="body"/><child link="arm"/>
       <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>""")
     with pytest.raises(RobotModelError, match=r"LF_coxa.*joints found: shoulder"):
-        hexaleg.load_robot(urdf)
+        load_robot(urdf)
     spec = [LegSpec("A", ("shoulder",), "hand")]
     with pytest.raises(RobotModelError, match=r"foot frame 'hand'.*frames found:.*arm"):
-        hexaleg.load_robot(urdf, legs=spec)
+        load_robot(urdf, legs=spec)
 
 
 def test_joint_classes(robot):
@@ -168,17 +175,17 @@ def test_joint_classes(robot):
 
 
 def test_custom_leg_spec_loads():
-    robot = hexaleg.load_robot(DEFAULT_URDF, DEFAULT_SRDF, legs=HEXALEG_LEGS[:2])
+    robot = load_robot(DEFAULT_URDF, DEFAULT_SRDF, legs=HEXALEG_LEGS[:2])
     assert robot.leg_names == ("LF", "LM")
 
 
 def test_errors_are_hexaleg_errors():
     with pytest.raises(HexalegError):
-        hexaleg.load_robot(Path("/nonexistent/robot.urdf"))
+        load_robot(Path("/nonexistent/robot.urdf"))
     with pytest.raises(UnknownNameError, match="valid legs are: LF, LH, LM, RF, RH, RM"):
-        hexaleg.load_robot().leg("XX")
+        hexaleg.load().leg("XX")
     with pytest.raises(UnknownNameError, match="valid joints are"):
-        hexaleg.load_robot().column("LF_knee")
+        hexaleg.load().column("LF_knee")
 
 
 def test_model_gravity_is_standard(robot):

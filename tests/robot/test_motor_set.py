@@ -8,9 +8,8 @@ import json
 import numpy as np
 import pytest
 
-import hexaleg
 from hexaleg.dynamics import energy
-from hexaleg.dynamics.prepare import prepare
+from hexaleg.dynamics.prepare import analyze, prepare
 from hexaleg.dynamics.reference import solve_reference
 from hexaleg.dynamics.solver import solve_fast
 from hexaleg.errors import InvalidParameterError, TorqueLimitError, UnknownNameError
@@ -41,7 +40,7 @@ def test_each_joint_gets_its_class_motor(robot):
 def test_metrics_per_joint_are_each_motors_own(robot, walk200):
     """Every per-joint energy equals a one-joint metrics call with that joint's motor alone
     (a regenerating femur motor: its joints' electrical energy is the regenerating one)."""
-    a = hexaleg.analyze(robot, walk200)
+    a = analyze(robot, walk200)
     motors = _set(robot, femur=dataclasses.replace(STRONG, regeneration=True))
     m = energy.metrics(a.tau_motor, a.qdot, walk200.dt, motors)
     femur = np.array([j.endswith("femur") for j in robot.joint_names])
@@ -59,8 +58,8 @@ def test_metrics_per_joint_are_each_motors_own(robot, walk200):
 
 def test_one_motor_everywhere_equals_the_motor(robot, walk200):
     """A set with the same motor on every class gives the analysis of that motor, bit for bit."""
-    one = hexaleg.analyze(robot, walk200, motor=LIGHT)
-    same = hexaleg.analyze(robot, walk200, motor=_set(robot, femur=LIGHT))
+    one = analyze(robot, walk200, motor=LIGHT)
+    same = analyze(robot, walk200, motor=_set(robot, femur=LIGHT))
     assert np.array_equal(one.forces, same.forces)
     for key in energy.ENERGY_KEYS:
         assert one.metrics["total"][key] == same.metrics["total"][key]
@@ -70,7 +69,7 @@ def test_force_program_weighs_each_joint_by_its_motor(robot, walk200):
     """The Joule-optimal forces move when the femur's motor changes (its weight does), and the
     analysis' Joule energy is the minimum: no other feasible forces (the light motor's optimum)
     cost less under the set's own weights."""
-    light = hexaleg.analyze(robot, walk200, motor=LIGHT)
+    light = analyze(robot, walk200, motor=LIGHT)
     mixed = prepare(robot, walk200, motor=_set(robot))
     a = mixed.evaluate(None)
     assert np.abs(a.forces - light.forces).max() > 1e-3
@@ -163,7 +162,7 @@ def test_report_lists_the_motor_of_every_class(tmp_path):
 def test_torque_limit_error_names_the_motor_and_the_remedy(robot, walk200):
     tiny = generic_actuator(0.1, 6.0, name="tiny servo")
     with pytest.raises(TorqueLimitError, match=r"tiny servo.*stronger") as info:
-        hexaleg.analyze(robot, walk200, motor=tiny)
+        analyze(robot, walk200, motor=tiny)
     assert "torque_limits" in str(info.value)
 
 

@@ -71,9 +71,9 @@ def test_a_bad_payload_is_named(kwargs, match):
 
 
 def test_the_report_and_the_design_carry_the_payload(robot):
-    from hexaleg.design.codesign import optimal_springs
-    from hexaleg.studies.report.build import build_report
-    from hexaleg.studies.report.config import ReportConfig
+    from hexaleg.design.optimal import optimal_springs
+    from hexaleg.report.build import build_report
+    from hexaleg.report.config import ReportConfig
 
     config = ReportConfig.from_mapping({
         "gait": {"samples": 60}, "payload": {"mass": 0.4, "com": [0.03, -0.01, 0.04]},

@@ -14,7 +14,7 @@ import pytest
 import hexaleg
 from hexaleg.design.rules import centred_springs, k_M
 from hexaleg.dynamics.contact import ContactParams
-from hexaleg.dynamics.prepare import prepare
+from hexaleg.dynamics.prepare import analyze, prepare
 from hexaleg.errors import UnknownNameError
 from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import GaitParams
@@ -60,7 +60,7 @@ def test_registry_names_and_unknown_name_lists_them():
 
 
 def test_hexaleg_entry_is_the_built_in_robot():
-    robot, ref = load("hexaleg"), hexaleg.load_robot()
+    robot, ref = load("hexaleg"), hexaleg.load()
     assert robot.joint_names == ref.joint_names and robot.leg_names == ref.leg_names
     assert robot.model.nq == 25 and robot.joint_kinds == ("coxa", "femur", "tibia")
     assert set(robot.poses) == set(ref.poses)
@@ -167,7 +167,7 @@ def test_rigid_trot_on_two_point_feet_has_no_contact_forces(quad):
     assert _support_line_moment(robot, rigid, prepare(robot, rigid, contact=NO_LIMITS).system) \
         > 1e-3  # the moment the two feet cannot give, relative to m g |r|
     with pytest.raises(hexaleg.errors.InfeasibleForcesError, match="body sway"):
-        hexaleg.analyze(robot, rigid, contact=NO_LIMITS)
+        analyze(robot, rigid, contact=NO_LIMITS)
 
 
 def test_balanced_trot_needs_no_moment_about_the_support_line(quad, trot):

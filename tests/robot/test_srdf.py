@@ -9,6 +9,7 @@ import pytest
 import hexaleg
 from hexaleg.errors import InvalidParameterError, RobotModelError, UnknownNameError
 from hexaleg.robot.model import DEFAULT_SRDF, DEFAULT_URDF, load_robot
+from hexaleg.robot.registry import DESCRIPTIONS
 from hexaleg.robot.srdf import check_reference_poses
 
 
@@ -42,14 +43,14 @@ def test_a_value_that_is_not_one_finite_number_is_refused(tmp_path, value):
 def test_malformed_xml_is_a_robot_model_error(tmp_path):
     bad = tmp_path / "bad.srdf"
     bad.write_text("<robot><group_state", encoding="utf-8")
-    robot = hexaleg.load_robot()
+    robot = hexaleg.load()
     with pytest.raises(RobotModelError, match=r"bad\.srdf cannot be read as XML"):
         check_reference_poses(robot.model, bad)
 
 
-@pytest.mark.parametrize("name", sorted(hexaleg.DESCRIPTIONS))
+@pytest.mark.parametrize("name", sorted(DESCRIPTIONS))
 def test_every_registered_robot_passes(name):
-    desc = hexaleg.DESCRIPTIONS[name]
+    desc = DESCRIPTIONS[name]
     if desc.srdf_path is None:
         pytest.skip(f"{name} has no SRDF")
     check_reference_poses(desc.load().model, desc.srdf_path)

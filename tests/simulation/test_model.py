@@ -57,7 +57,7 @@ def test_mujoco_inverse_dynamics_is_pinocchio_rnea(which, request):
     axes, the inertias and the free flyer's velocity and force conventions all agree. The spider
     (a test hexapod facing +y, joints found from its URDF) checks another tree."""
     robot = request.getfixturevalue(which)
-    motion = hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=100))
+    motion = hexaleg.gait(robot, hexaleg.GaitParams(samples=100))
     sim = build_model(robot, motion, hexaleg.robot.catalogue.motor("AX-18A"), timestep=2.5e-4)
     m = _bare(sim)
     for q, v, a in _random_states(robot, 4):
@@ -107,7 +107,7 @@ def test_timestep_must_undercut_the_gait_and_stay_stable(prepared):
     robot, motion, motor = prepared.robot, prepared.motion, prepared.motor
     with pytest.raises(InvalidParameterError, match="sample spacing"):
         build_model(robot, motion, motor, timestep=motion.dt)
-    coarse = hexaleg.tripod_gait(robot, dataclasses.replace(hexaleg.GaitParams(), samples=200))
+    coarse = hexaleg.gait(robot, dataclasses.replace(hexaleg.GaitParams(), samples=200))
     with pytest.raises(InvalidParameterError, match="explicit stability of the servo"):
         build_model(robot, coarse, motor, timestep=2e-3)
     with pytest.raises(InvalidParameterError, match="ground contact"):

@@ -39,7 +39,7 @@ def test_root_below_the_feet_is_a_named_error_before_building(tmp_path):
     alone, with no stand to check, the simulation still names it before building."""
     spider(tmp_path, ROOT, BELOW)
     robot = load_robot(tmp_path / "spider.urdf", legs="auto", heading=(0.0, 1.0, 0.0))
-    motion = hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=20))
+    motion = hexaleg.gait(robot, hexaleg.GaitParams(samples=20))
     with pytest.raises(RobotModelError) as info:
         build_model(robot, motion, motor("AX-18A"))
     text = str(info.value)
@@ -112,7 +112,7 @@ def test_a_zero_size_geometry_is_named_before_compiling(tmp_path):
     with pytest.raises(RobotModelError, match=r"link 'a_thigh', <cylinder radius=\"0\">: "
                                               r"expected sizes > 0"):
         load(str(tmp_path / "spider.toml"))
-    robot = hexaleg.load_robot()
+    robot = hexaleg.load()
     obj = robot.collision_model.geometryObjects[0]
     with pytest.raises(RobotModelError) as info:
         check_size(robot, obj, "box", np.array([0.01, 0.0, 0.02]))

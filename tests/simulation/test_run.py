@@ -161,7 +161,7 @@ def test_a_reused_baseline_run_gives_the_same_simulation(prepared, optimal, feed
     trajectory bit for bit), and a baseline of other settings is refused by name."""
     from conftest import SHORT
 
-    from hexaleg.design.codesign import optimal_springs
+    from hexaleg.design.optimal import optimal_springs
 
     other = optimal_springs(prepared, ["tibia"], "linear").springs
     reused = simulate(prepared.robot, prepared.motion, prepared.motor, other, SHORT,
@@ -203,6 +203,6 @@ def test_steps_are_checked_against_the_budget_before_anything_is_allocated(robot
 
     monkeypatch.setattr(run_module, "prepare", never)
     monkeypatch.setattr(run_module, "build_model", never)
-    motion = hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=100))
+    motion = hexaleg.gait(robot, hexaleg.GaitParams(samples=100))
     with pytest.raises(InvalidParameterError, match="invalid timestep = 1e-08"):
         simulate(robot, motion, None, None, Settings(timestep=1e-8))

@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import dataclasses
 
+from hexaleg.commands.simulate.write import page, simulation_data
 from hexaleg.simulation.sensitivity import VARIANTS, sensitivity
-from hexaleg.studies.simulate.write import page, simulation_data
 
 
 def test_sensitivity_rows_in_the_json_and_the_page(feedforward):

@@ -38,7 +38,7 @@ import numpy as np
 
 from hexaleg.design.bundle import MODES, minimise
 from hexaleg.design.bundle import TOLERANCE as CERTIFIED
-from hexaleg.design.program import MAX_ROUNDS, DesignProblem, torque_gains
+from hexaleg.design.program import ENGAGED, MAX_ROUNDS, DesignProblem, torque_gains
 from hexaleg.design.program_reference import force_constraints, stacked
 from hexaleg.dynamics.contact import violations
 from hexaleg.dynamics.reference import solve_clarabel
@@ -194,8 +194,6 @@ def rows(problems: Sequence[DesignProblem]) -> tuple[np.ndarray, np.ndarray, np.
     """The shared design rows of stacked problems: ``(G, h, nonneg, fixed)`` — every problem's
     rows but its "never engaged" ones; a magnitude is fixed at 0 only when its term acts in no
     problem."""
-    from hexaleg.design.setup import ENGAGED
-
     nx = problems[0].nx
     engaged = np.zeros(nx, dtype=bool)
     G, h = [np.zeros((0, nx))], [np.zeros(0)]

@@ -44,6 +44,7 @@ from hexaleg.design.torsion_spring import (
 )
 from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import InvalidParameterError
+from hexaleg.quantities import quantity
 from hexaleg.robot.model import Robot
 
 URDF = "URDF limits"
@@ -175,28 +176,27 @@ class PartEnvelope:
     def table(self) -> dict[str, Any]:
         """Every number as ``{value, unit}`` (angles in rad, the wind-up also in deg), for
         design.json's ``envelope``."""
-        def q(value: float, unit: str) -> dict[str, Any]:
-            return {"value": "inf" if math.isinf(value) else float(value), "unit": unit}
-
         stop = None if self.stop is None else {
-            "angle_from_centre": q(self.stop.angle_from_centre, "rad"),
-            "angles": {j: q(a, "rad") for j, a in self.stop.angles.items()},
-            "windup": q(self.stop.windup, "rad"), "torque": q(self.stop.torque, "N·m"),
+            "angle_from_centre": quantity(self.stop.angle_from_centre, "rad"),
+            "angles": {j: quantity(a, "rad") for j, a in self.stop.angles.items()},
+            "windup": quantity(self.stop.windup, "rad"),
+            "torque": quantity(self.stop.torque, "N·m"),
             "note": "a stop on the spring's moving leg, holding the spring's torque; a stop on "
                     "the joint instead also holds the servo's torque"}
         return {"group": self.group, "side": self.side, "role": self.role,
-                "max_windup": q(self.max_windup, "rad"),
-                "max_windup_deg": q(math.degrees(self.max_windup), "deg"),
-                "max_torque": q(self.max_torque, "N·m"), "stress": q(self.stress, "Pa"),
-                "yield_strength": q(self.yield_strength, "Pa"),
-                "safety_factor": q(self.safety_factor, "1"),
-                "design_factor": q(self.design_factor, "1"), "meets": self.meets,
-                "worst": {"joint": self.joint, "angle": q(self.angle, "rad"),
-                          "angle_from_centre": q(self.angle_from_centre, "rad"),
+                "max_windup": quantity(self.max_windup, "rad"),
+                "max_windup_deg": quantity(math.degrees(self.max_windup), "deg"),
+                "max_torque": quantity(self.max_torque, "N·m"),
+                "stress": quantity(self.stress, "Pa"),
+                "yield_strength": quantity(self.yield_strength, "Pa"),
+                "safety_factor": quantity(self.safety_factor, "1"),
+                "design_factor": quantity(self.design_factor, "1"), "meets": self.meets,
+                "worst": {"joint": self.joint, "angle": quantity(self.angle, "rad"),
+                          "angle_from_centre": quantity(self.angle_from_centre, "rad"),
                           "source": self.source},
-                "by_source": {s: q(v, "1") for s, v in self.by_source.items()},
-                "wound_inner_diameter": q(self.wound_inner_diameter, "m"),
-                "arbor_diameter": q(self.arbor_diameter, "m"),
+                "by_source": {s: quantity(v, "1") for s, v in self.by_source.items()},
+                "wound_inner_diameter": quantity(self.wound_inner_diameter, "m"),
+                "arbor_diameter": quantity(self.arbor_diameter, "m"),
                 "clears_arbor": self.clears_arbor, "hard_stop": stop, "problem": self.problem}
 
 

@@ -6,7 +6,7 @@ future work. The design layer answers that for a gait and a motor: which joints 
 dead-zone spring (eq. 8, :class:`hexaleg.robot.springs.DeadZoneSpring`), with which contact angles
 and which stiffness. This module evaluates one design; :mod:`hexaleg.design.optimise`,
 :mod:`hexaleg.design.placement` and :mod:`hexaleg.design.robustness` search and study designs,
-:mod:`hexaleg.studies.sweep` runs grids of them.
+:mod:`hexaleg.sweep` runs grids of them.
 
 Groups and designs
 ------------------

@@ -1,6 +1,6 @@
 """Spring families as the design program sees them: a geometry, basis terms, magnitudes.
 
-For :func:`hexaleg.design.codesign.optimal_springs` a family is split into its *geometry* —
+For :func:`hexaleg.design.optimal.optimal_springs` a family is split into its *geometry* —
 angles the convex program holds fixed, relative to the centre of each joint's range of motion in
 the gait (the convention of :mod:`hexaleg.design.evaluator`) — and its *magnitudes*, which are
 decision variables because the spring torque is linear in them
@@ -45,7 +45,7 @@ from hexaleg.robot.springs import (
 )
 
 FAMILIES: tuple[str, ...] = ("linear", "dead_zone", "preloaded", "one_sided", "stiffening")
-"""Spring families :func:`hexaleg.design.codesign.optimal_springs` designs."""
+"""Spring families :func:`hexaleg.design.optimal.optimal_springs` designs."""
 
 Geometry = Mapping[str, float | str]
 """A family's geometry: angle name → rad from the joint's centre of motion (and ``side``)."""

@@ -56,6 +56,7 @@ from hexaleg.design.spring_materials import (
 )
 from hexaleg.design.torsion_spring import TorsionSpring, bending_stress
 from hexaleg.errors import InvalidParameterError
+from hexaleg.quantities import quantity
 from hexaleg.units import MM
 
 TABLE_LIVES = (1e5, 1e6)
@@ -183,9 +184,9 @@ class FatigueCheck:
         return self.safety_factor >= 1.0
 
     def table(self) -> dict[str, Any]:
-        """Every number as ``{value, unit}`` (an infinite life as the string ``"inf"``)."""
-        def q(value: float, unit: str) -> dict[str, Any]:
-            return {"value": "inf" if math.isinf(value) else float(value), "unit": unit}
+        """Every number as ``{value, unit}`` (:func:`hexaleg.quantities.quantity`: an infinite
+        life stays infinite, written ``null`` with a note in a JSON file)."""
+        q = quantity
 
         return {"material": self.material, "peened": self.peened,
                 "criterion": "Gerber (Shigley §10-12, Table 6-7)",

@@ -5,7 +5,7 @@ A gait at a required speed ``v`` is :class:`~hexaleg.motion.params.GaitParams` w
 parameters (:data:`PARAMETERS`: body height, foot radius, step height, duty factor, period; the
 stride is ``v · period``). :func:`evaluate_gait` makes it (:func:`hexaleg.motion.legged.gait`),
 prepares it (:func:`hexaleg.dynamics.prepare.prepare`) and, when springs are asked for, solves
-the inner spring program (:func:`hexaleg.design.codesign.optimal_springs`, a family's magnitudes
+the inner spring program (:func:`hexaleg.design.optimal.optimal_springs`, a family's magnitudes
 the global optimum of one convex program minimising the electrical energy). The objective is the
 servos' electrical energy per cycle over the distance per cycle, ``E / (v T)`` J/m; the cost of
 transport is ``E / (m g d)`` (Gabrielli & von Kármán, "What price speed?", Mech. Eng. 72, 1950).
@@ -24,7 +24,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from hexaleg.checks import nonnegative, real
-from hexaleg.design.codesign import Groups, optimal_springs
+from hexaleg.design.optimal import Groups, optimal_springs
 from hexaleg.dynamics.contact import ContactParams, friction_usage
 from hexaleg.dynamics.energy import G
 from hexaleg.dynamics.prepare import Prepared, prepare

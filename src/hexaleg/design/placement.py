@@ -3,7 +3,7 @@
 The paper leaves "the appropriate elastic joint assembly position" as future work. For every
 non-empty set of the given groups (a joint class, a mirrored pair, one joint), this study designs
 the springs of one family on exactly those groups *together*, with
-:func:`hexaleg.design.codesign.optimal_springs` (each group its own design; the magnitudes the
+:func:`hexaleg.design.optimal.optimal_springs` (each group its own design; the magnitudes the
 global optimum for the geometry, the geometry searched). A set's search starts from each of its
 subsets one group smaller at its optimum, the missing group at its own: the program may leave that
 group's magnitudes at 0, so a set never saves less than any of its subsets.
@@ -20,15 +20,15 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from hexaleg.checks import typed
-from hexaleg.design.codesign import (
+from hexaleg.design.evaluator import Evaluator
+from hexaleg.design.families import Geometry
+from hexaleg.design.optimal import (
     OBJECTIVE_METRIC,
     Groups,
     OptimalSprings,
     optimal_springs,
     resolve_groups,
 )
-from hexaleg.design.evaluator import Evaluator
-from hexaleg.design.families import Geometry
 from hexaleg.design.optimise import Optimum, optimise
 from hexaleg.dynamics.energy import saving
 from hexaleg.dynamics.prepare import Prepared
@@ -50,11 +50,11 @@ class Placement:
     Attributes:
         table: One row per set of sprung groups, best first: ``springs`` (the groups joined by
             ``+``), ``groups`` (how many), ``value`` (the objective's metric with the springs,
-            :data:`~hexaleg.design.codesign.OBJECTIVE_METRIC`), ``baseline``, ``saving``,
+            :data:`~hexaleg.design.optimal.OBJECTIVE_METRIC`), ``baseline``, ``saving``,
             ``benefits`` (saving > 0); with the comparison also ``old_value``, ``old_saving``
             (the old search, each group at its own optimum) and ``gap``
             (``saving − old_saving``: the fraction of the baseline the old search left).
-        optima: ``springs`` → the :class:`~hexaleg.design.codesign.OptimalSprings` of that set.
+        optima: ``springs`` → the :class:`~hexaleg.design.optimal.OptimalSprings` of that set.
         old: Group → the old search's optimum, or empty without the comparison.
     """
 
@@ -72,9 +72,9 @@ def placement(prepared: Prepared, groups: Groups, family: str = "preloaded",
 
     Args:
         prepared: :func:`hexaleg.prepare` of the gait.
-        groups: As :func:`~hexaleg.design.codesign.optimal_springs` (``{name: joints}`` or a
+        groups: As :func:`~hexaleg.design.optimal.optimal_springs` (``{name: joints}`` or a
             list of classes / joints).
-        family: As :func:`~hexaleg.design.codesign.optimal_springs`.
+        family: As :func:`~hexaleg.design.optimal.optimal_springs`.
         objective: As there.
         max_torque: As there.
         max_deflection: As there.
@@ -85,7 +85,7 @@ def placement(prepared: Prepared, groups: Groups, family: str = "preloaded",
         The table (best first), the optimal springs of every set, the old optima.
 
     Raises:
-        HexalegError: as :func:`~hexaleg.design.codesign.optimal_springs`.
+        HexalegError: as :func:`~hexaleg.design.optimal.optimal_springs`.
     """
     import pandas as pd
 

@@ -45,6 +45,10 @@ from hexaleg.errors import InfeasibleForcesError, InvalidParameterError
 
 MAX_ROUNDS = 50
 """Active-set rounds before giving up (each adds every violating sample; a handful suffice)."""
+ENGAGED = 1e-9
+"""A term acts over the gait where its basis (a column of :attr:`DesignProblem.B`) exceeds this
+somewhere (rad of compression, or the unit step); below it the term is fixed at 0 instead of left
+to round-off (a ``"never engaged"`` row of the design)."""
 
 
 @dataclass(frozen=True, eq=False)

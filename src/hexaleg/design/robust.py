@@ -39,15 +39,15 @@ import numpy as np
 
 from hexaleg.checks import typed
 from hexaleg.design.bundle import MODES, minimise
-from hexaleg.design.codesign import (
+from hexaleg.design.condensed import TOLERANCE, Condensed, explicit_program
+from hexaleg.design.families import family
+from hexaleg.design.optimal import (
     ENGAGED,
     OptimalSprings,
     frozen_problem,
     group_springs,
     motion_centres,
 )
-from hexaleg.design.condensed import TOLERANCE, Condensed, explicit_program
-from hexaleg.design.families import family
 from hexaleg.dynamics.energy import saving
 from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import InfeasibleForcesError, InvalidParameterError, TorqueLimitError

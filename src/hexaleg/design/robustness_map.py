@@ -145,7 +145,7 @@ Cell = tuple[str, dict[str, float]]
 """One map cell: its status (``"ok"`` or why there is no number) and metric → saving."""
 Mapper = Callable[[Callable[[Condition], Cell], Sequence[Condition]], Sequence[Cell]]
 """How a map's cells are computed: ``mapper(fn, conditions)`` is ``[fn(c) for c in conditions]``
-(e.g. spread over processes, :func:`hexaleg.studies.forked.fork_map`)."""
+(e.g. spread over processes, :func:`hexaleg.parallel.forked.fork_map`)."""
 
 
 def _in_turn(fn: Callable[[Condition], Cell], conditions: Sequence[Condition]) -> list[Cell]:

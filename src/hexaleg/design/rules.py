@@ -11,7 +11,7 @@ For a joint of the walking robot hexaleg carries that over as a *centred* design
   apparent inertia ``M[v, v]`` (Pinocchio CRBA, base fixed) at the gait's mean posture — the
   "m l² + I" of everything the joint moves.
 
-These are starting points, not optima: :mod:`hexaleg.studies.sweep.runner` finds the optimum for a
+These are starting points, not optima: :mod:`hexaleg.sweep.runner` finds the optimum for a
 metric.
 """
 

@@ -1,13 +1,13 @@
 """The checked inputs of a spring design: what does not change while the geometry is searched.
 
 :class:`DesignSetup` holds the prepared gait, the family, the groups, each joint's range of
-motion and the design limits of :func:`hexaleg.design.codesign.optimal_springs`, builds the
+motion and the design limits of :func:`hexaleg.design.optimal.optimal_springs`, builds the
 design program of a geometry (:class:`hexaleg.design.program.DesignProblem`: the basis B and the
 design rows ``G x ≤ h`` of the codesign module docstring) and solves it: the force objective's
 own program (:func:`hexaleg.design.program.solve_design`, or the cvxpy reference for the
 non-quadratic objectives), or — for another metric of the Joule-optimal forces, or the worst
 case over stop shifts — the condensed program (:func:`hexaleg.design.condensed.solve_condensed`).
-Both :mod:`hexaleg.design.codesign` and :mod:`hexaleg.design.search` import it.
+Both :mod:`hexaleg.design.optimal` and :mod:`hexaleg.design.search` import it.
 """
 
 from __future__ import annotations
@@ -20,16 +20,14 @@ import numpy as np
 
 from hexaleg.checks import real
 from hexaleg.design import families
+from hexaleg.design.condensed import Condensed, solve_condensed
 from hexaleg.design.families import Family, Geometry
-from hexaleg.design.program import DesignProblem, DesignSolution, solve_design
+from hexaleg.design.program import ENGAGED, DesignProblem, DesignSolution, solve_design
 from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES, check_objective
 from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import InvalidParameterError, UnknownNameError
 from hexaleg.robot.springs import Term, basis
 
-ENGAGED = 1e-9
-"""A term acts over the gait where its basis exceeds this somewhere (rad of compression, or the
-unit step); below it the term is fixed at 0 instead of left to round-off."""
 METRICS: tuple[str, ...] = ("joule", "electrical")
 """Metrics of the Joule-optimal forces the magnitudes may minimise (``metric``)."""
 
@@ -234,8 +232,6 @@ class DesignSetup:
             from hexaleg.design.program_reference import solve_design_reference
 
             return solve_design_reference(problem)
-        from hexaleg.design.condensed import Condensed, solve_condensed
-
         problems = self.problems(geometry)
         data = [Condensed(p, self.metric or "joule") for p in problems]
         x0 = solve_design(problems[0]).x if self.metric == "electrical" and len(
@@ -253,7 +249,7 @@ def design_setup(prepared: Prepared, groups: Groups, family: str, objective: str
                  max_torque: float | None, max_deflection: float | None,
                  metric: str | None = None, shifts: Sequence[Shift] = (),
                  mirrored: Iterable[str] = ()) -> DesignSetup:
-    """The checked inputs of :func:`~hexaleg.design.codesign.optimal_springs` and each joint's
+    """The checked inputs of :func:`~hexaleg.design.optimal.optimal_springs` and each joint's
     range of motion.
 
     Raises:

@@ -13,7 +13,7 @@ holds up on every joint of the group — each element becomes a :class:`TorsionR
   it: the torque changes sign, which one torsion spring cannot give (it must be loaded in the
   sense that winds it up), so an antagonistic pair: two springs of rate k/2, each free at
   ``u_f ∓ e`` (e the farthest the motion gets from u_f), together exactly ``τ₀ − k u``;
-* k → 0 with a torque (below :data:`~hexaleg.design.codesign.ZERO_STIFFNESS`): a constant torque,
+* k → 0 with a torque (below :data:`~hexaleg.design.optimal.ZERO_STIFFNESS`): a constant torque,
   which needs a constant-torque spring (spiral or constant-force), not a torsion spring: flagged.
 
 The outer diameter limit of a group is the smallest of its joints' classes
@@ -33,8 +33,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hexaleg.design.codesign import ZERO_STIFFNESS, OptimalSprings
 from hexaleg.design.families import family
+from hexaleg.design.optimal import ZERO_STIFFNESS, OptimalSprings
 from hexaleg.design.spring_materials import MATERIALS
 from hexaleg.design.torsion_spring import (
     ARBOR_MARGIN,

@@ -9,11 +9,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
+from hexaleg.quantities import quantity
 from hexaleg.units import nm_per_rad_to_nmm_per_deg, nm_to_nmm, rad_to_deg
-
-
-def _quantity(value: Any, unit: str) -> dict[str, Any]:
-    return {"value": float(value), "unit": unit}
 
 
 def magnitudes_table(geometry: Mapping[str, float | str], magnitudes: Mapping[str, float]
@@ -26,11 +23,11 @@ def magnitudes_table(geometry: Mapping[str, float | str], magnitudes: Mapping[st
         if isinstance(v, str):
             out[name] = v
         else:
-            out[name] = {"si": _quantity(v, "rad"), "paper": _quantity(rad_to_deg(v), "deg")}
+            out[name] = {"si": quantity(v, "rad"), "paper": quantity(rad_to_deg(v), "deg")}
     for name, v in magnitudes.items():
         if name.startswith("k"):
-            out[name] = {"si": _quantity(v, "N·m/rad"),
-                         "paper": _quantity(nm_per_rad_to_nmm_per_deg(v), "N·mm/deg")}
+            out[name] = {"si": quantity(v, "N·m/rad"),
+                         "paper": quantity(nm_per_rad_to_nmm_per_deg(v), "N·mm/deg")}
         else:
-            out[name] = {"si": _quantity(v, "N·m"), "paper": _quantity(nm_to_nmm(v), "N·mm")}
+            out[name] = {"si": quantity(v, "N·m"), "paper": quantity(nm_to_nmm(v), "N·mm")}
     return out

@@ -43,8 +43,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from hexaleg.checks import integer, real
-from hexaleg.design.codesign import OptimalSprings, springs_result
 from hexaleg.design.families import family
+from hexaleg.design.optimal import OptimalSprings, springs_result
 from hexaleg.design.search import search_geometry
 from hexaleg.design.setup import Shift, design_setup, motion_centres, shifted
 from hexaleg.dynamics.energy import saving
@@ -166,7 +166,7 @@ def tolerant_springs(prepared: Prepared, blind: OptimalSprings, tolerance: float
 
     Args:
         prepared: The gait ``blind`` was designed on.
-        blind: The tolerance-blind optimum (:func:`hexaleg.design.codesign.optimal_springs`,
+        blind: The tolerance-blind optimum (:func:`hexaleg.design.optimal.optimal_springs`,
             objective joule, any metric): family, groups, the search's first start.
         tolerance: t, rad, > 0 and ≤ 0.1 (≈ 5.7°).
         metric: ``"electrical"`` or ``"joule"``: the saving kept.

@@ -43,6 +43,7 @@ from numpy.typing import ArrayLike
 from hexaleg.checks import real, typed
 from hexaleg.design.spring_materials import MATERIALS, PREFERRED_WIRE_DIAMETERS, material
 from hexaleg.errors import InvalidParameterError, SpringDesignError
+from hexaleg.quantities import quantity
 from hexaleg.units import MM, nm_per_rad_to_nmm_per_deg, rad_to_deg
 
 WAHL = 10.8
@@ -242,8 +243,7 @@ class TorsionSpring:
     def table(self) -> dict[str, Any]:
         """Every number as ``{value, unit}`` (SI, the rate also in N·mm/deg, angles also in deg).
         """
-        def q(value: float | np.ndarray, unit: str) -> dict[str, Any]:
-            return {"value": float(value), "unit": unit}
+        q = quantity
 
         return {
             "material": MATERIALS[self.material].title,

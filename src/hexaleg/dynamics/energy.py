@@ -123,7 +123,7 @@ def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor | MotorSet,
         * ``epsilon`` (only with ``inertia``): dict of (n,) arrays ``angle`` θ = ∫ |q̇| dt (rad,
           the angle travelled), ``inertia`` (kg·m²) and ``positive_work`` — the paper's eq. 24
           per joint, ε = E / (I θ) with E the positive work (as
-          :func:`hexaleg.studies.paper.metrics.energy_ratio`: eq. 20's signed work vanishes
+          :func:`hexaleg.paper.metrics.energy_ratio`: eq. 20's signed work vanishes
           over a conservative cycle), 1/s²; 0 for a joint that does not move (it does no work
           either).
 
@@ -301,3 +301,8 @@ def savings(metrics_with: Mapping[str, Any], metrics_without: Mapping[str, Any]
         out[group] = (dict(zip(keys, saved, strict=True)) if group == "joint" else
                       {k: float(v) for k, v in zip(keys, saved, strict=True)})
     return out
+
+
+def metric_unit(metric: str) -> str:
+    """Unit of a metric of :func:`hexaleg.dynamics.energy.metrics`: ``"N·m"`` or ``"J"``."""
+    return "N·m" if metric in TORQUE_KEYS else "J"

@@ -39,6 +39,7 @@ import pinocchio as pin
 
 from hexaleg.errors import HexalegError
 from hexaleg.motion.body import body_height, reference_pose
+from hexaleg.motion.legged import gait as make_gait
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.sanity import speed_ratio
 from hexaleg.robot.description import BUILTIN, RobotDescription
@@ -213,8 +214,6 @@ def sized_defaults(desc: RobotDescription, gait: GaitParams,
 
 def _size(desc: RobotDescription, gait: GaitParams, robot: Robot,
           keys: tuple[str, ...]) -> SizedDefaults:
-    from hexaleg.motion.legged import gait as make_gait  # legged imports this layer's params
-
     h = hip_height(robot, gait)
     k = h / REFERENCE_HIP_HEIGHT
     stride = REFERENCE.stride * k if "stride_length" in keys else gait.stride

@@ -1,4 +1,4 @@
-"""Matplotlib figures of the spring design (``hexaleg design``, :mod:`hexaleg.studies.design`).
+"""Matplotlib figures of the spring design (``hexaleg design``, :mod:`hexaleg.design.chain`).
 
 Plain arrays in, a :class:`matplotlib.figure.Figure` out (object-oriented API on the Agg canvas,
 as :mod:`hexaleg.outputs.plots`): the robustness heat maps, the Pareto front of saving against

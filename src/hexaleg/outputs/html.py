@@ -72,7 +72,7 @@ def render_html(data: Mapping[str, Any], images: Mapping[str, str]) -> str:
     """Render ``templates/report.html.j2`` with the report's numbers and embedded images.
 
     Args:
-        data: The report's JSON content (``Report.data`` of :mod:`hexaleg.studies.report.build`).
+        data: The report's JSON content (``Report.data`` of :mod:`hexaleg.report.build`).
         images: Plot name → ``data:`` URI.
 
     Returns:
@@ -85,7 +85,7 @@ def render_design_html(data: Mapping[str, Any], images: Mapping[str, str]) -> st
     """Render ``templates/design.html.j2``: the spring design page of ``hexaleg design``.
 
     Args:
-        data: The content of ``design.json`` (:func:`hexaleg.studies.design.data.design_data`).
+        data: The content of ``design.json`` (:func:`hexaleg.design.chain.result.design_data`).
         images: Plot name → ``data:`` URI.
 
     Returns:

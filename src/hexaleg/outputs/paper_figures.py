@@ -1,6 +1,6 @@
 """Matplotlib analogues of the paper's Figs 5–13 (the single elastic joint), from plain arrays.
 
-The paper study (:mod:`hexaleg.studies.paper.figures`) computes the curves; these functions only
+The paper study (:mod:`hexaleg.paper.figures`) computes the curves; these functions only
 draw them. Every function returns a :class:`matplotlib.figure.Figure` built with the
 object-oriented API on the Agg canvas — no ``pyplot``, no global figure manager — laid out with
 ``tight_layout``; :func:`save_png` writes one. Torques are given in N·m and drawn in mN·m;

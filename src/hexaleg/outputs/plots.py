@@ -1,5 +1,5 @@
 """Matplotlib figures of a gait analysis, for the energy report
-(:mod:`hexaleg.studies.report.write`).
+(:mod:`hexaleg.commands.report.write`).
 
 Every function returns a :class:`matplotlib.figure.Figure` built with the object-oriented API
 on the Agg canvas — no ``pyplot``, so nothing is registered in pyplot's global figure manager and

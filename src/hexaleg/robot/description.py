@@ -31,12 +31,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.errors import InvalidParameterError, RobotModelError, UnknownNameError
+from hexaleg.config import from_mapping, load_toml
+from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError, UnknownNameError
 from hexaleg.robot import fields
-from hexaleg.robot.feet import settle_sphere_feet
-from hexaleg.robot.fields import FrozenTable, check_stand, heading, plain
+from hexaleg.robot.fields import FrozenTable, axis, check_stand, heading, legs_table, plain
 from hexaleg.robot.model import AUTO, URDF_DIR, LegSpec, Robot, load_robot
 from hexaleg.robot.root import check_root
+from hexaleg.robot.sphere_feet import settle_sphere_feet
 
 if TYPE_CHECKING:
     from hexaleg.robot.motor import Motor
@@ -277,9 +278,7 @@ class RobotDescription:
     @classmethod
     def from_toml(cls, path: str | Path) -> RobotDescription:
         """A description of one's own robot from the ``[robot]`` table of a TOML file
-        (:func:`hexaleg.robot.description_file.read_description`: the format and its errors)."""
-        from hexaleg.robot.description_file import read_description
-
+        (:func:`read_description`: the format and its errors)."""
         return read_description(path)
 
     def _dir(self) -> Path:
@@ -371,3 +370,67 @@ class RobotDescription:
             robot.column(joint)  # an unknown joint raises, listing the joints
             q[robot.model.joints[robot.model.getJointId(joint)].idx_q] = value
         return q, None
+
+
+def read_description(path: str | Path) -> RobotDescription:
+    """A description of one's own robot from the ``[robot]`` table of a TOML file.
+
+    Example (relative paths are relative to the TOML file; ``source`` defaults to
+    :data:`FILES`)::
+
+        [robot]
+        name = "myquad"
+        title = "My quadruped"
+        urdf = "myquad.urdf"
+        srdf = "myquad.srdf"          # optional
+        stand = "standing"            # a group_state, or a table {joint = angle_rad}
+        joint_kinds = ["haa", "hfe", "kfe"]
+        spring_class = "kfe"
+        mesh_dirs = ["."]             # where package:// URIs resolve
+        [robot.gait]                  # GaitParams keys (hexaleg.motion.params)
+        period = 0.5
+        groups = [["LF", "RH"], ["RF", "LH"]]
+        [[robot.legs]]
+        name = "LF"
+        joints = ["LF_HAA", "LF_HFE", "LF_KFE"]
+        foot = "LF_FOOT"
+        # ... one [[robot.legs]] table per leg
+
+    Args:
+        path: The TOML file.
+
+    Returns:
+        The description (its files are not opened until
+        :meth:`~hexaleg.robot.description.RobotDescription.load`).
+
+    Raises:
+        ConfigError: the file cannot be read, has no ``[robot]`` table or no
+            ``[[robot.legs]]`` tables, or a value has the wrong type.
+        UnknownNameError: an unknown key (the message lists the valid keys).
+        InvalidParameterError: a value out of range.
+    """
+    path = Path(path)
+    where = f"{path} [robot]"
+    table = load_toml(path).get("robot")
+    if not isinstance(table, Mapping):
+        raise ConfigError(f"{path}: expected a [robot] table")
+    data = dict(table)
+    if "legs" in data:
+        data["legs"] = legs_table(data["legs"], where)
+    for key in ("joint_kinds", "mesh_dirs", "heading", "root_offset"):
+        if isinstance(data.get(key), list):
+            data[key] = tuple(data[key])
+    data.setdefault("source", FILES)
+    if data["source"] == FILES:
+        for key in ("urdf", "srdf"):
+            if isinstance(data.get(key), str):
+                data[key] = str(path.parent / data[key])
+        if isinstance(data.get("mesh_dirs"), list):
+            data["mesh_dirs"] = [str(path.parent / d) if isinstance(d, str) else d
+                                 for d in data["mesh_dirs"]]
+    if not isinstance(data.get("stand", ""), (str, Mapping)):
+        raise ConfigError(f"{where}.stand = {data['stand']!r}; expected a group_state name, "
+                          "a table of joint angles or {body_height, feet}")
+    if isinstance(data.get("heading"), str):
+        data["heading"] = axis(data["heading"], where)
+    return from_mapping(RobotDescription, data, where)

@@ -16,23 +16,20 @@ A round foot — a sphere, or a capsule's end, at the tip — touches the ground
 which depends on the leg's posture: the tip along the shank is up to a radius away from it on an
 inclined shank (2 cm on A1's feet). Such a foot is recorded as a :class:`SphereFoot` and its
 frame placed at the sphere's lowest point in the stand pose, ``c − r ẑ`` for the centre ``c``
-(:func:`place_sphere_feet`; the support point of a sphere in −z, Ericson §3.8): the foot frame is
-then a fixed point of the link, where the ground is touched when standing.
+(the support point of a sphere in −z, Ericson §3.8; done on the loaded robot by
+:mod:`hexaleg.robot.sphere_feet`): the foot frame is then a fixed point of the link, where the
+ground is touched when standing.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING
 
 import numpy as np
 import pinocchio as pin
 
 from hexaleg.errors import RobotModelError
-
-if TYPE_CHECKING:
-    from hexaleg.robot.model import Robot
 
 FOOT_SUFFIX = "_foot"
 """A generated foot frame is named ``<leg>`` + this."""
@@ -95,7 +92,8 @@ def resolve_foot(model: pin.Model, collision: pin.GeometryModel, visual: pin.Geo
         The spec with ``foot`` a frame name and no ``point``; for a found foot a note
         ``"<leg> at [x, y, z] m on joint <joint> (collision|visual)"``, else None; and the
         :class:`SphereFoot` when the found tip is a sphere's (or a capsule end's), else None
-        (the frame is then at the tip until :func:`place_sphere_feet` moves it).
+        (the frame is then at the tip until
+        :func:`~hexaleg.robot.sphere_feet.place_sphere_feet` moves it).
 
     Raises:
         RobotModelError: the link of a point is not in the URDF (lists the links), or a leg
@@ -185,84 +183,6 @@ def sphere_of_tip(obj: pin.GeometryObject, tip: np.ndarray, joint: int) -> Spher
         centre = m.translation + side * shape.halfLength * axis
         return SphereFoot(joint, np.array(centre, dtype=float), float(shape.radius))
     return None
-
-
-def place_sphere_feet(robot: Robot, q: np.ndarray) -> float:
-    """Put each round foot's frame (:attr:`Robot.foot_spheres`) at its sphere's lowest point at
-    ``q``.
-
-    With the base at the origin, identity orientation, and ``R`` the last joint's rotation in
-    the world at ``q``, the sphere's lowest point (its support point in −z) is
-    ``c + r Rᵀ(−ẑ)`` in the joint frame (Ericson, *Real-Time Collision Detection*, 2005, §3.8).
-
-    Args:
-        robot: The robot (its model's foot frames are moved).
-        q: The configuration, shape (nq,), e.g. the stand pose.
-
-    Returns:
-        The largest distance a foot frame moved, m.
-    """
-    model, data = robot.model, robot.data
-    q = np.array(q, dtype=float)
-    q[:7] = pin.neutral(model)[:7]
-    pin.forwardKinematics(model, data, q)
-    moved = 0.0
-    for leg in robot.legs:
-        sphere = robot.foot_spheres.get(leg.name)
-        if sphere is None:
-            continue
-        down = np.asarray(data.oMi[sphere.joint].rotation).T @ np.array([0.0, 0.0, -1.0])
-        point = sphere.centre + sphere.radius * down
-        frame = model.frames[leg.foot_frame_id]
-        moved = max(moved, float(np.linalg.norm(frame.placement.translation - point)))
-        frame.placement = pin.SE3(np.eye(3), point)
-        model.frames[leg.foot_frame_id] = frame
-    return moved
-
-
-SETTLE_TOLERANCE = 1e-9
-"""m: the round feet are settled when no frame moves farther (:func:`settle_sphere_feet`)."""
-SETTLE_ROUNDS = 20
-
-
-def settle_sphere_feet(robot: Robot, stand: np.ndarray,
-                       solve: Callable[[], np.ndarray] | None = None) -> tuple[np.ndarray, str]:
-    """The round feet placed at their lowest points in the stand pose, and the stand.
-
-    A stand given by joint angles does not depend on the foot frames: one placement. A stand
-    solved for foot positions (``solve``, e.g. :func:`hexaleg.robot.stand.stand_from_feet`)
-    does: it is solved again with the moved frames until no frame moves more than
-    :data:`SETTLE_TOLERANCE` (a fixed point; each round moves the frame by ``r (1 − cos δ)`` for
-    the change δ of the shank's tilt, so two or three rounds suffice).
-
-    Returns:
-        The stand, shape (nq,), and a note giving each round foot's contact point.
-
-    Raises:
-        RobotModelError: the placement does not settle in :data:`SETTLE_ROUNDS` rounds.
-    """
-    for _ in range(SETTLE_ROUNDS):
-        moved = place_sphere_feet(robot, stand)
-        if solve is None or moved <= SETTLE_TOLERANCE:
-            break
-        stand = solve()
-    else:
-        raise RobotModelError(f"{robot.name}: the round feet's lowest points did not settle in "
-                              f"{SETTLE_ROUNDS} stand solves (last move {moved:.3g} m); give "
-                              "the feet as frames or points on the links")
-    return stand, sphere_note(robot, robot.foot_spheres)
-
-
-def sphere_note(robot: Robot, spheres: Mapping[str, SphereFoot]) -> str:
-    """Where each round foot touches the ground (its frame's point in its joint's frame)."""
-    parts = []
-    for leg in robot.legs:
-        if leg.name in spheres:
-            p = robot.model.frames[leg.foot_frame_id].placement.translation
-            parts.append(f"{leg.name} [{', '.join(f'{v:+.4f}' for v in p)}]")
-    return ("round feet touch the ground at their sphere's lowest point in the stand pose (m, "
-            f"in the last joint's frame; a fixed point of the link while walking): "
-            f"{', '.join(parts)}")
 
 
 def farthest_points(obj: pin.GeometryObject) -> list[np.ndarray]:

@@ -22,15 +22,13 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import numpy as np
 import pinocchio as pin
 
 from hexaleg.errors import InvalidParameterError, RobotModelError
-
-if TYPE_CHECKING:
-    from hexaleg.robot.model import Robot
+from hexaleg.robot.loaded import Robot
+from hexaleg.robot.sanity import body_name
 
 ROOT_LINK = "hexaleg_root"
 """Name of the root link :func:`with_root_offset` adds (underscores appended if taken)."""
@@ -113,8 +111,6 @@ def check_root(robot: Robot, q: np.ndarray, pose: str) -> None:
     height = root_height(robot, q)
     if height > 0:
         return
-    from hexaleg.robot.sanity import body_name
-
     model = robot.model
     root = body_name(model, 1).split(" (")[0]
     com = np.asarray(model.inertias[1].lever, dtype=float)

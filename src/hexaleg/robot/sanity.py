@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.robot.model import Robot
+from hexaleg.robot.loaded import Robot
 
 TRIANGLE_TOL = 1e-3
 """Relative tolerance of the triangle inequality of the principal moments: a body is flagged when

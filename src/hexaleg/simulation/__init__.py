@@ -10,7 +10,7 @@ simulates with and without the springs beside the analysis, and
 :mod:`~hexaleg.simulation.sensitivity` reruns it under changed settings and controllers.
 
 It sits below the design layer, so a design may simulate its candidates; the command and its
-files are :mod:`hexaleg.studies.simulate`. MuJoCo is imported where a model is built, so
+files are :mod:`hexaleg.commands.simulate`. MuJoCo is imported where a model is built, so
 importing this package stays light. See ``docs/simulate.md``.
 """
 

@@ -333,7 +333,7 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
     contact = contact or ContactParams()
     if not motion.periodic or motion.fixed_base:
         raise InvalidParameterError("motion", "a fixed-base or non-periodic motion",
-                                    "a periodic gait (hexaleg.tripod_gait)")
+                                    "a periodic gait (hexaleg.gait)")
     if settings.timestep is not None:  # before the analysis and any model: nothing allocated
         check_steps(robot, settings, motion.period, settings.timestep)
     prepared = prepared or prepare(robot, motion, motor=motor, contact=contact)

@@ -17,6 +17,7 @@ from typing import Any
 
 from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import HexalegError
+from hexaleg.quantities import quantity
 from hexaleg.robot.springs import SpringSet
 from hexaleg.simulation.run import Settings, Simulation, simulate
 
@@ -122,3 +123,19 @@ def controller_check(prepared: Prepared, springs: SpringSet, objective: str,
                     settings or Settings(force_samples=0), contact=prepared.contact,
                     objective=objective, prepared=prepared)
     return sensitivity(base, CONTROLLER_VARIANTS)
+
+
+def sensitivity_row(row: dict[str, Any]) -> dict[str, Any]:
+    """A row of :func:`hexaleg.simulation.sensitivity.sensitivity` as quantities."""
+    out: dict[str, Any] = {"label": row["label"], "controller": row.get("controller"),
+                           "verdict": row["verdict"],
+                           "predicted_saving": quantity(100 * row["predicted"], "%"),
+                           "predicted_electrical": quantity(row["predicted_electrical"], "J"),
+                           "predicted_baseline": quantity(row["predicted_baseline"], "J")}
+    if row.get("simulated") is not None:
+        out.update(simulated_saving=quantity(100 * row["simulated"], "%"),
+                   electrical=quantity(row["electrical"], "J"),
+                   baseline=quantity(row["baseline"], "J"),
+                   distance_per_cycle=quantity(row["distance_per_cycle"], "m"),
+                   tracking_rms=quantity(row["tracking_rms"], "rad"))
+    return out

@@ -55,7 +55,7 @@ def write_csv(path, cols: dict[str, np.ndarray]) -> None:
 @pytest.fixture(scope="session")
 def gait_100hz(robot):
     """The default tripod gait at 100 samples per 1 s cycle (100 Hz)."""
-    return hexaleg.tripod_gait(robot, hexaleg.GaitParams(samples=100))
+    return hexaleg.gait(robot, hexaleg.GaitParams(samples=100))
 
 
 @pytest.fixture(scope="session")

@@ -1,7 +1,7 @@
 """Reading a ROS 2 bag as a motion log, with ``rosbags`` (pure Python, no ROS install).
 
 A bag (its directory with ``metadata.yaml``, or one of its ``.db3``/``.mcap`` files) is read into
-the same SI columns as a CSV log (:mod:`hexaleg.motion.recorded.read`):
+the same SI columns as a CSV log (:mod:`hexaleg.motion.recorded.columns`):
 
 * ``sensor_msgs/msg/JointState`` — every message's ``position`` by ``name`` (the robot's joint
   names, rad: REP 103); the rows are the union of the messages' stamps (several topics, e.g. one
@@ -29,7 +29,7 @@ from typing import Any
 import numpy as np
 
 from hexaleg.errors import ConfigError
-from hexaleg.motion.recorded.read import (
+from hexaleg.motion.recorded.columns import (
     BASE_POSITION,
     BASE_QUATERNION,
     MAX_LOG_BYTES,
@@ -99,7 +99,7 @@ def read_bag(robot: Robot, path: Path, *, ignore: Iterable[str] = ()) -> Log:
 
     Raises:
         ConfigError: ``rosbags`` not installed (names :data:`INSTALL`), an unreadable bag, a bag
-            larger than :data:`~hexaleg.motion.recorded.read.MAX_LOG_BYTES`, no JointState
+            larger than :data:`~hexaleg.motion.recorded.columns.MAX_LOG_BYTES`, no JointState
             topic, two pose or IMU topics.
         UnknownNameError: a joint name that is not the robot's (the valid names listed).
     """

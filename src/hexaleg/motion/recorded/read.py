@@ -7,7 +7,11 @@ joints (rad); optional ``contact_<LEG>`` (0/1); optional exact derivatives ``v_<
 ``v_base_rx … v_base_rz`` the LOCAL angular velocity, Pinocchio's free-flyer convention; ``a_``
 their time derivatives), as :func:`hexaleg.motion.recorded.write.write_motion_log` writes them.
 A unit in brackets after a name overrides the default: ``LF_femur [deg]``, ``time [ms]``,
-``base_z [mm]``. Values are converted to SI here, through :mod:`hexaleg.units`, and nowhere else.
+``base_z [mm]``. Values are converted to SI here, by the factors of
+:data:`~hexaleg.motion.recorded.columns.UNITS` (through :mod:`hexaleg.units`), and nowhere else.
+The names, their kinds and units and the :class:`Log` read into are in
+:mod:`hexaleg.motion.recorded.columns` (importable from here too); a ROS 2 bag is read by
+:mod:`hexaleg.motion.recorded.bag`.
 """
 
 from __future__ import annotations
@@ -15,90 +19,25 @@ from __future__ import annotations
 import io
 import re
 import zipfile
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from hexaleg.config import read_bytes
-from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+from hexaleg.errors import ConfigError, InvalidParameterError
+from hexaleg.motion.recorded.bag import bag_directory, read_bag
+from hexaleg.motion.recorded.columns import (
+    BASE_POSITION,
+    BASE_QUATERNION,
+    BASE_VELOCITY,
+    MAX_LOG_BYTES,
+    UNITS,
+    Log,
+    column_kind,
+)
 from hexaleg.robot.model import Robot
-from hexaleg.units import DEG, MM
-
-MAX_LOG_BYTES = 512 * 1024**2
-"""Largest log file read, B: a 10-minute log of 30 columns at 1 kHz is about 250 MB of CSV."""
-
-BASE_POSITION = ("base_x", "base_y", "base_z")
-BASE_QUATERNION = ("base_qx", "base_qy", "base_qz", "base_qw")
-BASE_VELOCITY = ("base_x", "base_y", "base_z", "base_rx", "base_ry", "base_rz")
-"""Names of the base's six generalised-velocity components after ``v_``/``a_`` (LOCAL frame)."""
-
-UNITS: dict[str, dict[str, float]] = {
-    "time": {"s": 1.0, "ms": 1e-3, "us": 1e-6},
-    "length": {"m": 1.0, "cm": 10 * MM, "mm": MM},
-    "angle": {"rad": 1.0, "deg": DEG},
-    "one": {"": 1.0, "1": 1.0},
-    "speed": {"m/s": 1.0, "mm/s": MM},
-    "rate": {"rad/s": 1.0, "deg/s": DEG},
-    "acceleration": {"m/s^2": 1.0, "mm/s^2": MM},
-    "angular acceleration": {"rad/s^2": 1.0, "deg/s^2": DEG},
-}
-"""Units allowed per kind of column → their factor to SI (the first of each is the default)."""
 
 _HEADER = re.compile(r"^\s*([^\[\]]+?)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
-
-
-@dataclass(frozen=True, eq=False)
-class Log:
-    """A motion log in SI, as read: not yet resampled or checked beyond its names.
-
-    Attributes:
-        t: Time stamps, shape (N,), s, as logged.
-        columns: Column name (without unit) → values, each shape (N,), SI (NaN where missing).
-        units: Column name → the unit the file gave (the default when none was given).
-        path: The file read.
-    """
-
-    t: np.ndarray
-    columns: dict[str, np.ndarray]
-    units: dict[str, str] = field(default_factory=dict)
-    path: str = ""
-
-    def has(self, names: tuple[str, ...] | list[str]) -> bool:
-        """Whether every name is a column."""
-        return all(n in self.columns for n in names)
-
-    def matrix(self, names: tuple[str, ...] | list[str]) -> np.ndarray:
-        """The named columns stacked, shape (N, len(names))."""
-        return np.stack([self.columns[n] for n in names], axis=1) if names else \
-            np.zeros((len(self.t), 0))
-
-
-def column_kind(robot: Robot, name: str) -> str:
-    """The kind of column ``name`` (a key of :data:`UNITS`) for ``robot``.
-
-    Raises:
-        UnknownNameError: not a column of a log of ``robot``; the message lists the valid names
-            (the robot's joints among them).
-    """
-    joints = set(robot.joint_names)
-    if name == "time":
-        return "time"
-    if name in BASE_POSITION:
-        return "length"
-    if name in BASE_QUATERNION or name in {f"contact_{leg}" for leg in robot.leg_names}:
-        return "one"
-    if name in joints:
-        return "angle"
-    for prefix, kinds in (("v_", ("speed", "rate")),
-                          ("a_", ("acceleration", "angular acceleration"))):
-        base = name.removeprefix(prefix)
-        if name.startswith(prefix) and (base in joints or base in BASE_VELOCITY):
-            return kinds[0] if base in BASE_POSITION else kinds[1]
-    valid = ["time", *BASE_POSITION, *BASE_QUATERNION, *robot.joint_names,
-             *(f"contact_{leg}" for leg in robot.leg_names), "v_<joint or base>",
-             "a_<joint or base>"]
-    raise UnknownNameError(f"column of a {robot.name} motion log", name, valid)
 
 
 def _parse_header(robot: Robot, header: list[str], ignore: tuple[str, ...], where: str
@@ -205,8 +144,6 @@ def read_log(robot: Robot, path: str | Path, *, ignore: tuple[str, ...] = ()) ->
         InvalidParameterError: a unit not allowed for its column (the allowed ones listed).
     """
     path = Path(path)
-    from hexaleg.motion.recorded.bag import bag_directory, read_bag  # it imports this module
-
     if bag_directory(path) is not None:
         return read_bag(robot, path, ignore=ignore)
     where = f"motion log {path}"
@@ -234,3 +171,7 @@ def read_log(robot: Robot, path: str | Path, *, ignore: tuple[str, ...] = ()) ->
         raise ConfigError(f"{where} has no 'time' column; the first row must name the columns, "
                           "one of them 'time' (s, or e.g. 'time [ms]')")
     return Log(t=columns.pop("time"), columns=columns, units=units, path=str(path))
+
+
+__all__ = ["BASE_POSITION", "BASE_QUATERNION", "BASE_VELOCITY", "MAX_LOG_BYTES", "UNITS", "Log",
+           "column_kind", "read_log"]

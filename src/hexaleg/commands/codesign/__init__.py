@@ -1,0 +1,1 @@
+"""``hexaleg codesign``: the gait and its springs designed together, its files written."""

@@ -1,0 +1,60 @@
+"""The ``hexaleg codesign`` subcommand: its parser and its run (registered in
+:data:`hexaleg.cli.SUBCOMMANDS`; kept here: ``cli.py`` is at its size limit).
+
+``--config F`` reads a ``[codesign]`` table: ``speed``, ``pattern``, ``family``, ``samples``,
+``final_samples``, ``max_evaluations``, ``restarts``, ``grouping``, ``rules``, ``curve``,
+``simulate``, a ``[codesign.constraints]`` table of
+:class:`~hexaleg.design.gait_evaluation.Constraints` and a ``[codesign.design]`` table of the
+full spring rules' ``[design]`` keys (:func:`~hexaleg.design.codesign.build.rule_params`); the
+command line's ``--speed``, ``--pattern`` and ``--no-rules`` win over the file.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+
+def add(sub: argparse._SubParsersAction) -> None:
+    """Add ``codesign`` to the subcommands."""
+    p = sub.add_parser("codesign", help="the gait and its springs designed together for a "
+                                        "required speed: the four rows, the chosen gait and "
+                                        "springs, codesign.html, codesign.json")
+    p.add_argument("--robot", default="hexaleg", help="a registered robot or a description "
+                                                      "FILE.toml (default %(default)s)")
+    p.add_argument("--speed", type=float, help="required speed, m/s (default 0.06)")
+    p.add_argument("--pattern", help="gait pattern (default: the robot's)")
+    p.add_argument("--config", help="TOML file with a [codesign] table (docs/codesign.md)")
+    p.add_argument("--no-rules", dest="rules", action="store_false", default=None,
+                   help="leave out hexaleg design's full spring rules (tolerance, envelope, "
+                        "fatigue, arbor, parsimony) on the chosen gait, about a minute: the "
+                        "search's answer alone, the inner program's springs recommended")
+    p.add_argument("--out", default="hexaleg-codesign",
+                   help="output directory (default: %(default)s)")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run the co-design and write its files."""
+    from hexaleg.commands.codesign.write import write_codesign
+    from hexaleg.commands.options import load_run
+    from hexaleg.design.codesign.build import codesign_settings
+
+    scenario = load_run(args.robot, args.config, args=args)
+    kwargs = codesign_settings(scenario.table("codesign"), f"{scenario.where} [codesign]")
+    for key in ("speed", "pattern"):
+        if getattr(args, key) is not None:
+            kwargs[key] = getattr(args, key)
+    if args.rules is not None:
+        kwargs["rules"] = args.rules
+    result, files = write_codesign(args.out, robot=args.robot, progress=_progress, **kwargs)
+    print(result.summary())
+    print(f"wrote {len(files)} files to {args.out}; open {args.out}/codesign.html")
+    return 0
+
+
+def _progress(message: str) -> None:
+    print(f"hexaleg codesign: {message}", file=sys.stderr, flush=True)
+
+
+__all__ = ["add", "run"]

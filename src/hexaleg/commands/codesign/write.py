@@ -1,0 +1,66 @@
+"""``hexaleg codesign`` on disk: ``codesign.json``, ``codesign.html`` and its plot.
+
+:func:`write_codesign` computes the co-design (:func:`hexaleg.design.codesign.build.codesign`),
+draws the energy-vs-speed curve (:mod:`hexaleg.outputs.codesign_plots`), renders the
+self-contained page (``templates/codesign.html.j2``, the plot embedded) and writes the JSON
+(:meth:`hexaleg.design.codesign.result.CodesignResult.to_dict`), which ``hexaleg.load_design``
+and ``hexaleg simulate --springs`` read. When the full spring rules ran, their own
+``design.json`` (:func:`hexaleg.design.chain.result.design_data` of the design on the chosen
+gait) is written beside it, for ``hexaleg report --design``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from hexaleg.config import write_file
+from hexaleg.design.codesign.build import codesign
+from hexaleg.design.codesign.result import CodesignResult
+from hexaleg.outputs import codesign_plots, plots
+from hexaleg.outputs.directory import writable_directory
+from hexaleg.outputs.html import environment
+from hexaleg.quantities import json_text
+
+
+def curves(result: CodesignResult) -> dict[str, tuple[list[float], list[float], list[float]]]:
+    """The speed curve by gait: (speeds, J/m without, J/m with springs)."""
+    out: dict[str, tuple[list[float], list[float], list[float]]] = {}
+    for p in result.curve:
+        v, bare, sprung = out.setdefault(p.label, ([], [], []))
+        v.append(p.speed)
+        bare.append(p.per_metre)
+        sprung.append(p.per_metre_springs)
+    return out
+
+
+def write_result(result: CodesignResult, out: str | Path) -> tuple[dict[str, Any], list[Path]]:
+    """Write a computed co-design to ``out``: the JSON, the page, the plot; (data, files).
+
+    Raises:
+        OutputError: ``out`` cannot be created or written (named).
+    """
+    directory = writable_directory(out, "the co-design")
+    data = result.to_dict()
+    png, files = plots.save(codesign_plots.speed_curve(curves(result), result.speed),
+                            directory / "speed.png")
+    page = environment().get_template("codesign.html.j2").render(
+        d=data, images={"speed": plots.data_uri(png)})
+    texts = [("codesign.json", json_text(data) + "\n"), ("codesign.html", page)]
+    if result.rules is not None and not isinstance(result.rules, str):
+        texts.append(("design.json", result.rules.to_json() + "\n"))
+    for name, text in texts:  # never through a link there
+        files.append(write_file(directory / name, text, "the co-design"))
+    return data, files
+
+
+def write_codesign(out: str | Path = "hexaleg-codesign", **kwargs: Any
+                   ) -> tuple[CodesignResult, list[Path]]:
+    """Compute the co-design (keywords of :func:`~hexaleg.design.codesign.build.codesign`)
+    and write it to ``out``; (result, files)."""
+    writable_directory(out, "the co-design")
+    result = codesign(**kwargs)
+    return result, write_result(result, out)[1]
+
+
+__all__ = ["curves", "write_codesign", "write_result"]

@@ -1,0 +1,147 @@
+"""``hexaleg design`` on disk: ``design.json``, ``design.html`` and the plots.
+
+:func:`write_design` computes the design (:class:`hexaleg.design.chain.chain.DesignChain`), draws
+its figures (:mod:`hexaleg.outputs.design_plots`) as PNG, renders the self-contained page
+(:func:`hexaleg.outputs.html.render_design_html`, plots embedded) and writes the JSON content
+(:meth:`hexaleg.design.chain.result.DesignResult.to_json`) next to it. The page is its own, not a
+section of ``report.html``: the design takes seconds to tens of seconds (families, maps, the robust
+program) and the report must stay fast; the report links to it when it sits beside it.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from hexaleg.checks import typed
+from hexaleg.config import write_file
+from hexaleg.design.chain.chain import DesignChain
+from hexaleg.design.chain.config import DesignConfig
+from hexaleg.design.chain.result import DesignResult
+from hexaleg.design.tolerance import TolerantSprings
+from hexaleg.outputs import design_plots, plots
+from hexaleg.outputs.directory import writable_directory
+from hexaleg.outputs.html import render_design_html
+from hexaleg.scenario.run_warnings import gait_defaults, run_warnings
+
+
+@dataclass(frozen=True, eq=False)
+class WrittenDesign:
+    """A computed and written design: the result, the JSON content, the files."""
+
+    result: DesignResult
+    data: dict[str, Any]
+    files: tuple[Path, ...]
+
+
+def _stderr_progress(message: str) -> None:
+    print(f"hexaleg design: {message}", file=sys.stderr, flush=True)
+
+
+def figures(r: DesignResult) -> dict[str, Figure]:
+    """The design's figures by name: one heat map per robustness map (``map_<a>_<b>``), the
+    Pareto front, the robust design against the nominal one and the saving against a common
+    stop shift (``tolerance``: the tolerant and the tolerance-blind design)."""
+    m = r.config.design.metric
+    out = {f"map_{mp.axes[0]}_{mp.axes[1]}": design_plots.robustness_heatmap(
+        mp.axes, _map_values(mp.axes, mp.values), 100 * mp.saving[m], m)
+        for mp in r.maps}
+    points = [c for _, c in r.pareto]
+    if points:
+        chosen = next((i for i, c in enumerate(points) if c is r.recommended), None)
+        out["pareto"] = design_plots.pareto_figure(
+            np.array([np.abs(c.optimum.analysis.tau_spring).max() for c in points]),
+            np.array([c.optimum.analysis.spring_energy.max() for c in points]),
+            {f"{m} (net)": 100 * np.array([c.net[m] for c in points]),
+             "joule": 100 * np.array([c.row["saving.joule"] for c in points])}, chosen)
+    if r.robust is not None:
+        sv = r.robust.savings
+        out["robust"] = design_plots.robust_figure(
+            [c.short_label() for c in r.robust.conditions],
+            {k: 100 * v["robust"] for k, v in sv.items()},
+            {k: 100 * v["nominal"] for k, v in sv.items()})
+    if r.tolerance is not None:
+        out["tolerance"] = tolerance_figure(r.tolerance)
+    return out
+
+
+def _map_values(axes: tuple[str, str], values: tuple[Any, Any]) -> tuple[Any, Any]:
+    """A map's axis values as the page plots them: a slope in deg, the rest as they are."""
+    a, b = (np.degrees(np.asarray(v, dtype=float)) if name == "slope" else v
+            for name, v in zip(axes, values, strict=True))
+    return a, b
+
+
+def tolerance_figure(t: TolerantSprings) -> Figure:
+    """:func:`~hexaleg.outputs.design_plots.tolerance_figure` of ``t`` in deg and %, the design
+    recommended so named (the tolerant one when its worst case is the better, as the design
+    chooses)."""
+    names = {"tolerant": f"designed for ±{math.degrees(t.tolerance):g}°",
+             "blind": "tolerance-blind"}
+    names[t.chosen] += " (recommended)"
+    return design_plots.tolerance_figure(
+        np.degrees(t.shifts), {names[k]: 100 * t.curve[k] for k in names},
+        math.degrees(t.tolerance), {names[k]: 100 * t.worst[k] for k in names}, t.metric)
+
+
+def design_warnings(r: DesignResult) -> tuple[str, ...]:
+    """The warnings of the design's run (:func:`hexaleg.scenario.run_warnings.run_warnings`):
+    its nominal gait, or the logged motion's cycle, on the robot and actuators it designed
+    with."""
+    from hexaleg.motion.legged import gait as make_gait
+
+    cfg = r.config
+    run = cfg.design.run(cfg.robot, cfg.contact)
+    robot = run.load()
+    if cfg.motion is not None:
+        from hexaleg.scenario.logged import logged_motion
+
+        return run_warnings(robot, logged_motion(robot, cfg.motion, cfg.cycle), run.actuator())
+    return run_warnings(robot, make_gait(robot, r.gait), run.actuator(),
+                        desc=run.description(), gait=r.gait)
+
+
+@typed
+def write_design(out: str | Path = "hexaleg-design", config: DesignConfig | None = None, *,
+                 progress: Callable[[str], None] | None = _stderr_progress) -> WrittenDesign:
+    """Compute the design and write ``design.json``, ``design.html`` and the plots into ``out``.
+
+    Args:
+        out: Output directory (created with its parents if missing).
+        config: The configuration (default :class:`DesignConfig`).
+        progress: Called with one status line per step (default: print to stderr); None: quiet.
+
+    Returns:
+        The result, the JSON content and the files written.
+
+    Raises:
+        OutputError: ``out`` cannot be created or written (checked before computing; names it).
+        HexalegError: from the computation (:class:`DesignChain`).
+    """
+    out = writable_directory(out, "the design")
+    r = DesignChain(config, progress=progress).run()
+    files: list[Path] = []
+    images = {}
+    for name, fig in figures(r).items():
+        png, written = plots.save(fig, out / f"{name}.png")
+        images[name] = plots.data_uri(png)
+        files += written
+    cfg = r.config
+    extra = {"warnings": list(design_warnings(r)),
+             "gait_defaults": gait_defaults(cfg.design.run(cfg.robot, cfg.contact).description(),
+                                            r.gait if cfg.motion is None else None),
+             "files": [*sorted(p.name for p in files), "design.html", "design.json"]}
+    data = r.to_dict(**extra)
+    for path, text in ((out / "design.json", r.to_json(**extra)),
+                       (out / "design.html", render_design_html(data, images))):
+        files.append(write_file(path, text, "the design"))
+    if progress:
+        progress(f"wrote {out / 'design.html'}")
+    return WrittenDesign(result=r, data=data, files=tuple(files))

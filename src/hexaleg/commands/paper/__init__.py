@@ -1,0 +1,1 @@
+"""``hexaleg paper``: the paper's single joint reproduced and its files written."""

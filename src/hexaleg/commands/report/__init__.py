@@ -1,0 +1,2 @@
+"""``hexaleg report``: the report built and its files written (report.html, report.json,
+plots)."""

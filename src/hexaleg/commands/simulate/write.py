@@ -1,0 +1,198 @@
+"""``simulate.json`` and ``simulate.md``: a simulation beside the analysis' prediction.
+
+Every number in the JSON is a quantity ``{"value", "unit"}``
+(:func:`hexaleg.quantities.quantity`); ``predicted`` and ``simulated`` each hold
+``electrical`` and ``joule`` (with the springs, the baseline without, the saving in %) and the
+headline ``saving`` (of the electrical energy, the metric designs are ranked by). The page
+(``simulate.md``) shows the same with the walk's measures: distance against the plan, body drift,
+foot slip, contact losses, tracking, foot forces.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from hexaleg.config import write_file
+from hexaleg.design.chain.design_file import design_table
+from hexaleg.errors import OutputError
+from hexaleg.quantities import comparison, file_data, json_text, quantity
+from hexaleg.simulation.run import Run, Simulation
+from hexaleg.simulation.sensitivity import sensitivity_row
+
+METRICS: tuple[str, ...] = ("electrical", "joule")
+"""The energies compared (J per cycle)."""
+
+
+def _run_data(r: Run) -> dict[str, Any]:
+    """One run's verdict and measures."""
+    out: dict[str, Any] = {"verdict": r.verdict, "message": r.message,
+                           "realtime_factor": quantity(r.realtime_factor, "1")}
+    if r.walk is None:
+        return out
+    w = r.walk
+    out.update({
+        "distance_per_cycle": quantity(w.distance_per_cycle, "m"),
+        "height_drift": quantity(w.height_drift, "m"),
+        "roll_max": quantity(w.roll_max, "rad"), "pitch_max": quantity(w.pitch_max, "rad"),
+        "tracking_rms": quantity(w.tracking_rms, "rad"),
+        "tracking_max": quantity(w.tracking_max, "rad"),
+        "tracking_rms_joint": quantity(w.tracking_rms_joint, "rad"),
+        "slip_max": quantity(w.slip_max, "m"), "slip_mean": quantity(w.slip_mean, "m"),
+        "contact_losses": quantity(100 * w.contact_losses, "%"),
+        "stances": quantity(w.stances, "1"),
+        "electrical_per_cycle": quantity([c["total"]["electrical"] for c in r.cycles], "J"),
+        "forces": {k: quantity(v, "N") for k, v in r.forces.items()},
+    })
+    return out
+
+
+def _energies(values: dict[str, tuple[float, float, float]]) -> dict[str, Any]:
+    out: dict[str, Any] = {m: comparison(*values[m], "J") for m in METRICS}
+    out["saving"] = quantity(100 * values["electrical"][2], "%")
+    return out
+
+
+def simulation_data(s: Simulation, *, design: str = "", notes: tuple[str, ...] = (),
+                    sensitivity: list[dict[str, Any]] | None = None,
+                    warnings: tuple[str, ...] = (),
+                    gait_defaults: dict[str, Any] | None = None) -> dict[str, Any]:
+    """The content of ``simulate.json`` (module docstring).
+
+    Args:
+        s: The simulation.
+        design: Where the springs came from (a file, or the optimal design).
+        notes: Caveats to record.
+        sensitivity: Rows of :func:`hexaleg.simulation.sensitivity.sensitivity`, or None.
+        warnings: The run's warnings (:func:`hexaleg.scenario.run_warnings.run_warnings`).
+        gait_defaults: What the sized gait defaults chose
+            (:func:`hexaleg.scenario.run_warnings.gait_defaults`), or None.
+    """
+    st, sim = s.settings, s.with_springs.sim
+    predicted = {m: s.predicted(m) for m in METRICS}
+    data: dict[str, Any] = {
+        "robot": s.robot.name, "verdict": "walks" if s.walks else "did not walk",
+        "controller": st.controller, "design": design,
+        "springs": design_table(s.springs)["springs"],
+        "predicted": _energies(predicted),
+        "planned_distance_per_cycle": quantity(s.motion.distance, "m"),
+        "realtime_factor": quantity(_realtime(s), "1"),
+        "settings": {
+            "timestep": quantity(sim.timestep, "s"), "cycles": st.cycles,
+            "evaluated_cycles": st.evaluate,
+            "ground": {"stiffness": quantity(sim.ground.stiffness, "N/m"),
+                       "damping": quantity(sim.ground.damping, "N·s/m"),
+                       "mu": quantity(sim.ground.mu, "1"), "noslip": sim.ground.noslip,
+                       "incline": quantity(sim.ground.incline, "rad")},
+            "servo": {"kp": quantity(sim.kp, "N·m/rad"), "kd": quantity(sim.kd, "N·m·s/rad"),
+                      "back_emf_damping": quantity(sim.damping, "N·m·s/rad"),
+                      "stall_torque": quantity(sim.stall, "N·m")}},
+        "runs": {"springs": _run_data(s.with_springs), "baseline": _run_data(s.baseline)},
+        "warnings": list(warnings), "gait_defaults": gait_defaults,
+        "notes": [*notes, *sim.notes],
+    }
+    if sensitivity is not None:
+        data["sensitivity"] = [sensitivity_row(r) for r in sensitivity]
+    if s.walks:
+        simulated = {m: s.simulated(m) for m in METRICS}
+        data["simulated"] = _energies(simulated)
+        data["distance_per_cycle"] = data["runs"]["springs"]["distance_per_cycle"]
+        data["difference"] = {
+            "saving": quantity(100 * (simulated["electrical"][2] - predicted["electrical"][2]),
+                               "percentage points"),
+            **{f"{m}_{which}": quantity(100 * (simulated[m][i] / predicted[m][i] - 1), "%")
+               for m in METRICS for i, which in ((0, "springs"), (1, "baseline"))}}
+    return file_data(data)
+
+
+def _realtime(s: Simulation) -> float:
+    """Simulated time of both runs per wall-clock time of their stepping."""
+    runs = (s.with_springs, s.baseline)
+    wall = sum(r.wall for r in runs)
+    return sum(r.simulated_time for r in runs) / wall if wall > 0 else math.inf
+
+
+def _v(q: dict[str, Any], scale: float = 1.0, digits: int = 3) -> str:
+    value = q["value"]
+    return "—" if value is None else f"{value * scale:.{digits}g}"
+
+
+def page(data: dict[str, Any]) -> str:
+    """``simulate.md``: the simulation's tables in Markdown."""
+    lines = [f"# Forward simulation: {data['robot']}, {data['controller']} servo",
+             "", f"Verdict: **{data['verdict']}**. Springs: {data['design']}.", ""]
+    if "simulated" in data:
+        lines += ["| per cycle | predicted | simulated |", "|---|---|---|"]
+        for m in METRICS:
+            for key, label in (("with_springs", f"{m} with springs (J)"),
+                               ("baseline", f"{m} baseline (J)"), ("saving", f"{m} saving (%)")):
+                lines.append(f"| {label} | {_v(data['predicted'][m][key], digits=4)} | "
+                             f"{_v(data['simulated'][m][key], digits=4)} |")
+        lines += ["", f"Distance per cycle: {_v(data['distance_per_cycle'], 1e3, 4)} mm "
+                      f"(planned {_v(data['planned_distance_per_cycle'], 1e3, 4)} mm).", ""]
+    lines += ["| run | verdict | tracking RMS / max (mrad) | slip max (mm) | contact losses (%) "
+              "| height drift (mm) | roll / pitch max (°) | normal force RMS error (N) |",
+              "|---|---|---|---|---|---|---|---|"]
+    for name, r in data["runs"].items():
+        if "tracking_rms" not in r:
+            lines.append(f"| {name} | {r['verdict']}: {r['message']} | | | | | | |")
+            continue
+        lines.append(
+            f"| {name} | {r['verdict']} | {_v(r['tracking_rms'], 1e3)} / "
+            f"{_v(r['tracking_max'], 1e3)} | {_v(r['slip_max'], 1e3)} | "
+            f"{_v(r['contact_losses'])} | {_v(r['height_drift'], 1e3)} | "
+            f"{_v(r['roll_max'], float(np.degrees(1)))} / "
+            f"{_v(r['pitch_max'], float(np.degrees(1)))} | "
+            f"{_v(r['forces']['normal_rms']) if r['forces'] else '—'} |")
+    if "sensitivity" in data:
+        lines += ["", "| variant | controller | verdict | predicted saving (%) | simulated saving "
+                      "(%) | electrical / baseline (J) | distance (mm) | tracking RMS (mrad) |",
+                  "|---|---|---|---|---|---|---|---|"]
+        for r in data["sensitivity"]:
+            sim = ("| — | — | — | — |" if "simulated_saving" not in r else
+                   f"| {_v(r['simulated_saving'])} | {_v(r['electrical'], 1, 4)} / "
+                   f"{_v(r['baseline'], 1, 4)} | {_v(r['distance_per_cycle'], 1e3, 4)} | "
+                   f"{_v(r['tracking_rms'], 1e3)} |")
+            lines.append(f"| {r['label']} | {r['controller'] or '—'} | {r['verdict']} | "
+                         f"{_v(r['predicted_saving'])} {sim}")
+    lines += ["", *(f"- warning: {w}" for w in data.get("warnings", ())),
+              *(f"- note: {n}" for n in data["notes"])]
+    return "\n".join(lines) + "\n"
+
+
+def write_simulation(out: str | Path, data: dict[str, Any]) -> tuple[Path, Path]:
+    """Write ``simulate.json`` and ``simulate.md`` into ``out`` (created if missing).
+
+    Raises:
+        OutputError: the directory or a file cannot be written (named).
+    """
+    out = Path(out)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise OutputError(f"cannot write the simulation to {out}: {e}") from e
+    js, md = out / "simulate.json", out / "simulate.md"  # never through a link there
+    write_file(js, json_text(data), "the simulation")
+    write_file(md, page(data), "the simulation")
+    return js, md
+
+
+def summary(data: dict[str, Any]) -> str:
+    """One paragraph for the terminal."""
+    p = data["predicted"]
+    text = (f"{data['robot']} ({data['controller']} servo): predicted saving "
+            f"{_v(p['saving'])} % (electrical {_v(p['electrical']['with_springs'], 1, 4)} J vs "
+            f"{_v(p['electrical']['baseline'], 1, 4)} J per cycle)")
+    if "simulated" not in data:
+        msgs = "; ".join(f"{k}: {r['message']}" for k, r in data["runs"].items()
+                         if r["verdict"] != "walks")
+        return text + f"; simulation: {msgs}"
+    s = data["simulated"]
+    return (text + f"; simulated {_v(s['saving'])} % ({_v(s['electrical']['with_springs'], 1, 4)}"
+            f" J vs {_v(s['electrical']['baseline'], 1, 4)} J); distance "
+            f"{_v(data['distance_per_cycle'], 1e3, 4)} mm per cycle (planned "
+            f"{_v(data['planned_distance_per_cycle'], 1e3, 4)} mm); "
+            f"{_v(data['realtime_factor'])}× real time")

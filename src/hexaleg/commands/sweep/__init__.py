@@ -1,0 +1,1 @@
+"""``hexaleg sweep``: the options of a sweep parsed and the sweep run."""

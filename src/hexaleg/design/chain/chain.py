@@ -1,0 +1,322 @@
+"""The spring design as a chain of stages over one run: :class:`DesignChain`.
+
+Modelled on pvlib's ``ModelChain``: the orchestrator lives in the library, each stage is a
+method that can be called on its own (it runs the stages it needs first, once), and
+:meth:`DesignChain.run` runs a subset and returns one :class:`~hexaleg.design.chain.result.
+DesignResult`. The stages, in order (:data:`STAGES`; the work of each is in
+:mod:`hexaleg.design.chain.stages`):
+
+1. ``candidates``: the nominal gait prepared once (:meth:`DesignChain.nominal`), every allowed
+   family's globally optimal springs (the magnitudes the global optimum of one convex program,
+   the geometry searched), groups whose marginal saving is under ``[design] min_group_saving``
+   left unfitted, each with its torsion springs and its saving net of their mass;
+2. ``pareto``: the best buildable family's optimum with the spring torque bounded to fractions
+   of its peak;
+3. ``ranking``: every family optimum and Pareto point simulated forward in MuJoCo under the
+   servo the robot runs (``[design] controller``, :mod:`hexaleg.design.chain.ranking`); the
+   recommendation is the best *simulated* buildable design net of its springs' mass (without
+   this stage: the best predicted one);
+4. ``tolerance``: the recommendation designed for its worst saving over the stops' mounting
+   error within ``[design] stop_tolerance`` (:func:`hexaleg.design.tolerance.tolerant_springs`);
+5. ``envelope``: each part's stress over its joints' whole range, poses and a turn, the hard
+   stop where it would yield, and its fatigue safety at ``[design] life_cycles``;
+6. ``maps``: the recommendation frozen over period × stride, payload × μ and slope × gait
+   pattern, their worst case;
+7. ``robust``: the recommended geometry's magnitudes for a box of conditions, with its parts
+   (neither 6 nor 7 is one of the spring rules: ``[design] robustness = false`` leaves both
+   out, as ``hexaleg codesign`` does on the gait it chose);
+8. ``proof``: the recommendation simulated under each controller a servo robot runs
+   (:func:`hexaleg.simulation.sensitivity.controller_check`).
+
+Where no design saves energy net of its springs' mass the result says so (``pays`` false and
+"no springs pay" in the summary), never a recommendation that costs energy.
+
+A new spring family is one module in :mod:`hexaleg.robot.springs` (its law) and one entry in
+:data:`hexaleg.design.families.FAMILIES` (its design rows); the chain runs it as it runs the
+others.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Iterable
+from typing import Any
+
+from hexaleg.design.chain.candidates import Candidate
+from hexaleg.design.chain.config import DesignConfig, DesignParams
+from hexaleg.design.chain.ranking import Simulated, best_simulated, simulate_candidates
+from hexaleg.design.chain.result import MIN_SAVING, DesignResult
+from hexaleg.design.chain.stages import (
+    LOGGED_SKIP,
+    UNMAPPED,
+    Nominal,
+    RobustResult,
+    envelope_and_fatigue,
+    family_candidates,
+    nominal,
+    pareto_front,
+    rank,
+    robust_design,
+    robustness_maps,
+    stop_tolerance,
+)
+from hexaleg.design.envelope import PartEnvelope
+from hexaleg.design.fatigue import FatigueCheck
+from hexaleg.design.robustness_map import RobustnessMap
+from hexaleg.design.spring_parts import SpringPart
+from hexaleg.design.tolerance import TolerantSprings
+from hexaleg.dynamics.plausibility import Plausibility, check_cost_of_transport, uses_generic
+from hexaleg.errors import HexalegError, InvalidParameterError, UnknownNameError
+from hexaleg.robot.mirror import mirror
+from hexaleg.scenario.scenario import Scenario
+from hexaleg.simulation.sensitivity import controller_check
+
+STAGES: tuple[str, ...] = ("candidates", "pareto", "ranking", "tolerance", "envelope", "maps",
+                           "robust", "proof")
+"""The stages of :class:`DesignChain`, in order (module docstring)."""
+
+
+class DesignChain:
+    """The spring design of one run, stage by stage (module docstring).
+
+    Each stage method computes its stage once (and the stages it needs before it) and returns
+    it; :meth:`run` returns the :class:`~hexaleg.design.chain.result.DesignResult`.
+
+    Args:
+        config: The run (:class:`~hexaleg.scenario.scenario.Scenario`: its ``[design]`` table
+            the design's settings) or a whole configuration
+            (:class:`~hexaleg.design.chain.config.DesignConfig`); default: the built-in robot,
+            its gait, the defaults.
+        progress: Called with one status line per stage.
+        design: The design's settings in place of the scenario's ``[design]`` table (only with
+            a scenario).
+
+    Example:
+        ``DesignChain(config).run(stages=("candidates",))`` is the family optima alone, the
+        recommendation the best predicted buildable one (the report's quick answer).
+    """
+
+    def __init__(self, config: DesignConfig | Scenario | None = None,
+                 progress: Callable[[str], None] | None = None, *,
+                 design: DesignParams | None = None) -> None:
+        if isinstance(config, Scenario):
+            config = DesignConfig.from_scenario(config, design=design)
+        elif design is not None:
+            raise InvalidParameterError("design", design, "settings only with a Scenario (a "
+                                        "DesignConfig carries its own)")
+        self.config = config or DesignConfig()
+        self._say = progress or (lambda _msg: None)
+        self._done: dict[str, Any] = {}
+        self._wanted: tuple[str, ...] = STAGES  # what run() asked for; a stage alone: all
+        self.timings: dict[str, float] = {}
+        self._t0 = self._last = time.perf_counter()
+
+    def _step(self, name: str, msg: str) -> None:
+        now = time.perf_counter()
+        self.timings[name] = now - self._last
+        self._last = now
+        self._say(f"{msg} ({now - self._t0:.1f} s)")
+
+    def _once(self, name: str, compute: Callable[[], Any]) -> Any:
+        if name not in self._done:
+            self._done[name] = compute()
+        return self._done[name]
+
+    def nominal(self) -> Nominal:
+        """The nominal gait prepared once, the sprung classes, the groups, the fit limits."""
+        def compute() -> Nominal:
+            nom = nominal(self.config)
+            self._step("prepare", f"{nom.robot.name}: gait of {nom.gait.samples} samples "
+                       "prepared")
+            return nom
+        return self._once("nominal", compute)
+
+    def candidates(self) -> tuple[Candidate, ...]:
+        """Every allowed family's candidate, ranked by predicted net saving (best first)."""
+        return self._once("candidates", lambda: tuple(
+            family_candidates(self.nominal(), self._step)))
+
+    def pareto(self) -> tuple[tuple[float, Candidate], ...]:
+        """The best buildable family's optimum with its spring torque bounded, ascending; the
+        last point (fraction 1) is the unbounded design itself."""
+        def compute() -> tuple[tuple[float, Candidate], ...]:
+            ranked = self.candidates()
+            front = pareto_front(self.nominal(),
+                                 next((c for c in ranked if c.buildable), ranked[0]))
+            self._step("pareto", f"Pareto front of {front[-1][1].family} ({len(front)} points)")
+            return tuple(front)
+        return self._once("pareto", compute)
+
+    def ranking(self) -> tuple[tuple[Simulated, ...], Candidate, tuple[str, ...]]:
+        """The family optima and Pareto points simulated under the design's servo, the
+        recommendation (the best simulated buildable design; when none walked, the best
+        predicted one) and the notes of the ranking."""
+        def compute() -> tuple[tuple[Simulated, ...], Candidate, tuple[str, ...]]:
+            d = self.config.design
+            pool = sorted([*self.candidates(), *(c for _, c in self.pareto()[:-1])],
+                          key=lambda c: -rank(c, d.metric))
+            rows = simulate_candidates(self.nominal().prepared, pool, d.controller, d.metric)
+            notes = [f"{r.candidate.label}: simulated under the {r.controller} servo it saves "
+                     + (f"{100 * r.simulated:+.2f} % against {100 * r.predicted:+.2f} % "
+                        "predicted — under half the prediction" if r.simulated is not None
+                        else f"nothing: {r.verdict}")
+                     for r in rows if r.flagged and r.predicted > 0]
+            best = best_simulated(rows)
+            if best is not None:
+                rec = best.candidate
+            else:
+                rec = next((c for c in pool if c.buildable), pool[0])
+                notes.append(f"no buildable design walked under the {d.controller} servo: the "
+                             "recommendation is the best predicted one")
+            self._step("ranking", f"{len(rows)} designs simulated under the {d.controller} "
+                       f"servo: recommended {rec.label}")
+            return tuple(rows), rec, tuple(notes)
+        return self._once("ranking", compute)
+
+    def _ranked(self) -> Candidate:
+        """The recommendation before the stop tolerance: the ranking's when it ran (or runs),
+        else the best predicted buildable family optimum."""
+        if "ranking" in self._wanted:
+            return self.ranking()[1]
+        ranked = self.candidates()
+        return next((c for c in ranked if c.buildable), ranked[0])
+
+    def tolerance(self) -> tuple[Candidate, TolerantSprings | None]:
+        """The recommendation designed for its stops' mounting error, and the comparison with
+        its tolerance-blind self (None without a tolerance or angles)."""
+        def compute() -> tuple[Candidate, TolerantSprings | None]:
+            d = self.config.design
+            rec, tol = stop_tolerance(self.nominal(), self._ranked())
+            if tol is not None:
+                self._step("tolerance", f"stops within ±{math.degrees(d.stop_tolerance):g}°: "
+                           f"worst {d.metric} saving {100 * tol.worst['tolerant']:+.2f} % "
+                           f"(tolerance-blind design {100 * tol.worst['blind']:+.2f} %)")
+            return rec, tol
+        return self._once("tolerance", compute)
+
+    def recommended(self) -> Candidate:
+        """The recommendation: after the stop tolerance when it runs in this chain."""
+        return self.tolerance()[0] if "tolerance" in self._wanted else self._ranked()
+
+    def envelope(self) -> tuple[tuple[PartEnvelope, ...],
+                                tuple[tuple[SpringPart, FatigueCheck], ...], tuple[str, ...]]:
+        """Each bought part over its whole envelope with its hard stop, its fatigue check, and
+        notes."""
+        def compute() -> tuple[tuple[PartEnvelope, ...],
+                               tuple[tuple[SpringPart, FatigueCheck], ...], tuple[str, ...]]:
+            env, fatigue, notes = envelope_and_fatigue(self.nominal(), self.recommended())
+            self._step("envelope", f"{len(env)} parts checked over their whole envelope and "
+                       f"for fatigue at {self.config.design.life_cycles:.3g} cycles")
+            return env, fatigue, tuple(notes)
+        return self._once("envelope", compute)
+
+    def maps(self) -> tuple[tuple[RobustnessMap, ...], dict[str, tuple[float, str]]]:
+        """The recommendation over the robustness maps, and each metric's worst case."""
+        def compute() -> tuple[tuple[RobustnessMap, ...], dict[str, tuple[float, str]]]:
+            nom, d = self.nominal(), self.config.design
+            maps, worst = robustness_maps(nom, self.recommended())
+            self._step("maps", f"robustness maps: worst {d.metric} saving "
+                       f"{100 * worst[d.metric][0]:+.2f} %" if maps else
+                       "robustness maps and robust design left out: "
+                       + ("a logged motion" if nom.motion is not None
+                          else "[design] robustness = false"))
+            return maps, worst
+        return self._once("maps", compute)
+
+    def robust(self) -> RobustResult | None:
+        """The robust design over the box of conditions, or None."""
+        def compute() -> RobustResult | None:
+            robust = robust_design(self.nominal(), self.recommended())
+            self._step("robust", "robust design over the box of conditions"
+                       if robust is not None else "no robust design")
+            return robust
+        return self._once("robust", compute)
+
+    def proof(self) -> tuple[tuple[dict[str, Any], ...], tuple[str, ...]]:
+        """The recommendation simulated under each controller, or no rows and a note saying why
+        it could not run."""
+        def compute() -> tuple[tuple[dict[str, Any], ...], tuple[str, ...]]:
+            try:
+                rows = tuple(controller_check(self.nominal().prepared,
+                                              self.recommended().optimum.springs, "joule"))
+                out: tuple[tuple[dict[str, Any], ...], tuple[str, ...]] = rows, ()
+            except HexalegError as e:
+                out = (), (f"the recommendation could not be simulated: {type(e).__name__}: "
+                           f"{e}",)
+            self._step("simulate", "the recommendation simulated in MuJoCo under both "
+                       "controllers")
+            return out
+        return self._once("proof", compute)
+
+    def run(self, stages: Iterable[str] = STAGES) -> DesignResult:
+        """Run ``stages`` (:data:`STAGES`, in their order; each runs the ones it needs) and
+        return the result; a stage left out leaves its fields empty (None, no rows).
+
+        Raises:
+            UnknownNameError: a stage not in :data:`STAGES`.
+            InvalidParameterError: a robust box with corners where the robot has no admissible
+                forces, an outer diameter no wire fits.
+            UnknownNameError: an unknown robot, class, family, material or motor.
+        """
+        wanted = tuple(stages)
+        for s in wanted:
+            if s not in STAGES:
+                raise UnknownNameError("design stage", s, STAGES)
+        self._wanted = tuple(s for s in STAGES if s in wanted or s == "candidates")
+        for s in self._wanted:
+            getattr(self, s)()
+        return self._result()
+
+    def _result(self) -> DesignResult:
+        """The result of the stages this chain ran, with its notes."""
+        nom, d, w = self.nominal(), self.config.design, self._wanted
+        rec = self.recommended()
+        rows, _, ranking_notes = self.ranking() if "ranking" in w else ((), rec, ())
+        tol = self.tolerance()[1] if "tolerance" in w else None
+        env, fatigue, envelope_notes = self.envelope() if "envelope" in w else ((), (), ())
+        maps, worst = self.maps() if "maps" in w else ((), {})
+        robust = self.robust() if "robust" in w else None
+        simulation, unsimulated = self.proof() if "proof" in w else ((), ())
+        stalled = [] if robust is None or not robust.design.solver.get("stopped") else [
+            f"robust design: its bundle method's {robust.design.solver['stopped']} (predicted "
+            f"decrease left {robust.design.solver['gap']:.3g} of the baseline's energy)"]
+        pays = [] if rec.net[d.metric] > MIN_SAVING else [
+            f"no springs pay: the best design saves {100 * rec.row[f'saving.{d.metric}']:+.2f} "
+            f"% of {d.metric} and {100 * rec.net[d.metric]:+.2f} % net of its springs' mass — "
+            "fitting springs does not pay on this robot and gait"]
+        mirrored = mirror(nom.robot)
+        plausible = _plausibility(nom)
+        flagged = () if plausible is None else (f"baseline energy {plausible.message}",)
+        logged = ([LOGGED_SKIP] if nom.motion is not None
+                  else [] if d.robustness else [UNMAPPED])
+        ranked = (f"ranked by the {d.metric} saving net of the springs' mass, simulated under "
+                  f"the {d.controller} servo" if "ranking" in w else
+                  f"ranked by the predicted {d.metric} saving net of the springs' mass (not "
+                  "simulated)")
+        notes = [*flagged, *pays, *logged, *ranking_notes, *envelope_notes, *stalled,
+                 *unsimulated, *nom.robot.notes, *rec.notes,
+                 (mirrored.summary() + ("; each gets its group's spring mirrored" if d.mirror
+                                        and mirrored.mirrored else "")), *mirrored.notes,
+                 f"designed at {nom.gait.samples} samples per cycle (Joule-optimal forces); "
+                 + ranked]
+        return DesignResult(
+            config=self.config, robot=nom.robot.name, title=nom.desc.title,
+            mass=nom.robot.mass, actuator=nom.run.actuator().name, gait=nom.gait,
+            baseline=nom.baseline, candidates=self.candidates(), recommended=rec,
+            outer=nom.outer, pareto=self.pareto() if "pareto" in w else (), maps=maps,
+            worst=worst, robust=robust, ranking=rows, tolerance=tol, envelope=env,
+            fatigue=fatigue, simulation=simulation, timings=dict(self.timings),
+            notes=tuple(notes), plausibility=plausible, motion=nom.motion, stages=w)
+
+
+def _plausibility(nom: Nominal) -> Plausibility | None:
+    """The nominal gait's electrical cost of transport without springs against the plausible
+    band for the robot's mass (None for a gait in place)."""
+    cot = nom.prepared.baseline("joule").get("cost_of_transport", {}).get("electrical")
+    if cot is None:
+        return None
+    return check_cost_of_transport(cot, nom.robot.mass, generic=uses_generic(nom.run.actuator()))
+
+
+__all__ = ["STAGES", "DesignChain"]

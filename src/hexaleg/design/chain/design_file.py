@@ -1,0 +1,281 @@
+"""A spring design on disk: the ``design.json`` of ``hexaleg design``, or a hand-written one.
+
+Springs are the entries of :mod:`hexaleg.design.spring_json` (the one JSON form of a spring law
+in hexaleg), one per sprung joint::
+
+    {"family": "linear", "joint": "LF_femur",
+     "parameters": {"stiffness": {"value": 0.8, "unit": "N·m/rad"},
+                    "reference": {"value": 0.35, "unit": "rad"}}}
+
+``family`` one of :data:`hexaleg.design.spring_json.CLASSES`, ``parameters`` the fields of that
+spring law (:mod:`hexaleg.robot.springs`), numbers ``{value, unit}``, the text fields plain, a
+stiffening spring's stages ``[{"breakpoint": …, "stiffness": …}, …]``. :func:`read_design` takes:
+
+* a ``design.json`` of ``hexaleg design``: its ``recommended`` design's ``springs``, its
+  ``robot.name`` checked against the simulated robot;
+* ``{"robot": "hexaleg", "springs": [entries]}`` (``robot`` optional), or the springs as a
+  table ``{"LF_femur": {"family": …, "parameters": …}, …}``.
+
+Numbers may also be in the paper's units (deg, N·mm/deg, N·mm, N·mm·s/deg; converted by
+:mod:`hexaleg.units`). :func:`read_design` reads the springs; :func:`design_table` writes the
+entries (as ``simulate.json`` records its springs).
+
+:func:`load_design` is the one reader of a whole design file
+(:meth:`hexaleg.design.chain.result.DesignResult.to_json` the one writer): ``hexaleg design``
+writes, beside every number, the gait it designed on as its parameters (``gait.parameters``,
+the fields of :class:`~hexaleg.motion.params.GaitParams`, :func:`gait_parameters`) and the
+robot by name; :func:`load_design` reads back the recommended springs as a
+:class:`~hexaleg.robot.springs.SpringSet` (:func:`read_design`, every value checked: finite, in
+its unit, on the robot's joints), the gait re-made from its parameters over the robot's own
+(checked as a ``[gait]`` table is, :func:`design_gait`), and the predicted saving. ``hexaleg
+simulate --springs design.json`` and ``hexaleg report --design`` use the same gait, so the three
+commands predict the same number for the same springs.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping
+from dataclasses import dataclass, fields
+from pathlib import Path
+from typing import Any
+
+from hexaleg.checks import is_real, typed
+from hexaleg.config import read_json
+from hexaleg.design.spring_json import spring_entry, spring_from_entry
+from hexaleg.errors import ConfigError, InvalidParameterError
+from hexaleg.motion.params import GaitParams
+from hexaleg.robot.model import Robot
+from hexaleg.robot.registry import description
+from hexaleg.robot.springs import SpringSet
+from hexaleg.units import (
+    deg_to_rad,
+    nmm_per_deg_to_nm_per_rad,
+    nmm_to_nm,
+    nmms_per_deg_to_nms_per_rad,
+)
+
+PAPER_UNITS = {"deg": ("rad", deg_to_rad), "N·mm/deg": ("N·m/rad", nmm_per_deg_to_nm_per_rad),
+               "N·mm": ("N·m", nmm_to_nm), "N·mm·s/deg": ("N·m·s/rad", nmms_per_deg_to_nms_per_rad)}
+"""A paper unit → (its SI unit, the conversion)."""
+
+
+def _si(value: Any) -> Any:
+    """A parameter with any ``{value, unit}`` in a paper unit converted to SI (recursively)."""
+    if isinstance(value, Mapping) and set(value) == {"value", "unit"} \
+            and value["unit"] in PAPER_UNITS and isinstance(value["value"], (int, float)):
+        unit, convert = PAPER_UNITS[value["unit"]]
+        return {"value": float(convert(value["value"])), "unit": unit}
+    if isinstance(value, Mapping):
+        return {k: _si(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_si(v) for v in value]
+    return value
+
+
+def _entries(data: Mapping[str, Any], where: str) -> tuple[list[Any], Any]:
+    """The spring entries of a design document and the robot it names (or None)."""
+    recommended = data.get("recommended")
+    if isinstance(recommended, Mapping):  # hexaleg design's design.json
+        springs = recommended.get("springs", [])
+    else:
+        springs = data.get("springs")
+        if isinstance(springs, Mapping):
+            springs = [{**t, "joint": j} if isinstance(t, Mapping) else t
+                       for j, t in springs.items()]
+    if not isinstance(springs, list):
+        raise ConfigError(f"{where}: expected the design.json of hexaleg design or "
+                          "{\"robot\": …, \"springs\": [{family, joint, parameters}, …]}")
+    robot = data.get("robot")
+    return springs, robot.get("name") if isinstance(robot, Mapping) else robot
+
+
+def read_document(path: str | Path) -> Mapping[str, Any]:
+    """A design file's JSON object, through the one bounded reader
+    (:func:`hexaleg.config.read_json`: a regular file of at most
+    :data:`~hexaleg.config.MAX_TEXT_BYTES`, UTF-8, no NaN or Infinity).
+
+    Raises:
+        ConfigError: the file is missing, not a regular file (a pipe, ``/dev/zero``, a
+            directory), too large, unreadable, not JSON, holds NaN/Infinity or is not a JSON
+            object.
+    """
+    return read_json(path, "design file")
+
+
+def read_design(path: str | Path, robot: Robot, robot_name: str | None = None) -> SpringSet:
+    """The springs of a design file (module docstring), checked against ``robot``.
+
+    Args:
+        path: The JSON file.
+        robot: The simulated robot.
+        robot_name: Its registry name or description file, matched against the file's robot
+            along with ``robot.name``.
+
+    Returns:
+        The springs, SI.
+
+    Raises:
+        ConfigError: the file is missing, not JSON, malformed, a joint given twice, or a number
+            not in its field's unit (SI or the paper's).
+        InvalidParameterError: the file is for another robot, or a value is out of range.
+        UnknownNameError: an unknown family, parameter or joint (lists the valid ones).
+    """
+    path = Path(path)
+    data = read_document(path)
+    entries, owner = _entries(data, str(path))
+    names = {robot.name, *([robot_name] if robot_name else [])}
+    if owner is not None and owner not in names:
+        raise InvalidParameterError(f"{path}: robot", owner,
+                                    f"the simulated robot ({' or '.join(sorted(names))})")
+    if not entries:
+        raise ConfigError(f"{path}: no springs (its {'recommended.' * ('recommended' in data)}"
+                          "springs is empty or missing); a design file names at least one "
+                          "spring, {family, joint, parameters}: without springs there is nothing "
+                          "to simulate or fit (the baseline is the run without them)")
+    springs = {}
+    for entry in entries:
+        joint = entry.get("joint") if isinstance(entry, Mapping) else None
+        if not isinstance(joint, str):
+            raise ConfigError(f"{path}: a spring entry without its joint: {entry!r}")
+        if joint in springs:
+            raise ConfigError(f"{path}: two springs on {joint}; give one entry per joint")
+        springs[joint] = spring_from_entry(_si(entry), f"{path}: springs.{joint}")
+    out = SpringSet(springs)
+    out.columns(robot)  # UnknownNameError listing the robot's joints
+    return out
+
+
+def design_table(springs: SpringSet, robot: str | None = None) -> dict[str, Any]:
+    """``springs`` as a design document: ``{"robot": …, "springs": [entries]}``, SI."""
+    entries = [spring_entry(j, s) for j, s in springs.items()]
+    return {**({"robot": robot} if robot else {}), "springs": entries}
+
+
+@dataclass(frozen=True, eq=False)
+class LoadedDesign:
+    """A design file read back.
+
+    Attributes:
+        robot: The robot's registered name or description file.
+        springs: The recommended springs, SI.
+        gait: The gait they were designed on (None for a hand-written file without one).
+        metric: The metric the design was ranked by (None without one).
+        saving: The predicted saving of that metric, fraction (None without one).
+        pays: Whether the springs pay for their mass (None without the answer).
+        log: The motion log the design was made on (``gait.motion.path``), None on a generated
+            gait; such a design has no ``gait`` to re-make.
+    """
+
+    robot: str
+    springs: SpringSet
+    gait: GaitParams | None
+    metric: str | None
+    saving: float | None
+    pays: bool | None
+    log: str | None = None
+
+
+GAIT_UNITS: dict[str, str] = {
+    "period": "s", "duty_factor": "1", "stride_length": "m", "speed": "m/s", "step_height": "m",
+    "body_height": "m", "foot_radius": "m", "yaw_rate": "rad/s", "phases": "1", "heading": "rad",
+    "slope": "rad", "cross_slope": "rad", "min_static_margin": "m"}
+"""The SI unit of each numeric field of :class:`GaitParams` (``{value, unit}`` in JSON)."""
+
+
+def gait_parameters(gait: GaitParams) -> dict[str, Any]:
+    """The gait's set fields for JSON, numbers as ``{value, unit}`` (:data:`GAIT_UNITS`): what
+    :func:`design_gait` reads back to a :class:`GaitParams` that walks the same. With a
+    ``speed`` the stride is ``speed × period`` (the speed wins), and ``stride_length`` is
+    written as that: the stride the gait walks, not the field's unused default (#41: 0.06 m
+    for a co-designed gait that walks 0.102 m a cycle)."""
+    plain = json.loads(json.dumps({f.name: getattr(gait, f.name) for f in fields(gait)
+                                   if getattr(gait, f.name) is not None}))
+    plain["stride_length"] = gait.stride
+    return {k: {"value": v, "unit": GAIT_UNITS[k]} if k in GAIT_UNITS else v
+            for k, v in plain.items()}
+
+
+def _plain(table: Mapping[str, Any], where: str) -> dict[str, Any]:
+    """``gait.parameters`` as a ``[gait]`` table: each ``{value, unit}`` in its SI unit."""
+    out = {}
+    for k, v in table.items():
+        if isinstance(v, Mapping) and set(v) == {"value", "unit"}:
+            if v["unit"] != GAIT_UNITS.get(k):
+                raise InvalidParameterError(f"{where}.{k}.unit", v["unit"],
+                                            GAIT_UNITS.get(k, "no unit: a plain value"))
+            v = v["value"]
+        out[k] = v
+    return out
+
+
+def design_gait(data: Mapping[str, Any], robot: str, where: str) -> GaitParams | None:
+    """The gait of a design document (``gait.parameters`` over the robot's own gait), or None
+    when it has none.
+
+    Raises:
+        ConfigError: ``gait.parameters`` not a table. UnknownNameError, InvalidParameterError:
+            a key or value a ``[gait]`` table may not have (named).
+    """
+    gait = data.get("gait")
+    table = gait.get("parameters") if isinstance(gait, Mapping) else None
+    if table is None:
+        return None
+    if not isinstance(table, Mapping):
+        raise ConfigError(f"{where}: gait.parameters must be a table of gait parameters, got "
+                          f"{type(table).__name__}")
+    where = f"{where}: gait.parameters"
+    return GaitParams.for_robot(description(robot)).updated(_plain(table, where), where)
+
+
+@typed
+def load_design(path: str | Path, robot: str | None = None) -> LoadedDesign:
+    """The springs a design file recommends and what they were designed for (module
+    docstring).
+
+    Args:
+        path: A ``design.json`` of ``hexaleg design`` (or a hand-written design file,
+            module docstring).
+        robot: The robot to load it for; default the file's (``hexaleg`` when it names none).
+
+    Raises:
+        ConfigError: the file is missing, not JSON or malformed.
+        InvalidParameterError: a design for another robot than ``robot``, a non-finite saving,
+            a saving that is not a table of metrics.
+        UnknownNameError: an unknown robot, family, parameter or joint (lists the valid ones).
+    """
+    path = Path(path)
+    data = read_document(path)
+    owner = data.get("robot")
+    owner = owner.get("name") if isinstance(owner, Mapping) else owner
+    name = robot or (owner if isinstance(owner, str) else "hexaleg")
+    loaded = description(name).load()
+    springs = read_design(path, loaded, name)
+    settings = data.get("settings")
+    metric = settings.get("metric") if isinstance(settings, Mapping) else None
+    saving = None
+    rec = data.get("recommended")
+    if isinstance(rec, Mapping) and isinstance(metric, str):
+        table = rec.get("saving", {})
+        if not isinstance(table, Mapping):
+            raise InvalidParameterError(f"{path}: recommended.saving", table,
+                                        "a table of metric = {value, unit} (design.json's)")
+        value = table.get(metric, {})
+        value = value.get("value") if isinstance(value, Mapping) else None
+        if value is not None:
+            if not is_real(value):
+                raise InvalidParameterError(f"{path}: recommended.saving.{metric}", value,
+                                            "a finite saving in %")
+            saving = float(value) / 100
+    pays = data.get("pays")
+    gait = data.get("gait")
+    motion = gait.get("motion") if isinstance(gait, Mapping) else None
+    log = motion.get("path") if isinstance(motion, Mapping) else None
+    return LoadedDesign(robot=name, springs=springs, gait=design_gait(data, name, str(path)),
+                        metric=metric if isinstance(metric, str) else None, saving=saving,
+                        pays=pays if isinstance(pays, bool) else None,
+                        log=str(log) if log is not None else None)
+
+
+__all__ = ["GAIT_UNITS", "PAPER_UNITS", "LoadedDesign", "design_gait", "design_table",
+           "gait_parameters", "load_design", "read_design", "read_document"]

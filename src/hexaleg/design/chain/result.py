@@ -1,0 +1,330 @@
+"""The design chain's result and ``design.json``, its one writer.
+
+:class:`DesignResult` is what :class:`~hexaleg.design.chain.chain.DesignChain` found;
+:meth:`DesignResult.to_json` writes ``design.json``: every number as ``{"value": …, "unit": …}``
+(savings in %, SI otherwise; a missing or non-finite number is ``null``, its path listed in
+``non_finite``), and each recommended spring as ``{"family", "joint", "parameters"}``
+(:mod:`hexaleg.design.spring_json`), which :func:`hexaleg.design.chain.design_file.load_design`
+— the one reader — and so ``hexaleg simulate --springs`` and ``hexaleg report --design`` read
+back. ``simulation`` holds the recommendation's forward simulation, one row per controller, as
+``hexaleg simulate --sensitivity`` writes its rows
+(:func:`hexaleg.simulation.sensitivity.sensitivity_row`).
+"""
+
+from __future__ import annotations
+
+import importlib.metadata
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from hexaleg.design.chain.candidates import Candidate
+from hexaleg.design.chain.config import DesignConfig
+from hexaleg.design.chain.design_file import gait_parameters
+from hexaleg.design.chain.ranking import Simulated
+from hexaleg.design.chain.stages import RobustResult
+from hexaleg.design.envelope import PartEnvelope
+from hexaleg.design.evaluator import SAVING_METRICS
+from hexaleg.design.fatigue import FatigueCheck, cycles_per_year
+from hexaleg.design.robustness_map import RobustnessMap
+from hexaleg.design.spring_json import spring_entry
+from hexaleg.design.spring_parts import SpringPart
+from hexaleg.design.spring_table import magnitudes_table
+from hexaleg.design.tolerance import TolerantSprings
+from hexaleg.dynamics.energy import metric_unit
+from hexaleg.dynamics.plausibility import Plausibility
+from hexaleg.motion.params import GaitParams
+from hexaleg.motion.trajectory import Motion
+from hexaleg.quantities import file_data, json_text, quantity
+from hexaleg.simulation.sensitivity import sensitivity_row
+
+MIN_SAVING = 1e-4
+"""A recommendation must save more than this fraction of the ranking metric (0.01 %) net of its
+springs' mass to pay; below it the design says that no springs pay."""
+
+
+@dataclass(frozen=True, eq=False)
+class DesignResult:
+    """Everything the design chain found (:class:`~hexaleg.design.chain.chain.DesignChain`).
+
+    Attributes:
+        config: The configuration. robot: Its name. title: Its title. mass: kg.
+        actuator: The actuator's name. gait: The nominal gait.
+        baseline: Metric totals of the nominal gait without springs (J or N·m).
+        candidates: One per family, ranked (best first). recommended: The recommendation: the
+            best buildable design of the families and the Pareto points.
+        outer: Group → (largest spring outer diameter, m; where it comes from).
+        pareto: The recommended family's optimum with the spring torque bounded to fractions of
+            the unbounded design's peak (fraction, the candidate), ascending; the last point,
+            fraction 1, is the unbounded design itself.
+        maps: The robustness maps. worst: Metric → (worst saving over the maps, its
+            condition's label).
+        robust: The robust design, or None when the box is the nominal gait alone.
+        ranking: Every ranked design simulated under ``[design] controller``
+            (:mod:`hexaleg.design.chain.ranking`), in the order ranked.
+        tolerance: The recommendation against its tolerance-blind self over the stops'
+            mounting error (:class:`~hexaleg.design.tolerance.TolerantSprings`), or None.
+        envelope: Each bought part over its whole envelope, and the hard stop it needs.
+        fatigue: Each bought part and its fatigue check at ``[design] life_cycles``.
+        simulation: The recommendation simulated, one row per controller
+            (:func:`~hexaleg.simulation.sensitivity.controller_check`); empty when the
+            simulation could not run (a note says why).
+        timings: Step → wall time, s. notes: What the user should know.
+        plausibility: The baseline's electrical cost of transport against the plausible band
+            for the robot's mass (:func:`~hexaleg.dynamics.plausibility.check_cost_of_transport`),
+            or None when the gait does not travel.
+        motion: The logged motion designed on (``--motion``), None on a generated gait.
+        stages: The stages of the chain that ran (:data:`hexaleg.design.chain.chain.STAGES`);
+            the fields of a stage left out are empty (None, no rows).
+    """
+
+    config: DesignConfig
+    robot: str
+    title: str
+    mass: float
+    actuator: str
+    gait: GaitParams
+    baseline: dict[str, float]
+    candidates: tuple[Candidate, ...]
+    recommended: Candidate
+    outer: dict[str, tuple[float, str]]
+    pareto: tuple[tuple[float, Candidate], ...]
+    maps: tuple[RobustnessMap, ...]
+    worst: dict[str, tuple[float, str]]
+    robust: RobustResult | None
+    ranking: tuple[Simulated, ...]
+    tolerance: TolerantSprings | None
+    envelope: tuple[PartEnvelope, ...]
+    fatigue: tuple[tuple[SpringPart, FatigueCheck], ...]
+    simulation: tuple[dict[str, Any], ...]
+    timings: dict[str, float]
+    notes: tuple[str, ...]
+    plausibility: Plausibility | None = None
+    motion: Motion | None = None
+    stages: tuple[str, ...] = ()
+
+    def to_dict(self, **extra: Any) -> dict[str, Any]:
+        """What ``design.json`` holds (:func:`design_data`), with ``extra`` keys of the command
+        that writes it (its run's warnings, its files), as the file holds it
+        (:func:`hexaleg.quantities.file_data`: a number that is not finite null, its path in
+        ``non_finite``)."""
+        return file_data({**design_data(self), **extra})
+
+    def to_json(self, **extra: Any) -> str:
+        """``design.json``: :meth:`to_dict` through :func:`hexaleg.config.json_text` (every
+        number ``{value, unit}``, a non-finite one ``null`` with its path in ``non_finite``:
+        never ``Infinity``). :func:`hexaleg.design.chain.design_file.load_design` reads it
+        back."""
+        return json_text(self.to_dict(**extra))
+
+    @property
+    def pays(self) -> bool:
+        """Whether the recommended springs save energy net of their own mass."""
+        return bool(self.recommended.net[self.config.design.metric] > MIN_SAVING)
+
+    def summary(self) -> str:
+        """One line: the recommendation and its saving."""
+        r, m = self.recommended, self.config.design.metric
+        head = "fit" if self.pays else "no springs pay here; the best would be"
+        line = (f"{head} {r.label} springs on {', '.join(r.optimum.groups)}: {m} saving "
+                f"{100 * r.row[f'saving.{m}']:+.2f} % ({100 * r.net[m]:+.2f} % net "
+                f"of {1e3 * r.spring_mass:.1f} g of springs); " + (
+                    f"worst case over the maps {100 * self.worst[m][0]:+.2f} % at "
+                    f"{self.worst[m][1]}" if self.maps else "no robustness maps ("
+                    + ("logged motion" if self.config.motion is not None else "left out") + ")"))
+        simulated = [f"{row['label']} {100 * row['simulated']:+.2f} %"
+                     if row["simulated"] is not None else f"{row['label']}: {row['verdict']}"
+                     for row in self.simulation]
+        if simulated:
+            line += (f"; simulated electrical saving {', '.join(simulated)} (predicted "
+                     f"{100 * self.simulation[0]['predicted']:+.2f} %)")
+        if self.plausibility is not None and not self.plausibility.plausible:
+            line += f"; WARNING baseline energy {self.plausibility.message}"
+        return line
+
+
+AXIS_UNITS = {"period": "1", "stride": "1", "payload": "1", "mu": "1", "slope": "rad"}
+"""Units of the map axes: factors of the nominal gait, a fraction of the robot's mass, μ, the
+ground's slope; a ``pattern`` axis holds names (a plain list of strings, no unit)."""
+
+
+def _grid(values: np.ndarray, unit: str) -> dict[str, Any]:
+    """A 2-D array as ``{value: [[…]], unit}`` (non-finite entries null in the file)."""
+    return {"value": np.asarray(values, dtype=float).tolist(), "unit": unit}
+
+
+def _part(p: SpringPart, source: str) -> dict[str, Any]:
+    return {
+        "group": p.group, "joints": list(p.joints), "side": p.side, "role": p.role,
+        "rate": quantity(p.rate, "N·m/rad"),
+        "preload_torque": quantity(p.preload_torque, "N·m"),
+        "max_torque": quantity(p.max_torque, "N·m"),
+        "engage": None if p.engage is None else quantity(p.engage, "rad"),
+        "free": None if p.free is None else quantity(p.free, "rad"),
+        "constant_torque": p.constant_torque,
+        "max_outer_diameter": quantity(p.max_outer_diameter, "m"),
+        "max_outer_diameter_source": source,
+        "torsion_spring": p.spring.table() if p.spring else None,
+        "nearest": p.nearest.table() if p.nearest else None,
+        "problem": p.problem,
+    }
+
+
+def candidate_data(c: Candidate, outer: dict[str, tuple[float, str]]) -> dict[str, Any]:
+    """One design: its savings (every metric, and net of the springs' mass), groups, the
+    springs (JSON entries), the parts to buy."""
+    o, a = c.optimum, c.optimum.analysis
+    return {
+        "label": c.label, "family": c.family,
+        "max_torque": None if c.max_torque is None else quantity(c.max_torque, "N·m"),
+        "buildable": c.buildable,
+        "saving": {m: quantity(100 * c.row[f"saving.{m}"], "%") for m in SAVING_METRICS},
+        "with_springs": {m: quantity(c.row[m], metric_unit(m)) for m in SAVING_METRICS},
+        "net_saving": {m: quantity(100 * v, "%") for m, v in c.net.items()},
+        "spring_mass": quantity(c.spring_mass, "kg"),
+        "peak_spring_torque": quantity(np.abs(a.tau_spring).max(), "N·m"),
+        "peak_spring_energy": quantity(a.spring_energy.max(), "J"),
+        "groups": {g: {"joints": list(js),
+                       "design": magnitudes_table(o.geometry[g], o.magnitudes[g]),
+                       "marginal_saving": quantity(100 * c.marginal[g], "%")}
+                   for g, js in o.groups.items()},
+        "springs": [spring_entry(j, s) for j, s in o.springs.items()],
+        "parts": [_part(p, outer[p.group][1]) for p in c.parts],
+        "dropped_groups": {g: {"marginal_saving": quantity(100 * v, "%")}
+                           for g, v in c.dropped.items()},
+        "notes": list(c.notes),
+        # how its geometry was found: the search's stages (method, evaluations, convergence)
+        "search": (c.searched or c.optimum).solver.get("search"),
+    }
+
+
+def ranking_data(r: Simulated) -> dict[str, Any]:
+    """One ranked design simulated under the design's controller."""
+    return {"label": r.candidate.label, "controller": r.controller, "verdict": r.verdict,
+            "predicted_saving": quantity(100 * r.predicted, "%"),
+            "simulated_saving": (None if r.simulated is None
+                                 else quantity(100 * r.simulated, "%")),
+            "simulated_net_saving": quantity(100 * r.net, "%"),
+            "flagged": r.flagged}
+
+
+def map_data(m: RobustnessMap) -> dict[str, Any]:
+    """One robustness map: axes, values, saving grids in %, statuses."""
+    out: dict[str, Any] = {"axes": list(m.axes),
+                           "values": {a: [str(x) for x in v] if a == "pattern"
+                                      else quantity(v, AXIS_UNITS[a])
+                                      for a, v in zip(m.axes, m.values, strict=True)},
+                           "saving": {k: _grid(100 * v, "%") for k, v in m.saving.items()},
+                           "status": [list(row) for row in m.status]}
+    out["worst"] = {}
+    for k in m.saving:
+        s, cond = m.worst(k)
+        out["worst"][k] = {"saving": quantity(100 * s, "%"),
+                           "condition": cond.label() if cond else None}
+    return out
+
+
+def robust_data(r: RobustResult, outer: dict[str, tuple[float, str]]) -> dict[str, Any]:
+    """The robust design: conditions, both designs' savings per condition and worst cases."""
+    d = r.design
+    return {
+        "mode": d.mode, "metric": d.metric, "conditions": [c.label() for c in r.conditions],
+        "saving": {m: {k: quantity(100 * v, "%") for k, v in s.items()}
+                   for m, s in r.savings.items()},
+        "worst": {m: {k: quantity(100 * r.worst(m, k), "%") for k in s}
+                  for m, s in r.savings.items()},
+        "nominal_meets_the_limits_everywhere": d.nominal_feasible,
+        "design": candidate_data(r.candidate, outer),
+        "solver": d.solver,
+    }
+
+
+def tolerance_data(r: DesignResult) -> dict[str, Any]:
+    """The recommendation and its tolerance-blind self over the stops' mounting error: nominal
+    and worst saving within the tolerance (worst case over a stated set of shifts and the dense
+    common-shift curve, :mod:`hexaleg.design.tolerance`), the curve saving vs common shift."""
+    t = r.tolerance
+    assert t is not None
+    return {"tolerance": quantity(t.tolerance, "rad"), "metric": t.metric,
+            "criterion": "worst case over the mounting errors within ± the tolerance",
+            "chosen": t.chosen, "search": t.optimum.solver.get("search"),
+            "shifts": quantity(t.shifts, "rad"),
+            **{name: {"nominal_saving": quantity(100 * t.nominal[name], "%"),
+                      "worst_saving": quantity(100 * t.worst[name], "%"),
+                      "curve": quantity(100 * t.curve[name], "%")}
+               for name in ("tolerant", "blind")}}
+
+
+def gait_data(r: DesignResult) -> dict[str, Any]:
+    """``gait``: the nominal gait's period, stride, duty factor, samples and ``parameters``
+    (what ``hexaleg simulate --springs`` re-makes it from); on a logged motion (``--motion``)
+    the cycle's figures and ``motion`` — the log's path, ``--cycle`` and quality figures — in
+    place of the parameters, which a log does not have."""
+    g = r.gait
+    if r.config.motion is None:
+        return {"period": quantity(g.period, "s"), "stride": quantity(g.stride, "m"),
+                "duty_factor": quantity(g.duty_factor, "1"), "samples": g.samples,
+                "parameters": gait_parameters(g)}
+    from hexaleg.scenario.logged import quality_data
+
+    logged = r.motion
+    return {"period": quantity(g.period, "s"),
+            "stride": None if logged is None else quantity(logged.distance, "m"),
+            "duty_factor": (None if logged is None
+                            else quantity(float(logged.stance.mean()), "1")),
+            "samples": g.samples,
+            "motion": {"source": "log", "path": r.config.motion, "cycle": r.config.cycle,
+                       "quality": None if logged is None else quality_data(logged)}}
+
+
+def design_data(r: DesignResult) -> dict[str, Any]:
+    """The content of ``design.json`` (module docstring)."""
+    d = r.config.design
+    return {
+        "title": f"{r.title}: the spring design",
+        "pays": r.pays,
+        "hexaleg_version": importlib.metadata.version("hexaleg"),
+        "robot": {"name": r.robot, "title": r.title, "mass": quantity(r.mass, "kg")},
+        "actuator": r.actuator,
+        "gait": gait_data(r),
+        "settings": {
+            "families": list(d.families), "classes": list(r.recommended.optimum.groups),
+            "grouping": d.grouping, "metric": d.metric, "force_objective": "joule",
+            "max_torque": None if d.max_torque is None else quantity(d.max_torque, "N·m"),
+            "max_deflection": (None if d.deflection_bound is None
+                               else quantity(d.deflection_bound, "rad")),
+            "materials": list(d.materials), "safety_factor": quantity(d.safety_factor, "1"),
+            "arbor_diameter": quantity(d.arbor_diameter, "m"),
+            "stop_tolerance": quantity(d.stop_tolerance, "rad"),
+            "life_cycles": quantity(d.life_cycles, "cycles"),
+            "contact_mu": quantity(r.config.contact.mu, "1"), "controller": d.controller,
+            "min_group_saving": quantity(100 * d.min_group_saving, "%")},
+        "baseline": {m: quantity(r.baseline[m], metric_unit(m)) for m in SAVING_METRICS},
+        "plausibility": None if r.plausibility is None else r.plausibility.as_dict(),
+        "recommended": candidate_data(r.recommended, r.outer),
+        "candidates": [candidate_data(c, r.outer) for c in r.candidates],
+        "pareto": [{"fraction": quantity(f, "1"), **candidate_data(c, r.outer)}
+                   for f, c in r.pareto],
+        "maps": [map_data(m) for m in r.maps],
+        "worst": {k: {"saving": quantity(100 * s, "%"), "condition": c}
+                  for k, (s, c) in r.worst.items()},
+        "robust": None if r.robust is None else robust_data(r.robust, r.outer),
+        "ranking": [ranking_data(row) for row in r.ranking],
+        "stop_tolerance": None if r.tolerance is None else tolerance_data(r),
+        "envelope": [e.table() for e in r.envelope],
+        "fatigue": [{"group": p.group, "side": p.side, "role": p.role, **f.table(),
+                     "cycles_per_year": {
+                         "one_hour_a_day": quantity(cycles_per_year(r.gait.period, 1.0),
+                                                    "cycles"),
+                         "continuous": quantity(cycles_per_year(r.gait.period, 24.0), "cycles")}}
+                    for p, f in r.fatigue],
+        "simulation": [sensitivity_row(row) for row in r.simulation],
+        "timings": {k: quantity(v, "s") for k, v in r.timings.items()},
+        "notes": list(r.notes),
+        "stages": list(r.stages),
+    }
+
+
+__all__ = ["MIN_SAVING", "DesignResult", "candidate_data", "design_data", "gait_data", "map_data",
+           "ranking_data", "robust_data", "tolerance_data"]

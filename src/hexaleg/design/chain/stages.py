@@ -1,0 +1,397 @@
+"""The stages of ``hexaleg design``, each a function with its inputs and outputs.
+
+:class:`~hexaleg.design.chain.chain.DesignChain` runs them in order (as pvlib's ModelChain
+runs its models): :func:`nominal` (the gait prepared once, the groups and the fit limits),
+:func:`family_candidates` (every family's optimum, groups that do not pay left out),
+:func:`pareto_front` (the best family under spring-torque bounds), :func:`stop_tolerance` (the
+recommendation designed for its stops' mounting error),
+:func:`robustness_maps` and :func:`robust_design` (the recommendation under changed conditions
+and the design for a box of them). The ranking by simulation is
+:mod:`hexaleg.design.chain.ranking`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import TypeVar
+
+import numpy as np
+
+from hexaleg.checks import one_of
+from hexaleg.design.chain.candidates import (
+    Candidate,
+    candidate,
+    class_geometry,
+    parsimonious,
+)
+from hexaleg.design.chain.config import METRICS, DesignConfig, DesignParams
+from hexaleg.design.chain.groups import class_of, design_groups, sprung_classes
+from hexaleg.design.envelope import PartEnvelope, parts_envelope
+from hexaleg.design.evaluator import RunSpec
+from hexaleg.design.families import Geometry, containment_waves
+from hexaleg.design.fatigue import FatigueCheck, spring_fatigue
+from hexaleg.design.optimal import OptimalSprings
+from hexaleg.design.robust import RobustSprings, robust_springs
+from hexaleg.design.robustness import Condition, condition_prepared, condition_savings
+from hexaleg.design.robustness_map import RobustnessMap, robot_patterns, robustness_map
+from hexaleg.design.spring_parts import SpringPart, spring_outer_diameter
+from hexaleg.design.tolerance import TolerantSprings, tolerant_springs
+from hexaleg.dynamics.prepare import Prepared, prepare
+from hexaleg.errors import (
+    HexalegError,
+    InfeasibleForcesError,
+    InvalidParameterError,
+    TorqueLimitError,
+)
+from hexaleg.motion.legged import tripod_gait
+from hexaleg.motion.params import GaitParams
+from hexaleg.motion.trajectory import Motion
+from hexaleg.parallel.forked import fork_map, robot_objects
+from hexaleg.robot.description import RobotDescription
+from hexaleg.robot.model import Robot
+
+T = TypeVar("T")
+R = TypeVar("R")
+
+
+@dataclass(frozen=True, eq=False)
+class Nominal:
+    """What every stage shares: the robot, its nominal gait prepared once, the groups.
+
+    Attributes:
+        config: The configuration. run: Robot, actuator, contact. robot: The robot.
+        desc: Its description. gait: The nominal gait. prepared: It, prepared.
+        baseline: Metric totals without springs (J or N·m).
+        classes: The sprung joint classes. class_groups: Class → joints (where geometries are
+            searched). groups: The design groups (``[design] grouping``).
+        outer: Group → (largest spring outer diameter, m; where it comes from).
+        motion: The logged motion (``--motion``) the design is made on, or None for the
+            generated gait (then ``gait`` only gives its period and samples).
+    """
+
+    config: DesignConfig
+    run: RunSpec
+    robot: Robot
+    desc: RobotDescription
+    gait: GaitParams
+    prepared: Prepared
+    baseline: dict[str, float]
+    classes: tuple[str, ...]
+    class_groups: dict[str, tuple[str, ...]]
+    groups: dict[str, tuple[str, ...]]
+    outer: dict[str, tuple[float, str]]
+    motion: Motion | None = None
+
+    @property
+    def outer_diameters(self) -> dict[str, float]:
+        """Group → largest spring outer diameter, m."""
+        return {g: v for g, (v, _) in self.outer.items()}
+
+    def family(self, family: str, params: DesignParams | None = None,
+               start: Sequence[dict[str, Geometry]] = (), like: Candidate | None = None,
+               geometry: dict[str, Geometry] | None = None,
+               contained: Mapping[str, OptimalSprings] | None = None) -> Candidate:
+        """One family's parsimonious candidate (:func:`~hexaleg.design.chain.candidates.
+        parsimonious`) with the ``[design]`` table, or ``params`` in its place; on the groups of
+        ``like`` only when given (its classes: the others were left unfitted); at ``geometry``
+        (class → geometry) when given, else searched (from ``contained``: family → the
+        class-level optimum of a family it contains)."""
+        d = self.config.design if params is None else params
+        groups, classes = self.groups, self.class_groups
+        if like is not None:
+            groups = {g: js for g, js in groups.items() if g in like.optimum.groups}
+            kept = {j for js in groups.values() for j in js}
+            classes = {k: js for k, js in classes.items() if js[0] in kept}
+        return parsimonious(self.prepared, self.run, self.gait, groups, classes, family, d,
+                            self.outer_diameters, start, geometry, contained)
+
+    def fork_map(self, fn: Callable[[T], R], items: Sequence[T],
+                 done: Callable[[int, R], None] | None = None) -> list[R]:
+        """``[fn(x) for x in items]`` over one forked process per core, the results referring to
+        this robot by reference (:func:`~hexaleg.parallel.forked.fork_map`)."""
+        return fork_map(fn, items, shared=robot_objects(self.robot), done=done)
+
+
+LOGGED_SKIP = ("the robustness maps and the robust design are left out: they re-make the gait "
+               "from its parameters (period, stride, pattern) and a logged motion (--motion) has "
+               "none to vary; the candidates, ranking, stop tolerance and envelope are on the "
+               "logged cycle")
+"""The note of a design on a logged motion."""
+UNMAPPED = ("the robustness maps and the robust design are left out ([design] robustness = "
+            "false): neither is one of the spring rules, both are about conditions other than "
+            "the nominal gait")
+"""The note of a design without them (``[design] robustness`` false)."""
+
+
+def nominal(cfg: DesignConfig) -> Nominal:
+    """The nominal gait prepared (or the logged motion's cycle, ``cfg.motion``), the sprung
+    classes, the design groups and their fit limits."""
+    d = cfg.design
+    run = d.run(cfg.robot, cfg.contact)
+    robot, desc, gait = run.load(), run.description(), cfg.nominal_gait
+    for kind in d.max_outer_diameter:  # a typo would be ignored and the springs come out larger
+        one_of("[design] max_outer_diameter joint class", kind, robot.joint_kinds)
+    motion = None
+    if cfg.motion is not None:
+        from hexaleg.scenario.logged import logged_motion
+
+        motion = logged_motion(robot, cfg.motion, cfg.cycle)
+        gait = dataclasses.replace(gait, samples=motion.n_samples, period=motion.period)
+        prepared = prepare(robot, motion, motor=run.actuator(), contact=run.contact)
+    else:
+        prepared = condition_prepared(run, gait, Condition())
+    baseline = {k: float(v) for k, v in prepared.baseline("joule")["total"].items()}
+    classes = sprung_classes(robot, d.classes)
+    groups = design_groups(robot, classes, d.grouping)
+    outer = {}
+    for g, js in groups.items():
+        kind = class_of(robot, js)
+        outer[g] = ((float(d.max_outer_diameter[kind]), "[design] max_outer_diameter")
+                    if kind in d.max_outer_diameter else spring_outer_diameter(desc, robot, kind))
+    return Nominal(cfg, run, robot, desc, gait, prepared, baseline, tuple(classes),
+                   design_groups(robot, classes, "class"), groups, outer, motion)
+
+
+def rank(c: Candidate, metric: str) -> float:
+    """The predicted saving of ``metric`` net of the springs' mass (−∞ when not finite)."""
+    value = c.net[metric]
+    return float(value) if np.isfinite(value) else -np.inf
+
+
+def family_candidates(nom: Nominal, progress: Callable[[str, str], None]) -> list[Candidate]:
+    """Every allowed family's candidate, ranked by predicted net saving (best first).
+
+    The families are convex programs with their own geometry searches, so they run in
+    parallel, one process per core (:func:`~hexaleg.parallel.forked.fork_map`: the workers
+    inherit the prepared gait, each returns its candidate with the robot by reference), the
+    same computations as one after the other (tested bit for bit). A family that contains
+    others (:data:`~hexaleg.design.families.CONTAINS`) runs after them and starts its search
+    from their optima, so its optimum is never below theirs.
+
+    Args:
+        nom: The nominal stage.
+        progress: Called with (step name, message) as each family ends.
+    """
+    d = nom.config.design
+    found: dict[str, Candidate] = {}
+
+    def done(i: int, c: Candidate) -> None:
+        fam = d.families[i]
+        found[fam] = c
+        progress(f"family {fam}", f"{fam}: family optimum, {d.metric} saving "
+                 f"{100 * c.row[f'saving.{d.metric}']:+.2f} %")
+
+    for wave in containment_waves(d.families):
+        contained = {f: c.searched for f, c in found.items() if c.searched is not None}
+
+        def one(fam: str, contained: dict[str, OptimalSprings] = contained) -> Candidate:
+            return nom.family(fam, contained=contained)
+
+        def finished(i: int, c: Candidate, wave: list[str] = wave) -> None:
+            done(d.families.index(wave[i]), c)
+
+        nom.fork_map(one, wave, done=finished)
+    cands = [found[fam] for fam in d.families]
+    return sorted(cands, key=lambda c: -rank(c, d.metric))
+
+
+def pareto_front(nom: Nominal, rec: Candidate) -> list[tuple[float, Candidate]]:
+    """``rec``'s geometry with its spring torque bounded to fractions of its peak: at each bound
+    the magnitudes are the global optimum of the ranking metric for that geometry (one convex
+    program each; the magnitudes optimise the metric the design ranks by, so no bounded point
+    beats the unbounded one on its own geometry).
+
+    Returns:
+        ``[(fraction, candidate)]`` ascending, the last ``rec`` itself (fraction 1).
+    """
+    d = nom.config.design
+    peak = float(np.abs(rec.optimum.analysis.tau_spring).max())
+    geometry = class_geometry(rec.optimum, nom.class_groups)
+    pareto = []
+    for f in sorted(d.pareto_fractions):
+        if peak <= 0:
+            break
+        bounded = dataclasses.replace(d, max_torque=min(f * peak, d.max_torque or np.inf))
+        pareto.append((f, nom.family(rec.family, bounded, like=rec, geometry=geometry)))
+    return [*pareto, (1.0, rec)]
+
+
+def stop_tolerance(nom: Nominal, rec: Candidate) -> tuple[Candidate, TolerantSprings | None]:
+    """``rec`` designed for the stops a workshop mounts within ``[design] stop_tolerance``
+    (:func:`hexaleg.design.tolerance.tolerant_springs`: the worst saving over the mounting
+    errors maximised), with its parts, when that keeps more than the tolerance-blind design's
+    worst; else ``rec``. The comparison (both designs' nominal and worst savings and curves)
+    either way; None without a tolerance or for a family without angles."""
+    d = nom.config.design
+    if d.stop_tolerance == 0 or not rec.optimum.geometry or not any(
+            rec.optimum.geometry.values()):
+        return rec, None
+    t = tolerant_springs(nom.prepared, rec.optimum, d.stop_tolerance, d.metric,
+                         max_torque=rec.max_torque, max_deflection=d.deflection_bound)
+    if t.chosen == "blind":
+        return rec, t
+    return dataclasses.replace(candidate(t.optimum, nom.prepared, nom.run, nom.gait,
+                                         nom.outer_diameters, d), dropped=rec.dropped,
+                               max_torque=rec.max_torque), t
+
+
+TURN_RATE = 0.2
+"""rad/s: the turn whose joint ranges the envelope adds (the nominal gait turning, a gentle turn
+of about 11° a second)."""
+
+
+def envelope_and_fatigue(nom: Nominal, rec: Candidate
+                         ) -> tuple[tuple[PartEnvelope, ...], tuple[tuple[SpringPart, FatigueCheck],
+                                                                      ...], list[str]]:
+    """Each bought part's stress over everything its joints may see
+    (:func:`hexaleg.design.envelope.parts_envelope`: URDF limits, stand and sphere poses, the
+    gait, a turn at :data:`TURN_RATE`) with the hard stop it needs where it would yield, and its
+    fatigue safety at ``[design] life_cycles`` (:func:`hexaleg.design.fatigue.spring_fatigue`);
+    notes for a turn the robot cannot make."""
+    d = nom.config.design
+    parts = [p for p in rec.parts if p.spring is not None]
+    joints = sorted({j for p in parts for j in p.joints}, key=nom.robot.column)
+    extra, notes = [], []
+    if nom.motion is not None:
+        notes.append(f"the envelope leaves out a turn at {TURN_RATE:g} rad/s: a logged motion "
+                     "(--motion) has no gait to turn")
+    else:
+        try:
+            turn = tripod_gait(nom.robot, dataclasses.replace(nom.gait, yaw_rate=TURN_RATE))
+            q = {j: turn.q[:, nom.robot.column(j)] for j in joints}
+            extra.append((f"turning {TURN_RATE:g} rad/s",
+                          {j: (float(v.min()), float(v.max())) for j, v in q.items()}))
+        except HexalegError as e:
+            notes.append(f"the envelope leaves out a turn at {TURN_RATE:g} rad/s: {e}")
+    env = parts_envelope(parts, nom.prepared, extra=extra, design_factor=d.safety_factor,
+                         mirrored=rec.optimum.mirrored)
+    assert all(p.spring is not None for p in parts)
+    fatigue = tuple((p, spring_fatigue(p.spring, life=d.life_cycles))  # type: ignore[arg-type]
+                    for p in parts)
+    return env, fatigue, notes
+
+
+def robustness_maps(nom: Nominal, rec: Candidate
+                    ) -> tuple[tuple[RobustnessMap, ...], dict[str, tuple[float, str]]]:
+    """The recommendation frozen over period × stride, payload × μ and slope × pattern (the
+    ground's slope along the walking direction; the patterns of ``[design] map_pattern``, by
+    default the nominal gait's and every other the robot's legs walk,
+    :func:`~hexaleg.design.robustness_map.robot_patterns`), and each metric's worst case
+    (saving, its condition's label) over all three; none on a logged motion (NaN worst cases,
+    :data:`LOGGED_SKIP`), nor without ``[design] robustness`` (:data:`UNMAPPED`)."""
+    d = nom.config.design
+    if nom.motion is not None or not d.robustness:  # LOGGED_SKIP, UNMAPPED
+        why = "logged motion" if nom.motion is not None else "[design] robustness = false"
+        return (), {m: (float("nan"), f"not mapped ({why})") for m in METRICS}
+    springs = rec.optimum.springs
+    patterns = d.map_pattern or robot_patterns(nom.robot, nom.gait)
+    axes: list[dict[str, Sequence[float] | Sequence[str]]] = [
+        {"period": d.map_period, "stride": d.map_stride},
+        {"payload": d.map_payload, "mu": d.map_mu}]
+    if patterns:  # a robot whose leg names do not say side and place has no named pattern
+        axes.append({"slope": d.map_slope, "pattern": patterns})
+    maps = tuple(robustness_map(nom.run, nom.gait, springs, a, mapper=nom.fork_map)
+                 for a in axes)
+    worst = {}
+    for m in METRICS:
+        s, c = min((mp.worst(m) for mp in maps),
+                   key=lambda sc: np.inf if np.isnan(sc[0]) else sc[0])
+        worst[m] = (s, c.label() if c is not None else "—")
+    return maps, worst
+
+
+@dataclass(frozen=True, eq=False)
+class RobustResult:
+    """The robust design and both designs over the box of conditions.
+
+    Attributes:
+        conditions: The nominal gait and the box's corners.
+        design: The robust program's result (savings per condition in its metric).
+        candidate: The robust magnitudes as a design on the nominal gait, with its parts.
+        savings: Metric (:data:`~hexaleg.design.chain.config.METRICS`) →
+            ``{"robust": (n,), "nominal": (n,)}`` savings per condition.
+    """
+
+    conditions: tuple[Condition, ...]
+    design: RobustSprings
+    candidate: Candidate
+    savings: dict[str, dict[str, np.ndarray]]
+
+    def worst(self, metric: str, design: str = "robust") -> float:
+        """The worst saving of ``design`` (robust or nominal) over the conditions."""
+        return float(np.min(self.savings[metric][design]))
+
+
+def corners(cfg: DesignConfig) -> tuple[Condition, ...]:
+    """The nominal gait and the corners of the robust box (duplicates once)."""
+    d = cfg.design
+    boxes = [sorted(set(b)) for b in (d.robust_period, d.robust_stride, d.robust_payload,
+                                      d.robust_mu)]
+    out = [Condition()]
+    for p, s, w, mu in itertools.product(*boxes):
+        c = Condition(period=p, stride=s, payload=w, mu=mu)
+        if c not in out:
+            out.append(c)
+    return tuple(out)
+
+
+def robust_design(nom: Nominal, rec: Candidate) -> RobustResult | None:
+    """The recommended geometry's magnitudes for the box of conditions
+    (:func:`hexaleg.design.robust.robust_springs`: its corners and the nominal gait, one convex
+    program), with its own parts; None when the box is the nominal gait alone, the motion is
+    logged (:data:`LOGGED_SKIP`) or ``[design] robustness`` is false (:data:`UNMAPPED`).
+
+    Raises:
+        InvalidParameterError: a corner where the robot has no admissible forces without
+            springs (names it; narrow the ``robust_*`` ranges).
+    """
+    cfg, prepared = nom.config, nom.prepared
+    conditions = corners(cfg)
+    if len(conditions) == 1 or nom.motion is not None or not cfg.design.robustness:
+        return None
+    preps = nom.fork_map(lambda c: condition_prepared(nom.run, nom.gait, c), conditions)
+    for c, p in zip(conditions, preps, strict=True):
+        try:
+            p.baseline("joule")
+        except (InfeasibleForcesError, TorqueLimitError) as e:
+            raise InvalidParameterError(
+                "design robust box corner", c.label(),
+                f"corners where the robot has admissible forces without springs ({e}); narrow "
+                "the robust_* ranges") from e
+    d = cfg.design
+    design = robust_springs(rec.optimum, prepared, preps, d.robust_mode, d.metric,
+                            max_torque=d.max_torque, max_deflection=d.deflection_bound)
+    analysis = prepared.evaluate(design.springs, "joule")
+    optimum = dataclasses.replace(
+        rec.optimum, magnitudes=design.magnitudes, springs=design.springs, analysis=analysis,
+        value=float(analysis.metrics["total"]["joule"]), saving=float(design.saving[0]),
+        notes=(), solver=design.solver)
+    rows = {name: [condition_savings(p, s, "joule") for p in preps]
+            for name, s in (("robust", design.springs), ("nominal", rec.optimum.springs))}
+    savings = {m: {name: np.array([r[f"saving.{m}"] if r["status"] == "ok" else -np.inf
+                                   for r in rs]) for name, rs in rows.items()}
+               for m in METRICS}
+    return RobustResult(conditions=conditions, design=design,
+                        candidate=candidate(optimum, prepared, nom.run, nom.gait,
+                                            nom.outer_diameters, d),
+                        savings=savings)
+
+
+__all__ = [
+    "LOGGED_SKIP",
+    "UNMAPPED",
+    "Nominal",
+    "RobustResult",
+    "corners",
+    "envelope_and_fatigue",
+    "family_candidates",
+    "nominal",
+    "pareto_front",
+    "rank",
+    "robust_design",
+    "robustness_maps",
+    "stop_tolerance",
+]

@@ -1,0 +1,354 @@
+"""``hexaleg codesign``: the gait and its springs designed together for a required speed.
+
+:func:`codesign` runs, for one robot, speed and pattern:
+
+1. the robot's default gait at that speed (:meth:`GaitParams.for_robot`, the speed winning over
+   the stride), its static margin — the default ``min_static_margin`` — and its energy;
+2. the **co-design**: the outer search (:func:`hexaleg.design.gait_search.search`, restarted
+   Nelder–Mead) over body height, foot radius, step height, duty factor and period, each
+   candidate with the inner spring program's optimum
+   (:func:`hexaleg.design.optimal.optimal_springs` of ``family`` on every joint class,
+   electrical metric: fast and convex), at ``samples``
+   samples a cycle; and the gait alone (the same search without springs) for the row "best gait
+   without springs";
+3. the four rows at ``final_samples`` (:mod:`hexaleg.design.codesign.result`), the sequential
+   design (the gait alone, then its springs) beside them;
+4. the curve of energy per metre against speed for the default and the co-designed gait, with
+   and without their springs (the gait's other parameters held, the stride ``v · period``);
+5. with ``rules`` (the default), the full spring rules of ``hexaleg design`` (tolerance,
+   envelope, fatigue, arbor, parsimony, simulated ranking:
+   :class:`hexaleg.design.chain.chain.DesignChain`) applied to the chosen gait only — too
+   slow for the inner loop — whose recommendation is the springs to buy (:func:`full_rules`);
+   they start as soon as the co-design search has chosen the gait, in a process beside steps
+   2's gait-alone search, 3 and 4 (:class:`Background`);
+6. the co-designed gait simulated forward in MuJoCo with and without the springs to buy
+   (:func:`hexaleg.simulation.run.simulate`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import time
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from hexaleg.checks import integer, one_of, real, typed
+from hexaleg.config import from_mapping, keywords
+from hexaleg.design.chain.config import DesignParams
+from hexaleg.design.chain.groups import design_groups
+from hexaleg.design.codesign.result import CodesignResult, Row, SpeedPoint
+from hexaleg.design.families import FAMILIES
+from hexaleg.design.gait_evaluation import (
+    PARAMETERS,
+    Constraints,
+    GaitPoint,
+    evaluate_gait,
+    with_values,
+)
+from hexaleg.design.gait_search import default_space, search
+from hexaleg.design.optimal import Groups
+from hexaleg.errors import ConfigError, HexalegError, InvalidParameterError
+from hexaleg.motion.body import body_height, nominal_footholds
+from hexaleg.motion.legged import gait
+from hexaleg.motion.params import GaitParams
+from hexaleg.motion.patterns import check_pattern
+from hexaleg.robot.model import Robot
+from hexaleg.robot.registry import description
+from hexaleg.robot.springs import SpringSet
+
+SPEED_FACTORS = (0.5, 0.75, 1.0, 1.25, 1.5)
+"""The speed curve's speeds, as factors of the required speed."""
+RULE_FAMILIES = ("preloaded", "one_sided", "linear")
+"""The families the full rules compare on the chosen gait: ``hexaleg design``'s without
+``dead_zone``. A dead-zone spring is the preloaded family with both preloads at zero (the same
+``above``/``below`` terms, :mod:`hexaleg.design.families`), so at every geometry the preloaded
+program's optimum is at least as good; it ranked last on the default gait (+12.08 % against
++16.36 %, analysis/logs/answer_hexaleg.log) and on the co-designed one (+39.90 % against
++42.66 %), where its geometry search alone took 27–70 s (docs/codesign.md). The slowest first:
+the families run in this order on two worker processes."""
+
+
+def rule_params(**table: Any) -> DesignParams:
+    """The ``[design]`` settings of the full rules on the chosen gait: ``hexaleg design``'s
+    defaults, the families :data:`RULE_FAMILIES` and ``robustness`` false (the maps and the
+    robust box are not rules), with ``table``'s keys on top (a ``[codesign.design]`` table).
+
+    Raises:
+        UnknownNameError, ConfigError, InvalidParameterError: as ``[design]`` (named).
+    """
+    return from_mapping(DesignParams, {"families": list(RULE_FAMILIES), "robustness": False,
+                                       **table}, "[codesign.design]")
+
+
+def default_gait(robot: Robot, name: str, speed: float, pattern: str | None, samples: int
+                 ) -> GaitParams:
+    """The robot's default gait at ``speed`` with its body height and foot radius resolved
+    (the stand pose's foot depth and mean horizontal foothold distance)."""
+    base = GaitParams.for_robot(name)
+    if pattern is not None:
+        base = dataclasses.replace(base, pattern=check_pattern(pattern),
+                                   duty_factor=None)  # type: ignore[arg-type]  # → β₀
+    base = dataclasses.replace(base, samples=samples, speed=float(speed))
+    radius = float(np.linalg.norm(nominal_footholds(robot, base)[:, :2], axis=1).mean())
+    return dataclasses.replace(base, body_height=body_height(robot, base), foot_radius=radius)
+
+
+@typed
+def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = None, *,
+             constraints: Constraints | None = None, family: str = "linear",
+             samples: int = 100, final_samples: int = 200, max_evaluations: int = 100,
+             restarts: int = 3, grouping: str = "class", curve: bool = True,
+             simulate: bool = True, rules: bool = True, design: DesignParams | None = None,
+             progress: Callable[[str], None] | None = None) -> CodesignResult:
+    """The gait and springs that cover a metre at ``speed`` for the least electrical energy
+    (module docstring).
+
+    Args:
+        robot: A registered robot or a description TOML.
+        speed: Required speed, m/s, > 0.
+        pattern: A gait pattern (:data:`hexaleg.motion.patterns.PATTERNS`); None: the robot's.
+        constraints: The constraints (default :class:`Constraints`: the default gait's margin).
+        family: The inner spring family (``linear``: no geometry, the fastest).
+        samples: Samples a cycle in the search (≥ 40). final_samples: in the rows (≥ samples).
+        max_evaluations: The co-design search's budget (the gait-alone search gets the same).
+        restarts: Simplex runs of each search.
+        grouping: One spring design per joint ``class`` (default), ``mirrored`` left/right
+            pair, or ``joint`` (Solo-12's front and hind knees bend opposite ways: a class
+            design cancels, so ``mirrored``).
+        curve: Compute the energy-vs-speed curve. simulate: Simulate the chosen gait.
+        rules: Apply ``hexaleg design``'s full spring rules to the chosen gait and recommend
+            what they choose (:func:`full_rules`, about a minute); False: the search's answer
+            alone, the inner program's springs recommended.
+        design: The rules' ``[design]`` settings (default :func:`rule_params`); they run at
+            ``final_samples``.
+        progress: Called with one status line per stage.
+
+    Raises:
+        InvalidParameterError: a speed not > 0, sample counts out of range; the default gait
+            itself cannot be made at this speed (named, with its error).
+        UnknownNameError: an unknown robot, pattern or family.
+    """
+    v = real("speed", speed, low=0.0, low_open=True, allowed="a speed > 0 (m/s)")
+    n = integer("samples", samples, low=40, high=2000)
+    n_final = integer("final_samples", final_samples, low=n, high=5000)
+    c = constraints or Constraints()
+    family = one_of("[codesign] family", family, FAMILIES)
+    say = progress or (lambda _msg: None)
+    t0 = time.perf_counter()
+    desc = description(robot)
+    model = desc.load()
+    motor = desc.actuator(model)  # the robot's own, as hexaleg design uses
+    base = default_gait(model, robot, v, pattern, n)
+    groups = design_groups(model, tuple(model.joint_classes),
+                           one_of("grouping", grouping, ("class", "mirrored", "joint")))
+    free = functools.partial(evaluate_gait, model, family=family, constraints=c, motor=motor)
+    first = free(base, groups=groups, min_margin=0.0)
+    if first.error is not None:
+        raise InvalidParameterError("speed", v, f"a speed the robot's default gait can walk "
+                                    f"(it fails: {first.error})")
+    margin = c.min_static_margin if c.min_static_margin is not None \
+        else max(0.0, first.measures.get("static_margin", (0.0,))[0])
+    c = dataclasses.replace(c, min_static_margin=margin)
+    free = functools.partial(evaluate_gait, model, family=family, constraints=c,
+                             min_margin=margin, motor=motor)
+    space = default_space(base, c.min_foot_clearance)
+    say(f"{model.name}: default gait {first.per_metre:.2f} J/m at {v:g} m/s")
+    joint = search(functools.partial(free, groups=groups), base, v, space, springs=True,
+                   reference=first.per_metre, max_evaluations=max_evaluations,
+                   restarts=restarts)
+    say(f"co-design: {joint.value:.2f} J/m after {joint.evaluations} evaluations "
+        f"({joint.wall:.1f} s)")
+    chosen = dataclasses.replace(joint.best.params, samples=n_final)
+    ruled = started(robot, chosen, c, say, design) if rules else None
+    try:
+        alone = search(functools.partial(free, groups=None), base, v, space, springs=False,
+                       reference=first.per_metre, max_evaluations=max_evaluations,
+                       restarts=restarts)
+        say(f"gait alone: {alone.value:.2f} J/m after {alone.evaluations} evaluations")
+
+        def final(params: GaitParams, springs: bool) -> GaitPoint:
+            point = free(dataclasses.replace(params, samples=n_final),
+                         groups=groups if springs else None)
+            if point.error is not None:
+                raise InvalidParameterError("final_samples", n_final, "a sampling at which "
+                                            f"the chosen gait still works ({point.error})")
+            return point
+
+        d_sprung, c_sprung = final(base, True), final(chosen, True)
+        g_sprung = final(alone.best.params, True)
+        rows = (Row.of("default gait, no springs", d_sprung, False, model.mass),
+                Row.of("default gait, its best springs", d_sprung, True, model.mass),
+                Row.of("best gait, no springs", g_sprung, False, model.mass),
+                Row.of("best gait, its springs (co-design)", c_sprung, True, model.mass))
+        sequential = Row.of("sequential: best gait alone, then its springs", g_sprung, True,
+                            model.mass)
+        say(f"rows at {n_final} samples ({time.perf_counter() - t0:.1f} s)")
+        points = speed_curve(free, groups, base, chosen, v) if curve else ()
+        buy = ruled.result() if ruled is not None else None
+        bought = c_sprung.springs
+        if buy is not None and not isinstance(buy, str) and buy.pays:
+            bought = buy.recommended.optimum.springs
+        simulation = simulated(model, chosen, bought, c, motor) if simulate else {}
+        return CodesignResult(
+            robot=robot, title=model.name, mass=model.mass, speed=v, pattern=base.pattern,
+            family=family, constraints=c, default=dataclasses.replace(base, samples=n_final),
+            chosen=chosen, springs=c_sprung.springs, measures=c_sprung.measures,
+            inner_saving=1.0 - c_sprung.sprung / c_sprung.baseline, rows=rows,
+            sequential=sequential, search=joint, gait_search=alone, curve=points,
+            simulation=simulation, rules=buy, samples=n, wall=time.perf_counter() - t0)
+    finally:
+        if ruled is not None:
+            ruled.close()
+
+
+class Background:
+    """:func:`full_rules` running in a forked process beside the co-design's remaining work
+    (the gait-alone search, the rows, the curve: about 10 s of a quiet run's 2 cores), or — where
+    processes cannot fork — run at :meth:`result`. The same computation either way: the child
+    is a copy of this process at the fork; its result comes back pickled (as the design's family
+    workers' do). Its progress lines are printed by the child (a callback that collects them
+    sees only those of this process)."""
+
+    def __init__(self, run: Callable[[], Any]) -> None:
+        import multiprocessing
+
+        self._run = run
+        self._process: Any = None
+        self._pipe: Any = None
+        if "fork" in multiprocessing.get_all_start_methods():
+            ctx = multiprocessing.get_context("fork")
+            self._pipe, child = ctx.Pipe(duplex=False)
+            self._process = ctx.Process(target=_send, args=(run, child))
+            self._process.start()
+            child.close()
+
+    def result(self) -> Any:
+        """The rules' result (waits for the child); re-raises what the child raised."""
+        if self._process is None or self._pipe is None:
+            return self._run()
+        ok, value = self._pipe.recv()
+        self._process.join()
+        self._process = None
+        if not ok:
+            raise value
+        return value
+
+    def close(self) -> None:
+        """Stop a child whose result was never asked for (the co-design failed first)."""
+        if self._process is not None:
+            self._process.terminate()
+            self._process.join()
+            self._process = None
+
+
+def _send(run: Callable[[], Any], pipe: Any) -> None:
+    try:
+        pipe.send((True, run()))
+    except BaseException as err:  # handed to the parent, which raises it
+        pipe.send((False, err))
+    finally:
+        pipe.close()
+
+
+def started(robot: str, chosen: GaitParams, c: Constraints, say: Callable[[str], None],
+            design: DesignParams | None) -> Background:
+    """:func:`full_rules` on the chosen gait, started beside the co-design's remaining work."""
+    return Background(functools.partial(full_rules, robot, chosen, c, say, design))
+
+
+def speed_curve(free: Callable[..., GaitPoint], groups: Groups, base: GaitParams,
+                chosen: GaitParams, speed: float) -> tuple[SpeedPoint, ...]:
+    """Energy per metre of the default and the chosen gait against speed
+    (:data:`SPEED_FACTORS`), with and without their inner-program springs (NaN where a gait
+    fails at that speed, e.g. a joint too fast)."""
+    out = []
+    for factor in SPEED_FACTORS:
+        v = factor * speed
+        for label, params in (("default", base), ("co-design", chosen)):
+            values = {p: getattr(params, p) for p in PARAMETERS}
+            point = free(with_values(dataclasses.replace(params, samples=base.samples), v,
+                                     values), groups=groups)
+            ok = point.feasible
+            out.append(SpeedPoint(label, v, point.per_metre if ok else float("nan"),
+                                  point.per_metre_springs if ok else float("nan")))
+    return tuple(out)
+
+
+def simulated(robot: Robot, chosen: GaitParams, springs: SpringSet, c: Constraints,
+              motor: Any = None) -> dict[str, Any]:
+    """The chosen gait simulated forward in MuJoCo (feedforward + PD servos, default
+    :class:`~hexaleg.simulation.run.Settings`) with and without ``springs`` (the springs to
+    buy), the robot's ``motor`` (None: the catalogue's default): planned and walked distance per
+    cycle, the predicted and simulated electrical saving; or the error."""
+    from hexaleg.simulation.run import simulate
+
+    try:
+        motion = gait(robot, chosen)
+        sim = simulate(robot, motion, motor, springs, contact=c.contact())
+        predicted = sim.predicted("electrical")[2]
+        simulated_ = sim.simulated("electrical")[2]
+        walk = sim.with_springs.walk
+        base_walk = sim.baseline.walk
+    except HexalegError as err:
+        return {"error": f"{type(err).__name__}: {err}"}
+    assert walk is not None and base_walk is not None
+    return {"planned": motion.distance, "walked": walk.distance_per_cycle,
+            "walked_baseline": base_walk.distance_per_cycle, "predicted": predicted,
+            "simulated": simulated_, "controller": sim.settings.controller}
+
+
+def full_rules(robot: str, chosen: GaitParams, c: Constraints, say: Callable[[str], None],
+               design: DesignParams | None = None) -> Any:
+    """``hexaleg design`` (every rule of issue #30: parsimony, stop tolerance, envelope and hard
+    stop, fatigue, arbor, the simulated ranking) on the chosen gait at its sampling, with
+    ``design`` (default :func:`rule_params`: the families of :data:`RULE_FAMILIES`, no
+    robustness maps nor robust box — neither is a rule, and on the co-designed gait the box
+    alone cost a minute); its result, or the error's message when it cannot run there (the
+    inner springs then stay recommended)."""
+    from hexaleg.design.chain.chain import DesignChain
+    from hexaleg.design.chain.config import DesignConfig
+
+    params = design if design is not None else rule_params()
+    say(f"full spring rules on the chosen gait (hexaleg design: {', '.join(params.families)})")
+    try:
+        return DesignChain(DesignConfig(robot=robot, gait=chosen, contact=c.contact(),
+                                        design=params), say).run()
+    except HexalegError as err:
+        say(f"full spring rules failed on the chosen gait: {err}")
+        return f"{type(err).__name__}: {err}"
+
+
+CODESIGN_KEYS = ("speed", "pattern", "family", "samples", "final_samples", "max_evaluations",
+                 "restarts", "grouping", "rules", "curve", "simulate", "constraints", "design")
+"""The keys of a ``[codesign]`` table: :func:`codesign`'s keywords."""
+
+
+def codesign_settings(table: Any, where: str = "[codesign]") -> dict[str, Any]:
+    """The keywords of :func:`codesign` a ``[codesign]`` table gives, checked.
+
+    Raises:
+        ConfigError: not a table, a value of the wrong type (checked against
+            :func:`codesign`'s annotations, as ``[design]`` against its dataclass).
+        UnknownNameError: a key that is not in :data:`CODESIGN_KEYS` or not a constraint
+            (lists them).
+    """
+    if not isinstance(table, dict):
+        raise ConfigError(f"{where} must be a table, got {table!r}")
+    plain = {k: v for k, v in table.items() if k not in ("constraints", "design")}
+    out = {**table, **keywords(codesign, plain, where, CODESIGN_KEYS)}
+    if "constraints" in out:
+        out["constraints"] = from_mapping(Constraints, out["constraints"],
+                                          f"{where[:-1]}.constraints]")
+    if "design" in out:
+        if not isinstance(out["design"], dict):
+            raise ConfigError(f"{where[:-1]}.design] must be a table")
+        out["design"] = rule_params(**out["design"])
+    return out
+
+
+__all__ = ["CODESIGN_KEYS", "RULE_FAMILIES", "SPEED_FACTORS", "Background", "codesign",
+           "codesign_settings", "default_gait", "full_rules", "rule_params", "simulated",
+           "speed_curve", "started"]

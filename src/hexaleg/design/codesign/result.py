@@ -1,0 +1,198 @@
+"""The result of ``hexaleg codesign`` and its ``codesign.json``.
+
+The four rows tell the gait's and the springs' shares apart: the default gait without springs
+(the reference), with its best springs, the best gait without springs (the gait-alone search),
+and the co-designed gait with its springs. With ``E₀`` the first row's energy per metre, the
+gait's share is ``(E₀ − E_gait) / E₀`` and the springs' share of the co-design is
+``(E_gait − E_codesign) / E₀`` (they add up to the co-design's saving). Every number in the JSON
+is ``{value, unit}``; ``gait.parameters`` and ``recommended.springs`` are the keys
+:func:`hexaleg.load_design` reads (:mod:`hexaleg.design.chain.design_file`), so the chosen gait and
+springs run in ``hexaleg simulate --springs codesign.json`` and ``hexaleg report``. The springs
+there are the ones to buy: by default those the full spring rules chose on the chosen gait
+(:mod:`hexaleg.design.codesign.rules`, their figures in ``full_rules``), else the inner
+program's optimum (``inner_springs`` holds it either way).
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+from typing import Any
+
+from hexaleg.design.chain.design_file import gait_parameters
+from hexaleg.design.codesign.rules import RULES, rule_data, rule_lines
+from hexaleg.design.gait_evaluation import PARAMETERS, UNITS, Constraints, GaitPoint
+from hexaleg.design.gait_search import SearchResult
+from hexaleg.design.spring_json import spring_entry
+from hexaleg.dynamics.energy import G
+from hexaleg.motion.params import GaitParams
+from hexaleg.quantities import file_data
+from hexaleg.quantities import quantity as q
+from hexaleg.robot.springs import SpringSet
+
+
+@dataclass(frozen=True)
+class Row:
+    """One of the four rows: a gait, with or without springs.
+
+    Attributes:
+        label: What the row is. params: The gait. springs: Whether with its springs.
+        energy: Electrical energy per cycle, J. distance: m per cycle.
+        per_metre: J/m. cost_of_transport: ``E / (m g d)``, 1.
+    """
+
+    label: str
+    params: GaitParams
+    springs: bool
+    energy: float
+    distance: float
+    per_metre: float
+    cost_of_transport: float
+
+    @classmethod
+    def of(cls, label: str, point: GaitPoint, springs: bool, mass: float) -> Row:
+        """The row of an evaluated gait (with its springs when ``springs``)."""
+        energy = point.sprung if springs else point.baseline
+        per = energy / point.distance
+        return cls(label, point.params, springs, energy, point.distance, per,
+                   per / (mass * G))
+
+
+@dataclass(frozen=True)
+class SpeedPoint:
+    """One point of the energy-vs-speed curve: gait ``label`` at ``speed`` (m/s), J/m without
+    and with its springs (NaN where the gait fails a constraint there)."""
+
+    label: str
+    speed: float
+    per_metre: float
+    per_metre_springs: float
+
+
+@dataclass(frozen=True, eq=False)
+class CodesignResult:
+    """Everything ``hexaleg codesign`` found (:mod:`hexaleg.design.codesign.build`).
+
+    Attributes:
+        robot, title, mass (kg), speed (m/s), pattern, family: The problem.
+        constraints: The constraints as used (the margin resolved).
+        default: The default gait. chosen: The co-designed gait (at the rows' sampling).
+        springs: Its inner-program springs. measures: Its constraints' values.
+        inner_saving: The electrical saving of those springs on the chosen gait (fraction).
+        rows: The four rows. sequential: The gait alone, then its springs.
+        search: The co-design search. gait_search: The gait-alone search.
+        curve: Energy per metre against speed. simulation: The MuJoCo check (or its error).
+        rules: ``hexaleg design``'s result on the chosen gait (the full spring rules), its
+            error's message when it could not run there, or None when not asked.
+        samples: Samples a cycle in the search. wall: Total wall time, s.
+    """
+
+    robot: str
+    title: str
+    mass: float
+    speed: float
+    pattern: str | None
+    family: str
+    constraints: Constraints
+    default: GaitParams
+    chosen: GaitParams
+    springs: SpringSet
+    measures: dict[str, tuple[float, float, str, str]]
+    inner_saving: float
+    rows: tuple[Row, ...]
+    sequential: Row
+    search: SearchResult
+    gait_search: SearchResult
+    curve: tuple[SpeedPoint, ...]
+    simulation: dict[str, Any]
+    rules: Any
+    samples: int
+    wall: float
+
+    @property
+    def shares(self) -> dict[str, float]:
+        """The saving against the default gait without springs, split (module docstring)."""
+        e0, _, eg, ec = (r.per_metre for r in self.rows)
+        return {"gait": (e0 - eg) / e0, "springs": (eg - ec) / e0, "codesign": (e0 - ec) / e0,
+                "default springs": (e0 - self.rows[1].per_metre) / e0}
+
+    @property
+    def recommended(self) -> tuple[SpringSet, str]:
+        """The springs to fit and where they come from: the full rules' recommendation when
+        they ran and it pays, else the inner program's optimum on the chosen gait."""
+        if self.rules is not None and not isinstance(self.rules, str) and self.rules.pays:
+            return (self.rules.recommended.optimum.springs,
+                    f"hexaleg design's full spring rules on the chosen gait ({', '.join(RULES)})")
+        return self.springs, f"inner program ({self.family} family, global optimum)"
+
+    def summary(self) -> str:
+        """Lines for the terminal: the rows, the chosen gait, the search."""
+        lines = [f"{self.title} at {self.speed:g} m/s: electrical energy per metre"]
+        lines += [f"  {r.label:48s} {r.per_metre:7.2f} J/m  CoT {r.cost_of_transport:5.2f}"
+                  for r in (*self.rows, self.sequential)]
+        s = self.shares
+        lines.append(f"  gait share {100 * s['gait']:+.1f} %, springs share "
+                     f"{100 * s['springs']:+.1f} %, co-design {100 * s['codesign']:+.1f} %")
+        lines.append("  chosen gait: " + ", ".join(
+            f"{p} {getattr(self.chosen, p):.4g} {UNITS[p]}" for p in PARAMETERS))
+        lines.append(f"  search: {self.search.evaluations} evaluations, "
+                     f"{self.search.wall:.1f} s, restarts {self.search.spread:.3f} J/m apart; "
+                     f"total {self.wall:.1f} s")
+        if isinstance(self.rules, str):
+            lines.append(f"  full spring rules could not run on the chosen gait ({self.rules}):"
+                         f" the inner program's springs are recommended")
+        elif self.rules is not None:
+            lines += ["  " + line for line in rule_lines(self.rules, self.chosen.stride)]
+        else:
+            lines.append("  springs: the inner program's optimum (the full spring rules were "
+                         "not applied)")
+        return "\n".join(lines)
+
+    def to_dict(self) -> dict[str, Any]:
+        """``codesign.json`` (module docstring)."""
+        springs, source = self.recommended
+        entries = [spring_entry(j, s) for j, s in springs.items()]
+        saving = self.inner_saving
+        if self.rules is not None and not isinstance(self.rules, str) and self.rules.pays:
+            saving = float(self.rules.recommended.row["saving.electrical"])
+        return file_data({
+            "robot": {"name": self.robot, "title": self.title, "mass": q(self.mass, "kg")},
+            "speed": q(self.speed, "m/s"), "pattern": self.pattern,
+            "settings": {"metric": "electrical", "family": self.family,
+                         "samples": self.samples, "final_samples": self.chosen.samples},
+            "constraints": {k: (q(v, _CONSTRAINT_UNITS[k]) if isinstance(v, float) else v)
+                            for k, v in asdict(self.constraints).items()},
+            "gait": {"parameters": gait_parameters(self.chosen),
+                     "default": gait_parameters(self.default)},
+            "measures": {k: {"value": q(v, u), "bound": q(b, u), "kind": kind}
+                         for k, (v, b, u, kind) in self.measures.items()},
+            "rows": [{"label": r.label, "springs": r.springs, "energy": q(r.energy, "J"),
+                      "distance": q(r.distance, "m"), "per_metre": q(r.per_metre, "J/m"),
+                      "cost_of_transport": q(r.cost_of_transport, "1")}
+                     for r in (*self.rows, self.sequential)],
+            "shares": {k: q(100 * v, "%") for k, v in self.shares.items()},
+            "recommended": {"source": source, "springs": entries,
+                            "saving": {"electrical": q(100 * saving, "%")}},
+            "inner_springs": [spring_entry(j, s) for j, s in self.springs.items()],
+            "search": {name: {"method": s.method, "evaluations": s.evaluations,
+                              "wall": q(s.wall, "s"),
+                              "restarts": [q(x, "J/m") for x in s.restarts],
+                              "spread": q(s.spread, "J/m"), "value": q(s.value, "J/m")}
+                       for name, s in (("codesign", self.search), ("gait", self.gait_search))},
+            "curve": [{"gait": p.label, "speed": q(p.speed, "m/s"),
+                       "per_metre": q(p.per_metre, "J/m"),
+                       "per_metre_springs": q(p.per_metre_springs, "J/m")} for p in self.curve],
+            "simulation": {k: (q(v, _SIM_UNITS[k]) if k in _SIM_UNITS else v)
+                           for k, v in self.simulation.items()},
+            "full_rules": None if self.rules is None else (
+                {"applied_to": "the chosen gait only", "error": self.rules, "pays": False}
+                if isinstance(self.rules, str) else rule_data(self.rules, self.chosen.stride)),
+            "wall": q(self.wall, "s"),
+        })
+
+
+_CONSTRAINT_UNITS = {"min_static_margin": "m", "speed_fraction": "1", "mu": "1",
+                     "min_foot_clearance": "m", "min_body_clearance": "m"}
+_SIM_UNITS = {"planned": "m", "walked": "m", "walked_baseline": "m", "predicted": "1",
+              "simulated": "1"}
+
+__all__ = ["CodesignResult", "Row", "SpeedPoint", "q"]

@@ -1,0 +1,2 @@
+"""Work spread over processes that end with their parent: forked maps sharing the robot,
+pool workers that die with their parent, the output directory's lock."""

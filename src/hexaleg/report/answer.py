@@ -1,0 +1,205 @@
+"""The report's lead: which springs to fit, and what they save.
+
+``hexaleg report`` leads its page and its last line with ``hexaleg design``'s answer, taken from
+the first of:
+
+1. ``given``: the ``design.json`` of ``[report] design`` (``--design``),
+   :mod:`hexaleg.report.design_section`;
+2. ``found``: ``hexaleg-design/design.json`` in the working directory (where ``hexaleg design``
+   writes it), when it was made for the report's robot and gait — the same robot, actuator and
+   gait parameters but for the number of samples, and no payload on the report's robot;
+3. ``quick``: the design's core computed here, within the report's time budget: the
+   :data:`QUICK_FAMILY` family's global optimum (linear springs have no geometry to search: one
+   convex program) through ``hexaleg design``'s own stage
+   (:meth:`hexaleg.design.chain.stages.Nominal.family`: groups under ``[design]
+   min_group_saving`` left unfitted, the torsion springs to buy, the saving net of their mass) on
+   the gait ``hexaleg design`` samples, without the other families, the stops' tolerance, the
+   maps, the robust design or the simulation — the numbers equal that family's row of
+   ``hexaleg design``.
+
+Each answer's springs are also evaluated on the report's own gait (its samples, Joule-optimal
+forces as the design ranks them), reported beside the design's number. Where no answer can be
+had (a payload, a logged motion, a robot outside the registry, a motor outside the catalogue, a
+design that fails) the section is None and a note says why; the paper's design stays the page's
+reference.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+from typing import Any
+
+from hexaleg.dynamics.prepare import Prepared
+from hexaleg.errors import HexalegError
+from hexaleg.quantities import quantity
+from hexaleg.report.config import ReportConfig
+from hexaleg.report.design_section import design_section, recommendation
+from hexaleg.robot.model import Robot
+from hexaleg.robot.motor import Motor
+from hexaleg.robot.springs import SpringSet
+
+DESIGN_JSON = Path("hexaleg-design") / "design.json"
+"""Where ``hexaleg design`` writes its answer by default, relative to the working directory."""
+QUICK_FAMILY = "linear"
+"""The family of the quick answer: its global optimum is one convex program (about a second)."""
+
+
+def answer_section(cfg: ReportConfig, robot: Robot, prepared: Prepared
+                   ) -> tuple[dict[str, Any] | None, list[str]]:
+    """The answer the report leads with (module docstring), and notes on what was not used.
+
+    Args:
+        cfg: The report's configuration.
+        robot: The report's robot (with its payload, if any).
+        prepared: The report's gait, prepared (the answer's springs are evaluated on it).
+
+    Returns:
+        The section — :func:`~hexaleg.report.design_section.design_section`'s keys with
+        ``origin`` (``"given"``, ``"found"`` or ``"quick"``) and ``report_gait`` (``{samples,
+        saving}``: the same springs on the report's gait, or None when they cannot be
+        evaluated there) — or None; the notes.
+
+    Raises:
+        ConfigError, InvalidParameterError, UnknownNameError: a ``[report] design`` file that is
+            not a design.json of this robot (:func:`design_section`).
+    """
+    notes: list[str] = []
+    springs: SpringSet | None = None
+    if cfg.report.design is not None:
+        section = design_section(cfg.report.design, robot)
+    elif getattr(cfg, "motion", None) is not None:  # a logged motion (--motion): no gait to match
+        return None, ["no quick answer on a logged motion: hexaleg design --motion LOG designs "
+                      "on it, then hexaleg report --design DIR/design.json leads with it"]
+    else:
+        section, why = _found(cfg, robot)
+        if why:
+            notes.append(why)
+        if section is None:
+            section, springs, why = _quick(cfg, robot)
+            if why:
+                notes.append(why)
+    if section is None:
+        return None, notes
+    if springs is None:
+        springs = _design_springs(Path(section["source"]), robot)
+    section["report_gait"] = _on_report_gait(prepared, springs, section["metric"])
+    return section, notes
+
+
+def _found(cfg: ReportConfig, robot: Robot) -> tuple[dict[str, Any] | None, str | None]:
+    """``hexaleg-design/design.json`` when it answers for this report's robot and gait; else
+    None and why it was passed over (None when there is no such file)."""
+    if not DESIGN_JSON.is_file():
+        return None, None
+    from hexaleg.design.chain.design_file import load_design
+
+    try:
+        loaded = load_design(DESIGN_JSON, robot.name)
+        section = design_section(DESIGN_JSON, robot)
+    except HexalegError as e:
+        return None, f"{DESIGN_JSON} not used: {e}"
+    assert section is not None  # a path was given
+    differs = []
+    if cfg.payload is not None:
+        differs.append("this report carries a payload")
+    if loaded.gait is None:
+        differs.append("it names no gait")
+    else:
+        mine = cfg.gait
+        theirs = dataclasses.replace(loaded.gait, samples=mine.samples)
+        differs += [f"gait {f.name} {getattr(theirs, f.name)!r} (this report: "
+                    f"{getattr(mine, f.name)!r})" for f in dataclasses.fields(mine)
+                    if getattr(theirs, f.name) != getattr(mine, f.name)]
+    if section["actuator"] != cfg.motor.name:
+        differs.append(f"actuator {section['actuator']!r} (this report: {cfg.motor.name!r})")
+    if differs:
+        return None, (f"{DESIGN_JSON} not used: made for another robot or gait — "
+                      + "; ".join(differs))
+    return {**section, "origin": "found"}, None
+
+
+def _quick(cfg: ReportConfig, robot: Robot
+           ) -> tuple[dict[str, Any] | None, SpringSet | None, str | None]:
+    """The quick answer (module docstring), its springs, or None and why not."""
+    from hexaleg.design.chain.config import DesignConfig, DesignParams
+    from hexaleg.design.chain.result import MIN_SAVING, candidate_data
+    from hexaleg.design.chain.stages import nominal
+    from hexaleg.design.evaluator import RunSpec
+    from hexaleg.robot.catalogue import CATALOGUE
+
+    what = "no quick answer"
+    if cfg.payload is not None:
+        return None, None, (f"{what}: this report carries a payload, hexaleg design designs "
+                            "for the robot as it is (its payload map shows what a load does)")
+    try:
+        run = RunSpec(robot=robot.name)
+    except HexalegError as e:
+        return None, None, f"{what}: {e}; run hexaleg design --robot FILE.toml"
+    motor = None
+    if cfg.motor != run.actuator():
+        if not (isinstance(cfg.motor, Motor) and CATALOGUE.get(cfg.motor.name) == cfg.motor):
+            return None, None, (f"{what}: the report's motor {cfg.motor.name!r} is not a "
+                                "catalogue servo ([design] motor names one)")
+        motor = cfg.motor.name
+    n = min(cfg.gait.samples, DesignParams().samples)
+    params = DesignParams(families=(QUICK_FAMILY,), samples=n, motor=motor)
+    config = DesignConfig(robot=robot.name, gait=dataclasses.replace(cfg.gait, samples=n),
+                          contact=cfg.contact, design=params)
+    try:
+        nom = nominal(config)
+        c = nom.family(QUICK_FAMILY)
+    except HexalegError as e:
+        return None, None, f"{what}: the {QUICK_FAMILY} design failed: {e}"
+    metric = params.metric
+    rec = candidate_data(c, nom.outer)
+    section = {"origin": "quick", "source": None, "html": None, "actuator": run.actuator().name,
+               **recommendation(rec, metric, n, bool(c.net[metric] > MIN_SAVING)),
+               "worst": None, "robust": None, "simulation": [], "notes": list(c.notes)}
+    return section, c.optimum.springs, None
+
+
+def _design_springs(path: Path, robot: Robot) -> SpringSet | None:
+    """The recommended springs of a design.json, or None when they cannot be read for
+    ``robot``."""
+    from hexaleg.design.chain.design_file import read_design
+
+    try:
+        return read_design(path, robot)
+    except HexalegError:
+        return None
+
+
+def _on_report_gait(prepared: Prepared, springs: SpringSet | None, metric: str
+                    ) -> dict[str, Any] | None:
+    """The answer's springs on the report's own gait: its samples and the metric's saving in %
+    (Joule-optimal forces, as the design ranks them); None when they cannot run there."""
+    if springs is None:
+        return None
+    try:
+        saving = prepared.evaluate(springs, "joule").savings["total"][metric]
+    except (HexalegError, KeyError):
+        return None
+    return {"samples": prepared.motion.n_samples, "saving": quantity(100 * saving, "%")}
+
+
+def answer_line(section: dict[str, Any] | None) -> str:
+    """The terminal's line of the answer: where it comes from, the springs and the saving of the
+    ranking metric (net of the springs' mass and on the report's own gait beside it)."""
+    if section is None:
+        return "which springs to fit: hexaleg design answers it (the notes say why not here)"
+    g = section
+    where = {"quick": f"quick answer: optimal {g['label']} springs",
+             "found": f"from {DESIGN_JSON}: {g['label']} springs",
+             "given": f"from {g['source']}: {g['label']} springs"}[g["origin"]]
+    on = g.get("report_gait")
+    line = (f"{where} on {', '.join(g['groups'])} save {g['saving']['value']:+.2f} % of the "
+            f"{g['metric']} energy ({g['net_saving'][g['metric']]['value']:+.2f} % net of their "
+            f"{1e3 * g['spring_mass']['value']:.1f} g; {g['samples']} samples a cycle"
+            + (f", {on['saving']['value']:+.2f} % on this report's {on['samples']}"
+               if on else "") + ")")
+    if not g["pays"]:
+        line = f"no springs pay here; the best: {line}"
+    if g["origin"] == "quick":
+        line += "; hexaleg design for the full answer"
+    return line

@@ -1,0 +1,210 @@
+"""The gait energy report (``hexaleg report``): one gait, analysed with springs and without.
+
+The report leads with the answer — which springs to fit and what they save
+(:mod:`hexaleg.report.answer`: a given or found ``design.json`` of ``hexaleg design``,
+else the design's quick core) — and keeps the paper's design as the reference the rest of the
+page analyses. :func:`build_report` runs the pipeline — robot (with the configured payload,
+:class:`hexaleg.robot.payload.Payload`) → gait (:func:`hexaleg.motion.legged.gait`) →
+:func:`hexaleg.dynamics.prepare.prepare` once → :meth:`~hexaleg.dynamics.prepare.Prepared.evaluate`
+with the springs, in the baseline (no springs) and at every point of a stiffness curve
+(:mod:`hexaleg.design.curves`); for a robot with ``stand`` and ``sphere`` poses also the stand →
+sphere transformation (:mod:`hexaleg.report.transform`) — and collects every number in a
+JSON-ready dict whose quantities carry their unit (``{"value": …, "unit": "J"}``), one section of
+the page each (:mod:`hexaleg.report.sections`).
+:func:`hexaleg.commands.report.write.write_report` writes it as ``report.html``, ``report.json``
+and the plots.
+
+Sources of the models: the springs are the paper's dead-zone springs (eq. 7–8, 14) placed by
+:mod:`hexaleg.design.rules` (centred dead zone, θ_k/A of Section 4.2, k_M of eq. 19); the energies
+are :func:`hexaleg.dynamics.energy.metrics` (work eq. 20, cost of transport eq. 23, the motor model
+of :mod:`hexaleg.robot.motor`); the friction usage ``|f_t| / (μ f_n)`` is the load of the Coulomb
+friction cone that the force program (:mod:`hexaleg.dynamics.contact`) keeps ≤ 1; the paper's
+single-joint numbers come from :func:`hexaleg.paper.reproduce.reproduce`
+(:mod:`hexaleg.report.paper_section`).
+"""
+
+from __future__ import annotations
+
+import importlib.metadata
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from hexaleg.checks import typed
+from hexaleg.design import rules as design
+from hexaleg.design.curves import StiffnessCurve, curve_springs, stiffness_curve
+from hexaleg.dynamics import contact
+from hexaleg.dynamics.prepare import Analysis, Prepared, prepare
+from hexaleg.dynamics.sanity import torque_findings
+from hexaleg.motion.legged import gait
+from hexaleg.motion.sanity import motion_findings
+from hexaleg.motion.trajectory import Motion
+from hexaleg.quantities import file_data
+from hexaleg.report import sections
+from hexaleg.report.answer import answer_line, answer_section
+from hexaleg.report.config import ReportConfig, ReportParams
+from hexaleg.report.design_section import design_section
+from hexaleg.report.paper_section import paper_reference
+from hexaleg.report.transform import transform_section
+from hexaleg.robot.model import Robot, load_robot
+from hexaleg.robot.sanity import Finding, robot_findings
+from hexaleg.robot.springs import SpringSet
+from hexaleg.scenario.run_warnings import gait_defaults, run_warnings
+
+
+@dataclass(frozen=True, eq=False)
+class Report:
+    """A computed report: the analyses it was made from and its JSON content.
+
+    Attributes:
+        config: The configuration.
+        robot: The robot.
+        motion: The gait.
+        analysis: The gait with the springs.
+        baseline: The gait without springs (same objective).
+        curve: The stiffness curve.
+        usage: Friction usage of ``analysis``'s forces, shape (T, n_legs), 1.
+        data: Every number of the report with its unit (the content of ``report.json``).
+        files: Files written by :func:`hexaleg.commands.report.write.write_report` (empty from
+            :func:`build_report`).
+    """
+
+    config: ReportConfig
+    robot: Robot
+    motion: Motion
+    analysis: Analysis
+    baseline: Analysis
+    curve: StiffnessCurve
+    usage: np.ndarray
+    data: dict[str, Any]
+    files: tuple[Path, ...] = ()
+
+    def summary(self) -> str:
+        """Two lines: the configured (reference) springs' electrical energy per cycle with and
+        without them and their saving; last, the answer (:func:`~hexaleg.report.answer.
+        answer_line`: where it comes from, which springs, the saving)."""
+        e = self.data["energy"]["totals"]["electrical"]
+        design = self.data["springs"]["design"]
+        reference = ("the paper's design (the reference)" if design == "paper"
+                     else f"the configured springs ({design})")
+        return (f"{reference}: electrical energy per cycle {e['with_springs']['value']:.4g} J "
+                f"with its springs, {e['baseline']['value']:.4g} J without (saving "
+                f"{e['saving']['value']:+.2f} %)\n"
+                + answer_line(self.data["design"]))
+
+
+def _report_curve(prepared: Prepared, springs: SpringSet, rp: ReportParams, objective: str,
+                  step: Callable[[str], None]) -> StiffnessCurve:
+    """The stiffness curve of ``rp.curve_joints`` over ``[stiffness_min, stiffness_max]``
+    (default maximum: 10 × the mean k_M of eq. 19 over the curve's joints)."""
+    robot, motion = prepared.robot, prepared.motion
+    base = curve_springs(robot, motion, springs, rp.curve_joints)
+    joints = robot.joints(rp.curve_joints)
+    k_hi = rp.stiffness_max
+    if k_hi is None:
+        zones = base.dead_zones("the report's stiffness curve")
+        k_hi = 10 * float(np.mean([design.k_M(robot, motion, j, alpha=zones[j].transmission)
+                                   for j in joints]))
+    ks = np.linspace(rp.stiffness_min, k_hi, rp.stiffness_points)
+    return stiffness_curve(prepared, base, rp.curve_joints, ks, rp.curve_metrics, objective, step)
+
+
+def _findings(robot: Robot, motion: Motion, a: Analysis) -> list[Finding]:
+    """What the sanity checks find in the robot, the gait and its motor torques (joint speeds
+    over their limits aside: the run's warnings say them, :mod:`hexaleg.scenario.run_warnings`)."""
+    return [*robot_findings(robot),
+            *(f for f in motion_findings(robot, motion) if f.check != "joint_speed"),
+            *torque_findings(robot, a.tau_motor, motion.t)]
+
+
+def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis,
+                 baseline: Analysis, curve: StiffnessCurve,
+                 usage: np.ndarray) -> dict[str, Any]:
+    """The page's sections, in the page's order (the content of ``report.json`` without the
+    transformation, the paper's joint and the file list)."""
+    return {
+        "title": cfg.report.title,
+        "hexaleg_version": importlib.metadata.version("hexaleg"),
+        "warnings": list(run_warnings(robot, motion, cfg.motor, desc=cfg.robot_description,
+                                      gait=cfg.gait if cfg.motion is None else None)),
+        "gait_defaults": gait_defaults(cfg.robot_description,
+                                       cfg.gait if cfg.motion is None else None),
+        "notes": sections.notes_section(cfg.notes, motion, _findings(robot, motion, a)),
+        "robot": sections.robot_section(robot),
+        "payload": sections.payload_section(cfg.payload, robot),
+        "gait": sections.gait_section(motion, cfg.gait),
+        "motor": sections.motor_section(cfg.motor),
+        "contact": sections.contact_section(cfg.contact),
+        "objective": cfg.report.objective,
+        "springs": sections.springs_section(robot, motion, a, cfg.springs),
+        "joints": sections.joints_section(robot, a, baseline),
+        "forces": sections.forces_section(robot, motion, a, usage),
+        "energy": sections.energy_section(robot, a),
+        "cost_of_transport": sections.cost_of_transport_section(motion, a),
+        "stiffness_curve": sections.curve_section(cfg.report.curve_joints, curve),
+    }
+
+
+@typed
+def build_report(config: ReportConfig | None = None, *, robot: Robot | None = None,
+                 progress: Callable[[str], None] | None = None) -> Report:
+    """Compute the report: gait, analysis with springs and in the baseline, stiffness curve,
+    paper.
+
+    Args:
+        config: The configuration (default :class:`ReportConfig`: built-in robot, default tripod
+            gait, default motor, paper-style femur springs).
+        robot: The robot (default :func:`hexaleg.robot.model.load_robot`).
+        progress: Called with one status line per step (e.g. print to stderr).
+
+    Returns:
+        The report (``files`` empty).
+
+    Raises:
+        ConfigError: ``[report] design`` is not a readable ``design.json`` (before any work).
+        HexalegError: from the gait, the springs or the analysis (unreachable foot targets,
+            unknown joints, infeasible forces at the configured springs, …).
+    """
+    cfg = config or ReportConfig()
+    say = progress or (lambda _msg: None)
+    t0 = time.perf_counter()
+
+    def step(msg: str) -> None:
+        say(f"{msg} ({time.perf_counter() - t0:.1f} s)")
+
+    robot = robot or load_robot()
+    design_section(cfg.report.design, robot)  # a bad design.json fails before any work
+    if cfg.payload is not None:  # carried on the base through dynamics, forces and design
+        robot = cfg.payload.attach(robot)
+    step(f"robot {robot.name}: {robot.nj} joints, {robot.mass:.3f} kg")
+    motion = cfg.motion if cfg.motion is not None else gait(robot, cfg.gait)
+    step(f"gait: {motion.n_samples} samples over {motion.period:g} s"
+         + (" (logged)" if cfg.motion is not None else ""))
+    prepared = prepare(robot, motion, motor=cfg.motor, contact=cfg.contact)
+    step("dynamics prepared (RNEA, Jacobians, force program)")
+    springs = cfg.spring_set(robot, motion)
+    objective = cfg.report.objective
+    analysis = prepared.evaluate(springs, objective)
+    baseline = prepared.evaluate(None, objective)
+    step(f"analysed with {len(springs)} springs and without")
+    curve = _report_curve(prepared, springs, cfg.report, objective, step)
+    usage = contact.friction_usage(analysis.forces, motion.stance.astype(bool), cfg.contact.mu,
+                                   motion.normal)
+    data = file_data(_report_data(cfg, robot, motion, analysis, baseline, curve, usage))
+    data["design"], passed = answer_section(cfg, robot, prepared)
+    data["notes"] += passed
+    if data["design"] is not None:
+        step(f"answer: {data['design']['label']} springs ({data['design']['origin']}), "
+             f"{data['design']['metric']} saving {data['design']['saving']['value']:+.2f} %")
+    data["transform"] = transform_section(robot, cfg, springs, objective)
+    if data["transform"] is not None:
+        step("stand → sphere transformation analysed")
+    step("paper's single-joint reference (hexaleg.paper.reproduce.reproduce)")
+    data["paper"] = paper_reference(cfg.report.paper_samples)
+    step("numbers collected")
+    return Report(config=cfg, robot=robot, motion=motion, analysis=analysis, baseline=baseline,
+                  curve=curve, usage=usage, data=data)

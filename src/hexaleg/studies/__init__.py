@@ -1,1 +1,0 @@
-"""Layer 5 — studies: what the commands produce (paper, report, sweep, view)."""

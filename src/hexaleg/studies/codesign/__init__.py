@@ -1,1 +1,0 @@
-"""``hexaleg codesign``: the gait and its springs designed together (issue #31)."""

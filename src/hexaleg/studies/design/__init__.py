@@ -1,1 +1,0 @@
-"""``hexaleg design``: the recommended springs for a robot, the parts to buy, robustness maps."""

@@ -1,0 +1,108 @@
+"""``hexaleg codesign`` on the command line: registered, configured, bad input one line."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from hexaleg.cli import build_parser, main
+from hexaleg.config import load_toml
+from hexaleg.design.codesign.build import codesign_settings
+from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+
+SMALL = """[codesign]
+samples = 40
+final_samples = 40
+max_evaluations = 10
+restarts = 1
+rules = false
+curve = false
+simulate = false
+[codesign.constraints]
+min_body_clearance = 0.01
+"""
+
+
+def settings(path):
+    """The [codesign] keywords of a config file, as the command reads them."""
+    return codesign_settings(load_toml(path).get("codesign", {}) if path else {},
+                             f"{path} [codesign]")
+
+
+def test_registered_with_its_options():
+    args = build_parser().parse_args(["codesign", "--speed", "0.05", "--pattern", "wave"])
+    assert args.speed == 0.05 and args.pattern == "wave" and args.rules is None  # the default
+    assert build_parser().parse_args(["codesign", "--no-rules"]).rules is False
+
+
+def test_config_table_is_checked(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[codesign]\nspeeed = 0.1\n")
+    with pytest.raises(UnknownNameError, match="speeed"):
+        settings(bad)
+    good = tmp_path / "good.toml"
+    good.write_text(SMALL)
+    assert settings(good)["constraints"].min_body_clearance == 0.01
+    assert settings(None) == {}
+    rules = tmp_path / "rules.toml"
+    rules.write_text("[codesign.design]\nfamilies = [\"preloaded\"]\nlife_cycles = 1e6\n")
+    design = settings(rules)["design"]
+    assert design.families == ("preloaded",) and design.life_cycles == 1e6
+    assert not design.robustness
+
+
+@pytest.mark.parametrize(("line", "named"), [('simulate = "false"', "simulate"),
+                                             ("rules = 1", "rules"), ("curve = 0.0", "curve"),
+                                             ('samples = "40"', "samples"),
+                                             ("speed = true", "speed")])
+def test_config_values_are_type_checked_like_the_design_table(tmp_path, line, named):
+    """[codesign] values checked against codesign()'s own annotations, as [design]'s against
+    its dataclass: the string "false" is not false (it ran the simulation)."""
+    bad = tmp_path / "bad.toml"
+    bad.write_text(f"[codesign]\n{line}\n")
+    with pytest.raises(ConfigError, match=rf"\[codesign\]\.{named} = "):
+        settings(bad)
+    assert main(["codesign", "--config", str(bad), "--out", str(tmp_path / "o")]) == 2
+
+
+def test_an_unknown_family_is_named_not_blamed_on_the_speed(tmp_path):
+    from hexaleg.design.codesign.build import codesign
+
+    with pytest.raises(UnknownNameError, match=r"\[codesign\] family.*torsion"):
+        codesign(family="torsion")
+
+
+def test_the_robot_s_own_actuator_is_used(monkeypatch):
+    """Every gait the co-design evaluates is prepared with the robot's own actuator (Solo-12's
+    ODRI module), not the catalogue's default AX-18A."""
+    from hexaleg.design.codesign import build
+    from hexaleg.design.gait_evaluation import GaitPoint
+
+    seen = []
+
+    def refuse(robot, params, *, motor=None, **_):
+        seen.append(motor)
+        return GaitPoint(params=params, distance=params.stride, error="stop here")
+
+    monkeypatch.setattr(build, "evaluate_gait", refuse)
+    with pytest.raises(InvalidParameterError, match="stop here"):
+        build.codesign("solo12", speed=0.1)
+    assert [m.name for m in seen] == ["ODRI-4004"]
+
+
+def test_runs_and_writes(tmp_path, capsys):
+    config = tmp_path / "c.toml"
+    config.write_text(SMALL)
+    out = tmp_path / "out"
+    assert main(["codesign", "--config", str(config), "--speed", "0.06", "--out", str(out)]) == 0
+    data = json.loads((out / "codesign.json").read_text())
+    assert data["speed"] == {"value": 0.06, "unit": "m/s"}
+    assert data["search"]["codesign"]["evaluations"] <= 10
+    assert data["full_rules"] is None and "inner program" in data["recommended"]["source"]
+    assert "J/m" in capsys.readouterr().out
+
+
+def test_bad_speed_is_one_line(capsys):
+    assert main(["codesign", "--speed", "-1"]) == 2
+    assert "speed" in capsys.readouterr().err

@@ -1,0 +1,59 @@
+"""simulate.json and simulate.md: quantities everywhere, a run that did not walk reported with
+its verdict, unwritable outputs named."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+
+import pytest
+
+from hexaleg.commands.simulate.write import page, simulation_data, summary, write_simulation
+from hexaleg.errors import OutputError
+from hexaleg.simulation.run import Settings, simulate
+
+
+def test_a_walking_simulation(feedforward, tmp_path):
+    data = simulation_data(feedforward, design="test springs", notes=("a note",))
+    assert data["difference"]["saving"]["unit"] == "percentage points"
+    assert abs(data["difference"]["saving"]["value"]) < 1.0
+    assert data["runs"]["springs"]["contact_losses"] == {"value": 0.0, "unit": "%"}
+    js, md = write_simulation(tmp_path / "out", data)
+    assert json.loads(js.read_text())["predicted"] == data["predicted"]
+    assert "a note" in md.read_text() and "test springs" in md.read_text()
+    assert "real time" in summary(data)
+
+
+def test_a_fallen_run_is_reported_not_compared(prepared):
+    s = simulate(prepared.robot, prepared.motion, prepared.motor, None,
+                 Settings(cycles=2, evaluate=1, force_samples=0, controller="position",
+                          kp_scale=0.005), prepared=prepared)
+    data = simulation_data(s)
+    assert data["verdict"] == "did not walk" and "simulated" not in data
+    assert data["runs"]["baseline"]["verdict"] == "fell"
+    assert "fell at t =" in page(data) and "fell at t =" in summary(data)
+
+
+def test_an_unwritable_directory_is_named(feedforward, tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("")
+    with pytest.raises(OutputError, match="file"):
+        write_simulation(blocker / "out", simulation_data(feedforward))
+
+
+def test_settings_in_the_json(feedforward):
+    data = simulation_data(dataclasses.replace(feedforward))
+    assert data["settings"]["timestep"] == {"value": 5e-4, "unit": "s"}
+    assert data["settings"]["ground"]["stiffness"]["unit"] == "N/m"
+    assert len(data["settings"]["servo"]["kp"]["value"]) == 18
+
+
+def test_a_link_in_the_out_directory_is_replaced_not_written_through(feedforward, tmp_path):
+    target = tmp_path / "precious.txt"
+    target.write_text("keep me")
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "simulate.json").symlink_to(target)
+    js, _ = write_simulation(out, simulation_data(feedforward))
+    assert target.read_text() == "keep me" and not js.is_symlink()
+    assert json.loads(js.read_text())["runs"]

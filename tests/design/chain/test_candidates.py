@@ -1,0 +1,76 @@
+"""Tests of hexaleg.design.chain.candidates: one family's design, its parts and net saving."""
+
+from __future__ import annotations
+
+import pytest
+
+import hexaleg
+from hexaleg.design.chain.candidates import carried, design_family, parsimonious
+from hexaleg.design.chain.config import DesignParams
+from hexaleg.design.chain.groups import design_groups
+from hexaleg.design.evaluator import RunSpec
+from hexaleg.design.robustness import Condition, condition_prepared
+from hexaleg.robot.payload import with_point_masses
+
+RUN = RunSpec()
+GAIT = RUN.gait({"samples": 100})
+OUTER = {"coxa": 0.03, "femur": 0.02, "tibia": 0.02}
+
+
+@pytest.fixture(scope="module")
+def nominal():
+    return condition_prepared(RUN, GAIT, Condition())
+
+
+def test_net_saving_pays_for_the_springs_mass(robot, nominal):
+    classes = design_groups(robot, ("femur", "tibia"), "class")
+    c = design_family(nominal, RUN, GAIT, classes, classes, "one_sided", DesignParams(), OUTER)
+    masses = {j: 0.0 for j in robot.joint_names}
+    for p in c.parts:
+        for j in p.joints:
+            masses[j] += p.spring.mass
+    assert c.spring_mass == pytest.approx(sum(masses.values()))
+    heavy = with_point_masses(robot, masses)
+    p = hexaleg.prepare(heavy, hexaleg.gait(heavy, GAIT), motor=RUN.actuator())
+    value = p.evaluate(c.optimum.springs).metrics["total"]["electrical"]
+    base = nominal.baseline()["total"]["electrical"]
+    assert c.net["electrical"] == pytest.approx((base - value) / base, rel=1e-9)
+    assert c.net["electrical"] < c.row["saving.electrical"]
+    assert carried(RUN, GAIT, masses).robot.mass == pytest.approx(heavy.mass)
+    # a class's share: the saving lost without it
+    assert c.marginal["tibia"] > c.marginal["femur"] > 0
+
+
+def test_mirrored_design_contains_the_class_design(robot, nominal):
+    classes = design_groups(robot, ("tibia",), "class")
+    pairs = design_groups(robot, ("tibia",), "mirrored")
+    params = DesignParams()
+    by_class = design_family(nominal, RUN, GAIT, classes, classes, "one_sided", params, OUTER)
+    outer = {g: 0.02 for g in pairs}
+    mirrored = design_family(nominal, RUN, GAIT, pairs, classes, "one_sided", params, outer)
+    assert set(mirrored.optimum.groups) == set(pairs)
+    assert mirrored.optimum.saving >= by_class.optimum.saving - 1e-9
+    assert mirrored.label == "one_sided"
+
+
+def test_parsimony_leaves_out_the_groups_under_the_bar(robot, nominal):
+    """Linear springs on all three classes: the coxa's adds 0.3 point, under a 1-point bar, so it
+    is left out and the rest designed again; every group kept clears the bar (or is the last);
+    the dropped group's share is the full design's. With no bar nothing is dropped."""
+    classes = design_groups(robot, ("coxa", "femur", "tibia"), "class")
+    full = parsimonious(nominal, RUN, GAIT, classes, classes, "linear",
+                        DesignParams(min_group_saving=0.0), OUTER)
+    assert set(full.optimum.groups) == set(classes) and not full.dropped
+    lean = parsimonious(nominal, RUN, GAIT, classes, classes, "linear",
+                        DesignParams(min_group_saving=0.01), OUTER)
+    assert "coxa" in lean.dropped
+    assert lean.dropped["coxa"] == pytest.approx(full.marginal["coxa"], rel=1e-12)
+    assert full.marginal["coxa"] < 0.01
+    assert not set(lean.optimum.groups) & set(lean.dropped)
+    assert len(lean.optimum.groups) == 1 or min(lean.marginal.values()) >= 0.01
+    assert any("group coxa not fitted" in n for n in lean.notes)
+    # re-designed on the rest: never worse than the full design's springs on the kept joints
+    kept = {j: s for j, s in full.optimum.springs.items()
+            if any(j in js for js in lean.optimum.groups.values())}
+    again = nominal.evaluate(hexaleg.SpringSet(kept)).savings["total"]["joule"]
+    assert lean.row["saving.joule"] >= again - 1e-9

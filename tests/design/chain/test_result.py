@@ -1,0 +1,111 @@
+"""Tests of hexaleg.design.chain.result: design.json has every number with its unit and springs
+other tools rebuild exactly."""
+
+from __future__ import annotations
+
+import json
+import re
+
+import numpy as np
+import pytest
+
+from hexaleg.design.spring_json import spring_from_entry
+
+
+def _numbers_have_units(node, path="design"):
+    """Every float in the document sits in a {value, unit} quantity."""
+    if isinstance(node, dict):
+        if "value" in node and "unit" in node:
+            return
+        for k, v in node.items():
+            if k in ("solver",):  # the solver's bookkeeping, counts and its own value
+                continue
+            _numbers_have_units(v, f"{path}.{k}")
+    elif isinstance(node, list):
+        for i, v in enumerate(node):
+            _numbers_have_units(v, f"{path}[{i}]")
+    else:
+        assert not isinstance(node, float), f"{path} = {node} has no unit"
+
+
+def test_design_json_numbers_and_springs(design_written):
+    w, out = design_written
+    data = json.loads((out / "design.json").read_text())
+    _numbers_have_units(data)
+    rec = w.result.recommended
+    springs = data["recommended"]["springs"]
+    assert {e["joint"] for e in springs} == set(rec.optimum.springs)
+    q = w.result.recommended.optimum.analysis.q
+    robot = rec.optimum.analysis.robot
+    for e in springs:
+        law = spring_from_entry(e)
+        col = robot.column(e["joint"])
+        np.testing.assert_allclose(law.torque(q[:, col]),
+                                   rec.optimum.springs[e["joint"]].torque(q[:, col]), rtol=1e-12)
+        assert e["family"] == rec.family
+    assert data["recommended"]["saving"]["electrical"]["unit"] == "%"
+    part = data["recommended"]["parts"][0]["torsion_spring"]
+    assert part["rate_nmm_per_deg"]["unit"] == "N·mm/deg" and part["mass"]["unit"] == "kg"
+
+
+def test_design_json_says_whether_the_baseline_energy_is_plausible(design_written):
+    """The default hexapod (AX-18A) walks at a plausible cost of transport: design.json says so
+    with the band and the rule, and the summary line carries no warning."""
+    result, out = design_written
+    doc = json.loads((out / "design.json").read_text())["plausibility"]
+    assert doc["plausible"] is True and doc["flag"] is None
+    assert doc["low"]["value"] < doc["cost_of_transport"]["value"] < doc["high"]["value"]
+    assert "Taylor" in doc["rule"] and doc["message"].startswith("plausible")
+    assert "WARNING" not in result.result.summary()
+
+
+def _reads_back(result, path):
+    """``result.to_json()`` written to ``path`` and read back by the one reader: the
+    recommended springs exactly, the gait, the metric and its saving, whether it pays."""
+    from hexaleg.design.chain.design_file import load_design
+
+    text = result.to_json()
+    assert not re.search(r"[:\[,]\s*-?(?:NaN|Infinity)\b", text)  # no such JSON token
+    path.write_text(text)
+    back = load_design(path)
+    assert dict(back.springs) == dict(result.recommended.optimum.springs)
+    metric = result.config.design.metric
+    assert back.metric == metric and back.pays == result.pays
+    assert back.saving == pytest.approx(result.recommended.row[f"saving.{metric}"], rel=1e-12)
+    return back
+
+
+def test_every_design_a_command_writes_reads_back(design_written, ruled, tmp_path):
+    """One writer (DesignResult.to_json) and one reader (load_design): hexaleg design's design
+    and hexaleg codesign's (the spring rules on its chosen gait) read back as themselves."""
+    result = design_written[0].result
+    assert _reads_back(result, tmp_path / "design.json").gait == result.gait
+    assert (design_written[1] / "design.json").read_text() == result.to_json(
+        **{k: design_written[0].data[k] for k in ("warnings", "gait_defaults", "files")})
+    rules = ruled.rules
+    back = _reads_back(rules, tmp_path / "codesign-design.json")
+    assert back.gait is not None and back.gait.period == pytest.approx(rules.gait.period)
+
+
+def test_a_design_with_an_unbuildable_part_has_no_infinity(tmp_path):
+    """A part no wire fits (an outer diameter of 0.6 mm), with a free angle at infinity (as a
+    constant-torque spring has): null in design.json with its path noted, never ``Infinity``;
+    the file reads back. A chain of the candidates alone says so in ``stages``."""
+    import dataclasses
+
+    from hexaleg import DesignChain, DesignParams, Scenario
+    from hexaleg.quantities import NON_FINITE
+
+    params = DesignParams(families=("linear",), classes=("femur",), samples=100,
+                          max_outer_diameter={"femur": 6e-4})
+    result = DesignChain(Scenario.load(), design=params).run(stages=("candidates",))
+    part = result.recommended.parts[0]
+    assert not result.recommended.buildable and part.spring is None and part.problem
+    rec = dataclasses.replace(result.recommended, parts=(
+        dataclasses.replace(part, free=float("inf")), *result.recommended.parts[1:]))
+    result = dataclasses.replace(result, recommended=rec)
+    _reads_back(result, tmp_path / "design.json")
+    data = json.loads((tmp_path / "design.json").read_text())
+    assert data["recommended"]["parts"][0]["free"]["value"] is None
+    assert data[NON_FINITE]["paths"] == ["recommended.parts[0].free.value"]
+    assert data["stages"] == ["candidates"] and data["ranking"] == [] and data["maps"] == []

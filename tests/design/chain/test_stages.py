@@ -1,0 +1,82 @@
+"""Tests of hexaleg.design.chain.stages: the stages of hexaleg design one by one."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from hexaleg.design.chain.candidates import class_geometry
+from hexaleg.design.chain.config import DesignConfig
+from hexaleg.design.chain.stages import corners
+from hexaleg.design.robustness import Condition
+
+
+def test_the_robust_box_is_its_corners_and_the_nominal_gait_once():
+    cfg = DesignConfig.from_mapping({"design": {
+        "robust_period": [0.8, 1.25], "robust_stride": [1.0, 1.0],
+        "robust_payload": [0.0, 0.2], "robust_mu": [0.6, 0.6]}})
+    box = corners(cfg)
+    assert box[0] == Condition()
+    assert len(box) == 1 + 4 and len(set(box)) == len(box)
+    assert {(c.period, c.payload) for c in box[1:]} == {(0.8, 0.0), (0.8, 0.2), (1.25, 0.0),
+                                                      (1.25, 0.2)}
+
+
+def test_class_geometry_is_each_class_once(design_written):
+    r = design_written[0].result
+    rec = r.recommended
+    classes = {k: tuple(js) for k, js in rec.optimum.groups.items()}
+    assert class_geometry(rec.optimum, classes) == rec.optimum.geometry
+
+
+def test_the_stages_are_timed_in_order(design_written):
+    r = design_written[0].result
+    names = list(r.timings)
+    assert names[0] == "prepare" and names[-1] == "simulate"
+    assert names.index("pareto") < names.index("ranking") < names.index("maps")
+    assert all(t >= 0 for t in r.timings.values())
+
+
+def test_a_max_outer_diameter_for_a_class_the_robot_lacks_is_named():
+    """A typo in a [design] max_outer_diameter class was ignored (the springs came out larger
+    than asked); now it is an error listing the robot's classes, before anything is prepared."""
+    import pytest
+
+    from hexaleg.design.chain.stages import nominal
+    from hexaleg.errors import UnknownNameError
+
+    cfg = DesignConfig.from_mapping({"design": {"max_outer_diameter": {"femr": 0.01}}})
+    with pytest.raises(UnknownNameError, match="coxa, femur, tibia"):
+        nominal(cfg)
+
+
+def test_families_designed_in_parallel_are_the_ones_designed_in_turn(monkeypatch):
+    """The forked workers compute exactly what one process computes: the same magnitudes,
+    geometry and savings to the last bit, in the families' order of rank; a robustness map's
+    cells too (one of them a gait the robot cannot make)."""
+    from hexaleg.design.chain.stages import family_candidates, nominal
+    from hexaleg.design.robustness_map import robustness_map
+    from hexaleg.parallel import workers
+
+    axes = {"period": [0.5, 1.0], "stride": [1.0, 40.0]}
+
+    cfg = DesignConfig.from_mapping({"gait": {"samples": 100}, "design": {
+        "samples": 100, "families": ["linear", "one_sided"], "classes": ["femur", "tibia"]}})
+    nom = nominal(cfg)
+    said: list[str] = []
+    parallel = family_candidates(nom, lambda name, msg: said.append(name))
+    with monkeypatch.context() as m:
+        m.setattr(workers, "default_workers", lambda: 1)
+        serial = family_candidates(nom, lambda name, msg: None)
+        cells = robustness_map(nom.run, nom.gait, parallel[0].optimum.springs, axes)
+    assert sorted(said) == ["family linear", "family one_sided"]
+    assert [c.family for c in parallel] == [c.family for c in serial]
+    for a, b in zip(parallel, serial, strict=True):
+        assert a.optimum.magnitudes == b.optimum.magnitudes
+        assert a.optimum.geometry == b.optimum.geometry
+        assert a.row == b.row and a.net == b.net
+        assert a.optimum.analysis.robot is nom.robot  # by reference, not a pickled copy
+    forked = robustness_map(nom.run, nom.gait, parallel[0].optimum.springs, axes,
+                            mapper=nom.fork_map)
+    assert forked.status.tolist() == cells.status.tolist()
+    for metric, saving in cells.saving.items():
+        assert np.array_equal(forked.saving[metric], saving, equal_nan=True)

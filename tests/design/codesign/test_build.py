@@ -1,0 +1,69 @@
+"""``hexaleg codesign`` on the default robot (issue #31's acceptance, at a reduced budget)."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+from conftest import BUDGET
+
+import hexaleg
+from hexaleg.design.codesign.build import codesign, default_gait
+from hexaleg.design.gait_evaluation import Constraints
+from hexaleg.errors import InvalidParameterError, UnknownNameError
+
+
+def test_codesign_needs_at_most_065_of_the_default_gait(codesigned):
+    default, _, _, best = codesigned.rows
+    assert best.per_metre <= 0.65 * default.per_metre
+    assert best.per_metre <= codesigned.sequential.per_metre  # beats gait first, then springs
+    shares = codesigned.shares
+    assert shares["gait"] + shares["springs"] == pytest.approx(shares["codesign"])
+
+
+def test_reported_gait_and_springs_reproduce_to_one_percent(codesigned):
+    robot = hexaleg.load()
+    motion = hexaleg.gait(robot, codesigned.chosen)
+    prepared = hexaleg.prepare(robot, motion, contact=codesigned.constraints.contact())
+    energy = prepared.evaluate(codesigned.springs, "joule").metrics["total"]["electrical"]
+    assert energy / codesigned.chosen.stride == pytest.approx(codesigned.rows[3].per_metre,
+                                                              rel=0.01)
+
+
+def test_every_constraint_holds_on_the_result(codesigned):
+    c = codesigned.constraints
+    m = codesigned.measures
+    assert c.min_static_margin == pytest.approx(0.0815, abs=5e-4)  # the default gait's
+    for name, (value, bound, _unit, kind) in m.items():
+        assert (value >= bound) if kind == "min" else (value <= bound), name
+    assert codesigned.chosen.step_height >= c.min_foot_clearance
+    assert codesigned.chosen.stride == pytest.approx(0.06 * codesigned.chosen.period)
+
+
+def test_it_walks_in_mujoco_as_planned(codesigned):
+    sim = codesigned.simulation
+    assert "error" not in sim
+    assert sim["walked"] == pytest.approx(sim["planned"], rel=0.03)
+    assert abs(sim["simulated"] - sim["predicted"]) <= 0.02
+
+
+def test_search_reports_its_effort(codesigned):
+    s = codesigned.search
+    assert 0 < s.evaluations <= BUDGET["max_evaluations"] and s.wall > 0
+    assert len(s.restarts) == BUDGET["restarts"] and codesigned.samples == BUDGET["samples"]
+    assert "Nelder-Mead" in s.method
+
+
+def test_pattern_and_bad_input():
+    robot = hexaleg.load()
+    g = default_gait(robot, "hexaleg", 0.05, "wave", 60)
+    assert g.pattern == "wave" and g.duty_factor == pytest.approx(5 / 6)
+    with pytest.raises(InvalidParameterError, match="speed"):
+        codesign(speed=0.0)
+    with pytest.raises(InvalidParameterError, match="samples"):
+        codesign(samples=10)
+    with pytest.raises(UnknownNameError):
+        codesign(pattern="gallop")
+    with pytest.raises(InvalidParameterError, match="speed"):
+        codesign(speed=5.0, curve=False, simulate=False,
+                 constraints=dataclasses.replace(Constraints(), mu=0.6))

@@ -1,0 +1,57 @@
+"""``codesign.json``: {value, unit} numbers, and the keys hexaleg.load_design reads."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+import hexaleg
+
+
+def _numbers(node, path=""):
+    if isinstance(node, dict):
+        if set(node) == {"value", "unit"}:
+            return
+        for k, v in node.items():
+            yield from _numbers(v, f"{path}.{k}")
+    elif isinstance(node, list):
+        for i, v in enumerate(node):
+            yield from _numbers(v, f"{path}[{i}]")
+    elif isinstance(node, float):
+        yield path
+
+
+ALLOWED_PLAIN = ("settings", "search")
+
+
+def test_every_float_is_a_quantity(codesigned):
+    data = codesigned.to_dict()
+    bare = [p for p in _numbers(data) if not p.startswith(tuple(f".{a}" for a in ALLOWED_PLAIN))]
+    assert bare == []
+    assert [r["label"] for r in data["rows"]][:4] == [r.label for r in codesigned.rows]
+    json.dumps(data, allow_nan=False)
+
+
+def test_load_design_reads_the_chosen_gait_and_springs(codesigned, tmp_path):
+    path = tmp_path / "codesign.json"
+    path.write_text(json.dumps(codesigned.to_dict()))
+    loaded = hexaleg.load_design(path)
+    assert loaded.gait is not None
+    for name in ("body_height", "foot_radius", "step_height", "duty_factor", "period"):
+        assert getattr(loaded.gait, name) == pytest.approx(getattr(codesigned.chosen, name))
+    assert set(loaded.springs) == set(codesigned.springs)
+    assert "inner program" in codesigned.recommended[1]
+    # the inner springs' saving on the chosen gait (not against the gait-alone row's gait)
+    robot = hexaleg.load()
+    prepared = hexaleg.prepare(robot, hexaleg.gait(robot, codesigned.chosen),
+                               contact=codesigned.constraints.contact())
+    base = prepared.baseline("joule")["total"]["electrical"]
+    sprung = prepared.evaluate(codesigned.springs, "joule").metrics["total"]["electrical"]
+    saving = codesigned.to_dict()["recommended"]["saving"]["electrical"]["value"]
+    assert saving == pytest.approx(100 * (1 - sprung / base), rel=1e-9)
+
+
+def test_summary_names_the_rows(codesigned):
+    text = codesigned.summary()
+    assert "co-design" in text and "J/m" in text and "evaluations" in text

@@ -1,0 +1,73 @@
+"""Tests of hexaleg.robot.loaded: the loaded robot's type, its legs, names and poses."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.robot import model
+from hexaleg.robot.loaded import JOINT_KINDS, Leg, Robot
+
+
+def _copy(robot: Robot, **changes) -> Robot:
+    """A new Robot over ``robot``'s Pinocchio objects (its __post_init__ runs again)."""
+    keep = {f.name: getattr(robot, f.name) for f in dataclasses.fields(Robot) if f.init}
+    return Robot(**{**keep, **changes})
+
+
+def test_the_loader_makes_this_type_and_imports_it():
+    assert model.Robot is Robot and model.Leg is Leg and model.JOINT_KINDS is JOINT_KINDS
+    assert JOINT_KINDS == ("coxa", "femur", "tibia")
+
+
+def test_mass_and_joint_names_are_derived_from_the_model(robot):
+    again = _copy(robot)
+    assert again.mass == pytest.approx(robot.mass) and again.mass > 0
+    assert again.joint_names == tuple(robot.model.names[2:]) and len(again.joint_names) == 18
+    assert again.nj == robot.model.nv - 6 == 18
+
+
+def test_heading_is_checked_and_normalised(robot):
+    turned = _copy(robot, heading=np.array([0.0, 2.0, 0.0]))
+    np.testing.assert_array_equal(turned.heading, [0.0, 1.0, 0.0])
+    with pytest.raises(InvalidParameterError, match="heading"):
+        _copy(robot, heading=np.array([0.0, 0.0, 1.0]))  # vertical: not a walking direction
+
+
+def test_joint_classes_joints_and_columns(robot):
+    classes = robot.joint_classes
+    assert list(classes) == list(JOINT_KINDS)
+    assert classes["femur"] == tuple(f"{leg}_femur" for leg in robot.leg_names)
+    assert robot.joints("tibia") == classes["tibia"]
+    assert robot.joints("LF_coxa") == ("LF_coxa",)
+    assert robot.column("LF_coxa") == robot.joint_names.index("LF_coxa")
+    for spec, call in (("knee", robot.joints), ("LF_knee", robot.column)):
+        with pytest.raises(UnknownNameError, match="LF_coxa"):
+            call(spec)
+
+
+def test_legs_by_name_address_their_joints(robot):
+    leg = robot.leg("RM")
+    assert isinstance(leg, Leg) and leg.joint_names == ("RM_coxa", "RM_femur", "RM_tibia")
+    assert [robot.joint_names[c] for c in leg.columns] == list(leg.joint_names)
+    np.testing.assert_array_equal(leg.columns, leg.v_index - 6)
+    with pytest.raises(UnknownNameError, match="LF"):
+        robot.leg("XX")
+
+
+def test_poses_are_copies(robot):
+    q = robot.pose("stand")
+    q[:] = 7.0
+    assert not np.any(robot.pose("stand") == 7.0)
+    with pytest.raises(UnknownNameError, match="stand"):
+        robot.pose("sitting_on_the_moon")
+
+
+def test_geometry_model_is_chosen_by_name(robot):
+    q = robot.pose("stand")
+    assert robot.max_extent(q, "collision") > 0
+    with pytest.raises(UnknownNameError, match="visual"):
+        robot.max_extent(q, "both")

@@ -1,0 +1,69 @@
+"""docs/architecture.md against the code: its layers are the layer test's, its tables the run's,
+its stages the design chain's, its public names hexaleg.__all__, the files a new spring family
+touches exist and hold what it says; its examples run."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+from test_layers import LIBRARY, RANK
+
+import hexaleg
+from hexaleg.design.chain.chain import STAGES
+from hexaleg.scenario.scenario import TABLES
+
+ROOT = Path(__file__).resolve().parents[1]
+PAGE = (ROOT / "docs" / "architecture.md").read_text()
+
+
+def _table(heading: str) -> list[str]:
+    """The first column of the first table under ``heading``, backticks stripped."""
+    section = PAGE.split(f"## {heading}\n", 1)[1].split("\n## ", 1)[0]
+    rows = [ln for ln in section.splitlines() if ln.startswith("| ")][1:]  # the header out
+    return [re.sub(r"[`\[\]]", "", r.split("|")[1]).strip() for r in rows]
+
+
+def test_the_layers_are_the_layer_tests():
+    assert _table("Layers") == [*LIBRARY, "commands"]
+    assert [*LIBRARY, "commands"] == sorted([*LIBRARY, "commands"], key=RANK.__getitem__)
+
+
+def test_the_tables_are_the_runs():
+    assert _table("The run: `Scenario`") == list(TABLES)
+
+
+def test_the_stages_are_the_chains():
+    assert tuple(_table("The design chain")) == STAGES
+
+
+def test_the_public_names_are_hexalegs():
+    section = PAGE.split("## The public surface\n", 1)[1]
+    listed = section.split("The names of 0.1")[0]
+    named = set(re.findall(r"`(\w+)`", listed))
+    assert named == set(hexaleg.__all__)
+    assert f"holds {len(hexaleg.__all__)} names" in section and len(hexaleg.__all__) <= 30
+    for old in re.findall(r"`(\w+)`", section.split("The names of 0.1")[1]):
+        with pytest.warns(DeprecationWarning, match=f"hexaleg.{old} is deprecated"):
+            getattr(hexaleg, old)
+
+
+def test_a_new_family_touches_the_files_named():
+    from hexaleg.design import families, spring_json
+    from hexaleg.design.scan import STOP_COLUMNS
+
+    for path in re.findall(r"`(src/hexaleg/[\w/]+\.py|robot/springs/__init__\.py)`", PAGE):
+        assert (ROOT / path).is_file() or (ROOT / "src/hexaleg" / path).is_file(), path
+    assert set(families.FAMILIES) == set(families._FAMILIES) == set(spring_json.CLASSES)
+    assert set(STOP_COLUMNS) <= set(families.FAMILIES)
+
+
+def test_the_examples_run():
+    """The page's code blocks in turn, at their word (a small design: seconds)."""
+    namespace: dict = {}
+    for block in re.findall(r"```python\n(.*?)```", PAGE, re.S):
+        exec(compile(block, "architecture.md", "exec"), namespace)
+    result = namespace["result"]
+    assert result.stages == ("candidates", "tolerance") and result.tolerance is not None
+    assert hexaleg.load_design.__name__ and '"stages": [' in namespace["text"]
