@@ -35,7 +35,7 @@ KNEES = {"front": ["FL_KFE", "FR_KFE"], "hind": ["HL_KFE", "HR_KFE"]}
 
 def main() -> None:
     robot = hexaleg.load(ROBOT)
-    base = hexaleg.GaitParams.for_robot(ROBOT)
+    base = hexaleg.motion.scaling.robot_gait(ROBOT)
     print(f"{ROBOT}: {robot.mass:.4g} kg, knee springs (preloaded; front and hind pairs), "
           f"{SAMPLES} samples, μ = {CONTACT.mu:g}")
     print(table_header("gait"))

@@ -19,22 +19,6 @@ import hexaleg
 
 SRC = Path(hexaleg.__file__).resolve().parent
 
-ACCEPTED: tuple[frozenset[str], ...] = (
-    frozenset({"hexaleg.motion.params", "hexaleg.motion.scaling", "hexaleg.motion.legged",
-               "hexaleg.motion.body", "hexaleg.motion.balance", "hexaleg.motion.reach",
-               "hexaleg.motion.shift"}),
-)
-"""Cycles kept on purpose, each with its reason; a cycle not listed here fails the test, and so
-does a listed one that is gone (take it off the list).
-
-The motion cycle is one method: ``GaitParams.for_robot`` sizes a robot's default gait
-(:mod:`hexaleg.motion.scaling`), which checks the joint speeds of the gait it generates
-(:func:`hexaleg.motion.legged.gait`), and the gait generator and the modules it uses take a
-``GaitParams`` (annotations checked at run time by :func:`hexaleg.checks.typed`, and
-``GaitParams()`` as the default). ``for_robot`` imports the sizing inside the method — the one
-import back; it goes when ``for_robot`` is no longer a method of ``GaitParams`` (a function of
-the sizing module instead: a change of the public API)."""
-
 
 def module_names(src: Path, package: str) -> dict[str, Path]:
     """Dotted name → file of every module of the package in ``src / package``."""
@@ -116,10 +100,8 @@ def cycles(graph: Mapping[str, set[str]]) -> list[frozenset[str]]:
 
 def test_the_package_has_no_import_cycles():
     found = cycles(import_graph(SRC.parent, "hexaleg"))
-    new = [sorted(c) for c in found if c not in ACCEPTED]
-    assert not new, "import cycles (break each at its seam):\n" + "\n".join(map(str, new))
-    gone = [sorted(c) for c in ACCEPTED if c not in found]
-    assert not gone, f"accepted cycles that are gone, take them off ACCEPTED: {gone}"
+    rings = [sorted(c) for c in found]
+    assert not rings, "import cycles (break each at its seam):\n" + "\n".join(map(str, rings))
 
 
 def _package(tmp_path: Path, files: Mapping[str, str]) -> Path:

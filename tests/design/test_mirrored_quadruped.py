@@ -19,7 +19,7 @@ import pytest
 import hexaleg
 from hexaleg.design.chain.groups import design_groups
 from hexaleg.design.optimal import optimal_springs
-from hexaleg.motion.params import GaitParams
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.mirror import mirror
 from hexaleg.robot.registry import description, load
 
@@ -53,7 +53,7 @@ def quad(tmp_path_factory):
     """The robot, its mirror, and its default gait (a trot) prepared at 40 samples."""
     toml = str(mirrored_quadruped(tmp_path_factory.mktemp("quad")))
     robot, desc = load(toml), description(toml)
-    motion = hexaleg.gait(robot, GaitParams.for_robot(desc).updated({"samples": 40}))
+    motion = hexaleg.gait(robot, robot_gait(desc).updated({"samples": 40}))
     prepared = hexaleg.prepare(robot, motion, motor=desc.actuator(robot))
     return robot, mirror(robot), prepared
 

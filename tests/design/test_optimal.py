@@ -14,6 +14,7 @@ from hexaleg.design.families import FAMILIES, family
 from hexaleg.design.optimal import design_problem, optimal_springs
 from hexaleg.design.optimise import optimise
 from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.springs import SpringSet
 
 GEOMETRY = {"linear": {}, "dead_zone": {"theta_minus": -0.15, "theta_plus": 0.05},
@@ -212,12 +213,11 @@ def test_reversed_urdf_axes_do_not_change_the_physical_design(tmp_path):
     without mirroring the class design saves nothing (the two sides cancel)."""
     from conftest import RIGHT_PITCH, SPIDER, flipped_spider
 
-    from hexaleg.motion.params import GaitParams
     from hexaleg.robot.mirror import mirror
     from hexaleg.robot.registry import description
 
     def run(robot, desc, mirrored):
-        motion = hexaleg.gait(robot, GaitParams.for_robot(desc).updated({"samples": 60}))
+        motion = hexaleg.gait(robot, robot_gait(desc).updated({"samples": 60}))
         p = hexaleg.prepare(robot, motion, motor=desc.actuator(robot))
         classes = {k: robot.joint_classes[k] for k in ("femur", "tibia")}
         return optimal_springs(p, classes, "linear", metric="electrical", mirrored=mirrored)

@@ -199,7 +199,7 @@ def solo_trot():
 
     desc = description("solo12")
     robot = load("solo12")
-    motion = hexaleg.gait(robot, dataclasses.replace(hexaleg.GaitParams.for_robot(desc),
+    motion = hexaleg.gait(robot, dataclasses.replace(hexaleg.motion.scaling.robot_gait(desc),
                                                             samples=120))
     return robot, motion
 

@@ -18,7 +18,7 @@ from hexaleg.dynamics.plausibility import (
     uses_generic,
 )
 from hexaleg.errors import InvalidParameterError
-from hexaleg.motion.params import GaitParams
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.catalogue import CATALOGUE
 from hexaleg.robot.motor import generic_actuator
 from hexaleg.robot.registry import DESCRIPTIONS
@@ -67,7 +67,7 @@ def test_every_registry_robot_is_within_the_band_or_flagged(name: str) -> None:
     transport is positive and either inside the band or flagged with a message that says so."""
     desc = DESCRIPTIONS[name]
     robot = desc.load()
-    gait = dataclasses.replace(GaitParams.for_robot(name), samples=100)
+    gait = dataclasses.replace(robot_gait(name), samples=100)
     motor = desc.actuator(robot)
     base = hexaleg.prepare(robot, hexaleg.gait(robot, gait), motor=motor).baseline("joule")
     cot = base["cost_of_transport"]["electrical"]

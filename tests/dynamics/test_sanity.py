@@ -14,7 +14,7 @@ from hexaleg.dynamics.prepare import analyze
 from hexaleg.dynamics.sanity import torque_findings
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.legged import tripod_gait
-from hexaleg.motion.params import GaitParams
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.registry import DESCRIPTIONS, description, load
 
 SAMPLES = 200
@@ -31,7 +31,7 @@ def tau(robot, walk200) -> np.ndarray:
 @pytest.mark.parametrize("name", sorted(DESCRIPTIONS))
 def test_registry_robots_default_gaits_stay_within_their_effort_limits(name):
     robot = load(name)
-    gait = dataclasses.replace(GaitParams.for_robot(description(name)), samples=SAMPLES)
+    gait = dataclasses.replace(robot_gait(description(name)), samples=SAMPLES)
     motion = tripod_gait(robot, gait)
     findings = torque_findings(robot, analyze(robot, motion, contact=NO_LIMITS).tau_motor,
                                motion.t)

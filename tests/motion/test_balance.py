@@ -27,6 +27,7 @@ from hexaleg.motion.balance import (
 )
 from hexaleg.motion.legged import sample_gait, tripod_gait
 from hexaleg.motion.params import GaitParams
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.registry import TROT, description
 from hexaleg.units import G
 
@@ -40,7 +41,7 @@ def solo() -> hexaleg.Robot:
 
 
 def trot_params(**changes) -> GaitParams:
-    return dataclasses.replace(GaitParams.for_robot("solo12"), **{"samples": SAMPLES, **changes})
+    return dataclasses.replace(robot_gait("solo12"), **{"samples": SAMPLES, **changes})
 
 
 @pytest.fixture(scope="module", params=[0.5, 0.6, "turn"])
@@ -281,7 +282,7 @@ def test_balance_parameter_and_failures(solo, monkeypatch):
     with pytest.raises(InvalidParameterError, match="auto or none"):
         GaitParams(balance="sway please")
     assert GaitParams.from_toml({"balance": "none"}).balance == "none"
-    go2 = GaitParams.for_robot(description("go2"))
+    go2 = robot_gait(description("go2"))
     assert go2.groups == TROT and go2.balance == "auto"
     gait = trot_params(duty_factor=0.5, samples=40)
     monkeypatch.setattr(balance_module, "BALANCE_MAX_ITER", 1)

@@ -1,5 +1,5 @@
 """Tests of hexaleg.motion.params: GaitParams' ranges, TOML tables, updates and a robot's own
-gait (GaitParams.for_robot from the description's overrides)."""
+gait (robot_gait from the description's overrides)."""
 
 from __future__ import annotations
 
@@ -13,6 +13,7 @@ import hexaleg
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import TRIPODS, GaitParams, default_groups
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.registry import TROT, description
 
 
@@ -81,28 +82,28 @@ def test_updated_puts_a_tables_keys_over_a_gait():
         base.updated({"periode": 1.0})
 
 
-def test_for_robot_puts_the_descriptions_overrides_over_the_defaults():
-    solo = GaitParams.for_robot("solo12")
-    assert solo == GaitParams.for_robot(description("solo12"))
+def test_robot_gait_puts_the_descriptions_overrides_over_the_defaults():
+    solo = robot_gait("solo12")
+    assert solo == robot_gait(description("solo12"))
     assert (solo.period, solo.duty_factor, solo.stride_length, solo.step_height) == \
         (0.5, 0.6, 0.08, 0.04)
     assert solo.groups == TROT and solo.samples == GaitParams().samples
-    assert GaitParams.for_robot("hexaleg") == GaitParams() and GaitParams().groups == TRIPODS
+    assert robot_gait("hexaleg") == GaitParams() and GaitParams().groups == TRIPODS
 
 
-def test_for_robot_names_the_robot_of_a_bad_override():
+def test_robot_gait_names_the_robot_of_a_bad_override():
     desc = description("solo12")
     with pytest.raises(UnknownNameError, match=r"robot 'solo12' gait.*'periode'"):
-        GaitParams.for_robot(dataclasses.replace(desc, gait={**desc.gait, "periode": 1.0}))
+        robot_gait(dataclasses.replace(desc, gait={**desc.gait, "periode": 1.0}))
     with pytest.raises(InvalidParameterError, match="period"):
-        GaitParams.for_robot(dataclasses.replace(desc, gait={**desc.gait, "period": -1.0}))
+        robot_gait(dataclasses.replace(desc, gait={**desc.gait, "period": -1.0}))
     # No groups of its own: a quadruped trots; groups that leave a leg out are refused.
     no_groups = {k: v for k, v in desc.gait.items() if k != "groups"}
-    assert GaitParams.for_robot(dataclasses.replace(desc, gait=no_groups)).groups == TROT
+    assert robot_gait(dataclasses.replace(desc, gait=no_groups)).groups == TROT
     with pytest.raises(InvalidParameterError, match=r"solo12: gait.groups.*exactly one group"):
-        GaitParams.for_robot(dataclasses.replace(desc, gait={**no_groups, "groups": TRIPODS}))
+        robot_gait(dataclasses.replace(desc, gait={**no_groups, "groups": TRIPODS}))
     with pytest.raises(UnknownNameError, match="'spot'"):
-        GaitParams.for_robot("spot")
+        robot_gait("spot")
 
 
 @pytest.mark.parametrize(("legs", "groups"), [
@@ -124,7 +125,7 @@ def test_a_found_quadruped_trots_by_default(tmp_path):
     toml = tmp_path / "quad.toml"
     toml.write_text('[robot]\nname = "quad"\nsource = "example-robot-data"\n'
                     'urdf = "a1_description/urdf/a1.urdf"\nstand = {body_height = 0.25}\n')
-    gait = GaitParams.for_robot(str(toml))
+    gait = robot_gait(str(toml))
     assert gait.groups == (("LF", "RH"), ("RF", "LH"))
     robot = hexaleg.load(str(toml))
     motion = hexaleg.gait(robot, dataclasses.replace(gait, samples=60))
@@ -138,4 +139,4 @@ def test_legs_without_side_and_place_ask_for_groups(tmp_path):
     desc = RobotDescription(name="odd", urdf="x.urdf", legs=tuple(
         LegSpec(name=n, joints=(f"{n}_j",), foot=f"{n}_foot") for n in ("front", "back")))
     with pytest.raises(InvalidParameterError, match=r"groups = \[\[…\], \[…\]\]"):
-        GaitParams.for_robot(desc)
+        robot_gait(desc)

@@ -17,6 +17,7 @@ import hexaleg
 from hexaleg.errors import InvalidParameterError, UnknownNameError
 from hexaleg.motion.params import TRIPODS, GaitParams
 from hexaleg.motion.patterns import PATTERNS, groups_of, leg_offsets, leg_places, pattern_offsets
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.registry import TROT
 
 HEXAPOD = ("LF", "LM", "LH", "RF", "RM", "RH")
@@ -103,7 +104,7 @@ def _pattern_case(name: str, robot: hexaleg.Robot, solo: hexaleg.Robot
     table: dict[str, object] = {"pattern": name, "samples": SAMPLES}
     if name == "crawl":
         table["period"] = 2.0
-    gait = GaitParams.for_robot("solo12").updated(table)
+    gait = robot_gait("solo12").updated(table)
     return solo, gait, hexaleg.ContactParams(mu=1.0 if name == "pace" else 0.6)
 
 
@@ -143,7 +144,7 @@ def test_any_duty_factor_in_the_open_interval(robot):
 
 
 def test_updating_the_pattern_takes_its_own_duty_factor():
-    solo = GaitParams.for_robot("solo12")
+    solo = robot_gait("solo12")
     assert solo.duty_factor == 0.6 and solo.groups == TROT
     crawl = solo.updated({"pattern": "crawl"})
     assert crawl.pattern == "crawl" and crawl.duty_factor == pytest.approx(0.8)

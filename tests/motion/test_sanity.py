@@ -19,6 +19,7 @@ from hexaleg.motion.sanity import (
     speed_findings,
     support_findings,
 )
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.registry import DESCRIPTIONS, description, load
 
 SAMPLES = 200
@@ -32,7 +33,7 @@ def solo() -> hexaleg.Robot:
 @pytest.mark.parametrize("name", sorted(DESCRIPTIONS))
 def test_registry_robots_default_gaits_pass_every_check(name):
     robot = load(name)
-    gait = dataclasses.replace(GaitParams.for_robot(description(name)), samples=SAMPLES)
+    gait = dataclasses.replace(robot_gait(description(name)), samples=SAMPLES)
     findings = motion_findings(robot, tripod_gait(robot, gait))
     assert findings == [], "\n".join(f.message for f in findings)
 
@@ -104,7 +105,7 @@ def test_quadruped_crawl_with_negative_static_margin(solo):
     """Solo-12 crawl LF → LH → RF → RH (one leg at a time, β = 0.75, no CoM shift: balance
     'none'): the pairs of the same side swing back to back and the CoM leaves the support
     triangle."""
-    gait = dataclasses.replace(GaitParams.for_robot(description("solo12")), duty_factor=0.75,
+    gait = dataclasses.replace(robot_gait(description("solo12")), duty_factor=0.75,
                                groups=(("LF",), ("LH",), ("RF",), ("RH",)), samples=SAMPLES,
                                balance="none")
     crawl = tripod_gait(solo, gait)
@@ -116,7 +117,7 @@ def test_quadruped_crawl_with_negative_static_margin(solo):
 
 
 def test_two_feet_without_balance_are_flagged_and_balanced_trot_is_not(solo):
-    base = dataclasses.replace(GaitParams.for_robot(description("solo12")), samples=SAMPLES)
+    base = dataclasses.replace(robot_gait(description("solo12")), samples=SAMPLES)
     rigid = tripod_gait(solo, dataclasses.replace(base, balance="none"))
     (found,) = support_findings(solo, rigid)
     two = int((rigid.stance.sum(axis=1) < 3).sum())

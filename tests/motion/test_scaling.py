@@ -20,6 +20,7 @@ from hexaleg.motion.scaling import (
     REFERENCE_HIP_HEIGHT,
     REFERENCE_RELATIVE_STRIDE,
     hip_height,
+    robot_gait,
     sized_defaults,
 )
 from hexaleg.robot.registry import description
@@ -61,13 +62,13 @@ def froude(gait: GaitParams, h: float) -> float:
 def test_the_reference_is_the_default_hexapod():
     robot = hexaleg.load("hexaleg")
     assert hip_height(robot, GaitParams()) == pytest.approx(REFERENCE_HIP_HEIGHT, rel=1e-6)
-    assert GaitParams.for_robot("hexaleg") == GaitParams()  # the reference is not sized
+    assert robot_gait("hexaleg") == GaitParams()  # the reference is not sized
     assert REFERENCE_FROUDE == pytest.approx(0.06 ** 2 / (G * REFERENCE_HIP_HEIGHT))
 
 
 @pytest.mark.parametrize("scale", [0.5, 2.0])
 def test_a_scaled_robot_keeps_the_froude_number_and_relative_stride(tmp_path, scale):
-    base, scaled = GaitParams.for_robot(str(SPIDER)), GaitParams.for_robot(
+    base, scaled = robot_gait(str(SPIDER)), robot_gait(
         scaled_spider(tmp_path, scale))
     robot = hexaleg.load(str(tmp_path / "spider.toml"))
     h = hip_height(robot, scaled)
@@ -86,13 +87,13 @@ def test_a_scaled_robot_keeps_the_froude_number_and_relative_stride(tmp_path, sc
 def test_set_parameters_are_never_overridden(tmp_path):
     path = scaled_spider(tmp_path, 2.0, velocity=0.5,
                          gait="[robot.gait]\nperiod = 0.7\nstep_height = 0.011\n")
-    gait = GaitParams.for_robot(path)
+    gait = robot_gait(path)
     assert gait.period == 0.7 and gait.step_height == 0.011  # slow joints: kept anyway
     assert gait.stride == pytest.approx(REFERENCE_RELATIVE_STRIDE * 0.16, rel=1e-6)
     sized = sized_defaults(description(path), gait)
     assert sized is not None and sized.keys == ("stride_length",)
     assert sized.note(overridden=["stride_length"]) is None  # a config file set it
-    stride_set = GaitParams.for_robot(scaled_spider(tmp_path / "s", 2.0,
+    stride_set = robot_gait(scaled_spider(tmp_path / "s", 2.0,
                                                     gait="[robot.gait]\nstride_length = 0.05\n"))
     assert stride_set.stride == 0.05  # the period follows the Froude number from it
     assert froude(stride_set, 0.16) == pytest.approx(REFERENCE_FROUDE, rel=1e-6)
@@ -102,8 +103,8 @@ def test_the_period_is_lengthened_to_the_joints_speed_limits(tmp_path):
     """Joints limited to 1 rad/s: the similar gait would run them over; the chosen period brings
     every joint within its limit at full sampling, and the note says by how much."""
     path = scaled_spider(tmp_path, 1.0, velocity=1.0)
-    gait = GaitParams.for_robot(path)
-    free = GaitParams.for_robot(str(SPIDER))
+    gait = robot_gait(path)
+    free = robot_gait(str(SPIDER))
     robot = hexaleg.load(path)
     sized = sized_defaults(description(path), gait)
     assert sized is not None and sized.stretch > 1.0 and sized.fastest in robot.joint_names
@@ -132,7 +133,7 @@ def test_docs_state_the_reference_and_the_spiders_line():
     assert f"{REFERENCE_HIP_HEIGHT:.4f} m above the ground" in page
     assert f"`{REFERENCE_RELATIVE_STRIDE:.3f} h`" in page
     assert f"`v² / (g h)` = {REFERENCE_FROUDE:.4f}" in page
-    sized = sized_defaults(description(str(SPIDER)), GaitParams.for_robot(str(SPIDER), sized=False))
+    sized = sized_defaults(description(str(SPIDER)), robot_gait(str(SPIDER), sized=False))
     assert sized is not None and f"warning: {sized.note()}\n" in page
 
 
@@ -144,4 +145,4 @@ def test_a_missing_urdf_is_a_named_error_not_a_traceback(tmp_path):
                     'joints = ["a"]\nfoot = "f"\n[[robot.legs]]\nname = "RF"\njoints = ["b"]\n'
                     'foot = "g"\n')
     with pytest.raises(RobotModelError, match=r"gone\.urdf"):
-        GaitParams.for_robot(str(toml))
+        robot_gait(str(toml))

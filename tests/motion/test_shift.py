@@ -15,6 +15,7 @@ import pytest
 import hexaleg
 from hexaleg.errors import InfeasibleForcesError, StaticMarginError
 from hexaleg.motion.params import GaitParams
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.motion.shift import required_margin
 from hexaleg.motion.support import polygon_edges, static_margins, support_margin, switch_margin
 
@@ -28,7 +29,7 @@ def solo() -> hexaleg.Robot:
 
 @pytest.fixture(scope="module")
 def crawl_params() -> GaitParams:
-    return GaitParams.for_robot("solo12").updated({"pattern": "crawl", "period": 2.0,
+    return robot_gait("solo12").updated({"pattern": "crawl", "period": 2.0,
                                                    "samples": SAMPLES})
 
 
@@ -50,7 +51,7 @@ def test_polygon_edges_are_inward_half_planes():
 @pytest.mark.parametrize(("name", "margin"), [("hexaleg", 0.0189), ("solo12", 0.0258)])
 def test_the_default_margins_of_the_registry_gaits(name, margin):
     """MARGIN_FRACTION's docstring: 10 % of the nearest nominal foothold's distance."""
-    robot, gait = hexaleg.load(name), GaitParams.for_robot(name)
+    robot, gait = hexaleg.load(name), robot_gait(name)
     nominal = hexaleg.motion.body.nominal_footholds(robot, gait)
     assert required_margin(robot, gait, nominal) == pytest.approx(margin, abs=5e-5)
 

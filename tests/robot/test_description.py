@@ -88,7 +88,7 @@ def test_a_description_names_a_catalogue_actuator(tmp_path):
 
 def test_gait_is_a_read_only_mapping_of_plain_overrides():
     """The robot layer keeps gait overrides as plain values (lists become tuples); it checks the
-    leg names of ``groups``, and GaitParams.for_robot (the motion layer) the rest."""
+    leg names of ``groups``, and robot_gait (the motion layer) the rest."""
     desc = description("solo12")
     assert desc.gait["groups"] == TROT and desc.gait["period"] == 0.5
     with pytest.raises(TypeError):

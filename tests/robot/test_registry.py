@@ -17,7 +17,7 @@ from hexaleg.dynamics.contact import ContactParams
 from hexaleg.dynamics.prepare import analyze, prepare
 from hexaleg.errors import UnknownNameError
 from hexaleg.motion.legged import tripod_gait
-from hexaleg.motion.params import GaitParams
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.registry import DESCRIPTIONS, TROT, description, load
@@ -103,7 +103,7 @@ def test_stand_is_the_srdf_standing_pose_with_the_base_at_the_origin(quad):
 def trot(quad) -> Motion:
     """The robot's default trot, balanced by the body sway (``GaitParams.balance = "auto"``)."""
     desc, robot = quad
-    return tripod_gait(robot, dataclasses.replace(GaitParams.for_robot(desc), samples=SAMPLES))
+    return tripod_gait(robot, dataclasses.replace(robot_gait(desc), samples=SAMPLES))
 
 
 def _stance_feet_at_rest(robot: hexaleg.Robot, motion: Motion) -> None:
@@ -125,7 +125,7 @@ def _stance_feet_at_rest(robot: hexaleg.Robot, motion: Motion) -> None:
 
 def test_trot_moves_diagonal_pairs_with_stance_feet_at_rest(quad, trot):
     desc, robot = quad
-    assert GaitParams.for_robot(desc).groups == TROT
+    assert robot_gait(desc).groups == TROT
     assert set(trot.info["ik"].values()) == {"newton"}
     legs = robot.leg_names
     stance = trot.stance
@@ -161,7 +161,7 @@ def test_rigid_trot_on_two_point_feet_has_no_contact_forces(quad):
     body of the kinematic trot (``balance="none"``) needs one (gravity and the swing legs), so
     no contact forces exist in its two-foot phases."""
     desc, robot = quad
-    rigid = tripod_gait(robot, dataclasses.replace(GaitParams.for_robot(desc), samples=SAMPLES,
+    rigid = tripod_gait(robot, dataclasses.replace(robot_gait(desc), samples=SAMPLES,
                                                    balance="none"))
     assert rigid.info["balance"] == {"mode": "none"}
     assert _support_line_moment(robot, rigid, prepare(robot, rigid, contact=NO_LIMITS).system) \
@@ -285,7 +285,7 @@ def test_report_for_a_registry_robot(name, tmp_path, capsys):
         assert f"generic ({name} URDF limits)" in data["motor"]["name"]
     knees = list(robot.joints(desc.spring_class))
     assert data["gait"]["groups"] == [list(g) for g in TROT] and data["gait"]["samples"] == 40
-    assert data["gait"]["period"]["value"] == GaitParams.for_robot(desc).period
+    assert data["gait"]["period"]["value"] == robot_gait(desc).period
     assert data["gait"]["min_stance_feet"] == 2
     assert data["contact"]["torque_limits"] is True
     assert sorted(data["springs"]["joints"]) == sorted(knees)

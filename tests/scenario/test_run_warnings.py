@@ -16,6 +16,7 @@ import hexaleg
 from hexaleg.cli import main
 from hexaleg.commands.simulate.write import page
 from hexaleg.motion.params import GaitParams
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.catalogue import motor
 from hexaleg.robot.registry import description
 from hexaleg.scenario.run_warnings import run_warnings
@@ -36,7 +37,7 @@ def expected() -> tuple[str, ...]:
     """The run's warnings, from the module's function."""
     desc = description(SPIDER)
     robot = desc.load()
-    gait = GaitParams.for_robot(desc).updated({"period": 0.25, "samples": 40})
+    gait = robot_gait(desc).updated({"period": 0.25, "samples": 40})
     return run_warnings(robot, hexaleg.gait(robot, gait), desc.actuator(robot),
                         desc=desc, gait=gait)
 
@@ -76,7 +77,7 @@ def test_report_prints_shows_and_writes_them(config, expected, tmp_path, capsys)
     assert not any("joint_speed" in n for n in data["notes"])  # said once, as a warning
     defaults = data["gait_defaults"]
     assert defaults["kept"] == ["stride_length", "step_height"]  # the config set the period
-    assert defaults["stride_length"] == {"value": GaitParams.for_robot(SPIDER).stride,
+    assert defaults["stride_length"] == {"value": robot_gait(SPIDER).stride,
                                          "unit": "m"}
 
 

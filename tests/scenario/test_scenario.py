@@ -10,6 +10,7 @@ import hexaleg
 from hexaleg.errors import InvalidParameterError, UnknownNameError
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.recorded.write import write_motion_log
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.registry import description
 from hexaleg.scenario.run_warnings import gait_defaults, run_warnings
 from hexaleg.scenario.scenario import TABLES, Scenario
@@ -19,7 +20,7 @@ def test_the_robots_own_gait_with_the_files_keys_on_top(tmp_path):
     config = tmp_path / "c.toml"
     config.write_text("[gait]\nperiod = 0.7\n[contact]\nmu = 0.4\n")
     run = Scenario.load("solo12", config)
-    own = GaitParams.for_robot(description("solo12"))
+    own = robot_gait(description("solo12"))
     assert run.gait == own.updated({"period": 0.7})
     assert run.gait.groups == own.groups and run.gait.period == 0.7
     assert run.contact.mu == 0.4 and run.where == str(config)

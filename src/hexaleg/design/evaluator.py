@@ -63,6 +63,7 @@ from hexaleg.errors import (
 )
 from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import GaitParams
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.catalogue import motor as motor_by_name
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Robot
@@ -135,8 +136,8 @@ class RunSpec:
         return self.description().actuator(self.load())
 
     def gait(self, overrides: Mapping[str, Any]) -> GaitParams:
-        """The robot's own gait (:meth:`GaitParams.for_robot`) with ``overrides`` (field → value)
-        on top.
+        """The robot's own gait (:func:`~hexaleg.motion.scaling.robot_gait`) with ``overrides``
+        (field → value) on top.
 
         Raises:
             UnknownNameError: a key that is not a :class:`GaitParams` field (lists them).
@@ -145,7 +146,7 @@ class RunSpec:
         fields = [f.name for f in dataclasses.fields(GaitParams) if f.init]
         for key in overrides:
             one_of("gait parameter", key, fields)
-        return dataclasses.replace(GaitParams.for_robot(self.description()), **overrides)
+        return dataclasses.replace(robot_gait(self.description()), **overrides)
 
 
 # --------------------------------------------------------------------------- per-process cache

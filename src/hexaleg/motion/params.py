@@ -2,7 +2,7 @@
 
 A robot's description (:class:`hexaleg.robot.description.RobotDescription`) holds only plain
 overrides of these parameters (its ``gait`` mapping, e.g. Solo-12's trot);
-:meth:`GaitParams.for_robot` turns them into parameters.
+:func:`~hexaleg.motion.scaling.robot_gait` turns them into parameters.
 """
 
 from __future__ import annotations
@@ -19,8 +19,7 @@ from hexaleg.config import from_mapping, load_toml
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.limits import check_samples
 from hexaleg.motion.patterns import PATTERNS, check_pattern, leg_places
-from hexaleg.robot.description import RobotDescription
-from hexaleg.robot.registry import TROT, description
+from hexaleg.robot.registry import TROT
 
 TRIPODS: tuple[tuple[str, ...], ...] = (("LF", "RM", "LH"), ("RF", "LM", "RH"))
 """The hexapod's two tripods, the default leg groups; group 0 touches down at t = 0."""
@@ -251,50 +250,6 @@ class GaitParams:
         data = load_toml(source)
         table = data.get("gait", data)
         return from_mapping(cls, table, f"{source} [gait]" if "gait" in data else str(source))
-
-    @classmethod
-    def for_robot(cls, robot: RobotDescription | str, *, sized: bool = True) -> GaitParams:
-        """The default gait of a robot: ``GaitParams()`` with its description's overrides on top,
-        and the period, stride and step height it leaves unset sized to the robot by dynamic
-        similarity to the default hexapod (:mod:`hexaleg.motion.scaling`; Alexander & Jayes,
-        J. Zool. 201, 1983: the same Froude number and relative stride, the period lengthened
-        where a joint would exceed its URDF velocity limit). The registered robots but hexaleg
-        set their own; hexaleg is the reference.
-
-        Args:
-            robot: A robot description, or a name or ``.toml`` path for
-                :func:`hexaleg.robot.registry.description`.
-            sized: False leaves the unset keys at ``GaitParams()``'s (the gait the sizing
-                starts from).
-
-        Returns:
-            The parameters (e.g. Solo-12's trot: period 0.5 s, β = 0.6, groups ``TROT``).
-            Sizing loads the robot and makes its gait once per description (cached).
-
-        Raises:
-            UnknownNameError: no such robot, or an override is not a field (the message names
-                the robot and lists the fields).
-            ConfigError, InvalidParameterError: an override has the wrong type or range, or the
-                groups do not hold every leg of the robot exactly once.
-        """
-        desc = description(robot) if isinstance(robot, str) else robot
-        gait = cls().updated(desc.gait, f"robot {desc.name!r} gait")
-        timed = gait.pattern is not None or gait.phases is not None  # groups unused
-        if "groups" not in desc.gait:
-            legs = desc.leg_names()
-            groups = default_groups(legs)
-            if groups is None and not timed:
-                raise InvalidParameterError(
-                    f"{desc.name}: gait.groups", "none given",
-                    f"leg groups for the legs {', '.join(legs)} (their names do not say side and "
-                    "place, L/R then F M H or 1 2 …): give [robot.gait] groups = [[…], […]]")
-            if groups is not None:
-                gait = dataclasses.replace(gait, groups=groups)
-        if not timed:
-            desc.check_groups(gait.groups)
-        from hexaleg.motion.scaling import apply, needs_sizing, sized_defaults  # imports params
-
-        return apply(gait, sized_defaults(desc, gait)) if sized and needs_sizing(desc) else gait
 
     def updated(self, table: Mapping[str, Any], where: str = "gait") -> GaitParams:
         """This gait with the keys of a TOML table on top (e.g. a file's ``[gait]`` over a

@@ -37,13 +37,14 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.errors import HexalegError
+from hexaleg.errors import HexalegError, InvalidParameterError
 from hexaleg.motion.body import body_height, reference_pose
 from hexaleg.motion.legged import gait as make_gait
-from hexaleg.motion.params import GaitParams
+from hexaleg.motion.params import GaitParams, default_groups
 from hexaleg.motion.sanity import speed_ratio
 from hexaleg.robot.description import BUILTIN, RobotDescription
 from hexaleg.robot.model import Robot
+from hexaleg.robot.registry import description
 from hexaleg.units import G
 
 REFERENCE_HIP_HEIGHT = 0.0912703
@@ -240,10 +241,10 @@ def _size(desc: RobotDescription, gait: GaitParams, robot: Robot,
 
 
 def chosen_defaults(desc: RobotDescription) -> SizedDefaults | None:
-    """What :meth:`GaitParams.for_robot` sized for this description (None: nothing)."""
+    """What :func:`robot_gait` sized for this description (None: nothing)."""
     if not needs_sizing(desc):
         return None
-    return sized_defaults(desc, GaitParams.for_robot(desc, sized=False))
+    return sized_defaults(desc, robot_gait(desc, sized=False))
 
 
 def apply(gait: GaitParams, sized: SizedDefaults | None) -> GaitParams:
@@ -253,3 +254,45 @@ def apply(gait: GaitParams, sized: SizedDefaults | None) -> GaitParams:
     values: dict[str, Any] = {"period": sized.period, "stride_length": sized.stride,
                               "step_height": sized.step_height}
     return dataclasses.replace(gait, **{k: values[k] for k in sized.keys})
+
+
+def robot_gait(robot: RobotDescription | str, *, sized: bool = True) -> GaitParams:
+    """The default gait of a robot: ``GaitParams()`` with its description's overrides on top,
+    and the period, stride and step height it leaves unset sized to the robot by dynamic
+    similarity to the default hexapod (this module; Alexander & Jayes,
+    J. Zool. 201, 1983: the same Froude number and relative stride, the period lengthened
+    where a joint would exceed its URDF velocity limit). The registered robots but hexaleg
+    set their own; hexaleg is the reference.
+
+    Args:
+        robot: A robot description, or a name or ``.toml`` path for
+            :func:`hexaleg.robot.registry.description`.
+        sized: False leaves the unset keys at ``GaitParams()``'s (the gait the sizing
+            starts from).
+
+    Returns:
+        The parameters (e.g. Solo-12's trot: period 0.5 s, β = 0.6, groups ``TROT``).
+        Sizing loads the robot and makes its gait once per description (cached).
+
+    Raises:
+        UnknownNameError: no such robot, or an override is not a field (the message names
+            the robot and lists the fields).
+        ConfigError, InvalidParameterError: an override has the wrong type or range, or the
+            groups do not hold every leg of the robot exactly once.
+    """
+    desc = description(robot) if isinstance(robot, str) else robot
+    gait = GaitParams().updated(desc.gait, f"robot {desc.name!r} gait")
+    timed = gait.pattern is not None or gait.phases is not None  # groups unused
+    if "groups" not in desc.gait:
+        legs = desc.leg_names()
+        groups = default_groups(legs)
+        if groups is None and not timed:
+            raise InvalidParameterError(
+                f"{desc.name}: gait.groups", "none given",
+                f"leg groups for the legs {', '.join(legs)} (their names do not say side and "
+                "place, L/R then F M H or 1 2 …): give [robot.gait] groups = [[…], […]]")
+        if groups is not None:
+            gait = dataclasses.replace(gait, groups=groups)
+    if not timed:
+        desc.check_groups(gait.groups)
+    return apply(gait, sized_defaults(desc, gait)) if sized and needs_sizing(desc) else gait

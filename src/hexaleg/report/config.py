@@ -25,6 +25,7 @@ from hexaleg.dynamics.contact import OBJECTIVES, ContactParams
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.motion.limits import SAMPLE_BYTES
 from hexaleg.motion.params import GaitParams
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.catalogue import DEFAULT_MOTOR, motor_from_mapping
 from hexaleg.robot.catalogue import motor as motor_by_name
@@ -241,7 +242,7 @@ class ReportConfig:
         data = data or {}
         config = cls.from_mapping(data, where)
         given = {t: data.get(t, {}) for t in ("gait", "springs", "report", "contact")}
-        gait = GaitParams.for_robot(desc).updated(given["gait"], f"{where} [gait]")
+        gait = robot_gait(desc).updated(given["gait"], f"{where} [gait]")
         springs = config.springs
         if isinstance(springs, SpringDesign) and "joints" not in given["springs"]:
             springs = dataclasses.replace(springs, joints=desc.spring_class_of(robot))

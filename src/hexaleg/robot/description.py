@@ -6,7 +6,7 @@ robot_descriptions: the URDF and SRDF files, the SRDF ``group_state`` (or joint 
 the robot's standing pose, one :class:`~hexaleg.robot.model.LegSpec` per leg (joints from the body
 out and the foot frame), the names of the joint classes (``("haa", "hfe", "kfe")``), the class the
 paper's spring goes on by default, and overrides of the gait parameters suited to the robot's
-size (plain values; :meth:`hexaleg.motion.params.GaitParams.for_robot` makes the parameters).
+size (plain values; :func:`hexaleg.motion.scaling.robot_gait` makes the parameters).
 :meth:`RobotDescription.load` turns it into a :class:`~hexaleg.robot.model.Robot`;
 :meth:`RobotDescription.from_toml` reads one's own robot from a TOML file. The registered robots
 are in :mod:`hexaleg.robot.registry`.
@@ -115,7 +115,7 @@ class RobotDescription:
         gait: The robot's default gait as overrides of
             :class:`~hexaleg.motion.params.GaitParams` (field name → plain value, leg groups
             as tuples of leg names), sized to the robot; a read-only mapping. Keys are
-            checked by ``GaitParams.for_robot``, the leg names of ``groups`` here.
+            checked by ``robot_gait``, the leg names of ``groups`` here.
         notes: Where the description's facts come from.
         motor: The robot's actuators from :data:`hexaleg.robot.catalogue.CATALOGUE`: one name for
             every joint, or a table joint class → name (``{femur = "XM430-W350", …}``; classes

@@ -27,6 +27,7 @@ from hexaleg.dynamics.contact import ContactParams
 from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import GaitParams
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.catalogue import motor_from_mapping
 from hexaleg.robot.description import RobotDescription
@@ -111,7 +112,7 @@ class Scenario:
         desc = description(robot)
         if log is not None:
             refuse_gait_table(tables, where, log)
-        gait = GaitParams.for_robot(desc).updated(tables.get("gait", {}), f"{where} [gait]")
+        gait = robot_gait(desc).updated(tables.get("gait", {}), f"{where} [gait]")
         contact = from_mapping(ContactParams, tables.get("contact", {}), f"{where} [contact]")
         model = desc.load()
         motor = tables.get("motor")

@@ -10,7 +10,7 @@ from pathlib import Path
 import hexaleg
 from hexaleg.commands.design.write import design_warnings
 from hexaleg.design.chain.config import DesignConfig
-from hexaleg.motion.params import GaitParams
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.outputs.html import render_design_html
 from hexaleg.robot.registry import description
 from hexaleg.scenario.run_warnings import run_warnings
@@ -27,7 +27,7 @@ def test_the_design_run_has_the_warnings_of_its_gait(tmp_path):
     robot = desc.load()
     gait = cfg.nominal_gait  # the [gait] table over the sized defaults, the design's samples
     assert gait.period == 0.25
-    assert gait.stride == GaitParams.for_robot(desc).stride
+    assert gait.stride == robot_gait(desc).stride
     expected = run_warnings(robot, hexaleg.gait(robot, gait), desc.actuator(robot),
                             desc=desc, gait=gait)
     assert any(w.startswith("joint_speed") for w in expected)

@@ -28,6 +28,7 @@ from hexaleg.errors import InvalidParameterError, UnknownNameError
 from hexaleg.motion.limits import MIN_SAMPLES
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.patterns import PATTERNS
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.scenario.scenario import TABLES as RUN_TABLES
 from hexaleg.scenario.scenario import Scenario
 from hexaleg.simulation.controllers import CONTROLLERS
@@ -296,7 +297,7 @@ class DesignConfig:
         """
         check_tables(data, tuple(RUN_TABLES), where)
         run = RunSpec(robot=robot)  # UnknownNameError for an unknown robot
-        gait = GaitParams.for_robot(run.description()).updated(data.get("gait", {}),
+        gait = robot_gait(run.description()).updated(data.get("gait", {}),
                                                                 f"{where} [gait]")
         contact = from_mapping(ContactParams, data.get("contact", {}), f"{where} [contact]")
         design = from_mapping(DesignParams, data.get("design", {}), f"{where} [design]")

@@ -45,6 +45,7 @@ from hexaleg.config import read_json
 from hexaleg.design.spring_json import spring_entry, spring_from_entry
 from hexaleg.errors import ConfigError, InvalidParameterError
 from hexaleg.motion.params import GaitParams
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.model import Robot
 from hexaleg.robot.registry import description
 from hexaleg.robot.springs import SpringSet
@@ -225,7 +226,7 @@ def design_gait(data: Mapping[str, Any], robot: str, where: str) -> GaitParams |
         raise ConfigError(f"{where}: gait.parameters must be a table of gait parameters, got "
                           f"{type(table).__name__}")
     where = f"{where}: gait.parameters"
-    return GaitParams.for_robot(description(robot)).updated(_plain(table, where), where)
+    return robot_gait(description(robot)).updated(_plain(table, where), where)
 
 
 @typed

@@ -2,7 +2,8 @@
 
 :func:`codesign` runs, for one robot, speed and pattern:
 
-1. the robot's default gait at that speed (:meth:`GaitParams.for_robot`, the speed winning over
+1. the robot's default gait at that speed (:func:`~hexaleg.motion.scaling.robot_gait`, the speed
+winning over
    the stride), its static margin — the default ``min_static_margin`` — and its energy;
 2. the **co-design**: the outer search (:func:`hexaleg.design.gait_search.search`, restarted
    Nelder–Mead) over body height, foot radius, step height, duty factor and period, each
@@ -55,6 +56,7 @@ from hexaleg.motion.body import body_height, nominal_footholds
 from hexaleg.motion.legged import gait
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.patterns import check_pattern
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.model import Robot
 from hexaleg.robot.registry import description
 from hexaleg.robot.springs import SpringSet
@@ -87,7 +89,7 @@ def default_gait(robot: Robot, name: str, speed: float, pattern: str | None, sam
                  ) -> GaitParams:
     """The robot's default gait at ``speed`` with its body height and foot radius resolved
     (the stand pose's foot depth and mean horizontal foothold distance)."""
-    base = GaitParams.for_robot(name)
+    base = robot_gait(name)
     if pattern is not None:
         base = dataclasses.replace(base, pattern=check_pattern(pattern),
                                    duty_factor=None)  # type: ignore[arg-type]  # → β₀
