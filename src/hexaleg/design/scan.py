@@ -37,14 +37,6 @@ from hexaleg.design.setup import ENGAGED, DesignSetup
 State = dict[str, dict[str, float | str]]
 """Group → geometry (rad from each joint's centre of motion; ``side``)."""
 
-STOP_COLUMNS: dict[str, dict[str, tuple[str, ...]]] = {
-    "one_sided": {"contact": ("k", "preload")},
-    "preloaded": {"theta_plus": ("k_plus", "preload_plus"),
-                  "theta_minus": ("k_minus", "preload_minus")},
-    "dead_zone": {"theta_plus": ("k_plus",), "theta_minus": ("k_minus",)},
-    "stiffening": {a: (f"k_{a}",) for a in ("above_1", "above_2", "below_1", "below_2")},
-}
-"""Family → stop angle → the magnitudes of the terms at that angle."""
 BASIS = {"above": (0.0, -1.0), "below": (0.0, -1.0), "step_above": (-1.0, 0.0),
          "step_below": (1.0, 0.0)}
 """Term kind → (u, v): its torque on an engaged sample is u + v (r − θ) (terms module)."""
@@ -80,7 +72,7 @@ def relaxed_values(setup: DesignSetup, state: State, group: str,
     groups = list(setup.groups)
     nm = len(fam.magnitudes)
     gi = groups.index(group)
-    names = STOP_COLUMNS[fam.name][angle]
+    names = fam.stops[angle]
     local = [fam.magnitudes.index(n) for n in names]
     geo = {**state[group], angle: 0.0, **({"side": side} if angle == "contact" else {})}
     kinds = [fam.terms(geo, 0.0)[i].kind for i in local]
@@ -182,4 +174,4 @@ def _group_rows(setup: DesignSetup, trial: State, group: str, start: int, nx: in
     return (np.array(rows).reshape(-1, nx), np.array(h))
 
 
-__all__ = ["STOP_COLUMNS", "relaxed_values"]
+__all__ = ["relaxed_values"]

@@ -47,7 +47,6 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from hexaleg.design.families import LINEAR_GAP
 from hexaleg.design.scan import State, relaxed_values
 from hexaleg.design.setup import DesignSetup
 from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES
@@ -149,19 +148,7 @@ def off_angles(setup: DesignSetup, group: str) -> tuple[float, float]:
 
 def _off_state(setup: DesignSetup, axes: Mapping[str, _Axis]) -> State:
     """Every stop where it never engages (no spring acts): the search's own start."""
-    fam, out = setup.fam, {}
-    for g, ax in axes.items():
-        below, above = ax.off
-        geo: dict[str, float | str] = {}
-        for a in fam.angles:
-            if a == "contact":
-                geo.update(contact=above, side="above")
-            else:
-                geo[a] = above if fam.side(a, geo) == "above" else below
-        if fam.name == "stiffening":
-            geo.update(above_2=above + OFF, below_2=below - OFF)
-        out[g] = geo
-    return out
+    return {g: setup.fam.off(*ax.off, OFF) for g, ax in axes.items()}
 
 
 def _thinned(cands: np.ndarray, spacing: float) -> np.ndarray:
@@ -175,26 +162,18 @@ def _thinned(cands: np.ndarray, spacing: float) -> np.ndarray:
 
 def _wound_states(fam: Family, axes: Mapping[str, _Axis], wind: float) -> list[State]:
     """Starts of a family without preloads: in every group, its first ``above`` stop (then its
-    first ``below`` one) wound up ``wind`` beyond the motion's far end — engaged throughout, a
-    linear spring pre-wound — the other stops where they never engage. A coordinate descent from
-    "no stop engaged" cannot reach them when the stops' order blocks the way."""
+    first ``below`` one) wound up beyond the motion's far end — engaged throughout, a linear
+    spring pre-wound — the other stops where they never engage
+    (:meth:`~hexaleg.design.families.family.Family.wound`). A coordinate descent from "no stop
+    engaged" cannot reach them when the stops' order blocks the way."""
     out = []
     for side in ("above", "below"):
         state: State = {}
         for g, ax in axes.items():
-            below, above = ax.off
-            if side == "above":
-                first = float(ax.above[0])
-                geo = {"theta_minus": first - LINEAR_GAP, "theta_plus": first} \
-                    if fam.name == "dead_zone" else {
-                        "above_1": first, "above_2": above, "below_1": below,
-                        "below_2": below - OFF}
-            else:
-                first = float(ax.below[-1])
-                geo = {"theta_minus": first, "theta_plus": first + LINEAR_GAP} \
-                    if fam.name == "dead_zone" else {
-                        "above_1": above, "above_2": above + OFF, "below_1": first,
-                        "below_2": min(below, first) - OFF}
+            first = float(ax.above[0]) if side == "above" else float(ax.below[-1])
+            geo = fam.wound(side, first, *ax.off, OFF)
+            if geo is None:
+                return []
             state[g] = dict(geo)
         out.append(state)
     return out

@@ -22,20 +22,14 @@ from collections.abc import Mapping
 from typing import Any
 
 from hexaleg.checks import one_of
+from hexaleg.design.families import FAMILIES, family
 from hexaleg.errors import ConfigError, UnknownNameError
 from hexaleg.robot.springs import (
-    DeadZoneSpring,
-    LinearSpring,
-    OneSidedSpring,
-    PreloadedSpring,
     Spring,
-    StiffeningSpring,
 )
 
-CLASSES: dict[str, type] = {"linear": LinearSpring, "dead_zone": DeadZoneSpring,
-                            "preloaded": PreloadedSpring, "one_sided": OneSidedSpring,
-                            "stiffening": StiffeningSpring}
-"""Family name → spring class."""
+CLASSES: dict[str, type] = {name: family(name).law for name in FAMILIES}
+"""Family name → spring class (:mod:`hexaleg.design.families`)."""
 UNITS: dict[str, str] = {
     **dict.fromkeys(("stiffness", "stiffness_minus", "k2"), "N·m/rad"),
     **dict.fromkeys(("theta_k", "theta_minus", "theta_plus", "neutral", "reference", "contact"),

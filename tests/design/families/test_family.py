@@ -1,3 +1,7 @@
+"""Tests of hexaleg.design.families.family and the registry: every family's law is its basis
+times its magnitudes, its mirror the reflected law, its geometry checked by name; the families
+in containment waves."""
+
 import numpy as np
 import pytest
 
@@ -84,3 +88,23 @@ def test_containment_waves_put_a_family_after_those_it_contains():
     assert containment_waves(["stiffening", "dead_zone"]) == [["dead_zone"], ["stiffening"]]
     assert containment_waves(["preloaded", "one_sided"]) == [["one_sided"], ["preloaded"]]
     assert containment_waves(["stiffening", "linear"]) == [["stiffening", "linear"]]
+
+
+def test_the_registry_is_one_entry_a_family():
+    """FAMILIES, CONTAINS and design.json's classes all come from the registry."""
+    from hexaleg.design import families, spring_json
+
+    assert families.FAMILIES == ("linear", "dead_zone", "preloaded", "one_sided", "stiffening")
+    assert {n: f.law for n, f in families._FAMILIES.items()} == spring_json.CLASSES
+    assert families.CONTAINS == {n: f.contains for n, f in families._FAMILIES.items()
+                                 if f.contains}
+    for f in families._FAMILIES.values():
+        assert set(f.stops) == set(f.angles)
+        assert {m for ms in f.stops.values() for m in ms} <= set(f.magnitudes)
+
+
+def test_a_family_contains_only_what_it_says():
+    from hexaleg.design.families import embed
+
+    with pytest.raises(InvalidParameterError, match="one_sided in dead_zone"):
+        embed("dead_zone", "one_sided", {"contact": 0.1, "side": "above"}, {}, (-1.0, 1.0))
