@@ -22,6 +22,7 @@ import math
 
 import hexaleg
 from hexaleg.design.gaits import gait_energy, table_header, table_line
+from hexaleg.motion.scaling import robot_gait
 
 ROBOT = "solo12"
 GAITS = (("crawl", (4.0, 2.0, 4.0 / 3.0)), ("trot", (1.0, 0.5, 1.0 / 3.0)),
@@ -35,7 +36,7 @@ KNEES = {"front": ["FL_KFE", "FR_KFE"], "hind": ["HL_KFE", "HR_KFE"]}
 
 def main() -> None:
     robot = hexaleg.load(ROBOT)
-    base = hexaleg.motion.scaling.robot_gait(ROBOT)
+    base = robot_gait(ROBOT)
     print(f"{ROBOT}: {robot.mass:.4g} kg, knee springs (preloaded; front and hind pairs), "
           f"{SAMPLES} samples, μ = {CONTACT.mu:g}")
     print(table_header("gait"))

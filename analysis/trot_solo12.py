@@ -3,7 +3,7 @@
 Run:  python analysis/trot_solo12.py         (expected output: analysis/logs/trot_solo12.log)
 
 Solo-12 (ODRI) from example-robot-data through ``hexaleg.load("solo12")``, trotting with its
-registry gait (``hexaleg.motion.scaling.robot_gait("solo12")``: period 0.5 s, duty factor 0.6,
+registry gait (``robot_gait("solo12")``: period 0.5 s, duty factor 0.6,
 stride 0.08 m, diagonal pairs) at 200 samples per cycle (as notebook 04). A two-foot stance cannot
 push a moment about the line through its feet, so the gait sways the body (linear inverted pendulum,
 Kajita et al., ICRA 2003, refined on the exact RNEA moment; docs/robots.md). Foot forces from the
@@ -24,6 +24,7 @@ import numpy as np
 
 import hexaleg
 from hexaleg.design.rules import centred_springs
+from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.registry import DESCRIPTIONS
 
 ROBOT = "solo12"
@@ -33,7 +34,7 @@ KS = np.geomspace(0.01, 10.0, 7)  # N·m/rad
 def main() -> None:
     desc = DESCRIPTIONS[ROBOT]
     robot = hexaleg.load(ROBOT)
-    gait = dataclasses.replace(hexaleg.motion.scaling.robot_gait(ROBOT), samples=200)
+    gait = dataclasses.replace(robot_gait(ROBOT), samples=200)
     motion = hexaleg.gait(robot, gait)
     prepared = hexaleg.prepare(robot, motion, contact=hexaleg.ContactParams(torque_limits=False))
     rigid = prepared.evaluate().metrics

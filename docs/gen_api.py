@@ -32,8 +32,9 @@ REFERENCE = "reference"
 DATA_NAME = re.compile(r"^(?:[A-Z][A-Z0-9_]*|__version__)$")
 CLASS_NAME = re.compile(r"^[A-Z]\w*[a-z]\w*$")
 
-# The layers of DESIGN.md in data-flow order; a subpackage not named here follows them, by name.
-LAYER_ORDER = ("robot", "motion", "dynamics", "simulation", "design", "studies", "outputs")
+# The layers of docs/architecture.md in data-flow order; a subpackage not named here follows them.
+LAYER_ORDER = ("robot", "parallel", "motion", "dynamics", "scenario", "simulation", "design",
+               "outputs", "paper", "sweep", "report", "commands")
 
 
 @dataclass(frozen=True)
