@@ -10,12 +10,12 @@ the first of:
    gait parameters but for the number of samples, and no payload on the report's robot;
 3. ``quick``: the design's core computed here, within the report's time budget: the
    :data:`QUICK_FAMILY` family's global optimum (linear springs have no geometry to search: one
-   convex program) through ``hexaleg design``'s own stage
-   (:meth:`hexaleg.design.chain.stages.Nominal.family`: groups under ``[design]
-   min_group_saving`` left unfitted, the torsion springs to buy, the saving net of their mass) on
-   the gait ``hexaleg design`` samples, without the other families, the stops' tolerance, the
-   maps, the robust design or the simulation — the numbers equal that family's row of
-   ``hexaleg design``.
+   convex program) through ``hexaleg design``'s own chain, its first stage alone
+   (:class:`~hexaleg.design.chain.chain.DesignChain` ``run(stages=("candidates",))``: groups
+   under ``[design] min_group_saving`` left unfitted, the torsion springs to buy, the saving net
+   of their mass) on the gait ``hexaleg design`` samples, without the other families, the
+   stops' tolerance, the maps, the robust design or the simulation — the numbers equal that
+   family's row of ``hexaleg design``.
 
 Each answer's springs are also evaluated on the report's own gait (its samples, Joule-optimal
 forces as the design ranks them), reported beside the design's number. Where no answer can be
@@ -122,9 +122,9 @@ def _found(cfg: ReportConfig, robot: Robot) -> tuple[dict[str, Any] | None, str 
 def _quick(cfg: ReportConfig, robot: Robot
            ) -> tuple[dict[str, Any] | None, SpringSet | None, str | None]:
     """The quick answer (module docstring), its springs, or None and why not."""
+    from hexaleg.design.chain.chain import DesignChain
     from hexaleg.design.chain.config import DesignConfig, DesignParams
-    from hexaleg.design.chain.result import MIN_SAVING, candidate_data
-    from hexaleg.design.chain.stages import nominal
+    from hexaleg.design.chain.result import candidate_data
     from hexaleg.design.evaluator import RunSpec
     from hexaleg.robot.catalogue import CATALOGUE
 
@@ -146,15 +146,14 @@ def _quick(cfg: ReportConfig, robot: Robot
     params = DesignParams(families=(QUICK_FAMILY,), samples=n, motor=motor)
     config = DesignConfig(robot=robot.name, gait=dataclasses.replace(cfg.gait, samples=n),
                           contact=cfg.contact, design=params)
-    try:
-        nom = nominal(config)
-        c = nom.family(QUICK_FAMILY)
+    try:  # the design chain's first stage alone
+        result = DesignChain(config).run(stages=("candidates",))
     except HexalegError as e:
         return None, None, f"{what}: the {QUICK_FAMILY} design failed: {e}"
-    metric = params.metric
-    rec = candidate_data(c, nom.outer)
-    section = {"origin": "quick", "source": None, "html": None, "actuator": run.actuator().name,
-               **recommendation(rec, metric, n, bool(c.net[metric] > MIN_SAVING)),
+    c = result.recommended
+    rec = candidate_data(c, result.outer)
+    section = {"origin": "quick", "source": None, "html": None, "actuator": result.actuator,
+               **recommendation(rec, params.metric, n, result.pays),
                "worst": None, "robust": None, "simulation": [], "notes": list(c.notes)}
     return section, c.optimum.springs, None
 
