@@ -61,3 +61,53 @@ def test_bad_window_and_short_log_are_named(robot, gait_100hz, tmp_path, logs):
         load_motion(robot, tmp_path / "log.csv", cycle=(0.5, 0.2))
     motion = load_motion(robot, tmp_path / "log.csv", cycle="whole", periodic=True)
     assert motion.n_samples == 100
+
+
+# --------------------------------------------------------------------------- conventions caught
+
+
+def test_a_time_column_in_ms_read_as_seconds_is_named(robot, gait_100hz, tmp_path, logs):
+    """A 100 Hz log stamped in ms without its unit reads as 10 s steps: refused, the unit named;
+    with ``time [ms]`` in the header the same rows load as the 1 s gait (#38)."""
+    cols = logs.noisy_log(robot, gait_100hz, cycles=4)
+    cols["time"] = cols["time"] * 1000.0
+    logs.write_csv(tmp_path / "ms.csv", cols)
+    with pytest.raises(InvalidParameterError, match=r"time steps.*10 s.*'time \[ms\]'"):
+        load_motion(robot, tmp_path / "ms.csv")
+    text = (tmp_path / "ms.csv").read_text().replace("time,", "time [ms],", 1)
+    (tmp_path / "stated.csv").write_text(text)
+    assert load_motion(robot, tmp_path / "stated.csv").period == pytest.approx(1.0, rel=1e-3)
+
+
+def test_a_log_too_slow_for_its_gait_names_the_rate(robot, gait_100hz, tmp_path, logs):
+    """A 1 s gait logged at 1 Hz (one row a cycle) and at 5 Hz (five): each refused with its
+    rate and what rate the gait needs — never a bare 'no repeating cycle'."""
+    cols = logs.noisy_log(robot, gait_100hz, cycles=12)
+    for every, rate in ((100, r"1 rows a second"), (20, r"5 Hz")):
+        logs.write_csv(tmp_path / "slow.csv", {k: v[::every] for k, v in cols.items()})
+        with pytest.raises(InvalidParameterError, match=rate):
+            load_motion(robot, tmp_path / "slow.csv")
+
+
+def test_w_first_quaternions_are_named(robot, gait_100hz, tmp_path, logs):
+    """Quaternions written w, x, y, z under base_qx … base_qw read as a body upside down: refused,
+    the order named — never the springs' sign flipped silently (#38)."""
+    cols = logs.noisy_log(robot, gait_100hz, cycles=3)
+    names = ["base_qx", "base_qy", "base_qz", "base_qw"]
+    w_first = {n: cols[m] for n, m in zip(names, ["base_qw", *names[:3]], strict=True)}
+    logs.write_csv(tmp_path / "wxyz.csv", {**cols, **w_first})
+    with pytest.raises(InvalidParameterError, match="w-first"):
+        load_motion(robot, tmp_path / "wxyz.csv")
+
+
+def test_whole_and_windows_must_hold_a_cycle(robot, gait_100hz, tmp_path, logs):
+    """``cycle='whole'`` on 1.5 cycles names the joint that does not come back; a window of 4
+    rows is refused by its size; one exact cycle taken whole loads."""
+    cols = logs.noisy_log(robot, gait_100hz, cycles=2)
+    logs.write_csv(tmp_path / "half.csv", {k: v[:150] for k, v in cols.items()})
+    with pytest.raises(InvalidParameterError, match=r"cycle='whole'.*ends .* rad from where"):
+        load_motion(robot, tmp_path / "half.csv", cycle="whole", periodic=True)
+    with pytest.raises(InvalidParameterError, match=r"at least 20 rows.*holds 4"):
+        load_motion(robot, tmp_path / "half.csv", cycle=(0.0, 0.03))
+    logs.write_csv(tmp_path / "one.csv", {k: v[:100] for k, v in cols.items()})
+    assert load_motion(robot, tmp_path / "one.csv", cycle="whole", periodic=True).n_samples == 100

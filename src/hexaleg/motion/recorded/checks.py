@@ -1,4 +1,5 @@
-"""The checks of a log against its robot: columns, joint limits, stance, feet above the ground.
+"""The checks of a log against its robot: columns, joint limits, stance, feet above the ground,
+the base's attitude (quaternion order), a log given as one whole cycle.
 
 Each failure is a named error (or, where the motion can still be analysed, a warning) that says
 what was found and what to change.
@@ -18,6 +19,9 @@ LIMIT_TOLERANCE = 0.02
 """How far a logged joint may pass its URDF limit (servo overshoot, calibration), rad."""
 GROUND_TOLERANCE = 0.005
 """How far below the ground (z = 0 of the logged world) a foot may seem to go, m."""
+WRAP_STEPS = 4.0
+"""A log taken as one whole cycle (``cycle='whole'``) may jump from its last row to its first by
+this many times a joint's largest step between rows, at most."""
 
 
 def check_columns(robot: Robot, log: Log, contacts: bool | None, where: str) -> bool:
@@ -147,3 +151,49 @@ def centre_of_mass(robot: Robot, q_joints: np.ndarray, base: np.ndarray | None) 
         q[:, :7] = base
     data = robot.model.createData()
     return np.array([pin.centerOfMass(robot.model, data, qk) for qk in q])
+
+
+def check_attitude(quat: np.ndarray, where: str) -> None:
+    """The base quaternions ``quat`` (N, 4: x, y, z, w) of a robot that walks upright: the body's
+    z axis points up in most rows (its world z component ``1 − 2 (x² + y²)``, > 0).
+
+    Raises:
+        InvalidParameterError: the body upside down as read; when the same columns read w-first
+            (w, x, y, z) give an upright body, the message says the order is wrong.
+    """
+    up = np.median(1.0 - 2.0 * (quat[:, 0] ** 2 + quat[:, 1] ** 2))
+    if up > 0.0:
+        return
+    w_first = np.median(1.0 - 2.0 * (quat[:, 1] ** 2 + quat[:, 2] ** 2))
+    shown = ", ".join(f"{v:.3f}" for v in quat[0])
+    if w_first > 0.5:
+        raise InvalidParameterError(
+            f"{where} base quaternion", f"({shown}) in base_qx, base_qy, base_qz, base_qw: the "
+            "body upside down as read, upright if read w-first", "x, y, z, w in base_qx, "
+            "base_qy, base_qz, base_qw (w last, as ROS and Pinocchio write it): the log's "
+            "columns hold w first; rename them (w is base_qw)")
+    raise InvalidParameterError(
+        f"{where} base quaternion", f"({shown}): the body upside down in most rows (its z "
+        f"axis {up:+.2f} up)", "the attitude of the robot's base in the world, z up (a walking "
+        "robot is upright); check the IMU's frame and the columns' order (x, y, z, w)")
+
+
+def check_whole(q: np.ndarray, names: list[str], where: str) -> None:
+    """The joints ``q`` (N, nj) of a log taken as one whole periodic cycle end where they start:
+    each joint's jump from the last row to the first is at most :data:`WRAP_STEPS` times its
+    largest step between rows.
+
+    Raises:
+        InvalidParameterError: the joint that jumps most, by how much (not one whole cycle).
+    """
+    steps = np.abs(np.diff(q, axis=0)).max(axis=0)
+    wrap = np.abs(q[0] - q[-1])
+    ratio = wrap / np.maximum(steps, 1e-12)
+    j = int(np.argmax(ratio))
+    if ratio[j] > WRAP_STEPS:
+        raise InvalidParameterError(
+            f"{where}: cycle='whole'", f"the log ends {wrap[j]:.3g} rad from where it starts "
+            f"on {names[j]} ({ratio[j]:.1f} times its largest step between rows)",
+            "a log of exactly one cycle, each joint ending about a step from its start; give "
+            "cycle='auto' (a log of two cycles or more) or the window of one cycle, (t0, t1)")
+

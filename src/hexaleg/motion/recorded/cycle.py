@@ -24,6 +24,10 @@ from hexaleg.errors import InvalidParameterError
 
 MIN_CORRELATION = 0.5
 """Smallest normalised autocorrelation a period's peak must reach to count as a repeating gait."""
+MIN_CYCLE_SAMPLES = 10
+"""Fewest rows a cycle of the log may have: below it the foot's lift-off and touch-down (a tenth
+of a cycle each) fall between samples, and the gait's harmonics above the fifth alias
+(Nyquist–Shannon)."""
 
 
 @dataclass(frozen=True)
@@ -79,8 +83,9 @@ def find_period(x: np.ndarray, dt: float, where: str = "motion log") -> tuple[fl
 
     Raises:
         InvalidParameterError: no lag up to half the log correlates by
-            :data:`MIN_CORRELATION` (the log is shorter than two cycles, or does not repeat);
-            the message says what to give instead.
+            :data:`MIN_CORRELATION` (the log is shorter than two cycles, or does not repeat), or
+            the cycle has fewer than :data:`MIN_CYCLE_SAMPLES` rows; the message names the rate
+            and says what to give instead.
     """
     n = x.shape[0]
     duration = n * dt
@@ -89,9 +94,10 @@ def find_period(x: np.ndarray, dt: float, where: str = "motion log") -> tuple[fl
     negative = np.flatnonzero(acf[1:half] < 0)
     if negative.size == 0 or negative[0] + 3 > half:
         raise InvalidParameterError(
-            f"{where}: cycle='auto'", f"no repeating cycle in {duration:.3f} s",
-            "a log of at least two gait cycles; for a shorter log give the window of one "
-            "cycle, cycle=(t0, t1), or cycle='whole'")
+            f"{where}: cycle='auto'", f"no repeating cycle in {duration:.3f} s sampled at "
+            f"{1 / dt:.3g} Hz", "a log of at least two gait cycles, each of at least "
+            f"{MIN_CYCLE_SAMPLES} rows; for a shorter log give the window of one cycle, "
+            "cycle=(t0, t1), or cycle='whole'")
     first = int(negative[0]) + 1
     seg = acf[first:half + 1]
     peaks = np.flatnonzero((seg[1:-1] >= seg[:-2]) & (seg[1:-1] >= seg[2:])) + 1
@@ -106,6 +112,11 @@ def find_period(x: np.ndarray, dt: float, where: str = "motion log") -> tuple[fl
             f"{where}: cycle='auto'", f"best repeat {period * dt:.3f} s correlates "
             f"{corr:.2f}", f"a gait that repeats (correlation >= {MIN_CORRELATION}) over at "
             "least two cycles; give a window, cycle=(t0, t1), or cycle='whole'")
+    if period < MIN_CYCLE_SAMPLES:
+        raise InvalidParameterError(
+            f"{where}: cycle='auto'", f"a cycle of {period * dt:.3f} s sampled {period:.1f} "
+            f"times ({1 / dt:.3g} Hz)", f"at least {MIN_CYCLE_SAMPLES} rows a cycle (a rate of "
+            f"{MIN_CYCLE_SAMPLES / (period * dt):.3g} Hz or more for this gait): log faster")
     multiple = max(int(n // period) - 1, 1)  # k periods at once, a period of overlap left
     return _refine(np.asarray(x, dtype=float), multiple * period) / multiple * dt, corr
 

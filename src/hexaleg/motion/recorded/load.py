@@ -19,14 +19,17 @@ import numpy as np
 
 from hexaleg.checks import real, typed
 from hexaleg.errors import HexalegWarning, InvalidParameterError
+from hexaleg.motion.limits import MIN_SAMPLES
 from hexaleg.motion.recorded import base as _base
 from hexaleg.motion.recorded import stance as _stance
 from hexaleg.motion.recorded.checks import (
     centre_of_mass,
+    check_attitude,
     check_columns,
     check_ground,
     check_limits,
     check_stance,
+    check_whole,
     feet_world,
 )
 from hexaleg.motion.recorded.cycle import average_cycles, find_period
@@ -50,6 +53,9 @@ def _window(t: np.ndarray, cycle: Cycle, where: str) -> tuple[str, slice]:
         raise InvalidParameterError("cycle", cycle, f"a window 0 <= t0 < t1 <= {t[-1]:.4f} s "
                                     f"(the {where} from its first stamp)")
     lo, hi = int(np.searchsorted(t, t0 - 1e-9)), int(np.searchsorted(t, t1 + 1e-9))
+    if hi - lo < MIN_SAMPLES:
+        raise InvalidParameterError("cycle", cycle, f"a window of at least {MIN_SAMPLES} rows of "
+                                    f"the {where} (this one holds {hi - lo})")
     return "window", slice(lo, hi)
 
 
@@ -105,6 +111,14 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
     t = log.t[span]
     periodic = (mode == "auto") if periodic is None else bool(periodic)
     check_limits(robot, log.matrix(joints)[span], t, log.units, where)
+    if has_quat:
+        check_attitude(log.matrix(list(BASE_QUATERNION))[span], where)
+    if mode == "whole":
+        if len(t) < MIN_SAMPLES:
+            raise InvalidParameterError(f"{where} rows", len(t), f"at least {MIN_SAMPLES} rows "
+                                        "for cycle='whole' (one cycle of the gait)")
+        if periodic:
+            check_whole(log.matrix(joints)[span], joints, where)
 
     # The signals averaged or windowed together: joints, base pose (drift removed), contacts.
     signals = [log.matrix(joints)[span]]

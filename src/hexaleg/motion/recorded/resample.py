@@ -18,6 +18,10 @@ from hexaleg.motion.recorded.read import BASE_QUATERNION, Log
 
 UNIFORM_TOLERANCE = 1e-6
 """Largest relative deviation of a stamp interval from the median for a log kept as stamped."""
+MAX_STEP = 0.5
+"""s: the longest median interval between a log's stamps (2 Hz). A gait is sampled faster (a
+cycle needs about ten samples: the foot's lift-off and touch-down are a tenth of it); a slower
+"rate" is more often milliseconds read as seconds, and is refused with both readings named."""
 
 
 @dataclasses.dataclass(frozen=True)
@@ -69,7 +73,9 @@ def resample(log: Log, *, max_gap: float = 0.05) -> Resampled:
         max_gap: Longest gap filled by interpolation, s (dropped rows or a NaN run).
 
     Raises:
-        InvalidParameterError: stamps not increasing (the row named); a column's gap longer
+        InvalidParameterError: stamps not increasing (the row named); stamps further apart than
+            :data:`MAX_STEP` (the rate named, and the unit the time was read in); a column's gap
+            longer
             than ``max_gap`` (the column, its time and length named); more samples than a motion
             may have (:func:`hexaleg.motion.limits.check_samples`).
     """
@@ -77,6 +83,13 @@ def resample(log: Log, *, max_gap: float = 0.05) -> Resampled:
     t = np.asarray(log.t, dtype=float)
     _check_time(t, where)
     dt = float(np.median(np.diff(t)))
+    if dt > MAX_STEP:
+        raise InvalidParameterError(
+            f"{where} time steps", f"{dt:g} s (a rate of {1 / dt:.3g} rows a second, the time "
+            f"column read in {log.units.get('time', 's')})",
+            f"rows at least every {MAX_STEP} s ({1 / MAX_STEP:g} Hz: a gait's cycle needs 10 "
+            "samples or more); if the time column is not in seconds give its unit, e.g. "
+            "'time [ms]' (a 100 Hz log in ms reads as steps of 10 s)")
     span = t[-1] - t[0]
     irregular = bool(np.max(np.abs(np.diff(t) - dt)) > UNIFORM_TOLERANCE * dt)
     n = round(span / dt) + 1 if irregular else len(t)
