@@ -24,7 +24,9 @@ world frame in :meth:`Prepared.solve` (``StanceSystem.to_world``).
 
 from __future__ import annotations
 
+import dataclasses
 import functools
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -43,14 +45,16 @@ from hexaleg.dynamics.contact import (
     contact_frame,
 )
 from hexaleg.dynamics.inertia import apparent_inertias
+from hexaleg.dynamics.nearest import WrenchResidual, nearest_wrench
 from hexaleg.dynamics.solver import QuadraticGains, quadratic_gains, solve_fast
-from hexaleg.errors import InvalidParameterError, TorqueLimitError
+from hexaleg.errors import HexalegWarning, InvalidParameterError, TorqueLimitError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.catalogue import motor as motor_by_name
 from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import Motor
 from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.springs import Spring, SpringSet
+from hexaleg.units import G
 
 SpringsLike = SpringSet | Mapping[str, Spring] | None
 
@@ -95,6 +99,9 @@ class Analysis:
         t: Sample times, shape (T,), s.
         q: Joint angles, shape (T, nj), rad.
         qdot: Joint velocities, shape (T, nj), rad/s.
+        residual: For a logged motion (:func:`hexaleg.load_motion`), the base wrench its
+            contacts could not produce where the forces were solved for the nearest one
+            (:mod:`hexaleg.dynamics.nearest`); None for a generated motion.
         forces: World-frame ground reaction forces on the feet, shape (T, n_legs, 3), N (zero for
             swing feet).
         tau_motor: Motor torques, shape (T, nj), N·m.
@@ -160,6 +167,9 @@ class Prepared:
         system: The force program's linear algebra (:class:`hexaleg.dynamics.contact.StanceSystem`).
         q: Joint angles, shape (T, nj), rad.
         qdot: Joint velocities, shape (T, nj), rad/s.
+        residual: For a logged motion (:func:`hexaleg.load_motion`), the base wrench its
+            contacts could not produce where the forces were solved for the nearest one
+            (:mod:`hexaleg.dynamics.nearest`); None for a generated motion.
     """
 
     robot: Robot
@@ -171,6 +181,7 @@ class Prepared:
     system: StanceSystem
     q: np.ndarray
     qdot: np.ndarray
+    residual: WrenchResidual | None = None
     _gains: dict[str, QuadraticGains] = field(default_factory=dict, repr=False)
     _warm: dict[str, WarmStart] = field(default_factory=dict, repr=False)
     _warm_baseline: dict[str, WarmStart] = field(default_factory=dict, repr=False)
@@ -374,9 +385,19 @@ def prepare(robot: Robot, motion: Motion, *, motor: Motor | MotorSet | str | Non
                           joint_names=robot.joint_names,
                           efficiency=np.broadcast_to(motor.gearbox_efficiency, (robot.nj,)).copy(),
                           frame=frame)
+    residual = None
+    if motion.info.get("source") == "load_motion":  # a measurement: the nearest wrench
+        b_base, residual = nearest_wrench(system.A, system.b_base, system.stance, contact.mu,
+                                          contact.min_normal_force, robot.mass * G,
+                                          motion.t)
+        system = dataclasses.replace(system, b_base=b_base)
+        line = residual.line()
+        if line is not None:
+            warnings.warn(f"{motion.info.get('log', 'motion log')}: {line}", HexalegWarning,
+                          stacklevel=2)
     return Prepared(robot=robot, motion=motion, motor=motor, contact=contact,
                     rnea=rnea, jacobians=jac, system=system, q=motion.q[:, 7:],
-                    qdot=motion.v[:, 6:])
+                    qdot=motion.v[:, 6:], residual=residual)
 
 
 @typed

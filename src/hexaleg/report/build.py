@@ -197,6 +197,9 @@ def build_report(config: ReportConfig | None = None, *, robot: Robot | None = No
     data = file_data(_report_data(cfg, robot, motion, analysis, baseline, curve, usage))
     data["design"], passed = answer_section(cfg, robot, prepared)
     data["notes"] += passed
+    residual = prepared.residual.line() if prepared.residual is not None else None
+    if residual is not None:  # a logged motion the contacts could not carry exactly
+        data["notes"].append(residual)
     if data["design"] is not None:
         step(f"answer: {data['design']['label']} springs ({data['design']['origin']}), "
              f"{data['design']['metric']} saving {data['design']['saving']['value']:+.2f} %")

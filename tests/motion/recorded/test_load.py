@@ -111,3 +111,36 @@ def test_whole_and_windows_must_hold_a_cycle(robot, gait_100hz, tmp_path, logs):
         load_motion(robot, tmp_path / "half.csv", cycle=(0.0, 0.03))
     logs.write_csv(tmp_path / "one.csv", {k: v[:100] for k, v in cols.items()})
     assert load_motion(robot, tmp_path / "one.csv", cycle="whole", periodic=True).n_samples == 100
+
+
+def _bump(robot, gait_100hz, tmp_path, logs, amplitude):
+    """One logged cycle whose base rises by ``amplitude`` m in a 0.11 s bump at t = 0.5 s: at the
+    bump's top the body falls faster than gravity for a few samples (the feet would pull)."""
+    cols = logs.noisy_log(robot, gait_100hz, cycles=1)
+    cols["base_z"] = cols["base_z"] + amplitude * np.exp(-((cols["time"] - 0.5) / 0.057) ** 2)
+    logs.write_csv(tmp_path / "bump.csv", cols)
+    return load_motion(robot, tmp_path / "bump.csv", cycle="whole", periodic=True)
+
+
+def test_a_measured_motion_gets_the_nearest_forces_and_its_residual(robot, gait_100hz, tmp_path,
+                                                                    logs):
+    """#38: where the logged base motion needs more than the contacts give (no admissible
+    forces: the generated-motion path's InfeasibleForcesError at t = 0.49 s), the forces of the
+    nearest wrench they can produce, the residual per sample and as a fraction of the weight in
+    a warning and on the Prepared; beyond half the weight, an error naming the likely causes."""
+    import dataclasses
+
+    from hexaleg.errors import HexalegWarning, InfeasibleForcesError
+
+    motion = _bump(robot, gait_100hz, tmp_path, logs, 0.022)
+    generated = dataclasses.replace(motion, info={})
+    with pytest.raises(InfeasibleForcesError, match="no contact forces satisfy"):
+        hexaleg.prepare(robot, generated).evaluate()
+    with pytest.warns(HexalegWarning, match=r"nearest motion.*10\.9 % of the weight "
+                      r"\(t = 0\.5000 s\)"):
+        prepared = hexaleg.prepare(robot, motion)
+    assert list(prepared.residual.samples) == [49, 50, 51]
+    energy = prepared.evaluate().metrics["total"]["electrical"]
+    assert 0.0 < energy < 1.1 * _energy(robot, gait_100hz)
+    with pytest.raises(InfeasibleForcesError, match=r"miss 60 % of the weight.*Likely causes"):
+        hexaleg.prepare(robot, _bump(robot, gait_100hz, tmp_path, logs, 0.03))

@@ -294,8 +294,9 @@ class DesignChain:
                   f"the {d.controller} servo" if "ranking" in w else
                   f"ranked by the predicted {d.metric} saving net of the springs' mass (not "
                   "simulated)")
-        notes = [*flagged, *pays, *logged, *ranking_notes, *envelope_notes, *stalled,
-                 *unsimulated, *nom.robot.notes, *rec.notes,
+        residual = nom.prepared.residual.line() if nom.prepared.residual is not None else None
+        notes = [*flagged, *pays, *logged, *((residual,) if residual else ()), *ranking_notes,
+                 *envelope_notes, *stalled, *unsimulated, *nom.robot.notes, *rec.notes,
                  (mirrored.summary() + ("; each gets its group's spring mirrored" if d.mirror
                                         and mirrored.mirrored else "")), *mirrored.notes,
                  f"designed at {nom.gait.samples} samples per cycle (Joule-optimal forces); "
