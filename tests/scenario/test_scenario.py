@@ -12,7 +12,7 @@ from hexaleg.motion.params import GaitParams
 from hexaleg.motion.recorded.write import write_motion_log
 from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.registry import description
-from hexaleg.scenario.run_warnings import gait_defaults, run_warnings
+from hexaleg.scenario.run_warnings import run_warnings
 from hexaleg.scenario.scenario import TABLES, Scenario
 
 
@@ -53,7 +53,6 @@ def test_a_log_is_the_runs_motion_and_refuses_a_gait_table(tmp_path):
     run = Scenario.load("hexaleg", log=log, cycle="whole")
     assert run.played() is run.motion and run.motion.period == pytest.approx(0.8)
     assert run.log == str(log) and any(str(log) in n for n in run.notes)
-    assert run.gait_defaults() is None
     with pytest.raises(InvalidParameterError, match=r"\[gait\].*--motion"):
         Scenario.from_tables("hexaleg", {"gait": {"period": 0.5}}, log=log, cycle="whole")
 
@@ -66,7 +65,6 @@ def test_the_warnings_are_the_runs(tmp_path):
     assert run.warnings() == run_warnings(run.model, played, run.actuator,
                                           desc=run.description, gait=run.gait)
     assert run.warnings()  # the spider's sized defaults and generic servos say something
-    assert run.gait_defaults() == gait_defaults(run.description, run.gait)
 
 
 def _spider():

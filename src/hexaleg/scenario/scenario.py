@@ -36,7 +36,7 @@ from hexaleg.robot.motor import Motor
 from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.registry import description
 from hexaleg.scenario.logged import logged_motion, quality_note, refuse_gait_table
-from hexaleg.scenario.run_warnings import gait_defaults, run_warnings
+from hexaleg.scenario.run_warnings import run_warnings
 
 TABLES: dict[str, str] = {
     "gait": "every command: keys over the robot's own gait (docs/gaits.md)",
@@ -146,11 +146,6 @@ class Scenario:
         return run_warnings(self.model, motion if motion is not None else self.played(),
                             actuator if actuator is not None else self.actuator,
                             desc=self.description, gait=self.gait if self.log is None else None)
-
-    def gait_defaults(self) -> dict[str, Any] | None:
-        """What the robot's sized gait defaults chose, for a command's JSON, or None
-        (:func:`hexaleg.scenario.run_warnings.gait_defaults`)."""
-        return gait_defaults(self.description, self.gait if self.log is None else None)
 
 
 __all__ = ["TABLES", "Scenario"]
