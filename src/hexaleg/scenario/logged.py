@@ -21,8 +21,9 @@ from hexaleg.robot.model import Robot
 
 UNITS: dict[str, str] = {"rows": "rows", "rate": "Hz", "filled": "values", "noise": "rad",
                          "cutoff": "Hz", "window": "samples", "period": "s", "cycles": "cycles",
-                         "correlation": "1", "spread": "rad", "stance_height": "m",
-                         "stance_speed": "m/s", "slip": "m/s", "slip_max": "m/s"}
+                         "correlation": "1", "spread": "rad", "steady_from": "s",
+                         "stance_height": "m", "stance_speed": "m/s", "slip": "m/s",
+                         "slip_max": "m/s"}
 """The unit of each number of :class:`~hexaleg.motion.recorded.quality.MotionQuality`."""
 
 def parse_cycle(cycle: str) -> str | tuple[float, float]:

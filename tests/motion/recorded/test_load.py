@@ -144,3 +144,35 @@ def test_a_measured_motion_gets_the_nearest_forces_and_its_residual(robot, gait_
     assert 0.0 < energy < 1.1 * _energy(robot, gait_100hz)
     with pytest.raises(InfeasibleForcesError, match=r"miss 60 % of the weight.*Likely causes"):
         hexaleg.prepare(robot, _bump(robot, gait_100hz, tmp_path, logs, 0.03))
+
+
+def test_a_log_that_starts_with_a_settle_and_a_stand_keeps_its_steady_gait(robot, gait_100hz,
+                                                                          tmp_path, logs):
+    """#38: a log as real ones start — the robot dropped 2 cm onto its feet, then standing for
+    2 s, then walking 10 cycles: the cycle finder leaves the stand out (and says from when), the
+    period, stance and energy are the walk's (within 2 % of the noise-free gait's energy)."""
+    walk = logs.noisy_log(robot, gait_100hz, cycles=10)
+    n_stand = 200
+    rng = np.random.default_rng(3)
+    stand = {}
+    for name, values in walk.items():
+        if name == "time":
+            continue
+        if name.startswith("contact_"):
+            stand[name] = np.ones(n_stand)
+        else:
+            noise = 0.0 if name.startswith("base_q") else 0.5e-3
+            stand[name] = values[0] + rng.normal(0.0, noise, n_stand)
+    t_stand = np.arange(n_stand) * 0.01
+    stand["base_z"] = stand["base_z"] + 0.02 * np.clip(1.0 - t_stand / 0.15, 0.0, 1.0) ** 2
+    cols = {"time": np.arange(n_stand + len(walk["time"])) * 0.01,
+            **{k: np.concatenate([stand[k], v]) for k, v in walk.items() if k != "time"}}
+    logs.write_csv(tmp_path / "settle.csv", cols)
+    motion = load_motion(robot, tmp_path / "settle.csv")
+    quality = motion.info["report"]
+    assert quality.steady_from == pytest.approx(2.0, abs=0.05)
+    assert any("steady from t = 2.0" in line for line in quality.lines())
+    assert quality.period == pytest.approx(1.0, abs=2e-3) and quality.cycles >= 9
+    assert np.all(np.abs(motion.stance.mean(axis=0) - gait_100hz.stance.mean(axis=0)) <= 0.05)
+    energy, truth = _energy(robot, motion), _energy(robot, gait_100hz)
+    assert abs(energy - truth) <= 0.02 * truth

@@ -24,6 +24,10 @@ from hexaleg.errors import InvalidParameterError
 
 MIN_CORRELATION = 0.5
 """Smallest normalised autocorrelation a period's peak must reach to count as a repeating gait."""
+STEADY_FACTOR = 3.0
+"""A cycle of the log is steady when it deviates from the median cycle by at most this many times
+the typical (median) cycle's deviation; the unsteady cycles at the log's start (a settle, a stand,
+a transient) are left out of the average."""
 MIN_CYCLE_SAMPLES = 10
 """Fewest rows a cycle of the log may have: below it the foot's lift-off and touch-down (a tenth
 of a cycle each) fall between samples, and the gait's harmonics above the fifth alias
@@ -142,6 +146,45 @@ def _refine(x: np.ndarray, lag: float) -> float:
     return float(fit.x)
 
 
+def _stacked(t: np.ndarray, x: np.ndarray, period: float, dt: float, start: float
+             ) -> np.ndarray:
+    """The whole cycles of ``x`` (N, n) from ``start``, each linearly interpolated onto a grid of
+    ``round(period / dt)`` phases (at least 8), shape (cycles, phases, n)."""
+    samples = max(round(period / dt), 8)
+    # the last cycle needs its last phase, a phase step before its end, inside the log
+    count = max(math.floor((t[-1] - start + period / samples) / period + 1e-6), 0)
+    phase = np.arange(samples) / samples * period
+    stacked = np.empty((count, samples, x.shape[1]))
+    for c in range(count):
+        at = start + c * period + phase
+        for j in range(x.shape[1]):
+            stacked[c, :, j] = np.interp(at, t, x[:, j])
+    return stacked
+
+
+def steady_start(t: np.ndarray, x: np.ndarray, period: float, dt: float) -> float:
+    """Where the log's steady gait begins, s: the start of its first cycle that deviates from
+    the median cycle by at most :data:`STEADY_FACTOR` times the median deviation (each column
+    standardised, rms over phases and columns), when the cycles before it do not; 0 when the
+    first cycle is steady or the log has fewer than four cycles.
+
+    Args:
+        t: Uniform times, shape (N,), s. x: The joints, shape (N, n). period: The period, s.
+        dt: The log's spacing, s.
+    """
+    stacked = _stacked(t, x, period, dt, 0.0)
+    if len(stacked) < 4:
+        return 0.0
+    scale = x.std(axis=0)
+    z = stacked[..., scale > 0] / scale[scale > 0]
+    deviation = np.sqrt(((z - np.median(z, axis=0)) ** 2).mean(axis=(1, 2)))
+    typical = max(float(np.median(deviation)), 1e-12)
+    first = 0
+    while first < len(stacked) - 2 and deviation[first] > STEADY_FACTOR * typical:
+        first += 1
+    return float(first * period)
+
+
 def average_cycles(t: np.ndarray, x: np.ndarray, period: float, dt: float, *,
                    correlation: float = 1.0, start: float = 0.0) -> Cycles:
     """The whole cycles of ``x`` from ``start`` averaged on a grid of ``round(period / dt)``
@@ -158,19 +201,12 @@ def average_cycles(t: np.ndarray, x: np.ndarray, period: float, dt: float, *,
     Raises:
         InvalidParameterError: fewer than two whole cycles from ``start``.
     """
-    samples = max(round(period / dt), 8)
-    # the last cycle needs its last phase, a phase step before its end, inside the log
-    count = math.floor((t[-1] - start + period / samples) / period + 1e-6)
-    if count < 2:
-        raise InvalidParameterError("motion log: cycles", f"{count} whole cycle(s) of "
-                                    f"{period:.4f} s in {t[-1] - t[0]:.4f} s",
+    stacked = _stacked(t, x, period, dt, start)
+    if len(stacked) < 2:
+        raise InvalidParameterError("motion log: cycles", f"{len(stacked)} whole cycle(s) of "
+                                    f"{period:.4f} s in {t[-1] - start:.4f} s",
                                     "at least two for cycle='auto'; give cycle=(t0, t1)")
-    phase = np.arange(samples) / samples * period
-    stacked = np.empty((count, samples, x.shape[1]))
-    for c in range(count):
-        at = start + c * period + phase
-        for j in range(x.shape[1]):
-            stacked[c, :, j] = np.interp(at, t, x[:, j])
+    count, samples = stacked.shape[:2]
     mean = stacked.mean(axis=0)
     spread = np.sqrt(((stacked - mean) ** 2).mean(axis=(0, 1)))
     return Cycles(period=period, start=start, count=count, samples=samples,

@@ -32,7 +32,7 @@ from hexaleg.motion.recorded.checks import (
     check_whole,
     feet_world,
 )
-from hexaleg.motion.recorded.cycle import average_cycles, find_period
+from hexaleg.motion.recorded.cycle import average_cycles, find_period, steady_start
 from hexaleg.motion.recorded.quality import MotionQuality
 from hexaleg.motion.recorded.read import BASE_POSITION, BASE_QUATERNION, BASE_VELOCITY, read_log
 from hexaleg.motion.recorded.resample import resample
@@ -57,6 +57,23 @@ def _window(t: np.ndarray, cycle: Cycle, where: str) -> tuple[str, slice]:
         raise InvalidParameterError("cycle", cycle, f"a window of at least {MIN_SAMPLES} rows of "
                                     f"the {where} (this one holds {hi - lo})")
     return "window", slice(lo, hi)
+
+
+def _period(x: np.ndarray, dt: float, where: str) -> tuple[float, float]:
+    """The period of the joints ``x`` (:func:`~hexaleg.motion.recorded.cycle.find_period`), or
+    — where the whole log does not repeat because it starts with a settle, a stand or a
+    transient — of its second half.
+
+    Raises:
+        InvalidParameterError: neither repeats (the whole log's error).
+    """
+    try:
+        return find_period(x, dt, where)
+    except InvalidParameterError as whole:
+        try:
+            return find_period(x[len(x) // 2:], dt, where)
+        except InvalidParameterError:
+            raise whole from None
 
 
 def _drift(t: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -141,15 +158,21 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
         signals.append(log.matrix(derivative_names)[span])
     x = np.concatenate(signals, axis=1)
     nj = len(joints)
+    correlation: float | None = None
+    steady = 0.0  # where the steady gait begins (a settle, a stand or a transient left out)
+    if mode == "auto":
+        period, correlation = _period(x[:, :nj], dt, where)
+        steady = steady_start(t, x[:, :nj], period, dt)
+        if steady > 0.0:  # the period of the steady part alone
+            period, correlation = find_period(x[t >= steady - 1e-9, :nj], dt, where)
+    kept = t >= steady - 1e-9
     drift = np.zeros(x.shape[1])
     if base_cols and periodic:
-        drift[nj:nj + base_cols] = _drift(t, x[:, nj:nj + base_cols])
+        drift[nj:nj + base_cols] = _drift(t[kept], x[kept, nj:nj + base_cols])
     x = x - drift * t[:, None]
-    sigma = noise_level(x[:, :nj + base_cols])
-    correlation: float | None = None
+    sigma = noise_level(x[kept, :nj + base_cols])
     if mode == "auto":
-        period, correlation = find_period(x[:, :nj], dt, where)
-        cycles = average_cycles(t, x, period, dt, correlation=correlation)
+        cycles = average_cycles(t, x, period, dt, correlation=correlation, start=steady)
         x, count = cycles.mean, cycles.count
         spread = float(cycles.spread[:nj].max())
         dt_c = period / cycles.samples
@@ -229,6 +252,7 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
         filled=int(sum(res.filled.values())), derivatives="given" if given else "smoothed",
         noise=float(sigma[:nj].max() * (math.sqrt(count))), cutoff=cutoff, window=window,
         cycle=mode, period=float(period), cycles=count, correlation=correlation, spread=spread,
+        steady_from=steady,
         stance_source=stance.source, stance_height=stance.height, stance_speed=stance.speed,
         stance_fractions=dict(zip(robot.leg_names, stance.fractions.round(4).tolist(),
                                   strict=True)),

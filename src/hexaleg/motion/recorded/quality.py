@@ -26,6 +26,8 @@ class MotionQuality:
         cycles: Whole cycles averaged (1 without averaging).
         correlation: The autocorrelation at the period (None without ``"auto"``).
         spread: Largest rms deviation of a joint's cycles from their average, rad.
+        steady_from: Where the steady gait begins in the log, s: the cycles before it (a
+            settle, a stand, a transient) are left out of the average (``"auto"``; 0 otherwise).
         stance_source: ``"contacts"`` or ``"kinematics"``.
         stance_height: The height threshold of kinematic stance, m (None from contacts).
         stance_speed: The speed threshold of kinematic stance, m/s (None from contacts).
@@ -50,6 +52,7 @@ class MotionQuality:
     cycles: int
     correlation: float | None
     spread: float
+    steady_from: float
     stance_source: str
     stance_height: float | None
     stance_speed: float | None
@@ -62,6 +65,7 @@ class MotionQuality:
     def to_dict(self) -> dict[str, Any]:
         """The report as plain JSON-ready values (``{value, unit}`` for quantities)."""
         units = {"rate": "Hz", "noise": "rad", "cutoff": "Hz", "period": "s", "spread": "rad",
+                 "steady_from": "s",
                  "stance_height": "m", "stance_speed": "m/s", "slip": "m/s",
                  "slip_max": "m/s"}
         out: dict[str, Any] = {}
@@ -78,8 +82,10 @@ class MotionQuality:
         smoothing = ("derivatives as logged" if self.cutoff is None else
                      f"Savitzky–Golay order 4, window {self.window}, cut-off "
                      f"{self.cutoff:.2f} Hz")
+        steady = (f"; steady from t = {self.steady_from:.3f} s, the log before it left out"
+                  if self.steady_from > 0 else "")
         cycles = (f"period {self.period:.4f} s from {self.cycles} cycles (correlation "
-                  f"{self.correlation:.3f}, spread {self.spread:.2e} rad)"
+                  f"{self.correlation:.3f}, spread {self.spread:.2e} rad{steady})"
                   if self.cycle == "auto" else f"{self.cycle}: {self.period:.4f} s")
         thresholds = ("" if self.stance_height is None else
                       f" (height < {self.stance_height * 1e3:.2f} mm, speed < "
