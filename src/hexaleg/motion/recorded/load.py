@@ -160,11 +160,13 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
     nj = len(joints)
     correlation: float | None = None
     steady = 0.0  # where the steady gait begins (a settle, a stand or a transient left out)
+    found = 1.0  # the autocorrelation at the period
     if mode == "auto":
-        period, correlation = _period(x[:, :nj], dt, where)
+        period, found = _period(x[:, :nj], dt, where)
         steady = steady_start(t, x[:, :nj], period, dt)
         if steady > 0.0:  # the period of the steady part alone
-            period, correlation = find_period(x[t >= steady - 1e-9, :nj], dt, where)
+            period, found = find_period(x[t >= steady - 1e-9, :nj], dt, where)
+        correlation = found
     kept = t >= steady - 1e-9
     drift = np.zeros(x.shape[1])
     if base_cols and periodic:
@@ -172,7 +174,7 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
     x = x - drift * t[:, None]
     sigma = noise_level(x[kept, :nj + base_cols])
     if mode == "auto":
-        cycles = average_cycles(t, x, period, dt, correlation=correlation, start=steady)
+        cycles = average_cycles(t, x, period, dt, correlation=found, start=steady)
         x, count = cycles.mean, cycles.count
         spread = float(cycles.spread[:nj].max())
         dt_c = period / cycles.samples
