@@ -53,12 +53,18 @@ def _numbers_have_units(tree: object) -> None:
 
 
 def test_design_on_the_log_equals_the_design_on_the_generated_gait(log: Path, tmp_path: Path,
-        capsys: pytest.CaptureFixture[str]) -> None:
+        capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> None:
+    from hexaleg.scenario import logged
+
+    reads: list[str] = []
+    read = logged.load_motion
+    monkeypatch.setattr(logged, "load_motion", lambda *a, **k: reads.append(a[1]) or read(*a, **k))
     toml = "[design]\nfamilies = " + json.dumps(FAMILIES) + "\npareto_fractions = [0.5]\n"
     config = _config(tmp_path / "c.toml", toml)
     out = tmp_path / "design"
     assert main(["design", "--config", config, "--motion", str(log), "--cycle", "whole",
                  "--out", str(out)]) == 0
+    assert [str(r) for r in reads] == [str(log)]  # read once: the run's reading is the design's
     printed = capsys.readouterr().out
     assert "motion: log" in printed and "robustness maps and the robust design are left out" \
         not in printed  # the note is in design.json, the summary says it briefly

@@ -31,7 +31,7 @@ def test_the_design_run_has_the_warnings_of_its_gait(tmp_path):
     expected = run_warnings(robot, hexaleg.gait(robot, gait), desc.actuator(robot),
                             desc=desc, gait=gait)
     assert any(w.startswith("joint_speed") for w in expected)
-    result = types.SimpleNamespace(config=cfg, gait=cfg.nominal_gait)  # what it reads
+    result = types.SimpleNamespace(config=cfg, gait=cfg.nominal_gait, motion=None)  # read
     assert design_warnings(result) == expected  # type: ignore[arg-type]
 
 

@@ -100,10 +100,8 @@ def design_warnings(r: DesignResult) -> tuple[str, ...]:
     cfg = r.config
     run = cfg.design.run(cfg.robot, cfg.contact)
     robot = run.load()
-    if cfg.motion is not None:
-        from hexaleg.scenario.logged import logged_motion
-
-        return run_warnings(robot, logged_motion(robot, cfg.motion, cfg.cycle), run.actuator())
+    if r.motion is not None:  # the logged cycle the design was made on, as the chain read it
+        return run_warnings(robot, r.motion, run.actuator())
     return run_warnings(robot, make_gait(robot, r.gait), run.actuator(),
                         desc=run.description(), gait=r.gait)
 

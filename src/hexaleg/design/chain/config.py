@@ -29,6 +29,7 @@ from hexaleg.motion.limits import MIN_SAMPLES
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.patterns import PATTERNS
 from hexaleg.motion.scaling import robot_gait
+from hexaleg.motion.trajectory import Motion
 from hexaleg.scenario.scenario import TABLES as RUN_TABLES
 from hexaleg.scenario.scenario import Scenario
 from hexaleg.simulation.controllers import CONTROLLERS
@@ -252,6 +253,8 @@ class DesignConfig:
             :func:`hexaleg.load_motion`; ``[design] samples`` and the gait do not apply), or None.
         cycle: Which part of the log is the cycle (``"auto"``, ``"whole"``, ``"T0:T1"``:
             :func:`hexaleg.scenario.logged.logged_motion`).
+        logged: The log's cycle as the run already read it (:attr:`Scenario.motion
+            <hexaleg.scenario.scenario.Scenario.motion>`), or None: the chain reads ``motion``.
     """
 
     robot: str = "hexaleg"
@@ -260,6 +263,7 @@ class DesignConfig:
     design: DesignParams = field(default_factory=DesignParams)
     motion: str | None = None
     cycle: str = "auto"
+    logged: Motion | None = field(default=None, compare=False, repr=False)
 
     @classmethod
     def from_scenario(cls, scenario: Scenario, controller: str | None = None, *,
@@ -282,7 +286,7 @@ class DesignConfig:
         if design is None:
             design = from_mapping(DesignParams, table, f"{s.where} [design]")
         cfg = cls(robot=s.robot, gait=dataclasses.replace(s.gait, samples=design.samples),
-                  contact=s.contact, design=design, motion=s.log, cycle=s.cycle)
+                  contact=s.contact, design=design, motion=s.log, cycle=s.cycle, logged=s.motion)
         return cfg.with_controller(controller) if controller else cfg
 
     @classmethod

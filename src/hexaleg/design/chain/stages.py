@@ -135,10 +135,11 @@ def nominal(cfg: DesignConfig) -> Nominal:
     for kind in d.max_outer_diameter:  # a typo would be ignored and the springs come out larger
         one_of("[design] max_outer_diameter joint class", kind, robot.joint_kinds)
     motion = None
-    if cfg.motion is not None:
+    if cfg.motion is not None:  # the run's reading of the log, else read here
         from hexaleg.scenario.logged import logged_motion
 
-        motion = logged_motion(robot, cfg.motion, cfg.cycle)
+        motion = (cfg.logged if cfg.logged is not None
+                  else logged_motion(robot, cfg.motion, cfg.cycle))
         gait = dataclasses.replace(gait, samples=motion.n_samples, period=motion.period)
         prepared = prepare(robot, motion, motor=run.actuator(), contact=run.contact)
     else:
