@@ -19,12 +19,6 @@ from hexaleg.motion.recorded.quality import MotionQuality
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 
-UNITS: dict[str, str] = {"rows": "rows", "rate": "Hz", "filled": "values", "noise": "rad",
-                         "cutoff": "Hz", "window": "samples", "period": "s", "cycles": "cycles",
-                         "correlation": "1", "spread": "rad", "steady_from": "s",
-                         "stance_height": "m", "stance_speed": "m/s", "slip": "m/s",
-                         "slip_max": "m/s"}
-"""The unit of each number of :class:`~hexaleg.motion.recorded.quality.MotionQuality`."""
 
 def parse_cycle(cycle: str) -> str | tuple[float, float]:
     """``--cycle``: ``"auto"``, ``"whole"`` or ``"T0:T1"`` (s) as :func:`hexaleg.load_motion`'s
@@ -84,20 +78,8 @@ def motion_quality(motion: Motion) -> MotionQuality:
 
 
 def quality_data(motion: Motion) -> dict[str, Any]:
-    """``motion_quality`` of the JSON files: every number ``{value, unit}`` (stance fractions
-    per leg as fractions of the samples, ``"1"``); None stays None; strings and flags as they
-    are."""
-    out: dict[str, Any] = {}
-    for key, value in motion_quality(motion).to_dict().items():
-        if isinstance(value, dict) and "unit" in value:
-            value = value["value"]
-        if key == "stance_fractions":
-            out[key] = {leg: {"value": float(f), "unit": "1"} for leg, f in value.items()}
-        elif key in UNITS:
-            out[key] = None if value is None else {"value": value, "unit": UNITS[key]}
-        else:
-            out[key] = value
-    return out
+    """``motion_quality`` of the JSON files (:meth:`MotionQuality.to_dict`)."""
+    return motion_quality(motion).to_dict()
 
 
 def quality_note(motion: Motion) -> str:
@@ -110,5 +92,5 @@ def quality_note(motion: Motion) -> str:
             f"stance-foot slip rms {q.slip:.4f} m/s")
 
 
-__all__ = ["UNITS", "logged_motion", "motion_quality", "parse_cycle", "quality_data",
+__all__ = ["logged_motion", "motion_quality", "parse_cycle", "quality_data",
            "quality_note", "refuse_gait_table"]

@@ -186,6 +186,7 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
     tc = np.arange(n) * dt_c
 
     # Smoothed joints and base pose (or the derivatives as logged).
+    position_cutoff = attitude_cutoff = None  # the logged base pose's (the joints': cutoff)
     if given:
         cutoff = window = None
         d0 = nj + base_cols + (len(legs) if use_contacts else 0)
@@ -193,15 +194,25 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
         q_j, v_all, a_all = x[:, :nj], x[:, d0:d0 + nv], x[:, d0 + nv:d0 + 2 * nv]
         pose_s = x[:, nj:nj + base_cols] + drift[nj:nj + base_cols] * tc[:, None]
         dpose = ddpose = None
-    else:
-        f_c = cutoff_frequency(x[:, :nj + base_cols], dt_c, sigma, periodic=periodic)
-        sm = smooth(x[:, :nj + base_cols], dt_c, f_c, periodic=periodic)
-        cutoff, window = sm.cutoff, sm.window
-        q_j, v_all, a_all = sm.x[:, :nj], np.zeros((n, 6 + nj)), np.zeros((n, 6 + nj))
-        v_all[:, 6:], a_all[:, 6:] = sm.xd[:, :nj], sm.xdd[:, :nj]
-        pose_s = sm.x[:, nj:] + drift[nj:nj + base_cols] * tc[:, None]
-        dpose = sm.xd[:, nj:] + drift[nj:nj + base_cols]
-        ddpose = sm.xdd[:, nj:]
+    else:  # each group its own cut-off from its own noise: joints, base position, attitude
+        groups = [slice(0, nj)] + ([slice(nj, nj + 3), slice(nj + 3, nj + 6)] if base_cols
+                                   else [])
+        parts = [smooth(x[:, g], dt_c, cutoff_frequency(x[:, g], dt_c, sigma[g],
+                                                          periodic=periodic), periodic=periodic)
+                 for g in groups]
+        cutoff, window = parts[0].cutoff, parts[0].window
+        if has_base:
+            position_cutoff = parts[1].cutoff
+        if has_quat:
+            attitude_cutoff = parts[2].cutoff
+        q_j, v_all, a_all = parts[0].x, np.zeros((n, 6 + nj)), np.zeros((n, 6 + nj))
+        v_all[:, 6:], a_all[:, 6:] = parts[0].xd, parts[0].xdd
+        pose_s = np.zeros((n, 0))
+        dpose = ddpose = np.zeros((n, 0))
+        if base_cols:
+            pose_s = np.hstack([p.x for p in parts[1:]]) + drift[nj:nj + base_cols] * tc[:, None]
+            dpose = np.hstack([p.xd for p in parts[1:]]) + drift[nj:nj + base_cols]
+            ddpose = np.hstack([p.xdd for p in parts[1:]])
     contact = x[:, nj + base_cols:nj + base_cols + len(legs)] if use_contacts else None
 
     q = np.zeros((n, robot.model.nq))
@@ -214,12 +225,15 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
         stance = _stance.from_contacts(contact)
     elif not has_base:  # stance in the base frame (turned by the IMU's roll and pitch)
         com_b = centre_of_mass(robot, q_j, None)
-        level, com_l = feet_b, com_b
+        level, com_l, tilt_noise = feet_b, com_b, 0.0
         if stance_rot is not None:
             level = np.einsum("tij,tlj->tli", stance_rot, feet_b)
             com_l = np.einsum("tij,tj->ti", stance_rot, com_b)
+            # the IMU's roll and pitch noise moves a foot's height by its lever arm
+            reach = float(np.median(np.linalg.norm(feet_b[..., :2], axis=2)))
+            tilt_noise = float(np.hypot(sigma[nj + 3], sigma[nj + 4])) * reach
         stance = _stance.detect(level, _velocity(level, dt_c, periodic), com_l,
-                                periodic=periodic)
+                                periodic=periodic, noise_height=tilt_noise)
     base_source = "log"
     if not has_base:
         odo = _base.leg_odometry(feet_b, stance.stance, dt_c, periodic=periodic,
@@ -241,7 +255,8 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
     feet = feet_world(robot, q_j, q[:, :7])
     if contact is None and has_base:
         stance = _stance.detect(feet, _velocity(feet, dt_c, False),
-                                centre_of_mass(robot, q_j, q[:, :7]), periodic=periodic)
+                                centre_of_mass(robot, q_j, q[:, :7]), periodic=periodic,
+                                noise_height=float(sigma[nj + 2]))  # the base's z noise
     caught += check_stance(robot, stance.stance, tc, where)
     if has_base:
         check_ground(robot, feet, tc, where)
@@ -253,11 +268,14 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
         path=str(path), rows=rows, rate=1.0 / dt, resampled=res.resampled,
         filled=int(sum(res.filled.values())), derivatives="given" if given else "smoothed",
         noise=float(sigma[:nj].max() * (math.sqrt(count))), cutoff=cutoff, window=window,
+        position_cutoff=position_cutoff, attitude_cutoff=attitude_cutoff,
         cycle=mode, period=float(period), cycles=count, correlation=correlation, spread=spread,
         steady_from=steady,
         stance_source=stance.source, stance_height=stance.height, stance_speed=stance.speed,
         stance_fractions=dict(zip(robot.leg_names, stance.fractions.round(4).tolist(),
                                   strict=True)),
+        touch_fractions=dict(zip(robot.leg_names, stance.touch_fractions.round(4).tolist(),
+                                 strict=True)),
         base_source=base_source, slip=slip,
         slip_max=float(world_speed.max()) if world_speed.size else 0.0, warnings=tuple(caught))
     travel = (q[-1, :2] - q[0, :2]) * (n / max(n - 1, 1) if periodic else 1.0)

@@ -6,6 +6,14 @@ import dataclasses
 from dataclasses import dataclass
 from typing import Any
 
+UNITS: dict[str, str] = {"rows": "rows", "rate": "Hz", "filled": "values", "noise": "rad",
+                         "cutoff": "Hz", "position_cutoff": "Hz", "attitude_cutoff": "Hz",
+                         "window": "samples",
+                         "period": "s", "cycles": "cycles", "correlation": "1", "spread": "rad",
+                         "steady_from": "s", "stance_height": "m", "stance_speed": "m/s",
+                         "slip": "m/s", "slip_max": "m/s"}
+"""The unit of each number of :class:`MotionQuality`."""
+
 
 @dataclass(frozen=True)
 class MotionQuality:
@@ -21,6 +29,10 @@ class MotionQuality:
         noise: Largest joint noise level σ (third differences), rad.
         cutoff: The smoothing filter's cut-off, Hz (None for given derivatives).
         window: The Savitzky–Golay window, samples (None for given derivatives).
+        position_cutoff, attitude_cutoff: The logged base position's and attitude's cut-offs,
+            Hz, each from its own noise (a motion-capture base is noisier for its signal than
+            the joints' encoders). None for given derivatives or without the logged quantity
+            (a base from leg odometry is smoothed at the joints' cut-off).
         cycle: ``"auto"``, ``"whole"`` or ``"window"``.
         period: The motion's period (or duration), s.
         cycles: Whole cycles averaged (1 without averaging).
@@ -31,7 +43,11 @@ class MotionQuality:
         stance_source: ``"contacts"`` or ``"kinematics"``.
         stance_height: The height threshold of kinematic stance, m (None from contacts).
         stance_speed: The speed threshold of kinematic stance, m/s (None from contacts).
-        stance_fractions: Leg → fraction of the samples in stance.
+        stance_fractions: Leg → fraction of the samples in stance (carrying load: what the
+            contact forces use).
+        touch_fractions: Leg → fraction of the samples the foot touches the ground (the
+            kinematic contact: low and still, with the gentle edges of a touch-down and a
+            lift-off where it carries little; the stance's own from contact columns).
         base_source: ``"log"``, ``"leg odometry"`` or ``"leg odometry + IMU orientation"``.
         slip: Rms speed of the stance feet in the world (their slip), m/s.
         slip_max: Its largest value at one sample, m/s.
@@ -47,6 +63,8 @@ class MotionQuality:
     noise: float
     cutoff: float | None
     window: int | None
+    position_cutoff: float | None
+    attitude_cutoff: float | None
     cycle: str
     period: float
     cycles: int
@@ -57,31 +75,39 @@ class MotionQuality:
     stance_height: float | None
     stance_speed: float | None
     stance_fractions: dict[str, float]
+    touch_fractions: dict[str, float]
     base_source: str
     slip: float
     slip_max: float
     warnings: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
-        """The report as plain JSON-ready values (``{value, unit}`` for quantities)."""
-        units = {"rate": "Hz", "noise": "rad", "cutoff": "Hz", "period": "s", "spread": "rad",
-                 "steady_from": "s",
-                 "stance_height": "m", "stance_speed": "m/s", "slip": "m/s",
-                 "slip_max": "m/s"}
+        """The report as JSON-ready values (``motion_quality`` of the JSON files): every number
+        ``{value, unit}`` (:data:`UNITS`; stance fractions per leg, unit ``"1"``), None stays
+        None, strings and flags as they are."""
         out: dict[str, Any] = {}
         for f in dataclasses.fields(self):
             value = getattr(self, f.name)
-            if isinstance(value, tuple):
+            if f.name in ("stance_fractions", "touch_fractions"):
+                value = {leg: {"value": float(v), "unit": "1"} for leg, v in value.items()}
+            elif isinstance(value, tuple):
                 value = list(value)
-            out[f.name] = {"value": value, "unit": units[f.name]} if f.name in units else value
+            elif f.name in UNITS and value is not None:
+                value = {"value": value, "unit": UNITS[f.name]}
+            out[f.name] = value
         return out
 
     def lines(self) -> list[str]:
         """The report as text lines for a terminal."""
         fractions = " ".join(f"{k} {v:.2f}" for k, v in self.stance_fractions.items())
+        touch = " ".join(f"{k} {v:.2f}" for k, v in self.touch_fractions.items())
         smoothing = ("derivatives as logged" if self.cutoff is None else
                      f"Savitzky–Golay order 4, window {self.window}, cut-off "
                      f"{self.cutoff:.2f} Hz")
+        base = [f"base {name} {value:.2f} Hz" for name, value in
+                (("position", self.position_cutoff), ("attitude", self.attitude_cutoff))
+                if value is not None]
+        smoothing += f" ({', '.join(base)})" if base else ""
         steady = (f"; steady from t = {self.steady_from:.3f} s, the log before it left out"
                   if self.steady_from > 0 else "")
         cycles = (f"period {self.period:.4f} s from {self.cycles} cycles (correlation "
@@ -94,7 +120,8 @@ class MotionQuality:
                 f"{', resampled' if self.resampled else ''}, {self.filled} values filled",
                 f"noise {self.noise:.2e} rad; {smoothing}",
                 f"cycle {cycles}",
-                f"stance from {self.stance_source}{thresholds}: {fractions}",
+                f"stance from {self.stance_source}{thresholds}: {fractions}" + (
+                    "" if touch == fractions else f"; touching the ground {touch}"),
                 f"base from {self.base_source}; stance-foot slip rms {self.slip:.4f} m/s, "
                 f"max {self.slip_max:.4f} m/s",
                 *(f"warning: {w}" for w in self.warnings)]

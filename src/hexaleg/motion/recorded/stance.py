@@ -62,17 +62,27 @@ class Stance:
         source: ``"contacts"`` (the log's contact columns) or ``"kinematics"``.
         height: The height threshold h_c, m (None from contacts).
         speed: The speed threshold v_c, m/s (None from contacts).
+        touch: Feet on the ground, carrying load or not, shape (T, n_legs), bool: step 1's low
+            and still feet (kinematics; a superset of ``stance`` by the edge bands step 2 lifts,
+            where a gentle foot touches before it takes its share and after it gave it up); the
+            stance itself from contacts.
     """
 
     stance: np.ndarray
     source: str
     height: float | None = None
     speed: float | None = None
+    touch: np.ndarray | None = None
 
     @property
     def fractions(self) -> np.ndarray:
         """Fraction of the samples each foot is in stance, shape (n_legs,)."""
         return self.stance.mean(axis=0)
+
+    @property
+    def touch_fractions(self) -> np.ndarray:
+        """Fraction of the samples each foot touches the ground, shape (n_legs,)."""
+        return (self.stance if self.touch is None else self.touch).mean(axis=0)
 
 
 def from_contacts(contacts: np.ndarray) -> Stance:
@@ -113,11 +123,13 @@ def detect(feet: np.ndarray, feet_velocity: np.ndarray, com: np.ndarray, *,
     v_c = max(SNR * noise_speed, FRACTION * float(np.percentile(speed, 98)), 1e-9)
     stance = _fill_short_runs(low & (speed < v_c), max(2, round(MIN_RUN * len(feet))))
     depth = _edge_bands(stance, height, h_c, periodic)
+    touch = stance.copy()
     stance = _needed(stance, depth, feet, com)
     lost = ~stance.any(axis=1)  # no foot still: the low feet carry the robot, or the lowest
     stance[lost] = low[lost]
     stance[lost & ~low.any(axis=1), np.argmin(height[lost & ~low.any(axis=1)], axis=1)] = True
-    return Stance(stance=stance, source="kinematics", height=h_c, speed=v_c)
+    return Stance(stance=stance, source="kinematics", height=h_c, speed=v_c,
+                  touch=touch | stance)
 
 
 def _runs(flags: np.ndarray, periodic: bool) -> list[tuple[int, int]]:
