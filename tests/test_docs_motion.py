@@ -129,3 +129,8 @@ def test_the_page_names_the_parts_and_the_simulation(run: dict) -> None:
     assert m is not None, line
     assert (f"predicted saving {m[1]} %, simulated {m[2]} %, {m[3]} mm per cycle of the {m[4]} "
             "mm the log walked") in page
+
+
+def test_the_page_quotes_the_kept_log_of_the_simulated_walk() -> None:
+    kept = (ROOT / "analysis" / "logs" / "logged_hexaleg.log").read_text(encoding="utf-8")
+    assert _block("## Checked on a log no one here wrote") == kept
