@@ -208,7 +208,7 @@ def walk_log(robot: Robot, motion: Motion, motor: Any = None, *, rate: float = 1
     for j, name in enumerate(robot.joint_names):
         angle = q[:, 7 + j] + rng.normal(0.0, sensors.joint_noise, k)
         cols[name] = np.round(angle / sensors.tick) * sensors.tick if sensors.tick else angle
-    return WalkLog(robot=robot.name, joints=tuple(robot.joint_names), columns=cols, electrical=energies["electrical"],
-                   metrics=energies,
+    return WalkLog(robot=robot.name, joints=tuple(robot.joint_names), columns=cols,
+                   electrical=energies["electrical"], metrics=energies,
                    touch=dict(zip(robot.leg_names, down.mean(axis=0).tolist(), strict=True)),
                    walk_from=standing * dt, evaluated_from=window.start * dt)
