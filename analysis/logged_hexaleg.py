@@ -6,8 +6,9 @@ The default tripod gait (AX-18A servos, feedforward + PD) simulated in MuJoCo af
 and a 1 s stand, then 10 cycles (:func:`hexaleg.simulation.walk_log.walk_log`), logged at 100 Hz
 and at 500 Hz (joints in degrees) through a sensor model: encoders quantised to a Dynamixel tick
 (0.29°) after noise of half a tick, a motion-capture base with 0.5 mm noise, an IMU attitude
-with 0.2° noise; no contact columns. Each log is read three ways — full pose + joints, joints +
-IMU quaternion, joints alone — by ``hexaleg.load_motion`` (cycle found and averaged from the
+with 0.2° noise. Each log is read four ways — full pose + joints, joints +
+IMU quaternion, joints alone, and the pose with contact switches (``contact_<LEG>``: the
+simulated contact force non-zero) — by ``hexaleg.load_motion`` (cycle found and averaged from the
 steady part; stance from the feet's kinematics; base from the log or leg odometry), and the
 electrical energy per cycle of the read motion (minimum-Joule forces, no springs) is set beside
 the simulation's own over its last 6 cycles (issue #38: within 4 % with the pose, 6 % with
@@ -30,7 +31,7 @@ import hexaleg
 from hexaleg.simulation.walk_log import walk_log
 
 READS = {"pose + joints": ("joints", "base", "imu"), "joints + IMU": ("joints", "imu"),
-         "joints alone": ("joints",)}
+         "joints alone": ("joints",), "+ contacts": ("joints", "base", "imu", "contacts")}
 
 
 def main() -> None:

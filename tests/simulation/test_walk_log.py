@@ -65,6 +65,13 @@ def test_the_log_reads_back_in_degrees_and_parts(robot, exact, tmp_path):
     np.testing.assert_allclose(log.matrix(list(robot.joint_names)),
                                np.stack([exact.columns[j] for j in robot.joint_names], 1),
                                rtol=1e-8, atol=1e-9)
+    switches = read_log(robot, exact.write(tmp_path / "c.csv", ("joints", "contacts")))
+    for leg, touch in exact.touch.items():  # the switches over the evaluated cycles
+        column = switches.matrix([f"contact_{leg}"])[:, 0]
+        assert set(np.unique(column)) == {0.0, 1.0}
+        t = switches.t
+        evaluated = (t >= exact.evaluated_from) & (t < t[-1] + 1e-9)
+        assert column[evaluated].mean() == pytest.approx(touch, abs=0.02)
     with pytest.raises(InvalidParameterError, match="parts"):
         exact.write(tmp_path / "x.csv", ("base",))
     with pytest.raises(InvalidParameterError, match="lidar"):

@@ -8,7 +8,7 @@ pose, then walks the gait for ``cycles`` cycles under the feedforward servo
 real log starts with. The simulated state is sampled at ``rate`` and passed through a sensor
 model (:class:`Sensors`): joint encoders quantised to a tick after Gaussian noise, a
 motion-capture base position with Gaussian noise, an IMU attitude turned by a small Gaussian
-rotation. No contact columns: a log without foot sensors.
+rotation; optionally contact switches (``contact_<LEG>``: the foot's contact force non-zero).
 
 What the log must give back (:class:`WalkLog`): the simulated electrical energy per cycle over
 the last ``evaluate`` cycles (:func:`hexaleg.simulation.measures.cycle_energies`, the
@@ -41,9 +41,9 @@ from hexaleg.simulation.run import Settings, automatic_timestep, cycle_timestep
 
 DYNAMIXEL_TICK = math.radians(300.0) / 1024
 """A Dynamixel AX/MX position tick, rad (300° over 1024 counts: ROBOTIS AX-12A e-Manual)."""
-PARTS: tuple[str, ...] = ("joints", "base", "imu")
+PARTS: tuple[str, ...] = ("joints", "base", "imu", "contacts")
 """What a log may hold: the joint encoders, the base position (motion capture), the IMU's
-attitude quaternion."""
+attitude quaternion, the feet's contact switches."""
 
 
 @dataclass(frozen=True)
@@ -79,7 +79,8 @@ class WalkLog:
         robot: The robot's name.
         joints: Its actuated joints (their columns), hexaleg's order.
         columns: Log column → values, shape (K,) each, SI (:mod:`hexaleg.motion.recorded.read`
-            names: ``time``, the base position and quaternion x, y, z, w, one column per joint).
+            names: ``time``, the base position and quaternion x, y, z, w, one column per joint,
+            ``contact_<LEG>`` 0/1).
         electrical: Simulated electrical energy per cycle over the evaluated cycles, J.
         metrics: All of :func:`hexaleg.dynamics.energy.metrics`' totals per cycle (J, N·m).
         touch: Leg → fraction of the evaluated cycles its foot touches the ground.
@@ -96,13 +97,13 @@ class WalkLog:
     walk_from: float
     evaluated_from: float
 
-    def write(self, path: str | Path, parts: tuple[str, ...] = PARTS, *,
+    def write(self, path: str | Path, parts: tuple[str, ...] = ("joints", "base", "imu"), *,
               degrees: bool = False) -> Path:
         """Write the log as CSV (a header row of names, one row a sample).
 
         Args:
             path: The ``.csv`` file.
-            parts: Which of :data:`PARTS` it holds (always the joints).
+            parts: Which of :data:`PARTS` it holds (always the joints; by default no contacts).
             degrees: Joint angles in degrees (``name [deg]`` headers).
 
         Raises:
@@ -114,7 +115,9 @@ class WalkLog:
         if "joints" not in parts:
             raise InvalidParameterError("parts", parts, "the joints and optionally base, imu")
         names = ["time", *(BASE_POSITION if "base" in parts else ()),
-                 *(BASE_QUATERNION if "imu" in parts else ()), *self.joints]
+                 *(BASE_QUATERNION if "imu" in parts else ()), *self.joints,
+                 *(name for name in self.columns if name.startswith("contact_")
+                   and "contacts" in parts)]
         scale = {name: (180.0 / math.pi if degrees and name in self.joints else 1.0)
                  for name in names}
         header = [f"{name} [deg]" if scale[name] != 1.0 else name for name in names]
@@ -197,6 +200,8 @@ def walk_log(robot: Robot, motion: Motion, motor: Any = None, *, rate: float = 1
     evaluated = np.arange(window.start, window.stop)
     down = np.array([np.linalg.norm(measures.contact_forces(sim, data), axis=-1) > 0.0
                      for data in measures.forward_states(sim, traj, evaluated)])
+    switches = np.array([np.linalg.norm(measures.contact_forces(sim, data), axis=-1) > 0.0
+                         for data in measures.forward_states(sim, traj, rows)])
     rng = np.random.default_rng(sensors.seed)
     k = len(rows)
     cols: dict[str, np.ndarray] = {"time": traj.t[rows]}
@@ -208,6 +213,8 @@ def walk_log(robot: Robot, motion: Motion, motor: Any = None, *, rate: float = 1
     for j, name in enumerate(robot.joint_names):
         angle = q[:, 7 + j] + rng.normal(0.0, sensors.joint_noise, k)
         cols[name] = np.round(angle / sensors.tick) * sensors.tick if sensors.tick else angle
+    for i, leg in enumerate(robot.leg_names):
+        cols[f"contact_{leg}"] = switches[:, i].astype(float)
     return WalkLog(robot=robot.name, joints=tuple(robot.joint_names), columns=cols,
                    electrical=energies["electrical"], metrics=energies,
                    touch=dict(zip(robot.leg_names, down.mean(axis=0).tolist(), strict=True)),

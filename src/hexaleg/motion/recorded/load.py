@@ -218,22 +218,28 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
     q = np.zeros((n, robot.model.nq))
     q[:, 7:] = q_j
     feet_b = feet_world(robot, q_j, None)
-    stance_rot = None
-    if has_quat:
-        stance_rot = _base.rotation_from_euler(pose_s[:, 3:6])
-    if contact is not None:
-        stance = _stance.from_contacts(contact)
-    elif not has_base:  # stance in the base frame (turned by the IMU's roll and pitch)
-        com_b = centre_of_mass(robot, q_j, None)
-        level, com_l, tilt_noise = feet_b, com_b, 0.0
+    stance_rot = _base.rotation_from_euler(pose_s[:, 3:6]) if has_quat else None
+    if has_base:  # the feet over the logged ground: its z noise moves their heights
+        if not has_quat:
+            pose_s[:, 3:] = 0.0
+        q[:, :3] = pose_s[:, :3]
+        q[:, 3:7] = _base.quaternion_from_euler(pose_s[:, 3:6])
+        level, com_l = feet_world(robot, q_j, q[:, :7]), centre_of_mass(robot, q_j, q[:, :7])
+        height_noise = float(sigma[nj + 2])
+    else:  # in the base frame, turned by the IMU's roll and pitch
+        level, com_l, height_noise = feet_b, centre_of_mass(robot, q_j, None), 0.0
         if stance_rot is not None:
             level = np.einsum("tij,tlj->tli", stance_rot, feet_b)
-            com_l = np.einsum("tij,tj->ti", stance_rot, com_b)
+            com_l = np.einsum("tij,tj->ti", stance_rot, com_l)
             # the IMU's roll and pitch noise moves a foot's height by its lever arm
             reach = float(np.median(np.linalg.norm(feet_b[..., :2], axis=2)))
-            tilt_noise = float(np.hypot(sigma[nj + 3], sigma[nj + 4])) * reach
-        stance = _stance.detect(level, _velocity(level, dt_c, periodic), com_l,
-                                periodic=periodic, noise_height=tilt_noise)
+            height_noise = float(np.hypot(sigma[nj + 3], sigma[nj + 4])) * reach
+    if contact is not None:
+        stance = _stance.from_contacts(contact, level, com_l, periodic=periodic,
+                                       noise_height=height_noise)
+    else:  # world feet walk on: their velocity is not periodic
+        stance = _stance.detect(level, _velocity(level, dt_c, periodic and not has_base), com_l,
+                                periodic=periodic, noise_height=height_noise)
     base_source = "log"
     if not has_base:
         odo = _base.leg_odometry(feet_b, stance.stance, dt_c, periodic=periodic,
@@ -245,18 +251,12 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
         sm_b = smooth(residual, dt_c, cutoff or 0.5 / dt_c, periodic=periodic)
         pose_s = sm_b.x + drift_o * tc[:, None]
         dpose, ddpose = sm_b.xd + drift_o, sm_b.xdd
-    elif pose_s.shape[1] and not has_quat:
-        pose_s[:, 3:] = 0.0
-    q[:, :3] = pose_s[:, :3]
-    q[:, 3:7] = _base.quaternion_from_euler(pose_s[:, 3:6])
+        q[:, :3] = pose_s[:, :3]
+        q[:, 3:7] = _base.quaternion_from_euler(pose_s[:, 3:6])
     if dpose is not None and ddpose is not None:
         v_all[:, :6], a_all[:, :6] = _base.twist(pose_s[:, 3:6], dpose[:, 3:6], ddpose[:, 3:6],
                                                  dpose[:, :3], ddpose[:, :3])
     feet = feet_world(robot, q_j, q[:, :7])
-    if contact is None and has_base:
-        stance = _stance.detect(feet, _velocity(feet, dt_c, False),
-                                centre_of_mass(robot, q_j, q[:, :7]), periodic=periodic,
-                                noise_height=float(sigma[nj + 2]))  # the base's z noise
     caught += check_stance(robot, stance.stance, tc, where)
     if has_base:
         check_ground(robot, feet, tc, where)
