@@ -7,11 +7,16 @@ of the cycle."""
 
 from __future__ import annotations
 
+import dataclasses
 import warnings
 
+import numpy as np
 import pytest
+from scipy.spatial.transform import Rotation
 
 import hexaleg
+from hexaleg.errors import HexalegWarning, InvalidParameterError
+from hexaleg.motion.recorded.read import BASE_QUATERNION
 from hexaleg.simulation.walk_log import walk_log
 
 BOUNDS = {("joints", "base", "imu"): 0.04, ("joints", "imu"): 0.06, ("joints",): 0.06,
@@ -51,3 +56,32 @@ def test_a_simulated_walk_log_gives_its_energy_stance_and_steady_cycle(robot, wa
     for leg, simulated in walk.touch.items():
         assert report.touch_fractions[leg] == pytest.approx(simulated, abs=0.05)
         assert report.stance_fractions[leg] == pytest.approx(0.5, abs=0.05)  # the duty factor
+
+
+@pytest.mark.parametrize("parts", [("joints", "imu"), ("joints", "base", "imu")],
+                         ids=["imu", "pose"])
+def test_an_imu_mounted_tilted_is_named(robot, walk, parts, tmp_path):
+    """The logged attitude against the ground the stance feet define: the walk's own agrees;
+    the same IMU turned 10° about the body's x (a sensor frame that is not the base's) is
+    named with its tilt."""
+    ok = walk.write(tmp_path / "ok.csv", parts)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        hexaleg.load_motion(robot, ok)
+    assert not any("tilts the ground" in str(w.message) for w in caught)
+    turned = dataclasses.replace(walk, columns=dict(walk.columns))
+    q = np.stack([walk.columns[c] for c in BASE_QUATERNION], axis=1)
+    half = np.radians(10.0) / 2
+    offset = np.array([np.sin(half), 0.0, 0.0, np.cos(half)])  # x, y, z, w
+    r = Rotation.from_quat(q) * Rotation.from_quat(offset)
+    for i, c in enumerate(BASE_QUATERNION):
+        turned.columns[c] = r.as_quat()[:, i]
+    tilted = turned.write(tmp_path / "turned.csv", parts)
+    with pytest.warns(HexalegWarning, match=r"tilts the ground the stance feet define "
+                      r"by (9\.\d|10\.\d)°.*IMU's frame"):
+        if "base" in parts:  # the feet over the logged ground: a side 30 mm underground
+            with pytest.raises(InvalidParameterError, match="underground"):
+                hexaleg.load_motion(robot, tilted)
+        else:  # stance from the ground the feet define: every leg walks
+            stance = hexaleg.load_motion(robot, tilted).info["report"].stance_fractions
+            assert all(abs(f - 0.5) < 0.05 for f in stance.values())

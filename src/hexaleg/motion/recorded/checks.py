@@ -19,6 +19,10 @@ LIMIT_TOLERANCE = 0.02
 """How far a logged joint may pass its URDF limit (servo overshoot, calibration), rad."""
 GROUND_TOLERANCE = 0.005
 """How far below the ground (z = 0 of the logged world) a foot may seem to go, m."""
+TILT_TOLERANCE = 5.0 * DEG
+"""The logged attitude may tilt the stance feet's ground by at most this much, rad, on
+flat ground before the loader warns (:func:`attitude_note`): more than an IMU's error and the
+legs' compliance."""
 WRAP_STEPS = 4.0
 """A log taken as one whole cycle (``cycle='whole'``) may jump from its last row to its first by
 this many times a joint's largest step between rows, at most."""
@@ -176,6 +180,46 @@ def check_attitude(quat: np.ndarray, where: str) -> None:
         f"{where} base quaternion", f"({shown}): the body upside down in most rows (its z "
         f"axis {up:+.2f} up)", "the attitude of the robot's base in the world, z up (a walking "
         "robot is upright); check the IMU's frame and the columns' order (x, y, z, w)")
+
+
+def ground_tilt(feet: np.ndarray, stance: np.ndarray, rotation: np.ndarray) -> np.ndarray:
+    """How far the logged attitude tilts the ground the stance feet define, per sample, rad
+    (NaN where fewer than three stance feet span a plane).
+
+    On flat ground the stance feet lie in a plane whose normal, in the base frame, is the
+    world's up as the joints see it; the logged attitude says it is ``Rᵀ e_z``. Their angle is
+    the joint-implied attitude's disagreement with the log's (a sensor frame other than the
+    base's, a quaternion of another convention, a slope).
+
+    Args:
+        feet: Foot positions in the base frame, shape (T, n_legs, 3), m.
+        stance: Stance flags, shape (T, n_legs).
+        rotation: The logged attitude (base to world), shape (T, 3, 3).
+    """
+    tilt = np.full(len(feet), np.nan)
+    for k in range(len(feet)):
+        down = feet[k, stance[k]]
+        if len(down) < 3:
+            continue
+        centred = down - down.mean(axis=0)
+        _, spread, vt = np.linalg.svd(centred)
+        if spread[1] < 0.2 * spread[0]:  # (nearly) on a line: no plane
+            continue
+        up = rotation[k][2]  # the world's z in the base frame: row 2 of R
+        tilt[k] = float(np.arccos(min(abs(float(vt[2] @ up)), 1.0)))
+    return tilt
+
+
+def attitude_note(tilt: np.ndarray, where: str) -> list[str]:
+    """The warning when the logged attitude disagrees with the stance feet's ground by more than
+    :data:`TILT_TOLERANCE` in most samples that define one (:func:`ground_tilt`)."""
+    seen = tilt[np.isfinite(tilt)]
+    if not seen.size or np.median(seen) <= TILT_TOLERANCE:
+        return []
+    return [f"{where}: the logged attitude tilts the ground the stance feet define by "
+            f"{np.degrees(np.median(seen)):.1f}° (median of {seen.size} samples; at most "
+            f"{np.degrees(TILT_TOLERANCE):.0f}° on flat ground): the IMU's frame may not be the "
+            "base's (rotate its quaternion into the base frame) or the ground is not flat"]
 
 
 def check_whole(q: np.ndarray, names: list[str], where: str) -> None:

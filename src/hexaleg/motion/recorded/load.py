@@ -23,6 +23,7 @@ from hexaleg.motion.limits import MIN_SAMPLES
 from hexaleg.motion.recorded import base as _base
 from hexaleg.motion.recorded import stance as _stance
 from hexaleg.motion.recorded.checks import (
+    attitude_note,
     centre_of_mass,
     check_attitude,
     check_columns,
@@ -31,6 +32,7 @@ from hexaleg.motion.recorded.checks import (
     check_stance,
     check_whole,
     feet_world,
+    ground_tilt,
 )
 from hexaleg.motion.recorded.cycle import average_cycles, find_period, steady_start
 from hexaleg.motion.recorded.quality import MotionQuality
@@ -219,26 +221,34 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
     q[:, 7:] = q_j
     feet_b = feet_world(robot, q_j, None)
     stance_rot = _base.rotation_from_euler(pose_s[:, 3:6]) if has_quat else None
+    com_b = centre_of_mass(robot, q_j, None)
     if has_base:  # the feet over the logged ground: its z noise moves their heights
         if not has_quat:
             pose_s[:, 3:] = 0.0
         q[:, :3] = pose_s[:, :3]
         q[:, 3:7] = _base.quaternion_from_euler(pose_s[:, 3:6])
         level, com_l = feet_world(robot, q_j, q[:, :7]), centre_of_mass(robot, q_j, q[:, :7])
-        height_noise = float(sigma[nj + 2])
+        height_noise, moving = float(sigma[nj + 2]), True
     else:  # in the base frame, turned by the IMU's roll and pitch
-        level, com_l, height_noise = feet_b, centre_of_mass(robot, q_j, None), 0.0
+        level, com_l, height_noise, moving = feet_b, com_b, 0.0, False
         if stance_rot is not None:
             level = np.einsum("tij,tlj->tli", stance_rot, feet_b)
-            com_l = np.einsum("tij,tj->ti", stance_rot, com_l)
+            com_l = np.einsum("tij,tj->ti", stance_rot, com_b)
             # the IMU's roll and pitch noise moves a foot's height by its lever arm
             reach = float(np.median(np.linalg.norm(feet_b[..., :2], axis=2)))
             height_noise = float(np.hypot(sigma[nj + 3], sigma[nj + 4])) * reach
+    if stance_rot is not None:  # the logged attitude against the one the stance feet imply
+        plain = _stance.detect(feet_b, _velocity(feet_b, dt_c, periodic), com_b,
+                               periodic=periodic)
+        tilted = attitude_note(ground_tilt(feet_b, plain.stance, stance_rot), where)
+        if tilted:  # stance on the ground the feet define, not on the attitude's
+            caught += tilted
+            level, com_l, height_noise, moving = feet_b, com_b, 0.0, False
     if contact is not None:
         stance = _stance.from_contacts(contact, level, com_l, periodic=periodic,
                                        noise_height=height_noise)
     else:  # world feet walk on: their velocity is not periodic
-        stance = _stance.detect(level, _velocity(level, dt_c, periodic and not has_base), com_l,
+        stance = _stance.detect(level, _velocity(level, dt_c, periodic and not moving), com_l,
                                 periodic=periodic, noise_height=height_noise)
     base_source = "log"
     if not has_base:
@@ -258,12 +268,12 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
                                                  dpose[:, :3], ddpose[:, :3])
     feet = feet_world(robot, q_j, q[:, :7])
     caught += check_stance(robot, stance.stance, tc, where)
+    for message in caught:  # before a ground error: a tilted attitude may be its cause
+        warnings.warn(message, HexalegWarning, stacklevel=2)
     if has_base:
         check_ground(robot, feet, tc, where)
     world_speed = np.linalg.norm(_velocity(feet, dt_c, False), axis=2)[stance.stance]
     slip = float(np.sqrt(np.mean(world_speed**2))) if world_speed.size else 0.0
-    for message in caught:
-        warnings.warn(message, HexalegWarning, stacklevel=2)
     quality = MotionQuality(
         path=str(path), rows=rows, rate=1.0 / dt, resampled=res.resampled,
         filled=int(sum(res.filled.values())), derivatives="given" if given else "smoothed",
