@@ -57,8 +57,9 @@ class Candidate:
             (fraction of the baseline).
         notes: What the user should know (constant-torque springs, springs that do not fit).
         max_torque: The spring torque bound it was designed with, N·m, or None.
-        dropped: Group → the marginal saving it would have added, for the groups left unfitted
-            because it was below ``[design] min_group_saving`` (:func:`parsimonious`).
+        dropped: Group → its own marginal saving, for the groups of the classes left unfitted
+            because the class's worth was below ``[design] min_group_saving``
+            (:func:`parsimonious`).
         searched: The family's optimum on every sprung class as its geometry search found it
             (before finer groups and the parsimony): where a family that contains this one
             starts its search (:data:`~hexaleg.design.families.CONTAINS`).
@@ -221,20 +222,22 @@ def parsimonious(prepared: Prepared, run: RunSpec, gait: GaitParams,
                  start: Sequence[Mapping[str, Geometry]] = (),
                  geometry: Mapping[str, Geometry] | None = None,
                  contained: Mapping[str, OptimalSprings] | None = None) -> Candidate:
-    """:func:`design_family` without the groups that do not pay for their parts.
+    """:func:`design_family` without the joint classes that do not pay for their parts.
 
-    A group's marginal saving (:attr:`Candidate.marginal`: the ranking metric's saving lost
-    without its springs, the others kept) below ``params.min_group_saving`` means a part to buy,
-    mount and maintain for less than that share of the baseline: the joint class of the weakest
-    such group is left unsprung and the family designed again on the rest (the magnitudes and
-    geometry re-optimised: the other groups may take over some of its work), until every group
-    clears the bar or one class is left. The rest keep their searched geometry and get their
-    magnitudes again (one convex program: the global optimum of the magnitudes for that
-    geometry, so the kept springs may take over some of the dropped ones' work); the geometry is
-    not searched again (that would double the design's time for a change under the bar). The
-    dropped groups and what they would have added are in :attr:`Candidate.dropped`; the design
-    is never one with a group under the bar unless it is the last one (then the candidate's own
-    saving says whether it pays at all).
+    A class's worth (:func:`class_worth`: the ranking metric's saving lost without all its
+    springs, the others kept) below ``params.min_group_saving`` means parts to buy, mount and
+    maintain for less than that share of the baseline: the weakest such class is left unsprung
+    and the family designed again on the rest (the magnitudes re-optimised: the other classes
+    may take over some of its work), until every class clears the bar or one class is left. The
+    bar is on the class whatever the grouping, so like is compared with like: per joint, a
+    tibia's spring is a sixth of its class's worth, and a bar on each group would drop a class
+    the class design keeps (a refinement that loses). The rest keep their searched geometry and
+    get their magnitudes again (one convex program: the global optimum of the magnitudes for
+    that geometry); the geometry is not searched again (that would double the design's time
+    for a change under the bar). The dropped groups and their own shares are in
+    :attr:`Candidate.dropped`, the classes' worth in the notes; the design is never one with a
+    class under the bar unless it is the last one (then the candidate's own saving says whether
+    it pays at all).
 
     Args: as :func:`design_family`.
     """
@@ -244,31 +247,45 @@ def parsimonious(prepared: Prepared, run: RunSpec, gait: GaitParams,
                 if all(k in s for k in class_groups)]
 
     dropped: dict[str, float] = {}
+    notes: list[str] = []
     start = usable(start)
     c = design_family(prepared, run, gait, groups, class_groups, family, params, outer, start,
                       None if geometry is None else {k: geometry[k] for k in class_groups},
                       contained)
     searched = c.searched
     while len(class_groups) > 1:
-        weak = {g: v for g, v in c.marginal.items() if v < params.min_group_saving}
+        worth = class_worth(c, prepared, class_groups, params.metric)
+        weak = {k: v for k, v in worth.items() if v < params.min_group_saving}
         if not weak:
             break
-        worst = min(weak, key=lambda g: weak[g])
-        cls = next(k for k, js in class_groups.items() if groups[worst][0] in js)
-        for g, js in groups.items():
-            if js[0] in class_groups[cls]:
-                dropped[g] = float(c.marginal[g])
+        cls = min(weak, key=lambda k: weak[k])
+        members = [g for g, js in groups.items() if js[0] in class_groups[cls]]
+        dropped.update({g: float(c.marginal[g]) for g in members})
+        notes.append(f"class {cls} not fitted ({', '.join(members)}): its springs would add "
+                     f"{100 * worth[cls]:+.2f} % of {params.metric} (under the "
+                     f"{100 * params.min_group_saving:g} point bar, [design] min_group_saving)")
         class_groups = {k: v for k, v in class_groups.items() if k != cls}
         groups = {g: js for g, js in groups.items() if g not in dropped}
         kept = class_geometry(c.optimum, class_groups)
         c = design_family(prepared, run, gait, groups, class_groups, family, params, outer,
                           geometry=kept)
     if dropped:
-        notes = [*c.notes, *(f"group {g} not fitted: it would add {100 * v:+.2f} % of "
-                             f"{params.metric} (under the {100 * params.min_group_saving:g} "
-                             "point bar, [design] min_group_saving)" for g, v in dropped.items())]
-        c = dataclasses.replace(c, dropped=dropped, notes=tuple(notes))
+        c = dataclasses.replace(c, dropped=dropped, notes=(*c.notes, *notes))
     return dataclasses.replace(c, searched=searched)
+
+
+def class_worth(c: Candidate, prepared: Prepared, class_groups: Mapping[str, tuple[str, ...]],
+                metric: str) -> dict[str, float]:
+    """Class → the saving of ``metric`` lost without all of the class's springs in ``c``, the
+    others kept (a fraction of the baseline; the class's :attr:`Candidate.marginal` when it is
+    one group)."""
+    base = float(c.optimum.analysis.baseline["total"][metric])
+    out = {}
+    for cls, joints in class_groups.items():
+        rest = SpringSet({j: s for j, s in c.optimum.springs.items() if j not in joints})
+        without = float(prepared.evaluate(rest, "joule").metrics["total"][metric])
+        out[cls] = c.row[f"saving.{metric}"] - saving(without, base)
+    return out
 
 
 def class_geometry(optimum: OptimalSprings, class_groups: Mapping[str, tuple[str, ...]]

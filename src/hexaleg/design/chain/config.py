@@ -97,8 +97,9 @@ class DesignParams:
         controller: The servo the robot runs (:data:`~hexaleg.simulation.controllers.
             CONTROLLERS`): every ranked design is simulated under it and the recommendation is
             the best simulated one.
-        min_group_saving: A group of springs whose marginal saving of the ranking metric is
-            below this fraction of the baseline (default 0.01: one point) is not fitted.
+        min_group_saving: A joint class whose springs' worth (the ranking metric's saving lost
+            without them all) is below this fraction of the baseline (default 0.01: one point)
+            is not fitted, whatever the grouping.
         stop_tolerance: How far a workshop may mount a spring's stop from its drawing, rad
             (default 1°); the design is chosen for its worst saving within it. 0: no tolerance.
         life_cycles: The load cycles each spring must survive (fatigue), ≥ 1 (default 10⁷).
