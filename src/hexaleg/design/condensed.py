@@ -258,11 +258,17 @@ def _solve(program: Any) -> str:
 
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", message="Solution may be inaccurate")
-        program.solve(solver=cp.CLARABEL, tol_gap_abs=TOLERANCE, tol_gap_rel=TOLERANCE,
-                      tol_feas=TOLERANCE, max_iter=200)
+        try:
+            program.solve(solver=cp.CLARABEL, tol_gap_abs=TOLERANCE, tol_gap_rel=TOLERANCE,
+                          tol_feas=TOLERANCE, max_iter=200)
+        except cp.error.SolverError:  # Clarabel failed outright: the ladder below
+            pass
     if program.status == cp.OPTIMAL:
         return str(program.status)
-    return solve_clarabel(program)
+    try:
+        return solve_clarabel(program)
+    except cp.error.SolverError as e:  # failed at every rung: the caller names it
+        return f"failed ({e})"
 
 
 def explicit_program(data: Sequence[Condensed], mode: str, nonneg: np.ndarray,
@@ -307,9 +313,10 @@ def explicit_program(data: Sequence[Condensed], mode: str, nonneg: np.ndarray,
             program = cp.Problem(cp.Minimize(t), cons + [r <= t for r in ratios])
         else:
             program = cp.Problem(cp.Minimize(sum(ratios) / len(ratios)), cons)
-        if _solve(program) != cp.OPTIMAL:
+        status = _solve(program)
+        if status != cp.OPTIMAL:
             raise InfeasibleForcesError(
-                f"the condensed spring program has no solution (cvxpy: {program.status}); "
+                f"the condensed spring program has no solution (Clarabel: {status}); "
                 "conditions without admissible forces, or design limits no spring meets")
         xv = np.asarray(x.value, dtype=float)
         xv = np.where(nonneg, np.maximum(xv, 0.0), xv)

@@ -225,12 +225,23 @@ class DesignChain:
         return self._once("maps", compute)
 
     def robust(self) -> RobustResult | None:
-        """The robust design over the box of conditions, or None."""
-        def compute() -> RobustResult | None:
-            robust = robust_design(self.nominal(), self.recommended())
-            self._step("robust", "robust design over the box of conditions"
-                       if robust is not None else "no robust design")
-            return robust
+        """The robust design over the box of conditions, or None (:meth:`robust_notes` say
+        what was left out and why)."""
+        return self._robust()[0]
+
+    def robust_notes(self) -> tuple[str, ...]:
+        """The robust stage's notes: corners left out (the keys that set them), or why there
+        is no robust design."""
+        return self._robust()[1]
+
+    def _robust(self) -> tuple[RobustResult | None, tuple[str, ...]]:
+        def compute() -> tuple[RobustResult | None, tuple[str, ...]]:
+            robust, notes = robust_design(self.nominal(), self.recommended())
+            dropped = sum(n.startswith("robust box corner") for n in notes)
+            self._step("robust", ("robust design over the box of conditions" if robust
+                                  is not None else "no robust design")
+                       + (f" ({dropped} corners left out)" if dropped else ""))
+            return robust, notes
         return self._once("robust", compute)
 
     def proof(self) -> tuple[tuple[dict[str, Any], ...], tuple[str, ...]]:
@@ -255,8 +266,7 @@ class DesignChain:
 
         Raises:
             UnknownNameError: a stage not in :data:`STAGES`.
-            InvalidParameterError: a robust box with corners where the robot has no admissible
-                forces, an outer diameter no wire fits.
+            InvalidParameterError: an outer diameter no wire fits.
             UnknownNameError: an unknown robot, class, family, material or motor.
         """
         wanted = tuple(stages)
@@ -276,7 +286,7 @@ class DesignChain:
         tol = self.tolerance()[1] if "tolerance" in w else None
         env, fatigue, envelope_notes = self.envelope() if "envelope" in w else ((), (), ())
         maps, worst = self.maps() if "maps" in w else ((), {})
-        robust = self.robust() if "robust" in w else None
+        robust, robust_notes = self._robust() if "robust" in w else (None, ())
         simulation, unsimulated = self.proof() if "proof" in w else ((), ())
         stalled = [] if robust is None or not robust.design.solver.get("stopped") else [
             f"robust design: its bundle method's {robust.design.solver['stopped']} (predicted "
@@ -296,7 +306,8 @@ class DesignChain:
                   "simulated)")
         residual = nom.prepared.residual.line() if nom.prepared.residual is not None else None
         notes = [*flagged, *pays, *logged, *((residual,) if residual else ()), *ranking_notes,
-                 *envelope_notes, *stalled, *unsimulated, *nom.robot.notes, *rec.notes,
+                 *envelope_notes, *robust_notes, *stalled, *unsimulated, *nom.robot.notes,
+                 *rec.notes,
                  (mirrored.summary() + ("; each gets its group's spring mirrored" if d.mirror
                                         and mirrored.mirrored else "")), *mirrored.notes,
                  f"designed at {nom.gait.samples} samples per cycle (Joule-optimal forces); "

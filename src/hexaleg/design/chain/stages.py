@@ -35,7 +35,12 @@ from hexaleg.design.families import Geometry, containment_waves
 from hexaleg.design.fatigue import FatigueCheck, spring_fatigue
 from hexaleg.design.optimal import OptimalSprings
 from hexaleg.design.robust import RobustSprings, robust_springs
-from hexaleg.design.robustness import Condition, condition_prepared, condition_savings
+from hexaleg.design.robustness import (
+    Condition,
+    condition_prepared,
+    condition_savings,
+    condition_walk,
+)
 from hexaleg.design.robustness_map import RobustnessMap, robot_patterns, robustness_map
 from hexaleg.design.spring_parts import SpringPart, spring_outer_diameter
 from hexaleg.design.tolerance import TolerantSprings, tolerant_springs
@@ -43,7 +48,6 @@ from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.errors import (
     HexalegError,
     InfeasibleForcesError,
-    InvalidParameterError,
     TorqueLimitError,
 )
 from hexaleg.motion.legged import tripod_gait
@@ -339,32 +343,46 @@ def corners(cfg: DesignConfig) -> tuple[Condition, ...]:
     return tuple(out)
 
 
-def robust_design(nom: Nominal, rec: Candidate) -> RobustResult | None:
+def robust_design(nom: Nominal, rec: Candidate) -> tuple[RobustResult | None, tuple[str, ...]]:
     """The recommended geometry's magnitudes for the box of conditions
     (:func:`hexaleg.design.robust.robust_springs`: its corners and the nominal gait, one convex
-    program), with its own parts; None when the box is the nominal gait alone, the motion is
-    logged (:data:`LOGGED_SKIP`) or ``[design] robustness`` is false (:data:`UNMAPPED`).
+    program), with its own parts, and the notes of what was left out; no result when the box is
+    the nominal gait alone, the motion is logged (:data:`LOGGED_SKIP`) or ``[design]
+    robustness`` is false (:data:`UNMAPPED`).
 
-    Raises:
-        InvalidParameterError: a corner where the robot has no admissible forces without
-            springs (names it; narrow the ``robust_*`` ranges).
+    The stage never ends the design: a corner whose gait the legs cannot walk or that has no
+    admissible forces without springs is left out with a note naming the ``[design] robust_*``
+    keys that set it; when no corner is left, or the program fails, there is no robust design
+    and a note says why (the candidates, ranking and checks stand).
     """
     cfg, prepared = nom.config, nom.prepared
     conditions = corners(cfg)
     if len(conditions) == 1 or nom.motion is not None or not cfg.design.robustness:
-        return None
-    preps = nom.fork_map(lambda c: condition_prepared(nom.run, nom.gait, c), conditions)
-    for c, p in zip(conditions, preps, strict=True):
-        try:
-            p.baseline("joule")
-        except (InfeasibleForcesError, TorqueLimitError) as e:
-            raise InvalidParameterError(
-                "design robust box corner", c.label(),
-                f"corners where the robot has admissible forces without springs ({e}); narrow "
-                "the robust_* ranges") from e
+        return None, ()
+    walked = nom.fork_map(lambda c: condition_walk(nom.run, nom.gait, c), conditions)
+    kept: list[Condition] = []
+    preps: list[Prepared] = []
+    notes: list[str] = []
+    for c, p in zip(conditions, walked, strict=True):
+        why = p if isinstance(p, str) else _no_baseline(p)
+        if isinstance(p, str) or why:
+            nominal_value = {"period": 1.0, "stride": 1.0, "payload": 0.0,
+                             "mu": nom.run.contact.mu}
+            keys = [f"robust_{n}" for n, v in nominal_value.items()
+                    if getattr(c, n) not in (None, v)]
+            notes.append(f"robust box corner {c.label()} left out (set by [design] "
+                         f"{' and '.join(keys)}): {why}")
+            continue
+        kept.append(c)
+        preps.append(p)
+    if len(kept) == 1:
+        return None, (*notes, "no robust design: no corner of the box is left to design for")
     d = cfg.design
-    design = robust_springs(rec.optimum, prepared, preps, d.robust_mode, d.metric,
-                            max_torque=d.max_torque, max_deflection=d.deflection_bound)
+    try:
+        design = robust_springs(rec.optimum, prepared, preps, d.robust_mode, d.metric,
+                                max_torque=d.max_torque, max_deflection=d.deflection_bound)
+    except HexalegError as e:
+        return None, (*notes, f"no robust design: {type(e).__name__}: {e}")
     analysis = prepared.evaluate(design.springs, "joule")
     optimum = dataclasses.replace(
         rec.optimum, magnitudes=design.magnitudes, springs=design.springs, analysis=analysis,
@@ -375,10 +393,19 @@ def robust_design(nom: Nominal, rec: Candidate) -> RobustResult | None:
     savings = {m: {name: np.array([r[f"saving.{m}"] if r["status"] == "ok" else -np.inf
                                    for r in rs]) for name, rs in rows.items()}
                for m in METRICS}
-    return RobustResult(conditions=conditions, design=design,
+    return RobustResult(conditions=tuple(kept), design=design,
                         candidate=candidate(optimum, prepared, nom.run, nom.gait,
                                             nom.outer_diameters, d),
-                        savings=savings)
+                        savings=savings), tuple(notes)
+
+
+def _no_baseline(prepared: Prepared) -> str:
+    """Why ``prepared`` has no forces without springs, or '' when it has."""
+    try:
+        prepared.baseline("joule")
+    except (InfeasibleForcesError, TorqueLimitError) as e:
+        return f"no admissible forces without springs: {type(e).__name__}: {e}"
+    return ""
 
 
 __all__ = [
