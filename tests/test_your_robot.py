@@ -53,6 +53,9 @@ def test_report_view_sweep_and_optimiser(tmp_path, capsys):
     assert data["robot"]["name"] == "spider" and data["robot"]["legs"][0] == "LF"
     assert data["motor"]["name"] == "generic (spider URDF limits)"
     assert any("names no catalogue motor" in n for n in data["notes"])
+    # an own robot gets the quick answer too (it was "no quick answer: unknown robot")
+    assert data["design"]["origin"] == "quick" and data["design"]["family"] == "linear"
+    assert not any("no quick answer" in n for n in data["notes"])
     assert main(["view", "--robot", SPIDER, "--config", str(config), "--html",
                  str(tmp_path / "view.html")]) == 0
     assert (tmp_path / "view.html").stat().st_size > 10_000

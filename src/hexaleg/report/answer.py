@@ -132,8 +132,9 @@ def _quick(cfg: ReportConfig, robot: Robot
     if cfg.payload is not None:
         return None, None, (f"{what}: this report carries a payload, hexaleg design designs "
                             "for the robot as it is (its payload map shows what a load does)")
+    ref = cfg.robot or robot.name  # an own robot by its description file
     try:
-        run = RunSpec(robot=robot.name)
+        run = RunSpec(robot=ref)
     except HexalegError as e:
         return None, None, f"{what}: {e}; run hexaleg design --robot FILE.toml"
     motor = None
@@ -144,7 +145,7 @@ def _quick(cfg: ReportConfig, robot: Robot
         motor = cfg.motor.name
     n = min(cfg.gait.samples, DesignParams().samples)
     params = DesignParams(families=(QUICK_FAMILY,), samples=n, motor=motor)
-    config = DesignConfig(robot=robot.name, gait=dataclasses.replace(cfg.gait, samples=n),
+    config = DesignConfig(robot=ref, gait=dataclasses.replace(cfg.gait, samples=n),
                           contact=cfg.contact, design=params)
     try:  # the design chain's first stage alone
         result = DesignChain(config).run(stages=("candidates",))

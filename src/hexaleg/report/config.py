@@ -209,6 +209,8 @@ class ReportConfig:
         robot_description: The robot's description (set by :meth:`for_robot`), for the run's
             warnings (:mod:`hexaleg.scenario.run_warnings`: what its gait's sized defaults
             chose), or None.
+        robot: The robot as the run names it — a registered name or a description file (set by
+            :meth:`from_scenario`), for the quick answer's design run; None: the robot's name.
     """
 
     gait: GaitParams = field(default_factory=GaitParams)
@@ -220,6 +222,7 @@ class ReportConfig:
     payload: Payload | None = None
     motion: Motion | None = None
     robot_description: RobotDescription | None = None
+    robot: str | None = None
 
     @classmethod
     def for_robot(cls, desc: RobotDescription, robot: Robot,
@@ -273,7 +276,8 @@ class ReportConfig:
             ConfigError, UnknownNameError, InvalidParameterError: a bad table (named).
         """
         s = scenario
-        config = cls.for_robot(s.description, s.model, s.tables, s.where)
+        config = dataclasses.replace(cls.for_robot(s.description, s.model, s.tables, s.where),
+                                     robot=s.robot)
         if s.motion is None:
             return config
         return dataclasses.replace(config, motion=s.motion,
