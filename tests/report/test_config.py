@@ -120,7 +120,8 @@ def test_a_run_gives_the_robot_and_the_files_keys(tmp_path):
     config = ReportConfig.from_scenario(Scenario.load())
     report = dataclasses.replace(ReportConfig().report, title=config.report.title)
     assert config == dataclasses.replace(ReportConfig(), report=report,
-                                         robot_description=config.robot_description)
+                                         robot_description=config.robot_description,
+                                         robot="hexaleg")
     (tmp_path / "c.toml").write_text("[gait]\nperiod = 0.7\n")
     run = Scenario.load("solo12", tmp_path / "c.toml")
     config = ReportConfig.from_scenario(run)
