@@ -127,3 +127,16 @@ def test_a_robot_toml_opts_into_the_repair(tmp_path):
     toml.write_text(toml.read_text().replace('"repair"', '"mend"'))
     with pytest.raises(InvalidParameterError, match="inertias"):
         load_registered(str(toml))
+
+
+def test_a_repair_of_many_links_is_summarised(tmp_path):
+    """Every shin bad (six links): the note spells out three repairs and names the rest, where
+    it was one line of every link's inertia (3000 characters on a real robot)."""
+    shutil.copy(DATA / "spider.toml", tmp_path / "spider.toml")
+    text = (DATA / "spider.urdf").read_text()
+    (tmp_path / "spider.urdf").write_text(text.replace(SHIN, PLACEHOLDER))
+    robot = load(tmp_path, inertias="repair")
+    (note,) = [n for n in robot.notes if n.startswith("inertias repaired")]
+    assert note.startswith("inertias repaired on 6 link(s)")
+    assert note.count("→") == 3 and "and 3 more by the same rule: " in note
+    assert len(note) < 900  # three repairs spelt out, the rest named

@@ -39,6 +39,9 @@ from hexaleg.robot.sanity import DEFINITE_TOL, TRIANGLE_TOL, aabb_corners
 MODES = ("refuse", "repair", "keep")
 """Values of ``load_robot(..., inertias=…)``."""
 KEYS = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+SHOWN = 3
+"""Repaired links whose new inertia the note spells out; the rest it names (a robot with a dozen
+bad links made a 3000-character warning line)."""
 REPAIRED_MARK = "inertias repaired"
 """How the robot's loading note of a repair begins (what marks a run's robot as repaired)."""
 
@@ -236,6 +239,10 @@ def settle_inertials(xml: str, path: Path, mode: str, model: pin.Model,
             element = ET.SubElement(inertial, "inertia")
         for k, (r, c) in zip(KEYS, ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)), strict=True):
             element.set(k, repr(float(fix[0][r, c])))
-        notes.append(f"{link.get('name')} → {fix[1]}")
+        notes.append((str(link.get("name")), fix[1]))
+    shown = "; ".join(f"{name} → {rule}" for name, rule in notes[:SHOWN])
+    rest = [name for name, _ in notes[SHOWN:]]
     return ET.tostring(root, encoding="unicode"), (
-        f"{REPAIRED_MARK} (inertias=\"repair\"; invented, not measured): " + "; ".join(notes))
+        f"{REPAIRED_MARK} on {len(notes)} link(s) (inertias=\"repair\"; invented, not "
+        f"measured): {shown}" + (f"; and {len(rest)} more by the same rule: {', '.join(rest)}"
+                                 if rest else ""))
