@@ -253,7 +253,7 @@ def test_cli_robot_option(capsys):
 
 
 @pytest.mark.parametrize("name", QUADRUPEDS)
-def test_report_for_a_registry_robot(name, tmp_path, capsys):
+def test_report_for_a_registry_robot(name, tmp_path, capsys, upstream_placeholders):
     """'hexaleg report --robot NAME': the trot from the description (the file's [gait] keys
     on top), knee springs and stiffness curve, all files; Solo-12 with its own actuator (ODRI
     module), the others with a generic actuator from their URDF limits and a note giving its
@@ -300,5 +300,6 @@ def test_report_for_a_registry_robot(name, tmp_path, capsys):
     # The caveats are on the page, not only in the terminal: motor figures and the sway.
     assert any("names no catalogue motor" in n for n in data["notes"]) != own
     assert any(n.startswith("two-foot gait: the body sways") for n in data["notes"])
-    assert html.count("<b>Note:</b>") == len(data["notes"]) == (1 if own else 2)
+    placeholders = len(upstream_placeholders.get(name, ()))  # the URDF's limits, flagged
+    assert html.count("<b>Note:</b>") == len(data["notes"]) == (1 if own else 2) + placeholders
     assert data["transform"] is None and 'id="transform"' not in html  # no sphere pose

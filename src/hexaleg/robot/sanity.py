@@ -33,6 +33,16 @@ rounding to four significant digits and nothing physically meaningful (the regis
 ≥ 1.5 % slack)."""
 DEFINITE_TOL = 1e-12
 """A principal moment ``≤ DEFINITE_TOL · I_max`` counts as zero (not positive definite)."""
+PLACEHOLDER_RANGE = 3.0 * math.pi
+"""A joint range (upper − lower) above this, rad, is a placeholder: a leg joint turns less than
+one and a half turns (the ±10 rad, 1000 N·m, 1000 rad/s a URDF exporter writes when no limit was
+set, issue #39)."""
+PLACEHOLDER_SPEED = 100.0
+"""A joint speed limit above this, rad/s (955 rpm at the joint), is a placeholder: legged
+robots' joints reach ~10–40 rad/s."""
+PLACEHOLDER_TORQUE = 20.0
+"""A joint torque limit above this many times the robot's weight at the leg's reach (m g L,
+N·m) is a placeholder: it would lift twenty robots at arm's length."""
 GYRATION_FACTOR = 2.0
 """A body is flagged when its radius of gyration exceeds ``GYRATION_FACTOR`` times its size.
 
@@ -77,9 +87,11 @@ def robot_findings(robot: Robot) -> list[Finding]:
 
     Checks :func:`inertia_findings` (masses, positive definite inertias, triangle inequality),
     :func:`gyration_findings` (radius of gyration against the link's size) and
-    :func:`stand_findings` (the base above the feet in the stand pose).
+    :func:`stand_findings` (the base above the feet in the stand pose) and
+    :func:`limit_findings` (placeholder joint limits).
     """
-    return [*inertia_findings(robot), *gyration_findings(robot), *stand_findings(robot)]
+    return [*inertia_findings(robot), *gyration_findings(robot), *stand_findings(robot),
+            *limit_findings(robot)]
 
 
 def body_name(model: pin.Model, joint_id: int) -> str:
@@ -230,3 +242,44 @@ def stand_findings(robot: Robot) -> list[Finding]:
     return [Finding("foot_above_base", f"foot {leg.foot_frame} of leg {leg.name} in the {pose}",
                     float(z), "m", "< 0 m (below the base origin)", remedy)
             for leg, z in zip(robot.legs, feet[:, 2], strict=True) if not z < 0]
+
+
+def limit_findings(robot: Robot) -> list[Finding]:
+    """Actuated joints whose URDF limits are placeholders, not the robot's: a range over
+    :data:`PLACEHOLDER_RANGE`, a speed over :data:`PLACEHOLDER_SPEED`, a torque over
+    :data:`PLACEHOLDER_TORQUE` × m g L (L the longest leg's reach from its first joint to its
+    foot in the stand pose). Joint limits bound the gait and build the generic actuator (its
+    stall torque and no-load speed), so a placeholder silently changes the energy. One finding
+    per kind of limit: the joints counted and the first few named, the largest value."""
+    model = robot.model
+    q = robot.pose("stand") if "stand" in robot.poses else pin.neutral(model)
+    data = model.createData()
+    pin.forwardKinematics(model, data, q)
+    pin.updateFramePlacements(model, data)
+    reach = max(float(np.linalg.norm(data.oMf[model.getFrameId(leg.foot_frame)].translation
+                                     - data.oMi[model.getJointId(leg.joint_names[0])]
+                                     .translation)) for leg in robot.legs)
+    torque_cap = PLACEHOLDER_TORQUE * robot.mass * 9.81 * reach
+    ids = [model.getJointId(name) for name in robot.joint_names]
+    iq = [model.joints[j].idx_q for j in ids]
+    iv = [model.joints[j].idx_v for j in ids]
+    checks = (
+        ("joint_range", model.upperPositionLimit[iq] - model.lowerPositionLimit[iq], "rad",
+         PLACEHOLDER_RANGE, f"≤ {PLACEHOLDER_RANGE:.3g} rad (1.5 turns)"),
+        ("joint_speed_limit", model.velocityLimit[iv], "rad/s", PLACEHOLDER_SPEED,
+         f"≤ {PLACEHOLDER_SPEED:g} rad/s"),
+        ("joint_torque_limit", model.effortLimit[iv], "N·m", torque_cap,
+         f"≤ {PLACEHOLDER_TORQUE:g} × m g L = {torque_cap:.3g} N·m (L = {reach:.3g} m)"))
+    found = []
+    for check, values, unit, cap, allowed in checks:
+        over = [(name, float(v)) for name, v in zip(robot.joint_names, values, strict=True)
+                if v > cap]
+        if not over:
+            continue
+        names = ", ".join(name for name, _ in over[:3])
+        more = f" and {len(over) - 3} more" if len(over) > 3 else ""
+        where = f"joint {names}" if len(over) == 1 else f"{len(over)} joints ({names}{more})"
+        found.append(Finding(check, where, max(v for _, v in over), unit, allowed,
+                             "a placeholder, not a limit: set the URDF <limit> of the joints to "
+                             "the robot's (its drawing or the servo's datasheet)"))
+    return found
