@@ -100,8 +100,9 @@ def from_contacts(contacts: np.ndarray, feet: np.ndarray | None = None,
 
     Args:
         contacts: The contact columns, shape (T, n_legs).
-        feet, com: Foot positions (T, n_legs, 3) and centre of mass (T, 3) as for
-            :func:`detect`; None: the switches as the stance.
+        feet: Foot positions, shape (T, n_legs, 3), as for :func:`detect`; None: the
+            switches as the stance.
+        com: The centre of mass, shape (T, 3), as for :func:`detect`.
         periodic: Whether sample T is sample 0 again.
         noise_height: Noise level of a foot's height, m.
     """
