@@ -182,3 +182,39 @@ def test_a_foot_frame_moved_in_place_is_read_again():
     assert np.abs(moved - q).max() > 1e-3
     for k in range(8):
         assert np.abs(_pinocchio(robot, leg, moved[k], np.zeros(3))[0] - p[k]).max() < 1e-12
+
+
+QUAD2DOF = Path(__file__).resolve().parents[1] / "data" / "quad2dof.toml"
+
+
+def test_a_two_joint_leg_reaches_its_plane_and_names_a_target_off_it():
+    """The planar hip–knee leg of the test quadruped: targets in its plane (the foot's forward
+    kinematics at sampled angles) are inverted exactly, with q̇ and q̈ those of the motion; a
+    target 5 mm to the side is named with its distance off the plane."""
+    from hexaleg.errors import UnreachableTargetError
+
+    robot = hexaleg.load(str(QUAD2DOF))
+    leg = robot.leg("LF")
+    reference = robot.pose("stand")
+    chain = leg_chain(robot, leg, reference)
+    assert chain.angular.shape == (2, 3)
+    t = np.linspace(0.0, 1.0, 201)
+    q_true = reference[leg.q_index] + 0.3 * np.stack([np.sin(2 * np.pi * t),
+                                                     np.sin(2 * np.pi * t + 1.0)], axis=1)
+    p = chain.frames(q_true)[0]
+    pd = np.gradient(p, t, axis=0, edge_order=2)
+    pdd = np.gradient(pd, t, axis=0, edge_order=2)
+    q, qd, _ = newton_leg_ik(robot, leg, p, pd, pdd, t=t)
+    np.testing.assert_allclose(q, q_true, atol=1e-9)
+    np.testing.assert_allclose(qd[5:-5], np.gradient(q_true, t, axis=0)[5:-5], rtol=0, atol=2e-3)
+    side = p.copy()
+    side[:, 1] += 0.005
+    with pytest.raises(UnreachableTargetError, match=r"0\.005 m off the plane its 2 joints"):
+        newton_leg_ik(robot, leg, side, pd, pdd, t=t)
+
+
+def test_planar_legs_walk_the_bound_by_default():
+    from hexaleg.motion.scaling import robot_gait
+
+    gait = robot_gait(str(QUAD2DOF), sized=False)
+    assert gait.groups == (("LF", "RF"), ("LH", "RH"))

@@ -1,4 +1,4 @@
-"""A leg as a serial chain of three 1-DoF joints, with forward kinematics vectorised over samples.
+"""A leg as a serial chain of 1-DoF joints, with forward kinematics vectorised over samples.
 
 Pinocchio evaluates one configuration a call; a gait's inverse kinematics needs the foot of one
 leg at hundreds of samples, many times over (the body sway iterates on the whole gait). With the
@@ -10,6 +10,11 @@ foot's position, its translation Jacobian and its bias acceleration ``J̇ q̇`` 
 of configurations with numpy, and solves the leg's inverse kinematics on it by Newton's method
 (:func:`newton_leg_ik`, the solver of every leg the closed form of
 :mod:`hexaleg.motion.kinematics` does not fit).
+
+A leg has three joints (a foot anywhere in a volume) or two (a planar hip–knee leg: its foot
+moves in a plane, the one its two axes leave it; a target off that plane by more than
+:data:`PLANE_TOL` is out of reach, named with its distance). Legs of four or more joints are
+redundant and refused with that reason.
 
 Source: the product of exponentials / screw form of serial-chain kinematics and the geometric
 Jacobian with its time derivative (Siciliano et al., *Robotics: Modelling, Planning and
@@ -36,6 +41,11 @@ NEWTON_TOL = 1e-13
 """Foot position residual, m, at which the Newton solver stops."""
 NEWTON_MAX_ITER = 50
 """Newton iterations allowed per sample before the target is declared unreachable."""
+PLANE_TOL = 1e-6
+"""How far off a two-joint leg's plane a foot target may lie, m (a gait for such a leg puts its
+feet in that plane; more is a target the leg cannot reach)."""
+JOINTS = (2, 3)
+"""The joints a leg may have for foot-position inverse kinematics."""
 NEWTON_JUMP = 0.1
 """Largest joint change, rad (or m), between consecutive samples solved all at once from the
 same start that :func:`newton_leg_ik` accepts as one continuous branch; a larger one is solved
@@ -59,16 +69,16 @@ def _rotations(axis: np.ndarray, angle: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class LegChain:
-    """One leg's three joints as a fixed serial chain in the base frame (module docstring).
+    """One leg's n joints (2 or 3) as a fixed serial chain in the base frame (module docstring).
 
     Attributes:
         placements: Per joint, its frame at zero angle in the previous joint's frame (the first
             in the base frame, with every joint before it at the reference pose): rotations,
-            shape (3, 3, 3), and translations, shape (3, 3), m.
+            shape (n, 3, 3), and translations, shape (n, 3), m.
         angular: Per joint, its rotation axis in its own frame (zero for a prismatic joint),
-            shape (3, 3).
+            shape (n, 3).
         linear: Per joint, its translation axis in its own frame (zero for a revolute joint),
-            shape (3, 3).
+            shape (n, 3).
         foot: The foot point in the last joint's frame, shape (3,), m.
     """
 
@@ -81,17 +91,17 @@ class LegChain:
         """The foot and the joints' axes in the base frame.
 
         Args:
-            q: Joint values, shape (T, 3), rad or m.
+            q: Joint values, shape (T, n), rad or m.
 
         Returns:
-            Foot positions (T, 3) m; joint origins (T, 3, 3) m, angular axes (T, 3, 3) and
-            linear axes (T, 3, 3), each ``[:, i]`` of joint i, in the base frame.
+            Foot positions (T, 3) m; joint origins (T, n, 3) m, angular axes (T, n, 3) and
+            linear axes (T, n, 3), each ``[:, i]`` of joint i, in the base frame.
         """
-        n = len(q)
+        n, joints = len(q), len(self.angular)
         rot = np.broadcast_to(np.eye(3), (n, 3, 3))
         pos = np.zeros((n, 3))
-        origins, angular, linear = (np.empty((n, 3, 3)) for _ in range(3))
-        for i in range(3):
+        origins, angular, linear = (np.empty((n, joints, 3)) for _ in range(3))
+        for i in range(joints):
             pos = pos + rot @ self.placements[1][i]
             rot = rot @ self.placements[0][i]
             origins[:, i] = pos
@@ -106,10 +116,10 @@ class LegChain:
         """The foot's position and its translation Jacobian ``∂p/∂q``.
 
         Args:
-            q: Joint values, shape (T, 3).
+            q: Joint values, shape (T, n).
 
         Returns:
-            Foot positions (T, 3) m and Jacobians (T, 3, 3) (rows x y z, columns the joints).
+            Foot positions (T, 3) m and Jacobians (T, 3, n) (rows x y z, columns the joints).
         """
         p, origins, angular, linear = self.frames(q)
         cols = linear + _cross(angular, p[:, None, :] - origins)
@@ -124,8 +134,8 @@ class LegChain:
         ``J̇ q̇ = Σ_i q̇_i (Ω_i × l_i + (Ω_i × a_i) × (p − o_i) + a_i × (ṗ − ȯ_i))``.
 
         Args:
-            q: Joint values, shape (T, 3).
-            qd: Joint velocities, shape (T, 3).
+            q: Joint values, shape (T, n).
+            qd: Joint velocities, shape (T, n).
 
         Returns:
             Bias accelerations, shape (T, 3), m/s².
@@ -134,7 +144,7 @@ class LegChain:
         pd = np.einsum("tjx,tj->tx", linear + _cross(angular, p[:, None, :] - origins), qd)
         omega = np.zeros_like(p)
         out = np.zeros_like(p)
-        for i in range(3):
+        for i in range(len(self.angular)):
             o = origins[:, i]
             od = sum((linear[:, j] + _cross(angular[:, j], o - origins[:, j])) * qd[:, j:j + 1]
                      for j in range(i)) if i else np.zeros_like(p)
@@ -167,15 +177,16 @@ def leg_chain(robot: Robot, leg: Leg, reference: np.ndarray) -> LegChain:
 
     Args:
         robot: The robot.
-        leg: One of ``robot.legs``, three joints each the ancestor of the next and of the foot.
+        leg: One of ``robot.legs``, two or three joints each the ancestor of the next and of
+            the foot.
         reference: The configuration the other joints keep, shape (nq,), base at the origin.
 
     Returns:
         The chain.
 
     Raises:
-        RobotModelError: the leg does not have three 1-DoF revolute or prismatic joints in one
-            chain to its foot (the message names the joint), or the chain does not reproduce
+        RobotModelError: the leg does not have two or three 1-DoF revolute or prismatic joints
+            in one chain to its foot (the message names the joint), or the chain does not reproduce
             Pinocchio's forward kinematics.
     """
     model = robot.model
@@ -192,9 +203,12 @@ def leg_chain(robot: Robot, leg: Leg, reference: np.ndarray) -> LegChain:
 def _read_chain(robot: Robot, leg: Leg, reference: np.ndarray) -> LegChain:
     """:func:`leg_chain` without the memory."""
     model = robot.model
-    if len(leg.joint_ids) != 3:
-        raise RobotModelError(f"leg {leg.name} has {len(leg.joint_ids)} joints; foot-position "
-                              "inverse kinematics needs exactly 3")
+    if len(leg.joint_ids) not in JOINTS:
+        raise RobotModelError(
+            f"leg {leg.name} has {len(leg.joint_ids)} joints; foot-position inverse kinematics "
+            "needs 3 (a foot anywhere) or 2 (a planar hip–knee leg)"
+            + ("; a leg of 4 or more is redundant: fix the extra joints (a URDF fixed joint)"
+               if len(leg.joint_ids) > 3 else ""))
     foot = model.frames[leg.foot_frame_id]
     chain = (*leg.joint_ids, foot.parentJoint)
     below = (*leg.joint_names[1:], f"foot frame {leg.foot_frame}")
@@ -215,15 +229,16 @@ def _read_chain(robot: Robot, leg: Leg, reference: np.ndarray) -> LegChain:
     data = model.createData()
     pin.framesForwardKinematics(model, data, q)
     frames = [pin.SE3.Identity(), *(data.oMi[j] for j in leg.joint_ids)]
-    rel = [frames[i].actInv(frames[i + 1]) for i in range(3)]
+    rel = [frames[i].actInv(frames[i + 1]) for i in range(len(leg.joint_ids))]
     axes = [_motion_axes(model, j) for j in leg.joint_ids]
     out = LegChain(placements=(np.array([m.rotation for m in rel]),
                                np.array([m.translation for m in rel])),
                    angular=np.array([a for a, _ in axes]), linear=np.array([b for _, b in axes]),
-                   foot=np.array(data.oMi[leg.joint_ids[2]].actInv(data.oMf[leg.foot_frame_id])
+                   foot=np.array(data.oMi[leg.joint_ids[-1]].actInv(data.oMf[leg.foot_frame_id])
                                  .translation))
     rng = np.random.default_rng(0)
-    trial = rng.uniform(-1.5, 1.5, (5, 3)) * np.where(out.angular.any(axis=1), 1.0, 0.05)
+    trial = (rng.uniform(-1.5, 1.5, (5, len(leg.joint_ids)))
+             * np.where(out.angular.any(axis=1), 1.0, 0.05))
     for q_leg, p in zip(trial, out.frames(trial)[0], strict=True):
         q[leg.q_index] = q_leg
         pin.framesForwardKinematics(model, data, q)
@@ -237,7 +252,7 @@ def _read_chain(robot: Robot, leg: Leg, reference: np.ndarray) -> LegChain:
 def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarray, *,
                   q0: np.ndarray | None = None, t: np.ndarray | None = None
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Inverse kinematics of any 3-joint leg by Newton's method on its forward kinematics.
+    """Inverse kinematics of a 3- or 2-joint leg by Newton's method on its forward kinematics.
 
     The leg is read from Pinocchio as a fixed chain (:func:`~hexaleg.motion.leg_chain.leg_chain`,
     the other joints at the ``stand`` pose) and Newton runs on every sample at once from ``q0``.
@@ -250,22 +265,24 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
 
     Args:
         robot: The robot.
-        leg: One of ``robot.legs``, with three joints.
+        leg: One of ``robot.legs``, with three joints or two (:data:`JOINTS`).
         p: Foot positions in the base frame, shape (T, 3), m.
         pd: Their time derivatives, shape (T, 3), m/s.
         pdd: Their second time derivatives, shape (T, 3), m/s².
-        q0: Initial guess of the leg's joint angles, shape (3,), rad; default the ``stand`` pose
+        q0: Initial guess of the leg's joint angles, shape (n,), rad; default the ``stand`` pose
             (or Pinocchio's neutral configuration when the robot has none).
         t: Sample times for error messages, shape (T,), s; default the sample indices.
 
     Returns:
-        Joint angles (T, 3) rad, velocities (T, 3) rad/s, accelerations (T, 3) rad/s², in the
-        order of ``leg.joint_names``.
+        Joint angles (T, n) rad, velocities (T, n) rad/s, accelerations (T, n) rad/s², in the
+        order of ``leg.joint_names`` (a two-joint leg's in least squares: exact for targets in
+        its plane).
 
     Raises:
-        RobotModelError: the leg does not have exactly three 1-DoF joints in one chain.
+        RobotModelError: the leg does not have two or three 1-DoF joints in one chain.
         UnreachableTargetError: Newton does not reach a target (or the Jacobian is singular
-            there); the message names the leg, the time and the remaining distance.
+            there), or a two-joint leg's target lies off its plane; the message names the
+            leg, the time and the distance.
     """
     model = robot.model
     p, pd, pdd = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, pd, pdd))
@@ -276,55 +293,90 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
     reference[:7] = pin.neutral(model)[:7]
     chain = leg_chain(robot, leg, reference)
     start = reference[leg.q_index] if q0 is None else np.asarray(q0, dtype=float)
-    q, err = _newton(chain, p, np.tile(start, (len(p), 1)))
+    q, err, off = _newton(chain, p, np.tile(start, (len(p), 1)))
     jumps = np.abs(np.diff(q, axis=0)).max(axis=1)
     bad = np.flatnonzero((err > NEWTON_TOL) | np.r_[False, jumps >= NEWTON_JUMP])
     for k in range(int(bad[0]) if bad.size else len(p), len(p)):
-        q[k:k + 1], err[k:k + 1] = _newton(chain, p[k:k + 1], start[None] if k == 0 else q[k - 1:k])
+        q[k:k + 1], err[k:k + 1], off[k:k + 1] = _newton(chain, p[k:k + 1],
+                                                          start[None] if k == 0 else q[k - 1:k])
         if err[k] > NEWTON_TOL:
             break
     _, jac = chain.position_jacobian(q)
     singular = np.linalg.cond(jac) > 1e8
-    failed = (err > NEWTON_TOL) | singular
+    failed = (err > NEWTON_TOL) | singular | (off > PLANE_TOL)
     if failed.any():
         k = int(np.argmax(failed))
+        where = (f"leg {leg.name} at t = {t[k]:.6g} s: foot target "
+                 f"{np.round(p[k], 6).tolist()} m (base frame)")
+        if err[k] <= NEWTON_TOL and not singular[k]:
+            raise UnreachableTargetError(
+                f"{where} is {off[k]:.3g} m off the plane its {chain.angular.shape[0]} joints "
+                "move the foot in (at most "
+                f"{PLANE_TOL:g} m): a gait for a two-joint leg keeps each foot in its plane — "
+                "no sideways sway or step (a bound or a pronk, whose support lines run across "
+                "the body, not a trot or a crawl)",
+                leg=leg.name, t=float(t[k]), index=k, target=tuple(float(x) for x in p[k]),
+                distance=float(off[k]))
         raise UnreachableTargetError(
-            f"leg {leg.name} at t = {t[k]:.6g} s: foot target {np.round(p[k], 6).tolist()} m "
-            f"(base frame) is out of reach: Newton stopped {err[k]:.6g} m from it"
+            f"{where} is out of reach: Newton stopped {err[k]:.6g} m from it"
             + (" at a singular configuration" if err[k] <= NEWTON_TOL else ""),
             leg=leg.name, t=float(t[k]), index=k, target=tuple(float(x) for x in p[k]),
             distance=float(err[k]))
-    qd = np.linalg.solve(jac, pd[..., None])[..., 0]
-    qdd = np.linalg.solve(jac, (pdd - chain.bias(q, qd))[..., None])[..., 0]
+    qd = _least_squares(jac, pd)
+    qdd = _least_squares(jac, pdd - chain.bias(q, qd))
     return q, qd, qdd
 
 
-def _newton(chain: LegChain, p: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Damped Newton steps (at most 0.5 rad or m a step; least squares where the Jacobian is
-    singular) on every sample at once until each is within :data:`NEWTON_TOL` of its target or
-    :data:`NEWTON_MAX_ITER` steps.
+def _least_squares(jac: np.ndarray, e: np.ndarray) -> np.ndarray:
+    """Per sample, the joint change that moves the foot nearest ``e``: ``J⁻¹ e`` for a square
+    Jacobian (least squares where it is singular), ``J⁺ e`` for a two-joint leg's (T, 3, 2).
 
     Args:
-        chain: The leg. p: Targets, shape (T, 3), m. q: Starting joint values, shape (T, 3).
+        jac: Jacobians, shape (T, 3, n). e: Foot displacements, shape (T, 3).
 
     Returns:
-        The joint values reached, shape (T, 3), and their distance to the targets, shape (T,), m.
+        Joint changes, shape (T, n).
+    """
+    if jac.shape[2] == 3:
+        try:
+            return np.linalg.solve(jac, e[..., None])[..., 0]
+        except np.linalg.LinAlgError:  # a singular Jacobian: the least-squares step
+            pass
+    return (np.linalg.pinv(jac) @ e[..., None])[..., 0]
+
+
+def _newton(chain: LegChain, p: np.ndarray, q: np.ndarray
+            ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Damped Newton steps (at most 0.5 rad or m a step; least squares where the Jacobian is
+    singular or not square) on every sample at once until each is within :data:`NEWTON_TOL` of
+    its target — of its target's projection on what the joints can reach, for a two-joint leg —
+    or :data:`NEWTON_MAX_ITER` steps.
+
+    Args:
+        chain: The leg. p: Targets, shape (T, 3), m. q: Starting joint values, shape (T, n).
+
+    Returns:
+        The joint values reached, shape (T, n); their distance to the targets within reach,
+        shape (T,), m; and what is out of reach (off a two-joint leg's plane), shape (T,), m.
     """
     q = q.copy()
     err = np.full(len(p), np.inf)
+    off = np.zeros(len(p))
     todo = np.arange(len(p))
     for it in range(NEWTON_MAX_ITER + 1):
         at, jac = chain.position_jacobian(q[todo])
         e = p[todo] - at
-        err[todo] = np.linalg.norm(e, axis=1)
+        step = _least_squares(jac, e)
+        if jac.shape[2] == 3:
+            err[todo] = np.linalg.norm(e, axis=1)
+        else:  # the part of e the joints move the foot along; the rest is off the leg's plane
+            reach = np.einsum("tij,tj->ti", jac, step)
+            err[todo] = np.linalg.norm(reach, axis=1)
+            off[todo] = np.linalg.norm(e - reach, axis=1)
         keep = err[todo] > NEWTON_TOL
-        todo, jac, e = todo[keep], jac[keep], e[keep]
+        todo, step = todo[keep], step[keep]
         if not todo.size or it == NEWTON_MAX_ITER:
             break
-        try:
-            step = np.linalg.solve(jac, e[..., None])[..., 0]
-        except np.linalg.LinAlgError:  # a singular Jacobian: the least-squares step
-            step = (np.linalg.pinv(jac) @ e[..., None])[..., 0]
         norm = np.linalg.norm(step, axis=1, keepdims=True)
         q[todo] += step * np.minimum(1.0, 0.5 / np.maximum(norm, 1e-300))
-    return q, err
+    return q, err, off

@@ -25,16 +25,21 @@ TRIPODS: tuple[tuple[str, ...], ...] = (("LF", "RM", "LH"), ("RF", "LM", "RH"))
 """The hexapod's two tripods, the default leg groups; group 0 touches down at t = 0."""
 
 
-def default_groups(legs: Sequence[str]) -> tuple[tuple[str, ...], ...] | None:
+def default_groups(legs: Sequence[str], *, planar: bool = False
+                   ) -> tuple[tuple[str, ...], ...] | None:
     """The alternating gait of a robot's legs, the default when its description gives no
     ``groups``: along each side, front to back, the legs alternate between two groups, and the
     two sides start in opposite groups — every leg's neighbours (ahead, behind, across) swing
     while it stands. That is the tripod on six legs (:data:`TRIPODS`) and the trot on four
-    (:data:`hexaleg.robot.registry.TROT`); on two, the legs alternate.
+    (:data:`hexaleg.robot.registry.TROT`); on two, the legs alternate. Planar legs (two joints,
+    the foot in the leg's plane) cannot step or sway sideways, so there the legs at one place go
+    together on both sides and the places alternate: the bound on four, whose support lines run
+    across the body and whose sway runs along it, in the legs' planes.
 
     Args:
         legs: The robot's leg names in hexaleg's convention: side ``L``/``R`` then the place
             from front to back, ``F M H`` or ``1 2 3 …`` (:mod:`hexaleg.robot.discover`).
+        planar: Every leg moves its foot in a plane (two joints).
 
     Returns:
         The two groups, or None when a name does not follow the convention.
@@ -42,11 +47,14 @@ def default_groups(legs: Sequence[str]) -> tuple[tuple[str, ...], ...] | None:
     places = leg_places(legs)
     if places is None:
         return None
-    for known in (TRIPODS, TROT):
-        if sorted(legs) == sorted(leg for group in known for leg in group):
-            return known
-    first = tuple(name for name, (side, rank) in zip(legs, places, strict=True)
-                  if (rank % 2 == 0) == (side == "L"))
+    if planar:
+        first = tuple(name for name, (_, rank) in zip(legs, places, strict=True) if rank % 2 == 0)
+    else:
+        for known in (TRIPODS, TROT):
+            if sorted(legs) == sorted(leg for group in known for leg in group):
+                return known
+        first = tuple(name for name, (side, rank) in zip(legs, places, strict=True)
+                      if (rank % 2 == 0) == (side == "L"))
     second = tuple(name for name in legs if name not in first)
     return tuple(g for g in (first, second) if g)
 

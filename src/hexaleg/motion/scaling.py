@@ -285,7 +285,7 @@ def robot_gait(robot: RobotDescription | str, *, sized: bool = True) -> GaitPara
     timed = gait.pattern is not None or gait.phases is not None  # groups unused
     if "groups" not in desc.gait:
         legs = desc.leg_names()
-        groups = default_groups(legs)
+        groups = default_groups(legs, planar=desc.planar_legs())
         if groups is None and not timed:
             raise InvalidParameterError(
                 f"{desc.name}: gait.groups", "none given",

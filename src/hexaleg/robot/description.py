@@ -56,6 +56,9 @@ SOURCES: tuple[str, ...] = (BUILTIN, EXAMPLE_ROBOT_DATA, FILES)
 _FOUND_LEGS: dict[tuple[str, str, tuple[float, float, float]], tuple[str, ...]] = {}
 """Leg names found in a URDF per (name, URDF path, heading), for
 :meth:`RobotDescription.leg_names`."""
+_PLANAR_LEGS: dict[tuple[str, str, tuple[float, float, float]], bool] = {}
+"""Whether every leg has two joints, per (name, URDF path, heading), for
+:meth:`RobotDescription.planar_legs`."""
 
 STAND = "stand"
 """The pose name :mod:`hexaleg.motion.legged` uses for footholds and body height."""
@@ -256,6 +259,16 @@ class RobotDescription:
         if key not in _FOUND_LEGS:
             _FOUND_LEGS[key] = self.load().leg_names
         return _FOUND_LEGS[key]
+
+    def planar_legs(self) -> bool:
+        """Whether every leg has two joints, moving its foot in a plane (from :attr:`legs`,
+        else the robot is loaded once per process for that)."""
+        if self.legs is not None:
+            return all(len(leg.joints) == 2 for leg in self.legs)
+        key = (self.name, str(self.urdf_path), self.heading)
+        if key not in _PLANAR_LEGS:
+            _PLANAR_LEGS[key] = all(len(leg.joint_names) == 2 for leg in self.load().legs)
+        return _PLANAR_LEGS[key]
 
     def check_groups(self, groups: Any) -> None:
         """Check that gait leg groups hold every leg of this robot exactly once.

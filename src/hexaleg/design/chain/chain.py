@@ -306,7 +306,8 @@ class DesignChain:
                   "simulated)")
         residual = nom.prepared.residual.line() if nom.prepared.residual is not None else None
         notes = [*flagged, *pays, *logged, *((residual,) if residual else ()), *ranking_notes,
-                 *envelope_notes, *robust_notes, *stalled, *unsimulated, *nom.robot.notes,
+                 *envelope_notes, *robust_notes, *stalled, *unsimulated, *nom.notes,
+                 *nom.robot.notes,
                  *rec.notes,
                  (mirrored.summary() + ("; each gets its group's spring mirrored" if d.mirror
                                         and mirrored.mirrored else "")), *mirrored.notes,

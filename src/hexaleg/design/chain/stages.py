@@ -28,7 +28,12 @@ from hexaleg.design.chain.candidates import (
     parsimonious,
 )
 from hexaleg.design.chain.config import METRICS, DesignConfig, DesignParams
-from hexaleg.design.chain.groups import class_of, design_groups, sprung_classes
+from hexaleg.design.chain.groups import (
+    class_of,
+    design_groups,
+    split_by_motion,
+    sprung_classes,
+)
 from hexaleg.design.envelope import PartEnvelope, parts_envelope
 from hexaleg.design.evaluator import RunSpec
 from hexaleg.design.families import Geometry, containment_waves
@@ -55,6 +60,7 @@ from hexaleg.motion.params import GaitParams
 from hexaleg.motion.trajectory import Motion
 from hexaleg.parallel.forked import fork_map, robot_objects
 from hexaleg.robot.description import RobotDescription
+from hexaleg.robot.mirror import mirror
 from hexaleg.robot.model import Robot
 
 T = TypeVar("T")
@@ -74,6 +80,8 @@ class Nominal:
         outer: Group → (largest spring outer diameter, m; where it comes from).
         motion: The logged motion (``--motion``) the design is made on, or None for the
             generated gait (then ``gait`` only gives its period and samples).
+        notes: What the grouping decided (a class split by its motion,
+            :func:`~hexaleg.design.chain.groups.split_by_motion`).
     """
 
     config: DesignConfig
@@ -88,6 +96,7 @@ class Nominal:
     groups: dict[str, tuple[str, ...]]
     outer: dict[str, tuple[float, str]]
     motion: Motion | None = None
+    notes: tuple[str, ...] = ()
 
     @property
     def outer_diameters(self) -> dict[str, float]:
@@ -150,14 +159,21 @@ def nominal(cfg: DesignConfig) -> Nominal:
         prepared = condition_prepared(run, gait, Condition())
     baseline = {k: float(v) for k, v in prepared.baseline("joule")["total"].items()}
     classes = sprung_classes(robot, d.classes)
-    groups = design_groups(robot, classes, d.grouping)
+    signs = mirror(robot).signs if d.mirror else None
+    q = prepared.motion.q[:, 7:]
+    angles = {j: (float(q[:, c].min()), float(q[:, c].max()))
+              for j, c in ((j, robot.column(j)) for j in robot.joint_names)}
+    class_groups, split = split_by_motion(robot, design_groups(robot, classes, "class"), angles,
+                                          signs)
+    groups = (class_groups if d.grouping == "class" else
+              design_groups(robot, classes, d.grouping))
     outer = {}
     for g, js in groups.items():
         kind = class_of(robot, js)
         outer[g] = ((float(d.max_outer_diameter[kind]), "[design] max_outer_diameter")
                     if kind in d.max_outer_diameter else spring_outer_diameter(desc, robot, kind))
     return Nominal(cfg, run, robot, desc, gait, prepared, baseline, tuple(classes),
-                   design_groups(robot, classes, "class"), groups, outer, motion)
+                   class_groups, groups, outer, motion, tuple(split))
 
 
 def rank(c: Candidate, metric: str) -> float:
