@@ -1,5 +1,6 @@
-"""Benchmark per robot (#26): ``hexaleg design`` wall time and the simulation's speed, on every
-registered robot and the test robots, as ratios against the default robot in the same process.
+"""Benchmark per robot (#26, #39): ``hexaleg design`` wall time and memory and the simulation's
+speed, on every registered robot and the test robots, as ratios against the default robot in the
+same process.
 
 Run:  nice python analysis/bench_robots.py [--robots hexaleg solo12 …] [--no-design]
 
@@ -12,6 +13,9 @@ For each robot, one row:
 * simulate: ``hexaleg simulate --robot R --cycles 4``'s two runs (with the optimal linear springs
   and without), simulated seconds per wall-clock second of their stepping, and the timestep
   the simulation chose (``simulation.stepping``). Target ≥ 10× real time.
+* memory: the peak resident memory of this process and of its largest child (the design's forked
+  workers) so far, MB (``resource.getrusage``: peaks, so a row's figure is at least the rows'
+  before it). Target ≤ 1 GB.
 * the ratio of each to the default robot's, so that a loaded machine (both slow down alike) still
   compares robots. The CPU share (this process's CPU time over the wall time) says how loaded.
 
@@ -22,6 +26,7 @@ design that ends in any other exception, a bug, is a row marked BUG).
 from __future__ import annotations
 
 import argparse
+import resource
 import sys
 import tempfile
 import time
@@ -34,8 +39,8 @@ from hexaleg.errors import HexalegError
 from hexaleg.robot.registry import DESCRIPTIONS
 from hexaleg.scenario.scenario import Scenario
 
-TEST_ROBOTS = {"spider": str(Path(__file__).resolve().parents[1] / "tests" / "data" /
-                             "spider.toml")}
+TEST_ROBOTS = {name: str(Path(__file__).resolve().parents[1] / "tests" / "data" /
+                        f"{name}.toml") for name in ("spider", "xquad", "quad2dof", "biped")}
 """The test robots by short name → TOML."""
 DESIGN_TARGET = 60.0
 """``hexaleg design`` wall time target, s."""
@@ -84,7 +89,7 @@ def main() -> None:
     args = parser.parse_args()
     wall0, cpu0 = time.perf_counter(), time.process_time()
     print(f"{'robot':<9} {'design s':>9} {'x default':>9} {'sim xRT':>8} {'x default':>9} "
-          f"{'dt us':>7}  outcome")
+          f"{'dt us':>7} {'peak MB':>8}  outcome")
     ref: dict[str, float] = {}
     for name in ["hexaleg", *(r for r in args.robots if r != "hexaleg")]:
         robot = TEST_ROBOTS.get(name, name)
@@ -92,10 +97,13 @@ def main() -> None:
         factor, dt, verdict = simulate_speed(robot)
         ref.setdefault("design", wall)
         ref.setdefault("simulate", factor)
+        peak = max(resource.getrusage(who).ru_maxrss for who in
+                   (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN)) / 1024  # kB on Linux
         flags = [f for f, bad in (("design over 60 s", wall > DESIGN_TARGET),
-                                  ("simulation under 10x", factor < SIMULATE_TARGET)) if bad]
+                                  ("simulation under 10x", factor < SIMULATE_TARGET),
+                                  ("over 1 GB", peak > 1024)) if bad]
         print(f"{name:<9} {wall:9.1f} {wall / ref['design']:9.2f} {factor:8.1f} "
-              f"{factor / ref['simulate']:9.2f} {dt * 1e6:7.1f}  {verdict}; {what}"
+              f"{factor / ref['simulate']:9.2f} {dt * 1e6:7.1f} {peak:8.0f}  {verdict}; {what}"
               + (f"  [{', '.join(flags)}]" if flags else ""), flush=True)
     share = (time.process_time() - cpu0) / (time.perf_counter() - wall0)
     print(f"CPU share of this process: {share:.2f} (below ~0.9: the machine was busy; the "

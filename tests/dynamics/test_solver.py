@@ -76,3 +76,31 @@ def test_one_foot_outside_its_cone_is_named(robot, one_foot):
     prepared = _one_foot(robot, one_foot, np.array([9.0, 0.0, 10.0]))  # 0.9 > μ = 0.6
     with pytest.raises(InfeasibleForcesError, match=r"sample 5"):
         prepared.baseline()
+
+
+def test_two_joint_legs_get_the_reference_torques():
+    """A two-joint leg's foot force along its joint axes loads no joint (issue #39): the motor
+    energy leaves it free, and the fast path must still find the optimum — its joint torques
+    D f those of the cvxpy reference (which takes no force across the legs' planes) — where the
+    KKT matrix it solved was singular (LinAlgError in the co-design's search)."""
+    from pathlib import Path
+
+    import hexaleg
+    from hexaleg.dynamics.reference import solve_reference
+
+    quad = str(Path(__file__).resolve().parents[1] / "data" / "quad2dof.toml")
+    prepared = hexaleg.Scenario.from_tables(
+        quad, {"gait": {"period": 0.6, "samples": 200}, "contact": {"mu": 1.0}}).prepare()
+    robot, s = prepared.robot, prepared.system
+    knees = robot.joints("joint2")
+    springs = hexaleg.SpringSet({j: hexaleg.LinearSpring(
+        stiffness=0.5, reference=float(prepared.motion.q[:, 7 + robot.column(j)].mean()))
+        for j in knees})
+    analysis = prepared.evaluate(springs, "joule")
+    samples = np.arange(0, 200, 10)
+    ref = solve_reference(s, analysis.tau_spring, "joule", prepared.weights("joule"),
+                          prepared.contact, samples=samples)
+    fast = analysis.forces.reshape(200, -1)[samples]
+    torque = np.einsum("tjk,tk->tj", s.D[samples], fast)
+    np.testing.assert_allclose(torque, np.einsum("tjk,tk->tj", s.D[samples], ref[samples]),
+                               atol=1e-8)

@@ -84,8 +84,9 @@ def test_a_robot_that_falls_is_a_verdict_with_when_and_how(prepared):
                  dataclasses.replace(QUICK, controller="position", kp_scale=0.005),
                  prepared=prepared)
     run = s.baseline
-    assert run.verdict == "fell" and run.message == (
-        "the robot fell at t = 1.5240 s: base height 45.6 mm < 50% of the planned 91.3 mm")
+    assert run.verdict == "fell" and run.message.startswith(
+        "the robot fell at t = 1.5240 s: base height 45.6 mm < 50% of the planned 91.3 mm; ")
+    assert "servo gains (kp_scale, kd_scale)" in run.message  # neither at stall nor on two feet
     assert np.all(np.isfinite(run.trajectory.qpos)) and run.trajectory.t[-1] < 2.0
     with pytest.raises(SimulationError, match="fell"):
         s.simulated()

@@ -352,7 +352,13 @@ def raise_unreachable(system: StanceSystem, k: int, residual: float) -> NoReturn
             "carries the body's weight there (hexaleg's gaits plan no ballistic phase); raise "
             "duty_factor or stagger the legs' phases (pattern, phases or groups) so that a foot "
             "is always down")
-    if len(feet) == 1:  # one point foot: its force must pass through the centre of mass
+    if len(feet) == 1 and len(system.leg_names) < 3:  # a biped: single support is inevitable
+        why = (f"one point foot ({feet[0]}) pushes no moment about itself, and a robot of "
+               f"{len(system.leg_names)} legs stands on one foot whenever the other swings: it "
+               "balances only dynamically, its centre of mass falling about the stance foot "
+               "(a ZMP or centroidal walking pattern), which hexaleg's gaits do not plan — "
+               "analyse a recorded walk instead (hexaleg.load_motion, --motion LOG)")
+    elif len(feet) == 1:  # one point foot: its force must pass through the centre of mass
         why = (f"one point foot ({feet[0]}) pushes no moment about itself, so the body's "
                "weight and inertia must act through it — raise duty_factor so that more feet "
                "share the support, or give the gait the centre of mass over that foot")

@@ -86,13 +86,18 @@ def quadratic_gains(system: StanceSystem, weights: np.ndarray) -> QuadraticGains
         rhs[:, :n, :nj] = np.transpose(D, (0, 2, 1)) * weights  # DᵀW
         rhs[:, n:, nj:] = np.eye(6)
         sv = np.linalg.svd(A, compute_uv=False)
-        if n >= 6 and np.all(sv[:, -1] > 1e-9 * sv[:, 0]):
+        sd = np.linalg.svd(D, compute_uv=False)
+        if (n >= 6 and np.all(sv[:, -1] > 1e-9 * sv[:, 0])
+                and n <= nj and np.all(sd[:, -1] > 1e-9 * sd[:, 0])):
             sol = np.linalg.solve(kkt, rhs)
         else:
             # Rank-deficient base rows (e.g. two point feet cannot push any moment about the line
             # through them, one foot's three forces meet six rows): f is still unique where the
             # base wrench is reachable; the pseudo-inverse gives it, and solve_fast rejects
-            # samples whose base rows then fail.
+            # samples whose base rows then fail. Rank-deficient joint rows (a two-joint leg's
+            # foot force along its joint axes loads no joint): that force costs nothing, and
+            # the pseudo-inverse takes the least of it (no internal push across the legs'
+            # planes).
             sol = np.linalg.pinv(kkt, rcond=1e-10) @ rhs
         K[np.ix_(rows, cols, np.arange(nj))] = sol[:, :n, :nj]
         L[np.ix_(rows, cols, np.arange(6))] = sol[:, :n, nj:]

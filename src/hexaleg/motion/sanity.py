@@ -169,6 +169,9 @@ def support_findings(robot: Robot, motion: Motion) -> list[Finding]:
             "samples on fewer than 3 feet, no balancing sway)", float(counts[k]), "feet",
             "≥ 3 stance feet (a support polygon), or a gait balanced on two feet",
             "raise duty_factor so that at least three feet stand at every instant, or let "
-            "tripod_gait balance it (GaitParams.balance = 'auto')"))
+            "tripod_gait balance it (GaitParams.balance = 'auto')" if len(robot.legs) >= 3 else
+            f"a robot of {len(robot.legs)} legs stands on one foot whenever another swings and "
+            "balances only dynamically (a ZMP or centroidal walking pattern, which hexaleg's "
+            "gaits do not plan): analyse a recorded walk (hexaleg.load_motion, --motion LOG)"))
     return found
 

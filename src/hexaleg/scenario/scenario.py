@@ -39,8 +39,10 @@ from hexaleg.scenario.logged import logged_motion, quality_note, refuse_gait_tab
 from hexaleg.scenario.run_warnings import run_warnings
 
 TABLES: dict[str, str] = {
-    "gait": "every command: keys over the robot's own gait (docs/gaits.md)",
-    "contact": "every command: friction and contact settings",
+    "gait": "every command but codesign (which searches the gait): keys over the robot's own "
+            "gait (docs/gaits.md)",
+    "contact": "every command but codesign ([codesign.constraints] mu): friction and contact "
+               "settings",
     "motor": "report, simulate, view: one servo on every joint instead of the robot's own",
     "payload": "report: a payload on the base",
     "springs": "report: the springs the report analyses",

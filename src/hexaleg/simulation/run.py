@@ -13,6 +13,7 @@ dynamics and saturation, the load handover taking time instead of one sample.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from dataclasses import dataclass, field
@@ -43,6 +44,15 @@ within :data:`~hexaleg.simulation.measures.DISTANCE_TOLERANCE` and the RMS track
 distance without following the joints' gait; the base fell; the integration diverged."""
 STALL = measures.STALL
 """A run that covers less than this fraction of the planned distance per cycle stalled."""
+GROUND_MASS = 1.36366
+"""kg: the built-in robot's mass, whose ground :data:`GROUND_STIFFNESS` and
+:data:`GROUND_DAMPING` are (:meth:`Settings.sized` scales them to another robot's)."""
+GROUND_STIFFNESS = 2e4
+"""N/m per contact: a rubber-tipped foot on a hard floor, 0.2 mm under the 4.5 N of a tripod foot
+of the built-in robot (:class:`~hexaleg.simulation.ground.Ground`)."""
+GROUND_DAMPING = 100.0
+"""N·s/m per contact: damping ratio ≈ 0.5 for the third of the built-in robot's mass a tripod
+foot carries."""
 STEP_MARGIN = 2
 """Margin on the memory one simulation step costs (:func:`step_bytes`)."""
 
@@ -60,8 +70,11 @@ class Settings:
             so that a cycle is a whole number of steps.
         cycles: Cycles simulated, ≥ 2.
         evaluate: The last cycles evaluated, in [1, cycles − 1] (the others settle).
-        stiffness: Ground contact stiffness K, N/m, > 0.
-        damping: Ground contact damping B, N·s/m, ≥ 0.
+        stiffness: Ground contact stiffness K, N/m, > 0; None (default): sized to the robot,
+            ``K₀ m / m₀`` (:meth:`sized`: the built-in robot's 2·10⁴ N/m scaled by the mass, so
+            a foot sinks as far under its share of any robot's weight).
+        damping: Ground contact damping B, N·s/m, ≥ 0; None (default): ``B₀ m / m₀`` (100
+            N·s/m scaled: B ∝ √(K m) keeps the contact's damping ratio).
         mu: Friction coefficient, > 0; None: the analysis' (``ContactParams.mu``).
         noslip: MuJoCo's no-slip pass (no creep inside the friction cone).
         incline: Ground slope, rad (uphill along the heading > 0).
@@ -79,8 +92,8 @@ class Settings:
     timestep: float | None = None
     cycles: int = 4
     evaluate: int = 2
-    stiffness: float = 2e4
-    damping: float = 100.0
+    stiffness: float | None = None
+    damping: float | None = None
     mu: float | None = None
     noslip: bool = False
     incline: float = 0.0
@@ -103,10 +116,23 @@ class Settings:
         """The servo of these settings."""
         return Servo(self.controller, self.compliance, self.kp_scale, self.kd_scale)
 
+    def sized(self, mass: float) -> Settings:
+        """These settings with the ground sized to a robot of ``mass`` kg where they leave it
+        unset: ``K = K₀ m / m₀``, ``B = B₀ m / m₀`` with :data:`GROUND_STIFFNESS`,
+        :data:`GROUND_DAMPING` for the built-in robot's :data:`GROUND_MASS` (the same sink
+        ``m g / (n K)`` under the same feet, the same damping ratio ``B / (2 √(K m / n))``:
+        Hunt–Crossley's linear limit, the spring-damper ground of MuJoCo's ``solref``)."""
+        ratio = mass / GROUND_MASS
+        return dataclasses.replace(
+            self, stiffness=GROUND_STIFFNESS * ratio if self.stiffness is None else self.stiffness,
+            damping=GROUND_DAMPING * ratio if self.damping is None else self.damping)
+
     def ground(self, mu: float) -> Ground:
-        """The ground of these settings (``mu`` unless :attr:`mu` is set)."""
-        return Ground(self.stiffness, self.damping, mu if self.mu is None else self.mu,
-                      self.noslip, self.incline)
+        """The ground of these settings (``mu`` unless :attr:`mu` is set; an unsized stiffness
+        or damping the built-in robot's, :meth:`sized` first for another robot)."""
+        return Ground(GROUND_STIFFNESS if self.stiffness is None else self.stiffness,
+                      GROUND_DAMPING if self.damping is None else self.damping,
+                      mu if self.mu is None else self.mu, self.noslip, self.incline)
 
     @classmethod
     def from_mapping(cls, table: Any, where: str = "simulate") -> Settings:
@@ -283,6 +309,9 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
     start = time.perf_counter()
     traj = stepping.run(sim, ctrl, qpos0, qvel0, float(np.mean(motion.q[:, 2])))
     wall = time.perf_counter() - start
+    if traj.verdict == "fell":
+        return Run(name, sim, traj, traj.verdict,
+                   f"{traj.message}; {fall_cause(sim, motion, traj)}", wall=wall)
     if traj.verdict != "ran":
         return Run(name, sim, traj, traj.verdict, traj.message, wall=wall)
     window = slice((settings.cycles - settings.evaluate) * steps, settings.cycles * steps)
@@ -293,6 +322,36 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
     verdict, message = measures.verdict(walked, motion.distance)
     return Run(name, sim, traj, verdict, message, cycles, measures.mean_metrics(cycles),
                walked, forces, wall)
+
+
+SATURATED = 0.1
+"""A run whose servos sat at their stall torque for more than this fraction of the steps before
+it fell fell for want of torque (:func:`fall_cause`)."""
+
+
+def fall_cause(sim: SimModel, motion: Motion, traj: stepping.Trajectory) -> str:
+    """Why a run fell, as far as the run shows it: servos at their stall torque (a weaker
+    actuator than the gait needs), or a gait that stands on two feet or fewer (balanced by its
+    plan alone: the servos follow the joints without feedback on the body's attitude, so an
+    error grows until the body tips — the analysis of such a gait stands, its open-loop
+    simulation cannot); else the ground and the servo's gains (``[simulate]``)."""
+    at_stall = np.abs(traj.servo) >= sim.stall * (1.0 - 1e-6)
+    share = float(at_stall.any(axis=1).mean())
+    if share > SATURATED:
+        j = int(np.argmax(at_stall.mean(axis=0)))
+        return (f"the servos were at their stall torque in {share:.0%} of the steps "
+                f"({sim.robot.joint_names[j]} most, {float(sim.stall[j]):.3g} N·m): the gait "
+                "needs a stronger actuator ([motor], or the robot's own), a slower or shorter "
+                "gait, or a lighter robot")
+    feet = int(motion.stance.sum(axis=1).min())
+    if feet <= 2:
+        return (f"the gait stands on {feet} feet at times and is balanced by its plan alone; "
+                "the simulated servos follow the joints without feedback on the body's "
+                "attitude, so an error grows until it tips (a trot or a bound needs a balance "
+                "controller): simulate a gait on three or more feet ([gait] pattern = \"crawl\" "
+                "or duty_factor ≥ 0.75) — the analysis of this one stands")
+    return ("check the ground ([simulate] stiffness, damping) and the servo gains "
+            "(kp_scale, kd_scale) against the robot's weight")
 
 
 def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None = None,
@@ -328,7 +387,7 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
         InfeasibleForcesError: the analysis has no admissible contact forces.
         TorqueLimitError: the analysis needs more than the motor's stall torque.
     """
-    settings = settings or Settings()
+    settings = (settings or Settings()).sized(robot.mass)
     springs = springs if springs is not None else SpringSet()
     contact = contact or ContactParams()
     if not motion.periodic or motion.fixed_base:

@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from scipy.spatial.transform import Rotation
 
 from hexaleg.checks import integer, real
 from hexaleg.config import write_file
@@ -128,21 +129,6 @@ class WalkLog:
         return write_file(path, text.getvalue(), "simulated log")
 
 
-def _rotate(quaternion: np.ndarray, angle: np.ndarray) -> np.ndarray:
-    """Quaternions (K, 4) x, y, z, w turned by the small rotations of axis-angle vectors
-    (K, 3) in the body frame (Hamilton product q ⊗ exp(θ/2)), shape (K, 4)."""
-    theta = np.linalg.norm(angle, axis=1, keepdims=True)
-    half = 0.5 * theta
-    axis = np.divide(angle, theta, out=np.zeros_like(angle), where=theta > 0)
-    d = np.concatenate([axis * np.sin(half), np.cos(half)], axis=1)
-    x1, y1, z1, w1 = quaternion.T
-    x2, y2, z2, w2 = d.T
-    return np.stack([w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
-                     w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
-                     w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2,
-                     w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2], axis=1)
-
-
 def walk_log(robot: Robot, motion: Motion, motor: Any = None, *, rate: float = 100.0,
              settle: float = 1.0, drop: float = 0.02, cycles: int = 10, evaluate: int = 6,
              sensors: Sensors | None = None, contact: ContactParams | None = None,
@@ -173,7 +159,7 @@ def walk_log(robot: Robot, motion: Motion, motor: Any = None, *, rate: float = 1
         raise InvalidParameterError("motion", "a fixed-base or non-periodic motion",
                                     "a periodic gait (hexaleg.gait)")
     sensors = sensors or Sensors()
-    settings = settings or Settings()
+    settings = (settings or Settings()).sized(robot.mass)
     contact = contact or ContactParams()
     prepared = prepare(robot, motion, motor=motor, contact=contact)
     analysis = prepared.evaluate(None, "joule")
@@ -207,7 +193,8 @@ def walk_log(robot: Robot, motion: Motion, motor: Any = None, *, rate: float = 1
     cols: dict[str, np.ndarray] = {"time": traj.t[rows]}
     for i, name in enumerate(BASE_POSITION):
         cols[name] = q[:, i] + rng.normal(0.0, sensors.base_noise, k)
-    turned = _rotate(q[:, 3:7], rng.normal(0.0, sensors.imu_noise, (k, 3)))
+    turned = (Rotation.from_quat(q[:, 3:7])  # x, y, z, w; a body-frame turn: q ⊗ exp(θ/2)
+              * Rotation.from_rotvec(rng.normal(0.0, sensors.imu_noise, (k, 3)))).as_quat()
     for i, name in enumerate(BASE_QUATERNION):
         cols[name] = turned[:, i]
     for j, name in enumerate(robot.joint_names):

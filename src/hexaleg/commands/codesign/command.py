@@ -34,13 +34,29 @@ def add(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run)
 
 
+IGNORED = {
+    "gait": "it searches the gait itself: set its pattern and speed in [codesign] (pattern, "
+            "speed) or on the command line (--pattern, --speed)",
+    "contact": "the friction it designs for is [codesign.constraints] mu",
+    "motor": "it uses the robot's own actuators (name a catalogue motor in the robot's "
+             "description)",
+}
+"""Tables of a config file that other commands read and codesign would ignore: refused, with
+where their settings go."""
+
+
 def run(args: argparse.Namespace) -> int:
     """Run the co-design and write its files."""
     from hexaleg.commands.codesign.write import write_codesign
     from hexaleg.commands.options import load_run
     from hexaleg.design.codesign.build import codesign_settings
+    from hexaleg.errors import ConfigError
 
     scenario = load_run(args.robot, args.config, args=args)
+    for table, instead in IGNORED.items():  # a value codesign would not use is refused
+        if scenario.tables.get(table):
+            raise ConfigError(f"{scenario.where} [{table}]: hexaleg codesign does not read it "
+                              f"— {instead}")
     kwargs = codesign_settings(scenario.table("codesign"), f"{scenario.where} [codesign]")
     for key in ("speed", "pattern"):
         if getattr(args, key) is not None:
