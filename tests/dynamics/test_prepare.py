@@ -208,3 +208,18 @@ def test_epsilon_of_the_embedded_paper_joint_is_its_closed_form():
     M = pin.crba(robot.model, robot.model.createData(), motion.q[0])
     assert prepared.inertia[j] == pytest.approx(M[6 + j, 6 + j], rel=1e-12)
     assert np.count_nonzero(eps["positive_work"]) == 1
+
+
+@pytest.mark.parametrize("stiffness", [1e300, 1e6])
+def test_a_spring_in_the_wrong_unit_is_named_not_a_contact_force_error(robot, stiffness):
+    """Issue #42: a femur stiffness of 1e300 ended in a contact-force error; a spring pushing
+    over 1000 × its joint's stall torque is refused naming the joint, the spring and its
+    torque (a 1e6 N·m/rad spring on a 1.8 N·m servo too)."""
+    import hexaleg
+    from hexaleg.errors import InvalidParameterError
+
+    prepared = hexaleg.prepare(robot, hexaleg.gait(robot, hexaleg.GaitParams(samples=60)))
+    with pytest.raises(InvalidParameterError, match=r"springs\['LF_femur'\].*1000 × the "
+                       r"joint's stall torque \(1\.8 N·m\); it reaches"):
+        prepared.evaluate({"LF_femur": hexaleg.LinearSpring(stiffness=stiffness)})
+    assert prepared.evaluate({"LF_femur": hexaleg.LinearSpring(stiffness=0.1)})

@@ -57,6 +57,9 @@ from hexaleg.robot.springs import Spring, SpringSet
 from hexaleg.units import G
 
 SpringsLike = SpringSet | Mapping[str, Spring] | None
+SPRING_TORQUE_BOUND = 1000.0
+"""A spring may push at most this many times its joint's stall torque along the motion: more is a
+value in the wrong unit (a stiffness of 1e300 N·m/rad ended as a contact-force error)."""
 
 
 def _as_motor(motor: Motor | MotorSet | str | None, robot: Robot) -> Motor | MotorSet:
@@ -207,6 +210,25 @@ class Prepared:
             return np.zeros_like(self.q)
         return s.torques(self.robot, self.motion.q, self.motion.v)
 
+    def _check_spring_torques(self, springs: SpringSet, tau_spring: np.ndarray) -> None:
+        """Refuse springs whose torque along the motion is not finite or over
+        :data:`SPRING_TORQUE_BOUND` times the joint's stall torque, naming the joint and its
+        spring (a stiffness in the wrong unit ends here, not as a contact-force error)."""
+        if not len(springs):
+            return
+        stall = np.broadcast_to(np.asarray(getattr(self.motor, "stall_torque", np.inf),
+                                           dtype=float), (tau_spring.shape[1],))
+        peak = np.max(np.abs(np.nan_to_num(tau_spring, nan=np.inf)), axis=0)
+        bad = np.flatnonzero(~(peak <= SPRING_TORQUE_BOUND * stall))
+        if bad.size:
+            j = int(bad[np.argmax(peak[bad] / stall[bad])])
+            name = self.robot.joint_names[j]
+            raise InvalidParameterError(
+                f"springs[{name!r}]", springs[name] if name in springs else None,
+                f"a spring whose torque along the motion stays finite and within "
+                f"{SPRING_TORQUE_BOUND:g} × the joint's stall torque ({stall[j]:.3g} N·m); it "
+                f"reaches {peak[j]:.3g} N·m — a stiffness or torque in the wrong unit?")
+
     def solve(self, tau_spring: np.ndarray, objective: str = "joule"
               ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Foot forces and motor torques for given spring torques (the sweep's inner step).
@@ -310,6 +332,7 @@ class Prepared:
         check_objective(objective)
         s = _as_springs(springs)
         tau_s = self.spring_torques(s)
+        self._check_spring_torques(s, tau_s)
         forces, tau_m, resolved = self.solve(tau_s, objective)
         metrics = self.metrics(tau_m)
         baseline = self.baseline(objective)

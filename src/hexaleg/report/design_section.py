@@ -163,4 +163,8 @@ def _section(path: Path, data: dict[str, Any]) -> dict[str, Any]:
                          data.get("pays", True)),
         "worst": data["worst"], "robust": None if robust is None else robust["worst"],
         "simulation": data.get("simulation", []),
+        "hard_stops": [{"group": e["group"], "side": e["side"],
+                        "angle_from_centre": e["hard_stop"]["angle_from_centre"],
+                        "safety_factor": e["safety_factor"]}
+                       for e in data.get("envelope", []) if e.get("hard_stop") is not None],
     }

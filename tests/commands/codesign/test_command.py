@@ -106,3 +106,23 @@ def test_runs_and_writes(tmp_path, capsys):
 def test_bad_speed_is_one_line(capsys):
     assert main(["codesign", "--speed", "-1"]) == 2
     assert "speed" in capsys.readouterr().err
+
+
+def test_a_pattern_for_other_legs_is_named_not_the_speed(tmp_path, capsys):
+    """Issue #42: --pattern tripod on a quadruped was blamed on the speed."""
+    assert main(["codesign", "--robot", "solo12", "--pattern", "tripod", "--no-rules",
+                 "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert "error: invalid pattern = 'tripod'; allowed: a pattern for 2 + 2 legs" in err
+    assert "speed" not in err
+
+
+def test_tables_codesign_does_not_read_are_refused(tmp_path, capsys):
+    """[gait], [contact] and [motor] were silently ignored by codesign: refused, with where the
+    setting goes."""
+    config = tmp_path / "c.toml"
+    config.write_text("[contact]\nmu = 1.0\n")
+    assert main(["codesign", "--config", str(config), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert "[contact]: hexaleg codesign does not read it" in err
+    assert "[codesign.constraints] mu" in err and not (tmp_path / "out").exists()

@@ -109,3 +109,31 @@ def test_a_design_with_an_unbuildable_part_has_no_infinity(tmp_path):
     assert data["recommended"]["parts"][0]["free"]["value"] is None
     assert data[NON_FINITE]["paths"] == ["recommended.parts[0].free.value"]
     assert data["stages"] == ["candidates"] and data["ranking"] == [] and data["maps"] == []
+
+
+def test_the_closing_line_and_the_report_name_every_hard_stop(design_written, tmp_path):
+    """Issue #43: a spring that needs a hard stop said so in red on design.html only. The
+    closing line a user copies and the report led by the design name each stop (its group,
+    side, angle) — and say nothing of stops a design does not need."""
+    import json
+    import math
+
+    from hexaleg.cli import main
+
+    written, out = design_written
+    r = written.result
+    stops = [e for e in r.envelope if e.stop is not None]
+    line = r.summary()
+    assert ("hard stops needed" in line) == bool(stops)
+    for e in stops:
+        assert f"{e.group} ({e.side}) at {math.degrees(e.stop.angle_from_centre):+.1f}°" in line
+    config = tmp_path / "r.toml"
+    config.write_text("[gait]\nsamples = 60\n[report]\nstiffness_points = 3\npaper_samples = 8\n")
+    assert main(["report", "--design", str(out / "design.json"), "--config", str(config),
+                 "--out", str(tmp_path / "report")]) == 0
+    html = (tmp_path / "report" / "report.html").read_text(encoding="utf-8")
+    data = json.loads((tmp_path / "report" / "report.json").read_text(encoding="utf-8"))
+    assert len(data["design"]["hard_stops"]) == len(stops)
+    assert ("Hard stops needed" in html) == bool(stops)
+    for e in stops:
+        assert f"{e.group} ({e.side}) at\n{math.degrees(e.stop.angle_from_centre):+.1f}°" in html

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.motion.recorded.read import read_log
 from hexaleg.units import DEG, MM
 
@@ -39,3 +39,13 @@ def test_npz_reads_the_same_names(robot, tmp_path):
     np.savez(tmp_path / "log.npz", **{"time": np.arange(3.0), "LF_femur [deg]": np.ones(3)})
     log = read_log(robot, tmp_path / "log.npz")
     assert log.columns["LF_femur"] == pytest.approx(np.full(3, DEG))
+
+
+def test_an_npz_array_that_is_not_a_column_is_named(robot, tmp_path):
+    """Issue #42: a 2-D array and a short array are named, not 'got shapes …'."""
+    np.savez(tmp_path / "a.npz", time=np.arange(3.0), LF_femur=np.ones((3, 2)))
+    with pytest.raises(ConfigError, match=r"array 'LF_femur' is float64 of shape \(3, 2\)"):
+        read_log(robot, tmp_path / "a.npz")
+    np.savez(tmp_path / "b.npz", time=np.arange(3.0), LF_femur=np.ones(2))
+    with pytest.raises(ConfigError, match=r"array 'LF_femur' has 2 values and 'time' 3"):
+        read_log(robot, tmp_path / "b.npz")

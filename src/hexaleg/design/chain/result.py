@@ -14,6 +14,7 @@ back. ``simulation`` holds the recommendation's forward simulation, one row per 
 from __future__ import annotations
 
 import importlib.metadata
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -133,6 +134,15 @@ class DesignResult:
                     f"worst case over the maps {100 * self.worst[m][0]:+.2f} % at "
                     f"{self.worst[m][1]}" if self.maps else "no robustness maps ("
                     + ("logged motion" if self.config.motion is not None else "left out") + ")"))
+        stops = [f"{e.group} ({e.side}) at {math.degrees(e.stop.angle_from_centre):+.1f}° from "
+                 f"its centre of motion (S_y/σ {e.safety_factor:.2f} without)"
+                 for e in self.envelope if e.stop is not None]
+        unsafe = [f"{e.group} ({e.side}): {e.problem}" for e in self.envelope
+                  if e.stop is None and not e.meets]
+        if stops:
+            line += "; hard stops needed: " + ", ".join(stops)
+        if unsafe:
+            line += "; NOT SAFE over the joint's envelope: " + ", ".join(unsafe)
         simulated = [f"{row['label']} {100 * row['simulated']:+.2f} %"
                      if row["simulated"] is not None else f"{row['label']}: {row['verdict']}"
                      for row in self.simulation]

@@ -55,7 +55,7 @@ from hexaleg.errors import ConfigError, HexalegError, InvalidParameterError
 from hexaleg.motion.body import body_height, nominal_footholds
 from hexaleg.motion.legged import gait
 from hexaleg.motion.params import GaitParams
-from hexaleg.motion.patterns import check_pattern
+from hexaleg.motion.patterns import check_pattern, pattern_offsets
 from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.model import Robot
 from hexaleg.robot.registry import description
@@ -91,6 +91,7 @@ def default_gait(robot: Robot, name: str, speed: float, pattern: str | None, sam
     (the stand pose's foot depth and mean horizontal foothold distance)."""
     base = robot_gait(name)
     if pattern is not None:
+        pattern_offsets(pattern, robot.leg_names)  # a pattern for other legs named as such
         base = dataclasses.replace(base, pattern=check_pattern(pattern),
                                    duty_factor=None)  # type: ignore[arg-type]  # → β₀
     base = dataclasses.replace(base, samples=samples, speed=float(speed))

@@ -115,11 +115,18 @@ def _npz_columns(data: bytes, where: str) -> tuple[list[str], np.ndarray]:
         raise ConfigError(f"{where}: not a readable NPZ file ({e}); save it with "
                           "numpy.savez") from None
     names = list(arrays)
-    lengths = {arrays[k].shape for k in names}
-    if any(arrays[k].ndim != 1 or not np.issubdtype(arrays[k].dtype, np.number) for k in names) \
-            or len(lengths) > 1:
-        raise ConfigError(f"{where}: every array must be numeric, 1-D and of the same length "
-                          f"(one per column); got shapes {sorted(map(str, lengths))}")
+    for k in names:  # the array at fault named, with what it is
+        a = arrays[k]
+        if a.ndim != 1 or not np.issubdtype(a.dtype, np.number):
+            raise ConfigError(f"{where}: array {k!r} is {a.dtype} of shape {a.shape}; every "
+                              "array must be a numeric 1-D column (one per log column, e.g. "
+                              "numpy.savez(path, time=t, LF_femur=q[:, 0], …))")
+    lengths = {k: len(arrays[k]) for k in names}
+    if len(set(lengths.values())) > 1:
+        first = names[0]
+        odd = next(k for k in names if lengths[k] != lengths[first])
+        raise ConfigError(f"{where}: array {odd!r} has {lengths[odd]} values and {first!r} "
+                          f"{lengths[first]}; every column must have one value per row")
     values = np.stack([arrays[k].astype(float) for k in names], axis=1) if names else \
         np.zeros((0, 0))
     return names, values
