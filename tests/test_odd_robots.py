@@ -64,6 +64,9 @@ SLOW = {"design", "simulate", "codesign"}
 def _argv(case: str, command: str, tmp_path: Path) -> list[str]:
     argv = [command, "--robot", CASES[case]]
     text = CONFIGS.get(case, "") + (QUICK if command == "report" else "")
+    if command == "design":  # one family, no maps: the suite's time (the full design of the
+        # X quadruped is tests/design/chain/test_groups.py's; its time, analysis/bench_robots.py)
+        text += '[design]\nfamilies = ["one_sided"]\nrobustness = false\n'
     if command == "codesign":
         text = CODESIGN_CONFIGS.get(case, text)
         text += "[codesign]\nmax_evaluations = 10\nsamples = 40\nfinal_samples = 60\n"
