@@ -250,3 +250,33 @@ def foot_forces(sim: SimModel, motion: Motion, traj: Trajectory, window: slice,
             "normal_mean_sim": float(sim_f[stance][:, 2].mean()),
             "normal_mean_predicted": float(pred[stance][:, 2].mean()),
             "weight": float(sim.robot.mass * np.linalg.norm(gravity))}
+
+
+SATURATED = 0.1
+"""A run whose servos sat at their stall torque for more than this fraction of the steps before
+it fell for want of torque (:func:`fall_cause`)."""
+
+
+def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory) -> str:
+    """Why a run fell, as far as the run shows it: servos at their stall torque (a weaker
+    actuator than the gait needs), or a gait that stands on two feet or fewer (balanced by its
+    plan alone: the servos follow the joints without feedback on the body's attitude, so an
+    error grows until the body tips — the analysis of such a gait stands, its open-loop
+    simulation cannot); else the ground and the servo's gains (``[simulate]``)."""
+    at_stall = np.abs(traj.servo) >= sim.stall * (1.0 - 1e-6)
+    share = float(at_stall.any(axis=1).mean())
+    if share > SATURATED:
+        j = int(np.argmax(at_stall.mean(axis=0)))
+        return (f"the servos were at their stall torque in {share:.0%} of the steps "
+                f"({sim.robot.joint_names[j]} most, {float(sim.stall[j]):.3g} N·m): the gait "
+                "needs a stronger actuator ([motor], or the robot's own), a slower or shorter "
+                "gait, or a lighter robot")
+    feet = int(motion.stance.sum(axis=1).min())
+    if feet <= 2:
+        return (f"the gait stands on {feet} feet at times and is balanced by its plan alone; "
+                "the simulated servos follow the joints without feedback on the body's "
+                "attitude, so an error grows until it tips (a trot or a bound needs a balance "
+                "controller): simulate a gait on three or more feet ([gait] pattern = \"crawl\" "
+                "or duty_factor ≥ 0.75) — the analysis of this one stands")
+    return ("check the ground ([simulate] stiffness, damping) and the servo gains "
+            "(kp_scale, kd_scale) against the robot's weight")
