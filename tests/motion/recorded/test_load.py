@@ -206,3 +206,16 @@ def test_a_joints_only_quadruped_trot_gives_its_cycle_stance_and_an_energy(tmp_p
     assert prepared.residual.fraction.max() < 0.1
     energy = prepared.evaluate().metrics["total"]["electrical"]
     assert 0.0 < energy and abs(energy / _energy(robot, trot) - 1.0) < 0.05
+
+
+def test_a_base_whose_floor_is_not_z_0_is_named_with_its_offset(robot, gait_100hz, tmp_path,
+                                                                  logs):
+    """Issue #42: a base 1 m above its feet (a motion-capture origin off the floor) with
+    contacts saying stance loaded silently and fell in the simulation ('base height …'); it is
+    refused naming base_z and the offset that puts the stance feet on the floor."""
+    cols = logs.noisy_log(robot, gait_100hz, cycles=3)
+    cols["base_z"] = cols["base_z"] + 1.0
+    logs.write_csv(tmp_path / "high.csv", cols)
+    with pytest.raises(InvalidParameterError, match=r"base_z = \"stance feet 1\.0\d\d m above "
+                       r".*subtract 1\.0\d\d m from base_z"):
+        hexaleg.load_motion(robot, tmp_path / "high.csv")

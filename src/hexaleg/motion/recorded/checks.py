@@ -19,6 +19,9 @@ LIMIT_TOLERANCE = 0.02
 """How far a logged joint may pass its URDF limit (servo overshoot, calibration), rad."""
 GROUND_TOLERANCE = 0.005
 """How far below the ground (z = 0 of the logged world) a foot may seem to go, m."""
+STANCE_TOLERANCE = 0.02
+"""How far above the logged world's z = 0 the stance feet may stand (their median height), m:
+a foot's radius and the floor's unevenness, not an origin off the floor."""
 TILT_TOLERANCE = 5.0 * DEG
 """The logged attitude may tilt the stance feet's ground by at most this much, rad, on
 flat ground before the loader warns (:func:`attitude_note`): more than an IMU's error and the
@@ -110,12 +113,30 @@ def check_stance(robot: Robot, stance: np.ndarray, t: np.ndarray, where: str) ->
     return out
 
 
-def check_ground(robot: Robot, feet: np.ndarray, t: np.ndarray, where: str) -> None:
-    """No foot below the logged world's ground z = 0 by more than :data:`GROUND_TOLERANCE`.
+def check_ground(robot: Robot, feet: np.ndarray, t: np.ndarray, where: str,
+                 stance: np.ndarray | None = None) -> None:
+    """No foot below the logged world's ground z = 0 by more than :data:`GROUND_TOLERANCE`, and
+    the stance feet on it: their median height within :data:`STANCE_TOLERANCE` of z = 0.
+
+    Args:
+        robot: The robot. feet: Foot positions in the logged world, shape (T, n_legs, 3), m.
+        t: Sample times, shape (T,), s. where: The log, for messages.
+        stance: Stance flags, shape (T, n_legs), or None (the depth check alone).
 
     Raises:
-        InvalidParameterError: the foot, the depth and the time, and what to change.
+        InvalidParameterError: the foot, the depth and the time, and what to change; or the
+            stance feet's height above z = 0 and the ``base_z`` offset that would put them on
+            the floor (a motion-capture origin off the floor: the simulation would drop the
+            robot from that height).
     """
+    if stance is not None and stance.any():
+        height = float(np.median(feet[..., 2][stance]))
+        if height > STANCE_TOLERANCE:
+            raise InvalidParameterError(
+                f"{where}: base_z", f"stance feet {height:.3f} m above the log's z = 0 (median "
+                "over the stance samples)", f"the log's world z = 0 on the floor the stance "
+                f"feet stand on: subtract {height:.3f} m from base_z (a motion-capture origin "
+                "off the floor), or check its unit (base_z [mm])")
     k, i = (int(v) for v in np.unravel_index(np.argmin(feet[..., 2]), feet.shape[:2]))
     depth = -float(feet[k, i, 2])
     if depth > GROUND_TOLERANCE:

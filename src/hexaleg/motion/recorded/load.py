@@ -271,7 +271,7 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
     for message in caught:  # before a ground error: a tilted attitude may be its cause
         warnings.warn(message, HexalegWarning, stacklevel=2)
     if has_base:
-        check_ground(robot, feet, tc, where)
+        check_ground(robot, feet, tc, where, stance.stance)
     world_speed = np.linalg.norm(_velocity(feet, dt_c, False), axis=2)[stance.stance]
     slip = float(np.sqrt(np.mean(world_speed**2))) if world_speed.size else 0.0
     quality = MotionQuality(
