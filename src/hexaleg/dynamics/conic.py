@@ -336,8 +336,15 @@ def _binding_constraint(system: StanceSystem, k: int, tau_spring: np.ndarray,
     if f is not None:
         load = np.hypot(f[feet, 0], f[feet, 1]) / np.maximum(f[feet, 2], 1e-300)
         worst = f", foot {system.leg_names[feet[int(np.argmax(load))]]} at its cone's edge"
+    single = ""
+    if len(feet) == 1:  # the force of one point foot points at the centre of mass
+        single = (" (one point foot's force points from the foot at the centre of mass, so its "
+                  "friction ratio is the centre of mass's horizontal distance from the foot "
+                  "over its height: a gait on one foot needs the body over the foot, longer "
+                  "two-foot phases that carry it from one foot to the next — a higher "
+                  "duty_factor — or a higher body_height)")
     return (f"the friction cone — the least friction that admits forces here is "
-            f"μ = {hi:.3g}{worst}")
+            f"μ = {hi:.3g}{worst}{single}")
 
 
 def raise_unreachable(system: StanceSystem, k: int, residual: float) -> NoReturn:

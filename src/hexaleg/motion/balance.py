@@ -115,6 +115,14 @@ class Sway:
         return float(np.ptp(d) / 2.0)
 
 
+@dataclass(frozen=True, eq=False)
+class Turn(Sway):
+    """A periodic yaw ψ(t) of the body about its vertical (the ground's normal), rad: the
+    trigonometric polynomial of :class:`Sway` (its samples, exact derivatives ψ̇, ψ̈), applied
+    as a rotation (:func:`hexaleg.motion.body.body_motion`); ``direction`` is the turn's axis in
+    the base frame."""
+
+
 def periodic_lip_sway(f: np.ndarray, period: float, height: float,
                       gravity: float = G) -> np.ndarray:
     """The periodic solution of the linear inverted pendulum ``g d − h d̈ = f`` on the cycle grid.
@@ -250,7 +258,7 @@ def balance_sway(robot: Robot, gait: GaitParams, grid: np.ndarray,
     cancels it, ``g δd − h δd̈ = −M / (m s)`` on the two-foot samples and 0 on the others
     (:func:`periodic_lip_sway`, Kajita et al. ICRA 2003; h the mean CoM height, s the crossing
     factor), and re-sample the gait; the iterates are combined by Anderson acceleration
-    (:func:`_anderson`). It stops when ``max |M_k| ≤ BALANCE_TOL · m g h``.
+    (:func:`anderson`). It stops when ``max |M_k| ≤ BALANCE_TOL · m g h``.
 
     Args:
         robot: The robot.
@@ -290,7 +298,7 @@ def balance_sway(robot: Robot, gait: GaitParams, grid: np.ndarray,
         f[mask] = -moment[mask] / (mass * s[mask])
         step = periodic_lip_sway(f, gait.period, height, g)
         history.append((d + step, step))
-        d = _anderson(history[-ANDERSON_DEPTH - 1:])
+        d = anderson(history[-ANDERSON_DEPTH - 1:])
         sway = Sway.from_samples(direction, gait.period, d)
         report = {"mode": "sway", "direction": direction.tolist(), "height": height,
                   "iterations": len(residuals), "amplitude": sway.amplitude}
@@ -307,7 +315,7 @@ def balance_sway(robot: Robot, gait: GaitParams, grid: np.ndarray,
         f"(allowed {BALANCE_TOL:g}); a slower gait, a smaller stride or balance = 'none'")
 
 
-def _anderson(history: list[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
+def anderson(history: list[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
     """Anderson-accelerated next iterate from ``(G(d_i), r_i = G(d_i) − d_i)``, oldest first.
 
     ``d⁺ = G(d_k) − ΔG γ`` with γ minimising ``‖r_k − ΔR γ‖`` over the differences of the last

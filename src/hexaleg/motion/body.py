@@ -3,7 +3,8 @@
 The base moves with a constant twist (local linear velocity ``speed · h`` along the robot's
 heading h, :attr:`hexaleg.robot.model.Robot.heading`, default ``[1, 0, 0]``; angular velocity
 ``[0, 0, yaw_rate]``) at a constant height, starting at the origin with zero yaw, plus an
-optional horizontal sway ``d(t) e`` (:class:`hexaleg.motion.balance.Sway`). The legs' mid-stance
+optional horizontal sway ``d(t) e`` (:class:`hexaleg.motion.balance.Sway`) and yaw turn ψ(t)
+(:class:`hexaleg.motion.balance.Turn`, the walking pattern of one-foot gaits). The legs' mid-stance
 footholds in the base frame are :func:`nominal_footholds`. World foot targets
 are taken into the base frame with the exact rotating-frame derivatives (see
 :func:`in_base_frame`), as :func:`hexaleg.motion.kinematics.leg_ik` needs them.
@@ -18,7 +19,7 @@ from typing import NamedTuple
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.motion.balance import Sway
+from hexaleg.motion.balance import Sway, Turn
 from hexaleg.motion.ground import Ground, ground_plane, level_footholds
 from hexaleg.motion.params import GaitParams
 from hexaleg.robot.fields import horizontal_axis
@@ -37,9 +38,11 @@ class Body(NamedTuple):
         rot: Base orientation, shape (N, 3, 3): R(yaw) on level ground, ``R_g Rz(yaw) C`` on a
             slope (:mod:`hexaleg.motion.ground`).
         v: Linear velocity in the base frame, shape (3,) or (N, 3), m/s.
-        w: Angular velocity in the base frame, shape (3,), rad/s.
+        w: Angular velocity in the base frame, shape (3,) or (N, 3), rad/s.
         a: Linear acceleration in the base frame, shape (3,) or (N, 3), m/s².
         ground: The inclined ground, or None on level ground.
+        alpha: Angular acceleration in the base frame, shape (N, 3), rad/s², with a yaw turn;
+            None: zero (the constant twist).
     """
 
     base: np.ndarray
@@ -49,6 +52,7 @@ class Body(NamedTuple):
     w: np.ndarray
     a: np.ndarray
     ground: Ground | None = None
+    alpha: np.ndarray | None = None
 
 
 def reference_pose(robot: Robot) -> np.ndarray:
@@ -162,29 +166,51 @@ def body_motion(t: np.ndarray, speed: float, yaw_rate: float, height: float,
     The body travels along ``direction`` (the walking direction h, base frame; default
     ``[1, 0, 0]``): LOCAL linear velocity ``speed · h`` (:func:`body_pose`). Each sway adds
     ``R e d`` to the position, ``e ḋ + ω × e d`` to the LOCAL linear velocity and
-    ``e d̈ + ω × e ḋ`` to the acceleration (ω the LOCAL angular velocity; exact derivatives of
-    the trigonometric polynomial d). On a slope (``ground``, :mod:`hexaleg.motion.ground`) the
-    same motion happens in the ground frame at ``height`` from the plane along its normal: the
-    world pose is ``R_g`` times the ground-frame pose with the base attitude ``Rz(ψ) C``, and the
-    LOCAL velocities become ``Cᵀ (speed h)`` and ``Cᵀ (0, 0, ω)``.
+    ``e d̈ + ω × e ḋ + ω̇ × e d`` to the acceleration (ω the LOCAL angular velocity; exact
+    derivatives of the trigonometric polynomial d). On a slope (``ground``,
+    :mod:`hexaleg.motion.ground`) the same motion happens in the ground frame at ``height`` from
+    the plane along its normal: the world pose is ``R_g`` times the ground-frame pose with the
+    base attitude ``Rz(ψ) C``, and the LOCAL velocities become ``Cᵀ (speed h)`` and
+    ``Cᵀ (0, 0, ω)``.
+
+    A :class:`~hexaleg.motion.balance.Turn` ψ(t) among the sways turns the base about its
+    vertical (the ground's normal) on the same path: the yaw becomes ``yaw_rate t + ψ``, so
+    ``ω = Cᵀ ẑ (yaw_rate + ψ̇)``, ``ω̇ = Cᵀ ẑ ψ̈``, and the path's LOCAL velocity
+    ``Cᵀ Rz(−ψ) (speed h)`` gains the derivative ``−ψ̇ Cᵀ (ẑ × Rz(−ψ) speed h)`` (rotating
+    frames: Lynch & Park, *Modern Robotics*, 2017, §3.3.2).
     """
     base, yaw = body_pose(t, speed, yaw_rate, height, direction)
+    v_path = np.array([speed, 0.0, 0.0]) if direction is None else speed * direction
+    sways = [] if sway is None else [sway] if isinstance(sway, Sway) else list(sway)
+    turns = [one for one in sways if isinstance(one, Turn)]
+    shifts = [one for one in sways if not isinstance(one, Turn)]
+    tilt = np.eye(3) if ground is None else ground.tilt
+    alpha: np.ndarray | None = None
+    if turns:
+        psi, psi_d, psi_dd = turns[0](t)
+        yaw = yaw + psi
+        turned = np.einsum("nji,j->ni", rotz(psi), v_path)  # Rz(−ψ) speed h
+        v_local = turned @ tilt
+        a_local = -psi_d[:, None] * (np.cross([0.0, 0.0, 1.0], turned) @ tilt)
+        w_local = np.outer(yaw_rate + psi_d, tilt[2])
+        alpha = np.outer(psi_dd, tilt[2])
+    else:
+        v_local, a_local, w_local = v_path, np.zeros(3), np.array([0.0, 0.0, yaw_rate])
+        if ground is not None:
+            v_local, w_local = ground.tilt.T @ v_local, ground.tilt.T @ w_local
     rot = rotz(yaw)
-    v_local = np.array([speed, 0.0, 0.0]) if direction is None else speed * direction
-    w_local = np.array([0.0, 0.0, yaw_rate])
     if ground is not None:
         base = base @ ground.rotation.T
         rot = ground.rotation @ rot @ ground.tilt
-        v_local, w_local = ground.tilt.T @ v_local, ground.tilt.T @ w_local
-    a_local: np.ndarray = np.zeros(3)
-    sways = [] if sway is None else [sway] if isinstance(sway, Sway) else list(sway)
-    for one in sways:
+    for one in shifts:
         d, dd, ddd = one(t)
         e, e_perp = one.direction, np.cross(w_local, one.direction)
         base = base + np.einsum("nij,j->ni", rot, e) * d[:, None]
         v_local = v_local + e * dd[:, None] + e_perp * d[:, None]
         a_local = a_local + e * ddd[:, None] + e_perp * dd[:, None]
-    return Body(base, yaw, rot, v_local, w_local, a_local, ground)
+        if alpha is not None:
+            a_local = a_local + np.cross(alpha, e) * d[:, None]
+    return Body(base, yaw, rot, v_local, w_local, a_local, ground, alpha)
 
 
 def base_state(robot: Robot, body: Body) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -201,6 +227,8 @@ def base_state(robot: Robot, body: Body) -> tuple[np.ndarray, np.ndarray, np.nda
     v[:, :3], v[:, 3:6] = body.v, body.w
     a = np.zeros((n, robot.model.nv))
     a[:, :3] = body.a
+    if body.alpha is not None:
+        a[:, 3:6] = body.alpha
     return q, v, a
 
 
@@ -209,7 +237,8 @@ def in_base_frame(body: Body, p_w: np.ndarray, pd_w: np.ndarray, pdd_w: np.ndarr
     """World foot targets p, ṗ, p̈ (N, 3) in the moving base frame, with exact derivatives.
 
     ``p_b = Rᵀ (p − base)``, ``ṗ_b = −ω × p_b + Rᵀ ṗ − v`` and
-    ``p̈_b = −ω × ṗ_b − ω × Rᵀ ṗ + Rᵀ p̈ − v̇`` (v, ω, v̇ the LOCAL base velocities).
+    ``p̈_b = −ω̇ × p_b − ω × ṗ_b − ω × Rᵀ ṗ + Rᵀ p̈ − v̇`` (v, ω, v̇, ω̇ the LOCAL base
+    velocities and accelerations; ω̇ = 0 but with a yaw turn).
     """
     rot, w_local = body.rot, body.w
     rel = np.einsum("nji,nj->ni", rot, p_w - body.base)
@@ -217,4 +246,6 @@ def in_base_frame(body: Body, p_w: np.ndarray, pd_w: np.ndarray, pdd_w: np.ndarr
     rel_d = -np.cross(w_local, rel) + rt_pd - body.v
     rel_dd = -np.cross(w_local, rel_d) - np.cross(w_local, rt_pd) \
         + np.einsum("nji,nj->ni", rot, pdd_w) - body.a
+    if body.alpha is not None:
+        rel_dd = rel_dd - np.cross(body.alpha, rel)
     return rel, rel_d, rel_dd

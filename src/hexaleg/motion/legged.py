@@ -48,6 +48,7 @@ from hexaleg.motion.reach import explain
 from hexaleg.motion.shift import required_margin, static_shift
 from hexaleg.motion.support import static_margins, switch_margin
 from hexaleg.motion.trajectory import Motion
+from hexaleg.motion.zmp import balance_steps
 from hexaleg.robot.model import Robot
 
 PHASE_TOL = 1e-9
@@ -141,6 +142,8 @@ def _sample_gait(robot: Robot, gait: GaitParams, times: np.ndarray | None, *, di
     sways: Sways
     if mode == "sway":
         motion, sways, report = balance_sway(robot, gait, grid, on_grid, heading(robot))
+    elif mode == "zmp":
+        motion, sways, report = balance_steps(robot, gait, grid, on_grid)
     elif mode == "shift":
         target = required_margin(robot, gait, nominal_footholds(robot, gait))
         motion = on_grid(None, {"mode": "none"})

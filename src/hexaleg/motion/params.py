@@ -59,12 +59,14 @@ def default_groups(legs: Sequence[str], *, planar: bool = False
     return tuple(g for g in (first, second) if g)
 
 
-BALANCE_MODES: tuple[str, ...] = ("auto", "none", "sway", "shift")
+BALANCE_MODES: tuple[str, ...] = ("auto", "none", "sway", "shift", "zmp")
 """``GaitParams.balance``: ``"auto"`` sways the body (:mod:`hexaleg.motion.balance`) when some
-sample stands on exactly two feet and none on fewer, and shifts it over the support polygon
-(:mod:`hexaleg.motion.shift`) when every sample stands on three or more feet but the static
-margin falls below ``min_static_margin``; ``"none"`` keeps the constant-twist body; ``"sway"``
-and ``"shift"`` ask for one of the two (an error where it does not apply)."""
+sample stands on exactly two feet and none on fewer, sways and turns it so that the zero-moment
+point is on the stance foot (:mod:`hexaleg.motion.zmp`) when some sample stands on one foot, and
+shifts it over the support polygon (:mod:`hexaleg.motion.shift`) when every sample stands on
+three or more feet but the static margin falls below ``min_static_margin``; ``"none"`` keeps
+the constant-twist body; ``"sway"``, ``"zmp"`` and ``"shift"`` ask for one of the three (an
+error where it does not apply)."""
 ATTITUDES: tuple[str, ...] = ("plane", "level")
 """``GaitParams.attitude`` on a slope: the body parallel to the ground, or level."""
 MARGIN_FRACTION = 0.1
@@ -102,7 +104,9 @@ class GaitParams:
             never sway (the rigid constant-twist body, whose two-foot samples have no contact
             forces). ``"shift"``: shift the body over the support polygon of a gait on three or
             more feet (a crawl) to keep ``min_static_margin`` (:mod:`hexaleg.motion.shift`;
-            ``"auto"`` does so when the margin falls below it); ``"sway"``: the two-foot sway.
+            ``"auto"`` does so when the margin falls below it); ``"sway"``: the two-foot sway;
+            ``"zmp"``: the walking pattern of a gait on one foot at some sample (a biped, a
+            crawl at β < 0.5; :mod:`hexaleg.motion.zmp`, ``"auto"`` picks it there).
         pattern: A named pattern (:data:`hexaleg.motion.patterns.PATTERNS`: ``tripod``,
             ``ripple``, ``wave``, ``crawl``, ``trot``, ``pace``) whose touch-down offsets come from
             the leg names; it wins over ``groups``. None: ``groups``.
@@ -213,15 +217,16 @@ class GaitParams:
         return self.stride / self.period
 
     def balance_mode(self, fewest: int) -> str:
-        """``"sway"``, ``"shift"`` or ``"none"`` for this gait whose samples stand on at least
-        ``fewest`` feet (``balance``; ``"auto"`` picks by ``fewest``).
+        """``"sway"``, ``"zmp"``, ``"shift"`` or ``"none"`` for this gait whose samples stand on
+        at least ``fewest`` feet (``balance``; ``"auto"`` picks by ``fewest``).
 
         Args:
             fewest: The fewest stance feet of any sample of the cycle.
 
         Raises:
             InvalidParameterError: ``"sway"`` asked for a gait that is not on two feet at its
-                fewest, or ``"shift"`` for one with fewer than three feet at some sample.
+                fewest, ``"zmp"`` for one not on one foot at its fewest, or ``"shift"`` for one
+                with fewer than three feet at some sample.
         """
         if self.balance == "none":
             return "none"
@@ -229,12 +234,16 @@ class GaitParams:
             raise InvalidParameterError("balance", "sway", f"a gait on exactly two feet at its "
                                         f"fewest (this one stands on {fewest}): 'auto', 'shift' "
                                         "or 'none'")
+        if self.balance == "zmp" and fewest != 1:
+            raise InvalidParameterError("balance", "zmp", f"a gait on one foot at its fewest "
+                                        f"(this one stands on {fewest}): 'auto', 'sway', "
+                                        "'shift' or 'none'")
         if self.balance == "shift" and fewest < 3:
             raise InvalidParameterError("balance", "shift", f"a gait on three or more feet at "
                                         f"every sample (this one stands on {fewest} at its "
                                         "fewest: no support polygon); 'auto', 'sway' or 'none'")
         if self.balance == "auto":
-            return "sway" if fewest == 2 else "shift" if fewest >= 3 else "none"
+            return {0: "none", 1: "zmp", 2: "sway"}.get(fewest, "shift")
         return self.balance
 
     @classmethod

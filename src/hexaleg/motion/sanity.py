@@ -138,8 +138,9 @@ def support_findings(robot: Robot, motion: Motion) -> list[Finding]:
       ``"static_margin"`` finding, at the worst sample, with the number of such samples.
     * Samples on fewer than three feet have no support polygon. A gait balanced on two feet by
       the body sway (``motion.info["balance"]["mode"] == "sway"``, a trot of
-      :func:`hexaleg.motion.legged.tripod_gait`) is dynamically balanced there and not flagged;
-      any other motion gets one ``"static_support"`` finding (value: the fewest stance feet).
+      :func:`hexaleg.motion.legged.tripod_gait`) or on one foot by the ZMP walking pattern
+      (``"zmp"``, :mod:`hexaleg.motion.zmp`) is dynamically balanced there and not flagged; any
+      other motion gets one ``"static_support"`` finding (value: the fewest stance feet).
     * Samples where the base is held (``motion.supported``, e.g. a fixed-base motion) are skipped.
     """
     free = ~np.asarray(motion.supported)
@@ -160,18 +161,16 @@ def support_findings(robot: Robot, motion: Motion) -> list[Finding]:
                 "≥ 0 m (the CoM's ground projection inside the stance feet's support polygon)",
                 "raise duty_factor (more feet on the ground), widen foot_radius or shorten "
                 "stride_length; or balance the gait dynamically"))
-    balanced = motion.info.get("balance", {}).get("mode") == "sway"
+    balanced = motion.info.get("balance", {}).get("mode") in ("sway", "zmp")
     few = free & (counts < 3)
     if few.any() and not balanced:
         k = int(np.flatnonzero(few)[np.argmin(counts[few])])
         found.append(Finding(
             "static_support", f"t = {motion.t[k]:.4g} s ({int(few.sum())} of {len(free)} "
             "samples on fewer than 3 feet, no balancing sway)", float(counts[k]), "feet",
-            "≥ 3 stance feet (a support polygon), or a gait balanced on two feet",
+            "≥ 3 stance feet (a support polygon), or a dynamically balanced gait",
             "raise duty_factor so that at least three feet stand at every instant, or let "
-            "tripod_gait balance it (GaitParams.balance = 'auto')" if len(robot.legs) >= 3 else
-            f"a robot of {len(robot.legs)} legs stands on one foot whenever another swings and "
-            "balances only dynamically (a ZMP or centroidal walking pattern, which hexaleg's "
-            "gaits do not plan): analyse a recorded walk (hexaleg.load_motion, --motion LOG)"))
+            "the gait balance dynamically (GaitParams.balance = 'auto': a body sway on two "
+            "feet, the ZMP walking pattern on one)"))
     return found
 

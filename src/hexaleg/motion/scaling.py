@@ -16,7 +16,11 @@ numbers ``Fr = v² / (g h)``, ``h`` the hip height, and then take equal relative
   same path divides every joint speed by the factor: Hollerbach, "Dynamic scaling of manipulator
   trajectories", ASME J. Dyn. Syst. Meas. Control 106(1), 1984), repeated while the balance sway
   (which depends on the period) keeps a joint over. The Froude number is then below the
-  hexapod's, and the note says by how much.
+  hexapod's, and the note says by how much;
+* when a foot of the sized gait is out of reach (a balancing sway takes the body away from the
+  legs) and the diagnosis (:mod:`hexaleg.motion.reach`) finds a shorter stride or a lower step
+  that works, that value is taken, the period following from it by the Froude number, and the
+  note says so.
 
 Only the keys a description leaves unset are sized: a set ``stride_length`` is kept and the
 period follows the Froude number from it; a set ``period`` is never lengthened; a set ``speed``
@@ -37,7 +41,7 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.errors import HexalegError, InvalidParameterError
+from hexaleg.errors import GaitReachError, HexalegError, InvalidParameterError
 from hexaleg.motion.body import body_height, reference_pose
 from hexaleg.motion.legged import gait as make_gait
 from hexaleg.motion.params import GaitParams, default_groups
@@ -100,6 +104,9 @@ class SizedDefaults:
             not checked, see ``unchecked``).
         unchecked: Why the speed limits could not be checked (the gait could not be made), or
             None.
+        reach: The sized keys set below their similar values because a foot was out of reach
+            at them (the working values of :class:`~hexaleg.errors.GaitReachError`, e.g. a
+            stride a balancing sway leaves the legs room for), or None.
     """
 
     robot: str
@@ -112,6 +119,7 @@ class SizedDefaults:
     fastest: str | None = None
     speed_ratio: float | None = None
     unchecked: str | None = None
+    reach: str | None = None
 
     @property
     def scale(self) -> float:
@@ -152,6 +160,9 @@ class SizedDefaults:
         if self.stretch > 1.0 and "period" in keys:
             line += (f"; period lengthened x{self.stretch:.3g} so that {self.fastest} stays "
                      f"within its URDF velocity limit (Froude number {self.froude:.2g})")
+        if self.reach is not None:
+            line += (f"; shortened to {self.reach} (the feet were out of reach at the similar "
+                     "values), the period following by the Froude number")
         if self.unchecked is not None and "period" in keys:
             line += f"; joint speeds not checked against the limits: {self.unchecked}"
         return line
@@ -169,7 +180,7 @@ class SizedDefaults:
                 "relative_stride": one(self.relative_stride, "1"),
                 "period_stretch": one(self.stretch, "1"), "fastest_joint": self.fastest,
                 "speed_ratio": None if self.speed_ratio is None else one(self.speed_ratio, "1"),
-                "unchecked": self.unchecked,
+                "unchecked": self.unchecked, "reach": self.reach,
                 "source": "dynamic similarity, Alexander & Jayes, J. Zool. 201, 1983"}
 
 
@@ -224,20 +235,31 @@ def _size(desc: RobotDescription, gait: GaitParams, robot: Robot,
                           stride=stride, step_height=step)
     if "period" not in keys or stride == 0.0:
         return sized
-    stretch, ratio, fastest = 1.0, 0.0, None
+    stretch, ratio, fastest, reach = 1.0, 0.0, None, None
     for _ in range(MAX_STRETCHES):
         trial = dataclasses.replace(gait, period=period * stretch, stride_length=stride,
                                     step_height=step, samples=min(gait.samples, CHECK_SAMPLES))
         try:
             ratio, joint = speed_ratio(robot, make_gait(robot, trial).v)
+        except GaitReachError as err:
+            fix = err.suggestion
+            if not fix or not set(fix) <= {"stride_length", "step_height"} & set(keys):
+                return dataclasses.replace(sized, period=period * stretch, stride=stride,
+                                           step_height=step, stretch=stretch, fastest=fastest,
+                                           reach=reach, unchecked=f"{type(err).__name__}: {err}")
+            stride, step = fix.get("stride_length", stride), fix.get("step_height", step)
+            period = stride / math.sqrt(REFERENCE_FROUDE * G * h)
+            reach = ", ".join(f"{k} {v:.3g} m" for k, v in fix.items())
+            continue
         except HexalegError as err:
-            return dataclasses.replace(sized, period=period * stretch, stretch=stretch,
-                                       fastest=fastest, unchecked=f"{type(err).__name__}: {err}")
+            return dataclasses.replace(sized, period=period * stretch, stride=stride,
+                                       step_height=step, stretch=stretch, fastest=fastest,
+                                       reach=reach, unchecked=f"{type(err).__name__}: {err}")
         if ratio <= SPEED_MARGIN:
             break
         stretch, fastest = stretch * ratio / SPEED_MARGIN, joint
-    return dataclasses.replace(sized, period=period * stretch, stretch=stretch, fastest=fastest,
-                               speed_ratio=ratio)
+    return dataclasses.replace(sized, period=period * stretch, stride=stride, step_height=step,
+                               stretch=stretch, fastest=fastest, speed_ratio=ratio, reach=reach)
 
 
 def chosen_defaults(desc: RobotDescription) -> SizedDefaults | None:

@@ -6,6 +6,8 @@ sway, and per joint the angle range, peak speed against the velocity limit and p
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from hexaleg.motion.trajectory import Motion
@@ -43,6 +45,11 @@ def gait_summary(robot: Robot, motion: Motion) -> str:
            f"{np.round(sway['direction'], 3).tolist()} (base frame), support-line moment "
            f"{sway['residual']:.1e} m g h after {sway['iterations']} iterations"]
           if (sway := info.get("balance", {})).get("mode") == "sway" else []),
+        *([f"balance: ZMP walking pattern, the body swaying ±{1e3 * zmp['sway'][0]:.2f} mm "
+           f"(base x) and ±{1e3 * zmp['sway'][1]:.2f} mm (base y) and turning "
+           f"±{math.degrees(zmp['turn']):.2f}° so that one stance foot can carry it: moment "
+           f"about the zero-moment point {zmp['residual']:.1e} m g h after {zmp['iterations']} "
+           "iterations"] if (zmp := info.get("balance", {})).get("mode") == "zmp" else []),
         *([f"balance: body shifted up to {1e3 * shift['amplitude']:.2f} mm over the support "
            f"polygon to keep a static margin ≥ {shift['target']:.4f} m ({shift['iterations']} "
            "rounds)"] if (shift := info.get("balance", {})).get("mode") == "shift" else []),

@@ -10,6 +10,7 @@ Coulomb friction cone that the force program (:mod:`hexaleg.dynamics.contact`) k
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from typing import Any
 
@@ -38,12 +39,19 @@ ENERGY_TABLE_KEYS: tuple[str, ...] = ("positive_work", "joule", "electrical")
 def notes_section(notes: tuple[str, ...], motion: Motion,
                   findings: Sequence[Finding] = ()) -> list[str]:
     """The configuration's caveats, the sanity checks' findings on the robot, the gait and its
-    torques (:mod:`hexaleg.robot.sanity`), and the body sway of a gait balanced on two feet."""
+    torques (:mod:`hexaleg.robot.sanity`), and the body sway of a gait balanced on two feet or
+    one."""
     out = list(notes) + [f"check {f.message}" for f in findings]
     sway = motion.info.get("balance", {})
     if sway.get("mode") == "sway":
         out.append(f"two-foot gait: the body sways ±{1e3 * sway['amplitude']:.2f} mm so that the "
                    "two stance feet can carry it (no moment about the support line; "
+                   f"{sway['iterations']} iterations, residual {sway['residual']:.1e} m g h)")
+    if sway.get("mode") == "zmp":
+        out.append(f"one-foot gait: the body sways ±{1e3 * sway['sway'][0]:.2f} mm (base x), "
+                   f"±{1e3 * sway['sway'][1]:.2f} mm (base y) and turns "
+                   f"±{math.degrees(sway['turn']):.2f}° so that the zero-moment point is on the "
+                   "stance foot (a ZMP walking pattern; "
                    f"{sway['iterations']} iterations, residual {sway['residual']:.1e} m g h)")
     return out
 

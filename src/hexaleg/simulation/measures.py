@@ -273,10 +273,11 @@ def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory) -> str:
                 "gait, or a lighter robot")
     feet = int(motion.stance.sum(axis=1).min())
     if feet <= 2:
-        return (f"the gait stands on {feet} feet at times and is balanced by its plan alone; "
-                "the simulated servos follow the joints without feedback on the body's "
-                "attitude, so an error grows until it tips (a trot or a bound needs a balance "
-                "controller): simulate a gait on three or more feet ([gait] pattern = \"crawl\" "
-                "or duty_factor ≥ 0.75) — the analysis of this one stands")
+        return (f"the gait stands on {'one foot' if feet == 1 else f'{feet} feet'} at times "
+                "and is balanced by its plan alone; the simulated servos follow the joints "
+                "without feedback on the body's attitude, so an error grows until it tips (a "
+                "trot, a bound or a walk on one foot needs a balance controller): simulate a "
+                "gait on three or more feet ([gait] pattern = \"crawl\" or duty_factor ≥ "
+                "0.75) — the analysis of this one stands")
     return ("check the ground ([simulate] stiffness, damping) and the servo gains "
             "(kp_scale, kd_scale) against the robot's weight")
