@@ -218,6 +218,8 @@ def _run_design(args: argparse.Namespace) -> int:
     written = write_design(args.out, config)
     _warn_lines(written.data["warnings"])
     print(written.result.summary())
+    if written.result.whole_draw is not None:
+        print(written.result.whole_draw.line())
     print(f"wrote {len(written.files)} files to {args.out}; open {args.out}/design.html")
     return 0
 

@@ -21,8 +21,8 @@ def test_brushless_module_holds_odri_and_names_the_unsourced_registry_actuators(
     assert CATALOGUE["ODRI-4004"] == brushless.odri_actuator()
     doc = brushless.__doc__ or ""
     generic = [name for name, d in DESCRIPTIONS.items() if d.motor is None]
-    assert sorted(generic) == ["a1", "anymal", "anymal_c", "go2"]
-    for name in generic:
+    assert sorted(generic) == ["anymal", "anymal_c", "go2"]
+    for name in (*generic, "a1"):  # a1: its model is in the catalogue, its motor still not
         assert f"``{name}``" in doc, name
     for actuator in ("A1 joint motor", "GO-M8010-6", "ANYdrive"):
         assert actuator in doc, actuator

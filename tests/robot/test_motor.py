@@ -203,9 +203,11 @@ def test_generic_actuator_needs_a_name() -> None:
 
 def test_the_generic_efficiency_sits_among_the_catalogue_servos() -> None:
     """GENERIC_GEARBOX_EFFICIENCY's docstring: the servos' datasheet-derived η span 0.43–0.86,
-    median about 0.63 (the ODRI module's η is assumed, not derived); GENERIC_EFFICIENCY_RANGE is
+    median about 0.63 (the ODRI module's η is assumed and the A1 model has none, not derived);
+    GENERIC_EFFICIENCY_RANGE is
     that span, and generic_energy_range the factors 0.7/0.86 and 0.7/0.43 it implies."""
-    etas = [m.gearbox_efficiency for m in catalogue.CATALOGUE.values() if m.name != "ODRI-4004"]
+    etas = [m.gearbox_efficiency for m in catalogue.CATALOGUE.values()
+            if m.name not in ("ODRI-4004", "A1-Yang2021")]
     assert (min(etas), max(etas)) == (pytest.approx(0.43, abs=5e-3), pytest.approx(0.86, abs=5e-3))
     assert float(np.median(etas)) == pytest.approx(0.63, abs=5e-3)
     assert GENERIC_EFFICIENCY_RANGE == (round(min(etas), 2), round(max(etas), 2))

@@ -256,8 +256,9 @@ def test_cli_robot_option(capsys):
 def test_report_for_a_registry_robot(name, tmp_path, capsys, upstream_placeholders):
     """'hexaleg report --robot NAME': the trot from the description (the file's [gait] keys
     on top), knee springs and stiffness curve, all files; Solo-12 with its own actuator (ODRI
-    module), the others with a generic actuator from their URDF limits and a note giving its
-    assumptions; torque limits on for all (the actuator's stall torque)."""
+    module), A1 with its published energy model, the others with a generic actuator from their
+    URDF limits and a note giving its assumptions; torque limits on for all (the actuator's
+    stall torque)."""
     import json
 
     from hexaleg.cli import main
@@ -268,13 +269,13 @@ def test_report_for_a_registry_robot(name, tmp_path, capsys, upstream_placeholde
                  "--out", str(tmp_path / "out")]) == 0
     out = capsys.readouterr().out
     own = description(name).motor is not None
-    assert own == (name == "solo12")
+    assert own == (name in ("solo12", "a1"))
     assert (f"note: {description(name).title}" in out) != own
     assert ("names no catalogue motor" in out and "Generic actuator" in out) != own
     data = json.loads((tmp_path / "out" / "report.json").read_text())
     desc, robot = description(name), robot_of(name)
     if own:
-        assert data["motor"]["name"] == "ODRI-4004"
+        assert data["motor"]["name"] == {"solo12": "ODRI-4004", "a1": "A1-Yang2021"}[name]
     else:  # one generic actuator per joint class, from that class's URDF limits
         effort = {k: robot.model.effortLimit[[6 + robot.column(j) for j in joints]].max()
                   for k, joints in robot.joint_classes.items()}

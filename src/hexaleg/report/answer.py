@@ -185,7 +185,8 @@ def _on_report_gait(prepared: Prepared, springs: SpringSet | None, metric: str
 
 def answer_line(section: dict[str, Any] | None) -> str:
     """The terminal's line of the answer: where it comes from, the springs and the saving of the
-    ranking metric (net of the springs' mass and on the report's own gait beside it)."""
+    ranking metric (net of the springs' mass and on the report's own gait beside it), and on
+    the whole draw (:func:`hexaleg.report.build.answer_draw`) when the report computed it."""
     if section is None:
         return "which springs to fit: hexaleg design answers it (the notes say why not here)"
     g = section
@@ -198,6 +199,12 @@ def answer_line(section: dict[str, Any] | None) -> str:
             f"{1e3 * g['spring_mass']['value']:.1f} g; {g['samples']} samples a cycle"
             + (f", {on['saving']['value']:+.2f} % on this report's {on['samples']}"
                if on else "") + ")")
+    whole = g.get("whole_draw")
+    if whole is not None:
+        line += (f"; on the whole draw {'at most ' if not whole['complete'] else ''}"
+                 f"{whole['saving']['value']:+.2f} % (the motors are "
+                 f"{100 * whole['motor_share']['value']:.0f} % of it"
+                 + ("" if whole["complete"] else ", counting what is known") + ")")
     if not g["pays"]:
         line = f"no springs pay here; the best: {line}"
     if g["origin"] == "quick":

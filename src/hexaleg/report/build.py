@@ -38,6 +38,7 @@ from hexaleg.checks import typed
 from hexaleg.design import rules as design
 from hexaleg.design.curves import StiffnessCurve, curve_springs, stiffness_curve
 from hexaleg.dynamics import contact
+from hexaleg.dynamics.draw import WholeDraw, whole_draw
 from hexaleg.dynamics.prepare import Analysis, Prepared, prepare
 from hexaleg.dynamics.sanity import torque_findings
 from hexaleg.motion.legged import gait
@@ -91,9 +92,18 @@ class Report:
         design = self.data["springs"]["design"]
         reference = ("the paper's design (the reference)" if design == "paper"
                      else f"the configured springs ({design})")
+        draw = self.data.get("whole_draw")
+        whole = "" if draw is None else (
+            f"\nthe robot's whole draw, without springs: {_watts(draw['total_baseline'])} "
+            f"(motors {_watts(draw['motors_baseline'])}, servos at rest "
+            + _watts(draw["idle_power"], "not published for " + ", ".join(draw["idle_missing"]))
+            + ", "
+            "electronics "
+            f"{_watts(draw['electronics_power'], 'not given: [robot] electronics_power')}"
+            f"){'' if draw['complete'] else ', a lower bound'}")
         return (f"{reference}: electrical energy per cycle {e['with_springs']['value']:.4g} J "
                 f"with its springs, {e['baseline']['value']:.4g} J without (saving "
-                f"{e['saving']['value']:+.2f} %)\n"
+                f"{e['saving']['value']:+.2f} %){whole}\n"
                 + answer_line(self.data["design"]))
 
 
@@ -122,8 +132,8 @@ def _findings(robot: Robot, motion: Motion, a: Analysis) -> list[Finding]:
 
 
 def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis,
-                 baseline: Analysis, curve: StiffnessCurve,
-                 usage: np.ndarray) -> dict[str, Any]:
+                 baseline: Analysis, curve: StiffnessCurve, usage: np.ndarray,
+                 draw: WholeDraw | None) -> dict[str, Any]:
     """The page's sections, in the page's order (the content of ``report.json`` without the
     transformation, the paper's joint and the file list)."""
     return {
@@ -145,8 +155,40 @@ def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis,
         "forces": sections.forces_section(robot, motion, a, usage),
         "energy": sections.energy_section(robot, a),
         "cost_of_transport": sections.cost_of_transport_section(motion, a),
+        "whole_draw": None if draw is None else draw.as_dict(),
         "stiffness_curve": sections.curve_section(cfg.report.curve_joints, curve),
     }
+
+
+def _watts(q: dict[str, Any] | None, unknown: str = "unknown") -> str:
+    """A ``{value, unit}`` power in words, or what is missing."""
+    return unknown if q is None else f"{q['value']:.3g} W"
+
+
+def answer_draw(answer: dict[str, Any], draw: WholeDraw) -> dict[str, Any] | None:
+    """The answer's saving on the whole draw: its electrical saving (on this report's gait
+    when it has one, else the design's) in watts over the baseline's whole draw — the standby
+    and electronics draw does not depend on the springs (:mod:`hexaleg.dynamics.draw`). None
+    when the answer's metric is not the electrical energy."""
+    if answer["metric"] != "electrical":
+        return None
+    on = answer.get("report_gait") or answer
+    share = draw.motors_baseline / draw.total_baseline if draw.total_baseline > 0 else 0.0
+    return {"saving": {"value": on["saving"]["value"] * share, "unit": "%"},
+            "motor_share": {"value": share, "unit": "1"}, "complete": draw.complete,
+            "line": draw.line()}
+
+
+def _draw(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis) -> WholeDraw | None:
+    """The whole draw of the configured springs' gait (:mod:`hexaleg.dynamics.draw`); None for
+    a motion that is not one periodic cycle."""
+    if not motion.periodic or motion.period is None:
+        return None
+    desc = cfg.robot_description
+    return whole_draw(a.metrics["total"]["electrical"], a.baseline["total"]["electrical"],
+                      motion.period, motion.distance, cfg.motor, robot.nj,
+                      electronics=None if desc is None else desc.electronics_power,
+                      battery_wh=None if desc is None else desc.battery_wh)
 
 
 @typed
@@ -194,8 +236,11 @@ def build_report(config: ReportConfig | None = None, *, robot: Robot | None = No
     curve = _report_curve(prepared, springs, cfg.report, objective, step)
     usage = contact.friction_usage(analysis.forces, motion.stance.astype(bool), cfg.contact.mu,
                                    motion.normal)
-    data = file_data(_report_data(cfg, robot, motion, analysis, baseline, curve, usage))
+    draw = _draw(cfg, robot, motion, analysis)
+    data = file_data(_report_data(cfg, robot, motion, analysis, baseline, curve, usage, draw))
     data["design"], passed = answer_section(cfg, robot, prepared)
+    if data["design"] is not None and draw is not None:
+        data["design"]["whole_draw"] = answer_draw(data["design"], draw)
     data["notes"] += passed
     residual = prepared.residual.line() if prepared.residual is not None else None
     if residual is not None:  # a logged motion the contacts could not carry exactly

@@ -10,7 +10,8 @@ actuator's "stall torque" is the torque at its current limit (the driver, not th
 ``V / R``, sets it), so the relations of :func:`~hexaleg.robot.motor.from_datasheet` do not apply.
 
 In the catalogue (:data:`hexaleg.robot.catalogue.CATALOGUE`): the ODRI module of Solo-12
-(:func:`odri_actuator`).
+(:func:`odri_actuator`), and the published energy model of the Unitree A1's joints
+(:func:`a1_energy_model`: not identified constants, an empirical Joule coefficient).
 
 Not in the catalogue, because no public source found gives a winding (or phase) resistance and a
 torque constant for them, and the Joule loss ``c = R / (k_t G)²`` needs both — the registry robots
@@ -20,7 +21,8 @@ that keep a generic actuator from their URDF limits (:func:`hexaleg.robot.motor.
   33.5 N·m and 21 rad/s on every joint). Unitree's actuator SDK (unitreerobotics/
   unitree_actuator_sdk) keeps even the gear ratio inside its compiled library; the
   MIT-Cheetah-style A1 ports copy Mini Cheetah's ``_motorKT = .05`` and ``_motorR = 0.173``,
-  marked "not sure" or "not used".
+  marked "not sure" or "not used". What the A1 has instead is the energy model of published
+  work on it, in the catalogue as ``A1-Yang2021`` (:func:`a1_energy_model`).
 * Unitree GO-M8010-6 (Go1's joint motor, the stand-in third-party Go2 models use; ``go2``, whose
   URDF gives 23.7 N·m and 30.1 rad/s, the knee 45.43 N·m and 15.7 rad/s): its user manual gives a
   30 V maximum and, as quoted by third-party code, 6.33 : 1 and 30 rad/s at 24 V, but no winding
@@ -62,3 +64,37 @@ def odri_actuator() -> Motor:
                        "the no-load output speed is 300 rpm/V · 24 V / 9 = 800 rpm; belt "
                        "efficiency η = 0.9 (two stages); 2.5 N·m, the torque at the 12 A current "
                        "limit, stands for the stall torque.")
+
+
+A1_JOULE = 0.3
+"""The Joule coefficient of the A1 energy model, W/(N·m)² (:func:`a1_energy_model`)."""
+
+
+def a1_energy_model() -> Motor:
+    """The energy model of the Unitree A1's joints used in published work on the A1: per joint
+    ``P = max(τ q̇ + 0.3 τ², 0)`` (Yang, Zhang, Coumans, Tan & Boots, "Fast and Efficient
+    Locomotion via Learned Gait Transitions", CoRL 2021, arXiv:2104.04644; its code,
+    yxyang/fast_and_efficient, ``src/intermediate_envs/gait_change_env.py``:
+    ``motor_heat = 0.3 * motor_torques**2`` added to the joint-side ``τ q̇``, each motor clipped
+    at 0, then summed).
+
+    In the DC model of :mod:`hexaleg.robot.motor` that is a Joule coefficient
+    ``c = R / (k_t G)² = 0.3`` W/(N·m)², no gearbox loss (η = 1) and no regeneration; ``k_t G =
+    1`` N·m/A and ``R = 0.3`` Ω are chosen to give it (only c enters the powers). The 0.3 is an
+    empirical coefficient: the work states no derivation, and no identified winding resistance
+    or torque constant of the A1's motor is public. Stall torque and no-load speed are the
+    URDF's limits (unitree_ros, a1_description ``const.xacro``: 33.5 N·m, 21 rad/s); the 24 V
+    is assumed and enters no power.
+    """
+    return Motor(name="A1-Yang2021", gear_ratio=1.0, torque_constant=1.0, resistance=A1_JOULE,
+                 gearbox_efficiency=1.0, regeneration=False, stall_torque=33.5,
+                 no_load_speed=21.0, voltage=24.0,
+                 source="Yang et al., 'Fast and Efficient Locomotion via Learned Gait "
+                        "Transitions', CoRL 2021 (code yxyang/fast_and_efficient, "
+                        "src/intermediate_envs/gait_change_env.py: P = max(τ q̇ + 0.3 τ², 0) "
+                        "per motor); limits from unitree_ros a1_description const.xacro",
+                 notes="An empirical energy model, not identified motor constants: Joule "
+                       "coefficient 0.3 W/(N·m)² (k_t G = 1 N·m/A and R = 0.3 Ω chosen to give "
+                       "it), η = 1 (the model has no gearbox loss), no regeneration; stall "
+                       "torque 33.5 N·m and no-load speed 21 rad/s are the URDF's limits; 24 V "
+                       "assumed (enters no power).")

@@ -21,6 +21,13 @@ included, ``k_t G = τ_stall / I_stall``, ``η = τ_stall ω_0 / (V I_stall)``);
   odri_actuator`, in :mod:`hexaleg.robot.brushless` with the other brushless quasi-direct-drive
   notes, re-exported here), with stated assumptions. That module also says which registry
   robots' actuators (Unitree A1, GO-M8010-6, ANYdrive) could not be sourced, and why.
+* A1-Yang2021: the Unitree A1's joints as published A1 work models their energy
+  (:func:`~hexaleg.robot.brushless.a1_energy_model`: ``τ q̇ + 0.3 τ²``, an empirical
+  coefficient, not identified constants).
+
+:data:`STANDBY` gives, per catalogue servo, its standby current (the electronics' draw at rest)
+where the maker publishes it, with the page; :mod:`hexaleg.dynamics.draw` adds it to the robot's
+whole draw.
 
 :data:`OUTPUT_HUBS` gives, per catalogue servo, the diameter of its output hub (the horn's boss,
 the spline or the shaft a torsion spring could wind on) where a source states it as a number,
@@ -44,7 +51,7 @@ from typing import Any
 from hexaleg.checks import typed
 from hexaleg.config import from_mapping
 from hexaleg.errors import ConfigError, UnknownNameError
-from hexaleg.robot.brushless import odri_actuator
+from hexaleg.robot.brushless import a1_energy_model, odri_actuator
 from hexaleg.robot.motor import RPM, Motor, from_datasheet
 
 KGF_CM = 9.80665e-2
@@ -182,6 +189,7 @@ CATALOGUE: Mapping[str, Motor] = MappingProxyType({
         _sg90(),
         _dss_m15s(),
         odri_actuator(),
+        a1_energy_model(),
     )
 })
 """Real actuators, keyed by model name: ROBOTIS, Feetech, TowerPro and DFRobot servos with datasheet
@@ -221,8 +229,62 @@ OUTPUT_HUBS: Mapping[str, OutputHub] = MappingProxyType({
     "ODRI-4004": OutputHub(None, "not sourced: the ODRI actuator module's documentation gives "
                                  "its output as CAD files, no diameter in text; the arbor falls "
                                  "back to the link rule"),
+    "A1-Yang2021": OutputHub(None, "not sourced: Unitree publishes no output flange dimension "
+                                   "of the A1's joint motor; the arbor falls back to the link "
+                                   "rule"),
 })
 """Catalogue name → its :class:`OutputHub` (every entry of :data:`CATALOGUE`)."""
+
+
+@dataclass(frozen=True)
+class Standby:
+    """What a servo draws at rest, powered, holding no load (its electronics).
+
+    Attributes:
+        current: The standby current at the entry's voltage (:attr:`Motor.voltage`), A; None
+            when no source states it.
+        source: Where the number comes from, or why there is none.
+    """
+
+    current: float | None
+    source: str
+
+
+_KR_EMANUAL = "https://emanual.robotis.com/docs/kr/dxl/"
+_NO_STANDBY = ("not published: the ROBOTIS e-Manual's specification table of this servo lists "
+               "no standby current")
+
+STANDBY: Mapping[str, Standby] = MappingProxyType({
+    **{name: Standby(None, _NO_STANDBY) for name in (
+        "AX-12A", "AX-18A", "MX-28", "XL430-W250", "XM430-W350", "MX-64", "MX-106")},
+    **{name: Standby(0.040, f"ROBOTIS e-Manual (Korean edition), {name} specifications, "
+                            f"{_KR_EMANUAL}x/{name.lower()}/: '대기 전류 | 40 [mA]' (standby "
+                            "current; the English edition's table stops before it)")
+       for name in ("XM540-W150", "XM540-W270")},
+    "STS3215-C018": Standby(None, "not published on Feetech's product page"),
+    **{name: Standby(None, "not published in TowerPro's datasheet") for name in ("MG996R",
+                                                                                 "SG90")},
+    "DSS-M15S": Standby(None, "not published on DFRobot's wiki page"),
+    "ODRI-4004": Standby(None, "not published: the ODRI actuator module's documentation gives "
+                               "no standby draw of its motor driver board"),
+    "A1-Yang2021": Standby(None, "not published: the A1 energy model counts the joints' power "
+                                 "only, and Unitree gives no standby draw"),
+})
+"""Catalogue name → its :class:`Standby` draw (every entry of :data:`CATALOGUE`)."""
+
+
+def standby(name: str) -> Standby:
+    """The standby draw of catalogue servo ``name``; a name not in the catalogue (a generic
+    actuator from URDF limits) has none.
+
+    Args:
+        name: A motor name (:attr:`Motor.name`).
+    """
+    entry = STANDBY.get(name)
+    if entry is None:
+        return Standby(None, f"{name} is not a catalogue servo: no datasheet to read a standby "
+                             "current from")
+    return entry
 
 
 def output_hub(name: str) -> OutputHub:

@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import pinocchio as pin
 
+from hexaleg.checks import real
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError, UnknownNameError
 from hexaleg.robot import fields
@@ -137,6 +138,11 @@ class RobotDescription:
         root_offset: Where the base frame goes, ``[x, y, z]`` m in the URDF root link's frame
             (:mod:`hexaleg.robot.root`: for a root link below the feet; stated in the notes);
             None keeps the root link's origin.
+        electronics_power: What the robot draws besides its joint actuators (computer,
+            sensors, radios, converters), W (≥ 0); None: not known, and the whole draw
+            (:mod:`hexaleg.dynamics.draw`) says it leaves it out.
+        battery_wh: The battery's energy as printed on it, Wh (> 0); the whole draw gives the
+            hours it lasts. None: no battery named.
     """
 
     name: str
@@ -157,6 +163,8 @@ class RobotDescription:
     arbor_diameter: Mapping[str, float] = field(default_factory=lambda: FrozenTable({}))
     inertias: str = "refuse"
     root_offset: tuple[float, float, float] | None = None
+    electronics_power: float | None = None
+    battery_wh: float | None = None
 
     def __post_init__(self) -> None:
         if self.source not in SOURCES:
@@ -197,6 +205,14 @@ class RobotDescription:
             object.__setattr__(self, "root_offset", fields.vector3(
                 f"{self.name}: root_offset", self.root_offset, "m, in the URDF root link's frame"))
         object.__setattr__(self, "heading", heading(self.name, self.heading))
+        if self.electronics_power is not None:
+            object.__setattr__(self, "electronics_power", real(
+                f"{self.name}: electronics_power", self.electronics_power, low=0.0,
+                allowed="a power ≥ 0 W, or leave the key out (not known)"))
+        if self.battery_wh is not None:
+            object.__setattr__(self, "battery_wh", real(
+                f"{self.name}: battery_wh", self.battery_wh, low=0.0, low_open=True,
+                allowed="the battery's energy > 0 Wh, or leave the key out (no battery)"))
         object.__setattr__(self, "max_outer_diameter", fields.diameters_table(
             self.name, self.joint_kinds, self.max_outer_diameter))
         object.__setattr__(self, "arbor_diameter", fields.diameters_table(

@@ -11,6 +11,7 @@ as :data:`TROT` mean the same on every robot.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping
 from types import MappingProxyType
 
@@ -88,10 +89,11 @@ DESCRIPTIONS: Mapping[str, RobotDescription] = MappingProxyType({d.name: d for d
     _unitree("go2", "Go2 (Unitree)", stride=0.12,
              notes="example-robot-data go2_description (loader Go2Loader); 16.1 kg; the knee "
                    "class is the URDF's calf joints"),
-    _unitree("a1", "A1 (Unitree)", stride=0.12,
-             notes="example-robot-data a1_description (loader A1Loader); thigh and calf 0.2 m; "
-                   "no catalogue motor: a generic actuator from the URDF's effort and velocity "
-                   "limits"),
+    dataclasses.replace(_unitree(
+        "a1", "A1 (Unitree)", stride=0.12,
+        notes="example-robot-data a1_description (loader A1Loader); thigh and calf 0.2 m; its "
+              "joints' energy model of published A1 work (A1-Yang2021: P = τ q̇ + 0.3 τ²)"),
+        motor="A1-Yang2021"),
 )})
 """The registered robots by name; :data:`DEFAULT_ROBOT` first."""
 

@@ -59,6 +59,26 @@ def test_design_json_says_whether_the_baseline_energy_is_plausible(design_writte
     assert "WARNING" not in result.result.summary()
 
 
+def test_design_json_and_page_state_the_whole_draw(design_written):
+    """design.json's whole draw (issue #40): the baseline motors' mean power is the baseline
+    electrical energy over the period, the recommendation's saving on it matches its
+    predicted electrical saving (AX-18A: no standby figure, so the motors are all that is
+    counted and the page says so)."""
+    result, out = design_written
+    doc = json.loads((out / "design.json").read_text())
+    draw = doc["whole_draw"]
+    period = doc["gait"]["period"]["value"]
+    assert draw["motors_baseline"]["value"] == pytest.approx(
+        doc["baseline"]["electrical"]["value"] / period, rel=1e-12)
+    saving = doc["recommended"]["saving"]["electrical"]["value"] / 100
+    assert draw["saving"]["value"] == pytest.approx(saving, rel=1e-9)
+    assert draw["idle_missing"] == ["AX-18A"] and draw["complete"] is False
+    page = (out / "design.html").read_text()
+    assert 'id="whole-draw"' in page and "electronics_power" in page
+    assert result.result.whole_draw is not None
+    assert result.result.whole_draw.line().startswith("whole draw at least")
+
+
 def _reads_back(result, path):
     """``result.to_json()`` written to ``path`` and read back by the one reader: the
     recommended springs exactly, the gait, the metric and its saving, whether it pays."""

@@ -66,6 +66,7 @@ from hexaleg.design.fatigue import FatigueCheck
 from hexaleg.design.robustness_map import RobustnessMap
 from hexaleg.design.spring_parts import SpringPart
 from hexaleg.design.tolerance import TolerantSprings
+from hexaleg.dynamics.draw import WholeDraw, whole_draw
 from hexaleg.dynamics.plausibility import Plausibility, check_cost_of_transport, uses_generic
 from hexaleg.errors import HexalegError, InvalidParameterError, UnknownNameError
 from hexaleg.robot.mirror import mirror
@@ -320,7 +321,21 @@ class DesignChain:
             outer=nom.outer, pareto=self.pareto() if "pareto" in w else (), maps=maps,
             worst=worst, robust=robust, ranking=rows, tolerance=tol, envelope=env,
             fatigue=fatigue, simulation=simulation, timings=dict(self.timings),
-            notes=tuple(notes), plausibility=plausible, motion=nom.motion, stages=w)
+            notes=tuple(notes), plausibility=plausible, motion=nom.motion, stages=w,
+            whole_draw=_whole_draw(nom, rec))
+
+
+def _whole_draw(nom: Nominal, rec: Candidate) -> WholeDraw | None:
+    """The recommendation's whole draw (:mod:`hexaleg.dynamics.draw`) on the nominal gait: its
+    predicted electrical saving on the motors' baseline energy; None for a motion that is not
+    one periodic cycle."""
+    motion = nom.prepared.motion
+    if not motion.periodic or motion.period is None:
+        return None
+    base = nom.baseline["electrical"]
+    return whole_draw(base * (1.0 - rec.row["saving.electrical"]), base, motion.period,
+                      motion.distance, nom.run.actuator(), nom.robot.nj,
+                      electronics=nom.desc.electronics_power, battery_wh=nom.desc.battery_wh)
 
 
 def _plausibility(nom: Nominal) -> Plausibility | None:

@@ -33,6 +33,7 @@ from hexaleg.design.spring_json import spring_entry
 from hexaleg.design.spring_parts import SpringPart
 from hexaleg.design.spring_table import magnitudes_table
 from hexaleg.design.tolerance import TolerantSprings
+from hexaleg.dynamics.draw import WholeDraw
 from hexaleg.dynamics.energy import metric_unit
 from hexaleg.dynamics.plausibility import Plausibility
 from hexaleg.motion.params import GaitParams
@@ -78,6 +79,9 @@ class DesignResult:
         motion: The logged motion designed on (``--motion``), None on a generated gait.
         stages: The stages of the chain that ran (:data:`hexaleg.design.chain.chain.STAGES`);
             the fields of a stage left out are empty (None, no rows).
+        whole_draw: The recommendation's whole draw on the nominal gait — motors, servos at
+            rest, electronics (:mod:`hexaleg.dynamics.draw`) — or None for a motion that is
+            not one periodic cycle.
     """
 
     config: DesignConfig
@@ -104,6 +108,7 @@ class DesignResult:
     plausibility: Plausibility | None = None
     motion: Motion | None = None
     stages: tuple[str, ...] = ()
+    whole_draw: WholeDraw | None = None
 
     def to_dict(self, **extra: Any) -> dict[str, Any]:
         """What ``design.json`` holds (:func:`design_data`), with ``extra`` keys of the command
@@ -312,6 +317,7 @@ def design_data(r: DesignResult) -> dict[str, Any]:
             "min_group_saving": quantity(100 * d.min_group_saving, "%")},
         "baseline": {m: quantity(r.baseline[m], metric_unit(m)) for m in SAVING_METRICS},
         "plausibility": None if r.plausibility is None else r.plausibility.as_dict(),
+        "whole_draw": None if r.whole_draw is None else r.whole_draw.as_dict(),
         "recommended": candidate_data(r.recommended, r.outer),
         "candidates": [candidate_data(c, r.outer) for c in r.candidates],
         "pareto": [{"fraction": quantity(f, "1"), **candidate_data(c, r.outer)}
