@@ -27,12 +27,17 @@ from hexaleg.units import G
 
 def test_animal_line_is_taylor_1982() -> None:
     """10.7 M^-0.316 J/(kg m) over g: 1.091 at 1 kg; at 13 kg (the Cornell biped) 0.485, so its
-    0.2 (Collins 2005) is 0.41 x the line, inside the band; ASIMO's 3.2 at 52 kg is 10 x."""
+    0.2 (Collins 2005) is 0.41 x the line, inside the band; ASIMO's 3.2 at 52 kg is 10.2 x,
+    the high bound (issue #40: 20 x let a generic A1 at 19.8 x through)."""
     assert animal_cost_of_transport(1.0) == pytest.approx(10.7 / G, rel=1e-12)
     assert animal_cost_of_transport(13.0) == pytest.approx(10.7 * 13 ** -0.316 / G)
     assert check_cost_of_transport(0.2, 13.0).plausible
-    asimo = check_cost_of_transport(3.2, 52.0)
-    assert asimo.plausible and 9 < 3.2 / asimo.reference < 11
+    asimo = check_cost_of_transport(3.2 * (1 - 1e-9), 52.0)
+    assert asimo.plausible and HIGH_FACTOR == pytest.approx(3.2 / asimo.reference, rel=1e-12)
+    assert not check_cost_of_transport(3.2 * (1 + 1e-9), 52.0).plausible
+    assert not check_cost_of_transport(19.8 * animal_cost_of_transport(13.7), 13.7).plausible
+    near = [r["robot"] for r in asimo.as_dict()["published"]]
+    assert near == ["MIT Cheetah", "ASIMO"]
     low, high = plausible_range(2.0)
     assert (low, high) == (pytest.approx(LOW_FACTOR * animal_cost_of_transport(2.0)),
                            pytest.approx(HIGH_FACTOR * animal_cost_of_transport(2.0)))

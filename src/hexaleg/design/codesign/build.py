@@ -51,6 +51,7 @@ from hexaleg.design.gait_evaluation import (
 )
 from hexaleg.design.gait_search import default_space, search
 from hexaleg.design.optimal import Groups
+from hexaleg.dynamics.plausibility import uses_generic
 from hexaleg.errors import ConfigError, HexalegError, InvalidParameterError
 from hexaleg.motion.body import body_height, nominal_footholds
 from hexaleg.motion.legged import gait
@@ -201,7 +202,8 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
             chosen=chosen, springs=c_sprung.springs, measures=c_sprung.measures,
             inner_saving=1.0 - c_sprung.sprung / c_sprung.baseline, rows=rows,
             sequential=sequential, search=joint, gait_search=alone, curve=points,
-            simulation=simulation, rules=buy, samples=n, wall=time.perf_counter() - t0)
+            simulation=simulation, rules=buy, samples=n, wall=time.perf_counter() - t0,
+            generic=uses_generic(motor))
     finally:
         if ruled is not None:
             ruled.close()

@@ -24,6 +24,7 @@ from hexaleg.design.gait_evaluation import PARAMETERS, UNITS, Constraints, GaitP
 from hexaleg.design.gait_search import SearchResult
 from hexaleg.design.spring_json import spring_entry
 from hexaleg.dynamics.energy import G
+from hexaleg.dynamics.plausibility import Plausibility, check_cost_of_transport
 from hexaleg.motion.params import GaitParams
 from hexaleg.quantities import file_data
 from hexaleg.quantities import quantity as q
@@ -84,6 +85,8 @@ class CodesignResult:
         rules: ``hexaleg design``'s result on the chosen gait (the full spring rules), its
             error's message when it could not run there, or None when not asked.
         samples: Samples a cycle in the search. wall: Total wall time, s.
+        generic: Whether the robot's actuators are generic (from URDF limits), for the
+            plausibility check's message.
     """
 
     robot: str
@@ -107,6 +110,15 @@ class CodesignResult:
     rules: Any
     samples: int
     wall: float
+    generic: bool = False
+
+    @property
+    def plausibility(self) -> Plausibility:
+        """The default gait's electrical cost of transport without springs against the
+        plausible band for the robot's mass (:func:`hexaleg.dynamics.plausibility.
+        check_cost_of_transport`, as ``hexaleg design`` and ``report`` check theirs)."""
+        return check_cost_of_transport(self.rows[0].cost_of_transport, self.mass,
+                                       generic=self.generic)
 
     @property
     def shares(self) -> dict[str, float]:
@@ -145,6 +157,8 @@ class CodesignResult:
         else:
             lines.append("  springs: the inner program's optimum (the full spring rules were "
                          "not applied)")
+        if not self.plausibility.plausible:
+            lines.append(f"WARNING default gait's energy {self.plausibility.message}")
         return "\n".join(lines)
 
     def to_dict(self) -> dict[str, Any]:
@@ -186,6 +200,7 @@ class CodesignResult:
             "full_rules": None if self.rules is None else (
                 {"applied_to": "the chosen gait only", "error": self.rules, "pays": False}
                 if isinstance(self.rules, str) else rule_data(self.rules, self.chosen.stride)),
+            "plausibility": self.plausibility.as_dict(),
             "wall": q(self.wall, "s"),
         })
 
