@@ -38,6 +38,9 @@ def main() -> None:
                                        "duty_factor", "period")))
     held = all((v >= b) if k == "min" else (v <= b) for v, b, _u, k in r.measures.values())
     print(f"every constraint holds: {held}")
+    use, bound = r.measures["friction"][:2]
+    print(f"planned friction use {use:.2f} of the cone at mu {r.constraints.mu:g} (at most "
+          f"{r.constraints.friction_margin:g}): {use <= bound}")
     robot = hexaleg.load()
     prepared = hexaleg.prepare(robot, hexaleg.gait(robot, r.chosen),
                                contact=r.constraints.contact())

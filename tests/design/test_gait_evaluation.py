@@ -33,6 +33,24 @@ def test_default_gait_meets_the_default_constraints(robot):
     assert cost_of_transport(point.per_metre, 2.0) == pytest.approx(point.per_metre / (2.0 * 9.81))
 
 
+def test_the_friction_margin_binds_the_planned_forces(robot):
+    """Issue #41: with the whole cone the default gait's Joule-optimal forces use more than
+    half of it somewhere; with friction_margin = 0.5 the planned forces stay within half the
+    floor's cone (other forces, another energy) and the measure is against the floor's μ."""
+    free = evaluate_gait(robot, GAIT, groups=None, family="linear",
+                         constraints=Constraints(friction_margin=1.0), min_margin=0.0)
+    half = evaluate_gait(robot, GAIT, groups=None, family="linear",
+                         constraints=Constraints(friction_margin=0.5), min_margin=0.0)
+    use_free, bound_free = free.measures["friction"][:2]
+    use_half, bound_half = half.measures["friction"][:2]
+    assert use_free > 0.5 and bound_free == pytest.approx(1.0, abs=2e-6)
+    assert use_half <= 0.5 + 1e-6 and bound_half == pytest.approx(0.5, abs=2e-6) and half.feasible
+    assert half.baseline != free.baseline  # the constraint moved the forces
+    assert Constraints().friction_margin == 0.7
+    assert Constraints(friction_margin=0.5).planning_contact().mu == pytest.approx(0.3)
+    assert Constraints(friction_margin=0.5).contact().mu == 0.6
+
+
 def test_a_constraint_above_the_gait_is_a_violation_not_an_error(robot):
     point = evaluate_gait(robot, GAIT, groups=None, family="linear",
                           constraints=Constraints(min_body_clearance=0.2), min_margin=1.0)
@@ -56,6 +74,7 @@ def test_with_values_sets_the_stride_from_the_speed():
 
 
 @pytest.mark.parametrize("kwargs", [{"speed_fraction": 0.0}, {"mu": -1.0},
+                                    {"friction_margin": 0.0}, {"friction_margin": 1.5},
                                     {"min_foot_clearance": 0.0}, {"torque_limits": 1},
                                     {"min_static_margin": -0.1}, {"min_body_clearance": math.nan}])
 def test_bad_constraints_are_named(kwargs):

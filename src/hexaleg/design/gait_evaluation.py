@@ -59,8 +59,17 @@ class Constraints:
             (the actuator's, AX-18A datasheet for hexaleg), default 1.
         torque_limits: Motor torques within each servo's stall torque (inside the force
             program, :class:`~hexaleg.dynamics.contact.ContactParams`), default True.
-        mu: Friction coefficient of the cones the foot forces stay in, default 0.6 (the
-            analysis' assumed rubber on a hard floor).
+        mu: Friction coefficient of the floor, default 0.6 (the analysis' assumed rubber on
+            a hard floor).
+        friction_margin: The planned foot forces use at most this fraction of the friction
+            cone, ``|f_t| ≤ friction_margin · μ f_n``, in (0, 1], default 0.7: the gait
+            search and its inner spring program plan with ``friction_margin · μ``
+            (:meth:`planning_contact`), so a gait whose energy leans on the cone's edge is not
+            chosen (issue #41: at 0.90 of the cone the co-designed gait's feet slipped in
+            simulation, and on a grippier floor its springs saved half as much). The full
+            spring rules on the chosen gait design at the floor's μ (at the narrowed cone the
+            preloaded family's condensed program failed numerically there), and their
+            design.json states the friction their forces plan to use.
         min_foot_clearance: Lowest swing apex of a foot above the ground, m (the step height's
             lower bound), default 0.015 (assumed: half the default gait's 0.03 m step).
         min_body_clearance: Lowest point of the body's (base link's) geometry above the ground
@@ -75,6 +84,7 @@ class Constraints:
     speed_fraction: float = 1.0
     torque_limits: bool = True
     mu: float = 0.6
+    friction_margin: float = 0.7
     min_foot_clearance: float = 0.015
     min_body_clearance: float = 0.02
 
@@ -88,13 +98,19 @@ class Constraints:
                                         "True or False")
         real("constraints.mu", self.mu, low=0.0, low_open=True, allowed="a friction "
              "coefficient > 0")
+        real("constraints.friction_margin", self.friction_margin, low=0.0, high=1.0,
+             low_open=True, allowed="a fraction in (0, 1] of the friction cone")
         real("constraints.min_foot_clearance", self.min_foot_clearance, low=0.0,
              low_open=True, allowed="a height > 0 m")
         nonnegative("constraints.min_body_clearance", self.min_body_clearance)
 
     def contact(self) -> ContactParams:
-        """The force program's settings these constraints imply."""
+        """The floor: friction ``mu``, the torque limits (what a simulation walks on)."""
         return ContactParams(mu=self.mu, torque_limits=self.torque_limits)
+
+    def planning_contact(self) -> ContactParams:
+        """The force programs' settings: the cone narrowed to ``friction_margin · mu``."""
+        return ContactParams(mu=self.friction_margin * self.mu, torque_limits=self.torque_limits)
 
 
 @dataclass(frozen=True)
@@ -173,8 +189,9 @@ def measure(robot: Robot, motion: Motion, prepared: Prepared, tau_motor: np.ndar
             ) -> dict[str, tuple[float, float, str, str]]:
     """Every constraint of :class:`Constraints` on one analysed gait: name → (value, bound,
     unit, ``"min"``/``"max"``). Joint speeds against the URDF velocity limits, motor torques
-    against the stall torques (``τ_stall``), the friction cone's usage ``|f_t| / (μ f_n)``
-    (:func:`hexaleg.dynamics.contact.friction_usage`), the static margin, the swing apex and
+    against the stall torques (``τ_stall``), the friction cone's usage ``|f_t| / (μ f_n)`` of
+    the floor's μ against ``friction_margin`` (:func:`hexaleg.dynamics.contact.friction_usage`),
+    the static margin, the swing apex and
     the body's clearance. The static margin is over the samples on three or more feet (a trot's
     two-foot samples are balanced dynamically by the body's sway) and absent when there are
     none."""
@@ -189,8 +206,8 @@ def measure(robot: Robot, motion: Motion, prepared: Prepared, tau_motor: np.ndar
            "foot_clearance": (apex, constraints.min_foot_clearance, "m", "min"),
            "body_clearance": (body_clearance(robot, motion), constraints.min_body_clearance,
                               "m", "min"),
-           "friction": (float(np.max(usage)) if np.size(usage) else 0.0, 1.0 + 1e-6, "1",
-                        "max")}
+           "friction": (float(np.max(usage)) if np.size(usage) else 0.0,
+                        constraints.friction_margin + 1e-6, "1", "max")}
     if margins.size:
         out["static_margin"] = (float(margins.min()), min_margin, "m", "min")
     if constraints.torque_limits:
@@ -207,7 +224,8 @@ def evaluate_gait(robot: Robot, params: GaitParams, *, groups: Groups | None,
     point = GaitPoint(params=params, distance=params.stride)
     try:
         motion = gait(robot, params)
-        prepared = prepare(robot, motion, motor=motor, contact=constraints.contact())  # type: ignore[arg-type]
+        prepared = prepare(robot, motion, motor=motor,  # type: ignore[arg-type]
+                           contact=constraints.planning_contact())
         if groups:
             best = optimal_springs(prepared, groups, family, "joule", metric=METRIC,
                                    max_deflection=math.pi)

@@ -13,9 +13,12 @@ from hexaleg.design.gait_evaluation import Constraints
 from hexaleg.errors import InvalidParameterError, UnknownNameError
 
 
-def test_codesign_needs_at_most_065_of_the_default_gait(codesigned):
-    default, _, _, best = codesigned.rows
-    assert best.per_metre <= 0.65 * default.per_metre
+def test_codesign_beats_the_default_gait_and_the_sequential_design(codesigned):
+    """The reduced search (30 evaluations, 2 restarts) beats the default gait with its best
+    springs and the sequential design; the full search's 0.38 of the default gait (≤ 0.65,
+    friction margin 0.7) is analysis/codesign_hexaleg.py's kept log (tests/test_examples.py)."""
+    default, default_springs, _, best = codesigned.rows
+    assert best.per_metre < default_springs.per_metre < default.per_metre
     assert best.per_metre <= codesigned.sequential.per_metre  # beats gait first, then springs
     shares = codesigned.shares
     assert shares["gait"] + shares["springs"] == pytest.approx(shares["codesign"])

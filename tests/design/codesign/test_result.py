@@ -42,10 +42,11 @@ def test_load_design_reads_the_chosen_gait_and_springs(codesigned, tmp_path):
         assert getattr(loaded.gait, name) == pytest.approx(getattr(codesigned.chosen, name))
     assert set(loaded.springs) == set(codesigned.springs)
     assert "inner program" in codesigned.recommended[1]
-    # the inner springs' saving on the chosen gait (not against the gait-alone row's gait)
+    # the inner springs' saving on the chosen gait (not against the gait-alone row's gait),
+    # with the forces the search planned: inside friction_margin of the cone
     robot = hexaleg.load()
     prepared = hexaleg.prepare(robot, hexaleg.gait(robot, codesigned.chosen),
-                               contact=codesigned.constraints.contact())
+                               contact=codesigned.constraints.planning_contact())
     base = prepared.baseline("joule")["total"]["electrical"]
     sprung = prepared.evaluate(codesigned.springs, "joule").metrics["total"]["electrical"]
     saving = codesigned.to_dict()["recommended"]["saving"]["electrical"]["value"]

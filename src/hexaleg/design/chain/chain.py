@@ -110,6 +110,7 @@ class DesignChain:
         self._say = progress or (lambda _msg: None)
         self._done: dict[str, Any] = {}
         self._wanted: tuple[str, ...] = STAGES  # what run() asked for; a stage alone: all
+        self._left_out: list[str] = []  # families whose program failed (candidates' notes)
         self.timings: dict[str, float] = {}
         self._t0 = self._last = time.perf_counter()
 
@@ -135,8 +136,10 @@ class DesignChain:
 
     def candidates(self) -> tuple[Candidate, ...]:
         """Every allowed family's candidate, ranked by predicted net saving (best first)."""
-        return self._once("candidates", lambda: tuple(
-            family_candidates(self.nominal(), self._step)))
+        def compute() -> tuple[Candidate, ...]:
+            cands, self._left_out = family_candidates(self.nominal(), self._step)
+            return tuple(cands)
+        return self._once("candidates", compute)
 
     def pareto(self) -> tuple[tuple[float, Candidate], ...]:
         """The best buildable family's optimum with its spring torque bounded, ascending; the
@@ -306,7 +309,8 @@ class DesignChain:
                   f"ranked by the predicted {d.metric} saving net of the springs' mass (not "
                   "simulated)")
         residual = nom.prepared.residual.line() if nom.prepared.residual is not None else None
-        notes = [*flagged, *pays, *logged, *((residual,) if residual else ()), *ranking_notes,
+        notes = [*flagged, *self._left_out, *pays, *logged,
+                 *((residual,) if residual else ()), *ranking_notes,
                  *envelope_notes, *robust_notes, *stalled, *unsimulated, *nom.notes,
                  *nom.robot.notes,
                  *rec.notes,

@@ -33,9 +33,11 @@ from hexaleg.design.spring_json import spring_entry
 from hexaleg.design.spring_parts import SpringPart
 from hexaleg.design.spring_table import magnitudes_table
 from hexaleg.design.tolerance import TolerantSprings
+from hexaleg.dynamics.contact import friction_usage
 from hexaleg.dynamics.draw import WholeDraw
 from hexaleg.dynamics.energy import metric_unit
 from hexaleg.dynamics.plausibility import Plausibility
+from hexaleg.dynamics.prepare import Analysis
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.trajectory import Motion
 from hexaleg.quantities import file_data, json_text, quantity
@@ -293,6 +295,14 @@ def gait_data(r: DesignResult) -> dict[str, Any]:
                        "quality": None if logged is None else quality_data(logged)}}
 
 
+def planned_friction_use(a: Analysis) -> float:
+    """The largest share of its friction cone a stance foot's planned force uses over the
+    cycle, ``max |f_t| / (μ f_n)`` (:func:`hexaleg.dynamics.contact.friction_usage`; 1: about to
+    slip), at the analysis' μ."""
+    usage = friction_usage(a.forces, a.motion.stance.astype(bool), a.contact.mu, a.motion.normal)
+    return float(usage.max()) if usage.size else 0.0
+
+
 def design_data(r: DesignResult) -> dict[str, Any]:
     """The content of ``design.json`` (module docstring)."""
     d = r.config.design
@@ -318,6 +328,7 @@ def design_data(r: DesignResult) -> dict[str, Any]:
         "baseline": {m: quantity(r.baseline[m], metric_unit(m)) for m in SAVING_METRICS},
         "plausibility": None if r.plausibility is None else r.plausibility.as_dict(),
         "whole_draw": None if r.whole_draw is None else r.whole_draw.as_dict(),
+        "friction_use": quantity(planned_friction_use(r.recommended.optimum.analysis), "1"),
         "recommended": candidate_data(r.recommended, r.outer),
         "candidates": [candidate_data(c, r.outer) for c in r.candidates],
         "pareto": [{"fraction": quantity(f, "1"), **candidate_data(c, r.outer)}

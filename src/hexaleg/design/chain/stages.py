@@ -182,8 +182,10 @@ def rank(c: Candidate, metric: str) -> float:
     return float(value) if np.isfinite(value) else -np.inf
 
 
-def family_candidates(nom: Nominal, progress: Callable[[str, str], None]) -> list[Candidate]:
-    """Every allowed family's candidate, ranked by predicted net saving (best first).
+def family_candidates(nom: Nominal, progress: Callable[[str, str], None]
+                      ) -> tuple[list[Candidate], list[str]]:
+    """Every allowed family's candidate, ranked by predicted net saving (best first), and a note
+    for each family whose program failed (skipped: the design goes on with the others).
 
     The families are convex programs with their own geometry searches, so they run in
     parallel, one process per core (:func:`~hexaleg.parallel.forked.fork_map`: the workers
@@ -195,12 +197,20 @@ def family_candidates(nom: Nominal, progress: Callable[[str, str], None]) -> lis
     Args:
         nom: The nominal stage.
         progress: Called with (step name, message) as each family ends.
+
+    Raises:
+        HexalegError: every family failed (the first family's own error).
     """
     d = nom.config.design
     found: dict[str, Candidate] = {}
+    failed: dict[str, str] = {}
 
-    def done(i: int, c: Candidate) -> None:
+    def done(i: int, c: Candidate | str) -> None:
         fam = d.families[i]
+        if isinstance(c, str):
+            failed[fam] = c
+            progress(f"family {fam}", f"{fam}: left out, its program failed: {c}")
+            return
         found[fam] = c
         progress(f"family {fam}", f"{fam}: family optimum, {d.metric} saving "
                  f"{100 * c.row[f'saving.{d.metric}']:+.2f} %")
@@ -208,15 +218,24 @@ def family_candidates(nom: Nominal, progress: Callable[[str, str], None]) -> lis
     for wave in containment_waves(d.families):
         contained = {f: c.searched for f, c in found.items() if c.searched is not None}
 
-        def one(fam: str, contained: dict[str, OptimalSprings] = contained) -> Candidate:
-            return nom.family(fam, contained=contained)
+        def one(fam: str, contained: dict[str, OptimalSprings] = contained) -> Candidate | str:
+            try:
+                return nom.family(fam, contained=contained)
+            except HexalegError as err:  # this family only: the others go on
+                return f"{type(err).__name__}: {err}"
 
-        def finished(i: int, c: Candidate, wave: list[str] = wave) -> None:
+        def finished(i: int, c: Candidate | str, wave: list[str] = wave) -> None:
             done(d.families.index(wave[i]), c)
 
         nom.fork_map(one, wave, done=finished)
-    cands = [found[fam] for fam in d.families]
-    return sorted(cands, key=lambda c: -rank(c, d.metric))
+    if not found:  # the first family again, here: its own error, raised (the workers' are
+        nom.family(d.families[0])  # messages only)
+        raise InfeasibleForcesError(f"every spring family's program failed: "
+                                    f"{failed[d.families[0]]}")
+    cands = [found[fam] for fam in d.families if fam in found]
+    notes = [f"spring family {fam} left out: its program failed on this gait ({why}); the "
+             "design compares the other families" for fam, why in failed.items()]
+    return sorted(cands, key=lambda c: -rank(c, d.metric)), notes
 
 
 def pareto_front(nom: Nominal, rec: Candidate) -> list[tuple[float, Candidate]]:

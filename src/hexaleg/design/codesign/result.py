@@ -146,6 +146,12 @@ class CodesignResult:
                      f"{100 * s['springs']:+.1f} %, co-design {100 * s['codesign']:+.1f} %")
         lines.append("  chosen gait: " + ", ".join(
             f"{p} {getattr(self.chosen, p):.4g} {UNITS[p]}" for p in PARAMETERS))
+        if "friction" in self.measures:
+            use = self.measures["friction"][0]
+            lines.append(f"  planned friction use {use:.2f} of the cone at μ "
+                         f"{self.constraints.mu:g} (at most "
+                         f"{self.constraints.friction_margin:g}: [codesign.constraints] "
+                         "friction_margin)")
         lines.append(f"  search: {self.search.evaluations} evaluations, "
                      f"{self.search.wall:.1f} s, restarts {self.search.spread:.3f} J/m apart; "
                      f"total {self.wall:.1f} s")
@@ -206,6 +212,7 @@ class CodesignResult:
 
 
 _CONSTRAINT_UNITS = {"min_static_margin": "m", "speed_fraction": "1", "mu": "1",
+                     "friction_margin": "1",
                      "min_foot_clearance": "m", "min_body_clearance": "m"}
 _SIM_UNITS = {"planned": "m", "walked": "m", "walked_baseline": "m", "predicted": "1",
               "simulated": "1"}
