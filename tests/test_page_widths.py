@@ -1,5 +1,5 @@
 """Every page a user opens fits a 1400 px window (#29): headless Chromium loads the report page,
-the design page and the documentation site's landing page at 1400 px and measures every table
+the design page, the co-design page and the documentation site's landing page at 1400 px and measures every table
 and code block against its container.
 
 A block is *cut off* when it is wider than a container that does not scroll (its right part is
@@ -101,6 +101,19 @@ def pages(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
 def test_the_report_and_design_pages_fit_1400_px(pages, name, tmp_path):
     found = measure(pages[name], tmp_path)
     assert found["window"] == WIDTH and found["blocks"] >= 5, found
+    assert found["cut"] == [] and found["scrolls"] == [], found
+
+
+@needs_chromium
+@pytest.mark.slow
+def test_the_codesign_page_fits_1400_px(ruled, tmp_path):
+    """codesign.html with the springs to buy (its parts table the widest block) neither cuts
+    nor scrolls at 1400 px (issue #43)."""
+    from hexaleg.commands.codesign.write import write_result
+
+    write_result(ruled, tmp_path / "codesign")
+    found = measure(tmp_path / "codesign" / "codesign.html", tmp_path)
+    assert found["window"] == WIDTH and found["blocks"] >= 6, found
     assert found["cut"] == [] and found["scrolls"] == [], found
 
 

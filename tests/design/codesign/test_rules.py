@@ -61,7 +61,14 @@ def test_summary_and_json_show_the_rules_figures(ruled):
 def test_codesign_json_springs_load_and_simulate(ruled, tmp_path, capsys):
     data, _ = write_result(ruled, tmp_path / "out")
     page = (tmp_path / "out" / "codesign.html").read_text()
-    assert "Springs to buy" in page and "fatigue n_f" in page and "arbor" in page
+    assert "Springs to buy" in page and "fatigue safety" in page and "arbor" in page
+    # the design page's standard (issue #43): an answer box, the wire to buy, mm/°/%, the
+    # hard stops; no code names, no fractions
+    assert 'class="answer"' in page and "music wire" in page and "d / D / OD" in page
+    for code in ("theta_minus", "stiffness_minus", "(fractions)", "N·m/rad", "_clearance"):
+        assert code not in page, code
+    stops = [e for e in data["full_rules"]["envelope"] if e["hard_stop"]]
+    assert ("Hard stops needed" in page) == bool(stops)
     path = tmp_path / "out" / "codesign.json"
     loaded = hexaleg.load_design(path)
     bought = ruled.rules.recommended.optimum.springs
