@@ -1,6 +1,6 @@
 """Every page a user opens fits a 1400 px window (#29): headless Chromium loads the report page,
-the design page, the co-design page and the documentation site's landing page at 1400 px and measures every table
-and code block against its container.
+the design page, the co-design page and the documentation site's landing page at 1400 px and
+measures every table and code block against its container.
 
 A block is *cut off* when it is wider than a container that does not scroll (its right part is
 hidden or spills over the page); it *scrolls* when it sits in a container with ``overflow-x:
