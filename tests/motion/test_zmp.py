@@ -168,3 +168,16 @@ def test_balance_zmp_is_asked_for_where_it_applies():
     with pytest.raises(InvalidParameterError, match="one foot at its fewest"):
         GaitParams(balance="zmp").balance_mode(2)
     assert math.isfinite(BALANCE_TOL)
+
+
+def test_docs_quote_the_pattern_this_code_finds(crawl):
+    """docs/gait.md's table row for Solo-12's crawl is what the walking pattern finds here
+    (the sway to 0.1 mm and the turn to 0.1°: converged quantities; the iteration count is
+    not pinned, another floating-point path may take one more)."""
+    from pathlib import Path
+
+    info = crawl[1].info["balance"]
+    x, y = (1e3 * a for a in info["sway"])
+    row = f"| Solo-12 crawl, β = 0.3 | ±{x:.1f}, ±{y:.1f} mm | ±{math.degrees(info['turn']):.1f}° |"
+    page = (Path(__file__).resolve().parents[2] / "docs" / "gait.md").read_text()
+    assert row in page, row
