@@ -208,6 +208,18 @@ def check_cost_of_transport(cost: float, mass: float, *, what: str = "electrical
     return Plausibility(cot, float(mass), ref, low, high, flag, msg)
 
 
+def check_baseline(baseline: dict[str, Any], mass: float, motor: Motor | MotorSet
+                   ) -> Plausibility | None:
+    """The baseline's electrical cost of transport (``metrics["cost_of_transport"]
+    ["electrical"]`` of :func:`hexaleg.dynamics.energy.metrics`) checked by
+    :func:`check_cost_of_transport`, the message naming a generic ``motor``; None for a motion
+    in place (no cost of transport). The one check of ``report`` and ``design``."""
+    cot = baseline.get("cost_of_transport", {}).get("electrical")
+    if cot is None:
+        return None
+    return check_cost_of_transport(cot, mass, generic=uses_generic(motor))
+
+
 __all__ = ["HIGH_FACTOR", "LOW_FACTOR", "PUBLISHED", "Plausibility", "PublishedRobot",
-           "animal_cost_of_transport", "check_cost_of_transport", "comparable",
-           "plausible_range", "uses_generic"]
+           "animal_cost_of_transport", "check_baseline", "check_cost_of_transport",
+           "comparable", "plausible_range", "uses_generic"]

@@ -39,7 +39,7 @@ from hexaleg.design import rules as design
 from hexaleg.design.curves import StiffnessCurve, curve_springs, stiffness_curve
 from hexaleg.dynamics import contact
 from hexaleg.dynamics.draw import WholeDraw, whole_draw
-from hexaleg.dynamics.plausibility import check_cost_of_transport, uses_generic
+from hexaleg.dynamics.plausibility import check_baseline
 from hexaleg.dynamics.prepare import Analysis, Prepared, prepare
 from hexaleg.dynamics.sanity import torque_findings
 from hexaleg.motion.legged import gait
@@ -53,8 +53,6 @@ from hexaleg.report.design_section import design_section
 from hexaleg.report.paper_section import paper_reference
 from hexaleg.report.transform import transform_section
 from hexaleg.robot.model import Robot, load_robot
-from hexaleg.robot.motor import Motor
-from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.sanity import Finding, robot_findings
 from hexaleg.robot.springs import SpringSet
 from hexaleg.scenario.run_warnings import gait_defaults, run_warnings
@@ -162,7 +160,8 @@ def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis,
         "energy": sections.energy_section(robot, a),
         "cost_of_transport": sections.cost_of_transport_section(motion, a),
         "whole_draw": None if draw is None else draw.as_dict(),
-        "plausibility": _plausibility(robot, a, cfg.motor),
+        "plausibility": None if (p := check_baseline(a.baseline, robot.mass, cfg.motor)) is None
+        else p.as_dict(),
         "stiffness_curve": sections.curve_section(cfg.report.curve_joints, curve),
     }
 
@@ -170,16 +169,6 @@ def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis,
 def _watts(q: dict[str, Any] | None, unknown: str = "unknown") -> str:
     """A ``{value, unit}`` power in words, or what is missing."""
     return unknown if q is None else f"{q['value']:.3g} W"
-
-
-def _plausibility(robot: Robot, a: Analysis, motor: Motor | MotorSet) -> dict[str, Any] | None:
-    """The baseline's electrical cost of transport against the plausible band for the robot's
-    mass (:func:`hexaleg.dynamics.plausibility.check_cost_of_transport`, as ``hexaleg design``
-    checks it); None for a motion in place."""
-    cot = a.baseline.get("cost_of_transport", {}).get("electrical")
-    if cot is None:
-        return None
-    return check_cost_of_transport(cot, robot.mass, generic=uses_generic(motor)).as_dict()
 
 
 def answer_draw(answer: dict[str, Any], draw: WholeDraw) -> dict[str, Any] | None:

@@ -67,7 +67,7 @@ from hexaleg.design.robustness_map import RobustnessMap
 from hexaleg.design.spring_parts import SpringPart
 from hexaleg.design.tolerance import TolerantSprings
 from hexaleg.dynamics.draw import WholeDraw, whole_draw
-from hexaleg.dynamics.plausibility import Plausibility, check_cost_of_transport, uses_generic
+from hexaleg.dynamics.plausibility import check_baseline
 from hexaleg.errors import HexalegError, InvalidParameterError, UnknownNameError
 from hexaleg.robot.mirror import mirror
 from hexaleg.scenario.scenario import Scenario
@@ -300,7 +300,8 @@ class DesignChain:
             f"% of {d.metric} and {100 * rec.net[d.metric]:+.2f} % net of its springs' mass — "
             "fitting springs does not pay on this robot and gait"]
         mirrored = mirror(nom.robot)
-        plausible = _plausibility(nom)
+        plausible = check_baseline(nom.prepared.baseline("joule"), nom.robot.mass,
+                                   nom.run.actuator())
         flagged = () if plausible is None else (f"baseline energy {plausible.message}",)
         logged = ([LOGGED_SKIP] if nom.motion is not None
                   else [] if d.robustness else [UNMAPPED])
@@ -340,15 +341,6 @@ def _whole_draw(nom: Nominal, rec: Candidate) -> WholeDraw | None:
     return whole_draw(base * (1.0 - rec.row["saving.electrical"]), base, motion.period,
                       motion.distance, nom.run.actuator(), nom.robot.nj,
                       electronics=nom.desc.electronics_power, battery_wh=nom.desc.battery_wh)
-
-
-def _plausibility(nom: Nominal) -> Plausibility | None:
-    """The nominal gait's electrical cost of transport without springs against the plausible
-    band for the robot's mass (None for a gait in place)."""
-    cot = nom.prepared.baseline("joule").get("cost_of_transport", {}).get("electrical")
-    if cot is None:
-        return None
-    return check_cost_of_transport(cot, nom.robot.mass, generic=uses_generic(nom.run.actuator()))
 
 
 __all__ = ["STAGES", "DesignChain"]
