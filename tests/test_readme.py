@@ -118,7 +118,8 @@ def test_as_printed_rounds_like_the_readme():
 @pytest.fixture(scope="module")
 def report() -> dict:
     """``hexaleg report``'s numbers (report.json) at the defaults: built-in robot, default gait,
-    AX-18A, paper-style femur springs; with the paper's single joint."""
+    AX-18A, the quick answer's springs analysed, the paper-style femur springs the reference;
+    with the paper's single joint."""
     return build_report().data
 
 
@@ -137,7 +138,7 @@ def test_readme_quick_start_says_what_the_report_answers(report):
     assert answer_line(report["design"]).startswith(quoted + " ("), (
         f"README quotes {quoted!r}; hexaleg report prints {answer_line(report['design'])!r}")
     _check("the paper-style femur springs' electrical saving (%)",
-           report["energy"]["totals"]["electrical"]["saving"]["value"], paper)
+           report["reference"]["energy"]["electrical"]["saving"]["value"], paper)
 
 
 def test_readme_paper_k_M(report):
@@ -188,15 +189,15 @@ def test_readme_gait_energy_and_default_design(report):
     _check("Joule loss per cycle without springs (J)", totals["joule"]["baseline"]["value"], joule)
     _check("electrical energy per cycle without springs (J)",
            totals["electrical"]["baseline"]["value"], electrical)
-    # the report's default design is the paper's carried over: centred dead zone on the femurs
-    springs = report["springs"]
+    # the report's reference is the paper's design carried over: centred dead zone on the femurs
+    springs = report["reference"]
     assert springs["design"] == "paper" and all(j.endswith("_femur") for j in springs["joints"])
     assert all(s["theta_minus"]["value"] == -s["theta_plus"]["value"]
                for s in springs["joints"].values())
     (cost,) = _said(r"centred on the femur's swing — the paper's design carried over — "
                     r"costs energy \({n} %\)")
     _check("the paper-style femur springs' electrical saving (%)",
-           totals["electrical"]["saving"]["value"], cost)
+           springs["energy"]["electrical"]["saving"]["value"], cost)
 
 
 # The placement results: notebook 03's configuration, which the README names (samples per cycle,
@@ -284,3 +285,33 @@ def test_readme_robot_flag_and_registered_robots():
     without = {name for name, p in sub.choices.items()
                if "--robot" not in {s for a in p._actions for s in a.option_strings}}
     assert without == {"paper", "motors"}
+
+
+def test_docs_report_page_numbers_are_the_default_report(report):
+    """docs/report.md's numbers of the default report (the answer's saving, the reference's,
+    the fold into a sphere with the answer's springs) are ``hexaleg report``'s, at the
+    precision the page prints them."""
+    text = " ".join((ROOT / "docs" / "report.md").read_text().split())
+
+    def said(pattern: str) -> tuple[str, ...]:
+        m = re.search(pattern.replace("{n}", NUMBER), text)
+        assert m, f"docs/report.md no longer matches {pattern!r}"
+        return m.groups()
+
+    (quick,) = said(r"On the default robot {n} % of the energy the servos draw")
+    _check("the quick answer's saving (%)", report["design"]["saving"]["value"], quick)
+    (ref,) = said(r"The paper's design carried over to the robot \({n} % on this robot\)")
+    _check("the reference's saving (%)", report["reference"]["energy"]["electrical"]["saving"][
+        "value"], ref)
+    without, with_, saving = said(r"the transformation costs {n} J electrical without springs "
+                                  r"and {n} J with the answer's linear springs \({n} %\)")
+    fold = report["transform"]
+    _check("the fold without springs (J)", fold["totals"]["electrical"]["baseline"]["value"],
+           without)
+    _check("the fold with springs (J)", fold["totals"]["electrical"]["with_springs"]["value"],
+           with_)
+    _check("the fold's saving (%)", fold["totals"]["electrical"]["saving"]["value"], saving)
+    rise, held = said(r"the motors' net work rises from {n} J \(= m g Δz_com\) by the {n} J")
+    _check("m g Δz_com (J)", fold["potential_energy_rise"]["value"], rise)
+    _check("the energy the springs hold (J)", fold["net_work"]["with_springs"]["value"]
+           - fold["net_work"]["baseline"]["value"], held)

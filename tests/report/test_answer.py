@@ -53,7 +53,11 @@ def test_the_quick_answer_is_the_global_linear_optimum(quick, robot):
     saving = 100 * best.analysis.savings["total"]["electrical"]
     assert g["saving"] == {"value": pytest.approx(saving, abs=1e-6), "unit": "%"}
     assert g["saving"]["value"] > 10  # the springs save; the paper's design costs
-    assert quick.data["energy"]["totals"]["electrical"]["saving"]["value"] < 0
+    assert quick.data["reference"]["energy"]["electrical"]["saving"]["value"] < 0
+    # the page analyses the answer's springs: its energy table is theirs
+    assert quick.data["springs"]["design"] == "answer"
+    assert quick.data["energy"]["totals"]["electrical"]["saving"]["value"] == pytest.approx(
+        saving, abs=1e-6)
     # the same springs on the report's gait: here the same 100 samples, so the same saving
     assert g["report_gait"]["samples"] == 100
     assert g["report_gait"]["saving"]["value"] == pytest.approx(saving, abs=1e-6)
@@ -127,5 +131,5 @@ def test_a_logged_motion_gets_no_quick_answer(robot):
     from hexaleg.report.answer import answer_section
 
     cfg = SimpleNamespace(report=SimpleNamespace(design=None), motion=object())
-    section, notes = answer_section(cfg, robot, None)  # type: ignore[arg-type]
-    assert section is None and "hexaleg design --motion LOG" in notes[0]
+    section, springs, notes = answer_section(cfg, robot, None)  # type: ignore[arg-type]
+    assert section is None and springs is None and "hexaleg design --motion LOG" in notes[0]

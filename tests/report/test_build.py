@@ -66,13 +66,12 @@ def test_report_invariants(data, report_written, robot):
     # the net work of a conservative periodic cycle is ~0 compared with the absolute work
     assert abs(_v(data["energy"]["net_work"]["with_springs"])) < 1e-6 * _v(
         data["energy"]["totals"]["absolute_work"]["with_springs"])
-    # the paper-style femur springs (eq. 14 convention) store U = ½ k α Δ² beyond ±θ_k
+    # the answer's linear springs store U = ½ k (q − q_r)² − τ₀ (q − q_r) (Hooke)
     s = r.analysis.springs["LF_femur"]
     c = robot.column("LF_femur")
-    d = r.analysis.q[:, c] - s.neutral
-    beyond = np.maximum(np.abs(d) - s.theta_k, 0.0)
-    np.testing.assert_allclose(r.analysis.spring_energy[:, c], 0.5 * s.alpha * s.stiffness
-                               * beyond**2, atol=1e-15)
+    d = r.analysis.q[:, c] - s.reference
+    np.testing.assert_allclose(r.analysis.spring_energy[:, c], 0.5 * s.stiffness * d**2
+                               - s.torque_at_reference * d, atol=1e-15)
     u = friction_usage(r.analysis.forces, r.motion.stance.astype(bool), 0.6)
     assert np.all(u[~r.motion.stance.astype(bool)] == 0)
 

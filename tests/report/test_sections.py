@@ -17,8 +17,13 @@ def _v(q):
     return q["value"]
 
 
-def test_energy_numbers_equal_the_analysis_api(data, independent, robot):
-    _, _, a = independent
+def test_energy_numbers_equal_the_analysis_api(data, analysed, robot):
+    """The page's energies are those of the springs it says it analyses (the answer's),
+    recomputed from their laws in report.json through the public API."""
+    springs, a = analysed
+    assert data["springs"]["design"] == "answer" and data["design"]["origin"] == "quick"
+    assert {s["family"] for s in data["springs"]["joints"].values()} == {"linear"}
+    assert set(springs) == set(robot.joints("femur")) | set(robot.joints("tibia"))
     totals = data["energy"]["totals"]
     assert set(totals) == set(a.savings["total"])
     for key, row in totals.items():
@@ -42,8 +47,30 @@ def test_energy_numbers_equal_the_analysis_api(data, independent, robot):
     assert _v(data["cost_of_transport"]["distance"]) == pytest.approx(0.06)
 
 
-def test_joint_force_and_spring_numbers_equal_the_api(data, independent, robot):
+def test_the_reference_is_the_paper_design_on_the_femurs(data, independent, robot):
+    """The reference section: the paper's design (eq. 19 k_M, α = 1.05, centred dead zone) on
+    the femurs, its energies those of the public API with the same springs."""
     motion, springs, a = independent
+    ref = data["reference"]
+    assert ref["design"] == "paper"
+    assert set(ref["joints"]) == set(springs) == set(robot.joints("femur"))
+    for name, s in springs.items():
+        row = ref["joints"][name]
+        assert _v(row["stiffness"]) == pytest.approx(s.stiffness)
+        assert _v(row["k_M"]) == pytest.approx(k_M(robot, motion, name))  # eq. 19, α = 1.05
+        assert _v(row["stiffness_over_k_M"]) == pytest.approx(1.0)
+        assert _v(row["theta_plus"]) == pytest.approx(s.theta_k)
+    assert set(ref["energy"]) == set(a.savings["total"])
+    for key, row in ref["energy"].items():
+        assert _v(row["with_springs"]) == pytest.approx(a.metrics["total"][key], rel=1e-12)
+        assert _v(row["saving"]) == pytest.approx(100 * a.savings["total"][key], rel=1e-9,
+                                                  abs=1e-12)
+    assert _v(ref["energy"]["electrical"]["saving"]) < 0  # the paper's design costs here
+
+
+def test_joint_force_and_spring_numbers_equal_the_api(data, analysed, walk200, robot):
+    springs, a = analysed
+    motion = walk200
     for j, name in enumerate(robot.joint_names):
         row = data["joints"][name]
         assert _v(row["peak_motor_torque"]) == pytest.approx(np.abs(a.tau_motor[:, j]).max())
@@ -51,13 +78,11 @@ def test_joint_force_and_spring_numbers_equal_the_api(data, independent, robot):
                                                               abs=1e-15)
         assert _v(row["angle_min"]) == pytest.approx(motion.q[:, 7 + j].min())
         assert _v(row["peak_power"]) == pytest.approx(np.abs(a.power[:, j]).max())
-    assert set(data["springs"]["joints"]) == set(springs) == set(robot.joints("femur"))
-    for name, s in springs.items():
+    for name in springs:
         row = data["springs"]["joints"][name]
-        assert _v(row["stiffness"]) == pytest.approx(s.stiffness)
-        assert _v(row["k_M"]) == pytest.approx(k_M(robot, motion, name))  # eq. 19, α = 1.05
-        assert _v(row["stiffness_over_k_M"]) == pytest.approx(1.0)
-        assert _v(row["theta_plus"]) == pytest.approx(s.theta_k)
+        tau = np.abs(a.tau_spring[:, robot.column(name)])
+        assert _v(row["peak_torque"]) == pytest.approx(tau.max(), rel=1e-12)
+        assert _v(row["engaged_fraction"]) == 1.0  # a linear spring pushes all the time
     mu = ContactParams().mu
     stance = motion.stance.astype(bool)
     for i, leg in enumerate(robot.leg_names):
@@ -79,7 +104,6 @@ def test_joint_rows_compare_with_the_baseline(data, independent, robot):
         assert _v(row["peak_motor_torque_baseline"]) == pytest.approx(
             np.abs(base.tau_motor[:, j]).max())
         assert _v(row["peak_power_baseline"]) == pytest.approx(np.abs(base.power[:, j]).max())
-    assert data["springs"]["design"] == "paper"
 
 
 def test_notes_carry_the_sanity_findings(walk):

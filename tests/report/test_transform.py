@@ -15,10 +15,11 @@ def _v(q):
     return q["value"]
 
 
-def test_transform_numbers_equal_the_analysis_api(data, independent, robot):
-    """The stand → sphere section: the public API's numbers for the same springs, and the
-    joints' net work equal to the rise of potential energy (both ways, springs conservative)."""
-    _, springs, _ = independent
+def test_transform_numbers_equal_the_analysis_api(data, analysed, robot):
+    """The stand → sphere section: the public API's numbers for the springs the page analyses,
+    and the joints' net work equal to the rise of potential energy (both ways, springs
+    conservative)."""
+    springs, _ = analysed
     fold = transform_motion(robot)
     a = analyze(robot, fold, springs, motor=DEFAULT_MOTOR, objective="joule")
     section = data["transform"]

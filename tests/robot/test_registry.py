@@ -289,7 +289,7 @@ def test_report_for_a_registry_robot(name, tmp_path, capsys, upstream_placeholde
     assert data["gait"]["period"]["value"] == robot_gait(desc).period
     assert data["gait"]["min_stance_feet"] == 2
     assert data["contact"]["torque_limits"] is True
-    assert sorted(data["springs"]["joints"]) == sorted(knees)
+    assert sorted(data["reference"]["joints"]) == sorted(knees)  # the paper's design, on knees
     assert data["stiffness_curve"]["joints"] == knees and not data["stiffness_curve"]["infeasible"]
     assert data["title"].startswith(desc.title)
     # The stance feet carry the weight on average over the cycle.

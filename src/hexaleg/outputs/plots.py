@@ -27,6 +27,9 @@ from hexaleg.units import rad_to_deg
 
 LEG_COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b")
 """One colour per leg, in the robot's leg order (matplotlib's tab10 palette)."""
+CONTACT_MARGIN = 0.25
+"""A spring's contact angle is drawn on the joint-angle plot within this fraction of the joint's
+swing beyond its extremes."""
 METRIC_COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#17becf")
 """Colours of the metrics of the stiffness curve, in the order given."""
 
@@ -45,8 +48,10 @@ def _colour(i: int) -> str:
 
 
 def joint_angles(robot: Robot, t: np.ndarray, q: np.ndarray,
-                 dead_zones: Mapping[str, tuple[float, float]]) -> Figure:
-    """Joint angles over the cycle, one row per joint class, with the springs' dead zones shaded.
+                 dead_zones: Mapping[str, tuple[float, float]],
+                 contacts: Mapping[str, Sequence[float]] | None = None) -> Figure:
+    """Joint angles over the cycle, one row per joint class, with the springs' dead zones shaded
+    and the other springs' contact angles dotted.
 
     Args:
         robot: The robot (joint classes, legs, columns).
@@ -54,6 +59,10 @@ def joint_angles(robot: Robot, t: np.ndarray, q: np.ndarray,
         q: Joint angles, shape (T, nj), rad (Pinocchio joint order).
         dead_zones: Sprung joint → (lower, upper) absolute angle of its dead zone, rad
             (``neutral + θ⁻``, ``neutral + θ⁺``).
+        contacts: Sprung joint → the absolute angles where its spring engages or its torque is
+            zero (a one-sided spring's contact, a linear spring's equilibrium), rad; drawn when
+            within :data:`CONTACT_MARGIN` of the joint's swing (a linear spring's equilibrium
+            far outside it would squash the plot).
 
     Returns:
         The figure (angles in degrees).
@@ -62,6 +71,7 @@ def joint_angles(robot: Robot, t: np.ndarray, q: np.ndarray,
     fig = _figure(9, 2.3 * len(classes))
     axes = fig.subplots(len(classes), 1, sharex=True, squeeze=False)[:, 0]
     for ax, (kind, joints) in zip(axes, classes.items(), strict=True):
+        dotted = False
         for i, joint in enumerate(joints):
             c = _colour(i)
             ax.plot(t, rad_to_deg(q[:, robot.column(joint)]), color=c, lw=1.2,
@@ -71,9 +81,16 @@ def joint_angles(robot: Robot, t: np.ndarray, q: np.ndarray,
                 ax.axhspan(rad_to_deg(lo), rad_to_deg(hi), color=c, alpha=0.04, lw=0)
                 for edge in (lo, hi):
                     ax.axhline(rad_to_deg(edge), color=c, lw=0.6, ls=":")
+            swing = q[:, robot.column(joint)]
+            margin = CONTACT_MARGIN * float(np.ptp(swing))
+            for angle in (contacts or {}).get(joint, ()):
+                if swing.min() - margin <= angle <= swing.max() + margin:
+                    ax.axhline(rad_to_deg(angle), color=c, lw=0.6, ls=":")
+                    dotted = True
         shaded = any(j in dead_zones for j in joints)
         ax.set_title(f"{kind}" + (" (shaded: spring dead zone, dotted: contact angles)"
-                                   if shaded else ""), fontsize=10)
+                                   if shaded else " (dotted: where the spring engages or its "
+                                   "torque is zero)" if dotted else ""), fontsize=10)
         ax.set_ylabel("angle (deg)")
         ax.grid(alpha=0.3)
     axes[0].legend(ncol=len(robot.legs), fontsize=8, loc="upper right")

@@ -46,8 +46,9 @@ QUICK_FAMILY = "linear"
 
 
 def answer_section(cfg: ReportConfig, robot: Robot, prepared: Prepared
-                   ) -> tuple[dict[str, Any] | None, list[str]]:
-    """The answer the report leads with (module docstring), and notes on what was not used.
+                   ) -> tuple[dict[str, Any] | None, SpringSet | None, list[str]]:
+    """The answer the report leads with (module docstring), its springs, and notes on what was
+    not used.
 
     Args:
         cfg: The report's configuration.
@@ -69,8 +70,9 @@ def answer_section(cfg: ReportConfig, robot: Robot, prepared: Prepared
     if cfg.report.design is not None:
         section = design_section(cfg.report.design, robot)
     elif getattr(cfg, "motion", None) is not None:  # a logged motion (--motion): no gait to match
-        return None, ["no quick answer on a logged motion: hexaleg design --motion LOG designs "
-                      "on it, then hexaleg report --design DIR/design.json leads with it"]
+        return None, None, ["no quick answer on a logged motion: hexaleg design --motion LOG "
+                            "designs on it, then hexaleg report --design DIR/design.json leads "
+                            "with it"]
     else:
         section, why = _found(cfg, robot)
         if why:
@@ -80,11 +82,11 @@ def answer_section(cfg: ReportConfig, robot: Robot, prepared: Prepared
             if why:
                 notes.append(why)
     if section is None:
-        return None, notes
+        return None, None, notes
     if springs is None:
         springs = _design_springs(Path(section["source"]), robot)
     section["report_gait"] = _on_report_gait(prepared, springs, section["metric"])
-    return section, notes
+    return section, springs, notes
 
 
 def _found(cfg: ReportConfig, robot: Robot) -> tuple[dict[str, Any] | None, str | None]:

@@ -2,11 +2,13 @@
 
 The report leads with the answer — which springs to fit and what they save
 (:mod:`hexaleg.report.answer`: a given or found ``design.json`` of ``hexaleg design``,
-else the design's quick core) — and keeps the paper's design as the reference the rest of the
-page analyses. :func:`build_report` runs the pipeline — robot (with the configured payload,
-:class:`hexaleg.robot.payload.Payload`) → gait (:func:`hexaleg.motion.legged.gait`) →
-:func:`hexaleg.dynamics.prepare.prepare` once → :meth:`~hexaleg.dynamics.prepare.Prepared.evaluate`
-with the springs, in the baseline (no springs) and at every point of a stiffness curve
+else the design's quick core) — and analyses those springs on its gait; the paper's design
+carried over to the robot is the reference, one section below (a ``[springs]`` table replaces
+both: the page then analyses the configured springs). :func:`build_report` runs the pipeline —
+robot (with the configured payload, :class:`hexaleg.robot.payload.Payload`) → gait
+(:func:`hexaleg.motion.legged.gait`) → :func:`hexaleg.dynamics.prepare.prepare` once →
+:meth:`~hexaleg.dynamics.prepare.Prepared.evaluate` with the answer's springs, the reference's,
+in the baseline (no springs) and at every point of the reference's stiffness curve
 (:mod:`hexaleg.design.curves`); for a robot with ``stand`` and ``sphere`` poses also the stand →
 sphere transformation (:mod:`hexaleg.report.transform`) — and collects every number in a
 JSON-ready dict whose quantities carry their unit (``{"value": …, "unit": "J"}``), one section of
@@ -14,8 +16,9 @@ the page each (:mod:`hexaleg.report.sections`).
 :func:`hexaleg.commands.report.write.write_report` writes it as ``report.html``, ``report.json``
 and the plots.
 
-Sources of the models: the springs are the paper's dead-zone springs (eq. 7–8, 14) placed by
-:mod:`hexaleg.design.rules` (centred dead zone, θ_k/A of Section 4.2, k_M of eq. 19); the energies
+Sources of the models: the answer's springs are :mod:`hexaleg.design`'s families; the reference
+springs are the paper's dead-zone springs (eq. 7–8, 14) placed by :mod:`hexaleg.design.rules`
+(centred dead zone, θ_k/A of Section 4.2, k_M of eq. 19); the energies
 are :func:`hexaleg.dynamics.energy.metrics` (work eq. 20, cost of transport eq. 23, the motor model
 of :mod:`hexaleg.robot.motor`); the friction usage ``|f_t| / (μ f_n)`` is the load of the Coulomb
 friction cone that the force program (:mod:`hexaleg.dynamics.contact`) keeps ≤ 1; the paper's
@@ -66,9 +69,10 @@ class Report:
         config: The configuration.
         robot: The robot.
         motion: The gait.
-        analysis: The gait with the springs.
+        analysis: The gait with the springs the page analyses (the answer's, or the configured
+            ``[springs]``; the reference's when there is no answer).
         baseline: The gait without springs (same objective).
-        curve: The stiffness curve.
+        curve: The reference springs' stiffness curve.
         usage: Friction usage of ``analysis``'s forces, shape (T, n_legs), 1.
         data: Every number of the report with its unit (the content of ``report.json``).
         files: Files written by :func:`hexaleg.commands.report.write.write_report` (empty from
@@ -86,11 +90,11 @@ class Report:
     files: tuple[Path, ...] = ()
 
     def summary(self) -> str:
-        """Two lines: the configured (reference) springs' electrical energy per cycle with and
-        without them and their saving; last, the answer (:func:`~hexaleg.report.answer.
-        answer_line`: where it comes from, which springs, the saving)."""
-        e = self.data["energy"]["totals"]["electrical"]
-        design = self.data["springs"]["design"]
+        """Two lines: the reference springs' electrical energy per cycle with and without them
+        and their saving; last, the answer (:func:`~hexaleg.report.answer.answer_line`: where
+        it comes from, which springs, the saving)."""
+        e = self.data["reference"]["energy"]["electrical"]
+        design = self.data["reference"]["design"]
         reference = ("the paper's design (the reference)" if design == "paper"
                      else f"the configured springs ({design})")
         draw = self.data.get("whole_draw")
@@ -154,7 +158,6 @@ def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis,
         "motor": sections.motor_section(cfg.motor),
         "contact": sections.contact_section(cfg.contact),
         "objective": cfg.report.objective,
-        "springs": sections.springs_section(robot, motion, a, cfg.springs),
         "joints": sections.joints_section(robot, a, baseline),
         "forces": sections.forces_section(robot, motion, a, usage),
         "energy": sections.energy_section(robot, a),
@@ -200,12 +203,13 @@ def _draw(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis) -> Whole
 @typed
 def build_report(config: ReportConfig | None = None, *, robot: Robot | None = None,
                  progress: Callable[[str], None] | None = None) -> Report:
-    """Compute the report: gait, analysis with springs and in the baseline, stiffness curve,
-    paper.
+    """Compute the report: gait, the answer, its springs' analysis and the baseline, the
+    reference design and its stiffness curve, the paper's joint.
 
     Args:
         config: The configuration (default :class:`ReportConfig`: built-in robot, default tripod
-            gait, default motor, paper-style femur springs).
+            gait, default motor, the answer's springs with the paper-style femur springs as the
+            reference).
         robot: The robot (default :func:`hexaleg.robot.model.load_robot`).
         progress: Called with one status line per step (e.g. print to stderr).
 
@@ -234,30 +238,38 @@ def build_report(config: ReportConfig | None = None, *, robot: Robot | None = No
          + (" (logged)" if cfg.motion is not None else ""))
     prepared = prepare(robot, motion, motor=cfg.motor, contact=cfg.contact)
     step("dynamics prepared (RNEA, Jacobians, force program)")
-    springs = cfg.spring_set(robot, motion)
+    answer, answer_springs, passed = answer_section(cfg, robot, prepared)
+    if answer is not None:
+        step(f"answer: {answer['label']} springs ({answer['origin']}), "
+             f"{answer['metric']} saving {answer['saving']['value']:+.2f} %")
     objective = cfg.report.objective
-    analysis = prepared.evaluate(springs, objective)
+    reference_springs = cfg.spring_set(robot, motion)
+    reference = prepared.evaluate(reference_springs, objective)
+    leads = cfg.springs is None and answer_springs is not None
+    analysis = prepared.evaluate(answer_springs, objective) if leads else reference
     baseline = prepared.evaluate(None, objective)
-    step(f"analysed with {len(springs)} springs and without")
-    curve = _report_curve(prepared, springs, cfg.report, objective, step)
+    step(f"analysed with the {'answer' if leads else 'configured'}'s {len(analysis.springs)} "
+         f"springs{', with the reference' if leads else ''} and without")
+    curve = _report_curve(prepared, reference_springs, cfg.report, objective, step)
     usage = contact.friction_usage(analysis.forces, motion.stance.astype(bool), cfg.contact.mu,
                                    motion.normal)
     draw = _draw(cfg, robot, motion, analysis)
     data = file_data(_report_data(cfg, robot, motion, analysis, baseline, curve, usage, draw))
-    data["design"], passed = answer_section(cfg, robot, prepared)
-    if data["design"] is not None and draw is not None:
-        data["design"]["whole_draw"] = answer_draw(data["design"], draw)
+    data["reference"] = file_data(sections.reference_section(
+        robot, motion, reference, cfg.reference(robot)))
+    data["springs"] = file_data(sections.springs_section(
+        robot, analysis, "answer" if leads else data["reference"]["design"]))
+    data["design"] = answer
+    if answer is not None and draw is not None:
+        answer["whole_draw"] = answer_draw(answer, draw)
     data["notes"] += passed
     residual = prepared.residual.line() if prepared.residual is not None else None
     if residual is not None:  # a logged motion the contacts could not carry exactly
         data["notes"].append(residual)
-    if data["design"] is not None:
-        step(f"answer: {data['design']['label']} springs ({data['design']['origin']}), "
-             f"{data['design']['metric']} saving {data['design']['saving']['value']:+.2f} %")
-    data["transform"] = transform_section(robot, cfg, springs, objective)
+    data["transform"] = transform_section(robot, cfg, analysis.springs, objective)
     if data["transform"] is not None:
         step("stand → sphere transformation analysed")
-    step("paper's single-joint reference (hexaleg.paper.reproduce.reproduce)")
+    step("the paper's single joint reproduced (its sinusoid, eq. 25)")
     data["paper"] = paper_reference(cfg.report.paper_samples)
     step("numbers collected")
     return Report(config=cfg, robot=robot, motion=motion, analysis=analysis, baseline=baseline,

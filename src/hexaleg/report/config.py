@@ -198,8 +198,11 @@ class ReportConfig:
             :func:`hexaleg.robot.catalogue.motor_from_mapping`), or the robot's own motor per joint
             class (a :class:`~hexaleg.robot.motor_set.MotorSet`, from its description).
         contact: Contact settings (``[contact]``).
-        springs: A :class:`SpringDesign` (``[springs] design = …``) or explicit per-joint springs
-            in SI (``[springs.LF_femur] stiffness = …``, :meth:`SpringSet.from_mapping`).
+        springs: The springs the page analyses: a :class:`SpringDesign` (``[springs] design =
+            …``) or explicit per-joint springs in SI (``[springs.LF_femur] stiffness = …``,
+            :meth:`SpringSet.from_mapping`); None (no ``[springs]`` table): the answer the page
+            leads with (:mod:`hexaleg.report.answer`), the paper's design on the robot's spring
+            class being the reference (:meth:`reference`).
         report: What the report shows (``[report]``).
         notes: Caveats printed on the report page (set by :meth:`for_robot`; not a TOML table).
         payload: A payload on the base (``[payload]``: ``mass``, ``com``, ``inertia``;
@@ -216,7 +219,7 @@ class ReportConfig:
     gait: GaitParams = field(default_factory=GaitParams)
     motor: Motor | MotorSet = field(default_factory=lambda: motor_by_name(DEFAULT_MOTOR))
     contact: ContactParams = field(default_factory=ContactParams)
-    springs: SpringDesign | SpringSet = field(default_factory=SpringDesign)
+    springs: SpringDesign | SpringSet | None = None
     report: ReportParams = field(default_factory=ReportParams)
     notes: tuple[str, ...] = ()
     payload: Payload | None = None
@@ -229,8 +232,9 @@ class ReportConfig:
                   data: Mapping[str, Any] | None = None, where: str = "config") -> ReportConfig:
         """The configuration for a robot of the registry (:mod:`hexaleg.robot.registry`).
 
-        The description's gait with the keys the file's ``[gait]`` sets on top; springs and the
-        stiffness curve on the description's spring class unless the file names joints; the
+        The description's gait with the keys the file's ``[gait]`` sets on top; a ``[springs]``
+        design and the stiffness curve on the description's spring class unless the file names
+        joints; the
         robot's title; the robot's own actuator unless the file has a ``[motor]``
         (:meth:`~hexaleg.robot.description.RobotDescription.actuator`: its catalogue motor, else
         a generic actuator from its URDF limits, whose assumptions become a note on the page);
@@ -325,8 +329,19 @@ class ReportConfig:
             return cls.from_mapping(source)
         return cls.from_mapping(load_toml(source), str(source))
 
-    def spring_set(self, robot: Robot, motion: Motion) -> SpringSet:
-        """The springs for ``motion`` (a design is evaluated on the motion's joint ranges)."""
-        if isinstance(self.springs, SpringSet):
+    def reference(self, robot: Robot) -> SpringDesign | SpringSet:
+        """The reference springs: the configured ``[springs]``, else the paper's design carried
+        over to the robot (:class:`SpringDesign` ``"paper"`` on its description's spring class,
+        the femurs without a description)."""
+        if self.springs is not None:
             return self.springs
-        return self.springs.springs(robot, motion)
+        desc = self.robot_description
+        return SpringDesign(joints="femur" if desc is None else desc.spring_class_of(robot))
+
+    def spring_set(self, robot: Robot, motion: Motion) -> SpringSet:
+        """The reference springs (:meth:`reference`) for ``motion`` (a design is evaluated on the
+        motion's joint ranges)."""
+        springs = self.reference(robot)
+        if isinstance(springs, SpringSet):
+            return springs
+        return springs.springs(robot, motion)

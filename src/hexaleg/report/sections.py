@@ -18,6 +18,7 @@ import numpy as np
 
 from hexaleg.design import rules as design
 from hexaleg.design.curves import StiffnessCurve
+from hexaleg.design.spring_json import spring_entry
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.dynamics.energy import metric_unit
 from hexaleg.dynamics.prepare import Analysis
@@ -34,6 +35,9 @@ from hexaleg.robot.springs import SpringSet
 
 ENERGY_TABLE_KEYS: tuple[str, ...] = ("positive_work", "joule", "electrical")
 """Metrics of the per-joint energy table."""
+ENGAGED = 1e-9
+"""A spring counts as pushing on its joint where its torque exceeds this fraction of its peak
+(its torque is exactly zero in a dead zone or before contact; the fraction keeps rounding out)."""
 
 
 def notes_section(notes: tuple[str, ...], motion: Motion,
@@ -152,13 +156,38 @@ def contact_section(contact: ContactParams) -> dict[str, Any]:
             "torque_limits": contact.torque_limits}
 
 
-def springs_section(robot: Robot, motion: Motion, a: Analysis,
-                    springs: SpringDesign | SpringSet) -> dict[str, Any]:
-    """The configured design's name and each spring: k against k_M (eq. 19), dead zone, α,
-    convention and the fraction of the cycle it is engaged."""
+def springs_section(robot: Robot, a: Analysis, design: str) -> dict[str, Any]:
+    """The springs the page analyses, of any family: per joint its law as ``design.json`` writes
+    it (family and parameters in SI, :func:`hexaleg.design.spring_json.spring_entry`), the share
+    of the cycle it pushes on its joint and its peak torque.
+
+    Args:
+        robot: The robot.
+        a: The analysis with these springs.
+        design: Where they come from: ``"answer"`` (the answer the page leads with) or the
+            ``[springs] design`` (``"paper"``, ``"centred"``, ``"baseline"``, ``"explicit"``).
+    """
     cols = a.springs.columns(robot)
     rows = {}
-    for name, s in a.springs.dead_zones("the report's spring section").items():
+    for name, spring in a.springs.items():
+        entry = spring_entry(name, spring)
+        tau = np.abs(a.tau_spring[:, cols[name]])
+        rows[name] = {"family": entry["family"], "parameters": entry["parameters"],
+                      "engaged_fraction": quantity(float((tau > ENGAGED * tau.max()).mean())
+                                                   if tau.max() > 0 else 0.0, "1"),
+                      "peak_torque": quantity(float(tau.max()), "N·m")}
+    return {"design": design, "joints": rows}
+
+
+def reference_section(robot: Robot, motion: Motion, a: Analysis,
+                      springs: SpringDesign | SpringSet) -> dict[str, Any]:
+    """The reference design (the paper's dead-zone springs carried over, or the configured
+    ones) on this gait: its name, the total energies with it and without springs, and each
+    spring's k against k_M (eq. 19), dead zone, α, convention and the share of the cycle it is
+    engaged."""
+    cols = a.springs.columns(robot)
+    rows = {}
+    for name, s in a.springs.dead_zones("the report's reference springs").items():
         k_m = design.k_M(robot, motion, name, alpha=s.transmission)
         angle = a.q[:, cols[name]]
         rows[name] = {
@@ -169,7 +198,7 @@ def springs_section(robot: Robot, motion: Motion, a: Analysis,
             "convention": s.convention,
             "engaged_fraction": quantity(float(s.engaged(angle).mean()), "1")}
     return {"design": springs.design if isinstance(springs, SpringDesign) else "explicit",
-            "joints": rows}
+            "joints": rows, "energy": energy_section(robot, a)["totals"]}
 
 
 def joints_section(robot: Robot, a: Analysis, baseline: Analysis) -> dict[str, Any]:

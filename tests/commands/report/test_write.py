@@ -63,9 +63,14 @@ def test_html_numbers_are_the_json_numbers(report_written, data):
     assert f"<b id=\"headline-saving\">{data['design']['saving']['value']:+.2f} %</b>" in html
     k_m = data["stiffness_curve"]["k_M"]["value"] * 1000 * math.pi / 180
     assert f"{k_m:.4g} N·mm/deg" in html
-    lf = data["springs"]["joints"]["LF_femur"]
+    lf = data["reference"]["joints"]["LF_femur"]
     assert f"{math.degrees(lf['neutral']['value']):.1f}°" in html
     assert f"{100 * lf['engaged_fraction']['value']:.2f} %" in html
+    ref = data["reference"]["energy"]["electrical"]["saving"]
+    assert f"{ref['value']:+.2f} %" in html  # the reference's saving, in its own section
+    law = data["springs"]["joints"]["LF_tibia"]["parameters"]  # the answer's spring, its law
+    assert (f"k {law['stiffness']['value'] * 1000 * math.pi / 180:.4g} N·mm/deg, reference "
+            f"angle {math.degrees(law['reference']['value']):.1f}°") in html
     assert f"{1000 * data['gait']['stride_length']['value']:.1f} mm" in html
 
 
@@ -166,7 +171,8 @@ def test_default_cli_run_writes_the_report(tmp_path, capsys):
     last = printed.out.strip().splitlines()[-1]  # the command's last word is the answer
     assert last.startswith(f"quick answer: optimal linear springs on femur, tibia save "
                            f"{saving['value']:+.2f} %")
-    assert d["springs"]["design"] == "paper" and d["gait"]["samples"] == 1000
+    assert d["springs"]["design"] == "answer" and d["reference"]["design"] == "paper"
+    assert d["gait"]["samples"] == 1000
     assert d["motor"]["name"] == DEFAULT_MOTOR
     assert len(d["stiffness_curve"]["stiffness"]["value"]) == 41
     assert {f"{n}.png" for n in PLOTS} <= {p.name for p in out.iterdir()}

@@ -26,6 +26,7 @@ from hexaleg.report.build import Report, build_report
 from hexaleg.report.config import ReportConfig
 from hexaleg.report.design_section import design_section
 from hexaleg.robot.model import Robot
+from hexaleg.robot.springs import DeadZoneSpring, LinearSpring, TermSpring
 
 BAR_METRIC = "electrical"
 """Metric of the per-joint bar plot: the energy the servos draw (J)."""
@@ -44,9 +45,11 @@ def _figures(r: Report) -> dict[str, Figure]:
     """The report's figures by name (:data:`PLOTS`)."""
     a, robot, curve, key = r.analysis, r.robot, r.curve, BAR_METRIC
     zones = {j: (s.neutral + s.th_minus, s.neutral + s.th_plus)
-             for j, s in a.springs.dead_zones("the report's joint-angle plot").items()}
+             for j, s in a.springs.items() if isinstance(s, DeadZoneSpring)}
+    contacts = {j: _contact_angles(s) for j, s in a.springs.items()
+                if isinstance(s, TermSpring)}
     return {
-        "joint_angles": plots.joint_angles(robot, a.t, a.q, zones),
+        "joint_angles": plots.joint_angles(robot, a.t, a.q, zones, contacts),
         "joint_torques": plots.joint_torques(robot, a.t, a.tau_motor, a.tau_spring,
                                              r.baseline.tau_motor),
         "joint_power": plots.joint_power(robot, a.t, a.power, r.baseline.power),
@@ -59,6 +62,14 @@ def _figures(r: Report) -> dict[str, Figure]:
             NMM_PER_DEG * r.data["stiffness_curve"]["k_M"]["value"],
             r.config.report.curve_joints)),
     }
+
+
+def _contact_angles(spring: TermSpring) -> tuple[float, ...]:
+    """Where a spring of the design families engages (its ramps' and steps' angles,
+    :mod:`hexaleg.robot.springs.terms`), or a linear spring's equilibrium, rad."""
+    if isinstance(spring, LinearSpring):
+        return () if spring.equilibrium is None else (spring.equilibrium,)
+    return tuple(sorted({t.angle for t in spring.terms() if t.kind not in ("linear", "constant")}))
 
 
 def _in_nmm_per_deg(fig: Figure) -> Figure:
