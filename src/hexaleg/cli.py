@@ -226,14 +226,14 @@ def _run_design(args: argparse.Namespace) -> int:
 
 def _add_simulate(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("simulate", help="forward simulation in MuJoCo with and without the "
-                                        "springs: simulate.json and simulate.md, predicted vs "
+                                        "springs: simulate.html, .json and .md, predicted vs "
                                         "simulated energy and saving, the motion of each run")
     p.add_argument("--robot", default="hexaleg", help=ROBOT_HELP + " (default %(default)s)")
     p.add_argument("--config", help="TOML file with optional [gait], [motor], [contact] and "
                                     "[simulate] tables (docs/simulate.md)")
     p.add_argument("--springs", help="design file (design.json: springs per joint as family and "
-                                     "parameters, docs/simulate.md); default: the globally "
-                                     "optimal linear springs on the robot's spring class")
+                                     "parameters, docs/simulate.md); default: the springs "
+                                     "hexaleg report leads with (its answer)")
     p.add_argument("--controller", choices=CONTROLLERS,
                    help="servo: torque feedforward + PD, or position-only PD "
                         "(default: feedforward, or the config's)")
@@ -270,13 +270,14 @@ def _run_simulate(args: argparse.Namespace) -> int:
         rows = sensitivity(s)
     data = simulation_data(s, design=study.design, notes=study.notes, sensitivity=rows,
                            warnings=study.warnings, gait_defaults=study.gait_defaults)
-    js, md = write_simulation(args.out, data)
+    js, md, html = write_simulation(args.out, data)
     motions = ", ".join(str(m) for m in write_motions(args.out, s))
     for note in study.notes:
         print(f"note: {note}")
     _warn_lines(study.warnings)
     print(summary(data))
-    print(f"wrote {js}, {md}, {motions} (replay: hexaleg view --simulation {args.out})")
+    print(f"wrote {js}, {md}, {motions}; open {html} (replay: hexaleg view --simulation "
+          f"{args.out})")
     if not s.walks:
         raise SimulationError("; ".join(f"{r.name} run {r.verdict}: {r.message}"
                                         for r in (s.with_springs, s.baseline) if not r.walks))

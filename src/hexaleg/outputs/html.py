@@ -92,3 +92,16 @@ def render_design_html(data: Mapping[str, Any], images: Mapping[str, str]) -> st
         The HTML page (self-contained).
     """
     return environment().get_template("design.html.j2").render(d=data, images=images)
+
+
+def render_simulate_html(data: Mapping[str, Any]) -> str:
+    """Render ``templates/simulate.html.j2``: the page of ``hexaleg simulate``.
+
+    Args:
+        data: The content of ``simulate.json``
+            (:func:`hexaleg.commands.simulate.write.simulation_data`).
+
+    Returns:
+        The HTML page (self-contained: no script, no external URL).
+    """
+    return environment().get_template("simulate.html.j2").render(d=data)

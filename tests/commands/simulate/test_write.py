@@ -18,10 +18,18 @@ def test_a_walking_simulation(feedforward, tmp_path):
     assert data["difference"]["saving"]["unit"] == "percentage points"
     assert abs(data["difference"]["saving"]["value"]) < 1.0
     assert data["runs"]["springs"]["contact_losses"] == {"value": 0.0, "unit": "%"}
-    js, md = write_simulation(tmp_path / "out", data)
+    js, md, html = write_simulation(tmp_path / "out", data)
     assert json.loads(js.read_text())["predicted"] == data["predicted"]
     assert "a note" in md.read_text() and "test springs" in md.read_text()
     assert "real time" in summary(data)
+    page_ = html.read_text()  # the page: the JSON's numbers, the savings as every page's
+    for key in ("predicted", "simulated"):
+        assert f"{data[key]['saving']['value']:+.2f} %" in page_
+        assert f"{data[key]['saving']['value']:+.2f} %" in summary(data)
+    assert "The robot walks." in page_ and "a note" in page_ and "test springs" in page_
+    assert "http" not in page_ and "<script" not in page_  # self-contained
+    for code in ("theta_minus", "torque_at_reference", "feedforward servo", "[11."):
+        assert code not in page_, code
 
 
 def test_a_fallen_run_is_reported_not_compared(prepared):
@@ -32,6 +40,10 @@ def test_a_fallen_run_is_reported_not_compared(prepared):
     assert data["verdict"] == "did not walk" and "simulated" not in data
     assert data["runs"]["baseline"]["verdict"] == "fell"
     assert "fell at t =" in page(data) and "fell at t =" in summary(data)
+    from hexaleg.outputs.html import render_simulate_html
+
+    html = render_simulate_html(data)
+    assert "The simulation did not walk:" in html and "fell at t =" in html
 
 
 def test_an_unwritable_directory_is_named(feedforward, tmp_path):
@@ -54,6 +66,6 @@ def test_a_link_in_the_out_directory_is_replaced_not_written_through(feedforward
     out = tmp_path / "out"
     out.mkdir()
     (out / "simulate.json").symlink_to(target)
-    js, _ = write_simulation(out, simulation_data(feedforward))
+    js, _, _ = write_simulation(out, simulation_data(feedforward))
     assert target.read_text() == "keep me" and not js.is_symlink()
     assert json.loads(js.read_text())["runs"]

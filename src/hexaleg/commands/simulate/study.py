@@ -5,9 +5,13 @@ config file's ``[gait]``, ``[motor]``, ``[contact]`` tables on top (as ``hexaleg
 them, :class:`hexaleg.report.config.ReportConfig`) and its ``[simulate]`` table
 (:class:`~hexaleg.simulation.run.Settings`); the springs of a design file
 (:func:`hexaleg.design.chain.design_file.load_design`, on the gait the design was made for unless
-the config gives a ``[gait]``) or, without one, the globally optimal
-linear springs on the robot's spring class (:func:`hexaleg.design.optimal.optimal_springs`, the
-design ``hexaleg sweep --family linear`` reports).
+the config gives a ``[gait]``) or, without one, the springs ``hexaleg report`` leads with on the
+same run (:func:`hexaleg.report.answer.answer_section`: ``hexaleg-design/design.json`` when it
+was made for this robot and gait, else the quick answer — the linear family's global optimum
+through ``hexaleg design``'s first stage), so that plain ``hexaleg simulate`` checks the
+report's answer. Where the report has no answer (a payload, a logged motion, a motor outside the
+catalogue) the globally optimal linear springs on the robot's spring class
+(:func:`hexaleg.design.optimal.optimal_springs`), with a note saying why.
 """
 
 from __future__ import annotations
@@ -22,6 +26,7 @@ from hexaleg.design.chain.design_file import load_design
 from hexaleg.design.optimal import optimal_springs
 from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.motion.legged import tripod_gait
+from hexaleg.report.answer import DESIGN_JSON, answer_section
 from hexaleg.report.config import ReportConfig
 from hexaleg.robot.springs import SpringSet
 from hexaleg.scenario.run_warnings import gait_defaults, run_warnings
@@ -116,10 +121,14 @@ def load_study(scenario: Scenario, springs: str | Path | None = None,
     if "springs" in s.tables:
         notes.append(f"{where} [springs] is the report's design and is not simulated; give the "
                      "springs to simulate with --springs design.json")
+    spring_set: SpringSet | None
     if designed is not None:
         spring_set = designed.springs
         design = f"the design file {springs}"
     else:
+        spring_set, design, why = _report_answer(report, prepared)
+        notes += why
+    if spring_set is None:
         kind = s.description.spring_class_of(s.model)
         best = optimal_springs(prepared, [kind], DEFAULT_FAMILY, objective)
         spring_set = best.springs
@@ -130,6 +139,24 @@ def load_study(scenario: Scenario, springs: str | Path | None = None,
                           gait=gait if s.motion is None else None)
     return Study(s.robot, prepared, spring_set, design, settings, objective, tuple(notes),
                  warned, gait_defaults(s.description, gait if s.motion is None else None))
+
+
+def _report_answer(report: ReportConfig, prepared: Prepared
+                   ) -> tuple[SpringSet | None, str, list[str]]:
+    """The springs ``hexaleg report`` leads with on this run, where they come from in words,
+    and notes (why there is none: then None)."""
+    section, springs, notes = answer_section(report, prepared.robot, prepared)
+    if section is None or springs is None:
+        return None, "", [*notes, "hexaleg report has no answer on this run (the notes above "
+                          "say why): the optimal linear springs are simulated instead"]
+    on = section.get("report_gait")
+    origin = {"quick": "hexaleg report's quick answer", "found": f"the answer of {DESIGN_JSON}",
+              "given": f"the answer of {section['source']}"}[section["origin"]]
+    return springs, (f"{origin}: {section['label']} springs on {', '.join(section['groups'])} "
+                     f"({section['saving']['value']:+.2f} % of the {section['metric']} energy "
+                     f"on the design's {section['samples']}-sample gait"
+                     + (f", {on['saving']['value']:+.2f} % on this gait" if on else "")
+                     + ")"), notes
 
 
 __all__ = ["DEFAULT_FAMILY", "Study", "load_study"]

@@ -1,4 +1,5 @@
-"""``simulate.json`` and ``simulate.md``: a simulation beside the analysis' prediction.
+"""``simulate.json``, ``simulate.md`` and ``simulate.html``: a simulation beside the analysis'
+prediction.
 
 Every number in the JSON is a quantity ``{"value", "unit"}``
 (:func:`hexaleg.quantities.quantity`); ``predicted`` and ``simulated`` each hold
@@ -19,6 +20,7 @@ import numpy as np
 from hexaleg.config import write_file
 from hexaleg.design.chain.design_file import design_table
 from hexaleg.errors import OutputError
+from hexaleg.outputs.html import render_simulate_html
 from hexaleg.quantities import comparison, file_data, json_text, quantity
 from hexaleg.simulation.run import Run, Simulation
 from hexaleg.simulation.sensitivity import sensitivity_row
@@ -120,6 +122,11 @@ def _v(q: dict[str, Any], scale: float = 1.0, digits: int = 3) -> str:
     return "—" if value is None else f"{value * scale:.{digits}g}"
 
 
+def _pct(q: dict[str, Any]) -> str:
+    """A saving as every page prints one: signed, two decimals."""
+    return "—" if q["value"] is None else f"{q['value']:+.2f} %"
+
+
 def page(data: dict[str, Any]) -> str:
     """``simulate.md``: the simulation's tables in Markdown."""
     lines = [f"# Forward simulation: {data['robot']}, {data['controller']} servo",
@@ -163,8 +170,13 @@ def page(data: dict[str, Any]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def write_simulation(out: str | Path, data: dict[str, Any]) -> tuple[Path, Path]:
-    """Write ``simulate.json`` and ``simulate.md`` into ``out`` (created if missing).
+def write_simulation(out: str | Path, data: dict[str, Any]) -> tuple[Path, Path, Path]:
+    """Write ``simulate.json``, ``simulate.md`` and ``simulate.html`` (the same tables as a
+    self-contained page: :func:`hexaleg.outputs.html.render_simulate_html`) into ``out``
+    (created if missing).
+
+    Returns:
+        The three paths.
 
     Raises:
         OutputError: the directory or a file cannot be written (named).
@@ -174,24 +186,25 @@ def write_simulation(out: str | Path, data: dict[str, Any]) -> tuple[Path, Path]
         out.mkdir(parents=True, exist_ok=True)
     except OSError as e:
         raise OutputError(f"cannot write the simulation to {out}: {e}") from e
-    js, md = out / "simulate.json", out / "simulate.md"  # never through a link there
-    write_file(js, json_text(data), "the simulation")
-    write_file(md, page(data), "the simulation")
-    return js, md
+    paths = out / "simulate.json", out / "simulate.md", out / "simulate.html"
+    for path, text in zip(paths, (json_text(data), page(data), render_simulate_html(data)),
+                          strict=True):
+        write_file(path, text, "the simulation")  # never through a link there
+    return paths
 
 
 def summary(data: dict[str, Any]) -> str:
     """One paragraph for the terminal."""
     p = data["predicted"]
     text = (f"{data['robot']} ({data['controller']} servo): predicted saving "
-            f"{_v(p['saving'])} % (electrical {_v(p['electrical']['with_springs'], 1, 4)} J vs "
+            f"{_pct(p['saving'])} (electrical {_v(p['electrical']['with_springs'], 1, 4)} J vs "
             f"{_v(p['electrical']['baseline'], 1, 4)} J per cycle)")
     if "simulated" not in data:
         msgs = "; ".join(f"{k}: {r['message']}" for k, r in data["runs"].items()
                          if r["verdict"] != "walks")
         return text + f"; simulation: {msgs}"
     s = data["simulated"]
-    return (text + f"; simulated {_v(s['saving'])} % ({_v(s['electrical']['with_springs'], 1, 4)}"
+    return (text + f"; simulated {_pct(s['saving'])} ({_v(s['electrical']['with_springs'], 1, 4)}"
             f" J vs {_v(s['electrical']['baseline'], 1, 4)} J); distance "
             f"{_v(data['distance_per_cycle'], 1e3, 4)} mm per cycle (planned "
             f"{_v(data['planned_distance_per_cycle'], 1e3, 4)} mm); "
