@@ -125,7 +125,10 @@ def _add_view(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--config", help="TOML file of 'hexaleg report' (gait, motor, contact, "
                                     "springs) with an optional [view] table")
     p.add_argument("--html", help="write a self-contained page that plays offline to this file "
-                                  "and exit (default: serve on localhost until Ctrl-C)")
+                                  "and exit (default: serve the same page until Ctrl-C)")
+    p.add_argument("--host", default="127.0.0.1",
+                   help="the address to serve on (default %(default)s: this machine only; "
+                        "0.0.0.0 for every network interface)")
     p.add_argument("--robot", help=ROBOT_HELP + " (with --simulation: default the file's)")
     # The names of hexaleg.commands.view's MOTIONS, JOINT_QUANTITIES and motion_file.RUNS, which
     # check them too (the study is not imported to build the parser: meshcat imports slowly).
@@ -150,7 +153,7 @@ def _run_view(args: argparse.Namespace) -> int:
     if args.html:
         print(f"wrote {export_view(args.config, args.html, **shown)}")
         return 0
-    url = serve_view(args.config, **shown)
+    url = serve_view(args.config, **shown, host=args.host)
     what = (f"{args.run or 'springs'} run of {args.simulation}" if args.simulation else
             args.motion or "gait")
     wait_until_interrupted(lambda: print(f"serving the {what} at {url} (Ctrl-C to stop)",

@@ -7,6 +7,8 @@ and look at the pixels. The scene itself is tested with :mod:`hexaleg.outputs.vi
 
 from __future__ import annotations
 
+import html
+import json
 import re
 import signal
 import subprocess
@@ -15,7 +17,7 @@ import urllib.request
 
 import numpy as np
 import pytest
-from browser import chromium, finish, page_requests, start_screenshot
+from browser import CHROMIUM_FLAGS, chromium, finish, page_requests, start_screenshot
 from matplotlib.image import imread
 from meshcat_scene import clips, page_commands
 
@@ -126,8 +128,9 @@ def session(tmp_path_factory):
             finish(start_screenshot((d / "page.html").as_uri(), d / "static.png", size=SHOT,
                                     virtual_time_ms=600, net_log=d / "net.json"))
             out.update(static=imread(d / "static.png")[..., :3], net=d / "net.json")
+        out["page"] = d / "page.html"
         out["line"] = proc.stdout.readline()
-        url = re.search(r"http://127\.0\.0\.1:\d+/static/", out["line"]).group(0)
+        url = re.search(r"http://127\.0\.0\.1:\d+/", out["line"]).group(0)
         with urllib.request.urlopen(url, timeout=10) as r:
             out["index"] = r.read()
         if chromium() is not None:
@@ -160,6 +163,37 @@ def test_cli_serves_on_localhost_until_interrupted(session):
     assert b"MeshCat" in session["index"]
     assert session["returncode"] == 0  # Ctrl-C is a normal exit ...
     assert session["server_gone"]  # ... that also stops the meshcat server
+
+
+def test_the_served_page_is_the_offline_page_with_its_legend(session):
+    """``hexaleg view`` serves the page ``--html`` writes (the same scene, legend and viewer;
+    only the objects' random UUIDs differ), its legend naming the springs (the report's
+    answer) and the scales."""
+    served, offline = session["index"].decode(), session["page"].read_text()
+    assert served.split("var commands")[0] == offline.split("var commands")[0]
+    assert len(page_commands(served)) == len(page_commands(offline))
+    legend = re.search(r'<div id="legend">(.*?)</div>\n', served, re.S).group(1)
+    assert "springs: hexaleg report&#x27;s quick answer: linear springs on femur, tibia" in legend
+    assert "joints: motor torque (N·m)" in legend and "arrows: foot forces" in legend
+
+
+@needs_chromium
+def test_the_legend_fits_a_1400_px_window(session, tmp_path):
+    """Headless Chromium at 1400 × 900 px: the legend is drawn, inside the window."""
+    probe = tmp_path / "probe.html"
+    probe.write_text(session["page"].read_text().replace("</body>", """<script>
+window.addEventListener('load', () => { const r = document.getElementById('legend')
+  .getBoundingClientRect(); document.body.setAttribute('data-legend', JSON.stringify({left: r.left,
+  right: r.right, top: r.top, bottom: r.bottom, width: innerWidth, height: innerHeight})); });
+</script></body>"""))
+    profile = tmp_path / "profile"
+    dom = subprocess.run([chromium(), *CHROMIUM_FLAGS, f"--user-data-dir={profile}",
+                          "--window-size=1400,900", "--virtual-time-budget=2000", "--dump-dom",
+                          probe.as_uri()], capture_output=True, text=True, timeout=180).stdout
+    box = json.loads(html.unescape(re.search(r'data-legend="([^"]*)"', dom).group(1)))
+    assert box["width"] == 1400
+    assert 0 <= box["left"] < box["right"] <= box["width"]
+    assert 0 <= box["top"] < box["bottom"] <= box["height"]
 
 
 @needs_chromium

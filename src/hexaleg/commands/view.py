@@ -1,11 +1,12 @@
 """``hexaleg view``: a motion of the run drawn in the browser (:mod:`hexaleg.outputs.viewer.show`).
 
 What is shown: one cycle of the run's gait (or of its log, ``--motion FILE``) or the stand →
-sphere transformation, analysed with the report's settings of the config file (springs, servos,
-contact, objective: :class:`~hexaleg.report.config.ReportConfig`) and drawn with its ``[view]``
-table; or a run of ``hexaleg simulate`` replayed from its motion file (``--simulation DIR``).
-Served on localhost until Ctrl-C (:func:`serve_view`) or written as an offline page
-(:func:`export_view`).
+sphere transformation, analysed with the report's settings of the config file (servos, contact,
+objective: :class:`~hexaleg.report.config.ReportConfig`) and the springs the report analyses
+(its answer's, else the configured or reference springs; the legend names them), drawn with its
+``[view]`` table; or a run of ``hexaleg simulate`` replayed from its motion file
+(``--simulation DIR``). Served on 127.0.0.1 until Ctrl-C (:func:`serve_view`) or written as an
+offline page (:func:`export_view`) — the same page.
 """
 
 from __future__ import annotations
@@ -18,8 +19,11 @@ from pathlib import Path
 
 from hexaleg.commands.options import load_run
 from hexaleg.config import from_mapping
+from hexaleg.dynamics.prepare import prepare
 from hexaleg.errors import InvalidParameterError
+from hexaleg.motion.trajectory import Motion
 from hexaleg.motion.transform import transform_motion
+from hexaleg.outputs.viewer.server import LOCALHOST
 from hexaleg.outputs.viewer.show import (
     ViewedMotion,
     ViewParams,
@@ -29,7 +33,9 @@ from hexaleg.outputs.viewer.show import (
     serve,
     view_motion,
 )
-from hexaleg.report.config import ReportConfig
+from hexaleg.report.answer import answer_springs
+from hexaleg.report.config import ReportConfig, SpringDesign
+from hexaleg.robot.springs import SpringSet
 from hexaleg.scenario.scenario import Scenario
 from hexaleg.simulation.motion_file import motion_path, read_motion
 
@@ -40,6 +46,25 @@ MOTIONS = ("gait", "transform")
 def _params(scenario: Scenario) -> ViewParams:
     """The file's ``[view]`` table."""
     return from_mapping(ViewParams, scenario.table("view"), f"{scenario.where} [view]")
+
+
+def _springs(scenario: Scenario, cfg: ReportConfig, shown: Motion) -> tuple[SpringSet, str]:
+    """The springs ``hexaleg report`` analyses on this run — its answer's
+    (:func:`hexaleg.report.answer.answer_springs`, designed on the run's gait), else the
+    configured or reference springs on the motion shown — and which they are, in words."""
+    if cfg.springs is None:
+        gait = scenario.played()
+        prepared = prepare(scenario.model, gait, motor=cfg.motor, contact=cfg.contact)
+        springs, label, _ = answer_springs(cfg, prepared)
+        if springs is not None:
+            return springs, label
+    reference = cfg.reference(scenario.model)
+    if isinstance(reference, SpringDesign):
+        label = (f"the {reference.design} design on the {reference.joints} joints"
+                 + (" (the paper's, the report's reference)" if cfg.springs is None else ""))
+    else:
+        label = f"the springs of {scenario.where} [springs]"
+    return cfg.spring_set(scenario.model, shown), label
 
 
 def _shown(config: str | Path | None, motion: str | None, joints: str, robot: str | None,
@@ -58,9 +83,10 @@ def _shown(config: str | Path | None, motion: str | None, joints: str, robot: st
         cfg = ReportConfig.from_scenario(scenario)
         shown = (transform_motion(scenario.model) if motion == "transform"
                  else scenario.played())
-        return view_motion(scenario.model, shown, cfg.spring_set(scenario.model, shown),
-                           cfg.motor, joints=joints, objective=cfg.report.objective,
-                           contact=cfg.contact), _params(scenario)
+        springs, label = _springs(scenario, cfg, shown)
+        return view_motion(scenario.model, shown, springs, cfg.motor, joints=joints,
+                           objective=cfg.report.objective, contact=cfg.contact,
+                           springs_label=label), _params(scenario)
     if motion is not None:
         raise InvalidParameterError("motion", motion, f"none with a simulation ({simulation}): "
                                     "the replay shows the simulated gait")
@@ -104,21 +130,22 @@ def export_view(config: str | Path | None, html: str | Path, *, motion: str | No
 def serve_view(config: str | Path | None, *, motion: str | None = None,
                joints: str = "power", robot: str | None = None,
                simulation: str | Path | None = None, run: str | None = None,
-               cycle: str = "auto", args: argparse.Namespace | None = None) -> str:
-    """``hexaleg view``: what is shown served on localhost
-    (:func:`hexaleg.outputs.viewer.show.serve`); the arguments are those of
+               cycle: str = "auto", args: argparse.Namespace | None = None,
+               host: str = LOCALHOST) -> str:
+    """``hexaleg view``: what is shown, served (:func:`hexaleg.outputs.viewer.show.serve`) on
+    ``host`` (default 127.0.0.1, this machine only); the other arguments are those of
     :func:`export_view`.
 
     Returns:
-        The viewer's URL.
+        The view's URL.
     """
     shown, params = _shown(config, motion, joints, robot, simulation, run, cycle, args)
-    return serve(shown.robot, shown.motion, **shown.options(params))
+    return serve(shown.robot, shown.motion, **shown.options(params), host=host)
 
 
 def wait_until_interrupted(ready: Callable[[], None] | None = None) -> None:
     """Block until Ctrl-C or a kill (SIGTERM), both of which then leave through the normal exit
-    that stops the Meshcat server of :func:`serve_view` (it lives as long as this process).
+    that stops the server of :func:`serve_view` (it lives as long as this process).
     Call from the main thread. Ctrl-C (SIGINT) is taken even where it was ignored when the
     process started (a command run in the background of a script inherits SIGINT ignored,
     POSIX shell semantics; Python then keeps it ignored and the server could only be killed).

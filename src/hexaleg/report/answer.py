@@ -89,6 +89,24 @@ def answer_section(cfg: ReportConfig, robot: Robot, prepared: Prepared
     return section, springs, notes
 
 
+def answer_springs(cfg: ReportConfig, prepared: Prepared
+                   ) -> tuple[SpringSet | None, str, list[str]]:
+    """The springs ``hexaleg report`` leads with on a run (:func:`answer_section`) for the
+    commands that show or simulate them, where they come from in words, and the notes (why there
+    is none: then None and "")."""
+    section, springs, notes = answer_section(cfg, prepared.robot, prepared)
+    if section is None or springs is None:
+        return None, "", notes
+    on = section.get("report_gait")
+    origin = {"quick": "hexaleg report's quick answer", "found": f"the answer of {DESIGN_JSON}",
+              "given": f"the answer of {section['source']}"}[section["origin"]]
+    return springs, (f"{origin}: {section['label']} springs on {', '.join(section['groups'])} "
+                     f"({section['saving']['value']:+.2f} % of the {section['metric']} energy "
+                     f"on the design's {section['samples']}-sample gait"
+                     + (f", {on['saving']['value']:+.2f} % on this gait" if on else "")
+                     + ")"), notes
+
+
 def _found(cfg: ReportConfig, robot: Robot) -> tuple[dict[str, Any] | None, str | None]:
     """``hexaleg-design/design.json`` when it answers for this report's robot and gait; else
     None and why it was passed over (None when there is no such file)."""

@@ -120,7 +120,7 @@ def test_served_and_offline(out, tmp_path):
         assert main([*cmd, "--html", str(page)]) == 0
         line = proc.stdout.readline()
         assert line.startswith(f"serving the springs run of {out} at http://127.0.0.1:")
-        url = re.search(r"http://127\.0\.0\.1:\d+/static/", line).group(0)
+        url = re.search(r"http://127\.0\.0\.1:\d+/", line).group(0)
         with urllib.request.urlopen(url, timeout=10) as r:
             assert b"MeshCat" in r.read()
         proc.send_signal(signal.SIGINT)

@@ -10,7 +10,7 @@ import pytest
 from meshcat_scene import ARROW, PERIOD, T, page_commands
 
 from hexaleg.errors import OutputError
-from hexaleg.outputs.viewer.page import write_page
+from hexaleg.outputs.viewer.page import page_html, write_page
 
 _UUID = re.compile(r"[0-9a-f]{8}-[0-9a-f]{4}-[0-9a-f]{4}-[0-9a-f]{4}-[0-9a-f]{12}")
 _DRAWING = {"fps": T / PERIOD, "arrow_length": ARROW, "marker_radius": 0.018}
@@ -20,8 +20,9 @@ _DRAWING = {"fps": T / PERIOD, "arrow_length": ARROW, "marker_radius": 0.018}
 def page(robot, motion, forces, tmp_path_factory):
     """Page of the synthetic motion with one keyframe per sample (fps = T / period)."""
     path = tmp_path_factory.mktemp("view") / "walk.html"
-    write_page(robot, motion, path, forces=forces, joint_values=motion.v[:, 6:],
-               joint_label="joint velocity (rad/s)", **_DRAWING)
+    write_page(path, page_html(robot, motion, forces=forces, joint_values=motion.v[:, 6:],
+                               joint_label="joint velocity (rad/s)",
+                               springs="test springs <b>", **_DRAWING))
     return path.read_text()
 
 
@@ -50,14 +51,14 @@ def test_page_is_self_contained(page):
     assert urls <= {"http://www.w3.org/1999/xhtml"}, urls
 
 
-def test_legend_names_the_scales(page, forces):
+def test_legend_names_the_springs_and_the_scales(page, forces):
+    assert "<div>springs: test springs &lt;b&gt;</div>" in page  # escaped
     assert "joint velocity (rad/s)" in page
     fmax = np.linalg.norm(forces, axis=-1).max()
     assert f"{ARROW * 100:.3g} cm = {fmax:.3g} N" in page
 
 
-def test_unwritable_path_is_output_error(robot, motion, tmp_path):
+def test_unwritable_path_is_output_error(tmp_path):
     for path in (tmp_path / "missing" / "x.html", tmp_path):
         with pytest.raises(OutputError, match=re.escape(str(path))):
-            write_page(robot, motion, path, forces=None, joint_values=None, joint_label="",
-                       **_DRAWING)
+            write_page(path, "<html></html>")

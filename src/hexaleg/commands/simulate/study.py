@@ -26,7 +26,7 @@ from hexaleg.design.chain.design_file import load_design
 from hexaleg.design.optimal import optimal_springs
 from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.motion.legged import tripod_gait
-from hexaleg.report.answer import DESIGN_JSON, answer_section
+from hexaleg.report.answer import answer_springs
 from hexaleg.report.config import ReportConfig
 from hexaleg.robot.springs import SpringSet
 from hexaleg.scenario.run_warnings import gait_defaults, run_warnings
@@ -126,8 +126,11 @@ def load_study(scenario: Scenario, springs: str | Path | None = None,
         spring_set = designed.springs
         design = f"the design file {springs}"
     else:
-        spring_set, design, why = _report_answer(report, prepared)
+        spring_set, design, why = answer_springs(report, prepared)
         notes += why
+        if spring_set is None:
+            notes.append("hexaleg report has no answer on this run (the notes above say why): "
+                         "the optimal linear springs are simulated instead")
     if spring_set is None:
         kind = s.description.spring_class_of(s.model)
         best = optimal_springs(prepared, [kind], DEFAULT_FAMILY, objective)
@@ -139,24 +142,6 @@ def load_study(scenario: Scenario, springs: str | Path | None = None,
                           gait=gait if s.motion is None else None)
     return Study(s.robot, prepared, spring_set, design, settings, objective, tuple(notes),
                  warned, gait_defaults(s.description, gait if s.motion is None else None))
-
-
-def _report_answer(report: ReportConfig, prepared: Prepared
-                   ) -> tuple[SpringSet | None, str, list[str]]:
-    """The springs ``hexaleg report`` leads with on this run, where they come from in words,
-    and notes (why there is none: then None)."""
-    section, springs, notes = answer_section(report, prepared.robot, prepared)
-    if section is None or springs is None:
-        return None, "", [*notes, "hexaleg report has no answer on this run (the notes above "
-                          "say why): the optimal linear springs are simulated instead"]
-    on = section.get("report_gait")
-    origin = {"quick": "hexaleg report's quick answer", "found": f"the answer of {DESIGN_JSON}",
-              "given": f"the answer of {section['source']}"}[section["origin"]]
-    return springs, (f"{origin}: {section['label']} springs on {', '.join(section['groups'])} "
-                     f"({section['saving']['value']:+.2f} % of the {section['metric']} energy "
-                     f"on the design's {section['samples']}-sample gait"
-                     + (f", {on['saving']['value']:+.2f} % on this gait" if on else "")
-                     + ")"), notes
 
 
 __all__ = ["DEFAULT_FAMILY", "Study", "load_study"]

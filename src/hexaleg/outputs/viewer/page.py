@@ -82,13 +82,19 @@ for (const c of commands) {{
 """
 
 
-def legend_html(legend: Legend) -> str:
-    """The page's legend: the joint colour swatches on ±vmax and the force-arrow scale.
+def legend_html(legend: Legend, springs: str = "") -> str:
+    """The page's legend: the springs shown, the joint colour swatches on ±vmax and the
+    force-arrow scale.
+
+    Args:
+        legend: The scene's scales.
+        springs: Which springs the motion was analysed (or simulated) with, in words; "" for
+            none named.
 
     Returns:
-        A ``<div id="legend">`` element, or "" when the scene has neither markers nor arrows.
+        A ``<div id="legend">`` element, or "" when there is nothing to explain.
     """
-    lines = []
+    lines = [f"<div>springs: {html.escape(springs)}</div>"] if springs else []
     if legend.vmax is not None:
         swatches = "".join(
             '<span class="bin" style="background: rgb({}, {}, {})"></span>'.format(
@@ -103,27 +109,28 @@ def legend_html(legend: Legend) -> str:
     return f'<div id="legend">{"".join(lines)}</div>' if lines else ""
 
 
-def write_page(robot: Robot, motion: Motion, path: Path, *, forces: Any, joint_values: Any,
-               joint_label: str, fps: float, arrow_length: float, marker_radius: float) -> Path:
-    """Draw a motion (:func:`~hexaleg.outputs.viewer.scene.draw_motion`) into a page and write
-    it.
+def page_html(robot: Robot, motion: Motion, *, forces: Any, joint_values: Any,
+              joint_label: str, springs: str, fps: float, arrow_length: float,
+              marker_radius: float) -> str:
+    """Draw a motion (:func:`~hexaleg.outputs.viewer.scene.draw_motion`) into one
+    self-contained page with its legend.
 
     Args:
         robot: The robot.
         motion: The motion.
-        path: Output file; its directory must exist.
         forces: As :func:`~hexaleg.outputs.viewer.scene.draw_motion`.
         joint_values: As :func:`~hexaleg.outputs.viewer.scene.draw_motion`.
         joint_label: As :func:`~hexaleg.outputs.viewer.scene.draw_motion`.
+        springs: Which springs the motion was analysed with, in words (the legend's first
+            line), or "".
         fps: As :func:`~hexaleg.outputs.viewer.scene.draw_motion`.
         arrow_length: As :func:`~hexaleg.outputs.viewer.scene.draw_motion`.
         marker_radius: As :func:`~hexaleg.outputs.viewer.scene.draw_motion`.
 
     Returns:
-        The written path.
+        The page.
 
     Raises:
-        OutputError: the file cannot be written (the message names the path and the reason).
         InvalidParameterError: as :func:`~hexaleg.outputs.viewer.scene.draw_motion`.
     """
     window = PageWindow(f"hexaleg: {robot.name}" + (f" ({joint_label})" if joint_label else ""))
@@ -131,9 +138,21 @@ def write_page(robot: Robot, motion: Motion, path: Path, *, forces: Any, joint_v
     _, legend = draw_motion(robot, motion, viewer, forces=forces, joint_values=joint_values,
                             joint_label=joint_label, fps=fps, arrow_length=arrow_length,
                             marker_radius=marker_radius)
-    window.legend_html = legend_html(legend)
+    window.legend_html = legend_html(legend, springs)
+    return str(viewer.static_html())
+
+
+def write_page(path: Path, page: str) -> Path:
+    """Write a page of :func:`page_html`.
+
+    Returns:
+        The written path.
+
+    Raises:
+        OutputError: the file cannot be written (the message names the path and the reason).
+    """
     try:
-        path.write_text(viewer.static_html(), encoding="utf-8")
+        path.write_text(page, encoding="utf-8")
     except OSError as e:
         raise OutputError(f"cannot write HTML page {path}: {e.strerror or e}") from e
     return path

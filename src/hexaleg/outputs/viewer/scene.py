@@ -55,7 +55,8 @@ class Legend:
 
 
 def start_server() -> meshcat.Visualizer:
-    """A Meshcat server subprocess on 127.0.0.1 (killed when this process exits)."""
+    """A Meshcat server subprocess (killed when this process exits); its URL names 127.0.0.1,
+    though Meshcat's web server listens on every interface (meshcat 0.3 gives no option)."""
     with contextlib.redirect_stdout(io.StringIO()):  # meshcat prints the URL itself
         return meshcat.Visualizer()
 

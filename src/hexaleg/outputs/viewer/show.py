@@ -8,9 +8,10 @@ from its motion file
 (:mod:`hexaleg.simulation.motion_file`), with the simulated contact forces and joint
 quantities. How it is shown (:mod:`hexaleg.outputs.viewer`): one looping Meshcat animation, either
 
-* served live by a Meshcat server on localhost (:func:`serve`, ``hexaleg view``), or
 * written to one self-contained HTML page that plays offline (:func:`export_html`,
-  ``hexaleg view --html FILE``).
+  ``hexaleg view --html FILE``), or that page served on 127.0.0.1 (:func:`serve`,
+  ``hexaleg view``), or
+* sent to a live Meshcat server (:func:`animate`, for a notebook).
 
 Sources: Meshcat (meshcat-python 0.3 and its three.js viewer) for the scene and animation
 protocol; Pinocchio's ``MeshcatVisualizer`` for the robot geometry; the diverging cool-warm colour
@@ -19,6 +20,7 @@ map of K. Moreland, "Diverging Color Maps for Scientific Visualization", ISVC 20
 
 from __future__ import annotations
 
+import json
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -33,8 +35,9 @@ from hexaleg.dynamics.prepare import analyze
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.outputs.viewer.keyframes import KEYFRAME_BYTES, MAX_FPS
-from hexaleg.outputs.viewer.page import write_page
+from hexaleg.outputs.viewer.page import page_html, write_page
 from hexaleg.outputs.viewer.scene import draw_motion, start_server
+from hexaleg.outputs.viewer.server import LOCALHOST, serve_page
 from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import Motor
 from hexaleg.robot.motor_set import MotorSet
@@ -85,6 +88,8 @@ class ViewedMotion:
         forces: World-frame foot forces, shape (T, n_legs, 3), N; None for a fixed base.
         joint_values: The joint colours' quantity, shape (T, nj).
         joint_label: What ``joint_values`` are, with units.
+        springs: Which springs the motion was analysed or simulated with, in words (the
+            legend's first line), or "".
     """
 
     robot: Robot
@@ -92,17 +97,18 @@ class ViewedMotion:
     forces: np.ndarray | None
     joint_values: np.ndarray
     joint_label: str
+    springs: str = ""
 
     def options(self, params: ViewParams) -> dict[str, Any]:
-        """Keyword arguments of :func:`animate`, :func:`serve` and :func:`export_html`."""
+        """Keyword arguments of :func:`serve` and :func:`export_html`."""
         return {"forces": self.forces, "joint_values": self.joint_values,
-                "joint_label": self.joint_label, "fps": params.fps,
+                "joint_label": self.joint_label, "springs": self.springs, "fps": params.fps,
                 "arrow_length": params.arrow_length, "marker_radius": params.marker_radius}
 
 
 def view_motion(robot: Robot, motion: Motion, springs: SpringSet, motor: Motor | MotorSet, *,
                 joints: str = "power", objective: str = "joule",
-                contact: ContactParams | None = None) -> ViewedMotion:
+                contact: ContactParams | None = None, springs_label: str = "") -> ViewedMotion:
     """A robot's motion analysed (:func:`hexaleg.dynamics.prepare.analyze`) for the viewer:
     the foot forces as arrows, one joint quantity as colours.
 
@@ -115,6 +121,7 @@ def view_motion(robot: Robot, motion: Motion, springs: SpringSet, motor: Motor |
             N·m) or ``"spring"`` (spring torque, N·m).
         objective: The force objective (:data:`hexaleg.dynamics.contact.OBJECTIVES`).
         contact: Contact settings (default :class:`~hexaleg.dynamics.contact.ContactParams`).
+        springs_label: Which springs these are, in words (the legend says it), or "".
 
     Raises:
         UnknownNameError: ``joints`` is not one of the choices.
@@ -126,7 +133,8 @@ def view_motion(robot: Robot, motion: Motion, springs: SpringSet, motor: Motor |
     attr, label = JOINT_QUANTITIES[joints]
     return ViewedMotion(robot=robot, motion=motion,
                         forces=None if motion.fixed_base else result.forces,
-                        joint_values=getattr(result, attr), joint_label=label)
+                        joint_values=getattr(result, attr), joint_label=label,
+                        springs=springs_label)
 
 
 def replay_motion(directory: str | Path, run: str = "springs", joints: str = "power",
@@ -165,6 +173,19 @@ def recorded_robot(recorded: SimulatedMotion, path: Path) -> str:
     return recorded.robot
 
 
+def _simulated_springs(recorded: SimulatedMotion, path: Path) -> str:
+    """The springs of a simulated run in words: none for the baseline, else what
+    ``simulate.json`` beside the motion file says they were."""
+    if recorded.run == "baseline":
+        return "none (the run without springs)"
+    try:
+        design = json.loads((path.parent / "simulate.json").read_text()).get("design")
+    except (OSError, ValueError, AttributeError):
+        design = None
+    return (f"simulated with {design}" if isinstance(design, str) and design
+            else "the simulated run's (no simulate.json beside its motion file to name them)")
+
+
 def _replayed(recorded: SimulatedMotion, path: Path, joints: str, robot: Robot
               ) -> ViewedMotion:
     """The recorded run of ``path`` on ``robot`` (checked), coloured by ``joints``."""
@@ -172,7 +193,8 @@ def _replayed(recorded: SimulatedMotion, path: Path, joints: str, robot: Robot
     recorded.check(robot, str(path))
     attr, label = JOINT_QUANTITIES[joints]
     return ViewedMotion(robot=robot, motion=recorded.motion(), forces=recorded.forces,
-                        joint_values=getattr(recorded, attr), joint_label=f"simulated {label}")
+                        joint_values=getattr(recorded, attr), joint_label=f"simulated {label}",
+                        springs=_simulated_springs(recorded, path))
 
 
 @typed
@@ -197,8 +219,9 @@ def animate(robot: Robot, motion: Motion, *, forces: Any = None, joint_values: A
         joint_values: Per-sample values that colour the joints (e.g. spring torque N·m or
             motor power W), shape (T, nj), columns in ``robot.joint_names`` order; or None.
         joint_label: What ``joint_values`` are, with units (the legend of :func:`export_html`).
-        viewer: A ``meshcat.Visualizer`` to draw into; None starts a Meshcat server on
-            127.0.0.1 that lives as long as this process (its URL: ``result.viewer.url()``).
+        viewer: A ``meshcat.Visualizer`` to draw into; None starts a Meshcat server that
+            lives as long as this process (its URL: ``result.viewer.url()``; Meshcat's own
+            server, which listens on every network interface — :func:`serve` binds 127.0.0.1).
         fps: Keyframes per second of motion time (see :class:`ViewParams`).
         arrow_length: Length of the longest force arrow, m.
         marker_radius: Radius of the joint markers, m.
@@ -224,45 +247,50 @@ def animate(robot: Robot, motion: Motion, *, forces: Any = None, joint_values: A
 
 @typed
 def serve(robot: Robot, motion: Motion, *, forces: Any = None, joint_values: Any = None,
-          joint_label: str = "", fps: float = 30.0, arrow_length: float = 0.15,
-          marker_radius: float = 0.018) -> str:
-    """Start a Meshcat server on localhost showing the animated motion.
-
-    The server is a subprocess that lives as long as the calling Python process; a browser
-    opened on the URL (also after this function returns, and again after a reload) receives
-    the scene and plays it. The keyword arguments are those of :func:`animate`.
+          joint_label: str = "", springs: str = "", fps: float = 30.0,
+          arrow_length: float = 0.15, marker_radius: float = 0.018,
+          host: str = LOCALHOST) -> str:
+    """Serve the animated motion's page (:func:`export_html`'s, with its legend) on a local
+    HTTP server (:mod:`hexaleg.outputs.viewer.server`) that lives as long as the calling Python
+    process; a browser opened on the URL, also after a reload, plays it. The keyword arguments
+    are those of :func:`export_html`.
 
     Args:
         robot: The robot.
         motion: The motion.
+        host: The address to listen on (default 127.0.0.1: this machine only).
 
     Returns:
-        The viewer's URL, ``http://127.0.0.1:<port>/static/``.
+        The view's URL, ``http://127.0.0.1:<port>/``.
 
     Raises:
-        InvalidParameterError: as :func:`animate`.
+        InvalidParameterError: as :func:`animate`; the server cannot listen on ``host``.
     """
-    viz = animate(robot, motion, forces=forces, joint_values=joint_values,
-                  joint_label=joint_label, fps=fps, arrow_length=arrow_length,
-                  marker_radius=marker_radius)
-    return str(viz.viewer.url())
+    params = ViewParams(fps=fps, arrow_length=arrow_length, marker_radius=marker_radius)
+    return serve_page(page_html(robot, motion, forces=forces, joint_values=joint_values,
+                                joint_label=joint_label, springs=springs, fps=params.fps,
+                                arrow_length=params.arrow_length,
+                                marker_radius=params.marker_radius), host)
 
 
 @typed
 def export_html(robot: Robot, motion: Motion, path: str | Path, *, forces: Any = None,
-                joint_values: Any = None, joint_label: str = "", fps: float = 30.0,
-                arrow_length: float = 0.15, marker_radius: float = 0.018) -> Path:
+                joint_values: Any = None, joint_label: str = "", springs: str = "",
+                fps: float = 30.0, arrow_length: float = 0.15,
+                marker_radius: float = 0.018) -> Path:
     """Write the animated motion to one self-contained HTML page that plays offline.
 
     The page inlines Meshcat's viewer JavaScript from the installed ``meshcat`` package and
     embeds the scene and its animation as data; it needs no server and fetches nothing over the
-    network. A legend explains the joint colours and the force-arrow scale. The keyword
-    arguments are those of :func:`animate`.
+    network. A legend says which springs are shown and explains the joint colours and the
+    force-arrow scale. The other keyword arguments are those of :func:`animate`.
 
     Args:
         robot: The robot.
         motion: The motion.
         path: Output file; its directory must exist.
+        springs: Which springs the motion was analysed with, in words (the legend's first
+            line), or "".
 
     Returns:
         The written path.
@@ -271,11 +299,11 @@ def export_html(robot: Robot, motion: Motion, path: str | Path, *, forces: Any =
         OutputError: the file cannot be written (the message names the path and the reason).
         InvalidParameterError: as :func:`animate`.
     """
-    path = Path(path)
     params = ViewParams(fps=fps, arrow_length=arrow_length, marker_radius=marker_radius)
-    return write_page(robot, motion, path, forces=forces, joint_values=joint_values,
-                      joint_label=joint_label, fps=params.fps, arrow_length=params.arrow_length,
-                      marker_radius=params.marker_radius)
+    return write_page(Path(path), page_html(
+        robot, motion, forces=forces, joint_values=joint_values, joint_label=joint_label,
+        springs=springs, fps=params.fps, arrow_length=params.arrow_length,
+        marker_radius=params.marker_radius))
 
 
 __all__ = ["JOINT_QUANTITIES", "ViewParams", "ViewedMotion", "animate", "export_html",
