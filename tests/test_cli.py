@@ -17,6 +17,20 @@ def test_help_lists_subcommands(capsys):
     out = capsys.readouterr().out
     for name in ("robot", "motors", "gait", "paper", "report", "view", "sweep"):
         assert f"    {name} " in out, name
+    # where to start, how long it takes, and where each command's own help is (#43)
+    assert "start with:\n  hexaleg report      which springs to fit" in out
+    assert "(about 5 s)" in out and "hexaleg COMMAND --help" in out
+
+
+def test_each_command_s_help_says_what_it_does_how_long_and_examples(capsys):
+    from hexaleg.cli import GUIDE
+
+    for command, (time, examples) in GUIDE.items():
+        with pytest.raises(SystemExit):
+            main([command, "--help"])
+        out = " ".join(capsys.readouterr().out.split())
+        assert f"takes {time}." in out and all(e in out for e in examples), command
+        assert out.index("takes") > out.index("options:")  # after the options, as an epilog
 
 
 def test_motors_lists_the_catalogue_with_derived_constants(capsys):
@@ -146,7 +160,10 @@ def test_a_misspelt_command_or_option_gets_a_suggestion(argv, says, capsys):
     with pytest.raises(SystemExit) as e:
         main(argv)
     assert e.value.code == 2
-    assert re.search(re.escape(says).replace(r"\.\*", ".*"), capsys.readouterr().err)
+    err = capsys.readouterr().err
+    assert re.search(re.escape(says).replace(r"\.\*", ".*"), err)
+    # the usage printed is the command's own, not the top level's
+    assert err.startswith(f"usage: hexaleg {argv[0]} " if len(argv) > 1 else "usage: hexaleg ")
 
 
 def test_a_name_in_the_wrong_case_gets_a_hint(capsys):

@@ -315,3 +315,18 @@ def test_docs_report_page_numbers_are_the_default_report(report):
     _check("m g Δz_com (J)", fold["potential_energy_rise"]["value"], rise)
     _check("the energy the springs hold (J)", fold["net_work"]["with_springs"]["value"]
            - fold["net_work"]["baseline"]["value"], held)
+
+
+def test_readme_command_table_says_how_long_each_command_takes():
+    """Each command of the README's table has its time, the one ``hexaleg COMMAND --help``
+    says (``hexaleg.cli.GUIDE``), and every command is in the table (#43)."""
+    from hexaleg.cli import GUIDE, build_parser
+
+    rows = {m.group(1): m.group(2) for m in re.finditer(
+        r"^\| `hexaleg (\w+)[^|]*\|[^|]*\| ([^|]+) \| \[", (ROOT / "README.md").read_text(), re.M)}
+    assert set(rows) == set(GUIDE), rows
+    for command, time in rows.items():
+        assert GUIDE[command][0].startswith(time), (command, time, GUIDE[command][0])
+        sub = next(a for a in build_parser()._actions if hasattr(a, "choices") and a.choices)
+        text = sub.choices[command].format_help()
+        assert f"takes {GUIDE[command][0]}." in text and "examples:" in text

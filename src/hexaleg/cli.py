@@ -11,6 +11,7 @@ import functools
 import os
 import re
 import sys
+import textwrap
 import warnings
 from collections.abc import Callable, Sequence
 from typing import NoReturn, TextIO
@@ -205,7 +206,9 @@ def _add_design(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--robot", default="hexaleg", help=ROBOT_HELP + " (default %(default)s)")
     p.add_argument("--config", help="TOML file with optional [gait], [contact] and [design] "
                                     "tables (docs/design.md)")
-    p.add_argument("--controller", choices=CONTROLLERS, help="the servo designs run under")
+    p.add_argument("--controller", choices=CONTROLLERS,
+                   help="the servo the robot runs, which the designs are simulated and ranked "
+                        "under (default: the config's [design] controller, else feedforward)")
     p.add_argument("--out", default="hexaleg-design",
                    help="output directory (default: %(default)s)")
     add_motion_option(p, _run_design, "design.json")
@@ -318,16 +321,65 @@ class _Parser(argparse.ArgumentParser):
         return out
 
 
+GUIDE: dict[str, tuple[str, tuple[str, ...]]] = {
+    "robot": ("under a second", ("hexaleg robot", "hexaleg robot --robot my_robot.toml")),
+    "motors": ("under a second", ("hexaleg motors", "hexaleg motors AX-18A XM430-W350")),
+    "gait": ("about 2 s", ("hexaleg gait", "hexaleg gait --robot solo12")),
+    "paper": ("about 7 s", ("hexaleg paper", "hexaleg paper --out paper-results")),
+    "report": ("about 5 s", ("hexaleg report", "hexaleg report --design "
+                                               "hexaleg-design/design.json")),
+    "design": ("about 20 s on the built-in robot, minutes on a heavy quadruped",
+               ("hexaleg design", "hexaleg design --controller position --out my-design")),
+    "view": ("about 2 s to draw", ("hexaleg view", "hexaleg view --html walk.html",
+                                   "hexaleg view --simulation hexaleg-simulate")),
+    "sweep": ("about 2 s for a 40-point grid", ("hexaleg sweep --joints femur --k 0:0.05:41 "
+                                                "--dead-zone 0.4", "hexaleg sweep spec.toml")),
+    "simulate": ("about 3 s", ("hexaleg simulate", "hexaleg simulate --springs "
+                                                   "hexaleg-design/design.json --controller "
+                                                   "position")),
+    "codesign": ("about 5 minutes", ("hexaleg codesign",
+                                                           "hexaleg codesign --speed 0.1")),
+}
+"""Per command: how long it takes on the built-in robot (measured on two cores, nothing else
+running) and examples. ``--help`` shows both; the README's command table quotes the times
+(``tests/test_readme.py``)."""
+START = """start with:
+  hexaleg report      which springs to fit, and the gait's energy with them (about 5 s)
+  hexaleg design      the full answer: every spring family, the springs to buy (about 20 s)
+  hexaleg simulate    the report's answer checked in a MuJoCo simulation (about 3 s)
+  hexaleg view        the gait in the browser, foot forces and joint colours
+
+each command: hexaleg COMMAND --help (what it writes, how long it takes, examples);
+the documentation is docs/ in the source repository"""
+"""The top-level ``--help``'s closing lines: where a newcomer starts."""
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="hexaleg",
         description="Whole-robot dynamics and energy analysis of legged robots with nonlinear "
-                    "elastic joints.")
+                    "elastic joints.", epilog=START,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--version", action="version", version=f"hexaleg {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for add in SUBCOMMANDS:
         add(sub)
+    for action in sub._choices_actions:  # each command's --help: what, how long, examples
+        time, examples = GUIDE[action.dest]
+        p = sub.choices[action.dest]
+        p.description = textwrap.fill(f"{action.help}.", 79)
+        p.epilog = (f"takes {time}.\n\nexamples:\n"
+                    + "\n".join(f"  {e}" for e in examples))
+        p.formatter_class = argparse.RawDescriptionHelpFormatter
     return parser
+
+
+def _subparser(parser: argparse.ArgumentParser, command: str) -> argparse.ArgumentParser:
+    """The parser of one subcommand."""
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            return action.choices[command]  # type: ignore[no-any-return]
+    raise KeyError(command)
 
 
 def _show_warning(command: str, original: Callable[..., None], message: Warning | str,
@@ -349,7 +401,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         by SIGPIPE would report, without a traceback.
     """
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args, extra = parser.parse_known_args(argv)
+    if extra:  # named by the command's own parser: its usage, its options to suggest
+        command = getattr(args, "command", None)
+        own = parser if command is None else _subparser(parser, command)
+        own.error(f"unrecognized arguments: {' '.join(extra)}")
     if not getattr(args, "func", None):
         parser.print_help()
         return 0
