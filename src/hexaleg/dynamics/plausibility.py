@@ -189,7 +189,7 @@ def check_cost_of_transport(cost: float, mass: float, *, what: str = "electrical
     ref = animal_cost_of_transport(mass)
     low, high = LOW_FACTOR * ref, HIGH_FACTOR * ref
     head = (f"cost of transport {cot:.3g} ({what}) at {mass:.3g} kg, "
-            f"{cot / ref:.2g} x the animal line {ref:.3g}")
+            f"{cot / ref:.2g} × the animal line {ref:.3g}")
     fix = ("the actuators are generic (from URDF limits): give the robot catalogue motors "
            "(hexaleg motors) or identified constants ([motor] base = …) — "
            if generic else "")

@@ -158,9 +158,13 @@ def test_page_reads_in_engineering_units_and_one_precision(design_written):
     assert len(cells) > 20 and all(re.fullmatch(r"[-+]\d+\.\d\d %", c) for c in cells), cells
     worse = [k for k, s in data["recommended"]["saving"].items() if s["value"] < 0]
     assert "positive_work" in worse
+    words = {"positive_work": "positive work ∫ max(0, τq̇)", "absolute_work": "absolute work ∫ |τq̇|",
+             "mean_abs_torque": "mean |τ|"}
     for k in worse:
-        assert f"{k} {_pct(data['recommended']['saving'][k])}:" in text
+        assert f"{words.get(k, k)} {_pct(data['recommended']['saving'][k])}:" in text
     assert "the servos' electrical draw" in text
+    for code in ("positive_work", "electrical_noregen", "x the animal line"):  # words (#43)
+        assert code not in text, code
 
 
 @pytest.mark.skipif(chromium() is None, reason="chromium not on PATH (apt-get install chromium)")

@@ -106,7 +106,11 @@ def test_the_page_follows_the_reading_rules(report_written, data):
     assert percents and not odd, odd
     assert not re.search(r"\de-\d", own)  # −2.224e-16 J of net work: 0 J
     assert abs(data["energy"]["net_work"]["with_springs"]["value"]) < 1e-12
-    assert "net_work 0 J" in " ".join(own.split())
+    assert "net work ∫ τq̇ 0 J" in " ".join(own.split())
+    # engineering words, not code names (#43): metrics, cones, conventions, objectives
+    for code in ("net_work", "electrical_noregen", "int_sq", "eq14", "(soc)", "force objective",
+                 "theta_minus", "torque_at_reference", "mean_abs"):
+        assert code not in text, code
     assert not re.search(r"\d (?:m|rad)(?![\w/·²])|\d rad/s", own)  # mm, deg, deg/s
     assert own.count("k_M (eq. 19) on this gait") == 1
     assert "N·m/rad" not in own
