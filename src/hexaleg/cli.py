@@ -17,8 +17,11 @@ from collections.abc import Callable, Sequence
 from typing import NoReturn, TextIO
 
 from hexaleg import __version__
-from hexaleg.commands.options import add_motion_option  # no loader: it loads with a run
-from hexaleg.errors import HexalegError, HexalegWarning, did_you_mean
+from hexaleg.commands.options import (  # no loader: it loads with a run
+    CYCLE_HELP,
+    add_motion_option,
+)
+from hexaleg.errors import HexalegError, HexalegWarning, InvalidParameterError, did_you_mean
 from hexaleg.robot.registry import ROBOT_HELP  # loaded by `import hexaleg` already
 from hexaleg.simulation.controllers import CONTROLLERS  # no MuJoCo: it loads with a model
 
@@ -62,13 +65,52 @@ def _add_motors(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("motors", help="servo catalogue: gear ratio, torque constant, resistance, "
                                       "gearbox efficiency, Joule coefficient, datasheet")
     p.add_argument("names", nargs="*", help="motor names (default: the whole catalogue)")
+    p.add_argument("--identify", metavar="LOG", help="fit the robot's actuators to a log of its "
+                   "own gait with current_<joint> (A) and/or power_<joint> (W) columns, "
+                   "optionally torque_<joint> (N·m): k_t G, gearbox efficiency and Joule "
+                   "coefficient by least squares, with residuals and a [motor] table to use")
+    p.add_argument("--robot", help=ROBOT_HELP + " (with --identify; default hexaleg)")
+    p.add_argument("--config", help="with --identify: TOML file whose [motor] and [contact] "
+                                    "tables describe the actuators as known before")
+    p.add_argument("--cycle", default="auto",
+                   help=CYCLE_HELP.replace("with --motion", "with --identify"))
     p.set_defaults(func=_run_motors)
 
 
 def _run_motors(args: argparse.Namespace) -> int:
-    from hexaleg.robot.catalogue import catalogue_table, motor
+    from hexaleg.robot.catalogue import CATALOGUE, catalogue_table, motor
 
-    print(catalogue_table({n: motor(n) for n in args.names} if args.names else None))
+    if args.identify is None:
+        for flag in ("robot", "config"):
+            if getattr(args, flag) is not None:
+                raise InvalidParameterError(f"--{flag}", getattr(args, flag),
+                                            "only with --identify LOG")
+        if args.cycle != "auto":
+            raise InvalidParameterError("--cycle", args.cycle, "only with --identify LOG")
+        print(catalogue_table({n: motor(n) for n in args.names} if args.names else None))
+        return 0
+    if args.names:
+        raise InvalidParameterError("names", " ".join(args.names), "none with --identify: the "
+                                    "actuators are the robot's (its description, or [motor])")
+    from hexaleg.commands.options import load_run
+    from hexaleg.dynamics.identification import identify_motion
+    from hexaleg.report.config import ReportConfig
+
+    run = load_run(args.robot, args.config, args.identify, args.cycle, args)
+    known = ReportConfig.from_scenario(run)
+    fits = identify_motion(run.model, run.played(), known.motor, contact=known.contact)
+    for fit in fits.values():
+        print("\n".join(fit.lines()))
+    base = known.motor.name
+    if len(fits) == 1 and base in CATALOGUE:  # the table that makes it every command's motor
+        m = next(iter(fits.values())).identification.motor
+        print(f"\n[motor]  # identified from {args.identify}\nbase = \"{base}\"\n"
+              f"torque_constant = {m.torque_constant:.6g}\nresistance = {m.resistance:.6g}\n"
+              f"gearbox_efficiency = {m.gearbox_efficiency:.6g}")
+    else:
+        print(f"\nno [motor] table printed: {base} is not one catalogue motor (a [motor] table "
+              "with every field, or one per joint class in the robot's description: "
+              "docs/energy.md)")
     return 0
 
 
@@ -323,7 +365,9 @@ class _Parser(argparse.ArgumentParser):
 
 GUIDE: dict[str, tuple[str, tuple[str, ...]]] = {
     "robot": ("under a second", ("hexaleg robot", "hexaleg robot --robot my_robot.toml")),
-    "motors": ("under a second", ("hexaleg motors", "hexaleg motors AX-18A XM430-W350")),
+    "motors": ("under a second; --identify a few seconds", (
+        "hexaleg motors", "hexaleg motors AX-18A XM430-W350",
+        "hexaleg motors --identify walk.csv")),
     "gait": ("about 2 s", ("hexaleg gait", "hexaleg gait --robot solo12")),
     "paper": ("about 7 s", ("hexaleg paper", "hexaleg paper --out paper-results")),
     "report": ("about 5 s", ("hexaleg report", "hexaleg report --design "

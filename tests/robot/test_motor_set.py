@@ -35,6 +35,9 @@ def test_each_joint_gets_its_class_motor(robot):
     assert np.array_equal(motors.joule_coefficient,
                           np.where(femur, STRONG.joule_coefficient, LIGHT.joule_coefficient))
     assert motors.name == "XL430-W250 (coxa, tibia) · XM430-W350 (femur)"
+    tau = np.linspace(-1.0, 1.0, 2 * len(femur)).reshape(2, -1)
+    np.testing.assert_array_equal(motors.current(tau), np.where(
+        femur, STRONG.current(tau), LIGHT.current(tau)))  # each joint its own k_t G
 
 
 def test_metrics_per_joint_are_each_motors_own(robot, walk200):

@@ -127,6 +127,11 @@ class MotorSet:
             out[..., cols] = method(motor)(*(a[..., cols] for a in arrays))
         return out
 
+    def current(self, tau: ArrayLike) -> np.ndarray:
+        """Winding current, :meth:`Motor.current` per joint; ``tau`` (..., n) N·m → A."""
+        t, _ = as_torque_speed(tau, np.zeros(np.shape(tau)))
+        return self._columns(lambda m: m.current, t)
+
     def joule_power(self, tau: ArrayLike) -> np.ndarray:
         """Joule loss, :meth:`Motor.joule_power` per joint; ``tau`` (..., n) N·m → W."""
         t, _ = as_torque_speed(tau, np.zeros(np.shape(tau)))

@@ -8,7 +8,10 @@ pose, then walks the gait for ``cycles`` cycles under the feedforward servo
 real log starts with. The simulated state is sampled at ``rate`` and passed through a sensor
 model (:class:`Sensors`): joint encoders quantised to a tick after Gaussian noise, a
 motion-capture base position with Gaussian noise, an IMU attitude turned by a small Gaussian
-rotation; optionally contact switches (``contact_<LEG>``: the foot's contact force non-zero).
+rotation; optionally contact switches (``contact_<LEG>``: the foot's contact force non-zero)
+and the actuators' measurements (``current_<joint>``, ``torque_<joint>``, ``power_<joint>``: the
+simulated motor torque, and the current and electrical power of a given actuator model at that
+torque and the simulated joint speed, :mod:`hexaleg.robot.motor`).
 
 What the log must give back (:class:`WalkLog`): the simulated electrical energy per cycle over
 the last ``evaluate`` cycles (:func:`hexaleg.simulation.measures.cycle_energies`, the
@@ -32,19 +35,23 @@ from hexaleg.config import write_file
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.dynamics.prepare import prepare
 from hexaleg.errors import InvalidParameterError, SimulationError
-from hexaleg.motion.recorded.columns import BASE_POSITION, BASE_QUATERNION
+from hexaleg.motion.recorded.columns import BASE_POSITION, BASE_QUATERNION, MEASURED
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
+from hexaleg.robot.motor import Motor
+from hexaleg.robot.motor_set import MotorSet
 from hexaleg.simulation import measures, stepping
 from hexaleg.simulation.controllers import controls, reference
 from hexaleg.simulation.model import build_model
 from hexaleg.simulation.run import Settings, automatic_timestep, cycle_timestep
 
+MEASURED_PREFIXES = tuple(f"{kind}_" for kind in MEASURED)
+"""Column prefixes of the actuators' measurements."""
 DYNAMIXEL_TICK = math.radians(300.0) / 1024
 """A Dynamixel AX/MX position tick, rad (300° over 1024 counts: ROBOTIS AX-12A e-Manual)."""
-PARTS: tuple[str, ...] = ("joints", "base", "imu", "contacts")
+PARTS: tuple[str, ...] = ("joints", "base", "imu", "contacts", "actuators")
 """What a log may hold: the joint encoders, the base position (motion capture), the IMU's
-attitude quaternion, the feet's contact switches."""
+attitude quaternion, the feet's contact switches, the actuators' currents, torques and powers."""
 
 
 @dataclass(frozen=True)
@@ -81,7 +88,8 @@ class WalkLog:
         joints: Its actuated joints (their columns), hexaleg's order.
         columns: Log column → values, shape (K,) each, SI (:mod:`hexaleg.motion.recorded.read`
             names: ``time``, the base position and quaternion x, y, z, w, one column per joint,
-            ``contact_<LEG>`` 0/1).
+            ``contact_<LEG>`` 0/1, ``current_<joint>`` A, ``torque_<joint>`` N·m,
+            ``power_<joint>`` W).
         electrical: Simulated electrical energy per cycle over the evaluated cycles, J.
         metrics: All of :func:`hexaleg.dynamics.energy.metrics`' totals per cycle (J, N·m).
         touch: Leg → fraction of the evaluated cycles its foot touches the ground.
@@ -118,7 +126,9 @@ class WalkLog:
         names = ["time", *(BASE_POSITION if "base" in parts else ()),
                  *(BASE_QUATERNION if "imu" in parts else ()), *self.joints,
                  *(name for name in self.columns if name.startswith("contact_")
-                   and "contacts" in parts)]
+                   and "contacts" in parts),
+                 *(name for name in self.columns if name.startswith(MEASURED_PREFIXES)
+                   and "actuators" in parts)]
         scale = {name: (180.0 / math.pi if degrees and name in self.joints else 1.0)
                  for name in names}
         header = [f"{name} [deg]" if scale[name] != 1.0 else name for name in names]
@@ -132,7 +142,8 @@ class WalkLog:
 def walk_log(robot: Robot, motion: Motion, motor: Any = None, *, rate: float = 100.0,
              settle: float = 1.0, drop: float = 0.02, cycles: int = 10, evaluate: int = 6,
              sensors: Sensors | None = None, contact: ContactParams | None = None,
-             settings: Settings | None = None) -> WalkLog:
+             settings: Settings | None = None,
+             actuator: Motor | MotorSet | None = None) -> WalkLog:
     """Simulate ``motion`` after a drop and a settle and write what sensors would log (module
     docstring).
 
@@ -145,6 +156,10 @@ def walk_log(robot: Robot, motion: Motion, motor: Any = None, *, rate: float = 1
         sensors: The sensor model (default :class:`Sensors`).
         contact: The analysis' contact settings (the feedforward torques; the ground's μ).
         settings: The simulation's ground and servo (default :class:`Settings`).
+        actuator: The actuator model whose current ``τ / (k_t G)`` and electrical power
+            (:meth:`~hexaleg.robot.motor.Motor.electrical_power`) at the simulated motor torque
+            and joint speed the log's measurement columns hold, exact (default: the servos
+            simulated; one model for every joint).
 
     Raises:
         InvalidParameterError: a value out of range, a non-periodic motion.
@@ -202,6 +217,13 @@ def walk_log(robot: Robot, motion: Motion, motor: Any = None, *, rate: float = 1
         cols[name] = np.round(angle / sensors.tick) * sensors.tick if sensors.tick else angle
     for i, leg in enumerate(robot.leg_names):
         cols[f"contact_{leg}"] = switches[:, i].astype(float)
+    measured = actuator or prepared.motor
+    tau = traj.tau_motor[rows]
+    qdot = sim.joints.joints_mj(traj.qvel[rows], velocity=True)
+    for name, values in (("torque", tau), ("current", measured.current(tau)),
+                         ("power", measured.electrical_power(tau, qdot))):
+        for j, joint in enumerate(robot.joint_names):
+            cols[f"{name}_{joint}"] = values[:, j]
     return WalkLog(robot=robot.name, joints=tuple(robot.joint_names), columns=cols,
                    electrical=energies["electrical"], metrics=energies,
                    touch=dict(zip(robot.leg_names, down.mean(axis=0).tolist(), strict=True)),

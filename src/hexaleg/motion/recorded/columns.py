@@ -3,7 +3,11 @@
 Column names (docs/motion.md): ``time``; optional base pose ``base_x, base_y, base_z`` (world,
 m) and ``base_qx, base_qy, base_qz, base_qw``; one column per actuated joint named as the robot's
 joints (rad); optional ``contact_<LEG>`` (0/1); optional exact derivatives ``v_<name>`` and
-``a_<name>`` of every joint and of the base (LOCAL frame, Pinocchio's free-flyer convention).
+``a_<name>`` of every joint and of the base (LOCAL frame, Pinocchio's free-flyer convention);
+optional actuator measurements per joint (:data:`MEASURED`): ``current_<joint>`` (A),
+``torque_<joint>`` (output torque, N·m) and ``power_<joint>`` (electrical power, W), which
+:func:`hexaleg.motion.recorded.load.load_motion` carries through the cycle for the actuator's
+identification (:mod:`hexaleg.dynamics.identification`).
 Each name has a kind (:func:`column_kind`) and the kind the units it may be given in
 (:data:`UNITS`). Both readers fill a :class:`Log` in SI: CSV and NPZ
 (:mod:`hexaleg.motion.recorded.read`) and ROS 2 bags (:mod:`hexaleg.motion.recorded.bag`).
@@ -24,6 +28,9 @@ MAX_LOG_BYTES = 512 * 1024**2
 
 BASE_POSITION = ("base_x", "base_y", "base_z")
 BASE_QUATERNION = ("base_qx", "base_qy", "base_qz", "base_qw")
+MEASURED: tuple[str, ...] = ("current", "torque", "power")
+"""The actuator measurements a log may hold per joint, as ``<kind>_<joint>`` columns: the
+current (A), the output torque (N·m) and the electrical power (W); each a kind of :data:`UNITS`."""
 BASE_VELOCITY = ("base_x", "base_y", "base_z", "base_rx", "base_ry", "base_rz")
 """Names of the base's six generalised-velocity components after ``v_``/``a_`` (LOCAL frame)."""
 
@@ -36,6 +43,9 @@ UNITS: dict[str, dict[str, float]] = {
     "rate": {"rad/s": 1.0, "deg/s": DEG},
     "acceleration": {"m/s^2": 1.0, "mm/s^2": MM},
     "angular acceleration": {"rad/s^2": 1.0, "deg/s^2": DEG},
+    "current": {"A": 1.0, "mA": 1e-3},
+    "torque": {"N*m": 1.0, "Nm": 1.0, "N·m": 1.0, "N*mm": 1e-3, "Nmm": 1e-3, "N·mm": 1e-3},
+    "power": {"W": 1.0, "mW": 1e-3},
 }
 """Units allowed per kind of column → their factor to SI (the first of each is the default)."""
 
@@ -82,6 +92,9 @@ def column_kind(robot: Robot, name: str) -> str:
         return "one"
     if name in joints:
         return "angle"
+    for kind in MEASURED:
+        if name.startswith(f"{kind}_") and name.removeprefix(f"{kind}_") in joints:
+            return kind
     for prefix, kinds in (("v_", ("speed", "rate")),
                           ("a_", ("acceleration", "angular acceleration"))):
         base = name.removeprefix(prefix)
@@ -89,5 +102,5 @@ def column_kind(robot: Robot, name: str) -> str:
             return kinds[0] if base in BASE_POSITION else kinds[1]
     valid = ["time", *BASE_POSITION, *BASE_QUATERNION, *robot.joint_names,
              *(f"contact_{leg}" for leg in robot.leg_names), "v_<joint or base>",
-             "a_<joint or base>"]
+             "a_<joint or base>", *(f"{kind}_<joint>" for kind in MEASURED)]
     raise UnknownNameError(f"column of a {robot.name} motion log", name, valid)

@@ -34,6 +34,7 @@ from hexaleg.motion.recorded.checks import (
     feet_world,
     ground_tilt,
 )
+from hexaleg.motion.recorded.columns import MEASURED
 from hexaleg.motion.recorded.cycle import average_cycles, find_period, steady_start
 from hexaleg.motion.recorded.quality import MotionQuality
 from hexaleg.motion.recorded.read import BASE_POSITION, BASE_QUATERNION, BASE_VELOCITY, read_log
@@ -106,8 +107,10 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
 
     Returns:
         The motion (q, v, a, stance, feet, period, distance); ``info["quality"]`` holds the
-        :class:`~hexaleg.motion.recorded.quality.MotionQuality` report as a dict and
-        ``info["report"]`` the dataclass.
+        :class:`~hexaleg.motion.recorded.quality.MotionQuality` report as a dict,
+        ``info["report"]`` the dataclass and ``info["measured"]`` the log's actuator
+        measurements (``current_<joint>``, ``torque_<joint>``, ``power_<joint>``: column →
+        values at the motion's samples, SI, cycle-averaged as the joints are; empty without).
 
     Raises:
         ConfigError, UnknownNameError, InvalidParameterError: the named bad input (a column
@@ -158,6 +161,9 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
     if given:
         derivative_names = [p + n for p in ("v_", "a_") for n in (*BASE_VELOCITY, *joints)]
         signals.append(log.matrix(derivative_names)[span])
+    measured = [f"{kind}_{j}" for kind in MEASURED for j in joints
+                if f"{kind}_{j}" in log.columns]  # averaged with the joints, for identification
+    signals.append(log.matrix(measured)[span])
     x = np.concatenate(signals, axis=1)
     nj = len(joints)
     correlation: float | None = None
@@ -216,6 +222,7 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
             dpose = np.hstack([p.xd for p in parts[1:]]) + drift[nj:nj + base_cols]
             ddpose = np.hstack([p.xdd for p in parts[1:]])
     contact = x[:, nj + base_cols:nj + base_cols + len(legs)] if use_contacts else None
+    actuators = dict(zip(measured, x[:, x.shape[1] - len(measured):].T, strict=True))
 
     q = np.zeros((n, robot.model.nq))
     q[:, 7:] = q_j
@@ -292,7 +299,8 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
     return Motion(t=tc, q=q, v=v_all, a=a_all, stance=stance.stance, feet=feet,
                   period=float(period), distance=float(np.linalg.norm(travel)),
                   periodic=periodic, info={"source": "load_motion", "log": str(path),
-                                           "quality": quality.to_dict(), "report": quality})
+                                           "quality": quality.to_dict(), "report": quality,
+                                           "measured": actuators})
 
 
 def _velocity(p: np.ndarray, dt: float, periodic: bool) -> np.ndarray:
