@@ -195,11 +195,11 @@ def check_cost_of_transport(cost: float, mass: float, *, what: str = "electrical
            if generic else "")
     if cot < low:
         flag: str | None = "low"
-        msg = (f"implausibly low: {head}, below {low:.3g} ({LOW_FACTOR:g} x the line, where no "
+        msg = (f"implausibly low: {head}, below {low:.3g} ({LOW_FACTOR:g} × the line, where no "
                f"legged machine has gone); check {fix}the masses and the actuators' constants")
     elif cot > high:
         flag = "high"
-        msg = (f"implausibly high: {head}, above {high:.3g} ({HIGH_FACTOR:.3g} x the line: "
+        msg = (f"implausibly high: {head}, above {high:.3g} ({HIGH_FACTOR:.3g} × the line: "
                f"ASIMO's ratio, the least efficient electric legged robot published); check "
                f"{fix}the actuators' constants and the gait's speed")
     else:

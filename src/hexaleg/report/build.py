@@ -45,6 +45,7 @@ from hexaleg.dynamics.draw import WholeDraw, whole_draw
 from hexaleg.dynamics.plausibility import check_baseline
 from hexaleg.dynamics.prepare import Analysis, Prepared, prepare
 from hexaleg.dynamics.sanity import torque_findings
+from hexaleg.dynamics.without_constants import without_constants
 from hexaleg.motion.legged import gait
 from hexaleg.motion.sanity import motion_findings
 from hexaleg.motion.trajectory import Motion
@@ -90,9 +91,12 @@ class Report:
     files: tuple[Path, ...] = ()
 
     def summary(self) -> str:
-        """Two lines: the reference springs' electrical energy per cycle with and without them
-        and their saving; last, the answer (:func:`~hexaleg.report.answer.answer_line`: where
-        it comes from, which springs, the saving)."""
+        """The lines the command prints: first, for joints with a generic actuator, the motor
+        choice asked for with what holds without its constants
+        (:mod:`hexaleg.dynamics.without_constants`); the reference springs' electrical energy
+        per cycle with and without them and their saving; the whole draw; last, the answer
+        (:func:`~hexaleg.report.answer.answer_line`: where it comes from, which springs, the
+        saving)."""
         e = self.data["reference"]["energy"]["electrical"]
         design = self.data["reference"]["design"]
         reference = ("the paper's design (the reference)" if design == "paper"
@@ -109,7 +113,10 @@ class Report:
         plausible = self.data.get("plausibility")
         if plausible is not None and not plausible["plausible"]:
             whole += f"\nWARNING baseline energy {plausible['message']}"
-        return (f"{reference}: electrical energy per cycle {e['with_springs']['value']:.4g} J "
+        generic = self.data.get("without_constants")
+        first = "" if generic is None else generic["line"] + "\n"
+        return (first
+                + f"{reference}: electrical energy per cycle {e['with_springs']['value']:.4g} J "
                 f"with its springs, {e['baseline']['value']:.4g} J without (saving "
                 f"{e['saving']['value']:+.2f} %){whole}\n"
                 + answer_line(self.data["design"]))
@@ -165,6 +172,8 @@ def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis,
         "whole_draw": None if draw is None else draw.as_dict(),
         "plausibility": None if (p := check_baseline(a.baseline, robot.mass, cfg.motor)) is None
         else p.as_dict(),
+        "without_constants": None if (w := without_constants(baseline)) is None
+        else w.as_dict(),
         "stiffness_curve": sections.curve_section(cfg.report.curve_joints, curve),
     }
 

@@ -1,0 +1,97 @@
+"""Tests of hexaleg.dynamics.without_constants: a run with generic actuators gets the figures
+that hold whatever its motor — positive work, ∫τ² — and the catalogue's actuators of its torque
+class, each equal to the energy metrics computed here; a run with named motors gets none; the
+report asks for the motor first."""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+from hexaleg.dynamics import energy
+from hexaleg.dynamics.prepare import prepare
+from hexaleg.dynamics.without_constants import TORQUE_CLASS, without_constants
+from hexaleg.report.config import ReportConfig
+from hexaleg.robot.catalogue import CATALOGUE
+from hexaleg.scenario.scenario import Scenario
+
+
+@pytest.fixture(scope="module")
+def go2():
+    """Go2 on a 100-sample trot: every joint's actuator generic (its URDF limits)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        s = Scenario.from_tables("go2", {"gait": {"samples": 100}}, "test")
+        cfg = ReportConfig.from_scenario(s)
+        baseline = prepare(s.model, s.played(), motor=cfg.motor,
+                           contact=cfg.contact).evaluate(None, "joule")
+    return baseline
+
+
+def test_the_figures_are_the_energy_metrics_of_the_generic_joints(go2):
+    w = without_constants(go2)
+    assert w is not None and len(w.joints) == 12
+    tau, qdot = go2.tau_motor, go2.qdot
+    dt = go2.motion.t[1] - go2.motion.t[0]
+    assert w.positive_work == pytest.approx(np.maximum(tau * qdot, 0).sum() * dt, rel=1e-12)
+    assert w.torque_squared == pytest.approx((tau**2).sum() * dt, rel=1e-12)
+    assert w.stated == pytest.approx(go2.metrics["total"]["electrical"], rel=1e-12)
+    assert w.effort == pytest.approx(45.43)  # the knee's, the largest
+    lo, hi = TORQUE_CLASS
+    expected = {n for n, m in CATALOGUE.items() if lo * 45.43 <= m.stall_torque <= hi * 45.43}
+    assert set(w.catalogue) == expected and expected  # A1's model is of that class
+    for name, e in w.catalogue.items():
+        assert e == pytest.approx(energy.metrics(tau, qdot, dt, CATALOGUE[name])["total"][
+            "electrical"], rel=1e-12)
+    assert w.stated > 2 * max(w.catalogue.values())  # the generic figure: far above a real one
+    line = w.line()
+    assert line.startswith("name the motor of 12 joints first")
+    assert f"positive mechanical work {w.positive_work:.4g} J" in line
+    d = w.as_dict()
+    assert d["torque_squared"]["unit"] == "N²·m²·s" and d["line"] == line
+
+
+def test_named_motors_need_no_such_figures(walk200, robot):
+    analysis = prepare(robot, walk200).evaluate(None, "joule")
+    assert without_constants(analysis) is None
+
+
+def test_the_report_asks_for_the_motor_first(tmp_path, capsys):
+    from hexaleg.cli import main
+
+    config = tmp_path / "c.toml"
+    config.write_text("[gait]\nsamples = 100\n[report]\nstiffness_points = 3\n")
+    assert main(["report", "--robot", "go2", "--config", str(config), "--out",
+                 str(tmp_path / "out")]) == 0
+    out = capsys.readouterr().out
+    lines = out.strip().splitlines()
+    first = next(i for i, line in enumerate(lines) if line.startswith("wrote "))
+    assert lines[first + 1].startswith("name the motor of 12 joints first")
+    html = (tmp_path / "out" / "report.html").read_text()
+    assert html.index('id="name-a-motor"') < html.index('id="design"')
+    assert "Name the motor first." in html
+
+
+def test_docs_quote_go2_s_own_trot():
+    """docs/energy.md's Go2 figures are ``hexaleg report --robot go2``'s (its own 1000-sample
+    trot), at the digits it prints."""
+    import re
+    from pathlib import Path
+
+    text = " ".join((Path(__file__).resolve().parents[2] / "docs" / "energy.md").read_text()
+                    .split())
+    m = re.search(r"\): ([\d.]+) J per cycle stated by the generic actuator, ([\d.]+) J positive "
+                  r"work, ([\d.]+) N²·m²·s, and ([\d.]+) J with the A1's", text)
+    assert m, "docs/energy.md no longer quotes Go2's figures without constants"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        s = Scenario.load("go2")
+        cfg = ReportConfig.from_scenario(s)
+        w = without_constants(prepare(s.model, s.played(), motor=cfg.motor,
+                                      contact=cfg.contact).evaluate(None, "joule"))
+    assert w is not None
+    got = (f"{w.stated:.4g}", f"{w.positive_work:.4g}", f"{w.torque_squared:.4g}",
+           f"{w.catalogue['A1-Yang2021']:.4g}")
+    assert got == m.groups()
