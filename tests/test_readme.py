@@ -277,14 +277,13 @@ def test_readme_robot_flag_and_registered_robots():
 
     from hexaleg.cli import build_parser
 
-    m = re.search(r"Every command but `paper` and `motors` takes `--robot NAME` \(([^)]*)\)",
-                  README)
+    m = re.search(r"Every command but `paper` takes `--robot NAME` \(([^)]*)\)", README)
     assert m, "README.md no longer lists the robots --robot takes: update it or this test"
     assert m.group(1).split(", ") == list(DESCRIPTIONS)
     sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
     without = {name for name, p in sub.choices.items()
                if "--robot" not in {s for a in p._actions for s in a.option_strings}}
-    assert without == {"paper", "motors"}
+    assert without == {"paper"}
 
 
 def test_docs_report_page_numbers_are_the_default_report(report):
