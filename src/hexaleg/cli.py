@@ -398,6 +398,21 @@ the documentation is docs/ in the source repository"""
 """The top-level ``--help``'s closing lines: where a newcomer starts."""
 
 
+TEXT_OPTIONS = ("out", "config", "robot", "design", "springs", "html", "identify", "host",
+                "simulation", "motion", "scheduler", "spec", "urdf", "srdf", "cycle", "pattern")
+"""The options that take a name or a path: each refuses an empty value (``--out ""`` once
+wrote into the working directory, ``--html ""`` served instead of writing, ``--host ""``
+listened on every interface)."""
+
+
+def _nonempty(text: str) -> str:
+    """An option's value when it is not empty (:data:`TEXT_OPTIONS`)."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError("an empty value; give a name or a path, or leave the "
+                                         "option out for its default")
+    return text
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="hexaleg",
@@ -408,6 +423,10 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     for add in SUBCOMMANDS:
         add(sub)
+    for p in sub.choices.values():  # an empty name or path is an error, not the default
+        for a in p._actions:
+            if a.dest in TEXT_OPTIONS and a.type is None:
+                a.type = _nonempty
     for action in sub._choices_actions:  # each command's --help: what, how long, examples
         time, examples = GUIDE[action.dest]
         p = sub.choices[action.dest]

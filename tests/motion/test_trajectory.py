@@ -67,7 +67,8 @@ def fold(robot) -> Motion:
 
 
 def test_supported_samples_are_checked_by_motion(robot, fold):
-    fields = {f: getattr(fold, f) for f in ("t", "q", "v", "a", "stance", "feet", "period")}
+    fields = {f: getattr(fold, f) for f in ("t", "q", "v", "a", "stance", "feet", "period",
+                                            "periodic")}
     with pytest.raises(InvalidParameterError, match=r"Motion\.supported.*shape \(3,\)"):
         hexaleg.Motion(**fields, supported=np.ones(3, dtype=bool))
     with pytest.raises(InvalidParameterError, match=r"sample 0 .*feet are in stance"):
@@ -77,3 +78,24 @@ def test_supported_samples_are_checked_by_motion(robot, fold):
                        supported=fold.supported)
     assert hexaleg.Motion(**{**fields, "stance": np.zeros_like(fold.stance)},
                           fixed_base=True).supported.all()
+
+
+@pytest.mark.parametrize(("change", "says"), [
+    ({"period": -1.0}, r"Motion\.period = -1\.0"),
+    ({"period": 5.0}, r"Motion\.period = 5\.0; allowed: T × dt = 1\.0 s"),
+    ({"distance": float("nan")}, r"Motion\.distance"),
+    ({"stance": "twice"}, r"Motion\.stance = 'values \[0\.0, 2\.0\]'"),
+    ({"t": "backwards"}, r"Motion\.t = 'not increasing'"),
+])
+def test_a_motion_s_own_numbers_are_checked(walk200, change, says):
+    """A motion edited by hand (dataclasses.replace) that contradicts itself is named, not
+    analysed: a negative period, one that is not T × dt, a NaN distance, stance values other
+    than 0/1, times that go back."""
+    import dataclasses
+
+    key, value = next(iter(change.items()))
+    if isinstance(value, str):  # arrays made from the motion
+        value = (walk200.stance.astype(float) * 2 if value == "twice"
+                 else walk200.t[::-1].copy())
+    with pytest.raises(InvalidParameterError, match=says):
+        dataclasses.replace(walk200, **{key: value})

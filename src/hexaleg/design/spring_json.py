@@ -23,7 +23,7 @@ from typing import Any
 
 from hexaleg.checks import one_of
 from hexaleg.design.families import FAMILIES, family
-from hexaleg.errors import ConfigError, UnknownNameError
+from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.robot.springs import (
     Spring,
 )
@@ -94,7 +94,12 @@ def spring_from_entry(entry: Mapping[str, Any], where: str = "spring") -> Spring
             kwargs[name] = _stages(value, f"{where}.{name}")
         else:
             kwargs[name] = _number(value, UNITS[name], f"{where}.{name}")
-    return cls(**kwargs)
+    try:
+        return cls(**kwargs)
+    except InvalidParameterError as e:
+        if type(e) is not InvalidParameterError:
+            raise
+        raise InvalidParameterError(f"{where}.{e.name}", e.value, e.allowed) from None
 
 
 def _stages(value: Any, where: str) -> tuple[tuple[float, float], ...]:

@@ -74,12 +74,23 @@ MARGIN_FRACTION = 0.1
 distance from the base (0.0189 m for hexaleg, 0.0258 m for Solo-12 with their own gaits)."""
 
 
+PERIOD_RANGE = (0.01, 3600.0)
+"""The gait cycles :class:`GaitParams` takes, s: from 10 ms (faster than any legged animal's
+stride, a running cockroach's ≈ 40 ms) to an hour; beyond them the trajectories' arithmetic
+overflows or underflows (a period of 1e300 s ended in an OverflowError)."""
+MAX_LENGTH = 100.0
+"""The largest stride, step or body height and foot radius :class:`GaitParams` takes, m: far
+beyond any legged robot, and a bound that keeps the trajectories' arithmetic finite."""
+MAX_YAW_RATE = 100.0
+"""The largest turn rate :class:`GaitParams` takes, rad/s (16 turns a second)."""
+
+
 @dataclass(frozen=True)
 class GaitParams:
     """Parameters of a periodic leg-group gait (SI).
 
     Attributes:
-        period: Cycle duration, s (> 0).
+        period: Cycle duration, s, in :data:`PERIOD_RANGE`.
         duty_factor: β, the fraction of the cycle each foot is in stance, in (0, 1); None
             (the default): the pattern's conventional β₀ (:data:`hexaleg.motion.patterns.PATTERNS`),
             0.5 without a pattern. Stored resolved.
@@ -147,7 +158,8 @@ class GaitParams:
     min_static_margin: float | None = None
 
     def __post_init__(self) -> None:
-        real("period", self.period, low=0.0, low_open=True, allowed="a finite number > 0 (s)")
+        real("period", self.period, low=PERIOD_RANGE[0], high=PERIOD_RANGE[1],
+             allowed=f"a cycle of {PERIOD_RANGE[0]:g} s to {PERIOD_RANGE[1]:g} s")
         if self.pattern is not None:
             check_pattern(self.pattern)
         if self.duty_factor is None:
@@ -178,17 +190,20 @@ class GaitParams:
         if self.min_static_margin is not None:
             real("min_static_margin", self.min_static_margin, low=0.0,
                  allowed="None or a finite number ≥ 0 (m)")
-        real("stride_length", self.stride_length, low=0.0, allowed="a finite number ≥ 0 (m)")
+        real("stride_length", self.stride_length, low=0.0, high=MAX_LENGTH,
+             allowed=f"0 to {MAX_LENGTH:g} m")
         if self.speed is not None:
-            real("speed", self.speed, low=0.0, allowed="None or a finite number ≥ 0 (m/s)")
-        real("step_height", self.step_height, low=0.0, low_open=True,
-             allowed="a finite number > 0 (m)")
+            real("speed", self.speed, low=0.0, high=MAX_LENGTH / PERIOD_RANGE[0],
+                 allowed=f"None or 0 to {MAX_LENGTH / PERIOD_RANGE[0]:g} m/s")
+        real("step_height", self.step_height, low=0.0, low_open=True, high=MAX_LENGTH,
+             allowed=f"more than 0 and at most {MAX_LENGTH:g} m")
         for name in ("body_height", "foot_radius"):
             value = getattr(self, name)
             if value is not None:
-                real(name, value, low=0.0, low_open=True,
-                     allowed="None or a finite number > 0 (m)")
-        real("yaw_rate", self.yaw_rate, allowed="a finite number (rad/s)")
+                real(name, value, low=0.0, low_open=True, high=MAX_LENGTH,
+                     allowed=f"None, or more than 0 and at most {MAX_LENGTH:g} m")
+        real("yaw_rate", self.yaw_rate, low=-MAX_YAW_RATE, high=MAX_YAW_RATE,
+             allowed=f"a turn rate within ±{MAX_YAW_RATE:g} rad/s")
         object.__setattr__(self, "samples", check_samples(self.samples))
         if isinstance(self.groups, str) or not isinstance(self.groups, Sequence) or any(
                 isinstance(g, str) or not isinstance(g, Sequence) for g in self.groups):

@@ -8,12 +8,17 @@ sample 0 up to a base displacement), so a cycle integral of a periodic signal ``
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
+from hexaleg.checks import real
 from hexaleg.errors import InvalidParameterError
+
+PERIOD_TOLERANCE = 1e-6
+"""Relative tolerance of ``T · dt == period`` for a periodic :class:`Motion`."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,6 +80,22 @@ class Motion:
                 raise InvalidParameterError(f"Motion.{name}", f"NaN/inf at sample {k} "
                                             f"(t = {self.t[k] if k < len(self.t) else '?'})",
                                             "finite values")
+        if np.any(np.diff(self.t) <= 0):
+            raise InvalidParameterError("Motion.t", "not increasing", "sample times that "
+                                        "increase from one sample to the next")
+        real("Motion.period", self.period, low=0.0, low_open=True,
+             allowed="a finite duration > 0 (s)")
+        if self.periodic and n > 1 and not math.isclose(n * self.dt, self.period,
+                                                         rel_tol=PERIOD_TOLERANCE):
+            raise InvalidParameterError("Motion.period", self.period,
+                                        f"T × dt = {n * self.dt!r} s for a periodic motion of "
+                                        f"{n} samples {self.dt!r} s apart (or periodic=False)")
+        real("Motion.distance", self.distance, low=0.0, allowed="a finite distance ≥ 0 (m)")
+        stance = np.asarray(self.stance)
+        if stance.dtype != bool and not np.all((stance == 0) | (stance == 1)):
+            values = sorted(set(np.unique(stance)[:4].tolist()))
+            raise InvalidParameterError("Motion.stance", f"values {values}",
+                                        "booleans, or 0 (swing) and 1 (stance)")
         if self.supported is None:
             object.__setattr__(self, "supported", np.full(n, bool(self.fixed_base)))
         supported = np.asarray(self.supported)

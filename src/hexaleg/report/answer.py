@@ -83,8 +83,16 @@ def answer_section(cfg: ReportConfig, robot: Robot, prepared: Prepared
                 notes.append(why)
     if section is None:
         return None, None, notes
-    if springs is None:
-        springs = _design_springs(Path(section["source"]), robot)
+    if springs is None:  # a given or found design.json: its springs, read as simulate does
+        from hexaleg.design.chain.design_file import read_design
+
+        springs = read_design(Path(section["source"]), robot)
+    if section["origin"] == "given" and section["actuator"] != cfg.motor.name:
+        notes.append(f"{section['source']} was designed for the actuator {section['actuator']}; "
+                     f"this report's is {cfg.motor.name}: the design's saving is with "
+                     f"{section['actuator']}, its springs' on this report's gait with "
+                     f"{cfg.motor.name} (hexaleg design --config with [design] motor = … "
+                     "designs for it)")
     section["report_gait"] = _on_report_gait(prepared, springs, section["metric"])
     return section, springs, notes
 
@@ -177,17 +185,6 @@ def _quick(cfg: ReportConfig, robot: Robot
                **recommendation(rec, params.metric, n, result.pays),
                "worst": None, "robust": None, "simulation": [], "notes": list(c.notes)}
     return section, c.optimum.springs, None
-
-
-def _design_springs(path: Path, robot: Robot) -> SpringSet | None:
-    """The recommended springs of a design.json, or None when they cannot be read for
-    ``robot``."""
-    from hexaleg.design.chain.design_file import read_design
-
-    try:
-        return read_design(path, robot)
-    except HexalegError:
-        return None
 
 
 def _on_report_gait(prepared: Prepared, springs: SpringSet | None, metric: str

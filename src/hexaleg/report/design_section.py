@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 
 from hexaleg.checks import is_real
 from hexaleg.config import read_json
+from hexaleg.design.chain.design_file import design_gait, read_design, recommended_saving
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 
 if TYPE_CHECKING:
@@ -59,15 +60,22 @@ def design_section(path: str | Path | None, robot: Robot | None = None) -> dict[
     if path is None:
         return None
     path = Path(path)
+    how = "write one with: hexaleg design --out DIR"
+    data = read_json(path, "design file")
+    recommended_saving(data, str(path))  # a known metric; savings finite, at most 100 %
     try:
-        data = read_json(path, "design file")
         section = _section(path, data)
-    except (ConfigError, ValueError, KeyError, TypeError, AttributeError) as e:
+    except KeyError as e:
         raise ConfigError(f"[report] design = {str(path)!r}: not a design.json of hexaleg design "
-                          f"({type(e).__name__}: {e}); write one with: hexaleg design --out DIR"
-                          ) from e
+                          f"(it has no {e} entry; a hand-written {{robot, springs}} file is for "
+                          f"hexaleg simulate --springs); {how}") from e
+    except (ConfigError, ValueError, TypeError, AttributeError) as e:
+        raise ConfigError(f"[report] design = {str(path)!r}: not a design.json of hexaleg design "
+                          f"({type(e).__name__}: {e}); {how}") from e
+    design_gait(data, None, str(path))  # the gait's keys and values, as [gait] takes them
     if robot is not None:
         _check_robot(path, data, robot)
+        read_design(path, robot)  # the springs, as hexaleg simulate reads them
     for key, where in (("savings", "recommended.saving"), ("net_saving", "recommended.net_saving"),
                        ("spring_mass", "recommended.spring_mass"), ("parts", "recommended.parts"),
                        ("worst", "worst"), ("robust", "robust.worst")):

@@ -42,8 +42,9 @@ from typing import Any
 
 from hexaleg.checks import is_real, typed
 from hexaleg.config import read_json
+from hexaleg.design.evaluator import SAVING_METRICS
 from hexaleg.design.spring_json import spring_entry, spring_from_entry
-from hexaleg.errors import ConfigError, InvalidParameterError
+from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.model import Robot
@@ -74,12 +75,27 @@ def _si(value: Any) -> Any:
     return value
 
 
+HAND_WRITTEN_KEYS = ("robot", "springs", "gait")
+"""The keys of a hand-written design file (module docstring); a misspelt one (``robots``) would
+otherwise skip the robot check."""
+ENTRY_KEYS = ("family", "joint", "parameters")
+"""The keys of one spring entry."""
+
+
 def _entries(data: Mapping[str, Any], where: str) -> tuple[list[Any], Any]:
-    """The spring entries of a design document and the robot it names (or None)."""
+    """The spring entries of a design document and the robot it names (or None).
+
+    Raises:
+        UnknownNameError: a key a hand-written design file or a spring entry does not have.
+    """
     recommended = data.get("recommended")
     if isinstance(recommended, Mapping):  # hexaleg design's design.json
         springs = recommended.get("springs", [])
     else:
+        for key in data:
+            if key not in HAND_WRITTEN_KEYS:
+                raise UnknownNameError(f"key in the design file {where}", key,
+                                       HAND_WRITTEN_KEYS)
         springs = data.get("springs")
         if isinstance(springs, Mapping):
             springs = [{**t, "joint": j} if isinstance(t, Mapping) else t
@@ -139,6 +155,10 @@ def read_design(path: str | Path, robot: Robot, robot_name: str | None = None) -
         joint = entry.get("joint") if isinstance(entry, Mapping) else None
         if not isinstance(joint, str):
             raise ConfigError(f"{path}: a spring entry without its joint: {entry!r}")
+        for key in entry:
+            if key not in ENTRY_KEYS:
+                raise UnknownNameError(f"key in the spring entry of {joint} in {path}", key,
+                                       ENTRY_KEYS)
         if joint in springs:
             raise ConfigError(f"{path}: two springs on {joint}; give one entry per joint")
         springs[joint] = spring_from_entry(_si(entry), f"{path}: springs.{joint}")
@@ -210,9 +230,10 @@ def _plain(table: Mapping[str, Any], where: str) -> dict[str, Any]:
     return out
 
 
-def design_gait(data: Mapping[str, Any], robot: str, where: str) -> GaitParams | None:
-    """The gait of a design document (``gait.parameters`` over the robot's own gait), or None
-    when it has none.
+def design_gait(data: Mapping[str, Any], robot: str | None, where: str) -> GaitParams | None:
+    """The gait of a design document (``gait.parameters`` over the robot's own gait; over the
+    default :class:`~hexaleg.motion.params.GaitParams` when ``robot`` is None, to check the
+    table alone), or None when it has none.
 
     Raises:
         ConfigError: ``gait.parameters`` not a table. UnknownNameError, InvalidParameterError:
@@ -226,7 +247,40 @@ def design_gait(data: Mapping[str, Any], robot: str, where: str) -> GaitParams |
         raise ConfigError(f"{where}: gait.parameters must be a table of gait parameters, got "
                           f"{type(table).__name__}")
     where = f"{where}: gait.parameters"
-    return robot_gait(description(robot)).updated(_plain(table, where), where)
+    base = GaitParams() if robot is None else robot_gait(description(robot))
+    return base.updated(_plain(table, where), where)
+
+
+def recommended_saving(data: Mapping[str, Any], where: str) -> tuple[str | None, float | None]:
+    """The metric a design.json ranks by (``settings.metric``) and its recommended saving, a
+    fraction; (None, None) for a hand-written file without them.
+
+    Raises:
+        InvalidParameterError: a metric that is not one of :data:`hexaleg.design.curves.
+            CURVE_METRICS`' energies, a saving table that is not a table, or a saving that is
+            not a finite number of at most 100 % (of an energy, more cannot be saved).
+    """
+    settings = data.get("settings")
+    metric = settings.get("metric") if isinstance(settings, Mapping) else None
+    if metric is not None and metric not in SAVING_METRICS:
+        raise InvalidParameterError(f"{where}: settings.metric", metric,
+                                    "one of " + ", ".join(SAVING_METRICS))
+    rec = data.get("recommended")
+    if not (isinstance(rec, Mapping) and isinstance(metric, str)):
+        return None, None
+    for key in ("saving", "net_saving"):
+        table = rec.get(key, {})
+        if not isinstance(table, Mapping):
+            raise InvalidParameterError(f"{where}: recommended.{key}", table,
+                                        "a table of metric = {value, unit} (design.json's)")
+        for name, q in table.items():
+            value = q.get("value") if isinstance(q, Mapping) else q
+            if value is not None and not (is_real(value) and value <= 100.0):
+                raise InvalidParameterError(f"{where}: recommended.{key}.{name}", value,
+                                            "a finite saving in %, at most 100 %")
+    value = rec.get("saving", {}).get(metric, {})
+    value = value.get("value") if isinstance(value, Mapping) else None
+    return metric, (None if value is None else float(value) / 100)
 
 
 @typed
@@ -252,22 +306,7 @@ def load_design(path: str | Path, robot: str | None = None) -> LoadedDesign:
     name = robot or (owner if isinstance(owner, str) else "hexaleg")
     loaded = description(name).load()
     springs = read_design(path, loaded, name)
-    settings = data.get("settings")
-    metric = settings.get("metric") if isinstance(settings, Mapping) else None
-    saving = None
-    rec = data.get("recommended")
-    if isinstance(rec, Mapping) and isinstance(metric, str):
-        table = rec.get("saving", {})
-        if not isinstance(table, Mapping):
-            raise InvalidParameterError(f"{path}: recommended.saving", table,
-                                        "a table of metric = {value, unit} (design.json's)")
-        value = table.get(metric, {})
-        value = value.get("value") if isinstance(value, Mapping) else None
-        if value is not None:
-            if not is_real(value):
-                raise InvalidParameterError(f"{path}: recommended.saving.{metric}", value,
-                                            "a finite saving in %")
-            saving = float(value) / 100
+    metric, saving = recommended_saving(data, str(path))
     pays = data.get("pays")
     gait = data.get("gait")
     motion = gait.get("motion") if isinstance(gait, Mapping) else None

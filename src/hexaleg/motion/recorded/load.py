@@ -118,6 +118,11 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
             joints beyond their limits, feet underground, a sample with no foot down).
     """
     max_gap = real("max_gap", max_gap, low=0.0, allowed="a gap >= 0 (s) to fill by interpolation")
+    if isinstance(ignore, (str, bytes)) or not isinstance(ignore, Sequence) \
+            or not all(isinstance(c, str) for c in ignore):
+        raise InvalidParameterError("ignore", ignore, "a list of column names, e.g. "
+                                    "['temperature_LF_femur'] (a string alone would be read "
+                                    "letter by letter)")
     path = Path(path)
     where = f"motion log {path}"
     caught: list[str] = []

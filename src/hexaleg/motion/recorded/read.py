@@ -117,9 +117,11 @@ def _npz_columns(data: bytes, where: str) -> tuple[list[str], np.ndarray]:
     names = list(arrays)
     for k in names:  # the array at fault named, with what it is
         a = arrays[k]
-        if a.ndim != 1 or not np.issubdtype(a.dtype, np.number):
+        if a.ndim != 1 or not np.issubdtype(a.dtype, np.number) \
+                or np.issubdtype(a.dtype, np.complexfloating):
             raise ConfigError(f"{where}: array {k!r} is {a.dtype} of shape {a.shape}; every "
-                              "array must be a numeric 1-D column (one per log column, e.g. "
+                              "array must be a real numeric 1-D column (one per log column, "
+                              "e.g. "
                               "numpy.savez(path, time=t, LF_femur=q[:, 0], …))")
     lengths = {k: len(arrays[k]) for k in names}
     if len(set(lengths.values())) > 1:
@@ -130,6 +132,29 @@ def _npz_columns(data: bytes, where: str) -> tuple[list[str], np.ndarray]:
     values = np.stack([arrays[k].astype(float) for k in names], axis=1) if names else \
         np.zeros((0, 0))
     return names, values
+
+
+def _check_values(name: str, x: np.ndarray, where: str) -> None:
+    """A column's values: NaN marks a missing value (filled over short gaps), infinity is not
+    a value; a contact column is 0 or 1.
+
+    Raises:
+        InvalidParameterError: the first infinite value, or a contact value not 0 or 1, with its
+            row (1 = the first row under the header).
+    """
+    bad = np.isinf(x)
+    if bad.any():
+        row = int(np.argmax(bad))
+        raise InvalidParameterError(f"{where}: column {name!r}, row {row + 1}", float(x[row]),
+                                    "a finite number, or NaN / an empty field for a missing "
+                                    "value")
+    if name.startswith("contact_"):
+        bad = ~np.isnan(x) & (x != 0.0) & (x != 1.0)
+        if bad.any():
+            row = int(np.argmax(bad))
+            raise InvalidParameterError(f"{where}: column {name!r}, row {row + 1}",
+                                        float(x[row]), "0 (swing) or 1 (stance); a sensor's "
+                                        "reading is thresholded before it is logged as contact")
 
 
 def read_log(robot: Robot, path: str | Path, *, ignore: tuple[str, ...] = ()) -> Log:
@@ -172,6 +197,7 @@ def read_log(robot: Robot, path: str | Path, *, ignore: tuple[str, ...] = ()) ->
     for j, spec in enumerate(parsed):
         if spec is not None:
             name, unit, factor = spec
+            _check_values(name, values[:, j], where)
             columns[name] = values[:, j] * factor
             units[name] = unit
     if "time" not in columns:
