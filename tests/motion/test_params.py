@@ -45,7 +45,7 @@ def test_bad_gait_parameters_are_rejected(kwargs, name):
 @pytest.mark.parametrize("value", ["fast", None, True, math.inf])
 def test_non_numbers_are_invalid_parameters_not_type_errors(value):
     """Values are checked through hexaleg.checks: a string or None is named, not compared."""
-    with pytest.raises(InvalidParameterError, match=r"invalid period = .*a cycle of 0.01 s to 3600 s"):
+    with pytest.raises(InvalidParameterError, match=r"invalid period = .*a cycle of 0\.01 s"):
         GaitParams(period=value)
     if value is None:  # None is the pattern's own β₀
         assert GaitParams(duty_factor=value).duty_factor == 0.5
