@@ -10,6 +10,7 @@ stderr and exit status 2 (checked here for every command-line case too).
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Callable
 from pathlib import Path
 
@@ -62,8 +63,6 @@ def files(tmp_path_factory):
                                  '<joint name="LF_femur" value="nan"', 1))
     put("misspelt.srdf", srdf.replace('<joint name="LF_femur"', '<joint name="LF_femr"', 1))
     urdf = (DATA / "spider.urdf").read_text(encoding="utf-8")
-    import re
-
     put("zero.urdf", re.sub(r'<mass value="[^"]*"', '<mass value="0"', urdf))
     put("mass_text.urdf", re.sub(r'<mass value="[^"]*"', '<mass value="abc"', urdf, count=1))
     put("origin_short.urdf", re.sub(r'<origin xyz="[^"]*"', '<origin xyz="0 0"', urdf, count=1))
@@ -451,3 +450,127 @@ def test_the_third_catalogue_s_raw_tracebacks_are_named(call, robot, walk200):
 
     with pytest.raises(HexalegError):
         call(hexaleg, robot, walk200)
+
+
+# --------------------------------------------------------------------------------------------
+# The fourth probe (#42): empty option values, a log's impossible values, design files read
+# strictly by the report as by simulate.
+
+@pytest.mark.parametrize("argv", [
+    ["report", "--out", ""], ["view", "--html", ""], ["view", "--host", ""],
+    ["simulate", "--springs", ""], ["report", "--config", ""], ["report", "--robot", ""],
+    ["sweep", ""], ["design", "--motion", " "],
+])
+def test_an_empty_option_value_is_refused_not_the_default(argv, capsys):
+    """``--out ""`` wrote into the working directory, ``--html ""`` served instead of writing,
+    ``--host ""`` listened on every interface: each is named by the parser (status 2)."""
+    with pytest.raises(SystemExit) as e:
+        main(argv)
+    assert e.value.code == 2
+    assert "an empty value; give a name or a path" in capsys.readouterr().err
+
+
+@pytest.fixture(scope="module")
+def log_csv(tmp_path_factory, robot, walk200):
+    from hexaleg.motion.recorded.write import write_motion_log
+
+    return write_motion_log(robot, walk200, tmp_path_factory.mktemp("log") / "walk.csv",
+                            derivatives=False)
+
+
+def _edited(path: Path, column: str, row: int, value: str, out: Path) -> Path:
+    lines = path.read_text().splitlines()
+    col = lines[0].split(",").index(column)
+    fields = lines[row].split(",")
+    fields[col] = value
+    lines[row] = ",".join(fields)
+    out.write_text("\n".join(lines) + "\n")
+    return out
+
+
+@pytest.mark.parametrize(("column", "value", "says"), [
+    ("LF_femur", "inf", "column 'LF_femur', row 3 = inf"),
+    ("contact_LF", "2", "column 'contact_LF', row 3 = 2.0; allowed: 0 (swing) or 1"),
+    ("contact_LF", "0.3", "row 3 = 0.3"),
+])
+def test_a_log_value_that_cannot_be_is_named_with_its_row(robot, log_csv, tmp_path, column,
+                                                          value, says):
+    bad = _edited(log_csv, column, 3, value, tmp_path / "bad.csv")
+    with pytest.raises(IPE, match=re.escape(says)):
+        hexaleg.load_motion(robot, bad)
+
+
+def test_a_complex_npz_column_and_a_string_ignore_are_named(robot, log_csv, tmp_path):
+    import numpy as np
+
+    table = np.loadtxt(log_csv, delimiter=",", skiprows=1)
+    names = log_csv.read_text().split("\n", 1)[0].split(",")
+    arrays = {n.split(" [")[0]: table[:, i] for i, n in enumerate(names)}
+    arrays["LF_femur"] = arrays["LF_femur"] + 5j
+    np.savez(tmp_path / "c.npz", **arrays)
+    with pytest.raises(CE, match=r"array 'LF_femur' is complex128.*real numeric"):
+        hexaleg.load_motion(robot, tmp_path / "c.npz")
+    with pytest.raises(IPE, match=r"invalid ignore = 'LF_coxa'.*a list of column names"):
+        hexaleg.load_motion(robot, log_csv, ignore="LF_coxa")
+
+
+def _design(design_json: Path, tmp_path: Path, edit: Callable[[dict], None]) -> Path:
+    import json
+
+    data = json.loads(design_json.read_text())
+    edit(data)
+    out = tmp_path / "design.json"
+    out.write_text(json.dumps(data))
+    return out
+
+
+def _set(path: tuple, value):
+    def edit(data):
+        node = data
+        for k in path[:-1]:
+            node = node[k]
+        node[path[-1]] = value
+    return edit
+
+
+@pytest.mark.parametrize(("edit", "error", "says"), [
+    (_set(("recommended", "springs", 0, "parameters", "stiffness", "value"), -1.0), IPE,
+     "springs.LF_femur.stiffness = -1.0"),
+    (_set(("recommended", "springs"), []), CE, "no springs"),
+    (_set(("recommended", "saving", "electrical", "value"), 9999.0), IPE, "at most 100 %"),
+    (_set(("settings", "metric"), "happiness"), IPE, "settings.metric = 'happiness'"),
+    (_set(("gait", "parameters", "period"), -1.0), IPE, "period = -1.0"),
+    (_set(("gait", "parameters", "bogus"), 1), UNE, "'bogus'"),
+])
+def test_report_reads_a_design_json_as_simulate_does(design_json, tmp_path, edit, error, says,
+                                                     capsys):
+    """A design.json whose springs, gait, metric or savings cannot be is named by report
+    --design (it used to analyse the paper's design under the file's headline) and by
+    simulate --springs alike."""
+    bad = _design(design_json, tmp_path, edit)
+    assert main(["report", "--design", str(bad), "--out", str(tmp_path / "r")]) == 2
+    err = capsys.readouterr().err
+    assert says in err and "Traceback" not in err
+    assert not (tmp_path / "r").exists()
+    if error is not UNE or "bogus" not in says:
+        assert main(["simulate", "--springs", str(bad), "--cycles", "2", "--out",
+                     str(tmp_path / "s")]) == 2
+        assert says in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(("doc", "says"), [
+    ({"robots": "hexaleg", "springs": []}, "unknown key in the design file"),
+    ({"robot": "hexaleg", "springs": [{"family": "linear", "joint": "LF_femur", "note": "x",
+                                       "parameters": {"stiffness": {"value": 0.01,
+                                                                    "unit": "N·m/rad"}}}]},
+     "unknown key in the spring entry of LF_femur"),
+])
+def test_a_hand_written_design_file_s_keys_are_checked(tmp_path, doc, says, capsys):
+    """A misspelt ``robots`` skipped the robot check; an entry's extra key was ignored."""
+    import json
+
+    path = tmp_path / "d.json"
+    path.write_text(json.dumps(doc))
+    assert main(["simulate", "--springs", str(path), "--cycles", "2", "--out",
+                 str(tmp_path / "s")]) == 2
+    assert says in capsys.readouterr().err
