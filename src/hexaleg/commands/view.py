@@ -21,6 +21,7 @@ from hexaleg.commands.options import load_run
 from hexaleg.config import from_mapping
 from hexaleg.dynamics.prepare import prepare
 from hexaleg.errors import InvalidParameterError
+from hexaleg.motion.recorded.bag import bag_directory
 from hexaleg.motion.trajectory import Motion
 from hexaleg.motion.transform import transform_motion
 from hexaleg.outputs.viewer.server import LOCALHOST
@@ -75,10 +76,12 @@ def _shown(config: str | Path | None, motion: str | None, joints: str, robot: st
         if run is not None:
             raise InvalidParameterError("run", run, "a run of a simulation (--simulation DIR)")
         log = None if motion is None or motion in MOTIONS else motion
-        if log is not None and not Path(log).is_file():
+        if log is not None and not (Path(log).is_file() or bag_directory(Path(log))):
+            what = ("exists but is not a regular file or a ROS 2 bag directory"
+                    if Path(log).exists() else "does not exist")
             raise InvalidParameterError("motion", motion, f"one of {', '.join(MOTIONS)}, or a "
-                                        "log file of the robot's own gait that exists (CSV, "
-                                        "NPZ or a ROS 2 bag; docs/motion.md)")
+                                        "log of the robot's own gait (a CSV or NPZ file, or a "
+                                        f"ROS 2 bag directory; docs/motion.md): {log} {what}")
         scenario = load_run(robot, config, log, cycle, args)
         cfg = ReportConfig.from_scenario(scenario)
         shown = (transform_motion(scenario.model) if motion == "transform"

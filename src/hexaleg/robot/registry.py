@@ -13,10 +13,11 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Mapping
+from pathlib import Path
 from types import MappingProxyType
 
 from hexaleg.checks import typed
-from hexaleg.errors import UnknownNameError
+from hexaleg.errors import InvalidParameterError, UnknownNameError
 from hexaleg.robot.description import BUILTIN, EXAMPLE_ROBOT_DATA, STAND, RobotDescription
 from hexaleg.robot.model import HEXALEG_LEGS, JOINT_KINDS, LegSpec, Robot
 
@@ -119,6 +120,11 @@ def description(name: str = DEFAULT_ROBOT) -> RobotDescription:
     """
     if isinstance(name, str) and name.endswith(".toml"):
         return RobotDescription.from_toml(name)
+    if isinstance(name, str) and name.lower().endswith((".urdf", ".xml", ".xacro")):
+        raise InvalidParameterError("robot", name, "a registered robot ("
+                                    + ", ".join(DESCRIPTIONS) + ") or a description FILE.toml; "
+                                    "a URDF is given through one: [robot] name = …, urdf = "
+                                    f"{Path(name).name!r} (five lines, docs/robots.md)")
     if not isinstance(name, str) or name not in DESCRIPTIONS:
         raise UnknownNameError("robot", name, DESCRIPTIONS)
     return DESCRIPTIONS[name]

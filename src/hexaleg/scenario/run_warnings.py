@@ -9,7 +9,9 @@ and write them into their JSON as ``"warnings"`` (what the sized defaults chose 
 1. the gait parameters the robot's description leaves unset, sized to it by dynamic similarity
    (:mod:`hexaleg.motion.scaling`): what they chose, unless a config file set them;
 2. every joint whose peak speed exceeds its URDF velocity limit, with the period that would
-   bring it within (:func:`hexaleg.motion.sanity.speed_findings`);
+   bring it within (:func:`hexaleg.motion.sanity.speed_findings`); every joint without a URDF
+   effort limit (:func:`hexaleg.dynamics.sanity.torque_findings`' ``effort_limit_missing``: its
+   torques cannot be checked);
 3. joints driven by a generic actuator built from the URDF's effort and velocity limits
    (:func:`hexaleg.robot.motor.generic_actuator`): the energies rest on assumed constants and
    on limits that may be placeholders, by the factors :func:`~hexaleg.robot.motor.
@@ -21,6 +23,9 @@ from __future__ import annotations
 
 from typing import Any
 
+import numpy as np
+
+from hexaleg.dynamics.sanity import torque_findings
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.sanity import speed_findings
 from hexaleg.motion.scaling import chosen_defaults
@@ -40,7 +45,7 @@ def generic_warning(motor: Motor | MotorSet) -> str | None:
         return None
     lo, hi = generic_energy_range()
     return (f"generic actuator on {', '.join(generic)}: its energies come from the URDF's effort "
-            f"and velocity limits with assumed constants (x{lo:.2f}-x{hi:.2f} for the "
+            f"and velocity limits with assumed constants (×{lo:.2f}–×{hi:.2f} for the "
             "catalogue's range of gearbox efficiencies, further if the limits are "
             "placeholders); name a catalogue motor (hexaleg motors) or identified constants "
             "for energies to trust")
@@ -81,6 +86,8 @@ def run_warnings(robot: Robot, motion: Motion, motor: Motor | MotorSet | None, *
         if note is not None:
             out.append(note)
     out += [f.message for f in speed_findings(robot, motion) if f.check == "joint_speed"]
+    out += [f.message for f in torque_findings(robot, np.zeros((0, robot.nj)))
+            if f.check == "effort_limit_missing"]
     generic = generic_warning(motor) if motor is not None else None
     if generic is not None:
         out.append(generic)

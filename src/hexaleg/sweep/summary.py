@@ -73,6 +73,11 @@ def summary(table: pd.DataFrame, metric: str = DEFAULT_METRIC) -> str:
     if metric not in table.columns:
         raise UnknownNameError("metric", metric, [m for m in METRICS if m in table.columns])
     ok = table[table["status"] == "ok"]
+    if ok.empty:  # every point failed: say why, not an empty "best" line
+        kinds = table["status"].str.split(":").str[0].value_counts()
+        return (f"{len(table)} points, none evaluated without error ("
+                + ", ".join(f"{n} × {k}" for k, n in kinds.items())
+                + f"); the first: {table['status'].iloc[0]}")
     label, divisor, unit = normalisation(ok, metric)
     value = ok[metric] if divisor is None else ok[metric] / divisor
     baseline = ok[f"baseline.{metric}"] if divisor is None \

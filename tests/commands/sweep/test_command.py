@@ -35,3 +35,16 @@ def test_a_spec_file_with_flags_or_a_robot_is_refused_by_name(tmp_path, capsys):
     assert main(["sweep", str(spec), "--robot", "solo12", "--out", str(tmp_path / "b")]) == 2
     assert "[sweep] robot" in capsys.readouterr().err
     assert not (tmp_path / "a").exists() and not (tmp_path / "b").exists()
+
+
+def test_a_sweep_where_every_point_fails_says_why_and_exits_2(tmp_path, capsys):
+    """A neutral offset the joint cannot reach: the summary gives the error of the points (it
+    printed an empty "best" line), and the command exits 2 (it exited 0)."""
+    from hexaleg.cli import main
+
+    argv = ["sweep", "--joints", "femur", "--k", "0.01", "--dead-zone", "0.4", "--offset", "1e9",
+            "--executor", "serial", "--samples", "40", "--out", str(tmp_path / "s")]
+    assert main(argv) == 2
+    out, err = capsys.readouterr()
+    assert "1 points, none evaluated without error (1 × TorqueLimitError); the first: " in out
+    assert "none evaluated" in err

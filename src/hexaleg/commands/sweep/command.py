@@ -83,6 +83,10 @@ def run(args: argparse.Namespace) -> int:
     print(summary(result.table, spec.metric))
     print(f"{result.computed} points computed, {result.reused} reused; results in "
           f"{result.directory} (part-*.parquet, one table: pandas.read_parquet(DIR))")
+    if not (result.table["status"] == "ok").any():
+        raise InvalidParameterError("sweep", f"{len(result.table)} points, none evaluated",
+                                    "a grid with at least one point the robot can walk (the "
+                                    "summary above gives each point's error)")
     return 0
 
 

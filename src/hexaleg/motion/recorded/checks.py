@@ -87,7 +87,8 @@ def check_limits(robot: Robot, q: np.ndarray, t: np.ndarray, units: dict[str, st
     elif unit == "deg":
         hint = f"; the values fit in radians: write the header '{name}' or '{name} [rad]'"
     raise InvalidParameterError(
-        f"{where} joint {name} at t = {t[k] - t[0]:.4f} s", f"{q[k, j]:.4f} rad",
+        f"{where} joint {name} at t = {t[k] - t[0]:.4f} s",
+        f"{q[k, j]:.4f} rad" if abs(q[k, j]) < 1e6 else f"{q[k, j]:.4g} rad",
         f"within its limits [{low[j]:.4f}, {high[j]:.4f}] rad{hint} (check the column's unit "
         "and the servo's zero offset)")
 

@@ -146,8 +146,16 @@ class SpringSet(Mapping[str, Spring]):
         """
         if not isinstance(data, Mapping):
             raise ConfigError(f"{where}: expected a table of joint tables, got {data!r}")
-        return cls({name: from_mapping(DeadZoneSpring, table, f"{where}.{name}")
-                    for name, table in data.items()})
+        springs = {}
+        for name, table in data.items():
+            try:
+                springs[name] = from_mapping(DeadZoneSpring, table, f"{where}.{name}")
+            except InvalidParameterError as e:  # the spring's own check: name its table
+                if type(e) is not InvalidParameterError:
+                    raise
+                raise InvalidParameterError(f"{where}.{name}: {e.name}", e.value,
+                                            e.allowed) from None
+        return cls(springs)
 
     def columns(self, robot: Robot) -> dict[str, int]:
         """Column of each sprung joint in (…, robot.nj) arrays (its velocity index − 6).
