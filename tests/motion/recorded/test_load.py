@@ -219,3 +219,25 @@ def test_a_base_whose_floor_is_not_z_0_is_named_with_its_offset(robot, gait_100h
     with pytest.raises(InvalidParameterError, match=r"base_z = \"stance feet 1\.0\d\d m above "
                        r".*subtract 1\.0\d\d m from base_z"):
         hexaleg.load_motion(robot, tmp_path / "high.csv")
+
+
+def test_a_log_of_several_cycles_taken_whole_is_named(robot, tmp_path):
+    """cycle='whole' on a five-cycle log took its energy and distance as one cycle's, five
+    times the gait's, without a word (#42): the loader says how many cycles it holds."""
+    import warnings
+
+    from hexaleg.errors import HexalegWarning
+    from hexaleg.simulation.walk_log import walk_log
+
+    walk = walk_log(robot, hexaleg.gait(robot, hexaleg.GaitParams(samples=100)), settle=0.0,
+                    cycles=5, evaluate=1)
+    path = walk.write(tmp_path / "walk.csv", ("joints", "base", "imu"))
+    with pytest.warns(HexalegWarning, match=r"holds about 5\.0 cycles of 1 s, and "
+                                            r"cycle='whole' takes all of it as one cycle"):
+        hexaleg.load_motion(robot, path, cycle="whole")
+    one = write_motion_log(robot, hexaleg.gait(robot, hexaleg.GaitParams(samples=100)),
+                           tmp_path / "one.csv")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        hexaleg.load_motion(robot, one, cycle="whole")
+    assert not any("cycles of" in str(w.message) for w in caught)

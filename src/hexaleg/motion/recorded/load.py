@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from hexaleg.checks import real, typed
-from hexaleg.errors import HexalegWarning, InvalidParameterError
+from hexaleg.errors import HexalegError, HexalegWarning, InvalidParameterError
 from hexaleg.motion.limits import MIN_SAMPLES
 from hexaleg.motion.recorded import base as _base
 from hexaleg.motion.recorded import stance as _stance
@@ -77,6 +77,22 @@ def _period(x: np.ndarray, dt: float, where: str) -> tuple[float, float]:
             return find_period(x[len(x) // 2:], dt, where)
         except InvalidParameterError:
             raise whole from None
+
+
+def _cycles_in_whole(x: np.ndarray, dt: float, where: str) -> list[str]:
+    """A note when a log taken whole (``cycle="whole"``) holds several cycles of a repeating
+    motion (the period found by :func:`~hexaleg.motion.recorded.cycle.find_period`): its
+    energy per "cycle" is then several cycles' and its distance several strides."""
+    try:
+        period, _ = find_period(x, dt, where)
+    except HexalegError:  # nothing repeats: the whole log is one motion
+        return []
+    n = len(x) * dt / period
+    if n < 1.5:
+        return []
+    return [f"{where} holds about {n:.1f} cycles of {period:.4g} s, and cycle='whole' takes "
+            "all of it as one cycle (its energy and distance per cycle are those of the whole "
+            "log); cycle='auto' averages them into one"]
 
 
 def _drift(t: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -146,6 +162,7 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
                                         "for cycle='whole' (one cycle of the gait)")
         if periodic:
             check_whole(log.matrix(joints)[span], joints, where)
+        caught += _cycles_in_whole(log.matrix(joints)[span], dt, where)
 
     # The signals averaged or windowed together: joints, base pose (drift removed), contacts.
     signals = [log.matrix(joints)[span]]
