@@ -96,3 +96,27 @@ def test_typed_checks_argument_types_against_the_annotations():
         with pytest.raises(InvalidParameterError, match=says):
             f(**kwargs)
     assert f.__doc__ == "A public function." and f.__name__ == "f"
+
+
+@pytest.mark.parametrize("name", ["ContactParams", "DeadZoneSpring", "DesignParams",
+                                  "GaitParams", "LinearSpring", "Motion", "Motor",
+                                  "OneSidedSpring", "PreloadedSpring", "StiffeningSpring",
+                                  "SweepSpec"])
+def test_a_public_dataclass_names_an_unknown_or_missing_argument(name):
+    """``GaitParams(bogus=1)`` ended in Python's TypeError (#42's fourth probe): every public
+    parameter class names the keyword, with its valid ones, or the missing argument."""
+    import dataclasses
+
+    import hexaleg
+    from hexaleg.errors import InvalidParameterError, UnknownNameError
+
+    cls = getattr(hexaleg, name)
+    fields = [f.name for f in dataclasses.fields(cls) if f.init]
+    with pytest.raises(UnknownNameError, match=rf"unknown {name} argument 'bogus'.*"
+                                               rf"{fields[0]}"):
+        cls(bogus=1)
+    required = [f for f in dataclasses.fields(cls) if f.init and f.default is dataclasses.MISSING
+                and f.default_factory is dataclasses.MISSING]
+    if required:
+        with pytest.raises(InvalidParameterError, match=rf"arguments of {name}.*missing"):
+            cls()

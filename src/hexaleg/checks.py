@@ -251,6 +251,34 @@ def _hints(fn: Callable[..., Any]) -> dict[str, tuple[type, ...]]:
     return out
 
 
+C = TypeVar("C", bound=type)
+
+
+def named_arguments(cls: C) -> C:
+    """Class decorator for a public dataclass: a keyword its constructor does not take is an
+    :class:`~hexaleg.errors.UnknownNameError` listing the fields (``GaitParams(perod=1)``), a
+    missing or surplus argument an :class:`~hexaleg.errors.InvalidParameterError` — not Python's
+    TypeError. Apply it above ``@dataclass``; the arguments bind exactly as before."""
+    init = cls.__init__  # type: ignore[misc]
+    signature = inspect.signature(init)
+    fields = [p for p in signature.parameters if p != "self"]
+
+    @functools.wraps(init)
+    def checked(self: Any, *args: Any, **kwargs: Any) -> None:
+        unknown = [k for k in kwargs if k not in signature.parameters]
+        if unknown:
+            raise UnknownNameError(f"{cls.__name__} argument", unknown[0], fields)
+        try:
+            signature.bind(self, *args, **kwargs)
+        except TypeError as e:
+            raise InvalidParameterError(f"arguments of {cls.__name__}", f"{e}",
+                                        f"those of {cls.__name__}({', '.join(fields)})") from None
+        init(self, *args, **kwargs)
+
+    cls.__init__ = checked  # type: ignore[misc]
+    return cls
+
+
 def typed(fn: F) -> F:
     """``fn`` with its arguments' types checked against its annotations at every call: a public
     entry point's wrong argument (None, a name where a robot is expected, a string where

@@ -40,7 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hexaleg.checks import positive, real
+from hexaleg.checks import named_arguments, positive, real
 from hexaleg.errors import InfeasibleForcesError, InvalidParameterError
 
 OBJECTIVES: tuple[str, ...] = ("joule", "torque_squared", "electrical", "positive_work")
@@ -52,6 +52,7 @@ CONES: tuple[str, ...] = ("soc", "pyramid")
 """Friction models: the exact second-order cone, or the inscribed (inner) linear pyramid."""
 
 
+@named_arguments
 @dataclass(frozen=True)
 class ContactParams:
     """Contact and force-distribution settings.

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from hexaleg.checks import is_real, real
+from hexaleg.checks import is_real, named_arguments, real
 from hexaleg.config import from_mapping, load_toml
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.limits import check_samples
@@ -85,6 +85,7 @@ MAX_YAW_RATE = 100.0
 """The largest turn rate :class:`GaitParams` takes, rad/s (16 turns a second)."""
 
 
+@named_arguments
 @dataclass(frozen=True)
 class GaitParams:
     """Parameters of a periodic leg-group gait (SI).

@@ -14,13 +14,14 @@ from typing import Any
 
 import numpy as np
 
-from hexaleg.checks import real
+from hexaleg.checks import named_arguments, real
 from hexaleg.errors import InvalidParameterError
 
 PERIOD_TOLERANCE = 1e-6
 """Relative tolerance of ``T · dt == period`` for a periodic :class:`Motion`."""
 
 
+@named_arguments
 @dataclass(frozen=True, eq=False)
 class Motion:
     """Sampled configuration, velocity and acceleration of the floating base and all joints.

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from hexaleg.checks import positive, real
+from hexaleg.checks import named_arguments, positive, real
 from hexaleg.errors import InvalidParameterError
 
 RPM = 2.0 * math.pi / 60.0
@@ -86,6 +86,7 @@ def as_torque_speed(tau: ArrayLike, qdot: ArrayLike) -> tuple[np.ndarray, np.nda
     return t, w
 
 
+@named_arguments
 @dataclass(frozen=True)
 class Motor:
     """A geared DC servo driving one joint.

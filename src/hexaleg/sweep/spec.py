@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from hexaleg.checks import count, integer
+from hexaleg.checks import count, integer, named_arguments
 from hexaleg.config import check_tables, load_toml
 from hexaleg.design.evaluator import DEFAULT_METRIC, METRICS, SPRING_PARAMETERS, RunSpec
 from hexaleg.design.optimal import OBJECTIVE_METRIC
@@ -89,6 +89,7 @@ def _combinations(params: Mapping[str, Any]) -> list[dict[str, Any]]:
             for combo in itertools.product(*(vals for _, vals in axes))]
 
 
+@named_arguments
 @dataclass(frozen=True)
 class SweepSpec:
     """A sweep: fixed and varied gait parameters, spring groups and their designs.

@@ -16,7 +16,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from hexaleg.checks import integer, is_real, real
+from hexaleg.checks import integer, is_real, named_arguments, real
 from hexaleg.config import check_tables, from_mapping
 from hexaleg.design.evaluator import DEFAULT_METRIC, RunSpec
 from hexaleg.design.families import FAMILIES, family
@@ -52,6 +52,7 @@ def _floats(name: str, values: Any, low: float, low_open: bool, what: str) -> tu
                       allowed=f"{what} ({'>' if low_open else '>='} {low:g})") for v in values)
 
 
+@named_arguments
 @dataclass(frozen=True)
 class DesignParams:
     """The ``[design]`` table (SI; factors relative to the nominal gait).

@@ -33,7 +33,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from hexaleg.checks import finite_array, real
+from hexaleg.checks import finite_array, named_arguments, real
 from hexaleg.errors import InvalidParameterError
 from hexaleg.robot.springs.law import ContactAngles
 from hexaleg.robot.springs.terms import Term
@@ -64,6 +64,7 @@ class TorqueBasis(NamedTuple):
     damping: np.ndarray
 
 
+@named_arguments
 @dataclass(frozen=True)
 class DeadZoneSpring(ContactAngles):
     """A dead-zone torsion spring on one joint (paper eq. 7–8, generalised).

@@ -13,11 +13,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hexaleg.checks import real
+from hexaleg.checks import named_arguments, real
 from hexaleg.robot.springs.law import TermSpring, magnitude
 from hexaleg.robot.springs.terms import Term
 
 
+@named_arguments
 @dataclass(frozen=True)
 class LinearSpring(TermSpring):
     """τ(q) = torque_at_reference − stiffness · (q − reference); U = ½ k (q − q_r)² − τ₀ (q − q_r).

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hexaleg.checks import one_of, real
+from hexaleg.checks import named_arguments, one_of, real
 from hexaleg.robot.springs.law import TermSpring, magnitude
 from hexaleg.robot.springs.terms import Term
 
@@ -24,6 +24,7 @@ SIDES: tuple[str, ...] = ("above", "below")
 """Where a one-sided spring engages: for q above its contact angle, or below it."""
 
 
+@named_arguments
 @dataclass(frozen=True)
 class OneSidedSpring(TermSpring):
     """A one-sided spring (module docstring).

@@ -19,11 +19,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hexaleg.checks import real
+from hexaleg.checks import named_arguments, real
 from hexaleg.robot.springs.law import ContactAngles, TermSpring, magnitude
 from hexaleg.robot.springs.terms import Term
 
 
+@named_arguments
 @dataclass(frozen=True)
 class PreloadedSpring(TermSpring, ContactAngles):
     """A preloaded dead-zone spring (module docstring).

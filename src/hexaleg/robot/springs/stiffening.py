@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hexaleg.checks import real
+from hexaleg.checks import named_arguments, real
 from hexaleg.errors import InvalidParameterError
 from hexaleg.robot.springs.law import TermSpring, magnitude
 from hexaleg.robot.springs.terms import Term
@@ -46,6 +46,7 @@ def _stages(name: str, stages: Sequence[Sequence[float]], outward: int) -> Stage
     return tuple(out)
 
 
+@named_arguments
 @dataclass(frozen=True)
 class StiffeningSpring(TermSpring):
     """A piecewise-linear stiffening spring (module docstring).
