@@ -91,7 +91,8 @@ def _hand_made(robot_name="hexaleg", joint="LF_femur", saving=12.5):
             "recommended": {"label": "linear", "groups": ["femur"], "parts": [],
                             "saving": {"electrical": q}, "net_saving": {"electrical": q},
                             "spring_mass": {"value": 0.01, "unit": "kg"},
-                            "springs": [{"family": "linear", "joint": joint, "parameters": {}}]}}
+                            "springs": [{"family": "linear", "joint": joint, "parameters": {
+                                "stiffness": {"value": 0.01, "unit": "N·m/rad"}}}]}}
 
 
 def test_a_design_for_another_robot_is_refused(tmp_path, robot):

@@ -61,7 +61,11 @@ def design_section(path: str | Path | None, robot: Robot | None = None) -> dict[
         return None
     path = Path(path)
     how = "write one with: hexaleg design --out DIR"
-    data = read_json(path, "design file")
+    try:
+        data = read_json(path, "design file")
+    except ConfigError as e:
+        raise ConfigError(f"[report] design = {str(path)!r}: not a design.json of hexaleg design "
+                          f"({e}); {how}") from e
     recommended_saving(data, str(path))  # a known metric; savings finite, at most 100 %
     try:
         section = _section(path, data)

@@ -57,7 +57,8 @@ def test_paper_units_are_converted(tmp_path, robot):
         "stiffness": {"value": 1, "unit": "N·m/rad"}}}}}, UnknownNameError, "LF_knee"),
     ({"springs": {"LF_femur": {"family": "linear", "parameters": {"stiffness": 1.0}}}},
      ConfigError, "unit"),
-    ({"designs": {}}, ConfigError, "springs"),
+    ({"designs": {}}, UnknownNameError,
+     "unknown key in the design file .* .designs.; valid keys.*gait, robot, springs"),
     ({"springs": [{"family": "linear", "joint": "LF_femur", "parameters": {
         "stiffness": {"value": 1, "unit": "N·m/rad"}}}] * 2}, ConfigError,
      "two springs on LF_femur"),
