@@ -76,7 +76,9 @@ def test_cli_views_a_log(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "[gait]" in err and "period" in err and "--motion" in err
     assert main(["view", "--motion", "gati", "--html", str(out)]) == 2
-    assert "gait, transform, or a log file" in capsys.readouterr().err
+    assert ("one of gait, transform, or a log of the robot's own gait (a CSV or NPZ file, or "
+            "a ROS 2 bag directory; docs/motion.md): gati does not exist (did you mean 'gait'?)"
+            in capsys.readouterr().err)
     assert main(["view", "--motion", "transform", "--cycle", "whole", "--html", str(out)]) == 2
     assert "--cycle only with --motion FILE" in capsys.readouterr().err
 

@@ -20,7 +20,7 @@ from pathlib import Path
 from hexaleg.commands.options import load_run
 from hexaleg.config import from_mapping
 from hexaleg.dynamics.prepare import prepare
-from hexaleg.errors import InvalidParameterError
+from hexaleg.errors import InvalidParameterError, did_you_mean
 from hexaleg.motion.recorded.bag import bag_directory
 from hexaleg.motion.trajectory import Motion
 from hexaleg.motion.transform import transform_motion
@@ -78,7 +78,7 @@ def _shown(config: str | Path | None, motion: str | None, joints: str, robot: st
         log = None if motion is None or motion in MOTIONS else motion
         if log is not None and not (Path(log).is_file() or bag_directory(Path(log))):
             what = ("exists but is not a regular file or a ROS 2 bag directory"
-                    if Path(log).exists() else "does not exist")
+                    if Path(log).exists() else "does not exist" + did_you_mean(log, MOTIONS))
             raise InvalidParameterError("motion", motion, f"one of {', '.join(MOTIONS)}, or a "
                                         "log of the robot's own gait (a CSV or NPZ file, or a "
                                         f"ROS 2 bag directory; docs/motion.md): {log} {what}")
