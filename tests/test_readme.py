@@ -310,6 +310,18 @@ def test_docs_report_page_numbers_are_the_default_report(report):
     _check("the fold with springs (J)", fold["totals"]["electrical"]["with_springs"]["value"],
            with_)
     _check("the fold's saving (%)", fold["totals"]["electrical"]["saving"]["value"], saving)
+    for metric, label in (("electrical", "electrical"), ("joule", "joule"),
+                          ("positive_work", "positive work")):
+        answer, paper, base, s_answer, s_paper = said(
+            rf"\| {label} \| {{n}} J \| {{n}} J \| {{n}} J \| {{n}} %, {{n}} % \|")
+        mine, ref = report["energy"]["totals"][metric], report["reference"]["energy"][metric]
+        _check(f"the answer's {metric} (J)", mine["with_springs"]["value"], answer)
+        _check(f"the reference's {metric} (J)", ref["with_springs"]["value"], paper)
+        _check(f"the baseline's {metric} (J)", mine["baseline"]["value"], base)
+        _check(f"the answer's {metric} saving (%)", mine["saving"]["value"], s_answer)
+        _check(f"the reference's {metric} saving (%)", ref["saving"]["value"], s_paper)
+    (usage,) = said(r"With them the peak friction usage is {n} \(μ = 0\.6\)")
+    _check("the peak friction usage", report["forces"]["peak_friction_usage"]["value"], usage)
     rise, held = said(r"the motors' net work rises from {n} J \(= m g Δz_com\) by the {n} J")
     _check("m g Δz_com (J)", fold["potential_energy_rise"]["value"], rise)
     _check("the energy the springs hold (J)", fold["net_work"]["with_springs"]["value"]

@@ -34,8 +34,6 @@ from hexaleg.robot.springs import SpringSet
 
 FITTED: tuple[str, ...] = ("current", "power")
 """The measurements that identify an actuator (a torque column only replaces the analysis')."""
-TORQUE_SOURCES: tuple[str, ...] = ("logged", "analysis")
-"""Where an identification's output torques came from."""
 
 
 @dataclass(frozen=True)
@@ -140,4 +138,4 @@ def identify_motion(robot: Robot, motion: Motion, motor: Motor | MotorSet, *,
     return out
 
 
-__all__ = ["FITTED", "TORQUE_SOURCES", "ActuatorFit", "identify_motion"]
+__all__ = ["FITTED", "ActuatorFit", "identify_motion"]
