@@ -42,14 +42,19 @@ moves the tests elsewhere)."""
 
 LONG_FIRST = ("test_examples.py", "test_notebooks.py")
 """Modules whose tests each run a whole study (a kept example, a notebook: up to ~100 s)."""
+LONGEST = ("test_example_prints_its_log[codesign_hexaleg]",)
+"""The one study longer than all the others together (the full co-design, ~300 s of the slow
+suite's ~450 s of CPU): first of all, so that the other worker runs the rest meanwhile (it
+started about two minutes in, and the slow suite took 7 min 13 s on two cores)."""
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
-    """The whole-study tests first, the rest in their order: pytest-xdist hands tests to its
-    workers in collection order, and these come last alphabetically, so one worker ran a
-    100-s example while the other had finished (longest-processing-time-first scheduling,
-    Graham, "Bounds on multiprocessing timing anomalies", SIAM J. Appl. Math. 17, 1969)."""
-    items.sort(key=lambda item: item.path.name not in LONG_FIRST)
+    """The longest study first, then the whole-study tests, the rest in their order:
+    pytest-xdist hands tests to its workers in collection order, and these come last
+    alphabetically, so one worker ran a 100-s example while the other had finished
+    (longest-processing-time-first scheduling, Graham, "Bounds on multiprocessing timing
+    anomalies", SIAM J. Appl. Math. 17, 1969)."""
+    items.sort(key=lambda item: (item.name not in LONGEST, item.path.name not in LONG_FIRST))
 
 
 @pytest.fixture(scope="session", autouse=True)

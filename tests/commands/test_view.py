@@ -190,7 +190,7 @@ window.addEventListener('load', () => { const r = document.getElementById('legen
 </script></body>"""))
     profile = tmp_path / "profile"
     dom = subprocess.run([chromium(), *CHROMIUM_FLAGS, f"--user-data-dir={profile}",
-                          "--window-size=1400,900", "--virtual-time-budget=2000", "--dump-dom",
+                          "--window-size=1400,900", "--virtual-time-budget=600", "--dump-dom",
                           probe.as_uri()], capture_output=True, text=True, timeout=180).stdout
     box = json.loads(html.unescape(re.search(r'data-legend="([^"]*)"', dom).group(1)))
     assert box["width"] == 1400
