@@ -9,19 +9,16 @@ from __future__ import annotations
 import argparse
 import functools
 import os
-import re
 import sys
 import textwrap
 import warnings
 from collections.abc import Callable, Sequence
-from typing import NoReturn, TextIO
+from typing import TextIO
 
 from hexaleg import __version__
-from hexaleg.commands.options import (  # no loader: it loads with a run
-    CYCLE_HELP,
-    add_motion_option,
-)
-from hexaleg.errors import HexalegError, HexalegWarning, InvalidParameterError, did_you_mean
+from hexaleg.commands.options import add_motion_option  # no loader: it loads with a run
+from hexaleg.commands.parser import GUIDE, START, TEXT_OPTIONS, Parser, nonempty
+from hexaleg.errors import HexalegError, HexalegWarning, InvalidParameterError
 from hexaleg.robot.registry import ROBOT_HELP  # loaded by `import hexaleg` already
 from hexaleg.simulation.controllers import CONTROLLERS  # no MuJoCo: it loads with a model
 
@@ -36,7 +33,6 @@ def _add_robot(sub: argparse._SubParsersAction) -> None:
 
 
 def _run_robot(args: argparse.Namespace) -> int:
-    from hexaleg.errors import InvalidParameterError
     from hexaleg.robot.model import load_robot
     from hexaleg.robot.registry import load
     from hexaleg.robot.sanity import robot_findings
@@ -59,59 +55,6 @@ def _warn_lines(lines: Sequence[str]) -> None:
     ``warning:`` line each."""
     for line in lines:
         print(f"warning: {line}")
-
-
-def _add_motors(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("motors", help="servo catalogue: gear ratio, torque constant, resistance, "
-                                      "gearbox efficiency, Joule coefficient, datasheet")
-    p.add_argument("names", nargs="*", help="motor names (default: the whole catalogue)")
-    p.add_argument("--identify", metavar="LOG", help="fit the robot's actuators to a log of its "
-                   "own gait with current_<joint> (A) and/or power_<joint> (W) columns, "
-                   "optionally torque_<joint> (N·m): k_t G, gearbox efficiency and Joule "
-                   "coefficient by least squares, with residuals and a [motor] table to use")
-    p.add_argument("--robot", help=ROBOT_HELP + " (with --identify; default hexaleg)")
-    p.add_argument("--config", help="with --identify: TOML file whose [motor] and [contact] "
-                                    "tables describe the actuators as known before")
-    p.add_argument("--cycle", default="auto",
-                   help=CYCLE_HELP.replace("with --motion", "with --identify"))
-    p.set_defaults(func=_run_motors)
-
-
-def _run_motors(args: argparse.Namespace) -> int:
-    from hexaleg.robot.catalogue import CATALOGUE, catalogue_table, motor
-
-    if args.identify is None:
-        for flag in ("robot", "config"):
-            if getattr(args, flag) is not None:
-                raise InvalidParameterError(f"--{flag}", getattr(args, flag),
-                                            "only with --identify LOG")
-        if args.cycle != "auto":
-            raise InvalidParameterError("--cycle", args.cycle, "only with --identify LOG")
-        print(catalogue_table({n: motor(n) for n in args.names} if args.names else None))
-        return 0
-    if args.names:
-        raise InvalidParameterError("names", " ".join(args.names), "none with --identify: the "
-                                    "actuators are the robot's (its description, or [motor])")
-    from hexaleg.commands.options import load_run
-    from hexaleg.dynamics.identification import identify_motion
-    from hexaleg.report.config import ReportConfig
-
-    run = load_run(args.robot, args.config, args.identify, args.cycle, args)
-    known = ReportConfig.from_scenario(run)
-    fits = identify_motion(run.model, run.played(), known.motor, contact=known.contact)
-    for fit in fits.values():
-        print("\n".join(fit.lines()))
-    base = known.motor.name
-    if len(fits) == 1 and base in CATALOGUE:  # the table that makes it every command's motor
-        m = next(iter(fits.values())).identification.motor
-        print(f"\n[motor]  # identified from {args.identify}\nbase = \"{base}\"\n"
-              f"torque_constant = {m.torque_constant:.6g}\nresistance = {m.resistance:.6g}\n"
-              f"gearbox_efficiency = {m.gearbox_efficiency:.6g}")
-    else:
-        print(f"\nno [motor] table printed: {base} is not one catalogue motor (a [motor] table "
-              "with every field, or one per joint class in the robot's description: "
-              "docs/energy.md)")
-    return 0
 
 
 def _add_paper(sub: argparse._SubParsersAction) -> None:
@@ -332,89 +275,16 @@ def _run_simulate(args: argparse.Namespace) -> int:
     return 0
 
 
-SUBCOMMANDS = [_add_robot, _add_motors, _add_gait, _add_paper, _add_report, _add_design,
+SUBCOMMANDS = [_add_robot, __import__("hexaleg.commands.motors", fromlist=["add"]).add,
+               _add_gait, _add_paper, _add_report, _add_design,
                _add_view, __import__("hexaleg.commands.sweep.command", fromlist=["add"]).add,
                _add_simulate,
                __import__("hexaleg.commands.codesign.command", fromlist=["add"]).add]
 """Parser builders, one per subcommand, in the order ``--help`` lists them."""
 
 
-class _Parser(argparse.ArgumentParser):
-    """argparse's parser whose usage errors suggest the command or option meant (``hexaleg
-    desing`` → ``design``; ``--robt`` → ``--robot``)."""
-
-    def error(self, message: str) -> NoReturn:
-        choice = re.search(r"invalid choice: '([^']*)' \(choose from (.*)\)", message)
-        if choice:
-            message += did_you_mean(choice.group(1), re.findall(r"'([^']*)'", choice.group(2)))
-        unknown = re.search(r"unrecognized arguments: (-[-\w]*)", message)
-        if unknown:
-            options = [o for a in self._all_actions() for o in a.option_strings]
-            message += did_you_mean(unknown.group(1), options)
-        super().error(message)
-
-    def _all_actions(self) -> list[argparse.Action]:
-        """This parser's actions and those of the subcommand parsers below it."""
-        out = list(self._actions)
-        for action in self._actions:
-            if isinstance(action.choices, dict):
-                for sub in action.choices.values():
-                    out += sub._actions
-        return out
-
-
-GUIDE: dict[str, tuple[str, tuple[str, ...]]] = {
-    "robot": ("under a second", ("hexaleg robot", "hexaleg robot --robot my_robot.toml")),
-    "motors": ("under a second; --identify a few seconds", (
-        "hexaleg motors", "hexaleg motors AX-18A XM430-W350",
-        "hexaleg motors --identify walk.csv")),
-    "gait": ("about 2 s", ("hexaleg gait", "hexaleg gait --robot solo12")),
-    "paper": ("about 7 s", ("hexaleg paper", "hexaleg paper --out paper-results")),
-    "report": ("about 5 s", ("hexaleg report", "hexaleg report --design "
-                                               "hexaleg-design/design.json")),
-    "design": ("about 20 s on the built-in robot, minutes on a heavy quadruped",
-               ("hexaleg design", "hexaleg design --controller position --out my-design")),
-    "view": ("about 2 s to draw", ("hexaleg view", "hexaleg view --html walk.html",
-                                   "hexaleg view --simulation hexaleg-simulate")),
-    "sweep": ("about 2 s for a 40-point grid", ("hexaleg sweep --joints femur --k 0:0.05:41 "
-                                                "--dead-zone 0.4", "hexaleg sweep spec.toml")),
-    "simulate": ("about 3 s", ("hexaleg simulate", "hexaleg simulate --springs "
-                                                   "hexaleg-design/design.json --controller "
-                                                   "position")),
-    "codesign": ("about 5 minutes", ("hexaleg codesign",
-                                                           "hexaleg codesign --speed 0.1")),
-}
-"""Per command: how long it takes on the built-in robot (measured on two cores, nothing else
-running) and examples. ``--help`` shows both; the README's command table quotes the times
-(``tests/test_readme.py``)."""
-START = """start with:
-  hexaleg report      which springs to fit, and the gait's energy with them (about 5 s)
-  hexaleg design      the full answer: every spring family, the springs to buy (about 20 s)
-  hexaleg simulate    the report's answer checked in a MuJoCo simulation (about 3 s)
-  hexaleg view        the gait in the browser, foot forces and joint colours
-
-each command: hexaleg COMMAND --help (what it writes, how long it takes, examples);
-the documentation is docs/ in the source repository"""
-"""The top-level ``--help``'s closing lines: where a newcomer starts."""
-
-
-TEXT_OPTIONS = ("out", "config", "robot", "design", "springs", "html", "identify", "host",
-                "simulation", "motion", "scheduler", "spec", "urdf", "srdf", "cycle", "pattern")
-"""The options that take a name or a path: each refuses an empty value (``--out ""`` once
-wrote into the working directory, ``--html ""`` served instead of writing, ``--host ""``
-listened on every interface)."""
-
-
-def _nonempty(text: str) -> str:
-    """An option's value when it is not empty (:data:`TEXT_OPTIONS`)."""
-    if not text.strip():
-        raise argparse.ArgumentTypeError("an empty value; give a name or a path, or leave the "
-                                         "option out for its default")
-    return text
-
-
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(
+    parser = Parser(
         prog="hexaleg",
         description="Whole-robot dynamics and energy analysis of legged robots with nonlinear "
                     "elastic joints.", epilog=START,
@@ -426,7 +296,7 @@ def build_parser() -> argparse.ArgumentParser:
     for p in sub.choices.values():  # an empty name or path is an error, not the default
         for a in p._actions:
             if a.dest in TEXT_OPTIONS and a.type is None:
-                a.type = _nonempty
+                a.type = nonempty
     for action in sub._choices_actions:  # each command's --help: what, how long, examples
         time, examples = GUIDE[action.dest]
         p = sub.choices[action.dest]
