@@ -271,7 +271,9 @@ def test_report_for_a_registry_robot(name, tmp_path, capsys, upstream_placeholde
     own = description(name).motor is not None
     assert own == (name in ("solo12", "a1"))
     assert (f"note: {description(name).title}" in out) != own
-    assert ("names no catalogue motor" in out and "Generic actuator" in out) != own
+    assert ("names no catalogue motor" in out and "a generic actuator from its URDF limits"
+            in out) != own
+    assert max(len(line) for line in out.splitlines()) < 600  # one 3000-character note was
     data = json.loads((tmp_path / "out" / "report.json").read_text())
     desc, robot = description(name), robot_of(name)
     if own:

@@ -266,8 +266,9 @@ class ReportConfig:
                        (not isinstance(desc.motor, str) and k not in named)]
             if generic:
                 notes.append(f"{desc.title} names no catalogue motor for {', '.join(generic)}: "
-                             f"the actuator there is built from its URDF limits. "
-                             f"{config.motor.notes}")
+                             "a generic actuator from its URDF limits there, every other "
+                             "constant assumed (each with its value in the page's motor section "
+                             "and report.json's motor notes)")
         return dataclasses.replace(config, gait=gait, springs=springs, report=report,
                                    notes=tuple(notes), robot_description=desc)
 
