@@ -18,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from hexaleg.design.chain.chain import DesignChain
+from hexaleg.design.chain.ranking import under
 
 
 def pct(x: float) -> str:
@@ -57,12 +58,14 @@ def main() -> None:
         mark = "  <- recommended" if c is r.recommended else ""
         print(f"  {f:8.2f} × {np.abs(a.tau_spring).max():7.4f} {1e3 * a.spring_energy.max():6.2f}mJ"
               f" {pct(c.row[f'saving.{m}'])} {pct(c.net[m])} {pct(c.row['saving.joule'])}{mark}")
-    print(f"\nevery design simulated under the {r.config.design.controller} servo ({m} saving)")
-    print(f"  {'design':40s} {'predicted':>10s} {'simulated':>10s} {'sim. net':>10s}")
+    print(f"\nevery design simulated under {under(r.config.design.controller)} ({m} saving)")
+    print(f"  {'design':40s} {'servo':11s} {'predicted':>10s} {'simulated':>10s} "
+          f"{'sim. net':>10s}")
     for row in r.ranking:
         sim = pct(row.simulated) if row.simulated is not None else f"{row.verdict:>10s}"
         flag = "  under half the prediction" if row.flagged else ""
-        print(f"  {row.candidate.label:40s} {pct(row.predicted)} {sim} {pct(row.net)}{flag}")
+        print(f"  {row.candidate.label:40s} {row.controller:11s} {pct(row.predicted)} {sim} "
+              f"{pct(row.net)}{flag}")
     t = r.tolerance
     if t is not None:
         print(f"\nstops mounted within ±{np.degrees(t.tolerance):g}° ({m} saving): nominal / worst")

@@ -20,7 +20,7 @@ from hexaleg.commands.options import add_motion_option  # no loader: it loads wi
 from hexaleg.commands.parser import GUIDE, START, TEXT_OPTIONS, Parser, nonempty
 from hexaleg.errors import HexalegError, HexalegWarning, InvalidParameterError
 from hexaleg.robot.registry import ROBOT_HELP  # loaded by `import hexaleg` already
-from hexaleg.simulation.controllers import CONTROLLERS  # no MuJoCo: it loads with a model
+from hexaleg.simulation.controllers import CONTROLLERS, SERVOS  # no MuJoCo: it loads with a model
 
 
 def _add_robot(sub: argparse._SubParsersAction) -> None:
@@ -191,9 +191,10 @@ def _add_design(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--robot", default="hexaleg", help=ROBOT_HELP + " (default %(default)s)")
     p.add_argument("--config", help="TOML file with optional [gait], [contact] and [design] "
                                     "tables (docs/design.md)")
-    p.add_argument("--controller", choices=CONTROLLERS,
+    p.add_argument("--controller", choices=SERVOS,
                    help="the servo the robot runs, which the designs are simulated and ranked "
-                        "under (default: the config's [design] controller, else feedforward)")
+                        "under; both: each, ranked by the worse (default: the config's [design] "
+                        "controller, else both)")
     p.add_argument("--out", default="hexaleg-design",
                    help="output directory (default: %(default)s)")
     add_motion_option(p, _run_design, "design.json")

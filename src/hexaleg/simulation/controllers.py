@@ -42,6 +42,21 @@ from hexaleg.simulation.mjcf import fmt
 
 CONTROLLERS: tuple[str, ...] = ("feedforward", "position")
 """The controllers (module docstring), default first."""
+BOTH = "both"
+"""The servo of a robot that may run either controller: a design is judged under each, by the
+worse (``[design] controller``, ``[codesign] controller``)."""
+SERVOS: tuple[str, ...] = (BOTH, *CONTROLLERS)
+"""What a design may be ranked under: :data:`BOTH` (the default) or one controller."""
+
+
+def controllers_of(servo: str) -> tuple[str, ...]:
+    """The controllers a design is simulated under for ``servo`` (one of :data:`SERVOS`): both
+    for :data:`BOTH`, else the one named.
+
+    Raises:
+        UnknownNameError: not one of :data:`SERVOS` (lists them).
+    """
+    return CONTROLLERS if one_of("controller", servo, SERVOS) == BOTH else (servo,)
 COMPLIANCE = float(np.deg2rad(32 * 0.29))
 """rad: joint error at which a servo gives its stall torque — the AX-12/AX-18 default compliance
 slope of 32 steps × 0.29°."""

@@ -17,8 +17,8 @@ from hexaleg.design.chain.ranking import (
 from hexaleg.design.robustness import Condition, condition_prepared
 
 
-def _row(candidate, predicted, simulated, net):
-    return Simulated(candidate, "position", predicted, simulated,
+def _row(candidate, predicted, simulated, net, controller="position"):
+    return Simulated(candidate, controller, predicted, simulated,
                      "walks" if simulated is not None else "fell", net)
 
 
@@ -39,6 +39,29 @@ def test_the_best_simulated_buildable_design_wins(design_written):
             _row(other, 0.20, None, -np.inf)]
     assert best_simulated(rows) is rows[0]  # the fallen and the unbuildable are out
     assert best_simulated([rows[1], rows[2]]) is None
+
+
+def test_under_both_servos_a_design_is_judged_by_its_worse(design_written):
+    """A design that saves most under feedforward but least under position-only loses to one
+    whose worse servo is better; one that falls under either servo is never recommended."""
+    r = design_written[0].result
+    a, b = r.candidates[0], r.candidates[1]
+    rows = [_row(a, 0.3, 0.30, 0.29, "feedforward"), _row(b, 0.2, 0.20, 0.19, "feedforward"),
+            _row(a, 0.3, 0.10, 0.09, "position"), _row(b, 0.2, 0.18, 0.17, "position")]
+    assert best_simulated(rows) is rows[3]  # b, as its worse (position) row
+    assert best_simulated(rows[:2]) is rows[0]  # under feedforward alone, a
+    fell = [_row(a, 0.3, 0.30, 0.29, "feedforward"), _row(a, 0.3, None, -np.inf, "position"),
+            *rows[1::2]]
+    assert best_simulated(fell).candidate is b
+    assert best_simulated(fell[:2]) is None
+
+
+def test_an_unknown_servo_is_refused_by_name(design_written):
+    from hexaleg.errors import UnknownNameError
+
+    r = design_written[0].result
+    with pytest.raises(UnknownNameError, match="both"):
+        simulate_candidates(None, [r.recommended], "torque", "electrical")
 
 
 def test_each_candidate_is_simulated_once_beside_one_baseline(design_written):

@@ -13,9 +13,10 @@ DesignResult`. The stages, in order (:data:`STAGES`; the work of each is in
 2. ``pareto``: the best buildable family's optimum with the spring torque bounded to fractions
    of its peak;
 3. ``ranking``: every family optimum and Pareto point simulated forward in MuJoCo under the
-   servo the robot runs (``[design] controller``, :mod:`hexaleg.design.chain.ranking`); the
-   recommendation is the best *simulated* buildable design net of its springs' mass (without
-   this stage: the best predicted one);
+   servo the robot runs (``[design] controller``, :mod:`hexaleg.design.chain.ranking`; by
+   default under both controllers, each design judged by the worse); the recommendation is the
+   best *simulated* buildable design net of its springs' mass (without this stage: the best
+   predicted one);
 4. ``tolerance``: the recommendation designed for its worst saving over the stops' mounting
    error within ``[design] stop_tolerance`` (:func:`hexaleg.design.tolerance.tolerant_springs`);
 5. ``envelope``: each part's stress over its joints' whole range, poses and a turn, the hard
@@ -45,7 +46,7 @@ from typing import Any
 
 from hexaleg.design.chain.candidates import Candidate
 from hexaleg.design.chain.config import DesignConfig, DesignParams
-from hexaleg.design.chain.ranking import Simulated, best_simulated, simulate_candidates
+from hexaleg.design.chain.ranking import Simulated, best_simulated, simulate_candidates, under
 from hexaleg.design.chain.result import MIN_SAVING, DesignResult
 from hexaleg.design.chain.stages import (
     LOGGED_SKIP,
@@ -171,10 +172,10 @@ class DesignChain:
                 rec = best.candidate
             else:
                 rec = next((c for c in pool if c.buildable), pool[0])
-                notes.append(f"no buildable design walked under the {d.controller} servo: the "
+                notes.append(f"no buildable design walked under {under(d.controller)}: the "
                              "recommendation is the best predicted one")
-            self._step("ranking", f"{len(rows)} designs simulated under the {d.controller} "
-                       f"servo: recommended {rec.label}")
+            self._step("ranking", f"{len({id(r.candidate) for r in rows})} designs simulated "
+                       f"under {under(d.controller)}: recommended {rec.label}")
             return tuple(rows), rec, tuple(notes)
         return self._once("ranking", compute)
 
@@ -306,7 +307,7 @@ class DesignChain:
         logged = ([LOGGED_SKIP] if nom.motion is not None
                   else [] if d.robustness else [UNMAPPED])
         ranked = (f"ranked by the {d.metric} saving net of the springs' mass, simulated under "
-                  f"the {d.controller} servo" if "ranking" in w else
+                  f"{under(d.controller)}" if "ranking" in w else
                   f"ranked by the predicted {d.metric} saving net of the springs' mass (not "
                   "simulated)")
         residual = nom.prepared.residual.line() if nom.prepared.residual is not None else None

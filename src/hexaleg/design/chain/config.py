@@ -32,7 +32,7 @@ from hexaleg.motion.scaling import robot_gait
 from hexaleg.motion.trajectory import Motion
 from hexaleg.scenario.scenario import TABLES as RUN_TABLES
 from hexaleg.scenario.scenario import Scenario
-from hexaleg.simulation.controllers import CONTROLLERS
+from hexaleg.simulation.controllers import BOTH, SERVOS
 
 TABLES: tuple[str, ...] = ("gait", "contact", "design")
 """Tables ``hexaleg design`` reads; a config file may hold the other commands' too
@@ -95,9 +95,10 @@ class DesignParams:
             nominal gait) or ``"mean"``.
         pareto_fractions: ``max_torque`` of the Pareto points as fractions (0, 1) of the
             recommended design's peak spring torque.
-        controller: The servo the robot runs (:data:`~hexaleg.simulation.controllers.
-            CONTROLLERS`): every ranked design is simulated under it and the recommendation is
-            the best simulated one.
+        controller: The servo the robot runs (:data:`~hexaleg.simulation.controllers.SERVOS`):
+            ``"feedforward"`` or ``"position"``, every ranked design simulated under it and the
+            recommendation the best simulated one; ``"both"`` (default, a robot that may run
+            either), every design simulated under each and ranked by the worse.
         min_group_saving: A joint class whose springs' worth (the ranking metric's saving lost
             without them all) is below this fraction of the baseline (default 0.01: one point)
             is not fitted, whatever the grouping.
@@ -142,7 +143,7 @@ class DesignParams:
     robust_mu: tuple[float, ...] = (0.5, 1.0)
     robust_mode: str = "worst"
     pareto_fractions: tuple[float, ...] = (0.25, 0.5, 0.75)
-    controller: str = "feedforward"
+    controller: str = BOTH
     min_group_saving: float = 0.01
     stop_tolerance: float = math.pi / 180
     life_cycles: float = 1e7
@@ -222,8 +223,8 @@ class DesignParams:
                                             low_open=True, high_open=True,
                                             allowed="fractions in (0, 1)")
                                        for f in self.pareto_fractions))
-        if self.controller not in CONTROLLERS:
-            raise UnknownNameError("design.controller", self.controller, CONTROLLERS)
+        if self.controller not in SERVOS:
+            raise UnknownNameError("design.controller", self.controller, SERVOS)
         set_("min_group_saving", real("design.min_group_saving", self.min_group_saving, low=0.0,
                                       high=1.0, allowed="a fraction in [0, 1] of the baseline"))
         set_("stop_tolerance", real("design.stop_tolerance", self.stop_tolerance, low=0.0,

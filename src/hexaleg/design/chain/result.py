@@ -65,8 +65,9 @@ class DesignResult:
         maps: The robustness maps. worst: Metric → (worst saving over the maps, its
             condition's label).
         robust: The robust design, or None when the box is the nominal gait alone.
-        ranking: Every ranked design simulated under ``[design] controller``
-            (:mod:`hexaleg.design.chain.ranking`), in the order ranked.
+        ranking: Every ranked design simulated under each controller of ``[design]
+            controller`` (:mod:`hexaleg.design.chain.ranking`): the designs in the order
+            ranked, a controller's rows after another's.
         tolerance: The recommendation against its tolerance-blind self over the stops'
             mounting error (:class:`~hexaleg.design.tolerance.TolerantSprings`), or None.
         envelope: Each bought part over its whole envelope, and the hard stop it needs.
@@ -217,7 +218,7 @@ def candidate_data(c: Candidate, outer: dict[str, tuple[float, str]]) -> dict[st
 
 
 def ranking_data(r: Simulated) -> dict[str, Any]:
-    """One ranked design simulated under the design's controller."""
+    """One ranked design simulated under one of the design's controllers."""
     return {"label": r.candidate.label, "controller": r.controller, "verdict": r.verdict,
             "predicted_saving": quantity(100 * r.predicted, "%"),
             "simulated_saving": (None if r.simulated is None
