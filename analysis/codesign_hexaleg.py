@@ -22,6 +22,8 @@ from pathlib import Path
 import hexaleg
 from hexaleg.commands.codesign.write import write_result
 from hexaleg.design.codesign.rules import per_metre
+from hexaleg.robot.registry import description
+from hexaleg.simulation.run import Settings, simulate
 
 
 def main() -> None:
@@ -36,6 +38,11 @@ def main() -> None:
     print("chosen gait: " + ", ".join(f"{p} {getattr(r.chosen, p):.3g}" for p in
                                       ("body_height", "foot_radius", "step_height",
                                        "duty_factor", "period")))
+    k = r.chosen_finalist
+    pick, top = r.finalists[k], r.finalists[0]
+    print(f"servo check: finalist {k + 1} of {len(r.finalists)} chosen under both servos: "
+          f"{pick.worst:.1f} J/m simulated under the worse (the search's best "
+          f"{top.worst:.1f} J/m), predicted {pick.point.per_metre_springs:.1f} J/m")
     held = all((v >= b) if k == "min" else (v <= b) for v, b, _u, k in r.measures.values())
     print(f"every constraint holds: {held}")
     use, bound = r.measures["friction"][:2]
@@ -59,9 +66,13 @@ def main() -> None:
     print(f"  reproduced by tripod_gait + evaluate within 1 %: "
           f"{abs(energy(rec.optimum.springs) / bought - 1) < 0.01}")
     t = d.tolerance
-    print(f"  stops within ±{math.degrees(t.tolerance):g}°: worst electrical saving "
-          f"{100 * t.worst['tolerant']:.1f} % tolerant, {100 * t.worst['blind']:.1f} % "
-          f"tolerance-blind; built: {t.chosen}")
+    if t is None:
+        print(f"  stops within ±{math.degrees(d.config.design.stop_tolerance):g}°: "
+              f"{rec.family} springs have no stop to mount")
+    else:
+        print(f"  stops within ±{math.degrees(t.tolerance):g}°: worst electrical saving "
+              f"{100 * t.worst['tolerant']:.1f} % tolerant, {100 * t.worst['blind']:.1f} % "
+              f"tolerance-blind; built: {t.chosen}")
     bar = 100 * d.config.design.min_group_saving
     print(f"  parsimony: {len(rec.optimum.groups)} classes fitted, {len(rec.dropped)} left out "
           f"under the {bar:g} point bar")
@@ -80,6 +91,18 @@ def main() -> None:
     print(f"MuJoCo with the springs to buy: walked within 3 % of the plan: "
           f"{abs(sim['walked'] / sim['planned'] - 1) < 0.03}, simulated saving within 2 points "
           f"of the predicted: {abs(sim['simulated'] - sim['predicted']) <= 0.02}")
+    for row in d.simulation:
+        kept = row["simulated"] / row["predicted"]
+        print(f"  {row['label']}, mu {r.constraints.mu:g}: keeps {kept:.2f} of the predicted "
+              f"saving (at least 0.85: {kept >= 0.85})")
+    motor = description("hexaleg").actuator(robot)
+    for controller in ("feedforward", "position"):  # a grippier floor than designed for
+        s = simulate(robot, hexaleg.gait(robot, r.chosen), motor, rec.optimum.springs,
+                     Settings(force_samples=0, controller=controller),
+                     contact=hexaleg.ContactParams(mu=1.0))
+        kept = s.simulated()[2] / s.predicted()[2]
+        print(f"  {controller}, mu 1: keeps {kept:.2f} of the predicted saving (at least 0.85: "
+              f"{kept >= 0.85})")
 
 
 if __name__ == "__main__":

@@ -42,6 +42,13 @@ FAIL = 3.0
 the default gait (so the simplex is pulled back towards gaits that exist)."""
 WEIGHT = 10.0
 """A constraint's relative violation costs this many reference energies per metre."""
+FINALISTS = 6
+"""How many of the best distinct feasible gaits the search hands on (:attr:`SearchResult.
+finalists`): the co-design simulates each before it chooses (:mod:`hexaleg.design.codesign.
+servo`)."""
+SPACING = 0.05
+"""Two finalists differ by at least this distance in the parameters scaled to [0, 1] (the best
+of a cluster stands for it: a simplex's last evaluations are near-copies of its best)."""
 
 
 @dataclass(frozen=True)
@@ -121,6 +128,8 @@ class SearchResult:
         evaluations: Candidates evaluated (cache hits not counted). wall: s.
         history: Every evaluation's value, J/m, in order.
         method: The optimiser and its settings, for the record.
+        finalists: Up to :data:`FINALISTS` feasible gaits, best first, each the best of those
+            within :data:`SPACING` of it (``best`` first when it is feasible).
     """
 
     best: GaitPoint
@@ -130,6 +139,7 @@ class SearchResult:
     wall: float
     history: tuple[float, ...]
     method: str
+    finalists: tuple[GaitPoint, ...] = ()
 
     @property
     def spread(self) -> float:
@@ -197,8 +207,26 @@ def search(evaluate: Callable[[GaitParams], GaitPoint], base: GaitParams, speed:
                         evaluations=len(history), wall=time.perf_counter() - start,
                         history=tuple(history),
                         method=f"scipy Nelder-Mead (adaptive), {len(bests)} restarts, "
-                               f"budget {budget} evaluations, parameters scaled to [0, 1]")
+                               f"budget {budget} evaluations, parameters scaled to [0, 1]",
+                        finalists=finalists(cache))
 
 
-__all__ = ["FAIL", "RESTARTS", "WEIGHT", "SearchResult", "Space", "default_space", "penalised",
-           "search"]
+def finalists(cache: Mapping[tuple[float, ...], tuple[float, GaitPoint]]
+              ) -> tuple[GaitPoint, ...]:
+    """The best distinct feasible gaits of a search's evaluations (scaled point → value and
+    point): in ascending value (ties by the scaled point, so the order is the same whatever
+    order they were evaluated in), each kept when it is at least :data:`SPACING` from every one
+    kept before it, up to :data:`FINALISTS`."""
+    kept: list[tuple[np.ndarray, GaitPoint]] = []
+    for key, (_value, point) in sorted(cache.items(), key=lambda kv: (kv[1][0], kv[0])):
+        u = np.array(key)
+        if not point.feasible or any(np.linalg.norm(u - v) < SPACING for v, _ in kept):
+            continue
+        kept.append((u, point))
+        if len(kept) == FINALISTS:
+            break
+    return tuple(p for _, p in kept)
+
+
+__all__ = ["FAIL", "FINALISTS", "RESTARTS", "SPACING", "WEIGHT", "SearchResult", "Space",
+           "default_space", "finalists", "penalised", "search"]

@@ -16,7 +16,7 @@ def test_writes_json_page_and_plot(codesigned, tmp_path):
     assert names == ["codesign.html", "codesign.json", "speed.png"]
     assert json.loads((tmp_path / "out" / "codesign.json").read_text()) == data
     page = (tmp_path / "out" / "codesign.html").read_text()
-    assert "best gait, its springs" in page and "data:image/png;base64," in page
+    assert "chosen gait, its springs" in page and "data:image/png;base64," in page
     # without the rules the page says its springs are the ideal ones, not the springs to buy
     assert "an upper bound" in page and "friction cone used by the planned forces" in page
     assert set(curves(codesigned)) == {"default", "co-design"}

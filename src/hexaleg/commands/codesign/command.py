@@ -3,16 +3,19 @@
 
 ``--config F`` reads a ``[codesign]`` table: ``speed``, ``pattern``, ``family``, ``samples``,
 ``final_samples``, ``max_evaluations``, ``restarts``, ``grouping``, ``rules``, ``curve``,
-``simulate``, a ``[codesign.constraints]`` table of
+``simulate``, ``controller``, a ``[codesign.constraints]`` table of
 :class:`~hexaleg.design.gait_evaluation.Constraints` and a ``[codesign.design]`` table of the
 full spring rules' ``[design]`` keys (:func:`~hexaleg.design.codesign.build.rule_params`); the
-command line's ``--speed``, ``--pattern`` and ``--no-rules`` win over the file.
+command line's ``--speed``, ``--pattern``, ``--controller`` and ``--no-rules`` win over the
+file.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
+
+from hexaleg.simulation.controllers import SERVOS  # no MuJoCo: it loads with a model
 
 
 def add(sub: argparse._SubParsersAction) -> None:
@@ -25,6 +28,9 @@ def add(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--speed", type=float, help="required speed, m/s (default 0.06)")
     p.add_argument("--pattern", help="gait pattern (default: the robot's)")
     p.add_argument("--config", help="TOML file with a [codesign] table (docs/codesign.md)")
+    p.add_argument("--controller", choices=SERVOS,
+                   help="the servo the robot runs: the search's finalists and the springs to buy "
+                        "are simulated under it; both: each, judged by the worse (default both)")
     p.add_argument("--no-rules", dest="rules", action="store_false", default=None,
                    help="leave out hexaleg design's full spring rules (tolerance, envelope, "
                         "fatigue, arbor, parsimony) on the chosen gait, about a minute: the "
@@ -58,7 +64,7 @@ def run(args: argparse.Namespace) -> int:
             raise ConfigError(f"{scenario.where} [{table}]: hexaleg codesign does not read it "
                               f"— {instead}")
     kwargs = codesign_settings(scenario.table("codesign"), f"{scenario.where} [codesign]")
-    for key in ("speed", "pattern"):
+    for key in ("speed", "pattern", "controller"):
         if getattr(args, key) is not None:
             kwargs[key] = getattr(args, key)
     if args.rules is not None:

@@ -40,7 +40,9 @@ from hexaleg.checks import integer, one_of, real, typed
 from hexaleg.config import from_mapping, keywords
 from hexaleg.design.chain.config import DesignParams
 from hexaleg.design.chain.groups import design_groups
+from hexaleg.design.chain.ranking import under
 from hexaleg.design.codesign.result import CodesignResult, Row, SpeedPoint
+from hexaleg.design.codesign.servo import choose, screen
 from hexaleg.design.families import FAMILIES
 from hexaleg.design.gait_evaluation import (
     PARAMETERS,
@@ -61,6 +63,7 @@ from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.model import Robot
 from hexaleg.robot.registry import description
 from hexaleg.robot.springs import SpringSet
+from hexaleg.simulation.controllers import BOTH, SERVOS
 
 SPEED_FACTORS = (0.5, 0.75, 1.0, 1.25, 1.5)
 """The speed curve's speeds, as factors of the required speed."""
@@ -106,7 +109,8 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
              samples: int = 100, final_samples: int = 200, max_evaluations: int = 100,
              restarts: int = 3, grouping: str = "class", curve: bool = True,
              simulate: bool = True, rules: bool = True, design: DesignParams | None = None,
-             progress: Callable[[str], None] | None = None) -> CodesignResult:
+             controller: str = BOTH, progress: Callable[[str], None] | None = None
+             ) -> CodesignResult:
     """The gait and springs that cover a metre at ``speed`` for the least electrical energy
     (module docstring).
 
@@ -122,19 +126,27 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
         grouping: One spring design per joint ``class`` (default), ``mirrored`` left/right
             pair, or ``joint`` (Solo-12's front and hind knees bend opposite ways: a class
             design cancels, so ``mirrored``).
-        curve: Compute the energy-vs-speed curve. simulate: Simulate the chosen gait.
+        curve: Compute the energy-vs-speed curve. simulate: Simulate the search's finalists
+            and choose among them (:mod:`hexaleg.design.codesign.servo`), and simulate the
+            chosen gait; False: the search's best gait is chosen unsimulated.
         rules: Apply ``hexaleg design``'s full spring rules to the chosen gait and recommend
             what they choose (:func:`full_rules`, about a minute); False: the search's answer
             alone, the inner program's springs recommended.
         design: The rules' ``[design]`` settings (default :func:`rule_params`); they run at
-            ``final_samples``.
+            ``final_samples``, ranked under ``controller``.
+        controller: The servo the robot runs (:data:`~hexaleg.simulation.controllers.SERVOS`):
+            the finalists and the full rules' designs are simulated under it (``"both"``,
+            the default: under each controller, judged by the worse).
         progress: Called with one status line per stage.
 
     Raises:
         InvalidParameterError: a speed not > 0, sample counts out of range; the default gait
             itself cannot be made at this speed (named, with its error).
-        UnknownNameError: an unknown robot, pattern or family.
+        UnknownNameError: an unknown robot, pattern, family or controller.
     """
+    servo = one_of("[codesign] controller", controller, SERVOS)
+    design = dataclasses.replace(design if design is not None else rule_params(),
+                                 controller=servo)
     v = real("speed", speed, low=0.0, low_open=True, allowed="a speed > 0 (m/s)")
     n = integer("samples", samples, low=40, high=2000)
     n_final = integer("final_samples", final_samples, low=n, high=5000)
@@ -165,7 +177,16 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
                    restarts=restarts)
     say(f"co-design: {joint.value:.2f} J/m after {joint.evaluations} evaluations "
         f"({joint.wall:.1f} s)")
-    chosen = dataclasses.replace(joint.best.params, samples=n_final)
+    finalists = screen(model, joint.finalists, servo, c, motor,
+                       lambda g: free(dataclasses.replace(g, samples=n_final), groups=groups)
+                       ) if simulate else ()
+    pick = choose(finalists)
+    chosen = dataclasses.replace(joint.best.params if pick is None else pick.point.params,
+                                 samples=n_final)
+    if finalists:
+        say(f"servo check: {len(finalists)} finalists simulated under {under(servo)}: "
+            + (f"chose finalist {finalists.index(pick) + 1}, {pick.worst:.2f} J/m simulated"
+               if pick is not None else "none walked, the search's best kept"))
     ruled = started(robot, chosen, c, say, design) if rules else None
     try:
         alone = search(functools.partial(free, groups=None), base, v, space, springs=False,
@@ -186,7 +207,7 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
         rows = (Row.of("default gait, no springs", d_sprung, False, model.mass),
                 Row.of("default gait, its best springs", d_sprung, True, model.mass),
                 Row.of("best gait, no springs", g_sprung, False, model.mass),
-                Row.of("best gait, its springs (co-design)", c_sprung, True, model.mass))
+                Row.of("chosen gait, its springs (co-design)", c_sprung, True, model.mass))
         sequential = Row.of("sequential: best gait alone, then its springs", g_sprung, True,
                             model.mass)
         say(f"rows at {n_final} samples ({time.perf_counter() - t0:.1f} s)")
@@ -203,7 +224,7 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
             inner_saving=1.0 - c_sprung.sprung / c_sprung.baseline, rows=rows,
             sequential=sequential, search=joint, gait_search=alone, curve=points,
             simulation=simulation, rules=buy, samples=n, wall=time.perf_counter() - t0,
-            generic=uses_generic(motor))
+            generic=uses_generic(motor), servo=servo, finalists=finalists)
     finally:
         if ruled is not None:
             ruled.close()
@@ -327,7 +348,8 @@ def full_rules(robot: str, chosen: GaitParams, c: Constraints, say: Callable[[st
 
 
 CODESIGN_KEYS = ("speed", "pattern", "family", "samples", "final_samples", "max_evaluations",
-                 "restarts", "grouping", "rules", "curve", "simulate", "constraints", "design")
+                 "restarts", "grouping", "rules", "curve", "simulate", "controller",
+                 "constraints", "design")
 """The keys of a ``[codesign]`` table: :func:`codesign`'s keywords."""
 
 
@@ -350,6 +372,9 @@ def codesign_settings(table: Any, where: str = "[codesign]") -> dict[str, Any]:
     if "design" in out:
         if not isinstance(out["design"], dict):
             raise ConfigError(f"{where[:-1]}.design] must be a table")
+        if "controller" in out["design"]:
+            raise ConfigError(f"{where[:-1]}.design] controller: the servo is set once, for the "
+                              f"finalists and the spring rules alike, as {where} controller")
         out["design"] = rule_params(**out["design"])
     return out
 

@@ -19,7 +19,9 @@ from dataclasses import asdict, dataclass
 from typing import Any
 
 from hexaleg.design.chain.design_file import gait_parameters
+from hexaleg.design.chain.ranking import under
 from hexaleg.design.codesign.rules import RULES, rule_data, rule_lines
+from hexaleg.design.codesign.servo import Screened, choose
 from hexaleg.design.gait_evaluation import PARAMETERS, UNITS, Constraints, GaitPoint
 from hexaleg.design.gait_search import SearchResult
 from hexaleg.design.spring_json import spring_entry
@@ -29,6 +31,7 @@ from hexaleg.motion.params import GaitParams
 from hexaleg.quantities import file_data
 from hexaleg.quantities import quantity as q
 from hexaleg.robot.springs import SpringSet
+from hexaleg.simulation.controllers import BOTH
 
 
 @dataclass(frozen=True)
@@ -87,6 +90,10 @@ class CodesignResult:
         samples: Samples a cycle in the search. wall: Total wall time, s.
         generic: Whether the robot's actuators are generic (from URDF limits), for the
             plausibility check's message.
+        servo: The servo the finalists and the rules' designs were simulated under
+            (:data:`~hexaleg.simulation.controllers.SERVOS`).
+        finalists: The search's finalists simulated with their inner springs, in the search's
+            order (:mod:`hexaleg.design.codesign.servo`); empty when not simulated.
     """
 
     robot: str
@@ -111,6 +118,15 @@ class CodesignResult:
     samples: int
     wall: float
     generic: bool = False
+    servo: str = BOTH
+    finalists: tuple[Screened, ...] = ()
+
+    @property
+    def chosen_finalist(self) -> int | None:
+        """The chosen gait's place among the finalists (0-based), or None when none walked or
+        they were not simulated (the search's best then chosen)."""
+        pick = choose(self.finalists)
+        return None if pick is None else self.finalists.index(pick)
 
     @property
     def plausibility(self) -> Plausibility:
@@ -146,6 +162,7 @@ class CodesignResult:
                      f"{100 * s['springs']:+.1f} %, co-design {100 * s['codesign']:+.1f} %")
         lines.append("  chosen gait: " + ", ".join(
             f"{p} {getattr(self.chosen, p):.4g} {UNITS[p]}" for p in PARAMETERS))
+        lines += self.finalist_lines()
         if "friction" in self.measures:
             use = self.measures["friction"][0]
             lines.append(f"  planned friction use {use:.2f} of the cone at μ "
@@ -166,6 +183,26 @@ class CodesignResult:
         if not self.plausibility.plausible:
             lines.append(f"WARNING default gait's energy {self.plausibility.message}")
         return "\n".join(lines)
+
+    def finalist_lines(self) -> list[str]:
+        """The servo check's lines: each finalist's predicted and simulated J/m, the chosen
+        one marked (none when the finalists were not simulated)."""
+        if not self.finalists:
+            return []
+        k = self.chosen_finalist
+        out = [f"  chosen among the search's {len(self.finalists)} best distinct gaits by their "
+               f"simulated J/m with their springs under {under(self.servo)}"
+               + ("" if k is not None else ": none walked, the search's best kept")]
+        for i, f in enumerate(self.finalists):
+            head = (f"  {'→' if i == k else ' '} {i + 1}. duty factor "
+                    f"{f.point.params.duty_factor:.3f}, period {f.point.params.period:.3f} s: ")
+            if f.point.error is not None:
+                out.append(f"{head}no numbers at the rows' sampling ({f.point.error})")
+                continue
+            sims = ", ".join(f"{c} {v:.2f}" if v is not None else f"{c}: {f.verdicts[c]}"
+                             for c, v in f.per_metre.items())
+            out.append(f"{head}predicted {f.point.per_metre_springs:.2f} J/m, simulated {sims}")
+        return out
 
     def to_dict(self) -> dict[str, Any]:
         """``codesign.json`` (module docstring)."""
@@ -203,6 +240,8 @@ class CodesignResult:
                        "per_metre_springs": q(p.per_metre_springs, "J/m")} for p in self.curve],
             "simulation": {k: (q(v, _SIM_UNITS[k]) if k in _SIM_UNITS else v)
                            for k, v in self.simulation.items()},
+            "finalists": {"servo": self.servo, "chosen": self.chosen_finalist,
+                          "rows": [f.data() for f in self.finalists]},
             "full_rules": None if self.rules is None else (
                 {"applied_to": "the chosen gait only", "error": self.rules, "pays": False}
                 if isinstance(self.rules, str) else rule_data(self.rules, self.chosen.stride)),
