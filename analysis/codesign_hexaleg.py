@@ -21,6 +21,7 @@ from pathlib import Path
 
 import hexaleg
 from hexaleg.commands.codesign.write import write_result
+from hexaleg.design.codesign.floors import worst
 from hexaleg.design.codesign.rules import per_metre
 from hexaleg.robot.registry import description
 from hexaleg.simulation.run import Settings, simulate
@@ -95,6 +96,10 @@ def main() -> None:
         kept = row["simulated"] / row["predicted"]
         print(f"  {row['label']}, mu {r.constraints.mu:g}: keeps {kept:.2f} of the predicted "
               f"saving (at least 0.85: {kept >= 0.85})")
+    low = worst(r.floors)
+    print("  predicted on other floors: " + ", ".join(
+        f"mu {f.mu:g} {100 * f.saving:.1f} %" for f in r.floors if f.saving is not None)
+        + f"; worst {100 * low.saving:.1f} % at mu {low.mu:g}")
     motor = description("hexaleg").actuator(robot)
     for controller in ("feedforward", "position"):  # a grippier floor than designed for
         s = simulate(robot, hexaleg.gait(robot, r.chosen), motor, rec.optimum.springs,

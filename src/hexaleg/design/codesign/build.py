@@ -23,7 +23,8 @@ winning over
    they start as soon as the co-design search has chosen the gait, in a process beside steps
    2's gait-alone search, 3 and 4 (:class:`Background`);
 6. the co-designed gait simulated forward in MuJoCo with and without the springs to buy
-   (:func:`hexaleg.simulation.run.simulate`).
+   (:func:`hexaleg.simulation.run.simulate`), and their predicted saving on floors of other
+   friction (:mod:`hexaleg.design.codesign.floors`).
 """
 
 from __future__ import annotations
@@ -41,6 +42,7 @@ from hexaleg.config import from_mapping, keywords
 from hexaleg.design.chain.config import DesignParams
 from hexaleg.design.chain.groups import design_groups
 from hexaleg.design.chain.ranking import under
+from hexaleg.design.codesign.floors import over_floors
 from hexaleg.design.codesign.result import CodesignResult, Row, SpeedPoint
 from hexaleg.design.codesign.servo import choose, screen
 from hexaleg.design.families import FAMILIES
@@ -217,6 +219,7 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
         if buy is not None and not isinstance(buy, str) and buy.pays:
             bought = buy.recommended.optimum.springs
         simulation = simulated(model, chosen, bought, c, motor) if simulate else {}
+        floors = over_floors(model, chosen, motor, bought, c.torque_limits)
         return CodesignResult(
             robot=robot, title=model.name, mass=model.mass, speed=v, pattern=base.pattern,
             family=family, constraints=c, default=dataclasses.replace(base, samples=n_final),
@@ -224,7 +227,7 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
             inner_saving=1.0 - c_sprung.sprung / c_sprung.baseline, rows=rows,
             sequential=sequential, search=joint, gait_search=alone, curve=points,
             simulation=simulation, rules=buy, samples=n, wall=time.perf_counter() - t0,
-            generic=uses_generic(motor), servo=servo, finalists=finalists)
+            generic=uses_generic(motor), servo=servo, finalists=finalists, floors=floors)
     finally:
         if ruled is not None:
             ruled.close()

@@ -20,6 +20,7 @@ from typing import Any
 
 from hexaleg.design.chain.design_file import gait_parameters
 from hexaleg.design.chain.ranking import under
+from hexaleg.design.codesign.floors import Floor, worst
 from hexaleg.design.codesign.rules import RULES, rule_data, rule_lines
 from hexaleg.design.codesign.servo import Screened, choose
 from hexaleg.design.gait_evaluation import PARAMETERS, UNITS, Constraints, GaitPoint
@@ -94,6 +95,8 @@ class CodesignResult:
             (:data:`~hexaleg.simulation.controllers.SERVOS`).
         finalists: The search's finalists simulated with their inner springs, in the search's
             order (:mod:`hexaleg.design.codesign.servo`); empty when not simulated.
+        floors: The springs to buy's predicted saving on the chosen gait at each μ of
+            :data:`~hexaleg.design.codesign.floors.FLOORS`.
     """
 
     robot: str
@@ -120,6 +123,7 @@ class CodesignResult:
     generic: bool = False
     servo: str = BOTH
     finalists: tuple[Screened, ...] = ()
+    floors: tuple[Floor, ...] = ()
 
     @property
     def chosen_finalist(self) -> int | None:
@@ -180,6 +184,7 @@ class CodesignResult:
         else:
             lines.append("  springs: the inner program's optimum (the full spring rules were "
                          "not applied)")
+        lines += self.floor_lines()
         if not self.plausibility.plausible:
             lines.append(f"WARNING default gait's energy {self.plausibility.message}")
         return "\n".join(lines)
@@ -203,6 +208,18 @@ class CodesignResult:
                              for c, v in f.per_metre.items())
             out.append(f"{head}predicted {f.point.per_metre_springs:.2f} J/m, simulated {sims}")
         return out
+
+    def floor_lines(self) -> list[str]:
+        """The springs to buy on other floors: the saving at each μ and the worst."""
+        if not self.floors:
+            return []
+        low = worst(self.floors)
+        each = ", ".join(f"μ {f.mu:g} " + (f"{100 * f.saving:+.2f} %" if f.saving is not None
+                                           else "no admissible forces") for f in self.floors)
+        tail = ("" if low is None else
+                f"; worst {100 * (low.saving or 0.0):+.2f} % at μ {low.mu:g}")
+        return [f"  on other floors, predicted electrical saving of the springs to buy: "
+                f"{each}{tail}"]
 
     def to_dict(self) -> dict[str, Any]:
         """``codesign.json`` (module docstring)."""
@@ -240,6 +257,8 @@ class CodesignResult:
                        "per_metre_springs": q(p.per_metre_springs, "J/m")} for p in self.curve],
             "simulation": {k: (q(v, _SIM_UNITS[k]) if k in _SIM_UNITS else v)
                            for k, v in self.simulation.items()},
+            "floors": {"rows": [f.data() for f in self.floors],
+                       "worst": None if (low := worst(self.floors)) is None else low.data()},
             "finalists": {"servo": self.servo, "chosen": self.chosen_finalist,
                           "rows": [f.data() for f in self.finalists]},
             "full_rules": None if self.rules is None else (
