@@ -38,9 +38,6 @@ CODESIGN_CONFIGS = {"quad2dof bound": "[codesign.constraints]\nmu = 1.5\n",
 [contact]: the solo12 crawl case shows it). The bound's μ is 1.5: codesign plans within 0.7 of
 the cone (friction_margin), 1.05, what the bound needs (at μ 1.0 the chosen gait needed 0.707 of
 its 0.7 at the rows' sampling, a named refusal)."""
-DESIGN_EXTRA = {"solo12 crawl, grippy": "stop_tolerance = 0.0\n"}
-"""Case → more ``[design]`` keys: the one-foot crawl's stop-tolerance stage alone took 138 s of
-its 160 s design (the bundle method's 19,477 QPs; issue #39's design time, left open)."""
 QUICK = '[gait]\nsamples = 60\n[report]\nstiffness_points = 3\npaper_samples = 8\n'
 """What the report's tests add to a case's config (fewer samples: the suite's time)."""
 CASES = {**ROBOTS, "quad2dof bound": ROBOTS["quad2dof"], "xquad crawl": ROBOTS["xquad"]}
@@ -82,8 +79,7 @@ def _argv(case: str, command: str, tmp_path: Path) -> list[str]:
     text = CONFIGS.get(case, "") + (QUICK if command == "report" else "")
     if command == "design":  # one family, no maps: the suite's time (the full design of the
         # X quadruped is tests/design/chain/test_groups.py's; its time, analysis/bench_robots.py)
-        text += '[design]\nfamilies = ["one_sided"]\nrobustness = false\n' + DESIGN_EXTRA.get(
-            case, "")
+        text += '[design]\nfamilies = ["one_sided"]\nrobustness = false\n'
     if command == "codesign":
         text = CODESIGN_CONFIGS.get(case, text)
         text += "[codesign]\nmax_evaluations = 10\nsamples = 40\nfinal_samples = 60\n"

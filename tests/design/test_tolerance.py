@@ -132,3 +132,27 @@ def test_the_certified_worst_case_holds_only_the_problems_that_set_it(monkeypatc
         assert r.solver["program_value"] == pytest.approx(whole["program_value"], abs=1e-7)
         assert r.explicit == tuple(int((~d.condensed).sum()) for d in data)
     assert joined.solver["rounds"] >= 2  # solved again with the left-out problems that joined
+
+
+def test_the_robust_program_starts_at_the_joule_optimum_and_ends_where_it_would(default,
+                                                                               monkeypatch):
+    """The shifted programs start their bundle method at the unshifted geometry's Joule
+    optimum (``DesignSetup._start``): a convex program, so the optimum is the one a start at
+    the baseline reaches (to the search's bundle tolerance), in fewer steps."""
+    from hexaleg.design.program import solve_design
+    from hexaleg.design.setup import DesignSetup, design_setup
+
+    prepared, blind, r = default
+    setup = design_setup(prepared, blind.groups, blind.family, blind.objective, None, math.pi,
+                         "electrical", scenarios(GROUPS, TOLERANCE), mirrored=blind.mirrored)
+    geometry = r.optimum.geometry
+    problems = setup.problems(geometry)
+    start = setup._start(problems)
+    unshifted = [i for i, s in enumerate(setup.shifts) if not any(s.values())]
+    assert start is not None and unshifted == [2]
+    assert np.array_equal(start, solve_design(problems[2]).x)
+    warm = setup.solve(geometry, exact=False)
+    monkeypatch.setattr(DesignSetup, "_start", lambda self, problems: None)
+    cold = setup.solve(geometry, exact=False)
+    assert warm.value == pytest.approx(cold.value, rel=1e-5)
+    assert warm.rounds < cold.rounds  # the bundle method's model steps

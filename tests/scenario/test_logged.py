@@ -92,12 +92,15 @@ def test_design_on_the_log_equals_the_design_on_the_generated_gait(log: Path, tm
                     "robust_payload": [0.0, 0.0], "robust_mu": [0.6, 0.6]}})).run()
     rec, gen = data["recommended"], generated.recommended
     assert rec["family"] == gen.family
-    for m in ("electrical", "joule"):
+    # %: the worst case over the stops' shifts is minimised (to the bundle's tolerance), and its
+    # minimiser need not be unique: from starts that differ in the last bits (the log's samples
+    # against the generated ones) the electrical saving agrees to 1e-4 points, the Joule saving,
+    # which nothing minimises, to 1e-3 (3.7e-4 measured)
+    for m, tol in (("electrical", 1e-4), ("joule", 1e-3)):
         assert data["baseline"][m]["value"] == pytest.approx(generated.baseline[m], rel=1e-9)
-        assert rec["saving"][m]["value"] == pytest.approx(100 * gen.row[f"saving.{m}"],
-                                                          abs=1e-4)  # %, solver tolerance
+        assert rec["saving"][m]["value"] == pytest.approx(100 * gen.row[f"saving.{m}"], abs=tol)
         # net of the springs' mass: the log carried as logged, the same motion as generated
-        assert rec["net_saving"][m]["value"] == pytest.approx(100 * gen.net[m], abs=1e-4)
+        assert rec["net_saving"][m]["value"] == pytest.approx(100 * gen.net[m], abs=tol)
 
 
 def test_simulate_plays_the_log_forward(log: Path, tmp_path: Path,

@@ -25,7 +25,12 @@ from hexaleg.design.families import Family, Geometry
 from hexaleg.design.program import ENGAGED, DesignProblem, DesignSolution, solve_design
 from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES, check_objective
 from hexaleg.dynamics.prepare import Prepared
-from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.errors import (
+    InfeasibleForcesError,
+    InvalidParameterError,
+    TorqueLimitError,
+    UnknownNameError,
+)
 from hexaleg.robot.springs import Term, basis
 
 METRICS: tuple[str, ...] = ("joule", "electrical")
@@ -221,6 +226,27 @@ class DesignSetup:
             return [self.problem(geometry)]
         return [self.problem(shifted(self.fam, geometry, s)) for s in self.shifts]
 
+    def _start(self, problems: Sequence[DesignProblem]) -> np.ndarray | None:
+        """Where the condensed program's bundle method starts: the Joule-optimal magnitudes of
+        the unshifted geometry (:func:`~hexaleg.design.program.solve_design`, the fast exact
+        path, milliseconds) when the metric is electrical or there are stop shifts; else None
+        (the baseline, x = 0). The program is convex, so the start changes its cost, not its
+        optimal value: on a two-joint quadruped's bound the stop-tolerance stage's bundle steps
+        fell from 26,126 to 5,113 (99 s to 15 s), and on ANYmal the certified solve of the
+        tolerant design, which from the baseline ended at the bundle's 400-step limit short of
+        its tolerance, converges (worst saving 33.40 % → 33.61 %). The worst case's minimiser
+        need not be unique: the metrics not minimised (the Joule saving when the electrical one
+        is) may then differ by ~1e-5 between starts. A geometry whose Joule program has no
+        solution starts from the baseline."""
+        if self.metric != "electrical" and len(problems) == 1:
+            return None
+        nominal = next((i for i, shift in enumerate(self.shifts) if not any(shift.values())),
+                       0)
+        try:
+            return solve_design(problems[nominal]).x
+        except (InfeasibleForcesError, TorqueLimitError):
+            return None
+
     def solve(self, geometry: Mapping[str, Geometry], exact: bool = True) -> DesignSolution:
         """The optimal magnitudes of ``geometry``; ``value`` is what the search minimises: the
         objective's value (J), or the condensed program's worst metric per cycle (J).
@@ -234,10 +260,8 @@ class DesignSetup:
             return solve_design_reference(problem)
         problems = self.problems(geometry)
         data = [Condensed(p, self.metric or "joule") for p in problems]
-        x0 = solve_design(problems[0]).x if self.metric == "electrical" and len(
-            problems) == 1 else None
-        s = solve_condensed(problems, self.metric or "joule", "worst", x0, exact=exact,
-                            data=data)
+        s = solve_condensed(problems, self.metric or "joule", "worst",
+                            self._start(problems), exact=exact, data=data)
         worst = int(np.argmax(s.values))
         return DesignSolution(s.x, float(s.values[worst] * data[worst].base),
                               np.flatnonzero(~data[worst].condensed),
