@@ -62,3 +62,22 @@ def test_clarabel_failing_outright_falls_to_the_ladder_then_to_a_status(monkeypa
     monkeypatch.setattr(cp.Problem, "solve", broken)
     status = condensed._solve(cp.Problem(cp.Minimize(cp.sum_squares(x)), [x >= 0]))
     assert status.startswith("failed (") and "CLARABEL" in status
+
+
+def test_a_failed_stop_tolerance_design_keeps_the_tolerance_blind_one_and_says_so(monkeypatch):
+    """Solo-12's one-foot crawl (μ 1.3): the tolerant program's certified solve failed in
+    Clarabel after 24 s of finished work and ended the design; now the blind design stands."""
+    from hexaleg.design.chain import chain
+
+    def fail(*args, **kwargs):
+        raise InfeasibleForcesError("the condensed spring program has no solution (Clarabel: "
+                                    "failed)")
+
+    monkeypatch.setattr(chain, "stop_tolerance", fail)
+    cfg = DesignConfig.from_mapping({"design": {"families": ["one_sided"], "samples": 100,
+                                                "robustness": False}})
+    r = DesignChain(cfg).run(stages=("candidates", "tolerance"))
+    assert r.tolerance is None and r.recommended is r.candidates[0]
+    assert any(n.startswith("the design for the stops' mounting error (±1°) failed "
+                            "(the condensed spring program has no solution")
+               and "tolerance-blind design is recommended" in n for n in r.notes)

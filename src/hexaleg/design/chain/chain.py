@@ -112,6 +112,7 @@ class DesignChain:
         self._done: dict[str, Any] = {}
         self._wanted: tuple[str, ...] = STAGES  # what run() asked for; a stage alone: all
         self._left_out: list[str] = []  # families whose program failed (candidates' notes)
+        self._untolerant: list[str] = []  # why the stop-tolerance stage failed, if it did
         self.timings: dict[str, float] = {}
         self._t0 = self._last = time.perf_counter()
 
@@ -192,7 +193,16 @@ class DesignChain:
         its tolerance-blind self (None without a tolerance or angles)."""
         def compute() -> tuple[Candidate, TolerantSprings | None]:
             d = self.config.design
-            rec, tol = stop_tolerance(self.nominal(), self._ranked())
+            try:
+                rec, tol = stop_tolerance(self.nominal(), self._ranked())
+            except HexalegError as err:  # a stage's failure does not end the design
+                rec, tol = self._ranked(), None
+                self._untolerant.append(
+                    f"the design for the stops' mounting error (±"
+                    f"{math.degrees(d.stop_tolerance):g}°) failed ({err}): the tolerance-blind "
+                    "design is recommended, its saving with stops mounted off not checked")
+                self._step("tolerance", "the stop-tolerance design failed: the tolerance-blind "
+                           "design is kept (a note says why)")
             if tol is not None:
                 self._step("tolerance", f"stops within ±{math.degrees(d.stop_tolerance):g}°: "
                            f"worst {d.metric} saving {100 * tol.worst['tolerant']:+.2f} % "
@@ -311,7 +321,7 @@ class DesignChain:
                   f"ranked by the predicted {d.metric} saving net of the springs' mass (not "
                   "simulated)")
         residual = nom.prepared.residual.line() if nom.prepared.residual is not None else None
-        notes = [*flagged, *self._left_out, *pays, *logged,
+        notes = [*flagged, *self._left_out, *self._untolerant, *pays, *logged,
                  *((residual,) if residual else ()), *ranking_notes,
                  *envelope_notes, *robust_notes, *stalled, *unsimulated, *nom.notes,
                  *nom.robot.notes,
