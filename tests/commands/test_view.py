@@ -127,9 +127,15 @@ def session(tmp_path_factory):
     try:
         assert main([*cmd, "--html", str(d / "page.html")]) == 0
         if chromium() is not None:
-            finish(start_screenshot((d / "page.html").as_uri(), d / "static.png", size=SHOT,
-                                    virtual_time_ms=600, net_log=d / "net.json"))
-            out.update(static=imread(d / "static.png")[..., :3], net=d / "net.json")
+            # On a loaded machine the shot once came before the force arrows were drawn (a
+            # fresh-clone CI run: shell and joints there, no green pixel); the page is the same
+            # file each time, so a second or third shot is the same test, as for the server.
+            for _ in range(3):
+                finish(start_screenshot((d / "page.html").as_uri(), d / "static.png",
+                                        size=SHOT, virtual_time_ms=600, net_log=d / "net.json"))
+                out.update(static=imread(d / "static.png")[..., :3], net=d / "net.json")
+                if _green(out["static"]).sum() > 5e-5 * out["static"][..., 0].size:
+                    break
         out["page"] = d / "page.html"
         out["line"] = proc.stdout.readline()
         url = re.search(r"http://127\.0\.0\.1:\d+/", out["line"]).group(0)
