@@ -359,3 +359,34 @@ def test_the_design_and_simulate_pages_lead_with_the_kept_answer():
     assert f"hard stop {stop}° from the centre" in design
     assert (f"saves {ff} % of the simulated electrical energy under feedforward + PD servos and "
             f"{pos} % under position-only servos, against {saving} % predicted") in simulate
+
+
+def test_codesign_page_quotes_the_codesign_log():
+    """docs/codesign.md's figures of the default robot are analysis/logs/codesign_hexaleg.log's
+    (itself diffed against the example's output in CI): the chosen gait's J/m against the
+    default gait, the simulated J/m under the worse servo, what the springs to buy keep under
+    each servo and floor, and their predicted saving over the floors."""
+    import re
+
+    page = " ".join((ROOT / "docs" / "codesign.md").read_text().split())
+    log = (ROOT / "analysis" / "logs" / "codesign_hexaleg.log").read_text()
+
+    def logged(pattern: str) -> list[str]:
+        found = re.search(pattern, log)
+        assert found, pattern
+        return list(found.groups())
+
+    ratio, = logged(r"co-design / default gait without springs: ([\d.]+)")
+    worse, best, predicted = logged(r"([\d.]+) J/m simulated under the worse \(the search's "
+                                    r"best ([\d.]+) J/m\), predicted ([\d.]+) J/m")
+    kept = {k: logged(rf"  {re.escape(k)}: keeps ([\d.]+) of")[0]
+            for k in ("position only, mu 0.6", "position, mu 1", "feedforward + PD, mu 0.6",
+                      "feedforward, mu 1")}
+    floors = [float(x) for x in re.findall(r"mu [\d.]+ ([\d.]+) %", log)]
+    assert f"{predicted} J/m predicted ({ratio} of the default gait" in page
+    assert f"{worse} J/m simulated under the worse servo" in page
+    assert f"and {best} J/m under position-only ones" in page
+    assert (f"keep {kept['feedforward + PD, mu 0.6']} of that saving under feedforward servos "
+            f"and {kept['position only, mu 0.6']} under position-only") in page
+    assert f"{kept['feedforward, mu 1']} and {kept['position, mu 1']} on a grippier one" in page
+    assert f"{min(floors):.1f}–{max(floors):.1f} %" in page
