@@ -156,3 +156,38 @@ def test_the_robust_program_starts_at_the_joule_optimum_and_ends_where_it_would(
     cold = setup.solve(geometry, exact=False)
     assert warm.value == pytest.approx(cold.value, rel=1e-5)
     assert warm.rounds < cold.rounds  # the bundle method's model steps
+
+
+def test_the_search_solves_a_scan_in_any_order_and_process_alike():
+    """The stop-tolerance search hands a scan's candidates to ``map_fn`` (the design's forked
+    map over the cores): solved in forked workers, or in reverse order here, the search ends
+    at the same geometry and value, bit for bit, after the same evaluations — and each value
+    stays with its own candidate (a map that returned them shuffled would move the optimum)."""
+    from hexaleg.design.evaluator import RunSpec
+    from hexaleg.design.search import search_geometry
+    from hexaleg.design.setup import design_setup
+    from hexaleg.parallel.forked import fork_map
+
+    run = RunSpec(objective="joule")
+    prepared = condition_prepared(run, run.gait({"samples": 40}), Condition())
+    setup = design_setup(prepared, {"tibia": "tibia"}, "one_sided", "joule", None, math.pi,
+                         "electrical", scenarios(["tibia"], TOLERANCE))
+    start = [{"tibia": {"contact": 0.18, "side": "below"}}]
+    calls: list[int] = []
+
+    def backwards(fn, items):
+        calls.append(len(items))
+        return [fn(x) for x in items[::-1]][::-1]
+
+    def shuffled(fn, items):
+        return [fn(x) for x in items][::-1]
+
+    kw = {"reach": 4 * TOLERANCE, "spacing": TOLERANCE / 2, "max_sweeps": 2}
+    alone = search_geometry(setup, start, **kw)
+    for map_fn in (backwards, lambda fn, items: fork_map(fn, items, workers=2)):
+        r = search_geometry(setup, start, map_fn=map_fn, **kw)
+        assert r.geometry == alone.geometry and r.solution.value == alone.solution.value
+        assert r.evaluations == alone.evaluations
+    assert calls and max(calls) > 1
+    wrong = search_geometry(setup, start, map_fn=shuffled, **kw)
+    assert wrong.geometry != alone.geometry or wrong.solution.value != alone.solution.value

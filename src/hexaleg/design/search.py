@@ -56,6 +56,8 @@ if TYPE_CHECKING:
     from hexaleg.design.families import Family, Geometry
     from hexaleg.design.program import DesignSolution
 
+Mapper = Callable[[Callable[[Any], Any], Sequence[Any]], list[Any]]
+"""``map_fn(fn, items)``: ``[fn(x) for x in items]``, however it is spread over processes."""
 MERGE = 1e-7
 """rad: sample angles closer than this form one level (a stop cannot tell them apart)."""
 EDGE = 1e-8
@@ -181,7 +183,8 @@ def _wound_states(fam: Family, axes: Mapping[str, _Axis], wind: float) -> list[S
 
 def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]] = (), *,
                     window: int | None = None, reach: float | None = None,
-                    spacing: float = 0.0, max_sweeps: int = MAX_SWEEPS) -> GeometrySearch:
+                    spacing: float = 0.0, max_sweeps: int = MAX_SWEEPS,
+                    map_fn: Mapper | None = None) -> GeometrySearch:
     """The best geometry by coordinate descent over exhaustive angle scans (module docstring).
 
     Args:
@@ -193,6 +196,11 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
         spacing: With ``reach``: candidates thinned to this spacing at least (rad), the
             nearest-below kept.
         max_sweeps: Sweeps over the groups at most; 0: the best start alone.
+        map_fn: How a scan's candidates are solved: ``map_fn(fn, states)`` is
+            ``[fn(s) for s in states]`` in the order given (e.g. the design's forked map over
+            the cores, :func:`hexaleg.parallel.forked.fork_map`); default that list in this
+            process. The candidates are independent convex programs, so the result is the same
+            either way.
 
     A condensed setup (another metric, stop shifts) is compared by its fast solves
     (``setup.solve(geometry, exact=False)``); the caller certifies the chosen geometry.
@@ -216,12 +224,23 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
     def value(state: State) -> float:
         k = key(state)
         if k not in seen:
-            try:
-                solution = setup.solve(state, exact=False)
-                seen[k], solutions[k] = solution.value, solution
-            except (InfeasibleForcesError, TorqueLimitError):
-                seen[k] = np.inf
+            solution = _solved(setup, state)
+            seen[k] = np.inf if solution is None else solution.value
+            if solution is not None:
+                solutions[k] = solution
         return seen[k]
+
+    def values(states: Sequence[State]) -> np.ndarray:
+        """Each state's value, the unseen ones solved through ``map_fn`` first."""
+        if map_fn is not None:
+            todo = list({key(s): s for s in states if key(s) not in seen}.values())
+            if len(todo) > 1:
+                for s, solution in zip(todo, map_fn(lambda s: _solved(setup, s), todo),
+                                       strict=True):
+                    seen[key(s)] = np.inf if solution is None else solution.value
+                    if solution is not None:
+                        solutions[key(s)] = solution
+        return np.array([value(s) for s in states], dtype=float)
 
     def moved(state: State, g: str, angle: str, theta: float, side: str | None = None
               ) -> State | None:
@@ -247,20 +266,20 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
                       if (tr := moved(state, g, angle, float(t), side)) is not None]
             if not trials:
                 continue
-            values = np.full(len(trials), np.inf)
+            found = np.full(len(trials), np.inf)
             if bounded:  # exact solves in order of their lower bound, until none can win
                 bounds = relaxed_values(setup, state, g, angle,
                                         np.array([t for t, _ in trials]),
                                         side or fam.side(angle, state[g]),
                                         below=best_value * (1 - BOUND_SLACK))
                 for n in np.argsort(bounds, kind="stable"):
-                    if bounds[n] >= min(best_value, values.min()) * (1 - BOUND_SLACK):
+                    if bounds[n] >= min(best_value, found.min()) * (1 - BOUND_SLACK):
                         break  # it cannot improve on the best by more than BOUND_SLACK
-                    values[n] = value(trials[n][1])
+                    found[n] = value(trials[n][1])
             else:
-                values = np.array([value(tr) for _, tr in trials])
-            i = int(np.argmin(values))
-            trials = [(float(v), tr) for v, (_, tr) in zip(values, trials, strict=True)]
+                found = values([tr for _, tr in trials])
+            i = int(np.argmin(found))
+            trials = [(float(v), tr) for v, (_, tr) in zip(found, trials, strict=True)]
             if not fam.preloaded_stops:  # smooth between levels: polish around the best
                 lo = float(trials[max(i - 1, 0)][1][g][angle])
                 hi = float(trials[min(i + 1, len(trials) - 1)][1][g][angle])
@@ -322,16 +341,23 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
                           converged if max_sweeps else None, method, levels)
 
 
+def _solved(setup: DesignSetup, state: State) -> DesignSolution | None:
+    """The search's fast solve of ``state`` (``setup.solve(state, exact=False)``), None where no
+    forces exist or a motor torque limit cannot be met."""
+    try:
+        return setup.solve(state, exact=False)
+    except (InfeasibleForcesError, TorqueLimitError):
+        return None
+
+
 def search_value(setup: DesignSetup) -> Callable[[Mapping[str, Geometry]], float]:
     """The search's comparison value of a geometry (``inf`` where no forces exist), for tests
     and brute-force checks of :func:`search_geometry`."""
     def value(geometry: Mapping[str, Geometry]) -> float:
-        try:
-            return setup.solve(setup.check_geometry(geometry), exact=False).value
-        except (InfeasibleForcesError, TorqueLimitError):
-            return float("inf")
+        solution = _solved(setup, setup.check_geometry(geometry))
+        return float("inf") if solution is None else solution.value
     return value
 
 
-__all__ = ["EDGE", "MAX_SWEEPS", "MERGE", "GeometrySearch", "off_angles", "search_geometry",
-           "search_value"]
+__all__ = ["EDGE", "MAX_SWEEPS", "MERGE", "GeometrySearch", "Mapper", "off_angles",
+           "search_geometry", "search_value"]

@@ -45,7 +45,7 @@ import numpy as np
 from hexaleg.checks import integer, real
 from hexaleg.design.families import family
 from hexaleg.design.optimal import OptimalSprings, springs_result
-from hexaleg.design.search import search_geometry
+from hexaleg.design.search import Mapper, search_geometry
 from hexaleg.design.setup import Shift, design_setup, motion_centres, shifted
 from hexaleg.dynamics.energy import saving
 from hexaleg.dynamics.prepare import Prepared
@@ -161,7 +161,7 @@ def tolerant_springs(prepared: Prepared, blind: OptimalSprings, tolerance: float
                      metric: str = "electrical", *, max_torque: float | None = None,
                      max_deflection: float | None = None,
                      starts: Sequence[Mapping[str, Mapping[str, float | str]]] = (),
-                     window: int = WINDOW) -> TolerantSprings:
+                     window: int = WINDOW, map_fn: Mapper | None = None) -> TolerantSprings:
     """The design with the best worst saving over the stops' mounting error (module docstring).
 
     Args:
@@ -173,6 +173,8 @@ def tolerant_springs(prepared: Prepared, blind: OptimalSprings, tolerance: float
         max_torque: As ``optimal_springs``, at every shift. max_deflection: Likewise.
         starts: Further geometries to start from (group → geometry).
         window: Candidate stop places each scan tries on each side of the current one, ≥ 1.
+        map_fn: How the searches solve a scan's candidates
+            (:func:`~hexaleg.design.search.search_geometry`); default one after another here.
 
     Raises:
         InvalidParameterError: a tolerance out of range, a bad count, a blind design of another
@@ -195,8 +197,9 @@ def tolerant_springs(prepared: Prepared, blind: OptimalSprings, tolerance: float
         first += [m for m in (shifted(fam, blind.geometry, mv) for mv in moves)
                   if all(fam.ordered(m[g]) for g in groups)]
         coarse = search_geometry(setup, first, reach=REACH * t, spacing=t / 2,
-                                 max_sweeps=COARSE_SWEEPS)
-        found = search_geometry(setup, [coarse.geometry], window=window, max_sweeps=1)
+                                 max_sweeps=COARSE_SWEEPS, map_fn=map_fn)
+        found = search_geometry(setup, [coarse.geometry], window=window, max_sweeps=1,
+                                map_fn=map_fn)
         chosen, count = found.geometry, coarse.evaluations + found.evaluations
         how = {"stages": [coarse.to_dict(), found.to_dict()]}
     else:

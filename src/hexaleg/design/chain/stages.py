@@ -270,7 +270,8 @@ def stop_tolerance(nom: Nominal, rec: Candidate) -> tuple[Candidate, TolerantSpr
             rec.optimum.geometry.values()):
         return rec, None
     t = tolerant_springs(nom.prepared, rec.optimum, d.stop_tolerance, d.metric,
-                         max_torque=rec.max_torque, max_deflection=d.deflection_bound)
+                         max_torque=rec.max_torque, max_deflection=d.deflection_bound,
+                         map_fn=nom.fork_map)
     if t.chosen == "blind":
         return rec, t
     return dataclasses.replace(candidate(t.optimum, nom.prepared, nom.run, nom.gait,
