@@ -21,6 +21,16 @@ increases from the start: started at a feasible x₀, the result is never worse 
 step the QP solver cannot solve once x̂ is feasible (its program always has a solution then: the
 model's epigraph variables are free) is a numerical failure: the method stops there with x̂ and
 says so (:attr:`BundleResult.stopped`), as it does at :data:`MAX_ITERATIONS`.
+
+**A working set of functions** (mode ``"worst"``). Of many functions (the stop-tolerance
+program's 17–21 shifted conditions) a few set the worst at the optimum; each one held in the
+model costs an evaluation and its cuts at every step. The model starts with those within
+:data:`WORKING_SET` of the worst at x₀; when it has converged on them, the others are evaluated
+at x̂, and any above the model's worst joins (its cut at x̂ added) and the method goes on. It ends
+when none is: then ``max over the held ≤ min F ≤ F(x̂) = max over the held at x̂``, so x̂ is
+optimal for every function to the same tolerance (the minimum over a subset of the functions is
+a lower bound; an outer-approximation / constraint-generation argument, e.g. Bonnans et al.
+§10 on bundle compression, Kelley's cutting planes). Functions only join, so it ends.
 """
 
 from __future__ import annotations
@@ -44,12 +54,17 @@ TOLERANCE = 1e-10
 """Predicted decrease (in the units of F) at which the method stops."""
 CUT_AGE = 10
 """Model steps a cutting plane may stay below its condition's model before it is dropped."""
+WORKING_SET = 0.01
+"""Mode ``"worst"``: the functions the model starts with are those within this fraction of the
+largest at the start (of its magnitude, at least 1); the others join when the model's optimum
+leaves one of them above its worst."""
 
 
 @dataclass(frozen=True)
 class BundleResult:
     """The minimiser, its value per function, and the work done; ``stopped`` says why it ended
-    before the tolerance ("" when it met it or used its :data:`MAX_ITERATIONS`)."""
+    before the tolerance ("" when it met it or used its :data:`MAX_ITERATIONS`); ``held``: how
+    many functions the model held when it ended (the working set, module docstring)."""
 
     x: np.ndarray
     values: np.ndarray
@@ -57,6 +72,7 @@ class BundleResult:
     serious_steps: int
     gap: float
     stopped: str = ""
+    held: int = 0
 
 
 @dataclass
@@ -75,9 +91,11 @@ class _Cuts:
         return cls(np.zeros(0, int), np.zeros(0), np.zeros((0, nx)), np.zeros((0, nx)),
                    np.zeros(0, int))
 
-    def add(self, values: np.ndarray, grads: list[np.ndarray], y: np.ndarray) -> None:
+    def add(self, values: np.ndarray, grads: list[np.ndarray], y: np.ndarray,
+            first: int = 0) -> None:
+        """Cuts at ``y`` of the functions ``first, first + 1, …`` (their places in the model)."""
         n = values.size
-        self.c = np.r_[self.c, np.arange(n)]
+        self.c = np.r_[self.c, first + np.arange(n)]
         self.f = np.r_[self.f, values]
         self.g = np.vstack([self.g, np.array(grads)])
         self.y = np.vstack([self.y, np.tile(y, (n, 1))])
@@ -195,8 +213,8 @@ def minimise(oracles: Sequence[Oracle], x0: np.ndarray, mode: str = "worst", *,
     fixed = np.zeros(nx, bool) if fixed is None else np.asarray(fixed, bool)
     scale = np.maximum(np.abs(x0), 1e-2)  # work in x / scale: magnitudes of unlike units
 
-    def evaluate(y: np.ndarray) -> tuple[np.ndarray, list[np.ndarray]]:
-        out = [o(y * scale) for o in oracles]
+    def evaluate(y: np.ndarray, which: Sequence[int]) -> tuple[np.ndarray, list[np.ndarray]]:
+        out = [oracles[c](y * scale) for c in which]
         return np.array([v for v, _ in out]), [g * scale for _, g in out]
 
     def total(v: np.ndarray) -> float:
@@ -207,22 +225,35 @@ def minimise(oracles: Sequence[Oracle], x0: np.ndarray, mode: str = "worst", *,
     ok = (Gs @ y <= h + 1e-12).all() and (y[nonneg] >= 0).all() and not y[fixed].any()
     if not ok:  # the closest feasible start
         y = _qp(_Cuts.empty(nx), 0, mode, y, 1.0, Gs, h, nonneg, fixed)
-    values, grads = evaluate(y)
+    values, grads = evaluate(y, range(n))
+    if mode == "worst" and n > 1:  # the working set: those near the worst at the start
+        near = values.max() - WORKING_SET * max(1.0, abs(values.max()))
+        held = [int(c) for c in np.flatnonzero(values >= near)]
+    else:
+        held = list(range(n))
     cuts = _Cuts.empty(nx)
-    cuts.add(values, grads, y)
-    best, best_values = y, values
+    cuts.add(values[held], [grads[c] for c in held], y)
+    best, best_values = y, values[held]
     u, serious, gap, it, stopped = 1.0, 0, np.inf, 0, ""
     for it in range(1, MAX_ITERATIONS + 1):
         try:
-            trial = _qp(cuts, n, mode, best, u, Gs, h, nonneg, fixed)
+            trial = _qp(cuts, len(held), mode, best, u, Gs, h, nonneg, fixed)
         except InfeasibleForcesError as e:  # x̂ meets the constraints: a numerical failure
             stopped = f"model step {it} failed ({e}); the best point so far is kept"
             break
-        gap = total(best_values) - total(cuts.model(trial, n))
+        gap = total(best_values) - total(cuts.model(trial, len(held)))
         if gap <= tolerance * max(1.0, abs(total(best_values))):
-            break
-        cuts.prune(trial, n)
-        values, grads = evaluate(trial)
+            rest = [c for c in range(n) if c not in held]
+            out, out_grads = evaluate(best, rest)
+            joins = np.flatnonzero(out > total(best_values))
+            if not joins.size:  # no function left out is above the model's worst: optimal
+                break
+            cuts.add(out[joins], [out_grads[i] for i in joins], best, first=len(held))
+            held += [rest[i] for i in joins]
+            best_values = np.r_[best_values, out[joins]]
+            continue
+        cuts.prune(trial, len(held))
+        values, grads = evaluate(trial, held)
         cuts.add(values, grads, trial)
         if total(values) <= total(best_values) - 0.1 * gap:
             best, best_values = trial, values
@@ -230,5 +261,11 @@ def minimise(oracles: Sequence[Oracle], x0: np.ndarray, mode: str = "worst", *,
             u = max(u / 2, 1e-6)
         else:
             u = min(u * 1.5, 1e6)
-    return BundleResult(x=best * scale, values=best_values, iterations=it,
-                        serious_steps=serious, gap=float(gap), stopped=stopped)
+    every = np.empty(n)
+    every[held] = best_values
+    if len(held) < n:
+        rest = [c for c in range(n) if c not in held]
+        every[rest] = evaluate(best, rest)[0]
+    return BundleResult(x=best * scale, values=every, iterations=it,
+                        serious_steps=serious, gap=float(gap), stopped=stopped,
+                        held=len(held))
