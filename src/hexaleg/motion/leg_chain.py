@@ -259,7 +259,7 @@ def _read_chain(robot: Robot, leg: Leg, reference: np.ndarray) -> LegChain:
     model = robot.model
     if len(leg.joint_ids) < MIN_JOINTS:
         raise RobotModelError(
-            f"leg {leg.name} has {len(leg.joint_ids)} joint; foot-position inverse kinematics "
+            f"leg {leg.name} has {len(leg.joint_ids)} joint(s); foot-position inverse kinematics "
             f"needs {MIN_JOINTS} or more (2: a planar hip–knee leg, 3: a foot anywhere, 4 or "
             "more: redundant, the stand pose's redundant directions held)")
     foot = model.frames[leg.foot_frame_id]
