@@ -40,7 +40,8 @@ from hexaleg.robot.registry import DESCRIPTIONS
 from hexaleg.scenario.scenario import Scenario
 
 TEST_ROBOTS = {name: str(Path(__file__).resolve().parents[1] / "tests" / "data" /
-                        f"{name}.toml") for name in ("spider", "xquad", "quad2dof", "biped")}
+                        f"{name}.toml") for name in ("spider", "xquad", "quad2dof", "quad4dof",
+                                                        "biped")}
 """The test robots by short name → TOML."""
 DESIGN_TARGET = 60.0
 """``hexaleg design`` wall time target, s."""

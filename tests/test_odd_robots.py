@@ -1,9 +1,10 @@
 """Robots no one here saw (issue #39): test robots made for the purpose — a biped on point feet
-(tests/data/biped), a quadruped with two-joint legs (quad2dof), an X-configured quadruped whose
-front and hind knees bend opposite ways (xquad), the hexapod facing +y with flipped hips
-(spider) — and a registered quadruped's crawl at duty factor 0.3, through every command: each
-ends in a result or a named refusal (exit 2, ``error:`` and what to change), never a
-traceback. The outcome of each is pinned, so a robot that starts or stops working is seen.
+(tests/data/biped), a quadruped with two-joint legs (quad2dof), one with four-joint legs
+(quad4dof: redundant, an ankle below the knee), an X-configured quadruped whose front and hind
+knees bend opposite ways (xquad), the hexapod facing +y with flipped hips (spider) — and a
+registered quadruped's crawl at duty factor 0.3, through every command: each ends in a result or
+a named refusal (exit 2, ``error:`` and what to change), never a traceback. The outcome of each
+is pinned, so a robot that starts or stops working is seen.
 
 The quick commands run in the README's suite; design, simulate and codesign (seconds to a
 minute or two each) are marked slow and run in .ci/run.
@@ -19,7 +20,8 @@ from hexaleg.cli import main
 
 DATA = Path(__file__).resolve().parent / "data"
 ROBOTS = {"biped": str(DATA / "biped.toml"), "quad2dof": str(DATA / "quad2dof.toml"),
-          "xquad": str(DATA / "xquad.toml"), "spider": str(DATA / "spider.toml"),
+          "quad4dof": str(DATA / "quad4dof.toml"), "xquad": str(DATA / "xquad.toml"),
+          "spider": str(DATA / "spider.toml"),
           "solo12 crawl": "solo12", "solo12 crawl, grippy": "solo12"}
 """Case → ``--robot``."""
 CONFIGS = {
@@ -30,17 +32,20 @@ CONFIGS = {
     # the bound of two-joint legs sways along the body: it needs a short period and grippy feet
     "quad2dof bound": "[gait]\nperiod = 0.6\n[contact]\nmu = 1.0\n",
     "xquad crawl": '[gait]\npattern = "crawl"\n',
+    "quad4dof crawl": '[gait]\npattern = "crawl"\n',
 }
 """Case → its config file's text (the robot's defaults otherwise)."""
 CODESIGN_CONFIGS = {"quad2dof bound": "[codesign.constraints]\nmu = 1.5\n",
-                    "xquad crawl": '[codesign]\npattern = "crawl"\n'}
+                    "xquad crawl": '[codesign]\npattern = "crawl"\n',
+                    "quad4dof crawl": '[codesign]\npattern = "crawl"\n'}
 """Case → its config for codesign, which searches the gait itself (and refuses [gait] and
 [contact]: the solo12 crawl case shows it). The bound's μ is 1.5: codesign plans within 0.7 of
 the cone (friction_margin), 1.05, what the bound needs (at μ 1.0 the chosen gait needed 0.707 of
 its 0.7 at the rows' sampling, a named refusal)."""
 QUICK = '[gait]\nsamples = 60\n[report]\nstiffness_points = 3\npaper_samples = 8\n'
 """What the report's tests add to a case's config (fewer samples: the suite's time)."""
-CASES = {**ROBOTS, "quad2dof bound": ROBOTS["quad2dof"], "xquad crawl": ROBOTS["xquad"]}
+CASES = {**ROBOTS, "quad2dof bound": ROBOTS["quad2dof"], "xquad crawl": ROBOTS["xquad"],
+         "quad4dof crawl": ROBOTS["quad4dof"]}
 EXPECTED: dict[str, dict[str, str]] = {
     # a ZMP walking pattern; open loop, it tips over (no balance feedback)
     "biped": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
@@ -52,6 +57,11 @@ EXPECTED: dict[str, dict[str, str]] = {
     # the bound walks in the analysis; in the open-loop simulation it bounces nearly in place
     "quad2dof bound": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
                        "simulate": "stalled", "codesign": "ok"},
+    # redundant legs: like the X quadruped, its trot tips over open loop and its crawl walks
+    "quad4dof": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
+                 "simulate": "balanced by its plan alone", "codesign": "ok"},
+    "quad4dof crawl": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
+                       "simulate": "ok", "codesign": "ok"},
     # its trot tips over in the open-loop simulation (no balance feedback), its crawl walks
     "xquad": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
               "simulate": "balanced by its plan alone", "codesign": "ok"},
@@ -69,7 +79,7 @@ EXPECTED: dict[str, dict[str, str]] = {
 }
 """Case → command → ``"ok"`` (exit 0) or a phrase of its named refusal (exit 2)."""
 SLOW = {"design", "simulate", "codesign"}
-IMPLAUSIBLE = {"xquad", "xquad crawl"}
+IMPLAUSIBLE = {"xquad", "xquad crawl", "quad4dof"}
 """Cases whose generic actuators put the baseline's cost of transport above the plausible band
 (12–16 × the animal line): every command that prints an energy warns (issue #40)."""
 

@@ -6,9 +6,11 @@ Two solvers, both working in the base frame (the base's pose does not enter a le
   and tibia about parallel horizontal axes, see :mod:`hexaleg.robot.builder`), vectorised over
   time. The knee branch is fixed: tibia angle ≤ 0 (knee above the foot, as in the ``stand`` and
   ``sphere`` poses), so the branch never switches along a trajectory.
-* :func:`~hexaleg.motion.leg_chain.newton_leg_ik` — any 3-joint leg: Newton iterations on the
-  leg's chain read from Pinocchio, every sample at once, then ``q̇ = J⁻¹ ṗ`` and
-  ``q̈ = J⁻¹ (p̈ − J̇ q̇)``.
+* :func:`~hexaleg.motion.leg_chain.newton_leg_ik` — any leg of two joints or more: Newton
+  iterations on the leg's chain read from Pinocchio, every sample at once, then ``q̇ = J⁻¹ ṗ``
+  and ``q̈ = J⁻¹ (p̈ − J̇ q̇)`` (a two-joint leg's in least squares; a leg of four or more with
+  the augmented Jacobian of its stated secondary objective,
+  :class:`~hexaleg.motion.leg_chain.LegChain`).
 
 Derivatives are exact (chain rule on the closed form, or the Jacobian relations above), never
 finite differences. :func:`leg_ik` picks the analytic solver when the leg's geometry matches it
@@ -304,13 +306,15 @@ def leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarra
         t: Sample times for error messages, shape (T,), s.
 
     Returns:
-        Joint angles (T, 3) rad, velocities (T, 3) rad/s, accelerations (T, 3) rad/s², in the
-        order of ``leg.joint_names``, and the solver used (``"analytic"`` or ``"newton"``).
+        Joint angles (T, n) rad, velocities (T, n) rad/s, accelerations (T, n) rad/s², in the
+        order of ``leg.joint_names`` (n of them), and the solver used (``"analytic"`` or
+        ``"newton"``).
 
     Raises:
         UnreachableTargetError: a target is out of reach or needs a joint beyond its limits; the
             message names the leg and the time.
-        RobotModelError: the leg does not have three joints.
+        RobotModelError: the leg has fewer than two joints, or is not one chain of 1-DoF joints
+            (:func:`~hexaleg.motion.leg_chain.leg_chain`).
     """
     t = np.arange(len(np.atleast_2d(p)), dtype=float) if t is None else np.asarray(t, float)
     geom = analytic_geometry(robot, leg)

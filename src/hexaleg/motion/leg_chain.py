@@ -11,10 +11,11 @@ of configurations with numpy, and solves the leg's inverse kinematics on it by N
 (:func:`newton_leg_ik`, the solver of every leg the closed form of
 :mod:`hexaleg.motion.kinematics` does not fit).
 
-A leg has three joints (a foot anywhere in a volume) or two (a planar hip–knee leg: its foot
+A leg has three joints (a foot anywhere in a volume), two (a planar hip–knee leg: its foot
 moves in a plane, the one its two axes leave it; a target off that plane by more than
-:data:`PLANE_TOL` is out of reach, named with its distance). Legs of four or more joints are
-redundant and refused with that reason.
+:data:`PLANE_TOL` is out of reach, named with its distance) or four and more (redundant: a foot
+position leaves n − 3 joint motions free, and a stated secondary objective fixes them — the leg's
+redundant directions at the reference pose hold their reference values, :class:`LegChain`).
 
 Source: the product of exponentials / screw form of serial-chain kinematics and the geometric
 Jacobian with its time derivative (Siciliano et al., *Robotics: Modelling, Planning and
@@ -26,7 +27,7 @@ before it is used; the tests check the Jacobian and ``J̇ q̇`` against Pinocchi
 from __future__ import annotations
 
 import weakref
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import pinocchio as pin
@@ -44,8 +45,12 @@ NEWTON_MAX_ITER = 50
 PLANE_TOL = 1e-6
 """How far off a two-joint leg's plane a foot target may lie, m (a gait for such a leg puts its
 feet in that plane; more is a target the leg cannot reach)."""
-JOINTS = (2, 3)
-"""The joints a leg may have for foot-position inverse kinematics."""
+MIN_JOINTS = 2
+"""The fewest joints a leg may have for foot-position inverse kinematics."""
+REDUNDANT_SINGULAR = 1e-8
+"""Smallest ratio of the foot Jacobian's least to largest singular value at the reference pose
+for a leg of four or more joints: below it the leg is stretched (or folded) there and its
+redundant directions are not defined."""
 NEWTON_JUMP = 0.1
 """Largest joint change, rad (or m), between consecutive samples solved all at once from the
 same start that :func:`newton_leg_ik` accepts as one continuous branch; a larger one is solved
@@ -69,7 +74,26 @@ def _rotations(axis: np.ndarray, angle: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class LegChain:
-    """One leg's n joints (2 or 3) as a fixed serial chain in the base frame (module docstring).
+    """One leg's n joints (2 or more) as a fixed serial chain in the base frame (module docstring).
+
+    A leg of n ≥ 4 joints is redundant for its foot position; its secondary objective is linear in
+    the joints: ``N₀ᵀ (q − q_ref) = 0``, with ``N₀`` (:attr:`redundant`) the right-singular
+    vectors of the foot's translation Jacobian ``J₀ = J(q_ref)`` at the reference pose
+    (:attr:`reference`) for its n − 3 smallest singular values (the null space of the 3 × n
+    ``J₀``): the leg's self-motion at the reference pose stays at its reference value. Stacked
+    under ``J`` it gives the square augmented Jacobian ``Ĵ = [J; N₀ᵀ]`` (:meth:`augmented`) of the
+    augmented-Jacobian (extended-Jacobian) method; to first order in the foot's displacement
+    from the reference, its solution is the joint configuration nearest ``q_ref`` that puts the
+    foot on the target (the minimum-norm ``J₀⁺ Δp`` lies in the row space of ``J₀``, orthogonal
+    to ``N₀``). Source: Siciliano et al., *Robotics: Modelling, Planning and Control*, 2009,
+    §3.4–3.5 (redundancy, and the inverse differential kinematics of redundant manipulators:
+    the minimum-norm solution and constraint tasks added to the end-effector's), Baillieul,
+    "Kinematic programming alternatives for redundant manipulators", ICRA 1985 (the extended
+    Jacobian: the end-effector's Jacobian with rows of a secondary objective, made square), and
+    Sciavicco & Siciliano, "A solution algorithm to the inverse kinematic problem for redundant
+    manipulators", IEEE J. Robotics and Automation 4(4), 1988 (the augmented task space). A
+    leg of three joints or fewer has no redundant direction (``N₀`` of shape (n, 0)), and
+    ``Ĵ = J``.
 
     Attributes:
         placements: Per joint, its frame at zero angle in the previous joint's frame (the first
@@ -80,12 +104,17 @@ class LegChain:
         linear: Per joint, its translation axis in its own frame (zero for a revolute joint),
             shape (n, 3).
         foot: The foot point in the last joint's frame, shape (3,), m.
+        reference: The leg's joint values at the reference pose ``q_ref``, shape (n,), rad or m.
+        redundant: ``N₀``, the leg's redundant directions at the reference pose, orthonormal
+            columns, shape (n, max(n − 3, 0)) (class docstring).
     """
 
     placements: tuple[np.ndarray, np.ndarray]
     angular: np.ndarray
     linear: np.ndarray
     foot: np.ndarray
+    reference: np.ndarray
+    redundant: np.ndarray
 
     def frames(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The foot and the joints' axes in the base frame.
@@ -124,6 +153,30 @@ class LegChain:
         p, origins, angular, linear = self.frames(q)
         cols = linear + _cross(angular, p[:, None, :] - origins)
         return p, np.swapaxes(cols, 1, 2)
+
+    def augmented(self, jac: np.ndarray) -> np.ndarray:
+        """The augmented Jacobian ``Ĵ = [J; N₀ᵀ]`` (class docstring).
+
+        Args:
+            jac: Translation Jacobians ``J``, shape (T, 3, n).
+
+        Returns:
+            ``Ĵ``, shape (T, 3 + max(n − 3, 0), n): square for n ≥ 3, ``J`` itself for n ≤ 3.
+        """
+        rows = np.broadcast_to(self.redundant.T, (len(jac), *self.redundant.T.shape))
+        return np.concatenate([jac, rows], axis=1)
+
+    def task(self, q: np.ndarray, e: np.ndarray) -> np.ndarray:
+        """The Newton right-hand side ``[e; −N₀ᵀ (q − q_ref)]``: a foot displacement and what
+        the secondary objective's rows miss by (class docstring).
+
+        Args:
+            q: Joint values, shape (T, n). e: Foot displacements, shape (T, 3), m.
+
+        Returns:
+            Shape (T, 3 + max(n − 3, 0)).
+        """
+        return np.concatenate([e, (self.reference - q) @ self.redundant], axis=1)
 
     def bias(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
         """The foot's acceleration at zero joint acceleration, ``J̇ q̇``, in the base frame.
@@ -177,17 +230,18 @@ def leg_chain(robot: Robot, leg: Leg, reference: np.ndarray) -> LegChain:
 
     Args:
         robot: The robot.
-        leg: One of ``robot.legs``, two or three joints each the ancestor of the next and of
-            the foot.
+        leg: One of ``robot.legs``, two or more joints each the ancestor of the next and of the
+            foot.
         reference: The configuration the other joints keep, shape (nq,), base at the origin.
 
     Returns:
         The chain.
 
     Raises:
-        RobotModelError: the leg does not have two or three 1-DoF revolute or prismatic joints
-            in one chain to its foot (the message names the joint), or the chain does not reproduce
-            Pinocchio's forward kinematics.
+        RobotModelError: the leg does not have two or more 1-DoF revolute or prismatic joints
+            in one chain to its foot (the message names the joint), the chain does not reproduce
+            Pinocchio's forward kinematics, or a leg of four or more joints is stretched or
+            folded at the reference pose (its redundant directions are not defined there).
     """
     model = robot.model
     foot = model.frames[leg.foot_frame_id]
@@ -203,12 +257,11 @@ def leg_chain(robot: Robot, leg: Leg, reference: np.ndarray) -> LegChain:
 def _read_chain(robot: Robot, leg: Leg, reference: np.ndarray) -> LegChain:
     """:func:`leg_chain` without the memory."""
     model = robot.model
-    if len(leg.joint_ids) not in JOINTS:
+    if len(leg.joint_ids) < MIN_JOINTS:
         raise RobotModelError(
-            f"leg {leg.name} has {len(leg.joint_ids)} joints; foot-position inverse kinematics "
-            "needs 3 (a foot anywhere) or 2 (a planar hip–knee leg)"
-            + ("; a leg of 4 or more is redundant: fix the extra joints (a URDF fixed joint)"
-               if len(leg.joint_ids) > 3 else ""))
+            f"leg {leg.name} has {len(leg.joint_ids)} joint(s); foot-position inverse kinematics "
+            f"needs {MIN_JOINTS} or more (2: a planar hip–knee leg, 3: a foot anywhere, 4 or "
+            "more: redundant, the stand pose's redundant directions held)")
     foot = model.frames[leg.foot_frame_id]
     chain = (*leg.joint_ids, foot.parentJoint)
     below = (*leg.joint_names[1:], f"foot frame {leg.foot_frame}")
@@ -231,11 +284,24 @@ def _read_chain(robot: Robot, leg: Leg, reference: np.ndarray) -> LegChain:
     frames = [pin.SE3.Identity(), *(data.oMi[j] for j in leg.joint_ids)]
     rel = [frames[i].actInv(frames[i + 1]) for i in range(len(leg.joint_ids))]
     axes = [_motion_axes(model, j) for j in leg.joint_ids]
+    n = len(leg.joint_ids)
+    at = np.asarray(reference, dtype=float)[leg.q_index]
     out = LegChain(placements=(np.array([m.rotation for m in rel]),
                                np.array([m.translation for m in rel])),
                    angular=np.array([a for a, _ in axes]), linear=np.array([b for _, b in axes]),
                    foot=np.array(data.oMi[leg.joint_ids[-1]].actInv(data.oMf[leg.foot_frame_id])
-                                 .translation))
+                                 .translation),
+                   reference=at, redundant=np.zeros((n, 0)))
+    if n > 3:
+        _, sigma, vt = np.linalg.svd(out.position_jacobian(at[None])[1][0])
+        if sigma[-1] < REDUNDANT_SINGULAR * sigma[0]:
+            raise RobotModelError(
+                f"leg {leg.name}: at the stand pose (joints {np.round(at, 4).tolist()}) the "
+                f"foot's Jacobian has singular values {np.round(sigma, 6).tolist()} m/rad — the "
+                f"leg is stretched or folded, so its {n - 3} redundant direction(s) are not "
+                "defined there; a leg of four or more joints needs a stand with the leg bent "
+                "(an SRDF group_state or [robot] stand)")
+        out = replace(out, redundant=vt[3:].T.copy())
     rng = np.random.default_rng(0)
     trial = (rng.uniform(-1.5, 1.5, (5, len(leg.joint_ids)))
              * np.where(out.angular.any(axis=1), 1.0, 0.05))
@@ -252,7 +318,8 @@ def _read_chain(robot: Robot, leg: Leg, reference: np.ndarray) -> LegChain:
 def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarray, *,
                   q0: np.ndarray | None = None, t: np.ndarray | None = None
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Inverse kinematics of a 3- or 2-joint leg by Newton's method on its forward kinematics.
+    """Inverse kinematics of a leg of two or more joints by Newton's method on its forward
+    kinematics.
 
     The leg is read from Pinocchio as a fixed chain (:func:`~hexaleg.motion.leg_chain.leg_chain`,
     the other joints at the ``stand`` pose) and Newton runs on every sample at once from ``q0``.
@@ -263,9 +330,17 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
     solution. Then ``q̇ = J⁻¹ ṗ`` and ``q̈ = J⁻¹ (p̈ − J̇ q̇)``, with ``J`` the foot's translation
     Jacobian and ``J̇ q̇`` its acceleration at zero joint acceleration.
 
+    A leg of n ≥ 4 joints is redundant; it keeps the secondary objective of :class:`LegChain`,
+    ``N₀ᵀ (q − q_stand) = 0`` (its redundant directions at the stand pose hold their stand values:
+    to first order, the configuration nearest the stand that puts the foot on the target).
+    Newton then solves the square system ``F(q) = [p(q) − p*; N₀ᵀ (q − q_stand)] = 0`` with the
+    augmented Jacobian ``Ĵ = [J; N₀ᵀ]`` (n × n), from ``q0`` projected on the objective's plane
+    (the rows are linear, so every Newton step keeps them), and ``q̇ = Ĵ⁻¹ [ṗ; 0]``,
+    ``q̈ = Ĵ⁻¹ [p̈ − J̇ q̇; 0]`` (the rows are constant: no bias term): the exact time derivatives
+    of the position solution.
     Args:
         robot: The robot.
-        leg: One of ``robot.legs``, with three joints or two (:data:`JOINTS`).
+        leg: One of ``robot.legs``, with two joints or more (:data:`MIN_JOINTS`).
         p: Foot positions in the base frame, shape (T, 3), m.
         pd: Their time derivatives, shape (T, 3), m/s.
         pdd: Their second time derivatives, shape (T, 3), m/s².
@@ -276,13 +351,14 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
     Returns:
         Joint angles (T, n) rad, velocities (T, n) rad/s, accelerations (T, n) rad/s², in the
         order of ``leg.joint_names`` (a two-joint leg's in least squares: exact for targets in
-        its plane).
+        its plane; a redundant leg's with its secondary objective met).
 
     Raises:
-        RobotModelError: the leg does not have two or three 1-DoF joints in one chain.
-        UnreachableTargetError: Newton does not reach a target (or the Jacobian is singular
-            there), or a two-joint leg's target lies off its plane; the message names the
-            leg, the time and the distance.
+        RobotModelError: the leg does not have two or more 1-DoF joints in one chain, or a
+            redundant leg is stretched at the stand pose (:func:`leg_chain`).
+        UnreachableTargetError: Newton does not reach a target (or the Jacobian — the augmented
+            one of a redundant leg — is singular there), or a two-joint leg's target lies off
+            its plane; the message names the leg, the time and the distance.
     """
     model = robot.model
     p, pd, pdd = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, pd, pdd))
@@ -292,7 +368,8 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
     reference = robot.pose("stand") if "stand" in robot.poses else pin.neutral(model)
     reference[:7] = pin.neutral(model)[:7]
     chain = leg_chain(robot, leg, reference)
-    start = reference[leg.q_index] if q0 is None else np.asarray(q0, dtype=float)
+    start = chain.reference if q0 is None else np.asarray(q0, dtype=float)
+    start = start + chain.redundant @ (chain.redundant.T @ (chain.reference - start))
     q, err, off = _newton(chain, p, np.tile(start, (len(p), 1)))
     jumps = np.abs(np.diff(q, axis=0)).max(axis=1)
     bad = np.flatnonzero((err > NEWTON_TOL) | np.r_[False, jumps >= NEWTON_JUMP])
@@ -302,7 +379,8 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
         if err[k] > NEWTON_TOL:
             break
     _, jac = chain.position_jacobian(q)
-    singular = np.linalg.cond(jac) > 1e8
+    aug = chain.augmented(jac)
+    singular = np.linalg.cond(aug) > 1e8
     failed = (err > NEWTON_TOL) | singular | (off > PLANE_TOL)
     if failed.any():
         k = int(np.argmax(failed))
@@ -322,22 +400,26 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
             + (" at a singular configuration" if err[k] <= NEWTON_TOL else ""),
             leg=leg.name, t=float(t[k]), index=k, target=tuple(float(x) for x in p[k]),
             distance=float(err[k]))
-    qd = _least_squares(jac, pd)
-    qdd = _least_squares(jac, pdd - chain.bias(q, qd))
+    rows = np.zeros((len(q), chain.redundant.shape[1]))  # the objective's rows move by 0
+    qd = _least_squares(aug, np.concatenate([pd, rows], axis=1))
+    qdd = _least_squares(aug, np.concatenate([pdd - chain.bias(q, qd), rows], axis=1))
     return q, qd, qdd
 
 
 def _least_squares(jac: np.ndarray, e: np.ndarray) -> np.ndarray:
     """Per sample, the joint change that moves the foot nearest ``e``: ``J⁻¹ e`` for a square
-    Jacobian (least squares where it is singular), ``J⁺ e`` for a two-joint leg's (T, 3, 2).
+    Jacobian (least squares where it is singular), ``J⁺ e`` for a two-joint leg's (T, 3, 2); with
+    a redundant leg's augmented Jacobian ``Ĵ`` (:meth:`LegChain.augmented`), the change that
+    also moves the secondary objective's rows by the rest of ``e``.
 
     Args:
-        jac: Jacobians, shape (T, 3, n). e: Foot displacements, shape (T, 3).
+        jac: Jacobians, shape (T, m, n): ``J`` (m = 3) or ``Ĵ`` (m = n ≥ 4). e: Foot
+            displacements, shape (T, 3) (with the objective's rows, shape (T, m)).
 
     Returns:
         Joint changes, shape (T, n).
     """
-    if jac.shape[2] == 3:
+    if jac.shape[1] == jac.shape[2]:
         try:
             return np.linalg.solve(jac, e[..., None])[..., 0]
         except np.linalg.LinAlgError:  # a singular Jacobian: the least-squares step
@@ -350,7 +432,9 @@ def _newton(chain: LegChain, p: np.ndarray, q: np.ndarray
     """Damped Newton steps (at most 0.5 rad or m a step; least squares where the Jacobian is
     singular or not square) on every sample at once until each is within :data:`NEWTON_TOL` of
     its target — of its target's projection on what the joints can reach, for a two-joint leg —
-    or :data:`NEWTON_MAX_ITER` steps.
+    or :data:`NEWTON_MAX_ITER` steps. A redundant leg steps with its augmented Jacobian on
+    ``[p* − p; −N₀ᵀ (q − q_stand)]`` (:meth:`LegChain.task`): from a start on the secondary
+    objective's plane its rows stay met to rounding, every step included.
 
     Args:
         chain: The leg. p: Targets, shape (T, 3), m. q: Starting joint values, shape (T, n).
@@ -366,8 +450,8 @@ def _newton(chain: LegChain, p: np.ndarray, q: np.ndarray
     for it in range(NEWTON_MAX_ITER + 1):
         at, jac = chain.position_jacobian(q[todo])
         e = p[todo] - at
-        step = _least_squares(jac, e)
-        if jac.shape[2] == 3:
+        step = _least_squares(chain.augmented(jac), chain.task(q[todo], e))
+        if jac.shape[2] >= 3:
             err[todo] = np.linalg.norm(e, axis=1)
         else:  # the part of e the joints move the foot along; the rest is off the leg's plane
             reach = np.einsum("tij,tj->ti", jac, step)

@@ -29,7 +29,8 @@ TOLERANCE = 1e-9
 ITERATIONS = 200
 DAMPING = 1e-6
 BENDS = (0.0, 0.4, -0.4, 0.8, -0.8)
-"""rad: start angles of each leg's second joint (the next one bends back twice as far)."""
+"""rad: start angles of each leg's second joint; the joints after it bend twice as far, in turn
+back and forth (a zig-zag: a knee, then an ankle bent the other way)."""
 
 
 def stand_from_feet(robot: Robot, body_height: float,
@@ -74,8 +75,8 @@ def _solve(robot: Robot, leg: Leg, target: np.ndarray) -> np.ndarray:
         q = pin.neutral(model)
         if len(leg.q_index) >= 2:
             q[leg.q_index[1]] = bend
-        if len(leg.q_index) >= 3:
-            q[leg.q_index[2]] = -2.0 * bend
+        for i, k in enumerate(leg.q_index[2:]):
+            q[k] = -2.0 * bend * (-1.0) ** i
         err = np.inf
         for _ in range(ITERATIONS):
             pin.framesForwardKinematics(model, data, q)
