@@ -4,7 +4,9 @@ and in random per-joint patterns, keep ≥ 0.8 of the nominal electrical saving,
 
 from __future__ import annotations
 
+import dataclasses
 import math
+import zlib
 
 import numpy as np
 import pytest
@@ -191,3 +193,36 @@ def test_the_search_solves_a_scan_in_any_order_and_process_alike():
     assert calls and max(calls) > 1
     wrong = search_geometry(setup, start, map_fn=shuffled, **kw)
     assert wrong.geometry != alone.geometry or wrong.solution.value != alone.solution.value
+
+
+def test_the_search_is_deaf_to_differences_its_solves_cannot_tell_apart(monkeypatch):
+    """Every condensed value moved by up to 3e-6 of itself — about the bundle's tolerance, what
+    another machine's rounding may move it by — leaves the stop-tolerance search of preloaded
+    femur and tibia springs where it was: values within ``TIE`` are a tie, kept by the earlier
+    candidate. Without the ties the same noise moves the optimum."""
+    from hexaleg.design import search
+    from hexaleg.design.evaluator import RunSpec
+    from hexaleg.design.setup import DesignSetup, design_setup
+
+    run = RunSpec(objective="joule")
+    prepared = condition_prepared(run, run.gait({"samples": 40}), Condition())
+    setup = design_setup(prepared, {"tibia": "tibia", "femur": "femur"}, "preloaded", "joule",
+                         None, math.pi, "electrical",
+                         scenarios(["tibia", "femur"], TOLERANCE))
+    start = [search.search_geometry(setup, [], max_sweeps=3).geometry]
+    kw = {"reach": 4 * TOLERANCE, "spacing": TOLERANCE / 4, "max_sweeps": 3}
+    clean = search.search_geometry(setup, start, **kw)
+    solve = DesignSetup.solve
+    for salt in (0, 1):  # two draws of the noise, each a fixed value per geometry
+
+        def noisy(self, geometry, exact=True, salt=salt):
+            s = solve(self, geometry, exact)
+            k = repr(sorted((g, sorted(v.items())) for g, v in geometry.items())) + str(salt)
+            wobble = 3e-6 * (2 * np.random.default_rng(zlib.crc32(k.encode())).random() - 1)
+            return dataclasses.replace(s, value=s.value * (1 + wobble))
+
+        monkeypatch.setattr(DesignSetup, "solve", noisy)
+        monkeypatch.setattr(search, "TIE", 1e-5)
+        assert search.search_geometry(setup, start, **kw).geometry == clean.geometry
+        monkeypatch.setattr(search, "TIE", 0.0)
+        assert search.search_geometry(setup, start, **kw).geometry != clean.geometry

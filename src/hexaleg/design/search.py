@@ -35,7 +35,9 @@ candidates on each side of the current angle — the local polish of an expensiv
 metric's refinement, the stop-tolerant design) from a start the exhaustive search found.
 
 Every step is a fixed sequence of convex solves compared by value, ties kept by the earlier
-candidate, so the search is deterministic; a tiny change of the gait moves the levels by as
+candidate (values of the condensed program within :data:`TIE`: what its bundle's tolerance can
+tell apart, so another machine's rounding does not change a decision), so the search is
+deterministic; a tiny change of the gait moves the levels by as
 much and the optimum with them, not to another basin.
 """
 
@@ -58,6 +60,13 @@ if TYPE_CHECKING:
 
 Mapper = Callable[[Callable[[Any], Any], Sequence[Any]], list[Any]]
 """``map_fn(fn, items)``: ``[fn(x) for x in items]``, however it is spread over processes."""
+TIE = 1e-5
+"""Fraction by which a condensed program's geometries (the stop-tolerance design's, a metric's
+refinement) must differ to be told apart: their values come from the bundle method stopped at
+:data:`~hexaleg.design.condensed.SEARCH_TOLERANCE` (1e-6 of the normalised metric), so two
+floating-point paths to one geometry's value may differ by that much. Closer values are a tie,
+kept by the earlier candidate; exact solves (the quadratic objectives' fast path) tie only when
+equal."""
 MERGE = 1e-7
 """rad: sample angles closer than this form one level (a stop cannot tell them apart)."""
 EDGE = 1e-8
@@ -215,6 +224,11 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
     wind = setup.max_deflection if setup.max_deflection is not None else WIND_UP
     axes = {g: _axis(setup, g, wind) for g in groups}
     bounded = not setup.condensed and setup.objective in QUADRATIC_OBJECTIVES
+    tie = TIE if setup.condensed else 0.0
+
+    def below(a: float, b: float) -> bool:
+        """``a`` better than ``b`` by more than a tie."""
+        return a < (b - tie * abs(b) if np.isfinite(b) else b)
     seen: dict[tuple[Any, ...], float] = {}
     solutions: dict[tuple[Any, ...], DesignSolution] = {}
 
@@ -278,7 +292,7 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
                     found[n] = value(trials[n][1])
             else:
                 found = values([tr for _, tr in trials])
-            i = int(np.argmin(found))
+            i = _first_best(found, tie)
             trials = [(float(v), tr) for v, (_, tr) in zip(found, trials, strict=True)]
             if not fam.preloaded_stops:  # smooth between levels: polish around the best
                 lo = float(trials[max(i - 1, 0)][1][g][angle])
@@ -292,10 +306,10 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
                     res = minimize_scalar(along, bounds=(lo, hi), method="bounded",
                                           options={"xatol": POLISH_TOLERANCE})
                     polished = moved(state, g, angle, float(res.x), side)
-                    if polished is not None and value(polished) < trials[i][0]:
+                    if polished is not None and below(value(polished), trials[i][0]):
                         trials.append((value(polished), polished))
                         i = len(trials) - 1
-            if trials[i][0] < best_value:
+            if below(trials[i][0], best_value):
                 best, best_value = trials[i][1], trials[i][0]
         return best
 
@@ -307,20 +321,20 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
             for g in groups:
                 for angle in fam.angles:
                     state = scan(state, g, angle)
-            converged = not value(state) < before
+            converged = not below(value(state), before)
         return state, sweeps, converged
 
     state = _off_state(setup, axes)
     for start in starts:
         candidate = {g: dict(start[g]) for g in groups}
-        if value(candidate) < value(state):
+        if below(value(candidate), value(state)):
             state = candidate
     state, sweeps, converged = descend(state)
     if window is None and reach is None and not fam.preloaded_stops:
         for wound in _wound_states(fam, axes, wind):  # the descents from every stop wound up
             other, n, done = descend(wound)
             sweeps += n
-            if value(other) < value(state):
+            if below(value(other), value(state)):
                 state, converged = other, done
     how = (f"every angle scanned over {window} levels each side of the current one"
            if window is not None else
@@ -339,6 +353,12 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
     levels = {g: ax.levels for g, ax in axes.items()}
     return GeometrySearch(state, solutions[k], len(seen), sweeps,
                           converged if max_sweeps else None, method, levels)
+
+
+def _first_best(values: np.ndarray, tie: float) -> int:
+    """The first of ``values`` within a tie (the fraction ``tie``) of their least."""
+    least = float(values.min())
+    return int(np.argmax(values <= (least + tie * abs(least) if np.isfinite(least) else least)))
 
 
 def _solved(setup: DesignSetup, state: State) -> DesignSolution | None:
