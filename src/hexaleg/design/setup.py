@@ -240,12 +240,15 @@ class DesignSetup:
         solution starts from the baseline."""
         if self.metric != "electrical" and len(problems) == 1:
             return None
-        nominal = next((i for i, shift in enumerate(self.shifts) if not any(shift.values())),
-                       0)
         try:
-            return solve_design(problems[nominal]).x
+            return solve_design(problems[self._unshifted]).x
         except (InfeasibleForcesError, TorqueLimitError):
             return None
+
+    @property
+    def _unshifted(self) -> int:
+        """The problem of the stops where they are meant to be (no shift), else the first."""
+        return next((i for i, shift in enumerate(self.shifts) if not any(shift.values())), 0)
 
     def solve(self, geometry: Mapping[str, Geometry], exact: bool = True) -> DesignSolution:
         """The optimal magnitudes of ``geometry``; ``value`` is what the search minimises: the
@@ -261,7 +264,8 @@ class DesignSetup:
         problems = self.problems(geometry)
         data = [Condensed(p, self.metric or "joule") for p in problems]
         s = solve_condensed(problems, self.metric or "joule", "worst",
-                            self._start(problems), exact=exact, data=data)
+                            self._start(problems), exact=exact, data=data,
+                            prefer=self._unshifted if len(problems) > 1 else None)
         worst = int(np.argmax(s.values))
         return DesignSolution(s.x, float(s.values[worst] * data[worst].base),
                               np.flatnonzero(~data[worst].condensed),
