@@ -195,10 +195,11 @@ class CondensedSolution:
 def rows(problems: Sequence[DesignProblem]) -> tuple[np.ndarray, np.ndarray, np.ndarray,
                                                      np.ndarray]:
     """The shared design rows of stacked problems: ``(G, h, nonneg, fixed)`` — every problem's
-    rows but its "never engaged" ones, each distinct row once (the problems of one geometry's
-    stop shifts repeat most of them: ANYmal's 21 shifts stack 336 rows, 70 distinct), in the
-    order of their first appearance; a magnitude is fixed at 0 only when its term acts in no
-    problem."""
+    rows but its "never engaged" ones; a magnitude is fixed at 0 only when its term acts in no
+    problem. (Repeated rows are kept: ANYmal's 21 shifts stack 336 rows, 70 distinct, but the
+    program with each once moves the QP solutions by rounding, and the co-design's gait search
+    then ends at another gait — a fragility of that search, not a reason to change the
+    program.)"""
     nx = problems[0].nx
     engaged = np.zeros(nx, dtype=bool)
     G, h = [np.zeros((0, nx))], [np.zeros(0)]
@@ -208,9 +209,7 @@ def rows(problems: Sequence[DesignProblem]) -> tuple[np.ndarray, np.ndarray, np.
         if p.G.size and keep.any():
             G.append(p.G[keep])
             h.append(p.h[keep])
-    stacked = np.c_[np.vstack(G), np.concatenate(h)]
-    first = np.sort(np.unique(stacked, axis=0, return_index=True)[1])
-    return stacked[first, :nx], stacked[first, nx], problems[0].nonnegative, ~engaged
+    return np.vstack(G), np.concatenate(h), problems[0].nonnegative, ~engaged
 
 
 def solve_condensed(problems: Sequence[DesignProblem], metric: str, mode: str = "worst",
