@@ -235,6 +235,7 @@ def minimise(oracles: Sequence[Oracle], x0: np.ndarray, mode: str = "worst", *,
     cuts.add(values[held], [grads[c] for c in held], y)
     best, best_values = y, values[held]
     u, serious, gap, it, stopped = 1.0, 0, np.inf, 0, ""
+    checked: tuple[list[int], np.ndarray] | None = None  # the left-out ones' values at x̂
     for it in range(1, MAX_ITERATIONS + 1):
         try:
             trial = _qp(cuts, len(held), mode, best, u, Gs, h, nonneg, fixed)
@@ -247,6 +248,7 @@ def minimise(oracles: Sequence[Oracle], x0: np.ndarray, mode: str = "worst", *,
             out, out_grads = evaluate(best, rest)
             joins = np.flatnonzero(out > total(best_values))
             if not joins.size:  # no function left out is above the model's worst: optimal
+                checked = (rest, out)
                 break
             cuts.add(out[joins], [out_grads[i] for i in joins], best, first=len(held))
             held += [rest[i] for i in joins]
@@ -264,8 +266,10 @@ def minimise(oracles: Sequence[Oracle], x0: np.ndarray, mode: str = "worst", *,
     every = np.empty(n)
     every[held] = best_values
     if len(held) < n:
-        rest = [c for c in range(n) if c not in held]
-        every[rest] = evaluate(best, rest)[0]
+        if checked is None:  # stopped before the check: the left-out ones evaluated here
+            rest = [c for c in range(n) if c not in held]
+            checked = (rest, evaluate(best, rest)[0])
+        every[checked[0]] = checked[1]
     return BundleResult(x=best * scale, values=every, iterations=it,
                         serious_steps=serious, gap=float(gap), stopped=stopped,
                         held=len(held))
