@@ -18,7 +18,7 @@ from hexaleg.motion.kinematics import (
     analytic_leg_ik,
     leg_ik,
 )
-from hexaleg.motion.leg_chain import newton_leg_ik
+from hexaleg.motion.leg_ik import newton_leg_ik
 from hexaleg.robot.builder import load_params
 from hexaleg.robot.model import HEXALEG_LEGS, LegSpec, load_robot
 

@@ -18,7 +18,8 @@ from scipy.optimize import minimize
 import hexaleg
 from hexaleg.errors import RobotModelError
 from hexaleg.motion.kinematics import analytic_geometry
-from hexaleg.motion.leg_chain import NEWTON_JUMP, _newton, leg_chain, newton_leg_ik
+from hexaleg.motion.leg_chain import leg_chain
+from hexaleg.motion.leg_ik import NEWTON_JUMP, _newton, newton_leg_ik
 from hexaleg.robot.model import Leg, LegSpec, load_robot
 from hexaleg.robot.registry import load
 

@@ -6,7 +6,7 @@ Two solvers, both working in the base frame (the base's pose does not enter a le
   and tibia about parallel horizontal axes, see :mod:`hexaleg.robot.builder`), vectorised over
   time. The knee branch is fixed: tibia angle ≤ 0 (knee above the foot, as in the ``stand`` and
   ``sphere`` poses), so the branch never switches along a trajectory.
-* :func:`~hexaleg.motion.leg_chain.newton_leg_ik` — any leg of two joints or more: Newton
+* :func:`~hexaleg.motion.leg_ik.newton_leg_ik` — any leg of two joints or more: Newton
   iterations on the leg's chain read from Pinocchio, every sample at once, then ``q̇ = J⁻¹ ṗ``
   and ``q̈ = J⁻¹ (p̈ − J̇ q̇)`` (a two-joint leg's in least squares; a leg of four or more with
   the augmented Jacobian of its stated secondary objective,
@@ -30,7 +30,7 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.errors import RobotModelError, UnreachableTargetError
-from hexaleg.motion.leg_chain import newton_leg_ik
+from hexaleg.motion.leg_ik import newton_leg_ik
 from hexaleg.robot.model import Leg, Robot
 
 FK_CHECK_TOL = 1e-12

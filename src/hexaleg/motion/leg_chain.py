@@ -7,15 +7,16 @@ placement, the placement of each joint in the previous joint's frame, each joint
 (rotation about an axis or translation along one) and the foot in the last joint's frame. This
 module reads that chain from the Pinocchio model once (:func:`leg_chain`), evaluates the
 foot's position, its translation Jacobian and its bias acceleration ``J̇ q̇`` for a whole stack
-of configurations with numpy, and solves the leg's inverse kinematics on it by Newton's method
-(:func:`newton_leg_ik`, the solver of every leg the closed form of
+of configurations with numpy; :mod:`hexaleg.motion.leg_ik` solves the leg's inverse kinematics
+on it by Newton's method (the solver of every leg the closed form of
 :mod:`hexaleg.motion.kinematics` does not fit).
 
 A leg has three joints (a foot anywhere in a volume), two (a planar hip–knee leg: its foot
 moves in a plane, the one its two axes leave it; a target off that plane by more than
-:data:`PLANE_TOL` is out of reach, named with its distance) or four and more (redundant: a foot
-position leaves n − 3 joint motions free, and a stated secondary objective fixes them — the leg's
-redundant directions at the reference pose hold their reference values, :class:`LegChain`).
+:data:`~hexaleg.motion.leg_ik.PLANE_TOL` is out of reach, named with its distance) or four and
+more (redundant: a foot position leaves n − 3 joint motions free, and a stated secondary
+objective fixes them — the leg's redundant directions at the reference pose hold their
+reference values, :class:`LegChain`).
 
 Source: the product of exponentials / screw form of serial-chain kinematics and the geometric
 Jacobian with its time derivative (Siciliano et al., *Robotics: Modelling, Planning and
@@ -32,29 +33,17 @@ from dataclasses import dataclass, replace
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.checks import finite_array
-from hexaleg.errors import RobotModelError, UnreachableTargetError
+from hexaleg.errors import RobotModelError
 from hexaleg.robot.model import Leg, Robot
 
 CHAIN_CHECK_TOL = 1e-12
 """Foot position tolerance, m, of the check of the chain against Pinocchio's forward kinematics."""
-NEWTON_TOL = 1e-13
-"""Foot position residual, m, at which the Newton solver stops."""
-NEWTON_MAX_ITER = 50
-"""Newton iterations allowed per sample before the target is declared unreachable."""
-PLANE_TOL = 1e-6
-"""How far off a two-joint leg's plane a foot target may lie, m (a gait for such a leg puts its
-feet in that plane; more is a target the leg cannot reach)."""
 MIN_JOINTS = 2
 """The fewest joints a leg may have for foot-position inverse kinematics."""
 REDUNDANT_SINGULAR = 1e-8
 """Smallest ratio of the foot Jacobian's least to largest singular value at the reference pose
 for a leg of four or more joints: below it the leg is stretched (or folded) there and its
 redundant directions are not defined."""
-NEWTON_JUMP = 0.1
-"""Largest joint change, rad (or m), between consecutive samples solved all at once from the
-same start that :func:`newton_leg_ik` accepts as one continuous branch; a larger one is solved
-again sample by sample from its predecessor."""
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -313,154 +302,3 @@ def _read_chain(robot: Robot, leg: Leg, reference: np.ndarray) -> LegChain:
             raise RobotModelError(f"leg {leg.name}: the chain read from the model misses "
                                   f"Pinocchio's foot by {miss:.3g} m")
     return out
-
-
-def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarray, *,
-                  q0: np.ndarray | None = None, t: np.ndarray | None = None
-                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Inverse kinematics of a leg of two or more joints by Newton's method on its forward
-    kinematics.
-
-    The leg is read from Pinocchio as a fixed chain (:func:`~hexaleg.motion.leg_chain.leg_chain`,
-    the other joints at the ``stand`` pose) and Newton runs on every sample at once from ``q0``.
-    The branch is the one ``q0`` selects: the result is kept when every sample converged and
-    consecutive samples differ by under :data:`NEWTON_JUMP` (a continuous path from the first
-    sample, so each sample is the solution Newton reaches from its predecessor); otherwise the
-    samples from the first failure on are solved one after another, each from the previous
-    solution. Then ``q̇ = J⁻¹ ṗ`` and ``q̈ = J⁻¹ (p̈ − J̇ q̇)``, with ``J`` the foot's translation
-    Jacobian and ``J̇ q̇`` its acceleration at zero joint acceleration.
-
-    A leg of n ≥ 4 joints is redundant; it keeps the secondary objective of :class:`LegChain`,
-    ``N₀ᵀ (q − q_stand) = 0`` (its redundant directions at the stand pose hold their stand values:
-    to first order, the configuration nearest the stand that puts the foot on the target).
-    Newton then solves the square system ``F(q) = [p(q) − p*; N₀ᵀ (q − q_stand)] = 0`` with the
-    augmented Jacobian ``Ĵ = [J; N₀ᵀ]`` (n × n), from ``q0`` projected on the objective's plane
-    (the rows are linear, so every Newton step keeps them), and ``q̇ = Ĵ⁻¹ [ṗ; 0]``,
-    ``q̈ = Ĵ⁻¹ [p̈ − J̇ q̇; 0]`` (the rows are constant: no bias term): the exact time derivatives
-    of the position solution.
-    Args:
-        robot: The robot.
-        leg: One of ``robot.legs``, with two joints or more (:data:`MIN_JOINTS`).
-        p: Foot positions in the base frame, shape (T, 3), m.
-        pd: Their time derivatives, shape (T, 3), m/s.
-        pdd: Their second time derivatives, shape (T, 3), m/s².
-        q0: Initial guess of the leg's joint angles, shape (n,), rad; default the ``stand`` pose
-            (or Pinocchio's neutral configuration when the robot has none).
-        t: Sample times for error messages, shape (T,), s; default the sample indices.
-
-    Returns:
-        Joint angles (T, n) rad, velocities (T, n) rad/s, accelerations (T, n) rad/s², in the
-        order of ``leg.joint_names`` (a two-joint leg's in least squares: exact for targets in
-        its plane; a redundant leg's with its secondary objective met).
-
-    Raises:
-        RobotModelError: the leg does not have two or more 1-DoF joints in one chain, or a
-            redundant leg is stretched at the stand pose (:func:`leg_chain`).
-        UnreachableTargetError: Newton does not reach a target (or the Jacobian — the augmented
-            one of a redundant leg — is singular there), or a two-joint leg's target lies off
-            its plane; the message names the leg, the time and the distance.
-    """
-    model = robot.model
-    p, pd, pdd = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (p, pd, pdd))
-    for name, x in (("p", p), ("pd", pd), ("pdd", pdd)):
-        finite_array(f"leg {leg.name} foot target {name}", x)
-    t = np.arange(len(p), dtype=float) if t is None else np.asarray(t, dtype=float)
-    reference = robot.pose("stand") if "stand" in robot.poses else pin.neutral(model)
-    reference[:7] = pin.neutral(model)[:7]
-    chain = leg_chain(robot, leg, reference)
-    start = chain.reference if q0 is None else np.asarray(q0, dtype=float)
-    start = start + chain.redundant @ (chain.redundant.T @ (chain.reference - start))
-    q, err, off = _newton(chain, p, np.tile(start, (len(p), 1)))
-    jumps = np.abs(np.diff(q, axis=0)).max(axis=1)
-    bad = np.flatnonzero((err > NEWTON_TOL) | np.r_[False, jumps >= NEWTON_JUMP])
-    for k in range(int(bad[0]) if bad.size else len(p), len(p)):
-        q[k:k + 1], err[k:k + 1], off[k:k + 1] = _newton(chain, p[k:k + 1],
-                                                          start[None] if k == 0 else q[k - 1:k])
-        if err[k] > NEWTON_TOL:
-            break
-    _, jac = chain.position_jacobian(q)
-    aug = chain.augmented(jac)
-    singular = np.linalg.cond(aug) > 1e8
-    failed = (err > NEWTON_TOL) | singular | (off > PLANE_TOL)
-    if failed.any():
-        k = int(np.argmax(failed))
-        where = (f"leg {leg.name} at t = {t[k]:.6g} s: foot target "
-                 f"{np.round(p[k], 6).tolist()} m (base frame)")
-        if err[k] <= NEWTON_TOL and not singular[k]:
-            raise UnreachableTargetError(
-                f"{where} is {off[k]:.3g} m off the plane its {chain.angular.shape[0]} joints "
-                "move the foot in (at most "
-                f"{PLANE_TOL:g} m): a gait for a two-joint leg keeps each foot in its plane — "
-                "no sideways sway or step (a bound or a pronk, whose support lines run across "
-                "the body, not a trot or a crawl)",
-                leg=leg.name, t=float(t[k]), index=k, target=tuple(float(x) for x in p[k]),
-                distance=float(off[k]))
-        raise UnreachableTargetError(
-            f"{where} is out of reach: Newton stopped {err[k]:.6g} m from it"
-            + (" at a singular configuration" if err[k] <= NEWTON_TOL else ""),
-            leg=leg.name, t=float(t[k]), index=k, target=tuple(float(x) for x in p[k]),
-            distance=float(err[k]))
-    rows = np.zeros((len(q), chain.redundant.shape[1]))  # the objective's rows move by 0
-    qd = _least_squares(aug, np.concatenate([pd, rows], axis=1))
-    qdd = _least_squares(aug, np.concatenate([pdd - chain.bias(q, qd), rows], axis=1))
-    return q, qd, qdd
-
-
-def _least_squares(jac: np.ndarray, e: np.ndarray) -> np.ndarray:
-    """Per sample, the joint change that moves the foot nearest ``e``: ``J⁻¹ e`` for a square
-    Jacobian (least squares where it is singular), ``J⁺ e`` for a two-joint leg's (T, 3, 2); with
-    a redundant leg's augmented Jacobian ``Ĵ`` (:meth:`LegChain.augmented`), the change that
-    also moves the secondary objective's rows by the rest of ``e``.
-
-    Args:
-        jac: Jacobians, shape (T, m, n): ``J`` (m = 3) or ``Ĵ`` (m = n ≥ 4). e: Foot
-            displacements, shape (T, 3) (with the objective's rows, shape (T, m)).
-
-    Returns:
-        Joint changes, shape (T, n).
-    """
-    if jac.shape[1] == jac.shape[2]:
-        try:
-            return np.linalg.solve(jac, e[..., None])[..., 0]
-        except np.linalg.LinAlgError:  # a singular Jacobian: the least-squares step
-            pass
-    return (np.linalg.pinv(jac) @ e[..., None])[..., 0]
-
-
-def _newton(chain: LegChain, p: np.ndarray, q: np.ndarray
-            ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Damped Newton steps (at most 0.5 rad or m a step; least squares where the Jacobian is
-    singular or not square) on every sample at once until each is within :data:`NEWTON_TOL` of
-    its target — of its target's projection on what the joints can reach, for a two-joint leg —
-    or :data:`NEWTON_MAX_ITER` steps. A redundant leg steps with its augmented Jacobian on
-    ``[p* − p; −N₀ᵀ (q − q_stand)]`` (:meth:`LegChain.task`): from a start on the secondary
-    objective's plane its rows stay met to rounding, every step included.
-
-    Args:
-        chain: The leg. p: Targets, shape (T, 3), m. q: Starting joint values, shape (T, n).
-
-    Returns:
-        The joint values reached, shape (T, n); their distance to the targets within reach,
-        shape (T,), m; and what is out of reach (off a two-joint leg's plane), shape (T,), m.
-    """
-    q = q.copy()
-    err = np.full(len(p), np.inf)
-    off = np.zeros(len(p))
-    todo = np.arange(len(p))
-    for it in range(NEWTON_MAX_ITER + 1):
-        at, jac = chain.position_jacobian(q[todo])
-        e = p[todo] - at
-        step = _least_squares(chain.augmented(jac), chain.task(q[todo], e))
-        if jac.shape[2] >= 3:
-            err[todo] = np.linalg.norm(e, axis=1)
-        else:  # the part of e the joints move the foot along; the rest is off the leg's plane
-            reach = np.einsum("tij,tj->ti", jac, step)
-            err[todo] = np.linalg.norm(reach, axis=1)
-            off[todo] = np.linalg.norm(e - reach, axis=1)
-        keep = err[todo] > NEWTON_TOL
-        todo, step = todo[keep], step[keep]
-        if not todo.size or it == NEWTON_MAX_ITER:
-            break
-        norm = np.linalg.norm(step, axis=1, keepdims=True)
-        q[todo] += step * np.minimum(1.0, 0.5 / np.maximum(norm, 1e-300))
-    return q, err, off
