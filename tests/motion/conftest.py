@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Callable
+from pathlib import Path
 
 import numpy as np
 import pinocchio as pin
@@ -92,3 +93,19 @@ def rotated() -> Callable[[hexaleg.Robot, float], hexaleg.Robot]:
     """``rotated(robot, angle)``: the robot's body turned by ``angle`` about z inside its base
     frame, heading included — the same robot, described facing another way."""
     return _rotated
+
+
+QUAD4DOF = Path(__file__).resolve().parents[1] / "data" / "quad4dof.toml"
+"""The four-joint test quadruped (redundant legs)."""
+
+
+@pytest.fixture(scope="module")
+def a1() -> hexaleg.Robot:
+    """Unitree A1 from the registry: legs of three joints, not of the closed form."""
+    return hexaleg.load("a1")
+
+
+@pytest.fixture(scope="module")
+def quad4dof() -> hexaleg.Robot:
+    """The four-joint test quadruped."""
+    return hexaleg.load(str(QUAD4DOF))
