@@ -196,10 +196,10 @@ def rows(problems: Sequence[DesignProblem]) -> tuple[np.ndarray, np.ndarray, np.
                                                      np.ndarray]:
     """The shared design rows of stacked problems: ``(G, h, nonneg, fixed)`` — every problem's
     rows but its "never engaged" ones; a magnitude is fixed at 0 only when its term acts in no
-    problem. (Repeated rows are kept: ANYmal's 21 shifts stack 336 rows, 70 distinct, but the
-    program with each once moves the QP solutions by rounding, and the co-design's gait search
-    then ends at another gait — a fragility of that search, not a reason to change the
-    program.)"""
+    problem. Repeated rows are kept (ANYmal's 21 shifts stack 336 rows, 70 distinct): stacking
+    each once is the same program, but its QP solutions move by rounding, and the co-design's
+    gait search (a Nelder–Mead path) then ends at another gait — that search's fragility, to be
+    mended there."""
     nx = problems[0].nx
     engaged = np.zeros(nx, dtype=bool)
     G, h = [np.zeros((0, nx))], [np.zeros(0)]

@@ -37,8 +37,8 @@ metric's refinement, the stop-tolerant design) from a start the exhaustive searc
 Every step is a fixed sequence of convex solves compared by value, ties kept by the earlier
 candidate (values of the condensed program within :data:`TIE`: what its bundle's tolerance can
 tell apart, so another machine's rounding does not change a decision), so the search is
-deterministic; a tiny change of the gait moves the levels by as
-much and the optimum with them, not to another basin.
+deterministic; a tiny change of the gait moves the levels by as much and the optimum with them,
+not to another basin.
 """
 
 from __future__ import annotations
@@ -235,14 +235,15 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
     def key(state: State) -> tuple[Any, ...]:
         return tuple((g, tuple(sorted(state[g].items()))) for g in groups)
 
+    def record(state: State, solution: DesignSolution | None) -> None:
+        seen[key(state)] = np.inf if solution is None else solution.value
+        if solution is not None:
+            solutions[key(state)] = solution
+
     def value(state: State) -> float:
-        k = key(state)
-        if k not in seen:
-            solution = _solved(setup, state)
-            seen[k] = np.inf if solution is None else solution.value
-            if solution is not None:
-                solutions[k] = solution
-        return seen[k]
+        if key(state) not in seen:
+            record(state, _solved(setup, state))
+        return seen[key(state)]
 
     def values(states: Sequence[State]) -> np.ndarray:
         """Each state's value, the unseen ones solved through ``map_fn`` first."""
@@ -251,9 +252,7 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
             if len(todo) > 1:
                 for s, solution in zip(todo, map_fn(lambda s: _solved(setup, s), todo),
                                        strict=True):
-                    seen[key(s)] = np.inf if solution is None else solution.value
-                    if solution is not None:
-                        solutions[key(s)] = solution
+                    record(s, solution)
         return np.array([value(s) for s in states], dtype=float)
 
     def moved(state: State, g: str, angle: str, theta: float, side: str | None = None
