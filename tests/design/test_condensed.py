@@ -80,7 +80,7 @@ def test_bad_arguments_are_named(prepared100):
 
 
 class _Quadratic:
-    """A stand-in for :class:`Condensed`: ``oracle`` only (what ``_preferred`` uses)."""
+    """A stand-in for :class:`Condensed`: ``oracle`` only (what ``preferred`` uses)."""
 
     def __init__(self, weights, centre, offset=0.0):
         self.w, self.c, self.offset = (np.asarray(weights, float), np.asarray(centre, float),
@@ -95,11 +95,11 @@ def test_equal_worst_cases_are_decided_by_the_preferred_problem():
     """max(x₀² + 1, (x₁ − 2)²) is 1 on the whole segment x₀ = 0, 1 ≤ x₁ ≤ 3: the worst case
     leaves x₁ free. Of that set the second problem prefers x₁ = 2 (value 0): from (0, 1.5)
     the stage moves there and keeps the worst at 1 (analytic)."""
-    from hexaleg.design.condensed import _preferred
+    from hexaleg.design.condensed import preferred
 
     data = [_Quadratic([1.0, 0.0], [0.0, 0.0], 1.0), _Quadratic([0.0, 1.0], [0.0, 2.0])]
     none = np.zeros(2, bool)
-    x, info = _preferred(data, 1, np.array([0.0, 1.5]), np.zeros((0, 2)), np.zeros(0), none,
+    x, info = preferred(data, 1, np.array([0.0, 1.5]), np.zeros((0, 2)), np.zeros(0), none,
                          none)
     assert info["kept"] and info["before"] == pytest.approx(0.25)
     np.testing.assert_allclose(x, [0.0, 2.0], atol=1e-4)

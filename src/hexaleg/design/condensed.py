@@ -41,7 +41,7 @@ from hexaleg.design.bundle import TOLERANCE as CERTIFIED
 from hexaleg.design.program import ENGAGED, MAX_ROUNDS, DesignProblem, torque_gains
 from hexaleg.design.program_reference import force_constraints, stacked
 from hexaleg.dynamics.contact import violations
-from hexaleg.dynamics.reference import solve_clarabel
+from hexaleg.dynamics.reference import REFERENCE_TOLERANCES, solve_clarabel
 from hexaleg.errors import InfeasibleForcesError, InvalidParameterError
 
 METRICS: tuple[str, ...] = ("joule", "electrical")
@@ -53,7 +53,7 @@ NEAR = 1e-3
 explicit samples must be to enter the explicit program first (:func:`explicit_program`); the
 others join only if they turn out to set the worst case."""
 PENALTY = 1e4
-"""M of :func:`_preferred`'s exact penalty: the preferred problem's value traded against a
+"""M of :func:`preferred`'s exact penalty: the preferred problem's value traded against a
 constraint's excess (both values ≈ 1, savings' complements)."""
 SEARCH_TOLERANCE = 1e-6
 """The bundle's predicted decrease at which a geometry search's comparisons stop (of a value
@@ -197,9 +197,9 @@ def rows(problems: Sequence[DesignProblem]) -> tuple[np.ndarray, np.ndarray, np.
     """The shared design rows of stacked problems: ``(G, h, nonneg, fixed)`` — every problem's
     rows but its "never engaged" ones; a magnitude is fixed at 0 only when its term acts in no
     problem. Repeated rows are kept (ANYmal's 21 shifts stack 336 rows, 70 distinct): stacking
-    each once is the same program, but its QP solutions move by rounding, and the co-design's
-    gait search (a Nelder–Mead path) then ends at another gait — that search's fragility, to be
-    mended there."""
+    each once is the same program, but its QP solutions move by rounding, and when it was tried
+    the co-design's gait search of the time (a Nelder–Mead path, since replaced by a compass
+    search with ties: :mod:`hexaleg.design.gait_search`) ended at another gait."""
     nx = problems[0].nx
     engaged = np.zeros(nx, dtype=bool)
     G, h = [np.zeros((0, nx))], [np.zeros(0)]
@@ -227,7 +227,7 @@ def solve_condensed(problems: Sequence[DesignProblem], metric: str, mode: str = 
             False for a geometry search's comparisons (a looser bundle, every sample condensed).
         data: The problems' :class:`Condensed` data when the caller made them.
         prefer: With ``exact`` in mode ``"worst"``: the problem whose value decides between
-            the magnitudes of equal worst (:func:`_preferred`; the unshifted stops' of a
+            the magnitudes of equal worst (:func:`preferred`; the unshifted stops' of a
             stop-tolerance program), index into ``problems``; None: no preference.
 
     Raises:
@@ -249,7 +249,7 @@ def solve_condensed(problems: Sequence[DesignProblem], metric: str, mode: str = 
                               "serious_steps": result.serious_steps, "gap": result.gap}
     x = np.where(nonneg, np.maximum(result.x, 0.0), result.x)
     if exact and mode == "worst" and prefer is not None and len(data) > 1:
-        x, solver["preferred"] = _preferred(data, prefer, x, G, h, nonneg, fixed)
+        x, solver["preferred"] = preferred(data, prefer, x, G, h, nonneg, fixed)
     if exact and any([c.update(x) for c in data]):  # some sample binds: explicit forces there
         x, explicit = explicit_program(data, mode, nonneg, ~fixed, G, h, start=x)
         solver.update(explicit)
@@ -260,7 +260,7 @@ def solve_condensed(problems: Sequence[DesignProblem], metric: str, mode: str = 
                              solver=solver)
 
 
-def _preferred(data: Sequence[Condensed], prefer: int, x: np.ndarray, G: np.ndarray,
+def preferred(data: Sequence[Condensed], prefer: int, x: np.ndarray, G: np.ndarray,
                h: np.ndarray, nonneg: np.ndarray, fixed: np.ndarray
                ) -> tuple[np.ndarray, dict[str, Any]]:
     """Of the magnitudes with the worst value ``F* = max_c E_c(x)/E_c(0)`` at x (a minimiser),
@@ -300,24 +300,17 @@ def _preferred(data: Sequence[Condensed], prefer: int, x: np.ndarray, G: np.ndar
 
 
 def _solve(program: Any) -> str:
-    """Clarabel at :data:`TOLERANCE`, then the tolerance ladder of
-    :func:`hexaleg.dynamics.reference.solve_clarabel` if it stalls (the ladder starts far
-    tighter, where a program this size spends its iteration limit)."""
-    import warnings
-
+    """Clarabel by the tolerance ladder of :func:`hexaleg.dynamics.reference.solve_clarabel`
+    from :data:`TOLERANCE` down: a solve that meets it is that of a plain solve at it (the
+    reduced tolerances count only where Clarabel stalls); one that stalls is solved at the next
+    looser rung. The ladder's rungs tighter than :data:`TOLERANCE` are skipped: a program that
+    stalls at it fails them too (each failure ~0.1 s on the default robot's explicit program, a
+    stall spent six, and a plain solve at :data:`TOLERANCE` before them: 60 % of a co-design
+    candidate's time)."""
     import cvxpy as cp
 
-    with warnings.catch_warnings():
-        warnings.filterwarnings("ignore", message="Solution may be inaccurate")
-        try:
-            program.solve(solver=cp.CLARABEL, tol_gap_abs=TOLERANCE, tol_gap_rel=TOLERANCE,
-                          tol_feas=TOLERANCE, max_iter=200)
-        except cp.error.SolverError:  # Clarabel failed outright: the ladder below
-            pass
-    if program.status == cp.OPTIMAL:
-        return str(program.status)
     try:
-        return solve_clarabel(program)
+        return solve_clarabel(program, tuple(t for t in REFERENCE_TOLERANCES if t >= TOLERANCE))
     except cp.error.SolverError as e:  # failed at every rung: the caller names it
         return f"failed ({e})"
 

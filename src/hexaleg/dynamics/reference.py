@@ -96,9 +96,11 @@ def _load_sample(ref: _ReferenceProblem, system: StanceSystem, k: int, tau_sprin
     return m
 
 
-def solve_clarabel(problem: cp.Problem) -> str:
-    """Solve with Clarabel: tight tolerances first; where Clarabel stalls short of them, loosen
-    step by step and keep the first solve that meets a tolerance. Returns the final status.
+def solve_clarabel(problem: cp.Problem,
+                   rungs: tuple[float, ...] = REFERENCE_TOLERANCES) -> str:
+    """Solve with Clarabel: tight tolerances first (``rungs``, tightest first); where Clarabel
+    stalls short of them, loosen step by step and keep the first solve that meets a tolerance.
+    Returns the final status.
 
     Clarabel reports "almost solved" (cvxpy's "inaccurate") when it stops having met its
     *reduced* tolerances; these are set to the next, looser rung, so such an answer meets that
@@ -108,7 +110,6 @@ def solve_clarabel(problem: cp.Problem) -> str:
     """
     import cvxpy as cp
 
-    rungs = REFERENCE_TOLERANCES
     for i, tol in enumerate(rungs):
         looser = rungs[i + 1] if i + 1 < len(rungs) else None
         reduced = {} if looser is None else {
