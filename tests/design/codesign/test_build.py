@@ -53,8 +53,9 @@ def test_it_walks_in_mujoco_as_planned(codesigned):
 def test_search_reports_its_effort(codesigned):
     s = codesigned.search
     assert 0 < s.evaluations <= BUDGET["max_evaluations"] and s.wall > 0
-    assert len(s.restarts) == BUDGET["restarts"] and codesigned.samples == BUDGET["samples"]
-    assert "Nelder-Mead" in s.method
+    # a run takes what it needs of the budget: the reduced one ends in the first run
+    assert 1 <= len(s.restarts) <= BUDGET["restarts"] and codesigned.samples == BUDGET["samples"]
+    assert "compass search" in s.method and s.evaluations == BUDGET["max_evaluations"]
 
 
 def test_pattern_and_bad_input():

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from hexaleg.design.codesign.build import codesign_settings
-from hexaleg.design.codesign.servo import Screened, choose
+from hexaleg.design.codesign.servo import TIE, Screened, choose
 from hexaleg.design.gait_evaluation import GaitPoint
 from hexaleg.design.gait_search import FINALISTS, SPACING, finalists
 from hexaleg.errors import ConfigError, UnknownNameError
@@ -49,6 +49,10 @@ def test_a_finalist_that_does_not_walk_is_never_chosen():
 def test_ties_go_to_the_search_s_order():
     a, b = _screened(0.79, 11.0, 12.0), _screened(0.76, 12.0, 11.0)
     assert choose([a, b]) is a and choose([b, a]) is b
+    # within the simulation's rounding of the least: still the first; beyond it: the least
+    c = _screened(0.7, 12.0 * (1 - TIE / 2), 1.0)
+    d = _screened(0.7, 12.0 * (1 - 2 * TIE), 1.0)
+    assert choose([a, c]) is a and choose([a, d]) is d
 
 
 def test_finalists_are_the_best_distinct_feasible_gaits_whatever_the_evaluation_order():
@@ -59,7 +63,7 @@ def test_finalists_are_the_best_distinct_feasible_gaits_whatever_the_evaluation_
              (0.5, 0.5 + SPACING / 2): (10.1, _point(0.51)),  # a near-copy of the best
              (0.1, 0.1): (9.0, _point(0.1, error="out of reach")),  # infeasible
              (0.9, 0.9): (11.0, _point(0.9)), (0.2, 0.9): (11.0, _point(0.2))}
-    cache.update({(0.05 * i, 0.0): (12.0 + i, _point(0.3)) for i in range(FINALISTS)})
+    cache.update({(1.01 * SPACING * i, 0.0): (12.0 + i, _point(0.3)) for i in range(FINALISTS)})
     got = finalists(cache)
     assert len(got) == FINALISTS
     assert got[:3] == (cache[(0.5, 0.5)][1], cache[(0.2, 0.9)][1], cache[(0.9, 0.9)][1])

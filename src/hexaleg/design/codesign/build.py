@@ -6,7 +6,7 @@
 winning over
    the stride), its static margin — the default ``min_static_margin`` — and its energy;
 2. the **co-design**: the outer search (:func:`hexaleg.design.gait_search.search`, restarted
-   Nelder–Mead) over body height, foot radius, step height, duty factor and period, each
+   compass search) over body height, foot radius, step height, duty factor and period, each
    candidate with the inner spring program's optimum
    (:func:`hexaleg.design.optimal.optimal_springs` of ``family`` on every joint class,
    electrical metric: fast and convex), at ``samples``
@@ -62,6 +62,7 @@ from hexaleg.motion.legged import gait
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.patterns import check_pattern, pattern_offsets
 from hexaleg.motion.scaling import robot_gait
+from hexaleg.parallel.forked import fork_map, robot_objects
 from hexaleg.robot.model import Robot
 from hexaleg.robot.registry import description
 from hexaleg.robot.springs import SpringSet
@@ -108,8 +109,8 @@ def default_gait(robot: Robot, name: str, speed: float, pattern: str | None, sam
 @typed
 def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = None, *,
              constraints: Constraints | None = None, family: str = "linear",
-             samples: int = 100, final_samples: int = 200, max_evaluations: int = 100,
-             restarts: int = 3, grouping: str = "class", curve: bool = True,
+             samples: int = 100, final_samples: int = 200, max_evaluations: int = 200,
+             restarts: int = 2, grouping: str = "class", curve: bool = True,
              simulate: bool = True, rules: bool = True, design: DesignParams | None = None,
              controller: str = BOTH, progress: Callable[[str], None] | None = None
              ) -> CodesignResult:
@@ -124,7 +125,7 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
         family: The inner spring family (``linear``: no geometry, the fastest).
         samples: Samples a cycle in the search (≥ 40). final_samples: in the rows (≥ samples).
         max_evaluations: The co-design search's budget (the gait-alone search gets the same).
-        restarts: Simplex runs of each search.
+        restarts: Compass-search runs of each search (:data:`~hexaleg.design.gait_search.RESTARTS`).
         grouping: One spring design per joint ``class`` (default), ``mirrored`` left/right
             pair, or ``joint`` (Solo-12's front and hind knees bend opposite ways: a class
             design cancels, so ``mirrored``).
@@ -174,9 +175,10 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
                              min_margin=margin, motor=motor)
     space = default_space(base, c.min_foot_clearance)
     say(f"{model.name}: default gait {first.per_metre:.2f} J/m at {v:g} m/s")
+    spread = functools.partial(fork_map, shared=robot_objects(model))
     joint = search(functools.partial(free, groups=groups), base, v, space, springs=True,
                    reference=first.per_metre, max_evaluations=max_evaluations,
-                   restarts=restarts)
+                   restarts=restarts, map_fn=spread)
     say(f"co-design: {joint.value:.2f} J/m after {joint.evaluations} evaluations "
         f"({joint.wall:.1f} s)")
     finalists = screen(model, joint.finalists, servo, c, motor,
@@ -193,7 +195,7 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
     try:
         alone = search(functools.partial(free, groups=None), base, v, space, springs=False,
                        reference=first.per_metre, max_evaluations=max_evaluations,
-                       restarts=restarts)
+                       restarts=restarts, map_fn=spread)
         say(f"gait alone: {alone.value:.2f} J/m after {alone.evaluations} evaluations")
 
         def final(params: GaitParams, springs: bool) -> GaitPoint:

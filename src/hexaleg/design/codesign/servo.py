@@ -34,6 +34,12 @@ from hexaleg.quantities import quantity
 from hexaleg.robot.model import Robot
 from hexaleg.simulation.controllers import controllers_of
 
+TIE = 0.002
+"""Fraction of the least simulated energy per metre within which finalists tie (the first in
+the search's order is chosen): a forward simulation is sensitive to rounding — a 1e-9 s change
+of the gait's period moves its energy by ~0.1 % (measured on the default robot) — so a closer
+difference is not one the simulation can tell on another machine."""
+
 
 @dataclass(frozen=True, eq=False)
 class Screened:
@@ -108,10 +114,15 @@ def screen(robot: Robot, points: Sequence[GaitPoint], servo: str, c: Constraints
 
 
 def choose(screened: Sequence[Screened]) -> Screened | None:
-    """The finalist with the least simulated energy per metre under its worse controller (the
-    first of equals, so the search's best on a tie); None when none walked under all."""
+    """The finalist with the least simulated energy per metre under its worse controller: the
+    first (in the search's order, so the search's best on a tie) within :data:`TIE` of the
+    least, so that a simulation's rounding on another machine does not change the choice;
+    None when none walked under all."""
     walked = [s for s in screened if np.isfinite(s.worst)]
-    return min(walked, key=lambda s: s.worst, default=None)
+    if not walked:
+        return None
+    least = min(s.worst for s in walked)
+    return next(s for s in walked if s.worst <= least * (1.0 + TIE))
 
 
-__all__ = ["Screened", "choose", "screen"]
+__all__ = ["TIE", "Screened", "choose", "screen"]
