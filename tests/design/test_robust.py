@@ -50,6 +50,21 @@ def test_robust_worst_case_beats_the_nominal_and_every_nearby_design(box, metric
             assert _worst(preps, springs, metric) <= r.worst + 1e-9
 
 
+def test_the_nominal_gait_decides_between_designs_of_equal_worst(box):
+    """The worst case leaves directions free (the conditions that do not set it); preferring the
+    nominal condition picks, of the magnitudes with that worst, the one that saves most on the
+    nominal gait: the worst is kept to the bundle's tolerance and the nominal saving is not
+    below the unpreferred design's, and the stage records what it did."""
+    nominal, best, preps = box
+    free = robust_springs(best, nominal, preps, "worst", "joule")
+    chosen = robust_springs(best, nominal, preps, "worst", "joule", prefer=0)
+    assert chosen.worst == pytest.approx(free.worst, abs=1e-6)
+    assert chosen.saving[0] >= free.saving[0] - 1e-7
+    info = chosen.solver["preferred"]
+    assert info["kept"] and info["after"] <= info["before"] + 1e-9
+    assert "preferred" not in free.solver
+
+
 def test_mean_mode_maximises_the_mean(box):
     nominal, best, preps = box
     r = robust_springs(best, nominal, preps, "mean", "joule")

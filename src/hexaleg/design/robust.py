@@ -39,7 +39,7 @@ import numpy as np
 
 from hexaleg.checks import typed
 from hexaleg.design.bundle import MODES, minimise
-from hexaleg.design.condensed import TOLERANCE, Condensed, explicit_program
+from hexaleg.design.condensed import TOLERANCE, Condensed, explicit_program, preferred
 from hexaleg.design.families import family
 from hexaleg.design.optimal import (
     ENGAGED,
@@ -106,8 +106,8 @@ class RobustSprings:
 @typed
 def robust_springs(optimum: OptimalSprings, nominal: Prepared, conditions: Sequence[Prepared],
                    mode: str = "worst", metric: str = "joule", *,
-                   max_torque: float | None = None, max_deflection: float | None = None
-                   ) -> RobustSprings:
+                   max_torque: float | None = None, max_deflection: float | None = None,
+                   prefer: int | None = None) -> RobustSprings:
     """The magnitudes that maximise the worst (or mean) saving over ``conditions``.
 
     Args:
@@ -121,6 +121,11 @@ def robust_springs(optimum: OptimalSprings, nominal: Prepared, conditions: Seque
         max_torque: Largest spring torque at every condition, N·m, or None.
         max_deflection: Largest deflection from the free position at every condition, rad, or
             None.
+        prefer: In mode ``"worst"``: the condition (index into ``conditions``, the nominal
+            gait's) whose saving decides between magnitudes of equal worst — the worst case's
+            minimiser is not unique where conditions that do not set it leave directions free
+            (:func:`hexaleg.design.condensed.preferred`); None: wherever the bundle method
+            stops in that set.
 
     Returns:
         The robust design and both designs' savings per condition.
@@ -163,6 +168,8 @@ def robust_springs(optimum: OptimalSprings, nominal: Prepared, conditions: Seque
                               "stopped": result.stopped,
                               "program_value": float(result.values.max() if mode == "worst"
                                                      else result.values.mean())}
+    if mode == "worst" and prefer is not None and len(data) > 1:
+        xv, solver["preferred"] = preferred(data, prefer, xv, G, h, nonneg, ~engaged)
     if any([d.update(xv) for d in data]):  # some sample binds: explicit forces there
         xv, explicit = explicit_program(data, mode, nonneg, engaged, G, h)
         for stale in ("gap", "stopped"):  # the bundle's, not the explicit program's

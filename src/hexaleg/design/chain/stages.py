@@ -416,7 +416,8 @@ def robust_design(nom: Nominal, rec: Candidate) -> tuple[RobustResult | None, tu
     d = cfg.design
     try:
         design = robust_springs(rec.optimum, prepared, preps, d.robust_mode, d.metric,
-                                max_torque=d.max_torque, max_deflection=d.deflection_bound)
+                                max_torque=d.max_torque, max_deflection=d.deflection_bound,
+                                prefer=0 if kept[0] == Condition() else None)
     except HexalegError as e:
         return None, (*notes, f"no robust design: {type(e).__name__}: {e}")
     analysis = prepared.evaluate(design.springs, "joule")
