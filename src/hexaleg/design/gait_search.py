@@ -69,7 +69,7 @@ earlier in poll order is kept) and a step is no decrease. The inner program's va
 prints (0.1 J/m of ~20 J/m)."""
 FAIL = 3.0
 """A failing gait's value: this many times the reference energy per metre, plus its distance to
-the default gait (so the simplex is pulled back towards gaits that exist)."""
+the default gait (so the search is pulled back towards gaits that exist)."""
 WEIGHT = 10.0
 """A constraint's relative violation costs this many reference energies per metre."""
 FINALISTS = 6
@@ -157,8 +157,9 @@ class SearchResult:
 
     Attributes:
         best: The best feasible gait (or the least penalised one when none is feasible).
-        value: Its search value, J/m. restarts: Each simplex run's best value, J/m.
-        evaluations: Candidates evaluated (cache hits not counted). wall: s.
+        value: Its search value, J/m. restarts: Each run's best value, J/m (a run the
+            budget cut short: where it stopped).
+        evaluations: Candidates evaluated (each lattice point once). wall: s.
         history: Every evaluation's value, J/m, in order.
         method: The optimiser and its settings, for the record.
         finalists: Up to :data:`FINALISTS` feasible gaits, best first, each the best of those
