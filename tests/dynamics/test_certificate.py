@@ -40,3 +40,21 @@ def test_a_joint_off_its_piece_is_rejected(walk200, group_data):
     wrong.held = np.zeros_like(guess.held)
     wrong.piece = 1 - guess.piece  # every joint on its other piece
     assert not verify(data, wrong, solve_state(data, wrong)[1]).ok.any()
+
+
+def test_non_finite_forces_are_never_feasible(walk200, group_data):
+    """A sample whose unconstrained gains are not finite (a singular Gram matrix,
+    :func:`hexaleg.dynamics.active_set.unconstrained_gains`) is left to the certified paths:
+    forces or torques that are NaN or infinite are never feasible (an infinite force had met
+    its row's tolerance, scaled by the largest force; without torque limits an infinite torque
+    was not checked at all)."""
+    _, _, data, _ = group_data(walk200, ContactParams(mu=0.6), "joule")
+    sol = solve_state(data, empty_state(data))[1]
+    f, tau = sol.f.copy(), sol.tau.copy()
+    f[:, :, 3] = np.nan
+    tau[:, 5] = np.inf
+    f[0, 0, 7] = np.inf
+    ok = feasible(data, tau, f)
+    assert not ok[[3, 5, 7]].any()
+    assert np.array_equal(np.delete(ok, [3, 5, 7]),
+                          np.delete(feasible(data, sol.tau, sol.f), [3, 5, 7]))

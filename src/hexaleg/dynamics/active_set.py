@@ -139,7 +139,11 @@ def unconstrained_gains(data: Data) -> np.ndarray:
         return data.Z
     rho = data.pieces.rho
     rhs = np.transpose(data.E * rho[:, None, :], (1, 0, 2))  # (m, J, T)
-    return smallmat.solve_spd(smallmat.gram(data.E, rho), rhs)
+    # a singular Gram matrix (a two-joint leg's codesign candidates reach some) gives gains
+    # that are not finite at its samples; their forces are then never feasible
+    # (certificate.feasible), so those samples go to the certified paths
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        return smallmat.solve_spd(smallmat.gram(data.E, rho), rhs)
 
 
 def constant_rows(data: Data) -> np.ndarray:

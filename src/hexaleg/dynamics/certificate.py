@@ -35,9 +35,13 @@ TOL_DUAL = 1e-9
 
 
 def feasible(data: Data, tau: np.ndarray, f: np.ndarray) -> np.ndarray:
-    """Samples whose torques (J, T) and forces (3, n_f, T) meet every inequality (T,)."""
-    ok = np.all(foot_values(data, f)[:-3] >= -TOL_PRIMAL * (1.0 + np.abs(f).max(axis=0)),
-                axis=(0, 1))
+    """Samples whose torques (J, T) and forces (3, n_f, T) are finite and meet every
+    inequality (T,). (An infinite force would meet its own row's tolerance, scaled by the
+    largest force.)"""
+    ok = np.isfinite(f).all(axis=(0, 1)) & np.isfinite(tau).all(axis=0)
+    with np.errstate(invalid="ignore"):
+        ok &= np.all(foot_values(data, f)[:-3] >= -TOL_PRIMAL * (1.0 + np.abs(f).max(axis=0)),
+                     axis=(0, 1))
     if data.tmax is not None:
         ok &= np.all(np.abs(tau) <= data.tmax + TOL_PRIMAL * (1.0 + np.abs(tau)), axis=0)
     return ok
