@@ -105,3 +105,42 @@ def test_equal_worst_cases_are_decided_by_the_preferred_problem():
     np.testing.assert_allclose(x, [0.0, 2.0], atol=1e-4)
     assert max(d.oracle(x)[0] for d in data) == pytest.approx(1.0, abs=1e-9)
     assert info["after"] == pytest.approx(0.0, abs=1e-8)
+
+
+class _Stalling:
+    """A stand-in for a cvxpy problem whose Clarabel solve stalls at a relative gap ``stall``:
+    it raises where the rung's reduced tolerance is tighter, reports "inaccurate" where the
+    reduced tolerance is met; records the rungs tried."""
+
+    def __init__(self, stall):
+        self.stall, self.tried, self.status = stall, [], None
+
+    def solve(self, solver=None, **kw):
+        import cvxpy as cp
+
+        self.tried.append(kw["tol_gap_abs"])
+        if kw["tol_gap_abs"] >= self.stall:
+            self.status = cp.OPTIMAL
+        elif kw.get("reduced_tol_gap_abs", 5e-5) >= self.stall:
+            self.status = cp.OPTIMAL_INACCURATE
+        else:
+            raise cp.error.SolverError("Solver 'CLARABEL' failed")
+
+
+def test_the_explicit_program_climbs_from_its_own_tolerance_to_the_loosest():
+    """The explicit program's ladder starts at TOLERANCE (tighter rungs are never tried: a
+    program that stalls there fails them too) and ends at the last of LOOSER: a program that
+    stalls at a gap of 1.8e-6 (the default robot's co-design candidate did) is accepted at the
+    rung whose reduced tolerance it meets; one that stalls above the loosest fails, named."""
+    import cvxpy as cp
+
+    from hexaleg.design.condensed import LOOSER, TOLERANCE, _solve
+
+    converged = _Stalling(1e-9)
+    assert _solve(converged) == cp.OPTIMAL and converged.tried == [TOLERANCE]
+    stalled = _Stalling(1.8e-6)
+    assert _solve(stalled) == cp.OPTIMAL
+    assert min(stalled.tried) == TOLERANCE and stalled.tried[-1] == 1e-6
+    hopeless = _Stalling(1e-3)
+    assert _solve(hopeless).startswith("failed (")
+    assert hopeless.tried[-1] == LOOSER[-1] and min(hopeless.tried) == TOLERANCE
