@@ -90,3 +90,38 @@ def test_position_servo_has_no_feedforward(prepared):
     tau = prepared.evaluate(None).tau_motor
     ref = reference(prepared.motion, tau, np.array([0.0, 0.3]))
     assert np.array_equal(controls(Servo("position"), ref, np.ones(18), np.ones(18)), ref.q)
+
+
+BANDWIDTH_ROBOTS = ("hexaleg", "solo12", "anymal", "anymal_c", "go2", "a1",
+                    *(f"tests/data/{n}.toml" for n in ("biped", "quad2dof", "quad4dof",
+                                                      "spider", "xquad")))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", BANDWIDTH_ROBOTS)
+def test_every_robots_servo_is_stiff_against_its_gait(name):
+    """The gains are the robot's own actuator's (kp = τ_s/θ_c): on every registered and test
+    robot each joint's closed loop ω_n = √(kp/M_jj) at mid-cycle of its default gait (M_jj its
+    inertia with the body held) is at least 5× the gait's frequency (docs/simulate.md quotes
+    the least per robot)."""
+    import pinocchio as pin
+
+    from hexaleg.motion.legged import gait
+    from hexaleg.motion.scaling import robot_gait
+    from hexaleg.robot.registry import description
+
+    root = __import__("pathlib").Path(__file__).resolve().parents[2]
+    key = str(root / name) if name.endswith(".toml") else name
+    desc = description(key)
+    robot = desc.load()
+    kp = Servo("position").gains(desc.actuator(robot), len(robot.joint_names))[0]
+    params = robot_gait(key)
+    q = gait(robot, params).q
+    inertia = np.diag(pin.crba(robot.model, robot.data, q[len(q) // 2]))[6:]
+    ratio = np.sqrt(kp / inertia).min() / (2 * np.pi / params.period)
+    assert ratio >= 5.0
+    labels = {"hexaleg": "the built-in hexapod", "solo12": "Solo-12", "anymal": "ANYmal",
+              "anymal_c": "ANYmal C", "go2": "Go2", "a1": "A1"}
+    if name in labels:
+        page = " ".join((root / "docs" / "simulate.md").read_text().split())
+        assert f"{labels[name]} {ratio:.1f}" in page
