@@ -144,3 +144,22 @@ def test_the_explicit_program_climbs_from_its_own_tolerance_to_the_loosest():
     hopeless = _Stalling(1e-3)
     assert _solve(hopeless).startswith("failed (")
     assert hopeless.tried[-1] == LOOSER[-1] and min(hopeless.tried) == TOLERANCE
+
+
+def test_a_solver_failure_is_not_called_an_empty_program(prepared100, monkeypatch):
+    """Clarabel failing at every rung is named as the solver's failure, not as a program without
+    a solution; an infeasible status keeps the infeasibility's wording."""
+    import hexaleg.design.condensed as condensed
+    from hexaleg.design.condensed import explicit_program
+    from hexaleg.errors import InfeasibleForcesError
+
+    problem = design_problem(prepared100, {"femur": "femur"}, "linear", {"femur": {}})
+    data = [Condensed(problem, "joule")]
+    engaged = np.ones(problem.nx, dtype=bool)
+    args = (data, "worst", problem.nonnegative, engaged, np.zeros((0, problem.nx)), np.zeros(0))
+    monkeypatch.setattr(condensed, "_solve", lambda p: "failed (Solver 'CLARABEL' failed)")
+    with pytest.raises(InfeasibleForcesError, match="the solver failed; that is no proof"):
+        explicit_program(*args)
+    monkeypatch.setattr(condensed, "_solve", lambda p: "infeasible")
+    with pytest.raises(InfeasibleForcesError, match=r"has no solution \(Clarabel: infeasible"):
+        explicit_program(*args)

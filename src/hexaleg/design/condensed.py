@@ -365,6 +365,11 @@ def explicit_program(data: Sequence[Condensed], mode: str, nonneg: np.ndarray,
         else:
             program = cp.Problem(cp.Minimize(sum(ratios) / len(ratios)), cons)
         status = _solve(program)
+        if status.startswith("failed"):
+            raise InfeasibleForcesError(
+                f"Clarabel could not solve the condensed spring program at any tolerance down "
+                f"to {LOOSER[-1]:g} ({status}): the solver failed; that is no proof that "
+                "no springs exist")
         if status != cp.OPTIMAL:
             raise InfeasibleForcesError(
                 f"the condensed spring program has no solution (Clarabel: {status}); "
