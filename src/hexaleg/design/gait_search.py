@@ -53,11 +53,11 @@ from hexaleg.design.search import Mapper
 from hexaleg.errors import InvalidParameterError, UnknownNameError
 from hexaleg.motion.params import GaitParams
 
-RESTARTS = 3
-"""Runs of the compass search: from the default gait; from halfway between the best so far and
-the default gait's mirror through the box's centre; from halfway between the best so far and
-the box's centre; (up to 5: from halfway to the default gait mirrored in the first, then the
-second half of the parameters)."""
+RESTARTS = 2
+"""Runs of the compass search by default: from the default gait, then from halfway between the
+best so far and the default gait's mirror through the box's centre. Up to 5 may be asked for:
+then from halfway between the best and the box's centre, and halfway to the default gait
+mirrored in the first, then the second half of the parameters."""
 STEP = 0.25
 """A run's first step, in the parameters scaled to [0, 1]."""
 MIN_STEP = 2.0 ** -5
@@ -250,7 +250,7 @@ def search(evaluate: Callable[[GaitParams], GaitPoint], base: GaitParams, speed:
             k = lattice(u0)
         else:
             best_u = point(first_best(list(seen)))
-            far = (1.0 - u0, 1.0 - best_u, _mirrored(u0, 0), _mirrored(u0, 1))[run - 1]
+            far = (1.0 - u0, np.full_like(u0, 0.5), _mirrored(u0, 0), _mirrored(u0, 1))[run - 1]
             k = lattice(0.5 * (best_u + far))
         solve([k], budget)
         if k not in seen:

@@ -53,7 +53,7 @@ from hexaleg.design.gait_evaluation import (
     evaluate_gait,
     with_values,
 )
-from hexaleg.design.gait_search import default_space, search
+from hexaleg.design.gait_search import RESTARTS, default_space, search
 from hexaleg.design.optimal import Groups
 from hexaleg.dynamics.plausibility import uses_generic
 from hexaleg.errors import ConfigError, HexalegError, InvalidParameterError
@@ -110,7 +110,7 @@ def default_gait(robot: Robot, name: str, speed: float, pattern: str | None, sam
 def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = None, *,
              constraints: Constraints | None = None, family: str = "linear",
              samples: int = 100, final_samples: int = 200, max_evaluations: int = 200,
-             restarts: int = 2, grouping: str = "class", curve: bool = True,
+             restarts: int = RESTARTS, grouping: str = "class", curve: bool = True,
              simulate: bool = True, rules: bool = True, design: DesignParams | None = None,
              controller: str = BOTH, progress: Callable[[str], None] | None = None
              ) -> CodesignResult:
