@@ -225,10 +225,9 @@ def search(evaluate: Callable[[GaitParams], GaitPoint], base: GaitParams, speed:
         gait = evaluate(with_values(base, speed, space.values(u)))
         return penalised(gait, ref, float(np.linalg.norm(u - u0)), springs), gait
 
-    def solve(ks: list[tuple[int, ...]], limit: int) -> None:
-        """Evaluate the new lattice points of ``ks``, in order, while fewer than ``limit``
-        evaluations are done."""
-        new = list(dict.fromkeys(k for k in ks if k not in seen))[:max(0, limit - len(history))]
+    def solve(ks: list[tuple[int, ...]]) -> None:
+        """Evaluate the new lattice points of ``ks``, in order, within the budget."""
+        new = list(dict.fromkeys(k for k in ks if k not in seen))[:max(0, budget - len(history))]
         for k, result in zip(new, mapper(one, new), strict=True):
             seen[k] = result
             history.append(result[0])
@@ -252,7 +251,7 @@ def search(evaluate: Callable[[GaitParams], GaitPoint], base: GaitParams, speed:
             best_u = point(first_best(list(seen)))
             far = (1.0 - u0, np.full_like(u0, 0.5), _mirrored(u0, 0), _mirrored(u0, 1))[run - 1]
             k = lattice(0.5 * (best_u + far))
-        solve([k], budget)
+        solve([k])
         if k not in seen:
             break
         step = steps
@@ -260,7 +259,7 @@ def search(evaluate: Callable[[GaitParams], GaitPoint], base: GaitParams, speed:
             poll = [tuple(int(x) for x in np.clip(np.array(k) + sign * step * e, k_low, k_high))
                     for e in eye for sign in (1, -1)]
             poll = [p for p in poll if p != k]
-            solve(poll, budget)
+            solve(poll)
             done = [p for p in poll if p in seen]
             if done and seen[first_best(done)][0] < seen[k][0] - tie:
                 k = first_best(done)
