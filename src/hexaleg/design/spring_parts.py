@@ -81,11 +81,16 @@ class SpringPart:
     Attributes:
         group: The design group. joints: Its joints.
         side: ``"above"`` (acts at the high angles, pushes the joint down) or ``"below"``.
-        role: What it is in the law (``one-sided``, ``pair (1 of 2)``, ``stage``).
+        role: What it is in the law (``one-sided``: it engages past a contact angle; ``single``:
+            a linear spring free outside the motion; ``pair (1 of 2)``, ``stage``, ``constant
+            torque``).
         rate: N·m/rad (0 for a constant torque). preload_torque: Torque where it starts acting
             in the motion, N·m. max_torque: At the far end of the motion, N·m.
         engage: Where it starts acting, rad from the centre of motion; None: throughout.
         free: Where it would be free, rad from the centre of motion; None: constant torque.
+        contact: Where its moving leg rests on its stop, preloaded (the family's contact
+            angle), rad from the centre of motion; None for a spring without one (a linear
+            spring, free at ``free``).
         constant_torque: k → 0 with a torque: needs a constant-torque spring.
         max_outer_diameter: The group's fit limit, m.
         spring: The torsion spring to buy, or None. nearest: With ``problem``, the nearest one.
@@ -106,6 +111,7 @@ class SpringPart:
     spring: TorsionSpring | None = None
     nearest: TorsionSpring | None = None
     problem: str = ""
+    contact: float | None = None
 
     @property
     def mass(self) -> float:
@@ -210,7 +216,7 @@ def _elements(fam_name: str, geometry: Mapping[str, float | str], x: np.ndarray,
             if uf <= lo or uf >= hi:
                 side = "above" if uf <= lo else "below"
                 near, far = (lo, hi) if side == "above" else (hi, lo)
-                out.append(dict(side=side, role="one-sided", rate=k,
+                out.append(dict(side=side, role="single", rate=k,
                                 preload_torque=k * abs(near - uf), max_torque=k * abs(far - uf),
                                 engage=None, free=uf))
                 continue
@@ -234,7 +240,7 @@ def _elements(fam_name: str, geometry: Mapping[str, float | str], x: np.ndarray,
         out.append(dict(side=side, role=role if k >= ZERO_STIFFNESS else "constant torque",
                         rate=k if k >= ZERO_STIFFNESS else 0.0, preload_torque=start,
                         max_torque=p + k * reach, engage=None if before > 0 else a,
-                        free=free_at))
+                        free=free_at, contact=a))
     return out
 
 

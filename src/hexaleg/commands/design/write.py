@@ -24,11 +24,12 @@ from hexaleg.checks import typed
 from hexaleg.config import write_file
 from hexaleg.design.chain.chain import DesignChain
 from hexaleg.design.chain.config import DesignConfig
-from hexaleg.design.chain.result import DesignResult
+from hexaleg.design.chain.result import DesignResult, mounting_data
 from hexaleg.design.tolerance import TolerantSprings
 from hexaleg.outputs import design_plots, plots
 from hexaleg.outputs.directory import writable_directory
 from hexaleg.outputs.html import render_design_html
+from hexaleg.outputs.spring_drawing import drawings
 from hexaleg.scenario.run_warnings import gait_defaults, run_warnings
 
 
@@ -132,13 +133,16 @@ def write_design(out: str | Path = "hexaleg-design", config: DesignConfig | None
         images[name] = plots.data_uri(png)
         files += written
     cfg = r.config
+    svgs = drawings(mounting_data(r))
     extra = {"warnings": list(design_warnings(r)),
              "gait_defaults": gait_defaults(cfg.design.run(cfg.robot, cfg.contact).description(),
                                             r.gait if cfg.motion is None else None),
-             "files": [*sorted(p.name for p in files), "design.html", "design.json"]}
+             "files": sorted([*(p.name for p in files), *(f"{n}.svg" for n in svgs),
+                              "design.html", "design.json"])}
     data = r.to_dict(**extra)
     for path, text in ((out / "design.json", r.to_json(**extra)),
-                       (out / "design.html", render_design_html(data, images))):
+                       *((out / f"{n}.svg", svg) for n, svg in svgs.items()),
+                       (out / "design.html", render_design_html(data, images, svgs))):
         files.append(write_file(path, text, "the design"))
     if progress:
         progress(f"wrote {out / 'design.html'}")

@@ -28,6 +28,7 @@ from hexaleg.design.chain.stages import RobustResult
 from hexaleg.design.envelope import PartEnvelope
 from hexaleg.design.evaluator import SAVING_METRICS
 from hexaleg.design.fatigue import FatigueCheck, cycles_per_year
+from hexaleg.design.mounting import mountings
 from hexaleg.design.robustness_map import RobustnessMap
 from hexaleg.design.spring_json import spring_entry
 from hexaleg.design.spring_parts import SpringPart
@@ -304,6 +305,17 @@ def planned_friction_use(a: Analysis) -> float:
     return float(usage.max()) if usage.size else 0.0
 
 
+def mounting_data(r: DesignResult) -> list[dict[str, Any]]:
+    """``mounting``: each recommended spring on each of its joints, every angle from the joint's
+    zero and from its centre of motion, with the hard stop its envelope needs
+    (:func:`hexaleg.design.mounting.mountings`): the angles the page draws."""
+    c = r.recommended
+    a = c.optimum.analysis
+    joints = {j for p in c.parts for j in p.joints}
+    return [m.table() for m in mountings(c.parts, a.q, {j: a.robot.column(j) for j in joints},
+                                         envelope=r.envelope, mirrored=c.optimum.mirrored)]
+
+
 def design_data(r: DesignResult) -> dict[str, Any]:
     """The content of ``design.json`` (module docstring)."""
     d = r.config.design
@@ -331,6 +343,7 @@ def design_data(r: DesignResult) -> dict[str, Any]:
         "whole_draw": None if r.whole_draw is None else r.whole_draw.as_dict(),
         "friction_use": quantity(planned_friction_use(r.recommended.optimum.analysis), "1"),
         "recommended": candidate_data(r.recommended, r.outer),
+        "mounting": mounting_data(r),
         "candidates": [candidate_data(c, r.outer) for c in r.candidates],
         "pareto": [{"fraction": quantity(f, "1"), **candidate_data(c, r.outer)}
                    for f, c in r.pareto],
@@ -355,4 +368,4 @@ def design_data(r: DesignResult) -> dict[str, Any]:
 
 
 __all__ = ["MIN_SAVING", "DesignResult", "candidate_data", "design_data", "gait_data", "map_data",
-           "ranking_data", "robust_data", "tolerance_data"]
+           "mounting_data", "ranking_data", "robust_data", "tolerance_data"]

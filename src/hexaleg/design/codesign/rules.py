@@ -17,7 +17,13 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from hexaleg.design.chain.result import DesignResult, candidate_data, ranking_data, tolerance_data
+from hexaleg.design.chain.result import (
+    DesignResult,
+    candidate_data,
+    mounting_data,
+    ranking_data,
+    tolerance_data,
+)
 from hexaleg.quantities import quantity
 from hexaleg.simulation.sensitivity import sensitivity_row
 
@@ -75,7 +81,8 @@ def rule_lines(r: DesignResult, stride: float) -> list[str]:
 
 def rule_data(r: DesignResult, stride: float) -> dict[str, Any]:
     """``codesign.json``'s ``full_rules``: the settings, the recommendation (savings, groups
-    with their marginal saving, the groups left unfitted, the parts), its energy per metre, the
+    with their marginal saving, the groups left unfitted, the parts), where each part mounts on
+    each joint (angles from the joint's zero), its energy per metre, the
     stop tolerance, the envelope and hard stops, fatigue, the ranking, the simulation, the
     stages' wall times and the notes."""
     d = r.config.design
@@ -91,6 +98,7 @@ def rule_data(r: DesignResult, stride: float) -> dict[str, Any]:
                      "life_cycles": quantity(d.life_cycles, "cycles"),
                      "robustness": d.robustness},
         "recommended": candidate_data(r.recommended, r.outer),
+        "mounting": mounting_data(r),
         "per_metre": quantity(per_metre(r, stride), "J/m"),
         "stop_tolerance": None if r.tolerance is None else tolerance_data(r),
         "envelope": [e.table() for e in r.envelope],
