@@ -75,6 +75,9 @@ def test_one_drawing_per_part_named_by_group_and_side():
     d = _entry(part=2, side="below", group="tibia")
     assert list(drawings([a, b, c, d])) == ["spring_femur_above", "spring_tibia_below",
                                             "spring_tibia_below_2"]
+    # a group named by its joints' legs (Solo-12: "hfe LH/RH") is a file name, not a path
+    assert list(drawings([_entry(group="hfe LH/RH", side="below")])) == \
+        ["spring_hfe_LH_RH_below"]
 
 
 def test_degrees_never_read_minus_zero():

@@ -20,6 +20,7 @@ centre of motion in brackets. Plain SVG, no script, no external reference.
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Mapping, Sequence
 from typing import Any
 from xml.sax.saxutils import escape
@@ -159,7 +160,8 @@ def spring_svg(entry: Mapping[str, Any], title: str) -> str:
 
 def drawings(mounting: Sequence[Mapping[str, Any]]) -> dict[str, str]:
     """One drawing per spring to buy (``part``), of its first joint: ``spring_<group>_<side>``
-    (a number after it where a group has two such parts) → SVG; the other joints' angles are in
+    (a number after it where a group has two such parts; every run of characters a file name
+    should not hold — a group ``hfe LH/RH`` — one ``_``) → SVG; the other joints' angles are in
     the page's table and ``design.json``."""
     out: dict[str, str] = {}
     drawn: set[int] = set()
@@ -167,7 +169,7 @@ def drawings(mounting: Sequence[Mapping[str, Any]]) -> dict[str, str]:
         if entry["part"] in drawn:
             continue
         drawn.add(entry["part"])
-        name = base = f"spring_{entry['group']}_{entry['side']}"
+        name = base = re.sub(r"[^A-Za-z0-9_-]+", "_", f"spring_{entry['group']}_{entry['side']}")
         n = 1
         while name in out:
             n += 1

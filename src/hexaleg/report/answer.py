@@ -43,6 +43,8 @@ DESIGN_JSON = Path("hexaleg-design") / "design.json"
 """Where ``hexaleg design`` writes its answer by default, relative to the working directory."""
 QUICK_FAMILY = "linear"
 """The family of the quick answer: its global optimum is one convex program (about a second)."""
+QUICK_UNPROVEN = "predicted, not simulated: hexaleg design simulates its answer"
+"""Why the quick answer is unproven: no forward simulation runs within the report's budget."""
 
 
 def answer_section(cfg: ReportConfig, robot: Robot, prepared: Prepared
@@ -183,7 +185,8 @@ def _quick(cfg: ReportConfig, robot: Robot
     rec = candidate_data(c, result.outer)
     section = {"origin": "quick", "source": None, "html": None, "actuator": result.actuator,
                **recommendation(rec, params.metric, n, result.pays),
-               "worst": None, "robust": None, "simulation": [], "notes": list(c.notes)}
+               "worst": None, "robust": None, "simulation": [],
+               "proof": {"proven": False, "why": QUICK_UNPROVEN}, "notes": list(c.notes)}
     return section, c.optimum.springs, None
 
 
@@ -224,6 +227,8 @@ def answer_line(section: dict[str, Any] | None) -> str:
                  + ("" if whole["complete"] else ", counting what is known") + ")")
     if not g["pays"]:
         line = f"no springs pay here; the best: {line}"
-    if g["origin"] == "quick":
-        line += "; hexaleg design for the full answer"
+    elif g["origin"] == "quick":
+        line += f"; unproven ({QUICK_UNPROVEN})"
+    elif not g["proof"]["proven"]:
+        line = f"unproven ({g['proof']['why']}): {line}"
     return line

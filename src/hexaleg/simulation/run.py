@@ -57,6 +57,24 @@ STEP_MARGIN = 2
 """Margin on the memory one simulation step costs (:func:`step_bytes`)."""
 
 
+def verdict_meanings() -> dict[str, str]:
+    """What each verdict of :data:`VERDICTS` means (:func:`hexaleg.simulation.measures.verdict`,
+    and the runs that did not reach the end), in words with the bounds, for the pages."""
+    tol, bound = measures.DISTANCE_TOLERANCE, measures.TRACKING_BOUND * 1e3
+    return {
+        "walks": (f"it covered the planned distance per cycle within ±{tol:.0%} and followed "
+                  f"the joints' gait (RMS tracking error at most {bound:.0f} mrad)"),
+        "stalled": f"it stood but covered less than {STALL:.0%} of the planned distance per cycle",
+        "short": f"it covered {STALL:.0%} to {1 - tol:.0%} of the planned distance per cycle",
+        "overran": f"it covered more than {1 + tol:.0%} of the planned distance per cycle",
+        "untracked": (f"it covered the distance, but its joints did not follow the gait (RMS "
+                      f"tracking error over {bound:.0f} mrad)"),
+        "fell": (f"the body fell: its height under {stepping.FALL_HEIGHT:.0%} of the planned "
+                 f"or its roll or pitch beyond ±{np.degrees(stepping.FALL_TILT):.0f}°"),
+        "diverged": "the integration diverged",
+    }
+
+
 @dataclass(frozen=True)
 class Settings:
     """How to simulate (the ``[simulate]`` table of a config file; SI).

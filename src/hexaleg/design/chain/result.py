@@ -8,7 +8,8 @@
 — the one reader — and so ``hexaleg simulate --springs`` and ``hexaleg report --design`` read
 back. ``simulation`` holds the recommendation's forward simulation, one row per controller, as
 ``hexaleg simulate --sensitivity`` writes its rows
-(:func:`hexaleg.simulation.sensitivity.sensitivity_row`).
+(:func:`hexaleg.simulation.sensitivity.sensitivity_row`), under the servo the robot runs and the
+worse first; ``proof`` says whether they back the answer, and if not why.
 """
 
 from __future__ import annotations
@@ -42,6 +43,8 @@ from hexaleg.dynamics.prepare import Analysis
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.trajectory import Motion
 from hexaleg.quantities import file_data, json_text, quantity
+from hexaleg.simulation.controllers import controllers_of
+from hexaleg.simulation.run import verdict_meanings
 from hexaleg.simulation.sensitivity import sensitivity_row
 
 MIN_SAVING = 1e-4
@@ -133,10 +136,42 @@ class DesignResult:
         """Whether the recommended springs save energy net of their own mass."""
         return bool(self.recommended.net[self.config.design.metric] > MIN_SAVING)
 
+    def simulated(self) -> list[dict[str, Any]]:
+        """The recommendation's simulation rows under the servo the robot runs (``[design]
+        controller``: both controllers by default), the worse first: a run that did not walk,
+        then the lower simulated saving."""
+        runs = controllers_of(self.config.design.controller)
+        rows = [row for row in self.simulation if row.get("controller") in runs]
+        return sorted(rows, key=lambda row: (row["simulated"] is not None,
+                                             row["simulated"] or 0.0))
+
+    @property
+    def unproven(self) -> str:
+        """Why no simulation backs the recommendation under the servo the robot runs, or ""
+        when one does: the recommendation and the robot without springs both walk
+        (:func:`hexaleg.simulation.measures.verdict`) under each controller of ``[design]
+        controller``, and the simulated saving is positive under each."""
+        runs = controllers_of(self.config.design.controller)
+        rows = self.simulated()
+        if not rows:
+            return ("not simulated" + (f" under {' and '.join(runs)}"
+                                       if self.simulation else "")
+                    + ("" if "proof" in self.stages else " (the proof stage did not run)"))
+        for row in rows:
+            if row["simulated"] is None:
+                return f"under {row['label']} the runs did not walk ({row['verdict']})"
+            if row["simulated"] <= 0:
+                return (f"under {row['label']} the simulated saving is "
+                        f"{100 * row['simulated']:+.2f} %")
+        return ""
+
     def summary(self) -> str:
-        """One line: the recommendation and its saving."""
+        """One line: the recommendation and its saving; "unproven" and why where no simulation
+        under the servo the robot runs backs it (:attr:`unproven`)."""
         r, m = self.recommended, self.config.design.metric
-        head = "fit" if self.pays else "no springs pay here; the best would be"
+        why = self.unproven
+        head = ("no springs pay here; the best would be" if not self.pays else
+                f"unproven ({why}): the analysis would fit" if why else "fit")
         line = (f"{head} {r.label} springs on {', '.join(r.optimum.groups)}: {m} saving "
                 f"{100 * r.row[f'saving.{m}']:+.2f} % ({100 * r.net[m]:+.2f} % net "
                 f"of {1e3 * r.spring_mass:.1f} g of springs); " + (
@@ -154,7 +189,7 @@ class DesignResult:
             line += "; NOT SAFE over the joint's envelope: " + ", ".join(unsafe)
         simulated = [f"{row['label']} {100 * row['simulated']:+.2f} %"
                      if row["simulated"] is not None else f"{row['label']}: {row['verdict']}"
-                     for row in self.simulation]
+                     for row in self.simulated()]
         if simulated:
             line += (f"; simulated electrical saving {', '.join(simulated)} (predicted "
                      f"{100 * self.simulation[0]['predicted']:+.2f} %)")
@@ -360,12 +395,23 @@ def design_data(r: DesignResult) -> dict[str, Any]:
                                                     "cycles"),
                          "continuous": quantity(cycles_per_year(r.gait.period, 24.0), "cycles")}}
                     for p, f in r.fatigue],
-        "simulation": [sensitivity_row(row) for row in r.simulation],
+        "simulation": [sensitivity_row(row) for row in r.simulated()],
+        "proof": proof_data(r),
         "timings": {k: quantity(v, "s") for k, v in r.timings.items()},
         "notes": list(r.notes),
         "stages": list(r.stages),
     }
 
 
+def proof_data(r: DesignResult) -> dict[str, Any]:
+    """``proof``: whether a simulation under the servo the robot runs backs the answer
+    (:attr:`DesignResult.unproven`), the controllers it needs, and what each run's verdict
+    means (:func:`hexaleg.simulation.measures.verdict_meanings`)."""
+    why = r.unproven
+    return {"proven": not why, "why": why or None,
+            "controllers": list(controllers_of(r.config.design.controller)),
+            "verdicts": verdict_meanings()}
+
+
 __all__ = ["MIN_SAVING", "DesignResult", "candidate_data", "design_data", "gait_data", "map_data",
-           "mounting_data", "ranking_data", "robust_data", "tolerance_data"]
+           "mounting_data", "proof_data", "ranking_data", "robust_data", "tolerance_data"]
