@@ -10,8 +10,8 @@ program) and the report must stay fast; the report links to it when it sits besi
 
 from __future__ import annotations
 
+import functools
 import math
-import sys
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -21,6 +21,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from hexaleg.checks import typed
+from hexaleg.commands.options import say
 from hexaleg.config import write_file
 from hexaleg.design.chain.chain import DesignChain
 from hexaleg.design.chain.config import DesignConfig
@@ -32,6 +33,9 @@ from hexaleg.outputs.html import render_design_html
 from hexaleg.outputs.spring_drawing import drawings
 from hexaleg.scenario.run_warnings import gait_defaults, run_warnings
 
+PROGRESS = functools.partial(say, "design")
+"""The command's status lines on stderr (``hexaleg design: …``)."""
+
 
 @dataclass(frozen=True, eq=False)
 class WrittenDesign:
@@ -40,10 +44,6 @@ class WrittenDesign:
     result: DesignResult
     data: dict[str, Any]
     files: tuple[Path, ...]
-
-
-def _stderr_progress(message: str) -> None:
-    print(f"hexaleg design: {message}", file=sys.stderr, flush=True)
 
 
 def figures(r: DesignResult) -> dict[str, Figure]:
@@ -109,7 +109,8 @@ def design_warnings(r: DesignResult) -> tuple[str, ...]:
 
 @typed
 def write_design(out: str | Path = "hexaleg-design", config: DesignConfig | None = None, *,
-                 progress: Callable[[str], None] | None = _stderr_progress) -> WrittenDesign:
+                 progress: Callable[[str], None] | None = PROGRESS
+                 ) -> WrittenDesign:
     """Compute the design and write ``design.json``, ``design.html`` and the plots into ``out``.
 
     Args:
