@@ -11,7 +11,8 @@ robust design over the box period ×0.75…1.5, stride ×0.75…1.25, payload 0�
 recommendation simulated forward in MuJoCo under both controllers (predicted / simulated);
 every ranked design simulated under the default servo, the recommendation designed for its stops
 mounted within ±1°, each part checked over its whole envelope and for fatigue, and where each
-spring mounts on each joint (joint angles from the joint's zero, as docs/design.md quotes them).
+spring mounts on each joint (joint angles from the joint's zero, as docs/design.md quotes them),
+and the fold into the sphere and back with the springs and without.
 """
 
 from __future__ import annotations
@@ -110,6 +111,14 @@ def main() -> None:
         print(f"  {e['joint']:9s} {e['side']:5s} centre {deg['centre']:>7s}, spring stop "
               f"{deg['contact']:>7s} ({deg['contact_from_centre']}), free leg {deg['free']:>7s}, "
               f"hard stop {deg['hard_stop']}")
+    if r.fold is not None:
+        print("\nthe fold into the sphere and back, electrical J with the springs / without")
+        for w in r.fold.ways:
+            print(f"  {w.label}  {w.electrical:.3f} / {w.baseline:.3f}, torque "
+                  f"{w.torque_share:.3f} / {w.baseline_share:.3f} of the limit")
+        be = r.fold.break_even
+        print("  the springs pay for a fold out and back after "
+              + (f"{be:.2f} m of walking" if be is not None else "— (they save nothing)"))
     for mp in r.maps:
         a, b = mp.axes
         print(f"\n{m} saving of the recommended springs, % ({a} down, {b} across)")

@@ -218,6 +218,8 @@ def _run_design(args: argparse.Namespace) -> int:
     print(written.result.summary())
     if written.result.whole_draw is not None:
         print(written.result.whole_draw.line())
+    if written.result.fold is not None:
+        print(written.result.fold.line())
     print(f"wrote {len(written.files)} files to {args.out}; open {args.out}/design.html")
     return 0
 

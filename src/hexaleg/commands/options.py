@@ -72,6 +72,7 @@ def check_tables(tables: Mapping[str, Any], where: str, log: str | Path | None =
     table names (:data:`hexaleg.scenario.scenario.TABLES`), ``[gait]`` and ``[contact]``
     (refused with a log, :func:`hexaleg.scenario.logged.refuse_gait_table`), ``[design]``
     (:class:`~hexaleg.design.chain.config.DesignParams`; no ``samples`` with a log),
+    ``[mission]`` (:class:`~hexaleg.design.fold.Mission`),
     ``[codesign]`` (:func:`~hexaleg.design.codesign.build.codesign_settings`), ``[simulate]``
     (:class:`~hexaleg.simulation.run.Settings`), ``[motor]``, ``[report]``, ``[springs]`` and
     ``[payload]`` (:class:`~hexaleg.report.config.ReportConfig`), ``[view]``
@@ -84,6 +85,7 @@ def check_tables(tables: Mapping[str, Any], where: str, log: str | Path | None =
     from hexaleg.config import from_mapping
     from hexaleg.design.chain.config import DesignParams
     from hexaleg.design.codesign.build import codesign_settings
+    from hexaleg.design.fold import Mission
     from hexaleg.dynamics.contact import ContactParams
     from hexaleg.outputs.viewer.show import ViewParams
     from hexaleg.report.config import ReportConfig
@@ -102,6 +104,7 @@ def check_tables(tables: Mapping[str, Any], where: str, log: str | Path | None =
             f"no samples with --motion {log}: the logged cycle keeps its own samples; remove the "
             "key or the --motion option")
     from_mapping(DesignParams, design, f"{where} [design]")
+    from_mapping(Mission, tables.get("mission", {}), f"{where} [mission]")
     codesign_settings(tables.get("codesign", {}), f"{where} [codesign]")
     Settings.from_mapping(tables.get("simulate", {}), f"{where} [simulate]")
     ReportConfig.from_mapping({k: tables[k] for k in ("gait", "motor", "payload", "springs",

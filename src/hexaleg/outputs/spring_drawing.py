@@ -27,7 +27,7 @@ from xml.sax.saxutils import escape
 
 from hexaleg.outputs.html import format_degrees as degrees
 
-SIZE = (800, 330)
+SIZE = (900, 330)
 """Width and height of the drawing, px."""
 CENTRE = (165.0, 165.0)
 """The joint's axis in the drawing, px."""

@@ -49,6 +49,7 @@ TABLES: dict[str, str] = {
     "report": "report: what the report shows",
     "view": "view: how a motion is drawn",
     "design": "design, and codesign's spring rules: the spring design",
+    "mission": "design: how the robot is used between folds into the sphere (metres_per_fold)",
     "simulate": "simulate: the forward simulation's settings",
     "codesign": "codesign: the gait and spring co-design",
 }

@@ -20,6 +20,7 @@ from hexaleg.checks import integer, is_real, named_arguments, real
 from hexaleg.config import check_tables, from_mapping
 from hexaleg.design.evaluator import DEFAULT_METRIC, RunSpec
 from hexaleg.design.families import FAMILIES, family
+from hexaleg.design.fold import Mission
 from hexaleg.design.robust import MODES
 from hexaleg.design.spring_materials import MATERIALS, material
 from hexaleg.design.torsion_spring import SAFETY_FACTOR
@@ -34,7 +35,7 @@ from hexaleg.scenario.scenario import TABLES as RUN_TABLES
 from hexaleg.scenario.scenario import Scenario
 from hexaleg.simulation.controllers import BOTH, SERVOS
 
-TABLES: tuple[str, ...] = ("gait", "contact", "design")
+TABLES: tuple[str, ...] = ("gait", "contact", "design", "mission")
 """Tables ``hexaleg design`` reads; a config file may hold the other commands' too
 (:data:`hexaleg.scenario.scenario.TABLES`), each checked by its owner."""
 GROUPINGS: tuple[str, ...] = ("class", "mirrored", "joint")
@@ -258,6 +259,8 @@ class DesignConfig:
             :func:`hexaleg.scenario.logged.logged_motion`).
         logged: The log's cycle as the run already read it (:attr:`Scenario.motion
             <hexaleg.scenario.scenario.Scenario.motion>`), or None: the chain reads ``motion``.
+        mission: The ``[mission]`` table (:class:`~hexaleg.design.fold.Mission`): metres
+            walked per fold, which the fold's mission saving weighs.
     """
 
     robot: str = "hexaleg"
@@ -267,6 +270,7 @@ class DesignConfig:
     motion: str | None = None
     cycle: str = "auto"
     logged: Motion | None = field(default=None, compare=False, repr=False)
+    mission: Mission = field(default_factory=Mission)
 
     @classmethod
     def from_scenario(cls, scenario: Scenario, controller: str | None = None, *,
@@ -289,7 +293,8 @@ class DesignConfig:
         if design is None:
             design = from_mapping(DesignParams, table, f"{s.where} [design]")
         cfg = cls(robot=s.robot, gait=dataclasses.replace(s.gait, samples=design.samples),
-                  contact=s.contact, design=design, motion=s.log, cycle=s.cycle, logged=s.motion)
+                  contact=s.contact, design=design, motion=s.log, cycle=s.cycle, logged=s.motion,
+                  mission=from_mapping(Mission, s.table("mission"), f"{s.where} [mission]"))
         return cfg.with_controller(controller) if controller else cfg
 
     @classmethod
@@ -309,7 +314,8 @@ class DesignConfig:
         contact = from_mapping(ContactParams, data.get("contact", {}), f"{where} [contact]")
         design = from_mapping(DesignParams, data.get("design", {}), f"{where} [design]")
         return cls(robot=robot, gait=dataclasses.replace(gait, samples=design.samples),
-                   contact=contact, design=design)
+                   contact=contact, design=design,
+                   mission=from_mapping(Mission, data.get("mission", {}), f"{where} [mission]"))
 
     def with_controller(self, controller: str) -> DesignConfig:
         """The same configuration with ``[design] controller`` replaced (``--controller``).

@@ -29,6 +29,7 @@ from hexaleg.design.chain.stages import RobustResult
 from hexaleg.design.envelope import PartEnvelope
 from hexaleg.design.evaluator import SAVING_METRICS
 from hexaleg.design.fatigue import FatigueCheck, cycles_per_year
+from hexaleg.design.fold import Fold
 from hexaleg.design.mounting import mountings
 from hexaleg.design.robustness_map import RobustnessMap
 from hexaleg.design.spring_json import spring_entry
@@ -89,6 +90,8 @@ class DesignResult:
         whole_draw: The recommendation's whole draw on the nominal gait — motors, servos at
             rest, electronics (:mod:`hexaleg.dynamics.draw`) — or None for a motion that is
             not one periodic cycle.
+        fold: The fold into the sphere and back with the recommendation and without
+            (:mod:`hexaleg.design.fold`), or None (no such poses, or the stage left out).
     """
 
     config: DesignConfig
@@ -116,6 +119,7 @@ class DesignResult:
     motion: Motion | None = None
     stages: tuple[str, ...] = ()
     whole_draw: WholeDraw | None = None
+    fold: Fold | None = None
 
     def to_dict(self, **extra: Any) -> dict[str, Any]:
         """What ``design.json`` holds (:func:`design_data`), with ``extra`` keys of the command
@@ -389,6 +393,7 @@ def design_data(r: DesignResult) -> dict[str, Any]:
         "ranking": [ranking_data(row) for row in r.ranking],
         "stop_tolerance": None if r.tolerance is None else tolerance_data(r),
         "envelope": [e.table() for e in r.envelope],
+        "fold": None if r.fold is None else r.fold.table(),
         "fatigue": [{"group": p.group, "side": p.side, "role": p.role, **f.table(),
                      "cycles_per_year": {
                          "one_hour_a_day": quantity(cycles_per_year(r.gait.period, 1.0),
