@@ -30,6 +30,7 @@ import dataclasses
 from pathlib import Path
 from typing import Any
 
+from hexaleg.design.chain.result import QUICK_FAMILY
 from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import HexalegError
 from hexaleg.quantities import quantity
@@ -41,8 +42,6 @@ from hexaleg.robot.springs import SpringSet
 
 DESIGN_JSON = Path("hexaleg-design") / "design.json"
 """Where ``hexaleg design`` writes its answer by default, relative to the working directory."""
-QUICK_FAMILY = "linear"
-"""The family of the quick answer: its global optimum is one convex program (about a second)."""
 QUICK_UNPROVEN = "predicted, not simulated: hexaleg design simulates its answer"
 """Why the quick answer is unproven: no forward simulation runs within the report's budget."""
 

@@ -100,3 +100,29 @@ def test_the_worse_servo_leads_the_answer_line(design_written, servo):
     line = low.summary()
     assert line.index(f"{label} +0.10 %") < line.index(
         "position only" if servo == "feedforward" else "feedforward + PD")
+
+
+def test_the_page_tells_one_story_of_the_numbers(design_written):
+    """Issue #57: the figures a user meets for one gait — the quick answer, each family, the
+    springs to buy, net, at worst, simulated, over the maps — each with why it differs, and
+    the same numbers as design.json's other keys."""
+    data = design_written[0].data
+    m = data["settings"]["metric"]
+    story = {row["figure"]: row for row in data["story"]}
+    rec = data["recommended"]
+    assert story["the springs to buy"]["saving"] == rec["saving"][m]
+    assert story["the springs to buy, net of their mass"]["saving"]["value"] == \
+        pytest.approx(rec["net_saving"][m]["value"])
+    for c in data["candidates"]:
+        assert story[f"the {c['family']} family's optimum"]["saving"] == c["saving"][m]
+    if "hexaleg report's quick answer" in story:
+        linear = next(c for c in data["candidates"] if c["family"] == "linear")
+        assert story["hexaleg report's quick answer"]["saving"] == linear["saving"][m]
+    worse = data["simulation"][0]
+    assert story[f"simulated in MuJoCo, {worse['label']} (the worse servo)"]["saving"] == \
+        worse["simulated_saving"]
+    assert all(row["why"] and row["saving"]["unit"] == "%" for row in data["story"])
+    html = render_design_html(data, defaultdict(str))
+    table = html[html.index('<table id="story">'):]
+    table = table[:table.index("</table>")]
+    assert table.count("<tr><td") == len(data["story"])

@@ -28,6 +28,7 @@ from hexaleg.design.chain.ranking import Simulated
 from hexaleg.design.chain.stages import RobustResult
 from hexaleg.design.envelope import PartEnvelope
 from hexaleg.design.evaluator import SAVING_METRICS
+from hexaleg.design.families import family
 from hexaleg.design.fatigue import FatigueCheck, cycles_per_year
 from hexaleg.design.fold import Fold
 from hexaleg.design.mounting import mountings
@@ -402,10 +403,78 @@ def design_data(r: DesignResult) -> dict[str, Any]:
                     for p, f in r.fatigue],
         "simulation": [sensitivity_row(row) for row in r.simulated()],
         "proof": proof_data(r),
+        "story": story_data(r),
         "timings": {k: quantity(v, "s") for k, v in r.timings.items()},
         "notes": list(r.notes),
         "stages": list(r.stages),
     }
+
+
+QUICK_FAMILY = "linear"
+"""The family of ``hexaleg report``'s quick answer (:mod:`hexaleg.report.answer`): its global
+optimum is one convex program (about a second), no geometry to search."""
+
+
+def story_data(r: DesignResult) -> list[dict[str, Any]]:
+    """``story``: the figures a user meets for this gait, each with what it is and why it
+    differs from the springs to buy — the quick answer, each family's optimum, the springs to
+    buy, net of their mass, at worst with the stops off, beyond the tolerance, simulated under
+    the worse servo, over the maps and over the robust box (issue #57: five "best springs" for
+    one gait, and nowhere said why they differ). Savings of the ranking metric, in %."""
+    m, rec = r.config.design.metric, r.recommended
+    out: list[dict[str, Any]] = []
+
+    def row(figure: str, value: float | None, why: str) -> None:
+        out.append({"figure": figure,
+                    "saving": None if value is None else quantity(100 * value, "%"),
+                    "why": why})
+
+    quick = next((c for c in r.candidates if c.family == QUICK_FAMILY), None)
+    if quick is not None:
+        row("hexaleg report's quick answer", quick.row[f"saving.{m}"],
+            f"the {QUICK_FAMILY} family's global optimum: no stop angles to search, one convex "
+            "program, so the report can give it in a second; not simulated")
+    for c in r.candidates:
+        row(f"the {c.family} family's optimum", c.row[f"saving.{m}"],
+            ("its stops at their exact angles; " if family(c.family).angles else "")
+            + ("the family of the springs to buy, before the stop tolerance"
+               if c.family == rec.family else
+               "ranked below the springs to buy by its simulated saving net of its springs' "
+               "mass (the families' table)"))
+    row("the springs to buy", rec.row[f"saving.{m}"],
+        "the family ranked best by its simulated saving net of the springs' mass"
+        + (", designed for stops a workshop mounts within ±"
+           f"{math.degrees(r.tolerance.tolerance):g}°: it gives up part of the exact-stop "
+           "optimum for its worst case" if r.tolerance is not None
+           and r.tolerance.chosen == "tolerant" else ""))
+    row("the springs to buy, net of their mass", rec.net[m],
+        f"{1e3 * rec.spring_mass:.1f} g of springs carried on every step")
+    t = r.tolerance
+    if t is not None:
+        row(f"at worst with every stop within ±{math.degrees(t.tolerance):g}°",
+            t.worst[t.chosen], "the lowest over the stated mounting errors")
+        outside = np.abs(t.shifts) > t.tolerance * (1 + 1e-9)
+        if outside.any():
+            k = int(np.flatnonzero(outside)[np.argmin(t.curve[t.chosen][outside])])
+            row(f"a common stop shift of {math.degrees(t.shifts[k]):+.1f}°, outside the "
+                "tolerance", t.curve[t.chosen][k],
+                "the stops mounted further off than designed for: the saving falls fast "
+                "beyond the tolerance")
+    sims = r.simulated()
+    if sims:
+        worse = sims[0]
+        row(f"simulated in MuJoCo, {worse['label']} (the worse servo)", worse["simulated"],
+            "the springs in a forward simulation with real contacts and that servo's "
+            "tracking" + ("" if worse["simulated"] is not None
+                          else f": the runs did not walk ({worse['verdict']})"))
+    if r.maps and m in r.worst:
+        row(f"over the robustness maps, at worst ({r.worst[m][1]})", r.worst[m][0],
+            "the same springs on another gait, load or floor than the one designed for")
+    if r.robust is not None:
+        row("the robust design over its box, at worst", r.robust.worst(m),
+            "other magnitudes, chosen for the worst corner of the box, not the springs to "
+            "buy")
+    return out
 
 
 def proof_data(r: DesignResult) -> dict[str, Any]:
@@ -418,5 +487,6 @@ def proof_data(r: DesignResult) -> dict[str, Any]:
             "verdicts": verdict_meanings()}
 
 
-__all__ = ["MIN_SAVING", "DesignResult", "candidate_data", "design_data", "gait_data", "map_data",
-           "mounting_data", "proof_data", "ranking_data", "robust_data", "tolerance_data"]
+__all__ = ["MIN_SAVING", "QUICK_FAMILY", "DesignResult", "candidate_data", "design_data",
+           "gait_data", "map_data", "mounting_data", "proof_data", "ranking_data", "robust_data",
+           "story_data", "tolerance_data"]
