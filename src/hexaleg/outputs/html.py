@@ -50,16 +50,16 @@ def format_percent(q: Mapping[str, Any] | float | None) -> str:
     return f"{float(x):+.2f} %"
 
 
-def format_degrees(rad: Any) -> str:
+def format_degrees(rad: Any, signed: bool = True) -> str:
     """An angle given in rad (a number or a ``{value, unit: rad}`` quantity) in degrees with one
-    decimal and its sign, never ``-0.0°``; ``—`` for a missing value."""
+    decimal and its sign (``signed``), never ``-0.0°``; ``—`` for a missing value."""
     x = rad.get("value") if isinstance(rad, Mapping) else rad
     if x is None:
         return "—"
     if isinstance(rad, Mapping) and rad.get("unit") != "rad":
         raise ValueError(f"deg: {rad!r} is not an angle in rad")
     d = round(math.degrees(float(x)), 1) + 0.0
-    return f"{d:+.1f}°"
+    return f"{d:+.1f}°" if signed else f"{d:.1f}°"
 
 
 def format_quantity(q: Mapping[str, Any] | None) -> str:

@@ -226,7 +226,7 @@ class DesignChain:
                                tuple[tuple[SpringPart, FatigueCheck], ...], tuple[str, ...]]:
             env, fatigue, notes = envelope_and_fatigue(self.nominal(), self.recommended())
             self._step("envelope", f"{len(env)} parts checked over their whole envelope and "
-                       f"for fatigue at {self.config.design.life_cycles:.3g} cycles")
+                       f"for fatigue at {self.config.design.life_cycles:,.0f} cycles")
             return env, fatigue, tuple(notes)
         return self._once("envelope", compute)
 

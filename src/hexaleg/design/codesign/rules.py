@@ -74,7 +74,7 @@ def rule_lines(r: DesignResult, stride: float) -> list[str]:
         out.append(f"  {p.group} {p.side}: {s.material} d {1e3 * s.wire_diameter:.2f} mm, D "
                    f"{1e3 * s.mean_diameter:.2f} mm, {s.body_turns:g} turns; worst S_y/σ "
                    f"{e.safety_factor:.2f} (design factor {e.design_factor:g}), {stop}; fatigue "
-                   f"n_f {f.safety_factor:.2f} at {d.life_cycles:.0e} cycles; wound up it {arbor} "
+                   f"n_f {f.safety_factor:.2f} at {d.life_cycles:,.0f} cycles; wound up it {arbor} "
                    f"({1e3 * e.wound_inner_diameter:.2f} mm over {1e3 * e.arbor_diameter:.2f} mm)")
     rows = r.simulated()
     if rows:
