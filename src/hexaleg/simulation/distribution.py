@@ -28,9 +28,11 @@ cone. The program is solved exactly in two ways: its unconstrained minimiser
 inside every cone (a convex program's unconstrained minimiser that is feasible is optimal), which
 is the common case; otherwise Clarabel solves the second-order cone program (Goulart & Chen,
 "Clarabel: an interior-point solver for conic programs with quadratic objectives", 2024).
-The plan is within its cones and the actuators' limits, so ``Δf = 0`` is always feasible:
-the program always has its unique solution. ``tests/simulation/test_distribution.py`` checks
-it against cvxpy.
+The plan is within its cones and the actuators' limits, so ``Δf = 0`` is feasible and the
+program has its unique solution; where the simulated ground's μ is below the plan's (``[simulate]
+mu``) a plan's force may lie outside its cone, and if the torque rows then leave no feasible
+point the program is solved without them (zero force, ``Δf = −f⁰``, is in every cone).
+``tests/simulation/test_distribution.py`` checks it against cvxpy.
 """
 
 from __future__ import annotations
@@ -162,7 +164,9 @@ def _conic(h: np.ndarray, g: np.ndarray, f0: np.ndarray, mu: float,
     solver = clarabel.DefaultSolver(sp.csc_matrix(np.triu(h)), -g, sp.csc_matrix(rows), b,
                                     cones, settings)
     solution = solver.solve()
+    if "Infeasible" in str(solution.status) and bounds is not None:
+        return _conic(h, g, f0, mu, None)
     if str(solution.status) not in ("Solved", "AlmostSolved"):
         raise SimulationError(f"the balance controller's force program: Clarabel {solution.status}"
-                              " (it is always feasible: report this)")
+                              " (without torque rows it is always feasible: report this)")
     return np.asarray(solution.x).reshape(n, 3)
