@@ -57,7 +57,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import mujoco
 import numpy as np
 import pinocchio as pin
 
@@ -155,6 +154,9 @@ class Balance:
 
     def __init__(self, sim: SimModel, motion: Motion, forces: np.ndarray, tau: np.ndarray,
                  gains: Gains | None = None) -> None:
+        import mujoco  # where a model is built: importing this package stays light
+
+        self._quat2mat = mujoco.mju_quat2Mat
         robot = sim.robot
         model = robot.model
         data = model.createData()
@@ -260,7 +262,7 @@ class Balance:
         p_plan, r_plan = track[:3] + travel, self.rotation[k]
         p = qpos[:3]
         flat = np.empty(9)
-        mujoco.mju_quat2Mat(flat, qpos[3:7] / np.linalg.norm(qpos[3:7]))
+        self._quat2mat(flat, qpos[3:7] / np.linalg.norm(qpos[3:7]))
         rot = flat.reshape(3, 3)
         dw = np.empty(6)
         dw[:3] = self.mass * (g.kp * (p_plan - p) + g.kd * (track[3:6] - qvel[:3]))
