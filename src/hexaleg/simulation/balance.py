@@ -17,10 +17,11 @@ plan's inverse dynamics are already the feedforward):
    plan's first sample, in the base frame: constant, as the MIT controllers take it). The
    desired wrench is the plan's (its inverse dynamics' contact wrench) plus ``ΔW = (ΔF, ΔM)``.
 2. **Force distribution** (:mod:`hexaleg.simulation.distribution`): the change ``Δf`` of the
-   planned stance feet's forces that makes ``ΔW`` within the friction cones (a QP).
-3. **Joint torques** (Del Prete, Mansard et al., "Implementing torque control with high-ratio
-   gear boxes and without joint-torque sensors", Int. J. Humanoid Robotics 13(1), 2016, and the
-   TSID formulation ``Mv̇ + h = Sᵀτ + J_cᵀ f``: at the plan's accelerations, a change of the
+   planned stance feet's forces that makes ``ΔW`` within the friction cones and the servos'
+   torque limits (a QP).
+3. **Joint torques** (Del Prete, Nori, Metta & Natale, "Prioritized motion–force control of
+   constrained fully-actuated robots: Task Space Inverse Dynamics", Robotics and Autonomous
+   Systems 63, 2015 — TSID's ``Mv̇ + h = Sᵀτ + J_cᵀ f``: at the plan's accelerations, a change of the
    contact forces is a change ``Δτ = −J_cᵀ Δf`` of the joint torques, ``J_c`` the stance feet's
    Jacobians' joint columns — MIT's ``τ = Jᵀ Rᵀ f`` with the sign of the ground's force on the
    foot), at the plan's joint angles.
@@ -47,9 +48,13 @@ references run every simulation step. At 100 Hz the controller costs ≤ 3× the
 (``analysis/bench_simulate.py``); 200 Hz walks the same four trots with the same verdicts.
 
 **Gains** (:func:`size_gains`): ``k_p = ω²``, ``k_d = 2 ζ ω`` with ζ = 1 (critically damped)
-and ``ω = BANDWIDTH · 2π / period``: the body's closed loop at twice the gait's frequency, so
-an error is corrected within a step, and below the servos' own loops (5.4–20× the gait's
-frequency on every registered robot, ``docs/simulate.md``) so the inner loop stays the faster.
+and ``ω = BANDWIDTH · 2π / period``: the body's closed loop at the gait's frequency, so an error
+decays within a cycle, and below the servos' own loops (5.4–20× the gait's frequency on every
+registered robot, ``docs/simulate.md``) so the inner loop stays the faster; the swing feet
+correct :data:`SWING` of their error. BANDWIDTH and SWING were chosen by measurement on the
+registered quadrupeds' trots under position servos (``docs/simulate.md``, "Balance feedback"),
+not derived: twice the bandwidth asked the servos for more torque than they have, a whole swing
+correction kicked the body at touchdown.
 """
 
 from __future__ import annotations
