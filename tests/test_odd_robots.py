@@ -47,24 +47,30 @@ QUICK = '[gait]\nsamples = 60\n[report]\nstiffness_points = 3\npaper_samples = 8
 CASES = {**ROBOTS, "quad2dof bound": ROBOTS["quad2dof"], "xquad crawl": ROBOTS["xquad"],
          "quad4dof crawl": ROBOTS["quad4dof"]}
 EXPECTED: dict[str, dict[str, str]] = {
-    # a ZMP walking pattern; open loop, it tips over (no balance feedback)
+    # a ZMP walking pattern on point feet; it tips over open loop, and with the balance
+    # controller (the default on one foot) too: a point foot has no support polygon to hold
     "biped": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
-              "simulate": "balanced by its plan alone", "codesign": "ok"},
+              "simulate": "the balance controller (hexaleg.simulation.balance) did not hold",
+              "codesign": "ok"},
     "quad2dof": {"robot": "ok", "gait": "ok", "report": "the least friction that admits forces",
                  "design": "the least friction that admits forces",
                  "simulate": "the least friction that admits forces",
                  "codesign": "the least friction that admits forces"},
-    # the bound walks in the analysis; in the open-loop simulation it bounces nearly in place
+    # the bound walks in the analysis; open loop it bounced nearly in place, closed loop (the
+    # default on two feet) it pitches over: the balance controller does not hold it
     "quad2dof bound": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
-                       "simulate": "stalled", "codesign": "ok"},
-    # redundant legs: like the X quadruped, its trot tips over open loop and its crawl walks
+                       "simulate": "the balance controller (hexaleg.simulation.balance) did not "
+                                   "hold", "codesign": "ok"},
+    # redundant legs: its trot tips over open loop; closed loop its generic servos sit at their
+    # stall torque before it falls; its crawl walks
     "quad4dof": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
-                 "simulate": "balanced by its plan alone", "codesign": "ok"},
+                 "simulate": "at their stall torque", "codesign": "ok"},
     "quad4dof crawl": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
                        "simulate": "ok", "codesign": "ok"},
-    # its trot tips over in the open-loop simulation (no balance feedback), its crawl walks
+    # its trot tips over open loop and with the balance controller too; its crawl walks
     "xquad": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
-              "simulate": "balanced by its plan alone", "codesign": "ok"},
+              "simulate": "the balance controller (hexaleg.simulation.balance) did not hold",
+              "codesign": "ok"},
     "xquad crawl": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
                     "simulate": "ok", "codesign": "ok"},
     "spider": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok", "simulate": "ok",

@@ -20,7 +20,8 @@ from hexaleg.commands.options import add_motion_option, add_quiet  # no loader: 
 from hexaleg.commands.parser import GUIDE, START, TEXT_OPTIONS, Parser, nonempty
 from hexaleg.errors import HexalegError, HexalegWarning, InvalidParameterError
 from hexaleg.robot.registry import ROBOT_HELP  # loaded by `import hexaleg` already
-from hexaleg.simulation.controllers import CONTROLLERS, SERVOS  # no MuJoCo: it loads with a model
+from hexaleg.simulation.balance import MODES as FEEDBACK  # no MuJoCo: it loads with a model
+from hexaleg.simulation.controllers import CONTROLLERS, SERVOS  # no MuJoCo either
 
 
 def _add_robot(sub: argparse._SubParsersAction) -> None:
@@ -237,6 +238,10 @@ def _add_simulate(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--controller", choices=CONTROLLERS,
                    help="servo: torque feedforward + PD, or position-only PD "
                         "(default: feedforward, or the config's)")
+    p.add_argument("--feedback", choices=FEEDBACK,
+                   help="balance feedback on the body: auto (where the gait stands on fewer "
+                        "than three feet or open loop falls), on, off (open loop) (default: "
+                        "auto, or the config's)")
     p.add_argument("--cycles", type=int, help="gait cycles simulated (default 4, the last 2 "
                                               "evaluated)")
     p.add_argument("--timestep", type=float, help="simulation timestep, s (default: 0.5 ms, "
@@ -256,8 +261,8 @@ def _run_simulate(args: argparse.Namespace) -> int:
     from hexaleg.errors import SimulationError
     from hexaleg.simulation.motion_file import write_motions
 
-    overrides = {"controller": args.controller, "cycles": args.cycles,
-                 "timestep": args.timestep}
+    overrides = {"controller": args.controller, "feedback": args.feedback,
+                 "cycles": args.cycles, "timestep": args.timestep}
     if args.cycles is not None and args.cycles >= 2:
         overrides["evaluate"] = min(2, args.cycles - 1)
     run = load_run(args.robot, args.config, args.motion, args.cycle, args)

@@ -260,7 +260,8 @@ def candidate_data(c: Candidate, outer: dict[str, tuple[float, str]]) -> dict[st
 
 def ranking_data(r: Simulated) -> dict[str, Any]:
     """One ranked design simulated under one of the design's controllers."""
-    return {"label": r.candidate.label, "controller": r.controller, "verdict": r.verdict,
+    return {"label": r.candidate.label, "controller": r.controller, "feedback": r.feedback,
+            "verdict": r.verdict,
             "predicted_saving": quantity(100 * r.predicted, "%"),
             "simulated_saving": (None if r.simulated is None
                                  else quantity(100 * r.simulated, "%")),

@@ -330,7 +330,8 @@ def simulated(robot: Robot, chosen: GaitParams, springs: SpringSet, c: Constrain
     assert walk is not None and base_walk is not None
     return {"planned": motion.distance, "walked": walk.distance_per_cycle,
             "walked_baseline": base_walk.distance_per_cycle, "predicted": predicted,
-            "simulated": simulated_, "controller": sim.settings.controller}
+            "simulated": simulated_, "controller": sim.settings.controller,
+            "feedback": sim.with_springs.feedback}
 
 
 def full_rules(robot: str, chosen: GaitParams, c: Constraints, say: Callable[[str], None],
