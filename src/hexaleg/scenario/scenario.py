@@ -43,7 +43,8 @@ TABLES: dict[str, str] = {
             "gait (docs/gaits.md)",
     "contact": "every command but codesign ([codesign.constraints] mu): friction and contact "
                "settings",
-    "motor": "report, simulate, view: one servo on every joint instead of the robot's own",
+    "motor": "report, simulate, view, design: one servo on every joint instead of the robot's "
+             "own",
     "payload": "report: a payload on the base",
     "springs": "report: the springs the report analyses",
     "report": "report: what the report shows",

@@ -99,7 +99,7 @@ def design_warnings(r: DesignResult) -> tuple[str, ...]:
     from hexaleg.motion.legged import gait as make_gait
 
     cfg = r.config
-    run = cfg.design.run(cfg.robot, cfg.contact)
+    run = cfg.run()
     robot = run.load()
     if r.motion is not None:  # the logged cycle the design was made on, as the chain read it
         return run_warnings(robot, r.motion, run.actuator())
@@ -136,7 +136,7 @@ def write_design(out: str | Path = "hexaleg-design", config: DesignConfig | None
     cfg = r.config
     svgs = drawings(mounting_data(r))
     extra = {"warnings": list(design_warnings(r)),
-             "gait_defaults": gait_defaults(cfg.design.run(cfg.robot, cfg.contact).description(),
+             "gait_defaults": gait_defaults(cfg.run().description(),
                                             r.gait if cfg.motion is None else None),
              "files": sorted([*(p.name for p in files), *(f"{n}.svg" for n in svgs),
                               "design.html", "design.json"])}

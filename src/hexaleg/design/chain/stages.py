@@ -143,7 +143,7 @@ def nominal(cfg: DesignConfig) -> Nominal:
     """The nominal gait prepared (or the logged motion's cycle, ``cfg.motion``), the sprung
     classes, the design groups and their fit limits."""
     d = cfg.design
-    run = d.run(cfg.robot, cfg.contact)
+    run = cfg.run()
     robot, desc, gait = run.load(), run.description(), cfg.nominal_gait
     for kind in d.max_outer_diameter:  # a typo would be ignored and the springs come out larger
         one_of("[design] max_outer_diameter joint class", kind, robot.joint_kinds)
