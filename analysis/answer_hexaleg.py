@@ -12,7 +12,8 @@ recommendation simulated forward in MuJoCo under both controllers (predicted / s
 every ranked design simulated under the default servo, the recommendation designed for its stops
 mounted within ±1°, each part checked over its whole envelope and for fatigue, and where each
 spring mounts on each joint (joint angles from the joint's zero, as docs/design.md quotes them),
-and the fold into the sphere and back with the springs and without.
+the fold into the sphere and back with the springs and without, and the story of the numbers a
+user meets for this gait (design.html's table, docs/design.md).
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ import numpy as np
 
 from hexaleg.design.chain.chain import DesignChain
 from hexaleg.design.chain.ranking import under
-from hexaleg.design.chain.result import mounting_data
+from hexaleg.design.chain.result import mounting_data, story_data
 
 
 def pct(x: float) -> str:
@@ -150,6 +151,11 @@ def main() -> None:
               f" {row['predicted_baseline']:.4f} / {row['baseline']:.4f} "
               f"{pct(row['predicted'])} / {pct(row['simulated'])} "
               f"{1e3 * row['distance_per_cycle']:6.2f} mm  {1e3 * row['tracking_rms']:.2f} mrad")
+
+    print(f"\none gait, several numbers ({m} saving): what each is")
+    for row in story_data(r):
+        value = row["saving"]["value"] if row["saving"] else float("nan")
+        print(f"  {value:+7.2f} %  {row['figure']}: {row['why']}")
 
 
 if __name__ == "__main__":
