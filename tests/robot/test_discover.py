@@ -48,3 +48,22 @@ def test_a_tree_that_is_not_legs_is_refused(tmp_path):
                     + joint.format("j3", "a", "c") + "</robot>")
     with pytest.raises(RobotModelError, match=r"joint j1 has children \['j2', 'j3'\]"):
         load_robot(urdf, legs=AUTO)
+
+
+def test_listed_legs_without_joint_kinds_get_the_documented_classes(tmp_path):
+    """docs/robots.md: ``joint1 …`` unless three joints — for legs listed as for legs found
+    (issue #55: listed legs got the hexapod's three names and a refusal)."""
+    from pathlib import Path
+
+    from hexaleg.robot.description import RobotDescription
+
+    data = Path(__file__).resolve().parents[1] / "data"
+    legs = "".join(f'[[robot.legs]]\nname = "{leg}"\njoints = ["{leg}_HAA", "{leg}_HFE", '
+                   f'"{leg}_KFE", "{leg}_AFE"]\n' for leg in ("LF", "RF", "LH", "RH"))
+    toml = tmp_path / "q.toml"
+    toml.write_text(f'[robot]\nname = "q"\nurdf = "{data / "quad4dof.urdf"}"\n'
+                    'stand = {body_height = 0.22}\n' + legs)
+    robot = RobotDescription.from_toml(toml).load()
+    assert robot.joint_kinds == ("joint1", "joint2", "joint3", "joint4")
+    humanoid = RobotDescription.from_toml(data / "humanoid.toml").load()
+    assert humanoid.joint_kinds == ("hip", "thigh", "knee")

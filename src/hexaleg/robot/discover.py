@@ -10,6 +10,8 @@ otherwise). Joint classes are named by their place in the leg: ``coxa femur tibi
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import numpy as np
 import pinocchio as pin
 
@@ -21,7 +23,8 @@ THREE_JOINT_KINDS = ("hip", "thigh", "knee")
 
 
 def discover_legs(model: pin.Model, collision: pin.GeometryModel, visual: pin.GeometryModel,
-                  heading: np.ndarray
+                  heading: np.ndarray,
+                  wheels: Mapping[str, tuple[np.ndarray, float]] | None = None
                   ) -> tuple[tuple[LegSpec, ...], tuple[str, ...], str, dict[str, SphereFoot]]:
     """The legs of a model with a free-flyer base (joint 1), named from their feet.
 
@@ -30,6 +33,8 @@ def discover_legs(model: pin.Model, collision: pin.GeometryModel, visual: pin.Ge
         collision: Its collision geometry (for the feet).
         visual: Its visual geometry (when the joint has no collision geometry).
         heading: The base axis pointing forward, shape (3,), horizontal unit vector.
+        wheels: Locked wheels by the joint they are welded to: centre, radius
+            (:func:`~hexaleg.robot.feet.resolve_foot`).
 
     Returns:
         The legs (feet resolved, canonical order), the joint classes, a note saying what was
@@ -66,26 +71,33 @@ def discover_legs(model: pin.Model, collision: pin.GeometryModel, visual: pin.Ge
                               "list the legs as [[robot.legs]]")
     joints = [tuple(model.names[j] for j in chain) for chain in chains]
     probe = pin.Model(model)  # feet found on a copy to name the legs, then on the model
-    provisional = [resolve_foot(probe, collision, visual, LegSpec(f"leg{k}", js))[0]
+    provisional = [resolve_foot(probe, collision, visual, LegSpec(f"leg{k}", js), wheels)[0]
                    for k, js in enumerate(joints)]
     names = _names(probe, provisional, heading)
     legs, notes, spheres = [], [], {}
     for i in sorted(range(len(joints)), key=lambda i: _rank(names[i], len(joints))):
         spec, foot_note, sphere = resolve_foot(model, collision, visual,
-                                               LegSpec(names[i], joints[i]))
+                                               LegSpec(names[i], joints[i]), wheels)
         legs.append(spec)
         notes.append(foot_note)
         if sphere is not None:
             spheres[spec.name] = sphere
-    n = len(chains[0])
-    kinds = (HEXAPOD_KINDS if n == 3 and len(legs) == 6 else
-             THREE_JOINT_KINDS if n == 3 else tuple(f"joint{i + 1}" for i in range(n)))
+    kinds = default_kinds(len(chains[0]), len(legs))
     found = "; ".join(f"{leg.name} = {', '.join(leg.joints)}" for leg in legs)
     feet = [n for n in notes if n]
     note = (f"legs found from the kinematic tree: {found}; joint classes {', '.join(kinds)}"
             + (f"; feet found at the tip of each leg's last link: {', '.join(feet)}"
                if feet else ""))
     return tuple(legs), kinds, note, spheres
+
+
+def default_kinds(joints: int, legs: int) -> tuple[str, ...]:
+    """The joint classes of legs of ``joints`` joints on a robot of ``legs`` legs when the
+    description names none: ``coxa femur tibia`` on a hexapod, ``hip thigh knee`` on other
+    three-joint legs, ``joint1 …`` otherwise (docs/robots.md)."""
+    if joints == 3:
+        return HEXAPOD_KINDS if legs == 6 else THREE_JOINT_KINDS
+    return tuple(f"joint{i + 1}" for i in range(joints))
 
 
 def _names(model: pin.Model, specs: list[LegSpec], heading: np.ndarray) -> list[str]:

@@ -18,7 +18,7 @@ import pinocchio as pin
 from hexaleg.checks import typed
 from hexaleg.config import read_text
 from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError
-from hexaleg.robot.discover import discover_legs
+from hexaleg.robot.discover import default_kinds, discover_legs
 from hexaleg.robot.feet import LegSpec, resolve_feet
 from hexaleg.robot.fields import horizontal_axis
 from hexaleg.robot.inertials import settle_inertials
@@ -28,6 +28,7 @@ from hexaleg.robot.root import with_root_offset
 from hexaleg.robot.sphere_feet import place_sphere_feet
 from hexaleg.robot.srdf import check_reference_poses
 from hexaleg.robot.urdf_numbers import check_xml
+from hexaleg.robot.wheels import lock_wheels
 
 URDF_DIR = Path(__file__).resolve().parent / "urdf"
 """Directory of the packaged robot files (a link to the repository's ``urdf/``)."""
@@ -42,9 +43,15 @@ HEXALEG_LEGS: tuple[LegSpec, ...] = tuple(
 """Legs of the built-in hexapod: joints ``{leg}_coxa/femur/tibia``, feet ``{leg}_foot``."""
 
 
-def _make_leg(model: pin.Model, spec: LegSpec) -> Leg:
+def _make_leg(model: pin.Model, spec: LegSpec, wheels: set[str]) -> Leg:
     joint_names = list(model.names[2:])
     missing = [j for j in spec.joints if not model.existJointName(j)]
+    locked = [j for j in missing if j in wheels]
+    if locked:
+        raise RobotModelError(
+            f"leg {spec.name}: joint(s) {', '.join(locked)} are wheels (continuous joints at a "
+            "leaf of the tree), locked at load: leave them out of the leg's joints; the leg "
+            "stands on its wheel as a round foot when it has no foot given")
     if missing:
         raise RobotModelError(
             f"leg {spec.name}: joint(s) {', '.join(missing)} not in the URDF; "
@@ -103,7 +110,8 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
             finds them from the kinematic tree.
         package_dirs: Directories where ``package://`` mesh URIs are resolved.
         joint_kinds: Names of the joint classes, one per joint of a leg, from the body out;
-            default hexaleg's, or the found ones with :data:`AUTO`.
+            default hexaleg's for hexaleg's legs, else by the legs' number of joints
+            (:func:`hexaleg.robot.discover.default_kinds`: ``joint1 …`` unless three).
         heading: The base axis that points forward (:attr:`Robot.heading`).
         inertias: What to do with a link inertia no rigid body can have: "refuse" (an error
             naming the fix), "repair" (the box rule, noted) or "keep" (:mod:`.inertials`).
@@ -140,19 +148,26 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
     if repaired is not None:  # the repaired URDF, loaded again
         model, visual, collision = _build(repaired[0], urdf_path, dirs)
         notes.append(repaired[1])
+    model, (visual, collision), wheels, wheel_note = lock_wheels(model, (visual, collision))
+    if wheel_note:
+        notes.append(wheel_note)
+    on = {w.parent: (w.centre, w.radius) for w in wheels}
     heading_arr = horizontal_axis("heading", heading)
     if isinstance(legs, str):
         if legs != AUTO:
             raise InvalidParameterError("legs", legs, f"leg specs or {AUTO!r}")
         specs, found_kinds, note, spheres = discover_legs(
-            model, collision, visual, heading_arr / np.linalg.norm(heading_arr))
+            model, collision, visual, heading_arr / np.linalg.norm(heading_arr), on)
         notes.append(note)
         joint_kinds = joint_kinds or found_kinds
     else:
-        specs, foot_notes, spheres = resolve_feet(model, collision, visual, legs or HEXALEG_LEGS)
+        specs, foot_notes, spheres = resolve_feet(model, collision, visual, legs or HEXALEG_LEGS,
+                                                  on)
         notes += foot_notes
+        if legs and not joint_kinds:  # listed legs: the classes the docs promise for them
+            joint_kinds = default_kinds(max(len(s.joints) for s in specs), len(specs))
     joint_kinds = tuple(joint_kinds or JOINT_KINDS)
-    leg_objs = tuple(_make_leg(model, spec) for spec in specs)
+    leg_objs = tuple(_make_leg(model, spec, {w.name for w in wheels}) for spec in specs)
     sizes = {len(leg.joint_names) for leg in leg_objs}
     if sizes != {len(joint_kinds)}:
         raise RobotModelError(f"legs have {sorted(sizes)} joints but joint_kinds names "
