@@ -34,6 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hexaleg.design.families import family
+from hexaleg.design.fatigue import LIFE, wire_limit
 from hexaleg.design.optimal import ZERO_STIFFNESS, OptimalSprings
 from hexaleg.design.spring_materials import MATERIALS
 from hexaleg.design.torsion_spring import (
@@ -65,13 +66,17 @@ and tibia links, an M5 shoulder screw through the joint)."""
 class PartOptions:
     """How the parts are made (the fields of :class:`TorsionRequirement` the design does not
     set): materials, design factor, arbor diameter (m; every group's unless :func:`spring_parts`
-    is given per-group arbors), leg length (m or None), the arbor's clearance margin."""
+    is given per-group arbors), leg length (m or None), the arbor's clearance margin, and the
+    life the parts are checked for in fatigue (``[design] life_cycles``): a part is bought only
+    in a wire the fatigue data at that life cover (:func:`hexaleg.design.fatigue.wire_limit`),
+    so the fatigue check never refuses a spring the design chose."""
 
     materials: tuple[str, ...] = tuple(MATERIALS)
     safety_factor: float = SAFETY_FACTOR
     arbor_diameter: float = 0.0
     leg_length: float | None = None
     arbor_margin: float = ARBOR_MARGIN
+    life_cycles: float = LIFE
 
 
 @dataclass(frozen=True)
@@ -282,7 +287,8 @@ def _buy(part: SpringPart, options: PartOptions, arbor: float) -> SpringPart:
                              max_outer_diameter=part.max_outer_diameter,
                              arbor_diameter=arbor, materials=options.materials,
                              safety_factor=options.safety_factor,
-                             leg_length=options.leg_length, arbor_margin=options.arbor_margin)
+                             leg_length=options.leg_length, arbor_margin=options.arbor_margin,
+                             max_wire_diameter=wire_limit(options.life_cycles))
     try:
         return dataclasses.replace(part, spring=design_torsion_spring(req))
     except SpringDesignError as e:
