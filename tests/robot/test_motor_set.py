@@ -201,3 +201,23 @@ def test_joints_on_no_leg_get_their_own_actuator_from_their_own_limits():
     with pytest.raises(InvalidParameterError, match=r"MotorSet joints.*waist"):
         MotorSet.per_class(robot.joint_classes, robot.joint_names,
                            {k: LIGHT for k in robot.joint_classes})
+
+
+def test_a_joint_on_no_leg_takes_a_catalogue_motor_by_its_name(tmp_path):
+    from pathlib import Path
+
+    data = Path(__file__).resolve().parents[1] / "data"
+    text = (data / "humanoid.toml").read_text().replace(
+        'urdf = "humanoid.urdf"', f'urdf = "{data / "humanoid.urdf"}"\n'
+        'motor = {L_elbow = "XL430-W250", knee = "XM430-W350"}')
+    (tmp_path / "h.toml").write_text(text)
+    desc = RobotDescription.from_toml(tmp_path / "h.toml")
+    robot = desc.load()
+    motors = desc.actuator(robot)
+    table = dict(zip(motors.joint_names, motors.motors, strict=True))
+    assert table["L_elbow"] is LIGHT and table["R_knee"] is STRONG
+    assert table["R_elbow"].name.startswith("generic")
+    bad = RobotDescription.from_toml(tmp_path / "h.toml")
+    object.__setattr__(bad, "motor", {"elbow": "XL430-W250"})
+    with pytest.raises(UnknownNameError, match=r"motor joint class 'elbow'.*L_elbow"):
+        bad.actuator(robot)

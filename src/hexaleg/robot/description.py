@@ -232,12 +232,8 @@ class RobotDescription:
             if not motor:
                 raise InvalidParameterError(f"{self.name}: motor", "{}", "a catalogue name, or "
                                             "a table joint class → catalogue name")
-            if self.joint_kinds is not None:
-                for kind in motor:
-                    if kind not in self.joint_kinds:
-                        raise UnknownNameError(f"{self.name}: motor joint class", kind,
-                                               self.joint_kinds)
-            return FrozenTable(dict(motor))
+            return FrozenTable(dict(motor))  # its classes are checked against the robot's
+            # (its leg classes and the joints on no leg) when the actuators are built
         return str(motor)
 
     def actuator(self, robot: Robot) -> Motor | MotorSet:

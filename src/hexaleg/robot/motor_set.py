@@ -186,7 +186,7 @@ def class_motors(robot: Robot, named: Mapping[str, Motor], generic: str) -> Moto
 
     Args:
         robot: The loaded robot (its joint classes and URDF limits).
-        named: Joint class → motor, for the classes that have one.
+        named: Joint class (or joint on no leg) → motor, for the classes that have one.
         generic: The name of the generic actuators.
 
     Returns:
@@ -197,11 +197,11 @@ def class_motors(robot: Robot, named: Mapping[str, Motor], generic: str) -> Moto
         InvalidParameterError: a class without a motor whose URDF joints have no effort or
             velocity limit.
     """
-    for kind in named:
-        if kind not in robot.joint_kinds:
-            raise UnknownNameError(f"{robot.name}: motor joint class", kind, robot.joint_kinds)
-    motors: dict[str, Motor] = {}
     classes = motor_classes(robot)
+    for kind in named:
+        if kind not in classes:
+            raise UnknownNameError(f"{robot.name}: motor joint class", kind, classes)
+    motors: dict[str, Motor] = {}
     for kind, joints in classes.items():
         if kind in named:
             motors[kind] = named[kind]
