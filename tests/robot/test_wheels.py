@@ -64,3 +64,25 @@ def test_a_continuous_joint_above_other_joints_is_refused_by_name(tmp_path):
     urdf.write_text(text)
     with pytest.raises(RobotModelError, match=r"joint arm_yaw is a JointModelRUBZ .* below it"):
         hexaleg.robot.model.load_robot(urdf, legs="auto")
+
+
+def test_a_wheel_written_as_a_revolute_joint_without_a_range_is_locked_too(tmp_path):
+    """Centauro's ``j_wheel_*`` are revolute joints with no lower or upper limit ("actually
+    continuous"): a leaf joint of range [0, 0] is a wheel; an SRDF state may name it."""
+    urdf = tmp_path / "r.urdf"
+    urdf.write_text(WHEELED.read_text().replace('type="continuous"', 'type="revolute"'))
+    srdf = tmp_path / "r.srdf"
+    srdf.write_text('<robot name="r"><group_state name="standing" group="all">'
+                    '<joint name="LF_wheel" value="0"/><joint name="LF_KFE" value="-1.2"/>'
+                    '</group_state></robot>')
+    legs = [hexaleg.robot.model.LegSpec(leg, (f"{leg}_HAA", f"{leg}_HFE", f"{leg}_KFE"))
+            for leg in ("LF", "RF", "LH", "RH")]
+    robot = hexaleg.robot.model.load_robot(urdf, srdf, legs=legs, joint_kinds=("a", "b", "c"))
+    assert robot.nj == 14 and set(robot.foot_spheres) == {"LF", "RF", "LH", "RH"}
+    assert robot.pose("standing")[7 + robot.column("LF_KFE")] == -1.2
+    bounded = tmp_path / "b.urdf"  # a leaf joint with a range is an ordinary joint
+    bounded.write_text(WHEELED.read_text().replace(
+        '<limit effort="1" velocity="30"/>', '<limit lower="-1" upper="1" effort="1" '
+        'velocity="30"/>').replace('type="continuous"', 'type="revolute"'))
+    assert hexaleg.robot.model.load_robot(bounded, legs=legs,
+                                          joint_kinds=("a", "b", "c")).nj == 18

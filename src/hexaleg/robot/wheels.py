@@ -3,8 +3,9 @@
 A wheeled-legged robot (ANYmal on wheels, Centauro, a Tiago base) ends some legs in a URDF
 ``continuous`` joint — a wheel, unbounded, whose angle Pinocchio stores as ``(cos, sin)``. hexaleg
 analyses walking: the feet stay put in stance, so a wheel does not turn. Every ``continuous``
-joint at a leaf of the tree (no joint below it) is therefore locked at angle 0 when the robot
-is loaded: the model is reduced with the wheel welded to its parent
+joint at a leaf of the tree (no joint below it), and every revolute one there whose URDF gives
+no range (``lower = upper = 0``, a wheel written as revolute), is therefore locked at angle 0
+when the robot is loaded: the model is reduced with the wheel welded to its parent
 (``pinocchio.buildReducedModel``: the wheel's inertia is added to the parent body's and its
 frames and geometry are moved onto it; Carpentier et al., "The Pinocchio C++ library", SII
 2019), and the note says so. A leg found or listed without a foot then stands on its wheel: a
@@ -72,9 +73,19 @@ def _radius(gmodels: Sequence[pin.GeometryModel], joint: int, axis: np.ndarray) 
     return best
 
 
+def _revolute(model: pin.Model, joint: int) -> bool:
+    """Whether 1-DoF ``joint`` turns (its motion subspace is a rotation)."""
+    data = model.createData()
+    pin.computeJointJacobians(model, data, pin.neutral(model))
+    s = pin.getJointJacobian(model, data, joint, pin.LOCAL)[:, model.joints[joint].idx_v]
+    return bool(np.linalg.norm(s[3:]) > 0 and np.linalg.norm(s[:3]) < 1e-12)
+
+
 def lock_wheels(model: pin.Model, geometry: Sequence[pin.GeometryModel]
                 ) -> tuple[pin.Model, list[pin.GeometryModel], tuple[Wheel, ...], str | None]:
-    """The model with every wheel (a ``continuous`` joint at a leaf of the tree) locked at 0.
+    """The model with every wheel locked at 0: a ``continuous`` joint at a leaf of the tree, or
+    a revolute one there whose URDF gives it no range (``lower = upper = 0``: a wheel written as
+    revolute, as Centauro's "actually continuous" ``j_wheel_*``).
 
     Args:
         model: The model with its free-flyer base (joint 1).
@@ -94,6 +105,10 @@ def lock_wheels(model: pin.Model, geometry: Sequence[pin.GeometryModel]
     for j in range(2, model.njoints):
         joint = model.joints[j]
         if joint.nq == joint.nv == 1:
+            iq = joint.idx_q
+            if (j not in has_child and model.lowerPositionLimit[iq] == 0.0
+                    and model.upperPositionLimit[iq] == 0.0 and _revolute(model, j)):
+                wheels.append(j)  # a wheel written as a revolute joint without a range
             continue
         if joint.nq == 2 and joint.nv == 1 and j not in has_child:
             wheels.append(j)
@@ -124,6 +139,6 @@ def lock_wheels(model: pin.Model, geometry: Sequence[pin.GeometryModel]
                               "wheel's link a name no joint has") from None
     names = ", ".join(f"{w.name} (r = {w.radius:.4g} m, on {w.parent})" for w in found)
     note = (f"{len(found)} wheel(s) locked at angle 0, walking as round feet: {names} — a "
-            "continuous joint at a leaf of the tree is a wheel; its inertia is carried by the "
-            "joint it is welded to")
+            "continuous joint at a leaf of the tree, or a revolute one there without a range, "
+            "is a wheel; its inertia is carried by the joint it is welded to")
     return reduced, list(gmodels), tuple(found), note
