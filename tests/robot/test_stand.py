@@ -91,3 +91,26 @@ def test_joints_on_no_leg_hold_a_pose_within_their_limits():
     assert q[7 + humanoid.column("L_knee")] == 0.0  # the legs are not touched
     with pytest.raises(UnknownNameError, match=r"stand.joints entry .*L_knee.*waist"):
         hold_other_joints(humanoid, q, {"L_knee": 0.3})
+
+
+def test_a_redundant_leg_is_untwisted_on_its_target():
+    """A four-joint leg reaches a foot with its hip rolled and turned; the null-space pull
+    (then a plain solve) brings roll and yaw back to their zero, the foot still on its target —
+    what gives a humanoid's six-joint legs a straight stand (issue #55)."""
+    from hexaleg.robot.stand import _newton
+
+    robot = _pryquad()
+    leg = robot.legs[0]
+    model, data = robot.model, robot.model.createData()
+    lo, hi = model.lowerPositionLimit[leg.q_index], model.upperPositionLimit[leg.q_index]
+    target = robot.foot_positions(robot.pose("stand"))[0]
+    q = robot.pose("stand")
+    q[leg.q_index] = [0.3, 0.3, 0.4, -1.0]
+    assert _newton(robot, data, leg, target, q, (lo, hi)) < 1e-9
+    twisted = q[leg.q_index].copy()
+    assert abs(twisted[2]) > 0.1  # the plain solve keeps the hip turned
+    assert _newton(robot, data, leg, target, q, (lo, hi), pull=True) < 1e-4
+    assert _newton(robot, data, leg, target, q, (lo, hi)) < 1e-9
+    np.testing.assert_allclose(robot.foot_positions(q)[0], target, atol=1e-9)
+    assert abs(q[leg.q_index][2]) < 1e-3 < abs(twisted[2])
+    assert np.all(q[leg.q_index] >= lo) and np.all(q[leg.q_index] <= hi)

@@ -37,6 +37,8 @@ DAMPING = 1e-6
 BENDS = (0.0, 0.4, -0.4, 0.8, -0.8)
 """rad: start angles of each leg's second joint; the joints after it bend twice as far, in turn
 back and forth (a zig-zag: a knee, then an ankle bent the other way)."""
+NULL_GAIN = 0.2
+"""Share of the way to the preferred pose a projected step moves the leg's self-motion."""
 INTERIOR_STARTS = 16
 """Starts inside the joint limits tried when no bent-knee start gives a pose within them
 (:func:`interior_starts`): a hip that turns pitch–roll–yaw, a knee whose range excludes 0."""
@@ -120,21 +122,30 @@ def stand_from_feet(robot: Robot, body_height: float,
 
 
 def _newton(robot: Robot, data: pin.Data, leg: Leg, target: np.ndarray, q: np.ndarray,
-            box: tuple[np.ndarray, np.ndarray] | None = None) -> float:
+            box: tuple[np.ndarray, np.ndarray] | None = None, pull: bool = False) -> float:
     """Damped least squares on the foot position from ``q`` (changed in place), each step at
-    most 0.3 rad and, with ``box``, projected into the joint limits (a box-constrained
-    Levenberg–Marquardt step, its iterates feasible); the foot's distance to ``target``, m."""
+    most 0.3 rad; with ``box``, projected into the joint limits (a box-constrained
+    Levenberg–Marquardt step, its iterates feasible), and with ``pull`` each step also moves
+    the leg's self-motion towards the zero configuration clipped into the box (the null-space
+    term ``(I − J⁺J) (q_pref − q)``, Siciliano et al., *Robotics*, 2009, §3.5.1: a redundant
+    leg — a humanoid's six joints — untwists where it can); the foot's distance to
+    ``target``, m."""
     model = robot.model
     err = np.inf
     for _ in range(ITERATIONS):
         pin.framesForwardKinematics(model, data, q)
         e = target - data.oMf[leg.foot_frame_id].translation
         err = float(np.linalg.norm(e))
-        if err < TOLERANCE:
-            break
         jac = pin.computeFrameJacobian(model, data, q, leg.foot_frame_id,
                                        pin.LOCAL_WORLD_ALIGNED)[:3, leg.v_index]
-        step = jac.T @ np.linalg.solve(jac @ jac.T + DAMPING * np.eye(3), e)
+        pinv = jac.T @ np.linalg.inv(jac @ jac.T + DAMPING * np.eye(3))
+        untwist = np.zeros(len(leg.q_index))
+        if box is not None and pull:
+            pref = np.clip(0.0, *box)
+            untwist = NULL_GAIN * (np.eye(len(untwist)) - pinv @ jac) @ (pref - q[leg.q_index])
+        if err < TOLERANCE and float(np.linalg.norm(untwist)) < TOLERANCE:
+            break
+        step = pinv @ e + untwist
         q[leg.q_index] += step * min(1.0, 0.3 / max(float(np.linalg.norm(step)), 1e-300))
         if box is not None:
             q[leg.q_index] = np.clip(q[leg.q_index], *box)
@@ -169,7 +180,7 @@ def _solve(robot: Robot, leg: Leg, target: np.ndarray, rest: np.ndarray) -> np.n
     model = robot.model
     data = model.createData()
     lo, hi = model.lowerPositionLimit[leg.q_index], model.upperPositionLimit[leg.q_index]
-    best, best_sigma, closest = None, -1.0, np.inf
+    best, best_sigma, closest = None, -np.inf, np.inf
     outside: np.ndarray | None = None  # angles reaching it outside the limits, least beyond
     near: tuple[float, np.ndarray] | None = None  # the closest start kept within the limits
     starts: list[tuple[np.ndarray, bool]] = []
@@ -188,6 +199,11 @@ def _solve(robot: Robot, leg: Leg, target: np.ndarray, rest: np.ndarray) -> np.n
         if projected and best is not None:
             break  # the bent-knee starts found a pose within the limits: keep theirs
         err = _newton(robot, data, leg, target, q, (lo, hi) if projected else None)
+        if projected and err < TOLERANCE and len(lo) > 3:  # untwist a redundant leg
+            untwisted = q.copy()
+            _newton(robot, data, leg, target, untwisted, (lo, hi), pull=True)
+            if _newton(robot, data, leg, target, untwisted, (lo, hi)) < TOLERANCE:
+                q = untwisted  # the untwisted pose, put back on the target exactly
         closest = min(closest, err)
         angles = q[leg.q_index].copy()
         if projected and (near is None or err < near[0]):
@@ -203,6 +219,8 @@ def _solve(robot: Robot, leg: Leg, target: np.ndarray, rest: np.ndarray) -> np.n
         jac = pin.computeFrameJacobian(model, data, q, leg.foot_frame_id,
                                        pin.LOCAL_WORLD_ALIGNED)[:3, leg.v_index]
         sigma = float(np.linalg.svd(jac, compute_uv=False)[-1])
+        if projected:  # of the poses inside the limits, the least twisted
+            sigma = -float(np.linalg.norm(angles - np.clip(0.0, lo, hi)))
         if sigma > best_sigma:
             best, best_sigma = angles, sigma
     if best is not None:
