@@ -48,13 +48,19 @@ def test_a_wheeled_leg_stands_on_its_wheel(wheeled):
         np.testing.assert_allclose(sphere.centre, [0, 0.02 * side, -0.13], atol=1e-12)
 
 
-def test_a_wheel_listed_in_a_leg_is_named(tmp_path):
+def test_a_wheel_listed_in_a_leg_is_the_legs_and_its_kinematics_name_it(tmp_path):
+    """A joint the description puts in a leg is never locked; a leg's inverse kinematics
+    refuses a continuous joint by name."""
+    from hexaleg.motion.leg_chain import leg_chain
+
     toml = tmp_path / "w.toml"
     toml.write_text(f'[robot]\nname = "w"\nurdf = "{WHEELED}"\n'
                     '[[robot.legs]]\nname = "LF"\njoints = ["LF_HAA", "LF_HFE", "LF_KFE", '
                     '"LF_wheel"]\n')
-    with pytest.raises(RobotModelError, match=r"LF_wheel are wheels .* leave them out"):
-        RobotDescription.from_toml(toml).load()
+    robot = RobotDescription.from_toml(toml).load()
+    assert "LF_wheel" in robot.joint_names and "RF_wheel" not in robot.joint_names
+    with pytest.raises(RobotModelError, match=r"LF_wheel is a JointModelRUBY .*continuous"):
+        leg_chain(robot, robot.legs[0], robot.pose("stand"))
 
 
 def test_a_continuous_joint_above_other_joints_is_refused_by_name(tmp_path):

@@ -43,15 +43,9 @@ HEXALEG_LEGS: tuple[LegSpec, ...] = tuple(
 """Legs of the built-in hexapod: joints ``{leg}_coxa/femur/tibia``, feet ``{leg}_foot``."""
 
 
-def _make_leg(model: pin.Model, spec: LegSpec, wheels: set[str]) -> Leg:
+def _make_leg(model: pin.Model, spec: LegSpec) -> Leg:
     joint_names = list(model.names[2:])
     missing = [j for j in spec.joints if not model.existJointName(j)]
-    locked = [j for j in missing if j in wheels]
-    if locked:
-        raise RobotModelError(
-            f"leg {spec.name}: joint(s) {', '.join(locked)} are wheels (continuous joints at a "
-            "leaf of the tree), locked at load: leave them out of the leg's joints; the leg "
-            "stands on its wheel as a round foot when it has no foot given")
     if missing:
         raise RobotModelError(
             f"leg {spec.name}: joint(s) {', '.join(missing)} not in the URDF; "
@@ -148,7 +142,10 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
     if repaired is not None:  # the repaired URDF, loaded again
         model, visual, collision = _build(repaired[0], urdf_path, dirs)
         notes.append(repaired[1])
-    model, (visual, collision), wheels, wheel_note = lock_wheels(model, (visual, collision))
+    listed = {j for spec in legs for j in spec.joints} if not isinstance(legs, str) and legs \
+        else set()
+    model, (visual, collision), wheels, wheel_note = lock_wheels(model, (visual, collision),
+                                                                 listed)
     if wheel_note:
         notes.append(wheel_note)
     on = {w.parent: (w.centre, w.radius) for w in wheels}
@@ -167,7 +164,7 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
         if legs and not joint_kinds:  # listed legs: the classes the docs promise for them
             joint_kinds = default_kinds(max(len(s.joints) for s in specs), len(specs))
     joint_kinds = tuple(joint_kinds or JOINT_KINDS)
-    leg_objs = tuple(_make_leg(model, spec, {w.name for w in wheels}) for spec in specs)
+    leg_objs = tuple(_make_leg(model, spec) for spec in specs)
     sizes = {len(leg.joint_names) for leg in leg_objs}
     if sizes != {len(joint_kinds)}:
         raise RobotModelError(f"legs have {sorted(sizes)} joints but joint_kinds names "

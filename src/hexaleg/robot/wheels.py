@@ -14,14 +14,15 @@ lowest point in the stand pose (:class:`~hexaleg.robot.feet.SphereFoot`; for a w
 is horizontal that is the rim's lowest point, ``c − r ẑ``, the support point of the disc in
 −z, Ericson, *Real-Time Collision Detection*, 2005, §3.8).
 
-Any other joint Pinocchio cannot treat as one angle — a ``continuous`` joint with joints below
-it, a ``floating`` or ``planar`` one — is refused by name: hexaleg's joint vectors hold one value
+A joint a description lists in a leg is the leg's, never locked. Any other joint Pinocchio
+cannot treat as one angle — a ``continuous`` joint with joints below it, a ``floating`` or
+``planar`` one — is refused by name: hexaleg's joint vectors hold one value
 per joint (``q[7:]``), which such a joint breaks.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -81,7 +82,8 @@ def _revolute(model: pin.Model, joint: int) -> bool:
     return bool(np.linalg.norm(s[3:]) > 0 and np.linalg.norm(s[:3]) < 1e-12)
 
 
-def lock_wheels(model: pin.Model, geometry: Sequence[pin.GeometryModel]
+def lock_wheels(model: pin.Model, geometry: Sequence[pin.GeometryModel],
+                keep: Collection[str] = ()
                 ) -> tuple[pin.Model, list[pin.GeometryModel], tuple[Wheel, ...], str | None]:
     """The model with every wheel locked at 0: a ``continuous`` joint at a leaf of the tree, or
     a revolute one there whose URDF gives it no range (``lower = upper = 0``: a wheel written as
@@ -90,6 +92,8 @@ def lock_wheels(model: pin.Model, geometry: Sequence[pin.GeometryModel]
     Args:
         model: The model with its free-flyer base (joint 1).
         geometry: Its geometry models (visual, collision), reduced with it.
+        keep: Joints not to lock: those a description lists in its legs (a leg's own joint,
+            whatever its type; the leg's kinematics then says what it can do with it).
 
     Returns:
         The model and geometry models (the same objects when there is no wheel), the wheels
@@ -104,6 +108,8 @@ def lock_wheels(model: pin.Model, geometry: Sequence[pin.GeometryModel]
     wheels: list[int] = []
     for j in range(2, model.njoints):
         joint = model.joints[j]
+        if model.names[j] in keep:
+            continue
         if joint.nq == joint.nv == 1:
             iq = joint.idx_q
             if (j not in has_child and model.lowerPositionLimit[iq] == 0.0
