@@ -67,3 +67,20 @@ def test_listed_legs_without_joint_kinds_get_the_documented_classes(tmp_path):
     assert robot.joint_kinds == ("joint1", "joint2", "joint3", "joint4")
     humanoid = RobotDescription.from_toml(data / "humanoid.toml").load()
     assert humanoid.joint_kinds == ("hip", "thigh", "knee")
+
+
+@pytest.mark.parametrize(("urdf", "legs", "others"), [
+    ("humanoid.urdf", ("L1", "R1"), ("waist", "L_shoulder", "L_elbow", "R_shoulder", "R_elbow")),
+    ("wheeled.urdf", ("LF", "RF", "LH", "RH"), ("arm_yaw", "arm_pitch")),
+])
+def test_legs_are_found_beside_a_torso_or_an_arm(urdf, legs, others):
+    """A torso that branches into arms, an arm on the back: the chains hanging below the body
+    are the legs, the rest are joints on no leg (issue #55: both were refused)."""
+    from pathlib import Path
+
+    data = Path(__file__).resolve().parents[1] / "data"
+    robot = load_robot(data / urdf, legs=AUTO)
+    assert robot.leg_names == legs
+    assert robot.other_joints == others
+    assert any("not legs" in n for n in robot.notes)
+
