@@ -75,13 +75,13 @@ EXPECTED: dict[str, dict[str, str]] = {
     # issue #55: a waist and arms held at the stand by their own actuators; like the biped, its
     # open-loop simulation tips over
     "humanoid": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
-                 "simulate": "balanced by its plan alone", "codesign": "ok"},
+                 "simulate": "balanced by its plan alone"},
     # wheels locked, walked on as round feet; the open-loop trot covers 90 % of its stride
     "wheeled": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
-                "simulate": "run short", "codesign": "ok"},
+                "simulate": "run short"},
     # a stand found from inside the joint limits; its trot tips over open loop
     "pryquad": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
-                "simulate": "balanced by its plan alone", "codesign": "ok"},
+                "simulate": "balanced by its plan alone"},
     "solo12 crawl": {"robot": "ok", "gait": "ok", "report": "one point foot's force points",
                      "design": "one point foot's force points",
                      "simulate": "one point foot's force points",
@@ -146,10 +146,14 @@ def _merge(text: str) -> str:
                    for t, keys in tables.items())
 
 
+UNPINNED = {("humanoid", "codesign"), ("wheeled", "codesign"), ("pryquad", "codesign")}
+"""Issue #55's robots' codesign (all three "ok" by hand at this suite's budget: 390, 59 and
+133 s on a loaded machine) is left out: the slow suite had reached 893 s of CI's 900."""
 PAIRS = [pytest.param(case, c, marks=pytest.mark.slow)
          if c in SLOW or (case, c) in SLOW_PAIRS else (case, c)
          for case in CASES
-         for c in ("robot", "gait", "report", "design", "simulate", "codesign")]
+         for c in ("robot", "gait", "report", "design", "simulate", "codesign")
+         if (case, c) not in UNPINNED]
 
 
 @pytest.mark.parametrize(("case", "command"), PAIRS)
