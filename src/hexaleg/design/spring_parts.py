@@ -62,6 +62,12 @@ of this fraction of the class's narrowest link (assumed: 5 mm in the default rob
 and tibia links, an M5 shoulder screw through the joint)."""
 
 
+STROKE_TOL = 1e-6
+"""A part whose torque rises by less than this share of its largest over the motion has no
+stroke: a torsion spring there would be a constant torque (issue #55: Unitree G1's design
+stopped on "max_torque = 0.0012524; allowed: > preload_torque = 0.0012524 N·m")."""
+
+
 @dataclass(frozen=True)
 class PartOptions:
     """How the parts are made (the fields of :class:`TorsionRequirement` the design does not
@@ -282,13 +288,24 @@ def _buy(part: SpringPart, options: PartOptions, arbor: float) -> SpringPart:
             f"k → 0 with {part.max_torque:.4g} N·m: a constant torque needs a constant-torque "
             "spring (spiral or constant-force), not a helical torsion spring; bound "
             "max_deflection to get a torsion spring"))
-    req = TorsionRequirement(rate=part.rate, max_torque=part.max_torque,
-                             preload_torque=part.preload_torque,
-                             max_outer_diameter=part.max_outer_diameter,
-                             arbor_diameter=arbor, materials=options.materials,
-                             safety_factor=options.safety_factor,
-                             leg_length=options.leg_length, arbor_margin=options.arbor_margin,
-                             max_wire_diameter=wire_limit(options.life_cycles))
+    stroke = part.max_torque - part.preload_torque
+    if not stroke > STROKE_TOL * max(abs(part.max_torque), 1e-300):
+        return dataclasses.replace(part, problem=(
+            f"it holds {part.max_torque:.4g} N·m without a stroke over the motion (it engages "
+            f"only where the motion ends, {part.rate:.4g} N·m/rad over {stroke / part.rate:.3g} "
+            "rad): nothing for a torsion spring to do; bound max_deflection or leave the group "
+            "out ([design] classes)"))
+    try:
+        req = TorsionRequirement(rate=part.rate, max_torque=part.max_torque,
+                                 preload_torque=part.preload_torque,
+                                 max_outer_diameter=part.max_outer_diameter,
+                                 arbor_diameter=arbor, materials=options.materials,
+                                 safety_factor=options.safety_factor,
+                                 leg_length=options.leg_length,
+                                 arbor_margin=options.arbor_margin,
+                                 max_wire_diameter=wire_limit(options.life_cycles))
+    except InvalidParameterError as e:  # a part no torsion spring can be asked for: named
+        return dataclasses.replace(part, problem=f"no torsion spring can be specified: {e}")
     try:
         return dataclasses.replace(part, spring=design_torsion_spring(req))
     except SpringDesignError as e:
