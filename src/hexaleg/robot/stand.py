@@ -136,16 +136,19 @@ def _newton(robot: Robot, data: pin.Data, leg: Leg, target: np.ndarray, q: np.nd
         pin.framesForwardKinematics(model, data, q)
         e = target - data.oMf[leg.foot_frame_id].translation
         err = float(np.linalg.norm(e))
+        if err < TOLERANCE and not pull:
+            break
         jac = pin.computeFrameJacobian(model, data, q, leg.foot_frame_id,
                                        pin.LOCAL_WORLD_ALIGNED)[:3, leg.v_index]
-        pinv = jac.T @ np.linalg.inv(jac @ jac.T + DAMPING * np.eye(3))
-        untwist = np.zeros(len(leg.q_index))
-        if box is not None and pull:
-            pref = np.clip(0.0, *box)
-            untwist = NULL_GAIN * (np.eye(len(untwist)) - pinv @ jac) @ (pref - q[leg.q_index])
-        if err < TOLERANCE and float(np.linalg.norm(untwist)) < TOLERANCE:
-            break
-        step = pinv @ e + untwist
+        if pull and box is not None:
+            pinv = jac.T @ np.linalg.inv(jac @ jac.T + DAMPING * np.eye(3))
+            untwist = NULL_GAIN * (np.eye(len(leg.q_index)) - pinv @ jac) @ (
+                np.clip(0.0, *box) - q[leg.q_index])
+            if err < TOLERANCE and float(np.linalg.norm(untwist)) < TOLERANCE:
+                break
+            step = pinv @ e + untwist
+        else:
+            step = jac.T @ np.linalg.solve(jac @ jac.T + DAMPING * np.eye(3), e)
         q[leg.q_index] += step * min(1.0, 0.3 / max(float(np.linalg.norm(step)), 1e-300))
         if box is not None:
             q[leg.q_index] = np.clip(q[leg.q_index], *box)
