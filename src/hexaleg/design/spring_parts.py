@@ -295,17 +295,13 @@ def _buy(part: SpringPart, options: PartOptions, arbor: float) -> SpringPart:
             f"only where the motion ends, {part.rate:.4g} N·m/rad over {stroke / part.rate:.3g} "
             "rad): nothing for a torsion spring to do; bound max_deflection or leave the group "
             "out ([design] classes)"))
-    try:
-        req = TorsionRequirement(rate=part.rate, max_torque=part.max_torque,
-                                 preload_torque=part.preload_torque,
-                                 max_outer_diameter=part.max_outer_diameter,
-                                 arbor_diameter=arbor, materials=options.materials,
-                                 safety_factor=options.safety_factor,
-                                 leg_length=options.leg_length,
-                                 arbor_margin=options.arbor_margin,
-                                 max_wire_diameter=wire_limit(options.life_cycles))
-    except InvalidParameterError as e:  # a part no torsion spring can be asked for: named
-        return dataclasses.replace(part, problem=f"no torsion spring can be specified: {e}")
+    req = TorsionRequirement(rate=part.rate, max_torque=part.max_torque,
+                             preload_torque=part.preload_torque,
+                             max_outer_diameter=part.max_outer_diameter,
+                             arbor_diameter=arbor, materials=options.materials,
+                             safety_factor=options.safety_factor,
+                             leg_length=options.leg_length, arbor_margin=options.arbor_margin,
+                             max_wire_diameter=wire_limit(options.life_cycles))
     try:
         return dataclasses.replace(part, spring=design_torsion_spring(req))
     except SpringDesignError as e:
