@@ -60,6 +60,7 @@ from hexaleg.design.chain.stages import (
     family_candidates,
     nominal,
     pareto_front,
+    per_joint_evidence,
     rank,
     robust_design,
     robustness_maps,
@@ -344,7 +345,9 @@ class DesignChain:
                   f"ranked by the predicted {d.metric} saving net of the springs' mass (not "
                   "simulated)")
         residual = nom.prepared.residual.line() if nom.prepared.residual is not None else None
-        notes = [*flagged, *self._left_out, *self._untolerant, *pays, *logged,
+        evidence = per_joint_evidence(nom, rec) if "ranking" in w else None
+        notes = [*flagged, *((evidence,) if evidence else ()), *self._left_out,
+                 *self._untolerant, *pays, *logged,
                  *((residual,) if residual else ()), *ranking_notes,
                  *envelope_notes, *robust_notes, *stalled, *unsimulated, *nom.notes,
                  *nom.robot.notes,
