@@ -11,7 +11,7 @@ from html import unescape
 
 import pytest
 
-from hexaleg.outputs.html import format_degrees
+from hexaleg.outputs.angles import format_degrees
 from hexaleg.outputs.spring_drawing import CENTRE, drawings, spring_svg
 
 
@@ -78,13 +78,6 @@ def test_one_drawing_per_part_named_by_group_and_side():
     # a group named by its joints' legs (Solo-12: "hfe LH/RH") is a file name, not a path
     assert list(drawings([_entry(group="hfe LH/RH", side="below")])) == \
         ["spring_hfe_LH_RH_below"]
-
-
-def test_degrees_never_read_minus_zero():
-    assert format_degrees(-1e-9) == "+0.0°"
-    assert format_degrees({"value": math.radians(-12.79), "unit": "rad"}) == "-12.8°"
-    with pytest.raises(ValueError, match="not an angle in rad"):
-        format_degrees({"value": 1.0, "unit": "deg"})
 
 
 def test_design_page_angles_under_absolute_equal_design_json(design_written):

@@ -10,7 +10,6 @@ rad shown in degrees, one decimal, signed, never −0.0).
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from typing import Any
 
@@ -18,6 +17,7 @@ import jinja2
 import markupsafe
 
 from hexaleg.checks import is_real
+from hexaleg.outputs.angles import format_degrees
 
 NOISE = 1e-12
 """Magnitudes below this (in the SI unit of the number) are round-off, not values: the net work
@@ -48,18 +48,6 @@ def format_percent(q: Mapping[str, Any] | float | None) -> str:
     if isinstance(q, Mapping) and q.get("unit") != "%":
         raise ValueError(f"pct: {q!r} is not a percentage")
     return f"{float(x):+.2f} %"
-
-
-def format_degrees(rad: Any, signed: bool = True) -> str:
-    """An angle given in rad (a number or a ``{value, unit: rad}`` quantity) in degrees with one
-    decimal and its sign (``signed``), never ``-0.0°``; ``—`` for a missing value."""
-    x = rad.get("value") if isinstance(rad, Mapping) else rad
-    if x is None:
-        return "—"
-    if isinstance(rad, Mapping) and rad.get("unit") != "rad":
-        raise ValueError(f"deg: {rad!r} is not an angle in rad")
-    d = round(math.degrees(float(x)), 1) + 0.0
-    return f"{d:+.1f}°" if signed else f"{d:.1f}°"
 
 
 def format_quantity(q: Mapping[str, Any] | None) -> str:

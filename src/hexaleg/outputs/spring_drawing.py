@@ -25,7 +25,7 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 from xml.sax.saxutils import escape
 
-from hexaleg.outputs.html import format_degrees as degrees
+from hexaleg.outputs.angles import format_degrees as degrees
 
 SIZE = (900, 330)
 """Width and height of the drawing, px."""

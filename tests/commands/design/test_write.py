@@ -27,7 +27,8 @@ def test_design_html_leads_with_the_answer(design_written):
         assert f'id="plot-{plot}"' in html
     assert html.index("The springs to buy") < html.index('<section id="simulated">')
     for row in data["simulation"]:
-        assert f'<td class="name">{row["label"]}</td>' in html
+        loop = ", balance feedback" if row.get("feedback") else ", open loop"
+        assert f'<td class="name">{row["label"]}{loop}</td>' in html
         assert row["simulated_saving"]["unit"] == row["predicted_saving"]["unit"] == "%"
 
 
