@@ -7,7 +7,9 @@ from :class:`~hexaleg.errors.HexalegError` are printed as one line and exit with
 from __future__ import annotations
 
 import argparse
+import codecs
 import functools
+import io
 import os
 import signal
 import sys
@@ -333,6 +335,18 @@ def _show_warning(command: str, original: Callable[..., None], message: Warning 
         original(message, category, filename, lineno, file, line)
 
 
+def _spell_in_ascii_where_needed() -> None:
+    """Standard output and error spell in ASCII what their encoding cannot show
+    (:func:`hexaleg.units.ascii_spelling`: ``N·m`` → ``N*m`` under ``PYTHONIOENCODING=ascii``
+    or a C locale), instead of failing on the first symbol."""
+    from hexaleg.units import ascii_spelling
+
+    codecs.register_error("hexaleg-ascii", ascii_spelling)
+    for stream in (sys.stdout, sys.stderr):
+        if isinstance(stream, io.TextIOWrapper) and stream.errors == "strict":
+            stream.reconfigure(errors="hexaleg-ascii")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``hexaleg`` console script.
 
@@ -343,6 +357,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         SIGTERM, after one line on stderr saying what was kept (every output directory as it
         was: :class:`hexaleg.outputs.directory.OutputFolder`).
     """
+    _spell_in_ascii_where_needed()
     parser = build_parser()
     args, extra = parser.parse_known_args(argv)
     if extra:  # named by the command's own parser: its usage, its options to suggest
