@@ -89,6 +89,14 @@ def test_text_files_are_regular_utf8_and_bounded(tmp_path, monkeypatch):
     assert read_text(big) == "x = 1\n"
 
 
+def test_a_symbolic_link_loop_is_named_with_what_is_allowed(tmp_path):
+    (tmp_path / "a.toml").symlink_to(tmp_path / "b.toml")
+    (tmp_path / "b.toml").symlink_to(tmp_path / "a.toml")
+    with pytest.raises(ConfigError, match=r"a\.toml: its symbolic links lead in a loop .*"
+                                          r"allowed: a path that leads to a regular file"):
+        load_toml(tmp_path / "a.toml")
+
+
 def test_a_byte_order_mark_is_accepted(tmp_path):
     bom = tmp_path / "bom.toml"
     bom.write_bytes(b"\xef\xbb\xbf[gait]\nperiod = 2.0\n")  # as Windows Notepad saves UTF-8

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import contextlib
 import dataclasses
+import errno
 import json
 import math
 import os
@@ -71,6 +72,10 @@ def read_bytes(path: str | Path, what: str = "config file", limit: int | None = 
     except FileNotFoundError:
         raise ConfigError(f"{what} not found: {path}") from None
     except OSError as e:
+        if e.errno == errno.ELOOP and follow:
+            raise ConfigError(f"cannot read {what} {path}: its symbolic links lead in a loop (or "
+                              "more than 40 deep); allowed: a path that leads to a regular "
+                              "file: give the file's own path") from None
         raise ConfigError(f"cannot read {what} {path}: {e.strerror or e}") from e
     try:
         info = os.fstat(fd)
@@ -121,7 +126,8 @@ def read_text(path: str | Path, what: str = "config file", limit: int | None = N
 
 
 def _no_constant(name: str) -> float:
-    raise ValueError(f"{name} is not a JSON number (JSON has no NaN or Infinity)")
+    raise ValueError(f"{name} is not a JSON number (JSON has no NaN or Infinity); allowed: "
+                     "finite numbers (hexaleg writes a value that is not finite as null)")
 
 
 def _finite_float(text: str) -> float:
