@@ -378,18 +378,28 @@ def main(argv: Sequence[str] | None = None) -> int:
     except HexalegError as e:
         print(f"hexaleg {args.command}: error: {e}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt as e:  # SIGINT, or SIGTERM (interrupt.Interrupted)
-        signum = getattr(e, "signum", signal.SIGINT)
-        kept = "; ".join(interrupt.kept(e)) or "nothing written"
-        print(f"hexaleg {args.command}: interrupted ({signal.Signals(signum).name}): {kept}",
-              file=sys.stderr)
-        return 128 + signum  # what a shell reports for a process ended by the signal
     except BrokenPipeError:
         # Point stdout at /dev/null so the interpreter's final flush does not fail again.
         # Recipe from the Python docs, "Note on SIGPIPE" in the signal module.
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
         return 128 + 13  # 128 + SIGPIPE, what a shell reports for `cat big | head`
+    except KeyboardInterrupt as e:  # SIGINT, or SIGTERM (interrupt.Interrupted)
+        return _interrupted(args.command, e)
+    except Exception as e:  # an interrupt inside an import is an ImportError raised from it
+        cause = interrupt.found(e)
+        if cause is None:
+            raise
+        return _interrupted(args.command, cause)
+
+
+def _interrupted(command: str, e: KeyboardInterrupt) -> int:
+    """One line for an interrupted command, saying what it kept; the exit status."""
+    signum = getattr(e, "signum", signal.SIGINT)
+    kept = "; ".join(interrupt.kept(e)) or "nothing written"
+    print(f"hexaleg {command}: interrupted ({signal.Signals(signum).name}): {kept}",
+          file=sys.stderr)
+    return 128 + signum  # what a shell reports for a process ended by the signal
 
 
 if __name__ == "__main__":

@@ -74,3 +74,17 @@ def test_stop_workers_ends_the_items_being_computed():
     assert not wait_gone(workers, 30)
     assert time.monotonic() - start < 30  # a hang guard, not a speed assertion
     assert all(j.cancelled() or j.done() for j in jobs[2:])
+
+
+def test_an_interrupt_is_found_behind_the_error_it_caused():
+    """Ctrl-C inside a C extension's import surfaces as ImportError("initialization failed")
+    raised from it (seen importing MuJoCo)."""
+    stop = interrupt.Interrupted(signal.SIGTERM)
+    try:
+        try:
+            raise stop
+        except KeyboardInterrupt as e:
+            raise ImportError("initialization failed") from e
+    except ImportError as e:
+        assert interrupt.found(e) is stop
+    assert interrupt.found(ValueError("no")) is None and interrupt.found(None) is None

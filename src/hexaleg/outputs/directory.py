@@ -31,7 +31,7 @@ from types import TracebackType
 
 from hexaleg.config import write_file
 from hexaleg.errors import OutputError
-from hexaleg.parallel.interrupt import deferred, keep
+from hexaleg.parallel.interrupt import deferred, found, keep
 from hexaleg.parallel.lock import DirectoryLock
 
 STAGING = ".hexaleg-staging-"
@@ -77,28 +77,35 @@ class OutputFolder:
         self._made = _made(self.directory)
         self._open = True
         self._published = False
+        self.staging = self.directory / f"{STAGING}{os.getpid()}-{secrets.token_hex(4)}"
+        self.lock: DirectoryLock | None = None
+        try:
+            with deferred():  # an interrupt waits until the folder is set up, then cleans up
+                self._set_up()
+        except BaseException as e:
+            shutil.rmtree(self.staging, ignore_errors=True)
+            self._close(remove=True)
+            interrupted = found(e)
+            if interrupted is not None:
+                keep(interrupted, self.kept())
+            raise
+
+    def _set_up(self) -> None:
+        """Make the directory, take its lock, remove a killed run's staging folder, make this
+        run's."""
         try:
             self.directory.mkdir(parents=True, exist_ok=True)
         except OSError as e:
-            raise OutputError(f"cannot write the {what} to the directory {out}: "
-                              f"{e.strerror or e}") from e
-        try:
-            self.lock = DirectoryLock(self.directory, what)  # proves the directory writable
-        except BaseException:
-            self._remove_made()
-            raise
+            raise OutputError(f"cannot write the {self.what} to the directory "
+                              f"{self.directory}: {e.strerror or e}") from e
+        self.lock = DirectoryLock(self.directory, self.what)  # proves the directory writable
         try:
             for stray in self.directory.glob(STAGING + "*"):  # a killed run's, never a live one
                 shutil.rmtree(stray, ignore_errors=True)
-            self.staging = self.directory / f"{STAGING}{os.getpid()}-{secrets.token_hex(4)}"
             self.staging.mkdir()
         except OSError as e:
-            self.lock.release()
-            raise OutputError(f"cannot write the {what} to the directory {out}: "
-                              f"{e.strerror or e}") from e
-        except BaseException:
-            self.lock.release()
-            raise
+            raise OutputError(f"cannot write the {self.what} to the directory "
+                              f"{self.directory}: {e.strerror or e}") from e
 
     def path(self, name: str) -> Path:
         """Where the run writes its file ``name`` (in the staging folder until published)."""
@@ -148,7 +155,8 @@ class OutputFolder:
 
     def _close(self, *, remove: bool) -> None:
         self._open = False
-        self.lock.release()
+        if self.lock is not None:
+            self.lock.release()
         if remove:
             self._remove_made()
 
@@ -171,12 +179,14 @@ class OutputFolder:
     def __exit__(self, kind: type[BaseException] | None, value: BaseException | None,
                  tb: TracebackType | None) -> None:
         if not self._open:
-            if self._published and isinstance(value, KeyboardInterrupt):
-                keep(value, f"this run's files published in {self.directory}")
+            interrupted = found(value)
+            if self._published and interrupted is not None:
+                keep(interrupted, f"this run's files published in {self.directory}")
             return
         self.discard()
-        if isinstance(value, KeyboardInterrupt):
-            keep(value, self.kept())
+        interrupted = found(value)
+        if interrupted is not None:
+            keep(interrupted, self.kept())
         elif isinstance(value, OutputError) and str(self.staging) in str(value):
             # named by where the run writes it, not by its staging folder
             raise OutputError(str(value).replace(str(self.staging), str(self.directory))

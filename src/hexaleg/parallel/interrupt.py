@@ -95,6 +95,18 @@ def deferred() -> Iterator[None]:
             _raise(signum, None)
 
 
+def found(error: BaseException | None) -> KeyboardInterrupt | None:
+    """The interrupt ``error`` is, or was raised from or during: an interrupt inside a C
+    extension's import surfaces as ``ImportError("initialization failed")`` caused by it."""
+    seen: set[int] = set()
+    while error is not None and id(error) not in seen:
+        if isinstance(error, KeyboardInterrupt):
+            return error
+        seen.add(id(error))
+        error = error.__cause__ or error.__context__
+    return None
+
+
 def keep(interrupt: KeyboardInterrupt, what: str) -> None:
     """Note on an interrupt on its way out what the run keeps (``"out/ kept as it was"``); the
     command line prints the notes in its one line (:func:`kept`)."""
@@ -128,5 +140,5 @@ def stop_workers(pool: ProcessPoolExecutor) -> None:
             process.kill()
 
 
-__all__ = ["SIGNALS", "Interrupted", "deferred", "handled", "keep", "kept", "quiet_worker",
-           "stop_workers"]
+__all__ = ["SIGNALS", "Interrupted", "deferred", "found", "handled", "keep", "kept",
+           "quiet_worker", "stop_workers"]
