@@ -373,6 +373,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             warnings.showwarning = functools.partial(_show_warning, args.command,
                                                      warnings.showwarning)
             status = int(args.func(args) or 0)
+            interrupt.check()  # one lost on the way (raised in a __del__) is still reported
             sys.stdout.flush()  # a closed pipe fails here, inside the handler, not at shutdown
         return status
     except HexalegError as e:

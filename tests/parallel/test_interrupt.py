@@ -88,3 +88,20 @@ def test_an_interrupt_is_found_behind_the_error_it_caused():
     except ImportError as e:
         assert interrupt.found(e) is stop
     assert interrupt.found(ValueError("no")) is None and interrupt.found(None) is None
+
+
+def test_an_interrupt_lost_in_a_destructor_is_raised_again_by_check(capsys):
+    """Python prints and drops an exception raised in __del__; check() raises it again."""
+
+    class Dropper:
+        def __del__(self):
+            os.kill(os.getpid(), signal.SIGTERM)
+            time.sleep(0.05)  # the handler runs here, inside __del__: its exception is dropped
+
+    with interrupt.handled():
+        interrupt.check()  # nothing received: nothing raised
+        Dropper()  # Python would print "Exception ignored in ... __del__" and go on
+        with pytest.raises(interrupt.Interrupted):
+            interrupt.check()
+    interrupt.check()  # cleared with the handlers
+    assert capsys.readouterr().err == ""  # not printed

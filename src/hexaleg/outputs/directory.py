@@ -31,7 +31,7 @@ from types import TracebackType
 
 from hexaleg.config import write_file
 from hexaleg.errors import OutputError
-from hexaleg.parallel.interrupt import deferred, found, keep
+from hexaleg.parallel.interrupt import check, deferred, found, keep
 from hexaleg.parallel.lock import DirectoryLock
 
 STAGING = ".hexaleg-staging-"
@@ -127,6 +127,7 @@ class OutputFolder:
         Raises:
             OutputError: a directory stands where a file goes (named; nothing is published).
         """
+        check()  # an interrupt that was lost on the way still stops the run here
         names = sorted(p.name for p in self.staging.iterdir())
         for name in names:
             target = self.directory / name

@@ -17,10 +17,11 @@ from __future__ import annotations
 
 import contextlib
 import signal
+import sys
 import threading
 from collections.abc import Iterator
 from types import FrameType
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:  # not imported at run time: the command line imports this module
     from concurrent.futures import ProcessPoolExecutor
@@ -44,22 +45,39 @@ class Interrupted(KeyboardInterrupt):
 
 
 _pending: list[int] = []
+_received: list[int] = []
+"""The signals received while :func:`handled` is in force: an exception raised in a ``__del__``
+or a callback is printed and dropped by Python, so :func:`check` raises it again at the next
+point that must not go on after an interrupt."""
 _deferring = threading.local()
 
 
 def _raise(signum: int, frame: FrameType | None) -> None:
+    _received.append(signum)
     if getattr(_deferring, "depth", 0):
         _pending.append(signum)
         return
-    if signum == signal.SIGINT:
-        raise KeyboardInterrupt
-    raise Interrupted(signum)
+    raise _exception(signum)
+
+
+def _exception(signum: int) -> KeyboardInterrupt:
+    return KeyboardInterrupt() if signum == signal.SIGINT else Interrupted(signum)
+
+
+def check() -> None:
+    """Raise the interrupt this process received if it was lost on the way (raised where Python
+    drops exceptions: a ``__del__``, a weakref or C callback); called before a run publishes its
+    files and when a command ends."""
+    if _received:
+        raise _exception(_received[0])
 
 
 @contextlib.contextmanager
 def handled(sigint: bool | None = None) -> Iterator[None]:
     """SIGINT and SIGTERM raise (:class:`KeyboardInterrupt`, :class:`Interrupted`) while the
     ``with`` block runs; the previous handlers are restored after it. Call from the main thread.
+    One raised where Python drops it (a ``__del__``) is not printed ("Exception ignored in …"):
+    :func:`check` raises it again.
 
     Args:
         sigint: Whether SIGINT is taken also where it was ignored when the process started (a
@@ -68,6 +86,14 @@ def handled(sigint: bool | None = None) -> Iterator[None]:
             Python does. SIGTERM is taken unless it was ignored.
     """
     old = {s: signal.getsignal(s) for s in SIGNALS}
+    hook = sys.unraisablehook
+    _received.clear()
+
+    def unraisable(info: Any) -> None:  # "Exception ignored in …": check() raises it again
+        if not isinstance(info.exc_value, KeyboardInterrupt):
+            hook(info)
+
+    sys.unraisablehook = unraisable
     try:
         for s in SIGNALS:
             take = sigint if s == signal.SIGINT and sigint is not None else None
@@ -77,6 +103,8 @@ def handled(sigint: bool | None = None) -> Iterator[None]:
     finally:
         for s, handler in old.items():
             signal.signal(s, handler)
+        sys.unraisablehook = hook
+        _received.clear()
 
 
 @contextlib.contextmanager
@@ -92,7 +120,7 @@ def deferred() -> Iterator[None]:
         if not _deferring.depth and _pending:
             signum = _pending[0]
             _pending.clear()
-            _raise(signum, None)
+            raise _exception(signum)
 
 
 def found(error: BaseException | None) -> KeyboardInterrupt | None:
@@ -140,5 +168,5 @@ def stop_workers(pool: ProcessPoolExecutor) -> None:
             process.kill()
 
 
-__all__ = ["SIGNALS", "Interrupted", "deferred", "found", "handled", "keep", "kept",
+__all__ = ["SIGNALS", "Interrupted", "check", "deferred", "found", "handled", "keep", "kept",
            "quiet_worker", "stop_workers"]
