@@ -4,19 +4,22 @@ they were and nothing of its own."""
 
 from __future__ import annotations
 
+import json
 import os
 import signal
 
 import pytest
 
 from hexaleg.errors import DirectoryLockedError, OutputError
-from hexaleg.outputs.directory import STAGING, OutputFolder
+from hexaleg.outputs.directory import RECORD, STAGING, OutputFolder
 from hexaleg.parallel import interrupt
 from hexaleg.parallel.lock import LOCK
 
 
 def _listing(directory):
-    return {p.name: p.read_bytes() for p in directory.iterdir()}
+    """The folder's files by name → content, without the record of the last run's files."""
+    return {p.name: p.read_bytes() for p in directory.iterdir()
+            if not p.name.startswith(RECORD)}
 
 
 def test_files_appear_only_when_published(tmp_path):
@@ -29,6 +32,33 @@ def test_files_appear_only_when_published(tmp_path):
         files = folder.publish()
     assert files == [out / "plot.png", out / "report.json"]
     assert _listing(out) == {"plot.png": b"png", "report.json": b"{}"}  # no lock, no staging
+    assert json.loads((out / f"{RECORD}report.json").read_text()) == {
+        "files": ["plot.png", "report.json"]}
+
+
+def test_the_previous_run_s_files_this_run_does_not_write_are_removed(tmp_path):
+    """An earlier report's SVGs, an earlier design's maps: not left beside the new run's."""
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "mine.txt").write_text("the user's")
+    with OutputFolder(out, "report") as folder:
+        for name in ("report.json", "a.svg", "b.png"):
+            folder.write(name, "old")
+        folder.publish()
+    with OutputFolder(out, "design") as folder:  # another command's files stay
+        folder.write("design.json", "d")
+        folder.publish()
+    with OutputFolder(out, "report") as folder:
+        folder.write("report.json", "new")
+        folder.write("b.png", "new")
+        folder.publish()
+    assert _listing(out) == {"mine.txt": b"the user's", "report.json": b"new", "b.png": b"new",
+                             "design.json": b"d"}
+    (tmp_path / "x").write_text("outside")
+    (out / f"{RECORD}report.json").write_text(json.dumps({"files": ["../x", ".lock", 3]}))
+    with OutputFolder(out, "report") as folder:  # what is not a plain name is never removed
+        folder.publish()
+    assert (tmp_path / "x").read_text() == "outside"
 
 
 def test_a_second_run_is_refused_naming_the_first(tmp_path):
@@ -105,7 +135,7 @@ def test_a_killed_run_s_staging_folder_is_removed_by_the_next_run(tmp_path):
     with OutputFolder(tmp_path, "report") as folder:
         assert not stale.exists()
         folder.publish()
-    assert list(tmp_path.iterdir()) == []
+    assert [p.name for p in tmp_path.iterdir()] == [f"{RECORD}report.json"]  # its record only
 
 
 def test_names_must_be_plain_file_names(tmp_path):

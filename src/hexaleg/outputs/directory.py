@@ -13,7 +13,8 @@ an :class:`OutputFolder`:
 * **published together**: :meth:`OutputFolder.publish` renames them into the directory, one
   :func:`os.replace` each, with SIGINT and SIGTERM held back until the last
   (:func:`hexaleg.parallel.interrupt.deferred`); a file or link of the same name is replaced,
-  never written through;
+  never written through, and the files the command's previous run published there (its hidden
+  record, :data:`RECORD`) that this run does not write are removed: one run's files;
 * **a failed or interrupted run leaves nothing of its own**: leaving the ``with`` block without
   :meth:`~OutputFolder.publish` (an error, a full disk, Ctrl-C, a kill) removes the staging
   folder, and the directory if the run made it, and releases the lock; the previous run's
@@ -23,14 +24,16 @@ an :class:`OutputFolder`:
 
 from __future__ import annotations
 
+import contextlib
+import json
 import os
 import secrets
 import shutil
 from pathlib import Path
 from types import TracebackType
 
-from hexaleg.config import write_file
-from hexaleg.errors import OutputError
+from hexaleg.config import read_json, write_file
+from hexaleg.errors import ConfigError, OutputError
 from hexaleg.parallel.interrupt import check, deferred, found, keep
 from hexaleg.parallel.lock import DirectoryLock
 
@@ -46,6 +49,26 @@ def _made(out: Path) -> list[Path]:
             break
         missing.append(p)
     return missing
+
+
+RECORD = ".hexaleg-files-"
+"""Prefix of the hidden record of the files a command's last run published in a folder
+(``.hexaleg-files-report.json``): the next run of that command removes those it does not
+write again (an earlier ``--svg``'s SVGs, an earlier design's maps), so the folder holds one
+run's files."""
+
+
+def _recorded(record: Path) -> list[str]:
+    """The plain file names in a folder's record of its last run ([] when there is none, or it
+    is not one: a link, unreadable, not a list of names)."""
+    try:
+        files = read_json(record, "record of a run's files", 1 << 20, follow=False)["files"]
+    except (ConfigError, KeyError, TypeError):
+        return []
+    if not isinstance(files, list):
+        return []
+    return [n for n in files if isinstance(n, str) and n and Path(n).name == n
+            and not n.startswith(".")]
 
 
 class OutputFolder:
@@ -134,10 +157,16 @@ class OutputFolder:
             if target.is_dir() and not target.is_symlink():
                 raise OutputError(f"cannot write the {self.what}: {target} is a directory; "
                                   f"remove it or give another --out directory")
+        record = self.directory / f"{RECORD}{self.what.replace(' ', '-')}.json"
+        stale = [n for n in _recorded(record) if n not in names]
+        write_file(self.staging / record.name, json.dumps({"files": names}), f"the {self.what}")
         try:
             with deferred():  # an interrupt waits for the last rename
-                for name in names:
+                for name in [*names, record.name]:
                     os.replace(self.staging / name, self.directory / name)
+                for name in stale:  # the previous run's files this run does not write
+                    with contextlib.suppress(FileNotFoundError, IsADirectoryError):
+                        (self.directory / name).unlink()
                 self.staging.rmdir()
                 self._published = True
                 self._close(remove=False)
@@ -194,4 +223,4 @@ class OutputFolder:
                               + f"; {self.kept()}") from value
 
 
-__all__ = ["STAGING", "OutputFolder"]
+__all__ = ["RECORD", "STAGING", "OutputFolder"]
