@@ -140,7 +140,7 @@ def assert_one_line(err: str, command: str, expected: str) -> None:
 @contextlib.contextmanager
 def small_disk(path: Path, size: int) -> Iterator[Callable[[], None] | None]:
     """A folder on a file system of ``size`` bytes (a tmpfs: yields None), or where it cannot be
-    mounted a file-size limit of ``size // 3`` bytes to set in the child (yields the setter)."""
+    mounted a file-size limit of ``size // 4`` bytes to set in the child (yields the setter)."""
     path.mkdir()
     mounted = os.geteuid() == 0 and shutil.which("mount") is not None and subprocess.run(
         ["mount", "-t", "tmpfs", "-o", f"size={size}", "tmpfs", str(path)],
@@ -149,7 +149,7 @@ def small_disk(path: Path, size: int) -> Iterator[Callable[[], None] | None]:
         if mounted:
             yield None
         else:
-            limit = size // 3
+            limit = size // 4
             yield lambda: resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
     finally:
         if mounted:
