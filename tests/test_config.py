@@ -185,6 +185,22 @@ def test_written_files_replace_a_link_and_leave_its_target(tmp_path):
         write_file(tmp_path / "nowhere" / "x.json", "{}", "the report")
 
 
+def test_an_interrupted_write_leaves_the_old_file_and_no_temporary(tmp_path, monkeypatch):
+    import os
+
+    path = tmp_path / "page.html"
+    path.write_text("old")
+
+    def interrupted(fd, data):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(os, "write", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        write_file(path, "new")
+    monkeypatch.undo()
+    assert [p.name for p in tmp_path.iterdir()] == ["page.html"] and path.read_text() == "old"
+
+
 def test_keywords_are_checked_against_the_function_s_annotations():
     from hexaleg.config import keywords
     from hexaleg.errors import ConfigError, UnknownNameError

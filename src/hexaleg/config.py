@@ -192,10 +192,12 @@ def write_file(path: str | Path, data: bytes | str, what: str = "file") -> Path:
         finally:
             os.close(fd)
         os.replace(tmp, path)
-    except OSError as e:
+    except BaseException as e:  # a full disk, or Ctrl-C: no temporary file left behind
         with contextlib.suppress(OSError):
             tmp.unlink()
-        raise OutputError(f"cannot write {what} {path}: {e.strerror or e}") from e
+        if isinstance(e, OSError):
+            raise OutputError(f"cannot write {what} {path}: {e.strerror or e}") from e
+        raise
     return path
 
 
