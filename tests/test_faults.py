@@ -7,9 +7,9 @@ links) are refused by name.
 
 The commands run as the user runs them, as processes (``python -m hexaleg.cli``); a moment to
 interrupt is a line the command prints on stderr, or its output folder's lock appearing (the run
-computes). The fast cases use ``report`` and ``simulate`` (about 20 s of CPU in all); a report
-killed and run again, ``design``, ``codesign``, ``paper`` and the process-pool sweep are marked
-slow.
+computes). The fast cases use ``report`` and ``simulate`` (about 25 s of CPU in all); a report
+killed and run again, ``design`` (a small one), ``codesign``, ``paper`` and the process-pool sweep
+are marked slow.
 
 A full disk is a small tmpfs mounted for the test (as root, where ``mount`` works); elsewhere it
 is simulated with a file-size limit (``RLIMIT_FSIZE``, set in the child before it starts: a write
@@ -296,48 +296,66 @@ def test_a_urdf_of_ten_thousand_links_is_refused_not_a_crash(tmp_path):
 
 # --- the long commands (slow) ---------------------------------------------------------------
 
+SMALL_DESIGN = """[gait]
+samples = 120
+[design]
+samples = 120
+families = ["linear", "one_sided"]
+map_period = [0.7, 1.0, 1.4]
+map_stride = [0.75, 1.0]
+map_payload = [0.0, 0.4]
+map_mu = [0.3, 0.6]
+map_slope = [0.0, 0.26]
+robust_period = [0.8, 1.25]
+robust_stride = [1.0, 1.0]
+robust_payload = [0.0, 0.2]
+robust_mu = [0.6, 0.6]
+pareto_fractions = [0.5]
+"""
+"""A design of every stage at a fraction of the default's cost (tests/conftest.py's small one),
+simulated under one servo: the old results and the interrupted runs of the design cases."""
+DESIGN = ["design", "--config", "small.toml", "--controller", "feedforward", "--out", "d"]
+
+
+@pytest.fixture(scope="module")
+def old_design(tmp_path_factory) -> Path:
+    """A complete small design, made once for the slow cases."""
+    work = tmp_path_factory.mktemp("design")
+    (work / "small.toml").write_text(SMALL_DESIGN)
+    proc = run(DESIGN, work)
+    assert proc.returncode == 0, proc.stderr
+    return work / "d"
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize(("signum", "moment"), [(signal.SIGINT, LOCK),
-                                                (signal.SIGTERM, "hexaleg design: "),
                                                 (signal.SIGKILL, "hexaleg design: ")])
-def test_an_interrupted_design_keeps_the_previous_one(tmp_path_factory, tmp_path, signum,
-                                                      moment):
-    old = _old_design(tmp_path_factory)
+def test_an_interrupted_design_keeps_the_previous_one(old_design, tmp_path, signum, moment):
     out = tmp_path / "d"
-    shutil.copytree(old, out)
+    shutil.copytree(old_design, out)
+    (tmp_path / "small.toml").write_text(SMALL_DESIGN)
     before = snapshot(out)
-    status, err, workers = interrupt(["design", "--out", "d"], tmp_path,
-                                     out / LOCK if moment == LOCK else moment, signum)
+    status, err, workers = interrupt(DESIGN, tmp_path, out / LOCK if moment == LOCK else moment,
+                                     signum)
     assert wait_gone(workers) == set()  # the forked candidates' workers too
     if signum == signal.SIGKILL:
-        assert status == -signal.SIGKILL and visible(out) == visible(old)
-    else:
-        assert status == 128 + signum, err
-        assert_one_line(err, "design", f"interrupted ({signal.Signals(signum).name}): d kept "
-                                       "as it was, nothing of this run written")
-        assert snapshot(out) == before
-    report = run(["report", "--design", "d/design.json", "--out", "r"], tmp_path)
+        assert status == -signal.SIGKILL and visible(out) == visible(old_design)
+        return
+    assert status == 128 + signum, err
+    assert_one_line(err, "design", f"interrupted ({signal.Signals(signum).name}): d kept "
+                                   "as it was, nothing of this run written")
+    assert snapshot(out) == before
+    report = run(["report", "--design", "d/design.json", "--config", "small.toml", "--out", "r"],
+                 tmp_path)
     assert report.returncode == 0, report.stderr  # the next command accepts it
-
-
-_DESIGN: list[Path] = []
-
-
-def _old_design(tmp_path_factory) -> Path:
-    """A complete design of the default robot, made once for the slow cases."""
-    if not _DESIGN:
-        work = tmp_path_factory.mktemp("design")
-        proc = run(["design", "--out", "d"], work)
-        assert proc.returncode == 0, proc.stderr
-        _DESIGN.append(work / "d")
-    return _DESIGN[0]
 
 
 @pytest.mark.slow
 def test_two_designs_into_one_folder_one_runs_the_other_is_refused(tmp_path):
-    first = start(["design", "--out", "d"], tmp_path)
+    (tmp_path / "small.toml").write_text(SMALL_DESIGN)
+    first = start(DESIGN, tmp_path)
     wait_for(first, tmp_path / "d" / LOCK)
-    second = run(["design", "--out", "d"], tmp_path)
+    second = run(DESIGN, tmp_path)
     assert second.returncode == 2 and f"another design (pid {first.pid} " in second.stderr
     first.send_signal(signal.SIGINT)  # the first need not finish: it leaves nothing either
     _, err = first.communicate(timeout=GUARD)
@@ -346,30 +364,24 @@ def test_two_designs_into_one_folder_one_runs_the_other_is_refused(tmp_path):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGKILL])
-def test_an_interrupted_codesign_writes_nothing(tmp_path, signum):
-    status, err, workers = interrupt(["codesign", "--out", "c"], tmp_path,
-                                     "hexaleg codesign: ", signum)
-    assert wait_gone(workers) == set()
-    assert visible(tmp_path / "c") == {}
-    if signum == signal.SIGINT:
-        assert status == 130
-        assert_one_line(err, "codesign", "interrupted (SIGINT): nothing of this run written "
-                                         "to c")
+def test_an_interrupted_codesign_writes_nothing(tmp_path):
+    status, err, workers = interrupt(["codesign", "--out", "c"], tmp_path, "hexaleg codesign: ",
+                                     signal.SIGINT)
+    assert wait_gone(workers) == set() and not (tmp_path / "c").exists()
+    assert status == 130
+    assert_one_line(err, "codesign", "interrupted (SIGINT): nothing of this run written to c")
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGKILL])
-def test_an_interrupted_paper_keeps_the_previous_one(tmp_path, signum):
-    first = run(["paper", "--out", "p", "--samples", "512"], tmp_path)
+def test_an_interrupted_paper_keeps_the_previous_one(tmp_path):
+    first = run(["paper", "--out", "p", "--no-simulation", "--samples", "512"], tmp_path)
     assert first.returncode == 0, first.stderr
     before = snapshot(tmp_path / "p")
-    status, err, _ = interrupt(["paper", "--out", "p"], tmp_path, tmp_path / "p" / LOCK, signum)
-    assert visible(tmp_path / "p") == {k: v for k, v in before.items() if not k.startswith(".")}
-    if signum == signal.SIGINT:
-        assert status == 130 and snapshot(tmp_path / "p") == before
-        assert_one_line(err, "paper", "interrupted (SIGINT): p kept as it was, nothing of this "
-                                      "run written")
+    status, err, _ = interrupt(["paper", "--out", "p"], tmp_path, tmp_path / "p" / LOCK,
+                               signal.SIGINT)
+    assert status == 130 and snapshot(tmp_path / "p") == before
+    assert_one_line(err, "paper", "interrupted (SIGINT): p kept as it was, nothing of this run "
+                                  "written")
 
 
 @pytest.mark.slow
