@@ -10,7 +10,10 @@ springs to buy (Shigley §10-12); the robustness maps of the recommended springs
 robust design over the box period ×0.75…1.5, stride ×0.75…1.25, payload 0…25 %, μ 0.5…1; the
 recommendation simulated forward in MuJoCo under both controllers (predicted / simulated);
 every ranked design simulated under the default servo, the recommendation designed for its stops
-mounted within ±1°, each part checked over its whole envelope and for fatigue.
+mounted within ±1°, each part checked over its whole envelope and for fatigue, and where each
+spring mounts on each joint (joint angles from the joint's zero, as docs/design.md quotes them),
+the fold into the sphere and back with the springs and without, and the story of the numbers a
+user meets for this gait (design.html's table, docs/design.md).
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ import numpy as np
 
 from hexaleg.design.chain.chain import DesignChain
 from hexaleg.design.chain.ranking import under
+from hexaleg.design.chain.result import mounting_data, story_data
 
 
 def pct(x: float) -> str:
@@ -101,6 +105,21 @@ def main() -> None:
                 f"holding {e.stop.torque:.4f} N·m")
         print(f"  {p.group:6s} {p.side:5s} worst S_y/σ {e.safety_factor:.2f} ({e.source}); "
               f"{stop}; fatigue n_f {f.safety_factor:.2f}")
+    print("\nwhere to mount them: joint angles from each joint's zero (from its centre of motion)")
+    for e in mounting_data(r):
+        deg = {k: f"{np.degrees(e[k]['value']):+.1f}°" if e[k] else "—"
+               for k in ("centre", "contact", "contact_from_centre", "free", "hard_stop")}
+        print(f"  {e['joint']:9s} {e['side']:5s} centre {deg['centre']:>7s}, spring stop "
+              f"{deg['contact']:>7s} ({deg['contact_from_centre']}), free leg {deg['free']:>7s}, "
+              f"hard stop {deg['hard_stop']}")
+    if r.fold is not None:
+        print("\nthe fold into the sphere and back, electrical J with the springs / without")
+        for w in r.fold.ways:
+            print(f"  {w.label}  {w.electrical:.3f} / {w.baseline:.3f}, torque "
+                  f"{w.torque_share:.3f} / {w.baseline_share:.3f} of the limit")
+        be = r.fold.break_even
+        print("  the springs pay for a fold out and back after "
+              + (f"{be:.2f} m of walking" if be is not None else "— (they save nothing)"))
     for mp in r.maps:
         a, b = mp.axes
         print(f"\n{m} saving of the recommended springs, % ({a} down, {b} across)")
@@ -132,6 +151,11 @@ def main() -> None:
               f" {row['predicted_baseline']:.4f} / {row['baseline']:.4f} "
               f"{pct(row['predicted'])} / {pct(row['simulated'])} "
               f"{1e3 * row['distance_per_cycle']:6.2f} mm  {1e3 * row['tracking_rms']:.2f} mrad")
+
+    print(f"\none gait, several numbers ({m} saving): what each is")
+    for row in story_data(r):
+        value = row["saving"]["value"] if row["saving"] else float("nan")
+        print(f"  {value:+7.2f} %  {row['figure']}: {row['why']}")
 
 
 if __name__ == "__main__":

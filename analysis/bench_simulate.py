@@ -11,6 +11,13 @@ Run:  python analysis/bench_simulate.py [--cycles 10]
    term, the run steps in Python): its real-time factor and its cost against the native run.
 4. ``hexaleg simulate`` on the default robot, end to end in a fresh process (imports, robot,
    gait, optimal springs, two runs of 4 cycles, the JSON and the page). Target ≤ 30 s.
+5. Balance feedback (#54, :mod:`hexaleg.simulation.balance`): the default robot's gait with
+   its springs stepped closed loop against open loop, alternately in this process, both
+   controllers: the controller's cost as a ratio of the open-loop step. Target ≤ 3×.
+6. Per robot: the default robot's tripod and the four registered quadrupeds' trots of #54
+   (position-only servo, ``[contact] mu = 1``; Solo-12 0.4 s 0.12 m, A1 0.4 s 0.20 m, ANYmal
+   0.6 s 0.30 m, Go2 its own), open and closed loop: real-time factor, verdicts, and the
+   simulated electrical saving against the predicted one (``--robots`` skips it with none).
 Best of three runs for 1–3; timings depend on the machine and its load, so the benchmark prints
 its own CPU share: on the 2-core machine, two other busy processes halve every factor (time
 slicing), while one leaves them unchanged.
@@ -24,13 +31,17 @@ import subprocess
 import sys
 import tempfile
 import time
+from pathlib import Path
 
 import numpy as np
 
 from hexaleg.commands.simulate.study import load_study
 from hexaleg.robot.springs import DeadZoneSpring, PreloadedSpring, SpringSet
 from hexaleg.scenario.scenario import Scenario
-from hexaleg.simulation.run import simulate
+from hexaleg.simulation.run import simulate, simulate_run
+
+TROTS = {"solo12": (0.4, 0.12), "a1": (0.4, 0.20), "anymal": (0.6, 0.30), "go2": None}
+"""#54's trots: robot → (period s, stride m), or None for the robot's own trot."""
 
 CPU_SHARE: list[float] = []
 """This thread's CPU time over the wall time of each timed call: below ~0.9 the process waited
@@ -57,6 +68,8 @@ def report(label: str, s) -> float:
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--cycles", type=int, default=10)
+    parser.add_argument("--robots", default="hexaleg,solo12,a1,anymal,go2",
+                        help="robots of row 6, comma-separated ('' to skip it)")
     args = parser.parse_args()
     study = load_study(Scenario.load("hexaleg"))
     settings = dataclasses.replace(study.settings, cycles=args.cycles, evaluate=2,
@@ -93,6 +106,64 @@ def main() -> None:
                        check=True, capture_output=True)
         wall = time.perf_counter() - start
     print(f"hexaleg simulate (default robot, fresh process): {wall:.1f} s wall (target ≤ 30 s)")
+    feedback_cost(study, settings)
+    if args.robots:
+        per_robot(args.robots.split(","))
+
+
+def feedback_cost(study, settings) -> None:
+    """Row 5: the balance controller's cost against the open-loop step, same model, same run,
+    alternating (best of three each)."""
+    from hexaleg.simulation.model import build_model
+
+    p = study.prepared
+    print("balance feedback on the default robot (same model, alternating, best of 3):")
+    for controller in ("feedforward", "position"):
+        st = dataclasses.replace(settings, controller=controller).sized(p.robot.mass)
+        sim = build_model(p.robot, p.motion, p.motor, springs=study.springs, servo=st.servo(),
+                          ground=st.ground(p.contact.mu), timestep=5e-4)
+        a = p.evaluate(study.springs)
+        walls: dict[bool, list[float]] = {False: [], True: []}
+        energy: dict[bool, float] = {}
+        for _ in range(3):
+            for closed in (False, True):
+                r = simulate_run("springs", sim, p.motion, a, st, closed)
+                walls[closed].append(r.wall / r.trajectory.n)
+                energy[closed] = r.metrics["electrical"]
+        ratio = min(walls[True]) / min(walls[False])
+        print(f"  {controller:<12} open {min(walls[False]) * 1e6:5.1f} µs/step, closed "
+              f"{min(walls[True]) * 1e6:5.1f} µs/step: ratio {ratio:.2f}× (target ≤ 3×); "
+              f"energy closed/open {energy[True] / energy[False] - 1:+.2%}")
+
+
+def per_robot(robots: list[str]) -> None:
+    """Row 6: real-time factors open and closed loop, verdicts, simulated vs predicted saving."""
+    print("per robot (4 cycles, the last 2 evaluated; rtf: simulated s per wall s of both runs' "
+          "stepping):")
+    print(f"  {'robot, gait, servo':<34} {'loop':<6} {'rtf':>6}  {'springs / baseline':<22} "
+          f"{'predicted':>9} {'simulated':>9}")
+    for robot in robots:
+        if robot == "hexaleg":
+            text, label = "", "hexaleg tripod, position"
+        else:
+            gait = TROTS[robot]
+            text = '[gait]\npattern = "trot"\n' + (
+                f"period = {gait[0]}\nstride_length = {gait[1]}\n" if gait else "") + \
+                '[contact]\nmu = 1\n'
+            label = f"{robot} trot, position"
+        with tempfile.TemporaryDirectory() as where:
+            config = Path(where) / "run.toml"
+            config.write_text(text + '[simulate]\ncontroller = "position"\n')
+            study = load_study(Scenario.load(robot, config))
+        for feedback in ("off", "on"):
+            s = dataclasses.replace(study, settings=dataclasses.replace(
+                study.settings, feedback=feedback, force_samples=0)).run()
+            runs = (s.with_springs, s.baseline)
+            rtf = sum(r.simulated_time for r in runs) / sum(r.wall for r in runs)
+            verdicts = " / ".join(r.verdict for r in runs)
+            simulated = f"{s.simulated()[2]:+.2%}" if s.walks else "—"
+            print(f"  {label:<34} {'closed' if feedback == 'on' else 'open':<6} {rtf:5.1f}×  "
+                  f"{verdicts:<22} {s.predicted()[2]:+9.2%} {simulated:>9}", flush=True)
 
 
 if __name__ == "__main__":

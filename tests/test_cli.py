@@ -7,6 +7,8 @@ import os
 import subprocess
 import sys
 
+import pytest
+
 from hexaleg.cli import build_parser, main
 
 
@@ -139,3 +141,23 @@ def test_hexaleg_warnings_print_as_one_line(tmp_path, capsys):
 def test_a_name_in_the_wrong_case_gets_a_hint(capsys):
     assert main(["robot", "--robot", "Solo12"]) == 2
     assert "unknown robot 'Solo12' (did you mean 'solo12'?)" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("command", ["report", "design", "paper", "sweep", "codesign"])
+def test_long_commands_take_quiet(command, capsys):
+    """Every command whose work takes seconds or more prints status lines on stderr and takes
+    ``--quiet`` to leave them out (issue #57)."""
+    with pytest.raises(SystemExit) as e:
+        main([command, "--help"])
+    assert e.value.code == 0
+    assert "--quiet" in capsys.readouterr().out
+
+
+def test_quiet_leaves_out_the_status_lines_not_the_answer(capsys, tmp_path):
+    args = ["paper", "--no-simulation", "--samples", "256"]
+    assert main([*args, "--out", str(tmp_path / "a")]) == 0
+    loud = capsys.readouterr()
+    assert "hexaleg paper: " in loud.err
+    assert main([*args, "--quiet", "--out", str(tmp_path / "b")]) == 0
+    quiet = capsys.readouterr()
+    assert quiet.err == "" and quiet.out.splitlines()[0] == loud.out.splitlines()[0]

@@ -1,10 +1,12 @@
-"""Robots no one here saw (issue #39): test robots made for the purpose — a biped on point feet
-(tests/data/biped), a quadruped with two-joint legs (quad2dof), one with four-joint legs
+"""Robots no one here saw (issues #39, #55): test robots made for the purpose — a biped on point
+feet (tests/data/biped), a quadruped with two-joint legs (quad2dof), one with four-joint legs
 (quad4dof: redundant, an ankle below the knee), an X-configured quadruped whose front and hind
-knees bend opposite ways (xquad), the hexapod facing +y with flipped hips (spider) — and a
-registered quadruped's crawl at duty factor 0.3, through every command: each ends in a result or
-a named refusal (exit 2, ``error:`` and what to change), never a traceback. The outcome of each
-is pinned, so a robot that starts or stops working is seen.
+knees bend opposite ways (xquad), the hexapod facing +y with flipped hips (spider), a humanoid
+with a waist and two arms (humanoid), a quadruped on wheels with an arm on its back (wheeled),
+a quadruped whose hips turn pitch–roll–yaw (pryquad) — and a registered quadruped's crawl at
+duty factor 0.3, through every command: each ends in a result or a named refusal (exit 2,
+``error:`` and what to change), never a traceback. The outcome of each is pinned, so a robot
+that starts or stops working is seen.
 
 The quick commands run in the README's suite; design, simulate and codesign (seconds to a
 minute or two each) are marked slow and run in .ci/run.
@@ -21,7 +23,8 @@ from hexaleg.cli import main
 DATA = Path(__file__).resolve().parent / "data"
 ROBOTS = {"biped": str(DATA / "biped.toml"), "quad2dof": str(DATA / "quad2dof.toml"),
           "quad4dof": str(DATA / "quad4dof.toml"), "xquad": str(DATA / "xquad.toml"),
-          "spider": str(DATA / "spider.toml"),
+          "spider": str(DATA / "spider.toml"), "humanoid": str(DATA / "humanoid.toml"),
+          "wheeled": str(DATA / "wheeled.toml"), "pryquad": str(DATA / "pryquad.toml"),
           "solo12 crawl": "solo12", "solo12 crawl, grippy": "solo12"}
 """Case → ``--robot``."""
 CONFIGS = {
@@ -47,28 +50,44 @@ QUICK = '[gait]\nsamples = 60\n[report]\nstiffness_points = 3\npaper_samples = 8
 CASES = {**ROBOTS, "quad2dof bound": ROBOTS["quad2dof"], "xquad crawl": ROBOTS["xquad"],
          "quad4dof crawl": ROBOTS["quad4dof"]}
 EXPECTED: dict[str, dict[str, str]] = {
-    # a ZMP walking pattern; open loop, it tips over (no balance feedback)
+    # a ZMP walking pattern on point feet; it tips over open loop, and with the balance
+    # controller (the default on one foot) too: a point foot has no support polygon to hold
     "biped": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
-              "simulate": "balanced by its plan alone", "codesign": "ok"},
+              "simulate": "the balance controller (hexaleg.simulation.balance) did not hold",
+              "codesign": "ok"},
     "quad2dof": {"robot": "ok", "gait": "ok", "report": "the least friction that admits forces",
                  "design": "the least friction that admits forces",
                  "simulate": "the least friction that admits forces",
                  "codesign": "the least friction that admits forces"},
-    # the bound walks in the analysis; in the open-loop simulation it bounces nearly in place
+    # the bound walks in the analysis; open loop it bounced nearly in place, closed loop (the
+    # default on two feet) it pitches over: the balance controller does not hold it
     "quad2dof bound": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
-                       "simulate": "stalled", "codesign": "ok"},
-    # redundant legs: like the X quadruped, its trot tips over open loop and its crawl walks
+                       "simulate": "the balance controller (hexaleg.simulation.balance) did not "
+                                   "hold", "codesign": "ok"},
+    # redundant legs: its trot tips over open loop; closed loop its generic servos sit at their
+    # stall torque before it falls; its crawl walks
     "quad4dof": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
-                 "simulate": "balanced by its plan alone", "codesign": "ok"},
+                 "simulate": "at their stall torque", "codesign": "ok"},
     "quad4dof crawl": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
                        "simulate": "ok", "codesign": "ok"},
-    # its trot tips over in the open-loop simulation (no balance feedback), its crawl walks
+    # its trot tips over open loop and with the balance controller too; its crawl walks
     "xquad": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
-              "simulate": "balanced by its plan alone", "codesign": "ok"},
+              "simulate": "the balance controller (hexaleg.simulation.balance) did not hold",
+              "codesign": "ok"},
     "xquad crawl": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
                     "simulate": "ok", "codesign": "ok"},
     "spider": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok", "simulate": "ok",
                "codesign": "ok"},
+    # issue #55: a waist and arms held at the stand by their own actuators; like the biped, its
+    # open-loop simulation tips over
+    "humanoid": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
+                 "simulate": "balanced by its plan alone"},
+    # wheels locked, walked on as round feet; the open-loop trot covers 90 % of its stride
+    "wheeled": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
+                "simulate": "run short"},
+    # a stand found from inside the joint limits; its trot tips over open loop
+    "pryquad": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
+                "simulate": "balanced by its plan alone"},
     "solo12 crawl": {"robot": "ok", "gait": "ok", "report": "one point foot's force points",
                      "design": "one point foot's force points",
                      "simulate": "one point foot's force points",
@@ -79,6 +98,10 @@ EXPECTED: dict[str, dict[str, str]] = {
 }
 """Case → command → ``"ok"`` (exit 0) or a phrase of its named refusal (exit 2)."""
 SLOW = {"design", "simulate", "codesign"}
+SLOW_PAIRS = {("humanoid", "gait"), ("humanoid", "report"), ("wheeled", "report"),
+              ("pryquad", "report")}
+"""Quick commands of issue #55's robots run with the slow ones: the README's suite is near its
+5 minutes (the humanoid's walking pattern is the biped's, whose gait runs there)."""
 IMPLAUSIBLE = {"xquad", "xquad crawl", "quad4dof"}
 """Cases whose generic actuators put the baseline's cost of transport above the plausible band
 (12–16 × the animal line): every command that prints an energy warns (issue #40)."""
@@ -129,12 +152,17 @@ def _merge(text: str) -> str:
                    for t, keys in tables.items())
 
 
-COMMANDS = [pytest.param(c, marks=pytest.mark.slow) if c in SLOW else c
-            for c in ("robot", "gait", "report", "design", "simulate", "codesign")]
+UNPINNED = {("humanoid", "codesign"), ("wheeled", "codesign"), ("pryquad", "codesign")}
+"""Issue #55's robots' codesign (all three "ok" by hand at this suite's budget: 390, 59 and
+133 s on a loaded machine) is left out: the slow suite had reached 893 s of CI's 900."""
+PAIRS = [pytest.param(case, c, marks=pytest.mark.slow)
+         if c in SLOW or (case, c) in SLOW_PAIRS else (case, c)
+         for case in CASES
+         for c in ("robot", "gait", "report", "design", "simulate", "codesign")
+         if (case, c) not in UNPINNED]
 
 
-@pytest.mark.parametrize("command", COMMANDS)
-@pytest.mark.parametrize("case", list(CASES))
+@pytest.mark.parametrize(("case", "command"), PAIRS)
 def test_every_command_ends_in_a_result_or_a_named_refusal(case, command, tmp_path, capsys):
     rc = main(_argv(case, command, tmp_path))  # a traceback would raise out of main
     out, err = capsys.readouterr()
@@ -146,3 +174,40 @@ def test_every_command_ends_in_a_result_or_a_named_refusal(case, command, tmp_pa
     else:
         assert rc == 2 and "error:" in err and "Traceback" not in err, err
         assert expected in err, err
+
+
+def test_joints_on_no_leg_hold_their_pose_and_their_torque_is_drawn():
+    """The humanoid's arms stay at the stand through the gait, their links' inertia is in the
+    dynamics (each elbow's motor torque is Pinocchio's RNEA of the whole tree: the feet load no
+    arm joint), that torque matches the forearm's weight on its lever at rest (0.08 kg, centre
+    4.5 cm from the elbow, the forearm 0.4 rad from vertical), and its own actuator draws
+    energy for it (issue #55)."""
+    import numpy as np
+    import pinocchio as pin
+
+    import hexaleg
+    from hexaleg.motion.scaling import robot_gait
+    from hexaleg.robot.description import RobotDescription
+
+    desc = RobotDescription.from_toml(ROBOTS["humanoid"])
+    robot = desc.load()
+    motion = hexaleg.gait(robot, robot_gait(desc).updated({"samples": 60}, "test"))
+    analysis = hexaleg.prepare(robot, motion, motor=desc.actuator(robot)).evaluate(
+        hexaleg.SpringSet())
+    stand = robot.pose("stand")
+    model, data = robot.model, robot.model.createData()
+    for joint in robot.other_joints:
+        col = robot.column(joint)
+        np.testing.assert_array_equal(motion.q[:, 7 + col], stand[7 + col])
+        rnea = [pin.rnea(model, data, q, v, a)[6 + col]
+                for q, v, a in zip(motion.q, motion.v, motion.a, strict=True)]
+        np.testing.assert_allclose(analysis.tau_motor[:, col], rnea, rtol=1e-9, atol=1e-12)
+    level = stand.copy()
+    level[:7] = pin.neutral(model)[:7]
+    gravity = pin.computeGeneralizedGravity(model, data, level)
+    elbow = 6 + robot.column("L_elbow")
+    g = float(np.linalg.norm(model.gravity.linear))
+    assert abs(gravity[elbow]) == pytest.approx(0.08 * g * 0.045 * np.sin(0.4), rel=1e-9)
+    joints = analysis.metrics["joint_names"]
+    electrical = analysis.metrics["joint"]["electrical"][list(joints).index("L_elbow")]
+    assert electrical > 0

@@ -96,6 +96,19 @@ def test_readme_design_answer_is_the_kept_log():
         in text
     worst = re.search(r"worst\s+(\S+) % at (period ×[^\n]+)", log)
     assert worst and f"the worst case {worst.group(1)} % at {worst.group(2)}" in text
+    # where the femur spring mounts, in LF_femur's own angle (from the joint's zero)
+    mount = re.search(r"LF_femur\s+above centre\s+\S+, spring stop\s+(\S+) \(\S+\), free leg "
+                      r"\s*\S+, hard stop (\S+)", log)
+    assert mount, log
+    assert f"its stop at joint angle {mount.group(1)} on LF_femur and a hard stop at " \
+        f"{mount.group(2)}" in text
+    # the fold out and back: its extra energy with the springs and the walk that pays for it
+    ways = re.findall(r"→ \w+\s+(\S+) / (\S+), torque", log)
+    assert len(ways) == 2, log
+    extra = sum(float(w) - float(b) for w, b in ways)
+    pays = re.search(r"pay for a fold out and back after (\S+) m", log)
+    assert pays, log
+    assert f"costs {extra:.2f} J more with them, which {pays.group(1)} m of walking" in text
     simulated = {c: re.search(rf"{c}\s+.* / +(\S+) % +\S+ mm", log)
                  for c in ("feedforward \\+ PD", "position only")}
     assert all(simulated.values()), log

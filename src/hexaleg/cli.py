@@ -19,12 +19,13 @@ from collections.abc import Callable, Sequence
 from typing import TextIO
 
 from hexaleg import __version__
-from hexaleg.commands.options import add_motion_option  # no loader: it loads with a run
+from hexaleg.commands.options import add_motion_option, add_quiet  # no loader: loads with a run
 from hexaleg.commands.parser import GUIDE, START, TEXT_OPTIONS, Parser, nonempty
 from hexaleg.errors import HexalegError, HexalegWarning, InvalidParameterError
 from hexaleg.parallel import interrupt
 from hexaleg.robot.registry import ROBOT_HELP  # loaded by `import hexaleg` already
-from hexaleg.simulation.controllers import CONTROLLERS, SERVOS  # no MuJoCo: it loads with a model
+from hexaleg.simulation.balance import MODES as FEEDBACK  # no MuJoCo: it loads with a model
+from hexaleg.simulation.controllers import CONTROLLERS, SERVOS  # no MuJoCo either
 
 
 def _add_robot(sub: argparse._SubParsersAction) -> None:
@@ -74,13 +75,16 @@ def _add_paper(sub: argparse._SubParsersAction) -> None:
                         "at least 3, increasing (default: 100 to 1600 in steps of 100)")
     p.add_argument("--no-simulation", dest="simulation", action="store_false",
                    help="leave out the forward run (the analytic reproduction only)")
+    add_quiet(p)
     p.set_defaults(func=_run_paper)
 
 
 def _run_paper(args: argparse.Namespace) -> int:
+    from hexaleg.commands.options import progress_of
     from hexaleg.commands.paper.command import run_paper
 
-    return run_paper(args.out, n=args.samples, simulation=args.simulation, grid=args.grid)
+    return run_paper(args.out, n=args.samples, simulation=args.simulation, grid=args.grid,
+                     progress=progress_of(args, "paper"))
 
 
 def _add_gait(sub: argparse._SubParsersAction) -> None:
@@ -163,11 +167,12 @@ def _add_report(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--robot", help=ROBOT_HELP + ": its gait (keys [gait] does not set), "
                                                 "springs and curve on its spring class")
     p.add_argument("--design", help="a design.json of 'hexaleg design' to lead the page with")
+    add_quiet(p)
     add_motion_option(p, _run_report, "report.json")
 
 
 def _run_report(args: argparse.Namespace) -> int:
-    from hexaleg.commands.options import load_run
+    from hexaleg.commands.options import load_run, progress_of
     from hexaleg.commands.report.write import write_report
     from hexaleg.report.config import ReportConfig
 
@@ -178,7 +183,8 @@ def _run_report(args: argparse.Namespace) -> int:
 
         config = dataclasses.replace(config, report=dataclasses.replace(config.report,
                                                                         design=args.design))
-    r = write_report(args.out, config, robot=robot, svg=args.svg)
+    r = write_report(args.out, config, robot=robot, svg=args.svg,
+                     progress=progress_of(args, "report"))
     for note in config.notes:
         print(f"note: {note}")
     _warn_lines(r.data["warnings"])
@@ -201,21 +207,24 @@ def _add_design(sub: argparse._SubParsersAction) -> None:
                         "controller, else both)")
     p.add_argument("--out", default="hexaleg-design",
                    help="output directory (default: %(default)s)")
+    add_quiet(p)
     add_motion_option(p, _run_design, "design.json")
 
 
 def _run_design(args: argparse.Namespace) -> int:
     from hexaleg.commands.design.write import write_design
-    from hexaleg.commands.options import load_run
+    from hexaleg.commands.options import load_run, progress_of
     from hexaleg.design.chain.config import DesignConfig
 
     run = load_run(args.robot, args.config, args.motion, args.cycle, args)
     config = DesignConfig.from_scenario(run, args.controller)
-    written = write_design(args.out, config)
+    written = write_design(args.out, config, progress=progress_of(args, "design"))
     _warn_lines(written.data["warnings"])
     print(written.result.summary())
     if written.result.whole_draw is not None:
         print(written.result.whole_draw.line())
+    if written.result.fold is not None:
+        print(written.result.fold.line())
     print(f"wrote {len(written.files)} files to {args.out}; open {args.out}/design.html")
     return 0
 
@@ -233,6 +242,10 @@ def _add_simulate(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--controller", choices=CONTROLLERS,
                    help="servo: torque feedforward + PD, or position-only PD "
                         "(default: feedforward, or the config's)")
+    p.add_argument("--feedback", choices=FEEDBACK,
+                   help="balance feedback on the body: auto (where the gait stands on fewer "
+                        "than three feet or open loop falls), on, off (open loop) (default: "
+                        "auto, or the config's)")
     p.add_argument("--cycles", type=int, help="gait cycles simulated (default 4, the last 2 "
                                               "evaluated)")
     p.add_argument("--timestep", type=float, help="simulation timestep, s (default: 0.5 ms, "
@@ -253,8 +266,8 @@ def _run_simulate(args: argparse.Namespace) -> int:
     from hexaleg.outputs.directory import OutputFolder
     from hexaleg.simulation.motion_file import write_motions
 
-    overrides = {"controller": args.controller, "cycles": args.cycles,
-                 "timestep": args.timestep}
+    overrides = {"controller": args.controller, "feedback": args.feedback,
+                 "cycles": args.cycles, "timestep": args.timestep}
     if args.cycles is not None and args.cycles >= 2:
         overrides["evaluate"] = min(2, args.cycles - 1)
     run = load_run(args.robot, args.config, args.motion, args.cycle, args)

@@ -12,6 +12,7 @@ at hand to compare with, so check them against a copy when one is.
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 
@@ -20,7 +21,7 @@ import pytest
 from hexaleg.design import fatigue as fa
 from hexaleg.design import torsion_spring as ts
 from hexaleg.design.spring_materials import MATERIALS, ZIMMERLI, Material
-from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.errors import InvalidParameterError, SpringDesignError, UnknownNameError
 from hexaleg.units import MM
 
 IN = 25.4e-3
@@ -148,3 +149,36 @@ def test_other_bad_input():
         fa.cycles_per_year(1.0, 25.0)
     with pytest.raises(InvalidParameterError):
         Material("x", "x", ((1.0, 1.0, 0.1),), 0.0, ((1.0, 1.0),), 0.7, 1.0, "A999")
+
+
+def test_thick_wire_is_checked_at_the_life_asked_and_its_own_life_is_a_bound():
+    """Zimmerli's data cover wire under 10 mm; a 10 mm spring at 10⁶ cycles is checked on Table
+    10-10 and its own life is stated as a lower bound, never a refusal about 10⁷ cycles nobody
+    asked for (issue #55: [design] life_cycles = 1e6 still failed at 10⁷)."""
+    d, D = 10 * MM, 60 * MM
+    check = fa.fatigue_check("stainless_302", d, D, 1.0, 5.0, life=1e6)
+    table = fa.repeated_strength("stainless_302", d, 1e6)
+    assert check.repeated_strength == pytest.approx(table)
+    assert check.required_life == 1e6 and check.safety_factor > 1
+    assert check.life == 1e6 and "at least 1e+06 cycles" in check.life_note
+    weak = fa.fatigue_check("stainless_302", d, D, 5.0, 160.0, life=1e5)
+    assert weak.life == 1e5 and "below 1e+05" in weak.life_note
+    with pytest.raises(InvalidParameterError, match=r"\[design\] life_cycles <= 1e6"):
+        fa.fatigue_check("stainless_302", d, D, 1.0, 5.0, life=1e7)
+    assert fa.wire_limit(1e7) == 10 * MM and fa.wire_limit(1e6) is None
+
+
+def test_a_spring_for_a_long_life_is_bought_in_wire_its_fatigue_check_covers():
+    """At 10⁷ cycles the design picks no wire of 10 mm (whose fatigue check it would refuse);
+    where only such wire carries the torque it names [design] life_cycles (issue #55)."""
+    req = ts.TorsionRequirement(rate=100.0, max_torque=40.0, max_outer_diameter=0.2)
+    thick = ts.design_torsion_spring(req)
+    assert thick.wire_diameter == pytest.approx(10 * MM)
+    with pytest.raises(InvalidParameterError, match="wire diameter"):
+        fa.spring_fatigue(thick, life=1e7)  # what the design used to choose, then refuse
+    long = dataclasses.replace(req, max_wire_diameter=fa.wire_limit(1e7))
+    with pytest.raises(SpringDesignError, match=r"\[design\] life_cycles <= 1e6 allows it"):
+        ts.design_torsion_spring(long)
+    spring = ts.design_torsion_spring(dataclasses.replace(long, max_torque=30.0))
+    assert spring.wire_diameter < 10 * MM
+    assert fa.spring_fatigue(spring, life=1e7).required_life == 1e7  # checked, not refused

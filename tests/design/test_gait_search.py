@@ -179,3 +179,22 @@ def test_the_budget_stops_a_run_where_it_is():
     result = search(synthetic(bowl), BASE, 0.06, SPACE, springs=True, reference=1.0,
                     max_evaluations=13, restarts=3)
     assert result.evaluations == 13 and len(result.restarts) == 1
+
+
+def test_progress_says_where_the_search_is_and_changes_nothing():
+    """One line a poll: the run, the evaluations against the budget, the step, the best so far
+    and the time left at most; the search with it evaluates the same points (issue #57: the
+    co-design printed nothing for minutes)."""
+    lines: list[str] = []
+    quiet = search(synthetic(bowl), BASE, 0.06, SPACE, springs=True, reference=1.0,
+                   max_evaluations=60, restarts=2)
+    said = search(synthetic(bowl), BASE, 0.06, SPACE, springs=True, reference=1.0,
+                  max_evaluations=60, restarts=2, progress=lines.append)
+    assert said.history == quiet.history and said.value == quiet.value
+    assert lines and lines[0].startswith("run 1 of 2, ")
+    done = [int(line.split(", ")[1].split(" of ")[0]) for line in lines]
+    assert done == sorted(done) and done[-1] == said.evaluations
+    assert all(" of at most 60 evaluations, step 1/" in line for line in lines)
+    assert "step 1/4 of each range" in lines[0]
+    assert f"best {said.value:.2f} J/m" in lines[-1]
+    assert all("s more at this pace)" in line for line in lines)

@@ -139,3 +139,21 @@ def test_per_group_arbors_reach_the_springs(prepared200):
         q = prepared200.q[:, prepared200.robot.column(j)]
         assert c == pytest.approx((q.min() + q.max()) / 2)
         assert lo - 1e-12 <= q.min() - c and q.max() - c <= hi + 1e-12
+
+
+def test_a_part_without_a_stroke_is_a_problem_not_a_crash():
+    """G1's design stopped on a part whose torque did not rise over the motion
+    (max_torque = preload_torque to rounding): such a part is a part with a problem, the
+    design going on; an outer diameter the user set under the thinnest wire's coil is still
+    the user's named error (issue #55)."""
+    from hexaleg.design.spring_parts import SpringPart, _buy
+
+    part = SpringPart(group="knee", joints=("L_knee",), side="above", role="one-sided",
+                      rate=0.05, preload_torque=0.0012524008774, max_torque=0.0012524008774071,
+                      engage=0.1, free=0.0, constant_torque=False, max_outer_diameter=0.02)
+    flat = _buy(part, PartOptions(), 0.0)
+    assert flat.spring is None and "without a stroke" in flat.problem
+    with pytest.raises(InvalidParameterError, match="thinnest preferred wire"):
+        _buy(dataclasses.replace(part, max_torque=0.01, max_outer_diameter=1e-4),
+             PartOptions(), 0.0)
+    assert _buy(dataclasses.replace(part, max_torque=0.01), PartOptions(), 0.0).spring is not None

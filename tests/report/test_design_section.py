@@ -10,9 +10,10 @@ import pytest
 
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.outputs.html import render_html
+from hexaleg.report.answer import answer_line
 from hexaleg.report.build import build_report
 from hexaleg.report.config import ReportConfig
-from hexaleg.report.design_section import design_section
+from hexaleg.report.design_section import UNPROVEN_FILE, design_section
 
 
 def test_the_section_carries_design_json_numbers(design_json):
@@ -59,13 +60,35 @@ def test_a_design_json_without_its_simulation_says_so(design_json, report, tmp_p
     """A design.json of an older hexaleg (no ``simulation``) still leads the page, which says
     that its recommendation was not simulated."""
     data = json.loads(design_json.read_text())
-    del data["simulation"]
+    del data["simulation"], data["proof"]  # as an older hexaleg wrote it
     old = tmp_path / "design.json"
     old.write_text(json.dumps(data))
     s = design_section(old)
     assert s["simulation"] == []
     html = render_html({**report.data, "design": s, "files": []}, dict.fromkeys(PLOTS, ""))
     assert "has no forward simulation of its recommendation" in html
+    # and no proof: the page does not call it fit to buy
+    assert s["proof"] == {"proven": False, "why": UNPROVEN_FILE}
+    assert "Fit these springs" not in html and f"Unproven ({UNPROVEN_FILE})" in html
+
+
+def test_an_unproven_design_json_leads_unproven(design_json, report, tmp_path):
+    """A design.json whose runs did not walk under the robot's servo: the report's page and
+    last line say "unproven" with the design's reason, never "fit these springs"."""
+    data = json.loads(design_json.read_text())
+    why = "under position only the runs did not walk (with springs short)"
+    data["proof"] = {**data["proof"], "proven": False, "why": why}
+    path = tmp_path / "design.json"
+    path.write_text(json.dumps(data))
+    s = design_section(path)
+    assert s["proof"] == {"proven": False, "why": why}
+    html = render_html({**report.data, "design": s, "files": []}, dict.fromkeys(PLOTS, ""))
+    assert f"Unproven ({why})" in html and "Fit these springs" not in html
+    assert answer_line(s).startswith(f"unproven ({why}): from ")
+    data["proof"] = {**data["proof"], "why": None}
+    path.write_text(json.dumps(data))
+    with pytest.raises(ConfigError, match="an unproven design says why"):
+        design_section(path)
 
 
 def test_a_missing_design_says_how_to_make_one(tmp_path):

@@ -48,3 +48,39 @@ def test_a_tree_that_is_not_legs_is_refused(tmp_path):
                     + joint.format("j3", "a", "c") + "</robot>")
     with pytest.raises(RobotModelError, match=r"joint j1 has children \['j2', 'j3'\]"):
         load_robot(urdf, legs=AUTO)
+
+
+def test_listed_legs_without_joint_kinds_get_the_documented_classes(tmp_path):
+    """docs/robots.md: ``joint1 …`` unless three joints — for legs listed as for legs found
+    (issue #55: listed legs got the hexapod's three names and a refusal)."""
+    from pathlib import Path
+
+    from hexaleg.robot.description import RobotDescription
+
+    data = Path(__file__).resolve().parents[1] / "data"
+    legs = "".join(f'[[robot.legs]]\nname = "{leg}"\njoints = ["{leg}_HAA", "{leg}_HFE", '
+                   f'"{leg}_KFE", "{leg}_AFE"]\n' for leg in ("LF", "RF", "LH", "RH"))
+    toml = tmp_path / "q.toml"
+    toml.write_text(f'[robot]\nname = "q"\nurdf = "{data / "quad4dof.urdf"}"\n'
+                    'stand = {body_height = 0.22}\n' + legs)
+    robot = RobotDescription.from_toml(toml).load()
+    assert robot.joint_kinds == ("joint1", "joint2", "joint3", "joint4")
+    humanoid = RobotDescription.from_toml(data / "humanoid.toml").load()
+    assert humanoid.joint_kinds == ("hip", "thigh", "knee")
+
+
+@pytest.mark.parametrize(("urdf", "legs", "others"), [
+    ("humanoid.urdf", ("L1", "R1"), ("waist", "L_shoulder", "L_elbow", "R_shoulder", "R_elbow")),
+    ("wheeled.urdf", ("LF", "RF", "LH", "RH"), ("arm_yaw", "arm_pitch")),
+])
+def test_legs_are_found_beside_a_torso_or_an_arm(urdf, legs, others):
+    """A torso that branches into arms, an arm on the back: the chains hanging below the body
+    are the legs, the rest are joints on no leg (issue #55: both were refused)."""
+    from pathlib import Path
+
+    data = Path(__file__).resolve().parents[1] / "data"
+    robot = load_robot(data / urdf, legs=AUTO)
+    assert robot.leg_names == legs
+    assert robot.other_joints == others
+    assert any("not legs" in n for n in robot.notes)
+

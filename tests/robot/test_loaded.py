@@ -71,3 +71,22 @@ def test_geometry_model_is_chosen_by_name(robot):
     assert robot.max_extent(q, "collision") > 0
     with pytest.raises(UnknownNameError, match="visual"):
         robot.max_extent(q, "both")
+
+
+def test_joints_on_no_leg_are_listed_with_their_stand(tmp_path):
+    """A humanoid's waist and arms are on no leg: named, in column order, with their stand
+    angle in the summary (issue #55); a robot of legs alone has none."""
+    from pathlib import Path
+
+    import hexaleg
+
+    humanoid = hexaleg.load(str(Path(__file__).resolve().parents[1] / "data" / "humanoid.toml"))
+    assert humanoid.other_joints == ("waist", "L_shoulder", "L_elbow", "R_shoulder", "R_elbow")
+    assert set(humanoid.other_joints).isdisjoint(j for js in humanoid.joint_classes.values()
+                                                 for j in js)
+    text = humanoid.summary()
+    assert "other joints (5, on no leg" in text
+    assert "L_elbow               stand +0.1000 rad" in text  # its zero clipped into [0.1, 2]
+    assert "L_shoulder            stand +0.3000 rad" in text  # given by stand.joints
+    assert hexaleg.load().other_joints == ()
+    assert "other joints" not in hexaleg.load().summary()

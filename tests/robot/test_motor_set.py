@@ -179,3 +179,45 @@ def test_a_class_with_a_zero_urdf_effort_is_named(urdf_with_limit):
     with pytest.raises(InvalidParameterError, match=r"URDF effort limit of joint class 'tibia' "
                                                     r"\(.*RF_tibia.*\) = 0\.0; .*<limit effort="):
         class_motors(robot, {}, "generic")
+
+
+def test_joints_on_no_leg_get_their_own_actuator_from_their_own_limits():
+    """An arm's joint is its own motor class: its generic actuator's stall torque is its own
+    URDF effort limit (1.5 N·m), not a leg class's (3 N·m); no joint is left without a motor
+    (issue #55: a KeyError on the first joint outside the legs)."""
+    from pathlib import Path
+
+    data = Path(__file__).resolve().parents[1] / "data"
+    desc = RobotDescription.from_toml(data / "humanoid.toml")
+    robot = desc.load()
+    motors = desc.actuator(robot)
+    assert isinstance(motors, MotorSet)
+    stall = dict(zip(motors.joint_names, motors.stall_torque, strict=True))
+    assert stall["L_knee"] == pytest.approx(3.0) and stall["L_elbow"] == pytest.approx(1.5)
+    assert stall["waist"] == pytest.approx(1.5)
+    assert motors.joint_names == robot.joint_names
+    classes = dict(zip(motors.joint_names, motors.joint_classes, strict=True))
+    assert classes["L_elbow"] == "L_elbow" and classes["L_knee"] == "knee"
+    with pytest.raises(InvalidParameterError, match=r"MotorSet joints.*waist"):
+        MotorSet.per_class(robot.joint_classes, robot.joint_names,
+                           {k: LIGHT for k in robot.joint_classes})
+
+
+def test_a_joint_on_no_leg_takes_a_catalogue_motor_by_its_name(tmp_path):
+    from pathlib import Path
+
+    data = Path(__file__).resolve().parents[1] / "data"
+    text = (data / "humanoid.toml").read_text().replace(
+        'urdf = "humanoid.urdf"', f'urdf = "{data / "humanoid.urdf"}"\n'
+        'motor = {L_elbow = "XL430-W250", knee = "XM430-W350"}')
+    (tmp_path / "h.toml").write_text(text)
+    desc = RobotDescription.from_toml(tmp_path / "h.toml")
+    robot = desc.load()
+    motors = desc.actuator(robot)
+    table = dict(zip(motors.joint_names, motors.motors, strict=True))
+    assert table["L_elbow"] is LIGHT and table["R_knee"] is STRONG
+    assert table["R_elbow"].name.startswith("generic")
+    bad = RobotDescription.from_toml(tmp_path / "h.toml")
+    object.__setattr__(bad, "motor", {"elbow": "XL430-W250"})
+    with pytest.raises(UnknownNameError, match=r"motor joint class 'elbow'.*L_elbow"):
+        bad.actuator(robot)

@@ -200,3 +200,22 @@ def test_placeholder_limits_are_flagged_once_a_kind(tmp_path):
     assert found["joint_range"].value == 20.0 and found["joint_torque_limit"].value == 1000.0
     assert "placeholder" in found["joint_speed_limit"].remedy
     assert limit_findings(load_robot(DATA / "spider.urdf", legs="auto", heading=(0, 1, 0))) == []
+
+
+def test_a_stand_outside_the_joint_limits_is_a_finding(tmp_path):
+    """Go2-like knees whose range excludes 0, a stand that leaves them at 0: one finding that
+    counts the joints and names the first (issue #55: only a note before, if anything)."""
+    from hexaleg.robot.description import RobotDescription
+    from hexaleg.robot.sanity import stand_limit_findings
+
+    data = Path(__file__).resolve().parents[1] / "data"
+    toml = tmp_path / "q.toml"
+    toml.write_text(f'[robot]\nname = "q"\nurdf = "{data / "pryquad.urdf"}"\n'
+                    'stand = {LF_knee = -1.0}\n')
+    robot = RobotDescription.from_toml(toml).load()
+    (finding,) = stand_limit_findings(robot)
+    assert finding.check == "stand_joint_limits"
+    assert "3 joint(s) outside" in finding.where and "LH_knee at +0 rad" in finding.where
+    assert finding.value == pytest.approx(0.3)
+    assert "stand_joint_limits" in {f.check for f in robot_findings(robot)}
+    assert stand_limit_findings(RobotDescription.from_toml(data / "pryquad.toml").load()) == []

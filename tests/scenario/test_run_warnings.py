@@ -92,3 +92,27 @@ def test_simulate_prints_shows_and_writes_them(config, expected, tmp_path, capsy
     assert (tmp_path / "simulate.md").read_text() == page(data)
     for line in expected:
         assert f"warning: {line}" in out
+
+
+def test_the_generic_warning_names_a_few_classes_and_counts_the_rest():
+    """A humanoid's arms are a motor class each: the line names eight and counts the rest."""
+    from pathlib import Path
+
+    from hexaleg.robot.motor import generic_actuator
+    from hexaleg.robot.motor_set import MotorSet
+    from hexaleg.scenario.run_warnings import generic_warning
+
+    robot = hexaleg.load(str(Path(__file__).resolve().parents[1] / "data" / "humanoid.toml"))
+    motors = MotorSet.per_class(
+        {**robot.joint_classes, **{j: (j,) for j in robot.other_joints}}, robot.joint_names,
+        {k: generic_actuator(float(i + 1), 5.0, name="generic (humanoid URDF limits)")
+         for i, k in enumerate([*robot.joint_classes, *robot.other_joints])})
+    line = generic_warning(motors)
+    assert line.startswith("generic actuator on hip, thigh, knee, waist, L_shoulder, L_elbow, "
+                           "R_shoulder, R_elbow: ")
+    many = MotorSet.per_class({j: (j,) for j in robot.joint_names}, robot.joint_names,
+                              {j: generic_actuator(float(i + 1), 5.0, name="g")
+                               for i, j in enumerate(robot.joint_names)})
+    assert generic_warning(many).startswith(
+        "generic actuator on L_hip_roll, L_hip_pitch, L_knee, R_hip_roll, R_hip_pitch, R_knee, "
+        "waist, L_shoulder and 3 more: ")

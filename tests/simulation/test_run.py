@@ -78,10 +78,12 @@ def test_a_conservative_spring_does_no_net_work_over_a_simulated_cycle(prepared)
 
 
 def test_a_robot_that_falls_is_a_verdict_with_when_and_how(prepared):
-    """A servo 200 times too soft lets the body sink: the run stops at the fall, says when and
-    how (docs/simulate.md quotes the message), and the comparison refuses to report energies."""
+    """A servo 200 times too soft lets the body sink: the open-loop run stops at the fall, says
+    when and how (docs/simulate.md quotes the message), and the comparison refuses to report
+    energies."""
     s = simulate(prepared.robot, prepared.motion, prepared.motor, None,
-                 dataclasses.replace(QUICK, controller="position", kp_scale=0.005),
+                 dataclasses.replace(QUICK, controller="position", kp_scale=0.005,
+                                     feedback="off"),
                  prepared=prepared)
     run = s.baseline
     assert run.verdict == "fell" and run.message.startswith(
@@ -90,6 +92,18 @@ def test_a_robot_that_falls_is_a_verdict_with_when_and_how(prepared):
     assert np.all(np.isfinite(run.trajectory.qpos)) and run.trajectory.t[-1] < 2.0
     with pytest.raises(SimulationError, match="fell"):
         s.simulated()
+
+
+def test_an_open_loop_fall_is_simulated_again_with_balance_feedback(prepared):
+    """``feedback = "auto"`` on a tripod (three stance feet: open loop first) that falls open
+    loop runs both runs again with the balance controller; the servo 200 times too soft falls
+    with it too, and the message then names the controller, not the open loop."""
+    s = simulate(prepared.robot, prepared.motion, prepared.motor, None,
+                 dataclasses.replace(QUICK, controller="position", kp_scale=0.005),
+                 prepared=prepared)
+    for run in (s.baseline, s.with_springs):
+        assert run.feedback and run.verdict == "fell"
+        assert "the balance controller" in run.message and "plan alone" not in run.message
 
 
 def test_a_servo_too_weak_to_keep_the_stride_does_not_walk(prepared):

@@ -46,6 +46,35 @@ def test_python_stepping_equals_mujoco_rollout(prepared):
         assert np.allclose(getattr(a, field), getattr(b, field), rtol=0, atol=1e-12), field
 
 
+def test_a_closed_loop_that_changes_nothing_is_the_open_loop_run_bitwise(prepared):
+    """The closed loop's chunks (the state set back, the constraint warm start carried over),
+    under a feedback that returns zero, step exactly the open-loop run — through MuJoCo's
+    rollout and through the Python loop of non-native springs; a feedback's change is applied
+    to its chunk's rows and recorded in the controls."""
+    robot, motion = prepared.robot, prepared.motion
+    sim = build_model(robot, motion, prepared.motor)
+    loop = dataclasses.replace(sim, springs=dataclasses.replace(
+        sim.springs, python=((0, DeadZoneSpring(stiffness=1.0, theta_k=1e6, damping=1.0)),)))
+    t = np.arange(1000) * sim.timestep
+    ctrl = controls(sim.servo, reference(motion, prepared.evaluate(None).tau_motor, t),
+                    sim.kp, sim.kd)
+    start = sim.joints.to_mujoco(motion.q[0], motion.v[0])
+    for model in (sim, loop):
+        a = stepping.run(model, ctrl.copy(), *start, 0.09)
+        b = stepping.run(model, ctrl.copy(), *start, 0.09, lambda *x: np.zeros(robot.nj), 7)
+        for field in ("qpos", "qvel", "servo", "feet", "controls"):
+            assert np.array_equal(getattr(a, field), getattr(b, field)), field
+    times = []
+
+    def nudge(t, qpos, qvel, feet):
+        times.append(t)
+        return np.full(robot.nj, 1e-3)
+
+    c = stepping.run(sim, ctrl.copy(), *start, 0.09, nudge, 7)
+    assert np.allclose(times, np.arange(0, 1000, 7) * sim.timestep, rtol=0, atol=1e-15)
+    assert np.allclose(c.controls - ctrl, 1e-3, rtol=0, atol=1e-15)
+
+
 def test_too_many_steps_is_an_error_not_a_hang(prepared):
     sim = build_model(prepared.robot, prepared.motion, prepared.motor)
     with pytest.raises(InvalidParameterError, match="simulation steps"):

@@ -6,6 +6,9 @@ with its owner (:func:`check_tables`), whichever command runs: a bad ``[gait]``,
 or ``[codesign]`` value is the same named error in ``hexaleg gait``, ``report``, ``design``,
 ``simulate``, ``codesign`` and ``view``.
 
+:func:`add_quiet` adds ``--quiet`` to a command whose work takes seconds or more, and
+:func:`progress_of` is its one printer of status lines (``hexaleg <command>: …`` on stderr).
+
 :func:`add_motion_option` adds ``--motion FILE`` and ``--cycle`` to a subcommand; after the
 command ran with a log, the log's quality figures are printed and written to the command's JSON
 file as ``motion_quality`` (:func:`hexaleg.scenario.logged.quality_data`). The parser imports
@@ -16,6 +19,7 @@ from __future__ import annotations
 
 import argparse
 import functools
+import sys
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -68,6 +72,7 @@ def check_tables(tables: Mapping[str, Any], where: str, log: str | Path | None =
     table names (:data:`hexaleg.scenario.scenario.TABLES`), ``[gait]`` and ``[contact]``
     (refused with a log, :func:`hexaleg.scenario.logged.refuse_gait_table`), ``[design]``
     (:class:`~hexaleg.design.chain.config.DesignParams`; no ``samples`` with a log),
+    ``[mission]`` (:class:`~hexaleg.design.fold.Mission`),
     ``[codesign]`` (:func:`~hexaleg.design.codesign.build.codesign_settings`), ``[simulate]``
     (:class:`~hexaleg.simulation.run.Settings`), ``[motor]``, ``[report]``, ``[springs]`` and
     ``[payload]`` (:class:`~hexaleg.report.config.ReportConfig`), ``[view]``
@@ -80,6 +85,7 @@ def check_tables(tables: Mapping[str, Any], where: str, log: str | Path | None =
     from hexaleg.config import from_mapping
     from hexaleg.design.chain.config import DesignParams
     from hexaleg.design.codesign.build import codesign_settings
+    from hexaleg.design.fold import Mission
     from hexaleg.dynamics.contact import ContactParams
     from hexaleg.outputs.viewer.show import ViewParams
     from hexaleg.report.config import ReportConfig
@@ -98,6 +104,7 @@ def check_tables(tables: Mapping[str, Any], where: str, log: str | Path | None =
             f"no samples with --motion {log}: the logged cycle keeps its own samples; remove the "
             "key or the --motion option")
     from_mapping(DesignParams, design, f"{where} [design]")
+    from_mapping(Mission, tables.get("mission", {}), f"{where} [mission]")
     codesign_settings(tables.get("codesign", {}), f"{where} [codesign]")
     Settings.from_mapping(tables.get("simulate", {}), f"{where} [simulate]")
     ReportConfig.from_mapping({k: tables[k] for k in ("gait", "motor", "payload", "springs",
@@ -151,4 +158,25 @@ def _add_quality(path: Path, scenario: Scenario) -> None:
     write_file(path, json_text(data), "the command's JSON")  # never through a link there
 
 
-__all__ = ["CYCLE_HELP", "MOTION_HELP", "add_motion_option", "check_tables", "load_run"]
+def add_quiet(parser: argparse.ArgumentParser) -> None:
+    """Add ``--quiet``: no status lines on stderr (the answer, warnings and errors still
+    print)."""
+    parser.add_argument("--quiet", "-q", action="store_true",
+                        help="print no progress lines on stderr (the answer, warnings and "
+                             "errors still print)")
+
+
+def say(command: str, message: str) -> None:
+    """Print one status line of ``hexaleg <command>`` on stderr."""
+    print(f"hexaleg {command}: {message}", file=sys.stderr, flush=True)
+
+
+def progress_of(args: argparse.Namespace, command: str) -> Callable[[str], None] | None:
+    """The status-line printer of ``command`` (:func:`say`), or None under ``--quiet``."""
+    if getattr(args, "quiet", False):
+        return None
+    return functools.partial(say, command)
+
+
+__all__ = ["CYCLE_HELP", "MOTION_HELP", "add_motion_option", "add_quiet", "check_tables",
+           "load_run", "progress_of", "say"]

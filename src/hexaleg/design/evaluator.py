@@ -96,7 +96,8 @@ class RunSpec:
     Attributes:
         robot: A registered robot's name or a robot TOML file
             (:func:`hexaleg.robot.registry.description`).
-        motor: Catalogue name of the servo on every joint
+        motor: The servo on every joint: a :class:`~hexaleg.robot.motor.Motor` (a config
+            file's ``[motor]``) or its catalogue name
             (:data:`hexaleg.robot.catalogue.CATALOGUE`); None for the robot's own
             (:meth:`~hexaleg.robot.description.RobotDescription.actuator`: its catalogue motor,
             else a generic actuator from its URDF limits).
@@ -109,13 +110,13 @@ class RunSpec:
     """
 
     robot: str = "hexaleg"
-    motor: str | None = None
+    motor: str | Motor | None = None
     objective: str = "joule"
     contact: ContactParams = field(default_factory=ContactParams)
 
     def __post_init__(self) -> None:
         self.description()
-        if self.motor is not None:
+        if isinstance(self.motor, str):
             motor_by_name(self.motor)
         check_objective(self.objective)
 
@@ -131,6 +132,8 @@ class RunSpec:
 
     def actuator(self) -> Motor | MotorSet:
         """The actuator of every joint (:attr:`motor`), or the robot's own per joint class."""
+        if isinstance(self.motor, Motor):
+            return self.motor
         if self.motor is not None:
             return motor_by_name(self.motor)
         return self.description().actuator(self.load())

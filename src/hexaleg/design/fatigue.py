@@ -125,7 +125,8 @@ def repeated_strength(mat: Material | str, d: float, cycles: float, peened: bool
         else cycles
     if cycles > TABLE_LIVES[-1] and d >= ZIMMERLI_MAX_WIRE:
         raise InvalidParameterError("wire diameter", d, f"< {ZIMMERLI_MAX_WIRE / MM:g} mm for "
-                                    "lives beyond 10⁶ cycles (Zimmerli's data)")
+                                    "lives beyond 10⁶ cycles (Zimmerli's data); [design] "
+                                    "life_cycles <= 1e6 checks it on Shigley's Table 10-10")
     S_ut = float(mat.tensile_strength(d))
     points = _points(mat, S_ut, peened)
     if cycles >= ZIMMERLI_LIFE:
@@ -135,6 +136,14 @@ def repeated_strength(mat: Material | str, d: float, cycles: float, peened: bool
             t = math.log(cycles / n0) / math.log(n1 / n0)
             return float(s0 * (s1 / s0) ** t)
     raise AssertionError("unreachable")  # pragma: no cover
+
+
+def wire_limit(life: float) -> float | None:
+    """The wire a spring for ``life`` cycles must be thinner than, m: Zimmerli's data, which
+    every life beyond 10⁶ cycles uses (module docstring, step 2), are for wire under
+    :data:`~hexaleg.design.spring_materials.ZIMMERLI_MAX_WIRE`; None (any preferred wire) up to
+    10⁶ cycles, where Table 10-10 covers the materials' whole range."""
+    return ZIMMERLI_MAX_WIRE if life > TABLE_LIVES[-1] else None
 
 
 def gerber_safety(sigma_a: float, sigma_m: float, S_e: float, S_ut: float) -> float:
@@ -233,13 +242,18 @@ def fatigue_check(mat: Material | str, d: float, D: float, m_min: float, m_max: 
 
     S_r = repeated_strength(mat, d, life, peened)
     note = ""
-    if n_f(ZIMMERLI_LIFE) >= 1:
-        has = math.inf
+    # wire Zimmerli's data leave out is sourced up to Table 10-10's longest life
+    top = ZIMMERLI_LIFE if d < ZIMMERLI_MAX_WIRE else TABLE_LIVES[-1]
+    if n_f(top) >= 1:
+        has = math.inf if top == ZIMMERLI_LIFE else top
+        if top != ZIMMERLI_LIFE:
+            note = (f"at least {top:.0e} cycles, the longest sourced life for wire of "
+                    f"{ZIMMERLI_MAX_WIRE / MM:g} mm or more (a lower bound)")
     elif n_f(TABLE_LIVES[0]) < 1:
         has, note = TABLE_LIVES[0], (f"below {TABLE_LIVES[0]:.0e} cycles, the shortest "
                                      "sourced life (an upper bound)")
-    else:  # n_f falls with N: bisect log N between 1e5 and 1e7
-        lo, hi = math.log(TABLE_LIVES[0]), math.log(ZIMMERLI_LIFE)
+    else:  # n_f falls with N: bisect log N between 1e5 and the longest sourced life
+        lo, hi = math.log(TABLE_LIVES[0]), math.log(top)
         for _ in range(60):
             mid = (lo + hi) / 2
             lo, hi = (mid, hi) if n_f(math.exp(mid)) >= 1 else (lo, mid)

@@ -183,7 +183,8 @@ class SearchResult:
 
 def search(evaluate: Callable[[GaitParams], GaitPoint], base: GaitParams, speed: float,
            space: Space, *, springs: bool, reference: float, max_evaluations: int = 120,
-           restarts: int = RESTARTS, map_fn: Mapper | None = None) -> SearchResult:
+           restarts: int = RESTARTS, map_fn: Mapper | None = None,
+           progress: Callable[[str], None] | None = None) -> SearchResult:
     """Minimise :func:`penalised` over ``space`` by restarted compass search (module docstring).
 
     Args:
@@ -202,6 +203,9 @@ def search(evaluate: Callable[[GaitParams], GaitPoint], base: GaitParams, speed:
         map_fn: How a poll's candidates are evaluated (``map_fn(fn, items)`` → the list of
             ``fn(item)`` in order, e.g. over the cores); default one after the other. The
             answer does not depend on it.
+        progress: Called after each poll with a line: the run, the evaluations against the
+            budget, the step, the best value so far and the time left at most (the budget's
+            remaining evaluations at the pace so far); None: quiet.
     """
     budget = integer("max_evaluations", max_evaluations, low=10, high=10_000)
     runs = integer("restarts", restarts, low=1, high=5)
@@ -265,6 +269,10 @@ def search(evaluate: Callable[[GaitParams], GaitPoint], base: GaitParams, speed:
                 k = first_best(done)
             else:
                 step //= 2
+            if progress is not None:
+                progress(_progress_line(run, runs, len(history), budget, step,
+                                        seen[first_best(list(seen))][0],
+                                        time.perf_counter() - start))
         bests.append(seen[k][0])
     best = first_best(list(seen))
     return SearchResult(best=seen[best][1], value=seen[best][0], restarts=tuple(bests),
@@ -275,6 +283,16 @@ def search(evaluate: Callable[[GaitParams], GaitPoint], base: GaitParams, speed:
                                f"{STEP:g} to {MIN_STEP:g}, ties within {TIE:g} of "
                                f"{ref:.4g} J/m",
                         finalists=finalists({tuple(point(q)): v for q, v in seen.items()}))
+
+
+def _progress_line(run: int, runs: int, done: int, budget: int, step: int, best: float,
+                   elapsed: float) -> str:
+    """One progress line of :func:`search`: where it is and the time left at most (the budget's
+    remaining evaluations at the pace so far)."""
+    left = (budget - done) * elapsed / max(done, 1)
+    return (f"run {run + 1} of {runs}, {done} of at most {budget} evaluations, step "
+            f"1/{round(1 / (max(step, 1) * MIN_STEP))} of each range, best {best:.2f} J/m "
+            f"({elapsed:.0f} s; at most {left:.0f} s more at this pace)")
 
 
 def _mirrored(u: np.ndarray, half: int) -> np.ndarray:

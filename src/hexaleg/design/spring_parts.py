@@ -34,6 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hexaleg.design.families import family
+from hexaleg.design.fatigue import LIFE, wire_limit
 from hexaleg.design.optimal import ZERO_STIFFNESS, OptimalSprings
 from hexaleg.design.spring_materials import MATERIALS
 from hexaleg.design.torsion_spring import (
@@ -61,17 +62,27 @@ of this fraction of the class's narrowest link (assumed: 5 mm in the default rob
 and tibia links, an M5 shoulder screw through the joint)."""
 
 
+STROKE_TOL = 1e-6
+"""A part whose torque rises by less than this share of its largest over the motion has no
+stroke: a torsion spring there would be a constant torque (issue #55: Unitree G1's design
+stopped on "max_torque = 0.0012524; allowed: > preload_torque = 0.0012524 N·m")."""
+
+
 @dataclass(frozen=True)
 class PartOptions:
     """How the parts are made (the fields of :class:`TorsionRequirement` the design does not
     set): materials, design factor, arbor diameter (m; every group's unless :func:`spring_parts`
-    is given per-group arbors), leg length (m or None), the arbor's clearance margin."""
+    is given per-group arbors), leg length (m or None), the arbor's clearance margin, and the
+    life the parts are checked for in fatigue (``[design] life_cycles``): a part is bought only
+    in a wire the fatigue data at that life cover (:func:`hexaleg.design.fatigue.wire_limit`),
+    so the fatigue check never refuses a spring the design chose."""
 
     materials: tuple[str, ...] = tuple(MATERIALS)
     safety_factor: float = SAFETY_FACTOR
     arbor_diameter: float = 0.0
     leg_length: float | None = None
     arbor_margin: float = ARBOR_MARGIN
+    life_cycles: float = LIFE
 
 
 @dataclass(frozen=True)
@@ -81,11 +92,16 @@ class SpringPart:
     Attributes:
         group: The design group. joints: Its joints.
         side: ``"above"`` (acts at the high angles, pushes the joint down) or ``"below"``.
-        role: What it is in the law (``one-sided``, ``pair (1 of 2)``, ``stage``).
+        role: What it is in the law (``one-sided``: it engages past a contact angle; ``single``:
+            a linear spring free outside the motion; ``pair (1 of 2)``, ``stage``, ``constant
+            torque``).
         rate: N·m/rad (0 for a constant torque). preload_torque: Torque where it starts acting
             in the motion, N·m. max_torque: At the far end of the motion, N·m.
         engage: Where it starts acting, rad from the centre of motion; None: throughout.
         free: Where it would be free, rad from the centre of motion; None: constant torque.
+        contact: Where its moving leg rests on its stop, preloaded (the family's contact
+            angle), rad from the centre of motion; None for a spring without one (a linear
+            spring, free at ``free``).
         constant_torque: k → 0 with a torque: needs a constant-torque spring.
         max_outer_diameter: The group's fit limit, m.
         spring: The torsion spring to buy, or None. nearest: With ``problem``, the nearest one.
@@ -106,6 +122,7 @@ class SpringPart:
     spring: TorsionSpring | None = None
     nearest: TorsionSpring | None = None
     problem: str = ""
+    contact: float | None = None
 
     @property
     def mass(self) -> float:
@@ -210,7 +227,7 @@ def _elements(fam_name: str, geometry: Mapping[str, float | str], x: np.ndarray,
             if uf <= lo or uf >= hi:
                 side = "above" if uf <= lo else "below"
                 near, far = (lo, hi) if side == "above" else (hi, lo)
-                out.append(dict(side=side, role="one-sided", rate=k,
+                out.append(dict(side=side, role="single", rate=k,
                                 preload_torque=k * abs(near - uf), max_torque=k * abs(far - uf),
                                 engage=None, free=uf))
                 continue
@@ -234,7 +251,7 @@ def _elements(fam_name: str, geometry: Mapping[str, float | str], x: np.ndarray,
         out.append(dict(side=side, role=role if k >= ZERO_STIFFNESS else "constant torque",
                         rate=k if k >= ZERO_STIFFNESS else 0.0, preload_torque=start,
                         max_torque=p + k * reach, engage=None if before > 0 else a,
-                        free=free_at))
+                        free=free_at, contact=a))
     return out
 
 
@@ -277,12 +294,20 @@ def _buy(part: SpringPart, options: PartOptions, arbor: float) -> SpringPart:
             f"k → 0 with {part.max_torque:.4g} N·m: a constant torque needs a constant-torque "
             "spring (spiral or constant-force), not a helical torsion spring; bound "
             "max_deflection to get a torsion spring"))
+    stroke = part.max_torque - part.preload_torque
+    if not stroke > STROKE_TOL * max(abs(part.max_torque), 1e-300):
+        return dataclasses.replace(part, problem=(
+            f"it holds {part.max_torque:.4g} N·m without a stroke over the motion (it engages "
+            f"only where the motion ends, {part.rate:.4g} N·m/rad over {stroke / part.rate:.3g} "
+            "rad): nothing for a torsion spring to do; bound max_deflection or leave the group "
+            "out ([design] classes)"))
     req = TorsionRequirement(rate=part.rate, max_torque=part.max_torque,
                              preload_torque=part.preload_torque,
                              max_outer_diameter=part.max_outer_diameter,
                              arbor_diameter=arbor, materials=options.materials,
                              safety_factor=options.safety_factor,
-                             leg_length=options.leg_length, arbor_margin=options.arbor_margin)
+                             leg_length=options.leg_length, arbor_margin=options.arbor_margin,
+                             max_wire_diameter=wire_limit(options.life_cycles))
     try:
         return dataclasses.replace(part, spring=design_torsion_spring(req))
     except SpringDesignError as e:

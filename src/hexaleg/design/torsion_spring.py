@@ -142,6 +142,9 @@ class TorsionRequirement:
             MATERIALS`).
         safety_factor: Design factor on the bending yield strength, ≥ 1.
         leg_length: Length of each straight leg, m; None: :data:`LEG_RATIO` mean diameters.
+        max_wire_diameter: Wire must be thinner than this, m (the wire the fatigue data at the
+            required life cover: :func:`hexaleg.design.fatigue.wire_limit`); None: any
+            preferred wire.
 
     Raises:
         InvalidParameterError: a value out of range (a zero rate names the constant-torque
@@ -158,6 +161,7 @@ class TorsionRequirement:
     safety_factor: float = SAFETY_FACTOR
     leg_length: float | None = None
     arbor_margin: float = ARBOR_MARGIN
+    max_wire_diameter: float | None = None
 
     def __post_init__(self) -> None:
         real("rate", self.rate, low=0.0, low_open=True,
@@ -177,6 +181,9 @@ class TorsionRequirement:
         real("safety_factor", self.safety_factor, low=1.0, allowed=">= 1")
         if self.leg_length is not None:
             real("leg_length", self.leg_length, low=0.0, allowed="None or >= 0 m")
+        if self.max_wire_diameter is not None:
+            real("max_wire_diameter", self.max_wire_diameter, low=0.0, low_open=True,
+                 allowed="None or > 0 m")
         if isinstance(self.materials, str) or not self.materials:
             raise InvalidParameterError("materials", self.materials,
                                         f"a non-empty list of {', '.join(MATERIALS)}")
@@ -324,7 +331,10 @@ def _ratios(c: dict[str, np.ndarray], req: TorsionRequirement) -> dict[str, np.n
     """Each limit's use, ≤ 1 where met (names are the requirement's fields or the index)."""
     C = c["D"] / c["d"]
     inner = c["Dw"] - c["d"]
+    wire = (np.zeros_like(c["d"]) if req.max_wire_diameter is None else
+            np.where(c["d"] < req.max_wire_diameter, 0.0, np.inf))
     return {"max_outer_diameter": (c["D"] + c["d"]) / req.max_outer_diameter,
+            "max_wire_diameter": wire,
             "max_torque": c["stress"] * req.safety_factor / c["sy"],
             "spring_index_min": C_MIN / C, "spring_index_max": C / C_MAX,
             "arbor_diameter": np.where(inner > 0, req.arbor_diameter * (1 + req.arbor_margin)
@@ -392,9 +402,21 @@ def design_torsion_spring(req: TorsionRequirement) -> TorsionSpring:
         "spring_index_max": (nearest.index, f"<= {C_MAX:g}: the rate needs a coil too wide"),
         "arbor_diameter": (req.arbor_diameter, f"<= {nearest.wound_inner_diameter / MM:.2f} mm / "
                                                f"{1 + req.arbor_margin:g} (the clearance)"),
+        "max_wire_diameter": (nearest.wire_diameter, f"< {(req.max_wire_diameter or 0) / MM:g} "
+                              "mm, the wire the fatigue data at the required life cover "
+                              "(Zimmerli's, for lives beyond 10⁶ cycles): [design] life_cycles "
+                              "<= 1e6 checks thicker wire on Shigley's Table 10-10"),
     }[binding]
+    thicker = ""
+    if req.max_wire_diameter is not None and binding != "max_wire_diameter":
+        free = np.max(np.vstack([v for k, v in ratios.items() if k != "max_wire_diameter"]),
+                      axis=0) <= 1 + 1e-12
+        if free.any():
+            thicker = (f"; wire of {req.max_wire_diameter / MM:g} mm or more would carry it, "
+                       "but the fatigue data beyond 10⁶ cycles (Zimmerli's) cover wire under "
+                       "it: [design] life_cycles <= 1e6 allows it (Shigley's Table 10-10)")
     raise SpringDesignError(
         binding, what[0],
         f"{what[1]}; no {' or '.join(req.materials)} torsion spring of rate "
-        f"{req.rate:.4g} N·m/rad carrying {req.max_torque:.4g} N·m fits; nearest: "
+        f"{req.rate:.4g} N·m/rad carrying {req.max_torque:.4g} N·m fits{thicker}; nearest: "
         f"{nearest.summary()}", nearest=nearest)

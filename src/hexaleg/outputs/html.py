@@ -2,17 +2,20 @@
 
 :func:`render_html` renders the gait energy report (``report.html.j2``) from plain data: the
 report's JSON content, whose quantities are ``{"value": …, "unit": …}``, and the plots as
-``data:`` URIs. Three filters format numbers on the pages: ``num`` (four significant digits;
-float noise below :data:`NOISE` reads 0), ``q`` (a quantity with its unit) and ``pct`` (a
-percentage: the one precision rule of the pages, two decimals, signed).
+``data:`` URIs. Four filters format numbers on the pages: ``num`` (four significant digits;
+float noise below :data:`NOISE` reads 0), ``q`` (a quantity with its unit), ``pct`` (a
+percentage: the one precision rule of the pages, two decimals, signed) and ``deg`` (an angle in
+rad shown in degrees, one decimal, signed, never −0.0).
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from typing import Any
 
 import jinja2
+import markupsafe
 
 from hexaleg.checks import is_real
 
@@ -47,6 +50,18 @@ def format_percent(q: Mapping[str, Any] | float | None) -> str:
     return f"{float(x):+.2f} %"
 
 
+def format_degrees(rad: Any, signed: bool = True) -> str:
+    """An angle given in rad (a number or a ``{value, unit: rad}`` quantity) in degrees with one
+    decimal and its sign (``signed``), never ``-0.0°``; ``—`` for a missing value."""
+    x = rad.get("value") if isinstance(rad, Mapping) else rad
+    if x is None:
+        return "—"
+    if isinstance(rad, Mapping) and rad.get("unit") != "rad":
+        raise ValueError(f"deg: {rad!r} is not an angle in rad")
+    d = round(math.degrees(float(x)), 1) + 0.0
+    return f"{d:+.1f}°" if signed else f"{d:.1f}°"
+
+
 def format_quantity(q: Mapping[str, Any] | None) -> str:
     """``{"value", "unit"}`` as text; dimensionless (unit ``"1"``) values without a unit."""
     if q is None or q["value"] is None:
@@ -65,6 +80,7 @@ def environment() -> jinja2.Environment:
     env.filters["num"] = format_number
     env.filters["q"] = format_quantity
     env.filters["pct"] = format_percent
+    env.filters["deg"] = format_degrees
     return env
 
 
@@ -81,17 +97,25 @@ def render_html(data: Mapping[str, Any], images: Mapping[str, str]) -> str:
     return environment().get_template("report.html.j2").render(d=data, images=images)
 
 
-def render_design_html(data: Mapping[str, Any], images: Mapping[str, str]) -> str:
+def render_design_html(data: Mapping[str, Any], images: Mapping[str, str],
+                       drawings: Mapping[str, str] | None = None) -> str:
     """Render ``templates/design.html.j2``: the spring design page of ``hexaleg design``.
 
     Args:
         data: The content of ``design.json`` (:func:`hexaleg.design.chain.result.design_data`).
         images: Plot name → ``data:`` URI.
+        drawings: Drawing name → SVG of each spring to mount, as the writer wrote them to
+            files; default :func:`hexaleg.outputs.spring_drawing.drawings` of
+            ``data["mounting"]``.
 
     Returns:
-        The HTML page (self-contained).
+        The HTML page (self-contained, the drawings inline).
     """
-    return environment().get_template("design.html.j2").render(d=data, images=images)
+    from hexaleg.outputs.spring_drawing import drawings as draw
+
+    svgs = draw(data.get("mounting") or []) if drawings is None else drawings
+    return environment().get_template("design.html.j2").render(
+        d=data, images=images, drawings={k: markupsafe.Markup(v) for k, v in svgs.items()})
 
 
 def render_simulate_html(data: Mapping[str, Any]) -> str:

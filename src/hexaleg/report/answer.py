@@ -30,6 +30,7 @@ import dataclasses
 from pathlib import Path
 from typing import Any
 
+from hexaleg.design.chain.result import QUICK_FAMILY
 from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import HexalegError
 from hexaleg.quantities import quantity
@@ -41,8 +42,8 @@ from hexaleg.robot.springs import SpringSet
 
 DESIGN_JSON = Path("hexaleg-design") / "design.json"
 """Where ``hexaleg design`` writes its answer by default, relative to the working directory."""
-QUICK_FAMILY = "linear"
-"""The family of the quick answer: its global optimum is one convex program (about a second)."""
+QUICK_UNPROVEN = "predicted, not simulated: hexaleg design simulates its answer"
+"""Why the quick answer is unproven: no forward simulation runs within the report's budget."""
 
 
 def answer_section(cfg: ReportConfig, robot: Robot, prepared: Prepared
@@ -91,7 +92,7 @@ def answer_section(cfg: ReportConfig, robot: Robot, prepared: Prepared
         notes.append(f"{section['source']} was designed for the actuator {section['actuator']}; "
                      f"this report's is {cfg.motor.name}: the design's saving is with "
                      f"{section['actuator']}, its springs' on this report's gait with "
-                     f"{cfg.motor.name} (hexaleg design --config with [design] motor = … "
+                     f"{cfg.motor.name} (hexaleg design --config with its [motor] table "
                      "designs for it)")
     section["report_gait"] = _on_report_gait(prepared, springs, section["metric"])
     return section, springs, notes
@@ -154,8 +155,6 @@ def _quick(cfg: ReportConfig, robot: Robot
     from hexaleg.design.chain.config import DesignConfig, DesignParams
     from hexaleg.design.chain.result import candidate_data
     from hexaleg.design.evaluator import RunSpec
-    from hexaleg.robot.catalogue import CATALOGUE
-
     what = "no quick answer"
     if cfg.payload is not None:
         return None, None, (f"{what}: this report carries a payload, hexaleg design designs "
@@ -165,16 +164,13 @@ def _quick(cfg: ReportConfig, robot: Robot
         run = RunSpec(robot=ref)
     except HexalegError as e:
         return None, None, f"{what}: {e}; run hexaleg design --robot FILE.toml"
-    motor = None
-    if cfg.motor != run.actuator():
-        if not (isinstance(cfg.motor, Motor) and CATALOGUE.get(cfg.motor.name) == cfg.motor):
-            return None, None, (f"{what}: the report's motor {cfg.motor.name!r} is not a "
-                                "catalogue servo ([design] motor names one)")
-        motor = cfg.motor.name
+    # the report's [motor], as the design reads it (its one home); the robot's own otherwise
+    actuator = cfg.motor if isinstance(cfg.motor, Motor) and cfg.motor != run.actuator() \
+        else None
     n = min(cfg.gait.samples, DesignParams().samples)
-    params = DesignParams(families=(QUICK_FAMILY,), samples=n, motor=motor)
+    params = DesignParams(families=(QUICK_FAMILY,), samples=n)
     config = DesignConfig(robot=ref, gait=dataclasses.replace(cfg.gait, samples=n),
-                          contact=cfg.contact, design=params)
+                          contact=cfg.contact, design=params, actuator=actuator)
     try:  # the design chain's first stage alone
         result = DesignChain(config).run(stages=("candidates",))
     except HexalegError as e:
@@ -183,7 +179,8 @@ def _quick(cfg: ReportConfig, robot: Robot
     rec = candidate_data(c, result.outer)
     section = {"origin": "quick", "source": None, "html": None, "actuator": result.actuator,
                **recommendation(rec, params.metric, n, result.pays),
-               "worst": None, "robust": None, "simulation": [], "notes": list(c.notes)}
+               "worst": None, "robust": None, "simulation": [],
+               "proof": {"proven": False, "why": QUICK_UNPROVEN}, "notes": list(c.notes)}
     return section, c.optimum.springs, None
 
 
@@ -224,6 +221,8 @@ def answer_line(section: dict[str, Any] | None) -> str:
                  + ("" if whole["complete"] else ", counting what is known") + ")")
     if not g["pays"]:
         line = f"no springs pay here; the best: {line}"
-    if g["origin"] == "quick":
-        line += "; hexaleg design for the full answer"
+    elif g["origin"] == "quick":
+        line += f"; unproven ({QUICK_UNPROVEN})"
+    elif not g["proof"]["proven"]:
+        line = f"unproven ({g['proof']['why']}): {line}"
     return line

@@ -258,11 +258,13 @@ class ReportConfig:
             report = dataclasses.replace(report, curve_joints=desc.spring_class_of(robot))
         if "title" not in given["report"]:
             report = dataclasses.replace(report, title=f"{desc.title}: gait energy report")
+        from hexaleg.robot.motor_set import motor_classes
+
         notes = list(robot.notes)
         if "motor" not in data:
             config = dataclasses.replace(config, motor=desc.actuator(robot))
             named = desc.motor if isinstance(desc.motor, Mapping) else {}
-            generic = [k for k in robot.joint_kinds if desc.motor is None or
+            generic = [k for k in motor_classes(robot) if desc.motor is None or
                        (not isinstance(desc.motor, str) and k not in named)]
             if generic:
                 notes.append(f"{desc.title} names no catalogue motor for {', '.join(generic)}: "

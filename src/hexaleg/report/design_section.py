@@ -49,8 +49,9 @@ def design_section(path: str | Path | None, robot: Robot | None = None) -> dict[
     Returns:
         The section (:func:`recommendation`) with ``origin`` ``"given"``, ``source`` the path,
         ``html`` its ``design.html`` beside it (None when missing), ``actuator``, the maps'
-        ``worst``, the ``robust`` design's worst case and the ``simulation`` rows (empty for a
-        design.json without one) — every number ``{value, unit}`` as in ``design.json``.
+        ``worst``, the ``robust`` design's worst case, the ``simulation`` rows (empty for a
+        design.json without one) and the ``proof`` (``{proven, why}``: unproven for a file
+        that does not say) — every number ``{value, unit}`` as in ``design.json``.
 
     Raises:
         ConfigError: the file cannot be read or is not a ``design.json`` (says how to make one).
@@ -163,6 +164,22 @@ def _require(entry: Mapping[str, Any], keys: tuple[str, ...], where: str) -> Non
         raise KeyError(f"{where} has no {', '.join(missing)}")
 
 
+UNPROVEN_FILE = "this design.json says nothing of a simulation that backs it (written by an " \
+    "older hexaleg: run hexaleg design again)"
+"""Why a design.json without ``proof`` is not called proven."""
+
+
+def _proof(proof: Any) -> dict[str, Any]:
+    """``{proven, why}`` of a design.json's ``proof`` (:func:`hexaleg.design.chain.result.
+    proof_data`); a file without one is unproven (:data:`UNPROVEN_FILE`)."""
+    if not isinstance(proof, Mapping) or not isinstance(proof.get("proven"), bool):
+        return {"proven": False, "why": UNPROVEN_FILE}
+    why = proof.get("why")
+    if not proof["proven"] and not isinstance(why, str):
+        raise ValueError(f"proof.why = {why!r}: an unproven design says why (text)")
+    return {"proven": proof["proven"], "why": why if not proof["proven"] else None}
+
+
 def _section(path: Path, data: dict[str, Any]) -> dict[str, Any]:
     """The section from the parsed ``design.json`` (a missing key raises KeyError)."""
     metric = data["settings"]["metric"]
@@ -175,6 +192,7 @@ def _section(path: Path, data: dict[str, Any]) -> dict[str, Any]:
                          data.get("pays", True)),
         "worst": data["worst"], "robust": None if robust is None else robust["worst"],
         "simulation": data.get("simulation", []),
+        "proof": _proof(data.get("proof")),
         "hard_stops": [{"group": e["group"], "side": e["side"],
                         "angle_from_centre": e["hard_stop"]["angle_from_centre"],
                         "safety_factor": e["safety_factor"]}

@@ -105,9 +105,12 @@ class RobotDescription:
             :data:`FILES` (default).
         srdf: SRDF path relative to the same directory, or None.
         stand: The standing pose: the name of an SRDF ``group_state`` (e.g. ``"standing"``);
-            joint name → angle (rad), joints not named at Pinocchio's neutral value; or
-            ``{"body_height": h, "feet": {leg: [x, y]}}`` (m, base frame; ``feet`` optional),
-            solved by :func:`hexaleg.robot.stand.stand_from_feet`. None: the SRDF's
+            joint name → angle (rad), leg joints not named at Pinocchio's neutral value; or
+            ``{"body_height": h, "feet": {leg: [x, y]}, "joints": {joint: angle}}`` (m, base
+            frame; ``feet`` and ``joints`` optional), the legs solved by
+            :func:`hexaleg.robot.stand.stand_from_feet`. A joint on no leg (an arm's, a
+            torso's) not given is held at its zero clipped into its URDF limits
+            (:func:`hexaleg.robot.stand.hold_other_joints`). None: the SRDF's
             ``standing`` state if it has one, else the zero configuration (with a note).
         legs: One spec per leg, with hexaleg's leg names (``LF RF LH RH`` …); None finds them
             from the kinematic tree (:mod:`hexaleg.robot.discover`).
@@ -229,12 +232,8 @@ class RobotDescription:
             if not motor:
                 raise InvalidParameterError(f"{self.name}: motor", "{}", "a catalogue name, or "
                                             "a table joint class → catalogue name")
-            if self.joint_kinds is not None:
-                for kind in motor:
-                    if kind not in self.joint_kinds:
-                        raise UnknownNameError(f"{self.name}: motor joint class", kind,
-                                               self.joint_kinds)
-            return FrozenTable(dict(motor))
+            return FrozenTable(dict(motor))  # its classes are checked against the robot's
+            # (its leg classes and the joints on no leg) when the actuators are built
         return str(motor)
 
     def actuator(self, robot: Robot) -> Motor | MotorSet:
@@ -381,24 +380,22 @@ class RobotDescription:
         return robot
 
     def _stand_pose(self, robot: Robot) -> tuple[np.ndarray, str | None]:
+        from hexaleg.robot.stand import hold_other_joints, stand_from_feet
+
         if self.stand is None:
             if "standing" in robot.poses:
                 return robot.pose("standing"), None
-            return pin.neutral(robot.model), (
+            return hold_other_joints(robot, pin.neutral(robot.model), {}), (
                 "no stand given and no SRDF 'standing' state: standing at the zero "
                 "configuration; give stand = {body_height = …} to stand on bent legs")
         if isinstance(self.stand, str):
             return robot.pose(self.stand), None
         if "body_height" in self.stand:
-            from hexaleg.robot.stand import stand_from_feet
-
-            return stand_from_feet(robot, self.stand["body_height"],
-                                   self.stand.get("feet")), None
-        q = pin.neutral(robot.model)
-        for joint, value in self.stand.items():
-            robot.column(joint)  # an unknown joint raises, listing the joints
-            q[robot.model.joints[robot.model.getJointId(joint)].idx_q] = value
-        return q, None
+            q = hold_other_joints(robot, pin.neutral(robot.model), self.stand.get("joints", {}))
+            return stand_from_feet(robot, self.stand["body_height"], self.stand.get("feet"),
+                                   q), None
+        return hold_other_joints(robot, pin.neutral(robot.model), self.stand,
+                                 legs_too=True), None
 
 
 def read_description(path: str | Path) -> RobotDescription:

@@ -23,7 +23,7 @@ ground is touched when standing.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -79,8 +79,13 @@ class SphereFoot:
 
 
 def resolve_foot(model: pin.Model, collision: pin.GeometryModel, visual: pin.GeometryModel,
-                 spec: LegSpec) -> tuple[LegSpec, str | None, SphereFoot | None]:
+                 spec: LegSpec, wheels: Mapping[str, tuple[np.ndarray, float]] | None = None
+                 ) -> tuple[LegSpec, str | None, SphereFoot | None]:
     """The leg spec with its foot as a frame of ``model`` (adding the frame when needed).
+
+    A leg without a foot whose last joint carries a locked wheel (``wheels``: joint name →
+    the wheel's centre in its frame and radius, :mod:`hexaleg.robot.wheels`) stands on the
+    wheel: a round foot of its radius about its centre.
 
     Args:
         model: The robot model (a frame is added to it for a point or a found foot).
@@ -105,6 +110,16 @@ def resolve_foot(model: pin.Model, collision: pin.GeometryModel, visual: pin.Geo
     if not model.existJointName(last):
         return spec, None, None  # the leg's own check names the missing joint
     jid = model.getJointId(last)
+    wheel = (wheels or {}).get(last)
+    if spec.point is None and wheel is not None and wheel[1] > 0:
+        centre, radius = np.asarray(wheel[0], dtype=float), float(wheel[1])
+        name = _add_frame(model, spec.name, jid,
+                          pin.SE3(np.eye(3), centre - radius * np.array([0.0, 0.0, 1.0])))
+        at = ", ".join(f"{v:+.4f}" for v in centre)
+        return (replace(spec, foot=name, point=None),
+                f"{spec.name} on the wheel of radius {radius:.4g} m centred at [{at}] m on "
+                f"joint {last} (locked), touching the ground at its lowest point in the stand "
+                "pose", SphereFoot(jid, centre, radius))
     if spec.point is not None:
         assert spec.foot is not None
         if not model.existBodyName(spec.foot):
@@ -133,12 +148,13 @@ def resolve_foot(model: pin.Model, collision: pin.GeometryModel, visual: pin.Geo
 
 
 def resolve_feet(model: pin.Model, collision: pin.GeometryModel, visual: pin.GeometryModel,
-                 legs: Sequence[LegSpec]
+                 legs: Sequence[LegSpec],
+                 wheels: Mapping[str, tuple[np.ndarray, float]] | None = None
                  ) -> tuple[tuple[LegSpec, ...], list[str], dict[str, SphereFoot]]:
     """:func:`resolve_foot` of every leg: the specs, a note per found foot, the round feet."""
     specs, notes, spheres = [], [], {}
     for spec in legs:
-        spec, note, sphere = resolve_foot(model, collision, visual, spec)
+        spec, note, sphere = resolve_foot(model, collision, visual, spec, wheels)
         specs.append(spec)
         if note:
             notes.append(f"foot found at the tip of the leg's last link: {note}")

@@ -23,13 +23,14 @@ def check_stand(name: str, stand: Any) -> Any:
     if stand is None or isinstance(stand, str):
         return stand
     allowed = ("an SRDF group_state name, joint name → finite angle (rad), or {body_height = "
-               "h (m), feet = {leg = [x, y]}}")
+               "h (m), feet = {leg = [x, y]}, joints = {joint = angle (rad)}}")
     if not isinstance(stand, Mapping):
         raise InvalidParameterError(f"{name}: stand", stand, allowed)
-    if "body_height" in stand or "feet" in stand:
-        unknown = [k for k in stand if k not in ("body_height", "feet")]
+    if "body_height" in stand or "feet" in stand or "joints" in stand:
+        keys = ("body_height", "feet", "joints")
+        unknown = [k for k in stand if k not in keys]
         if unknown:
-            raise UnknownNameError(f"key in {name}: stand", unknown[0], ("body_height", "feet"))
+            raise UnknownNameError(f"key in {name}: stand", unknown[0], keys)
         if not is_real(stand.get("body_height")) or not stand["body_height"] > 0:
             raise InvalidParameterError(f"{name}: stand.body_height", stand.get("body_height"),
                                         "a height > 0 (m) of the base above the feet")
@@ -38,8 +39,14 @@ def check_stand(name: str, stand: Any) -> Any:
                 isinstance(v, (list, tuple)) and len(v) == 2 and all(is_real(x) for x in v)
                 for v in feet.values()):
             raise InvalidParameterError(f"{name}: stand.feet", feet, "{leg = [x, y]} (m)")
+        joints = stand.get("joints", {})
+        if not isinstance(joints, Mapping) or not all(
+                isinstance(k, str) and is_real(v) for k, v in joints.items()):
+            raise InvalidParameterError(f"{name}: stand.joints", joints,
+                                        "{joint = angle (rad)}: the pose of joints on no leg")
         return MappingProxyType({"body_height": float(stand["body_height"]), "feet": FrozenTable(
-            {k: tuple(float(x) for x in v) for k, v in feet.items()})})
+            {k: tuple(float(x) for x in v) for k, v in feet.items()}),
+            "joints": FrozenTable({k: float(v) for k, v in joints.items()})})
     if not all(isinstance(k, str) and is_real(v) for k, v in stand.items()):
         raise InvalidParameterError(f"{name}: stand", stand, allowed)
     return MappingProxyType({k: float(v) for k, v in stand.items()})

@@ -126,6 +126,17 @@ class Robot:
         raise UnknownNameError("joint class or joint", spec, [*classes, *self.joint_names])
 
     @property
+    def other_joints(self) -> tuple[str, ...]:
+        """The actuated joints on no leg — an arm's, a torso's, a head's — in column order.
+
+        They are held at the stand pose through every motion (the gait moves the legs only),
+        their inertia is carried by the dynamics, and each gets its own actuator
+        (:func:`hexaleg.robot.motor_set.class_motors`), which counts its holding torque.
+        """
+        on_legs = {j for leg in self.legs for j in leg.joint_names}
+        return tuple(j for j in self.joint_names if j not in on_legs)
+
+    @property
     def leg_names(self) -> tuple[str, ...]:
         return tuple(leg.name for leg in self.legs)
 
@@ -236,6 +247,16 @@ class Robot:
         lines.append("  legs (joints → foot frame):")
         for leg in self.legs:
             lines.append(f"    {leg.name}: {', '.join(leg.joint_names)} → {leg.foot_frame}")
+        others = self.other_joints
+        if others:
+            lines.append(f"  other joints ({len(others)}, on no leg: held at the stand pose, "
+                         "their inertia in the dynamics, each holding torque drawn by its own "
+                         "actuator):")
+            q = self.poses.get("stand")
+            for name in others:
+                at = ("" if q is None else
+                      f"  stand {q[m.joints[m.getJointId(name)].idx_q]:+.4f} rad")
+                lines.append(f"    {name:<20}{at}")
         lines.append(f"  poses: {', '.join(self.poses) or '(none)'}; heading (forward) "
                      f"[{', '.join(f'{v:+.3g}' for v in self.heading)}] in the base frame")
         lines += [f"  note: {n}" for n in self.notes]

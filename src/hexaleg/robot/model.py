@@ -18,7 +18,7 @@ import pinocchio as pin
 from hexaleg.checks import typed
 from hexaleg.config import read_text
 from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError
-from hexaleg.robot.discover import discover_legs
+from hexaleg.robot.discover import default_kinds, discover_legs
 from hexaleg.robot.feet import LegSpec, resolve_feet
 from hexaleg.robot.fields import horizontal_axis
 from hexaleg.robot.inertials import settle_inertials
@@ -28,6 +28,7 @@ from hexaleg.robot.root import with_root_offset
 from hexaleg.robot.sphere_feet import place_sphere_feet
 from hexaleg.robot.srdf import check_reference_poses
 from hexaleg.robot.urdf_numbers import check_xml
+from hexaleg.robot.wheels import lock_wheels
 
 URDF_DIR = Path(__file__).resolve().parent / "urdf"
 """Directory of the packaged robot files (a link to the repository's ``urdf/``)."""
@@ -103,7 +104,8 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
             finds them from the kinematic tree.
         package_dirs: Directories where ``package://`` mesh URIs are resolved.
         joint_kinds: Names of the joint classes, one per joint of a leg, from the body out;
-            default hexaleg's, or the found ones with :data:`AUTO`.
+            default hexaleg's for hexaleg's legs, else by the legs' number of joints
+            (:func:`hexaleg.robot.discover.default_kinds`: ``joint1 …`` unless three).
         heading: The base axis that points forward (:attr:`Robot.heading`).
         inertias: What to do with a link inertia no rigid body can have: "refuse" (an error
             naming the fix), "repair" (the box rule, noted) or "keep" (:mod:`.inertials`).
@@ -140,17 +142,27 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
     if repaired is not None:  # the repaired URDF, loaded again
         model, visual, collision = _build(repaired[0], urdf_path, dirs)
         notes.append(repaired[1])
+    listed = {j for spec in legs for j in spec.joints} if not isinstance(legs, str) and legs \
+        else set()
+    model, (visual, collision), wheels, wheel_note = lock_wheels(model, (visual, collision),
+                                                                 listed)
+    if wheel_note:
+        notes.append(wheel_note)
+    on = {w.parent: (w.centre, w.radius) for w in wheels}
     heading_arr = horizontal_axis("heading", heading)
     if isinstance(legs, str):
         if legs != AUTO:
             raise InvalidParameterError("legs", legs, f"leg specs or {AUTO!r}")
         specs, found_kinds, note, spheres = discover_legs(
-            model, collision, visual, heading_arr / np.linalg.norm(heading_arr))
+            model, collision, visual, heading_arr / np.linalg.norm(heading_arr), on)
         notes.append(note)
         joint_kinds = joint_kinds or found_kinds
     else:
-        specs, foot_notes, spheres = resolve_feet(model, collision, visual, legs or HEXALEG_LEGS)
+        specs, foot_notes, spheres = resolve_feet(model, collision, visual, legs or HEXALEG_LEGS,
+                                                  on)
         notes += foot_notes
+        if legs and not joint_kinds:  # listed legs: the classes the docs promise for them
+            joint_kinds = default_kinds(max(len(s.joints) for s in specs), len(specs))
     joint_kinds = tuple(joint_kinds or JOINT_KINDS)
     leg_objs = tuple(_make_leg(model, spec) for spec in specs)
     sizes = {len(leg.joint_names) for leg in leg_objs}
@@ -163,7 +175,8 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
     collision.addAllCollisionPairs()
     poses: dict[str, np.ndarray] = {}
     if srdf_path is not None:
-        check_reference_poses(model, srdf_path)  # Pinocchio skips unknown joints silently
+        check_reference_poses(model, srdf_path, {w.name for w in wheels})  # Pinocchio skips
+        # unknown joints silently
         try:
             pin.removeCollisionPairs(model, collision, str(srdf_path))
             pin.loadReferenceConfigurations(model, str(srdf_path))

@@ -68,6 +68,10 @@ class MotorSet:
             The set, in the order of ``joint_classes``.
         """
         of = {joint: kind for kind, joints in joint_classes.items() for joint in joints}
+        missing = [j for j in joint_names if j not in of]
+        if missing:
+            raise InvalidParameterError("MotorSet joints", missing, "every joint in one class "
+                                        f"of {sorted(joint_classes)}")
         return cls(joint_names, tuple(of[j] for j in joint_names),
                    tuple((kind, motors[kind]) for kind in joint_classes if kind in motors))
 
@@ -165,14 +169,24 @@ class MotorSet:
         return " · ".join(f"{c}: {m.notes}" for c, m in self.by_class if m.notes)
 
 
+def motor_classes(robot: Robot) -> dict[str, tuple[str, ...]]:
+    """Every actuated joint of ``robot`` in one motor class: the leg joint classes
+    (:attr:`~hexaleg.robot.model.Robot.joint_classes`), then each joint on no leg (an arm's, a
+    torso's: :attr:`~hexaleg.robot.model.Robot.other_joints`) as a class of its own, named after
+    the joint — its actuator is built from its own URDF limits."""
+    return {**robot.joint_classes, **{j: (j,) for j in robot.other_joints}}
+
+
 def class_motors(robot: Robot, named: Mapping[str, Motor], generic: str) -> Motor | MotorSet:
     """The motor of every joint class of ``robot``: ``named`` ones, and for the others a generic
     actuator from the largest URDF effort and velocity limits of the class's joints
-    (:func:`hexaleg.robot.motor.generic_actuator`, its assumptions in its notes).
+    (:func:`hexaleg.robot.motor.generic_actuator`, its assumptions in its notes). A joint on no
+    leg is a class of its own (:func:`motor_classes`): its holding torque is drawn by an
+    actuator sized from its own limits, not a leg's.
 
     Args:
         robot: The loaded robot (its joint classes and URDF limits).
-        named: Joint class → motor, for the classes that have one.
+        named: Joint class (or joint on no leg) → motor, for the classes that have one.
         generic: The name of the generic actuators.
 
     Returns:
@@ -183,11 +197,12 @@ def class_motors(robot: Robot, named: Mapping[str, Motor], generic: str) -> Moto
         InvalidParameterError: a class without a motor whose URDF joints have no effort or
             velocity limit.
     """
+    classes = motor_classes(robot)
     for kind in named:
-        if kind not in robot.joint_kinds:
-            raise UnknownNameError(f"{robot.name}: motor joint class", kind, robot.joint_kinds)
+        if kind not in classes:
+            raise UnknownNameError(f"{robot.name}: motor joint class", kind, classes)
     motors: dict[str, Motor] = {}
-    for kind, joints in robot.joint_classes.items():
+    for kind, joints in classes.items():
         if kind in named:
             motors[kind] = named[kind]
             continue
@@ -206,4 +221,4 @@ def class_motors(robot: Robot, named: Mapping[str, Motor], generic: str) -> Moto
         motors[kind] = generic_actuator(limits["effort"], limits["velocity"], name=generic)
     if len(set(motors.values())) == 1:
         return next(iter(motors.values()))
-    return MotorSet.per_class(robot.joint_classes, robot.joint_names, motors)
+    return MotorSet.per_class(classes, robot.joint_names, motors)

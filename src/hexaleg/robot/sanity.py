@@ -88,10 +88,11 @@ def robot_findings(robot: Robot) -> list[Finding]:
     Checks :func:`inertia_findings` (masses, positive definite inertias, triangle inequality),
     :func:`gyration_findings` (radius of gyration against the link's size) and
     :func:`stand_findings` (the base above the feet in the stand pose) and
+    :func:`stand_limit_findings` (joints outside their limits in the stand pose) and
     :func:`limit_findings` (placeholder joint limits).
     """
     return [*inertia_findings(robot), *gyration_findings(robot), *stand_findings(robot),
-            *limit_findings(robot)]
+            *stand_limit_findings(robot), *limit_findings(robot)]
 
 
 def body_name(model: pin.Model, joint_id: int) -> str:
@@ -242,6 +243,39 @@ def stand_findings(robot: Robot) -> list[Finding]:
     return [Finding("foot_above_base", f"foot {leg.foot_frame} of leg {leg.name} in the {pose}",
                     float(z), "m", "< 0 m (below the base origin)", remedy)
             for leg, z in zip(robot.legs, feet[:, 2], strict=True) if not z < 0]
+
+
+STAND_LIMIT_TOL = 1e-9
+"""rad (or m): a stand joint this far beyond its URDF limit is outside it (rounding allowed)."""
+
+
+def stand_limit_findings(robot: Robot) -> list[Finding]:
+    """Joints outside their URDF position limits in the stand pose (the neutral configuration
+    when there is none): one finding that counts them and names the first few with their angle
+    and range. The gait starts from the stand, so every motion then has the joint outside its
+    limits (a knee at 0 whose range is [−2.7, −0.8] rad: a stand given by joint angles that left
+    it out, or an SRDF state for another robot)."""
+    model = robot.model
+    q = robot.pose("stand") if "stand" in robot.poses else pin.neutral(model)
+    pose = "stand pose" if "stand" in robot.poses else "neutral configuration (no stand pose)"
+    out = []
+    for name in robot.joint_names:
+        iq = model.joints[model.getJointId(name)].idx_q
+        lo, hi, x = model.lowerPositionLimit[iq], model.upperPositionLimit[iq], q[iq]
+        beyond = max(lo - x, x - hi)
+        if beyond > STAND_LIMIT_TOL:
+            out.append((beyond, name, x, lo, hi))
+    if not out:
+        return []
+    worst = max(out)
+    named = ", ".join(f"{n} at {x:+.4g} rad (range [{lo:+.4g}, {hi:+.4g}])"
+                      for _, n, x, lo, hi in out[:3])
+    more = f" and {len(out) - 3} more" if len(out) > 3 else ""
+    return [Finding("stand_joint_limits", f"{len(out)} joint(s) outside their URDF limits in "
+                    f"the {pose}: {named}{more}", float(worst[0]), "rad",
+                    "0 rad beyond (every joint within its <limit>)",
+                    "give a stand within the limits: stand = {body_height = …} solves the legs "
+                    "within them, or set the joints' angles in [robot] stand or the SRDF state")]
 
 
 def limit_findings(robot: Robot) -> list[Finding]:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import xml.etree.ElementTree as ET
+from collections.abc import Collection
 from pathlib import Path
 
 import pinocchio as pin
@@ -26,12 +27,15 @@ def _values(text: str | None) -> list[float] | None:
     return values if values and all(math.isfinite(v) for v in values) else None
 
 
-def check_reference_poses(model: pin.Model, path: str | Path) -> None:
+def check_reference_poses(model: pin.Model, path: str | Path,
+                          locked: Collection[str] = ()) -> None:
     """Check the ``group_state`` poses of an SRDF against a model before Pinocchio loads them.
 
     Args:
         model: The robot's model (its joint names and their nq, nv).
         path: The SRDF file.
+        locked: Joints of the URDF locked at load (wheels, :mod:`hexaleg.robot.wheels`): a
+            pose may name them, and their value is not used.
 
     Raises:
         RobotModelError: the file is not well-formed XML.
@@ -49,6 +53,8 @@ def check_reference_poses(model: pin.Model, path: str | Path) -> None:
         for joint in state.iter("joint"):
             name = joint.get("name")
             where = f"joint in SRDF {path} pose {pose!r}"
+            if name in locked:
+                continue
             if name not in joints:
                 raise UnknownNameError(where, name, joints)
             text = joint.get("value")

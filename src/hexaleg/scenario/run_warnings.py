@@ -36,6 +36,10 @@ from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import GENERIC_MARK, Motor, generic_energy_range
 from hexaleg.robot.motor_set import MotorSet
 
+GENERIC_NAMED = 8
+"""Classes the generic-actuator warning names before it counts the rest (a humanoid's arms,
+torso and head are a class each: 20 more on Talos)."""
+
 
 def generic_warning(motor: Motor | MotorSet) -> str | None:
     """One line when some joint's actuator is generic (module docstring, 3), else None."""
@@ -44,7 +48,9 @@ def generic_warning(motor: Motor | MotorSet) -> str | None:
     if not generic:
         return None
     lo, hi = generic_energy_range()
-    return (f"generic actuator on {', '.join(generic)}: its energies come from the URDF's effort "
+    named = ", ".join(generic[:GENERIC_NAMED]) + (
+        f" and {len(generic) - GENERIC_NAMED} more" if len(generic) > GENERIC_NAMED else "")
+    return (f"generic actuator on {named}: its energies come from the URDF's effort "
             f"and velocity limits with assumed constants (×{lo:.2f}–×{hi:.2f} for the "
             "catalogue's range of gearbox efficiencies, further if the limits are "
             "placeholders); name a catalogue motor (hexaleg motors) or identified constants "

@@ -43,12 +43,14 @@ TABLES: dict[str, str] = {
             "gait (docs/gaits.md)",
     "contact": "every command but codesign ([codesign.constraints] mu): friction and contact "
                "settings",
-    "motor": "report, simulate, view: one servo on every joint instead of the robot's own",
+    "motor": "report, simulate, view, design: one servo on every joint instead of the robot's "
+             "own",
     "payload": "report: a payload on the base",
     "springs": "report: the springs the report analyses",
     "report": "report: what the report shows",
     "view": "view: how a motion is drawn",
     "design": "design, and codesign's spring rules: the spring design",
+    "mission": "design: how the robot is used between folds into the sphere (metres_per_fold)",
     "simulate": "simulate: the forward simulation's settings",
     "codesign": "codesign: the gait and spring co-design",
 }

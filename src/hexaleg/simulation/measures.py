@@ -257,12 +257,14 @@ SATURATED = 0.1
 it fell for want of torque (:func:`fall_cause`)."""
 
 
-def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory) -> str:
+def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory, feedback: bool = False) -> str:
     """Why a run fell, as far as the run shows it: servos at their stall torque (a weaker
-    actuator than the gait needs), or a gait that stands on two feet or fewer (balanced by its
-    plan alone: the servos follow the joints without feedback on the body's attitude, so an
-    error grows until the body tips — the analysis of such a gait stands, its open-loop
-    simulation cannot); else the ground and the servo's gains (``[simulate]``)."""
+    actuator than the gait needs), or — open loop (``feedback`` False) — a gait that stands on
+    two feet or fewer (balanced by its plan alone: the servos follow the joints without feedback
+    on the body's attitude, so an error grows until the body tips — the analysis of such a gait
+    stands, its open-loop simulation cannot; ``[simulate] feedback = "on"`` closes the loop);
+    else the ground, the servo's gains (``[simulate]``) and, with balance feedback, its
+    gains."""
     at_stall = np.abs(traj.servo) >= sim.stall * (1.0 - 1e-6)
     share = float(at_stall.any(axis=1).mean())
     if share > SATURATED:
@@ -272,12 +274,18 @@ def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory) -> str:
                 "needs a stronger actuator ([motor], or the robot's own), a slower or shorter "
                 "gait, or a lighter robot")
     feet = int(motion.stance.sum(axis=1).min())
+    if feedback:
+        return ("the balance controller (hexaleg.simulation.balance) did not hold the body on "
+                f"this gait ({feet} stance feet at the fewest); check the ground ([simulate] "
+                "stiffness, damping, mu) and the servo gains (kp_scale, kd_scale), or try a "
+                "slower gait")
     if feet <= 2:
         return (f"the gait stands on {'one foot' if feet == 1 else f'{feet} feet'} at times "
                 "and is balanced by its plan alone; the simulated servos follow the joints "
                 "without feedback on the body's attitude, so an error grows until it tips (a "
-                "trot, a bound or a walk on one foot needs a balance controller): simulate a "
-                "gait on three or more feet ([gait] pattern = \"crawl\" or duty_factor ≥ "
-                "0.75) — the analysis of this one stands")
+                "trot, a bound or a walk on one foot needs balance feedback: [simulate] "
+                "feedback = \"auto\" or \"on\"), or simulate a gait on three or more feet "
+                "([gait] pattern = \"crawl\" or duty_factor ≥ 0.75) — the analysis of this one "
+                "stands")
     return ("check the ground ([simulate] stiffness, damping) and the servo gains "
             "(kp_scale, kd_scale) against the robot's weight")

@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from hexaleg.checks import MEMORY_BUDGET, integer, real
+from hexaleg.checks import MEMORY_BUDGET, integer, one_of, real
 from hexaleg.config import from_mapping
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.dynamics.energy import saving
@@ -30,7 +30,7 @@ from hexaleg.errors import InvalidParameterError, SimulationError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
-from hexaleg.simulation import measures, stepping
+from hexaleg.simulation import balance, measures, stepping
 from hexaleg.simulation.controllers import COMPLIANCE, Servo, controls, reference
 from hexaleg.simulation.ground import Ground
 from hexaleg.simulation.model import TIMESTEP, SimModel, build_model, timestep_limit
@@ -57,6 +57,24 @@ STEP_MARGIN = 2
 """Margin on the memory one simulation step costs (:func:`step_bytes`)."""
 
 
+def verdict_meanings() -> dict[str, str]:
+    """What each verdict of :data:`VERDICTS` means (:func:`hexaleg.simulation.measures.verdict`,
+    and the runs that did not reach the end), in words with the bounds, for the pages."""
+    tol, bound = measures.DISTANCE_TOLERANCE, measures.TRACKING_BOUND * 1e3
+    return {
+        "walks": (f"it covered the planned distance per cycle within ±{tol:.0%} and followed "
+                  f"the joints' gait (RMS tracking error at most {bound:.0f} mrad)"),
+        "stalled": f"it stood but covered less than {STALL:.0%} of the planned distance per cycle",
+        "short": f"it covered {STALL:.0%} to {1 - tol:.0%} of the planned distance per cycle",
+        "overran": f"it covered more than {1 + tol:.0%} of the planned distance per cycle",
+        "untracked": (f"it covered the distance, but its joints did not follow the gait (RMS "
+                      f"tracking error over {bound:.0f} mrad)"),
+        "fell": (f"the body fell: its height under {stepping.FALL_HEIGHT:.0%} of the planned "
+                 f"or its roll or pitch beyond ±{np.degrees(stepping.FALL_TILT):.0f}°"),
+        "diverged": "the integration diverged",
+    }
+
+
 @dataclass(frozen=True)
 class Settings:
     """How to simulate (the ``[simulate]`` table of a config file; SI).
@@ -78,6 +96,10 @@ class Settings:
         mu: Friction coefficient, > 0; None: the analysis' (``ContactParams.mu``).
         noslip: MuJoCo's no-slip pass (no creep inside the friction cone).
         incline: Ground slope, rad (uphill along the heading > 0).
+        feedback: Balance feedback (:mod:`hexaleg.simulation.balance`): ``"auto"`` (default)
+            where the gait needs it — fewer than three planned stance feet at some instant, or
+            an open-loop run that fell (both runs are then simulated again with it) —
+            ``"on"`` or ``"off"`` (open loop: the servos track the plan alone).
         compliance: Servo compliance angle θ_c (kp = τ_s/θ_c), rad, > 0.
         kp_scale: Factor on kp, > 0.
         kd_scale: Factor on kd, > 0.
@@ -97,6 +119,7 @@ class Settings:
     mu: float | None = None
     noslip: bool = False
     incline: float = 0.0
+    feedback: str = "auto"
     compliance: float = COMPLIANCE
     kp_scale: float = 1.0
     kd_scale: float = 1.0
@@ -107,6 +130,7 @@ class Settings:
             real("timestep", self.timestep, low=0.0, low_open=True,
                  allowed="a finite timestep > 0 s (e.g. 0.0005), or none for the automatic one")
         self.servo()
+        one_of("feedback", self.feedback, balance.MODES)
         self.ground(ContactParams().mu)
         integer("cycles", self.cycles, low=2, high=10_000)
         integer("evaluate", self.evaluate, low=1, high=self.cycles - 1)
@@ -156,6 +180,9 @@ class Run:
         walk: Distance, drift, tracking, slip, contacts (None when it fell or diverged).
         forces: Foot forces against the analysis' (:func:`measures.foot_forces`), or empty.
         wall: Wall-clock time of the stepping, s.
+        feedback: Whether the balance controller ran (:mod:`hexaleg.simulation.balance`).
+        constrained: Of its updates, the fraction at which a friction cone bound the force
+            correction (0 open loop).
     """
 
     name: str
@@ -168,6 +195,8 @@ class Run:
     walk: measures.Walk | None = None
     forces: dict[str, float] = field(default_factory=dict)
     wall: float = 0.0
+    feedback: bool = False
+    constrained: float = 0.0
 
     @property
     def walks(self) -> bool:
@@ -290,7 +319,7 @@ def automatic_timestep(robot: Robot, motion: Motion, motor: Any, servo: Servo,
 
 
 def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
-                 settings: Settings) -> Run:
+                 settings: Settings, feedback: bool = False) -> Run:
     """Run one model for :attr:`Settings.cycles` cycles and measure the last ones.
 
     Args:
@@ -299,6 +328,8 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
         motion: The gait.
         analysis: Its analysis with the same springs (feedforward torques, predicted forces).
         settings: The settings.
+        feedback: Close the loop on the body (:class:`~hexaleg.simulation.balance.Balance`,
+            every :data:`~hexaleg.simulation.balance.CONTROL_PERIOD`).
     """
     dt = sim.timestep
     steps = round(motion.period / dt)
@@ -306,14 +337,21 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
     ref = reference(motion, analysis.tau_motor, t)
     ctrl = controls(sim.servo, ref, sim.kp, sim.kd)
     qpos0, qvel0 = sim.joints.to_mujoco(motion.q[0], motion.v[0])
+    controller = (balance.Balance(sim, motion, analysis.forces, analysis.tau_motor)
+                  if feedback else None)
     start = time.perf_counter()
-    traj = stepping.run(sim, ctrl, qpos0, qvel0, float(np.mean(motion.q[:, 2])))
+    traj = stepping.run(sim, ctrl, qpos0, qvel0, float(np.mean(motion.q[:, 2])),
+                        None if controller is None else controller.correction,
+                        max(1, round(balance.CONTROL_PERIOD / dt)))
     wall = time.perf_counter() - start
+    bound = controller.constrained / max(controller.updates, 1) if controller else 0.0
     if traj.verdict == "fell":
         return Run(name, sim, traj, traj.verdict,
-                   f"{traj.message}; {measures.fall_cause(sim, motion, traj)}", wall=wall)
+                   f"{traj.message}; {measures.fall_cause(sim, motion, traj, feedback)}",
+                   wall=wall, feedback=feedback, constrained=bound)
     if traj.verdict != "ran":
-        return Run(name, sim, traj, traj.verdict, traj.message, wall=wall)
+        return Run(name, sim, traj, traj.verdict, traj.message, wall=wall, feedback=feedback,
+                   constrained=bound)
     window = slice((settings.cycles - settings.evaluate) * steps, settings.cycles * steps)
     cycles = measures.cycle_energies(sim, traj, window, settings.evaluate, analysis.motor)
     forces = (measures.foot_forces(sim, motion, traj, window, analysis.forces,
@@ -321,7 +359,7 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
     walked = measures.walk(sim, motion, traj, window, settings.evaluate, ref.q)
     verdict, message = measures.verdict(walked, motion.distance)
     return Run(name, sim, traj, verdict, message, cycles, measures.mean_metrics(cycles),
-               walked, forces, wall)
+               walked, forces, wall, feedback, bound)
 
 
 def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None = None,
@@ -378,12 +416,20 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
         settings.timestep if settings.timestep is not None else
         automatic_timestep(robot, motion, prepared.motor, servo, ground), motion.period)
     check_steps(robot, settings, motion.period, dt)
-    runs = {} if baseline is None else {"baseline": baseline.baseline}
+    closed = settings.feedback == "on" or (settings.feedback == "auto" and balance.needed(motion))
+    runs = {} if baseline is None or baseline.baseline.feedback != closed else {
+        "baseline": baseline.baseline}
+    models: dict[str, SimModel] = {}
     for name, s, a in (("springs", springs, analysis), ("baseline", SpringSet(), base)):
         if name in runs:
             continue
-        sim = build_model(robot, motion, prepared.motor, springs=s, servo=servo, ground=ground,
-                          timestep=dt)
-        runs[name] = simulate_run(name, sim, motion, a, settings)
+        models[name] = build_model(robot, motion, prepared.motor, springs=s, servo=servo,
+                                   ground=ground, timestep=dt)
+        runs[name] = simulate_run(name, models[name], motion, a, settings, closed)
+    if settings.feedback == "auto" and not closed and any(r.verdict == "fell"
+                                                          for r in runs.values()):
+        for name, a in (("springs", analysis), ("baseline", base)):  # open loop fell: close it
+            sim = models.get(name) or runs[name].sim
+            runs[name] = simulate_run(name, sim, motion, a, settings, True)
     return Simulation(robot, motion, settings, springs, analysis, base, runs["springs"],
                       runs["baseline"], prepared)

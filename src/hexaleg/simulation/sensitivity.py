@@ -70,7 +70,8 @@ def sensitivity(base: Simulation, variants: Sequence[Variant] = VARIANTS
         ``predicted`` and ``simulated`` electrical saving (fractions; ``simulated`` None unless
         both runs walked), ``predicted_electrical`` and ``predicted_baseline`` (J per cycle, the
         analysis'), ``electrical`` and ``baseline`` (J per cycle, simulated),
-        ``distance_per_cycle`` (m), ``tracking_rms`` (rad).
+        ``distance_per_cycle`` (m), ``tracking_rms`` (rad), ``feedback`` (whether the balance
+        controller ran in both runs, :mod:`hexaleg.simulation.balance`).
     """
     p = base.analysis
     rows = []
@@ -88,6 +89,7 @@ def sensitivity(base: Simulation, variants: Sequence[Variant] = VARIANTS
             row.update(verdict=f"{type(e).__name__}: {e}", simulated=None)
             rows.append(row)
             continue
+        row["feedback"] = s.with_springs.feedback and s.baseline.feedback
         row["verdict"] = "walks" if s.walks else "; ".join(
             f"{r.name} {r.verdict}" for r in (s.with_springs, s.baseline) if not r.walks)
         if s.walks:
@@ -128,7 +130,7 @@ def controller_check(prepared: Prepared, springs: SpringSet, objective: str,
 def sensitivity_row(row: dict[str, Any]) -> dict[str, Any]:
     """A row of :func:`hexaleg.simulation.sensitivity.sensitivity` as quantities."""
     out: dict[str, Any] = {"label": row["label"], "controller": row.get("controller"),
-                           "verdict": row["verdict"],
+                           "feedback": row.get("feedback"), "verdict": row["verdict"],
                            "predicted_saving": quantity(100 * row["predicted"], "%"),
                            "predicted_electrical": quantity(row["predicted_electrical"], "J"),
                            "predicted_baseline": quantity(row["predicted_baseline"], "J")}

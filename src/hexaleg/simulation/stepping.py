@@ -17,18 +17,23 @@ the arrays then end there, never with NaN.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.recorded.base import rotation_from_quaternion
+from hexaleg.simulation.mjcf import foot_site
 from hexaleg.simulation.model import SimModel
 
 FALL_HEIGHT = 0.5
 """A base below this fraction of its planned height has fallen."""
 FALL_TILT = float(np.deg2rad(45.0))
 """rad: a base rolled or pitched beyond this has fallen."""
+Feedback = Callable[[float, np.ndarray, np.ndarray, np.ndarray], np.ndarray]
+"""A controller closing the loop: ``(t, qpos, qvel, feet (n_legs, 3)) → Δcontrols (nj,)``,
+held until its next update (:meth:`hexaleg.simulation.balance.Balance.correction`)."""
 MAX_STEPS = 5_000_000
 """Steps a run may take (a bound: a long run is an error, never a hang)."""
 
@@ -94,7 +99,7 @@ def _fall(qpos: np.ndarray, height: float, t: np.ndarray) -> tuple[int, str]:
 
 
 def run(sim: SimModel, controls: np.ndarray, qpos0: np.ndarray, qvel0: np.ndarray,
-        height: float) -> Trajectory:
+        height: float, feedback: Feedback | None = None, every: int = 1) -> Trajectory:
     """Step ``sim`` from ``(qpos0, qvel0)`` under ``controls``, one row per step.
 
     Args:
@@ -103,9 +108,12 @@ def run(sim: SimModel, controls: np.ndarray, qpos0: np.ndarray, qvel0: np.ndarra
         qpos0: Initial MuJoCo configuration, shape (nq_mj,).
         qvel0: Initial MuJoCo velocity, shape (nv,).
         height: Planned base height, m (for the fall check).
+        feedback: A controller closing the loop (:func:`closed_loop`), or None (open loop).
+        every: Steps between its updates, ≥ 1.
 
     Returns:
-        The trajectory, cut where the run diverged or fell (its verdict says so).
+        The trajectory, cut where the run diverged or fell (its verdict says so); its
+        controls are those applied (the feedback's included).
     """
     import mujoco
 
@@ -119,7 +127,10 @@ def run(sim: SimModel, controls: np.ndarray, qpos0: np.ndarray, qvel0: np.ndarra
     data.qpos[:], data.qvel[:] = qpos0, qvel0
     ctrl = np.zeros((n, m.nu))
     ctrl[:, :nj] = controls
-    if sim.springs.native:
+    if feedback is not None:
+        qpos, qvel, sensors = closed_loop(sim, data, ctrl, feedback, every, height)
+        controls = ctrl[:, :nj]
+    elif sim.springs.native:
         qpos, qvel, sensors = _rollout(m, data, ctrl)
     else:
         qpos, qvel, sensors = _python_loop(sim, data, ctrl)
@@ -183,5 +194,66 @@ def _python_loop(sim: SimModel, data: object, ctrl: np.ndarray
         sensors[k] = data.sensordata
         if data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number:
             qpos[k + 1:], qvel[k + 1:], sensors[k + 1:] = qpos[k], qvel[k], sensors[k]
+            break
+    return qpos, qvel, sensors
+
+
+def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedback, every: int,
+                height: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The same as :func:`_rollout` with ``feedback`` closing the loop every ``every`` steps:
+    at each update the state and the foot sites (``mj_kinematics``) are read, the controls of the
+    next ``every`` steps move by the feedback's change (``ctrl`` is updated in place: the
+    controls applied), and MuJoCo's rollout (or the Python loop, for non-native springs) runs
+    them, its constraint warm start carried over. A base that has fallen below half its height
+    or diverged stops the loop (the rest of the rows repeat its last state, as
+    :func:`_python_loop` leaves a diverged run)."""
+    import mujoco
+    import mujoco.rollout
+
+    m = sim.model
+    assert isinstance(m, mujoco.MjModel) and isinstance(data, mujoco.MjData)
+    n, nj = len(ctrl), sim.robot.nj
+    every = max(1, int(every))
+    spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
+    state = np.zeros(mujoco.mj_stateSize(m, spec))
+    mujoco.mj_getState(m, data, state, spec)
+    qpos, qvel = np.empty((n, m.nq)), np.empty((n, m.nv))
+    sensors = np.empty((n, m.nsensordata))
+    sites = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_SITE, foot_site(leg.name))
+             for leg in sim.robot.legs]
+    roller = mujoco.rollout.Rollout(nthread=0) if hasattr(mujoco.rollout, "Rollout") else None
+    nq, nv = m.nq, m.nv
+    k = 0
+    while k < n:
+        mujoco.mj_setState(m, data, state, spec)
+        mujoco.mj_kinematics(m, data)
+        end = min(n, k + every)
+        ctrl[k:end, :nj] += feedback(k * m.opt.timestep, data.qpos.copy(), data.qvel.copy(),
+                                     data.site_xpos[sites].copy())
+        if sim.springs.native:
+            warm = data.qacc_warmstart.copy()
+            if roller is not None:  # outputs written in place, no checks: the shapes are ours
+                after = np.empty((1, end - k, len(state)))
+                roller.rollout([m], [data], state[None], ctrl[None, k:end], nstep=end - k,
+                               control_spec=int(mujoco.mjtState.mjSTATE_CTRL),
+                               initial_warmstart=warm[None], state=after,
+                               sensordata=sensors[None, k:end], skip_checks=True)
+            else:
+                after, sensors[None, k:end] = mujoco.rollout.rollout(
+                    m, data, state[None], ctrl[None, k:end], initial_warmstart=warm[None])
+            after = after[0]
+            qpos[k] = state[1:1 + nq]
+            qvel[k] = state[1 + nq:1 + nq + nv]
+            qpos[k + 1:end], qvel[k + 1:end] = after[:-1, 1:1 + nq], after[:-1, 1 + nq:1 + nq + nv]
+            state = after[-1].copy()
+        else:
+            q, v, sd = _python_loop(sim, data, ctrl[k:end])
+            qpos[k:end], qvel[k:end], sensors[k:end] = q, v, sd
+            mujoco.mj_getState(m, data, state, spec)
+        k = end
+        z = state[3]
+        if not (np.all(np.isfinite(state)) and z >= FALL_HEIGHT * height) or \
+                data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number:
+            qpos[k:], qvel[k:], sensors[k:] = qpos[k - 1], qvel[k - 1], sensors[k - 1]
             break
     return qpos, qvel, sensors

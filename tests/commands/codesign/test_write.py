@@ -27,3 +27,28 @@ def test_unwritable_directory_is_named(codesigned, tmp_path):
     blocker.write_text("x")
     with pytest.raises(OutputError, match="file"):
         write_result(codesigned, blocker / "out")
+
+
+def test_the_page_leads_with_the_worse_servo_and_draws_each_spring(ruled, tmp_path):
+    """Issue #57: codesign.html showed only the feedforward servo's simulated saving; the
+    position-only one is on the page, the worse first, and each spring to buy is drawn."""
+    data, files = write_result(ruled, tmp_path / "out")
+    rules = data["full_rules"]
+    rows = rules["simulation"]
+    assert [r["controller"] for r in rows] == sorted(
+        (r["controller"] for r in rows),
+        key=lambda c: next(r["simulated_saving"]["value"] for r in rows
+                           if r["controller"] == c))
+    assert {r["controller"] for r in rows} == {"feedforward", "position"}
+    page = (tmp_path / "out" / "codesign.html").read_text()
+    answer = page[page.index('<p class="answer'):]
+    answer = answer[:answer.index("</p>")]
+    shown = [f"{r['label']} {r['simulated_saving']['value']:+.2f} %" for r in rows]
+    assert shown[0] in answer and shown[1] in answer
+    assert answer.index(shown[0]) < answer.index(shown[1])
+    assert rules["proof"]["proven"] is ("Walk with the gait below and fit these springs"
+                                        in answer)
+    svgs = sorted(p.name for p in files if p.suffix == ".svg")
+    assert svgs and len(svgs) == len({m["part"] for m in rules["mounting"]})
+    for name in svgs:
+        assert (tmp_path / "out" / name).read_text() in page

@@ -13,8 +13,8 @@ file.
 from __future__ import annotations
 
 import argparse
-import sys
 
+from hexaleg.commands.options import add_quiet
 from hexaleg.simulation.controllers import SERVOS  # no MuJoCo: it loads with a model
 
 
@@ -37,6 +37,7 @@ def add(sub: argparse._SubParsersAction) -> None:
                         "search's answer alone, the inner program's springs recommended")
     p.add_argument("--out", default="hexaleg-codesign",
                    help="output directory (default: %(default)s)")
+    add_quiet(p)
     p.set_defaults(func=run)
 
 
@@ -54,7 +55,7 @@ where their settings go."""
 def run(args: argparse.Namespace) -> int:
     """Run the co-design and write its files."""
     from hexaleg.commands.codesign.write import write_codesign
-    from hexaleg.commands.options import load_run
+    from hexaleg.commands.options import load_run, progress_of
     from hexaleg.design.codesign.build import codesign_settings
     from hexaleg.errors import ConfigError
 
@@ -69,14 +70,11 @@ def run(args: argparse.Namespace) -> int:
             kwargs[key] = getattr(args, key)
     if args.rules is not None:
         kwargs["rules"] = args.rules
-    result, files = write_codesign(args.out, robot=args.robot, progress=_progress, **kwargs)
+    result, files = write_codesign(args.out, robot=args.robot,
+                                   progress=progress_of(args, "codesign"), **kwargs)
     print(result.summary())
     print(f"wrote {len(files)} files to {args.out}; open {args.out}/codesign.html")
     return 0
-
-
-def _progress(message: str) -> None:
-    print(f"hexaleg codesign: {message}", file=sys.stderr, flush=True)
 
 
 __all__ = ["add", "run"]

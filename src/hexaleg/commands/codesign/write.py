@@ -2,7 +2,8 @@
 
 :func:`write_codesign` computes the co-design (:func:`hexaleg.design.codesign.build.codesign`),
 draws the energy-vs-speed curve (:mod:`hexaleg.outputs.codesign_plots`), renders the
-self-contained page (``templates/codesign.html.j2``, the plot embedded) and writes the JSON
+self-contained page (``templates/codesign.html.j2``, the plot and a drawing of each spring to
+mount embedded, the drawings also as ``spring_*.svg``) and writes the JSON
 (:meth:`hexaleg.design.codesign.result.CodesignResult.to_dict`), which ``hexaleg.load_design``
 and ``hexaleg simulate --springs`` read. When the full spring rules ran, their own
 ``design.json`` (:func:`hexaleg.design.chain.result.design_data` of the design on the chosen
@@ -14,11 +15,14 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import markupsafe
+
 from hexaleg.design.codesign.build import codesign
 from hexaleg.design.codesign.result import CodesignResult
 from hexaleg.outputs import codesign_plots, plots
 from hexaleg.outputs.directory import OutputFolder
 from hexaleg.outputs.html import environment
+from hexaleg.outputs.spring_drawing import drawings
 from hexaleg.quantities import json_text
 
 
@@ -49,10 +53,15 @@ def _write(result: CodesignResult, folder: OutputFolder) -> tuple[dict[str, Any]
     data = result.to_dict()
     png, _ = plots.save(codesign_plots.speed_curve(curves(result), result.speed),
                         folder.path("speed.png"))
+    rules = data.get("full_rules") or {}
+    svgs = drawings(rules.get("mounting") or [])
     page = environment().get_template("codesign.html.j2").render(
-        d=data, images={"speed": plots.data_uri(png)})
+        d=data, images={"speed": plots.data_uri(png)},
+        drawings={k: markupsafe.Markup(v) for k, v in svgs.items()})
     folder.write("codesign.json", json_text(data) + "\n")
     folder.write("codesign.html", page)
+    for name, svg in svgs.items():
+        folder.write(f"{name}.svg", svg)
     if result.rules is not None and not isinstance(result.rules, str):
         folder.write("design.json", result.rules.to_json() + "\n")
     return data, folder.publish()

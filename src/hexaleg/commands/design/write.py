@@ -10,8 +10,8 @@ program) and the report must stay fast; the report links to it when it sits besi
 
 from __future__ import annotations
 
+import functools
 import math
-import sys
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -21,14 +21,19 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from hexaleg.checks import typed
+from hexaleg.commands.options import say
 from hexaleg.design.chain.chain import DesignChain
 from hexaleg.design.chain.config import DesignConfig
-from hexaleg.design.chain.result import DesignResult
+from hexaleg.design.chain.result import DesignResult, mounting_data
 from hexaleg.design.tolerance import TolerantSprings
 from hexaleg.outputs import design_plots, plots
 from hexaleg.outputs.directory import OutputFolder
 from hexaleg.outputs.html import render_design_html
+from hexaleg.outputs.spring_drawing import drawings
 from hexaleg.scenario.run_warnings import gait_defaults, run_warnings
+
+PROGRESS = functools.partial(say, "design")
+"""The command's status lines on stderr (``hexaleg design: …``)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -38,10 +43,6 @@ class WrittenDesign:
     result: DesignResult
     data: dict[str, Any]
     files: tuple[Path, ...]
-
-
-def _stderr_progress(message: str) -> None:
-    print(f"hexaleg design: {message}", file=sys.stderr, flush=True)
 
 
 def figures(r: DesignResult) -> dict[str, Figure]:
@@ -97,7 +98,7 @@ def design_warnings(r: DesignResult) -> tuple[str, ...]:
     from hexaleg.motion.legged import gait as make_gait
 
     cfg = r.config
-    run = cfg.design.run(cfg.robot, cfg.contact)
+    run = cfg.run()
     robot = run.load()
     if r.motion is not None:  # the logged cycle the design was made on, as the chain read it
         return run_warnings(robot, r.motion, run.actuator())
@@ -107,7 +108,8 @@ def design_warnings(r: DesignResult) -> tuple[str, ...]:
 
 @typed
 def write_design(out: str | Path = "hexaleg-design", config: DesignConfig | None = None, *,
-                 progress: Callable[[str], None] | None = _stderr_progress) -> WrittenDesign:
+                 progress: Callable[[str], None] | None = PROGRESS
+                 ) -> WrittenDesign:
     """Compute the design and write ``design.json``, ``design.html`` and the plots into ``out``.
 
     Args:
@@ -134,14 +136,17 @@ def write_design(out: str | Path = "hexaleg-design", config: DesignConfig | None
             images[name] = plots.data_uri(png)
             names += [p.name for p in written]
         cfg = r.config
+        svgs = drawings(mounting_data(r))
         extra = {"warnings": list(design_warnings(r)),
-                 "gait_defaults": gait_defaults(
-                     cfg.design.run(cfg.robot, cfg.contact).description(),
-                     r.gait if cfg.motion is None else None),
-                 "files": [*sorted(names), "design.html", "design.json"]}
+                 "gait_defaults": gait_defaults(cfg.run().description(),
+                                                r.gait if cfg.motion is None else None),
+                 "files": sorted([*names, *(f"{n}.svg" for n in svgs), "design.html",
+                                  "design.json"])}
         data = r.to_dict(**extra)
         folder.write("design.json", r.to_json(**extra))
-        folder.write("design.html", render_design_html(data, images))
+        for n, svg in svgs.items():
+            folder.write(f"{n}.svg", svg)
+        folder.write("design.html", render_design_html(data, images, svgs))
         files = folder.publish()
     if progress:
         progress(f"wrote {out / 'design.html'}")

@@ -4,23 +4,25 @@ experiment at every stiffness of the grid)."""
 
 from __future__ import annotations
 
-import sys
+import functools
 import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
+
+from hexaleg.commands.options import say
 
 DEFAULT_OUT = "hexaleg-paper"
 """The command's output folder, named like every other command's (``hexaleg-<command>``)."""
 
 
-def stderr_progress(message: str) -> None:
-    """Print one status line of ``hexaleg paper`` to stderr (as ``hexaleg design`` does)."""
-    print(f"hexaleg paper: {message}", file=sys.stderr, flush=True)
+PROGRESS = functools.partial(say, "paper")
+"""The command's status lines on stderr (``hexaleg paper: …``)."""
 
 
 def run_paper(out: str | Path = DEFAULT_OUT, *, n: int = 8192, simulation: bool = True,
               grid: Sequence[float] | None = None,
-              progress: Callable[[str], None] | None = stderr_progress) -> int:
+              progress: Callable[[str], None] | None = PROGRESS
+              ) -> int:
     """Write the paper report (:func:`hexaleg.commands.paper.write.write_paper`) into ``out``
     and print its one-line summary and the files on stdout.
 

@@ -8,15 +8,16 @@ writes the JSON content next to it.
 
 from __future__ import annotations
 
+import functools
 import math
 import os
-import sys
 from collections.abc import Callable
 from pathlib import Path
 
 from matplotlib.figure import Figure
 
 from hexaleg.checks import typed
+from hexaleg.commands.options import say
 from hexaleg.outputs import plots
 from hexaleg.outputs.directory import OutputFolder
 from hexaleg.outputs.html import render_html
@@ -36,8 +37,8 @@ NMM_PER_DEG = 1000 * math.pi / 180
 """N·mm/deg per N·m/rad: the page gives spring rates in the spring makers' unit."""
 
 
-def _stderr_progress(message: str) -> None:
-    print(f"hexaleg report: {message}", file=sys.stderr, flush=True)
+PROGRESS = functools.partial(say, "report")
+"""The command's status lines on stderr (``hexaleg report: …``)."""
 
 
 def _figures(r: Report) -> dict[str, Figure]:
@@ -95,7 +96,8 @@ def _relative_link(data: dict, out: Path) -> dict:
 @typed
 def write_report(out: str | Path = "hexaleg-report", config: ReportConfig | None = None, *,
                  robot: Robot | None = None, svg: bool = False,
-                 progress: Callable[[str], None] | None = _stderr_progress) -> Report:
+                 progress: Callable[[str], None] | None = PROGRESS
+                 ) -> Report:
     """Compute the report and write ``report.html``, ``report.json`` and the plots into ``out``.
 
     Args:

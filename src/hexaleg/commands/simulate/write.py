@@ -22,6 +22,7 @@ from hexaleg.design.chain.design_file import design_table
 from hexaleg.errors import OutputError
 from hexaleg.outputs.html import render_simulate_html
 from hexaleg.quantities import comparison, file_data, json_text, quantity
+from hexaleg.simulation import balance
 from hexaleg.simulation.run import Run, Simulation
 from hexaleg.simulation.sensitivity import sensitivity_row
 
@@ -32,7 +33,9 @@ METRICS: tuple[str, ...] = ("electrical", "joule")
 def _run_data(r: Run) -> dict[str, Any]:
     """One run's verdict and measures."""
     out: dict[str, Any] = {"verdict": r.verdict, "message": r.message,
-                           "realtime_factor": quantity(r.realtime_factor, "1")}
+                           "realtime_factor": quantity(r.realtime_factor, "1"),
+                           "feedback": r.feedback,
+                           "feedback_constrained": quantity(100 * r.constrained, "%")}
     if r.walk is None:
         return out
     w = r.walk
@@ -92,6 +95,7 @@ def simulation_data(s: Simulation, *, design: str = "", notes: tuple[str, ...] =
             "servo": {"kp": quantity(sim.kp, "N·m/rad"), "kd": quantity(sim.kd, "N·m·s/rad"),
                       "back_emf_damping": quantity(sim.damping, "N·m·s/rad"),
                       "stall_torque": quantity(sim.stall, "N·m")}},
+        "feedback": feedback_data(s),
         "runs": {"springs": _run_data(s.with_springs), "baseline": _run_data(s.baseline)},
         "warnings": list(warnings), "gait_defaults": gait_defaults,
         "notes": [*notes, *sim.notes],
@@ -108,6 +112,31 @@ def simulation_data(s: Simulation, *, design: str = "", notes: tuple[str, ...] =
             **{f"{m}_{which}": quantity(100 * (simulated[m][i] / predicted[m][i] - 1), "%")
                for m in METRICS for i, which in ((0, "springs"), (1, "baseline"))}}
     return file_data(data)
+
+
+def feedback_data(s: Simulation) -> dict[str, Any]:
+    """Which controller closed the loop on the body: the setting (``[simulate] feedback``),
+    whether the balance controller ran in each run, its gains, and a sentence for the pages."""
+    ran = {r.name: r.feedback for r in (s.with_springs, s.baseline)}
+    setting = s.settings.feedback
+    if not any(ran.values()):
+        text = ("off: open loop, the servos track the plan alone"
+                + (" (auto: the gait stands on three or more feet and did not fall)"
+                   if setting == "auto" else ""))
+    else:
+        g = balance.size_gains(s.motion)
+        why = ("" if setting != "auto" else " (auto: the gait stands on fewer than three feet"
+               " at times)" if balance.needed(s.motion) else " (auto: open loop fell)")
+        text = (f"on{why}: the body's pose and velocity (MuJoCo's, a perfect estimator) fed "
+                f"back at {1 / balance.CONTROL_PERIOD:.0f} Hz, ω {g.omega:.3g} rad/s, "
+                "stance forces by a QP within the friction cones and torque limits, swing feet "
+                "aimed at their planned world positions, through the servos' references")
+    out: dict[str, Any] = {"setting": setting, "runs": ran, "text": text}
+    if any(ran.values()):
+        g = balance.size_gains(s.motion)
+        out["gains"] = {"omega": quantity(g.omega, "rad/s"), "zeta": quantity(g.zeta, "1"),
+                        "swing": quantity(g.swing, "1"), "period": quantity(g.period, "s")}
+    return out
 
 
 def _realtime(s: Simulation) -> float:
@@ -130,7 +159,8 @@ def _pct(q: dict[str, Any]) -> str:
 def page(data: dict[str, Any]) -> str:
     """``simulate.md``: the simulation's tables in Markdown."""
     lines = [f"# Forward simulation: {data['robot']}, {data['controller']} servo",
-             "", f"Verdict: **{data['verdict']}**. Springs: {data['design']}.", ""]
+             "", f"Verdict: **{data['verdict']}**. Springs: {data['design']}.", "",
+             f"Balance feedback: {data['feedback']['text']}.", ""]
     if "simulated" in data:
         lines += ["| per cycle | predicted | simulated |", "|---|---|---|"]
         for m in METRICS:
@@ -196,7 +226,8 @@ def write_simulation(out: str | Path, data: dict[str, Any]) -> tuple[Path, Path,
 def summary(data: dict[str, Any]) -> str:
     """One paragraph for the terminal."""
     p = data["predicted"]
-    text = (f"{data['robot']} ({data['controller']} servo): predicted saving "
+    loop = "" if not any(data["feedback"]["runs"].values()) else ", balance feedback"
+    text = (f"{data['robot']} ({data['controller']} servo{loop}): predicted saving "
             f"{_pct(p['saving'])} (electrical {_v(p['electrical']['with_springs'], 1, 4)} J vs "
             f"{_v(p['electrical']['baseline'], 1, 4)} J per cycle)")
     if "simulated" not in data:

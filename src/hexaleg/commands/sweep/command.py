@@ -11,7 +11,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 
-from hexaleg.commands.options import add_motion_option
+from hexaleg.commands.options import add_motion_option, add_quiet
 from hexaleg.errors import InvalidParameterError
 from hexaleg.robot.registry import ROBOT_HELP
 from hexaleg.sweep.optimal import OptimalSpec
@@ -45,6 +45,7 @@ def add(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--period", help="gait period, s (values as above)")
     p.add_argument("--samples", type=int, help="samples per gait cycle")
     p.add_argument("--metric", help="metric to rank by (default: electrical)")
+    add_quiet(p)
     add_motion_option(p, run, None)
 
 
@@ -79,7 +80,7 @@ def run(args: argparse.Namespace) -> int:
         load_run(spec.run.robot, None, args.motion, args.cycle, args)  # the log's quality
     executor = args.executor or ("dask" if args.scheduler else "process")
     result = run_sweep(spec, args.out, executor=executor, workers=args.workers,
-                       scheduler=args.scheduler, progress=True)
+                       scheduler=args.scheduler, progress=not args.quiet)
     print(summary(result.table, spec.metric))
     print(f"{result.computed} points computed, {result.reused} reused; results in "
           f"{result.directory} (part-*.parquet, one table: pandas.read_parquet(DIR))")

@@ -157,7 +157,8 @@ def candidate(optimum: OptimalSprings, prepared: Prepared, run: RunSpec, gait: G
               outer: Mapping[str, float], params: DesignParams) -> Candidate:
     """Parts, savings net of the springs' mass and each group's share, of one optimum."""
     options = PartOptions(materials=params.materials, safety_factor=params.safety_factor,
-                          arbor_diameter=params.arbor_diameter, leg_length=params.leg_length)
+                          arbor_diameter=params.arbor_diameter, leg_length=params.leg_length,
+                          life_cycles=params.life_cycles)
     parts = spring_parts(optimum, prepared, outer, options,
                          arbor=None if params.arbor_diameter > 0 else arbors(run, optimum.groups))
     a = optimum.analysis

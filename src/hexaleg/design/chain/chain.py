@@ -21,12 +21,15 @@ DesignResult`. The stages, in order (:data:`STAGES`; the work of each is in
    error within ``[design] stop_tolerance`` (:func:`hexaleg.design.tolerance.tolerant_springs`);
 5. ``envelope``: each part's stress over its joints' whole range, poses and a turn, the hard
    stop where it would yield, and its fatigue safety at ``[design] life_cycles``;
-6. ``maps``: the recommendation frozen over period × stride, payload × μ and slope × gait
+6. ``fold``: the fold into the sphere and back with the recommendation and without
+   (:mod:`hexaleg.design.fold`): energy, torque, the walking after which the springs pay for a
+   fold, the ``[mission]`` saving; a robot without both poses has none;
+7. ``maps``: the recommendation frozen over period × stride, payload × μ and slope × gait
    pattern, their worst case;
-7. ``robust``: the recommended geometry's magnitudes for a box of conditions, with its parts
-   (neither 6 nor 7 is one of the spring rules: ``[design] robustness = false`` leaves both
+8. ``robust``: the recommended geometry's magnitudes for a box of conditions, with its parts
+   (neither 7 nor 8 is one of the spring rules: ``[design] robustness = false`` leaves both
    out, as ``hexaleg codesign`` does on the gait it chose);
-8. ``proof``: the recommendation simulated under each controller a servo robot runs
+9. ``proof``: the recommendation simulated under each controller a servo robot runs
    (:func:`hexaleg.simulation.sensitivity.controller_check`).
 
 Where no design saves energy net of its springs' mass the result says so (``pays`` false and
@@ -57,6 +60,7 @@ from hexaleg.design.chain.stages import (
     family_candidates,
     nominal,
     pareto_front,
+    per_joint_evidence,
     rank,
     robust_design,
     robustness_maps,
@@ -64,6 +68,7 @@ from hexaleg.design.chain.stages import (
 )
 from hexaleg.design.envelope import PartEnvelope
 from hexaleg.design.fatigue import FatigueCheck
+from hexaleg.design.fold import Fold, fold
 from hexaleg.design.robustness_map import RobustnessMap
 from hexaleg.design.spring_parts import SpringPart
 from hexaleg.design.tolerance import TolerantSprings
@@ -74,8 +79,8 @@ from hexaleg.robot.mirror import mirror
 from hexaleg.scenario.scenario import Scenario
 from hexaleg.simulation.sensitivity import controller_check
 
-STAGES: tuple[str, ...] = ("candidates", "pareto", "ranking", "tolerance", "envelope", "maps",
-                           "robust", "proof")
+STAGES: tuple[str, ...] = ("candidates", "pareto", "ranking", "tolerance", "envelope", "fold",
+                           "maps", "robust", "proof")
 """The stages of :class:`DesignChain`, in order (module docstring)."""
 
 
@@ -222,9 +227,27 @@ class DesignChain:
                                tuple[tuple[SpringPart, FatigueCheck], ...], tuple[str, ...]]:
             env, fatigue, notes = envelope_and_fatigue(self.nominal(), self.recommended())
             self._step("envelope", f"{len(env)} parts checked over their whole envelope and "
-                       f"for fatigue at {self.config.design.life_cycles:.3g} cycles")
+                       f"for fatigue at {self.config.design.life_cycles:,.0f} cycles")
             return env, fatigue, tuple(notes)
         return self._once("envelope", compute)
+
+    def fold(self) -> Fold | None:
+        """The fold into the sphere and back with the recommendation and without; None for a
+        robot without a stand and a sphere pose, or a logged motion that does not travel."""
+        def compute() -> Fold | None:
+            nom, rec = self.nominal(), self.recommended()
+            a = rec.optimum.analysis
+            distance = nom.prepared.motion.distance
+            if distance <= 0:
+                return None
+            walking = (float(a.metrics["total"]["electrical"]) / distance,
+                       float(a.baseline["total"]["electrical"]) / distance)
+            result = fold(nom.robot, nom.prepared.motor, nom.prepared.contact,
+                          rec.optimum.springs, walking, self.config.mission.metres_per_fold)
+            self._step("fold", "no fold: the robot has no stand and sphere poses"
+                       if result is None else result.line())
+            return result
+        return self._once("fold", compute)
 
     def maps(self) -> tuple[tuple[RobustnessMap, ...], dict[str, tuple[float, str]]]:
         """The recommendation over the robustness maps, and each metric's worst case."""
@@ -303,6 +326,7 @@ class DesignChain:
         maps, worst = self.maps() if "maps" in w else ((), {})
         robust, robust_notes = self._robust() if "robust" in w else (None, ())
         simulation, unsimulated = self.proof() if "proof" in w else ((), ())
+        folded = self.fold() if "fold" in w else None
         stalled = [] if robust is None or not robust.design.solver.get("stopped") else [
             f"robust design: its bundle method's {robust.design.solver['stopped']} (predicted "
             f"decrease left {robust.design.solver['gap']:.3g} of the baseline's energy)"]
@@ -321,7 +345,9 @@ class DesignChain:
                   f"ranked by the predicted {d.metric} saving net of the springs' mass (not "
                   "simulated)")
         residual = nom.prepared.residual.line() if nom.prepared.residual is not None else None
-        notes = [*flagged, *self._left_out, *self._untolerant, *pays, *logged,
+        evidence = per_joint_evidence(nom, rec) if "ranking" in w else None
+        notes = [*flagged, *((evidence,) if evidence else ()), *self._left_out,
+                 *self._untolerant, *pays, *logged,
                  *((residual,) if residual else ()), *ranking_notes,
                  *envelope_notes, *robust_notes, *stalled, *unsimulated, *nom.notes,
                  *nom.robot.notes,
@@ -338,7 +364,7 @@ class DesignChain:
             worst=worst, robust=robust, ranking=rows, tolerance=tol, envelope=env,
             fatigue=fatigue, simulation=simulation, timings=dict(self.timings),
             notes=tuple(notes), plausibility=plausible, motion=nom.motion, stages=w,
-            whole_draw=_whole_draw(nom, rec))
+            whole_draw=_whole_draw(nom, rec), fold=folded)
 
 
 def _whole_draw(nom: Nominal, rec: Candidate) -> WholeDraw | None:

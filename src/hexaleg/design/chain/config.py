@@ -1,17 +1,20 @@
 """The configuration of ``hexaleg design``: the ``[design]`` table and the whole TOML document.
 
 :class:`DesignConfig` reads a file with optional ``[gait]`` (keys over the robot's own gait, as
-``hexaleg report`` does), ``[contact]`` and ``[design]`` tables; the tables other commands read
-from the same file (:data:`hexaleg.scenario.scenario.TABLES`) are checked by their owners
-(every command checks them all) and not used here — the actuator is the robot's own
-(``RunSpec.actuator()``) unless ``[design] motor`` names a catalogue servo. Every key of
-``[design]`` is a field of :class:`DesignParams`.
+``hexaleg report`` does), ``[contact]``, ``[motor]``, ``[design]`` and ``[mission]`` tables; the
+tables other commands read from the same file (:data:`hexaleg.scenario.scenario.TABLES`) are
+checked by their owners (every command checks them all) and not used here. The actuator has one
+home, ``[motor]`` (a catalogue ``base`` with overrides, read as every command reads it); without
+it the robot's own (``RunSpec.actuator()``). ``[design] motor`` (a catalogue name) is deprecated:
+it still works, with a warning saying where it went, and is refused beside ``[motor]``. Every key
+of ``[design]`` is a field of :class:`DesignParams`.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -20,21 +23,24 @@ from hexaleg.checks import integer, is_real, named_arguments, real
 from hexaleg.config import check_tables, from_mapping
 from hexaleg.design.evaluator import DEFAULT_METRIC, RunSpec
 from hexaleg.design.families import FAMILIES, family
+from hexaleg.design.fold import Mission
 from hexaleg.design.robust import MODES
 from hexaleg.design.spring_materials import MATERIALS, material
 from hexaleg.design.torsion_spring import SAFETY_FACTOR
 from hexaleg.dynamics.contact import ContactParams
-from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.motion.limits import MIN_SAMPLES
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.patterns import PATTERNS
 from hexaleg.motion.scaling import robot_gait
 from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.catalogue import motor_from_mapping
+from hexaleg.robot.motor import Motor
 from hexaleg.scenario.scenario import TABLES as RUN_TABLES
 from hexaleg.scenario.scenario import Scenario
 from hexaleg.simulation.controllers import BOTH, SERVOS
 
-TABLES: tuple[str, ...] = ("gait", "contact", "design")
+TABLES: tuple[str, ...] = ("gait", "contact", "design", "mission")
 """Tables ``hexaleg design`` reads; a config file may hold the other commands' too
 (:data:`hexaleg.scenario.scenario.TABLES`), each checked by its owner."""
 GROUPINGS: tuple[str, ...] = ("class", "mirrored", "joint")
@@ -68,7 +74,8 @@ class DesignParams:
             spring, which is flagged).
         metric: The metric the designs are ranked by, one of :data:`METRICS` (default the
             energy the servos draw).
-        motor: A catalogue servo on every joint instead of the robot's own actuator.
+        motor: Deprecated (a catalogue servo on every joint): the actuator's home is the file's
+            ``[motor]`` table (:attr:`DesignConfig.actuator`).
         samples: Samples per gait cycle of the design and the maps.
         materials: Wire materials (:data:`~hexaleg.design.spring_materials.MATERIALS`).
         safety_factor: Design factor on the wire's bending yield strength, ≥ 1.
@@ -172,6 +179,9 @@ class DesignParams:
             raise UnknownNameError("design.metric", self.metric, METRICS)
         if self.motor is not None:
             RunSpec(motor=self.motor)  # UnknownNameError listing the catalogue
+            warnings.warn(f"[design] motor = {self.motor!r} is deprecated: the actuator's one "
+                          f"home is [motor] (write [motor] base = {self.motor!r})",
+                          DeprecationWarning, stacklevel=2)
         integer("design.samples", self.samples, low=MIN_SAMPLES)
         if isinstance(self.materials, str) or not self.materials:
             raise InvalidParameterError("design.materials", self.materials,
@@ -238,9 +248,20 @@ class DesignParams:
         """:attr:`max_deflection` as a number, or None for no bound."""
         return self.max_deflection if isinstance(self.max_deflection, float) else None
 
-    def run(self, robot: str, contact: ContactParams) -> RunSpec:
-        """The run of the design: the robot, its actuator (or :attr:`motor`), Joule forces."""
-        return RunSpec(robot=robot, motor=self.motor, objective="joule", contact=contact)
+    def run(self, robot: str, contact: ContactParams, actuator: Motor | None = None
+            ) -> RunSpec:
+        """The run of the design: the robot, its actuator (``actuator``, the file's ``[motor]``;
+        else the deprecated :attr:`motor`; else the robot's own), Joule forces."""
+        return RunSpec(robot=robot, motor=actuator if actuator is not None else self.motor,
+                       objective="joule", contact=contact)
+
+
+def _one_home(design: DesignParams, motor: Any, where: str) -> None:
+    """Refuse the actuator in two homes: a ``[motor]`` table beside the deprecated ``[design]
+    motor``."""
+    if motor and design.motor is not None:
+        raise ConfigError(f"{where}: [design] motor = {design.motor!r} beside a [motor] table: "
+                          "the actuator has one home, [motor]; remove [design] motor")
 
 
 @dataclass(frozen=True)
@@ -258,6 +279,9 @@ class DesignConfig:
             :func:`hexaleg.scenario.logged.logged_motion`).
         logged: The log's cycle as the run already read it (:attr:`Scenario.motion
             <hexaleg.scenario.scenario.Scenario.motion>`), or None: the chain reads ``motion``.
+        mission: The ``[mission]`` table (:class:`~hexaleg.design.fold.Mission`): metres
+            walked per fold, which the fold's mission saving weighs.
+        actuator: The file's ``[motor]`` on every joint, or None: the robot's own.
     """
 
     robot: str = "hexaleg"
@@ -267,6 +291,8 @@ class DesignConfig:
     motion: str | None = None
     cycle: str = "auto"
     logged: Motion | None = field(default=None, compare=False, repr=False)
+    mission: Mission = field(default_factory=Mission)
+    actuator: Motor | None = None
 
     @classmethod
     def from_scenario(cls, scenario: Scenario, controller: str | None = None, *,
@@ -288,8 +314,13 @@ class DesignConfig:
                 "remove the key or the --motion option")
         if design is None:
             design = from_mapping(DesignParams, table, f"{s.where} [design]")
+        motor = s.table("motor")
+        _one_home(design, motor, s.where)
+        actuator = s.actuator if motor and isinstance(s.actuator, Motor) else None
         cfg = cls(robot=s.robot, gait=dataclasses.replace(s.gait, samples=design.samples),
-                  contact=s.contact, design=design, motion=s.log, cycle=s.cycle, logged=s.motion)
+                  contact=s.contact, design=design, motion=s.log, cycle=s.cycle, logged=s.motion,
+                  mission=from_mapping(Mission, s.table("mission"), f"{s.where} [mission]"),
+                  actuator=actuator)
         return cfg.with_controller(controller) if controller else cfg
 
     @classmethod
@@ -308,8 +339,17 @@ class DesignConfig:
                                                                 f"{where} [gait]")
         contact = from_mapping(ContactParams, data.get("contact", {}), f"{where} [contact]")
         design = from_mapping(DesignParams, data.get("design", {}), f"{where} [design]")
+        motor = data.get("motor")
+        _one_home(design, motor, where)
         return cls(robot=robot, gait=dataclasses.replace(gait, samples=design.samples),
-                   contact=contact, design=design)
+                   contact=contact, design=design,
+                   mission=from_mapping(Mission, data.get("mission", {}), f"{where} [mission]"),
+                   actuator=motor_from_mapping(motor, f"{where} [motor]") if motor else None)
+
+    def run(self) -> RunSpec:
+        """The design's run: the robot, its actuator (:attr:`actuator`, else the deprecated
+        ``[design] motor``, else the robot's own), the contact, Joule-optimal forces."""
+        return self.design.run(self.robot, self.contact, self.actuator)
 
     def with_controller(self, controller: str) -> DesignConfig:
         """The same configuration with ``[design] controller`` replaced (``--controller``).

@@ -43,6 +43,9 @@ class Simulated:
         verdict: ``"walks"`` or what happened.
         net: The simulated saving net of the springs' mass (module docstring), fraction; −∞ when
             a run did not walk.
+        feedback: Whether the balance controller ran (``[simulate] feedback``'s default,
+            ``"auto"``: where the gait stands on fewer than three feet or open loop fell;
+            :mod:`hexaleg.simulation.balance`).
     """
 
     candidate: Candidate
@@ -51,6 +54,7 @@ class Simulated:
     simulated: float | None
     verdict: str
     net: float
+    feedback: bool = False
 
     @property
     def flagged(self) -> bool:
@@ -104,11 +108,13 @@ def _under(prepared: Prepared, candidates: Sequence[Candidate], controller: str,
         if not s.walks:
             verdict = "; ".join(f"{r.name} {r.verdict}" for r in (s.with_springs, s.baseline)
                                 if not r.walks)
-            out[id(c)] = Simulated(c, controller, predicted, None, verdict, -np.inf)
+            out[id(c)] = Simulated(c, controller, predicted, None, verdict, -np.inf,
+                                   s.with_springs.feedback)
             continue
         saved = float(s.simulated(metric)[2])
         penalty = float(c.net[metric]) - predicted
-        out[id(c)] = Simulated(c, controller, predicted, saved, "walks", saved + penalty)
+        out[id(c)] = Simulated(c, controller, predicted, saved, "walks", saved + penalty,
+                               s.with_springs.feedback)
     return list(out.values())
 
 

@@ -8,7 +8,8 @@
 — the one reader — and so ``hexaleg simulate --springs`` and ``hexaleg report --design`` read
 back. ``simulation`` holds the recommendation's forward simulation, one row per controller, as
 ``hexaleg simulate --sensitivity`` writes its rows
-(:func:`hexaleg.simulation.sensitivity.sensitivity_row`).
+(:func:`hexaleg.simulation.sensitivity.sensitivity_row`), under the servo the robot runs and the
+worse first; ``proof`` says whether they back the answer, and if not why.
 """
 
 from __future__ import annotations
@@ -27,7 +28,10 @@ from hexaleg.design.chain.ranking import Simulated
 from hexaleg.design.chain.stages import RobustResult
 from hexaleg.design.envelope import PartEnvelope
 from hexaleg.design.evaluator import SAVING_METRICS
+from hexaleg.design.families import family
 from hexaleg.design.fatigue import FatigueCheck, cycles_per_year
+from hexaleg.design.fold import Fold
+from hexaleg.design.mounting import mountings
 from hexaleg.design.robustness_map import RobustnessMap
 from hexaleg.design.spring_json import spring_entry
 from hexaleg.design.spring_parts import SpringPart
@@ -41,6 +45,8 @@ from hexaleg.dynamics.prepare import Analysis
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.trajectory import Motion
 from hexaleg.quantities import file_data, json_text, quantity
+from hexaleg.simulation.controllers import controllers_of
+from hexaleg.simulation.run import verdict_meanings
 from hexaleg.simulation.sensitivity import sensitivity_row
 
 MIN_SAVING = 1e-4
@@ -85,6 +91,8 @@ class DesignResult:
         whole_draw: The recommendation's whole draw on the nominal gait — motors, servos at
             rest, electronics (:mod:`hexaleg.dynamics.draw`) — or None for a motion that is
             not one periodic cycle.
+        fold: The fold into the sphere and back with the recommendation and without
+            (:mod:`hexaleg.design.fold`), or None (no such poses, or the stage left out).
     """
 
     config: DesignConfig
@@ -112,6 +120,7 @@ class DesignResult:
     motion: Motion | None = None
     stages: tuple[str, ...] = ()
     whole_draw: WholeDraw | None = None
+    fold: Fold | None = None
 
     def to_dict(self, **extra: Any) -> dict[str, Any]:
         """What ``design.json`` holds (:func:`design_data`), with ``extra`` keys of the command
@@ -132,10 +141,42 @@ class DesignResult:
         """Whether the recommended springs save energy net of their own mass."""
         return bool(self.recommended.net[self.config.design.metric] > MIN_SAVING)
 
+    def simulated(self) -> list[dict[str, Any]]:
+        """The recommendation's simulation rows under the servo the robot runs (``[design]
+        controller``: both controllers by default), the worse first: a run that did not walk,
+        then the lower simulated saving."""
+        runs = controllers_of(self.config.design.controller)
+        rows = [row for row in self.simulation if row.get("controller") in runs]
+        return sorted(rows, key=lambda row: (row["simulated"] is not None,
+                                             row["simulated"] or 0.0))
+
+    @property
+    def unproven(self) -> str:
+        """Why no simulation backs the recommendation under the servo the robot runs, or ""
+        when one does: the recommendation and the robot without springs both walk
+        (:func:`hexaleg.simulation.measures.verdict`) under each controller of ``[design]
+        controller``, and the simulated saving is positive under each."""
+        runs = controllers_of(self.config.design.controller)
+        rows = self.simulated()
+        if not rows:
+            return ("not simulated" + (f" under {' and '.join(runs)}"
+                                       if self.simulation else "")
+                    + ("" if "proof" in self.stages else " (the proof stage did not run)"))
+        for row in rows:
+            if row["simulated"] is None:
+                return f"under {row['label']} the runs did not walk ({row['verdict']})"
+            if row["simulated"] <= 0:
+                return (f"under {row['label']} the simulated saving is "
+                        f"{100 * row['simulated']:+.2f} %")
+        return ""
+
     def summary(self) -> str:
-        """One line: the recommendation and its saving."""
+        """One line: the recommendation and its saving; "unproven" and why where no simulation
+        under the servo the robot runs backs it (:attr:`unproven`)."""
         r, m = self.recommended, self.config.design.metric
-        head = "fit" if self.pays else "no springs pay here; the best would be"
+        why = self.unproven
+        head = ("no springs pay here; the best would be" if not self.pays else
+                f"unproven ({why}): the analysis would fit" if why else "fit")
         line = (f"{head} {r.label} springs on {', '.join(r.optimum.groups)}: {m} saving "
                 f"{100 * r.row[f'saving.{m}']:+.2f} % ({100 * r.net[m]:+.2f} % net "
                 f"of {1e3 * r.spring_mass:.1f} g of springs); " + (
@@ -153,7 +194,7 @@ class DesignResult:
             line += "; NOT SAFE over the joint's envelope: " + ", ".join(unsafe)
         simulated = [f"{row['label']} {100 * row['simulated']:+.2f} %"
                      if row["simulated"] is not None else f"{row['label']}: {row['verdict']}"
-                     for row in self.simulation]
+                     for row in self.simulated()]
         if simulated:
             line += (f"; simulated electrical saving {', '.join(simulated)} (predicted "
                      f"{100 * self.simulation[0]['predicted']:+.2f} %)")
@@ -219,7 +260,8 @@ def candidate_data(c: Candidate, outer: dict[str, tuple[float, str]]) -> dict[st
 
 def ranking_data(r: Simulated) -> dict[str, Any]:
     """One ranked design simulated under one of the design's controllers."""
-    return {"label": r.candidate.label, "controller": r.controller, "verdict": r.verdict,
+    return {"label": r.candidate.label, "controller": r.controller, "feedback": r.feedback,
+            "verdict": r.verdict,
             "predicted_saving": quantity(100 * r.predicted, "%"),
             "simulated_saving": (None if r.simulated is None
                                  else quantity(100 * r.simulated, "%")),
@@ -304,6 +346,17 @@ def planned_friction_use(a: Analysis) -> float:
     return float(usage.max()) if usage.size else 0.0
 
 
+def mounting_data(r: DesignResult) -> list[dict[str, Any]]:
+    """``mounting``: each recommended spring on each of its joints, every angle from the joint's
+    zero and from its centre of motion, with the hard stop its envelope needs
+    (:func:`hexaleg.design.mounting.mountings`): the angles the page draws."""
+    c = r.recommended
+    a = c.optimum.analysis
+    joints = {j for p in c.parts for j in p.joints}
+    return [m.table() for m in mountings(c.parts, a.q, {j: a.robot.column(j) for j in joints},
+                                         envelope=r.envelope, mirrored=c.optimum.mirrored)]
+
+
 def design_data(r: DesignResult) -> dict[str, Any]:
     """The content of ``design.json`` (module docstring)."""
     d = r.config.design
@@ -331,6 +384,7 @@ def design_data(r: DesignResult) -> dict[str, Any]:
         "whole_draw": None if r.whole_draw is None else r.whole_draw.as_dict(),
         "friction_use": quantity(planned_friction_use(r.recommended.optimum.analysis), "1"),
         "recommended": candidate_data(r.recommended, r.outer),
+        "mounting": mounting_data(r),
         "candidates": [candidate_data(c, r.outer) for c in r.candidates],
         "pareto": [{"fraction": quantity(f, "1"), **candidate_data(c, r.outer)}
                    for f, c in r.pareto],
@@ -341,18 +395,99 @@ def design_data(r: DesignResult) -> dict[str, Any]:
         "ranking": [ranking_data(row) for row in r.ranking],
         "stop_tolerance": None if r.tolerance is None else tolerance_data(r),
         "envelope": [e.table() for e in r.envelope],
+        "fold": None if r.fold is None else r.fold.table(),
         "fatigue": [{"group": p.group, "side": p.side, "role": p.role, **f.table(),
                      "cycles_per_year": {
                          "one_hour_a_day": quantity(cycles_per_year(r.gait.period, 1.0),
                                                     "cycles"),
                          "continuous": quantity(cycles_per_year(r.gait.period, 24.0), "cycles")}}
                     for p, f in r.fatigue],
-        "simulation": [sensitivity_row(row) for row in r.simulation],
+        "simulation": [sensitivity_row(row) for row in r.simulated()],
+        "proof": proof_data(r),
+        "story": story_data(r),
         "timings": {k: quantity(v, "s") for k, v in r.timings.items()},
         "notes": list(r.notes),
         "stages": list(r.stages),
     }
 
 
-__all__ = ["MIN_SAVING", "DesignResult", "candidate_data", "design_data", "gait_data", "map_data",
-           "ranking_data", "robust_data", "tolerance_data"]
+QUICK_FAMILY = "linear"
+"""The family of ``hexaleg report``'s quick answer (:mod:`hexaleg.report.answer`): its global
+optimum is one convex program (about a second), no geometry to search."""
+
+
+def story_data(r: DesignResult) -> list[dict[str, Any]]:
+    """``story``: the figures a user meets for this gait, each with what it is and why it
+    differs from the springs to buy — the quick answer, each family's optimum, the springs to
+    buy, net of their mass, at worst with the stops off, beyond the tolerance, simulated under
+    the worse servo, over the maps and over the robust box (issue #57: five "best springs" for
+    one gait, and nowhere said why they differ). Savings of the ranking metric, in %."""
+    m, rec = r.config.design.metric, r.recommended
+    out: list[dict[str, Any]] = []
+
+    def row(figure: str, value: float | None, why: str) -> None:
+        out.append({"figure": figure,
+                    "saving": None if value is None else quantity(100 * value, "%"),
+                    "why": why})
+
+    quick = next((c for c in r.candidates if c.family == QUICK_FAMILY), None)
+    if quick is not None:
+        row("hexaleg report's quick answer", quick.row[f"saving.{m}"],
+            f"the {QUICK_FAMILY} family's global optimum: no stop angles to search, one convex "
+            "program, so the report can give it in a second; not simulated")
+    for c in r.candidates:
+        row(f"the {c.family} family's optimum", c.row[f"saving.{m}"],
+            ("its stops at their exact angles; " if family(c.family).angles else "")
+            + ("the family of the springs to buy, before the stop tolerance"
+               if c.family == rec.family else
+               "ranked below the springs to buy by its simulated saving net of its springs' "
+               "mass (the families' table)"))
+    row("the springs to buy", rec.row[f"saving.{m}"],
+        "the family ranked best by its simulated saving net of the springs' mass"
+        + (", designed for stops a workshop mounts within ±"
+           f"{math.degrees(r.tolerance.tolerance):g}°: it gives up part of the exact-stop "
+           "optimum for its worst case" if r.tolerance is not None
+           and r.tolerance.chosen == "tolerant" else ""))
+    row("the springs to buy, net of their mass", rec.net[m],
+        f"{1e3 * rec.spring_mass:.1f} g of springs carried on every step")
+    t = r.tolerance
+    if t is not None:
+        row(f"at worst with every stop within ±{math.degrees(t.tolerance):g}°",
+            t.worst[t.chosen], "the lowest over the stated mounting errors")
+        outside = np.abs(t.shifts) > t.tolerance * (1 + 1e-9)
+        if outside.any():
+            k = int(np.flatnonzero(outside)[np.argmin(t.curve[t.chosen][outside])])
+            row(f"a common stop shift of {math.degrees(t.shifts[k]):+.1f}°, outside the "
+                "tolerance", t.curve[t.chosen][k],
+                "the stops mounted further off than designed for: the saving falls fast "
+                "beyond the tolerance")
+    sims = r.simulated()
+    if sims:
+        worse = sims[0]
+        row(f"simulated in MuJoCo, {worse['label']} (the worse servo)", worse["simulated"],
+            "the springs in a forward simulation with real contacts and that servo's "
+            "tracking" + ("" if worse["simulated"] is not None
+                          else f": the runs did not walk ({worse['verdict']})"))
+    if r.maps and m in r.worst:
+        row(f"over the robustness maps, at worst ({r.worst[m][1]})", r.worst[m][0],
+            "the same springs on another gait, load or floor than the one designed for")
+    if r.robust is not None:
+        row("the robust design over its box, at worst", r.robust.worst(m),
+            "other magnitudes, chosen for the worst corner of the box, not the springs to "
+            "buy")
+    return out
+
+
+def proof_data(r: DesignResult) -> dict[str, Any]:
+    """``proof``: whether a simulation under the servo the robot runs backs the answer
+    (:attr:`DesignResult.unproven`), the controllers it needs, and what each run's verdict
+    means (:func:`hexaleg.simulation.measures.verdict_meanings`)."""
+    why = r.unproven
+    return {"proven": not why, "why": why or None,
+            "controllers": list(controllers_of(r.config.design.controller)),
+            "verdicts": verdict_meanings()}
+
+
+__all__ = ["MIN_SAVING", "QUICK_FAMILY", "DesignResult", "candidate_data", "design_data",
+           "gait_data", "map_data", "mounting_data", "proof_data", "ranking_data", "robust_data",
+           "story_data", "tolerance_data"]

@@ -180,12 +180,13 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
     spread = functools.partial(fork_map, shared=robot_objects(model))
     joint = search(functools.partial(free, groups=groups), base, v, space, springs=True,
                    reference=first.per_metre, max_evaluations=max_evaluations,
-                   restarts=restarts, map_fn=spread)
+                   restarts=restarts, map_fn=spread,
+                   progress=lambda line: say(f"co-design search: {line}"))
     say(f"co-design: {joint.value:.2f} J/m after {joint.evaluations} evaluations "
         f"({joint.wall:.1f} s)")
     finalists = screen(model, joint.finalists, servo, c, motor,
-                       lambda g: free(dataclasses.replace(g, samples=n_final), groups=groups)
-                       ) if simulate else ()
+                       lambda g: free(dataclasses.replace(g, samples=n_final), groups=groups),
+                       progress=lambda line: say(f"servo check: {line}")) if simulate else ()
     pick = choose(finalists)
     chosen = dataclasses.replace(joint.best.params if pick is None else pick.point.params,
                                  samples=n_final)
@@ -197,7 +198,8 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
     try:
         alone = search(functools.partial(free, groups=None), base, v, space, springs=False,
                        reference=first.per_metre, max_evaluations=max_evaluations,
-                       restarts=restarts, map_fn=spread)
+                       restarts=restarts, map_fn=spread,
+                       progress=lambda line: say(f"gait-alone search: {line}"))
         say(f"gait alone: {alone.value:.2f} J/m after {alone.evaluations} evaluations")
 
         def final(params: GaitParams, springs: bool) -> GaitPoint:
@@ -331,7 +333,8 @@ def simulated(robot: Robot, chosen: GaitParams, springs: SpringSet, c: Constrain
     assert walk is not None and base_walk is not None
     return {"planned": motion.distance, "walked": walk.distance_per_cycle,
             "walked_baseline": base_walk.distance_per_cycle, "predicted": predicted,
-            "simulated": simulated_, "controller": sim.settings.controller}
+            "simulated": simulated_, "controller": sim.settings.controller,
+            "feedback": sim.with_springs.feedback}
 
 
 def full_rules(robot: str, chosen: GaitParams, c: Constraints, say: Callable[[str], None],

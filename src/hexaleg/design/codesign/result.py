@@ -165,7 +165,8 @@ class CodesignResult:
         lines.append(f"  gait share {100 * s['gait']:+.1f} %, springs share "
                      f"{100 * s['springs']:+.1f} %, co-design {100 * s['codesign']:+.1f} %")
         lines.append("  chosen gait: " + ", ".join(
-            f"{p} {getattr(self.chosen, p):.4g} {UNITS[p]}" for p in PARAMETERS))
+            f"{p} {getattr(self.chosen, p):.4g}" + ("" if UNITS[p] == "1" else f" {UNITS[p]}")
+            for p in PARAMETERS))
         lines += self.finalist_lines()
         if "friction" in self.measures:
             use = self.measures["friction"][0]

@@ -17,7 +17,14 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from hexaleg.design.chain.result import DesignResult, candidate_data, ranking_data, tolerance_data
+from hexaleg.design.chain.result import (
+    DesignResult,
+    candidate_data,
+    mounting_data,
+    proof_data,
+    ranking_data,
+    tolerance_data,
+)
 from hexaleg.quantities import quantity
 from hexaleg.simulation.sensitivity import sensitivity_row
 
@@ -38,9 +45,13 @@ def _pct(x: float) -> str:
 def rule_lines(r: DesignResult, stride: float) -> list[str]:
     """The terminal lines of the springs to buy: the recommendation, then one line per rule's
     figures (stop tolerance; parsimony; per part the wire, worst static safety over the
-    envelope, hard stop, fatigue safety and arbor clearance), then its simulation."""
+    envelope, hard stop, fatigue safety and arbor clearance), then its simulation under the
+    servo the robot runs, the worse first; "unproven" and why where that simulation does not
+    back the springs (:attr:`~hexaleg.design.chain.result.DesignResult.unproven`)."""
     rec, m, d = r.recommended, r.config.design.metric, r.config.design
-    head = "springs to buy" if r.pays else "no springs pay; the best would be"
+    why = r.unproven
+    head = ("no springs pay; the best would be" if not r.pays else
+            f"unproven ({why}): springs the analysis would buy" if why else "springs to buy")
     out = [f"{head} (full spring rules on the chosen gait: {', '.join(RULES)}): {rec.label} on "
            f"{', '.join(rec.optimum.groups)}, {per_metre(r, stride):.2f} J/m, {m} saving "
            f"{_pct(rec.row[f'saving.{m}'])} ({_pct(rec.net[m])} net of "
@@ -63,20 +74,23 @@ def rule_lines(r: DesignResult, stride: float) -> list[str]:
         out.append(f"  {p.group} {p.side}: {s.material} d {1e3 * s.wire_diameter:.2f} mm, D "
                    f"{1e3 * s.mean_diameter:.2f} mm, {s.body_turns:g} turns; worst S_y/σ "
                    f"{e.safety_factor:.2f} (design factor {e.design_factor:g}), {stop}; fatigue "
-                   f"n_f {f.safety_factor:.2f} at {d.life_cycles:.0e} cycles; wound up it {arbor} "
+                   f"n_f {f.safety_factor:.2f} at {d.life_cycles:,.0f} cycles; wound up it {arbor} "
                    f"({1e3 * e.wound_inner_diameter:.2f} mm over {1e3 * e.arbor_diameter:.2f} mm)")
-    if r.simulation:
+    rows = r.simulated()
+    if rows:
         sims = [f"{row['label']} {_pct(row['simulated'])}" if row["simulated"] is not None
-                else f"{row['label']}: {row['verdict']}" for row in r.simulation]
-        out.append(f"  simulated {m} saving {', '.join(sims)} (predicted "
-                   f"{_pct(r.simulation[0]['predicted'])})")
+                else f"{row['label']}: {row['verdict']}" for row in rows]
+        out.append(f"  simulated {m} saving, the worse servo first: {', '.join(sims)} "
+                   f"(predicted {_pct(rows[0]['predicted'])})")
     return out
 
 
 def rule_data(r: DesignResult, stride: float) -> dict[str, Any]:
     """``codesign.json``'s ``full_rules``: the settings, the recommendation (savings, groups
-    with their marginal saving, the groups left unfitted, the parts), its energy per metre, the
-    stop tolerance, the envelope and hard stops, fatigue, the ranking, the simulation, the
+    with their marginal saving, the groups left unfitted, the parts), where each part mounts on
+    each joint (angles from the joint's zero), its energy per metre, the
+    stop tolerance, the envelope and hard stops, fatigue, the ranking, the simulation (under the
+    servo the robot runs, the worse first) and whether it proves the springs, the
     stages' wall times and the notes."""
     d = r.config.design
     return {
@@ -91,13 +105,15 @@ def rule_data(r: DesignResult, stride: float) -> dict[str, Any]:
                      "life_cycles": quantity(d.life_cycles, "cycles"),
                      "robustness": d.robustness},
         "recommended": candidate_data(r.recommended, r.outer),
+        "mounting": mounting_data(r),
         "per_metre": quantity(per_metre(r, stride), "J/m"),
         "stop_tolerance": None if r.tolerance is None else tolerance_data(r),
         "envelope": [e.table() for e in r.envelope],
         "fatigue": [{"group": p.group, "side": p.side, "role": p.role, **f.table()}
                     for p, f in r.fatigue],
         "ranking": [ranking_data(row) for row in r.ranking],
-        "simulation": [sensitivity_row(row) for row in r.simulation],
+        "simulation": [sensitivity_row(row) for row in r.simulated()],
+        "proof": proof_data(r),
         "timings": {k: quantity(v, "s") for k, v in r.timings.items()},
         "notes": list(r.notes),
     }

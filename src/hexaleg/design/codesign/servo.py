@@ -78,9 +78,11 @@ class Screened:
 
 
 def screen(robot: Robot, points: Sequence[GaitPoint], servo: str, c: Constraints, motor: Any,
-           final: Callable[[GaitParams], GaitPoint]) -> tuple[Screened, ...]:
+           final: Callable[[GaitParams], GaitPoint],
+           progress: Callable[[str], None] | None = None) -> tuple[Screened, ...]:
     """Each finalist at the rows' sampling (``final``: a gait → its point at that sampling,
-    with its springs) simulated with its springs under each controller of ``servo``.
+    with its springs) simulated with its springs under each controller of ``servo``;
+    ``progress`` is called with a line after each finalist (None: quiet).
 
     Raises:
         UnknownNameError: an unknown servo (lists them).
@@ -110,6 +112,9 @@ def screen(robot: Robot, points: Sequence[GaitPoint], servo: str, c: Constraints
             per_metre[k] = float(run.metrics["electrical"] / run.walk.distance_per_cycle)
             verdicts[k] = "walks"
         out.append(Screened(point, per_metre, verdicts))
+        if progress is not None:
+            progress(f"finalist {len(out)} of {len(points)} simulated under "
+                     f"{' and '.join(controllers)}")
     return tuple(out)
 
 

@@ -1,0 +1,300 @@
+"""Balance feedback in the simulated robot: the body's measured pose and velocity fed back into the
+stance feet's forces and the swing feet's placement, through the robot's own servos.
+
+The controller of the field's whole-body controllers, reduced to the change from the plan (the
+plan's inverse dynamics are already the feedforward):
+
+1. **Body wrench** (Di Carlo et al., "Dynamic locomotion in the MIT Cheetah 3 through convex
+   model-predictive control", IROS 2018, eq. 4–5, the PD on the body of its balance
+   controller; Kim et al., "Highly dynamic quadruped locomotion via whole-body impulse control
+   and model predictive control", arXiv:1909.06586, 2019, §III-C, the body task of WBIC):
+
+       ΔF = m (k_p e_p + k_d e_v),    ΔM = I_w (k_p e_R + k_d e_ω),
+       e_p = p* − p,  e_v = ṗ* − ṗ,   e_R = log(R* Rᵀ),  e_ω = ω* − ω     (world frame)
+
+   with ``p`` the base origin, ``R`` its orientation, ``*`` the plan at the same instant, m the
+   robot's mass and ``I_w = R I_b Rᵀ`` its centroidal rotational inertia (``pin.ccrba`` at the
+   plan's first sample, in the base frame: constant, as the MIT controllers take it). The
+   desired wrench is the plan's (its inverse dynamics' contact wrench) plus ``ΔW = (ΔF, ΔM)``.
+2. **Force distribution** (:mod:`hexaleg.simulation.distribution`): the change ``Δf`` of the
+   planned stance feet's forces that makes ``ΔW`` within the friction cones and the servos'
+   torque limits (a QP).
+3. **Joint torques** (Del Prete, Nori, Metta & Natale, "Prioritized motion–force control of
+   constrained fully-actuated robots: Task Space Inverse Dynamics", Robotics and Autonomous
+   Systems 63, 2015 — TSID's ``Mv̇ + h = Sᵀτ + J_cᵀ f``: at the plan's accelerations, a change of the
+   contact forces is a change ``Δτ = −J_cᵀ Δf`` of the joint torques, ``J_c`` the stance feet's
+   Jacobians' joint columns — MIT's ``τ = Jᵀ Rᵀ f`` with the sign of the ground's force on the
+   foot), at the plan's joint angles.
+4. **Swing feet in task space**: each swing foot aims at its planned world position from the
+   measured body: its joint reference moves by ``Δq = J_b⁺ (Rᵀ (x* − p) − R*ᵀ (x* − p*))``
+   (one Newton step of inverse kinematics from the plan's angles, J_b the foot's Jacobian in the
+   base frame at the plan's angles; Siciliano et al., *Robotics*, 2009, §3.7), so a body that
+   lags or leans still sets its feet down where the plan does.
+
+**Through the servos.** The controller's output becomes the servo's reference
+(:mod:`hexaleg.simulation.controllers`): the control moves by ``Δτ/kp + Δq``. For the
+feedforward + PD servo that is the feedforward torque ``τ_ff + Δτ`` and the position reference
+``q* + Δq``; for the position-only servo (no torque input) the reference ``q* + Δq + Δτ/kp``,
+whose P gain turns the offset into the torque Δτ — the robot with a position servo is
+simulated as it is built, and the feedback's own torques are the servos' and count in the
+energy.
+
+**What is measured.** The base's pose and velocity and the feet's positions are MuJoCo's ground
+truth (``qpos``, ``qvel``, the foot sites): a perfect state estimator, stated in
+``docs/simulate.md``. The controller runs every :data:`CONTROL_PERIOD` (100 Hz: the rate of a
+Dynamixel bus's position commands to 18 servos, and within the 30–500 Hz of the MIT Cheetahs'
+MPC and WBIC loops), holding its correction in between; the servos' own loop and the plan's
+references run every simulation step. At 100 Hz the controller costs ≤ 3× the open-loop step
+(``analysis/bench_simulate.py``); 200 Hz walks the same four trots with the same verdicts.
+
+**Gains** (:func:`size_gains`): ``k_p = ω²``, ``k_d = 2 ζ ω`` with ζ = 1 (critically damped)
+and ``ω = BANDWIDTH · 2π / period``: the body's closed loop at the gait's frequency, so an error
+decays within a cycle, and below the servos' own loops (5.4–20× the gait's frequency on every
+registered robot, ``docs/simulate.md``) so the inner loop stays the faster; the swing feet
+correct :data:`SWING` of their error. BANDWIDTH and SWING were chosen by measurement on the
+registered quadrupeds' trots under position servos (``docs/simulate.md``, "Balance feedback"),
+not derived: twice the bandwidth asked the servos for more torque than they have, a whole swing
+correction kicked the body at touchdown.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+
+from hexaleg.checks import positive
+from hexaleg.errors import InvalidParameterError
+from hexaleg.motion.recorded.base import rotation_from_quaternion
+from hexaleg.motion.trajectory import Motion
+from hexaleg.simulation.distribution import TorqueBounds, distribute, wrench_map
+from hexaleg.simulation.model import SimModel
+
+CONTROL_PERIOD = 1e-2
+"""s: the balance controller's period (100 Hz; module docstring)."""
+BANDWIDTH = 1.0
+"""The body's closed-loop natural frequency in multiples of the gait's frequency (module
+docstring, "Gains")."""
+SWING = 0.3
+"""The fraction of a swing foot's task-space correction applied (module docstring, "Gains")."""
+MODES: tuple[str, ...] = ("auto", "on", "off")
+"""``[simulate] feedback``: ``"auto"`` (default) runs the controller where the gait needs it
+(fewer than three stance feet at some instant, or an open-loop run that fell); ``"on"``,
+``"off"`` always or never."""
+TURN = 1e-3
+"""rad: a plan whose base ends a cycle rotated by more than this from where it began turns (its
+later cycles are not translations of the first); the one-sample extrapolation that closes the
+cycle is exact to about ½ |ω̇| dt² (5e-6 rad at 10 rad/s² and 1 ms)."""
+FEWEST_STATIC = 3
+"""A gait always on at least this many feet can stand without balance feedback."""
+
+
+@dataclass(frozen=True)
+class Gains:
+    """The balance controller's gains (module docstring).
+
+    Attributes:
+        omega: ω, the body's closed-loop natural frequency, rad/s, > 0.
+        zeta: ζ, its damping ratio, > 0.
+        swing: Fraction of a swing foot's task-space error corrected per update, in (0, 1].
+        period: The controller's period, s, > 0.
+    """
+
+    omega: float
+    zeta: float = 1.0
+    swing: float = SWING
+    period: float = CONTROL_PERIOD
+
+    def __post_init__(self) -> None:
+        positive("balance omega (rad/s)", self.omega)
+        positive("balance zeta", self.zeta)
+        positive("balance period (s)", self.period)
+        if not 0 < self.swing <= 1:
+            raise InvalidParameterError("balance swing", self.swing, "in (0, 1]")
+
+    @property
+    def kp(self) -> float:
+        """ω², 1/s²."""
+        return self.omega**2
+
+    @property
+    def kd(self) -> float:
+        """2 ζ ω, 1/s."""
+        return 2 * self.zeta * self.omega
+
+
+def size_gains(motion: Motion) -> Gains:
+    """The default gains for ``motion``: ω = :data:`BANDWIDTH` × 2π / period (module
+    docstring)."""
+    return Gains(omega=BANDWIDTH * 2 * math.pi / motion.period)
+
+
+def needed(motion: Motion) -> bool:
+    """Whether the gait needs balance feedback in any case: fewer than :data:`FEWEST_STATIC`
+    planned stance feet at some sample (a trot, a pace, a bound; a biped)."""
+    return int(np.asarray(motion.stance).sum(axis=1).min()) < FEWEST_STATIC
+
+
+def _skew_log(r: np.ndarray) -> np.ndarray:
+    """log(R) as a rotation vector (rad), R (3, 3) a rotation (Pinocchio's ``log3``)."""
+    return np.asarray(pin.log3(r))
+
+
+class Balance:
+    """The controller for one model and plan (module docstring); :meth:`correction` at a state.
+
+    Args:
+        sim: The model (robot, joint map, servo gains, ground μ).
+        motion: The plan (a periodic gait).
+        forces: The plan's foot forces, shape (T, n_legs, 3), N, world
+            (:attr:`hexaleg.dynamics.prepare.Analysis.forces`).
+        tau: The plan's motor torques, shape (T, nj), N·m
+            (:attr:`hexaleg.dynamics.prepare.Analysis.tau_motor`): the torque bounds of the
+            force program are the servos' stall torques less these.
+        gains: The gains (default :func:`size_gains`).
+
+    Raises:
+        InvalidParameterError: a gait whose base does not return to its heading each cycle (a
+            turning gait: its plan in later cycles is not a translation of the first), or forces
+            of another shape.
+    """
+
+    def __init__(self, sim: SimModel, motion: Motion, forces: np.ndarray, tau: np.ndarray,
+                 gains: Gains | None = None) -> None:
+        import mujoco  # where a model is built: importing this package stays light
+
+        self._quat2mat = mujoco.mju_quat2Mat
+        robot = sim.robot
+        model = robot.model
+        data = model.createData()
+        n = motion.n_samples
+        forces = np.asarray(forces, dtype=float)
+        if forces.shape != (n, len(robot.legs), 3):
+            raise InvalidParameterError("balance forces", forces.shape,
+                                        f"({n}, {len(robot.legs)}, 3): the plan's foot forces")
+        self.sim, self.motion, self.gains = sim, motion, gains or size_gains(motion)
+        self.dt, self.n = motion.dt, n
+        q, v = motion.q, motion.v
+        rot = rotation_from_quaternion(q[:, 3:7])
+        end = rot[-1] @ pin.exp3(v[-1, 3:6] * motion.dt)
+        if np.linalg.norm(_skew_log(rot[0].T @ end)) > TURN:
+            raise InvalidParameterError("[simulate] feedback", "on",
+                                        "a gait whose base returns to its heading each cycle "
+                                        "(yaw_rate = 0), or feedback = \"off\"")
+        self.offset = q[-1, :3] + rot[-1] @ v[-1, :3] * motion.dt - q[0, :3]
+        """Base travel per cycle (world), m."""
+        self.rotation = np.concatenate([rot, rot[:1]])
+        track = np.hstack([q[:, :3], np.einsum("kij,kj->ki", rot, v[:, :3]),
+                           np.einsum("kij,kj->ki", rot, v[:, 3:6])])
+        self.track = np.vstack([track, track[:1]])
+        self.track[-1, :3] += self.offset
+        """Per sample, the first repeated a cycle on: base position, velocity and angular
+        velocity (world), (T + 1, 9)."""
+        load = np.hstack([forces.reshape(n, -1), np.asarray(tau, dtype=float)])
+        self.load = np.vstack([load, load[:1]])
+        """Per sample, extended: the feet's forces (n_legs × 3) and the motor torques, N, N·m."""
+        self.n_force = forces[0].size
+        stance = np.asarray(motion.stance).astype(bool)
+        self.stance = np.vstack([stance, stance[:1]])
+        self.feet = np.asarray(motion.feet, dtype=float)
+        self._patterns: dict[bytes, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
+        self.mass = robot.mass
+        self.com = np.zeros((n, 3))
+        nj, n_legs = robot.nj, len(robot.legs)
+        jac = [np.zeros((n, 3, len(leg.columns))) for leg in robot.legs]
+        for k in range(n):
+            qk = q[k].copy()
+            qk[:7] = [0, 0, 0, 0, 0, 0, 1]  # the base at the origin: base-frame Jacobians
+            pin.computeJointJacobians(model, data, qk)
+            pin.updateFramePlacements(model, data)
+            self.com[k] = pin.centerOfMass(model, data, qk)
+            for i, leg in enumerate(robot.legs):
+                full = pin.getFrameJacobian(model, data, leg.foot_frame_id,
+                                            pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+                jac[i][k] = full[:3, 6 + np.asarray(leg.columns)]
+        self.stance_map = np.zeros((n, nj, n_legs, 3))
+        """−J_bᵀ of each leg in its joints' rows, (T, nj, n_legs, 3): Δτ = Σ_i (−J_b,iᵀ) Rᵀ Δf_i."""
+        self.swing_map = np.zeros((n, nj, n_legs, 3))
+        """J_b⁺ of each leg in its joints' rows, (T, nj, n_legs, 3): the swing IK step."""
+        self.leg_rows = np.zeros((n_legs, nj), dtype=bool)
+        for i, leg in enumerate(robot.legs):
+            cols = np.asarray(leg.columns)
+            self.leg_rows[i, cols] = True
+            self.stance_map[:, cols, i, :] = -np.swapaxes(jac[i], 1, 2)
+            self.swing_map[:, cols, i, :] = np.linalg.pinv(jac[i], rcond=1e-3)
+        pin.ccrba(model, data, q[0], np.zeros(model.nv))
+        inertia = np.asarray(data.Ig.inertia)  # world-aligned at the plan's first sample
+        self.inertia = rot[0].T @ inertia @ rot[0]
+        """Centroidal rotational inertia, base frame, kg·m²."""
+        planted = self.feet[stance]
+        centre = planted.mean(axis=0) if len(planted) else np.zeros(3)
+        self.spread = max(float(np.max(np.linalg.norm((planted - centre)[:, :2], axis=1)))
+                          if len(planted) else 0.0, 1e-3)
+        """L, m: the stance feet's horizontal spread about their centre (the moment scale)."""
+        self.constrained = 0
+        """Updates at which a friction cone bound the force correction."""
+        self.updates = 0
+
+    def plan(self, t: float) -> tuple[int, float, np.ndarray]:
+        """The plan's samples around ``t``: ``(k, s, travel)``: t lies between samples k and
+        k + 1 of the extended arrays (the first sample repeated after the last, a cycle on),
+        s the linear weight of k + 1, travel the base's travel over the cycles before (world,
+        m)."""
+        x = t / self.dt
+        k = math.floor(x + 1e-9)
+        return k % self.n, min(max(x - k, 0.0), 1.0), (k // self.n) * self.offset
+
+    def _pattern(self, stance: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(stance legs, their joints' rows (bool), swing legs)`` of a stance pattern."""
+        key = stance.tobytes()
+        if key not in self._patterns:
+            legs = np.flatnonzero(stance)
+            rows = np.asarray(self.leg_rows[legs].any(axis=0), dtype=bool)
+            self._patterns[key] = (legs, rows, np.flatnonzero(~stance))
+        return self._patterns[key]
+
+    def correction(self, t: float, qpos: np.ndarray, qvel: np.ndarray, feet: np.ndarray
+                   ) -> np.ndarray:
+        """The servo controls' change at a measured state (module docstring), shape (nj,).
+
+        Args:
+            t: Time, s.
+            qpos: MuJoCo configuration (base position, quaternion w x y z, joints).
+            qvel: MuJoCo velocity (base linear in the world frame, angular in the base frame).
+            feet: Foot positions (world), shape (n_legs, 3), m.
+        """
+        g, sim = self.gains, self.sim
+        k, s, travel = self.plan(t)
+        track = self.track[k] + s * (self.track[k + 1] - self.track[k])
+        p_plan, r_plan = track[:3] + travel, self.rotation[k]
+        p = qpos[:3]
+        flat = np.empty(9)
+        self._quat2mat(flat, qpos[3:7] / np.linalg.norm(qpos[3:7]))
+        rot = flat.reshape(3, 3)
+        dw = np.empty(6)
+        dw[:3] = self.mass * (g.kp * (p_plan - p) + g.kd * (track[3:6] - qvel[:3]))
+        dw[3:] = rot @ (self.inertia @ (rot.T @ (g.kp * _skew_log(r_plan @ rot.T)
+                                                + g.kd * (track[6:] - rot @ qvel[3:6]))))
+        out = np.zeros(sim.robot.nj)
+        legs, cols, swing = self._pattern(self.stance[k] & self.stance[k + 1])
+        self.updates += 1
+        if len(legs):
+            load = self.load[k] + s * (self.load[k + 1] - self.load[k])
+            f0 = load[:self.n_force].reshape(-1, 3)[legs]
+            t_map = (self.stance_map[k][cols][:, legs] @ rot.T).reshape(-1, 3 * len(legs))
+            tau0 = load[self.n_force:][cols]
+            stall = sim.stall[cols]
+            bounds = TorqueBounds(t_map, np.minimum(-stall - tau0, 0.0),
+                                  np.maximum(stall - tau0, 0.0))
+            df, bound = distribute(wrench_map(feet[legs], p + rot @ self.com[k]), dw, f0,
+                                   sim.ground.mu, self.spread, bounds)
+            self.constrained += bound
+            out[cols] = (t_map @ df.ravel()) / sim.kp[cols]
+        if len(swing):
+            x = self.feet[k, swing] + travel
+            target = (x - p) @ rot - (x - p_plan) @ r_plan  # Rᵀ (x − p) − R*ᵀ (x − p*), per row
+            sm = self.swing_map[k][:, swing]
+            out += g.swing * (sm.reshape(len(sm), -1) @ target.ravel())
+        return out

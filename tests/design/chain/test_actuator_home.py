@@ -1,0 +1,50 @@
+"""The actuator has one home, ``[motor]`` (issue #53): ``hexaleg design --config`` with
+``[motor] base = "AX-12A"`` designs with the AX-12A (it used to design with the robot's AX-18A and
+say so in design.json); ``[design] motor`` is deprecated with a warning saying where it went and
+is refused beside ``[motor]``."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from hexaleg.commands.options import load_run
+from hexaleg.design.chain.chain import DesignChain
+from hexaleg.design.chain.config import DesignConfig
+from hexaleg.errors import ConfigError
+
+TINY = """
+[design]
+samples = 60
+families = ["linear"]
+"""
+
+
+def test_a_motor_table_is_the_designs_actuator(tmp_path):
+    path = tmp_path / "m.toml"
+    path.write_text('[motor]\nbase = "AX-12A"\nresistance = 9.5\n' + TINY)
+    cfg = DesignConfig.from_scenario(load_run("hexaleg", path))
+    assert cfg.actuator is not None and cfg.actuator.name.startswith("AX-12A")
+    assert cfg.actuator.resistance == 9.5  # the table's override, not the catalogue's value
+    r = DesignChain(cfg).run(stages=("candidates",))
+    data = json.loads(r.to_json())
+    assert data["actuator"] == cfg.actuator.name
+    # the baseline is the AX-12A's: its Joule loss differs from the robot's own AX-18A
+    own = DesignChain(DesignConfig.from_mapping({"design": {"samples": 60,
+                                                            "families": ["linear"]}})
+                      ).run(stages=("candidates",))
+    assert own.actuator == "AX-18A"
+    assert r.baseline["joule"] != pytest.approx(own.baseline["joule"], rel=1e-3)
+    assert DesignConfig.from_mapping({"motor": {"base": "AX-12A"}}).actuator.name == "AX-12A"
+
+
+def test_the_old_home_warns_and_two_homes_are_refused(tmp_path):
+    with pytest.warns(DeprecationWarning, match=r"the actuator's one home is \[motor\]"):
+        cfg = DesignConfig.from_mapping({"design": {"motor": "AX-12A"}})
+    assert cfg.run().actuator().name == "AX-12A"
+    path = tmp_path / "both.toml"
+    path.write_text('[motor]\nbase = "AX-12A"\n[design]\nmotor = "AX-12A"\n')
+    with pytest.raises(ConfigError, match=r"one home, \[motor\]; remove \[design\] motor"), \
+            pytest.warns(DeprecationWarning):
+        DesignConfig.from_scenario(load_run("hexaleg", path))

@@ -1,0 +1,177 @@
+"""Balance feedback in the simulated robot: its gains, its invariants, a push it recovers from,
+the energy of a gait open loop already walks, and the trots of #54 under position servos."""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.scenario.scenario import Scenario
+from hexaleg.simulation import balance, stepping
+from hexaleg.simulation.controllers import controls, reference
+from hexaleg.simulation.model import build_model
+from hexaleg.simulation.run import Settings, automatic_timestep, cycle_timestep, simulate
+
+TROT = '[gait]\npattern = "trot"\nperiod = 0.4\nstride_length = 0.12\nsamples = 200\n' \
+       '[contact]\nmu = 1\n'
+"""Solo-12's trot of #54 at 200 samples (the suite's time)."""
+
+
+@pytest.fixture(scope="module")
+def trot(tmp_path_factory):
+    """Solo-12's trot prepared, and its baseline analysis."""
+    config = tmp_path_factory.mktemp("trot") / "trot.toml"
+    config.write_text(TROT)
+    prepared = Scenario.load("solo12", config).prepare()
+    return prepared, prepared.evaluate(None)
+
+
+def _model(prepared, controller: str):
+    settings = Settings(controller=controller).sized(prepared.robot.mass)
+    servo, ground = settings.servo(), settings.ground(prepared.contact.mu)
+    dt = cycle_timestep(automatic_timestep(prepared.robot, prepared.motion, prepared.motor, servo,
+                                           ground), prepared.motion.period)
+    return build_model(prepared.robot, prepared.motion, prepared.motor, servo=servo,
+                       ground=ground, timestep=dt)
+
+
+def test_gains_are_a_critically_damped_loop_at_the_gaits_frequency(trot):
+    """k_p = ω², k_d = 2ζω with ω = BANDWIDTH · 2π / period; bad gains are named."""
+    prepared, _ = trot
+    g = balance.size_gains(prepared.motion)
+    assert g.omega == pytest.approx(balance.BANDWIDTH * 2 * np.pi / 0.4)
+    assert g.kp == pytest.approx(g.omega**2) and g.kd == pytest.approx(2 * g.omega)
+    with pytest.raises(InvalidParameterError, match="swing"):
+        balance.Gains(omega=1.0, swing=1.5)
+    with pytest.raises(InvalidParameterError, match="omega"):
+        balance.Gains(omega=0.0)
+
+
+def test_the_feedback_setting_is_checked():
+    """``[simulate] feedback``: an unknown value names the allowed ones."""
+    with pytest.raises(UnknownNameError, match="auto, off, on"):
+        dataclasses.replace(Settings(), feedback="sometimes")
+
+
+def test_a_trot_needs_feedback_and_a_tripod_does_not(trot, walk):
+    assert balance.needed(trot[0].motion) and not balance.needed(walk)
+
+
+def test_on_the_plan_the_correction_is_zero_and_a_low_body_is_pushed_up(trot):
+    """At the plan's own state (any instant) every error is zero, and so is the correction; a
+    body 5 mm low asks the stance feet for m k_p × 5 mm more, within the regularisation (a
+    wrong sign of the height error or of the force map fails it)."""
+    prepared, analysis = trot
+    sim = _model(prepared, "position")
+    b = balance.Balance(sim, prepared.motion, analysis.forces, analysis.tau_motor)
+    motion = prepared.motion
+    seen = []
+    original = balance.distribute
+
+    def capture(a, dw, f0, mu, spread, bounds=None):
+        answer = original(a, dw, f0, mu, spread, bounds)
+        seen.append((a, dw, answer[0]))
+        return answer
+
+    balance.distribute = capture
+    try:
+        for k in (0, 37, 120):
+            t = motion.t[k] + motion.period  # the second cycle: the plan moved on by a stride
+            q = motion.q[k].copy()
+            q[:3] += b.offset
+            qpos, qvel = sim.joints.to_mujoco(q, motion.v[k])
+            feet = motion.feet[k] + b.offset
+            assert np.abs(b.correction(t, qpos, qvel, feet)).max() < 1e-9
+            low = qpos.copy()
+            low[2] -= 5e-3
+            b.correction(t, low, qvel, feet - [0, 0, 5e-3])
+    finally:
+        balance.distribute = original
+    for _a, dw, df in seen[1::2]:
+        push = b.mass * b.gains.kp * 5e-3
+        assert dw[2] == pytest.approx(push) and np.allclose(dw[[0, 1, 3, 4, 5]], 0, atol=1e-9)
+        assert df[:, 2].sum() == pytest.approx(push, rel=0.02)
+
+
+def test_a_turning_gait_is_refused(trot):
+    prepared, analysis = trot
+    motion = prepared.motion
+    q = motion.q.copy()
+    yaw = np.linspace(0, 0.3, motion.n_samples)
+    q[:, 3:7] = np.stack([0 * yaw, 0 * yaw, np.sin(yaw / 2), np.cos(yaw / 2)], axis=1)
+    turning = dataclasses.replace(motion, q=q)
+    with pytest.raises(InvalidParameterError, match="yaw_rate"):
+        balance.Balance(_model(prepared, "position"), turning, analysis.forces,
+                        analysis.tau_motor)
+
+
+def test_a_push_is_recovered_with_feedback_and_not_without(trot):
+    """An impulse on the base at the start (0.2 m/s sideways, 0.5 N·s on Solo-12) under the
+    feedforward + PD servo: with the balance controller the body is back on its planned line
+    (within 2 mm after 4 cycles) and walks the planned 0.48 m; open loop it drifts 78 mm off
+    and walks a third short."""
+    prepared, analysis = trot
+    motion = prepared.motion
+    sim = _model(prepared, "feedforward")
+    dt = sim.timestep
+    n = 4 * round(motion.period / dt)
+    ref = reference(motion, analysis.tau_motor, np.arange(n) * dt)
+    ctrl = controls(sim.servo, ref, sim.kp, sim.kd)
+    qpos0, qvel0 = sim.joints.to_mujoco(motion.q[0], motion.v[0])
+    qvel0[1] += 0.2
+    ends = {}
+    for closed in (True, False):
+        b = balance.Balance(sim, motion, analysis.forces, analysis.tau_motor)
+        traj = stepping.run(sim, ctrl.copy(), qpos0, qvel0, float(motion.q[:, 2].mean()),
+                            b.correction if closed else None,
+                            round(balance.CONTROL_PERIOD / dt))
+        assert traj.verdict == "ran"
+        ends[closed] = traj.qpos[-1, :2] - motion.q[0, :2]
+    planned = 4 * motion.distance
+    assert abs(ends[True][1]) < 2e-3 and abs(ends[True][0] / planned - 1) < 0.01
+    assert abs(ends[False][1]) > 0.03 and ends[False][0] / planned < 0.8
+
+
+@pytest.mark.slow
+def test_a_gait_that_walks_open_loop_costs_the_same_closed_loop(prepared, optimal):
+    """The default tripod (three stance feet: open loop by default) with the optimal linear femur
+    springs under the feedforward + PD servo: closed loop, each run's electrical energy is
+    within 1 % of the open loop's (+0.7 %, +0.6 % measured) — the feedback does nearly
+    nothing where the plan is consistent — and both walk the planned distance."""
+    settings = Settings(force_samples=0)
+    runs = {mode: simulate(prepared.robot, prepared.motion, prepared.motor, optimal.springs,
+                           dataclasses.replace(settings, feedback=mode), prepared=prepared)
+            for mode in ("auto", "on")}
+    assert not runs["auto"].baseline.feedback and runs["on"].baseline.feedback
+    for name in ("with_springs", "baseline"):
+        open_, closed = (getattr(runs[m], name) for m in ("auto", "on"))
+        assert open_.walks and closed.walks
+        assert closed.metrics["electrical"] == pytest.approx(open_.metrics["electrical"],
+                                                             rel=0.01)
+
+
+MUST_SHOW = {"solo12": (0.4, 0.12), "a1": (0.4, 0.20), "anymal": (0.6, 0.30), "go2": None}
+"""#54's trots: robot → (period s, stride m), or None for the robot's own trot."""
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("robot", list(MUST_SHOW))
+def test_the_quadrupeds_trots_walk_under_position_servos(robot, tmp_path):
+    """#54's must-show: each registered quadruped's trot at μ 1 under the position-only servo
+    walks with and without its springs (the report's answer) once the balance controller runs —
+    the default for a trot; open loop Solo-12, A1 and ANYmal fell short or stalled."""
+    from hexaleg.commands.simulate.study import load_study
+
+    gait = MUST_SHOW[robot]
+    text = '[gait]\npattern = "trot"\n' + (
+        f"period = {gait[0]}\nstride_length = {gait[1]}\n" if gait else "") + \
+        '[contact]\nmu = 1\n[simulate]\ncontroller = "position"\n'
+    config = Path(tmp_path) / "trot.toml"
+    config.write_text(text)
+    s = load_study(Scenario.load(robot, config)).run()
+    for run in (s.with_springs, s.baseline):
+        assert run.feedback and run.verdict == "walks", (run.name, run.verdict, run.message)

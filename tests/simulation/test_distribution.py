@@ -1,0 +1,140 @@
+"""The balance controller's force program: its wrench map, and its answers against cvxpy's on
+instants captured from a closed-loop run (where the cones and the torque limits bind)."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import cvxpy as cp
+import numpy as np
+import pytest
+
+from hexaleg.errors import InvalidParameterError
+from hexaleg.scenario.scenario import Scenario
+from hexaleg.simulation import balance
+from hexaleg.simulation.distribution import (
+    REGULARISATION,
+    TorqueBounds,
+    distribute,
+    inside_cones,
+    wrench_map,
+)
+from hexaleg.simulation.run import Settings, simulate
+
+TROT = '[gait]\npattern = "trot"\nperiod = 0.4\nstride_length = 0.12\nsamples = 200\n' \
+       '[contact]\nmu = 1\n'
+"""Solo-12's trot of #54 (fewer samples: the suite's time)."""
+
+
+def reference(a, dw, f0, mu, spread, bounds, alpha=REGULARISATION):
+    """The module's program written in cvxpy (its own modelling of the squares, the cones and
+    the rows), solved to 1e-10."""
+    n = len(f0)
+    x = cp.Variable(3 * n)
+    s = np.r_[np.ones(3), np.full(3, 1.0 / spread)]
+    f = cp.reshape(x, (n, 3), order="C") + f0
+    constraints = [cp.SOC(mu * f[i, 2], f[i, :2]) for i in range(n)]
+    if bounds is not None:
+        constraints += [bounds.t @ x <= bounds.high, bounds.t @ x >= bounds.low]
+    objective = cp.sum_squares(cp.multiply(s, a @ x - dw)) + alpha * cp.sum_squares(x)
+    cp.Problem(cp.Minimize(objective), constraints).solve(
+        solver=cp.CLARABEL, tol_gap_abs=1e-11, tol_gap_rel=1e-11, tol_feas=1e-11)
+    return np.asarray(x.value).reshape(n, 3)
+
+
+def test_the_wrench_map_is_the_total_force_and_moment_about_the_centre():
+    """``A f`` is (Σ f_i, Σ r_i × f_i) for random feet and forces (seeded)."""
+    rng = np.random.default_rng(3)
+    feet, com, f = rng.normal(size=(4, 3)), rng.normal(size=3), rng.normal(size=(4, 3))
+    w = wrench_map(feet, com) @ f.ravel()
+    assert np.allclose(w[:3], f.sum(axis=0), atol=1e-14)
+    assert np.allclose(w[3:], np.cross(feet - com, f).sum(axis=0), atol=1e-14)
+
+
+def test_no_wrench_change_keeps_the_plan_and_a_small_one_is_made():
+    """ΔW = 0 gives Δf = 0; a small ΔW inside the cones is made to the regularisation's
+    accuracy (four feet: the wrench map has full row rank)."""
+    feet = np.array([[0.2, 0.15, 0], [0.2, -0.15, 0], [-0.2, 0.15, 0], [-0.2, -0.15, 0]])
+    f0 = np.tile([0.0, 0.0, 6.0], (4, 1))
+    a = wrench_map(feet, np.array([0, 0, 0.2]))
+    df, bound = distribute(a, np.zeros(6), f0, 0.6, 0.25)
+    assert not bound and np.all(df == 0)
+    dw = np.array([0.3, -0.2, 1.0, 0.05, -0.04, 0.02])
+    df, bound = distribute(a, dw, f0, 0.6, 0.25)
+    assert not bound and inside_cones(f0 + df, 0.6)
+    assert np.allclose(a @ df.ravel(), dw, rtol=1e-2, atol=1e-3)
+
+
+def test_bad_values_are_named():
+    a = wrench_map(np.zeros((2, 3)), np.zeros(3))
+    with pytest.raises(InvalidParameterError, match="mu"):
+        distribute(a, np.zeros(6), np.zeros((2, 3)), 0.0, 0.2)
+    with pytest.raises(InvalidParameterError, match="shapes"):
+        distribute(a, np.zeros(5), np.zeros((2, 3)), 0.6, 0.2)
+
+
+@pytest.fixture(scope="module")
+def captured(tmp_path_factory):
+    """The force programs of every update of Solo-12's position-servo trot, closed loop (2
+    cycles) on a floor of μ 0.5 (the plan's is 1: about a quarter of the updates meet a cone):
+    ``(a, dw, f0, mu, spread, bounds, answer, constrained)``."""
+    config = tmp_path_factory.mktemp("trot") / "trot.toml"
+    config.write_text(TROT)
+    run = Scenario.load("solo12", config)
+    prepared = run.prepare()
+    seen = []
+    original = balance.distribute
+
+    def capture(a, dw, f0, mu, spread, bounds=None):
+        answer, bound = original(a, dw, f0, mu, spread, bounds)
+        seen.append((a, dw, f0, mu, spread, bounds, answer, bound))
+        return answer, bound
+
+    balance.distribute = capture
+    try:
+        simulate(prepared.robot, prepared.motion, prepared.motor, None,
+                 Settings(controller="position", cycles=2, evaluate=1, force_samples=0,
+                          feedback="on", mu=0.5), contact=prepared.contact,
+                 prepared=prepared)
+    finally:
+        balance.distribute = original
+    assert seen, "no update captured"
+    return seen
+
+
+def test_the_programs_answers_are_cvxpys_on_captured_instants(captured):
+    """On 12 captured instants where a cone or a torque limit bound (Clarabel's path) and 6
+    where none did (the normal equations), the correction is cvxpy's to 1e-6 of its size (a
+    wrong sign, a dropped row or a cone about another axis fails it)."""
+    bound = [c for c in captured if c[7]]
+    free = [c for c in captured if not c[7]]
+    assert len(bound) >= 12 and len(free) >= 6
+    picks = [bound[i] for i in np.linspace(0, len(bound) - 1, 12).astype(int)] + \
+        [free[i] for i in np.linspace(0, len(free) - 1, 6).astype(int)]
+    for a, dw, f0, mu, spread, bounds, answer, _ in picks:
+        expected = reference(a, dw, f0, mu, spread, bounds)
+        scale = max(np.abs(expected).max(), np.abs(f0).max())
+        assert np.abs(answer - expected).max() <= 1e-6 * scale
+        assert inside_cones(f0 + answer, mu, slack=1e-7 * scale)
+        assert bounds.holds(answer.ravel(), slack=1e-7 * scale)
+
+
+def test_the_torque_rows_bind():
+    """A wrench change far beyond the actuators: the correction stops at the torque bound."""
+    feet = np.array([[0.2, 0.15, 0.0], [-0.2, -0.15, 0.0]])
+    f0 = np.tile([0.0, 0.0, 10.0], (2, 1))
+    a = wrench_map(feet, np.array([0, 0, 0.2]))
+    t = -np.kron(np.eye(2), np.array([[0.0, 0.0, 0.2]]))  # one joint a foot: τ = −0.2 f_z
+    bounds = TorqueBounds(t, np.full(2, -1.0), np.full(2, 1.0))
+    df, bound = distribute(a, np.array([0, 0, 100.0, 0, 0, 0]), f0, 0.6, 0.25, bounds)
+    assert bound and np.allclose(t @ df.ravel(), -1.0, atol=1e-7)
+    assert np.allclose(df, reference(a, np.array([0, 0, 100.0, 0, 0, 0]), f0, 0.6, 0.25,
+                                     bounds), atol=1e-6)
+
+
+def test_dataclass_replace_keeps_settings_valid():
+    """``feedback`` is a checked setting: an unknown value names the allowed ones."""
+    from hexaleg.errors import UnknownNameError
+
+    with pytest.raises(UnknownNameError, match="auto, off, on"):
+        dataclasses.replace(Settings(), feedback="sometimes")
