@@ -76,6 +76,15 @@ def test_console_script_runs():
     assert out.startswith("hexaleg ")
 
 
+def test_an_ascii_console_gets_ascii_spellings_not_a_crash():
+    """`PYTHONIOENCODING=ascii hexaleg motors` had ended in UnicodeEncodeError on "·" (#58)."""
+    env = {**os.environ, "PYTHONIOENCODING": "ascii"}
+    proc = subprocess.run([sys.executable, "-m", "hexaleg.cli", "motors"], capture_output=True,
+                          env=env, timeout=120)
+    assert proc.returncode == 0 and proc.stderr == b""
+    assert proc.stdout.isascii() and b"k_t*G" in proc.stdout
+
+
 def test_closed_pipe_is_quiet_and_reports_sigpipe():
     """`hexaleg robot | head -n 2`: the reader leaves early; no traceback, status 128+SIGPIPE."""
     read_end, write_end = os.pipe()

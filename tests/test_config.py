@@ -75,7 +75,7 @@ def test_text_files_are_regular_utf8_and_bounded(tmp_path, monkeypatch):
     latin = tmp_path / "latin.toml"
     latin.write_bytes("period = 1.0  # café\n".encode("latin-1"))
     with pytest.raises(ConfigError, match=r"latin\.toml is not UTF-8 text: byte 0xe9 at offset "
-                                          r"19 .*iconv"):
+                                          r"19, line 1, column 20 .*allowed: UTF-8.*iconv"):
         load_toml(latin)
     for special in ("/dev/zero", str(tmp_path)):
         with pytest.raises(ConfigError, match=r"is not a regular file"):
@@ -87,6 +87,38 @@ def test_text_files_are_regular_utf8_and_bounded(tmp_path, monkeypatch):
         read_text(big, "spec")
     monkeypatch.undo()
     assert read_text(big) == "x = 1\n"
+
+
+def test_a_symbolic_link_loop_is_named_with_what_is_allowed(tmp_path):
+    (tmp_path / "a.toml").symlink_to(tmp_path / "b.toml")
+    (tmp_path / "b.toml").symlink_to(tmp_path / "a.toml")
+    with pytest.raises(ConfigError, match=r"a\.toml: its symbolic links lead in a loop .*"
+                                          r"allowed: a path that leads to a regular file"):
+        load_toml(tmp_path / "a.toml")
+
+
+def test_a_byte_order_mark_is_accepted(tmp_path):
+    bom = tmp_path / "bom.toml"
+    bom.write_bytes(b"\xef\xbb\xbf[gait]\nperiod = 2.0\n")  # as Windows Notepad saves UTF-8
+    assert load_toml(bom) == {"gait": {"period": 2.0}}
+
+
+@pytest.mark.parametrize("deep", ["{b = " * 3000 + "1" + "}" * 3000,
+                                  "[" * 3000 + "1" + "]" * 3000,
+                                  "[" * 40 + "1" + "]" * 40])
+def test_deep_nesting_is_refused_with_the_bound(tmp_path, deep):
+    path = tmp_path / "deep.toml"
+    path.write_text(f"a = {deep}\n")
+    with pytest.raises(ConfigError, match=r"deep\.toml nests tables or arrays (deeper than "
+                                          r"Python's TOML parser can read|41 levels deep); "
+                                          r"allowed: at most 32 levels"):
+        load_toml(path)
+
+
+def test_nesting_at_the_bound_is_read(tmp_path):
+    path = tmp_path / "ok.toml"
+    path.write_text("a = " + "[" * 31 + "1" + "]" * 31 + "\n")  # the document is the 32nd
+    assert load_toml(path)["a"] == eval("[" * 30 + "[1]" + "]" * 30)
 
 
 def test_check_tables_names_the_bad_table_and_the_allowed_ones():
@@ -151,6 +183,22 @@ def test_written_files_replace_a_link_and_leave_its_target(tmp_path):
     assert sorted(p.name for p in out.iterdir()) == ["report.json"]  # no temporary left
     with pytest.raises(OutputError, match=r"cannot write the report .*nowhere"):
         write_file(tmp_path / "nowhere" / "x.json", "{}", "the report")
+
+
+def test_an_interrupted_write_leaves_the_old_file_and_no_temporary(tmp_path, monkeypatch):
+    import os
+
+    path = tmp_path / "page.html"
+    path.write_text("old")
+
+    def interrupted(fd, data):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(os, "write", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        write_file(path, "new")
+    monkeypatch.undo()
+    assert [p.name for p in tmp_path.iterdir()] == ["page.html"] and path.read_text() == "old"
 
 
 def test_keywords_are_checked_against_the_function_s_annotations():

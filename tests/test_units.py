@@ -35,3 +35,15 @@ def test_scales():
     assert units.kgmm2_to_kgm2(1.0) == pytest.approx(1e-6)
     assert units.deg_to_rad(180.0) == pytest.approx(math.pi)
     assert isinstance(units.mm_to_m(1.0), float)
+
+
+def test_ascii_spelling_of_the_printed_symbols():
+    import codecs
+
+    codecs.register_error("test-ascii", units.ascii_spelling)
+    text = "k_t·G = 1.5 N·m/rad, θ ≥ 10°, m/s², 0.5 µm → ∀"
+    assert text.encode("ascii", "test-ascii").decode() == (
+        "k_t*G = 1.5 N*m/rad, theta >= 10 deg, m/s^2, 0.5 um -> \\u2200")
+    assert all(v.isascii() for v in units.ASCII_SPELLINGS.values())
+    with pytest.raises(UnicodeDecodeError):
+        b"\xff".decode("ascii", "test-ascii")

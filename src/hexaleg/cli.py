@@ -7,8 +7,11 @@ from :class:`~hexaleg.errors.HexalegError` are printed as one line and exit with
 from __future__ import annotations
 
 import argparse
+import codecs
 import functools
+import io
 import os
+import signal
 import sys
 import textwrap
 import warnings
@@ -19,6 +22,7 @@ from hexaleg import __version__
 from hexaleg.commands.options import add_motion_option, add_quiet  # no loader: loads with a run
 from hexaleg.commands.parser import GUIDE, START, TEXT_OPTIONS, Parser, nonempty
 from hexaleg.errors import HexalegError, HexalegWarning, InvalidParameterError
+from hexaleg.parallel import interrupt
 from hexaleg.robot.registry import ROBOT_HELP  # loaded by `import hexaleg` already
 from hexaleg.simulation.balance import MODES as FEEDBACK  # no MuJoCo: it loads with a model
 from hexaleg.simulation.controllers import CONTROLLERS, SERVOS  # no MuJoCo either
@@ -259,6 +263,7 @@ def _run_simulate(args: argparse.Namespace) -> int:
     from hexaleg.commands.simulate.study import load_study
     from hexaleg.commands.simulate.write import simulation_data, summary, write_simulation
     from hexaleg.errors import SimulationError
+    from hexaleg.outputs.directory import OutputFolder
     from hexaleg.simulation.motion_file import write_motions
 
     overrides = {"controller": args.controller, "feedback": args.feedback,
@@ -267,16 +272,20 @@ def _run_simulate(args: argparse.Namespace) -> int:
         overrides["evaluate"] = min(2, args.cycles - 1)
     run = load_run(args.robot, args.config, args.motion, args.cycle, args)
     study = load_study(run, args.springs, overrides)
-    s = study.run()
-    rows = None
-    if args.sensitivity and s.walks:
-        from hexaleg.simulation.sensitivity import sensitivity
+    with OutputFolder(args.out, "simulation") as folder:  # locked; published whole at the end
+        s = study.run()
+        rows = None
+        if args.sensitivity and s.walks:
+            from hexaleg.simulation.sensitivity import sensitivity
 
-        rows = sensitivity(s)
-    data = simulation_data(s, design=study.design, notes=study.notes, sensitivity=rows,
-                           warnings=study.warnings, gait_defaults=study.gait_defaults)
-    js, md, html = write_simulation(args.out, data)
-    motions = ", ".join(str(m) for m in write_motions(args.out, s))
+            rows = sensitivity(s)
+        data = simulation_data(s, design=study.design, notes=study.notes, sensitivity=rows,
+                               warnings=study.warnings, gait_defaults=study.gait_defaults)
+        js, md, html = (folder.directory / p.name
+                        for p in write_simulation(folder.staging, data))
+        motions = ", ".join(str(folder.directory / m.name)
+                            for m in write_motions(folder.staging, s))
+        folder.publish()
     for note in study.notes:
         print(f"note: {note}")
     _warn_lines(study.warnings)
@@ -339,14 +348,29 @@ def _show_warning(command: str, original: Callable[..., None], message: Warning 
         original(message, category, filename, lineno, file, line)
 
 
+def _spell_in_ascii_where_needed() -> None:
+    """Standard output and error spell in ASCII what their encoding cannot show
+    (:func:`hexaleg.units.ascii_spelling`: ``N·m`` → ``N*m`` under ``PYTHONIOENCODING=ascii``
+    or a C locale), instead of failing on the first symbol."""
+    from hexaleg.units import ascii_spelling
+
+    codecs.register_error("hexaleg-ascii", ascii_spelling)
+    for stream in (sys.stdout, sys.stderr):
+        if isinstance(stream, io.TextIOWrapper) and stream.errors == "strict":
+            stream.reconfigure(errors="hexaleg-ascii")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``hexaleg`` console script.
 
     Returns:
         Exit status: 0 on success, 2 on a hexaleg error (message on stderr), 141 when the
         reader of standard output went away early (``hexaleg robot | head``), as a tool killed
-        by SIGPIPE would report, without a traceback.
+        by SIGPIPE would report, without a traceback; 130 on Ctrl-C (SIGINT) and 143 on
+        SIGTERM, after one line on stderr saying what was kept (every output directory as it
+        was: :class:`hexaleg.outputs.directory.OutputFolder`).
     """
+    _spell_in_ascii_where_needed()
     parser = build_parser()
     args, extra = parser.parse_known_args(argv)
     if extra:  # named by the command's own parser: its usage, its options to suggest
@@ -357,11 +381,13 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.print_help()
         return 0
     try:
-        with warnings.catch_warnings():
+        # the view takes Ctrl-C even where it started ignored: it serves until interrupted
+        with warnings.catch_warnings(), interrupt.handled(sigint=args.command == "view" or None):
             warnings.showwarning = functools.partial(_show_warning, args.command,
                                                      warnings.showwarning)
             status = int(args.func(args) or 0)
-        sys.stdout.flush()  # a closed pipe fails here, inside the handler, not at shutdown
+            interrupt.check()  # one lost on the way (raised in a __del__) is still reported
+            sys.stdout.flush()  # a closed pipe fails here, inside the handler, not at shutdown
         return status
     except HexalegError as e:
         print(f"hexaleg {args.command}: error: {e}", file=sys.stderr)
@@ -372,6 +398,22 @@ def main(argv: Sequence[str] | None = None) -> int:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
         return 128 + 13  # 128 + SIGPIPE, what a shell reports for `cat big | head`
+    except KeyboardInterrupt as e:  # SIGINT, or SIGTERM (interrupt.Interrupted)
+        return _interrupted(args.command, e)
+    except Exception as e:  # an interrupt inside an import is an ImportError raised from it
+        cause = interrupt.found(e)
+        if cause is None:
+            raise
+        return _interrupted(args.command, cause)
+
+
+def _interrupted(command: str, e: KeyboardInterrupt) -> int:
+    """One line for an interrupted command, saying what it kept; the exit status."""
+    signum = getattr(e, "signum", signal.SIGINT)
+    kept = "; ".join(interrupt.kept(e)) or "nothing written"
+    print(f"hexaleg {command}: interrupted ({signal.Signals(signum).name}): {kept}",
+          file=sys.stderr)
+    return 128 + signum  # what a shell reports for a process ended by the signal
 
 
 if __name__ == "__main__":

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import contextlib
 import dataclasses
+import errno
 import json
 import math
 import os
@@ -71,6 +72,10 @@ def read_bytes(path: str | Path, what: str = "config file", limit: int | None = 
     except FileNotFoundError:
         raise ConfigError(f"{what} not found: {path}") from None
     except OSError as e:
+        if e.errno == errno.ELOOP and follow:
+            raise ConfigError(f"cannot read {what} {path}: its symbolic links lead in a loop (or "
+                              "more than 40 deep); allowed: a path that leads to a regular "
+                              "file: give the file's own path") from None
         raise ConfigError(f"cannot read {what} {path}: {e.strerror or e}") from e
     try:
         info = os.fstat(fd)
@@ -102,21 +107,27 @@ def read_text(path: str | Path, what: str = "config file", limit: int | None = N
     """The text of a regular file (:func:`read_bytes`), decoded as UTF-8 (TOML and JSON require
     it; hexaleg's XML files too).
 
+    A UTF-8 byte-order mark (which some Windows editors write) is dropped.
+
     Raises:
-        ConfigError: as :func:`read_bytes`, or not UTF-8 (the message names the byte offset
-            and how to convert the file).
+        ConfigError: as :func:`read_bytes`, or not UTF-8 (the message names the byte, its
+            offset, line and column and how to convert the file).
     """
     data = read_bytes(path, what, limit, follow=follow)
     try:
-        return data.decode("utf-8")
+        return data.decode("utf-8").removeprefix("\ufeff")  # a byte-order mark is no text
     except UnicodeDecodeError as e:
+        line = data.count(b"\n", 0, e.start) + 1
+        column = e.start - (data.rfind(b"\n", 0, e.start) + 1) + 1
         raise ConfigError(f"{what} {path} is not UTF-8 text: byte {data[e.start]:#04x} at offset "
-                          f"{e.start} ({e.reason}); save it as UTF-8 (e.g. iconv -f latin1 -t "
-                          "utf-8)") from None
+                          f"{e.start}, line {line}, column {column} ({e.reason}); allowed: "
+                          "UTF-8, with or without a byte-order mark: save it as UTF-8 (e.g. "
+                          f"iconv -f latin1 -t utf-8 {path})") from None
 
 
 def _no_constant(name: str) -> float:
-    raise ValueError(f"{name} is not a JSON number (JSON has no NaN or Infinity)")
+    raise ValueError(f"{name} is not a JSON number (JSON has no NaN or Infinity); allowed: "
+                     "finite numbers (hexaleg writes a value that is not finite as null)")
 
 
 def _finite_float(text: str) -> float:
@@ -181,26 +192,59 @@ def write_file(path: str | Path, data: bytes | str, what: str = "file") -> Path:
         finally:
             os.close(fd)
         os.replace(tmp, path)
-    except OSError as e:
+    except BaseException as e:  # a full disk, or Ctrl-C: no temporary file left behind
         with contextlib.suppress(OSError):
             tmp.unlink()
-        raise OutputError(f"cannot write {what} {path}: {e.strerror or e}") from e
+        if isinstance(e, OSError):
+            raise OutputError(f"cannot write {what} {path}: {e.strerror or e}") from e
+        raise
     return path
 
 
+MAX_NESTING = 32
+"""Deepest nesting of tables and arrays in a TOML file hexaleg reads (``[a.b]`` is 2 deep, a
+list of lists in it 4): hexaleg's own files nest 3 deep. Python's TOML parser recurses once a
+level and fails with a ``RecursionError`` near a few hundred levels."""
+
+
+def _nesting(data: object) -> int:
+    """How deep tables (dicts) and arrays (lists) nest in ``data`` (0 for a scalar); iterative,
+    so any depth is measured."""
+    deepest, stack = 0, [(data, 0)]
+    while stack:
+        value, depth = stack.pop()
+        if isinstance(value, dict):
+            stack += [(v, depth + 1) for v in value.values()]
+        elif isinstance(value, list):
+            stack += [(v, depth + 1) for v in value]
+        else:
+            continue
+        deepest = max(deepest, depth + 1)
+    return deepest
+
+
 def load_toml(path: str | Path) -> dict[str, Any]:
-    """Read a TOML file (UTF-8, a regular file: :func:`read_text`).
+    """Read a TOML file (UTF-8, a regular file: :func:`read_text`) whose tables and arrays nest
+    at most :data:`MAX_NESTING` deep (the document itself is a level).
 
     Raises:
-        ConfigError: the file is missing, not a regular file, too large, unreadable, not UTF-8
-            or not valid TOML.
+        ConfigError: the file is missing, not a regular file, too large, unreadable, not UTF-8,
+            not valid TOML or nested deeper than :data:`MAX_NESTING`.
     """
     path = Path(path)
     text = read_text(path, "config file")
+    too_deep = (f"config file {path} nests tables or arrays {{}}; allowed: at most "
+                f"{MAX_NESTING} levels (hexaleg's own files nest 3 deep)")
     try:
-        return tomllib.loads(text)
+        data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as e:
         raise ConfigError(f"config file {path} is not valid TOML: {e}") from e
+    except RecursionError:  # the parser recurses once a level
+        raise ConfigError(too_deep.format("deeper than Python's TOML parser can read")) from None
+    depth = _nesting(data)
+    if depth > MAX_NESTING:
+        raise ConfigError(too_deep.format(f"{depth} levels deep"))
+    return data
 
 
 def _check_type(key: str, value: Any, hint: Any) -> Any:

@@ -176,7 +176,8 @@ class OutputError(HexalegError):
 
 
 class DirectoryLockedError(OutputError):
-    """An output directory is being written by another running process (a sweep).
+    """An output directory is being written by another running process (a sweep, or a
+    command's run: :class:`hexaleg.outputs.directory.OutputFolder`).
 
     Args:
         message: The message: who holds the directory and what to do.

@@ -83,3 +83,29 @@ def nmm_to_nm(x: ArrayLike) -> float | np.ndarray:
 def nm_to_nmm(x: ArrayLike) -> float | np.ndarray:
     """Torque N·m → N·mm."""
     return _f(np.asarray(x, dtype=float) / MM)
+
+
+ASCII_SPELLINGS: dict[str, str] = {
+    "·": "*", "−": "-", "–": "-", "—": "--", "²": "^2", "³": "^3", "⁻": "^-", "¹": "^1",
+    "→": "->", "←": "<-", "≥": ">=", "≤": "<=", "≈": "~", "×": "x", "±": "+/-", "∓": "-/+",
+    "°": " deg", "…": "...", "µ": "u", "μ": "mu", "θ": "theta", "τ": "tau", "ω": "omega",
+    "α": "alpha", "β": "beta", "γ": "gamma", "δ": "delta", "Δ": "Delta", "ε": "eps",
+    "η": "eta", "κ": "kappa", "λ": "lambda", "π": "pi", "ρ": "rho", "σ": "sigma",
+    "Σ": "Sum", "φ": "phi", "ψ": "psi", "Ω": "Ohm", "½": "1/2", "‖": "||", "√": "sqrt",
+    "∞": "inf", "§": "S", "₀": "0", "₁": "1", "₂": "2", "“": '"', "”": '"', "‘": "'",
+    "’": "'",
+}
+"""ASCII spellings of the symbols hexaleg prints (units such as N·m and m/s², Greek letters,
+arrows), for a console that cannot show them (:func:`ascii_spelling`)."""
+
+
+def ascii_spelling(error: UnicodeError) -> tuple[str, int]:
+    """A codec error handler (:func:`codecs.register_error`) for output to an ASCII console
+    (``PYTHONIOENCODING=ascii``, the C locale): each character the console cannot show is
+    spelt in ASCII (:data:`ASCII_SPELLINGS`: ``N·m`` → ``N*m``, ``θ`` → ``theta``), any other
+    as a ``\\u`` escape, so output never fails on a symbol."""
+    if not isinstance(error, UnicodeEncodeError):
+        raise error
+    text = error.object[error.start:error.end]
+    return "".join(ASCII_SPELLINGS.get(c, c.encode("ascii", "backslashreplace").decode())
+                   for c in text), error.end

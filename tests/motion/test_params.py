@@ -145,3 +145,13 @@ def test_legs_without_side_and_place_ask_for_groups(tmp_path):
         LegSpec(name=n, joints=(f"{n}_j",), foot=f"{n}_foot") for n in ("front", "back")))
     with pytest.raises(InvalidParameterError, match=r"groups = \[\[…\], \[…\]\]"):
         robot_gait(desc)
+
+
+def test_for_robot_of_0_1_warns_and_gives_robot_gait():
+    """GaitParams.for_robot (0.1) had raised AttributeError since it moved (#58)."""
+    from hexaleg.motion.scaling import robot_gait
+
+    with pytest.warns(DeprecationWarning, match=r"GaitParams\.for_robot is deprecated .*use "
+                                                r"hexaleg\.motion\.scaling\.robot_gait"):
+        old = GaitParams.for_robot("solo12", sized=False)
+    assert old == robot_gait("solo12", sized=False)

@@ -13,7 +13,7 @@ import pytest
 from hexaleg.errors import RobotModelError
 from hexaleg.robot.model import DEFAULT_URDF
 from hexaleg.robot.registry import DESCRIPTIONS, load
-from hexaleg.robot.urdf_numbers import check_urdf_numbers
+from hexaleg.robot.urdf_numbers import MAX_LINKS, check_urdf_numbers, check_xml
 
 URDF = DEFAULT_URDF.read_text(encoding="utf-8")
 
@@ -114,3 +114,47 @@ def test_a_shape_of_no_size_is_named(tag, attribute, value):
     with pytest.raises(RobotModelError, match=rf"<{tag} {attribute}=\"{value}\">: expected "
                                               r"sizes > 0"):
         check_urdf_numbers(tree, Path("robot.urdf"))
+
+
+def test_a_zero_length_axis_is_named_with_its_joint():
+    root = _with(r'<axis xyz="[^"]*"', '<axis xyz="0 0 0"')
+    with pytest.raises(RobotModelError, match=r"joint 'LF_coxa', <axis xyz=\"0 0 0\">: a "
+                                              r"zero-length axis; allowed: a nonzero direction"):
+        check_urdf_numbers(root, Path("robot.urdf"))
+
+
+@pytest.mark.parametrize("tag", ["joint", "link"])
+def test_a_repeated_name_is_named(tag):
+    names = re.findall(rf'<{tag} name="([^"]*)"', URDF)
+    root = ET.fromstring(URDF.replace(f'<{tag} name="{names[1]}"', f'<{tag} name="{names[0]}"',
+                                      1))
+    with pytest.raises(RobotModelError, match=rf"the {tag} name '{names[0]}' is given to two "
+                                              rf"{tag}s; allowed: one {tag} a name"):
+        check_urdf_numbers(root, Path("robot.urdf"))
+
+
+def test_entities_are_refused_saying_what_to_do(tmp_path):
+    path = tmp_path / "lol.urdf"
+    path.write_text('<?xml version="1.0"?>\n<!DOCTYPE r [<!ENTITY a "aaaa"><!ENTITY b "&a;&a;">]>'
+                    '\n<robot name="r"><link name="l">&b;</link></robot>\n')
+    with pytest.raises(RobotModelError, match=r"declares XML entities .*allowed: plain XML .*"
+                                              r"xacro"):
+        check_xml(path, "URDF")
+
+
+def test_a_urdf_beyond_the_link_bound_is_refused_before_pinocchio(tmp_path):
+    """10,000 links chained by fixed joints had crashed Pinocchio's parser (signal 11)."""
+    links = "".join(f'<link name="l{i}"/>' for i in range(MAX_LINKS + 1))
+    joints = "".join(f'<joint name="j{i}" type="fixed"><parent link="l{i - 1}"/>'
+                     f'<child link="l{i}"/></joint>' for i in range(1, MAX_LINKS + 1))
+    path = tmp_path / "chain.urdf"
+    path.write_text(f'<robot name="chain">{links}{joints}</robot>')
+    with pytest.raises(RobotModelError, match=rf"has {MAX_LINKS + 1} links; allowed: at most "
+                                              rf"{MAX_LINKS} "):
+        check_xml(path, "URDF")
+    path.write_text(f'<robot name="chain">{links}{joints}</robot>'.replace(
+        f'<link name="l{MAX_LINKS}"/>', "").replace(
+        f'<joint name="j{MAX_LINKS}" type="fixed"><parent link="l{MAX_LINKS - 1}"/><child '
+        f'link="l{MAX_LINKS}"/></joint>', ""))
+    check_xml(path, "URDF")  # at the bound: read
+    assert pin.buildModelFromUrdf(str(path)).nframes == 2 * MAX_LINKS  # and Pinocchio loads it

@@ -159,7 +159,8 @@ def test_a_motion_file_with_nan_is_refused(written, tmp_path):
     q = m.q.copy()
     q[1, 3] = np.nan
     path = write_motion(tmp_path / "nan.npz", dataclasses.replace(m, q=q))
-    with pytest.raises(ConfigError, match=r"nan\.npz: q holds NaN or inf"):
+    with pytest.raises(ConfigError, match=r"nan\.npz: q holds nan at index \[1, 3\]; allowed: "
+                                          r"finite numbers only"):
         read_motion(path)
 
 

@@ -8,7 +8,9 @@ overrides of these parameters (its ``gait`` mapping, e.g. Solo-12's trot);
 from __future__ import annotations
 
 import dataclasses
+import importlib
 import math
+import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -283,6 +285,18 @@ class GaitParams:
         data = load_toml(source)
         table = data.get("gait", data)
         return from_mapping(cls, table, f"{source} [gait]" if "gait" in data else str(source))
+
+    @classmethod
+    def for_robot(cls, robot: Any, *, sized: bool = True) -> GaitParams:
+        """Deprecated (0.1; it leaves in the next release): the robot's default gait, now
+        :func:`hexaleg.motion.scaling.robot_gait` (same arguments, same result), to which it
+        delegates with a :class:`DeprecationWarning`. The sizing module imports this one, so
+        it is imported by name when called, as ``hexaleg``'s deprecated names are."""
+        warnings.warn("GaitParams.for_robot is deprecated and leaves in the next release: use "
+                      "hexaleg.motion.scaling.robot_gait(robot, sized=...)", DeprecationWarning,
+                      stacklevel=2)
+        scaling = importlib.import_module("hexaleg.motion.scaling")
+        return scaling.robot_gait(robot, sized=sized)
 
     def updated(self, table: Mapping[str, Any], where: str = "gait") -> GaitParams:
         """This gait with the keys of a TOML table on top (e.g. a file's ``[gait]`` over a

@@ -21,6 +21,7 @@ from collections.abc import Callable, Iterable, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from typing import Any, TypeVar
 
+from hexaleg.parallel.interrupt import stop_workers
 from hexaleg.robot.model import Robot
 
 T = TypeVar("T")
@@ -102,6 +103,9 @@ def fork_map(fn: Callable[[T], R], items: Sequence[T], *, shared: Iterable[objec
                     results[i] = _Unpickler(io.BytesIO(job.result()), table).load()
                     if done is not None:
                         done(i, results[i])
+            except KeyboardInterrupt:  # Ctrl-C or a kill: the items being computed end too
+                stop_workers(pool)
+                raise
             except BaseException:  # the first failure ends the map: drop the items not begun
                 for job in jobs:
                     job.cancel()

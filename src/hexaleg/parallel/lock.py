@@ -1,11 +1,12 @@
-"""One writer per sweep directory: a lock file that names its holder and dies with it.
+"""One writer per output directory: a lock file that names its holder and dies with it.
 
-:class:`DirectoryLock` holds ``DIR/.lock`` for as long as a sweep writes to ``DIR``. The file
-says who holds it (pid, host, start time, command line), so a second sweep started into the same
+:class:`DirectoryLock` holds ``DIR/.lock`` for as long as a run writes to ``DIR`` (a sweep, or a
+command's output folder: :class:`hexaleg.outputs.directory.OutputFolder`). The file says who
+holds it (what, pid, host, start time, command line), so a second run started into the same
 directory is refused with a :class:`~hexaleg.errors.DirectoryLockedError` naming the first. The
 lock itself is an advisory ``flock`` (POSIX, :func:`fcntl.flock`) on that file: the kernel drops
 it when the holding process ends, however it ends — a ``kill -9`` leaves the file behind, but
-unlocked, and the next sweep recognises it as stale, says so, and takes it over. Where ``fcntl``
+unlocked, and the next run recognises it as stale, says so, and takes it over. Where ``fcntl``
 is missing (Windows) the lock is the file's existence (``O_EXCL``) and a lock whose process no
 longer runs on this host is stale.
 
@@ -34,7 +35,7 @@ except ImportError:  # pragma: no cover - Windows
     fcntl = None  # type: ignore[assignment]
 
 LOCK = ".lock"
-"""Name of the lock file in a sweep directory."""
+"""Name of the lock file in an output directory."""
 
 _HELD: set[int] = set()
 """File descriptors of the locks this process holds; forked pool workers close their copies
@@ -68,8 +69,8 @@ def _zombie(pid: int) -> bool:
     return bool(fields) and fields[0] in ("Z", "X")
 
 
-def _holder() -> dict[str, Any]:
-    return {"pid": os.getpid(), "host": socket.gethostname(),
+def _holder(what: str) -> dict[str, Any]:
+    return {"what": what, "pid": os.getpid(), "host": socket.gethostname(),
             "started": time.strftime("%Y-%m-%d %H:%M:%S %z"), "argv": sys.argv}
 
 
@@ -86,36 +87,38 @@ _NOFOLLOW = getattr(os, "O_NOFOLLOW", 0)
 def _read(path: Path) -> dict[str, Any]:
     """The holder's record in a lock file, or {} (missing, unreadable, a link, not a record)."""
     try:
-        return read_json(path, "sweep lock", MAX_LOCK_BYTES, follow=False)
+        return read_json(path, "lock file", MAX_LOCK_BYTES, follow=False)
     except ConfigError:
         return {}
 
 
-def _not_a_link(path: Path) -> None:
+def _not_a_link(path: Path, what: str) -> None:
     """Refuse a lock path that is a symbolic link (whatever it points to)."""
     if path.is_symlink():
-        raise OutputError(f"the sweep lock {path} is a symbolic link (to {os.readlink(path)}); "
+        raise OutputError(f"the {what} lock {path} is a symbolic link (to {os.readlink(path)}); "
                           "hexaleg never writes through a link in a directory it owns: remove "
-                          "the link, or give the sweep another --out directory")
+                          f"the link, or give the {what} another --out directory")
 
 
-def _check_own(path: Path, fd: int) -> None:
+def _check_own(path: Path, fd: int, what: str) -> None:
     """Refuse an opened lock that is not a regular file of its own (a hard link to another
     file would be truncated with it)."""
     info = os.fstat(fd)
     if not stat.S_ISREG(info.st_mode) or info.st_nlink > 1:
         kind = ("not a regular file" if not stat.S_ISREG(info.st_mode)
                 else f"a hard link shared with {info.st_nlink - 1} other name(s)")
-        raise OutputError(f"the sweep lock {path} is {kind}; hexaleg writes its lock only into "
-                          "a file of its own: remove it, or give the sweep another --out "
+        raise OutputError(f"the {what} lock {path} is {kind}; hexaleg writes its lock only into "
+                          f"a file of its own: remove it, or give the {what} another --out "
                           "directory")
 
 
 class DirectoryLock:
-    """The exclusive right to write to a sweep directory.
+    """The exclusive right to write to an output directory.
 
     Args:
-        directory: The sweep directory (must exist).
+        directory: The directory (must exist).
+        what: What writes there, for the messages (``"sweep"``, ``"report"``, …); the holder's
+            record keeps it, so a refused run is told what holds the directory.
 
     Attributes:
         path: The lock file.
@@ -128,8 +131,9 @@ class DirectoryLock:
         OutputError: the lock file cannot be created.
     """
 
-    def __init__(self, directory: str | Path) -> None:
+    def __init__(self, directory: str | Path, what: str = "sweep") -> None:
         self.path = Path(directory) / LOCK
+        self.what = what
         self.stale: str | None = None
         self._fd: int | None = None
         self._held = False
@@ -140,23 +144,26 @@ class DirectoryLock:
             else:  # pragma: no cover - Windows
                 self._acquire_exclusive()
         except OSError as e:
-            raise OutputError(f"cannot create the sweep lock {self.path}: {e}") from e
+            raise OutputError(f"cannot create the {what} lock {self.path}: {e.strerror or e}; "
+                              "give as --out a directory that can be written, with free space"
+                              ) from e
         self._held = True
 
     def _refuse(self, info: dict[str, Any]) -> DirectoryLockedError:
+        holder = info.get("what", "sweep")  # a lock of hexaleg 0.2 is a sweep's
         return DirectoryLockedError(
-            f"another sweep ({_describe(info)}) is writing to {self.path.parent}; wait for it "
-            f"to finish, stop it, or give this sweep another --out directory (lock file "
-            f"{self.path})", directory=self.path.parent, pid=info.get("pid"),
+            f"another {holder} ({_describe(info)}) is writing to {self.path.parent}; wait for "
+            f"it to finish, stop it, or give this {self.what} another --out directory (lock "
+            f"file {self.path})", directory=self.path.parent, pid=info.get("pid"),
             host=info.get("host"), started=info.get("started"))
 
     def _acquire_flock(self) -> None:
         assert fcntl is not None
         while True:
-            _not_a_link(self.path)
+            _not_a_link(self.path, self.what)
             fd = os.open(self.path, os.O_RDWR | os.O_CREAT | os.O_NONBLOCK | _NOFOLLOW, 0o644)
             try:
-                _check_own(self.path, fd)
+                _check_own(self.path, fd, self.what)
                 fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
             except BlockingIOError:
                 os.close(fd)
@@ -173,9 +180,14 @@ class DirectoryLock:
         old = _read(self.path)
         if old:  # left by a process that ended without releasing it (a kill -9)
             self.stale = _describe(old)
-        os.ftruncate(fd, 0)
-        os.pwrite(fd, json.dumps(_holder()).encode(), 0)
-        os.fsync(fd)
+        try:
+            os.ftruncate(fd, 0)
+            os.pwrite(fd, json.dumps(_holder(self.what)).encode(), 0)
+            os.fsync(fd)
+        except OSError:  # a full disk: no lock of ours left behind
+            self.path.unlink(missing_ok=True)
+            os.close(fd)
+            raise
         self._fd = fd
         _HELD.add(fd)
 
@@ -191,7 +203,7 @@ class DirectoryLock:
                     self.path.unlink(missing_ok=True)
                     continue
                 raise self._refuse(old) from None
-            os.write(fd, json.dumps(_holder()).encode())
+            os.write(fd, json.dumps(_holder(self.what)).encode())
             os.close(fd)
             return
         raise self._refuse(_read(self.path))

@@ -9,7 +9,8 @@ prevents that:
   (``prctl(PR_SET_PDEATHSIG, SIGKILL)``, prctl(2), through :mod:`ctypes`);
 * elsewhere a daemon thread polls the parent's pid every :data:`POLL_INTERVAL` seconds and
   ends the worker when it has gone (the worker is re-parented, so ``os.getppid()`` changes);
-* in both cases the worker first checks that the sweep's process still runs (it may have died
+* in both cases the worker ignores SIGINT (its parent answers Ctrl-C and stops it:
+  :mod:`hexaleg.parallel.interrupt`), checks that the sweep's process still runs (it may have died
   between the fork and the initializer) and closes the sweep directory's lock descriptor it
   inherited (:func:`hexaleg.parallel.lock.close_inherited`).
 """
@@ -25,6 +26,7 @@ import sys
 import threading
 import time
 
+from hexaleg.parallel.interrupt import quiet_worker
 from hexaleg.parallel.lock import close_inherited, running
 
 
@@ -67,6 +69,7 @@ def watch_parent(sweep_pid: int) -> None:
             forkserver the worker's parent is the server, which itself ends with that process.
     """
     close_inherited()
+    quiet_worker()
     if not _prctl_parent_death():  # pragma: no cover - not Linux
         threading.Thread(target=_poll_parent, args=(os.getppid(),), daemon=True,
                          name="hexaleg-parent-watch").start()

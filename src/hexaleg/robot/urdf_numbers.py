@@ -40,6 +40,12 @@ CHECKED: dict[str, tuple[str, ...]] = {
 }
 """Element tag → its numeric attributes (when present)."""
 
+MAX_LINKS = 1000
+"""Most links in a URDF, checked before Pinocchio sees it: its parser recurses once a link down
+the tree, and a chain of 10,000 links (fixed joints) ended ``hexaleg robot`` with a segfault
+(between 3,500 and 4,000 links on the default 8 MiB stack, measured); the robots hexaleg knows
+have at most a few dozen, humanoids with hands a few hundred."""
+
 def _numbers(text: str) -> list[float] | None:
     """The numbers of an attribute, or None if one of its words is not a finite number."""
     words = text.split()
@@ -71,8 +77,40 @@ def check_urdf_numbers(root: ET.Element, path: Path) -> None:
                         f"URDF {path}: {name}, <{element.tag} {attribute}=\"{text}\">: expected "
                         f"{allowed} (urdfdom would drop the element and load the robot "
                         "without it)")
+    _check_names(root, path)
+    _check_axes(root, path)
     _check_limits(root, path)
     _check_sizes(root, path)
+
+
+def _check_names(root: ET.Element, path: Path) -> None:
+    """Every link and joint named once (urdfdom refuses a repeated name saying only that the
+    model is not valid)."""
+    for tag in ("link", "joint"):
+        seen: set[str] = set()
+        for element in root.findall(tag):
+            name = element.get("name", "(unnamed)")
+            if name in seen:
+                raise RobotModelError(
+                    f"URDF {path}: the {tag} name {name!r} is given to two {tag}s; allowed: "
+                    f"one {tag} a name (rename one of them"
+                    + (", and the <parent>/<child> that mean it)" if tag == "link" else ")"))
+            seen.add(name)
+
+
+def _check_axes(root: ET.Element, path: Path) -> None:
+    """Every moving joint's axis of nonzero length (Pinocchio would load a zero axis as some
+    direction, and a leg's chain would then miss its foot without naming the joint)."""
+    for joint in root.iter("joint"):
+        axis = joint.find("axis")
+        if joint.get("type") == "fixed" or axis is None or axis.get("xyz") is None:
+            continue
+        if all(float(v) == 0 for v in axis.get("xyz", "").split()):
+            raise RobotModelError(
+                f"URDF {path}: joint {joint.get('name', '(unnamed)')!r}, <axis xyz=\""
+                f"{axis.get('xyz')}\">: a zero-length axis; allowed: a nonzero direction such "
+                "as \"0 0 1\" (the joint turns or slides along it; omit <axis> for the default "
+                "x axis)")
 
 
 REQUIRED = ("effort", "velocity")
@@ -134,14 +172,28 @@ def check_xml(path: Path, what: str) -> None:
     """Read ``path`` (a ``"URDF"`` or ``"SRDF"`` file) as XML, and check a URDF's numbers.
 
     Raises:
-        RobotModelError: the file cannot be read, is not well-formed XML, or has a number that
-            urdfdom would drop (:func:`check_urdf_numbers`).
+        RobotModelError: the file cannot be read, declares XML entities, is not well-formed
+            XML, a URDF with more than :data:`MAX_LINKS` links, or has a number that urdfdom
+            would drop (:func:`check_urdf_numbers`).
     """
     try:  # the one bounded reader: a regular file, at most MAX_TEXT_BYTES, UTF-8
-        root = ET.fromstring(read_text(path, f"{what} file"))
+        text = read_text(path, f"{what} file")
     except ConfigError as e:
         raise RobotModelError(str(e)) from None
+    if "<!ENTITY" in text:
+        raise RobotModelError(
+            f"{what} file {path} declares XML entities (<!ENTITY …>); allowed: plain XML "
+            "without a DTD's entities (urdfdom does not expand them, and expanding them can "
+            "fill memory): write the values out, or generate the file with xacro")
+    try:
+        root = ET.fromstring(text)
     except ET.ParseError as e:
         raise RobotModelError(f"{what} file {path} is not well-formed XML: {e}") from e
     if what == "URDF":
+        links = len(root.findall("link"))
+        if links > MAX_LINKS:
+            raise RobotModelError(
+                f"URDF {path} has {links} links; allowed: at most {MAX_LINKS} (Pinocchio's "
+                "URDF parser recurses once a link and crashes near 3,700 chained links on an "
+                "8 MiB stack; a legged robot has tens): is it the right file?")
         check_urdf_numbers(root, path)

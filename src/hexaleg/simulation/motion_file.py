@@ -257,8 +257,11 @@ def read_motion(path: str | Path) -> SimulatedMotion:
         raise ConfigError(f"{path}: an entry of the wrong type: {e}") from e
     for k, a in {**arrays, "timestep": np.array(timestep)}.items():
         if not np.all(np.isfinite(a)):
-            raise ConfigError(f"{path}: {k} holds NaN or inf; a motion file holds finite numbers "
-                              "(run hexaleg simulate again)")
+            first = tuple(int(i) for i in np.argwhere(~np.isfinite(a))[0])
+            raise ConfigError(f"{path}: {k} holds {float(a[first])!r}"
+                              + (f" at index {list(first)}" if first else "")
+                              + "; allowed: finite numbers only (a motion file of hexaleg "
+                              "simulate has no NaN or inf: run hexaleg simulate again)")
     if timestep <= 0 or stride < 1:
         raise ConfigError(f"{path}: timestep = {timestep!r} s, stride = {stride!r}; a motion file "
                           "has a timestep > 0 and a stride >= 1")

@@ -37,6 +37,7 @@ from typing import Any
 
 from hexaleg.checks import integer
 from hexaleg.errors import ExecutorError, InvalidParameterError
+from hexaleg.parallel.interrupt import stop_workers
 from hexaleg.parallel.workers import default_workers, watch_parent
 
 EXECUTORS: tuple[str, ...] = ("process", "serial", "dask")
@@ -193,7 +194,11 @@ def open_executor(kind: str = "process", *, workers: int | None = None,
         yield SerialExecutor()
     elif kind == "process":
         with _process_pool(workers or default_workers()) as pool:
-            yield pool
+            try:
+                yield pool
+            except KeyboardInterrupt:  # Ctrl-C or a kill: the chunks being computed end too
+                stop_workers(pool)
+                raise
     else:
         with _dask_executor(str(scheduler)) as executor:
             yield executor

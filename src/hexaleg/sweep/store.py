@@ -41,6 +41,7 @@ from typing import TYPE_CHECKING, Any, BinaryIO
 
 from hexaleg.config import read_json
 from hexaleg.errors import ConfigError, HexalegWarning, OutputError
+from hexaleg.parallel.interrupt import keep
 from hexaleg.parallel.lock import DirectoryLock
 from hexaleg.quantities import json_text
 
@@ -212,6 +213,9 @@ class ResultStore:
     def __exit__(self, kind: type[BaseException] | None, value: BaseException | None,
                  tb: TracebackType | None) -> None:
         self.close()
+        if isinstance(value, KeyboardInterrupt):
+            keep(value, f"the {len(self.parts())} finished part(s) in {self.directory} kept "
+                        "(the same command resumes the rest)")
 
     def parts(self) -> list[Path]:
         """The finished part files, sorted by name (= by first point)."""

@@ -120,3 +120,26 @@ def test_the_rules_run_beside_the_search_and_come_back_whole():
     start = time.perf_counter()
     slow.close()
     assert time.perf_counter() - start < 30 and slow._process is None
+
+
+def test_the_rules_child_ends_with_a_killed_co_design():
+    """The rules' child is a worker of the co-design: SIGKILL of the co-design ends it (it had
+    computed on as an orphan, holding the output folder's lock)."""
+    import signal
+    import subprocess
+    import sys
+
+    from processes import HAS_PROC, children, wait_gone
+
+    if not HAS_PROC:
+        pytest.skip("finds the child in /proc")
+    code = ("import time\nfrom hexaleg.design.codesign.build import Background\n"
+            "b = Background(lambda: time.sleep(120))\nprint('started', flush=True)\n"
+            "time.sleep(120)\n")
+    proc = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True)
+    assert proc.stdout is not None and proc.stdout.readline().strip() == "started"
+    child = children(proc.pid)
+    assert len(child) == 1
+    proc.send_signal(signal.SIGKILL)
+    proc.wait()
+    assert wait_gone(child) == set()

@@ -62,3 +62,27 @@ def test_unwritable_path_is_output_error(tmp_path):
     for path in (tmp_path / "missing" / "x.html", tmp_path):
         with pytest.raises(OutputError, match=re.escape(str(path))):
             write_page(path, "<html></html>")
+
+
+def test_a_page_replaces_a_link_and_a_full_disk_keeps_the_old_page(tmp_path, monkeypatch):
+    """`view --html` had written in place: through a link, and a full disk had truncated the
+    earlier page (#58)."""
+    import errno
+    import os
+
+    victim = tmp_path / "victim.txt"
+    victim.write_text("keep me")
+    page = tmp_path / "page.html"
+    page.symlink_to(victim)
+    write_page(page, "<html>old</html>")
+    assert victim.read_text() == "keep me" and not page.is_symlink()
+
+    def full(fd, data):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    monkeypatch.setattr(os, "write", full)  # the disk fills at the first write
+    with pytest.raises(OutputError, match=r"cannot write the HTML page .*page\.html: No space"):
+        write_page(page, "<html>new</html>")
+    monkeypatch.undo()
+    assert page.read_text() == "<html>old</html>"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["page.html", "victim.txt"]

@@ -17,11 +17,10 @@ from typing import Any
 
 import markupsafe
 
-from hexaleg.config import write_file
 from hexaleg.design.codesign.build import codesign
 from hexaleg.design.codesign.result import CodesignResult
 from hexaleg.outputs import codesign_plots, plots
-from hexaleg.outputs.directory import writable_directory
+from hexaleg.outputs.directory import OutputFolder
 from hexaleg.outputs.html import environment
 from hexaleg.outputs.spring_drawing import drawings
 from hexaleg.quantities import json_text
@@ -42,33 +41,40 @@ def write_result(result: CodesignResult, out: str | Path) -> tuple[dict[str, Any
     """Write a computed co-design to ``out``: the JSON, the page, the plot; (data, files).
 
     Raises:
-        OutputError: ``out`` cannot be created or written (named).
+        OutputError: ``out`` cannot be created or written (named); ``out`` is then as it was.
+        DirectoryLockedError: another run writes into ``out``.
     """
-    directory = writable_directory(out, "the co-design")
+    with OutputFolder(out, "co-design") as folder:
+        return _write(result, folder)
+
+
+def _write(result: CodesignResult, folder: OutputFolder) -> tuple[dict[str, Any], list[Path]]:
+    """Write a computed co-design's files into ``folder`` and publish them; (data, files)."""
     data = result.to_dict()
-    png, files = plots.save(codesign_plots.speed_curve(curves(result), result.speed),
-                            directory / "speed.png")
+    png, _ = plots.save(codesign_plots.speed_curve(curves(result), result.speed),
+                        folder.path("speed.png"))
     rules = data.get("full_rules") or {}
     svgs = drawings(rules.get("mounting") or [])
     page = environment().get_template("codesign.html.j2").render(
         d=data, images={"speed": plots.data_uri(png)},
         drawings={k: markupsafe.Markup(v) for k, v in svgs.items()})
-    texts = [("codesign.json", json_text(data) + "\n"), ("codesign.html", page),
-             *((f"{name}.svg", svg) for name, svg in svgs.items())]
+    folder.write("codesign.json", json_text(data) + "\n")
+    folder.write("codesign.html", page)
+    for name, svg in svgs.items():
+        folder.write(f"{name}.svg", svg)
     if result.rules is not None and not isinstance(result.rules, str):
-        texts.append(("design.json", result.rules.to_json() + "\n"))
-    for name, text in texts:  # never through a link there
-        files.append(write_file(directory / name, text, "the co-design"))
-    return data, files
+        folder.write("design.json", result.rules.to_json() + "\n")
+    return data, folder.publish()
 
 
 def write_codesign(out: str | Path = "hexaleg-codesign", **kwargs: Any
                    ) -> tuple[CodesignResult, list[Path]]:
     """Compute the co-design (keywords of :func:`~hexaleg.design.codesign.build.codesign`)
-    and write it to ``out``; (result, files)."""
-    writable_directory(out, "the co-design")
-    result = codesign(**kwargs)
-    return result, write_result(result, out)[1]
+    and write it to ``out``, the directory locked from the start and published whole at the
+    end (:class:`~hexaleg.outputs.directory.OutputFolder`); (result, files)."""
+    with OutputFolder(out, "co-design") as folder:
+        result = codesign(**kwargs)
+        return result, _write(result, folder)[1]
 
 
 __all__ = ["curves", "write_codesign", "write_result"]

@@ -22,13 +22,12 @@ from matplotlib.figure import Figure
 
 from hexaleg.checks import typed
 from hexaleg.commands.options import say
-from hexaleg.config import write_file
 from hexaleg.design.chain.chain import DesignChain
 from hexaleg.design.chain.config import DesignConfig
 from hexaleg.design.chain.result import DesignResult, mounting_data
 from hexaleg.design.tolerance import TolerantSprings
 from hexaleg.outputs import design_plots, plots
-from hexaleg.outputs.directory import writable_directory
+from hexaleg.outputs.directory import OutputFolder
 from hexaleg.outputs.html import render_design_html
 from hexaleg.outputs.spring_drawing import drawings
 from hexaleg.scenario.run_warnings import gait_defaults, run_warnings
@@ -123,28 +122,32 @@ def write_design(out: str | Path = "hexaleg-design", config: DesignConfig | None
 
     Raises:
         OutputError: ``out`` cannot be created or written (checked before computing; names it).
-        HexalegError: from the computation (:class:`DesignChain`).
+        DirectoryLockedError: another run writes into ``out`` (checked before computing).
+        HexalegError: from the computation (:class:`DesignChain`); ``out`` is then as it was
+            (:class:`~hexaleg.outputs.directory.OutputFolder`).
     """
-    out = writable_directory(out, "the design")
-    r = DesignChain(config, progress=progress).run()
-    files: list[Path] = []
-    images = {}
-    for name, fig in figures(r).items():
-        png, written = plots.save(fig, out / f"{name}.png")
-        images[name] = plots.data_uri(png)
-        files += written
-    cfg = r.config
-    svgs = drawings(mounting_data(r))
-    extra = {"warnings": list(design_warnings(r)),
-             "gait_defaults": gait_defaults(cfg.run().description(),
-                                            r.gait if cfg.motion is None else None),
-             "files": sorted([*(p.name for p in files), *(f"{n}.svg" for n in svgs),
-                              "design.html", "design.json"])}
-    data = r.to_dict(**extra)
-    for path, text in ((out / "design.json", r.to_json(**extra)),
-                       *((out / f"{n}.svg", svg) for n, svg in svgs.items()),
-                       (out / "design.html", render_design_html(data, images, svgs))):
-        files.append(write_file(path, text, "the design"))
+    out = Path(out)
+    with OutputFolder(out, "design") as folder:  # locked; published whole at the end
+        r = DesignChain(config, progress=progress).run()
+        names: list[str] = []
+        images = {}
+        for name, fig in figures(r).items():
+            png, written = plots.save(fig, folder.path(f"{name}.png"))
+            images[name] = plots.data_uri(png)
+            names += [p.name for p in written]
+        cfg = r.config
+        svgs = drawings(mounting_data(r))
+        extra = {"warnings": list(design_warnings(r)),
+                 "gait_defaults": gait_defaults(cfg.run().description(),
+                                                r.gait if cfg.motion is None else None),
+                 "files": sorted([*names, *(f"{n}.svg" for n in svgs), "design.html",
+                                  "design.json"])}
+        data = r.to_dict(**extra)
+        folder.write("design.json", r.to_json(**extra))
+        for n, svg in svgs.items():
+            folder.write(f"{n}.svg", svg)
+        folder.write("design.html", render_design_html(data, images, svgs))
+        files = folder.publish()
     if progress:
         progress(f"wrote {out / 'design.html'}")
     return WrittenDesign(result=r, data=data, files=tuple(files))

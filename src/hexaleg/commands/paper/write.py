@@ -6,8 +6,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from pathlib import Path
 
-from hexaleg.config import write_file
-from hexaleg.errors import InvalidParameterError, OutputError
+from hexaleg.errors import InvalidParameterError
+from hexaleg.outputs.directory import OutputFolder
 from hexaleg.outputs.paper_figures import save_png
 from hexaleg.paper.figures import forward_figures, make_figures
 from hexaleg.paper.forward import (
@@ -44,7 +44,9 @@ def write_paper(out: str | Path, joint: PaperJoint | None = None, n: int = 8192,
     Raises:
         InvalidParameterError: ``n`` out of range, a bad ``grid`` or a grid without the
             simulation (before anything is written).
-        OutputError: the directory or a file cannot be written.
+        OutputError: the directory or a file cannot be written (the directory is then as it
+            was).
+        DirectoryLockedError: another run writes into ``out``.
     """
     n = paper_samples(n)
     if grid is not None and not simulation:
@@ -52,25 +54,18 @@ def write_paper(out: str | Path, joint: PaperJoint | None = None, n: int = 8192,
                                     "(the grid is the forward run's; drop --no-simulation)")
     j = joint or PaperJoint()
     ks = stiffness_grid(K_GRID if grid is None else grid, max_stiffness(adams_model(j)))
-    out = Path(out)
-    try:  # an unwritable place is named before the work
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as e:
-        raise OutputError(f"cannot write the paper report to {out}: {e}") from e
-    r = reproduce(j, n)  # everything computed before the first file is written
-    figures = make_figures(j, min(n, 2048))
-    if simulation:
-        study = forward_study(j, ks, min(n, 2048))
-        r["simulation"] = simulation_section(study)
-        figures |= forward_figures(study, min(n, 2048))
-    r = file_data(r)  # as paper.json holds it
-    summary = markdown_summary(r, list(figures))
-    text = json_text(r, indent=2)
-    try:
+    # an unwritable or busy place is named before the work; the files are published together
+    with OutputFolder(out, "paper report") as folder:
+        r = reproduce(j, n)
+        figures = make_figures(j, min(n, 2048))
+        if simulation:
+            study = forward_study(j, ks, min(n, 2048))
+            r["simulation"] = simulation_section(study)
+            figures |= forward_figures(study, min(n, 2048))
+        r = file_data(r)  # as paper.json holds it
         for name, fig in figures.items():
-            save_png(fig, out / name)
-        write_file(out / "paper.json", text, "the paper report")
-        write_file(out / "summary.md", summary, "the paper summary")
-    except OSError as e:
-        raise OutputError(f"cannot write the paper report to {out}: {e}") from e
+            save_png(fig, folder.path(name))
+        folder.write("paper.json", json_text(r, indent=2))
+        folder.write("summary.md", markdown_summary(r, list(figures)))
+        folder.publish()
     return r

@@ -18,9 +18,8 @@ from matplotlib.figure import Figure
 
 from hexaleg.checks import typed
 from hexaleg.commands.options import say
-from hexaleg.config import write_file
 from hexaleg.outputs import plots
-from hexaleg.outputs.directory import writable_directory
+from hexaleg.outputs.directory import OutputFolder
 from hexaleg.outputs.html import render_html
 from hexaleg.quantities import json_text
 from hexaleg.report.build import Report, build_report
@@ -113,26 +112,28 @@ def write_report(out: str | Path = "hexaleg-report", config: ReportConfig | None
 
     Raises:
         OutputError: ``out`` cannot be created or written (checked before computing; names it).
-        HexalegError: from the computation (see :func:`build_report`).
+        DirectoryLockedError: another run writes into ``out`` (checked before computing).
+        HexalegError: from the computation (see :func:`build_report`); ``out`` is then as it
+            was (:class:`~hexaleg.outputs.directory.OutputFolder`).
     """
     if config is not None and config.report.design is not None:
         design_section(config.report.design, robot)  # a bad design.json: no directory made
-    out = writable_directory(out, "the report")
-    r = build_report(config, robot=robot, progress=progress)
-    say = progress or (lambda _msg: None)
-    files: list[Path] = []
-    images = {}
-    for name, fig in _figures(r).items():
-        png, written = plots.save(fig, out / f"{name}.png", svg=svg)
-        images[name] = plots.data_uri(png)
-        files += written
-        say(f"plot {name}")
-    data = {**_relative_link(r.data, out),
-            "files": [*sorted(p.name for p in files), "report.html", "report.json"]}
-    html = render_html(data, images)
-    for path, text in ((out / "report.json", json_text(data)),
-                       (out / "report.html", html)):
-        files.append(write_file(path, text, "the report"))  # never through a link there
+    out = Path(out)
+    with OutputFolder(out, "report") as folder:  # locked; published whole at the end
+        r = build_report(config, robot=robot, progress=progress)
+        say = progress or (lambda _msg: None)
+        names: list[str] = []
+        images = {}
+        for name, fig in _figures(r).items():
+            png, written = plots.save(fig, folder.path(f"{name}.png"), svg=svg)
+            images[name] = plots.data_uri(png)
+            names += [p.name for p in written]
+            say(f"plot {name}")
+        data = {**_relative_link(r.data, out),
+                "files": [*sorted(names), "report.html", "report.json"]}
+        folder.write("report.json", json_text(data))
+        folder.write("report.html", render_html(data, images))
+        files = folder.publish()
     say(f"wrote {out / 'report.html'}")
     return Report(config=r.config, robot=r.robot, motion=r.motion, analysis=r.analysis,
                   baseline=r.baseline, curve=r.curve, usage=r.usage, data=data,

@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import os
 import time
 from collections.abc import Callable
 from typing import Any
@@ -63,6 +64,7 @@ from hexaleg.motion.params import GaitParams
 from hexaleg.motion.patterns import check_pattern, pattern_offsets
 from hexaleg.motion.scaling import robot_gait
 from hexaleg.parallel.forked import fork_map, robot_objects
+from hexaleg.parallel.workers import watch_parent
 from hexaleg.robot.model import Robot
 from hexaleg.robot.registry import description
 from hexaleg.robot.springs import SpringSet
@@ -254,7 +256,7 @@ class Background:
         if "fork" in multiprocessing.get_all_start_methods():
             ctx = multiprocessing.get_context("fork")
             self._pipe, child = ctx.Pipe(duplex=False)
-            self._process = ctx.Process(target=_send, args=(run, child))
+            self._process = ctx.Process(target=_send, args=(run, child, os.getpid()))
             self._process.start()
             child.close()
 
@@ -277,7 +279,8 @@ class Background:
             self._process = None
 
 
-def _send(run: Callable[[], Any], pipe: Any) -> None:
+def _send(run: Callable[[], Any], pipe: Any, parent: int) -> None:
+    watch_parent(parent)  # ends with the co-design, also when it is killed; ignores Ctrl-C
     try:
         pipe.send((True, run()))
     except BaseException as err:  # handed to the parent, which raises it

@@ -19,7 +19,7 @@ from typing import Any
 import meshcat
 import umsgpack
 
-from hexaleg.errors import OutputError
+from hexaleg.config import write_file
 from hexaleg.motion.trajectory import Motion
 from hexaleg.outputs.viewer.colours import colours
 from hexaleg.outputs.viewer.scene import Legend, draw_motion
@@ -143,7 +143,9 @@ def page_html(robot: Robot, motion: Motion, *, forces: Any, joint_values: Any,
 
 
 def write_page(path: Path, page: str) -> Path:
-    """Write a page of :func:`page_html`.
+    """Write a page of :func:`page_html` through :func:`hexaleg.config.write_file`: to a new
+    file beside ``path``, renamed over it, so a full disk or an interrupt leaves the earlier
+    page whole and a link at ``path`` is replaced, never written through.
 
     Returns:
         The written path.
@@ -151,8 +153,4 @@ def write_page(path: Path, page: str) -> Path:
     Raises:
         OutputError: the file cannot be written (the message names the path and the reason).
     """
-    try:
-        path.write_text(page, encoding="utf-8")
-    except OSError as e:
-        raise OutputError(f"cannot write HTML page {path}: {e.strerror or e}") from e
-    return path
+    return write_file(path, page, "the HTML page")
