@@ -116,3 +116,21 @@ def test_the_generic_warning_names_a_few_classes_and_counts_the_rest():
     assert generic_warning(many).startswith(
         "generic actuator on L_hip_roll, L_hip_pitch, L_knee, R_hip_roll, R_hip_pitch, R_knee, "
         "waist, L_shoulder and 3 more: ")
+
+
+def test_a_replaced_collision_mesh_is_every_commands_warning():
+    """Issue #58: a foot whose collision mesh is missing is found on the box that replaces it;
+    only ``hexaleg robot`` said so. The replacement's note (hexaleg.robot.meshes, tested there
+    on a URDF with a missing mesh) is now a warning of every run, with what it changes."""
+    import dataclasses
+
+    robot = hexaleg.load("hexaleg")
+    note = ("link LF_tibia: collision mesh tibia.stl not found; replaced by its inertia box "
+            "0.12 × 0.02 × 0.02 m")
+    assert note.split(": ", 1)[1].startswith("collision mesh")
+    moved = dataclasses.replace(robot, notes=(*robot.notes, note))
+    motion = hexaleg.gait(robot, GaitParams(samples=40))
+    lines = run_warnings(moved, motion, motor("AX-18A"))
+    assert lines == (f"{note}: a foot found on this link, and the springs' fit limits, are the "
+                     "replacement's; give the mesh's directory to find the robot's own",)
+    assert run_warnings(robot, motion, motor("AX-18A")) == ()

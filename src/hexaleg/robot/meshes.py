@@ -74,6 +74,11 @@ def with_available_meshes(urdf_text: str, urdf_dir: Path, package_dirs: Sequence
     return ET.tostring(root, encoding="unicode"), notes
 
 
+MISSING_COLLISION = "collision mesh"
+"""How the note of a replaced collision mesh names it (``link L: collision mesh F not found;
+…``): the run's warnings repeat those notes (:mod:`hexaleg.scenario.run_warnings`)."""
+
+
 def _replace(link: ET.Element, element: ET.Element, tag: str, filename: str) -> str:
     """Replace a missing mesh in ``element`` (a visual or collision of ``link``); the note."""
     name = link.get("name", "?")

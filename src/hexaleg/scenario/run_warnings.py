@@ -32,6 +32,7 @@ from hexaleg.motion.scaling import chosen_defaults
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.inertials import REPAIRED_MARK
+from hexaleg.robot.meshes import MISSING_COLLISION
 from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import GENERIC_MARK, Motor, generic_energy_range
 from hexaleg.robot.motor_set import MotorSet
@@ -98,4 +99,9 @@ def run_warnings(robot: Robot, motion: Motion, motor: Motor | MotorSet | None, *
     if generic is not None:
         out.append(generic)
     out += [n for n in robot.notes if n.startswith(REPAIRED_MARK)]
+    # a collision mesh not found was replaced: a foot found on that link, its contact and the
+    # springs' fit limits are the replacement's, so every command says so, not only robot
+    out += [f"{n}: a foot found on this link, and the springs' fit limits, are the "
+            "replacement's; give the mesh's directory to find the robot's own"
+            for n in robot.notes if MISSING_COLLISION in n]
     return tuple(out)

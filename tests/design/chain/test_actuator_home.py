@@ -48,3 +48,4 @@ def test_the_old_home_warns_and_two_homes_are_refused(tmp_path):
     with pytest.raises(ConfigError, match=r"one home, \[motor\]; remove \[design\] motor"), \
             pytest.warns(DeprecationWarning):
         DesignConfig.from_scenario(load_run("hexaleg", path))
+

@@ -39,3 +39,18 @@ def test_bad_configuration_is_named(table, error, match):
 def test_an_unknown_robot_lists_the_registry():
     with pytest.raises(UnknownNameError, match="hexaleg"):
         DesignConfig.from_mapping({}, robot="atlas")
+
+
+def test_a_design_factor_or_an_arbor_far_out_of_range_is_named():
+    """Issue #58: ``[design] safety_factor = 100`` bought 1.7 kg of springs and ``arbor_diameter
+    = 5.0`` ended in a motor torque limit; each is now refused by name with what is allowed."""
+    from hexaleg.design.chain.chain import DesignChain
+    from hexaleg.design.chain.config import DesignConfig
+    from hexaleg.errors import InvalidParameterError
+
+    with pytest.raises(InvalidParameterError, match=r"safety_factor.*1 to 10 .*Shigley"):
+        DesignConfig.from_mapping({"design": {"safety_factor": 100.0}})
+    cfg = DesignConfig.from_mapping({"design": {"arbor_diameter": 5.0, "samples": 60}})
+    with pytest.raises(InvalidParameterError, match=r"arbor_diameter = 5\.0.*< 30 mm, the "
+                                                    r"largest spring outer diameter"):
+        DesignChain(cfg).run(stages=("candidates",))

@@ -43,6 +43,10 @@ from hexaleg.simulation.controllers import BOTH, SERVOS
 TABLES: tuple[str, ...] = ("gait", "contact", "design", "mission")
 """Tables ``hexaleg design`` reads; a config file may hold the other commands' too
 (:data:`hexaleg.scenario.scenario.TABLES`), each checked by its owner."""
+MAX_SAFETY_FACTOR = 10.0
+"""The largest ``[design] safety_factor``: a static torsion spring is designed at 1.2–2 on its
+yield strength (Shigley's *Mechanical Engineering Design* §10-12); at 100 the design bought 1.7 kg
+of springs for a 1.4-kg robot (issue #58)."""
 GROUPINGS: tuple[str, ...] = ("class", "mirrored", "joint")
 """One spring design per joint class (all legs), per left/right pair of legs, or per joint."""
 METRICS: tuple[str, ...] = ("electrical", "joule")
@@ -189,7 +193,9 @@ class DesignParams:
         for name in self.materials:
             material(name)
         set_("materials", tuple(self.materials))
-        real("design.safety_factor", self.safety_factor, low=1.0, allowed=">= 1")
+        real("design.safety_factor", self.safety_factor, low=1.0, high=MAX_SAFETY_FACTOR,
+             allowed=f"1 to {MAX_SAFETY_FACTOR:g} (static torsion springs are designed at "
+                     "1.2 to 2, Shigley §10-12)")
         real("design.arbor_diameter", self.arbor_diameter, low=0.0, allowed=">= 0 m")
         if self.leg_length is not None:
             real("design.leg_length", self.leg_length, low=0.0, allowed=">= 0 m, or leave it out")

@@ -53,6 +53,7 @@ from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.errors import (
     HexalegError,
     InfeasibleForcesError,
+    InvalidParameterError,
     TorqueLimitError,
 )
 from hexaleg.motion.legged import tripod_gait
@@ -172,6 +173,12 @@ def nominal(cfg: DesignConfig) -> Nominal:
         kind = class_of(robot, js)
         outer[g] = ((float(d.max_outer_diameter[kind]), "[design] max_outer_diameter")
                     if kind in d.max_outer_diameter else spring_outer_diameter(desc, robot, kind))
+        if d.arbor_diameter >= outer[g][0]:  # a coil winds around the arbor, inside the limit
+            raise InvalidParameterError(
+                "[design] arbor_diameter", d.arbor_diameter,
+                f"< {1e3 * outer[g][0]:.3g} mm, the largest spring outer diameter of {g} "
+                f"({outer[g][1]}): a spring's coil winds around its arbor (0 for the rule of "
+                "docs/design.md)")
     return Nominal(cfg, run, robot, desc, gait, prepared, baseline, tuple(classes),
                    class_groups, groups, outer, motion, tuple(split))
 
