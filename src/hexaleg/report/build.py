@@ -106,6 +106,10 @@ class Report:
             f"\nthe robot's whole draw, without springs: {_watts(draw['total_baseline'])} "
             f"(motors {_watts(draw['motors_baseline'])}, servos at rest "
             + _watts(draw["idle_power"], "not published for " + ", ".join(draw["idle_missing"]))
+            + ("" if not draw["idle_family"] else
+               f" ({', '.join(draw['idle_family'])}: its family's standby current, range "
+               f"{draw['idle_range']['low']['value']:.3g}–"
+               f"{draw['idle_range']['high']['value']:.4g} W)")
             + ", "
             "electronics "
             f"{_watts(draw['electronics_power'], 'not given: [robot] electronics_power')}"
