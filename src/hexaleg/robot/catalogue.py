@@ -52,7 +52,13 @@ from typing import Any
 from hexaleg.checks import typed
 from hexaleg.config import from_mapping
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
-from hexaleg.robot.brushless import a1_energy_model, odri_actuator
+from hexaleg.robot.brushless import (
+    a1_energy_model,
+    cheetah3,
+    mini_cheetah,
+    odri_actuator,
+    odri_actuator_paper,
+)
 from hexaleg.robot.motor import RPM, Motor, from_datasheet
 
 KGF_CM = 9.80665e-2
@@ -190,6 +196,12 @@ CATALOGUE: Mapping[str, Motor] = MappingProxyType({
         _sg90(),
         _dss_m15s(),
         odri_actuator(),
+        odri_actuator_paper(),
+        mini_cheetah("hip"),
+        mini_cheetah("hip", "katz"),
+        mini_cheetah("knee"),
+        cheetah3("hip"),
+        cheetah3("knee"),
         a1_energy_model(),
     )
 })
@@ -230,6 +242,10 @@ OUTPUT_HUBS: Mapping[str, OutputHub] = MappingProxyType({
     "ODRI-4004": OutputHub(None, "not sourced: the ODRI actuator module's documentation gives "
                                  "its output as CAD files, no diameter in text; the arbor falls "
                                  "back to the link rule"),
+    **{name: OutputHub(None, "not sourced: the builders' code gives no output flange "
+                             "dimension; the arbor falls back to the link rule")
+       for name in ("ODRI-4004-RAL2020", "MiniCheetah-hip", "MiniCheetah-hip-Katz",
+                    "MiniCheetah-knee", "Cheetah3-hip", "Cheetah3-knee")},
     "A1-Yang2021": OutputHub(None, "not sourced: Unitree publishes no output flange dimension "
                                    "of the A1's joint motor; the arbor falls back to the link "
                                    "rule"),
@@ -306,6 +322,10 @@ STANDBY: Mapping[str, Standby] = MappingProxyType({
     "DSS-M15S": Standby(None, "not published on DFRobot's wiki page"),
     "ODRI-4004": Standby(None, "not published: the ODRI actuator module's documentation gives "
                                "no standby draw of its motor driver board"),
+    **{name: Standby(None, "not published: the builders' code and papers give no standby "
+                           "draw of the motor driver")
+       for name in ("ODRI-4004-RAL2020", "MiniCheetah-hip", "MiniCheetah-hip-Katz",
+                    "MiniCheetah-knee", "Cheetah3-hip", "Cheetah3-knee")},
     "A1-Yang2021": Standby(None, "not published: the A1 energy model counts the joints' power "
                                  "only, and Unitree gives no standby draw"),
 })
