@@ -139,3 +139,17 @@ def test_the_report_states_the_whole_draw(report_written):
     page = (out / "report.html").read_text()
     assert 'id="whole-draw"' in page and "its servo family's standby current" in page
     assert "whole draw" in report.summary()
+
+
+def test_a_draw_on_assumed_constants_is_never_called_a_bound():
+    """#59: ANYmal's 383 W rested on a generic actuator and was called 'a lower bound'. With
+    the motors' draw on assumed constants the draw is an estimate, whatever else is missing."""
+    generic = generic_actuator(80.0, 15.0)
+    draw = whole_draw(230.1, 230.1, 0.6, 0.3, generic, 12)
+    assert draw.assumed and not draw.is_bound and not draw.complete
+    assert "at least" not in draw.line() and "at most" not in draw.line()
+    assert "an estimate, not a bound" in draw.line()
+    data = draw.as_dict()
+    assert data["is_bound"] is False and data["bound"].startswith("an estimate, not a bound")
+    named = whole_draw(2.0, 3.0, 0.5, 0.0, CATALOGUE["MX-64"], 18)
+    assert named.is_bound and not named.assumed and named.as_dict()["is_bound"] is True

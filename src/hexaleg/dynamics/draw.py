@@ -15,7 +15,9 @@ not published but its family's is, the family's, named as such, with the family'
 robot description's ``electronics_power``. Neither extra depends on the springs, so the saving
 on the whole draw is the motors' saving in watts over the whole baseline draw. A term no source
 gives is left out and named: the whole draw is then a lower bound and its saving an upper one,
-and the result says so (:attr:`WholeDraw.complete`). With a battery named (``battery_wh``)
+and the result says so (:attr:`WholeDraw.complete`) — unless the motors' draw itself rests on
+assumed actuator constants (a generic actuator from URDF limits), when it is an estimate and
+never called a bound (:attr:`WholeDraw.is_bound`). With a battery named (``battery_wh``)
 it lasts ``3600 · Wh / P`` seconds of walking.
 """
 
@@ -25,6 +27,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from hexaleg.dynamics.plausibility import uses_generic
 from hexaleg.robot.catalogue import standby
 from hexaleg.robot.motor import Motor
 from hexaleg.robot.motor_set import MotorSet
@@ -52,6 +55,9 @@ class WholeDraw:
             servo's own figure is published); None with ``idle``.
         idle_high: The same at the high end, W.
         idle_family: The servo models whose standby figure is their family's, not their own.
+        assumed: Whether the motors' draw rests on assumed actuator constants (a generic
+            actuator from URDF limits): the draw is then an estimate, never called a bound,
+            however many terms are known.
     """
 
     motors: float
@@ -65,12 +71,19 @@ class WholeDraw:
     idle_low: float | None = None
     idle_high: float | None = None
     idle_family: tuple[str, ...] = ()
+    assumed: bool = False
 
     @property
     def complete(self) -> bool:
         """Whether every term is known (else the draw is a lower bound, its saving an upper
         bound)."""
         return self.idle is not None and self.electronics is not None
+
+    @property
+    def is_bound(self) -> bool:
+        """Whether the draw is a lower bound and its saving an upper one: some term is left out
+        and the motors' draw rests on no assumed constants."""
+        return not self.complete and not self.assumed
 
     @property
     def extra(self) -> float:
@@ -134,7 +147,7 @@ class WholeDraw:
 
     def line(self) -> str:
         """One line for the commands and pages: the whole draw and the saving on it."""
-        bound = "" if self.complete else "at least "
+        bound = "at least " if self.is_bound else ""
         text = (f"whole draw {bound}{self.total:.3g} W with the springs, {bound}"
                 f"{self.total_baseline:.3g} W without (motors {self.motors:.3g} W / "
                 f"{self.motors_baseline:.3g} W")
@@ -145,15 +158,29 @@ class WholeDraw:
                          f"range {self.idle_low:.3g}–{self.idle_high:.4g} W)")
         if self.electronics is not None:
             text += f", electronics {self.electronics:.3g} W"
-        text += (f"): saving on the whole draw {'at most ' if not self.complete else ''}"
+        text += (f"): saving on the whole draw {'at most ' if self.is_bound else ''}"
                  f"{100 * self.saving:+.2f} %")
         if (r := self.saving_range()) is not None and r[0] != r[1]:
             text += f" ({100 * r[0]:+.2f} to {100 * r[1]:+.2f} % over the standby range)"
         if (h := self.hours()) is not None:
             text += f"; {h:.3g} h on the battery ({self.hours(True):.3g} h without springs)"
+        if self.assumed:
+            text += ("; an estimate, not a bound: the motors' draw rests on assumed actuator "
+                     "constants")
         if not self.complete:
             text += "; not counted: " + "; ".join(self.missing())
         return text
+
+    def _bound(self) -> str | None:
+        """What the draw is, in words, when it is not complete or rests on assumptions."""
+        if self.complete and not self.assumed:
+            return None
+        left = "; ".join(self.missing())
+        if self.assumed:
+            return ("an estimate, not a bound: the motors' draw rests on assumed actuator "
+                    "constants (a generic actuator from URDF limits)"
+                    + (f"; not counted: {left}" if left else ""))
+        return "the draw is a lower bound and its saving an upper bound: " + left
 
     def as_dict(self) -> dict[str, Any]:
         """JSON form, numbers as ``{value, unit}`` (None where not known)."""
@@ -174,8 +201,8 @@ class WholeDraw:
                 "low": one(r[0], "1"), "high": one(r[1], "1"),
                 "over": "the servos' standby draw from idle_range's low to its high end"},
             "complete": self.complete,
-            "bound": None if self.complete else "the draw is a lower bound and its saving an "
-                                                "upper bound: " + "; ".join(self.missing()),
+            "is_bound": self.is_bound, "assumed": self.assumed,
+            "bound": self._bound(),
             "energy_per_metre": one(self.per_metre(), "J/m"),
             "energy_per_metre_baseline": one(self.per_metre(True), "J/m"),
             "battery": one(None if self.battery is None else self.battery / WH, "Wh"),
@@ -254,4 +281,4 @@ def whole_draw(energy: float, energy_baseline: float, period: float, distance: f
         idle=idle.power, idle_missing=idle.missing, idle_sources=idle.sources,
         electronics=electronics, speed=max(float(distance), 0.0) / period,
         battery=None if battery_wh is None else battery_wh * WH, idle_low=idle.low,
-        idle_high=idle.high, idle_family=idle.family)
+        idle_high=idle.high, idle_family=idle.family, assumed=uses_generic(actuator))

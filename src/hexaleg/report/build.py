@@ -113,7 +113,8 @@ class Report:
             + ", "
             "electronics "
             f"{_watts(draw['electronics_power'], 'not given: [robot] electronics_power')}"
-            f"){'' if draw['complete'] else ', a lower bound'}")
+            f"){', a lower bound' if draw['is_bound'] else ''}"
+            f"{', an estimate on assumed actuator constants' if draw['assumed'] else ''}")
         plausible = self.data.get("plausibility")
         if plausible is not None and not plausible["plausible"]:
             whole += f"\nWARNING baseline energy {plausible['message']}"
@@ -198,6 +199,7 @@ def answer_draw(answer: dict[str, Any], draw: WholeDraw) -> dict[str, Any] | Non
     share = draw.motors_baseline / draw.total_baseline if draw.total_baseline > 0 else 0.0
     return {"saving": {"value": on["saving"]["value"] * share, "unit": "%"},
             "motor_share": {"value": share, "unit": "1"}, "complete": draw.complete,
+            "is_bound": draw.is_bound,
             "line": draw.line()}
 
 
