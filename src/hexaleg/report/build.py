@@ -42,10 +42,10 @@ from hexaleg.design import rules as design
 from hexaleg.design.curves import StiffnessCurve, curve_springs, stiffness_curve
 from hexaleg.dynamics import contact
 from hexaleg.dynamics.draw import WholeDraw, whole_draw
-from hexaleg.dynamics.plausibility import check_baseline
+from hexaleg.dynamics.plausibility import check_baseline, measured_beside
 from hexaleg.dynamics.prepare import Analysis, Prepared, prepare
 from hexaleg.dynamics.sanity import torque_findings
-from hexaleg.dynamics.without_constants import without_constants
+from hexaleg.dynamics.without_constants import WithoutConstants, without_constants
 from hexaleg.motion.legged import gait
 from hexaleg.motion.sanity import motion_findings
 from hexaleg.motion.trajectory import Motion
@@ -118,6 +118,8 @@ class Report:
         plausible = self.data.get("plausibility")
         if plausible is not None and not plausible["plausible"]:
             whole += f"\nWARNING baseline energy {plausible['message']}"
+        for m in self.data.get("measured_robots") or []:
+            whole += f"\nmeasured: {m['line']}"
         generic = self.data.get("without_constants")
         first = "" if generic is None else generic["line"] + "\n"
         return (first
@@ -179,8 +181,22 @@ def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis,
         else p.as_dict(),
         "without_constants": None if (w := without_constants(baseline)) is None
         else w.as_dict(),
+        "measured_robots": _measured(cfg, robot, draw, w),
         "stiffness_curve": sections.curve_section(cfg.report.curve_joints, curve),
     }
+
+
+def _measured(cfg: ReportConfig, robot: Robot, draw: WholeDraw | None,
+              generic: WithoutConstants | None) -> list[dict[str, Any]]:
+    """Published whole-robot power beside this run's predicted draw without springs and its
+    sourced band (:func:`hexaleg.dynamics.plausibility.measured_beside`); empty for a motion
+    that is not one periodic cycle."""
+    if draw is None:
+        return []
+    band = None
+    if generic is not None and (b := generic.band_dict()) is not None and b["power"]:
+        band = (b["power"]["low"]["value"], b["power"]["high"]["value"])
+    return measured_beside(cfg.robot, robot.mass, draw.total_baseline, band)
 
 
 def _watts(q: dict[str, Any] | None, unknown: str = "unknown") -> str:
