@@ -112,9 +112,9 @@ class WithoutConstants:
         watts = ("" if self.period is None else
                  f" = {self.band[low] / self.period:.4g}–{self.band[high] / self.period:.4g} W")
         return (f"sourced band {self.band[low]:.4g}–{self.band[high]:.4g} J per cycle{watts} "
-                f"(low {low}, high {high}; {', '.join(self.band)} each with its gear ratio "
-                "scaled to every joint's effort limit: c = c_source (τ_peak/E_j)²; a band on "
-                "sourced constants, not a bound)")
+                f"(low {low}, high {high}, of {', '.join(self.band)}, each geared to every "
+                "joint's effort limit: c = c_source (τ_peak/E_j)²); a band on sourced "
+                "constants, not a bound")
 
     def line(self) -> str:
         """The figures in one line, the motor choice asked for first."""
@@ -132,7 +132,7 @@ class WithoutConstants:
                 f"constants. Without constants, per cycle: positive mechanical work "
                 f"{self.positive_work:.4g} J (the least any motor converts); Joule loss = c × "
                 f"{self.torque_squared:.4g} N²·m²·s, c = R/(k_t G)² of the motor you choose; "
-                f"{cat}; {self.band_line()}")
+                f"{cat}")
 
     def as_dict(self) -> dict[str, Any]:
         """The figures for a command's JSON, ``{value, unit}`` each."""
@@ -143,7 +143,7 @@ class WithoutConstants:
                 "catalogue_electrical": {k: quantity(v, "J") for k, v in self.catalogue.items()},
                 "torque_class": {"effort": quantity(self.effort, "N·m"),
                                  "factors": list(TORQUE_CLASS)},
-                "sourced_band": self.band_dict(),
+                "sourced_band": self.band_dict(), "band_line": self.band_line(),
                 "line": self.line()}
 
 

@@ -121,7 +121,7 @@ class Report:
         for m in self.data.get("measured_robots") or []:
             whole += f"\nmeasured: {m['line']}"
         generic = self.data.get("without_constants")
-        first = "" if generic is None else generic["line"] + "\n"
+        first = "" if generic is None else generic["line"] + "\n" + generic["band_line"] + "\n"
         return (first
                 + f"{reference}: electrical energy per cycle {e['with_springs']['value']:.4g} J "
                 f"with its springs, {e['baseline']['value']:.4g} J without (saving "
