@@ -153,3 +153,16 @@ def test_a_draw_on_assumed_constants_is_never_called_a_bound():
     assert data["is_bound"] is False and data["bound"].startswith("an estimate, not a bound")
     named = whole_draw(2.0, 3.0, 0.5, 0.0, CATALOGUE["MX-64"], 18)
     assert named.is_bound and not named.assumed and named.as_dict()["is_bound"] is True
+
+
+def test_docs_quote_the_hexapods_idle_draw():
+    """docs/energy.md's idle figures are idle_power's on the default robot's 18 AX-18A."""
+    from pathlib import Path
+
+    text = " ".join((Path(__file__).resolve().parents[2] / "docs" / "energy.md").read_text()
+                    .split())
+    idle = idle_power(CATALOGUE["AX-18A"], 18)
+    assert idle.power is not None and idle.low is not None and idle.high is not None
+    quoted = (f"18 × 0.050 A × 12 V = {idle.power:.3g} W ({idle.low:.3g}–{idle.high:.4g} W "
+              "over the family's range)")
+    assert quoted in text

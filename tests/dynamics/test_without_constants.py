@@ -143,3 +143,42 @@ def test_docs_quote_go2_s_own_trot():
     got = (f"{w.stated:.4g}", f"{w.positive_work:.4g}", f"{w.torque_squared:.4g}",
            f"{w.catalogue['A1-Yang2021']:.4g}")
     assert got == m.groups()
+    assert f"({w.catalogue['MiniCheetah-knee']:.4g} J with the Mini Cheetah's knee" in text
+    band = f"{min(w.band.values()):.4g}–{max(w.band.values()):.4g} J"
+    assert f"the sourced band below gives {band}" in text
+
+
+def _band_on(robot: str, gait: dict) -> dict:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        s = Scenario.from_tables(robot, {"gait": gait, "contact": {"mu": 1.0}}, "test")
+        cfg = ReportConfig.from_scenario(s)
+        w = without_constants(prepare(s.model, s.played(), motor=cfg.motor,
+                                      contact=cfg.contact).evaluate(None, "joule"))
+    assert w is not None
+    band = w.band_dict()
+    assert band is not None and band["power"] is not None
+    return band
+
+
+def test_docs_quote_the_issues_bands():
+    """docs/energy.md's table of #59's trots (`[contact] mu = 1`, 200 samples): ANYmal B at
+    0.5 m/s and Go2 at 0.4 m/s, each band's mean power at the digits the report prints, and the
+    low end at most the published figure the issue names (280 W, 120 W)."""
+    import re
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[2] / "docs" / "energy.md").read_text()
+    cases = {"ANYmal B, 0.5 m/s": ("anymal", {"pattern": "trot", "period": 0.6,
+                                              "stride_length": 0.30, "samples": 200}, 280.0),
+             "Go2, 0.4 m/s": ("go2", {"pattern": "trot", "period": 0.4, "stride_length": 0.16,
+                                      "samples": 200}, 120.0)}
+    for row, (robot, gait, published) in cases.items():
+        m = re.search(re.escape(row) + r"[^|]*\| [^|]* \| ([\d.]+)–([\d.]+) W \(low ([^,]+), "
+                      r"high (\S+)\)", text)
+        assert m, row
+        band = _band_on(robot, gait)
+        low, high = band["power"]["low"]["value"], band["power"]["high"]["value"]
+        assert (f"{low:.4g}", f"{high:.4g}", band["low_actuator"],
+                band["high_actuator"]) == m.groups(), row
+        assert low <= published, row
