@@ -11,7 +11,7 @@ import pytest
 
 from hexaleg.dynamics.draw import WH, idle_power, whole_draw
 from hexaleg.errors import InvalidParameterError
-from hexaleg.robot.catalogue import CATALOGUE, STANDBY, standby
+from hexaleg.robot.catalogue import CATALOGUE, STANDBY, Standby, standby
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.motor import generic_actuator
 from hexaleg.robot.motor_set import MotorSet
@@ -35,28 +35,67 @@ def test_the_whole_draw_by_hand():
 
 
 def test_an_unknown_term_makes_a_bound_and_says_which():
-    """AX-18A publishes no standby current and no electronics power is given: the draw counts
+    """The MX-64 publishes no standby current and no electronics power is given: the draw counts
     the motors only, is a lower bound, its saving an upper bound, and names both gaps."""
-    draw = whole_draw(2.0, 3.0, 0.5, 0.0, CATALOGUE["AX-18A"], 18)
-    assert draw.idle is None and draw.idle_missing == ("AX-18A",) and not draw.complete
+    draw = whole_draw(2.0, 3.0, 0.5, 0.0, CATALOGUE["MX-64"], 18)
+    assert draw.idle is None and draw.idle_missing == ("MX-64",) and not draw.complete
     assert draw.saving == pytest.approx(1.0 / 3.0) and draw.per_metre() is None
-    assert draw.hours() is None
-    assert "AX-18A" in draw.line() and "electronics_power" in draw.line()
+    assert draw.hours() is None and draw.saving_range() is None
+    assert "MX-64" in draw.line() and "electronics_power" in draw.line()
     assert "at least" in draw.line() and "at most" in draw.line()
     assert "lower bound" in draw.as_dict()["bound"]
+    assert draw.as_dict()["idle_range"] is None
+
+
+def test_the_hexapods_idle_draw_is_the_ax_familys_by_hand():
+    """18 AX-18A: no figure of its own; the AX-12A's 50 mA at the AX-18A's 12 V is
+    18 × 0.050 × 12 = 10.8 W, the family's 17–60 mA 3.672–12.96 W, and the saving on the whole
+    draw over that range is the motors' 2 W over 6 + idle W."""
+    draw = whole_draw(2.0, 3.0, 0.5, 0.0, CATALOGUE["AX-18A"], 18)
+    assert CATALOGUE["AX-18A"].voltage == 12.0
+    assert draw.idle == pytest.approx(10.8, rel=1e-12)
+    assert (draw.idle_low, draw.idle_high) == (pytest.approx(3.672, rel=1e-12),
+                                               pytest.approx(12.96, rel=1e-12))
+    assert draw.idle_family == ("AX-18A",)
+    assert draw.saving == pytest.approx(2.0 / (6.0 + 10.8), rel=1e-12)
+    assert draw.saving_range() == (pytest.approx(2.0 / (6.0 + 12.96), rel=1e-12),
+                                   pytest.approx(2.0 / (6.0 + 3.672), rel=1e-12))
+    assert "its family's standby current" in draw.line()
+    data = draw.as_dict()
+    assert data["idle_range"] == {"low": {"value": pytest.approx(3.672), "unit": "W"},
+                                  "high": {"value": pytest.approx(12.96), "unit": "W"}}
+    assert data["idle_family"] == ["AX-18A"]
+    assert "not the AX-18A's own" in data["idle_sources"]["AX-18A"]
+    own = whole_draw(2.0, 3.0, 0.5, 0.0, CATALOGUE["AX-12A"], 18)
+    assert own.idle == own.idle_low == own.idle_high == pytest.approx(10.8)
+    assert own.idle_family == ()
+
+
+def test_a_standby_figure_outside_its_range_is_refused():
+    with pytest.raises(InvalidParameterError, match=r"0\.08"):
+        Standby(0.08, "x", low=0.017, high=0.060)
+    with pytest.raises(InvalidParameterError, match=r"-0\.01"):
+        Standby(-0.01, "x")
+    assert Standby(None, "none").low is None
 
 
 def test_idle_power_sums_per_joint_and_names_the_servos_without_a_figure():
-    xm, ax = CATALOGUE["XM540-W150"], CATALOGUE["AX-18A"]
+    xm, ax, mx = CATALOGUE["XM540-W150"], CATALOGUE["AX-18A"], CATALOGUE["MX-64"]
     both = MotorSet.per_class({"a": ("j0", "j1"), "b": ("j2",)}, ("j0", "j1", "j2"),
                               {"a": xm, "b": xm})
-    assert idle_power(both, 3)[0] == pytest.approx(3 * 0.48)
+    assert idle_power(both, 3).power == pytest.approx(3 * 0.48)
+    with_ax = MotorSet.per_class({"a": ("j0", "j1"), "b": ("j2",)}, ("j0", "j1", "j2"),
+                                 {"a": xm, "b": ax})
+    idle = idle_power(with_ax, 3)
+    assert idle.power == pytest.approx(2 * 0.48 + 0.6)
+    assert idle.low == pytest.approx(2 * 0.48 + 0.017 * 12) and idle.family == ("AX-18A",)
     mixed = MotorSet.per_class({"a": ("j0", "j1"), "b": ("j2",)}, ("j0", "j1", "j2"),
-                               {"a": xm, "b": ax})
-    power, missing, sources = idle_power(mixed, 3)
-    assert power is None and missing == ("AX-18A",) and set(sources) == {"XM540-W150", "AX-18A"}
+                               {"a": xm, "b": mx})
+    idle = idle_power(mixed, 3)
+    assert idle.power is None and idle.missing == ("MX-64",)
+    assert set(idle.sources) == {"XM540-W150", "MX-64"}
     generic = generic_actuator(3.0, 5.0)
-    assert idle_power(generic, 2)[1] == ("generic",)
+    assert idle_power(generic, 2).missing == ("generic",)
     assert "not a catalogue servo" in standby("generic").source
 
 
@@ -65,7 +104,9 @@ def test_every_catalogue_servo_says_where_its_standby_figure_comes_from():
     for name, entry in STANDBY.items():
         assert entry.source and (entry.current is None or 0.0 < entry.current < 1.0), name
         if entry.current is not None:
-            assert "emanual.robotis.com" in entry.source
+            assert "emanual.robotis.com" in entry.source, name
+            assert "Standby Current" in entry.source or "대기 전류" in entry.source, name
+            assert entry.own or "family" in entry.source
 
 
 @pytest.mark.parametrize(("key", "value"), [("electronics_power", -1.0),
@@ -82,13 +123,46 @@ def test_the_report_states_the_whole_draw(report_written):
     report, out = report_written
     data = json.loads((out / "report.json").read_text())
     draw = data["whole_draw"]
-    assert draw["idle_power"] is None and draw["idle_missing"] == ["AX-18A"]
+    assert 3.0 <= draw["idle_power"]["value"] <= 15.0 and draw["idle_family"] == ["AX-18A"]
+    assert draw["idle_power"]["value"] == pytest.approx(18 * 0.050 * 12.0, rel=1e-12)
+    assert "not the AX-18A's own" in draw["idle_sources"]["AX-18A"]
     assert draw["motors_baseline"]["unit"] == "W" and not draw["complete"]
     period = data["gait"]["period"]["value"]
     assert draw["motors_baseline"]["value"] == pytest.approx(
         data["energy"]["totals"]["electrical"]["baseline"]["value"] / period, rel=1e-12)
+    assert draw["total_baseline"]["value"] == pytest.approx(
+        draw["motors_baseline"]["value"] + draw["idle_power"]["value"], rel=1e-12)
+    low, high = (draw["saving_range"][k]["value"] for k in ("low", "high"))
+    assert low < draw["saving"]["value"] < high
     answer = data["design"]["whole_draw"]
     assert answer["saving"]["unit"] == "%"
     page = (out / "report.html").read_text()
-    assert 'id="whole-draw"' in page and "not\npublished for AX-18A" in page
+    assert 'id="whole-draw"' in page and "its servo family's standby current" in page
     assert "whole draw" in report.summary()
+
+
+def test_a_draw_on_assumed_constants_is_never_called_a_bound():
+    """#59: ANYmal's 383 W rested on a generic actuator and was called 'a lower bound'. With
+    the motors' draw on assumed constants the draw is an estimate, whatever else is missing."""
+    generic = generic_actuator(80.0, 15.0)
+    draw = whole_draw(230.1, 230.1, 0.6, 0.3, generic, 12)
+    assert draw.assumed and not draw.is_bound and not draw.complete
+    assert "at least" not in draw.line() and "at most" not in draw.line()
+    assert "an estimate, not a bound" in draw.line()
+    data = draw.as_dict()
+    assert data["is_bound"] is False and data["bound"].startswith("an estimate, not a bound")
+    named = whole_draw(2.0, 3.0, 0.5, 0.0, CATALOGUE["MX-64"], 18)
+    assert named.is_bound and not named.assumed and named.as_dict()["is_bound"] is True
+
+
+def test_docs_quote_the_hexapods_idle_draw():
+    """docs/energy.md's idle figures are idle_power's on the default robot's 18 AX-18A."""
+    from pathlib import Path
+
+    text = " ".join((Path(__file__).resolve().parents[2] / "docs" / "energy.md").read_text()
+                    .split())
+    idle = idle_power(CATALOGUE["AX-18A"], 18)
+    assert idle.power is not None and idle.low is not None and idle.high is not None
+    quoted = (f"18 × 0.050 A × 12 V = {idle.power:.3g} W ({idle.low:.3g}–{idle.high:.4g} W "
+              "over the family's range)")
+    assert quoted in text

@@ -82,3 +82,25 @@ def test_every_registry_robot_is_within_the_band_or_flagged(name: str) -> None:
     assert ("plausible:" in verdict.message) == verdict.plausible
     if uses_generic(motor):
         assert "generic" in verdict.message
+
+
+def test_measured_robots_beside_a_prediction():
+    """#59: ANYmal B's 'less than 280 W' matches the registry's 'anymal' by name; Arm et al.'s
+    15.65-kg quadruped (23.4 W at 0.4 m/s) any robot of 7.8-31.3 kg by mass; the band's low end
+    decides whether an upper limit is met."""
+    from hexaleg.dynamics.plausibility import measured_beside
+
+    rows = measured_beside("anymal", 30.0, 383.0, (88.5, 651.8))
+    assert rows[0]["matches"] == "the same robot" and len(rows) == 2
+    anymal = rows[0]
+    assert anymal["power"] == {"value": 280.0, "unit": "W"} and anymal["upper_limit"]
+    assert anymal["consistent"] is True and "less than 280 W" in anymal["source"]
+    assert measured_beside("anymal", 30.0, 383.0)[0]["consistent"] is False
+    go2 = measured_beside("go2", 16.1, 326.0, (92.1, 134.7))
+    assert len(go2) == 1 and go2[0]["power"]["value"] == 23.4
+    assert go2[0]["speed"] == {"value": 0.4, "unit": "m/s"} and go2[0]["consistent"] is None
+    assert "mass class" in go2[0]["matches"]
+    assert measured_beside(None, 2.0, 5.0) == []
+    assert measured_beside(None, 31.3, 5.0)[0]["robot"].startswith("a 15.65-kg")
+    with pytest.raises(InvalidParameterError, match="mass"):
+        measured_beside("a1", 0.0, 5.0)

@@ -63,3 +63,44 @@ def test_the_a1_energy_model_is_yang_2021_and_its_trot_draws_what_the_docs_say()
     assert watts <= 150.0
     docs = (Path(__file__).resolve().parents[2] / "docs" / "energy.md").read_text()
     assert f"the motors draw {watts:.0f} W" in docs
+
+
+def test_the_mit_actuators_joule_coefficients_by_hand():
+    """c = 1.5 R_s / (1.5 λp G)² from the builders' quoted constants (#59): Cheetah-Software
+    Mini Cheetah 1.5·0.173/(0.075·6)² = 1.28 (knee 9.33: 0.53), Katz's firmware
+    1.5·0.13/(0.08·6)² = 0.85, Cheetah 3 1.5·0.45/(0.399·7.667)² = 0.072 (knee 8.846: 0.054);
+    peak torque = _motorTauMax · G."""
+    from hexaleg.robot.brushless import cheetah3, mini_cheetah
+
+    cases = [(mini_cheetah("hip"), 0.173, 0.075, 6.0, 3.0),
+             (mini_cheetah("knee"), 0.173, 0.075, 9.33, 3.0),
+             (mini_cheetah("hip", "katz"), 0.13, 0.08, 6.0, 3.0),
+             (cheetah3("hip"), 0.45, 0.399, 7.66666666667, 27.2),
+             (cheetah3("knee"), 0.45, 0.399, 8.846, 27.2)]
+    for m, r_s, k_t, gear, tau_max in cases:
+        assert m.joule_coefficient == pytest.approx(1.5 * r_s / (k_t * gear) ** 2, rel=1e-12)
+        assert m.stall_torque == pytest.approx(tau_max * gear, rel=1e-12)
+        assert not m.regeneration and m.source
+    assert mini_cheetah("hip").joule_coefficient == pytest.approx(1.28, abs=0.005)
+    assert mini_cheetah("hip", "katz").joule_coefficient == pytest.approx(0.846, abs=0.005)
+    assert cheetah3("hip").joule_coefficient == pytest.approx(0.072, abs=0.0005)
+
+
+def test_the_odri_paper_and_documentation_disagree_as_a_range():
+    """c = 1.5·0.23255/(k_t G)²: the paper's 0.225 N·m/A gives 6.89, the docs' 2.5/12 8.04."""
+    from hexaleg.robot.brushless import odri_actuator, odri_actuator_paper
+
+    assert odri_actuator_paper().joule_coefficient == pytest.approx(
+        1.5 * 0.23255 / 0.225 ** 2, rel=1e-12)
+    assert odri_actuator_paper().joule_coefficient == pytest.approx(6.89, abs=0.01)
+    assert odri_actuator().joule_coefficient == pytest.approx(8.04, abs=0.01)
+
+
+@pytest.mark.parametrize(("joint", "constants"), [("elbow", "cheetah-software"),
+                                                  ("hip", "mit"), ("knee", "katz")])
+def test_a_wrong_mit_actuator_is_refused_by_name(joint, constants):
+    from hexaleg.errors import InvalidParameterError
+    from hexaleg.robot.brushless import mini_cheetah
+
+    with pytest.raises(InvalidParameterError, match=r"joint|constants"):
+        mini_cheetah(joint, constants)

@@ -67,7 +67,9 @@ def test_towerpro_servo_reproduces_its_datasheet(name: str) -> None:
 
 def test_catalogue_holds_the_datasheet_servos_and_the_odri_module() -> None:
     assert set(CATALOGUE) == (set(DATASHEET) | {"ODRI-4004", "DSS-M15S", "A1-Yang2021"}
-                              | set(TOWERPRO))
+                              | set(TOWERPRO) | {"ODRI-4004-RAL2020", "MiniCheetah-hip",
+                                                 "MiniCheetah-hip-Katz", "MiniCheetah-knee",
+                                                 "Cheetah3-hip", "Cheetah3-knee"})
     assert KGF_CM == pytest.approx(9.80665 / 100)
 
 

@@ -9,11 +9,15 @@ battery. The whole draw over one cycle of a periodic motion is
 
 with E_motors the motors' electrical energy per cycle (``metrics["total"]["electrical"]``), T
 the period, ``P_idle = Σ_j I_standby,j V_j`` over the joints' servos (datasheet standby current
-at the datasheet voltage, :data:`hexaleg.robot.catalogue.STANDBY`) and ``P_electronics`` the
+at the datasheet voltage, :data:`hexaleg.robot.catalogue.STANDBY`; where a servo's own figure is
+not published but its family's is, the family's, named as such, with the family's range giving
+``P_idle``'s range and the saving's) and ``P_electronics`` the
 robot description's ``electronics_power``. Neither extra depends on the springs, so the saving
 on the whole draw is the motors' saving in watts over the whole baseline draw. A term no source
 gives is left out and named: the whole draw is then a lower bound and its saving an upper one,
-and the result says so (:attr:`WholeDraw.complete`). With a battery named (``battery_wh``)
+and the result says so (:attr:`WholeDraw.complete`) — unless the motors' draw itself rests on
+assumed actuator constants (a generic actuator from URDF limits), when it is an estimate and
+never called a bound (:attr:`WholeDraw.is_bound`). With a battery named (``battery_wh``)
 it lasts ``3600 · Wh / P`` seconds of walking.
 """
 
@@ -23,6 +27,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from hexaleg.dynamics.plausibility import uses_generic
 from hexaleg.robot.catalogue import standby
 from hexaleg.robot.motor import Motor
 from hexaleg.robot.motor_set import MotorSet
@@ -46,6 +51,13 @@ class WholeDraw:
         electronics: The description's ``electronics_power``, W; None: not given.
         speed: Distance per cycle over the period, m/s (0 for a motion in place).
         battery: The named battery's energy, J; None: none named.
+        idle_low: The standby draw at the low end of each servo's range, W (``idle`` where the
+            servo's own figure is published); None with ``idle``.
+        idle_high: The same at the high end, W.
+        idle_family: The servo models whose standby figure is their family's, not their own.
+        assumed: Whether the motors' draw rests on assumed actuator constants (a generic
+            actuator from URDF limits): the draw is then an estimate, never called a bound,
+            however many terms are known.
     """
 
     motors: float
@@ -56,12 +68,22 @@ class WholeDraw:
     electronics: float | None
     speed: float
     battery: float | None = None
+    idle_low: float | None = None
+    idle_high: float | None = None
+    idle_family: tuple[str, ...] = ()
+    assumed: bool = False
 
     @property
     def complete(self) -> bool:
         """Whether every term is known (else the draw is a lower bound, its saving an upper
         bound)."""
         return self.idle is not None and self.electronics is not None
+
+    @property
+    def is_bound(self) -> bool:
+        """Whether the draw is a lower bound and its saving an upper one: some term is left out
+        and the motors' draw rests on no assumed constants."""
+        return not self.complete and not self.assumed
 
     @property
     def extra(self) -> float:
@@ -85,6 +107,20 @@ class WholeDraw:
         if self.total_baseline == 0.0:
             return 0.0
         return (self.total_baseline - self.total) / self.total_baseline
+
+    def saving_at(self, idle: float | None) -> float:
+        """The saving on the whole draw with the standby draw set to ``idle`` W (the
+        electronics as known): the motors' saving in watts over that baseline draw."""
+        base = self.motors_baseline + (idle or 0.0) + (self.electronics or 0.0)
+        return 0.0 if base == 0.0 else (self.motors_baseline - self.motors) / base
+
+    def saving_range(self) -> tuple[float, float] | None:
+        """The saving on the whole draw over the standby draw's range, (low, high) as
+        fractions (more idle draw, a smaller saving); None without a standby draw."""
+        if self.idle is None or self.idle_low is None or self.idle_high is None:
+            return None
+        a, b = self.saving_at(self.idle_low), self.saving_at(self.idle_high)
+        return (min(a, b), max(a, b))
 
     def per_metre(self, baseline: bool = False) -> float | None:
         """Energy per metre travelled, J/m; None for a motion in place."""
@@ -111,21 +147,40 @@ class WholeDraw:
 
     def line(self) -> str:
         """One line for the commands and pages: the whole draw and the saving on it."""
-        bound = "" if self.complete else "at least "
+        bound = "at least " if self.is_bound else ""
         text = (f"whole draw {bound}{self.total:.3g} W with the springs, {bound}"
                 f"{self.total_baseline:.3g} W without (motors {self.motors:.3g} W / "
                 f"{self.motors_baseline:.3g} W")
         if self.idle is not None:
             text += f", servos at rest {self.idle:.3g} W"
+            if self.idle_family:
+                text += (f" ({', '.join(self.idle_family)}: its family's standby current, "
+                         f"range {self.idle_low:.3g}–{self.idle_high:.4g} W)")
         if self.electronics is not None:
             text += f", electronics {self.electronics:.3g} W"
-        text += (f"): saving on the whole draw {'at most ' if not self.complete else ''}"
+        text += (f"): saving on the whole draw {'at most ' if self.is_bound else ''}"
                  f"{100 * self.saving:+.2f} %")
+        if (r := self.saving_range()) is not None and r[0] != r[1]:
+            text += f" ({100 * r[0]:+.2f} to {100 * r[1]:+.2f} % over the standby range)"
         if (h := self.hours()) is not None:
             text += f"; {h:.3g} h on the battery ({self.hours(True):.3g} h without springs)"
+        if self.assumed:
+            text += ("; an estimate, not a bound: the motors' draw rests on assumed actuator "
+                     "constants")
         if not self.complete:
             text += "; not counted: " + "; ".join(self.missing())
         return text
+
+    def _bound(self) -> str | None:
+        """What the draw is, in words, when it is not complete or rests on assumptions."""
+        if self.complete and not self.assumed:
+            return None
+        left = "; ".join(self.missing())
+        if self.assumed:
+            return ("an estimate, not a bound: the motors' draw rests on assumed actuator "
+                    "constants (a generic actuator from URDF limits)"
+                    + (f"; not counted: {left}" if left else ""))
+        return "the draw is a lower bound and its saving an upper bound: " + left
 
     def as_dict(self) -> dict[str, Any]:
         """JSON form, numbers as ``{value, unit}`` (None where not known)."""
@@ -135,44 +190,73 @@ class WholeDraw:
         return {
             "motors": one(self.motors, "W"), "motors_baseline": one(self.motors_baseline, "W"),
             "idle_power": one(self.idle, "W"), "idle_missing": list(self.idle_missing),
+            "idle_range": None if self.idle is None else {
+                "low": one(self.idle_low, "W"), "high": one(self.idle_high, "W")},
+            "idle_family": list(self.idle_family),
             "idle_sources": dict(self.idle_sources),
             "electronics_power": one(self.electronics, "W"),
             "total": one(self.total, "W"), "total_baseline": one(self.total_baseline, "W"),
-            "saving": one(self.saving, "1"), "complete": self.complete,
-            "bound": None if self.complete else "the draw is a lower bound and its saving an "
-                                                "upper bound: " + "; ".join(self.missing()),
+            "saving": one(self.saving, "1"),
+            "saving_range": None if (r := self.saving_range()) is None else {
+                "low": one(r[0], "1"), "high": one(r[1], "1"),
+                "over": "the servos' standby draw from idle_range's low to its high end"},
+            "complete": self.complete,
+            "is_bound": self.is_bound, "assumed": self.assumed,
+            "bound": self._bound(),
             "energy_per_metre": one(self.per_metre(), "J/m"),
             "energy_per_metre_baseline": one(self.per_metre(True), "J/m"),
             "battery": one(None if self.battery is None else self.battery / WH, "Wh"),
             "hours": one(self.hours(), "h"), "hours_baseline": one(self.hours(True), "h"),
             "source": "hexaleg.dynamics.draw: motors' electrical energy per cycle over the "
-                      "period, plus datasheet standby currents × voltage and the described "
-                      "electronics power",
+                      "period, plus standby currents × the servo's datasheet voltage (each "
+                      "servo's source in idle_sources) and the described electronics power",
         }
 
 
-def idle_power(actuator: Motor | MotorSet, n_joints: int
-               ) -> tuple[float | None, tuple[str, ...], dict[str, str]]:
-    """The servos' standby draw ``Σ_j I_standby,j V_j``, W.
+@dataclass(frozen=True)
+class Idle:
+    """The servos' standby draw (:func:`idle_power`).
+
+    Attributes:
+        power: ``Σ_j I_standby,j V_j``, W; None when some servo has no standby figure.
+        low: The same with each servo's lowest current of its source's range, W.
+        high: With each servo's highest, W.
+        missing: The servo models with no standby figure.
+        family: The servo models whose figure is their family's, not their own.
+        sources: Servo model → where its standby current comes from (or why none).
+    """
+
+    power: float | None
+    low: float | None
+    high: float | None
+    missing: tuple[str, ...]
+    family: tuple[str, ...]
+    sources: dict[str, str]
+
+
+def idle_power(actuator: Motor | MotorSet, n_joints: int) -> Idle:
+    """The servos' standby draw ``Σ_j I_standby,j V_j``, W, with its range: each servo's
+    standby current (:func:`hexaleg.robot.catalogue.standby`) at the servo's datasheet voltage
+    (:attr:`Motor.voltage`).
 
     Args:
         actuator: One servo on every joint, or one per joint class.
         n_joints: The number of joints (servos) when ``actuator`` is one :class:`Motor`.
-
-    Returns:
-        The draw (None when some servo has no published standby current), those servos'
-        names, and each servo's source (:func:`hexaleg.robot.catalogue.standby`).
     """
     motors: Sequence[Motor] = (actuator.motors if isinstance(actuator, MotorSet)
                                else (actuator,) * n_joints)
     entries = {m.name: standby(m.name) for m in motors}
     missing = tuple(sorted(name for name, e in entries.items() if e.current is None))
+    family = tuple(sorted(name for name, e in entries.items()
+                          if e.current is not None and not e.own))
     sources = {name: e.source for name, e in entries.items()}
-    currents = [entries[m.name].current for m in motors]
     if missing:
-        return None, missing, sources
-    return (float(sum(i * m.voltage for i, m in zip(currents, motors, strict=True)
-                      if i is not None)), (), sources)
+        return Idle(None, None, None, missing, family, sources)
+
+    def total(key: str) -> float:
+        return float(sum(getattr(entries[m.name], key) * m.voltage for m in motors))
+
+    return Idle(total("current"), total("low"), total("high"), (), family, sources)
 
 
 def whole_draw(energy: float, energy_baseline: float, period: float, distance: float,
@@ -191,9 +275,10 @@ def whole_draw(energy: float, energy_baseline: float, period: float, distance: f
         electronics: The robot's electronics power, W, or None (not known).
         battery_wh: The battery's energy, Wh, or None.
     """
-    idle, missing, sources = idle_power(actuator, n_joints)
+    idle = idle_power(actuator, n_joints)
     return WholeDraw(
         motors=float(energy) / period, motors_baseline=float(energy_baseline) / period,
-        idle=idle, idle_missing=missing, idle_sources=sources, electronics=electronics,
-        speed=max(float(distance), 0.0) / period,
-        battery=None if battery_wh is None else battery_wh * WH)
+        idle=idle.power, idle_missing=idle.missing, idle_sources=idle.sources,
+        electronics=electronics, speed=max(float(distance), 0.0) / period,
+        battery=None if battery_wh is None else battery_wh * WH, idle_low=idle.low,
+        idle_high=idle.high, idle_family=idle.family, assumed=uses_generic(actuator))

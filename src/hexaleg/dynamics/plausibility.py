@@ -30,6 +30,13 @@ Engineering 72, 1950; Tucker, "The energetic cost of moving about", American Sci
   transport of legged robots within a factor of two of the mass, with the ratio of the checked
   value to each, for context (not a flag: their speeds and what they count differ).
 
+* **Measured robots' power** (:data:`MEASURED`, :func:`measured_beside`): published whole-robot
+  power figures, set beside a run's predicted draw (and its sourced band, when its actuators are
+  generic) where the run's robot is the measured one, or the measured robot is of its mass
+  class (within a factor of two): ANYmal B under 280 W at full speed (Hutter et al. 2016) and a
+  15.65-kg quadruped's 23.4 W for locomotion at 0.4 m/s (Arm et al. 2025). Context, not a
+  flag: speeds and what each counts differ, and both are said.
+
 The bounds are a rule to flag, not a law: a result outside them is reported as implausible with
 the numbers (``flag`` ``"low"`` or ``"high"``), never refused.
 """
@@ -86,6 +93,89 @@ PUBLISHED: tuple[PublishedRobot, ...] = (
                    "Collins, Ruina, Tedrake & Wisse, Science 307, 2005"),
 )
 """Published costs of transport of electric legged robots (module docstring)."""
+
+
+@dataclass(frozen=True)
+class MeasuredPower:
+    """A legged robot's published whole-robot power.
+
+    Attributes:
+        name: The robot as the source names it.
+        robots: hexaleg registry names of that very robot (empty: only its mass class matches).
+        mass: Its mass, kg; None: not in the source.
+        power: The published power, W.
+        speed: The speed it was measured at, m/s; None: not stated.
+        upper: Whether the figure is an upper limit ("less than") rather than a value.
+        counts: What it counts, in words.
+        source: The publication, with the quote.
+    """
+
+    name: str
+    robots: tuple[str, ...]
+    mass: float | None
+    power: float
+    speed: float | None
+    upper: bool
+    counts: str
+    source: str
+
+
+MEASURED: tuple[MeasuredPower, ...] = (
+    MeasuredPower("ANYmal (B)", ("anymal",), None, 280.0, None, True,
+                  "the whole robot, 'full-speed running' (the speed is not in the abstract)",
+                  "Hutter et al., 'ANYmal - a highly mobile and dynamic quadrupedal robot', "
+                  "IROS 2016, abstract: 'even full-speed running requires less than 280 W, "
+                  "resulting in an autonomy of more than 2 h'"),
+    MeasuredPower("a 15.65-kg quadruped (platform not named in the abstract)", (), 15.65, 23.4,
+                  0.4, False, "power for locomotion in Earth gravity",
+                  "Arm, Fischer, Church, Fuhrer, Kolvenbach & Hutter 2025, arXiv:2509.10128: "
+                  "'power consumption for locomotion of 23.4 W in Earth gravity on a 15.65 kg "
+                  "robot at 0.4 m/s'"),
+)
+"""Published whole-robot power of electric quadrupeds (shared/reference/motor-sources.md,
+items 1 and 2)."""
+
+
+def measured_beside(robot: str | None, mass: float, predicted: float,
+                    band: tuple[float, float] | None = None) -> list[dict[str, Any]]:
+    """The measured robots that match a run, each beside its prediction.
+
+    Args:
+        robot: The run's registry name (None: a description file, matched by mass only).
+        mass: The run's robot mass, kg, > 0.
+        predicted: The run's predicted mean draw without springs, W, ≥ 0.
+        band: The sourced band's (low, high) mean power, W, or None.
+
+    Returns:
+        One dict per match: the figure, what it counts, its source, why it matches ("the same
+        robot" or "its mass class"), the prediction and band beside it, and whether the band's
+        low end (else the prediction) is at most the figure where the figure is an upper limit.
+    """
+    positive("mass", mass)
+    real("predicted power", predicted, low=0.0, allowed="a finite number ≥ 0")
+    out = []
+    for m in MEASURED:
+        if robot is not None and robot in m.robots:
+            why = "the same robot"
+        elif m.mass is not None and 0.5 <= m.mass / mass <= 2.0:
+            why = f"its mass class: {m.mass:g} kg against {mass:.3g} kg, within 2 ×"
+        else:
+            continue
+        low = predicted if band is None else band[0]
+        out.append({
+            "robot": m.name, "matches": why,
+            "power": {"value": m.power, "unit": "W"}, "upper_limit": m.upper,
+            "speed": None if m.speed is None else {"value": m.speed, "unit": "m/s"},
+            "counts": m.counts, "source": m.source,
+            "predicted": {"value": predicted, "unit": "W"},
+            "band": None if band is None else {"low": {"value": band[0], "unit": "W"},
+                                               "high": {"value": band[1], "unit": "W"}},
+            "consistent": (low <= m.power) if m.upper else None,
+            "line": (f"{m.name}, {why}: {'under ' if m.upper else ''}{m.power:g} W, {m.counts}"
+                     + (f" at {m.speed:g} m/s" if m.speed is not None else "")
+                     + f"; predicted {predicted:.4g} W"
+                     + ("" if band is None else f", sourced band {band[0]:.4g}–{band[1]:.4g} W"))})
+    return out
 
 
 def animal_cost_of_transport(mass: float) -> float:
@@ -220,6 +310,7 @@ def check_baseline(baseline: dict[str, Any], mass: float, motor: Motor | MotorSe
     return check_cost_of_transport(cot, mass, generic=uses_generic(motor))
 
 
-__all__ = ["HIGH_FACTOR", "LOW_FACTOR", "PUBLISHED", "Plausibility", "PublishedRobot",
-           "animal_cost_of_transport", "check_baseline", "check_cost_of_transport",
-           "comparable", "plausible_range", "uses_generic"]
+__all__ = ["HIGH_FACTOR", "LOW_FACTOR", "MEASURED", "PUBLISHED", "MeasuredPower",
+           "Plausibility", "PublishedRobot", "animal_cost_of_transport", "check_baseline",
+           "check_cost_of_transport", "comparable", "measured_beside", "plausible_range",
+           "uses_generic"]

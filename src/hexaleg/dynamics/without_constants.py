@@ -17,27 +17,63 @@ without springs), what holds whatever the motor:
   run on the same torques and speeds (:func:`hexaleg.dynamics.energy.metrics`): a range from
   real datasheets, or none when the catalogue has no actuator of that class;
 
+* the **sourced band**: each catalogue actuator (every one named with its source) whose peak
+  torque is within :data:`SCALE_CLASS` of the class's effort, its gear ratio scaled so that its
+  peak torque matches each joint's own URDF effort limit E_j — the same motor behind another
+  gearbox: ``G' = G E_j / τ_peak``, so ``k_t G`` grows by ``E_j / τ_peak`` and the Joule
+  coefficient ``c = R/(k_t G)²`` becomes ``c' = c (τ_peak / E_j)²`` (= ``R I_peak² / E_j²``:
+  the motor's Joule loss at its peak current, spread over the joint's torque range), the
+  gearbox efficiency and regeneration kept, the no-load speed divided by the same factor. The
+  band is the lowest and highest of those energies, with which actuators; it rests on the
+  scaled actuators' constants and the assumption that such a gearbox exists, so it is a band,
+  never a bound.
+
 beside the figure the generic actuator states. Sources: the energy metrics of
 :mod:`hexaleg.dynamics.energy`; the catalogue of :mod:`hexaleg.robot.catalogue`.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
+from hexaleg.checks import positive
 from hexaleg.dynamics import energy
 from hexaleg.dynamics.prepare import Analysis
 from hexaleg.quantities import quantity
 from hexaleg.robot.catalogue import CATALOGUE
-from hexaleg.robot.motor import GENERIC_MARK
+from hexaleg.robot.motor import GENERIC_MARK, Motor
 from hexaleg.robot.motor_set import MotorSet
 
 TORQUE_CLASS = (0.5, 2.0)
 """A catalogue actuator is of a joint's torque class when its stall torque is within these
 factors of the joint's URDF effort limit."""
+
+SCALE_CLASS = (0.25, 4.0)
+"""A catalogue actuator enters the sourced band when its peak (stall) torque is within these
+factors of the joints' largest URDF effort: its gear ratio is then changed at most 4× either
+way (an assumption; the sourced actuators' own ratios span 6 : 1 to 50 : 1, about 8×)."""
+
+
+def scaled(motor: Motor, effort: float) -> Motor:
+    """``motor`` behind a gearbox scaled so that its peak torque is ``effort`` N·m (module
+    docstring): ``G' = G · effort / τ_peak``, so ``c' = c (τ_peak / effort)²``; η, R, k_t,
+    regeneration and voltage kept; the no-load speed divided by ``effort / τ_peak``.
+
+    Raises:
+        InvalidParameterError: ``effort`` not a finite number > 0.
+    """
+    positive("effort", effort)
+    ratio = effort / motor.stall_torque
+    return dataclasses.replace(
+        motor, name=f"{motor.name} scaled to {effort:.4g} N·m",
+        gear_ratio=motor.gear_ratio * ratio, stall_torque=effort,
+        no_load_speed=motor.no_load_speed / ratio,
+        source=f"{motor.source}; gear ratio scaled by {ratio:.4g} (hexaleg.dynamics."
+               "without_constants.scaled)")
 
 
 @dataclass(frozen=True)
@@ -52,6 +88,9 @@ class WithoutConstants:
         catalogue: Catalogue actuator of their torque class → their electrical energy with it,
             J (empty when the catalogue has none of that class).
         effort: The largest URDF effort limit of these joints, N·m (the torque class's centre).
+        band: Catalogue actuator within :data:`SCALE_CLASS` → their electrical energy with it
+            scaled to each joint's effort (:func:`scaled`), J (empty: none in that class).
+        period: The cycle's period, s, for the band's mean power; None: not one periodic cycle.
     """
 
     joints: tuple[str, ...]
@@ -60,6 +99,22 @@ class WithoutConstants:
     stated: float
     catalogue: dict[str, float]
     effort: float
+    band: dict[str, float] = dataclasses.field(default_factory=dict)
+    period: float | None = None
+
+    def band_line(self) -> str:
+        """The sourced band in words, or that the catalogue has nothing to scale."""
+        lo, hi = SCALE_CLASS
+        if not self.band:
+            return (f"no sourced actuator within {lo:g}–{hi:g} × {self.effort:.3g} N·m to scale")
+        low = min(self.band, key=self.band.__getitem__)
+        high = max(self.band, key=self.band.__getitem__)
+        watts = ("" if self.period is None else
+                 f" = {self.band[low] / self.period:.4g}–{self.band[high] / self.period:.4g} W")
+        return (f"sourced band {self.band[low]:.4g}–{self.band[high]:.4g} J per cycle{watts} "
+                f"(low {low}, high {high}, of {', '.join(self.band)}, each geared to every "
+                "joint's effort limit: c = c_source (τ_peak/E_j)²); a band on sourced "
+                "constants, not a bound")
 
     def line(self) -> str:
         """The figures in one line, the motor choice asked for first."""
@@ -88,7 +143,32 @@ class WithoutConstants:
                 "catalogue_electrical": {k: quantity(v, "J") for k, v in self.catalogue.items()},
                 "torque_class": {"effort": quantity(self.effort, "N·m"),
                                  "factors": list(TORQUE_CLASS)},
+                "sourced_band": self.band_dict(), "band_line": self.band_line(),
                 "line": self.line()}
+
+
+    def band_dict(self) -> dict[str, Any] | None:
+        """The sourced band for a JSON: low, high (J per cycle), which actuator gives each,
+        every actuator's energy and how they were scaled; None when none was in class."""
+        if not self.band:
+            return None
+        low = min(self.band, key=self.band.__getitem__)
+        high = max(self.band, key=self.band.__getitem__)
+        power = None if self.period is None else {
+            "low": quantity(self.band[low] / self.period, "W"),
+            "high": quantity(self.band[high] / self.period, "W")}
+        return {"low": quantity(self.band[low], "J"), "high": quantity(self.band[high], "J"),
+                "power": power,
+                "low_actuator": low, "high_actuator": high,
+                "electrical": {k: quantity(v, "J") for k, v in self.band.items()},
+                "class": {"effort": quantity(self.effort, "N·m"),
+                          "factors": list(SCALE_CLASS)},
+                "how": "each catalogue actuator (its constants from the source in its entry) "
+                       "with its gear ratio scaled so its peak torque is each joint's URDF "
+                       "effort limit E_j: c = R/(k_t G)² becomes c (tau_peak/E_j)^2, eta and "
+                       "regeneration kept (hexaleg.dynamics.without_constants.scaled)",
+                "is_bound": False,
+                "note": "a band on sourced actuators scaled by an assumed gearbox, not a bound"}
 
 
 def _generic_joints(analysis: Analysis) -> list[str]:
@@ -122,10 +202,18 @@ def without_constants(analysis: Analysis) -> WithoutConstants | None:
     catalogue = {name: float(energy.metrics(tau, qdot, dt, m, periodic=motion.periodic)[
         "total"]["electrical"]) for name, m in sorted(CATALOGUE.items())
         if lo * effort <= m.stall_torque <= hi * effort}
+    efforts = [float(robot.model.effortLimit[6 + k]) for k in cols]
+    lo, hi = SCALE_CLASS
+    band = {name: sum(float(energy.metrics(tau[:, [i]], qdot[:, [i]], dt, scaled(m, e),
+                                           periodic=motion.periodic)["total"]["electrical"])
+                      for i, e in enumerate(efforts))
+            for name, m in sorted(CATALOGUE.items())
+            if lo * effort <= m.stall_torque <= hi * effort}
     return WithoutConstants(
         joints=tuple(joints), positive_work=float(per_joint["positive_work"][cols].sum()),
         torque_squared=float((per_joint["joule"][cols] / c[cols]).sum()),
-        stated=float(per_joint["electrical"][cols].sum()), catalogue=catalogue, effort=effort)
+        stated=float(per_joint["electrical"][cols].sum()), catalogue=catalogue, effort=effort,
+        band=band, period=motion.period if motion.periodic else None)
 
 
-__all__ = ["TORQUE_CLASS", "WithoutConstants", "without_constants"]
+__all__ = ["SCALE_CLASS", "TORQUE_CLASS", "WithoutConstants", "scaled", "without_constants"]

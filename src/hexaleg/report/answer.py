@@ -215,7 +215,7 @@ def answer_line(section: dict[str, Any] | None) -> str:
                if on else "") + ")")
     whole = g.get("whole_draw")
     if whole is not None:
-        line += (f"; on the whole draw {'at most ' if not whole['complete'] else ''}"
+        line += (f"; on the whole draw {'at most ' if whole.get('is_bound') else ''}"
                  f"{whole['saving']['value']:+.2f} % (the motors are "
                  f"{100 * whole['motor_share']['value']:.0f} % of it"
                  + ("" if whole["complete"] else ", counting what is known") + ")")

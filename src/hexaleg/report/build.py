@@ -42,10 +42,10 @@ from hexaleg.design import rules as design
 from hexaleg.design.curves import StiffnessCurve, curve_springs, stiffness_curve
 from hexaleg.dynamics import contact
 from hexaleg.dynamics.draw import WholeDraw, whole_draw
-from hexaleg.dynamics.plausibility import check_baseline
+from hexaleg.dynamics.plausibility import check_baseline, measured_beside
 from hexaleg.dynamics.prepare import Analysis, Prepared, prepare
 from hexaleg.dynamics.sanity import torque_findings
-from hexaleg.dynamics.without_constants import without_constants
+from hexaleg.dynamics.without_constants import WithoutConstants, without_constants
 from hexaleg.motion.legged import gait
 from hexaleg.motion.sanity import motion_findings
 from hexaleg.motion.trajectory import Motion
@@ -106,15 +106,22 @@ class Report:
             f"\nthe robot's whole draw, without springs: {_watts(draw['total_baseline'])} "
             f"(motors {_watts(draw['motors_baseline'])}, servos at rest "
             + _watts(draw["idle_power"], "not published for " + ", ".join(draw["idle_missing"]))
+            + ("" if not draw["idle_family"] else
+               f" ({', '.join(draw['idle_family'])}: its family's standby current, range "
+               f"{draw['idle_range']['low']['value']:.3g}–"
+               f"{draw['idle_range']['high']['value']:.4g} W)")
             + ", "
             "electronics "
             f"{_watts(draw['electronics_power'], 'not given: [robot] electronics_power')}"
-            f"){'' if draw['complete'] else ', a lower bound'}")
+            f"){', a lower bound' if draw['is_bound'] else ''}"
+            f"{', an estimate on assumed actuator constants' if draw['assumed'] else ''}")
         plausible = self.data.get("plausibility")
         if plausible is not None and not plausible["plausible"]:
             whole += f"\nWARNING baseline energy {plausible['message']}"
+        for m in self.data.get("measured_robots") or []:
+            whole += f"\nmeasured: {m['line']}"
         generic = self.data.get("without_constants")
-        first = "" if generic is None else generic["line"] + "\n"
+        first = "" if generic is None else generic["line"] + "\n" + generic["band_line"] + "\n"
         return (first
                 + f"{reference}: electrical energy per cycle {e['with_springs']['value']:.4g} J "
                 f"with its springs, {e['baseline']['value']:.4g} J without (saving "
@@ -174,8 +181,22 @@ def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis,
         else p.as_dict(),
         "without_constants": None if (w := without_constants(baseline)) is None
         else w.as_dict(),
+        "measured_robots": _measured(cfg, robot, draw, w),
         "stiffness_curve": sections.curve_section(cfg.report.curve_joints, curve),
     }
+
+
+def _measured(cfg: ReportConfig, robot: Robot, draw: WholeDraw | None,
+              generic: WithoutConstants | None) -> list[dict[str, Any]]:
+    """Published whole-robot power beside this run's predicted draw without springs and its
+    sourced band (:func:`hexaleg.dynamics.plausibility.measured_beside`); empty for a motion
+    that is not one periodic cycle."""
+    if draw is None:
+        return []
+    band = None
+    if generic is not None and (b := generic.band_dict()) is not None and b["power"]:
+        band = (b["power"]["low"]["value"], b["power"]["high"]["value"])
+    return measured_beside(cfg.robot, robot.mass, draw.total_baseline, band)
 
 
 def _watts(q: dict[str, Any] | None, unknown: str = "unknown") -> str:
@@ -194,6 +215,7 @@ def answer_draw(answer: dict[str, Any], draw: WholeDraw) -> dict[str, Any] | Non
     share = draw.motors_baseline / draw.total_baseline if draw.total_baseline > 0 else 0.0
     return {"saving": {"value": on["saving"]["value"] * share, "unit": "%"},
             "motor_share": {"value": share, "unit": "1"}, "complete": draw.complete,
+            "is_bound": draw.is_bound,
             "line": draw.line()}
 
 

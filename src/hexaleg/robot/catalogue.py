@@ -26,8 +26,9 @@ included, ``k_t G = τ_stall / I_stall``, ``η = τ_stall ω_0 / (V I_stall)``);
   coefficient, not identified constants).
 
 :data:`STANDBY` gives, per catalogue servo, its standby current (the electronics' draw at rest)
-where the maker publishes it, with the page; :mod:`hexaleg.dynamics.draw` adds it to the robot's
-whole draw.
+where the maker publishes it, with the page, or — for the AX-18A, whose page lists none — its
+family's figure (the AX-12A's 50 mA) labelled as the family's, with the family's 17–60 mA range;
+:mod:`hexaleg.dynamics.draw` adds it to the robot's whole draw.
 
 :data:`OUTPUT_HUBS` gives, per catalogue servo, the diameter of its output hub (the horn's boss,
 the spline or the shaft a torsion spring could wind on) where a source states it as a number,
@@ -50,8 +51,14 @@ from typing import Any
 
 from hexaleg.checks import typed
 from hexaleg.config import from_mapping
-from hexaleg.errors import ConfigError, UnknownNameError
-from hexaleg.robot.brushless import a1_energy_model, odri_actuator
+from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+from hexaleg.robot.brushless import (
+    a1_energy_model,
+    cheetah3,
+    mini_cheetah,
+    odri_actuator,
+    odri_actuator_paper,
+)
 from hexaleg.robot.motor import RPM, Motor, from_datasheet
 
 KGF_CM = 9.80665e-2
@@ -189,6 +196,12 @@ CATALOGUE: Mapping[str, Motor] = MappingProxyType({
         _sg90(),
         _dss_m15s(),
         odri_actuator(),
+        odri_actuator_paper(),
+        mini_cheetah("hip"),
+        mini_cheetah("hip", "katz"),
+        mini_cheetah("knee"),
+        cheetah3("hip"),
+        cheetah3("knee"),
         a1_energy_model(),
     )
 })
@@ -229,6 +242,10 @@ OUTPUT_HUBS: Mapping[str, OutputHub] = MappingProxyType({
     "ODRI-4004": OutputHub(None, "not sourced: the ODRI actuator module's documentation gives "
                                  "its output as CAD files, no diameter in text; the arbor falls "
                                  "back to the link rule"),
+    **{name: OutputHub(None, "not sourced: the builders' code gives no output flange "
+                             "dimension; the arbor falls back to the link rule")
+       for name in ("ODRI-4004-RAL2020", "MiniCheetah-hip", "MiniCheetah-hip-Katz",
+                    "MiniCheetah-knee", "Cheetah3-hip", "Cheetah3-knee")},
     "A1-Yang2021": OutputHub(None, "not sourced: Unitree publishes no output flange dimension "
                                    "of the A1's joint motor; the arbor falls back to the link "
                                    "rule"),
@@ -244,19 +261,57 @@ class Standby:
         current: The standby current at the entry's voltage (:attr:`Motor.voltage`), A; None
             when no source states it.
         source: Where the number comes from, or why there is none.
+        low: The lowest current the source's range allows, A (``current`` when the servo's
+            own figure is published).
+        high: The highest, A.
+        own: Whether ``current`` is this servo's own published figure (False: its family's,
+            an assumption the source says).
     """
 
     current: float | None
     source: str
+    low: float | None = None
+    high: float | None = None
+    own: bool = True
+
+    def __post_init__(self) -> None:
+        if self.current is None:
+            return
+        low = self.current if self.low is None else self.low
+        high = self.current if self.high is None else self.high
+        if not 0.0 < low <= self.current <= high:
+            raise InvalidParameterError(
+                "standby current (A) and its range", (low, self.current, high),
+                "0 < low <= current <= high")
+        object.__setattr__(self, "low", low)
+        object.__setattr__(self, "high", high)
 
 
 _KR_EMANUAL = "https://emanual.robotis.com/docs/kr/dxl/"
 _NO_STANDBY = ("not published: the ROBOTIS e-Manual's specification table of this servo lists "
                "no standby current")
+_AX12A_STANDBY = ("ROBOTIS' AX-12A product specification as copied in MultipedRobotics/pyservos "
+                  "docs/ax12/readme.md: 'Standby Current | 50mA' (and 'Max. Current | 900mA'); "
+                  "the current e-Manual page (" + _EMANUAL + "ax/ax-12a/) lists no standby row. "
+                  "No supply voltage is given with it: taken at the entry's 12 V, the voltage "
+                  "of the e-Manual's stall figures")
+_DXL_FAMILY = ("standby currents of the DYNAMIXEL family on the ROBOTIS e-Manual: RX-28 "
+               "'Standby Current | 50mA', RX-24F '50mA', MX-12W '60 [mA]', XH430-W350 "
+               "'40 [mA]', XC330-M181 '17 [mA]' (reference: shared/reference/motor-sources.md, "
+               "item 3)")
 
 STANDBY: Mapping[str, Standby] = MappingProxyType({
     **{name: Standby(None, _NO_STANDBY) for name in (
-        "AX-12A", "AX-18A", "MX-28", "XL430-W250", "XM430-W350", "MX-64", "MX-106")},
+        "MX-28", "XL430-W250", "XM430-W350", "MX-64", "MX-106")},
+    "AX-12A": Standby(0.050, _AX12A_STANDBY),
+    "AX-18A": Standby(
+        0.050, "the AX family's, not the AX-18A's own: ROBOTIS publishes no standby current "
+               "for the AX-18A (its e-Manual table, " + _EMANUAL + "ax/ax-18a/, has no such "
+               "row), so its sibling's figure is used, same AX electronics: " + _AX12A_STANDBY
+               + "; range 17–60 mA from the " + _DXL_FAMILY + ". At 12 V, the voltage of the "
+               "AX-18A's e-Manual figures ('Stall Torque | 1.8 [N.m] (at 12 [V], 2.2 [A])', "
+               "the top of its 'Input Voltage | 9.0 ~ 12.0 [V]')",
+        low=0.017, high=0.060, own=False),
     **{name: Standby(0.040, f"ROBOTIS e-Manual (Korean edition), {name} specifications, "
                             f"{_KR_EMANUAL}x/{name.lower()}/: '대기 전류 | 40 [mA]' (standby "
                             "current; the English edition's table stops before it)")
@@ -267,6 +322,10 @@ STANDBY: Mapping[str, Standby] = MappingProxyType({
     "DSS-M15S": Standby(None, "not published on DFRobot's wiki page"),
     "ODRI-4004": Standby(None, "not published: the ODRI actuator module's documentation gives "
                                "no standby draw of its motor driver board"),
+    **{name: Standby(None, "not published: the builders' code and papers give no standby "
+                           "draw of the motor driver")
+       for name in ("ODRI-4004-RAL2020", "MiniCheetah-hip", "MiniCheetah-hip-Katz",
+                    "MiniCheetah-knee", "Cheetah3-hip", "Cheetah3-knee")},
     "A1-Yang2021": Standby(None, "not published: the A1 energy model counts the joints' power "
                                  "only, and Unitree gives no standby draw"),
 })

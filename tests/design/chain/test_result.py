@@ -61,9 +61,10 @@ def test_design_json_says_whether_the_baseline_energy_is_plausible(design_writte
 
 def test_design_json_and_page_state_the_whole_draw(design_written):
     """design.json's whole draw (issue #40): the baseline motors' mean power is the baseline
-    electrical energy over the period, the recommendation's saving on it matches its
-    predicted electrical saving (AX-18A: no standby figure, so the motors are all that is
-    counted and the page says so)."""
+    electrical energy over the period, the recommendation's saving on it is its predicted
+    electrical saving in watts over the baseline motors plus the servos at rest (#59: the AX
+    family's 50 mA × 12 V each), and the electronics, not given, make it a bound the page
+    names."""
     result, out = design_written
     doc = json.loads((out / "design.json").read_text())
     draw = doc["whole_draw"]
@@ -71,10 +72,14 @@ def test_design_json_and_page_state_the_whole_draw(design_written):
     assert draw["motors_baseline"]["value"] == pytest.approx(
         doc["baseline"]["electrical"]["value"] / period, rel=1e-12)
     saving = doc["recommended"]["saving"]["electrical"]["value"] / 100
-    assert draw["saving"]["value"] == pytest.approx(saving, rel=1e-9)
-    assert draw["idle_missing"] == ["AX-18A"] and draw["complete"] is False
+    motors = draw["motors_baseline"]["value"]
+    idle = draw["idle_power"]["value"]
+    assert idle == pytest.approx(18 * 0.050 * 12.0, rel=1e-12)
+    assert draw["saving"]["value"] == pytest.approx(saving * motors / (motors + idle), rel=1e-9)
+    assert draw["idle_family"] == ["AX-18A"] and draw["complete"] is False
     page = (out / "design.html").read_text()
     assert 'id="whole-draw"' in page and "electronics_power" in page
+    assert "its servo family's standby current" in page
     assert result.result.whole_draw is not None
     assert result.result.whole_draw.line().startswith("whole draw at least")
 
