@@ -8,7 +8,7 @@ import cvxpy as cp
 import numpy as np
 
 from hexaleg.design import condensed
-from hexaleg.design.chain import stages
+from hexaleg.design.chain import robust_stage
 from hexaleg.design.chain.chain import DesignChain
 from hexaleg.design.chain.config import DesignConfig
 from hexaleg.errors import InfeasibleForcesError
@@ -32,7 +32,7 @@ def test_a_failed_robust_program_leaves_no_robust_design_and_a_note(monkeypatch)
         raise InfeasibleForcesError("the condensed spring program has no solution (Clarabel: "
                                     "failed)")
 
-    monkeypatch.setattr(stages, "robust_springs", fail)
+    monkeypatch.setattr(robust_stage, "robust_springs", fail)
     cfg = DesignConfig.from_mapping({"design": {**BOX, "robust_stride": [1.0, 1.25]}})
     r = DesignChain(cfg).run(stages=("candidates", "robust"))
     assert r.robust is None and r.candidates  # the rest of the design stands

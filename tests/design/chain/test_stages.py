@@ -7,7 +7,7 @@ import pytest
 
 from hexaleg.design.chain.candidates import class_geometry
 from hexaleg.design.chain.config import DesignConfig
-from hexaleg.design.chain.stages import corners
+from hexaleg.design.chain.robust_stage import corners
 from hexaleg.design.robustness import Condition
 
 

@@ -51,18 +51,17 @@ from hexaleg.design.chain.candidates import Candidate
 from hexaleg.design.chain.config import DesignConfig, DesignParams
 from hexaleg.design.chain.ranking import Simulated, best_simulated, simulate_candidates, under
 from hexaleg.design.chain.result import MIN_SAVING, DesignResult
+from hexaleg.design.chain.robust_stage import RobustResult, robust_design
 from hexaleg.design.chain.stages import (
     LOGGED_SKIP,
     UNMAPPED,
     Nominal,
-    RobustResult,
     envelope_and_fatigue,
     family_candidates,
     nominal,
     pareto_front,
     per_joint_evidence,
     rank,
-    robust_design,
     robustness_maps,
     stop_tolerance,
 )

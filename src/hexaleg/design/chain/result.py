@@ -25,7 +25,7 @@ from hexaleg.design.chain.candidates import Candidate
 from hexaleg.design.chain.config import DesignConfig
 from hexaleg.design.chain.design_file import gait_parameters
 from hexaleg.design.chain.ranking import Simulated
-from hexaleg.design.chain.stages import RobustResult
+from hexaleg.design.chain.robust_stage import RobustResult
 from hexaleg.design.envelope import PartEnvelope
 from hexaleg.design.evaluator import SAVING_METRICS
 from hexaleg.design.families import family

@@ -5,15 +5,14 @@ runs its models): :func:`nominal` (the gait prepared once, the groups and the fi
 :func:`family_candidates` (every family's optimum, groups that do not pay left out),
 :func:`pareto_front` (the best family under spring-torque bounds), :func:`stop_tolerance` (the
 recommendation designed for its stops' mounting error),
-:func:`robustness_maps` and :func:`robust_design` (the recommendation under changed conditions
-and the design for a box of them). The ranking by simulation is
+:func:`robustness_maps` (the recommendation under changed conditions). The design for a box of
+conditions is :mod:`hexaleg.design.chain.robust_stage`; the ranking by simulation is
 :mod:`hexaleg.design.chain.ranking`.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import itertools
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TypeVar
@@ -39,12 +38,9 @@ from hexaleg.design.evaluator import RunSpec
 from hexaleg.design.families import Geometry, containment_waves
 from hexaleg.design.fatigue import FatigueCheck, spring_fatigue
 from hexaleg.design.optimal import OptimalSprings
-from hexaleg.design.robust import RobustSprings, robust_springs
 from hexaleg.design.robustness import (
     Condition,
     condition_prepared,
-    condition_savings,
-    condition_walk,
 )
 from hexaleg.design.robustness_map import RobustnessMap, robot_patterns, robustness_map
 from hexaleg.design.spring_parts import SpringPart, spring_outer_diameter
@@ -54,7 +50,6 @@ from hexaleg.errors import (
     HexalegError,
     InfeasibleForcesError,
     InvalidParameterError,
-    TorqueLimitError,
 )
 from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import GaitParams
@@ -390,119 +385,15 @@ def robustness_maps(nom: Nominal, rec: Candidate
     return maps, worst
 
 
-@dataclass(frozen=True, eq=False)
-class RobustResult:
-    """The robust design and both designs over the box of conditions.
-
-    Attributes:
-        conditions: The nominal gait and the box's corners.
-        design: The robust program's result (savings per condition in its metric).
-        candidate: The robust magnitudes as a design on the nominal gait, with its parts.
-        savings: Metric (:data:`~hexaleg.design.chain.config.METRICS`) →
-            ``{"robust": (n,), "nominal": (n,)}`` savings per condition.
-    """
-
-    conditions: tuple[Condition, ...]
-    design: RobustSprings
-    candidate: Candidate
-    savings: dict[str, dict[str, np.ndarray]]
-
-    def worst(self, metric: str, design: str = "robust") -> float:
-        """The worst saving of ``design`` (robust or nominal) over the conditions."""
-        return float(np.min(self.savings[metric][design]))
-
-
-def corners(cfg: DesignConfig) -> tuple[Condition, ...]:
-    """The nominal gait and the corners of the robust box (duplicates once)."""
-    d = cfg.design
-    boxes = [sorted(set(b)) for b in (d.robust_period, d.robust_stride, d.robust_payload,
-                                      d.robust_mu)]
-    out = [Condition()]
-    for p, s, w, mu in itertools.product(*boxes):
-        c = Condition(period=p, stride=s, payload=w, mu=mu)
-        if c not in out:
-            out.append(c)
-    return tuple(out)
-
-
-def robust_design(nom: Nominal, rec: Candidate) -> tuple[RobustResult | None, tuple[str, ...]]:
-    """The recommended geometry's magnitudes for the box of conditions
-    (:func:`hexaleg.design.robust.robust_springs`: its corners and the nominal gait, one convex
-    program), with its own parts, and the notes of what was left out; no result when the box is
-    the nominal gait alone, the motion is logged (:data:`LOGGED_SKIP`) or ``[design]
-    robustness`` is false (:data:`UNMAPPED`).
-
-    The stage never ends the design: a corner whose gait the legs cannot walk or that has no
-    admissible forces without springs is left out with a note naming the ``[design] robust_*``
-    keys that set it; when no corner is left, or the program fails, there is no robust design
-    and a note says why (the candidates, ranking and checks stand).
-    """
-    cfg, prepared = nom.config, nom.prepared
-    conditions = corners(cfg)
-    if len(conditions) == 1 or nom.motion is not None or not cfg.design.robustness:
-        return None, ()
-    walked = nom.fork_map(lambda c: condition_walk(nom.run, nom.gait, c), conditions)
-    kept: list[Condition] = []
-    preps: list[Prepared] = []
-    notes: list[str] = []
-    for c, p in zip(conditions, walked, strict=True):
-        why = p if isinstance(p, str) else _no_baseline(p)
-        if isinstance(p, str) or why:
-            nominal_value = {"period": 1.0, "stride": 1.0, "payload": 0.0,
-                             "mu": nom.run.contact.mu}
-            keys = [f"robust_{n}" for n, v in nominal_value.items()
-                    if getattr(c, n) not in (None, v)]
-            notes.append(f"robust box corner {c.label()} left out (set by [design] "
-                         f"{' and '.join(keys)}): {why}")
-            continue
-        kept.append(c)
-        preps.append(p)
-    if len(kept) == 1:
-        return None, (*notes, "no robust design: no corner of the box is left to design for")
-    d = cfg.design
-    try:
-        design = robust_springs(rec.optimum, prepared, preps, d.robust_mode, d.metric,
-                                max_torque=d.max_torque, max_deflection=d.deflection_bound,
-                                prefer=0 if kept[0] == Condition() else None)
-    except HexalegError as e:
-        return None, (*notes, f"no robust design: {type(e).__name__}: {e}")
-    analysis = prepared.evaluate(design.springs, "joule")
-    optimum = dataclasses.replace(
-        rec.optimum, magnitudes=design.magnitudes, springs=design.springs, analysis=analysis,
-        value=float(analysis.metrics["total"]["joule"]), saving=float(design.saving[0]),
-        notes=(), solver=design.solver)
-    rows = {name: [condition_savings(p, s, "joule") for p in preps]
-            for name, s in (("robust", design.springs), ("nominal", rec.optimum.springs))}
-    savings = {m: {name: np.array([r[f"saving.{m}"] if r["status"] == "ok" else -np.inf
-                                   for r in rs]) for name, rs in rows.items()}
-               for m in METRICS}
-    return RobustResult(conditions=tuple(kept), design=design,
-                        candidate=candidate(optimum, prepared, nom.run, nom.gait,
-                                            nom.outer_diameters, d),
-                        savings=savings), tuple(notes)
-
-
-def _no_baseline(prepared: Prepared) -> str:
-    """Why ``prepared`` has no forces without springs, or '' when it has."""
-    try:
-        prepared.baseline("joule")
-    except (InfeasibleForcesError, TorqueLimitError) as e:
-        return f"no admissible forces without springs: {type(e).__name__}: {e}"
-    return ""
-
-
 __all__ = [
     "LOGGED_SKIP",
     "UNMAPPED",
     "Nominal",
-    "RobustResult",
-    "corners",
     "envelope_and_fatigue",
     "family_candidates",
     "nominal",
     "pareto_front",
     "rank",
-    "robust_design",
     "robustness_maps",
     "stop_tolerance",
 ]
