@@ -49,3 +49,39 @@ def test_the_old_home_warns_and_two_homes_are_refused(tmp_path):
             pytest.warns(DeprecationWarning):
         DesignConfig.from_scenario(load_run("hexaleg", path))
 
+
+
+def test_joints_without_a_named_motor_get_the_sourced_band_and_its_saving(design_written):
+    """Issue #59: where a joint's motor is not named (the test hexapod's generic actuator from
+    its URDF limits), design.json gives the sourced band without springs and with the
+    recommendation, and the saving with each sourced actuator — each 1 − E_springs / E_baseline
+    of that actuator's own energies; the built-in robot (AX-18A named) has none."""
+    from pathlib import Path
+
+    spider = str(Path(__file__).resolve().parents[2] / "data" / "spider.toml")
+    cfg = DesignConfig.from_mapping({"design": {"samples": 60, "families": ["linear"]}},
+                                    robot=spider)
+    r = DesignChain(cfg).run(stages=("candidates",))
+    data = json.loads(r.to_json())
+    s = data["sourced"]
+    assert s is not None and s["baseline"]["joints"] == s["with_springs"]["joints"]
+    base, rec = (s[k]["sourced_band"]["electrical"] for k in ("baseline", "with_springs"))
+    band = s["saving_band"]
+    assert band is not None and set(band["by_actuator"]) == set(base) & set(rec)
+    for name, saving in band["by_actuator"].items():
+        assert saving["value"] == pytest.approx(
+            100 * (1 - rec[name]["value"] / base[name]["value"]))
+    values = [v["value"] for v in band["by_actuator"].values()]
+    assert band["low"]["value"] == min(values) and band["high"]["value"] == max(values)
+    from collections import defaultdict
+
+    from hexaleg.outputs.html import render_design_html
+
+    # the page's line, on the session's small design with this robot's figures
+    html = render_design_html({**design_written[0].data, "sourced": s}, defaultdict(str))
+    assert f"No motor is named for {len(s['baseline']['joints'])} joints:" in html
+    assert "a band on\nsourced constants, not a bound" in html
+    own = DesignChain(DesignConfig.from_mapping({"design": {"samples": 60,
+                                                            "families": ["linear"]}})
+                      ).run(stages=("candidates",))
+    assert json.loads(own.to_json())["sourced"] is None

@@ -73,8 +73,10 @@ from hexaleg.design.spring_parts import SpringPart
 from hexaleg.design.tolerance import TolerantSprings
 from hexaleg.dynamics.draw import WholeDraw, whole_draw
 from hexaleg.dynamics.plausibility import check_baseline
+from hexaleg.dynamics.without_constants import WithoutConstants, without_constants
 from hexaleg.errors import HexalegError, InvalidParameterError, UnknownNameError
 from hexaleg.robot.mirror import mirror
+from hexaleg.robot.springs import SpringSet
 from hexaleg.scenario.scenario import Scenario
 from hexaleg.simulation.sensitivity import controller_check
 
@@ -363,7 +365,20 @@ class DesignChain:
             worst=worst, robust=robust, ranking=rows, tolerance=tol, envelope=env,
             fatigue=fatigue, simulation=simulation, timings=dict(self.timings),
             notes=tuple(notes), plausibility=plausible, motion=nom.motion, stages=w,
-            whole_draw=_whole_draw(nom, rec), fold=folded)
+            whole_draw=_whole_draw(nom, rec), fold=folded, sourced=_sourced(nom, rec))
+
+
+def _sourced(nom: Nominal, rec: Candidate
+             ) -> tuple[WithoutConstants, WithoutConstants] | None:
+    """Without the springs and with the recommendation: the figures of the joints that have no
+    named motor, their sourced band among them
+    (:func:`hexaleg.dynamics.without_constants.without_constants`); None when every joint's
+    motor is named."""
+    with_springs = without_constants(rec.optimum.analysis)
+    if with_springs is None:
+        return None
+    baseline = without_constants(nom.prepared.evaluate(SpringSet(), "joule"))
+    return None if baseline is None else (baseline, with_springs)
 
 
 def _whole_draw(nom: Nominal, rec: Candidate) -> WholeDraw | None:

@@ -42,6 +42,7 @@ from hexaleg.dynamics.draw import WholeDraw
 from hexaleg.dynamics.energy import metric_unit
 from hexaleg.dynamics.plausibility import Plausibility
 from hexaleg.dynamics.prepare import Analysis
+from hexaleg.dynamics.without_constants import WithoutConstants
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.trajectory import Motion
 from hexaleg.quantities import file_data, json_text, quantity
@@ -93,6 +94,9 @@ class DesignResult:
             not one periodic cycle.
         fold: The fold into the sphere and back with the recommendation and without
             (:mod:`hexaleg.design.fold`), or None (no such poses, or the stage left out).
+        sourced: The joints with no named motor, without springs and with the recommendation
+            (:mod:`hexaleg.dynamics.without_constants`: their sourced band), or None when every
+            motor is named.
     """
 
     config: DesignConfig
@@ -121,6 +125,7 @@ class DesignResult:
     stages: tuple[str, ...] = ()
     whole_draw: WholeDraw | None = None
     fold: Fold | None = None
+    sourced: tuple[WithoutConstants, WithoutConstants] | None = None
 
     def to_dict(self, **extra: Any) -> dict[str, Any]:
         """What ``design.json`` holds (:func:`design_data`), with ``extra`` keys of the command
@@ -382,6 +387,7 @@ def design_data(r: DesignResult) -> dict[str, Any]:
         "baseline": {m: quantity(r.baseline[m], metric_unit(m)) for m in SAVING_METRICS},
         "plausibility": None if r.plausibility is None else r.plausibility.as_dict(),
         "whole_draw": None if r.whole_draw is None else r.whole_draw.as_dict(),
+        "sourced": sourced_data(r),
         "friction_use": quantity(planned_friction_use(r.recommended.optimum.analysis), "1"),
         "recommended": candidate_data(r.recommended, r.outer),
         "mounting": mounting_data(r),
@@ -478,6 +484,29 @@ def story_data(r: DesignResult) -> list[dict[str, Any]]:
     return out
 
 
+def sourced_data(r: DesignResult) -> dict[str, Any] | None:
+    """``sourced``: where joints have no named motor, their figures without springs and with the
+    recommendation (:meth:`~hexaleg.dynamics.without_constants.WithoutConstants.as_dict`) and
+    the saving with each sourced actuator of their class, ``1 − E_springs / E_baseline`` on
+    those joints, as a band (low, high, which actuators); None when every motor is named."""
+    if r.sourced is None:
+        return None
+    base, rec = r.sourced
+    savings = {k: 1.0 - rec.band[k] / v for k, v in base.band.items()
+               if k in rec.band and v > 0}
+    band = None
+    if savings:
+        low = min(savings, key=savings.__getitem__)
+        high = max(savings, key=savings.__getitem__)
+        band = {"low": quantity(100 * savings[low], "%"), "low_actuator": low,
+                "high": quantity(100 * savings[high], "%"), "high_actuator": high,
+                "by_actuator": {k: quantity(100 * v, "%") for k, v in savings.items()},
+                "joints": list(base.joints),
+                "note": "the saving on the joints without a named motor with each sourced "
+                        "actuator geared to their effort; a band on sourced constants"}
+    return {"baseline": base.as_dict(), "with_springs": rec.as_dict(), "saving_band": band}
+
+
 def proof_data(r: DesignResult) -> dict[str, Any]:
     """``proof``: whether a simulation under the servo the robot runs backs the answer
     (:attr:`DesignResult.unproven`), the controllers it needs, and what each run's verdict
@@ -490,4 +519,4 @@ def proof_data(r: DesignResult) -> dict[str, Any]:
 
 __all__ = ["MIN_SAVING", "QUICK_FAMILY", "DesignResult", "candidate_data", "design_data",
            "gait_data", "map_data", "mounting_data", "proof_data", "ranking_data", "robust_data",
-           "story_data", "tolerance_data"]
+           "sourced_data", "story_data", "tolerance_data"]
