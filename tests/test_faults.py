@@ -185,8 +185,9 @@ def _copy(old: tuple[Path, Path, dict[str, bytes]], to: Path) -> Path:
     return to
 
 
-@pytest.mark.parametrize(("signum", "moment"), [(signal.SIGINT, "hexaleg report: plot "),
-                                                (signal.SIGTERM, LOCK)])
+@pytest.mark.parametrize(("signum", "moment"), [
+    pytest.param(signal.SIGINT, "hexaleg report: plot ", marks=pytest.mark.slow),
+    (signal.SIGTERM, LOCK)])  # the README's suite keeps one interrupt case (its 5 minutes)
 def test_an_interrupted_report_keeps_the_previous_one(old_report, tmp_path, signum, moment):
     out = _copy(old_report, tmp_path / "r")
     status, err, workers = interrupt(["report", "--out", "r"], tmp_path,
@@ -213,6 +214,7 @@ def test_a_killed_report_keeps_the_previous_one_and_the_next_run_replaces_it(old
     assert not leftovers(out)
 
 
+@pytest.mark.slow
 def test_a_report_on_a_full_disk_keeps_the_previous_one(old_report, tmp_path):
     """The old report (1.6 MB) fits, the new one does not: its page fails to be written."""
     with small_disk(tmp_path / "disk", 2_600_000) as limit:
