@@ -7,9 +7,10 @@ links) are refused by name.
 
 The commands run as the user runs them, as processes (``python -m hexaleg.cli``); a moment to
 interrupt is a line the command prints on stderr, or its output folder's lock appearing (the run
-computes). The fast cases use ``report`` and ``simulate`` (about 25 s of CPU in all); a report
-killed and run again, ``design`` (a small one), ``codesign``, ``paper`` and the process-pool sweep
-are marked slow.
+computes). The README's suite runs the quick cases — ``simulate`` interrupted, the viewer's
+Ctrl-C, nested TOML, a giant URDF; the reports (interrupted, killed, two at once, on a full disk:
+about 25 s of CPU), ``design`` (a small one), ``codesign``, ``paper`` and the process-pool sweep
+are marked slow, for the README suite's 5 minutes.
 
 A full disk is a small tmpfs mounted for the test (as root, where ``mount`` works); elsewhere it
 is simulated with a file-size limit (``RLIMIT_FSIZE``, set in the child before it starts: a write
@@ -185,9 +186,9 @@ def _copy(old: tuple[Path, Path, dict[str, bytes]], to: Path) -> Path:
     return to
 
 
-@pytest.mark.parametrize(("signum", "moment"), [
-    pytest.param(signal.SIGINT, "hexaleg report: plot ", marks=pytest.mark.slow),
-    (signal.SIGTERM, LOCK)])  # the README's suite keeps one interrupt case (its 5 minutes)
+@pytest.mark.slow  # two reports at once and one more: ~25 s the README's 5 minutes cannot hold
+@pytest.mark.parametrize(("signum", "moment"), [(signal.SIGINT, "hexaleg report: plot "),
+                                                (signal.SIGTERM, LOCK)])
 def test_an_interrupted_report_keeps_the_previous_one(old_report, tmp_path, signum, moment):
     out = _copy(old_report, tmp_path / "r")
     status, err, workers = interrupt(["report", "--out", "r"], tmp_path,
