@@ -12,7 +12,6 @@ import hexaleg
 from hexaleg.cli import main
 from hexaleg.simulation.walk_log import walk_log
 
-
 SMALL = """
 [design]
 families = ["one_sided"]
