@@ -106,6 +106,22 @@ def render_design_html(data: Mapping[str, Any], images: Mapping[str, str],
         d=data, images=images, drawings={k: markupsafe.Markup(v) for k, v in svgs.items()})
 
 
+def render_codesign_html(data: Mapping[str, Any], images: Mapping[str, str],
+                         drawings: Mapping[str, str]) -> str:
+    """Render ``templates/codesign.html.j2``: the page of ``hexaleg codesign``.
+
+    Args:
+        data: The content of ``codesign.json``.
+        images: Plot name → ``data:`` URI.
+        drawings: Drawing name → SVG of each spring to buy, as the writer wrote them.
+
+    Returns:
+        The HTML page (self-contained, the drawings inline).
+    """
+    return environment().get_template("codesign.html.j2").render(
+        d=data, images=images, drawings={k: markupsafe.Markup(v) for k, v in drawings.items()})
+
+
 def render_simulate_html(data: Mapping[str, Any]) -> str:
     """Render ``templates/simulate.html.j2``: the page of ``hexaleg simulate``.
 

@@ -15,13 +15,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-import markupsafe
-
 from hexaleg.design.codesign.build import codesign
 from hexaleg.design.codesign.result import CodesignResult
 from hexaleg.outputs import codesign_plots, plots
 from hexaleg.outputs.directory import OutputFolder
-from hexaleg.outputs.html import environment
+from hexaleg.outputs.html import render_codesign_html
 from hexaleg.outputs.spring_drawing import drawings
 from hexaleg.quantities import json_text
 
@@ -55,9 +53,7 @@ def _write(result: CodesignResult, folder: OutputFolder) -> tuple[dict[str, Any]
                         folder.path("speed.png"))
     rules = data.get("full_rules") or {}
     svgs = drawings(rules.get("mounting") or [])
-    page = environment().get_template("codesign.html.j2").render(
-        d=data, images={"speed": plots.data_uri(png)},
-        drawings={k: markupsafe.Markup(v) for k, v in svgs.items()})
+    page = render_codesign_html(data, {"speed": plots.data_uri(png)}, svgs)
     folder.write("codesign.json", json_text(data) + "\n")
     folder.write("codesign.html", page)
     for name, svg in svgs.items():
