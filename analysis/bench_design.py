@@ -4,19 +4,19 @@ Run:  python analysis/bench_design.py [--samples 1000] [--repeat 5]
 
 For the default tripod gait and three class groups (coxa, femur, tibia; joule objective, one shared
 design per class) it times, at a fixed geometry, the fast path (condensed active set,
-:func:`hexaleg.design.program.solve_design`) and the cvxpy reference
-(:func:`hexaleg.design.program_reference.solve_design_reference`) on the same program, on a floor
-where no inequality binds (μ = 0.6) and where the friction cones bind (μ = 0.3, the paper's Table 3
-static friction), and prints their ratio and agreement; then the whole ``optimal_springs`` call with
-the geometry searched, and one stop's exhaustive scan with its bounds against every candidate solved
-(:func:`scan_ratio`). Targets (issue "Springs as decision variables"): ≤ 50 ms when nothing binds, ≤
-2 s otherwise. Last, the wall time of the two commands a user runs, each a fresh process (imports
-included): ``hexaleg design`` with its maps and robust design (target ≤ 30 s, issues "The design
-answer" and #30) and ``hexaleg report`` (≤ 8 s), and ``hexaleg design``'s pipeline in this process
-stage by stage (``DesignChain.run``), wall and CPU time per stage. Each line gives its CPU share
-(CPU time / wall time, as bench_simulate.py does): on the 2-core machine other busy processes
-stretch the wall time, and a share well under 1 says by how much (the CPU time is then the better
-estimate of a quiet run).
+:func:`hexaleg.design.search.program.solve_design`) and the cvxpy reference
+(:func:`hexaleg.design.search.program_reference.solve_design_reference`) on the same program, on a
+floor where no inequality binds (μ = 0.6) and where the friction cones bind (μ = 0.3, the paper's
+Table 3 static friction), and prints their ratio and agreement; then the whole ``optimal_springs``
+call with the geometry searched, and one stop's exhaustive scan with its bounds against every
+candidate solved (:func:`scan_ratio`). Targets (issue "Springs as decision variables"): ≤ 50 ms when
+nothing binds, ≤ 2 s otherwise. Last, the wall time of the two commands a user runs, each a fresh
+process (imports included): ``hexaleg design`` with its maps and robust design (target ≤ 30 s,
+issues "The design answer" and #30) and ``hexaleg report`` (≤ 8 s), and ``hexaleg design``'s
+pipeline in this process stage by stage (``DesignChain.run``), wall and CPU time per stage. Each
+line gives its CPU share (CPU time / wall time, as bench_simulate.py does): on the 2-core machine
+other busy processes stretch the wall time, and a share well under 1 says by how much (the CPU time
+is then the better estimate of a quiet run).
 
 ``--stages`` runs only the last part (the pipeline by stage and the two commands).
 """
@@ -32,9 +32,9 @@ from typing import Any
 import numpy as np
 
 import hexaleg
-from hexaleg.design.optimal import design_problem, optimal_springs
-from hexaleg.design.program import solve_design
-from hexaleg.design.program_reference import solve_design_reference
+from hexaleg.design.search.optimal import design_problem, optimal_springs
+from hexaleg.design.search.program import solve_design
+from hexaleg.design.search.program_reference import solve_design_reference
 
 CLASSES = ["coxa", "femur", "tibia"]
 GEOMETRY = {"linear": {}, "dead_zone": {"theta_minus": -0.1, "theta_plus": 0.05}}
@@ -85,12 +85,12 @@ def main() -> None:
 
 def scan_ratio(prepared: hexaleg.Prepared) -> None:
     """One exhaustive scan of a stop (the femur's one-sided contact, both sides, every coxa,
-    femur and tibia class sprung; :mod:`hexaleg.design.search`): every candidate solved exactly
-    against the lower bounds at all candidates at once (:mod:`hexaleg.design.scan`) and exact
-    solves only where a bound can win; the same minimum, the ratio of their times."""
-    from hexaleg.design.scan import relaxed_values
-    from hexaleg.design.search import search_value
-    from hexaleg.design.setup import design_setup
+    femur and tibia class sprung; :mod:`hexaleg.design.search.geometry`): every candidate solved
+    exactly against the lower bounds at all candidates at once (:mod:`hexaleg.design.search.scan`)
+    and exact solves only where a bound can win; the same minimum, the ratio of their times."""
+    from hexaleg.design.search.geometry import search_value
+    from hexaleg.design.search.scan import relaxed_values
+    from hexaleg.design.search.setup import design_setup
 
     setup = design_setup(prepared, CLASSES, "one_sided", "joule", None, np.pi)
     value = search_value(setup)

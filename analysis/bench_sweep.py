@@ -14,9 +14,9 @@ put a foot on its friction cone's surface, issue #15).
    class sprung at a time) on the process pool, then each class's optimum refined from the grid's
    best point by Nelder–Mead, every combination of classes, and the robustness of the best set to
    ±20 % period and stride; then the global optimum of the preloaded family on every set of classes
-   (hexaleg.design.placement.placement, Joule energy), beside the old search's saving. Target ≤ 20 s
-   on 2 cores for the grid at μ = 0.3 (issue #15). The same grid is then run serially in this
-   process for the pool's speed-up (and must give the same table).
+   (hexaleg.design.studies.placement.placement, Joule energy), beside the old search's saving.
+   Target ≤ 20 s on 2 cores for the grid at μ = 0.3 (issue #15). The same grid is then run serially
+   in this process for the pool's speed-up (and must give the same table).
 """
 
 from __future__ import annotations
@@ -32,13 +32,13 @@ from pathlib import Path
 import numpy as np
 
 import hexaleg
-import hexaleg.design.placement
+import hexaleg.design.studies.placement
 import hexaleg.dynamics.prepare
 from hexaleg.design.evaluator import RunSpec, clear_cache, evaluator
-from hexaleg.design.optimise import optimise
-from hexaleg.design.placement import placement
-from hexaleg.design.robustness import robustness
+from hexaleg.design.robust.conditions import robustness
 from hexaleg.design.rules import PAPER_DEAD_ZONE_RATIO
+from hexaleg.design.studies.optimise import optimise
+from hexaleg.design.studies.placement import placement
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.motion.params import GaitParams
 from hexaleg.sweep.executors import default_workers

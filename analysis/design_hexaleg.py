@@ -22,8 +22,8 @@ from __future__ import annotations
 import hexaleg
 from hexaleg.design.evaluator import Evaluator
 from hexaleg.design.families import FAMILIES
-from hexaleg.design.optimal import OptimalSprings
-from hexaleg.design.optimise import optimise
+from hexaleg.design.search.optimal import OptimalSprings
+from hexaleg.design.studies.optimise import optimise
 
 CLASSES = ("coxa", "femur", "tibia")
 ROUND_OFF = 1e-6

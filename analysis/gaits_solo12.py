@@ -10,7 +10,7 @@ trots and paces (β = ½, balanced by the lateral sway, ``hexaleg.motion.balance
 0.33 s (0.08, 0.16, 0.24 m/s); 100 samples per cycle; straight up, on and down a 10° slope (body
 parallel to the ground). Friction μ = 1 (the pace sways its body across the 0.3 m between its
 feet from 0.19 m up: ~0.8 at the switches) and no torque limits (the catalogue's ODRI motor
-figures are nominal). Per gait (``hexaleg.design.gaits.gait_energy``): the electrical energy
+figures are nominal). Per gait (``hexaleg.design.studies.gaits.gait_energy``): the electrical energy
 per metre without springs and with the preloaded knee springs of ``hexaleg.optimal_springs``
 (least Joule loss; one design for the front knees and one for the hind knees, which bend the
 other way), the cost of transport E / (m g d) (eq. 23), the saving.
@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 
 import hexaleg
-from hexaleg.design.gaits import gait_energy, table_header, table_line
+from hexaleg.design.studies.gaits import gait_energy, table_header, table_line
 from hexaleg.motion.scaling import robot_gait
 
 ROBOT = "solo12"

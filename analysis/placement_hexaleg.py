@@ -4,10 +4,10 @@ global optimum of a spring family, and how far the old grid + Nelder–Mead sear
 Run:  python analysis/placement_hexaleg.py   (expected output: analysis/logs/placement_hexaleg.log)
 
 The default gait at 200 samples per cycle, AX-18A servos, minimum-Joule foot forces, judged by the
-Joule energy per cycle. For each family, :func:`hexaleg.design.placement.placement` designs the
-springs of every non-empty set of classes together (the same spring on all six legs of a class; each
-class its own design): the magnitudes are the global optimum of the convex program for the geometry,
-the contact angles searched (:func:`hexaleg.optimal_springs`).
+Joule energy per cycle. For each family, :func:`hexaleg.design.studies.placement.placement` designs
+the springs of every non-empty set of classes together (the same spring on all six legs of a class;
+each class its own design): the magnitudes are the global optimum of the convex program for the
+geometry, the contact angles searched (:func:`hexaleg.optimal_springs`).
 
 "old" is the search hexaleg had before: each class alone, a symmetric dead zone (k, θ_k) with
 its neutral offset free in ±1 rad (grid + Nelder–Mead, :func:`optimise`), the classes of a
@@ -18,7 +18,7 @@ baseline. The dead-zone family contains the old designs, so its gap is never neg
 from __future__ import annotations
 
 import hexaleg
-import hexaleg.design.placement
+import hexaleg.design.studies.placement
 
 CLASSES = ("coxa", "femur", "tibia")
 FAMILIES = ("dead_zone", "preloaded")
@@ -31,7 +31,7 @@ def main() -> None:
     base = prepared.baseline()["total"]["joule"]
     print(f"default tripod gait, 200 samples: {base:.4f} J (Joule) per cycle without springs")
     for family in FAMILIES:
-        result = hexaleg.design.placement.placement(prepared, list(CLASSES), family)
+        result = hexaleg.design.studies.placement.placement(prepared, list(CLASSES), family)
         print(f"\n{family}: every set of sprung classes, best first")
         print(f"  {'springs':18s} {'energy':>8s} {'saving':>8s} {'old':>8s} {'gap':>7s}")
         for row in result.table.itertuples():

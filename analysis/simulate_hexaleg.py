@@ -22,7 +22,7 @@ import dataclasses
 import numpy as np
 
 from hexaleg.commands.simulate.study import load_study
-from hexaleg.design.optimal import optimal_springs
+from hexaleg.design.search.optimal import optimal_springs
 from hexaleg.scenario.scenario import Scenario
 from hexaleg.simulation.sensitivity import sensitivity
 

@@ -19,7 +19,7 @@ from hypothesis.configuration import set_hypothesis_home_dir
 
 import hexaleg
 from hexaleg.design.evaluator import RunSpec
-from hexaleg.design.optimal import OptimalSprings, optimal_springs
+from hexaleg.design.search.optimal import OptimalSprings, optimal_springs
 from hexaleg.dynamics.prepare import Prepared, analyze, prepare
 from hexaleg.paper.forward import ForwardStudy, forward_study
 from hexaleg.paper.joint import PaperJoint
@@ -330,7 +330,7 @@ def analysed(robot: hexaleg.Robot, walk200: hexaleg.Motion, data: dict[str, Any]
     """The springs report.json says the page analyses (the answer's: their laws read back with
     design.json's reader) and the same gait analysed with them through the public API, without
     the report modules."""
-    from hexaleg.design.spring_json import spring_from_entry
+    from hexaleg.design.springs.law_json import spring_from_entry
     from hexaleg.robot.catalogue import DEFAULT_MOTOR
     from hexaleg.robot.springs import SpringSet
 

@@ -55,7 +55,8 @@ def test_a_new_family_touches_the_files_named():
     import importlib
     import inspect
 
-    from hexaleg.design import families, spring_json
+    from hexaleg.design import families
+    from hexaleg.design.springs import law_json as spring_json
 
     for path in re.findall(r"`(src/hexaleg/[\w/.]+)`", PAGE.split("## A new spring family")[1]
                            .split("## The public surface")[0]):

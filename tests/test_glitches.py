@@ -50,7 +50,7 @@ def test_the_scanner_finds_the_issues_examples(text):
 
 
 @pytest.mark.parametrize("text", [
-    "positive work ∫ max(0, τq̇)", "8.148 W/(N·m)²", "hexaleg.design.mounting, design.json",
+    "positive work ∫ max(0, τq̇)", "8.148 W/(N·m)²", "hexaleg.design.springs.mounting, design.json",
     "+0.05 % at -0.04°", "period ×0.5, stride ×1.5", "springs(s)", "between 0 and 1 of it"])
 def test_the_scanner_passes_prose(text):
     assert glitches(text) == []

@@ -191,3 +191,15 @@ def test_lazy_names_are_declared_for_type_checkers():
                 for a in node.names}
     assert declared == hexaleg._LAZY
     assert set(declared) <= set(hexaleg.__all__)
+
+
+DESIGN_FLAT = 12
+"""Modules allowed directly in design/ (issue #53): the rest live in sub-packages that read as
+the data flow (families/, search/, springs/, robust/, studies/, chain/, codesign/)."""
+
+
+def test_design_reads_as_its_data_flow():
+    flat = sorted(p.name for p in (SRC / "design").glob("*.py"))
+    assert len(flat) <= DESIGN_FLAT, f"design/ holds {len(flat)} modules directly: {flat}"
+    subs = sorted(p.parent.name for p in (SRC / "design").glob("*/__init__.py"))
+    assert subs == ["chain", "codesign", "families", "robust", "search", "springs", "studies"]

@@ -11,8 +11,8 @@ import hexaleg
 import hexaleg.design.evaluator
 from hexaleg import units
 from hexaleg.design.evaluator import RunSpec
-from hexaleg.design.optimise import optimise
-from hexaleg.design.robustness import robustness
+from hexaleg.design.robust.conditions import robustness
+from hexaleg.design.studies.optimise import optimise
 from hexaleg.report.build import build_report
 from hexaleg.robot.registry import DESCRIPTIONS
 

@@ -12,7 +12,7 @@ import pandas as pd
 import hexaleg
 from hexaleg.cli import main
 from hexaleg.design.evaluator import RunSpec, evaluator
-from hexaleg.design.optimise import optimise
+from hexaleg.design.studies.optimise import optimise
 
 SPIDER = str(Path(__file__).resolve().parent / "data" / "spider.toml")  # tests run elsewhere
 

@@ -49,7 +49,7 @@ if TYPE_CHECKING:  # the names __getattr__ imports on first use, for type checke
     from hexaleg.design.chain.config import DesignParams
     from hexaleg.design.chain.design_file import load_design
     from hexaleg.design.codesign.build import codesign
-    from hexaleg.design.optimal import optimal_springs
+    from hexaleg.design.search.optimal import optimal_springs
     from hexaleg.motion.recorded.load import load_motion
     from hexaleg.outputs.viewer.show import animate, export_html
     from hexaleg.scenario.scenario import Scenario
@@ -97,7 +97,7 @@ _LAZY: dict[str, str] = {
     "DesignParams": "hexaleg.design.chain.config",
     "load_design": "hexaleg.design.chain.design_file",
     "codesign": "hexaleg.design.codesign.build",
-    "optimal_springs": "hexaleg.design.optimal",
+    "optimal_springs": "hexaleg.design.search.optimal",
     "load_motion": "hexaleg.motion.recorded.load",
     **dict.fromkeys(("animate", "export_html"), "hexaleg.outputs.viewer.show"),
     "Scenario": "hexaleg.scenario.scenario",
@@ -133,18 +133,19 @@ _DEPRECATED: dict[str, tuple[str, str, str]] = {
     "Leg": ("hexaleg.robot.model", "Leg", "Robot.legs"),
     "LegSpec": ("hexaleg.robot.model", "LegSpec", "hexaleg.robot.model"),
     "MotorSet": ("hexaleg.robot.motor_set", "MotorSet", "hexaleg.robot.motor_set"),
-    "OptimalSprings": ("hexaleg.design.optimal", "OptimalSprings", "optimal_springs' result"),
+    "OptimalSprings": ("hexaleg.design.search.optimal", "OptimalSprings",
+                       "optimal_springs' result"),
     "Evaluator": ("hexaleg.design.evaluator", "Evaluator", "hexaleg.design.evaluator"),
     "RunSpec": ("hexaleg.design.evaluator", "RunSpec", "hexaleg.Scenario"),
     "evaluator": ("hexaleg.design.evaluator", "evaluator", "hexaleg.design.evaluator"),
-    "optimise": ("hexaleg.design.optimise", "optimise", "hexaleg.optimal_springs"),
-    "placement": ("hexaleg.design.placement", "placement", "hexaleg.optimal_springs"),
-    "robustness": ("hexaleg.design.robustness", "robustness", "DesignChain.maps"),
-    "robustness_map": ("hexaleg.design.robustness_map", "robustness_map", "DesignChain.maps"),
-    "robust_springs": ("hexaleg.design.robust", "robust_springs", "DesignChain.robust"),
-    "TorsionRequirement": ("hexaleg.design.torsion_spring", "TorsionRequirement",
-                           "hexaleg.design.torsion_spring"),
-    "design_torsion_spring": ("hexaleg.design.torsion_spring", "design_torsion_spring",
+    "optimise": ("hexaleg.design.studies.optimise", "optimise", "hexaleg.optimal_springs"),
+    "placement": ("hexaleg.design.studies.placement", "placement", "hexaleg.optimal_springs"),
+    "robustness": ("hexaleg.design.robust.conditions", "robustness", "DesignChain.maps"),
+    "robustness_map": ("hexaleg.design.robust.maps", "robustness_map", "DesignChain.maps"),
+    "robust_springs": ("hexaleg.design.robust.box", "robust_springs", "DesignChain.robust"),
+    "TorsionRequirement": ("hexaleg.design.springs.torsion_spring", "TorsionRequirement",
+                           "hexaleg.design.springs.torsion_spring"),
+    "design_torsion_spring": ("hexaleg.design.springs.torsion_spring", "design_torsion_spring",
                               "DesignChain's candidates (their parts)"),
     "DesignConfig": ("hexaleg.design.chain.config", "DesignConfig",
                      "DesignChain(Scenario, design=DesignParams)"),

@@ -82,7 +82,7 @@ class SpringDesignError(InvalidParameterError):
         value: Its value.
         allowed: What would make a spring possible, naming the nearest one.
         nearest: The nearest spring found (a
-            :class:`hexaleg.design.torsion_spring.TorsionSpring`), or None.
+            :class:`hexaleg.design.springs.torsion_spring.TorsionSpring`), or None.
     """
 
     def __init__(self, name: str, value: object, allowed: str, nearest: object = None) -> None:

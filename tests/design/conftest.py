@@ -30,7 +30,7 @@ def slippery200(robot, walk200):
 @pytest.fixture(scope="session")
 def femur_linear():
     """A design program: one linear spring (k ≥ 0, free constant) shared by the six femurs."""
-    from hexaleg.design.program import DesignProblem
+    from hexaleg.design.search.program import DesignProblem
 
     def make(prepared):
         robot = prepared.robot

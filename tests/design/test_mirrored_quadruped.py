@@ -18,7 +18,7 @@ import pytest
 
 import hexaleg
 from hexaleg.design.chain.groups import design_groups
-from hexaleg.design.optimal import optimal_springs
+from hexaleg.design.search.optimal import optimal_springs
 from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.mirror import mirror
 from hexaleg.robot.registry import description, load

@@ -11,7 +11,7 @@ import shutil
 import pytest
 
 import hexaleg
-from hexaleg.design.optimal import optimal_springs
+from hexaleg.design.search.optimal import optimal_springs
 from hexaleg.report.answer import DESIGN_JSON, answer_line
 from hexaleg.report.build import build_report
 from hexaleg.report.config import ReportConfig

@@ -71,7 +71,7 @@ def test_a_bad_payload_is_named(kwargs, match):
 
 
 def test_the_report_and_the_design_carry_the_payload(robot):
-    from hexaleg.design.optimal import optimal_springs
+    from hexaleg.design.search.optimal import optimal_springs
     from hexaleg.report.build import build_report
     from hexaleg.report.config import ReportConfig
 

@@ -176,7 +176,7 @@ def test_a_reused_baseline_run_gives_the_same_simulation(prepared, optimal, feed
     trajectory bit for bit), and a baseline of other settings is refused by name."""
     from conftest import SHORT
 
-    from hexaleg.design.optimal import optimal_springs
+    from hexaleg.design.search.optimal import optimal_springs
 
     other = optimal_springs(prepared, ["tibia"], "linear").springs
     reused = simulate(prepared.robot, prepared.motion, prepared.motor, other, SHORT,

@@ -4,8 +4,9 @@ The paper chooses one stiffness for one joint (k_M by eq. 19, k_E by minimising 
 eq. 21) and leaves "the appropriate elastic joint assembly position and the optimal stiffness" as
 future work. The design layer answers that for a gait and a motor: which joints should carry a
 dead-zone spring (eq. 8, :class:`hexaleg.robot.springs.DeadZoneSpring`), with which contact angles
-and which stiffness. This module evaluates one design; :mod:`hexaleg.design.optimise`,
-:mod:`hexaleg.design.placement` and :mod:`hexaleg.design.robustness` search and study designs,
+and which stiffness. This module evaluates one design; :mod:`hexaleg.design.studies.optimise`,
+:mod:`hexaleg.design.studies.placement` and :mod:`hexaleg.design.robust.conditions` search and study
+designs,
 :mod:`hexaleg.sweep` runs grids of them.
 
 Groups and designs

@@ -12,8 +12,8 @@ reference), without its per-sample calls. A sample nothing certifies is solved b
 (:mod:`hexaleg.dynamics.conic`), which also raises the error that names an infeasible sample.
 
 :class:`QuadraticGains` — the unconstrained optimum of the quadratic objectives as an affine map
-of the spring torques — serves the design program (:mod:`hexaleg.design.program`), which needs it
-as a matrix.
+of the spring torques — serves the design program (:mod:`hexaleg.design.search.program`), which
+needs it as a matrix.
 """
 
 from __future__ import annotations

@@ -9,8 +9,8 @@ robot (with the configured payload, :class:`hexaleg.robot.payload.Payload`) → 
 (:func:`hexaleg.motion.legged.gait`) → :func:`hexaleg.dynamics.prepare.prepare` once →
 :meth:`~hexaleg.dynamics.prepare.Prepared.evaluate` with the answer's springs, the reference's,
 in the baseline (no springs) and at every point of the reference's stiffness curve
-(:mod:`hexaleg.design.curves`); for a robot with ``stand`` and ``sphere`` poses also the stand →
-sphere transformation (:mod:`hexaleg.report.transform`) — and collects every number in a
+(:mod:`hexaleg.design.studies.curves`); for a robot with ``stand`` and ``sphere`` poses also the
+stand → sphere transformation (:mod:`hexaleg.report.transform`) — and collects every number in a
 JSON-ready dict whose quantities carry their unit (``{"value": …, "unit": "J"}``), one section of
 the page each (:mod:`hexaleg.report.sections`).
 :func:`hexaleg.commands.report.write.write_report` writes it as ``report.html``, ``report.json``
@@ -39,7 +39,7 @@ import numpy as np
 
 from hexaleg.checks import typed
 from hexaleg.design import rules as design
-from hexaleg.design.curves import StiffnessCurve, curve_springs, stiffness_curve
+from hexaleg.design.studies.curves import StiffnessCurve, curve_springs, stiffness_curve
 from hexaleg.dynamics import contact
 from hexaleg.dynamics.draw import WholeDraw, whole_draw
 from hexaleg.dynamics.plausibility import check_baseline, measured_beside

@@ -20,7 +20,7 @@ from typing import Any, cast
 from hexaleg.checks import count, is_integer, is_real
 from hexaleg.config import check_tables, from_mapping, load_toml
 from hexaleg.design import rules as design
-from hexaleg.design.curves import CURVE_METRICS
+from hexaleg.design.studies.curves import CURVE_METRICS
 from hexaleg.dynamics.contact import OBJECTIVES, ContactParams
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.motion.limits import SAMPLE_BYTES

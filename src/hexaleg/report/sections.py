@@ -17,8 +17,8 @@ from typing import Any
 import numpy as np
 
 from hexaleg.design import rules as design
-from hexaleg.design.curves import StiffnessCurve
-from hexaleg.design.spring_json import spring_entry
+from hexaleg.design.springs.law_json import spring_entry
+from hexaleg.design.studies.curves import StiffnessCurve
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.dynamics.energy import metric_unit
 from hexaleg.dynamics.prepare import Analysis
@@ -158,8 +158,8 @@ def contact_section(contact: ContactParams) -> dict[str, Any]:
 
 def springs_section(robot: Robot, a: Analysis, design: str) -> dict[str, Any]:
     """The springs the page analyses, of any family: per joint its law as ``design.json`` writes
-    it (family and parameters in SI, :func:`hexaleg.design.spring_json.spring_entry`), the share
-    of the cycle it pushes on its joint and its peak torque.
+    it (family and parameters in SI, :func:`hexaleg.design.springs.law_json.spring_entry`), the
+    share of the cycle it pushes on its joint and its peak torque.
 
     Args:
         robot: The robot.

@@ -33,7 +33,7 @@ family's figure (the AX-12A's 50 mA) labelled as the family's, with the family's
 :data:`OUTPUT_HUBS` gives, per catalogue servo, the diameter of its output hub (the horn's boss,
 the spline or the shaft a torsion spring could wind on) where a source states it as a number,
 with that source; where none does, the entry says so and holds None, and
-:func:`hexaleg.design.spring_parts.arbor_for` falls back to its stated rule.
+:func:`hexaleg.design.springs.parts.arbor_for` falls back to its stated rule.
 
 The model itself (:class:`~hexaleg.robot.motor.Motor`) and the actuator built from URDF limits
 (:func:`~hexaleg.robot.motor.generic_actuator`) are in :mod:`hexaleg.robot.motor`, which does not

@@ -132,10 +132,10 @@ class RobotDescription:
             know their own).
         heading: The base axis that points forward, ``[x, y, 0]`` (:attr:`Robot.heading`).
         max_outer_diameter: Joint class → largest outer diameter of a spring on its joints, m;
-            default the links' width (:func:`hexaleg.design.spring_parts.spring_outer_diameter`).
+            default the links' width (:func:`hexaleg.design.springs.parts.spring_outer_diameter`).
         arbor_diameter: Joint class → diameter of the shaft or hub a spring on its joints winds
             on, m (0: none); default the servo's output hub, else a rule from the links' width
-            (:func:`hexaleg.design.spring_parts.arbor_for`).
+            (:func:`hexaleg.design.springs.parts.arbor_for`).
         inertias: What loading does with impossible link inertias (:mod:`hexaleg.robot.
             inertials`): ``"refuse"`` (default), ``"repair"`` (a stated box rule) or ``"keep"``.
         root_offset: Where the base frame goes, ``[x, y, z]`` m in the URDF root link's frame

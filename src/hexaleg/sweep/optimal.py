@@ -6,7 +6,7 @@ several), which sets of the ``[springs.<group>]`` groups are sprung — one grou
 together, or every non-empty set (a placement study) — and the designer's bounds. Each point is
 then (gait, family, set of groups) and its row
 (:func:`hexaleg.sweep.runner.optimal_chunk`) holds the optimal magnitudes and geometry
-(:func:`hexaleg.design.optimal.optimal_springs`) with the metrics of the gait with them.
+(:func:`hexaleg.design.search.optimal.optimal_springs`) with the metrics of the gait with them.
 """
 
 from __future__ import annotations

@@ -41,7 +41,7 @@ from hexaleg.design.evaluator import (
     evaluator,
     metric_row,
 )
-from hexaleg.design.optimal import optimal_springs
+from hexaleg.design.search.optimal import optimal_springs
 from hexaleg.errors import (
     HexalegWarning,
     InfeasibleForcesError,

@@ -20,7 +20,7 @@ from typing import Any
 from hexaleg.checks import count, integer, named_arguments
 from hexaleg.config import check_tables, load_toml
 from hexaleg.design.evaluator import DEFAULT_METRIC, METRICS, SPRING_PARAMETERS, RunSpec
-from hexaleg.design.optimal import OBJECTIVE_METRIC
+from hexaleg.design.search.optimal import OBJECTIVE_METRIC
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.robot.model import Robot
 from hexaleg.sweep.optimal import OptimalPoint, OptimalSpec

@@ -77,7 +77,7 @@ def test_the_robot_s_own_actuator_is_used(monkeypatch):
     """Every gait the co-design evaluates is prepared with the robot's own actuator (Solo-12's
     ODRI module), not the catalogue's default AX-18A."""
     from hexaleg.design.codesign import build
-    from hexaleg.design.gait_evaluation import GaitPoint
+    from hexaleg.design.codesign.gait_evaluation import GaitPoint
 
     seen = []
 

@@ -9,7 +9,7 @@ from hexaleg.design.chain.candidates import carried, design_family, parsimonious
 from hexaleg.design.chain.config import DesignParams
 from hexaleg.design.chain.groups import design_groups
 from hexaleg.design.evaluator import RunSpec
-from hexaleg.design.robustness import Condition, condition_prepared
+from hexaleg.design.robust.conditions import Condition, condition_prepared
 from hexaleg.robot.payload import with_point_masses
 
 RUN = RunSpec()

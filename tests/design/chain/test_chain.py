@@ -10,8 +10,8 @@ import pytest
 
 import hexaleg
 from hexaleg.design.evaluator import RunSpec
-from hexaleg.design.robustness import Condition, condition_gait
-from hexaleg.design.torsion_spring import D_STEP
+from hexaleg.design.robust.conditions import Condition, condition_gait
+from hexaleg.design.springs.torsion_spring import D_STEP
 from hexaleg.robot.payload import with_payload
 from hexaleg.robot.springs import SpringSet
 
@@ -233,8 +233,8 @@ def test_the_recommendation_holds_over_its_stops_mounting_error(design_written):
     """The recommendation is the tolerant design when it keeps more in its worst case; its
     saving at every common stop shift within the tolerance, evaluated afresh, is ≥ 0.8 of the
     nominal (the issue's bar) and its nominal is the recommendation's own saving."""
-    from hexaleg.design.setup import motion_centres
-    from hexaleg.design.tolerance import shifted_springs
+    from hexaleg.design.search.setup import motion_centres
+    from hexaleg.design.search.tolerance import shifted_springs
 
     r = design_written[0].result
     t = r.tolerance

@@ -70,7 +70,7 @@ def test_bad_design_files_are_named(data, error, match, tmp_path, robot):
 
 def test_the_design_json_of_hexaleg_design(tmp_path, robot, optimal):
     """``hexaleg design`` writes its recommended springs as spring_json entries: read those."""
-    from hexaleg.design.spring_json import spring_entry
+    from hexaleg.design.springs.law_json import spring_entry
 
     data = {"robot": {"name": "hexaleg", "title": "…"}, "candidates": [],
             "recommended": {"label": "test", "springs": [spring_entry(j, s) for j, s in

@@ -14,7 +14,7 @@ from hexaleg.design.chain.ranking import (
     best_simulated,
     simulate_candidates,
 )
-from hexaleg.design.robustness import Condition, condition_prepared
+from hexaleg.design.robust.conditions import Condition, condition_prepared
 
 
 def _row(candidate, predicted, simulated, net, controller="position"):

@@ -9,7 +9,7 @@ import re
 import numpy as np
 import pytest
 
-from hexaleg.design.spring_json import spring_from_entry
+from hexaleg.design.springs.law_json import spring_from_entry
 
 
 def _numbers_have_units(node, path="design"):

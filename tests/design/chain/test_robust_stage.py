@@ -7,10 +7,10 @@ from __future__ import annotations
 import cvxpy as cp
 import numpy as np
 
-from hexaleg.design import condensed
 from hexaleg.design.chain import robust_stage
 from hexaleg.design.chain.chain import DesignChain
 from hexaleg.design.chain.config import DesignConfig
+from hexaleg.design.search import condensed
 from hexaleg.errors import InfeasibleForcesError
 
 BOX = {"families": ["linear"], "samples": 100, "robust_period": [1.0, 1.0],

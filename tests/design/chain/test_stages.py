@@ -8,7 +8,7 @@ import pytest
 from hexaleg.design.chain.candidates import class_geometry
 from hexaleg.design.chain.config import DesignConfig
 from hexaleg.design.chain.robust_stage import corners
-from hexaleg.design.robustness import Condition
+from hexaleg.design.robust.conditions import Condition
 
 
 def test_the_robust_box_is_its_corners_and_the_nominal_gait_once():
@@ -54,7 +54,7 @@ def test_families_designed_in_parallel_are_the_ones_designed_in_turn(monkeypatch
     geometry and savings to the last bit, in the families' order of rank; a robustness map's
     cells too (one of them a gait the robot cannot make)."""
     from hexaleg.design.chain.stages import family_candidates, nominal
-    from hexaleg.design.robustness_map import robustness_map
+    from hexaleg.design.robust.maps import robustness_map
     from hexaleg.parallel import workers
 
     axes = {"period": [0.5, 1.0], "stride": [1.0, 40.0]}

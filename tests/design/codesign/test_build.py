@@ -9,7 +9,7 @@ from conftest import BUDGET
 
 import hexaleg
 from hexaleg.design.codesign.build import codesign, default_gait
-from hexaleg.design.gait_evaluation import Constraints
+from hexaleg.design.codesign.gait_evaluation import Constraints
 from hexaleg.errors import InvalidParameterError, UnknownNameError
 
 

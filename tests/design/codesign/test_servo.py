@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 
 from hexaleg.design.codesign.build import codesign_settings
+from hexaleg.design.codesign.gait_evaluation import GaitPoint
+from hexaleg.design.codesign.gait_search import FINALISTS, SPACING, finalists
 from hexaleg.design.codesign.servo import TIE, Screened, choose
-from hexaleg.design.gait_evaluation import GaitPoint
-from hexaleg.design.gait_search import FINALISTS, SPACING, finalists
 from hexaleg.errors import ConfigError, UnknownNameError
 from hexaleg.motion.params import GaitParams
 

@@ -92,7 +92,8 @@ def test_containment_waves_put_a_family_after_those_it_contains():
 
 def test_the_registry_is_one_entry_a_family():
     """FAMILIES, CONTAINS and design.json's classes all come from the registry."""
-    from hexaleg.design import families, spring_json
+    from hexaleg.design import families
+    from hexaleg.design.springs import law_json as spring_json
 
     assert families.FAMILIES == ("linear", "dead_zone", "preloaded", "one_sided", "stiffening")
     assert {n: f.law for n, f in families._FAMILIES.items()} == spring_json.CLASSES

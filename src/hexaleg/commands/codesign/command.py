@@ -4,8 +4,8 @@
 ``--config F`` reads a ``[codesign]`` table: ``speed``, ``pattern``, ``family``, ``samples``,
 ``final_samples``, ``max_evaluations``, ``restarts``, ``grouping``, ``rules``, ``curve``,
 ``simulate``, ``controller``, a ``[codesign.constraints]`` table of
-:class:`~hexaleg.design.gait_evaluation.Constraints` and a ``[codesign.design]`` table of the
-full spring rules' ``[design]`` keys (:func:`~hexaleg.design.codesign.build.rule_params`); the
+:class:`~hexaleg.design.codesign.gait_evaluation.Constraints` and a ``[codesign.design]`` table of
+the full spring rules' ``[design]`` keys (:func:`~hexaleg.design.codesign.build.rule_params`); the
 command line's ``--speed``, ``--pattern``, ``--controller`` and ``--no-rules`` win over the
 file.
 """

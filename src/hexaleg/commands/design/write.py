@@ -25,7 +25,7 @@ from hexaleg.commands.options import say
 from hexaleg.design.chain.chain import DesignChain
 from hexaleg.design.chain.config import DesignConfig
 from hexaleg.design.chain.result import DesignResult, mounting_data
-from hexaleg.design.tolerance import TolerantSprings
+from hexaleg.design.search.tolerance import TolerantSprings
 from hexaleg.outputs import design_plots, plots
 from hexaleg.outputs.directory import OutputFolder
 from hexaleg.outputs.html import render_design_html

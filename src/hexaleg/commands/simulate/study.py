@@ -11,7 +11,7 @@ was made for this robot and gait, else the quick answer — the linear family's 
 through ``hexaleg design``'s first stage), so that plain ``hexaleg simulate`` checks the
 report's answer. Where the report has no answer (a payload, a logged motion, a motor outside the
 catalogue) the globally optimal linear springs on the robot's spring class
-(:func:`hexaleg.design.optimal.optimal_springs`), with a note saying why.
+(:func:`hexaleg.design.search.optimal.optimal_springs`), with a note saying why.
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from hexaleg.design.chain.design_file import load_design
-from hexaleg.design.optimal import optimal_springs
+from hexaleg.design.search.optimal import optimal_springs
 from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.motion.legged import tripod_gait
 from hexaleg.report.answer import answer_springs

@@ -1,10 +1,10 @@
 """One family's answer: its optimal springs, the parts to buy, and what they save net of their mass.
 
 For a family, :func:`design_family` finds the global optimum of the magnitudes with the geometry
-searched (:func:`hexaleg.design.optimal.optimal_springs`, one design per joint class); for a
+searched (:func:`hexaleg.design.search.optimal.optimal_springs`, one design per joint class); for a
 mirrored or per-joint grouping it keeps each class's geometry and re-solves the magnitudes of
 the finer groups (one convex program: never worse than the class design, which it contains).
-Each spring element becomes a torsion spring (:mod:`hexaleg.design.spring_parts`); the springs'
+Each spring element becomes a torsion spring (:mod:`hexaleg.design.springs.parts`); the springs'
 mass, carried at their joints (:func:`hexaleg.robot.payload.with_point_masses`), costs energy,
 so the saving is also given net of it: the gait with the springs on the heavier robot against
 the baseline of the robot as it is (a logged motion kept as logged, :func:`carried`).
@@ -21,8 +21,8 @@ from hexaleg.design.chain.config import METRICS, DesignParams
 from hexaleg.design.chain.groups import class_of
 from hexaleg.design.evaluator import RunSpec, metric_row
 from hexaleg.design.families import CONTAINS, Geometry
-from hexaleg.design.optimal import OptimalSprings, optimal_springs
-from hexaleg.design.spring_parts import (
+from hexaleg.design.search.optimal import OptimalSprings, optimal_springs
+from hexaleg.design.springs.parts import (
     PartOptions,
     SpringPart,
     arbor_for,
@@ -46,7 +46,7 @@ class Candidate:
 
     Attributes:
         family: The spring family.
-        optimum: Its optimal springs (:class:`~hexaleg.design.optimal.OptimalSprings`).
+        optimum: Its optimal springs (:class:`~hexaleg.design.search.optimal.OptimalSprings`).
         parts: The torsion springs to buy, one per element and group.
         row: Every metric with the springs, its baseline and saving
             (:func:`~hexaleg.design.evaluator.metric_row`).
@@ -121,7 +121,7 @@ def _optimum(prepared: Prepared, groups: Mapping[str, tuple[str, ...]],
 
 
 def arbors(run: RunSpec, groups: Mapping[str, Sequence[str]]) -> dict[str, float]:
-    """Group → the arbor its springs wind on, m (:func:`~hexaleg.design.spring_parts.arbor_for`:
+    """Group → the arbor its springs wind on, m (:func:`~hexaleg.design.springs.parts.arbor_for`:
     the description's, the servo's output hub, else the stated rule from the link width)."""
     robot, desc, motor = run.load(), run.description(), run.actuator()
     return {g: arbor_for(robot, desc, motor, class_of(robot, tuple(js)))[0]
@@ -207,7 +207,7 @@ def design_family(prepared: Prepared, run: RunSpec, gait: GaitParams,
             this one contains, to start its search from.
 
     Raises:
-        HexalegError: as :func:`~hexaleg.design.optimal.optimal_springs` (constraints that no
+        HexalegError: as :func:`~hexaleg.design.search.optimal.optimal_springs` (constraints that no
             design meets name themselves there).
     """
     searched, optimum = _optimum(prepared, groups, class_groups, family, params, start,

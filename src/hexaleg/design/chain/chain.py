@@ -18,7 +18,8 @@ DesignResult`. The stages, in order (:data:`STAGES`; the work of each is in
    best *simulated* buildable design net of its springs' mass (without this stage: the best
    predicted one);
 4. ``tolerance``: the recommendation designed for its worst saving over the stops' mounting
-   error within ``[design] stop_tolerance`` (:func:`hexaleg.design.tolerance.tolerant_springs`);
+   error within ``[design] stop_tolerance``
+   (:func:`hexaleg.design.search.tolerance.tolerant_springs`);
 5. ``envelope``: each part's stress over its joints' whole range, poses and a turn, the hard
    stop where it would yield, and its fatigue safety at ``[design] life_cycles``;
 6. ``fold``: the fold into the sphere and back with the recommendation and without
@@ -65,12 +66,12 @@ from hexaleg.design.chain.stages import (
     robustness_maps,
     stop_tolerance,
 )
-from hexaleg.design.envelope import PartEnvelope
-from hexaleg.design.fatigue import FatigueCheck
 from hexaleg.design.fold import Fold, fold
-from hexaleg.design.robustness_map import RobustnessMap
-from hexaleg.design.spring_parts import SpringPart
-from hexaleg.design.tolerance import TolerantSprings
+from hexaleg.design.robust.maps import RobustnessMap
+from hexaleg.design.search.tolerance import TolerantSprings
+from hexaleg.design.springs.envelope import PartEnvelope
+from hexaleg.design.springs.fatigue import FatigueCheck
+from hexaleg.design.springs.parts import SpringPart
 from hexaleg.dynamics.draw import WholeDraw, whole_draw
 from hexaleg.dynamics.plausibility import check_baseline
 from hexaleg.dynamics.without_constants import WithoutConstants, without_constants

@@ -24,9 +24,9 @@ from hexaleg.config import check_tables, from_mapping
 from hexaleg.design.evaluator import DEFAULT_METRIC, RunSpec
 from hexaleg.design.families import FAMILIES, family
 from hexaleg.design.fold import Mission
-from hexaleg.design.robust import MODES
-from hexaleg.design.spring_materials import MATERIALS, material
-from hexaleg.design.torsion_spring import SAFETY_FACTOR
+from hexaleg.design.robust.box import MODES
+from hexaleg.design.springs.materials import MATERIALS, material
+from hexaleg.design.springs.torsion_spring import SAFETY_FACTOR
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.motion.limits import MIN_SAMPLES
@@ -51,8 +51,8 @@ GROUPINGS: tuple[str, ...] = ("class", "mirrored", "joint")
 """One spring design per joint class (all legs), per left/right pair of legs, or per joint."""
 METRICS: tuple[str, ...] = ("electrical", "joule")
 """Metrics the designs may be ranked by: those every step records — the saving net of the
-springs' mass, the robustness maps (:data:`hexaleg.design.robustness_map.METRICS`) and the robust
-program (:data:`hexaleg.design.robust.METRICS`)."""
+springs' mass, the robustness maps (:data:`hexaleg.design.robust.maps.METRICS`) and the robust
+program (:data:`hexaleg.design.robust.box.METRICS`)."""
 
 
 def _floats(name: str, values: Any, low: float, low_open: bool, what: str) -> tuple[float, ...]:
@@ -81,7 +81,7 @@ class DesignParams:
         motor: Deprecated (a catalogue servo on every joint): the actuator's home is the file's
             ``[motor]`` table (:attr:`DesignConfig.actuator`).
         samples: Samples per gait cycle of the design and the maps.
-        materials: Wire materials (:data:`~hexaleg.design.spring_materials.MATERIALS`).
+        materials: Wire materials (:data:`~hexaleg.design.springs.materials.MATERIALS`).
         safety_factor: Design factor on the wire's bending yield strength, ≥ 1.
         arbor_diameter: The pin a spring winds onto, m, ≥ 0.
         leg_length: Length of each spring leg, m, or None (one mean coil diameter).
@@ -96,7 +96,7 @@ class DesignParams:
         map_pattern: Gait patterns of the slope × pattern map
             (:data:`~hexaleg.motion.patterns.PATTERNS`, each at its own duty factor); None
             (default): the nominal gait's and every other the robot's legs can walk
-            (:func:`~hexaleg.design.robustness_map.robot_patterns`: tripod, ripple, wave on the
+            (:func:`~hexaleg.design.robust.maps.robot_patterns`: tripod, ripple, wave on the
             hexapod; trot, crawl, pace on a quadruped).
         robust_period: ``[low, high]`` period factors of the robust design's box.
         robust_stride: ``[low, high]`` stride factors of the box.

@@ -1,13 +1,13 @@
 """A spring design on disk: the ``design.json`` of ``hexaleg design``, or a hand-written one.
 
-Springs are the entries of :mod:`hexaleg.design.spring_json` (the one JSON form of a spring law
+Springs are the entries of :mod:`hexaleg.design.springs.law_json` (the one JSON form of a spring law
 in hexaleg), one per sprung joint::
 
     {"family": "linear", "joint": "LF_femur",
      "parameters": {"stiffness": {"value": 0.8, "unit": "N·m/rad"},
                     "reference": {"value": 0.35, "unit": "rad"}}}
 
-``family`` one of :data:`hexaleg.design.spring_json.CLASSES`, ``parameters`` the fields of that
+``family`` one of :data:`hexaleg.design.springs.law_json.CLASSES`, ``parameters`` the fields of that
 spring law (:mod:`hexaleg.robot.springs`), numbers ``{value, unit}``, the text fields plain, a
 stiffening spring's stages ``[{"breakpoint": …, "stiffness": …}, …]``. :func:`read_design` takes:
 
@@ -43,7 +43,7 @@ from typing import Any
 from hexaleg.checks import is_real, typed
 from hexaleg.config import read_json
 from hexaleg.design.evaluator import SAVING_METRICS
-from hexaleg.design.spring_json import spring_entry, spring_from_entry
+from hexaleg.design.springs.law_json import spring_entry, spring_from_entry
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.scaling import robot_gait
@@ -256,7 +256,7 @@ def recommended_saving(data: Mapping[str, Any], where: str) -> tuple[str | None,
     fraction; (None, None) for a hand-written file without them.
 
     Raises:
-        InvalidParameterError: a metric that is not one of :data:`hexaleg.design.curves.
+        InvalidParameterError: a metric that is not one of :data:`hexaleg.design.studies.curves.
             CURVE_METRICS`' energies, a saving table that is not a table, or a saving that is
             not a finite number of at most 100 % (of an energy, more cannot be saved).
     """

@@ -4,7 +4,7 @@
 :meth:`DesignResult.to_json` writes ``design.json``: every number as ``{"value": …, "unit": …}``
 (savings in %, SI otherwise; a missing or non-finite number is ``null``, its path listed in
 ``non_finite``), and each recommended spring as ``{"family", "joint", "parameters"}``
-(:mod:`hexaleg.design.spring_json`), which :func:`hexaleg.design.chain.design_file.load_design`
+(:mod:`hexaleg.design.springs.law_json`), which :func:`hexaleg.design.chain.design_file.load_design`
 — the one reader — and so ``hexaleg simulate --springs`` and ``hexaleg report --design`` read
 back. ``simulation`` holds the recommendation's forward simulation, one row per controller, as
 ``hexaleg simulate --sensitivity`` writes its rows
@@ -26,17 +26,17 @@ from hexaleg.design.chain.config import DesignConfig
 from hexaleg.design.chain.design_file import gait_parameters
 from hexaleg.design.chain.ranking import Simulated
 from hexaleg.design.chain.robust_stage import RobustResult
-from hexaleg.design.envelope import PartEnvelope
 from hexaleg.design.evaluator import SAVING_METRICS
 from hexaleg.design.families import family
-from hexaleg.design.fatigue import FatigueCheck, cycles_per_year
 from hexaleg.design.fold import Fold
-from hexaleg.design.mounting import mountings
-from hexaleg.design.robustness_map import RobustnessMap
-from hexaleg.design.spring_json import spring_entry
-from hexaleg.design.spring_parts import SpringPart
-from hexaleg.design.spring_table import magnitudes_table
-from hexaleg.design.tolerance import TolerantSprings
+from hexaleg.design.robust.maps import RobustnessMap
+from hexaleg.design.search.tolerance import TolerantSprings
+from hexaleg.design.springs.envelope import PartEnvelope
+from hexaleg.design.springs.fatigue import FatigueCheck, cycles_per_year
+from hexaleg.design.springs.law_json import spring_entry
+from hexaleg.design.springs.mounting import mountings
+from hexaleg.design.springs.parts import SpringPart
+from hexaleg.design.springs.table import magnitudes_table
 from hexaleg.dynamics.contact import friction_usage
 from hexaleg.dynamics.draw import WholeDraw
 from hexaleg.dynamics.energy import metric_unit
@@ -76,7 +76,7 @@ class DesignResult:
             controller`` (:mod:`hexaleg.design.chain.ranking`): the designs in the order
             ranked, a controller's rows after another's.
         tolerance: The recommendation against its tolerance-blind self over the stops'
-            mounting error (:class:`~hexaleg.design.tolerance.TolerantSprings`), or None.
+            mounting error (:class:`~hexaleg.design.search.tolerance.TolerantSprings`), or None.
         envelope: Each bought part over its whole envelope, and the hard stop it needs.
         fatigue: Each bought part and its fatigue check at ``[design] life_cycles``.
         simulation: The recommendation simulated, one row per controller
@@ -308,7 +308,8 @@ def robust_data(r: RobustResult, outer: dict[str, tuple[float, str]]) -> dict[st
 def tolerance_data(r: DesignResult) -> dict[str, Any]:
     """The recommendation and its tolerance-blind self over the stops' mounting error: nominal
     and worst saving within the tolerance (worst case over a stated set of shifts and the dense
-    common-shift curve, :mod:`hexaleg.design.tolerance`), the curve saving vs common shift."""
+    common-shift curve, :mod:`hexaleg.design.search.tolerance`), the curve saving vs common
+    shift."""
     t = r.tolerance
     assert t is not None
     return {"tolerance": quantity(t.tolerance, "rad"), "metric": t.metric,
@@ -354,7 +355,7 @@ def planned_friction_use(a: Analysis) -> float:
 def mounting_data(r: DesignResult) -> list[dict[str, Any]]:
     """``mounting``: each recommended spring on each of its joints, every angle from the joint's
     zero and from its centre of motion, with the hard stop its envelope needs
-    (:func:`hexaleg.design.mounting.mountings`): the angles the page draws."""
+    (:func:`hexaleg.design.springs.mounting.mountings`): the angles the page draws."""
     c = r.recommended
     a = c.optimum.analysis
     joints = {j for p in c.parts for j in p.joints}

@@ -3,7 +3,7 @@ conditions (:func:`robust_design`), with its parts, beside the nominal design ov
 
 The box is the nominal gait and the corners of ``[design] robust_period``, ``robust_stride``,
 ``robust_payload`` and ``robust_mu`` (:func:`corners`); the magnitudes maximise the worst (or the
-mean) saving over them in one convex program (:func:`hexaleg.design.robust.robust_springs`). A
+mean) saving over them in one convex program (:func:`hexaleg.design.robust.box.robust_springs`). A
 corner the robot cannot walk, or where it has no forces without springs, is left out with a note
 naming the keys that set it.
 """
@@ -19,8 +19,8 @@ import numpy as np
 from hexaleg.design.chain.candidates import Candidate, candidate
 from hexaleg.design.chain.config import METRICS, DesignConfig
 from hexaleg.design.chain.stages import Nominal
-from hexaleg.design.robust import RobustSprings, robust_springs
-from hexaleg.design.robustness import Condition, condition_savings, condition_walk
+from hexaleg.design.robust.box import RobustSprings, robust_springs
+from hexaleg.design.robust.conditions import Condition, condition_savings, condition_walk
 from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import HexalegError, InfeasibleForcesError, TorqueLimitError
 
@@ -62,7 +62,7 @@ def corners(cfg: DesignConfig) -> tuple[Condition, ...]:
 
 def robust_design(nom: Nominal, rec: Candidate) -> tuple[RobustResult | None, tuple[str, ...]]:
     """The recommended geometry's magnitudes for the box of conditions
-    (:func:`hexaleg.design.robust.robust_springs`: its corners and the nominal gait, one convex
+    (:func:`hexaleg.design.robust.box.robust_springs`: its corners and the nominal gait, one convex
     program), with its own parts, and the notes of what was left out; no result when the box is
     the nominal gait alone, the motion is logged (:data:`~hexaleg.design.chain.stages.
     LOGGED_SKIP`) or ``[design] robustness`` is false (:data:`~hexaleg.design.chain.stages.

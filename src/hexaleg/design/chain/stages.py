@@ -33,18 +33,18 @@ from hexaleg.design.chain.groups import (
     split_by_motion,
     sprung_classes,
 )
-from hexaleg.design.envelope import PartEnvelope, parts_envelope
 from hexaleg.design.evaluator import RunSpec
 from hexaleg.design.families import Geometry, containment_waves
-from hexaleg.design.fatigue import FatigueCheck, spring_fatigue
-from hexaleg.design.optimal import OptimalSprings
-from hexaleg.design.robustness import (
+from hexaleg.design.robust.conditions import (
     Condition,
     condition_prepared,
 )
-from hexaleg.design.robustness_map import RobustnessMap, robot_patterns, robustness_map
-from hexaleg.design.spring_parts import SpringPart, spring_outer_diameter
-from hexaleg.design.tolerance import TolerantSprings, tolerant_springs
+from hexaleg.design.robust.maps import RobustnessMap, robot_patterns, robustness_map
+from hexaleg.design.search.optimal import OptimalSprings
+from hexaleg.design.search.tolerance import TolerantSprings, tolerant_springs
+from hexaleg.design.springs.envelope import PartEnvelope, parts_envelope
+from hexaleg.design.springs.fatigue import FatigueCheck, spring_fatigue
+from hexaleg.design.springs.parts import SpringPart, spring_outer_diameter
 from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.errors import (
     HexalegError,
@@ -302,7 +302,7 @@ def pareto_front(nom: Nominal, rec: Candidate) -> list[tuple[float, Candidate]]:
 
 def stop_tolerance(nom: Nominal, rec: Candidate) -> tuple[Candidate, TolerantSprings | None]:
     """``rec`` designed for the stops a workshop mounts within ``[design] stop_tolerance``
-    (:func:`hexaleg.design.tolerance.tolerant_springs`: the worst saving over the mounting
+    (:func:`hexaleg.design.search.tolerance.tolerant_springs`: the worst saving over the mounting
     errors maximised), with its parts, when that keeps more than the tolerance-blind design's
     worst; else ``rec``. The comparison (both designs' nominal and worst savings and curves)
     either way; None without a tolerance or for a family without angles."""
@@ -329,10 +329,11 @@ def envelope_and_fatigue(nom: Nominal, rec: Candidate
                          ) -> tuple[tuple[PartEnvelope, ...], tuple[tuple[SpringPart, FatigueCheck],
                                                                       ...], list[str]]:
     """Each bought part's stress over everything its joints may see
-    (:func:`hexaleg.design.envelope.parts_envelope`: URDF limits, stand and sphere poses, the
-    gait, a turn at :data:`TURN_RATE`) with the hard stop it needs where it would yield, and its
-    fatigue safety at ``[design] life_cycles`` (:func:`hexaleg.design.fatigue.spring_fatigue`);
-    notes for a turn the robot cannot make."""
+    (:func:`hexaleg.design.springs.envelope.parts_envelope`: URDF limits, stand and sphere poses,
+    the gait, a turn at :data:`TURN_RATE`) with the hard stop it needs where it would yield, and its
+    fatigue safety at ``[design] life_cycles``
+    (:func:`hexaleg.design.springs.fatigue.spring_fatigue`); notes for a turn the robot cannot
+    make."""
     d = nom.config.design
     parts = [p for p in rec.parts if p.spring is not None]
     joints = sorted({j for p in parts for j in p.joints}, key=nom.robot.column)
@@ -361,7 +362,7 @@ def robustness_maps(nom: Nominal, rec: Candidate
     """The recommendation frozen over period × stride, payload × μ and slope × pattern (the
     ground's slope along the walking direction; the patterns of ``[design] map_pattern``, by
     default the nominal gait's and every other the robot's legs walk,
-    :func:`~hexaleg.design.robustness_map.robot_patterns`), and each metric's worst case
+    :func:`~hexaleg.design.robust.maps.robot_patterns`), and each metric's worst case
     (saving, its condition's label) over all three; none on a logged motion (NaN worst cases,
     :data:`LOGGED_SKIP`), nor without ``[design] robustness`` (:data:`UNMAPPED`)."""
     d = nom.config.design

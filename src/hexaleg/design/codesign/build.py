@@ -5,10 +5,11 @@
 1. the robot's default gait at that speed (:func:`~hexaleg.motion.scaling.robot_gait`, the speed
 winning over
    the stride), its static margin — the default ``min_static_margin`` — and its energy;
-2. the **co-design**: the outer search (:func:`hexaleg.design.gait_search.search`, restarted
+2. the **co-design**: the outer search (:func:`hexaleg.design.codesign.gait_search.search`,
+restarted
    compass search) over body height, foot radius, step height, duty factor and period, each
    candidate with the inner spring program's optimum
-   (:func:`hexaleg.design.optimal.optimal_springs` of ``family`` on every joint class,
+   (:func:`hexaleg.design.search.optimal.optimal_springs` of ``family`` on every joint class,
    electrical metric: fast and convex), at ``samples``
    samples a cycle; and the gait alone (the same search without springs) for the row "best gait
    without springs";
@@ -44,18 +45,18 @@ from hexaleg.design.chain.config import DesignParams
 from hexaleg.design.chain.groups import design_groups
 from hexaleg.design.chain.ranking import under
 from hexaleg.design.codesign.floors import over_floors
-from hexaleg.design.codesign.result import CodesignResult, Row, SpeedPoint
-from hexaleg.design.codesign.servo import choose, screen
-from hexaleg.design.families import FAMILIES
-from hexaleg.design.gait_evaluation import (
+from hexaleg.design.codesign.gait_evaluation import (
     PARAMETERS,
     Constraints,
     GaitPoint,
     evaluate_gait,
     with_values,
 )
-from hexaleg.design.gait_search import RESTARTS, default_space, search
-from hexaleg.design.optimal import Groups
+from hexaleg.design.codesign.gait_search import RESTARTS, default_space, search
+from hexaleg.design.codesign.result import CodesignResult, Row, SpeedPoint
+from hexaleg.design.codesign.servo import choose, screen
+from hexaleg.design.families import FAMILIES
+from hexaleg.design.search.optimal import Groups
 from hexaleg.dynamics.plausibility import uses_generic
 from hexaleg.errors import ConfigError, HexalegError, InvalidParameterError
 from hexaleg.motion.body import body_height, nominal_footholds
@@ -127,7 +128,8 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
         family: The inner spring family (``linear``: no geometry, the fastest).
         samples: Samples a cycle in the search (≥ 40). final_samples: in the rows (≥ samples).
         max_evaluations: The co-design search's budget (the gait-alone search gets the same).
-        restarts: Compass-search runs of each search (:data:`~hexaleg.design.gait_search.RESTARTS`).
+        restarts: Compass-search runs of each search
+            (:data:`~hexaleg.design.codesign.gait_search.RESTARTS`).
         grouping: One spring design per joint ``class`` (default), ``mirrored`` left/right
             pair, or ``joint`` (Solo-12's front and hind knees bend opposite ways: a class
             design cancels, so ``mirrored``).

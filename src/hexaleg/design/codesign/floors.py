@@ -1,7 +1,7 @@
 """The springs to buy on floors of other friction (issue #41): the saving over a range of μ.
 
 The co-design plans its foot forces inside ``friction_margin · μ`` of the floor it was given
-(:class:`~hexaleg.design.gait_evaluation.Constraints`), and the springs are sized for the
+(:class:`~hexaleg.design.codesign.gait_evaluation.Constraints`), and the springs are sized for the
 internal forces that floor lets the force program choose. On another floor the program chooses
 other forces: a grippier one frees them (the springs were sized for forces the floor no longer
 dictates), a slipperier one narrows them, or admits none. So the springs to buy are evaluated on

@@ -21,11 +21,11 @@ from typing import Any
 from hexaleg.design.chain.design_file import gait_parameters
 from hexaleg.design.chain.ranking import under
 from hexaleg.design.codesign.floors import Floor, worst
+from hexaleg.design.codesign.gait_evaluation import PARAMETERS, UNITS, Constraints, GaitPoint
+from hexaleg.design.codesign.gait_search import SearchResult
 from hexaleg.design.codesign.rules import RULES, rule_data, rule_lines
 from hexaleg.design.codesign.servo import Screened, choose
-from hexaleg.design.gait_evaluation import PARAMETERS, UNITS, Constraints, GaitPoint
-from hexaleg.design.gait_search import SearchResult
-from hexaleg.design.spring_json import spring_entry
+from hexaleg.design.springs.law_json import spring_entry
 from hexaleg.dynamics.energy import G
 from hexaleg.dynamics.plausibility import Plausibility, check_cost_of_transport
 from hexaleg.motion.params import GaitParams

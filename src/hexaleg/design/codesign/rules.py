@@ -3,10 +3,11 @@
 ``hexaleg codesign`` applies ``hexaleg design``'s rules (issue #30) to the gait it chose
 (:func:`hexaleg.design.codesign.build.full_rules`): **parsimony** (a joint class is fitted only
 when it adds at least ``[design] min_group_saving``), the **stop tolerance** (the design kept for
-its worst saving over the stops' mounting error, :mod:`hexaleg.design.tolerance`), the whole
-**envelope** with the **hard stop** where a part would yield (:mod:`hexaleg.design.envelope`),
-**fatigue** at ``[design] life_cycles`` (:mod:`hexaleg.design.fatigue`) and the **arbor** (the
-coil wound up to its largest deflection still clears its pin). This module turns that
+its worst saving over the stops' mounting error, :mod:`hexaleg.design.search.tolerance`), the whole
+**envelope** with the **hard stop** where a part would yield
+(:mod:`hexaleg.design.springs.envelope`), **fatigue** at ``[design] life_cycles``
+(:mod:`hexaleg.design.springs.fatigue`) and the **arbor** (the coil wound up to its largest
+deflection still clears its pin). This module turns that
 :class:`~hexaleg.design.chain.result.DesignResult` into the co-design's terminal lines
 (:func:`rule_lines`) and ``codesign.json``'s ``full_rules`` section (:func:`rule_data`), every
 number ``{value, unit}``.

@@ -2,8 +2,8 @@
 
 Each family is one module of this package — a :class:`~hexaleg.design.families.family.Family`
 subclass: its angles, magnitudes, elements, terms, law, mirror, and the families it contains —
-and one entry of :data:`_FAMILIES` below; :mod:`hexaleg.design.optimal`, the search, the scan,
-the design chain, ``design.json`` and the commands ask this registry.
+and one entry of :data:`_FAMILIES` below; :mod:`hexaleg.design.search.optimal`, the search, the
+scan, the design chain, ``design.json`` and the commands ask this registry.
 
 =============  ============================  ====================================================
 family         geometry (rad, from centre)   magnitudes (SI)
@@ -34,7 +34,7 @@ _FAMILIES: dict[str, Family] = {f.name: f for f in (
     Linear(), DeadZone(), Preloaded(), OneSided(), Stiffening())}
 """The registry: a new family is one module and one entry here."""
 FAMILIES: tuple[str, ...] = tuple(_FAMILIES)
-"""Spring families :func:`hexaleg.design.optimal.optimal_springs` designs."""
+"""Spring families :func:`hexaleg.design.search.optimal.optimal_springs` designs."""
 CONTAINS: dict[str, tuple[str, ...]] = {n: f.contains for n, f in _FAMILIES.items()
                                         if f.contains}
 """Family → the families it contains (their every law is one of its laws, :func:`embed`)."""

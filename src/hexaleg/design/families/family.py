@@ -1,6 +1,6 @@
 """A spring family as the design program sees it: :class:`Family`, the base of each family.
 
-For :func:`hexaleg.design.optimal.optimal_springs` a family is split into its *geometry* —
+For :func:`hexaleg.design.search.optimal.optimal_springs` a family is split into its *geometry* —
 angles the convex program holds fixed, relative to the centre of each joint's range of motion in
 the gait (the convention of :mod:`hexaleg.design.evaluator`) — and its *magnitudes*, which are
 decision variables because the spring torque is linear in them
@@ -49,10 +49,11 @@ class Family:
         order: ``(low, high, strict)``: angle ``low`` ≤ (``strict``: <) angle ``high``.
         preloaded_stops: Every stop carries a free preload ≥ 0 with its stiffness: then the
             design's value is non-increasing in each angle between two samples' angles
-            (:mod:`hexaleg.design.search`), so a stop's best place is just before a sample.
+            (:mod:`hexaleg.design.search.geometry`), so a stop's best place is just before a sample.
         above: The angles whose terms act on angles above them (the others act below).
-        stops: Angle → the magnitudes of the terms at that angle (:mod:`hexaleg.design.scan`).
-        contains: The families whose every law is one of this family's
+        stops: Angle → the magnitudes of the terms at that angle
+        (:mod:`hexaleg.design.search.scan`). contains: The families whose every law is one of this
+        family's
             (:meth:`embed` gives the geometry).
         swap: Mirror: angle → the angle it becomes (:meth:`mirror`).
         swap_magnitudes: Mirror: magnitude → the magnitude it becomes.

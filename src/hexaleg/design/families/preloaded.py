@@ -1,7 +1,7 @@
 """The preloaded family: two stops ``theta_minus ≤ theta_plus``, past each a stiffness and a
 preload (``k_plus``, ``k_minus``, ``preload_plus``, ``preload_minus`` ≥ 0). Every stop carries a
-free preload, so a stop's best place is just before a sample (:mod:`hexaleg.design.search`). It
-contains ``one_sided``, ``dead_zone`` and ``linear``."""
+free preload, so a stop's best place is just before a sample
+(:mod:`hexaleg.design.search.geometry`). It contains ``one_sided``, ``dead_zone`` and ``linear``."""
 
 from __future__ import annotations
 

@@ -7,8 +7,8 @@ torque)::
     τ_s(q) = Σ_b x_b φ_b(q),        U(q) = Σ_b x_b ψ_b(q),        φ_b = −dψ_b/dq exactly
 
 which is what lets the design layer treat the magnitudes as decision variables of one convex
-program (:mod:`hexaleg.design.optimal`). Each :class:`Term` is one φ_b with its potential ψ_b;
-angles are absolute joint angles, rad. The kinds (a = the term's angle):
+program (:mod:`hexaleg.design.search.optimal`). Each :class:`Term` is one φ_b with its potential
+ψ_b; angles are absolute joint angles, rad. The kinds (a = the term's angle):
 
 =============  ==========================  ==========================  ======================
 kind           φ(q), N·m per unit x         ψ(q), J per unit x          x is
