@@ -7,9 +7,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from numpy.typing import ArrayLike
 
 from hexaleg import checks
 from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.robot.actuator import Actuator
 
 
 @pytest.mark.parametrize("value", [True, False, np.bool_(True), "1", None, [1.0], math.nan,
@@ -96,6 +98,22 @@ def test_typed_checks_argument_types_against_the_annotations():
         with pytest.raises(InvalidParameterError, match=says):
             f(**kwargs)
     assert f.__doc__ == "A public function." and f.__name__ == "f"
+
+
+def test_typed_checks_hexalegs_runtime_protocols_not_numpys():
+    """An ``Actuator`` argument is checked (structurally, the answer kept per class); ArrayLike,
+    whose numpy protocols admit no float, is left to the function."""
+    from hexaleg.checks import typed
+    from hexaleg.robot.catalogue import CATALOGUE
+
+    @typed
+    def g(motor: Actuator, x: ArrayLike = 0.0) -> str:
+        return motor.name
+
+    assert g(CATALOGUE["AX-18A"], 1.5) == g(CATALOGUE["AX-18A"], [1.0]) == "AX-18A"
+    for bad in ("AX-18A", None, {"coxa": CATALOGUE["AX-18A"]}):
+        with pytest.raises(InvalidParameterError, match=r"g\(motor=…\).*a Actuator"):
+            g(bad)
 
 
 @pytest.mark.parametrize("name", ["ContactParams", "DeadZoneSpring", "DesignParams",

@@ -199,9 +199,18 @@ _SHORT = reprlib.Repr()
 _SHORT.maxstring = _SHORT.maxother = 80
 
 
+def _checked_protocol(hint: type) -> bool:
+    """Whether ``isinstance`` checks protocol ``hint`` in :func:`typed`: a runtime-checkable one
+    of hexaleg's own (such as :class:`hexaleg.robot.actuator.Actuator`); numpy's (inside
+    ArrayLike) admit no float, so they are not checked."""
+    return (getattr(hint, "_is_runtime_protocol", False)
+            and hint.__module__.split(".")[0] == "hexaleg")
+
+
 def _classes(hint: Any) -> tuple[type, ...] | None:
     """The runtime classes an annotation admits, or None where it cannot be checked by
-    ``isinstance`` (Any, a type variable, a literal, a protocol such as ArrayLike's)."""
+    ``isinstance`` (Any, a type variable, a literal, a protocol such as ArrayLike's; hexaleg's
+    own runtime-checkable protocols are checked)."""
     if hint is Any:  # a class since Python 3.11, but no isinstance target
         return None
     if hint is None or hint is type(None):
@@ -223,15 +232,28 @@ def _classes(hint: Any) -> tuple[type, ...] | None:
         return (collections.abc.Callable,)
     if isinstance(origin, type):
         return (origin,)
-    if isinstance(hint, type) and not getattr(hint, "_is_protocol", False):
+    if isinstance(hint, type) and (not getattr(hint, "_is_protocol", False)
+                                   or _checked_protocol(hint)):
         return (hint,)
     return None
+
+
+_STRUCTURAL: dict[tuple[tuple[type, ...], type], bool] = {}
+"""(classes with a runtime-checkable protocol, a value's class) → whether it is admitted: a
+protocol's ``isinstance`` looks up each of its members (tens of µs for
+:class:`hexaleg.robot.actuator.Actuator`, on the hot path of the energy metrics), and a class
+either has them or not."""
 
 
 def _admits(classes: tuple[type, ...], value: Any) -> bool:
     if isinstance(value, (bool, np.bool_)) and bool not in classes:
         return False  # True is no number here
-    return isinstance(value, classes)
+    if not any(getattr(c, "_is_protocol", False) for c in classes):
+        return isinstance(value, classes)
+    key = (classes, type(value))
+    if key not in _STRUCTURAL:
+        _STRUCTURAL[key] = isinstance(value, classes)
+    return _STRUCTURAL[key]
 
 
 def _hints(fn: Callable[..., Any]) -> dict[str, tuple[type, ...]]:

@@ -38,6 +38,7 @@ from scipy.optimize import minimize_scalar
 
 from hexaleg.checks import finite_array
 from hexaleg.errors import InvalidParameterError
+from hexaleg.robot.actuator import Actuator
 from hexaleg.robot.motor import Motor
 
 EFFICIENCY_BOUNDS = (0.05, 1.0)
@@ -146,13 +147,14 @@ def _power_fit(tau: np.ndarray, qdot: np.ndarray, power: np.ndarray,
                rms / float(np.sqrt(np.mean(p**2))), int(p.size))
 
 
-def identify_actuator(base: Motor, tau: ArrayLike, qdot: ArrayLike, *,
+def identify_actuator(base: Actuator, tau: ArrayLike, qdot: ArrayLike, *,
                       current: ArrayLike | None = None,
                       power: ArrayLike | None = None) -> Identification:
     """Fit an actuator's constants to measurements of the joints it drives (module docstring).
 
     Args:
-        base: The actuator as known before (a catalogue motor, a generic one): its gear ratio,
+        base: The actuator as known before (a catalogue motor, a generic one): a
+            :class:`~hexaleg.robot.motor.Motor`, the only model this fit knows; its gear ratio,
             limits, voltage and regeneration are kept; what is fitted replaces its ``k_t``,
             ``R`` and ``η``.
         tau: Output torques, any shape (e.g. (T, n) for n joints of this actuator), N·m.
@@ -165,7 +167,8 @@ def identify_actuator(base: Motor, tau: ArrayLike, qdot: ArrayLike, *,
         The identification: the motor with the fitted constants and each fit's residual.
 
     Raises:
-        InvalidParameterError: neither currents nor powers; an array of another shape or with
+        InvalidParameterError: ``base`` not a Motor (another actuator model has no ``k_t``, ``R``
+            and ``η`` to fit); neither currents nor powers; an array of another shape or with
             NaN/inf; too few usable samples; currents of the opposite sign to the torques.
     """
     if not isinstance(base, Motor):

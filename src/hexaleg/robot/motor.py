@@ -30,13 +30,16 @@ the other way round).
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from hexaleg.checks import named_arguments, positive, real
 from hexaleg.errors import InvalidParameterError
+from hexaleg.robot.actuator import EVERY_JOINT
 
 RPM = 2.0 * math.pi / 60.0
 """One revolution per minute in rad/s (datasheets state speeds in rpm)."""
@@ -89,7 +92,9 @@ def as_torque_speed(tau: ArrayLike, qdot: ArrayLike) -> tuple[np.ndarray, np.nda
 @named_arguments
 @dataclass(frozen=True)
 class Motor:
-    """A geared DC servo driving one joint.
+    """A geared DC servo driving one joint: an :class:`~hexaleg.robot.actuator.Actuator` with
+    one model on every joint (catalogue servos, brushless modules, generic and identified
+    actuators are all instances, built by different constructors).
 
     Attributes:
         name: Model name, e.g. ``"AX-18A"``.
@@ -142,6 +147,16 @@ class Motor:
     def joule_coefficient(self) -> float:
         """``c = R / (k_t G)²``, W/(N·m)²: Joule loss per squared output torque."""
         return self.resistance / (self.torque_constant * self.gear_ratio) ** 2
+
+    @property
+    def models(self) -> Mapping[str, Motor]:
+        """``{"every joint": self}``: one model drives every joint
+        (:attr:`hexaleg.robot.actuator.Actuator.models`)."""
+        return MappingProxyType({EVERY_JOINT: self})
+
+    def joint_labels(self, n_joints: int) -> tuple[str, ...]:
+        """``("every joint",) * n_joints``: each joint's key in :attr:`models`."""
+        return (EVERY_JOINT,) * n_joints
 
     def current(self, tau: ArrayLike) -> np.ndarray:
         """Winding current for an output torque, ``i = τ / (k_t G)``.

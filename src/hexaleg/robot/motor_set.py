@@ -1,43 +1,55 @@
-"""A robot whose joint classes carry different motors: one :class:`~hexaleg.robot.motor.Motor` per
-joint, with the same power model.
+"""A robot whose joint classes carry different actuators: a mapping joint class → actuator that
+is itself an :class:`~hexaleg.robot.actuator.Actuator`.
 
 Hexapod builders often fit a stronger servo where the load is (an XM430 on the femur, an XL430 on
-the coxa and tibia). A :class:`MotorSet` holds the motor of every joint and answers what the
-dynamics and the energy metrics ask of a motor — Joule coefficients, stall torques, gearbox
-efficiencies, electrical power — as per-joint arrays, by applying each joint's own
-:class:`~hexaleg.robot.motor.Motor` (the geared-DC model of Verstraten et al., IEEE RA-L 2016, see
-:mod:`hexaleg.robot.motor`) to that joint's column. Everywhere a ``motor`` argument is taken, a
-:class:`MotorSet` may stand in for a single :class:`~hexaleg.robot.motor.Motor`.
+the coxa and tibia). A :class:`MotorSet` maps each joint class to the single actuator model of its
+joints and answers what the dynamics and the energy metrics ask of an actuator — Joule
+coefficients, stall torques, gearbox efficiencies, currents, electrical power — as per-joint
+arrays, by asking each joint's own actuator about that joint's column (for a
+:class:`~hexaleg.robot.motor.Motor`, the geared-DC model of Verstraten et al., IEEE RA-L 2016, see
+:mod:`hexaleg.robot.motor`). Everywhere an :class:`~hexaleg.robot.actuator.Actuator` is taken, a
+:class:`MotorSet` may stand in for a single model.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from hexaleg.errors import InvalidParameterError, UnknownNameError
+from hexaleg.robot.actuator import EVERY_JOINT, Actuator
 from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import Motor, as_torque_speed, generic_actuator
 
 
+def _single(actuator: object) -> bool:
+    """Whether ``actuator`` is one actuator model (an :class:`Actuator` whose
+    :attr:`~Actuator.models` is itself on every joint), as a set's values must be."""
+    return (isinstance(actuator, Actuator) and not isinstance(actuator, Mapping)
+            and tuple(actuator.models) == (EVERY_JOINT,))
+
+
 @dataclass(frozen=True)
-class MotorSet:
-    """The motor of every joint, grouped by joint class.
+class MotorSet(Mapping[str, Actuator]):
+    """The actuator of every joint, grouped by joint class: a mapping joint class → its
+    actuator (in the order of :attr:`by_class`) and itself an
+    :class:`~hexaleg.robot.actuator.Actuator` whose figures are (n,) arrays.
 
     Attributes:
         joint_names: The robot's joints in the model's column order, n names.
         joint_classes: The class of each joint (``"coxa"``, ``"femur"`` …), n names.
-        by_class: Joint class → its motor, as ``(class, Motor)`` pairs; every class of
-            :attr:`joint_classes` exactly once.
+        by_class: Joint class → its actuator, as ``(class, actuator)`` pairs; every class of
+            :attr:`joint_classes` exactly once, each actuator a single model (a
+            :class:`~hexaleg.robot.motor.Motor`, not another set).
     """
 
     joint_names: tuple[str, ...]
     joint_classes: tuple[str, ...]
-    by_class: tuple[tuple[str, Motor], ...]
+    by_class: tuple[tuple[str, Actuator], ...]
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "joint_names", tuple(self.joint_names))
@@ -48,21 +60,22 @@ class MotorSet:
                                         f"one class per joint, {len(self.joint_names)} names")
         named = [c for c, _ in self.by_class]
         for c, m in self.by_class:
-            if not isinstance(m, Motor):
-                raise InvalidParameterError(f"MotorSet motor of {c}", m, "a hexaleg.Motor")
+            if not _single(m):
+                raise InvalidParameterError(f"MotorSet motor of {c}", m,
+                                            "a hexaleg.Motor (one actuator model)")
         if sorted(named) != sorted(set(self.joint_classes)):
             raise InvalidParameterError("MotorSet classes", named, "each joint class of "
                                         f"{sorted(set(self.joint_classes))} exactly once")
 
     @classmethod
     def per_class(cls, joint_classes: Mapping[str, tuple[str, ...]], joint_names: tuple[str, ...],
-                  motors: Mapping[str, Motor]) -> MotorSet:
-        """The motor set of a robot from its joint classes and one motor per class.
+                  motors: Mapping[str, Actuator]) -> MotorSet:
+        """The motor set of a robot from its joint classes and one actuator per class.
 
         Args:
             joint_classes: Class → its joints (:attr:`hexaleg.robot.model.Robot.joint_classes`).
             joint_names: The robot's joints in column order.
-            motors: Class → motor, every class of ``joint_classes``.
+            motors: Class → actuator, every class of ``joint_classes``.
 
         Returns:
             The set, in the order of ``joint_classes``.
@@ -75,11 +88,40 @@ class MotorSet:
         return cls(joint_names, tuple(of[j] for j in joint_names),
                    tuple((kind, motors[kind]) for kind in joint_classes if kind in motors))
 
+    # the mapping joint class → actuator
+    def __getitem__(self, kind: str) -> Actuator:
+        for c, m in self.by_class:
+            if c == kind:
+                return m
+        raise KeyError(kind)
+
+    def __iter__(self) -> Iterator[str]:
+        return (c for c, _ in self.by_class)
+
+    def __len__(self) -> int:
+        return len(self.by_class)
+
+    # the Actuator protocol
     @property
-    def motors(self) -> tuple[Motor, ...]:
-        """The motor of each joint, n entries."""
-        table = dict(self.by_class)
-        return tuple(table[c] for c in self.joint_classes)
+    def models(self) -> Mapping[str, Actuator]:
+        """The set itself: joint class → its actuator."""
+        return self
+
+    def joint_labels(self, n_joints: int) -> tuple[str, ...]:
+        """The class of each joint (:attr:`joint_classes`).
+
+        Raises:
+            InvalidParameterError: ``n_joints`` is not the set's number of joints.
+        """
+        if n_joints != len(self.joint_names):
+            raise InvalidParameterError("motor joints", f"{len(self.joint_names)} joints",
+                                        f"the robot's {n_joints}")
+        return self.joint_classes
+
+    @property
+    def motors(self) -> tuple[Actuator, ...]:
+        """The actuator of each joint, n entries."""
+        return tuple(self[c] for c in self.joint_classes)
 
     def _per_joint(self, attribute: str) -> np.ndarray:
         return np.array([getattr(m, attribute) for m in self.motors], dtype=float)
@@ -87,10 +129,15 @@ class MotorSet:
     @property
     def name(self) -> str:
         """``"XM430-W350 (femur) · XL430-W250 (coxa, tibia)"``: each motor and its classes."""
-        classes: dict[Motor, list[str]] = {}
+        classes: list[tuple[Actuator, list[str]]] = []
         for c, m in self.by_class:
-            classes.setdefault(m, []).append(c)
-        return " · ".join(f"{m.name} ({', '.join(cs)})" for m, cs in classes.items())
+            for model, cs in classes:
+                if model == m:
+                    cs.append(c)
+                    break
+            else:
+                classes.append((m, [c]))
+        return " · ".join(f"{m.name} ({', '.join(cs)})" for m, cs in classes)
 
     @property
     def joule_coefficient(self) -> np.ndarray:
@@ -113,13 +160,18 @@ class MotorSet:
         return self._per_joint("gearbox_efficiency")
 
     @property
+    def voltage(self) -> np.ndarray:
+        """Supply voltage of each joint's motor's figures, shape (n,), V."""
+        return self._per_joint("voltage")
+
+    @property
     def regeneration(self) -> np.ndarray:
         """Whether each joint's motor returns negative power to the supply, shape (n,), bool."""
         return np.array([m.regeneration for m in self.motors])
 
-    def _columns(self, method: Callable[[Motor], Callable[..., np.ndarray]],
+    def _columns(self, method: Callable[[Actuator], Callable[..., np.ndarray]],
                  *arrays: np.ndarray) -> np.ndarray:
-        """Apply each class's motor method to its joints' columns (last axis, n)."""
+        """Apply each class's actuator method to its joints' columns (last axis, n)."""
         n = len(self.joint_names)
         if arrays[0].ndim == 0 or arrays[0].shape[-1] != n:
             raise InvalidParameterError("tau", f"array of shape {arrays[0].shape}",
@@ -132,24 +184,24 @@ class MotorSet:
         return out
 
     def current(self, tau: ArrayLike) -> np.ndarray:
-        """Winding current, :meth:`Motor.current` per joint; ``tau`` (..., n) N·m → A."""
+        """Winding current, each joint's actuator's ``current``; ``tau`` (..., n) N·m → A."""
         t, _ = as_torque_speed(tau, np.zeros(np.shape(tau)))
         return self._columns(lambda m: m.current, t)
 
     def joule_power(self, tau: ArrayLike) -> np.ndarray:
-        """Joule loss, :meth:`Motor.joule_power` per joint; ``tau`` (..., n) N·m → W."""
+        """Joule loss, each joint's actuator's ``joule_power``; ``tau`` (..., n) N·m → W."""
         t, _ = as_torque_speed(tau, np.zeros(np.shape(tau)))
         return self._columns(lambda m: m.joule_power, t)
 
     def electrical_power(self, tau: ArrayLike, qdot: ArrayLike,
                          regeneration: bool | None = None) -> np.ndarray:
-        """Electrical power per joint (:meth:`Motor.electrical_power` of each joint's motor).
+        """Electrical power per joint (each joint's actuator's ``electrical_power``).
 
         Args:
             tau: Joint torques, shape (..., n), N·m.
             qdot: Joint speeds, the shape of ``tau``, rad/s.
             regeneration: Whether negative power returns to the supply on every joint; ``None``
-                uses each motor's own :attr:`Motor.regeneration`.
+                uses each actuator's own ``regeneration``.
 
         Returns:
             Electrical power, the shape of ``tau``, W.
@@ -177,7 +229,7 @@ def motor_classes(robot: Robot) -> dict[str, tuple[str, ...]]:
     return {**robot.joint_classes, **{j: (j,) for j in robot.other_joints}}
 
 
-def class_motors(robot: Robot, named: Mapping[str, Motor], generic: str) -> Motor | MotorSet:
+def class_motors(robot: Robot, named: Mapping[str, Motor], generic: str) -> Actuator:
     """The motor of every joint class of ``robot``: ``named`` ones, and for the others a generic
     actuator from the largest URDF effort and velocity limits of the class's joints
     (:func:`hexaleg.robot.motor.generic_actuator`, its assumptions in its notes). A joint on no
