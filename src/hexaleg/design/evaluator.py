@@ -65,11 +65,11 @@ from hexaleg.errors import (
 from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.scaling import robot_gait
+from hexaleg.robot.actuator import Actuator
 from hexaleg.robot.catalogue import motor as motor_by_name
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import Motor
-from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.registry import description
 from hexaleg.robot.springs import DeadZoneSpring, SpringSet
 
@@ -131,7 +131,7 @@ class RunSpec:
             _ROBOTS[self.robot] = self.description().load()
         return _ROBOTS[self.robot]
 
-    def actuator(self) -> Motor | MotorSet:
+    def actuator(self) -> Actuator:
         """The actuator of every joint (:attr:`motor`), or the robot's own per joint class."""
         if isinstance(self.motor, Motor):
             return self.motor

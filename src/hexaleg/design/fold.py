@@ -41,9 +41,8 @@ from hexaleg.errors import HexalegError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.motion.transform import transform_motion
 from hexaleg.quantities import quantity
+from hexaleg.robot.actuator import Actuator
 from hexaleg.robot.model import Robot
-from hexaleg.robot.motor import Motor
-from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.springs import SpringSet
 
 WAYS = (("stand → sphere", "stand", "sphere"), ("sphere → stand", "sphere", "stand"))
@@ -212,7 +211,7 @@ class Fold:
         return "the fold: " + ", ".join(parts) + tail
 
 
-def _way(robot: Robot, label: str, motion: Motion, motor: Motor | MotorSet,
+def _way(robot: Robot, label: str, motion: Motion, motor: Actuator,
          contact: ContactParams, springs: SpringSet) -> FoldWay:
     """One way analysed with ``springs`` and without."""
     out: dict[str, Any] = {}
@@ -234,7 +233,7 @@ def _way(robot: Robot, label: str, motion: Motion, motor: Motor | MotorSet,
     return FoldWay(label, motion.period, energy, energy_b, share_w, share_b, err, err_b)
 
 
-def fold(robot: Robot, motor: Motor | MotorSet, contact: ContactParams, springs: SpringSet,
+def fold(robot: Robot, motor: Actuator, contact: ContactParams, springs: SpringSet,
          walking: tuple[float, float], metres_per_fold: float | None = None) -> Fold | None:
     """The fold both ways with ``springs`` and without (module docstring); None for a robot
     without both a ``stand`` and a ``sphere`` pose.

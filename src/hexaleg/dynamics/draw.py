@@ -23,14 +23,12 @@ it lasts ``3600 · Wh / P`` seconds of walking.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
 from hexaleg.dynamics.plausibility import uses_generic
+from hexaleg.robot.actuator import Actuator, joint_models
 from hexaleg.robot.catalogue import standby
-from hexaleg.robot.motor import Motor
-from hexaleg.robot.motor_set import MotorSet
 
 WH = 3600.0
 """One watt-hour in joules."""
@@ -234,17 +232,17 @@ class Idle:
     sources: dict[str, str]
 
 
-def idle_power(actuator: Motor | MotorSet, n_joints: int) -> Idle:
+def idle_power(actuator: Actuator, n_joints: int) -> Idle:
     """The servos' standby draw ``Σ_j I_standby,j V_j``, W, with its range: each servo's
     standby current (:func:`hexaleg.robot.catalogue.standby`) at the servo's datasheet voltage
-    (:attr:`Motor.voltage`).
+    (:attr:`~hexaleg.robot.actuator.Actuator.voltage`), over each joint's model
+    (:func:`hexaleg.robot.actuator.joint_models`).
 
     Args:
         actuator: One servo on every joint, or one per joint class.
-        n_joints: The number of joints (servos) when ``actuator`` is one :class:`Motor`.
+        n_joints: The number of joints (servos).
     """
-    motors: Sequence[Motor] = (actuator.motors if isinstance(actuator, MotorSet)
-                               else (actuator,) * n_joints)
+    motors = joint_models(actuator, n_joints)
     entries = {m.name: standby(m.name) for m in motors}
     missing = tuple(sorted(name for name, e in entries.items() if e.current is None))
     family = tuple(sorted(name for name, e in entries.items()
@@ -260,7 +258,7 @@ def idle_power(actuator: Motor | MotorSet, n_joints: int) -> Idle:
 
 
 def whole_draw(energy: float, energy_baseline: float, period: float, distance: float,
-               actuator: Motor | MotorSet, n_joints: int, *, electronics: float | None = None,
+               actuator: Actuator, n_joints: int, *, electronics: float | None = None,
                battery_wh: float | None = None) -> WholeDraw:
     """The whole draw of one cycle (module docstring).
 

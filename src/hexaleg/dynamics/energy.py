@@ -18,8 +18,8 @@ from numpy.typing import ArrayLike
 
 from hexaleg.checks import positive, real, typed
 from hexaleg.errors import InvalidParameterError
-from hexaleg.robot.motor import Motor, as_torque_speed
-from hexaleg.robot.motor_set import MotorSet
+from hexaleg.robot.actuator import Actuator
+from hexaleg.robot.motor import as_torque_speed
 from hexaleg.units import G
 
 ENERGY_KEYS = ("net_work", "positive_work", "absolute_work", "joule", "electrical",
@@ -81,7 +81,7 @@ def epsilon(energy: float, inertia: float, angle: float) -> float:
 
 
 @typed
-def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor | MotorSet, *,
+def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Actuator, *,
             mass: float | None = None, distance: float | None = None,
             joint_names: Sequence[str] | None = None, periodic: bool = True,
             inertia: ArrayLike | None = None) -> dict[str, Any]:
@@ -95,8 +95,8 @@ def metrics(tau: ArrayLike, qdot: ArrayLike, dt: float, motor: Motor | MotorSet,
         tau: Motor (joint) torques, shape (T, n) or (T,) for one joint, N·m.
         qdot: Joint speeds, the shape of ``tau``, rad/s.
         dt: Sample spacing, s, > 0.
-        motor: The servo model of every joint, or a :class:`~hexaleg.robot.motor_set.MotorSet`
-            (one per joint, n of them).
+        motor: The actuators (:class:`~hexaleg.robot.actuator.Actuator`): one model on every
+            joint, or a :class:`~hexaleg.robot.motor_set.MotorSet` (one per joint class).
         mass: Robot mass, kg, > 0; with ``distance`` > 0 adds the cost of transport.
         distance: Distance travelled in the cycle, m, ≥ 0 (up to :data:`IN_PLACE`: in place,
             no cost of transport).
@@ -179,7 +179,7 @@ def quadrature_weights(n_samples: int, dt: float, periodic: bool) -> np.ndarray:
 
 
 def _cycle_integrals(t: np.ndarray, w: np.ndarray, weight: np.ndarray,
-                     motor: Motor | MotorSet
+                     motor: Actuator
                      ) -> tuple[dict[str, np.ndarray], dict[str, float]]:
     """The per-joint ``(n,)`` and total energies and torque statistics of :func:`metrics`, for
     torques ``t`` and speeds ``w`` (T, n) and quadrature weights ``weight`` (T,)."""

@@ -26,10 +26,9 @@ from hexaleg.dynamics.contact import ContactParams
 from hexaleg.dynamics.prepare import prepare
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.actuator import Actuator
 from hexaleg.robot.identify import Identification, identify_actuator
 from hexaleg.robot.model import Robot
-from hexaleg.robot.motor import Motor
-from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.springs import SpringSet
 
 FITTED: tuple[str, ...] = ("current", "power")
@@ -77,16 +76,15 @@ class ActuatorFit:
         return out
 
 
-def _groups(robot: Robot, motor: Motor | MotorSet) -> list[tuple[str, Motor, tuple[str, ...]]]:
-    """(label, motor, joints) per actuator model of the run."""
-    if isinstance(motor, MotorSet):
-        kinds = np.array(motor.joint_classes)
-        names = np.array(motor.joint_names)
-        return [(kind, m, tuple(names[kinds == kind])) for kind, m in motor.by_class]
-    return [("every joint", motor, tuple(robot.joint_names))]
+def _groups(robot: Robot, motor: Actuator) -> list[tuple[str, Actuator, tuple[str, ...]]]:
+    """(label, model, joints) per actuator model of the run (its
+    :attr:`~hexaleg.robot.actuator.Actuator.models`, each with the joints it drives)."""
+    labels = np.array(motor.joint_labels(robot.nj))
+    names = np.array(robot.joint_names)
+    return [(label, m, tuple(names[labels == label])) for label, m in motor.models.items()]
 
 
-def identify_motion(robot: Robot, motion: Motion, motor: Motor | MotorSet, *,
+def identify_motion(robot: Robot, motion: Motion, motor: Actuator, *,
                     contact: ContactParams | None = None, springs: SpringSet | None = None
                     ) -> dict[str, ActuatorFit]:
     """The run's actuators fitted to the log's measurements (module docstring).

@@ -47,8 +47,8 @@ from dataclasses import dataclass
 from typing import Any
 
 from hexaleg.checks import positive, real
-from hexaleg.robot.motor import GENERIC_MARK, Motor
-from hexaleg.robot.motor_set import MotorSet
+from hexaleg.robot.actuator import Actuator
+from hexaleg.robot.motor import GENERIC_MARK
 from hexaleg.units import G
 
 TAYLOR_COEFFICIENT = 10.7
@@ -206,11 +206,10 @@ def plausible_range(mass: float) -> tuple[float, float]:
     return LOW_FACTOR * ref, HIGH_FACTOR * ref
 
 
-def uses_generic(motor: Motor | MotorSet) -> bool:
+def uses_generic(motor: Actuator) -> bool:
     """Whether any joint's actuator is a :func:`~hexaleg.robot.motor.generic_actuator` (its notes
     open with the generic actuator's statement of assumptions)."""
-    motors = motor.motors if isinstance(motor, MotorSet) else (motor,)
-    return any(m.notes.startswith(GENERIC_MARK) for m in motors)
+    return any(m.notes.startswith(GENERIC_MARK) for m in motor.models.values())
 
 
 @dataclass(frozen=True)
@@ -298,7 +297,7 @@ def check_cost_of_transport(cost: float, mass: float, *, what: str = "electrical
     return Plausibility(cot, float(mass), ref, low, high, flag, msg)
 
 
-def check_baseline(baseline: dict[str, Any], mass: float, motor: Motor | MotorSet
+def check_baseline(baseline: dict[str, Any], mass: float, motor: Actuator
                    ) -> Plausibility | None:
     """The baseline's electrical cost of transport (``metrics["cost_of_transport"]
     ["electrical"]`` of :func:`hexaleg.dynamics.energy.metrics`) checked by

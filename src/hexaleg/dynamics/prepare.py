@@ -49,9 +49,9 @@ from hexaleg.dynamics.nearest import WrenchResidual, nearest_wrench
 from hexaleg.dynamics.solver import QuadraticGains, quadratic_gains, solve_fast
 from hexaleg.errors import HexalegWarning, InvalidParameterError, TorqueLimitError
 from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.actuator import Actuator
 from hexaleg.robot.catalogue import motor as motor_by_name
 from hexaleg.robot.model import Robot
-from hexaleg.robot.motor import Motor
 from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.springs import Spring, SpringSet
 from hexaleg.units import G
@@ -62,19 +62,19 @@ SPRING_TORQUE_BOUND = 1000.0
 value in the wrong unit (a stiffness of 1e300 N·m/rad ended as a contact-force error)."""
 
 
-def _as_motor(motor: Motor | MotorSet | str | None, robot: Robot) -> Motor | MotorSet:
+def _as_motor(motor: Actuator | str | None, robot: Robot) -> Actuator:
     if motor is None:
         return motor_by_name()
     if isinstance(motor, str):
         return motor_by_name(motor)
-    if isinstance(motor, MotorSet):
-        if motor.joint_names != robot.joint_names:
-            raise InvalidParameterError("motor joints", motor.joint_names,
-                                        f"the joints of {robot.name}, {robot.joint_names}")
-        return motor
-    if not isinstance(motor, Motor):
+    if not isinstance(motor, Actuator):
         raise InvalidParameterError("motor", motor, "a hexaleg.Motor, a MotorSet or a catalogue "
                                     "name")
+    if isinstance(motor, MotorSet) and motor.joint_names != robot.joint_names:
+        # a set is built for named joints: the same count in another order is another robot's
+        raise InvalidParameterError("motor joints", motor.joint_names,
+                                    f"the joints of {robot.name}, {robot.joint_names}")
+    motor.joint_labels(robot.nj)  # an actuator built for another number of joints: named
     return motor
 
 
@@ -120,7 +120,7 @@ class Analysis:
     robot: Robot
     motion: Motion
     springs: SpringSet
-    motor: Motor | MotorSet
+    motor: Actuator
     objective: str
     contact: ContactParams
     t: np.ndarray
@@ -177,7 +177,7 @@ class Prepared:
 
     robot: Robot
     motion: Motion
-    motor: Motor | MotorSet
+    motor: Actuator
     contact: ContactParams
     rnea: np.ndarray
     jacobians: np.ndarray
@@ -345,7 +345,7 @@ class Prepared:
 
 
 @typed
-def prepare(robot: Robot, motion: Motion, *, motor: Motor | MotorSet | str | None = None,
+def prepare(robot: Robot, motion: Motion, *, motor: Actuator | str | None = None,
             contact: ContactParams | None = None) -> Prepared:
     """Compute everything about ``motion`` that does not depend on the springs.
 
@@ -425,7 +425,7 @@ def prepare(robot: Robot, motion: Motion, *, motor: Motor | MotorSet | str | Non
 
 @typed
 def analyze(robot: Robot, motion: Motion, springs: SpringsLike = None, *,
-            motor: Motor | MotorSet | str | None = None, objective: str = "joule",
+            motor: Actuator | str | None = None, objective: str = "joule",
             contact: ContactParams | None = None) -> Analysis:
     """Analyse ``motion`` with ``springs``: ``prepare(robot, motion, …).evaluate(springs, …)``.
 

@@ -44,9 +44,9 @@ from hexaleg.checks import positive
 from hexaleg.dynamics import energy
 from hexaleg.dynamics.prepare import Analysis
 from hexaleg.quantities import quantity
+from hexaleg.robot.actuator import joint_models
 from hexaleg.robot.catalogue import CATALOGUE
 from hexaleg.robot.motor import GENERIC_MARK, Motor
-from hexaleg.robot.motor_set import MotorSet
 
 TORQUE_CLASS = (0.5, 2.0)
 """A catalogue actuator is of a joint's torque class when its stall torque is within these
@@ -172,12 +172,9 @@ class WithoutConstants:
 
 
 def _generic_joints(analysis: Analysis) -> list[str]:
-    motor = analysis.motor
     names = analysis.robot.joint_names
-    if isinstance(motor, MotorSet):
-        return [j for j, kind in zip(motor.joint_names, motor.joint_classes, strict=True)
-                if dict(motor.by_class)[kind].notes.startswith(GENERIC_MARK)]
-    return list(names) if motor.notes.startswith(GENERIC_MARK) else []
+    models = joint_models(analysis.motor, len(names))
+    return [j for j, m in zip(names, models, strict=True) if m.notes.startswith(GENERIC_MARK)]
 
 
 def without_constants(analysis: Analysis) -> WithoutConstants | None:

@@ -20,8 +20,8 @@ from hexaleg.dynamics.energy import saving
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.limits import SAMPLE_BYTES
 from hexaleg.paper.joint import PaperJoint
+from hexaleg.robot.actuator import Actuator
 from hexaleg.robot.catalogue import motor as default_motor
-from hexaleg.robot.motor import Motor
 
 JOINT_METRICS: tuple[str, ...] = ("mean_abs", "rms", "peak", "int_sq", "positive_work",
                                   "absolute_work", "joule")
@@ -40,7 +40,7 @@ def paper_samples(n: object) -> int:
 
 
 def metric(joint: PaperJoint, name: str, k: ArrayLike, gravity: bool = True, n: int = 2048,
-           motor: Motor | None = None) -> np.ndarray:
+           motor: Actuator | None = None) -> np.ndarray:
     """A cost of the motor torque over one period, vectorised over stiffness.
 
     Args:
@@ -129,7 +129,7 @@ class StiffnessOptimum:
 
 def optimal_stiffness(joint: PaperJoint, name: str, gravity: bool = True,
                       bounds: tuple[float, float] | None = None, n: int = 2048, grid: int = 801,
-                      motor: Motor | None = None) -> StiffnessOptimum:
+                      motor: Actuator | None = None) -> StiffnessOptimum:
     """Numerically optimal stiffness for one metric: grid search, then a bounded Brent refinement.
 
     Args:
@@ -140,7 +140,7 @@ def optimal_stiffness(joint: PaperJoint, name: str, gravity: bool = True,
             inertial plus gravity stiffness scale).
         n: Samples per period.
         grid: Grid points over ``bounds``.
-        motor: Motor model for ``joule``.
+        motor: The actuator of the joint for ``joule`` (a single model).
 
     Returns:
         The optimum.

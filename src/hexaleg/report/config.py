@@ -27,12 +27,11 @@ from hexaleg.motion.limits import SAMPLE_BYTES
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.scaling import robot_gait
 from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.actuator import Actuator
 from hexaleg.robot.catalogue import DEFAULT_MOTOR, motor_from_mapping
 from hexaleg.robot.catalogue import motor as motor_by_name
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Robot
-from hexaleg.robot.motor import Motor
-from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.payload import Payload
 from hexaleg.robot.springs import SpringSet
 from hexaleg.scenario.scenario import TABLES as RUN_TABLES
@@ -217,7 +216,7 @@ class ReportConfig:
     """
 
     gait: GaitParams = field(default_factory=GaitParams)
-    motor: Motor | MotorSet = field(default_factory=lambda: motor_by_name(DEFAULT_MOTOR))
+    motor: Actuator = field(default_factory=lambda: motor_by_name(DEFAULT_MOTOR))
     contact: ContactParams = field(default_factory=ContactParams)
     springs: SpringDesign | SpringSet | None = None
     report: ReportParams = field(default_factory=ReportParams)

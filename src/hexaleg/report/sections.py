@@ -26,9 +26,8 @@ from hexaleg.motion.params import GaitParams
 from hexaleg.motion.trajectory import Motion
 from hexaleg.quantities import comparison, quantity
 from hexaleg.report.config import SpringDesign
+from hexaleg.robot.actuator import EVERY_JOINT, Actuator
 from hexaleg.robot.model import Robot
-from hexaleg.robot.motor import Motor
-from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.payload import Payload
 from hexaleg.robot.sanity import Finding
 from hexaleg.robot.springs import SpringSet
@@ -130,19 +129,19 @@ def payload_section(payload: Payload | None, robot: Robot) -> dict[str, Any] | N
             "total_mass": quantity(robot.mass, "kg")}
 
 
-def motor_section(motor: Motor | MotorSet) -> dict[str, Any]:
+def motor_section(motor: Actuator) -> dict[str, Any]:
     """The servo of every joint; for a :class:`~hexaleg.robot.motor_set.MotorSet` also
     ``classes``, one entry per joint class with its motor's figures."""
-    if isinstance(motor, MotorSet):
+    if tuple(motor.models) != (EVERY_JOINT,):
         classes = [{"joint_class": c, "name": m.name, **_motor_figures(m)}
-                   for c, m in motor.by_class]
+                   for c, m in motor.models.items()]
         return {"name": motor.name, "classes": classes, "source": motor.source,
                 "notes": motor.notes}
     return {"name": motor.name, **_motor_figures(motor), "source": motor.source,
             "notes": motor.notes}
 
 
-def _motor_figures(motor: Motor) -> dict[str, Any]:
+def _motor_figures(motor: Actuator) -> dict[str, Any]:
     return {"joule_coefficient": quantity(motor.joule_coefficient, "W/(N·m)²"),
             "stall_torque": quantity(motor.stall_torque, "N·m"),
             "gearbox_efficiency": quantity(motor.gearbox_efficiency, "1"),

@@ -41,8 +41,7 @@ from hexaleg.robot.root import check_root
 from hexaleg.robot.sphere_feet import settle_sphere_feet
 
 if TYPE_CHECKING:
-    from hexaleg.robot.motor import Motor
-    from hexaleg.robot.motor_set import MotorSet
+    from hexaleg.robot.actuator import Actuator
 
 BUILTIN = "hexaleg"
 """Files source of the robot shipped with hexaleg (``urdf/hexaleg.urdf`` and ``.srdf``)."""
@@ -236,7 +235,7 @@ class RobotDescription:
             # (its leg classes and the joints on no leg) when the actuators are built
         return str(motor)
 
-    def actuator(self, robot: Robot) -> Motor | MotorSet:
+    def actuator(self, robot: Robot) -> Actuator:
         """The robot's actuators, and so the analysis' torque limits (each joint's stall torque):
         :attr:`motor` per joint class, a generic actuator from the URDF limits for a class
         without one (:func:`hexaleg.robot.motor_set.class_motors`).

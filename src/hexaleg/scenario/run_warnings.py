@@ -30,22 +30,21 @@ from hexaleg.motion.params import GaitParams
 from hexaleg.motion.sanity import speed_findings
 from hexaleg.motion.scaling import chosen_defaults
 from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.actuator import Actuator
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.inertials import REPAIRED_MARK
 from hexaleg.robot.meshes import MISSING_COLLISION
 from hexaleg.robot.model import Robot
-from hexaleg.robot.motor import GENERIC_MARK, Motor, generic_energy_range
-from hexaleg.robot.motor_set import MotorSet
+from hexaleg.robot.motor import GENERIC_MARK, generic_energy_range
 
 GENERIC_NAMED = 8
 """Classes the generic-actuator warning names before it counts the rest (a humanoid's arms,
 torso and head are a class each: 20 more on Talos)."""
 
 
-def generic_warning(motor: Motor | MotorSet) -> str | None:
+def generic_warning(motor: Actuator) -> str | None:
     """One line when some joint's actuator is generic (module docstring, 3), else None."""
-    motors = (dict(motor.by_class) if isinstance(motor, MotorSet) else {"every joint": motor})
-    generic = [kind for kind, m in motors.items() if m.notes.startswith(GENERIC_MARK)]
+    generic = [kind for kind, m in motor.models.items() if m.notes.startswith(GENERIC_MARK)]
     if not generic:
         return None
     lo, hi = generic_energy_range()
@@ -69,7 +68,7 @@ def gait_defaults(desc: RobotDescription | None, gait: GaitParams | None
     return {**sized.as_dict(), "kept": list(sized.kept(gait))}
 
 
-def run_warnings(robot: Robot, motion: Motion, motor: Motor | MotorSet | None, *,
+def run_warnings(robot: Robot, motion: Motion, motor: Actuator | None, *,
                  desc: RobotDescription | None = None,
                  gait: GaitParams | None = None) -> tuple[str, ...]:
     """The warnings of one run (module docstring).

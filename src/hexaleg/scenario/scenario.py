@@ -29,11 +29,10 @@ from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.scaling import robot_gait
 from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.actuator import Actuator
 from hexaleg.robot.catalogue import motor_from_mapping
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Robot
-from hexaleg.robot.motor import Motor
-from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.registry import description
 from hexaleg.scenario.logged import logged_motion, quality_note, refuse_gait_table
 from hexaleg.scenario.run_warnings import run_warnings
@@ -85,7 +84,7 @@ class Scenario:
     model: Robot
     gait: GaitParams
     contact: ContactParams
-    actuator: Motor | MotorSet
+    actuator: Actuator
     tables: Mapping[str, Any] = field(default_factory=dict)
     where: str = "config"
     log: str | None = None
@@ -143,7 +142,7 @@ class Scenario:
         return prepare(self.model, self.played(), motor=self.actuator, contact=self.contact)
 
     def warnings(self, motion: Motion | None = None,
-                 actuator: Motor | MotorSet | None = None) -> tuple[str, ...]:
+                 actuator: Actuator | None = None) -> tuple[str, ...]:
         """The run's warnings (:func:`hexaleg.scenario.run_warnings.run_warnings`), the same
         lines in every command: for ``motion`` (default :meth:`played`) and ``actuator``
         (default :attr:`actuator`)."""

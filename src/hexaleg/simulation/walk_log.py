@@ -37,9 +37,8 @@ from hexaleg.dynamics.prepare import prepare
 from hexaleg.errors import InvalidParameterError, SimulationError
 from hexaleg.motion.recorded.columns import BASE_POSITION, BASE_QUATERNION, MEASURED
 from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.actuator import Actuator
 from hexaleg.robot.model import Robot
-from hexaleg.robot.motor import Motor
-from hexaleg.robot.motor_set import MotorSet
 from hexaleg.simulation import measures, stepping
 from hexaleg.simulation.controllers import controls, reference
 from hexaleg.simulation.model import build_model
@@ -143,7 +142,7 @@ def walk_log(robot: Robot, motion: Motion, motor: Any = None, *, rate: float = 1
              settle: float = 1.0, drop: float = 0.02, cycles: int = 10, evaluate: int = 6,
              sensors: Sensors | None = None, contact: ContactParams | None = None,
              settings: Settings | None = None,
-             actuator: Motor | MotorSet | None = None) -> WalkLog:
+             actuator: Actuator | None = None) -> WalkLog:
     """Simulate ``motion`` after a drop and a settle and write what sensors would log (module
     docstring).
 

@@ -47,13 +47,12 @@ from hexaleg.design.springs.torsion_spring import (
 )
 from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import InvalidParameterError, SpringDesignError, UnknownNameError
+from hexaleg.robot.actuator import EVERY_JOINT, Actuator
 from hexaleg.robot.catalogue import OUTPUT_HUBS
 from hexaleg.robot.catalogue import motor as catalogue_motor
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.geometry import link_width
 from hexaleg.robot.model import Robot
-from hexaleg.robot.motor import Motor
-from hexaleg.robot.motor_set import MotorSet
 
 ZERO_TORQUE = 1e-9
 """N·m: a preload or torque below this is none."""
@@ -160,7 +159,7 @@ def _narrowest_link(robot: Robot, kind: str, name: str) -> float:
     return min(known)
 
 
-def arbor_for(robot: Robot, desc: RobotDescription, motor: Motor | MotorSet | str | None,
+def arbor_for(robot: Robot, desc: RobotDescription, motor: Actuator | str | None,
               joint_class: str) -> tuple[float, str]:
     """The diameter of the arbor a spring on ``joint_class`` winds on, m, and its source:
 
@@ -187,8 +186,8 @@ def arbor_for(robot: Robot, desc: RobotDescription, motor: Motor | MotorSet | st
         return float(declared[joint_class]), f"{desc.name} description"
     if isinstance(motor, str):
         motor = catalogue_motor(motor)
-    if isinstance(motor, MotorSet):
-        motor = dict(motor.by_class).get(joint_class)
+    if motor is not None:  # the class's model: a set's entry, or the one model of every joint
+        motor = motor.models.get(joint_class, motor.models.get(EVERY_JOINT))
     why = "no catalogue servo"
     if motor is not None and motor.name in OUTPUT_HUBS:
         hub = OUTPUT_HUBS[motor.name]

@@ -25,9 +25,8 @@ from hexaleg.dynamics.prepare import prepare
 from hexaleg.errors import HexalegError
 from hexaleg.motion.legged import gait
 from hexaleg.motion.params import GaitParams
+from hexaleg.robot.actuator import Actuator
 from hexaleg.robot.model import Robot
-from hexaleg.robot.motor import Motor
-from hexaleg.robot.motor_set import MotorSet
 
 METRIC = "electrical"
 """The energy of the study: what the servos draw (no regeneration), J per cycle."""
@@ -69,7 +68,7 @@ class GaitEnergy:
 
 
 def gait_energy(robot: Robot, params: GaitParams, springs: Groups, *,
-                family: str = "preloaded", motor: Motor | MotorSet | str | None = None,
+                family: str = "preloaded", motor: Actuator | str | None = None,
                 contact: ContactParams | None = None) -> GaitEnergy:
     """Energy per cycle, per metre and cost of transport of a gait, without springs and with
     the recommended springs on the joints ``springs`` (module docstring).

@@ -38,9 +38,8 @@ from hexaleg.outputs.viewer.keyframes import KEYFRAME_BYTES, MAX_FPS
 from hexaleg.outputs.viewer.page import page_html, write_page
 from hexaleg.outputs.viewer.scene import draw_motion, start_server
 from hexaleg.outputs.viewer.server import LOCALHOST, serve_page
+from hexaleg.robot.actuator import Actuator
 from hexaleg.robot.model import Robot
-from hexaleg.robot.motor import Motor
-from hexaleg.robot.motor_set import MotorSet
 from hexaleg.robot.registry import DESCRIPTIONS, load
 from hexaleg.robot.springs import SpringSet
 from hexaleg.simulation.motion_file import SimulatedMotion, motion_path, read_motion
@@ -106,7 +105,7 @@ class ViewedMotion:
                 "arrow_length": params.arrow_length, "marker_radius": params.marker_radius}
 
 
-def view_motion(robot: Robot, motion: Motion, springs: SpringSet, motor: Motor | MotorSet, *,
+def view_motion(robot: Robot, motion: Motion, springs: SpringSet, motor: Actuator, *,
                 joints: str = "power", objective: str = "joule",
                 contact: ContactParams | None = None, springs_label: str = "") -> ViewedMotion:
     """A robot's motion analysed (:func:`hexaleg.dynamics.prepare.analyze`) for the viewer:
