@@ -1,6 +1,6 @@
 """docs/architecture.md against the code: its layers are the layer test's, its tables the run's,
 its stages the design chain's, its public names hexaleg.__all__, the files a new spring family
-touches exist and hold what it says; its examples run."""
+or actuator model touches exist and hold what it says; its examples run."""
 
 from __future__ import annotations
 
@@ -66,6 +66,54 @@ def test_a_new_family_touches_the_files_named():
         assert inspect.getmodule(type(fam)) is module and isinstance(fam, families.Family)
         assert spring_json.CLASSES[name] is fam.law
         assert inspect.getmodule(fam.law).__name__ == f"hexaleg.robot.springs.{name}"
+
+
+def _actuator_section() -> str:
+    return PAGE.split("## A new actuator model\n", 1)[1].split("\n## ", 1)[0]
+
+
+def _implementations() -> dict[str, str]:
+    """Every class of src/ whose body defines each member of ``Actuator`` (a method, a property
+    or a dataclass field), protocol itself aside: class → its file, read from the source."""
+    import ast
+
+    from hexaleg.robot.actuator import Actuator
+
+    members = {m for m in vars(Actuator) if not m.startswith("_")}
+    assert {"current", "electrical_power", "joule_coefficient", "models"} <= members
+    found = {}
+    for path in sorted((ROOT / "src" / "hexaleg").rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if not isinstance(node, ast.ClassDef) or node.name == "Actuator":
+                continue
+            defined = {n.name for n in node.body
+                       if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef))}
+            defined |= {n.target.id for n in node.body
+                        if isinstance(n, ast.AnnAssign) and isinstance(n.target, ast.Name)}
+            if members <= defined:
+                found[node.name] = str(path.relative_to(ROOT))
+    return found
+
+
+def test_a_new_actuator_model_touches_the_files_named():
+    """The files the section names exist, and its table lists every class of src/ that
+    implements Actuator, with its module (a new model without its row fails here)."""
+    import importlib
+
+    section = _actuator_section()
+    named = re.findall(r"`((?:src|tests)/[\w/.]+\.py)`", section)
+    assert "src/hexaleg/robot/actuator.py" in named and "tests/test_docs_architecture.py" in named
+    for path in named:
+        assert (ROOT / path).exists(), path
+    rows = [ln.split("|")[1:3] for ln in section.splitlines() if ln.startswith("| `")]
+    table = {cls.strip(" `"): module.strip(" `") for cls, module in rows}
+    implementations = _implementations()
+    assert implementations, "no class of src/ implements Actuator: the scan is broken"
+    assert table == implementations
+    for cls, module in table.items():
+        code = importlib.import_module(module.removeprefix("src/").removesuffix(".py")
+                                       .replace("/", "."))
+        assert isinstance(getattr(code, cls), type), (module, cls)
 
 
 def test_the_examples_run():
