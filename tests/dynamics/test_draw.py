@@ -9,9 +9,9 @@ import math
 
 import pytest
 
-from hexaleg.dynamics.draw import WH, idle_power, whole_draw
+from hexaleg.dynamics.draw import WH, whole_draw
 from hexaleg.errors import InvalidParameterError
-from hexaleg.robot.catalogue import CATALOGUE, STANDBY, Standby, standby
+from hexaleg.robot.catalogue import CATALOGUE
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.motor import generic_actuator
 from hexaleg.robot.motor_set import MotorSet
@@ -71,42 +71,20 @@ def test_the_hexapods_idle_draw_is_the_ax_familys_by_hand():
     assert own.idle_family == ()
 
 
-def test_a_standby_figure_outside_its_range_is_refused():
-    with pytest.raises(InvalidParameterError, match=r"0\.08"):
-        Standby(0.08, "x", low=0.017, high=0.060)
-    with pytest.raises(InvalidParameterError, match=r"-0\.01"):
-        Standby(-0.01, "x")
-    assert Standby(None, "none").low is None
-
-
-def test_idle_power_sums_per_joint_and_names_the_servos_without_a_figure():
-    xm, ax, mx = CATALOGUE["XM540-W150"], CATALOGUE["AX-18A"], CATALOGUE["MX-64"]
+def test_the_whole_draw_takes_the_actuators_idle_power():
+    """The draw's idle figures are its actuator's ``idle_power`` over the joints, a set's
+    joint by joint (tests/robot/test_standby.py checks the sums themselves)."""
+    xm, mx = CATALOGUE["XM540-W150"], CATALOGUE["MX-64"]
     both = MotorSet.per_class({"a": ("j0", "j1"), "b": ("j2",)}, ("j0", "j1", "j2"),
-                              {"a": xm, "b": xm})
-    assert idle_power(both, 3).power == pytest.approx(3 * 0.48)
-    with_ax = MotorSet.per_class({"a": ("j0", "j1"), "b": ("j2",)}, ("j0", "j1", "j2"),
-                                 {"a": xm, "b": ax})
-    idle = idle_power(with_ax, 3)
-    assert idle.power == pytest.approx(2 * 0.48 + 0.6)
-    assert idle.low == pytest.approx(2 * 0.48 + 0.017 * 12) and idle.family == ("AX-18A",)
+                              {"a": xm, "b": CATALOGUE["AX-18A"]})
+    draw = whole_draw(2.0, 3.0, 0.5, 0.0, both, 3)
+    idle = both.idle_power(3)
+    assert (draw.idle, draw.idle_low, draw.idle_high) == (idle.power, idle.low, idle.high)
+    assert draw.idle == pytest.approx(2 * 0.48 + 0.6) and draw.idle_family == ("AX-18A",)
     mixed = MotorSet.per_class({"a": ("j0", "j1"), "b": ("j2",)}, ("j0", "j1", "j2"),
                                {"a": xm, "b": mx})
-    idle = idle_power(mixed, 3)
-    assert idle.power is None and idle.missing == ("MX-64",)
-    assert set(idle.sources) == {"XM540-W150", "MX-64"}
-    generic = generic_actuator(3.0, 5.0)
-    assert idle_power(generic, 2).missing == ("generic",)
-    assert "not a catalogue servo" in standby("generic").source
-
-
-def test_every_catalogue_servo_says_where_its_standby_figure_comes_from():
-    assert set(STANDBY) == set(CATALOGUE)
-    for name, entry in STANDBY.items():
-        assert entry.source and (entry.current is None or 0.0 < entry.current < 1.0), name
-        if entry.current is not None:
-            assert "emanual.robotis.com" in entry.source, name
-            assert "Standby Current" in entry.source or "대기 전류" in entry.source, name
-            assert entry.own or "family" in entry.source
+    draw = whole_draw(2.0, 3.0, 0.5, 0.0, mixed, 3)
+    assert draw.idle is None and draw.idle_missing == ("MX-64",)
 
 
 @pytest.mark.parametrize(("key", "value"), [("electronics_power", -1.0),
@@ -156,12 +134,12 @@ def test_a_draw_on_assumed_constants_is_never_called_a_bound():
 
 
 def test_docs_quote_the_hexapods_idle_draw():
-    """docs/energy.md's idle figures are idle_power's on the default robot's 18 AX-18A."""
+    """docs/energy.md's idle figures are the default robot's 18 AX-18A's idle power."""
     from pathlib import Path
 
     text = " ".join((Path(__file__).resolve().parents[2] / "docs" / "energy.md").read_text()
                     .split())
-    idle = idle_power(CATALOGUE["AX-18A"], 18)
+    idle = CATALOGUE["AX-18A"].idle_power(18)
     assert idle.power is not None and idle.low is not None and idle.high is not None
     quoted = (f"18 × 0.050 A × 12 V = {idle.power:.3g} W ({idle.low:.3g}–{idle.high:.4g} W "
               "over the family's range)")

@@ -20,6 +20,7 @@ from hexaleg.robot.catalogue import CATALOGUE
 from hexaleg.robot.identify import identify_actuator
 from hexaleg.robot.motor import RPM, as_torque_speed, generic_actuator
 from hexaleg.robot.motor_set import MotorSet
+from hexaleg.robot.standby import Idle
 
 AX18, MX64 = CATALOGUE["AX-18A"], CATALOGUE["MX-64"]
 
@@ -73,6 +74,7 @@ def test_the_methods_are_the_datasheet_on_known_values():
     assert got[1] < 0  # the gearbox returns more than the windings heat
     assert AX18.electrical_power(tau, qdot)[2] == 0.0  # no regeneration: the driver burns it
     assert AX18.joule_power(tau) == pytest.approx(c * tau**2, rel=1e-14)
+    assert AX18.idle_power(3).power == pytest.approx(3 * 0.050 * v, rel=1e-14)  # its family's
 
 
 def test_one_model_drives_every_joint():
@@ -160,6 +162,10 @@ class DirectDrive:
     def joint_labels(self, n_joints):
         return (EVERY_JOINT,) * n_joints
 
+    def idle_power(self, n_joints):  # its own driver: 0.1 A at 24 V a joint
+        return Idle(2.4 * n_joints, 2.4 * n_joints, 2.4 * n_joints, (), (),
+                    {self.name: "test: 0.1 A at 24 V"})
+
     def current(self, tau):
         return np.asarray(tau, dtype=float) / self.k_t
 
@@ -191,6 +197,7 @@ def test_a_new_model_goes_through_a_set_and_the_metrics():
     assert m["joint"]["electrical"][0] == pytest.approx(
         energy.metrics(tau[:, 0], qdot[:, 0], 0.01, AX18)["total"]["electrical"], rel=1e-13)
     assert motors.name == "AX-18A (a) · direct (b)"
+    assert motors.idle_power(2).power == pytest.approx(0.6 + 2.4)  # AX-18A's 50 mA · 12 V
 
 
 def test_the_metrics_name_what_is_no_actuator():

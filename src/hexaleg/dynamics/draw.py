@@ -9,7 +9,8 @@ battery. The whole draw over one cycle of a periodic motion is
 
 with E_motors the motors' electrical energy per cycle (``metrics["total"]["electrical"]``), T
 the period, ``P_idle = Σ_j I_standby,j V_j`` over the joints' servos (datasheet standby current
-at the datasheet voltage, :data:`hexaleg.robot.catalogue.STANDBY`; where a servo's own figure is
+at the datasheet voltage, :data:`hexaleg.robot.standby.STANDBY`, as the actuator states it:
+:meth:`hexaleg.robot.actuator.Actuator.idle_power`; where a servo's own figure is
 not published but its family's is, the family's, named as such, with the family's range giving
 ``P_idle``'s range and the saving's) and ``P_electronics`` the
 robot description's ``electronics_power``. Neither extra depends on the springs, so the saving
@@ -27,8 +28,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from hexaleg.dynamics.plausibility import uses_generic
-from hexaleg.robot.actuator import Actuator, joint_models
-from hexaleg.robot.catalogue import standby
+from hexaleg.robot.actuator import Actuator
 
 WH = 3600.0
 """One watt-hour in joules."""
@@ -211,52 +211,6 @@ class WholeDraw:
         }
 
 
-@dataclass(frozen=True)
-class Idle:
-    """The servos' standby draw (:func:`idle_power`).
-
-    Attributes:
-        power: ``Σ_j I_standby,j V_j``, W; None when some servo has no standby figure.
-        low: The same with each servo's lowest current of its source's range, W.
-        high: With each servo's highest, W.
-        missing: The servo models with no standby figure.
-        family: The servo models whose figure is their family's, not their own.
-        sources: Servo model → where its standby current comes from (or why none).
-    """
-
-    power: float | None
-    low: float | None
-    high: float | None
-    missing: tuple[str, ...]
-    family: tuple[str, ...]
-    sources: dict[str, str]
-
-
-def idle_power(actuator: Actuator, n_joints: int) -> Idle:
-    """The servos' standby draw ``Σ_j I_standby,j V_j``, W, with its range: each servo's
-    standby current (:func:`hexaleg.robot.catalogue.standby`) at the servo's datasheet voltage
-    (:attr:`~hexaleg.robot.actuator.Actuator.voltage`), over each joint's model
-    (:func:`hexaleg.robot.actuator.joint_models`).
-
-    Args:
-        actuator: One servo on every joint, or one per joint class.
-        n_joints: The number of joints (servos).
-    """
-    motors = joint_models(actuator, n_joints)
-    entries = {m.name: standby(m.name) for m in motors}
-    missing = tuple(sorted(name for name, e in entries.items() if e.current is None))
-    family = tuple(sorted(name for name, e in entries.items()
-                          if e.current is not None and not e.own))
-    sources = {name: e.source for name, e in entries.items()}
-    if missing:
-        return Idle(None, None, None, missing, family, sources)
-
-    def total(key: str) -> float:
-        return float(sum(getattr(entries[m.name], key) * m.voltage for m in motors))
-
-    return Idle(total("current"), total("low"), total("high"), (), family, sources)
-
-
 def whole_draw(energy: float, energy_baseline: float, period: float, distance: float,
                actuator: Actuator, n_joints: int, *, electronics: float | None = None,
                battery_wh: float | None = None) -> WholeDraw:
@@ -273,7 +227,7 @@ def whole_draw(energy: float, energy_baseline: float, period: float, distance: f
         electronics: The robot's electronics power, W, or None (not known).
         battery_wh: The battery's energy, Wh, or None.
     """
-    idle = idle_power(actuator, n_joints)
+    idle = actuator.idle_power(n_joints)
     return WholeDraw(
         motors=float(energy) / period, motors_baseline=float(energy_baseline) / period,
         idle=idle.power, idle_missing=idle.missing, idle_sources=idle.sources,

@@ -2,11 +2,11 @@
 pages ask of whatever drives the joints.
 
 An :class:`Actuator` turns the output (joint) torque τ and speed q̇ into a current and an
-electrical power, states its Joule coefficient, its limits and its source, and says which single
-actuator model drives each joint. Every figure is either one value for every joint or an array of
-shape (n,), one per joint in the model's column order (``robot.joint_names``), so that it
-broadcasts against torques of shape (..., n); callers broadcast with
-``np.broadcast_to(value, (n,))``.
+electrical power, states its Joule coefficient, its idle draw, its limits and its source, and
+says which single actuator model drives each joint. Every figure is either one value for every
+joint or an array of shape (n,), one per joint in the model's column order
+(``robot.joint_names``), so that it broadcasts against torques of shape (..., n); callers
+broadcast with ``np.broadcast_to(value, (n,))``.
 
 The implementations:
 
@@ -34,6 +34,8 @@ from typing import Protocol, runtime_checkable
 import numpy as np
 from numpy.typing import ArrayLike
 
+from hexaleg.robot.standby import Idle
+
 EVERY_JOINT = "every joint"
 """The label of the one model of an actuator that drives every joint the same
 (:attr:`Actuator.models`)."""
@@ -42,7 +44,7 @@ EVERY_JOINT = "every joint"
 @runtime_checkable
 class Actuator(Protocol):
     """What drives the joints (module docstring): torque and speed → current and power, the
-    Joule coefficient, the limits, the source, and the model of each joint.
+    Joule coefficient, the idle draw, the limits, the source, and the model of each joint.
 
     Figures typed ``float | np.ndarray`` are one value for every joint or shape (n,), one per
     joint in column order.
@@ -95,8 +97,7 @@ class Actuator(Protocol):
 
     @property
     def voltage(self) -> float | np.ndarray:
-        """The supply voltage of the figures, V (the standby draw is its current × this); a
-        float or shape (n,)."""
+        """The supply voltage of the figures, V; a float or shape (n,)."""
         ...
 
     @property
@@ -108,6 +109,16 @@ class Actuator(Protocol):
 
     def joint_labels(self, n_joints: int) -> tuple[str, ...]:
         """The key in :attr:`models` of each of ``n_joints`` joints, in column order.
+
+        Raises:
+            InvalidParameterError: a set built for another number of joints.
+        """
+        ...
+
+    def idle_power(self, n_joints: int) -> Idle:
+        """What the actuators of ``n_joints`` joints draw at rest, powered and holding no load
+        (their electronics): ``Σ_j I_standby,j V_j``, W, with its range and each figure's source
+        (:class:`hexaleg.robot.standby.Idle`; a figure no source gives is named missing).
 
         Raises:
             InvalidParameterError: a set built for another number of joints.

@@ -25,10 +25,9 @@ included, ``k_t G = τ_stall / I_stall``, ``η = τ_stall ω_0 / (V I_stall)``);
   (:func:`~hexaleg.robot.brushless.a1_energy_model`: ``τ q̇ + 0.3 τ²``, an empirical
   coefficient, not identified constants).
 
-:data:`STANDBY` gives, per catalogue servo, its standby current (the electronics' draw at rest)
-where the maker publishes it, with the page, or — for the AX-18A, whose page lists none — its
-family's figure (the AX-12A's 50 mA) labelled as the family's, with the family's 17–60 mA range;
-:mod:`hexaleg.dynamics.draw` adds it to the robot's whole draw.
+:data:`hexaleg.robot.standby.STANDBY` gives, per catalogue servo, its standby current (the
+electronics' draw at rest) where the maker publishes it, with the page, or its family's figure
+labelled as such; a test keeps one entry there for each entry here.
 
 :data:`OUTPUT_HUBS` gives, per catalogue servo, the diameter of its output hub (the horn's boss,
 the spline or the shaft a torsion spring could wind on) where a source states it as a number,
@@ -51,7 +50,7 @@ from typing import Any
 
 from hexaleg.checks import typed
 from hexaleg.config import from_mapping
-from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+from hexaleg.errors import ConfigError, UnknownNameError
 from hexaleg.robot.brushless import (
     a1_energy_model,
     cheetah3,
@@ -60,6 +59,7 @@ from hexaleg.robot.brushless import (
     odri_actuator_paper,
 )
 from hexaleg.robot.motor import RPM, Motor, from_datasheet
+from hexaleg.robot.standby import EMANUAL
 
 KGF_CM = 9.80665e-2
 """One kilogram-force centimetre in N·m (standard gravity g_n = 9.80665 m/s², 3rd CGPM 1901;
@@ -165,30 +165,29 @@ def _dss_m15s() -> Motor:
               "resistance.")
 
 
-_EMANUAL = "https://emanual.robotis.com/docs/en/dxl/"
 
 CATALOGUE: Mapping[str, Motor] = MappingProxyType({
     m.name: m for m in (
-        _robotis("AX-12A", _EMANUAL + "ax/ax-12a/", gear_ratio=254.0, stall_torque=1.5,
+        _robotis("AX-12A", EMANUAL + "ax/ax-12a/", gear_ratio=254.0, stall_torque=1.5,
                  stall_current=1.5, no_load_speed_rpm=59.0),
-        _robotis("AX-18A", _EMANUAL + "ax/ax-18a/", gear_ratio=254.0, stall_torque=1.8,
+        _robotis("AX-18A", EMANUAL + "ax/ax-18a/", gear_ratio=254.0, stall_torque=1.8,
                  stall_current=2.2, no_load_speed_rpm=97.0),
-        _robotis("MX-28", _EMANUAL + "mx/mx-28-2/", gear_ratio=193.0, stall_torque=2.5,
+        _robotis("MX-28", EMANUAL + "mx/mx-28-2/", gear_ratio=193.0, stall_torque=2.5,
                  stall_current=1.4, no_load_speed_rpm=55.0),
-        _robotis("XM540-W150", _EMANUAL + "x/xm540-w150/", gear_ratio=152.3, stall_torque=7.3,
+        _robotis("XM540-W150", EMANUAL + "x/xm540-w150/", gear_ratio=152.3, stall_torque=7.3,
                  stall_current=4.4, no_load_speed_rpm=53.0),
-        _robotis("XM540-W270", _EMANUAL + "x/xm540-w270/", gear_ratio=272.5, stall_torque=10.6,
+        _robotis("XM540-W270", EMANUAL + "x/xm540-w270/", gear_ratio=272.5, stall_torque=10.6,
                  stall_current=4.4, no_load_speed_rpm=30.0),
-        _robotis("XL430-W250", _EMANUAL + "x/xl430-w250/", gear_ratio=258.5, stall_torque=1.5,
+        _robotis("XL430-W250", EMANUAL + "x/xl430-w250/", gear_ratio=258.5, stall_torque=1.5,
                  stall_current=1.4, no_load_speed_rpm=61.0,
                  notes="12 V is the top of its 6.5–12.0 V range (recommended 11.1 V: 1.4 N·m at "
                        "1.3 A, 57 rpm); the 12 V figures match the other ROBOTIS entries."),
-        _robotis("XM430-W350", _EMANUAL + "x/xm430-w350/", gear_ratio=353.5, stall_torque=4.1,
+        _robotis("XM430-W350", EMANUAL + "x/xm430-w350/", gear_ratio=353.5, stall_torque=4.1,
                  stall_current=2.3, no_load_speed_rpm=46.0),
-        _robotis("MX-64", _EMANUAL + "mx/mx-64/", gear_ratio=200.0, stall_torque=6.0,
+        _robotis("MX-64", EMANUAL + "mx/mx-64/", gear_ratio=200.0, stall_torque=6.0,
                  stall_current=4.1, no_load_speed_rpm=63.0,
                  notes="MX-64T/R/AT/AR (same figures under protocol 1.0 and 2.0)."),
-        _robotis("MX-106", _EMANUAL + "mx/mx-106/", gear_ratio=225.0, stall_torque=8.4,
+        _robotis("MX-106", EMANUAL + "mx/mx-106/", gear_ratio=225.0, stall_torque=8.4,
                  stall_current=5.2, no_load_speed_rpm=45.0,
                  notes="MX-106T/R (same figures under protocol 1.0 and 2.0)."),
         _sts3215(),
@@ -251,99 +250,6 @@ OUTPUT_HUBS: Mapping[str, OutputHub] = MappingProxyType({
                                    "rule"),
 })
 """Catalogue name → its :class:`OutputHub` (every entry of :data:`CATALOGUE`)."""
-
-
-@dataclass(frozen=True)
-class Standby:
-    """What a servo draws at rest, powered, holding no load (its electronics).
-
-    Attributes:
-        current: The standby current at the entry's voltage (:attr:`Motor.voltage`), A; None
-            when no source states it.
-        source: Where the number comes from, or why there is none.
-        low: The lowest current the source's range allows, A (``current`` when the servo's
-            own figure is published).
-        high: The highest, A.
-        own: Whether ``current`` is this servo's own published figure (False: its family's,
-            an assumption the source says).
-    """
-
-    current: float | None
-    source: str
-    low: float | None = None
-    high: float | None = None
-    own: bool = True
-
-    def __post_init__(self) -> None:
-        if self.current is None:
-            return
-        low = self.current if self.low is None else self.low
-        high = self.current if self.high is None else self.high
-        if not 0.0 < low <= self.current <= high:
-            raise InvalidParameterError(
-                "standby current (A) and its range", (low, self.current, high),
-                "0 < low <= current <= high")
-        object.__setattr__(self, "low", low)
-        object.__setattr__(self, "high", high)
-
-
-_KR_EMANUAL = "https://emanual.robotis.com/docs/kr/dxl/"
-_NO_STANDBY = ("not published: the ROBOTIS e-Manual's specification table of this servo lists "
-               "no standby current")
-_AX12A_STANDBY = ("ROBOTIS' AX-12A product specification as copied in MultipedRobotics/pyservos "
-                  "docs/ax12/readme.md: 'Standby Current | 50mA' (and 'Max. Current | 900mA'); "
-                  "the current e-Manual page (" + _EMANUAL + "ax/ax-12a/) lists no standby row. "
-                  "No supply voltage is given with it: taken at the entry's 12 V, the voltage "
-                  "of the e-Manual's stall figures")
-_DXL_FAMILY = ("standby currents of the DYNAMIXEL family on the ROBOTIS e-Manual: RX-28 "
-               "'Standby Current | 50mA', RX-24F '50mA', MX-12W '60 [mA]', XH430-W350 "
-               "'40 [mA]', XC330-M181 '17 [mA]' (reference: shared/reference/motor-sources.md, "
-               "item 3)")
-
-STANDBY: Mapping[str, Standby] = MappingProxyType({
-    **{name: Standby(None, _NO_STANDBY) for name in (
-        "MX-28", "XL430-W250", "XM430-W350", "MX-64", "MX-106")},
-    "AX-12A": Standby(0.050, _AX12A_STANDBY),
-    "AX-18A": Standby(
-        0.050, "the AX family's, not the AX-18A's own: ROBOTIS publishes no standby current "
-               "for the AX-18A (its e-Manual table, " + _EMANUAL + "ax/ax-18a/, has no such "
-               "row), so its sibling's figure is used, same AX electronics: " + _AX12A_STANDBY
-               + "; range 17–60 mA from the " + _DXL_FAMILY + ". At 12 V, the voltage of the "
-               "AX-18A's e-Manual figures ('Stall Torque | 1.8 [N.m] (at 12 [V], 2.2 [A])', "
-               "the top of its 'Input Voltage | 9.0 ~ 12.0 [V]')",
-        low=0.017, high=0.060, own=False),
-    **{name: Standby(0.040, f"ROBOTIS e-Manual (Korean edition), {name} specifications, "
-                            f"{_KR_EMANUAL}x/{name.lower()}/: '대기 전류 | 40 [mA]' (standby "
-                            "current; the English edition's table stops before it)")
-       for name in ("XM540-W150", "XM540-W270")},
-    "STS3215-C018": Standby(None, "not published on Feetech's product page"),
-    **{name: Standby(None, "not published in TowerPro's datasheet") for name in ("MG996R",
-                                                                                 "SG90")},
-    "DSS-M15S": Standby(None, "not published on DFRobot's wiki page"),
-    "ODRI-4004": Standby(None, "not published: the ODRI actuator module's documentation gives "
-                               "no standby draw of its motor driver board"),
-    **{name: Standby(None, "not published: the builders' code and papers give no standby "
-                           "draw of the motor driver")
-       for name in ("ODRI-4004-RAL2020", "MiniCheetah-hip", "MiniCheetah-hip-Katz",
-                    "MiniCheetah-knee", "Cheetah3-hip", "Cheetah3-knee")},
-    "A1-Yang2021": Standby(None, "not published: the A1 energy model counts the joints' power "
-                                 "only, and Unitree gives no standby draw"),
-})
-"""Catalogue name → its :class:`Standby` draw (every entry of :data:`CATALOGUE`)."""
-
-
-def standby(name: str) -> Standby:
-    """The standby draw of catalogue servo ``name``; a name not in the catalogue (a generic
-    actuator from URDF limits) has none.
-
-    Args:
-        name: A motor name (:attr:`Motor.name`).
-    """
-    entry = STANDBY.get(name)
-    if entry is None:
-        return Standby(None, f"{name} is not a catalogue servo: no datasheet to read a standby "
-                             "current from")
-    return entry
 
 
 def output_hub(name: str) -> OutputHub:

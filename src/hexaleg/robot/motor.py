@@ -40,6 +40,7 @@ from numpy.typing import ArrayLike
 from hexaleg.checks import named_arguments, positive, real
 from hexaleg.errors import InvalidParameterError
 from hexaleg.robot.actuator import EVERY_JOINT
+from hexaleg.robot.standby import Idle, standby_draw
 
 RPM = 2.0 * math.pi / 60.0
 """One revolution per minute in rad/s (datasheets state speeds in rpm)."""
@@ -157,6 +158,13 @@ class Motor:
     def joint_labels(self, n_joints: int) -> tuple[str, ...]:
         """``("every joint",) * n_joints``: each joint's key in :attr:`models`."""
         return (EVERY_JOINT,) * n_joints
+
+    def idle_power(self, n_joints: int) -> Idle:
+        """The standby draw of ``n_joints`` of this servo, ``n I_standby V``, W: its catalogue
+        standby current (:data:`hexaleg.robot.standby.STANDBY`, by :attr:`name`; none for a
+        servo outside the catalogue) at :attr:`voltage`
+        (:func:`hexaleg.robot.standby.standby_draw`)."""
+        return standby_draw(((self.name, self.voltage),) * n_joints)
 
     def current(self, tau: ArrayLike) -> np.ndarray:
         """Winding current for an output torque, ``i = τ / (k_t G)``.

@@ -21,9 +21,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from hexaleg.errors import InvalidParameterError, UnknownNameError
-from hexaleg.robot.actuator import EVERY_JOINT, Actuator
+from hexaleg.robot.actuator import EVERY_JOINT, Actuator, joint_models
 from hexaleg.robot.model import Robot
 from hexaleg.robot.motor import Motor, as_torque_speed, generic_actuator
+from hexaleg.robot.standby import Idle, combined
 
 
 def _single(actuator: object) -> bool:
@@ -117,6 +118,15 @@ class MotorSet(Mapping[str, Actuator]):
             raise InvalidParameterError("motor joints", f"{len(self.joint_names)} joints",
                                         f"the robot's {n_joints}")
         return self.joint_classes
+
+    def idle_power(self, n_joints: int) -> Idle:
+        """The standby draw of each joint's actuator (its own ``idle_power`` of one joint),
+        summed in column order (:func:`hexaleg.robot.standby.combined`).
+
+        Raises:
+            InvalidParameterError: ``n_joints`` is not the set's number of joints.
+        """
+        return combined(m.idle_power(1) for m in joint_models(self, n_joints))
 
     @property
     def motors(self) -> tuple[Actuator, ...]:
