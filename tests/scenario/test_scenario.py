@@ -25,7 +25,7 @@ def test_the_robots_own_gait_with_the_files_keys_on_top(tmp_path):
     assert run.gait.groups == own.groups and run.gait.period == 0.7
     assert run.contact.mu == 0.4 and run.where == str(config)
     assert run.actuator == run.description.actuator(run.model)  # no [motor]: its own
-    assert run.log is None and run.motion is None and run.notes == run.model.notes
+    assert run.log is None and run.recorded is None and run.notes == run.model.notes
 
 
 def test_a_motor_table_puts_one_servo_on_every_joint(tmp_path):
@@ -51,7 +51,7 @@ def test_a_log_is_the_runs_motion_and_refuses_a_gait_table(tmp_path):
     walk = hexaleg.gait(robot, GaitParams(period=0.8, samples=80))
     log = write_motion_log(robot, walk, tmp_path / "walk.csv")
     run = Scenario.load("hexaleg", log=log, cycle="whole")
-    assert run.played() is run.motion and run.motion.period == pytest.approx(0.8)
+    assert run.motion() is run.motion and run.motion.period == pytest.approx(0.8)
     assert run.log == str(log) and any(str(log) in n for n in run.notes)
     with pytest.raises(InvalidParameterError, match=r"\[gait\].*--motion"):
         Scenario.from_tables("hexaleg", {"gait": {"period": 0.5}}, log=log, cycle="whole")
@@ -61,7 +61,7 @@ def test_the_warnings_are_the_runs(tmp_path):
     """A robot with sized gait defaults and generic actuators: the run's warnings are
     run_warnings of its played motion, the same lines any command says."""
     run = Scenario.load(str(_spider()))
-    played = run.played()
+    played = run.motion()
     assert run.warnings() == run_warnings(run.model, played, run.actuator,
                                           desc=run.description, gait=run.gait)
     assert run.warnings()  # the spider's sized defaults and generic servos say something
