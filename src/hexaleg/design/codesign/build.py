@@ -353,6 +353,8 @@ def full_rules(robot: str, chosen: GaitParams, c: Constraints, say: Callable[[st
     params = design if design is not None else rule_params()
     say(f"full spring rules on the chosen gait (hexaleg design: {', '.join(params.families)})")
     try:
+        # at the chosen gait's sampling: the design's run is its scenario at [design] samples
+        params = dataclasses.replace(params, samples=chosen.samples)
         run = Scenario.load(robot).replace(gait=chosen, contact=c.contact())
         return DesignChain(run, say, design=params).run()
     except HexalegError as err:
