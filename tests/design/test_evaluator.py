@@ -100,3 +100,12 @@ def test_gait_overrides_on_the_robots_gait():
     assert Scenario.load().with_gait({"samples": 40, "period": 2.0}).gait.period == 2.0
     with pytest.raises(UnknownNameError, match="duty_factor"):  # lists the fields
         Scenario.load().with_gait({"period_s": 2.0})
+
+
+def test_the_run_is_a_scenario():
+    """The evaluator takes the run whole; anything else is named, not an AttributeError."""
+    from hexaleg.errors import HexalegError
+
+    for bad in (None, {"samples": 40}):
+        with pytest.raises(HexalegError, match=r"evaluator\(run=…\)"):
+            evaluator(bad)

@@ -51,6 +51,7 @@ from typing import Any
 
 import numpy as np
 
+from hexaleg.checks import typed
 from hexaleg.dynamics.contact import check_objective
 from hexaleg.dynamics.energy import ENERGY_KEYS, NO_SAVING_KEYS, TORQUE_KEYS, savings
 from hexaleg.dynamics.inertia import joint_range
@@ -94,6 +95,7 @@ def clear_cache() -> None:
     _EVALUATORS.clear()
 
 
+@typed
 def evaluator(run: Scenario) -> Evaluator:
     """The :class:`Evaluator` of a run, built once per process and kept in a small cache (keyed
     by :meth:`Scenario.key <hexaleg.scenario.scenario.Scenario.key>`).
