@@ -44,7 +44,7 @@ def tick(axis: str, value: object) -> str:
 
 def main() -> None:
     r = DesignChain().run()
-    m = r.config.design.metric
+    m = r.design.metric
     print(f"{r.title}, {r.mass:.3f} kg, {r.actuator}; gait period {r.gait.period:g} s, "
           f"stride {r.gait.stride:g} m, {r.gait.samples} samples")
     print(f"without springs: {m} {r.baseline[m]:.4f} J, joule {r.baseline['joule']:.4f} J "
@@ -62,7 +62,7 @@ def main() -> None:
         mark = "  <- recommended" if c is r.recommended else ""
         print(f"  {f:8.2f} × {np.abs(a.tau_spring).max():7.4f} {1e3 * a.spring_energy.max():6.2f}mJ"
               f" {pct(c.row[f'saving.{m}'])} {pct(c.net[m])} {pct(c.row['saving.joule'])}{mark}")
-    print(f"\nevery design simulated under {under(r.config.design.controller)} ({m} saving)")
+    print(f"\nevery design simulated under {under(r.design.controller)} ({m} saving)")
     print(f"  {'design':40s} {'servo':11s} {'predicted':>10s} {'simulated':>10s} "
           f"{'sim. net':>10s}")
     for row in r.ranking:
@@ -96,9 +96,9 @@ def main() -> None:
               f" σ {s.stress / 1e6:.0f}/{s.yield_strength / 1e6:.0f} MPa, {1e3 * s.mass:.2f} g")
     for g, share in rec.dropped.items():
         print(f"  {g:6s} not fitted: it would add {pct(share)} (under the "
-              f"{100 * r.config.design.min_group_saving:g} point bar)")
-    print(f"\nwhole envelope (design factor {r.config.design.safety_factor:g}) and fatigue at "
-          f"{r.config.design.life_cycles:.0e} cycles")
+              f"{100 * r.design.min_group_saving:g} point bar)")
+    print(f"\nwhole envelope (design factor {r.design.safety_factor:g}) and fatigue at "
+          f"{r.design.life_cycles:.0e} cycles")
     for e, (p, f) in zip(r.envelope, r.fatigue, strict=True):
         stop = ("no stop needed" if e.stop is None else
                 f"hard stop at {np.degrees(e.stop.angle_from_centre):+.1f}° from the centre, "

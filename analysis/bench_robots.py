@@ -34,7 +34,6 @@ from pathlib import Path
 
 from hexaleg.commands.design.write import write_design
 from hexaleg.commands.simulate.study import load_study
-from hexaleg.design.chain.config import DesignConfig
 from hexaleg.errors import HexalegError
 from hexaleg.robot.registry import DESCRIPTIONS
 from hexaleg.scenario.scenario import Scenario
@@ -54,10 +53,9 @@ def design_time(robot: str) -> tuple[float, str]:
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory() as out:
         try:
-            config = DesignConfig.from_scenario(Scenario.load(robot))
-            r = write_design(out, config, progress=None).result
+            r = write_design(out, Scenario.load(robot), progress=None).result
             slowest = sorted(r.timings.items(), key=lambda kv: -kv[1])[:2]
-            g, m, rec = r.gait, r.config.design.metric, r.recommended
+            g, m, rec = r.gait, r.design.metric, r.recommended
             what = (f"gait {g.period:.3g} s / stride {1e3 * g.stride:.3g} mm / step "
                     f"{1e3 * g.step_height:.3g} mm; recommended {rec.label} on "
                     f"{', '.join(rec.optimum.groups)}: {m} {100 * rec.net[m]:+.2f} % net "

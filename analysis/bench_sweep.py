@@ -34,13 +34,14 @@ import numpy as np
 import hexaleg
 import hexaleg.design.studies.placement
 import hexaleg.dynamics.prepare
-from hexaleg.design.evaluator import RunSpec, clear_cache, evaluator
+from hexaleg.design.evaluator import clear_cache, evaluator
 from hexaleg.design.robust.conditions import robustness
 from hexaleg.design.rules import PAPER_DEAD_ZONE_RATIO
 from hexaleg.design.studies.optimise import optimise
 from hexaleg.design.studies.placement import placement
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.motion.params import GaitParams
+from hexaleg.scenario.scenario import Scenario
 from hexaleg.sweep.executors import default_workers
 from hexaleg.sweep.runner import run_sweep
 from hexaleg.sweep.spec import SweepSpec
@@ -54,7 +55,7 @@ def _timed(fn):
     return out, time.perf_counter() - t0
 
 
-def single_class(out: Path, samples: int, workers: int, run: RunSpec) -> None:
+def single_class(out: Path, samples: int, workers: int, run: Scenario) -> None:
     ks = tuple(float(k) for k in np.geomspace(0.01, 2.0, 100))
     spec = SweepSpec(run=run, gait={"samples": samples},
                      springs={"femur": {"k": ks, "dead_zone": PAPER_DEAD_ZONE_RATIO}},
@@ -71,7 +72,7 @@ def single_class(out: Path, samples: int, workers: int, run: RunSpec) -> None:
     assert res_pool.table.equals(res_serial.table)
     robot = hexaleg.load()
     gait = GaitParams(samples=samples)
-    ev = evaluator(run, {"samples": samples})
+    ev = evaluator(run.with_gait({"samples": samples}))
 
     def fresh(k: float) -> float:
         motion = hexaleg.gait(robot, gait)
@@ -93,7 +94,7 @@ def single_class(out: Path, samples: int, workers: int, run: RunSpec) -> None:
           f"{100 * best['saving.electrical']:+.2f} %")
 
 
-def placement_study(out: Path, samples: int, workers: int, run: RunSpec) -> None:
+def placement_study(out: Path, samples: int, workers: int, run: Scenario) -> None:
     ks = {"start": 0.01, "stop": 2.0, "num": 50, "scale": "log"}
     zones = {"start": 0.05, "stop": 0.9, "num": 10}
     data = {"sweep": {"layout": "each", "chunk_size": 50}, "gait": {"samples": samples},
@@ -105,7 +106,7 @@ def placement_study(out: Path, samples: int, workers: int, run: RunSpec) -> None
                                                 executor="serial"))
     assert serial.table.equals(table)
 
-    ev = evaluator(run, {"samples": samples})
+    ev = evaluator(run.with_gait({"samples": samples}))
     groups = {c: ev.robot.joints(c) for c in CLASSES}
     starts = {}
     for c in CLASSES:
@@ -120,7 +121,7 @@ def placement_study(out: Path, samples: int, workers: int, run: RunSpec) -> None
                      for r in range(1, len(CLASSES) + 1)
                      for combo in itertools.combinations(CLASSES, r))
     top = combos[0][1]
-    robust, t_rob = _timed(lambda: robustness(run, GaitParams(samples=samples),
+    robust, t_rob = _timed(lambda: robustness(run.replace(gait=GaitParams(samples=samples)),
                                               groups, {c: optima[c].design() for c in top},
                                               factors=(0.8, 1.0, 1.2)))
     failed = int((table["status"] != "ok").sum())
@@ -157,7 +158,7 @@ def main() -> None:
     parser.add_argument("--mu", type=float, default=0.3, help="friction coefficient (0.3)")
     parser.add_argument("--out", help="keep the sweep directories here (default: a temp dir)")
     args = parser.parse_args()
-    run = RunSpec(contact=ContactParams(mu=args.mu))
+    run = Scenario.load().replace(contact=ContactParams(mu=args.mu))
     print(f"friction μ = {args.mu}")
     out = Path(args.out) if args.out else Path(tempfile.mkdtemp(prefix="bench-sweep-"))
     try:

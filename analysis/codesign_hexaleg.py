@@ -68,13 +68,13 @@ def main() -> None:
           f"{abs(energy(rec.optimum.springs) / bought - 1) < 0.01}")
     t = d.tolerance
     if t is None:
-        print(f"  stops within ±{math.degrees(d.config.design.stop_tolerance):g}°: "
+        print(f"  stops within ±{math.degrees(d.design.stop_tolerance):g}°: "
               f"{rec.family} springs have no stop to mount")
     else:
         print(f"  stops within ±{math.degrees(t.tolerance):g}°: worst electrical saving "
               f"{100 * t.worst['tolerant']:.1f} % tolerant, {100 * t.worst['blind']:.1f} % "
               f"tolerance-blind; built: {t.chosen}")
-    bar = 100 * d.config.design.min_group_saving
+    bar = 100 * d.design.min_group_saving
     print(f"  parsimony: {len(rec.optimum.groups)} classes fitted, {len(rec.dropped)} left out "
           f"under the {bar:g} point bar")
     for e_, (p, f) in zip(d.envelope, d.fatigue, strict=True):

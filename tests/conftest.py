@@ -18,7 +18,6 @@ from hypothesis import settings
 from hypothesis.configuration import set_hypothesis_home_dir
 
 import hexaleg
-from hexaleg.design.evaluator import RunSpec
 from hexaleg.design.search.optimal import OptimalSprings, optimal_springs
 from hexaleg.dynamics.prepare import Prepared, analyze, prepare
 from hexaleg.paper.forward import ForwardStudy, forward_study
@@ -157,7 +156,7 @@ SHORT = Settings(cycles=3, evaluate=1, force_samples=40)
 @pytest.fixture(scope="session")
 def prepared(robot: hexaleg.Robot, walk: hexaleg.Motion) -> Prepared:
     """The default gait with the robot's own servo (the AX-18A)."""
-    return prepare(robot, walk, motor=RunSpec("hexaleg").actuator())
+    return prepare(robot, walk, motor=hexaleg.Scenario.load("hexaleg").actuator)
 
 
 @pytest.fixture(scope="session")
@@ -223,10 +222,10 @@ three patterns) maps, a box of 4 corners."""
 def design_written(tmp_path_factory: pytest.TempPathFactory) -> tuple[WrittenDesign, Path]:
     """The small design, written once for the session, and its directory."""
     from hexaleg.commands.design.write import write_design
-    from hexaleg.design.chain.config import DesignConfig
 
     out = tmp_path_factory.mktemp("design")
-    return write_design(out, DesignConfig.from_mapping(DESIGN_SMALL), progress=None), out
+    return write_design(out, hexaleg.Scenario.from_tables("hexaleg", DESIGN_SMALL),
+                        progress=None), out
 
 
 # One co-design of the default robot at 0.06 m/s (tests/design/codesign, tests/commands/codesign):
@@ -309,10 +308,9 @@ maps, a two-corner robust box."""
 def design_json(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A ``design.json`` (and ``design.html``) of :data:`TINY_DESIGN`, written once a session."""
     from hexaleg.commands.design.write import write_design
-    from hexaleg.design.chain.config import DesignConfig
 
     out = tmp_path_factory.mktemp("design")
-    write_design(out, DesignConfig.from_mapping(TINY_DESIGN), progress=None)
+    write_design(out, hexaleg.Scenario.from_tables("hexaleg", TINY_DESIGN), progress=None)
     return out / "design.json"
 
 

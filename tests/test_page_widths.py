@@ -79,8 +79,8 @@ def pages(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
     """design.html of a small design, and report.html of the default report led by it."""
     from hexaleg.commands.design.write import write_design
     from hexaleg.commands.report.write import write_report
-    from hexaleg.design.chain.config import DesignConfig
     from hexaleg.report.config import ReportConfig
+    from hexaleg.scenario.scenario import Scenario
 
     out = tmp_path_factory.mktemp("pages")
     small = {"samples": 100, "families": ["linear", "one_sided"], "map_period": [1.0, 1.2],
@@ -88,7 +88,8 @@ def pages(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
              "map_pattern": ["tripod"], "robust_period": [1.0, 1.25],
              "robust_stride": [1.0, 1.0], "robust_payload": [0.0, 0.0],
              "robust_mu": [0.6, 0.6], "pareto_fractions": [0.5]}
-    write_design(out / "design", DesignConfig.from_mapping({"design": small}), progress=None)
+    write_design(out / "design", Scenario.from_tables("hexaleg", {"design": small}),
+                 progress=None)
     cfg = ReportConfig.from_mapping({"gait": {"samples": 200},
                                      "report": {"design": str(out / "design" / "design.json"),
                                                 "stiffness_points": 5}})

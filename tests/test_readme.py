@@ -10,7 +10,6 @@ import pytest
 import hexaleg
 import hexaleg.design.evaluator
 from hexaleg import units
-from hexaleg.design.evaluator import RunSpec
 from hexaleg.design.robust.conditions import robustness
 from hexaleg.design.studies.optimise import optimise
 from hexaleg.report.build import build_report
@@ -224,7 +223,8 @@ def placement_gait():
     """(evaluator of notebook 03's gait, class → joints, offset bound), as the README names them."""
     samples, bound = _said(r"notebook 03 at {n} samples per cycle, the neutral offset searched "
                            r"within ±{n} rad")
-    ev = hexaleg.design.evaluator.evaluator(RunSpec(), {"samples": int(samples)})
+    ev = hexaleg.design.evaluator.evaluator(
+        hexaleg.Scenario.load().with_gait({"samples": int(samples)}))
     return ev, {c: ev.robot.joints(c) for c in CLASSES}, float(bound)
 
 
@@ -264,9 +264,9 @@ def test_readme_tibia_design_robustness(placement_gait, off_centre):
     low, high, change = _said(r"the tibia design keeps {n}–{n} % when the gait period or stride "
                               r"changes by ±{n} %")
     f = float(change) / 100
-    rob = robustness(RunSpec(), hexaleg.GaitParams(samples=ev.gait.samples),
-                             {"tibia": groups["tibia"]}, {"tibia": off_centre["tibia"].design()},
-                             "electrical", factors=(1 - f, 1.0, 1 + f))
+    run = hexaleg.Scenario.load().replace(gait=hexaleg.GaitParams(samples=ev.gait.samples))
+    rob = robustness(run, {"tibia": groups["tibia"]}, {"tibia": off_centre["tibia"].design()},
+                     "electrical", factors=(1 - f, 1.0, 1 + f))
     assert set(rob["parameter"]) == {"period", "stride_length"} and (rob["status"] == "ok").all()
     _check("the tibia design's least saving (%)", 100 * rob["saving"].min(), low)
     _check("the tibia design's largest saving (%)", 100 * rob["saving"].max(), high)

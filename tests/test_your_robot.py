@@ -11,7 +11,7 @@ import pandas as pd
 
 import hexaleg
 from hexaleg.cli import main
-from hexaleg.design.evaluator import RunSpec, evaluator
+from hexaleg.design.evaluator import evaluator
 from hexaleg.design.studies.optimise import optimise
 
 SPIDER = str(Path(__file__).resolve().parent / "data" / "spider.toml")  # tests run elsewhere
@@ -64,6 +64,6 @@ def test_report_view_sweep_and_optimiser(tmp_path, capsys):
     table = pd.read_parquet(next((tmp_path / "sw").glob("part-*.parquet")))
     assert len(table) == 1 and table.loc[0, "status"] == "ok"
     capsys.readouterr()
-    ev = evaluator(RunSpec(robot=SPIDER), {"samples": 40})
+    ev = evaluator(hexaleg.Scenario.load(SPIDER).with_gait({"samples": 40}))
     best = optimise(ev, "femur", ev.robot.joints("femur"), "joule", grid=(4, 2))
     assert best.value <= best.grid_value and best.joints == ev.robot.joints("femur")

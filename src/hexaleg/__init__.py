@@ -136,7 +136,6 @@ _DEPRECATED: dict[str, tuple[str, str, str]] = {
     "OptimalSprings": ("hexaleg.design.search.optimal", "OptimalSprings",
                        "optimal_springs' result"),
     "Evaluator": ("hexaleg.design.evaluator", "Evaluator", "hexaleg.design.evaluator"),
-    "RunSpec": ("hexaleg.design.evaluator", "RunSpec", "hexaleg.Scenario"),
     "evaluator": ("hexaleg.design.evaluator", "evaluator", "hexaleg.design.evaluator"),
     "optimise": ("hexaleg.design.studies.optimise", "optimise", "hexaleg.optimal_springs"),
     "placement": ("hexaleg.design.studies.placement", "placement", "hexaleg.optimal_springs"),
@@ -147,8 +146,6 @@ _DEPRECATED: dict[str, tuple[str, str, str]] = {
                            "hexaleg.design.springs.torsion_spring"),
     "design_torsion_spring": ("hexaleg.design.springs.torsion_spring", "design_torsion_spring",
                               "DesignChain's candidates (their parts)"),
-    "DesignConfig": ("hexaleg.design.chain.config", "DesignConfig",
-                     "DesignChain(Scenario, design=DesignParams)"),
     "LoadedDesign": ("hexaleg.design.chain.design_file", "LoadedDesign", "load_design's result"),
     "build_design": ("hexaleg.design.chain.chain", "build_design", "DesignChain(...).run()"),
     "write_design": ("hexaleg.commands.design.write", "write_design", "the hexaleg design "

@@ -104,7 +104,7 @@ def _run_gait(args: argparse.Namespace) -> int:
     from hexaleg.robot.sanity import robot_findings
 
     run = load_run(args.robot, args.config)
-    motion = run.played()
+    motion = run.motion()
     print(gait_summary(run.model, motion))
     warned = run.warnings(motion)
     _warn_lines(warned)  # the same lines as report, design and simulate say for this run
@@ -214,11 +214,10 @@ def _add_design(sub: argparse._SubParsersAction) -> None:
 def _run_design(args: argparse.Namespace) -> int:
     from hexaleg.commands.design.write import write_design
     from hexaleg.commands.options import load_run, progress_of
-    from hexaleg.design.chain.config import DesignConfig
 
     run = load_run(args.robot, args.config, args.motion, args.cycle, args)
-    config = DesignConfig.from_scenario(run, args.controller)
-    written = write_design(args.out, config, progress=progress_of(args, "design"))
+    written = write_design(args.out, run, controller=args.controller,
+                           progress=progress_of(args, "design"))
     _warn_lines(written.data["warnings"])
     print(written.result.summary())
     if written.result.whole_draw is not None:

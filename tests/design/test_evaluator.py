@@ -7,19 +7,20 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from hexaleg.design.evaluator import METRICS, SAVING_METRICS, RunSpec, clear_cache, evaluator
+from hexaleg.design.evaluator import METRICS, SAVING_METRICS, clear_cache, evaluator
 from hexaleg.dynamics.inertia import joint_range
 from hexaleg.dynamics.prepare import analyze
 from hexaleg.errors import UnknownNameError
 from hexaleg.robot.springs import DeadZoneSpring
+from hexaleg.scenario.scenario import Scenario
 
 SAMPLES = 200
-RUN = RunSpec()
+RUN = Scenario.load()
 
 
 @pytest.fixture(scope="module")
 def ev():
-    return evaluator(RUN, {"samples": SAMPLES})
+    return evaluator(RUN.with_gait({"samples": SAMPLES}))
 
 
 @pytest.fixture(scope="module")
@@ -87,15 +88,24 @@ def test_dead_zone_fraction_scales_with_each_joints_range(ev, classes):
 
 def test_clear_cache_forgets_built_evaluators():
     gait = {"samples": 40}
-    first = evaluator(RunSpec(), gait)
-    assert evaluator(RunSpec(), gait) is first  # built once per process
+    first = evaluator(Scenario.load().with_gait(gait))
+    assert evaluator(Scenario.load().with_gait(gait)) is first  # built once per process
     clear_cache()
-    again = evaluator(RunSpec(), gait)
-    assert again is not first and evaluator(RunSpec(), gait) is again
+    again = evaluator(Scenario.load().with_gait(gait))
+    assert again is not first and evaluator(Scenario.load().with_gait(gait)) is again
     assert again.baseline["total"]["electrical"] == first.baseline["total"]["electrical"]
 
 
 def test_gait_overrides_on_the_robots_gait():
-    assert RunSpec().gait({"samples": 40, "period": 2.0}).period == 2.0
+    assert Scenario.load().with_gait({"samples": 40, "period": 2.0}).gait.period == 2.0
     with pytest.raises(UnknownNameError, match="duty_factor"):  # lists the fields
-        RunSpec().gait({"period_s": 2.0})
+        Scenario.load().with_gait({"period_s": 2.0})
+
+
+def test_the_run_is_a_scenario():
+    """The evaluator takes the run whole; anything else is named, not an AttributeError."""
+    from hexaleg.errors import HexalegError
+
+    for bad in (None, {"samples": 40}):
+        with pytest.raises(HexalegError, match=r"evaluator\(run=…\)"):
+            evaluator(bad)

@@ -139,10 +139,11 @@ def test_design_json_has_the_fold_and_its_break_even(design_written):
 
 def test_a_mission_key_reaches_the_design():
     from hexaleg.commands.options import check_tables
-    from hexaleg.design.chain.config import DesignConfig
+    from hexaleg.design.chain.chain import DesignChain
+    from hexaleg.scenario.scenario import Scenario
 
-    cfg = DesignConfig.from_mapping({"mission": {"metres_per_fold": 15.0}})
-    assert cfg.mission.metres_per_fold == 15.0
+    scenario = Scenario.from_tables("hexaleg", {"mission": {"metres_per_fold": 15.0}})
+    assert DesignChain(scenario).mission.metres_per_fold == 15.0
     with pytest.raises(InvalidParameterError, match=r"\[mission\] metres_per_fold"):
         check_tables({"mission": {"metres_per_fold": -2.0}}, "m.toml")
     with pytest.raises(UnknownNameError, match="metres_per_fold"):

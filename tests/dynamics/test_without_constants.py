@@ -31,7 +31,7 @@ def go2():
         warnings.simplefilter("ignore")
         s = Scenario.from_tables("go2", {"gait": {"samples": 100}}, "test")
         cfg = ReportConfig.from_scenario(s)
-        baseline = prepare(s.model, s.played(), motor=cfg.motor,
+        baseline = prepare(s.model, s.motion(), motor=cfg.motor,
                            contact=cfg.contact).evaluate(None, "joule")
     return baseline
 
@@ -137,7 +137,7 @@ def test_docs_quote_go2_s_own_trot():
         warnings.simplefilter("ignore")
         s = Scenario.load("go2")
         cfg = ReportConfig.from_scenario(s)
-        w = without_constants(prepare(s.model, s.played(), motor=cfg.motor,
+        w = without_constants(prepare(s.model, s.motion(), motor=cfg.motor,
                                       contact=cfg.contact).evaluate(None, "joule"))
     assert w is not None
     got = (f"{w.stated:.4g}", f"{w.positive_work:.4g}", f"{w.torque_squared:.4g}",
@@ -153,7 +153,7 @@ def _band_on(robot: str, gait: dict) -> dict:
         warnings.simplefilter("ignore")
         s = Scenario.from_tables(robot, {"gait": gait, "contact": {"mu": 1.0}}, "test")
         cfg = ReportConfig.from_scenario(s)
-        w = without_constants(prepare(s.model, s.played(), motor=cfg.motor,
+        w = without_constants(prepare(s.model, s.motion(), motor=cfg.motor,
                                       contact=cfg.contact).evaluate(None, "joule"))
     assert w is not None
     band = w.band_dict()

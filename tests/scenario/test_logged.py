@@ -13,10 +13,10 @@ import pytest
 import hexaleg
 from hexaleg.cli import main
 from hexaleg.design.chain.chain import DesignChain
-from hexaleg.design.chain.config import DesignConfig
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.recorded.write import write_motion_log
 from hexaleg.scenario.logged import parse_cycle
+from hexaleg.scenario.scenario import Scenario
 
 SAMPLES = 100
 FAMILIES = ["linear", "one_sided"]
@@ -85,7 +85,8 @@ def test_design_on_the_log_equals_the_design_on_the_generated_gait(log: Path, tm
     assert gait["duty_factor"]["value"] == pytest.approx(0.5)
     assert hexaleg.load_design(out / "design.json").gait is None
     # The invariant: the same springs as on the generated gait it was written from.
-    generated = DesignChain(DesignConfig.from_mapping(
+    generated = DesignChain(Scenario.from_tables(
+        "hexaleg",
         {"design": {**DESIGN, "samples": SAMPLES, "map_period": [1.0], "map_stride": [1.0],
                     "map_payload": [0.0], "map_mu": [0.6], "map_slope": [0.0],
                     "robust_period": [1.0, 1.0], "robust_stride": [1.0, 1.0],
@@ -184,12 +185,11 @@ def test_carried_keeps_the_logged_motion_and_names_a_gait_it_cannot_make(
     """The springs' mass on a log: added to the robot, the logged motion unchanged; a carried
     gait that cannot be made is an error naming the gait and the springs' mass."""
     from hexaleg.design.chain import candidates
-    from hexaleg.design.evaluator import RunSpec
     from hexaleg.errors import HexalegError, InfeasibleForcesError
 
     robot = hexaleg.load()
     logged = hexaleg.load_motion(robot, log, cycle="whole", periodic=True)
-    run, gait = RunSpec(robot="hexaleg"), hexaleg.GaitParams(samples=SAMPLES)
+    run, gait = Scenario.load("hexaleg"), hexaleg.GaitParams(samples=SAMPLES)
     heavy = candidates.carried(run, gait, {"LF_femur": 0.5}, logged)
     assert heavy.motion is logged and heavy.robot.mass == pytest.approx(robot.mass + 0.5)
 

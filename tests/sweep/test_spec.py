@@ -32,7 +32,7 @@ k = 0.2
 dead_zone = 0.3
 """)
     spec = SweepSpec.from_toml(path)
-    assert spec.metric == "joule" and spec.run.motor == "AX-12A" and spec.chunk_size == 7
+    assert spec.metric == "joule" and spec.run.actuator.name == "AX-12A" and spec.chunk_size == 7
     np.testing.assert_allclose(spec.springs["femur"]["k"],
                                nmm_per_deg_to_nm_per_rad([1.0, 10.0, 100.0]))
     assert spec.springs["femur"]["theta_k"] == pytest.approx(deg_to_rad(7.32))
@@ -129,4 +129,4 @@ def test_a_robot_toml_in_a_spec_is_relative_to_the_spec_file(tmp_path):
     path.write_text('[sweep]\nrobot = "spider.toml"\n[springs.femur]\nk = 0.1\ntheta_k = 0.1\n')
     spec = SweepSpec.from_toml(path)
     assert spec.run.robot == str(tmp_path / "spider.toml")
-    assert spec.run.description().name == "spider"
+    assert spec.run.description.name == "spider"

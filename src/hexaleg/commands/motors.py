@@ -51,7 +51,7 @@ def run(args: argparse.Namespace) -> int:
 
     run = load_run(args.robot, args.config, args.identify, args.cycle, args)
     known = ReportConfig.from_scenario(run)
-    fits = identify_motion(run.model, run.played(), known.motor, contact=known.contact)
+    fits = identify_motion(run.model, run.motion(), known.motor, contact=known.contact)
     for fit in fits.values():
         print("\n".join(fit.lines()))
     base = known.motor.name

@@ -135,10 +135,10 @@ def _run_with_motion(run: Callable[[argparse.Namespace], int], json_name: str | 
         return run(args)
     finally:
         scenario = getattr(args, "scenario", None)
-        if scenario is not None and scenario.motion is not None:
+        if scenario is not None and scenario.recorded is not None:
             from hexaleg.scenario.logged import motion_quality
 
-            for line in motion_quality(scenario.motion).lines():
+            for line in motion_quality(scenario.recorded).lines():
                 print(f"motion: {line}")
             if json_name is not None:
                 _add_quality(Path(args.out) / json_name, scenario)
@@ -151,10 +151,10 @@ def _add_quality(path: Path, scenario: Scenario) -> None:
     from hexaleg.quantities import json_text
     from hexaleg.scenario.logged import quality_data
 
-    if not path.is_file() or scenario.motion is None:
+    if not path.is_file() or scenario.recorded is None:
         return
     data = read_json(path, "the command's JSON")
-    data["motion_quality"] = quality_data(scenario.motion)
+    data["motion_quality"] = quality_data(scenario.recorded)
     write_file(path, json_text(data), "the command's JSON")  # never through a link there
 
 

@@ -54,7 +54,7 @@ def _springs(scenario: Scenario, cfg: ReportConfig, shown: Motion) -> tuple[Spri
     (:func:`hexaleg.report.answer.answer_springs`, designed on the run's gait), else the
     configured or reference springs on the motion shown — and which they are, in words."""
     if cfg.springs is None:
-        gait = scenario.played()
+        gait = scenario.motion()
         prepared = prepare(scenario.model, gait, motor=cfg.motor, contact=cfg.contact)
         springs, label, _ = answer_springs(cfg, prepared)
         if springs is not None:
@@ -85,7 +85,7 @@ def _shown(config: str | Path | None, motion: str | None, joints: str, robot: st
         scenario = load_run(robot, config, log, cycle, args)
         cfg = ReportConfig.from_scenario(scenario)
         shown = (transform_motion(scenario.model) if motion == "transform"
-                 else scenario.played())
+                 else scenario.motion())
         springs, label = _springs(scenario, cfg, shown)
         return view_motion(scenario.model, shown, springs, cfg.motor, joints=joints,
                            objective=cfg.report.objective, contact=cfg.contact,

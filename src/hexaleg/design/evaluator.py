@@ -25,9 +25,10 @@ symmetric), one joint, or any list of joints. A design gives, in SI (see
 Evaluation
 ----------
 Designs on one gait share one :func:`hexaleg.dynamics.prepare.prepare`. Workers never receive
-Pinocchio objects: a task carries a small picklable :class:`RunSpec` (robot files, motor name,
-force objective, contact settings) and the gait parameters, and each process keeps an
-:class:`Evaluator` per gait in a small cache (:func:`evaluator`). A design then costs one force
+Pinocchio objects: a task carries the run, a picklable :class:`~hexaleg.scenario.scenario.
+Scenario` (robot name, actuator, force objective, contact settings, gait), and each process
+loads the robot once and keeps an :class:`Evaluator` per run in a small cache
+(:func:`evaluator`). A design then costs one force
 solve (:meth:`hexaleg.dynamics.prepare.Prepared.solve`) and the energy metrics; the spring torques
 come from the spring's torque basis (linear in k⁺ and k⁻), cached per dead-zone geometry.
 
@@ -43,35 +44,26 @@ criterion (eq. 20–24) with a motor model. Any key of ``Analysis.metrics["total
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections import OrderedDict
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from hexaleg.checks import one_of, typed
-from hexaleg.dynamics.contact import ContactParams, check_objective
+from hexaleg.checks import typed
+from hexaleg.dynamics.contact import check_objective
 from hexaleg.dynamics.energy import ENERGY_KEYS, NO_SAVING_KEYS, TORQUE_KEYS, savings
 from hexaleg.dynamics.inertia import joint_range
-from hexaleg.dynamics.prepare import Prepared, prepare
+from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import (
     InfeasibleForcesError,
     InvalidParameterError,
     TorqueLimitError,
 )
-from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import GaitParams
-from hexaleg.motion.scaling import robot_gait
-from hexaleg.robot.actuator import Actuator
-from hexaleg.robot.catalogue import motor as motor_by_name
-from hexaleg.robot.description import RobotDescription
-from hexaleg.robot.model import Robot
-from hexaleg.robot.motor import Motor
-from hexaleg.robot.registry import description
 from hexaleg.robot.springs import DeadZoneSpring, SpringSet
+from hexaleg.scenario.scenario import Scenario, clear_robots
 
 METRICS: tuple[str, ...] = (*ENERGY_KEYS, "electrical_bus", *TORQUE_KEYS)
 """Keys of ``Analysis.metrics["total"]`` a design study records and may optimise (J or N·m)."""
@@ -90,96 +82,32 @@ Design = Mapping[str, Mapping[str, float]]
 """Spring design: group name → parameter → value (SI, :data:`SPRING_PARAMETERS`)."""
 
 
-@dataclass(frozen=True)
-class RunSpec:
-    """What a worker needs to rebuild the analysis of a gait: small and picklable.
-
-    Attributes:
-        robot: A registered robot's name or a robot TOML file
-            (:func:`hexaleg.robot.registry.description`).
-        motor: The servo on every joint: a :class:`~hexaleg.robot.motor.Motor` (a config
-            file's ``[motor]``) or its catalogue name
-            (:data:`hexaleg.robot.catalogue.CATALOGUE`); None for the robot's own
-            (:meth:`~hexaleg.robot.description.RobotDescription.actuator`: its catalogue motor,
-            else a generic actuator from its URDF limits).
-        objective: Force-distribution objective (:data:`hexaleg.dynamics.contact.OBJECTIVES`).
-        contact: Contact settings.
-
-    Raises:
-        UnknownNameError: unknown robot or motor. InvalidParameterError: unknown objective.
-        ConfigError: a robot TOML that cannot be read.
-    """
-
-    robot: str = "hexaleg"
-    motor: str | Motor | None = None
-    objective: str = "joule"
-    contact: ContactParams = field(default_factory=ContactParams)
-
-    def __post_init__(self) -> None:
-        self.description()
-        if isinstance(self.motor, str):
-            motor_by_name(self.motor)
-        check_objective(self.objective)
-
-    def description(self) -> RobotDescription:
-        """The robot's description (registry name or TOML file)."""
-        return description(self.robot)
-
-    def load(self) -> Robot:
-        """The robot (cached per process)."""
-        if self.robot not in _ROBOTS:
-            _ROBOTS[self.robot] = self.description().load()
-        return _ROBOTS[self.robot]
-
-    def actuator(self) -> Actuator:
-        """The actuator of every joint (:attr:`motor`), or the robot's own per joint class."""
-        if isinstance(self.motor, Motor):
-            return self.motor
-        if self.motor is not None:
-            return motor_by_name(self.motor)
-        return self.description().actuator(self.load())
-
-    def gait(self, overrides: Mapping[str, Any]) -> GaitParams:
-        """The robot's own gait (:func:`~hexaleg.motion.scaling.robot_gait`) with ``overrides``
-        (field → value) on top.
-
-        Raises:
-            UnknownNameError: a key that is not a :class:`GaitParams` field (lists them).
-            InvalidParameterError: a value out of range.
-        """
-        fields = [f.name for f in dataclasses.fields(GaitParams) if f.init]
-        for key in overrides:
-            one_of("gait parameter", key, fields)
-        return dataclasses.replace(robot_gait(self.description()), **overrides)
-
-
 # --------------------------------------------------------------------------- per-process cache
 
 
-_ROBOTS: dict[str, Robot] = {}
 _EVALUATORS: OrderedDict[tuple, Evaluator] = OrderedDict()
 
 
 def clear_cache() -> None:
     """Forget the robots and evaluators this process has built (e.g. after editing a URDF, or
     to time a sweep from a cold start)."""
-    _ROBOTS.clear()
+    clear_robots()
     _EVALUATORS.clear()
 
 
 @typed
-def evaluator(run: RunSpec, gait: Mapping[str, Any]) -> Evaluator:
-    """The :class:`Evaluator` of ``gait``, built once per process and kept in a small cache.
+def evaluator(run: Scenario) -> Evaluator:
+    """The :class:`Evaluator` of a run, built once per process and kept in a small cache (keyed
+    by :meth:`Scenario.key <hexaleg.scenario.scenario.Scenario.key>`).
 
     Args:
-        run: Robot, motor, objective and contact settings.
-        gait: :class:`~hexaleg.motion.params.GaitParams` keyword arguments.
+        run: The run: robot, actuator, objective, contact and gait (or a log's cycle).
     """
-    key = (run, tuple(sorted(gait.items())))
+    key = run.key()
     if key in _EVALUATORS:
         _EVALUATORS.move_to_end(key)
         return _EVALUATORS[key]
-    ev = Evaluator.for_gait(run, run.gait(gait))
+    ev = Evaluator.for_scenario(run)
     _EVALUATORS[key] = ev
     while len(_EVALUATORS) > CACHE_SIZE:
         _EVALUATORS.popitem(last=False)
@@ -224,12 +152,10 @@ class Evaluator:
         self._basis: OrderedDict[tuple, tuple[np.ndarray, np.ndarray]] = OrderedDict()
 
     @classmethod
-    def for_gait(cls, run: RunSpec, gait: GaitParams) -> Evaluator:
-        """The evaluator of ``gait`` on the robot, motor and contact settings of ``run``."""
-        robot = run.load()
-        prepared = prepare(robot, tripod_gait(robot, gait), motor=run.actuator(),
-                           contact=run.contact)
-        return cls(prepared, run.objective, gait)
+    def for_scenario(cls, run: Scenario) -> Evaluator:
+        """The evaluator of a run (its motion prepared once, :meth:`Scenario.prepare
+        <hexaleg.scenario.scenario.Scenario.prepare>`)."""
+        return cls(run.prepare(), run.objective, run.gait if run.recorded is None else None)
 
     def spring(self, joint: str, params: Mapping[str, float]) -> DeadZoneSpring:
         """The spring of design ``params`` on ``joint``, with its absolute neutral angle (SI).

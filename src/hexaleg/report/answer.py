@@ -37,8 +37,9 @@ from hexaleg.quantities import quantity
 from hexaleg.report.config import ReportConfig
 from hexaleg.report.design_section import design_section, recommendation
 from hexaleg.robot.model import Robot
-from hexaleg.robot.motor import Motor
+from hexaleg.robot.registry import description
 from hexaleg.robot.springs import SpringSet
+from hexaleg.scenario.scenario import Scenario
 
 DESIGN_JSON = Path("hexaleg-design") / "design.json"
 """Where ``hexaleg design`` writes its answer by default, relative to the working directory."""
@@ -152,27 +153,23 @@ def _quick(cfg: ReportConfig, robot: Robot
            ) -> tuple[dict[str, Any] | None, SpringSet | None, str | None]:
     """The quick answer (module docstring), its springs, or None and why not."""
     from hexaleg.design.chain.chain import DesignChain
-    from hexaleg.design.chain.config import DesignConfig, DesignParams
+    from hexaleg.design.chain.config import DesignParams
     from hexaleg.design.chain.result import candidate_data
-    from hexaleg.design.evaluator import RunSpec
     what = "no quick answer"
     if cfg.payload is not None:
         return None, None, (f"{what}: this report carries a payload, hexaleg design designs "
                             "for the robot as it is (its payload map shows what a load does)")
     ref = cfg.robot or robot.name  # an own robot by its description file
     try:
-        run = RunSpec(robot=ref)
+        description(ref)
     except HexalegError as e:
         return None, None, f"{what}: {e}; run hexaleg design --robot FILE.toml"
-    # the report's [motor], as the design reads it (its one home); the robot's own otherwise
-    actuator = cfg.motor if isinstance(cfg.motor, Motor) and cfg.motor != run.actuator() \
-        else None
     n = min(cfg.gait.samples, DesignParams().samples)
     params = DesignParams(families=(QUICK_FAMILY,), samples=n)
-    config = DesignConfig(robot=ref, gait=dataclasses.replace(cfg.gait, samples=n),
-                          contact=cfg.contact, design=params, actuator=actuator)
+    # the report's run: its gait, contact and actuator ([motor], the one home; else the robot's)
+    run = Scenario(robot=ref, gait=cfg.gait, contact=cfg.contact, actuator=cfg.motor)
     try:  # the design chain's first stage alone
-        result = DesignChain(config).run(stages=("candidates",))
+        result = DesignChain(run, design=params).run(stages=("candidates",))
     except HexalegError as e:
         return None, None, f"{what}: the {QUICK_FAMILY} design failed: {e}"
     c = result.recommended

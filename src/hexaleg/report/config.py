@@ -284,9 +284,9 @@ class ReportConfig:
         s = scenario
         config = dataclasses.replace(cls.for_robot(s.description, s.model, s.tables, s.where),
                                      robot=s.robot)
-        if s.motion is None:
+        if s.recorded is None:
             return config
-        return dataclasses.replace(config, motion=s.motion,
+        return dataclasses.replace(config, motion=s.recorded,
                                    notes=(*config.notes, *s.notes[len(s.model.notes):]))
 
     @classmethod

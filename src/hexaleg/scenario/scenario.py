@@ -7,6 +7,13 @@ builds its run here, from the same three inputs (the robot, a config file, ``--m
 ``--cycle``), with the same checks, so the same bad value is the same named error everywhere
 and every command says the same warnings and notes of the run.
 
+A scenario is the only run object below the commands (pvlib's ``ModelChain`` takes a built
+system and never re-parses it): frozen and picklable — a worker process receives it whole and
+loads the robot from its own per-process cache (:func:`robot_model`), so the URDF is built once
+per process — with the run's motion (:meth:`Scenario.motion`), its preparation
+(:meth:`Scenario.prepare`), the same run under changed conditions (:meth:`Scenario.under`), at
+another sampling (:meth:`Scenario.with_samples`) and its JSON form (:meth:`Scenario.data`).
+
 The config file's tables are read once (:data:`TABLES` lists every table any command reads and
 which one); :meth:`Scenario.load` checks the run's own (``[gait]``, ``[contact]``, ``[motor]``)
 and refuses a ``[gait]`` table with a log; the tables of the stages above it (``[design]``,
@@ -17,14 +24,17 @@ and refuses a ``[gait]`` table with a log; the tables of the stages above it (``
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from hexaleg.checks import one_of
 from hexaleg.config import check_tables, from_mapping, load_toml
-from hexaleg.dynamics.contact import ContactParams
+from hexaleg.dynamics.contact import ContactParams, check_objective
 from hexaleg.dynamics.prepare import Prepared, prepare
+from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.legged import tripod_gait
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.scaling import robot_gait
@@ -33,7 +43,9 @@ from hexaleg.robot.actuator import Actuator
 from hexaleg.robot.catalogue import motor_from_mapping
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Robot
+from hexaleg.robot.payload import with_payload
 from hexaleg.robot.registry import description
+from hexaleg.scenario.condition import Condition, condition_gait
 from hexaleg.scenario.logged import logged_motion, quality_note, refuse_gait_table
 from hexaleg.scenario.run_warnings import run_warnings
 
@@ -57,40 +69,72 @@ TABLES: dict[str, str] = {
 other commands read; each command checks every table, so a bad value is an error in all."""
 
 
+_ROBOTS: dict[tuple[str, float], Robot] = {}
+"""This process's robots: (robot, payload in kg) → the loaded model (:func:`robot_model`)."""
+
+
+def robot_model(robot: str, payload: float = 0.0) -> Robot:
+    """The robot ``robot`` (a registered name or a description TOML), loaded once per process,
+    with a point-mass payload of ``payload`` kg on its base (:func:`hexaleg.robot.payload.
+    with_payload`; 0: none).
+
+    Raises:
+        UnknownNameError: an unknown robot. ConfigError: a TOML that cannot be read.
+    """
+    key = (robot, float(payload))
+    if key not in _ROBOTS:
+        if payload:
+            bare = robot_model(robot)
+            _ROBOTS[key] = with_payload(bare, payload, note=f"payload {100 * payload / bare.mass:g}"
+                                        " % of the robot's mass")
+        else:
+            _ROBOTS[key] = description(robot).load()
+    return _ROBOTS[key]
+
+
+def clear_robots() -> None:
+    """Forget the robots this process loaded (e.g. after editing a URDF)."""
+    _ROBOTS.clear()
+
+
 @dataclass(frozen=True, eq=False)
 class Scenario:
     """One run (module docstring).
 
     Attributes:
         robot: The robot's registered name or description file.
-        description: Its description (:mod:`hexaleg.robot.registry`).
-        model: The robot, loaded once.
         gait: The gait: the robot's own parameters with the file's ``[gait]`` keys on top (with
             a log, the robot's own: it does not apply).
         contact: Contact settings (``[contact]``).
         actuator: The servos: the file's ``[motor]`` on every joint, else the robot's own
             (:meth:`~hexaleg.robot.description.RobotDescription.actuator`).
+        objective: The force-distribution objective (:data:`hexaleg.dynamics.contact.
+            OBJECTIVES`; default ``"joule"``, the motor-energy optimum).
+        payload: A point mass on the base, kg (0: none; :meth:`under` a payload condition).
         tables: The config file's tables as read (every one in :data:`TABLES`).
         where: Where the tables came from (the file's name), for messages.
         log: A recorded log of the robot's own gait (``--motion``), or None.
         cycle: Which part of the log is one cycle (``"auto"``, ``"whole"``, ``"T0:T1"``).
-        motion: The log's cycle (:func:`hexaleg.scenario.logged.logged_motion`), or None.
+        recorded: The log's cycle (:func:`hexaleg.scenario.logged.logged_motion`), or None.
         notes: What the user should know about the run: the robot's loading notes and, with a
             log, where the motion came from and how good it is.
     """
 
     robot: str
-    description: RobotDescription
-    model: Robot
     gait: GaitParams
     contact: ContactParams
     actuator: Actuator
+    objective: str = "joule"
+    payload: float = 0.0
     tables: Mapping[str, Any] = field(default_factory=dict)
     where: str = "config"
     log: str | None = None
     cycle: str = "auto"
-    motion: Motion | None = None
+    recorded: Motion | None = None
     notes: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        check_objective(self.objective)
 
     @classmethod
     def load(cls, robot: str = "hexaleg", config: str | Path | None = None, *,
@@ -117,38 +161,117 @@ class Scenario:
             refuse_gait_table(tables, where, log)
         gait = robot_gait(desc).updated(tables.get("gait", {}), f"{where} [gait]")
         contact = from_mapping(ContactParams, tables.get("contact", {}), f"{where} [contact]")
-        model = desc.load()
+        model = robot_model(robot)
         motor = tables.get("motor")
         actuator = (motor_from_mapping(motor, f"{where} [motor]") if motor is not None
                     else desc.actuator(model))
         motion = logged_motion(model, log, cycle) if log is not None else None
         notes = (*model.notes, *((quality_note(motion),) if motion is not None else ()))
-        return cls(robot=robot, description=desc, model=model, gait=gait, contact=contact,
-                   actuator=actuator, tables=tables, where=where,
-                   log=None if log is None else str(log), cycle=cycle, motion=motion,
-                   notes=notes)
+        return cls(robot=robot, gait=gait, contact=contact, actuator=actuator, tables=tables,
+                   where=where, log=None if log is None else str(log), cycle=cycle,
+                   recorded=motion, notes=notes)
+
+    @property
+    def description(self) -> RobotDescription:
+        """The robot's description (:func:`hexaleg.robot.registry.description`)."""
+        return description(self.robot)
+
+    @property
+    def model(self) -> Robot:
+        """The robot with the run's payload, loaded once per process (:func:`robot_model`)."""
+        return robot_model(self.robot, self.payload)
 
     def table(self, name: str) -> Mapping[str, Any]:
         """The file's table ``name`` (:data:`TABLES`), empty when it has none."""
         return self.tables.get(name, {})
 
-    def played(self) -> Motion:
+    def motion(self) -> Motion:
         """The motion of the run: the log's cycle, else one cycle of the gait."""
-        return self.motion if self.motion is not None else tripod_gait(self.model, self.gait)
+        return self.recorded if self.recorded is not None else tripod_gait(self.model, self.gait)
 
     def prepare(self) -> Prepared:
         """The run prepared once (:func:`hexaleg.dynamics.prepare.prepare`): everything that
         does not depend on the springs."""
-        return prepare(self.model, self.played(), motor=self.actuator, contact=self.contact)
+        return prepare(self.model, self.motion(), motor=self.actuator, contact=self.contact)
+
+    def replace(self, **changes: Any) -> Scenario:
+        """The same run with fields replaced (:func:`dataclasses.replace`), e.g. another
+        ``gait``, ``contact`` or ``objective``."""
+        return dataclasses.replace(self, **changes)
+
+    def with_gait(self, overrides: Mapping[str, Any]) -> Scenario:
+        """The same run with gait fields replaced (``overrides``: field → value, e.g. a sweep's
+        grid point).
+
+        Raises:
+            UnknownNameError: a key that is not a :class:`GaitParams` field (lists them).
+            InvalidParameterError: a value out of range.
+        """
+        fields = [f.name for f in dataclasses.fields(GaitParams) if f.init]
+        for key in overrides:
+            one_of("gait parameter", key, fields)
+        return self.replace(gait=dataclasses.replace(self.gait, **overrides))
+
+    def with_samples(self, samples: int) -> Scenario:
+        """The same run sampled ``samples`` times a cycle (a log keeps its own samples).
+
+        Raises:
+            InvalidParameterError: fewer samples than a gait needs
+                (:data:`hexaleg.motion.limits.MIN_SAMPLES`).
+        """
+        if self.recorded is not None:
+            return self
+        return self.replace(gait=dataclasses.replace(self.gait, samples=samples))
+
+    def under(self, condition: Condition) -> Scenario:
+        """The same run under ``condition`` (:mod:`hexaleg.scenario.condition`): its gait scaled
+        (:func:`~hexaleg.scenario.condition.condition_gait`), its μ, its payload (a fraction of
+        the robot's mass, on top of the run's).
+
+        Raises:
+            InvalidParameterError: a run of a recorded log (its motion cannot be varied), or a
+                slope the condition carries out of range.
+        """
+        if self.recorded is not None:
+            raise InvalidParameterError("condition", condition.label(),
+                                        f"a gait: the run replays the log {self.log}, whose "
+                                        "motion cannot be varied")
+        contact = (self.contact if condition.mu is None
+                   else dataclasses.replace(self.contact, mu=condition.mu))
+        payload = self.payload + condition.payload * robot_model(self.robot).mass
+        return self.replace(gait=condition_gait(self.gait, condition), contact=contact,
+                            payload=payload)
+
+    def key(self) -> tuple[Any, ...]:
+        """What makes two runs the same analysis (a cache key): the robot, payload, actuator,
+        objective, contact and gait, or the log and its cycle."""
+        motion = (self.log, self.cycle) if self.recorded is not None else self.gait
+        actuator: Any = self.actuator
+        try:
+            hash(actuator)
+        except TypeError:  # a per-joint set (a mapping): its fields, in order
+            actuator = repr(actuator)
+        return (self.robot, self.payload, actuator, self.objective, self.contact, motion)
+
+    def data(self) -> dict[str, Any]:
+        """The run in JSON form: robot, gait (its keys), contact, actuator, objective, payload
+        ``{value, unit}``, log and cycle; every number SI."""
+        return {"robot": self.robot,
+                "gait": {k: v for k, v in dataclasses.asdict(self.gait).items()},
+                "contact": dataclasses.asdict(self.contact),
+                "actuator": getattr(self.actuator, "name", type(self.actuator).__name__),
+                "objective": self.objective,
+                "payload": {"value": self.payload, "unit": "kg"},
+                "log": self.log, "cycle": self.cycle}
 
     def warnings(self, motion: Motion | None = None,
                  actuator: Actuator | None = None) -> tuple[str, ...]:
         """The run's warnings (:func:`hexaleg.scenario.run_warnings.run_warnings`), the same
-        lines in every command: for ``motion`` (default :meth:`played`) and ``actuator``
+        lines in every command: for ``motion`` (default :meth:`motion`) and ``actuator``
         (default :attr:`actuator`)."""
-        return run_warnings(self.model, motion if motion is not None else self.played(),
+        return run_warnings(self.model, motion if motion is not None else self.motion(),
                             actuator if actuator is not None else self.actuator,
                             desc=self.description, gait=self.gait if self.log is None else None)
 
 
-__all__ = ["TABLES", "Scenario"]
+__all__ = ["TABLES", "Scenario", "clear_robots", "robot_model"]

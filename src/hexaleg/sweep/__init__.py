@@ -11,7 +11,6 @@ with their parent, :mod:`~hexaleg.parallel.workers`, and Dask). Each point is ev
 :class:`hexaleg.design.evaluator.Evaluator`. See ``docs/sweep.md``.
 """
 
-from hexaleg.design.evaluator import RunSpec
 from hexaleg.sweep.executors import EXECUTORS, open_executor
 from hexaleg.sweep.optimal import OptimalSpec
 from hexaleg.sweep.ranges import parse_range
@@ -29,7 +28,6 @@ __all__ = [
     "EXECUTORS",
     "OptimalSpec",
     "ResultStore",
-    "RunSpec",
     "SweepResult",
     "SweepSpec",
     "evaluate_chunk",

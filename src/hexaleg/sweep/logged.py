@@ -18,9 +18,10 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from hexaleg.design.evaluator import Evaluator, RunSpec
+from hexaleg.design.evaluator import Evaluator
 from hexaleg.dynamics.prepare import prepare
 from hexaleg.errors import InvalidParameterError
+from hexaleg.scenario.scenario import Scenario
 
 if TYPE_CHECKING:
     from hexaleg.sweep.spec import SweepSpec
@@ -49,16 +50,16 @@ def on_log(spec: SweepSpec, path: str | Path, cycle: str = "auto") -> SweepSpec:
     return dataclasses.replace(spec, motion=str(path), cycle=cycle)
 
 
-def log_evaluator(run: RunSpec, gait: Mapping[str, Any]) -> Evaluator:
+def log_evaluator(run: Scenario, gait: Mapping[str, Any]) -> Evaluator:
     """The evaluator of a logged gait (``{"motion": path, "cycle": cycle}``), built once per
     process."""
-    key = (run, str(gait["motion"]), str(gait["cycle"]))
+    key = (run.key(), str(gait["motion"]), str(gait["cycle"]))
     if key not in _LOGS:
         from hexaleg.scenario.logged import logged_motion
 
-        robot = run.load()
+        robot = run.model
         motion = logged_motion(robot, gait["motion"], gait["cycle"])
-        _LOGS[key] = Evaluator(prepare(robot, motion, motor=run.actuator(),
+        _LOGS[key] = Evaluator(prepare(robot, motion, motor=run.actuator,
                                        contact=run.contact), run.objective)
     return _LOGS[key]
 

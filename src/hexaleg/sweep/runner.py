@@ -6,7 +6,7 @@ Data flow
 A *point* is (gait parameters, spring design per joint group). Points sharing a gait share one
 :class:`~hexaleg.design.evaluator.Evaluator` (one :func:`hexaleg.dynamics.prepare.prepare`).
 Workers never receive Pinocchio objects: a task (:func:`evaluate_chunk`) carries the small
-picklable :class:`~hexaleg.design.evaluator.RunSpec` and the gait parameters, and each worker
+picklable :class:`~hexaleg.scenario.scenario.Scenario` and the gait parameters, and each worker
 keeps its evaluators in a per-process cache (:func:`hexaleg.design.evaluator.evaluator`).
 
 Results are a tidy :class:`pandas.DataFrame`, one row per point, written incrementally by
@@ -37,7 +37,6 @@ from hexaleg.design.evaluator import (
     SPRING_PARAMETERS,
     Design,
     Evaluator,
-    RunSpec,
     evaluator,
     metric_row,
 )
@@ -50,6 +49,7 @@ from hexaleg.errors import (
 from hexaleg.parallel.workers import default_workers
 from hexaleg.robot.mirror import mirror
 from hexaleg.robot.model import Robot
+from hexaleg.scenario.scenario import Scenario
 from hexaleg.sweep import executors, logged
 from hexaleg.sweep.dead_zones import check_dead_zones
 from hexaleg.sweep.executors import open_executor
@@ -65,7 +65,7 @@ if TYPE_CHECKING:  # pandas is imported where tables are made: `import hexaleg` 
 # --------------------------------------------------------------------------- one task
 
 
-def evaluate_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, Sequence[str]],
+def evaluate_chunk(run: Scenario, gait: Mapping[str, Any], groups: Mapping[str, Sequence[str]],
                    points: Sequence[tuple[int, Design]]) -> pd.DataFrame:
     """Rows of a chunk of points sharing one gait (the task a worker runs).
 
@@ -96,23 +96,25 @@ def evaluate_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, S
     return pd.DataFrame(rows)
 
 
-def _evaluator(run: RunSpec, gait: Mapping[str, Any]) -> Evaluator:
+def _evaluator(run: Scenario, gait: Mapping[str, Any]) -> Evaluator:
     """The evaluator of a gait of the grid: generated, or a log (:mod:`.logged`)."""
-    return logged.log_evaluator(run, gait) if logged.is_log(gait) else evaluator(run, gait)
+    if logged.is_log(gait):
+        return logged.log_evaluator(run, gait)
+    return evaluator(run.with_gait(gait))
 
 
-def gait_columns(run: RunSpec, gait: Mapping[str, Any]) -> dict[str, float]:
+def gait_columns(run: Scenario, gait: Mapping[str, Any]) -> dict[str, float]:
     """``gait.<name>`` columns: every :data:`GAIT_PARAMETERS` value of the gait (the robot's own
     gait under the point's values), NaN where a parameter is None; of a log, what its cycle
     measures (:func:`~hexaleg.sweep.logged.log_columns`)."""
     if logged.is_log(gait):
         return logged.log_columns(logged.log_evaluator(run, gait), GAIT_PARAMETERS)
-    full = dataclasses.asdict(run.gait(gait))
+    full = dataclasses.asdict(run.with_gait(gait).gait)
     return {f"gait.{name}": math.nan if full[name] is None else full[name]
             for name in GAIT_PARAMETERS}
 
 
-def optimal_chunk(run: RunSpec, gait: Mapping[str, Any], groups: Mapping[str, Sequence[str]],
+def optimal_chunk(run: Scenario, gait: Mapping[str, Any], groups: Mapping[str, Sequence[str]],
                   optimal: OptimalSpec, points: Sequence[tuple[int, OptimalPoint]]
                   ) -> pd.DataFrame:
     """Rows of a chunk of optimal-spring points sharing one gait (the task a worker runs).
@@ -210,7 +212,7 @@ def _metadata(spec: SweepSpec, robot: Robot, groups: Mapping[str, tuple[str, ...
         "robot": {"name": robot.name, "description": spec.run.robot,
                   "urdf": str(robot.urdf_path), "nq": robot.model.nq,
                   "nv": robot.model.nv, "mass_kg": robot.mass, "groups": groups},
-        "motor": spec.run.actuator().name,
+        "motor": spec.run.actuator.name,
         "gaits": spec.gaits(),
         "n_points": spec.n_points,
         "versions": software_versions(),
@@ -263,7 +265,7 @@ def run_sweep(spec: SweepSpec, out: str | Path, *, executor: str = "process",
         ExecutorError: the Dask scheduler cannot be reached (nothing is computed or lost).
         OutputError: results cannot be written.
     """
-    robot = spec.run.load()
+    robot = spec.run.model
     groups = spec.groups(robot)
     check_dead_zones(spec, robot, groups)
     if executor == "dask" and scheduler is not None:  # before the output directory is touched

@@ -19,10 +19,11 @@ from typing import Any
 
 from hexaleg.checks import count, integer, named_arguments
 from hexaleg.config import check_tables, load_toml
-from hexaleg.design.evaluator import DEFAULT_METRIC, METRICS, SPRING_PARAMETERS, RunSpec
+from hexaleg.design.evaluator import DEFAULT_METRIC, METRICS, SPRING_PARAMETERS
 from hexaleg.design.search.optimal import OBJECTIVE_METRIC
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.robot.model import Robot
+from hexaleg.scenario.scenario import Scenario
 from hexaleg.sweep.optimal import OptimalPoint, OptimalSpec
 from hexaleg.sweep.ranges import POINT_BYTES, parse_range
 from hexaleg.sweep.spec_tables import (
@@ -119,7 +120,7 @@ class SweepSpec:
             design parameters.
     """
 
-    run: RunSpec = field(default_factory=RunSpec)
+    run: Scenario = field(default_factory=Scenario.load)
     gait: Mapping[str, float | tuple[float, ...]] = field(default_factory=dict)
     springs: Mapping[str, Mapping[str, float | tuple[float, ...]]] = field(default_factory=dict)
     joints: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
@@ -156,14 +157,14 @@ class SweepSpec:
               item="one point", fix="split the sweep or use fewer values on an axis: "
               + (" × ".join(f"{n} ({len(v)})" for n, v in self.axes()) or "no axes"))
         for g in self.gaits() if self.motion is None else ():  # valid (GaitParams checks)
-            self.run.gait(g)
+            self.run.with_gait(g)
 
     @classmethod
     def from_mapping(cls, data: Mapping[str, Any], where: str = "sweep spec") -> SweepSpec:
         """A spec from parsed TOML (see ``docs/sweep.md``).
 
         ``[sweep]`` holds ``metric``, ``layout``, ``chunk_size`` and the
-        :class:`~hexaleg.design.evaluator.RunSpec` keys ``robot`` (a registered name or a robot
+        :class:`~hexaleg.scenario.scenario.Scenario` keys ``robot`` (a registered name or a robot
         TOML, relative to the spec's directory), ``motor``, ``objective``; ``[contact]`` the
         :class:`~hexaleg.dynamics.contact.ContactParams`; ``[gait]`` gait parameters;
         ``[springs.<group>]`` one table per group with an optional ``joints`` list;
@@ -237,7 +238,7 @@ class SweepSpec:
             gait["period"] = parse_range("--period", period)
         if samples is not None:
             gait["samples"] = samples
-        run = RunSpec(robot=robot)
+        run = Scenario.load(robot)
         if optimal is None:
             return cls(run=run, springs={joints: params}, gait=gait)
         return cls(run=run, springs={joints: {}}, gait=gait, optimal=optimal,
@@ -321,7 +322,7 @@ class SweepSpec:
             return list(v) if isinstance(v, tuple) else v
 
         return {
-            "run": {"robot": self.run.robot, "motor": self.run.motor,
+            "run": {"robot": self.run.robot, "motor": self.run.table("motor").get("base"),
                     "objective": self.run.objective,
                     "contact": dataclasses.asdict(self.run.contact)},
             "gait": {k: plain(v) for k, v in self.gait.items()},

@@ -9,10 +9,9 @@ from collections.abc import Callable, Mapping
 from typing import Any
 
 from hexaleg.checks import string
-from hexaleg.config import from_mapping
-from hexaleg.design.evaluator import SPRING_PARAMETERS, RunSpec
-from hexaleg.dynamics.contact import ContactParams
+from hexaleg.design.evaluator import SPRING_PARAMETERS
 from hexaleg.errors import ConfigError, UnknownNameError
+from hexaleg.scenario.scenario import Scenario
 from hexaleg.sweep.ranges import axis_values
 from hexaleg.units import deg_to_rad, nmm_per_deg_to_nm_per_rad
 
@@ -31,14 +30,17 @@ GAIT_PARAMETERS: tuple[str, ...] = ("period", "duty_factor", "stride_length", "s
 """Scalar :class:`hexaleg.motion.params.GaitParams` fields a sweep may fix or vary."""
 
 
-def sweep_table(data: Mapping[str, Any], where: str) -> tuple[RunSpec, dict[str, Any]]:
+def sweep_table(data: Mapping[str, Any], where: str) -> tuple[Scenario, dict[str, Any]]:
     """``[sweep]`` and ``[contact]`` → the run and the remaining ``[sweep]`` keys."""
     sweep = dict(data.get("sweep", {}))
     run_keys = {"robot", "motor", "objective"}
     run_table = {k: sweep.pop(k) for k in list(sweep) if k in run_keys}
-    contact = from_mapping(ContactParams, data.get("contact", {}), f"{where} [contact]")
-    run = RunSpec(**{k: string(f"sweep.{k}", v) for k, v in run_table.items()},
-                  contact=contact)
+    named = {k: string(f"sweep.{k}", v) for k, v in run_table.items()}
+    tables = {"contact": data.get("contact", {}),
+              **({"motor": {"base": named["motor"]}} if "motor" in named else {})}
+    run = Scenario.from_tables(named.get("robot", "hexaleg"), tables, where)
+    if "objective" in named:
+        run = run.replace(objective=named["objective"])
     allowed = ("metric", "layout", "chunk_size")
     for key in sweep:
         if key not in allowed:

@@ -11,8 +11,9 @@ import pytest
 
 from hexaleg.commands.options import load_run
 from hexaleg.design.chain.chain import DesignChain
-from hexaleg.design.chain.config import DesignConfig
+from hexaleg.design.chain.config import design_params, design_run
 from hexaleg.errors import ConfigError
+from hexaleg.scenario.scenario import Scenario
 
 TINY = """
 [design]
@@ -24,31 +25,33 @@ families = ["linear"]
 def test_a_motor_table_is_the_designs_actuator(tmp_path):
     path = tmp_path / "m.toml"
     path.write_text('[motor]\nbase = "AX-12A"\nresistance = 9.5\n' + TINY)
-    cfg = DesignConfig.from_scenario(load_run("hexaleg", path))
-    assert cfg.actuator is not None and cfg.actuator.name.startswith("AX-12A")
-    assert cfg.actuator.resistance == 9.5  # the table's override, not the catalogue's value
-    r = DesignChain(cfg).run(stages=("candidates",))
+    chain = DesignChain(load_run("hexaleg", path))
+    actuator = chain.scenario.actuator
+    assert actuator.name.startswith("AX-12A")
+    assert actuator.resistance == 9.5  # the table's override, not the catalogue's value
+    r = chain.run(stages=("candidates",))
     data = json.loads(r.to_json())
-    assert data["actuator"] == cfg.actuator.name
+    assert data["actuator"] == actuator.name
     # the baseline is the AX-12A's: its Joule loss differs from the robot's own AX-18A
-    own = DesignChain(DesignConfig.from_mapping({"design": {"samples": 60,
-                                                            "families": ["linear"]}})
+    own = DesignChain(Scenario.from_tables("hexaleg", {"design": {"samples": 60,
+                                                                  "families": ["linear"]}})
                       ).run(stages=("candidates",))
     assert own.actuator == "AX-18A"
     assert r.baseline["joule"] != pytest.approx(own.baseline["joule"], rel=1e-3)
-    assert DesignConfig.from_mapping({"motor": {"base": "AX-12A"}}).actuator.name == "AX-12A"
+    tables = {"motor": {"base": "AX-12A"}}
+    assert Scenario.from_tables("hexaleg", tables).actuator.name == "AX-12A"
 
 
 def test_the_old_home_warns_and_two_homes_are_refused(tmp_path):
     with pytest.warns(DeprecationWarning, match=r"the actuator's one home is \[motor\]"):
-        cfg = DesignConfig.from_mapping({"design": {"motor": "AX-12A"}})
-    assert cfg.run().actuator().name == "AX-12A"
+        s = Scenario.from_tables("hexaleg", {"design": {"motor": "AX-12A"}})
+        d = design_params(s)
+    assert design_run(s, d).actuator.name == "AX-12A"
     path = tmp_path / "both.toml"
     path.write_text('[motor]\nbase = "AX-12A"\n[design]\nmotor = "AX-12A"\n')
     with pytest.raises(ConfigError, match=r"one home, \[motor\]; remove \[design\] motor"), \
             pytest.warns(DeprecationWarning):
-        DesignConfig.from_scenario(load_run("hexaleg", path))
-
+        design_params(load_run("hexaleg", path))
 
 
 def test_joints_without_a_named_motor_get_the_sourced_band_and_its_saving(design_written):
@@ -59,9 +62,8 @@ def test_joints_without_a_named_motor_get_the_sourced_band_and_its_saving(design
     from pathlib import Path
 
     spider = str(Path(__file__).resolve().parents[2] / "data" / "spider.toml")
-    cfg = DesignConfig.from_mapping({"design": {"samples": 60, "families": ["linear"]}},
-                                    robot=spider)
-    r = DesignChain(cfg).run(stages=("candidates",))
+    scenario = Scenario.from_tables(spider, {"design": {"samples": 60, "families": ["linear"]}})
+    r = DesignChain(scenario).run(stages=("candidates",))
     data = json.loads(r.to_json())
     s = data["sourced"]
     assert s is not None and s["baseline"]["joints"] == s["with_springs"]["joints"]
@@ -81,7 +83,7 @@ def test_joints_without_a_named_motor_get_the_sourced_band_and_its_saving(design
     html = render_design_html({**design_written[0].data, "sourced": s}, defaultdict(str))
     assert f"No motor is named for {len(s['baseline']['joints'])} joints:" in html
     assert "a band on\nsourced constants, not a bound" in html
-    own = DesignChain(DesignConfig.from_mapping({"design": {"samples": 60,
-                                                            "families": ["linear"]}})
+    own = DesignChain(Scenario.from_tables("hexaleg", {"design": {"samples": 60,
+                                                                  "families": ["linear"]}})
                       ).run(stages=("candidates",))
     assert json.loads(own.to_json())["sourced"] is None

@@ -8,18 +8,19 @@ import hexaleg
 from hexaleg.design.chain.candidates import carried, design_family, parsimonious
 from hexaleg.design.chain.config import DesignParams
 from hexaleg.design.chain.groups import design_groups
-from hexaleg.design.evaluator import RunSpec
-from hexaleg.design.robust.conditions import Condition, condition_prepared
+from hexaleg.design.robust.conditions import condition_prepared
 from hexaleg.robot.payload import with_point_masses
+from hexaleg.scenario.condition import Condition
+from hexaleg.scenario.scenario import Scenario
 
-RUN = RunSpec()
-GAIT = RUN.gait({"samples": 100})
+RUN = Scenario.load().with_gait({"samples": 100})
+GAIT = RUN.gait
 OUTER = {"coxa": 0.03, "femur": 0.02, "tibia": 0.02}
 
 
 @pytest.fixture(scope="module")
 def nominal():
-    return condition_prepared(RUN, GAIT, Condition())
+    return condition_prepared(RUN, Condition())
 
 
 def test_net_saving_pays_for_the_springs_mass(robot, nominal):
@@ -31,7 +32,7 @@ def test_net_saving_pays_for_the_springs_mass(robot, nominal):
             masses[j] += p.spring.mass
     assert c.spring_mass == pytest.approx(sum(masses.values()))
     heavy = with_point_masses(robot, masses)
-    p = hexaleg.prepare(heavy, hexaleg.gait(heavy, GAIT), motor=RUN.actuator())
+    p = hexaleg.prepare(heavy, hexaleg.gait(heavy, GAIT), motor=RUN.actuator)
     value = p.evaluate(c.optimum.springs).metrics["total"]["electrical"]
     base = nominal.baseline()["total"]["electrical"]
     assert c.net["electrical"] == pytest.approx((base - value) / base, rel=1e-9)

@@ -9,11 +9,10 @@ import numpy as np
 import pytest
 
 import hexaleg
-from hexaleg.design.evaluator import RunSpec
-from hexaleg.design.robust.conditions import Condition, condition_gait
 from hexaleg.design.springs.torsion_spring import D_STEP
 from hexaleg.robot.payload import with_payload
 from hexaleg.robot.springs import SpringSet
+from hexaleg.scenario.condition import Condition, condition_gait
 
 
 def _fresh(result, condition: Condition | None = None):
@@ -25,7 +24,7 @@ def _fresh(result, condition: Condition | None = None):
     gait = condition_gait(result.gait, condition)
     contact = hexaleg.ContactParams(mu=condition.mu if condition.mu else 0.6)
     return hexaleg.prepare(robot, hexaleg.gait(robot, gait),
-                           motor=RunSpec().actuator(), contact=contact)
+                           motor=hexaleg.Scenario.load().actuator, contact=contact)
 
 
 def test_recommended_saving_equals_a_fresh_evaluation(design_written):
@@ -45,7 +44,7 @@ def test_the_recommendation_is_the_best_simulated_buildable_design(design_writte
     gross + the predicted mass penalty) is the best."""
     r = design_written[0].result
     pool = {id(c) for c in [*r.candidates, *(c for _, c in r.pareto)]}
-    assert r.config.design.controller == "both"
+    assert r.design.controller == "both"
     for controller in ("feedforward", "position"):
         rows = [row for row in r.ranking if row.controller == controller]
         assert [id(row.candidate) for row in rows] == list(dict.fromkeys(
@@ -119,7 +118,7 @@ def test_slope_pattern_map_points_equal_a_fresh_public_analysis(design_written):
         params = r.gait.updated({"pattern": str(mp.values[1][j]),
                                  "slope": float(mp.values[0][i])})
         fresh = hexaleg.prepare(robot, hexaleg.gait(robot, params),
-                                motor=RunSpec().actuator())
+                                motor=hexaleg.Scenario.load().actuator)
         a = fresh.evaluate(r.recommended.optimum.springs, "joule")
         for m in ("electrical", "joule"):
             assert mp.saving[m][i, j] == pytest.approx(a.savings["total"][m], rel=1e-9)
@@ -133,14 +132,15 @@ def test_slope_pattern_map_points_equal_a_fresh_public_analysis(design_written):
 def test_a_map_condition_the_robot_cannot_walk_is_a_cell_not_the_end(design_written):
     """Out of reach (stride ×8) and steeper than the friction holds (40° at μ 0.6): cells with
     their reasons, outside the envelope (NaN), the worst case taken over the others."""
-    from hexaleg.design.chain.config import DesignConfig
+    from hexaleg.design.chain.config import design_params, design_run
     from hexaleg.design.chain.stages import nominal, robustness_maps
 
     r = design_written[0].result
-    cfg = DesignConfig.from_mapping({"gait": {"samples": 120}, "design": {
+    scenario = hexaleg.Scenario.from_tables("hexaleg", {"gait": {"samples": 120}, "design": {
         "samples": 120, "map_period": [1.0], "map_stride": [1.0, 8.0], "map_payload": [0.0],
         "map_mu": [0.6], "map_slope": [0.0, 0.7], "map_pattern": ["wave"]}})
-    maps, worst = robustness_maps(nominal(cfg), r.recommended)
+    d = design_params(scenario)
+    maps, worst = robustness_maps(nominal(design_run(scenario, d), d), r.recommended)
     assert maps[0].status[0, 1].startswith("no gait: GaitReachError: ")
     assert maps[2].status[1, 0].startswith("no gait: InfeasibleForcesError: the ground is "
                                            "inclined by γ = 40.1°")
@@ -238,7 +238,7 @@ def test_the_recommendation_holds_over_its_stops_mounting_error(design_written):
 
     r = design_written[0].result
     t = r.tolerance
-    assert t is not None and t.tolerance == r.config.design.stop_tolerance
+    assert t is not None and t.tolerance == r.design.stop_tolerance
     assert t.worst["tolerant"] > t.worst["blind"]
     rec = r.recommended
     assert t.nominal["tolerant"] == pytest.approx(rec.row["saving.electrical"], rel=1e-9)

@@ -6,18 +6,37 @@ import math
 
 import pytest
 
-from hexaleg.design.chain.config import DesignConfig, DesignParams
+from hexaleg.design.chain.config import DesignParams, design_params, design_run, mission
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+from hexaleg.scenario.scenario import Scenario
+
+
+def _design(tables, robot="hexaleg"):
+    """The design's run and its [design] settings from a parsed document."""
+    s = Scenario.from_tables(robot, tables)
+    d = design_params(s)
+    return design_run(s, d), d
 
 
 def test_defaults_and_the_gait_of_the_robot():
-    c = DesignConfig.from_mapping({"gait": {"period": 1.5}, "design": {"samples": 150}})
-    assert c.gait.period == 1.5 and c.gait.samples == 150
-    assert c.design.deflection_bound == math.pi
+    run, d = _design({"gait": {"period": 1.5}, "design": {"samples": 150}})
+    assert run.gait.period == 1.5 and run.gait.samples == 150
+    assert d.deflection_bound == math.pi
     assert DesignParams(max_deflection="none").deflection_bound is None
     assert DesignParams(max_deflection=3).deflection_bound == 3.0  # an int bound is a bound
-    run = c.design.run("hexaleg", c.contact)
-    assert run.objective == "joule" and run.motor is None  # the robot's own actuator
+    assert run.objective == "joule"
+    own = Scenario.load()
+    assert run.actuator.name == own.actuator.name  # the robot's own actuator
+
+
+def test_the_controller_replaces_the_tables_and_the_mission_is_read():
+    s = Scenario.from_tables("hexaleg", {"design": {"controller": "position"},
+                                         "mission": {"metres_per_fold": 15.0}})
+    assert design_params(s).controller == "position"
+    assert design_params(s, "both").controller == "both"
+    assert mission(s).metres_per_fold == 15.0
+    with pytest.raises(UnknownNameError, match="both"):
+        design_params(s, "torque-ish")
 
 
 @pytest.mark.parametrize(("table", "error", "match"), [
@@ -33,24 +52,23 @@ def test_defaults_and_the_gait_of_the_robot():
 ])
 def test_bad_configuration_is_named(table, error, match):
     with pytest.raises(error, match=match):
-        DesignConfig.from_mapping(table)
+        _design(table)
 
 
 def test_an_unknown_robot_lists_the_registry():
     with pytest.raises(UnknownNameError, match="hexaleg"):
-        DesignConfig.from_mapping({}, robot="atlas")
+        _design({}, robot="atlas")
 
 
 def test_a_design_factor_or_an_arbor_far_out_of_range_is_named():
     """Issue #58: ``[design] safety_factor = 100`` bought 1.7 kg of springs and ``arbor_diameter
     = 5.0`` ended in a motor torque limit; each is now refused by name with what is allowed."""
     from hexaleg.design.chain.chain import DesignChain
-    from hexaleg.design.chain.config import DesignConfig
-    from hexaleg.errors import InvalidParameterError
 
     with pytest.raises(InvalidParameterError, match=r"safety_factor.*1 to 10 .*Shigley"):
-        DesignConfig.from_mapping({"design": {"safety_factor": 100.0}})
-    cfg = DesignConfig.from_mapping({"design": {"arbor_diameter": 5.0, "samples": 60}})
+        _design({"design": {"safety_factor": 100.0}})
+    scenario = Scenario.from_tables("hexaleg", {"design": {"arbor_diameter": 5.0,
+                                                           "samples": 60}})
     with pytest.raises(InvalidParameterError, match=r"arbor_diameter = 5\.0.*< 30 mm, the "
                                                     r"largest spring outer diameter"):
-        DesignChain(cfg).run(stages=("candidates",))
+        DesignChain(scenario).run(stages=("candidates",))

@@ -75,9 +75,8 @@ def test_only_the_servo_the_robot_runs_counts(design_written):
     r = design_written[0].result
     broken = _rows(r, feedforward={"simulated": None, "verdict": "with springs fell"})
     for servo, proven in (("position", True), ("feedforward", False), ("both", False)):
-        cfg = dataclasses.replace(r.config, design=dataclasses.replace(r.config.design,
-                                                                       controller=servo))
-        x = dataclasses.replace(r, config=cfg, simulation=broken)
+        x = dataclasses.replace(r, design=dataclasses.replace(r.design, controller=servo),
+                                simulation=broken)
         assert (x.unproven == "") is proven, servo
         assert [row["controller"] for row in x.simulated()] == (
             ["position"] if servo == "position" else

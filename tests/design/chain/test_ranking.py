@@ -14,7 +14,8 @@ from hexaleg.design.chain.ranking import (
     best_simulated,
     simulate_candidates,
 )
-from hexaleg.design.robust.conditions import Condition, condition_prepared
+from hexaleg.design.robust.conditions import condition_prepared
+from hexaleg.scenario.condition import Condition
 
 
 def _row(candidate, predicted, simulated, net, controller="position"):
@@ -69,8 +70,7 @@ def test_each_candidate_is_simulated_once_beside_one_baseline(design_written):
     design's own proof, simulated separately) to the last digit under the same settings."""
     r = design_written[0].result
     rec = r.recommended
-    prepared = condition_prepared(r.config.design.run(r.config.robot, r.config.contact), r.gait,
-                                  Condition())
+    prepared = condition_prepared(r.run.replace(gait=r.gait), Condition())
     rows = simulate_candidates(prepared, [rec, rec], "feedforward", "electrical")
     assert len(rows) == 1 and rows[0].verdict == "walks"
     ff = r.simulation[0]

@@ -94,7 +94,7 @@ def _reads_back(result, path):
     path.write_text(text)
     back = load_design(path)
     assert dict(back.springs) == dict(result.recommended.optimum.springs)
-    metric = result.config.design.metric
+    metric = result.design.metric
     assert back.metric == metric and back.pays == result.pays
     assert back.saving == pytest.approx(result.recommended.row[f"saving.{metric}"], rel=1e-12)
     return back

@@ -9,17 +9,18 @@ import numpy as np
 
 from hexaleg.design.chain import robust_stage
 from hexaleg.design.chain.chain import DesignChain
-from hexaleg.design.chain.config import DesignConfig
 from hexaleg.design.search import condensed
 from hexaleg.errors import InfeasibleForcesError
+from hexaleg.scenario.scenario import Scenario
 
 BOX = {"families": ["linear"], "samples": 100, "robust_period": [1.0, 1.0],
        "robust_payload": [0.0, 0.0], "robust_mu": [0.6, 0.6]}
 
 
 def test_an_unreachable_corner_is_left_out_and_named():
-    cfg = DesignConfig.from_mapping({"design": {**BOX, "robust_stride": [1.25, 12.0]}})
-    r = DesignChain(cfg).run(stages=("candidates", "robust"))
+    scenario = Scenario.from_tables("hexaleg",
+                                    {"design": {**BOX, "robust_stride": [1.25, 12.0]}})
+    r = DesignChain(scenario).run(stages=("candidates", "robust"))
     assert r.robust is not None
     assert [c.label() for c in r.robust.conditions][1:] == ["stride ×1.25, μ 0.6"]
     note = next(n for n in r.notes if n.startswith("robust box corner"))
@@ -33,8 +34,9 @@ def test_a_failed_robust_program_leaves_no_robust_design_and_a_note(monkeypatch)
                                     "failed)")
 
     monkeypatch.setattr(robust_stage, "robust_springs", fail)
-    cfg = DesignConfig.from_mapping({"design": {**BOX, "robust_stride": [1.0, 1.25]}})
-    r = DesignChain(cfg).run(stages=("candidates", "robust"))
+    scenario = Scenario.from_tables("hexaleg",
+                                    {"design": {**BOX, "robust_stride": [1.0, 1.25]}})
+    r = DesignChain(scenario).run(stages=("candidates", "robust"))
     assert r.robust is None and r.candidates  # the rest of the design stands
     assert any(n.startswith("no robust design: InfeasibleForcesError: the condensed")
                for n in r.notes)
@@ -74,9 +76,9 @@ def test_a_failed_stop_tolerance_design_keeps_the_tolerance_blind_one_and_says_s
                                     "failed)")
 
     monkeypatch.setattr(chain, "stop_tolerance", fail)
-    cfg = DesignConfig.from_mapping({"design": {"families": ["one_sided"], "samples": 100,
-                                                "robustness": False}})
-    r = DesignChain(cfg).run(stages=("candidates", "tolerance"))
+    scenario = Scenario.from_tables("hexaleg", {"design": {
+        "families": ["one_sided"], "samples": 100, "robustness": False}})
+    r = DesignChain(scenario).run(stages=("candidates", "tolerance"))
     assert r.tolerance is None and r.recommended is r.candidates[0]
     assert any(n.startswith("the design for the stops' mounting error (±1°) failed "
                             "(the condensed spring program has no solution")

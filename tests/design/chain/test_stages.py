@@ -6,16 +6,25 @@ import numpy as np
 import pytest
 
 from hexaleg.design.chain.candidates import class_geometry
-from hexaleg.design.chain.config import DesignConfig
+from hexaleg.design.chain.config import DesignParams, design_params, design_run
 from hexaleg.design.chain.robust_stage import corners
-from hexaleg.design.robust.conditions import Condition
+from hexaleg.scenario.condition import Condition
+from hexaleg.scenario.scenario import Scenario
+
+
+def _nominal_of(tables):
+    """The stages' nominal of a parsed document: its run at [design] samples and settings."""
+    from hexaleg.design.chain.stages import nominal
+
+    scenario = Scenario.from_tables("hexaleg", tables)
+    d = design_params(scenario)
+    return nominal(design_run(scenario, d), d)
 
 
 def test_the_robust_box_is_its_corners_and_the_nominal_gait_once():
-    cfg = DesignConfig.from_mapping({"design": {
-        "robust_period": [0.8, 1.25], "robust_stride": [1.0, 1.0],
-        "robust_payload": [0.0, 0.2], "robust_mu": [0.6, 0.6]}})
-    box = corners(cfg)
+    box = corners(DesignParams(
+        robust_period=[0.8, 1.25], robust_stride=[1.0, 1.0],
+        robust_payload=[0.0, 0.2], robust_mu=[0.6, 0.6]))
     assert box[0] == Condition()
     assert len(box) == 1 + 4 and len(set(box)) == len(box)
     assert {(c.period, c.payload) for c in box[1:]} == {(0.8, 0.0), (0.8, 0.2), (1.25, 0.0),
@@ -40,34 +49,30 @@ def test_the_stages_are_timed_in_order(design_written):
 def test_a_max_outer_diameter_for_a_class_the_robot_lacks_is_named():
     """A typo in a [design] max_outer_diameter class was ignored (the springs came out larger
     than asked); now it is an error listing the robot's classes, before anything is prepared."""
-
-    from hexaleg.design.chain.stages import nominal
     from hexaleg.errors import UnknownNameError
 
-    cfg = DesignConfig.from_mapping({"design": {"max_outer_diameter": {"femr": 0.01}}})
     with pytest.raises(UnknownNameError, match="coxa, femur, tibia"):
-        nominal(cfg)
+        _nominal_of({"design": {"max_outer_diameter": {"femr": 0.01}}})
 
 
 def test_families_designed_in_parallel_are_the_ones_designed_in_turn(monkeypatch):
     """The forked workers compute exactly what one process computes: the same magnitudes,
     geometry and savings to the last bit, in the families' order of rank; a robustness map's
     cells too (one of them a gait the robot cannot make)."""
-    from hexaleg.design.chain.stages import family_candidates, nominal
+    from hexaleg.design.chain.stages import family_candidates
     from hexaleg.design.robust.maps import robustness_map
     from hexaleg.parallel import workers
 
     axes = {"period": [0.5, 1.0], "stride": [1.0, 40.0]}
 
-    cfg = DesignConfig.from_mapping({"gait": {"samples": 100}, "design": {
+    nom = _nominal_of({"gait": {"samples": 100}, "design": {
         "samples": 100, "families": ["linear", "one_sided"], "classes": ["femur", "tibia"]}})
-    nom = nominal(cfg)
     said: list[str] = []
     parallel, left_out = family_candidates(nom, lambda name, msg: said.append(name))
     with monkeypatch.context() as m:
         m.setattr(workers, "default_workers", lambda: 1)
         serial, _ = family_candidates(nom, lambda name, msg: None)
-        cells = robustness_map(nom.run, nom.gait, parallel[0].optimum.springs, axes)
+        cells = robustness_map(nom.run, parallel[0].optimum.springs, axes)
     assert sorted(said) == ["family linear", "family one_sided"] and left_out == []
     assert [c.family for c in parallel] == [c.family for c in serial]
     for a, b in zip(parallel, serial, strict=True):
@@ -75,8 +80,7 @@ def test_families_designed_in_parallel_are_the_ones_designed_in_turn(monkeypatch
         assert a.optimum.geometry == b.optimum.geometry
         assert a.row == b.row and a.net == b.net
         assert a.optimum.analysis.robot is nom.robot  # by reference, not a pickled copy
-    forked = robustness_map(nom.run, nom.gait, parallel[0].optimum.springs, axes,
-                            mapper=nom.fork_map)
+    forked = robustness_map(nom.run, parallel[0].optimum.springs, axes, mapper=nom.fork_map)
     assert forked.status.tolist() == cells.status.tolist()
     for metric, saving in cells.saving.items():
         assert np.array_equal(forked.saving[metric], saving, equal_nan=True)

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import hexaleg
 from hexaleg.commands.design.write import design_warnings
-from hexaleg.design.chain.config import DesignConfig
+from hexaleg.design.chain.chain import DesignChain
 from hexaleg.motion.scaling import robot_gait
 from hexaleg.outputs.html import render_design_html
 from hexaleg.robot.registry import description
@@ -22,16 +22,16 @@ SPIDER = str(Path(__file__).resolve().parents[2] / "data" / "spider.toml")
 def test_the_design_run_has_the_warnings_of_its_gait(tmp_path):
     config = tmp_path / "fast.toml"
     config.write_text("[gait]\nperiod = 0.25\nsamples = 40\n")
-    cfg = DesignConfig.from_scenario(Scenario.load(SPIDER, str(config)))
+    run = DesignChain(Scenario.load(SPIDER, str(config))).scenario
     desc = description(SPIDER)
     robot = desc.load()
-    gait = cfg.nominal_gait  # the [gait] table over the sized defaults, the design's samples
+    gait = run.gait  # the [gait] table over the sized defaults, the design's samples
     assert gait.period == 0.25
     assert gait.stride == robot_gait(desc).stride
     expected = run_warnings(robot, hexaleg.gait(robot, gait), desc.actuator(robot),
                             desc=desc, gait=gait)
     assert any(w.startswith("joint_speed") for w in expected)
-    result = types.SimpleNamespace(config=cfg, gait=cfg.nominal_gait, motion=None)  # read
+    result = types.SimpleNamespace(run=run, gait=run.gait, motion=None)  # read
     assert design_warnings(result) == expected  # type: ignore[arg-type]
 
 

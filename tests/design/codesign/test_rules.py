@@ -26,7 +26,7 @@ def test_the_springs_to_buy_are_the_rules_recommendation(ruled):
     assert all(rule in source for rule in RULES)
     assert d.maps == () and d.robust is None and UNMAPPED in d.notes  # not rules: left out
     assert d.tolerance is not None and d.envelope and len(d.envelope) == len(d.fatigue)
-    assert d.config.design.families == ("one_sided",) and d.gait.samples == RULES_SAMPLES
+    assert d.design.families == ("one_sided",) and d.gait.samples == RULES_SAMPLES
 
 
 def test_their_energy_per_metre_is_reproduced(ruled):

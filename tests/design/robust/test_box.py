@@ -5,25 +5,26 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from hexaleg.design.evaluator import RunSpec
 from hexaleg.design.families import family
 from hexaleg.design.robust.box import robust_springs
-from hexaleg.design.robust.conditions import Condition, condition_prepared
+from hexaleg.design.robust.conditions import condition_prepared
 from hexaleg.design.search.optimal import optimal_springs
 from hexaleg.dynamics.energy import saving
 from hexaleg.errors import InvalidParameterError
 from hexaleg.robot.springs import SpringSet
+from hexaleg.scenario.condition import Condition
+from hexaleg.scenario.scenario import Scenario
 
-RUN = RunSpec()
-GAIT = RUN.gait({"samples": 120})
+RUN = Scenario.load().with_gait({"samples": 120})
+GAIT = RUN.gait
 BOX = (Condition(), Condition(period=0.75), Condition(stride=1.25, payload=0.2))
 
 
 @pytest.fixture(scope="module")
 def box():
-    nominal = condition_prepared(RUN, GAIT, Condition())
+    nominal = condition_prepared(RUN, Condition())
     best = optimal_springs(nominal, ["femur", "tibia"], "linear")
-    return nominal, best, [condition_prepared(RUN, GAIT, c) for c in BOX]
+    return nominal, best, [condition_prepared(RUN, c) for c in BOX]
 
 
 def _worst(conditions, springs, metric):
@@ -75,7 +76,7 @@ def test_mean_mode_maximises_the_mean(box):
 
 def test_binding_cones_get_explicit_forces(box):
     nominal, best, _ = box
-    slippery = [nominal, condition_prepared(RUN, GAIT, Condition(mu=0.3))]
+    slippery = [nominal, condition_prepared(RUN, Condition(mu=0.3))]
     r = robust_springs(best, nominal, slippery, "worst", "joule")
     assert r.solver["explicit_samples"][1] > 0
     assert r.solver["path"].startswith("cvxpy")

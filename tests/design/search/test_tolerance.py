@@ -11,12 +11,14 @@ import zlib
 import numpy as np
 import pytest
 
-from hexaleg.design.robust.conditions import Condition, condition_prepared
+from hexaleg.design.robust.conditions import condition_prepared
 from hexaleg.design.search.optimal import optimal_springs
 from hexaleg.design.search.setup import motion_centres
 from hexaleg.design.search.tolerance import TOLERANCE, scenarios, shifted_springs, tolerant_springs
 from hexaleg.dynamics.energy import saving
 from hexaleg.errors import InvalidParameterError
+from hexaleg.scenario.condition import Condition
+from hexaleg.scenario.scenario import Scenario
 
 GROUPS = ["coxa", "femur", "tibia"]
 
@@ -25,10 +27,8 @@ GROUPS = ["coxa", "femur", "tibia"]
 def default():
     """The default design's gait and its one-sided recommendation (the 0.75 torque-bounded
     point, as hexaleg design picks it), and the tolerant design from it."""
-    from hexaleg.design.evaluator import RunSpec
-
-    run = RunSpec(objective="joule")
-    prepared = condition_prepared(run, run.gait({"samples": 200}), Condition())
+    run = Scenario.load()
+    prepared = condition_prepared(run.with_gait({"samples": 200}), Condition())
     free = optimal_springs(prepared, GROUPS, "one_sided", max_deflection=math.pi)
     peak = float(np.abs(free.analysis.tau_spring).max())
     blind = optimal_springs(prepared, GROUPS, "one_sided", max_deflection=math.pi,
@@ -104,14 +104,13 @@ def test_the_certified_worst_case_holds_only_the_problems_that_set_it(monkeypatc
     program over every stop shift to the solver's tolerance — also when it starts from the
     binding problems alone and the left-out ones that set the worst case must join. Tibia
     one-sided springs at μ 0.45, 40 samples: friction binds in some of the five shifts."""
-    from hexaleg.design.evaluator import RunSpec
     from hexaleg.design.search import condensed
     from hexaleg.design.search.bundle import minimise
     from hexaleg.design.search.setup import design_setup
     from hexaleg.dynamics.contact import ContactParams
 
-    run = RunSpec(objective="joule", contact=ContactParams(mu=0.45))
-    prepared = condition_prepared(run, run.gait({"samples": 40}), Condition())
+    run = Scenario.load().replace(contact=ContactParams(mu=0.45))
+    prepared = condition_prepared(run.with_gait({"samples": 40}), Condition())
     setup = design_setup(prepared, {"tibia": "tibia"}, "one_sided", "joule", None, math.pi,
                          "electrical", scenarios(["tibia"], TOLERANCE))
     problems = setup.problems({"tibia": {"contact": 0.18, "side": "below"}})
@@ -166,13 +165,12 @@ def test_the_search_solves_a_scan_in_any_order_and_process_alike():
     map over the cores): solved in forked workers, or in reverse order here, the search ends
     at the same geometry and value, bit for bit, after the same evaluations — and each value
     stays with its own candidate (a map that returned them shuffled would move the optimum)."""
-    from hexaleg.design.evaluator import RunSpec
     from hexaleg.design.search.geometry import search_geometry
     from hexaleg.design.search.setup import design_setup
     from hexaleg.parallel.forked import fork_map
 
-    run = RunSpec(objective="joule")
-    prepared = condition_prepared(run, run.gait({"samples": 40}), Condition())
+    run = Scenario.load()
+    prepared = condition_prepared(run.with_gait({"samples": 40}), Condition())
     setup = design_setup(prepared, {"tibia": "tibia"}, "one_sided", "joule", None, math.pi,
                          "electrical", scenarios(["tibia"], TOLERANCE))
     start = [{"tibia": {"contact": 0.18, "side": "below"}}]
@@ -201,12 +199,11 @@ def test_the_search_is_deaf_to_differences_its_solves_cannot_tell_apart(monkeypa
     another machine's rounding may move it by — leaves the stop-tolerance search of preloaded
     femur and tibia springs where it was: values within ``TIE`` are a tie, kept by the earlier
     candidate."""
-    from hexaleg.design.evaluator import RunSpec
     from hexaleg.design.search import geometry as search
     from hexaleg.design.search.setup import DesignSetup, design_setup
 
-    run = RunSpec(objective="joule")
-    prepared = condition_prepared(run, run.gait({"samples": 40}), Condition())
+    run = Scenario.load()
+    prepared = condition_prepared(run.with_gait({"samples": 40}), Condition())
     setup = design_setup(prepared, {"tibia": "tibia", "femur": "femur"}, "preloaded", "joule",
                          None, math.pi, "electrical",
                          scenarios(["tibia", "femur"], TOLERANCE))

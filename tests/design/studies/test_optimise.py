@@ -8,17 +8,18 @@ import math
 import numpy as np
 import pytest
 
-from hexaleg.design.evaluator import RunSpec, evaluator
+from hexaleg.design.evaluator import evaluator
 from hexaleg.design.studies.optimise import optimise
 from hexaleg.errors import InvalidParameterError
+from hexaleg.scenario.scenario import Scenario
 
-RUN = RunSpec()
+RUN = Scenario.load()
 
 
 def test_optimum_matches_a_fine_grid_minimum():
     """Coxa springs at a 0.5 s period: the optimiser's (k, θ_k) is at least as good as the best of
     a fine 40 × 12 grid over the same box, and lies next to it."""
-    ev = evaluator(RUN, {"samples": 100, "period": 0.5})
+    ev = evaluator(RUN.with_gait({"samples": 100, "period": 0.5}))
     joints = ev.robot.joints("coxa")
     k_bounds, t_bounds = (0.01, 1.0), (0.002, 0.05)
     opt = optimise(ev, "coxa", joints, k_bounds=k_bounds, theta_bounds=t_bounds, grid=(6, 3))
@@ -38,7 +39,7 @@ def test_free_offset_preload_beats_the_centred_design_on_the_tibia():
     """On the slow default gait the tibia motors mostly hold the body up: a centred dead-zone
     spring (zero mean torque over a symmetric motion) can barely help, while a spring whose
     neutral is moved off the motion carries part of that steady load."""
-    ev = evaluator(RUN, {"samples": 100})
+    ev = evaluator(RUN.with_gait({"samples": 100}))
     joints = ev.robot.joints("tibia")
     centred = optimise(ev, "tibia", joints, k_bounds=(0.01, 1.0), grid=(4, 3))
     free = optimise(ev, "tibia", joints, k_bounds=(0.01, 1.0), offset_bounds=(-1.0, 1.0),

@@ -23,7 +23,6 @@ from matplotlib.figure import Figure
 from hexaleg.checks import typed
 from hexaleg.commands.options import say
 from hexaleg.design.chain.chain import DesignChain
-from hexaleg.design.chain.config import DesignConfig
 from hexaleg.design.chain.result import DesignResult, mounting_data
 from hexaleg.design.search.tolerance import TolerantSprings
 from hexaleg.outputs import design_plots, plots
@@ -31,6 +30,7 @@ from hexaleg.outputs.directory import OutputFolder
 from hexaleg.outputs.html import render_design_html
 from hexaleg.outputs.spring_drawing import drawings
 from hexaleg.scenario.run_warnings import gait_defaults, run_warnings
+from hexaleg.scenario.scenario import Scenario
 
 PROGRESS = functools.partial(say, "design")
 """The command's status lines on stderr (``hexaleg design: …``)."""
@@ -49,7 +49,7 @@ def figures(r: DesignResult) -> dict[str, Figure]:
     """The design's figures by name: one heat map per robustness map (``map_<a>_<b>``), the
     Pareto front, the robust design against the nominal one and the saving against a common
     stop shift (``tolerance``: the tolerant and the tolerance-blind design)."""
-    m = r.config.design.metric
+    m = r.design.metric
     out = {f"map_{mp.axes[0]}_{mp.axes[1]}": design_plots.robustness_heatmap(
         mp.axes, _map_values(mp.axes, mp.values), 100 * mp.saving[m], m)
         for mp in r.maps}
@@ -97,24 +97,25 @@ def design_warnings(r: DesignResult) -> tuple[str, ...]:
     with."""
     from hexaleg.motion.legged import gait as make_gait
 
-    cfg = r.config
-    run = cfg.run()
-    robot = run.load()
+    run = r.run
+    robot = run.model
     if r.motion is not None:  # the logged cycle the design was made on, as the chain read it
-        return run_warnings(robot, r.motion, run.actuator())
-    return run_warnings(robot, make_gait(robot, r.gait), run.actuator(),
-                        desc=run.description(), gait=r.gait)
+        return run_warnings(robot, r.motion, run.actuator)
+    return run_warnings(robot, make_gait(robot, r.gait), run.actuator,
+                        desc=run.description, gait=r.gait)
 
 
 @typed
-def write_design(out: str | Path = "hexaleg-design", config: DesignConfig | None = None, *,
-                 progress: Callable[[str], None] | None = PROGRESS
-                 ) -> WrittenDesign:
+def write_design(out: str | Path = "hexaleg-design", scenario: Scenario | None = None, *,
+                 controller: str | None = None,
+                 progress: Callable[[str], None] | None = PROGRESS) -> WrittenDesign:
     """Compute the design and write ``design.json``, ``design.html`` and the plots into ``out``.
 
     Args:
         out: Output directory (created with its parents if missing).
-        config: The configuration (default :class:`DesignConfig`).
+        scenario: The run (default: the built-in robot, its gait, the defaults); its
+            ``[design]`` and ``[mission]`` tables the design's settings.
+        controller: The servo the robot runs over ``[design] controller`` (``--controller``).
         progress: Called with one status line per step (default: print to stderr); None: quiet.
 
     Returns:
@@ -128,18 +129,17 @@ def write_design(out: str | Path = "hexaleg-design", config: DesignConfig | None
     """
     out = Path(out)
     with OutputFolder(out, "design") as folder:  # locked; published whole at the end
-        r = DesignChain(config, progress=progress).run()
+        r = DesignChain(scenario, progress, controller=controller).run()
         names: list[str] = []
         images = {}
         for name, fig in figures(r).items():
             png, written = plots.save(fig, folder.path(f"{name}.png"))
             images[name] = plots.data_uri(png)
             names += [p.name for p in written]
-        cfg = r.config
         svgs = drawings(mounting_data(r))
         extra = {"warnings": list(design_warnings(r)),
-                 "gait_defaults": gait_defaults(cfg.run().description(),
-                                                r.gait if cfg.motion is None else None),
+                 "gait_defaults": gait_defaults(r.run.description,
+                                                r.gait if r.run.log is None else None),
                  "files": sorted([*names, *(f"{n}.svg" for n in svgs), "design.html",
                                   "design.json"])}
         data = r.to_dict(**extra)

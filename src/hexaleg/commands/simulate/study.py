@@ -97,7 +97,7 @@ def load_study(scenario: Scenario, springs: str | Path | None = None,
                                                     if v is not None})
     gait, notes = report.gait, list(report.notes)
     designed = load_design(springs, s.robot) if springs is not None else None
-    if s.motion is not None:
+    if s.recorded is not None:
         if designed is not None and designed.gait is not None:
             notes.append(f"the design file's springs were designed on its own gait "
                          f"({designed.gait.samples} samples per cycle); the logged motion "
@@ -115,7 +115,7 @@ def load_study(scenario: Scenario, springs: str | Path | None = None,
             gait = designed.gait
             notes.append(f"the gait of the design file ({gait.samples} samples per cycle), so "
                          "the prediction is the design's own")
-    played = s.motion if s.motion is not None else tripod_gait(s.model, gait)
+    played = s.recorded if s.recorded is not None else tripod_gait(s.model, gait)
     prepared = prepare(s.model, played, motor=report.motor, contact=report.contact)
     objective = report.report.objective
     if "springs" in s.tables:
@@ -139,9 +139,9 @@ def load_study(scenario: Scenario, springs: str | Path | None = None,
                   f"(optimal_springs, {objective} objective)")
         notes += list(best.notes)
     warned = run_warnings(prepared.robot, played, report.motor, desc=s.description,
-                          gait=gait if s.motion is None else None)
+                          gait=gait if s.recorded is None else None)
     return Study(s.robot, prepared, spring_set, design, settings, objective, tuple(notes),
-                 warned, gait_defaults(s.description, gait if s.motion is None else None))
+                 warned, gait_defaults(s.description, gait if s.recorded is None else None))
 
 
 __all__ = ["DEFAULT_FAMILY", "Study", "load_study"]

@@ -19,7 +19,7 @@ from typing import Any
 
 from hexaleg.design.chain.config import METRICS, DesignParams
 from hexaleg.design.chain.groups import class_of
-from hexaleg.design.evaluator import RunSpec, metric_row
+from hexaleg.design.evaluator import Scenario, metric_row
 from hexaleg.design.families import CONTAINS, Geometry
 from hexaleg.design.search.optimal import OptimalSprings, optimal_springs
 from hexaleg.design.springs.parts import (
@@ -120,15 +120,15 @@ def _optimum(prepared: Prepared, groups: Mapping[str, tuple[str, ...]],
                                  **kw)
 
 
-def arbors(run: RunSpec, groups: Mapping[str, Sequence[str]]) -> dict[str, float]:
+def arbors(run: Scenario, groups: Mapping[str, Sequence[str]]) -> dict[str, float]:
     """Group → the arbor its springs wind on, m (:func:`~hexaleg.design.springs.parts.arbor_for`:
     the description's, the servo's output hub, else the stated rule from the link width)."""
-    robot, desc, motor = run.load(), run.description(), run.actuator()
+    robot, desc, motor = run.model, run.description, run.actuator
     return {g: arbor_for(robot, desc, motor, class_of(robot, tuple(js)))[0]
             for g, js in groups.items()}
 
 
-def carried(run: RunSpec, gait: GaitParams, masses: Mapping[str, float],
+def carried(run: Scenario, gait: GaitParams, masses: Mapping[str, float],
             logged: Motion | None = None) -> Prepared:
     """The nominal gait of the robot carrying ``masses`` (joint → kg) at its joints: the gait
     re-made on the heavier robot, or a logged motion (``--motion``) as it was logged (a log is
@@ -138,13 +138,13 @@ def carried(run: RunSpec, gait: GaitParams, masses: Mapping[str, float],
         HexalegError: the gait or its forces cannot be made with the mass added; the message
             names the gait and the springs' mass, and what was refused.
     """
-    heavy = with_point_masses(run.load(), masses, note="springs' mass at their joints")
+    heavy = with_point_masses(run.model, masses, note="springs' mass at their joints")
     which = (f"the logged motion {logged.info.get('log', '')}" if logged is not None else
              f"the nominal gait (period {gait.period:g} s, stride {gait.stride:g} m, "
              f"{gait.samples} samples)")
     try:
         motion = logged if logged is not None else tripod_gait(heavy, gait)
-        return prepare(heavy, motion, motor=run.actuator(), contact=run.contact)
+        return prepare(heavy, motion, motor=run.actuator, contact=run.contact)
     except HexalegError as e:
         grams = ", ".join(f"{j} {1e3 * m:.1f} g" for j, m in masses.items())
         raise HexalegError(
@@ -153,7 +153,7 @@ def carried(run: RunSpec, gait: GaitParams, masses: Mapping[str, float],
             f"{type(e).__name__}: {e}") from e
 
 
-def candidate(optimum: OptimalSprings, prepared: Prepared, run: RunSpec, gait: GaitParams,
+def candidate(optimum: OptimalSprings, prepared: Prepared, run: Scenario, gait: GaitParams,
               outer: Mapping[str, float], params: DesignParams) -> Candidate:
     """Parts, savings net of the springs' mass and each group's share, of one optimum."""
     options = PartOptions(materials=params.materials, safety_factor=params.safety_factor,
@@ -183,7 +183,7 @@ def candidate(optimum: OptimalSprings, prepared: Prepared, run: RunSpec, gait: G
                      notes=tuple(notes), max_torque=params.max_torque)
 
 
-def design_family(prepared: Prepared, run: RunSpec, gait: GaitParams,
+def design_family(prepared: Prepared, run: Scenario, gait: GaitParams,
                   groups: Mapping[str, tuple[str, ...]],
                   class_groups: Mapping[str, tuple[str, ...]], family: str,
                   params: DesignParams, outer: Mapping[str, float],
@@ -216,7 +216,7 @@ def design_family(prepared: Prepared, run: RunSpec, gait: GaitParams,
                                searched=searched)
 
 
-def parsimonious(prepared: Prepared, run: RunSpec, gait: GaitParams,
+def parsimonious(prepared: Prepared, run: Scenario, gait: GaitParams,
                  groups: Mapping[str, tuple[str, ...]],
                  class_groups: Mapping[str, tuple[str, ...]], family: str,
                  params: DesignParams, outer: Mapping[str, float],

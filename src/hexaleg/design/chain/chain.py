@@ -49,7 +49,8 @@ from collections.abc import Callable, Iterable
 from typing import Any
 
 from hexaleg.design.chain.candidates import Candidate
-from hexaleg.design.chain.config import DesignConfig, DesignParams
+from hexaleg.design.chain.config import DesignParams, design_params, design_run
+from hexaleg.design.chain.config import mission as mission_of
 from hexaleg.design.chain.ranking import Simulated, best_simulated, simulate_candidates, under
 from hexaleg.design.chain.result import MIN_SAVING, DesignResult
 from hexaleg.design.chain.robust_stage import RobustResult, robust_design
@@ -66,7 +67,7 @@ from hexaleg.design.chain.stages import (
     robustness_maps,
     stop_tolerance,
 )
-from hexaleg.design.fold import Fold, fold
+from hexaleg.design.fold import Fold, Mission, fold
 from hexaleg.design.robust.maps import RobustnessMap
 from hexaleg.design.search.tolerance import TolerantSprings
 from hexaleg.design.springs.envelope import PartEnvelope
@@ -93,28 +94,35 @@ class DesignChain:
     it; :meth:`run` returns the :class:`~hexaleg.design.chain.result.DesignResult`.
 
     Args:
-        config: The run (:class:`~hexaleg.scenario.scenario.Scenario`: its ``[design]`` table
-            the design's settings) or a whole configuration
-            (:class:`~hexaleg.design.chain.config.DesignConfig`); default: the built-in robot,
+        scenario: The run (:class:`~hexaleg.scenario.scenario.Scenario`: its ``[design]`` table
+            the design's settings, its ``[mission]`` the fold's); default: the built-in robot,
             its gait, the defaults.
         progress: Called with one status line per stage.
-        design: The design's settings in place of the scenario's ``[design]`` table (only with
-            a scenario).
+        design: The design's settings in place of the scenario's ``[design]`` table.
+        controller: The servo the robot runs over ``[design] controller`` (``--controller``).
+        mission: The mission in place of the scenario's ``[mission]`` table.
+
+    Attributes:
+        scenario: The run the design works on (:func:`~hexaleg.design.chain.config.design_run`: at
+            ``[design] samples``, Joule-optimal forces). design: The ``[design]`` settings.
+        mission: The ``[mission]`` table.
 
     Example:
-        ``DesignChain(config).run(stages=("candidates",))`` is the family optima alone, the
+        ``DesignChain(scenario).run(stages=("candidates",))`` is the family optima alone, the
         recommendation the best predicted buildable one (the report's quick answer).
     """
 
-    def __init__(self, config: DesignConfig | Scenario | None = None,
+    def __init__(self, scenario: Scenario | None = None,
                  progress: Callable[[str], None] | None = None, *,
-                 design: DesignParams | None = None) -> None:
-        if isinstance(config, Scenario):
-            config = DesignConfig.from_scenario(config, design=design)
-        elif design is not None:
-            raise InvalidParameterError("design", design, "settings only with a Scenario (a "
-                                        "DesignConfig carries its own)")
-        self.config = config or DesignConfig()
+                 design: DesignParams | None = None, controller: str | None = None,
+                 mission: Mission | None = None) -> None:
+        if scenario is not None and not isinstance(scenario, Scenario):
+            raise InvalidParameterError("scenario", type(scenario).__name__,
+                                        "a hexaleg.Scenario (Scenario.load(robot, config))")
+        scenario = scenario or Scenario.load()
+        self.design = design_params(scenario, controller, design=design)
+        self.scenario = design_run(scenario, self.design)
+        self.mission = mission if mission is not None else mission_of(scenario)
         self._say = progress or (lambda _msg: None)
         self._done: dict[str, Any] = {}
         self._wanted: tuple[str, ...] = STAGES  # what run() asked for; a stage alone: all
@@ -137,7 +145,7 @@ class DesignChain:
     def nominal(self) -> Nominal:
         """The nominal gait prepared once, the sprung classes, the groups, the fit limits."""
         def compute() -> Nominal:
-            nom = nominal(self.config)
+            nom = nominal(self.scenario, self.design)
             self._step("prepare", f"{nom.robot.name}: gait of {nom.gait.samples} samples "
                        "prepared")
             return nom
@@ -166,7 +174,7 @@ class DesignChain:
         recommendation (the best simulated buildable design; when none walked, the best
         predicted one) and the notes of the ranking."""
         def compute() -> tuple[tuple[Simulated, ...], Candidate, tuple[str, ...]]:
-            d = self.config.design
+            d = self.design
             pool = sorted([*self.candidates(), *(c for _, c in self.pareto()[:-1])],
                           key=lambda c: -rank(c, d.metric))
             rows = simulate_candidates(self.nominal().prepared, pool, d.controller, d.metric)
@@ -199,7 +207,7 @@ class DesignChain:
         """The recommendation designed for its stops' mounting error, and the comparison with
         its tolerance-blind self (None without a tolerance or angles)."""
         def compute() -> tuple[Candidate, TolerantSprings | None]:
-            d = self.config.design
+            d = self.design
             try:
                 rec, tol = stop_tolerance(self.nominal(), self._ranked())
             except HexalegError as err:  # a stage's failure does not end the design
@@ -229,7 +237,7 @@ class DesignChain:
                                tuple[tuple[SpringPart, FatigueCheck], ...], tuple[str, ...]]:
             env, fatigue, notes = envelope_and_fatigue(self.nominal(), self.recommended())
             self._step("envelope", f"{len(env)} parts checked over their whole envelope and "
-                       f"for fatigue at {self.config.design.life_cycles:,.0f} cycles")
+                       f"for fatigue at {self.design.life_cycles:,.0f} cycles")
             return env, fatigue, tuple(notes)
         return self._once("envelope", compute)
 
@@ -245,7 +253,7 @@ class DesignChain:
             walking = (float(a.metrics["total"]["electrical"]) / distance,
                        float(a.baseline["total"]["electrical"]) / distance)
             result = fold(nom.robot, nom.prepared.motor, nom.prepared.contact,
-                          rec.optimum.springs, walking, self.config.mission.metres_per_fold)
+                          rec.optimum.springs, walking, self.mission.metres_per_fold)
             self._step("fold", "no fold: the robot has no stand and sphere poses"
                        if result is None else result.line())
             return result
@@ -254,7 +262,7 @@ class DesignChain:
     def maps(self) -> tuple[tuple[RobustnessMap, ...], dict[str, tuple[float, str]]]:
         """The recommendation over the robustness maps, and each metric's worst case."""
         def compute() -> tuple[tuple[RobustnessMap, ...], dict[str, tuple[float, str]]]:
-            nom, d = self.nominal(), self.config.design
+            nom, d = self.nominal(), self.design
             maps, worst = robustness_maps(nom, self.recommended())
             self._step("maps", f"robustness maps: worst {d.metric} saving "
                        f"{100 * worst[d.metric][0]:+.2f} %" if maps else
@@ -320,7 +328,7 @@ class DesignChain:
 
     def _result(self) -> DesignResult:
         """The result of the stages this chain ran, with its notes."""
-        nom, d, w = self.nominal(), self.config.design, self._wanted
+        nom, d, w = self.nominal(), self.design, self._wanted
         rec = self.recommended()
         rows, _, ranking_notes = self.ranking() if "ranking" in w else ((), rec, ())
         tol = self.tolerance()[1] if "tolerance" in w else None
@@ -338,7 +346,7 @@ class DesignChain:
             "fitting springs does not pay on this robot and gait"]
         mirrored = mirror(nom.robot)
         plausible = check_baseline(nom.prepared.baseline("joule"), nom.robot.mass,
-                                   nom.run.actuator())
+                                   nom.run.actuator)
         flagged = () if plausible is None else (f"baseline energy {plausible.message}",)
         logged = ([LOGGED_SKIP] if nom.motion is not None
                   else [] if d.robustness else [UNMAPPED])
@@ -359,8 +367,8 @@ class DesignChain:
                  f"designed at {nom.gait.samples} samples per cycle (Joule-optimal forces); "
                  + ranked]
         return DesignResult(
-            config=self.config, robot=nom.robot.name, title=nom.desc.title,
-            mass=nom.robot.mass, actuator=nom.run.actuator().name, gait=nom.gait,
+            run=nom.run, design=d, mission=self.mission, robot=nom.robot.name, title=nom.desc.title,
+            mass=nom.robot.mass, actuator=nom.run.actuator.name, gait=nom.gait,
             baseline=nom.baseline, candidates=self.candidates(), recommended=rec,
             outer=nom.outer, pareto=self.pareto() if "pareto" in w else (), maps=maps,
             worst=worst, robust=robust, ranking=rows, tolerance=tol, envelope=env,
@@ -391,7 +399,7 @@ def _whole_draw(nom: Nominal, rec: Candidate) -> WholeDraw | None:
         return None
     base = nom.baseline["electrical"]
     return whole_draw(base * (1.0 - rec.row["saving.electrical"]), base, motion.period,
-                      motion.distance, nom.run.actuator(), nom.robot.nj,
+                      motion.distance, nom.run.actuator, nom.robot.nj,
                       electronics=nom.desc.electronics_power, battery_wh=nom.desc.battery_wh)
 
 

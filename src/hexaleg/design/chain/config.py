@@ -1,13 +1,12 @@
 """The configuration of ``hexaleg design``: the ``[design]`` table and the whole TOML document.
 
-:class:`DesignConfig` reads a file with optional ``[gait]`` (keys over the robot's own gait, as
-``hexaleg report`` does), ``[contact]``, ``[motor]``, ``[design]`` and ``[mission]`` tables; the
-tables other commands read from the same file (:data:`hexaleg.scenario.scenario.TABLES`) are
-checked by their owners (every command checks them all) and not used here. The actuator has one
-home, ``[motor]`` (a catalogue ``base`` with overrides, read as every command reads it); without
-it the robot's own (``RunSpec.actuator()``). ``[design] motor`` (a catalogue name) is deprecated:
-it still works, with a warning saying where it went, and is refused beside ``[motor]``. Every key
-of ``[design]`` is a field of :class:`DesignParams`.
+A design runs on a :class:`~hexaleg.scenario.scenario.Scenario` (the robot, ``[gait]``,
+``[contact]``, ``[motor]``, read once by the scenario) with the ``[design]`` table
+(:class:`DesignParams`, checked here by :func:`design_params`) and the ``[mission]`` table
+(:func:`mission`). The actuator has one home, ``[motor]`` (a catalogue ``base`` with overrides,
+read as every command reads it); without it the robot's own. ``[design] motor`` (a catalogue
+name) is deprecated: it still works, with a warning saying where it went, and is refused beside
+``[motor]``. Every key of ``[design]`` is a field of :class:`DesignParams`.
 """
 
 from __future__ import annotations
@@ -20,23 +19,17 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from hexaleg.checks import integer, is_real, named_arguments, real
-from hexaleg.config import check_tables, from_mapping
-from hexaleg.design.evaluator import DEFAULT_METRIC, RunSpec
+from hexaleg.config import from_mapping
+from hexaleg.design.evaluator import DEFAULT_METRIC
 from hexaleg.design.families import FAMILIES, family
 from hexaleg.design.fold import Mission
 from hexaleg.design.robust.box import MODES
 from hexaleg.design.springs.materials import MATERIALS, material
 from hexaleg.design.springs.torsion_spring import SAFETY_FACTOR
-from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 from hexaleg.motion.limits import MIN_SAMPLES
-from hexaleg.motion.params import GaitParams
 from hexaleg.motion.patterns import PATTERNS
-from hexaleg.motion.scaling import robot_gait
-from hexaleg.motion.trajectory import Motion
-from hexaleg.robot.catalogue import motor_from_mapping
-from hexaleg.robot.motor import Motor
-from hexaleg.scenario.scenario import TABLES as RUN_TABLES
+from hexaleg.robot.catalogue import motor as motor_by_name
 from hexaleg.scenario.scenario import Scenario
 from hexaleg.simulation.controllers import BOTH, SERVOS
 
@@ -79,7 +72,8 @@ class DesignParams:
         metric: The metric the designs are ranked by, one of :data:`METRICS` (default the
             energy the servos draw).
         motor: Deprecated (a catalogue servo on every joint): the actuator's home is the file's
-            ``[motor]`` table (:attr:`DesignConfig.actuator`).
+            ``[motor]`` table (:attr:`Scenario.actuator
+            <hexaleg.scenario.scenario.Scenario.actuator>`).
         samples: Samples per gait cycle of the design and the maps.
         materials: Wire materials (:data:`~hexaleg.design.springs.materials.MATERIALS`).
         safety_factor: Design factor on the wire's bending yield strength, ≥ 1.
@@ -182,7 +176,7 @@ class DesignParams:
         if self.metric not in METRICS:
             raise UnknownNameError("design.metric", self.metric, METRICS)
         if self.motor is not None:
-            RunSpec(motor=self.motor)  # UnknownNameError listing the catalogue
+            motor_by_name(self.motor)  # UnknownNameError listing the catalogue
             warnings.warn(f"[design] motor = {self.motor!r} is deprecated: the actuator's one "
                           f"home is [motor] (write [motor] base = {self.motor!r})",
                           DeprecationWarning, stacklevel=2)
@@ -254,13 +248,6 @@ class DesignParams:
         """:attr:`max_deflection` as a number, or None for no bound."""
         return self.max_deflection if isinstance(self.max_deflection, float) else None
 
-    def run(self, robot: str, contact: ContactParams, actuator: Motor | None = None
-            ) -> RunSpec:
-        """The run of the design: the robot, its actuator (``actuator``, the file's ``[motor]``;
-        else the deprecated :attr:`motor`; else the robot's own), Joule forces."""
-        return RunSpec(robot=robot, motor=actuator if actuator is not None else self.motor,
-                       objective="joule", contact=contact)
-
 
 def _one_home(design: DesignParams, motor: Any, where: str) -> None:
     """Refuse the actuator in two homes: a ``[motor]`` table beside the deprecated ``[design]
@@ -270,106 +257,38 @@ def _one_home(design: DesignParams, motor: Any, where: str) -> None:
                           "the actuator has one home, [motor]; remove [design] motor")
 
 
-@dataclass(frozen=True)
-class DesignConfig:
-    """What ``hexaleg design`` computes from (module docstring).
+def design_params(scenario: Scenario, controller: str | None = None, *,
+                  design: DesignParams | None = None) -> DesignParams:
+    """The design's settings for a run: the file's ``[design]`` table (checked here, its
+    owner) or ``design``, with ``controller`` (``--controller``) over its ``controller``.
 
-    Attributes:
-        robot: A registered robot's name or a robot description TOML.
-        gait: The nominal gait (the robot's, with the file's ``[gait]`` keys on top).
-        contact: Contact settings (``[contact]``).
-        design: The ``[design]`` table.
-        motion: A log of the robot's own gait (``--motion``: the nominal motion is its cycle,
-            :func:`hexaleg.load_motion`; ``[design] samples`` and the gait do not apply), or None.
-        cycle: Which part of the log is the cycle (``"auto"``, ``"whole"``, ``"T0:T1"``:
-            :func:`hexaleg.scenario.logged.logged_motion`).
-        logged: The log's cycle as the run already read it (:attr:`Scenario.motion
-            <hexaleg.scenario.scenario.Scenario.motion>`), or None: the chain reads ``motion``.
-        mission: The ``[mission]`` table (:class:`~hexaleg.design.fold.Mission`): metres
-            walked per fold, which the fold's mission saving weighs.
-        actuator: The file's ``[motor]`` on every joint, or None: the robot's own.
+    Raises:
+        ConfigError, UnknownNameError, InvalidParameterError: a bad ``[design]`` value;
+            ``[design] samples`` with a log (named); ``[design] motor`` beside ``[motor]``.
     """
+    s = scenario
+    table = s.table("design")
+    if s.log is not None and "samples" in table:
+        raise InvalidParameterError(
+            f"{s.where} [design] samples", table["samples"],
+            f"no samples with --motion {s.log}: the logged cycle keeps its own samples; "
+            "remove the key or the --motion option")
+    if design is None:
+        design = from_mapping(DesignParams, table, f"{s.where} [design]")
+    _one_home(design, s.table("motor"), s.where)
+    if controller:
+        design = dataclasses.replace(design, controller=controller)
+    return design
 
-    robot: str = "hexaleg"
-    gait: GaitParams | None = None
-    contact: ContactParams = field(default_factory=ContactParams)
-    design: DesignParams = field(default_factory=DesignParams)
-    motion: str | None = None
-    cycle: str = "auto"
-    logged: Motion | None = field(default=None, compare=False, repr=False)
-    mission: Mission = field(default_factory=Mission)
-    actuator: Motor | None = None
 
-    @classmethod
-    def from_scenario(cls, scenario: Scenario, controller: str | None = None, *,
-                      design: DesignParams | None = None) -> DesignConfig:
-        """The configuration of ``hexaleg design`` for a run: its robot, gait, contact and log,
-        the file's ``[design]`` table or ``design`` (``controller``, ``--controller``, over
-        its ``controller``).
+def design_run(scenario: Scenario, design: DesignParams) -> Scenario:
+    """The run a design works on: ``scenario`` at ``[design] samples`` with Joule-optimal
+    forces, and the deprecated ``[design] motor`` on every joint where it is given (the file's
+    ``[motor]`` beside it is refused by :func:`design_params`)."""
+    run = scenario.with_samples(design.samples).replace(objective="joule")
+    return run if design.motor is None else run.replace(actuator=motor_by_name(design.motor))
 
-        Raises:
-            ConfigError, UnknownNameError, InvalidParameterError: a bad ``[design]`` value;
-                ``[design] samples`` with a log (named).
-        """
-        s = scenario
-        table = s.table("design")
-        if s.log is not None and "samples" in table:
-            raise InvalidParameterError(
-                f"{s.where} [design] samples", table["samples"],
-                f"no samples with --motion {s.log}: the logged cycle keeps its own samples; "
-                "remove the key or the --motion option")
-        if design is None:
-            design = from_mapping(DesignParams, table, f"{s.where} [design]")
-        motor = s.table("motor")
-        _one_home(design, motor, s.where)
-        actuator = s.actuator if motor and isinstance(s.actuator, Motor) else None
-        cfg = cls(robot=s.robot, gait=dataclasses.replace(s.gait, samples=design.samples),
-                  contact=s.contact, design=design, motion=s.log, cycle=s.cycle, logged=s.motion,
-                  mission=from_mapping(Mission, s.table("mission"), f"{s.where} [mission]"),
-                  actuator=actuator)
-        return cfg.with_controller(controller) if controller else cfg
 
-    @classmethod
-    def from_mapping(cls, data: Mapping[str, Any], robot: str = "hexaleg",
-                     where: str = "config") -> DesignConfig:
-        """From a parsed TOML document (all tables optional).
-
-        Raises:
-            UnknownNameError: an unknown table or key (lists the valid ones).
-            ConfigError: a value of the wrong type.
-            InvalidParameterError: a value out of range.
-        """
-        check_tables(data, tuple(RUN_TABLES), where)
-        run = RunSpec(robot=robot)  # UnknownNameError for an unknown robot
-        gait = robot_gait(run.description()).updated(data.get("gait", {}),
-                                                                f"{where} [gait]")
-        contact = from_mapping(ContactParams, data.get("contact", {}), f"{where} [contact]")
-        design = from_mapping(DesignParams, data.get("design", {}), f"{where} [design]")
-        motor = data.get("motor")
-        _one_home(design, motor, where)
-        return cls(robot=robot, gait=dataclasses.replace(gait, samples=design.samples),
-                   contact=contact, design=design,
-                   mission=from_mapping(Mission, data.get("mission", {}), f"{where} [mission]"),
-                   actuator=motor_from_mapping(motor, f"{where} [motor]") if motor else None)
-
-    def run(self) -> RunSpec:
-        """The design's run: the robot, its actuator (:attr:`actuator`, else the deprecated
-        ``[design] motor``, else the robot's own), the contact, Joule-optimal forces."""
-        return self.design.run(self.robot, self.contact, self.actuator)
-
-    def with_controller(self, controller: str) -> DesignConfig:
-        """The same configuration with ``[design] controller`` replaced (``--controller``).
-
-        Raises:
-            UnknownNameError: an unknown controller (lists them).
-        """
-        return dataclasses.replace(self, design=dataclasses.replace(self.design,
-                                                                    controller=controller))
-
-    @property
-    def nominal_gait(self) -> GaitParams:
-        """The nominal gait (the robot's own when none was given)."""
-        if self.gait is not None:
-            return self.gait
-        return dataclasses.replace(RunSpec(robot=self.robot).gait({}),
-                                   samples=self.design.samples)
+def mission(scenario: Scenario) -> Mission:
+    """The run's ``[mission]`` table (:class:`~hexaleg.design.fold.Mission`)."""
+    return from_mapping(Mission, scenario.table("mission"), f"{scenario.where} [mission]")

@@ -22,13 +22,13 @@ from typing import Any
 import numpy as np
 
 from hexaleg.design.chain.candidates import Candidate
-from hexaleg.design.chain.config import DesignConfig
+from hexaleg.design.chain.config import DesignParams
 from hexaleg.design.chain.design_file import gait_parameters
 from hexaleg.design.chain.ranking import Simulated
 from hexaleg.design.chain.robust_stage import RobustResult
 from hexaleg.design.evaluator import SAVING_METRICS
 from hexaleg.design.families import family
-from hexaleg.design.fold import Fold
+from hexaleg.design.fold import Fold, Mission
 from hexaleg.design.robust.maps import RobustnessMap
 from hexaleg.design.search.tolerance import TolerantSprings
 from hexaleg.design.springs.envelope import PartEnvelope
@@ -46,6 +46,7 @@ from hexaleg.dynamics.without_constants import WithoutConstants
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.trajectory import Motion
 from hexaleg.quantities import file_data, json_text, quantity
+from hexaleg.scenario.scenario import Scenario
 from hexaleg.simulation.controllers import controllers_of
 from hexaleg.simulation.run import verdict_meanings
 from hexaleg.simulation.sensitivity import sensitivity_row
@@ -60,7 +61,9 @@ class DesignResult:
     """Everything the design chain found (:class:`~hexaleg.design.chain.chain.DesignChain`).
 
     Attributes:
-        config: The configuration. robot: Its name. title: Its title. mass: kg.
+        run: The run designed on (:class:`~hexaleg.scenario.scenario.Scenario`). design: The
+            ``[design]`` settings. mission: The ``[mission]`` table. robot: Its name. title:
+            Its title. mass: kg.
         actuator: The actuator's name. gait: The nominal gait.
         baseline: Metric totals of the nominal gait without springs (J or N·m).
         candidates: One per family, ranked (best first). recommended: The recommendation: the
@@ -99,7 +102,9 @@ class DesignResult:
             motor is named.
     """
 
-    config: DesignConfig
+    run: Scenario
+    design: DesignParams
+    mission: Mission
     robot: str
     title: str
     mass: float
@@ -144,13 +149,13 @@ class DesignResult:
     @property
     def pays(self) -> bool:
         """Whether the recommended springs save energy net of their own mass."""
-        return bool(self.recommended.net[self.config.design.metric] > MIN_SAVING)
+        return bool(self.recommended.net[self.design.metric] > MIN_SAVING)
 
     def simulated(self) -> list[dict[str, Any]]:
         """The recommendation's simulation rows under the servo the robot runs (``[design]
         controller``: both controllers by default), the worse first: a run that did not walk,
         then the lower simulated saving."""
-        runs = controllers_of(self.config.design.controller)
+        runs = controllers_of(self.design.controller)
         rows = [row for row in self.simulation if row.get("controller") in runs]
         return sorted(rows, key=lambda row: (row["simulated"] is not None,
                                              row["simulated"] or 0.0))
@@ -161,7 +166,7 @@ class DesignResult:
         when one does: the recommendation and the robot without springs both walk
         (:func:`hexaleg.simulation.measures.verdict`) under each controller of ``[design]
         controller``, and the simulated saving is positive under each."""
-        runs = controllers_of(self.config.design.controller)
+        runs = controllers_of(self.design.controller)
         rows = self.simulated()
         if not rows:
             return ("not simulated" + (f" under {' and '.join(runs)}"
@@ -178,7 +183,7 @@ class DesignResult:
     def summary(self) -> str:
         """One line: the recommendation and its saving; "unproven" and why where no simulation
         under the servo the robot runs backs it (:attr:`unproven`)."""
-        r, m = self.recommended, self.config.design.metric
+        r, m = self.recommended, self.design.metric
         why = self.unproven
         head = ("no springs pay here; the best would be" if not self.pays else
                 f"unproven ({why}): the analysis would fit" if why else "fit")
@@ -187,7 +192,7 @@ class DesignResult:
                 f"of {1e3 * r.spring_mass:.1f} g of springs); " + (
                     f"worst case over the maps {100 * self.worst[m][0]:+.2f} % at "
                     f"{self.worst[m][1]}" if self.maps else "no robustness maps ("
-                    + ("logged motion" if self.config.motion is not None else "left out") + ")"))
+                    + ("logged motion" if self.run.log is not None else "left out") + ")"))
         stops = [f"{e.group} ({e.side}) at {math.degrees(e.stop.angle_from_centre):+.1f}° from "
                  f"its centre of motion (S_y/σ {e.safety_factor:.2f} without)"
                  for e in self.envelope if e.stop is not None]
@@ -328,7 +333,7 @@ def gait_data(r: DesignResult) -> dict[str, Any]:
     the cycle's figures and ``motion`` — the log's path, ``--cycle`` and quality figures — in
     place of the parameters, which a log does not have."""
     g = r.gait
-    if r.config.motion is None:
+    if r.run.log is None:
         return {"period": quantity(g.period, "s"), "stride": quantity(g.stride, "m"),
                 "duty_factor": quantity(g.duty_factor, "1"), "samples": g.samples,
                 "parameters": gait_parameters(g)}
@@ -340,7 +345,7 @@ def gait_data(r: DesignResult) -> dict[str, Any]:
             "duty_factor": (None if logged is None
                             else quantity(float(logged.stance.mean()), "1")),
             "samples": g.samples,
-            "motion": {"source": "log", "path": r.config.motion, "cycle": r.config.cycle,
+            "motion": {"source": "log", "path": r.run.log, "cycle": r.run.cycle,
                        "quality": None if logged is None else quality_data(logged)}}
 
 
@@ -365,7 +370,7 @@ def mounting_data(r: DesignResult) -> list[dict[str, Any]]:
 
 def design_data(r: DesignResult) -> dict[str, Any]:
     """The content of ``design.json`` (module docstring)."""
-    d = r.config.design
+    d = r.design
     return {
         "title": f"{r.title}: the spring design",
         "pays": r.pays,
@@ -383,7 +388,7 @@ def design_data(r: DesignResult) -> dict[str, Any]:
             "arbor_diameter": quantity(d.arbor_diameter, "m"),
             "stop_tolerance": quantity(d.stop_tolerance, "rad"),
             "life_cycles": quantity(d.life_cycles, "cycles"),
-            "contact_mu": quantity(r.config.contact.mu, "1"), "controller": d.controller,
+            "contact_mu": quantity(r.run.contact.mu, "1"), "controller": d.controller,
             "min_group_saving": quantity(100 * d.min_group_saving, "%")},
         "baseline": {m: quantity(r.baseline[m], metric_unit(m)) for m in SAVING_METRICS},
         "plausibility": None if r.plausibility is None else r.plausibility.as_dict(),
@@ -429,7 +434,7 @@ def story_data(r: DesignResult) -> list[dict[str, Any]]:
     buy, net of their mass, at worst with the stops off, beyond the tolerance, simulated under
     the worse servo, over the maps and over the robust box (issue #57: five "best springs" for
     one gait, and nowhere said why they differ). Savings of the ranking metric, in %."""
-    m, rec = r.config.design.metric, r.recommended
+    m, rec = r.design.metric, r.recommended
     out: list[dict[str, Any]] = []
 
     def row(figure: str, value: float | None, why: str) -> None:
@@ -514,7 +519,7 @@ def proof_data(r: DesignResult) -> dict[str, Any]:
     means (:func:`hexaleg.simulation.measures.verdict_meanings`)."""
     why = r.unproven
     return {"proven": not why, "why": why or None,
-            "controllers": list(controllers_of(r.config.design.controller)),
+            "controllers": list(controllers_of(r.design.controller)),
             "verdicts": verdict_meanings()}
 
 

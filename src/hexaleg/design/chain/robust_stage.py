@@ -17,12 +17,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from hexaleg.design.chain.candidates import Candidate, candidate
-from hexaleg.design.chain.config import METRICS, DesignConfig
+from hexaleg.design.chain.config import METRICS, DesignParams
 from hexaleg.design.chain.stages import Nominal
 from hexaleg.design.robust.box import RobustSprings, robust_springs
-from hexaleg.design.robust.conditions import Condition, condition_savings, condition_walk
+from hexaleg.design.robust.conditions import condition_savings, condition_walk
 from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import HexalegError, InfeasibleForcesError, TorqueLimitError
+from hexaleg.scenario.condition import Condition
 
 
 @dataclass(frozen=True, eq=False)
@@ -47,9 +48,9 @@ class RobustResult:
         return float(np.min(self.savings[metric][design]))
 
 
-def corners(cfg: DesignConfig) -> tuple[Condition, ...]:
-    """The nominal gait and the corners of the robust box (duplicates once)."""
-    d = cfg.design
+def corners(d: DesignParams) -> tuple[Condition, ...]:
+    """The nominal gait and the corners of the robust box of the ``[design]`` table
+    (duplicates once)."""
     boxes = [sorted(set(b)) for b in (d.robust_period, d.robust_stride, d.robust_payload,
                                       d.robust_mu)]
     out = [Condition()]
@@ -73,11 +74,11 @@ def robust_design(nom: Nominal, rec: Candidate) -> tuple[RobustResult | None, tu
     keys that set it; when no corner is left, or the program fails, there is no robust design
     and a note says why (the candidates, ranking and checks stand).
     """
-    cfg, prepared = nom.config, nom.prepared
-    conditions = corners(cfg)
-    if len(conditions) == 1 or nom.motion is not None or not cfg.design.robustness:
+    d, prepared = nom.design, nom.prepared
+    conditions = corners(d)
+    if len(conditions) == 1 or nom.motion is not None or not d.robustness:
         return None, ()
-    walked = nom.fork_map(lambda c: condition_walk(nom.run, nom.gait, c), conditions)
+    walked = nom.fork_map(lambda c: condition_walk(nom.run, c), conditions)
     kept: list[Condition] = []
     preps: list[Prepared] = []
     notes: list[str] = []
@@ -95,7 +96,6 @@ def robust_design(nom: Nominal, rec: Candidate) -> tuple[RobustResult | None, tu
         preps.append(p)
     if len(kept) == 1:
         return None, (*notes, "no robust design: no corner of the box is left to design for")
-    d = cfg.design
     try:
         design = robust_springs(rec.optimum, prepared, preps, d.robust_mode, d.metric,
                                 max_torque=d.max_torque, max_deflection=d.deflection_bound,

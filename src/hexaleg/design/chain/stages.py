@@ -26,26 +26,22 @@ from hexaleg.design.chain.candidates import (
     class_geometry,
     parsimonious,
 )
-from hexaleg.design.chain.config import METRICS, DesignConfig, DesignParams
+from hexaleg.design.chain.config import METRICS, DesignParams
 from hexaleg.design.chain.groups import (
     class_of,
     design_groups,
     split_by_motion,
     sprung_classes,
 )
-from hexaleg.design.evaluator import RunSpec
 from hexaleg.design.families import Geometry, containment_waves
-from hexaleg.design.robust.conditions import (
-    Condition,
-    condition_prepared,
-)
+from hexaleg.design.robust.conditions import condition_prepared
 from hexaleg.design.robust.maps import RobustnessMap, robot_patterns, robustness_map
 from hexaleg.design.search.optimal import OptimalSprings
 from hexaleg.design.search.tolerance import TolerantSprings, tolerant_springs
 from hexaleg.design.springs.envelope import PartEnvelope, parts_envelope
 from hexaleg.design.springs.fatigue import FatigueCheck, spring_fatigue
 from hexaleg.design.springs.parts import SpringPart, spring_outer_diameter
-from hexaleg.dynamics.prepare import Prepared, prepare
+from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import (
     HexalegError,
     InfeasibleForcesError,
@@ -58,6 +54,8 @@ from hexaleg.parallel.forked import fork_map, robot_objects
 from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.mirror import mirror
 from hexaleg.robot.model import Robot
+from hexaleg.scenario.condition import Condition
+from hexaleg.scenario.scenario import Scenario
 
 T = TypeVar("T")
 R = TypeVar("R")
@@ -68,8 +66,9 @@ class Nominal:
     """What every stage shares: the robot, its nominal gait prepared once, the groups.
 
     Attributes:
-        config: The configuration. run: Robot, actuator, contact. robot: The robot.
-        desc: Its description. gait: The nominal gait. prepared: It, prepared.
+        design: The ``[design]`` table. run: The run (robot, actuator, contact, the nominal
+            gait at ``[design] samples``). robot: The robot. desc: Its description. gait: The
+            nominal gait (a log's: its period and samples). prepared: It, prepared.
         baseline: Metric totals without springs (J or N·m).
         classes: The sprung joint classes. class_groups: Class → joints (where geometries are
             searched). groups: The design groups (``[design] grouping``).
@@ -80,8 +79,8 @@ class Nominal:
             :func:`~hexaleg.design.chain.groups.split_by_motion`).
     """
 
-    config: DesignConfig
-    run: RunSpec
+    design: DesignParams
+    run: Scenario
     robot: Robot
     desc: RobotDescription
     gait: GaitParams
@@ -108,7 +107,7 @@ class Nominal:
         ``like`` only when given (its classes: the others were left unfitted); at ``geometry``
         (class → geometry) when given, else searched (from ``contained``: family → the
         class-level optimum of a family it contains)."""
-        d = self.config.design if params is None else params
+        d = self.design if params is None else params
         groups, classes = self.groups, self.class_groups
         if like is not None:
             groups = {g: js for g, js in groups.items() if g in like.optimum.groups}
@@ -135,24 +134,18 @@ UNMAPPED = ("the robustness maps and the robust design are left out ([design] ro
 """The note of a design without them (``[design] robustness`` false)."""
 
 
-def nominal(cfg: DesignConfig) -> Nominal:
-    """The nominal gait prepared (or the logged motion's cycle, ``cfg.motion``), the sprung
-    classes, the design groups and their fit limits."""
-    d = cfg.design
-    run = cfg.run()
-    robot, desc, gait = run.load(), run.description(), cfg.nominal_gait
+def nominal(run: Scenario, d: DesignParams) -> Nominal:
+    """The nominal gait of ``run`` prepared (or the logged motion's cycle), the sprung classes,
+    the design groups and their fit limits (``d``: the ``[design]`` table)."""
+    robot, desc, gait = run.model, run.description, run.gait
     for kind in d.max_outer_diameter:  # a typo would be ignored and the springs come out larger
         one_of("[design] max_outer_diameter joint class", kind, robot.joint_kinds)
-    motion = None
-    if cfg.motion is not None:  # the run's reading of the log, else read here
-        from hexaleg.scenario.logged import logged_motion
-
-        motion = (cfg.logged if cfg.logged is not None
-                  else logged_motion(robot, cfg.motion, cfg.cycle))
+    motion = run.recorded
+    if motion is not None:  # the log's cycle, as the run read it
         gait = dataclasses.replace(gait, samples=motion.n_samples, period=motion.period)
-        prepared = prepare(robot, motion, motor=run.actuator(), contact=run.contact)
+        prepared = run.prepare()
     else:
-        prepared = condition_prepared(run, gait, Condition())
+        prepared = condition_prepared(run, Condition())
     baseline = {k: float(v) for k, v in prepared.baseline("joule")["total"].items()}
     classes = sprung_classes(robot, d.classes)
     signs = mirror(robot).signs if d.mirror else None
@@ -174,7 +167,7 @@ def nominal(cfg: DesignConfig) -> Nominal:
                 f"< {1e3 * outer[g][0]:.3g} mm, the largest spring outer diameter of {g} "
                 f"({outer[g][1]}): a spring's coil winds around its arbor (0 for the rule of "
                 "docs/design.md)")
-    return Nominal(cfg, run, robot, desc, gait, prepared, baseline, tuple(classes),
+    return Nominal(d, run, robot, desc, gait, prepared, baseline, tuple(classes),
                    class_groups, groups, outer, motion, tuple(split))
 
 
@@ -203,7 +196,7 @@ def family_candidates(nom: Nominal, progress: Callable[[str, str], None]
     Raises:
         HexalegError: every family failed (the first family's own error).
     """
-    d = nom.config.design
+    d = nom.design
     found: dict[str, Candidate] = {}
     failed: dict[str, str] = {}
 
@@ -254,7 +247,7 @@ def per_joint_evidence(nom: Nominal, rec: Candidate) -> str | None:
     A note with both net savings when per joint is ahead by more than
     :data:`PER_JOINT_EVIDENCE`, else None (also for another grouping, or when the per-joint
     program fails: the class design stands)."""
-    d = nom.config.design
+    d = nom.design
     searched = rec.searched if rec.searched is not None else rec.optimum
     classes = {g: js for g, js in nom.class_groups.items() if g in searched.geometry}
     if d.grouping != "class" or not rec.buildable or not classes:
@@ -288,7 +281,7 @@ def pareto_front(nom: Nominal, rec: Candidate) -> list[tuple[float, Candidate]]:
     Returns:
         ``[(fraction, candidate)]`` ascending, the last ``rec`` itself (fraction 1).
     """
-    d = nom.config.design
+    d = nom.design
     peak = float(np.abs(rec.optimum.analysis.tau_spring).max())
     geometry = class_geometry(rec.optimum, nom.class_groups)
     pareto = []
@@ -306,7 +299,7 @@ def stop_tolerance(nom: Nominal, rec: Candidate) -> tuple[Candidate, TolerantSpr
     errors maximised), with its parts, when that keeps more than the tolerance-blind design's
     worst; else ``rec``. The comparison (both designs' nominal and worst savings and curves)
     either way; None without a tolerance or for a family without angles."""
-    d = nom.config.design
+    d = nom.design
     if d.stop_tolerance == 0 or not rec.optimum.geometry or not any(
             rec.optimum.geometry.values()):
         return rec, None
@@ -334,7 +327,7 @@ def envelope_and_fatigue(nom: Nominal, rec: Candidate
     fatigue safety at ``[design] life_cycles``
     (:func:`hexaleg.design.springs.fatigue.spring_fatigue`); notes for a turn the robot cannot
     make."""
-    d = nom.config.design
+    d = nom.design
     parts = [p for p in rec.parts if p.spring is not None]
     joints = sorted({j for p in parts for j in p.joints}, key=nom.robot.column)
     extra, notes = [], []
@@ -365,7 +358,7 @@ def robustness_maps(nom: Nominal, rec: Candidate
     :func:`~hexaleg.design.robust.maps.robot_patterns`), and each metric's worst case
     (saving, its condition's label) over all three; none on a logged motion (NaN worst cases,
     :data:`LOGGED_SKIP`), nor without ``[design] robustness`` (:data:`UNMAPPED`)."""
-    d = nom.config.design
+    d = nom.design
     if nom.motion is not None or not d.robustness:  # LOGGED_SKIP, UNMAPPED
         why = "logged motion" if nom.motion is not None else "[design] robustness = false"
         return (), {m: (float("nan"), f"not mapped ({why})") for m in METRICS}
@@ -376,7 +369,7 @@ def robustness_maps(nom: Nominal, rec: Candidate
         {"payload": d.map_payload, "mu": d.map_mu}]
     if patterns:  # a robot whose leg names do not say side and place has no named pattern
         axes.append({"slope": d.map_slope, "pattern": patterns})
-    maps = tuple(robustness_map(nom.run, nom.gait, springs, a, mapper=nom.fork_map)
+    maps = tuple(robustness_map(nom.run, springs, a, mapper=nom.fork_map)
                  for a in axes)
     worst = {}
     for m in METRICS:

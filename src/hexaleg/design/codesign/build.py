@@ -69,6 +69,7 @@ from hexaleg.parallel.workers import watch_parent
 from hexaleg.robot.model import Robot
 from hexaleg.robot.registry import description
 from hexaleg.robot.springs import SpringSet
+from hexaleg.scenario.scenario import Scenario
 from hexaleg.simulation.controllers import BOTH, SERVOS
 
 SPEED_FACTORS = (0.5, 0.75, 1.0, 1.25, 1.5)
@@ -348,13 +349,14 @@ def full_rules(robot: str, chosen: GaitParams, c: Constraints, say: Callable[[st
     alone cost a minute); its result, or the error's message when it cannot run there (the
     inner springs then stay recommended)."""
     from hexaleg.design.chain.chain import DesignChain
-    from hexaleg.design.chain.config import DesignConfig
 
     params = design if design is not None else rule_params()
     say(f"full spring rules on the chosen gait (hexaleg design: {', '.join(params.families)})")
     try:
-        return DesignChain(DesignConfig(robot=robot, gait=chosen, contact=c.contact(),
-                                        design=params), say).run()
+        # at the chosen gait's sampling: the design's run is its scenario at [design] samples
+        params = dataclasses.replace(params, samples=chosen.samples)
+        run = Scenario.load(robot).replace(gait=chosen, contact=c.contact())
+        return DesignChain(run, say, design=params).run()
     except HexalegError as err:
         say(f"full spring rules failed on the chosen gait: {err}")
         return f"{type(err).__name__}: {err}"

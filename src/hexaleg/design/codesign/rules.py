@@ -49,7 +49,7 @@ def rule_lines(r: DesignResult, stride: float) -> list[str]:
     envelope, hard stop, fatigue safety and arbor clearance), then its simulation under the
     servo the robot runs, the worse first; "unproven" and why where that simulation does not
     back the springs (:attr:`~hexaleg.design.chain.result.DesignResult.unproven`)."""
-    rec, m, d = r.recommended, r.config.design.metric, r.config.design
+    rec, m, d = r.recommended, r.design.metric, r.design
     why = r.unproven
     head = ("no springs pay; the best would be" if not r.pays else
             f"unproven ({why}): springs the analysis would buy" if why else "springs to buy")
@@ -93,7 +93,7 @@ def rule_data(r: DesignResult, stride: float) -> dict[str, Any]:
     stop tolerance, the envelope and hard stops, fatigue, the ranking, the simulation (under the
     servo the robot runs, the worse first) and whether it proves the springs, the
     stages' wall times and the notes."""
-    d = r.config.design
+    d = r.design
     return {
         "applied_to": "the chosen gait only (too slow for the search's inner loop)",
         "rules": list(RULES), "summary": r.summary(), "pays": r.pays,

@@ -21,16 +21,14 @@ table (period or stride) of a dead-zone design.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from hexaleg.checks import real, typed
-from hexaleg.design.evaluator import DEFAULT_METRIC, Design, RunSpec, evaluator
+from hexaleg.design.evaluator import DEFAULT_METRIC, Design, evaluator
 from hexaleg.dynamics.energy import saving
-from hexaleg.dynamics.prepare import Prepared, prepare
+from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import (
     InfeasibleForcesError,
     InvalidParameterError,
@@ -38,19 +36,13 @@ from hexaleg.errors import (
     UnknownNameError,
     UnreachableTargetError,
 )
-from hexaleg.motion.legged import tripod_gait
-from hexaleg.motion.params import GaitParams
-from hexaleg.motion.patterns import check_pattern
-from hexaleg.robot.payload import with_payload
 from hexaleg.robot.springs import SpringSet
+from hexaleg.scenario.condition import Condition, condition_gait, degrees
+from hexaleg.scenario.scenario import Scenario
 
 if TYPE_CHECKING:  # pandas is imported where tables are made: `import hexaleg` stays light
     import pandas as pd
 
-CONDITIONS: tuple[str, ...] = ("period", "stride", "payload", "mu", "slope", "pattern")
-"""What a condition changes: period and stride as factors of the nominal gait's, payload as a
-fraction of the robot's mass, μ absolute, slope (rad) added to the nominal ground's, the pattern
-by name (the only condition whose values are strings)."""
 UNWALKABLE: tuple[type[Exception], ...] = (UnreachableTargetError, InfeasibleForcesError,
                                            InvalidParameterError)
 """Why a condition's gait cannot be made: a foot out of reach (``GaitReachError``), no static
@@ -59,113 +51,9 @@ converge or a ground steeper than the friction holds (``InfeasibleForcesError``,
 :func:`hexaleg.dynamics.contact.check_ground_friction`), a support line a sway cannot cross."""
 
 
-@dataclass(frozen=True)
-class Condition:
-    """One set of operating conditions (module docstring).
-
-    Attributes:
-        period: Factor on the gait period, > 0.
-        stride: Factor on the stride (body travel per cycle), > 0.
-        payload: Payload as a fraction of the robot's mass, ≥ 0.
-        mu: Friction coefficient, > 0; None: the run's.
-        slope: Inclination of the ground along the walking direction, rad, positive uphill,
-            in (−π/2, π/2) as ``GaitParams.slope``; added to the nominal gait's (level by
-            default, where it is the slope itself).
-        pattern: A named gait pattern (:data:`hexaleg.motion.patterns.PATTERNS`) at its own
-            duty factor; None: the nominal gait's legs and duty factor.
-
-    Raises:
-        InvalidParameterError: a value out of range.
-        UnknownNameError: an unknown pattern (lists them).
-    """
-
-    period: float = 1.0
-    stride: float = 1.0
-    payload: float = 0.0
-    mu: float | None = None
-    slope: float = 0.0
-    pattern: str | None = None
-
-    def __post_init__(self) -> None:
-        for name in ("period", "stride"):
-            real(name, getattr(self, name), low=0.0, low_open=True,
-                 allowed="a factor > 0 of the nominal gait's")
-        real("payload", self.payload, low=0.0, allowed="a fraction >= 0 of the robot's mass")
-        if self.mu is not None:
-            real("mu", self.mu, low=0.0, low_open=True, allowed="a friction coefficient > 0")
-        real("slope", self.slope, low=-math.pi / 2, high=math.pi / 2, low_open=True,
-             high_open=True, allowed="an angle in (−π/2, π/2) rad, positive uphill")
-        if self.pattern is not None:
-            check_pattern(self.pattern)
-
-    def label(self) -> str:
-        """Short text, e.g. ``period ×0.5, μ 0.3, slope +15°, wave``; ``nominal`` when nothing
-        changes."""
-        parts = [f"{n} ×{getattr(self, n):g}" for n in ("period", "stride")
-                 if getattr(self, n) != 1.0]
-        if self.payload:
-            parts.append(f"payload {100 * self.payload:g} %")
-        if self.mu is not None:
-            parts.append(f"μ {self.mu:g}")
-        if self.slope:
-            parts.append(f"slope {_degrees(self.slope)}")
-        if self.pattern is not None:
-            parts.append(self.pattern)
-        return ", ".join(parts) or "nominal"
-
-    def short_label(self) -> str:
-        """Compact text for plot ticks: ``P×0.5 S×1 W25% μ0.3 α+15° wave`` (nominal parts left
-        out)."""
-        parts = [f"{k}×{getattr(self, n):g}" for k, n in (("P", "period"), ("S", "stride"))
-                 if getattr(self, n) != 1.0]
-        if self.payload:
-            parts.append(f"W{100 * self.payload:g}%")
-        if self.mu is not None:
-            parts.append(f"μ{self.mu:g}")
-        if self.slope:
-            parts.append(f"α{_degrees(self.slope)}")
-        if self.pattern is not None:
-            parts.append(self.pattern)
-        return " ".join(parts) or "nominal"
-
-
-def _degrees(angle: float) -> str:
-    """``+15°`` for 15° given in rad (rounded to 1e-6°, so radians(7.5) reads 7.5)."""
-    return f"{round(math.degrees(angle), 6):+g}°"
-
-
-def condition_gait(gait: GaitParams, condition: Condition) -> GaitParams:
-    """The nominal gait with the condition's period and stride factors (a gait given by its
-    speed keeps its stride factor: the speed scales by stride / period), its slope added to the
-    gait's, and its pattern with the pattern's own duty factor and nothing else of the nominal
-    legs' timing (``GaitParams.updated({"pattern": …})``).
-
-    Raises:
-        InvalidParameterError: the nominal slope plus the condition's leaves (−π/2, π/2).
-    """
-    speed = None if gait.speed is None else gait.speed * condition.stride / condition.period
-    varied = dataclasses.replace(gait, period=gait.period * condition.period,
-                                 stride_length=gait.stride_length * condition.stride,
-                                 speed=speed, slope=gait.slope + condition.slope)
-    if condition.pattern is not None:
-        varied = varied.updated({"pattern": condition.pattern}, "condition")
-    return varied
-
-
-def _prepared(run: RunSpec, varied: GaitParams, condition: Condition) -> Prepared:
-    """The prepared ``varied`` gait (``condition_gait``) with the condition's payload and μ."""
-    robot = run.load()
-    if condition.payload:
-        robot = with_payload(robot, condition.payload * robot.mass,
-                             note=f"payload {100 * condition.payload:g} % of the robot's mass")
-    motion = tripod_gait(robot, varied)
-    contact = run.contact if condition.mu is None else dataclasses.replace(run.contact,
-                                                                           mu=condition.mu)
-    return prepare(robot, motion, motor=run.actuator(), contact=contact)
-
-
-def condition_prepared(run: RunSpec, gait: GaitParams, condition: Condition) -> Prepared:
-    """The prepared gait of ``condition`` on the run's robot, actuator and contact settings.
+def condition_prepared(run: Scenario, condition: Condition) -> Prepared:
+    """The prepared gait of the run under ``condition`` (:meth:`Scenario.under
+    <hexaleg.scenario.scenario.Scenario.under>`): the run's robot, actuator and contact.
 
     Raises:
         InvalidParameterError: the condition's gait cannot be made (:data:`UNWALKABLE`: a foot
@@ -173,27 +61,27 @@ def condition_prepared(run: RunSpec, gait: GaitParams, condition: Condition) -> 
             condition, the gait's error and what to change), or its slope added to the nominal
             gait's leaves (−π/2, π/2).
     """
-    varied = condition_gait(gait, condition)
+    varied = condition_gait(run.gait, condition)
     try:
-        return _prepared(run, varied, condition)
+        return run.under(condition).prepare()
     except UNWALKABLE as e:
         changed = [n for n in ("period", "stride", "payload", "mu", "slope", "pattern")
                    if getattr(condition, n) != getattr(Condition(), n)]
         raise InvalidParameterError(
             "condition", condition.label(),
             f"a condition whose gait the robot can walk; at {condition.label()} (period "
-            f"{varied.period:g} s, stride {varied.stride:g} m, slope {_degrees(varied.slope)}, "
+            f"{varied.period:g} s, stride {varied.stride:g} m, slope {degrees(varied.slope)}, "
             f"pattern {varied.pattern or 'nominal'}): {type(e).__name__}: {e} — narrow the "
             f"{' and '.join(changed) or 'gait'} range"
         ) from e
 
 
-def condition_walk(run: RunSpec, gait: GaitParams, condition: Condition) -> Prepared | str:
+def condition_walk(run: Scenario, condition: Condition) -> Prepared | str:
     """The prepared gait of ``condition`` (:func:`condition_prepared`), or — where it cannot be
     made (:data:`UNWALKABLE`) — why: ``"no gait: <error>: <message>"``, a map cell outside the
     robot's envelope rather than the end of the design."""
     try:
-        return _prepared(run, condition_gait(gait, condition), condition)
+        return run.under(condition).prepare()
     except UNWALKABLE as e:
         return f"no gait: {type(e).__name__}: {e}"
 
@@ -228,8 +116,8 @@ def condition_savings(prepared: Prepared, springs: SpringSet, objective: str,
 
 
 @typed
-def robustness(run: RunSpec, gait: GaitParams, groups: Mapping[str, Sequence[str]],
-               design: Design, metric: str = DEFAULT_METRIC, *,
+def robustness(run: Scenario, groups: Mapping[str, Sequence[str]], design: Design,
+               metric: str = DEFAULT_METRIC, *,
                factors: Sequence[float] = (0.8, 0.9, 1.0, 1.1, 1.2),
                parameters: Sequence[str] = ("period", "stride_length")) -> pd.DataFrame:
     """Saving of a fixed dead-zone design when the gait's period or amplitude changes.
@@ -238,8 +126,8 @@ def robustness(run: RunSpec, gait: GaitParams, groups: Mapping[str, Sequence[str
     nominal ranges of motion — as a built spring would be; only the gait changes.
 
     Args:
-        run: Robot, motor, objective, contact.
-        gait: The nominal gait (the design was chosen for it).
+        run: The run: robot, actuator, objective, contact and the nominal gait (the design
+            was chosen for it).
         groups: Group → joints.
         design: Group → parameters (e.g. ``{g: optimum.design()}``).
         metric: A key of :data:`~hexaleg.design.evaluator.METRICS`.
@@ -261,16 +149,16 @@ def robustness(run: RunSpec, gait: GaitParams, groups: Mapping[str, Sequence[str
             raise UnknownNameError("robustness parameter", p, ("period", "stride_length"))
     for fct in factors:
         real("factor", fct, low=0.0, low_open=True, allowed="> 0")
-    springs = evaluator(run, dataclasses.asdict(gait)).springs(groups, design)
+    springs = evaluator(run).springs(groups, design)
     rows = []
     for p in parameters:
         for fct in factors:
             cond = (Condition(period=float(fct)) if p == "period"
                     else Condition(stride=float(fct)))
-            r = condition_savings(condition_prepared(run, gait, cond), springs, run.objective,
+            r = condition_savings(condition_prepared(run, cond), springs, run.objective,
                                   (metric,))
             rows.append({"parameter": p, "factor": float(fct),
-                         "gait value": getattr(condition_gait(gait, cond), p),
+                         "gait value": getattr(condition_gait(run.gait, cond), p),
                          "value": r[metric], "baseline": r[f"baseline.{metric}"],
                          "saving": r[f"saving.{metric}"], "status": r["status"]})
     return pd.DataFrame(rows)

@@ -20,18 +20,15 @@ from typing import Any
 import numpy as np
 
 from hexaleg.checks import finite_array, one_of, typed
-from hexaleg.design.evaluator import DEFAULT_METRIC, RunSpec
-from hexaleg.design.robust.conditions import (
-    CONDITIONS,
-    Condition,
-    condition_savings,
-    condition_walk,
-)
+from hexaleg.design.evaluator import DEFAULT_METRIC
+from hexaleg.design.robust.conditions import condition_savings, condition_walk
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.patterns import PATTERNS, leg_offsets, pattern_offsets
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
+from hexaleg.scenario.condition import CONDITIONS, Condition
+from hexaleg.scenario.scenario import Scenario
 
 METRICS: tuple[str, ...] = (DEFAULT_METRIC, "joule")
 """Metrics a map records (the saving of each)."""
@@ -55,7 +52,7 @@ class RobustnessMap:
     """A frozen design's savings over a grid of two conditions.
 
     Attributes:
-        axes: The two conditions mapped (of :data:`~hexaleg.design.robust.conditions.CONDITIONS`).
+        axes: The two conditions mapped (of :data:`~hexaleg.scenario.condition.CONDITIONS`).
         values: Their values, shapes (n₁,) and (n₂,): floats (factors; payload a fraction; μ;
             slope in rad), or for the ``pattern`` axis an object array of pattern names (str).
         saving: Metric → saving per cell, shape (n₁, n₂), fraction (NaN outside the envelope,
@@ -152,12 +149,12 @@ def _in_turn(fn: Callable[[Condition], Cell], conditions: Sequence[Condition]) -
     return [fn(c) for c in conditions]
 
 
-def map_cell(run: RunSpec, gait: GaitParams, springs: SpringSet, condition: Condition,
+def map_cell(run: Scenario, springs: SpringSet, condition: Condition,
              metrics: Sequence[str] = METRICS) -> Cell:
     """One cell: the condition's gait prepared afresh and the frozen ``springs`` on it (NaN
     savings where the gait cannot be made or has no baseline, −∞ where only the springs make
     it infeasible; module docstring)."""
-    prepared = condition_walk(run, gait, condition)
+    prepared = condition_walk(run, condition)
     if isinstance(prepared, str):
         return prepared, {m: float("nan") for m in metrics}
     r = condition_savings(prepared, springs, run.objective, metrics)
@@ -166,15 +163,15 @@ def map_cell(run: RunSpec, gait: GaitParams, springs: SpringSet, condition: Cond
 
 
 @typed
-def robustness_map(run: RunSpec, gait: GaitParams, springs: SpringSet,
+def robustness_map(run: Scenario, springs: SpringSet,
                    axes: Mapping[str, Sequence[float] | Sequence[str]],
                    metrics: Sequence[str] = METRICS, mapper: Mapper | None = None
                    ) -> RobustnessMap:
     """The saving of frozen ``springs`` over a grid of two conditions (module docstring).
 
     Args:
-        run: Robot, actuator, force objective, contact (the nominal conditions).
-        gait: The nominal gait.
+        run: The run: robot, actuator, force objective, contact and the nominal gait (the
+            nominal conditions).
         springs: The frozen springs (absolute angles).
         axes: Two conditions → their values, e.g. ``{"period": [0.5, 1, 2], "stride": [...]}``
             or ``{"slope": [-0.26, 0, 0.26], "pattern": ["tripod", "wave"]}`` (period and
@@ -187,7 +184,7 @@ def robustness_map(run: RunSpec, gait: GaitParams, springs: SpringSet,
         The map; a condition the robot cannot walk is a cell with its reason (``"no gait: …"``).
 
     Raises:
-        UnknownNameError: an axis not in :data:`~hexaleg.design.robust.conditions.CONDITIONS`, or an
+        UnknownNameError: an axis not in :data:`~hexaleg.scenario.condition.CONDITIONS`, or an
             unknown pattern (lists them).
         InvalidParameterError: not two axes, an axis without values, a value out of range, a
             pattern for other legs than the robot's (lists those that fit).
@@ -196,9 +193,9 @@ def robustness_map(run: RunSpec, gait: GaitParams, springs: SpringSet,
     for name, values in ((a, va), (b, vb)):
         if name == "pattern":
             for p in values:
-                pattern_offsets(p, run.load().leg_names)
+                pattern_offsets(p, run.model.leg_names)
     conditions = [_condition({a: x, b: y}) for x in va for y in vb]
-    cells = (mapper or _in_turn)(lambda c: map_cell(run, gait, springs, c, metrics), conditions)
+    cells = (mapper or _in_turn)(lambda c: map_cell(run, springs, c, metrics), conditions)
     out = {m: np.array([s[m] for _, s in cells]).reshape(va.size, vb.size) for m in metrics}
     status = np.array([st for st, _ in cells], dtype=object).reshape(va.size, vb.size)
     return RobustnessMap(axes=(a, b), values=(va, vb), saving=out, status=status)
