@@ -38,13 +38,13 @@ CONFIGS = {
     "quad4dof crawl": '[gait]\npattern = "crawl"\n',
 }
 """Case → its config file's text (the robot's defaults otherwise)."""
-CODESIGN_CONFIGS = {"quad2dof bound": "[codesign.constraints]\nmu = 1.5\n",
+CODESIGN_CONFIGS = {"quad2dof bound": "[contact]\nmu = 1.5\n",
                     "xquad crawl": '[codesign]\npattern = "crawl"\n',
                     "quad4dof crawl": '[codesign]\npattern = "crawl"\n'}
-"""Case → its config for codesign, which searches the gait itself (and refuses [gait] and
-[contact]: the solo12 crawl case shows it). The bound's μ is 1.5: codesign plans within 0.7 of
-the cone (friction_margin), 1.05, what the bound needs (at μ 1.0 the chosen gait needed 0.707 of
-its 0.7 at the rows' sampling, a named refusal)."""
+"""Case → its config for codesign, which searches the gait itself (and refuses [gait]: the
+solo12 crawl case shows it; its floor is [contact]). The bound's μ is 1.5: codesign plans within
+0.7 of the cone (friction_margin), 1.05, what the bound needs (at μ 1.0 the chosen gait needed
+0.707 of its 0.7 at the rows' sampling, a named refusal)."""
 QUICK = '[gait]\nsamples = 60\n[report]\nstiffness_points = 3\npaper_samples = 8\n'
 """What the report's tests add to a case's config (fewer samples: the suite's time)."""
 CASES = {**ROBOTS, "quad2dof bound": ROBOTS["quad2dof"], "xquad crawl": ROBOTS["xquad"],

@@ -281,9 +281,10 @@ class ReportConfig:
         Raises:
             ConfigError, UnknownNameError, InvalidParameterError: a bad table (named).
         """
-        s = scenario
+        s = scenario  # its gait, contact and actuator as the run read them, not re-parsed
         config = dataclasses.replace(cls.for_robot(s.description, s.model, s.tables, s.where),
-                                     robot=s.robot)
+                                     robot=s.robot, gait=s.gait, contact=s.contact,
+                                     motor=s.actuator)
         if s.recorded is None:
             return config
         return dataclasses.replace(config, motion=s.recorded,

@@ -52,10 +52,10 @@ from hexaleg.scenario.run_warnings import run_warnings
 TABLES: dict[str, str] = {
     "gait": "every command but codesign (which searches the gait): keys over the robot's own "
             "gait (docs/gaits.md)",
-    "contact": "every command but codesign ([codesign.constraints] mu): friction and contact "
-               "settings",
-    "motor": "report, simulate, view, design: one servo on every joint instead of the robot's "
-             "own",
+    "contact": "every command: friction and contact settings (codesign reads mu and "
+               "torque_limits, its floor, and refuses the others by name)",
+    "motor": "report, simulate, view, design, codesign, sweep: one servo on every joint instead "
+             "of the robot's own",
     "payload": "report: a payload on the base",
     "springs": "report: the springs the report analyses",
     "report": "report: what the report shows",

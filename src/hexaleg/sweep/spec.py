@@ -36,7 +36,7 @@ from hexaleg.sweep.spec_tables import (
 
 LAYOUTS: tuple[str, ...] = ("product", "each")
 """How spring groups combine: every combination of all groups' values, or one group at a time."""
-SECTIONS: tuple[str, ...] = ("sweep", "gait", "springs", "contact", "optimal")
+SECTIONS: tuple[str, ...] = ("sweep", "gait", "springs", "contact", "motor", "optimal")
 """Top-level tables of a sweep spec file."""
 
 

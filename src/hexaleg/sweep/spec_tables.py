@@ -5,6 +5,7 @@ and combines them."""
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable, Mapping
 from typing import Any
 
@@ -31,13 +32,30 @@ GAIT_PARAMETERS: tuple[str, ...] = ("period", "duty_factor", "stride_length", "s
 
 
 def sweep_table(data: Mapping[str, Any], where: str) -> tuple[Scenario, dict[str, Any]]:
-    """``[sweep]`` and ``[contact]`` → the run and the remaining ``[sweep]`` keys."""
+    """``[sweep]``, ``[contact]`` and ``[motor]`` → the run and the remaining ``[sweep]`` keys.
+
+    The actuator's one home is ``[motor]``, as in every command; ``[sweep] motor`` (a catalogue
+    name) still works, deprecated with a warning saying where it went, and is refused beside
+    ``[motor]``.
+
+    Raises:
+        ConfigError: ``[sweep] motor`` beside a ``[motor]`` table.
+        UnknownNameError: an unknown key, robot or motor (lists the valid ones).
+    """
     sweep = dict(data.get("sweep", {}))
     run_keys = {"robot", "motor", "objective"}
     run_table = {k: sweep.pop(k) for k in list(sweep) if k in run_keys}
     named = {k: string(f"sweep.{k}", v) for k, v in run_table.items()}
-    tables = {"contact": data.get("contact", {}),
-              **({"motor": {"base": named["motor"]}} if "motor" in named else {})}
+    motor = data.get("motor")
+    if "motor" in named:
+        if motor is not None:
+            raise ConfigError(f"{where} [sweep] motor = {named['motor']!r} beside a [motor] "
+                              "table: the actuator has one home, [motor]; remove [sweep] motor")
+        warnings.warn(f"{where} [sweep] motor = {named['motor']!r} is deprecated: the "
+                      f"actuator's one home is [motor] (write [motor] base = "
+                      f"{named['motor']!r})", DeprecationWarning, stacklevel=2)
+        motor = {"base": named["motor"]}
+    tables = {"contact": data.get("contact", {}), **({"motor": motor} if motor else {})}
     run = Scenario.from_tables(named.get("robot", "hexaleg"), tables, where)
     if "objective" in named:
         run = run.replace(objective=named["objective"])

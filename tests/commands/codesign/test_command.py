@@ -118,11 +118,40 @@ def test_a_pattern_for_other_legs_is_named_not_the_speed(tmp_path, capsys):
 
 
 def test_tables_codesign_does_not_read_are_refused(tmp_path, capsys):
-    """[gait], [contact] and [motor] were silently ignored by codesign: refused, with where the
-    setting goes."""
+    """[gait] was silently ignored by codesign: refused, with where the setting goes; so is a
+    [contact] key its force programs do not plan with."""
     config = tmp_path / "c.toml"
-    config.write_text("[contact]\nmu = 1.0\n")
+    config.write_text('[gait]\nperiod = 2.0\n')
     assert main(["codesign", "--config", str(config), "--out", str(tmp_path / "out")]) == 2
     err = capsys.readouterr().err
-    assert "[contact]: hexaleg codesign does not read it" in err
-    assert "[codesign.constraints] mu" in err and not (tmp_path / "out").exists()
+    assert "[gait]: hexaleg codesign does not read it" in err and "--speed" in err
+    config.write_text('[contact]\ncone = "pyramid"\n')
+    assert main(["codesign", "--config", str(config), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert "[contact] cone: hexaleg codesign plans its forces with the defaults" in err
+    assert not (tmp_path / "out").exists()
+
+
+def test_the_floor_and_the_actuator_have_one_home(tmp_path):
+    """Issue #53: codesign ignored [contact] and [motor]. Its floor is [contact] mu and
+    torque_limits; [codesign.constraints] mu is deprecated and refused beside it; its
+    actuator is [motor]."""
+    from hexaleg.config import load_toml
+    from hexaleg.scenario.scenario import Scenario
+
+    def run(text):
+        config = tmp_path / "c.toml"
+        config.write_text(text)
+        tables = load_toml(config)
+        return Scenario.from_tables("hexaleg", tables, str(config)), tables
+
+    s, tables = run("[contact]\nmu = 0.45\n[motor]\nbase = \"AX-12A\"\n")
+    kwargs = codesign_settings(tables.get("codesign", {}), "[codesign]", s)
+    assert kwargs["constraints"].mu == 0.45 and s.actuator.name == "AX-12A"
+    s, tables = run("[codesign.constraints]\nmu = 0.45\n")
+    with pytest.warns(DeprecationWarning, match=r"\[contact\] mu = 0.45"):
+        kwargs = codesign_settings(tables["codesign"], "[codesign]", s)
+    assert kwargs["constraints"].mu == 0.45
+    s, tables = run("[contact]\nmu = 0.5\n[codesign.constraints]\nmu = 0.45\n")
+    with pytest.raises(ConfigError, match="the floor has one home, \\[contact\\]"):
+        codesign_settings(tables["codesign"], "[codesign]", s)

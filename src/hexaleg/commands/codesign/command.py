@@ -44,9 +44,6 @@ def add(sub: argparse._SubParsersAction) -> None:
 IGNORED = {
     "gait": "it searches the gait itself: set its pattern and speed in [codesign] (pattern, "
             "speed) or on the command line (--pattern, --speed)",
-    "contact": "the friction it designs for is [codesign.constraints] mu",
-    "motor": "it uses the robot's own actuators (name a catalogue motor in the robot's "
-             "description)",
 }
 """Tables of a config file that other commands read and codesign would ignore: refused, with
 where their settings go."""
@@ -64,13 +61,14 @@ def run(args: argparse.Namespace) -> int:
         if scenario.tables.get(table):
             raise ConfigError(f"{scenario.where} [{table}]: hexaleg codesign does not read it "
                               f"— {instead}")
-    kwargs = codesign_settings(scenario.table("codesign"), f"{scenario.where} [codesign]")
+    kwargs = codesign_settings(scenario.table("codesign"), f"{scenario.where} [codesign]",
+                               scenario)
     for key in ("speed", "pattern", "controller"):
         if getattr(args, key) is not None:
             kwargs[key] = getattr(args, key)
     if args.rules is not None:
         kwargs["rules"] = args.rules
-    result, files = write_codesign(args.out, robot=args.robot,
+    result, files = write_codesign(args.out, robot=scenario,
                                    progress=progress_of(args, "codesign"), **kwargs)
     print(result.summary())
     print(f"wrote {len(files)} files to {args.out}; open {args.out}/codesign.html")

@@ -34,6 +34,7 @@ import dataclasses
 import functools
 import os
 import time
+import warnings
 from collections.abc import Callable
 from typing import Any
 
@@ -67,7 +68,6 @@ from hexaleg.motion.scaling import robot_gait
 from hexaleg.parallel.forked import fork_map, robot_objects
 from hexaleg.parallel.workers import watch_parent
 from hexaleg.robot.model import Robot
-from hexaleg.robot.registry import description
 from hexaleg.robot.springs import SpringSet
 from hexaleg.scenario.scenario import Scenario
 from hexaleg.simulation.controllers import BOTH, SERVOS
@@ -111,7 +111,7 @@ def default_gait(robot: Robot, name: str, speed: float, pattern: str | None, sam
 
 
 @typed
-def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = None, *,
+def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: str | None = None, *,
              constraints: Constraints | None = None, family: str = "linear",
              samples: int = 100, final_samples: int = 200, max_evaluations: int = 200,
              restarts: int = RESTARTS, grouping: str = "class", curve: bool = True,
@@ -122,7 +122,10 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
     (module docstring).
 
     Args:
-        robot: A registered robot or a description TOML.
+        robot: The run (:class:`~hexaleg.scenario.scenario.Scenario`: its robot, its
+            actuators — ``[motor]``, else the robot's own — and its floor, ``[contact]``,
+            whose ``mu`` and ``torque_limits`` are the constraints'), or a registered robot or
+            a description TOML (its own actuators, the default floor).
         speed: Required speed, m/s, > 0.
         pattern: A gait pattern (:data:`hexaleg.motion.patterns.PATTERNS`); None: the robot's.
         constraints: The constraints (default :class:`Constraints`: the default gait's margin).
@@ -158,14 +161,14 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
     v = real("speed", speed, low=0.0, low_open=True, allowed="a speed > 0 (m/s)")
     n = integer("samples", samples, low=40, high=2000)
     n_final = integer("final_samples", final_samples, low=n, high=5000)
-    c = constraints or Constraints()
+    run = robot if isinstance(robot, Scenario) else Scenario.load(robot)
+    c = constraints or floor_constraints(run)
     family = one_of("[codesign] family", family, FAMILIES)
     say = progress or (lambda _msg: None)
     t0 = time.perf_counter()
-    desc = description(robot)
-    model = desc.load()
-    motor = desc.actuator(model)  # the robot's own, as hexaleg design uses
-    base = default_gait(model, robot, v, pattern, n)
+    model = run.model
+    motor = run.actuator  # [motor], else the robot's own, as hexaleg design uses
+    base = default_gait(model, run.robot, v, pattern, n)
     groups = design_groups(model, tuple(model.joint_classes),
                            one_of("grouping", grouping, ("class", "mirrored", "joint")))
     free = functools.partial(evaluate_gait, model, family=family, constraints=c, motor=motor)
@@ -197,7 +200,7 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
         say(f"servo check: {len(finalists)} finalists simulated under {under(servo)}: "
             + (f"chose finalist {finalists.index(pick) + 1}, {pick.worst:.2f} J/m simulated"
                if pick is not None else "none walked, the search's best kept"))
-    ruled = started(robot, chosen, c, say, design) if rules else None
+    ruled = started(run, chosen, c, say, design) if rules else None
     try:
         alone = search(functools.partial(free, groups=None), base, v, space, springs=False,
                        reference=first.per_metre, max_evaluations=max_evaluations,
@@ -230,7 +233,7 @@ def codesign(robot: str = "hexaleg", speed: float = 0.06, pattern: str | None = 
         simulation = simulated(model, chosen, bought, c, motor) if simulate else {}
         floors = over_floors(model, chosen, motor, bought, c.torque_limits)
         return CodesignResult(
-            robot=robot, title=model.name, mass=model.mass, speed=v, pattern=base.pattern,
+            robot=run.robot, title=model.name, mass=model.mass, speed=v, pattern=base.pattern,
             family=family, constraints=c, default=dataclasses.replace(base, samples=n_final),
             chosen=chosen, springs=c_sprung.springs, measures=c_sprung.measures,
             inner_saving=1.0 - c_sprung.sprung / c_sprung.baseline, rows=rows,
@@ -292,10 +295,10 @@ def _send(run: Callable[[], Any], pipe: Any, parent: int) -> None:
         pipe.close()
 
 
-def started(robot: str, chosen: GaitParams, c: Constraints, say: Callable[[str], None],
+def started(run: Scenario, chosen: GaitParams, c: Constraints, say: Callable[[str], None],
             design: DesignParams | None) -> Background:
     """:func:`full_rules` on the chosen gait, started beside the co-design's remaining work."""
-    return Background(functools.partial(full_rules, robot, chosen, c, say, design))
+    return Background(functools.partial(full_rules, run, chosen, c, say, design))
 
 
 def speed_curve(free: Callable[..., GaitPoint], groups: Groups, base: GaitParams,
@@ -340,7 +343,7 @@ def simulated(robot: Robot, chosen: GaitParams, springs: SpringSet, c: Constrain
             "feedback": sim.with_springs.feedback}
 
 
-def full_rules(robot: str, chosen: GaitParams, c: Constraints, say: Callable[[str], None],
+def full_rules(run: Scenario, chosen: GaitParams, c: Constraints, say: Callable[[str], None],
                design: DesignParams | None = None) -> Any:
     """``hexaleg design`` (every rule of issue #30: parsimony, stop tolerance, envelope and hard
     stop, fatigue, arbor, the simulated ranking) on the chosen gait at its sampling, with
@@ -355,8 +358,8 @@ def full_rules(robot: str, chosen: GaitParams, c: Constraints, say: Callable[[st
     try:
         # at the chosen gait's sampling: the design's run is its scenario at [design] samples
         params = dataclasses.replace(params, samples=chosen.samples)
-        run = Scenario.load(robot).replace(gait=chosen, contact=c.contact())
-        return DesignChain(run, say, design=params).run()
+        return DesignChain(run.replace(gait=chosen, contact=c.contact()), say,
+                           design=params).run()
     except HexalegError as err:
         say(f"full spring rules failed on the chosen gait: {err}")
         return f"{type(err).__name__}: {err}"
@@ -368,12 +371,31 @@ CODESIGN_KEYS = ("speed", "pattern", "family", "samples", "final_samples", "max_
 """The keys of a ``[codesign]`` table: :func:`codesign`'s keywords."""
 
 
-def codesign_settings(table: Any, where: str = "[codesign]") -> dict[str, Any]:
-    """The keywords of :func:`codesign` a ``[codesign]`` table gives, checked.
+FLOOR_KEYS: tuple[str, ...] = ("mu", "torque_limits")
+"""The ``[contact]`` keys the co-design's constraints take (:func:`floor_constraints`); the
+others plan every force program at their defaults, so a ``[contact]`` that sets them is
+refused by name (:func:`codesign_settings`)."""
+
+
+def floor_constraints(run: Scenario) -> Constraints:
+    """The default constraints on the run's floor: ``[contact]`` ``mu`` and ``torque_limits``
+    (the friction's one home)."""
+    return Constraints(mu=run.contact.mu, torque_limits=run.contact.torque_limits)
+
+
+def codesign_settings(table: Any, where: str = "[codesign]",
+                      run: Scenario | None = None) -> dict[str, Any]:
+    """The keywords of :func:`codesign` a ``[codesign]`` table gives, checked, on the floor of
+    ``run`` (its ``[contact]``: :func:`floor_constraints`).
+
+    ``[codesign.constraints] mu`` and ``torque_limits`` are deprecated: the floor's one home is
+    ``[contact]``; they still work with a warning and are refused beside ``[contact]``'s.
 
     Raises:
         ConfigError: not a table, a value of the wrong type (checked against
-            :func:`codesign`'s annotations, as ``[design]`` against its dataclass).
+            :func:`codesign`'s annotations, as ``[design]`` against its dataclass); a floor
+            key in both ``[contact]`` and ``[codesign.constraints]``; a ``[contact]`` key the
+            co-design does not plan with.
         UnknownNameError: a key that is not in :data:`CODESIGN_KEYS` or not a constraint
             (lists them).
     """
@@ -381,9 +403,28 @@ def codesign_settings(table: Any, where: str = "[codesign]") -> dict[str, Any]:
         raise ConfigError(f"{where} must be a table, got {table!r}")
     plain = {k: v for k, v in table.items() if k not in ("constraints", "design")}
     out = {**table, **keywords(codesign, plain, where, CODESIGN_KEYS)}
-    if "constraints" in out:
-        out["constraints"] = from_mapping(Constraints, out["constraints"],
-                                          f"{where[:-1]}.constraints]")
+    contact = run.table("contact") if run is not None else {}
+    unplanned = sorted(set(contact) - set(FLOOR_KEYS))
+    if run is not None and unplanned:
+        raise ConfigError(f"{run.where} [contact] {', '.join(unplanned)}: hexaleg codesign "
+                          f"plans its forces with the defaults of these; it reads "
+                          f"{' and '.join(FLOOR_KEYS)} from [contact] (remove the others)")
+    if "constraints" in out or run is not None:
+        where_c = f"{where[:-1]}.constraints]"
+        given = out.get("constraints", {})
+        if not isinstance(given, dict):
+            raise ConfigError(f"{where_c} must be a table, got {given!r}")
+        for key in FLOOR_KEYS:
+            if key in given and key in contact:
+                raise ConfigError(f"{where_c} {key} beside [contact] {key}: the floor has one "
+                                  f"home, [contact]; remove the [codesign.constraints] {key}")
+            if key in given:
+                warnings.warn(f"{where_c} {key} is deprecated: the floor's one home is "
+                              f"[contact] (write [contact] {key} = {given[key]!r})",
+                              DeprecationWarning, stacklevel=2)
+        floor = {} if run is None else {"mu": run.contact.mu,
+                                        "torque_limits": run.contact.torque_limits}
+        out["constraints"] = from_mapping(Constraints, {**floor, **given}, where_c)
     if "design" in out:
         if not isinstance(out["design"], dict):
             raise ConfigError(f"{where[:-1]}.design] must be a table")
@@ -394,6 +435,6 @@ def codesign_settings(table: Any, where: str = "[codesign]") -> dict[str, Any]:
     return out
 
 
-__all__ = ["CODESIGN_KEYS", "RULE_FAMILIES", "SPEED_FACTORS", "Background", "codesign",
-           "codesign_settings", "default_gait", "full_rules", "rule_params", "simulated",
-           "speed_curve", "started"]
+__all__ = ["CODESIGN_KEYS", "FLOOR_KEYS", "RULE_FAMILIES", "SPEED_FACTORS", "Background",
+           "codesign", "codesign_settings", "default_gait", "floor_constraints", "full_rules",
+           "rule_params", "simulated", "speed_curve", "started"]
