@@ -36,6 +36,11 @@ Feedback = Callable[[float, np.ndarray, np.ndarray, np.ndarray], np.ndarray]
 held until its next update (:meth:`hexaleg.simulation.balance.Balance.correction`)."""
 MAX_STEPS = 5_000_000
 """Steps a run may take (a bound: a long run is an error, never a hang)."""
+CHUNK = 0.25
+"""s: an open-loop run steps in chunks of this much simulated time and stops after the chunk in
+which the base fell (a fallen robot's contacts with the ground cost up to 5× a walking step's,
+and its rows are cut anyway); the chunks carry MuJoCo's warm start, so the steps are the
+one-call rollout's to the bit (``tests/simulation/test_stepping.py``)."""
 
 
 @dataclass(frozen=True)
@@ -127,13 +132,9 @@ def run(sim: SimModel, controls: np.ndarray, qpos0: np.ndarray, qvel0: np.ndarra
     data.qpos[:], data.qvel[:] = qpos0, qvel0
     ctrl = np.zeros((n, m.nu))
     ctrl[:, :nj] = controls
-    if feedback is not None:
-        qpos, qvel, sensors = closed_loop(sim, data, ctrl, feedback, every, height)
-        controls = ctrl[:, :nj]
-    elif sim.springs.native:
-        qpos, qvel, sensors = _rollout(m, data, ctrl)
-    else:
-        qpos, qvel, sensors = _python_loop(sim, data, ctrl)
+    chunk = every if feedback is not None else max(1, round(CHUNK / m.opt.timestep))
+    qpos, qvel, sensors = closed_loop(sim, data, ctrl, feedback, chunk, height)
+    controls = ctrl[:, :nj]
     stopped = n
     message = ""
     bad_acc = int(data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number)
@@ -156,28 +157,10 @@ def run(sim: SimModel, controls: np.ndarray, qpos0: np.ndarray, qvel0: np.ndarra
                       controls=controls[:stopped], verdict=verdict, message=message)
 
 
-def _rollout(m: object, data: object, ctrl: np.ndarray
-             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """MuJoCo's rollout: pre-step states and their sensors."""
-    import mujoco
-    import mujoco.rollout
-
-    assert isinstance(m, mujoco.MjModel) and isinstance(data, mujoco.MjData)
-    spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
-    state0 = np.zeros(mujoco.mj_stateSize(m, spec))
-    mujoco.mj_getState(m, data, state0, spec)
-    state, sensordata = mujoco.rollout.rollout(m, data, state0[None], ctrl[None])
-    state, sensordata = state[0], sensordata[0]
-    nq, nv = m.nq, m.nv
-    after_q, after_v = state[:, 1:1 + nq], state[:, 1 + nq:1 + nq + nv]
-    qpos = np.concatenate([state0[None, 1:1 + nq], after_q[:-1]])
-    qvel = np.concatenate([state0[None, 1 + nq:1 + nq + nv], after_v[:-1]])
-    return qpos, qvel, sensordata
-
-
 def _python_loop(sim: SimModel, data: object, ctrl: np.ndarray
                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The same as :func:`_rollout`, step by step, with the non-native spring torques."""
+    """Pre-step states and their sensors, step by step, with the non-native spring torques
+    (what MuJoCo's rollout records, :func:`closed_loop`)."""
     import mujoco
 
     m = sim.model
@@ -198,15 +181,16 @@ def _python_loop(sim: SimModel, data: object, ctrl: np.ndarray
     return qpos, qvel, sensors
 
 
-def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedback, every: int,
-                height: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The same as :func:`_rollout` with ``feedback`` closing the loop every ``every`` steps:
-    at each update the state and the foot sites (``mj_kinematics``) are read, the controls of the
-    next ``every`` steps move by the feedback's change (``ctrl`` is updated in place: the
-    controls applied), and MuJoCo's rollout (or the Python loop, for non-native springs) runs
-    them, its constraint warm start carried over. A base that has fallen below half its height
-    or diverged stops the loop (the rest of the rows repeat its last state, as
-    :func:`_python_loop` leaves a diverged run)."""
+def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedback | None,
+                every: int, height: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Pre-step states and their sensors, ``every`` steps at a time: with ``feedback`` closing
+    the loop at each chunk's start — the state and the foot sites (``mj_kinematics``) are
+    read, the controls of the next ``every`` steps move by the feedback's change (``ctrl`` is
+    updated in place: the controls applied) — or open loop without. MuJoCo's rollout (or the
+    Python loop, for non-native springs) runs each chunk, its constraint warm start carried
+    over. A base that has fallen (below :data:`FALL_HEIGHT` of its height, or rolled or pitched
+    beyond :data:`FALL_TILT`) or diverged stops the loop (the rest of the rows repeat its last
+    state, as :func:`_python_loop` leaves a diverged run)."""
     import mujoco
     import mujoco.rollout
 
@@ -226,10 +210,11 @@ def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedbac
     k = 0
     while k < n:
         mujoco.mj_setState(m, data, state, spec)
-        mujoco.mj_kinematics(m, data)
         end = min(n, k + every)
-        ctrl[k:end, :nj] += feedback(k * m.opt.timestep, data.qpos.copy(), data.qvel.copy(),
-                                     data.site_xpos[sites].copy())
+        if feedback is not None:
+            mujoco.mj_kinematics(m, data)
+            ctrl[k:end, :nj] += feedback(k * m.opt.timestep, data.qpos.copy(), data.qvel.copy(),
+                                         data.site_xpos[sites].copy())
         if sim.springs.native:
             warm = data.qacc_warmstart.copy()
             if roller is not None:  # outputs written in place, no checks: the shapes are ours
@@ -252,7 +237,9 @@ def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedbac
             mujoco.mj_getState(m, data, state, spec)
         k = end
         z = state[3]
-        if not (np.all(np.isfinite(state)) and z >= FALL_HEIGHT * height) or \
+        roll, pitch = tilt(state[1:1 + nq])
+        if not (np.all(np.isfinite(state)) and z >= FALL_HEIGHT * height
+                and abs(roll) <= FALL_TILT and abs(pitch) <= FALL_TILT) or \
                 data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number:
             qpos[k:], qvel[k:], sensors[k:] = qpos[k - 1], qvel[k - 1], sensors[k - 1]
             break
