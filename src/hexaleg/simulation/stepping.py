@@ -85,12 +85,18 @@ def tilt(qpos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return roll, pitch
 
 
+def _fallen(qpos: np.ndarray, height: float) -> np.ndarray:
+    """Whether the base has fallen or diverged at each row of ``qpos`` (n, nq_mj), (n,) bool."""
+    roll, pitch = tilt(qpos)
+    return ~np.all(np.isfinite(qpos), axis=1) | (qpos[:, 2] < FALL_HEIGHT * height) | \
+        (np.abs(roll) > FALL_TILT) | (np.abs(pitch) > FALL_TILT)
+
+
 def _fall(qpos: np.ndarray, height: float, t: np.ndarray) -> tuple[int, str]:
     """The first step at which the base has fallen (and how), or (n, '')."""
     roll, pitch = tilt(qpos)
     z = qpos[:, 2]
-    bad = ~np.all(np.isfinite(qpos), axis=1) | (z < FALL_HEIGHT * height) | \
-        (np.abs(roll) > FALL_TILT) | (np.abs(pitch) > FALL_TILT)
+    bad = _fallen(qpos, height)
     if not bad.any():
         return len(qpos), ""
     k = int(np.argmax(bad))
@@ -189,8 +195,9 @@ def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedbac
     updated in place: the controls applied) — or open loop without. MuJoCo's rollout (or the
     Python loop, for non-native springs) runs each chunk, its constraint warm start carried
     over. A base that has fallen (below :data:`FALL_HEIGHT` of its height, or rolled or pitched
-    beyond :data:`FALL_TILT`) or diverged stops the loop (the rest of the rows repeat its last
-    state, as :func:`_python_loop` leaves a diverged run)."""
+    beyond :data:`FALL_TILT`, in a row the chunk recorded: :func:`run` then finds it there) or
+    diverged stops the loop (the rest of the rows repeat its last state, as
+    :func:`_python_loop` leaves a diverged run)."""
     import mujoco
     import mujoco.rollout
 
@@ -235,11 +242,8 @@ def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedbac
             q, v, sd = _python_loop(sim, data, ctrl[k:end])
             qpos[k:end], qvel[k:end], sensors[k:end] = q, v, sd
             mujoco.mj_getState(m, data, state, spec)
-        k = end
-        z = state[3]
-        roll, pitch = tilt(state[1:1 + nq])
-        if not (np.all(np.isfinite(state)) and z >= FALL_HEIGHT * height
-                and abs(roll) <= FALL_TILT and abs(pitch) <= FALL_TILT) or \
+        first, k = k, end
+        if _fallen(qpos[first:k], height).any() or not np.all(np.isfinite(state)) or \
                 data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number:
             qpos[k:], qvel[k:], sensors[k:] = qpos[k - 1], qvel[k - 1], sensors[k - 1]
             break
