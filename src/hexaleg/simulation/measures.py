@@ -288,6 +288,12 @@ class PointFoot:
         """``e^{ω₀ T}``: how much an error grows over the stand."""
         return float(np.exp(self.omega * self.duration))
 
+    @property
+    def reason(self) -> str:
+        """Why balance feedback without foot placement cannot hold it, in one clause."""
+        return (f"on one point foot for {self.duration:.3g} s, an inverted pendulum (an error "
+                f"×{self.growth:.3g}) that feedback without foot placement cannot hold")
+
 
 def point_foot(sim: SimModel, motion: Motion) -> PointFoot | None:
     """The longest stand of ``motion`` on one foot (cyclic), or None where it never stands on

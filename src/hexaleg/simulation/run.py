@@ -186,6 +186,9 @@ class Run:
         feedback: Whether the balance controller ran (:mod:`hexaleg.simulation.balance`).
         constrained: Of its updates, the fraction at which a friction cone bound the force
             correction (0 open loop).
+        reason: Why it fell in one clause where the gait alone explains it (a stand on one
+            point foot that the balance controller ran on: :class:`~hexaleg.simulation.
+            measures.PointFoot`), else "".
     """
 
     name: str
@@ -201,6 +204,7 @@ class Run:
     feedback: bool = False
     constrained: float = 0.0
     cpu: float = 0.0
+    reason: str = ""
 
     @property
     def walks(self) -> bool:
@@ -364,9 +368,11 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
     wall, cpu = time.perf_counter() - start, time.thread_time() - cpu
     bound = controller.constrained / max(controller.updates, 1) if controller else 0.0
     if traj.verdict == "fell":
-        return Run(name, sim, traj, traj.verdict,
-                   f"{traj.message}; {measures.fall_cause(sim, motion, traj, feedback)}",
-                   wall=wall, feedback=feedback, constrained=bound, cpu=cpu)
+        cause = measures.fall_cause(sim, motion, traj, feedback)
+        one = measures.point_foot(sim, motion) if feedback else None
+        return Run(name, sim, traj, traj.verdict, f"{traj.message}; {cause}", wall=wall,
+                   feedback=feedback, constrained=bound, cpu=cpu,
+                   reason=one.reason if one is not None and "point foot" in cause else "")
     if traj.verdict != "ran":
         return Run(name, sim, traj, traj.verdict, traj.message, wall=wall, feedback=feedback,
                    constrained=bound, cpu=cpu)
