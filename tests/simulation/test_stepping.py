@@ -216,3 +216,19 @@ def test_switching_off_island_discovery_leaves_the_states_bitwise_equal(prepared
     _, a, b = _run_against_a_variant(prepared, search, 0.5)
     np.testing.assert_array_equal(a.qpos, b.qpos)
     np.testing.assert_array_equal(a.servo, b.servo)
+
+
+def test_the_closed_loops_scalar_fall_check_is_the_runs(prepared):
+    """The closed loop asks at each update, in scalars, whether the base fell (stepping._down);
+    it must judge a state as the run's verdict does (stepping._fallen): random bases, tilted
+    and upright, high and low, a non-finite one."""
+    rng = np.random.default_rng(7)
+    height = 0.09
+    for i in range(3000):
+        q = np.zeros(prepared.robot.model.nq)
+        q[2] = rng.uniform(0.0, 2 * height)
+        q[3:7] = rng.normal(size=4) if i % 2 else np.r_[1.0, 0.6 * rng.normal(size=3)]
+        q[3:7] *= rng.uniform(0.5, 2.0)  # not normalised: both normalise
+        assert stepping._down(q, height) == bool(stepping._fallen(q[None], height)[0]), q[:7]
+    q[2] = np.nan
+    assert stepping._down(q, height) and stepping._fallen(q[None], height)[0]

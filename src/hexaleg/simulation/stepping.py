@@ -17,6 +17,7 @@ the arrays then end there, never with NaN.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -90,6 +91,21 @@ def _fallen(qpos: np.ndarray, height: float) -> np.ndarray:
     roll, pitch = tilt(qpos)
     return ~np.all(np.isfinite(qpos), axis=1) | (qpos[:, 2] < FALL_HEIGHT * height) | \
         (np.abs(roll) > FALL_TILT) | (np.abs(pitch) > FALL_TILT)
+
+
+def _down(qpos: np.ndarray, height: float) -> bool:
+    """Whether the base of one MuJoCo configuration (nq_mj,) has fallen or diverged, as
+    :func:`_fallen` judges a row, in scalars (a closed loop asks it at each update): roll and
+    pitch from the quaternion's third rotation row, ``R₂ = (2(xz − wy), 2(yz + wx),
+    1 − 2(x² + y²))`` of the unit quaternion (w, x, y, z)."""
+    z, w, x, y, k = (float(v) for v in qpos[2:7])
+    norm = math.sqrt(w * w + x * x + y * y + k * k)
+    if not (math.isfinite(z) and math.isfinite(norm) and norm > 0):
+        return True
+    w, x, y, k = w / norm, x / norm, y / norm, k / norm
+    roll = math.atan2(2 * (y * k + w * x), 1 - 2 * (x * x + y * y))
+    pitch = math.asin(min(1.0, max(-1.0, -2 * (x * k - w * y))))
+    return z < FALL_HEIGHT * height or abs(roll) > FALL_TILT or abs(pitch) > FALL_TILT
 
 
 def _fall(qpos: np.ndarray, height: float, t: np.ndarray) -> tuple[int, str]:
@@ -243,7 +259,8 @@ def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedbac
             qpos[k:end], qvel[k:end], sensors[k:end] = q, v, sd
             mujoco.mj_getState(m, data, state, spec)
         first, k = k, end
-        if _fallen(qpos[first:k], height).any() or not np.all(np.isfinite(state)) or \
+        if (_down(qpos[k - 1], height) and _fallen(qpos[first:k], height).any()) or \
+                not np.all(np.isfinite(state)) or \
                 data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number:
             qpos[k:], qvel[k:], sensors[k:] = qpos[k - 1], qvel[k - 1], sensors[k - 1]
             break
