@@ -2,17 +2,19 @@
 
 The servos' controls are a function of time only (:mod:`hexaleg.simulation.controllers`), so
 a run is an open-loop control sequence. When the springs are all native
-(:attr:`hexaleg.simulation.springs.SpringPlan.native`) the whole run is one call of
-:func:`mujoco.rollout.rollout` (MuJoCo's C loop: ``mj_step`` then copy the state and the
-sensors); otherwise a Python loop does the same with the non-native spring torques added to
-``qfrc_applied`` before each step. Both record, per step k, the state *before* the step (at
-``t_k = k dt``) and the sensors of that state (MuJoCo computes them in ``mj_forward`` before it
-integrates), so the recorded servo torque ``τ_k`` acts over ``[t_k, t_{k+1}]`` at the recorded
-speed ``q̇_k`` — the rectangle rule of the symplectic-Euler step.
+(:attr:`hexaleg.simulation.springs.SpringPlan.native`) it runs in MuJoCo's rollout (its C loop:
+``mj_step`` then copy the state and the sensors), a chunk of :data:`CHUNK` at a time (or of the
+balance controller's period, closed loop: :func:`closed_loop`) with the warm start carried, so
+the steps are one call's to the bit; otherwise a Python loop does the same with the non-native
+spring torques added to ``qfrc_applied`` before each step. Both record, per step k, the state
+*before* the step (at ``t_k = k dt``) and the sensors of that state (MuJoCo computes them in
+``mj_forward`` before it integrates), so the recorded servo torque ``τ_k`` acts over
+``[t_k, t_{k+1}]`` at the recorded speed ``q̇_k`` — the rectangle rule of the symplectic-Euler
+step.
 
 A run stops early, with its verdict, when MuJoCo flags a bad acceleration (a diverged state), or
 when the base falls (:data:`FALL_HEIGHT` of the planned height, :data:`FALL_TILT` roll or pitch):
-the arrays then end there, never with NaN.
+the arrays then end there, never with NaN; the stepping stops after the chunk in which it fell.
 """
 
 from __future__ import annotations
