@@ -67,3 +67,32 @@ def test_a_gait_in_place_is_judged_by_tracking_alone():
     assert measures.verdict(_walked(0.0, 0.05), 0.0) == ("walks", "")
     verdict, message = measures.verdict(_walked(0.0, 0.2), 0.0)
     assert verdict == "untracked" and "200 mrad" in message and "planned" not in message
+
+
+def test_a_stand_on_one_point_foot_is_an_inverted_pendulum(prepared):
+    """point_foot: the longest run of samples on one and the same foot, counted across the
+    cycle's end, and ω₀ = √(g/h) with h the centre of mass over that foot (Kajita et al. 2001);
+    a foot handing over to another foot ends a stand; a gait never on one foot has none."""
+    import dataclasses
+
+    import pinocchio as pin
+
+    from hexaleg.simulation.model import build_model
+    from hexaleg.units import G
+
+    motion = prepared.motion
+    sim = build_model(prepared.robot, motion, prepared.motor, check=False)
+    assert measures.point_foot(sim, motion) is None  # a tripod: three feet at every sample
+    n = motion.n_samples
+    stance = np.ones((n, len(prepared.robot.legs)), dtype=bool)
+    stance[:30] = stance[-20:] = False  # one foot (LF) over the cycle's end: 50 samples
+    stance[:30, 0] = stance[-20:, 0] = True
+    stance[100:140] = False  # another foot (RF) for 25 samples, then LF for 15: two stands
+    stance[100:125, 3] = stance[125:140, 0] = True
+    one = measures.point_foot(sim, dataclasses.replace(motion, stance=stance))
+    assert one is not None and one.duration == pytest.approx(50 * motion.dt, rel=1e-12)
+    model = prepared.robot.model
+    height = pin.centerOfMass(model, model.createData(), motion.q[0])[2] - motion.feet[0, 0, 2]
+    assert one.height == pytest.approx(height, rel=1e-12)
+    assert one.omega == pytest.approx(np.sqrt(G / height), rel=1e-12)
+    assert one.growth == pytest.approx(np.exp(one.omega * 50 * motion.dt), rel=1e-12)

@@ -115,3 +115,22 @@ def test_timestep_must_undercut_the_gait_and_stay_stable(prepared):
                     ground=Ground(stiffness=1e7, damping=3e3))
     with pytest.raises(InvalidParameterError, match="timestep"):
         build_model(robot, motion, motor, timestep=-1.0)
+
+
+def test_a_model_built_like_another_is_the_same_model(sim, prepared, optimal):
+    """``build_model(..., like=)`` takes another model's bodies and ground contacts instead of
+    working them out again: the document it compiles is the one built from scratch, character
+    for character (so the model is the same), for other springs and another timestep; a model of
+    another servo or ground is refused, never silently reused."""
+    from hexaleg.simulation.controllers import Servo
+
+    p = prepared
+    kwargs = {"springs": optimal.springs, "timestep": TIMESTEP / 2}
+    scratch = build_model(p.robot, p.motion, p.motor, **kwargs)
+    like = build_model(p.robot, p.motion, p.motor, like=sim, **kwargs)
+    assert like.xml == scratch.xml and like.notes == scratch.notes
+    assert like.contacts == sim.contacts and like.contacts.count("<pair") >= len(p.robot.legs)
+    assert like.springs.native and like.timestep == TIMESTEP / 2
+    for other in ({"servo": Servo("position")}, {"ground": Ground(mu=0.3)}):
+        with pytest.raises(InvalidParameterError, match="like"):
+            build_model(p.robot, p.motion, p.motor, like=sim, **other)

@@ -75,6 +75,53 @@ def test_a_closed_loop_that_changes_nothing_is_the_open_loop_run_bitwise(prepare
     assert np.allclose(c.controls - ctrl, 1e-3, rtol=0, atol=1e-15)
 
 
+def test_an_open_loop_run_in_chunks_is_the_one_call_rollout_bitwise(prepared):
+    """The open-loop run steps in chunks of :data:`stepping.CHUNK` (the state set back, the
+    warm start carried over): to the bit what one call of MuJoCo's rollout steps."""
+    import mujoco
+    import mujoco.rollout
+
+    robot, motion = prepared.robot, prepared.motion
+    sim = build_model(robot, motion, prepared.motor)
+    n = round(2.4 * stepping.CHUNK / sim.timestep)  # three chunks, the last one short
+    ctrl = controls(sim.servo, reference(motion, prepared.evaluate(None).tau_motor,
+                                         np.arange(n) * sim.timestep), sim.kp, sim.kd)
+    start = sim.joints.to_mujoco(motion.q[0], motion.v[0])
+    traj = stepping.run(sim, ctrl, *start, 0.09)
+    m = sim.model
+    data = mujoco.MjData(m)
+    data.qpos[:], data.qvel[:] = start
+    spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
+    state0 = np.zeros(mujoco.mj_stateSize(m, spec))
+    mujoco.mj_getState(m, data, state0, spec)
+    state, sensors = mujoco.rollout.rollout(m, data, state0[None], ctrl[None])
+    qpos = np.concatenate([state0[None, 1:1 + m.nq], state[0, :-1, 1:1 + m.nq]])
+    assert traj.n == n and np.array_equal(traj.qpos, qpos)
+    assert np.array_equal(traj.servo, sensors[0, :, :robot.nj])
+
+
+def test_an_open_loop_run_stops_stepping_once_it_fell(prepared, monkeypatch):
+    """A robot whose controls are reckoned with 1/200 of its servos' gain falls: its run stops
+    within a chunk of the fall instead of stepping the fallen robot to the end (the rows after
+    it were cut anyway)."""
+    robot, motion = prepared.robot, prepared.motion
+    sim = build_model(robot, motion, prepared.motor)
+    loop = dataclasses.replace(sim, springs=dataclasses.replace(
+        sim.springs, python=((0, DeadZoneSpring(stiffness=1.0, theta_k=1e6, damping=1.0)),)))
+    stepped = []
+    inner = stepping._python_loop
+    monkeypatch.setattr(stepping, "_python_loop",
+                        lambda s, d, c: stepped.append(len(c)) or inner(s, d, c))
+    n = round(4 * motion.period / sim.timestep)
+    ctrl = controls(sim.servo, reference(motion, prepared.evaluate(None).tau_motor,
+                                         np.arange(n) * sim.timestep), sim.kp / 200, sim.kd)
+    traj = stepping.run(loop, ctrl, *sim.joints.to_mujoco(motion.q[0], motion.v[0]),
+                        float(np.mean(motion.q[:, 2])))
+    assert traj.verdict == "fell" and traj.n < n
+    chunk = round(stepping.CHUNK / sim.timestep)
+    assert traj.n <= sum(stepped) <= traj.n + chunk < n
+
+
 def test_too_many_steps_is_an_error_not_a_hang(prepared):
     sim = build_model(prepared.robot, prepared.motion, prepared.motor)
     with pytest.raises(InvalidParameterError, match="simulation steps"):
@@ -169,3 +216,19 @@ def test_switching_off_island_discovery_leaves_the_states_bitwise_equal(prepared
     _, a, b = _run_against_a_variant(prepared, search, 0.5)
     np.testing.assert_array_equal(a.qpos, b.qpos)
     np.testing.assert_array_equal(a.servo, b.servo)
+
+
+def test_the_closed_loops_scalar_fall_check_is_the_runs(prepared):
+    """The closed loop asks at each update, in scalars, whether the base fell (stepping._down);
+    it must judge a state as the run's verdict does (stepping._fallen): random bases, tilted
+    and upright, high and low, a non-finite one."""
+    rng = np.random.default_rng(7)
+    height = 0.09
+    for i in range(3000):
+        q = np.zeros(prepared.robot.model.nq)
+        q[2] = rng.uniform(0.0, 2 * height)
+        q[3:7] = rng.normal(size=4) if i % 2 else np.r_[1.0, 0.6 * rng.normal(size=3)]
+        q[3:7] *= rng.uniform(0.5, 2.0)  # not normalised: both normalise
+        assert stepping._down(q, height) == bool(stepping._fallen(q[None], height)[0]), q[:7]
+    q[2] = np.nan
+    assert stepping._down(q, height) and stepping._fallen(q[None], height)[0]

@@ -10,16 +10,19 @@ window is the trapezoidal rule the analysis uses (:mod:`hexaleg.dynamics.energy`
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+import pinocchio as pin
 
 from hexaleg.dynamics import energy
 from hexaleg.motion.trajectory import Motion
 from hexaleg.simulation.model import SimModel
 from hexaleg.simulation.stepping import Trajectory, tilt
+from hexaleg.units import G
 
 LOSS_GRACE = 0.02
 """Fraction of a stance at its start and end where a foot not yet / no longer pressing is not
@@ -257,13 +260,70 @@ SATURATED = 0.1
 it fell for want of torque (:func:`fall_cause`)."""
 
 
+@dataclass(frozen=True)
+class PointFoot:
+    """A gait's longest stand on one point foot, as a linear inverted pendulum.
+
+    On one point contact the ground's force passes through the foot, so the body's angular
+    momentum about the foot changes by gravity alone, ``L̇ = m g × (c − p)``: the centre of
+    mass c moves off the foot p as ``c̈ = ω₀² (c − p)``, ``ω₀ = √(g / h)`` (the linear inverted
+    pendulum: Kajita, Kanehiro, Kaneko, Yokoi & Hirukawa, "The 3D linear inverted pendulum
+    mode", IROS 2001, eq. 5–6), and an error of the plan grows as ``e^{ω₀ t}``. No force at the
+    foot rights it; the field balances such a robot by where it sets the next foot down (the
+    capture point ``c + ċ/ω₀``: Pratt, Carff, Drakunov & Goswami, "Capture point: a step toward
+    humanoid push recovery", Humanoids 2006) or by an ankle torque on a sole.
+
+    Attributes:
+        duration: The longest time on one foot, s.
+        height: The centre of mass's height over the stance foot at the gait's start, m.
+        omega: ω₀ = √(g / h), 1/s.
+    """
+
+    duration: float
+    height: float
+    omega: float
+
+    @property
+    def growth(self) -> float:
+        """``e^{ω₀ T}``: how much an error grows over the stand."""
+        return float(np.exp(self.omega * self.duration))
+
+    @property
+    def reason(self) -> str:
+        """Why balance feedback without foot placement cannot hold it, in one clause."""
+        return (f"on one point foot for {self.duration:.3g} s, an inverted pendulum (an error "
+                f"×{self.growth:.3g}) that feedback without foot placement cannot hold")
+
+
+def point_foot(sim: SimModel, motion: Motion) -> PointFoot | None:
+    """The longest stand of ``motion`` on one foot (cyclic), or None where it never stands on
+    one (:class:`PointFoot`)."""
+    stance = np.asarray(motion.stance, dtype=bool)
+    foot = np.where(stance.sum(axis=1) == 1, np.argmax(stance, axis=1), -1)  # the one, or −1
+    if (foot < 0).all():
+        return None
+    if (foot == foot[0]).all():
+        longest = len(foot)
+    else:
+        start = int(np.flatnonzero(foot != foot[-1])[0])  # a run's first sample: none wraps
+        rolled = np.roll(foot, -start)
+        edges = np.flatnonzero(np.diff(np.r_[-2, rolled, -2]))  # where the foot changes
+        longest = max(int(b - a) for a, b in itertools.pairwise(edges) if rolled[a] >= 0)
+    model = sim.robot.model
+    com = pin.centerOfMass(model, model.createData(), motion.q[0])
+    height = float(com[2] - np.mean(np.asarray(motion.feet)[0, stance[0], 2]))
+    return PointFoot(longest * motion.dt, height, float(np.sqrt(G / max(height, 1e-6))))
+
+
 def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory, feedback: bool = False) -> str:
     """Why a run fell, as far as the run shows it: servos at their stall torque (a weaker
     actuator than the gait needs), or — open loop (``feedback`` False) — a gait that stands on
     two feet or fewer (balanced by its plan alone: the servos follow the joints without feedback
     on the body's attitude, so an error grows until the body tips — the analysis of such a gait
     stands, its open-loop simulation cannot; ``[simulate] feedback = "on"`` closes the loop);
-    else the ground, the servo's gains (``[simulate]``) and, with balance feedback, its
+    with balance feedback, a gait that stands on one point foot (:class:`PointFoot`: an
+    inverted pendulum the contact force cannot right, the error's growth over the stand
+    named); else the ground, the servo's gains (``[simulate]``) and, with balance feedback, its
     gains."""
     at_stall = np.abs(traj.servo) >= sim.stall * (1.0 - 1e-6)
     share = float(at_stall.any(axis=1).mean())
@@ -274,6 +334,16 @@ def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory, feedback: bool =
                 "needs a stronger actuator ([motor], or the robot's own), a slower or shorter "
                 "gait, or a lighter robot")
     feet = int(motion.stance.sum(axis=1).min())
+    one = point_foot(sim, motion) if feedback and feet == 1 else None
+    if one is not None:
+        return (f"the gait stands on one point foot for {one.duration:.3g} s at a time: an "
+                "inverted pendulum whose contact force passes through the foot and cannot "
+                f"right it, so an error grows as e^(ω₀t), ω₀ = √(g/h) = {one.omega:.3g} /s "
+                f"(centre of mass {one.height * 1e3:.0f} mm above the foot), ×{one.growth:.3g} "
+                "over the stand; the balance controller (hexaleg.simulation.balance) moves the "
+                "forces, not where the feet land (capture-point stepping), so it cannot hold "
+                "it — a gait on two feet at every instant, or feet with soles and ankles, "
+                "would; a slower gait makes it worse")
     if feedback:
         return ("the balance controller (hexaleg.simulation.balance) did not hold the body on "
                 f"this gait ({feet} stance feet at the fewest); check the ground ([simulate] "

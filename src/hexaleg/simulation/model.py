@@ -93,6 +93,8 @@ class SimModel:
         damping: Back-EMF damping D, (nj,), N·m·s/rad. stall: Stall torques, (nj,), N·m.
         foot_geoms: MuJoCo geom id of each leg's foot sphere, (n_legs,), legs in robot order.
         notes: What was approximated or left out.
+        tree: The robot's bodies as MJCF (:func:`~hexaleg.simulation.mjcf.tree_xml`).
+        contacts: Its ground contacts as MJCF ``<pair>`` elements.
     """
 
     robot: Robot
@@ -108,6 +110,8 @@ class SimModel:
     stall: np.ndarray
     foot_geoms: np.ndarray
     notes: tuple[str, ...]
+    tree: str = ""
+    contacts: str = ""
 
     @property
     def timestep(self) -> float:
@@ -202,8 +206,8 @@ def _document(robot: Robot, tree: str, plan: SpringPlan, servos: str, pairs: str
 
 def build_model(robot: Robot, motion: Motion, motor: ServoMotor, *,
                 springs: SpringSet | None = None, servo: Servo | None = None,
-                ground: Ground | None = None, timestep: float = TIMESTEP, check: bool = True
-                ) -> SimModel:
+                ground: Ground | None = None, timestep: float = TIMESTEP, check: bool = True,
+                like: SimModel | None = None) -> SimModel:
     """The MuJoCo model of ``robot`` for simulating ``motion`` (module docstring).
 
     Args:
@@ -217,6 +221,11 @@ def build_model(robot: Robot, motion: Motion, motor: ServoMotor, *,
         timestep: Simulation timestep, s, > 0.
         check: Check the timestep (:func:`check_timestep`); off only to find a timestep
             (:func:`timestep_limit`).
+        like: A model already built of the same robot, motion, motor, servo and ground (any
+            springs and timestep): its bodies, joint map and ground contacts are taken as they
+            are — the same MJCF, so the same model — instead of being worked out again (which
+            geoms stay clear of the ground over the plan, each contact's inverse weight): two
+            thirds of the cost of building a model (``docs/simulate.md``, "Speed").
 
     Returns:
         The compiled model.
@@ -227,19 +236,32 @@ def build_model(robot: Robot, motion: Motion, motor: ServoMotor, *,
         UnknownNameError: a sprung joint the robot does not have.
         RobotModelError: a joint the simulation cannot build, an inertia MuJoCo refuses, or the
             base below the feet (:func:`check_stand`).
+        InvalidParameterError: ``like`` a model of another robot, servo, motor or ground.
     """
     import mujoco
 
     servo, ground = servo or Servo(), ground or Ground()
     positive("timestep (s)", timestep)
-    check_stand(robot, motion)
-    tree = tree_xml(robot, FOOT_RADIUS)
     plan = plan_springs(robot, springs)
     kp, kd, damping, stall = servo.gains(motor, robot.nj)
     servos = servo_xml(robot.joint_names, kp, kd, damping, stall)
     sensors = "\n".join([*(f'<actuatorfrc actuator="{j}_servo"/>' for j in robot.joint_names),
                          *(f'<framepos objtype="site" objname="{foot_site(leg.name)}"/>'
                            for leg in robot.legs)])
+    feet = [foot_geom(leg.name) for leg in robot.legs]
+    if like is not None:
+        if like.robot is not robot or like.servo != servo or like.ground != ground or not all(
+                np.array_equal(a, b) for a, b in ((like.kp, kp), (like.kd, kd),
+                                                  (like.damping, damping), (like.stall, stall))):
+            raise InvalidParameterError("like", "a model of another robot, servo, motor or "
+                                        "ground", "a model of this robot with this servo, motor "
+                                        "and ground")
+        return _compiled(robot, motion, _document(robot, like.tree, plan, servos, like.contacts,
+                                                  sensors, timestep, ground),
+                         plan, servo, ground, (kp, kd, damping, stall), like.joints, feet,
+                         like.notes, like.tree, like.contacts, check)
+    check_stand(robot, motion)
+    tree = tree_xml(robot, FOOT_RADIUS)
     first = mujoco.MjModel.from_xml_string(
         _document(robot, tree.xml, plan, servos, "", sensors, timestep, ground))
     joints = JointMap.build(robot, first)
@@ -256,9 +278,24 @@ def build_model(robot: Robot, motion: Motion, motor: ServoMotor, *,
                 f'solreffriction="{fmt(ground.solreffriction())}" '
                 f'solimp="{fmt(ground.solimp())}"{margin}/>')
 
-    feet = [foot_geom(leg.name) for leg in robot.legs]
-    xml = _document(robot, tree.xml, plan, servos, "\n".join(pair(g) for g in feet + clear),
-                    sensors, timestep, ground)
+    contacts = "\n".join(pair(g) for g in feet + clear)
+    notes = (*tree.notes, *(f"{g}: no ground contact (within {CLEARANCE * 1e3:g} mm of the "
+                            "ground in the plan)" for g in touching))
+    return _compiled(robot, motion, _document(robot, tree.xml, plan, servos, contacts, sensors,
+                                              timestep, ground),
+                     plan, servo, ground, (kp, kd, damping, stall), joints, feet, notes,
+                     tree.xml, contacts, check)
+
+
+def _compiled(robot: Robot, motion: Motion, xml: str, plan: SpringPlan, servo: Servo,
+              ground: Ground, gains: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+              joints: JointMap, feet: list[str], notes: tuple[str, ...], tree: str,
+              contacts: str, check: bool) -> SimModel:
+    """The model of a finished document (:func:`build_model`): compiled, the springs and the
+    back-EMF damping applied, the flags set, the timestep checked."""
+    import mujoco
+
+    kp, kd, damping, stall = gains
     model = mujoco.MjModel.from_xml_string(xml)
     plan.apply(model)
     model.dof_damping[joints.dof] = damping
@@ -270,8 +307,7 @@ def build_model(robot: Robot, motion: Motion, motor: ServoMotor, *,
                    ground=ground, kp=kp, kd=kd, damping=damping, stall=stall,
                    foot_geoms=np.array([mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, g)
                                         for g in feet]),
-                   notes=(*tree.notes, *(f"{g}: no ground contact (within {CLEARANCE * 1e3:g} mm "
-                                         "of the ground in the plan)" for g in touching)))
+                   notes=notes, tree=tree, contacts=contacts)
     if check:
         check_timestep(sim, motion)
     return sim

@@ -179,10 +179,16 @@ class Run:
         metrics: Their totals averaged per cycle (J, N·m; empty when it fell or diverged).
         walk: Distance, drift, tracking, slip, contacts (None when it fell or diverged).
         forces: Foot forces against the analysis' (:func:`measures.foot_forces`), or empty.
-        wall: Wall-clock time of the stepping, s.
+        wall: Wall-clock time of the stepping (MuJoCo's steps and, closed loop, the balance
+            controller's updates between them), s.
+        cpu: CPU time of the thread that stepped, over the same span, s: ``wall`` less the
+            time the machine gave to other processes (:attr:`cpu_share`).
         feedback: Whether the balance controller ran (:mod:`hexaleg.simulation.balance`).
         constrained: Of its updates, the fraction at which a friction cone bound the force
             correction (0 open loop).
+        reason: Why it fell in one clause where the gait alone explains it (a stand on one
+            point foot that the balance controller ran on: :class:`~hexaleg.simulation.
+            measures.PointFoot`), else "".
     """
 
     name: str
@@ -197,6 +203,8 @@ class Run:
     wall: float = 0.0
     feedback: bool = False
     constrained: float = 0.0
+    cpu: float = 0.0
+    reason: str = ""
 
     @property
     def walks(self) -> bool:
@@ -210,8 +218,16 @@ class Run:
 
     @property
     def realtime_factor(self) -> float:
-        """Simulated time per wall-clock time of the stepping."""
+        """Simulated time per wall-clock time of the stepping (the model's building, the
+        analysis and the measures left out: :attr:`Simulation.wall` holds them)."""
         return self.simulated_time / self.wall if self.wall > 0 else math.inf
+
+    @property
+    def cpu_share(self) -> float:
+        """The stepping thread's CPU time over its wall time: 1 on a core of its own, ½ where
+        another process shared it (the real-time factor is then halved by the machine, not by
+        the simulation)."""
+        return self.cpu / self.wall if self.wall > 0 else 1.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -225,6 +241,9 @@ class Simulation:
         baseline_analysis: The analysis without springs.
         with_springs: The run with the springs. baseline: The run without.
         prepared: The prepared gait (reused by reruns with other settings).
+        wall: Wall-clock time of :func:`simulate`, s: the analysis with and without the
+            springs, the timestep's probe, building the models, both runs and their measures
+            (and the gait's inverse dynamics where ``prepared`` was not given).
     """
 
     robot: Robot
@@ -236,6 +255,7 @@ class Simulation:
     with_springs: Run
     baseline: Run
     prepared: Prepared
+    wall: float = 0.0
 
     @property
     def walks(self) -> bool:
@@ -309,11 +329,13 @@ def cycle_timestep(timestep: float, period: float) -> float:
 
 
 def automatic_timestep(robot: Robot, motion: Motion, motor: Any, servo: Servo,
-                       ground: Ground) -> float:
+                       ground: Ground, probe: SimModel | None = None) -> float:
     """The default timestep: the least of :data:`~hexaleg.simulation.model.TIMESTEP`,
     half the gait's sample spacing and 80 % of the explicit-stability limit
-    (:func:`hexaleg.simulation.model.timestep_limit`), s."""
-    probe = build_model(robot, motion, motor, servo=servo, ground=ground, check=False)
+    (:func:`hexaleg.simulation.model.timestep_limit`), s; ``probe`` a model of the robot with
+    this motor, servo and ground already built (any springs and timestep: the limit depends on
+    neither), else one is built."""
+    probe = probe or build_model(robot, motion, motor, servo=servo, ground=ground, check=False)
     limit, _ = timestep_limit(probe, motion)
     return min(TIMESTEP, motion.dt / 2, 0.8 * limit)
 
@@ -339,19 +361,21 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
     qpos0, qvel0 = sim.joints.to_mujoco(motion.q[0], motion.v[0])
     controller = (balance.Balance(sim, motion, analysis.forces, analysis.tau_motor)
                   if feedback else None)
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.thread_time()
     traj = stepping.run(sim, ctrl, qpos0, qvel0, float(np.mean(motion.q[:, 2])),
                         None if controller is None else controller.correction,
                         max(1, round(balance.CONTROL_PERIOD / dt)))
-    wall = time.perf_counter() - start
+    wall, cpu = time.perf_counter() - start, time.thread_time() - cpu
     bound = controller.constrained / max(controller.updates, 1) if controller else 0.0
     if traj.verdict == "fell":
-        return Run(name, sim, traj, traj.verdict,
-                   f"{traj.message}; {measures.fall_cause(sim, motion, traj, feedback)}",
-                   wall=wall, feedback=feedback, constrained=bound)
+        cause = measures.fall_cause(sim, motion, traj, feedback)
+        one = measures.point_foot(sim, motion) if feedback else None
+        return Run(name, sim, traj, traj.verdict, f"{traj.message}; {cause}", wall=wall,
+                   feedback=feedback, constrained=bound, cpu=cpu,
+                   reason=one.reason if one is not None and "point foot" in cause else "")
     if traj.verdict != "ran":
         return Run(name, sim, traj, traj.verdict, traj.message, wall=wall, feedback=feedback,
-                   constrained=bound)
+                   constrained=bound, cpu=cpu)
     window = slice((settings.cycles - settings.evaluate) * steps, settings.cycles * steps)
     cycles = measures.cycle_energies(sim, traj, window, settings.evaluate, analysis.motor)
     forces = (measures.foot_forces(sim, motion, traj, window, analysis.forces,
@@ -359,7 +383,7 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
     walked = measures.walk(sim, motion, traj, window, settings.evaluate, ref.q)
     verdict, message = measures.verdict(walked, motion.distance)
     return Run(name, sim, traj, verdict, message, cycles, measures.mean_metrics(cycles),
-               walked, forces, wall, feedback, bound)
+               walked, forces, wall, feedback, bound, cpu)
 
 
 def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None = None,
@@ -395,6 +419,7 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
         InfeasibleForcesError: the analysis has no admissible contact forces.
         TorqueLimitError: the analysis needs more than the motor's stall torque.
     """
+    start = time.perf_counter()
     settings = (settings or Settings()).sized(robot.mass)
     springs = springs if springs is not None else SpringSet()
     contact = contact or ContactParams()
@@ -412,9 +437,16 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
             "baseline", "a simulation of another gait, motor or settings",
             "a simulation of this gait with this motor and these settings")
     servo, ground = settings.servo(), settings.ground(contact.mu)
-    dt = baseline.baseline.sim.timestep if baseline is not None else cycle_timestep(
-        settings.timestep if settings.timestep is not None else
-        automatic_timestep(robot, motion, prepared.motor, servo, ground), motion.period)
+    like: SimModel | None = None  # a model built: the others take its bodies and contacts
+    if baseline is not None:
+        dt, like = baseline.baseline.sim.timestep, baseline.baseline.sim
+    elif settings.timestep is not None:
+        dt = cycle_timestep(settings.timestep, motion.period)
+    else:
+        like = build_model(robot, motion, prepared.motor, servo=servo, ground=ground,
+                           check=False)
+        dt = cycle_timestep(automatic_timestep(robot, motion, prepared.motor, servo, ground,
+                                               like), motion.period)
     check_steps(robot, settings, motion.period, dt)
     closed = settings.feedback == "on" or (settings.feedback == "auto" and balance.needed(motion))
     runs = {} if baseline is None or baseline.baseline.feedback != closed else {
@@ -424,7 +456,8 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
         if name in runs:
             continue
         models[name] = build_model(robot, motion, prepared.motor, springs=s, servo=servo,
-                                   ground=ground, timestep=dt)
+                                   ground=ground, timestep=dt, like=like)
+        like = like or models[name]
         runs[name] = simulate_run(name, models[name], motion, a, settings, closed)
     if settings.feedback == "auto" and not closed and any(r.verdict == "fell"
                                                           for r in runs.values()):
@@ -432,4 +465,4 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
             sim = models.get(name) or runs[name].sim
             runs[name] = simulate_run(name, sim, motion, a, settings, True)
     return Simulation(robot, motion, settings, springs, analysis, base, runs["springs"],
-                      runs["baseline"], prepared)
+                      runs["baseline"], prepared, time.perf_counter() - start)

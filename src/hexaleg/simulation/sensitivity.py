@@ -71,7 +71,9 @@ def sensitivity(base: Simulation, variants: Sequence[Variant] = VARIANTS
         both runs walked), ``predicted_electrical`` and ``predicted_baseline`` (J per cycle, the
         analysis'), ``electrical`` and ``baseline`` (J per cycle, simulated),
         ``distance_per_cycle`` (m), ``tracking_rms`` (rad), ``feedback`` (whether the balance
-        controller ran in both runs, :mod:`hexaleg.simulation.balance`).
+        controller ran in both runs, :mod:`hexaleg.simulation.balance`), ``why`` (where a
+        run fell for a reason the gait alone explains, :attr:`~hexaleg.simulation.run.Run.
+        reason`, else absent).
     """
     p = base.analysis
     rows = []
@@ -92,6 +94,9 @@ def sensitivity(base: Simulation, variants: Sequence[Variant] = VARIANTS
         row["feedback"] = s.with_springs.feedback and s.baseline.feedback
         row["verdict"] = "walks" if s.walks else "; ".join(
             f"{r.name} {r.verdict}" for r in (s.with_springs, s.baseline) if not r.walks)
+        why = next((r.reason for r in (s.with_springs, s.baseline) if r.reason), "")
+        if why:
+            row["why"] = why
         if s.walks:
             with_, without, saved = s.simulated()
             w = s.with_springs.walk
@@ -131,6 +136,7 @@ def sensitivity_row(row: dict[str, Any]) -> dict[str, Any]:
     """A row of :func:`hexaleg.simulation.sensitivity.sensitivity` as quantities."""
     out: dict[str, Any] = {"label": row["label"], "controller": row.get("controller"),
                            "feedback": row.get("feedback"), "verdict": row["verdict"],
+                           **({"why": row["why"]} if row.get("why") else {}),
                            "predicted_saving": quantity(100 * row["predicted"], "%"),
                            "predicted_electrical": quantity(row["predicted_electrical"], "J"),
                            "predicted_baseline": quantity(row["predicted_baseline"], "J")}

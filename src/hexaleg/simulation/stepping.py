@@ -2,21 +2,24 @@
 
 The servos' controls are a function of time only (:mod:`hexaleg.simulation.controllers`), so
 a run is an open-loop control sequence. When the springs are all native
-(:attr:`hexaleg.simulation.springs.SpringPlan.native`) the whole run is one call of
-:func:`mujoco.rollout.rollout` (MuJoCo's C loop: ``mj_step`` then copy the state and the
-sensors); otherwise a Python loop does the same with the non-native spring torques added to
-``qfrc_applied`` before each step. Both record, per step k, the state *before* the step (at
-``t_k = k dt``) and the sensors of that state (MuJoCo computes them in ``mj_forward`` before it
-integrates), so the recorded servo torque ``τ_k`` acts over ``[t_k, t_{k+1}]`` at the recorded
-speed ``q̇_k`` — the rectangle rule of the symplectic-Euler step.
+(:attr:`hexaleg.simulation.springs.SpringPlan.native`) it runs in MuJoCo's rollout (its C loop:
+``mj_step`` then copy the state and the sensors), a chunk of :data:`CHUNK` at a time (or of the
+balance controller's period, closed loop: :func:`closed_loop`) with the warm start carried, so
+the steps are one call's to the bit; otherwise a Python loop does the same with the non-native
+spring torques added to ``qfrc_applied`` before each step. Both record, per step k, the state
+*before* the step (at ``t_k = k dt``) and the sensors of that state (MuJoCo computes them in
+``mj_forward`` before it integrates), so the recorded servo torque ``τ_k`` acts over
+``[t_k, t_{k+1}]`` at the recorded speed ``q̇_k`` — the rectangle rule of the symplectic-Euler
+step.
 
 A run stops early, with its verdict, when MuJoCo flags a bad acceleration (a diverged state), or
 when the base falls (:data:`FALL_HEIGHT` of the planned height, :data:`FALL_TILT` roll or pitch):
-the arrays then end there, never with NaN.
+the arrays then end there, never with NaN; the stepping stops after the chunk in which it fell.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -36,6 +39,11 @@ Feedback = Callable[[float, np.ndarray, np.ndarray, np.ndarray], np.ndarray]
 held until its next update (:meth:`hexaleg.simulation.balance.Balance.correction`)."""
 MAX_STEPS = 5_000_000
 """Steps a run may take (a bound: a long run is an error, never a hang)."""
+CHUNK = 0.25
+"""s: an open-loop run steps in chunks of this much simulated time and stops after the chunk in
+which the base fell (a fallen robot's contacts with the ground cost up to 5× a walking step's,
+and its rows are cut anyway); the chunks carry MuJoCo's warm start, so the steps are the
+one-call rollout's to the bit (``tests/simulation/test_stepping.py``)."""
 
 
 @dataclass(frozen=True)
@@ -80,12 +88,33 @@ def tilt(qpos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return roll, pitch
 
 
+def _fallen(qpos: np.ndarray, height: float) -> np.ndarray:
+    """Whether the base has fallen or diverged at each row of ``qpos`` (n, nq_mj), (n,) bool."""
+    roll, pitch = tilt(qpos)
+    return ~np.all(np.isfinite(qpos), axis=1) | (qpos[:, 2] < FALL_HEIGHT * height) | \
+        (np.abs(roll) > FALL_TILT) | (np.abs(pitch) > FALL_TILT)
+
+
+def _down(qpos: np.ndarray, height: float) -> bool:
+    """Whether the base of one MuJoCo configuration (nq_mj,) has fallen or diverged, as
+    :func:`_fallen` judges a row, in scalars (a closed loop asks it at each update): roll and
+    pitch from the quaternion's third rotation row, ``R₂ = (2(xz − wy), 2(yz + wx),
+    1 − 2(x² + y²))`` of the unit quaternion (w, x, y, z)."""
+    z, w, x, y, k = (float(v) for v in qpos[2:7])
+    norm = math.sqrt(w * w + x * x + y * y + k * k)
+    if not (math.isfinite(z) and math.isfinite(norm) and norm > 0):
+        return True
+    w, x, y, k = w / norm, x / norm, y / norm, k / norm
+    roll = math.atan2(2 * (y * k + w * x), 1 - 2 * (x * x + y * y))
+    pitch = math.asin(min(1.0, max(-1.0, -2 * (x * k - w * y))))
+    return z < FALL_HEIGHT * height or abs(roll) > FALL_TILT or abs(pitch) > FALL_TILT
+
+
 def _fall(qpos: np.ndarray, height: float, t: np.ndarray) -> tuple[int, str]:
     """The first step at which the base has fallen (and how), or (n, '')."""
     roll, pitch = tilt(qpos)
     z = qpos[:, 2]
-    bad = ~np.all(np.isfinite(qpos), axis=1) | (z < FALL_HEIGHT * height) | \
-        (np.abs(roll) > FALL_TILT) | (np.abs(pitch) > FALL_TILT)
+    bad = _fallen(qpos, height)
     if not bad.any():
         return len(qpos), ""
     k = int(np.argmax(bad))
@@ -127,13 +156,9 @@ def run(sim: SimModel, controls: np.ndarray, qpos0: np.ndarray, qvel0: np.ndarra
     data.qpos[:], data.qvel[:] = qpos0, qvel0
     ctrl = np.zeros((n, m.nu))
     ctrl[:, :nj] = controls
-    if feedback is not None:
-        qpos, qvel, sensors = closed_loop(sim, data, ctrl, feedback, every, height)
-        controls = ctrl[:, :nj]
-    elif sim.springs.native:
-        qpos, qvel, sensors = _rollout(m, data, ctrl)
-    else:
-        qpos, qvel, sensors = _python_loop(sim, data, ctrl)
+    chunk = every if feedback is not None else max(1, round(CHUNK / m.opt.timestep))
+    qpos, qvel, sensors = closed_loop(sim, data, ctrl, feedback, chunk, height)
+    controls = ctrl[:, :nj]
     stopped = n
     message = ""
     bad_acc = int(data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number)
@@ -156,28 +181,10 @@ def run(sim: SimModel, controls: np.ndarray, qpos0: np.ndarray, qvel0: np.ndarra
                       controls=controls[:stopped], verdict=verdict, message=message)
 
 
-def _rollout(m: object, data: object, ctrl: np.ndarray
-             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """MuJoCo's rollout: pre-step states and their sensors."""
-    import mujoco
-    import mujoco.rollout
-
-    assert isinstance(m, mujoco.MjModel) and isinstance(data, mujoco.MjData)
-    spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
-    state0 = np.zeros(mujoco.mj_stateSize(m, spec))
-    mujoco.mj_getState(m, data, state0, spec)
-    state, sensordata = mujoco.rollout.rollout(m, data, state0[None], ctrl[None])
-    state, sensordata = state[0], sensordata[0]
-    nq, nv = m.nq, m.nv
-    after_q, after_v = state[:, 1:1 + nq], state[:, 1 + nq:1 + nq + nv]
-    qpos = np.concatenate([state0[None, 1:1 + nq], after_q[:-1]])
-    qvel = np.concatenate([state0[None, 1 + nq:1 + nq + nv], after_v[:-1]])
-    return qpos, qvel, sensordata
-
-
 def _python_loop(sim: SimModel, data: object, ctrl: np.ndarray
                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The same as :func:`_rollout`, step by step, with the non-native spring torques."""
+    """Pre-step states and their sensors, step by step, with the non-native spring torques
+    (what MuJoCo's rollout records, :func:`closed_loop`)."""
     import mujoco
 
     m = sim.model
@@ -198,14 +205,16 @@ def _python_loop(sim: SimModel, data: object, ctrl: np.ndarray
     return qpos, qvel, sensors
 
 
-def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedback, every: int,
-                height: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The same as :func:`_rollout` with ``feedback`` closing the loop every ``every`` steps:
-    at each update the state and the foot sites (``mj_kinematics``) are read, the controls of the
-    next ``every`` steps move by the feedback's change (``ctrl`` is updated in place: the
-    controls applied), and MuJoCo's rollout (or the Python loop, for non-native springs) runs
-    them, its constraint warm start carried over. A base that has fallen below half its height
-    or diverged stops the loop (the rest of the rows repeat its last state, as
+def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedback | None,
+                every: int, height: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Pre-step states and their sensors, ``every`` steps at a time: with ``feedback`` closing
+    the loop at each chunk's start — the state and the foot sites (``mj_kinematics``) are
+    read, the controls of the next ``every`` steps move by the feedback's change (``ctrl`` is
+    updated in place: the controls applied) — or open loop without. MuJoCo's rollout (or the
+    Python loop, for non-native springs) runs each chunk, its constraint warm start carried
+    over. A base that has fallen (below :data:`FALL_HEIGHT` of its height, or rolled or pitched
+    beyond :data:`FALL_TILT`, in a row the chunk recorded: :func:`run` then finds it there) or
+    diverged stops the loop (the rest of the rows repeat its last state, as
     :func:`_python_loop` leaves a diverged run)."""
     import mujoco
     import mujoco.rollout
@@ -226,10 +235,11 @@ def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedbac
     k = 0
     while k < n:
         mujoco.mj_setState(m, data, state, spec)
-        mujoco.mj_kinematics(m, data)
         end = min(n, k + every)
-        ctrl[k:end, :nj] += feedback(k * m.opt.timestep, data.qpos.copy(), data.qvel.copy(),
-                                     data.site_xpos[sites].copy())
+        if feedback is not None:
+            mujoco.mj_kinematics(m, data)
+            ctrl[k:end, :nj] += feedback(k * m.opt.timestep, data.qpos.copy(), data.qvel.copy(),
+                                         data.site_xpos[sites].copy())
         if sim.springs.native:
             warm = data.qacc_warmstart.copy()
             if roller is not None:  # outputs written in place, no checks: the shapes are ours
@@ -250,9 +260,9 @@ def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedbac
             q, v, sd = _python_loop(sim, data, ctrl[k:end])
             qpos[k:end], qvel[k:end], sensors[k:end] = q, v, sd
             mujoco.mj_getState(m, data, state, spec)
-        k = end
-        z = state[3]
-        if not (np.all(np.isfinite(state)) and z >= FALL_HEIGHT * height) or \
+        first, k = k, end
+        if (_down(qpos[k - 1], height) and _fallen(qpos[first:k], height).any()) or \
+                not np.all(np.isfinite(state)) or \
                 data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number:
             qpos[k:], qvel[k:], sensors[k:] = qpos[k - 1], qvel[k - 1], sensors[k - 1]
             break

@@ -69,3 +69,24 @@ def test_a_link_in_the_out_directory_is_replaced_not_written_through(feedforward
     js, _, _ = write_simulation(out, simulation_data(feedforward))
     assert target.read_text() == "keep me" and not js.is_symlink()
     assert json.loads(js.read_text())["runs"]
+
+
+def test_the_realtime_factor_says_what_it_counts(feedforward):
+    """simulate.json's real-time factor is both runs' simulated time over their stepping's wall
+    time; the whole simulation (analysis, models, measures) is timed beside it, and the CPU
+    share says how much of the wall time the machine gave to other processes."""
+    s = feedforward
+    t = simulation_data(s)["timing"]
+    runs = (s.with_springs, s.baseline)
+    simulated = sum(r.trajectory.n for r in runs) * s.with_springs.sim.timestep
+    assert t["simulated_time"]["value"] == pytest.approx(simulated, rel=1e-12)
+    assert simulated == pytest.approx(2 * s.settings.cycles * s.motion.period, rel=1e-9)
+    wall, cpu = t["stepping_wall"]["value"], t["stepping_cpu"]["value"]
+    assert t["realtime_factor"]["value"] == pytest.approx(simulated / wall, rel=1e-12)
+    assert t["realtime_factor"] == simulation_data(s)["realtime_factor"]
+    assert t["cpu_realtime_factor"]["value"] == pytest.approx(simulated / cpu, rel=1e-12)
+    assert 0 < cpu <= wall * 1.05 and t["cpu_share"]["value"] == pytest.approx(cpu / wall)
+    assert t["simulation_wall"]["value"] > wall  # models and measures on top of the stepping
+    assert t["simulation_realtime_factor"]["value"] < t["realtime_factor"]["value"]
+    assert "s of stepping" in t["text"] and "the whole simulation" in t["text"]
+    assert t["text"] in summary(simulation_data(s))

@@ -62,6 +62,19 @@ def test_a_run_that_falls_short_makes_the_answer_unproven_everywhere(design_writ
     assert "short : it covered 50% to 90% of the planned distance per cycle" in note
 
 
+def test_a_fall_the_gait_explains_is_named_in_the_answer(design_written):
+    """A run that fell for a reason of the gait itself (a sensitivity row's ``why``: a stand on
+    one point foot, hexaleg.simulation.measures.PointFoot) says so in the answer line."""
+    r = design_written[0].result
+    why = "on one point foot for 0.709 s, an inverted pendulum (an error ×125) that feedback " \
+          "without foot placement cannot hold"
+    fell = dataclasses.replace(r, simulation=_rows(
+        r, feedforward={"simulated": None, "verdict": "springs fell; baseline fell", "why": why}))
+    assert fell.unproven == ("under feedforward + PD the runs did not walk (springs fell; "
+                             f"baseline fell: {why})")
+    assert fell.summary().startswith(f"unproven ({fell.unproven}): the analysis would fit ")
+
+
 def test_a_negative_simulated_saving_is_no_proof(design_written):
     r = design_written[0].result
     worse = dataclasses.replace(r, simulation=_rows(r, feedforward={"simulated": -0.01}))

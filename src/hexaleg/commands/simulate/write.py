@@ -34,6 +34,7 @@ def _run_data(r: Run) -> dict[str, Any]:
     """One run's verdict and measures."""
     out: dict[str, Any] = {"verdict": r.verdict, "message": r.message,
                            "realtime_factor": quantity(r.realtime_factor, "1"),
+                           "cpu_share": quantity(r.cpu_share, "1"),
                            "feedback": r.feedback,
                            "feedback_constrained": quantity(100 * r.constrained, "%")}
     if r.walk is None:
@@ -85,6 +86,7 @@ def simulation_data(s: Simulation, *, design: str = "", notes: tuple[str, ...] =
         "predicted": _energies(predicted),
         "planned_distance_per_cycle": quantity(s.motion.distance, "m"),
         "realtime_factor": quantity(_realtime(s), "1"),
+        "timing": timing_data(s),
         "settings": {
             "timestep": quantity(sim.timestep, "s"), "cycles": st.cycles,
             "evaluated_cycles": st.evaluate,
@@ -146,6 +148,42 @@ def _realtime(s: Simulation) -> float:
     return sum(r.simulated_time for r in runs) / wall if wall > 0 else math.inf
 
 
+BUSY = 0.9
+"""A stepping thread that got less than this share of a core waited for other processes: its
+wall-clock real-time factor measures the machine's load as much as the simulation."""
+
+
+def timing_data(s: Simulation) -> dict[str, Any]:
+    """What ``simulate.json``'s real-time factor counts, and what it leaves out.
+
+    ``realtime_factor`` is the simulated time of both runs over the wall-clock time of their
+    stepping (MuJoCo's steps, and closed loop the balance controller's updates), nothing else;
+    ``cpu_realtime_factor`` the same over the stepping thread's CPU time (what a core of its own
+    gives: the wall factor times 1 / ``cpu_share``); ``simulation_realtime_factor`` over the wall
+    time of the whole :func:`hexaleg.simulation.run.simulate` (the analyses, the models'
+    building, both runs and their measures). The command's imports, its inputs and the files it
+    writes are in none of them.
+    """
+    runs = (s.with_springs, s.baseline)
+    simulated = sum(r.simulated_time for r in runs)
+    wall, cpu = sum(r.wall for r in runs), sum(r.cpu for r in runs)
+    share = cpu / wall if wall > 0 else 1.0
+    factor, per_cpu = _realtime(s), simulated / cpu if cpu > 0 else math.inf
+    whole = simulated / s.wall if s.wall > 0 else math.inf
+    text = (f"{factor:.3g}× real time: {simulated:.3g} s simulated (both runs) in "
+            f"{wall:.3g} s of stepping; the whole simulation (analysis, models, runs, measures) "
+            f"{s.wall:.3g} s, {whole:.3g}× real time")
+    if share < BUSY:
+        text += (f"; the stepping got {share:.0%} of a core (the machine was busy): "
+                 f"{per_cpu:.3g}× per CPU second")
+    return {"simulated_time": quantity(simulated, "s"), "stepping_wall": quantity(wall, "s"),
+            "stepping_cpu": quantity(cpu, "s"), "cpu_share": quantity(share, "1"),
+            "realtime_factor": quantity(factor, "1"),
+            "cpu_realtime_factor": quantity(per_cpu, "1"),
+            "simulation_wall": quantity(s.wall, "s"),
+            "simulation_realtime_factor": quantity(whole, "1"), "text": text}
+
+
 def _v(q: dict[str, Any], scale: float = 1.0, digits: int = 3) -> str:
     value = q["value"]
     return "—" if value is None else f"{value * scale:.{digits}g}"
@@ -160,7 +198,8 @@ def page(data: dict[str, Any]) -> str:
     """``simulate.md``: the simulation's tables in Markdown."""
     lines = [f"# Forward simulation: {data['robot']}, {data['controller']} servo",
              "", f"Verdict: **{data['verdict']}**. Springs: {data['design']}.", "",
-             f"Balance feedback: {data['feedback']['text']}.", ""]
+             f"Balance feedback: {data['feedback']['text']}.", "",
+             f"Speed: {data['timing']['text']}.", ""]
     if "simulated" in data:
         lines += ["| per cycle | predicted | simulated |", "|---|---|---|"]
         for m in METRICS:
@@ -239,4 +278,4 @@ def summary(data: dict[str, Any]) -> str:
             f" J vs {_v(s['electrical']['baseline'], 1, 4)} J); distance "
             f"{_v(data['distance_per_cycle'], 1e3, 4)} mm per cycle (planned "
             f"{_v(data['planned_distance_per_cycle'], 1e3, 4)} mm); "
-            f"{_v(data['realtime_factor'])}× real time")
+            f"{data['timing']['text']}")

@@ -174,7 +174,8 @@ class DesignResult:
                     + ("" if "proof" in self.stages else " (the proof stage did not run)"))
         for row in rows:
             if row["simulated"] is None:
-                return f"under {row['label']} the runs did not walk ({row['verdict']})"
+                why = f": {row['why']}" if row.get("why") else ""
+                return f"under {row['label']} the runs did not walk ({row['verdict']}{why})"
             if row["simulated"] <= 0:
                 return (f"under {row['label']} the simulated saving is "
                         f"{100 * row['simulated']:+.2f} %")
