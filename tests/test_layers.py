@@ -166,6 +166,17 @@ def test_import_hexaleg_is_light():
     assert out == []
 
 
+def test_every_command_starts_light():
+    """`import hexaleg.cli` (every command's start) loads neither scipy.signal nor
+    scipy.optimize: imported where a log is smoothed or a fit is made, they cost every command
+    about a second (issue #54's profile of `hexaleg simulate`)."""
+    code = ("import sys, hexaleg.cli; print('\\n'.join(m for m in sys.modules if m.startswith("
+            "('scipy.signal', 'scipy.optimize'))))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert out == []
+
+
 def test_every_public_name_resolves():
     for name in hexaleg.__all__:
         assert getattr(hexaleg, name) is not None, name

@@ -34,7 +34,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.optimize import minimize_scalar
 
 from hexaleg.checks import finite_array
 from hexaleg.errors import InvalidParameterError
@@ -128,6 +127,8 @@ def _power_fit(tau: np.ndarray, qdot: np.ndarray, power: np.ndarray,
         c = max(float(sq @ rest / (sq @ sq)), 0.0)
         r = rest - c * sq
         return c, float(r @ r)
+
+    from scipy.optimize import minimize_scalar  # here: scipy.optimize costs every command ~1 s
 
     grid = np.linspace(*EFFICIENCY_BOUNDS, EFFICIENCY_GRID)
     costs = np.array([solve(e)[1] for e in grid])

@@ -21,7 +21,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.signal import savgol_filter
 
 ORDER = 4
 """Polynomial order N of the Savitzky–Golay filter (exact on quartics: a's derivative is exact
@@ -128,6 +127,8 @@ def smooth(x: np.ndarray, dt: float, cutoff: float, *, periodic: bool) -> Smooth
     Returns:
         The smoothed values and derivatives, shapes (T, n), and the window and cut-off used.
     """
+    from scipy.signal import savgol_filter  # here: scipy.signal costs every command ~1 s
+
     x = np.asarray(x, dtype=float)
     window = window_for(MARGIN * cutoff, dt, x.shape[0])
     mode = "wrap" if periodic else "interp"

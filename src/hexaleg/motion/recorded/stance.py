@@ -34,7 +34,6 @@ import itertools
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import least_squares
 
 from hexaleg.motion.support import support_margin
 
@@ -207,6 +206,8 @@ def _fit_swing(t: np.ndarray, h: np.ndarray) -> tuple[float, float]:
         amplitude, t0, t1, p = x
         s = np.clip((t - t0) / (t1 - t0), 0.0, 1.0)
         return amplitude * (4.0 * s * (1.0 - s)) ** p - h
+
+    from scipy.optimize import least_squares  # here: scipy.optimize costs every command ~1 s
 
     x0 = [float(h.max()), t[0] - 0.1 * span, t[-1] + 0.1 * span, 2.0]
     fit = least_squares(residual, x0, bounds=([0.0, t[0] - span, t[-1], 0.5],
