@@ -95,6 +95,7 @@ def test_every_table_a_command_reads_is_checked_by_every_command():
 
     for table in ALL:
         bad = {"base": "AX-18A", "no_such_key": 1} if table == "motor" else {"no_such_key": 1}
-        with pytest.raises(HexalegError) as err:
+        with pytest.raises(HexalegError) as err:  # as every command: load_run
             check_tables({table: bad}, "bad.toml")
+            Scenario.from_tables("hexaleg", {table: bad}, "bad.toml")
         assert "no_such_key" in str(err.value) and "bad.toml" in str(err.value), table

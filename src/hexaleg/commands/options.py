@@ -70,13 +70,15 @@ def load_run(robot: str | None, config: str | Path | None, motion: str | Path | 
 def check_tables(tables: Mapping[str, Any], where: str, log: str | Path | None = None) -> None:
     """Check every table of a config document with its owner, whichever command reads it: the
     table names (:data:`hexaleg.scenario.scenario.TABLES`), ``[gait]`` and ``[contact]``
-    (refused with a log, :func:`hexaleg.scenario.logged.refuse_gait_table`), ``[design]``
+    refused with a log (:func:`hexaleg.scenario.logged.refuse_gait_table`), ``[design]``
     (:class:`~hexaleg.design.chain.config.DesignParams`; no ``samples`` with a log),
     ``[mission]`` (:class:`~hexaleg.design.fold.Mission`),
     ``[codesign]`` (:func:`~hexaleg.design.codesign.build.codesign_settings`), ``[simulate]``
-    (:class:`~hexaleg.simulation.run.Settings`), ``[motor]``, ``[report]``, ``[springs]`` and
-    ``[payload]`` (:class:`~hexaleg.report.config.ReportConfig`), ``[view]``
-    (:class:`~hexaleg.outputs.viewer.show.ViewParams`).
+    (:class:`~hexaleg.simulation.run.Settings`), ``[report]``, ``[springs]`` and ``[payload]``
+    (:class:`~hexaleg.report.config.ReportConfig`), ``[view]``
+    (:class:`~hexaleg.outputs.viewer.show.ViewParams`). The run's own ``[gait]``, ``[contact]``
+    and ``[motor]`` are checked once, by their owner
+    (:meth:`~hexaleg.scenario.scenario.Scenario.from_tables`, before the robot is loaded).
 
     Raises:
         ConfigError, UnknownNameError, InvalidParameterError: the first bad value (named).
@@ -86,7 +88,6 @@ def check_tables(tables: Mapping[str, Any], where: str, log: str | Path | None =
     from hexaleg.design.chain.config import DesignParams
     from hexaleg.design.codesign.build import codesign_settings
     from hexaleg.design.fold import Mission
-    from hexaleg.dynamics.contact import ContactParams
     from hexaleg.outputs.viewer.show import ViewParams
     from hexaleg.report.config import ReportConfig
     from hexaleg.scenario.logged import refuse_gait_table
@@ -96,7 +97,6 @@ def check_tables(tables: Mapping[str, Any], where: str, log: str | Path | None =
     check_names(tables, tuple(TABLES), where)
     if log is not None:
         refuse_gait_table(tables, where, log)
-    from_mapping(ContactParams, tables.get("contact", {}), f"{where} [contact]")
     design = tables.get("design", {})
     if log is not None and isinstance(design, Mapping) and "samples" in design:
         raise InvalidParameterError(
@@ -107,8 +107,8 @@ def check_tables(tables: Mapping[str, Any], where: str, log: str | Path | None =
     from_mapping(Mission, tables.get("mission", {}), f"{where} [mission]")
     codesign_settings(tables.get("codesign", {}), f"{where} [codesign]")
     Settings.from_mapping(tables.get("simulate", {}), f"{where} [simulate]")
-    ReportConfig.from_mapping({k: tables[k] for k in ("gait", "motor", "payload", "springs",
-                                                      "report") if k in tables}, where)
+    ReportConfig.from_mapping({k: tables[k] for k in ("payload", "springs", "report")
+                               if k in tables}, where)
     from_mapping(ViewParams, tables.get("view", {}), f"{where} [view]")
 
 

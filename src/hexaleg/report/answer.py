@@ -27,6 +27,7 @@ reference.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -70,13 +71,22 @@ def answer_section(cfg: ReportConfig, robot: Robot, prepared: Prepared
     notes: list[str] = []
     springs: SpringSet | None = None
     if cfg.report.design is not None:
-        section = design_section(cfg.report.design, robot)
+        from hexaleg.design.chain.design_file import read_document, springs_of
+
+        given = Path(cfg.report.design)
+        try:
+            document: Mapping[str, Any] | None = read_document(given)
+        except HexalegError:  # design_section names it, with how to make one
+            document = None
+        section = design_section(given, robot, document)
+        if section is not None and document is not None:  # read once: its springs, as simulate
+            springs = springs_of(document, given, robot)
     elif getattr(cfg, "motion", None) is not None:  # a logged motion (--motion): no gait to match
         return None, None, ["no quick answer on a logged motion: hexaleg design --motion LOG "
                             "designs on it, then hexaleg report --design DIR/design.json leads "
                             "with it"]
     else:
-        section, why = _found(cfg, robot)
+        section, springs, why = _found(cfg, robot)
         if why:
             notes.append(why)
         if section is None:
@@ -117,18 +127,20 @@ def answer_springs(cfg: ReportConfig, prepared: Prepared
                      + ")"), notes
 
 
-def _found(cfg: ReportConfig, robot: Robot) -> tuple[dict[str, Any] | None, str | None]:
-    """``hexaleg-design/design.json`` when it answers for this report's robot and gait; else
-    None and why it was passed over (None when there is no such file)."""
+def _found(cfg: ReportConfig, robot: Robot
+           ) -> tuple[dict[str, Any] | None, SpringSet | None, str | None]:
+    """``hexaleg-design/design.json`` when it answers for this report's robot and gait, and
+    its springs (the file read once); else None and why it was passed over (None when there is
+    no such file)."""
     if not DESIGN_JSON.is_file():
-        return None, None
+        return None, None, None
     from hexaleg.design.chain.design_file import load_design
 
     try:
         loaded = load_design(DESIGN_JSON, robot.name)
-        section = design_section(DESIGN_JSON, robot)
+        section = design_section(DESIGN_JSON, robot, loaded.document)
     except HexalegError as e:
-        return None, f"{DESIGN_JSON} not used: {e}"
+        return None, None, f"{DESIGN_JSON} not used: {e}"
     assert section is not None  # a path was given
     differs = []
     if cfg.payload is not None:
@@ -144,9 +156,9 @@ def _found(cfg: ReportConfig, robot: Robot) -> tuple[dict[str, Any] | None, str 
     if section["actuator"] != cfg.motor.name:
         differs.append(f"actuator {section['actuator']!r} (this report: {cfg.motor.name!r})")
     if differs:
-        return None, (f"{DESIGN_JSON} not used: made for another robot or gait — "
-                      + "; ".join(differs))
-    return {**section, "origin": "found"}, None
+        return None, None, (f"{DESIGN_JSON} not used: made for another robot or gait — "
+                            + "; ".join(differs))
+    return {**section, "origin": "found"}, loaded.springs, None
 
 
 def _quick(cfg: ReportConfig, robot: Robot

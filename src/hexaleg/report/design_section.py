@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 
 from hexaleg.checks import is_real
 from hexaleg.config import read_json
-from hexaleg.design.chain.design_file import design_gait, read_design, recommended_saving
+from hexaleg.design.chain.design_file import design_gait, recommended_saving, springs_of
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 
 if TYPE_CHECKING:
@@ -34,7 +34,8 @@ POSITIVE = ("wire_diameter", "mean_diameter", "outer_diameter", "body_turns", "r
 into the parts to buy)."""
 
 
-def design_section(path: str | Path | None, robot: Robot | None = None) -> dict[str, Any] | None:
+def design_section(path: str | Path | None, robot: Robot | None = None,
+                   data: Mapping[str, Any] | None = None) -> dict[str, Any] | None:
     """The recommendation of a ``design.json``, or None without one.
 
     The file is read by the one bounded reader (:func:`hexaleg.config.read_json`: a regular
@@ -45,6 +46,8 @@ def design_section(path: str | Path | None, robot: Robot | None = None) -> dict[
     Args:
         path: The ``design.json`` written by ``hexaleg design``, or None.
         robot: The robot of the report; None: not checked against a robot.
+        data: The file's JSON object when the caller has read it already (read here once
+            otherwise).
 
     Returns:
         The section (:func:`recommendation`) with ``origin`` ``"given"``, ``source`` the path,
@@ -63,7 +66,7 @@ def design_section(path: str | Path | None, robot: Robot | None = None) -> dict[
     path = Path(path)
     how = "write one with: hexaleg design --out DIR"
     try:
-        data = read_json(path, "design file")
+        data = read_json(path, "design file") if data is None else data
     except ConfigError as e:
         raise ConfigError(f"[report] design = {str(path)!r}: not a design.json of hexaleg design "
                           f"({e}); {how}") from e
@@ -80,7 +83,7 @@ def design_section(path: str | Path | None, robot: Robot | None = None) -> dict[
     design_gait(data, None, str(path))  # the gait's keys and values, as [gait] takes them
     if robot is not None:
         _check_robot(path, data, robot)
-        read_design(path, robot)  # the springs, as hexaleg simulate reads them
+        springs_of(data, path, robot)  # the springs, as hexaleg simulate reads them
     for key, where in (("savings", "recommended.saving"), ("net_saving", "recommended.net_saving"),
                        ("spring_mass", "recommended.spring_mass"), ("parts", "recommended.parts"),
                        ("worst", "worst"), ("robust", "robust.worst")):
@@ -180,7 +183,7 @@ def _proof(proof: Any) -> dict[str, Any]:
     return {"proven": proof["proven"], "why": why if not proof["proven"] else None}
 
 
-def _section(path: Path, data: dict[str, Any]) -> dict[str, Any]:
+def _section(path: Path, data: Mapping[str, Any]) -> dict[str, Any]:
     """The section from the parsed ``design.json`` (a missing key raises KeyError)."""
     metric = data["settings"]["metric"]
     html = path.with_name("design.html")

@@ -161,10 +161,10 @@ class Scenario:
             refuse_gait_table(tables, where, log)
         gait = robot_gait(desc).updated(tables.get("gait", {}), f"{where} [gait]")
         contact = from_mapping(ContactParams, tables.get("contact", {}), f"{where} [contact]")
-        model = robot_model(robot)
         motor = tables.get("motor")
-        actuator = (motor_from_mapping(motor, f"{where} [motor]") if motor is not None
-                    else desc.actuator(model))
+        given = motor_from_mapping(motor, f"{where} [motor]") if motor is not None else None
+        model = robot_model(robot)  # after the run's own tables are checked: it is the slow part
+        actuator = given if given is not None else desc.actuator(model)
         motion = logged_motion(model, log, cycle) if log is not None else None
         notes = (*model.notes, *((quality_note(motion),) if motion is not None else ()))
         return cls(robot=robot, gait=gait, contact=contact, actuator=actuator, tables=tables,

@@ -29,6 +29,7 @@ from hexaleg.outputs import design_plots, plots
 from hexaleg.outputs.directory import OutputFolder
 from hexaleg.outputs.html import render_design_html
 from hexaleg.outputs.spring_drawing import drawings
+from hexaleg.quantities import json_text
 from hexaleg.scenario.run_warnings import gait_defaults, run_warnings
 from hexaleg.scenario.scenario import Scenario
 
@@ -143,7 +144,7 @@ def write_design(out: str | Path = "hexaleg-design", scenario: Scenario | None =
                  "files": sorted([*names, *(f"{n}.svg" for n in svgs), "design.html",
                                   "design.json"])}
         data = r.to_dict(**extra)
-        folder.write("design.json", r.to_json(**extra))
+        folder.write("design.json", json_text(data))  # the same document, built once
         for n, svg in svgs.items():
             folder.write(f"{n}.svg", svg)
         folder.write("design.html", render_design_html(data, images, svgs))

@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Mapping
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Any
 
@@ -50,6 +50,7 @@ from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.model import Robot
 from hexaleg.robot.registry import description
 from hexaleg.robot.springs import SpringSet
+from hexaleg.scenario.scenario import robot_model
 from hexaleg.units import (
     deg_to_rad,
     nmm_per_deg_to_nm_per_rad,
@@ -138,8 +139,13 @@ def read_design(path: str | Path, robot: Robot, robot_name: str | None = None) -
         InvalidParameterError: the file is for another robot, or a value is out of range.
         UnknownNameError: an unknown family, parameter or joint (lists the valid ones).
     """
-    path = Path(path)
-    data = read_document(path)
+    return springs_of(read_document(path), Path(path), robot, robot_name)
+
+
+def springs_of(data: Mapping[str, Any], path: Path, robot: Robot,
+               robot_name: str | None = None) -> SpringSet:
+    """The springs of a design document already read from ``path`` (:func:`read_design`
+    without reading it again)."""
     entries, owner = _entries(data, str(path))
     names = {robot.name, *([robot_name] if robot_name else [])}
     if owner is not None and owner not in names:
@@ -186,6 +192,7 @@ class LoadedDesign:
         pays: Whether the springs pay for their mass (None without the answer).
         log: The motion log the design was made on (``gait.motion.path``), None on a generated
             gait; such a design has no ``gait`` to re-make.
+        document: The file's JSON object as read (once), for readers of its other sections.
     """
 
     robot: str
@@ -195,6 +202,7 @@ class LoadedDesign:
     saving: float | None
     pays: bool | None
     log: str | None = None
+    document: Mapping[str, Any] = field(default_factory=dict, repr=False)
 
 
 GAIT_UNITS: dict[str, str] = {
@@ -304,8 +312,7 @@ def load_design(path: str | Path, robot: str | None = None) -> LoadedDesign:
     owner = data.get("robot")
     owner = owner.get("name") if isinstance(owner, Mapping) else owner
     name = robot or (owner if isinstance(owner, str) else "hexaleg")
-    loaded = description(name).load()
-    springs = read_design(path, loaded, name)
+    springs = springs_of(data, path, robot_model(name), name)  # the run's robot, loaded once
     metric, saving = recommended_saving(data, str(path))
     pays = data.get("pays")
     gait = data.get("gait")
@@ -314,8 +321,8 @@ def load_design(path: str | Path, robot: str | None = None) -> LoadedDesign:
     return LoadedDesign(robot=name, springs=springs, gait=design_gait(data, name, str(path)),
                         metric=metric if isinstance(metric, str) else None, saving=saving,
                         pays=pays if isinstance(pays, bool) else None,
-                        log=str(log) if log is not None else None)
+                        log=str(log) if log is not None else None, document=data)
 
 
 __all__ = ["GAIT_UNITS", "PAPER_UNITS", "LoadedDesign", "design_gait", "design_table",
-           "gait_parameters", "load_design", "read_design", "read_document"]
+           "gait_parameters", "load_design", "read_design", "read_document", "springs_of"]

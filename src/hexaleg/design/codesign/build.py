@@ -343,7 +343,8 @@ def simulated(robot: Robot, chosen: GaitParams, springs: SpringSet, c: Constrain
             "feedback": sim.with_springs.feedback}
 
 
-def full_rules(run: Scenario, chosen: GaitParams, c: Constraints, say: Callable[[str], None],
+def full_rules(run: Scenario | str, chosen: GaitParams, c: Constraints,
+               say: Callable[[str], None],
                design: DesignParams | None = None) -> Any:
     """``hexaleg design`` (every rule of issue #30: parsimony, stop tolerance, envelope and hard
     stop, fatigue, arbor, the simulated ranking) on the chosen gait at its sampling, with
@@ -358,7 +359,8 @@ def full_rules(run: Scenario, chosen: GaitParams, c: Constraints, say: Callable[
     try:
         # at the chosen gait's sampling: the design's run is its scenario at [design] samples
         params = dataclasses.replace(params, samples=chosen.samples)
-        return DesignChain(run.replace(gait=chosen, contact=c.contact()), say,
+        base = run if isinstance(run, Scenario) else Scenario.load(run)
+        return DesignChain(base.replace(gait=chosen, contact=c.contact()), say,
                            design=params).run()
     except HexalegError as err:
         say(f"full spring rules failed on the chosen gait: {err}")

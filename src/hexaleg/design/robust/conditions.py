@@ -61,9 +61,10 @@ def condition_prepared(run: Scenario, condition: Condition) -> Prepared:
             condition, the gait's error and what to change), or its slope added to the nominal
             gait's leaves (−π/2, π/2).
     """
-    varied = condition_gait(run.gait, condition)
+    under = run.under(condition)
+    varied = under.gait
     try:
-        return run.under(condition).prepare()
+        return under.prepare()
     except UNWALKABLE as e:
         changed = [n for n in ("period", "stride", "payload", "mu", "slope", "pattern")
                    if getattr(condition, n) != getattr(Condition(), n)]
