@@ -24,14 +24,19 @@ A free flyer's configuration tangent is its velocity index, so a revolute joint'
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
-import crocoddyl
 import numpy as np
 
 from hexaleg.errors import InvalidParameterError
+from hexaleg.optimal.backend import crocoddyl_module
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
 from hexaleg.robot.springs.spring_set import Spring
+
+crocoddyl = crocoddyl_module()
+_ActuationModelAbstract: Any = crocoddyl.ActuationModelAbstract
+"""Crocoddyl's base class (typed Any: Crocoddyl ships no type information)."""
 
 _SLOPE = {"above": -1.0, "below": -1.0, "linear": -1.0, "step_above": 0.0, "step_below": 0.0,
           "constant": 0.0}
@@ -78,7 +83,7 @@ def sprung_joints(robot: Robot, springs: SpringSet) -> tuple[_Sprung, ...]:
     return tuple(out)
 
 
-class SpringActuation(crocoddyl.ActuationModelAbstract):  # type: ignore[misc]
+class SpringActuation(_ActuationModelAbstract):
     """Floating-base actuation with springs: ``τ = [0₆; u + τ_s(q, q̇)]`` (module docstring).
 
     Args:
@@ -87,7 +92,7 @@ class SpringActuation(crocoddyl.ActuationModelAbstract):  # type: ignore[misc]
         springs: The springs; an empty set gives Crocoddyl's ``ActuationModelFloatingBase``.
     """
 
-    def __init__(self, state: crocoddyl.StateMultibody, robot: Robot, springs: SpringSet
+    def __init__(self, state: Any, robot: Robot, springs: SpringSet
                  ) -> None:
         nv = state.nv
         crocoddyl.ActuationModelAbstract.__init__(self, state, nv - 6)
@@ -103,14 +108,14 @@ class SpringActuation(crocoddyl.ActuationModelAbstract):  # type: ignore[misc]
             out[s.column] = float(s.spring.torque(q, v)[0])
         return out
 
-    def calc(self, data: crocoddyl.ActuationDataAbstract, x: np.ndarray,
+    def calc(self, data: Any, x: np.ndarray,
              u: np.ndarray | None = None) -> None:
         """``data.tau = [0₆; u + τ_s(x)]`` (``u`` None: Crocoddyl's terminal node, u = 0)."""
         tau = np.zeros(self._nv)
         tau[6:] = self.spring_torques(x) + (0.0 if u is None else u)
         data.tau[:] = tau
 
-    def calcDiff(self, data: crocoddyl.ActuationDataAbstract, x: np.ndarray,
+    def calcDiff(self, data: Any, x: np.ndarray,
                  u: np.ndarray | None = None) -> None:
         """``dtau_du = S``; ``dtau_dx`` the springs' stiffness and damping (module docstring)."""
         nv = self._nv
@@ -127,12 +132,12 @@ class SpringActuation(crocoddyl.ActuationModelAbstract):  # type: ignore[misc]
         du[6:, :] = np.eye(nv - 6)
         data.dtau_du[:, :] = du
 
-    def commands(self, data: crocoddyl.ActuationDataAbstract, x: np.ndarray,
+    def commands(self, data: Any, x: np.ndarray,
                  tau: np.ndarray) -> None:
         """The motor torques for joint torques ``tau`` (nv,): ``u = τ[6:] − τ_s(x)``."""
         data.u[:] = np.asarray(tau)[6:] - self.spring_torques(x)
 
-    def torqueTransform(self, data: crocoddyl.ActuationDataAbstract,
+    def torqueTransform(self, data: Any,
                         x: np.ndarray, u: np.ndarray) -> None:
         """``∂u/∂τ`` of :meth:`commands`: the identity on the joints (Crocoddyl's interface)."""
         m = np.zeros((self._nv - 6, self._nv))

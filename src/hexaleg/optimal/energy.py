@@ -24,11 +24,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-import crocoddyl
 import numpy as np
 
 from hexaleg.checks import positive
 from hexaleg.errors import InvalidParameterError
+from hexaleg.optimal.backend import crocoddyl_module
+
+crocoddyl = crocoddyl_module()
+_CostModelAbstract: Any = crocoddyl.CostModelAbstract
+"""Crocoddyl's base class (typed Any: Crocoddyl ships no type information)."""
 
 
 def _softplus(z: np.ndarray, eps: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -100,7 +104,7 @@ class JointPower:
                 (d2 * eu**2 + d1 * euu, d2 * ev**2 + d1 * evv, d2 * eu * ev + d1 * euv))
 
 
-class EnergyCost(crocoddyl.CostModelAbstract):  # type: ignore[misc]
+class EnergyCost(_CostModelAbstract):
     """Σ_j smoothed electrical power of joint j, W, with ``u`` the motor torques and ``q̇`` the
     joint speeds of the state (``x[nq + 6:]``).
 
@@ -109,19 +113,19 @@ class EnergyCost(crocoddyl.CostModelAbstract):  # type: ignore[misc]
         power: The joints' motor constants.
     """
 
-    def __init__(self, state: crocoddyl.StateMultibody, power: JointPower) -> None:
+    def __init__(self, state: Any, power: JointPower) -> None:
         n = state.nv - 6
         crocoddyl.CostModelAbstract.__init__(self, state, crocoddyl.ActivationModelQuad(n), n)
         self.power = power
 
-    def calc(self, data: crocoddyl.CostDataAbstract, x: np.ndarray,
+    def calc(self, data: Any, x: np.ndarray,
              u: np.ndarray | None = None) -> None:
         """``data.cost``: the smoothed power, W."""
         qdot = x[self.state.nq + 6:]
         value, _, _ = self.power.smoothed(np.asarray(u), qdot)
         data.cost = float(np.sum(value))
 
-    def calcDiff(self, data: crocoddyl.CostDataAbstract, x: np.ndarray,
+    def calcDiff(self, data: Any, x: np.ndarray,
                  u: np.ndarray | None = None) -> None:
         """``Lx, Lu, Lxx, Luu, Lxu``: the smoothed power's exact gradient and Hessian."""
         nq, nv = self.state.nq, self.state.nv
