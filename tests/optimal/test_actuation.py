@@ -11,7 +11,7 @@ from hexaleg.errors import UnknownNameError
 
 crocoddyl = pytest.importorskip("crocoddyl")
 
-from hexaleg.optimal.actuation import SpringActuation, stiffness  # noqa: E402
+from hexaleg.optimal.actuation import SpringActuation, sprung_joints, stiffness  # noqa: E402
 
 SPRINGS = hexaleg.SpringSet({
     "LF_femur": hexaleg.DeadZoneSpring(0.4, theta_minus=-0.2, theta_plus=0.1, k2=0.05,
@@ -31,7 +31,7 @@ def _state(robot, rng):
 
 def test_torque_is_the_motors_plus_the_springs(robot):
     state = crocoddyl.StateMultibody(robot.model)
-    act = SpringActuation(state, robot, SPRINGS)
+    act = SpringActuation(state, sprung_joints(robot, SPRINGS))
     data = act.createData()
     rng = np.random.default_rng(1)
     x, u = _state(robot, rng), rng.normal(size=robot.nj)
@@ -50,7 +50,7 @@ def test_derivatives_match_finite_differences(robot, seed):
     """∂τ/∂x (the springs' stiffness and damping) and ∂τ/∂u against central differences of
     :meth:`calc` on the state manifold (the free flyer's tangent by Pinocchio's integrate)."""
     state = crocoddyl.StateMultibody(robot.model)
-    act = SpringActuation(state, robot, SPRINGS)
+    act = SpringActuation(state, sprung_joints(robot, SPRINGS))
     data = act.createData()
     rng = np.random.default_rng(seed)
     x, u = _state(robot, rng), rng.normal(size=robot.nj)
@@ -95,4 +95,5 @@ def test_stiffness_is_the_slope_of_each_law():
 def test_a_spring_on_an_unknown_joint_is_named(robot):
     state = crocoddyl.StateMultibody(robot.model)
     with pytest.raises(UnknownNameError, match="XX_femur"):
-        SpringActuation(state, robot, hexaleg.SpringSet({"XX_femur": hexaleg.LinearSpring(1.0)}))
+        SpringActuation(state, sprung_joints(robot, hexaleg.SpringSet(
+            {"XX_femur": hexaleg.LinearSpring(1.0)})))

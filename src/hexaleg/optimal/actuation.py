@@ -56,7 +56,7 @@ def stiffness(spring: Spring, angle: float) -> float:
 
 
 @dataclass(frozen=True)
-class _Sprung:
+class SprungJoint:
     """One sprung joint: its column among the actuated joints, q and v indices, its law."""
 
     column: int
@@ -65,7 +65,7 @@ class _Sprung:
     spring: Spring
 
 
-def sprung_joints(robot: Robot, springs: SpringSet) -> tuple[_Sprung, ...]:
+def sprung_joints(robot: Robot, springs: SpringSet) -> tuple[SprungJoint, ...]:
     """The sprung joints of ``robot`` in :meth:`SpringSet.columns` order.
 
     Raises:
@@ -79,30 +79,32 @@ def sprung_joints(robot: Robot, springs: SpringSet) -> tuple[_Sprung, ...]:
         if joint.nq != 1:
             raise InvalidParameterError(f"spring on {name}", f"a joint with nq = {joint.nq}",
                                         "a revolute joint (nq = 1) in the optimal-control problem")
-        out.append(_Sprung(column, joint.idx_q, joint.idx_v, springs[name]))
+        out.append(SprungJoint(column, joint.idx_q, joint.idx_v, springs[name]))
     return tuple(out)
 
 
 class SpringActuation(_ActuationModelAbstract):
-    """Floating-base actuation with springs: ``τ = [0₆; u + τ_s(q, q̇)]`` (module docstring).
+    """Actuation with springs: ``τ = [0_b; u + τ_s(q, q̇)]`` (module docstring), ``b`` the
+    unactuated base's velocity dimensions (6 for a free flyer, 0 for a fixed base).
 
     Args:
-        state: Crocoddyl's multibody state of ``robot.model`` (free flyer first).
-        robot: The robot (its joints' indices).
-        springs: The springs; an empty set gives Crocoddyl's ``ActuationModelFloatingBase``.
+        state: Crocoddyl's multibody state (the base's joint first).
+        sprung: The sprung joints (:func:`sprung_joints`); none gives Crocoddyl's
+            ``ActuationModelFloatingBase`` (``base`` 6) or ``ActuationModelFull`` (``base`` 0).
+        base: ``b``.
     """
 
-    def __init__(self, state: Any, robot: Robot, springs: SpringSet
-                 ) -> None:
+    def __init__(self, state: Any, sprung: tuple[SprungJoint, ...], base: int = 6) -> None:
         nv = state.nv
-        crocoddyl.ActuationModelAbstract.__init__(self, state, nv - 6)
-        self.sprung = sprung_joints(robot, springs)
+        crocoddyl.ActuationModelAbstract.__init__(self, state, nv - base)
+        self.sprung = sprung
         self._nv = nv
+        self._base = base
 
     def spring_torques(self, x: np.ndarray) -> np.ndarray:
-        """``τ_s`` of every actuated joint at state ``x`` (nq + nv,), shape (nv − 6,), N·m."""
+        """``τ_s`` of every actuated joint at state ``x`` (nq + nv,), shape (nv − b,), N·m."""
         nq = self.state.nq
-        out = np.zeros(self._nv - 6)
+        out = np.zeros(self._nv - self._base)
         for s in self.sprung:
             q, v = np.array([x[s.iq]]), np.array([x[nq + s.iv]])
             out[s.column] = float(s.spring.torque(q, v)[0])
@@ -112,34 +114,36 @@ class SpringActuation(_ActuationModelAbstract):
              u: np.ndarray | None = None) -> None:
         """``data.tau = [0₆; u + τ_s(x)]`` (``u`` None: Crocoddyl's terminal node, u = 0)."""
         tau = np.zeros(self._nv)
-        tau[6:] = self.spring_torques(x) + (0.0 if u is None else u)
-        data.tau[:] = tau
+        tau[self._base:] = self.spring_torques(x) + (0.0 if u is None else u)
+        data.tau[...] = np.reshape(tau, np.shape(data.tau))
 
     def calcDiff(self, data: Any, x: np.ndarray,
                  u: np.ndarray | None = None) -> None:
         """``dtau_du = S``; ``dtau_dx`` the springs' stiffness and damping (module docstring)."""
-        nv = self._nv
+        nv, b = self._nv, self._base
         dx = np.zeros((nv, 2 * nv))
         for s in self.sprung:
             q = x[s.iq]
-            dx[6 + s.column, s.iv] = stiffness(s.spring, q)
+            dx[b + s.column, s.iv] = stiffness(s.spring, q)
             one, zero = np.array([1.0]), np.array([0.0])
             qa = np.array([q])
-            dx[6 + s.column, nv + s.iv] = float(s.spring.torque(qa, one)[0]
+            dx[b + s.column, nv + s.iv] = float(s.spring.torque(qa, one)[0]
                                                 - s.spring.torque(qa, zero)[0])
-        data.dtau_dx[:, :] = dx
-        du = np.zeros((nv, nv - 6))
-        du[6:, :] = np.eye(nv - 6)
-        data.dtau_du[:, :] = du
+        data.dtau_dx[...] = np.reshape(dx, np.shape(data.dtau_dx))
+        du = np.zeros((nv, nv - b))
+        du[b:, :] = np.eye(nv - b)
+        data.dtau_du[...] = np.reshape(du, np.shape(data.dtau_du))
 
     def commands(self, data: Any, x: np.ndarray,
                  tau: np.ndarray) -> None:
         """The motor torques for joint torques ``tau`` (nv,): ``u = τ[6:] − τ_s(x)``."""
-        data.u[:] = np.asarray(tau)[6:] - self.spring_torques(x)
+        u = np.asarray(tau)[self._base:] - self.spring_torques(x)
+        data.u[...] = np.reshape(u, np.shape(data.u))
 
     def torqueTransform(self, data: Any,
                         x: np.ndarray, u: np.ndarray) -> None:
         """``∂u/∂τ`` of :meth:`commands`: the identity on the joints (Crocoddyl's interface)."""
-        m = np.zeros((self._nv - 6, self._nv))
-        m[:, 6:] = np.eye(self._nv - 6)
-        data.Mtau[:, :] = m
+        b = self._base
+        m = np.zeros((self._nv - b, self._nv))
+        m[:, b:] = np.eye(self._nv - b)
+        data.Mtau[...] = np.reshape(m, np.shape(data.Mtau))

@@ -106,39 +106,46 @@ class JointPower:
 
 class EnergyCost(_CostModelAbstract):
     """Σ_j smoothed electrical power of joint j, W, with ``u`` the motor torques and ``q̇`` the
-    joint speeds of the state (``x[nq + 6:]``).
+    joint speeds of the state (``x[nq + b:]``, ``b`` the unactuated base's velocity dimensions).
 
     Args:
-        state: Crocoddyl's multibody state (free flyer first).
+        state: Crocoddyl's multibody state (the base's joint first).
         power: The joints' motor constants.
+        base: ``b``: 6 for a free flyer, 0 for a fixed base.
     """
 
-    def __init__(self, state: Any, power: JointPower) -> None:
-        n = state.nv - 6
+    def __init__(self, state: Any, power: JointPower, base: int = 6) -> None:
+        n = state.nv - base
         crocoddyl.CostModelAbstract.__init__(self, state, crocoddyl.ActivationModelQuad(n), n)
         self.power = power
+        self.base = base
 
     def calc(self, data: Any, x: np.ndarray,
              u: np.ndarray | None = None) -> None:
-        """``data.cost``: the smoothed power, W."""
-        qdot = x[self.state.nq + 6:]
+        """``data.cost``: the smoothed power, W (0 at a terminal node, which has no control)."""
+        if u is None:
+            data.cost = 0.0
+            return
+        qdot = x[self.state.nq + self.base:]
         value, _, _ = self.power.smoothed(np.asarray(u), qdot)
         data.cost = float(np.sum(value))
 
     def calcDiff(self, data: Any, x: np.ndarray,
                  u: np.ndarray | None = None) -> None:
         """``Lx, Lu, Lxx, Luu, Lxu``: the smoothed power's exact gradient and Hessian."""
-        nq, nv = self.state.nq, self.state.nv
-        _, (gu, gv), (huu, hvv, huv) = self.power.smoothed(np.asarray(u), x[nq + 6:])
-        n = nv - 6
+        if u is None:
+            return
+        nq, nv, b = self.state.nq, self.state.nv, self.base
+        _, (gu, gv), (huu, hvv, huv) = self.power.smoothed(np.asarray(u), x[nq + b:])
+        n = nv - b
         lx = np.zeros(2 * nv)
-        lx[nv + 6:] = gv
+        lx[nv + b:] = gv
         lxx = np.zeros((2 * nv, 2 * nv))
-        lxx[nv + 6:, nv + 6:] = np.diag(hvv)
+        lxx[nv + b:, nv + b:] = np.diag(hvv)
         lxu = np.zeros((2 * nv, n))
-        lxu[nv + 6:, :] = np.diag(huv)
-        data.Lx[:] = lx
-        data.Lu[:] = gu
-        data.Lxx[:, :] = lxx
-        data.Luu[:, :] = np.diag(huu)
-        data.Lxu[:, :] = lxu
+        lxu[nv + b:, :] = np.diag(huv)
+        data.Lx[...] = np.reshape(lx, np.shape(data.Lx))
+        data.Lu[...] = np.reshape(gu, np.shape(data.Lu))
+        data.Lxx[...] = np.reshape(lxx, np.shape(data.Lxx))
+        data.Luu[...] = np.reshape(np.diag(huu), np.shape(data.Luu))
+        data.Lxu[...] = np.reshape(lxu, np.shape(data.Lxu))

@@ -32,7 +32,7 @@ import pinocchio as pin
 from hexaleg.checks import integer, positive, real
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.trajectory import Motion
-from hexaleg.optimal.actuation import SpringActuation
+from hexaleg.optimal.actuation import SpringActuation, sprung_joints
 from hexaleg.optimal.backend import crocoddyl_module
 from hexaleg.optimal.energy import EnergyCost, JointPower
 from hexaleg.optimal.friction import FrictionPyramid
@@ -190,7 +190,7 @@ def build_problem(robot: Robot, motion: Motion, actuator: Any, springs: SpringSe
     x_warm = np.vstack([xs, shifted_state(xs[0], displacement)])
     refs = _references(robot, motion.q[samples], stance, displacement)
     state = crocoddyl.StateMultibody(robot.model)
-    actuation = SpringActuation(state, robot, springs)
+    actuation = SpringActuation(state, sprung_joints(robot, springs))
     nu = actuation.nu
     power = JointPower.of(actuator, nu, params.smoothing)
     limit = np.broadcast_to(np.asarray(actuator.stall_torque, float), (nu,))
