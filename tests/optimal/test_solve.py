@@ -47,6 +47,7 @@ def test_the_feet_stay_in_their_cones_and_the_cycle_repeats(optimal):
     result, _ = optimal
     assert result.friction_use <= 0.7 + 1e-3  # the pyramid inside 0.7 μ
     assert result.periodicity <= 1e-2
+    assert result.slip <= 0.02  # m/s: the stance feet hold
     swing = ~result.motion.stance
     assert np.all(result.forces[swing] == 0.0)
 

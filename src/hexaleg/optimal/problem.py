@@ -16,8 +16,8 @@ costs), here with
 * friction cones (a 4-facet pyramid inside the cone of friction ``μ · friction_use``,
   :mod:`~hexaleg.optimal.friction`) and the joints' position and speed limits (URDF
   limits, the motor's no-load speed) as quadratic barriers, which are zero inside the bounds;
-* the feet landing at rest (a cost on the foot's velocity at the knot before touch-down: there
-  is no impact model);
+* the feet landing at rest (a cost on the foot's velocity at its touch-down knot: there is no
+  impact model; the contact's Baumgarte damping ``a_c = −v_c/dt`` holds a stance foot still);
 * the terminal periodicity cost (:mod:`~hexaleg.optimal.periodic`).
 """
 
@@ -55,7 +55,7 @@ class OptimalParams:
             (0, 1].
         state_weight: Weight of ``‖x ⊖ x_warm‖²`` at every knot (J·s per unit²).
         swing_weight: Weight of the swing feet's distance to the warm start's path, per m².
-        landing_weight: Weight of a foot's squared velocity at the knot before touch-down.
+        landing_weight: Weight of a foot's squared velocity at its touch-down knot.
         limit_weight: Weight of the position, speed and friction barriers.
         periodic_weight: Weight of the terminal periodicity cost.
         iterations: Box-FDDP iterations at most.
@@ -67,7 +67,7 @@ class OptimalParams:
     friction_use: float = 0.7
     state_weight: float = 1e-3
     swing_weight: float = 1e2
-    landing_weight: float = 1e1
+    landing_weight: float = 1e3
     limit_weight: float = 1e3
     periodic_weight: float = 1e4
     iterations: int = 100
@@ -217,6 +217,11 @@ def build_problem(robot: Robot, motion: Motion, actuator: Any, springs: SpringSe
                     state, leg.foot_frame_id, ref, pin.LOCAL_WORLD_ALIGNED, nu,
                     np.array([0.0, 1.0 / dt])))
                 down.append(leg.name)
+                if not terminal and not stance[k - 1, j]:  # touch-down: the foot at rest
+                    rest = crocoddyl.ResidualModelFrameVelocity(
+                        state, leg.foot_frame_id, pin.Motion.Zero(), pin.LOCAL_WORLD_ALIGNED, nu)
+                    costs.addCost(f"{leg.name}_landing", crocoddyl.CostModelResidual(state, rest),
+                                  params.landing_weight)
                 if not terminal:
                     force = crocoddyl.ResidualModelContactForce(
                         state, leg.foot_frame_id, pin.Force.Zero(), 3, nu, True)
@@ -228,11 +233,6 @@ def build_problem(robot: Robot, motion: Motion, actuator: Any, springs: SpringSe
                     state, leg.foot_frame_id, _foot_positions(robot, x_warm[k, :nq])[j], nu)
                 costs.addCost(f"{leg.name}_swing", crocoddyl.CostModelResidual(state, path),
                               params.swing_weight)
-                if stance[(k + 1) % n, j]:
-                    rest = crocoddyl.ResidualModelFrameVelocity(
-                        state, leg.foot_frame_id, pin.Motion.Zero(), pin.LOCAL_WORLD_ALIGNED, nu)
-                    costs.addCost(f"{leg.name}_landing", crocoddyl.CostModelResidual(state, rest),
-                                  params.landing_weight)
         names.append(down)
         if terminal:
             costs.addCost("periodic", crocoddyl.CostModelResidual(

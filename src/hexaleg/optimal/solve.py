@@ -56,6 +56,8 @@ class OptimalResult:
         dynamic_gap: Largest integration defect at the end.
         periodicity: ``‖x_N ⊖ H·x_0‖∞`` at the end.
         friction_use: Largest ``‖λ_t‖ / (μ λ_z)`` of a stance foot (1 is the cone's edge).
+        slip: Largest speed of a stance foot, m/s (0 for feet that hold; the contacts keep their
+            acceleration at ``−v/dt``, so a foot that lands moving slides for a knot).
         seconds: Wall time of the solve, s.
     """
 
@@ -74,6 +76,7 @@ class OptimalResult:
     dynamic_gap: float
     periodicity: float
     friction_use: float
+    slip: float
     seconds: float
 
 
@@ -140,9 +143,15 @@ def solve(robot: Robot, built: OptimalProblem, *, say: Callable[[str], None] | N
     use = np.where(stance, tangential / np.maximum(mu * forces[..., 2], 1e-12), 0.0)
     n = len(u)
     feet = np.zeros((n, len(robot.legs), 3))
+    speed = np.zeros((n, len(robot.legs)))
+    world = pin.LOCAL_WORLD_ALIGNED
     for k in range(n):
-        pin.framesForwardKinematics(robot.model, robot.data, x[k, :nq])
+        pin.forwardKinematics(robot.model, robot.data, x[k, :nq], x[k, nq:])
+        pin.updateFramePlacements(robot.model, robot.data)
         feet[k] = [robot.data.oMf[leg.foot_frame_id].translation for leg in robot.legs]
+        speed[k] = [np.linalg.norm(pin.getFrameVelocity(robot.model, robot.data,
+                                                        leg.foot_frame_id, world).linear)
+                    for leg in robot.legs]
     motion = Motion(t=np.arange(n) * built.dt, q=x[:-1, :nq].copy(), v=x[:-1, nq:].copy(),
                     a=np.diff(x[:, nq:], axis=0) / built.dt, stance=built.stance.copy(),
                     feet=feet, period=built.period, distance=built.distance,
@@ -156,4 +165,5 @@ def solve(robot: Robot, built: OptimalProblem, *, say: Callable[[str], None] | N
         converged=converged, stationarity=float(solver.stop), threshold=float(solver.th_stop),
         dynamic_gap=float(solver.ffeas),
         periodicity=periodicity_gap(x, built.displacement, built.state.diff),
-        friction_use=float(use.max()), seconds=seconds)
+        friction_use=float(use.max()), slip=float(np.max(speed * built.stance)),
+        seconds=seconds)
