@@ -112,12 +112,11 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
         InvalidParameterError: a family outside :data:`SMOOTH_FAMILIES`, bad ``rounds`` or
             ``tolerance``; BackendError: no usable Crocoddyl.
     """
-    from hexaleg.optimal.problem import OptimalParams, build_problem
-    from hexaleg.optimal.solve import solve
-
     one_of("family", family, SMOOTH_FAMILIES)
     rounds = integer("rounds", rounds, low=1)
     tolerance = real("tolerance", tolerance, low=0.0, high=1.0, high_open=True)
+    from hexaleg.optimal.problem import OptimalParams, build_problem  # needs Crocoddyl
+    from hexaleg.optimal.solve import solve
     params = params or OptimalParams()
     tell = say or (lambda _line: None)
     current = springs or SpringSet()
