@@ -22,7 +22,7 @@ def run():
 @pytest.fixture(scope="module")
 def optimal(run):
     built = build_problem(run.model, run.played(), run.actuator, hexaleg.SpringSet(),
-                          OptimalParams(nodes=20, iterations=200))
+                          OptimalParams(nodes=20, iterations=200, stop=5e-5))
     lines: list[str] = []
     return solve(run.model, built, say=lines.append), lines
 

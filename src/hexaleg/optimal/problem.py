@@ -16,7 +16,7 @@ costs), here with
 * friction cones (a 4-facet pyramid inside the cone of friction ``μ · friction_use``,
   :mod:`~hexaleg.optimal.friction`) and the joints' position and speed limits (URDF
   limits, the motor's no-load speed) as quadratic barriers, which are zero inside the bounds;
-* the feet landing at rest (a cost on the foot's velocity at its touch-down knot: there is no
+* the feet landing at rest (a cost on the foot's linear velocity at its touch-down knot; no
   impact model; the contact's Baumgarte damping ``a_c = −v_c/dt`` holds a stance foot still);
 * the terminal periodicity cost (:mod:`~hexaleg.optimal.periodic`).
 """
@@ -59,6 +59,9 @@ class OptimalParams:
         limit_weight: Weight of the position, speed and friction barriers.
         periodic_weight: Weight of the terminal periodicity cost.
         iterations: Box-FDDP iterations at most.
+        stop: Box-FDDP's stopping threshold ``th_stop`` (:mod:`~hexaleg.optimal.solve`); the
+            energy of a cycle of this small robot is about a joule, so Crocoddyl's default 5e-5
+            stops it early.
     """
 
     nodes: int = 40
@@ -71,13 +74,14 @@ class OptimalParams:
     limit_weight: float = 1e3
     periodic_weight: float = 1e4
     iterations: int = 100
+    stop: float = 1e-8
 
     def __post_init__(self) -> None:
         integer("OptimalParams.nodes", self.nodes, low=8)
         integer("OptimalParams.iterations", self.iterations, low=1)
         real("OptimalParams.friction_use", self.friction_use, low=0.0, high=1.0,
              low_open=True)
-        for key in ("smoothing", "mu", "state_weight", "swing_weight", "landing_weight",
+        for key in ("stop", "smoothing", "mu", "state_weight", "swing_weight", "landing_weight",
                     "limit_weight", "periodic_weight"):
             positive(f"OptimalParams.{key}", getattr(self, key))
 
@@ -112,6 +116,11 @@ class OptimalProblem:
     power: JointPower
     params: OptimalParams
     contact_names: list[list[str]] = field(default_factory=list)
+
+
+LINEAR = np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
+"""Weights of a frame velocity's (linear, angular) parts in the landing cost: a round foot may
+roll as it lands, it must not slide."""
 
 
 def _knot_samples(motion: Motion, nodes: int) -> np.ndarray:
@@ -220,8 +229,9 @@ def build_problem(robot: Robot, motion: Motion, actuator: Any, springs: SpringSe
                 if not terminal and not stance[k - 1, j]:  # touch-down: the foot at rest
                     rest = crocoddyl.ResidualModelFrameVelocity(
                         state, leg.foot_frame_id, pin.Motion.Zero(), pin.LOCAL_WORLD_ALIGNED, nu)
-                    costs.addCost(f"{leg.name}_landing", crocoddyl.CostModelResidual(state, rest),
-                                  params.landing_weight)
+                    costs.addCost(f"{leg.name}_landing", crocoddyl.CostModelResidual(
+                        state, crocoddyl.ActivationModelWeightedQuad(LINEAR), rest),
+                        params.landing_weight)
                 if not terminal:
                     force = crocoddyl.ResidualModelContactForce(
                         state, leg.foot_frame_id, pin.Force.Zero(), 3, nu, True)

@@ -4,8 +4,8 @@ Crocoddyl's box-FDDP (Mastalli et al., "A feasibility-driven approach to control
 Autonomous Robots 46, 2022) from the warm start's states and the quasi-static controls of its
 knots (Crocoddyl's ``ShootingProblem.quasiStatic``). What the solver stops on is stated, not
 assumed: ``stationarity`` is Crocoddyl's stopping criterion (the squared norm of the expected
-improvement's gradient term, ``solver.stop``, met when ≤ ``solver.th_stop``, 5e-5 in Crocoddyl
-3.2), ``dynamic_gap`` the
+improvement's gradient term, ``solver.stop``, met when ≤ ``solver.th_stop``, set from
+``OptimalParams.stop``), ``dynamic_gap`` the
 largest defect between a knot's integration and the next state (``solver.ffeas``, 0 for a
 feasible trajectory), ``periodicity_gap`` :func:`~hexaleg.optimal.periodic.periodicity_gap`.
 
@@ -119,6 +119,7 @@ def solve(robot: Robot, built: OptimalProblem, *, say: Callable[[str], None] | N
     """
     problem = built.problem
     solver = crocoddyl.SolverBoxFDDP(problem)
+    solver.th_stop = built.params.stop
     if say is not None:
         solver.setCallbacks([_Progress(say)])
     if warm is None:
