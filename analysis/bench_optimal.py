@@ -2,6 +2,7 @@
 2 cores), with the numbers of docs/optimal.md's table.
 
 Run:  python analysis/bench_optimal.py [--nodes 40] [--rounds 3] [--json out.json]
+                                        [--from-codesign]
 
 Needs the ``optimal`` extra (crocoddyl 3.2.1 with pin 4.0). In one process, as baselines: the
 default gait's energy per metre by hexaleg's pipeline (RNEA and the force program, no springs)
@@ -11,6 +12,9 @@ optimal cycle without springs, and the alternation of the optimal cycle and its 
 row's J/m and its ratio to the default gait, the solver's figures (iterations, stationarity,
 residual, friction use, stance slip), the wall time against the target and the CPU share (this
 process's user + system CPU over the wall time: under 1 when other work shares the cores).
+``--from-codesign`` also runs the parametric co-design (``hexaleg.codesign``, no rules, no
+simulation, no curve) and the alternation from its chosen gait and springs: the issue's warm
+start.
 """
 
 from __future__ import annotations
@@ -40,6 +44,8 @@ def main() -> None:
     parser.add_argument("--nodes", type=int, default=40, help="knots per cycle")
     parser.add_argument("--rounds", type=int, default=3, help="alternation rounds at most")
     parser.add_argument("--json", help="write the rows to this JSON file")
+    parser.add_argument("--from-codesign", action="store_true",
+                        help="also start the alternation from the parametric co-design")
     args = parser.parse_args()
     start, cpu0 = time.perf_counter(), os.times()
     run = hexaleg.Scenario.load("hexaleg")
@@ -58,12 +64,25 @@ def main() -> None:
     print("alternation (linear springs):", flush=True)
     alt = alternate(robot, gait, run.actuator, run.contact, springs=sprung.springs,
                     params=params, rounds=args.rounds, say=_say)
+    if args.from_codesign:
+        print("parametric co-design (no rules, no simulation):", flush=True)
+        para = hexaleg.codesign(speed=gait.distance / gait.period, rules=False, simulate=False,
+                                curve=False, progress=_say)
+        best = min(para.rows, key=lambda r: r.per_metre)
+        print(f"parametric co-design: {best.label} {best.per_metre:.4g} J/m", flush=True)
+        chosen = hexaleg.gait(robot, para.chosen)
+        print("alternation from the parametric co-design:", flush=True)
+        alt_p = alternate(robot, chosen, run.actuator, run.contact, springs=para.springs,
+                          params=params, rounds=args.rounds, say=_say)
     wall = time.perf_counter() - start
     cpu1 = os.times()
     cpu = (cpu1.user - cpu0.user) + (cpu1.system - cpu0.system)
     rows = {"default gait": default, "default gait, its linear springs": default_springs,
             "optimal cycle, no springs": bare.energy_per_metre,
             "optimal cycle, its springs (alternation)": alt.best.energy_per_metre}
+    if args.from_codesign:
+        rows["parametric co-design (its rows' best)"] = best.per_metre
+        rows["optimal cycle from the co-design, its springs"] = alt_p.best.energy_per_metre
     print(f"\n{'row':44s} {'J/m':>8s} {'× default':>10s}")
     for name, value in rows.items():
         print(f"{name:44s} {value:8.4g} {value / default:10.3f}")
