@@ -86,13 +86,19 @@ def main() -> None:
     print(f"\n{'row':44s} {'J/m':>8s} {'× default':>10s}")
     for name, value in rows.items():
         print(f"{name:44s} {value:8.4g} {value / default:10.3f}")
-    for name, r in (("no springs", bare), ("its springs", alt.best)):
+    results = [("no springs", bare), ("its springs", alt.best)]
+    if args.from_codesign:
+        results.append(("from the co-design, its springs", alt_p.best))
+    for name, r in results:
         print(f"{name}: {r.iterations} iterations, stationarity {r.stationarity:.2g} "
               f"(threshold {r.threshold:.2g}), residual {r.residual:.2g} N·m, friction use "
               f"{r.friction_use:.3f}, slip {r.slip:.3g} m/s, periodicity {r.periodicity:.2g}, "
               f"{r.seconds:.0f} s")
     print(f"alternation: {len(alt.rounds)} rounds, energies {[round(e, 3) for e in alt.energies]}"
           f", last gain {alt.gap:.3g}")
+    if args.from_codesign:
+        print(f"alternation from the co-design: {len(alt_p.rounds)} rounds, energies "
+              f"{[round(e, 3) for e in alt_p.energies]}, last gain {alt_p.gap:.3g}")
     print(f"wall {wall:.0f} s = {wall / TARGET:.2f} × the {TARGET:.0f} s target; CPU share "
           f"{cpu / wall:.2f}")
     if args.json:
