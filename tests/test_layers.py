@@ -1,8 +1,8 @@
 """The package's shape: imports point down the layers, modules stay small, the import is light.
 
 Layers, lowest first (docs/architecture.md): the top-level helpers (errors, units, config,
-checks, quantities) → robot → parallel → motion → dynamics → scenario → simulation → design →
-outputs → paper, sweep → report → commands → cli. A module may import its own layer and the
+checks, quantities) → robot → parallel → motion → dynamics → scenario, optimal → simulation →
+design → outputs → paper, sweep → report → commands → cli. A module may import its own layer and the
 ones below it, at module level, inside functions or under TYPE_CHECKING alike; a command imports
 no other command (only the shared modules at the top of ``commands/``).
 """
@@ -20,11 +20,11 @@ import hexaleg
 
 SRC = Path(hexaleg.__file__).resolve().parent
 RANK = {"errors": 0, "units": 0, "config": 0, "checks": 0, "quantities": 0, "robot": 1,
-        "parallel": 2, "motion": 3, "dynamics": 4, "scenario": 5, "simulation": 6, "design": 7,
-        "outputs": 8, "paper": 9, "sweep": 9, "report": 10, "commands": 11, "cli": 12}
+        "parallel": 2, "motion": 3, "dynamics": 4, "scenario": 5, "optimal": 5, "simulation": 6,
+        "design": 7, "outputs": 8, "paper": 9, "sweep": 9, "report": 10, "commands": 11, "cli": 12}
 """Each layer's rank: a module imports only from layers of its rank or lower."""
-LIBRARY = ("robot", "parallel", "motion", "dynamics", "scenario", "simulation", "design",
-           "outputs", "paper", "sweep", "report")
+LIBRARY = ("robot", "parallel", "motion", "dynamics", "scenario", "optimal", "simulation",
+           "design", "outputs", "paper", "sweep", "report")
 """The library's packages, in the order of :data:`RANK`; ``commands`` is the command layer."""
 TOP_LEVEL = {"__init__.py", "errors.py", "units.py", "config.py", "checks.py", "quantities.py",
              "cli.py"}

@@ -1,0 +1,78 @@
+"""The Crocoddyl this package runs on, imported once and checked to read Pinocchio's models.
+
+Crocoddyl and Pinocchio are compiled separately and share C++ structures: a Crocoddyl built
+against one Pinocchio release reads another's ``Model`` by the layout it was compiled with.
+crocoddyl 3.2.1 (PyPI) on pin 4.1.0 imports cleanly and then reads every frame's placement as
+garbage — a foot contact at the wrong point of the leg, or a ``MemoryError`` — while on pin 4.0.0
+it reads them right (measured; ``pyproject.toml``'s ``optimal`` extra pins pin 4.0.x). So before
+any problem is built, :func:`crocoddyl_module` builds a contact on every frame of a Pinocchio
+sample model and compares the placement Crocoddyl read (``ContactData3D.jMf``) with Pinocchio's.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+from types import ModuleType
+from typing import Any
+
+import numpy as np
+
+from hexaleg.errors import HexalegError
+
+
+class BackendError(HexalegError):
+    """Crocoddyl is missing, or reads Pinocchio's models wrongly (a binary mismatch)."""
+
+
+PROBES = 8
+"""Frames added to the sample model at distinct placements (its own frames sit at the identity,
+which a misreading binary could return by chance)."""
+
+
+def probe_model(pinocchio: ModuleType) -> Any:
+    """Pinocchio's sample humanoid with :data:`PROBES` frames at distinct, known placements."""
+    model = pinocchio.buildSampleModelHumanoidRandom()
+    for k in range(PROBES):
+        rotation = pinocchio.rpy.rpyToMatrix(0.1 * k, -0.2 * k, 0.3)
+        placement = pinocchio.SE3(rotation, np.array([0.01 * (k + 1), -0.02 * k, 0.03]))
+        model.addFrame(pinocchio.Frame(f"probe{k}", 1 + k, placement,
+                                       pinocchio.FrameType.OP_FRAME))
+    return model
+
+
+def misread_frames(crocoddyl: ModuleType, pinocchio: ModuleType) -> int:
+    """How many frames of :func:`probe_model` Crocoddyl reads at another placement than
+    Pinocchio's (0 for a matched pair)."""
+    model = probe_model(pinocchio)
+    state = crocoddyl.StateMultibody(model)
+    bad = 0
+    for frame in range(1, model.nframes):
+        contact = crocoddyl.ContactModel3D(state, frame, np.zeros(3), pinocchio.LOCAL,
+                                           state.nv - 6, np.zeros(2))
+        data = contact.createData(model.createData())
+        bad += not np.allclose(data.jMf.homogeneous, model.frames[frame].placement.homogeneous)
+    return bad
+
+
+@cache
+def crocoddyl_module() -> ModuleType:
+    """The ``crocoddyl`` module, checked (module docstring).
+
+    Raises:
+        BackendError: crocoddyl is not installed (the ``optimal`` extra), or it misreads
+            Pinocchio's models; the message names both versions.
+    """
+    try:
+        import crocoddyl
+    except ImportError as err:
+        raise BackendError("the optimal motion needs Crocoddyl: pip install "
+                           "\"hexaleg[optimal]\" (crocoddyl 3.2.1 with pin 4.0)") from err
+    import pinocchio
+
+    bad = misread_frames(crocoddyl, pinocchio)
+    if bad:
+        raise BackendError(f"crocoddyl {crocoddyl.__version__} misreads {bad} frame placements "
+                           f"of a pin {pinocchio.__version__} model (a binary mismatch): install "
+                           "the pair the optimal extra pins, pip install \"hexaleg[optimal]\" "
+                           "(crocoddyl 3.2.1 with pin 4.0)")
+    return crocoddyl

@@ -1,0 +1,263 @@
+"""The whole-body optimal-control problem of one gait cycle with the springs in the dynamics.
+
+One cycle of a gait, cut into ``N`` knots of ``dt = period / N`` (the contact timing is the gait
+pattern's, fixed), each an Euler-integrated contact dynamics of the whole robot on its floating
+base (Crocoddyl's ``DifferentialActionModelContactFwdDynamics``: ``M a + h = τ + Jᶜᵀ λ`` with the
+stance feet's 3-D contact accelerations held at zero, Featherstone, *Rigid Body Dynamics
+Algorithms*, §11; Mastalli et al., ICRA 2020, eq. 9), as Crocoddyl's quadrupedal examples build
+their gaits (``SimpleQuadrupedalGaitProblem``: one contact set per knot, swing feet by frame
+costs), here with
+
+* the actuation ``τ = [0₆; u + τ_s(q, q̇)]`` (:mod:`~hexaleg.optimal.actuation`): ``u`` is the
+  motor's torque, its box ``|u| ≤`` stall torque is box-FDDP's control bound;
+* the running cost the motor's smoothed electrical power (:mod:`~hexaleg.optimal.energy`), plus
+  small regularisation towards the warm start and the swing feet's path (weights in
+  :class:`OptimalParams`; what they cost is reported apart from the energy);
+* friction cones (a 4-facet pyramid inside the cone of friction ``μ · friction_use``,
+  :mod:`~hexaleg.optimal.friction`) and the joints' position and speed limits (URDF
+  limits, the motor's no-load speed) as quadratic barriers, which are zero inside the bounds;
+* the feet landing at rest (a cost on the foot's linear velocity at its touch-down knot; no
+  impact model; the contact's Baumgarte damping ``a_c = −v_c/dt`` holds a stance foot still);
+* the terminal periodicity cost (:mod:`~hexaleg.optimal.periodic`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import pinocchio as pin
+
+from hexaleg.checks import integer, positive, real
+from hexaleg.errors import InvalidParameterError
+from hexaleg.motion.trajectory import Motion
+from hexaleg.optimal.actuation import SpringActuation, sprung_joints
+from hexaleg.optimal.backend import crocoddyl_module
+from hexaleg.optimal.energy import EnergyCost, JointPower
+from hexaleg.optimal.friction import FrictionPyramid
+from hexaleg.optimal.periodic import cycle_displacement, shifted_state
+from hexaleg.robot.model import Robot
+from hexaleg.robot.springs import SpringSet
+
+crocoddyl = crocoddyl_module()
+
+
+@dataclass(frozen=True)
+class OptimalParams:
+    """How the cycle is cut and weighed.
+
+    Attributes:
+        nodes: Knots per cycle ``N`` (≥ 8).
+        smoothing: ε of the energy's softplus, W (:mod:`~hexaleg.optimal.energy`).
+        mu: Friction coefficient of the cones.
+        friction_use: Fraction of ``μ`` the feet may use (the cone's ``μ · friction_use``), in
+            (0, 1].
+        state_weight: Weight of ``‖x ⊖ x_warm‖²`` at every knot (J·s per unit²).
+        swing_weight: Weight of the swing feet's distance to the warm start's path, per m².
+        landing_weight: Weight of a foot's squared velocity at its touch-down knot.
+        limit_weight: Weight of the position, speed and friction barriers.
+        periodic_weight: Weight of the terminal periodicity cost.
+        iterations: Box-FDDP iterations at most.
+        stop: Box-FDDP's stopping threshold ``th_stop`` (:mod:`~hexaleg.optimal.solve`); the
+            energy of a cycle of this small robot is about a joule, so Crocoddyl's default 5e-5
+            stops it early.
+    """
+
+    nodes: int = 40
+    smoothing: float = 1e-3
+    mu: float = 0.6
+    friction_use: float = 0.7
+    state_weight: float = 1e-3
+    swing_weight: float = 1e2
+    landing_weight: float = 1e3
+    limit_weight: float = 1e3
+    periodic_weight: float = 1e4
+    iterations: int = 100
+    stop: float = 1e-8
+
+    def __post_init__(self) -> None:
+        integer("OptimalParams.nodes", self.nodes, low=8)
+        integer("OptimalParams.iterations", self.iterations, low=1)
+        real("OptimalParams.friction_use", self.friction_use, low=0.0, high=1.0,
+             low_open=True)
+        for key in ("stop", "smoothing", "mu", "state_weight", "swing_weight", "landing_weight",
+                    "limit_weight", "periodic_weight"):
+            positive(f"OptimalParams.{key}", getattr(self, key))
+
+
+@dataclass
+class OptimalProblem:
+    """The built problem and what solving and reading it need.
+
+    Attributes:
+        problem: Crocoddyl's shooting problem (N running knots, one terminal).
+        state: Crocoddyl's multibody state.
+        actuation: The spring actuation (shared by every knot).
+        x_warm: The warm start's states at the knots, (N + 1, nq + nv).
+        stance: Which legs touch the ground at each knot, (N, n_legs) bool.
+        dt: Knot spacing, s.
+        period: Cycle duration, s.
+        distance: Distance per cycle, m.
+        displacement: The cycle's rigid displacement (4, 4).
+        power: The joints' motor constants (the energy cost's).
+        params: The parameters it was built with.
+    """
+
+    problem: Any
+    state: Any
+    actuation: SpringActuation
+    x_warm: np.ndarray
+    stance: np.ndarray
+    dt: float
+    period: float
+    distance: float
+    displacement: np.ndarray
+    power: JointPower
+    params: OptimalParams
+    contact_names: list[list[str]] = field(default_factory=list)
+
+
+LINEAR = np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
+"""Weights of a frame velocity's (linear, angular) parts in the landing cost: a round foot may
+roll as it lands, it must not slide."""
+
+
+def _knot_samples(motion: Motion, nodes: int) -> np.ndarray:
+    """The motion's sample index at each knot time ``k · period / N``, k = 0 … N − 1."""
+    t = np.arange(nodes) * motion.period / nodes
+    return np.clip(np.rint((t - motion.t[0]) / (motion.t[1] - motion.t[0])).astype(int), 0,
+                   len(motion.t) - 1)
+
+
+def _foot_positions(robot: Robot, q: np.ndarray) -> np.ndarray:
+    """World position of every foot frame at configuration ``q``, (n_legs, 3)."""
+    pin.framesForwardKinematics(robot.model, robot.data, q)
+    return np.array([robot.data.oMf[leg.foot_frame_id].translation for leg in robot.legs])
+
+
+def _references(robot: Robot, qs: np.ndarray, stance: np.ndarray,
+                displacement: np.ndarray) -> np.ndarray:
+    """Each stance foot's contact point at each knot, (N, n_legs, 3): the foot's position at
+    the knot its stance phase begins (cyclically); a phase that began in the previous cycle has
+    that point moved back by the cycle's displacement."""
+    n, legs = stance.shape
+    feet = np.array([_foot_positions(robot, q) for q in qs])
+    back = np.linalg.inv(displacement)
+    out = np.zeros((n, legs, 3))
+    for j in range(legs):
+        if stance[:, j].all():
+            out[:, j] = feet[0, j]
+            continue
+        for k in range(n):
+            if not stance[k, j]:
+                continue
+            s = k
+            while stance[(s - 1) % n, j]:
+                s -= 1
+            p = feet[s % n, j]
+            out[k, j] = p if s >= 0 else back[:3, :3] @ p + back[:3, 3]
+    return out
+
+
+def _barrier(residual: Any, lower: np.ndarray, upper: np.ndarray) -> Any:
+    """``residual`` under a quadratic barrier that is zero inside ``[lower, upper]``."""
+    bounds = crocoddyl.ActivationBounds(np.asarray(lower, float), np.asarray(upper, float))
+    return crocoddyl.CostModelResidual(residual.state,
+                                       crocoddyl.ActivationModelQuadraticBarrier(bounds), residual)
+
+
+def build_problem(robot: Robot, motion: Motion, actuator: Any, springs: SpringSet,
+                  params: OptimalParams | None = None) -> OptimalProblem:
+    """The optimal-control problem of one cycle of ``motion``'s gait (module docstring).
+
+    Args:
+        robot: The robot (free flyer).
+        motion: The gait whose contact timing, cycle displacement and path the problem takes,
+            and which warm-starts it; periodic, on the floating base.
+        actuator: The motors: a :class:`~hexaleg.robot.motor.Motor` or a
+            :class:`~hexaleg.robot.motor_set.MotorSet`.
+        springs: The springs in the dynamics (empty: none).
+        params: The parameters; defaults when None.
+
+    Raises:
+        InvalidParameterError: a fixed-base motion, or a knot with no foot on the ground.
+    """
+    params = params or OptimalParams()
+    if motion.fixed_base:
+        raise InvalidParameterError("motion.fixed_base", True, "a motion on the floating base")
+    displacement = cycle_displacement(motion)
+    n = params.nodes
+    samples = _knot_samples(motion, n)
+    stance = np.asarray(motion.stance[samples], dtype=bool)
+    if not stance.any(axis=1).all():
+        k = int(np.flatnonzero(~stance.any(axis=1))[0])
+        raise InvalidParameterError("stance", f"no foot down at knot {k}",
+                                    "a gait with a foot on the ground at every knot")
+    nq = robot.model.nq
+    xs = np.hstack([motion.q[samples], motion.v[samples]])
+    x_warm = np.vstack([xs, shifted_state(xs[0], displacement)])
+    refs = _references(robot, motion.q[samples], stance, displacement)
+    state = crocoddyl.StateMultibody(robot.model)
+    actuation = SpringActuation(state, sprung_joints(robot, springs))
+    nu = actuation.nu
+    power = JointPower.of(actuator, nu, params.smoothing)
+    limit = np.broadcast_to(np.asarray(actuator.stall_torque, float), (nu,))
+    speed = np.broadcast_to(np.asarray(actuator.no_load_speed, float), (nu,))
+    dt = motion.period / n
+    lo = np.concatenate([np.full(6, -1e6), robot.model.lowerPositionLimit[7:],
+                         np.full(6, -1e6), -speed])
+    hi = np.concatenate([np.full(6, 1e6), robot.model.upperPositionLimit[7:],
+                         np.full(6, 1e6), speed])
+    zero_x = np.concatenate([pin.neutral(robot.model), np.zeros(robot.model.nv)])
+    models, names = [], []
+    for k in range(n + 1):
+        terminal = k == n
+        kk = 0 if terminal else k
+        contacts = crocoddyl.ContactModelMultiple(state, nu)
+        costs = crocoddyl.CostModelSum(state, nu)
+        down = []
+        for j, leg in enumerate(robot.legs):
+            if stance[kk, j]:
+                ref = refs[kk, j]
+                if terminal:
+                    ref = displacement[:3, :3] @ ref + displacement[:3, 3]
+                contacts.addContact(leg.name, crocoddyl.ContactModel3D(
+                    state, leg.foot_frame_id, ref, pin.LOCAL_WORLD_ALIGNED, nu,
+                    np.array([0.0, 1.0 / dt])))
+                down.append(leg.name)
+                if not terminal and not stance[k - 1, j]:  # touch-down: the foot at rest
+                    rest = crocoddyl.ResidualModelFrameVelocity(
+                        state, leg.foot_frame_id, pin.Motion.Zero(), pin.LOCAL_WORLD_ALIGNED, nu)
+                    costs.addCost(f"{leg.name}_landing", crocoddyl.CostModelResidual(
+                        state, crocoddyl.ActivationModelWeightedQuad(LINEAR), rest),
+                        params.landing_weight)
+                if not terminal:
+                    force = crocoddyl.ResidualModelContactForce(
+                        state, leg.foot_frame_id, pin.Force.Zero(), 3, nu, True)
+                    costs.addCost(f"{leg.name}_cone", crocoddyl.CostModelResidual(
+                        state, FrictionPyramid(params.mu * params.friction_use), force),
+                        params.limit_weight)
+            elif not terminal:
+                path = crocoddyl.ResidualModelFrameTranslation(
+                    state, leg.foot_frame_id, _foot_positions(robot, x_warm[k, :nq])[j], nu)
+                costs.addCost(f"{leg.name}_swing", crocoddyl.CostModelResidual(state, path),
+                              params.swing_weight)
+        names.append(down)
+        if terminal:
+            costs.addCost("periodic", crocoddyl.CostModelResidual(
+                state, crocoddyl.ResidualModelState(state, x_warm[n], nu)),
+                params.periodic_weight)
+        else:
+            costs.addCost("energy", EnergyCost(state, power), 1.0)
+            costs.addCost("regularisation", crocoddyl.CostModelResidual(
+                state, crocoddyl.ResidualModelState(state, x_warm[k], nu)), params.state_weight)
+            costs.addCost("limits", _barrier(crocoddyl.ResidualModelState(state, zero_x, nu),
+                                             lo, hi), params.limit_weight)
+        dam = crocoddyl.DifferentialActionModelContactFwdDynamics(state, actuation, contacts,
+                                                                  costs, 0.0, True)
+        dam.u_lb, dam.u_ub = -limit.copy(), limit.copy()
+        models.append(crocoddyl.IntegratedActionModelEuler(dam, 0.0 if terminal else dt))
+    problem = crocoddyl.ShootingProblem(x_warm[0].copy(), models[:-1], models[-1])
+    return OptimalProblem(problem, state, actuation, x_warm, stance, dt, motion.period,
+                          motion.distance, displacement, power, params, names)

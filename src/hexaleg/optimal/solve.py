@@ -1,0 +1,170 @@
+"""Solve the optimal-control problem by box-FDDP and read the answer as a hexaleg Motion.
+
+Crocoddyl's box-FDDP (Mastalli et al., "A feasibility-driven approach to control-limited DDP",
+Autonomous Robots 46, 2022) from the warm start's states and the quasi-static controls of its
+knots (Crocoddyl's ``ShootingProblem.quasiStatic``). What the solver stops on is stated, not
+assumed: ``stationarity`` is Crocoddyl's stopping criterion (the squared norm of the expected
+improvement's gradient term, ``solver.stop``, met when ≤ ``solver.th_stop``, set from
+``OptimalParams.stop``), ``dynamic_gap`` the
+largest defect between a knot's integration and the next state (``solver.ffeas``, 0 for a
+feasible trajectory), ``periodicity_gap`` :func:`~hexaleg.optimal.periodic.periodicity_gap`.
+
+The energy is the project's exact model (:meth:`~hexaleg.optimal.energy.JointPower.exact`) over
+the knots' motor torques and joint speeds, left Riemann sum, ``Σ_k dt Σ_j P_j`` — the integral
+the cost's Euler steps take, with the smoothing removed.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import pinocchio as pin
+
+from hexaleg.motion.trajectory import Motion
+from hexaleg.optimal.backend import crocoddyl_module
+from hexaleg.optimal.periodic import periodicity_gap
+from hexaleg.optimal.problem import OptimalProblem
+from hexaleg.optimal.residual import dynamics_residual
+from hexaleg.robot.model import Robot
+
+crocoddyl = crocoddyl_module()
+_CallbackAbstract: Any = crocoddyl.CallbackAbstract
+"""Crocoddyl's callback base class (typed Any: Crocoddyl ships no type information)."""
+
+
+@dataclass(frozen=True)
+class OptimalResult:
+    """An optimal cycle.
+
+    Attributes:
+        motion: The cycle as a Motion (N samples ``dt`` apart, ``info["source"] = "optimal"``).
+        torques: Motor torque of every joint at every knot, (N, nj), N·m.
+        spring_torques: Spring torque of every joint at every knot, (N, nj), N·m.
+        forces: Each leg's foot force in world axes, (N, n_legs, 3), N (zero in swing).
+        x: The states at the knots and the final one, (N + 1, nq + nv).
+        energy: Electrical energy of the cycle by the exact model, J.
+        energy_per_metre: ``energy / distance``, J/m.
+        residual: Largest Newton–Euler residual (:mod:`~hexaleg.optimal.residual`), N·m.
+        iterations: Box-FDDP iterations run.
+        converged: Whether the solver met its stopping criterion (``stationarity ≤ threshold``).
+        stationarity: The stopping criterion's value at the end (module docstring).
+        threshold: The solver's stopping threshold ``th_stop``.
+        dynamic_gap: Largest integration defect at the end.
+        periodicity: ``‖x_N ⊖ H·x_0‖∞`` at the end.
+        friction_use: Largest ``‖λ_t‖ / (μ λ_z)`` of a stance foot (1 is the cone's edge).
+        slip: Largest speed of a stance foot, m/s (0 for feet that hold; the contacts keep their
+            acceleration at ``−v/dt``, so a foot that lands moving slides for a knot).
+        seconds: Wall time of the solve, s.
+    """
+
+    motion: Motion
+    torques: np.ndarray
+    spring_torques: np.ndarray
+    forces: np.ndarray
+    x: np.ndarray
+    energy: float
+    energy_per_metre: float
+    residual: float
+    iterations: int
+    converged: bool
+    stationarity: float
+    threshold: float
+    dynamic_gap: float
+    periodicity: float
+    friction_use: float
+    slip: float
+    seconds: float
+
+
+class _Progress(_CallbackAbstract):
+    """One line per box-FDDP iteration to ``say``."""
+
+    def __init__(self, say: Callable[[str], None]) -> None:
+        _CallbackAbstract.__init__(self)
+        self.say = say
+
+    def __call__(self, solver: Any) -> None:
+        self.say(f"iteration {solver.iter}: cost {solver.cost:.6g}, stop {solver.stop:.3g}, "
+                 f"gap {solver.ffeas:.3g}")
+
+
+def _forces(robot: Robot, built: OptimalProblem) -> np.ndarray:
+    """Each leg's foot force in world axes at every running knot, (N, n_legs, 3): the contact
+    data's ``f``, the force in the contact's own coordinates — world-aligned axes at the foot
+    for the ``LOCAL_WORLD_ALIGNED`` contacts of :mod:`~hexaleg.optimal.problem`."""
+    n = len(built.problem.runningModels)
+    out = np.zeros((n, len(robot.legs), 3))
+    for k, data in enumerate(built.problem.runningDatas):
+        contacts = data.differential.multibody.contacts.contacts.todict()
+        for j, leg in enumerate(robot.legs):
+            if leg.name in contacts:
+                out[k, j] = contacts[leg.name].f.linear
+    return out
+
+
+def solve(robot: Robot, built: OptimalProblem, *, say: Callable[[str], None] | None = None,
+          warm: tuple[np.ndarray, np.ndarray] | None = None) -> OptimalResult:
+    """Solve ``built`` by box-FDDP (module docstring).
+
+    Args:
+        robot: The robot the problem was built for.
+        built: The problem (:func:`~hexaleg.optimal.problem.build_problem`).
+        say: Where each iteration's progress line goes (None: nowhere).
+        warm: States (N + 1, nx) and controls (N, nu) to start from instead of the warm
+            start's states and their quasi-static controls.
+    """
+    problem = built.problem
+    solver = crocoddyl.SolverBoxFDDP(problem)
+    solver.th_stop = built.params.stop
+    if say is not None:
+        solver.setCallbacks([_Progress(say)])
+    if warm is None:
+        xs = [np.array(x) for x in built.x_warm]
+        us = list(problem.quasiStatic(xs[:-1]))
+    else:
+        xs, us = [np.array(x) for x in warm[0]], [np.array(u) for u in warm[1]]
+    start = time.perf_counter()
+    converged = bool(solver.solve(xs, us, built.params.iterations, False))
+    seconds = time.perf_counter() - start
+    x, u = np.array(solver.xs), np.array(solver.us)
+    problem.calc(list(x), list(u))
+    nq = robot.model.nq
+    springs = np.array([built.actuation.spring_torques(xk) for xk in x[:-1]])
+    forces = _forces(robot, built)
+    residual = dynamics_residual(robot, x[:, :nq], x[:, nq:], built.dt, u + springs, forces)
+    energy = float(sum(built.power.exact(uk, xk[nq + 6:]).sum() for uk, xk in
+                       zip(u, x[:-1], strict=True)) * built.dt)
+    mu = built.params.mu
+    stance = np.linalg.norm(forces, axis=2) > 0
+    tangential = np.linalg.norm(forces[..., :2], axis=2)
+    use = np.where(stance, tangential / np.maximum(mu * forces[..., 2], 1e-12), 0.0)
+    n = len(u)
+    feet = np.zeros((n, len(robot.legs), 3))
+    speed = np.zeros((n, len(robot.legs)))
+    world = pin.LOCAL_WORLD_ALIGNED
+    for k in range(n):
+        pin.forwardKinematics(robot.model, robot.data, x[k, :nq], x[k, nq:])
+        pin.updateFramePlacements(robot.model, robot.data)
+        feet[k] = [robot.data.oMf[leg.foot_frame_id].translation for leg in robot.legs]
+        speed[k] = [np.linalg.norm(pin.getFrameVelocity(robot.model, robot.data,
+                                                        leg.foot_frame_id, world).linear)
+                    for leg in robot.legs]
+    motion = Motion(t=np.arange(n) * built.dt, q=x[:-1, :nq].copy(), v=x[:-1, nq:].copy(),
+                    a=np.diff(x[:, nq:], axis=0) / built.dt, stance=built.stance.copy(),
+                    feet=feet, period=built.period, distance=built.distance,
+                    info={"source": "optimal", "cycle": built.displacement.tolist(),
+                          "knots": n, "energy_per_metre": energy / built.distance
+                          if built.distance > 0 else float("nan")})
+    return OptimalResult(
+        motion=motion, torques=u, spring_torques=springs, forces=forces, x=x, energy=energy,
+        energy_per_metre=energy / built.distance if built.distance > 0 else float("inf"),
+        residual=float(np.abs(residual).max()), iterations=int(solver.iter),
+        converged=converged, stationarity=float(solver.stop), threshold=float(solver.th_stop),
+        dynamic_gap=float(solver.ffeas),
+        periodicity=periodicity_gap(x, built.displacement, built.state.diff),
+        friction_use=float(use.max()), slip=float(np.max(speed * built.stance)),
+        seconds=seconds)

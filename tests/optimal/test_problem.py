@@ -1,0 +1,79 @@
+"""The optimal-control problem: the gait's contact timing at every knot, the springs in its
+actuation, the motor's limits as the control box, the periodic terminal state; bad input named."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+import hexaleg
+from hexaleg.errors import InvalidParameterError
+
+pytest.importorskip("crocoddyl")
+
+from hexaleg.optimal.problem import OptimalParams, build_problem
+
+
+@pytest.fixture(scope="module")
+def run():
+    return hexaleg.Scenario.load("hexaleg")
+
+
+@pytest.fixture(scope="module")
+def built(run):
+    return build_problem(run.model, run.played(), run.actuator, hexaleg.SpringSet(),
+                         OptimalParams(nodes=20))
+
+
+def test_knots_follow_the_gaits_contact_timing(run, built):
+    motion = run.played()
+    assert built.problem.T == 20
+    assert built.dt == pytest.approx(motion.period / 20)
+    legs = [leg.name for leg in run.model.legs]
+    for k, model in enumerate(built.problem.runningModels):
+        sample = round(k * built.dt / motion.dt)
+        down = sorted(model.differential.contacts.active_set)
+        assert down == sorted(n for n, s in zip(legs, motion.stance[sample], strict=True) if s)
+        assert len(down) == 3  # the tripod
+
+
+def test_the_motors_stall_torque_is_the_control_box(run, built):
+    model = built.problem.runningModels[0]
+    np.testing.assert_allclose(model.u_ub, run.actuator.stall_torque)
+    np.testing.assert_allclose(model.u_lb, -run.actuator.stall_torque)
+
+
+def test_the_terminal_state_is_the_first_moved_by_a_stride(built):
+    x0, xn = built.x_warm[0], built.x_warm[-1]
+    np.testing.assert_allclose(xn[:3] - x0[:3], [built.distance, 0.0, 0.0], atol=1e-12)
+    np.testing.assert_allclose(xn[3:], x0[3:], atol=1e-12)
+    assert "periodic" in built.problem.terminalModel.differential.costs.costs.todict()
+
+
+def test_the_springs_are_in_the_dynamics(run):
+    springs = hexaleg.SpringSet({"LF_femur": hexaleg.LinearSpring(0.5, reference=0.3)})
+    b = build_problem(run.model, run.played(), run.actuator, springs, OptimalParams(nodes=10))
+    x = b.x_warm[0]
+    model = b.problem.runningModels[0]
+    data = model.createData()
+    model.calc(data, x, np.zeros(run.model.nj))
+    column = run.model.joint_names.index("LF_femur")
+    expected = springs.torques(run.model, x[None, :run.model.model.nq])[0, column]
+    assert data.differential.multibody.actuation.tau[6 + column] == pytest.approx(expected)
+    assert expected != 0.0
+
+
+def test_bad_input_is_named(run):
+    with pytest.raises(InvalidParameterError, match="nodes"):
+        OptimalParams(nodes=3)
+    with pytest.raises(InvalidParameterError, match="friction_use"):
+        OptimalParams(friction_use=1.5)
+    motion = run.played()
+    with pytest.raises(InvalidParameterError, match="fixed_base"):
+        build_problem(run.model, dataclasses.replace(motion, fixed_base=True), run.actuator,
+                      hexaleg.SpringSet())
+    airborne = dataclasses.replace(motion, stance=np.zeros_like(motion.stance))
+    with pytest.raises(InvalidParameterError, match="no foot down at knot 0"):
+        build_problem(run.model, airborne, run.actuator, hexaleg.SpringSet())

@@ -1,0 +1,73 @@
+"""The optimal cycle of the default robot: it obeys Newton–Euler to round-off, stays in its
+friction cones, repeats, stops on its stated criterion, and is a Motion the dynamics takes."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import hexaleg
+
+pytest.importorskip("crocoddyl")
+
+from hexaleg.optimal.problem import OptimalParams, build_problem
+from hexaleg.optimal.solve import solve
+
+
+@pytest.fixture(scope="module")
+def run():
+    return hexaleg.Scenario.load("hexaleg")
+
+
+@pytest.fixture(scope="module")
+def optimal(run):
+    built = build_problem(run.model, run.played(), run.actuator, hexaleg.SpringSet(),
+                          OptimalParams(nodes=20, iterations=200, stop=5e-5))
+    lines: list[str] = []
+    return solve(run.model, built, say=lines.append), lines
+
+
+@pytest.mark.slow
+def test_the_optimum_obeys_newton_euler(optimal):
+    result, lines = optimal
+    assert result.residual <= 1e-6
+    assert result.dynamic_gap <= 1e-9
+    assert lines and lines[0].startswith("iteration")
+
+
+@pytest.mark.slow
+def test_the_solver_states_where_it_stopped(optimal):
+    result, _ = optimal
+    assert result.converged == (result.stationarity <= result.threshold)
+    assert result.converged, (result.stationarity, result.iterations)
+
+
+@pytest.mark.slow
+def test_the_feet_stay_in_their_cones_and_the_cycle_repeats(optimal):
+    result, _ = optimal
+    assert result.friction_use <= 0.7 + 1e-3  # the pyramid inside 0.7 μ
+    assert result.periodicity <= 1e-2
+    assert result.slip <= 0.02  # m/s: the stance feet hold
+    swing = ~result.motion.stance
+    assert np.all(result.forces[swing] == 0.0)
+
+
+@pytest.mark.slow
+def test_the_energy_is_the_motors_exact_model(run, optimal):
+    result, _ = optimal
+    m = result.motion
+    speeds = m.v[:, 6:]
+    expected = run.actuator.electrical_power(result.torques, speeds).sum() * m.dt
+    assert result.energy == pytest.approx(expected, rel=1e-12)
+    assert result.energy_per_metre == pytest.approx(expected / m.distance)
+
+
+@pytest.mark.slow
+def test_the_optimal_cycle_is_a_motion_the_dynamics_takes(run, optimal):
+    result, _ = optimal
+    """hexaleg's own pipeline (RNEA, its force program) reads the cycle; its energy, with the
+    force program's own foot forces, is of the size of the optimum's (the force program may share
+    the load more cheaply than the solver's contact forces, never by a factor)."""
+    prepared = hexaleg.prepare(run.model, result.motion, motor=run.actuator, contact=run.contact)
+    electrical = prepared.evaluate(hexaleg.SpringSet()).metrics["total"]["electrical"]
+    assert 0.5 * result.energy < electrical < 1.5 * result.energy
