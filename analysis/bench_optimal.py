@@ -49,7 +49,7 @@ def main() -> None:
     args = parser.parse_args()
     start, cpu0 = time.perf_counter(), os.times()
     run = hexaleg.Scenario.load("hexaleg")
-    robot, gait = run.model, run.played()
+    robot, gait = run.model, run.motion()
     prepared = run.prepare()
     default = prepared.evaluate(hexaleg.SpringSet()).metrics["total"]["electrical"] / gait.distance
     sprung = optimal_springs(prepared, list(robot.joint_classes), family="linear",

@@ -23,12 +23,12 @@ def run():
 
 @pytest.fixture(scope="module")
 def built(run):
-    return build_problem(run.model, run.played(), run.actuator, hexaleg.SpringSet(),
+    return build_problem(run.model, run.motion(), run.actuator, hexaleg.SpringSet(),
                          OptimalParams(nodes=20))
 
 
 def test_knots_follow_the_gaits_contact_timing(run, built):
-    motion = run.played()
+    motion = run.motion()
     assert built.problem.T == 20
     assert built.dt == pytest.approx(motion.period / 20)
     legs = [leg.name for leg in run.model.legs]
@@ -54,7 +54,7 @@ def test_the_terminal_state_is_the_first_moved_by_a_stride(built):
 
 def test_the_springs_are_in_the_dynamics(run):
     springs = hexaleg.SpringSet({"LF_femur": hexaleg.LinearSpring(0.5, reference=0.3)})
-    b = build_problem(run.model, run.played(), run.actuator, springs, OptimalParams(nodes=10))
+    b = build_problem(run.model, run.motion(), run.actuator, springs, OptimalParams(nodes=10))
     x = b.x_warm[0]
     model = b.problem.runningModels[0]
     data = model.createData()
@@ -70,7 +70,7 @@ def test_bad_input_is_named(run):
         OptimalParams(nodes=3)
     with pytest.raises(InvalidParameterError, match="friction_use"):
         OptimalParams(friction_use=1.5)
-    motion = run.played()
+    motion = run.motion()
     with pytest.raises(InvalidParameterError, match="fixed_base"):
         build_problem(run.model, dataclasses.replace(motion, fixed_base=True), run.actuator,
                       hexaleg.SpringSet())

@@ -21,7 +21,7 @@ def run():
 
 @pytest.fixture(scope="module")
 def optimal(run):
-    built = build_problem(run.model, run.played(), run.actuator, hexaleg.SpringSet(),
+    built = build_problem(run.model, run.motion(), run.actuator, hexaleg.SpringSet(),
                           OptimalParams(nodes=20, iterations=200, stop=5e-5))
     lines: list[str] = []
     return solve(run.model, built, say=lines.append), lines

@@ -25,7 +25,7 @@ def _rows() -> dict[str, float]:
 def default_rows():
     run = hexaleg.Scenario.load("hexaleg")
     prepared = run.prepare()
-    d = run.played().distance
+    d = run.motion().distance
     bare = prepared.evaluate(hexaleg.SpringSet()).metrics["total"]["electrical"] / d
     springs = optimal_springs(prepared, list(run.model.joint_classes), family="linear",
                               metric="electrical")
@@ -49,10 +49,10 @@ def test_the_optimal_rows(default_rows):
     run, springs, _, _ = default_rows
     rows = _rows()
     params = OptimalParams(nodes=40)
-    bare = solve(run.model, build_problem(run.model, run.played(), run.actuator,
+    bare = solve(run.model, build_problem(run.model, run.motion(), run.actuator,
                                           hexaleg.SpringSet(), params))
     assert rows["optimal cycle, no springs"] == pytest.approx(bare.energy_per_metre, abs=0.005)
-    alt = alternate(run.model, run.played(), run.actuator, run.contact, springs=springs.springs,
+    alt = alternate(run.model, run.motion(), run.actuator, run.contact, springs=springs.springs,
                     params=params, rounds=3)
     assert rows["optimal cycle with its springs (alternation)"] == pytest.approx(
         alt.best.energy_per_metre, abs=0.005)

@@ -36,7 +36,7 @@ def test_the_alternation_lowers_the_energy_and_never_raises_it():
 
     run = hexaleg.Scenario.load("hexaleg")
     lines: list[str] = []
-    result = alternate(run.model, run.played(), run.actuator, run.contact,
+    result = alternate(run.model, run.motion(), run.actuator, run.contact,
                        params=OptimalParams(nodes=20, iterations=60), rounds=1, say=lines.append)
     energies = result.energies
     assert all(b <= a for a, b in itertools.pairwise(energies))
