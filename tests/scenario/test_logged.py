@@ -52,6 +52,7 @@ def _numbers_have_units(tree: object) -> None:
         assert not isinstance(tree, (int, float)) or isinstance(tree, bool), tree
 
 
+@pytest.mark.slow  # 17 s: the README suite stays within its 5 minutes
 def test_design_on_the_log_equals_the_design_on_the_generated_gait(log: Path, tmp_path: Path,
         capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> None:
     from hexaleg.scenario import logged

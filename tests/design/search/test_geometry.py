@@ -86,6 +86,7 @@ def _assert_nested(found):
                 assert found[outer].saving >= found[inner].saving - 1e-6, (outer, inner)
 
 
+@pytest.mark.slow  # 16 s: the README suite stays within its 5 minutes
 def test_nested_families_are_ordered_on_the_hexapod(prepared200):
     """preloaded ⊇ one_sided, dead_zone, linear; dead_zone ⊇ linear: never below them (with
     the design's deflection bound, which keeps a linear spring's equilibrium within reach)."""

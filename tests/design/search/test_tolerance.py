@@ -194,6 +194,7 @@ def test_the_search_solves_a_scan_in_any_order_and_process_alike():
     assert wrong.geometry != alone.geometry or wrong.solution.value != alone.solution.value
 
 
+@pytest.mark.slow  # 40 s of CPU: the README suite stays within its 5 minutes
 def test_the_search_is_deaf_to_differences_its_solves_cannot_tell_apart(monkeypatch):
     """Every condensed value moved by up to 3e-6 of itself — about the bundle's tolerance, what
     another machine's rounding may move it by — leaves the stop-tolerance search of preloaded
