@@ -8,14 +8,14 @@ search's best gait (duty factor 0.79) kept 0.73 of its predicted saving under po
 servos, where the same gait at duty factor 0.7 kept 0.96 and, simulated, drew less.
 
 So the search hands on its best distinct feasible gaits
-(:attr:`~hexaleg.design.codesign.gait_search. SearchResult.finalists`), each is re-evaluated at the
-rows' sampling with its inner springs and simulated forward in MuJoCo
-(:func:`hexaleg.simulation.run.simulate`, default settings) under each controller of the servo the
-robot runs (:func:`~hexaleg.simulation.controllers. controllers_of`: by default both), and the
-chosen gait is the finalist whose *simulated* electrical energy per metre walked, with its springs,
-is least under its worse controller. A finalist that does not walk under one of them (or has no
-numbers at the rows' sampling) is never chosen, and the result says why. Each simulation takes about
-a second on the default robot.
+(:attr:`~hexaleg.design.codesign.gait_search.SearchResult.finalists`), each is re-evaluated at
+the rows' sampling with its inner springs and simulated forward in MuJoCo
+(:func:`hexaleg.simulation.run.simulate`, default settings) under each controller of the servo
+the robot runs (:func:`~hexaleg.simulation.controllers.controllers_of`: by default both), and
+the chosen gait is the finalist whose *simulated* electrical energy per metre walked, with its
+springs, is least under its worse controller. A finalist that does not walk under one of them
+(or has no numbers at the rows' sampling) is never chosen, and the result says why. Each
+simulation takes about a second on the default robot.
 """
 
 from __future__ import annotations

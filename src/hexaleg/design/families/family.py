@@ -52,9 +52,9 @@ class Family:
             (:mod:`hexaleg.design.search.geometry`), so a stop's best place is just before a sample.
         above: The angles whose terms act on angles above them (the others act below).
         stops: Angle → the magnitudes of the terms at that angle
-        (:mod:`hexaleg.design.search.scan`). contains: The families whose every law is one of this
-        family's
-            (:meth:`embed` gives the geometry).
+            (:mod:`hexaleg.design.search.scan`).
+        contains: The families whose every law is one of this family's (:meth:`embed` gives the
+            geometry).
         swap: Mirror: angle → the angle it becomes (:meth:`mirror`).
         swap_magnitudes: Mirror: magnitude → the magnitude it becomes.
     """

@@ -13,9 +13,9 @@ holds up on every joint of the group — each element becomes a :class:`TorsionR
   it: the torque changes sign, which one torsion spring cannot give (it must be loaded in the
   sense that winds it up), so an antagonistic pair: two springs of rate k/2, each free at
   ``u_f ∓ e`` (e the farthest the motion gets from u_f), together exactly ``τ₀ − k u``;
-* k → 0 with a torque (below :data:`~hexaleg.design.search.optimal.ZERO_STIFFNESS`): a constant
-torque,
-  which needs a constant-torque spring (spiral or constant-force), not a torsion spring: flagged.
+* k → 0 with a torque (below :data:`~hexaleg.design.search.optimal.ZERO_STIFFNESS`): a
+  constant torque, which needs a constant-torque spring (spiral or constant-force), not a
+  torsion spring: flagged.
 
 The outer diameter limit of a group is the smallest of its joints' classes
 (:func:`spring_outer_diameter`: the robot description's ``max_outer_diameter``, else the width of

@@ -76,11 +76,11 @@ def gait_energy(robot: Robot, params: GaitParams, springs: Groups, *,
     Args:
         robot: The robot.
         params: The gait (pattern, speed or period, slope, samples, …).
-        springs: Where the springs go, as :func:`hexaleg.design.search.optimal.optimal_springs`
-        takes
-            its groups: one shared design per group (``{"front": ["FL_KFE", "FR_KFE"], …}``, or
-            joint classes, e.g. ``["femur"]``). Solo-12's front and hind knees bend opposite
-            ways, so their torques have opposite signs: one group each.
+        springs: Where the springs go, as
+            :func:`hexaleg.design.search.optimal.optimal_springs` takes its groups: one shared
+            design per group (``{"front": ["FL_KFE", "FR_KFE"], …}``, or joint classes, e.g.
+            ``["femur"]``). Solo-12's front and hind knees bend opposite ways, so their torques
+            have opposite signs: one group each.
         family: The spring family (:data:`hexaleg.design.families.FAMILIES`).
         motor: The servo of every joint (as :func:`hexaleg.dynamics.prepare.prepare`).
         contact: Contact settings (friction, torque limits); default ``ContactParams()``.
