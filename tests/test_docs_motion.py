@@ -96,6 +96,7 @@ def run(tmp_path_factory: pytest.TempPathFactory) -> dict[str, object]:
     return {"printed": printed, "design": design, "simulate": simulate}
 
 
+@pytest.mark.slow  # the page's design run, 25 s: the README suite stays within 5 minutes
 def test_the_page_quotes_what_design_prints(run: dict) -> None:
     """The design's answer and its motion: lines, verbatim, in the order printed."""
     printed = run["printed"]["design"].splitlines()
@@ -118,6 +119,7 @@ def part_sentence(design: dict) -> str:
     return "; ".join(parts)
 
 
+@pytest.mark.slow  # the page's design run, 25 s: the README suite stays within 5 minutes
 def test_the_page_names_the_parts_and_the_simulation(run: dict) -> None:
     """The parts of design.json and the figures hexaleg simulate prints (its line also holds
     the wall-time ratio, which the page leaves out)."""

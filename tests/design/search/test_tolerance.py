@@ -41,6 +41,7 @@ def _electrical(prepared, springs):
     return saving(prepared.evaluate(springs, "joule").metrics["total"]["electrical"], base)
 
 
+@pytest.mark.slow  # the default design, 22 s: the README suite stays within 5 minutes
 def test_the_tolerant_design_keeps_its_saving_within_a_degree(default):
     prepared, _, r = default
     design = r.optimum
@@ -60,6 +61,7 @@ def test_the_tolerant_design_keeps_its_saving_within_a_degree(default):
     assert r.worst["tolerant"] >= 0.8 * nominal
 
 
+@pytest.mark.slow  # the default design, 22 s: the README suite stays within 5 minutes
 def test_the_blind_design_is_the_knife_edge_it_replaces(default):
     """The tolerance-blind design saves as much nominally and loses it at a shift the tolerant
     design holds: the worst case is what the search improved."""
@@ -69,6 +71,7 @@ def test_the_blind_design_is_the_knife_edge_it_replaces(default):
     assert r.worst["tolerant"] > r.worst["blind"] + 0.05
 
 
+@pytest.mark.slow  # the default design, 22 s: the README suite stays within 5 minutes
 def test_the_curve_for_the_page(default):
     _, _, r = default
     assert r.shifts[0] == pytest.approx(-2 * TOLERANCE) and r.shifts[-1] == pytest.approx(
@@ -89,6 +92,7 @@ def test_scenarios_and_bad_input():
     assert {"a": 0.05, "b": 0.05} in sc and len(sc) == len({tuple(s.items()) for s in sc})
 
 
+@pytest.mark.slow  # the default design, 22 s: the README suite stays within 5 minutes
 def test_bad_tolerance_is_named(default):
     prepared, blind, _ = default
     with pytest.raises(InvalidParameterError, match="stop tolerance"):
@@ -135,6 +139,7 @@ def test_the_certified_worst_case_holds_only_the_problems_that_set_it(monkeypatc
     assert joined.solver["rounds"] >= 2  # solved again with the left-out problems that joined
 
 
+@pytest.mark.slow  # the default design, 22 s: the README suite stays within 5 minutes
 def test_the_robust_program_starts_at_the_joule_optimum_and_ends_where_it_would(default,
                                                                                monkeypatch):
     """The shifted programs start their bundle method at the unshifted geometry's Joule
