@@ -4,6 +4,8 @@ the run's, whoever asks."""
 
 from __future__ import annotations
 
+import json
+
 import pytest
 
 import hexaleg
@@ -11,6 +13,7 @@ from hexaleg.errors import InvalidParameterError, UnknownNameError
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.recorded.write import write_motion_log
 from hexaleg.motion.scaling import robot_gait
+from hexaleg.quantities import json_text
 from hexaleg.robot.registry import description
 from hexaleg.scenario.run_warnings import run_warnings
 from hexaleg.scenario.scenario import TABLES, Scenario
@@ -122,6 +125,9 @@ def test_with_samples_and_with_gait_change_the_gait_alone():
     data = fine.data()
     assert data["robot"] == "hexaleg" and data["gait"]["samples"] == 60
     assert data["objective"] == "joule" and data["payload"] == {"value": 0.0, "unit": "kg"}
+    assert data["gait"]["period"] == {"value": run.gait.period, "unit": "s"}
+    assert data["contact"]["mu"] == {"value": run.contact.mu, "unit": "1"}
+    assert json.loads(json_text(data)) == data  # JSON as it is, no number without its unit
 
 
 def test_a_design_builds_the_robot_once(monkeypatch):

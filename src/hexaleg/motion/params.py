@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import importlib
+import json
 import math
 import warnings
 from collections.abc import Mapping, Sequence
@@ -316,3 +317,23 @@ class GaitParams:
             if "duty_factor" not in table and "groups" not in table:
                 changes["duty_factor"] = None  # the pattern's own β₀
         return dataclasses.replace(self, **changes)
+
+
+GAIT_UNITS: dict[str, str] = {
+    "period": "s", "duty_factor": "1", "stride_length": "m", "speed": "m/s", "step_height": "m",
+    "body_height": "m", "foot_radius": "m", "yaw_rate": "rad/s", "phases": "1", "heading": "rad",
+    "slope": "rad", "cross_slope": "rad", "min_static_margin": "m"}
+"""The SI unit of each numeric field of :class:`GaitParams` (``{value, unit}`` in JSON)."""
+
+
+def gait_parameters(gait: GaitParams) -> dict[str, Any]:
+    """The gait's set fields for JSON, numbers as ``{value, unit}`` (:data:`GAIT_UNITS`): what
+    :func:`hexaleg.design.chain.design_file.design_gait` reads back to a :class:`GaitParams`
+    that walks the same. With a ``speed`` the stride is ``speed × period`` (the speed wins),
+    and ``stride_length`` is written as that: the stride the gait walks, not the field's unused
+    default (#41: 0.06 m for a co-designed gait that walks 0.102 m a cycle)."""
+    plain = json.loads(json.dumps({f.name: getattr(gait, f.name) for f in dataclasses.fields(gait)
+                                   if getattr(gait, f.name) is not None}))
+    plain["stride_length"] = gait.stride
+    return {k: {"value": v, "unit": GAIT_UNITS[k]} if k in GAIT_UNITS else v
+            for k, v in plain.items()}

@@ -36,9 +36,10 @@ from hexaleg.dynamics.contact import ContactParams, check_objective
 from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.legged import tripod_gait
-from hexaleg.motion.params import GaitParams
+from hexaleg.motion.params import GaitParams, gait_parameters
 from hexaleg.motion.scaling import robot_gait
 from hexaleg.motion.trajectory import Motion
+from hexaleg.quantities import quantity
 from hexaleg.robot.actuator import Actuator
 from hexaleg.robot.catalogue import motor_from_mapping
 from hexaleg.robot.description import RobotDescription
@@ -246,23 +247,20 @@ class Scenario:
         """What makes two runs the same analysis (a cache key): the robot, payload, actuator,
         objective, contact and gait, or the log and its cycle."""
         motion = (self.log, self.cycle) if self.recorded is not None else self.gait
-        actuator: Any = self.actuator
-        try:
-            hash(actuator)
-        except TypeError:  # a per-joint set (a mapping): its fields, in order
-            actuator = repr(actuator)
-        return (self.robot, self.payload, actuator, self.objective, self.contact, motion)
+        return (self.robot, self.payload, self.actuator, self.objective, self.contact, motion)
 
     def data(self) -> dict[str, Any]:
-        """The run in JSON form: robot, gait (its keys), contact, actuator, objective, payload
-        ``{value, unit}``, log and cycle; every number SI."""
-        return {"robot": self.robot,
-                "gait": {k: v for k, v in dataclasses.asdict(self.gait).items()},
-                "contact": dataclasses.asdict(self.contact),
-                "actuator": getattr(self.actuator, "name", type(self.actuator).__name__),
-                "objective": self.objective,
-                "payload": {"value": self.payload, "unit": "kg"},
-                "log": self.log, "cycle": self.cycle}
+        """The run in JSON form, every number ``{value, unit}`` in SI: robot, gait
+        (:func:`~hexaleg.motion.params.gait_parameters`), contact, actuator, objective, payload,
+        log and cycle."""
+        c = self.contact
+        return {"robot": self.robot, "gait": gait_parameters(self.gait),
+                "contact": {"mu": quantity(c.mu, "1"), "cone": c.cone,
+                            "min_normal_force": quantity(c.min_normal_force, "N"),
+                            "torque_limits": c.torque_limits,
+                            "regularization": quantity(c.regularization, "W/(N·m)²")},
+                "actuator": self.actuator.name, "objective": self.objective,
+                "payload": quantity(self.payload, "kg"), "log": self.log, "cycle": self.cycle}
 
     def warnings(self, motion: Motion | None = None,
                  actuator: Actuator | None = None) -> tuple[str, ...]:

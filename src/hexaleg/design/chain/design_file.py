@@ -34,9 +34,8 @@ commands predict the same number for the same springs.
 
 from __future__ import annotations
 
-import json
 from collections.abc import Mapping
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -45,7 +44,7 @@ from hexaleg.config import read_json
 from hexaleg.design.evaluator import SAVING_METRICS
 from hexaleg.design.springs.law_json import spring_entry, spring_from_entry
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
-from hexaleg.motion.params import GaitParams
+from hexaleg.motion.params import GAIT_UNITS, GaitParams, gait_parameters
 from hexaleg.motion.scaling import robot_gait
 from hexaleg.robot.model import Robot
 from hexaleg.robot.registry import description
@@ -203,26 +202,6 @@ class LoadedDesign:
     pays: bool | None
     log: str | None = None
     document: Mapping[str, Any] = field(default_factory=dict, repr=False)
-
-
-GAIT_UNITS: dict[str, str] = {
-    "period": "s", "duty_factor": "1", "stride_length": "m", "speed": "m/s", "step_height": "m",
-    "body_height": "m", "foot_radius": "m", "yaw_rate": "rad/s", "phases": "1", "heading": "rad",
-    "slope": "rad", "cross_slope": "rad", "min_static_margin": "m"}
-"""The SI unit of each numeric field of :class:`GaitParams` (``{value, unit}`` in JSON)."""
-
-
-def gait_parameters(gait: GaitParams) -> dict[str, Any]:
-    """The gait's set fields for JSON, numbers as ``{value, unit}`` (:data:`GAIT_UNITS`): what
-    :func:`design_gait` reads back to a :class:`GaitParams` that walks the same. With a
-    ``speed`` the stride is ``speed × period`` (the speed wins), and ``stride_length`` is
-    written as that: the stride the gait walks, not the field's unused default (#41: 0.06 m
-    for a co-designed gait that walks 0.102 m a cycle)."""
-    plain = json.loads(json.dumps({f.name: getattr(gait, f.name) for f in fields(gait)
-                                   if getattr(gait, f.name) is not None}))
-    plain["stride_length"] = gait.stride
-    return {k: {"value": v, "unit": GAIT_UNITS[k]} if k in GAIT_UNITS else v
-            for k, v in plain.items()}
 
 
 def _plain(table: Mapping[str, Any], where: str) -> dict[str, Any]:
