@@ -96,3 +96,46 @@ def test_a_stand_on_one_point_foot_is_an_inverted_pendulum(prepared):
     assert one.height == pytest.approx(height, rel=1e-12)
     assert one.omega == pytest.approx(np.sqrt(G / height), rel=1e-12)
     assert one.growth == pytest.approx(np.exp(one.omega * 50 * motion.dt), rel=1e-12)
+
+
+def test_a_long_stand_on_two_point_feet_is_named_as_the_fall_and_its_period(prepared):
+    """point_foot on a gait whose fewest feet are two: a stand is a run on the same two feet (a
+    hand-over to another pair ends it), ω₀ = √(g/h) across the line between them; the period at
+    which the stand lasts HOLDS time constants is the period scaled by HOLDS / (ω₀ T); a fall
+    closed loop is blamed on the stand only beyond TIPS time constants (the trots that fell
+    stood 5.4–5.5, those that walk ≤ 2.3: docs/simulate.md)."""
+    import dataclasses
+
+    from hexaleg.simulation.model import build_model
+    from hexaleg.simulation.stepping import Trajectory
+
+    motion = prepared.motion
+    sim = build_model(prepared.robot, motion, prepared.motor, check=False)
+    n, legs = motion.n_samples, len(prepared.robot.legs)
+    stance = np.ones((n, legs), dtype=bool)
+    stance[10:70] = False
+    stance[10:70, [0, 3]] = True  # LF and RF for 60 samples
+    stance[70:90] = False
+    stance[70:90, [1, 4]] = True  # another pair for 20: a stand of its own
+    stance[90:100, 0] = False  # one leg lifted: five feet, not a stand on two
+    two = measures.point_foot(sim, dataclasses.replace(motion, stance=stance))
+    assert two is not None and two.feet == 2
+    assert two.duration == pytest.approx(60 * motion.dt, rel=1e-12)
+    assert two.omega * two.duration * two.holding_period / two.period == \
+        pytest.approx(measures.HOLDS, rel=1e-12)
+    zeros = np.zeros((3, sim.robot.nj))
+    traj = Trajectory(np.arange(3.0), np.zeros((3, 7 + sim.robot.nj)), np.zeros((3, 6 +
+                      sim.robot.nj)), zeros, zeros, np.zeros((3, legs, 3)), zeros, "fell")
+
+    def cause(duration: float) -> str:
+        scale = duration / two.duration  # the period that makes the stand this long
+        slow = dataclasses.replace(motion, stance=stance, t=motion.t * scale,
+                                   period=motion.period * scale)
+        return measures.fall_cause(sim, slow, traj, feedback=True)
+
+    long = (measures.TIPS + 0.1) / two.omega
+    assert cause(long).startswith(f"the gait stands on two point feet for {long:.3g} s")
+    assert "shorter period" in cause(long)
+    assert cause((measures.TIPS - 0.1) / two.omega).startswith("the balance controller")
+    assert measures.fall_cause(sim, dataclasses.replace(motion, stance=stance), traj,
+                               feedback=False).startswith("the gait stands on 2 feet at times")

@@ -260,28 +260,49 @@ SATURATED = 0.1
 it fell for want of torque (:func:`fall_cause`)."""
 
 
+HOLDS = 2.0
+"""ω₀ T: a stand on two point feet of this many of the pendulum's time constants (an error
+×e² ≈ 7.4 over it) is one the balance controller holds, measured: the registered quadrupeds'
+own trots stand ω₀ T = 1.4–1.6, and the X-configured and pitch–roll–yaw test quadrupeds' trots
+walk at the periods that make it 2.0 (0.86 s and 0.52 s) and at 1.9 and 2.3 (0.8 s and 0.6 s),
+under both servos (``docs/simulate.md``, "Stands on two point feet")."""
+TIPS = 3.0
+"""ω₀ T beyond which a fall closed loop is blamed on a stand on two point feet (an error ×e³ ≈
+20 over it): the two test quadrupeds' default trots, which fell, stand 5.4 (X-configured,
+×227) and 5.5 (pitch–roll–yaw, ×245); between HOLDS and this the cause is not claimed."""
+
+
 @dataclass(frozen=True)
 class PointFoot:
-    """A gait's longest stand on one point foot, as a linear inverted pendulum.
+    """A gait's longest stand on its fewest point feet (one or two), as a linear inverted
+    pendulum.
 
     On one point contact the ground's force passes through the foot, so the body's angular
     momentum about the foot changes by gravity alone, ``L̇ = m g × (c − p)``: the centre of
     mass c moves off the foot p as ``c̈ = ω₀² (c − p)``, ``ω₀ = √(g / h)`` (the linear inverted
     pendulum: Kajita, Kanehiro, Kaneko, Yokoi & Hirukawa, "The 3D linear inverted pendulum
-    mode", IROS 2001, eq. 5–6), and an error of the plan grows as ``e^{ω₀ t}``. No force at the
-    foot rights it; the field balances such a robot by where it sets the next foot down (the
-    capture point ``c + ċ/ω₀``: Pratt, Carff, Drakunov & Goswami, "Capture point: a step toward
-    humanoid push recovery", Humanoids 2006) or by an ankle torque on a sole.
+    mode", IROS 2001, eq. 5–6), and an error of the plan grows as ``e^{ω₀ t}``. On two point
+    feet the forces pass through the line between them, so the same holds across that line
+    (the moment about it is gravity's alone: the trot's diagonal, the bound's line across the
+    body). No force at the feet rights it; the field balances such a robot by where it sets
+    the next foot down (the capture point ``c + ċ/ω₀``: Pratt, Carff, Drakunov & Goswami,
+    "Capture point: a step toward humanoid push recovery", Humanoids 2006; Raibert, *Legged
+    robots that balance*, 1986) within a stand short against ``1/ω₀``, or by an ankle torque on
+    a sole.
 
     Attributes:
-        duration: The longest time on one foot, s.
-        height: The centre of mass's height over the stance foot at the gait's start, m.
+        duration: The longest time on those feet, s.
+        height: The centre of mass's height over the stance feet at the gait's start, m.
         omega: ω₀ = √(g / h), 1/s.
+        feet: 1 or 2.
+        period: The gait's period, s.
     """
 
     duration: float
     height: float
     omega: float
+    feet: int = 1
+    period: float = 0.0
 
     @property
     def growth(self) -> float:
@@ -289,30 +310,52 @@ class PointFoot:
         return float(np.exp(self.omega * self.duration))
 
     @property
+    def holding_period(self) -> float:
+        """The period, s, at which the stand lasts :data:`HOLDS` time constants (the stand
+        scales with the period at a fixed duty factor)."""
+        return self.period * HOLDS / (self.omega * self.duration)
+
+    @property
+    def too_long(self) -> bool:
+        """Whether the stand is beyond what the balance controller holds: one point foot at
+        all (no force there rights the body, :class:`PointFoot`), two beyond :data:`TIPS`."""
+        return self.feet == 1 or self.omega * self.duration > TIPS
+
+    @property
     def reason(self) -> str:
         """Why balance feedback without foot placement cannot hold it, in one clause."""
-        return (f"on one point foot for {self.duration:.3g} s, an inverted pendulum (an error "
-                f"×{self.growth:.3g}) that feedback without foot placement cannot hold")
+        if self.feet == 1:
+            return (f"on one point foot for {self.duration:.3g} s, an inverted pendulum (an "
+                    f"error ×{self.growth:.3g}) that feedback without foot placement cannot "
+                    "hold")
+        return (f"on two point feet for {self.duration:.3g} s, an inverted pendulum across the "
+                f"line between them (an error ×{self.growth:.3g}); a period of "
+                f"{self.holding_period:.2g} s or less would hold it")
 
 
 def point_foot(sim: SimModel, motion: Motion) -> PointFoot | None:
-    """The longest stand of ``motion`` on one foot (cyclic), or None where it never stands on
-    one (:class:`PointFoot`)."""
+    """The longest stand of ``motion`` on its fewest feet (cyclic), one or two, or None where
+    it always stands on three or more (:class:`PointFoot`); with two, a stand is a run of
+    samples on the same two feet."""
     stance = np.asarray(motion.stance, dtype=bool)
-    foot = np.where(stance.sum(axis=1) == 1, np.argmax(stance, axis=1), -1)  # the one, or −1
-    if (foot < 0).all():
+    counts = stance.sum(axis=1)
+    fewest = int(counts.min())
+    if fewest not in (1, 2):
         return None
-    if (foot == foot[0]).all():
-        longest = len(foot)
+    weights = 1 << np.arange(stance.shape[1])
+    feet = np.where(counts == fewest, stance @ weights, -1)  # the feet's set as bits, or −1
+    if (feet == feet[0]).all():
+        longest = len(feet)
     else:
-        start = int(np.flatnonzero(foot != foot[-1])[0])  # a run's first sample: none wraps
-        rolled = np.roll(foot, -start)
-        edges = np.flatnonzero(np.diff(np.r_[-2, rolled, -2]))  # where the foot changes
+        start = int(np.flatnonzero(feet != feet[-1])[0])  # a run's first sample: none wraps
+        rolled = np.roll(feet, -start)
+        edges = np.flatnonzero(np.diff(np.r_[-2, rolled, -2]))  # where the feet change
         longest = max(int(b - a) for a, b in itertools.pairwise(edges) if rolled[a] >= 0)
     model = sim.robot.model
     com = pin.centerOfMass(model, model.createData(), motion.q[0])
     height = float(com[2] - np.mean(np.asarray(motion.feet)[0, stance[0], 2]))
-    return PointFoot(longest * motion.dt, height, float(np.sqrt(G / max(height, 1e-6))))
+    return PointFoot(longest * motion.dt, height, float(np.sqrt(G / max(height, 1e-6))),
+                     fewest, motion.period)
 
 
 def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory, feedback: bool = False) -> str:
@@ -334,16 +377,25 @@ def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory, feedback: bool =
                 "needs a stronger actuator ([motor], or the robot's own), a slower or shorter "
                 "gait, or a lighter robot")
     feet = int(motion.stance.sum(axis=1).min())
-    one = point_foot(sim, motion) if feedback and feet == 1 else None
-    if one is not None:
+    one = point_foot(sim, motion) if feedback else None
+    if one is not None and one.feet == 1:
         return (f"the gait stands on one point foot for {one.duration:.3g} s at a time: an "
                 "inverted pendulum whose contact force passes through the foot and cannot "
                 f"right it, so an error grows as e^(ω₀t), ω₀ = √(g/h) = {one.omega:.3g} /s "
                 f"(centre of mass {one.height * 1e3:.0f} mm above the foot), ×{one.growth:.3g} "
                 "over the stand; the balance controller (hexaleg.simulation.balance) moves the "
                 "forces, not where the feet land (capture-point stepping), so it cannot hold "
-                "it — a gait on two feet at every instant, or feet with soles and ankles, "
-                "would; a slower gait makes it worse")
+                "it (point-foot bipeds walk with stands short against 1/ω₀ and stepping "
+                "feedback, humanoids on soles with ankles); a slower gait makes it worse")
+    if one is not None and one.too_long:
+        return (f"the gait stands on two point feet for {one.duration:.3g} s at a time: "
+                "across the line between them the body is an inverted pendulum whose contact "
+                "forces pass through that line and cannot right it, so an error grows as "
+                f"e^(ω₀t), ω₀ = √(g/h) = {one.omega:.3g} /s (centre of mass "
+                f"{one.height * 1e3:.0f} mm above the feet), ×{one.growth:.3g} over the stand, "
+                "more than the balance controller (hexaleg.simulation.balance) holds; a "
+                f"shorter period ({one.holding_period:.2g} s or less, the stand then "
+                f"{HOLDS:g}/ω₀) would; a slower gait makes it worse")
     if feedback:
         return ("the balance controller (hexaleg.simulation.balance) did not hold the body on "
                 f"this gait ({feet} stance feet at the fewest); check the ground ([simulate] "

@@ -187,8 +187,8 @@ class Run:
         constrained: Of its updates, the fraction at which a friction cone bound the force
             correction (0 open loop).
         reason: Why it fell in one clause where the gait alone explains it (a stand on one
-            point foot that the balance controller ran on: :class:`~hexaleg.simulation.
-            measures.PointFoot`), else "".
+            point foot, or on two longer than the balance controller holds, that the
+            controller ran on: :class:`~hexaleg.simulation.measures.PointFoot`), else "".
     """
 
     name: str
@@ -372,7 +372,8 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
         one = measures.point_foot(sim, motion) if feedback else None
         return Run(name, sim, traj, traj.verdict, f"{traj.message}; {cause}", wall=wall,
                    feedback=feedback, constrained=bound, cpu=cpu,
-                   reason=one.reason if one is not None and "point foot" in cause else "")
+                   reason=one.reason if one is not None and cause.startswith("the gait stands")
+                   else "")
     if traj.verdict != "ran":
         return Run(name, sim, traj, traj.verdict, traj.message, wall=wall, feedback=feedback,
                    constrained=bound, cpu=cpu)
