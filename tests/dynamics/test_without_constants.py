@@ -182,3 +182,57 @@ def test_docs_quote_the_issues_bands():
         assert (f"{low:.4g}", f"{high:.4g}", band["low_actuator"],
                 band["high_actuator"]) == m.groups(), row
         assert low <= published, row
+
+
+def test_a_class_no_catalogue_actuator_covers_gets_the_law_s_band(go2):
+    """#59: with a catalogue of servos only (none within 0.25–4 × Go2's 45.43 N·m), the band is
+    the scaling law's three figures, each the energy metrics with the law's actuator of each
+    joint's own effort, and says it came from the law, on assumed constants, not a bound."""
+    from hexaleg.robot.scaling_law import LAW_MARK, catalogue_law
+
+    servos = {n: m for n, m in CATALOGUE.items() if m.stall_torque < 11.0}
+    w = without_constants(go2, catalogue=servos)
+    assert w is not None and w.catalogue == {}
+    assert w.from_law == ("scaling law (low)", "scaling law (central)", "scaling law (high)")
+    assert w.band == w.law
+    robot, law = go2.robot, catalogue_law()
+    dt = go2.motion.t[1] - go2.motion.t[0]
+    for end in ("low", "central", "high"):
+        total = 0.0
+        for i, j in enumerate(w.joints):
+            k = 6 + robot.column(j)
+            m = law.motor(robot.model.effortLimit[k], robot.model.velocityLimit[k], end)
+            assert m.notes.startswith(LAW_MARK)
+            total += energy.metrics(go2.tau_motor[:, [i]], go2.qdot[:, [i]], dt, m)["total"][
+                "electrical"]
+        assert w.law[f"scaling law ({end})"] == pytest.approx(total, rel=1e-12)
+    assert w.law["scaling law (low)"] < w.law["scaling law (central)"] < w.law[
+        "scaling law (high)"]
+    d = w.band_dict()
+    assert d is not None and d["from_law"] == list(w.from_law) and d["is_bound"] is False
+    assert "scaling law's" in d["note"] and d["law"]["assumed"] is True
+    assert d["law"]["fit"]["exponent"]["value"] == pytest.approx(law.exponent)
+    line = w.band_line()
+    assert "the band is the scaling law's (assumed constants)" in line
+    assert "a band on assumed constants, not a bound" in line
+    full = without_constants(go2)
+    assert full is not None and full.from_law == () and full.law == w.law  # beside, not in
+
+
+def test_the_law_fitted_without_the_ax_family_brackets_the_hexapod_s_ax_18a(robot, walk200):
+    """Leave-one-out on a gait: the hexapod with a generic actuator of the AX-18A's limits
+    (1.8 N·m, its no-load speed), the law fitted on the catalogue without the AX family: its
+    low and high figures bracket the electrical energy the AX-18A itself gives on the same
+    torques and speeds."""
+    from hexaleg.robot.motor import generic_actuator
+    from hexaleg.robot.scaling_law import family, fit
+
+    ax = CATALOGUE["AX-18A"]
+    analysis = prepare(robot, walk200, motor=generic_actuator(
+        ax.stall_torque, ax.no_load_speed)).evaluate(None, "joule")
+    rest = {n: m for n, m in CATALOGUE.items() if family(n) != "AX"}
+    w = without_constants(analysis, catalogue=rest, law=fit(rest))
+    assert w is not None and len(w.joints) == 18
+    dt = walk200.t[1] - walk200.t[0]
+    own = energy.metrics(analysis.tau_motor, analysis.qdot, dt, ax)["total"]["electrical"]
+    assert w.law["scaling law (low)"] <= own <= w.law["scaling law (high)"]
