@@ -148,25 +148,32 @@ def test_docs_quote_go2_s_own_trot():
     assert f"the sourced band below gives {band}" in text
 
 
-def _band_on(robot: str, gait: dict) -> dict:
+def _band_on(robot: str, gait: dict) -> tuple[dict, float, float]:
+    """The band (with the law's figures) of ``robot``'s gait, its mass and its predicted mean
+    draw without springs, W."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         s = Scenario.from_tables(robot, {"gait": gait, "contact": {"mu": 1.0}}, "test")
         cfg = ReportConfig.from_scenario(s)
-        w = without_constants(prepare(s.model, s.motion(), motor=cfg.motor,
-                                      contact=cfg.contact).evaluate(None, "joule"))
+        a = prepare(s.model, s.motion(), motor=cfg.motor, contact=cfg.contact).evaluate(
+            None, "joule")
+        w = without_constants(a)
     assert w is not None
     band = w.band_dict()
     assert band is not None and band["power"] is not None
-    return band
+    return band, s.model.mass, a.metrics["total"]["electrical"] / s.motion().period
 
 
 def test_docs_quote_the_issues_bands():
-    """docs/energy.md's table of #59's trots (`[contact] mu = 1`, 200 samples): ANYmal B at
-    0.5 m/s and Go2 at 0.4 m/s, each band's mean power at the digits the report prints, and the
-    low end at most the published figure the issue names (280 W, 120 W)."""
+    """docs/energy.md's tables of #59's trots (`[contact] mu = 1`, 200 samples): ANYmal B at
+    0.5 m/s and Go2 at 0.4 m/s, each band's mean power at the digits the report prints, the low
+    end at most the published figure the issue names (280 W, 120 W), the scaling law's figures
+    beside it, and the costs of transport P / (m g v) of the prediction, the band and the law;
+    ANYmal's published 1.27 within the law's range."""
     import re
     from pathlib import Path
+
+    from hexaleg.units import G
 
     text = (Path(__file__).resolve().parents[2] / "docs" / "energy.md").read_text()
     cases = {"ANYmal B, 0.5 m/s": ("anymal", {"pattern": "trot", "period": 0.6,
@@ -177,11 +184,23 @@ def test_docs_quote_the_issues_bands():
         m = re.search(re.escape(row) + r"[^|]*\| [^|]* \| ([\d.]+)–([\d.]+) W \(low ([^,]+), "
                       r"high (\S+)\)", text)
         assert m, row
-        band = _band_on(robot, gait)
+        band, mass, predicted = _band_on(robot, gait)
         low, high = band["power"]["low"]["value"], band["power"]["high"]["value"]
         assert (f"{low:.4g}", f"{high:.4g}", band["low_actuator"],
                 band["high_actuator"]) == m.groups(), row
         assert low <= published, row
+        law = {end: band["law"]["power"][end]["value"] for end in ("low", "central", "high")}
+        assert band["from_law"] == [] and band["law"]["assumed"] is True
+        assert (f"| {law['low']:.4g}–{law['high']:.4g} W ({law['central']:.4g} W at the law) |"
+                in text), row
+        per = 1.0 / (mass * G * gait["stride_length"] / gait["period"])
+        cot = (f"| {row.split(',')[0]}, {row.split(', ')[1]}, {mass:.4g} kg | "
+               f"{predicted * per:.3g} | {low * per:.3g}–{high * per:.3g} | "
+               f"{law['low'] * per:.3g}–{law['high'] * per:.3g} ({law['central'] * per:.3g} at "
+               "the law) |")
+        assert cot in text, cot
+        if robot == "anymal":
+            assert law["low"] * per <= 1.27 <= law["high"] * per
 
 
 def test_a_class_no_catalogue_actuator_covers_gets_the_law_s_band(go2):
@@ -236,3 +255,14 @@ def test_the_law_fitted_without_the_ax_family_brackets_the_hexapod_s_ax_18a(robo
     dt = walk200.t[1] - walk200.t[0]
     own = energy.metrics(analysis.tau_motor, analysis.qdot, dt, ax)["total"]["electrical"]
     assert w.law["scaling law (low)"] <= own <= w.law["scaling law (high)"]
+    full = without_constants(analysis)
+    assert full is not None
+    from pathlib import Path
+
+    text = " ".join((Path(__file__).resolve().parents[2] / "docs" / "energy.md").read_text()
+                    .split())
+    lo, mid, hi = (full.law[f"scaling law ({end})"] for end in ("low", "central", "high"))
+    assert (f"the AX-18A itself draws {own:.4g} J per cycle. The law's 1.8 N·m actuator gives "
+            f"{lo:.4g}–{hi:.4g} J ({mid:.4g} J at the law). Fitted without the AX family (leave "
+            f"one out) it gives {w.law['scaling law (low)']:.4g}–"
+            f"{w.law['scaling law (high)']:.4g} J") in text

@@ -118,3 +118,37 @@ def test_bad_input_names_the_value():
         law.motor(10.0, 0.0)
     with pytest.raises(InvalidParameterError, match="two distinct"):
         fit({"a": CATALOGUE["AX-12A"], "b": CATALOGUE["XL430-W250"]})  # both 1.5 N·m
+
+
+def test_docs_state_the_law_its_fit_and_spread():
+    """docs/energy.md's law section at the digits the fit gives: the law, β's standard error,
+    the motor-constant form, the spread and its extremes, leave-one-out's 19 of 21, the assumed
+    η, and the law's c at the A1's and the AX-18A's classes beside their own."""
+    from pathlib import Path
+
+    text = " ".join((Path(__file__).resolve().parents[2] / "docs" / "energy.md").read_text()
+                    .split())
+    law = catalogue_law()
+    lo, hi = law.spread
+    t = np.log(law.torques)
+    resid = np.log(law.ratios)
+    se = np.sqrt(resid.var() * len(t) / (len(t) - 2) / ((t - t.mean()) ** 2).sum())
+    assert (f"**P_peak = {law.coefficient:.4g} τ_peak^{law.exponent:.4g} W** (τ in N·m; β's "
+            f"standard error {se:.2g})") in text
+    assert (f"1/√c = {law.coefficient ** -0.5:.3g} τ_peak^{1 - law.exponent / 2:.3g} N·m/√W"
+            in text)
+    assert f"**×{lo:.3g}–×{hi:.3g}** of the law (log RMS {law.log_rms:.2g})" in text
+    assert f"the XM540-W270 (×{min(law.ratios):.3g})" in text
+    assert f"Mini Cheetah hip (×{max(law.ratios):.3g}; Katz's firmware gives" in text
+    katz = law.ratios[law.members.index("MiniCheetah-hip-Katz")]
+    assert f"the same motor ×{katz:.3g})" in text
+    assert "brackets **19 of the 21**" in text  # test_leave_one_out_misses_two_of_twenty_one
+    assert (f"c = {law.coefficient:.4g} E^({law.exponent:.4g} − 2) at the law, and ×{lo:.3g} or "
+            f"×{hi:.3g}") in text
+    assert (f"median ({law.efficiency('central'):.3g}) at the law, their highest "
+            f"({law.efficiency('low'):.1f}) with the low end and their lowest "
+            f"({law.efficiency('high'):.3g})") in text
+    for name, effort in (("A1-Yang2021", 33.5), ("AX-18A", 1.8)):
+        own = CATALOGUE[name].joule_coefficient
+        cs = [law.joule_coefficient(effort, end) for end in ENDS]
+        assert (f"| {own:.3f} | {cs[1]:.3g} ({cs[0]:.3g}–{cs[2]:.3g}) |") in text, name
