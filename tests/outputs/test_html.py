@@ -67,3 +67,11 @@ def test_float_noise_reads_zero():
     assert format_number(-2.224e-16) == "0"
     assert format_quantity({"value": 4.6e-16, "unit": "N·m/rad"}) == "0 N·m/rad"
     assert format_number(2.5e-9) == "0.0000000025"  # small but real: kept, written plain
+    # read against a scale: a periodic gait's net work beside its positive work is round-off
+    # (ANYmal's trot: -3.759e-08 J beside 24.49 J printed "-0.00000003759 J")
+    work = {"value": 24.49, "unit": "J"}
+    assert format_quantity({"value": -3.759e-8, "unit": "J"}, work) == "0 J"
+    assert format_quantity({"value": 0.05, "unit": "J"}, work) == "0.05 J"  # a real net work
+    assert format_quantity({"value": -3.759e-8, "unit": "J"}) == "-0.00000003759 J"
+    assert format_quantity({"value": 1e-9, "unit": "J"}, {"value": None, "unit": "J"}) == \
+        "0.000000001 J"

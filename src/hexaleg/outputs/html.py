@@ -60,12 +60,29 @@ def format_percent(q: Mapping[str, Any] | float | None) -> str:
     return f"{float(x):+.2f} %"
 
 
-def format_quantity(q: Mapping[str, Any] | None) -> str:
-    """``{"value", "unit"}`` as text; dimensionless (unit ``"1"``) values without a unit."""
+RELATIVE_NOISE = 1e-6
+"""A value below this fraction of the magnitude it is read against is round-off: the net work of
+a periodic gait (−3.8e-8 J beside 24 J of positive work on ANYmal's trot) reads 0."""
+
+
+def format_quantity(q: Mapping[str, Any] | None,
+                    scale: Mapping[str, Any] | None = None) -> str:
+    """``{"value", "unit"}`` as text; dimensionless (unit ``"1"``) values without a unit.
+
+    Args:
+        q: The quantity, or None (``—``).
+        scale: A quantity of the same unit that ``q`` is read against (the positive work a net
+            work sits beside): below :data:`RELATIVE_NOISE` of it, ``q`` is round-off and reads
+            0. None: only :data:`NOISE` applies.
+    """
     if q is None or q["value"] is None:
         return "—"
     unit = "" if q["unit"] == "1" else q["unit"]
-    return f"{format_number(q['value'])} {unit}".rstrip()
+    value = q["value"]
+    if (scale is not None and scale.get("value") is not None and is_real(value)
+            and abs(value) < RELATIVE_NOISE * abs(scale["value"])):
+        value = 0.0
+    return f"{format_number(value)} {unit}".rstrip()
 
 
 def environment() -> jinja2.Environment:
