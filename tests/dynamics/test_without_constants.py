@@ -120,6 +120,15 @@ def test_the_report_asks_for_the_motor_first(tmp_path, capsys):
     assert "Name the motor first." in html
     assert 'id="sourced-band"' in html and "not a bound" in html
     assert lines[first + 2].startswith("sourced band") and "not a bound" in lines[first + 2]
+    # #59: the scaling law beside the band, labelled assumed; the measured robots of Go2's mass
+    # class with costs of transport; no float exponent or other glitch on the page or the lines
+    # (the glitch scan's own runs are the hexapod's)
+    from test_glitches import glitches, visible
+
+    assert 'id="scaling-law"' in html and "assumed constants, an estimate, not a bound" in html
+    assert "cost of transport 0.381 (computed here from the quoted power" in html
+    assert "the Joule scaling law (Wensing et al. 2017" in lines[first + 2]
+    assert glitches(visible(html)) == [] and glitches(out) == []
 
 
 def test_docs_quote_go2_s_own_trot():
