@@ -91,7 +91,7 @@ def test_measured_robots_beside_a_prediction():
     from hexaleg.dynamics.plausibility import measured_beside
 
     rows = measured_beside("anymal", 30.0, 383.0, (88.5, 651.8))
-    assert rows[0]["matches"] == "the same robot" and len(rows) == 2
+    assert rows[0]["matches"] == "the same robot" and len(rows) == 3
     anymal = rows[0]
     assert anymal["power"] == {"value": 280.0, "unit": "W"} and anymal["upper_limit"]
     assert anymal["consistent"] is True and "less than 280 W" in anymal["source"]
@@ -104,3 +104,33 @@ def test_measured_robots_beside_a_prediction():
     assert measured_beside(None, 31.3, 5.0)[0]["robot"].startswith("a 15.65-kg")
     with pytest.raises(InvalidParameterError, match="mass"):
         measured_beside("a1", 0.0, 5.0)
+
+
+def test_costs_of_transport_beside_the_measured_robots():
+    """#59: Bjelonic et al.'s ANYmal CoT 1.27 (as its abstract gives it) beside ANYmal B and C
+    runs, matched by family; Arm et al.'s 23.4 W on 15.65 kg at 0.4 m/s as a cost of transport
+    computed from those three figures, 23.4 / (15.65 g 0.4) = 0.381, said so; ANYmal B's
+    '< 280 W' has no speed, so no cost of transport; the run's own (predicted and band) is
+    P / (m g v) at its speed, and none for a motion in place."""
+    from hexaleg.dynamics.plausibility import measured_beside
+    from hexaleg.units import G
+
+    rows = {r["robot"]: r for r in measured_beside("anymal_c", 30.0, 383.0, (88.5, 651.8),
+                                                   speed=0.5)}
+    anymal = rows["ANYmal (which one is not named in the abstract)"]
+    assert anymal["cost_of_transport"] == {"value": 1.27, "unit": "1"}
+    assert anymal["cost_of_transport_is"] == "published" and anymal["power"] is None
+    assert "its family" in anymal["matches"] and "(1.27)" in anymal["source"]
+    assert anymal["predicted_cost_of_transport"]["value"] == pytest.approx(383.0 / (30 * G * 0.5))
+    assert anymal["band_cost_of_transport"]["low"]["value"] == pytest.approx(
+        88.5 / (30 * G * 0.5))
+    assert anymal["consistent"] is None and "cost of transport 1.27 (published)" in anymal["line"]
+    arm = rows["a 15.65-kg quadruped (platform not named in the abstract)"]
+    assert arm["cost_of_transport"]["value"] == pytest.approx(23.4 / (15.65 * G * 0.4))
+    assert f"{arm['cost_of_transport']['value']:.3g}" == "0.381"
+    assert arm["cost_of_transport_is"].startswith("computed here from the quoted power")
+    b = measured_beside("anymal", 30.0, 383.0, speed=0.5)[0]
+    assert b["robot"] == "ANYmal (B)" and b["cost_of_transport"] is None
+    assert measured_beside("anymal", 30.0, 383.0)[0]["predicted_cost_of_transport"] is None
+    with pytest.raises(InvalidParameterError, match="speed"):
+        measured_beside("anymal", 30.0, 383.0, speed=0.0)

@@ -120,6 +120,15 @@ def test_the_report_asks_for_the_motor_first(tmp_path, capsys):
     assert "Name the motor first." in html
     assert 'id="sourced-band"' in html and "not a bound" in html
     assert lines[first + 2].startswith("sourced band") and "not a bound" in lines[first + 2]
+    # #59: the scaling law beside the band, labelled assumed; the measured robots of Go2's mass
+    # class with costs of transport; no float exponent or other glitch on the page or the lines
+    # (the glitch scan's own runs are the hexapod's)
+    from test_glitches import glitches, visible
+
+    assert 'id="scaling-law"' in html and "assumed constants, an estimate, not a bound" in html
+    assert "cost of transport 0.381 (computed here from the quoted power" in html
+    assert "the Joule scaling law (Wensing et al. 2017" in lines[first + 2]
+    assert glitches(visible(html)) == [] and glitches(out) == []
 
 
 def test_docs_quote_go2_s_own_trot():
@@ -148,25 +157,32 @@ def test_docs_quote_go2_s_own_trot():
     assert f"the sourced band below gives {band}" in text
 
 
-def _band_on(robot: str, gait: dict) -> dict:
+def _band_on(robot: str, gait: dict) -> tuple[dict, float, float]:
+    """The band (with the law's figures) of ``robot``'s gait, its mass and its predicted mean
+    draw without springs, W."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         s = Scenario.from_tables(robot, {"gait": gait, "contact": {"mu": 1.0}}, "test")
         cfg = ReportConfig.from_scenario(s)
-        w = without_constants(prepare(s.model, s.motion(), motor=cfg.motor,
-                                      contact=cfg.contact).evaluate(None, "joule"))
+        a = prepare(s.model, s.motion(), motor=cfg.motor, contact=cfg.contact).evaluate(
+            None, "joule")
+        w = without_constants(a)
     assert w is not None
     band = w.band_dict()
     assert band is not None and band["power"] is not None
-    return band
+    return band, s.model.mass, a.metrics["total"]["electrical"] / s.motion().period
 
 
 def test_docs_quote_the_issues_bands():
-    """docs/energy.md's table of #59's trots (`[contact] mu = 1`, 200 samples): ANYmal B at
-    0.5 m/s and Go2 at 0.4 m/s, each band's mean power at the digits the report prints, and the
-    low end at most the published figure the issue names (280 W, 120 W)."""
+    """docs/energy.md's tables of #59's trots (`[contact] mu = 1`, 200 samples): ANYmal B at
+    0.5 m/s and Go2 at 0.4 m/s, each band's mean power at the digits the report prints, the low
+    end at most the published figure the issue names (280 W, 120 W), the scaling law's figures
+    beside it, and the costs of transport P / (m g v) of the prediction, the band and the law;
+    ANYmal's published 1.27 within the law's range."""
     import re
     from pathlib import Path
+
+    from hexaleg.units import G
 
     text = (Path(__file__).resolve().parents[2] / "docs" / "energy.md").read_text()
     cases = {"ANYmal B, 0.5 m/s": ("anymal", {"pattern": "trot", "period": 0.6,
@@ -177,8 +193,85 @@ def test_docs_quote_the_issues_bands():
         m = re.search(re.escape(row) + r"[^|]*\| [^|]* \| ([\d.]+)–([\d.]+) W \(low ([^,]+), "
                       r"high (\S+)\)", text)
         assert m, row
-        band = _band_on(robot, gait)
+        band, mass, predicted = _band_on(robot, gait)
         low, high = band["power"]["low"]["value"], band["power"]["high"]["value"]
         assert (f"{low:.4g}", f"{high:.4g}", band["low_actuator"],
                 band["high_actuator"]) == m.groups(), row
         assert low <= published, row
+        law = {end: band["law"]["power"][end]["value"] for end in ("low", "central", "high")}
+        assert band["from_law"] == [] and band["law"]["assumed"] is True
+        assert (f"| {law['low']:.4g}–{law['high']:.4g} W ({law['central']:.4g} W at the law) |"
+                in text), row
+        per = 1.0 / (mass * G * gait["stride_length"] / gait["period"])
+        cot = (f"| {row.split(',')[0]}, {row.split(', ')[1]}, {mass:.4g} kg | "
+               f"{predicted * per:.3g} | {low * per:.3g}–{high * per:.3g} | "
+               f"{law['low'] * per:.3g}–{law['high'] * per:.3g} ({law['central'] * per:.3g} at "
+               "the law) |")
+        assert cot in text, cot
+        if robot == "anymal":
+            assert law["low"] * per <= 1.27 <= law["high"] * per
+
+
+def test_a_class_no_catalogue_actuator_covers_gets_the_law_s_band(go2):
+    """#59: with a catalogue of servos only (none within 0.25–4 × Go2's 45.43 N·m), the band is
+    the scaling law's three figures, each the energy metrics with the law's actuator of each
+    joint's own effort, and says it came from the law, on assumed constants, not a bound."""
+    from hexaleg.robot.scaling_law import LAW_MARK, catalogue_law
+
+    servos = {n: m for n, m in CATALOGUE.items() if m.stall_torque < 11.0}
+    w = without_constants(go2, catalogue=servos)
+    assert w is not None and w.catalogue == {}
+    assert w.from_law == ("scaling law (low)", "scaling law (central)", "scaling law (high)")
+    assert w.band == w.law
+    robot, law = go2.robot, catalogue_law()
+    dt = go2.motion.t[1] - go2.motion.t[0]
+    for end in ("low", "central", "high"):
+        total = 0.0
+        for i, j in enumerate(w.joints):
+            k = 6 + robot.column(j)
+            m = law.motor(robot.model.effortLimit[k], robot.model.velocityLimit[k], end)
+            assert m.notes.startswith(LAW_MARK)
+            total += energy.metrics(go2.tau_motor[:, [i]], go2.qdot[:, [i]], dt, m)["total"][
+                "electrical"]
+        assert w.law[f"scaling law ({end})"] == pytest.approx(total, rel=1e-12)
+    assert w.law["scaling law (low)"] < w.law["scaling law (central)"] < w.law[
+        "scaling law (high)"]
+    d = w.band_dict()
+    assert d is not None and d["from_law"] == list(w.from_law) and d["is_bound"] is False
+    assert "scaling law's" in d["note"] and d["law"]["assumed"] is True
+    assert d["law"]["fit"]["exponent"]["value"] == pytest.approx(law.exponent)
+    line = w.band_line()
+    assert "the band is the scaling law's (assumed constants)" in line
+    assert "a band on assumed constants, not a bound" in line
+    full = without_constants(go2)
+    assert full is not None and full.from_law == () and full.law == w.law  # beside, not in
+
+
+def test_the_law_fitted_without_the_ax_family_brackets_the_hexapod_s_ax_18a(robot, walk200):
+    """Leave-one-out on a gait: the hexapod with a generic actuator of the AX-18A's limits
+    (1.8 N·m, its no-load speed), the law fitted on the catalogue without the AX family: its
+    low and high figures bracket the electrical energy the AX-18A itself gives on the same
+    torques and speeds."""
+    from hexaleg.robot.motor import generic_actuator
+    from hexaleg.robot.scaling_law import family, fit
+
+    ax = CATALOGUE["AX-18A"]
+    analysis = prepare(robot, walk200, motor=generic_actuator(
+        ax.stall_torque, ax.no_load_speed)).evaluate(None, "joule")
+    rest = {n: m for n, m in CATALOGUE.items() if family(n) != "AX"}
+    w = without_constants(analysis, catalogue=rest, law=fit(rest))
+    assert w is not None and len(w.joints) == 18
+    dt = walk200.t[1] - walk200.t[0]
+    own = energy.metrics(analysis.tau_motor, analysis.qdot, dt, ax)["total"]["electrical"]
+    assert w.law["scaling law (low)"] <= own <= w.law["scaling law (high)"]
+    full = without_constants(analysis)
+    assert full is not None
+    from pathlib import Path
+
+    text = " ".join((Path(__file__).resolve().parents[2] / "docs" / "energy.md").read_text()
+                    .split())
+    lo, mid, hi = (full.law[f"scaling law ({end})"] for end in ("low", "central", "high"))
+    assert (f"the AX-18A itself draws {own:.4g} J per cycle. The law's 1.8 N·m actuator gives "
+            f"{lo:.4g}–{hi:.4g} J ({mid:.4g} J at the law). Fitted without the AX family (leave "
+            f"one out) it gives {w.law['scaling law (low)']:.4g}–"
+            f"{w.law['scaling law (high)']:.4g} J") in text

@@ -18,6 +18,12 @@ def test_numbers_have_four_significant_digits():
     assert format_number(True) == "True"  # a bool is not a number
     assert format_number(float("nan")) == "nan"  # not finite: as it is
     assert format_number("soc") == "soc"
+    # never an exponent (#59: ANYmal's table read "1.103e+04 N·mm"): plain, n significant digits
+    assert format_number(11034.2) == "11030" and format_number(1.103e4) == "11030"
+    assert format_number(9999.96) == "10000" and format_number(-12345.6) == "-12350"
+    assert format_number(1.2346e-5) == "0.00001235" and format_number(2.5e-7, 2) == "0.00000025"
+    assert format_number(1234.5, 3) == "1230" and format_number(10.8, 3) == "10.8"
+    assert format_number(float("inf")) == "inf"
 
 
 def test_quantities_carry_their_unit_except_dimensionless():
@@ -60,4 +66,12 @@ def test_float_noise_reads_zero():
     """The net work of a conservative cycle (−2.2e-16 J) is 0 on the page, not −2.224e-16."""
     assert format_number(-2.224e-16) == "0"
     assert format_quantity({"value": 4.6e-16, "unit": "N·m/rad"}) == "0 N·m/rad"
-    assert format_number(2.5e-9) == "2.5e-09"  # small but real: kept
+    assert format_number(2.5e-9) == "0.0000000025"  # small but real: kept, written plain
+    # read against a scale: a periodic gait's net work beside its positive work is round-off
+    # (ANYmal's trot: -3.759e-08 J beside 24.49 J printed "-0.00000003759 J")
+    work = {"value": 24.49, "unit": "J"}
+    assert format_quantity({"value": -3.759e-8, "unit": "J"}, work) == "0 J"
+    assert format_quantity({"value": 0.05, "unit": "J"}, work) == "0.05 J"  # a real net work
+    assert format_quantity({"value": -3.759e-8, "unit": "J"}) == "-0.00000003759 J"
+    assert format_quantity({"value": 1e-9, "unit": "J"}, {"value": None, "unit": "J"}) == \
+        "0.000000001 J"

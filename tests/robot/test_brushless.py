@@ -59,10 +59,28 @@ def test_the_a1_energy_model_is_yang_2021_and_its_trot_draws_what_the_docs_say()
     run = Scenario.from_tables("a1", {
         "gait": {"period": 0.4, "stride_length": 0.2, "duty_factor": 0.6, "samples": 200},
         "contact": {"mu": 1.0}})
-    watts = run.prepare().baseline("joule")["total"]["electrical"] / 0.4
+    analysis = run.prepare().evaluate(None, "joule")
+    watts = analysis.metrics["total"]["electrical"] / 0.4
     assert watts <= 150.0
     docs = (Path(__file__).resolve().parents[2] / "docs" / "energy.md").read_text()
     assert f"the motors draw {watts:.0f} W" in docs
+    # #59: the scaling law's actuator of each joint's effort on the same torques and speeds,
+    # and the costs of transport docs/energy.md gives (P / (m g v), v = 0.5 m/s)
+    from hexaleg.dynamics import energy
+    from hexaleg.robot.scaling_law import ENDS, catalogue_law
+    from hexaleg.units import G
+
+    model, dt = run.model.model, 0.4 / 200
+    law = {end: sum(energy.metrics(analysis.tau_motor[:, [i]], analysis.qdot[:, [i]], dt,
+                                   catalogue_law().motor(model.effortLimit[6 + i],
+                                                         model.velocityLimit[6 + i], end))[
+        "total"]["electrical"] for i in range(run.model.nj)) / 0.4 for end in ENDS}
+    assert (f"| {law['low']:.4g}–{law['high']:.4g} W ({law['central']:.4g} W at the law) |"
+            in docs)
+    per = 1.0 / (run.model.mass * G * 0.5)
+    assert (f"| A1, 0.5 m/s, {run.model.mass:.4g} kg | {watts * per:.3g} (A1-Yang2021) | – | "
+            f"{law['low'] * per:.3g}–{law['high'] * per:.3g} ({law['central'] * per:.3g} at the "
+            "law) |") in docs
 
 
 def test_the_mit_actuators_joule_coefficients_by_hand():

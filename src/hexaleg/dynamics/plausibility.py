@@ -30,12 +30,16 @@ Engineering 72, 1950; Tucker, "The energetic cost of moving about", American Sci
   transport of legged robots within a factor of two of the mass, with the ratio of the checked
   value to each, for context (not a flag: their speeds and what they count differ).
 
-* **Measured robots' power** (:data:`MEASURED`, :func:`measured_beside`): published whole-robot
-  power figures, set beside a run's predicted draw (and its sourced band, when its actuators are
-  generic) where the run's robot is the measured one, or the measured robot is of its mass
-  class (within a factor of two): ANYmal B under 280 W at full speed (Hutter et al. 2016) and a
-  15.65-kg quadruped's 23.4 W for locomotion at 0.4 m/s (Arm et al. 2025). Context, not a
-  flag: speeds and what each counts differ, and both are said.
+* **Measured robots** (:data:`MEASURED`, :func:`measured_beside`): published whole-robot
+  power and cost-of-transport figures, set beside a run's predicted draw and cost of transport
+  (and its sourced band, when its actuators are generic) where the run's robot is the measured
+  one (or of its family), or the measured robot is of its mass class (within a factor of two):
+  ANYmal B under 280 W at full speed (Hutter et al. 2016; no speed, so no cost of transport), a
+  15.65-kg quadruped's 23.4 W for locomotion at 0.4 m/s (Arm et al. 2025; its cost of
+  transport 23.4 / (15.65 g 0.4) = 0.381 is computed here from those three figures) and
+  ANYmal's full cost of transport 1.27 (Bjelonic, Tischhauser & Hutter 2025, as its abstract
+  gives it; which ANYmal is not said there). Context, not a flag: speeds and what each counts
+  differ, and both are said.
 
 The bounds are a rule to flag, not a law: a result outside them is reported as implausible with
 the numbers (``flag`` ``"low"`` or ``"high"``), never refused.
@@ -97,27 +101,40 @@ PUBLISHED: tuple[PublishedRobot, ...] = (
 
 @dataclass(frozen=True)
 class MeasuredPower:
-    """A legged robot's published whole-robot power.
+    """A legged robot's published whole-robot power or cost of transport.
 
     Attributes:
         name: The robot as the source names it.
-        robots: hexaleg registry names of that very robot (empty: only its mass class matches).
+        robots: hexaleg registry names of that robot (empty: only its mass class matches).
         mass: Its mass, kg; None: not in the source.
-        power: The published power, W.
+        power: The published power, W; None: the source gives a cost of transport only.
         speed: The speed it was measured at, m/s; None: not stated.
-        upper: Whether the figure is an upper limit ("less than") rather than a value.
+        upper: Whether the power is an upper limit ("less than") rather than a value.
         counts: What it counts, in words.
         source: The publication, with the quote.
+        cost_of_transport: The published cost of transport, 1; None: not published (then
+            :attr:`computed_cost_of_transport` gives it where power, mass and speed are known).
+        matches: How a run of one of :attr:`robots` matches it, in words.
     """
 
     name: str
     robots: tuple[str, ...]
     mass: float | None
-    power: float
+    power: float | None
     speed: float | None
     upper: bool
     counts: str
     source: str
+    cost_of_transport: float | None = None
+    matches: str = "the same robot"
+
+    @property
+    def computed_cost_of_transport(self) -> float | None:
+        """``P / (m g v)`` from the published power, mass and speed (eq. 23 per unit time), or
+        None where one of them is not published or the power is an upper limit."""
+        if self.power is None or self.mass is None or self.speed is None or self.upper:
+            return None
+        return self.power / (self.mass * G * self.speed)
 
 
 MEASURED: tuple[MeasuredPower, ...] = (
@@ -131,13 +148,22 @@ MEASURED: tuple[MeasuredPower, ...] = (
                   "Arm, Fischer, Church, Fuhrer, Kolvenbach & Hutter 2025, arXiv:2509.10128: "
                   "'power consumption for locomotion of 23.4 W in Earth gravity on a 15.65 kg "
                   "robot at 0.4 m/s'"),
+    MeasuredPower("ANYmal (which one is not named in the abstract)", ("anymal", "anymal_c"),
+                  None, None, None, False, "the full cost of transport, whole robot, with the "
+                  "paper's learned policy (speed not in the abstract)",
+                  "Bjelonic, Tischhauser & Hutter 2025, 'Towards bridging the gap: systematic "
+                  "sim-to-real transfer for diverse legged robots', arXiv:2509.06342, abstract: "
+                  "'achieving a 32% reduction in the full Cost of Transport of ANYmal (1.27)'",
+                  cost_of_transport=1.27,
+                  matches="its family: the abstract does not say which ANYmal"),
 )
-"""Published whole-robot power of electric quadrupeds (shared/reference/motor-sources.md,
-items 1 and 2)."""
+"""Published whole-robot power and cost of transport of electric quadrupeds
+(shared/reference/motor-sources.md, items 1 and 2)."""
 
 
 def measured_beside(robot: str | None, mass: float, predicted: float,
-                    band: tuple[float, float] | None = None) -> list[dict[str, Any]]:
+                    band: tuple[float, float] | None = None,
+                    speed: float | None = None) -> list[dict[str, Any]]:
     """The measured robots that match a run, each beside its prediction.
 
     Args:
@@ -145,36 +171,60 @@ def measured_beside(robot: str | None, mass: float, predicted: float,
         mass: The run's robot mass, kg, > 0.
         predicted: The run's predicted mean draw without springs, W, ≥ 0.
         band: The sourced band's (low, high) mean power, W, or None.
+        speed: The run's mean speed, m/s, > 0, for its cost of transport ``P / (m g v)``;
+            None: a motion in place (no cost of transport).
 
     Returns:
-        One dict per match: the figure, what it counts, its source, why it matches ("the same
-        robot" or "its mass class"), the prediction and band beside it, and whether the band's
-        low end (else the prediction) is at most the figure where the figure is an upper limit.
+        One dict per match: the figure (power and cost of transport, each None where the source
+        gives none; a cost of transport computed from the quoted power, mass and speed says so),
+        what it counts, its source, why it matches ("the same robot", its family or "its mass
+        class"), the prediction and band beside it (W, and as costs of transport), and whether
+        the band's low end (else the prediction) is at most the figure where the figure is an
+        upper limit.
     """
     positive("mass", mass)
     real("predicted power", predicted, low=0.0, allowed="a finite number ≥ 0")
+    per = None if speed is None else 1.0 / (mass * G * positive("speed", speed))
     out = []
     for m in MEASURED:
         if robot is not None and robot in m.robots:
-            why = "the same robot"
+            why = m.matches
         elif m.mass is not None and 0.5 <= m.mass / mass <= 2.0:
             why = f"its mass class: {m.mass:g} kg against {mass:.3g} kg, within 2 ×"
         else:
             continue
         low = predicted if band is None else band[0]
+        cot = m.cost_of_transport if m.cost_of_transport is not None else (
+            m.computed_cost_of_transport)
+        how = (None if cot is None else "published" if m.cost_of_transport is not None else
+               "computed here from the quoted power, mass and speed, P / (m g v)")
+        figure = ("" if m.power is None else
+                  f"{'under ' if m.upper else ''}{m.power:g} W, ") + (
+            "" if cot is None else f"cost of transport {cot:.3g} ({how}), ")
         out.append({
             "robot": m.name, "matches": why,
-            "power": {"value": m.power, "unit": "W"}, "upper_limit": m.upper,
+            "power": None if m.power is None else {"value": m.power, "unit": "W"},
+            "upper_limit": m.upper,
             "speed": None if m.speed is None else {"value": m.speed, "unit": "m/s"},
+            "cost_of_transport": None if cot is None else {"value": cot, "unit": "1"},
+            "cost_of_transport_is": how,
             "counts": m.counts, "source": m.source,
             "predicted": {"value": predicted, "unit": "W"},
+            "predicted_cost_of_transport": None if per is None else {
+                "value": predicted * per, "unit": "1"},
             "band": None if band is None else {"low": {"value": band[0], "unit": "W"},
                                                "high": {"value": band[1], "unit": "W"}},
-            "consistent": (low <= m.power) if m.upper else None,
-            "line": (f"{m.name}, {why}: {'under ' if m.upper else ''}{m.power:g} W, {m.counts}"
+            "band_cost_of_transport": None if band is None or per is None else {
+                "low": {"value": band[0] * per, "unit": "1"},
+                "high": {"value": band[1] * per, "unit": "1"}},
+            "consistent": (low <= m.power) if m.upper and m.power is not None else None,
+            "line": (f"{m.name}, {why}: {figure}{m.counts}"
                      + (f" at {m.speed:g} m/s" if m.speed is not None else "")
                      + f"; predicted {predicted:.4g} W"
-                     + ("" if band is None else f", sourced band {band[0]:.4g}–{band[1]:.4g} W"))})
+                     + ("" if per is None else f", cost of transport {predicted * per:.3g}")
+                     + ("" if band is None else f", sourced band {band[0]:.4g}–{band[1]:.4g} W"
+                        + ("" if per is None else
+                           f" (cost of transport {band[0] * per:.3g}–{band[1] * per:.3g})")))})
     return out
 
 

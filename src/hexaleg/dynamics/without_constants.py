@@ -26,7 +26,13 @@ without springs), what holds whatever the motor:
   gearbox efficiency and regeneration kept, the no-load speed divided by the same factor. The
   band is the lowest and highest of those energies, with which actuators; it rests on the
   scaled actuators' constants and the assumption that such a gearbox exists, so it is a band,
-  never a bound.
+  never a bound;
+
+* the **scaling law's figures** (:mod:`hexaleg.robot.scaling_law`): the electrical energy with an
+  actuator of each joint's effort from the Joule scaling law fitted on the catalogue, at the
+  law and at both ends of its spread — constants assumed, so an estimate, never a bound. Where
+  no catalogue actuator is within :data:`SCALE_CLASS` of the class's effort, the band is made
+  of these three figures, and says so (``from_law``).
 
 beside the figure the generic actuator states. Sources: the energy metrics of
 :mod:`hexaleg.dynamics.energy`; the catalogue of :mod:`hexaleg.robot.catalogue`.
@@ -35,6 +41,7 @@ beside the figure the generic actuator states. Sources: the energy metrics of
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -47,6 +54,7 @@ from hexaleg.quantities import quantity
 from hexaleg.robot.actuator import joint_models
 from hexaleg.robot.catalogue import CATALOGUE
 from hexaleg.robot.motor import GENERIC_MARK, Motor
+from hexaleg.robot.scaling_law import ENDS, JouleLaw, catalogue_law
 
 TORQUE_CLASS = (0.5, 2.0)
 """A catalogue actuator is of a joint's torque class when its stall torque is within these
@@ -91,6 +99,12 @@ class WithoutConstants:
         band: Catalogue actuator within :data:`SCALE_CLASS` → their electrical energy with it
             scaled to each joint's effort (:func:`scaled`), J (empty: none in that class).
         period: The cycle's period, s, for the band's mean power; None: not one periodic cycle.
+        law: ``"scaling law (low|central|high)"`` → their electrical energy with the scaling
+            law's actuator of each joint's effort (:meth:`hexaleg.robot.scaling_law.JouleLaw.
+            motor`), J: assumed constants.
+        from_law: The entries of ``band`` that came from the law (all of them when no catalogue
+            actuator is within :data:`SCALE_CLASS`; else none).
+        fit: The scaling law those figures used; None: no law figures.
     """
 
     joints: tuple[str, ...]
@@ -101,6 +115,9 @@ class WithoutConstants:
     effort: float
     band: dict[str, float] = dataclasses.field(default_factory=dict)
     period: float | None = None
+    law: dict[str, float] = dataclasses.field(default_factory=dict)
+    from_law: tuple[str, ...] = ()
+    fit: JouleLaw | None = None
 
     def band_line(self) -> str:
         """The sourced band in words, or that the catalogue has nothing to scale."""
@@ -111,10 +128,24 @@ class WithoutConstants:
         high = max(self.band, key=self.band.__getitem__)
         watts = ("" if self.period is None else
                  f" = {self.band[low] / self.period:.4g}–{self.band[high] / self.period:.4g} W")
+        what = ("no catalogue actuator in class, so the band is the scaling law's (assumed "
+                "constants)" if self.from_law else
+                "each geared to every joint's effort limit: c = c_source (τ_peak/E_j)²")
         return (f"sourced band {self.band[low]:.4g}–{self.band[high]:.4g} J per cycle{watts} "
-                f"(low {low}, high {high}, of {', '.join(self.band)}, each geared to every "
-                "joint's effort limit: c = c_source (τ_peak/E_j)²); a band on sourced "
-                "constants, not a bound")
+                f"(low {low}, high {high}, of {', '.join(self.band)}, {what}); a band on "
+                f"{'assumed' if self.from_law else 'sourced'} constants, not a bound"
+                + self.law_line())
+
+    def law_line(self) -> str:
+        """The scaling law's figures in words (empty without them), labelled assumed."""
+        if not self.law:
+            return ""
+        lo, mid, hi = (self.law[f"scaling law ({end})"] for end in ENDS)
+        watts = "" if self.period is None else (
+            f" = {lo / self.period:.4g}–{hi / self.period:.4g} W")
+        return (f"; the Joule scaling law (Wensing et al. 2017, fitted on the catalogue) gives "
+                f"{lo:.4g}–{hi:.4g} J{watts}, {mid:.4g} J at the law: assumed constants, an "
+                "estimate")
 
     def line(self) -> str:
         """The figures in one line, the motor choice asked for first."""
@@ -168,7 +199,25 @@ class WithoutConstants:
                        "effort limit E_j: c = R/(k_t G)² becomes c (tau_peak/E_j)^2, eta and "
                        "regeneration kept (hexaleg.dynamics.without_constants.scaled)",
                 "is_bound": False,
-                "note": "a band on sourced actuators scaled by an assumed gearbox, not a bound"}
+                "from_law": list(self.from_law),
+                "law": self.law_dict(),
+                "note": ("no catalogue actuator is of this class: the band is the scaling law's, "
+                         "on assumed constants, not a bound" if self.from_law else
+                         "a band on sourced actuators scaled by an assumed gearbox, not a "
+                         "bound")}
+
+    def law_dict(self) -> dict[str, Any] | None:
+        """The scaling law's figures for a JSON (per cycle, and W over the period), the law
+        and its fit; None without them."""
+        if not self.law:
+            return None
+        energies = {end: self.law[f"scaling law ({end})"] for end in ENDS}
+        return {"electrical": {end: quantity(e, "J") for end, e in energies.items()},
+                "power": None if self.period is None else {
+                    end: quantity(e / self.period, "W") for end, e in energies.items()},
+                "fit": None if self.fit is None else self.fit.as_dict(),
+                "assumed": True, "is_bound": False,
+                "note": "assumed constants from a scaling law, an estimate: never a bound"}
 
 
 def _generic_joints(analysis: Analysis) -> list[str]:
@@ -177,14 +226,20 @@ def _generic_joints(analysis: Analysis) -> list[str]:
     return [j for j, m in zip(names, models, strict=True) if m.notes.startswith(GENERIC_MARK)]
 
 
-def without_constants(analysis: Analysis) -> WithoutConstants | None:
+def without_constants(analysis: Analysis, *, catalogue: Mapping[str, Motor] = CATALOGUE,
+                      law: JouleLaw | None = None) -> WithoutConstants | None:
     """The motor-independent figures of ``analysis``'s generic joints (module docstring); None
     when no joint's actuator is generic.
 
     Args:
         analysis: An analysis of the gait (its motor torques and speeds; the report passes the
             one without springs).
+        catalogue: The sourced actuators to take the torque class's and the band's from (the
+            catalogue; a part of it leaves the rest out, as a leave-one-out check does).
+        law: The scaling law for the law's figures; None: the one fitted on the whole catalogue
+            (:func:`hexaleg.robot.scaling_law.catalogue_law`).
     """
+    fitted = catalogue_law() if law is None else law
     joints = _generic_joints(analysis)
     if not joints:
         return None
@@ -196,21 +251,36 @@ def without_constants(analysis: Analysis) -> WithoutConstants | None:
     dt = float(motion.t[1] - motion.t[0])
     effort = float(np.max(robot.model.effortLimit[[6 + k for k in cols]]))
     lo, hi = TORQUE_CLASS
-    catalogue = {name: float(energy.metrics(tau, qdot, dt, m, periodic=motion.periodic)[
-        "total"]["electrical"]) for name, m in sorted(CATALOGUE.items())
+    in_class = {name: float(energy.metrics(tau, qdot, dt, m, periodic=motion.periodic)[
+        "total"]["electrical"]) for name, m in sorted(catalogue.items())
         if lo * effort <= m.stall_torque <= hi * effort}
     efforts = [float(robot.model.effortLimit[6 + k]) for k in cols]
     lo, hi = SCALE_CLASS
-    band = {name: sum(float(energy.metrics(tau[:, [i]], qdot[:, [i]], dt, scaled(m, e),
-                                           periodic=motion.periodic)["total"]["electrical"])
-                      for i, e in enumerate(efforts))
-            for name, m in sorted(CATALOGUE.items())
+    band = {name: _joints_energy(tau, qdot, dt, motion.periodic,
+                                 [scaled(m, e) for e in efforts])
+            for name, m in sorted(catalogue.items())
             if lo * effort <= m.stall_torque <= hi * effort}
+    speeds = [float(robot.model.velocityLimit[6 + k]) for k in cols]
+    laws = {f"scaling law ({end})": _joints_energy(
+        tau, qdot, dt, motion.periodic,
+        [fitted.motor(e, v, end) for e, v in zip(efforts, speeds, strict=True)])
+        for end in ENDS}
+    from_law: tuple[str, ...] = ()
+    if not band:
+        band, from_law = dict(laws), tuple(laws)
     return WithoutConstants(
         joints=tuple(joints), positive_work=float(per_joint["positive_work"][cols].sum()),
         torque_squared=float((per_joint["joule"][cols] / c[cols]).sum()),
-        stated=float(per_joint["electrical"][cols].sum()), catalogue=catalogue, effort=effort,
-        band=band, period=motion.period if motion.periodic else None)
+        stated=float(per_joint["electrical"][cols].sum()), catalogue=in_class, effort=effort,
+        band=band, period=motion.period if motion.periodic else None, law=laws,
+        from_law=from_law, fit=fitted)
+
+
+def _joints_energy(tau: np.ndarray, qdot: np.ndarray, dt: float, periodic: bool,
+                   motors: list[Motor]) -> float:
+    """The electrical energy of (T, n) torques and speeds with ``motors[i]`` on column i, J."""
+    return sum(float(energy.metrics(tau[:, [i]], qdot[:, [i]], dt, m, periodic=periodic)[
+        "total"]["electrical"]) for i, m in enumerate(motors))
 
 
 __all__ = ["SCALE_CLASS", "TORQUE_CLASS", "WithoutConstants", "scaled", "without_constants"]

@@ -2,15 +2,18 @@
 
 :func:`render_html` renders the gait energy report (``report.html.j2``) from plain data: the
 report's JSON content, whose quantities are ``{"value": …, "unit": …}``, and the plots as
-``data:`` URIs. Four filters format numbers on the pages: ``num`` (four significant digits;
-float noise below :data:`NOISE` reads 0), ``q`` (a quantity with its unit), ``pct`` (a
-percentage: the one precision rule of the pages, two decimals, signed) and ``deg`` (an angle in
-rad shown in degrees, one decimal, signed, never −0.0).
+``data:`` URIs. Four filters format numbers on the pages: ``num`` (four significant digits, or
+``num(n)`` n, always a plain number without an exponent; float noise below :data:`NOISE` reads
+0), ``q`` (a quantity with its unit), ``pct`` (a percentage: the one precision rule of the
+pages, two decimals, signed) and ``deg`` (an angle in rad shown in degrees, one decimal, signed,
+never −0.0).
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
+from decimal import Decimal
 from typing import Any
 
 import jinja2
@@ -24,15 +27,22 @@ NOISE = 1e-12
 of a conservative cycle (−2.2e-16 J), a solver's zero stiffness. They are shown as 0."""
 
 
-def format_number(x: Any) -> str:
-    """Four significant digits; ``—`` for a missing value; 0 for float noise (:data:`NOISE`)."""
+def format_number(x: Any, digits: int = 4) -> str:
+    """``digits`` significant digits written as a plain number, never with an exponent
+    (``11030``, not ``1.103e+04``; ``0.00001235``, not ``1.235e-05``), as the pages write every
+    other number; ``—`` for a missing value; 0 for float noise (:data:`NOISE`); a value that is
+    not finite as it is."""
     if x is None:
         return "—"
     if not is_real(x):
         return str(x)
     if abs(x) < NOISE:
         return "0"
-    return f"{x:.4g}"
+    text = f"{x:.{digits}g}"
+    if "e" not in text or not math.isfinite(x):
+        return text
+    plain = format(Decimal(f"{x:.{digits - 1}e}"), "f")
+    return plain.rstrip("0").rstrip(".") if "." in plain else plain
 
 
 def format_percent(q: Mapping[str, Any] | float | None) -> str:
@@ -50,12 +60,29 @@ def format_percent(q: Mapping[str, Any] | float | None) -> str:
     return f"{float(x):+.2f} %"
 
 
-def format_quantity(q: Mapping[str, Any] | None) -> str:
-    """``{"value", "unit"}`` as text; dimensionless (unit ``"1"``) values without a unit."""
+RELATIVE_NOISE = 1e-6
+"""A value below this fraction of the magnitude it is read against is round-off: the net work of
+a periodic gait (−3.8e-8 J beside 24 J of positive work on ANYmal's trot) reads 0."""
+
+
+def format_quantity(q: Mapping[str, Any] | None,
+                    scale: Mapping[str, Any] | None = None) -> str:
+    """``{"value", "unit"}`` as text; dimensionless (unit ``"1"``) values without a unit.
+
+    Args:
+        q: The quantity, or None (``—``).
+        scale: A quantity of the same unit that ``q`` is read against (the positive work a net
+            work sits beside): below :data:`RELATIVE_NOISE` of it, ``q`` is round-off and reads
+            0. None: only :data:`NOISE` applies.
+    """
     if q is None or q["value"] is None:
         return "—"
     unit = "" if q["unit"] == "1" else q["unit"]
-    return f"{format_number(q['value'])} {unit}".rstrip()
+    value = q["value"]
+    if (scale is not None and scale.get("value") is not None and is_real(value)
+            and abs(value) < RELATIVE_NOISE * abs(scale["value"])):
+        value = 0.0
+    return f"{format_number(value)} {unit}".rstrip()
 
 
 def environment() -> jinja2.Environment:

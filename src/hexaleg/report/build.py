@@ -188,15 +188,17 @@ def _report_data(cfg: ReportConfig, robot: Robot, motion: Motion, a: Analysis,
 
 def _measured(cfg: ReportConfig, robot: Robot, draw: WholeDraw | None,
               generic: WithoutConstants | None) -> list[dict[str, Any]]:
-    """Published whole-robot power beside this run's predicted draw without springs and its
-    sourced band (:func:`hexaleg.dynamics.plausibility.measured_beside`); empty for a motion
-    that is not one periodic cycle."""
+    """Published whole-robot power and cost of transport beside this run's predicted draw
+    without springs and its sourced band, in watts and as costs of transport at the run's speed
+    (:func:`hexaleg.dynamics.plausibility.measured_beside`); empty for a motion that is not one
+    periodic cycle."""
     if draw is None:
         return []
     band = None
     if generic is not None and (b := generic.band_dict()) is not None and b["power"]:
         band = (b["power"]["low"]["value"], b["power"]["high"]["value"])
-    return measured_beside(cfg.robot, robot.mass, draw.total_baseline, band)
+    return measured_beside(cfg.robot, robot.mass, draw.total_baseline, band,
+                           draw.speed if draw.speed > 0 else None)
 
 
 def _watts(q: dict[str, Any] | None, unknown: str = "unknown") -> str:

@@ -83,6 +83,13 @@ def test_joints_without_a_named_motor_get_the_sourced_band_and_its_saving(design
     html = render_design_html({**design_written[0].data, "sourced": s}, defaultdict(str))
     assert f"No motor is named for {len(s['baseline']['joints'])} joints:" in html
     assert "a band on\nsourced constants, not a bound" in html
+    assert s["baseline"]["sourced_band"]["from_law"] == [] and s["baseline"]["sourced_band"][
+        "law"]["assumed"] is True
+    law_band = {**s["baseline"]["sourced_band"], "from_law": ["scaling law (low)"]}
+    html = render_design_html({**design_written[0].data, "sourced": {
+        **s, "baseline": {**s["baseline"], "sourced_band": law_band}}}, defaultdict(str))
+    assert "No sourced actuator is of their class: with the Joule scaling law's" in html
+    assert "a band on\nassumed constants, not a bound" in html  # #59: never "sourced"
     own = DesignChain(Scenario.from_tables("hexaleg", {"design": {"samples": 60,
                                                                   "families": ["linear"]}})
                       ).run(stages=("candidates",))

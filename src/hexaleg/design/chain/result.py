@@ -509,8 +509,11 @@ def sourced_data(r: DesignResult) -> dict[str, Any] | None:
                 "high": quantity(100 * savings[high], "%"), "high_actuator": high,
                 "by_actuator": {k: quantity(100 * v, "%") for k, v in savings.items()},
                 "joints": list(base.joints),
-                "note": "the saving on the joints without a named motor with each sourced "
-                        "actuator geared to their effort; a band on sourced constants"}
+                "note": ("the saving on the joints without a named motor with the scaling "
+                         "law's actuators of their effort (no sourced actuator of their class); "
+                         "a band on assumed constants" if base.from_law else
+                         "the saving on the joints without a named motor with each sourced "
+                         "actuator geared to their effort; a band on sourced constants")}
     return {"baseline": base.as_dict(), "with_springs": rec.as_dict(), "saving_band": band}
 
 
