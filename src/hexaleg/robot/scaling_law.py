@@ -128,7 +128,6 @@ class JouleLaw:
         eta = sorted(self.efficiencies)
         return {"low": eta[-1], "central": float(np.median(eta)), "high": eta[0]}[end]
 
-
     def joule_coefficient(self, effort: float, end: str = "central") -> float:
         """``c = a E^(β − 2)`` times the spread's factor at ``end``, W/(N·m)², for an actuator
         whose peak torque is ``effort`` N·m."""
