@@ -1,38 +1,47 @@
-"""Benchmark per robot (#26, #39): ``hexaleg design`` wall time and memory and the simulation's
-speed, on every registered robot and the test robots, as ratios against the default robot in the
-same process.
+"""Benchmark per robot (#26, #39, #55): ``hexaleg design`` (and ``hexaleg codesign``) wall time,
+CPU time and peak memory, and the simulation's speed, on every registered robot and the test
+robots, as ratios against the default robot measured in the same run.
 
 Run:  nice python analysis/bench_robots.py [--robots hexaleg solo12 …] [--no-design]
+          [--codesign] [--timeout 1200]
 
 For each robot, one row:
 
-* design: the wall time of ``hexaleg design --robot R`` in this process (``write_design`` with
-  the robot's defaults, into a temporary directory; imports and the first-use compilation are
-  paid by the default robot, measured first), the gait the defaults chose, the recommendation
-  and its saving net of the springs' mass, and the two slowest stages. Target ≤ 60 s.
+* design: ``hexaleg design --robot R`` run in a fresh child process (its own imports, caches and
+  memory; the command line exactly as a user types it, into a temporary directory): its wall
+  time, its CPU time with its forked family workers', and its peak resident memory (the most of
+  the child's own and of its largest worker: ``resource.getrusage`` at its end). The three
+  slowest stages (``DesignResult.timings``, from design.json), the recommendation and the
+  outcome. Targets ≤ 60 s and ≤ 1 GB (issue #55, on a quiet 2-core machine).
+* codesign (``--codesign``): the same for ``hexaleg codesign --robot R --no-rules``. Targets
+  ≤ 5 min and ≤ 2 GB.
 * simulate: ``hexaleg simulate --robot R --cycles 4``'s two runs (with the optimal linear springs
-  and without), simulated seconds per wall-clock second of their stepping, and the timestep
-  the simulation chose (``simulation.stepping``). Target ≥ 10× real time.
-* memory: the peak resident memory of this process and of its largest child (the design's forked
-  workers) so far, MB (``resource.getrusage``: peaks, so a row's figure is at least the rows'
-  before it). Target ≤ 1 GB.
-* the ratio of each to the default robot's, so that a loaded machine (both slow down alike) still
-  compares robots. The CPU share (this process's CPU time over the wall time) says how loaded.
+  and without), simulated seconds per wall-clock second of their stepping, and the timestep the
+  simulation chose (``simulation.stepping``). Target ≥ 10× real time. In this process.
+* the ratio of each time to the default robot's, so that a loaded machine (both slow down alike)
+  still compares robots; and the child's CPU share (CPU time over wall time: up to 2 with both
+  cores busy; well below 1, the machine was busy).
 
-A design or simulation that ends in a hexaleg error is a row with the error, not an exception (a
-design that ends in any other exception, a bug, is a row marked BUG).
+A command that ends in a hexaleg error (exit 2) is a row with its ``error:`` line; one that ends
+in a traceback is a row marked BUG; one over ``--timeout`` is killed (its process group) and
+marked so.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import os
 import resource
+import signal
+import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
+from typing import Any
 
-from hexaleg.commands.design.write import write_design
+from hexaleg.cli import main as cli
 from hexaleg.commands.simulate.study import load_study
 from hexaleg.errors import HexalegError
 from hexaleg.robot.registry import DESCRIPTIONS
@@ -40,32 +49,90 @@ from hexaleg.scenario.scenario import Scenario
 
 TEST_ROBOTS = {name: str(Path(__file__).resolve().parents[1] / "tests" / "data" /
                         f"{name}.toml") for name in ("spider", "xquad", "quad2dof", "quad4dof",
-                                                        "biped")}
+                                                        "biped", "humanoid", "wheeled", "pryquad",
+                                                        "bldc_hexapod")}
 """The test robots by short name → TOML."""
-DESIGN_TARGET = 60.0
-"""``hexaleg design`` wall time target, s."""
+TARGETS = {"design": (60.0, 1024.0), "codesign": (300.0, 2048.0)}
+"""Command → (wall time target s, peak memory target MB) (issue #55)."""
 SIMULATE_TARGET = 10.0
 """Simulation speed target, × real time."""
 
 
-def design_time(robot: str) -> tuple[float, str]:
-    """Wall time of the design, s, and its outcome in a few words."""
+def child(command: str, robot: str) -> None:
+    """In the child process: run ``hexaleg <command> --robot <robot>`` into a temporary directory
+    and print one JSON line: wall and CPU time (s, the forked workers' included), peak memory
+    (MB: this process's and its largest worker's), exit code, the last stderr line when it
+    failed, and the stages' timings."""
+    import contextlib
+    import io
+
     t0 = time.perf_counter()
+    err = io.StringIO()
     with tempfile.TemporaryDirectory() as out:
-        try:
-            r = write_design(out, Scenario.load(robot), progress=None).result
-            slowest = sorted(r.timings.items(), key=lambda kv: -kv[1])[:2]
-            g, m, rec = r.gait, r.design.metric, r.recommended
-            what = (f"gait {g.period:.3g} s / stride {1e3 * g.stride:.3g} mm / step "
-                    f"{1e3 * g.step_height:.3g} mm; recommended {rec.label} on "
-                    f"{', '.join(rec.optimum.groups)}: {m} {100 * rec.net[m]:+.2f} % net "
-                    "(slowest stages: "
-                    + ", ".join(f"{k} {v:.0f} s" for k, v in slowest) + ")")
-        except HexalegError as err:
-            what = f"{type(err).__name__}: {str(err)[:80]}"
-        except Exception as err:  # a bug: recorded in its row
-            what = f"BUG {type(err).__name__}: {str(err)[:80]}"
-    return time.perf_counter() - t0, what
+        argv = [command, "--robot", robot, "--out", str(Path(out) / command)]
+        if command == "codesign":
+            argv.append("--no-rules")
+        with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+            try:
+                rc = cli(argv)
+            except Exception as exc:  # a bug: recorded in its row
+                rc, last = -1, f"BUG {type(exc).__name__}: {exc}"
+            else:
+                lines = [ln for ln in err.getvalue().splitlines() if ln.strip()]
+                last = lines[-1] if rc and lines else ""
+        wall = time.perf_counter() - t0
+        found = list(Path(out).glob(f"{command}/*.json"))
+        data = json.loads(found[0].read_text()) if command == "design" and found else {}
+    usage = {who: resource.getrusage(who) for who in (resource.RUSAGE_SELF,
+                                                     resource.RUSAGE_CHILDREN)}
+    result = data.get("result", data)
+    timings = {k: v["value"] for k, v in result.get("timings", {}).items()}
+    rec = result.get("recommended", {})
+    print(json.dumps({
+        "wall": wall, "rc": rc, "last": last, "timings": timings,
+        "cpu": sum(u.ru_utime + u.ru_stime for u in usage.values()),
+        "peak_self": usage[resource.RUSAGE_SELF].ru_maxrss / 1024,  # kB on Linux
+        "peak_workers": usage[resource.RUSAGE_CHILDREN].ru_maxrss / 1024,
+        "recommended": rec.get("label", "") if isinstance(rec, dict) else ""}))
+
+
+def measure(command: str, robot: str, timeout: float) -> dict[str, Any]:
+    """``hexaleg <command> --robot <robot>`` in a fresh child process (:func:`child`), killed
+    with its workers after ``timeout`` s."""
+    t0 = time.perf_counter()
+    proc = subprocess.Popen([sys.executable, __file__, "--child", command, robot],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True, env=os.environ.copy())
+    try:
+        out, err = proc.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.communicate()
+        return {"wall": time.perf_counter() - t0, "rc": None, "cpu": float("nan"),
+                "peak_self": float("nan"), "peak_workers": float("nan"), "timings": {},
+                "last": f"killed after {timeout:.0f} s", "recommended": ""}
+    lines = out.strip().splitlines()
+    if proc.returncode or not lines:
+        return {"wall": time.perf_counter() - t0, "rc": -1, "cpu": float("nan"),
+                "peak_self": float("nan"), "peak_workers": float("nan"), "timings": {},
+                "last": f"BUG child exited {proc.returncode}: {err.strip()[-200:]}",
+                "recommended": ""}
+    row: dict[str, Any] = json.loads(lines[-1])
+    return row
+
+
+def outcome(command: str, row: dict[str, Any]) -> str:
+    """A row's measures and outcome in a few words, with the targets it misses."""
+    wall_target, peak_target = TARGETS[command]
+    peak = max(row["peak_self"], row["peak_workers"])
+    slowest = sorted(row["timings"].items(), key=lambda kv: -kv[1])[:3]
+    what = ("ok" if row["rc"] == 0 else row["last"][:100]) + (
+        f", recommended {row['recommended']}" if row["recommended"] else "") + (
+        " (slowest stages: " + ", ".join(f"{k} {v:.0f} s" for k, v in slowest) + ")"
+        if slowest else "")
+    flags = [f for f, bad in ((f"over {wall_target:.0f} s", row["wall"] > wall_target),
+                              (f"over {peak_target:.0f} MB", peak > peak_target)) if bad]
+    return what + (f"  [{', '.join(flags)}]" if flags else "")
 
 
 def simulate_speed(robot: str) -> tuple[float, float, str]:
@@ -85,29 +152,33 @@ def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--robots", nargs="*", default=[*DESCRIPTIONS, *TEST_ROBOTS])
     parser.add_argument("--no-design", dest="design", action="store_false")
+    parser.add_argument("--codesign", action="store_true")
+    parser.add_argument("--no-simulate", dest="simulate", action="store_false")
+    parser.add_argument("--timeout", type=float, default=1200.0)
+    parser.add_argument("--child", nargs=2, metavar=("COMMAND", "ROBOT"), help=argparse.SUPPRESS)
     args = parser.parse_args()
-    wall0, cpu0 = time.perf_counter(), time.process_time()
-    print(f"{'robot':<9} {'design s':>9} {'x default':>9} {'sim xRT':>8} {'x default':>9} "
-          f"{'dt us':>7} {'peak MB':>8}  outcome")
+    if args.child:
+        child(*args.child)
+        return
+    commands = [c for c, on in (("design", args.design), ("codesign", args.codesign)) if on]
+    print(f"{'robot':<12} {'command':<9} {'wall s':>7} {'x default':>9} {'CPU s':>7} "
+          f"{'share':>5} {'peak MB':>8} {'worker MB':>9}  outcome")
     ref: dict[str, float] = {}
     for name in ["hexaleg", *(r for r in args.robots if r != "hexaleg")]:
         robot = TEST_ROBOTS.get(name, name)
-        wall, what = design_time(robot) if args.design else (float("nan"), "design skipped")
-        factor, dt, verdict = simulate_speed(robot)
-        ref.setdefault("design", wall)
-        ref.setdefault("simulate", factor)
-        peak = max(resource.getrusage(who).ru_maxrss for who in
-                   (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN)) / 1024  # kB on Linux
-        flags = [f for f, bad in (("design over 60 s", wall > DESIGN_TARGET),
-                                  ("simulation under 10x", factor < SIMULATE_TARGET),
-                                  ("over 1 GB", peak > 1024)) if bad]
-        print(f"{name:<9} {wall:9.1f} {wall / ref['design']:9.2f} {factor:8.1f} "
-              f"{factor / ref['simulate']:9.2f} {dt * 1e6:7.1f} {peak:8.0f}  {verdict}; {what}"
-              + (f"  [{', '.join(flags)}]" if flags else ""), flush=True)
-    share = (time.process_time() - cpu0) / (time.perf_counter() - wall0)
-    print(f"CPU share of this process: {share:.2f} (below ~0.9: the machine was busy; the "
-          "design's family workers run in child processes and are not counted)")
+        for command in commands:
+            row = measure(command, robot, args.timeout)
+            ref.setdefault(command, row["wall"])
+            print(f"{name:<12} {command:<9} {row['wall']:7.1f} {row['wall'] / ref[command]:9.2f} "
+                  f"{row['cpu']:7.1f} {row['cpu'] / row['wall']:5.2f} {row['peak_self']:8.0f} "
+                  f"{row['peak_workers']:9.0f}  {outcome(command, row)}", flush=True)
+        if args.simulate:
+            factor, dt, verdict = simulate_speed(robot)
+            ref.setdefault("simulate", factor)
+            print(f"{name:<12} {'simulate':<9} {factor:7.1f} xRT {factor / ref['simulate']:5.2f} "
+                  f"x default, dt {dt * 1e6:.1f} us: {verdict}"
+                  + ("  [under 10x]" if factor < SIMULATE_TARGET else ""), flush=True)
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main()

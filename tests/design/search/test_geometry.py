@@ -126,3 +126,48 @@ def test_metric_stage_keeps_the_best_start(prepared200):
     joule = search_geometry(dataclasses.replace(setup, metric=None))
     found = search_geometry(setup, [joule.geometry], max_sweeps=0)
     assert found.geometry == joule.geometry and found.method == "the best of its starts"
+
+
+class _Bounds:
+    """A stand-in for scan.RelaxedBounds: given weak and strong bounds, counting tightenings."""
+
+    def __init__(self, weak, strong):
+        self.weak, self.strong, self.tightened = np.asarray(weak), np.asarray(strong), []
+
+    def tight(self, i):
+        self.tightened.append(i)
+        return float(self.strong[i])
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_candidates_come_in_the_order_of_every_strong_bound_sorted(seed):
+    """The scan's order of exact solves (geometry._by_bound) is the stable sort of the strong
+    bounds cut at the first not below the limit — as if every strong bound were computed —
+    with ties among strong bounds kept by index, the limit read again before each candidate
+    (it falls as the exact values come in); a weak bound not below the limit is not
+    tightened."""
+    from hexaleg.design.search.geometry import _by_bound
+
+    rng = np.random.default_rng(seed)
+    n = 40
+    strong = np.round(rng.uniform(0, 10, n), 1)  # rounded: ties
+    strong[rng.integers(0, n, 3)] = np.inf
+    weak = strong - rng.uniform(0, 3, n) * (rng.uniform(size=n) < 0.8)
+    falls = np.sort(rng.uniform(3, 9, n))[::-1]  # the limit after each exact value
+
+    def order(candidates):
+        out, limit = [], [9.0]
+        for i in candidates(lambda: limit[0]):
+            out.append(int(i))
+            limit[0] = min(limit[0], falls[len(out) - 1])
+        return out
+
+    def every(limit):
+        for i in np.argsort(strong, kind="stable"):
+            if not strong[i] < limit():
+                return
+            yield i
+
+    bounds = _Bounds(weak, strong)
+    assert order(lambda limit: _by_bound(bounds, limit)) == order(every)
+    assert all(weak[i] < 9.0 for i in bounds.tightened)

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from hexaleg.design.search.program import _solve_once, torque_gains
-from hexaleg.design.search.scan import relaxed_values
+from hexaleg.design.search.scan import RelaxedBounds, relaxed_values
 from hexaleg.design.search.setup import design_setup
 from hexaleg.robot.mirror import mirror
 
@@ -71,3 +71,19 @@ def test_a_weaker_bound_stands_only_where_it_cannot_win(prepared200):
     assert np.all(mixed <= strong * (1 + 1e-12))
     assert np.all((mixed == strong) | (mixed >= below))
     assert np.array_equal(mixed[strong < below], strong[strong < below])
+
+
+@pytest.mark.parametrize("case", [0, 2])
+def test_the_strong_bounds_on_demand_are_relaxed_values_and_above_the_weak_ones(prepared200,
+                                                                                case):
+    """``RelaxedBounds.tight`` is ``relaxed_values``' strong bound bit for bit, and its weak
+    bound (no design rows, no signs) never exceeds it: the geometry search may tighten only the
+    candidates it reaches in increasing order (geometry._by_bound)."""
+    family, state, group, angle, side = CASES[case]
+    setup = design_setup(prepared200, ["coxa", "femur", "tibia"], family, "joule", None, np.pi,
+                         mirrored=mirror(prepared200.robot).mirrored)
+    thetas = np.linspace(-0.25, 0.3, 12)
+    bounds = RelaxedBounds(setup, state, group, angle, thetas, side)
+    strong = relaxed_values(setup, state, group, angle, thetas, side)
+    assert np.array_equal([bounds.tight(i) for i in range(thetas.size)], strong)
+    assert np.all(bounds.weak <= strong)

@@ -43,13 +43,14 @@ not to another basin.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+import heapq
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from hexaleg.design.search.scan import State, relaxed_values
+from hexaleg.design.search.scan import RelaxedBounds, State
 from hexaleg.design.search.setup import DesignSetup
 from hexaleg.dynamics.contact import QUADRATIC_OBJECTIVES
 from hexaleg.errors import InfeasibleForcesError, TorqueLimitError
@@ -281,13 +282,15 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
                 continue
             found = np.full(len(trials), np.inf)
             if bounded:  # exact solves in order of their lower bound, until none can win
-                bounds = relaxed_values(setup, state, g, angle,
-                                        np.array([t for t, _ in trials]),
-                                        side or fam.side(angle, state[g]),
-                                        below=best_value * (1 - BOUND_SLACK))
-                for n in np.argsort(bounds, kind="stable"):
-                    if bounds[n] >= min(best_value, found.min()) * (1 - BOUND_SLACK):
-                        break  # it cannot improve on the best by more than BOUND_SLACK
+                bounds = RelaxedBounds(setup, state, g, angle,
+                                       np.array([t for t, _ in trials]),
+                                       side or fam.side(angle, state[g]))
+
+                def limit(best: float = best_value, found: np.ndarray = found) -> float:
+                    """Below which a bound may still win (``found`` fills in as it goes)."""
+                    return min(best, float(found.min())) * (1 - BOUND_SLACK)
+
+                for n in _by_bound(bounds, limit):
                     found[n] = value(trials[n][1])
             else:
                 found = values([tr for _, tr in trials])
@@ -352,6 +355,28 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
     levels = {g: ax.levels for g, ax in axes.items()}
     return GeometrySearch(state, solutions[k], len(seen), sweeps,
                           converged if max_sweeps else None, method, levels)
+
+
+def _by_bound(bounds: RelaxedBounds, limit: Callable[[], float]) -> Iterator[int]:
+    """The candidates in increasing order of their strong bound (ties by index), until the next
+    one's is not below ``limit()`` (asked again before each; it cannot win).
+
+    The strong bound of a candidate is computed only when its weak bound comes first in a heap of
+    (bound, index) — a weak bound is below its strong one, so every candidate not yet tightened
+    has a strong bound above the one yielded: the order and the stop are those of every strong
+    bound sorted (stably), the solves of the candidates never reached saved. A weak bound not
+    below ``limit()`` when its turn comes is not tightened: the strong one is not below it either.
+    """
+    heap = [(float(b), i, False) for i, b in enumerate(bounds.weak)]
+    heapq.heapify(heap)
+    while heap:
+        bound, i, strong = heapq.heappop(heap)
+        if not bound < limit():
+            return
+        if strong:
+            yield i
+        else:
+            heapq.heappush(heap, (bounds.tight(i), i, True))
 
 
 def _first_best(values: np.ndarray, tie: float) -> int:

@@ -68,74 +68,102 @@ def relaxed_values(setup: DesignSetup, state: State, group: str,
     design rows and signs (one batched pseudo-inverse, a weaker bound) is already ≥ ``below``,
     that weaker bound is returned instead: such a candidate cannot go below ``below`` either.
     Where Clarabel stops short of the condensed program, the weaker bound stands."""
-    fam, p = setup.fam, setup.prepared
-    groups = list(setup.groups)
-    nm = len(fam.magnitudes)
-    gi = groups.index(group)
-    names = fam.stops[angle]
-    local = [fam.magnitudes.index(n) for n in names]
-    geo = {**state[group], angle: 0.0, **({"side": side} if angle == "contact" else {})}
-    kinds = [fam.terms(geo, 0.0)[i].kind for i in local]
-    uv = np.array([BASIS[k] for k in kinds])  # (|S|, 2)
-    scanned = np.array([gi * nm + i for i in local])
-    problem = setup.problem(state)
-    nx = problem.nx
-    rest = np.setdiff1d(np.arange(nx), scanned)
-    gains = p.gains(setup.objective)
-    wc = problem.sample_weights[:, None] * p.weights(setup.objective)[None, :]  # (T, nj)
-    Mo = torque_gains(problem)[:, :, rest]  # (T, nj, n_o)
-    tau0 = gains.tau0
-    joints = setup.groups[group]
-    Gj = np.stack([gains.G[:, :, p.robot.column(j)] for j in joints], axis=1)  # (T, J, nj)
-    sign = np.array([-1.0 if j in setup.mirrored else 1.0 for j in joints])
-    r = setup.relative(group)  # (T, J)
-    SG = Gj * sign[None, :, None]
-    above = (side if angle == "contact" else fam.side(angle, geo)) == "above"
-    # singles (t, j): the scanned columns against the fixed ones and τ₀
-    a_o = np.einsum("tji,ti,tio->tjo", SG, wc, Mo)  # (T, J, n_o)
-    a_0 = np.einsum("tji,ti,ti->tj", SG, wc, tau0)  # (T, J)
-    single = np.concatenate([np.stack([a_o, r[..., None] * a_o], axis=2).reshape(
-        *r.shape, 2 * Mo.shape[2]), np.stack([a_0, r * a_0], axis=2)], axis=2)
-    S = _sums(r.ravel(), single.reshape(r.size, -1), thetas, above)
-    K = S[:, :2 * Mo.shape[2]].reshape(len(thetas), 2, Mo.shape[2])
-    k = S[:, 2 * Mo.shape[2]:]  # (n, 2)
-    # pairs (t, j, j'): the scanned columns against themselves
-    haa = np.einsum("tji,ti,tki->tjk", SG, wc, SG)  # (T, J, J)
-    rj, rk = r[:, :, None], r[:, None, :]
-    pair = np.stack([haa, haa * rk, haa * rj, haa * rj * rk], axis=-1)  # AA, AR, RA, RR
-    threshold = np.minimum(rj, rk) if above else np.maximum(rj, rk)
-    H = _sums(threshold.ravel(), pair.reshape(-1, 4), thetas, above).reshape(-1, 2, 2)
-    Qoo = np.einsum("tio,ti,tip->op", Mo, wc, Mo)
-    ro = np.einsum("tio,ti,ti->o", Mo, wc, tau0)
-    scale = float(np.sum(wc * tau0**2)) or 1.0
-    fixed_rows = _fixed_rows(problem, gi * nm, (gi + 1) * nm, scanned)
-    n = len(thetas)
-    lam = np.empty((n, 2, len(local)))  # the scanned columns = (A, R) Λ(θ)
-    lam[:, 0, :] = uv[:, 0] - uv[:, 1] * thetas[:, None]
-    lam[:, 1, :] = uv[:, 1]
-    Q = np.zeros((n, nx, nx))
-    Q[:, rest[:, None], rest] = Qoo
-    Q[:, scanned[:, None], scanned] = np.einsum("nas,nab,nbt->nst", lam, H, lam)
-    cross = np.einsum("nas,nao->nso", lam, K)
-    Q[:, scanned[:, None], rest] = cross
-    Q[:, rest[:, None], scanned] = cross.transpose(0, 2, 1)
-    rv = np.zeros((n, nx))
-    rv[:, rest], rv[:, scanned] = ro, np.einsum("nas,na->ns", lam, k)
-    # without the design rows and x ≥ 0: min xᵀQx + 2rᵀx = −rᵀQ⁺r, a weaker bound for all at once
-    out = scale - np.einsum("ni,nij,nj->n", rv, np.linalg.pinv(Q, hermitian=True), rv)
-    out -= WEAK_MARGIN * scale
+    bounds = RelaxedBounds(setup, state, group, angle, thetas, side)
+    out = bounds.weak.copy()
     for i in np.flatnonzero(out < below):
-        theta = float(thetas[i])
-        trial = {**state, group: {**geo, angle: theta}}
-        G, h = _group_rows(setup, trial, group, gi * nm, nx, r, theta, above, scanned, kinds)
-        relaxed = dataclasses.replace(problem, G=np.vstack([fixed_rows[0], G]),
-                                      h=np.concatenate([fixed_rows[1], h]))
-        x, _, status = _solve_once(relaxed, np.zeros(0, dtype=int), Q[i], rv[i], scale)
-        if status == "Solved":
-            out[i] = scale + float(x @ Q[i] @ x + 2 * rv[i] @ x)
-        elif "Infeasible" in status:
-            out[i] = np.inf
+        out[i] = bounds.tight(int(i))
     return out
+
+
+class RelaxedBounds:
+    """The lower bounds of :func:`relaxed_values` at ``thetas``, the strong ones on demand.
+
+    ``weak`` (shape (len(thetas),)) is the condensed program without its design rows and signs
+    at every candidate (one batched pseudo-inverse); :meth:`tight` is candidate ``i``'s
+    condensed program with them (one small Clarabel solve), never below ``weak[i]`` but for
+    round-off. A scan that needs the bounds only in increasing order, up to the first that
+    cannot win (:func:`hexaleg.design.search.geometry.search_geometry`), tightens only the
+    candidates it reaches: the same bounds where it looks, the solves of the others saved.
+    """
+
+    def __init__(self, setup: DesignSetup, state: State, group: str, angle: str,
+                 thetas: np.ndarray, side: str) -> None:
+        fam, p = setup.fam, setup.prepared
+        groups = list(setup.groups)
+        nm = len(fam.magnitudes)
+        gi = groups.index(group)
+        names = fam.stops[angle]
+        local = [fam.magnitudes.index(n) for n in names]
+        geo = {**state[group], angle: 0.0, **({"side": side} if angle == "contact" else {})}
+        kinds = [fam.terms(geo, 0.0)[i].kind for i in local]
+        uv = np.array([BASIS[k] for k in kinds])  # (|S|, 2)
+        scanned = np.array([gi * nm + i for i in local])
+        problem = setup.problem(state)
+        nx = problem.nx
+        rest = np.setdiff1d(np.arange(nx), scanned)
+        gains = p.gains(setup.objective)
+        wc = problem.sample_weights[:, None] * p.weights(setup.objective)[None, :]  # (T, nj)
+        Mo = torque_gains(problem)[:, :, rest]  # (T, nj, n_o)
+        tau0 = gains.tau0
+        joints = setup.groups[group]
+        Gj = np.stack([gains.G[:, :, p.robot.column(j)] for j in joints], axis=1)  # (T, J, nj)
+        sign = np.array([-1.0 if j in setup.mirrored else 1.0 for j in joints])
+        r = setup.relative(group)  # (T, J)
+        SG = Gj * sign[None, :, None]
+        above = (side if angle == "contact" else fam.side(angle, geo)) == "above"
+        # singles (t, j): the scanned columns against the fixed ones and τ₀
+        a_o = np.einsum("tji,ti,tio->tjo", SG, wc, Mo)  # (T, J, n_o)
+        a_0 = np.einsum("tji,ti,ti->tj", SG, wc, tau0)  # (T, J)
+        single = np.concatenate([np.stack([a_o, r[..., None] * a_o], axis=2).reshape(
+            *r.shape, 2 * Mo.shape[2]), np.stack([a_0, r * a_0], axis=2)], axis=2)
+        S = _sums(r.ravel(), single.reshape(r.size, -1), thetas, above)
+        K = S[:, :2 * Mo.shape[2]].reshape(len(thetas), 2, Mo.shape[2])
+        k = S[:, 2 * Mo.shape[2]:]  # (n, 2)
+        # pairs (t, j, j'): the scanned columns against themselves
+        haa = np.einsum("tji,ti,tki->tjk", SG, wc, SG)  # (T, J, J)
+        rj, rk = r[:, :, None], r[:, None, :]
+        pair = np.stack([haa, haa * rk, haa * rj, haa * rj * rk], axis=-1)  # AA, AR, RA, RR
+        threshold = np.minimum(rj, rk) if above else np.maximum(rj, rk)
+        H = _sums(threshold.ravel(), pair.reshape(-1, 4), thetas, above).reshape(-1, 2, 2)
+        Qoo = np.einsum("tio,ti,tip->op", Mo, wc, Mo)
+        ro = np.einsum("tio,ti,ti->o", Mo, wc, tau0)
+        scale = float(np.sum(wc * tau0**2)) or 1.0
+        fixed_rows = _fixed_rows(problem, gi * nm, (gi + 1) * nm, scanned)
+        n = len(thetas)
+        lam = np.empty((n, 2, len(local)))  # the scanned columns = (A, R) Λ(θ)
+        lam[:, 0, :] = uv[:, 0] - uv[:, 1] * thetas[:, None]
+        lam[:, 1, :] = uv[:, 1]
+        Q = np.zeros((n, nx, nx))
+        Q[:, rest[:, None], rest] = Qoo
+        Q[:, scanned[:, None], scanned] = np.einsum("nas,nab,nbt->nst", lam, H, lam)
+        cross = np.einsum("nas,nao->nso", lam, K)
+        Q[:, scanned[:, None], rest] = cross
+        Q[:, rest[:, None], scanned] = cross.transpose(0, 2, 1)
+        rv = np.zeros((n, nx))
+        rv[:, rest], rv[:, scanned] = ro, np.einsum("nas,na->ns", lam, k)
+        # without the design rows and x ≥ 0: min xᵀQx + 2rᵀx = −rᵀQ⁺r, a weaker bound for all
+        # at once
+        self.weak = scale - np.einsum("ni,nij,nj->n", rv, np.linalg.pinv(Q, hermitian=True), rv)
+        self.weak -= WEAK_MARGIN * scale
+        self._args = (setup, state, group, geo, angle, gi * nm, nx, r, above, scanned, kinds)
+        self._problem, self._fixed, self._Q, self._rv, self._scale = (
+            problem, fixed_rows, Q, rv, scale)
+        self._thetas = thetas
+
+    def tight(self, i: int) -> float:
+        """Candidate ``i``'s condensed program with its design rows and signs (J; ``inf`` where
+        the rows admit no magnitudes; ``weak[i]`` where Clarabel stops short)."""
+        setup, state, group, geo, angle, start, nx, r, above, scanned, kinds = self._args
+        theta = float(self._thetas[i])
+        trial = {**state, group: {**geo, angle: theta}}
+        G, h = _group_rows(setup, trial, group, start, nx, r, theta, above, scanned, kinds)
+        relaxed = dataclasses.replace(self._problem, G=np.vstack([self._fixed[0], G]),
+                                      h=np.concatenate([self._fixed[1], h]))
+        Q, rv, scale = self._Q[i], self._rv[i], self._scale
+        x, _, status = _solve_once(relaxed, np.zeros(0, dtype=int), Q, rv, scale)
+        if status == "Solved":
+            return scale + float(x @ Q @ x + 2 * rv @ x)
+        return np.inf if "Infeasible" in status else float(self.weak[i])
 
 
 def _fixed_rows(problem: DesignProblem, start: int, stop: int, scanned: np.ndarray
@@ -174,4 +202,4 @@ def _group_rows(setup: DesignSetup, trial: State, group: str, start: int, nx: in
     return (np.array(rows).reshape(-1, nx), np.array(h))
 
 
-__all__ = ["relaxed_values"]
+__all__ = ["RelaxedBounds", "relaxed_values"]
