@@ -68,8 +68,8 @@ EXPECTED: dict[str, dict[str, str]] = {
     # stall torque 0.2 s before it falls, correcting: the plan asks 18 % of it (not the
     # actuator, the message says); its crawl walks
     "quad4dof": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
-                 "simulate": "not for the gait's demand, so a stronger actuator is not the "
-                             "fix", "codesign": "ok"},
+                 "simulate": "18% of it: they stalled correcting an error that grew, not for "
+                             "the gait's demand", "codesign": "ok"},
     "quad4dof crawl": {"robot": "ok", "gait": "ok", "report": "ok", "design": "ok",
                        "simulate": "ok", "codesign": "ok"},
     # its trot tips over open loop and with the balance controller too; its crawl walks
