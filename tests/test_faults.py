@@ -354,6 +354,44 @@ def test_an_interrupted_design_keeps_the_previous_one(old_design, tmp_path, sign
 
 
 @pytest.mark.slow
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGKILL])
+def test_an_interrupted_design_resumes_from_its_finished_stages(old_design, tmp_path, signum):
+    """Interrupted as it simulates the designs (its candidates and Pareto front finished), the
+    design leaves the previous one as it was and its finished stages hidden beside it (one line
+    says so); the same command reads them back, and its design is the previous one but for the
+    timings, the stages gone once it is whole. ~8 s killed, ~20 s interrupted and resumed."""
+    from hexaleg.design.chain.checkpoint import FOLDER
+
+    out = tmp_path / "d"
+    shutil.copytree(old_design, out)
+    (tmp_path / "small.toml").write_text(SMALL_DESIGN)
+    status, err, workers = interrupt(DESIGN, tmp_path, "designs simulated under", signum)
+    assert wait_gone(workers) == set()
+    assert visible(out) == visible(old_design)
+    assert {p.name for p in (out / FOLDER).glob("*.pickle")} >= {"candidates.pickle",
+                                                                   "pareto.pickle"}
+    if signum == signal.SIGKILL:  # what it leaves is the same: the SIGINT case resumes
+        assert status == -signal.SIGKILL
+        return
+    assert status == 130, err
+    kept = ", ".join(sorted((p.stem for p in (out / FOLDER).glob("*.pickle")),
+                            key=["candidates", "pareto", "ranking"].index))  # the signal
+    # came as the ranking's line was printed: before or after its file was written
+    assert_one_line(err, "design", "interrupted (SIGINT): d kept as it was, nothing of this "
+                                   f"run written; but its finished stages ({kept}) are kept "
+                                   "in d/.hexaleg-design-stages for the same command to "
+                                   "resume from")
+    again = run(DESIGN, tmp_path)
+    assert again.returncode == 0, again.stderr
+    assert [line for line in again.stderr.splitlines() if "family optimum" in line
+            and line.endswith("(kept from the earlier run)")], again.stderr
+    assert not (out / FOLDER).exists() and not leftovers(out)
+    old, new = (json.loads((d / "design.json").read_text()) for d in (old_design, out))
+    old.pop("timings"), new.pop("timings")
+    assert new == old
+
+
+@pytest.mark.slow
 def test_two_designs_into_one_folder_one_runs_the_other_is_refused(tmp_path):
     (tmp_path / "small.toml").write_text(SMALL_DESIGN)
     first = start(DESIGN, tmp_path)

@@ -225,6 +225,11 @@ def _run_design(args: argparse.Namespace) -> int:
     if written.result.fold is not None:
         print(written.result.fold.line())
     print(f"wrote {len(written.files)} files to {args.out}; open {args.out}/design.html")
+    failed = written.result.failed
+    if failed is not None:  # the stages before it are written: one line, a failed status
+        print(f"hexaleg design: error: {failed.line()}; the same command resumes from the "
+              f"stages kept in {args.out}", file=sys.stderr)
+        return 2
     return 0
 
 

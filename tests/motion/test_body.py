@@ -4,6 +4,7 @@ top, and foot targets in the moving base frame with exact derivatives."""
 from __future__ import annotations
 
 import dataclasses
+from pathlib import Path
 
 import numpy as np
 import pinocchio as pin
@@ -139,3 +140,44 @@ def test_a_robot_whose_urdf_faces_y_walks_forward_with_heading_set(robot, rotate
     assert np.allclose(turned.q[:, :2], forward.q[:, [1, 0]] * [-1.0, 1.0], atol=1e-12)
     assert turned.info["direction"] == pytest.approx([0.0, 1.0, 0.0], abs=1e-15)
     assert np.abs(hexaleg.gait(facing_y, gait).q[:, 7:] - forward.q[:, 7:]).max() > 0.05
+
+
+
+WHEELED = Path(__file__).resolve().parents[1] / "data" / "wheeled.toml"
+"""The wheeled test quadruped with a two-joint arm (arm_yaw, arm_pitch) on its back."""
+
+
+def wheeled_moving(tmp_path: Path, moves: str) -> hexaleg.Robot:
+    """The wheeled test robot loaded with ``moves = {…}`` in its description."""
+    from hexaleg.robot.description import read_description
+
+    path = tmp_path / "w.toml"
+    path.write_text(WHEELED.read_text().replace(
+        'urdf = "wheeled.urdf"', f'urdf = "{WHEELED.with_suffix(".urdf")}"\nmoves = {moves}'))
+    return read_description(path).load()
+
+
+def test_a_joint_on_no_leg_swings_with_exact_rates(tmp_path):
+    """``moves``: q = q₀ + A sin(ωt + φ), its rate and acceleration the exact derivatives
+    (central differences), one swing a period; the joints it does not name stay as given."""
+    from hexaleg.motion.body import swing_other_joints
+
+    robot = wheeled_moving(tmp_path, "{arm_pitch = {amplitude = 0.3, phase = 0.5}}")
+    model = robot.model
+    n, period = 2001, 0.8
+    t = np.linspace(0.0, period, n)
+    q = np.tile(robot.pose("stand"), (n, 1))
+    v, a = np.zeros((n, model.nv)), np.zeros((n, model.nv))
+    swing_other_joints(robot, period, t, q, v, a)
+    joint = model.joints[model.getJointId("arm_pitch")]
+    angle = q[:, joint.idx_q]
+    assert angle[0] == pytest.approx(robot.pose("stand")[joint.idx_q] + 0.3 * np.sin(0.5))
+    assert angle[-1] == pytest.approx(angle[0], abs=1e-12)  # one swing a period
+    h = t[1] - t[0]
+    np.testing.assert_allclose(np.gradient(angle, h)[1:-1], v[1:-1, joint.idx_v], atol=1e-5)
+    np.testing.assert_allclose(np.gradient(v[:, joint.idx_v], h)[1:-1], a[1:-1, joint.idx_v],
+                               atol=1e-4)
+    others = [i for i in range(6, model.nv) if i != joint.idx_v]
+    assert not v[:, others].any() and not a[:, others].any()
+    still = np.delete(q, joint.idx_q, axis=1)
+    assert (still == np.delete(robot.pose("stand"), joint.idx_q)).all()

@@ -191,3 +191,50 @@ def test_newton_reports_unreachable_targets(robot):
 def test_leg_geometry_rejects_bad_lengths():
     with pytest.raises(hexaleg.HexalegError, match="femur"):
         LegGeometry(hip=(0.0, 0.0, 0.0), yaw=0.0, coxa=0.03, femur=0.0, tibia=0.1)
+
+
+def test_a_redundant_leg_keeps_its_swing_within_the_limits_by_its_spare_direction(
+        quad4dof, monkeypatch):
+    """Issue #55 (Centauro's swing took a hip 0.1° past its limit though its leg had spare
+    directions): a four-joint leg whose ankle would leave its tightened limit by 2° sets its
+    self-motion off the stand's by a constant and stays within, its foot on every target (the
+    forward kinematics, independent of the solver) and its redundant coordinate constant over
+    the cycle; the same targets without the shift are refused naming the ankle, and a limit
+    on the hip's abduction (no spare direction moves it) is still refused by name."""
+    from hexaleg.motion import kinematics
+    from hexaleg.motion.leg_chain import leg_chain
+
+    robot, leg = quad4dof, quad4dof.leg("LF")
+    ref = robot.pose("stand")
+    ref[:7] = pin.neutral(robot.model)[:7]
+    chain = leg_chain(robot, leg, ref)
+    (p0,), _ = chain.position_jacobian(chain.reference[None])
+    s = np.linspace(0.0, 1.0, 100, endpoint=False)
+    p = p0 + np.c_[0.04 * np.cos(2 * np.pi * s), 0 * s, 0.03 * np.maximum(np.sin(2 * np.pi * s), 0)]
+    zero = np.zeros_like(p)
+    free, *_ = leg_ik(robot, leg, p, zero, zero)
+    afe = leg.joint_names.index("LF_AFE")
+    upper = robot.model.upperPositionLimit.copy()
+    tight = upper.copy()
+    tight[leg.q_index[afe]] = free[:, afe].max() - math.radians(2.0)
+    try:
+        robot.model.upperPositionLimit = tight
+        q, *_ = leg_ik(robot, leg, p, zero, zero)
+        assert (q[:, afe] <= tight[leg.q_index[afe]]).all()
+        reached, _ = chain.position_jacobian(q)
+        np.testing.assert_allclose(reached, p, atol=1e-10)
+        self_motion = (q - chain.reference) @ chain.redundant
+        assert np.ptp(self_motion) < 1e-9 and abs(self_motion[0, 0]) > math.radians(1.0)
+        monkeypatch.setattr(kinematics, "_within_limits",
+                            lambda robot, leg, p, pd, pdd, t, q, qd, qdd: (q, qd, qdd))
+        with pytest.raises(UnreachableTargetError, match=r"LF_AFE .*outside its limits"):
+            leg_ik(robot, leg, p, zero, zero)
+        monkeypatch.undo()
+        haa = leg.joint_names.index("LF_HAA")
+        tight = upper.copy()
+        tight[leg.q_index[haa]] = free[:, haa].max() - math.radians(0.5)
+        robot.model.upperPositionLimit = tight
+        with pytest.raises(UnreachableTargetError, match=r"LF_HAA .*outside its limits"):
+            leg_ik(robot, leg, p, zero, zero)
+    finally:
+        robot.model.upperPositionLimit = upper

@@ -8,6 +8,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import re
+from pathlib import Path
 
 import numpy as np
 import pinocchio as pin
@@ -389,3 +390,44 @@ def test_a_bad_heading_is_refused(robot):
     upward.heading = np.array([0.0, 0.0, 1.0])  # set after loading: not checked by Robot
     with pytest.raises(InvalidParameterError, match="invalid heading"):
         tripod_gait(upward, GaitParams(samples=20))
+
+
+@pytest.mark.slow
+def test_an_arm_given_a_motion_swings_through_the_gait_and_its_own_actuator_counts_it(
+        tmp_path):
+    """Issue #55's description key ``moves``: the wheeled test robot's arm pitch swings
+    0.3 rad each cycle of its trot. Its torque in the analysis is Pinocchio's RNEA of the whole
+    tree, and the analytic forearm: a leaf link (0.15 kg, centre 0.08 m out, I_yy 1.2e-4 kg·m²)
+    pitching about a horizontal axis on a base that translates without turning,
+    τ = I_o θ̈ + m (r_c × (a_pivot − g))_y, I_o = I_yy + m l² (parallel axes), r_c = l (cos θ,
+    0, −sin θ); its own actuator draws energy for it, more than holding it still. ~3 s of CPU
+    (two gaits of the wheeled robot)."""
+    path = Path(__file__).resolve().parents[1] / "data" / "wheeled.toml"
+    text = path.read_text().replace('urdf = "wheeled.urdf"',
+                                    f'urdf = "{path.with_suffix(".urdf")}"')
+    (tmp_path / "held.toml").write_text(text)
+    (tmp_path / "w.toml").write_text(text.replace(
+        "[robot]\n", "[robot]\nmoves = {arm_pitch = {amplitude = 0.3, phase = 0.5}}\n"))
+    runs = {name: hexaleg.Scenario.load(str(tmp_path / f"{name}.toml")) for name in ("held", "w")}
+    run = runs["w"]
+    robot, motion = run.model, run.motion()
+    analysis = run.prepare().evaluate(hexaleg.SpringSet(), "joule")
+    model = robot.model
+    joint = model.joints[model.getJointId("arm_pitch")]
+    column = robot.joint_names.index("arm_pitch")
+    theta, alpha = motion.q[:, joint.idx_q], motion.a[:, joint.idx_v]
+    assert np.ptp(theta) == pytest.approx(0.6, rel=1e-3)
+    data = model.createData()
+    rnea = np.array([pin.rnea(model, data, q, v, a)[joint.idx_v]
+                     for q, v, a in zip(motion.q, motion.v, motion.a, strict=True)])
+    np.testing.assert_allclose(analysis.tau_motor[:, column], rnea, atol=1e-10)
+    assert np.abs(motion.v[:, 3:6]).max() < 1e-12 and np.abs(motion.q[:, 3:6]).max() < 1e-12
+    m, lever, i_yy, g = 0.15, 0.08, 1.2e-4, 9.81
+    a_pivot = motion.a[:, :3]  # the base translates: its acceleration is the pivot's
+    analytic = ((i_yy + m * lever ** 2) * alpha
+                + m * (-lever * np.sin(theta) * a_pivot[:, 0]
+                       - lever * np.cos(theta) * (a_pivot[:, 2] + g)))
+    np.testing.assert_allclose(analysis.tau_motor[:, column], analytic, atol=1e-12)
+    held = runs["held"].prepare().evaluate(hexaleg.SpringSet(), "joule")
+    energy = analysis.metrics["joint"]["electrical"][column]
+    assert energy > held.metrics["joint"]["electrical"][column] > 0

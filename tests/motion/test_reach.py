@@ -49,7 +49,35 @@ def test_the_search_generates_at_most_a_few_gaits(robot, monkeypatch):
     monkeypatch.setattr("hexaleg.motion.legged.explain", never)
     with pytest.raises(GaitReachError, match="No single gait parameter") as err:
         tripod_gait(robot, GaitParams(step_height=0.3, samples=100))
-    assert 1 <= len(calls) <= reach.VERIFICATIONS and err.value.suggestion == {}
+    # the single parameters' gaits, then the step height and stride scaled together
+    assert 1 <= len(calls) <= 2 * reach.VERIFICATIONS and err.value.suggestion == {}
+
+
+def test_where_no_single_parameter_works_the_step_height_and_stride_together_are_named(
+        robot, monkeypatch):
+    """A gait that generates only with both the step height and the stride shorter (as
+    Centauro's: its swing too high for a front hip, its stride too long for a hind hip's yaw)
+    is refused naming both values, which were checked by generating the gait with them; the
+    sized defaults take such a pair (hexaleg.motion.scaling reads ``suggestion``)."""
+    real = reach.explain
+    high = GaitParams(step_height=0.3, samples=100)
+
+    def both(robot, gait, error, leg, t, stance, targets, verify):
+        def shorter(other):
+            return (other.step_height < gait.step_height
+                    and other.stride_length < gait.stride_length and verify(other))
+        return real(robot, gait, error, leg, t, stance, targets, shorter)
+
+    monkeypatch.setattr("hexaleg.motion.legged.explain", both)
+    with pytest.raises(GaitReachError, match="No single gait parameter") as err:
+        tripod_gait(robot, high)
+    fix = err.value.suggestion
+    assert set(fix) == {"step_height", "stride_length"}
+    assert fix["step_height"] < high.step_height and fix["stride_length"] < high.stride_length
+    assert (f"step_height = {fix['step_height']:g} m and stride_length = "
+            f"{fix['stride_length']:g} m together would work") in str(err.value)
+    monkeypatch.undo()
+    tripod_gait(robot, dataclasses.replace(high, **fix))  # it does
 
 
 def test_the_error_keeps_its_data_through_pickling(robot):

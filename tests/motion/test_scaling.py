@@ -146,3 +146,20 @@ def test_a_missing_urdf_is_a_named_error_not_a_traceback(tmp_path):
                     'foot = "g"\n')
     with pytest.raises(RobotModelError, match=r"gone\.urdf"):
         robot_gait(str(toml))
+
+
+@pytest.mark.slow
+def test_centauros_defaults_are_shortened_to_a_swing_within_its_joint_limits():
+    """Centauro (issue #55): at the similar step height (0.25 m) its front hips' pitch leaves
+    their limits in swing, and a lower step leaves a hind hip's yaw out at the ends of the
+    stride; no single parameter works, the two shortened together do (hexaleg.motion.reach),
+    and the sized defaults take them: a gait whose every leg joint is within its limits.
+    ~10 s of CPU (the robot's meshes and two to six gaits)."""
+    run = hexaleg.Scenario.load(str(Path(__file__).parents[1] / "data" / "centauro.toml"))
+    assert (run.gait.step_height, run.gait.stride_length) == (0.14, 0.29)
+    motion = run.motion()
+    robot = run.model
+    for leg in robot.legs:
+        q = motion.q[:, leg.q_index]
+        assert (q >= robot.model.lowerPositionLimit[leg.q_index]).all()
+        assert (q <= robot.model.upperPositionLimit[leg.q_index]).all()

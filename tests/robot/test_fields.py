@@ -1,6 +1,9 @@
-"""The checked fields of a robot description: stand, heading, legs tables."""
+"""The checked fields of a robot description: stand, heading, legs tables, moves."""
 
 from __future__ import annotations
+
+import re
+from pathlib import Path
 
 import pytest
 
@@ -43,3 +46,43 @@ def test_legs_tables():
         legs_table([{"name": "LF", "joints": ["a"], "foot": {"frame": "x"}}], "w")
     with pytest.raises(ConfigError, match=r"\[\[robot.legs\]\]"):
         legs_table([], "w")
+
+
+WHEELED = Path(__file__).resolve().parents[1] / "data" / "wheeled.toml"
+"""The wheeled test quadruped with a two-joint arm (arm_yaw, arm_pitch) on its back."""
+
+
+def wheeled_moving(tmp_path: Path, moves: str) -> Path:
+    """The wheeled test robot's description with ``moves = {…}`` added (its URDF absolute)."""
+    text = WHEELED.read_text().replace(
+        'urdf = "wheeled.urdf"', f'urdf = "{WHEELED.with_suffix(".urdf")}"\nmoves = {moves}')
+    path = tmp_path / "w.toml"
+    path.write_text(text)
+    return path
+
+
+@pytest.mark.parametrize(("moves", "error", "says"), [
+    ("{arm_pitch = {amplitude = -0.1}}", InvalidParameterError, "an amplitude ≥ 0"),
+    ("{arm_pitch = {amplitude = 0.1, period = 2}}", UnknownNameError, "'period'"),
+    ("{arm_pitch = 0.3}", InvalidParameterError, "{amplitude = rad, phase = rad}"),
+    ("{arm_pitch = {amplitude = 0.1, phase = nan}}", InvalidParameterError, "a finite phase"),
+])
+def test_a_bad_moves_entry_is_named(tmp_path, moves, error, says):
+    from hexaleg.robot.description import read_description
+
+    with pytest.raises(error, match=re.escape(says)):
+        read_description(wheeled_moving(tmp_path, moves))
+
+
+@pytest.mark.parametrize(("moves", "error", "says"), [
+    ("{LF_KFE = {amplitude = 0.1}}", UnknownNameError, "valid joints in wheeled's moves (one "
+                                                       "on no leg) are: arm_pitch, arm_yaw"),
+    ("{arm_pitch = {amplitude = 1.0}}", InvalidParameterError,
+     "a swing within the joint's limits [-1.5, 0.3] rad about its stand angle -0.5 rad (at most "
+     "0.8)"),
+])
+def test_moves_are_checked_against_the_robot_on_loading(tmp_path, moves, error, says):
+    from hexaleg.robot.description import read_description
+
+    with pytest.raises(error, match=re.escape(says)):
+        read_description(wheeled_moving(tmp_path, moves)).load()

@@ -139,3 +139,56 @@ def test_a_long_stand_on_two_point_feet_is_named_as_the_fall_and_its_period(prep
     assert cause((measures.TIPS - 0.1) / two.omega).startswith("the balance controller")
     assert measures.fall_cause(sim, dataclasses.replace(motion, stance=stance), traj,
                                feedback=False).startswith("the gait stands on 2 feet at times")
+
+
+def _stalled_fall(planned_a: float, speed_b: float = 0.0, torque_b: float = 0.0):
+    """A run of two joints (stall 1 N·m, back-EMF damping 0 and 0.5 N·m·s/rad) on three feet
+    whose joint ``a`` sat at stall from 0.6 s until the fall at 1 s (41 of 101 steps; joint
+    ``b`` a little less); the plan's peak torques ``planned_a`` and ``torque_b`` at joint
+    ``b``'s speed ``speed_b``."""
+    from types import SimpleNamespace
+
+    n, t_plan = 101, 20
+    servo = np.zeros((n, 2))
+    servo[60:, 0] = 1.0
+    servo[70:, 1] = -1.0
+    sim = SimpleNamespace(stall=np.array([1.0, 1.0]), damping=np.array([0.0, 0.5]),
+                          robot=SimpleNamespace(joint_names=["a", "b"]))
+    v = np.zeros((t_plan, 8))
+    v[5, 7] = speed_b
+    motion = SimpleNamespace(stance=np.ones((t_plan, 3), dtype=bool), v=v)
+    traj = SimpleNamespace(servo=servo, t=np.linspace(0.0, 1.0, n))
+    planned = np.zeros((t_plan, 2))
+    planned[3, 0], planned[5, 1] = -planned_a, torque_b
+    return sim, motion, traj, planned
+
+
+def test_a_fall_at_stall_is_put_down_to_the_actuator_only_where_the_plan_asks_for_it():
+    """Issue #55: servos at stall while the robot fell were told to be stronger though the
+    plan asked a third of their stall torque. Where the plan's peak command on the joint most
+    at stall is under 90 % of its stall torque, the message says the stall came with the fall
+    (both torques, when each came) and gives the other cause; at 95 % it is the actuator."""
+    sim, motion, traj, planned = _stalled_fall(0.33)
+    line = measures.fall_cause(sim, motion, traj, planned=planned)
+    assert ("the servos were at their stall torque in 41% of the steps (a most, 1 N·m) from "
+            "0.60 s, the fall at 1.00 s, but its planned peak command is 0.33 N·m, 33% of it: "
+            "they stalled correcting an error that grew") in line
+    assert "needs a stronger actuator" not in line and "check the ground" in line
+    strong = measures.fall_cause(sim, motion, traj, planned=_stalled_fall(0.95)[3])
+    assert strong.startswith("the servos were at their stall torque in 41% of the steps (a "
+                             "most, 1 N·m; its planned peak command 0.95 N·m, 95% of it): the "
+                             "gait needs a stronger actuator")
+    assert "needs a stronger actuator" in measures.fall_cause(sim, motion, traj)  # no plan
+
+
+def test_the_planned_command_counts_the_back_emf_at_the_planned_speed():
+    """The servo's command is ``τ + D q̇``: a plan of 0.45 N·m at 1 rad/s against D = 0.5
+    N·m·s/rad asks 0.95 of the stall torque (the actuator's), at rest 0.45 (not)."""
+    sim, motion, traj, planned = _stalled_fall(0.0, speed_b=1.0, torque_b=0.45)
+    traj.servo[:, 0] = 0.0  # joint b most at stall
+    assert "b most, 1 N·m; its planned peak command 0.95 N·m" in measures.fall_cause(
+        sim, motion, traj, planned=planned)
+    sim, motion, traj, planned = _stalled_fall(0.0, speed_b=0.0, torque_b=0.45)
+    traj.servo[:, 0] = 0.0
+    assert "but its planned peak command is 0.45 N·m, 45% of it" in measures.fall_cause(
+        sim, motion, traj, planned=planned)

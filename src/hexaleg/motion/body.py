@@ -232,6 +232,23 @@ def base_state(robot: Robot, body: Body) -> tuple[np.ndarray, np.ndarray, np.nda
     return q, v, a
 
 
+def swing_other_joints(robot: Robot, period: float, t: np.ndarray, q: np.ndarray,
+                       v: np.ndarray, a: np.ndarray) -> None:
+    """Set the joints on no leg that :attr:`Robot.moves <hexaleg.robot.loaded.Robot.moves>`
+    names swinging about their stand angle, in place: ``q = q₀ + A sin(ω t + φ)``,
+    ``q̇ = A ω cos(ω t + φ)``, ``q̈ = −A ω² sin(ω t + φ)``, ω = 2π / ``period`` (one swing a gait
+    cycle, so the motion stays periodic). ``q`` (N, nq), ``v`` and ``a`` (N, nv) hold the
+    others at the stand (:func:`base_state`); ``t`` (N,) s."""
+    model = robot.model
+    omega = 2.0 * np.pi / period
+    for joint, (amplitude, phase) in robot.moves.items():
+        j = model.joints[model.getJointId(joint)]
+        angle = omega * np.asarray(t, dtype=float) + phase
+        q[:, j.idx_q] += amplitude * np.sin(angle)
+        v[:, j.idx_v] = amplitude * omega * np.cos(angle)
+        a[:, j.idx_v] = -amplitude * omega ** 2 * np.sin(angle)
+
+
 def in_base_frame(body: Body, p_w: np.ndarray, pd_w: np.ndarray, pdd_w: np.ndarray
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """World foot targets p, ṗ, p̈ (N, 3) in the moving base frame, with exact derivatives.

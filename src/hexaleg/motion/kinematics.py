@@ -30,6 +30,7 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.errors import RobotModelError, UnreachableTargetError
+from hexaleg.motion.leg_chain import leg_chain
 from hexaleg.motion.leg_ik import newton_leg_ik
 from hexaleg.robot.model import Leg, Robot
 
@@ -324,5 +325,65 @@ def leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarra
     else:
         q, qd, qdd = newton_leg_ik(robot, leg, p, pd, pdd, t=t)
         solver = "newton"
+        if len(leg.joint_names) > 3 and _outside(robot, leg, q).any():
+            q, qd, qdd = _within_limits(robot, leg, p, pd, pdd, t, q, qd, qdd)
     _check_limits(robot, leg, q, t, p)
     return q, qd, qdd, solver
+
+
+REDUNDANT_SHIFTS: tuple[float, ...] = (1.0, 1.25, 1.5, 2.0, 3.0)
+"""How far a redundant leg's self-motion is set off the stand's (:func:`_within_limits`), in
+multiples of the shift that brings the joints leaving their limits back to them to first order,
+tried in this order: the least that keeps every joint within its limits is kept."""
+MAX_SHIFT = math.pi / 2
+"""The largest self-motion shift tried, rad (a quarter turn: beyond it the leg is another pose,
+not the stand's set off)."""
+
+
+def _outside(robot: Robot, leg: Leg, q: np.ndarray) -> np.ndarray:
+    """By how much each sample's joints leave their limits (rad; 0 within), shape (T, n)."""
+    lo = robot.model.lowerPositionLimit[leg.q_index]
+    hi = robot.model.upperPositionLimit[leg.q_index]
+    return np.maximum(lo - q, 0.0) + np.maximum(q - hi, 0.0)
+
+
+def _within_limits(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarray,
+                   t: np.ndarray, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A redundant leg's motion with its self-motion set off the stand's so that every joint
+    stays within its limits, or the motion as it was when no shift of
+    :data:`REDUNDANT_SHIFTS` does (then :func:`_check_limits` names the joint).
+
+    The leg's secondary objective holds ``N₀ᵀ (q − q_stand)`` at a constant (:func:`~hexaleg.
+    motion.leg_ik.newton_leg_ik`'s ``shift``) over the whole cycle, so the motion stays one
+    smooth periodic solution with exact rates; the constant points along ``N₀ᵀ d``, ``d`` the
+    joints' way back inside their limits at their worst sample (a joint past its lower limit
+    +1, past its upper −1), at the least multiple (:data:`REDUNDANT_SHIFTS`, up to
+    :data:`MAX_SHIFT`) of the first-order shift back to the limits that keeps every sample
+    within. The stand
+    solver chooses a stand within the limits the same way (issue #55: Centauro's swing took
+    ``hip_pitch_1`` 0.1° past its limit though its 5-joint leg had two spare directions)."""
+    reference = robot.pose("stand") if "stand" in robot.poses else pin.neutral(robot.model)
+    reference[:7] = pin.neutral(robot.model)[:7]
+    redundant = leg_chain(robot, leg, reference).redundant
+    lo = robot.model.lowerPositionLimit[leg.q_index]
+    worst = _outside(robot, leg, q).max(axis=0)
+    k = np.argmax(_outside(robot, leg, q), axis=0)
+    d = np.where(worst > 0, np.where(q[k, np.arange(q.shape[1])] < lo, 1.0, -1.0), 0.0)
+    direction = redundant.T @ d
+    if not redundant.shape[1] or np.linalg.norm(direction) < 1e-9:
+        return q, qd, qdd
+    direction = direction / np.linalg.norm(direction)
+    moves = np.abs(redundant @ direction)  # each joint's move a radian of shift, to first order
+    bad = worst > 0
+    if (moves[bad] < 1e-9).any():
+        return q, qd, qdd
+    needed = float(np.max(worst[bad] / moves[bad]))
+    for size in (needed * f for f in REDUNDANT_SHIFTS if needed * f <= MAX_SHIFT):
+        try:
+            moved = newton_leg_ik(robot, leg, p, pd, pdd, t=t, shift=size * direction)
+        except UnreachableTargetError:
+            continue
+        if not _outside(robot, leg, moved[0]).any():
+            return moved
+    return q, qd, qdd

@@ -13,6 +13,8 @@ Control*, 2009, §2.12 and §3.5).
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pinocchio as pin
 
@@ -35,7 +37,8 @@ again sample by sample from its predecessor."""
 
 
 def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarray, *,
-                  q0: np.ndarray | None = None, t: np.ndarray | None = None
+                  q0: np.ndarray | None = None, t: np.ndarray | None = None,
+                  shift: np.ndarray | None = None
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Inverse kinematics of a leg of two or more joints by Newton's method on its forward
     kinematics.
@@ -67,6 +70,10 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
         q0: Initial guess of the leg's joint angles, shape (n,), rad; default the ``stand`` pose
             (or Pinocchio's neutral configuration when the robot has none).
         t: Sample times for error messages, shape (T,), s; default the sample indices.
+        shift: A redundant leg's secondary objective held at ``N₀ᵀ (q − q_stand) = shift``
+            instead of 0, shape (n − 3,), rad (its self-motion set off the stand's by a
+            constant, the same over the cycle: :func:`~hexaleg.motion.kinematics.leg_ik` uses
+            it to keep a swing within the joint limits); default 0.
 
     Returns:
         Joint angles (T, n) rad, velocities (T, n) rad/s, accelerations (T, n) rad/s², in the
@@ -88,6 +95,9 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
     reference = robot.pose("stand") if "stand" in robot.poses else pin.neutral(model)
     reference[:7] = pin.neutral(model)[:7]
     chain = leg_chain(robot, leg, reference)
+    if shift is not None and chain.redundant.shape[1]:
+        chain = dataclasses.replace(chain, reference=chain.reference
+                                    + chain.redundant @ np.asarray(shift, dtype=float))
     start = chain.reference if q0 is None else np.asarray(q0, dtype=float)
     start = start + chain.redundant @ (chain.redundant.T @ (chain.reference - start))
     q, err, off = _newton(chain, p, np.tile(start, (len(p), 1)))

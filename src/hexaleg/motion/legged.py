@@ -37,6 +37,7 @@ from hexaleg.motion.body import (
     in_base_frame,
     nominal_footholds,
     rotz,
+    swing_other_joints,
     walk_direction,
 )
 from hexaleg.motion.ground import Ground
@@ -315,6 +316,7 @@ def _sample(robot: Robot, gait: GaitParams, t: np.ndarray, periodic: bool,
     nominal, height, direction, ground = _geometry(robot, gait)
     body = body_motion(t, gait.velocity, gait.yaw_rate, height, sway, direction, ground)
     q, v, a = base_state(robot, body)
+    swing_other_joints(robot, gait.period, t, q, v, a)
     n, n_legs = len(t), len(robot.legs)
     stance = np.zeros((n, n_legs), dtype=bool)
     feet = np.zeros((n, n_legs, 3))

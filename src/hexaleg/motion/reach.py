@@ -30,6 +30,11 @@ that still works; it is rounded to two significant digits towards the harmless v
 by generating the whole gait with it (balancing sway included), stepping 10 % and then 50 % of
 the way back towards the harmless value if that fails. At most :data:`VERIFICATIONS` gaits are
 generated, so the diagnosis is bounded: about ten leg IK solves and one to three gaits.
+
+When no single parameter works — each fixes the failing leg and leaves another leg or sample out
+of reach — the step height and the stride are scaled down together (:data:`TOGETHER`, at most
+:data:`VERIFICATIONS` more gaits) and the first pair that generates the whole gait is named; the
+sized defaults (:mod:`hexaleg.motion.scaling`) take it as they take a single suggestion.
 """
 
 from __future__ import annotations
@@ -61,6 +66,10 @@ VERIFICATIONS = 3
 """At most this many gaits are generated to check the suggestion (the rest are leg IK solves)."""
 SEARCH_SAMPLES = 200
 """At most this many samples (plus the failing one) per leg solve during the search."""
+TOGETHER = (0.6, 0.4, 0.25)
+"""Factors the step height and the stride are scaled down by together when no single one makes
+a gait reachable (each alone fixes one leg or sample and leaves another out: Centauro's swing
+too high for a front hip's pitch, its stride too long for a hind hip's yaw)."""
 STAND_TRIES = ((0.6, 50.0), (0.6, 35.0), (0.6, 65.0), (0.5, 50.0), (0.7, 50.0), (0.5, 30.0))
 """Bent-knee footholds tried for a stretched stand: (distance from the leg's first joint as a
 fraction of the stretched leg's length, angle below the horizontal in degrees) — for legs
@@ -129,6 +138,15 @@ def explain(robot: Robot, gait: GaitParams, error: UnreachableTargetError, leg: 
     if not sizes and not still:
         return _stand_error(robot, gait, error, leg, search, data, None)
     tried = ", ".join(order) or "none"
+    pair = search.together(gait, ("step_height", stride), leg) if still else None
+    if pair is not None:
+        units = {"step_height": "m", "stride_length": "m", "speed": "m/s"}
+        values = " and ".join(f"{k} = {v:g} {units[k]}" for k, v in pair.items())
+        return data.error(
+            f"{error}{where} No single gait parameter makes it reachable (tried {tried}: each "
+            f"leaves another leg or sample out of reach); {values} together would work "
+            f"(GaitParams(..., {', '.join(f'{k}={v:g}' for k, v in pair.items())}); checked "
+            "by generating the gait with them).", "step_height", float(gait.step_height), pair)
     return data.error(f"{error}{where} No single gait parameter makes it reachable (tried "
                       f"{tried}); check body_height, foot_radius and the stand pose.",
                       order[0] if order else "stand", getattr(gait, order[0]) if order else None,
@@ -178,6 +196,25 @@ class _Search:
         """Whether the whole gait can be generated (False once the budget is spent)."""
         self.budget -= 1
         return self.budget >= 0 and self.verify(gait)
+
+    def together(self, gait: GaitParams, names: tuple[str, ...], leg: int
+                 ) -> dict[str, float] | None:
+        """The step height and the stride scaled down together by the first factor of
+        :data:`TOGETHER` with which the failing leg reaches its targets and the whole gait can
+        be generated (:data:`VERIFICATIONS` more gaits at most), rounded to two significant
+        digits downwards; None when none does."""
+        budget = VERIFICATIONS
+        for factor in TOGETHER:
+            values = {n: _round_toward(float(getattr(gait, n)) * factor, 0.0) for n in names}
+            trial = dataclasses.replace(gait, **values)  # type: ignore[arg-type]
+            if not self.ok(trial, leg):
+                continue
+            budget -= 1
+            if budget < 0:
+                return None
+            if self.verify(trial):
+                return values
+        return None
 
     def bisect(self, gait: GaitParams, name: str, good: float, leg: int) -> float | None:
         """The value of ``name`` closest to the failing one that works, rounded; None if none."""

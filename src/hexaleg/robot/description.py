@@ -145,6 +145,12 @@ class RobotDescription:
             (:mod:`hexaleg.dynamics.draw`) says it leaves it out.
         battery_wh: The battery's energy as printed on it, Wh (> 0); the whole draw gives the
             hours it lasts. None: no battery named.
+        moves: Joint on no leg (an arm's, a torso's, a head's) → ``{amplitude, phase}`` (rad):
+            the joint swings ``q = q_stand + amplitude · sin(2π t / T + phase)`` over every
+            gait cycle of period ``T`` instead of being held at the stand
+            (:attr:`Robot.moves <hexaleg.robot.loaded.Robot.moves>`); its torque and energy
+            are counted by its own actuator and its inertia carried by the dynamics. Checked
+            on loading: a joint on no leg, within its limits over the swing.
     """
 
     name: str
@@ -167,6 +173,7 @@ class RobotDescription:
     root_offset: tuple[float, float, float] | None = None
     electronics_power: float | None = None
     battery_wh: float | None = None
+    moves: Mapping[str, Any] = field(default_factory=lambda: FrozenTable({}))
 
     def __post_init__(self) -> None:
         if self.source not in SOURCES:
@@ -215,6 +222,7 @@ class RobotDescription:
             object.__setattr__(self, "battery_wh", real(
                 f"{self.name}: battery_wh", self.battery_wh, low=0.0, low_open=True,
                 allowed="the battery's energy > 0 Wh, or leave the key out (no battery)"))
+        object.__setattr__(self, "moves", fields.moves_table(self.name, self.moves))
         object.__setattr__(self, "max_outer_diameter", fields.diameters_table(
             self.name, self.joint_kinds, self.max_outer_diameter))
         object.__setattr__(self, "arbor_diameter", fields.diameters_table(
@@ -374,6 +382,9 @@ class RobotDescription:
             robot.notes = (*robot.notes, sphere_note)
         check_root(robot, stand, "the stand pose")
         robot.poses[STAND] = stand
+        from hexaleg.robot.stand import checked_moves
+
+        robot.moves = checked_moves(self.name, robot, stand, self.moves)
         if note:
             robot.notes = (*robot.notes, note)
         return robot

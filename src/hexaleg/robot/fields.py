@@ -1,4 +1,4 @@
-"""Checked, frozen fields of a robot description: stand, heading, legs tables, gait overrides.
+"""Checked, frozen fields of a robot description: stand, heading, legs, gait overrides, moves.
 
 Helpers of :class:`hexaleg.robot.description.RobotDescription`: they turn TOML values into the
 description's frozen fields and name the bad value and what is allowed.
@@ -139,6 +139,36 @@ def diameters_table(name: str, kinds: tuple[str, ...] | None, table: Any,
         if not is_real(value) or value < 0 or (low_open and value == 0):
             raise InvalidParameterError(f"{name}: {key}.{kind}", value, allowed)
     return FrozenTable({str(k): float(v) for k, v in table.items()})
+
+
+MOVE_KEYS = ("amplitude", "phase")
+"""The keys of a joint's entry in a description's ``moves`` table."""
+
+
+def moves_table(name: str, table: Any) -> FrozenTable:
+    """A description's ``moves`` checked: joint → ``{amplitude ≥ 0, phase}`` (rad, finite),
+    frozen as joint → (amplitude, phase); the joints are checked against the robot on loading
+    (:func:`hexaleg.robot.stand.checked_moves`)."""
+    if not isinstance(table, Mapping):
+        raise InvalidParameterError(f"{name}: moves", table, "a table of joint = {amplitude, "
+                                    "phase} (rad) for joints on no leg")
+    out = {}
+    for joint, entry in table.items():
+        if not isinstance(entry, Mapping):
+            raise InvalidParameterError(f"{name}: moves.{joint}", entry,
+                                        "a table {amplitude = rad, phase = rad}")
+        for key in entry:
+            if key not in MOVE_KEYS:
+                raise UnknownNameError(f"{name}: moves.{joint} key", key, MOVE_KEYS)
+        amplitude, phase = entry.get("amplitude", 0.0), entry.get("phase", 0.0)
+        if not is_real(amplitude) or not np.isfinite(amplitude) or amplitude < 0:
+            raise InvalidParameterError(f"{name}: moves.{joint}.amplitude", amplitude,
+                                        "an amplitude ≥ 0 (rad)")
+        if not is_real(phase) or not np.isfinite(phase):
+            raise InvalidParameterError(f"{name}: moves.{joint}.phase", phase,
+                                        "a finite phase (rad)")
+        out[str(joint)] = (float(amplitude), float(phase))
+    return FrozenTable(out)
 
 
 class FrozenTable(Mapping[str, Any]):

@@ -72,6 +72,9 @@ class Robot:
         notes: What loading found or assumed (feet found, meshes replaced, legs discovered).
         foot_spheres: Leg → its round foot (found on a sphere or capsule end), whose frame is the
             sphere's lowest point in the stand pose (:func:`.sphere_feet.place_sphere_feet`).
+        moves: Joint on no leg → (amplitude, phase), rad: it swings ``q_stand + amplitude ·
+            sin(2π t / T + phase)`` over every gait cycle of period ``T``
+            (:func:`hexaleg.motion.legged.sample_gait`); the others are held at the stand.
     """
 
     name: str
@@ -87,6 +90,7 @@ class Robot:
     heading: np.ndarray = field(default_factory=lambda: np.array([1.0, 0.0, 0.0]))
     notes: tuple[str, ...] = ()
     foot_spheres: dict[str, SphereFoot] = field(default_factory=dict)
+    moves: dict[str, tuple[float, float]] = field(default_factory=dict)
     mass: float = field(init=False)
     joint_names: tuple[str, ...] = field(init=False)
 
@@ -129,9 +133,10 @@ class Robot:
     def other_joints(self) -> tuple[str, ...]:
         """The actuated joints on no leg — an arm's, a torso's, a head's — in column order.
 
-        They are held at the stand pose through every motion (the gait moves the legs only),
-        their inertia is carried by the dynamics, and each gets its own actuator
-        (:func:`hexaleg.robot.motor_set.class_motors`), which counts its holding torque.
+        They are held at the stand pose through every motion, or swing as :attr:`moves` says
+        (a description's ``moves``); their inertia is carried by the dynamics, and each gets
+        its own actuator (:func:`hexaleg.robot.motor_set.class_motors`), which counts its
+        torque.
         """
         on_legs = {j for leg in self.legs for j in leg.joint_names}
         return tuple(j for j in self.joint_names if j not in on_legs)

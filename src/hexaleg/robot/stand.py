@@ -20,12 +20,12 @@ joint and the limit; a foot no start reaches is refused as out of reach.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.errors import InvalidParameterError
+from hexaleg.errors import InvalidParameterError, UnknownNameError
 
 if TYPE_CHECKING:
     from hexaleg.robot.model import Leg, Robot
@@ -257,3 +257,29 @@ def _solve(robot: Robot, leg: Leg, target: np.ndarray, rest: np.ndarray) -> np.n
         f"a point the leg reaches within its joint limits (out of reach: it stops "
         f"{closest:.3g} m from it; the foot is {reach:.3g} m from the first joint when "
         f"stretched{held}): lower body_height or bring the foot closer to the hip")
+
+
+def checked_moves(name: str, robot: Robot, stand: np.ndarray, moves: Mapping[str, Any]
+                  ) -> dict[str, tuple[float, float]]:
+    """``moves`` against the loaded robot: each joint one on no leg
+    (:attr:`~hexaleg.robot.loaded.Robot.other_joints`), its swing about the stand within its
+    URDF limits.
+
+    Raises:
+        UnknownNameError: a joint on a leg or not in the robot (lists the joints on no leg).
+        InvalidParameterError: a swing that leaves the joint's limits (names them).
+    """
+    model = robot.model
+    for joint, (amplitude, _) in moves.items():
+        if joint not in robot.other_joints:
+            raise UnknownNameError(f"joint in {name}'s moves (one on no leg)", joint,
+                                   robot.other_joints)
+        idx = model.joints[model.getJointId(joint)].idx_q
+        lo, hi, at = model.lowerPositionLimit[idx], model.upperPositionLimit[idx], stand[idx]
+        if at - amplitude < lo or at + amplitude > hi:
+            raise InvalidParameterError(
+                f"{name}: moves.{joint}.amplitude", amplitude,
+                f"a swing within the joint's limits [{lo:.4g}, {hi:.4g}] rad about its stand "
+                f"angle {at:.4g} rad (at most {min(at - lo, hi - at):.4g})")
+    return dict(moves)
+

@@ -258,6 +258,11 @@ def foot_forces(sim: SimModel, motion: Motion, traj: Trajectory, window: slice,
 SATURATED = 0.1
 """A run whose servos sat at their stall torque for more than this fraction of the steps before
 it fell for want of torque (:func:`fall_cause`)."""
+PLANNED_STALL = 0.9
+"""A fall with the servos at stall is put down to the actuator when the plan's peak command on
+the joint most at stall reaches this fraction of its stall torque; under it, to the error the
+servos were correcting (:func:`fall_cause`). 0.9: the servos' PD correction and the tracking
+error on top of the plan take the rest."""
 
 
 HOLDS = 2.0
@@ -358,24 +363,53 @@ def point_foot(sim: SimModel, motion: Motion) -> PointFoot | None:
                      fewest, motion.period)
 
 
-def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory, feedback: bool = False) -> str:
-    """Why a run fell, as far as the run shows it: servos at their stall torque (a weaker
-    actuator than the gait needs), or — open loop (``feedback`` False) — a gait that stands on
-    two feet or fewer (balanced by its plan alone: the servos follow the joints without feedback
-    on the body's attitude, so an error grows until the body tips — the analysis of such a gait
-    stands, its open-loop simulation cannot; ``[simulate] feedback = "on"`` closes the loop);
-    with balance feedback, a gait that stands on one point foot (:class:`PointFoot`: an
-    inverted pendulum the contact force cannot right, the error's growth over the stand
-    named); else the ground, the servo's gains (``[simulate]``) and, with balance feedback, its
-    gains."""
+def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory, feedback: bool = False,
+               planned: np.ndarray | None = None) -> str:
+    """Why a run fell, as far as the run shows it: servos at their stall torque where the plan
+    asks for it (a weaker actuator than the gait needs), or — open loop (``feedback`` False) —
+    a gait that stands on two feet or fewer (balanced by its plan alone: the servos follow the
+    joints without feedback on the body's attitude, so an error grows until the body tips — the
+    analysis of such a gait stands, its open-loop simulation cannot; ``[simulate] feedback =
+    "on"`` closes the loop); with balance feedback, a gait that stands on one point foot
+    (:class:`PointFoot`: an inverted pendulum the contact force cannot right, the error's
+    growth over the stand named); else the ground, the servo's gains (``[simulate]``) and, with
+    balance feedback, its gains.
+
+    Servos at stall are a cause only when the plan drives them there: with ``planned`` (the
+    analysis' motor torques, shape (T, nj), N·m) the joint most at stall's planned peak command
+    ``|τ + D q̇|`` (the torque and the back-EMF the servo's voltage must overcome at the planned
+    speed: the servo model's ``u``, :class:`~hexaleg.simulation.stepping.Trajectory`) is
+    compared with its stall torque. Under :data:`PLANNED_STALL` of it the stall came with the
+    fall — the servos correcting an error that grew, not the gait's demand — and the message
+    says so with both torques and when the stall began and the fall came, then gives the cause
+    the run shows otherwise (a stronger actuator would not be the first fix; issue #55: a
+    planned peak a third of the stall torque was told to buy a stronger one)."""
     at_stall = np.abs(traj.servo) >= sim.stall * (1.0 - 1e-6)
     share = float(at_stall.any(axis=1).mean())
+    stalled = ""
     if share > SATURATED:
         j = int(np.argmax(at_stall.mean(axis=0)))
-        return (f"the servos were at their stall torque in {share:.0%} of the steps "
-                f"({sim.robot.joint_names[j]} most, {float(sim.stall[j]):.3g} N·m): the gait "
-                "needs a stronger actuator ([motor], or the robot's own), a slower or shorter "
-                "gait, or a lighter robot")
+        name, stall = sim.robot.joint_names[j], float(sim.stall[j])
+        peak = None if planned is None else float(np.max(np.abs(
+            np.asarray(planned)[:, j] + sim.damping[j] * np.asarray(motion.v)[:, 6 + j])))
+        if peak is None or peak >= PLANNED_STALL * stall:
+            need = ("" if peak is None else f"; its planned peak command {peak:.3g} N·m, "
+                    f"{peak / stall:.0%} of it")
+            return (f"the servos were at their stall torque in {share:.0%} of the steps "
+                    f"({name} most, {stall:.3g} N·m{need}): the gait needs a stronger actuator "
+                    "([motor], or the robot's own), a slower or shorter gait, or a lighter "
+                    "robot")
+        first = float(traj.t[int(np.flatnonzero(at_stall.any(axis=1))[0])])
+        stalled = (f"the servos were at their stall torque in {share:.0%} of the steps "
+                   f"({name} most, {stall:.3g} N·m) from {first:.2f} s, the fall at "
+                   f"{float(traj.t[-1]):.2f} s, but its planned peak command is {peak:.3g} "
+                   f"N·m, {peak / stall:.0%} of it: they stalled correcting an error that "
+                   "grew, not for the gait's demand, so a stronger actuator is not the fix; ")
+    return stalled + _unbalanced(sim, motion, feedback)
+
+
+def _unbalanced(sim: SimModel, motion: Motion, feedback: bool) -> str:
+    """Why a run whose servos the plan does not drive to stall fell (:func:`fall_cause`)."""
     feet = int(motion.stance.sum(axis=1).min())
     one = point_foot(sim, motion) if feedback else None
     if one is not None and one.feet == 1:

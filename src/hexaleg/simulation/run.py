@@ -368,7 +368,7 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
     wall, cpu = time.perf_counter() - start, time.thread_time() - cpu
     bound = controller.constrained / max(controller.updates, 1) if controller else 0.0
     if traj.verdict == "fell":
-        cause = measures.fall_cause(sim, motion, traj, feedback)
+        cause = measures.fall_cause(sim, motion, traj, feedback, analysis.tau_motor)
         one = measures.point_foot(sim, motion) if feedback else None
         return Run(name, sim, traj, traj.verdict, f"{traj.message}; {cause}", wall=wall,
                    feedback=feedback, constrained=bound, cpu=cpu,

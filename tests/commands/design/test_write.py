@@ -274,3 +274,73 @@ def test_a_non_finite_number_is_written_as_null_and_read_back(design_written, tm
     assert hexaleg.load_design(path).springs
     assert design_section(str(path))
     assert main(["report", "--design", str(path), "--out", str(tmp_path / "r")]) == 0
+
+
+TINY_TOML = """[design]
+samples = 100
+families = ["linear"]
+map_period = [1.0]
+map_stride = [1.0]
+map_payload = [0.0]
+map_mu = [0.6]
+map_slope = [0.0]
+map_pattern = ["tripod"]
+robust_period = [1.0, 1.25]
+robust_stride = [1.0, 1.0]
+robust_payload = [0.0, 0.0]
+robust_mu = [0.6, 0.6]
+pareto_fractions = []
+"""
+"""tests/conftest.py's TINY_DESIGN as a file."""
+
+
+@pytest.mark.slow
+def test_a_stage_that_fails_leaves_the_design_before_it_and_the_next_run_resumes(
+        design_json, tmp_path, capsys, monkeypatch):
+    """The maps failing (injected) end the design's stages there, not the design: the command
+    writes design.json and the page with the stages before it, naming the stage and the keys
+    that set it, in one error line (status 2), and keeps the finished stages; the next run
+    reads them back instead of computing them, and its design is the one a run never
+    interrupted writes (tests/conftest.py's ``design_json``), but for the timings. ~10 s."""
+    from conftest import TINY_DESIGN
+
+    from hexaleg.commands.design.write import write_design
+    from hexaleg.design.chain import chain as chain_module
+    from hexaleg.design.chain.checkpoint import FOLDER
+    from hexaleg.errors import InvalidParameterError
+    from hexaleg.scenario.scenario import Scenario
+
+    def fails(*_a, **_k):
+        raise InvalidParameterError("design.map_mu", 9.0, "an injected failure")
+
+    (tmp_path / "tiny.toml").write_text(TINY_TOML)
+    out = tmp_path / "o"
+    monkeypatch.setattr(chain_module, "robustness_maps", fails)
+    assert main(["design", "--config", str(tmp_path / "tiny.toml"), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    (line,) = [x for x in err.splitlines() if "error:" in x]
+    assert line.startswith("hexaleg design: error: the maps stage failed (InvalidParameterError:")
+    assert "robust, proof not run" in line and "map_period" in line and "resumes" in line
+    data = json.loads((out / "design.json").read_text())
+    assert data["failed"]["stage"] == "maps" and data["failed"]["left_out"] == ["robust", "proof"]
+    assert data["stages"] == ["candidates", "pareto", "ranking", "tolerance", "envelope", "fold"]
+    assert data["maps"] == [] and data["robust"] is None and data["recommended"]
+    assert sorted(data["files"]) == sorted(p.name for p in out.iterdir()
+                                           if not p.name.startswith("."))
+    page = _text((out / "design.html").read_text())
+    assert "The maps stage failed" in page and "map_slope" in page
+    kept = sorted(p.stem for p in (out / FOLDER).glob("*.pickle"))
+    assert kept == sorted(data["stages"])
+
+    monkeypatch.undo()
+    said: list[str] = []
+    write_design(out, Scenario.from_tables("hexaleg", TINY_DESIGN), progress=said.append)
+    # linear's optimum, the Pareto front, the ranking, the envelope, the fold (a linear
+    # spring has no stop: no tolerance line)
+    assert sum(line.endswith("(kept from the earlier run)") for line in said) == 5
+    assert not (out / FOLDER).exists()  # the design is whole: nothing left to resume
+    again = json.loads((out / "design.json").read_text())
+    whole = json.loads(design_json.read_text())
+    for d in (again, whole):
+        d.pop("timings")
+    assert again == whole

@@ -23,12 +23,14 @@ from matplotlib.figure import Figure
 from hexaleg.checks import typed
 from hexaleg.commands.options import say
 from hexaleg.design.chain.chain import DesignChain
+from hexaleg.design.chain.checkpoint import FOLDER
 from hexaleg.design.chain.result import DesignResult, mounting_data
 from hexaleg.design.search.tolerance import TolerantSprings
 from hexaleg.outputs import design_plots, plots
 from hexaleg.outputs.directory import OutputFolder
 from hexaleg.outputs.html import render_design_html
 from hexaleg.outputs.spring_drawing import drawings
+from hexaleg.parallel.interrupt import keep
 from hexaleg.quantities import json_text
 from hexaleg.scenario.run_warnings import gait_defaults, run_warnings
 from hexaleg.scenario.scenario import Scenario
@@ -127,28 +129,53 @@ def write_design(out: str | Path = "hexaleg-design", scenario: Scenario | None =
         DirectoryLockedError: another run writes into ``out`` (checked before computing).
         HexalegError: from the computation (:class:`DesignChain`); ``out`` is then as it was
             (:class:`~hexaleg.outputs.directory.OutputFolder`).
+
+    Each finished stage is kept in ``out``'s hidden :data:`~hexaleg.design.chain.checkpoint.
+    FOLDER` as it goes (:class:`~hexaleg.design.chain.checkpoint.StageFiles`): a run killed
+    or interrupted leaves the previous design as it was and its finished stages, which the same
+    command reads back instead of computing them again. A stage after the candidates that
+    fails ends the stages after it: the design is written with the stages before it (its
+    ``failed`` names the stage and the keys that set it, ``result.failed``) and they stay kept;
+    a whole design removes them.
     """
     out = Path(out)
-    with OutputFolder(out, "design") as folder:  # locked; published whole at the end
-        r = DesignChain(scenario, progress, controller=controller).run()
-        names: list[str] = []
-        images = {}
-        for name, fig in figures(r).items():
-            png, written = plots.save(fig, folder.path(f"{name}.png"))
-            images[name] = plots.data_uri(png)
-            names += [p.name for p in written]
-        svgs = drawings(mounting_data(r))
-        extra = {"warnings": list(design_warnings(r)),
-                 "gait_defaults": gait_defaults(r.run.description,
-                                                r.gait if r.run.log is None else None),
-                 "files": sorted([*names, *(f"{n}.svg" for n in svgs), "design.html",
-                                  "design.json"])}
-        data = r.to_dict(**extra)
-        folder.write("design.json", json_text(data))  # the same document, built once
-        for n, svg in svgs.items():
-            folder.write(f"{n}.svg", svg)
-        folder.write("design.html", render_design_html(data, images, svgs))
-        files = folder.publish()
+    chain: DesignChain | None = None
+    try:
+        with OutputFolder(out, "design") as folder:  # locked; published whole at the end
+            chain = DesignChain(scenario, progress, controller=controller, files=out / FOLDER)
+            r = chain.run()
+            data, files = _write(folder, r)
+    except KeyboardInterrupt as e:  # Ctrl-C or a kill: the finished stages stay for a re-run
+        kept = [] if chain is None or chain.files is None else chain.files.written
+        if kept:
+            keep(e, f"but its finished stages ({', '.join(kept)}) are kept in {out / FOLDER} "
+                    "for the same command to resume from")
+        raise
+    if r.failed is None and chain is not None and chain.files is not None:
+        chain.files.clear()  # the design is whole: nothing to resume
     if progress:
         progress(f"wrote {out / 'design.html'}")
     return WrittenDesign(result=r, data=data, files=tuple(files))
+
+
+def _write(folder: OutputFolder, r: DesignResult) -> tuple[dict[str, Any], list[Path]]:
+    """The design's figures, drawings, page and JSON written into ``folder`` and published;
+    the JSON content and the files."""
+    names: list[str] = []
+    images = {}
+    for name, fig in figures(r).items():
+        png, written = plots.save(fig, folder.path(f"{name}.png"))
+        images[name] = plots.data_uri(png)
+        names += [p.name for p in written]
+    svgs = drawings(mounting_data(r))
+    extra = {"warnings": list(design_warnings(r)),
+             "gait_defaults": gait_defaults(r.run.description,
+                                            r.gait if r.run.log is None else None),
+             "files": sorted([*names, *(f"{n}.svg" for n in svgs), "design.html",
+                              "design.json"])}
+    data = r.to_dict(**extra)
+    folder.write("design.json", json_text(data))  # the same document, built once
+    for n, svg in svgs.items():
+        folder.write(f"{n}.svg", svg)
+    folder.write("design.html", render_design_html(data, images, svgs))
+    return data, folder.publish()

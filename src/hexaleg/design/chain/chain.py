@@ -46,11 +46,14 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable, Iterable
+from pathlib import Path
 from typing import Any
 
 from hexaleg.design.chain.candidates import Candidate
+from hexaleg.design.chain.checkpoint import StageFiles, run_key
 from hexaleg.design.chain.config import DesignParams, design_params, design_run
 from hexaleg.design.chain.config import mission as mission_of
+from hexaleg.design.chain.failure import STAGE_KEYS, StageFailure
 from hexaleg.design.chain.ranking import Simulated, best_simulated, simulate_candidates, under
 from hexaleg.design.chain.result import MIN_SAVING, DesignResult
 from hexaleg.design.chain.robust_stage import RobustResult, robust_design
@@ -77,6 +80,7 @@ from hexaleg.dynamics.draw import WholeDraw, whole_draw
 from hexaleg.dynamics.plausibility import check_baseline
 from hexaleg.dynamics.without_constants import WithoutConstants, without_constants
 from hexaleg.errors import HexalegError, InvalidParameterError, UnknownNameError
+from hexaleg.parallel.forked import robot_objects
 from hexaleg.robot.mirror import mirror
 from hexaleg.robot.springs import SpringSet
 from hexaleg.scenario.scenario import Scenario
@@ -101,11 +105,15 @@ class DesignChain:
         design: The design's settings in place of the scenario's ``[design]`` table.
         controller: The servo the robot runs over ``[design] controller`` (``--controller``).
         mission: The mission in place of the scenario's ``[mission]`` table.
+        files: A folder where each finished stage is kept as it goes, and read back from
+            when the same run was killed or failed there before
+            (:class:`~hexaleg.design.chain.checkpoint.StageFiles`); None: nothing kept.
 
     Attributes:
         scenario: The run the design works on (:func:`~hexaleg.design.chain.config.design_run`: at
             ``[design] samples``, Joule-optimal forces). design: The ``[design]`` settings.
-        mission: The ``[mission]`` table.
+        mission: The ``[mission]`` table. files: The kept stages, or None.
+        failed: The stage after the candidates that failed in :meth:`run`, or None.
 
     Example:
         ``DesignChain(scenario).run(stages=("candidates",))`` is the family optima alone, the
@@ -115,7 +123,7 @@ class DesignChain:
     def __init__(self, scenario: Scenario | None = None,
                  progress: Callable[[str], None] | None = None, *,
                  design: DesignParams | None = None, controller: str | None = None,
-                 mission: Mission | None = None) -> None:
+                 mission: Mission | None = None, files: str | Path | None = None) -> None:
         if scenario is not None and not isinstance(scenario, Scenario):
             raise InvalidParameterError("scenario", type(scenario).__name__,
                                         "a hexaleg.Scenario (Scenario.load(robot, config))")
@@ -126,21 +134,49 @@ class DesignChain:
         self._say = progress or (lambda _msg: None)
         self._done: dict[str, Any] = {}
         self._wanted: tuple[str, ...] = STAGES  # what run() asked for; a stage alone: all
-        self._left_out: list[str] = []  # families whose program failed (candidates' notes)
-        self._untolerant: list[str] = []  # why the stop-tolerance stage failed, if it did
+        self.files = None if files is None else StageFiles(
+            files, run_key(scenario, self.design, self.mission))
+        self.failed: StageFailure | None = None
         self.timings: dict[str, float] = {}
+        self._said: list[tuple[str, str]] = []  # (timing name, line) of each step, in order
         self._t0 = self._last = time.perf_counter()
 
     def _step(self, name: str, msg: str) -> None:
         now = time.perf_counter()
         self.timings[name] = now - self._last
         self._last = now
+        self._said.append((name, msg))
         self._say(f"{msg} ({now - self._t0:.1f} s)")
 
+    def _shared(self) -> dict[str, object]:
+        """The objects a kept stage refers to by name: this run's robot, its model and the
+        prepared nominal gait (:mod:`hexaleg.design.chain.checkpoint`)."""
+        nom = self.nominal()
+        names = ("robot", "model", "data", "visual_model", "collision_model")
+        return {**dict(zip(names, robot_objects(nom.robot), strict=True)), "nominal": nom,
+                "prepared": nom.prepared, "run": nom.run, "scenario": self.scenario,
+                "design": self.design}
+
     def _once(self, name: str, compute: Callable[[], Any]) -> Any:
-        if name not in self._done:
-            self._done[name] = compute()
-        return self._done[name]
+        if name in self._done:
+            return self._done[name]
+        files = self.files if name in STAGES else None
+        kept = None if files is None else files.load(name, self._shared())
+        if kept is not None:  # this run's stage, kept by its earlier process
+            value, timings, said = kept
+            self.timings.update(timings)
+            for _, line in said:
+                self._say(f"{line} (kept from the earlier run)")
+            self._last = time.perf_counter()
+        else:
+            first, before = len(self._said), dict(self.timings)
+            value = compute()
+            if files is not None:
+                said = self._said[first:]
+                files.save(name, (value, {k: v for k, v in self.timings.items()
+                                          if before.get(k) != v}, said), self._shared())
+        self._done[name] = value
+        return value
 
     def nominal(self) -> Nominal:
         """The nominal gait prepared once, the sprung classes, the groups, the fit limits."""
@@ -153,9 +189,13 @@ class DesignChain:
 
     def candidates(self) -> tuple[Candidate, ...]:
         """Every allowed family's candidate, ranked by predicted net saving (best first)."""
-        def compute() -> tuple[Candidate, ...]:
-            cands, self._left_out = family_candidates(self.nominal(), self._step)
-            return tuple(cands)
+        return self._candidates()[0]
+
+    def _candidates(self) -> tuple[tuple[Candidate, ...], tuple[str, ...]]:
+        """The candidates and the notes of the families whose program failed."""
+        def compute() -> tuple[tuple[Candidate, ...], tuple[str, ...]]:
+            cands, left_out = family_candidates(self.nominal(), self._step)
+            return tuple(cands), tuple(left_out)
         return self._once("candidates", compute)
 
     def pareto(self) -> tuple[tuple[float, Candidate], ...]:
@@ -206,23 +246,29 @@ class DesignChain:
     def tolerance(self) -> tuple[Candidate, TolerantSprings | None]:
         """The recommendation designed for its stops' mounting error, and the comparison with
         its tolerance-blind self (None without a tolerance or angles)."""
-        def compute() -> tuple[Candidate, TolerantSprings | None]:
+        rec, tol, _ = self._tolerance()
+        return rec, tol
+
+    def _tolerance(self) -> tuple[Candidate, TolerantSprings | None, tuple[str, ...]]:
+        """:meth:`tolerance` and why the stop-tolerance design failed, if it did."""
+        def compute() -> tuple[Candidate, TolerantSprings | None, tuple[str, ...]]:
             d = self.design
+            untolerant: tuple[str, ...] = ()
             try:
                 rec, tol = stop_tolerance(self.nominal(), self._ranked())
             except HexalegError as err:  # a stage's failure does not end the design
                 rec, tol = self._ranked(), None
-                self._untolerant.append(
+                untolerant = (
                     f"the design for the stops' mounting error (±"
                     f"{math.degrees(d.stop_tolerance):g}°) failed ({err}): the tolerance-blind "
-                    "design is recommended, its saving with stops mounted off not checked")
+                    "design is recommended, its saving with stops mounted off not checked",)
                 self._step("tolerance", "the stop-tolerance design failed: the tolerance-blind "
                            "design is kept (a note says why)")
             if tol is not None:
                 self._step("tolerance", f"stops within ±{math.degrees(d.stop_tolerance):g}°: "
                            f"worst {d.metric} saving {100 * tol.worst['tolerant']:+.2f} % "
                            f"(tolerance-blind design {100 * tol.worst['blind']:+.2f} %)")
-            return rec, tol
+            return rec, tol, untolerant
         return self._once("tolerance", compute)
 
     def recommended(self) -> Candidate:
@@ -316,14 +362,30 @@ class DesignChain:
             UnknownNameError: a stage not in :data:`STAGES`.
             InvalidParameterError: an outer diameter no wire fits.
             UnknownNameError: an unknown robot, class, family, material or motor.
+
+        A stage after the candidates that fails (a :class:`~hexaleg.errors.HexalegError`) ends
+        the stages after it, not the design: the result holds the stages before it and
+        :attr:`failed` (:class:`~hexaleg.design.chain.failure.StageFailure`) names it and the
+        keys that set it.
         """
         wanted = tuple(stages)
         for s in wanted:
             if s not in STAGES:
                 raise UnknownNameError("design stage", s, STAGES)
         self._wanted = tuple(s for s in STAGES if s in wanted or s == "candidates")
-        for s in self._wanted:
-            getattr(self, s)()
+        for i, s in enumerate(self._wanted):
+            if s == "candidates":  # the design itself: its failure ends the run
+                self.candidates()
+                continue
+            try:
+                getattr(self, s)()
+            except HexalegError as e:  # the stages before it stand
+                left = self._wanted[i + 1:]
+                self.failed = StageFailure(stage=s, error=f"{type(e).__name__}: {e}",
+                                           keys=STAGE_KEYS[s], left_out=left)
+                self._wanted = self._wanted[:i]
+                self._say(self.failed.line())
+                break
         return self._result()
 
     def _result(self) -> DesignResult:
@@ -356,8 +418,10 @@ class DesignChain:
                   "simulated)")
         residual = nom.prepared.residual.line() if nom.prepared.residual is not None else None
         evidence = per_joint_evidence(nom, rec) if "ranking" in w else None
-        notes = [*flagged, *((evidence,) if evidence else ()), *self._left_out,
-                 *self._untolerant, *pays, *logged,
+        untolerant = self._tolerance()[2] if "tolerance" in w else ()
+        failed = (self.failed.line(),) if self.failed is not None else ()
+        notes = [*failed, *flagged, *((evidence,) if evidence else ()), *self._candidates()[1],
+                 *untolerant, *pays, *logged,
                  *((residual,) if residual else ()), *ranking_notes,
                  *envelope_notes, *robust_notes, *stalled, *unsimulated, *nom.notes,
                  *nom.robot.notes,
@@ -374,7 +438,8 @@ class DesignChain:
             worst=worst, robust=robust, ranking=rows, tolerance=tol, envelope=env,
             fatigue=fatigue, simulation=simulation, timings=dict(self.timings),
             notes=tuple(notes), plausibility=plausible, motion=nom.motion, stages=w,
-            whole_draw=_whole_draw(nom, rec), fold=folded, sourced=_sourced(nom, rec))
+            whole_draw=_whole_draw(nom, rec), fold=folded, sourced=_sourced(nom, rec),
+            failed=self.failed)
 
 
 def _sourced(nom: Nominal, rec: Candidate

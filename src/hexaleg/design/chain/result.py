@@ -24,6 +24,7 @@ import numpy as np
 from hexaleg.design.chain.candidates import Candidate
 from hexaleg.design.chain.config import DesignParams
 from hexaleg.design.chain.design_file import gait_parameters
+from hexaleg.design.chain.failure import StageFailure
 from hexaleg.design.chain.ranking import Simulated
 from hexaleg.design.chain.robust_stage import RobustResult
 from hexaleg.design.evaluator import SAVING_METRICS
@@ -100,6 +101,8 @@ class DesignResult:
         sourced: The joints with no named motor, without springs and with the recommendation
             (:mod:`hexaleg.dynamics.without_constants`: their sourced band), or None when every
             motor is named.
+        failed: The stage after the candidates that failed (the stages after it not run), or
+            None (:class:`~hexaleg.design.chain.failure.StageFailure`).
     """
 
     run: Scenario
@@ -131,6 +134,7 @@ class DesignResult:
     whole_draw: WholeDraw | None = None
     fold: Fold | None = None
     sourced: tuple[WithoutConstants, WithoutConstants] | None = None
+    failed: StageFailure | None = None
 
     def to_dict(self, **extra: Any) -> dict[str, Any]:
         """What ``design.json`` holds (:func:`design_data`), with ``extra`` keys of the command
@@ -421,6 +425,7 @@ def design_data(r: DesignResult) -> dict[str, Any]:
         "timings": {k: quantity(v, "s") for k, v in r.timings.items()},
         "notes": list(r.notes),
         "stages": list(r.stages),
+        "failed": None if r.failed is None else r.failed.table(),
     }
 
 

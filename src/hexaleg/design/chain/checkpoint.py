@@ -1,0 +1,183 @@
+"""Each finished stage of a design kept on disk, so that a killed or failed run resumes there.
+
+:class:`StageFiles` is a hidden folder in the design's output directory
+(``.hexaleg-design-stages``) that :class:`~hexaleg.design.chain.chain.DesignChain` writes as it
+goes: one file a finished stage (``<stage>.pickle``, written whole through
+:func:`hexaleg.config.write_file`: the old file or the new one, never half) and ``run.json``,
+the key of the run that wrote them (:func:`run_key`). Guarantees:
+
+* **one run's stages**: a folder whose key is not this run's (another robot, config, log,
+  controller, hexaleg version) is emptied before the first stage is written, so two runs never
+  mix; the output folder's lock (:class:`~hexaleg.outputs.directory.OutputFolder`) keeps a
+  second run out while one writes;
+* **the robot is not in them**: a stage refers to the run's robot, its Pinocchio model and the
+  prepared nominal gait by name (:mod:`pickle`'s persistent ids, as
+  :mod:`hexaleg.parallel.forked` does by address), and reads back this run's own, recomputed
+  first (the ``nominal`` stage: a tenth of a second to a second, deterministic);
+* **only hexaleg's own data is read back**: the reader admits the classes of hexaleg, NumPy and
+  a few built-in containers, nothing else (the Python docs' "Restricting Globals" recipe), and a
+  file it cannot read is computed again;
+* **cleared when the design is whole**: the command removes the folder once a design with every
+  stage is published; a failed stage leaves the stages before it for the next run.
+
+A stage file is a cache of this run's computation, not a result to exchange: the results are
+``design.json`` and the page.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import importlib.metadata
+import io
+import json
+import pickle
+import shutil
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+from hexaleg.config import write_file
+from hexaleg.design.chain.config import DesignParams
+from hexaleg.design.fold import Mission
+from hexaleg.scenario.scenario import Scenario
+
+FOLDER = ".hexaleg-design-stages"
+"""The hidden folder of a design's finished stages in its output directory."""
+KEY_FILE = "run.json"
+"""The file in :data:`FOLDER` holding the key of the run whose stages it keeps."""
+
+_ALLOWED_MODULES = ("hexaleg.", "numpy", "collections", "copyreg", "datetime", "fractions")
+"""Modules whose globals a stage file may name (:class:`_Reader`)."""
+_ALLOWED_BUILTINS = frozenset({"complex", "dict", "float", "frozenset", "int", "list", "set",
+                               "slice", "str", "tuple", "bytes", "bytearray", "range", "bool",
+                               "object"})
+"""Built-in names a stage file may name (containers and numbers, nothing that runs code)."""
+
+
+def _file_digest(path: Path | None) -> str:
+    """SHA-256 of a file's content, or "" when there is none or it cannot be read."""
+    if path is None:
+        return ""
+    try:
+        return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+    except OSError:
+        return ""
+
+
+def run_key(scenario: Scenario, design: DesignParams, mission: Mission) -> str:
+    """What makes two design runs the same computation, as a hex digest: hexaleg's version, the
+    robot (its name or description file, and the content of that file, its URDF and SRDF), the
+    config's tables, the log and its cycle (the log's content), the ``[design]`` settings as
+    the chain reads them (the controller among them) and the ``[mission]``."""
+    desc = scenario.description
+    robot_file = Path(scenario.robot)
+    parts = {
+        "hexaleg": importlib.metadata.version("hexaleg"),
+        "robot": scenario.robot,
+        "robot_file": _file_digest(robot_file) if robot_file.suffix == ".toml" else "",
+        "urdf": _file_digest(desc.urdf_path),
+        "srdf": _file_digest(desc.srdf_path),
+        "tables": scenario.tables,
+        "run": scenario.data(),
+        "log": _file_digest(Path(scenario.log)) if scenario.log else "",
+        "design": repr(design),
+        "mission": repr(mission),
+    }
+    text = json.dumps(parts, sort_keys=True, default=repr)
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+class _Writer(pickle.Pickler):
+    def __init__(self, file: io.BytesIO, shared: Mapping[str, object]) -> None:
+        super().__init__(file, protocol=pickle.HIGHEST_PROTOCOL)
+        self._names = {id(o): name for name, o in shared.items()}
+        self._objects = shared
+
+    def persistent_id(self, obj: object) -> str | None:
+        name = self._names.get(id(obj))
+        return name if name is not None and self._objects[name] is obj else None
+
+
+class _Reader(pickle.Unpickler):
+    def __init__(self, file: io.BytesIO, shared: Mapping[str, object]) -> None:
+        super().__init__(file)
+        self._shared = shared
+
+    def persistent_load(self, pid: Any) -> object:
+        if pid not in self._shared:
+            raise pickle.UnpicklingError(f"unknown shared object {pid!r}")
+        return self._shared[pid]
+
+    def find_class(self, module: str, name: str) -> Any:
+        if (module == "builtins" and name in _ALLOWED_BUILTINS) or (
+                module.startswith(_ALLOWED_MODULES)):
+            return super().find_class(module, name)
+        raise pickle.UnpicklingError(f"{module}.{name} is not read from a stage file")
+
+
+class StageFiles:
+    """A design's finished stages in ``directory`` (module docstring).
+
+    Args:
+        directory: The folder (:data:`FOLDER` in the output directory); made on the first
+            stage written.
+        key: This run's key (:func:`run_key`).
+
+    Attributes:
+        directory: The folder. key: The run's key. written: The stages written or read by this
+            run, in order.
+    """
+
+    def __init__(self, directory: str | Path, key: str) -> None:
+        self.directory = Path(directory)
+        self.key = key
+        self.written: list[str] = []
+        self._mine = self._read_key() == key
+
+    def _read_key(self) -> str | None:
+        try:
+            data = json.loads((self.directory / KEY_FILE).read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            return None
+        return data.get("key") if isinstance(data, dict) else None
+
+    def load(self, stage: str, shared: Mapping[str, object]) -> Any | None:
+        """The stage's value as this run's earlier process left it, or None when there is none
+        (another run's folder, no file, a file that cannot be read)."""
+        if not self._mine:
+            return None
+        try:
+            raw = (self.directory / f"{stage}.pickle").read_bytes()
+            value = _Reader(io.BytesIO(raw), shared).load()
+        except (OSError, pickle.UnpicklingError, EOFError, AttributeError, ImportError,
+                IndexError, TypeError, ValueError):
+            return None
+        self.written.append(stage)
+        return value
+
+    def save(self, stage: str, value: Any, shared: Mapping[str, object]) -> None:
+        """Write the stage's value whole; the folder made, or emptied of another run's stages,
+        first."""
+        if not self._mine:
+            self.clear()
+            self.directory.mkdir(parents=True, exist_ok=True)
+            write_file(self.directory / KEY_FILE, json.dumps({"key": self.key}),
+                       "the design's stage key")
+            self._mine = True
+        out = io.BytesIO()
+        _Writer(out, shared).dump(value)
+        write_file(self.directory / f"{stage}.pickle", out.getvalue(), f"the {stage} stage")
+        self.written.append(stage)
+
+    def clear(self) -> None:
+        """Remove the folder and what it holds (a link there is removed, not followed)."""
+        if self.directory.is_symlink():
+            with contextlib.suppress(OSError):
+                self.directory.unlink()
+        else:
+            shutil.rmtree(self.directory, ignore_errors=True)
+        self._mine = False
+
+
+__all__ = ["FOLDER", "KEY_FILE", "StageFiles", "run_key"]
