@@ -7,7 +7,7 @@ goes: one file a finished stage (``<stage>.pickle``, written whole through
 the key of the run that wrote them (:func:`run_key`). Guarantees:
 
 * **one run's stages**: a folder whose key is not this run's (another robot, config, log,
-  controller, hexaleg version) is emptied before the first stage is written, so two runs never
+  controller, hexaleg's code) is emptied before the first stage is written, so two runs never
   mix; the output folder's lock (:class:`~hexaleg.outputs.directory.OutputFolder`) keeps a
   second run out while one writes;
 * **the robot is not in them**: a stage refers to the run's robot, its Pinocchio model and the
@@ -27,8 +27,8 @@ A stage file is a cache of this run's computation, not a result to exchange: the
 from __future__ import annotations
 
 import contextlib
+import functools
 import hashlib
-import importlib.metadata
 import io
 import json
 import pickle
@@ -65,15 +65,29 @@ def _file_digest(path: Path | None) -> str:
         return ""
 
 
+@functools.cache
+def _code_digest() -> str:
+    """SHA-256 over hexaleg's own source files (their paths and contents, in sorted order): a
+    stage file kept by other code, an upgrade or an edit in a development checkout, is never
+    read back (the version alone would not change with an edit)."""
+    root = Path(__file__).resolve().parents[2]  # the hexaleg package
+    h = hashlib.sha256()
+    for path in sorted(root.rglob("*.py")):
+        h.update(path.relative_to(root).as_posix().encode())
+        h.update(path.read_bytes())
+    return h.hexdigest()
+
+
 def run_key(scenario: Scenario, design: DesignParams, mission: Mission) -> str:
-    """What makes two design runs the same computation, as a hex digest: hexaleg's version, the
-    robot (its name or description file, and the content of that file, its URDF and SRDF), the
-    config's tables, the log and its cycle (the log's content), the ``[design]`` settings as
-    the chain reads them (the controller among them) and the ``[mission]``."""
+    """What makes two design runs the same computation, as a hex digest: hexaleg's code (its
+    source files' digest), the robot (its name or description file, and the content of that
+    file, its URDF and SRDF), the config's tables, the log and its cycle (the log's content),
+    the ``[design]`` settings as the chain reads them (the controller among them) and the
+    ``[mission]``."""
     desc = scenario.description
     robot_file = Path(scenario.robot)
     parts = {
-        "hexaleg": importlib.metadata.version("hexaleg"),
+        "hexaleg": _code_digest(),
         "robot": scenario.robot,
         "robot_file": _file_digest(robot_file) if robot_file.suffix == ".toml" else "",
         "urdf": _file_digest(desc.urdf_path),
