@@ -296,6 +296,23 @@ def point_foot(sim: SimModel, motion: Motion) -> PointFoot | None:
     return None if stand is None else PointFoot(**dataclasses.asdict(stand))
 
 
+def _pace(stand: PointFoot | None) -> str:
+    """The advice on the gait's pace after a fall the balance controller did not hold: a
+    slower gait on three or more feet; on two point feet a slower gait lengthens the stands,
+    an inverted pendulum's (:class:`~hexaleg.motion.stands.Stand`), so a shorter period where
+    they are beyond :data:`HOLDS`, else a gait on more feet."""
+    if stand is None:
+        return "or try a slower gait"
+    if stand.constants > HOLDS:
+        return (f"or try a period of {stand.holding_period:.2g} s or less (its stands on two "
+                f"point feet last {stand.constants:.2g} time constants of the inverted "
+                f"pendulum, ω₀ = √(g/h); the controller holds {HOLDS:g}); a slower gait "
+                "lengthens them")
+    return (f"or a gait on three or more feet ([gait] duty_factor ≥ 0.75); a slower gait "
+            f"lengthens its stands on two point feet ({stand.constants:.2g} time constants of "
+            f"the inverted pendulum, ω₀ = √(g/h), where the controller holds {HOLDS:g})")
+
+
 def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory, feedback: bool = False) -> str:
     """Why a run fell, as far as the run shows it: servos at their stall torque (a weaker
     actuator than the gait needs), or — open loop (``feedback`` False) — a gait that stands on
@@ -337,8 +354,7 @@ def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory, feedback: bool =
     if feedback:
         return ("the balance controller (hexaleg.simulation.balance) did not hold the body on "
                 f"this gait ({feet} stance feet at the fewest); check the ground ([simulate] "
-                "stiffness, damping, mu) and the servo gains (kp_scale, kd_scale), or try a "
-                "slower gait")
+                f"stiffness, damping, mu) and the servo gains (kp_scale, kd_scale), {_pace(one)}")
     if feet <= 2:
         return (f"the gait stands on {'one foot' if feet == 1 else f'{feet} feet'} at times "
                 "and is balanced by its plan alone; the simulated servos follow the joints "
