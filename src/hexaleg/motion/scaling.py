@@ -190,15 +190,18 @@ class SizedDefaults:
             line += f"; joint speeds not checked against the limits: {self.unchecked}"
         if self.stand is not None and "period" in keys:
             on = "one point foot" if self.feet == 1 else "two point feet"
-            if self.pendulum < 1.0:
+            if self.pendulum < 1.0 and self.bound is None:
                 line += (f"; period shortened x{self.pendulum:.3g} so that its stands on {on} "
                          f"last {self.stand:.3g} time constants of the inverted pendulum "
                          f"(ω₀T, ω₀ = √(g/h), Kajita et al. 2001; the balance controller holds "
                          f"{HOLDS:g}; Froude number {self.froude:.2g})")
             if self.bound is not None:
-                line += (f"; its stands on {on} last {self.stand:.3g} time constants of the "
-                         f"inverted pendulum, more than the {HOLDS:g} the balance controller "
-                         f"holds: {self.bound} won (a shorter period would exceed it)")
+                shortened = (f"period shortened x{self.pendulum:.3g} (Froude number "
+                             f"{self.froude:.2g}), but " if self.pendulum < 1.0 else "")
+                line += (f"; {shortened}its stands on {on} last {self.stand:.3g} time constants "
+                         f"of the inverted pendulum (ω₀T, ω₀ = √(g/h), Kajita et al. 2001), more "
+                         f"than the {HOLDS:g} the balance controller holds: {self.bound} won (a "
+                         "shorter period would exceed it)")
         return line
 
     def as_dict(self) -> dict[str, Any]:
