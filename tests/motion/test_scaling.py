@@ -10,6 +10,7 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
+import pinocchio as pin
 import pytest
 
 import hexaleg
@@ -23,10 +24,12 @@ from hexaleg.motion.scaling import (
     robot_gait,
     sized_defaults,
 )
+from hexaleg.motion.stands import HOLDS
 from hexaleg.robot.registry import description
 from hexaleg.units import G
 
 SPIDER = Path(__file__).resolve().parents[1] / "data" / "spider.toml"
+XQUAD = SPIDER.parent / "xquad.toml"
 
 
 def scaled_spider(where: Path, scale: float, *, velocity: float | None = None,
@@ -148,6 +151,7 @@ def test_a_missing_urdf_is_a_named_error_not_a_traceback(tmp_path):
         robot_gait(str(toml))
 
 
+<<<<<<< HEAD
 @pytest.mark.slow
 def test_centauros_defaults_are_shortened_to_a_swing_within_its_joint_limits():
     """Centauro (issue #55): at the similar step height (0.25 m) its front hips' pitch leaves
@@ -163,3 +167,70 @@ def test_centauros_defaults_are_shortened_to_a_swing_within_its_joint_limits():
         q = motion.q[:, leg.q_index]
         assert (q >= robot.model.lowerPositionLimit[leg.q_index]).all()
         assert (q <= robot.model.upperPositionLimit[leg.q_index]).all()
+=======
+def xquad_with(where: Path, velocity: float | None = None) -> str:
+    """The X-configured test quadruped (tests/data/xquad), optionally its joints' velocity
+    limits replaced; returns the TOML path."""
+    tree = ET.parse(XQUAD.parent / "xquad.urdf")
+    if velocity is not None:
+        for el in tree.getroot().iter("limit"):
+            el.set("velocity", str(velocity))
+    where.mkdir(parents=True, exist_ok=True)
+    tree.write(where / "xquad.urdf")
+    (where / "xquad.toml").write_text(XQUAD.read_text())
+    return str(where / "xquad.toml")
+
+
+def stand_constants(robot: hexaleg.Robot, gait: GaitParams) -> float:
+    """ω₀ T of the trot's stand on a diagonal, T = (1 − β) · period (a diagonal stands while
+    the other swings), ω₀ = √(g/h), h the centre of mass over the feet (Kajita et al. 2001)."""
+    motion = hexaleg.gait(robot, dataclasses.replace(gait, samples=200))
+    assert int(motion.stance.sum(axis=1).min()) == 2
+    com = pin.centerOfMass(robot.model, robot.model.createData(), motion.q[0])
+    h = com[2] - motion.feet[0, motion.stance[0], 2].mean()
+    return math.sqrt(G / h) * (1.0 - gait.duty_factor) * gait.period
+
+
+def test_a_trots_default_period_keeps_its_stands_to_what_balance_holds():
+    """The X-configured quadruped's similar trot (2.34 s) stands 5.4 time constants on a
+    diagonal and fell closed loop (#54): the default period is shortened to the one whose stand
+    lasts HOLDS of them (0.86 s), not shorter, its joints within their limits; docs/robots.md
+    shows its line."""
+    robot = hexaleg.load(str(XQUAD))
+    similar = robot_gait(str(XQUAD), sized=False)
+    gait = robot_gait(str(XQUAD))
+    sized = sized_defaults(description(str(XQUAD)), similar)
+    assert sized is not None and sized.stretch == 1.0 and sized.bound is None
+    froude_period = sized.stride / math.sqrt(REFERENCE_FROUDE * G * sized.hip_height)
+    assert froude_period == pytest.approx(2.34, abs=0.01)  # the similar trot that fell
+    assert stand_constants(robot, dataclasses.replace(gait, period=froude_period)) > 5.0
+    assert gait.period == pytest.approx(sized.period, rel=1e-12)
+    assert gait.period == pytest.approx(0.86, abs=0.01)
+    assert stand_constants(robot, gait) == pytest.approx(HOLDS, rel=1e-6)
+    assert sized.pendulum == pytest.approx(gait.period / froude_period, rel=1e-12)
+    assert gait.stride == pytest.approx(REFERENCE_RELATIVE_STRIDE * sized.hip_height, rel=1e-9)
+    ratio, _ = speed_ratio(robot, hexaleg.gait(robot, gait).v)
+    assert ratio <= 1.0
+    note = sized.note() or ""
+    assert f"period shortened x{sized.pendulum:.3g}" in note and "Kajita" in note
+    assert "won" not in note
+    assert f"warning: {note}\n" in (SPIDER.parents[2] / "docs" / "robots.md").read_text()
+    assert sized.as_dict()["stand"] == {"value": sized.stand, "unit": "1"}
+
+
+def test_where_the_speed_limits_forbid_the_pendulums_period_they_win_and_say_so(tmp_path):
+    """Joints limited to 5 rad/s: the trot that stands HOLDS time constants would run them at
+    about 7.6 rad/s; the period is shortened only to what the limits allow, and the note says
+    the velocity limit won and how long the stands then are."""
+    path = xquad_with(tmp_path, velocity=5.0)
+    robot = hexaleg.load(path)
+    gait = robot_gait(path)
+    sized = sized_defaults(description(path), robot_gait(path, sized=False))
+    assert sized is not None and sized.bound is not None and "velocity limit" in sized.bound
+    assert 0.86 < gait.period < 2.34 and sized.pendulum < 1.0
+    ratio, _ = speed_ratio(robot, hexaleg.gait(robot, gait).v)
+    assert 0.9 < ratio <= 1.0  # at the limit: not longer than it needs
+    assert sized.stand == pytest.approx(stand_constants(robot, gait), rel=1e-6)
+    assert sized.stand > HOLDS
+    assert f"{sized.bound} won" in (sized.note() or "")
+>>>>>>> defgait

@@ -103,7 +103,8 @@ def test_a_long_stand_on_two_point_feet_is_named_as_the_fall_and_its_period(prep
     hand-over to another pair ends it), ω₀ = √(g/h) across the line between them; the period at
     which the stand lasts HOLDS time constants is the period scaled by HOLDS / (ω₀ T); a fall
     closed loop is blamed on the stand only beyond TIPS time constants (the trots that fell
-    stood 5.4–5.5, those that walk ≤ 2.3: docs/simulate.md)."""
+    stood 5.4–5.5, those that walk ≤ 2.3: docs/simulate.md); below, the generic verdict's
+    advice is a shorter period (beyond HOLDS) or more feet, a slower gait only on three feet."""
     import dataclasses
 
     from hexaleg.simulation.model import build_model
@@ -137,6 +138,15 @@ def test_a_long_stand_on_two_point_feet_is_named_as_the_fall_and_its_period(prep
     assert cause(long).startswith(f"the gait stands on two point feet for {long:.3g} s")
     assert "shorter period" in cause(long)
     assert cause((measures.TIPS - 0.1) / two.omega).startswith("the balance controller")
+    # the advice follows the gait: on two point feet a slower gait lengthens the stand
+    between = cause((measures.TIPS - 0.1) / two.omega)
+    held = (measures.TIPS - 0.1) / two.omega * two.period / two.duration * measures.HOLDS / (
+        measures.TIPS - 0.1)
+    assert f"or try a period of {held:.2g} s or less" in between
+    assert "slower gait lengthens them" in between and "try a slower gait" not in between
+    within = cause((measures.HOLDS - 0.1) / two.omega)
+    assert "a gait on three or more feet" in within and "try a slower gait" not in within
+    assert measures.fall_cause(sim, motion, traj, feedback=True).endswith("try a slower gait")
     assert measures.fall_cause(sim, dataclasses.replace(motion, stance=stance), traj,
                                feedback=False).startswith("the gait stands on 2 feet at times")
 

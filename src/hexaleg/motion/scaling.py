@@ -20,7 +20,17 @@ numbers ``Fr = v² / (g h)``, ``h`` the hip height, and then take equal relative
 * when a foot of the sized gait is out of reach (a balancing sway takes the body away from the
   legs) and the diagnosis (:mod:`hexaleg.motion.reach`) finds a shorter stride or a lower step
   that works, that value is taken, the period following from it by the Froude number, and the
-  note says so.
+  note says so;
+* when the gait stands on two point feet (a trot, a pace, a bound), the period is then shortened,
+  the stride kept, until its longest such stand lasts at most
+  :data:`~hexaleg.motion.stands.HOLDS` time constants ``ω₀ T`` of the linear inverted pendulum
+  across the feet's line (``ω₀ = √(g/h)``, h the centre of mass over the feet: Kajita et al.,
+  "The 3D linear inverted pendulum mode", IROS 2001; :mod:`hexaleg.motion.stands`), what the
+  simulated balance controller holds: the similar period is a slow walk whose stands it does not
+  (the X-configured test quadruped's 2.34 s trot stood 5.4 and fell; at 0.86 s it walks). Where
+  a joint's velocity limit forbids that period, the limit wins: the period is the shortest it
+  allows, and the note says how long the stands then are and which limit won. A stand on one
+  point foot is left as it is (no period makes it one the controller holds).
 
 Only the keys a description leaves unset are sized: a set ``stride_length`` is kept and the
 period follows the Froude number from it; a set ``period`` is never lengthened; a set ``speed``
@@ -46,6 +56,8 @@ from hexaleg.motion.body import body_height, reference_pose
 from hexaleg.motion.legged import gait as make_gait
 from hexaleg.motion.params import GaitParams, default_groups
 from hexaleg.motion.sanity import speed_ratio
+from hexaleg.motion.stands import HOLDS, longest_stand
+from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.description import BUILTIN, RobotDescription
 from hexaleg.robot.model import Robot
 from hexaleg.robot.registry import description
@@ -69,6 +81,13 @@ CHECK_SAMPLES = 200
 SPEED_MARGIN = 0.99
 """The checked peak speeds are brought to at most this fraction of the limits, so that the
 peaks between the checked samples (finer sampling) stay within them."""
+OVERSHOOT = 1e-3
+"""A period lengthened back from the pendulum's for the speed limits is lengthened this fraction
+more than the peak speed's ratio says: the ratio approaches :data:`SPEED_MARGIN` from above as
+the sway follows the period, so without it the iteration would not end within the margin."""
+HOLD_TOL = 1e-9
+"""Relative tolerance of a stand's ω₀ T against :data:`~hexaleg.motion.stands.HOLDS` (the
+rounding of a period shortened to it)."""
 _CACHE: dict[tuple[str, str, int, int], SizedDefaults | None] = {}
 
 
@@ -120,6 +139,10 @@ class SizedDefaults:
     speed_ratio: float | None = None
     unchecked: str | None = None
     reach: str | None = None
+    pendulum: float = 1.0
+    stand: float | None = None
+    feet: int = 0
+    bound: str | None = None
 
     @property
     def scale(self) -> float:
@@ -165,6 +188,20 @@ class SizedDefaults:
                      "values), the period following by the Froude number")
         if self.unchecked is not None and "period" in keys:
             line += f"; joint speeds not checked against the limits: {self.unchecked}"
+        if self.stand is not None and "period" in keys:
+            on = "one point foot" if self.feet == 1 else "two point feet"
+            if self.pendulum < 1.0 and self.bound is None:
+                line += (f"; period shortened x{self.pendulum:.3g} so that its stands on {on} "
+                         f"last {self.stand:.3g} time constants of the inverted pendulum "
+                         f"(ω₀T, ω₀ = √(g/h), Kajita et al. 2001; the balance controller holds "
+                         f"{HOLDS:g}; Froude number {self.froude:.2g})")
+            if self.bound is not None:
+                shortened = (f"period shortened x{self.pendulum:.3g} (Froude number "
+                             f"{self.froude:.2g}), but " if self.pendulum < 1.0 else "")
+                line += (f"; {shortened}its stands on {on} last {self.stand:.3g} time constants "
+                         f"of the inverted pendulum (ω₀T, ω₀ = √(g/h), Kajita et al. 2001), more "
+                         f"than the {HOLDS:g} the balance controller holds: {self.bound} won (a "
+                         "shorter period would exceed it)")
         return line
 
     def as_dict(self) -> dict[str, Any]:
@@ -181,6 +218,9 @@ class SizedDefaults:
                 "period_stretch": one(self.stretch, "1"), "fastest_joint": self.fastest,
                 "speed_ratio": None if self.speed_ratio is None else one(self.speed_ratio, "1"),
                 "unchecked": self.unchecked, "reach": self.reach,
+                "pendulum_shortening": one(self.pendulum, "1"),
+                "stand": None if self.stand is None else one(self.stand, "1"),
+                "stand_feet": self.feet, "holds": one(HOLDS, "1"), "pendulum_bound": self.bound,
                 "source": "dynamic similarity, Alexander & Jayes, J. Zool. 201, 1983"}
 
 
@@ -240,7 +280,8 @@ def _size(desc: RobotDescription, gait: GaitParams, robot: Robot,
         trial = dataclasses.replace(gait, period=period * stretch, stride_length=stride,
                                     step_height=step, samples=min(gait.samples, CHECK_SAMPLES))
         try:
-            ratio, joint = speed_ratio(robot, make_gait(robot, trial).v)
+            motion = make_gait(robot, trial)
+            ratio, joint = speed_ratio(robot, motion.v)
         except GaitReachError as err:
             fix = err.suggestion
             if not fix or not set(fix) <= {"stride_length", "step_height"} & set(keys):
@@ -258,8 +299,48 @@ def _size(desc: RobotDescription, gait: GaitParams, robot: Robot,
         if ratio <= SPEED_MARGIN:
             break
         stretch, fastest = stretch * ratio / SPEED_MARGIN, joint
-    return dataclasses.replace(sized, period=period * stretch, stride=stride, step_height=step,
-                               stretch=stretch, fastest=fastest, speed_ratio=ratio, reach=reach)
+    sized = dataclasses.replace(sized, period=period * stretch, stride=stride, step_height=step,
+                                stretch=stretch, fastest=fastest, speed_ratio=ratio, reach=reach)
+    return _hold(robot, gait, sized, motion)
+
+
+def _hold(robot: Robot, gait: GaitParams, sized: SizedDefaults, motion: Motion
+          ) -> SizedDefaults:
+    """``sized`` with its period shortened so that its longest stand on two point feet or fewer
+    lasts at most :data:`~hexaleg.motion.stands.HOLDS` time constants of the inverted pendulum
+    (module docstring), as far as the joints' velocity limits let it: ``motion`` is the gait at
+    ``sized``'s period, at the checked samples. A stand on one point foot is left as it is: no
+    period makes it one the balance controller holds (:mod:`hexaleg.motion.stands`)."""
+    stand = longest_stand(robot, motion)
+    if stand is None or stand.feet != 2 or stand.constants <= HOLDS * (1.0 + HOLD_TOL):
+        return dataclasses.replace(sized, stand=None if stand is None else stand.constants,
+                                   feet=0 if stand is None else stand.feet)
+    period, fastest = stand.holding_period, None
+    for _ in range(MAX_STRETCHES):
+        trial = dataclasses.replace(gait, period=period, stride_length=sized.stride,
+                                    step_height=sized.step_height,
+                                    samples=min(gait.samples, CHECK_SAMPLES))
+        try:
+            shorter = make_gait(robot, trial)
+            ratio, joint = speed_ratio(robot, shorter.v)
+        except HexalegError as err:  # the shorter gait cannot be made: keep the longer one
+            return dataclasses.replace(sized, stand=stand.constants, feet=stand.feet,
+                                       bound=f"the gait at {period:.3g} s ({err})")
+        if ratio <= SPEED_MARGIN:
+            held = longest_stand(robot, shorter) or stand  # the same stance pattern
+            if fastest is None and held.constants > HOLDS * (1.0 + HOLD_TOL):
+                period = held.holding_period  # the sway moved the centre of mass: again
+                continue
+            return dataclasses.replace(sized, period=period, speed_ratio=ratio,
+                                       pendulum=period / sized.period, stand=held.constants,
+                                       feet=held.feet, bound=None if fastest is None else
+                                       f"{fastest}'s URDF velocity limit")
+        period, fastest = period * ratio / SPEED_MARGIN * (1.0 + OVERSHOOT), joint
+        if period >= sized.period:
+            break
+    return dataclasses.replace(sized, stand=stand.constants, feet=stand.feet,
+                               bound=f"{fastest}'s URDF velocity limit" if fastest is not None
+                               else f"the sway, which moved the period {MAX_STRETCHES} times")
 
 
 def chosen_defaults(desc: RobotDescription) -> SizedDefaults | None:
@@ -283,8 +364,9 @@ def robot_gait(robot: RobotDescription | str, *, sized: bool = True) -> GaitPara
     and the period, stride and step height it leaves unset sized to the robot by dynamic
     similarity to the default hexapod (this module; Alexander & Jayes,
     J. Zool. 201, 1983: the same Froude number and relative stride, the period lengthened
-    where a joint would exceed its URDF velocity limit). The registered robots but hexaleg
-    set their own; hexaleg is the reference.
+    where a joint would exceed its URDF velocity limit, and shortened where its stands on two
+    point feet would outlast what balance holds, :data:`~hexaleg.motion.stands.HOLDS`). The
+    registered robots but hexaleg set their own; hexaleg is the reference.
 
     Args:
         robot: A robot description, or a name or ``.toml`` path for

@@ -10,19 +10,18 @@ window is the trapezoidal rule the analysis uses (:mod:`hexaleg.dynamics.energy`
 
 from __future__ import annotations
 
-import itertools
+import dataclasses
 from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import pinocchio as pin
 
 from hexaleg.dynamics import energy
+from hexaleg.motion.stands import HOLDS, Stand, longest_stand
 from hexaleg.motion.trajectory import Motion
 from hexaleg.simulation.model import SimModel
 from hexaleg.simulation.stepping import Trajectory, tilt
-from hexaleg.units import G
 
 LOSS_GRACE = 0.02
 """Fraction of a stance at its start and end where a foot not yet / no longer pressing is not
@@ -265,12 +264,6 @@ servos were correcting (:func:`fall_cause`). 0.9: the servos' PD correction and 
 error on top of the plan take the rest."""
 
 
-HOLDS = 2.0
-"""ω₀ T: a stand on two point feet of this many of the pendulum's time constants (an error
-×e² ≈ 7.4 over it) is one the balance controller holds, measured: the registered quadrupeds'
-own trots stand ω₀ T = 1.4–1.6, and the X-configured and pitch–roll–yaw test quadrupeds' trots
-walk at the periods that make it 2.0 (0.86 s and 0.52 s) and at 1.9 and 2.3 (0.8 s and 0.6 s),
-under both servos (``docs/simulate.md``, "Stands on two point feet")."""
 TIPS = 3.0
 """ω₀ T beyond which a fall closed loop is blamed on a stand on two point feet (an error ×e³ ≈
 20 over it): the two test quadrupeds' default trots, which fell, stand 5.4 (X-configured,
@@ -278,47 +271,10 @@ TIPS = 3.0
 
 
 @dataclass(frozen=True)
-class PointFoot:
+class PointFoot(Stand):
     """A gait's longest stand on its fewest point feet (one or two), as a linear inverted
-    pendulum.
-
-    On one point contact the ground's force passes through the foot, so the body's angular
-    momentum about the foot changes by gravity alone, ``L̇ = m g × (c − p)``: the centre of
-    mass c moves off the foot p as ``c̈ = ω₀² (c − p)``, ``ω₀ = √(g / h)`` (the linear inverted
-    pendulum: Kajita, Kanehiro, Kaneko, Yokoi & Hirukawa, "The 3D linear inverted pendulum
-    mode", IROS 2001, eq. 5–6), and an error of the plan grows as ``e^{ω₀ t}``. On two point
-    feet the forces pass through the line between them, so the same holds across that line
-    (the moment about it is gravity's alone: the trot's diagonal, the bound's line across the
-    body). No force at the feet rights it; the field balances such a robot by where it sets
-    the next foot down (the capture point ``c + ċ/ω₀``: Pratt, Carff, Drakunov & Goswami,
-    "Capture point: a step toward humanoid push recovery", Humanoids 2006; Raibert, *Legged
-    robots that balance*, 1986) within a stand short against ``1/ω₀``, or by an ankle torque on
-    a sole.
-
-    Attributes:
-        duration: The longest time on those feet, s.
-        height: The centre of mass's height over the stance feet at the gait's start, m.
-        omega: ω₀ = √(g / h), 1/s.
-        feet: 1 or 2.
-        period: The gait's period, s.
-    """
-
-    duration: float
-    height: float
-    omega: float
-    feet: int = 1
-    period: float = 0.0
-
-    @property
-    def growth(self) -> float:
-        """``e^{ω₀ T}``: how much an error grows over the stand."""
-        return float(np.exp(self.omega * self.duration))
-
-    @property
-    def holding_period(self) -> float:
-        """The period, s, at which the stand lasts :data:`HOLDS` time constants (the stand
-        scales with the period at a fixed duty factor)."""
-        return self.period * HOLDS / (self.omega * self.duration)
+    pendulum (:mod:`hexaleg.motion.stands`: Kajita et al., IROS 2001), with what the balance
+    controller makes of it."""
 
     @property
     def too_long(self) -> bool:
@@ -340,27 +296,26 @@ class PointFoot:
 
 def point_foot(sim: SimModel, motion: Motion) -> PointFoot | None:
     """The longest stand of ``motion`` on its fewest feet (cyclic), one or two, or None where
-    it always stands on three or more (:class:`PointFoot`); with two, a stand is a run of
-    samples on the same two feet."""
-    stance = np.asarray(motion.stance, dtype=bool)
-    counts = stance.sum(axis=1)
-    fewest = int(counts.min())
-    if fewest not in (1, 2):
-        return None
-    weights = 1 << np.arange(stance.shape[1])
-    feet = np.where(counts == fewest, stance @ weights, -1)  # the feet's set as bits, or −1
-    if (feet == feet[0]).all():
-        longest = len(feet)
-    else:
-        start = int(np.flatnonzero(feet != feet[-1])[0])  # a run's first sample: none wraps
-        rolled = np.roll(feet, -start)
-        edges = np.flatnonzero(np.diff(np.r_[-2, rolled, -2]))  # where the feet change
-        longest = max(int(b - a) for a, b in itertools.pairwise(edges) if rolled[a] >= 0)
-    model = sim.robot.model
-    com = pin.centerOfMass(model, model.createData(), motion.q[0])
-    height = float(com[2] - np.mean(np.asarray(motion.feet)[0, stance[0], 2]))
-    return PointFoot(longest * motion.dt, height, float(np.sqrt(G / max(height, 1e-6))),
-                     fewest, motion.period)
+    it always stands on three or more (:func:`hexaleg.motion.stands.longest_stand`)."""
+    stand = longest_stand(sim.robot, motion)
+    return None if stand is None else PointFoot(**dataclasses.asdict(stand))
+
+
+def _pace(stand: PointFoot | None) -> str:
+    """The advice on the gait's pace after a fall the balance controller did not hold: a
+    slower gait on three or more feet; on two point feet a slower gait lengthens the stands,
+    an inverted pendulum's (:class:`~hexaleg.motion.stands.Stand`), so a shorter period where
+    they are beyond :data:`HOLDS`, else a gait on more feet."""
+    if stand is None:
+        return "or try a slower gait"
+    if stand.constants > HOLDS:
+        return (f"or try a period of {stand.holding_period:.2g} s or less (its stands on two "
+                f"point feet last {stand.constants:.2g} time constants of the inverted "
+                f"pendulum, ω₀ = √(g/h); the controller holds {HOLDS:g}); a slower gait "
+                "lengthens them")
+    return (f"or a gait on three or more feet ([gait] duty_factor ≥ 0.75); a slower gait "
+            f"lengthens its stands on two point feet ({stand.constants:.2g} time constants of "
+            f"the inverted pendulum, ω₀ = √(g/h), where the controller holds {HOLDS:g})")
 
 
 def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory, feedback: bool = False,
@@ -433,8 +388,7 @@ def _unbalanced(sim: SimModel, motion: Motion, feedback: bool) -> str:
     if feedback:
         return ("the balance controller (hexaleg.simulation.balance) did not hold the body on "
                 f"this gait ({feet} stance feet at the fewest); check the ground ([simulate] "
-                "stiffness, damping, mu) and the servo gains (kp_scale, kd_scale), or try a "
-                "slower gait")
+                f"stiffness, damping, mu) and the servo gains (kp_scale, kd_scale), {_pace(one)}")
     if feet <= 2:
         return (f"the gait stands on {'one foot' if feet == 1 else f'{feet} feet'} at times "
                 "and is balanced by its plan alone; the simulated servos follow the joints "

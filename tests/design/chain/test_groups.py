@@ -65,5 +65,5 @@ def test_an_x_configured_quadruped_designs_within_a_point_of_per_joint():
         found[grouping] = r.recommended.row["saving.electrical"]
         assert any(n.startswith("joint class knee split by its motion: LF/RF at -1")
                    for n in r.notes)
-    assert found["class"] > 0.25
+    assert found["class"] > 0.2  # its default trot, 0.86 s since the stands are held (#54)
     assert found["joint"] - 0.01 <= found["class"] <= found["joint"] + 1e-9
