@@ -44,7 +44,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -343,11 +343,26 @@ def _hold(robot: Robot, gait: GaitParams, sized: SizedDefaults, motion: Motion
                                else f"the sway, which moved the period {MAX_STRETCHES} times")
 
 
-def chosen_defaults(desc: RobotDescription) -> SizedDefaults | None:
-    """What :func:`robot_gait` sized for this description (None: nothing)."""
+STANCE_KEYS = ("pattern", "phases", "groups", "duty_factor")
+"""The keys that set which feet stand when: the sizing checks the joints' speeds and the stands
+on the run's own stance pattern (a crawl's swings are faster than a trot's at one period, its
+stands on more feet), so a run that sets them is sized on them."""
+
+
+def _with_stance(gait: GaitParams, run: GaitParams | None) -> GaitParams:
+    """``gait`` with ``run``'s stance keys (:data:`STANCE_KEYS`), or as it is for None."""
+    if run is None:
+        return gait
+    return dataclasses.replace(gait, **{k: getattr(run, k) for k in STANCE_KEYS})
+
+
+def chosen_defaults(desc: RobotDescription, gait: GaitParams | None = None
+                    ) -> SizedDefaults | None:
+    """What :func:`robot_gait` sized for this description (None: nothing), for a run whose
+    gait is ``gait`` (its stance keys, :data:`STANCE_KEYS`; None: the description's own)."""
     if not needs_sizing(desc):
         return None
-    return sized_defaults(desc, robot_gait(desc, sized=False))
+    return sized_defaults(desc, _with_stance(robot_gait(desc, sized=False), gait))
 
 
 def apply(gait: GaitParams, sized: SizedDefaults | None) -> GaitParams:
@@ -359,7 +374,8 @@ def apply(gait: GaitParams, sized: SizedDefaults | None) -> GaitParams:
     return dataclasses.replace(gait, **{k: values[k] for k in sized.keys})
 
 
-def robot_gait(robot: RobotDescription | str, *, sized: bool = True) -> GaitParams:
+def robot_gait(robot: RobotDescription | str, *, sized: bool = True,
+               table: Mapping[str, Any] | None = None, where: str = "gait") -> GaitParams:
     """The default gait of a robot: ``GaitParams()`` with its description's overrides on top,
     and the period, stride and step height it leaves unset sized to the robot by dynamic
     similarity to the default hexapod (this module; Alexander & Jayes,
@@ -373,6 +389,10 @@ def robot_gait(robot: RobotDescription | str, *, sized: bool = True) -> GaitPara
             :func:`hexaleg.robot.registry.description`.
         sized: False leaves the unset keys at ``GaitParams()``'s (the gait the sizing
             starts from).
+        table: The run's ``[gait]`` table, which the caller puts on top of the result: its
+            stance keys (:data:`STANCE_KEYS`) are the ones the sizing checks (None: the
+            description's own).
+        where: Where ``table`` came from, for its errors.
 
     Returns:
         The parameters (e.g. Solo-12's trot: period 0.5 s, β = 0.6, groups ``TROT``).
@@ -399,4 +419,7 @@ def robot_gait(robot: RobotDescription | str, *, sized: bool = True) -> GaitPara
             gait = dataclasses.replace(gait, groups=groups)
     if not timed:
         desc.check_groups(gait.groups)
-    return apply(gait, sized_defaults(desc, gait)) if sized and needs_sizing(desc) else gait
+    if not (sized and needs_sizing(desc)):
+        return gait
+    run = gait.updated(table, where) if table else None
+    return apply(gait, sized_defaults(desc, _with_stance(gait, run)))

@@ -248,7 +248,8 @@ class ReportConfig:
         data = data or {}
         config = cls.from_mapping(data, where)
         given = {t: data.get(t, {}) for t in ("gait", "springs", "report", "contact")}
-        gait = robot_gait(desc).updated(given["gait"], f"{where} [gait]")
+        gait = robot_gait(desc, table=given["gait"], where=f"{where} [gait]").updated(
+            given["gait"], f"{where} [gait]")
         springs = config.springs
         if isinstance(springs, SpringDesign) and "joints" not in given["springs"]:
             springs = dataclasses.replace(springs, joints=desc.spring_class_of(robot))

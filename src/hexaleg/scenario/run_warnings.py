@@ -62,7 +62,7 @@ def gait_defaults(desc: RobotDescription | None, gait: GaitParams | None
     """What the run's sized gait defaults chose, for a command's JSON (``"gait_defaults"``:
     :meth:`hexaleg.motion.scaling.SizedDefaults.as_dict` with ``"kept"``, the sized keys no
     config file replaced), or None when nothing was sized or there is no generated gait."""
-    sized = chosen_defaults(desc) if desc is not None and gait is not None else None
+    sized = chosen_defaults(desc, gait) if desc is not None and gait is not None else None
     if sized is None or gait is None:
         return None
     return {**sized.as_dict(), "kept": list(sized.kept(gait))}
@@ -85,7 +85,7 @@ def run_warnings(robot: Robot, motion: Motion, motor: Actuator | None, *,
         One line per warning, empty when there is none.
     """
     out: list[str] = []
-    sized = chosen_defaults(desc) if desc is not None and gait is not None else None
+    sized = chosen_defaults(desc, gait) if desc is not None and gait is not None else None
     if sized is not None and gait is not None:
         kept = sized.kept(gait)
         note = sized.note(overridden=[k for k in sized.keys if k not in kept])

@@ -160,7 +160,9 @@ class Scenario:
         desc = description(robot)
         if log is not None:
             refuse_gait_table(tables, where, log)
-        gait = robot_gait(desc).updated(tables.get("gait", {}), f"{where} [gait]")
+        table = tables.get("gait", {})
+        gait = robot_gait(desc, table=table, where=f"{where} [gait]").updated(
+            table, f"{where} [gait]")
         contact = from_mapping(ContactParams, tables.get("contact", {}), f"{where} [contact]")
         motor = tables.get("motor")
         given = motor_from_mapping(motor, f"{where} [motor]") if motor is not None else None

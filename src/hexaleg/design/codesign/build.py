@@ -100,7 +100,8 @@ def default_gait(robot: Robot, name: str, speed: float, pattern: str | None, sam
                  ) -> GaitParams:
     """The robot's default gait at ``speed`` with its body height and foot radius resolved
     (the stand pose's foot depth and mean horizontal foothold distance)."""
-    base = robot_gait(name)
+    base = robot_gait(name, table=None if pattern is None else {"pattern": pattern},
+                      where="[codesign] pattern")
     if pattern is not None:
         pattern_offsets(pattern, robot.leg_names)  # a pattern for other legs named as such
         base = dataclasses.replace(base, pattern=check_pattern(pattern),
