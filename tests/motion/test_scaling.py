@@ -20,6 +20,7 @@ from hexaleg.motion.scaling import (
     REFERENCE_FROUDE,
     REFERENCE_HIP_HEIGHT,
     REFERENCE_RELATIVE_STRIDE,
+    chosen_defaults,
     hip_height,
     robot_gait,
     sized_defaults,
@@ -151,7 +152,6 @@ def test_a_missing_urdf_is_a_named_error_not_a_traceback(tmp_path):
         robot_gait(str(toml))
 
 
-<<<<<<< HEAD
 @pytest.mark.slow
 def test_centauros_defaults_are_shortened_to_a_swing_within_its_joint_limits():
     """Centauro (issue #55): at the similar step height (0.25 m) its front hips' pitch leaves
@@ -167,7 +167,8 @@ def test_centauros_defaults_are_shortened_to_a_swing_within_its_joint_limits():
         q = motion.q[:, leg.q_index]
         assert (q >= robot.model.lowerPositionLimit[leg.q_index]).all()
         assert (q <= robot.model.upperPositionLimit[leg.q_index]).all()
-=======
+
+
 def xquad_with(where: Path, velocity: float | None = None) -> str:
     """The X-configured test quadruped (tests/data/xquad), optionally its joints' velocity
     limits replaced; returns the TOML path."""
@@ -233,4 +234,20 @@ def test_where_the_speed_limits_forbid_the_pendulums_period_they_win_and_say_so(
     assert sized.stand == pytest.approx(stand_constants(robot, gait), rel=1e-6)
     assert sized.stand > HOLDS
     assert f"{sized.bound} won" in (sized.note() or "")
->>>>>>> defgait
+
+
+def test_a_runs_own_stance_pattern_is_what_the_sizing_checks():
+    """A crawl on the X quadruped (``[gait] pattern = "crawl"``): its stands are on three feet,
+    so no pendulum bound shortens its period (the trot's 0.86 s ran its swings at 14-20 rad/s
+    over the joints' 10 and its crawl out of friction): the sizing checks the run's pattern,
+    and the run's warnings describe that sizing."""
+    table = {"pattern": "crawl"}
+    trot = robot_gait(str(XQUAD))
+    crawl = robot_gait(str(XQUAD), table=table).updated(table)
+    assert trot.period == pytest.approx(0.86, abs=0.01)
+    assert crawl.period == pytest.approx(2.34, abs=0.01)
+    robot = hexaleg.load(str(XQUAD))
+    ratio, _ = speed_ratio(robot, hexaleg.gait(robot, crawl).v)
+    assert ratio <= 1.0
+    sized = chosen_defaults(description(str(XQUAD)), crawl)
+    assert sized is not None and sized.period == crawl.period and sized.pendulum == 1.0
