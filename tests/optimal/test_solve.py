@@ -71,3 +71,19 @@ def test_the_optimal_cycle_is_a_motion_the_dynamics_takes(run, optimal):
     prepared = hexaleg.prepare(run.model, result.motion, motor=run.actuator, contact=run.contact)
     electrical = prepared.evaluate(hexaleg.SpringSet()).metrics["total"]["electrical"]
     assert 0.5 * result.energy < electrical < 1.5 * result.energy
+
+
+@pytest.mark.slow
+def test_a_gait_parameter_moved_by_1e_9_gives_the_same_cycle(run, optimal):
+    """Same answer on any machine (RULES.md): the period moved by 1e-9 s — through the gait's own
+    sampling, knots and contact timing — gives the same optimum to the digits the table prints
+    (J/m to 4 significant digits; the solver is deterministic, no random start)."""
+    import dataclasses
+
+    moved = hexaleg.gait(run.model, dataclasses.replace(run.gait, period=run.gait.period + 1e-9))
+    built = build_problem(run.model, moved, run.actuator, hexaleg.SpringSet(),
+                          OptimalParams(nodes=20, iterations=200, stop=5e-5))
+    again = solve(run.model, built)
+    result, _ = optimal
+    assert f"{again.energy_per_metre:.4g}" == f"{result.energy_per_metre:.4g}"
+    assert again.iterations == result.iterations

@@ -4,7 +4,14 @@ Crocoddyl and Pinocchio are compiled separately and share C++ structures: a Croc
 against one Pinocchio release reads another's ``Model`` by the layout it was compiled with.
 crocoddyl 3.2.1 (PyPI) on pin 4.1.0 imports cleanly and then reads every frame's placement as
 garbage — a foot contact at the wrong point of the leg, or a ``MemoryError`` — while on pin 4.0.0
-it reads them right (measured; ``pyproject.toml``'s ``optimal`` extra pins pin 4.0.x). So before
+it reads them right (measured; ``pyproject.toml``'s ``optimal`` extra pins pin 4.0.x). The cause is
+in the headers: pin 4.1's ``ModelTpl`` (``pinocchio/src/multibody/model.hxx``) declares four new
+members — ``lowerAccelerationLimit``, ``upperAccelerationLimit``, ``lowerJerkLimit``,
+``upperJerkLimit`` — between ``positionLimitMargin`` and ``frames``, so code compiled against 4.0's
+layout reads ``frames`` (and every member after it: ``supports``, ``gravity``, ``name``) 64 bytes
+off, while the members before (joints, inertias, limits) still read right. No Python-side
+workaround reaches inside Crocoddyl's compiled residuals; only a crocoddyl built against pin 4.1
+would. So before
 any problem is built, :func:`crocoddyl_module` builds a contact on every frame of a Pinocchio
 sample model and compares the placement Crocoddyl read (``ContactData3D.jMf``) with Pinocchio's.
 """
@@ -23,6 +30,11 @@ from hexaleg.errors import HexalegError
 class BackendError(HexalegError):
     """Crocoddyl is missing, or reads Pinocchio's models wrongly (a binary mismatch)."""
 
+
+PAIR = ("crocoddyl 3.2.1 with pin 4.0: the only crocoddyl wheel is compiled against pin 4.0's "
+        "Model, and pin 4.1 added four joint-limit vectors before the Model's frames, so on "
+        "pin 4.1 it reads every frame, and the gravity, at the wrong place")
+"""The pair the ``optimal`` extra pins, and why (module docstring)."""
 
 PROBES = 8
 """Frames added to the sample model at distinct placements (its own frames sit at the identity,
@@ -66,7 +78,7 @@ def crocoddyl_module() -> ModuleType:
         import crocoddyl
     except ImportError as err:
         raise BackendError("the optimal motion needs Crocoddyl: pip install "
-                           "\"hexaleg[optimal]\" (crocoddyl 3.2.1 with pin 4.0)") from err
+                           f"\"hexaleg[optimal]\" ({PAIR})") from err
     import pinocchio
 
     bad = misread_frames(crocoddyl, pinocchio)
@@ -74,5 +86,5 @@ def crocoddyl_module() -> ModuleType:
         raise BackendError(f"crocoddyl {crocoddyl.__version__} misreads {bad} frame placements "
                            f"of a pin {pinocchio.__version__} model (a binary mismatch): install "
                            "the pair the optimal extra pins, pip install \"hexaleg[optimal]\" "
-                           "(crocoddyl 3.2.1 with pin 4.0)")
+                           f"({PAIR})")
     return crocoddyl

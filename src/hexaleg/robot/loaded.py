@@ -101,6 +101,20 @@ class Robot:
         # Actuated joints: every joint after the universe (0) and the free flyer (1).
         self.joint_names = tuple(self.model.names[2:])
 
+    def __getstate__(self) -> dict[str, object]:
+        """The robot pickled without ``data``, which is scratch space rebuilt from the model on
+        unpickling: pin 4.0.0's ``Data`` does not survive a pickle round trip (``RuntimeError:
+        input stream error``; pin 4.1's does), and the ``optimal`` extra pins pin 4.0 — where a
+        co-design's forked spring rules send their result, robot included, back pickled."""
+        state = dict(self.__dict__)
+        del state["data"]
+        return state
+
+    def __setstate__(self, state: dict[str, object]) -> None:
+        """Restore a pickled robot (:meth:`__getstate__`), with fresh ``data`` for its model."""
+        self.__dict__.update(state)
+        self.data = self.model.createData()
+
     @property
     def nj(self) -> int:
         """Number of actuated joints (nv − 6)."""

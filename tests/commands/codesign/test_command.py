@@ -34,6 +34,8 @@ def test_registered_with_its_options():
     args = build_parser().parse_args(["codesign", "--speed", "0.05", "--pattern", "wave"])
     assert args.speed == 0.05 and args.pattern == "wave" and args.rules is None  # the default
     assert build_parser().parse_args(["codesign", "--no-rules"]).rules is False
+    assert build_parser().parse_args(["codesign"]).motion is None  # [codesign] motion, or gait
+    assert build_parser().parse_args(["codesign", "--motion", "optimal"]).motion == "optimal"
 
 
 def test_config_table_is_checked(tmp_path):

@@ -71,3 +71,21 @@ def test_pattern_and_bad_input():
     with pytest.raises(InvalidParameterError, match="speed"):
         codesign(speed=5.0, curve=False, simulate=False,
                  constraints=dataclasses.replace(Constraints(), mu=0.6))
+
+
+def test_the_optimal_motion_without_its_extra_names_the_extra(monkeypatch):
+    """Before any search: the missing Crocoddyl is said at once, with the extra to install and
+    why it pins pin 4.0 (the only crocoddyl wheel reads pin 4.1's models wrongly)."""
+    import sys
+
+    from hexaleg.optimal import backend
+
+    monkeypatch.setitem(sys.modules, "crocoddyl", None)  # import crocoddyl → ImportError
+    backend.crocoddyl_module.cache_clear()
+    try:
+        with pytest.raises(backend.BackendError, match=r"hexaleg\[optimal\].*pin 4\.0.*4\.1"):
+            codesign(motion="optimal", max_evaluations=1, restarts=1)
+    finally:
+        backend.crocoddyl_module.cache_clear()
+    with pytest.raises(UnknownNameError, match="optimal"):
+        codesign(motion="optimised")

@@ -3,11 +3,13 @@
 
 ``--config F`` reads a ``[codesign]`` table: ``speed``, ``pattern``, ``family``, ``samples``,
 ``final_samples``, ``max_evaluations``, ``restarts``, ``grouping``, ``rules``, ``curve``,
-``simulate``, ``controller``, a ``[codesign.constraints]`` table of
+``simulate``, ``controller``, ``motion``, a ``[codesign.constraints]`` table of
 :class:`~hexaleg.design.codesign.gait_evaluation.Constraints` and a ``[codesign.design]`` table of
 the full spring rules' ``[design]`` keys (:func:`~hexaleg.design.codesign.build.rule_params`); the
-command line's ``--speed``, ``--pattern``, ``--controller`` and ``--no-rules`` win over the
-file.
+command line's ``--speed``, ``--pattern``, ``--controller``, ``--motion`` and ``--no-rules``
+win over the file. ``--motion optimal`` adds the optimal motion's rows
+(:mod:`hexaleg.design.codesign.optimal_rows`) and writes each optimal motion as a motion log
+(``optimal_no_springs.csv``, ``optimal_springs.csv``) that every command's ``--motion`` reads.
 """
 
 from __future__ import annotations
@@ -31,6 +33,10 @@ def add(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--controller", choices=SERVOS,
                    help="the servo the robot runs: the search's finalists and the springs to buy "
                         "are simulated under it; both: each, judged by the worse (default both)")
+    p.add_argument("--motion", choices=("gait", "optimal"),
+                   help="gait (default): the parametric gait; optimal: also the motion itself "
+                        "optimised from the chosen gait without and with its springs, each row "
+                        "simulated (needs pip install \"hexaleg[optimal]\"; minutes more)")
     p.add_argument("--no-rules", dest="rules", action="store_false", default=None,
                    help="leave out hexaleg design's full spring rules (tolerance, envelope, "
                         "fatigue, arbor, parsimony) on the chosen gait, about a minute: the "
@@ -63,7 +69,7 @@ def run(args: argparse.Namespace) -> int:
                               f"— {instead}")
     kwargs = codesign_settings(scenario.table("codesign"), f"{scenario.where} [codesign]",
                                scenario)
-    for key in ("speed", "pattern", "controller"):
+    for key in ("speed", "pattern", "controller", "motion"):
         if getattr(args, key) is not None:
             kwargs[key] = getattr(args, key)
     if args.rules is not None:

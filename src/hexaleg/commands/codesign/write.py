@@ -7,7 +7,10 @@ mount embedded, the drawings also as ``spring_*.svg``) and writes the JSON
 (:meth:`hexaleg.design.codesign.result.CodesignResult.to_dict`), which ``hexaleg.load_design``
 and ``hexaleg simulate --springs`` read. When the full spring rules ran, their own
 ``design.json`` (:func:`hexaleg.design.chain.result.design_data` of the design on the chosen
-gait) is written beside it, for ``hexaleg report --design``.
+gait) is written beside it, for ``hexaleg report --design``. With the optimal motion's rows
+(``motion="optimal"``), each optimal motion is written as a motion log
+(:func:`hexaleg.optimal.motion_file.write_optimal_motion`: ``optimal_no_springs.csv``,
+``optimal_springs.csv``) that every command's ``--motion`` reads.
 """
 
 from __future__ import annotations
@@ -60,6 +63,11 @@ def _write(result: CodesignResult, folder: OutputFolder) -> tuple[dict[str, Any]
         folder.write(f"{name}.svg", svg)
     if result.rules is not None and not isinstance(result.rules, str):
         folder.write("design.json", result.rules.to_json() + "\n")
+    if result.optimal is not None:
+        from hexaleg.optimal.motion_file import write_optimal_motion  # the optimal extra
+
+        for stem, motion in result.optimal.motions.items():
+            write_optimal_motion(result.optimal.robot, motion, folder.path(f"{stem}.csv"))
     return data, folder.publish()
 
 

@@ -72,6 +72,8 @@ from hexaleg.robot.springs import SpringSet
 from hexaleg.scenario.scenario import Scenario
 from hexaleg.simulation.controllers import BOTH, SERVOS
 
+MOTIONS = ("gait", "optimal")
+"""What ``motion`` may be: the parametric gait alone, or also the optimal motion's rows."""
 SPEED_FACTORS = (0.5, 0.75, 1.0, 1.25, 1.5)
 """The speed curve's speeds, as factors of the required speed."""
 RULE_FAMILIES = ("preloaded", "one_sided", "linear")
@@ -117,8 +119,8 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
              samples: int = 100, final_samples: int = 200, max_evaluations: int = 200,
              restarts: int = RESTARTS, grouping: str = "class", curve: bool = True,
              simulate: bool = True, rules: bool = True, design: DesignParams | None = None,
-             controller: str = BOTH, progress: Callable[[str], None] | None = None
-             ) -> CodesignResult:
+             controller: str = BOTH, motion: str = "gait",
+             progress: Callable[[str], None] | None = None) -> CodesignResult:
     """The gait and springs that cover a metre at ``speed`` for the least electrical energy
     (module docstring).
 
@@ -149,14 +151,23 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
         controller: The servo the robot runs (:data:`~hexaleg.simulation.controllers.SERVOS`):
             the finalists and the full rules' designs are simulated under it (``"both"``,
             the default: under each controller, judged by the worse).
+        motion: ``"gait"`` (default): the parametric gait only; ``"optimal"``: also the motion
+            itself optimised from the chosen gait, without and with its springs, each row
+            simulated (:mod:`hexaleg.design.codesign.optimal_rows`; needs the ``optimal``
+            extra, checked before any work).
         progress: Called with one status line per stage.
 
     Raises:
         InvalidParameterError: a speed not > 0, sample counts out of range; the default gait
             itself cannot be made at this speed (named, with its error).
-        UnknownNameError: an unknown robot, pattern, family or controller.
+        UnknownNameError: an unknown robot, pattern, family, controller or motion.
+        BackendError: ``motion="optimal"`` without a usable Crocoddyl (names the extra).
     """
     servo = one_of("[codesign] controller", controller, SERVOS)
+    if one_of("[codesign] motion", motion, MOTIONS) == "optimal":
+        from hexaleg.optimal.backend import crocoddyl_module
+
+        crocoddyl_module()  # before the search: a missing extra is said at once
     design = dataclasses.replace(design if design is not None else rule_params(),
                                  controller=servo)
     v = real("speed", speed, low=0.0, low_open=True, allowed="a speed > 0 (m/s)")
@@ -233,6 +244,14 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             bought = buy.recommended.optimum.springs
         simulation = simulated(model, chosen, bought, c, motor) if simulate else {}
         floors = over_floors(model, chosen, motor, bought, c.torque_limits)
+        optimal = None
+        if motion == "optimal":
+            from hexaleg.design.codesign.optimal_rows import optimal_rows
+
+            optimal = optimal_rows(model, motor, c.contact(), dataclasses.replace(
+                base, samples=n_final), chosen, c_sprung.springs,
+                (rows[0].per_metre, rows[3].per_metre), family=family, servo=servo,
+                say=lambda line: say(f"optimal motion: {line}"))
         return CodesignResult(
             robot=run.robot, title=model.name, mass=model.mass, speed=v, pattern=base.pattern,
             family=family, constraints=c, default=dataclasses.replace(base, samples=n_final),
@@ -240,7 +259,8 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             inner_saving=1.0 - c_sprung.sprung / c_sprung.baseline, rows=rows,
             sequential=sequential, search=joint, gait_search=alone, curve=points,
             simulation=simulation, rules=buy, samples=n, wall=time.perf_counter() - t0,
-            generic=uses_generic(motor), servo=servo, finalists=finalists, floors=floors)
+            generic=uses_generic(motor), servo=servo, finalists=finalists, floors=floors,
+            optimal=optimal)
     finally:
         if ruled is not None:
             ruled.close()
@@ -370,7 +390,7 @@ def full_rules(run: Scenario | str, chosen: GaitParams, c: Constraints,
 
 CODESIGN_KEYS = ("speed", "pattern", "family", "samples", "final_samples", "max_evaluations",
                  "restarts", "grouping", "rules", "curve", "simulate", "controller",
-                 "constraints", "design")
+                 "motion", "constraints", "design")
 """The keys of a ``[codesign]`` table: :func:`codesign`'s keywords."""
 
 
@@ -438,6 +458,6 @@ def codesign_settings(table: Any, where: str = "[codesign]",
     return out
 
 
-__all__ = ["CODESIGN_KEYS", "FLOOR_KEYS", "RULE_FAMILIES", "SPEED_FACTORS", "Background",
+__all__ = ["CODESIGN_KEYS", "FLOOR_KEYS", "MOTIONS", "RULE_FAMILIES", "SPEED_FACTORS", "Background",
            "codesign", "codesign_settings", "default_gait", "floor_constraints", "full_rules",
            "rule_params", "simulated", "speed_curve", "started"]

@@ -23,6 +23,7 @@ from hexaleg.design.chain.ranking import under
 from hexaleg.design.codesign.floors import Floor, worst
 from hexaleg.design.codesign.gait_evaluation import PARAMETERS, UNITS, Constraints, GaitPoint
 from hexaleg.design.codesign.gait_search import SearchResult
+from hexaleg.design.codesign.optimal_rows import OptimalRows
 from hexaleg.design.codesign.rules import RULES, rule_data, rule_lines
 from hexaleg.design.codesign.servo import Screened, choose
 from hexaleg.design.springs.law_json import spring_entry
@@ -97,6 +98,8 @@ class CodesignResult:
             order (:mod:`hexaleg.design.codesign.servo`); empty when not simulated.
         floors: The springs to buy's predicted saving on the chosen gait at each μ of
             :data:`~hexaleg.design.codesign.floors.FLOORS`.
+        optimal: The optimal motion's rows (:class:`~hexaleg.design.codesign.optimal_rows.
+            OptimalRows`), or None when not asked (``motion="gait"``).
     """
 
     robot: str
@@ -124,6 +127,7 @@ class CodesignResult:
     servo: str = BOTH
     finalists: tuple[Screened, ...] = ()
     floors: tuple[Floor, ...] = ()
+    optimal: OptimalRows | None = None
 
     @property
     def chosen_finalist(self) -> int | None:
@@ -186,6 +190,8 @@ class CodesignResult:
             lines.append("  springs: the inner program's optimum (the full spring rules were "
                          "not applied)")
         lines += self.floor_lines()
+        if self.optimal is not None:
+            lines += self.optimal.lines()
         if not self.plausibility.plausible:
             lines.append(f"WARNING default gait's energy {self.plausibility.message}")
         return "\n".join(lines)
@@ -266,6 +272,7 @@ class CodesignResult:
                 {"applied_to": "the chosen gait only", "error": self.rules, "pays": False}
                 if isinstance(self.rules, str) else rule_data(self.rules, self.chosen.stride)),
             "plausibility": self.plausibility.as_dict(),
+            "optimal": None if self.optimal is None else self.optimal.data(),
             "wall": q(self.wall, "s"),
         })
 

@@ -28,11 +28,14 @@ import numpy as np
 
 from hexaleg.design.chain.design_file import gait_parameters
 from hexaleg.design.codesign.gait_evaluation import Constraints, GaitPoint
+from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import HexalegError
 from hexaleg.motion.legged import gait
 from hexaleg.motion.params import GaitParams
+from hexaleg.motion.trajectory import Motion
 from hexaleg.quantities import quantity
 from hexaleg.robot.model import Robot
+from hexaleg.robot.springs import SpringSet
 from hexaleg.simulation.controllers import controllers_of
 
 TIE = 0.002
@@ -88,8 +91,6 @@ def screen(robot: Robot, points: Sequence[GaitPoint], servo: str, c: Constraints
     Raises:
         UnknownNameError: an unknown servo (lists them).
     """
-    from hexaleg.simulation.run import Settings, simulate
-
     controllers = controllers_of(servo)
     out = []
     for p in points:
@@ -99,24 +100,35 @@ def screen(robot: Robot, points: Sequence[GaitPoint], servo: str, c: Constraints
             continue
         per_metre: dict[str, float | None] = {}
         verdicts: dict[str, str] = {}
+        played = gait(robot, point.params)
         for k in controllers:
-            try:
-                sim = simulate(robot, gait(robot, point.params), motor, point.springs,
-                               Settings(force_samples=0, controller=k), contact=c.contact())
-            except HexalegError as err:
-                per_metre[k], verdicts[k] = None, f"{type(err).__name__}: {err}"
-                continue
-            run = sim.with_springs
-            if not run.walks or run.walk is None:
-                per_metre[k], verdicts[k] = None, f"{run.verdict}: {run.message}"
-                continue
-            per_metre[k] = float(run.metrics["electrical"] / run.walk.distance_per_cycle)
-            verdicts[k] = "walks"
+            per_metre[k], verdicts[k] = simulated_per_metre(robot, played, motor, point.springs,
+                                                            k, c.contact())
         out.append(Screened(point, per_metre, verdicts))
         if progress is not None:
             progress(f"finalist {len(out)} of {len(points)} simulated under "
                      f"{' and '.join(controllers)}")
     return tuple(out)
+
+
+def simulated_per_metre(robot: Robot, motion: Motion, motor: Any, springs: SpringSet,
+                        controller: str, contact: ContactParams) -> tuple[float | None, str]:
+    """``motion`` simulated with ``springs`` under ``controller``
+    (:func:`hexaleg.simulation.run.simulate`, default settings: balance feedback where the gait
+    needs it): its electrical energy per metre walked, J/m, and ``"walks"``; or None and what
+    happened (the verdict and its message, or the error)."""
+    from hexaleg.simulation.run import Settings, simulate
+
+    try:
+        sim = simulate(robot, motion, motor, springs, Settings(force_samples=0,
+                                                               controller=controller),
+                       contact=contact)
+    except HexalegError as err:
+        return None, f"{type(err).__name__}: {err}"
+    run = sim.with_springs
+    if not run.walks or run.walk is None:
+        return None, f"{run.verdict}: {run.message}"
+    return float(run.metrics["electrical"] / run.walk.distance_per_cycle), "walks"
 
 
 def choose(screened: Sequence[Screened]) -> Screened | None:
@@ -131,4 +143,4 @@ def choose(screened: Sequence[Screened]) -> Screened | None:
     return next(s for s in walked if s.worst <= least * (1.0 + TIE))
 
 
-__all__ = ["TIE", "Screened", "choose", "screen"]
+__all__ = ["TIE", "Screened", "choose", "screen", "simulated_per_metre"]

@@ -1,0 +1,224 @@
+"""The optimal motion's rows of ``hexaleg codesign --motion optimal`` (issue #56).
+
+After the parametric co-design has chosen its gait and springs, the motion itself is optimised
+from that gait (:mod:`hexaleg.optimal`: the whole robot's cycle by box-FDDP, the gait's contact
+timing fixed) without springs, and with springs by the alternation
+(:mod:`hexaleg.design.codesign.alternation`, warm-started from the co-design's springs). The four
+rows, each in electrical J/m:
+
+1. the default gait without springs,
+2. the parametric co-design (its chosen gait with its inner-program springs),
+3. the optimal motion without springs,
+4. the optimal motion with its springs (the alternation's) — the springs to buy of this table.
+
+*Predicted* is the analysis' energy per metre: for the gaits the force program's (the co-design's
+rows), for an optimal motion the exact energy model at the solver's own motor torques
+(:attr:`~hexaleg.optimal.solve.OptimalResult.energy_per_metre`). *Simulated* is MuJoCo's
+(:func:`hexaleg.simulation.run.simulate`, default settings, balance feedback where the gait needs
+it, ``[simulate] feedback = "auto"``) electrical energy per metre walked under each controller of
+the servo, the feedforward of each motion from the force program on it (the same for every
+row). A row that does not walk under a controller has no simulated number there and says why;
+the springs of row 4 are proven only when it walks under every controller.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from hexaleg.design.codesign.alternation import SMOOTH_FAMILIES, Alternation, alternate
+from hexaleg.design.codesign.servo import simulated_per_metre
+from hexaleg.design.springs.law_json import spring_entry
+from hexaleg.dynamics.contact import ContactParams
+from hexaleg.motion.legged import gait
+from hexaleg.motion.params import GaitParams
+from hexaleg.motion.trajectory import Motion
+from hexaleg.quantities import quantity as q
+from hexaleg.robot.model import Robot
+from hexaleg.robot.springs import SpringSet
+from hexaleg.simulation.controllers import controllers_of
+
+LABELS = ("default gait, no springs", "parametric co-design (its gait and springs)",
+          "optimal motion, no springs", "optimal motion, its springs")
+"""The rows' labels, in order (module docstring)."""
+
+
+@dataclass(frozen=True)
+class MotionRow:
+    """One row: a motion with or without springs, predicted and simulated.
+
+    Attributes:
+        label: What the row is (:data:`LABELS`).
+        predicted: Electrical energy per metre predicted, J/m (module docstring).
+        simulated: Controller → simulated electrical energy per metre walked, J/m; None where
+            it did not walk.
+        verdicts: Controller → ``"walks"`` or what happened.
+    """
+
+    label: str
+    predicted: float
+    simulated: Mapping[str, float | None]
+    verdicts: Mapping[str, str]
+
+    @property
+    def walks(self) -> bool:
+        """Whether it walked under every controller."""
+        return bool(self.simulated) and all(v is not None for v in self.simulated.values())
+
+    def data(self) -> dict[str, Any]:
+        """codesign.json's row."""
+        return {"label": self.label, "predicted": q(self.predicted, "J/m"),
+                "simulated": {k: None if v is None else q(v, "J/m")
+                              for k, v in self.simulated.items()},
+                "verdicts": dict(self.verdicts)}
+
+
+@dataclass(frozen=True, eq=False)
+class OptimalRows:
+    """The optimal motion's table and what backs it.
+
+    Attributes:
+        rows: The four rows (:data:`LABELS`).
+        springs: The springs to buy for the last row (the alternation's).
+        family: Their family.
+        bare: The optimal motion without springs
+            (:class:`~hexaleg.optimal.solve.OptimalResult`).
+        alternation: The optimal motion with springs
+            (:class:`~hexaleg.design.codesign.alternation.Alternation`).
+        robot: The robot (the motion files are written for it).
+        servo: The servo the rows were simulated under.
+        wall: Wall time of this stage, s.
+    """
+
+    rows: tuple[MotionRow, ...]
+    springs: SpringSet
+    family: str
+    bare: Any
+    alternation: Alternation
+    robot: Robot
+    servo: str
+    wall: float
+
+    @property
+    def best(self) -> Any:
+        """The optimal motion with its springs (:class:`~hexaleg.optimal.solve.OptimalResult`)."""
+        return self.alternation.best
+
+    @property
+    def proven(self) -> bool:
+        """Whether the last row's motion walks with its springs under every controller."""
+        return self.rows[-1].walks
+
+    @property
+    def motions(self) -> dict[str, Motion]:
+        """The optimal motions by file stem: ``optimal_no_springs``, ``optimal_springs``."""
+        return {"optimal_no_springs": self.bare.motion, "optimal_springs": self.best.motion}
+
+    def data(self) -> dict[str, Any]:
+        """codesign.json's ``optimal`` key: the rows, the springs to buy and whether a
+        simulation backs them, each optimal motion's solver figures and dynamics residual
+        (Newton–Euler of the trajectory against its motor plus spring torques), the
+        alternation's energies."""
+        def solver(r: Any) -> dict[str, Any]:
+            return {"energy_per_metre": q(r.energy_per_metre, "J/m"),
+                    "residual": q(r.residual, "N·m"), "iterations": r.iterations,
+                    "converged": r.converged, "stationarity": q(r.stationarity, "1"),
+                    "threshold": q(r.threshold, "1"), "dynamic_gap": q(r.dynamic_gap, "1"),
+                    "periodicity": q(r.periodicity, "1"),
+                    "friction_use": q(r.friction_use, "1"), "slip": q(r.slip, "m/s"),
+                    "knots": len(r.torques), "wall": q(r.seconds, "s")}
+
+        alt = self.alternation
+        return {
+            "rows": [r.data() for r in self.rows], "servo": self.servo,
+            "springs": [spring_entry(j, s) for j, s in self.springs.items()],
+            "family": self.family, "proven": self.proven,
+            "residual": q(max(self.bare.residual, self.best.residual), "N·m"),
+            "no_springs": solver(self.bare), "springs_motion": solver(self.best),
+            "alternation": {"energies": [q(e, "J/m") for e in alt.energies],
+                            "rounds": len(alt.rounds), "gap": q(alt.gap, "1")},
+            "wall": q(self.wall, "s"),
+        }
+
+    def lines(self) -> list[str]:
+        """Lines for the terminal: the rows and the springs' proof."""
+        controllers = list(self.rows[0].simulated)
+        out = ["  optimal motion (whole-body optimal control, the springs in the dynamics): "
+               "J/m predicted, simulated " + ", ".join(controllers)]
+        for r in self.rows:
+            sims = ", ".join(f"{v:.2f}" if v is not None else f"— ({r.verdicts[k]})"
+                             for k, v in r.simulated.items())
+            out.append(f"    {r.label:46s} {r.predicted:7.2f}   {sims}")
+        b = self.best
+        out.append(f"    residual {max(self.bare.residual, b.residual):.1g} N·m, stationarity "
+                   f"{b.stationarity:.2g} after {b.iterations} iterations (threshold "
+                   f"{b.threshold:.2g}), friction use {b.friction_use:.2f}, alternation "
+                   f"{' → '.join(f'{e:.3f}' for e in self.alternation.energies)} J/m")
+        names = ", ".join(self.springs) or "none"
+        out.append(f"    springs to buy for it ({self.family}): {names}" + (
+            "" if self.proven else f" — unproven: it does not walk under "
+            f"{' and '.join(k for k, v in self.rows[-1].simulated.items() if v is None)}"))
+        return out
+
+
+def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: GaitParams,
+                 chosen: GaitParams, springs: SpringSet, predicted: tuple[float, float], *,
+                 family: str = "linear", servo: str = "both", params: Any = None,
+                 rounds: int = 4, say: Callable[[str], None] | None = None) -> OptimalRows:
+    """The four rows (module docstring).
+
+    Args:
+        robot: The robot (free flyer).
+        motor: Its motors (a Motor or a MotorSet).
+        contact: The floor (the force program's and the simulation's contact).
+        default: The default gait. chosen: The parametric co-design's gait.
+        springs: The co-design's springs on ``chosen`` (the alternation's start).
+        predicted: The default gait's and the co-design's predicted J/m (their rows).
+        family: The spring family of the alternation: the co-design's when it is one of
+            :data:`~hexaleg.design.codesign.alternation.SMOOTH_FAMILIES`, else ``linear``
+            from no springs (a preload's step has no derivative for DDP).
+        servo: The servo (:data:`~hexaleg.simulation.controllers.SERVOS`).
+        params: :class:`~hexaleg.optimal.problem.OptimalParams` (None: defaults).
+        rounds: The alternation's rounds at most.
+        say: Where progress lines go.
+
+    Raises:
+        BackendError: no usable Crocoddyl (the ``optimal`` extra).
+    """
+    from hexaleg.optimal.problem import OptimalParams, build_problem  # needs Crocoddyl
+    from hexaleg.optimal.solve import solve
+
+    tell = say or (lambda _line: None)
+    began = time.perf_counter()
+    params = params or OptimalParams()
+    start = springs
+    if family not in SMOOTH_FAMILIES:
+        family, start = "linear", SpringSet()
+    motion = gait(robot, chosen)
+    tell("optimal motion without springs, from the co-design's gait")
+    bare = solve(robot, build_problem(robot, motion, motor, SpringSet(), params))
+    tell(f"optimal motion without springs: {bare.energy_per_metre:.3f} J/m "
+         f"({bare.iterations} iterations, {bare.seconds:.0f} s)")
+    tell("optimal motion with springs (alternation), from the co-design's gait and springs")
+    alt = alternate(robot, motion, motor, contact, springs=start, params=params, family=family,
+                    rounds=rounds, say=lambda line: tell(f"alternation: {line}"))
+    controllers = controllers_of(servo)
+    cases = ((LABELS[0], predicted[0], gait(robot, default), SpringSet()),
+             (LABELS[1], predicted[1], motion, springs),
+             (LABELS[2], bare.energy_per_metre, bare.motion, SpringSet()),
+             (LABELS[3], alt.best.energy_per_metre, alt.best.motion, alt.springs))
+    rows = []
+    for label, value, played, fitted in cases:
+        sims: dict[str, float | None] = {}
+        verdicts: dict[str, str] = {}
+        for k in controllers:
+            sims[k], verdicts[k] = simulated_per_metre(robot, played, motor, fitted, k, contact)
+        rows.append(MotionRow(label, value, sims, verdicts))
+        tell(f"simulated {label} under {' and '.join(controllers)}")
+    return OptimalRows(tuple(rows), alt.springs, family, bare, alt, robot, servo,
+                       time.perf_counter() - began)
+
+
+__all__ = ["LABELS", "MotionRow", "OptimalRows", "optimal_rows"]

@@ -1,0 +1,89 @@
+"""The optimal motion's rows of ``hexaleg codesign --motion optimal``: the table, its JSON and
+its proof; with Crocoddyl, the four rows of a small problem computed and simulated."""
+
+from __future__ import annotations
+
+import itertools
+import json
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+import hexaleg
+from hexaleg.design.codesign.alternation import Alternation, Round
+from hexaleg.design.codesign.optimal_rows import LABELS, MotionRow, OptimalRows
+from hexaleg.quantities import json_text
+
+
+def _solved(per_metre: float) -> SimpleNamespace:
+    """The figures of an optimal cycle the table reads (an OptimalResult's)."""
+    return SimpleNamespace(energy_per_metre=per_metre, residual=7e-15, iterations=100,
+                           converged=False, stationarity=5e-5, threshold=1e-8, dynamic_gap=0.0,
+                           periodicity=1e-3, friction_use=0.6, slip=4e-3,
+                           torques=np.zeros((40, 18)), seconds=60.0, motion=None)
+
+
+def _rows(position: float | None) -> OptimalRows:
+    springs = hexaleg.SpringSet({"femur": hexaleg.LinearSpring(stiffness=0.5)})
+    start, best = _solved(9.2), _solved(9.0)
+    alt = Alternation(start, best, springs, (Round(springs, 8.9, 9.0, True, 1.0),), 0.02)
+    sims = [MotionRow(label, e, {"feedforward": 1.1 * e, "position": 1.3 * e},
+                      {"feedforward": "walks", "position": "walks"})
+            for label, e in zip(LABELS[:3], (28.4, 10.0, 9.6), strict=True)]
+    last = MotionRow(LABELS[3], 9.0, {"feedforward": 9.5, "position": position},
+                     {"feedforward": "walks",
+                      "position": "walks" if position is not None else "fell: at 1 s"})
+    return OptimalRows((*sims, last), springs, "linear", _solved(9.6), alt, hexaleg.load(),
+                       "both", 200.0)
+
+
+def test_the_table_says_what_backs_the_springs():
+    proven, unproven = _rows(11.0), _rows(None)
+    assert proven.proven and not unproven.proven
+    assert not any("unproven" in line for line in proven.lines())
+    assert "unproven: it does not walk under position" in unproven.lines()[-1]
+    data = json.loads(json_text(unproven.data()))
+    assert [r["label"] for r in data["rows"]] == list(LABELS)
+    assert data["rows"][3]["simulated"]["position"] is None
+    assert data["rows"][3]["verdicts"]["position"].startswith("fell")
+    assert data["residual"] == {"value": 7e-15, "unit": "N·m"}
+    assert [e["value"] for e in data["alternation"]["energies"]] == [9.2, 9.0]
+    assert data["springs"][0]["joint"] == "femur" and data["proven"] is False
+
+
+@pytest.mark.slow
+def test_the_four_rows_of_a_small_problem():
+    """The default gait as the 'chosen' one (no search), 16 knots, 40 iterations, one round:
+    every row predicted and simulated under both servos, the residual at round-off, the
+    alternation never rising, the optimal motions written and read back."""
+    pytest.importorskip("crocoddyl")
+    from hexaleg.design.codesign.build import default_gait
+    from hexaleg.optimal.problem import OptimalParams
+
+    run = hexaleg.Scenario.load("hexaleg")
+    robot = run.model
+    base = default_gait(robot, "hexaleg", 0.06, None, 100)
+    prepared = hexaleg.prepare(robot, hexaleg.gait(robot, base), motor=run.actuator,
+                               contact=run.contact)
+    design = hexaleg.optimal_springs(prepared, list(robot.joint_classes), family="linear",
+                                     metric="electrical")
+    e0 = prepared.evaluate(hexaleg.SpringSet()).metrics["total"]["electrical"]
+    e1 = design.analysis.metrics["total"]["electrical"]
+    from hexaleg.design.codesign.optimal_rows import optimal_rows
+
+    lines: list[str] = []
+    d = prepared.motion.distance
+    table = optimal_rows(robot, run.actuator, run.contact, base, base, design.springs,
+                         (e0 / d, e1 / d), params=OptimalParams(nodes=16, iterations=40),
+                         rounds=1, say=lines.append)
+    assert [r.label for r in table.rows] == list(LABELS)
+    assert all(set(r.simulated) == {"feedforward", "position"} for r in table.rows)
+    assert table.rows[0].walks and table.rows[1].walks  # the gaits walk under both servos
+    assert max(table.bare.residual, table.best.residual) <= 1e-6
+    energies = table.alternation.energies
+    assert all(b <= a for a, b in itertools.pairwise(energies))
+    assert table.rows[3].predicted == energies[-1]
+    assert any(line.startswith("alternation: start") for line in lines)
+    data = json.loads(json_text(table.data()))
+    assert data["residual"]["value"] <= 1e-6 and len(data["rows"]) == 4
