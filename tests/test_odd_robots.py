@@ -136,9 +136,10 @@ def _argv(case: str, command: str, tmp_path: Path) -> list[str]:
     if command == "design":  # one family, no maps, no stop tolerance: CI's time (the full
         # design of the X quadruped is tests/design/chain/test_groups.py's; the tolerance stage
         # is tests/design/search/test_tolerance.py's and the kept logs'; on these robots it was
-        # a third to half of each design: 40-140 s, analysis/bench_robots.py)
+        # a third to half of each design: 40-140 s, analysis/bench_robots.py), at 100 samples
+        # a cycle
         text += ('[design]\nfamilies = ["one_sided"]\nrobustness = false\n'
-                 'stop_tolerance = 0\n')
+                 'stop_tolerance = 0\nsamples = 100\n')
     if command == "codesign":
         text = CODESIGN_CONFIGS.get(case, text)
         text += "[codesign]\nmax_evaluations = 10\nsamples = 40\nfinal_samples = 60\n"
