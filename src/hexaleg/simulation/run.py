@@ -372,7 +372,7 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
         one = measures.point_foot(sim, motion) if feedback else None
         return Run(name, sim, traj, traj.verdict, f"{traj.message}; {cause}", wall=wall,
                    feedback=feedback, constrained=bound, cpu=cpu,
-                   reason=one.reason if one is not None and cause.startswith("the gait stands")
+                   reason=one.reason if one is not None and "the gait stands on" in cause
                    else "")
     if traj.verdict != "ran":
         return Run(name, sim, traj, traj.verdict, traj.message, wall=wall, feedback=feedback,
