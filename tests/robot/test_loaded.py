@@ -92,6 +92,27 @@ def test_joints_on_no_leg_are_listed_with_their_stand(tmp_path):
     assert "other joints" not in hexaleg.load().summary()
 
 
+def test_a_swinging_joint_is_listed_with_its_swing(tmp_path):
+    """``hexaleg robot`` lists a joint of ``[robot] moves`` with its swing, the held ones
+    without (issue #55): the line a user checks their description against."""
+    from pathlib import Path
+
+    import hexaleg
+
+    data = Path(__file__).resolve().parents[1] / "data"
+    text = (data / "humanoid.toml").read_text().replace(
+        'urdf = "humanoid.urdf"', f'urdf = "{data / "humanoid.urdf"}"'
+    ) + "\n"
+    described = text.replace("stand = {", "moves = {waist = {amplitude = 0.2, phase = 0.5}}\n"
+                                          "stand = {", 1)
+    (tmp_path / "swing.toml").write_text(described)
+    summary = hexaleg.load(str(tmp_path / "swing.toml")).summary()
+    assert ("waist                 stand +0.0000 rad, swings ±0.2000 rad with phase +0.5000 rad "
+            "each gait cycle") in summary
+    assert "L_shoulder            stand +0.3000 rad\n" in summary
+    assert "or swinging about it ([robot] moves)" in summary
+
+
 def test_a_robot_survives_a_pickle_round_trip():
     """A forked worker sends robots back pickled; ``data`` is rebuilt, not pickled (pin 4.0.0's
     Data fails its own round trip, and the optimal extra pins pin 4.0)."""

@@ -268,13 +268,19 @@ class Robot:
             lines.append(f"    {leg.name}: {', '.join(leg.joint_names)} → {leg.foot_frame}")
         others = self.other_joints
         if others:
-            lines.append(f"  other joints ({len(others)}, on no leg: held at the stand pose, "
-                         "their inertia in the dynamics, each holding torque drawn by its own "
+            held = ("held at the stand pose" if not self.moves else
+                    "held at the stand pose or swinging about it ([robot] moves)")
+            lines.append(f"  other joints ({len(others)}, on no leg: {held}, "
+                         "their inertia in the dynamics, each torque drawn by its own "
                          "actuator):")
             q = self.poses.get("stand")
             for name in others:
                 at = ("" if q is None else
                       f"  stand {q[m.joints[m.getJointId(name)].idx_q]:+.4f} rad")
+                if name in self.moves:
+                    amplitude, phase = self.moves[name]
+                    at += (f", swings ±{amplitude:.4f} rad with phase {phase:+.4f} rad "
+                           "each gait cycle")
                 lines.append(f"    {name:<20}{at}")
         lines.append(f"  poses: {', '.join(self.poses) or '(none)'}; heading (forward) "
                      f"[{', '.join(f'{v:+.3g}' for v in self.heading)}] in the base frame")
