@@ -128,15 +128,24 @@ def test_a_long_stand_on_two_point_feet_is_named_as_the_fall_and_its_period(prep
     traj = Trajectory(np.arange(3.0), np.zeros((3, 7 + sim.robot.nj)), np.zeros((3, 6 +
                       sim.robot.nj)), zeros, zeros, np.zeros((3, legs, 3)), zeros, "fell")
 
-    def cause(duration: float) -> str:
+    def blamed(duration: float) -> measures.FallCause:
         scale = duration / two.duration  # the period that makes the stand this long
         slow = dataclasses.replace(motion, stance=stance, t=motion.t * scale,
                                    period=motion.period * scale)
         return measures.fall_cause(sim, slow, traj, feedback=True)
 
+    def cause(duration: float) -> str:
+        return blamed(duration).message
+
     long = (measures.TIPS + 0.1) / two.omega
     assert cause(long).startswith(f"the gait stands on two point feet for {long:.3g} s")
     assert "shorter period" in cause(long)
+    # the stand blamed is the one the message names, carried for the design's unproven line
+    stand = blamed(long).stand
+    assert stand is not None and stand.feet == 2
+    assert stand.duration == pytest.approx(long, rel=1e-12)
+    assert stand.reason.startswith(f"on two point feet for {long:.3g} s")
+    assert blamed((measures.TIPS - 0.1) / two.omega).stand is None  # not claimed
     assert cause((measures.TIPS - 0.1) / two.omega).startswith("the balance controller")
     # the advice follows the gait: on two point feet a slower gait lengthens the stand
     between = cause((measures.TIPS - 0.1) / two.omega)
@@ -146,9 +155,12 @@ def test_a_long_stand_on_two_point_feet_is_named_as_the_fall_and_its_period(prep
     assert "slower gait lengthens them" in between and "try a slower gait" not in between
     within = cause((measures.HOLDS - 0.1) / two.omega)
     assert "a gait on three or more feet" in within and "try a slower gait" not in within
-    assert measures.fall_cause(sim, motion, traj, feedback=True).endswith("try a slower gait")
-    assert measures.fall_cause(sim, dataclasses.replace(motion, stance=stance), traj,
-                               feedback=False).startswith("the gait stands on 2 feet at times")
+    assert measures.fall_cause(sim, motion, traj, feedback=True).message.endswith(
+        "try a slower gait")
+    open_loop = measures.fall_cause(sim, dataclasses.replace(motion, stance=stance), traj,
+                                    feedback=False)
+    assert open_loop.message.startswith("the gait stands on 2 feet at times")
+    assert open_loop.stand is None  # open loop: the missing feedback is blamed, not the stand
 
 
 def _stalled_fall(planned_a: float, speed_b: float = 0.0, torque_b: float = 0.0):
@@ -179,16 +191,16 @@ def test_a_fall_at_stall_is_put_down_to_the_actuator_only_where_the_plan_asks_fo
     at stall is under 90 % of its stall torque, the message says the stall came with the fall
     (both torques, when each came) and gives the other cause; at 95 % it is the actuator."""
     sim, motion, traj, planned = _stalled_fall(0.33)
-    line = measures.fall_cause(sim, motion, traj, planned=planned)
+    line = measures.fall_cause(sim, motion, traj, planned=planned).message
     assert ("the servos were at their stall torque in 41% of the steps (a most, 1 N·m) from "
             "0.60 s, the fall at 1.00 s, but its planned peak command is 0.33 N·m, 33% of it: "
             "they stalled correcting an error that grew") in line
     assert "needs a stronger actuator" not in line and "check the ground" in line
-    strong = measures.fall_cause(sim, motion, traj, planned=_stalled_fall(0.95)[3])
+    strong = measures.fall_cause(sim, motion, traj, planned=_stalled_fall(0.95)[3]).message
     assert strong.startswith("the servos were at their stall torque in 41% of the steps (a "
                              "most, 1 N·m; its planned peak command 0.95 N·m, 95% of it): the "
                              "gait needs a stronger actuator")
-    assert "needs a stronger actuator" in measures.fall_cause(sim, motion, traj)  # no plan
+    assert "needs a stronger actuator" in measures.fall_cause(sim, motion, traj).message
 
 
 def test_the_planned_command_counts_the_back_emf_at_the_planned_speed():
@@ -197,8 +209,8 @@ def test_the_planned_command_counts_the_back_emf_at_the_planned_speed():
     sim, motion, traj, planned = _stalled_fall(0.0, speed_b=1.0, torque_b=0.45)
     traj.servo[:, 0] = 0.0  # joint b most at stall
     assert "b most, 1 N·m; its planned peak command 0.95 N·m" in measures.fall_cause(
-        sim, motion, traj, planned=planned)
+        sim, motion, traj, planned=planned).message
     sim, motion, traj, planned = _stalled_fall(0.0, speed_b=0.0, torque_b=0.45)
     traj.servo[:, 0] = 0.0
     assert "but its planned peak command is 0.45 N·m, 45% of it" in measures.fall_cause(
-        sim, motion, traj, planned=planned)
+        sim, motion, traj, planned=planned).message

@@ -318,8 +318,23 @@ def _pace(stand: PointFoot | None) -> str:
             f"the inverted pendulum, ω₀ = √(g/h), where the controller holds {HOLDS:g})")
 
 
+@dataclass(frozen=True)
+class FallCause:
+    """Why a run fell (:func:`fall_cause`).
+
+    Attributes:
+        message: The cause in words, with what to change.
+        stand: The stand on point feet the fall is put down to (:class:`PointFoot`), whose
+            :attr:`~PointFoot.reason` a design's "unproven" line carries; None where the cause
+            is elsewhere (servos at stall for the gait's demand, the ground, the gains, an open
+            loop)."""
+
+    message: str
+    stand: PointFoot | None = None
+
+
 def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory, feedback: bool = False,
-               planned: np.ndarray | None = None) -> str:
+               planned: np.ndarray | None = None) -> FallCause:
     """Why a run fell, as far as the run shows it: servos at their stall torque where the plan
     asks for it (a weaker actuator than the gait needs), or — open loop (``feedback`` False) —
     a gait that stands on two feet or fewer (balanced by its plan alone: the servos follow the
@@ -350,52 +365,56 @@ def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory, feedback: bool =
         if peak is None or peak >= PLANNED_STALL * stall:
             need = ("" if peak is None else f"; its planned peak command {peak:.3g} N·m, "
                     f"{peak / stall:.0%} of it")
-            return (f"the servos were at their stall torque in {share:.0%} of the steps "
-                    f"({name} most, {stall:.3g} N·m{need}): the gait needs a stronger actuator "
-                    "([motor], or the robot's own), a slower or shorter gait, or a lighter "
-                    "robot")
+            return FallCause(
+                f"the servos were at their stall torque in {share:.0%} of the steps ({name} "
+                f"most, {stall:.3g} N·m{need}): the gait needs a stronger actuator ([motor], "
+                "or the robot's own), a slower or shorter gait, or a lighter robot")
         first = float(traj.t[int(np.flatnonzero(at_stall.any(axis=1))[0])])
         stalled = (f"the servos were at their stall torque in {share:.0%} of the steps "
                    f"({name} most, {stall:.3g} N·m) from {first:.2f} s, the fall at "
                    f"{float(traj.t[-1]):.2f} s, but its planned peak command is {peak:.3g} "
                    f"N·m, {peak / stall:.0%} of it: they stalled correcting an error that "
                    "grew, not for the gait's demand, so a stronger actuator is not the fix; ")
-    return stalled + _unbalanced(sim, motion, feedback)
+    cause = _unbalanced(sim, motion, feedback)
+    return dataclasses.replace(cause, message=stalled + cause.message)
 
 
-def _unbalanced(sim: SimModel, motion: Motion, feedback: bool) -> str:
+def _unbalanced(sim: SimModel, motion: Motion, feedback: bool) -> FallCause:
     """Why a run whose servos the plan does not drive to stall fell (:func:`fall_cause`)."""
     feet = int(motion.stance.sum(axis=1).min())
     one = point_foot(sim, motion) if feedback else None
     if one is not None and one.feet == 1:
-        return (f"the gait stands on one point foot for {one.duration:.3g} s at a time: an "
-                "inverted pendulum whose contact force passes through the foot and cannot "
-                f"right it, so an error grows as e^(ω₀t), ω₀ = √(g/h) = {one.omega:.3g} /s "
-                f"(centre of mass {one.height * 1e3:.0f} mm above the foot), ×{one.growth:.3g} "
-                "over the stand; the balance controller (hexaleg.simulation.balance) moves the "
-                "forces, not where the feet land (capture-point stepping), so it cannot hold "
-                "it (point-foot bipeds walk with stands short against 1/ω₀ and stepping "
-                "feedback, humanoids on soles with ankles); a slower gait makes it worse")
+        return FallCause(
+            f"the gait stands on one point foot for {one.duration:.3g} s at a time: an "
+            "inverted pendulum whose contact force passes through the foot and cannot right "
+            f"it, so an error grows as e^(ω₀t), ω₀ = √(g/h) = {one.omega:.3g} /s (centre of "
+            f"mass {one.height * 1e3:.0f} mm above the foot), ×{one.growth:.3g} over the stand; "
+            "the balance controller (hexaleg.simulation.balance) moves the forces, not where "
+            "the feet land (capture-point stepping), so it cannot hold it (point-foot bipeds "
+            "walk with stands short against 1/ω₀ and stepping feedback, humanoids on soles "
+            "with ankles); a slower gait makes it worse", one)
     if one is not None and one.too_long:
-        return (f"the gait stands on two point feet for {one.duration:.3g} s at a time: "
-                "across the line between them the body is an inverted pendulum whose contact "
-                "forces pass through that line and cannot right it, so an error grows as "
-                f"e^(ω₀t), ω₀ = √(g/h) = {one.omega:.3g} /s (centre of mass "
-                f"{one.height * 1e3:.0f} mm above the feet), ×{one.growth:.3g} over the stand, "
-                "more than the balance controller (hexaleg.simulation.balance) holds; a "
-                f"shorter period ({one.holding_period:.2g} s or less, the stand then "
-                f"{HOLDS:g}/ω₀) would; a slower gait makes it worse")
+        return FallCause(
+            f"the gait stands on two point feet for {one.duration:.3g} s at a time: across the "
+            "line between them the body is an inverted pendulum whose contact forces pass "
+            "through that line and cannot right it, so an error grows as e^(ω₀t), ω₀ = √(g/h) "
+            f"= {one.omega:.3g} /s (centre of mass {one.height * 1e3:.0f} mm above the feet), "
+            f"×{one.growth:.3g} over the stand, more than the balance controller "
+            "(hexaleg.simulation.balance) holds; a shorter period "
+            f"({one.holding_period:.2g} s or less, the stand then {HOLDS:g}/ω₀) would; a "
+            "slower gait makes it worse", one)
     if feedback:
-        return ("the balance controller (hexaleg.simulation.balance) did not hold the body on "
-                f"this gait ({feet} stance feet at the fewest); check the ground ([simulate] "
-                f"stiffness, damping, mu) and the servo gains (kp_scale, kd_scale), {_pace(one)}")
+        return FallCause(
+            "the balance controller (hexaleg.simulation.balance) did not hold the body on this "
+            f"gait ({feet} stance feet at the fewest); check the ground ([simulate] stiffness, "
+            f"damping, mu) and the servo gains (kp_scale, kd_scale), {_pace(one)}")
     if feet <= 2:
-        return (f"the gait stands on {'one foot' if feet == 1 else f'{feet} feet'} at times "
-                "and is balanced by its plan alone; the simulated servos follow the joints "
-                "without feedback on the body's attitude, so an error grows until it tips (a "
-                "trot, a bound or a walk on one foot needs balance feedback: [simulate] "
-                "feedback = \"auto\" or \"on\"), or simulate a gait on three or more feet "
-                "([gait] pattern = \"crawl\" or duty_factor ≥ 0.75) — the analysis of this one "
-                "stands")
-    return ("check the ground ([simulate] stiffness, damping) and the servo gains "
-            "(kp_scale, kd_scale) against the robot's weight")
+        return FallCause(
+            f"the gait stands on {'one foot' if feet == 1 else f'{feet} feet'} at times and is "
+            "balanced by its plan alone; the simulated servos follow the joints without "
+            "feedback on the body's attitude, so an error grows until it tips (a trot, a bound "
+            "or a walk on one foot needs balance feedback: [simulate] feedback = \"auto\" or "
+            "\"on\"), or simulate a gait on three or more feet ([gait] pattern = \"crawl\" or "
+            "duty_factor ≥ 0.75) — the analysis of this one stands")
+    return FallCause("check the ground ([simulate] stiffness, damping) and the servo gains "
+                     "(kp_scale, kd_scale) against the robot's weight")

@@ -369,11 +369,9 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
     bound = controller.constrained / max(controller.updates, 1) if controller else 0.0
     if traj.verdict == "fell":
         cause = measures.fall_cause(sim, motion, traj, feedback, analysis.tau_motor)
-        one = measures.point_foot(sim, motion) if feedback else None
-        return Run(name, sim, traj, traj.verdict, f"{traj.message}; {cause}", wall=wall,
-                   feedback=feedback, constrained=bound, cpu=cpu,
-                   reason=one.reason if one is not None and "the gait stands on" in cause
-                   else "")
+        return Run(name, sim, traj, traj.verdict, f"{traj.message}; {cause.message}",
+                   wall=wall, feedback=feedback, constrained=bound, cpu=cpu,
+                   reason="" if cause.stand is None else cause.stand.reason)
     if traj.verdict != "ran":
         return Run(name, sim, traj, traj.verdict, traj.message, wall=wall, feedback=feedback,
                    constrained=bound, cpu=cpu)
