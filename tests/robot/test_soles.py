@@ -46,6 +46,7 @@ def test_the_biped_on_soles_stands_with_both_soles_flat_at_the_analytic_angles()
         np.testing.assert_allclose(frame.translation, [0, y, -0.5], atol=1e-9)
         np.testing.assert_allclose(q[leg.q_index], [0, 0, -half, 2 * half, -half, 0],
                                    atol=1e-10)
+    assert "→ L_sole (a 180 × 90 mm sole, flat in the stand)" in robot.summary()
 
 
 def test_a_leg_that_cannot_turn_its_foot_is_refused_a_sole(tmp_path):

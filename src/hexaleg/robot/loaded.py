@@ -269,7 +269,10 @@ class Robot:
                          f"{m.velocityLimit[iv]:.3f}")
         lines.append("  legs (joints → foot frame):")
         for leg in self.legs:
-            lines.append(f"    {leg.name}: {', '.join(leg.joint_names)} → {leg.foot_frame}")
+            sole = self.soles.get(leg.name)
+            on = "" if sole is None else \
+                f" (a {sole.length * 1e3:g} × {sole.width * 1e3:g} mm sole, flat in the stand)"
+            lines.append(f"    {leg.name}: {', '.join(leg.joint_names)} → {leg.foot_frame}{on}")
         others = self.other_joints
         if others:
             lines.append(f"  other joints ({len(others)}, on no leg: held at the stand pose, "
