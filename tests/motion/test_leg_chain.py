@@ -122,3 +122,29 @@ def test_a_redundant_leg_stretched_at_its_stand_is_named(quad4dof):
     q = pin.neutral(quad4dof.model)
     with pytest.raises(RobotModelError, match=r"leg LF: at the stand pose .* stretched or folded"):
         leg_chain(quad4dof, quad4dof.leg("LF"), q)
+
+
+def test_a_sole_leg_holds_its_foots_orientation_and_a_three_joint_one_cannot():
+    """biped6's leg: the rows span the foot's angular Jacobian (Pinocchio's, at the stand) and
+    turn it by θ through S⁻¹Uᵀ; the point-foot biped's three joints given a sole are named."""
+    from hexaleg.robot.description import read_description
+    from hexaleg.robot.soles import Sole
+
+    data = Path(__file__).parents[1] / "data"
+    robot = read_description(data / "biped6.toml").load()
+    leg = robot.legs[1]
+    stand = robot.pose("stand")
+    chain = leg_chain(robot, leg, stand)
+    assert chain.sole and chain.redundant.shape == (6, 3)
+    pdata = robot.model.createData()
+    pin.computeJointJacobians(robot.model, pdata, stand)
+    pin.updateFramePlacements(robot.model, pdata)
+    omega = pin.getFrameJacobian(robot.model, pdata, leg.foot_frame_id,
+                                 pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)[3:, leg.v_index]
+    theta = np.array([0.01, -0.02, 0.03])
+    dq = chain.redundant @ (chain.turn_rows @ theta)  # in the rows' space: J_ω dq = θ
+    np.testing.assert_allclose(omega @ dq, theta, atol=1e-14)
+    biped = read_description(data / "biped.toml").load()
+    biped.soles = {"L1": Sole(0.06, 0.03)}
+    with pytest.raises(RobotModelError, match="leg L1 has a sole and 3 joints"):
+        leg_chain(biped, biped.legs[0], biped.pose("stand"))

@@ -233,3 +233,72 @@ def test_the_secondary_objective_is_the_nearest_configuration_to_first_order(qua
     assert np.all((ratios > 3.5) & (ratios < 4.5)), ratios  # second order
     ankle_ratios = np.array(ankles[:-1]) / np.array(ankles[1:])
     assert np.all((ankle_ratios > 1.7) & (ankle_ratios < 2.3)), ankle_ratios  # first order
+
+
+def _biped6() -> hexaleg.Robot:
+    from hexaleg.robot.description import read_description
+
+    return read_description(Path(__file__).parents[1] / "data" / "biped6.toml").load()
+
+
+def _yawing_walk(robot: hexaleg.Robot, leg: Leg, t: np.ndarray, amplitude: float = 0.2
+                 ) -> tuple[tuple[np.ndarray, ...], tuple[np.ndarray, ...]]:
+    """A sole's foot target moving fore and aft and up (base frame) under a body that yaws by
+    ψ = A sin(2πt): the foot's turn in the base frame θ = (0, 0, −ψ) with its exact rates."""
+    stand = robot.foot_positions(robot.pose("stand"))[robot.legs.index(leg)]
+    w = 2 * np.pi
+    s, c = np.sin(w * t), np.cos(w * t)
+    p = stand + np.c_[0.05 * s, 0.0 * t, 0.03 * (1 - c)]
+    pd = np.c_[0.05 * w * c, 0.0 * t, 0.03 * w * s]
+    pdd = np.c_[-0.05 * w**2 * s, 0.0 * t, 0.03 * w**2 * c]
+    zero = np.zeros_like(t)
+    turn = (np.c_[zero, zero, -amplitude * s], np.c_[zero, zero, -amplitude * w * c],
+            np.c_[zero, zero, amplitude * w**2 * s])
+    return (p, pd, pdd), turn
+
+
+def test_a_sole_leg_keeps_its_sole_flat_and_turns_it_against_the_body_exactly():
+    """biped6's six-joint leg under a body that yaws: Pinocchio (independent of the chain)
+    puts the foot on its targets and its orientation at Rz(−ψ) in the base frame — flat, and
+    still in the world — to 1e-12; the rates equal central differences of the angles."""
+    robot = _biped6()
+    leg = robot.legs[0]
+    t = np.linspace(0.0, 1.0, 401)
+    (p, pd, pdd), turn = _yawing_walk(robot, leg, t)
+    q, qd, qdd = newton_leg_ik(robot, leg, p, pd, pdd, turn=turn)
+    data = robot.model.createData()
+    full = robot.pose("stand").copy()
+    for k in range(0, len(t), 20):
+        full[leg.q_index] = q[k]
+        pin.framesForwardKinematics(robot.model, data, full)
+        frame = data.oMf[leg.foot_frame_id]
+        np.testing.assert_allclose(frame.translation, p[k], atol=1e-12)
+        np.testing.assert_allclose(frame.rotation, pin.exp3(turn[0][k]), atol=1e-12)
+    h = t[1] - t[0]
+    np.testing.assert_allclose(qd[1:-1], (q[2:] - q[:-2]) / (2 * h), atol=2e-4)
+    np.testing.assert_allclose(qdd[1:-1], (qd[2:] - qd[:-2]) / (2 * h), atol=2e-3)
+
+
+def test_a_sole_leg_whose_rows_hold_the_foot_only_to_first_order_is_refused(tmp_path):
+    """An ankle that rolls before it pitches: the foot's orientation is no longer linear in the
+    joints, so the rows that hold it at the stand let it tilt as the foot moves — named."""
+    data = Path(__file__).parents[1] / "data"
+    urdf = (data / "biped6.urdf").read_text()
+    for side in ("L", "R"):  # swap the ankle's two axes
+        ankle = f'<child link="{side}_ankle"/>\n    <origin xyz="0 0 -0.22" rpy="0 0 0"/>'
+        foot = f'<child link="{side}_foot"/>\n    <origin xyz="0 0 0" rpy="0 0 0"/>'
+        urdf = urdf.replace(ankle + '<axis xyz="0 1 0"/>', ankle + '<axis xyz="1 0 0"/>')
+        urdf = urdf.replace(foot + '<axis xyz="1 0 0"/>', foot + '<axis xyz="0 1 0"/>')
+    assert urdf.count('<child link="L_ankle"/>\n    <origin xyz="0 0 -0.22" rpy="0 0 0"/>'
+                      '<axis xyz="1 0 0"/>') == 1  # swapped
+    (tmp_path / "b.urdf").write_text(urdf)
+    toml = (data / "biped6.toml").read_text().replace('urdf = "biped6.urdf"', 'urdf = "b.urdf"')
+    (tmp_path / "b.toml").write_text(toml)
+    from hexaleg.errors import RobotModelError
+    from hexaleg.robot.description import read_description
+
+    robot = read_description(tmp_path / "b.toml").load()
+    leg = robot.legs[0]
+    (p, pd, pdd), turn = _yawing_walk(robot, leg, np.linspace(0.0, 1.0, 101))
+    with pytest.raises(RobotModelError, match=r"leg L1: its sole turns .* rad from flat"):
+        newton_leg_ik(robot, leg, p, pd, pdd, turn=turn)

@@ -14,6 +14,7 @@ import pytest
 import hexaleg
 from hexaleg.motion.scaling import robot_gait
 from hexaleg.motion.stands import HOLDS, longest_stand
+from hexaleg.robot.soles import Sole
 from hexaleg.units import G
 
 XQUAD = str(Path(__file__).resolve().parents[1] / "data" / "xquad.toml")
@@ -36,3 +37,5 @@ def test_a_trots_stand_is_half_its_period_on_a_diagonal(robot, walk200):
     scaled = stand.holding_period / stand.period
     assert stand.constants * scaled == pytest.approx(HOLDS, rel=1e-12)
     assert longest_stand(robot, walk200) is None  # three feet always
+    xquad.soles = {leg.name: Sole(0.1, 0.05) for leg in xquad.legs}
+    assert longest_stand(xquad, motion) is None  # the centre of pressure moves within soles

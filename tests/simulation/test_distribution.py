@@ -138,3 +138,28 @@ def test_dataclass_replace_keeps_settings_valid():
 
     with pytest.raises(UnknownNameError, match="auto, off, on"):
         dataclasses.replace(Settings(), feedback="sometimes")
+
+
+def test_a_sole_moves_its_centre_of_pressure_within_its_corners():
+    """One 18 × 9 cm sole as its four corners (biped6's), carrying the weight of a 16.4 kg body
+    0.45 m above it at its centre: a pitch moment a point foot cannot make is made by moving
+    the centre of pressure forward, the corners' normal forces nonnegative; a moment beyond
+    what the sole holds (the centre of pressure past the toe) stops at the edge — the cones
+    bind, Clarabel's answer is cvxpy's, and no corner pulls."""
+    from hexaleg.robot.soles import Sole
+
+    corners = Sole(0.18, 0.09).corners()
+    f0 = np.tile([0.0, 0.0, 16.4 * 9.81 / 4], (4, 1))
+    a = wrench_map(corners, np.array([0.0, 0.0, 0.45]))
+    dw = np.array([0.0, 0.0, 0.0, 0.0, -5.0, 0.0])  # N·m about y: −x f_z, the toe pressed
+    df, bound = distribute(a, dw, f0, 0.6, 0.1)
+    f = f0 + df
+    cop = (f[:, 2] @ corners) / f[:, 2].sum()
+    assert not bound and np.all(f[:, 2] > 0) and cop[0] > 0.02
+    assert np.allclose(a @ df.ravel(), dw, atol=0.1)
+    dw = np.array([0.0, 0.0, 0.0, 0.0, -40.0, 0.0])  # 40 N·m: 0.25 m of a 161 N load
+    df, bound = distribute(a, dw, f0, 0.6, 0.1)
+    f = f0 + df
+    cop = (f[:, 2] @ corners) / f[:, 2].sum()
+    assert bound and np.all(f[:, 2] > -1e-7) and cop[0] <= 0.09 + 1e-9
+    assert np.allclose(df, reference(a, dw, f0, 0.6, 0.1, None), atol=1e-6)

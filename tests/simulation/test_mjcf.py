@@ -54,3 +54,44 @@ def test_numbers_keep_full_precision():
     rot = pin.utils.rpyToMatrix(0.1, -0.2, 0.3)
     w, x, y, z = map(float, wxyz(rot).split())
     assert np.allclose(pin.Quaternion(w, x, y, z).toRotationMatrix(), rot, atol=1e-15)
+
+
+def test_a_sole_is_four_contact_spheres_at_its_corners():
+    """biped6's soles: a sphere and a site at each corner, where Pinocchio puts the foot frame
+    plus its rotation times the corner, at the stand and at a bent pose; no sphere at the
+    centre (the site there stays: foot positions are read at it). The point-foot biped has no
+    corners."""
+    from pathlib import Path
+
+    from hexaleg.robot.description import read_description
+    from hexaleg.simulation.mjcf import contact_geoms, contact_sites, corner_geom, corner_site
+    from hexaleg.simulation.state import JointMap
+
+    data_dir = Path(__file__).parents[1] / "data"
+    robot = read_description(data_dir / "biped6.toml").load()
+    tree = tree_xml(robot, 1e-4)
+    m = mujoco.MjModel.from_xml_string(
+        '<mujoco><default><default class="robot"/><default class="foot"/></default>'
+        f"<worldbody>{tree.xml}</worldbody></mujoco>")
+    joints = JointMap.build(robot, m)
+    data, pdata = mujoco.MjData(m), robot.model.createData()
+    assert mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, foot_geom("L1")) == -1
+    bent = robot.pose("stand").copy()
+    bent[7:] += np.linspace(-0.3, 0.3, robot.nj)
+    for q in (robot.pose("stand"), bent):
+        data.qpos[:] = joints.to_mujoco(q, np.zeros(robot.model.nv))[0]
+        mujoco.mj_kinematics(m, data)
+        pin.framesForwardKinematics(robot.model, pdata, q)
+        for leg in robot.legs:
+            frame = pdata.oMf[leg.foot_frame_id]
+            at = frame.translation + robot.soles[leg.name].corners() @ frame.rotation.T
+            for j in range(4):
+                np.testing.assert_allclose(data.geom(corner_geom(leg.name, j)).xpos, at[j],
+                                           atol=1e-12)
+                np.testing.assert_allclose(data.site(corner_site(leg.name, j)).xpos, at[j],
+                                           atol=1e-12)
+    assert contact_sites(robot) == [corner_site(leg, j) for leg in ("L1", "R1")
+                                    for j in range(4)]
+    biped = read_description(data_dir / "biped.toml").load()
+    assert contact_geoms(biped) == [[foot_geom("L1")], [foot_geom("R1")]]
+    assert "_sole" not in tree_xml(biped, 1e-4).xml

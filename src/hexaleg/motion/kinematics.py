@@ -293,7 +293,9 @@ def analytic_leg_ik(geom: LegGeometry, p: np.ndarray, pd: np.ndarray, pdd: np.nd
 
 
 def leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarray, *,
-           t: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, str]:
+           t: np.ndarray | None = None,
+           turn: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+           ) -> tuple[np.ndarray, np.ndarray, np.ndarray, str]:
     """Inverse kinematics of one leg over a trajectory: analytic when possible, else Newton.
 
     Joint limits of the robot model are checked on the result.
@@ -305,11 +307,14 @@ def leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarra
         pd: Their time derivatives in the base frame, shape (T, 3), m/s.
         pdd: Their second time derivatives in the base frame, shape (T, 3), m/s².
         t: Sample times for error messages, shape (T,), s.
+        turn: A sole leg's foot turn in the base frame with its rates (θ, θ̇, θ̈), each (T, 3),
+            rad (:func:`~hexaleg.motion.leg_ik.newton_leg_ik`); None: held at the stand's.
 
     Returns:
         Joint angles (T, n) rad, velocities (T, n) rad/s, accelerations (T, n) rad/s², in the
         order of ``leg.joint_names`` (n of them), and the solver used (``"analytic"`` or
-        ``"newton"``).
+        ``"newton"``). A sole leg's self-motion is its foot's orientation: it is not shifted
+        to keep the joints within their limits (the limits are checked).
 
     Raises:
         UnreachableTargetError: a target is out of reach or needs a joint beyond its limits; the
@@ -323,9 +328,10 @@ def leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarra
         q, qd, qdd = analytic_leg_ik(geom, p, pd, pdd, leg_name=leg.name, t=t)
         solver = "analytic"
     else:
-        q, qd, qdd = newton_leg_ik(robot, leg, p, pd, pdd, t=t)
+        q, qd, qdd = newton_leg_ik(robot, leg, p, pd, pdd, t=t, turn=turn)
         solver = "newton"
-        if len(leg.joint_names) > 3 and _outside(robot, leg, q).any():
+        if len(leg.joint_names) > 3 and leg.name not in robot.soles and \
+                _outside(robot, leg, q).any():
             q, qd, qdd = _within_limits(robot, leg, p, pd, pdd, t, q, qd, qdd)
     _check_limits(robot, leg, q, t, p)
     return q, qd, qdd, solver

@@ -28,7 +28,7 @@ before it is used; the tests check the Jacobian and ``J̇ q̇`` against Pinocchi
 from __future__ import annotations
 
 import weakref
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import pinocchio as pin
@@ -84,6 +84,15 @@ class LegChain:
     leg of three joints or fewer has no redundant direction (``N₀`` of shape (n, 0)), and
     ``Ĵ = J``.
 
+    A leg with a sole (:mod:`hexaleg.robot.soles`) keeps its sole flat instead: ``N₀`` spans the
+    row space of the foot's angular Jacobian ``J_ω`` at the reference (the flat stand), so the
+    rows hold the foot's orientation to first order. For a leg whose hip roll and ankle roll
+    axes stay parallel, and its hip pitch, knee and ankle pitch axes too (a humanoid's hip yaw,
+    roll, pitch, knee, ankle pitch, roll at zero yaw), the rows are exact: the foot's roll is
+    the sum of the roll angles and its pitch the sum of the pitch angles, linear in q.
+    :func:`~hexaleg.motion.leg_ik.newton_leg_ik` checks the orientation it reaches
+    (:data:`~hexaleg.motion.leg_ik.SOLE_TILT`).
+
     Attributes:
         placements: Per joint, its frame at zero angle in the previous joint's frame (the first
             in the base frame, with every joint before it at the reference pose): rotations,
@@ -96,6 +105,10 @@ class LegChain:
         reference: The leg's joint values at the reference pose ``q_ref``, shape (n,), rad or m.
         redundant: ``N₀``, the leg's redundant directions at the reference pose, orthonormal
             columns, shape (n, max(n − 3, 0)) (class docstring).
+        sole: Whether the leg has a sole (``N₀`` then holds the foot's orientation).
+        turn_rows: A sole leg's ``S⁻¹ Uᵀ`` of ``J_ω = U S N₀ᵀ``, shape (n − 3, 3): the
+            objective's rows ``N₀ᵀ (q − q_ref)`` that turn the foot by a rotation vector θ
+            (base frame) from its reference orientation are ``S⁻¹ Uᵀ θ``.
     """
 
     placements: tuple[np.ndarray, np.ndarray]
@@ -104,6 +117,18 @@ class LegChain:
     foot: np.ndarray
     reference: np.ndarray
     redundant: np.ndarray
+    sole: bool = False
+    turn_rows: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+
+    def rotation(self, q: np.ndarray) -> np.ndarray:
+        """The foot's orientation in the base frame, shape (T, 3, 3), at joint values ``q``
+        (T, n)."""
+        rot = np.broadcast_to(np.eye(3), (len(q), 3, 3))
+        for i in range(len(self.angular)):
+            rot = rot @ self.placements[0][i]
+            if self.angular[i].any():
+                rot = rot @ _rotations(self.angular[i], q[:, i])
+        return rot
 
     def frames(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The foot and the joints' axes in the base frame.
@@ -155,17 +180,22 @@ class LegChain:
         rows = np.broadcast_to(self.redundant.T, (len(jac), *self.redundant.T.shape))
         return np.concatenate([jac, rows], axis=1)
 
-    def task(self, q: np.ndarray, e: np.ndarray) -> np.ndarray:
+    def task(self, q: np.ndarray, e: np.ndarray, reference: np.ndarray | None = None
+             ) -> np.ndarray:
         """The Newton right-hand side ``[e; −N₀ᵀ (q − q_ref)]``: a foot displacement and what
         the secondary objective's rows miss by (class docstring).
 
         Args:
             q: Joint values, shape (T, n). e: Foot displacements, shape (T, 3), m.
+            reference: Per sample, the reference the rows hold, shape (T, n) (a sole leg's
+                turning with the body, :func:`~hexaleg.motion.leg_ik.newton_leg_ik`); default
+                :attr:`reference`.
 
         Returns:
             Shape (T, 3 + max(n − 3, 0)).
         """
-        return np.concatenate([e, (self.reference - q) @ self.redundant], axis=1)
+        at = self.reference if reference is None else reference
+        return np.concatenate([e, (at - q) @ self.redundant], axis=1)
 
     def bias(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
         """The foot's acceleration at zero joint acceleration, ``J̇ q̇``, in the base frame.
@@ -195,6 +225,29 @@ class LegChain:
             out += term * qd[:, i:i + 1]
             omega = omega + angular[:, i] * qd[:, i:i + 1]
         return out
+
+
+def _sole_rows(leg: Leg, chain: LegChain, at: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A sole leg's secondary objective (:class:`LegChain`): an orthonormal basis of the row
+    space of its foot's angular Jacobian ``J_ω = U S Vᵀ`` (3 × n, base frame) at the
+    reference pose, ``V`` of shape (n, n − 3), and ``S⁻¹ Uᵀ``, shape (n − 3, 3)
+    (:attr:`LegChain.turn_rows`).
+
+    Raises:
+        RobotModelError: ``J_ω`` does not have rank n − 3 (a leg of other than six joints, or
+            one that cannot turn its foot about every axis): the foot's position and a flat
+            sole are then not n equations in its n joints.
+    """
+    n = len(at)
+    omega = chain.frames(at[None])[2][0].T  # (3, n): the joints' axes, base frame
+    u, sigma, vt = np.linalg.svd(omega)
+    rank = int(np.sum(sigma > REDUNDANT_SINGULAR * max(float(sigma[0]), 1e-300)))
+    if rank != n - 3:
+        raise RobotModelError(
+            f"leg {leg.name} has a sole and {n} joints that turn its foot about {rank} "
+            f"independent axes at the stand; keeping a sole flat while the foot moves takes "
+            f"{n - 3} (a leg of six joints: hip yaw, roll and pitch, knee, ankle pitch and roll)")
+    return vt[:rank].T.copy(), (u[:, :rank] / sigma[:rank]).T.copy()
 
 
 def _motion_axes(model: pin.Model, jid: int) -> tuple[np.ndarray, np.ndarray]:
@@ -281,7 +334,10 @@ def _read_chain(robot: Robot, leg: Leg, reference: np.ndarray) -> LegChain:
                    foot=np.array(data.oMi[leg.joint_ids[-1]].actInv(data.oMf[leg.foot_frame_id])
                                  .translation),
                    reference=at, redundant=np.zeros((n, 0)))
-    if n > 3:
+    if leg.name in robot.soles:
+        rows, turn = _sole_rows(leg, out, at)
+        out = replace(out, redundant=rows, sole=True, turn_rows=turn)
+    elif n > 3:
         _, sigma, vt = np.linalg.svd(out.position_jacobian(at[None])[1][0])
         if sigma[-1] < REDUNDANT_SINGULAR * sigma[0]:
             raise RobotModelError(

@@ -19,7 +19,7 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.checks import finite_array
-from hexaleg.errors import UnreachableTargetError
+from hexaleg.errors import RobotModelError, UnreachableTargetError
 from hexaleg.motion.leg_chain import LegChain, leg_chain
 from hexaleg.robot.model import Leg, Robot
 
@@ -30,6 +30,9 @@ NEWTON_MAX_ITER = 50
 PLANE_TOL = 1e-6
 """How far off a two-joint leg's plane a foot target may lie, m (a gait for such a leg puts its
 feet in that plane; more is a target the leg cannot reach)."""
+SOLE_TILT = 1e-9
+"""rad: how far a sole leg's foot may turn from its flat stand over a gait (the rows that hold
+it are exact for a humanoid's leg, :class:`~hexaleg.motion.leg_chain.LegChain`)."""
 NEWTON_JUMP = 0.1
 """Largest joint change, rad (or m), between consecutive samples solved all at once from the
 same start that :func:`newton_leg_ik` accepts as one continuous branch; a larger one is solved
@@ -38,7 +41,8 @@ again sample by sample from its predecessor."""
 
 def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarray, *,
                   q0: np.ndarray | None = None, t: np.ndarray | None = None,
-                  shift: np.ndarray | None = None
+                  shift: np.ndarray | None = None,
+                  turn: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Inverse kinematics of a leg of two or more joints by Newton's method on its forward
     kinematics.
@@ -74,6 +78,12 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
             instead of 0, shape (n − 3,), rad (its self-motion set off the stand's by a
             constant, the same over the cycle: :func:`~hexaleg.motion.kinematics.leg_ik` uses
             it to keep a swing within the joint limits); default 0.
+        turn: A sole leg's foot orientation: the rotation vector θ from its stand orientation
+            (base frame, rad) with its first and second time derivatives, each shape (T, 3) —
+            a foot flat on the ground under a body that yaws by ψ turns by θ = (0, 0, −ψ) in
+            the base frame. The objective's rows then hold ``N₀ᵀ (q − q_stand) = S⁻¹ Uᵀ θ``
+            (:attr:`~hexaleg.motion.leg_chain.LegChain.turn_rows`), their rates ``S⁻¹ Uᵀ θ̇``
+            and ``S⁻¹ Uᵀ θ̈``; default: the stand's orientation held (θ = 0).
 
     Returns:
         Joint angles (T, n) rad, velocities (T, n) rad/s, accelerations (T, n) rad/s², in the
@@ -100,12 +110,19 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
                                     + chain.redundant @ np.asarray(shift, dtype=float))
     start = chain.reference if q0 is None else np.asarray(q0, dtype=float)
     start = start + chain.redundant @ (chain.redundant.T @ (chain.reference - start))
-    q, err, off = _newton(chain, p, np.tile(start, (len(p), 1)))
+    held = np.zeros((3, len(p), chain.redundant.shape[1]))  # the rows' targets and rates
+    reference, starts = np.tile(chain.reference, (len(p), 1)), np.tile(start, (len(p), 1))
+    if turn is not None and chain.sole:  # the rows' targets move: per-sample references
+        held = np.array([np.asarray(x, dtype=float) @ chain.turn_rows.T for x in turn])
+        reference = reference + held[0] @ chain.redundant.T
+        starts = starts + held[0] @ chain.redundant.T
+    q, err, off = _newton(chain, p, starts, reference)
     jumps = np.abs(np.diff(q, axis=0)).max(axis=1)
     bad = np.flatnonzero((err > NEWTON_TOL) | np.r_[False, jumps >= NEWTON_JUMP])
     for k in range(int(bad[0]) if bad.size else len(p), len(p)):
         q[k:k + 1], err[k:k + 1], off[k:k + 1] = _newton(chain, p[k:k + 1],
-                                                          start[None] if k == 0 else q[k - 1:k])
+                                                          starts[:1] if k == 0 else q[k - 1:k],
+                                                          reference[k:k + 1])
         if err[k] > NEWTON_TOL:
             break
     _, jac = chain.position_jacobian(q)
@@ -130,10 +147,34 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
             + (" at a singular configuration" if err[k] <= NEWTON_TOL else ""),
             leg=leg.name, t=float(t[k]), index=k, target=tuple(float(x) for x in p[k]),
             distance=float(err[k]))
-    rows = np.zeros((len(q), chain.redundant.shape[1]))  # the objective's rows move by 0
-    qd = _least_squares(aug, np.concatenate([pd, rows], axis=1))
-    qdd = _least_squares(aug, np.concatenate([pdd - chain.bias(q, qd), rows], axis=1))
+    if chain.sole:
+        _check_flat(leg, chain, q, t, np.zeros((len(q), 3)) if turn is None else turn[0])
+    qd = _least_squares(aug, np.concatenate([pd, held[1]], axis=1))
+    qdd = _least_squares(aug, np.concatenate([pdd - chain.bias(q, qd), held[2]], axis=1))
     return q, qd, qdd
+
+
+def _check_flat(leg: Leg, chain: LegChain, q: np.ndarray, t: np.ndarray, theta: np.ndarray
+                ) -> None:
+    """A sole leg's foot at its planned orientation at every sample, within :data:`SOLE_TILT`
+    (the angle of ``R(q) R(q_ref)ᵀ exp([θ])ᵀ``, θ (T, 3) the planned turn in the base frame).
+
+    Raises:
+        RobotModelError: names the leg, the time and the angle.
+    """
+    planned = np.array([pin.exp3(x) for x in np.asarray(theta, dtype=float)])
+    turn = chain.rotation(q) @ chain.rotation(chain.reference[None])[0].T \
+        @ np.swapaxes(planned, 1, 2)
+    skew = turn - np.swapaxes(turn, 1, 2)  # 2 sin θ [axis]×: θ = atan2(sin θ, cos θ)
+    sine = np.linalg.norm(skew[:, [2, 0, 1], [1, 2, 0]], axis=1) / 2
+    angle = np.arctan2(sine, (np.trace(turn, axis1=1, axis2=2) - 1) / 2)
+    if angle.max() > SOLE_TILT:
+        k = int(np.argmax(angle))
+        raise RobotModelError(
+            f"leg {leg.name}: its sole turns {angle[k]:.3g} rad from flat at t = {t[k]:.6g} s "
+            f"(at most {SOLE_TILT:g} rad): its joints hold the foot's orientation only to "
+            "first order; a sole needs a leg whose hip and ankle roll axes stay parallel, and "
+            "its hip, knee and ankle pitch axes (hip yaw, roll, pitch, knee, ankle pitch, roll)")
 
 
 def _least_squares(jac: np.ndarray, e: np.ndarray) -> np.ndarray:
@@ -157,7 +198,7 @@ def _least_squares(jac: np.ndarray, e: np.ndarray) -> np.ndarray:
     return (np.linalg.pinv(jac) @ e[..., None])[..., 0]
 
 
-def _newton(chain: LegChain, p: np.ndarray, q: np.ndarray
+def _newton(chain: LegChain, p: np.ndarray, q: np.ndarray, reference: np.ndarray | None = None
             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Damped Newton steps (at most 0.5 rad or m a step; least squares where the Jacobian is
     singular or not square) on every sample at once until each is within :data:`NEWTON_TOL` of
@@ -168,6 +209,8 @@ def _newton(chain: LegChain, p: np.ndarray, q: np.ndarray
 
     Args:
         chain: The leg. p: Targets, shape (T, 3), m. q: Starting joint values, shape (T, n).
+        reference: Per sample, the reference the objective's rows hold, shape (T, n); default
+            the chain's.
 
     Returns:
         The joint values reached, shape (T, n); their distance to the targets within reach,
@@ -180,7 +223,8 @@ def _newton(chain: LegChain, p: np.ndarray, q: np.ndarray
     for it in range(NEWTON_MAX_ITER + 1):
         at, jac = chain.position_jacobian(q[todo])
         e = p[todo] - at
-        step = _least_squares(chain.augmented(jac), chain.task(q[todo], e))
+        step = _least_squares(chain.augmented(jac), chain.task(
+            q[todo], e, None if reference is None else reference[todo]))
         if jac.shape[2] >= 3:
             err[todo] = np.linalg.norm(e, axis=1)
         else:  # the part of e the joints move the foot along; the rest is off the leg's plane

@@ -28,6 +28,7 @@ from hexaleg.checks import typed
 from hexaleg.errors import HexalegError, InvalidParameterError, UnreachableTargetError
 from hexaleg.motion.balance import Sway, balance_sway
 from hexaleg.motion.body import (
+    Body,
     base_state,
     body_height,
     body_motion,
@@ -327,8 +328,9 @@ def _sample(robot: Robot, gait: GaitParams, t: np.ndarray, periodic: bool,
         stance[:, i], feet[:, i] = on, p_w
         rel, rel_d, rel_dd = in_base_frame(body, p_w, pd_w, pdd_w)
         try:
-            q_leg, qd_leg, qdd_leg, solvers[leg.name] = leg_ik(robot, leg, rel, rel_d, rel_dd,
-                                                               t=t)
+            q_leg, qd_leg, qdd_leg, solvers[leg.name] = leg_ik(
+                robot, leg, rel, rel_d, rel_dd, t=t,
+                turn=sole_turn(body) if leg.name in robot.soles else None)
         except UnreachableTargetError as err:
             if verify is None:
                 raise
@@ -361,6 +363,26 @@ def _sample(robot: Robot, gait: GaitParams, t: np.ndarray, periodic: bool,
     return Motion(t=t, q=q, v=v, a=a, stance=stance, feet=feet, period=gait.period,
                   distance=gait.stride, periodic=periodic, fixed_base=False, info=info,
                   normal=None if ground is None else ground.normal)
+
+
+def sole_turn(body: Body) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """How a sole flat on level ground turns in the base frame under a body that yaws by ψ:
+    θ = (0, 0, −ψ), θ̇ = (0, 0, −ψ̇), θ̈ = (0, 0, −ψ̈), each (N, 3), rad (the foot keeps its
+    world orientation, the stand's; :func:`~hexaleg.motion.leg_ik.newton_leg_ik`'s ``turn``).
+
+    Raises:
+        InvalidParameterError: a body on a slope (soles walk level ground only).
+    """
+    if body.ground is not None:
+        raise InvalidParameterError("[gait] slope with soles", "a slope",
+                                    "level ground (a robot with soles walks level ground only)")
+    n = len(body.yaw)
+    out = np.zeros((3, n, 3))
+    out[0, :, 2] = -body.yaw
+    out[1, :, 2] = -np.broadcast_to(body.w, (n, 3))[:, 2]
+    if body.alpha is not None:
+        out[2, :, 2] = -body.alpha[:, 2]
+    return out[0], out[1], out[2]
 
 
 def _cycle(gait: GaitParams, height: float, direction: np.ndarray, ground: Ground | None

@@ -76,7 +76,9 @@ class Stand:
 def longest_stand(robot: Robot, motion: Motion) -> Stand | None:
     """The longest stand of ``motion`` on its fewest feet (cyclic), one or two, or None where
     it always stands on three or more (:class:`Stand`); with two, a stand is a run of samples
-    on the same two feet.
+    on the same two feet. None too for a robot whose every foot has a sole
+    (:mod:`hexaleg.robot.soles`): its centre of pressure moves within the soles, so no stand of
+    it is an inverted pendulum on a point or a line.
 
     Args:
         robot: The robot the motion is for.
@@ -86,7 +88,7 @@ def longest_stand(robot: Robot, motion: Motion) -> Stand | None:
     stance = np.asarray(motion.stance, dtype=bool)
     counts = stance.sum(axis=1)
     fewest = int(counts.min())
-    if fewest not in (1, 2):
+    if fewest not in (1, 2) or len(robot.soles) == len(robot.legs):
         return None
     weights = 1 << np.arange(stance.shape[1])
     feet = np.where(counts == fewest, stance @ weights, -1)  # the feet's set as bits, or −1

@@ -23,7 +23,7 @@ network.
 from __future__ import annotations
 
 import importlib.metadata
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -38,6 +38,7 @@ from hexaleg.robot import fields
 from hexaleg.robot.fields import FrozenTable, axis, check_stand, heading, legs_table, plain
 from hexaleg.robot.model import AUTO, URDF_DIR, LegSpec, Robot, load_robot
 from hexaleg.robot.root import check_root
+from hexaleg.robot.soles import Sole, flat_stand, sole_of
 from hexaleg.robot.sphere_feet import settle_sphere_feet
 
 if TYPE_CHECKING:
@@ -151,6 +152,9 @@ class RobotDescription:
             (:attr:`Robot.moves <hexaleg.robot.loaded.Robot.moves>`); its torque and energy
             are counted by its own actuator and its inertia carried by the dynamics. Checked
             on loading: a joint on no leg, within its limits over the swing.
+        sole: ``[length, width]`` m: every foot is a flat sole of that size centred on its
+            foot frame (:mod:`hexaleg.robot.soles`), laid flat in the stand; None (default):
+            point feet.
     """
 
     name: str
@@ -174,6 +178,7 @@ class RobotDescription:
     electronics_power: float | None = None
     battery_wh: float | None = None
     moves: Mapping[str, Any] = field(default_factory=lambda: FrozenTable({}))
+    sole: Sole | Sequence[float] | None = None
 
     def __post_init__(self) -> None:
         if self.source not in SOURCES:
@@ -223,6 +228,8 @@ class RobotDescription:
                 f"{self.name}: battery_wh", self.battery_wh, low=0.0, low_open=True,
                 allowed="the battery's energy > 0 Wh, or leave the key out (no battery)"))
         object.__setattr__(self, "moves", fields.moves_table(self.name, self.moves))
+        if self.sole is not None:
+            object.__setattr__(self, "sole", sole_of(self.name, self.sole))
         object.__setattr__(self, "max_outer_diameter", fields.diameters_table(
             self.name, self.joint_kinds, self.max_outer_diameter))
         object.__setattr__(self, "arbor_diameter", fields.diameters_table(
@@ -380,6 +387,9 @@ class RobotDescription:
             stand, sphere_note = settle_sphere_feet(
                 robot, stand, (lambda: self._stand_pose(robot)[0]) if solved else None)
             robot.notes = (*robot.notes, sphere_note)
+        if isinstance(self.sole, Sole):
+            robot.soles = {leg.name: self.sole for leg in robot.legs}
+            stand = flat_stand(robot, stand, tuple(robot.soles))
         check_root(robot, stand, "the stand pose")
         robot.poses[STAND] = stand
         from hexaleg.robot.stand import checked_moves

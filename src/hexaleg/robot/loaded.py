@@ -19,6 +19,7 @@ from hexaleg.errors import UnknownNameError
 from hexaleg.robot import geometry as _geometry
 from hexaleg.robot.feet import SphereFoot
 from hexaleg.robot.fields import horizontal_axis
+from hexaleg.robot.soles import Sole
 
 JOINT_KINDS: tuple[str, ...] = ("coxa", "femur", "tibia")
 """The joints of a hexaleg leg, from the body outward (a robot's default joint classes)."""
@@ -75,6 +76,8 @@ class Robot:
         moves: Joint on no leg → (amplitude, phase), rad: it swings ``q_stand + amplitude ·
             sin(2π t / T + phase)`` over every gait cycle of period ``T``
             (:func:`hexaleg.motion.legged.sample_gait`); the others are held at the stand.
+        soles: Leg → its flat sole centred on its foot frame (:mod:`hexaleg.robot.soles`);
+            legs not named stand on point feet (all of them by default).
     """
 
     name: str
@@ -91,6 +94,7 @@ class Robot:
     notes: tuple[str, ...] = ()
     foot_spheres: dict[str, SphereFoot] = field(default_factory=dict)
     moves: dict[str, tuple[float, float]] = field(default_factory=dict)
+    soles: dict[str, Sole] = field(default_factory=dict)
     mass: float = field(init=False)
     joint_names: tuple[str, ...] = field(init=False)
 
@@ -265,7 +269,10 @@ class Robot:
                          f"{m.velocityLimit[iv]:.3f}")
         lines.append("  legs (joints → foot frame):")
         for leg in self.legs:
-            lines.append(f"    {leg.name}: {', '.join(leg.joint_names)} → {leg.foot_frame}")
+            sole = self.soles.get(leg.name)
+            on = "" if sole is None else \
+                f" (a {sole.length * 1e3:g} × {sole.width * 1e3:g} mm sole, flat in the stand)"
+            lines.append(f"    {leg.name}: {', '.join(leg.joint_names)} → {leg.foot_frame}{on}")
         others = self.other_joints
         if others:
             held = ("held at the stand pose" if not self.moves else

@@ -31,6 +31,15 @@ plan's inverse dynamics are already the feedforward):
    base frame at the plan's angles; Siciliano et al., *Robotics*, 2009, §3.7), so a body that
    lags or leans still sets its feet down where the plan does.
 
+**Soles** (:mod:`hexaleg.robot.soles`). A foot with a sole enters the force program as its
+four corners, each with its own force in its own friction cone — the exact contact wrench of a
+rectangle (Caron, Pham & Nakamura, ICRA 2015) — so the correction moves the sole's centre of
+pressure within it (an ankle torque) and never past its edge; the plan's force at the sole's
+centre is the corners' four equal shares. A corner's Jacobian is the foot's
+``J_v − [R_f c]× J_ω`` (its lever ``R_f c`` from the foot frame). A swinging sole aims at its
+planned orientation in the world too (``J_ω Δq = log(Rᵀ R*)``, the 6-row inverse of its leg's
+Jacobian), so it lands flat.
+
 **Through the servos.** The controller's output becomes the servo's reference
 (:mod:`hexaleg.simulation.controllers`): the control moves by ``Δτ/kp + Δq``. For the
 feedforward + PD servo that is the feedforward torque ``τ_ff + Δτ`` and the position reference
@@ -137,6 +146,11 @@ def needed(motion: Motion) -> bool:
     return int(np.asarray(motion.stance).sum(axis=1).min()) < FEWEST_STATIC
 
 
+def _skew(r: np.ndarray) -> np.ndarray:
+    """The cross-product matrix [r]× of r (3,), shape (3, 3)."""
+    return np.array([[0.0, -r[2], r[1]], [r[2], 0.0, -r[0]], [-r[1], r[0], 0.0]])
+
+
 def _skew_log(r: np.ndarray) -> np.ndarray:
     """log(R) as a rotation vector (rad), R (3, 3) a rotation (Pinocchio's ``log3``)."""
     return np.asarray(pin.log3(r))
@@ -203,7 +217,22 @@ class Balance:
         self.mass = robot.mass
         self.com = np.zeros((n, 3))
         nj, n_legs = robot.nj, len(robot.legs)
+        corners = [robot.soles[leg.name].corners() if leg.name in robot.soles
+                   else np.zeros((1, 3)) for leg in robot.legs]
+        self.point_leg = np.concatenate([np.full(len(c), i) for i, c in enumerate(corners)])
+        """The leg of each contact point (a point foot's one, a sole's four corners),
+        (n_points,)."""
+        self.point_share = np.concatenate([np.full(len(c), 1.0 / len(c)) for c in corners])
+        """The share of its leg's planned force each contact point carries, (n_points,): the
+        plan's force at a sole's centre is its four corners' equal forces."""
+        n_points = len(self.point_leg)
         jac = [np.zeros((n, 3, len(leg.columns))) for leg in robot.legs]
+        points = [np.zeros((n, len(c), 3, len(leg.columns)))
+                  for c, leg in zip(corners, robot.legs, strict=True)]
+        turn = {i: np.zeros((n, 3, len(leg.columns))) for i, leg in enumerate(robot.legs)
+                if leg.name in robot.soles}
+        self.soles = bool(turn)
+        """Whether a foot has a sole."""
         for k in range(n):
             qk = q[k].copy()
             qk[:7] = [0, 0, 0, 0, 0, 0, 1]  # the base at the origin: base-frame Jacobians
@@ -214,16 +243,34 @@ class Balance:
                 full = pin.getFrameJacobian(model, data, leg.foot_frame_id,
                                             pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
                 jac[i][k] = full[:3, 6 + np.asarray(leg.columns)]
-        self.stance_map = np.zeros((n, nj, n_legs, 3))
-        """−J_bᵀ of each leg in its joints' rows, (T, nj, n_legs, 3): Δτ = Σ_i (−J_b,iᵀ) Rᵀ Δf_i."""
+                points[i][k] = jac[i][k]
+                if i in turn:  # a corner c of the sole moves with v + ω × (R_f c)
+                    turn[i][k] = full[3:, 6 + np.asarray(leg.columns)]
+                    arm = corners[i] @ data.oMf[leg.foot_frame_id].rotation.T
+                    points[i][k] = jac[i][k] + np.einsum(
+                        "cxy,yj->cxj", np.array([-_skew(r) for r in arm]), turn[i][k])
+        self.stance_map = np.zeros((n, nj, n_points, 3))
+        """−J_bᵀ of each contact point in its leg's joints' rows, (T, nj, n_points, 3):
+        Δτ = Σ_i (−J_b,iᵀ) Rᵀ Δf_i."""
         self.swing_map = np.zeros((n, nj, n_legs, 3))
-        """J_b⁺ of each leg in its joints' rows, (T, nj, n_legs, 3): the swing IK step."""
+        """J_b⁺ of each leg in its joints' rows, (T, nj, n_legs, 3): the swing IK step (a
+        sole's: the position columns of the pseudo-inverse of its 6-row Jacobian)."""
+        self.swing_turn = np.zeros((n, nj, n_legs, 3))
+        """A sole's swing step for its foot's orientation: the orientation columns of that
+        pseudo-inverse, (T, nj, n_legs, 3) (zero for point feet)."""
         self.leg_rows = np.zeros((n_legs, nj), dtype=bool)
         for i, leg in enumerate(robot.legs):
             cols = np.asarray(leg.columns)
             self.leg_rows[i, cols] = True
-            self.stance_map[:, cols, i, :] = -np.swapaxes(jac[i], 1, 2)
-            self.swing_map[:, cols, i, :] = np.linalg.pinv(jac[i], rcond=1e-3)
+            at = np.flatnonzero(self.point_leg == i)
+            self.stance_map[:, cols[:, None], at, :] = -np.swapaxes(points[i], 2, 3).transpose(
+                0, 2, 1, 3)
+            if i in turn:
+                inverse = np.linalg.pinv(np.concatenate([jac[i], turn[i]], axis=1), rcond=1e-3)
+                self.swing_map[:, cols, i, :] = inverse[..., :3]
+                self.swing_turn[:, cols, i, :] = inverse[..., 3:]
+            else:
+                self.swing_map[:, cols, i, :] = np.linalg.pinv(jac[i], rcond=1e-3)
         pin.ccrba(model, data, q[0], np.zeros(model.nv))
         inertia = np.asarray(data.Ig.inertia)  # world-aligned at the plan's first sample
         self.inertia = rot[0].T @ inertia @ rot[0]
@@ -247,12 +294,14 @@ class Balance:
         return k % self.n, min(max(x - k, 0.0), 1.0), (k // self.n) * self.offset
 
     def _pattern(self, stance: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """``(stance legs, their joints' rows (bool), swing legs)`` of a stance pattern."""
+        """``(stance legs' contact points, their joints' rows (bool), swing legs)`` of a stance
+        pattern."""
         key = stance.tobytes()
         if key not in self._patterns:
             legs = np.flatnonzero(stance)
             rows = np.asarray(self.leg_rows[legs].any(axis=0), dtype=bool)
-            self._patterns[key] = (legs, rows, np.flatnonzero(~stance))
+            self._patterns[key] = (np.flatnonzero(stance[self.point_leg]), rows,
+                                   np.flatnonzero(~stance))
         return self._patterns[key]
 
     def correction(self, t: float, qpos: np.ndarray, qvel: np.ndarray, feet: np.ndarray
@@ -263,7 +312,9 @@ class Balance:
             t: Time, s.
             qpos: MuJoCo configuration (base position, quaternion w x y z, joints).
             qvel: MuJoCo velocity (base linear in the world frame, angular in the base frame).
-            feet: Foot positions (world), shape (n_legs, 3), m.
+            feet: Contact point positions (world), shape (n_points, 3), m: each point foot's,
+                each sole's four corners (legs in robot order,
+                :func:`~hexaleg.simulation.mjcf.contact_sites`).
         """
         g, sim = self.gains, self.sim
         k, s, travel = self.plan(t)
@@ -278,17 +329,18 @@ class Balance:
         dw[3:] = rot @ (self.inertia @ (rot.T @ (g.kp * _skew_log(r_plan @ rot.T)
                                                 + g.kd * (track[6:] - rot @ qvel[3:6]))))
         out = np.zeros(sim.robot.nj)
-        legs, cols, swing = self._pattern(self.stance[k] & self.stance[k + 1])
+        points, cols, swing = self._pattern(self.stance[k] & self.stance[k + 1])
         self.updates += 1
-        if len(legs):
+        if len(points):  # the stance feet's contact points
             load = self.load[k] + s * (self.load[k + 1] - self.load[k])
-            f0 = load[:self.n_force].reshape(-1, 3)[legs]
-            t_map = (self.stance_map[k][cols][:, legs] @ rot.T).reshape(-1, 3 * len(legs))
+            f0 = (load[:self.n_force].reshape(-1, 3)[self.point_leg[points]]
+                  * self.point_share[points, None])
+            t_map = (self.stance_map[k][cols][:, points] @ rot.T).reshape(-1, 3 * len(points))
             tau0 = load[self.n_force:][cols]
             stall = sim.stall[cols]
             bounds = TorqueBounds(t_map, np.minimum(-stall - tau0, 0.0),
                                   np.maximum(stall - tau0, 0.0))
-            df, bound = distribute(wrench_map(feet[legs], p + rot @ self.com[k]), dw, f0,
+            df, bound = distribute(wrench_map(feet[points], p + rot @ self.com[k]), dw, f0,
                                    sim.ground.mu, self.spread, bounds)
             self.constrained += bound
             out[cols] = (t_map @ df.ravel()) / sim.kp[cols]
@@ -297,4 +349,8 @@ class Balance:
             target = (x - p) @ rot - (x - p_plan) @ r_plan  # Rᵀ (x − p) − R*ᵀ (x − p*), per row
             sm = self.swing_map[k][:, swing]
             out += g.swing * (sm.reshape(len(sm), -1) @ target.ravel())
+            if self.soles:  # a sole turns by Rᵀ R*: flat on the ground as planned
+                st = self.swing_turn[k][:, swing]
+                out += g.swing * (st.reshape(len(st), -1)
+                                  @ np.tile(_skew_log(rot.T @ r_plan), len(swing)))
         return out

@@ -202,12 +202,13 @@ def forward_states(sim: SimModel, traj: Trajectory, rows: np.ndarray) -> Iterato
 
 def contact_forces(sim: SimModel, data: Any) -> np.ndarray:
     """The ground's force on each foot at a computed ``mujoco.MjData`` (after ``mj_forward``):
-    MuJoCo's contact force (``mj_contactForce``) of each foot sphere, world frame, shape
-    (n_legs, 3), N, legs in the robot's order; zero for a foot without an active contact."""
+    MuJoCo's contact force (``mj_contactForce``) of each foot sphere (summed over a sole's
+    corners), world frame, shape (n_legs, 3), N, legs in the robot's order; zero for a foot
+    without an active contact."""
     import mujoco
 
-    leg_of = {int(g): i for i, g in enumerate(sim.foot_geoms)}
-    out = np.zeros((len(leg_of), 3))
+    leg_of = {int(g): i for i, leg in enumerate(sim.foot_contacts) for g in leg}
+    out = np.zeros((len(sim.foot_contacts), 3))
     wrench = np.zeros(6)
     for c in range(data.ncon):
         con = data.contact[c]
@@ -217,7 +218,7 @@ def contact_forces(sim: SimModel, data: Any) -> np.ndarray:
         mujoco.mj_contactForce(sim.model, data, c, wrench)
         frame = np.asarray(con.frame).reshape(3, 3)
         f = frame.T @ wrench[:3]  # force on geom 2 (the foot) from geom 1 (the ground)
-        out[leg] = f if int(con.geom[1]) in leg_of else -f
+        out[leg] += f if int(con.geom[1]) in leg_of else -f
     return out
 
 

@@ -17,6 +17,10 @@ by construction:
   bounding box (a stand-in, noted); the geometry of the foot links is left out — the foot is a
   contact sphere centred on the foot frame (:mod:`hexaleg.simulation.model`);
 * a ``<site>`` at every foot frame (foot positions are read there);
+* a sole (:mod:`hexaleg.robot.soles`) as four contact spheres and sites at its corners instead
+  of the one at its centre: the exact contact of a rectangle on a plane (the sum of its corner
+  forces, each in its friction cone: Caron et al., ICRA 2015), in the point contacts the
+  ground already models;
 * before any of it is compiled, what MuJoCo's compiler refuses (:func:`check_inertias`,
   :func:`check_size`) as a :class:`~hexaleg.errors.RobotModelError` naming the link and value.
 
@@ -63,6 +67,32 @@ def foot_geom(leg: str) -> str:
 def foot_site(leg: str) -> str:
     """Name of the site at a leg's foot frame."""
     return f"{leg}_foot"
+
+
+def corner_geom(leg: str, corner: int) -> str:
+    """Name of the contact sphere at corner ``corner`` (0–3, :meth:`Sole.corners
+    <hexaleg.robot.soles.Sole.corners>`' order) of a leg's sole."""
+    return f"{leg}_sole{corner}_foot_contact"
+
+
+def corner_site(leg: str, corner: int) -> str:
+    """Name of the site at corner ``corner`` of a leg's sole."""
+    return f"{leg}_sole{corner}"
+
+
+def contact_sites(robot: Robot) -> list[str]:
+    """The sites of the robot's contact points, legs in robot order: a point foot's foot site,
+    a sole's four corner sites."""
+    return [name for leg in robot.legs for name in (
+        [corner_site(leg.name, j) for j in range(4)] if leg.name in robot.soles
+        else [foot_site(leg.name)])]
+
+
+def contact_geoms(robot: Robot) -> list[list[str]]:
+    """Per leg in robot order, the names of its foot's contact spheres: one for a point foot,
+    four for a sole (its corners)."""
+    return [[corner_geom(leg.name, j) for j in range(4)] if leg.name in robot.soles
+            else [foot_geom(leg.name)] for leg in robot.legs]
 
 
 @dataclass(frozen=True)
@@ -256,8 +286,16 @@ def tree_xml(robot: Robot, foot_radius: float) -> TreeXml:
             if frame.parentJoint == i:
                 p = frame.placement.translation
                 yield f'<site name="{foot_site(leg.name)}" pos="{fmt(p)}"/>'
-                yield (f'<geom name="{foot_geom(leg.name)}" class="{FOOT_CLASS}" type="sphere" '
-                       f'size="{fmt(foot_radius)}" pos="{fmt(p)}"/>')
+                sole = robot.soles.get(leg.name)
+                if sole is None:
+                    yield (f'<geom name="{foot_geom(leg.name)}" class="{FOOT_CLASS}" '
+                           f'type="sphere" size="{fmt(foot_radius)}" pos="{fmt(p)}"/>')
+                    continue
+                for j, c in enumerate(sole.corners()):
+                    at = p + frame.placement.rotation @ c
+                    yield f'<site name="{corner_site(leg.name, j)}" pos="{fmt(at)}"/>'
+                    yield (f'<geom name="{corner_geom(leg.name, j)}" class="{FOOT_CLASS}" '
+                           f'type="sphere" size="{fmt(foot_radius)}" pos="{fmt(at)}"/>')
         for child in children[i]:
             yield from body(child)
         yield "</body>"

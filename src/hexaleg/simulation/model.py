@@ -56,8 +56,8 @@ from hexaleg.simulation.ground import FOOT_RADIUS, IMPRATIO, Ground
 from hexaleg.simulation.mjcf import (
     FOOT_CLASS,
     GEOM_CLASS,
+    contact_geoms,
     fmt,
-    foot_geom,
     foot_site,
     tree_xml,
 )
@@ -91,10 +91,13 @@ class SimModel:
         ground: The ground.
         kp: Position gains, (nj,), N·m/rad. kd: Velocity gains, (nj,), N·m·s/rad.
         damping: Back-EMF damping D, (nj,), N·m·s/rad. stall: Stall torques, (nj,), N·m.
-        foot_geoms: MuJoCo geom id of each leg's foot sphere, (n_legs,), legs in robot order.
+        foot_geoms: MuJoCo geom id of each leg's foot sphere (a sole's first corner), (n_legs,),
+            legs in robot order.
         notes: What was approximated or left out.
         tree: The robot's bodies as MJCF (:func:`~hexaleg.simulation.mjcf.tree_xml`).
         contacts: Its ground contacts as MJCF ``<pair>`` elements.
+        foot_contacts: Per leg, the geom ids of its foot's contact spheres: the foot sphere,
+            or a sole's four corners (:func:`~hexaleg.simulation.mjcf.contact_geoms`).
     """
 
     robot: Robot
@@ -112,6 +115,7 @@ class SimModel:
     notes: tuple[str, ...]
     tree: str = ""
     contacts: str = ""
+    foot_contacts: tuple[tuple[int, ...], ...] = ()
 
     @property
     def timestep(self) -> float:
@@ -248,7 +252,7 @@ def build_model(robot: Robot, motion: Motion, motor: ServoMotor, *,
     sensors = "\n".join([*(f'<actuatorfrc actuator="{j}_servo"/>' for j in robot.joint_names),
                          *(f'<framepos objtype="site" objname="{foot_site(leg.name)}"/>'
                            for leg in robot.legs)])
-    feet = [foot_geom(leg.name) for leg in robot.legs]
+    feet = contact_geoms(robot)
     if like is not None:
         if like.robot is not robot or like.servo != servo or like.ground != ground or not all(
                 np.array_equal(a, b) for a, b in ((like.kp, kp), (like.kd, kd),
@@ -278,7 +282,7 @@ def build_model(robot: Robot, motion: Motion, motor: ServoMotor, *,
                 f'solreffriction="{fmt(ground.solreffriction())}" '
                 f'solimp="{fmt(ground.solimp())}"{margin}/>')
 
-    contacts = "\n".join(pair(g) for g in feet + clear)
+    contacts = "\n".join(pair(g) for g in [*(g for leg in feet for g in leg), *clear])
     notes = (*tree.notes, *(f"{g}: no ground contact (within {CLEARANCE * 1e3:g} mm of the "
                             "ground in the plan)" for g in touching))
     return _compiled(robot, motion, _document(robot, tree.xml, plan, servos, contacts, sensors,
@@ -289,7 +293,7 @@ def build_model(robot: Robot, motion: Motion, motor: ServoMotor, *,
 
 def _compiled(robot: Robot, motion: Motion, xml: str, plan: SpringPlan, servo: Servo,
               ground: Ground, gains: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
-              joints: JointMap, feet: list[str], notes: tuple[str, ...], tree: str,
+              joints: JointMap, feet: list[list[str]], notes: tuple[str, ...], tree: str,
               contacts: str, check: bool) -> SimModel:
     """The model of a finished document (:func:`build_model`): compiled, the springs and the
     back-EMF damping applied, the flags set, the timestep checked."""
@@ -303,11 +307,12 @@ def _compiled(robot: Robot, motion: Motion, xml: str, plan: SpringPlan, servo: S
         model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_AUTORESET)
     if hasattr(mujoco.mjtDisableBit, "mjDSBL_ISLAND"):  # one island: the search is pure cost
         model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_ISLAND)
+    ids = tuple(tuple(mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, g) for g in leg)
+                for leg in feet)
     sim = SimModel(robot=robot, model=model, xml=xml, joints=joints, springs=plan, servo=servo,
                    ground=ground, kp=kp, kd=kd, damping=damping, stall=stall,
-                   foot_geoms=np.array([mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, g)
-                                        for g in feet]),
-                   notes=notes, tree=tree, contacts=contacts)
+                   foot_geoms=np.array([leg[0] for leg in ids]), notes=notes, tree=tree,
+                   contacts=contacts, foot_contacts=ids)
     if check:
         check_timestep(sim, motion)
     return sim

@@ -27,7 +27,7 @@ import numpy as np
 
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.recorded.base import rotation_from_quaternion
-from hexaleg.simulation.mjcf import foot_site
+from hexaleg.simulation.mjcf import contact_sites
 from hexaleg.simulation.model import SimModel
 
 FALL_HEIGHT = 0.5
@@ -35,7 +35,9 @@ FALL_HEIGHT = 0.5
 FALL_TILT = float(np.deg2rad(45.0))
 """rad: a base rolled or pitched beyond this has fallen."""
 Feedback = Callable[[float, np.ndarray, np.ndarray, np.ndarray], np.ndarray]
-"""A controller closing the loop: ``(t, qpos, qvel, feet (n_legs, 3)) → Δcontrols (nj,)``,
+"""A controller closing the loop: ``(t, qpos, qvel, contact points (n_points, 3)) → Δcontrols
+(nj,)`` (the points a foot site's or a sole's four corner sites,
+:func:`~hexaleg.simulation.mjcf.contact_sites`),
 held until its next update (:meth:`hexaleg.simulation.balance.Balance.correction`)."""
 MAX_STEPS = 5_000_000
 """Steps a run may take (a bound: a long run is an error, never a hang)."""
@@ -208,7 +210,7 @@ def _python_loop(sim: SimModel, data: object, ctrl: np.ndarray
 def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedback | None,
                 every: int, height: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Pre-step states and their sensors, ``every`` steps at a time: with ``feedback`` closing
-    the loop at each chunk's start — the state and the foot sites (``mj_kinematics``) are
+    the loop at each chunk's start — the state and the contact sites (``mj_kinematics``) are
     read, the controls of the next ``every`` steps move by the feedback's change (``ctrl`` is
     updated in place: the controls applied) — or open loop without. MuJoCo's rollout (or the
     Python loop, for non-native springs) runs each chunk, its constraint warm start carried
@@ -228,8 +230,8 @@ def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedbac
     mujoco.mj_getState(m, data, state, spec)
     qpos, qvel = np.empty((n, m.nq)), np.empty((n, m.nv))
     sensors = np.empty((n, m.nsensordata))
-    sites = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_SITE, foot_site(leg.name))
-             for leg in sim.robot.legs]
+    sites = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_SITE, name)
+             for name in contact_sites(sim.robot)]
     roller = mujoco.rollout.Rollout(nthread=0) if hasattr(mujoco.rollout, "Rollout") else None
     nq, nv = m.nq, m.nv
     k = 0
