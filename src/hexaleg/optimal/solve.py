@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.motion.trajectory import Motion
+from hexaleg.motion.trajectory import SEMI_IMPLICIT, Motion
 from hexaleg.optimal.backend import crocoddyl_module
 from hexaleg.optimal.periodic import periodicity_gap
 from hexaleg.optimal.problem import OptimalProblem
@@ -156,7 +156,8 @@ def solve(robot: Robot, built: OptimalProblem, *, say: Callable[[str], None] | N
     motion = Motion(t=np.arange(n) * built.dt, q=x[:-1, :nq].copy(), v=x[:-1, nq:].copy(),
                     a=np.diff(x[:, nq:], axis=0) / built.dt, stance=built.stance.copy(),
                     feet=feet, period=built.period, distance=built.distance,
-                    info={"source": "optimal", "cycle": built.displacement.tolist(),
+                    info={"source": "optimal", "integrator": SEMI_IMPLICIT,
+                          "cycle": built.displacement.tolist(),
                           "knots": n, "energy_per_metre": energy / built.distance
                           if built.distance > 0 else float("nan")})
     return OptimalResult(
