@@ -250,7 +250,8 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
 
             optimal = optimal_rows(model, motor, c.contact(), dataclasses.replace(
                 base, samples=n_final), chosen, c_sprung.springs,
-                (rows[0].per_metre, rows[3].per_metre), family=family, servo=servo,
+                (rows[0].per_metre, rows[3].per_metre), family=family, groups=groups,
+                servo=servo,
                 say=lambda line: say(f"optimal motion: {line}"))
         return CodesignResult(
             robot=run.robot, title=model.name, mass=model.mass, speed=v, pattern=base.pattern,
