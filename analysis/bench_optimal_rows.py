@@ -1,15 +1,20 @@
-"""The optimal motion's four rows on the default robot at 0.06 m/s, as ``hexaleg codesign --motion
-optimal`` computes them after its search (log: analysis/bench_logs/bench_optimal_rows.log;
-not an example study: it needs the optimal extra and ten minutes).
+"""The optimal motion's four rows, as ``hexaleg codesign --motion optimal`` computes them after its
+search: the default robot at 0.06 m/s (log: analysis/bench_logs/bench_optimal_rows.log) or
+Solo-12's trot at 0.3 m/s (``--robot solo12 --speed 0.3 --grouping mirrored``, log:
+analysis/bench_logs/bench_optimal_rows_solo12.log); not an example study: it needs the optimal
+extra and minutes.
 
-Run:  python analysis/bench_optimal_rows.py [--chosen cd.pkl]
+Run:  python analysis/bench_optimal_rows.py [--robot hexaleg] [--speed 0.06] [--grouping class]
+                                            [--max-evaluations 200] [--restarts 2]
+                                            [--chosen cd.pkl]
 
 Needs the ``optimal`` extra. The parametric co-design (``hexaleg.codesign``, no rules, no
-simulation, no curve: its chosen gait and inner springs; or both from the pickle of
-``analysis/bench_optimal_target.py --chosen``), then
+simulation, no curve, the given grouping and search budget: its chosen gait and inner springs),
+or both from the pickle ``--chosen`` names (written by this script, or by
+``analysis/bench_optimal_target.py --chosen``: a re-run after a kill skips the search), then
 :func:`hexaleg.design.codesign.optimal_rows.optimal_rows` (40 knots, 100 iterations, one
-alternation round) with each row simulated under both servos; prints the rows as the command
-does, the wall and CPU time.
+alternation round on the co-design's spring groups) with each row simulated under both servos;
+prints the rows as the command does, each optimal motion's solver figures, the wall and CPU time.
 """
 
 from __future__ import annotations
@@ -20,31 +25,60 @@ import pickle
 import time
 
 import hexaleg
+from hexaleg.design.chain.groups import design_groups
 from hexaleg.design.codesign.build import default_gait
 from hexaleg.design.codesign.optimal_rows import optimal_rows
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--chosen", help="pickle of the co-design's chosen gait and springs")
+    parser.add_argument("--robot", default="hexaleg", help="registered robot")
+    parser.add_argument("--speed", type=float, default=0.06, help="m/s")
+    parser.add_argument("--grouping", default="class", help="class, mirrored or joint")
+    parser.add_argument("--max-evaluations", type=int, default=200, help="search budget")
+    parser.add_argument("--restarts", type=int, default=2, help="compass-search runs")
+    parser.add_argument("--chosen", help="pickle of the co-design's chosen gait and springs "
+                        "(read if it exists, else written after the search)")
     args = parser.parse_args()
     t0, c0 = time.perf_counter(), os.times()
-    run = hexaleg.Scenario.load("hexaleg")
+    run = hexaleg.Scenario.load(args.robot)
     robot = run.model
     if args.chosen and os.path.exists(args.chosen):
         with open(args.chosen, "rb") as f:
             saved = pickle.load(f)
         chosen, springs, per_metre = saved["chosen"], saved["springs"], saved["per_metre"]
         default = dict(saved["rows"])["default gait, no springs"]
+        print(f"co-design from {args.chosen}", flush=True)
     else:
-        para = hexaleg.codesign(speed=0.06, rules=False, simulate=False, curve=False)
+        para = hexaleg.codesign(args.robot, args.speed, rules=False, simulate=False,
+                                curve=False, grouping=args.grouping,
+                                max_evaluations=args.max_evaluations, restarts=args.restarts,
+                                progress=lambda line: print(line, flush=True))
         chosen, springs, per_metre = para.chosen, para.springs, para.rows[3].per_metre
         default = para.rows[0].per_metre
-    base = default_gait(robot, "hexaleg", 0.06, None, chosen.samples)
+        rows = [(r.label, r.per_metre) for r in para.rows]
+        print(f"co-design: {para.wall:.0f} s; rows "
+              + " / ".join(f"{v:.4g}" for _, v in rows) + " J/m", flush=True)
+        if args.chosen:
+            with open(args.chosen + ".part", "wb") as f:
+                pickle.dump({"chosen": chosen, "springs": springs, "per_metre": per_metre,
+                             "rows": rows}, f)
+            os.replace(args.chosen + ".part", args.chosen)  # whole or not at all
+    print(f"chosen gait: duty factor {chosen.duty_factor:.4g}, period {chosen.period:.4g} s, "
+          f"step height {chosen.step_height:.4g} m, body height {chosen.body_height:.4g} m",
+          flush=True)
+    base = default_gait(robot, args.robot, args.speed, None, chosen.samples)
+    groups = design_groups(robot, tuple(robot.joint_classes), args.grouping)
     table = optimal_rows(robot, run.actuator, run.contact, base, chosen, springs,
-                         (default, per_metre), rounds=1,
+                         (default, per_metre), groups=groups, rounds=1,
                          say=lambda line: print(line, flush=True))
     print("\n".join(table.lines()), flush=True)
+    for name, r in (("no springs", table.bare), ("its springs", table.best)):
+        print(f"optimal motion, {name}: {r.iterations} iterations, stationarity "
+              f"{r.stationarity:.2g} (threshold {r.threshold:.2g}), dynamics gap "
+              f"{r.dynamic_gap:.2g}, residual {r.residual:.2g} N·m, friction use "
+              f"{r.friction_use:.3f}, stance slip {r.slip:.3g} m/s, periodicity "
+              f"{r.periodicity:.2g}, {r.seconds:.0f} s", flush=True)
     c1 = os.times()
     cpu = (c1.user - c0.user) + (c1.system - c0.system)
     print(f"wall {time.perf_counter() - t0:.0f} s, CPU {cpu:.0f} s", flush=True)

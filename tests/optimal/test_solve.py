@@ -87,3 +87,17 @@ def test_a_gait_parameter_moved_by_1e_9_gives_the_same_cycle(run, optimal):
     result, _ = optimal
     assert f"{again.energy_per_metre:.4g}" == f"{result.energy_per_metre:.4g}"
     assert again.iterations == result.iterations
+
+
+@pytest.mark.slow
+def test_the_cycle_closes_at_the_solvers_last_knot(run, optimal):
+    """The balance feedback's closing sample of an optimal motion is the solver's x_N."""
+    import pinocchio as pin
+
+    from hexaleg.simulation.balance import cycle_end
+
+    result, _ = optimal
+    end, position = cycle_end(run.model.model, result.motion)
+    assert np.abs(position - result.x[-1, :3]).max() < 1e-12
+    want = pin.Quaternion(result.x[-1, 3:7]).toRotationMatrix()
+    assert np.abs(end - want).max() < 1e-12

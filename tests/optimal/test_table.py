@@ -56,3 +56,42 @@ def test_the_optimal_rows(default_rows):
                     params=params, rounds=3)
     assert rows["optimal cycle with its springs (alternation)"] == pytest.approx(
         alt.best.energy_per_metre, abs=0.005)
+
+
+LOGS = Path(__file__).resolve().parents[2] / "analysis" / "bench_logs"
+
+
+def _logged(log: str) -> list[tuple[float, ...]]:
+    """The four rows a kept log printed (``OptimalRows.lines``): predicted, then each
+    controller's simulated J/m or NaN where it did not walk."""
+    rows = []
+    lines = (LOGS / log).read_text(encoding="utf-8").splitlines()
+    head = next(k for k, line in enumerate(lines) if "optimal motion (whole-body" in line)
+    for line in lines[head + 1:head + 5]:
+        m = re.match(r"^(?:\S+ )?\s+[a-z][^0-9]*?\s{2,}([0-9.]+)\s+(.*)$", line)
+        if m:
+            sims = [float(p) if re.fullmatch(r"[0-9.]+", p.strip()) else float("nan")
+                    for p in re.split(r", (?=[0-9—])", m[2])]
+            rows.append((float(m[1]), *sims))
+    return rows
+
+
+def _documented(first: str) -> list[tuple[float, ...]]:
+    """The four rows of docs/optimal.md's table whose header's first cell is ``first``."""
+    text = DOC.read_text(encoding="utf-8")
+    table = text[text.index(f"| {first} |"):].split("\n\n")[0].splitlines()[2:]
+    return [tuple(float(c) if re.fullmatch(r"[0-9.]+", c) else float("nan")
+                  for c in (cell.strip() for cell in row.strip("|").split("|")[1:]))
+            for row in table]
+
+
+@pytest.mark.parametrize(("first", "log"), [
+    ("Solo-12 row", "bench_optimal_rows_solo12.log"),
+    ("row (whole command)", "codesign_motion_optimal.log")])
+def test_the_documented_rows_are_the_kept_logs(first, log):
+    """Solo-12's table and the whole command's come from runs too long for a test: the docs
+    must print what their kept logs printed."""
+    logged, documented = _logged(log), _documented(first)
+    assert len(logged) == len(documented) == 4
+    for a, b in zip(logged, documented, strict=True):
+        assert a == pytest.approx(b, abs=0.005, nan_ok=True)

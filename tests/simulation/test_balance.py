@@ -380,3 +380,35 @@ def test_the_biped_on_soles_recovers_from_a_push_and_on_point_feet_it_falls(tmp_
     assert not sim.robot.soles
     traj, _ = _pushed(motion, analysis, sim, np.zeros(3), 2)
     assert traj.verdict == "fell", traj.message
+
+
+def test_a_cycle_of_integrated_knots_closes_at_its_own_next_knot(robot):
+    """An optimal motion's knots are a semi-implicit Euler integration 23 ms apart: the sample
+    after its last is that step exactly, where one explicit step misses it by |ω̇| dt² (here
+    more than the 1e-3 rad a turning plan is told by, so Solo-12's optimal trot was refused)."""
+    import pinocchio as pin
+
+    from hexaleg.motion.trajectory import SEMI_IMPLICIT, Motion
+
+    model, n, dt = robot.model, 12, 0.023
+    q, v = pin.neutral(model), np.zeros(model.nv)
+    a = np.zeros(model.nv)
+    a[[0, 5]] = 0.5, 10.0  # forward and about yaw (base frame)
+    qs, vs = [], []
+    for _ in range(n + 1):
+        qs.append(q.copy())
+        vs.append(v.copy())
+        v = v + a * dt
+        q = pin.integrate(model, q, v * dt)
+    stance = np.ones((n, len(robot.legs)), dtype=bool)
+    motion = Motion(t=np.arange(n) * dt, q=np.array(qs[:n]), v=np.array(vs[:n]),
+                    a=np.tile(a, (n, 1)), stance=stance, feet=np.zeros((n, len(robot.legs), 3)),
+                    period=n * dt, info={"integrator": SEMI_IMPLICIT})
+    end, position = balance.cycle_end(model, motion)
+    want = pin.Quaternion(qs[n][3:7]).toRotationMatrix()
+    assert np.abs(end - want).max() < 1e-12
+    assert np.abs(position - qs[n][:3]).max() < 1e-12
+    explicit, _ = balance.cycle_end(model, dataclasses.replace(motion, info={}))
+    miss = np.linalg.norm(balance._skew_log(want.T @ explicit))
+    assert miss == pytest.approx(10.0 * dt**2, rel=1e-6)
+    assert miss > balance.TURN

@@ -19,6 +19,11 @@ from hexaleg.errors import InvalidParameterError
 
 PERIOD_TOLERANCE = 1e-6
 """Relative tolerance of ``T · dt == period`` for a periodic :class:`Motion`."""
+SEMI_IMPLICIT = "semi-implicit Euler"
+"""``info["integrator"]`` of a motion whose samples are the knots of a semi-implicit Euler
+integration, ``v_{k+1} = v_k + a_k dt``, ``q_{k+1} = q_k ⊕ v_{k+1} dt`` (Crocoddyl's
+``IntegratedActionModelEuler``; an optimal motion, :mod:`hexaleg.optimal.solve`): the sample
+after its last is that step, exactly."""
 
 
 @named_arguments
@@ -47,7 +52,8 @@ class Motion:
             (T,), bool. No foot may be in stance at such a sample (the support carries the
             robot; feet touching it too would make the load sharing indeterminate). ``None``
             (the default) means every sample when ``fixed_base`` and none otherwise.
-        info: Free-form description of how the motion was made (e.g. gait parameters).
+        info: Free-form description of how the motion was made (e.g. gait parameters;
+            ``integrator``: :data:`SEMI_IMPLICIT` for the knots of such an integration).
         normal: The ground's unit normal in the world frame, shape (3,): the axis of the feet's
             friction cones (:mod:`hexaleg.dynamics.contact`). None (the default): level ground,
             ``[0, 0, 1]``.

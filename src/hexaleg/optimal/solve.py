@@ -24,7 +24,8 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.motion.trajectory import Motion
+from hexaleg.checks import integer
+from hexaleg.motion.trajectory import SEMI_IMPLICIT, Motion
 from hexaleg.optimal.backend import crocoddyl_module
 from hexaleg.optimal.periodic import periodicity_gap
 from hexaleg.optimal.problem import OptimalProblem
@@ -81,13 +82,15 @@ class OptimalResult:
 
 
 class _Progress(_CallbackAbstract):
-    """One line per box-FDDP iteration to ``say``."""
+    """One line every ``every`` box-FDDP iterations to ``say``."""
 
-    def __init__(self, say: Callable[[str], None]) -> None:
+    def __init__(self, say: Callable[[str], None], every: int = 1) -> None:
         _CallbackAbstract.__init__(self)
-        self.say = say
+        self.say, self.every = say, every
 
     def __call__(self, solver: Any) -> None:
+        if solver.iter % self.every:
+            return
         self.say(f"iteration {solver.iter}: cost {solver.cost:.6g}, stop {solver.stop:.3g}, "
                  f"gap {solver.ffeas:.3g}")
 
@@ -107,13 +110,14 @@ def _forces(robot: Robot, built: OptimalProblem) -> np.ndarray:
 
 
 def solve(robot: Robot, built: OptimalProblem, *, say: Callable[[str], None] | None = None,
-          warm: tuple[np.ndarray, np.ndarray] | None = None) -> OptimalResult:
+          warm: tuple[np.ndarray, np.ndarray] | None = None, every: int = 1) -> OptimalResult:
     """Solve ``built`` by box-FDDP (module docstring).
 
     Args:
         robot: The robot the problem was built for.
         built: The problem (:func:`~hexaleg.optimal.problem.build_problem`).
-        say: Where each iteration's progress line goes (None: nowhere).
+        say: Where the iterations' progress lines go (None: nowhere).
+        every: One line every this many iterations (≥ 1).
         warm: States (N + 1, nx) and controls (N, nu) to start from instead of the warm
             start's states and their quasi-static controls.
     """
@@ -121,7 +125,7 @@ def solve(robot: Robot, built: OptimalProblem, *, say: Callable[[str], None] | N
     solver = crocoddyl.SolverBoxFDDP(problem)
     solver.th_stop = built.params.stop
     if say is not None:
-        solver.setCallbacks([_Progress(say)])
+        solver.setCallbacks([_Progress(say, integer("every", every, low=1))])
     if warm is None:
         xs = [np.array(x) for x in built.x_warm]
         us = list(problem.quasiStatic(xs[:-1]))
@@ -156,7 +160,8 @@ def solve(robot: Robot, built: OptimalProblem, *, say: Callable[[str], None] | N
     motion = Motion(t=np.arange(n) * built.dt, q=x[:-1, :nq].copy(), v=x[:-1, nq:].copy(),
                     a=np.diff(x[:, nq:], axis=0) / built.dt, stance=built.stance.copy(),
                     feet=feet, period=built.period, distance=built.distance,
-                    info={"source": "optimal", "cycle": built.displacement.tolist(),
+                    info={"source": "optimal", "integrator": SEMI_IMPLICIT,
+                          "cycle": built.displacement.tolist(),
                           "knots": n, "energy_per_metre": energy / built.distance
                           if built.distance > 0 else float("nan")})
     return OptimalResult(

@@ -81,3 +81,48 @@ def test_the_page_shows_the_optimal_motions_table(codesigned):
     table = page[page.index("The optimal motion with its springs"):]
     assert "Unproven" in table and "LF_femur" in table and "fell: at 1.2 s" in table
     assert "13.71 J/m" in table and "0.32" in table  # 1.5 × 9.14, 9.14 / 28.45
+
+
+@pytest.mark.slow  # two small co-design searches: ~5 s of CPU
+def test_a_kill_in_the_optimal_stage_resumes_from_the_kept_co_design(tmp_path, monkeypatch):
+    """``--motion optimal`` keeps the finished parametric co-design before the optimal motion's
+    minutes: a kill there publishes nothing and leaves that stage, which the same run reads back
+    instead of searching again (the optimal stage gets the same gait, springs and rows); another
+    speed is another run, searched afresh."""
+    from hexaleg.commands.codesign.write import STAGES, write_codesign
+    from hexaleg.design.codesign import build, optimal_rows
+    from hexaleg.optimal import backend
+
+    monkeypatch.setattr(backend, "crocoddyl_module", lambda: None)  # the stage is stubbed
+    handed = []
+
+    def killed(*args, **_):
+        handed.append(args)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(optimal_rows, "optimal_rows", killed)
+    run = {"robot": "hexaleg", "speed": 0.06, "samples": 40, "final_samples": 40,
+           "max_evaluations": 10, "restarts": 1, "rules": False, "curve": False,
+           "simulate": False, "motion": "optimal"}
+    out = tmp_path / "out"
+    with pytest.raises(KeyboardInterrupt):
+        write_codesign(out, **run)
+    assert (out / STAGES / "parametric.pickle").is_file()
+    assert not (out / "codesign.json").exists()
+
+    class Searched(Exception):
+        pass
+
+    def search(*_, **__):
+        raise Searched
+
+    monkeypatch.setattr(build, "search", search)
+    lines: list[str] = []
+    with pytest.raises(KeyboardInterrupt):
+        write_codesign(out, progress=lines.append, **run)
+    assert "read back from the kept stage" in lines[0]
+    first, again = handed
+    assert first[3:5] == again[3:5] and first[6] == again[6]  # gaits, predicted rows
+    assert repr(first[5]) == repr(again[5])  # springs
+    with pytest.raises(Searched):
+        write_codesign(out, **{**run, "speed": 0.05})

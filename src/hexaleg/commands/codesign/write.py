@@ -18,13 +18,19 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from hexaleg.design.chain.checkpoint import StageFiles, scenario_key
 from hexaleg.design.codesign.build import codesign
 from hexaleg.design.codesign.result import CodesignResult
 from hexaleg.outputs import codesign_plots, plots
 from hexaleg.outputs.directory import OutputFolder
 from hexaleg.outputs.html import render_codesign_html
 from hexaleg.outputs.spring_drawing import drawings
+from hexaleg.parallel.interrupt import keep
 from hexaleg.quantities import json_text
+from hexaleg.scenario.scenario import Scenario
+
+STAGES = ".hexaleg-codesign-stages"
+"""The hidden folder of a co-design's finished stages in its output directory."""
 
 
 def curves(result: CodesignResult) -> dict[str, tuple[list[float], list[float], list[float]]]:
@@ -75,10 +81,30 @@ def write_codesign(out: str | Path = "hexaleg-codesign", **kwargs: Any
                    ) -> tuple[CodesignResult, list[Path]]:
     """Compute the co-design (keywords of :func:`~hexaleg.design.codesign.build.codesign`)
     and write it to ``out``, the directory locked from the start and published whole at the
-    end (:class:`~hexaleg.outputs.directory.OutputFolder`); (result, files)."""
-    with OutputFolder(out, "co-design") as folder:
-        result = codesign(**kwargs)
-        return result, _write(result, folder)[1]
+    end (:class:`~hexaleg.outputs.directory.OutputFolder`); (result, files).
+
+    With the optimal motion (``motion="optimal"``), the finished parametric co-design is kept in
+    ``out``'s hidden :data:`STAGES` (:class:`~hexaleg.design.chain.checkpoint.StageFiles`,
+    keyed on the run and the settings) before the optimal motion's minutes: a run killed or
+    interrupted there leaves the previous co-design as it was and that stage, which the same
+    command reads back instead of searching again; a whole co-design removes it.
+    """
+    out = Path(out)
+    robot = kwargs.get("robot", "hexaleg")
+    scenario = robot if isinstance(robot, Scenario) else Scenario.load(robot)
+    settings = {k: repr(v) for k, v in sorted(kwargs.items()) if k not in ("robot", "progress")}
+    stages = StageFiles(out / STAGES, scenario_key(scenario, settings))
+    try:
+        with OutputFolder(out, "co-design") as folder:
+            result = codesign(**{**kwargs, "robot": scenario}, stages=stages)
+            files = _write(result, folder)[1]
+    except KeyboardInterrupt as e:  # Ctrl-C or a kill: the finished stage stays for a re-run
+        if stages.written:
+            keep(e, f"but its parametric co-design is kept in {out / STAGES} for the same "
+                    "command to resume from")
+        raise
+    stages.clear()  # the co-design is whole: nothing to resume
+    return result, files
 
 
-__all__ = ["curves", "write_codesign", "write_result"]
+__all__ = ["STAGES", "curves", "write_codesign", "write_result"]

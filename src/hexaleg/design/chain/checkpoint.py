@@ -79,11 +79,17 @@ def _code_digest() -> str:
 
 
 def run_key(scenario: Scenario, design: DesignParams, mission: Mission) -> str:
-    """What makes two design runs the same computation, as a hex digest: hexaleg's code (its
-    source files' digest), the robot (its name or description file, and the content of that
-    file, its URDF and SRDF), the config's tables, the log and its cycle (the log's content),
-    the ``[design]`` settings as the chain reads them (the controller among them) and the
-    ``[mission]``."""
+    """What makes two design runs the same computation, as a hex digest
+    (:func:`scenario_key`): the scenario, the ``[design]`` settings as the chain reads them
+    (the controller among them) and the ``[mission]``."""
+    return scenario_key(scenario, {"design": repr(design), "mission": repr(mission)})
+
+
+def scenario_key(scenario: Scenario, settings: Mapping[str, str]) -> str:
+    """What makes two runs of a command the same computation, as a hex digest: hexaleg's code
+    (its source files' digest), the robot (its name or description file, and the content of
+    that file, its URDF and SRDF), the config's tables, the log and its cycle (the log's
+    content) and the command's ``settings`` (name → their ``repr``)."""
     desc = scenario.description
     robot_file = Path(scenario.robot)
     parts = {
@@ -95,8 +101,7 @@ def run_key(scenario: Scenario, design: DesignParams, mission: Mission) -> str:
         "tables": scenario.tables,
         "run": scenario.data(),
         "log": _file_digest(Path(scenario.log)) if scenario.log else "",
-        "design": repr(design),
-        "mission": repr(mission),
+        **settings,
     }
     text = json.dumps(parts, sort_keys=True, default=repr)
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
@@ -194,4 +199,4 @@ class StageFiles:
         self._mine = False
 
 
-__all__ = ["FOLDER", "KEY_FILE", "StageFiles", "run_key"]
+__all__ = ["FOLDER", "KEY_FILE", "StageFiles", "run_key", "scenario_key"]

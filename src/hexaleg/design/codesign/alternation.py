@@ -32,7 +32,7 @@ from typing import Any
 import numpy as np
 
 from hexaleg.checks import integer, one_of, real
-from hexaleg.design.search.optimal import optimal_springs
+from hexaleg.design.search.optimal import Groups, optimal_springs
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.dynamics.prepare import prepare
 from hexaleg.motion.trajectory import Motion
@@ -41,6 +41,10 @@ from hexaleg.robot.springs import SpringSet
 
 SMOOTH_FAMILIES = ("linear", "dead_zone")
 """Families whose torque is continuous in the angle (module docstring)."""
+
+
+PROGRESS = 20
+"""A solve's progress line every this many box-FDDP iterations (a hundred take minutes)."""
 
 
 @dataclass(frozen=True)
@@ -92,7 +96,7 @@ class Alternation:
 
 def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams, *,
               springs: SpringSet | None = None, params: Any = None, family: str = "linear",
-              rounds: int = 4, tolerance: float = 0.01,
+              groups: Groups | None = None, rounds: int = 4, tolerance: float = 0.01,
               say: Callable[[str], None] | None = None) -> Alternation:
     """Alternate the optimal motion and its springs (module docstring).
 
@@ -104,6 +108,9 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
         springs: The springs to start from (None: none).
         params: :class:`~hexaleg.optimal.problem.OptimalParams` (None: defaults).
         family: The spring family designed, one of :data:`SMOOTH_FAMILIES`.
+        groups: One spring design per group (``{name: joints}``, as the co-design's
+            ``grouping``; Solo-12's front and hind knees bend opposite ways, so a design per
+            class cancels there); None: one per joint class.
         rounds: Rounds at most, ≥ 1.
         tolerance: Relative gain under which it stops, in [0, 1).
         say: Where progress lines go.
@@ -120,7 +127,8 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
     params = params or OptimalParams()
     tell = say or (lambda _line: None)
     current = springs or SpringSet()
-    best = solve(robot, build_problem(robot, gait, actuator, current, params))
+    best = solve(robot, build_problem(robot, gait, actuator, current, params), say=tell,
+                 every=PROGRESS)
     start = best
     tell(f"start: {best.energy_per_metre:.4g} J/m ({best.iterations} iterations, "
          f"{best.seconds:.0f} s)")
@@ -129,12 +137,12 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
     for k in range(rounds):
         began = time.perf_counter()
         prepared = prepare(robot, best.motion, motor=actuator, contact=contact)
-        design = optimal_springs(prepared, list(robot.joint_classes), family=family,
-                                 metric="electrical")
+        design = optimal_springs(prepared, groups or list(robot.joint_classes),
+                                 family=family, metric="electrical")
         built = build_problem(robot, gait, actuator, design.springs, params)
         new_tau = np.array([built.actuation.spring_torques(x) for x in best.x[:-1]])
         warm = (best.x, best.torques + best.spring_torques - new_tau)
-        candidate = solve(robot, built, warm=warm)
+        candidate = solve(robot, built, warm=warm, say=tell, every=PROGRESS)
         designed = design.analysis.metrics["total"]["electrical"] / best.motion.distance
         gap = 1.0 - candidate.energy_per_metre / best.energy_per_metre
         accepted = gap > 0.0

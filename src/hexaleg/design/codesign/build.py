@@ -32,7 +32,9 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import io
 import os
+import pickle
 import time
 import warnings
 from collections.abc import Callable
@@ -42,6 +44,7 @@ import numpy as np
 
 from hexaleg.checks import integer, one_of, real, typed
 from hexaleg.config import from_mapping, keywords
+from hexaleg.design.chain.checkpoint import StageFiles
 from hexaleg.design.chain.config import DesignParams
 from hexaleg.design.chain.groups import design_groups
 from hexaleg.design.chain.ranking import under
@@ -74,6 +77,9 @@ from hexaleg.simulation.controllers import BOTH, SERVOS
 
 MOTIONS = ("gait", "optimal")
 """What ``motion`` may be: the parametric gait alone, or also the optimal motion's rows."""
+PARAMETRIC = "parametric"
+"""The stage file of the finished parametric co-design, kept before the optimal motion's stage
+(``stages`` of :func:`codesign`)."""
 SPEED_FACTORS = (0.5, 0.75, 1.0, 1.25, 1.5)
 """The speed curve's speeds, as factors of the required speed."""
 RULE_FAMILIES = ("preloaded", "one_sided", "linear")
@@ -120,7 +126,8 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
              restarts: int = RESTARTS, grouping: str = "class", curve: bool = True,
              simulate: bool = True, rules: bool = True, design: DesignParams | None = None,
              controller: str = BOTH, motion: str = "gait",
-             progress: Callable[[str], None] | None = None) -> CodesignResult:
+             progress: Callable[[str], None] | None = None,
+             stages: StageFiles | None = None) -> CodesignResult:
     """The gait and springs that cover a metre at ``speed`` for the least electrical energy
     (module docstring).
 
@@ -156,6 +163,11 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             simulated (:mod:`hexaleg.design.codesign.optimal_rows`; needs the ``optimal``
             extra, checked before any work).
         progress: Called with one status line per stage.
+        stages: Where the parametric co-design is kept when it is done, before the optimal
+            motion's stage (``motion="optimal"``: minutes more), and read back from instead of
+            computed again when the kept one is this run's (:class:`~hexaleg.design.chain.
+            checkpoint.StageFiles`, keyed by the caller on the run and these settings:
+            ``hexaleg codesign`` after a kill); None: nothing kept.
 
     Raises:
         InvalidParameterError: a speed not > 0, sample counts out of range; the default gait
@@ -183,6 +195,15 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
     base = default_gait(model, run.robot, v, pattern, n)
     groups = design_groups(model, tuple(model.joint_classes),
                            one_of("grouping", grouping, ("class", "mirrored", "joint")))
+    kept = None
+    if stages is not None and motion == "optimal":
+        count = stages.load(f"{PARAMETRIC}-robots", {})
+        if isinstance(count, int):
+            kept = stages.load(PARAMETRIC, _robot_names([model] * count))
+    if isinstance(kept, CodesignResult):
+        say(f"co-design: {kept.rows[3].per_metre:.2f} J/m, read back from the kept stage of "
+            f"this run ({stages.directory if stages is not None else ''})")
+        return with_optimal(kept, model, motor, groups, servo, say)
     free = functools.partial(evaluate_gait, model, family=family, constraints=c, motor=motor)
     first = free(base, groups=groups, min_margin=0.0)
     if first.error is not None:
@@ -244,15 +265,7 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             bought = buy.recommended.optimum.springs
         simulation = simulated(model, chosen, bought, c, motor) if simulate else {}
         floors = over_floors(model, chosen, motor, bought, c.torque_limits)
-        optimal = None
-        if motion == "optimal":
-            from hexaleg.design.codesign.optimal_rows import optimal_rows
-
-            optimal = optimal_rows(model, motor, c.contact(), dataclasses.replace(
-                base, samples=n_final), chosen, c_sprung.springs,
-                (rows[0].per_metre, rows[3].per_metre), family=family, servo=servo,
-                say=lambda line: say(f"optimal motion: {line}"))
-        return CodesignResult(
+        result = CodesignResult(
             robot=run.robot, title=model.name, mass=model.mass, speed=v, pattern=base.pattern,
             family=family, constraints=c, default=dataclasses.replace(base, samples=n_final),
             chosen=chosen, springs=c_sprung.springs, measures=c_sprung.measures,
@@ -260,10 +273,55 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             sequential=sequential, search=joint, gait_search=alone, curve=points,
             simulation=simulation, rules=buy, samples=n, wall=time.perf_counter() - t0,
             generic=uses_generic(motor), servo=servo, finalists=finalists, floors=floors,
-            optimal=optimal)
+            optimal=None)
+        if motion != "optimal":
+            return result
+        if stages is not None:
+            robots = _robots_in(result)
+            stages.save(f"{PARAMETRIC}-robots", len(robots), {})
+            stages.save(PARAMETRIC, result, _robot_names(robots))
+        return with_optimal(result, model, motor, groups, servo, say)
     finally:
         if ruled is not None:
             ruled.close()
+
+
+def _robots_in(value: Any) -> list[Robot]:
+    """The robots ``value`` refers to, once each (the rules' come back from their forked child
+    as a copy of the run's): a pickling pass that stops at each."""
+    found: dict[int, Robot] = {}
+
+    class Scan(pickle.Pickler):
+        def persistent_id(self, obj: object) -> str | None:
+            if isinstance(obj, Robot):
+                found.setdefault(id(obj), obj)
+                return "robot"
+            return None
+
+    Scan(io.BytesIO(), protocol=pickle.HIGHEST_PROTOCOL).dump(value)
+    return list(found.values())
+
+
+def _robot_names(robots: list[Robot]) -> dict[str, object]:
+    """Stage-file names of each robot's objects (:mod:`hexaleg.design.chain.checkpoint`): a
+    kept stage refers to them by name, and reads back this run's robot in each's place."""
+    names = ("robot", "model", "data", "visual_model", "collision_model")
+    return {f"{n} {k}": o for k, r in enumerate(robots)
+            for n, o in zip(names, robot_objects(r), strict=True)}
+
+
+def with_optimal(result: CodesignResult, model: Robot, motor: Any, groups: Groups,
+                 servo: str, say: Callable[[str], None]) -> CodesignResult:
+    """``result`` with the optimal motion's rows (:mod:`hexaleg.design.codesign.optimal_rows`)
+    from its chosen gait and springs; its wall time the two stages' together."""
+    from hexaleg.design.codesign.optimal_rows import optimal_rows
+
+    optimal = optimal_rows(model, motor, result.constraints.contact(), result.default,
+                           result.chosen, result.springs,
+                           (result.rows[0].per_metre, result.rows[3].per_metre),
+                           family=result.family, groups=groups, servo=servo,
+                           say=lambda line: say(f"optimal motion: {line}"))
+    return dataclasses.replace(result, optimal=optimal, wall=result.wall + optimal.wall)
 
 
 class Background:
@@ -458,6 +516,7 @@ def codesign_settings(table: Any, where: str = "[codesign]",
     return out
 
 
-__all__ = ["CODESIGN_KEYS", "FLOOR_KEYS", "MOTIONS", "RULE_FAMILIES", "SPEED_FACTORS", "Background",
-           "codesign", "codesign_settings", "default_gait", "floor_constraints", "full_rules",
-           "rule_params", "simulated", "speed_curve", "started"]
+__all__ = ["CODESIGN_KEYS", "FLOOR_KEYS", "MOTIONS", "PARAMETRIC", "RULE_FAMILIES",
+           "SPEED_FACTORS", "Background", "codesign", "codesign_settings", "default_gait",
+           "floor_constraints", "full_rules", "rule_params", "simulated", "speed_curve",
+           "started", "with_optimal"]

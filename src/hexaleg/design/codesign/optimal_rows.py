@@ -28,8 +28,14 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from hexaleg.design.codesign.alternation import SMOOTH_FAMILIES, Alternation, alternate
+from hexaleg.design.codesign.alternation import (
+    PROGRESS,
+    SMOOTH_FAMILIES,
+    Alternation,
+    alternate,
+)
 from hexaleg.design.codesign.servo import simulated_per_metre
+from hexaleg.design.search.optimal import Groups
 from hexaleg.design.springs.law_json import spring_entry
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.motion.legged import gait
@@ -165,8 +171,9 @@ class OptimalRows:
 
 def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: GaitParams,
                  chosen: GaitParams, springs: SpringSet, predicted: tuple[float, float], *,
-                 family: str = "linear", servo: str = "both", params: Any = None,
-                 rounds: int = 4, say: Callable[[str], None] | None = None) -> OptimalRows:
+                 family: str = "linear", groups: Groups | None = None, servo: str = "both",
+                 params: Any = None, rounds: int = 4,
+                 say: Callable[[str], None] | None = None) -> OptimalRows:
     """The four rows (module docstring).
 
     Args:
@@ -179,6 +186,8 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
         family: The spring family of the alternation: the co-design's when it is one of
             :data:`~hexaleg.design.codesign.alternation.SMOOTH_FAMILIES`, else ``linear``
             from no springs (a preload's step has no derivative for DDP).
+        groups: The co-design's spring groups (its ``grouping``), which the alternation
+            designs on; None: one per joint class.
         servo: The servo (:data:`~hexaleg.simulation.controllers.SERVOS`).
         params: :class:`~hexaleg.optimal.problem.OptimalParams` (None: defaults).
         rounds: The alternation's rounds at most.
@@ -198,12 +207,13 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
         family, start = "linear", SpringSet()
     motion = gait(robot, chosen)
     tell("optimal motion without springs, from the co-design's gait")
-    bare = solve(robot, build_problem(robot, motion, motor, SpringSet(), params))
+    bare = solve(robot, build_problem(robot, motion, motor, SpringSet(), params),
+                 say=lambda line: tell(f"no springs: {line}"), every=PROGRESS)
     tell(f"optimal motion without springs: {bare.energy_per_metre:.3f} J/m "
          f"({bare.iterations} iterations, {bare.seconds:.0f} s)")
     tell("optimal motion with springs (alternation), from the co-design's gait and springs")
     alt = alternate(robot, motion, motor, contact, springs=start, params=params, family=family,
-                    rounds=rounds, say=lambda line: tell(f"alternation: {line}"))
+                    groups=groups, rounds=rounds, say=lambda line: tell(f"alternation: {line}"))
     controllers = controllers_of(servo)
     cases = ((LABELS[0], predicted[0], gait(robot, default), SpringSet()),
              (LABELS[1], predicted[1], motion, springs),

@@ -1,0 +1,80 @@
+"""Issue #56's 0.8× target simulated: the optimal cycle with the co-design's springs at a longer
+stance, predicted and walked in MuJoCo under both servos (log:
+analysis/bench_logs/bench_optimal_duty.log; not an example study: it needs the optimal extra
+and minutes).
+
+Run:  python analysis/bench_optimal_duty.py --codesign DIR/codesign.json [--duty 0.9 ...]
+
+Needs the ``optimal`` extra. G is the search's best gait of a kept ``hexaleg codesign`` run (its
+first finalist in ``codesign.json``: the gait of docs/optimal.md's 0.8× table), S its
+inner-program springs (:func:`~hexaleg.design.codesign.gait_evaluation.evaluate_gait`, linear,
+one design a joint class). Prints G with S predicted and simulated under each servo, then for each
+duty factor the optimal cycle from G at that duty factor with S in its dynamics (40 knots, 100
+iterations), its ratio to G's predicted J/m, its solver figures, and it simulated with S under
+each servo (:func:`~hexaleg.design.codesign.servo.simulated_per_metre`, the command's rows).
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+import os
+import time
+
+import hexaleg
+from hexaleg.design.chain.groups import design_groups
+from hexaleg.design.codesign.build import default_gait, floor_constraints
+from hexaleg.design.codesign.gait_evaluation import evaluate_gait
+from hexaleg.design.codesign.servo import simulated_per_metre
+from hexaleg.optimal.problem import OptimalParams, build_problem
+from hexaleg.optimal.solve import solve
+
+KEYS = ("period", "duty_factor", "step_height", "body_height", "foot_radius")
+"""The gait's searched parameters read from ``codesign.json``."""
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--codesign", required=True, help="a hexaleg codesign run's JSON")
+    parser.add_argument("--duty", type=float, nargs="+", default=[0.9], help="duty factors")
+    args = parser.parse_args()
+    t0 = time.perf_counter()
+    with open(args.codesign, encoding="utf-8") as f:
+        found = json.load(f)["finalists"]["rows"][0]["gait"]
+    run = hexaleg.Scenario.load("hexaleg")
+    robot, motor = run.model, run.actuator
+    g = dataclasses.replace(default_gait(robot, "hexaleg", 0.06, None, 200),
+                            **{k: found[k]["value"] for k in KEYS})
+    c = floor_constraints(run)
+    point = evaluate_gait(robot, g, groups=design_groups(robot, tuple(robot.joint_classes),
+                                                         "class"),
+                          family="linear", constraints=c, min_margin=0.0, motor=motor)
+    springs, reference = point.springs, point.sprung / point.distance
+    print(f"G: duty factor {g.duty_factor:.3g}, period {g.period:.4g} s: {reference:.4f} J/m "
+          "with S (predicted)", flush=True)
+    for k in ("feedforward", "position"):
+        value, why = simulated_per_metre(robot, hexaleg.gait(robot, g), motor, springs, k,
+                                         c.contact())
+        print(f"  G with S simulated under {k}: {value:.3f} J/m ({why})" if value is not None
+              else f"  G with S under {k}: {why}", flush=True)
+    for duty in args.duty:
+        played = hexaleg.gait(robot, dataclasses.replace(g, duty_factor=duty))
+        r = solve(robot, build_problem(robot, played, motor, springs, OptimalParams()),
+                  say=lambda line: print(f"  {line}", flush=True), every=20)
+        print(f"optimal cycle at duty factor {duty:.3g} with S: {r.energy_per_metre:.4f} J/m = "
+              f"{r.energy_per_metre / reference:.3f}× G predicted; stationarity "
+              f"{r.stationarity:.2g} after {r.iterations} iterations, residual {r.residual:.1g} "
+              f"N·m, friction use {r.friction_use:.3f}, stance slip {r.slip:.3g} m/s, "
+              f"periodicity {r.periodicity:.2g}, {r.seconds:.0f} s", flush=True)
+        for k in ("feedforward", "position"):
+            value, why = simulated_per_metre(robot, r.motion, motor, springs, k, c.contact())
+            print(f"  simulated under {k}: {value:.3f} J/m ({why})" if value is not None
+                  else f"  under {k}: {why}", flush=True)
+    times = os.times()
+    print(f"wall {time.perf_counter() - t0:.0f} s, CPU {times.user + times.system:.0f} s",
+          flush=True)
+
+
+if __name__ == "__main__":
+    main()
