@@ -104,7 +104,7 @@ def _down(qpos: np.ndarray, height: float) -> bool:
     :func:`_fallen` judges a row, in scalars (a closed loop asks it at each update): roll and
     pitch from the quaternion's third rotation row, ``R₂ = (2(xz − wy), 2(yz + wx),
     1 − 2(x² + y²))`` of the unit quaternion (w, x, y, z)."""
-    z, w, x, y, k = (float(v) for v in qpos[2:7])
+    z, w, x, y, k = qpos[2:7].tolist()
     norm = math.sqrt(w * w + x * x + y * y + k * k)
     if not (math.isfinite(z) and math.isfinite(norm) and norm > 0):
         return True
@@ -237,7 +237,7 @@ def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedbac
              for leg in sim.robot.legs]
     roller = mujoco.rollout.Rollout(nthread=0) if hasattr(mujoco.rollout, "Rollout") else None
     control = int(mujoco.mjtState.mjSTATE_CTRL)
-    nq, nv = m.nq, m.nv
+    nq, nv, dt = m.nq, m.nv, m.opt.timestep
     qpos, qvel = states[:n, 1:1 + nq], states[:n, 1 + nq:1 + nq + nv]
     bad = mujoco.mjtWarning.mjWARN_BADQACC
     k = 0
@@ -246,8 +246,8 @@ def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedbac
         end = min(n, k + every)
         if feedback is not None:
             mujoco.mj_kinematics(m, data)
-            ctrl[k:end, :nj] += feedback(k * m.opt.timestep, data.qpos.copy(), data.qvel.copy(),
-                                         data.site_xpos[sites].copy())
+            ctrl[k:end, :nj] += feedback(k * dt, data.qpos.copy(), data.qvel.copy(),
+                                         data.site_xpos[sites])
         if sim.springs.native:
             warm = data.qacc_warmstart.copy()
             if roller is not None:  # outputs written in place, no checks: the shapes are ours
@@ -263,7 +263,7 @@ def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedbac
             mujoco.mj_getState(m, data, states[end], spec)
         first, k = k, end
         if (_down(qpos[k - 1], height) and _fallen(qpos[first:k], height).any()) or \
-                not np.all(np.isfinite(states[k])) or data.warning[bad].number:
+                not np.isfinite(states[k]).all() or data.warning[bad].number:
             states[k:n], sensors[k:] = states[k - 1], sensors[k - 1]
             break
     return qpos, qvel, sensors
