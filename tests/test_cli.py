@@ -161,3 +161,15 @@ def test_quiet_leaves_out_the_status_lines_not_the_answer(capsys, tmp_path):
     assert main([*args, "--quiet", "--out", str(tmp_path / "b")]) == 0
     quiet = capsys.readouterr()
     assert quiet.err == "" and quiet.out.splitlines()[0] == loud.out.splitlines()[0]
+
+
+@pytest.mark.parametrize("mine", [None, "egl"])
+def test_a_command_loads_mujoco_without_a_renderer_unless_asked(monkeypatch, mine):
+    """No command renders with MuJoCo: a command's process imports it with MUJOCO_GL=disable
+    (no GLFW, no subprocess for its version), but a user's own MUJOCO_GL is kept."""
+    if mine is None:
+        monkeypatch.delenv("MUJOCO_GL", raising=False)
+    else:
+        monkeypatch.setenv("MUJOCO_GL", mine)
+    assert main([]) == 0
+    assert os.environ["MUJOCO_GL"] == (mine or "disable")

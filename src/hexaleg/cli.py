@@ -375,6 +375,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         was: :class:`hexaleg.outputs.directory.OutputFolder`).
     """
     _spell_in_ascii_where_needed()
+    # no command renders with MuJoCo: without this its import loads GLFW and runs a subprocess
+    # for the library's version (65-90 ms of every command that simulates); a user's own
+    # MUJOCO_GL is kept
+    os.environ.setdefault("MUJOCO_GL", "disable")
     parser = build_parser()
     args, extra = parser.parse_known_args(argv)
     if extra:  # named by the command's own parser: its usage, its options to suggest

@@ -172,6 +172,10 @@ def cycle_end(model: pin.Model, motion: Motion) -> tuple[np.ndarray, np.ndarray]
     return rotation_from_quaternion(nxt[None, 3:7])[0], np.array(nxt[:3])
 
 
+Sample = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]
+"""What a plan sample fixes for the balance controller's update (:meth:`Balance._sample`)."""
+
+
 class Balance:
     """The controller for one model and plan (module docstring); :meth:`correction` at a state.
 
@@ -229,8 +233,9 @@ class Balance:
         stance = np.asarray(motion.stance).astype(bool)
         self.stance = np.vstack([stance, stance[:1]])
         self.feet = np.asarray(motion.feet, dtype=float)
-        self._patterns: dict[bytes, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
+        self._samples: dict[int, Sample] = {}
         self.mass = robot.mass
+        self.nj, self.mu = robot.nj, sim.ground.mu
         self.com = np.zeros((n, 3))
         nj, n_legs = robot.nj, len(robot.legs)
         corners = [robot.soles[leg.name].corners() if leg.name in robot.soles
@@ -309,16 +314,22 @@ class Balance:
         k = math.floor(x + 1e-9)
         return k % self.n, min(max(x - k, 0.0), 1.0), (k // self.n) * self.offset
 
-    def _pattern(self, stance: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """``(stance legs' contact points, their joints' rows (bool), swing legs)`` of a stance
-        pattern."""
-        key = stance.tobytes()
-        if key not in self._patterns:
-            legs = np.flatnonzero(stance)
+    def _sample(self, k: int) -> Sample:
+        """What the plan's sample k fixes for an update between samples k and k + 1, worked
+        out at its first update: ``(stance legs' contact points, their joints' rows (bool),
+        swing legs, the stance map's block −J_bᵀ (rows, stance points, 3), the rows' stall
+        torques and kp, the swing map's block J_b⁺ (nj, 3 × swing legs))`` — the feet on the
+        ground at both samples stand, the others swing."""
+        if k not in self._samples:
+            stance = self.stance[k] & self.stance[k + 1]
+            legs, swing = np.flatnonzero(stance), np.flatnonzero(~stance)
+            points = np.flatnonzero(stance[self.point_leg])
             rows = np.asarray(self.leg_rows[legs].any(axis=0), dtype=bool)
-            self._patterns[key] = (np.flatnonzero(stance[self.point_leg]), rows,
-                                   np.flatnonzero(~stance))
-        return self._patterns[key]
+            sm = self.swing_map[k][:, swing]
+            self._samples[k] = (points, rows, swing, self.stance_map[k][rows][:, points],
+                                self.sim.stall[rows], self.sim.kp[rows],
+                                sm.reshape(len(sm), -1))
+        return self._samples[k]
 
     def correction(self, t: float, qpos: np.ndarray, qvel: np.ndarray, feet: np.ndarray
                    ) -> np.ndarray:
@@ -332,39 +343,39 @@ class Balance:
                 each sole's four corners (legs in robot order,
                 :func:`~hexaleg.simulation.mjcf.contact_sites`).
         """
-        g, sim = self.gains, self.sim
+        g = self.gains
+        kp, kd = g.kp, g.kd
         k, s, travel = self.plan(t)
         track = self.track[k] + s * (self.track[k + 1] - self.track[k])
         p_plan, r_plan = track[:3] + travel, self.rotation[k]
         p = qpos[:3]
         flat = np.empty(9)
-        self._quat2mat(flat, qpos[3:7] / np.linalg.norm(qpos[3:7]))
+        quat = qpos[3:7]
+        self._quat2mat(flat, quat / math.sqrt(quat.dot(quat)))  # np.linalg.norm's arithmetic
         rot = flat.reshape(3, 3)
         dw = np.empty(6)
-        dw[:3] = self.mass * (g.kp * (p_plan - p) + g.kd * (track[3:6] - qvel[:3]))
-        dw[3:] = rot @ (self.inertia @ (rot.T @ (g.kp * _skew_log(r_plan @ rot.T)
-                                                + g.kd * (track[6:] - rot @ qvel[3:6]))))
-        out = np.zeros(sim.robot.nj)
-        points, cols, swing = self._pattern(self.stance[k] & self.stance[k + 1])
+        dw[:3] = self.mass * (kp * (p_plan - p) + kd * (track[3:6] - qvel[:3]))
+        dw[3:] = rot @ (self.inertia @ (rot.T @ (kp * _skew_log(r_plan @ rot.T)
+                                                + kd * (track[6:] - rot @ qvel[3:6]))))
+        out = np.zeros(self.nj)
+        points, cols, swing, stance_map, stall, gain, swing_map = self._sample(k)
         self.updates += 1
         if len(points):  # the stance feet's contact points
             load = self.load[k] + s * (self.load[k + 1] - self.load[k])
             f0 = (load[:self.n_force].reshape(-1, 3)[self.point_leg[points]]
                   * self.point_share[points, None])
-            t_map = (self.stance_map[k][cols][:, points] @ rot.T).reshape(-1, 3 * len(points))
+            t_map = (stance_map @ rot.T).reshape(-1, 3 * len(points))
             tau0 = load[self.n_force:][cols]
-            stall = sim.stall[cols]
             bounds = TorqueBounds(t_map, np.minimum(-stall - tau0, 0.0),
                                   np.maximum(stall - tau0, 0.0))
             df, bound = distribute(wrench_map(feet[points], p + rot @ self.com[k]), dw, f0,
-                                   sim.ground.mu, self.spread, bounds)
+                                   self.mu, self.spread, bounds)
             self.constrained += bound
-            out[cols] = (t_map @ df.ravel()) / sim.kp[cols]
+            out[cols] = (t_map @ df.ravel()) / gain
         if len(swing):
             x = self.feet[k, swing] + travel
             target = (x - p) @ rot - (x - p_plan) @ r_plan  # Rᵀ (x − p) − R*ᵀ (x − p*), per row
-            sm = self.swing_map[k][:, swing]
-            out += g.swing * (sm.reshape(len(sm), -1) @ target.ravel())
+            out += g.swing * (swing_map @ target.ravel())
             if self.soles:  # a sole turns by Rᵀ R*: flat on the ground as planned
                 st = self.swing_turn[k][:, swing]
                 out += g.swing * (st.reshape(len(st), -1)

@@ -37,6 +37,7 @@ point the program is solved without them (zero force, ``Δf = −f⁰``, is in e
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -70,7 +71,7 @@ def inside_cones(f: np.ndarray, mu: float, slack: float = 0.0) -> bool:
     """Whether every foot force of ``f`` (n, 3) is inside its friction cone ``‖f_t‖ ≤ μ f_z``
     (up to ``slack`` N)."""
     f = np.asarray(f).reshape(-1, 3)
-    return bool(np.all(np.hypot(f[:, 0], f[:, 1]) <= mu * f[:, 2] + slack))
+    return bool((np.hypot(f[:, 0], f[:, 1]) <= mu * f[:, 2] + slack).all())
 
 
 @dataclass(frozen=True)
@@ -89,7 +90,7 @@ class TorqueBounds:
     def holds(self, df: np.ndarray, slack: float = 0.0) -> bool:
         """Whether ``Δf`` (3n,) keeps every torque within its bounds (up to ``slack`` N·m)."""
         tau = self.t @ np.ravel(df)
-        return bool(np.all(tau <= self.high + slack) and np.all(tau >= self.low - slack))
+        return bool((tau <= self.high + slack).all() and (tau >= self.low - slack).all())
 
 
 def distribute(a: np.ndarray, dw: np.ndarray, f0: np.ndarray, mu: float, spread: float,
@@ -127,12 +128,20 @@ def distribute(a: np.ndarray, dw: np.ndarray, f0: np.ndarray, mu: float, spread:
     s = np.ones(6)
     s[3:] = 1.0 / spread
     sa = a * s[:, None]
-    h = sa.T @ sa + alpha * np.eye(3 * n)
+    h = sa.T @ sa + _ridge(alpha, 3 * n)
     g = sa.T @ (s * dw)
     df = np.linalg.solve(h, g).reshape(n, 3)
     if inside_cones(f0 + df, mu) and (bounds is None or bounds.holds(df)):
         return df, False
     return _conic(h, g, f0, mu, bounds), True
+
+
+@functools.lru_cache(maxsize=64)
+def _ridge(alpha: float, size: int) -> np.ndarray:
+    """``α I`` (size, size), read-only: the same matrix at every update of a controller."""
+    out = alpha * np.eye(size)
+    out.flags.writeable = False
+    return out
 
 
 def _conic(h: np.ndarray, g: np.ndarray, f0: np.ndarray, mu: float,

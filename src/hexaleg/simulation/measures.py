@@ -191,11 +191,13 @@ def forward_states(sim: SimModel, traj: Trajectory, rows: np.ndarray) -> Iterato
     m = sim.model
     assert isinstance(m, mujoco.MjModel)
     data = mujoco.MjData(m)
+    native = sim.springs.native  # no Python force: qfrc_applied stays zero
     for k in rows:
         data.qpos[:], data.qvel[:] = traj.qpos[k], traj.qvel[k]
         data.ctrl[:sim.robot.nj] = traj.controls[k]
-        data.qfrc_applied[sim.joints.dof] = sim.springs.python_torque(
-            traj.qpos[k, sim.joints.qpos], traj.qvel[k, sim.joints.dof])
+        if not native:
+            data.qfrc_applied[sim.joints.dof] = sim.springs.python_torque(
+                traj.qpos[k, sim.joints.qpos], traj.qvel[k, sim.joints.dof])
         mujoco.mj_forward(m, data)
         yield data
 
@@ -209,16 +211,19 @@ def contact_forces(sim: SimModel, data: Any) -> np.ndarray:
 
     leg_of = {int(g): i for i, leg in enumerate(sim.foot_contacts) for g in leg}
     out = np.zeros((len(sim.foot_contacts), 3))
+    n = data.ncon
+    if not n:
+        return out
+    con = data.contact  # the contacts' fields as arrays, read once
+    geoms, addresses, frames = con.geom[:n].tolist(), con.efc_address[:n], con.frame[:n]
     wrench = np.zeros(6)
-    for c in range(data.ncon):
-        con = data.contact[c]
-        leg = leg_of.get(int(con.geom[1]), leg_of.get(int(con.geom[0]), -1))
-        if leg < 0 or con.efc_address < 0:
+    for c, (g1, g2) in enumerate(geoms):
+        leg = leg_of.get(g2, leg_of.get(g1, -1))
+        if leg < 0 or addresses[c] < 0:
             continue
         mujoco.mj_contactForce(sim.model, data, c, wrench)
-        frame = np.asarray(con.frame).reshape(3, 3)
-        f = frame.T @ wrench[:3]  # force on geom 2 (the foot) from geom 1 (the ground)
-        out[leg] += f if int(con.geom[1]) in leg_of else -f
+        f = frames[c].reshape(3, 3).T @ wrench[:3]  # force on geom 2 (the foot) from geom 1
+        out[leg] += f if g2 in leg_of else -f
     return out
 
 

@@ -50,7 +50,7 @@ FOOT_CLASS = "foot"
 
 def fmt(x: object) -> str:
     """Numbers as an MJCF attribute value: full precision (``repr``), space separated."""
-    return " ".join(repr(float(v)) for v in np.ravel(np.asarray(x, dtype=float)))
+    return " ".join(map(repr, np.asarray(x, dtype=float).ravel().tolist()))
 
 
 def wxyz(rotation: np.ndarray) -> str:
@@ -110,12 +110,15 @@ class TreeXml:
     notes: tuple[str, ...]
 
 
-def motion_axis(robot: Robot, joint: int) -> tuple[str, np.ndarray]:
+def motion_axis(robot: Robot, joint: int, data: pin.Data | None = None
+                ) -> tuple[str, np.ndarray]:
     """The MJCF joint type and axis of a 1-DoF Pinocchio joint.
 
     Args:
         robot: The robot.
         joint: Pinocchio joint id (≥ 2).
+        data: The robot's Pinocchio data with the joint Jacobians at the neutral configuration
+            (``pin.computeJointJacobians``; one for every joint of a tree), or None: computed.
 
     Returns:
         ``("hinge" | "slide", axis (3,))``, the axis a unit vector in the joint frame.
@@ -128,8 +131,9 @@ def motion_axis(robot: Robot, joint: int) -> tuple[str, np.ndarray]:
     if jm.nv != 1:
         raise RobotModelError(f"joint {model.names[joint]} has {jm.nv} degrees of freedom; the "
                               "simulation takes 1-DoF revolute or prismatic joints")
-    data = model.createData()
-    pin.computeJointJacobians(model, data, pin.neutral(model))
+    if data is None:
+        data = model.createData()
+        pin.computeJointJacobians(model, data, pin.neutral(model))
     s = pin.getJointJacobian(model, data, joint, pin.ReferenceFrame.LOCAL)[:, jm.idx_v]
     lin, ang = s[:3], s[3:]
     if np.linalg.norm(ang) > 0.5 and np.linalg.norm(lin) < 1e-9:
@@ -190,7 +194,7 @@ def check_inertias(robot: Robot) -> None:
 
     model = robot.model
     for jid in range(1, model.njoints):
-        where, mass = body_name(model, jid), float(model.inertias[jid].mass)
+        mass = float(model.inertias[jid].mass)
         moments = principal_moments(model, jid)
         text = ", ".join(f"{m:.6g}" for m in moments)
         problem = ""
@@ -203,9 +207,9 @@ def check_inertias(robot: Robot) -> None:
                        f"{MJ_EPS:g} kg·m², the triangle inequality)")
         if problem:
             raise RobotModelError(
-                f"{robot.name}: MuJoCo cannot simulate {where}: {problem}; fix the URDF "
-                "<inertial> of its link(s), or load with load_robot(..., inertias=\"repair\") "
-                "(hexaleg.robot.inertials)")
+                f"{robot.name}: MuJoCo cannot simulate {body_name(model, jid)}: {problem}; fix "
+                "the URDF <inertial> of its link(s), or load with load_robot(..., "
+                "inertias=\"repair\") (hexaleg.robot.inertials)")
 
 
 def check_size(robot: Robot, obj: pin.GeometryObject, kind: str, size: np.ndarray) -> None:
@@ -252,6 +256,8 @@ def tree_xml(robot: Robot, foot_radius: float) -> TreeXml:
     for i in range(2, model.njoints):
         children[model.parents[i]].append(i)
     feet = _feet_links(robot)
+    neutral = model.createData()
+    pin.computeJointJacobians(model, neutral, pin.neutral(model))
     geoms: list[str] = []
     notes: list[str] = []
     by_joint: dict[int, list[pin.GeometryObject]] = {}
@@ -269,7 +275,7 @@ def tree_xml(robot: Robot, foot_radius: float) -> TreeXml:
         if i == 1:
             yield f'<freejoint name="{FREE_JOINT}"/>'
         else:
-            kind, axis = motion_axis(robot, i)
+            kind, axis = motion_axis(robot, i, neutral)
             armature = float(model.armature[model.joints[i].idx_v])
             yield (f'<joint name={quoteattr(model.names[i])} type="{kind}" axis="{fmt(axis)}" '
                    f'limited="false" armature="{fmt(armature)}"/>')

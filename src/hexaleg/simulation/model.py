@@ -145,18 +145,19 @@ class SimModel:
         return slice(0, nj), slice(nj, nj + 3 * n_legs)
 
 
-def _lowest(kind: int, size: np.ndarray, rot: np.ndarray) -> float:
-    """Depth of a MuJoCo primitive's lowest point below its centre (rotation ``rot`` (3, 3))."""
+def _lowest(kind: np.ndarray, size: np.ndarray, rz: np.ndarray) -> np.ndarray:
+    """Depth of MuJoCo primitives' lowest points below their centres, shape (…, g): geoms of
+    types ``kind`` (g,) and sizes ``size`` (g, 3) whose rotations have the third rows ``rz``
+    (…, g, 3) — a sphere its radius, a box Σ |R₂ⱼ| hⱼ, a capsule ``h |R₂₂| + r``, a cylinder
+    ``h |R₂₂| + r √(1 − R₂₂²)``."""
     import mujoco
 
-    rz = rot[2]
-    if kind == mujoco.mjtGeom.mjGEOM_SPHERE:
-        return float(size[0])
-    if kind == mujoco.mjtGeom.mjGEOM_BOX:
-        return float(np.abs(rz) @ size[:3])
-    if kind == mujoco.mjtGeom.mjGEOM_CAPSULE:
-        return float(size[1] * abs(rz[2]) + size[0])
-    return float(size[1] * abs(rz[2]) + size[0] * np.sqrt(max(0.0, 1.0 - rz[2] ** 2)))
+    axial = size[:, 1] * np.abs(rz[..., 2])
+    cylinder = axial + size[:, 0] * np.sqrt(np.maximum(0.0, 1.0 - rz[..., 2] ** 2))
+    return np.select([kind == mujoco.mjtGeom.mjGEOM_SPHERE, kind == mujoco.mjtGeom.mjGEOM_BOX,
+                      kind == mujoco.mjtGeom.mjGEOM_CAPSULE],
+                     [np.broadcast_to(size[:, 0], axial.shape),
+                      np.sum(np.abs(rz) * size[:, :3], axis=-1), axial + size[:, 0]], cylinder)
 
 
 def _inverse_weight(model: object, geom: int) -> float:
@@ -174,15 +175,17 @@ def _clear_geoms(model: object, joints: JointMap, motion: Motion, names: tuple[s
 
     assert isinstance(model, mujoco.MjModel)
     data = mujoco.MjData(model)
-    ids = [mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, n) for n in names]
-    low = np.full(len(ids), np.inf)
-    for k in np.linspace(0, motion.n_samples - 1, min(40, motion.n_samples)).astype(int):
-        data.qpos[:], data.qvel[:] = joints.to_mujoco(motion.q[k], motion.v[k])
+    ids = np.array([mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, n) for n in names],
+                   dtype=int)
+    samples = np.linspace(0, motion.n_samples - 1, min(40, motion.n_samples)).astype(int)
+    qpos, _ = joints.to_mujoco(motion.q[samples], motion.v[samples])
+    centre, rz = np.empty((len(samples), len(ids))), np.empty((len(samples), len(ids), 3))
+    for i, q in enumerate(qpos):
+        data.qpos[:] = q
         mujoco.mj_kinematics(model, data)
-        for n, g in enumerate(ids):
-            rot = data.geom_xmat[g].reshape(3, 3)
-            z = data.geom_xpos[g][2] - _lowest(model.geom_type[g], model.geom_size[g], rot)
-            low[n] = min(low[n], z)
+        centre[i], rz[i] = data.geom_xpos[ids, 2], data.geom_xmat[ids, 6:9]
+    low = np.min(centre - _lowest(model.geom_type[ids], model.geom_size[ids], rz), axis=0,
+                 initial=np.inf)
     clear = [n for n, z in zip(names, low, strict=True) if z > CLEARANCE]
     return clear, [n for n in names if n not in clear]
 

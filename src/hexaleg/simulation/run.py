@@ -243,7 +243,8 @@ class Simulation:
         prepared: The prepared gait (reused by reruns with other settings).
         wall: Wall-clock time of :func:`simulate`, s: the analysis with and without the
             springs, the timestep's probe, building the models, both runs and their measures
-            (and the gait's inverse dynamics where ``prepared`` was not given).
+            (and the gait's inverse dynamics where ``prepared`` was not given); not MuJoCo's
+            import, which a process's first simulation loads before the clock starts.
     """
 
     robot: Robot
@@ -418,6 +419,8 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
         InfeasibleForcesError: the analysis has no admissible contact forces.
         TorqueLimitError: the analysis needs more than the motor's stall torque.
     """
+    import mujoco  # noqa: F401  # loaded before the clock: imports are in no timing (wall)
+
     start = time.perf_counter()
     settings = (settings or Settings()).sized(robot.mass)
     springs = springs if springs is not None else SpringSet()

@@ -26,7 +26,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from hexaleg.errors import InvalidParameterError
-from hexaleg.motion.recorded.base import rotation_from_quaternion
 from hexaleg.simulation.mjcf import contact_sites
 from hexaleg.simulation.model import SimModel
 
@@ -82,17 +81,22 @@ class Trajectory:
 
 def tilt(qpos: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Roll and pitch (rad) of the base, from MuJoCo ``qpos`` (…, nq_mj): the z-y-x Euler angles
-    of the base orientation (yaw left out)."""
-    quat = np.concatenate([qpos[..., 4:7], qpos[..., 3:4]], axis=-1)
-    rot = rotation_from_quaternion(quat / np.linalg.norm(quat, axis=-1, keepdims=True))
-    roll = np.arctan2(rot[..., 2, 1], rot[..., 2, 2])
-    pitch = np.arcsin(np.clip(-rot[..., 2, 0], -1.0, 1.0))
+    of the base orientation (yaw left out), from the third row of its rotation matrix,
+    ``R₂ = (2(xz − wy), 2(yz + wx), 1 − 2(x² + y²))`` of the normalised quaternion (w, x, y, z)
+    (:func:`~hexaleg.motion.recorded.base.rotation_from_quaternion`'s third row, the same
+    arithmetic: the other six entries are not needed)."""
+    quat = np.concatenate([qpos[..., 4:7], qpos[..., 3:4]], axis=-1)  # x y z w, as normalised
+    x, y, z, w = np.moveaxis(quat / np.linalg.norm(quat, axis=-1, keepdims=True), -1, 0)
+    roll = np.arctan2(2 * (y * z + x * w), 1 - 2 * (x * x + y * y))
+    pitch = np.arcsin(np.clip(-(2 * (x * z - y * w)), -1.0, 1.0))
     return roll, pitch
 
 
-def _fallen(qpos: np.ndarray, height: float) -> np.ndarray:
-    """Whether the base has fallen or diverged at each row of ``qpos`` (n, nq_mj), (n,) bool."""
-    roll, pitch = tilt(qpos)
+def _fallen(qpos: np.ndarray, height: float,
+            angles: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
+    """Whether the base has fallen or diverged at each row of ``qpos`` (n, nq_mj), (n,) bool
+    (``angles``: its :func:`tilt`, when already known)."""
+    roll, pitch = tilt(qpos) if angles is None else angles
     return ~np.all(np.isfinite(qpos), axis=1) | (qpos[:, 2] < FALL_HEIGHT * height) | \
         (np.abs(roll) > FALL_TILT) | (np.abs(pitch) > FALL_TILT)
 
@@ -102,7 +106,7 @@ def _down(qpos: np.ndarray, height: float) -> bool:
     :func:`_fallen` judges a row, in scalars (a closed loop asks it at each update): roll and
     pitch from the quaternion's third rotation row, ``R₂ = (2(xz − wy), 2(yz + wx),
     1 − 2(x² + y²))`` of the unit quaternion (w, x, y, z)."""
-    z, w, x, y, k = (float(v) for v in qpos[2:7])
+    z, w, x, y, k = qpos[2:7].tolist()
     norm = math.sqrt(w * w + x * x + y * y + k * k)
     if not (math.isfinite(z) and math.isfinite(norm) and norm > 0):
         return True
@@ -116,7 +120,7 @@ def _fall(qpos: np.ndarray, height: float, t: np.ndarray) -> tuple[int, str]:
     """The first step at which the base has fallen (and how), or (n, '')."""
     roll, pitch = tilt(qpos)
     z = qpos[:, 2]
-    bad = _fallen(qpos, height)
+    bad = _fallen(qpos, height, (roll, pitch))
     if not bad.any():
         return len(qpos), ""
     k = int(np.argmax(bad))
@@ -226,46 +230,42 @@ def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedbac
     n, nj = len(ctrl), sim.robot.nj
     every = max(1, int(every))
     spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
-    state = np.zeros(mujoco.mj_stateSize(m, spec))
-    mujoco.mj_getState(m, data, state, spec)
-    qpos, qvel = np.empty((n, m.nq)), np.empty((n, m.nv))
+    # row k: the state before step k (row n: after the last), written in place by the rollout
+    # (no chunk allocates or copies its states); qpos and qvel are views of its columns
+    states = np.empty((n + 1, mujoco.mj_stateSize(m, spec)))
+    mujoco.mj_getState(m, data, states[0], spec)
     sensors = np.empty((n, m.nsensordata))
     sites = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_SITE, name)
              for name in contact_sites(sim.robot)]
     roller = mujoco.rollout.Rollout(nthread=0) if hasattr(mujoco.rollout, "Rollout") else None
-    nq, nv = m.nq, m.nv
+    control = int(mujoco.mjtState.mjSTATE_CTRL)
+    nq, nv, dt = m.nq, m.nv, m.opt.timestep
+    qpos, qvel = states[:n, 1:1 + nq], states[:n, 1 + nq:1 + nq + nv]
+    bad = mujoco.mjtWarning.mjWARN_BADQACC
     k = 0
     while k < n:
-        mujoco.mj_setState(m, data, state, spec)
+        mujoco.mj_setState(m, data, states[k], spec)
         end = min(n, k + every)
         if feedback is not None:
             mujoco.mj_kinematics(m, data)
-            ctrl[k:end, :nj] += feedback(k * m.opt.timestep, data.qpos.copy(), data.qvel.copy(),
-                                         data.site_xpos[sites].copy())
+            ctrl[k:end, :nj] += feedback(k * dt, data.qpos.copy(), data.qvel.copy(),
+                                         data.site_xpos[sites])
         if sim.springs.native:
             warm = data.qacc_warmstart.copy()
             if roller is not None:  # outputs written in place, no checks: the shapes are ours
-                after = np.empty((1, end - k, len(state)))
-                roller.rollout([m], [data], state[None], ctrl[None, k:end], nstep=end - k,
-                               control_spec=int(mujoco.mjtState.mjSTATE_CTRL),
-                               initial_warmstart=warm[None], state=after,
+                roller.rollout([m], [data], states[k:k + 1], ctrl[None, k:end], nstep=end - k,
+                               control_spec=control, initial_warmstart=warm[None],
+                               state=states[None, k + 1:end + 1],
                                sensordata=sensors[None, k:end], skip_checks=True)
             else:
-                after, sensors[None, k:end] = mujoco.rollout.rollout(
-                    m, data, state[None], ctrl[None, k:end], initial_warmstart=warm[None])
-            after = after[0]
-            qpos[k] = state[1:1 + nq]
-            qvel[k] = state[1 + nq:1 + nq + nv]
-            qpos[k + 1:end], qvel[k + 1:end] = after[:-1, 1:1 + nq], after[:-1, 1 + nq:1 + nq + nv]
-            state = after[-1].copy()
+                states[None, k + 1:end + 1], sensors[None, k:end] = mujoco.rollout.rollout(
+                    m, data, states[k:k + 1], ctrl[None, k:end], initial_warmstart=warm[None])
         else:
-            q, v, sd = _python_loop(sim, data, ctrl[k:end])
-            qpos[k:end], qvel[k:end], sensors[k:end] = q, v, sd
-            mujoco.mj_getState(m, data, state, spec)
+            qpos[k:end], qvel[k:end], sensors[k:end] = _python_loop(sim, data, ctrl[k:end])
+            mujoco.mj_getState(m, data, states[end], spec)
         first, k = k, end
         if (_down(qpos[k - 1], height) and _fallen(qpos[first:k], height).any()) or \
-                not np.all(np.isfinite(state)) or \
-                data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number:
-            qpos[k:], qvel[k:], sensors[k:] = qpos[k - 1], qvel[k - 1], sensors[k - 1]
+                not np.isfinite(states[k]).all() or data.warning[bad].number:
+            states[k:n], sensors[k:] = states[k - 1], sensors[k - 1]
             break
     return qpos, qvel, sensors
