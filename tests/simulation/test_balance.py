@@ -206,7 +206,7 @@ def test_the_biped_falls_as_an_inverted_pendulum_on_its_point_foot():
     its body still leaves the plan as e^(ω₀t), ω₀ = √(g/h) of the linear inverted pendulum
     (Kajita et al. 2001) — the lateral error's growth rate over the first stand is ω₀ within
     15 % — and the run's verdict names that, with the clause the design's answer carries."""
-    from hexaleg.simulation import measures
+    from hexaleg.simulation import falls
     from hexaleg.simulation.run import simulate_run
     from hexaleg.simulation.sensitivity import controller_check
 
@@ -220,7 +220,7 @@ def test_the_biped_falls_as_an_inverted_pendulum_on_its_point_foot():
     sim = build_model(prepared.robot, motion, prepared.motor, servo=servo, ground=ground,
                       timestep=dt)
     r = simulate_run("baseline", sim, motion, prepared.evaluate(None), settings, feedback=True)
-    one = measures.point_foot(sim, motion)
+    one = falls.point_foot(sim, motion)
     assert one is not None and one.duration == pytest.approx(motion.period / 2, rel=1e-2)
     assert r.verdict == "fell" and r.reason == one.reason and "one point foot" in r.message
     t = r.trajectory.t

@@ -30,7 +30,7 @@ from hexaleg.errors import InvalidParameterError, SimulationError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
-from hexaleg.simulation import balance, measures, stepping
+from hexaleg.simulation import balance, falls, measures, stepping
 from hexaleg.simulation.controllers import COMPLIANCE, Servo, controls, reference
 from hexaleg.simulation.ground import Ground
 from hexaleg.simulation.model import TIMESTEP, SimModel, build_model, timestep_limit
@@ -188,7 +188,7 @@ class Run:
             correction (0 open loop).
         reason: Why it fell in one clause where the gait alone explains it (a stand on one
             point foot, or on two longer than the balance controller holds, that the
-            controller ran on: :class:`~hexaleg.simulation.measures.PointFoot`), else "".
+            controller ran on: :class:`~hexaleg.simulation.falls.PointFoot`), else "".
     """
 
     name: str
@@ -369,7 +369,7 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
     wall, cpu = time.perf_counter() - start, time.thread_time() - cpu
     bound = controller.constrained / max(controller.updates, 1) if controller else 0.0
     if traj.verdict == "fell":
-        cause = measures.fall_cause(sim, motion, traj, feedback, analysis.tau_motor)
+        cause = falls.fall_cause(sim, motion, traj, feedback, analysis.tau_motor)
         return Run(name, sim, traj, traj.verdict, f"{traj.message}; {cause.message}",
                    wall=wall, feedback=feedback, constrained=bound, cpu=cpu,
                    reason="" if cause.stand is None else cause.stand.reason)

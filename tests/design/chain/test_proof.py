@@ -64,7 +64,7 @@ def test_a_run_that_falls_short_makes_the_answer_unproven_everywhere(design_writ
 
 def test_a_fall_the_gait_explains_is_named_in_the_answer(design_written):
     """A run that fell for a reason of the gait itself (a sensitivity row's ``why``: a stand on
-    one point foot, hexaleg.simulation.measures.PointFoot) says so in the answer line."""
+    one point foot, hexaleg.simulation.falls.PointFoot) says so in the answer line."""
     r = design_written[0].result
     why = "on one point foot for 0.709 s, an inverted pendulum (an error ×125) that feedback " \
           "without foot placement cannot hold"
