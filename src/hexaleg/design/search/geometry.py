@@ -286,8 +286,11 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
                 thetas = np.array([t for t, _ in trials])
                 where = side or fam.side(angle, state[g])
                 scan_key = (key(state), g, angle, where, thetas.tobytes())
-                if scan_key not in scanned:  # a scan again from the same state: bounds kept
+                if scan_key not in scanned:  # a scan again from the same state (a sweep
+                    # later, when nothing moved): its bounds kept, one sweep's worth
                     scanned[scan_key] = RelaxedBounds(setup, state, g, angle, thetas, where)
+                    while len(scanned) > 2 * len(groups) * len(fam.angles):
+                        scanned.pop(next(iter(scanned)))
                 bounds = scanned[scan_key]
 
                 def limit(best: float = best_value, found: np.ndarray = found) -> float:
