@@ -101,7 +101,7 @@ def test_conditions_that_walk_one_motion_share_it_and_prepare_as_alone():
     assert groups == [[0, 2], [1, 3], [4], [5, 6]]
     nominal = run.motion()
     for g in groups:
-        walks = condition_walks(run, [conditions[i] for i in g], nominal)
+        walks = list(condition_walks(run, [conditions[i] for i in g], nominal))
         for i, walked in zip(g, walks, strict=True):
             alone = condition_walk(run, conditions[i])
             if isinstance(alone, str):
@@ -111,7 +111,7 @@ def test_conditions_that_walk_one_motion_share_it_and_prepare_as_alone():
             assert walked.motion is walks[0].motion  # type: ignore[union-attr]
             assert np.array_equal(walked.motion.q, alone.motion.q)
             assert walked.baseline("joule")["total"] == alone.baseline("joule")["total"]
-    assert condition_walks(run, [conditions[0]], nominal)[0].motion is nominal  # type: ignore
-    assert isinstance(condition_walks(run, [conditions[4]])[0], str)
-    held, slid = condition_walks(run, [conditions[5], conditions[6]])
+    assert next(condition_walks(run, [conditions[0]], nominal)).motion is nominal  # type: ignore
+    assert isinstance(next(condition_walks(run, [conditions[4]])), str)
+    held, slid = list(condition_walks(run, [conditions[5], conditions[6]]))
     assert not isinstance(held, str) and isinstance(slid, str) and "inclined" in slid

@@ -79,8 +79,8 @@ def robust_design(nom: Nominal, rec: Candidate) -> tuple[RobustResult | None, tu
     if len(conditions) == 1 or nom.motion is not None or not d.robustness:
         return None, ()
     groups = same_motion(nom.run, conditions)  # each motion made once (μ does not change it)
-    grouped = nom.fork_map(lambda g: condition_walks(nom.run, [conditions[i] for i in g],
-                                                     prepared.motion), groups)
+    grouped = nom.fork_map(lambda g: list(condition_walks(
+        nom.run, [conditions[i] for i in g], prepared.motion)), groups)
     walked: list[Prepared | str] = [""] * len(conditions)
     for g, done in zip(groups, grouped, strict=True):
         for i, p in zip(g, done, strict=True):

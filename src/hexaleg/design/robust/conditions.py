@@ -22,7 +22,7 @@ table (period or stride) of a dead-zone design.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from hexaleg.checks import real, typed
@@ -110,10 +110,11 @@ def same_motion(run: Scenario, conditions: Sequence[Condition]) -> list[list[int
 
 
 def condition_walks(run: Scenario, conditions: Sequence[Condition],
-                    nominal: Motion | None = None) -> list[Prepared | str]:
+                    nominal: Motion | None = None) -> Iterator[Prepared | str]:
     """:func:`condition_walk` of each of ``conditions`` that walk one motion (a group of
     :func:`same_motion`), the motion made once: the same preparations, each its own (its
-    friction, its warm starts).
+    friction, its warm starts), each made when it is asked for (a map evaluates one before the
+    next is made: a worker holds one preparation at a time, not its group's).
 
     Args:
         run: The run.
@@ -126,14 +127,13 @@ def condition_walks(run: Scenario, conditions: Sequence[Condition],
         own = (unders[0].payload, unders[0].gait) == (run.payload, run.gait)
         walked = nominal if nominal is not None and own else unders[0].motion()
     except UNWALKABLE as e:
-        return [f"no gait: {type(e).__name__}: {e}"] * len(conditions)
-    out: list[Prepared | str] = []
+        yield from [f"no gait: {type(e).__name__}: {e}"] * len(conditions)
+        return
     for under in unders:
         try:
-            out.append(under.prepare(walked))
+            yield under.prepare(walked)
         except UNWALKABLE as e:
-            out.append(f"no gait: {type(e).__name__}: {e}")
-    return out
+            yield f"no gait: {type(e).__name__}: {e}"
 
 
 def condition_savings(prepared: Prepared, springs: SpringSet, objective: str,
