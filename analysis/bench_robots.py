@@ -22,6 +22,8 @@ For each robot, one row:
   still compares robots; and the child's CPU share (CPU time over wall time: up to 2 with both
   cores busy; well below 1, the machine was busy).
 
+Its last rows, before and after a change, are kept in ``analysis/bench_logs/bench_robots.log``.
+
 A command that ends in a hexaleg error (exit 2) is a row with its ``error:`` line; one that ends
 in a traceback is a row marked BUG; one over ``--timeout`` is killed (its process group) and
 marked so.

@@ -192,10 +192,18 @@ class Scenario:
         """The motion of the run: the log's cycle, else one cycle of the gait."""
         return self.recorded if self.recorded is not None else tripod_gait(self.model, self.gait)
 
-    def prepare(self) -> Prepared:
+    def prepare(self, motion: Motion | None = None) -> Prepared:
         """The run prepared once (:func:`hexaleg.dynamics.prepare.prepare`): everything that
-        does not depend on the springs."""
-        return prepare(self.model, self.motion(), motor=self.actuator, contact=self.contact)
+        does not depend on the springs.
+
+        Args:
+            motion: The run's motion when it is already made (:meth:`motion` of a run with the
+                same robot, payload and gait, or log: the friction and the actuator do not
+                change it); default made here. Making a gait (its balance sway) is most of a
+                preparation: 99 % of the robustness maps' on Solo-12, profiled.
+        """
+        return prepare(self.model, self.motion() if motion is None else motion,
+                       motor=self.actuator, contact=self.contact)
 
     def replace(self, **changes: Any) -> Scenario:
         """The same run with fields replaced (:func:`dataclasses.replace`), e.g. another

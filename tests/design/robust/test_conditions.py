@@ -3,13 +3,21 @@ scaled."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
 from hexaleg.design.evaluator import evaluator
-from hexaleg.design.robust.conditions import robustness
+from hexaleg.design.robust.conditions import (
+    condition_walk,
+    condition_walks,
+    robustness,
+    same_motion,
+)
 from hexaleg.errors import UnknownNameError
 from hexaleg.motion.params import GaitParams
+from hexaleg.scenario.condition import Condition
 from hexaleg.scenario.scenario import Scenario
 
 SAMPLES = 200
@@ -77,3 +85,33 @@ def test_uphill_the_motors_lift_the_robot_and_pay_for_it():
             electrical[deg] = sprung["electrical"]
         assert electrical[15.0] > electrical[10.0] > electrical[0.0]
         assert electrical[15.0] > electrical[-15.0]
+
+
+def test_conditions_that_walk_one_motion_share_it_and_prepare_as_alone():
+    """A payload's cells at every μ walk one motion, made once (the run's own where they walk
+    it), and each preparation is the one it has alone: the same baseline to the bit, the same
+    reason where the gait cannot be made (out of reach; a slope the friction cannot hold, at
+    the low μ only)."""
+    run = RUN.with_gait({"samples": 100})
+    steep = math.radians(20)
+    conditions = [Condition(mu=0.6), Condition(payload=0.2, mu=0.6), Condition(),
+                  Condition(payload=0.2, mu=1.0), Condition(stride=8.0),
+                  Condition(slope=steep, mu=0.6), Condition(slope=steep, mu=0.3)]
+    groups = same_motion(run, conditions)
+    assert groups == [[0, 2], [1, 3], [4], [5, 6]]
+    nominal = run.motion()
+    for g in groups:
+        walks = list(condition_walks(run, [conditions[i] for i in g], nominal))
+        for i, walked in zip(g, walks, strict=True):
+            alone = condition_walk(run, conditions[i])
+            if isinstance(alone, str):
+                assert walked == alone
+                continue
+            assert not isinstance(walked, str)
+            assert walked.motion is walks[0].motion  # type: ignore[union-attr]
+            assert np.array_equal(walked.motion.q, alone.motion.q)
+            assert walked.baseline("joule")["total"] == alone.baseline("joule")["total"]
+    assert next(condition_walks(run, [conditions[0]], nominal)).motion is nominal  # type: ignore
+    assert isinstance(next(condition_walks(run, [conditions[4]])), str)
+    held, slid = list(condition_walks(run, [conditions[5], conditions[6]]))
+    assert not isinstance(held, str) and isinstance(slid, str) and "inclined" in slid

@@ -87,3 +87,19 @@ def test_the_strong_bounds_on_demand_are_relaxed_values_and_above_the_weak_ones(
     strong = relaxed_values(setup, state, group, angle, thetas, side)
     assert np.array_equal([bounds.tight(i) for i in range(thetas.size)], strong)
     assert np.all(bounds.weak <= strong)
+
+
+def test_a_strong_bound_asked_again_is_not_solved_again(prepared200, monkeypatch):
+    """``tight(i)`` asked twice (a search scanning again from the same state keeps its
+    bounds, geometry.search_geometry) is one Clarabel solve and the same number."""
+    from hexaleg.design.search import scan
+
+    family, state, group, angle, side = CASES[0]
+    setup = design_setup(prepared200, ["coxa", "femur", "tibia"], family, "joule", None, np.pi,
+                         mirrored=mirror(prepared200.robot).mirrored)
+    bounds = RelaxedBounds(setup, state, group, angle, np.linspace(-0.25, 0.3, 4), side)
+    solves = []
+    monkeypatch.setattr(scan, "_solve_once", lambda *a: solves.append(1) or _solve_once(*a))
+    first = [bounds.tight(i) for i in (2, 0, 2)]
+    assert first[0] == first[2] and len(solves) == 2
+    assert bounds.tight(0) == first[1] and len(solves) == 2

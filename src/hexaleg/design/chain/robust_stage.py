@@ -20,7 +20,7 @@ from hexaleg.design.chain.candidates import Candidate, candidate
 from hexaleg.design.chain.config import METRICS, DesignParams
 from hexaleg.design.chain.stages import Nominal
 from hexaleg.design.robust.box import RobustSprings, robust_springs
-from hexaleg.design.robust.conditions import condition_savings, condition_walk
+from hexaleg.design.robust.conditions import condition_savings, condition_walks, same_motion
 from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import HexalegError, InfeasibleForcesError, TorqueLimitError
 from hexaleg.scenario.condition import Condition
@@ -78,7 +78,13 @@ def robust_design(nom: Nominal, rec: Candidate) -> tuple[RobustResult | None, tu
     conditions = corners(d)
     if len(conditions) == 1 or nom.motion is not None or not d.robustness:
         return None, ()
-    walked = nom.fork_map(lambda c: condition_walk(nom.run, c), conditions)
+    groups = same_motion(nom.run, conditions)  # each motion made once (μ does not change it)
+    grouped = nom.fork_map(lambda g: list(condition_walks(
+        nom.run, [conditions[i] for i in g], prepared.motion)), groups)
+    walked: list[Prepared | str] = [""] * len(conditions)
+    for g, done in zip(groups, grouped, strict=True):
+        for i, p in zip(g, done, strict=True):
+            walked[i] = p
     kept: list[Condition] = []
     preps: list[Prepared] = []
     notes: list[str] = []

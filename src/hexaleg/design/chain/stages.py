@@ -369,8 +369,8 @@ def robustness_maps(nom: Nominal, rec: Candidate
         {"payload": d.map_payload, "mu": d.map_mu}]
     if patterns:  # a robot whose leg names do not say side and place has no named pattern
         axes.append({"slope": d.map_slope, "pattern": patterns})
-    maps = tuple(robustness_map(nom.run, springs, a, mapper=nom.fork_map)
-                 for a in axes)
+    maps = tuple(robustness_map(nom.run, springs, a, mapper=nom.fork_map,
+                                nominal=nom.prepared.motion) for a in axes)
     worst = {}
     for m in METRICS:
         s, c = min((mp.worst(m) for mp in maps),

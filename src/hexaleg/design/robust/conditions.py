@@ -22,7 +22,7 @@ table (period or stride) of a dead-zone design.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from hexaleg.checks import real, typed
@@ -36,6 +36,7 @@ from hexaleg.errors import (
     UnknownNameError,
     UnreachableTargetError,
 )
+from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.springs import SpringSet
 from hexaleg.scenario.condition import Condition, condition_gait, degrees
 from hexaleg.scenario.scenario import Scenario
@@ -85,6 +86,54 @@ def condition_walk(run: Scenario, condition: Condition) -> Prepared | str:
         return run.under(condition).prepare()
     except UNWALKABLE as e:
         return f"no gait: {type(e).__name__}: {e}"
+
+
+def same_motion(run: Scenario, conditions: Sequence[Condition]) -> list[list[int]]:
+    """``conditions``' indices grouped by the motion they walk — the same payload and gait (a
+    friction μ changes the forces, not the motion) — in the order each group first appears, so
+    that :func:`condition_walks` makes each motion once (Solo-12's three robustness maps walk
+    46 motions in 70 cells). A condition whose run cannot be made is a group of its own."""
+    keys: list[tuple[float, Any] | None] = []
+    groups: list[list[int]] = []
+    for i, c in enumerate(conditions):
+        try:
+            under = run.under(c)
+            key: tuple[float, Any] | None = (under.payload, under.gait)
+        except InvalidParameterError:  # condition_walks says why, for this one alone
+            key = None
+        if key is not None and key in keys:
+            groups[keys.index(key)].append(i)
+        else:
+            keys.append(key)
+            groups.append([i])
+    return groups
+
+
+def condition_walks(run: Scenario, conditions: Sequence[Condition],
+                    nominal: Motion | None = None) -> Iterator[Prepared | str]:
+    """:func:`condition_walk` of each of ``conditions`` that walk one motion (a group of
+    :func:`same_motion`), the motion made once: the same preparations, each its own (its
+    friction, its warm starts), each made when it is asked for (a map evaluates one before the
+    next is made: a worker holds one preparation at a time, not its group's).
+
+    Args:
+        run: The run.
+        conditions: Conditions of one payload and gait.
+        nominal: The run's own motion (``run.motion()``) when it is already made: walked by
+            conditions of the run's payload and gait instead of made again.
+    """
+    try:
+        unders = [run.under(c) for c in conditions]
+        own = (unders[0].payload, unders[0].gait) == (run.payload, run.gait)
+        walked = nominal if nominal is not None and own else unders[0].motion()
+    except UNWALKABLE as e:
+        yield from [f"no gait: {type(e).__name__}: {e}"] * len(conditions)
+        return
+    for under in unders:
+        try:
+            yield under.prepare(walked)
+        except UNWALKABLE as e:
+            yield f"no gait: {type(e).__name__}: {e}"
 
 
 def condition_savings(prepared: Prepared, springs: SpringSet, objective: str,

@@ -1,7 +1,8 @@
 """Robustness maps: a frozen design's saving over a grid of two conditions, and its worst case.
 
 Each cell is one :class:`~hexaleg.design.robust.conditions.Condition` — the two mapped conditions
-set, the others nominal — prepared afresh (:func:`~hexaleg.design.robust.conditions.condition_walk`)
+set, the others nominal — prepared afresh (:func:`~hexaleg.design.robust.conditions.condition_walk`;
+cells that walk the same motion, as a payload's at every μ, share it: it is made once)
 and evaluated with the frozen springs (:func:`~hexaleg.design.robust.conditions.condition_savings`),
 so a cell equals a fresh ``analyze`` of that condition. A cell whose gait cannot be made (a foot out
 of reach, a crawl without static margin, a slope the friction cannot hold: status ``"no gait:
@@ -21,10 +22,17 @@ import numpy as np
 
 from hexaleg.checks import finite_array, one_of, typed
 from hexaleg.design.evaluator import DEFAULT_METRIC
-from hexaleg.design.robust.conditions import condition_savings, condition_walk
+from hexaleg.design.robust.conditions import (
+    condition_savings,
+    condition_walk,
+    condition_walks,
+    same_motion,
+)
+from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.patterns import PATTERNS, leg_offsets, pattern_offsets
+from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
 from hexaleg.scenario.condition import CONDITIONS, Condition
@@ -140,13 +148,16 @@ def robot_patterns(robot: Robot, gait: GaitParams) -> tuple[str, ...]:
 
 Cell = tuple[str, dict[str, float]]
 """One map cell: its status (``"ok"`` or why there is no number) and metric → saving."""
-Mapper = Callable[[Callable[[Condition], Cell], Sequence[Condition]], Sequence[Cell]]
-"""How a map's cells are computed: ``mapper(fn, conditions)`` is ``[fn(c) for c in conditions]``
-(e.g. spread over processes, :func:`hexaleg.parallel.forked.fork_map`)."""
+Mapper = Callable[[Callable[[list[Condition]], list[Cell]], Sequence[list[Condition]]],
+                  Sequence[list[Cell]]]
+"""How a map's cells are computed: ``mapper(fn, groups)`` is ``[fn(g) for g in groups]``, a
+group the cells that walk one motion (:func:`~hexaleg.design.robust.conditions.same_motion`;
+e.g. spread over processes, :func:`hexaleg.parallel.forked.fork_map`)."""
 
 
-def _in_turn(fn: Callable[[Condition], Cell], conditions: Sequence[Condition]) -> list[Cell]:
-    return [fn(c) for c in conditions]
+def _in_turn(fn: Callable[[list[Condition]], list[Cell]],
+             groups: Sequence[list[Condition]]) -> list[list[Cell]]:
+    return [fn(g) for g in groups]
 
 
 def map_cell(run: Scenario, springs: SpringSet, condition: Condition,
@@ -154,7 +165,20 @@ def map_cell(run: Scenario, springs: SpringSet, condition: Condition,
     """One cell: the condition's gait prepared afresh and the frozen ``springs`` on it (NaN
     savings where the gait cannot be made or has no baseline, −∞ where only the springs make
     it infeasible; module docstring)."""
-    prepared = condition_walk(run, condition)
+    return _cell(run, springs, condition_walk(run, condition), metrics)
+
+
+def map_cells(run: Scenario, springs: SpringSet, conditions: Sequence[Condition],
+              metrics: Sequence[str] = METRICS, nominal: Motion | None = None) -> list[Cell]:
+    """:func:`map_cell` of each of ``conditions`` that walk one motion, the motion made once
+    (:func:`~hexaleg.design.robust.conditions.condition_walks`; ``nominal``: the run's own
+    motion, when made)."""
+    return [_cell(run, springs, p, metrics)
+            for p in condition_walks(run, conditions, nominal)]
+
+
+def _cell(run: Scenario, springs: SpringSet, prepared: Prepared | str,
+          metrics: Sequence[str]) -> Cell:
     if isinstance(prepared, str):
         return prepared, {m: float("nan") for m in metrics}
     r = condition_savings(prepared, springs, run.objective, metrics)
@@ -165,8 +189,8 @@ def map_cell(run: Scenario, springs: SpringSet, condition: Condition,
 @typed
 def robustness_map(run: Scenario, springs: SpringSet,
                    axes: Mapping[str, Sequence[float] | Sequence[str]],
-                   metrics: Sequence[str] = METRICS, mapper: Mapper | None = None
-                   ) -> RobustnessMap:
+                   metrics: Sequence[str] = METRICS, mapper: Mapper | None = None,
+                   nominal: Motion | None = None) -> RobustnessMap:
     """The saving of frozen ``springs`` over a grid of two conditions (module docstring).
 
     Args:
@@ -178,7 +202,10 @@ def robustness_map(run: Scenario, springs: SpringSet,
             stride factors, payload a fraction of the robot's mass, μ absolute, slope in rad
             added to the nominal gait's, pattern names).
         metrics: Metrics whose saving is recorded.
-        mapper: How the cells are computed (:data:`Mapper`); default one after the other.
+        mapper: How the cells are computed (:data:`Mapper`): each motion made once, in the
+            group of cells that walk it; default one group after the other.
+        nominal: The run's own motion (``run.motion()``) when it is already made: the cells
+            of the nominal gait and payload walk it.
 
     Returns:
         The map; a condition the robot cannot walk is a cell with its reason (``"no gait: …"``).
@@ -195,7 +222,13 @@ def robustness_map(run: Scenario, springs: SpringSet,
             for p in values:
                 pattern_offsets(p, run.model.leg_names)
     conditions = [_condition({a: x, b: y}) for x in va for y in vb]
-    cells = (mapper or _in_turn)(lambda c: map_cell(run, springs, c, metrics), conditions)
+    groups = same_motion(run, conditions)
+    walked = (mapper or _in_turn)(lambda cs: map_cells(run, springs, cs, metrics, nominal),
+                                  [[conditions[i] for i in g] for g in groups])
+    cells: list[Cell] = [("", {})] * len(conditions)
+    for g, done in zip(groups, walked, strict=True):
+        for i, cell in zip(g, done, strict=True):
+            cells[i] = cell
     out = {m: np.array([s[m] for _, s in cells]).reshape(va.size, vb.size) for m in metrics}
     status = np.array([st for st, _ in cells], dtype=object).reshape(va.size, vb.size)
     return RobustnessMap(axes=(a, b), values=(va, vb), saving=out, status=status)

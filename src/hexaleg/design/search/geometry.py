@@ -232,6 +232,7 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
         return a < (b - tie * abs(b) if np.isfinite(b) else b)
     seen: dict[tuple[Any, ...], float] = {}
     solutions: dict[tuple[Any, ...], DesignSolution] = {}
+    scanned: dict[tuple[Any, ...], RelaxedBounds] = {}
 
     def key(state: State) -> tuple[Any, ...]:
         return tuple((g, tuple(sorted(state[g].items()))) for g in groups)
@@ -282,9 +283,15 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
                 continue
             found = np.full(len(trials), np.inf)
             if bounded:  # exact solves in order of their lower bound, until none can win
-                bounds = RelaxedBounds(setup, state, g, angle,
-                                       np.array([t for t, _ in trials]),
-                                       side or fam.side(angle, state[g]))
+                thetas = np.array([t for t, _ in trials])
+                where = side or fam.side(angle, state[g])
+                scan_key = (key(state), g, angle, where, thetas.tobytes())
+                if scan_key not in scanned:  # a scan again from the same state (a sweep
+                    # later, when nothing moved): its bounds kept, one sweep's worth
+                    scanned[scan_key] = RelaxedBounds(setup, state, g, angle, thetas, where)
+                    while len(scanned) > 2 * len(groups) * len(fam.angles):
+                        scanned.pop(next(iter(scanned)))
+                bounds = scanned[scan_key]
 
                 def limit(best: float = best_value, found: np.ndarray = found) -> float:
                     """Below which a bound may still win (``found`` fills in as it goes)."""

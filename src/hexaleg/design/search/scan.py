@@ -149,10 +149,17 @@ class RelaxedBounds:
         self._problem, self._fixed, self._Q, self._rv, self._scale = (
             problem, fixed_rows, Q, rv, scale)
         self._thetas = thetas
+        self._tight: dict[int, float] = {}
 
     def tight(self, i: int) -> float:
         """Candidate ``i``'s condensed program with its design rows and signs (J; ``inf`` where
-        the rows admit no magnitudes; ``weak[i]`` where Clarabel stops short)."""
+        the rows admit no magnitudes; ``weak[i]`` where Clarabel stops short), solved once: a
+        search that scans again from the same state asks again (a tenth of Solo-12's)."""
+        if i not in self._tight:
+            self._tight[i] = self._solve_tight(i)
+        return self._tight[i]
+
+    def _solve_tight(self, i: int) -> float:
         setup, state, group, geo, angle, start, nx, r, above, scanned, kinds = self._args
         theta = float(self._thetas[i])
         trial = {**state, group: {**geo, angle: theta}}
