@@ -70,6 +70,10 @@ def pytest_xdist_make_scheduler(config: pytest.Config, log: Any) -> Any:
         return None  # the default (load) scheduler
     from xdist.scheduler import LoadScopeScheduling
 
+    # in collection order: the scope scheduler otherwise puts the scopes of most tests first
+    # (the fault module's twelve short tests ran before the 200-s example)
+    config.option.loadscopereorder = False
+
     class OneAtATime(LoadScopeScheduling):
         def _split_scope(self, nodeid: str) -> str:
             module = nodeid.split("::", 1)[0]
