@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import os
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -47,13 +47,50 @@ suite's ~450 s of CPU): first of all, so that the other worker runs the rest mea
 started about two minutes in, and the slow suite took 7 min 13 s on two cores)."""
 
 
+SHARING = ("tests/design/search/test_tolerance.py", "tests/test_docs_motion.py",
+           "tests/test_faults.py", "tests/commands/design/test_logged_walks.py")
+"""Modules whose slow tests share a module fixture (the tolerance module's default design: ~30 s;
+the motion page's commands: ~20 s; the reports and designs the fault tests interrupt; a
+simulated walk log): in the slow studies their tests go to one worker together, after the
+whole studies and before the rest (each a minute or so of work)."""
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_make_scheduler(config: pytest.Config, log: Any) -> Any:
+    """The slow studies (``pytest -m slow``: ~125 tests of 1–200 s) are handed to the xdist
+    workers a test at a time, in the order :func:`pytest_collection_modifyitems` gives them, a
+    worker holding at most three (pytest-xdist's scope scheduler, each test its own scope but
+    those of a :data:`SHARING` module one). The default load scheduler sends each worker a
+    quarter of its share at once and more only when it has run out: the worker that started
+    the 200-s co-design example also held the next 14 whole studies, which the other worker
+    could not take; and it splits a module's tests between the workers, each then building
+    its module fixture. The README's suite (3000 short tests) keeps the default, whose chunks
+    of one module share its fixtures."""
+    if config.option.markexpr != "slow":
+        return None  # the default (load) scheduler
+    from xdist.scheduler import LoadScopeScheduling
+
+    # in collection order: the scope scheduler otherwise puts the scopes of most tests first
+    # (the fault module's twelve short tests ran before the 200-s example)
+    config.option.loadscopereorder = False
+
+    class OneAtATime(LoadScopeScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            module = nodeid.split("::", 1)[0]
+            return module if module in SHARING else nodeid
+
+    return OneAtATime(config, log)
+
+
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
-    """The longest study first, then the whole-study tests, the rest in their order:
+    """The longest study first, then the whole-study tests, then the modules that share a
+    fixture (:data:`SHARING`), the rest in their order:
     pytest-xdist hands tests to its workers in collection order, and these come last
     alphabetically, so one worker ran a 100-s example while the other had finished
     (longest-processing-time-first scheduling, Graham, "Bounds on multiprocessing timing
     anomalies", SIAM J. Appl. Math. 17, 1969)."""
-    items.sort(key=lambda item: (item.name not in LONGEST, item.path.name not in LONG_FIRST))
+    items.sort(key=lambda item: (item.name not in LONGEST, item.path.name not in LONG_FIRST,
+                                 item.nodeid.split("::", 1)[0] not in SHARING))
 
 
 @pytest.fixture(scope="session", autouse=True)
@@ -241,24 +278,55 @@ RULES_SAMPLES = 60
 """Samples a cycle of the reduced full rules (the default: the rows' 200)."""
 
 
+def once_per_run(request: pytest.FixtureRequest, name: str, make: Callable[[], Any]) -> Any:
+    """``make()``, computed once for the whole run: under pytest-xdist the first worker that asks
+    computes it and pickles it into the run's shared temporary directory while it holds a lock
+    there; the others wait on the lock and read it back (the pattern of pytest-xdist's docs,
+    "Making session-scoped fixtures execute only once"). A session fixture is otherwise built
+    by every worker that runs one of its tests: the co-design below was built twice in the slow
+    studies (31.9 s and 40.8 s of setup in one CI run). Without xdist: ``make()``."""
+    import fcntl
+    import pickle
+
+    worker = os.environ.get("PYTEST_XDIST_WORKER")
+    if worker is None:
+        return make()
+    # popen-gw0/… share the run's directory (pytest-N/), new for every run: two runs never mix
+    shared = request.getfixturevalue("tmp_path_factory").getbasetemp().parent
+    path = shared / f"{name}.pickle"
+    with open(shared / f"{name}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # released when the file closes
+        if path.is_file():
+            return pickle.loads(path.read_bytes())
+        value = make()
+        path.with_suffix(f".{worker}").write_bytes(pickle.dumps(value))
+        path.with_suffix(f".{worker}").replace(path)  # whole or absent
+        return value
+
+
 @pytest.fixture(scope="session")
-def codesigned():
+def codesigned(request: pytest.FixtureRequest):
     from hexaleg.design.codesign.build import codesign
 
-    return codesign("hexaleg", 0.06, **BUDGET)
+    return once_per_run(request, "codesigned", lambda: codesign("hexaleg", 0.06, **BUDGET))
 
 
 @pytest.fixture(scope="session")
-def ruled(codesigned):
-    """``codesigned`` with the full spring rules (one-sided family) on its chosen gait."""
+def ruled(request: pytest.FixtureRequest):
+    """``codesigned`` with the full spring rules (one-sided family) on its chosen gait (a
+    worker that reads it back does not build ``codesigned``)."""
     import dataclasses
 
     from hexaleg.design.codesign.build import full_rules, rule_params
 
-    chosen = dataclasses.replace(codesigned.chosen, samples=RULES_SAMPLES)
-    rules = full_rules("hexaleg", chosen, codesigned.constraints, lambda _m: None,
-                       rule_params(families=["one_sided"]))
-    return dataclasses.replace(codesigned, rules=rules)
+    def make():
+        codesigned = request.getfixturevalue("codesigned")
+        chosen = dataclasses.replace(codesigned.chosen, samples=RULES_SAMPLES)
+        rules = full_rules("hexaleg", chosen, codesigned.constraints, lambda _m: None,
+                           rule_params(families=["one_sided"]))
+        return dataclasses.replace(codesigned, rules=rules)
+
+    return once_per_run(request, "ruled", make)
 
 
 # One small report (tests/report, tests/commands/report), written once per session, and the same
