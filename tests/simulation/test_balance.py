@@ -200,6 +200,28 @@ def test_the_quadrupeds_trots_walk_under_position_servos(robot, tmp_path):
         assert run.feedback and run.verdict == "walks", (run.name, run.verdict, run.message)
 
 
+BIPED6 = str(Path(__file__).parents[1] / "data" / "biped6.toml")
+"""The biped on soles (six-joint legs, 18 × 9 cm soles, 16.4 kg; #54)."""
+
+
+def _closed_loop_plan(path: str):
+    """A description's prepared gait and its closed-loop model (feedforward servos, the
+    simulation's default ground and timestep for the robot's mass)."""
+    prepared = Scenario.load(path).prepare()
+    settings = Settings(force_samples=0).sized(prepared.robot.mass)
+    servo, ground = settings.servo(), settings.ground(prepared.contact.mu)
+    dt = cycle_timestep(automatic_timestep(prepared.robot, prepared.motion, prepared.motor,
+                                           servo, ground), prepared.motion.period)
+    return prepared, build_model(prepared.robot, prepared.motion, prepared.motor, servo=servo,
+                                 ground=ground, timestep=dt)
+
+
+def _biped6_plan(path: str = BIPED6):
+    """The biped on soles' prepared gait, its analysis and its closed-loop model."""
+    prepared, sim = _closed_loop_plan(path)
+    return prepared.motion, prepared.evaluate(None), sim
+
+
 @pytest.mark.slow
 def test_the_biped_falls_as_an_inverted_pendulum_on_its_point_foot():
     """#54's bipeds: the test biped's ZMP walk stands on one point foot for 0.71 s; closed loop
@@ -210,15 +232,9 @@ def test_the_biped_falls_as_an_inverted_pendulum_on_its_point_foot():
     from hexaleg.simulation.run import simulate_run
     from hexaleg.simulation.sensitivity import controller_check
 
-    run = Scenario.load(str(Path(__file__).parents[1] / "data" / "biped.toml"))
-    prepared = run.prepare()
+    prepared, sim = _closed_loop_plan(str(Path(__file__).parents[1] / "data" / "biped.toml"))
     motion = prepared.motion
     settings = Settings(force_samples=0).sized(prepared.robot.mass)
-    servo, ground = settings.servo(), settings.ground(prepared.contact.mu)
-    dt = cycle_timestep(automatic_timestep(prepared.robot, motion, prepared.motor, servo,
-                                           ground), motion.period)
-    sim = build_model(prepared.robot, motion, prepared.motor, servo=servo, ground=ground,
-                      timestep=dt)
     r = simulate_run("baseline", sim, motion, prepared.evaluate(None), settings, feedback=True)
     one = falls.point_foot(sim, motion)
     assert one is not None and one.duration == pytest.approx(motion.period / 2, rel=1e-2)
@@ -232,10 +248,6 @@ def test_the_biped_falls_as_an_inverted_pendulum_on_its_point_foot():
     rows = controller_check(prepared, SpringSet(), "joule",
                             Settings(force_samples=0, cycles=2, evaluate=1))
     assert all(row["simulated"] is None and row["why"] == one.reason for row in rows)
-
-
-BIPED6 = str(Path(__file__).parents[1] / "data" / "biped6.toml")
-"""The biped on soles (six-joint legs, 18 × 9 cm soles, 16.4 kg; #54)."""
 
 
 def _sole_margins(sim, traj, stance: np.ndarray, every: int) -> np.ndarray:
@@ -324,20 +336,6 @@ def test_the_biped_on_soles_walks_its_zmp_gait_closed_loop(tmp_path, controller)
     planted[t < 0.05] = False  # the contacts' first steps load the soles from zero
     margins = _sole_margins(run.sim, run.trajectory, planted, 40)
     assert margins.min() > 0.04, margins.min()
-
-
-def _biped6_plan(path: str = BIPED6):
-    """The biped's prepared gait, its analysis and its closed-loop model (feedforward)."""
-    run = Scenario.load(path)
-    prepared = run.prepare()
-    motion = prepared.motion
-    settings = Settings(force_samples=0).sized(prepared.robot.mass)
-    servo, ground = settings.servo(), settings.ground(prepared.contact.mu)
-    dt = cycle_timestep(automatic_timestep(prepared.robot, motion, prepared.motor, servo,
-                                           ground), motion.period)
-    sim = build_model(prepared.robot, motion, prepared.motor, servo=servo, ground=ground,
-                      timestep=dt)
-    return motion, prepared.evaluate(None), sim
 
 
 def _pushed(motion, analysis, sim, push: np.ndarray, cycles: int, feedback: bool = True):
