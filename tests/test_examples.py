@@ -13,7 +13,9 @@ its line: a property of the method, not of the machine that wrote the log.
 from __future__ import annotations
 
 import difflib
+import os
 import re
+import signal
 import subprocess
 import sys
 from pathlib import Path
@@ -24,6 +26,9 @@ ROOT = Path(__file__).resolve().parents[1]
 ANALYSIS = ROOT / "analysis"
 LOGS = ANALYSIS / "logs"
 SCRIPTS = sorted(p for p in ANALYSIS.glob("*_*.py") if not p.name.startswith("bench_"))
+TIMEOUT = 900
+"""Seconds an example may run before it is killed with its workers: the co-design example takes
+143 s in a quiet CI run and 270 s or more on a loaded machine (the notebooks get 600 s a cell)."""
 NUMBER = re.compile(r"[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?")
 SIMULATED = 0.0015
 """Relative tolerance of a forward simulation's figure: moving the gait's period by 1e-9 moves
@@ -84,14 +89,63 @@ def test_every_example_has_a_log_and_every_log_a_script():
     assert sorted(p.stem for p in LOGS.glob("*.log")) == [p.stem for p in SCRIPTS]
 
 
+def _run(script: Path, cwd: Path, timeout: float = TIMEOUT) -> subprocess.CompletedProcess:
+    """Run ``script`` in its own session, so that a timeout kills it with the workers it forked
+    (``subprocess.run`` kills the child alone and leaves its workers running)."""
+    proc = subprocess.Popen([sys.executable, str(script)], cwd=cwd, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        out, err = proc.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.communicate()
+        pytest.fail(f"{script.name} ran over {timeout:g} s; killed with its workers")
+    return subprocess.CompletedProcess(proc.args, proc.returncode, out, err)
+
+
+def test_a_timed_out_example_is_killed_with_its_workers(tmp_path: Path):
+    """An example that forks a worker and hangs is killed after its timeout, worker included:
+    no process of it is left (the rule that long work never leaves processes behind)."""
+    pids = tmp_path / "pids"
+    script = tmp_path / "hang_example.py"
+    script.write_text(
+        "import os, time\n"
+        "child = os.fork()\n"
+        "if child == 0:\n"
+        "    os.close(1); os.close(2)\n"  # its pipes closed: a kill of the parent alone returns
+        "    time.sleep(600)\n"
+        f"open({str(pids)!r}, 'w').write(f'{{os.getpid()}} {{child}}')\n"
+        "time.sleep(600)\n")
+    with pytest.raises(pytest.fail.Exception, match="ran over 2 s; killed with its workers"):
+        _run(script, tmp_path, timeout=2)
+    for pid in map(int, pids.read_text().split()):
+        try:
+            os.waitpid(pid, os.WNOHANG)  # not our child: raises; a zombie would be reaped
+        except ChildProcessError:
+            pass
+        alive = True
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            alive = False
+        assert not alive or _zombie(pid), f"process {pid} of the example outlived its timeout"
+
+
+def _zombie(pid: int) -> bool:
+    """Whether ``pid`` has exited and waits only for its parent to reap it."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().split(") ", 1)[1].startswith("Z")
+    except FileNotFoundError:
+        return True
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("script", SCRIPTS, ids=lambda p: p.stem)
 def test_example_prints_its_log(script: Path, tmp_path: Path):
     log = LOGS / f"{script.stem}.log"
     regenerate = f"python analysis/{script.name} > analysis/logs/{log.name}"
     # run outside the checkout: MuJoCo writes MUJOCO_LOG.TXT into the working directory
-    run = subprocess.run([sys.executable, str(script)], cwd=tmp_path, capture_output=True,
-                         text=True, timeout=300)
+    run = _run(script, tmp_path)
     assert run.returncode == 0, f"{script.name} failed:\n{run.stderr}"
     expected = log.read_text()
     if not same_log(expected, run.stdout, TOLERANCES.get(script.stem, {})):
