@@ -86,8 +86,9 @@ def test_joints_on_no_leg_are_listed_with_their_stand(tmp_path):
                                                  for j in js)
     text = humanoid.summary()
     assert "other joints (5, on no leg" in text
-    assert "L_elbow               stand +0.1000 rad" in text  # its zero clipped into [0.1, 2]
-    assert "L_shoulder            stand +0.3000 rad" in text  # given by stand.joints
+    # its zero clipped into [0.1, 2]:
+    assert "L_elbow               stand +0.1000 rad from its zero" in text
+    assert "L_shoulder            stand +0.3000 rad from its zero" in text  # given by stand.joints
     assert hexaleg.load().other_joints == ()
     assert "other joints" not in hexaleg.load().summary()
 
@@ -107,9 +108,10 @@ def test_a_swinging_joint_is_listed_with_its_swing(tmp_path):
                                           "stand = {", 1)
     (tmp_path / "swing.toml").write_text(described)
     summary = hexaleg.load(str(tmp_path / "swing.toml")).summary()
-    assert ("waist                 stand +0.0000 rad, swings ±0.2000 rad with phase +0.5000 rad "
-            "each gait cycle") in summary
-    assert "L_shoulder            stand +0.3000 rad\n" in summary
+    assert ("waist                 stand +0.0000 rad from its zero, swings ±0.2000 rad about the "
+            "stand with phase +0.5000 rad each gait cycle") in summary
+    assert "L_shoulder            stand +0.3000 rad from its zero\n" in summary
+    assert "every angle here is the joint's coordinate, from its zero in the URDF" in summary
     assert "or swinging about it ([robot] moves)" in summary
 
 

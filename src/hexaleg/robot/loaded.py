@@ -260,7 +260,8 @@ class Robot:
             inert = m.inertias[jid]
             com = ", ".join(f"{c:+.4f}" for c in inert.lever)
             lines.append(f"    {m.names[jid]:<14} {inert.mass:8.5f}  [{com}]")
-        lines.append("  joints (lower, upper rad; effort N·m; velocity rad/s):")
+        lines.append("  joints (lower, upper rad; effort N·m; velocity rad/s; every angle here is "
+                     "the joint's coordinate, from its zero in the URDF, not from the stand):")
         for name in self.joint_names:
             jid = m.getJointId(name)
             iq, iv = m.joints[jid].idx_q, m.joints[jid].idx_v
@@ -283,11 +284,11 @@ class Robot:
             q = self.poses.get("stand")
             for name in others:
                 at = ("" if q is None else
-                      f"  stand {q[m.joints[m.getJointId(name)].idx_q]:+.4f} rad")
+                      f"  stand {q[m.joints[m.getJointId(name)].idx_q]:+.4f} rad from its zero")
                 if name in self.moves:
                     amplitude, phase = self.moves[name]
-                    at += (f", swings ±{amplitude:.4f} rad with phase {phase:+.4f} rad "
-                           "each gait cycle")
+                    at += (f", swings ±{amplitude:.4f} rad about the stand with phase "
+                           f"{phase:+.4f} rad each gait cycle")
                 lines.append(f"    {name:<20}{at}")
         lines.append(f"  poses: {', '.join(self.poses) or '(none)'}; heading (forward) "
                      f"[{', '.join(f'{v:+.3g}' for v in self.heading)}] in the base frame")
