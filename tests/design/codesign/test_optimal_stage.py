@@ -12,10 +12,17 @@ import json
 import pickle
 
 import numpy as np
+import pytest
 
 import hexaleg
 from hexaleg.design.chain.checkpoint import StageFiles
-from hexaleg.design.codesign.optimal_stage import PARAMETRIC, keep_parametric, kept_parametric
+from hexaleg.design.codesign.optimal_stage import (
+    PARAMETRIC,
+    SOLVE,
+    KeptSolves,
+    keep_parametric,
+    kept_parametric,
+)
 from hexaleg.robot.loaded import Robot
 
 
@@ -50,3 +57,73 @@ def test_the_kept_co_design_is_read_back_with_this_runs_robot(ruled, tmp_path):
     assert kept_parametric(StageFiles(tmp_path, "k"), turned) is None
     assert kept_parametric(None, robot) is None
     keep_parametric(None, ruled, robot)  # nothing kept, nothing raised
+
+
+def test_a_kept_solve_is_read_back_by_its_inputs_only(tmp_path):
+    """A solve kept by one process is read back by the next for the same inputs (not computed:
+    the second compute would fail), computed for other inputs, never kept without stages."""
+    robot = hexaleg.load()
+    springs = hexaleg.SpringSet()
+    inputs = ("round", springs, np.arange(3.0))
+    said: list[str] = []
+    value = KeptSolves(StageFiles(tmp_path, "k"), robot, said.append)(
+        inputs, lambda: np.array([1.5, 2.5]))
+    assert KeptSolves.name(inputs).startswith(SOLVE)
+    assert (tmp_path / f"{KeptSolves.name(inputs)}.pickle").is_file()
+
+    def never() -> np.ndarray:
+        raise AssertionError("a kept solve was computed again")
+
+    again = KeptSolves(StageFiles(tmp_path, "k"), robot, said.append)(
+        ("round", hexaleg.SpringSet(), np.arange(3.0)), never)
+    np.testing.assert_array_equal(again, value)
+    assert said == ["round: solve read back from the kept stage of this run"]
+    other = KeptSolves(StageFiles(tmp_path, "k"), robot, said.append)(
+        ("round", springs, np.arange(3.0) + 1e-12), lambda: np.zeros(1))
+    np.testing.assert_array_equal(other, np.zeros(1))
+    calls = []
+    for _ in range(2):
+        KeptSolves(None, robot, said.append)(inputs, lambda: calls.append(1))
+    assert len(calls) == 2
+
+
+@pytest.mark.slow  # two tiny box-FDDP solves, then one again: ~10 s of CPU
+def test_an_alternation_killed_in_a_round_resumes_from_its_kept_solves(tmp_path, monkeypatch):
+    """The alternation killed in its round's solve keeps its start's solve; the same run then
+    solves the round alone, and a third run solves nothing, with the same energies and springs."""
+    pytest.importorskip("crocoddyl")
+    from hexaleg.design.codesign.alternation import alternate
+    from hexaleg.optimal import solve as solve_module
+    from hexaleg.optimal.problem import OptimalParams
+
+    run = hexaleg.Scenario.load("hexaleg")
+    real = solve_module.solve
+    calls: list[int] = []
+
+    def counted(*args, **kwargs):
+        calls.append(1)
+        if len(calls) == kill_at:
+            raise KeyboardInterrupt
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(solve_module, "solve", counted)
+
+    def alternation():
+        return alternate(run.model, run.motion(), run.actuator, run.contact,
+                         params=OptimalParams(nodes=10, iterations=8), rounds=1,
+                         keep=KeptSolves(StageFiles(tmp_path, "k"), run.model, print))
+
+    kill_at = 2
+    with pytest.raises(KeyboardInterrupt):
+        alternation()
+    assert len(list(tmp_path.glob(f"{SOLVE}*.pickle"))) == 1
+    calls.clear()
+    kill_at = 0
+    resumed = alternation()
+    assert len(calls) == 1  # the round's solve alone
+    calls.clear()
+    again = alternation()
+    assert not calls
+    assert again.energies == resumed.energies
+    assert repr(again.springs) == repr(resumed.springs)
+    np.testing.assert_array_equal(again.best.x, resumed.best.x)

@@ -195,7 +195,7 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
     if kept is not None:
         say(f"co-design: {kept.rows[3].per_metre:.2f} J/m, read back from the kept stage of "
             f"this run ({stages.directory if stages is not None else ''})")
-        return with_optimal(kept, model, motor, groups, servo, say)
+        return with_optimal(kept, model, motor, groups, servo, say, stages)
     free = functools.partial(evaluate_gait, model, family=family, constraints=c, motor=motor)
     first = free(base, groups=groups, min_margin=0.0)
     if first.error is not None:
@@ -269,7 +269,7 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
         if motion != "optimal":
             return result
         keep_parametric(stages, result, model)
-        return with_optimal(result, model, motor, groups, servo, say)
+        return with_optimal(result, model, motor, groups, servo, say, stages)
     finally:
         if ruled is not None:
             ruled.close()
