@@ -87,17 +87,20 @@ def test_the_page_shows_the_optimal_motions_table(codesigned):
 def test_a_kill_in_the_optimal_stage_resumes_from_the_kept_co_design(tmp_path, monkeypatch):
     """``--motion optimal`` keeps the finished parametric co-design before the optimal motion's
     minutes: a kill there publishes nothing and leaves that stage, which the same run reads back
-    instead of searching again (the optimal stage gets the same gait, springs and rows); another
-    speed is another run, searched afresh."""
+    instead of searching again (the optimal stage gets the same gait, springs and rows), and the
+    kill's line counts the optimal stage's solves kept with it; another speed is another run,
+    searched afresh."""
     from hexaleg.commands.codesign.write import STAGES, write_codesign
     from hexaleg.design.codesign import build, optimal_rows
     from hexaleg.optimal import backend
+    from hexaleg.parallel.interrupt import kept
 
     monkeypatch.setattr(backend, "crocoddyl_module", lambda: None)  # the stage is stubbed
     handed = []
 
-    def killed(*args, **_):
+    def killed(*args, **kwargs):
         handed.append(args)
+        kwargs["keep"](("no springs", len(handed)), lambda: 1.5)  # a solve finished, kept
         raise KeyboardInterrupt
 
     monkeypatch.setattr(optimal_rows, "optimal_rows", killed)
@@ -105,9 +108,12 @@ def test_a_kill_in_the_optimal_stage_resumes_from_the_kept_co_design(tmp_path, m
            "max_evaluations": 10, "restarts": 1, "rules": False, "curve": False,
            "simulate": False, "motion": "optimal"}
     out = tmp_path / "out"
-    with pytest.raises(KeyboardInterrupt):
+    with pytest.raises(KeyboardInterrupt) as stopped:
         write_codesign(out, **run)
     assert (out / STAGES / "parametric.pickle").is_file()
+    assert kept(stopped.value)[-1:] == [f"but its parametric co-design and 1 optimal-control solve "
+                                   f"are kept in {out / STAGES} for the same command to resume "
+                                   "from"]
     assert not (out / "codesign.json").exists()
 
     class Searched(Exception):

@@ -6,9 +6,13 @@ again) is tested in tests/commands/design/test_stages.py and tests/test_faults.p
 
 from __future__ import annotations
 
+import dataclasses
 import io
 import os
 import pickle
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -16,10 +20,12 @@ import pytest
 import hexaleg
 from hexaleg.design.chain import chain as chain_module
 from hexaleg.design.chain.chain import DesignChain
-from hexaleg.design.chain.checkpoint import KEY_FILE, StageFiles, run_key
+from hexaleg.design.chain.checkpoint import KEY_FILE, StageFiles, robot_key, run_key
 from hexaleg.design.chain.config import design_params
 from hexaleg.design.chain.config import mission as mission_of
 
+QUAD = Path(__file__).resolve().parents[2] / "data" / "quad2dof.toml"
+"""Another robot (a small quadruped of the tests' data)."""
 LINEAR = {"design": {"samples": 100, "families": ["linear"], "pareto_fractions": [0.5]}}
 """A design of one family, cheap enough for the chain's candidates and Pareto front (~1 s)."""
 
@@ -112,3 +118,64 @@ def test_the_run_key_changes_with_what_the_design_reads(change):
     assert key(base) == key(hexaleg.Scenario.from_tables("hexaleg", {}))
     assert key(base) != key(other)
     assert key(base) != key(base, "position")  # --controller
+
+
+def test_a_robot_is_keyed_by_its_content():
+    """A robot loaded again, a pickled copy (what a forked process sends back) and one whose
+    shapes' bounding boxes were filled in place (the co-design's run leaves its robot so) have
+    the robot's key; the same model with another heading, or another robot, has another."""
+    robot = hexaleg.load()
+    assert robot_key(hexaleg.load()) == robot_key(robot)
+    assert robot_key(pickle.loads(pickle.dumps(robot))) == robot_key(robot)
+    checked = hexaleg.load()
+    for g in checked.collision_model.geometryObjects:
+        g.geometry.computeLocalAABB()
+    assert pickle.dumps(checked.collision_model) != pickle.dumps(robot.collision_model)
+    assert robot_key(checked) == robot_key(robot)
+    turned = dataclasses.replace(robot, heading=np.array([0.0, 1.0, 0.0]))
+    assert turned.model is robot.model and robot_key(turned) != robot_key(robot)
+    assert robot_key(hexaleg.load(str(QUAD))) != robot_key(robot)
+
+
+READ_BACK = """
+import pickle, sys
+import hexaleg
+from hexaleg.design.chain.checkpoint import StageFiles
+robot = hexaleg.load()
+back = StageFiles(sys.argv[1], "k").load("stage", {"robot": robot})
+assert back["mine"] is robot and all(r is robot for r in back["rules"]), back
+assert back["model"] is robot.model and back["data"] is robot.data
+assert back["number"] == 1.5
+print("read back as this process's robot")
+"""
+
+
+def test_a_kept_stage_reads_back_the_new_processs_robot_for_every_copy(tmp_path):
+    """A stage refers to the run's robot, to a copy of it (the co-design's spring rules send
+    theirs back from a forked child) and to its Pinocchio model and data, none of which the file
+    holds (the reader admits no Pinocchio class); another process reading it gets its own robot
+    object in every place, by identity."""
+    robot = hexaleg.load()
+    copy = pickle.loads(pickle.dumps(robot))
+    value = {"mine": robot, "rules": [copy, copy], "model": robot.model, "data": robot.data,
+             "number": 1.5}
+    StageFiles(tmp_path, "k").save("stage", value, {"robot": robot})
+    assert b"pinocchio" not in (tmp_path / "stage.pickle").read_bytes()
+    src = str(Path(hexaleg.__file__).resolve().parents[1])  # the code under test, not another
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([src, os.environ.get("PYTHONPATH", "")])}
+    done = subprocess.run([sys.executable, "-c", READ_BACK, str(tmp_path)], capture_output=True,
+                          text=True, timeout=120, check=False, env=env)
+    assert done.returncode == 0, done.stderr
+    assert "read back as this process's robot" in done.stdout
+
+
+def test_a_stage_kept_for_one_robot_is_not_read_for_another(tmp_path):
+    """A file naming a robot the run does not have (another robot, the same model with another
+    heading, none at all) is not read: it is computed again, never resolved to the wrong one."""
+    robot = hexaleg.load()
+    StageFiles(tmp_path, "k").save("stage", [robot, 2.0], {"robot": robot})
+    turned = dataclasses.replace(robot, heading=np.array([0.0, 1.0, 0.0]))
+    for others in ({"robot": turned}, {"robot": hexaleg.load(str(QUAD))}, {}):
+        assert StageFiles(tmp_path, "k").load("stage", others) is None
+    back = StageFiles(tmp_path, "k").load("stage", {"robot": turned, "mine": robot})
+    assert back is not None and back[0] is robot

@@ -89,23 +89,3 @@ def test_the_optimal_motion_without_its_extra_names_the_extra(monkeypatch):
         backend.crocoddyl_module.cache_clear()
     with pytest.raises(UnknownNameError, match="optimal"):
         codesign(motion="optimised")
-
-
-def test_a_kept_stage_reads_back_this_runs_robot_for_every_copy(robot, tmp_path):
-    """The full rules' result comes back from their forked child with a copy of the robot, whose
-    Pinocchio model a stage file may not hold: each robot the kept co-design refers to is
-    written by name and read back as this run's (else the resume would silently search again)."""
-    import pickle
-
-    from hexaleg.design.chain.checkpoint import StageFiles
-    from hexaleg.design.codesign.build import _robot_names, _robots_in
-
-    copy = pickle.loads(pickle.dumps(robot))
-    value = {"mine": robot, "rules": [copy, copy], "number": 1.5}
-    robots = _robots_in(value)
-    assert len(robots) == 2 and robots[0] is robot and robots[1] is copy
-    StageFiles(tmp_path, "k").save("parametric", value, _robot_names(robots))
-    back = StageFiles(tmp_path, "k").load("parametric", _robot_names([robot] * len(robots)))
-    assert back is not None
-    assert back["mine"] is robot and back["rules"][0] is robot and back["rules"][1] is robot
-    assert StageFiles(tmp_path, "k").load("parametric", {}) is None  # without them: not read

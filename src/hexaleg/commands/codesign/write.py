@@ -20,6 +20,7 @@ from typing import Any
 
 from hexaleg.design.chain.checkpoint import StageFiles, scenario_key
 from hexaleg.design.codesign.build import codesign
+from hexaleg.design.codesign.optimal_stage import SOLVE
 from hexaleg.design.codesign.result import CodesignResult
 from hexaleg.outputs import codesign_plots, plots
 from hexaleg.outputs.directory import OutputFolder
@@ -87,7 +88,10 @@ def write_codesign(out: str | Path = "hexaleg-codesign", **kwargs: Any
     ``out``'s hidden :data:`STAGES` (:class:`~hexaleg.design.chain.checkpoint.StageFiles`,
     keyed on the run and the settings) before the optimal motion's minutes: a run killed or
     interrupted there leaves the previous co-design as it was and that stage, which the same
-    command reads back instead of searching again; a whole co-design removes it.
+    command reads back instead of searching again, and each optimal-control solve finished
+    before the kill, which it reads back instead of solving again
+    (:class:`~hexaleg.design.codesign.optimal_stage.KeptSolves`); a whole co-design removes
+    them.
     """
     out = Path(out)
     robot = kwargs.get("robot", "hexaleg")
@@ -100,8 +104,11 @@ def write_codesign(out: str | Path = "hexaleg-codesign", **kwargs: Any
             files = _write(result, folder)[1]
     except KeyboardInterrupt as e:  # Ctrl-C or a kill: the finished stage stays for a re-run
         if stages.written:
-            keep(e, f"but its parametric co-design is kept in {out / STAGES} for the same "
-                    "command to resume from")
+            solves = sum(name.startswith(SOLVE) for name in stages.written)
+            kept = "its parametric co-design" + (
+                f" and {solves} optimal-control solve{'s' * (solves != 1)}" if solves else "")
+            keep(e, f"but {kept} {'are' if solves else 'is'} kept in {out / STAGES} for the "
+                    "same command to resume from")
         raise
     stages.clear()  # the co-design is whole: nothing to resume
     return result, files

@@ -80,7 +80,6 @@ from hexaleg.dynamics.draw import WholeDraw, whole_draw
 from hexaleg.dynamics.plausibility import check_baseline
 from hexaleg.dynamics.without_constants import WithoutConstants, without_constants
 from hexaleg.errors import HexalegError, InvalidParameterError, UnknownNameError
-from hexaleg.parallel.forked import robot_objects
 from hexaleg.robot.mirror import mirror
 from hexaleg.robot.springs import SpringSet
 from hexaleg.scenario.scenario import Scenario
@@ -149,13 +148,11 @@ class DesignChain:
         self._say(f"{msg} ({now - self._t0:.1f} s)")
 
     def _shared(self) -> dict[str, object]:
-        """The objects a kept stage refers to by name: this run's robot, its model and the
-        prepared nominal gait (:mod:`hexaleg.design.chain.checkpoint`)."""
+        """The objects a kept stage refers to: this run's robot (by its content) and the
+        prepared nominal gait (by name) (:mod:`hexaleg.design.chain.checkpoint`)."""
         nom = self.nominal()
-        names = ("robot", "model", "data", "visual_model", "collision_model")
-        return {**dict(zip(names, robot_objects(nom.robot), strict=True)), "nominal": nom,
-                "prepared": nom.prepared, "run": nom.run, "scenario": self.scenario,
-                "design": self.design}
+        return {"robot": nom.robot, "nominal": nom, "prepared": nom.prepared, "run": nom.run,
+                "scenario": self.scenario, "design": self.design}
 
     def _once(self, name: str, compute: Callable[[], Any]) -> Any:
         if name in self._done:

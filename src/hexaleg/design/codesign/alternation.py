@@ -24,6 +24,7 @@ Only families whose torque is continuous in the angle enter DDP's dynamics well 
 
 from __future__ import annotations
 
+import functools
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -45,6 +46,16 @@ SMOOTH_FAMILIES = ("linear", "dead_zone")
 
 PROGRESS = 20
 """A solve's progress line every this many box-FDDP iterations (a hundred take minutes)."""
+
+Keep = Callable[[tuple[Any, ...], Callable[[], Any]], Any]
+"""How a solve is run: ``keep(inputs, compute)`` is ``compute()``'s result, where ``inputs``
+(a label, the springs, the solver's settings, the cycle a warm start comes from) are
+everything that defines it beside the run itself (its robot, gait, motors, floor)."""
+
+
+def computed(_inputs: tuple[Any, ...], compute: Callable[[], Any]) -> Any:
+    """Every solve computed (:data:`Keep`)."""
+    return compute()
 
 
 @dataclass(frozen=True)
@@ -97,7 +108,8 @@ class Alternation:
 def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams, *,
               springs: SpringSet | None = None, params: Any = None, family: str = "linear",
               groups: Groups | None = None, rounds: int = 4, tolerance: float = 0.01,
-              say: Callable[[str], None] | None = None) -> Alternation:
+              say: Callable[[str], None] | None = None, keep: Keep | None = None
+              ) -> Alternation:
     """Alternate the optimal motion and its springs (module docstring).
 
     Args:
@@ -114,6 +126,9 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
         rounds: Rounds at most, ≥ 1.
         tolerance: Relative gain under which it stops, in [0, 1).
         say: Where progress lines go.
+        keep: Runs each solve, given what defines it (:data:`Keep`): a kept one
+            (:class:`~hexaleg.design.codesign.optimal_stage.KeptSolves`) reads back a solve
+            the run made before a kill; None: every solve computed.
 
     Raises:
         InvalidParameterError: a family outside :data:`SMOOTH_FAMILIES`, bad ``rounds`` or
@@ -127,11 +142,21 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
     params = params or OptimalParams()
     tell = say or (lambda _line: None)
     current = springs or SpringSet()
-    best = solve(robot, build_problem(robot, gait, actuator, current, params), say=tell,
-                 every=PROGRESS)
+    once = keep or computed
+    best = once(("start", current, params),
+                lambda: solve(robot, build_problem(robot, gait, actuator, current, params),
+                              say=tell, every=PROGRESS))
     start = best
     tell(f"start: {best.energy_per_metre:.4g} J/m ({best.iterations} iterations, "
          f"{best.seconds:.0f} s)")
+
+    def warm_solve(springs: SpringSet, last: Any) -> Any:
+        """The cycle solved with ``springs``, warm-started from ``last`` (module docstring)."""
+        built = build_problem(robot, gait, actuator, springs, params)
+        new_tau = np.array([built.actuation.spring_torques(x) for x in last.x[:-1]])
+        warm = (last.x, last.torques + last.spring_torques - new_tau)
+        return solve(robot, built, warm=warm, say=tell, every=PROGRESS)
+
     done: list[Round] = []
     gap = 0.0
     for k in range(rounds):
@@ -139,10 +164,9 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
         prepared = prepare(robot, best.motion, motor=actuator, contact=contact)
         design = optimal_springs(prepared, groups or list(robot.joint_classes),
                                  family=family, metric="electrical")
-        built = build_problem(robot, gait, actuator, design.springs, params)
-        new_tau = np.array([built.actuation.spring_torques(x) for x in best.x[:-1]])
-        warm = (best.x, best.torques + best.spring_torques - new_tau)
-        candidate = solve(robot, built, warm=warm, say=tell, every=PROGRESS)
+        candidate = once(("round", design.springs, params, best.x, best.torques,
+                          best.spring_torques),
+                         functools.partial(warm_solve, design.springs, best))
         designed = design.analysis.metrics["total"]["electrical"] / best.motion.distance
         gap = 1.0 - candidate.energy_per_metre / best.energy_per_metre
         accepted = gap > 0.0

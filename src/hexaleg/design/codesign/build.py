@@ -32,9 +32,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-import io
 import os
-import pickle
 import time
 import warnings
 from collections.abc import Callable
@@ -57,6 +55,7 @@ from hexaleg.design.codesign.gait_evaluation import (
     with_values,
 )
 from hexaleg.design.codesign.gait_search import RESTARTS, default_space, search
+from hexaleg.design.codesign.optimal_stage import keep_parametric, kept_parametric, with_optimal
 from hexaleg.design.codesign.result import CodesignResult, Row, SpeedPoint
 from hexaleg.design.codesign.servo import choose, screen
 from hexaleg.design.families import FAMILIES
@@ -77,9 +76,6 @@ from hexaleg.simulation.controllers import BOTH, SERVOS
 
 MOTIONS = ("gait", "optimal")
 """What ``motion`` may be: the parametric gait alone, or also the optimal motion's rows."""
-PARAMETRIC = "parametric"
-"""The stage file of the finished parametric co-design, kept before the optimal motion's stage
-(``stages`` of :func:`codesign`)."""
 SPEED_FACTORS = (0.5, 0.75, 1.0, 1.25, 1.5)
 """The speed curve's speeds, as factors of the required speed."""
 RULE_FAMILIES = ("preloaded", "one_sided", "linear")
@@ -195,15 +191,11 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
     base = default_gait(model, run.robot, v, pattern, n)
     groups = design_groups(model, tuple(model.joint_classes),
                            one_of("grouping", grouping, ("class", "mirrored", "joint")))
-    kept = None
-    if stages is not None and motion == "optimal":
-        count = stages.load(f"{PARAMETRIC}-robots", {})
-        if isinstance(count, int):
-            kept = stages.load(PARAMETRIC, _robot_names([model] * count))
-    if isinstance(kept, CodesignResult):
+    kept = kept_parametric(stages, model) if motion == "optimal" else None
+    if kept is not None:
         say(f"co-design: {kept.rows[3].per_metre:.2f} J/m, read back from the kept stage of "
             f"this run ({stages.directory if stages is not None else ''})")
-        return with_optimal(kept, model, motor, groups, servo, say)
+        return with_optimal(kept, model, motor, groups, servo, say, stages)
     free = functools.partial(evaluate_gait, model, family=family, constraints=c, motor=motor)
     first = free(base, groups=groups, min_margin=0.0)
     if first.error is not None:
@@ -276,52 +268,11 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             optimal=None)
         if motion != "optimal":
             return result
-        if stages is not None:
-            robots = _robots_in(result)
-            stages.save(f"{PARAMETRIC}-robots", len(robots), {})
-            stages.save(PARAMETRIC, result, _robot_names(robots))
-        return with_optimal(result, model, motor, groups, servo, say)
+        keep_parametric(stages, result, model)
+        return with_optimal(result, model, motor, groups, servo, say, stages)
     finally:
         if ruled is not None:
             ruled.close()
-
-
-def _robots_in(value: Any) -> list[Robot]:
-    """The robots ``value`` refers to, once each (the rules' come back from their forked child
-    as a copy of the run's): a pickling pass that stops at each."""
-    found: dict[int, Robot] = {}
-
-    class Scan(pickle.Pickler):
-        def persistent_id(self, obj: object) -> str | None:
-            if isinstance(obj, Robot):
-                found.setdefault(id(obj), obj)
-                return "robot"
-            return None
-
-    Scan(io.BytesIO(), protocol=pickle.HIGHEST_PROTOCOL).dump(value)
-    return list(found.values())
-
-
-def _robot_names(robots: list[Robot]) -> dict[str, object]:
-    """Stage-file names of each robot's objects (:mod:`hexaleg.design.chain.checkpoint`): a
-    kept stage refers to them by name, and reads back this run's robot in each's place."""
-    names = ("robot", "model", "data", "visual_model", "collision_model")
-    return {f"{n} {k}": o for k, r in enumerate(robots)
-            for n, o in zip(names, robot_objects(r), strict=True)}
-
-
-def with_optimal(result: CodesignResult, model: Robot, motor: Any, groups: Groups,
-                 servo: str, say: Callable[[str], None]) -> CodesignResult:
-    """``result`` with the optimal motion's rows (:mod:`hexaleg.design.codesign.optimal_rows`)
-    from its chosen gait and springs; its wall time the two stages' together."""
-    from hexaleg.design.codesign.optimal_rows import optimal_rows
-
-    optimal = optimal_rows(model, motor, result.constraints.contact(), result.default,
-                           result.chosen, result.springs,
-                           (result.rows[0].per_metre, result.rows[3].per_metre),
-                           family=result.family, groups=groups, servo=servo,
-                           say=lambda line: say(f"optimal motion: {line}"))
-    return dataclasses.replace(result, optimal=optimal, wall=result.wall + optimal.wall)
 
 
 class Background:
@@ -516,7 +467,7 @@ def codesign_settings(table: Any, where: str = "[codesign]",
     return out
 
 
-__all__ = ["CODESIGN_KEYS", "FLOOR_KEYS", "MOTIONS", "PARAMETRIC", "RULE_FAMILIES",
+__all__ = ["CODESIGN_KEYS", "FLOOR_KEYS", "MOTIONS", "RULE_FAMILIES",
            "SPEED_FACTORS", "Background", "codesign", "codesign_settings", "default_gait",
            "floor_constraints", "full_rules", "rule_params", "simulated", "speed_curve",
-           "started", "with_optimal"]
+           "started"]

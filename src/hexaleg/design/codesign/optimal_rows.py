@@ -32,7 +32,9 @@ from hexaleg.design.codesign.alternation import (
     PROGRESS,
     SMOOTH_FAMILIES,
     Alternation,
+    Keep,
     alternate,
+    computed,
 )
 from hexaleg.design.codesign.servo import simulated_per_metre
 from hexaleg.design.search.optimal import Groups
@@ -173,7 +175,8 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
                  chosen: GaitParams, springs: SpringSet, predicted: tuple[float, float], *,
                  family: str = "linear", groups: Groups | None = None, servo: str = "both",
                  params: Any = None, rounds: int = 4,
-                 say: Callable[[str], None] | None = None) -> OptimalRows:
+                 say: Callable[[str], None] | None = None, keep: Keep | None = None
+                 ) -> OptimalRows:
     """The four rows (module docstring).
 
     Args:
@@ -192,6 +195,9 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
         params: :class:`~hexaleg.optimal.problem.OptimalParams` (None: defaults).
         rounds: The alternation's rounds at most.
         say: Where progress lines go.
+        keep: Runs each optimal-control solve, given what defines it
+            (:data:`~hexaleg.design.codesign.alternation.Keep`; a kept one reads back the
+            solves of the run's killed process); None: every solve computed.
 
     Raises:
         BackendError: no usable Crocoddyl (the ``optimal`` extra).
@@ -207,13 +213,16 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
         family, start = "linear", SpringSet()
     motion = gait(robot, chosen)
     tell("optimal motion without springs, from the co-design's gait")
-    bare = solve(robot, build_problem(robot, motion, motor, SpringSet(), params),
-                 say=lambda line: tell(f"no springs: {line}"), every=PROGRESS)
+    bare = (keep or computed)(
+        ("no springs", SpringSet(), params),
+        lambda: solve(robot, build_problem(robot, motion, motor, SpringSet(), params),
+                      say=lambda line: tell(f"no springs: {line}"), every=PROGRESS))
     tell(f"optimal motion without springs: {bare.energy_per_metre:.3f} J/m "
          f"({bare.iterations} iterations, {bare.seconds:.0f} s)")
     tell("optimal motion with springs (alternation), from the co-design's gait and springs")
     alt = alternate(robot, motion, motor, contact, springs=start, params=params, family=family,
-                    groups=groups, rounds=rounds, say=lambda line: tell(f"alternation: {line}"))
+                    groups=groups, rounds=rounds, say=lambda line: tell(f"alternation: {line}"),
+                    keep=keep)
     controllers = controllers_of(servo)
     cases = ((LABELS[0], predicted[0], gait(robot, default), SpringSet()),
              (LABELS[1], predicted[1], motion, springs),

@@ -36,6 +36,7 @@ from hexaleg.motion.recorded.checks import (
 )
 from hexaleg.motion.recorded.columns import MEASURED
 from hexaleg.motion.recorded.cycle import average_cycles, find_period, steady_start
+from hexaleg.motion.recorded.integrator import integrator_of
 from hexaleg.motion.recorded.quality import MotionQuality
 from hexaleg.motion.recorded.read import BASE_POSITION, BASE_QUATERNION, BASE_VELOCITY, read_log
 from hexaleg.motion.recorded.resample import resample
@@ -126,7 +127,10 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
         :class:`~hexaleg.motion.recorded.quality.MotionQuality` report as a dict,
         ``info["report"]`` the dataclass and ``info["measured"]`` the log's actuator
         measurements (``current_<joint>``, ``torque_<joint>``, ``power_<joint>``: column →
-        values at the motion's samples, SI, cycle-averaged as the joints are; empty without).
+        values at the motion's samples, SI, cycle-averaged as the joints are; empty without);
+        ``info["integrator"]`` is :data:`~hexaleg.motion.trajectory.SEMI_IMPLICIT` when the
+        log gives its derivatives and its samples are the knots of that integration (an
+        optimal motion's file: :func:`~hexaleg.motion.recorded.integrator.integrator_of`).
 
     Raises:
         ConfigError, UnknownNameError, InvalidParameterError: the named bad input (a column
@@ -318,11 +322,14 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
         base_source=base_source, slip=slip,
         slip_max=float(world_speed.max()) if world_speed.size else 0.0, warnings=tuple(caught))
     travel = (q[-1, :2] - q[0, :2]) * (n / max(n - 1, 1) if periodic else 1.0)
+    # knots of a semi-implicit integration (an optimal motion's log) say so by their numbers
+    integrator = integrator_of(robot.model, q, v_all, a_all, dt_c) if given else None
     return Motion(t=tc, q=q, v=v_all, a=a_all, stance=stance.stance, feet=feet,
                   period=float(period), distance=float(np.linalg.norm(travel)),
                   periodic=periodic, info={"source": "load_motion", "log": str(path),
                                            "quality": quality.to_dict(), "report": quality,
-                                           "measured": actuators})
+                                           "measured": actuators,
+                                           **({"integrator": integrator} if integrator else {})})
 
 
 def _velocity(p: np.ndarray, dt: float, periodic: bool) -> np.ndarray:
