@@ -78,3 +78,27 @@ def test_talos_lays_its_real_soles_flat_where_its_srdf_stands_them():
     assert 1e-3 < np.abs(flat - srdf).max() < 2e-3
     assert np.all(flat[7:] >= robot.model.lowerPositionLimit[7:])
     assert np.all(flat[7:] <= robot.model.upperPositionLimit[7:])
+
+
+def test_talos_sole_lies_inside_its_foots_collision_mesh_underside():
+    """The declared 19 x 11 cm sole is inside the underside of Talos' foot collision mesh
+    (the vertices within 3 mm of its lowest point, in the ankle link's frame, where the sole
+    frame sits 0.107 m down): that underside spans x −0.110…0.099 m, y ±0.062 m, and every
+    corner of the sole lies inside its convex hull."""
+    from scipy.spatial import Delaunay
+
+    from hexaleg.robot.description import example_robot_data_dir
+
+    raw = (example_robot_data_dir() / "talos_data" / "meshes" / "v2"
+           / "ankle_X_collision.stl").read_bytes()  # binary STL: 80-byte header, count, facets
+    count = int(np.frombuffer(raw, "<u4", 1, 80)[0])
+    facets = np.frombuffer(raw, np.dtype([("normal", "<f4", 3), ("v", "<f4", (3, 3)),
+                                          ("attr", "<u2")]), count, 84)
+    v = facets["v"].reshape(-1, 3).astype(float)
+    under = v[v[:, 2] < v[:, 2].min() + 0.003]
+    assert v[:, 2].min() == pytest.approx(-0.107, abs=1e-3)
+    np.testing.assert_allclose(under[:, :2].min(axis=0), [-0.110, -0.062], atol=1e-3)
+    np.testing.assert_allclose(under[:, :2].max(axis=0), [0.099, 0.062], atol=1e-3)
+    corners = Sole(0.19, 0.11).corners()[:, :2]
+    assert (Delaunay(under[:, :2]).find_simplex(corners) >= 0).all()
+    assert not (Delaunay(under[:, :2]).find_simplex(Sole(0.21, 0.13).corners()[:, :2]) >= 0).all()
