@@ -35,11 +35,13 @@ EDGES: tuple[str, str, str, str] = ("toe", "heel", "left", "right")
 
 @dataclass(frozen=True)
 class CopMargin:
-    """The smallest distance of a loaded sole's centre of pressure to the sole's edge over a
+    """The smallest distance of a planted sole's centre of pressure to the sole's edge over a
     run's evaluated window (module docstring).
 
     Attributes:
-        distance: The margin, m (0: on the edge; half the sole's width at most).
+        distance: The margin, m (0 — or a rounding of a micrometre below, the contact points
+            and the corners being computed apart — on the edge; half the sole's width at
+            most).
         leg: The leg whose sole it was.
         edge: The nearest edge then, one of :data:`EDGES`.
         time: When, s from the start of the run.
@@ -126,8 +128,9 @@ def cop_margin(sim: SimModel, motion: Motion, traj: Trajectory, window: slice,
             v = float(offset @ across) / float(np.linalg.norm(across))
             ends = float(np.linalg.norm(along)) / 2 - abs(u)
             sides = float(np.linalg.norm(across)) / 2 - abs(v)
-            distance, edge = ((ends, "toe" if u > 0 else "heel") if ends <= sides
-                              else (sides, "left" if v > 0 else "right"))
+            toe, heel, left, right = EDGES
+            distance, edge = ((ends, toe if u > 0 else heel) if ends <= sides
+                              else (sides, left if v > 0 else right))
             if best is None or distance < best.distance:
                 best = CopMargin(distance, robot.legs[i].name, edge, float(traj.t[row]),
                                  float(load[i]))
