@@ -430,6 +430,10 @@ def test_simulate_page_quotes_the_talos_log():
         ("leave the ground at 2.48 s", "t 2.479 roll +12.98  L1 off | R1 off"),
         ("+26.97 % against +27.03 % predicted",
          "feedforward + PD +26.97 % (predicted +27.03 %)"),
+        ('"fit one_sided … +27.03 %", simulated\n+26.97 %', "fit one_sided, spring torque ≤ "
+         "21.15 N·m springs on hip_roll, knee: electrical saving +27.03 %"),
+        ("simulated\n+26.97 %", "simulated electrical saving feedforward + PD +26.97 % "
+                                 "(predicted +27.03 %); WARNING"),
         ('"unproven (under position only the runs did not walk',
          "unproven (under position only the runs did not walk (springs fell; baseline fell))"),
     ]
