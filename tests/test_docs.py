@@ -390,3 +390,53 @@ def test_codesign_page_quotes_the_codesign_log():
             f"and {kept['position only, mu 0.6']} under position-only") in page
     assert f"{kept['feedforward, mu 1']} and {kept['position, mu 1']} on a grippier one" in page
     assert f"{min(floors):.1f}–{max(floors):.1f} %" in page
+
+
+def test_simulate_page_quotes_the_talos_log():
+    """docs/simulate.md's Talos paragraph (its soles, issue #54) is
+    analysis/bench_logs/simulate_talos.log's: each figure it prints, beside what the log says."""
+    log = (ROOT / "analysis" / "bench_logs" / "simulate_talos.log").read_text()
+    page = (DOCS / "simulate.md").read_text()
+    talos = page[page.index("**Talos**"):page.index("simulate_talos.log`. They are not")]
+    quoted = [  # (the page's words, the log's)
+        ("planned stride 491.9 mm", "Distance per cycle: 491.9 mm (planned 491.9 mm)"),
+        ("1003.9 → 1001.1", "springs 1003.89 -> 1001.14"),
+        ("2121.1 → 2114.9", "baseline 2121.07 -> 2114.90"),
+        ("| position | springs | 489.3 mm", "position springs: distance 489.3 mm per cycle"),
+        ("1003.9 → 1105.1", "[1109.5253659182436, 1100.7096854464742] J"),
+        ("fell at 2.96 s (roll 45°)", "fell at t = 2.9610 s: base roll +45.0°"),
+        ("+52.66 % simulated against +52.67 % predicted",
+         "predicted saving +52.67 % (electrical 1004 J vs 2121 J per cycle); simulated +52.66 %"),
+        ("0.11 mrad RMS", "| springs | walks | 0.107 /"),
+        ("53.9 mm inside", "springs: 53.9 mm from the L1 sole's right edge"),
+        ("66 N·m RMS on the hip roll", "leg_left_2_joint: plan's stance torque 65.6 N·m RMS"),
+        ("97 N·m on the knee", "leg_left_4_joint: plan's stance torque 96.6 N·m RMS"),
+        ("kp of 988 and 1852 N·m/rad: 66 and 52 mrad", "kp 988 N·m/rad: sag 66.4 mrad"),
+        ("kp of 988 and 1852 N·m/rad: 66 and 52 mrad", "kp 1852 N·m/rad: sag 52.2 mrad"),
+        ("up to 13.0 mrad (3.2 mrad RMS; 0.2 mrad under feedforward)",
+         "position springs: soles within 5 mm of the ground tilt 13.0 mrad at most, 3.2 RMS"),
+        ("0.2 mrad under feedforward", "feedforward springs: soles within 5 mm of the ground "
+                                       "tilt 0.2 mrad at most"),
+        ("sinks only 0.17 mm", "lowest sole centre -0.17 mm"),
+        ("`cop_margin` 0.0 mm", "springs: -0.000239 mm from the L1 sole's heel edge"),
+        ("17.6 % of stance samples", "| 17.6 |"),
+        ("194 N RMS", "| 194 |"),
+        ("at 5.24 s instead of 2.96 s", "fell at t = 5.2447 s"),
+        ("leans 2.8° outward over the right foot at 1.76 s", "t 1.761 roll  +2.80"),
+        ("first\nright single support (1.87 s)", "t 1.872 roll  +2.60  L1 off | R1"),
+        ("outer edge\nfor the whole stance (55 mm", "R1    905 N u  +44.7 v  -55.0 mm"),
+        ("from 1.9° to 9° by 2.37 s",
+         "t 2.368 roll  +8.84  L1 off | R1    516 N u   -7.4 v  -55.0"),
+        ("leave the ground at 2.48 s", "t 2.479 roll +12.98  L1 off | R1 off"),
+        ("+26.97 % against +27.03 % predicted",
+         "feedforward + PD +26.97 % (predicted +27.03 %)"),
+        ('"fit one_sided … +27.03 %", simulated\n+26.97 %', "fit one_sided, spring torque ≤ "
+         "21.15 N·m springs on hip_roll, knee: electrical saving +27.03 %"),
+        ("simulated\n+26.97 %", "simulated electrical saving feedforward + PD +26.97 % "
+                                 "(predicted +27.03 %); WARNING"),
+        ('"unproven (under position only the runs did not walk',
+         "unproven (under position only the runs did not walk (springs fell; baseline fell))"),
+    ]
+    for words, said in quoted:
+        assert words in talos, words
+        assert said in log, said

@@ -148,3 +148,49 @@ def test_a_sole_leg_holds_its_foots_orientation_and_a_three_joint_one_cannot():
     biped.soles = {"L1": Sole(0.06, 0.03)}
     with pytest.raises(RobotModelError, match="leg L1 has a sole and 3 joints"):
         leg_chain(biped, biped.legs[0], biped.pose("stand"))
+
+
+def test_talos_walks_its_sized_gait_on_flat_soles():
+    """Data we did not make (example-robot-data's URDF): Talos' legs (hip yaw, roll, pitch,
+    knee, ankle pitch, roll) keep both soles flat over its sized ZMP walk (period 2.86 s,
+    stride 0.49 m)."""
+    from hexaleg.motion.scaling import robot_gait
+    from hexaleg.robot.description import read_description
+
+    desc = read_description(Path(__file__).parents[1] / "data" / "talos.toml")
+    robot = desc.load()
+    gait = dataclasses.replace(robot_gait(desc), samples=50)
+    assert gait.period == pytest.approx(2.8632, abs=1e-4)
+    assert gait.stride_length == pytest.approx(0.4919, abs=1e-4)
+    motion = hexaleg.gait(robot, gait)
+    pdata = robot.model.createData()
+    for k in range(motion.n_samples):
+        pin.framesForwardKinematics(robot.model, pdata, motion.q[k])
+        for leg in robot.legs:
+            rotation = pdata.oMf[leg.foot_frame_id].rotation
+            assert abs(rotation[2, 0]) < 1e-9 and abs(rotation[2, 1]) < 1e-9  # flat
+
+
+def test_g1s_hip_turning_pitch_roll_yaw_is_refused_a_sole(tmp_path):
+    """Unitree G1 (example-robot-data) on the sole its foot's four contact spheres span: its hip
+    turns pitch, roll, then yaw, so its redundant rows hold the foot only to first order and the
+    walk is refused by name (0.04 rad off flat), where Talos' yaw–roll–pitch hip walks."""
+    from hexaleg.motion.scaling import robot_gait
+    from hexaleg.robot.description import read_description
+
+    legs = "\n".join(
+        f'[[robot.legs]]\nname = "{name}"\njoints = ['
+        + ", ".join(f'"{side}_{j}_joint"' for j in ("hip_pitch", "hip_roll", "hip_yaw", "knee",
+                                                     "ankle_pitch", "ankle_roll"))
+        + f']\nfoot = {{link = "{side}_ankle_roll_link", point = [0.035, 0.0, -0.035]}}'
+        for name, side in (("L1", "left"), ("R1", "right")))
+    (tmp_path / "g1.toml").write_text(
+        '[robot]\nname = "g1"\nsource = "example-robot-data"\n'
+        'urdf = "g1_description/urdf/g1_29dof_rev_1_0.urdf"\n'
+        'stand = {body_height = 0.68}\ngait = {duty_factor = 0.6}\nsole = [0.17, 0.05]\n'
+        + legs + "\n")
+    g1 = read_description(tmp_path / "g1.toml")
+    robot = g1.load()
+    with pytest.raises(RobotModelError, match=r"leg L1: its sole turns 0\.04\d* rad from flat"):
+        hexaleg.gait(robot, dataclasses.replace(robot_gait(g1), stride_length=0.2,
+                                                step_height=0.05, samples=50))

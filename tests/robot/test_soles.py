@@ -56,3 +56,49 @@ def test_a_leg_that_cannot_turn_its_foot_is_refused_a_sole(tmp_path):
     (tmp_path / "b.toml").write_text(text)
     with pytest.raises(RobotModelError, match=r"cannot lay its sole flat.*six joints"):
         read_description(tmp_path / "b.toml").load()
+
+
+def test_talos_lays_its_real_soles_flat_where_its_srdf_stands_them():
+    """Data we did not make: Talos' URDF (example-robot-data) and its SRDF's half_sitting, whose
+    sole frames are tilted by 1.7 mrad; the flat stand keeps both feet where the SRDF put them
+    (to 1e-12 m), turns the soles flat (to 1e-12) and moves no joint by more than 2 mrad, within
+    the URDF limits."""
+    robot = read_description(DATA / "talos.toml").load()
+    assert robot.soles == {"L1": Sole(0.19, 0.11), "R1": Sole(0.19, 0.11)}
+    flat, srdf = robot.pose("stand"), robot.pose("half_sitting")
+    flat_data, srdf_data = robot.model.createData(), robot.model.createData()
+    pin.framesForwardKinematics(robot.model, flat_data, flat)
+    pin.framesForwardKinematics(robot.model, srdf_data, srdf)
+    for leg in robot.legs:
+        placed, given = flat_data.oMf[leg.foot_frame_id], srdf_data.oMf[leg.foot_frame_id]
+        assert robot.model.frames[leg.foot_frame_id].name in ("left_sole_link", "right_sole_link")
+        np.testing.assert_allclose(placed.rotation, np.eye(3), atol=1e-12)
+        np.testing.assert_allclose(placed.translation, given.translation, atol=1e-12)
+        assert np.linalg.norm(pin.log3(given.rotation)) == pytest.approx(1.708e-3, abs=1e-6)
+    assert 1e-3 < np.abs(flat - srdf).max() < 2e-3
+    assert np.all(flat[7:] >= robot.model.lowerPositionLimit[7:])
+    assert np.all(flat[7:] <= robot.model.upperPositionLimit[7:])
+
+
+def test_talos_sole_lies_inside_its_foots_collision_mesh_underside():
+    """The declared 19 x 11 cm sole is inside the underside of Talos' foot collision mesh
+    (the vertices within 3 mm of its lowest point, in the ankle link's frame, where the sole
+    frame sits 0.107 m down): that underside spans x −0.110…0.099 m, y ±0.062 m, and every
+    corner of the sole lies inside its convex hull."""
+    from scipy.spatial import Delaunay
+
+    from hexaleg.robot.description import example_robot_data_dir
+
+    raw = (example_robot_data_dir() / "talos_data" / "meshes" / "v2"
+           / "ankle_X_collision.stl").read_bytes()  # binary STL: 80-byte header, count, facets
+    count = int(np.frombuffer(raw, "<u4", 1, 80)[0])
+    facets = np.frombuffer(raw, np.dtype([("normal", "<f4", 3), ("v", "<f4", (3, 3)),
+                                          ("attr", "<u2")]), count, 84)
+    v = facets["v"].reshape(-1, 3).astype(float)
+    under = v[v[:, 2] < v[:, 2].min() + 0.003]
+    assert v[:, 2].min() == pytest.approx(-0.107, abs=1e-3)
+    np.testing.assert_allclose(under[:, :2].min(axis=0), [-0.110, -0.062], atol=1e-3)
+    np.testing.assert_allclose(under[:, :2].max(axis=0), [0.099, 0.062], atol=1e-3)
+    corners = Sole(0.19, 0.11).corners()[:, :2]
+    assert (Delaunay(under[:, :2]).find_simplex(corners) >= 0).all()
+    assert not (Delaunay(under[:, :2]).find_simplex(Sole(0.21, 0.13).corners()[:, :2]) >= 0).all()

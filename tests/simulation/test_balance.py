@@ -336,6 +336,14 @@ def test_the_biped_on_soles_walks_its_zmp_gait_closed_loop(tmp_path, controller)
     planted[t < 0.05] = False  # the contacts' first steps load the soles from zero
     margins = _sole_margins(run.sim, run.trajectory, planted, 40)
     assert margins.min() > 0.04, margins.min()
+    for r in (s.with_springs, s.baseline):  # simulate.json's margin, against this test's own
+        margin = r.cop_margin                # centre of pressure at the instant it names
+        assert margin is not None and margin.distance > 0.035, margin
+        row = int(np.argmin(np.abs(r.trajectory.t - margin.time)))
+        at = np.zeros((r.trajectory.n, len(robot.legs)), dtype=bool)
+        at[row, robot.leg_names.index(margin.leg)] = True
+        assert _sole_margins(r.sim, r.trajectory, at, 1)[0] == pytest.approx(margin.distance,
+                                                                           abs=1e-9)
 
 
 def _pushed(motion, analysis, sim, push: np.ndarray, cycles: int, feedback: bool = True):

@@ -30,7 +30,7 @@ from hexaleg.errors import InvalidParameterError, SimulationError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
-from hexaleg.simulation import balance, falls, measures, stepping
+from hexaleg.simulation import balance, falls, measures, pressure, stepping
 from hexaleg.simulation.controllers import COMPLIANCE, Servo, controls, reference
 from hexaleg.simulation.ground import Ground
 from hexaleg.simulation.model import TIMESTEP, SimModel, build_model, timestep_limit
@@ -189,6 +189,9 @@ class Run:
         reason: Why it fell in one clause where the gait alone explains it (a stand on one
             point foot, or on two longer than the balance controller holds, that the
             controller ran on: :class:`~hexaleg.simulation.falls.PointFoot`), else "".
+        cop_margin: On soles, how close the centre of pressure came to a sole's edge over the
+            evaluated window (:func:`hexaleg.simulation.pressure.cop_margin`); None on point
+            feet or when it did not run to the end.
     """
 
     name: str
@@ -205,6 +208,7 @@ class Run:
     constrained: float = 0.0
     cpu: float = 0.0
     reason: str = ""
+    cop_margin: pressure.CopMargin | None = None
 
     @property
     def walks(self) -> bool:
@@ -383,7 +387,8 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
     walked = measures.walk(sim, motion, traj, window, settings.evaluate, ref.q)
     verdict, message = measures.verdict(walked, motion.distance)
     return Run(name, sim, traj, verdict, message, cycles, measures.mean_metrics(cycles),
-               walked, forces, wall, feedback, bound, cpu)
+               walked, forces, wall, feedback, bound, cpu,
+               cop_margin=pressure.cop_margin(sim, motion, traj, window))
 
 
 def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None = None,

@@ -90,3 +90,27 @@ def test_the_realtime_factor_says_what_it_counts(feedforward):
     assert t["simulation_realtime_factor"]["value"] < t["realtime_factor"]["value"]
     assert "s of stepping" in t["text"] and "the whole simulation" in t["text"]
     assert t["text"] in summary(simulation_data(s))
+
+
+def test_the_centre_of_pressure_margin_is_written_for_soles_only(feedforward):
+    """Point feet (the hexapod) write no ``cop_margin``, their page no line; a run on soles
+    writes its margin, leg, edge, time and load as quantities, in simulate.md and the page."""
+    from hexaleg.outputs.html import render_simulate_html
+    from hexaleg.simulation.pressure import CopMargin
+
+    data = simulation_data(feedforward)
+    assert all("cop_margin" not in r for r in data["runs"].values())
+    assert "Centre of pressure" not in page(data)
+    assert "Centre of pressure" not in render_simulate_html(data)
+    margin = CopMargin(0.0394573, "R1", "left", 1.925038, 132.692)
+    soles = dataclasses.replace(feedforward, baseline=dataclasses.replace(
+        feedforward.baseline, cop_margin=margin))
+    data = simulation_data(soles)
+    assert "cop_margin" not in data["runs"]["springs"]
+    assert data["runs"]["baseline"]["cop_margin"] == {
+        "distance": {"value": 0.0394573, "unit": "m"}, "leg": "R1", "edge": "left",
+        "time": {"value": 1.925038, "unit": "s"}, "load": {"value": 132.692, "unit": "N"}}
+    assert ("Centre of pressure, closest to a sole's edge: baseline: 39.5 mm from the R1 "
+            "sole's left edge at 1.925 s (132.7 N on it).") in page(data)
+    html = render_simulate_html(data)
+    assert 'id="cop-baseline"' in html and "39.46 mm" in html and "R1 sole's left edge" in html

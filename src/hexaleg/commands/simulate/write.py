@@ -53,7 +53,19 @@ def _run_data(r: Run) -> dict[str, Any]:
         "electrical_per_cycle": quantity([c["total"]["electrical"] for c in r.cycles], "J"),
         "forces": {k: quantity(v, "N") for k, v in r.forces.items()},
     })
+    if r.cop_margin is not None:
+        c = r.cop_margin
+        out["cop_margin"] = {"distance": quantity(c.distance, "m"), "leg": c.leg,
+                             "edge": c.edge, "time": quantity(c.time, "s"),
+                             "load": quantity(c.load, "N")}
     return out
+
+
+def cop_text(margin: dict[str, Any]) -> str:
+    """A run's ``cop_margin`` in words, as the pages print it."""
+    return (f"{_v(margin['distance'], 1e3)} mm from the {margin['leg']} sole's "
+            f"{margin['edge']} edge at {_v(margin['time'], digits=4)} s "
+            f"({_v(margin['load'], digits=4)} N on it)")
 
 
 def _energies(values: dict[str, tuple[float, float, float]]) -> dict[str, Any]:
@@ -223,6 +235,10 @@ def page(data: dict[str, Any]) -> str:
             f"{_v(r['roll_max'], float(np.degrees(1)))} / "
             f"{_v(r['pitch_max'], float(np.degrees(1)))} | "
             f"{_v(r['forces']['normal_rms']) if r['forces'] else '—'} |")
+    margins = [f"{name}: {cop_text(r['cop_margin'])}" for name, r in data["runs"].items()
+               if "cop_margin" in r]
+    if margins:
+        lines += ["", "Centre of pressure, closest to a sole's edge: " + "; ".join(margins) + "."]
     if "sensitivity" in data:
         lines += ["", "| variant | controller | verdict | predicted saving (%) | simulated saving "
                       "(%) | electrical / baseline (J) | distance (mm) | tracking RMS (mrad) |",

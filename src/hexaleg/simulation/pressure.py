@@ -1,0 +1,137 @@
+"""How close a walk on soles came to tipping: its centre of pressure against the sole's edge.
+
+A sole (:mod:`hexaleg.robot.soles`) touches the ground at its four corners in the simulation
+(:mod:`hexaleg.simulation.mjcf`). The centre of pressure of a foot is the normal-force-weighted
+mean of its contact points, ``p = Σ fₙ,ᵢ pᵢ / Σ fₙ,ᵢ`` (Sardain & Bessonnet, "Forces acting on a
+biped robot. Center of pressure — zero moment point", IEEE Trans. SMC-A 34(5), 2004, eq. 5);
+it lies within the sole, and a foot whose centre of pressure reaches the sole's edge starts to
+roll about it (Vukobratović & Borovac, "Zero-moment point — thirty five years of its life",
+Int. J. Humanoid Robotics 1(1), 2004). Its distance to the nearest edge is the margin the walk
+kept: :func:`cop_margin` takes its smallest value over the planned stances of the evaluated
+window and says where (the leg and the edge) and when. A stance's first and last
+:data:`~hexaleg.simulation.measures.LOSS_GRACE` are left out, as the contact losses leave them
+out: there the load is handed over, and the first or last corner to touch carries all of it,
+so the centre of pressure sits on that corner by construction.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from hexaleg.motion.trajectory import Motion
+from hexaleg.simulation.measures import LOSS_GRACE, forward_states, planned_index
+from hexaleg.simulation.mjcf import corner_site
+from hexaleg.simulation.model import SimModel
+from hexaleg.simulation.stepping import Trajectory
+
+PRESSURE_SAMPLES = 2000
+"""Recorded steps of the evaluated window at which the centre of pressure is taken, at most
+(evenly spread; every step of a window shorter than this)."""
+EDGES: tuple[str, str, str, str] = ("toe", "heel", "left", "right")
+"""The sole's edges, named in its own axes: the toe at +x (the heading), the left side at +y."""
+
+
+@dataclass(frozen=True)
+class CopMargin:
+    """The smallest distance of a planted sole's centre of pressure to the sole's edge over a
+    run's evaluated window (module docstring).
+
+    Attributes:
+        distance: The margin, m (0 — or a rounding of a micrometre below, the contact points
+            and the corners being computed apart — on the edge; half the sole's width at
+            most).
+        leg: The leg whose sole it was.
+        edge: The nearest edge then, one of :data:`EDGES`.
+        time: When, s from the start of the run.
+        load: The sole's normal load then, N.
+    """
+
+    distance: float
+    leg: str
+    edge: str
+    time: float
+    load: float
+
+
+def inner_stance(motion: Motion) -> np.ndarray:
+    """Per plan sample and leg, whether the leg is in stance and not within
+    :data:`~hexaleg.simulation.measures.LOSS_GRACE` of its stance's start or end (periodic:
+    a stance over the cycle's end is one), shape (T, n_legs), bool."""
+    stance = motion.stance.astype(bool)
+    n, out = len(stance), np.zeros_like(stance)
+    for leg in range(stance.shape[1]):
+        s = stance[:, leg]
+        if s.all():
+            out[:, leg] = True
+            continue
+        swing = int(np.flatnonzero(~s)[0])  # rolled to start in swing: no stance is cut
+        edges = np.flatnonzero(np.diff(np.r_[0, np.roll(s, -swing).astype(int), 0]))
+        for a, b in zip(edges[::2], edges[1::2], strict=True):
+            grace = int(np.ceil(LOSS_GRACE * (b - a)))
+            out[(np.arange(a + grace, b - grace) + swing) % n, leg] = True
+    return out
+
+
+def cop_margin(sim: SimModel, motion: Motion, traj: Trajectory, window: slice,
+               samples: int = PRESSURE_SAMPLES) -> CopMargin | None:
+    """The smallest centre-of-pressure margin of the robot's soles over the planned stances
+    (:func:`inner_stance`) of ``window``, from the corner contact forces
+    (``mj_contactForce``'s normal component) at the recorded states.
+
+    Args:
+        sim: The model.
+        motion: The plan (its stances).
+        traj: The run.
+        window: The evaluated steps.
+        samples: Steps looked at, at most (≥ 1).
+
+    Returns:
+        The margin, or None for a robot without soles (or whose planted soles carried no load
+        at the steps looked at).
+    """
+    import mujoco
+
+    robot, m = sim.robot, sim.model
+    soles = [i for i, leg in enumerate(robot.legs) if leg.name in robot.soles]
+    if not soles:
+        return None
+    sites = {i: [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_SITE,
+                                   corner_site(robot.legs[i].name, j)) for j in range(4)]
+             for i in soles}
+    leg_of = {int(g): i for i in soles for g in sim.foot_contacts[i]}
+    rows = np.arange(window.start or 0, window.stop or traj.n)
+    rows = rows[np.unique(np.linspace(0, len(rows) - 1, min(samples, len(rows))).astype(int))]
+    planted = inner_stance(motion)[planned_index(motion, traj.t[rows])]
+    wrench = np.zeros(6)
+    best: CopMargin | None = None
+    for row, on, data in zip(rows, planted, forward_states(sim, traj, rows), strict=True):
+        load = np.zeros(len(robot.legs))
+        moment = np.zeros((len(robot.legs), 3))
+        con = data.contact
+        for c in range(data.ncon):
+            g1, g2 = int(con.geom[c][0]), int(con.geom[c][1])
+            i = leg_of.get(g2, leg_of.get(g1, -1))
+            if i < 0 or con.efc_address[c] < 0:
+                continue
+            mujoco.mj_contactForce(m, data, c, wrench)
+            load[i] += wrench[0]
+            moment[i] += wrench[0] * con.pos[c]
+        for i in soles:
+            if not on[i] or load[i] <= 0:
+                continue
+            corners = data.site_xpos[sites[i]]  # front left, front right, back left, back right
+            offset = moment[i] / load[i] - corners.mean(axis=0)
+            along, across = corners[0] - corners[2], corners[0] - corners[1]
+            u = float(offset @ along) / float(np.linalg.norm(along))
+            v = float(offset @ across) / float(np.linalg.norm(across))
+            ends = float(np.linalg.norm(along)) / 2 - abs(u)
+            sides = float(np.linalg.norm(across)) / 2 - abs(v)
+            toe, heel, left, right = EDGES
+            distance, edge = ((ends, toe if u > 0 else heel) if ends <= sides
+                              else (sides, left if v > 0 else right))
+            if best is None or distance < best.distance:
+                best = CopMargin(distance, robot.legs[i].name, edge, float(traj.t[row]),
+                                 float(load[i]))
+    return best
