@@ -19,6 +19,7 @@ found (a MuJoCo build laid out otherwise), the run steps with the timers, as bef
 from __future__ import annotations
 
 import ctypes
+import os
 import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -39,14 +40,16 @@ _saved: int | None = None
 @cache
 def clock_pointer() -> ctypes.c_void_p | None:
     """MuJoCo's ``mjcb_time`` as a pointer that can be written, or None where its library or
-    the symbol is not found."""
+    the symbol is not found. Only the library the bindings already loaded is opened
+    (``RTLD_NOLOAD`` where the platform has it): a second copy would hold a pointer of its own."""
     import mujoco
 
     package = Path(mujoco.__file__).parent
+    mode = ctypes.DEFAULT_MODE | getattr(os, "RTLD_NOLOAD", 0)
     for pattern in LIBRARIES:
         for path in sorted(package.glob(pattern)):
             try:
-                return ctypes.c_void_p.in_dll(ctypes.CDLL(str(path)), "mjcb_time")
+                return ctypes.c_void_p.in_dll(ctypes.CDLL(str(path), mode=mode), "mjcb_time")
             except (OSError, ValueError):
                 continue
     return None
