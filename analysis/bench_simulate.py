@@ -15,7 +15,11 @@ Run:  python analysis/bench_simulate.py [--cycles 10]
    its springs stepped closed loop against open loop, alternately in this process, both
    controllers: the controller's cost as a ratio of the open-loop step, of the stepping
    thread's CPU time (a ratio the machine's load leaves alone) and of the wall time. Target ≤ 3×.
-6. Per robot: the default robot's tripod and the four registered quadrupeds' trots of #54
+6. MuJoCo's stage timers (:mod:`hexaleg.simulation.timers`): the default robot's run with its
+   springs stepped with the timers on (as MuJoCo's Python bindings leave them) and off (as a run
+   steps), alternately in this process: CPU per step and the ratio, and whether the states are
+   the same to the bit.
+7. Per robot: the default robot's tripod and the four registered quadrupeds' trots of #54
    (position-only servo, ``[contact] mu = 1``; Solo-12 0.4 s 0.12 m, A1 0.4 s 0.20 m, ANYmal
    0.6 s 0.30 m, Go2 its own), and the test biped's and humanoid's ZMP walks (tests/data,
    feedforward + PD servo), open and closed loop: real-time factor (wall, and per CPU second of
@@ -78,7 +82,7 @@ def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--cycles", type=int, default=10)
     parser.add_argument("--robots", default="hexaleg,solo12,a1,anymal,go2,biped,humanoid",
-                        help="robots of row 6, comma-separated ('' to skip it)")
+                        help="robots of row 7, comma-separated ('' to skip it)")
     args = parser.parse_args()
     study = load_study(Scenario.load("hexaleg"))
     settings = dataclasses.replace(study.settings, cycles=args.cycles, evaluate=2,
@@ -118,6 +122,7 @@ def main() -> None:
     print(f"hexaleg simulate (default robot, fresh process): {wall:.1f} s wall (target ≤ 30 s); "
           f"its simulate.json: {timing['text']}")
     feedback_cost(study, settings)
+    timers_cost(study, settings)
     if args.robots:
         per_robot(args.robots.split(","))
 
@@ -150,8 +155,45 @@ def feedback_cost(study, settings) -> None:
               f"energy closed/open {energy[True] / energy[False] - 1:+.2%}")
 
 
+def timers_cost(study, settings) -> None:
+    """Row 6: the stepping with MuJoCo's stage timers on against off, same model, alternating
+    (best of five each, the stepping thread's CPU time)."""
+    import contextlib
+
+    from hexaleg.simulation import stepping, timers
+    from hexaleg.simulation.controllers import controls, reference
+    from hexaleg.simulation.model import build_model
+
+    p = study.prepared
+    st = settings.sized(p.robot.mass)
+    sim = build_model(p.robot, p.motion, p.motor, springs=study.springs, servo=st.servo(),
+                      ground=st.ground(p.contact.mu), timestep=5e-4)
+    t = np.arange(round(st.cycles * p.motion.period / sim.timestep)) * sim.timestep
+    ctrl = controls(sim.servo, reference(p.motion, p.evaluate(study.springs).tau_motor, t),
+                    sim.kp, sim.kd)
+    start = sim.joints.to_mujoco(p.motion.q[0], p.motion.v[0])
+    height = float(np.mean(p.motion.q[:, 2]))
+    cpu: dict[bool, list[float]] = {False: [], True: []}
+    runs = {}
+    try:
+        for _ in range(5):
+            for timed in (True, False):
+                stepping.untimed = contextlib.nullcontext if timed else timers.untimed
+                clock = time.thread_time()
+                runs[timed] = stepping.run(sim, ctrl, *start, height)
+                cpu[timed].append((time.thread_time() - clock) / runs[timed].n)
+    finally:
+        stepping.untimed = timers.untimed
+    same = all(np.array_equal(getattr(runs[True], f), getattr(runs[False], f))
+               for f in ("qpos", "qvel", "servo", "feet"))
+    on, off = min(cpu[True]), min(cpu[False])
+    print(f"MuJoCo's stage timers (default robot, its springs, alternating, best of 5): on "
+          f"{on * 1e6:5.2f} µs/step, off {off * 1e6:5.2f} µs/step of CPU: off/on {off / on:.3f}; "
+          f"the states {'the same to the bit' if same else 'DIFFER'}")
+
+
 def per_robot(robots: list[str]) -> None:
-    """Row 6: real-time factors open and closed loop, verdicts, simulated vs predicted saving."""
+    """Row 7: real-time factors open and closed loop, verdicts, simulated vs predicted saving."""
     print("per robot (4 cycles, the last 2 evaluated; rtf: simulated s per wall s of both runs' "
           "stepping, and per CPU s; cost: CPU per step closed / open, the run with springs):")
     print(f"  {'robot, gait, servo':<34} {'loop':<6} {'rtf':>6} {'rtf cpu':>7} {'cost':>5}  "

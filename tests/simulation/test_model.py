@@ -13,6 +13,7 @@ import pytest
 
 import hexaleg
 from hexaleg.errors import InvalidParameterError
+from hexaleg.simulation import stepping
 from hexaleg.simulation.ground import Ground
 from hexaleg.simulation.model import TIMESTEP, build_model, timestep_limit
 from hexaleg.simulation.state import JointMap
@@ -93,6 +94,48 @@ def test_every_geom_clear_of_the_plan_touches_the_ground(sim, robot):
     per foot."""
     assert sim.model.npair == len(robot.legs) + robot.collision_model.ngeoms - len(robot.legs)
     assert not sim.notes
+
+
+def test_every_robot_geom_on_the_floor_touches_it(sim, prepared):
+    """Each link's ground pair makes a contact where the link reaches the ground: the robot in
+    its stand, lowered until the link is 1 mm into the floor, touches it with that link (a
+    contact filter or exclusion that dropped a body, coxa, femur or tibia contact fails here)."""
+    m = sim.model
+    data = mujoco.MjData(m)
+    qpos, _ = sim.joints.to_mujoco(prepared.motion.q[0], prepared.motion.v[0])
+    ground = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, "ground")
+    links = [int(g) for g in m.pair_geom2 if g not in np.ravel(sim.foot_contacts)]
+    assert links
+    for g in links:
+        data.qpos[:] = qpos
+        mujoco.mj_kinematics(m, data)
+        gap = mujoco.mj_geomDistance(m, data, ground, g, 1.0, None)
+        data.qpos[2] -= gap + 1e-3
+        mujoco.mj_forward(m, data)
+        touching = {int(c.geom2) for c in data.contact[:data.ncon]}
+        assert g in touching, mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_GEOM, g)
+
+
+def test_a_limp_robot_lands_on_its_body_and_is_seen_fallen(sim, prepared):
+    """The robot dropped from its stand with its servos off: the run is judged fallen (the base
+    below half its planned height), and stepped on, the body comes to rest on the floor — its
+    ground contact holds the base at about its half-height (25 mm) instead of letting it
+    through."""
+    limp = copy.copy(sim.model)
+    limp.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_ACTUATION)
+    motion = prepared.motion
+    qpos0, qvel0 = sim.joints.to_mujoco(motion.q[0], motion.v[0])
+    n = 4000
+    run = stepping.run(dataclasses.replace(sim, model=limp), np.zeros((n, prepared.robot.nj)),
+                       qpos0, qvel0, float(np.mean(motion.q[:, 2])))
+    assert run.verdict == "fell" and "base height" in run.message
+    data = mujoco.MjData(limp)
+    data.qpos[:], data.qvel[:] = qpos0, qvel0
+    body = mujoco.mj_name2id(limp, mujoco.mjtObj.mjOBJ_GEOM, "body_0")
+    for _ in range(n):
+        mujoco.mj_step(limp, data)
+    assert body in {int(c.geom2) for c in data.contact[:data.ncon]}
+    assert 0.015 < data.qpos[2] < 0.035
 
 
 def test_the_built_in_robots_limit_is_its_tibia_servo(sim, prepared):
