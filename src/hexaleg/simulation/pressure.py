@@ -29,6 +29,12 @@ from hexaleg.simulation.stepping import Trajectory
 PRESSURE_SAMPLES = 2000
 """Recorded steps of the evaluated window at which the centre of pressure is taken, at most
 (evenly spread; every step of a window shorter than this)."""
+TIP_MARGIN = 1e-3
+"""A planted sole whose centre of pressure came within this distance of its edge, m, rolled
+about that edge (the ZMP criterion, module docstring): the run "tipped", whatever distance it
+covered. The margin is exact to about a micrometre (the contact points and the corners are
+computed apart: Talos' heel read -0.24 µm); the walks on soles keep 39–43 mm (the test biped)
+and 54 mm (Talos, feedforward servos)."""
 EDGES: tuple[str, str, str, str] = ("toe", "heel", "left", "right")
 """The sole's edges, named in its own axes: the toe at +x (the heading), the left side at +y."""
 
@@ -53,6 +59,17 @@ class CopMargin:
     edge: str
     time: float
     load: float
+
+
+def tipping(margin: CopMargin | None) -> str | None:
+    """Why a run on soles "tipped" (its :func:`cop_margin` under :data:`TIP_MARGIN`: a planted
+    sole rolled about its edge), or None when it kept off the edges (or has no soles)."""
+    if margin is None or margin.distance >= TIP_MARGIN:
+        return None
+    return (f"the {margin.leg} sole's centre of pressure reached its {margin.edge} edge at "
+            f"t = {margin.time:.4f} s ({max(margin.distance, 0.0) * 1e3:.2f} mm from it, bound "
+            f"{TIP_MARGIN * 1e3:g} mm, {margin.load:.1f} N on the sole): the foot rolled "
+            "about the edge instead of standing flat")
 
 
 def inner_stance(motion: Motion) -> np.ndarray:

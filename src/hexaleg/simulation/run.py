@@ -35,13 +35,15 @@ from hexaleg.simulation.controllers import COMPLIANCE, Servo, controls, referenc
 from hexaleg.simulation.ground import Ground
 from hexaleg.simulation.model import TIMESTEP, SimModel, build_model, timestep_limit
 
-VERDICTS: tuple[str, ...] = ("walks", "stalled", "short", "overran", "untracked", "fell",
-                              "diverged")
+VERDICTS: tuple[str, ...] = ("walks", "stalled", "short", "overran", "untracked", "tipped",
+                              "fell", "diverged")
 """How a run ended (:func:`hexaleg.simulation.measures.verdict`): it walked — the planned distance
 within :data:`~hexaleg.simulation.measures.DISTANCE_TOLERANCE` and the RMS tracking error within
 :data:`~hexaleg.simulation.measures.TRACKING_BOUND`; it stood but covered less than
 :data:`STALL` of the planned distance; it fell short of or overran the tolerance; it covered the
-distance without following the joints' gait; the base fell; the integration diverged."""
+distance without following the joints' gait; it walked, but on soles a planted foot rolled
+about its edge (:func:`hexaleg.simulation.pressure.tipping`); the base fell; the integration
+diverged."""
 STALL = measures.STALL
 """A run that covers less than this fraction of the planned distance per cycle stalled."""
 GROUND_MASS = 1.36366
@@ -69,6 +71,9 @@ def verdict_meanings() -> dict[str, str]:
         "overran": f"it covered more than {1 + tol:.0%} of the planned distance per cycle",
         "untracked": (f"it covered the distance, but its joints did not follow the gait (RMS "
                       f"tracking error over {bound:.0f} mrad)"),
+        "tipped": (f"it covered the distance and followed the joints, but a planted sole's "
+                   f"centre of pressure came within {pressure.TIP_MARGIN * 1e3:g} mm of its "
+                   "edge: the foot rolled about the edge instead of standing flat"),
         "fell": (f"the body fell: its height under {stepping.FALL_HEIGHT:.0%} of the planned "
                  f"or its roll or pitch beyond ±{np.degrees(stepping.FALL_TILT):.0f}°"),
         "diverged": "the integration diverged",
@@ -387,9 +392,12 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
                                    settings.force_samples) if settings.force_samples else {})
     walked = measures.walk(sim, motion, traj, window, settings.evaluate, ref.q)
     verdict, message = measures.verdict(walked, motion.distance)
+    margin = pressure.cop_margin(sim, motion, traj, window)
+    tipped = pressure.tipping(margin)
+    if verdict == "walks" and tipped is not None:
+        verdict, message = "tipped", tipped
     return Run(name, sim, traj, verdict, message, cycles, measures.mean_metrics(cycles),
-               walked, forces, wall, feedback, bound, cpu,
-               cop_margin=pressure.cop_margin(sim, motion, traj, window))
+               walked, forces, wall, feedback, bound, cpu, cop_margin=margin)
 
 
 def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None = None,
