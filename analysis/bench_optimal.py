@@ -92,7 +92,8 @@ def main() -> None:
     for name, r in results:
         print(f"{name}: {r.iterations} iterations, stationarity {r.stationarity:.2g} "
               f"(threshold {r.threshold:.2g}), residual {r.residual:.2g} N·m, friction use "
-              f"{r.friction_use:.3f}, slip {r.slip:.3g} m/s, periodicity {r.periodicity:.2g}, "
+              f"{r.friction_use:.3f}, slip {r.slip:.3g} m/s, drift {r.drift:.2g} m, "
+              f"periodicity {r.periodicity:.2g}, "
               f"{r.seconds:.0f} s")
     print(f"alternation: {len(alt.rounds)} rounds, energies {[round(e, 3) for e in alt.energies]}"
           f", last gain {alt.gap:.3g}")

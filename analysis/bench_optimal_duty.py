@@ -66,6 +66,7 @@ def main() -> None:
               f"{r.energy_per_metre / reference:.3f}× G predicted; stationarity "
               f"{r.stationarity:.2g} after {r.iterations} iterations, residual {r.residual:.1g} "
               f"N·m, friction use {r.friction_use:.3f}, stance slip {r.slip:.3g} m/s, "
+              f"drift {r.drift:.2g} m, "
               f"periodicity {r.periodicity:.2g}, {r.seconds:.0f} s", flush=True)
         for k in ("feedforward", "position"):
             value, why = simulated_per_metre(robot, r.motion, motor, springs, k, c.contact())

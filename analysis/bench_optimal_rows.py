@@ -77,8 +77,8 @@ def main() -> None:
         print(f"optimal motion, {name}: {r.iterations} iterations, stationarity "
               f"{r.stationarity:.2g} (threshold {r.threshold:.2g}), dynamics gap "
               f"{r.dynamic_gap:.2g}, residual {r.residual:.2g} N·m, friction use "
-              f"{r.friction_use:.3f}, stance slip {r.slip:.3g} m/s, periodicity "
-              f"{r.periodicity:.2g}, {r.seconds:.0f} s", flush=True)
+              f"{r.friction_use:.3f}, stance slip {r.slip:.3g} m/s, drift {r.drift:.2g} m, "
+              f"periodicity {r.periodicity:.2g}, {r.seconds:.0f} s", flush=True)
     c1 = os.times()
     cpu = (c1.user - c0.user) + (c1.system - c0.system)
     print(f"wall {time.perf_counter() - t0:.0f} s, CPU {cpu:.0f} s", flush=True)

@@ -77,3 +77,38 @@ def test_bad_input_is_named(run):
     airborne = dataclasses.replace(motion, stance=np.zeros_like(motion.stance))
     with pytest.raises(InvalidParameterError, match="no foot down at knot 0"):
         build_problem(run.model, airborne, run.actuator, hexaleg.SpringSet())
+
+
+def test_a_stance_foot_off_its_foothold_is_back_on_it_at_the_next_knot(run, built):
+    """The contacts' dead-beat Baumgarte gains (``contact_gains``): the whole robot moved 1 mm
+    off its footholds comes back onto them in one knot, to a few per cent of the offset (second
+    order in the knot's change of the contact Jacobian). Velocity damping alone would leave the
+    feet 1 mm off: a planned stance foot would drift, and the servos fight the ground for it."""
+    import pinocchio as pin
+
+    robot = run.model
+    nq = robot.model.nq
+    k = 3
+    model = built.problem.runningModels[k]
+    data = model.createData()
+    x = built.x_warm[k].copy()
+    x[:3] += [1e-3, -1e-3, 1e-3]
+    model.calc(data, x, model.quasiStatic(data, x))
+    pin.framesForwardKinematics(robot.model, robot.data, data.xnext[:nq])
+    down = built.stance[k]
+    assert down.sum() == 3
+    for j in np.flatnonzero(down):
+        foot = robot.data.oMf[robot.legs[j].foot_frame_id].translation
+        assert np.linalg.norm(foot - built.footholds[k, j]) < 0.05 * np.sqrt(3) * 1e-3
+
+
+def test_the_gains_are_dead_beat_for_the_knot():
+    from hexaleg.optimal.problem import contact_gains
+
+    dt = 0.025
+    kp, kd = contact_gains(dt)
+    e, v = 1e-3, 0.02  # the foot's error and speed along one axis
+    v1 = v + dt * (-kp * e - kd * v)
+    assert e + dt * v1 == pytest.approx(0.0, abs=1e-18)
+    with pytest.raises(InvalidParameterError, match="dt"):
+        contact_gains(0.0)

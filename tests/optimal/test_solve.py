@@ -47,7 +47,12 @@ def test_the_feet_stay_in_their_cones_and_the_cycle_repeats(optimal):
     result, _ = optimal
     assert result.friction_use <= 0.7 + 1e-3  # the pyramid inside 0.7 μ
     assert result.periodicity <= 1e-2
-    assert result.slip <= 0.02  # m/s: the stance feet hold
+    # The stance feet hold their footholds (0.37 mm, 7.3 mm/s measured: the dead-beat gain
+    # pulling back what a knot's curvature moves). Without the contacts' position gain they
+    # drift 0.64 mm; without the foothold cost at touch-down a foot lands off its point and is
+    # dragged onto it (20 mm, 0.39 m/s), which the model books as energy saved.
+    assert result.drift <= 4.5e-4  # m
+    assert result.slip <= 0.01  # m/s
     swing = ~result.motion.stance
     assert np.all(result.forces[swing] == 0.0)
 

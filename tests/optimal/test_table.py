@@ -87,11 +87,28 @@ def _documented(first: str) -> list[tuple[float, ...]]:
 
 @pytest.mark.parametrize(("first", "log"), [
     ("Solo-12 row", "bench_optimal_rows_solo12.log"),
-    ("row (whole command)", "codesign_motion_optimal.log")])
+    ("row (whole command)", "codesign_motion_optimal.log"),
+    ("row (its optimal stage, stance held)", "bench_optimal_rows_hold.log"),
+    ("row (the search's best gait, stance held)", "bench_optimal_rows_best_hold.log")])
 def test_the_documented_rows_are_the_kept_logs(first, log):
-    """Solo-12's table and the whole command's come from runs too long for a test: the docs
-    must print what their kept logs printed."""
+    """Solo-12's table, the whole command's and its optimal stage rerun with the stance held
+    come from runs too long for a test: the docs must print what their kept logs printed."""
     logged, documented = _logged(log), _documented(first)
     assert len(logged) == len(documented) == 4
     for a, b in zip(logged, documented, strict=True):
         assert a == pytest.approx(b, abs=0.005, nan_ok=True)
+
+
+@pytest.mark.parametrize("log", ["bench_optimal_rows_hold.log",
+                                 "bench_optimal_rows_best_hold.log"])
+def test_the_documented_stance_hold_is_the_kept_logs(log):
+    """The stance slip and drift docs/optimal.md states for the optimal stages rerun with the
+    stance held are their kept logs' (``optimal motion, … : … stance slip S m/s, drift D m``)."""
+    text = (LOGS / log).read_text(encoding="utf-8")
+    doc = DOC.read_text(encoding="utf-8")
+    for name in ("its springs", "no springs"):
+        m = re.search(rf"^optimal motion, {name}: .*stance slip ([0-9.e-]+) m/s, drift "
+                      r"([0-9.e-]+) m,", text, re.MULTILINE)
+        assert m, name
+        slip, drift = float(m[1]) * 1e3, float(m[2]) * 1e3
+        assert f"{slip:.1f} mm/s" in doc and f"{drift:.3f} mm" in doc, (name, slip, drift)

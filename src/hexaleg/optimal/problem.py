@@ -16,8 +16,11 @@ costs), here with
 * friction cones (a 4-facet pyramid inside the cone of friction ``μ · friction_use``,
   :mod:`~hexaleg.optimal.friction`) and the joints' position and speed limits (URDF
   limits, the motor's no-load speed) as quadratic barriers, which are zero inside the bounds;
-* the feet landing at rest (a cost on the foot's linear velocity at its touch-down knot; no
-  impact model; the contact's Baumgarte damping ``a_c = −v_c/dt`` holds a stance foot still);
+* each stance foot held at its foothold, the point where the warm start's foot lands (the
+  contact's Baumgarte stabilisation ``a_c = −k_p (p − p*) − k_d v_c`` with the dead-beat gains
+  ``k_p = 1/dt², k_d = 1/dt`` of the semi-implicit Euler step, :func:`contact_gains`), landing
+  there (a cost on the foot's distance to its foothold at its touch-down knot) at rest (a cost
+  on its linear velocity there; no impact model);
 * the terminal periodicity cost (:mod:`~hexaleg.optimal.periodic`).
 """
 
@@ -56,6 +59,8 @@ class OptimalParams:
         state_weight: Weight of ``‖x ⊖ x_warm‖²`` at every knot (J·s per unit²).
         swing_weight: Weight of the swing feet's distance to the warm start's path, per m².
         landing_weight: Weight of a foot's squared velocity at its touch-down knot.
+        foothold_weight: Weight of a foot's squared distance to its foothold at its touch-down
+            knot, per m² (a foot that lands off it is pulled onto it in one knot: it slides).
         limit_weight: Weight of the position, speed and friction barriers.
         periodic_weight: Weight of the terminal periodicity cost.
         iterations: Box-FDDP iterations at most.
@@ -71,6 +76,7 @@ class OptimalParams:
     state_weight: float = 1e-3
     swing_weight: float = 1e2
     landing_weight: float = 1e3
+    foothold_weight: float = 1e8
     limit_weight: float = 1e3
     periodic_weight: float = 1e4
     iterations: int = 100
@@ -82,7 +88,7 @@ class OptimalParams:
         real("OptimalParams.friction_use", self.friction_use, low=0.0, high=1.0,
              low_open=True)
         for key in ("stop", "smoothing", "mu", "state_weight", "swing_weight", "landing_weight",
-                    "limit_weight", "periodic_weight"):
+                    "foothold_weight", "limit_weight", "periodic_weight"):
             positive(f"OptimalParams.{key}", getattr(self, key))
 
 
@@ -102,6 +108,8 @@ class OptimalProblem:
         displacement: The cycle's rigid displacement (4, 4).
         power: The joints' motor constants (the energy cost's).
         params: The parameters it was built with.
+        footholds: Each stance foot's foothold at each knot, (N, n_legs, 3), m (zero in swing).
+        contact_names: The legs in contact at each knot and the terminal one.
     """
 
     problem: Any
@@ -115,6 +123,7 @@ class OptimalProblem:
     displacement: np.ndarray
     power: JointPower
     params: OptimalParams
+    footholds: np.ndarray
     contact_names: list[list[str]] = field(default_factory=list)
 
 
@@ -158,6 +167,19 @@ def _references(robot: Robot, qs: np.ndarray, stance: np.ndarray,
             p = feet[s % n, j]
             out[k, j] = p if s >= 0 else back[:3, :3] @ p + back[:3, 3]
     return out
+
+
+def contact_gains(dt: float) -> np.ndarray:
+    """Baumgarte gains ``(k_p, k_d)`` that hold a contact point on its reference ``p*`` across
+    one semi-implicit Euler knot of ``dt`` (Baumgarte, *Comput. Methods Appl. Mech. Eng.* 1,
+    1972; the step as Crocoddyl's ``IntegratedActionModelEuler`` takes it): with the contact
+    acceleration ``a_c = −k_p e − k_d v_c`` (``e = p − p*``), ``v' = v_c + dt a_c`` and
+    ``e' = e + dt v'``, so ``e' = (1 − k_p dt²) e + dt (1 − k_d dt) v_c``; ``k_p = 1/dt²``,
+    ``k_d = 1/dt`` make it zero — the foot is back on its point at the next knot, to second
+    order in the knot's change of the contact Jacobian. With ``k_p = 0`` (damping alone) the
+    position is not held: the ``J̇ v dt²`` each knot leaves accumulates over the stance."""
+    dt = positive("dt", dt)
+    return np.array([1.0 / dt**2, 1.0 / dt])
 
 
 def _barrier(residual: Any, lower: np.ndarray, upper: np.ndarray) -> Any:
@@ -205,6 +227,7 @@ def build_problem(robot: Robot, motion: Motion, actuator: Any, springs: SpringSe
     limit = np.broadcast_to(np.asarray(actuator.stall_torque, float), (nu,))
     speed = np.broadcast_to(np.asarray(actuator.no_load_speed, float), (nu,))
     dt = motion.period / n
+    gains = contact_gains(dt)
     lo = np.concatenate([np.full(6, -1e6), robot.model.lowerPositionLimit[7:],
                          np.full(6, -1e6), -speed])
     hi = np.concatenate([np.full(6, 1e6), robot.model.upperPositionLimit[7:],
@@ -223,15 +246,17 @@ def build_problem(robot: Robot, motion: Motion, actuator: Any, springs: SpringSe
                 if terminal:
                     ref = displacement[:3, :3] @ ref + displacement[:3, 3]
                 contacts.addContact(leg.name, crocoddyl.ContactModel3D(
-                    state, leg.foot_frame_id, ref, pin.LOCAL_WORLD_ALIGNED, nu,
-                    np.array([0.0, 1.0 / dt])))
+                    state, leg.foot_frame_id, ref, pin.LOCAL_WORLD_ALIGNED, nu, gains))
                 down.append(leg.name)
-                if not terminal and not stance[k - 1, j]:  # touch-down: the foot at rest
+                if not terminal and not stance[k - 1, j]:  # touch-down: on its foothold, at rest
                     rest = crocoddyl.ResidualModelFrameVelocity(
                         state, leg.foot_frame_id, pin.Motion.Zero(), pin.LOCAL_WORLD_ALIGNED, nu)
                     costs.addCost(f"{leg.name}_landing", crocoddyl.CostModelResidual(
                         state, crocoddyl.ActivationModelWeightedQuad(LINEAR), rest),
                         params.landing_weight)
+                    costs.addCost(f"{leg.name}_foothold", crocoddyl.CostModelResidual(
+                        state, crocoddyl.ResidualModelFrameTranslation(
+                            state, leg.foot_frame_id, ref, nu)), params.foothold_weight)
                 if not terminal:
                     force = crocoddyl.ResidualModelContactForce(
                         state, leg.foot_frame_id, pin.Force.Zero(), 3, nu, True)
@@ -260,4 +285,4 @@ def build_problem(robot: Robot, motion: Motion, actuator: Any, springs: SpringSe
         models.append(crocoddyl.IntegratedActionModelEuler(dam, 0.0 if terminal else dt))
     problem = crocoddyl.ShootingProblem(x_warm[0].copy(), models[:-1], models[-1])
     return OptimalProblem(problem, state, actuation, x_warm, stance, dt, motion.period,
-                          motion.distance, displacement, power, params, names)
+                          motion.distance, displacement, power, params, refs, names)

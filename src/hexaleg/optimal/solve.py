@@ -57,8 +57,11 @@ class OptimalResult:
         dynamic_gap: Largest integration defect at the end.
         periodicity: ``‖x_N ⊖ H·x_0‖∞`` at the end.
         friction_use: Largest ``‖λ_t‖ / (μ λ_z)`` of a stance foot (1 is the cone's edge).
-        slip: Largest speed of a stance foot, m/s (0 for feet that hold; the contacts keep their
-            acceleration at ``−v/dt``, so a foot that lands moving slides for a knot).
+        slip: Largest speed of a stance foot, m/s: its velocity at a knot or its travel from one
+            stance knot to the next over ``dt`` (what a servo tracking the knots sees), whichever
+            is larger (0 for feet that hold).
+        drift: Largest distance of a stance foot from its foothold at a knot, m
+            (:attr:`~hexaleg.optimal.problem.OptimalProblem.footholds`).
         seconds: Wall time of the solve, s.
     """
 
@@ -78,6 +81,7 @@ class OptimalResult:
     periodicity: float
     friction_use: float
     slip: float
+    drift: float
     seconds: float
 
 
@@ -171,5 +175,16 @@ def solve(robot: Robot, built: OptimalProblem, *, say: Callable[[str], None] | N
         converged=converged, stationarity=float(solver.stop), threshold=float(solver.th_stop),
         dynamic_gap=float(solver.ffeas),
         periodicity=periodicity_gap(x, built.displacement, built.state.diff),
-        friction_use=float(use.max()), slip=float(np.max(speed * built.stance)),
+        friction_use=float(use.max()), slip=_slip(feet, speed, built.stance, built.dt),
+        drift=float(np.max(np.linalg.norm(feet - built.footholds, axis=2) * built.stance)),
         seconds=seconds)
+
+
+def _slip(feet: np.ndarray, speed: np.ndarray, stance: np.ndarray, dt: float) -> float:
+    """The largest speed of a stance foot (:attr:`OptimalResult.slip`): ``speed`` (N, n_legs)
+    at the knots, and the travel of ``feet`` (N, n_legs, 3) between two consecutive stance knots
+    of one stance over ``dt`` (the cycle's last knot and its first belong to different cycles,
+    so that pair is left out)."""
+    held = stance[1:] & stance[:-1]
+    travel = np.linalg.norm(np.diff(feet, axis=0), axis=2) / dt
+    return float(max(np.max(speed * stance), np.max(travel * held, initial=0.0)))

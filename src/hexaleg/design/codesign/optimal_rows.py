@@ -136,6 +136,7 @@ class OptimalRows:
                     "threshold": q(r.threshold, "1"), "dynamic_gap": q(r.dynamic_gap, "1"),
                     "periodicity": q(r.periodicity, "1"),
                     "friction_use": q(r.friction_use, "1"), "slip": q(r.slip, "m/s"),
+                    "drift": q(r.drift, "m"),
                     "knots": len(r.torques), "wall": q(r.seconds, "s")}
 
         alt = self.alternation
