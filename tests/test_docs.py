@@ -392,6 +392,23 @@ def test_codesign_page_quotes_the_codesign_log():
     assert f"{min(floors):.1f}–{max(floors):.1f} %" in page
 
 
+def test_simulate_page_quotes_the_sole_bipeds_design_log():
+    """docs/simulate.md's line on the sole biped's design is
+    analysis/bench_logs/design_biped6.log's answer (run by hand: 9 minutes)."""
+    log = (ROOT / "analysis" / "bench_logs" / "design_biped6.log").read_text()
+    page = " ".join((DOCS / "simulate.md").read_text().split())
+    for words, said in (
+            ('"unproven (under position only the runs did not walk (springs tipped; baseline '
+             'tipped))"', "unproven (under position only the runs did not walk (springs tipped; "
+                          "baseline tipped))"),
+            ("dead_zone springs on hip roll, hip pitch and knee, +32.42 % predicted",
+             "fit dead_zone springs on hip_roll, hip_pitch, knee: electrical saving +32.42 %"),
+            ("+31.92 % simulated under feedforward + PD",
+             "feedforward + PD +31.92 % (predicted +32.42 %)")):
+        assert words in page, words
+        assert said in log, said
+
+
 def test_simulate_page_quotes_the_talos_log():
     """docs/simulate.md's Talos paragraph (its soles, issue #54) is
     analysis/bench_logs/simulate_talos.log's: each figure it prints, beside what the log says."""

@@ -30,11 +30,13 @@ PRESSURE_SAMPLES = 2000
 """Recorded steps of the evaluated window at which the centre of pressure is taken, at most
 (evenly spread; every step of a window shorter than this)."""
 TIP_MARGIN = 1e-3
-"""A planted sole whose centre of pressure came within this distance of its edge, m, rolled
-about that edge (the ZMP criterion, module docstring): the run "tipped", whatever distance it
-covered. The margin is exact to about a micrometre (the contact points and the corners are
-computed apart: Talos' heel read -0.24 µm); the walks on soles keep 39–43 mm (the test biped)
-and 54 mm (Talos, feedforward servos)."""
+"""A sole alone on the ground whose centre of pressure came within this distance of its edge,
+m, let the robot roll about that edge (the ZMP criterion, module docstring): the run "tipped",
+whatever distance it covered. The margin is exact to about a micrometre (the contact points
+and the corners are computed apart: Talos' heel read -0.24 µm). Under feedforward servos the
+test biped keeps 39–44 mm of its 45 mm half-width in single support and Talos 54 of 55 mm;
+under position servos both ride an edge (their soles off the ground in 18–39 % of the stance
+samples)."""
 EDGES: tuple[str, str, str, str] = ("toe", "heel", "left", "right")
 """The sole's edges, named in its own axes: the toe at +x (the heading), the left side at +y."""
 
@@ -62,14 +64,16 @@ class CopMargin:
 
 
 def tipping(margin: CopMargin | None) -> str | None:
-    """Why a run on soles "tipped" (its :func:`cop_margin` under :data:`TIP_MARGIN`: a planted
-    sole rolled about its edge), or None when it kept off the edges (or has no soles)."""
+    """Why a run on soles "tipped" (its single-support margin, :func:`cop_margin` with
+    ``alone``, under :data:`TIP_MARGIN`: the robot rotated about its one sole's edge), or None
+    when it kept off the edges (or has no soles, or no single support)."""
     if margin is None or margin.distance >= TIP_MARGIN:
         return None
-    return (f"the {margin.leg} sole's centre of pressure reached its {margin.edge} edge at "
-            f"t = {margin.time:.4f} s ({max(margin.distance, 0.0) * 1e3:.2f} mm from it, bound "
-            f"{TIP_MARGIN * 1e3:g} mm, {margin.load:.1f} N on the sole): the foot rolled "
-            "about the edge instead of standing flat")
+    return (f"in single support the {margin.leg} sole's centre of pressure reached its "
+            f"{margin.edge} edge at t = {margin.time:.4f} s "
+            f"({max(margin.distance, 0.0) * 1e3:.2f} mm from it, bound {TIP_MARGIN * 1e3:g} mm, "
+            f"{margin.load:.1f} N on the sole): the robot rolled about the edge instead of "
+            "standing on the sole")
 
 
 def inner_stance(motion: Motion) -> np.ndarray:
@@ -92,17 +96,24 @@ def inner_stance(motion: Motion) -> np.ndarray:
 
 
 def cop_margin(sim: SimModel, motion: Motion, traj: Trajectory, window: slice,
-               samples: int = PRESSURE_SAMPLES) -> CopMargin | None:
+               samples: int = PRESSURE_SAMPLES, *, alone: bool = False) -> CopMargin | None:
     """The smallest centre-of-pressure margin of the robot's soles over the planned stances
     (:func:`inner_stance`) of ``window``, from the corner contact forces
     (``mj_contactForce``'s normal component) at the recorded states.
+
+    With ``alone``, only over the single supports: a sole the plan has as the only foot on the
+    ground. There the sole's centre of pressure is the whole robot's ZMP, and on the sole's
+    edge the robot rotates about it (Vukobratović & Borovac 2004): the robot's own margin. In
+    a double support a lightly loaded sole may roll onto an edge while the other carries the
+    body (the test biped's heel, 27 N of its 161 N, under position servos).
 
     Args:
         sim: The model.
         motion: The plan (its stances).
         traj: The run.
         window: The evaluated steps.
-        samples: Steps looked at, at most (≥ 1).
+        samples: Steps looked at, at most (≥ 1), before ``alone`` leaves out the others.
+        alone: Only the single supports.
 
     Returns:
         The margin, or None for a robot without soles (or whose planted soles carried no load
@@ -120,7 +131,11 @@ def cop_margin(sim: SimModel, motion: Motion, traj: Trajectory, window: slice,
     leg_of = {int(g): i for i in soles for g in sim.foot_contacts[i]}
     rows = np.arange(window.start or 0, window.stop or traj.n)
     rows = rows[np.unique(np.linspace(0, len(rows) - 1, min(samples, len(rows))).astype(int))]
-    planted = inner_stance(motion)[planned_index(motion, traj.t[rows])]
+    k = planned_index(motion, traj.t[rows])
+    planted = inner_stance(motion)[k]
+    if alone:
+        planted &= (motion.stance[k].astype(bool).sum(axis=1) == 1)[:, None]
+        rows, planted = rows[planted.any(axis=1)], planted[planted.any(axis=1)]
     wrench = np.zeros(6)
     best: CopMargin | None = None
     for row, on, data in zip(rows, planted, forward_states(sim, traj, rows), strict=True):

@@ -41,9 +41,9 @@ VERDICTS: tuple[str, ...] = ("walks", "stalled", "short", "overran", "untracked"
 within :data:`~hexaleg.simulation.measures.DISTANCE_TOLERANCE` and the RMS tracking error within
 :data:`~hexaleg.simulation.measures.TRACKING_BOUND`; it stood but covered less than
 :data:`STALL` of the planned distance; it fell short of or overran the tolerance; it covered the
-distance without following the joints' gait; it walked, but on soles a planted foot rolled
-about its edge (:func:`hexaleg.simulation.pressure.tipping`); the base fell; the integration
-diverged."""
+distance without following the joints' gait; it walked, but on soles the robot rolled about
+the edge of its one sole on the ground (:func:`hexaleg.simulation.pressure.tipping`); the base
+fell; the integration diverged."""
 STALL = measures.STALL
 """A run that covers less than this fraction of the planned distance per cycle stalled."""
 GROUND_MASS = 1.36366
@@ -71,9 +71,10 @@ def verdict_meanings() -> dict[str, str]:
         "overran": f"it covered more than {1 + tol:.0%} of the planned distance per cycle",
         "untracked": (f"it covered the distance, but its joints did not follow the gait (RMS "
                       f"tracking error over {bound:.0f} mrad)"),
-        "tipped": (f"it covered the distance and followed the joints, but a planted sole's "
-                   f"centre of pressure came within {pressure.TIP_MARGIN * 1e3:g} mm of its "
-                   "edge: the foot rolled about the edge instead of standing flat"),
+        "tipped": (f"it covered the distance and followed the joints, but in single support "
+                   f"its sole's centre of pressure came within {pressure.TIP_MARGIN * 1e3:g} mm "
+                   "of the sole's edge: the robot rolled about the edge instead of standing "
+                   "on the sole"),
         "fell": (f"the body fell: its height under {stepping.FALL_HEIGHT:.0%} of the planned "
                  f"or its roll or pitch beyond ±{np.degrees(stepping.FALL_TILT):.0f}°"),
         "diverged": "the integration diverged",
@@ -197,6 +198,9 @@ class Run:
         cop_margin: On soles, how close the centre of pressure came to a sole's edge over the
             evaluated window (:func:`hexaleg.simulation.pressure.cop_margin`); None on point
             feet or when it did not run to the end.
+        alone_margin: The same over the single supports only (``alone``), the robot's own
+            tipping margin (:func:`hexaleg.simulation.pressure.tipping`); None also when the
+            gait has no single support.
     """
 
     name: str
@@ -214,6 +218,7 @@ class Run:
     cpu: float = 0.0
     reason: str = ""
     cop_margin: pressure.CopMargin | None = None
+    alone_margin: pressure.CopMargin | None = None
 
     @property
     def walks(self) -> bool:
@@ -393,11 +398,14 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
     walked = measures.walk(sim, motion, traj, window, settings.evaluate, ref.q)
     verdict, message = measures.verdict(walked, motion.distance)
     margin = pressure.cop_margin(sim, motion, traj, window)
-    tipped = pressure.tipping(margin)
+    alone = None if margin is None else pressure.cop_margin(sim, motion, traj, window,
+                                                            alone=True)
+    tipped = pressure.tipping(alone)
     if verdict == "walks" and tipped is not None:
         verdict, message = "tipped", tipped
     return Run(name, sim, traj, verdict, message, cycles, measures.mean_metrics(cycles),
-               walked, forces, wall, feedback, bound, cpu, cop_margin=margin)
+               walked, forces, wall, feedback, bound, cpu, cop_margin=margin,
+               alone_margin=alone)
 
 
 def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None = None,

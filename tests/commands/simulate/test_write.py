@@ -114,3 +114,16 @@ def test_the_centre_of_pressure_margin_is_written_for_soles_only(feedforward):
             "sole's left edge at 1.925 s (132.7 N on it).") in page(data)
     html = render_simulate_html(data)
     assert 'id="cop-baseline"' in html and "39.46 mm" in html and "R1 sole's left edge" in html
+    assert "alone_margin" not in data["runs"]["baseline"] and "single support" not in html
+    alone = CopMargin(0.0437, "L1", "toe", 2.5, 160.0)  # the robot's own, in single support
+    data = simulation_data(dataclasses.replace(soles, baseline=dataclasses.replace(
+        soles.baseline, alone_margin=alone)))
+    assert data["runs"]["baseline"]["alone_margin"] == {
+        "distance": {"value": 0.0437, "unit": "m"}, "leg": "L1", "edge": "toe",
+        "time": {"value": 2.5, "unit": "s"}, "load": {"value": 160.0, "unit": "N"}}
+    assert ("baseline: 39.5 mm from the R1 sole's left edge at 1.925 s (132.7 N on it), in "
+            "single support 43.7 mm from the L1 sole's toe edge at 2.5 s (160 N on it).") \
+        in page(data)
+    html = render_simulate_html(data)
+    assert "in single support (the robot's tipping margin) 43.70 mm, the L1 sole's toe edge" \
+        in html

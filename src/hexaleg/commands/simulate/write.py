@@ -53,11 +53,10 @@ def _run_data(r: Run) -> dict[str, Any]:
         "electrical_per_cycle": quantity([c["total"]["electrical"] for c in r.cycles], "J"),
         "forces": {k: quantity(v, "N") for k, v in r.forces.items()},
     })
-    if r.cop_margin is not None:
-        c = r.cop_margin
-        out["cop_margin"] = {"distance": quantity(c.distance, "m"), "leg": c.leg,
-                             "edge": c.edge, "time": quantity(c.time, "s"),
-                             "load": quantity(c.load, "N")}
+    for key, c in (("cop_margin", r.cop_margin), ("alone_margin", r.alone_margin)):
+        if c is not None:
+            out[key] = {"distance": quantity(c.distance, "m"), "leg": c.leg, "edge": c.edge,
+                        "time": quantity(c.time, "s"), "load": quantity(c.load, "N")}
     return out
 
 
@@ -235,8 +234,9 @@ def page(data: dict[str, Any]) -> str:
             f"{_v(r['roll_max'], float(np.degrees(1)))} / "
             f"{_v(r['pitch_max'], float(np.degrees(1)))} | "
             f"{_v(r['forces']['normal_rms']) if r['forces'] else '—'} |")
-    margins = [f"{name}: {cop_text(r['cop_margin'])}" for name, r in data["runs"].items()
-               if "cop_margin" in r]
+    margins = [f"{name}: {cop_text(r['cop_margin'])}"
+               + (f", in single support {cop_text(r['alone_margin'])}" if "alone_margin" in r
+                  else "") for name, r in data["runs"].items() if "cop_margin" in r]
     if margins:
         lines += ["", "Centre of pressure, closest to a sole's edge: " + "; ".join(margins) + "."]
     if "sensitivity" in data:
