@@ -249,6 +249,7 @@ def test_a_search_reading_ahead_in_another_order_finds_the_same_optimum(robot, m
     serial = search_geometry(setup)
     ahead = search_geometry(setup, map_fn=reversed_map)
     assert max(batches) >= 8 and sum(batches) > 40
+    assert geometry.AHEAD == 16  # docs/design.md: "up to 16 at a time"
     assert ahead.geometry == serial.geometry and ahead.solution.value == serial.solution.value
     assert ahead.to_dict() == serial.to_dict()
     assert np.array_equal(ahead.solution.x, serial.solution.x)
