@@ -21,6 +21,7 @@ from hexaleg.design.chain.config import METRICS, DesignParams
 from hexaleg.design.chain.groups import class_of
 from hexaleg.design.evaluator import Scenario, metric_row
 from hexaleg.design.families import CONTAINS, Geometry
+from hexaleg.design.search.geometry import Mapper
 from hexaleg.design.search.optimal import OptimalSprings, optimal_springs
 from hexaleg.design.springs.parts import (
     PartOptions,
@@ -93,12 +94,13 @@ def _optimum(prepared: Prepared, groups: Mapping[str, tuple[str, ...]],
              class_groups: Mapping[str, tuple[str, ...]], family: str, params: DesignParams,
              start: Sequence[Mapping[str, Geometry]] = (),
              geometry: Mapping[str, Geometry] | None = None,
-             contained: Mapping[str, OptimalSprings] | None = None
-             ) -> tuple[OptimalSprings, OptimalSprings]:
+             contained: Mapping[str, OptimalSprings] | None = None,
+             map_fn: Mapper | None = None) -> tuple[OptimalSprings, OptimalSprings]:
     """The family's optimum on the class groups (at ``geometry`` when given, else searched from
     ``start`` and the optima of the families it contains, ``contained``: family → optimum on the
     same class groups; designed here where one is missing), and the design on ``groups``: for
-    finer groups, their magnitudes at the class geometry."""
+    finer groups, their magnitudes at the class geometry; ``map_fn`` spreads the search's solves
+    (:func:`~hexaleg.design.search.optimal.optimal_springs`)."""
     bound = params.deflection_bound
     kw: dict[str, Any] = {"max_torque": params.max_torque, "max_deflection": bound,
                           "metric": params.metric,
@@ -111,7 +113,7 @@ def _optimum(prepared: Prepared, groups: Mapping[str, tuple[str, ...]],
         usable = all(c is not None and c.groups == dict(class_groups) for c in inner)
         best = optimal_springs(prepared, dict(class_groups), family, "joule",
                                start=list(start) or None,
-                               contained=inner if usable else None, **kw)
+                               contained=inner if usable else None, map_fn=map_fn, **kw)
     if dict(groups) == dict(class_groups):
         return best, best
     owner = {j: c for c, js in class_groups.items() for j in js}
@@ -189,7 +191,8 @@ def design_family(prepared: Prepared, run: Scenario, gait: GaitParams,
                   params: DesignParams, outer: Mapping[str, float],
                   start: Sequence[Mapping[str, Geometry]] = (),
                   geometry: Mapping[str, Geometry] | None = None,
-                  contained: Mapping[str, OptimalSprings] | None = None) -> Candidate:
+                  contained: Mapping[str, OptimalSprings] | None = None,
+                  map_fn: Mapper | None = None) -> Candidate:
     """One family's :class:`Candidate` (module docstring).
 
     Args:
@@ -205,13 +208,15 @@ def design_family(prepared: Prepared, run: Scenario, gait: GaitParams,
         geometry: Class → geometry to design the magnitudes at instead of searching it.
         contained: Family → the class-level optimum (:attr:`Candidate.searched`) of the families
             this one contains, to start its search from.
+        map_fn: How the geometry search solves candidates side by side (e.g.
+            :func:`hexaleg.parallel.forked.fork_map`; the same result); default here.
 
     Raises:
         HexalegError: as :func:`~hexaleg.design.search.optimal.optimal_springs` (constraints that no
             design meets name themselves there).
     """
     searched, optimum = _optimum(prepared, groups, class_groups, family, params, start,
-                                 geometry, contained)
+                                 geometry, contained, map_fn)
     return dataclasses.replace(candidate(optimum, prepared, run, gait, outer, params),
                                searched=searched)
 
@@ -222,7 +227,8 @@ def parsimonious(prepared: Prepared, run: Scenario, gait: GaitParams,
                  params: DesignParams, outer: Mapping[str, float],
                  start: Sequence[Mapping[str, Geometry]] = (),
                  geometry: Mapping[str, Geometry] | None = None,
-                 contained: Mapping[str, OptimalSprings] | None = None) -> Candidate:
+                 contained: Mapping[str, OptimalSprings] | None = None,
+                 map_fn: Mapper | None = None) -> Candidate:
     """:func:`design_family` without the joint classes that do not pay for their parts.
 
     A class's worth (:func:`class_worth`: the ranking metric's saving lost without all its
@@ -252,7 +258,7 @@ def parsimonious(prepared: Prepared, run: Scenario, gait: GaitParams,
     start = usable(start)
     c = design_family(prepared, run, gait, groups, class_groups, family, params, outer, start,
                       None if geometry is None else {k: geometry[k] for k in class_groups},
-                      contained)
+                      contained, map_fn)
     searched = c.searched
     while len(class_groups) > 1:
         worth = class_worth(c, prepared, class_groups, params.metric)

@@ -106,7 +106,8 @@ class Nominal:
         parsimonious`) with the ``[design]`` table, or ``params`` in its place; on the groups of
         ``like`` only when given (its classes: the others were left unfitted); at ``geometry``
         (class → geometry) when given, else searched (from ``contained``: family → the
-        class-level optimum of a family it contains)."""
+        class-level optimum of a family it contains), its solves spread over the cores
+        (:meth:`fork_map`: the same result)."""
         d = self.design if params is None else params
         groups, classes = self.groups, self.class_groups
         if like is not None:
@@ -114,7 +115,7 @@ class Nominal:
             kept = {j for js in groups.values() for j in js}
             classes = {k: js for k, js in classes.items() if js[0] in kept}
         return parsimonious(self.prepared, self.run, self.gait, groups, classes, family, d,
-                            self.outer_diameters, start, geometry, contained)
+                            self.outer_diameters, start, geometry, contained, self.fork_map)
 
     def fork_map(self, fn: Callable[[T], R], items: Sequence[T],
                  done: Callable[[int, R], None] | None = None) -> list[R]:

@@ -38,7 +38,9 @@ Every step is a fixed sequence of convex solves compared by value, ties kept by 
 candidate (values of the condensed program within :data:`TIE`: what its bundle's tolerance can
 tell apart, so another machine's rounding does not change a decision), so the search is
 deterministic; a tiny change of the gait moves the levels by as much and the optimum with them,
-not to another basin.
+not to another basin. Spread over processes (``map_fn``), a scan solves ahead the candidates it
+may ask next but decides on them in the same fixed sequence, one at a time, so the decisions,
+the optimum and the count of solves are those of the search in one process.
 """
 
 from __future__ import annotations
@@ -86,6 +88,10 @@ where no sample binds, and a flat stretch of candidates — a stop that does not
 otherwise all be solved)."""
 MAX_SWEEPS = 6
 """Sweeps over the groups before the coordinate descent stops unconverged (it says so)."""
+AHEAD = 16
+"""Exact solves a bounded scan with ``map_fn`` reads ahead at most (1, 2, 4, … as its candidates
+keep winning; :func:`_by_bound`): enough for a scan of hundreds (a BLDC hexapod's dead zone, from a
+wound-up start) to keep two cores busy at a fork per batch, at most 15 solves spent past its end."""
 
 
 
@@ -210,7 +216,10 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
             ``[fn(s) for s in states]`` in the order given (e.g. the design's forked map over
             the cores, :func:`hexaleg.parallel.forked.fork_map`); default that list in this
             process. The candidates are independent convex programs, so the result is the same
-            either way.
+            either way. A bounded scan (exact solves in the order of their lower bound) solves
+            the next candidates of that order side by side, up to :data:`AHEAD`, and takes
+            their values strictly in the order, one after the other (:func:`_by_bound`): the
+            same candidates are taken, the same counted, the same optimum found.
 
     A condensed setup (another metric, stop shifts) is compared by its fast solves
     (``setup.solve(geometry, exact=False)``); the caller certifies the chosen geometry.
@@ -242,10 +251,22 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
         if solution is not None:
             solutions[key(state)] = solution
 
+    ahead: dict[tuple[Any, ...], DesignSolution | None] = {}
+
     def value(state: State) -> float:
-        if key(state) not in seen:
-            record(state, _solved(setup, state))
-        return seen[key(state)]
+        k = key(state)
+        if k not in seen:
+            record(state, ahead.pop(k) if k in ahead else _solved(setup, state))
+        return seen[k]
+
+    def solve_ahead(states: Sequence[State], spread: Mapper) -> None:
+        """Solve side by side (``spread``) the unseen of ``states`` that a bounded scan may ask
+        next; each counts, and is kept as seen, only when the scan asks for it."""
+        todo = list({key(s): s for s in states
+                     if key(s) not in seen and key(s) not in ahead}.values())
+        if len(todo) > 1:
+            for s, solution in zip(todo, spread(lambda s: _solved(setup, s), todo), strict=True):
+                ahead[key(s)] = solution
 
     def values(states: Sequence[State]) -> np.ndarray:
         """Each state's value, the unseen ones solved through ``map_fn`` first."""
@@ -297,8 +318,12 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
                     """Below which a bound may still win (``found`` fills in as it goes)."""
                     return min(best, float(found.min())) * (1 - BOUND_SLACK)
 
-                for n in _by_bound(bounds, limit):
+                read = None if map_fn is None else (
+                    lambda ns, trials=trials, spread=map_fn: solve_ahead(
+                        [trials[n][1] for n in ns], spread))
+                for n in _by_bound(bounds, limit, read, AHEAD):
                     found[n] = value(trials[n][1])
+                ahead.clear()  # read ahead past the scan's end: no later scan asks
             else:
                 found = values([tr for _, tr in trials])
             i = _first_best(found, tie)
@@ -364,7 +389,8 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
                           converged if max_sweeps else None, method, levels)
 
 
-def _by_bound(bounds: RelaxedBounds, limit: Callable[[], float]) -> Iterator[int]:
+def _by_bound(bounds: RelaxedBounds, limit: Callable[[], float],
+              ahead: Callable[[list[int]], None] | None = None, most: int = 1) -> Iterator[int]:
     """The candidates in increasing order of their strong bound (ties by index), until the next
     one's is not below ``limit()`` (asked again before each; it cannot win).
 
@@ -373,17 +399,39 @@ def _by_bound(bounds: RelaxedBounds, limit: Callable[[], float]) -> Iterator[int
     has a strong bound above the one yielded: the order and the stop are those of every strong
     bound sorted (stably), the solves of the candidates never reached saved. A weak bound not
     below ``limit()`` when its turn comes is not tightened: the strong one is not below it either.
+
+    With ``ahead``, the next candidates in that order whose bound is below ``limit()`` now — one,
+    then twice as many each time all were yielded, at most ``most`` — are handed to
+    ``ahead(indices)`` before the first of them is yielded (to solve them side by side), and each
+    is still yielded only if its bound is below ``limit()`` when its turn comes: the limit only
+    falls as the caller's exact values come in, so a candidate read ahead that an earlier one's
+    value puts out of reach ends the scan there, as one after the other. The yielded candidates
+    are the same, in the same order, whatever ``most``; only the solves spent ahead and not
+    yielded (at most ``most − 1`` a scan) differ.
     """
     heap = [(float(b), i, False) for i, b in enumerate(bounds.weak)]
     heapq.heapify(heap)
-    while heap:
-        bound, i, strong = heapq.heappop(heap)
-        if not bound < limit():
+    width = 1
+    while True:
+        batch: list[tuple[float, int]] = []
+        while heap and len(batch) < width:
+            bound, i, strong = heap[0]
+            if not bound < limit():
+                break
+            heapq.heappop(heap)
+            if strong:
+                batch.append((bound, i))
+            else:
+                heapq.heappush(heap, (bounds.tight(i), i, True))
+        if not batch:
             return
-        if strong:
+        if ahead is not None and len(batch) > 1:
+            ahead([i for _, i in batch])
+        for bound, i in batch:
+            if not bound < limit():
+                return
             yield i
-        else:
-            heapq.heappush(heap, (bounds.tight(i), i, True))
+        width = min(2 * width, most)
 
 
 def _first_best(values: np.ndarray, tie: float) -> int:

@@ -29,7 +29,7 @@ import numpy as np
 
 from hexaleg.checks import typed
 from hexaleg.design.families import CONTAINS, FAMILIES, Family, Geometry, embed
-from hexaleg.design.search.geometry import off_angles, search_geometry
+from hexaleg.design.search.geometry import Mapper, off_angles, search_geometry
 from hexaleg.design.search.program import DesignProblem, DesignSolution
 from hexaleg.design.search.setup import (
     ENGAGED,
@@ -102,7 +102,8 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
                     geometry: Mapping[str, Geometry] | None = None,
                     start: Mapping[str, Geometry] | Sequence[Mapping[str, Geometry]] | None = None,
                     metric: str | None = None, mirrored: Iterable[str] = (),
-                    contained: Sequence[OptimalSprings | None] | None = None) -> OptimalSprings:
+                    contained: Sequence[OptimalSprings | None] | None = None,
+                    map_fn: Mapper | None = None) -> OptimalSprings:
     """The optimal springs of one family on the groups' joints for a prepared gait.
 
     Args:
@@ -142,6 +143,10 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
             docstring). x = 0, the baseline, is always feasible, so the program never costs
             energy; should the exact evaluation still cost some (binding samples), the result
             is no springs (x = 0), with a note.
+        map_fn: How the geometry searches solve candidates side by side
+            (:func:`~hexaleg.design.search.geometry.search_geometry`; e.g.
+            :func:`hexaleg.parallel.forked.fork_map`): the same result, sooner; default one
+            after another here.
 
     Returns:
         The optimal springs, their analysis and saving; the magnitudes are the global optimum
@@ -168,14 +173,14 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
     checked = [setup.check_geometry(s) for s in starts]
     if contained is None:
         contained = [_inner(prepared, groups, inner, objective, max_torque, max_deflection,
-                            metric, mirrored) for inner in CONTAINS.get(family, ())]
+                            metric, mirrored, map_fn) for inner in CONTAINS.get(family, ())]
     inner_starts = [_embedded(setup, c) for c in contained if c is not None]
     if not setup.condensed:  # its comparison solves are the exact program
-        found = search_geometry(setup, [*checked, *inner_starts])
+        found = search_geometry(setup, [*checked, *inner_starts], map_fn=map_fn)
         chosen, solution, searches = found.geometry, found.solution, [found]
     else:  # the Joule program's search, then the best in the metric of it and the starts
         nominal = dataclasses.replace(setup, metric=None, shifts=())
-        first = search_geometry(nominal, [*checked, *inner_starts])
+        first = search_geometry(nominal, [*checked, *inner_starts], map_fn=map_fn)
         found = search_geometry(setup, [first.geometry, *checked, *inner_starts],
                                 max_sweeps=0)
         chosen, solution, searches = found.geometry, setup.solve(found.geometry), [first, found]
@@ -188,12 +193,13 @@ def optimal_springs(prepared: Prepared, groups: Groups, family: str = "linear",
 
 def _inner(prepared: Prepared, groups: Groups, family: str, objective: str,
            max_torque: float | None, max_deflection: float | None, metric: str | None,
-           mirrored: Iterable[str]) -> OptimalSprings | None:
+           mirrored: Iterable[str], map_fn: Mapper | None) -> OptimalSprings | None:
     """A contained family's optimum (a start of the containing family's search), or None where
     it has none (its program infeasible, a constraint no design of it meets)."""
     try:
         return optimal_springs(prepared, groups, family, objective, max_torque=max_torque,
-                               max_deflection=max_deflection, metric=metric, mirrored=mirrored)
+                               max_deflection=max_deflection, metric=metric, mirrored=mirrored,
+                               map_fn=map_fn)
     except HexalegError:
         return None
 
