@@ -73,7 +73,6 @@ def test_the_report_page_and_lines_have_no_glitch(report_written):
     assert found == []
 
 
-@pytest.mark.slow  # the co-design with its rules: ~30 s of the README's suite
 def test_the_codesign_page_and_lines_have_no_glitch(ruled, tmp_path):
     from hexaleg.commands.codesign.write import write_result
 

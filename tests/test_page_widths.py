@@ -106,7 +106,6 @@ def test_the_report_and_design_pages_fit_1400_px(pages, name, tmp_path):
 
 
 @needs_chromium
-@pytest.mark.slow
 def test_the_codesign_page_fits_1400_px(ruled, tmp_path):
     """codesign.html with the springs to buy (its parts table the widest block) neither cuts
     nor scrolls at 1400 px (issue #43)."""

@@ -29,7 +29,6 @@ def test_unwritable_directory_is_named(codesigned, tmp_path):
         write_result(codesigned, blocker / "out")
 
 
-@pytest.mark.slow  # the co-design with its rules: ~30 s of the README's suite
 def test_the_page_leads_with_the_worse_servo_and_draws_each_spring(ruled, tmp_path):
     """Issue #57: codesign.html showed only the feedforward servo's simulated saving; the
     position-only one is on the page, the worse first, and each spring to buy is drawn."""
