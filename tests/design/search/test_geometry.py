@@ -139,6 +139,26 @@ class _Bounds:
         return float(self.strong[i])
 
 
+def _random_scan(seed: int, n: int = 40) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A scan's weak and strong bounds (rounded, so with ties; three infinite) and the limit
+    after each exact value (falling from 9), drawn from ``seed``."""
+    rng = np.random.default_rng(seed)
+    strong = np.round(rng.uniform(0, 10, n), 1)
+    strong[rng.integers(0, n, 3)] = np.inf
+    weak = strong - rng.uniform(0, 3, n) * (rng.uniform(size=n) < 0.8)
+    return weak, strong, np.sort(rng.uniform(3, 9, n))[::-1]
+
+
+def _taken(candidates, falls: np.ndarray) -> list[int]:
+    """The candidates a scan takes, the limit starting at 9 and falling to ``falls[k]`` after
+    the k-th exact value."""
+    out, limit = [], [9.0]
+    for i in candidates(lambda: limit[0]):
+        out.append(int(i))
+        limit[0] = min(limit[0], falls[len(out) - 1])
+    return out
+
+
 @pytest.mark.parametrize("seed", range(20))
 def test_candidates_come_in_the_order_of_every_strong_bound_sorted(seed):
     """The scan's order of exact solves (geometry._by_bound) is the stable sort of the strong
@@ -148,19 +168,10 @@ def test_candidates_come_in_the_order_of_every_strong_bound_sorted(seed):
     tightened."""
     from hexaleg.design.search.geometry import _by_bound
 
-    rng = np.random.default_rng(seed)
-    n = 40
-    strong = np.round(rng.uniform(0, 10, n), 1)  # rounded: ties
-    strong[rng.integers(0, n, 3)] = np.inf
-    weak = strong - rng.uniform(0, 3, n) * (rng.uniform(size=n) < 0.8)
-    falls = np.sort(rng.uniform(3, 9, n))[::-1]  # the limit after each exact value
+    weak, strong, falls = _random_scan(seed)
 
     def order(candidates):
-        out, limit = [], [9.0]
-        for i in candidates(lambda: limit[0]):
-            out.append(int(i))
-            limit[0] = min(limit[0], falls[len(out) - 1])
-        return out
+        return _taken(candidates, falls)
 
     def every(limit):
         for i in np.argsort(strong, kind="stable"):
@@ -182,19 +193,10 @@ def test_candidates_read_ahead_come_in_the_serial_order(seed, most):
     all past the last one yielded."""
     from hexaleg.design.search.geometry import _by_bound
 
-    rng = np.random.default_rng(seed)
-    n = 40
-    strong = np.round(rng.uniform(0, 10, n), 1)
-    strong[rng.integers(0, n, 3)] = np.inf
-    weak = strong - rng.uniform(0, 3, n) * (rng.uniform(size=n) < 0.8)
-    falls = np.sort(rng.uniform(3, 9, n))[::-1]
+    weak, strong, falls = _random_scan(seed)
 
     def order(candidates):
-        out, limit = [], [9.0]
-        for i in candidates(lambda: limit[0]):
-            out.append(int(i))
-            limit[0] = min(limit[0], falls[len(out) - 1])
-        return out
+        return _taken(candidates, falls)
 
     read: list[int] = []
     serial = order(lambda limit: _by_bound(_Bounds(weak, strong), limit))
