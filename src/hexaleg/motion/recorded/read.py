@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import io
 import re
+import warnings
 import zipfile
 from pathlib import Path
 
@@ -74,33 +75,47 @@ def _csv_values(text: str, n_columns: int, where: str) -> np.ndarray:
         values = np.loadtxt(io.StringIO(text), delimiter=",", ndmin=2, dtype=float,
                             comments="#")
     except ValueError:
-        values = np.genfromtxt(io.StringIO(text), delimiter=",", dtype=float, comments="#",
-                               invalid_raise=False, missing_values="", filling_values=np.nan)
+        with warnings.catch_warnings():  # a short row: named below, not warned of
+            warnings.simplefilter("ignore", np.exceptions.VisibleDeprecationWarning)
+            warnings.simplefilter("ignore", UserWarning)
+            values = np.genfromtxt(io.StringIO(text), delimiter=",", dtype=float,
+                                   comments="#", invalid_raise=False, missing_values="",
+                                   filling_values=np.nan)
         values = np.atleast_2d(values)
-        bad = [i for i, line in enumerate(text.splitlines()) if line.strip()
-               and len(line.split(",")) != n_columns]
+        rows = _data_rows(text)
+        bad = [row for row, fields in rows if len(fields) != n_columns]
         if bad or values.shape[1] != n_columns:
-            row = (bad[0] if bad else 0) + 2
+            row = bad[0] if bad else rows[0][0]
             raise ConfigError(f"{where}: row {row} does not have the header's {n_columns} "
                               "comma-separated fields; every row needs one value per column "
                               "(leave a field empty for a missing value)") from None
-        text_bad = np.isnan(values) & ~_empty_or_nan(text, values.shape)
+        text_bad = np.isnan(values) & ~_empty_or_nan(rows, values.shape)
         if text_bad.any():
             r, c = (int(i) for i in np.argwhere(text_bad)[0])
-            raise ConfigError(f"{where}: row {r + 2}, column {c + 1} is not a number; write "
-                              "numbers, 'nan' or an empty field") from None
+            raise ConfigError(f"{where}: row {rows[r][0]}, column {c + 1} is not a number; "
+                              "write numbers, 'nan' or an empty field") from None
     if values.shape[1] != n_columns:
         raise ConfigError(f"{where}: rows have {values.shape[1]} fields, the header "
                           f"{n_columns}; every row needs one value per column")
     return values
 
 
-def _empty_or_nan(text: str, shape: tuple[int, ...]) -> np.ndarray:
-    """Which fields of a CSV body are written as empty or 'nan' (a missing value), (N, n)."""
-    rows = [line.split(",") for line in text.splitlines()
-            if line.strip() and not line.lstrip().startswith("#")]
+def _data_rows(text: str) -> list[tuple[int, list[str]]]:
+    """A CSV body's data rows as numpy reads them — blank lines and everything from a ``#`` on
+    left out — each with its row number in the file (the header is row 1) and its fields."""
+    out = []
+    for i, line in enumerate(text.splitlines()):
+        data = line.split("#", 1)[0]
+        if data.strip():
+            out.append((i + 2, data.split(",")))
+    return out
+
+
+def _empty_or_nan(rows: list[tuple[int, list[str]]], shape: tuple[int, ...]) -> np.ndarray:
+    """Which fields of a CSV body's data rows (:func:`_data_rows`) are written as empty or
+    'nan' (a missing value), (N, n)."""
     out = np.zeros(shape, dtype=bool)
-    for i, row in enumerate(rows[:shape[0]]):
+    for i, (_, row) in enumerate(rows[:shape[0]]):
         for j, f in enumerate(row[:shape[1]]):
             out[i, j] = f.strip().lower() in ("", "nan")
     return out
