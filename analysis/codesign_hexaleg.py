@@ -3,8 +3,9 @@
 Run:  python analysis/codesign_hexaleg.py
 
 :func:`hexaleg.codesign` with the default constraints (the static margin at least the default
-gait's), the default search (restarted Nelder–Mead, 100 evaluations a search, 100 samples a
-cycle; the rows at 200) and the full spring rules of ``hexaleg design`` on the chosen gait (the
+gait's), the default search (a compass search on a lattice with restarts,
+:mod:`hexaleg.design.codesign.gait_search`: 200 evaluations at most, 100 samples a cycle; the
+rows at 200) and the full spring rules of ``hexaleg design`` on the chosen gait (the
 default: parsimony, stop tolerance, envelope and hard stop, fatigue, arbor): the four rows, the
 sequential design beside them, the chosen gait, the constraints on it, the check that
 ``hexaleg.gait`` + ``Prepared.evaluate`` of the reported gait and springs reproduce their
