@@ -317,7 +317,7 @@ def ruled(request: pytest.FixtureRequest):
     worker that reads it back does not build ``codesigned``)."""
     import dataclasses
 
-    from hexaleg.design.codesign.build import full_rules, rule_params
+    from hexaleg.design.codesign.full_rules import full_rules, rule_params
 
     def make():
         codesigned = request.getfixturevalue("codesigned")

@@ -5,9 +5,10 @@
 ``final_samples``, ``max_evaluations``, ``restarts``, ``grouping``, ``rules``, ``curve``,
 ``simulate``, ``controller``, ``motion``, a ``[codesign.constraints]`` table of
 :class:`~hexaleg.design.codesign.gait_evaluation.Constraints` and a ``[codesign.design]`` table of
-the full spring rules' ``[design]`` keys (:func:`~hexaleg.design.codesign.build.rule_params`); the
-command line's ``--speed``, ``--pattern``, ``--controller``, ``--motion`` and ``--no-rules``
-win over the file. ``--motion optimal`` adds the optimal motion's rows
+the full spring rules' ``[design]`` keys
+(:func:`~hexaleg.design.codesign.full_rules.rule_params`); the command line's ``--speed``,
+``--pattern``, ``--controller``, ``--motion`` and ``--no-rules`` win over the file.
+``--motion optimal`` adds the optimal motion's rows
 (:mod:`hexaleg.design.codesign.optimal_rows`) and writes each optimal motion as a motion log
 (``optimal_no_springs.csv``, ``optimal_springs.csv``) that every command's ``--motion`` reads.
 """

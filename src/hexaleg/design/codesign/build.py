@@ -20,9 +20,10 @@ restarted
 5. with ``rules`` (the default), the full spring rules of ``hexaleg design`` (tolerance,
    envelope, fatigue, arbor, parsimony, simulated ranking:
    :class:`hexaleg.design.chain.chain.DesignChain`) applied to the chosen gait only — too
-   slow for the inner loop — whose recommendation is the springs to buy (:func:`full_rules`);
-   they start as soon as the co-design search has chosen the gait, in a process beside steps
-   2's gait-alone search, 3 and 4 (:class:`Background`);
+   slow for the inner loop — whose recommendation is the springs to buy
+   (:func:`~hexaleg.design.codesign.full_rules.full_rules`); they start as soon as the
+   co-design search has chosen the gait, in a process beside steps 2's gait-alone search, 3
+   and 4 (:class:`~hexaleg.design.codesign.full_rules.Background`);
 6. the co-designed gait simulated forward in MuJoCo with and without the springs to buy
    (:func:`hexaleg.simulation.run.simulate`), and their predicted saving on floors of other
    friction (:mod:`hexaleg.design.codesign.floors`).
@@ -32,7 +33,6 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-import os
 import time
 import warnings
 from collections.abc import Callable
@@ -47,6 +47,7 @@ from hexaleg.design.chain.config import DesignParams
 from hexaleg.design.chain.groups import design_groups
 from hexaleg.design.chain.ranking import under
 from hexaleg.design.codesign.floors import over_floors
+from hexaleg.design.codesign.full_rules import rule_params, started
 from hexaleg.design.codesign.gait_evaluation import (
     PARAMETERS,
     Constraints,
@@ -68,7 +69,6 @@ from hexaleg.motion.params import GaitParams
 from hexaleg.motion.patterns import check_pattern, pattern_offsets
 from hexaleg.motion.scaling import robot_gait
 from hexaleg.parallel.forked import fork_map, robot_objects
-from hexaleg.parallel.workers import watch_parent
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
 from hexaleg.scenario.scenario import Scenario
@@ -78,28 +78,6 @@ MOTIONS = ("gait", "optimal")
 """What ``motion`` may be: the parametric gait alone, or also the optimal motion's rows."""
 SPEED_FACTORS = (0.5, 0.75, 1.0, 1.25, 1.5)
 """The speed curve's speeds, as factors of the required speed."""
-RULE_FAMILIES = ("preloaded", "one_sided", "linear")
-"""The families the full rules compare on the chosen gait: ``hexaleg design``'s without
-``dead_zone``. A dead-zone spring is the preloaded family with both preloads at zero (the same
-``above``/``below`` terms, :mod:`hexaleg.design.families`), so at every geometry the preloaded
-program's optimum is at least as good; it ranked last on the default gait (+12.08 % against
-+16.36 %, analysis/logs/answer_hexaleg.log) and on the co-designed one (+39.90 % against
-+42.66 %), where its geometry search alone took 27–70 s (docs/codesign.md). The slowest first:
-the families run in this order on two worker processes."""
-
-
-def rule_params(**table: Any) -> DesignParams:
-    """The ``[design]`` settings of the full rules on the chosen gait: ``hexaleg design``'s
-    defaults, the families :data:`RULE_FAMILIES` and ``robustness`` false (the maps and the
-    robust box are not rules), with ``table``'s keys on top (a ``[codesign.design]`` table).
-
-    Raises:
-        UnknownNameError, ConfigError, InvalidParameterError: as ``[design]`` (named).
-    """
-    return from_mapping(DesignParams, {"families": list(RULE_FAMILIES), "robustness": False,
-                                       **table}, "[codesign.design]")
-
-
 def default_gait(robot: Robot, name: str, speed: float, pattern: str | None, samples: int
                  ) -> GaitParams:
     """The robot's default gait at ``speed`` with its body height and foot radius resolved
@@ -147,9 +125,11 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             and choose among them (:mod:`hexaleg.design.codesign.servo`), and simulate the
             chosen gait; False: the search's best gait is chosen unsimulated.
         rules: Apply ``hexaleg design``'s full spring rules to the chosen gait and recommend
-            what they choose (:func:`full_rules`, about a minute); False: the search's answer
-            alone, the inner program's springs recommended.
-        design: The rules' ``[design]`` settings (default :func:`rule_params`); they run at
+            what they choose (:func:`~hexaleg.design.codesign.full_rules.full_rules`, about a
+            minute); False: the search's answer alone, the inner program's springs
+            recommended.
+        design: The rules' ``[design]`` settings (default
+            :func:`~hexaleg.design.codesign.full_rules.rule_params`); they run at
             ``final_samples``, ranked under ``controller``.
         controller: The servo the robot runs (:data:`~hexaleg.simulation.controllers.SERVOS`):
             the finalists and the full rules' designs are simulated under it (``"both"``,
@@ -275,62 +255,6 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             ruled.close()
 
 
-class Background:
-    """:func:`full_rules` running in a forked process beside the co-design's remaining work
-    (the gait-alone search, the rows, the curve: about 10 s of a quiet run's 2 cores), or — where
-    processes cannot fork — run at :meth:`result`. The same computation either way: the child
-    is a copy of this process at the fork; its result comes back pickled (as the design's family
-    workers' do). Its progress lines are printed by the child (a callback that collects them
-    sees only those of this process)."""
-
-    def __init__(self, run: Callable[[], Any]) -> None:
-        import multiprocessing
-
-        self._run = run
-        self._process: Any = None
-        self._pipe: Any = None
-        if "fork" in multiprocessing.get_all_start_methods():
-            ctx = multiprocessing.get_context("fork")
-            self._pipe, child = ctx.Pipe(duplex=False)
-            self._process = ctx.Process(target=_send, args=(run, child, os.getpid()))
-            self._process.start()
-            child.close()
-
-    def result(self) -> Any:
-        """The rules' result (waits for the child); re-raises what the child raised."""
-        if self._process is None or self._pipe is None:
-            return self._run()
-        ok, value = self._pipe.recv()
-        self._process.join()
-        self._process = None
-        if not ok:
-            raise value
-        return value
-
-    def close(self) -> None:
-        """Stop a child whose result was never asked for (the co-design failed first)."""
-        if self._process is not None:
-            self._process.terminate()
-            self._process.join()
-            self._process = None
-
-
-def _send(run: Callable[[], Any], pipe: Any, parent: int) -> None:
-    watch_parent(parent)  # ends with the co-design, also when it is killed; ignores Ctrl-C
-    try:
-        pipe.send((True, run()))
-    except BaseException as err:  # handed to the parent, which raises it
-        pipe.send((False, err))
-    finally:
-        pipe.close()
-
-
-def started(run: Scenario, chosen: GaitParams, c: Constraints, say: Callable[[str], None],
-            design: DesignParams | None) -> Background:
-    """:func:`full_rules` on the chosen gait, started beside the co-design's remaining work."""
-    return Background(functools.partial(full_rules, run, chosen, c, say, design))
-
-
 def speed_curve(free: Callable[..., GaitPoint], groups: Groups, base: GaitParams,
                 chosen: GaitParams, speed: float) -> tuple[SpeedPoint, ...]:
     """Energy per metre of the default and the chosen gait against speed
@@ -371,30 +295,6 @@ def simulated(robot: Robot, chosen: GaitParams, springs: SpringSet, c: Constrain
             "walked_baseline": base_walk.distance_per_cycle, "predicted": predicted,
             "simulated": simulated_, "controller": sim.settings.controller,
             "feedback": sim.with_springs.feedback}
-
-
-def full_rules(run: Scenario | str, chosen: GaitParams, c: Constraints,
-               say: Callable[[str], None],
-               design: DesignParams | None = None) -> Any:
-    """``hexaleg design`` (every rule of issue #30: parsimony, stop tolerance, envelope and hard
-    stop, fatigue, arbor, the simulated ranking) on the chosen gait at its sampling, with
-    ``design`` (default :func:`rule_params`: the families of :data:`RULE_FAMILIES`, no
-    robustness maps nor robust box — neither is a rule, and on the co-designed gait the box
-    alone cost a minute); its result, or the error's message when it cannot run there (the
-    inner springs then stay recommended)."""
-    from hexaleg.design.chain.chain import DesignChain
-
-    params = design if design is not None else rule_params()
-    say(f"full spring rules on the chosen gait (hexaleg design: {', '.join(params.families)})")
-    try:
-        # at the chosen gait's sampling: the design's run is its scenario at [design] samples
-        params = dataclasses.replace(params, samples=chosen.samples)
-        base = run if isinstance(run, Scenario) else Scenario.load(run)
-        return DesignChain(base.replace(gait=chosen, contact=c.contact()), say,
-                           design=params).run()
-    except HexalegError as err:
-        say(f"full spring rules failed on the chosen gait: {err}")
-        return f"{type(err).__name__}: {err}"
 
 
 CODESIGN_KEYS = ("speed", "pattern", "family", "samples", "final_samples", "max_evaluations",
@@ -467,7 +367,5 @@ def codesign_settings(table: Any, where: str = "[codesign]",
     return out
 
 
-__all__ = ["CODESIGN_KEYS", "FLOOR_KEYS", "MOTIONS", "RULE_FAMILIES",
-           "SPEED_FACTORS", "Background", "codesign", "codesign_settings", "default_gait",
-           "floor_constraints", "full_rules", "rule_params", "simulated", "speed_curve",
-           "started"]
+__all__ = ["CODESIGN_KEYS", "FLOOR_KEYS", "MOTIONS", "SPEED_FACTORS", "codesign",
+           "codesign_settings", "default_gait", "floor_constraints", "simulated", "speed_curve"]

@@ -1,7 +1,7 @@
 """The springs to buy on the co-designed gait: what the full spring rules chose, and their figures.
 
 ``hexaleg codesign`` applies ``hexaleg design``'s rules (issue #30) to the gait it chose
-(:func:`hexaleg.design.codesign.build.full_rules`): **parsimony** (a joint class is fitted only
+(:func:`hexaleg.design.codesign.full_rules.full_rules`): **parsimony** (a joint class is fitted only
 when it adds at least ``[design] min_group_saving``), the **stop tolerance** (the design kept for
 its worst saving over the stops' mounting error, :mod:`hexaleg.design.search.tolerance`), the whole
 **envelope** with the **hard stop** where a part would yield
