@@ -42,9 +42,9 @@ moves the tests elsewhere)."""
 LONG_FIRST = ("test_examples.py", "test_notebooks.py")
 """Modules whose tests each run a whole study (a kept example, a notebook: up to ~100 s)."""
 LONGEST = ("test_example_prints_its_log[codesign_hexaleg]",)
-"""The one study longer than all the others together (the full co-design, ~300 s of the slow
-suite's ~450 s of CPU): first of all, so that the other worker runs the rest meanwhile (it
-started about two minutes in, and the slow suite took 7 min 13 s on two cores)."""
+"""The slow suite's longest study (the full co-design: 143 s in a quiet fresh-clone CI run,
+whose slow suite took 8 min 23 s on two cores): first of all, so that the other worker runs
+the rest meanwhile."""
 
 
 SHARING = ("tests/design/search/test_tolerance.py", "tests/test_docs_motion.py",
