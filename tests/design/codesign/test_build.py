@@ -73,6 +73,24 @@ def test_pattern_and_bad_input():
                  constraints=dataclasses.replace(Constraints(), mu=0.6))
 
 
+def test_a_default_gait_refused_for_the_narrowed_cone_names_friction_margin():
+    """The brushless hexapod's default gait at 0.06 m/s needs more of the friction cone than the
+    co-design's 0.7 (its femur then over its 2.5 N·m stall torque): the refusal names
+    ``friction_margin``, the key that changes it, and with it at 1 the search starts. A gait
+    that fails in the whole cone too (a speed no gait walks) is not pointed at the key."""
+    from pathlib import Path
+
+    from hexaleg.scenario.scenario import Scenario
+
+    run = Scenario.load(str(Path(__file__).resolve().parents[2] / "data" / "bldc_hexapod.toml"))
+    with pytest.raises(InvalidParameterError, match=r"TorqueLimitError.*\[codesign\.constraints"
+                                                    r"\] friction_margin = 1 \(now 0\.7\)"):
+        codesign(run, speed=0.06, curve=False, simulate=False, rules=False)
+    with pytest.raises(InvalidParameterError, match="speed") as refused:
+        codesign(speed=5.0, curve=False, simulate=False, rules=False)
+    assert "friction_margin" not in str(refused.value)
+
+
 def test_the_optimal_motion_without_its_extra_names_the_extra(monkeypatch):
     """Before any search: the missing Crocoddyl is said at once, with the extra to install and
     why it pins pin 4.0 (the only crocoddyl wheel reads pin 4.1's models wrongly)."""

@@ -179,8 +179,9 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
     free = functools.partial(evaluate_gait, model, family=family, constraints=c, motor=motor)
     first = free(base, groups=groups, min_margin=0.0)
     if first.error is not None:
+        hint = _whole_cone(free, base, groups, c)
         raise InvalidParameterError("speed", v, f"a speed the robot's default gait can walk "
-                                    f"(it fails: {first.error})")
+                                    f"(it fails: {first.error}){hint}")
     margin = c.min_static_margin if c.min_static_margin is not None \
         else max(0.0, first.measures.get("static_margin", (0.0,))[0])
     c = dataclasses.replace(c, min_static_margin=margin)
@@ -253,6 +254,22 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
     finally:
         if ruled is not None:
             ruled.close()
+
+
+def _whole_cone(free: Callable[..., GaitPoint], base: GaitParams, groups: Groups,
+                c: Constraints) -> str:
+    """Where the default gait fails only for the co-design's narrowed friction cone
+    (``friction_margin`` < 1: the force programs plan within ``friction_margin · μ``,
+    ``Constraints.planning_contact``), the key that changes it, as a refusal's last clause;
+    else "" (one more evaluation of the gait, made only on the way to a refusal)."""
+    if c.friction_margin >= 1:
+        return ""
+    whole = free(base, groups=groups, min_margin=0.0,
+                 constraints=dataclasses.replace(c, friction_margin=1.0))
+    if whole.error is not None:
+        return ""
+    return (f"; it walks with its forces in the whole friction cone: [codesign.constraints] "
+            f"friction_margin = 1 (now {c.friction_margin:g}), or a lower speed")
 
 
 def speed_curve(free: Callable[..., GaitPoint], groups: Groups, base: GaitParams,
