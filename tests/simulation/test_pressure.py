@@ -36,8 +36,8 @@ def test_inner_stance_leaves_out_each_stances_grace_at_both_ends_across_the_cycl
 def test_point_feet_have_no_margin(feedforward):
     """The hexapod stands on point feet: no sole, no margin, and its runs record none."""
     run = feedforward.with_springs
-    assert pressure.cop_margin(run.sim, feedforward.motion, run.trajectory,
-                               slice(0, run.trajectory.n)) is None
+    assert pressure.cop_margins(run.sim, feedforward.motion, run.trajectory,
+                                slice(0, run.trajectory.n)) == (None, None)
     assert run.cop_margin is None and feedforward.baseline.cop_margin is None
 
 
@@ -64,8 +64,8 @@ def test_a_run_whose_sole_rode_its_edge_is_tipped_not_walks(prepared, monkeypatc
     from hexaleg.simulation.run import VERDICTS, Settings, simulate, verdict_meanings
 
     assert set(verdict_meanings()) == set(VERDICTS) and "tipped" in VERDICTS
-    monkeypatch.setattr(pressure, "cop_margin", lambda *a, **k: pressure.CopMargin(
-        0.0, "LF", "toe", 1.0, 4.5))
+    edge = pressure.CopMargin(0.0, "LF", "toe", 1.0, 4.5)
+    monkeypatch.setattr(pressure, "cop_margins", lambda *a, **k: (edge, edge))
     quick = Settings(cycles=2, evaluate=1, force_samples=0)
     s = simulate(prepared.robot, prepared.motion, prepared.motor, None, quick,
                  prepared=prepared)

@@ -7,7 +7,7 @@ biped robot. Center of pressure — zero moment point", IEEE Trans. SMC-A 34(5),
 it lies within the sole, and a foot whose centre of pressure reaches the sole's edge starts to
 roll about it (Vukobratović & Borovac, "Zero-moment point — thirty five years of its life",
 Int. J. Humanoid Robotics 1(1), 2004). Its distance to the nearest edge is the margin the walk
-kept: :func:`cop_margin` takes its smallest value over the planned stances of the evaluated
+kept: :func:`cop_margins` takes its smallest value over the planned stances of the evaluated
 window and says where (the leg and the edge) and when. A stance's first and last
 :data:`~hexaleg.simulation.measures.LOSS_GRACE` are left out, as the contact losses leave them
 out: there the load is handed over, and the first or last corner to touch carries all of it,
@@ -64,9 +64,9 @@ class CopMargin:
 
 
 def tipping(margin: CopMargin | None) -> str | None:
-    """Why a run on soles "tipped" (its single-support margin, :func:`cop_margin` with
-    ``alone``, under :data:`TIP_MARGIN`: the robot rotated about its one sole's edge), or None
-    when it kept off the edges (or has no soles, or no single support)."""
+    """Why a run on soles "tipped" (its single-support margin, the second of
+    :func:`cop_margins`, under :data:`TIP_MARGIN`: the robot rotated about its one sole's
+    edge), or None when it kept off the edges (or has no soles, or no single support)."""
     if margin is None or margin.distance >= TIP_MARGIN:
         return None
     return (f"in single support the {margin.leg} sole's centre of pressure reached its "
@@ -95,36 +95,39 @@ def inner_stance(motion: Motion) -> np.ndarray:
     return out
 
 
-def cop_margin(sim: SimModel, motion: Motion, traj: Trajectory, window: slice,
-               samples: int = PRESSURE_SAMPLES, *, alone: bool = False) -> CopMargin | None:
-    """The smallest centre-of-pressure margin of the robot's soles over the planned stances
+def cop_margins(sim: SimModel, motion: Motion, traj: Trajectory, window: slice,
+                samples: int = PRESSURE_SAMPLES) -> tuple[CopMargin | None, CopMargin | None]:
+    """The smallest centre-of-pressure margins of the robot's soles over the planned stances
     (:func:`inner_stance`) of ``window``, from the corner contact forces
-    (``mj_contactForce``'s normal component) at the recorded states.
+    (``mj_contactForce``'s normal component) at the recorded states, in one pass: over every
+    planted sole, and over the single supports alone.
 
-    With ``alone``, only over the single supports: a sole the plan has as the only foot on the
-    ground. There the sole's centre of pressure is the whole robot's ZMP, and on the sole's
-    edge the robot rotates about it (Vukobratović & Borovac 2004): the robot's own margin. In
-    a double support a lightly loaded sole may roll onto an edge while the other carries the
-    body (the test biped's heel, 27 N of its 161 N, under position servos).
+    The second is the robot's own margin: in a single support (a sole the plan has as the only
+    foot on the ground) the sole's centre of pressure is the whole robot's ZMP, and on the
+    sole's edge the robot rotates about it (Vukobratović & Borovac 2004). In a double support
+    a lightly loaded sole may roll onto an edge while the other carries the body (the test
+    biped's heel, 27 N of its 161 N, under position servos): the first margin counts it, the
+    second does not. The single supports are among the same sampled steps, so the second is
+    never below the first.
 
     Args:
         sim: The model.
         motion: The plan (its stances).
         traj: The run.
         window: The evaluated steps.
-        samples: Steps looked at, at most (≥ 1), before ``alone`` leaves out the others.
-        alone: Only the single supports.
+        samples: Steps looked at, at most (≥ 1).
 
     Returns:
-        The margin, or None for a robot without soles (or whose planted soles carried no load
-        at the steps looked at).
+        ``(every stance, single supports)``: each a margin, or None for a robot without soles
+        (or whose planted soles carried no load at the steps looked at; the second also where
+        the plan has no single support there).
     """
     import mujoco
 
     robot, m = sim.robot, sim.model
     soles = [i for i, leg in enumerate(robot.legs) if leg.name in robot.soles]
     if not soles:
-        return None
+        return None, None
     sites = {i: [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_SITE,
                                    corner_site(robot.legs[i].name, j)) for j in range(4)]
              for i in soles}
@@ -133,12 +136,12 @@ def cop_margin(sim: SimModel, motion: Motion, traj: Trajectory, window: slice,
     rows = rows[np.unique(np.linspace(0, len(rows) - 1, min(samples, len(rows))).astype(int))]
     k = planned_index(motion, traj.t[rows])
     planted = inner_stance(motion)[k]
-    if alone:
-        planted &= (motion.stance[k].astype(bool).sum(axis=1) == 1)[:, None]
-        rows, planted = rows[planted.any(axis=1)], planted[planted.any(axis=1)]
+    single = motion.stance[k].astype(bool).sum(axis=1) == 1
     wrench = np.zeros(6)
     best: CopMargin | None = None
-    for row, on, data in zip(rows, planted, forward_states(sim, traj, rows), strict=True):
+    alone: CopMargin | None = None
+    for row, on, one, data in zip(rows, planted, single, forward_states(sim, traj, rows),
+                                  strict=True):
         load = np.zeros(len(robot.legs))
         moment = np.zeros((len(robot.legs), 3))
         con = data.contact
@@ -166,4 +169,7 @@ def cop_margin(sim: SimModel, motion: Motion, traj: Trajectory, window: slice,
             if best is None or distance < best.distance:
                 best = CopMargin(distance, robot.legs[i].name, edge, float(traj.t[row]),
                                  float(load[i]))
-    return best
+            if one and (alone is None or distance < alone.distance):
+                alone = CopMargin(distance, robot.legs[i].name, edge, float(traj.t[row]),
+                                  float(load[i]))
+    return best, alone

@@ -196,9 +196,9 @@ class Run:
             point foot, or on two longer than the balance controller holds, that the
             controller ran on: :class:`~hexaleg.simulation.falls.PointFoot`), else "".
         cop_margin: On soles, how close the centre of pressure came to a sole's edge over the
-            evaluated window (:func:`hexaleg.simulation.pressure.cop_margin`); None on point
+            evaluated window (:func:`hexaleg.simulation.pressure.cop_margins`); None on point
             feet or when it did not run to the end.
-        alone_margin: The same over the single supports only (``alone``), the robot's own
+        alone_margin: The same over the single supports only, the robot's own
             tipping margin (:func:`hexaleg.simulation.pressure.tipping`); None also when the
             gait has no single support.
     """
@@ -397,9 +397,7 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
                                    settings.force_samples) if settings.force_samples else {})
     walked = measures.walk(sim, motion, traj, window, settings.evaluate, ref.q)
     verdict, message = measures.verdict(walked, motion.distance)
-    margin = pressure.cop_margin(sim, motion, traj, window)
-    alone = None if margin is None else pressure.cop_margin(sim, motion, traj, window,
-                                                            alone=True)
+    margin, alone = pressure.cop_margins(sim, motion, traj, window)
     tipped = pressure.tipping(alone)
     if verdict == "walks" and tipped is not None:
         verdict, message = "tipped", tipped
