@@ -220,7 +220,7 @@ def per_robot(robots: list[str]) -> None:
                 study.settings, feedback=feedback, force_samples=0)).run()
             runs = (s.with_springs, s.baseline)
             simulated_time = sum(r.simulated_time for r in runs)
-            rtf = simulated_time / sum(r.wall for r in runs)
+            rtf = simulated_time / s.stepping_wall  # side by side: their spans' union
             per_cpu = simulated_time / sum(r.cpu for r in runs)
             step = s.with_springs.cpu / s.with_springs.trajectory.n
             open_step = open_step or step

@@ -221,3 +221,19 @@ def test_steps_are_checked_against_the_budget_before_anything_is_allocated(robot
     motion = hexaleg.gait(robot, hexaleg.GaitParams(samples=100))
     with pytest.raises(InvalidParameterError, match="invalid timestep = 1e-08"):
         simulate(robot, motion, None, None, Settings(timestep=1e-8))
+
+
+@pytest.mark.parametrize("feedback", ["off", "on"])
+def test_the_runs_stepped_side_by_side_are_the_runs_stepped_alone(prepared, optimal, feedback):
+    """The springs' run and the baseline step at once on two threads (``side_by_side``); each
+    is the same to the bit as the same run stepped alone on this thread, open loop and closed
+    loop (the balance controllers' Python updates interleave with the other run's steps)."""
+    s = simulate(prepared.robot, prepared.motion, prepared.motor, optimal.springs,
+                 dataclasses.replace(QUICK, feedback=feedback), prepared=prepared)
+    for r, a in ((s.with_springs, s.analysis), (s.baseline, s.baseline_analysis)):
+        assert r.feedback == (feedback == "on")
+        alone = run_module.simulate_run(r.name, r.sim, s.motion, a, s.settings, r.feedback)
+        for field in ("qpos", "qvel", "servo", "controls"):
+            np.testing.assert_array_equal(getattr(alone.trajectory, field),
+                                          getattr(r.trajectory, field))
+        assert alone.metrics == r.metrics and alone.verdict == r.verdict

@@ -16,6 +16,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import time
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -189,6 +190,8 @@ class Run:
             controller's updates between them), s.
         cpu: CPU time of the thread that stepped, over the same span, s: ``wall`` less the
             time the machine gave to other processes (:attr:`cpu_share`).
+        started: When its stepping began, s on :func:`time.perf_counter`'s clock (two runs
+            that stepped at once overlap: :attr:`Simulation.stepping_wall`).
         feedback: Whether the balance controller ran (:mod:`hexaleg.simulation.balance`).
         constrained: Of its updates, the fraction at which a friction cone bound the force
             correction (0 open loop).
@@ -216,6 +219,7 @@ class Run:
     feedback: bool = False
     constrained: float = 0.0
     cpu: float = 0.0
+    started: float = 0.0
     reason: str = ""
     cop_margin: pressure.CopMargin | None = None
     alone_margin: pressure.CopMargin | None = None
@@ -276,6 +280,15 @@ class Simulation:
     def walks(self) -> bool:
         """Whether both runs walked."""
         return self.with_springs.walks and self.baseline.walks
+
+    @property
+    def stepping_wall(self) -> float:
+        """Wall-clock time in which one of the two runs stepped, s: the union of their
+        stepping spans (:func:`side_by_side` steps them at once; a baseline reused from
+        another simulation stepped apart, its span its own)."""
+        spans = sorted((r.started, r.started + r.wall) for r in (self.with_springs, self.baseline))
+        (a0, a1), (b0, b1) = spans
+        return (a1 - a0) + max(0.0, b1 - max(a1, b0))
 
     def predicted(self, metric: str = "electrical") -> tuple[float, float, float]:
         """The analysis' ``(with springs, baseline, saving)`` of a metric (J or N·m per cycle,
@@ -386,11 +399,11 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
     if traj.verdict == "fell":
         cause = falls.fall_cause(sim, motion, traj, feedback, analysis.tau_motor)
         return Run(name, sim, traj, traj.verdict, f"{traj.message}; {cause.message}",
-                   wall=wall, feedback=feedback, constrained=bound, cpu=cpu,
+                   wall=wall, feedback=feedback, constrained=bound, cpu=cpu, started=start,
                    reason="" if cause.stand is None else cause.stand.reason)
     if traj.verdict != "ran":
         return Run(name, sim, traj, traj.verdict, traj.message, wall=wall, feedback=feedback,
-                   constrained=bound, cpu=cpu)
+                   constrained=bound, cpu=cpu, started=start)
     window = slice((settings.cycles - settings.evaluate) * steps, settings.cycles * steps)
     cycles = measures.cycle_energies(sim, traj, window, settings.evaluate, analysis.motor)
     forces = (measures.foot_forces(sim, motion, traj, window, analysis.forces,
@@ -402,8 +415,24 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
     if verdict == "walks" and tipped is not None:
         verdict, message = "tipped", tipped
     return Run(name, sim, traj, verdict, message, cycles, measures.mean_metrics(cycles),
-               walked, forces, wall, feedback, bound, cpu, cop_margin=margin,
+               walked, forces, wall, feedback, bound, cpu, start, cop_margin=margin,
                alone_margin=alone)
+
+
+def side_by_side(jobs: dict[str, tuple[SimModel, Analysis]], motion: Motion,
+                 settings: Settings, feedback: bool) -> dict[str, Run]:
+    """:func:`simulate_run` of each ``name → (model, analysis)``, on a thread each: MuJoCo's
+    rollout releases Python's lock while it steps, so the springs' run and the baseline step on
+    two cores at once (closed loop, one steps while the other's controller updates). Each run
+    has its own model, MuJoCo data and controller, so its steps are the same to the bit as
+    alone (``tests/simulation/test_run.py``); its ``wall`` and ``cpu`` are its own thread's."""
+    if len(jobs) < 2:
+        return {name: simulate_run(name, sim, motion, a, settings, feedback)
+                for name, (sim, a) in jobs.items()}
+    with ThreadPoolExecutor(max_workers=len(jobs)) as pool:
+        futures = {name: pool.submit(simulate_run, name, sim, motion, a, settings, feedback)
+                   for name, (sim, a) in jobs.items()}
+        return {name: future.result() for name, future in futures.items()}
 
 
 def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None = None,
@@ -474,17 +503,17 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
     runs = {} if baseline is None or baseline.baseline.feedback != closed else {
         "baseline": baseline.baseline}
     models: dict[str, SimModel] = {}
-    for name, s, a in (("springs", springs, analysis), ("baseline", SpringSet(), base)):
-        if name in runs:
-            continue
-        models[name] = build_model(robot, motion, prepared.motor, springs=s, servo=servo,
-                                   ground=ground, timestep=dt, like=like)
-        like = like or models[name]
-        runs[name] = simulate_run(name, models[name], motion, a, settings, closed)
+    for name, s in (("springs", springs), ("baseline", SpringSet())):
+        if name not in runs:
+            models[name] = build_model(robot, motion, prepared.motor, springs=s, servo=servo,
+                                       ground=ground, timestep=dt, like=like)
+            like = like or models[name]
+    analyses = {"springs": analysis, "baseline": base}
+    runs |= side_by_side({name: (sim, analyses[name]) for name, sim in models.items()},
+                         motion, settings, closed)
     if settings.feedback == "auto" and not closed and any(r.verdict == "fell"
                                                           for r in runs.values()):
-        for name, a in (("springs", analysis), ("baseline", base)):  # open loop fell: close it
-            sim = models.get(name) or runs[name].sim
-            runs[name] = simulate_run(name, sim, motion, a, settings, True)
+        runs = side_by_side({name: (models.get(name) or runs[name].sim, analyses[name])
+                             for name in analyses}, motion, settings, True)  # fell: close it
     return Simulation(robot, motion, settings, springs, analysis, base, runs["springs"],
                       runs["baseline"], prepared, time.perf_counter() - start)

@@ -153,10 +153,11 @@ def feedback_data(s: Simulation) -> dict[str, Any]:
 
 
 def _realtime(s: Simulation) -> float:
-    """Simulated time of both runs per wall-clock time of their stepping."""
-    runs = (s.with_springs, s.baseline)
-    wall = sum(r.wall for r in runs)
-    return sum(r.simulated_time for r in runs) / wall if wall > 0 else math.inf
+    """Simulated time of both runs per wall-clock time of their stepping
+    (:attr:`~hexaleg.simulation.run.Simulation.stepping_wall`: the two step at once)."""
+    wall = s.stepping_wall
+    simulated = s.with_springs.simulated_time + s.baseline.simulated_time
+    return simulated / wall if wall > 0 else math.inf
 
 
 BUSY = 0.9
@@ -168,25 +169,28 @@ def timing_data(s: Simulation) -> dict[str, Any]:
     """What ``simulate.json``'s real-time factor counts, and what it leaves out.
 
     ``realtime_factor`` is the simulated time of both runs over the wall-clock time of their
-    stepping (MuJoCo's steps, and closed loop the balance controller's updates), nothing else;
-    ``cpu_realtime_factor`` the same over the stepping thread's CPU time (what a core of its own
-    gives: the wall factor times 1 / ``cpu_share``); ``simulation_realtime_factor`` over the wall
+    stepping (MuJoCo's steps, and closed loop the balance controller's updates), nothing else:
+    the two runs step at once, each on a thread of its own
+    (:func:`hexaleg.simulation.run.side_by_side`), so it is their union's wall time
+    (``stepping_wall``), and two cores give up to twice one's factor; ``cpu_realtime_factor``
+    the same over the stepping threads' CPU time (what one core gives, the runs one after the
+    other); ``cpu_share`` each thread's CPU time over its own wall time (1 where each had a
+    core, ½ where another process shared it); ``simulation_realtime_factor`` over the wall
     time of the whole :func:`hexaleg.simulation.run.simulate` (the analyses, the models'
     building, both runs and their measures). The command's imports, its inputs and the files it
     writes are in none of them.
     """
     runs = (s.with_springs, s.baseline)
     simulated = sum(r.simulated_time for r in runs)
-    wall, cpu = sum(r.wall for r in runs), sum(r.cpu for r in runs)
-    share = cpu / wall if wall > 0 else 1.0
+    wall, cpu, walls = s.stepping_wall, sum(r.cpu for r in runs), sum(r.wall for r in runs)
+    share = cpu / walls if walls > 0 else 1.0
     factor, per_cpu = _realtime(s), simulated / cpu if cpu > 0 else math.inf
     whole = simulated / s.wall if s.wall > 0 else math.inf
-    text = (f"{factor:.3g}× real time: {simulated:.3g} s simulated (both runs) in "
-            f"{wall:.3g} s of stepping; the whole simulation (analysis, models, runs, measures) "
-            f"{s.wall:.3g} s, {whole:.3g}× real time")
+    text = (f"{factor:.3g}× real time: {simulated:.3g} s simulated (both runs, at once) in "
+            f"{wall:.3g} s of stepping, {per_cpu:.3g}× per CPU second; the whole simulation "
+            f"(analysis, models, runs, measures) {s.wall:.3g} s, {whole:.3g}× real time")
     if share < BUSY:
-        text += (f"; the stepping got {share:.0%} of a core (the machine was busy): "
-                 f"{per_cpu:.3g}× per CPU second")
+        text += (f"; each run's stepping got {share:.0%} of a core (the machine was busy)")
     return {"simulated_time": quantity(simulated, "s"), "stepping_wall": quantity(wall, "s"),
             "stepping_cpu": quantity(cpu, "s"), "cpu_share": quantity(share, "1"),
             "realtime_factor": quantity(factor, "1"),
