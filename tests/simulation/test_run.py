@@ -237,3 +237,40 @@ def test_the_runs_stepped_side_by_side_are_the_runs_stepped_alone(prepared, opti
             np.testing.assert_array_equal(getattr(alone.trajectory, field),
                                           getattr(r.trajectory, field))
         assert alone.metrics == r.metrics and alone.verdict == r.verdict
+
+
+def test_a_run_stops_between_chunks_when_told(feedforward):
+    """A run whose ``stop`` event is set ends before its next chunk with ``Stopped`` (the run
+    beside it failed, or Ctrl-C reached the thread that waits for both)."""
+    import threading
+
+    from hexaleg.simulation import stepping
+
+    r, s = feedforward.baseline, feedforward
+    stop = threading.Event()
+    stop.set()
+    with pytest.raises(stepping.Stopped, match=r"t = 0\.0000 s"):
+        run_module.simulate_run(r.name, r.sim, s.motion, s.baseline_analysis, s.settings,
+                                stop=stop)
+
+
+@pytest.mark.parametrize("failing, other", [("springs", "baseline"), ("baseline", "springs")])
+@pytest.mark.parametrize("error", [KeyboardInterrupt, ValueError])
+def test_when_one_run_fails_the_other_is_told_to_stop(prepared, optimal, monkeypatch, error,
+                                                      failing, other):
+    """Runs side by side: where one ends in an error (or Ctrl-C), the other's ``stop`` is set
+    and the error is what ``simulate`` raises — whichever of the two failed (the one waited
+    for second too: a wait in order would block on the other's whole run)."""
+    told = {}
+
+    def fake(name, sim, motion, analysis, settings, feedback=False, stop=None):
+        if name == failing:
+            raise error("the run failed")
+        told[name] = stop.wait(timeout=60)  # the real run checks it between its chunks
+        raise run_module.stepping.Stopped("stopped")
+
+    monkeypatch.setattr(run_module, "simulate_run", fake)
+    with pytest.raises(error, match="the run failed"):
+        simulate(prepared.robot, prepared.motion, prepared.motor, optimal.springs, QUICK,
+                 prepared=prepared)
+    assert told == {other: True}

@@ -15,8 +15,9 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import threading
 import time
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import FIRST_EXCEPTION, ThreadPoolExecutor, wait
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -369,7 +370,8 @@ def automatic_timestep(robot: Robot, motion: Motion, motor: Any, servo: Servo,
 
 
 def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
-                 settings: Settings, feedback: bool = False) -> Run:
+                 settings: Settings, feedback: bool = False,
+                 stop: threading.Event | None = None) -> Run:
     """Run one model for :attr:`Settings.cycles` cycles and measure the last ones.
 
     Args:
@@ -380,6 +382,8 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
         settings: The settings.
         feedback: Close the loop on the body (:class:`~hexaleg.simulation.balance.Balance`,
             every :data:`~hexaleg.simulation.balance.CONTROL_PERIOD`).
+        stop: Set from another thread, the stepping ends at its next chunk
+            (:class:`~hexaleg.simulation.stepping.Stopped`).
     """
     dt = sim.timestep
     steps = round(motion.period / dt)
@@ -393,7 +397,7 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
     start, cpu = time.perf_counter(), time.thread_time()
     traj = stepping.run(sim, ctrl, qpos0, qvel0, float(np.mean(motion.q[:, 2])),
                         None if controller is None else controller.correction,
-                        max(1, round(balance.CONTROL_PERIOD / dt)))
+                        max(1, round(balance.CONTROL_PERIOD / dt)), stop)
     wall, cpu = time.perf_counter() - start, time.thread_time() - cpu
     bound = controller.constrained / max(controller.updates, 1) if controller else 0.0
     if traj.verdict == "fell":
@@ -425,14 +429,25 @@ def side_by_side(jobs: dict[str, tuple[SimModel, Analysis]], motion: Motion,
     rollout releases Python's lock while it steps, so the springs' run and the baseline step on
     two cores at once (closed loop, one steps while the other's controller updates). Each run
     has its own model, MuJoCo data and controller, so its steps are the same to the bit as
-    alone (``tests/simulation/test_run.py``); its ``wall`` and ``cpu`` are its own thread's."""
+    alone (``tests/simulation/test_run.py``); its ``wall`` and ``cpu`` are its own thread's.
+    Where one run fails, or Ctrl-C (a kill) reaches this thread while it waits, the other
+    stops at its next chunk (:class:`~hexaleg.simulation.stepping.Stopped`), not at its end,
+    and the first error is raised."""
     if len(jobs) < 2:
         return {name: simulate_run(name, sim, motion, a, settings, feedback)
                 for name, (sim, a) in jobs.items()}
+    stop = threading.Event()
     with ThreadPoolExecutor(max_workers=len(jobs)) as pool:
-        futures = {name: pool.submit(simulate_run, name, sim, motion, a, settings, feedback)
-                   for name, (sim, a) in jobs.items()}
-        return {name: future.result() for name, future in futures.items()}
+        futures = {name: pool.submit(simulate_run, name, sim, motion, a, settings, feedback,
+                                     stop) for name, (sim, a) in jobs.items()}
+        try:
+            wait(futures.values(), return_when=FIRST_EXCEPTION)
+            for future in sorted(futures.values(), key=lambda f: not f.done()):
+                future.result()  # a failed run's error first, the other may still step
+            return {name: future.result() for name, future in futures.items()}
+        except BaseException:
+            stop.set()
+            raise
 
 
 def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None = None,

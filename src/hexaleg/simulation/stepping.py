@@ -20,6 +20,7 @@ the arrays then end there, never with NaN; the stepping stops after the chunk in
 from __future__ import annotations
 
 import math
+import threading
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -134,8 +135,15 @@ def _fall(qpos: np.ndarray, height: float, t: np.ndarray) -> tuple[int, str]:
     return k, f"the robot fell at t = {t[k]:.4f} s: {how}"
 
 
+class Stopped(Exception):
+    """A run stopped from outside between two of its chunks (its ``stop`` event set: the run
+    stepped beside it failed, or Ctrl-C reached the thread that waits for both,
+    :func:`hexaleg.simulation.run.side_by_side`)."""
+
+
 def run(sim: SimModel, controls: np.ndarray, qpos0: np.ndarray, qvel0: np.ndarray,
-        height: float, feedback: Feedback | None = None, every: int = 1) -> Trajectory:
+        height: float, feedback: Feedback | None = None, every: int = 1,
+        stop: threading.Event | None = None) -> Trajectory:
     """Step ``sim`` from ``(qpos0, qvel0)`` under ``controls``, one row per step.
 
     Args:
@@ -146,10 +154,15 @@ def run(sim: SimModel, controls: np.ndarray, qpos0: np.ndarray, qvel0: np.ndarra
         height: Planned base height, m (for the fall check).
         feedback: A controller closing the loop (:func:`closed_loop`), or None (open loop).
         every: Steps between its updates, ≥ 1.
+        stop: Set from another thread, the run ends at its next chunk (:data:`CHUNK` of
+            simulated time open loop, ``every`` steps closed loop) with :class:`Stopped`.
 
     Returns:
         The trajectory, cut where the run diverged or fell (its verdict says so); its
         controls are those applied (the feedback's included).
+
+    Raises:
+        Stopped: ``stop`` was set.
     """
     import mujoco
 
@@ -165,7 +178,7 @@ def run(sim: SimModel, controls: np.ndarray, qpos0: np.ndarray, qvel0: np.ndarra
     ctrl[:, :nj] = controls
     chunk = every if feedback is not None else max(1, round(CHUNK / m.opt.timestep))
     with untimed():  # MuJoCo's stage timers: 7 % of a step, and never read
-        qpos, qvel, sensors = closed_loop(sim, data, ctrl, feedback, chunk, height)
+        qpos, qvel, sensors = closed_loop(sim, data, ctrl, feedback, chunk, height, stop)
     controls = ctrl[:, :nj]
     stopped = n
     message = ""
@@ -214,7 +227,8 @@ def _python_loop(sim: SimModel, data: object, ctrl: np.ndarray
 
 
 def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedback | None,
-                every: int, height: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+                every: int, height: float, stop: threading.Event | None = None
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Pre-step states and their sensors, ``every`` steps at a time: with ``feedback`` closing
     the loop at each chunk's start — the state and the contact sites (``mj_kinematics``) are
     read, the controls of the next ``every`` steps move by the feedback's change (``ctrl`` is
@@ -223,7 +237,8 @@ def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedbac
     over. A base that has fallen (below :data:`FALL_HEIGHT` of its height, or rolled or pitched
     beyond :data:`FALL_TILT`, in a row the chunk recorded: :func:`run` then finds it there) or
     diverged stops the loop (the rest of the rows repeat its last state, as
-    :func:`_python_loop` leaves a diverged run)."""
+    :func:`_python_loop` leaves a diverged run); ``stop`` set raises :class:`Stopped` before
+    the next chunk."""
     import mujoco
     import mujoco.rollout
 
@@ -246,6 +261,8 @@ def closed_loop(sim: SimModel, data: object, ctrl: np.ndarray, feedback: Feedbac
     bad = mujoco.mjtWarning.mjWARN_BADQACC
     k = 0
     while k < n:
+        if stop is not None and stop.is_set():
+            raise Stopped(f"stopped from outside at t = {k * dt:.4f} s")
         mujoco.mj_setState(m, data, states[k], spec)
         end = min(n, k + every)
         if feedback is not None:
