@@ -1,7 +1,7 @@
 """What the viewer sent to Meshcat, decoded, and the synthetic walk the viewer tests draw.
 
-Imported by the tests of :mod:`hexaleg.outputs.viewer` and :mod:`hexaleg.commands.view` (``tests``
-is on the test path, like ``browser.py``).
+Imported by the tests of :mod:`hexaleg.outputs.viewer` and :mod:`hexaleg.commands.view`
+(``tests`` is on the test path, like ``browser.py``).
 """
 
 from __future__ import annotations

@@ -138,7 +138,7 @@ def second_writer(f):
 
 
 def view_params(**kw):
-    from hexaleg.commands.view import ViewParams
+    from hexaleg.outputs.viewer.show import ViewParams
 
     return lambda f: ViewParams(**kw)
 

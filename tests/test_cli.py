@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-import argparse
 import os
 import subprocess
 import sys
 
 import pytest
 
-from hexaleg.cli import build_parser, main
+from hexaleg.cli import main
 
 
 def test_help_lists_subcommands(capsys):
@@ -22,52 +21,11 @@ def test_help_lists_subcommands(capsys):
     assert "(about 5 s)" in out and "hexaleg COMMAND --help" in out
 
 
-def test_gait_summary_reports_margin_and_joint_ranges(capsys):
-    assert main(["gait"]) == 0
-    out = capsys.readouterr().out
-    assert "groups: LF RM LH | RF LM RH" in out
-    assert "stance feet per sample: min 3" in out
-    assert "LF_femur" in out
-
-
-def test_unknown_robot_lists_the_registry(capsys):
-    assert main(["gait", "--robot", "atlas"]) == 2
-    err = capsys.readouterr().err
-    assert "unknown robot 'atlas'" in err and "solo12" in err and "Traceback" not in err
-
-
-def test_robot_summary(capsys):
-    assert main(["robot"]) == 0
-    out = capsys.readouterr().out
-    assert "nq = 25, nv = 24, actuated joints = 18" in out
-    assert "LF_femur" in out
-
-
 def test_robot_bad_file_is_one_line_error(capsys, tmp_path):
     assert main(["robot", "--urdf", str(tmp_path / "x.urdf")]) == 2
     err = capsys.readouterr().err
     assert err.startswith("hexaleg robot: error: URDF file not found")
     assert "Traceback" not in err
-
-
-def test_view_choices_are_the_study_names():
-    """``view --motion/--joints/--run`` offer the study's names (``--motion`` also a log
-    file), spelled out in the parser so that building it imports neither the study nor
-    meshcat."""
-    from hexaleg.commands.view import MOTIONS
-    from hexaleg.outputs.viewer.show import JOINT_QUANTITIES
-    from hexaleg.simulation.motion_file import RUNS
-
-    sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
-    choices = {a.dest: a.choices for a in sub.choices["view"]._actions}
-    named = sub.choices["view"].get_default("func").args[2]  # --motion: these or a log FILE
-    assert tuple(named) == MOTIONS
-    assert tuple(choices["joints"]) == tuple(JOINT_QUANTITIES)
-    assert tuple(choices["run"]) == RUNS
-    code = "import sys, hexaleg.cli as c; c.build_parser(); print('meshcat' in sys.modules)"
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         check=True).stdout
-    assert out.strip() == "False"
 
 
 def test_console_script_runs():
@@ -96,29 +54,6 @@ def test_closed_pipe_is_quiet_and_reports_sigpipe():
         os.close(write_end)
     assert proc.stderr == ""
     assert proc.returncode == 141
-
-
-def test_robot_and_gait_print_the_sanity_checks(tmp_path, capsys):
-    """A URDF whose coxa link has a 0.5 m radius of gyration gets a warning naming the link;
-    the built-in robot gets none."""
-    import xml.etree.ElementTree as ET
-
-    from hexaleg.cli import main
-    from hexaleg.robot.model import DEFAULT_SRDF, DEFAULT_URDF
-
-    tree = ET.parse(DEFAULT_URDF)
-    link = next(e for e in tree.getroot().iter("link") if e.get("name") == "LF_coxa_link")
-    inertia = link.find("inertial/inertia")
-    assert inertia is not None
-    for key in ("ixx", "iyy", "izz"):
-        inertia.set(key, "0.01")
-    tree.write(tmp_path / "heavy.urdf")
-    assert main(["robot", "--urdf", str(tmp_path / "heavy.urdf"), "--srdf",
-                 str(DEFAULT_SRDF)]) == 0
-    out = capsys.readouterr().out
-    assert "warning: radius_of_gyration: link LF_coxa_link" in out
-    assert main(["robot"]) == 0 and "warning" not in capsys.readouterr().out
-    assert main(["gait"]) == 0 and "warning" not in capsys.readouterr().out
 
 
 def test_hexaleg_warnings_print_as_one_line(tmp_path, capsys):

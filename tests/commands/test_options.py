@@ -9,7 +9,7 @@ import argparse
 import pytest
 
 from hexaleg.cli import main
-from hexaleg.commands.options import check_tables, load_run
+from hexaleg.commands.options import check_tables, load_run, print_findings, print_warnings
 from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
 
 COMMANDS = {
@@ -78,3 +78,12 @@ def test_a_run_is_kept_on_the_commands_options(tmp_path):
     run = load_run(None, config, args=args)
     assert args.scenario is run and run.robot == "hexaleg" and run.gait.period == 0.8
     assert run.table("design") == {"samples": 100} and run.where == str(config)
+
+
+def test_warnings_and_findings_are_one_warning_line_each(capsys):
+    """Every command prints a run's warnings and the sanity checks' findings alike."""
+    from types import SimpleNamespace
+
+    print_warnings(["first", "second"])
+    print_findings([SimpleNamespace(message="third")])
+    assert capsys.readouterr().out == "warning: first\nwarning: second\nwarning: third\n"

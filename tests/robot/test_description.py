@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 import hexaleg
-from hexaleg.errors import ConfigError, RobotModelError, UnknownNameError
-from hexaleg.robot.description import RobotDescription
+from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError, UnknownNameError
+from hexaleg.robot.description import RobotDescription, read_description
 from hexaleg.robot.model import LegSpec
 from hexaleg.robot.registry import TROT, description, load
 
@@ -77,6 +77,20 @@ def test_own_robot_from_toml(tmp_path):
     (tmp_path / "nourdf.toml").write_text('[robot]\nname = "x"\n')
     with pytest.raises(ConfigError, match=r"missing urdf; required keys: name, urdf"):
         load(str(tmp_path / "nourdf.toml"))
+
+
+@pytest.mark.parametrize(("text", "error", "says"), [
+    ('[robot]\nname = "x"\nurdf = "x.urdf"\nspeeed = 3\n', UnknownNameError, "speeed"),
+    ('[robot]\nname = "x"\nurdf = "x.urdf"\njoint_kinds = ["a", "b"]\n'
+     '[robot.arbor_diameter]\na = -0.001\n', InvalidParameterError, r"arbor_diameter\.a"),
+])
+def test_a_bad_value_of_a_description_file_is_named(tmp_path, text, error, says):
+    """The file's table parsed (tests/robot/test_description_file.py), the description checks
+    every key and value."""
+    path = tmp_path / "robot.toml"
+    path.write_text(text)
+    with pytest.raises(error, match=says):
+        read_description(path)
 
 
 def test_a_description_names_a_catalogue_actuator(tmp_path):

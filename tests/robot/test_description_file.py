@@ -1,37 +1,46 @@
-"""Tests of hexaleg.robot.description_file: one's own robot from a TOML file."""
+"""Tests of hexaleg.robot.description_file: the ``[robot]`` table of one's own robot's TOML file
+parsed into a description's keyword arguments (its values are checked by the description:
+tests/robot/test_description.py)."""
 
 from __future__ import annotations
 
 import pytest
 from conftest import SPIDER
 
-from hexaleg.errors import ConfigError, InvalidParameterError, UnknownNameError
+from hexaleg.errors import ConfigError
 from hexaleg.robot.description import RobotDescription
-from hexaleg.robot.description_file import read_description
+from hexaleg.robot.description_file import description_table
+from hexaleg.robot.feet import LegSpec
+from hexaleg.robot.sources import EXAMPLE_ROBOT_DATA, FILES
 
 
 def test_the_test_robot_reads_with_its_paths_relative_to_the_file():
-    desc = read_description(SPIDER)
-    assert desc == RobotDescription.from_toml(SPIDER)
-    assert desc.urdf.startswith(str(SPIDER.parent))
+    data, where = description_table(SPIDER)
+    assert where == f"{SPIDER} [robot]"
+    assert data["source"] == FILES and data["urdf"] == str(SPIDER.parent / "spider.urdf")
+    assert data["heading"] == (0.0, 1.0, 0.0)  # "+y", the axis it names
+    assert RobotDescription(**data) == RobotDescription.from_toml(SPIDER)
 
 
-@pytest.mark.parametrize(("text", "error", "says"), [
-    ("[other]\nx = 1\n", ConfigError, r"\[robot\] table"),
-    ('[robot]\nname = "x"\nurdf = "x.urdf"\nstand = 3\n', ConfigError, "stand"),
-    ('[robot]\nname = "x"\nurdf = "x.urdf"\nspeeed = 3\n', UnknownNameError, "speeed"),
-    ('[robot]\nname = "x"\nurdf = "x.urdf"\njoint_kinds = ["a", "b"]\n'
-     '[robot.arbor_diameter]\na = -0.001\n', InvalidParameterError, r"arbor_diameter\.a"),
+def test_lists_become_the_descriptions_tuples_and_legs_its_specs(tmp_path):
+    """Paths of another source stay as given (relative to that source's directory)."""
+    path = tmp_path / "robot.toml"
+    path.write_text(f'[robot]\nname = "x"\nurdf = "x/x.urdf"\nsource = "{EXAMPLE_ROBOT_DATA}"\n'
+                    'joint_kinds = ["a", "b"]\nroot_offset = [0.0, 0.0, 0.1]\n'
+                    '[[robot.legs]]\nname = "LF"\njoints = ["j1", "j2"]\nfoot = "f"\n')
+    data, _ = description_table(path)
+    assert data["urdf"] == "x/x.urdf"
+    assert data["joint_kinds"] == ("a", "b") and data["root_offset"] == (0.0, 0.0, 0.1)
+    assert data["legs"] == (LegSpec("LF", ("j1", "j2"), "f"),)
+
+
+@pytest.mark.parametrize(("text", "says"), [
+    ("[other]\nx = 1\n", r"\[robot\] table"),
+    ('[robot]\nname = "x"\nurdf = "x.urdf"\nstand = 3\n', "stand"),
+    ('[robot]\nname = "x"\nurdf = "x.urdf"\nlegs = 3\n', r"\[\[robot.legs\]\]"),
 ])
-def test_a_bad_description_file_is_named(tmp_path, text, error, says):
+def test_a_bad_description_file_is_named(tmp_path, text, says):
     path = tmp_path / "robot.toml"
     path.write_text(text)
-    with pytest.raises(error, match=says):
-        read_description(path)
-
-
-def test_the_reader_is_the_description_s_own():
-    """It lives with the description it makes (from_toml calls it); imported here too."""
-    from hexaleg.robot import description
-
-    assert read_description is description.read_description
+    with pytest.raises(ConfigError, match=says):
+        description_table(path)

@@ -87,7 +87,7 @@ def test_talos_sole_lies_inside_its_foots_collision_mesh_underside():
     corner of the sole lies inside its convex hull."""
     from scipy.spatial import Delaunay
 
-    from hexaleg.robot.description import example_robot_data_dir
+    from hexaleg.robot.sources import example_robot_data_dir
 
     raw = (example_robot_data_dir() / "talos_data" / "meshes" / "v2"
            / "ankle_X_collision.stl").read_bytes()  # binary STL: 80-byte header, count, facets

@@ -13,6 +13,9 @@ or ``[codesign]`` value is the same named error in ``hexaleg gait``, ``report``,
 command ran with a log, the log's quality figures are printed and written to the command's JSON
 file as ``motion_quality`` (:func:`hexaleg.scenario.logged.quality_data`). The parser imports
 this module, so the loaders are imported only when a run is loaded.
+
+:func:`print_warnings` prints a run's warnings, :func:`print_findings` the sanity checks'
+findings: one ``warning:`` line each, the same in every command.
 """
 
 from __future__ import annotations
@@ -20,7 +23,7 @@ from __future__ import annotations
 import argparse
 import functools
 import sys
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -178,5 +181,17 @@ def progress_of(args: argparse.Namespace, command: str) -> Callable[[str], None]
     return functools.partial(say, command)
 
 
+def print_warnings(lines: Sequence[str]) -> None:
+    """Print a run's warnings (:meth:`hexaleg.scenario.scenario.Scenario.warnings`), one
+    ``warning:`` line each."""
+    for line in lines:
+        print(f"warning: {line}")
+
+
+def print_findings(findings: list) -> None:
+    """Print the sanity checks' findings (:mod:`hexaleg.robot.sanity`) as warnings."""
+    print_warnings([finding.message for finding in findings])
+
+
 __all__ = ["CYCLE_HELP", "MOTION_HELP", "add_motion_option", "add_quiet", "check_tables",
-           "load_run", "progress_of", "say"]
+           "load_run", "print_findings", "print_warnings", "progress_of", "say"]

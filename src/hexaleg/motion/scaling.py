@@ -58,9 +58,10 @@ from hexaleg.motion.params import GaitParams, default_groups
 from hexaleg.motion.sanity import speed_ratio
 from hexaleg.motion.stands import HOLDS, longest_stand
 from hexaleg.motion.trajectory import Motion
-from hexaleg.robot.description import BUILTIN, RobotDescription
+from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.model import Robot
 from hexaleg.robot.registry import description
+from hexaleg.robot.sources import BUILTIN
 from hexaleg.units import G
 
 REFERENCE_HIP_HEIGHT = 0.0912703

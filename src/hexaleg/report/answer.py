@@ -166,7 +166,7 @@ def _quick(cfg: ReportConfig, robot: Robot
     """The quick answer (module docstring), its springs, or None and why not."""
     from hexaleg.design.chain.chain import DesignChain
     from hexaleg.design.chain.config import DesignParams
-    from hexaleg.design.chain.result import candidate_data
+    from hexaleg.design.chain.records import candidate_data
     what = "no quick answer"
     if cfg.payload is not None:
         return None, None, (f"{what}: this report carries a payload, hexaleg design designs "

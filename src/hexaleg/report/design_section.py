@@ -128,7 +128,7 @@ def _check_finite(path: Path, value: Any, where: str) -> None:
 def recommendation(rec: Mapping[str, Any], metric: str, samples: int, pays: bool
                    ) -> dict[str, Any]:
     """The answer's common keys from a ``recommended`` entry of ``design.json``
-    (:func:`hexaleg.design.chain.result.candidate_data`).
+    (:func:`hexaleg.design.chain.records.candidate_data`).
 
     Returns:
         ``{label, family, groups, pays, metric, samples, saving, savings, net_saving,

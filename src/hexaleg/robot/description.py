@@ -15,14 +15,13 @@ Legs get hexaleg's canonical names whatever the URDF calls them (``LF RF LH RH``
 quadrupeds), so leg groups mean the same on every robot. The standing pose is also stored as
 ``"stand"``, the pose :mod:`hexaleg.motion.legged` takes its footholds and body height from.
 
-The quadrupeds' files come from the installed ``example-robot-data`` distribution (a cmeel
-package without a Python module), located through :mod:`importlib.metadata`, never from the
-network.
+Where the files come from (hexaleg's own, the installed example-robot-data, paths as given) is
+:mod:`hexaleg.robot.sources`; the TOML file's format and its parsing,
+:mod:`hexaleg.robot.description_file`.
 """
 
 from __future__ import annotations
 
-import importlib.metadata
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -32,27 +31,19 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.checks import real
-from hexaleg.config import from_mapping, load_toml
-from hexaleg.errors import ConfigError, InvalidParameterError, RobotModelError, UnknownNameError
+from hexaleg.config import from_mapping
+from hexaleg.errors import InvalidParameterError, UnknownNameError
 from hexaleg.robot import fields
-from hexaleg.robot.fields import FrozenTable, axis, check_stand, heading, legs_table, plain
-from hexaleg.robot.model import AUTO, URDF_DIR, LegSpec, Robot, load_robot
+from hexaleg.robot.description_file import description_table
+from hexaleg.robot.fields import FrozenTable, check_stand, heading, plain
+from hexaleg.robot.model import AUTO, LegSpec, Robot, load_robot
 from hexaleg.robot.root import check_root
 from hexaleg.robot.soles import Sole, flat_stand, sole_of
+from hexaleg.robot.sources import EXAMPLE_ROBOT_DATA, FILES, SOURCES, source_dir
 from hexaleg.robot.sphere_feet import settle_sphere_feet
 
 if TYPE_CHECKING:
     from hexaleg.robot.actuator import Actuator
-
-BUILTIN = "hexaleg"
-"""Files source of the robot shipped with hexaleg (``urdf/hexaleg.urdf`` and ``.srdf``)."""
-EXAMPLE_ROBOT_DATA = "example-robot-data"
-"""Files source: the installed example-robot-data distribution (paths relative to its
-``share/example-robot-data/robots`` directory)."""
-FILES = "files"
-"""Files source: paths as given (absolute, or relative to the working directory; a TOML
-description's relative paths are made relative to its own directory)."""
-SOURCES: tuple[str, ...] = (BUILTIN, EXAMPLE_ROBOT_DATA, FILES)
 
 _FOUND_LEGS: dict[tuple[str, str, tuple[float, float, float]], tuple[str, ...]] = {}
 """Leg names found in a URDF per (name, URDF path, heading), for
@@ -65,44 +56,20 @@ STAND = "stand"
 """The pose name :mod:`hexaleg.motion.legged` uses for footholds and body height."""
 
 
-def example_robot_data_dir() -> Path:
-    """The ``share/example-robot-data/robots`` directory of the installed example-robot-data.
-
-    Found from the distribution's file list (:func:`importlib.metadata.distribution`), so it does
-    not depend on where the package is installed nor on the cmeel prefix's name.
-
-    Returns:
-        The directory holding ``<robot>_description/`` folders.
-
-    Raises:
-        RobotModelError: example-robot-data is not installed, or its file list has no robots.
-    """
-    try:
-        dist = importlib.metadata.distribution(EXAMPLE_ROBOT_DATA)
-    except importlib.metadata.PackageNotFoundError:
-        raise RobotModelError("the example-robot-data package is not installed; "
-                              "pip install example-robot-data") from None
-    for f in dist.files or ():
-        parts = f.parts
-        for i in range(len(parts) - 2):
-            if parts[i:i + 3] == ("share", "example-robot-data", "robots"):
-                return Path(str(dist.locate_file(Path(*parts[:i + 3]))))
-    raise RobotModelError(f"example-robot-data {dist.version} has no share/example-robot-data/"
-                          "robots directory in its file list")
-
-
 @dataclass(frozen=True)
 class RobotDescription:
     """How to load one legged robot (paths, standing pose, legs, joint classes, default gait).
 
     Attributes:
         name: Registry name, e.g. ``"solo12"``; the loaded robot's name.
-        urdf: URDF path relative to the source's directory (``hexaleg.robot.model.URDF_DIR``,
+        urdf: URDF path relative to the source's directory
+            (:func:`hexaleg.robot.sources.source_dir`: ``hexaleg.robot.model.URDF_DIR``,
             example-robot-data's ``share/example-robot-data/robots``, or as given for
-            :data:`FILES`).
+            :data:`~hexaleg.robot.sources.FILES`).
         title: Human-readable name and maker (default: the name).
-        source: Where the files come from: :data:`BUILTIN`, :data:`EXAMPLE_ROBOT_DATA` or
-            :data:`FILES` (default).
+        source: Where the files come from: :data:`~hexaleg.robot.sources.BUILTIN`,
+            :data:`~hexaleg.robot.sources.EXAMPLE_ROBOT_DATA` or
+            :data:`~hexaleg.robot.sources.FILES` (default).
         srdf: SRDF path relative to the same directory, or None.
         stand: The standing pose: the name of an SRDF ``group_state`` (e.g. ``"standing"``);
             joint name → angle (rad), leg joints not named at Pinocchio's neutral value; or
@@ -128,8 +95,8 @@ class RobotDescription:
             every joint, or a table joint class → name (``{femur = "XM430-W350", …}``; classes
             not named get a generic actuator); None when the catalogue has none (then
             :meth:`actuator` builds one per class from the URDF limits).
-        mesh_dirs: Where ``package://`` mesh URIs resolve, for :data:`FILES` (the other sources
-            know their own).
+        mesh_dirs: Where ``package://`` mesh URIs resolve, for
+            :data:`~hexaleg.robot.sources.FILES` (the other sources know their own).
         heading: The base axis that points forward, ``[x, y, 0]`` (:attr:`Robot.heading`).
         max_outer_diameter: Joint class → largest outer diameter of a spring on its joints, m;
             default the links' width (:func:`hexaleg.design.springs.parts.spring_outer_diameter`).
@@ -323,28 +290,23 @@ class RobotDescription:
         (:func:`read_description`: the format and its errors)."""
         return read_description(path)
 
-    def _dir(self) -> Path:
-        if self.source == EXAMPLE_ROBOT_DATA:
-            return example_robot_data_dir()
-        return URDF_DIR if self.source == BUILTIN else Path()
-
     @property
     def urdf_path(self) -> Path:
         """The URDF file, resolved in the installed source."""
-        return self._dir() / self.urdf
+        return source_dir(self.source) / self.urdf
 
     @property
     def srdf_path(self) -> Path | None:
         """The SRDF file, resolved in the installed source, or None."""
-        return None if self.srdf is None else self._dir() / self.srdf
+        return None if self.srdf is None else source_dir(self.source) / self.srdf
 
     @property
     def package_dirs(self) -> tuple[Path, ...]:
         """Where ``package://`` mesh URIs resolve: the URDFs of example-robot-data name meshes
         ``package://example-robot-data/robots/…``, so the directory holding
-        ``example-robot-data/``; :attr:`mesh_dirs` for :data:`FILES`."""
+        ``example-robot-data/``; :attr:`mesh_dirs` for :data:`~hexaleg.robot.sources.FILES`."""
         if self.source == EXAMPLE_ROBOT_DATA:
-            return (self._dir().parent.parent,)
+            return (source_dir(self.source).parent.parent,)
         return tuple(Path(d) for d in self.mesh_dirs)
 
     def load(self) -> Robot:
@@ -419,28 +381,9 @@ class RobotDescription:
 
 
 def read_description(path: str | Path) -> RobotDescription:
-    """A description of one's own robot from the ``[robot]`` table of a TOML file.
-
-    Example (relative paths are relative to the TOML file; ``source`` defaults to
-    :data:`FILES`)::
-
-        [robot]
-        name = "myquad"
-        title = "My quadruped"
-        urdf = "myquad.urdf"
-        srdf = "myquad.srdf"          # optional
-        stand = "standing"            # a group_state, or a table {joint = angle_rad}
-        joint_kinds = ["haa", "hfe", "kfe"]
-        spring_class = "kfe"
-        mesh_dirs = ["."]             # where package:// URIs resolve
-        [robot.gait]                  # GaitParams keys (hexaleg.motion.params)
-        period = 0.5
-        groups = [["LF", "RH"], ["RF", "LH"]]
-        [[robot.legs]]
-        name = "LF"
-        joints = ["LF_HAA", "LF_HFE", "LF_KFE"]
-        foot = "LF_FOOT"
-        # ... one [[robot.legs]] table per leg
+    """A description of one's own robot from the ``[robot]`` table of a TOML file: the table
+    parsed (:func:`hexaleg.robot.description_file.description_table`: the format, relative paths
+    relative to the file), every value checked by the description.
 
     Args:
         path: The TOML file.
@@ -450,33 +393,9 @@ def read_description(path: str | Path) -> RobotDescription:
         :meth:`~hexaleg.robot.description.RobotDescription.load`).
 
     Raises:
-        ConfigError: the file cannot be read, has no ``[robot]`` table or no
-            ``[[robot.legs]]`` tables, or a value has the wrong type.
+        ConfigError: the file cannot be read, has no ``[robot]`` table, or a value has the wrong
+            type.
         UnknownNameError: an unknown key (the message lists the valid keys).
         InvalidParameterError: a value out of range.
     """
-    path = Path(path)
-    where = f"{path} [robot]"
-    table = load_toml(path).get("robot")
-    if not isinstance(table, Mapping):
-        raise ConfigError(f"{path}: expected a [robot] table")
-    data = dict(table)
-    if "legs" in data:
-        data["legs"] = legs_table(data["legs"], where)
-    for key in ("joint_kinds", "mesh_dirs", "heading", "root_offset"):
-        if isinstance(data.get(key), list):
-            data[key] = tuple(data[key])
-    data.setdefault("source", FILES)
-    if data["source"] == FILES:
-        for key in ("urdf", "srdf"):
-            if isinstance(data.get(key), str):
-                data[key] = str(path.parent / data[key])
-        if isinstance(data.get("mesh_dirs"), list):
-            data["mesh_dirs"] = [str(path.parent / d) if isinstance(d, str) else d
-                                 for d in data["mesh_dirs"]]
-    if not isinstance(data.get("stand", ""), (str, Mapping)):
-        raise ConfigError(f"{where}.stand = {data['stand']!r}; expected a group_state name, "
-                          "a table of joint angles or {body_height, feet}")
-    if isinstance(data.get("heading"), str):
-        data["heading"] = axis(data["heading"], where)
-    return from_mapping(RobotDescription, data, where)
+    return from_mapping(RobotDescription, *description_table(path))

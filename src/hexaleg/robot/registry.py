@@ -18,8 +18,9 @@ from types import MappingProxyType
 
 from hexaleg.checks import typed
 from hexaleg.errors import InvalidParameterError, UnknownNameError
-from hexaleg.robot.description import BUILTIN, EXAMPLE_ROBOT_DATA, STAND, RobotDescription
+from hexaleg.robot.description import STAND, RobotDescription
 from hexaleg.robot.model import HEXALEG_LEGS, JOINT_KINDS, LegSpec, Robot
+from hexaleg.robot.sources import BUILTIN, EXAMPLE_ROBOT_DATA
 
 TROT: tuple[tuple[str, ...], ...] = (("LF", "RH"), ("RF", "LH"))
 """A quadruped's trot: the diagonal pairs move together, {LF, RH} touching down at t = 0."""

@@ -19,10 +19,10 @@ from matplotlib.image import imread
 from meshcat_scene import at, clips, draw, page_commands
 
 from hexaleg.cli import main
-from hexaleg.commands.view import replay_motion
 from hexaleg.errors import InvalidParameterError
 from hexaleg.outputs.viewer.colours import N_LEVELS, value_bins
 from hexaleg.outputs.viewer.keyframes import resample
+from hexaleg.outputs.viewer.show import replay_motion
 from hexaleg.simulation.motion_file import FILES, read_motion, write_motion, write_motions
 
 SPIDER = Path(__file__).resolve().parents[2] / "data" / "spider.toml"

@@ -1,5 +1,5 @@
 """The ``hexaleg codesign`` subcommand: its parser and its run (registered in
-:data:`hexaleg.cli.SUBCOMMANDS`; kept here: ``cli.py`` is at its size limit).
+:data:`hexaleg.cli.SUBCOMMANDS`).
 
 ``--config F`` reads a ``[codesign]`` table: ``speed``, ``pattern``, ``family``, ``samples``,
 ``final_samples``, ``max_evaluations``, ``restarts``, ``grouping``, ``rules``, ``curve``,

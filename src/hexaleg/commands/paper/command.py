@@ -1,15 +1,17 @@
 """``hexaleg paper``: the paper's single joint written to a folder, saying on stderr what it
 computes and how long it took (the command takes seconds: the forward run integrates the Adams
-experiment at every stiffness of the grid)."""
+experiment at every stiffness of the grid). :func:`add` is its parser (registered in
+:data:`hexaleg.cli.SUBCOMMANDS`), :func:`run` its run from the parsed options."""
 
 from __future__ import annotations
 
+import argparse
 import functools
 import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-from hexaleg.commands.options import say
+from hexaleg.commands.options import add_quiet, progress_of, say
 
 DEFAULT_OUT = "hexaleg-paper"
 """The command's output folder, named like every other command's (``hexaleg-<command>``)."""
@@ -53,3 +55,30 @@ def run_paper(out: str | Path = DEFAULT_OUT, *, n: int = 8192, simulation: bool 
     print(one_line(r))
     print(f"wrote {out}/paper.json, summary.md and figures")
     return 0
+
+
+def add(sub: argparse._SubParsersAction) -> None:
+    """Add ``paper`` to the subcommands."""
+    p = sub.add_parser("paper", help="reproduce the paper's single elastic joint: paper.json, "
+                                     "Fig. 5-13 analogues (PNG), summary.md, and its Adams "
+                                     "experiment forward in MuJoCo beside them")
+    p.add_argument("--out", default=DEFAULT_OUT, help="output directory (default: %(default)s)")
+    p.add_argument("--samples", type=int, default=8192,
+                   help="samples per trajectory period (default: %(default)s)")
+    # hexaleg.paper.forward.K_GRID, which is not imported to build the parser
+    p.add_argument("--grid", type=float, nargs="+", metavar="K",
+                   help="stiffnesses of the forward run, the paper's eq. 19 units (1e-6 N·m/rad), "
+                        "at least 3, increasing (default: 100 to 1600 in steps of 100)")
+    p.add_argument("--no-simulation", dest="simulation", action="store_false",
+                   help="leave out the forward run (the analytic reproduction only)")
+    add_quiet(p)
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """``hexaleg paper``: :func:`run_paper` with the command line's options."""
+    return run_paper(args.out, n=args.samples, simulation=args.simulation, grid=args.grid,
+                     progress=progress_of(args, "paper"))
+
+
+__all__ = ["DEFAULT_OUT", "PROGRESS", "add", "run", "run_paper"]

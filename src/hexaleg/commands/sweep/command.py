@@ -1,5 +1,5 @@
 """The ``hexaleg sweep`` subcommand: its parser and its run (registered in
-:data:`hexaleg.cli.SUBCOMMANDS`, as ``hexaleg codesign`` is: ``cli.py`` is at its size limit).
+:data:`hexaleg.cli.SUBCOMMANDS`).
 
 A spec file (docs/sweep.md) or the one-group flags (``--joints`` with ``--k``, ``--theta-k``,
 ``--dead-zone``, ``--offset`` or ``--family``); ``--motion LOG`` sweeps the log's cycle

@@ -18,14 +18,8 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from hexaleg.design.chain.result import (
-    DesignResult,
-    candidate_data,
-    mounting_data,
-    proof_data,
-    ranking_data,
-    tolerance_data,
-)
+from hexaleg.design.chain.records import candidate_data, ranking_data
+from hexaleg.design.chain.result import DesignResult, mounting_data, proof_data, tolerance_data
 from hexaleg.quantities import quantity
 from hexaleg.simulation.sensitivity import sensitivity_row
 
