@@ -1,17 +1,20 @@
-"""Issue #56's 0.8× target simulated: the optimal cycle with the co-design's springs at a longer
-stance, predicted and walked in MuJoCo under both servos (log:
-analysis/bench_logs/bench_optimal_duty.log; not an example study: it needs the optimal extra
-and minutes).
+"""Issue #56's 0.8× target simulated: the optimal cycle with the co-design's springs at another
+stance length, predicted and walked in MuJoCo under both servos (logs:
+analysis/bench_logs/bench_optimal_duty.log, before the stance hold, and
+bench_optimal_duty_hold.log; not an example study: it needs the optimal extra and minutes).
 
 Run:  python analysis/bench_optimal_duty.py --codesign DIR/codesign.json [--duty 0.9 ...]
+                                            [--gait-only] [--nodes 40]
 
 Needs the ``optimal`` extra. G is the search's best gait of a kept ``hexaleg codesign`` run (its
 first finalist in ``codesign.json``: the gait of docs/optimal.md's 0.8× table), S its
 inner-program springs (:func:`~hexaleg.design.codesign.gait_evaluation.evaluate_gait`, linear,
 one design a joint class). Prints G with S predicted and simulated under each servo, then for each
-duty factor the optimal cycle from G at that duty factor with S in its dynamics (40 knots, 100
-iterations), its ratio to G's predicted J/m, its solver figures, and it simulated with S under
-each servo (:func:`~hexaleg.design.codesign.servo.simulated_per_metre`, the command's rows).
+duty factor G itself at that duty factor (with S, and with its own springs by the same program),
+predicted and simulated under each servo, and (unless ``--gait-only``) the optimal cycle from G
+at that duty factor with S in its dynamics (40 knots or ``--nodes``, 100 iterations), its
+ratio to G's predicted J/m, its solver figures, and it simulated with S under each servo
+(:func:`~hexaleg.design.codesign.servo.simulated_per_metre`, the command's rows).
 """
 
 from __future__ import annotations
@@ -27,6 +30,7 @@ from hexaleg.design.chain.groups import design_groups
 from hexaleg.design.codesign.build import default_gait, floor_constraints
 from hexaleg.design.codesign.gait_evaluation import evaluate_gait
 from hexaleg.design.codesign.servo import simulated_per_metre
+from hexaleg.dynamics.prepare import prepare
 from hexaleg.optimal.problem import OptimalParams, build_problem
 from hexaleg.optimal.solve import solve
 
@@ -38,6 +42,9 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--codesign", required=True, help="a hexaleg codesign run's JSON")
     parser.add_argument("--duty", type=float, nargs="+", default=[0.9], help="duty factors")
+    parser.add_argument("--gait-only", action="store_true",
+                        help="G at each duty factor only, no optimal cycle")
+    parser.add_argument("--nodes", type=int, default=40, help="knots of the optimal cycle")
     args = parser.parse_args()
     t0 = time.perf_counter()
     with open(args.codesign, encoding="utf-8") as f:
@@ -47,9 +54,9 @@ def main() -> None:
     g = dataclasses.replace(default_gait(robot, "hexaleg", 0.06, None, 200),
                             **{k: found[k]["value"] for k in KEYS})
     c = floor_constraints(run)
-    point = evaluate_gait(robot, g, groups=design_groups(robot, tuple(robot.joint_classes),
-                                                         "class"),
-                          family="linear", constraints=c, min_margin=0.0, motor=motor)
+    groups = design_groups(robot, tuple(robot.joint_classes), "class")
+    point = evaluate_gait(robot, g, groups=groups, family="linear", constraints=c,
+                          min_margin=0.0, motor=motor)
     springs, reference = point.springs, point.sprung / point.distance
     print(f"G: duty factor {g.duty_factor:.3g}, period {g.period:.4g} s: {reference:.4f} J/m "
           "with S (predicted)", flush=True)
@@ -59,8 +66,25 @@ def main() -> None:
         print(f"  G with S simulated under {k}: {value:.3f} J/m ({why})" if value is not None
               else f"  G with S under {k}: {why}", flush=True)
     for duty in args.duty:
-        played = hexaleg.gait(robot, dataclasses.replace(g, duty_factor=duty))
-        r = solve(robot, build_problem(robot, played, motor, springs, OptimalParams()),
+        gd = dataclasses.replace(g, duty_factor=duty)
+        played = hexaleg.gait(robot, gd)
+        with_s = prepare(robot, played, motor=motor, contact=c.planning_contact()).evaluate(
+            springs, "joule").metrics["total"]["electrical"] / gd.stride
+        own = evaluate_gait(robot, gd, groups=groups, family="linear", constraints=c,
+                            min_margin=0.0, motor=motor)
+        for name, fitted, value in (("S", springs, with_s),
+                                    ("its own springs", own.springs, own.sprung / own.distance)):
+            sims = [simulated_per_metre(robot, played, motor, fitted, k, c.contact())
+                    for k in ("feedforward", "position")]
+            print(f"G at duty factor {duty:.3g} with {name}: {value:.3f} J/m predicted, "
+                  "simulated " + ", ".join(
+                      f"{k} {v:.3f}" if v is not None else f"{k} — ({why})"
+                      for k, (v, why) in zip(("feedforward", "position"), sims, strict=True)),
+                  flush=True)
+        if args.gait_only:
+            continue
+        built = build_problem(robot, played, motor, springs, OptimalParams(nodes=args.nodes))
+        r = solve(robot, built,
                   say=lambda line: print(f"  {line}", flush=True), every=20)
         print(f"optimal cycle at duty factor {duty:.3g} with S: {r.energy_per_metre:.4f} J/m = "
               f"{r.energy_per_metre / reference:.3f}× G predicted; stationarity "

@@ -6,15 +6,16 @@ extra and minutes.
 
 Run:  python analysis/bench_optimal_rows.py [--robot hexaleg] [--speed 0.06] [--grouping class]
                                             [--max-evaluations 200] [--restarts 2]
-                                            [--chosen cd.pkl]
+                                            [--chosen cd.pkl] [--iterations 100]
 
 Needs the ``optimal`` extra. The parametric co-design (``hexaleg.codesign``, no rules, no
 simulation, no curve, the given grouping and search budget: its chosen gait and inner springs),
 or both from the pickle ``--chosen`` names (written by this script, or by
 ``analysis/bench_optimal_target.py --chosen``: a re-run after a kill skips the search), then
-:func:`hexaleg.design.codesign.optimal_rows.optimal_rows` (40 knots, 100 iterations, one
-alternation round on the co-design's spring groups) with each row simulated under both servos;
-prints the rows as the command does, each optimal motion's solver figures, the wall and CPU time.
+:func:`hexaleg.design.codesign.optimal_rows.optimal_rows` (40 knots, the command's 100 iterations
+or ``--iterations``, one alternation round on the co-design's spring groups) with each row
+simulated under both servos; prints the rows as the command does, each optimal motion's solver
+figures, the wall and CPU time.
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ import hexaleg
 from hexaleg.design.chain.groups import design_groups
 from hexaleg.design.codesign.build import default_gait
 from hexaleg.design.codesign.optimal_rows import optimal_rows
+from hexaleg.optimal.problem import OptimalParams
 
 
 def main() -> None:
@@ -39,6 +41,8 @@ def main() -> None:
     parser.add_argument("--restarts", type=int, default=2, help="compass-search runs")
     parser.add_argument("--chosen", help="pickle of the co-design's chosen gait and springs "
                         "(read if it exists, else written after the search)")
+    parser.add_argument("--iterations", type=int, default=100,
+                        help="box-FDDP iterations of each solve (the command's: 100)")
     args = parser.parse_args()
     t0, c0 = time.perf_counter(), os.times()
     run = hexaleg.Scenario.load(args.robot)
@@ -71,6 +75,7 @@ def main() -> None:
     groups = design_groups(robot, tuple(robot.joint_classes), args.grouping)
     table = optimal_rows(robot, run.actuator, run.contact, base, chosen, springs,
                          (default, per_metre), groups=groups, rounds=1,
+                         params=OptimalParams(iterations=args.iterations),
                          say=lambda line: print(line, flush=True))
     print("\n".join(table.lines()), flush=True)
     for name, r in (("no springs", table.bare), ("its springs", table.best)):

@@ -86,7 +86,8 @@ def _documented(first: str) -> list[tuple[float, ...]]:
 
 
 @pytest.mark.parametrize(("first", "log"), [
-    ("Solo-12 row", "bench_optimal_rows_solo12.log"),
+    ("Solo-12 row", "bench_optimal_rows_solo12_hold.log"),
+    ("Solo-12 row, 300 iterations", "bench_optimal_rows_solo12_hold_300.log"),
     ("row (whole command)", "codesign_motion_optimal.log"),
     ("row (its optimal stage, stance held)", "bench_optimal_rows_hold.log"),
     ("row (the search's best gait, stance held)", "bench_optimal_rows_best_hold.log")])
@@ -100,7 +101,8 @@ def test_the_documented_rows_are_the_kept_logs(first, log):
 
 
 @pytest.mark.parametrize("log", ["bench_optimal_rows_hold.log",
-                                 "bench_optimal_rows_best_hold.log"])
+                                 "bench_optimal_rows_best_hold.log",
+                                 "bench_optimal_rows_solo12_hold.log"])
 def test_the_documented_stance_hold_is_the_kept_logs(log):
     """The stance slip and drift docs/optimal.md states for the optimal stages rerun with the
     stance held are their kept logs' (``optimal motion, … : … stance slip S m/s, drift D m``)."""
@@ -112,3 +114,30 @@ def test_the_documented_stance_hold_is_the_kept_logs(log):
         assert m, name
         slip, drift = float(m[1]) * 1e3, float(m[2]) * 1e3
         assert f"{slip:.1f} mm/s" in doc and f"{drift:.3f} mm" in doc, (name, slip, drift)
+
+
+def test_the_duty_table_is_the_kept_log():
+    """docs/optimal.md's table of G and the optimal cycle at other duty factors with the stance
+    held is analysis/bench_logs/bench_optimal_duty_hold.log's (and, for the cycle on 80 knots,
+    bench_optimal_duty_hold_80.log's): each row's predicted and simulated J/m under both
+    servos."""
+    logged = {}
+    for log, knots in (("bench_optimal_duty_hold.log", ""),
+                       ("bench_optimal_duty_hold_80.log", ", 80 knots")):
+        text = (LOGS / log).read_text(encoding="utf-8")
+        for m in re.finditer(r"^G at duty factor ([0-9.]+) with S: ([0-9.]+) J/m predicted, "
+                             r"simulated feedforward ([0-9.]+), position ([0-9.]+)$", text,
+                             re.MULTILINE):
+            logged[f"G at duty factor {m[1]}"] = tuple(float(v) for v in m.group(2, 3, 4))
+        for m in re.finditer(r"^optimal cycle at duty factor ([0-9.]+) with S: ([0-9.]+) J/m "
+                             r".*\n  simulated under feedforward: ([0-9.]+) J/m.*\n"
+                             r"  simulated under position: ([0-9.]+) J/m", text, re.MULTILINE):
+            logged[f"optimal cycle at duty factor {m[1]}{knots}"] = tuple(
+                float(v) for v in m.group(2, 3, 4))
+    doc = DOC.read_text(encoding="utf-8")
+    table = doc[doc.index("| cycle (from G, with S) |"):].split("\n\n")[0].splitlines()[2:]
+    assert len(table) >= 8
+    for row in table:
+        cells = [c.strip() for c in row.strip("|").split("|")]
+        assert cells[0] in logged, cells[0]
+        assert tuple(float(c) for c in cells[1:]) == pytest.approx(logged[cells[0]], abs=0.005)
