@@ -34,6 +34,19 @@ def test_lists_become_the_descriptions_tuples_and_legs_its_specs(tmp_path):
     assert data["legs"] == (LegSpec("LF", ("j1", "j2"), "f"),)
 
 
+def test_mesh_directories_are_relative_to_the_file(tmp_path):
+    """``mesh_dirs`` of a robot's own files are relative to its TOML file, like its URDF
+    (they were kept as written — relative to wherever the command ran — as the list had
+    already been made a tuple when the paths were resolved); another source's stay as given."""
+    path = tmp_path / "robot.toml"
+    path.write_text('[robot]\nname = "x"\nurdf = "x.urdf"\nmesh_dirs = ["meshes", "."]\n')
+    data, _ = description_table(path)
+    assert data["mesh_dirs"] == (str(tmp_path / "meshes"), str(tmp_path / "."))
+    path.write_text(f'[robot]\nname = "x"\nurdf = "x.urdf"\nsource = "{EXAMPLE_ROBOT_DATA}"\n'
+                    'mesh_dirs = ["meshes"]\n')
+    assert description_table(path)[0]["mesh_dirs"] == ("meshes",)
+
+
 @pytest.mark.parametrize(("text", "says"), [
     ("[other]\nx = 1\n", r"\[robot\] table"),
     ('[robot]\nname = "x"\nurdf = "x.urdf"\nstand = 3\n', "stand"),

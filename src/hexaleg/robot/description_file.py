@@ -71,9 +71,9 @@ def description_table(path: str | Path) -> tuple[dict[str, Any], str]:
         for key in ("urdf", "srdf"):
             if isinstance(data.get(key), str):
                 data[key] = str(path.parent / data[key])
-        if isinstance(data.get("mesh_dirs"), list):
-            data["mesh_dirs"] = [str(path.parent / d) if isinstance(d, str) else d
-                                 for d in data["mesh_dirs"]]
+        if isinstance(data.get("mesh_dirs"), tuple):  # a list of the file, made a tuple above
+            data["mesh_dirs"] = tuple(str(path.parent / d) if isinstance(d, str) else d
+                                      for d in data["mesh_dirs"])
     if not isinstance(data.get("stand", ""), (str, Mapping)):
         raise ConfigError(f"{where}.stand = {data['stand']!r}; expected a group_state name, "
                           "a table of joint angles or {body_height, feet}")
