@@ -222,6 +222,41 @@ def _biped6_plan(path: str = BIPED6):
     return prepared.motion, prepared.evaluate(None), sim
 
 
+def test_on_soles_a_position_servo_is_asked_for_the_plans_torque_through_its_reference(
+        tmp_path):
+    """A position servo delivers a torque only by deflecting: on soles, with the body on its
+    plan, the controller's correction is the plan's motor torque over kp at the middle of its
+    hold (``q* + τ*/kp``, Tomei 1991), to rounding — without it the stance hip roll sagged
+    τ*/kp, the body rolled with it and the biped's soles rode their edges (#54). A feedforward
+    servo, whose torque input carries τ*, gets nothing there."""
+    import mujoco
+
+    from hexaleg.simulation.mjcf import contact_sites
+
+    config = tmp_path / "c.toml"
+    config.write_text("[gait]\nsamples = 100\n")  # the suite's time; 200 in the slow runs
+    prepared = Scenario.load(BIPED6, config).prepare()
+    analysis, motion = prepared.evaluate(None), prepared.motion
+    for controller in ("position", "feedforward"):
+        settings = Settings(controller=controller).sized(prepared.robot.mass)
+        sim = build_model(prepared.robot, motion, prepared.motor, servo=settings.servo(),
+                          ground=settings.ground(prepared.contact.mu), timestep=1e-4)
+        c = balance.Balance(sim, motion, analysis.forces, analysis.tau_motor)
+        data = mujoco.MjData(sim.model)
+        sites = [mujoco.mj_name2id(sim.model, mujoco.mjtObj.mjOBJ_SITE, name)
+                 for name in contact_sites(sim.robot)]
+        for k in (0, 37, 70):  # double support, single support, the other single support
+            data.qpos[:], data.qvel[:] = sim.joints.to_mujoco(motion.q[k], motion.v[k])
+            mujoco.mj_kinematics(sim.model, data)
+            out = c.correction(k * motion.dt, data.qpos.copy(), data.qvel.copy(),
+                               data.site_xpos[sites].copy())
+            mid = k * motion.dt + balance.CONTROL_PERIOD / 2
+            tau = np.array([np.interp(mid, motion.t, column) for column in analysis.tau_motor.T])
+            assert np.abs(tau / sim.kp).max() > 0.04  # rad: the sag it takes back
+            want = tau / sim.kp if controller == "position" else np.zeros_like(tau)
+            np.testing.assert_allclose(out, want, rtol=0, atol=1e-12)
+
+
 @pytest.mark.slow
 def test_the_biped_falls_as_an_inverted_pendulum_on_its_point_foot():
     """#54's bipeds: the test biped's ZMP walk stands on one point foot for 0.71 s; closed loop
