@@ -334,27 +334,28 @@ def test_the_biped_on_soles_walks_its_zmp_gait_closed_loop(tmp_path, controller)
     torques). Every planted sole's centre of pressure stays at least 40 mm inside its edge (the
     sole never rolls onto an edge: with the sole's 45 mm half-width, within 5 mm of its centre
     across), and the plan keeps the soles flat in the world. Under the position servo (no
-    feedforward: it tracks 40 mrad off) it covers the distance within 5 % and spends within
-    12 % of the plan, but rides its soles' edges: in single support a sole's centre of pressure
-    reaches its edge and the soles leave the ground in a fifth of their stance or more, so both
-    runs "tipped" and prove nothing."""
+    torque input: the controller asks it for the plan's torque through its reference, its
+    back-EMF lag leaves it 37 mrad RMS off) it walks too, the distance within 2 % and the energy
+    within 5 % of the plan, its single-support centre of pressure 20 mm inside the edge at
+    least and the soles down in 95 % of their stance or more (asked only for the feedback's
+    change, it rode its soles' edges, "tipped", and the soles left the ground in 20–47 % of
+    their stance)."""
     from hexaleg.commands.simulate.study import load_study
 
     config = tmp_path / "c.toml"
     config.write_text(f'[simulate]\ncontroller = "{controller}"\ncycles = 2\nevaluate = 1\n')
     s = load_study(Scenario.load(BIPED6, config)).run()
-    tolerance, reach = (0.01, 0.02) if controller == "feedforward" else (0.12, 0.05)
-    verdict = "walks" if controller == "feedforward" else "tipped"
+    tolerance = 0.01 if controller == "feedforward" else 0.05
     for run, predicted in ((s.with_springs, s.analysis.metrics),
                            (s.baseline, s.baseline_analysis.metrics)):
-        assert run.feedback and run.verdict == verdict, (run.name, run.verdict, run.message)
-        assert run.walk.distance_per_cycle == pytest.approx(s.motion.distance, rel=reach)
+        assert run.feedback and run.verdict == "walks", (run.name, run.verdict, run.message)
+        assert run.walk.distance_per_cycle == pytest.approx(s.motion.distance, rel=0.02)
         assert run.metrics["electrical"] == pytest.approx(predicted["total"]["electrical"],
                                                           rel=tolerance)
         alone = run.alone_margin
         assert alone is not None and alone.distance >= run.cop_margin.distance - 1e-12
         if controller == "position":
-            assert alone.distance < 1e-3 and run.walk.contact_losses > 0.15, (alone, run.walk)
+            assert alone.distance > 0.02 and run.walk.contact_losses < 0.05, (alone, run.walk)
         else:
             assert alone.distance > 0.035 and run.walk.contact_losses == 0, (alone, run.walk)
     if controller != "feedforward":
