@@ -51,26 +51,28 @@ energy.
 **Deflection** (a position servo on soles). A P servo delivers a torque only by deflecting:
 without a torque input it gives the plan's own torque τ* once its joint has sagged by τ*/kp,
 and that sag is a motion of the body — the stance hip roll's is a roll of the whole body about
-the stance hip (Talos' 66 mrad: its body rolled 67 mrad in its first single support), which
-the body PD above, a correction at the gait's frequency, neither asks back nor can hold
-(``I ω² e``: about 3 N·m for Talos' 67 mrad, against the 66 N·m RMS its hip roll carries). On a
-sole that motion tips the robot: a body whose roll accelerates at α needs the ground's moment
-``I α``, so its centre of pressure moves by ``I α / (m g)``, and the sole holds at most ``m g``
-× its half-width (the test biped's 7.2 N·m, against the 11 N·m its stance hip roll lacks at
-lift-off): the centre of pressure rides the edge. A stiffer servo does not help: it sags less
-but its loop on the body rings faster and less damped (``ζ = D / (2 √(kp I))``), its torque
-error of the same size (4 × kp still tips, ``docs/simulate.md``). So on soles the controller
-also asks a position servo for the plan's torque through its reference — the static
-compensation of a compliant joint (Tomei, "A simple PD controller for robots with elastic
-joints", IEEE Trans. Automatic Control 36(10), 1991: the motor's set point ``q* + K⁻¹ g(q*)``
-for a joint of stiffness K holding the load g; here ``K = kp`` and the load the plan's whole
-torque) — the reference ``q* + Δq + (τ* + Δτ)/kp``, τ* the plan's motor torque at the hold's
-midpoint. The servo then gives τ* at the plan's angle; its velocity lag ``D q̇/kp`` (the
-back-EMF, which no torque input cancels) stays, the position servo's own tracking error. Point
-feet are left without it: their forces pass through points, so a stance leg's sag only shares
-the load among the feet otherwise, and the registered quadrupeds' trots walk under position
-servos as measured (with it, Solo-12's trot would spend 3.4 % less and roll 0.09° instead of
-1.5°: ``docs/simulate.md``).
+the stance hip toward the swing side, which the body PD above, a correction at the gait's
+frequency, neither asks back nor can hold. On a sole that motion tips the robot: the torque the
+stance leg lacks while it sags turns the body, the ground must supply that moment, and a sole
+holds at most ``m g a`` (a its half-width) before its centre of pressure reaches the edge. At
+lift-off Talos' stance hip roll is asked for 70 N·m and gives −5 N·m (its sole holds 49 N·m,
+the feedback's own change there reached 18 N·m): its body rolled 67 mrad over the stance,
+carried it into the next one as an outward lean and fell; the test biped's gives 0.4 of
+11.2 N·m (its sole holds 7.2 N·m), then rings ±7 N·m about the plan, and its sole's centre of
+pressure swings from edge to edge. A stiffer servo does not help: it sags less but its loop on
+the body rings faster and less damped (``ζ = D / (2 √(kp I))``), its torque error as large
+(4 × kp still tips). So on soles the controller also asks a position servo for the plan's
+torque through its reference — the static compensation of a compliant joint (Tomei, "A simple
+PD controller for robots with elastic joints", IEEE Trans. Automatic Control 36(10), 1991: the
+motor's set point ``q* + K⁻¹ g(q*)`` for a joint of stiffness K holding the load g; here
+``K = kp`` and the load the plan's whole torque) — the reference ``q* + Δq + (τ* + Δτ)/kp``,
+τ* the plan's motor torque at the hold's midpoint. The servo then gives τ* at the plan's angle;
+its velocity lag ``D q̇/kp`` (the back-EMF, which no torque input cancels) stays, the position
+servo's own tracking error. Point feet are left without it: their forces pass through points,
+so a stance leg's sag only shares the load among the feet otherwise, and the registered
+quadrupeds' trots walk under position servos as measured (with it, Solo-12's trot would spend
+3.4 % less and roll 0.13° instead of 1.5°). Measured in ``analysis/bench_logs/
+position_soles.log`` (``docs/simulate.md``, "Position servos on soles: the sag").
 
 **What is measured.** The base's pose and velocity and the feet's positions are MuJoCo's ground
 truth (``qpos``, ``qvel``, the foot sites): a perfect state estimator, stated in
