@@ -398,13 +398,11 @@ def test_simulate_page_quotes_the_sole_bipeds_design_log():
     log = (ROOT / "analysis" / "bench_logs" / "design_biped6.log").read_text()
     page = " ".join((DOCS / "simulate.md").read_text().split())
     for words, said in (
-            ('"unproven (under position only the runs did not walk (springs tipped; baseline '
-             'tipped))"', "unproven (under position only the runs did not walk (springs tipped; "
-                          "baseline tipped))"),
-            ("dead_zone springs on hip roll, hip pitch and knee, +32.42 % predicted",
+            ('"fit dead_zone springs on hip_roll, hip_pitch, knee: electrical saving +32.42 %"',
              "fit dead_zone springs on hip_roll, hip_pitch, knee: electrical saving +32.42 %"),
-            ("+31.92 % simulated under feedforward + PD",
-             "feedforward + PD +31.92 % (predicted +32.42 %)")):
+            ("+31.92 % simulated under feedforward + PD and +33.44 % under position only",
+             "simulated electrical saving feedforward + PD +31.92 %, position only +33.44 % "
+             "(predicted +32.42 %)")):
         assert words in page, words
         assert said in log, said
 
