@@ -398,14 +398,99 @@ def test_simulate_page_quotes_the_sole_bipeds_design_log():
     log = (ROOT / "analysis" / "bench_logs" / "design_biped6.log").read_text()
     page = " ".join((DOCS / "simulate.md").read_text().split())
     for words, said in (
-            ('"unproven (under position only the runs did not walk (springs tipped; baseline '
-             'tipped))"', "unproven (under position only the runs did not walk (springs tipped; "
-                          "baseline tipped))"),
-            ("dead_zone springs on hip roll, hip pitch and knee, +32.42 % predicted",
+            ('"fit dead_zone springs on hip_roll, hip_pitch, knee: electrical saving +32.42 %"',
              "fit dead_zone springs on hip_roll, hip_pitch, knee: electrical saving +32.42 %"),
-            ("+31.92 % simulated under feedforward + PD",
-             "feedforward + PD +31.92 % (predicted +32.42 %)")):
+            ("+31.92 % simulated under feedforward + PD and +33.44 % under position only",
+             "simulated electrical saving feedforward + PD +31.92 %, position only +33.44 % "
+             "(predicted +32.42 %)")):
         assert words in page, words
+        assert said in log, said
+
+
+def test_simulate_page_quotes_the_position_soles_log():
+    """docs/simulate.md's account of why the bipeds on soles tipped under position servos (#54)
+    is analysis/bench_logs/position_soles.log's: each figure it prints, beside the log's line
+    (its runs about 3 minutes of CPU, by hand)."""
+    log = (ROOT / "analysis" / "bench_logs" / "position_soles.log").read_text()
+    page = (DOCS / "simulate.md").read_text()
+    part = page[page.index("### Position servos on soles: the sag"):
+                page.index("## The built-in robot: predicted vs simulated")]
+    biped = log[log.index("biped6, deflection off"):log.index("biped6, deflection on")]
+    after = log[log.index("biped6, deflection on"):log.index("talos, deflection off")]
+    talos = log[log.index("talos, deflection off"):log.index("talos, deflection on")]
+    talos_after = log[log.index("talos, deflection on"):log.index("## python why_position.py "
+                                                                    "solo12")]
+    quoted = [  # (the page's words, the part of the log, its words)
+        ("(7.24 N·m on its sole)", biped, "m g a = 7.24 N·m"),
+        ("+11.18 N·m and the servo gives +0.40", biped,
+         "  0.12    S.     -2.3 |   +11.18     +0.40"),
+        ("(+15.28 of +16.12)", biped, "|   +16.12    +15.28"),
+        ("+20.42 against +13.29 at 0.24 s", biped, "  0.24    S.    +20.2 |   +13.29    +20.42"),
+        ("+1.90 against +4.47 at 0.36 s", biped, "  0.36    S.    +17.3 |    +4.47     +1.90"),
+        ("from −2.3 to +25.4 mrad", biped, "  0.28    S.    +25.4 |"),
+        ("+18.9 mm at 0.18 s", biped, "|   179.9   +18.9"),
+        ("−45.0 mm (its edge) at 0.36 s", biped, "|    93.0   -45.0"),
+        ("(48.71 N·m on its sole)", talos, "m g a = 48.71 N·m"),
+        ("+70.46 N·m and the\n  servo gives −5.46", talos,
+         "  0.30    S.     -2.2 |   +70.46     -5.46"),
+        ("+18.25 N·m at most", talos, "    +18.25 |"),
+        ("+49.2 mm of the 55 mm half-width at 0.36 s", talos, "|   534.7   +49.2"),
+        ("+66.9 mrad at 1.30 s (the hip roll then 89 mrad off)", talos,
+         "  1.30    S.    +66.9 |   +79.58    +89.77       -89"),
+        ("falls at 2.96 s", talos, "fell the robot fell at t = 2.9610 s"),
+        ("| asked for Δτ only (before) | 0.0 mm | 47.5 % of stance | 115.29 | 2.08° |", log,
+         "single-support margin   0.0 mm (R1 right), soles off 47.5 % of stance, 132.3 mm,  "
+         "115.29 J (plan 105.99), roll max 2.08°"),
+        ("| same, open loop | 0.0 mm | 60.0 % | 132.61 | 2.36° |", log,
+         "soles off 60.0 % of stance, 139.1 mm,  132.61 J (plan 105.99), roll max 2.36°"),
+        ("| same, kp × 4 | 0.0 mm | 50.9 % | 118.98 | 1.00° |", log,
+         "soles off 50.9 % of stance, 133.2 mm,  118.98 J (plan 105.99), roll max 1.00°"),
+        ("| 0.0 mm | 77.1 % | 118.04 | 1.14° |", log,
+         "soles off 77.1 % of stance, 131.2 mm,  118.04 J (plan 105.99), roll max 1.14°"),
+        ("| asked for τ* + Δτ (now) | 26.0 mm | 0.0 % | 103.69 | 0.58° |", log,
+         "single-support margin  26.0 mm (R1 left), soles off  0.0 % of stance, 131.1 mm,  "
+         "103.69 J (plan 105.99), roll max 0.58°"),
+        ("| same, kp × 4 | 38.7 mm | 0.0 % | 104.60 | 0.04° |", log,
+         "single-support margin  38.7 mm (R1 left), soles off  0.0 % of stance, 129.9 mm,  "
+         "104.60 J (plan 105.99), roll max 0.04°"),
+        ("| feedforward + PD | 43.7 mm | 0.0 % | 105.71 | 0.02° |", log,
+         "single-support margin  43.7 mm (R1 right), soles off  0.0 % of stance, 130.0 mm,  "
+         "105.71 J (plan 105.99), roll max 0.02°"),
+        ("+10.81 of +11.18 N·m", after, "  0.12    S.     -0.8 |   +11.18    +10.81"),
+        ("+67.91 of +70.46", talos_after, "  0.30    S.     -0.4 |   +70.46    +67.91"),
+        ("11.3 and 11.7 mrad at most", after, "  0.34    S.    +11.3 |"),
+        ("11.3 and 11.7 mrad at most", talos_after, "  0.96    S.    +11.7 |"),
+        ("28.5 and 11.4 mm of its centre", after, "|   163.9   -28.5"),
+        ("28.5 and 11.4 mm of its centre", talos_after, "|   904.0   -11.4"),
+        ("37 mrad RMS on the test biped", log, "| springs | walks | 37 / 158 |"),
+        ("would spend 12.04 J instead of 12.47 J (plan 12.29 J)", log,
+         "feet off  0.0 % of stance, 119.9 mm,   12.04 J (plan 12.29)"),
+        ("would spend 12.04 J instead of 12.47 J (plan 12.29 J)", log,
+         "feet off  0.0 % of stance, 120.5 mm,   12.47 J (plan 12.29)"),
+        ("roll 0.13°\ninstead of 1.52°", log, "12.04 J (plan 12.29), roll max 0.13°"),
+        ("roll 0.13°\ninstead of 1.52°", log, "12.47 J (plan 12.29), roll max 1.52°"),
+    ]
+    for words, where, said in quoted:
+        assert words in part, words
+        assert said in where, said
+    # the simulate command's runs under the position servo, after (the page's biped table)
+    for row, said in (("| position | springs | 130.6 mm | 73.06 → 70.31 (−3.8 %) | walks |",
+                       "position springs: walks, distance 130.6 mm per cycle, electrical per "
+                       "cycle [70.25006416100685, 70.37864775100147] J, mean 70.31 J"),
+                      ("| position | baseline | 130.4 mm | 105.99 → 104.06 (−1.8 %) | walks |",
+                       "position baseline: walks, distance 130.4 mm per cycle, electrical per "
+                       "cycle [104.04305510204227, 104.07935965951633] J, mean 104.06 J"),
+                      ("simulated +30.72 % under feedforward and +32.43 % under the position\n"
+                       "servo", "simulated +32.43 % (70.31 J vs 104.1 J)"),
+                      ("27.2 mm (springs) and\n24.7 mm (baseline)",
+                       "in single support 27.2 mm from the R1 sole's left edge"),
+                      ("27.2 mm (springs) and\n24.7 mm (baseline)",
+                       "in single support 24.7 mm from the R1 sole's left edge"),
+                      ("off the ground in 3.4 % and\n0 % of their stance",
+                       "contact losses 3.41 %, normal force RMS error 16.0 N"),
+                      ("16.0 and 15.3 N RMS off the plan",
+                       "contact losses 0.00 %, normal force RMS error 15.3 N")):
+        assert row in page, row
         assert said in log, said
 
 
@@ -419,8 +504,19 @@ def test_simulate_page_quotes_the_talos_log():
         ("planned stride 491.9 mm", "Distance per cycle: 491.9 mm (planned 491.9 mm)"),
         ("1003.9 → 1001.1", "springs 1003.89 -> 1001.14"),
         ("2121.1 → 2114.9", "baseline 2121.07 -> 2114.90"),
-        ("| position | springs | 489.3 mm", "position springs: distance 489.3 mm per cycle"),
-        ("1003.9 → 1105.1", "[1109.5253659182436, 1100.7096854464742] J"),
+        ("| position | springs | 492.3 mm", "position springs (after): walks, distance 492.3 mm"),
+        ("| position | baseline | 492.4 mm", "position baseline (after): walks, distance 492.4 mm"),
+        ("1003.9 → 1038.5 (+3.4 %)", "mean 1038.51 J"),
+        ("2121.1 → 2222.9 (+4.8 %)", "mean 2222.90 J"),
+        ("the saving is +53.28 % simulated", "(electrical 1004 J vs 2121 J per cycle); "
+                                               "simulated +53.28 % (1039 J vs 2223 J)"),
+        ("to 16.0 mrad RMS", "| springs | walks | 16 / 101 |"),
+        ("47.7 mm (springs) and 48.2 mm (baseline)",
+         "in single support 47.7 mm from the R1 sole's left edge"),
+        ("47.7 mm (springs) and 48.2 mm (baseline)",
+         "in single support 48.2 mm from the R1 sole's left edge"),
+        ("2.3 % and 1.8 % of their stance", "contact losses 2.33 %"),
+        ("2.3 % and 1.8 % of their stance", "contact losses 1.79 %"),
         ("fell at 2.96 s (roll 45°)", "fell at t = 2.9610 s: base roll +45.0°"),
         ("+52.66 % simulated against +52.67 % predicted",
          "predicted saving +52.67 % (electrical 1004 J vs 2121 J per cycle); simulated +52.66 %"),
@@ -439,12 +535,12 @@ def test_simulate_page_quotes_the_talos_log():
         ("17.6 % of stance samples", "| 17.6 |"),
         ("194 N RMS", "| 194 |"),
         ("at 5.24 s instead of 2.96 s", "fell at t = 5.2447 s"),
-        ("leans 2.8° outward over the right foot at 1.76 s", "t 1.761 roll  +2.80"),
+        ("leaned 2.8° outward over the\nright foot at 1.76 s", "t 1.761 roll  +2.80"),
         ("first\nright single support (1.87 s)", "t 1.872 roll  +2.60  L1 off | R1"),
         ("outer edge\nfor the whole stance (55 mm", "R1    905 N u  +44.7 v  -55.0 mm"),
         ("from 1.9° to 9° by 2.37 s",
          "t 2.368 roll  +8.84  L1 off | R1    516 N u   -7.4 v  -55.0"),
-        ("leave the ground at 2.48 s", "t 2.479 roll +12.98  L1 off | R1 off"),
+        ("left the ground at 2.48 s", "t 2.479 roll +12.98  L1 off | R1 off"),
         ("+26.97 % against +27.03 % predicted",
          "feedforward + PD +26.97 % (predicted +27.03 %)"),
         ('"fit one_sided … +27.03 %", simulated\n+26.97 %', "fit one_sided, spring torque ≤ "
@@ -453,6 +549,15 @@ def test_simulate_page_quotes_the_talos_log():
                                  "(predicted +27.03 %); WARNING"),
         ('"unproven (under position only the runs did not walk',
          "unproven (under position only the runs did not walk (springs fell; baseline fell))"),
+        ("Now it proves the same answer under both servos:\n\"fit one_sided, spring torque ≤ "
+         "21.15 N·m springs on hip_roll, knee: electrical saving\n+27.03 %\", simulated +26.97 % "
+         "under feedforward + PD and +27.00 % under position only",
+         "fit one_sided, spring torque ≤ 21.15 N·m springs on hip_roll, knee: electrical saving "
+         "+27.03 % (+24.37 % net of 1601.0 g of springs); worst case over the maps +14.72 % at "
+         "period ×0.5, stride ×1.5; hard stops needed: hip_roll (below) at -17.3° from its "
+         "centre of motion (S_y/σ 1.11 without), knee (above) at +47.5° from its centre of "
+         "motion (S_y/σ 1.03 without); simulated electrical saving feedforward + PD +26.97 %, "
+         "position only +27.00 % (predicted +27.03 %)"),
     ]
     for words, said in quoted:
         assert words in talos, words

@@ -222,6 +222,41 @@ def _biped6_plan(path: str = BIPED6):
     return prepared.motion, prepared.evaluate(None), sim
 
 
+def test_on_soles_a_position_servo_is_asked_for_the_plans_torque_through_its_reference(
+        tmp_path):
+    """A position servo delivers a torque only by deflecting: on soles, with the body on its
+    plan, the controller's correction is the plan's motor torque over kp at the middle of its
+    hold (``q* + τ*/kp``, Tomei 1991), to rounding — without it the stance hip roll sagged
+    τ*/kp, the body rolled with it and the biped's soles rode their edges (#54). A feedforward
+    servo, whose torque input carries τ*, gets nothing there."""
+    import mujoco
+
+    from hexaleg.simulation.mjcf import contact_sites
+
+    config = tmp_path / "c.toml"
+    config.write_text("[gait]\nsamples = 100\n")  # the suite's time; 200 in the slow runs
+    prepared = Scenario.load(BIPED6, config).prepare()
+    analysis, motion = prepared.evaluate(None), prepared.motion
+    for controller in ("position", "feedforward"):
+        settings = Settings(controller=controller).sized(prepared.robot.mass)
+        sim = build_model(prepared.robot, motion, prepared.motor, servo=settings.servo(),
+                          ground=settings.ground(prepared.contact.mu), timestep=1e-4)
+        c = balance.Balance(sim, motion, analysis.forces, analysis.tau_motor)
+        data = mujoco.MjData(sim.model)
+        sites = [mujoco.mj_name2id(sim.model, mujoco.mjtObj.mjOBJ_SITE, name)
+                 for name in contact_sites(sim.robot)]
+        for k in (0, 37, 70):  # double support, single support, the other single support
+            data.qpos[:], data.qvel[:] = sim.joints.to_mujoco(motion.q[k], motion.v[k])
+            mujoco.mj_kinematics(sim.model, data)
+            out = c.correction(k * motion.dt, data.qpos.copy(), data.qvel.copy(),
+                               data.site_xpos[sites].copy())
+            mid = k * motion.dt + balance.CONTROL_PERIOD / 2
+            tau = np.array([np.interp(mid, motion.t, column) for column in analysis.tau_motor.T])
+            assert np.abs(tau / sim.kp).max() > 0.04  # rad: the sag it takes back
+            want = tau / sim.kp if controller == "position" else np.zeros_like(tau)
+            np.testing.assert_allclose(out, want, rtol=0, atol=1e-12)
+
+
 @pytest.mark.slow
 def test_the_biped_falls_as_an_inverted_pendulum_on_its_point_foot():
     """#54's bipeds: the test biped's ZMP walk stands on one point foot for 0.71 s; closed loop
@@ -299,27 +334,28 @@ def test_the_biped_on_soles_walks_its_zmp_gait_closed_loop(tmp_path, controller)
     torques). Every planted sole's centre of pressure stays at least 40 mm inside its edge (the
     sole never rolls onto an edge: with the sole's 45 mm half-width, within 5 mm of its centre
     across), and the plan keeps the soles flat in the world. Under the position servo (no
-    feedforward: it tracks 40 mrad off) it covers the distance within 5 % and spends within
-    12 % of the plan, but rides its soles' edges: in single support a sole's centre of pressure
-    reaches its edge and the soles leave the ground in a fifth of their stance or more, so both
-    runs "tipped" and prove nothing."""
+    torque input: the controller asks it for the plan's torque through its reference, its
+    back-EMF lag leaves it 37 mrad RMS off) it walks too, the distance within 2 % and the energy
+    within 5 % of the plan, its single-support centre of pressure 20 mm inside the edge at
+    least and the soles down in 95 % of their stance or more (asked only for the feedback's
+    change, it rode its soles' edges, "tipped", and the soles left the ground in 20–47 % of
+    their stance)."""
     from hexaleg.commands.simulate.study import load_study
 
     config = tmp_path / "c.toml"
     config.write_text(f'[simulate]\ncontroller = "{controller}"\ncycles = 2\nevaluate = 1\n')
     s = load_study(Scenario.load(BIPED6, config)).run()
-    tolerance, reach = (0.01, 0.02) if controller == "feedforward" else (0.12, 0.05)
-    verdict = "walks" if controller == "feedforward" else "tipped"
+    tolerance = 0.01 if controller == "feedforward" else 0.05
     for run, predicted in ((s.with_springs, s.analysis.metrics),
                            (s.baseline, s.baseline_analysis.metrics)):
-        assert run.feedback and run.verdict == verdict, (run.name, run.verdict, run.message)
-        assert run.walk.distance_per_cycle == pytest.approx(s.motion.distance, rel=reach)
+        assert run.feedback and run.verdict == "walks", (run.name, run.verdict, run.message)
+        assert run.walk.distance_per_cycle == pytest.approx(s.motion.distance, rel=0.02)
         assert run.metrics["electrical"] == pytest.approx(predicted["total"]["electrical"],
                                                           rel=tolerance)
         alone = run.alone_margin
         assert alone is not None and alone.distance >= run.cop_margin.distance - 1e-12
         if controller == "position":
-            assert alone.distance < 1e-3 and run.walk.contact_losses > 0.15, (alone, run.walk)
+            assert alone.distance > 0.02 and run.walk.contact_losses < 0.05, (alone, run.walk)
         else:
             assert alone.distance > 0.035 and run.walk.contact_losses == 0, (alone, run.walk)
     if controller != "feedforward":

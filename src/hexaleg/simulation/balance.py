@@ -48,6 +48,32 @@ whose P gain turns the offset into the torque Δτ — the robot with a position
 simulated as it is built, and the feedback's own torques are the servos' and count in the
 energy.
 
+**Deflection** (a position servo on soles). A P servo delivers a torque only by deflecting:
+without a torque input it gives the plan's own torque τ* once its joint has sagged by τ*/kp,
+and that sag is a motion of the body — the stance hip roll's is a roll of the whole body about
+the stance hip toward the swing side, which the body PD above, a correction at the gait's
+frequency, neither asks back nor can hold. On a sole that motion tips the robot: the torque the
+stance leg lacks while it sags turns the body, the ground must supply that moment, and a sole
+holds at most ``m g a`` (a its half-width) before its centre of pressure reaches the edge. At
+lift-off Talos' stance hip roll is asked for 70 N·m and gives −5 N·m (its sole holds 49 N·m,
+the feedback's own change there reached 18 N·m): its body rolled 67 mrad over the stance,
+carried it into the next one as an outward lean and fell; the test biped's gives 0.4 of
+11.2 N·m (its sole holds 7.2 N·m), then rings ±7 N·m about the plan, and its sole's centre of
+pressure swings from edge to edge. A stiffer servo does not help: it sags less but its loop on
+the body rings faster and less damped (``ζ = D / (2 √(kp I))``), its torque error as large
+(4 × kp still tips). So on soles the controller also asks a position servo for the plan's
+torque through its reference — the static compensation of a compliant joint (Tomei, "A simple
+PD controller for robots with elastic joints", IEEE Trans. Automatic Control 36(10), 1991: the
+motor's set point ``q* + K⁻¹ g(q*)`` for a joint of stiffness K holding the load g; here
+``K = kp`` and the load the plan's whole torque) — the reference ``q* + Δq + (τ* + Δτ)/kp``,
+τ* the plan's motor torque at the hold's midpoint. The servo then gives τ* at the plan's angle;
+its velocity lag ``D q̇/kp`` (the back-EMF, which no torque input cancels) stays, the position
+servo's own tracking error. Point feet are left without it: their forces pass through points,
+so a stance leg's sag only shares the load among the feet otherwise, and the registered
+quadrupeds' trots walk under position servos as measured (with it, Solo-12's trot would spend
+3.4 % less and roll 0.13° instead of 1.5°). Measured in ``analysis/bench_logs/
+position_soles.log`` (``docs/simulate.md``, "Position servos on soles: the sag").
+
 **What is measured.** The base's pose and velocity and the feet's positions are MuJoCo's ground
 truth (``qpos``, ``qvel``, the foot sites): a perfect state estimator, stated in
 ``docs/simulate.md``. The controller runs every :data:`CONTROL_PERIOD` (100 Hz: the rate of a
@@ -301,6 +327,9 @@ class Balance:
         self.spread = max(float(np.max(np.linalg.norm((planted - centre)[:, :2], axis=1)))
                           if len(planted) else 0.0, 1e-3)
         """L, m: the stance feet's horizontal spread about their centre (the moment scale)."""
+        self.deflection = self.soles and sim.servo.controller == "position"
+        """Whether the correction holds the plan's own torque too, ``τ*/kp`` (a position servo
+        on soles: module docstring, "Deflection")."""
         self.constrained = 0
         """Updates at which a friction cone bound the force correction."""
         self.updates = 0
@@ -360,6 +389,11 @@ class Balance:
         out = np.zeros(self.nj)
         points, cols, swing, stance_map, stall, gain, swing_map = self._sample(k)
         self.updates += 1
+        if self.deflection:  # the plan's torque over the hold, at its midpoint
+            k2, s2, _ = self.plan(t + g.period / 2)
+            tau = self.load[k2, self.n_force:] + s2 * (self.load[k2 + 1, self.n_force:]
+                                                       - self.load[k2, self.n_force:])
+            out += tau / self.sim.kp
         if len(points):  # the stance feet's contact points
             load = self.load[k] + s * (self.load[k + 1] - self.load[k])
             f0 = (load[:self.n_force].reshape(-1, 3)[self.point_leg[points]]
@@ -371,7 +405,7 @@ class Balance:
             df, bound = distribute(wrench_map(feet[points], p + rot @ self.com[k]), dw, f0,
                                    self.mu, self.spread, bounds)
             self.constrained += bound
-            out[cols] = (t_map @ df.ravel()) / gain
+            out[cols] += (t_map @ df.ravel()) / gain
         if len(swing):
             x = self.feet[k, swing] + travel
             target = (x - p) @ rot - (x - p_plan) @ r_plan  # Rᵀ (x − p) − R*ᵀ (x − p*), per row

@@ -35,8 +35,9 @@ m, let the robot roll about that edge (the ZMP criterion, module docstring): the
 whatever distance it covered. The margin is exact to about a micrometre (the contact points
 and the corners are computed apart: Talos' heel read -0.24 µm). Under feedforward servos the
 test biped keeps 39–44 mm of its 45 mm half-width in single support and Talos 54 of 55 mm;
-under position servos both ride an edge (their soles off the ground in 18–39 % of the stance
-samples)."""
+under position servos 25–27 mm and 48 mm (asked only for the balance controller's change,
+without the plan's torque, both rode an edge, their soles off the ground in 18–39 % of the
+stance samples: :mod:`hexaleg.simulation.balance`, "Deflection")."""
 EDGES: tuple[str, str, str, str] = ("toe", "heel", "left", "right")
 """The sole's edges, named in its own axes: the toe at +x (the heading), the left side at +y."""
 
