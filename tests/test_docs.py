@@ -463,12 +463,12 @@ def test_simulate_page_quotes_the_position_soles_log():
         ("28.5 and 11.4 mm of its centre", after, "|   163.9   -28.5"),
         ("28.5 and 11.4 mm of its centre", talos_after, "|   904.0   -11.4"),
         ("37 mrad RMS on the test biped", log, "| springs | walks | 37 / 158 |"),
-        ("would spend 12.04 J instead of 12.47 J (plan 12.29 J)", log,
+        ("spends 12.04 J instead\nof 12.47 J (plan 12.29 J)", log,
          "feet off  0.0 % of stance, 119.9 mm,   12.04 J (plan 12.29)"),
-        ("would spend 12.04 J instead of 12.47 J (plan 12.29 J)", log,
+        ("spends 12.04 J instead\nof 12.47 J (plan 12.29 J)", log,
          "feet off  0.0 % of stance, 120.5 mm,   12.47 J (plan 12.29)"),
-        ("roll 0.13°\ninstead of 1.52°", log, "12.04 J (plan 12.29), roll max 0.13°"),
-        ("roll 0.13°\ninstead of 1.52°", log, "12.47 J (plan 12.29), roll max 1.52°"),
+        ("rolls 0.13°\ninstead of 1.52°", log, "12.04 J (plan 12.29), roll max 0.13°"),
+        ("rolls 0.13°\ninstead of 1.52°", log, "12.47 J (plan 12.29), roll max 1.52°"),
     ]
     for words, where, said in quoted:
         assert words in part, words

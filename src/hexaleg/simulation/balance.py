@@ -43,12 +43,13 @@ Jacobian), so it lands flat.
 **Through the servos.** The controller's output becomes the servo's reference
 (:mod:`hexaleg.simulation.controllers`): the control moves by ``Δτ/kp + Δq``. For the
 feedforward + PD servo that is the feedforward torque ``τ_ff + Δτ`` and the position reference
-``q* + Δq``; for the position-only servo (no torque input) the reference ``q* + Δq + Δτ/kp``,
-whose P gain turns the offset into the torque Δτ — the robot with a position servo is
-simulated as it is built, and the feedback's own torques are the servos' and count in the
-energy.
+``q* + Δq``; for the position-only servo (no torque input) the reference
+``q* + Δq + (τ* + Δτ)/kp``, whose P gain turns the offset into the controller's whole torque,
+the plan's and the correction ("Deflection", below) — the robot with a position servo is
+simulated as it is built (a host computes the torques and sends positions), and the feedback's
+own torques are the servos' and count in the energy.
 
-**Deflection** (a position servo on soles). A P servo delivers a torque only by deflecting:
+**Deflection** (a position servo). A P servo delivers a torque only by deflecting:
 without a torque input it gives the plan's own torque τ* once its joint has sagged by τ*/kp,
 and that sag is a motion of the body — the stance hip roll's is a roll of the whole body about
 the stance hip toward the swing side, which the body PD above, a correction at the gait's
@@ -61,18 +62,21 @@ carried it into the next one as an outward lean and fell; the test biped's gives
 11.2 N·m (its sole holds 7.2 N·m), then rings ±7 N·m about the plan, and its sole's centre of
 pressure swings from edge to edge. A stiffer servo does not help: it sags less but its loop on
 the body rings faster and less damped (``ζ = D / (2 √(kp I))``), its torque error as large
-(4 × kp still tips). So on soles the controller also asks a position servo for the plan's
+(4 × kp still tips). So the controller also asks a position servo for the plan's
 torque through its reference — the static compensation of a compliant joint (Tomei, "A simple
 PD controller for robots with elastic joints", IEEE Trans. Automatic Control 36(10), 1991: the
 motor's set point ``q* + K⁻¹ g(q*)`` for a joint of stiffness K holding the load g; here
 ``K = kp`` and the load the plan's whole torque) — the reference ``q* + Δq + (τ* + Δτ)/kp``,
 τ* the plan's motor torque at the hold's midpoint. The servo then gives τ* at the plan's angle;
 its velocity lag ``D q̇/kp`` (the back-EMF, which no torque input cancels) stays, the position
-servo's own tracking error. Point feet are left without it: their forces pass through points,
-so a stance leg's sag only shares the load among the feet otherwise, and the registered
-quadrupeds' trots walk under position servos as measured (with it, Solo-12's trot would spend
-3.4 % less and roll 0.13° instead of 1.5°). Measured in ``analysis/bench_logs/
-position_soles.log`` (``docs/simulate.md``, "Position servos on soles: the sag").
+servo's own tracking error. On point feet the sag costs the stride instead: a stance leg's
+sag lowers and tilts the body over the feet, and a quadruped new to hexaleg (Unitree Go1 from
+example-robot-data, 13 kg, its sized trot) covered only 73 % and 80 % of its stride (springs,
+baseline) at 68–73 mrad RMS tracking error without the plan's torque, against the whole stride
+with it; the registered quadrupeds' trots, which walked without it, now spend what the plan
+predicts (``docs/simulate.md``, "Balance feedback"). Measured on soles in
+``analysis/bench_logs/position_soles.log`` (``docs/simulate.md``, "Position servos on soles:
+the sag").
 
 **What is measured.** The base's pose and velocity and the feet's positions are MuJoCo's ground
 truth (``qpos``, ``qvel``, the foot sites): a perfect state estimator, stated in
@@ -327,9 +331,9 @@ class Balance:
         self.spread = max(float(np.max(np.linalg.norm((planted - centre)[:, :2], axis=1)))
                           if len(planted) else 0.0, 1e-3)
         """L, m: the stance feet's horizontal spread about their centre (the moment scale)."""
-        self.deflection = self.soles and sim.servo.controller == "position"
-        """Whether the correction holds the plan's own torque too, ``τ*/kp`` (a position servo
-        on soles: module docstring, "Deflection")."""
+        self.deflection = sim.servo.controller == "position"
+        """Whether the correction holds the plan's own torque too, ``τ*/kp`` (a position
+        servo: module docstring, "Deflection")."""
         self.constrained = 0
         """Updates at which a friction cone bound the force correction."""
         self.updates = 0

@@ -35,7 +35,7 @@ def test_a_walking_simulation(feedforward, tmp_path):
 def test_a_fallen_run_is_reported_not_compared(prepared):
     s = simulate(prepared.robot, prepared.motion, prepared.motor, None,
                  Settings(cycles=2, evaluate=1, force_samples=0, controller="position",
-                          kp_scale=0.005), prepared=prepared)
+                          kp_scale=0.005, feedback="off"), prepared=prepared)
     data = simulation_data(s)
     assert data["verdict"] == "did not walk" and "simulated" not in data
     assert data["runs"]["baseline"]["verdict"] == "fell"
