@@ -42,9 +42,11 @@ moves the tests elsewhere)."""
 LONG_FIRST = ("test_examples.py", "test_notebooks.py")
 """Modules whose tests each run a whole study (a kept example, a notebook: up to ~100 s)."""
 LONGEST = ("test_example_prints_its_log[codesign_hexaleg]",)
-"""The slow suite's longest study (the full co-design: 143 s in a quiet fresh-clone CI run,
-whose slow suite took 8 min 23 s on two cores): first of all, so that the other worker runs
-the rest meanwhile."""
+"""The slow suite's longest study (the full co-design: 175 s in a quiet fresh-clone CI run,
+whose slow suite took 8 min 41 s on two cores; the next longest, 42 s): first of all, so that
+the other worker runs the rest meanwhile. It is not the suite's critical path: with that run's
+durations the two workers' shares differ by about 10 s in this order and in a
+longest-first order of every test alike (the 84 tests under 7 s decide the last seconds)."""
 
 
 SHARING = ("tests/design/search/test_tolerance.py", "tests/test_docs_motion.py",
@@ -234,9 +236,11 @@ FORWARD_SAMPLES = 512
 
 
 @pytest.fixture(scope="session")
-def forward() -> ForwardStudy:
-    """:func:`forward_study` of the default joint on :data:`FORWARD_GRID` (about 2 s)."""
-    return forward_study(PaperJoint(), FORWARD_GRID, FORWARD_SAMPLES)
+def forward(request: pytest.FixtureRequest) -> ForwardStudy:
+    """:func:`forward_study` of the default joint on :data:`FORWARD_GRID` (about 3 s of CPU,
+    :func:`once_per_run`: tests of 23 files use it)."""
+    return once_per_run(request, "forward",
+                        lambda: forward_study(PaperJoint(), FORWARD_GRID, FORWARD_SAMPLES))
 
 
 # One small design (tests/design/chain, tests/commands/design), computed once per session.
@@ -256,13 +260,19 @@ three patterns) maps, a box of 4 corners."""
 
 
 @pytest.fixture(scope="session")
-def design_written(tmp_path_factory: pytest.TempPathFactory) -> tuple[WrittenDesign, Path]:
-    """The small design, written once for the session, and its directory."""
+def design_written(request: pytest.FixtureRequest,
+                   tmp_path_factory: pytest.TempPathFactory) -> tuple[WrittenDesign, Path]:
+    """The small design, written once for the run (:func:`once_per_run`: ~9 s of CPU, which
+    both workers of the README's suite spent, its tests being in 14 files), and its directory
+    (the tests read it, none writes into it)."""
     from hexaleg.commands.design.write import write_design
 
-    out = tmp_path_factory.mktemp("design")
-    return write_design(out, hexaleg.Scenario.from_tables("hexaleg", DESIGN_SMALL),
-                        progress=None), out
+    def make() -> tuple[WrittenDesign, Path]:
+        out = tmp_path_factory.mktemp("design")
+        return write_design(out, hexaleg.Scenario.from_tables("hexaleg", DESIGN_SMALL),
+                            progress=None), out
+
+    return once_per_run(request, "design_written", make)
 
 
 # One co-design of the default robot at 0.06 m/s (tests/design/codesign, tests/commands/codesign):
@@ -373,13 +383,17 @@ maps, a two-corner robust box."""
 
 
 @pytest.fixture(scope="session")
-def design_json(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """A ``design.json`` (and ``design.html``) of :data:`TINY_DESIGN`, written once a session."""
+def design_json(request: pytest.FixtureRequest, tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A ``design.json`` (and ``design.html``) of :data:`TINY_DESIGN`, written once for the run
+    (:func:`once_per_run`; the tests read it)."""
     from hexaleg.commands.design.write import write_design
 
-    out = tmp_path_factory.mktemp("design")
-    write_design(out, hexaleg.Scenario.from_tables("hexaleg", TINY_DESIGN), progress=None)
-    return out / "design.json"
+    def make() -> Path:
+        out = tmp_path_factory.mktemp("design")
+        write_design(out, hexaleg.Scenario.from_tables("hexaleg", TINY_DESIGN), progress=None)
+        return out / "design.json"
+
+    return once_per_run(request, "design_json", make)
 
 
 @pytest.fixture(scope="session")

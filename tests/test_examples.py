@@ -28,7 +28,8 @@ LOGS = ANALYSIS / "logs"
 SCRIPTS = sorted(p for p in ANALYSIS.glob("*_*.py") if not p.name.startswith("bench_"))
 TIMEOUT = 900
 """Seconds an example may run before it is killed with its workers: the co-design example takes
-143 s in a quiet CI run and 270 s or more on a loaded machine (the notebooks get 600 s a cell)."""
+175 s in a quiet CI run and 190 s of CPU, so that at load 19 on two cores (23 min) it runs over
+this timeout (the notebooks get 600 s a cell)."""
 NUMBER = re.compile(r"[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?")
 SIMULATED = 0.0015
 """Relative tolerance of a forward simulation's figure: moving the gait's period by 1e-9 moves
