@@ -199,7 +199,7 @@ def test_an_empty_simulation_file_is_named_not_a_traceback(tmp_path, capsys):
 def test_ctrl_c_ends_the_wait_even_where_sigint_was_ignored():
     """A server started in the background of a script inherits SIGINT ignored; Ctrl-C (SIGINT)
     still ends its wait, as SIGTERM does, from the moment it says it is ready."""
-    code = ("from hexaleg.commands.view import wait_until_interrupted; "
+    code = ("from hexaleg.commands.view.study import wait_until_interrupted; "
             "wait_until_interrupted(lambda: print('waiting', flush=True)); "
             "print('stopped', flush=True)")
     for sig in (signal.SIGINT, signal.SIGTERM):
