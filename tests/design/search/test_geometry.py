@@ -266,9 +266,9 @@ def test_the_lagrangian_bound_finds_the_exhaustive_optimum_with_fewer_solves(rob
     in its bounds (scan.RelaxedBounds.dual) finds the geometry and value of the search that
     solves every candidate exactly, bit for bit, with fewer exact solves than the condensed
     bound alone needs, and that needs fewer than every candidate. (With femur and tibia both
-    sprung, the exhaustive search's descent takes a candidate better by less than the scans'
-    BOUND_SLACK and ends at another fixed point, 2 % lower: a coordinate descent is not a
-    global search; both bounded searches end where each other does.)"""
+    sprung, the two bounded searches end at the same fixed point, and the search that solves
+    every candidate at another, 2 % lower — a coordinate descent's fixed point is not a global
+    optimum; the decision where their paths part is not traced yet.)"""
     import hexaleg.design.search.geometry as geometry
     from hexaleg.design.search.scan import RelaxedBounds
 
