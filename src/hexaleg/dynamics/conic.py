@@ -224,6 +224,15 @@ def clarabel_solve(P: object, q: np.ndarray, A: object, b: np.ndarray, cones: li
     Returns:
         ``(x, status)``.
     """
+    x, _, status = clarabel_primal_dual(P, q, A, b, cones)
+    return x, status
+
+
+def clarabel_primal_dual(P: object, q: np.ndarray, A: object, b: np.ndarray,
+                         cones: list[object]) -> tuple[np.ndarray, np.ndarray, str]:
+    """:func:`clarabel_solve` with Clarabel's dual variables: ``(x, z, status)``, z (m,) the
+    multipliers of the rows, in the dual cones, with ``P x + q + Aᵀ z = 0`` at the optimum
+    (Clarabel's convention: the Lagrangian is ½ xᵀ P x + qᵀ x + zᵀ (A x − b))."""
     import clarabel
 
     settings = clarabel.DefaultSettings()
@@ -236,7 +245,7 @@ def clarabel_solve(P: object, q: np.ndarray, A: object, b: np.ndarray, cones: li
         status = str(solution.status)
         if status not in ("AlmostSolved", "InsufficientProgress"):
             break
-    return np.asarray(solution.x), status
+    return np.asarray(solution.x), np.asarray(solution.z), status
 
 
 def _clarabel_solve(program: _ConicProgram) -> tuple[np.ndarray, str]:

@@ -73,3 +73,45 @@ def test_fast_assembly_is_the_sparse_one(prepared200, femur_linear):
     for name in ("data", "indices", "indptr"):
         np.testing.assert_array_equal(getattr(fast, name), getattr(ref, name))
     np.testing.assert_array_equal(bf, br)
+
+
+def test_the_multipliers_price_the_binding_samples(slippery200):
+    """The active set's multipliers (the friction cones bind at μ = 0.3) are those of its
+    explicit samples and meet complementary slackness at the optimum: each sample's Lagrangian
+    term ``torque · τ + force · f + constant`` is ≤ 0 (the multipliers in their dual cones, the
+    forces feasible) and their sum is 0 but for the solver's tolerance."""
+    from hexaleg.design.search.setup import design_setup
+
+    setup = design_setup(slippery200, ["coxa", "femur", "tibia"], "linear", "joule", None, None)
+    problem = setup.problem(setup.check_geometry({}))
+    sol = solve_design(problem)
+    m = sol.multipliers
+    assert m is not None and np.array_equal(m.samples, sol.explicit) and sol.explicit.size > 20
+    system = slippery200.system
+    k = m.samples
+    tau = (system.b_joint[k] - np.einsum("tjf,tf->tj", system.D[k], sol.forces[k])
+           - problem.spring_torques(sol.x)[k])
+    terms = np.sum(m.torque * tau, axis=1) + np.sum(m.force * sol.forces[k], axis=1) + m.constant
+    assert np.abs(m.force).max() > 1e-4 * sol.value  # the cones bind: priced
+    assert np.all(terms <= 1e-9 * sol.value)
+    assert abs(terms.sum()) <= 1e-7 * sol.value
+
+
+def test_a_program_without_explicit_samples_has_no_multipliers(prepared200, femur_linear):
+    assert solve_design(femur_linear(prepared200)).multipliers is None
+
+
+def test_the_dual_cone_projection():
+    """``_dual_cone`` is the Euclidean projection onto the nonnegative orthant or the
+    second-order cone (Moreau: y = P(y) + its part in the polar cone, the two orthogonal)."""
+    from hexaleg.design.search.program import _dual_cone
+
+    rng = np.random.default_rng(3)
+    for y in rng.normal(size=(200, 3)):
+        p = _dual_cone(y, True)
+        assert np.hypot(p[1], p[2]) <= p[0] + 1e-12
+        rest = y - p
+        assert np.hypot(rest[1], rest[2]) <= -rest[0] + 1e-12  # in the polar cone
+        assert abs(p @ rest) <= 1e-12
+        np.testing.assert_allclose(_dual_cone(p, True), p, atol=1e-15)
+        np.testing.assert_array_equal(_dual_cone(y, False), np.maximum(y, 0.0))

@@ -103,3 +103,54 @@ def test_a_strong_bound_asked_again_is_not_solved_again(prepared200, monkeypatch
     first = [bounds.tight(i) for i in (2, 0, 2)]
     assert first[0] == first[2] and len(solves) == 2
     assert bounds.tight(0) == first[1] and len(solves) == 2
+
+
+@pytest.fixture(scope="module")
+def friction_bound_setup():
+    """A dead-zone design on a tripod gait whose friction cone binds (μ = 0.3: the default
+    gait's exact program puts about half its samples in its active set), the state's optimum
+    and its multipliers."""
+    import hexaleg
+
+    robot = hexaleg.load()
+    prepared = hexaleg.prepare(robot, hexaleg.gait(robot, hexaleg.GaitParams(samples=60)),
+                               contact=hexaleg.ContactParams(mu=0.3))
+    setup = design_setup(prepared, ["coxa", "femur", "tibia"], "dead_zone", "joule", None,
+                         np.pi, mirrored=mirror(robot).mirrored)
+    state = setup.check_geometry(CASES[3][1])
+    own = setup.solve(state)
+    assert own.explicit.size >= 20 and own.multipliers is not None
+    assert np.abs(own.multipliers.force).max() > 0  # the friction rows' multipliers
+    return setup, state, own
+
+
+@pytest.mark.parametrize(("group", "angle", "side"), [("tibia", "theta_plus", "above"),
+                                                      ("femur", "theta_minus", "below")])
+def test_the_lagrangian_bound_never_exceeds_the_exact_value(friction_bound_setup, group, angle,
+                                                            side):
+    """The bound built on the state's multipliers (scan._lagrangian) is a lower bound of the
+    exact program on a dense sample of the scanned angle, never below the tight bound, equal
+    to the exact value at the state itself (strong duality) but for its margin, and there far
+    above the tight bound, which ignores the friction cone."""
+    setup, state, own = friction_bound_setup
+    lo = state[group]["theta_minus"] + 1e-3 if angle == "theta_plus" else -0.25
+    hi = state[group]["theta_plus"] - 1e-3 if angle == "theta_minus" else 0.3
+    thetas = np.sort(np.r_[np.linspace(lo, hi, 24), state[group][angle]])
+    bounds = RelaxedBounds(setup, state, group, angle, thetas, side, own.multipliers)
+    exact = np.array([setup.solve({**state, group: {**state[group], angle: float(t)}}).value
+                      for t in thetas])
+    dual = np.array([bounds.dual(i) for i in range(thetas.size)])
+    tight = np.array([bounds.tight(i) for i in range(thetas.size)])
+    assert np.all(dual <= exact) and np.all(dual >= tight)
+    at = int(np.flatnonzero(thetas == state[group][angle])[0])
+    assert dual[at] == pytest.approx(own.value, rel=1e-8)
+    assert exact[at] - tight[at] > 1e-4 * exact[at]
+
+
+def test_without_multipliers_the_strongest_bound_is_the_tight_one(friction_bound_setup):
+    """No multipliers (a state whose program has no explicit sample, or no solution): the
+    levels' last bound is the tight bound, bit for bit."""
+    setup, state, _ = friction_bound_setup
+    thetas = np.linspace(0.0, 0.3, 5)
+    bounds = RelaxedBounds(setup, state, "tibia", "theta_plus", thetas, "above")
+    assert [bounds.dual(i) for i in range(5)] == [bounds.tight(i) for i in range(5)]

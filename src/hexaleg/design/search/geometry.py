@@ -309,7 +309,10 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
                 scan_key = (key(state), g, angle, where, thetas.tobytes())
                 if scan_key not in scanned:  # a scan again from the same state (a sweep
                     # later, when nothing moved): its bounds kept, one sweep's worth
-                    scanned[scan_key] = RelaxedBounds(setup, state, g, angle, thetas, where)
+                    own = solutions.get(key(state))
+                    scanned[scan_key] = RelaxedBounds(
+                        setup, state, g, angle, thetas, where,
+                        None if own is None else own.multipliers)
                     while len(scanned) > 2 * len(groups) * len(fam.angles):
                         scanned.pop(next(iter(scanned)))
                 bounds = scanned[scan_key]
@@ -391,14 +394,17 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
 
 def _by_bound(bounds: RelaxedBounds, limit: Callable[[], float],
               ahead: Callable[[list[int]], None] | None = None, most: int = 1) -> Iterator[int]:
-    """The candidates in increasing order of their strong bound (ties by index), until the next
-    one's is not below ``limit()`` (asked again before each; it cannot win).
+    """The candidates in increasing order of their strongest bound (ties by index), until the
+    next one's is not below ``limit()`` (asked again before each; it cannot win).
 
-    The strong bound of a candidate is computed only when its weak bound comes first in a heap of
-    (bound, index) — a weak bound is below its strong one, so every candidate not yet tightened
-    has a strong bound above the one yielded: the order and the stop are those of every strong
-    bound sorted (stably), the solves of the candidates never reached saved. A weak bound not
-    below ``limit()`` when its turn comes is not tightened: the strong one is not below it either.
+    ``bounds.levels`` are the strong bounds from weaker to stronger (the condensed program with
+    its design rows, then with the multipliers of the scan's state: :class:`RelaxedBounds`). A
+    candidate is tightened to the next level only when its bound comes first in a heap of
+    (bound, index, level) — each level is at or above the one before, so every candidate not
+    yet tightened fully has a strongest bound above the one yielded: the order and the stop are
+    those of every strongest bound sorted (stably), the solves of the candidates never reached
+    saved. A bound not below ``limit()`` when its turn comes is not tightened: the stronger ones
+    are not below it either.
 
     With ``ahead``, the next candidates in that order whose bound is below ``limit()`` now — one,
     then twice as many each time all were yielded, at most ``most`` — are handed to
@@ -409,20 +415,21 @@ def _by_bound(bounds: RelaxedBounds, limit: Callable[[], float],
     are the same, in the same order, whatever ``most``; only the solves spent ahead and not
     yielded (at most ``most − 1`` a scan) differ.
     """
-    heap = [(float(b), i, False) for i, b in enumerate(bounds.weak)]
+    levels = bounds.levels
+    heap = [(float(b), i, 0) for i, b in enumerate(bounds.weak)]
     heapq.heapify(heap)
     width = 1
     while True:
         batch: list[tuple[float, int]] = []
         while heap and len(batch) < width:
-            bound, i, strong = heap[0]
+            bound, i, level = heap[0]
             if not bound < limit():
                 break
             heapq.heappop(heap)
-            if strong:
+            if level == len(levels):
                 batch.append((bound, i))
             else:
-                heapq.heappush(heap, (bounds.tight(i), i, True))
+                heapq.heappush(heap, (levels[level](i), i, level + 1))
         if not batch:
             return
         if ahead is not None and len(batch) > 1:

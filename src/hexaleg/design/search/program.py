@@ -27,12 +27,13 @@ writes the same program in cvxpy, for every objective, as the reference.
 from __future__ import annotations
 
 import weakref
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from hexaleg.design.search.bundle import csc
-from hexaleg.dynamics.conic import base_row_space, clarabel_solve, contact_rows
+from hexaleg.dynamics.conic import base_row_space, clarabel_primal_dual, contact_rows
 from hexaleg.dynamics.contact import (
     QUADRATIC_OBJECTIVES,
     ContactParams,
@@ -93,6 +94,29 @@ class DesignProblem:
 
 
 @dataclass(frozen=True)
+class Multipliers:
+    """The multipliers of the explicit samples' inequalities at a design program's optimum
+    (Clarabel's dual variables of the active set's last round, in the objective's own units,
+    each projected onto its dual cone): the Lagrangian term of sample ``samples[i]`` is
+    ``torque[i] · τ + force[i] · f + constant[i]``, ≤ 0 wherever its forces and motor torques
+    meet the friction cone, the normal-force bound and the torque limits (weak duality,
+    Boyd & Vandenberghe, *Convex Optimization*, 2004, §5.1.3 and §5.9). A lower bound of another
+    geometry's program is built on them (:class:`hexaleg.design.search.scan.RelaxedBounds`).
+
+    Attributes:
+        samples: The explicit samples, shape (S,).
+        torque: The torque limits' multipliers y⁺ − y⁻ (of τ ≤ τ_max and −τ ≤ τ_max), (S, nj).
+        force: The contact rows' multipliers on the forces, ``Rᵀ y``, (S, 3 n_legs) (padded).
+        constant: ``−(y⁺ + y⁻) · τ_max − y · b`` of each sample, (S,).
+    """
+
+    samples: np.ndarray
+    torque: np.ndarray
+    force: np.ndarray
+    constant: np.ndarray
+
+
+@dataclass(frozen=True)
 class DesignSolution:
     """The optimum of a :class:`DesignProblem`.
 
@@ -104,6 +128,8 @@ class DesignSolution:
         forces: The optimal foot forces, shape (T, 3 n_legs), N (padded; in the stance
             system's frame: the world on level ground, the contact frame on a slope,
             ``prepared.system.to_world(forces)`` in the world).
+        multipliers: The explicit samples' multipliers (:class:`Multipliers`; None where no
+            sample is explicit or the solver gave none).
     """
 
     x: np.ndarray
@@ -111,6 +137,7 @@ class DesignSolution:
     explicit: np.ndarray
     rounds: int
     forces: np.ndarray
+    multipliers: Multipliers | None = None
 
 
 def _coo(block: np.ndarray, rows: np.ndarray, cols: np.ndarray
@@ -200,6 +227,20 @@ def _solve_once(problem: DesignProblem, explicit: np.ndarray, Q: np.ndarray, r: 
 
     The objective is divided by ``scale`` (the baseline's value): in joules with dt-sized weights
     its entries are ~1e-3 against O(1) constraint rows, and Clarabel then stalls."""
+    x, forces, status, _ = _solve_round(problem, explicit, Q, r, scale)
+    return x, forces, status
+
+
+_Layout = list[tuple[int, list[tuple[int, np.ndarray, np.ndarray, bool]], int]]
+"""Per explicit sample: (sample, its contact blocks as (first row, rows on its stance forces,
+right-hand side, second-order cone?), first row of its torque-limit block or −1)."""
+
+
+def _solve_round(problem: DesignProblem, explicit: np.ndarray, Q: np.ndarray, r: np.ndarray,
+                 scale: float
+                 ) -> tuple[np.ndarray, dict[int, np.ndarray], str, Callable[[], Multipliers]]:
+    """:func:`_solve_once`, and how to read the explicit samples' :class:`Multipliers` from the
+    solve's dual variables (asked only of the last round)."""
     import clarabel
     import scipy.sparse as sp
 
@@ -219,6 +260,7 @@ def _solve_once(problem: DesignProblem, explicit: np.ndarray, Q: np.ndarray, r: 
         asm.add(problem.G, xcols, problem.h, clarabel.NonnegativeConeT(problem.G.shape[0]))
     n = nx
     placed: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # sample → (stance columns, z columns)
+    layout: _Layout = []
     for k in (int(k) for k in explicit):
         st = np.flatnonzero(np.repeat(system.stance[k], 3))
         fcols = n + np.arange(st.size)
@@ -232,9 +274,14 @@ def _solve_once(problem: DesignProblem, explicit: np.ndarray, Q: np.ndarray, r: 
         qk = -2 * w[k] * Z.T @ (c * system.b_joint[k])
         q_parts[0][:nx] += qk[:nx]
         q_parts.append(qk[nx:])
+        blocks = []
         if st.size:
-            for rows, rhs, cone in _sample_rows(system, k, prepared.contact):
+            for i, (rows, rhs, cone) in enumerate(_sample_rows(system, k, prepared.contact)):
+                if i:  # the base rows (an equality) are kept by the bound
+                    blocks.append((asm.m, rows, rhs,
+                                   isinstance(cone, clarabel.SecondOrderConeT)))
                 asm.add(rows, fcols, rhs, cone)
+        layout.append((k, blocks, asm.m if prepared.contact.torque_limits else -1))
         if prepared.contact.torque_limits:
             tmax, b = system.tau_max, system.b_joint[k]
             asm.add(np.vstack([-Z, Z]), zcols, np.concatenate([tmax - b, tmax + b]),
@@ -249,12 +296,49 @@ def _solve_once(problem: DesignProblem, explicit: np.ndarray, Q: np.ndarray, r: 
         dense[rows_, cols_] = vals
         P = csc(np.triu(dense))
         A, b = asm.dense(n)
-    z, status = clarabel_solve(P, np.concatenate(q_parts), A, b, asm.cones)
+    z, duals, status = clarabel_primal_dual(P, np.concatenate(q_parts), A, b, asm.cones)
     forces = {}
     for k, (st, fcols) in placed.items():
         forces[k] = np.zeros(system.A.shape[2])
         forces[k][st] = z[fcols]
-    return z[:nx], forces, status
+    return z[:nx], forces, status, lambda: _multipliers(system, layout, duals * scale)
+
+
+def _multipliers(system: StanceSystem, layout: _Layout, y: np.ndarray) -> Multipliers:
+    """The :class:`Multipliers` of the explicit samples in ``layout`` from the rows' dual
+    variables ``y`` (the objective's own units), each block projected onto its dual cone (the
+    nonnegative orthant, the second-order cone: both self-dual) so that the Lagrangian terms
+    are ≤ 0 on every feasible point exactly, whatever the solver's round-off."""
+    nj, nf = system.D.shape[1], system.A.shape[2]
+    S = len(layout)
+    torque, force, constant = np.zeros((S, nj)), np.zeros((S, nf)), np.zeros(S)
+    for i, (k, blocks, at) in enumerate(layout):
+        st = np.flatnonzero(np.repeat(system.stance[k], 3))
+        for first, rows, rhs, second_order in blocks:
+            yb = _dual_cone(y[first:first + rows.shape[0]], second_order)
+            force[i, st] += rows.T @ yb  # yᵀ (R f − b): ≤ 0 where b − R f is in the cone
+            constant[i] -= yb @ rhs
+        if at >= 0:
+            up = np.maximum(y[at:at + nj], 0.0)  # of τ_max − τ ≥ 0
+            down = np.maximum(y[at + nj:at + 2 * nj], 0.0)  # of τ_max + τ ≥ 0
+            torque[i] = up - down
+            constant[i] -= (up + down) @ system.tau_max
+    return Multipliers(np.array([k for k, _, _ in layout], dtype=int), torque, force, constant)
+
+
+def _dual_cone(y: np.ndarray, second_order: bool) -> np.ndarray:
+    """``y`` projected onto the nonnegative orthant, or onto the second-order cone
+    {(t, u): ‖u‖ ≤ t} (Boyd & Vandenberghe, *Convex Optimization*, exercise 8.3)."""
+    if not second_order:
+        return np.maximum(y, 0.0)
+    t, u = float(y[0]), y[1:]
+    norm = float(np.linalg.norm(u))
+    if norm <= t:
+        return y.copy()
+    if norm <= -t:
+        return np.zeros_like(y)
+    a = (t + norm) / 2
+    return np.concatenate([[a], a * u / norm])
 
 
 def solve_design(problem: DesignProblem) -> DesignSolution:
@@ -282,8 +366,9 @@ def solve_design(problem: DesignProblem) -> DesignSolution:
     condensed = np.ones(system.n_samples, dtype=bool)
     for rounds in range(1, MAX_ROUNDS + 1):
         explicit = np.flatnonzero(~condensed)
-        x, forces, status = _solve_once(problem, explicit, Q_t[condensed].sum(0),
-                                        r_t[condensed].sum(0), scale)
+        x, forces, status, multipliers = _solve_round(problem, explicit,
+                                                      Q_t[condensed].sum(0),
+                                                      r_t[condensed].sum(0), scale)
         if status != "Solved":
             raise InfeasibleForcesError(
                 f"the spring design program has no solution (Clarabel: {status}); design "
@@ -297,7 +382,8 @@ def solve_design(problem: DesignProblem) -> DesignSolution:
             tau[~condensed] = system.torques(f[~condensed], problem.spring_torques(x)[~condensed],
                                              ~condensed)
             value = float(np.sum(w[:, None] * c * tau**2))
-            return DesignSolution(x, value, explicit, rounds, f)
+            return DesignSolution(x, value, explicit, rounds, f,
+                                  multipliers() if explicit.size else None)
         condensed &= ~bad
     raise InfeasibleForcesError(f"the spring design's active set did not settle in {MAX_ROUNDS} "
                                 "rounds")
