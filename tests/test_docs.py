@@ -457,3 +457,23 @@ def test_simulate_page_quotes_the_talos_log():
     for words, said in quoted:
         assert words in talos, words
         assert said in log, said
+
+
+def test_robots_page_quotes_the_codesign_bench_log():
+    """docs/robots.md's table of the co-design's time and memory per robot (issue #55) is
+    analysis/bench_logs/bench_robots.log's codesign rows: each robot's CPU seconds and the
+    largest process's peak MB, as that log's row for it prints them."""
+    log = (ROOT / "analysis" / "bench_logs" / "bench_robots.log").read_text()
+    page = (DOCS / "robots.md").read_text()
+    table = page[page.index("### The co-design's time and memory per robot"):]
+    rows = [line.split("|")[1:4] for line in table.splitlines()
+            if line.startswith("| ") and not line.startswith("| robot")]
+    assert len(rows) == 15, rows  # the 6 registered robots and bench_robots' 9 test robots
+    printed = {}
+    for line in log.splitlines():  # robot, command, wall, x default, CPU s, share, peak, worker
+        words = line.split()
+        if len(words) > 7 and words[1] == "codesign" and not line.startswith("#"):
+            printed.setdefault(words[0], []).append(
+                (words[4], str(max(int(words[6]), int(words[7])))))
+    for robot, cpu, peak in ((c.strip() for c in row) for row in rows):
+        assert (cpu, peak) in printed.get(robot, []), (robot, cpu, peak)
