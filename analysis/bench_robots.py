@@ -3,7 +3,7 @@ CPU time and peak memory, and the simulation's speed, on every registered robot 
 robots, as ratios against the default robot measured in the same run.
 
 Run:  nice python analysis/bench_robots.py [--robots hexaleg solo12 …] [--no-design]
-          [--codesign] [--timeout 1200]
+          [--codesign] [--config F] [--timeout 1200]
 
 For each robot, one row:
 
@@ -21,6 +21,11 @@ For each robot, one row:
 * the ratio of each time to the default robot's, so that a loaded machine (both slow down alike)
   still compares robots; and the child's CPU share (CPU time over wall time: up to 2 with both
   cores busy; well below 1, the machine was busy).
+
+``--config F`` passes ``--config F`` to each design and codesign command of the run, the
+default robot's included (not to the simulate row, run in this process): the brushless
+hexapod's co-design at its default speed needs ``[codesign.constraints] friction_margin = 1``
+(at 0.7 its default gait is refused, naming that key).
 
 Its last rows, before and after a change, are kept in ``analysis/bench_logs/bench_robots.log``.
 
@@ -60,11 +65,11 @@ SIMULATE_TARGET = 10.0
 """Simulation speed target, × real time."""
 
 
-def child(command: str, robot: str) -> None:
-    """In the child process: run ``hexaleg <command> --robot <robot>`` into a temporary directory
-    and print one JSON line: wall and CPU time (s, the forked workers' included), peak memory
-    (MB: this process's and its largest worker's), exit code, the last stderr line when it
-    failed, and the stages' timings."""
+def child(command: str, robot: str, config: str | None = None) -> None:
+    """In the child process: run ``hexaleg <command> --robot <robot> [--config <config>]`` into a
+    temporary directory and print one JSON line: wall and CPU time (s, the forked workers'
+    included), peak memory (MB: this process's and its largest worker's), exit code, the last
+    stderr line when it failed, and the stages' timings."""
     import contextlib
     import io
 
@@ -74,6 +79,8 @@ def child(command: str, robot: str) -> None:
         argv = [command, "--robot", robot, "--out", str(Path(out) / command)]
         if command == "codesign":
             argv.append("--no-rules")
+        if config:
+            argv += ["--config", config]
         with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
             try:
                 rc = cli(argv)
@@ -98,11 +105,13 @@ def child(command: str, robot: str) -> None:
         "recommended": rec.get("label", "") if isinstance(rec, dict) else ""}))
 
 
-def measure(command: str, robot: str, timeout: float) -> dict[str, Any]:
-    """``hexaleg <command> --robot <robot>`` in a fresh child process (:func:`child`), killed
-    with its workers after ``timeout`` s."""
+def measure(command: str, robot: str, timeout: float,
+            config: str | None = None) -> dict[str, Any]:
+    """``hexaleg <command> --robot <robot> [--config <config>]`` in a fresh child process
+    (:func:`child`), killed with its workers after ``timeout`` s."""
     t0 = time.perf_counter()
-    proc = subprocess.Popen([sys.executable, __file__, "--child", command, robot],
+    proc = subprocess.Popen([sys.executable, __file__, "--child", command, robot,
+                             *(["--config", str(Path(config).resolve())] if config else [])],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True, env=os.environ.copy())
     try:
@@ -156,11 +165,12 @@ def main() -> None:
     parser.add_argument("--no-design", dest="design", action="store_false")
     parser.add_argument("--codesign", action="store_true")
     parser.add_argument("--no-simulate", dest="simulate", action="store_false")
+    parser.add_argument("--config", help="a TOML file passed to every command (--config F)")
     parser.add_argument("--timeout", type=float, default=1200.0)
     parser.add_argument("--child", nargs=2, metavar=("COMMAND", "ROBOT"), help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.child:
-        child(*args.child)
+        child(*args.child, config=args.config)
         return
     commands = [c for c, on in (("design", args.design), ("codesign", args.codesign)) if on]
     print(f"{'robot':<12} {'command':<9} {'wall s':>7} {'x default':>9} {'CPU s':>7} "
@@ -169,7 +179,7 @@ def main() -> None:
     for name in ["hexaleg", *(r for r in args.robots if r != "hexaleg")]:
         robot = TEST_ROBOTS.get(name, name)
         for command in commands:
-            row = measure(command, robot, args.timeout)
+            row = measure(command, robot, args.timeout, args.config)
             ref.setdefault(command, row["wall"])
             print(f"{name:<12} {command:<9} {row['wall']:7.1f} {row['wall'] / ref[command]:9.2f} "
                   f"{row['cpu']:7.1f} {row['cpu'] / row['wall']:5.2f} {row['peak_self']:8.0f} "

@@ -562,3 +562,38 @@ def test_simulate_page_quotes_the_talos_log():
     for words, said in quoted:
         assert words in talos, words
         assert said in log, said
+
+
+def test_robots_page_quotes_the_codesign_bench_log():
+    """docs/robots.md's table of the co-design's time and memory per robot (issue #55) is
+    analysis/bench_logs/bench_robots.log's codesign rows: each robot's CPU seconds and the
+    largest process's peak MB, and the quiet runs' wall and CPU seconds, as that log's row for
+    it prints them."""
+    log = (ROOT / "analysis" / "bench_logs" / "bench_robots.log").read_text()
+    page = (DOCS / "robots.md").read_text()
+    table = page[page.index("### The co-design's time and memory per robot"):]
+    rows = [line.split("|")[1:5] for line in table.splitlines()
+            if line.startswith("| ") and not line.startswith("| robot")]
+    assert len(rows) == 15, rows  # the 6 registered robots and bench_robots' 9 test robots
+    printed = {}
+    for line in log.splitlines():  # robot, command, wall, x default, CPU s, share, peak, worker
+        words = line.split()
+        if len(words) > 7 and words[1] == "codesign" and not line.startswith("#"):
+            printed.setdefault(words[0], []).append(
+                (words[2], words[4], str(max(int(words[6]), int(words[7])))))
+    for robot, cpu, peak, note in ((c.strip() for c in row) for row in rows):
+        assert (cpu, peak) in [r[1:] for r in printed.get(robot, [])], (robot, cpu, peak)
+        if note.startswith("quiet: "):
+            wall, quiet_cpu = note.removeprefix("quiet: ").replace(" s CPU", "").split(
+                " s wall, ")
+            assert (wall, quiet_cpu) in [r[:2] for r in printed[robot]], (robot, note)
+    prose = " ".join(table.split())
+    log_words = " ".join(log.split())
+    for words, said in (  # (the page's words, the log's)
+            ("31–40 iterations, 0.39–0.50 s of CPU", "the gait 0.39-0.50 s (its ZMP sway, 31-40 "
+                                                    "iterations"),
+            ("244 s of CPU for its 183 candidates", "co-design search 244.2 s (183 evaluations"),
+            ("the gait-alone search's 200 took 97 s", "gait-alone search 97.4 s (200 evaluations"),
+            ("about 0.8 s to each candidate", "about 0.8 s the inner spring program")):
+        assert words in prose, words
+        assert said in log_words, said
