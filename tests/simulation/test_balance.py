@@ -63,11 +63,13 @@ def test_a_trot_needs_feedback_and_a_tripod_does_not(trot, walk):
 
 
 def test_on_the_plan_the_correction_is_zero_and_a_low_body_is_pushed_up(trot):
-    """At the plan's own state (any instant) every error is zero, and so is the correction; a
-    body 5 mm low asks the stance feet for m k_p × 5 mm more, within the regularisation (a
-    wrong sign of the height error or of the force map fails it)."""
+    """At the plan's own state (any instant) every error is zero, and so is the correction (of
+    a feedforward servo: a position servo's also holds the plan's torque over kp,
+    ``test_a_position_servo_is_asked_for_the_plans_torque_through_its_reference``); a body 5 mm
+    low asks the stance feet for m k_p × 5 mm more, within the regularisation (a wrong sign of
+    the height error or of the force map fails it)."""
     prepared, analysis = trot
-    sim = _model(prepared, "position")
+    sim = _model(prepared, "feedforward")
     b = balance.Balance(sim, prepared.motion, analysis.forces, analysis.tau_motor)
     motion = prepared.motion
     seen = []
