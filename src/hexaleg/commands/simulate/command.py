@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import argparse
 
-from hexaleg.commands.options import add_motion_option, print_warnings
+from hexaleg.commands.options import add_motion_option, add_quiet, print_warnings
 from hexaleg.robot.registry import ROBOT_HELP  # loaded by `import hexaleg` already
 from hexaleg.simulation.balance import MODES as FEEDBACK  # no MuJoCo: it loads with a model
 from hexaleg.simulation.controllers import CONTROLLERS  # no MuJoCo either
@@ -42,12 +42,15 @@ def add(sub: argparse._SubParsersAction) -> None:
                         "stiffer, half the friction, the no-slip pass and the other controller")
     p.add_argument("--out", default="hexaleg-simulate",
                    help="output directory (default: %(default)s)")
+    add_quiet(p)
     add_motion_option(p, run, "simulate.json")
 
 
 def run(args: argparse.Namespace) -> int:
     """Simulate the run with and without the springs and write its files."""
-    from hexaleg.commands.options import load_run
+    import time
+
+    from hexaleg.commands.options import load_run, progress_of
     from hexaleg.commands.simulate.study import load_study
     from hexaleg.commands.simulate.write import simulation_data, summary, write_simulation
     from hexaleg.errors import SimulationError
@@ -58,14 +61,24 @@ def run(args: argparse.Namespace) -> int:
                  "cycles": args.cycles, "timestep": args.timestep}
     if args.cycles is not None and args.cycles >= 2:
         overrides["evaluate"] = min(2, args.cycles - 1)
+    say = progress_of(args, "simulate") or (lambda _line: None)
+    start = time.perf_counter()
     run = load_run(args.robot, args.config, args.motion, args.cycle, args)
     study = load_study(run, args.springs, overrides)
+    settings = study.settings
+    say(f"the robot, its gait and the springs to simulate ({time.perf_counter() - start:.1f} s); "
+        f"simulating {settings.cycles} cycles with the springs and without, side by side, "
+        f"{settings.controller} servos")
     with OutputFolder(args.out, "simulation") as folder:  # locked; published whole at the end
+        start = time.perf_counter()
         s = study.run()
+        say(f"simulated: springs {s.with_springs.verdict}, baseline {s.baseline.verdict} "
+            f"({time.perf_counter() - start:.1f} s)")
         rows = None
         if args.sensitivity and s.walks:
             from hexaleg.simulation.sensitivity import sensitivity
 
+            say("the sensitivity reruns (servo gains, ground, friction, the other controller)")
             rows = sensitivity(s)
         data = simulation_data(s, design=study.design, notes=study.notes, sensitivity=rows,
                                warnings=study.warnings, gait_defaults=study.gait_defaults)
