@@ -15,7 +15,8 @@ from hexaleg.scenario.scenario import Scenario
 from hexaleg.simulation import balance, stepping
 from hexaleg.simulation.controllers import controls, reference
 from hexaleg.simulation.model import build_model
-from hexaleg.simulation.run import Settings, automatic_timestep, cycle_timestep, simulate
+from hexaleg.simulation.run import Settings, simulate
+from hexaleg.simulation.timestep import automatic_timestep, cycle_timestep
 
 TROT = '[gait]\npattern = "trot"\nperiod = 0.4\nstride_length = 0.12\nsamples = 200\n' \
        '[contact]\nmu = 1\n'

@@ -5,7 +5,8 @@ Pinocchio model as MJCF, a ground with contacts in physical units,
 :mod:`~hexaleg.simulation.ground`), :mod:`~hexaleg.simulation.state` maps vectors between
 Pinocchio and MuJoCo, :mod:`~hexaleg.simulation.springs` builds hexaleg's spring laws,
 :mod:`~hexaleg.simulation.controllers` the servos, :mod:`~hexaleg.simulation.stepping` runs a
-model (with MuJoCo's stage timers off, :mod:`~hexaleg.simulation.timers`),
+model (with MuJoCo's stage timers off, :mod:`~hexaleg.simulation.timers`) at the timestep of
+:mod:`~hexaleg.simulation.timestep`,
 :mod:`~hexaleg.simulation.measures` judges a run, :mod:`~hexaleg.simulation.run` simulates
 with and without the springs beside the analysis, and
 :mod:`~hexaleg.simulation.sensitivity` reruns it under changed settings and controllers.

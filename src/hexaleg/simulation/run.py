@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from hexaleg.checks import MEMORY_BUDGET, integer, one_of, real
+from hexaleg.checks import integer, one_of, real
 from hexaleg.config import from_mapping
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.dynamics.energy import saving
@@ -35,7 +35,8 @@ from hexaleg.robot.springs import SpringSet
 from hexaleg.simulation import balance, falls, measures, pressure, stepping
 from hexaleg.simulation.controllers import COMPLIANCE, Servo, controls, reference
 from hexaleg.simulation.ground import Ground
-from hexaleg.simulation.model import TIMESTEP, SimModel, build_model, timestep_limit
+from hexaleg.simulation.model import SimModel, build_model
+from hexaleg.simulation.timestep import automatic_timestep, check_steps, cycle_timestep
 
 VERDICTS: tuple[str, ...] = ("walks", "stalled", "short", "overran", "untracked", "tipped",
                               "fell", "diverged")
@@ -57,8 +58,6 @@ of the built-in robot (:class:`~hexaleg.simulation.ground.Ground`)."""
 GROUND_DAMPING = 100.0
 """N·s/m per contact: damping ratio ≈ 0.5 for the third of the built-in robot's mass a tripod
 foot carries."""
-STEP_MARGIN = 2
-"""Margin on the memory one simulation step costs (:func:`step_bytes`)."""
 
 
 def verdict_meanings() -> dict[str, str]:
@@ -92,8 +91,9 @@ class Settings:
             (:data:`hexaleg.simulation.controllers.CONTROLLERS`).
         timestep: s, > 0, below the gait's sample spacing; None (default): automatic, the least
             of :data:`~hexaleg.simulation.model.TIMESTEP`, half the gait's sample spacing
-            and 80 % of the explicit-stability limit (:func:`automatic_timestep`). Rounded down
-            so that a cycle is a whole number of steps.
+            and 80 % of the explicit-stability limit
+            (:func:`hexaleg.simulation.timestep.automatic_timestep`). Rounded down so that a
+            cycle is a whole number of steps.
         cycles: Cycles simulated, ≥ 2.
         evaluate: The last cycles evaluated, in [1, cycles − 1] (the others settle).
         stiffness: Ground contact stiffness K, N/m, > 0; None (default): sized to the robot,
@@ -311,64 +311,6 @@ class Simulation:
         return w, b, saving(w, b)
 
 
-def step_bytes(robot: Robot) -> int:
-    """Memory one simulation step of ``robot`` costs while it runs, B: the reference, the
-    controls, MuJoCo's states and sensors and their copies, ``6 nj + 2 (nq + nv) + nj + 3 n_legs``
-    floats (1936 B on the default robot, where 1860 B was measured with tracemalloc over a
-    whole run), times :data:`STEP_MARGIN`."""
-    floats = 7 * robot.nj + 2 * (robot.model.nq + robot.model.nv) + 3 * len(robot.legs)
-    return STEP_MARGIN * 8 * floats
-
-
-def check_steps(robot: Robot, settings: Settings, period: float, timestep: float) -> int:
-    """The steps of a run, checked against the memory budget and
-    :data:`~hexaleg.simulation.stepping.MAX_STEPS` before anything is allocated.
-
-    Args:
-        robot: The robot (the cost of a step, :func:`step_bytes`).
-        settings: The settings (:attr:`Settings.cycles`).
-        period: The gait's period, s.
-        timestep: The simulation's timestep, s.
-
-    Raises:
-        InvalidParameterError: naming the timestep (or the cycles) and the bound: the fewest
-            steps it allows and the smallest timestep that fits.
-    """
-    cost = step_bytes(robot)
-    high = min(MEMORY_BUDGET // cost, stepping.MAX_STEPS)
-    per_cycle = period / timestep
-    if settings.cycles * per_cycle <= high:
-        return settings.cycles * round(per_cycle)
-    smallest = settings.cycles * period / high
-    why = (f"at most {high} steps a run ({cost / 1024:.2f} kB a step of {robot.name} fill "
-           f"hexaleg's memory budget of {MEMORY_BUDGET / 1024**3:g} GiB at "
-           f"{MEMORY_BUDGET // cost}; {stepping.MAX_STEPS} bound the time)")
-    name, value = ("timestep", timestep) if settings.timestep is not None else (
-        "cycles", settings.cycles)
-    fix = (f"a timestep >= {smallest:.3g} s or fewer cycles" if name == "timestep" else
-           f"at most {int(high // math.ceil(per_cycle))} cycles at this timestep")
-    raise InvalidParameterError(
-        name, value, f"{why}; {settings.cycles} cycles of {period:g} s at {timestep:g} s are "
-        f"{settings.cycles * per_cycle:.3g} steps: {fix}")
-
-
-def cycle_timestep(timestep: float, period: float) -> float:
-    """The largest timestep ≤ ``timestep`` that divides the period, s."""
-    return period / math.ceil(period / timestep - 1e-9)
-
-
-def automatic_timestep(robot: Robot, motion: Motion, motor: Any, servo: Servo,
-                       ground: Ground, probe: SimModel | None = None) -> float:
-    """The default timestep: the least of :data:`~hexaleg.simulation.model.TIMESTEP`,
-    half the gait's sample spacing and 80 % of the explicit-stability limit
-    (:func:`hexaleg.simulation.model.timestep_limit`), s; ``probe`` a model of the robot with
-    this motor, servo and ground already built (any springs and timestep: the limit depends on
-    neither), else one is built."""
-    probe = probe or build_model(robot, motion, motor, servo=servo, ground=ground, check=False)
-    limit, _ = timestep_limit(probe, motion)
-    return min(TIMESTEP, motion.dt / 2, 0.8 * limit)
-
-
 def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
                  settings: Settings, feedback: bool = False,
                  stop: threading.Event | None = None) -> Run:
@@ -477,8 +419,8 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
     Raises:
         InvalidParameterError: bad settings, a timestep too large for the gait or for explicit
             stability, a run of more steps than the memory budget allows (a timestep too small
-            or too many cycles, :func:`check_steps`: refused before the analysis when the
-            timestep is given), a non-periodic motion.
+            or too many cycles, :func:`hexaleg.simulation.timestep.check_steps`: refused
+            before the analysis when the timestep is given), a non-periodic motion.
         UnknownNameError: springs on joints the robot does not have.
         InfeasibleForcesError: the analysis has no admissible contact forces.
         TorqueLimitError: the analysis needs more than the motor's stall torque.
@@ -493,7 +435,7 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
         raise InvalidParameterError("motion", "a fixed-base or non-periodic motion",
                                     "a periodic gait (hexaleg.gait)")
     if settings.timestep is not None:  # before the analysis and any model: nothing allocated
-        check_steps(robot, settings, motion.period, settings.timestep)
+        check_steps(robot, settings.cycles, motion.period, settings.timestep, given=True)
     prepared = prepared or prepare(robot, motion, motor=motor, contact=contact)
     analysis = prepared.evaluate(springs, objective)
     base = prepared.evaluate(None, objective)
@@ -513,7 +455,8 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
                            check=False)
         dt = cycle_timestep(automatic_timestep(robot, motion, prepared.motor, servo, ground,
                                                like), motion.period)
-    check_steps(robot, settings, motion.period, dt)
+    check_steps(robot, settings.cycles, motion.period, dt,
+                given=settings.timestep is not None)
     closed = settings.feedback == "on" or (settings.feedback == "auto" and balance.needed(motion))
     runs = {} if baseline is None or baseline.baseline.feedback != closed else {
         "baseline": baseline.baseline}
