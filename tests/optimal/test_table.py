@@ -64,10 +64,17 @@ LOGS = Path(__file__).resolve().parents[2] / "analysis" / "bench_logs"
 def _logged(log: str) -> list[tuple[float, ...]]:
     """The four rows a kept log printed (``OptimalRows.lines``): predicted, then each
     controller's simulated J/m or NaN where it did not walk."""
-    rows = []
     lines = (LOGS / log).read_text(encoding="utf-8").splitlines()
     head = next(k for k, line in enumerate(lines) if "optimal motion (whole-body" in line)
-    for line in lines[head + 1:head + 5]:
+    return _parsed(lines[head + 1:head + 5])
+
+
+def _parsed(lines: list[str]) -> list[tuple[float, ...]]:
+    """Rows printed as ``label  predicted   sim, sim`` (each sim a number, maybe followed by
+    the controller that ran it in brackets, or ``— (why)``)."""
+    rows = []
+    for line in lines:
+        line = re.sub(r" \((?:open loop|balance feedback)\)", "", line)
         m = re.match(r"^(?:\S+ )?\s+[a-z][^0-9]*?\s{2,}([0-9.]+)\s+(.*)$", line)
         if m:
             sims = [float(p) if re.fullmatch(r"[0-9.]+", p.strip()) else float("nan")
@@ -90,7 +97,8 @@ def _documented(first: str) -> list[tuple[float, ...]]:
     ("Solo-12 row, 300 iterations", "bench_optimal_rows_solo12_hold_300.log"),
     ("row (whole command)", "codesign_motion_optimal.log"),
     ("row (its optimal stage, stance held)", "bench_optimal_rows_hold.log"),
-    ("row (the search's best gait, stance held)", "bench_optimal_rows_best_hold.log")])
+    ("row (the search's best gait, stance held)", "bench_optimal_rows_best_hold.log"),
+    ("row (rebuilt in task space, open loop)", "bench_optimal_rows_task_space.log")])
 def test_the_documented_rows_are_the_kept_logs(first, log):
     """Solo-12's table, the whole command's and its optimal stage rerun with the stance held
     come from runs too long for a test: the docs must print what their kept logs printed."""
@@ -98,6 +106,19 @@ def test_the_documented_rows_are_the_kept_logs(first, log):
     assert len(logged) == len(documented) == 4
     for a, b in zip(logged, documented, strict=True):
         assert a == pytest.approx(b, abs=0.005, nan_ok=True)
+
+
+def test_the_closed_loop_rows_are_the_kept_log():
+    """The rows rebuilt in task space simulated again with balance feedback on for every row:
+    the docs print what the kept log's second table printed."""
+    lines = (LOGS / "bench_optimal_rows_task_space.log").read_text(
+        encoding="utf-8").splitlines()
+    head = next(k for k, line in enumerate(lines) if line.startswith("the same four motions"))
+    logged = _parsed(lines[head + 1:head + 5])
+    documented = _documented("row (rebuilt in task space, balance feedback)")
+    assert len(logged) == len(documented) == 4
+    for a, b in zip(logged, documented, strict=True):
+        assert a == pytest.approx(b, abs=0.005)
 
 
 @pytest.mark.parametrize("log", ["bench_optimal_rows_hold.log",
