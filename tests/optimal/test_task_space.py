@@ -7,6 +7,8 @@ solver's own cycle rebuilt and simulated is in ``test_solve.py``."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pinocchio as pin
 import pytest
@@ -134,3 +136,28 @@ def test_the_solvers_cycle_rebuilt_walks_for_what_hexaleg_predicts():
                                      run.contact)
     # measured: short (87 % of the planned distance), 32.7 J/m of the distance it covered
     assert knots is None and why.startswith("short"), (knots, why)
+
+
+@pytest.mark.slow  # the humanoid's gait: ~5 s of CPU
+def test_a_joint_on_no_leg_follows_its_knots():
+    """The test humanoid's arm joints (on no leg) swung by a sinusoid in the knots: the rebuilt
+    cycle passes through them with the sinusoid's speed between them (a periodic spline)."""
+    run = hexaleg.Scenario.load(str(Path(__file__).resolve().parents[1] / "data"
+                                    / "humanoid.toml"))
+    robot, walk = run.model, run.motion()
+    thin = slice(None, None, 25)
+    on_legs = {int(i) for leg in robot.legs for i in np.atleast_1d(
+        np.arange(robot.model.nv)[leg.v_index])}
+    arm = next(j for j in list(robot.model.joints)[2:] if j.idx_v not in on_legs)
+    q = walk.q[thin].copy()
+    t = walk.t[thin]
+    omega = 2 * np.pi / walk.period
+    q[:, arm.idx_q] += 0.2 * np.sin(omega * t)
+    knots = hexaleg.Motion(t=t, q=q, v=walk.v[thin], a=walk.a[thin], stance=walk.stance[thin],
+                           feet=walk.feet[thin], period=walk.period, distance=walk.distance,
+                           info=dict(walk.info))
+    rebuilt = task_space_motion(robot, knots, np.where(knots.stance[..., None], knots.feet, 0.0),
+                                per_knot=4)
+    np.testing.assert_allclose(rebuilt.q[::4], knots.q, atol=1e-9)
+    speed = 0.2 * omega * np.cos(omega * rebuilt.t)
+    assert np.abs(rebuilt.v[:, arm.idx_v] - speed).max() <= 0.01 * 0.2 * omega

@@ -22,7 +22,9 @@ the stance feet are exactly on their footholds at every instant:
   :attr:`~hexaleg.optimal.problem.OptimalProblem.footholds`), at rest;
 * each swing foot: a cubic spline through the knots' foot positions of that swing, from the
   foothold it lifts off to the one it lands on, at rest at both ends (the problem's landing
-  cost asks for rest at touch-down; lift-off leaves a foothold the contact held still).
+  cost asks for rest at touch-down; lift-off leaves a foothold the contact held still);
+* a joint on no leg (a tail, a head: :attr:`Robot.moves <hexaleg.robot.loaded.Robot.moves>`):
+  a periodic cubic spline through its knots' angles.
 
 A stance phase covers knots ``[k_td, k_lo)`` of the problem, so the rebuilt foot is on its
 foothold for ``t ∈ [t_td, t_lo]`` and the sample at ``t`` takes the stance of knot
@@ -40,6 +42,7 @@ from hexaleg.checks import integer
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.body import Body, in_base_frame
 from hexaleg.motion.kinematics import leg_ik
+from hexaleg.motion.legged import sole_turn
 from hexaleg.motion.trajectory import Motion
 from hexaleg.optimal.periodic import cycle_displacement
 from hexaleg.robot.model import Robot
@@ -150,6 +153,15 @@ def task_space_motion(robot: Robot, knots: Motion, footholds: np.ndarray, *,
     v = np.zeros((m, robot.model.nv))
     a = np.zeros((m, robot.model.nv))
     v[:, :3], v[:, 3:6], a[:, :3], a[:, 3:6] = body.v, body.w, body.a, body.alpha
+    on_legs = {int(i) for leg in robot.legs
+               for i in np.atleast_1d(np.arange(robot.model.nv)[leg.v_index])}
+    other = [(j.idx_q, j.idx_v) for j in list(robot.model.joints)[2:]
+             if j.idx_v not in on_legs and j.nq == j.nv == 1]  # joints on no leg: splined
+    if other:
+        iq, iv = (np.array(x) for x in zip(*other, strict=True))
+        spline = CubicSpline(np.arange(n + 1) * dt, np.vstack([knots.q[:, iq], knots.q[:1, iq]]),
+                             bc_type="periodic")
+        q[:, iq], v[:, iv], a[:, iv] = spline(t), spline(t, 1), spline(t, 2)
     stance = knots.stance[np.arange(m) // per_knot]
     feet = np.zeros((m, len(robot.legs), 3))
     for j, leg in enumerate(robot.legs):
@@ -157,7 +169,8 @@ def task_space_motion(robot: Robot, knots: Motion, footholds: np.ndarray, *,
         feet[:, j] = p
         rel, rel_d, rel_dd = in_base_frame(body, p, pd, pdd)
         q[:, leg.q_index], v[:, leg.v_index], a[:, leg.v_index], _ = leg_ik(
-            robot, leg, rel, rel_d, rel_dd, t=t)
+            robot, leg, rel, rel_d, rel_dd, t=t,
+            turn=sole_turn(body) if leg.name in robot.soles else None)
     info = {k: val for k, val in knots.info.items() if k != "integrator"}
     info |= {"rebuilt": "task space", "per_knot": per_knot}
     return Motion(t=t, q=q, v=v, a=a, stance=stance, feet=feet, period=knots.period,
