@@ -5,6 +5,8 @@ bench_optimal_duty_hold.log; not an example study: it needs the optimal extra an
 
 Run:  python analysis/bench_optimal_duty.py --codesign DIR/codesign.json [--duty 0.9 ...]
                                             [--gait-only] [--nodes 40]
+      python analysis/bench_optimal_duty.py --chosen cd.pkl ...   (G and S from the pickle
+                                            analysis/bench_optimal_rows.py --chosen writes)
 
 Needs the ``optimal`` extra. G is the search's best gait of a kept ``hexaleg codesign`` run (its
 first finalist in ``codesign.json``: the gait of docs/optimal.md's 0.8× table), S its
@@ -13,8 +15,10 @@ one design a joint class). Prints G with S predicted and simulated under each se
 duty factor G itself at that duty factor (with S, and with its own springs by the same program),
 predicted and simulated under each servo, and (unless ``--gait-only``) the optimal cycle from G
 at that duty factor with S in its dynamics (40 knots or ``--nodes``, 100 iterations), its
-ratio to G's predicted J/m, its solver figures, and it simulated with S under each servo
-(:func:`~hexaleg.design.codesign.servo.simulated_per_metre`, the command's rows).
+ratio to G's predicted J/m, its solver figures, and it — rebuilt in task space, as the
+command's rows play it (:attr:`~hexaleg.optimal.solve.OptimalResult.task_space`) — predicted by
+hexaleg's pipeline and simulated with S under each servo, open loop where the gait allows
+(``feedback = "auto"``) and closed loop (``"on"``), as every row of G.
 """
 
 from __future__ import annotations
@@ -23,13 +27,16 @@ import argparse
 import dataclasses
 import json
 import os
+import pickle
 import time
+from typing import Any
 
 import hexaleg
 from hexaleg.design.chain.groups import design_groups
 from hexaleg.design.codesign.build import default_gait, floor_constraints
 from hexaleg.design.codesign.gait_evaluation import evaluate_gait
-from hexaleg.design.codesign.servo import simulated_per_metre
+from hexaleg.design.codesign.optimal_rows import predicted_per_metre
+from hexaleg.design.codesign.servo import simulated_run
 from hexaleg.dynamics.prepare import prepare
 from hexaleg.optimal.problem import OptimalParams, build_problem
 from hexaleg.optimal.solve import solve
@@ -38,33 +45,50 @@ KEYS = ("period", "duty_factor", "step_height", "body_height", "foot_radius")
 """The gait's searched parameters read from ``codesign.json``."""
 
 
+def sims(robot: Any, motion: Any, motor: Any, springs: Any, contact: Any) -> str:
+    """``motion`` with ``springs`` simulated under both servos, open loop where the gait allows
+    and closed loop: one line's text."""
+    out = []
+    for feedback in ("auto", "on"):
+        for k in ("feedforward", "position"):
+            value, why, closed = simulated_run(robot, motion, motor, springs, k, contact,
+                                               feedback)
+            loop = "balance feedback" if closed else "open loop"
+            out.append(f"{k} {value:.3f} ({loop})" if value is not None else f"{k} — ({why})")
+    return ", ".join(out)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--codesign", required=True, help="a hexaleg codesign run's JSON")
+    source = parser.add_mutually_exclusive_group(required=True)
+    source.add_argument("--codesign", help="a hexaleg codesign run's JSON")
+    source.add_argument("--chosen", help="a pickle of G and S (analysis/bench_optimal_rows.py)")
     parser.add_argument("--duty", type=float, nargs="+", default=[0.9], help="duty factors")
     parser.add_argument("--gait-only", action="store_true",
                         help="G at each duty factor only, no optimal cycle")
     parser.add_argument("--nodes", type=int, default=40, help="knots of the optimal cycle")
     args = parser.parse_args()
     t0 = time.perf_counter()
-    with open(args.codesign, encoding="utf-8") as f:
-        found = json.load(f)["finalists"]["rows"][0]["gait"]
     run = hexaleg.Scenario.load("hexaleg")
     robot, motor = run.model, run.actuator
-    g = dataclasses.replace(default_gait(robot, "hexaleg", 0.06, None, 200),
-                            **{k: found[k]["value"] for k in KEYS})
     c = floor_constraints(run)
     groups = design_groups(robot, tuple(robot.joint_classes), "class")
-    point = evaluate_gait(robot, g, groups=groups, family="linear", constraints=c,
-                          min_margin=0.0, motor=motor)
-    springs, reference = point.springs, point.sprung / point.distance
+    if args.chosen:
+        with open(args.chosen, "rb") as f:
+            saved = pickle.load(f)
+        g, springs, reference = saved["chosen"], saved["springs"], saved["per_metre"]
+    else:
+        with open(args.codesign, encoding="utf-8") as f:
+            found = json.load(f)["finalists"]["rows"][0]["gait"]
+        g = dataclasses.replace(default_gait(robot, "hexaleg", 0.06, None, 200),
+                                **{k: found[k]["value"] for k in KEYS})
+        point = evaluate_gait(robot, g, groups=groups, family="linear", constraints=c,
+                              min_margin=0.0, motor=motor)
+        springs, reference = point.springs, point.sprung / point.distance
     print(f"G: duty factor {g.duty_factor:.3g}, period {g.period:.4g} s: {reference:.4f} J/m "
           "with S (predicted)", flush=True)
-    for k in ("feedforward", "position"):
-        value, why = simulated_per_metre(robot, hexaleg.gait(robot, g), motor, springs, k,
-                                         c.contact())
-        print(f"  G with S simulated under {k}: {value:.3f} J/m ({why})" if value is not None
-              else f"  G with S under {k}: {why}", flush=True)
+    print("  G with S simulated: " + sims(robot, hexaleg.gait(robot, g), motor, springs,
+                                         c.contact()), flush=True)
     for duty in args.duty:
         gd = dataclasses.replace(g, duty_factor=duty)
         played = hexaleg.gait(robot, gd)
@@ -74,13 +98,8 @@ def main() -> None:
                             min_margin=0.0, motor=motor)
         for name, fitted, value in (("S", springs, with_s),
                                     ("its own springs", own.springs, own.sprung / own.distance)):
-            sims = [simulated_per_metre(robot, played, motor, fitted, k, c.contact())
-                    for k in ("feedforward", "position")]
             print(f"G at duty factor {duty:.3g} with {name}: {value:.3f} J/m predicted, "
-                  "simulated " + ", ".join(
-                      f"{k} {v:.3f}" if v is not None else f"{k} — ({why})"
-                      for k, (v, why) in zip(("feedforward", "position"), sims, strict=True)),
-                  flush=True)
+                  "simulated " + sims(robot, played, motor, fitted, c.contact()), flush=True)
         if args.gait_only:
             continue
         built = build_problem(robot, played, motor, springs, OptimalParams(nodes=args.nodes))
@@ -92,10 +111,9 @@ def main() -> None:
               f"N·m, friction use {r.friction_use:.3f}, stance slip {r.slip:.3g} m/s, "
               f"drift {r.drift:.2g} m, "
               f"periodicity {r.periodicity:.2g}, {r.seconds:.0f} s", flush=True)
-        for k in ("feedforward", "position"):
-            value, why = simulated_per_metre(robot, r.motion, motor, springs, k, c.contact())
-            print(f"  simulated under {k}: {value:.3f} J/m ({why})" if value is not None
-                  else f"  under {k}: {why}", flush=True)
+        value = predicted_per_metre(robot, r.task_space, motor, springs, c.contact())
+        print(f"  rebuilt in task space: {value:.3f} J/m predicted ({value / reference:.3f}× G), "
+              "simulated " + sims(robot, r.task_space, motor, springs, c.contact()), flush=True)
     times = os.times()
     print(f"wall {time.perf_counter() - t0:.0f} s, CPU {times.user + times.system:.0f} s",
           flush=True)

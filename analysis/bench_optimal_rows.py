@@ -15,7 +15,8 @@ or both from the pickle ``--chosen`` names (written by this script, or by
 :func:`hexaleg.design.codesign.optimal_rows.optimal_rows` (40 knots, the command's 100 iterations
 or ``--iterations``, one alternation round on the co-design's spring groups) with each row
 simulated under both servos; prints the rows as the command does, each optimal motion's solver
-figures, the wall and CPU time.
+figures, the wall and CPU time; then the four rows' motions simulated again with balance
+feedback on for every row (closed loop under both servos: apples to apples).
 """
 
 from __future__ import annotations
@@ -29,7 +30,10 @@ import hexaleg
 from hexaleg.design.chain.groups import design_groups
 from hexaleg.design.codesign.build import default_gait
 from hexaleg.design.codesign.optimal_rows import optimal_rows
+from hexaleg.design.codesign.servo import simulated_run
+from hexaleg.motion.legged import gait
 from hexaleg.optimal.problem import OptimalParams
+from hexaleg.robot.springs import SpringSet
 
 
 def main() -> None:
@@ -78,6 +82,18 @@ def main() -> None:
                          params=OptimalParams(iterations=args.iterations),
                          say=lambda line: print(line, flush=True))
     print("\n".join(table.lines()), flush=True)
+    print("the same four motions, every simulation closed loop (balance feedback on: a position "
+          "servo is asked for the plan's torque):", flush=True)
+    played = (gait(robot, base), gait(robot, chosen), table.bare.task_space,
+              table.best.task_space)
+    fitted = (SpringSet(), springs, SpringSet(), table.springs)
+    for row, motion, s in zip(table.rows, played, fitted, strict=True):
+        sims = []
+        for k in row.simulated:
+            value, verdict, _ = simulated_run(robot, motion, run.actuator, s, k, run.contact,
+                                              "on")
+            sims.append(f"{value:.2f}" if value is not None else f"— ({verdict})")
+        print(f"    {row.label:46s} {row.predicted:7.2f}   {', '.join(sims)}", flush=True)
     for name, r in (("no springs", table.bare), ("its springs", table.best)):
         print(f"optimal motion, {name}: {r.iterations} iterations, stationarity "
               f"{r.stationarity:.2g} (threshold {r.threshold:.2g}), dynamics gap "

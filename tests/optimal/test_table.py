@@ -64,10 +64,17 @@ LOGS = Path(__file__).resolve().parents[2] / "analysis" / "bench_logs"
 def _logged(log: str) -> list[tuple[float, ...]]:
     """The four rows a kept log printed (``OptimalRows.lines``): predicted, then each
     controller's simulated J/m or NaN where it did not walk."""
-    rows = []
     lines = (LOGS / log).read_text(encoding="utf-8").splitlines()
     head = next(k for k, line in enumerate(lines) if "optimal motion (whole-body" in line)
-    for line in lines[head + 1:head + 5]:
+    return _parsed(lines[head + 1:head + 5])
+
+
+def _parsed(lines: list[str]) -> list[tuple[float, ...]]:
+    """Rows printed as ``label  predicted   sim, sim`` (each sim a number, maybe followed by
+    the controller that ran it in brackets, or ``— (why)``)."""
+    rows = []
+    for line in lines:
+        line = re.sub(r" \((?:open loop|balance feedback)\)", "", line)
         m = re.match(r"^(?:\S+ )?\s+[a-z][^0-9]*?\s{2,}([0-9.]+)\s+(.*)$", line)
         if m:
             sims = [float(p) if re.fullmatch(r"[0-9.]+", p.strip()) else float("nan")
@@ -90,7 +97,8 @@ def _documented(first: str) -> list[tuple[float, ...]]:
     ("Solo-12 row, 300 iterations", "bench_optimal_rows_solo12_hold_300.log"),
     ("row (whole command)", "codesign_motion_optimal.log"),
     ("row (its optimal stage, stance held)", "bench_optimal_rows_hold.log"),
-    ("row (the search's best gait, stance held)", "bench_optimal_rows_best_hold.log")])
+    ("row (the search's best gait, stance held)", "bench_optimal_rows_best_hold.log"),
+    ("row (rebuilt in task space, open loop)", "bench_optimal_rows_task_space.log")])
 def test_the_documented_rows_are_the_kept_logs(first, log):
     """Solo-12's table, the whole command's and its optimal stage rerun with the stance held
     come from runs too long for a test: the docs must print what their kept logs printed."""
@@ -98,6 +106,19 @@ def test_the_documented_rows_are_the_kept_logs(first, log):
     assert len(logged) == len(documented) == 4
     for a, b in zip(logged, documented, strict=True):
         assert a == pytest.approx(b, abs=0.005, nan_ok=True)
+
+
+def test_the_closed_loop_rows_are_the_kept_log():
+    """The rows rebuilt in task space simulated again with balance feedback on for every row:
+    the docs print what the kept log's second table printed."""
+    lines = (LOGS / "bench_optimal_rows_task_space.log").read_text(
+        encoding="utf-8").splitlines()
+    head = next(k for k, line in enumerate(lines) if line.startswith("the same four motions"))
+    logged = _parsed(lines[head + 1:head + 5])
+    documented = _documented("row (rebuilt in task space, balance feedback)")
+    assert len(logged) == len(documented) == 4
+    for a, b in zip(logged, documented, strict=True):
+        assert a == pytest.approx(b, abs=0.005)
 
 
 @pytest.mark.parametrize("log", ["bench_optimal_rows_hold.log",
@@ -141,3 +162,76 @@ def test_the_duty_table_is_the_kept_log():
         cells = [c.strip() for c in row.strip("|").split("|")]
         assert cells[0] in logged, cells[0]
         assert tuple(float(c) for c in cells[1:]) == pytest.approx(logged[cells[0]], abs=0.005)
+
+
+def _paragraph(start: str) -> str:
+    """The docs/optimal.md paragraph that begins with ``start``."""
+    doc = DOC.read_text(encoding="utf-8")
+    return doc[doc.index(start):].split("\n\n")[0]
+
+
+SIMULATED = (r"feedforward ([0-9.]+) \(open loop\), position ([0-9.]+) \(open loop\), "
+             r"feedforward ([0-9.]+) \(balance feedback\), position ([0-9.]+) \(balance feedback\)")
+"""A bench_optimal_duty.py line's four simulations (open loop, then balance feedback)."""
+
+
+def test_the_rebuilt_duty_cycles_are_the_kept_logs():
+    """The paragraph on duty factor 0.9 rebuilt prints its kept logs' numbers: G at 0.9 with S,
+    the 40-knot cycle's missing forces, the 80-knot cycle's solver figure, prediction and four
+    simulations."""
+    text = _paragraph("**Duty factor 0.9, rebuilt**")
+    log40 = (LOGS / "bench_optimal_duty_task_space.log").read_text(encoding="utf-8")
+    log80 = (LOGS / "bench_optimal_duty_task_space_80.log").read_text(encoding="utf-8")
+    g = re.search(r"^G at duty factor 0.9 with S: ([0-9.]+) J/m predicted, simulated "
+                  + SIMULATED, log40, re.MULTILINE)
+    assert g
+    for value in g.groups():
+        assert f"{float(value):.2f}" in text, value
+    assert "μ = 0.77" in text and "the least friction that admits forces here is μ = 0.77" in log40
+    solver = re.search(r"^optimal cycle at duty factor 0.9 with S: ([0-9.]+) J/m", log80,
+                       re.MULTILINE)
+    rebuilt = re.search(r"rebuilt in task space: ([0-9.]+) J/m predicted .*simulated "
+                        + SIMULATED, log80)
+    assert solver and rebuilt
+    for value in (solver[1], *rebuilt.groups()):
+        assert f"{float(value):.2f}" in text, value
+
+
+def test_the_rebuilt_trot_is_the_kept_log():
+    """Solo-12's trot rebuilt: the gait rows' numbers and the base wrench the two stance feet
+    miss are the kept log's."""
+    text = _paragraph("**Solo-12's trot, rebuilt**")
+    log = (LOGS / "bench_optimal_rows_solo12_task_space.log").read_text(encoding="utf-8")
+    for row in _logged("bench_optimal_rows_solo12_task_space.log")[:2]:
+        for value in row:
+            assert f"{value:.2f}" in text, value
+    for miss in re.findall(r"miss the base rows by ([0-9.]+)", log):
+        assert f"{float(miss):.2f}" in text, miss
+
+
+def test_the_diagnosis_is_the_kept_log():
+    """docs/optimal.md's diagnosis of the optimal cycle played as its knots prints what
+    analysis/bench_logs/bench_optimal_played.log printed."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("## Played as planned"):doc.index("**Solo-12's trot, rebuilt**")]
+    log = (LOGS / "bench_optimal_played.log").read_text(encoding="utf-8")
+    numbers = []
+    for pattern in (r"solver's own: ([0-9.]+) J/m", r"force program on the knots: ([0-9.]+)",
+                    r"^knots simulated: feedforward ([0-9.]+) \(open loop\), position [0-9.]+ "
+                    r"\(open loop\), feedforward ([0-9.]+)",
+                    r"central-difference velocities: [0-9.]+ J/m predicted, simulated "
+                    r"feedforward ([0-9.]+) \(open loop\), position [0-9.]+ \(open loop\), "
+                    r"feedforward ([0-9.]+)",
+                    r"stance feet up to ([0-9.]+) mm", r"velocities up to ([0-9.]+) rad/s",
+                    r"\(largest ([0-9.]+)\)", r"power at v_\(k\+1\): ([0-9.]+)",
+                    r"rebuilt in task space: ([0-9.]+) J/m predicted, simulated feedforward "
+                    r"([0-9.]+) \(open loop\), position [0-9.]+ \(open loop\), feedforward "
+                    r"([0-9.]+)"):
+        m = re.search(pattern, log, re.MULTILINE)
+        assert m, pattern
+        numbers += [f"{float(v):.2f}" for v in m.groups()]
+    m = re.search(r"springs' work ([0-9.]+) J \(trapezoid (\S+) J\), gravity's ([0-9.]+) J", log)
+    assert m
+    numbers += list(m.groups())
+    for number in numbers:
+        assert number in text, number

@@ -56,18 +56,21 @@ def test_the_page_leads_with_the_worse_servo_and_draws_each_spring(ruled, tmp_pa
 
 def test_the_page_shows_the_optimal_motions_table(codesigned):
     """codesign.json's ``optimal`` key (``--motion optimal``) is a table on the page, the
-    springs unproven where the last row did not walk under a servo."""
+    springs unproven where the last row did not walk under a servo, each simulation with the
+    controller that ran it and the solver's own figures beside the rebuilt cycles'."""
     from hexaleg.outputs.html import render_codesign_html
 
     def row(label, e, position):
         return {"label": label, "predicted": {"value": e, "unit": "J/m"},
                 "simulated": {"feedforward": {"value": 1.5 * e, "unit": "J/m"},
                               "position": position},
-                "verdicts": {"feedforward": "walks", "position": "fell: at 1.2 s"}}
+                "verdicts": {"feedforward": "walks", "position": "fell: at 1.2 s"},
+                "loops": {"feedforward": "balance feedback", "position": "open loop"}}
 
     solver = {"stationarity": {"value": 0.0097, "unit": "1"}, "iterations": 100,
               "threshold": {"value": 1e-8, "unit": "1"},
-              "friction_use": {"value": 0.7, "unit": "1"}}
+              "friction_use": {"value": 0.7, "unit": "1"},
+              "energy_per_metre": {"value": 8.87, "unit": "J/m"}}
     data = codesigned.to_dict()
     data["optimal"] = {
         "rows": [row(f"row {k}", e, {"value": 2 * e, "unit": "J/m"} if k < 3 else None)
@@ -75,11 +78,14 @@ def test_the_page_shows_the_optimal_motions_table(codesigned):
         "springs": [{"family": "linear", "joint": "LF_femur", "parameters": {}}],
         "family": "linear", "proven": False, "residual": {"value": 8e-15, "unit": "N·m"},
         "springs_motion": solver,
+        "no_springs": solver | {"energy_per_metre": {"value": 15.12, "unit": "J/m"}},
         "alternation": {"energies": [{"value": 9.14, "unit": "J/m"}], "rounds": 1}}
     page = render_codesign_html(data, {"speed": ""}, {})
     table = page[page.index("The optimal motion with its springs"):]
     assert "Unproven" in table and "LF_femur" in table and "fell: at 1.2 s" in table
     assert "13.71 J/m" in table and "0.32" in table  # 1.5 × 9.14, 9.14 / 28.45
+    assert "13.71 J/m (balance feedback)" in table
+    assert "15.12" in table and "8.87 J/m" in table  # the solver's own figures
 
 
 @pytest.mark.slow  # two small co-design searches: ~5 s of CPU

@@ -21,7 +21,8 @@ def _solved(per_metre: float) -> SimpleNamespace:
     return SimpleNamespace(energy_per_metre=per_metre, residual=7e-15, iterations=100,
                            converged=False, stationarity=5e-5, threshold=1e-8, dynamic_gap=0.0,
                            periodicity=1e-3, friction_use=0.6, slip=4e-3, drift=2e-4,
-                           torques=np.zeros((40, 18)), seconds=60.0, motion=None)
+                           torques=np.zeros((40, 18)), seconds=60.0, motion=None,
+                           task_space=None)
 
 
 def _rows(position: float | None) -> OptimalRows:
@@ -29,7 +30,8 @@ def _rows(position: float | None) -> OptimalRows:
     start, best = _solved(9.2), _solved(9.0)
     alt = Alternation(start, best, springs, (Round(springs, 8.9, 9.0, True, 1.0),), 0.02)
     sims = [MotionRow(label, e, {"feedforward": 1.1 * e, "position": 1.3 * e},
-                      {"feedforward": "walks", "position": "walks"})
+                      {"feedforward": "walks", "position": "walks"},
+                      {"feedforward": "open loop", "position": "balance feedback"})
             for label, e in zip(LABELS[:3], (28.4, 10.0, 9.6), strict=True)]
     last = MotionRow(LABELS[3], 9.0, {"feedforward": 9.5, "position": position},
                      {"feedforward": "walks",
@@ -50,6 +52,12 @@ def test_the_table_says_what_backs_the_springs():
     assert data["residual"] == {"value": 7e-15, "unit": "N·m"}
     assert [e["value"] for e in data["alternation"]["energies"]] == [9.2, 9.0]
     assert data["springs"][0]["joint"] == "femur" and data["proven"] is False
+    assert data["rows"][0]["loops"] == {"feedforward": "open loop",
+                                        "position": "balance feedback"}
+    lines = proven.lines()
+    assert "(balance feedback)" in lines[1] and "(open loop)" in lines[1]
+    assert any("the solver's own J/m at its knots: 9.60 (no springs), 9.00" in line
+               for line in lines)
 
 
 @pytest.mark.slow
@@ -70,7 +78,7 @@ def test_the_four_rows_of_a_small_problem():
                                      metric="electrical")
     e0 = prepared.evaluate(hexaleg.SpringSet()).metrics["total"]["electrical"]
     e1 = design.analysis.metrics["total"]["electrical"]
-    from hexaleg.design.codesign.optimal_rows import optimal_rows
+    from hexaleg.design.codesign.optimal_rows import optimal_rows, predicted_per_metre
 
     lines: list[str] = []
     d = prepared.motion.distance
@@ -83,7 +91,15 @@ def test_the_four_rows_of_a_small_problem():
     assert max(table.bare.residual, table.best.residual) <= 1e-6
     energies = table.alternation.energies
     assert all(b <= a for a, b in itertools.pairwise(energies))
-    assert table.rows[3].predicted == energies[-1]
+    # The optimal rows are predicted by hexaleg's pipeline on the cycle rebuilt in task space,
+    # the motion they simulate (the solver's own figure, at its knots, is the alternation's).
+    assert table.best.energy_per_metre == energies[-1]
+    for row, solved, springs in ((table.rows[2], table.bare, hexaleg.SpringSet()),
+                                 (table.rows[3], table.best, table.springs)):
+        assert row.predicted == pytest.approx(predicted_per_metre(
+            robot, solved.task_space, run.actuator, springs, run.contact), rel=1e-12)
+        assert set(row.loops.values()) <= {"open loop", "balance feedback"}
+    assert table.motions["optimal_springs"] is table.best.task_space
     assert any(line.startswith("alternation: start") for line in lines)
     data = json.loads(json_text(table.data()))
     assert data["residual"]["value"] <= 1e-6 and len(data["rows"]) == 4

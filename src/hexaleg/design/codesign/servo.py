@@ -117,18 +117,29 @@ def simulated_per_metre(robot: Robot, motion: Motion, motor: Any, springs: Sprin
     (:func:`hexaleg.simulation.run.simulate`, default settings: balance feedback where the gait
     needs it): its electrical energy per metre walked, J/m, and ``"walks"``; or None and what
     happened (the verdict and its message, or the error)."""
+    per_metre, verdict, _ = simulated_run(robot, motion, motor, springs, controller, contact)
+    return per_metre, verdict
+
+
+def simulated_run(robot: Robot, motion: Motion, motor: Any, springs: SpringSet,
+                  controller: str, contact: ContactParams, feedback: str = "auto"
+                  ) -> tuple[float | None, str, bool | None]:
+    """:func:`simulated_per_metre` with the simulation's ``feedback`` setting (``"auto"``,
+    ``"on"``, ``"off"``: :class:`hexaleg.simulation.run.Settings`), and whether the balance
+    controller ran (None when the simulation raised)."""
     from hexaleg.simulation.run import Settings, simulate
 
     try:
         sim = simulate(robot, motion, motor, springs, Settings(force_samples=0,
-                                                               controller=controller),
+                                                               controller=controller,
+                                                               feedback=feedback),
                        contact=contact)
     except HexalegError as err:
-        return None, f"{type(err).__name__}: {err}"
+        return None, f"{type(err).__name__}: {err}", None
     run = sim.with_springs
     if not run.walks or run.walk is None:
-        return None, f"{run.verdict}: {run.message}"
-    return float(run.metrics["electrical"] / run.walk.distance_per_cycle), "walks"
+        return None, f"{run.verdict}: {run.message}", run.feedback
+    return float(run.metrics["electrical"] / run.walk.distance_per_cycle), "walks", run.feedback
 
 
 def choose(screened: Sequence[Screened]) -> Screened | None:
@@ -143,4 +154,4 @@ def choose(screened: Sequence[Screened]) -> Screened | None:
     return next(s for s in walked if s.worst <= least * (1.0 + TIE))
 
 
-__all__ = ["TIE", "Screened", "choose", "screen", "simulated_per_metre"]
+__all__ = ["TIE", "Screened", "choose", "screen", "simulated_per_metre", "simulated_run"]
