@@ -92,3 +92,23 @@ def test_bad_arguments_are_named(box):
         robust_springs(best, nominal, preps, "worst", "positive_work")
     with pytest.raises(InvalidParameterError, match="at least one"):
         robust_springs(best, nominal, [], "worst")
+
+
+def test_the_stacked_program_holds_only_the_conditions_that_can_set_the_worst(box, monkeypatch):
+    """The explicit program starts from the bundle's optimum with the conditions near its worst
+    (and those with explicit samples) and is the whole box's optimum: the same worst saving as
+    the program of every condition, to the solver's tolerance."""
+    import hexaleg.design.robust.box as box_module
+
+    nominal, best, conditions = box
+    slippery = [*conditions, condition_prepared(RUN, Condition(mu=0.3))]
+    held = robust_springs(best, nominal, slippery, "worst", "joule")
+    assert held.solver["explicit_samples"][-1] > 0
+    assert held.solver.get("problems_in_program", len(slippery)) < len(slippery)
+    every = box_module.explicit_program
+    monkeypatch.setattr(box_module, "explicit_program",
+                        lambda *a, start=None: every(*a))  # every condition held
+    whole = robust_springs(best, nominal, slippery, "worst", "joule")
+    assert "problems_in_program" not in whole.solver
+    assert held.worst == pytest.approx(whole.worst, abs=1e-7)
+    assert held.worst == pytest.approx(_worst(slippery, held.springs, "joule"), rel=1e-7)

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import hexaleg
-from hexaleg.design.search.condensed import Condensed, solve_condensed
+from hexaleg.design.search.condensed import Condensed, rows, solve_condensed
 from hexaleg.design.search.optimal import design_problem
 from hexaleg.design.search.program import DesignProblem
 from hexaleg.design.search.program_reference import solve_metric_reference
@@ -163,3 +163,27 @@ def test_a_solver_failure_is_not_called_an_empty_program(prepared100, monkeypatc
     monkeypatch.setattr(condensed, "_solve", lambda p: "infeasible")
     with pytest.raises(InfeasibleForcesError, match=r"has no solution \(Clarabel: infeasible"):
         explicit_program(*args)
+
+
+def test_a_searchs_stacked_rows_are_each_distinct_row_once(prepared100):
+    """The comparisons of a stop-tolerance search stack each distinct design row once (the same
+    program: every row of the stack is one of them), in the order of first occurrence; the
+    certified solve keeps them all."""
+    from hexaleg.design.search.setup import design_setup
+
+    shifts = ({"femur": -0.02, "tibia": 0.0}, {"femur": 0.0, "tibia": 0.0},
+              {"femur": 0.02, "tibia": -0.02})
+    setup = design_setup(prepared100, {"femur": "femur", "tibia": "tibia"}, "one_sided", "joule",
+                         2.0, 0.3, "electrical", shifts)
+    problems = setup.problems(setup.check_geometry(GEOMETRY))
+    G, h, nonneg, fixed = rows(problems)
+    Gd, hd, nonneg_d, fixed_d = rows(problems, distinct=True)
+    every, kept = np.c_[G, h], np.c_[Gd, hd]
+    assert len(np.unique(kept, axis=0)) == len(kept) < len(every)
+    first = [i for i, r in enumerate(every) if not any((every[:i] == r).all(axis=1))]
+    np.testing.assert_array_equal(kept, every[first])
+    assert (nonneg_d == nonneg).all() and (fixed_d == fixed).all()
+    # the comparison solve and the certified one: the same optimum to the bundle's tolerance
+    fast = solve_condensed(problems, "electrical", exact=False)
+    exact = solve_condensed(problems, "electrical")
+    assert fast.values.max() == pytest.approx(exact.values.max(), rel=1e-4)

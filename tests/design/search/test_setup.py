@@ -87,3 +87,19 @@ def test_relative_angles_are_from_each_centre_and_reflected_where_mirrored(prepa
     assert r.shape == q.shape
     np.testing.assert_array_equal(r[:, 0], c[0] - q[:, 0])
     np.testing.assert_array_equal(r[:, 1:], q[:, 1:] - c[1:])
+
+
+def test_shifted_problems_share_each_groups_part_bit_for_bit(prepared200):
+    """problems() builds each group's part once per distinct shifted geometry (the shifts
+    repeat it) — the same arrays as each shifted problem built on its own."""
+    shifts = ({"coxa": -0.02, "femur": 0.01}, {"coxa": 0.0, "femur": 0.01}, {"coxa": 0.0},
+              {"coxa": -0.02, "femur": -0.01})
+    setup = design_setup(prepared200, ["coxa", "femur"], "preloaded", "joule", None, math.pi,
+                         "electrical", shifts)
+    geo = setup.check_geometry({g: {"theta_minus": -0.05, "theta_plus": 0.04}
+                                for g in ("coxa", "femur")})
+    for s, shared in zip(shifts, setup.problems(geo), strict=True):
+        alone = setup.problem(shifted(setup.fam, geo, s))
+        assert alone.B.tobytes() == shared.B.tobytes()
+        assert alone.G.tobytes() == shared.G.tobytes()
+        assert alone.h.tobytes() == shared.h.tobytes() and alone.labels == shared.labels

@@ -157,3 +157,24 @@ def test_a_part_without_a_stroke_is_a_problem_not_a_crash():
         _buy(dataclasses.replace(part, max_torque=0.01, max_outer_diameter=1e-4),
              PartOptions(), 0.0)
     assert _buy(dataclasses.replace(part, max_torque=0.01), PartOptions(), 0.0).spring is not None
+
+
+def test_a_round_off_spring_is_no_part(prepared200):
+    """A one-sided element whose torque stays below ZERO_TORQUE over the whole motion — the
+    round-off of a magnitude the program set to 0 (Solo-12: 4e-9 N·m/rad, 5e-12 N·m) — is no
+    part: before, it was sized as a metre-wide coil and its grams counted in the spring mass.
+    The same rate engaged over the whole motion is a part."""
+    best = optimal_springs(prepared200, ["tibia"], "one_sided", max_deflection=np.pi)
+    lo, hi = _relative_range(prepared200, best.groups["tibia"])
+    side = best.geometry["tibia"]["side"]
+    edge, near = (hi, lo) if side == "above" else (lo, hi)
+    step = -1e-3 if side == "above" else 1e-3  # engaged over the last milliradian only
+    tiny = {"tibia": {"k": 4e-9, "preload": 3e-15}}
+    grazing = dataclasses.replace(best, magnitudes=tiny,
+                                  geometry={"tibia": {"contact": edge + step, "side": side}})
+    assert spring_parts(grazing, prepared200, OUTER) == ()
+    assert spring_masses(spring_parts(grazing, prepared200, OUTER)) == {}
+    engaged = dataclasses.replace(best, magnitudes=tiny,
+                                  geometry={"tibia": {"contact": near, "side": side}})
+    (part,) = spring_parts(engaged, prepared200, OUTER)
+    assert part.max_torque == pytest.approx(4e-9 * (hi - lo))

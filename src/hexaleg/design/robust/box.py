@@ -23,6 +23,12 @@ their constraints, until none does (cvxpy, Clarabel). For the Joule metric that 
 joint program over (x, f); for the electrical one it is exact when no sample binds (then every
 sample's forces are the Joule-optimal ones the evaluation uses; a sample that binds gets forces
 of its own in the program — the savings reported are from the exact evaluation either way).
+In mode ``"worst"`` the stacked program holds, from the bundle method's optimum, only the
+conditions that can set the worst case — those with explicit samples and those near the worst —
+and takes in any other its solution leaves above its worst
+(:func:`~hexaleg.design.search.condensed.explicit_program`: a relaxation whose optimum meets the
+left-out conditions, so the whole box's optimum): Solo-12's box of 17 conditions is solved as a
+program of 8, in half the CPU time, its savings the same to 6e-8.
 
 The nominal design is feasible for this program whenever its magnitudes meet the design rows at
 every condition (always without ``max_torque`` / ``max_deflection``), so the robust design's worst
@@ -171,7 +177,7 @@ def robust_springs(optimum: OptimalSprings, nominal: Prepared, conditions: Seque
     if mode == "worst" and prefer is not None and len(data) > 1:
         xv, solver["preferred"] = preferred(data, prefer, xv, G, h, nonneg, ~engaged)
     if any([d.update(xv) for d in data]):  # some sample binds: explicit forces there
-        xv, explicit = explicit_program(data, mode, nonneg, engaged, G, h)
+        xv, explicit = explicit_program(data, mode, nonneg, engaged, G, h, start=xv)
         for stale in ("gap", "stopped"):  # the bundle's, not the explicit program's
             solver.pop(stale)
         solver.update(explicit)

@@ -362,8 +362,9 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
         return state, sweeps, converged
 
     state = _off_state(setup, axes)
-    for start in starts:
-        candidate = {g: dict(start[g]) for g in groups}
+    candidates = [{g: dict(start[g]) for g in groups} for start in starts]
+    values([state, *candidates])  # each is asked below: solved side by side first
+    for candidate in candidates:
         if below(value(candidate), value(state)):
             state = candidate
     state, sweeps, converged = descend(state)

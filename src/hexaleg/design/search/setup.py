@@ -88,6 +88,17 @@ def shifted(fam: Family, geometry: Mapping[str, Geometry], shift: Shift
 
 
 @dataclass(frozen=True, eq=False)
+class _Block:
+    """One group's part of a design program: its joints' basis, shape (T, joints, magnitudes),
+    and its design rows on the group's magnitudes (row, right-hand side, label)."""
+
+    B: np.ndarray
+    rows: list[np.ndarray]
+    h: list[float]
+    labels: list[str]
+
+
+@dataclass(frozen=True, eq=False)
 class DesignSetup:
     """What does not change while the geometry is searched (module docstring).
 
@@ -153,8 +164,11 @@ class DesignSetup:
                          * (-1.0 if j in self.mirrored else 1.0) for j in self.groups[group]],
                         axis=1)
 
-    def problem(self, geometry: Mapping[str, Geometry]) -> DesignProblem:
-        """The design program of ``geometry`` (group → geometry)."""
+    def problem(self, geometry: Mapping[str, Geometry],
+                blocks: dict[tuple[object, ...], _Block] | None = None) -> DesignProblem:
+        """The design program of ``geometry`` (group → geometry); ``blocks``: each group's part
+        kept by its geometry across calls (:meth:`problems`: the stop shifts repeat a group's
+        geometry)."""
         p, fam = self.prepared, self.fam
         nm = len(fam.magnitudes)
         joints = [j for js in self.groups.values() for j in js]
@@ -165,32 +179,55 @@ class DesignSetup:
         labels: list[str] = []
         i = 0
         for g_index, (g, js) in enumerate(self.groups.items()):
+            key = (g, tuple(sorted(geometry[g].items())))
+            if blocks is None or key not in blocks:
+                block = self._block(g, geometry[g])
+                if blocks is not None:
+                    blocks[key] = block
+            else:
+                block = blocks[key]
             sl = slice(g_index * nm, (g_index + 1) * nm)
-            engaged = np.zeros(nm, dtype=bool)
-            for j in js:
-                terms = fam.terms(geometry[g], self.centre[j])
-                q = p.q[:, p.robot.column(j)]
-                if j in self.mirrored:  # the design's law reflected about the centre of motion
-                    B[:, i, sl] = -basis(terms, 2.0 * self.centre[j] - q)
-                else:
-                    B[:, i, sl] = basis(terms, q)
-                engaged |= np.any(np.abs(B[:, i, sl]) > ENGAGED, axis=0)
-                for row, rhs, label in self._rows(terms, j):
-                    full = np.zeros(B.shape[2])
-                    full[sl] = row
-                    rows.append(full)
-                    h.append(rhs)
-                    labels.append(label)
-                i += 1
-            for m in np.flatnonzero(~engaged):  # a term that never acts over the gait: x = 0
+            B[:, i:i + len(js), sl] = block.B
+            for row, rhs, label in zip(block.rows, block.h, block.labels, strict=True):
                 full = np.zeros(B.shape[2])
-                full[g_index * nm + m] = 1.0
+                full[sl] = row
                 rows.append(full)
-                h.append(0.0)
-                labels.append("never engaged")
+                h.append(rhs)
+                labels.append(label)
+            i += len(js)
         G = np.array(rows) if rows else np.zeros((0, B.shape[2]))
         return DesignProblem(p, self.objective, cols, B, np.tile(fam.nonnegative(), len(
             self.groups)), G, np.array(h), tuple(labels))
+
+    def _block(self, group: str, geometry: Geometry) -> _Block:
+        """One group's part of :meth:`problem`: its joints' basis and its design rows."""
+        p, fam = self.prepared, self.fam
+        nm = len(fam.magnitudes)
+        js = self.groups[group]
+        B = np.zeros((p.motion.n_samples, len(js), nm))
+        rows: list[np.ndarray] = []
+        h: list[float] = []
+        labels: list[str] = []
+        engaged = np.zeros(nm, dtype=bool)
+        for i, j in enumerate(js):
+            terms = fam.terms(geometry, self.centre[j])
+            q = p.q[:, p.robot.column(j)]
+            if j in self.mirrored:  # the design's law reflected about the centre of motion
+                B[:, i] = -basis(terms, 2.0 * self.centre[j] - q)
+            else:
+                B[:, i] = basis(terms, q)
+            engaged |= np.any(np.abs(B[:, i]) > ENGAGED, axis=0)
+            for row, rhs, label in self._rows(terms, j):
+                rows.append(row)
+                h.append(rhs)
+                labels.append(label)
+        for m in np.flatnonzero(~engaged):  # a term that never acts over the gait: x = 0
+            row = np.zeros(nm)
+            row[m] = 1.0
+            rows.append(row)
+            h.append(0.0)
+            labels.append("never engaged")
+        return _Block(B, rows, h, labels)
 
     def _rows(self, terms: tuple[Term, ...], joint: str) -> list[tuple[np.ndarray, float, str]]:
         """Design rows ``row · x_group ≤ rhs`` on one joint (codesign module docstring)."""
@@ -225,7 +262,8 @@ class DesignSetup:
         without shifts)."""
         if not self.shifts:
             return [self.problem(geometry)]
-        return [self.problem(shifted(self.fam, geometry, s)) for s in self.shifts]
+        blocks: dict[tuple[object, ...], _Block] = {}
+        return [self.problem(shifted(self.fam, geometry, s), blocks) for s in self.shifts]
 
     def _start(self, problems: Sequence[DesignProblem]) -> np.ndarray | None:
         """Where the condensed program's bundle method starts: the Joule-optimal magnitudes of

@@ -243,8 +243,11 @@ def _elements(fam_name: str, geometry: Mapping[str, float | str], x: np.ndarray,
         a, side = float(term.angle), term.kind
         near, far = (lo, hi) if side == "above" else (hi, lo)
         reach = (far - a) if side == "above" else (a - far)
-        if reach <= 0 or (k < ZERO_STIFFNESS and p <= ZERO_TORQUE):
-            continue  # never engaged in the motion, or nothing there
+        if (reach <= 0 or (k < ZERO_STIFFNESS and p <= ZERO_TORQUE)
+                or p + k * reach <= ZERO_TORQUE):
+            continue  # never engaged in the motion, or nothing there: a torque of at most
+            # ZERO_TORQUE anywhere in it, the round-off of a magnitude the program set to 0
+            # (Solo-12's 4e-9 N·m/rad carrying 5e-12 N·m was a 1.8-m coil of 14 g a joint)
         before = (near - a) if side == "above" else (a - near)  # > 0: engaged throughout
         start = p + k * max(before, 0.0)
         role = "stage" if fam_name == "stiffening" else "one-sided"
