@@ -228,24 +228,28 @@ def _biped6_plan(path: str = BIPED6):
 
 
 @pytest.mark.parametrize("robot", [BIPED6, "hexaleg"])
-def test_a_position_servo_is_asked_for_the_plans_torque_through_its_reference(tmp_path,
-                                                                              robot):
-    """A position servo delivers a torque only by deflecting: on soles and on point feet, with
-    the body on its plan, the controller's correction is the plan's motor torque over kp at the
-    middle of its hold (``q* + τ*/kp``, Tomei 1991), to rounding — without it the stance hip
+def test_a_position_servo_is_asked_for_the_plans_torque_at_every_step(tmp_path, robot):
+    """A position servo delivers a torque only by deflecting: on soles and on point feet, closed
+    loop, its control is the plan's ``q* + τ*/kp`` at every simulation step (Tomei 1991), τ*
+    interpolated as q* is, plus the controller's correction held over each update — which at
+    the body on its plan is zero under either servo, to rounding. Without τ* the stance hip
     roll sagged τ*/kp, the body rolled with it and the biped's soles rode their edges, and a
-    point-foot quadruped's sag cost it a fifth of its stride (#54). A feedforward servo, whose
-    torque input carries τ*, gets nothing there."""
+    point-foot quadruped's sag cost it a fifth of its stride; τ* held over the update at its
+    midpoint missed the stance handovers and a 56-kg quadruped ran short (#54). A feedforward
+    servo, whose torque input carries τ*, and a position servo open loop keep their controls
+    (the closed-loop run on the tripod only: the same wiring, a fifth of the biped's time)."""
     import mujoco
 
     from hexaleg.simulation.mjcf import contact_sites
+    from hexaleg.simulation.run import simulate_run
 
     config = tmp_path / "c.toml"
     config.write_text("[gait]\nsamples = 100\n")  # the suite's time; 200 in the slow runs
     prepared = Scenario.load(robot, config).prepare()
     analysis, motion = prepared.evaluate(None), prepared.motion
     for controller in ("position", "feedforward"):
-        settings = Settings(controller=controller).sized(prepared.robot.mass)
+        settings = Settings(controller=controller, cycles=2, evaluate=1,
+                            force_samples=0).sized(prepared.robot.mass)
         sim = build_model(prepared.robot, motion, prepared.motor, servo=settings.servo(),
                           ground=settings.ground(prepared.contact.mu), timestep=1e-4)
         c = balance.Balance(sim, motion, analysis.forces, analysis.tau_motor)
@@ -257,11 +261,22 @@ def test_a_position_servo_is_asked_for_the_plans_torque_through_its_reference(tm
             mujoco.mj_kinematics(sim.model, data)
             out = c.correction(k * motion.dt, data.qpos.copy(), data.qvel.copy(),
                                data.site_xpos[sites].copy())
-            mid = k * motion.dt + balance.CONTROL_PERIOD / 2
-            tau = np.array([np.interp(mid, motion.t, column) for column in analysis.tau_motor.T])
-            assert np.abs(tau / sim.kp).max() > 0.015  # rad: the sag it takes back
-            want = tau / sim.kp if controller == "position" else np.zeros_like(tau)
-            np.testing.assert_allclose(out, want, rtol=0, atol=1e-12)
+            np.testing.assert_allclose(out, 0.0, rtol=0, atol=1e-9)
+        if controller != "position" or robot != "hexaleg":  # the same wiring: one cheap run
+            continue
+        ref = reference(motion, analysis.tau_motor, np.array([0.0, 0.31]))
+        np.testing.assert_array_equal(controls(sim.servo, ref, sim.kp, sim.kd, torques=True),
+                                      ref.q + ref.tau / sim.kp)
+        np.testing.assert_array_equal(controls(sim.servo, ref, sim.kp, sim.kd), ref.q)
+        traj = simulate_run("baseline", sim, motion, analysis, settings, feedback=True).trajectory
+        ref = reference(motion, analysis.tau_motor, traj.t)
+        every = round(balance.CONTROL_PERIOD / sim.timestep)
+        n = traj.n // every * every
+        held = (traj.controls - ref.q - ref.tau / sim.kp)[:n].reshape(-1, every, sim.robot.nj)
+        np.testing.assert_allclose(held, np.repeat(held[:, :1], every, axis=1), rtol=0,
+                                   atol=1e-12)  # the correction alone is held
+        moved = np.abs(np.diff((ref.tau / sim.kp)[:n].reshape(held.shape), axis=1)).sum(axis=1)
+        assert moved.max() > 5e-3  # rad: τ*/kp moves within an update, and the controls with it
 
 
 @pytest.mark.slow
