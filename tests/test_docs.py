@@ -418,8 +418,9 @@ def test_simulate_page_quotes_the_position_soles_log():
     biped = log[log.index("biped6, deflection off"):log.index("biped6, deflection on")]
     after = log[log.index("biped6, deflection on"):log.index("talos, deflection off")]
     talos = log[log.index("talos, deflection off"):log.index("talos, deflection on")]
-    talos_after = log[log.index("talos, deflection on"):log.index("## python why_position.py "
-                                                                    "solo12")]
+    now = log[log.index("# ===== per step"):]  # the plan's torque at every step
+    after = now[now.index("biped6, deflection on"):now.index("talos, deflection off")]
+    talos_after = now[now.index("talos, deflection on"):]
     quoted = [  # (the page's words, the part of the log, its words)
         ("(7.24 N·m on its sole)", biped, "m g a = 7.24 N·m"),
         ("+11.18 N·m and the servo gives +0.40", biped,
@@ -447,21 +448,24 @@ def test_simulate_page_quotes_the_position_soles_log():
          "soles off 50.9 % of stance, 133.2 mm,  118.98 J (plan 105.99), roll max 1.00°"),
         ("| 0.0 mm | 77.1 % | 118.04 | 1.14° |", log,
          "soles off 77.1 % of stance, 131.2 mm,  118.04 J (plan 105.99), roll max 1.14°"),
-        ("| asked for τ* + Δτ (now) | 26.0 mm | 0.0 % | 103.69 | 0.58° |", log,
+        ("| asked for τ* + Δτ (now) | 26.3 mm | 0.0 % | 103.62 | 0.58° |", now,
+         "single-support margin  26.3 mm (L1 right), soles off  0.0 % of stance, 131.2 mm,  "
+         "103.62 J (plan 105.99), roll max 0.58°"),
+        ("| same, kp × 4 | 38.9 mm | 0.0 % | 104.57 | 0.04° |", now,
+         "single-support margin  38.9 mm (R1 left), soles off  0.0 % of stance, 129.9 mm,  "
+         "104.57 J (plan 105.99), roll max 0.04°"),
+        ("+10.81 and +67.91 N·m, 26.0 mm of single-support\nmargin, 103.69 J", log,
          "single-support margin  26.0 mm (R1 left), soles off  0.0 % of stance, 131.1 mm,  "
-         "103.69 J (plan 105.99), roll max 0.58°"),
-        ("| same, kp × 4 | 38.7 mm | 0.0 % | 104.60 | 0.04° |", log,
-         "single-support margin  38.7 mm (R1 left), soles off  0.0 % of stance, 129.9 mm,  "
-         "104.60 J (plan 105.99), roll max 0.04°"),
+         "103.69 J (plan 105.99)"),
         ("| feedforward + PD | 43.7 mm | 0.0 % | 105.71 | 0.02° |", log,
          "single-support margin  43.7 mm (R1 right), soles off  0.0 % of stance, 130.0 mm,  "
          "105.71 J (plan 105.99), roll max 0.02°"),
-        ("+10.81 of +11.18 N·m", after, "  0.12    S.     -0.8 |   +11.18    +10.81"),
-        ("+67.91 of +70.46", talos_after, "  0.30    S.     -0.4 |   +70.46    +67.91"),
+        ("+11.07 of +11.18 N·m", after, "  0.12    S.     -0.8 |   +11.18    +11.07"),
+        ("+68.02 of +70.46", talos_after, "  0.30    S.     -0.4 |   +70.46    +68.02"),
         ("11.3 and 11.7 mrad at most", after, "  0.34    S.    +11.3 |"),
         ("11.3 and 11.7 mrad at most", talos_after, "  0.96    S.    +11.7 |"),
-        ("28.5 and 11.4 mm of its centre", after, "|   163.9   -28.5"),
-        ("28.5 and 11.4 mm of its centre", talos_after, "|   904.0   -11.4"),
+        ("28.0 and 11.4 mm of its centre", after, "|   163.9   -28.0"),
+        ("28.0 and 11.4 mm of its centre", talos_after, "|   904.0   -11.4"),
         ("37 mrad RMS on the test biped", log, "| springs | walks | 37 / 158 |"),
         ("spends 12.04 J instead\nof 12.47 J (plan 12.29 J)", log,
          "feet off  0.0 % of stance, 119.9 mm,   12.04 J (plan 12.29)"),
@@ -474,22 +478,24 @@ def test_simulate_page_quotes_the_position_soles_log():
         assert words in part, words
         assert said in where, said
     # the simulate command's runs under the position servo, after (the page's biped table)
-    for row, said in (("| position | springs | 130.6 mm | 73.06 → 70.31 (−3.8 %) | walks |",
-                       "position springs: walks, distance 130.6 mm per cycle, electrical per "
-                       "cycle [70.25006416100685, 70.37864775100147] J, mean 70.31 J"),
-                      ("| position | baseline | 130.4 mm | 105.99 → 104.06 (−1.8 %) | walks |",
-                       "position baseline: walks, distance 130.4 mm per cycle, electrical per "
-                       "cycle [104.04305510204227, 104.07935965951633] J, mean 104.06 J"),
-                      ("simulated +30.72 % under feedforward and +32.43 % under the position\n"
-                       "servo", "simulated +32.43 % (70.31 J vs 104.1 J)"),
-                      ("27.2 mm (springs) and\n24.7 mm (baseline)",
-                       "in single support 27.2 mm from the R1 sole's left edge"),
-                      ("27.2 mm (springs) and\n24.7 mm (baseline)",
-                       "in single support 24.7 mm from the R1 sole's left edge"),
+    for row, said in (("| position | springs | 130.6 mm | 73.06 → 70.28 (−3.8 %) | walks |",
+                       "position springs (per step): walks, distance 130.6 mm per cycle, "
+                       "electrical per cycle [70.18158557366124, 70.37192786513137] J, mean "
+                       "70.28 J"),
+                      ("| position | baseline | 130.5 mm | 105.99 → 104.04 (−1.8 %) | walks |",
+                       "position baseline (per step): walks, distance 130.5 mm per cycle, "
+                       "electrical per cycle [103.93640397988032, 104.13538982312578] J, mean "
+                       "104.04 J"),
+                      ("simulated +30.72 % under feedforward and +32.45 % under the position\n"
+                       "servo", "simulated +32.45 % (70.28 J vs 104 J)"),
+                      ("27.4 mm (springs) and\n24.9 mm (baseline)",
+                       "in single support 27.4 mm from the R1 sole's left edge"),
+                      ("27.4 mm (springs) and\n24.9 mm (baseline)",
+                       "in single support 24.9 mm from the R1 sole's left edge"),
                       ("off the ground in 3.4 % and\n0 % of their stance",
-                       "contact losses 3.41 %, normal force RMS error 16.0 N"),
-                      ("16.0 and 15.3 N RMS off the plan",
-                       "contact losses 0.00 %, normal force RMS error 15.3 N")):
+                       "contact losses 3.38 %, normal force RMS error 16.0 N"),
+                      ("16.0 and 15.4 N RMS off the plan",
+                       "contact losses 0.00 %, normal force RMS error 15.4 N")):
         assert row in page, row
         assert said in log, said
 
@@ -504,18 +510,20 @@ def test_simulate_page_quotes_the_talos_log():
         ("planned stride 491.9 mm", "Distance per cycle: 491.9 mm (planned 491.9 mm)"),
         ("1003.9 → 1001.1", "springs 1003.89 -> 1001.14"),
         ("2121.1 → 2114.9", "baseline 2121.07 -> 2114.90"),
-        ("| position | springs | 492.3 mm", "position springs (after): walks, distance 492.3 mm"),
-        ("| position | baseline | 492.4 mm", "position baseline (after): walks, distance 492.4 mm"),
-        ("1003.9 → 1038.5 (+3.4 %)", "mean 1038.51 J"),
-        ("2121.1 → 2222.9 (+4.8 %)", "mean 2222.90 J"),
+        ("| position | springs | 492.3 mm",
+         "position springs (per step): walks, distance 492.3 mm"),
+        ("| position | baseline | 492.4 mm",
+         "position baseline (per step): walks, distance 492.4 mm"),
+        ("1003.9 → 1038.7 (+3.5 %)", "mean 1038.66 J"),
+        ("2121.1 → 2223.1 (+4.8 %)", "mean 2223.11 J"),
         ("the saving is +53.28 % simulated", "(electrical 1004 J vs 2121 J per cycle); "
                                                "simulated +53.28 % (1039 J vs 2223 J)"),
         ("to 16.0 mrad RMS", "| springs | walks | 16 / 101 |"),
-        ("47.7 mm (springs) and 48.2 mm (baseline)",
-         "in single support 47.7 mm from the R1 sole's left edge"),
-        ("47.7 mm (springs) and 48.2 mm (baseline)",
-         "in single support 48.2 mm from the R1 sole's left edge"),
-        ("2.3 % and 1.8 % of their stance", "contact losses 2.33 %"),
+        ("47.8 mm (springs) and 48.2 mm (baseline)",
+         "in single support 47.8 mm from the R1 sole's left edge"),
+        ("47.8 mm (springs) and 48.2 mm (baseline)",
+         "in single support 48.2 mm from the L1 sole's right edge"),
+        ("2.3 % and 1.8 % of their stance", "contact losses 2.34 %"),
         ("2.3 % and 1.8 % of their stance", "contact losses 1.79 %"),
         ("fell at 2.96 s (roll 45°)", "fell at t = 2.9610 s: base roll +45.0°"),
         ("+52.66 % simulated against +52.67 % predicted",
