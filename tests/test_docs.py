@@ -605,3 +605,68 @@ def test_robots_page_quotes_the_codesign_bench_log():
             ("about 0.8 s to each candidate", "about 0.8 s the inner spring program")):
         assert words in prose, words
         assert said in log_words, said
+
+
+def test_simulate_page_quotes_the_newcomers_log():
+    """docs/simulate.md's quadrupeds new to hexaleg (#54: Go1, B1, Laikago described as a
+    newcomer would, their sized trots) are analysis/bench_logs/newcomers_simulate.log's block
+    after the plan's torque went into a position servo's reference at every step: each table
+    row and figure beside the log's line (its runs about 20 s of CPU each, by hand)."""
+    log = (ROOT / "analysis" / "bench_logs" / "newcomers_simulate.log").read_text()
+    now = log[log.index("# ===== per step"):]
+    page = (DOCS / "simulate.md").read_text()
+    part = " ".join(page[page.index("Quadrupeds new to hexaleg under position servos"):
+                         page.index("The Adams model's printed-units")].split())
+    runs = {  # (robot, servo): (stride covered, tracking RMS, saving) per the page's table
+        ("go1", "position"): (("99.9", "98.4"), ("18", "18"), "+33.13 % (+36.75 %)"),
+        ("go1", "feedforward"): (("102.0", "101.3"), ("18", "19"), "+32.04 %"),
+        ("b1", "position"): (("99.1", "101.6"), ("25", "26"), "+30.18 % (+33.34 %)"),
+        ("b1", "feedforward"): (("98.7", "98.1"), ("18", "21"), "+30.04 %"),
+        ("laikago", "position"): (("90.6", "96.5"), ("47", "68"), "+23.67 % (+32.02 %)"),
+        ("laikago", "feedforward"): (("96.3", "95.5"), ("9", "12"), "+32.99 %")}
+    for (robot, servo), (covered, tracking, saving) in runs.items():
+        row = (f"| {covered[0]} % / {covered[1]} % | {tracking[0]} / {tracking[1]} mrad | "
+               f"{saving} |")
+        assert row in part, row
+        for name, c, t in zip(("springs", "baseline"), covered, tracking, strict=True):
+            said = f"{robot} {servo} {name}: walks, "
+            line = now[now.index(said):].splitlines()[0]
+            assert f"({c} %), tracking RMS {t} mrad" in line, line
+        summary = next(line for line in now.splitlines()
+                       if line.startswith(f"{robot} ({servo} servo, balance feedback)"))
+        simulated, _, predicted = saving.partition(" (")
+        assert f"simulated {simulated} (" in summary, summary
+        assert not predicted or f"predicted saving {predicted.rstrip(')')} (" in summary
+    for words, said in (
+            ("1124 and 1473 J a cycle", "laikago (position servo, balance feedback): predicted "
+                                         "saving +32.02 % (electrical 392.5 J vs 577.3 J per "
+                                         "cycle); simulated +23.67 % (1124 J vs 1473 J)"),
+            ("position 3.67 and 4.25 s", "laikago position springs: fell: the robot fell at "
+                                         "t = 3.6695 s"),
+            ("position 3.67 and 4.25 s", "laikago position baseline: fell: the robot fell at "
+                                         "t = 4.2494 s"),
+            ("B1's position baseline at 6.37 s", "b1 position baseline: fell: the robot fell at "
+                                                 "t = 6.3684 s"),
+            ("feedforward + PD 4.76 and 4.66 s", "springs  {'cycles': '8', 'controller': "
+                                                 "'feedforward'}                 fell   t 4.76"),
+            ("feedforward + PD 4.76 and 4.66 s", "baseline {'cycles': '8', 'controller': "
+                                                 "'feedforward'}                 fell   t 4.66"),
+            ("Laikago 96.8 % and 102.9 % of its stride at 19 and 31 mrad",
+             "'SWING': '0.0001'}                           walks  t 6.41 roll 0.091 pitch 0.049 "
+             "sat 0.000 cons 0.02 dist  96.8% track   19 mrad"),
+            ("Laikago 96.8 % and 102.9 % of its stride at 19 and 31 mrad",
+             "dist 102.9% track   31 mrad"),
+            ("B1 99.8 % and 100.2 %", "dist  99.8% track   25 mrad"),
+            ("B1 99.8 % and 100.2 %", "dist 100.2% track   27 mrad"),
+            ("(151 and 197 J against 121 and 162 J)", "dist  99.0% track   20 mrad slip   33 mm "
+                                                       "E 151.0"),
+            ("(151 and 197 J against 121 and 162 J)", "dist  99.1% track   21 mrad slip   48 mm "
+                                                       "E 197.0"),
+            ("(151 and 197 J against 121 and 162 J)", "dist 100.0% track   14 mrad slip    3 mm "
+                                                       "E 120.9"),
+            ("(151 and 197 J against 121 and 162 J)", "dist  99.8% track   14 mrad slip    4 mm "
+                                                       "E 162.4"),
+            ("rolls 0.10 rad instead of 0.01", "roll 0.100 pitch 0.066"),
+            ("Laikago's feedforward + PD, where", "'SWING': '0.0001'} walks  t 6.41 roll 0.071")):
+        assert words in part, words
+        assert said in now, said
