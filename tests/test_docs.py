@@ -454,7 +454,7 @@ def test_simulate_page_quotes_the_position_soles_log():
         ("| same, kp × 4 | 38.9 mm | 0.0 % | 104.57 | 0.04° |", now,
          "single-support margin  38.9 mm (R1 left), soles off  0.0 % of stance, 129.9 mm,  "
          "104.57 J (plan 105.99), roll max 0.04°"),
-        ("+10.81 and +67.91 N·m, 26.0 mm of single-support\nmargin, 103.69 J", log,
+        ("+10.81 and +67.91 N·m, 26.0 mm\nof single-support margin, 103.69 J", log,
          "single-support margin  26.0 mm (R1 left), soles off  0.0 % of stance, 131.1 mm,  "
          "103.69 J (plan 105.99)"),
         ("| feedforward + PD | 43.7 mm | 0.0 % | 105.71 | 0.02° |", log,
