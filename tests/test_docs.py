@@ -559,12 +559,14 @@ def test_simulate_page_quotes_the_talos_log():
          "unproven (under position only the runs did not walk (springs fell; baseline fell))"),
         ("Now it proves the same answer under both servos:\n\"fit one_sided, spring torque ≤ "
          "21.15 N·m springs on hip_roll, knee: electrical saving\n+27.03 %\", simulated +26.97 % "
-         "under feedforward + PD and +27.00 % under position only",
+         "under feedforward + PD and +26.99 % under position only",
          "fit one_sided, spring torque ≤ 21.15 N·m springs on hip_roll, knee: electrical saving "
          "+27.03 % (+24.37 % net of 1601.0 g of springs); worst case over the maps +14.72 % at "
          "period ×0.5, stride ×1.5; hard stops needed: hip_roll (below) at -17.3° from its "
          "centre of motion (S_y/σ 1.11 without), knee (above) at +47.5° from its centre of "
          "motion (S_y/σ 1.03 without); simulated electrical saving feedforward + PD +26.97 %, "
+         "position only +26.99 % (predicted +27.03 %)"),
+        ("+27.00 % while the position servo's τ* was held",
          "position only +27.00 % (predicted +27.03 %)"),
     ]
     for words, said in quoted:
