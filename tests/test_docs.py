@@ -672,3 +672,43 @@ def test_simulate_page_quotes_the_newcomers_log():
             ("Laikago's feedforward + PD, where", "'SWING': '0.0001'} walks  t 6.41 roll 0.071")):
         assert words in part, words
         assert said in now, said
+
+
+def test_design_page_quotes_the_solo12_design_log():
+    """docs/design.md's Solo-12 answer and how it followed the position servo's simulation are
+    analysis/bench_logs/design_solo12.log's (two runs of 4 minutes, by hand): each figure
+    beside the log's words."""
+    log = (ROOT / "analysis" / "bench_logs" / "design_solo12.log").read_text()
+    ranked = log.index("## ranking rows (solo12_design_main")
+    before, now = log[:log.index("## branch posquad")], log[log.index("## branch posquad"):ranked]
+    rows_before = log[ranked:log.index("## ranking rows (solo12_design/")]
+    rows_now = log[log.index("## ranking rows (solo12_design/"):]
+    page = " ".join((DOCS / "design.md").read_text().split())
+    quoted = [
+        ("one-sided springs (spring torque ≤ 0.4086 N·m) on hip and knee pitch, +42.02 % "
+         "predicted (+39.60 % net of 42.4 g of springs), +42.74 % simulated under feedforward "
+         "+ PD and +43.35 % position only", now,
+         "fit one_sided, spring torque ≤ 0.4086 N·m springs on hfe LH/RH, hfe LF/RF, kfe LF/RF, "
+         "kfe LH/RH: electrical saving +42.02 % (+39.60 % net of 42.4 g of springs)"),
+        ("+43.35 % position only", now, "simulated electrical saving feedforward + PD +42.74 %, "
+                                        "position only +43.35 % (predicted +42.02 %)"),
+        ("preloaded springs (+43.65 % predicted, +37.62 % position only, +36.88 % net of "
+         "117.0 g)", before, "fit preloaded springs on hfe LH/RH, hfe LF/RF, kfe LF/RF, "
+                             "kfe LH/RH: electrical saving +43.65 % (+36.88 % net of 117.0 g"),
+        ("+37.62 % position only", before, "simulated electrical saving position only "
+                                           "+37.62 %, feedforward + PD +43.71 %"),
+        ("simulated +36.25 % under position servos", rows_before,
+         "one_sided, spring torque ≤ 0.4086 N·m    position    walks  +43.21 % +36.25 %"),
+        ("that candidate simulates +43.60 %", rows_now,
+         "one_sided, spring torque ≤ 0.4086 N·m    position    walks  +43.21 % +43.60 % "
+         "+41.02 %"),
+        ("(+40.92 % against the preloaded design's +40.15 %)", rows_now,
+         "one_sided, spring torque ≤ 0.4086 N·m    feedforward walks  +43.21 % +43.51 % "
+         "+40.92 %"),
+        ("(+40.92 % against the preloaded design's +40.15 %)", rows_now,
+         "preloaded                                feedforward walks  +45.56 % +45.93 % "
+         "+40.15 %"),
+    ]
+    for words, where, said in quoted:
+        assert words in page, words
+        assert said in where, said
