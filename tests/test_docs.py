@@ -418,8 +418,9 @@ def test_simulate_page_quotes_the_position_soles_log():
     biped = log[log.index("biped6, deflection off"):log.index("biped6, deflection on")]
     after = log[log.index("biped6, deflection on"):log.index("talos, deflection off")]
     talos = log[log.index("talos, deflection off"):log.index("talos, deflection on")]
-    talos_after = log[log.index("talos, deflection on"):log.index("## python why_position.py "
-                                                                    "solo12")]
+    now = log[log.index("# ===== per step"):]  # the plan's torque at every step
+    after = now[now.index("biped6, deflection on"):now.index("talos, deflection off")]
+    talos_after = now[now.index("talos, deflection on"):]
     quoted = [  # (the page's words, the part of the log, its words)
         ("(7.24 N·m on its sole)", biped, "m g a = 7.24 N·m"),
         ("+11.18 N·m and the servo gives +0.40", biped,
@@ -447,21 +448,24 @@ def test_simulate_page_quotes_the_position_soles_log():
          "soles off 50.9 % of stance, 133.2 mm,  118.98 J (plan 105.99), roll max 1.00°"),
         ("| 0.0 mm | 77.1 % | 118.04 | 1.14° |", log,
          "soles off 77.1 % of stance, 131.2 mm,  118.04 J (plan 105.99), roll max 1.14°"),
-        ("| asked for τ* + Δτ (now) | 26.0 mm | 0.0 % | 103.69 | 0.58° |", log,
+        ("| asked for τ* + Δτ (now) | 26.3 mm | 0.0 % | 103.62 | 0.58° |", now,
+         "single-support margin  26.3 mm (L1 right), soles off  0.0 % of stance, 131.2 mm,  "
+         "103.62 J (plan 105.99), roll max 0.58°"),
+        ("| same, kp × 4 | 38.9 mm | 0.0 % | 104.57 | 0.04° |", now,
+         "single-support margin  38.9 mm (R1 left), soles off  0.0 % of stance, 129.9 mm,  "
+         "104.57 J (plan 105.99), roll max 0.04°"),
+        ("+10.81 and +67.91 N·m, 26.0 mm\nof single-support margin, 103.69 J", log,
          "single-support margin  26.0 mm (R1 left), soles off  0.0 % of stance, 131.1 mm,  "
-         "103.69 J (plan 105.99), roll max 0.58°"),
-        ("| same, kp × 4 | 38.7 mm | 0.0 % | 104.60 | 0.04° |", log,
-         "single-support margin  38.7 mm (R1 left), soles off  0.0 % of stance, 129.9 mm,  "
-         "104.60 J (plan 105.99), roll max 0.04°"),
+         "103.69 J (plan 105.99)"),
         ("| feedforward + PD | 43.7 mm | 0.0 % | 105.71 | 0.02° |", log,
          "single-support margin  43.7 mm (R1 right), soles off  0.0 % of stance, 130.0 mm,  "
          "105.71 J (plan 105.99), roll max 0.02°"),
-        ("+10.81 of +11.18 N·m", after, "  0.12    S.     -0.8 |   +11.18    +10.81"),
-        ("+67.91 of +70.46", talos_after, "  0.30    S.     -0.4 |   +70.46    +67.91"),
+        ("+11.07 of +11.18 N·m", after, "  0.12    S.     -0.8 |   +11.18    +11.07"),
+        ("+68.02 of +70.46", talos_after, "  0.30    S.     -0.4 |   +70.46    +68.02"),
         ("11.3 and 11.7 mrad at most", after, "  0.34    S.    +11.3 |"),
         ("11.3 and 11.7 mrad at most", talos_after, "  0.96    S.    +11.7 |"),
-        ("28.5 and 11.4 mm of its centre", after, "|   163.9   -28.5"),
-        ("28.5 and 11.4 mm of its centre", talos_after, "|   904.0   -11.4"),
+        ("28.0 and 11.4 mm of its centre", after, "|   163.9   -28.0"),
+        ("28.0 and 11.4 mm of its centre", talos_after, "|   904.0   -11.4"),
         ("37 mrad RMS on the test biped", log, "| springs | walks | 37 / 158 |"),
         ("spends 12.04 J instead\nof 12.47 J (plan 12.29 J)", log,
          "feet off  0.0 % of stance, 119.9 mm,   12.04 J (plan 12.29)"),
@@ -474,22 +478,24 @@ def test_simulate_page_quotes_the_position_soles_log():
         assert words in part, words
         assert said in where, said
     # the simulate command's runs under the position servo, after (the page's biped table)
-    for row, said in (("| position | springs | 130.6 mm | 73.06 → 70.31 (−3.8 %) | walks |",
-                       "position springs: walks, distance 130.6 mm per cycle, electrical per "
-                       "cycle [70.25006416100685, 70.37864775100147] J, mean 70.31 J"),
-                      ("| position | baseline | 130.4 mm | 105.99 → 104.06 (−1.8 %) | walks |",
-                       "position baseline: walks, distance 130.4 mm per cycle, electrical per "
-                       "cycle [104.04305510204227, 104.07935965951633] J, mean 104.06 J"),
-                      ("simulated +30.72 % under feedforward and +32.43 % under the position\n"
-                       "servo", "simulated +32.43 % (70.31 J vs 104.1 J)"),
-                      ("27.2 mm (springs) and\n24.7 mm (baseline)",
-                       "in single support 27.2 mm from the R1 sole's left edge"),
-                      ("27.2 mm (springs) and\n24.7 mm (baseline)",
-                       "in single support 24.7 mm from the R1 sole's left edge"),
+    for row, said in (("| position | springs | 130.6 mm | 73.06 → 70.28 (−3.8 %) | walks |",
+                       "position springs (per step): walks, distance 130.6 mm per cycle, "
+                       "electrical per cycle [70.18158557366124, 70.37192786513137] J, mean "
+                       "70.28 J"),
+                      ("| position | baseline | 130.5 mm | 105.99 → 104.04 (−1.8 %) | walks |",
+                       "position baseline (per step): walks, distance 130.5 mm per cycle, "
+                       "electrical per cycle [103.93640397988032, 104.13538982312578] J, mean "
+                       "104.04 J"),
+                      ("simulated +30.72 % under feedforward and +32.45 % under the position\n"
+                       "servo", "simulated +32.45 % (70.28 J vs 104 J)"),
+                      ("27.4 mm (springs) and\n24.9 mm (baseline)",
+                       "in single support 27.4 mm from the R1 sole's left edge"),
+                      ("27.4 mm (springs) and\n24.9 mm (baseline)",
+                       "in single support 24.9 mm from the R1 sole's left edge"),
                       ("off the ground in 3.4 % and\n0 % of their stance",
-                       "contact losses 3.41 %, normal force RMS error 16.0 N"),
-                      ("16.0 and 15.3 N RMS off the plan",
-                       "contact losses 0.00 %, normal force RMS error 15.3 N")):
+                       "contact losses 3.38 %, normal force RMS error 16.0 N"),
+                      ("16.0 and 15.4 N RMS off the plan",
+                       "contact losses 0.00 %, normal force RMS error 15.4 N")):
         assert row in page, row
         assert said in log, said
 
@@ -504,18 +510,20 @@ def test_simulate_page_quotes_the_talos_log():
         ("planned stride 491.9 mm", "Distance per cycle: 491.9 mm (planned 491.9 mm)"),
         ("1003.9 → 1001.1", "springs 1003.89 -> 1001.14"),
         ("2121.1 → 2114.9", "baseline 2121.07 -> 2114.90"),
-        ("| position | springs | 492.3 mm", "position springs (after): walks, distance 492.3 mm"),
-        ("| position | baseline | 492.4 mm", "position baseline (after): walks, distance 492.4 mm"),
-        ("1003.9 → 1038.5 (+3.4 %)", "mean 1038.51 J"),
-        ("2121.1 → 2222.9 (+4.8 %)", "mean 2222.90 J"),
+        ("| position | springs | 492.3 mm",
+         "position springs (per step): walks, distance 492.3 mm"),
+        ("| position | baseline | 492.4 mm",
+         "position baseline (per step): walks, distance 492.4 mm"),
+        ("1003.9 → 1038.7 (+3.5 %)", "mean 1038.66 J"),
+        ("2121.1 → 2223.1 (+4.8 %)", "mean 2223.11 J"),
         ("the saving is +53.28 % simulated", "(electrical 1004 J vs 2121 J per cycle); "
                                                "simulated +53.28 % (1039 J vs 2223 J)"),
         ("to 16.0 mrad RMS", "| springs | walks | 16 / 101 |"),
-        ("47.7 mm (springs) and 48.2 mm (baseline)",
-         "in single support 47.7 mm from the R1 sole's left edge"),
-        ("47.7 mm (springs) and 48.2 mm (baseline)",
-         "in single support 48.2 mm from the R1 sole's left edge"),
-        ("2.3 % and 1.8 % of their stance", "contact losses 2.33 %"),
+        ("47.8 mm (springs) and 48.2 mm (baseline)",
+         "in single support 47.8 mm from the R1 sole's left edge"),
+        ("47.8 mm (springs) and 48.2 mm (baseline)",
+         "in single support 48.2 mm from the L1 sole's right edge"),
+        ("2.3 % and 1.8 % of their stance", "contact losses 2.34 %"),
         ("2.3 % and 1.8 % of their stance", "contact losses 1.79 %"),
         ("fell at 2.96 s (roll 45°)", "fell at t = 2.9610 s: base roll +45.0°"),
         ("+52.66 % simulated against +52.67 % predicted",
@@ -551,12 +559,14 @@ def test_simulate_page_quotes_the_talos_log():
          "unproven (under position only the runs did not walk (springs fell; baseline fell))"),
         ("Now it proves the same answer under both servos:\n\"fit one_sided, spring torque ≤ "
          "21.15 N·m springs on hip_roll, knee: electrical saving\n+27.03 %\", simulated +26.97 % "
-         "under feedforward + PD and +27.00 % under position only",
+         "under feedforward + PD and +26.99 % under position only",
          "fit one_sided, spring torque ≤ 21.15 N·m springs on hip_roll, knee: electrical saving "
          "+27.03 % (+24.37 % net of 1601.0 g of springs); worst case over the maps +14.72 % at "
          "period ×0.5, stride ×1.5; hard stops needed: hip_roll (below) at -17.3° from its "
          "centre of motion (S_y/σ 1.11 without), knee (above) at +47.5° from its centre of "
          "motion (S_y/σ 1.03 without); simulated electrical saving feedforward + PD +26.97 %, "
+         "position only +26.99 % (predicted +27.03 %)"),
+        ("+27.00 % while the position servo's τ* was held",
          "position only +27.00 % (predicted +27.03 %)"),
     ]
     for words, said in quoted:
@@ -597,3 +607,108 @@ def test_robots_page_quotes_the_codesign_bench_log():
             ("about 0.8 s to each candidate", "about 0.8 s the inner spring program")):
         assert words in prose, words
         assert said in log_words, said
+
+
+def test_simulate_page_quotes_the_newcomers_log():
+    """docs/simulate.md's quadrupeds new to hexaleg (#54: Go1, B1, Laikago described as a
+    newcomer would, their sized trots) are analysis/bench_logs/newcomers_simulate.log's block
+    after the plan's torque went into a position servo's reference at every step: each table
+    row and figure beside the log's line (its runs about 20 s of CPU each, by hand)."""
+    log = (ROOT / "analysis" / "bench_logs" / "newcomers_simulate.log").read_text()
+    now = log[log.index("# ===== per step"):]
+    page = (DOCS / "simulate.md").read_text()
+    part = " ".join(page[page.index("Quadrupeds new to hexaleg under position servos"):
+                         page.index("The Adams model's printed-units")].split())
+    runs = {  # (robot, servo): (stride covered, tracking RMS, saving) per the page's table
+        ("go1", "position"): (("99.9", "98.4"), ("18", "18"), "+33.13 % (+36.75 %)"),
+        ("go1", "feedforward"): (("102.0", "101.3"), ("18", "19"), "+32.04 %"),
+        ("b1", "position"): (("99.1", "101.6"), ("25", "26"), "+30.18 % (+33.34 %)"),
+        ("b1", "feedforward"): (("98.7", "98.1"), ("18", "21"), "+30.04 %"),
+        ("laikago", "position"): (("90.6", "96.5"), ("47", "68"), "+23.67 % (+32.02 %)"),
+        ("laikago", "feedforward"): (("96.3", "95.5"), ("9", "12"), "+32.99 %")}
+    for (robot, servo), (covered, tracking, saving) in runs.items():
+        row = (f"| {covered[0]} % / {covered[1]} % | {tracking[0]} / {tracking[1]} mrad | "
+               f"{saving} |")
+        assert row in part, row
+        for name, c, t in zip(("springs", "baseline"), covered, tracking, strict=True):
+            said = f"{robot} {servo} {name}: walks, "
+            line = now[now.index(said):].splitlines()[0]
+            assert f"({c} %), tracking RMS {t} mrad" in line, line
+        summary = next(line for line in now.splitlines()
+                       if line.startswith(f"{robot} ({servo} servo, balance feedback)"))
+        simulated, _, predicted = saving.partition(" (")
+        assert f"simulated {simulated} (" in summary, summary
+        assert not predicted or f"predicted saving {predicted.rstrip(')')} (" in summary
+    for words, said in (
+            ("1124 and 1473 J a cycle", "laikago (position servo, balance feedback): predicted "
+                                         "saving +32.02 % (electrical 392.5 J vs 577.3 J per "
+                                         "cycle); simulated +23.67 % (1124 J vs 1473 J)"),
+            ("position 3.67 and 4.25 s", "laikago position springs: fell: the robot fell at "
+                                         "t = 3.6695 s"),
+            ("position 3.67 and 4.25 s", "laikago position baseline: fell: the robot fell at "
+                                         "t = 4.2494 s"),
+            ("B1's position baseline at 6.37 s", "b1 position baseline: fell: the robot fell at "
+                                                 "t = 6.3684 s"),
+            ("feedforward + PD 4.76 and 4.66 s", "springs  {'cycles': '8', 'controller': "
+                                                 "'feedforward'}                 fell   t 4.76"),
+            ("feedforward + PD 4.76 and 4.66 s", "baseline {'cycles': '8', 'controller': "
+                                                 "'feedforward'}                 fell   t 4.66"),
+            ("Laikago 96.8 % and 102.9 % of its stride at 19 and 31 mrad",
+             "'SWING': '0.0001'}                           walks  t 6.41 roll 0.091 pitch 0.049 "
+             "sat 0.000 cons 0.02 dist  96.8% track   19 mrad"),
+            ("Laikago 96.8 % and 102.9 % of its stride at 19 and 31 mrad",
+             "dist 102.9% track   31 mrad"),
+            ("B1 99.8 % and 100.2 %", "dist  99.8% track   25 mrad"),
+            ("B1 99.8 % and 100.2 %", "dist 100.2% track   27 mrad"),
+            ("(151 and 197 J against 121 and 162 J)", "dist  99.0% track   20 mrad slip   33 mm "
+                                                       "E 151.0"),
+            ("(151 and 197 J against 121 and 162 J)", "dist  99.1% track   21 mrad slip   48 mm "
+                                                       "E 197.0"),
+            ("(151 and 197 J against 121 and 162 J)", "dist 100.0% track   14 mrad slip    3 mm "
+                                                       "E 120.9"),
+            ("(151 and 197 J against 121 and 162 J)", "dist  99.8% track   14 mrad slip    4 mm "
+                                                       "E 162.4"),
+            ("rolls 0.10 rad instead of 0.01", "roll 0.100 pitch 0.066"),
+            ("Laikago's feedforward + PD, where", "'SWING': '0.0001'} walks  t 6.41 roll 0.071")):
+        assert words in part, words
+        assert said in now, said
+
+
+def test_design_page_quotes_the_solo12_design_log():
+    """docs/design.md's Solo-12 answer and how it followed the position servo's simulation are
+    analysis/bench_logs/design_solo12.log's (two runs of 4 minutes, by hand): each figure
+    beside the log's words."""
+    log = (ROOT / "analysis" / "bench_logs" / "design_solo12.log").read_text()
+    ranked = log.index("## ranking rows (solo12_design_main")
+    before, now = log[:log.index("## branch posquad")], log[log.index("## branch posquad"):ranked]
+    rows_before = log[ranked:log.index("## ranking rows (solo12_design/")]
+    rows_now = log[log.index("## ranking rows (solo12_design/"):]
+    page = " ".join((DOCS / "design.md").read_text().split())
+    quoted = [
+        ("one-sided springs (spring torque ≤ 0.4086 N·m) on hip and knee pitch, +42.02 % "
+         "predicted (+39.60 % net of 42.4 g of springs), +42.74 % simulated under feedforward "
+         "+ PD and +43.35 % position only", now,
+         "fit one_sided, spring torque ≤ 0.4086 N·m springs on hfe LH/RH, hfe LF/RF, kfe LF/RF, "
+         "kfe LH/RH: electrical saving +42.02 % (+39.60 % net of 42.4 g of springs)"),
+        ("+43.35 % position only", now, "simulated electrical saving feedforward + PD +42.74 %, "
+                                        "position only +43.35 % (predicted +42.02 %)"),
+        ("preloaded springs (+43.65 % predicted, +37.62 % position only, +36.88 % net of "
+         "117.0 g)", before, "fit preloaded springs on hfe LH/RH, hfe LF/RF, kfe LF/RF, "
+                             "kfe LH/RH: electrical saving +43.65 % (+36.88 % net of 117.0 g"),
+        ("+37.62 % position only", before, "simulated electrical saving position only "
+                                           "+37.62 %, feedforward + PD +43.71 %"),
+        ("simulated +36.25 % under position servos", rows_before,
+         "one_sided, spring torque ≤ 0.4086 N·m    position    walks  +43.21 % +36.25 %"),
+        ("that candidate simulates +43.60 %", rows_now,
+         "one_sided, spring torque ≤ 0.4086 N·m    position    walks  +43.21 % +43.60 % "
+         "+41.02 %"),
+        ("(+40.92 % against the preloaded design's +40.15 %)", rows_now,
+         "one_sided, spring torque ≤ 0.4086 N·m    feedforward walks  +43.21 % +43.51 % "
+         "+40.92 %"),
+        ("(+40.92 % against the preloaded design's +40.15 %)", rows_now,
+         "preloaded                                feedforward walks  +45.56 % +45.93 % "
+         "+40.15 %"),
+    ]
+    for words, where, said in quoted:
+        assert words in page, words
+        assert said in where, said

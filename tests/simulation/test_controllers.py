@@ -87,9 +87,17 @@ def test_servo_torque_is_pd_plus_feedforward_inside_the_envelope(prepared):
 
 
 def test_position_servo_has_no_feedforward(prepared):
+    """A position servo's control is the plan's angle; asked for the plan's torque (closed
+    loop) the angle and τ_ff/kp, Tomei's set point; a feedforward servo's is the same either
+    way."""
     tau = prepared.evaluate(None).tau_motor
     ref = reference(prepared.motion, tau, np.array([0.0, 0.3]))
-    assert np.array_equal(controls(Servo("position"), ref, np.ones(18), np.ones(18)), ref.q)
+    kp, kd = np.full(18, 2.0), np.full(18, 0.5)
+    assert np.array_equal(controls(Servo("position"), ref, kp, kd), ref.q)
+    assert np.array_equal(controls(Servo("position"), ref, kp, kd, torques=True),
+                          ref.q + ref.tau / 2.0)
+    assert np.array_equal(controls(Servo(), ref, kp, kd, torques=True), controls(Servo(), ref,
+                                                                                 kp, kd))
 
 
 BANDWIDTH_ROBOTS = ("hexaleg", "solo12", "anymal", "anymal_c", "go2", "a1",

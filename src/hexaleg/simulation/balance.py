@@ -45,7 +45,9 @@ Jacobian), so it lands flat.
 feedforward + PD servo that is the feedforward torque ``τ_ff + Δτ`` and the position reference
 ``q* + Δq``; for the position-only servo (no torque input) the reference
 ``q* + Δq + (τ* + Δτ)/kp``, whose P gain turns the offset into the controller's whole torque,
-the plan's and the correction ("Deflection", below) — the robot with a position servo is
+the plan's and the correction ("Deflection", below; the plan's ``q* + τ*/kp`` at every
+simulation step, :func:`~hexaleg.simulation.controllers.controls` with ``torques``, the
+correction ``Δq + Δτ/kp`` held over each update) — the robot with a position servo is
 simulated as it is built (a host computes the torques and sends positions), and the feedback's
 own torques are the servos' and count in the energy.
 
@@ -67,7 +69,14 @@ torque through its reference — the static compensation of a compliant joint (T
 PD controller for robots with elastic joints", IEEE Trans. Automatic Control 36(10), 1991: the
 motor's set point ``q* + K⁻¹ g(q*)`` for a joint of stiffness K holding the load g; here
 ``K = kp`` and the load the plan's whole torque) — the reference ``q* + Δq + (τ* + Δτ)/kp``,
-τ* the plan's motor torque at the hold's midpoint. The servo then gives τ* at the plan's angle;
+τ* the plan's motor torque at every simulation step, as the plan's angles q* are: both are the
+plan's, known ahead, and a host streams them together. Held over each 10-ms update instead
+(its value at the hold's midpoint), τ* missed the stance handovers, where the plan's torque
+changes by up to 63 N·m within one 0.9-ms sample (Unitree B1's knee, its sized trot): up to
+73 mrad of reference for about 5 ms at each of the four handovers a cycle, and B1 (56 kg)
+covered 59 % and 76 % of its stride (springs, baseline) with its body rolling to 0.73 rad, and
+Laikago (25 kg) fell with its springs; asked for τ* at every step both walk
+(``analysis/bench_logs/newcomers_simulate.log``). The servo then gives τ* at the plan's angle;
 its velocity lag ``D q̇/kp`` (the back-EMF, which no torque input cancels) stays, the position
 servo's own tracking error. On point feet the sag costs the stride instead: a stance leg's
 sag lowers and tilts the body over the feet, and a quadruped new to hexaleg (Unitree Go1 from
@@ -93,7 +102,10 @@ registered robot, ``docs/simulate.md``) so the inner loop stays the faster; the 
 correct :data:`SWING` of their error. BANDWIDTH and SWING were chosen by measurement on the
 registered quadrupeds' trots under position servos (``docs/simulate.md``, "Balance feedback"),
 not derived: twice the bandwidth asked the servos for more torque than they have, a whole swing
-correction kicked the body at touchdown.
+correction kicked the body at touchdown. It is not right for every robot: on the sized trots of
+Laikago (25 kg) and B1 (56 kg) 0.3 of it tips the body within 8 cycles (Laikago under either
+servo), where without it they walk them and Go2's trot rolls ten times as far
+(``analysis/bench_logs/newcomers_simulate.log``, measured, not retuned).
 """
 
 from __future__ import annotations
@@ -331,9 +343,6 @@ class Balance:
         self.spread = max(float(np.max(np.linalg.norm((planted - centre)[:, :2], axis=1)))
                           if len(planted) else 0.0, 1e-3)
         """L, m: the stance feet's horizontal spread about their centre (the moment scale)."""
-        self.deflection = sim.servo.controller == "position"
-        """Whether the correction holds the plan's own torque too, ``τ*/kp`` (a position
-        servo: module docstring, "Deflection")."""
         self.constrained = 0
         """Updates at which a friction cone bound the force correction."""
         self.updates = 0
@@ -393,11 +402,6 @@ class Balance:
         out = np.zeros(self.nj)
         points, cols, swing, stance_map, stall, gain, swing_map = self._sample(k)
         self.updates += 1
-        if self.deflection:  # the plan's torque over the hold, at its midpoint
-            k2, s2, _ = self.plan(t + g.period / 2)
-            tau = self.load[k2, self.n_force:] + s2 * (self.load[k2 + 1, self.n_force:]
-                                                       - self.load[k2, self.n_force:])
-            out += tau / self.sim.kp
         if len(points):  # the stance feet's contact points
             load = self.load[k] + s * (self.load[k + 1] - self.load[k])
             f0 = (load[:self.n_force].reshape(-1, 3)[self.point_leg[points]]

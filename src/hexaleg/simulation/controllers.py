@@ -187,9 +187,17 @@ def reference(motion: Motion, tau_motor: np.ndarray, t: np.ndarray) -> Reference
     return Reference(qr, vr, (1 - s) * tau[k0] + s * tau[k1])
 
 
-def controls(servo: Servo, ref: Reference, kp: np.ndarray, kd: np.ndarray) -> np.ndarray:
+def controls(servo: Servo, ref: Reference, kp: np.ndarray, kd: np.ndarray,
+             torques: bool = False) -> np.ndarray:
     """The servo actuators' controls at the reference's instants, shape (n, nj):
-    ``q_ref + (τ_ff + kd q̇_ref)/kp`` (feedforward) or ``q_ref`` (position)."""
+    ``q_ref + (τ_ff + kd q̇_ref)/kp`` (feedforward) or ``q_ref`` (position); with ``torques``
+    a position servo's reference holds the plan's torque too, ``q_ref + τ_ff/kp`` — the static
+    compensation of a compliant joint (Tomei, "A simple PD controller for robots with elastic
+    joints", IEEE Trans. Automatic Control 36(10), 1991: the set point ``q* + K⁻¹ g(q*)``, here
+    ``K = kp`` and the load the plan's motor torque), which a host computing the servos'
+    positions sends at every servo update as it sends the angles
+    (:mod:`hexaleg.simulation.balance`, "Deflection"). Its back-EMF lag ``D q̇/kp`` is left:
+    the position servo's own tracking error."""
     if servo.controller == "position":
-        return ref.q.copy()
+        return ref.q + ref.tau / kp if torques else ref.q.copy()
     return ref.q + (ref.tau + kd * ref.qdot) / kp

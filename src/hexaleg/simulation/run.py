@@ -331,7 +331,7 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
     steps = round(motion.period / dt)
     t = np.arange(settings.cycles * steps) * dt
     ref = reference(motion, analysis.tau_motor, t)
-    ctrl = controls(sim.servo, ref, sim.kp, sim.kd)
+    ctrl = controls(sim.servo, ref, sim.kp, sim.kd, torques=feedback)
     qpos0, qvel0 = sim.joints.to_mujoco(motion.q[0], motion.v[0])
     controller = (balance.Balance(sim, motion, analysis.forces, analysis.tau_motor)
                   if feedback else None)
