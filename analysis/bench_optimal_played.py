@@ -24,31 +24,18 @@ import argparse
 import os
 import pickle
 import time
-from typing import Any
 
 import numpy as np
 import pinocchio as pin
+from bench_optimal_duty import sims  # the script beside this one (analysis/ is on sys.path)
 
 import hexaleg
 from hexaleg.design.codesign.optimal_rows import predicted_per_metre
-from hexaleg.design.codesign.servo import simulated_run
 from hexaleg.motion.legged import gait
 from hexaleg.optimal.periodic import shifted_state
 from hexaleg.optimal.problem import OptimalParams, build_problem
 from hexaleg.optimal.solve import solve
 from hexaleg.simulation.controllers import reference
-
-
-def sims(robot: Any, motion: hexaleg.Motion, motor: Any, springs: Any, contact: Any) -> str:
-    """``motion`` simulated under both servos, open loop where the gait allows, then closed."""
-    out = []
-    for feedback in ("auto", "on"):
-        for k in ("feedforward", "position"):
-            value, why, closed = simulated_run(robot, motion, motor, springs, k, contact,
-                                               feedback)
-            loop = "balance feedback" if closed else "open loop"
-            out.append(f"{k} {value:.3f} ({loop})" if value is not None else f"{k} — ({why})")
-    return ", ".join(out)
 
 
 def central(robot: hexaleg.Robot, knots: hexaleg.Motion) -> hexaleg.Motion:
