@@ -712,3 +712,19 @@ def test_design_page_quotes_the_solo12_design_log():
     for words, where, said in quoted:
         assert words in page, words
         assert said in where, said
+
+
+def test_codesign_page_quotes_the_codesign_bench_log():
+    """docs/codesign.md's present time of the command, with and without the rules, is
+    analysis/bench_logs/bench_codesign.log's (python analysis/bench_codesign.py, by hand)."""
+    log = (ROOT / "analysis" / "bench_logs" / "bench_codesign.log").read_text()
+    page = " ".join((DOCS / "codesign.md").read_text().split())
+    for words, said in (
+            ("117.1 s wall (0.98 of the target) and 196.3 s CPU with the rules",
+             "117.1 s wall, 0.98 of the 120 s target (met on this machine); 196.3 s CPU"),
+            ("the co-design search 60.7 s", "search (codesign)              60.7 s"),
+            ("84.5 s wall and 137.8 s CPU with `--no-rules`",
+             "--no-rules (default robot, 0.06 m/s): 84.5 s wall, 0.70 of the 120 s target (met "
+             "on this machine); 137.8 s CPU")):
+        assert words in page, words
+        assert said in log, said
