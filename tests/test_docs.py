@@ -574,6 +574,39 @@ def test_simulate_page_quotes_the_talos_log():
         assert said in log, said
 
 
+def test_robots_page_quotes_the_design_bench_log():
+    """docs/robots.md's table of the design's time and memory per robot (issue #55) is
+    analysis/bench_logs/bench_robots.log's design rows on a quiet machine: each robot's wall and
+    CPU seconds and the larger of its main and worker peak MB as a row of the log prints them,
+    and every figure within the issue's 60 s and 1 GB."""
+    log = (ROOT / "analysis" / "bench_logs" / "bench_robots.log").read_text()
+    page = (DOCS / "robots.md").read_text()
+    table = page[page.index("### The design's time and memory per robot"):
+                 page.index("### The co-design's time and memory per robot")]
+    rows = [[c.strip() for c in line.split("|")[1:6]] for line in table.splitlines()
+            if line.startswith("| ") and not line.startswith("| robot")]
+    assert len(rows) == 15, rows  # the 6 registered robots and bench_robots' 9 test robots
+    printed = {(w[0], w[2], w[4], str(max(int(w[6]), int(w[7]))))
+               for w in (line.split() for line in log.splitlines() if not line.startswith("#"))
+               if len(w) > 7 and w[1] == "design"}
+    for robot, wall, cpu, peak, recommended in rows:
+        assert (robot, wall, cpu, peak) in printed, (robot, wall, cpu, peak)
+        assert float(wall) <= 60 and int(peak) <= 1024, robot
+        assert recommended.startswith("refused") or any(
+            f"{robot:12s} design" in line and f"recommended {recommended}" in line
+            and f" {wall} " in line for line in log.splitlines()), (robot, recommended)
+    prose = " ".join(table.split())
+    for words, said in (
+            ("Solo-12's took 66.3 s the round before, recommending preloaded springs whose "
+             "stop-tolerance search took 35 s", "solo12       design       66.3      4.65    "
+             "95.7  1.44      818       305  ok, recommended preloaded (slowest stages: "
+             "tolerance 35 s"),
+            ("The brushless hexapod took 61.9 s two rounds ago and 27.1 s",
+             "bldc_hexapod 61.9 -> 27.1 s quiet")):
+        assert words in prose, words
+        assert said in log, said
+
+
 def test_robots_page_quotes_the_codesign_bench_log():
     """docs/robots.md's table of the co-design's time and memory per robot (issue #55) is
     analysis/bench_logs/bench_robots.log's codesign rows: each robot's CPU seconds and the
