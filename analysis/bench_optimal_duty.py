@@ -45,6 +45,13 @@ KEYS = ("period", "duty_factor", "step_height", "body_height", "foot_radius")
 """The gait's searched parameters read from ``codesign.json``."""
 
 
+def predicted(robot: Any, motion: Any, motor: Any, springs: Any, contact: Any) -> str:
+    """hexaleg's prediction of ``motion`` with ``springs`` (``predicted_per_metre``), as text:
+    the J/m, or why there is none."""
+    value, why = predicted_per_metre(robot, motion, motor, springs, contact)
+    return f"{value:.3f} J/m" if value is not None else f"no prediction ({why})"
+
+
 def sims(robot: Any, motion: Any, motor: Any, springs: Any, contact: Any) -> str:
     """``motion`` with ``springs`` simulated under both servos, open loop where the gait allows
     and closed loop: one line's text."""
@@ -111,8 +118,10 @@ def main() -> None:
               f"N·m, friction use {r.friction_use:.3f}, stance slip {r.slip:.3g} m/s, "
               f"drift {r.drift:.2g} m, "
               f"periodicity {r.periodicity:.2g}, {r.seconds:.0f} s", flush=True)
-        value = predicted_per_metre(robot, r.task_space, motor, springs, c.contact())
-        print(f"  rebuilt in task space: {value:.3f} J/m predicted ({value / reference:.3f}× G), "
+        value, why = predicted_per_metre(robot, r.task_space, motor, springs, c.contact())
+        said = (f"{value:.3f} J/m predicted ({value / reference:.3f}× G)" if value is not None
+                else f"no prediction ({why})")
+        print(f"  rebuilt in task space: {said}, "
               "simulated " + sims(robot, r.task_space, motor, springs, c.contact()), flush=True)
     times = os.times()
     print(f"wall {time.perf_counter() - t0:.0f} s, CPU {times.user + times.system:.0f} s",

@@ -27,10 +27,12 @@ import time
 
 import numpy as np
 import pinocchio as pin
-from bench_optimal_duty import sims  # the script beside this one (analysis/ is on sys.path)
+from bench_optimal_duty import (  # the script beside this one (analysis/ is on sys.path)
+    predicted,
+    sims,
+)
 
 import hexaleg
-from hexaleg.design.codesign.optimal_rows import predicted_per_metre
 from hexaleg.motion.legged import gait
 from hexaleg.optimal.periodic import shifted_state
 from hexaleg.optimal.problem import OptimalParams, build_problem
@@ -73,11 +75,11 @@ def main() -> None:
           f"stationarity {r.stationarity:.2g}, stance slip {r.slip:.3g} m/s, drift "
           f"{r.drift:.2g} m)", flush=True)
     print(f"force program on the knots: "
-          f"{predicted_per_metre(robot, knots, motor, springs, contact):.3f} J/m", flush=True)
+          f"{predicted(robot, knots, motor, springs, contact)}", flush=True)
     print("knots simulated: " + sims(robot, knots, motor, springs, contact), flush=True)
     c = central(robot, knots)
     print(f"knots with central-difference velocities: "
-          f"{predicted_per_metre(robot, c, motor, springs, contact):.3f} J/m predicted, "
+          f"{predicted(robot, c, motor, springs, contact)} predicted, "
           "simulated " + sims(robot, c, motor, springs, contact), flush=True)
     ref = reference(knots, np.zeros((knots.n_samples, robot.nj)), rebuilt.t)
     off = 0.0
@@ -104,7 +106,7 @@ def main() -> None:
           f"(trapezoid {(trapezoid * dq[:, 6:]).sum():.1g} J), gravity's "
           f"{-(g * dq).sum():.4f} J; the power at v_(k+1): {later:.3f} J/m", flush=True)
     print(f"rebuilt in task space: "
-          f"{predicted_per_metre(robot, rebuilt, motor, springs, contact):.3f} J/m predicted, "
+          f"{predicted(robot, rebuilt, motor, springs, contact)} predicted, "
           "simulated " + sims(robot, rebuilt, motor, springs, contact), flush=True)
     times = os.times()
     print(f"wall {time.perf_counter() - t0:.0f} s, CPU {times.user + times.system:.0f} s",

@@ -127,7 +127,8 @@ def test_the_solvers_cycle_rebuilt_walks_for_what_hexaleg_predicts():
     result = solve(robot, build_problem(robot, motion, run.actuator, springs,
                                         OptimalParams(nodes=20, iterations=60, stop=5e-5)))
     played = result.task_space
-    predicted = predicted_per_metre(robot, played, run.actuator, springs, run.contact)
+    predicted, why = predicted_per_metre(robot, played, run.actuator, springs, run.contact)
+    assert why == "" and predicted is not None
     simulated, verdict = simulated_per_metre(robot, played, run.actuator, springs,
                                              "feedforward", run.contact)
     assert verdict == "walks" and simulated is not None

@@ -86,6 +86,10 @@ def test_the_page_shows_the_optimal_motions_table(codesigned):
     assert "13.71 J/m" in table and "0.32" in table  # 1.5 × 9.14, 9.14 / 28.45
     assert "13.71 J/m (balance feedback)" in table
     assert "15.12" in table and "8.87 J/m" in table  # the solver's own figures
+    data["optimal"]["rows"][2] |= {"predicted": {"value": None, "unit": "J/m"},
+                                   "unpredicted": "InfeasibleForcesError: no forces"}
+    table = render_codesign_html(data, {"speed": ""}, {})
+    assert "— no prediction: InfeasibleForcesError: no forces" in table and "nan" not in table
 
 
 @pytest.mark.slow  # two small co-design searches: ~5 s of CPU

@@ -60,6 +60,37 @@ def test_the_table_says_what_backs_the_springs():
                for line in lines)
 
 
+def test_a_row_without_a_prediction_says_why_not_nan():
+    """A rebuilt trot whose stance feet cannot push the base's wrench (Solo-12's optimal trots)
+    has no prediction: the row holds None and the analysis' error — the table prints a dash
+    and the reason, codesign.json a null and the reason — never NaN; ``predicted_per_metre``
+    returns the error's message where the force program has no answer."""
+    from hexaleg.design.codesign.optimal_rows import predicted_per_metre
+    from hexaleg.dynamics.contact import ContactParams
+
+    run = hexaleg.Scenario.load("hexaleg")
+    motion = hexaleg.gait(run.model, hexaleg.GaitParams(samples=40))
+    value, why = predicted_per_metre(run.model, motion, run.actuator, hexaleg.SpringSet(),
+                                     ContactParams(mu=1e-3))
+    assert value is None and why.startswith("InfeasibleForcesError: ")
+    value, why = predicted_per_metre(run.model, motion, run.actuator, hexaleg.SpringSet(),
+                                     run.contact)
+    assert why == "" and value is not None and value > 0
+    table = _rows(11.0)
+    bare = MotionRow(LABELS[2], None, {"feedforward": None, "position": None},
+                     {"feedforward": "raised", "position": "raised"},
+                     unpredicted="InfeasibleForcesError: the stance feet LF, RH cannot produce "
+                                 "the base wrench")
+    rows = OptimalRows((*table.rows[:2], bare, table.rows[3]), table.springs, "linear",
+                       table.bare, table.alternation, table.robot, "both", 1.0)
+    line = rows.lines()[3]
+    assert "nan" not in line and "— (no prediction: InfeasibleForcesError: the stance" in line
+    data = json.loads(json_text(rows.data()))
+    assert data["rows"][2]["predicted"] == {"value": None, "unit": "J/m"}
+    assert data["rows"][2]["unpredicted"].startswith("InfeasibleForcesError")
+    assert "unpredicted" not in data["rows"][0]
+
+
 @pytest.mark.slow
 def test_the_four_rows_of_a_small_problem():
     """The default gait as the 'chosen' one (no search), 16 knots, 40 iterations, one round:
@@ -96,8 +127,9 @@ def test_the_four_rows_of_a_small_problem():
     assert table.best.energy_per_metre == energies[-1]
     for row, solved, springs in ((table.rows[2], table.bare, hexaleg.SpringSet()),
                                  (table.rows[3], table.best, table.springs)):
-        assert row.predicted == pytest.approx(predicted_per_metre(
-            robot, solved.task_space, run.actuator, springs, run.contact), rel=1e-12)
+        value, why = predicted_per_metre(robot, solved.task_space, run.actuator, springs,
+                                         run.contact)
+        assert why == row.unpredicted == "" and row.predicted == pytest.approx(value, rel=1e-12)
         assert set(row.loops.values()) <= {"open loop", "balance feedback"}
     assert table.motions["optimal_springs"] is table.best.task_space
     assert any(line.startswith("alternation: start") for line in lines)

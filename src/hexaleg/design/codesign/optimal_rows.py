@@ -74,18 +74,21 @@ class MotionRow:
 
     Attributes:
         label: What the row is (:data:`LABELS`).
-        predicted: Electrical energy per metre predicted, J/m (module docstring).
+        predicted: Electrical energy per metre predicted, J/m (module docstring); None where
+            the analysis has no answer for the motion (:attr:`unpredicted` says why).
         simulated: Controller → simulated electrical energy per metre walked, J/m; None where
             it did not walk.
         verdicts: Controller → ``"walks"`` or what happened.
         loops: Controller → ``"balance feedback"``, ``"open loop"`` or ``""`` (it raised).
+        unpredicted: Why there is no prediction (the analysis' error), else ``""``.
     """
 
     label: str
-    predicted: float
+    predicted: float | None
     simulated: Mapping[str, float | None]
     verdicts: Mapping[str, str]
     loops: Mapping[str, str] = field(default_factory=dict)
+    unpredicted: str = ""
 
     @property
     def walks(self) -> bool:
@@ -97,7 +100,8 @@ class MotionRow:
         return {"label": self.label, "predicted": q(self.predicted, "J/m"),
                 "simulated": {k: None if v is None else q(v, "J/m")
                               for k, v in self.simulated.items()},
-                "verdicts": dict(self.verdicts), "loops": dict(self.loops)}
+                "verdicts": dict(self.verdicts), "loops": dict(self.loops),
+                **({"unpredicted": self.unpredicted} if self.unpredicted else {})}
 
 
 @dataclass(frozen=True, eq=False)
@@ -179,7 +183,9 @@ class OptimalRows:
             sims = ", ".join((f"{v:.2f}" if v is not None else f"— ({r.verdicts[k]})")
                              + (f" ({r.loops[k]})" if r.loops.get(k) else "")
                              for k, v in r.simulated.items())
-            out.append(f"    {r.label:46s} {r.predicted:7.2f}   {sims}")
+            said = (f"{r.predicted:7.2f}" if r.predicted is not None else
+                    f"      — (no prediction: {r.unpredicted})")
+            out.append(f"    {r.label:46s} {said}   {sims}")
         b = self.best
         out.append(f"    the solver's own J/m at its knots: {self.bare.energy_per_metre:.2f} (no "
                    f"springs), {b.energy_per_metre:.2f} (its springs); the rows predict and play "
@@ -263,25 +269,26 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
             sims[k], verdicts[k], closed = simulated_run(robot, played, motor, fitted, k,
                                                          contact, feedback)
             loops[k] = "" if closed is None else "balance feedback" if closed else "open loop"
+        why = ""
         if value is None:
-            value = predicted_per_metre(robot, played, motor, fitted, contact)
-        rows.append(MotionRow(label, value, sims, verdicts, loops))
+            value, why = predicted_per_metre(robot, played, motor, fitted, contact)
+        rows.append(MotionRow(label, value, sims, verdicts, loops, why))
         tell(f"simulated {label} under {' and '.join(controllers)}")
     return OptimalRows(tuple(rows), alt.springs, family, bare, alt, robot, servo,
                        time.perf_counter() - began)
 
 
 def predicted_per_metre(robot: Robot, motion: Motion, motor: Any, springs: SpringSet,
-                        contact: ContactParams) -> float:
+                        contact: ContactParams) -> tuple[float | None, str]:
     """hexaleg's prediction of ``motion`` with ``springs``: the force program's (objective
-    ``joule``, the simulation's feedforward) electrical energy per metre, J/m; NaN when the
-    analysis has no answer (no admissible forces, a torque beyond the stall torque: the
-    row's simulations say which)."""
+    ``joule``, the simulation's feedforward) electrical energy per metre, J/m, and ``""``; or
+    None and why, when the analysis has no answer (no admissible forces, a torque beyond the
+    stall torque: the error's message)."""
     try:
         analysis = prepare(robot, motion, motor=motor, contact=contact).evaluate(springs, "joule")
-    except HexalegError:
-        return float("nan")
-    return float(analysis.metrics["total"]["electrical"]) / motion.distance
+    except HexalegError as err:
+        return None, f"{type(err).__name__}: {err}"
+    return float(analysis.metrics["total"]["electrical"]) / motion.distance, ""
 
 
 __all__ = ["LABELS", "MotionRow", "OptimalRows", "optimal_rows", "predicted_per_metre"]
