@@ -6,6 +6,7 @@ from __future__ import annotations
 import importlib.util
 import pkgutil
 import sys
+from collections.abc import Iterable
 from pathlib import Path
 from types import ModuleType
 
@@ -51,6 +52,14 @@ def _nav_files(node: object) -> list[str]:
     if isinstance(node, dict):
         return [f for value in node.values() for f in _nav_files(value)]
     return []
+
+
+def assert_quoted(page: str, log: str, pairs: Iterable[tuple[str, str]]) -> None:
+    """Each pair's words on the page, and beside them in the log what it said: a figure the page
+    quotes from a log a command wrote."""
+    for words, said in pairs:
+        assert words in page, words
+        assert said in log, said
 
 
 def _mkdocs_config() -> dict:
@@ -397,14 +406,12 @@ def test_simulate_page_quotes_the_sole_bipeds_design_log():
     analysis/bench_logs/design_biped6.log's answer (run by hand: 9 minutes)."""
     log = (ROOT / "analysis" / "bench_logs" / "design_biped6.log").read_text()
     page = " ".join((DOCS / "simulate.md").read_text().split())
-    for words, said in (
+    assert_quoted(page, log, (
             ('"fit dead_zone springs on hip_roll, hip_pitch, knee: electrical saving +32.42 %"',
              "fit dead_zone springs on hip_roll, hip_pitch, knee: electrical saving +32.42 %"),
             ("+31.92 % simulated under feedforward + PD and +33.44 % under position only",
              "simulated electrical saving feedforward + PD +31.92 %, position only +33.44 % "
-             "(predicted +32.42 %)")):
-        assert words in page, words
-        assert said in log, said
+             "(predicted +32.42 %)")))
 
 
 def test_simulate_page_quotes_the_position_soles_log():
@@ -478,26 +485,25 @@ def test_simulate_page_quotes_the_position_soles_log():
         assert words in part, words
         assert said in where, said
     # the simulate command's runs under the position servo, after (the page's biped table)
-    for row, said in (("| position | springs | 130.6 mm | 73.06 → 70.28 (−3.8 %) | walks |",
-                       "position springs (per step): walks, distance 130.6 mm per cycle, "
-                       "electrical per cycle [70.18158557366124, 70.37192786513137] J, mean "
-                       "70.28 J"),
-                      ("| position | baseline | 130.5 mm | 105.99 → 104.04 (−1.8 %) | walks |",
-                       "position baseline (per step): walks, distance 130.5 mm per cycle, "
-                       "electrical per cycle [103.93640397988032, 104.13538982312578] J, mean "
-                       "104.04 J"),
-                      ("simulated +30.72 % under feedforward and +32.45 % under the position\n"
-                       "servo", "simulated +32.45 % (70.28 J vs 104 J)"),
-                      ("27.4 mm (springs) and\n24.9 mm (baseline)",
-                       "in single support 27.4 mm from the R1 sole's left edge"),
-                      ("27.4 mm (springs) and\n24.9 mm (baseline)",
-                       "in single support 24.9 mm from the R1 sole's left edge"),
-                      ("off the ground in 3.4 % and\n0 % of their stance",
-                       "contact losses 3.38 %, normal force RMS error 16.0 N"),
-                      ("16.0 and 15.4 N RMS off the plan",
-                       "contact losses 0.00 %, normal force RMS error 15.4 N")):
-        assert row in page, row
-        assert said in log, said
+    assert_quoted(page, log, (
+            ("| position | springs | 130.6 mm | 73.06 → 70.28 (−3.8 %) | walks |",
+             "position springs (per step): walks, distance 130.6 mm per cycle, "
+             "electrical per cycle [70.18158557366124, 70.37192786513137] J, mean "
+             "70.28 J"),
+            ("| position | baseline | 130.5 mm | 105.99 → 104.04 (−1.8 %) | walks |",
+             "position baseline (per step): walks, distance 130.5 mm per cycle, "
+             "electrical per cycle [103.93640397988032, 104.13538982312578] J, mean "
+             "104.04 J"),
+            ("simulated +30.72 % under feedforward and +32.45 % under the position\n"
+             "servo", "simulated +32.45 % (70.28 J vs 104 J)"),
+            ("27.4 mm (springs) and\n24.9 mm (baseline)",
+             "in single support 27.4 mm from the R1 sole's left edge"),
+            ("27.4 mm (springs) and\n24.9 mm (baseline)",
+             "in single support 24.9 mm from the R1 sole's left edge"),
+            ("off the ground in 3.4 % and\n0 % of their stance",
+             "contact losses 3.38 %, normal force RMS error 16.0 N"),
+            ("16.0 and 15.4 N RMS off the plan",
+             "contact losses 0.00 %, normal force RMS error 15.4 N")))
 
 
 def test_simulate_page_quotes_the_talos_log():
@@ -569,9 +575,7 @@ def test_simulate_page_quotes_the_talos_log():
         ("+27.00 % while the position servo's τ* was held",
          "position only +27.00 % (predicted +27.03 %)"),
     ]
-    for words, said in quoted:
-        assert words in talos, words
-        assert said in log, said
+    assert_quoted(talos, log, quoted)
 
 
 def test_robots_page_quotes_the_design_bench_log():
@@ -596,15 +600,13 @@ def test_robots_page_quotes_the_design_bench_log():
             f"{robot:12s} design" in line and f"recommended {recommended}" in line
             and f" {wall} " in line for line in log.splitlines()), (robot, recommended)
     prose = " ".join(table.split())
-    for words, said in (
+    assert_quoted(prose, log, (
             ("Solo-12's took 66.3 s the round before, recommending preloaded springs whose "
              "stop-tolerance search took 35 s", "solo12       design       66.3      4.65    "
              "95.7  1.44      818       305  ok, recommended preloaded (slowest stages: "
              "tolerance 35 s"),
             ("The brushless hexapod took 61.9 s two rounds ago and 27.1 s",
-             "bldc_hexapod 61.9 -> 27.1 s quiet")):
-        assert words in prose, words
-        assert said in log, said
+             "bldc_hexapod 61.9 -> 27.1 s quiet")))
 
 
 def test_robots_page_quotes_the_codesign_bench_log():
@@ -632,14 +634,12 @@ def test_robots_page_quotes_the_codesign_bench_log():
             assert (wall, quiet_cpu) in [r[:2] for r in printed[robot]], (robot, note)
     prose = " ".join(table.split())
     log_words = " ".join(log.split())
-    for words, said in (  # (the page's words, the log's)
+    assert_quoted(prose, log_words, (  # (the page's words, the log's)
             ("31–40 iterations, 0.39–0.50 s of CPU", "the gait 0.39-0.50 s (its ZMP sway, 31-40 "
                                                     "iterations"),
             ("244 s of CPU for its 183 candidates", "co-design search 244.2 s (183 evaluations"),
             ("the gait-alone search's 200 took 97 s", "gait-alone search 97.4 s (200 evaluations"),
-            ("about 0.8 s to each candidate", "about 0.8 s the inner spring program")):
-        assert words in prose, words
-        assert said in log_words, said
+            ("about 0.8 s to each candidate", "about 0.8 s the inner spring program")))
 
 
 def test_simulate_page_quotes_the_newcomers_log():
@@ -672,7 +672,7 @@ def test_simulate_page_quotes_the_newcomers_log():
         simulated, _, predicted = saving.partition(" (")
         assert f"simulated {simulated} (" in summary, summary
         assert not predicted or f"predicted saving {predicted.rstrip(')')} (" in summary
-    for words, said in (
+    assert_quoted(part, now, (
             ("1124 and 1473 J a cycle", "laikago (position servo, balance feedback): predicted "
                                          "saving +32.02 % (electrical 392.5 J vs 577.3 J per "
                                          "cycle); simulated +23.67 % (1124 J vs 1473 J)"),
@@ -702,9 +702,7 @@ def test_simulate_page_quotes_the_newcomers_log():
             ("(151 and 197 J against 121 and 162 J)", "dist  99.8% track   14 mrad slip    4 mm "
                                                        "E 162.4"),
             ("rolls 0.10 rad instead of 0.01", "roll 0.100 pitch 0.066"),
-            ("Laikago's feedforward + PD, where", "'SWING': '0.0001'} walks  t 6.41 roll 0.071")):
-        assert words in part, words
-        assert said in now, said
+            ("Laikago's feedforward + PD, where", "'SWING': '0.0001'} walks  t 6.41 roll 0.071")))
 
 
 def test_design_page_quotes_the_solo12_design_log():
@@ -752,12 +750,10 @@ def test_codesign_page_quotes_the_codesign_bench_log():
     analysis/bench_logs/bench_codesign.log's (python analysis/bench_codesign.py, by hand)."""
     log = (ROOT / "analysis" / "bench_logs" / "bench_codesign.log").read_text()
     page = " ".join((DOCS / "codesign.md").read_text().split())
-    for words, said in (
+    assert_quoted(page, log, (
             ("117.1 s wall (0.98 of the target) and 196.3 s CPU with the rules",
              "117.1 s wall, 0.98 of the 120 s target (met on this machine); 196.3 s CPU"),
             ("the co-design search 60.7 s", "search (codesign)              60.7 s"),
             ("84.5 s wall and 137.8 s CPU with `--no-rules`",
              "--no-rules (default robot, 0.06 m/s): 84.5 s wall, 0.70 of the 120 s target (met "
-             "on this machine); 137.8 s CPU")):
-        assert words in page, words
-        assert said in log, said
+             "on this machine); 137.8 s CPU")))
