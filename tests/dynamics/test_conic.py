@@ -48,3 +48,18 @@ def test_a_flight_phase_is_named_as_one(robot):
                                                     r"together for 40% of the samples \(a flight "
                                                     r"phase\).*raise duty_factor"):
         prepare(robot, motion).evaluate(None)
+
+
+def test_a_biped_on_one_point_foot_is_pointed_at_the_zmp_pattern():
+    """A two-legged robot on one point foot is refused by name, and the message points at the
+    walking pattern hexaleg plans (``balance = 'zmp'``), not at a claim that it plans none."""
+    from types import SimpleNamespace
+
+    from hexaleg.dynamics.conic import raise_unreachable
+
+    system = SimpleNamespace(leg_names=["L", "R"], stance=np.array([[True, False]]),
+                             t=np.array([0.25]))
+    with pytest.raises(InfeasibleForcesError, match=r"one point foot \(L\)") as err:
+        raise_unreachable(system, 0, 1e-3)
+    assert "balance = 'auto' or 'zmp'" in str(err.value)
+    assert "do not plan" not in str(err.value)

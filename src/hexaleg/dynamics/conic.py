@@ -372,8 +372,10 @@ def raise_unreachable(system: StanceSystem, k: int, residual: float) -> NoReturn
         why = (f"one point foot ({feet[0]}) pushes no moment about itself, and a robot of "
                f"{len(system.leg_names)} legs stands on one foot whenever the other swings: it "
                "balances only dynamically, its centre of mass falling about the stance foot "
-               "(a ZMP or centroidal walking pattern), which hexaleg's gaits do not plan — "
-               "analyse a recorded walk instead (hexaleg.load_motion, --motion LOG)")
+               "by a walking pattern that puts the zero-moment point on it: hexaleg's gaits "
+               "plan one ([gait] balance = 'auto' or 'zmp', hexaleg.motion.zmp); this motion "
+               "does not put it there at this sample (balance = 'none', or a recorded or "
+               "optimal motion whose body is not balanced exactly over its foot)")
     elif len(feet) == 1:  # one point foot: its force must pass through the centre of mass
         why = (f"one point foot ({feet[0]}) pushes no moment about itself, so the body's "
                "weight and inertia must act through it — raise duty_factor so that more feet "
