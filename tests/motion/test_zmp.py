@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 
 import numpy as np
 import pinocchio as pin
@@ -26,6 +27,7 @@ from hexaleg.motion.scaling import robot_gait
 from hexaleg.motion.trajectory import Motion
 from hexaleg.motion.zmp import periodic_turn, zmp_reference
 from hexaleg.robot.registry import description
+from hexaleg.scenario.scenario import Scenario
 
 SAMPLES = 200
 
@@ -181,3 +183,33 @@ def test_docs_quote_the_pattern_this_code_finds(crawl):
     row = f"| Solo-12 crawl, β = 0.3 | ±{x:.1f}, ±{y:.1f} mm | ±{math.degrees(info['turn']):.1f}° |"
     page = (Path(__file__).resolve().parents[2] / "docs" / "gait.md").read_text()
     assert row in page, row
+
+
+BOLT = """[robot]
+name = "bolt"
+source = "example-robot-data"
+urdf = "bolt_description/robots/bolt.urdf"
+srdf = "bolt_description/srdf/bolt.srdf"
+stand = "standing"
+"""
+"""ODRI's Bolt, a point-foot biped of example-robot-data never registered here, described as a
+newcomer would: its links are not quite mirror images, so its walk on one foot at a time needs
+a small mean moment about the vertical."""
+
+
+def test_a_gait_always_on_one_foot_names_the_vertical_moment_no_turn_cancels(tmp_path):
+    """Bolt at duty factor 0.5 stands on one point foot at every sample: the sway levels the
+    horizontal moment, but the vertical one keeps its cycle mean (3e-6 N·m), which a periodic
+    turn cannot cancel; the error names that mean and a duty factor with two-foot phases, not a
+    slow convergence to be cured by a slower gait."""
+    path = tmp_path / "bolt.toml"
+    path.write_text(BOLT)
+    scenario = Scenario.from_tables(str(path), {"gait": {"samples": 100}})
+    assert scenario.gait.duty_factor == 0.5
+    with pytest.raises(InfeasibleForcesError, match=r"every sample stands on one point foot "
+                       r"\(duty_factor 0\.5 with 2 groups\)") as err:
+        scenario.motion()
+    message = str(err.value)
+    mean = float(re.search(r"a mean of ([-+.e\d]+) N·m", message).group(1))
+    assert 1e-7 < abs(mean) < 1e-4
+    assert "raise duty_factor above 0.5" in message

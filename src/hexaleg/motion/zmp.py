@@ -27,7 +27,10 @@ foot near the end of its load cannot give, so the turn also cancels it on the tw
 as closely as a periodic ψ allows: there, and on samples on more feet, δψ̈ is shifted by the
 one constant that gives it zero mean (the least-squares shift that keeps ψ periodic).
 Anderson acceleration combines the iterates. It stops when every referenced moment is at most
-:data:`hexaleg.motion.balance.BALANCE_TOL` · m g h.
+:data:`hexaleg.motion.balance.BALANCE_TOL` · m g h. A gait on one foot at every sample (a biped
+at duty factor 0.5) has no two-foot sample to carry the vertical moment's cycle mean, which a
+periodic ψ cannot cancel (ψ̈ has zero mean): a robot whose sides are not exact mirror images
+(ODRI's Bolt: 3e-6 N·m) is refused naming that mean and a duty factor with two-foot phases.
 """
 
 from __future__ import annotations
@@ -211,6 +214,18 @@ def balance_steps(robot: Robot, gait: GaitParams, grid: np.ndarray,
         report["residuals"] = residuals
         if residuals[-1] <= BALANCE_TOL:
             return motion, sways, report
+    vertical = float(np.abs(moment[one, 2]).max())
+    mean = float(np.mean(moment[:, 2]))
+    level = float(np.abs(moment[mask, :2]).max()) <= BALANCE_TOL * scale
+    if one.all() and level and vertical <= 2 * abs(mean):
+        raise InfeasibleForcesError(
+            f"the walking pattern cannot balance this gait: every sample stands on one point "
+            f"foot (duty_factor {gait.duty_factor:g} with {len(gait.groups)} groups), which "
+            "pushes no moment about the vertical, and the moment the motion needs there has a "
+            f"mean of {mean:.3g} N·m over the cycle (a left-right asymmetry of the robot or "
+            "its gait) that no periodic turn of the body cancels; raise duty_factor above "
+            f"{gait.duty_factor:g} (e.g. 0.6) so that two-foot phases, whose feet push it by "
+            "friction, carry it")
     raise InfeasibleForcesError(
         f"the walking pattern that balances the one-foot phases did not converge in "
         f"{BALANCE_MAX_ITER} iterations: moment about the zero-moment point "
