@@ -86,12 +86,12 @@ class LegChain:
 
     A leg with a sole (:mod:`hexaleg.robot.soles`) keeps its sole flat instead: ``N₀`` spans the
     row space of the foot's angular Jacobian ``J_ω`` at the reference (the flat stand), so the
-    rows hold the foot's orientation to first order. For a leg whose hip roll and ankle roll
-    axes stay parallel, and its hip pitch, knee and ankle pitch axes too (a humanoid's hip yaw,
-    roll, pitch, knee, ankle pitch, roll at zero yaw), the rows are exact: the foot's roll is
-    the sum of the roll angles and its pitch the sum of the pitch angles, linear in q.
-    :func:`~hexaleg.motion.leg_ik.newton_leg_ik` checks the orientation it reaches
-    (:data:`~hexaleg.motion.leg_ik.SOLE_TILT`).
+    rows hold the foot's orientation to first order — exactly for a hip that turns yaw, roll,
+    pitch above a knee and an ankle that turns pitch, roll (the foot's roll is then the sum of
+    the roll angles and its pitch the sum of the pitch angles, linear in q), not for one that
+    turns pitch, roll, yaw (Unitree G1). :func:`~hexaleg.motion.leg_ik.newton_leg_ik` starts
+    from them and holds the foot's whole pose by Newton's method on it
+    (:meth:`pose_jacobian`), exact for every six-joint leg.
 
     Attributes:
         placements: Per joint, its frame at zero angle in the previous joint's frame (the first
@@ -196,6 +196,42 @@ class LegChain:
         """
         at = self.reference if reference is None else reference
         return np.concatenate([e, (at - q) @ self.redundant], axis=1)
+
+    def pose_jacobian(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The foot's position, orientation and its 6 × n frame Jacobian (base frame): the
+        translation rows ``∂p/∂q`` over the angular rows ``J_ω``, whose column i is joint i's
+        rotation axis (zero for a prismatic joint; Siciliano et al., *Robotics*, 2009, §3.1.3,
+        the geometric Jacobian).
+
+        Args:
+            q: Joint values, shape (T, n).
+
+        Returns:
+            Foot positions (T, 3) m, orientations (T, 3, 3) and Jacobians (T, 6, n).
+        """
+        p, origins, angular, linear = self.frames(q)
+        cols = np.concatenate([linear + _cross(angular, p[:, None, :] - origins), angular],
+                              axis=2)
+        return p, self.rotation(q), np.swapaxes(cols, 1, 2)
+
+    def angular_bias(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
+        """The foot's angular acceleration at zero joint acceleration, ``J̇_ω q̇``, in the base
+        frame: joint i's axis turns with the body carrying it, ``ȧ_i = Ω_i × a_i`` with
+        ``Ω_i = Σ_{j<i} a_j q̇_j`` (:meth:`bias`), so ``J̇_ω q̇ = Σ_i q̇_i Ω_i × a_i``.
+
+        Args:
+            q: Joint values, shape (T, n). qd: Joint velocities, shape (T, n).
+
+        Returns:
+            Shape (T, 3), rad/s².
+        """
+        _, _, angular, _ = self.frames(q)
+        omega = np.zeros((len(q), 3))
+        out = np.zeros((len(q), 3))
+        for i in range(len(self.angular)):
+            out += _cross(omega, angular[:, i]) * qd[:, i:i + 1]
+            omega = omega + angular[:, i] * qd[:, i:i + 1]
+        return out
 
     def bias(self, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
         """The foot's acceleration at zero joint acceleration, ``J̇ q̇``, in the base frame.

@@ -19,7 +19,7 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.checks import finite_array
-from hexaleg.errors import RobotModelError, UnreachableTargetError
+from hexaleg.errors import UnreachableTargetError
 from hexaleg.motion.leg_chain import LegChain, leg_chain
 from hexaleg.robot.model import Leg, Robot
 
@@ -30,9 +30,6 @@ NEWTON_MAX_ITER = 50
 PLANE_TOL = 1e-6
 """How far off a two-joint leg's plane a foot target may lie, m (a gait for such a leg puts its
 feet in that plane; more is a target the leg cannot reach)."""
-SOLE_TILT = 1e-9
-"""rad: how far a sole leg's foot may turn from its flat stand over a gait (the rows that hold
-it are exact for a humanoid's leg, :class:`~hexaleg.motion.leg_chain.LegChain`)."""
 NEWTON_JUMP = 0.1
 """Largest joint change, rad (or m), between consecutive samples solved all at once from the
 same start that :func:`newton_leg_ik` accepts as one continuous branch; a larger one is solved
@@ -81,9 +78,12 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
         turn: A sole leg's foot orientation: the rotation vector θ from its stand orientation
             (base frame, rad) with its first and second time derivatives, each shape (T, 3) —
             a foot flat on the ground under a body that yaws by ψ turns by θ = (0, 0, −ψ) in
-            the base frame. The objective's rows then hold ``N₀ᵀ (q − q_stand) = S⁻¹ Uᵀ θ``
-            (:attr:`~hexaleg.motion.leg_chain.LegChain.turn_rows`), their rates ``S⁻¹ Uᵀ θ̇``
-            and ``S⁻¹ Uᵀ θ̈``; default: the stand's orientation held (θ = 0).
+            the base frame. Newton then starts where the objective's rows hold
+            ``N₀ᵀ (q − q_stand) = S⁻¹ Uᵀ θ`` (:attr:`~hexaleg.motion.leg_chain.LegChain.turn_rows`)
+            and solves the foot's whole pose, ``R = exp([θ]) R_stand`` (:func:`_newton_pose`),
+            with ``q̇ = J₆⁻¹ [ṗ; θ̇]`` and ``q̈ = J₆⁻¹ [p̈ − J̇ q̇; θ̈ − J̇_ω q̇]`` (θ about the
+            base's fixed vertical, so θ̇ is the foot's angular velocity); default: the stand's
+            orientation held (θ = 0).
 
     Returns:
         Joint angles (T, n) rad, velocities (T, n) rad/s, accelerations (T, n) rad/s², in the
@@ -116,17 +116,31 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
         held = np.array([np.asarray(x, dtype=float) @ chain.turn_rows.T for x in turn])
         reference = reference + held[0] @ chain.redundant.T
         starts = starts + held[0] @ chain.redundant.T
-    q, err, off = _newton(chain, p, starts, reference)
+    pose = chain.sole  # six joints (leg_chain checks): Newton on the foot's whole pose
+    if pose:
+        theta = np.zeros((3, len(p), 3)) if turn is None else \
+            np.array([np.asarray(x, dtype=float) for x in turn])
+        targets = np.array([pin.exp3(x) for x in theta[0]]) \
+            @ chain.rotation(chain.reference[None])[0]
+
+    def solve(k: slice, start: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        if pose:
+            return _newton_pose(chain, p[k], targets[k], start)
+        return _newton(chain, p[k], start, reference[k])
+
+    q, err, off = solve(slice(None), starts)
     jumps = np.abs(np.diff(q, axis=0)).max(axis=1)
     bad = np.flatnonzero((err > NEWTON_TOL) | np.r_[False, jumps >= NEWTON_JUMP])
     for k in range(int(bad[0]) if bad.size else len(p), len(p)):
-        q[k:k + 1], err[k:k + 1], off[k:k + 1] = _newton(chain, p[k:k + 1],
-                                                          starts[:1] if k == 0 else q[k - 1:k],
-                                                          reference[k:k + 1])
+        q[k:k + 1], err[k:k + 1], off[k:k + 1] = solve(slice(k, k + 1),
+                                                        starts[:1] if k == 0 else q[k - 1:k])
         if err[k] > NEWTON_TOL:
             break
-    _, jac = chain.position_jacobian(q)
-    aug = chain.augmented(jac)
+    if pose:
+        _, _, aug = chain.pose_jacobian(q)
+    else:
+        _, jac = chain.position_jacobian(q)
+        aug = chain.augmented(jac)
     singular = np.linalg.cond(aug) > 1e8
     failed = (err > NEWTON_TOL) | singular | (off > PLANE_TOL)
     if failed.any():
@@ -144,37 +158,18 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
                 distance=float(off[k]))
         raise UnreachableTargetError(
             f"{where} is out of reach: Newton stopped {err[k]:.6g} m from it"
+            + (" (or rad from its sole's flat orientation)" if pose else "")
             + (" at a singular configuration" if err[k] <= NEWTON_TOL else ""),
             leg=leg.name, t=float(t[k]), index=k, target=tuple(float(x) for x in p[k]),
             distance=float(err[k]))
-    if chain.sole:
-        _check_flat(leg, chain, q, t, np.zeros((len(q), 3)) if turn is None else turn[0])
+    if pose:  # the foot's angular velocity is θ̇: θ turns about the base's fixed vertical
+        qd = _least_squares(aug, np.concatenate([pd, theta[1]], axis=1))
+        qdd = _least_squares(aug, np.concatenate([pdd - chain.bias(q, qd),
+                                                  theta[2] - chain.angular_bias(q, qd)], axis=1))
+        return q, qd, qdd
     qd = _least_squares(aug, np.concatenate([pd, held[1]], axis=1))
     qdd = _least_squares(aug, np.concatenate([pdd - chain.bias(q, qd), held[2]], axis=1))
     return q, qd, qdd
-
-
-def _check_flat(leg: Leg, chain: LegChain, q: np.ndarray, t: np.ndarray, theta: np.ndarray
-                ) -> None:
-    """A sole leg's foot at its planned orientation at every sample, within :data:`SOLE_TILT`
-    (the angle of ``R(q) R(q_ref)ᵀ exp([θ])ᵀ``, θ (T, 3) the planned turn in the base frame).
-
-    Raises:
-        RobotModelError: names the leg, the time and the angle.
-    """
-    planned = np.array([pin.exp3(x) for x in np.asarray(theta, dtype=float)])
-    turn = chain.rotation(q) @ chain.rotation(chain.reference[None])[0].T \
-        @ np.swapaxes(planned, 1, 2)
-    skew = turn - np.swapaxes(turn, 1, 2)  # 2 sin θ [axis]×: θ = atan2(sin θ, cos θ)
-    sine = np.linalg.norm(skew[:, [2, 0, 1], [1, 2, 0]], axis=1) / 2
-    angle = np.arctan2(sine, (np.trace(turn, axis1=1, axis2=2) - 1) / 2)
-    if angle.max() > SOLE_TILT:
-        k = int(np.argmax(angle))
-        raise RobotModelError(
-            f"leg {leg.name}: its sole turns {angle[k]:.3g} rad from flat at t = {t[k]:.6g} s "
-            f"(at most {SOLE_TILT:g} rad): its joints hold the foot's orientation only to "
-            "first order; a sole needs a leg whose hip and ankle roll axes stay parallel, and "
-            "its hip, knee and ankle pitch axes (hip yaw, roll, pitch, knee, ankle pitch, roll)")
 
 
 def _least_squares(jac: np.ndarray, e: np.ndarray) -> np.ndarray:
@@ -196,6 +191,55 @@ def _least_squares(jac: np.ndarray, e: np.ndarray) -> np.ndarray:
         except np.linalg.LinAlgError:  # a singular Jacobian: the least-squares step
             pass
     return (np.linalg.pinv(jac) @ e[..., None])[..., 0]
+
+
+def _log3(rot: np.ndarray) -> np.ndarray:
+    """The rotation vectors of rotations ``rot`` (T, 3, 3), shape (T, 3), rad: the angle
+    ``atan2(sin θ, cos θ)`` times the unit axis of the skew part ``(R − Rᵀ)/2 = sin θ [a]×``
+    (Rodrigues; Murray, Li & Sastry, *A Mathematical Introduction to Robotic Manipulation*,
+    1994, §2.2.2), the limit ``θ / sin θ → 1`` taken below 1e-8 rad (angles below π)."""
+    vee = (rot - np.swapaxes(rot, 1, 2))[:, [2, 0, 1], [1, 2, 0]] / 2
+    sine = np.linalg.norm(vee, axis=1)
+    angle = np.arctan2(sine, (np.trace(rot, axis1=1, axis2=2) - 1) / 2)
+    ratio = np.where(sine > 1e-8, angle / np.maximum(sine, 1e-300), 1.0)
+    return vee * ratio[:, None]
+
+
+def _newton_pose(chain: LegChain, p: np.ndarray, rotations: np.ndarray, q: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Newton's method on a six-joint sole leg's whole foot pose, every sample at once: the
+    step solves ``[J; J_ω] Δq = [p* − p; log(R* Rᵀ)]`` (the orientation error as a rotation
+    vector in the base frame; Siciliano et al., *Robotics*, 2009, §3.7; at most 0.5 rad a
+    step), until position and orientation are each within :data:`NEWTON_TOL` (m, rad) or
+    :data:`NEWTON_MAX_ITER` steps. Exact for any six-joint leg, where the linear rows of
+    :class:`~hexaleg.motion.leg_chain.LegChain` hold the orientation exactly only for a hip
+    that turns yaw, roll, pitch.
+
+    Args:
+        chain: The leg. p: Foot targets, shape (T, 3), m. rotations: Foot orientations,
+            shape (T, 3, 3). q: Starting joint values, shape (T, 6).
+
+    Returns:
+        The joint values reached, shape (T, 6); their pose error, shape (T,) (the larger of
+        the position's, m, and the orientation's, rad); and zeros (nothing is off a plane).
+    """
+    q = q.copy()
+    err = np.full(len(p), np.inf)
+    todo = np.arange(len(p))
+    for it in range(NEWTON_MAX_ITER + 1):
+        at, rot, jac = chain.pose_jacobian(q[todo])
+        e = np.concatenate([p[todo] - at,
+                            _log3(rotations[todo] @ np.swapaxes(rot, 1, 2))], axis=1)
+        err[todo] = np.maximum(np.linalg.norm(e[:, :3], axis=1),
+                               np.linalg.norm(e[:, 3:], axis=1))
+        keep = err[todo] > NEWTON_TOL
+        todo = todo[keep]
+        if not todo.size or it == NEWTON_MAX_ITER:
+            break
+        step = _least_squares(jac[keep], e[keep])
+        norm = np.linalg.norm(step, axis=1, keepdims=True)
+        q[todo] += step * np.minimum(1.0, 0.5 / np.maximum(norm, 1e-300))
+    return q, err, np.zeros(len(p))
 
 
 def _newton(chain: LegChain, p: np.ndarray, q: np.ndarray, reference: np.ndarray | None = None
