@@ -705,6 +705,54 @@ def test_simulate_page_quotes_the_newcomers_log():
             ("Laikago's feedforward + PD, where", "'SWING': '0.0001'} walks  t 6.41 roll 0.071")))
 
 
+def test_simulate_page_quotes_the_foot_placement_log():
+    """docs/simulate.md's table of the trots under Raibert's foot placement (#54: 8 cycles under
+    both servos) is newcomers_simulate.log's block "Raibert's foot placement": each row's
+    rolls, slips and savings beside the log's lines (runs of 10–60 s of CPU each, by hand)."""
+    import re
+
+    log = (ROOT / "analysis" / "bench_logs" / "newcomers_simulate.log").read_text()
+    block = log[log.index("# ===== Raibert's foot placement"):]
+    eight = block[:block.index("## 16 cycles")]
+    page = (DOCS / "simulate.md").read_text()
+    part = page[page.index("**Raibert's foot placement**"):page.index("The Adams model's")]
+    names = {"Laikago": "laikago", "B1": "b1", "Go1": "go1", "ANYmal with": "kinova",
+             "Go2": "go2"}
+    robot, rows = None, 0
+    for line in part.splitlines():
+        m = re.match(r"\|\s*(.*?)\s*\| (position|feedforward \+ PD) \| (\S+) / (\S+) rad \| "
+                     r"(\d+) / (\d+) mm \| (\S+ %)", line)
+        if not m:
+            continue
+        label, servo, *figures, saving = m.groups()
+        robot = next((v for k, v in names.items() if label.startswith(k)), robot)
+        servo = servo.split()[0]
+        for name, roll, slip in (("springs", figures[0], figures[2]),
+                                 ("baseline", figures[1], figures[3])):
+            assert re.search(rf"8_{robot}_{servo} +{name} +walks +roll max {roll} rad, "
+                             rf"slip max +{slip} mm", eight), (robot, servo, name)
+        command = (f"--robot {robot}.toml" if robot != "go2" else
+                   "--robot go2 --config trot_go2.toml") + f" --controller {servo} --cycles 8"
+        summary = eight[eight.index(command):]
+        assert f"simulated {saving} (" in summary.splitlines()[1], (robot, servo)
+        rows += 1
+    assert rows == 10
+    sixteen = block[block.index("## 16 cycles"):block.index("## the experiments")]
+    assert_quoted(" ".join(part.split()), block, (
+        ("walks 16 cycles under both (+32.35 % and +32.14 %)", "simulated +32.35 % (391.2 J"),
+        ("walks 16 cycles under both (+32.35 % and +32.14 %)", "simulated +32.14 % (389.5 J"),
+        ("(391 and 578 J a cycle against 392.5 and 577.3 J)", "(electrical 392.5 J vs 577.3 J "
+                                                              "per cycle); simulated +32.34 % "
+                                                              "(391 J vs 578 J)"),
+        ("(1703 and 2579 J a cycle under position servos against 1313 and 1970 J)",
+         "(electrical 1313 J vs 1970 J per cycle); simulated +33.97 % (1703 J vs 2579 J)"),
+        ("(+31.23 % simulated against +25.20 %)", "predicted saving +25.20 % (electrical 172.1 "
+                                                  "J vs 230.1 J per cycle); simulated +31.23 %"),
+        ("rolling at most 0.037 rad", "8_anymal_c_position            baseline walks    roll "
+                                      "max 0.037 rad")))
+    assert sixteen.count("simulated +") == 8 and "fell" not in sixteen
+
+
 def test_design_page_quotes_the_solo12_design_log():
     """docs/design.md's Solo-12 answer and how it followed the position servo's simulation are
     analysis/bench_logs/design_solo12.log's (two runs of 4 minutes, by hand): each figure
