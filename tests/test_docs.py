@@ -749,7 +749,10 @@ def test_simulate_page_quotes_the_foot_placement_log():
         ("(+31.23 % simulated against +25.20 %)", "predicted saving +25.20 % (electrical 172.1 "
                                                   "J vs 230.1 J per cycle); simulated +31.23 %"),
         ("rolling at most 0.037 rad", "8_anymal_c_position            baseline walks    roll "
-                                      "max 0.037 rad")))
+                                      "max 0.037 rad"),
+        ("anymal-kinova 15 (+22.73 % and +22.21 %", "simulated +22.73 % (301 J vs 389.6 J); "
+                                                    "distance 320.9 mm"),
+        ("anymal-kinova 15 (+22.73 % and +22.21 %", "simulated +22.21 % (309 J vs 397.2 J)")))
     assert sixteen.count("simulated +") == 8 and "fell" not in sixteen
 
 

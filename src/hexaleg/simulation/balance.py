@@ -16,21 +16,23 @@ plan's inverse dynamics are already the feedforward):
    robot's mass and ``I_w = R I_b Rᵀ`` its centroidal rotational inertia (``pin.ccrba`` at the
    plan's first sample, in the base frame: constant, as the MIT controllers take it). The
    desired wrench is the plan's (its inverse dynamics' contact wrench) plus ``ΔW = (ΔF, ΔM)``.
-   2. **Force distribution** (:mod:`hexaleg.simulation.distribution`): the change ``Δf`` of the
+2. **Force distribution** (:mod:`hexaleg.simulation.distribution`): the change ``Δf`` of the
    planned stance feet's forces that makes ``ΔW`` within the friction cones and the servos'
-   torque limits (a QP). 3. **Joint torques** (Del Prete, Nori, Metta & Natale, "Prioritized
-   motion–force control of constrained fully-actuated robots: Task Space Inverse Dynamics",
-   Robotics and Autonomous Systems 63, 2015 — TSID's ``Mv̇ + h = Sᵀτ + J_cᵀ f``: at the plan's
-   accelerations, a change of the contact forces is a change ``Δτ = −J_cᵀ Δf`` of the joint
-   torques, ``J_c`` the stance feet's Jacobians' joint columns — MIT's ``τ = Jᵀ Rᵀ f`` with the
-   sign of the ground's force on the foot), at the plan's joint angles. 4. **Swing feet: foot
-   placement** (where a gait steps for balance; "Footholds" below. Raibert, *Legged Robots That
-   Balance*, MIT Press 1986, ch. 2: the foot set down at the neutral point ``ẋ T_s / 2`` ahead
-   of the hip, plus a velocity feedback ``k (ẋ − ẋ*)``; Di Carlo et al. 2018, §IV, their foot
-   placement: ``p = p_hip + (T_stance/2) v + k (v − v*)``, whose centripetal term ``½ (h/g) v ×
-   ω*`` vanishes here: the controller refuses a turning gait). The plan already sets each foot
-   down at its own neutral point ``(T_stance/2) v*`` from its planned hip, so the change of the
-   landing point from the plan's is, horizontally,
+   torque limits (a QP).
+3. **Joint torques** (Del Prete, Nori, Metta & Natale, "Prioritized motion–force control of
+   constrained fully-actuated robots: Task Space Inverse Dynamics", Robotics and Autonomous
+   Systems 63, 2015 — TSID's ``Mv̇ + h = Sᵀτ + J_cᵀ f``: at the plan's accelerations, a change of the
+   contact forces is a change ``Δτ = −J_cᵀ Δf`` of the joint torques, ``J_c`` the stance feet's
+   Jacobians' joint columns — MIT's ``τ = Jᵀ Rᵀ f`` with the sign of the ground's force on the
+   foot), at the plan's joint angles.
+4. **Swing feet: foot placement** (a gait on two point feet at times and never on one: a trot, a
+   pace, a bound; "Footholds" below. Raibert, *Legged Robots That Balance*, MIT Press 1986, ch.
+   2: the foot set down at the neutral point ``ẋ T_s / 2`` ahead of the hip, plus a velocity
+   feedback ``k (ẋ − ẋ*)``; Di Carlo et al. 2018, §IV, their foot placement: ``p = p_hip +
+   (T_stance/2) v + k (v − v*)``, whose centripetal term ``½ (h/g) v × ω*`` vanishes here: the
+   controller refuses a turning gait). The plan already sets each foot down at its own neutral
+   point ``(T_stance/2) v*`` from its planned hip, so the change of the landing point from the
+   plan's is, horizontally,
 
        Δx = (p_hip − p*_hip) + (T_stance/2 + k) (v − v*),     p_hip = p + R r_hip
 
@@ -50,7 +52,7 @@ plan's inverse dynamics are already the feedforward):
    The gain ``k``: 0 — the body's PD (1.) already regulates the velocity through the stance
    forces, and the capture point's ``k = √(h/g)`` (Pratt et al., "Capture point", Humanoids
    2006) on top of it over-corrects: B1's baseline rolled 0.53 rad and ran untracked (measured
-   without ``analysis/bench_logs/newcomers_simulate.log``, the last block).
+   without the hold, ``analysis/bench_logs/newcomers_simulate.log``, the last block).
 
 **Soles** (:mod:`hexaleg.robot.soles`). A foot with a sole enters the force program as its four
 corners, each with its own force in its own friction cone — the exact contact wrench of a
@@ -66,11 +68,15 @@ footholds: each aims at its planned world pose from the measured body, :data:`FO
 error per update (``Δq = J_b⁺ (Rᵀ (x* − p) − R*ᵀ (x* − p*))``, a sole's orientation as above),
 so a body that lags or leans still sets its feet down near where the plan does. That is a sole
 (a walk on soles balances by its centre of pressure within the sole about the ZMP plan's
-footholds — the ankle torque above — not by where it steps) and every foot of a gait always on
+footholds — the ankle torque above — not by where it steps), every foot of a gait always on
 :data:`FEWEST_STATIC` feet or more (its support polygon holds the body: the default tripod,
-the crawls). Raibert's placement (4.) was measured on trots of point feet only; these keep
-this law and their results (``analysis/bench_logs/position_soles.log``,
-``simulate_talos.log``, the tripod's closed loop in ``docs/simulate.md``).
+the crawls), and a point foot of a gait on one foot at times (a point-foot biped, an inverted
+pendulum every way, which the neutral point alone does not catch: the test humanoid's walk,
+placed so, saturated its knees and fell at 0.87 s, its diagnosis then "a stronger actuator"
+where it falls as the pendulum it is; ``docs/simulate.md``, "Bipeds on point feet").
+Raibert's placement (4.) was measured on trots of point feet only; these keep this law and
+their results (``analysis/bench_logs/position_soles.log``, ``simulate_talos.log``, the
+tripod's closed loop in ``docs/simulate.md``).
 
 **Through the servos.** The controller's output becomes the servo's reference
 (:mod:`hexaleg.simulation.controllers`): the control moves by ``Δτ/kp + Δq``. For the
@@ -175,6 +181,9 @@ later cycles are not translations of the first); the one-sample extrapolation th
 cycle is exact to about ½ |ω̇| dt² (5e-6 rad at 10 rad/s² and 1 ms)."""
 FEWEST_STATIC = 3
 """A gait always on at least this many feet can stand without balance feedback."""
+FEWEST_PLACED = 2
+"""A gait whose fewest stance feet are this many (a trot, a pace, a bound) has its point feet
+placed for balance (module docstring 4.); on one point foot they keep their footholds."""
 
 
 @dataclass(frozen=True)
@@ -330,10 +339,12 @@ class Balance:
                   for c, leg in zip(corners, robot.legs, strict=True)]
         turn = {i: np.zeros((n, 3, len(leg.columns))) for i, leg in enumerate(robot.legs)
                 if leg.name in robot.soles}
-        self.placed = np.array([i not in turn for i in range(n_legs)]) & needed(motion)
+        fewest = int(stance.sum(axis=1).min())
+        self.placed = (np.array([i not in turn for i in range(n_legs)])
+                       & (FEWEST_PLACED <= fewest < FEWEST_STATIC))
         """Whether each leg's foot is placed for balance (Raibert's placement, module docstring
-        4.: a point foot of a gait on fewer than :data:`FEWEST_STATIC` feet at times), or aims
-        at its planned world pose ("Footholds"), (n_legs,)."""
+        4.: a point foot of a gait on two feet at times, never on one), or aims at its planned
+        world pose ("Footholds"), (n_legs,)."""
         self.soles = bool(turn)
         """Whether a foot has a sole."""
         for k in range(n):
