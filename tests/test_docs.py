@@ -756,6 +756,22 @@ def test_simulate_page_quotes_the_foot_placement_log():
     assert sixteen.count("simulated +") == 8 and "fell" not in sixteen
 
 
+def test_design_page_quotes_solo12s_answer_under_foot_placement():
+    """docs/design.md's Solo-12 answer once the trot's swing feet are placed by Raibert's law is
+    design_solo12.log's last block (a run of 2.5 minutes, by hand)."""
+    log = (ROOT / "analysis" / "bench_logs" / "design_solo12.log").read_text()
+    block = log[log.index("## branch swing8"):]
+    page = " ".join((DOCS / "design.md").read_text().split())
+    assert_quoted(page, block, (
+        ("the answer is the same", "fit one_sided, spring torque ≤ 0.4086 N·m springs on hfe "
+                                   "LH/RH, hfe LF/RF, kfe LF/RF, kfe LH/RH: electrical saving "
+                                   "+42.02 % (+39.60 % net of 42.4 g of springs)"),
+        ("+42.09 % under feedforward + PD", "feedforward + PD  walks simulated +42.09 %"),
+        ("+40.82 % position only, and", "position only     walks simulated +40.82 %"),
+        ("the candidate +42.26 % position only", "one_sided, spring torque ≤ 0.4086 N·m    "
+                                                 "position    walks  +43.21 % +42.26 %")))
+
+
 def test_design_page_quotes_the_solo12_design_log():
     """docs/design.md's Solo-12 answer and how it followed the position servo's simulation are
     analysis/bench_logs/design_solo12.log's (two runs of 4 minutes, by hand): each figure
