@@ -753,6 +753,17 @@ def test_simulate_page_quotes_the_foot_placement_log():
         ("anymal-kinova 15 (+22.73 % and +22.21 %", "simulated +22.73 % (301 J vs 389.6 J); "
                                                     "distance 320.9 mm"),
         ("anymal-kinova 15 (+22.73 % and +22.21 %", "simulated +22.21 % (309 J vs 397.2 J)")))
+    whole = " ".join(page.split())
+    assert_quoted(whole, block, (
+        ("| short / short (83 %, 84 %) | +16.48 % / — |", "(83%), outside ±10%"),
+        ("| short / short (83 %, 84 %) | +16.48 % / — |", "(84%), outside ±10%"),
+        ("(+14.06 % and +13.71 % simulated", "simulated +14.06 % (7.078 J vs 8.236 J)"),
+        ("(+14.06 % and +13.71 % simulated", "simulated +13.71 % (9.172 J vs 10.63 J)"),
+        ("(+16.94, +17.85 and +15.80 %)", "simulated +16.94 % (209 J"),
+        ("(+16.94, +17.85 and +15.80 %)", "simulated +17.85 % (208.4 J"),
+        ("(+16.94, +17.85 and +15.80 %)", "simulated +15.80 % (204.5 J"),
+        ("fell / fell (2.41 s, roll)", "the robot fell at t = 2.4074 s"),
+        ("fell / fell (1.09 s, roll)", "the robot fell at t = 1.0885 s")))
     assert sixteen.count("simulated +") == 8 and "fell" not in sixteen
 
 
