@@ -705,6 +705,84 @@ def test_simulate_page_quotes_the_newcomers_log():
             ("Laikago's feedforward + PD, where", "'SWING': '0.0001'} walks  t 6.41 roll 0.071")))
 
 
+def test_simulate_page_quotes_the_foot_placement_log():
+    """docs/simulate.md's table of the trots under Raibert's foot placement (#54: 8 cycles under
+    both servos) is newcomers_simulate.log's block "Raibert's foot placement": each row's
+    rolls, slips and savings beside the log's lines (runs of 10–60 s of CPU each, by hand)."""
+    import re
+
+    log = (ROOT / "analysis" / "bench_logs" / "newcomers_simulate.log").read_text()
+    block = log[log.index("# ===== Raibert's foot placement"):]
+    eight = block[:block.index("## 16 cycles")]
+    page = (DOCS / "simulate.md").read_text()
+    part = page[page.index("**Raibert's foot placement**"):page.index("The Adams model's")]
+    names = {"Laikago": "laikago", "B1": "b1", "Go1": "go1", "ANYmal with": "kinova",
+             "Go2": "go2"}
+    robot, rows = None, 0
+    for line in part.splitlines():
+        m = re.match(r"\|\s*(.*?)\s*\| (position|feedforward \+ PD) \| (\S+) / (\S+) rad \| "
+                     r"(\d+) / (\d+) mm \| (\S+ %)", line)
+        if not m:
+            continue
+        label, servo, *figures, saving = m.groups()
+        robot = next((v for k, v in names.items() if label.startswith(k)), robot)
+        servo = servo.split()[0]
+        for name, roll, slip in (("springs", figures[0], figures[2]),
+                                 ("baseline", figures[1], figures[3])):
+            assert re.search(rf"8_{robot}_{servo} +{name} +walks +roll max {roll} rad, "
+                             rf"slip max +{slip} mm", eight), (robot, servo, name)
+        command = (f"--robot {robot}.toml" if robot != "go2" else
+                   "--robot go2 --config trot_go2.toml") + f" --controller {servo} --cycles 8"
+        summary = eight[eight.index(command):]
+        assert f"simulated {saving} (" in summary.splitlines()[1], (robot, servo)
+        rows += 1
+    assert rows == 10
+    sixteen = block[block.index("## 16 cycles"):block.index("## the experiments")]
+    assert_quoted(" ".join(part.split()), block, (
+        ("walks 16 cycles under both (+32.35 % and +32.14 %)", "simulated +32.35 % (391.2 J"),
+        ("walks 16 cycles under both (+32.35 % and +32.14 %)", "simulated +32.14 % (389.5 J"),
+        ("(391 and 578 J a cycle against 392.5 and 577.3 J)", "(electrical 392.5 J vs 577.3 J "
+                                                              "per cycle); simulated +32.34 % "
+                                                              "(391 J vs 578 J)"),
+        ("(1703 and 2579 J a cycle under position servos against 1313 and 1970 J)",
+         "(electrical 1313 J vs 1970 J per cycle); simulated +33.97 % (1703 J vs 2579 J)"),
+        ("(+31.23 % simulated against +25.20 %)", "predicted saving +25.20 % (electrical 172.1 "
+                                                  "J vs 230.1 J per cycle); simulated +31.23 %"),
+        ("rolling at most 0.037 rad", "8_anymal_c_position            baseline walks    roll "
+                                      "max 0.037 rad"),
+        ("anymal-kinova 15 (+22.73 % and +22.21 %", "simulated +22.73 % (301 J vs 389.6 J); "
+                                                    "distance 320.9 mm"),
+        ("anymal-kinova 15 (+22.73 % and +22.21 %", "simulated +22.21 % (309 J vs 397.2 J)")))
+    whole = " ".join(page.split())
+    assert_quoted(whole, block, (
+        ("| short / short (83 %, 84 %) | +16.48 % / — |", "(83%), outside ±10%"),
+        ("| short / short (83 %, 84 %) | +16.48 % / — |", "(84%), outside ±10%"),
+        ("(+14.06 % and +13.71 % simulated", "simulated +14.06 % (7.078 J vs 8.236 J)"),
+        ("(+14.06 % and +13.71 % simulated", "simulated +13.71 % (9.172 J vs 10.63 J)"),
+        ("(+16.94, +17.85 and +15.80 %)", "simulated +16.94 % (209 J"),
+        ("(+16.94, +17.85 and +15.80 %)", "simulated +17.85 % (208.4 J"),
+        ("(+16.94, +17.85 and +15.80 %)", "simulated +15.80 % (204.5 J"),
+        ("fell / fell (2.41 s, roll)", "the robot fell at t = 2.4074 s"),
+        ("fell / fell (1.09 s, roll)", "the robot fell at t = 1.0885 s")))
+    assert sixteen.count("simulated +") == 8 and "fell" not in sixteen
+
+
+def test_design_page_quotes_solo12s_answer_under_foot_placement():
+    """docs/design.md's Solo-12 answer once the trot's swing feet are placed by Raibert's law is
+    design_solo12.log's last block (a run of 2.5 minutes, by hand)."""
+    log = (ROOT / "analysis" / "bench_logs" / "design_solo12.log").read_text()
+    block = log[log.index("## branch swing8"):]
+    page = " ".join((DOCS / "design.md").read_text().split())
+    assert_quoted(page, block, (
+        ("the answer is the same", "fit one_sided, spring torque ≤ 0.4086 N·m springs on hfe "
+                                   "LH/RH, hfe LF/RF, kfe LF/RF, kfe LH/RH: electrical saving "
+                                   "+42.02 % (+39.60 % net of 42.4 g of springs)"),
+        ("+42.09 % under feedforward + PD", "feedforward + PD  walks simulated +42.09 %"),
+        ("+40.82 % position only, and", "position only     walks simulated +40.82 %"),
+        ("the candidate +42.26 % position only", "one_sided, spring torque ≤ 0.4086 N·m    "
+                                                 "position    walks  +43.21 % +42.26 %")))
+
+
 def test_design_page_quotes_the_solo12_design_log():
     """docs/design.md's Solo-12 answer and how it followed the position servo's simulation are
     analysis/bench_logs/design_solo12.log's (two runs of 4 minutes, by hand): each figure

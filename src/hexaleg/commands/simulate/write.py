@@ -143,12 +143,16 @@ def feedback_data(s: Simulation) -> dict[str, Any]:
         text = (f"on{why}: the body's pose and velocity (MuJoCo's, a perfect estimator) fed "
                 f"back at {1 / balance.CONTROL_PERIOD:.0f} Hz, ω {g.omega:.3g} rad/s, "
                 "stance forces by a QP within the friction cones and torque limits, swing feet "
-                "aimed at their planned world positions, through the servos' references")
+                + ("set down at Raibert's neutral point from the measured hip and velocity"
+                   if balance.needed(s.motion) and len(s.robot.soles) < len(s.robot.legs)
+                   else "aimed at their planned footholds")
+                + ", through the servos' references")
     out: dict[str, Any] = {"setting": setting, "runs": ran, "text": text}
     if any(ran.values()):
         g = balance.size_gains(s.motion)
         out["gains"] = {"omega": quantity(g.omega, "rad/s"), "zeta": quantity(g.zeta, "1"),
-                        "swing": quantity(g.swing, "1"), "period": quantity(g.period, "s")}
+                        "capture": quantity(g.capture, "s"), "hold": quantity(balance.HOLD, "1"),
+                        "period": quantity(g.period, "s")}
     return out
 
 
