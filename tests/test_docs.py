@@ -678,14 +678,14 @@ def test_simulate_page_quotes_the_newcomers_round_hyq():
         assert f"({servo} servo" in summary and f"simulated {simulated} (" in summary, summary
         assert not predicted or f"predicted saving {predicted.rstrip(')')} (" in summary
     for row, said in (
-            ("| 110.9 % / 102.4 % | 86 / 120 mrad |", "hyq feedforward springs: overran, 436.8 mm "
-                                                      "per cycle of 393.9 mm (110.9 %), tracking "
+            ("| 110.0 % / 103.2 % | 86 / 101 mrad |", "hyq feedforward springs: walks, 433.3 mm "
+                                                      "per cycle of 393.9 mm (110.0 %), tracking "
                                                       "RMS 86 mrad"),
-            ("| 110.9 % / 102.4 % | 86 / 120 mrad |", "(102.4 %), tracking RMS 120 mrad"),
-            ("fell at 3.40 s / stalled (−14.6 %) | — / 291 mrad",
-             "hyq position springs: fell: the robot fell at t = 3.3992 s"),
-            ("fell at 3.40 s / stalled (−14.6 %) | — / 291 mrad",
-             "(-14.6 %), tracking RMS 291 mrad"),
+            ("| 110.0 % / 103.2 % | 86 / 101 mrad |", "(103.2 %), tracking RMS 101 mrad"),
+            ("fell at 3.28 s / stalled (−28.9 %) | — / 279 mrad",
+             "hyq position springs: fell: the robot fell at t = 3.2844 s"),
+            ("fell at 3.28 s / stalled (−28.9 %) | — / 279 mrad",
+             "(-28.9 %), tracking RMS 279 mrad"),
             ("| 74.8 % / 59.9 % | 37 / 49 mrad |", "(74.8 %), tracking RMS 37 mrad"),
             ("| 74.8 % / 59.9 % | 37 / 49 mrad |", "(59.9 %), tracking RMS 49 mrad"),
             ("| 72.7 % / 70.8 % | 39 / 41 mrad |", "(72.7 %), tracking RMS 39 mrad"),
@@ -717,7 +717,7 @@ def test_simulate_page_quotes_the_newcomers_round_hyq():
         ("its bound needs μ 0.947", "its default bound needs μ 0.947"),
         ("(B1's position run", "b1 (position servo, balance feedback): predicted saving "
                                "+33.34 % (electrical 1313 J vs 1970 J per cycle); simulated "
-                               "+30.17 %")))
+                               "+30.22 % (1517 J vs 2174 J)")))
 
 
 def test_simulate_page_quotes_the_newcomers_log():
