@@ -115,6 +115,9 @@ def test_a_range_less_knee_whose_shank_hangs_off_its_axis_is_no_wheel(tmp_path):
         example_robot_data_dir() / "quadruped_description" / "urdf" / "quadruped.urdf",
         legs="auto")
     assert robot.nj == 8 and {f.radius for f in robot.foot_spheres.values()} == {0.025}
+    knee = robot.model.getJointId("FL_KFE")  # its shank's centre of mass, off the x axis
+    lever = robot.model.inertias[knee].lever
+    assert np.hypot(lever[1], lever[2]) == pytest.approx(0.1028, abs=1e-4)  # docs/robots.md
     assert not any("wheel" in n for n in robot.notes)
     centauro = hexaleg.load(str(DATA / "centauro.toml"))
     assert any("4 wheel(s) locked" in n and "j_wheel_1" in n for n in centauro.notes)
