@@ -651,6 +651,7 @@ def test_simulate_page_quotes_the_newcomers_round_hyq():
     page = (DOCS / "simulate.md").read_text()
     part = " ".join(page[page.index("Four more example-robot-data quadrupeds"):
                          page.index("The Adams model's printed-units")].split())
+    part += " " + " ".join((DOCS / "robots.md").read_text().split())
     hyq, soft, odri = ("hyq.toml --config hyq_dt.toml", "hyq.toml --config hyq_soft.toml",
                        "solo8_odri.toml --config trot.toml")
     runs = {  # (label in the block, servo, command): (stride covered, tracking RMS, saving)
@@ -715,6 +716,8 @@ def test_simulate_page_quotes_the_newcomers_round_hyq():
         ("at most 0.29 of μ 0.6", "friction use: median 0.233  p90 0.278  max 0.289"),
         ("its plan needs μ ≥ 1.14", "the least friction that admits forces here is μ = 1.14"),
         ("its bound needs μ 0.947", "its default bound needs μ 0.947"),
+        ("the default bound is refused — its plan on the front pair needs μ ≥ 1.14 on a floor "
+         "of 0.6", "the least friction that admits forces here is μ = 1.14"),
         ("(B1's position run", "b1 (position servo, balance feedback): predicted saving "
                                "+33.34 % (electrical 1313 J vs 1970 J per cycle); simulated "
                                "+30.22 % (1517 J vs 2174 J)")))
