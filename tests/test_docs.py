@@ -642,6 +642,87 @@ def test_robots_page_quotes_the_codesign_bench_log():
             ("about 0.8 s to each candidate", "about 0.8 s the inner spring program")))
 
 
+def test_simulate_page_quotes_the_newcomers_round_hyq():
+    """docs/simulate.md's four more example-robot-data quadrupeds (#54: HyQ, Solo-8,
+    quadruped_description, anymal-kinova) are newcomers_simulate.log's block "round hyq": each
+    table row beside the block's per-run line and summary, and the diagnosis' figures."""
+    log = (ROOT / "analysis" / "bench_logs" / "newcomers_simulate.log").read_text()
+    now = log[log.index("# ===== round hyq"):]
+    page = (DOCS / "simulate.md").read_text()
+    part = " ".join(page[page.index("Four more example-robot-data quadrupeds"):
+                         page.index("The Adams model's printed-units")].split())
+    part += " " + " ".join((DOCS / "robots.md").read_text().split())
+    hyq, soft, odri = ("hyq.toml --config hyq_dt.toml", "hyq.toml --config hyq_soft.toml",
+                       "solo8_odri.toml --config trot.toml")
+    runs = {  # (label in the block, servo, command): (stride covered, tracking RMS, saving)
+        ("hyqdt", "position", hyq): (("99.4", "99.5"), ("24", "24"), "+33.70 % (+33.68 %)"),
+        ("hyqdt", "feedforward", hyq): (("100.0", "100.0"), ("0", "0"), "+33.75 %"),
+        ("hyqsoft", "position", soft): (("99.2", "99.4"), ("23", "24"), "+34.03 % (+33.68 %)"),
+        ("hyqsoft", "feedforward", soft): (("100.0", "100.0"), ("1", "1"), "+33.96 %"),
+        ("solo8odri", "position", odri): (("100.1", "100.1"), ("7", "8"),
+                                          "+31.91 % (+31.58 %)"),
+        ("solo8odri", "feedforward", odri): (("100.0", "100.0"), ("1", "1"), "+31.69 %"),
+        ("anymalk", "position", "anymalk.toml"): (("98.9", "98.7"), ("20", "21"),
+                                                  "+22.29 % (+22.09 %)"),
+        ("anymalk", "feedforward", "anymalk.toml"): (("99.3", "99.1"), ("2", "3"), "+22.34 %")}
+    for (label, servo, toml), (covered, tracking, saving) in runs.items():
+        row = (f"| {covered[0]} % / {covered[1]} % | {tracking[0]} / {tracking[1]} mrad | "
+               f"{saving} |")
+        assert row in part, row
+        for name, c, t in zip(("springs", "baseline"), covered, tracking, strict=True):
+            said = f"{label} {servo} {name}: walks, "
+            line = now[now.index(said):].splitlines()[0]
+            assert f"({c} %), tracking RMS {t} mrad" in line, line
+        command = now[now.index(f"--robot {toml} --controller {servo}"):]
+        summary = next(line for line in command.splitlines() if "servo, balance feedback)" in line)
+        simulated, _, predicted = saving.partition(" (")
+        assert f"({servo} servo" in summary and f"simulated {simulated} (" in summary, summary
+        assert not predicted or f"predicted saving {predicted.rstrip(')')} (" in summary
+    for row, said in (
+            ("| 110.0 % / 103.2 % | 86 / 101 mrad |", "hyq feedforward springs: walks, 433.3 mm "
+                                                      "per cycle of 393.9 mm (110.0 %), tracking "
+                                                      "RMS 86 mrad"),
+            ("| 110.0 % / 103.2 % | 86 / 101 mrad |", "(103.2 %), tracking RMS 101 mrad"),
+            ("fell at 3.28 s / stalled (−28.9 %) | — / 279 mrad",
+             "hyq position springs: fell: the robot fell at t = 3.2844 s"),
+            ("fell at 3.28 s / stalled (−28.9 %) | — / 279 mrad",
+             "(-28.9 %), tracking RMS 279 mrad"),
+            ("| 74.8 % / 59.9 % | 37 / 49 mrad |", "(74.8 %), tracking RMS 37 mrad"),
+            ("| 74.8 % / 59.9 % | 37 / 49 mrad |", "(59.9 %), tracking RMS 49 mrad"),
+            ("| 72.7 % / 70.8 % | 39 / 41 mrad |", "(72.7 %), tracking RMS 39 mrad"),
+            ("| 72.7 % / 70.8 % | 39 / 41 mrad |", "(70.8 %), tracking RMS 41 mrad")):
+        assert_quoted(part, now, ((row, said),))
+    assert_quoted(part, now, (
+        ("(−30.5 % and 23.2 % of its stride, feet slipping up to 446 mm)",
+         "hyqcrawl feedforward springs: stalled, -120.0 mm per cycle of 393.9 mm (-30.5 %)"),
+        ("(−30.5 % and 23.2 % of its stride, feet slipping up to 446 mm)", "slip max 446 mm"),
+        ("(100.6 % and 100.2 %, 1215 J against the plan's 1199 J)",
+         "hyq (feedforward servo): predicted saving +67.83 % (electrical 1199 J vs 3728 J per "
+         "cycle); simulated +67.43 % (1215 J vs 3730 J)"),
+        ("(100.6 % and 100.2 %, 1215 J against the plan's 1199 J)", "(100.6 %)"),
+        ("the first 40 ms where the plan gives it 371 N",
+         "0.040 sim tau rf_hfe  -168.8 plan   -13.8 | sim F_RF [0 0 0] plan [-86  33 379]"),
+        ("the first 40 ms where the plan gives it 371 N", "plan RF force first [[-84.9  30.2 "
+                                                          "371.5]"),
+        ("its hip driven 185 mrad off", "0.040   -11    +0    -1   -13    -1    -0    +8  +185"),
+        ("its body's mass (2 kg, MuJoCo's `body_invweight0`), but HyQ's foot at the end of its "
+         "0.35-m shank moves with 0.34 kg", "LF body_invweight0 mass 2 kg foot effective mass: "
+                                             "free 0.336 kg"),
+        ("(ANYmal's from 0.4 to 0.09 ms)", "anymal: dt 0.4000 ms"),
+        ("(ANYmal's from 0.4 to 0.09 ms)", "anymal: dt 0.0877 ms"),
+        ("at the automatic 0.24 ms", "hyq.toml: dt 0.2421 ms"),
+        ("(ω_n/ω_gait 7.8 at its least joint, ANYmal's 8.1)", "w_n/w_gait min 7.804"),
+        ("(ω_n/ω_gait 7.8 at its least joint, ANYmal's 8.1)", "w_n/w_gait min 8.062"),
+        ("at most 0.29 of μ 0.6", "friction use: median 0.233  p90 0.278  max 0.289"),
+        ("its plan needs μ ≥ 1.14", "the least friction that admits forces here is μ = 1.14"),
+        ("its bound needs μ 0.947", "its default bound needs μ 0.947"),
+        ("the default bound is refused — its plan on the front pair needs μ ≥ 1.14 on a floor "
+         "of 0.6", "the least friction that admits forces here is μ = 1.14"),
+        ("(B1's position run", "b1 (position servo, balance feedback): predicted saving "
+                               "+33.34 % (electrical 1313 J vs 1970 J per cycle); simulated "
+                               "+30.22 % (1517 J vs 2174 J)")))
+
+
 def test_simulate_page_quotes_the_newcomers_log():
     """docs/simulate.md's quadrupeds new to hexaleg (#54: Go1, B1, Laikago described as a
     newcomer would, their sized trots) are analysis/bench_logs/newcomers_simulate.log's block

@@ -21,6 +21,7 @@ from hexaleg.motion.balance import (
     BALANCE_TOL,
     Sway,
     crossing,
+    leg_plane,
     periodic_lip_sway,
     support_moment,
     sway_direction,
@@ -145,6 +146,29 @@ def test_a_trot_facing_another_way_sways_across_its_heading(solo, rotated):
 
 
 # --------------------------------------------------------------------------- support moment
+
+
+def test_two_joint_legs_trot_swaying_in_their_planes(solo):
+    """Legs of two parallel joints move their feet in vertical planes along the body: the trot
+    of the two-joint test quadruped sways along the heading, in those planes (a lateral sway,
+    the one three-joint legs take, put every foot 2 cm off its plane and the gait was refused),
+    balanced to the tolerance, every foot within 1e-6 m of its plane; three-joint legs have no
+    common plane."""
+    from pathlib import Path
+
+    from hexaleg.motion.legged import gait
+
+    quad = str(Path(__file__).resolve().parents[1] / "data" / "quad2dof.toml")
+    robot = description(quad).load()
+    assert leg_plane(robot) == pytest.approx([1.0, 0.0, 0.0], abs=1e-12)
+    assert leg_plane(solo) is None and leg_plane(hexaleg.load()) is None
+    params = dataclasses.replace(robot_gait(quad), groups=TROT, samples=SAMPLES)
+    motion = gait(robot, params)
+    info = motion.info["balance"]
+    assert info["mode"] == "sway" and info["direction"] == [1.0, 0.0, 0.0]
+    assert info["residual"] <= BALANCE_TOL and info["amplitude"] > 1e-3
+    moment, mask, _ = support_moment(robot, motion)
+    assert np.abs(moment[mask]).max() <= BALANCE_TOL * robot.mass * G * info["height"]
 
 
 def test_support_moment_is_the_centroidal_moment_about_the_line(solo):

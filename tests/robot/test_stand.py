@@ -114,3 +114,23 @@ def test_a_redundant_leg_is_untwisted_on_its_target():
     np.testing.assert_allclose(robot.foot_positions(q)[0], target, atol=1e-9)
     assert abs(q[leg.q_index][2]) < 1e-3 < abs(twisted[2])
     assert np.all(q[leg.q_index] >= lo) and np.all(q[leg.q_index] <= hi)
+
+
+def test_a_leg_that_cannot_fold_to_its_foot_is_told_to_stand_higher(tmp_path):
+    """Data we did not make: example-robot-data's ``quadruped_description`` with its knees
+    welded (``fixed``): each leg is one hip joint and a 0.345-m limb, so a foot 0.25 m below the
+    hip is too near, not too far — the advice raises body_height (it said "lower" before)."""
+    from hexaleg.robot.description import RobotDescription
+    from hexaleg.robot.sources import example_robot_data_dir
+
+    text = (example_robot_data_dir() / "quadruped_description" / "urdf" /
+            "quadruped.urdf").read_text(encoding="utf-8")
+    welded = text.replace('_KFE" type="revolute"', '_KFE" type="fixed"')
+    assert welded.count('type="fixed"') == text.count('type="fixed"') + 4
+    (tmp_path / "welded.urdf").write_text(welded, encoding="utf-8")
+    (tmp_path / "q.toml").write_text('[robot]\nname = "q"\nurdf = "welded.urdf"\n'
+                                     'stand = {body_height = 0.25}\n')
+    with pytest.raises(InvalidParameterError, match=r"out of reach: it stops 0.095 m from it, "
+                       r"0.25 m from the first joint; the foot is 0.345 m from the first joint "
+                       r"when stretched\): the leg does not fold that short: raise body_height"):
+        RobotDescription.from_toml(tmp_path / "q.toml").load()

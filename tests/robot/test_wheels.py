@@ -92,3 +92,32 @@ def test_a_wheel_written_as_a_revolute_joint_without_a_range_is_locked_too(tmp_p
         'velocity="30"/>').replace('type="continuous"', 'type="revolute"'))
     assert hexaleg.robot.model.load_robot(bounded, legs=legs,
                                           joint_kinds=("a", "b", "c")).nj == 18
+
+
+def test_a_range_less_knee_whose_shank_hangs_off_its_axis_is_no_wheel(tmp_path):
+    """Data we did not make: example-robot-data's ``quadruped_description`` gives its knees no
+    lower/upper (read as [0, 0]) at leaves of the tree, their shanks' centres of mass 0.103 m
+    off the knee's axis. They stay joints (two a leg; its round feet of 2.5 cm), not wheels
+    of radius 0.185 m, and the
+    stand says the knee cannot bend; Centauro's balanced ``j_wheel_*`` are still wheels."""
+    from hexaleg.robot.sources import example_robot_data_dir
+
+    toml = tmp_path / "quadruped.toml"
+    toml.write_text('[robot]\nname = "quadruped"\nsource = "example-robot-data"\n'
+                    'urdf = "quadruped_description/urdf/quadruped.urdf"\n'
+                    'stand = {body_height = 0.25}\n')
+    description = RobotDescription.from_toml(toml)
+    with pytest.raises(hexaleg.errors.InvalidParameterError,
+                       match=r"KFE has no range \(lower = upper: a URDF <limit> without lower and "
+                             r"upper reads as 0\), so no body_height bends this leg"):
+        description.load()
+    robot = hexaleg.robot.model.load_robot(
+        example_robot_data_dir() / "quadruped_description" / "urdf" / "quadruped.urdf",
+        legs="auto")
+    assert robot.nj == 8 and {f.radius for f in robot.foot_spheres.values()} == {0.025}
+    knee = robot.model.getJointId("FL_KFE")  # its shank's centre of mass, off the x axis
+    lever = robot.model.inertias[knee].lever
+    assert np.hypot(lever[1], lever[2]) == pytest.approx(0.1028, abs=1e-4)  # docs/robots.md
+    assert not any("wheel" in n for n in robot.notes)
+    centauro = hexaleg.load(str(DATA / "centauro.toml"))
+    assert any("4 wheel(s) locked" in n and "j_wheel_1" in n for n in centauro.notes)

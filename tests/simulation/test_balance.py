@@ -286,6 +286,49 @@ def test_quadrupeds_new_to_hexaleg_walk_eight_cycles(robot, controller, tmp_path
         assert run.feedback and run.verdict == "walks", (run.name, run.verdict, run.message)
 
 
+def _newcomer(tmp_path, name: str, lines: str, config: str):
+    """A study of an example-robot-data robot described as a newcomer would."""
+    from hexaleg.commands.simulate.study import load_study
+
+    path = tmp_path / f"{name}.toml"
+    path.write_text(f'[robot]\nname = "{name}"\nsource = "example-robot-data"\n{lines}')
+    (tmp_path / "run.toml").write_text(config)
+    return load_study(Scenario.load(str(path), tmp_path / "run.toml"))
+
+
+@pytest.mark.slow
+def test_hyq_ends_in_a_verdict_and_walks_at_a_finer_timestep(tmp_path):
+    """HyQ (87 kg, example-robot-data), its sized default trot under position servos: at the
+    automatic timestep the runs end in verdicts (the springs' run falls) where the force program
+    stopped the command ("Clarabel MaxIterations"), and at 0.12 ms, where its feet stop
+    chattering, both walk and spend what the plan predicts (docs/simulate.md; about 15 s of
+    CPU)."""
+    lines = ('urdf = "hyq_description/robots/hyq_no_sensors.urdf"\n'
+             'srdf = "hyq_description/srdf/hyq.srdf"\nstand = "standing"\n')
+    study = _newcomer(tmp_path, "hyq", lines, '[simulate]\ncontroller = "position"\n')
+    s = study.run()
+    assert s.with_springs.verdict == "fell" and s.baseline.verdict != "walks"
+    fine = _newcomer(tmp_path, "hyq", lines,
+                     '[simulate]\ncontroller = "position"\ntimestep = 1.2e-4\n').run()
+    for run in (fine.with_springs, fine.baseline):
+        assert run.feedback and run.verdict == "walks", (run.name, run.verdict, run.message)
+
+
+@pytest.mark.slow
+def test_solo8_walks_its_trot_in_its_legs_planes(tmp_path):
+    """Solo-8 (two joints a leg, the SRDF it shares with Solo-12) with Solo-12's motor: its trot,
+    swaying along the body in its legs' planes, walks under position servos with and without
+    springs (on main its SRDF was refused, and its trot's sideways sway left the legs'
+    planes)."""
+    lines = ('urdf = "solo_description/robots/solo.urdf"\n'
+             'srdf = "solo_description/srdf/solo.srdf"\nstand = "standing"\n'
+             'motor = "ODRI-4004"\n')
+    s = _newcomer(tmp_path, "solo8", lines,
+                  '[gait]\npattern = "trot"\n[simulate]\ncontroller = "position"\n').run()
+    for run in (s.with_springs, s.baseline):
+        assert run.feedback and run.verdict == "walks", (run.name, run.verdict, run.message)
+
+
 BIPED6 = str(Path(__file__).parents[1] / "data" / "biped6.toml")
 """The biped on soles (six-joint legs, 18 × 9 cm soles, 16.4 kg; #54)."""
 

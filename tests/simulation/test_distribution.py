@@ -133,6 +133,27 @@ def test_the_torque_rows_bind():
                                      bounds), atol=1e-6)
 
 
+def test_an_80_kg_robots_program_is_solved_in_units_of_its_forces():
+    """HyQ's (80 kg, example-robot-data) program at a stand on two feet of its position-servo
+    trot (captured, rounded to 1e-3): a cone and the torque rows bind, offsets of hundreds of
+    newtons. In newtons Clarabel's iterates cycled to its iteration limit and the run stopped
+    ("Clarabel MaxIterations"); solved in units of the plan's largest force it is cvxpy's
+    answer, inside the cones and the torque bounds."""
+    feet = np.array([[0.572, -0.184, -0.542], [-0.383, 0.176, -0.537]])
+    a = wrench_map(feet, np.zeros(3))
+    dw = np.array([3801.37, -1303.18, -309.644, -183.793, 375.818, -463.445])
+    f0 = np.array([[-64.352, 55.776, 384.094], [74.372, -88.01, 490.188]])
+    t = np.array([[0, 0, 0, -0.323, 0.503, 0.12], [0, 0, 0, 0.455, 0.272, 0.078],
+                  [0, 0, 0, 0.238, 0.199, -0.186], [0.325, -0.505, 0.114, 0, 0, 0],
+                  [0.439, 0.3, 0.073, 0, 0, 0], [0.175, 0.175, 0.265, 0, 0, 0]])
+    bounds = TorqueBounds(t, np.array([-150.919, -226.279, -79.458, -160.662, -147.87, -238.63]),
+                          np.array([149.081, 73.721, 220.542, 139.338, 152.13, 61.37]))
+    df, bound = distribute(a, dw, f0, 0.6, 0.57, bounds)
+    expected = reference(a, dw, f0, 0.6, 0.57, bounds)
+    assert bound and np.abs(df - expected).max() <= 1e-6 * np.abs(f0).max()
+    assert inside_cones(f0 + df, 0.6, slack=1e-6) and bounds.holds(df.ravel(), slack=1e-6)
+
+
 def test_dataclass_replace_keeps_settings_valid():
     """``feedback`` is a checked setting: an unknown value names the allowed ones."""
     from hexaleg.errors import UnknownNameError

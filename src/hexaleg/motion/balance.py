@@ -240,6 +240,36 @@ def sway_direction(axes: np.ndarray, heading: np.ndarray | None = None) -> np.nd
     return candidates[best]
 
 
+def leg_plane(robot: Robot) -> np.ndarray | None:
+    """The horizontal direction (base frame, unit, shape (3,)) in which every leg's foot can move
+    when every leg has two joints turning about parallel axes (a planar hip–knee leg, its foot in
+    the plane normal to them, :mod:`hexaleg.motion.leg_chain`) and the legs' planes are parallel
+    and vertical: ``ẑ × n``, n their axis at the zero configuration (its sign towards the
+    heading's side, +x first). None otherwise (a leg that steps sideways, or legs in planes that
+    share no horizontal direction)."""
+    if any(len(leg.joint_names) != 2 for leg in robot.legs):
+        return None
+    model, data = robot.model, robot.model.createData()
+    pin.computeJointJacobians(model, data, pin.neutral(model))
+    normal: np.ndarray | None = None
+    for leg in robot.legs:
+        axes = [pin.getJointJacobian(model, data, j, pin.LOCAL_WORLD_ALIGNED)[3:, idx]
+                for j, idx in zip(leg.joint_ids, leg.v_index, strict=True)]
+        n = axes[0] / np.linalg.norm(axes[0])
+        if np.linalg.norm(np.cross(n, axes[1] / np.linalg.norm(axes[1]))) > 1e-6 or \
+                abs(n[2]) > 1e-6:
+            return None
+        if normal is None:
+            normal = n
+        elif np.linalg.norm(np.cross(normal, n)) > 1e-6:
+            return None
+    if normal is None:
+        return None
+    e = np.cross([0.0, 0.0, 1.0], normal)
+    e /= np.linalg.norm(e)
+    return -e if (e[0], e[1]) < (0.0, 0.0) else e
+
+
 def crossing(axis_base: np.ndarray, direction: np.ndarray) -> np.ndarray:
     """``s = u · (e × ẑ)`` per sample: how much a sway along e moves the CoM across line u.
 
@@ -283,7 +313,9 @@ def balance_sway(robot: Robot, gait: GaitParams, grid: np.ndarray,
     """
     motion = sample(None, {"mode": "none"})
     moment, mask, axes = support_moment(robot, motion)
-    direction = sway_direction(np.unique(np.round(axes[mask], 12), axis=0), heading)
+    plane = leg_plane(robot)  # planar legs sway in their planes, where their feet can move
+    direction = (plane if plane is not None else
+                 sway_direction(np.unique(np.round(axes[mask], 12), axis=0), heading))
     model, data = robot.model, robot.model.createData()
     height = float(np.mean([pin.centerOfMass(model, data, q)[2] for q in motion.q]))
     mass, g = robot.mass, float(np.linalg.norm(model.gravity.linear))

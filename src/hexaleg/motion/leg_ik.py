@@ -152,8 +152,8 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
                 f"{where} is {off[k]:.3g} m off the plane its {chain.angular.shape[0]} joints "
                 "move the foot in (at most "
                 f"{PLANE_TOL:g} m): a gait for a two-joint leg keeps each foot in its plane — "
-                "no sideways sway or step (a bound or a pronk, whose support lines run across "
-                "the body, not a trot or a crawl)",
+                "no sideways shift or step (a bound, a pronk or a trot, whose sway runs in the "
+                "legs' planes; not a crawl, whose body shifts sideways over its three feet)",
                 leg=leg.name, t=float(t[k]), index=k, target=tuple(float(x) for x in p[k]),
                 distance=float(off[k]))
         raise UnreachableTargetError(

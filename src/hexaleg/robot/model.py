@@ -175,8 +175,8 @@ def load_robot(urdf: str | Path | None = None, srdf: str | Path | None = None, *
     collision.addAllCollisionPairs()
     poses: dict[str, np.ndarray] = {}
     if srdf_path is not None:
-        check_reference_poses(model, srdf_path, {w.name for w in wheels})  # Pinocchio skips
-        # unknown joints silently
+        notes += check_reference_poses(model, srdf_path, {w.name for w in wheels})  # Pinocchio
+        # skips unknown joints silently
         try:
             pin.removeCollisionPairs(model, collision, str(srdf_path))
             pin.loadReferenceConfigurations(model, str(srdf_path))

@@ -242,21 +242,31 @@ def _solve(robot: Robot, leg: Leg, target: np.ndarray, rest: np.ndarray) -> np.n
     if outside is not None:
         i = int(np.argmax(_beyond(outside, lo, hi)))
         side, limit = ("lower", lo[i]) if outside[i] < lo[i] else ("upper", hi[i])
+        fixed = [name for name, a, b in zip(leg.joint_names, lo, hi, strict=True) if a == b]
+        advice = (f"{', '.join(fixed)} {'has' if len(fixed) == 1 else 'have'} no range "
+                  "(lower = upper: a URDF <limit> without lower and upper reads as 0), so no "
+                  "body_height bends this leg: give "
+                  f"{'it its' if len(fixed) == 1 else 'them their'} <limit lower=… upper=…> in "
+                  "the URDF" if fixed else
+                  "change body_height or the feet, or the URDF <limit> if it is wrong")
         raise InvalidParameterError(
             where, at,
             f"a point the leg reaches within its joint limits — outside the limits: the leg "
             f"reaches it only with joint {leg.joint_names[i]} at {outside[i]:+.4g} rad, beyond "
             f"its {side} limit {limit:+.4g} rad{held} ({len(starts)} starts, "
-            f"{len(starts) - len(BENDS)} of them inside the limits): change body_height or the "
-            "feet, or the URDF <limit> if it is wrong")
+            f"{len(starts) - len(BENDS)} of them inside the limits): {advice}")
     pin.framesForwardKinematics(model, data, rest)
     hip = data.oMi[leg.joint_ids[0]].translation
     reach = float(np.linalg.norm(data.oMf[leg.foot_frame_id].translation - hip))
+    distance = float(np.linalg.norm(target - hip))
+    advice = ("lower body_height or bring the foot closer to the hip" if distance > reach else
+              "the leg does not fold that short: raise body_height or move the foot away from "
+              "the hip")
     raise InvalidParameterError(
         where, at,
         f"a point the leg reaches within its joint limits (out of reach: it stops "
-        f"{closest:.3g} m from it; the foot is {reach:.3g} m from the first joint when "
-        f"stretched{held}): lower body_height or bring the foot closer to the hip")
+        f"{closest:.3g} m from it, {distance:.3g} m from the first joint; the foot is "
+        f"{reach:.3g} m from the first joint when stretched{held}): {advice}")
 
 
 def checked_moves(name: str, robot: Robot, stand: np.ndarray, moves: Mapping[str, Any]

@@ -14,6 +14,14 @@ lowest point in the stand pose (:class:`~hexaleg.robot.feet.SphereFoot`; for a w
 is horizontal that is the rim's lowest point, ``c − r ẑ``, the support point of the disc in
 −z, Ericson, *Real-Time Collision Detection*, 2005, §3.8).
 
+A wheel turns about its own centre: its body's centre of mass lies on its axis (a tyre, a
+hub: Centauro's four ``j_wheel_*`` to 0.0 m). A range-less revolute joint at a leaf whose body's
+centre of mass lies off its axis by more than :data:`BALANCE` of its radius is a limb without
+limits, not a wheel — example-robot-data's ``quadruped_description`` gives its knees no
+``lower``/``upper`` (read as 0, the URDF default) and its shank's centre of mass is 0.103 m off the
+knee's axis: locked as a "wheel" of radius 0.185 m (the shank), its stand was then asked of a
+one-joint leg. Such a joint stays a joint, its range the URDF's (none), and the stand names it.
+
 A joint a description lists in a leg is the leg's, never locked. Any other joint Pinocchio
 cannot treat as one angle — a ``continuous`` joint with joints below it, a ``floating`` or
 ``planar`` one — is refused by name: hexaleg's joint vectors hold one value
@@ -29,6 +37,10 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.errors import RobotModelError
+
+BALANCE = 0.05
+"""The largest distance of a wheel's centre of mass from its axis, as a share of its radius
+(module docstring): a range-less revolute joint beyond it is not a wheel."""
 
 
 @dataclass(frozen=True)
@@ -82,12 +94,33 @@ def _revolute(model: pin.Model, joint: int) -> bool:
     return bool(np.linalg.norm(s[3:]) > 0 and np.linalg.norm(s[:3]) < 1e-12)
 
 
+def _axis(model: pin.Model, joint: int) -> np.ndarray:
+    """The unit axis of revolute ``joint`` in its own frame."""
+    data = model.createData()
+    pin.computeJointJacobians(model, data, pin.neutral(model))
+    s = pin.getJointJacobian(model, data, joint, pin.LOCAL)[3:, model.joints[joint].idx_v]
+    return np.asarray(s / np.linalg.norm(s), dtype=float)
+
+
+def _balanced(model: pin.Model, geometry: Sequence[pin.GeometryModel], joint: int) -> bool:
+    """Whether revolute ``joint``'s body has its centre of mass on its axis, within
+    :data:`BALANCE` of its radius (a massless body: no evidence against a wheel)."""
+    inertia = model.inertias[joint]
+    if not inertia.mass > 0:
+        return True
+    axis = _axis(model, joint)
+    lever = np.asarray(inertia.lever, dtype=float)
+    off = float(np.linalg.norm(lever - (lever @ axis) * axis))
+    return off <= max(BALANCE * _radius(geometry, joint, axis), 1e-9)
+
+
 def lock_wheels(model: pin.Model, geometry: Sequence[pin.GeometryModel],
                 keep: Collection[str] = ()
                 ) -> tuple[pin.Model, list[pin.GeometryModel], tuple[Wheel, ...], str | None]:
     """The model with every wheel locked at 0: a ``continuous`` joint at a leaf of the tree, or
     a revolute one there whose URDF gives it no range (``lower = upper = 0``: a wheel written as
-    revolute, as Centauro's "actually continuous" ``j_wheel_*``).
+    revolute, as Centauro's "actually continuous" ``j_wheel_*``) and whose body's centre of mass
+    is on its axis (:data:`BALANCE`).
 
     Args:
         model: The model with its free-flyer base (joint 1).
@@ -113,7 +146,8 @@ def lock_wheels(model: pin.Model, geometry: Sequence[pin.GeometryModel],
         if joint.nq == joint.nv == 1:
             iq = joint.idx_q
             if (j not in has_child and model.lowerPositionLimit[iq] == 0.0
-                    and model.upperPositionLimit[iq] == 0.0 and _revolute(model, j)):
+                    and model.upperPositionLimit[iq] == 0.0 and _revolute(model, j)
+                    and _balanced(model, geometry, j)):
                 wheels.append(j)  # a wheel written as a revolute joint without a range
             continue
         if joint.nq == 2 and joint.nv == 1 and j not in has_child:
@@ -128,11 +162,7 @@ def lock_wheels(model: pin.Model, geometry: Sequence[pin.GeometryModel],
         return model, list(geometry), (), None
     found = []
     for j in wheels:
-        data = model.createData()
-        q = pin.neutral(model)
-        pin.computeJointJacobians(model, data, q)
-        s = pin.getJointJacobian(model, data, j, pin.LOCAL)[3:, model.joints[j].idx_v]
-        axis = s / np.linalg.norm(s)
+        axis = _axis(model, j)
         found.append(Wheel(model.names[j], model.names[int(model.parents[j])],
                            np.array(model.jointPlacements[j].translation, dtype=float),
                            _radius(geometry, j, axis)))
@@ -145,6 +175,7 @@ def lock_wheels(model: pin.Model, geometry: Sequence[pin.GeometryModel],
                               "wheel's link a name no joint has") from None
     names = ", ".join(f"{w.name} (r = {w.radius:.4g} m, on {w.parent})" for w in found)
     note = (f"{len(found)} wheel(s) locked at angle 0, walking as round feet: {names} — a "
-            "continuous joint at a leaf of the tree, or a revolute one there without a range, "
-            "is a wheel; its inertia is carried by the joint it is welded to")
+            "continuous joint at a leaf of the tree, or a revolute one there without a range "
+            "and its centre of mass on its axis, is a wheel; its inertia is carried by the joint "
+            "it is welded to")
     return reduced, list(gmodels), tuple(found), note
