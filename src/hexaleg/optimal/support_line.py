@@ -121,8 +121,11 @@ def roll(body: Body, point: np.ndarray, axis: np.ndarray, th: np.ndarray, thd: n
 
     Args:
         body: The body at T samples (level or not; LOCAL velocities).
-        point, axis: The line, world, (3,) or (T, 3); ``axis`` a unit vector.
-        th, thd, thdd: ``θ``, ``θ̇``, ``θ̈`` at the samples, (T,), rad, rad/s, rad/s².
+        point: A point of the line, world, (3,) or (T, 3), m.
+        axis: The line's unit direction, world, (3,) or (T, 3).
+        th: ``θ`` at the samples, (T,), rad.
+        thd: ``θ̇`` at the samples, (T,), rad/s.
+        thdd: ``θ̈`` at the samples, (T,), rad/s².
     """
     n = len(body.base)
     u = np.broadcast_to(axis, (n, 3))
