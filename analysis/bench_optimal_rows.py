@@ -117,7 +117,8 @@ def main() -> None:
             value, verdict, _ = simulated_run(robot, motion, run.actuator, s, k, run.contact,
                                               "on")
             sims.append(f"{value:.2f}" if value is not None else f"— ({verdict})")
-        print(f"    {row.label:46s} {row.predicted:7.2f}   {', '.join(sims)}", flush=True)
+        predicted = f"{row.predicted:7.2f}" if row.predicted is not None else "      —"
+        print(f"    {row.label:46s} {predicted}   {', '.join(sims)}", flush=True)
     for name, r in (("no springs", table.bare), ("its springs", table.best)):
         print(f"optimal motion, {name}: {r.iterations} iterations, stationarity "
               f"{r.stationarity:.2g} (threshold {r.threshold:.2g}), dynamics gap "
