@@ -65,7 +65,11 @@ class OptimalParams:
         foothold_weight: Weight of a foot's squared distance to its foothold at its touch-down
             knot, per m² (a foot that lands off it is pulled onto it in one knot: it slides).
         clearance_weight: Weight of a swing foot's squared depth below the ground at a knot,
-            per m² (:func:`ground_heights`; a barrier, zero above it).
+            per m² (:func:`ground_heights`; a barrier, zero above it). 1e7 holds Solo-12's
+            optimal trot's swing feet within 0.02 mm of the ground (1.5 mm below it without);
+            1e8 holds them within 0.002 mm but its Hessian, which switches on where a foot
+            leaves the ground, kept a 40-iteration solve of Solo-12's trot on 16 knots from
+            closing its dynamics gap (1.6e-4).
         limit_weight: Weight of the position, speed and friction barriers.
         periodic_weight: Weight of the terminal periodicity cost.
         iterations: Box-FDDP iterations at most.
@@ -82,7 +86,7 @@ class OptimalParams:
     swing_weight: float = 1e2
     landing_weight: float = 1e3
     foothold_weight: float = 1e8
-    clearance_weight: float = 1e8
+    clearance_weight: float = 1e7
     limit_weight: float = 1e3
     periodic_weight: float = 1e4
     iterations: int = 100
