@@ -160,6 +160,30 @@ def test_a_trots_rebuilt_base_balances_its_two_feet(trot, monkeypatch):
     assert "cannot push a moment about the line through them" in why
 
 
+def test_a_trot_without_four_foot_phases_is_left_splined_and_says_so():
+    """Duty factor 0.5: the diagonal pairs swap at one knot, no four-foot phase to fade a roll
+    in or out; the rebuild leaves both two-foot phases splined and names them."""
+    from dataclasses import replace
+
+    from hexaleg.design.codesign.build import default_gait
+
+    run = hexaleg.Scenario.load("solo12")
+    robot = run.model
+    walk = hexaleg.gait(robot, replace(default_gait(robot, "solo12", 0.3, None, 100),
+                                       duty_factor=0.5))
+    thin = slice(None, None, 5)
+    knots = hexaleg.Motion(t=walk.t[thin], q=walk.q[thin], v=walk.v[thin], a=walk.a[thin],
+                           stance=walk.stance[thin], feet=walk.feet[thin], period=walk.period,
+                           distance=walk.distance, info=dict(walk.info))
+    assert (knots.stance.sum(axis=1) == 2).all()
+    rebuilt = task_space_motion(robot, knots, np.where(knots.stance[..., None], knots.feet, 0.0),
+                                per_knot=4)
+    assert rebuilt.info["unbalanced two-point phases"] == [
+        f"{t:.4f} s" for t in (0.0, walk.period / 2)]
+    assert rebuilt.info["largest roll about a support line"] == 0.0
+    np.testing.assert_allclose(rebuilt.q[::4], knots.q, atol=1e-9)
+
+
 def _rate_error(robot, motion):
     """Largest gap between the base's angular velocity and the central difference of its
     configurations, rad/s."""
