@@ -26,6 +26,9 @@ import os
 import pickle
 import time
 
+import numpy as np
+import pinocchio as pin
+
 import hexaleg
 from hexaleg.design.chain.groups import design_groups
 from hexaleg.design.codesign.build import default_gait
@@ -33,7 +36,28 @@ from hexaleg.design.codesign.optimal_rows import optimal_rows
 from hexaleg.design.codesign.servo import simulated_run
 from hexaleg.motion.legged import gait
 from hexaleg.optimal.problem import OptimalParams
+from hexaleg.optimal.solve import OptimalResult
 from hexaleg.robot.springs import SpringSet
+
+
+def _rebuild_figures(result: OptimalResult) -> str:
+    """How far the rebuilt cycle's base is from the solver's knots, how far it rolls about a
+    two-foot support line, and how deep its swing feet go below the floor (the lowest stance
+    foot of the cycle: level ground), at the knots and between them."""
+    knots, rebuilt = result.motion, result.task_space
+    per = rebuilt.info["per_knot"]
+    offset = np.abs(rebuilt.q[::per, :3] - knots.q[:, :3]).max()
+    turn = max(np.linalg.norm(pin.log3(pin.Quaternion(a[3:7]).toRotationMatrix().T
+                                       @ pin.Quaternion(b[3:7]).toRotationMatrix()))
+               for a, b in zip(rebuilt.q[::per], knots.q, strict=True))
+    floor = rebuilt.feet[..., 2][rebuilt.stance].min()
+    depth_knots = (floor - knots.feet[..., 2][~knots.stance]).max(initial=0.0)
+    depth = (floor - rebuilt.feet[..., 2][~rebuilt.stance]).max(initial=0.0)
+    roll = rebuilt.info["largest roll about a support line"]
+    return (f"largest roll about a support line {1e3 * roll:.2f} mrad, "
+            f"base within {1e3 * offset:.2f} mm and {1e3 * turn:.2f} mrad of its knots; swing "
+            f"feet at most {1e3 * depth_knots:.3f} mm below the floor at the knots, "
+            f"{1e3 * depth:.3f} mm between them")
 
 
 def main() -> None:
@@ -93,13 +117,16 @@ def main() -> None:
             value, verdict, _ = simulated_run(robot, motion, run.actuator, s, k, run.contact,
                                               "on")
             sims.append(f"{value:.2f}" if value is not None else f"— ({verdict})")
-        print(f"    {row.label:46s} {row.predicted:7.2f}   {', '.join(sims)}", flush=True)
+        predicted = f"{row.predicted:7.2f}" if row.predicted is not None else "      —"
+        print(f"    {row.label:46s} {predicted}   {', '.join(sims)}", flush=True)
     for name, r in (("no springs", table.bare), ("its springs", table.best)):
         print(f"optimal motion, {name}: {r.iterations} iterations, stationarity "
               f"{r.stationarity:.2g} (threshold {r.threshold:.2g}), dynamics gap "
               f"{r.dynamic_gap:.2g}, residual {r.residual:.2g} N·m, friction use "
               f"{r.friction_use:.3f}, stance slip {r.slip:.3g} m/s, drift {r.drift:.2g} m, "
               f"periodicity {r.periodicity:.2g}, {r.seconds:.0f} s", flush=True)
+    for name, r in (("no springs", table.bare), ("its springs", table.best)):
+        print(f"optimal motion, {name}, rebuilt: {_rebuild_figures(r)}", flush=True)
     c1 = os.times()
     cpu = (c1.user - c0.user) + (c1.system - c0.system)
     print(f"wall {time.perf_counter() - t0:.0f} s, CPU {cpu:.0f} s", flush=True)

@@ -112,3 +112,62 @@ def test_the_gains_are_dead_beat_for_the_knot():
     assert e + dt * v1 == pytest.approx(0.0, abs=1e-18)
     with pytest.raises(InvalidParameterError, match="dt"):
         contact_gains(0.0)
+
+
+def test_the_ground_under_a_swing_foot_is_the_lower_of_its_two_footholds():
+    """One leg, six knots: down at 0–1 and 5, in swing at 2–4; the cycle climbs 30 mm (a
+    slope's stride), so the foothold it lands on at knot 5 … and the one of the next cycle's
+    knot 0 are 30 mm higher than this cycle's."""
+    from hexaleg.optimal.problem import ground_heights
+
+    stance = np.array([[True], [True], [False], [False], [False], [True]])
+    footholds = np.zeros((6, 1, 3))
+    footholds[[0, 1], 0] = [0.0, 0.0, 0.10]
+    footholds[5, 0] = [0.2, 0.0, 0.12]
+    displacement = np.eye(4)
+    displacement[:3, 3] = [0.3, 0.0, 0.03]
+    ground = ground_heights(stance, footholds, displacement)
+    np.testing.assert_allclose(ground[2:5, 0], 0.10)
+    assert np.isnan(ground[[0, 1, 5], 0]).all()
+    # the swing that runs past the cycle's end lands on the next cycle's foothold
+    stance = np.array([[True], [True], [True], [True], [False], [False]])
+    footholds[:4, 0] = [0.0, 0.0, 0.10]
+    ground = ground_heights(stance, footholds, displacement)
+    np.testing.assert_allclose(ground[4:, 0], 0.10)  # min(0.10, 0.13)
+    displacement[2, 3] = -0.03  # downhill: the next cycle's foothold is the lower
+    np.testing.assert_allclose(ground_heights(stance, footholds, displacement)[4:, 0], 0.07)
+
+
+def test_a_swing_foot_below_the_ground_is_penalised(run, built):
+    """The clearance barrier of a swing knot is zero with the foot above the ground and grows
+    as the square of its depth below it (the whole robot lowered until the swing foot is 1 mm,
+    then 2 mm under); a stance foot has none."""
+    import pinocchio as pin
+
+    from hexaleg.optimal.problem import ground_heights
+
+    robot = run.model
+    nq = robot.model.nq
+    ground = ground_heights(built.stance, built.footholds, built.displacement)
+    k = int(np.flatnonzero((~built.stance).any(axis=1))[0])
+    j = int(np.flatnonzero(~built.stance[k])[0])
+    name = f"{robot.legs[j].name}_clearance"
+    model = built.problem.runningModels[k]
+    data = model.createData()
+
+    def cost(x):
+        model.calc(data, x, np.zeros(model.nu))
+        return data.differential.costs.costs[name].cost
+
+    x = built.x_warm[k].copy()
+    pin.framesForwardKinematics(robot.model, robot.data, x[:nq])
+    height = robot.data.oMf[robot.legs[j].foot_frame_id].translation[2] - ground[k, j]
+    assert height > 0 and cost(x) == 0.0
+    x[2] -= height + 1e-3
+    below = cost(x)
+    assert below == pytest.approx(0.5 * 1e-6, rel=1e-6)  # ½ depth², weighed in the sum
+    x[2] -= 1e-3
+    assert cost(x) == pytest.approx(4 * below, rel=1e-6)
+    assert all(f"{leg.name}_clearance" not in built.problem.runningModels[k].differential
+               .costs.costs.todict() for leg, down in zip(robot.legs, built.stance[k],
+                                                          strict=True) if down)

@@ -93,6 +93,7 @@ def _documented(first: str) -> list[tuple[float, ...]]:
 
 
 @pytest.mark.parametrize(("first", "log"), [
+    ("Solo-12 row, rebuilt and balanced", "bench_optimal_rows_solo12_balanced.log"),
     ("Solo-12 row", "bench_optimal_rows_solo12_hold.log"),
     ("Solo-12 row, 300 iterations", "bench_optimal_rows_solo12_hold_300.log"),
     ("row (whole command)", "codesign_motion_optimal.log"),
@@ -197,16 +198,32 @@ def test_the_rebuilt_duty_cycles_are_the_kept_logs():
         assert f"{float(value):.2f}" in text, value
 
 
-def test_the_rebuilt_trot_is_the_kept_log():
-    """Solo-12's trot rebuilt: the gait rows' numbers and the base wrench the two stance feet
-    miss are the kept log's."""
+def test_the_rebuilt_trot_is_the_kept_logs():
+    """Solo-12's trot rebuilt: the base wrench the two stance feet missed with the base splined
+    (bench_optimal_rows_solo12_task_space.log), then with it rolled about their support line
+    and the swing feet above the ground (bench_optimal_rows_solo12_balanced.log): the solver's
+    figures, the roll, the base's distance from its knots and the swing feet's depth."""
     text = _paragraph("**Solo-12's trot, rebuilt**")
     log = (LOGS / "bench_optimal_rows_solo12_task_space.log").read_text(encoding="utf-8")
-    for row in _logged("bench_optimal_rows_solo12_task_space.log")[:2]:
-        for value in row:
-            assert f"{value:.2f}" in text, value
     for miss in re.findall(r"miss the base rows by ([0-9.]+)", log):
         assert f"{float(miss):.2f}" in text, miss
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("**Its base rolled about the support line**"):
+               doc.index("**Duty factor 0.9, rebuilt**")]
+    log = (LOGS / "bench_optimal_rows_solo12_balanced.log").read_text(encoding="utf-8")
+    solver = re.search(r"the solver's own J/m at its knots: ([0-9.]+) \(no springs\), ([0-9.]+)",
+                       log)
+    assert solver
+    numbers = list(solver.groups())
+    for name in ("no springs", "its springs"):
+        m = re.search(rf"^optimal motion, {name}, rebuilt: largest roll about a support line "
+                      r"([0-9.]+) mrad, base within ([0-9.]+) mm and ([0-9.]+) mrad of its knots; "
+                      r"swing feet at most ([0-9.]+) mm below the floor at the knots, ([0-9.]+) "
+                      r"mm between them$", log, re.MULTILINE)
+        assert m, name
+        numbers += list(m.groups())
+    for number in numbers:
+        assert number in text, number
 
 
 def test_the_diagnosis_is_the_kept_log():
