@@ -36,7 +36,13 @@ from hexaleg.simulation import balance, falls, measures, pressure, stepping
 from hexaleg.simulation.controllers import COMPLIANCE, Servo, controls, reference
 from hexaleg.simulation.ground import Ground
 from hexaleg.simulation.model import SimModel, build_model
-from hexaleg.simulation.timestep import automatic_timestep, check_steps, cycle_timestep
+from hexaleg.simulation.timestep import (
+    REFINEMENTS,
+    automatic_timestep,
+    chattered,
+    check_steps,
+    cycle_timestep,
+)
 
 VERDICTS: tuple[str, ...] = ("walks", "stalled", "short", "overran", "untracked", "tipped",
                               "fell", "diverged")
@@ -264,6 +270,8 @@ class Simulation:
             springs, the timestep's probe, building the models, both runs and their measures
             (and the gait's inverse dynamics where ``prepared`` was not given); not MuJoCo's
             import, which a process's first simulation loads before the clock starts.
+        refined: Why the automatic timestep was halved, one line a halving
+            (:func:`~hexaleg.simulation.timestep.chattered`); empty when it was not.
     """
 
     robot: Robot
@@ -276,6 +284,7 @@ class Simulation:
     baseline: Run
     prepared: Prepared
     wall: float = 0.0
+    refined: tuple[str, ...] = ()
 
     @property
     def walks(self) -> bool:
@@ -471,7 +480,26 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
                          motion, settings, closed)
     if settings.feedback == "auto" and not closed and any(r.verdict == "fell"
                                                           for r in runs.values()):
+        closed = True  # fell: close it
         runs = side_by_side({name: (models.get(name) or runs[name].sim, analyses[name])
-                             for name in analyses}, motion, settings, True)  # fell: close it
+                             for name in analyses}, motion, settings, closed)
+    refined: list[str] = []
+    for _ in range(REFINEMENTS if settings.timestep is None and baseline is None else 0):
+        why = chattered([r.walk.contact_losses for r in runs.values() if r.walk is not None], dt)
+        if not why:
+            break
+        finer = cycle_timestep(dt / 2, motion.period)
+        try:
+            check_steps(robot, settings.cycles, motion.period, finer, given=False)
+        except InvalidParameterError as err:  # no finer run fits: these stand, and say why
+            refined.append(f"{why}; not simulated again at {finer:.3g} s: {err}")
+            break
+        dt = finer
+        refined.append(f"{why}, so the runs were simulated again at {dt:.3g} s")
+        models = {name: build_model(robot, motion, prepared.motor, springs=s, servo=servo,
+                                    ground=ground, timestep=dt, like=like)
+                  for name, s in (("springs", springs), ("baseline", SpringSet()))}
+        runs = side_by_side({name: (sim, analyses[name]) for name, sim in models.items()},
+                            motion, settings, closed)
     return Simulation(robot, motion, settings, springs, analysis, base, runs["springs"],
-                      runs["baseline"], prepared, time.perf_counter() - start)
+                      runs["baseline"], prepared, time.perf_counter() - start, tuple(refined))
