@@ -916,3 +916,35 @@ def test_codesign_page_quotes_the_codesign_bench_log():
             ("84.5 s wall and 137.8 s CPU with `--no-rules`",
              "--no-rules (default robot, 0.06 m/s): 84.5 s wall, 0.70 of the 120 s target (met "
              "on this machine); 137.8 s CPU")))
+
+
+def test_simulate_page_quotes_the_integration_block_where_feet_chatter():
+    """docs/simulate.md's timestep halved where feet chatter (#54): HyQ's default trot, Solo-8's
+    trot and anymal-kinova's 8 cycles on the merged code are newcomers_simulate.log's block
+    "integration", each row beside its run's summary line, and the note the run printed."""
+    log = (ROOT / "analysis" / "bench_logs" / "newcomers_simulate.log").read_text()
+    now = log[log.index("# ===== integration"):]
+    page = (DOCS / "simulate.md").read_text()
+    part = " ".join(page[page.index("**Feet that chatter: the timestep halved.**"):
+                         page.index("The Adams model's printed-units")].split())
+    assert_quoted(part, now, [
+        ("| HyQ, default | position | +34.09 % (+33.68 %) | 1319 / 2001 (1349 / 2034) |",
+         "hyq (position servo, balance feedback): predicted saving +33.68 % (electrical 1349 J "
+         "vs 2034 J per cycle); simulated +34.09 % (1319 J vs 2001 J)"),
+        ("| | feedforward + PD | +33.90 % | 1340 / 2027 |",
+         "simulated +33.90 % (1340 J vs 2027 J)"),
+        ("| Solo-8, trot, ODRI-4004 | position | +31.98 % (+31.58 %) | 8.222 / 12.09 (8.39 / "
+         "12.26) |", "simulated +31.98 % (8.222 J vs 12.09 J)"),
+        ("| | feedforward + PD | +31.77 % | 8.298 / 12.16 |",
+         "simulated +31.77 % (8.298 J vs 12.16 J)"),
+        ("| anymal-kinova, 8 cycles | position | +22.73 % (+22.09 %) | 301 / 389.6 (312.5 / "
+         "401.1) |", "simulated +22.73 % (301 J vs 389.6 J)"),
+        ("| | feedforward + PD | +22.20 % | 309 / 397.1 |",
+         "simulated +22.20 % (309 J vs 397.1 J)"),
+        ("HyQ's lost 14 % (position) and 39 % (feedforward) at 0.24 ms",
+         "the feet lost the ground in 14% of their stance samples at the automatic timestep "
+         "0.000242 s"),
+        ("HyQ's lost 14 % (position) and 39 % (feedforward) at 0.24 ms",
+         "the feet lost the ground in 39% of their stance samples")])
+    assert "CHATTER = 0.05" in (ROOT / "src" / "hexaleg" / "simulation" / "timestep.py"
+                                ).read_text()  # "over 5 %"
