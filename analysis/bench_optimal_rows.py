@@ -85,7 +85,7 @@ def main() -> None:
     print("the same four motions, every simulation closed loop (balance feedback on: a position "
           "servo is asked for the plan's torque):", flush=True)
     played = (gait(robot, base), gait(robot, chosen), table.bare.task_space,
-              table.best.task_space)
+              table.alternation.motion)
     fitted = (SpringSet(), springs, SpringSet(), table.springs)
     for row, motion, s in zip(table.rows, played, fitted, strict=True):
         sims = []

@@ -9,7 +9,9 @@ rows, each in electrical J/m:
 1. the default gait without springs,
 2. the parametric co-design (its chosen gait with its inner-program springs),
 3. the optimal motion without springs,
-4. the optimal motion with its springs (the alternation's) — the springs to buy of this table.
+4. the optimal motion with its springs (the alternation's) — the springs to buy of this table;
+   the co-design's gait with its springs again when no optimal cycle is predicted below it (the
+   alternation never ends worse than the gait it starts from: ``kept_gait``).
 
 An optimal motion is played and predicted as the cycle rebuilt in task space
 (:attr:`~hexaleg.optimal.solve.OptimalResult.task_space`: its base and swing feet through the
@@ -23,8 +25,9 @@ booked 9.21; the rebuilt cycle for 9.44, predicted 9.45).
 electrical energy per metre (the co-design's rows as the co-design computes them; an optimal
 motion's on its task-space cycle, objective ``joule``, the simulation's feedforward). The
 solver's own figure at its knots (the exact energy model at its motor torques,
-:attr:`~hexaleg.optimal.solve.OptimalResult.energy_per_metre`) is what the alternation compares
-and is reported beside it. *Simulated* is MuJoCo's (:func:`hexaleg.simulation.run.simulate`,
+:attr:`~hexaleg.optimal.solve.OptimalResult.energy_per_metre`) is reported beside it; the
+alternation designs its springs on the rebuilt cycle and judges its rounds by this prediction.
+*Simulated* is MuJoCo's (:func:`hexaleg.simulation.run.simulate`,
 default settings, the feedforward of each motion from the force program on it) electrical
 energy per metre walked under each controller of the servo, every row with the same
 ``feedback`` setting (``"auto"``: balance feedback where the gait needs it or where it fell
@@ -48,13 +51,12 @@ from hexaleg.design.codesign.alternation import (
     Keep,
     alternate,
     computed,
+    predicted_per_metre,
 )
 from hexaleg.design.codesign.servo import simulated_run
 from hexaleg.design.search.optimal import Groups
 from hexaleg.design.springs.law_json import spring_entry
 from hexaleg.dynamics.contact import ContactParams
-from hexaleg.dynamics.prepare import prepare
-from hexaleg.errors import HexalegError
 from hexaleg.motion.legged import gait
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.trajectory import Motion
@@ -143,9 +145,10 @@ class OptimalRows:
     @property
     def motions(self) -> dict[str, Motion]:
         """The optimal motions by file stem, ``optimal_no_springs`` and ``optimal_springs``: each
-        cycle rebuilt in task space, as the rows play it."""
+        cycle rebuilt in task space, as the rows play it (the latter the co-design's gait when
+        the alternation kept it)."""
         return {"optimal_no_springs": self.bare.task_space,
-                "optimal_springs": self.best.task_space}
+                "optimal_springs": self.alternation.motion}
 
     def data(self) -> dict[str, Any]:
         """codesign.json's ``optimal`` key: the rows, the springs to buy and whether a
@@ -170,6 +173,9 @@ class OptimalRows:
             "residual": q(max(self.bare.residual, self.best.residual), "N·m"),
             "no_springs": solver(self.bare), "springs_motion": solver(self.best),
             "alternation": {"energies": [q(e, "J/m") for e in alt.energies],
+                            "measure": "hexaleg's prediction of the rebuilt cycle (first: the "
+                                       "gait it starts from)",
+                            "kept_gait": alt.kept_gait,
                             "rounds": len(alt.rounds), "gap": q(alt.gap, "1")},
             "wall": q(self.wall, "s"),
         }
@@ -187,13 +193,17 @@ class OptimalRows:
                     f"      — (no prediction: {r.unpredicted})")
             out.append(f"    {r.label:46s} {said}   {sims}")
         b = self.best
+        trail = " → ".join("—" if e is None else f"{e:.3f}" for e in self.alternation.energies)
         out.append(f"    the solver's own J/m at its knots: {self.bare.energy_per_metre:.2f} (no "
                    f"springs), {b.energy_per_metre:.2f} (its springs); the rows predict and play "
                    "each cycle rebuilt in task space")
         out.append(f"    residual {max(self.bare.residual, b.residual):.1g} N·m, stationarity "
                    f"{b.stationarity:.2g} after {b.iterations} iterations (threshold "
                    f"{b.threshold:.2g}), friction use {b.friction_use:.2f}, alternation "
-                   f"{' → '.join(f'{e:.3f}' for e in self.alternation.energies)} J/m")
+                   f"{trail} J/m predicted (from the gait's)")
+        if self.alternation.kept_gait:
+            out.append("    no optimal cycle was predicted below the co-design's gait: the last "
+                       "row is that gait with its springs")
         names = ", ".join(self.springs) or "none"
         out.append(f"    springs to buy for it ({self.family}): {names}" + (
             "" if self.proven else f" — unproven: it does not walk under "
@@ -259,7 +269,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
     cases = ((LABELS[0], predicted[0], gait(robot, default), SpringSet()),
              (LABELS[1], predicted[1], motion, springs),
              (LABELS[2], None, bare.task_space, SpringSet()),
-             (LABELS[3], None, alt.best.task_space, alt.springs))
+             (LABELS[3], alt.predicted, alt.motion, alt.springs))
     rows = []
     for label, value, played, fitted in cases:
         sims: dict[str, float | None] = {}
@@ -278,17 +288,4 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
                        time.perf_counter() - began)
 
 
-def predicted_per_metre(robot: Robot, motion: Motion, motor: Any, springs: SpringSet,
-                        contact: ContactParams) -> tuple[float | None, str]:
-    """hexaleg's prediction of ``motion`` with ``springs``: the force program's (objective
-    ``joule``, the simulation's feedforward) electrical energy per metre, J/m, and ``""``; or
-    None and why, when the analysis has no answer (no admissible forces, a torque beyond the
-    stall torque: the error's message)."""
-    try:
-        analysis = prepare(robot, motion, motor=motor, contact=contact).evaluate(springs, "joule")
-    except HexalegError as err:
-        return None, f"{type(err).__name__}: {err}"
-    return float(analysis.metrics["total"]["electrical"]) / motion.distance, ""
-
-
-__all__ = ["LABELS", "MotionRow", "OptimalRows", "optimal_rows", "predicted_per_metre"]
+__all__ = ["LABELS", "MotionRow", "OptimalRows", "optimal_rows"]
