@@ -38,7 +38,7 @@ def _rows(position: float | None) -> OptimalRows:
                      {"feedforward": "walks",
                       "position": "walks" if position is not None else "fell: at 1 s"})
     return OptimalRows((*sims, last), springs, "linear", _solved(9.6), alt, hexaleg.load(),
-                       "both", 200.0)
+                       "both", 200.0, "on")
 
 
 def test_the_table_says_what_backs_the_springs():
@@ -53,6 +53,7 @@ def test_the_table_says_what_backs_the_springs():
     assert data["residual"] == {"value": 7e-15, "unit": "N·m"}
     assert [e["value"] for e in data["alternation"]["energies"]] == [10.0, 9.3, 9.1]
     assert data["alternation"]["kept_gait"] is False
+    assert data["feedback"] == "on" and "(balance feedback on)" in unproven.lines()[0]
     assert data["springs"][0]["joint"] == "femur" and data["proven"] is False
     assert data["rows"][0]["loops"] == {"feedforward": "open loop",
                                         "position": "balance feedback"}

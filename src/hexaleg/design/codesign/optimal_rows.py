@@ -44,6 +44,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from hexaleg.checks import one_of
 from hexaleg.design.codesign.alternation import (
     PROGRESS,
     SMOOTH_FAMILIES,
@@ -63,6 +64,7 @@ from hexaleg.motion.trajectory import Motion
 from hexaleg.quantities import quantity as q
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
+from hexaleg.simulation.balance import MODES as FEEDBACK
 from hexaleg.simulation.controllers import controllers_of
 
 LABELS = ("default gait, no springs", "parametric co-design (its gait and springs)",
@@ -121,6 +123,8 @@ class OptimalRows:
         robot: The robot (the motion files are written for it).
         servo: The servo the rows were simulated under.
         wall: Wall time of this stage, s.
+        feedback: The simulations' balance feedback setting, the same for every row
+            (:data:`~hexaleg.simulation.balance.MODES`).
     """
 
     rows: tuple[MotionRow, ...]
@@ -131,6 +135,7 @@ class OptimalRows:
     robot: Robot
     servo: str
     wall: float
+    feedback: str = "auto"
 
     @property
     def best(self) -> Any:
@@ -168,6 +173,7 @@ class OptimalRows:
         alt = self.alternation
         return {
             "rows": [r.data() for r in self.rows], "servo": self.servo,
+            "feedback": self.feedback,
             "springs": [spring_entry(j, s) for j, s in self.springs.items()],
             "family": self.family, "proven": self.proven,
             "residual": q(max(self.bare.residual, self.best.residual), "N·m"),
@@ -184,7 +190,8 @@ class OptimalRows:
         """Lines for the terminal: the rows and the springs' proof."""
         controllers = list(self.rows[0].simulated)
         out = ["  optimal motion (whole-body optimal control, the springs in the dynamics): "
-               "J/m predicted, simulated " + ", ".join(controllers)]
+               "J/m predicted, simulated " + ", ".join(controllers)
+               + f" (balance feedback {self.feedback})"]
         for r in self.rows:
             sims = ", ".join((f"{v:.2f}" if v is not None else f"— ({r.verdicts[k]})")
                              + (f" ({r.loops[k]})" if r.loops.get(k) else "")
@@ -242,8 +249,10 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
             solves of the run's killed process); None: every solve computed.
 
     Raises:
-        BackendError: no usable Crocoddyl (the ``optimal`` extra).
+        BackendError: no usable Crocoddyl (the ``optimal`` extra). UnknownNameError: a
+            ``feedback`` outside :data:`~hexaleg.simulation.balance.MODES`.
     """
+    feedback = one_of("feedback", feedback, FEEDBACK)
     from hexaleg.optimal.problem import OptimalParams, build_problem  # needs Crocoddyl
     from hexaleg.optimal.solve import solve
 
@@ -285,7 +294,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
         rows.append(MotionRow(label, value, sims, verdicts, loops, why))
         tell(f"simulated {label} under {' and '.join(controllers)}")
     return OptimalRows(tuple(rows), alt.springs, family, bare, alt, robot, servo,
-                       time.perf_counter() - began)
+                       time.perf_counter() - began, feedback)
 
 
 __all__ = ["LABELS", "MotionRow", "OptimalRows", "optimal_rows"]
