@@ -58,6 +58,20 @@ def test_feedback_is_named_as_simulate_names_it_and_needs_the_optimal_rows(tmp_p
     assert "always" in err and "auto" in err and "off" in err
 
 
+def test_timing_is_a_decision_of_the_optimal_rows_only(tmp_path, capsys):
+    """``--timing search`` searches the optimal motion's contact timing: without ``--motion
+    optimal`` it is refused by name before any work; an unknown value is named."""
+    args = build_parser().parse_args(["codesign", "--motion", "optimal", "--timing", "search"])
+    assert args.timing == "search" and build_parser().parse_args(["codesign"]).timing is None
+    assert main(["codesign", "--timing", "search", "--out", str(tmp_path / "o")]) == 2
+    assert "timing = 'search'" in capsys.readouterr().err
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[codesign]\nmotion = "optimal"\ntiming = "free"\n')
+    assert main(["codesign", "--config", str(bad), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert "free" in err and "search" in err
+
+
 def test_config_table_is_checked(tmp_path):
     bad = tmp_path / "bad.toml"
     bad.write_text("[codesign]\nspeeed = 0.1\n")

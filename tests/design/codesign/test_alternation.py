@@ -9,7 +9,12 @@ import numpy as np
 import pytest
 
 import hexaleg
-from hexaleg.design.codesign.alternation import Alternation, Round, alternate
+from hexaleg.design.codesign.alternation import (
+    Alternation,
+    Round,
+    alternate,
+    predicted_per_metre,
+)
 from hexaleg.errors import InvalidParameterError, UnknownNameError
 
 
@@ -107,6 +112,24 @@ def test_it_never_ends_worse_than_the_gait_it_starts_from(robot, motions, solver
     assert result.kept_gait and result.motion is walk and result.springs is springs
     assert result.predicted == result.baseline == result.energies[-1]
     assert "the gait and its springs kept" in lines[-1]
+
+
+def test_a_cycle_short_of_its_stride_is_not_judged(robot, motions):
+    """A rebuilt cycle that covers 90 % of its gait's stride walks slower than the required
+    speed: its energy per metre is another task's, so it gets no verdict (and its why)."""
+    from hexaleg.design.codesign.alternation import judged
+
+    walk, _, springs = motions
+    run = hexaleg.Scenario.load("hexaleg")
+    short = hexaleg.gait(robot, hexaleg.GaitParams(samples=100, stride_length=0.9 * walk.distance,
+                                                   speed=None))
+    value, why = judged(robot, SimpleNamespace(task_space=short), walk, run.actuator, springs,
+                        run.contact)
+    assert value is None and "covers 90.0% of the gait's" in why
+    value, why = judged(robot, SimpleNamespace(task_space=walk), walk, run.actuator, springs,
+                        run.contact)
+    assert why == "" and value == predicted_per_metre(robot, walk, run.actuator, springs,
+                                                      run.contact)[0]
 
 
 def test_bad_options_are_named(robot, walk):

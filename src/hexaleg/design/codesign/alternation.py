@@ -12,7 +12,8 @@ Block-coordinate descent (Bertsekas, *Nonlinear Programming*, 3rd ed., §3.7) on
 Both steps, and the verdict on a round, work on the motion hexaleg plays and predicts: the
 solver's cycle rebuilt in task space (:attr:`~hexaleg.optimal.solve.OptimalResult.task_space`,
 its stance feet held on their footholds), not the solver's knots. The springs are designed on
-the rebuilt cycle, and a round is judged by :func:`predicted_per_metre` — the force program's
+the rebuilt cycle, and a round is judged by :func:`judged` (:func:`predicted_per_metre`, where
+the rebuilt cycle covers its gait's stride) — the force program's
 electrical energy per metre of the rebuilt cycle with the round's springs, the figure the rows
 of ``codesign --motion optimal`` show — not by the solver's own figure at its knots (which books
 a spring's work by a left Riemann sum and lets a stance foot slide between knots: 9.21 J/m on
@@ -73,6 +74,24 @@ def predicted_per_metre(robot: Robot, motion: Motion, motor: Any, springs: Sprin
     except HexalegError as err:
         return None, f"{type(err).__name__}: {err}"
     return float(analysis.metrics["total"]["electrical"]) / motion.distance, ""
+
+
+COVERED = 0.01
+"""How far an optimal cycle's rebuilt distance may be from its gait's, relative, and still be
+judged: a cycle whose knots fall short of the stride walks slower than the required speed, and
+its energy per metre is another task's (an unconverged solve covered 87 % of it)."""
+
+
+def judged(robot: Robot, result: Any, gait: Motion, motor: Any, springs: SpringSet,
+           contact: ContactParams) -> tuple[float | None, str]:
+    """The figure an optimal cycle is judged by: :func:`predicted_per_metre` of its cycle
+    rebuilt in task space with ``springs``, where it covers ``gait``'s distance within
+    :data:`COVERED`; else None and why."""
+    played = result.task_space
+    if abs(played.distance / gait.distance - 1.0) > COVERED:
+        return None, (f"its rebuilt cycle covers {played.distance / gait.distance:.1%} of the "
+                      f"gait's {gait.distance:.4g} m a cycle (not the required speed)")
+    return predicted_per_metre(robot, played, motor, springs, contact)
 
 
 def _below(new: float | None, old: float | None) -> bool:
@@ -166,8 +185,8 @@ class Alternation:
 def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams, *,
               springs: SpringSet | None = None, params: Any = None, family: str = "linear",
               groups: Groups | None = None, rounds: int = 4, tolerance: float = 0.01,
-              say: Callable[[str], None] | None = None, keep: Keep | None = None
-              ) -> Alternation:
+              say: Callable[[str], None] | None = None, keep: Keep | None = None,
+              first: Any = None) -> Alternation:
     """Alternate the optimal motion and its springs (module docstring).
 
     Args:
@@ -188,6 +207,8 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
         keep: Runs each solve, given what defines it (:data:`Keep`): a kept one
             (:class:`~hexaleg.design.codesign.optimal_stage.KeptSolves`) reads back a solve
             the run made before a kill; None: every solve computed.
+        first: The optimal cycle of ``gait`` with ``springs`` and ``params`` when it is solved
+            already (:mod:`~hexaleg.design.codesign.timing`'s choice); None: solved here.
 
     Raises:
         InvalidParameterError: a family outside :data:`SMOOTH_FAMILIES`, bad ``rounds`` or
@@ -200,14 +221,15 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
     from hexaleg.optimal.solve import solve
     params = params or OptimalParams()
     tell = say or (lambda _line: None)
-    current = first = springs or SpringSet()
+    current = given = springs or SpringSet()
     once = keep or computed
     baseline, _ = predicted_per_metre(robot, gait, actuator, current, contact)
-    best = once(("start", current, params),
-                lambda: solve(robot, build_problem(robot, gait, actuator, current, params),
-                              say=tell, every=PROGRESS))
+    best = first if first is not None else once(
+        ("start", current, params),
+        lambda: solve(robot, build_problem(robot, gait, actuator, current, params), say=tell,
+                      every=PROGRESS))
     start = best
-    best_predicted, _ = predicted_per_metre(robot, best.task_space, actuator, current, contact)
+    best_predicted, _ = judged(robot, best, gait, actuator, current, contact)
     start_predicted = best_predicted
     tell(f"start: {_shown(best_predicted)} J/m predicted rebuilt (the gait: "
          f"{_shown(baseline)}; the solver's {best.energy_per_metre:.4g} at its knots; "
@@ -237,18 +259,17 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
                           best.spring_torques),
                          functools.partial(warm_solve, design.springs, best))
         designed = design.analysis.metrics["total"]["electrical"] / played.distance
-        judged, _ = predicted_per_metre(robot, candidate.task_space, actuator, design.springs,
-                                        contact)
-        gap = (0.0 if judged is None else 1.0 if best_predicted is None
-               else 1.0 - judged / best_predicted)
-        accepted = _below(judged, best_predicted)
-        done.append(Round(design.springs, designed, candidate.energy_per_metre, judged,
+        value, _ = judged(robot, candidate, gait, actuator, design.springs, contact)
+        gap = (0.0 if value is None else 1.0 if best_predicted is None
+               else 1.0 - value / best_predicted)
+        accepted = _below(value, best_predicted)
+        done.append(Round(design.springs, designed, candidate.energy_per_metre, value,
                           accepted, time.perf_counter() - began))
         tell(f"round {k + 1}: springs {designed:.4g} J/m on the rebuilt cycle, re-optimised "
-             f"{_shown(judged)} J/m predicted rebuilt (the solver's "
+             f"{_shown(value)} J/m predicted rebuilt (the solver's "
              f"{candidate.energy_per_metre:.4g}; {'accepted' if accepted else 'rejected'})")
         if accepted:
-            best, current, best_predicted = candidate, design.springs, judged
+            best, current, best_predicted = candidate, design.springs, value
         if gap < tolerance:
             break
     kept = baseline is not None and not _below(best_predicted, baseline)
@@ -256,7 +277,7 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
         tell(f"no optimal cycle predicted below the gait ({_shown(best_predicted)} against "
              f"{_shown(baseline)} J/m): the gait and its springs kept")
     return Alternation(gait, baseline, start, start_predicted, best,
-                       first if kept else current, tuple(done), gap, kept)
+                       given if kept else current, tuple(done), gap, kept)
 
 
 def _shown(value: float | None) -> str:

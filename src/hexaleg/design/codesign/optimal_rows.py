@@ -55,6 +55,7 @@ from hexaleg.design.codesign.alternation import (
     predicted_per_metre,
 )
 from hexaleg.design.codesign.servo import simulated_run
+from hexaleg.design.codesign.timing import TIMINGS, TimingSearch, search_timing
 from hexaleg.design.search.optimal import Groups
 from hexaleg.design.springs.law_json import spring_entry
 from hexaleg.dynamics.contact import ContactParams
@@ -125,6 +126,8 @@ class OptimalRows:
         wall: Wall time of this stage, s.
         feedback: The simulations' balance feedback setting, the same for every row
             (:data:`~hexaleg.simulation.balance.MODES`).
+        timing: The contact timing's search, when the optimal motions' timing was searched
+            (:class:`~hexaleg.design.codesign.timing.TimingSearch`); None: the chosen gait's.
     """
 
     rows: tuple[MotionRow, ...]
@@ -136,6 +139,7 @@ class OptimalRows:
     servo: str
     wall: float
     feedback: str = "auto"
+    timing: TimingSearch | None = None
 
     @property
     def best(self) -> Any:
@@ -174,6 +178,7 @@ class OptimalRows:
         return {
             "rows": [r.data() for r in self.rows], "servo": self.servo,
             "feedback": self.feedback,
+            "timing": None if self.timing is None else self.timing.data(),
             "springs": [spring_entry(j, s) for j, s in self.springs.items()],
             "family": self.family, "proven": self.proven,
             "residual": q(max(self.bare.residual, self.best.residual), "N·m"),
@@ -199,6 +204,8 @@ class OptimalRows:
             said = (f"{r.predicted:7.2f}" if r.predicted is not None else
                     f"      — (no prediction: {r.unpredicted})")
             out.append(f"    {r.label:46s} {said}   {sims}")
+        if self.timing is not None:
+            out.append(self.timing.line())
         b = self.best
         trail = " → ".join("—" if e is None else f"{e:.3f}" for e in self.alternation.energies)
         out.append(f"    the solver's own J/m at its knots: {self.bare.energy_per_metre:.2f} (no "
@@ -222,6 +229,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
                  chosen: GaitParams, springs: SpringSet, predicted: tuple[float, float], *,
                  family: str = "linear", groups: Groups | None = None, servo: str = "both",
                  params: Any = None, rounds: int = 4, feedback: str = "auto",
+                 timing: str = "gait",
                  say: Callable[[str], None] | None = None, keep: Keep | None = None
                  ) -> OptimalRows:
     """The four rows (module docstring).
@@ -243,6 +251,10 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
         rounds: The alternation's rounds at most.
         feedback: The simulations' balance feedback, the same for every row (``"auto"``,
             ``"on"``, ``"off"``: :class:`hexaleg.simulation.run.Settings`).
+        timing: ``"gait"``: the optimal motions take ``chosen``'s contact timing;
+            ``"search"``: the timing searched about it
+            (:func:`~hexaleg.design.codesign.timing.search_timing`, with the alternation's
+            starting springs), and both optimal motions take the timing chosen.
         say: Where progress lines go.
         keep: Runs each optimal-control solve, given what defines it
             (:data:`~hexaleg.design.codesign.alternation.Keep`; a kept one reads back the
@@ -253,6 +265,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
             ``feedback`` outside :data:`~hexaleg.simulation.balance.MODES`.
     """
     feedback = one_of("feedback", feedback, FEEDBACK)
+    timing = one_of("timing", timing, TIMINGS)
     from hexaleg.optimal.problem import OptimalParams, build_problem  # needs Crocoddyl
     from hexaleg.optimal.solve import solve
 
@@ -262,10 +275,19 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
     start = springs
     if family not in SMOOTH_FAMILIES:
         family, start = "linear", SpringSet()
-    motion = gait(robot, chosen)
-    tell("optimal motion without springs, from the co-design's gait")
+    searched = None
+    timed = chosen
+    if timing == "search":
+        tell("contact timing searched about the co-design's gait, with its springs")
+        searched = search_timing(robot, chosen, motor, start, contact, params,
+                                 say=lambda line: tell(f"timing: {line}"), keep=keep)
+        timed = searched.chosen.params
+        tell(f"timing chosen: duty factor {timed.duty_factor:.3g}, period {timed.period:.4g} s")
+    motion = gait(robot, timed)
+    tell("optimal motion without springs, from the co-design's gait"
+         + ("" if searched is None else " at the timing chosen"))
     bare = (keep or computed)(
-        ("no springs", SpringSet(), params),
+        ("no springs", SpringSet(), params, *(() if searched is None else (timed,))),
         lambda: solve(robot, build_problem(robot, motion, motor, SpringSet(), params),
                       say=lambda line: tell(f"no springs: {line}"), every=PROGRESS))
     tell(f"optimal motion without springs: {bare.energy_per_metre:.3f} J/m "
@@ -273,10 +295,10 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
     tell("optimal motion with springs (alternation), from the co-design's gait and springs")
     alt = alternate(robot, motion, motor, contact, springs=start, params=params, family=family,
                     groups=groups, rounds=rounds, say=lambda line: tell(f"alternation: {line}"),
-                    keep=keep)
+                    keep=keep, first=None if searched is None else searched.chosen.result)
     controllers = controllers_of(servo)
     cases = ((LABELS[0], predicted[0], gait(robot, default), SpringSet()),
-             (LABELS[1], predicted[1], motion, springs),
+             (LABELS[1], predicted[1], gait(robot, chosen), springs),
              (LABELS[2], None, bare.task_space, SpringSet()),
              (LABELS[3], alt.predicted, alt.motion, alt.springs))
     rows = []
@@ -294,7 +316,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
         rows.append(MotionRow(label, value, sims, verdicts, loops, why))
         tell(f"simulated {label} under {' and '.join(controllers)}")
     return OptimalRows(tuple(rows), alt.springs, family, bare, alt, robot, servo,
-                       time.perf_counter() - began, feedback)
+                       time.perf_counter() - began, feedback, searched)
 
 
 __all__ = ["LABELS", "MotionRow", "OptimalRows", "optimal_rows"]
