@@ -100,7 +100,8 @@ def _documented(first: str) -> list[tuple[float, ...]]:
     ("row (whole command)", "codesign_motion_optimal.log"),
     ("row (its optimal stage, stance held)", "bench_optimal_rows_hold.log"),
     ("row (the search's best gait, stance held)", "bench_optimal_rows_best_hold.log"),
-    ("row (rebuilt in task space, open loop)", "bench_optimal_rows_judged.log")])
+    ("row (rebuilt in task space, open loop)", "bench_optimal_rows_judged.log"),
+    ("row (timing searched, open loop)", "bench_optimal_rows_timing.log")])
 def test_the_documented_rows_are_the_kept_logs(first, log):
     """Solo-12's table, the whole command's and its optimal stage rerun with the stance held
     come from runs too long for a test: the docs must print what their kept logs printed."""
@@ -110,14 +111,16 @@ def test_the_documented_rows_are_the_kept_logs(first, log):
         assert a == pytest.approx(b, abs=0.005, nan_ok=True)
 
 
-def test_the_closed_loop_rows_are_the_kept_log():
+@pytest.mark.parametrize(("first", "log"), [
+    ("row (rebuilt in task space, balance feedback)", "bench_optimal_rows_judged.log"),
+    ("row (timing searched, balance feedback)", "bench_optimal_rows_timing.log")])
+def test_the_closed_loop_rows_are_the_kept_log(first, log):
     """The rows rebuilt in task space simulated again with balance feedback on for every row:
     the docs print what the kept log's second table printed."""
-    lines = (LOGS / "bench_optimal_rows_judged.log").read_text(
-        encoding="utf-8").splitlines()
+    lines = (LOGS / log).read_text(encoding="utf-8").splitlines()
     head = next(k for k, line in enumerate(lines) if line.startswith("the same four motions"))
     logged = _parsed(lines[head + 1:head + 5])
-    documented = _documented("row (rebuilt in task space, balance feedback)")
+    documented = _documented(first)
     assert len(logged) == len(documented) == 4
     for a, b in zip(logged, documented, strict=True):
         assert a == pytest.approx(b, abs=0.005)
@@ -237,3 +240,37 @@ def test_the_diagnosis_is_the_kept_log():
     numbers += list(m.groups())
     for number in numbers:
         assert number in text, number
+
+
+def test_the_timing_search_is_the_kept_logs():
+    """The contact timing's section prints its kept logs: each timing's predicted and solver
+    J/m, the parametric co-design at the widened duty-factor bound and the optimal stage run
+    from it (the gait kept)."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("## The contact timing as a decision"):doc.index("## How it compares")]
+    log = (LOGS / "bench_optimal_rows_timing.log").read_text(encoding="utf-8")
+    tried = re.findall(r"^timing: duty factor ([0-9.]+), period ([0-9.]+) s: (?:([0-9.]+) J/m "
+                       r"predicted rebuilt|no prediction .*) \(the solver's ([0-9.]+)\)$", log,
+                       re.MULTILINE)
+    table = text[text.index("| timing (from G, with S) |"):].split("\n\n")[0].splitlines()[2:]
+    assert len(tried) == len(table) == 5
+    for (duty, period, predicted, solver), row in zip(tried, table, strict=True):
+        cells = [c.strip() for c in row.strip("|").split("|")]
+        assert cells[0].startswith(f"duty factor {duty}, period {period} s"), cells[0]
+        if predicted:  # the log's four significant digits
+            assert float(cells[1]) == pytest.approx(float(predicted), abs=0.0051)
+        else:
+            assert cells[1] == "—"
+        assert float(cells[2]) == pytest.approx(float(solver), abs=0.0051)
+    bound = (LOGS / "bench_codesign_duty_bound.log").read_text(encoding="utf-8")
+    m = re.search(r"^co-design at duty-factor bound 0.9: ([0-9.]+) J/m predicted, simulated "
+                  r"with balance feedback: feedforward ([0-9.]+), position ([0-9.]+)$", bound,
+                  re.MULTILINE)
+    assert m and all(v in text for v in m.groups())
+    widened = (LOGS / "bench_optimal_rows_widened.log").read_text(encoding="utf-8")
+    assert "the gait and its springs kept" in widened and "alternation keeps the gait" in text
+    for pattern in (r"start: ([0-9.]+) J/m", r"re-optimised ([0-9.]+) J/m",
+                    r"the gait's ([0-9.]+)|against ([0-9.]+) J/m\): the gait"):
+        m = re.search(pattern, widened)
+        assert m, pattern
+        assert next(v for v in m.groups() if v) in text, pattern
