@@ -274,3 +274,22 @@ def test_the_timing_search_is_the_kept_logs():
         m = re.search(pattern, widened)
         assert m, pattern
         assert next(v for v in m.groups() if v) in text, pattern
+
+
+def test_the_breakdown_is_the_kept_log():
+    """The table of what bounds the best cycle prints the kept log: each motion's electrical
+    J/m, its Joule heat, the rest, the motors' positive work and each joint class's electrical
+    J/m; and the spring designed one a joint."""
+    log = (LOGS / "bench_optimal_breakdown.log").read_text(encoding="utf-8")
+    motions = re.findall(r"^[^ #].*?: ([0-9.]+) J/m electrical, of which Joule ([0-9.]+) "
+                         r"\([0-9]+%\), mechanical through η ([0-9.]+); motors' positive work "
+                         r"([0-9.]+) J/m\n  coxa +electrical +([0-9.]+).*\n  femur +electrical +"
+                         r"([0-9.]+).*\n  tibia +electrical +([0-9.]+)", log, re.MULTILINE)
+    doc = DOC.read_text(encoding="utf-8")
+    table = doc[doc.index("| motion | electrical J/m |"):].split("\n\n")[0].splitlines()[2:]
+    assert len(motions) == len(table) == 3
+    for (e, joule, rest, work, coxa, femur, tibia), row in zip(motions, table, strict=True):
+        cells = [c.strip() for c in row.strip("|").split("|")][1:]
+        assert cells == [e, joule, rest, work, femur, tibia, coxa], row
+    joint = re.search(r"linear springs one design a joint: ([0-9.]+) J/m", log)
+    assert joint and f"reaches {joint[1]} J/m" in doc
