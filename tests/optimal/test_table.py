@@ -293,3 +293,6 @@ def test_the_breakdown_is_the_kept_log():
         assert cells == [e, joule, rest, work, femur, tibia, coxa], row
     joint = re.search(r"linear springs one design a joint: ([0-9.]+) J/m", log)
     assert joint and f"reaches {joint[1]} J/m" in doc
+    dead = (LOGS / "bench_optimal_breakdown_dead_zone.log").read_text(encoding="utf-8")
+    zone = re.search(r"dead_zone springs one design a class: ([0-9.]+) J/m", dead)
+    assert zone and f"class {zone[1]} (above" in doc
