@@ -9,7 +9,10 @@ default gait's energy per metre by hexaleg's pipeline (RNEA and the force progra
 and with the springs the project's design gives it (linear family, electrical metric). Then the
 optimal cycle without springs, and the alternation of the optimal cycle and its springs
 (:mod:`hexaleg.design.codesign.alternation`), each line of progress as it comes. Prints every
-row's J/m and its ratio to the default gait, the solver's figures (iterations, stationarity,
+row's J/m — an optimal cycle's by hexaleg's prediction of the cycle rebuilt in task space
+(:func:`~hexaleg.design.codesign.alternation.predicted_per_metre`, what the alternation judges
+and the rows of ``codesign --motion optimal`` show), the solver's own figure at its knots
+beside it — and its ratio to the default gait, the solver's figures (iterations, stationarity,
 residual, friction use, stance slip), the wall time against the target and the CPU share (this
 process's user + system CPU over the wall time: under 1 when other work shares the cores).
 ``--from-codesign`` also runs the parametric co-design (``hexaleg.codesign``, no rules, no
@@ -26,7 +29,7 @@ import sys
 import time
 
 import hexaleg
-from hexaleg.design.codesign.alternation import alternate
+from hexaleg.design.codesign.alternation import alternate, predicted_per_metre
 from hexaleg.design.search.optimal import optimal_springs
 from hexaleg.optimal.problem import OptimalParams, build_problem
 from hexaleg.optimal.solve import solve
@@ -77,12 +80,17 @@ def main() -> None:
     wall = time.perf_counter() - start
     cpu1 = os.times()
     cpu = (cpu1.user - cpu0.user) + (cpu1.system - cpu0.system)
+    bare_predicted, why = predicted_per_metre(robot, bare.task_space, run.actuator,
+                                              hexaleg.SpringSet(), run.contact)
     rows = {"default gait": default, "default gait, its linear springs": default_springs,
-            "optimal cycle, no springs": bare.energy_per_metre,
-            "optimal cycle, its springs (alternation)": alt.best.energy_per_metre}
+            "optimal cycle, no springs": bare_predicted or float("nan"),
+            "optimal cycle, its springs (alternation)": alt.predicted or float("nan")}
     if args.from_codesign:
         rows["parametric co-design (its rows' best)"] = best.per_metre
-        rows["optimal cycle from the co-design, its springs"] = alt_p.best.energy_per_metre
+        rows["optimal cycle from the co-design, its springs"] = alt_p.predicted or float("nan")
+    print(f"\npredicted: an optimal cycle rebuilt in task space{' (' + why + ')' if why else ''}"
+          f"; the solver's own J/m at its knots: {bare.energy_per_metre:.4g} (no springs), "
+          f"{alt.best.energy_per_metre:.4g} (its springs)")
     print(f"\n{'row':44s} {'J/m':>8s} {'× default':>10s}")
     for name, value in rows.items():
         print(f"{name:44s} {value:8.4g} {value / default:10.3f}")
@@ -95,11 +103,14 @@ def main() -> None:
               f"{r.friction_use:.3f}, slip {r.slip:.3g} m/s, drift {r.drift:.2g} m, "
               f"periodicity {r.periodicity:.2g}, "
               f"{r.seconds:.0f} s")
-    print(f"alternation: {len(alt.rounds)} rounds, energies {[round(e, 3) for e in alt.energies]}"
-          f", last gain {alt.gap:.3g}")
+    print(f"alternation: {len(alt.rounds)} rounds, predicted (from the gait's) "
+          f"{[None if e is None else round(e, 3) for e in alt.energies]}, last gain "
+          f"{alt.gap:.3g}, the gait kept: {alt.kept_gait}; rounds "
+          + "; ".join(f"springs {r.designed:.4g} on the cycle, solver {r.energy_per_metre:.4g}"
+                      for r in alt.rounds))
     if args.from_codesign:
-        print(f"alternation from the co-design: {len(alt_p.rounds)} rounds, energies "
-              f"{[round(e, 3) for e in alt_p.energies]}, last gain {alt_p.gap:.3g}")
+        print(f"alternation from the co-design: {len(alt_p.rounds)} rounds, predicted "
+              f"{alt_p.energies}, last gain {alt_p.gap:.3g}, the gait kept: {alt_p.kept_gait}")
     print(f"wall {wall:.0f} s = {wall / TARGET:.2f} × the {TARGET:.0f} s target; CPU share "
           f"{cpu / wall:.2f}")
     if args.json:

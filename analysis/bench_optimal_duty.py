@@ -33,9 +33,9 @@ from typing import Any
 
 import hexaleg
 from hexaleg.design.chain.groups import design_groups
+from hexaleg.design.codesign.alternation import predicted_per_metre
 from hexaleg.design.codesign.build import default_gait, floor_constraints
 from hexaleg.design.codesign.gait_evaluation import evaluate_gait
-from hexaleg.design.codesign.optimal_rows import predicted_per_metre
 from hexaleg.design.codesign.servo import simulated_run
 from hexaleg.dynamics.prepare import prepare
 from hexaleg.optimal.problem import OptimalParams, build_problem

@@ -7,6 +7,7 @@ extra and minutes.
 Run:  python analysis/bench_optimal_rows.py [--robot hexaleg] [--speed 0.06] [--grouping class]
                                             [--max-evaluations 200] [--restarts 2]
                                             [--chosen cd.pkl] [--iterations 100]
+                                            [--timing search]
 
 Needs the ``optimal`` extra. The parametric co-design (``hexaleg.codesign``, no rules, no
 simulation, no curve, the given grouping and search budget: its chosen gait and inner springs),
@@ -16,7 +17,9 @@ or both from the pickle ``--chosen`` names (written by this script, or by
 or ``--iterations``, one alternation round on the co-design's spring groups) with each row
 simulated under both servos; prints the rows as the command does, each optimal motion's solver
 figures, the wall and CPU time; then the four rows' motions simulated again with balance
-feedback on for every row (closed loop under both servos: apples to apples).
+feedback on for every row (closed loop under both servos: apples to apples). ``--timing search``
+searches the optimal motions' contact timing first (:mod:`hexaleg.design.codesign.timing`; log:
+analysis/bench_logs/bench_optimal_rows_timing.log).
 """
 
 from __future__ import annotations
@@ -71,6 +74,7 @@ def main() -> None:
                         "(read if it exists, else written after the search)")
     parser.add_argument("--iterations", type=int, default=100,
                         help="box-FDDP iterations of each solve (the command's: 100)")
+    parser.add_argument("--timing", default="gait", help="gait or search (the contact timing)")
     args = parser.parse_args()
     t0, c0 = time.perf_counter(), os.times()
     run = hexaleg.Scenario.load(args.robot)
@@ -103,13 +107,13 @@ def main() -> None:
     groups = design_groups(robot, tuple(robot.joint_classes), args.grouping)
     table = optimal_rows(robot, run.actuator, run.contact, base, chosen, springs,
                          (default, per_metre), groups=groups, rounds=1,
-                         params=OptimalParams(iterations=args.iterations),
+                         params=OptimalParams(iterations=args.iterations), timing=args.timing,
                          say=lambda line: print(line, flush=True))
     print("\n".join(table.lines()), flush=True)
     print("the same four motions, every simulation closed loop (balance feedback on: a position "
           "servo is asked for the plan's torque):", flush=True)
     played = (gait(robot, base), gait(robot, chosen), table.bare.task_space,
-              table.best.task_space)
+              table.alternation.motion)
     fitted = (SpringSet(), springs, SpringSet(), table.springs)
     for row, motion, s in zip(table.rows, played, fitted, strict=True):
         sims = []

@@ -42,7 +42,7 @@ def test_the_default_gaits_rows(default_rows):
 @pytest.mark.slow
 def test_the_optimal_rows(default_rows):
     pytest.importorskip("crocoddyl")
-    from hexaleg.design.codesign.alternation import alternate
+    from hexaleg.design.codesign.alternation import alternate, predicted_per_metre
     from hexaleg.optimal.problem import OptimalParams, build_problem
     from hexaleg.optimal.solve import solve
 
@@ -51,11 +51,13 @@ def test_the_optimal_rows(default_rows):
     params = OptimalParams(nodes=40)
     bare = solve(run.model, build_problem(run.model, run.motion(), run.actuator,
                                           hexaleg.SpringSet(), params))
-    assert rows["optimal cycle, no springs"] == pytest.approx(bare.energy_per_metre, abs=0.005)
+    predicted, _ = predicted_per_metre(run.model, bare.task_space, run.actuator,
+                                       hexaleg.SpringSet(), run.contact)
+    assert rows["optimal cycle, no springs"] == pytest.approx(predicted, abs=0.005)
     alt = alternate(run.model, run.motion(), run.actuator, run.contact, springs=springs.springs,
                     params=params, rounds=3)
     assert rows["optimal cycle with its springs (alternation)"] == pytest.approx(
-        alt.best.energy_per_metre, abs=0.005)
+        alt.predicted, abs=0.005)
 
 
 LOGS = Path(__file__).resolve().parents[2] / "analysis" / "bench_logs"
@@ -99,7 +101,8 @@ def _documented(first: str) -> list[tuple[float, ...]]:
     ("row (whole command)", "codesign_motion_optimal.log"),
     ("row (its optimal stage, stance held)", "bench_optimal_rows_hold.log"),
     ("row (the search's best gait, stance held)", "bench_optimal_rows_best_hold.log"),
-    ("row (rebuilt in task space, open loop)", "bench_optimal_rows_task_space.log")])
+    ("row (rebuilt in task space, open loop)", "bench_optimal_rows_judged.log"),
+    ("row (timing searched, open loop)", "bench_optimal_rows_timing.log")])
 def test_the_documented_rows_are_the_kept_logs(first, log):
     """Solo-12's table, the whole command's and its optimal stage rerun with the stance held
     come from runs too long for a test: the docs must print what their kept logs printed."""
@@ -109,14 +112,16 @@ def test_the_documented_rows_are_the_kept_logs(first, log):
         assert a == pytest.approx(b, abs=0.005, nan_ok=True)
 
 
-def test_the_closed_loop_rows_are_the_kept_log():
+@pytest.mark.parametrize(("first", "log"), [
+    ("row (rebuilt in task space, balance feedback)", "bench_optimal_rows_judged.log"),
+    ("row (timing searched, balance feedback)", "bench_optimal_rows_timing.log")])
+def test_the_closed_loop_rows_are_the_kept_log(first, log):
     """The rows rebuilt in task space simulated again with balance feedback on for every row:
     the docs print what the kept log's second table printed."""
-    lines = (LOGS / "bench_optimal_rows_task_space.log").read_text(
-        encoding="utf-8").splitlines()
+    lines = (LOGS / log).read_text(encoding="utf-8").splitlines()
     head = next(k for k, line in enumerate(lines) if line.startswith("the same four motions"))
     logged = _parsed(lines[head + 1:head + 5])
-    documented = _documented("row (rebuilt in task space, balance feedback)")
+    documented = _documented(first)
     assert len(logged) == len(documented) == 4
     for a, b in zip(logged, documented, strict=True):
         assert a == pytest.approx(b, abs=0.005)
@@ -252,3 +257,59 @@ def test_the_diagnosis_is_the_kept_log():
     numbers += list(m.groups())
     for number in numbers:
         assert number in text, number
+
+
+def test_the_timing_search_is_the_kept_logs():
+    """The contact timing's section prints its kept logs: each timing's predicted and solver
+    J/m, the parametric co-design at the widened duty-factor bound and the optimal stage run
+    from it (the gait kept)."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("## The contact timing as a decision"):doc.index("## How it compares")]
+    log = (LOGS / "bench_optimal_rows_timing.log").read_text(encoding="utf-8")
+    tried = re.findall(r"^timing: duty factor ([0-9.]+), period ([0-9.]+) s: (?:([0-9.]+) J/m "
+                       r"predicted rebuilt|no prediction .*) \(the solver's ([0-9.]+)\)$", log,
+                       re.MULTILINE)
+    table = text[text.index("| timing (from G, with S) |"):].split("\n\n")[0].splitlines()[2:]
+    assert len(tried) == len(table) == 5
+    for (duty, period, predicted, solver), row in zip(tried, table, strict=True):
+        cells = [c.strip() for c in row.strip("|").split("|")]
+        assert cells[0].startswith(f"duty factor {duty}, period {period} s"), cells[0]
+        if predicted:  # the log's four significant digits
+            assert float(cells[1]) == pytest.approx(float(predicted), abs=0.0051)
+        else:
+            assert cells[1] == "—"
+        assert float(cells[2]) == pytest.approx(float(solver), abs=0.0051)
+    bound = (LOGS / "bench_codesign_duty_bound.log").read_text(encoding="utf-8")
+    m = re.search(r"^co-design at duty-factor bound 0.9: ([0-9.]+) J/m predicted, simulated "
+                  r"with balance feedback: feedforward ([0-9.]+), position ([0-9.]+)$", bound,
+                  re.MULTILINE)
+    assert m and all(v in text for v in m.groups())
+    widened = (LOGS / "bench_optimal_rows_widened.log").read_text(encoding="utf-8")
+    assert "the gait and its springs kept" in widened and "alternation keeps the gait" in text
+    for pattern in (r"start: ([0-9.]+) J/m", r"re-optimised ([0-9.]+) J/m",
+                    r"the gait's ([0-9.]+)|against ([0-9.]+) J/m\): the gait"):
+        m = re.search(pattern, widened)
+        assert m, pattern
+        assert next(v for v in m.groups() if v) in text, pattern
+
+
+def test_the_breakdown_is_the_kept_log():
+    """The table of what bounds the best cycle prints the kept log: each motion's electrical
+    J/m, its Joule heat, the rest, the motors' positive work and each joint class's electrical
+    J/m; and the spring designed one a joint."""
+    log = (LOGS / "bench_optimal_breakdown.log").read_text(encoding="utf-8")
+    motions = re.findall(r"^[^ #].*?: ([0-9.]+) J/m electrical, of which Joule ([0-9.]+) "
+                         r"\([0-9]+%\), mechanical through η ([0-9.]+); motors' positive work "
+                         r"([0-9.]+) J/m\n  coxa +electrical +([0-9.]+).*\n  femur +electrical +"
+                         r"([0-9.]+).*\n  tibia +electrical +([0-9.]+)", log, re.MULTILINE)
+    doc = DOC.read_text(encoding="utf-8")
+    table = doc[doc.index("| motion | electrical J/m |"):].split("\n\n")[0].splitlines()[2:]
+    assert len(motions) == len(table) == 3
+    for (e, joule, rest, work, coxa, femur, tibia), row in zip(motions, table, strict=True):
+        cells = [c.strip() for c in row.strip("|").split("|")][1:]
+        assert cells == [e, joule, rest, work, femur, tibia, coxa], row
+    joint = re.search(r"linear springs one design a joint: ([0-9.]+) J/m", log)
+    assert joint and f"reaches {joint[1]} J/m" in doc
+    dead = (LOGS / "bench_optimal_breakdown_dead_zone.log").read_text(encoding="utf-8")
+    zone = re.search(r"dead_zone springs one design a class: ([0-9.]+) J/m", dead)
+    assert zone and f"class {zone[1]} (above" in doc

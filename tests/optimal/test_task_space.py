@@ -230,8 +230,8 @@ def test_the_solvers_cycle_rebuilt_walks_for_what_hexaleg_predicts():
     pytest.importorskip("crocoddyl")
     from dataclasses import replace
 
+    from hexaleg.design.codesign.alternation import predicted_per_metre
     from hexaleg.design.codesign.build import default_gait
-    from hexaleg.design.codesign.optimal_rows import predicted_per_metre
     from hexaleg.design.codesign.servo import simulated_per_metre
     from hexaleg.optimal.problem import OptimalParams, build_problem
     from hexaleg.optimal.solve import solve

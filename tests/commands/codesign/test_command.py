@@ -36,6 +36,40 @@ def test_registered_with_its_options():
     assert build_parser().parse_args(["codesign", "--no-rules"]).rules is False
     assert build_parser().parse_args(["codesign"]).motion is None  # [codesign] motion, or gait
     assert build_parser().parse_args(["codesign", "--motion", "optimal"]).motion == "optimal"
+    assert build_parser().parse_args(["codesign"]).feedback is None  # [codesign] feedback, or auto
+    assert build_parser().parse_args(["codesign", "--feedback", "on"]).feedback == "on"
+
+
+def test_feedback_is_named_as_simulate_names_it_and_needs_the_optimal_rows(tmp_path, capsys):
+    """``--feedback`` takes ``hexaleg simulate``'s values; it sets the optimal rows' balance
+    feedback, so without ``--motion optimal`` a value other than auto is refused by name before
+    any work, and a config's unknown value is named with what is allowed."""
+    simulate = next(a for a in build_parser()._subparsers._group_actions[0].choices[
+        "simulate"]._actions if a.dest == "feedback")
+    codesign_ = next(a for a in build_parser()._subparsers._group_actions[0].choices[
+        "codesign"]._actions if a.dest == "feedback")
+    assert codesign_.choices == simulate.choices == ("auto", "on", "off")
+    assert main(["codesign", "--feedback", "on", "--out", str(tmp_path / "o")]) == 2
+    assert "feedback = 'on'" in capsys.readouterr().err
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[codesign]\nmotion = "optimal"\nfeedback = "always"\n')
+    assert main(["codesign", "--config", str(bad), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert "always" in err and "auto" in err and "off" in err
+
+
+def test_timing_is_a_decision_of_the_optimal_rows_only(tmp_path, capsys):
+    """``--timing search`` searches the optimal motion's contact timing: without ``--motion
+    optimal`` it is refused by name before any work; an unknown value is named."""
+    args = build_parser().parse_args(["codesign", "--motion", "optimal", "--timing", "search"])
+    assert args.timing == "search" and build_parser().parse_args(["codesign"]).timing is None
+    assert main(["codesign", "--timing", "search", "--out", str(tmp_path / "o")]) == 2
+    assert "timing = 'search'" in capsys.readouterr().err
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[codesign]\nmotion = "optimal"\ntiming = "free"\n')
+    assert main(["codesign", "--config", str(bad), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert "free" in err and "search" in err
 
 
 def test_config_table_is_checked(tmp_path):

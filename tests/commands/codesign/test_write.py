@@ -79,9 +79,14 @@ def test_the_page_shows_the_optimal_motions_table(codesigned):
         "family": "linear", "proven": False, "residual": {"value": 8e-15, "unit": "N·m"},
         "springs_motion": solver,
         "no_springs": solver | {"energy_per_metre": {"value": 15.12, "unit": "J/m"}},
-        "alternation": {"energies": [{"value": 9.14, "unit": "J/m"}], "rounds": 1}}
+        "feedback": "on",
+        "alternation": {"energies": [{"value": None, "unit": "J/m"},
+                                     {"value": 9.14, "unit": "J/m"}], "rounds": 1,
+                        "kept_gait": False}}
     page = render_codesign_html(data, {"speed": ""}, {})
     table = page[page.index("The optimal motion with its springs"):]
+    assert "balance feedback setting: <b>on</b>, every row closed loop" in table
+    assert "— → 9.140 J/m" in table and "the last row is that gait" not in table
     assert "Unproven" in table and "LF_femur" in table and "fell: at 1.2 s" in table
     assert "13.71 J/m" in table and "0.32" in table  # 1.5 × 9.14, 9.14 / 28.45
     assert "13.71 J/m (balance feedback)" in table

@@ -28,7 +28,8 @@ def _solved(per_metre: float) -> SimpleNamespace:
 def _rows(position: float | None) -> OptimalRows:
     springs = hexaleg.SpringSet({"femur": hexaleg.LinearSpring(stiffness=0.5)})
     start, best = _solved(9.2), _solved(9.0)
-    alt = Alternation(start, best, springs, (Round(springs, 8.9, 9.0, True, 1.0),), 0.02)
+    alt = Alternation(None, 10.0, start, 9.3, best, springs,
+                      (Round(springs, 8.9, 9.0, 9.1, True, 1.0),), 0.02, False)
     sims = [MotionRow(label, e, {"feedforward": 1.1 * e, "position": 1.3 * e},
                       {"feedforward": "walks", "position": "walks"},
                       {"feedforward": "open loop", "position": "balance feedback"})
@@ -37,7 +38,7 @@ def _rows(position: float | None) -> OptimalRows:
                      {"feedforward": "walks",
                       "position": "walks" if position is not None else "fell: at 1 s"})
     return OptimalRows((*sims, last), springs, "linear", _solved(9.6), alt, hexaleg.load(),
-                       "both", 200.0)
+                       "both", 200.0, "on")
 
 
 def test_the_table_says_what_backs_the_springs():
@@ -50,7 +51,9 @@ def test_the_table_says_what_backs_the_springs():
     assert data["rows"][3]["simulated"]["position"] is None
     assert data["rows"][3]["verdicts"]["position"].startswith("fell")
     assert data["residual"] == {"value": 7e-15, "unit": "N·m"}
-    assert [e["value"] for e in data["alternation"]["energies"]] == [9.2, 9.0]
+    assert [e["value"] for e in data["alternation"]["energies"]] == [10.0, 9.3, 9.1]
+    assert data["alternation"]["kept_gait"] is False
+    assert data["feedback"] == "on" and "(balance feedback on)" in unproven.lines()[0]
     assert data["springs"][0]["joint"] == "femur" and data["proven"] is False
     assert data["rows"][0]["loops"] == {"feedforward": "open loop",
                                         "position": "balance feedback"}
@@ -65,7 +68,7 @@ def test_a_row_without_a_prediction_says_why_not_nan():
     has no prediction: the row holds None and the analysis' error — the table prints a dash
     and the reason, codesign.json a null and the reason — never NaN; ``predicted_per_metre``
     returns the error's message where the force program has no answer."""
-    from hexaleg.design.codesign.optimal_rows import predicted_per_metre
+    from hexaleg.design.codesign.alternation import predicted_per_metre
     from hexaleg.dynamics.contact import ContactParams
 
     run = hexaleg.Scenario.load("hexaleg")
@@ -109,7 +112,8 @@ def test_the_four_rows_of_a_small_problem():
                                      metric="electrical")
     e0 = prepared.evaluate(hexaleg.SpringSet()).metrics["total"]["electrical"]
     e1 = design.analysis.metrics["total"]["electrical"]
-    from hexaleg.design.codesign.optimal_rows import optimal_rows, predicted_per_metre
+    from hexaleg.design.codesign.alternation import predicted_per_metre
+    from hexaleg.design.codesign.optimal_rows import optimal_rows
 
     lines: list[str] = []
     d = prepared.motion.distance
@@ -123,15 +127,14 @@ def test_the_four_rows_of_a_small_problem():
     energies = table.alternation.energies
     assert all(b <= a for a, b in itertools.pairwise(energies))
     # The optimal rows are predicted by hexaleg's pipeline on the cycle rebuilt in task space,
-    # the motion they simulate (the solver's own figure, at its knots, is the alternation's).
-    assert table.best.energy_per_metre == energies[-1]
-    for row, solved, springs in ((table.rows[2], table.bare, hexaleg.SpringSet()),
-                                 (table.rows[3], table.best, table.springs)):
-        value, why = predicted_per_metre(robot, solved.task_space, run.actuator, springs,
-                                         run.contact)
+    # the motion they simulate, the figure the alternation judges (never above the gait's).
+    assert table.alternation.predicted == energies[-1] and energies[-1] <= energies[0]
+    for row, played, springs in ((table.rows[2], table.bare.task_space, hexaleg.SpringSet()),
+                                 (table.rows[3], table.alternation.motion, table.springs)):
+        value, why = predicted_per_metre(robot, played, run.actuator, springs, run.contact)
         assert why == row.unpredicted == "" and row.predicted == pytest.approx(value, rel=1e-12)
         assert set(row.loops.values()) <= {"open loop", "balance feedback"}
-    assert table.motions["optimal_springs"] is table.best.task_space
+    assert table.motions["optimal_springs"] is table.alternation.motion
     assert any(line.startswith("alternation: start") for line in lines)
     data = json.loads(json_text(table.data()))
     assert data["residual"]["value"] <= 1e-6 and len(data["rows"]) == 4

@@ -3,11 +3,13 @@
 
 ``--config F`` reads a ``[codesign]`` table: ``speed``, ``pattern``, ``family``, ``samples``,
 ``final_samples``, ``max_evaluations``, ``restarts``, ``grouping``, ``rules``, ``curve``,
-``simulate``, ``controller``, ``motion``, a ``[codesign.constraints]`` table of
-:class:`~hexaleg.design.codesign.gait_evaluation.Constraints` and a ``[codesign.design]`` table of
+``simulate``, ``controller``, ``motion``, ``feedback``, ``timing``, a ``[codesign.constraints]``
+table of :class:`~hexaleg.design.codesign.gait_evaluation.Constraints` and a
+``[codesign.design]`` table of
 the full spring rules' ``[design]`` keys
 (:func:`~hexaleg.design.codesign.full_rules.rule_params`); the command line's ``--speed``,
-``--pattern``, ``--controller``, ``--motion`` and ``--no-rules`` win over the file.
+``--pattern``, ``--controller``, ``--motion``, ``--feedback``, ``--timing`` and ``--no-rules``
+win over the file.
 ``--motion optimal`` adds the optimal motion's rows
 (:mod:`hexaleg.design.codesign.optimal_rows`) and writes each optimal motion as a motion log
 (``optimal_no_springs.csv``, ``optimal_springs.csv``) that every command's ``--motion`` reads.
@@ -18,7 +20,9 @@ from __future__ import annotations
 import argparse
 
 from hexaleg.commands.options import add_quiet
-from hexaleg.simulation.controllers import SERVOS  # no MuJoCo: it loads with a model
+from hexaleg.design.codesign.timing import TIMINGS
+from hexaleg.simulation.balance import MODES as FEEDBACK  # no MuJoCo: it loads with a model
+from hexaleg.simulation.controllers import SERVOS  # no MuJoCo either
 
 
 def add(sub: argparse._SubParsersAction) -> None:
@@ -38,6 +42,16 @@ def add(sub: argparse._SubParsersAction) -> None:
                    help="gait (default): the parametric gait; optimal: also the motion itself "
                         "optimised from the chosen gait without and with its springs, each row "
                         "simulated (needs pip install \"hexaleg[optimal]\"; minutes more)")
+    p.add_argument("--feedback", choices=FEEDBACK,
+                   help="with --motion optimal: balance feedback on the body in every optimal "
+                        "row's simulation, as hexaleg simulate's: auto (where the gait stands on "
+                        "fewer than three feet or open loop falls), on (every row closed loop), "
+                        "off (open loop) (default: auto, or the config's)")
+    p.add_argument("--timing", choices=TIMINGS,
+                   help="with --motion optimal: the optimal motion's contact timing: gait (the "
+                        "chosen gait's) or search (duty factor and period searched about it, "
+                        "five solves more, each judged by its rebuilt cycle's prediction) "
+                        "(default: gait, or the config's)")
     p.add_argument("--no-rules", dest="rules", action="store_false", default=None,
                    help="leave out hexaleg design's full spring rules (tolerance, envelope, "
                         "fatigue, arbor, parsimony) on the chosen gait, about a minute: the "
@@ -70,7 +84,7 @@ def run(args: argparse.Namespace) -> int:
                               f"— {instead}")
     kwargs = codesign_settings(scenario.table("codesign"), f"{scenario.where} [codesign]",
                                scenario)
-    for key in ("speed", "pattern", "controller", "motion"):
+    for key in ("speed", "pattern", "controller", "motion", "feedback", "timing"):
         if getattr(args, key) is not None:
             kwargs[key] = getattr(args, key)
     if args.rules is not None:

@@ -9,14 +9,23 @@ Block-coordinate descent (Bertsekas, *Nonlinear Programming*, 3rd ed., §3.7) on
 2. the springs: the project's global convex design (:func:`hexaleg.design.search.optimal.
    optimal_springs`, electrical metric) on that cycle.
 
-The two steps minimise different programs — the design step the force program's energy of the
-cycle, the motion step the optimal-control cost (energy at the solver's own contact forces plus
-its small regularisation) — so a round is accepted only when the re-optimised cycle's exact
-energy per metre (:attr:`~hexaleg.optimal.solve.OptimalResult.energy_per_metre`) falls: the
-sequence of accepted energies never rises, by construction, and the loop stops when a round
+Both steps, and the verdict on a round, work on the motion hexaleg plays and predicts: the
+solver's cycle rebuilt in task space (:attr:`~hexaleg.optimal.solve.OptimalResult.task_space`,
+its stance feet held on their footholds), not the solver's knots. The springs are designed on
+the rebuilt cycle, and a round is judged by :func:`judged` (:func:`predicted_per_metre`, where
+the rebuilt cycle covers its gait's stride) — the force program's
+electrical energy per metre of the rebuilt cycle with the round's springs, the figure the rows
+of ``codesign --motion optimal`` show — not by the solver's own figure at its knots (which books
+a spring's work by a left Riemann sum and lets a stance foot slide between knots: 9.21 J/m on
+the co-design's gait where the rebuilt cycle predicts 9.45). The two steps minimise different
+programs (the force program's energy, the optimal-control cost at the solver's own contact
+forces plus its regularisation), so a round is accepted only when that prediction falls: the
+sequence of accepted predictions never rises, by construction, and the loop stops when a round
 gains less than ``tolerance`` (the stated gap: the last relative gain) or after ``rounds``.
-It starts from the springs given (the parametric co-design's, or none), so it never ends worse
-than its start.
+
+It never ends worse than the gait it starts from, by the same measure: the gait itself with the
+starting springs is predicted first (:attr:`Alternation.baseline`), and when no optimal cycle is
+predicted below it the answer is that gait with those springs (:attr:`Alternation.kept_gait`).
 
 Only families whose torque is continuous in the angle enter DDP's dynamics well (``linear``,
 ``dead_zone``); a preload's step has no derivative, and the solver then lets a stance foot slip.
@@ -36,6 +45,7 @@ from hexaleg.checks import integer, one_of, real
 from hexaleg.design.search.optimal import Groups, optimal_springs
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.dynamics.prepare import prepare
+from hexaleg.errors import HexalegError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
@@ -53,6 +63,42 @@ Keep = Callable[[tuple[Any, ...], Callable[[], Any]], Any]
 everything that defines it beside the run itself (its robot, gait, motors, floor)."""
 
 
+def predicted_per_metre(robot: Robot, motion: Motion, motor: Any, springs: SpringSet,
+                        contact: ContactParams) -> tuple[float | None, str]:
+    """hexaleg's prediction of ``motion`` with ``springs``: the force program's (objective
+    ``joule``, the simulation's feedforward) electrical energy per metre, J/m, and ``""``; or
+    None and why, when the analysis has no answer (no admissible forces, a torque beyond the
+    stall torque: the error's message)."""
+    try:
+        analysis = prepare(robot, motion, motor=motor, contact=contact).evaluate(springs, "joule")
+    except HexalegError as err:
+        return None, f"{type(err).__name__}: {err}"
+    return float(analysis.metrics["total"]["electrical"]) / motion.distance, ""
+
+
+COVERED = 0.01
+"""How far an optimal cycle's rebuilt distance may be from its gait's, relative, and still be
+judged: a cycle whose knots fall short of the stride walks slower than the required speed, and
+its energy per metre is another task's (an unconverged solve covered 87 % of it)."""
+
+
+def judged(robot: Robot, result: Any, gait: Motion, motor: Any, springs: SpringSet,
+           contact: ContactParams) -> tuple[float | None, str]:
+    """The figure an optimal cycle is judged by: :func:`predicted_per_metre` of its cycle
+    rebuilt in task space with ``springs``, where it covers ``gait``'s distance within
+    :data:`COVERED`; else None and why."""
+    played = result.task_space
+    if abs(played.distance / gait.distance - 1.0) > COVERED:
+        return None, (f"its rebuilt cycle covers {played.distance / gait.distance:.1%} of the "
+                      f"gait's {gait.distance:.4g} m a cycle (not the required speed)")
+    return predicted_per_metre(robot, played, motor, springs, contact)
+
+
+def _below(new: float | None, old: float | None) -> bool:
+    """Whether the prediction ``new`` beats ``old`` (None: no prediction, beaten by any)."""
+    return new is not None and (old is None or new < old)
+
+
 def computed(_inputs: tuple[Any, ...], compute: Callable[[], Any]) -> Any:
     """Every solve computed (:data:`Keep`)."""
     return compute()
@@ -63,16 +109,20 @@ class Round:
     """One round of the alternation.
 
     Attributes:
-        springs: The springs designed on the previous best cycle.
-        designed: Their energy per metre on that cycle by the force program, J/m.
-        energy_per_metre: The cycle re-optimised with them, exact energy per metre, J/m.
-        accepted: Whether it lowered the best energy per metre.
+        springs: The springs designed on the previous best cycle rebuilt in task space.
+        designed: Their energy per metre on that rebuilt cycle by the force program, J/m.
+        energy_per_metre: The cycle re-optimised with them, the solver's exact energy per
+            metre at its knots, J/m (reported, not judged).
+        predicted: The re-optimised cycle rebuilt in task space with them, hexaleg's
+            prediction (:func:`predicted_per_metre`), J/m; None where it has no answer.
+        accepted: Whether ``predicted`` lowered the best prediction.
         seconds: Wall time of the round, s.
     """
 
     springs: SpringSet
     designed: float
     energy_per_metre: float
+    predicted: float | None
     accepted: bool
     seconds: float
 
@@ -81,40 +131,68 @@ class Round:
 class Alternation:
     """The alternation's answer.
 
+    Every energy judged is hexaleg's prediction (:func:`predicted_per_metre`) of a motion
+    played as the rows play it: the gait, or an optimal cycle rebuilt in task space.
+
     Attributes:
-        start: The optimal cycle with the starting springs.
-        best: The best cycle found (the start when no round was accepted).
-        springs: Its springs.
+        gait: The gait it starts from.
+        baseline: The gait with the starting springs predicted, J/m (None: no answer).
+        start: The optimal cycle with the starting springs
+            (:class:`~hexaleg.optimal.solve.OptimalResult`).
+        start_predicted: Its rebuilt cycle with them predicted, J/m (None: no answer).
+        best: The best optimal cycle found by prediction (the start when no round was
+            accepted).
+        springs: The answer's springs: the best cycle's, or the starting springs when the
+            gait is kept.
         rounds: Every round, in order.
-        gap: The last round's relative gain ``1 − E_new / E_best`` (≤ ``tolerance`` when it
-            stopped by converging; negative for a round that rose).
+        gap: The last round's relative gain ``1 − E_new / E_best`` of the predictions (≤
+            ``tolerance`` when it stopped by converging; negative for a round that rose; 0
+            where the round has no prediction, 1 where only the round has one).
+        kept_gait: Whether no optimal cycle was predicted below :attr:`baseline`: the answer
+            is then the gait with the starting springs.
     """
 
+    gait: Motion
+    baseline: float | None
     start: Any
+    start_predicted: float | None
     best: Any
     springs: SpringSet
     rounds: tuple[Round, ...]
     gap: float
+    kept_gait: bool
 
     @property
-    def energies(self) -> list[float]:
-        """The best energy per metre after the start and after each round, J/m (never rising)."""
-        out = [self.start.energy_per_metre]
-        for r in self.rounds:
-            out.append(min(out[-1], r.energy_per_metre) if r.accepted else out[-1])
+    def energies(self) -> list[float | None]:
+        """The best prediction so far, J/m: the gait's, then after the start and after each
+        round (never rising; None until one has an answer); the last is the answer's."""
+        out = [self.baseline]
+        for new in (self.start_predicted, *(r.predicted for r in self.rounds)):
+            out.append(new if _below(new, out[-1]) else out[-1])
         return out
+
+    @property
+    def predicted(self) -> float | None:
+        """The answer's prediction, J/m (the last of :attr:`energies`)."""
+        return self.energies[-1]
+
+    @property
+    def motion(self) -> Motion:
+        """The answer's motion: the best cycle rebuilt in task space, or the gait when kept."""
+        return self.gait if self.kept_gait else self.best.task_space
 
 
 def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams, *,
               springs: SpringSet | None = None, params: Any = None, family: str = "linear",
               groups: Groups | None = None, rounds: int = 4, tolerance: float = 0.01,
-              say: Callable[[str], None] | None = None, keep: Keep | None = None
-              ) -> Alternation:
+              say: Callable[[str], None] | None = None, keep: Keep | None = None,
+              first: Any = None) -> Alternation:
     """Alternate the optimal motion and its springs (module docstring).
 
     Args:
         robot: The robot.
-        gait: The gait whose contact timing and path the optimal-control problem takes.
+        gait: The gait whose contact timing and path the optimal-control problem takes, and
+            the answer when no optimal cycle is predicted below it.
         actuator: The motors (:class:`~hexaleg.robot.motor.Motor` or a ``MotorSet``).
         contact: The contact settings of the spring design's force program.
         springs: The springs to start from (None: none).
@@ -129,6 +207,8 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
         keep: Runs each solve, given what defines it (:data:`Keep`): a kept one
             (:class:`~hexaleg.design.codesign.optimal_stage.KeptSolves`) reads back a solve
             the run made before a kill; None: every solve computed.
+        first: The optimal cycle of ``gait`` with ``springs`` and ``params`` when it is solved
+            already (:mod:`~hexaleg.design.codesign.timing`'s choice); None: solved here.
 
     Raises:
         InvalidParameterError: a family outside :data:`SMOOTH_FAMILIES`, bad ``rounds`` or
@@ -141,14 +221,19 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
     from hexaleg.optimal.solve import solve
     params = params or OptimalParams()
     tell = say or (lambda _line: None)
-    current = springs or SpringSet()
+    current = given = springs or SpringSet()
     once = keep or computed
-    best = once(("start", current, params),
-                lambda: solve(robot, build_problem(robot, gait, actuator, current, params),
-                              say=tell, every=PROGRESS))
+    baseline, _ = predicted_per_metre(robot, gait, actuator, current, contact)
+    best = first if first is not None else once(
+        ("start", current, params),
+        lambda: solve(robot, build_problem(robot, gait, actuator, current, params), say=tell,
+                      every=PROGRESS))
     start = best
-    tell(f"start: {best.energy_per_metre:.4g} J/m ({best.iterations} iterations, "
-         f"{best.seconds:.0f} s)")
+    best_predicted, _ = judged(robot, best, gait, actuator, current, contact)
+    start_predicted = best_predicted
+    tell(f"start: {_shown(best_predicted)} J/m predicted rebuilt (the gait: "
+         f"{_shown(baseline)}; the solver's {best.energy_per_metre:.4g} at its knots; "
+         f"{best.iterations} iterations, {best.seconds:.0f} s)")
 
     def warm_solve(springs: SpringSet, last: Any) -> Any:
         """The cycle solved with ``springs``, warm-started from ``last`` (module docstring)."""
@@ -161,21 +246,40 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
     gap = 0.0
     for k in range(rounds):
         began = time.perf_counter()
-        prepared = prepare(robot, best.motion, motor=actuator, contact=contact)
-        design = optimal_springs(prepared, groups or list(robot.joint_classes),
-                                 family=family, metric="electrical")
+        played = best.task_space
+        try:
+            design = optimal_springs(prepare(robot, played, motor=actuator, contact=contact),
+                                     groups or list(robot.joint_classes), family=family,
+                                     metric="electrical")
+        except HexalegError as err:  # a rebuilt cycle the force program has no answer for
+            tell(f"round {k + 1}: no springs designed on the rebuilt cycle "
+                 f"({type(err).__name__}: {err})")
+            break
         candidate = once(("round", design.springs, params, best.x, best.torques,
                           best.spring_torques),
                          functools.partial(warm_solve, design.springs, best))
-        designed = design.analysis.metrics["total"]["electrical"] / best.motion.distance
-        gap = 1.0 - candidate.energy_per_metre / best.energy_per_metre
-        accepted = gap > 0.0
-        done.append(Round(design.springs, designed, candidate.energy_per_metre, accepted,
-                          time.perf_counter() - began))
-        tell(f"round {k + 1}: springs {designed:.4g} J/m on the cycle, re-optimised "
-             f"{candidate.energy_per_metre:.4g} J/m ({'accepted' if accepted else 'rejected'})")
+        designed = design.analysis.metrics["total"]["electrical"] / played.distance
+        value, _ = judged(robot, candidate, gait, actuator, design.springs, contact)
+        gap = (0.0 if value is None else 1.0 if best_predicted is None
+               else 1.0 - value / best_predicted)
+        accepted = _below(value, best_predicted)
+        done.append(Round(design.springs, designed, candidate.energy_per_metre, value,
+                          accepted, time.perf_counter() - began))
+        tell(f"round {k + 1}: springs {designed:.4g} J/m on the rebuilt cycle, re-optimised "
+             f"{_shown(value)} J/m predicted rebuilt (the solver's "
+             f"{candidate.energy_per_metre:.4g}; {'accepted' if accepted else 'rejected'})")
         if accepted:
-            best, current = candidate, design.springs
+            best, current, best_predicted = candidate, design.springs, value
         if gap < tolerance:
             break
-    return Alternation(start, best, current, tuple(done), gap)
+    kept = baseline is not None and not _below(best_predicted, baseline)
+    if kept:
+        tell(f"no optimal cycle predicted below the gait ({_shown(best_predicted)} against "
+             f"{_shown(baseline)} J/m): the gait and its springs kept")
+    return Alternation(gait, baseline, start, start_predicted, best,
+                       given if kept else current, tuple(done), gap, kept)
+
+
+def _shown(value: float | None) -> str:
+    """A prediction for a progress line (``—`` where there is none)."""
+    return "—" if value is None else f"{value:.4g}"

@@ -59,6 +59,7 @@ from hexaleg.design.codesign.gait_search import RESTARTS, default_space, search
 from hexaleg.design.codesign.optimal_stage import keep_parametric, kept_parametric, with_optimal
 from hexaleg.design.codesign.result import CodesignResult, Row, SpeedPoint
 from hexaleg.design.codesign.servo import choose, screen
+from hexaleg.design.codesign.timing import TIMINGS
 from hexaleg.design.families import FAMILIES
 from hexaleg.design.search.optimal import Groups
 from hexaleg.dynamics.plausibility import uses_generic
@@ -72,6 +73,7 @@ from hexaleg.parallel.forked import fork_map, robot_objects
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
 from hexaleg.scenario.scenario import Scenario
+from hexaleg.simulation.balance import MODES as FEEDBACK
 from hexaleg.simulation.controllers import BOTH, SERVOS
 
 MOTIONS = ("gait", "optimal")
@@ -99,7 +101,8 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
              samples: int = 100, final_samples: int = 200, max_evaluations: int = 200,
              restarts: int = RESTARTS, grouping: str = "class", curve: bool = True,
              simulate: bool = True, rules: bool = True, design: DesignParams | None = None,
-             controller: str = BOTH, motion: str = "gait",
+             controller: str = BOTH, motion: str = "gait", feedback: str = "auto",
+             timing: str = "gait",
              progress: Callable[[str], None] | None = None,
              stages: StageFiles | None = None) -> CodesignResult:
     """The gait and springs that cover a metre at ``speed`` for the least electrical energy
@@ -138,6 +141,15 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             itself optimised from the chosen gait, without and with its springs, each row
             simulated (:mod:`hexaleg.design.codesign.optimal_rows`; needs the ``optimal``
             extra, checked before any work).
+        feedback: The optimal motion's rows' balance feedback, the same for every row, as
+            ``hexaleg simulate``'s (:data:`~hexaleg.simulation.balance.MODES`: ``"auto"``, where
+            the gait needs it or open loop falls; ``"on"``, every row closed loop, a position
+            servo asked for the plan's torque; ``"off"``, open loop); only with
+            ``motion="optimal"`` (the parametric co-design's servo check runs ``"auto"``).
+        timing: The optimal motion's contact timing (:data:`~hexaleg.design.codesign.timing.
+            TIMINGS`): ``"gait"``, the chosen gait's; ``"search"``, a small deterministic
+            search about it (:mod:`hexaleg.design.codesign.timing`: five solves more, each
+            judged by the prediction of its rebuilt cycle); only with ``motion="optimal"``.
         progress: Called with one status line per stage.
         stages: Where the parametric co-design is kept when it is done, before the optimal
             motion's stage (``motion="optimal"``: minutes more), and read back from instead of
@@ -148,11 +160,22 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
     Raises:
         InvalidParameterError: a speed not > 0, sample counts out of range; the default gait
             itself cannot be made at this speed (named, with its error).
-        UnknownNameError: an unknown robot, pattern, family, controller or motion.
+        UnknownNameError: an unknown robot, pattern, family, controller, motion, feedback or
+            timing.
+        ConfigError: a ``feedback`` other than ``"auto"`` or a ``timing`` other than
+            ``"gait"`` without ``motion="optimal"``.
         BackendError: ``motion="optimal"`` without a usable Crocoddyl (names the extra).
     """
     servo = one_of("[codesign] controller", controller, SERVOS)
-    if one_of("[codesign] motion", motion, MOTIONS) == "optimal":
+    loop = one_of("[codesign] feedback", feedback, FEEDBACK)
+    if one_of("[codesign] motion", motion, MOTIONS) != "optimal" and loop != "auto":
+        raise ConfigError(f"[codesign] feedback = {loop!r} sets the optimal motion's rows' "
+                          "balance feedback: it needs motion = \"optimal\" (--motion optimal); "
+                          "the parametric co-design's servo check runs \"auto\"")
+    if one_of("[codesign] timing", timing, TIMINGS) != "gait" and motion != "optimal":
+        raise ConfigError(f"[codesign] timing = {timing!r} searches the optimal motion's "
+                          "contact timing: it needs motion = \"optimal\" (--motion optimal)")
+    if motion == "optimal":
         from hexaleg.optimal.backend import crocoddyl_module
 
         crocoddyl_module()  # before the search: a missing extra is said at once
@@ -175,7 +198,7 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
     if kept is not None:
         say(f"co-design: {kept.rows[3].per_metre:.2f} J/m, read back from the kept stage of "
             f"this run ({stages.directory if stages is not None else ''})")
-        return with_optimal(kept, model, motor, groups, servo, say, stages)
+        return with_optimal(kept, model, motor, groups, servo, say, stages, loop, timing)
     free = functools.partial(evaluate_gait, model, family=family, constraints=c, motor=motor)
     first = free(base, groups=groups, min_margin=0.0)
     if first.error is not None:
@@ -250,7 +273,7 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
         if motion != "optimal":
             return result
         keep_parametric(stages, result, model)
-        return with_optimal(result, model, motor, groups, servo, say, stages)
+        return with_optimal(result, model, motor, groups, servo, say, stages, loop, timing)
     finally:
         if ruled is not None:
             ruled.close()
@@ -316,7 +339,7 @@ def simulated(robot: Robot, chosen: GaitParams, springs: SpringSet, c: Constrain
 
 CODESIGN_KEYS = ("speed", "pattern", "family", "samples", "final_samples", "max_evaluations",
                  "restarts", "grouping", "rules", "curve", "simulate", "controller",
-                 "motion", "constraints", "design")
+                 "motion", "feedback", "timing", "constraints", "design")
 """The keys of a ``[codesign]`` table: :func:`codesign`'s keywords."""
 
 

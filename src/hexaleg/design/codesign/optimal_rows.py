@@ -9,7 +9,9 @@ rows, each in electrical J/m:
 1. the default gait without springs,
 2. the parametric co-design (its chosen gait with its inner-program springs),
 3. the optimal motion without springs,
-4. the optimal motion with its springs (the alternation's) — the springs to buy of this table.
+4. the optimal motion with its springs (the alternation's) — the springs to buy of this table;
+   the co-design's gait with its springs again when no optimal cycle is predicted below it (the
+   alternation never ends worse than the gait it starts from: ``kept_gait``).
 
 An optimal motion is played and predicted as the cycle rebuilt in task space
 (:attr:`~hexaleg.optimal.solve.OptimalResult.task_space`: its base and swing feet through the
@@ -23,8 +25,9 @@ booked 9.21; the rebuilt cycle for 9.44, predicted 9.45).
 electrical energy per metre (the co-design's rows as the co-design computes them; an optimal
 motion's on its task-space cycle, objective ``joule``, the simulation's feedforward). The
 solver's own figure at its knots (the exact energy model at its motor torques,
-:attr:`~hexaleg.optimal.solve.OptimalResult.energy_per_metre`) is what the alternation compares
-and is reported beside it. *Simulated* is MuJoCo's (:func:`hexaleg.simulation.run.simulate`,
+:attr:`~hexaleg.optimal.solve.OptimalResult.energy_per_metre`) is reported beside it; the
+alternation designs its springs on the rebuilt cycle and judges its rounds by this prediction.
+*Simulated* is MuJoCo's (:func:`hexaleg.simulation.run.simulate`,
 default settings, the feedforward of each motion from the force program on it) electrical
 energy per metre walked under each controller of the servo, every row with the same
 ``feedback`` setting (``"auto"``: balance feedback where the gait needs it or where it fell
@@ -41,6 +44,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from hexaleg.checks import one_of
 from hexaleg.design.codesign.alternation import (
     PROGRESS,
     SMOOTH_FAMILIES,
@@ -48,19 +52,20 @@ from hexaleg.design.codesign.alternation import (
     Keep,
     alternate,
     computed,
+    predicted_per_metre,
 )
 from hexaleg.design.codesign.servo import simulated_run
+from hexaleg.design.codesign.timing import TIMINGS, TimingSearch, search_timing
 from hexaleg.design.search.optimal import Groups
 from hexaleg.design.springs.law_json import spring_entry
 from hexaleg.dynamics.contact import ContactParams
-from hexaleg.dynamics.prepare import prepare
-from hexaleg.errors import HexalegError
 from hexaleg.motion.legged import gait
 from hexaleg.motion.params import GaitParams
 from hexaleg.motion.trajectory import Motion
 from hexaleg.quantities import quantity as q
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
+from hexaleg.simulation.balance import MODES as FEEDBACK
 from hexaleg.simulation.controllers import controllers_of
 
 LABELS = ("default gait, no springs", "parametric co-design (its gait and springs)",
@@ -119,6 +124,10 @@ class OptimalRows:
         robot: The robot (the motion files are written for it).
         servo: The servo the rows were simulated under.
         wall: Wall time of this stage, s.
+        feedback: The simulations' balance feedback setting, the same for every row
+            (:data:`~hexaleg.simulation.balance.MODES`).
+        timing: The contact timing's search, when the optimal motions' timing was searched
+            (:class:`~hexaleg.design.codesign.timing.TimingSearch`); None: the chosen gait's.
     """
 
     rows: tuple[MotionRow, ...]
@@ -129,6 +138,8 @@ class OptimalRows:
     robot: Robot
     servo: str
     wall: float
+    feedback: str = "auto"
+    timing: TimingSearch | None = None
 
     @property
     def best(self) -> Any:
@@ -143,9 +154,10 @@ class OptimalRows:
     @property
     def motions(self) -> dict[str, Motion]:
         """The optimal motions by file stem, ``optimal_no_springs`` and ``optimal_springs``: each
-        cycle rebuilt in task space, as the rows play it."""
+        cycle rebuilt in task space, as the rows play it (the latter the co-design's gait when
+        the alternation kept it)."""
         return {"optimal_no_springs": self.bare.task_space,
-                "optimal_springs": self.best.task_space}
+                "optimal_springs": self.alternation.motion}
 
     def data(self) -> dict[str, Any]:
         """codesign.json's ``optimal`` key: the rows, the springs to buy and whether a
@@ -165,11 +177,16 @@ class OptimalRows:
         alt = self.alternation
         return {
             "rows": [r.data() for r in self.rows], "servo": self.servo,
+            "feedback": self.feedback,
+            "timing": None if self.timing is None else self.timing.data(),
             "springs": [spring_entry(j, s) for j, s in self.springs.items()],
             "family": self.family, "proven": self.proven,
             "residual": q(max(self.bare.residual, self.best.residual), "N·m"),
             "no_springs": solver(self.bare), "springs_motion": solver(self.best),
             "alternation": {"energies": [q(e, "J/m") for e in alt.energies],
+                            "measure": "hexaleg's prediction of the rebuilt cycle (first: the "
+                                       "gait it starts from)",
+                            "kept_gait": alt.kept_gait,
                             "rounds": len(alt.rounds), "gap": q(alt.gap, "1")},
             "wall": q(self.wall, "s"),
         }
@@ -178,7 +195,8 @@ class OptimalRows:
         """Lines for the terminal: the rows and the springs' proof."""
         controllers = list(self.rows[0].simulated)
         out = ["  optimal motion (whole-body optimal control, the springs in the dynamics): "
-               "J/m predicted, simulated " + ", ".join(controllers)]
+               "J/m predicted, simulated " + ", ".join(controllers)
+               + f" (balance feedback {self.feedback})"]
         for r in self.rows:
             sims = ", ".join((f"{v:.2f}" if v is not None else f"— ({r.verdicts[k]})")
                              + (f" ({r.loops[k]})" if r.loops.get(k) else "")
@@ -186,14 +204,20 @@ class OptimalRows:
             said = (f"{r.predicted:7.2f}" if r.predicted is not None else
                     f"      — (no prediction: {r.unpredicted})")
             out.append(f"    {r.label:46s} {said}   {sims}")
+        if self.timing is not None:
+            out.append(self.timing.line())
         b = self.best
+        trail = " → ".join("—" if e is None else f"{e:.3f}" for e in self.alternation.energies)
         out.append(f"    the solver's own J/m at its knots: {self.bare.energy_per_metre:.2f} (no "
                    f"springs), {b.energy_per_metre:.2f} (its springs); the rows predict and play "
                    "each cycle rebuilt in task space")
         out.append(f"    residual {max(self.bare.residual, b.residual):.1g} N·m, stationarity "
                    f"{b.stationarity:.2g} after {b.iterations} iterations (threshold "
                    f"{b.threshold:.2g}), friction use {b.friction_use:.2f}, alternation "
-                   f"{' → '.join(f'{e:.3f}' for e in self.alternation.energies)} J/m")
+                   f"{trail} J/m predicted (from the gait's)")
+        if self.alternation.kept_gait:
+            out.append("    no optimal cycle was predicted below the co-design's gait: the last "
+                       "row is that gait with its springs")
         names = ", ".join(self.springs) or "none"
         out.append(f"    springs to buy for it ({self.family}): {names}" + (
             "" if self.proven else f" — unproven: it does not walk under "
@@ -205,6 +229,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
                  chosen: GaitParams, springs: SpringSet, predicted: tuple[float, float], *,
                  family: str = "linear", groups: Groups | None = None, servo: str = "both",
                  params: Any = None, rounds: int = 4, feedback: str = "auto",
+                 timing: str = "gait",
                  say: Callable[[str], None] | None = None, keep: Keep | None = None
                  ) -> OptimalRows:
     """The four rows (module docstring).
@@ -226,14 +251,21 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
         rounds: The alternation's rounds at most.
         feedback: The simulations' balance feedback, the same for every row (``"auto"``,
             ``"on"``, ``"off"``: :class:`hexaleg.simulation.run.Settings`).
+        timing: ``"gait"``: the optimal motions take ``chosen``'s contact timing;
+            ``"search"``: the timing searched about it
+            (:func:`~hexaleg.design.codesign.timing.search_timing`, with the alternation's
+            starting springs), and both optimal motions take the timing chosen.
         say: Where progress lines go.
         keep: Runs each optimal-control solve, given what defines it
             (:data:`~hexaleg.design.codesign.alternation.Keep`; a kept one reads back the
             solves of the run's killed process); None: every solve computed.
 
     Raises:
-        BackendError: no usable Crocoddyl (the ``optimal`` extra).
+        BackendError: no usable Crocoddyl (the ``optimal`` extra). UnknownNameError: a
+            ``feedback`` outside :data:`~hexaleg.simulation.balance.MODES`.
     """
+    feedback = one_of("feedback", feedback, FEEDBACK)
+    timing = one_of("timing", timing, TIMINGS)
     from hexaleg.optimal.problem import OptimalParams, build_problem  # needs Crocoddyl
     from hexaleg.optimal.solve import solve
 
@@ -243,10 +275,19 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
     start = springs
     if family not in SMOOTH_FAMILIES:
         family, start = "linear", SpringSet()
-    motion = gait(robot, chosen)
-    tell("optimal motion without springs, from the co-design's gait")
+    searched = None
+    timed = chosen
+    if timing == "search":
+        tell("contact timing searched about the co-design's gait, with its springs")
+        searched = search_timing(robot, chosen, motor, start, contact, params,
+                                 say=lambda line: tell(f"timing: {line}"), keep=keep)
+        timed = searched.chosen.params
+        tell(f"timing chosen: duty factor {timed.duty_factor:.3g}, period {timed.period:.4g} s")
+    motion = gait(robot, timed)
+    tell("optimal motion without springs, from the co-design's gait"
+         + ("" if searched is None else " at the timing chosen"))
     bare = (keep or computed)(
-        ("no springs", SpringSet(), params),
+        ("no springs", SpringSet(), params, *(() if searched is None else (timed,))),
         lambda: solve(robot, build_problem(robot, motion, motor, SpringSet(), params),
                       say=lambda line: tell(f"no springs: {line}"), every=PROGRESS))
     tell(f"optimal motion without springs: {bare.energy_per_metre:.3f} J/m "
@@ -254,12 +295,12 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
     tell("optimal motion with springs (alternation), from the co-design's gait and springs")
     alt = alternate(robot, motion, motor, contact, springs=start, params=params, family=family,
                     groups=groups, rounds=rounds, say=lambda line: tell(f"alternation: {line}"),
-                    keep=keep)
+                    keep=keep, first=None if searched is None else searched.chosen.result)
     controllers = controllers_of(servo)
     cases = ((LABELS[0], predicted[0], gait(robot, default), SpringSet()),
-             (LABELS[1], predicted[1], motion, springs),
+             (LABELS[1], predicted[1], gait(robot, chosen), springs),
              (LABELS[2], None, bare.task_space, SpringSet()),
-             (LABELS[3], None, alt.best.task_space, alt.springs))
+             (LABELS[3], alt.predicted, alt.motion, alt.springs))
     rows = []
     for label, value, played, fitted in cases:
         sims: dict[str, float | None] = {}
@@ -275,20 +316,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
         rows.append(MotionRow(label, value, sims, verdicts, loops, why))
         tell(f"simulated {label} under {' and '.join(controllers)}")
     return OptimalRows(tuple(rows), alt.springs, family, bare, alt, robot, servo,
-                       time.perf_counter() - began)
+                       time.perf_counter() - began, feedback, searched)
 
 
-def predicted_per_metre(robot: Robot, motion: Motion, motor: Any, springs: SpringSet,
-                        contact: ContactParams) -> tuple[float | None, str]:
-    """hexaleg's prediction of ``motion`` with ``springs``: the force program's (objective
-    ``joule``, the simulation's feedforward) electrical energy per metre, J/m, and ``""``; or
-    None and why, when the analysis has no answer (no admissible forces, a torque beyond the
-    stall torque: the error's message)."""
-    try:
-        analysis = prepare(robot, motion, motor=motor, contact=contact).evaluate(springs, "joule")
-    except HexalegError as err:
-        return None, f"{type(err).__name__}: {err}"
-    return float(analysis.metrics["total"]["electrical"]) / motion.distance, ""
-
-
-__all__ = ["LABELS", "MotionRow", "OptimalRows", "optimal_rows", "predicted_per_metre"]
+__all__ = ["LABELS", "MotionRow", "OptimalRows", "optimal_rows"]

@@ -1,0 +1,55 @@
+"""The contact timing searched about the co-design's gait: a fixed lattice, each timing judged by
+hexaleg's prediction of its rebuilt cycle, the least chosen (a stand-in solver whose rebuilt
+cycle is the gait itself, so the choice can be checked against the parametric gaits' own
+predictions)."""
+
+from __future__ import annotations
+
+import dataclasses
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+import hexaleg
+from hexaleg.design.codesign.alternation import predicted_per_metre
+from hexaleg.design.codesign.timing import candidates, search_timing
+
+
+def test_the_lattice_is_fixed_and_bounded():
+    g = hexaleg.GaitParams(duty_factor=0.8, period=1.8, samples=100)
+    duties = [c.duty_factor for c in candidates(g)]
+    periods = [c.period for c in candidates(g)]
+    assert duties == [0.8, 0.85, 0.9, 0.8, 0.8]  # 0.8 + 0.05 written 0.85, not 0.8500000000000001
+    assert periods == pytest.approx([1.8, 1.8, 1.8, 1.53, 2.07], rel=1e-12)
+    longer = candidates(dataclasses.replace(g, duty_factor=0.85))
+    assert [c.duty_factor for c in longer] == [0.85, 0.9, 0.85, 0.85]  # 0.95 is past 0.9
+    moved = candidates(dataclasses.replace(g, period=1.8 + 1e-9))
+    assert [c.duty_factor for c in moved] == duties
+
+
+def test_the_least_prediction_is_chosen(monkeypatch, robot):
+    pytest.importorskip("crocoddyl")
+    import hexaleg.optimal.problem
+    import hexaleg.optimal.solve
+
+    def build(_robot, motion, _motor, _springs, _params):
+        return motion
+
+    def solve(_robot, motion, **_kwargs):
+        return SimpleNamespace(energy_per_metre=1.0, task_space=motion, x=np.zeros((2, 43)))
+
+    monkeypatch.setattr(hexaleg.optimal.problem, "build_problem", build)
+    monkeypatch.setattr(hexaleg.optimal.solve, "solve", solve)
+    run = hexaleg.Scenario.load("hexaleg")
+    chosen = hexaleg.GaitParams(samples=100)  # the default tripod, duty factor 0.5
+    springs = hexaleg.SpringSet()
+    lines: list[str] = []
+    found = search_timing(robot, chosen, run.actuator, springs, run.contact, None,
+                          say=lines.append)
+    expected = [predicted_per_metre(robot, hexaleg.gait(robot, g), run.actuator, springs,
+                                    run.contact)[0] for g in candidates(chosen)]
+    assert [c.predicted for c in found.candidates] == pytest.approx(expected, rel=1e-12)
+    assert found.best == int(np.argmin(expected)) and found.chosen.predicted == min(expected)
+    assert len(lines) == len(expected) and "predicted rebuilt" in lines[0]
+    assert "→ duty" in found.line() and found.data()["chosen"] == found.best
