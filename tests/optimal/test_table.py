@@ -96,6 +96,7 @@ def _documented(first: str) -> list[tuple[float, ...]]:
 
 @pytest.mark.parametrize(("first", "log"), [
     ("Solo-12 row, rebuilt and balanced", "bench_optimal_rows_solo12_balanced.log"),
+    ("Solo-12 row, under Raibert's placement", "bench_optimal_rows_solo12_placement.log"),
     ("Solo-12 row", "bench_optimal_rows_solo12_hold.log"),
     ("Solo-12 row, 300 iterations", "bench_optimal_rows_solo12_hold_300.log"),
     ("row (whole command)", "codesign_motion_optimal.log"),
