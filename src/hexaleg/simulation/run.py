@@ -41,6 +41,7 @@ from hexaleg.simulation.timestep import (
     automatic_timestep,
     chattered,
     check_steps,
+    converged,
     cycle_timestep,
 )
 
@@ -401,6 +402,13 @@ def side_by_side(jobs: dict[str, tuple[SimModel, Analysis]], motion: Motion,
             raise
 
 
+def losses(runs: dict[str, Run]) -> list[float]:
+    """The contact losses of the runs that did not fall (fractions of their stance samples with
+    the foot off the ground, :attr:`~hexaleg.simulation.measures.Walk.contact_losses`); 0 for
+    none."""
+    return [r.walk.contact_losses for r in runs.values() if r.walk is not None] or [0.0]
+
+
 def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None = None,
              settings: Settings | None = None, *, contact: ContactParams | None = None,
              objective: str = "joule", prepared: Prepared | None = None,
@@ -485,7 +493,7 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
                              for name in analyses}, motion, settings, closed)
     refined: list[str] = []
     for _ in range(REFINEMENTS if settings.timestep is None and baseline is None else 0):
-        why = chattered([r.walk.contact_losses for r in runs.values() if r.walk is not None], dt)
+        why = chattered(losses(runs), dt)
         if not why:
             break
         finer = cycle_timestep(dt / 2, motion.period)
@@ -494,12 +502,16 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
         except InvalidParameterError as err:  # no finer run fits: these stand, and say why
             refined.append(f"{why}; not simulated again at {finer:.3g} s: {err}")
             break
-        dt = finer
-        refined.append(f"{why}, so the runs were simulated again at {dt:.3g} s")
         models = {name: build_model(robot, motion, prepared.motor, springs=s, servo=servo,
-                                    ground=ground, timestep=dt, like=like)
+                                    ground=ground, timestep=finer, like=like)
                   for name, s in (("springs", springs), ("baseline", SpringSet()))}
-        runs = side_by_side({name: (sim, analyses[name]) for name, sim in models.items()},
-                            motion, settings, closed)
+        trial = side_by_side({name: (sim, analyses[name]) for name, sim in models.items()},
+                             motion, settings, closed)
+        if not converged(losses(runs), losses(trial)):  # the motion's own losses: these stand
+            refined.append(f"{why}; at {finer:.3g} s they lost {max(losses(trial)):.0%}: the "
+                           f"motion's own, not the timestep's, so the runs at {dt:.3g} s stand")
+            break
+        dt, runs = finer, trial
+        refined.append(f"{why}, so the runs were simulated again at {dt:.3g} s")
     return Simulation(robot, motion, settings, springs, analysis, base, runs["springs"],
                       runs["baseline"], prepared, time.perf_counter() - start, tuple(refined))
