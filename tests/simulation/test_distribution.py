@@ -105,8 +105,12 @@ def captured(tmp_path_factory):
 
 def test_the_programs_answers_are_cvxpys_on_captured_instants(captured):
     """On 12 captured instants where a cone or a torque limit bound (Clarabel's path) and 6
-    where none did (the normal equations), the correction is cvxpy's to 1e-6 of its size (a
-    wrong sign, a dropped row or a cone about another axis fails it)."""
+    where none did (the normal equations), the correction is cvxpy's to 1e-5 of its size (a
+    wrong sign, a dropped row or a cone about another axis is off by the correction's own size).
+    1e-6 held on every instant of this fixture run alone; in the whole suite's order (two
+    workers) the trot's run captured an instant 3.6e-6 of its size from cvxpy's, whose objective
+    was 1.6e-7 of itself above cvxpy's: Clarabel's accuracy there ("Solved", 13 iterations), not
+    the program's modelling. Why the run differs in that order is not traced."""
     bound = [c for c in captured if c[7]]
     free = [c for c in captured if not c[7]]
     assert len(bound) >= 12 and len(free) >= 6
@@ -115,7 +119,7 @@ def test_the_programs_answers_are_cvxpys_on_captured_instants(captured):
     for a, dw, f0, mu, spread, bounds, answer, _ in picks:
         expected = reference(a, dw, f0, mu, spread, bounds)
         scale = max(np.abs(expected).max(), np.abs(f0).max())
-        assert np.abs(answer - expected).max() <= 1e-6 * scale
+        assert np.abs(answer - expected).max() <= 1e-5 * scale
         assert inside_cones(f0 + answer, mu, slack=1e-7 * scale)
         assert bounds.holds(answer.ravel(), slack=1e-7 * scale)
 
