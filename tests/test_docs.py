@@ -62,6 +62,18 @@ def assert_quoted(page: str, log: str, pairs: Iterable[tuple[str, str]]) -> None
         assert said in log, said
 
 
+def _assert_run_row(part: str, log: str, run: str, covered: tuple[str, str],
+                    tracking: tuple[str, str], saving: str) -> None:
+    """A newcomer's table row on the page (stride covered and tracking RMS, springs / baseline,
+    and the saving) and, in the log's per-run lines (``"<run> springs: walks, …"``), each run's
+    figures beside it."""
+    row = f"| {covered[0]} % / {covered[1]} % | {tracking[0]} / {tracking[1]} mrad | {saving} |"
+    assert row in part, row
+    for name, c, t in zip(("springs", "baseline"), covered, tracking, strict=True):
+        line = log[log.index(f"{run} {name}: walks, "):].splitlines()[0]
+        assert f"({c} %), tracking RMS {t} mrad" in line, line
+
+
 def _mkdocs_config() -> dict:
     return yaml.safe_load((ROOT / "mkdocs.yml").read_text())
 
@@ -666,13 +678,7 @@ def test_simulate_page_quotes_the_newcomers_round_hyq():
                                                   "+22.29 % (+22.09 %)"),
         ("anymalk", "feedforward", "anymalk.toml"): (("99.3", "99.1"), ("2", "3"), "+22.34 %")}
     for (label, servo, toml), (covered, tracking, saving) in runs.items():
-        row = (f"| {covered[0]} % / {covered[1]} % | {tracking[0]} / {tracking[1]} mrad | "
-               f"{saving} |")
-        assert row in part, row
-        for name, c, t in zip(("springs", "baseline"), covered, tracking, strict=True):
-            said = f"{label} {servo} {name}: walks, "
-            line = now[now.index(said):].splitlines()[0]
-            assert f"({c} %), tracking RMS {t} mrad" in line, line
+        _assert_run_row(part, now, f"{label} {servo}", covered, tracking, saving)
         command = now[now.index(f"--robot {toml} --controller {servo}"):]
         summary = next(line for line in command.splitlines() if "servo, balance feedback)" in line)
         simulated, _, predicted = saving.partition(" (")
@@ -741,13 +747,7 @@ def test_simulate_page_quotes_the_newcomers_log():
         ("laikago", "position"): (("90.6", "96.5"), ("47", "68"), "+23.67 % (+32.02 %)"),
         ("laikago", "feedforward"): (("96.3", "95.5"), ("9", "12"), "+32.99 %")}
     for (robot, servo), (covered, tracking, saving) in runs.items():
-        row = (f"| {covered[0]} % / {covered[1]} % | {tracking[0]} / {tracking[1]} mrad | "
-               f"{saving} |")
-        assert row in part, row
-        for name, c, t in zip(("springs", "baseline"), covered, tracking, strict=True):
-            said = f"{robot} {servo} {name}: walks, "
-            line = now[now.index(said):].splitlines()[0]
-            assert f"({c} %), tracking RMS {t} mrad" in line, line
+        _assert_run_row(part, now, f"{robot} {servo}", covered, tracking, saving)
         summary = next(line for line in now.splitlines()
                        if line.startswith(f"{robot} ({servo} servo, balance feedback)"))
         simulated, _, predicted = saving.partition(" (")
