@@ -31,7 +31,8 @@ sized for its body's mass (:func:`~hexaleg.simulation.model.timestep_limit`, MuJ
 ``body_invweight0``) moves with less at the foot point, whose lever about the knee its body's
 mass does not see: HyQ's 0.34-kg foot point on a 2-kg shank (example-robot-data) lost 9–39 % of
 its stance samples at the automatic 0.24 ms and spent twice its plan, none at 0.12 ms, where
-every other walking run tried loses at most 0.5 % (``analysis/bench_logs/newcomers_simulate.log``)."""
+every other walking run tried loses at most 0.5 %
+(``analysis/bench_logs/newcomers_simulate.log``)."""
 REFINEMENTS = 2
 """Halvings of the automatic timestep at most (:data:`CHATTER`): a quarter of it."""
 
