@@ -15,6 +15,7 @@ import pytest
 from scipy.optimize import minimize
 
 import hexaleg
+from hexaleg.motion import leg_ik
 from hexaleg.motion.kinematics import analytic_geometry
 from hexaleg.motion.leg_chain import leg_chain
 from hexaleg.motion.leg_ik import NEWTON_JUMP, _newton, newton_leg_ik
@@ -62,6 +63,30 @@ def test_coarse_samples_are_solved_each_from_the_one_before(a1):
     assert np.abs(q - np.array(carried[1:])).max() < 1e-12
     fine = newton_leg_ik(a1, leg, *_walk(a1, leg, 100, r=0.07))[0]
     assert np.abs(q - fine[::20]).max() < 1e-12  # the same branch as the continuous path
+
+
+def test_a_jump_of_coarse_sampling_costs_one_sample_solve(a1, monkeypatch):
+    """A path that jumps once (the foot's circle of 100 samples with 30 left out: the jump is
+    the sampling's, not another branch) is solved again from its predecessor at the jump only:
+    that sample lands on its all-at-once solution and the rest are kept. The whole path from the
+    jump on was solved sample by sample before (30 solves)."""
+    leg = a1.leg("LF")
+    p, pd, pdd = (x[np.r_[0:40, 70:100]] for x in _walk(a1, leg, 100, r=0.07))
+    singles = []
+
+    def counted(chain, p, q, reference=None):
+        singles.extend([len(p)] if len(p) == 1 else [])
+        return _newton(chain, p, q, reference)
+
+    monkeypatch.setattr(leg_ik, "_newton", counted)
+    q = newton_leg_ik(a1, leg, p, pd, pdd)[0]
+    assert np.abs(np.diff(q, axis=0)).max() > NEWTON_JUMP  # the jump is there
+    assert len(singles) == 1
+    carried = [_reference(a1)[leg.q_index]]
+    for k in range(len(p)):
+        carried.append(newton_leg_ik(a1, leg, p[k:k + 1], pd[k:k + 1], pdd[k:k + 1],
+                                     q0=carried[-1])[0][0])
+    assert np.abs(q - np.array(carried[1:])).max() < 1e-12  # the branch carried sample by sample
 
 
 def test_a_target_that_is_not_a_number_is_named(a1):

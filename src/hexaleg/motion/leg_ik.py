@@ -34,6 +34,10 @@ NEWTON_JUMP = 0.1
 """Largest joint change, rad (or m), between consecutive samples solved all at once from the
 same start that :func:`newton_leg_ik` accepts as one continuous branch; a larger one is solved
 again sample by sample from its predecessor."""
+NEWTON_REJOIN = 1e-9
+"""Largest joint difference, rad (or m), between a sample solved again from its predecessor and
+its all-at-once solution at which :func:`newton_leg_ik` takes the two for one (the same branch:
+both converged to :data:`NEWTON_TOL`) and keeps the all-at-once solutions that follow."""
 
 
 def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np.ndarray, *,
@@ -50,8 +54,11 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
     consecutive samples differ by under :data:`NEWTON_JUMP` (a continuous path from the first
     sample, so each sample is the solution Newton reaches from its predecessor); otherwise the
     samples from the first failure on are solved one after another, each from the previous
-    solution. Then ``q̇ = J⁻¹ ṗ`` and ``q̈ = J⁻¹ (p̈ − J̇ q̇)``, with ``J`` the foot's translation
-    Jacobian and ``J̇ q̇`` its acceleration at zero joint acceleration.
+    solution, until one lands on its all-at-once solution (within :data:`NEWTON_REJOIN`: the
+    path is back on the batch's branch, whose following samples are kept up to the next
+    failure). A jump that only coarse sampling makes costs one sample's solve. Then
+    ``q̇ = J⁻¹ ṗ`` and ``q̈ = J⁻¹ (p̈ − J̇ q̇)``, with ``J`` the foot's translation Jacobian and
+    ``J̇ q̇`` its acceleration at zero joint acceleration.
 
     A leg of n ≥ 4 joints is redundant; it keeps the secondary objective of :class:`LegChain`,
     ``N₀ᵀ (q − q_stand) = 0`` (its redundant directions at the stand pose hold their stand values:
@@ -129,13 +136,15 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
         return _newton(chain, p[k], start, reference[k])
 
     q, err, off = solve(slice(None), starts)
-    jumps = np.abs(np.diff(q, axis=0)).max(axis=1)
-    bad = np.flatnonzero((err > NEWTON_TOL) | np.r_[False, jumps >= NEWTON_JUMP])
-    for k in range(int(bad[0]) if bad.size else len(p), len(p)):
+    k = _suspect(q, err, 0)
+    while k < len(p):
+        batch = q[k].copy()
         q[k:k + 1], err[k:k + 1], off[k:k + 1] = solve(slice(k, k + 1),
                                                         starts[:1] if k == 0 else q[k - 1:k])
         if err[k] > NEWTON_TOL:
             break
+        rejoined = np.abs(q[k] - batch).max() <= NEWTON_REJOIN
+        k = _suspect(q, err, k + 1) if rejoined else k + 1
     if pose:
         _, _, aug = chain.pose_jacobian(q)
     else:
@@ -170,6 +179,20 @@ def newton_leg_ik(robot: Robot, leg: Leg, p: np.ndarray, pd: np.ndarray, pdd: np
     qd = _least_squares(aug, np.concatenate([pd, held[1]], axis=1))
     qdd = _least_squares(aug, np.concatenate([pdd - chain.bias(q, qd), held[2]], axis=1))
     return q, qd, qdd
+
+
+def _suspect(q: np.ndarray, err: np.ndarray, start: int) -> int:
+    """The first sample from ``start`` on that Newton did not solve (``err`` above
+    :data:`NEWTON_TOL`) or that differs from its predecessor by :data:`NEWTON_JUMP` or more,
+    ``len(q)`` if none: the samples :func:`newton_leg_ik` solves again from their predecessor.
+
+    Args:
+        q: Joint values, shape (T, n). err: Their Newton errors, shape (T,). start: The first
+            sample to look at.
+    """
+    jumps = np.r_[False, np.abs(np.diff(q, axis=0)).max(axis=1) >= NEWTON_JUMP]
+    bad = np.flatnonzero((err[start:] > NEWTON_TOL) | jumps[start:])
+    return start + int(bad[0]) if bad.size else len(q)
 
 
 def _least_squares(jac: np.ndarray, e: np.ndarray) -> np.ndarray:
