@@ -867,6 +867,23 @@ def test_design_page_quotes_solo12s_answer_under_foot_placement():
                                                  "position    walks  +43.21 % +42.26 %")))
 
 
+def test_design_page_quotes_solo12s_answer_at_its_foot_points_timestep():
+    """docs/design.md's Solo-12 answer once each contact's stability bound is at its foot
+    point's mass is design_solo12.log's block "branch simstep" (a run of 4 minutes, by hand)."""
+    log = (ROOT / "analysis" / "bench_logs" / "design_solo12.log").read_text()
+    block = log[log.index("## branch simstep"):]
+    page = " ".join((DOCS / "design.md").read_text().split())
+    assert_quoted(page, block, (
+        ("the answer is the same again", "fit one_sided, spring torque ≤ 0.4086 N·m springs on "
+                                         "hfe LH/RH, hfe LF/RF, kfe LF/RF, kfe LH/RH: electrical "
+                                         "saving +42.02 % (+39.60 % net of 42.4 g of springs)"),
+        ("its proof +41.92 % and +40.72 %", "feedforward + PD  walks simulated +41.92 %"),
+        ("its proof +41.92 % and +40.72 %", "position only     walks simulated +40.72 %"),
+        ("the candidate +42.60 % position only", "one_sided, spring torque ≤ 0.4086 N·m    "
+                                                 "position    walks  +43.21 % +42.60 %"),
+        ("simulates at 0.203 ms, was 0.325 ms", "now simulates at 0.2029 ms, was 0.3249 ms")))
+
+
 def test_design_page_quotes_the_solo12_design_log():
     """docs/design.md's Solo-12 answer and how it followed the position servo's simulation are
     analysis/bench_logs/design_solo12.log's (two runs of 4 minutes, by hand): each figure
@@ -956,6 +973,21 @@ def test_simulate_page_quotes_the_foot_points_mass():
          "LH  body 1.99 kg  foot point sliding 0.336 kg  held 0.832 kg"),
         ("timestep is 0.1032 ms from the start (was 0.2421 ms)",
          "automatic timestep 0.2421 ms before, 0.1032 ms now")))
+    quad2dof = masses[masses.index("tests/data/quad2dof.toml:q2b.toml: "):]
+    retry = masses[masses.index("## main 3e7cc70"):]
+    assert_quoted(part, masses, (("HyQ's down to 0.552 kg", "(held over the gait >= 0.552 kg)"),
+                                 ("ANYmal's to 0.899 kg", "(held over the gait >= 0.899 kg)")))
+    assert_quoted(part, quad2dof, (
+        ("point moves 0.061 kg at its start and 0.027 kg at its lightest",
+         "LF  body 0.164 kg  foot point sliding 0.0349 kg  held 0.0614 kg  (held over the gait "
+         ">= 0.0269 kg)"),))
+    assert_quoted(part, retry, (
+        ("loses the ground in over half its stance samples at its 0.3-ms timestep and walks "
+         "backwards", "q2b.toml:feedforward:auto: timestep 0.3000 ms, feedback True; springs "
+                      "stalled lost 55.7 %; baseline stalled lost 58.0 %"),
+        ("(at 0.15 ms, where the removed retry took it, a quarter, and its joints missed the "
+         "plan", "q2b.toml:feedforward:auto: timestep 0.1500 ms, feedback True; springs "
+                 "untracked lost 25.5 %")))
     assert_quoted(part, now, [
         ("| HyQ, default | position | +34.01 % (+33.68 %) | 1322 / 2004 (1349 / 2034) |",
          "hyq (position servo, balance feedback): predicted saving +33.68 % (electrical 1349 J "
