@@ -838,16 +838,31 @@ def test_simulate_page_quotes_the_foot_placement_log():
                                                     "distance 320.9 mm"),
         ("anymal-kinova 15 (+22.73 % and +22.21 %", "simulated +22.21 % (309 J vs 397.2 J)")))
     whole = " ".join(page.split())
-    assert_quoted(whole, block, (
-        ("| short / short (83 %, 84 %) | +16.48 % / — |", "(83%), outside ±10%"),
-        ("| short / short (83 %, 84 %) | +16.48 % / — |", "(84%), outside ±10%"),
-        ("(+14.06 % and +13.71 % simulated", "simulated +14.06 % (7.078 J vs 8.236 J)"),
-        ("(+14.06 % and +13.71 % simulated", "simulated +13.71 % (9.172 J vs 10.63 J)"),
-        ("(+16.94, +17.85 and +15.80 %)", "simulated +16.94 % (209 J"),
-        ("(+16.94, +17.85 and +15.80 %)", "simulated +17.85 % (208.4 J"),
-        ("(+16.94, +17.85 and +15.80 %)", "simulated +15.80 % (204.5 J"),
-        ("fell / fell (2.41 s, roll)", "the robot fell at t = 2.4074 s"),
-        ("fell / fell (1.09 s, roll)", "the robot fell at t = 1.0885 s")))
+    placed = block[:block.index("## the test quadrupeds' trots of docs/simulate.md, 'Stands on "
+                                "two point feet', again")]
+    again = block[block.index("'Stands on two point feet', again"):]
+    assert_quoted(whole, placed, (
+        ("83 % and 84 % before", "(83%), outside ±10%"),
+        ("83 % and 84 % before", "(84%), outside ±10%"),
+        ("+14.06 % and +13.71 % at the old timesteps", "simulated +14.06 % (7.078 J vs 8.236 J)"),
+        ("+14.06 % and +13.71 % at the old timesteps", "simulated +13.71 % (9.172 J vs 10.63 J)"),
+        ("+16.94, +17.85 and +15.80 %", "simulated +16.94 % (209 J"),
+        ("+16.94, +17.85 and +15.80 %", "simulated +17.85 % (208.4 J"),
+        ("+16.94, +17.85 and +15.80 %", "simulated +15.80 % (204.5 J")))
+    assert_quoted(whole, again, (  # the table and its prose at the foot points' timesteps
+        ("| short / short (86 %, 86 %) | +16.48 % / — |", "(86%), outside ±10%"),
+        ("| +16.71 % / +17.01 % |", "simulated +17.01 % (208.3 J vs 251 J)"),
+        ("| +16.71 % / +17.49 % |", "simulated +17.49 % (211.8 J vs 256.7 J)"),
+        ("| +15.65 % / +15.87 % |", "simulated +15.87 % (203.7 J vs 242.1 J)"),
+        ("| +16.48 % / +14.39 % |", "simulated +14.39 % (6.868 J vs 8.022 J)"),
+        ("| +17.88 % / +14.40 % |", "simulated +14.40 % (8.136 J vs 9.506 J)"),
+        ("(+17.01, +17.49 and +15.87 %)", "simulated +15.87 %"),
+        ("fell / fell (2.51 s, height)", "xquad_2.34_feedforward springs fell: the robot fell "
+                                         "at t = 2.5089 s: base height"),
+        ("fell / fell (2.51 s, height)", "xquad_2.34_feedforward baseline fell:"),
+        ("fell / fell (2.19 s, roll)", "pryquad_1.44_feedforward springs fell: the robot fell "
+                                       "at t = 2.1855 s: base roll"),
+        ("fell / fell (2.19 s, roll)", "pryquad_1.44_feedforward baseline fell:")))
     assert sixteen.count("simulated +") == 8 and "fell" not in sixteen
 
 
