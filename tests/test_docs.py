@@ -4,6 +4,7 @@ CI): every public module gets an API page from docs/gen_api.py, every docs page 
 from __future__ import annotations
 
 import importlib.util
+import itertools
 import pkgutil
 import sys
 from collections.abc import Iterable
@@ -795,6 +796,7 @@ def test_simulate_page_quotes_the_foot_placement_log():
     log = (ROOT / "analysis" / "bench_logs" / "newcomers_simulate.log").read_text()
     block = log[log.index("# ===== Raibert's foot placement"):]
     eight = block[:block.index("## 16 cycles")]
+    rerun = log[log.index("# --- the foot placement's 8-cycle table again"):]
     page = (DOCS / "simulate.md").read_text()
     part = page[page.index("**Raibert's foot placement**"):page.index("The Adams model's")]
     names = {"Laikago": "laikago", "B1": "b1", "Go1": "go1", "ANYmal with": "kinova",
@@ -808,13 +810,14 @@ def test_simulate_page_quotes_the_foot_placement_log():
         label, servo, *figures, saving = m.groups()
         robot = next((v for k, v in names.items() if label.startswith(k)), robot)
         servo = servo.split()[0]
+        runs = eight if robot == "kinova" else rerun  # the others' timesteps moved: rerun
         for name, roll, slip in (("springs", figures[0], figures[2]),
                                  ("baseline", figures[1], figures[3])):
             assert re.search(rf"8_{robot}_{servo} +{name} +walks +roll max {roll} rad, "
-                             rf"slip max +{slip} mm", eight), (robot, servo, name)
+                             rf"slip max +{slip} mm", runs), (robot, servo, name)
         command = (f"--robot {robot}.toml" if robot != "go2" else
                    "--robot go2 --config trot_go2.toml") + f" --controller {servo} --cycles 8"
-        summary = eight[eight.index(command):]
+        summary = runs[runs.index(command):]
         assert f"simulated {saving} (" in summary.splitlines()[1], (robot, servo)
         rows += 1
     assert rows == 10
@@ -835,16 +838,31 @@ def test_simulate_page_quotes_the_foot_placement_log():
                                                     "distance 320.9 mm"),
         ("anymal-kinova 15 (+22.73 % and +22.21 %", "simulated +22.21 % (309 J vs 397.2 J)")))
     whole = " ".join(page.split())
-    assert_quoted(whole, block, (
-        ("| short / short (83 %, 84 %) | +16.48 % / — |", "(83%), outside ±10%"),
-        ("| short / short (83 %, 84 %) | +16.48 % / — |", "(84%), outside ±10%"),
-        ("(+14.06 % and +13.71 % simulated", "simulated +14.06 % (7.078 J vs 8.236 J)"),
-        ("(+14.06 % and +13.71 % simulated", "simulated +13.71 % (9.172 J vs 10.63 J)"),
-        ("(+16.94, +17.85 and +15.80 %)", "simulated +16.94 % (209 J"),
-        ("(+16.94, +17.85 and +15.80 %)", "simulated +17.85 % (208.4 J"),
-        ("(+16.94, +17.85 and +15.80 %)", "simulated +15.80 % (204.5 J"),
-        ("fell / fell (2.41 s, roll)", "the robot fell at t = 2.4074 s"),
-        ("fell / fell (1.09 s, roll)", "the robot fell at t = 1.0885 s")))
+    placed = block[:block.index("## the test quadrupeds' trots of docs/simulate.md, 'Stands on "
+                                "two point feet', again")]
+    again = block[block.index("'Stands on two point feet', again"):]
+    assert_quoted(whole, placed, (
+        ("83 % and 84 % before", "(83%), outside ±10%"),
+        ("83 % and 84 % before", "(84%), outside ±10%"),
+        ("+14.06 % and +13.71 % at the old timesteps", "simulated +14.06 % (7.078 J vs 8.236 J)"),
+        ("+14.06 % and +13.71 % at the old timesteps", "simulated +13.71 % (9.172 J vs 10.63 J)"),
+        ("+16.94, +17.85 and +15.80 %", "simulated +16.94 % (209 J"),
+        ("+16.94, +17.85 and +15.80 %", "simulated +17.85 % (208.4 J"),
+        ("+16.94, +17.85 and +15.80 %", "simulated +15.80 % (204.5 J")))
+    assert_quoted(whole, again, (  # the table and its prose at the foot points' timesteps
+        ("| short / short (86 %, 86 %) | +16.48 % / — |", "(86%), outside ±10%"),
+        ("| +16.71 % / +17.01 % |", "simulated +17.01 % (208.3 J vs 251 J)"),
+        ("| +16.71 % / +17.49 % |", "simulated +17.49 % (211.8 J vs 256.7 J)"),
+        ("| +15.65 % / +15.87 % |", "simulated +15.87 % (203.7 J vs 242.1 J)"),
+        ("| +16.48 % / +14.39 % |", "simulated +14.39 % (6.868 J vs 8.022 J)"),
+        ("| +17.88 % / +14.40 % |", "simulated +14.40 % (8.136 J vs 9.506 J)"),
+        ("(+17.01, +17.49 and +15.87 %)", "simulated +15.87 %"),
+        ("fell / fell (2.51 s, height)", "xquad_2.34_feedforward springs fell: the robot fell "
+                                         "at t = 2.5089 s: base height"),
+        ("fell / fell (2.51 s, height)", "xquad_2.34_feedforward baseline fell:"),
+        ("fell / fell (2.19 s, roll)", "pryquad_1.44_feedforward springs fell: the robot fell "
+                                       "at t = 2.1855 s: base roll"),
+        ("fell / fell (2.19 s, roll)", "pryquad_1.44_feedforward baseline fell:")))
     assert sixteen.count("simulated +") == 8 and "fell" not in sixteen
 
 
@@ -862,6 +880,23 @@ def test_design_page_quotes_solo12s_answer_under_foot_placement():
         ("+40.82 % position only, and", "position only     walks simulated +40.82 %"),
         ("the candidate +42.26 % position only", "one_sided, spring torque ≤ 0.4086 N·m    "
                                                  "position    walks  +43.21 % +42.26 %")))
+
+
+def test_design_page_quotes_solo12s_answer_at_its_foot_points_timestep():
+    """docs/design.md's Solo-12 answer once each contact's stability bound is at its foot
+    point's mass is design_solo12.log's block "branch simstep" (a run of 4 minutes, by hand)."""
+    log = (ROOT / "analysis" / "bench_logs" / "design_solo12.log").read_text()
+    block = log[log.index("## branch simstep"):]
+    page = " ".join((DOCS / "design.md").read_text().split())
+    assert_quoted(page, block, (
+        ("the answer is the same again", "fit one_sided, spring torque ≤ 0.4086 N·m springs on "
+                                         "hfe LH/RH, hfe LF/RF, kfe LF/RF, kfe LH/RH: electrical "
+                                         "saving +42.02 % (+39.60 % net of 42.4 g of springs)"),
+        ("its proof +41.92 % and +40.72 %", "feedforward + PD  walks simulated +41.92 %"),
+        ("its proof +41.92 % and +40.72 %", "position only     walks simulated +40.72 %"),
+        ("the candidate +42.60 % position only", "one_sided, spring torque ≤ 0.4086 N·m    "
+                                                 "position    walks  +43.21 % +42.60 %"),
+        ("simulates at 0.203 ms, was 0.325 ms", "now simulates at 0.2029 ms, was 0.3249 ms")))
 
 
 def test_design_page_quotes_the_solo12_design_log():
@@ -918,33 +953,108 @@ def test_codesign_page_quotes_the_codesign_bench_log():
              "on this machine); 137.8 s CPU")))
 
 
-def test_simulate_page_quotes_the_integration_block_where_feet_chatter():
-    """docs/simulate.md's timestep halved where feet chatter (#54): HyQ's default trot, Solo-8's
-    trot and anymal-kinova's 8 cycles on the merged code are newcomers_simulate.log's block
-    "integration", each row beside its run's summary line, and the note the run printed."""
+def test_simulate_page_quotes_the_foot_points_mass():
+    """docs/simulate.md's stability bound at the mass each foot point moves (#54): the masses
+    and timesteps are analysis/bench_logs/foot_masses.log's (python analysis/foot_masses.py),
+    HyQ's default trot at its new automatic timestep newcomers_simulate.log's block "the foot
+    point's mass" (each row beside its run's summary line), what the retry it replaces printed
+    the block "integration", and the registered trots' table bench_simulate_trots.log's last
+    block."""
+    masses = (ROOT / "analysis" / "bench_logs" / "foot_masses.log").read_text()
     log = (ROOT / "analysis" / "bench_logs" / "newcomers_simulate.log").read_text()
-    now = log[log.index("# ===== integration"):]
-    page = (DOCS / "simulate.md").read_text()
-    part = " ".join(page[page.index("**Feet that chatter: the timestep halved.**"):
-                         page.index("The Adams model's printed-units")].split())
+    now = log[log.index("# ===== the foot point's mass"):]
+    merged = log[log.index("# ===== integration"):log.index("# ===== the foot point's mass")]
+    page = " ".join((DOCS / "simulate.md").read_text().split())
+    part = page[page.index("**The foot point's mass.**"):page.index("The Adams model's printed")]
+    model = page[page.index("**Integrator and timestep**"):page.index("## Balance feedback")]
+    hexapod = masses[masses.index("hexaleg: "):masses.index("solo12: ")]
+    hyq = masses[masses.index("hyq.toml: "):]
+    anymal = masses[masses.index("anymal: "):masses.index("anymal:trot_anymal.toml: ")]
+    assert_quoted(model, hexapod, (
+        ("0.68 ms for the built-in robot, set by a hind foot's contact",
+         "the ground contact of RH (K 2e+04 N/m, B 100 N·s/m, foot point's mass 0.0726 kg)"),
+        ("0.073 kg for the built-in robot's hind feet against the tibia body's 0.085 kg",
+         "RH  body 0.0852 kg  foot point sliding 0.0672 kg  held 0.0726 kg")))
+    assert_quoted(model, hyq, (("HyQ's foot at the end of its 0.35-m shank 0.83 kg against its "
+                                "shank's 2 kg", "LF  body 2 kg  foot point sliding 0.336 kg  "
+                                                "held 0.832 kg"),
+                               ("0.34 kg on HyQ", "foot point sliding 0.336 kg")))
+    assert_quoted(model, anymal, (("0.25 kg on ANYmal", "LF  body 1.27 kg  foot point sliding "
+                                                        "0.248 kg"),))
+    assert_quoted(model, log, (("cut ANYmal's timestep 4.6×", "anymal: dt 0.4000 ms"),
+                               ("cut ANYmal's timestep 4.6×", "anymal: dt 0.0877 ms")))
+    assert_quoted(part, hyq, (
+        ("front and hind left foot points move 0.832 kg, where the bound used its shank's 2 kg",
+         "LH  body 1.99 kg  foot point sliding 0.336 kg  held 0.832 kg"),
+        ("timestep is 0.1032 ms from the start (was 0.2421 ms)",
+         "automatic timestep 0.2421 ms before, 0.1032 ms now")))
+    quad2dof = masses[masses.index("tests/data/quad2dof.toml:q2b.toml: "):]
+    retry = masses[masses.index("## main 3e7cc70"):]
+    assert_quoted(part, masses, (("HyQ's down to 0.552 kg", "(held over the gait >= 0.552 kg)"),
+                                 ("ANYmal's to 0.899 kg", "(held over the gait >= 0.899 kg)")))
+    assert_quoted(part, quad2dof, (
+        ("point moves 0.061 kg at its start and 0.027 kg at its lightest",
+         "LF  body 0.164 kg  foot point sliding 0.0349 kg  held 0.0614 kg  (held over the gait "
+         ">= 0.0269 kg)"),))
+    assert_quoted(part, retry, (
+        ("loses the ground in over half its stance samples at its 0.3-ms timestep and walks "
+         "backwards", "q2b.toml:feedforward:auto: timestep 0.3000 ms, feedback True; springs "
+                      "stalled lost 55.7 %; baseline stalled lost 58.0 %"),
+        ("(at 0.15 ms, where the removed retry took it, a quarter, and its joints missed the "
+         "plan", "q2b.toml:feedforward:auto: timestep 0.1500 ms, feedback True; springs "
+                 "untracked lost 25.5 %")))
     assert_quoted(part, now, [
-        ("| HyQ, default | position | +34.09 % (+33.68 %) | 1319 / 2001 (1349 / 2034) |",
+        ("| HyQ, default | position | +34.01 % (+33.68 %) | 1322 / 2004 (1349 / 2034) |",
          "hyq (position servo, balance feedback): predicted saving +33.68 % (electrical 1349 J "
-         "vs 2034 J per cycle); simulated +34.09 % (1319 J vs 2001 J)"),
-        ("| | feedforward + PD | +33.90 % | 1340 / 2027 |",
-         "simulated +33.90 % (1340 J vs 2027 J)"),
-        ("| Solo-8, trot, ODRI-4004 | position | +31.98 % (+31.58 %) | 8.222 / 12.09 (8.39 / "
-         "12.26) |", "simulated +31.98 % (8.222 J vs 12.09 J)"),
-        ("| | feedforward + PD | +31.77 % | 8.298 / 12.16 |",
-         "simulated +31.77 % (8.298 J vs 12.16 J)"),
-        ("| anymal-kinova, 8 cycles | position | +22.73 % (+22.09 %) | 301 / 389.6 (312.5 / "
-         "401.1) |", "simulated +22.73 % (301 J vs 389.6 J)"),
-        ("| | feedforward + PD | +22.20 % | 309 / 397.1 |",
-         "simulated +22.20 % (309 J vs 397.1 J)"),
-        ("HyQ's lost 14 % (position) and 39 % (feedforward) at 0.24 ms",
-         "the feet lost the ground in 14% of their stance samples at the automatic timestep "
-         "0.000242 s"),
-        ("HyQ's lost 14 % (position) and 39 % (feedforward) at 0.24 ms",
-         "the feet lost the ground in 39% of their stance samples")])
-    assert "CHATTER = 0.05" in (ROOT / "src" / "hexaleg" / "simulation" / "timestep.py"
-                                ).read_text()  # "over 5 %"
+         "vs 2034 J per cycle); simulated +34.01 % (1322 J vs 2004 J)"),
+        ("| | feedforward + PD | +33.87 % | 1340 / 2027 |",
+         "simulated +33.87 % (1340 J vs 2027 J)")])
+    for run in ("position springs", "position baseline", "feedforward springs",
+                "feedforward baseline"):
+        line = now[now.index(f"hyq {run}: walks, "):].splitlines()[0]
+        assert "contact lost 0.0 %" in line and "timestep 0.1032 ms" in line, line
+    assert_quoted(part, merged, [
+        ("they lost 14 % and 39 % at 0.24 ms", "the feet lost the ground in 14% of their stance "
+                                               "samples at the automatic timestep 0.000242 s"),
+        ("they lost 14 % and 39 % at 0.24 ms", "the feet lost the ground in 39% of their stance "
+                                               "samples"),
+        ("(HyQ walked at 0.121 ms: +34.09 % and +33.90 %", "simulated +34.09 % (1319 J"),
+        ("(HyQ walked at 0.121 ms: +34.09 % and +33.90 %", "simulated +33.90 % (1340 J"),
+        ("(HyQ walked at 0.121 ms:", "so the runs were simulated again at 0.000121 s")])
+    for label, case, steps, held, body in (
+            ("the built-in hexapod", "hexaleg", "0.5000 → 0.5000", "0.0726", "0.0852"),
+            ("Solo-12", "solo12", "0.2500 → 0.2029", "0.0477", "0.0775"),
+            ("Solo-12, trot 0.4 s", "solo12:trot_solo12.toml", "0.2000 → 0.1982", "0.0466",
+             "0.0775"),
+            ("A1", "a1", "0.3000 → 0.1694", "0.218", "0.465"),
+            ("A1, trot 0.4 s", "a1:trot_a1.toml", "0.2000 → 0.1645", "0.212", "0.465"),
+            ("ANYmal", "anymal", "0.4000 → 0.4000", "1.19", "1.27"),
+            ("ANYmal, trot 0.6 s", "anymal:trot_anymal.toml", "0.3000 → 0.3000", "1.16", "1.27"),
+            ("ANYmal C", "anymal_c", "0.4000 → 0.4000", "2.41", "2.25"),
+            ("Go2", "go2", "0.2596 → 0.1581", "0.238", "0.395"),
+            ("Go2, its trot", "go2:trot_own.toml", "0.2596 → 0.1608", "0.242", "0.395"),
+            ("biped6 (a servo sets it)", "../tests/data/biped6.toml", "0.1238 → 0.1238", "", ""),
+            ("Talos (a servo sets it)", "../tests/data/talos.toml", "0.2528 → 0.2528", "", ""),
+            ("HyQ", "hyq.toml", "0.2421 → 0.1032", "0.832", "1.99")):
+        cell = f"{held} / {body} |" if body else "|"
+        assert f"| {label} | {steps} | {cell}" in part, label
+        lines = masses[masses.index(f"\n{case}: ") + 1:].splitlines()
+        legs = list(itertools.takewhile(lambda line: line.startswith(" "), lines[1:]))
+        before, _, after = steps.partition(" → ")
+        assert f"automatic timestep {before} ms before, {after} ms now" in lines[0], lines[0]
+        assert not held or any(f"body {body} kg" in leg and f"held {held} kg" in leg
+                               for leg in legs), (label, legs)
+    trots = (ROOT / "analysis" / "bench_logs" / "bench_simulate_trots.log").read_text()
+    last = trots[trots.rindex("per robot (4 cycles"):]
+    table = page[page.index("**The registered quadrupeds' trots under position-only"):
+                 page.index("Closed loop every run covers")]
+    for label, cells in (("solo12 trot", ("25.0×", "13.5×", "+34.48 %")),
+                         ("a1 trot", ("20.9×", "11.2×", "+31.13 %")),
+                         ("anymal trot", ("35.7×", "14.2×", "+24.88 %")),
+                         ("go2 trot", ("18.3×", "11.5×", "+25.48 %")),
+                         ("hexaleg tripod", ("31.2×", "16.0×", "+15.09 %"))):
+        rows = [r for r in last.splitlines() if r.strip().startswith(label)]
+        open_cpu, closed_cpu, saving = cells
+        assert f" {open_cpu} " in rows[0] and f" {closed_cpu} " in rows[1], rows
+        assert saving.replace(" ", "") in rows[1], rows
+        assert f"| {open_cpu} |" in table and f"| {saving} | {closed_cpu} |" in table, label

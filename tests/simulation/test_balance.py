@@ -16,7 +16,7 @@ from hexaleg.simulation import balance, stepping
 from hexaleg.simulation.controllers import controls, reference
 from hexaleg.simulation.model import build_model
 from hexaleg.simulation.run import Settings, simulate
-from hexaleg.simulation.timestep import CHATTER, automatic_timestep, cycle_timestep
+from hexaleg.simulation.timestep import automatic_timestep, cycle_timestep
 
 TROT = '[gait]\npattern = "trot"\nperiod = 0.4\nstride_length = 0.12\nsamples = 200\n' \
        '[contact]\nmu = 1\n'
@@ -165,8 +165,11 @@ def test_a_turning_gait_is_refused(trot):
 def test_a_push_is_recovered_with_feedback_and_not_without(trot):
     """An impulse on the base at the start (0.2 m/s sideways, 0.5 N·s on Solo-12) under the
     feedforward + PD servo: with the balance controller the body is back on its planned line
-    (within 2 mm after 4 cycles) and walks the planned 0.48 m; open loop it drifts 78 mm off
-    and walks a third short."""
+    (within 3 mm after 4 cycles: 2.3 mm at its automatic 0.198 ms, 1.4 mm at 0.2 ms and 1.5 mm
+    at 0.1 ms, where it was 2 mm at the 0.325 ms the contact's body mass allowed) and walks the
+    planned 0.48 m; open loop it walks a quarter short (72 %) and ends farther off its line:
+    7.6 mm at 0.198 ms, 24 and 43 mm at 0.2 and 0.1 ms, 78 mm at 0.325 ms (an unbalanced
+    trot's drift does not converge with the step)."""
     prepared, analysis = trot
     motion = prepared.motion
     sim = _model(prepared, "feedforward")
@@ -185,8 +188,8 @@ def test_a_push_is_recovered_with_feedback_and_not_without(trot):
         assert traj.verdict == "ran"
         ends[closed] = traj.qpos[-1, :2] - motion.q[0, :2]
     planned = 4 * motion.distance
-    assert abs(ends[True][1]) < 2e-3 and abs(ends[True][0] / planned - 1) < 0.01
-    assert abs(ends[False][1]) > 0.03 and ends[False][0] / planned < 0.8
+    assert abs(ends[True][1]) < 3e-3 and abs(ends[True][0] / planned - 1) < 0.01
+    assert abs(ends[False][1]) > 2 * abs(ends[True][1]) and ends[False][0] / planned < 0.8
 
 
 @pytest.mark.slow
@@ -297,24 +300,22 @@ def _newcomer(tmp_path, name: str, lines: str, config: str):
 
 
 @pytest.mark.slow
-def test_hyq_walks_at_the_automatic_timestep_halved_where_its_feet_chatter(tmp_path):
-    """HyQ (87 kg, example-robot-data), its sized default trot under feedforward servos: at the
-    automatic timestep (0.24 ms) its feet lose the ground in 39 % of their stance samples and the
-    springs' run falls short (75 % of its stride); the simulation sees the chatter, runs again
-    at half the timestep, says so, and both runs walk and spend what the plan predicts, as at
-    a timestep given by hand (docs/simulate.md; about 15 s of CPU)."""
+def test_hyq_walks_at_the_timestep_its_foot_points_allow(tmp_path):
+    """HyQ (87 kg, example-robot-data), its sized default trot under feedforward servos: its
+    foot at the end of a 0.35-m shank moves 0.83 kg when its friction holds it (2 kg when the
+    contact was sized at its shank body's mass): the automatic timestep is 0.10 ms (was 0.24 ms,
+    where its feet lost the ground in 39 % of their stance samples and the springs' run ran
+    10 % over its stride), and both runs walk without losing the ground and spend what the plan
+    predicts (docs/simulate.md; about 15 s of CPU)."""
     lines = ('urdf = "hyq_description/robots/hyq_no_sensors.urdf"\n'
              'srdf = "hyq_description/srdf/hyq.srdf"\nstand = "standing"\n')
     s = _newcomer(tmp_path, "hyq", lines, '[simulate]\ncontroller = "feedforward"\n').run()
-    assert len(s.refined) == 1 and "the contacts chattered" in s.refined[0], s.refined
+    assert s.with_springs.sim.timestep == pytest.approx(1.032e-4, rel=1e-3)
     for run in (s.with_springs, s.baseline):
         assert run.feedback and run.verdict == "walks", (run.name, run.verdict, run.message)
-        assert run.walk.contact_losses <= CHATTER
+        assert run.walk.contact_losses < 0.005
     simulated, predicted = s.simulated("electrical")[2], s.predicted("electrical")[2]
     assert abs(simulated - predicted) < 0.01
-    given = _newcomer(tmp_path, "hyq", lines, '[simulate]\ncontroller = "feedforward"\n'
-                      f"timestep = {s.with_springs.sim.timestep!r}\n").run()
-    assert given.refined == () and given.simulated("electrical") == s.simulated("electrical")
 
 
 @pytest.mark.slow

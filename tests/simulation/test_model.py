@@ -14,6 +14,7 @@ import pytest
 import hexaleg
 from hexaleg.errors import InvalidParameterError
 from hexaleg.simulation import stepping
+from hexaleg.simulation.foot_mass import held_masses
 from hexaleg.simulation.ground import Ground
 from hexaleg.simulation.model import TIMESTEP, build_model, timestep_limit
 from hexaleg.simulation.state import JointMap
@@ -138,12 +139,19 @@ def test_a_limp_robot_lands_on_its_body_and_is_seen_fallen(sim, prepared):
     assert 0.015 < data.qpos[2] < 0.035
 
 
-def test_the_built_in_robots_limit_is_its_tibia_servo(sim, prepared):
-    """docs/simulate.md: explicit stability allows 0.73 ms on the built-in robot, set by a tibia
-    servo (kp 11.1 N·m/rad, kd 0.177 N·m·s/rad)."""
+def test_the_built_in_robots_limit_is_its_hind_feet_contact(sim, prepared):
+    """docs/simulate.md: explicit stability allows 0.68 ms on the built-in robot, set by a hind
+    foot's contact at the 0.0726 kg its foot point moves (held by its friction,
+    :mod:`hexaleg.simulation.foot_mass`): ``K dt² + 2 B dt ≤ 2 m``, MuJoCo's time constant
+    ``2 m / B`` at least twice the step. Sized at MuJoCo's ``body_invweight0`` of the tibia
+    (0.085 kg) the contact allowed 0.79 ms and a tibia servo's 0.73 ms set the limit."""
+    robot = prepared.robot
     limit, what = timestep_limit(sim, prepared.motion)
-    assert limit == pytest.approx(7.32e-4, rel=1e-3)
-    assert what.startswith("the servo of") and "_tibia" in what
+    assert limit == pytest.approx(6.80e-4, rel=1e-3)
+    assert what.startswith("the ground contact of") and "foot point's mass 0.0726 kg" in what
+    k, b = sim.ground.stiffness, sim.ground.damping
+    mass = float(held_masses(robot, prepared.motion.q[0]).min())
+    assert k * limit**2 + 2 * b * limit == pytest.approx(2 * mass, rel=1e-9)
 
 
 def test_timestep_must_undercut_the_gait_and_stay_stable(prepared):
@@ -152,7 +160,7 @@ def test_timestep_must_undercut_the_gait_and_stay_stable(prepared):
         build_model(robot, motion, motor, timestep=motion.dt)
     coarse = hexaleg.gait(robot, dataclasses.replace(hexaleg.GaitParams(), samples=200))
     with pytest.raises(InvalidParameterError, match="explicit stability of the servo"):
-        build_model(robot, coarse, motor, timestep=2e-3)
+        build_model(robot, coarse, motor, timestep=2e-3, ground=Ground(2e3, 10.0))
     with pytest.raises(InvalidParameterError, match="ground contact"):
         build_model(robot, motion, motor, timestep=TIMESTEP,
                     ground=Ground(stiffness=1e7, damping=3e3))

@@ -31,18 +31,3 @@ def test_steps_are_checked_against_the_budget(robot):
                                                     r"cycles at this timestep"):
         check_steps(robot, 10_000, 1.0, 5e-4, given=False)
 
-
-def test_contacts_that_settle_at_half_the_timestep_chattered_and_lifted_feet_did_not():
-    """A run whose feet lose the ground in over CHATTER of their stance samples is simulated
-    again at half the timestep; the finer runs are kept when their losses settle (within
-    CHATTER, or under half of the first: HyQ's 39 % to 0 %), not when the motion itself lifts
-    its feet about as often at any step (an open-loop trot rocking: 30 % to 25 %)."""
-    from hexaleg.simulation.timestep import CHATTER, chattered, converged
-
-    assert chattered([0.01, CHATTER], 2e-4) == ""
-    assert "39% of their stance samples at the automatic timestep 0.0002 s" in chattered(
-        [0.12, 0.39], 2e-4)
-    assert converged([0.39, 0.12], [0.0, 0.0])
-    assert converged([0.39], [0.15])
-    assert not converged([0.30], [0.25])
-    assert not converged([0.12], [0.07])

@@ -108,8 +108,10 @@ class Ground:
         h = np.asarray(heading, dtype=float)
         return -g * (np.cos(self.incline) * np.array([0.0, 0.0, 1.0]) + np.sin(self.incline) * h)
 
-    def explicit_rate(self, inverse_weight: float) -> tuple[float, float]:
-        """``(K Â, B Â)``: the contact's stiffness and damping per unit effective mass (1/s²,
-        1/s), for the explicit-integration check of
-        :func:`hexaleg.simulation.model.check_timestep`."""
-        return self.stiffness * inverse_weight, self.damping * inverse_weight
+    def explicit_rate(self, mass: float) -> tuple[float, float]:
+        """``(K/m, B/m)``: the contact's stiffness and damping per unit of the ``mass`` (kg) its
+        foot point moves (1/s², 1/s; :mod:`~hexaleg.simulation.foot_mass`), for the
+        explicit-integration check of :func:`hexaleg.simulation.model.check_timestep`. The
+        physical K and B act on the true mass whatever ``Â`` sized ``solref`` (module
+        docstring: the force is ``−K δ − B δ̇`` up to the added mass ε)."""
+        return self.stiffness / mass, self.damping / mass

@@ -36,14 +36,7 @@ from hexaleg.simulation import balance, falls, measures, pressure, stepping
 from hexaleg.simulation.controllers import COMPLIANCE, Servo, controls, reference
 from hexaleg.simulation.ground import Ground
 from hexaleg.simulation.model import SimModel, build_model
-from hexaleg.simulation.timestep import (
-    REFINEMENTS,
-    automatic_timestep,
-    chattered,
-    check_steps,
-    converged,
-    cycle_timestep,
-)
+from hexaleg.simulation.timestep import automatic_timestep, check_steps, cycle_timestep
 
 VERDICTS: tuple[str, ...] = ("walks", "stalled", "short", "overran", "untracked", "tipped",
                               "fell", "diverged")
@@ -271,8 +264,6 @@ class Simulation:
             springs, the timestep's probe, building the models, both runs and their measures
             (and the gait's inverse dynamics where ``prepared`` was not given); not MuJoCo's
             import, which a process's first simulation loads before the clock starts.
-        refined: Why the automatic timestep was halved, one line a halving
-            (:func:`~hexaleg.simulation.timestep.chattered`); empty when it was not.
     """
 
     robot: Robot
@@ -285,7 +276,6 @@ class Simulation:
     baseline: Run
     prepared: Prepared
     wall: float = 0.0
-    refined: tuple[str, ...] = ()
 
     @property
     def walks(self) -> bool:
@@ -402,13 +392,6 @@ def side_by_side(jobs: dict[str, tuple[SimModel, Analysis]], motion: Motion,
             raise
 
 
-def losses(runs: dict[str, Run]) -> list[float]:
-    """The contact losses of the runs that did not fall (fractions of their stance samples with
-    the foot off the ground, :attr:`~hexaleg.simulation.measures.Walk.contact_losses`); 0 for
-    none."""
-    return [r.walk.contact_losses for r in runs.values() if r.walk is not None] or [0.0]
-
-
 def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None = None,
              settings: Settings | None = None, *, contact: ContactParams | None = None,
              objective: str = "joule", prepared: Prepared | None = None,
@@ -491,27 +474,5 @@ def simulate(robot: Robot, motion: Motion, motor: Any, springs: SpringSet | None
         closed = True  # fell: close it
         runs = side_by_side({name: (models.get(name) or runs[name].sim, analyses[name])
                              for name in analyses}, motion, settings, closed)
-    refined: list[str] = []
-    for _ in range(REFINEMENTS if settings.timestep is None and baseline is None else 0):
-        why = chattered(losses(runs), dt)
-        if not why:
-            break
-        finer = cycle_timestep(dt / 2, motion.period)
-        try:
-            check_steps(robot, settings.cycles, motion.period, finer, given=False)
-        except InvalidParameterError as err:  # no finer run fits: these stand, and say why
-            refined.append(f"{why}; not simulated again at {finer:.3g} s: {err}")
-            break
-        models = {name: build_model(robot, motion, prepared.motor, springs=s, servo=servo,
-                                    ground=ground, timestep=finer, like=like)
-                  for name, s in (("springs", springs), ("baseline", SpringSet()))}
-        trial = side_by_side({name: (sim, analyses[name]) for name, sim in models.items()},
-                             motion, settings, closed)
-        if not converged(losses(runs), losses(trial)):  # the motion's own losses: these stand
-            refined.append(f"{why}; at {finer:.3g} s they lost {max(losses(trial)):.0%}: the "
-                           f"motion's own, not the timestep's, so the runs at {dt:.3g} s stand")
-            break
-        dt, runs = finer, trial
-        refined.append(f"{why}, so the runs were simulated again at {dt:.3g} s")
     return Simulation(robot, motion, settings, springs, analysis, base, runs["springs"],
-                      runs["baseline"], prepared, time.perf_counter() - start, tuple(refined))
+                      runs["baseline"], prepared, time.perf_counter() - start)

@@ -22,19 +22,6 @@ from hexaleg.simulation.model import TIMESTEP, SimModel, build_model, timestep_l
 
 STEP_MARGIN = 2
 """Margin on the memory one simulation step costs (:func:`step_bytes`)."""
-CHATTER = 0.05
-"""Share of a run's stance samples with the foot off the ground
-(:attr:`~hexaleg.simulation.measures.Walk.contact_losses`) above which its feet may have
-chattered at the automatic timestep: the runs are simulated again at half of it
-(:func:`chattered`), and kept if their losses settle (:func:`converged`). A contact
-sized for its body's mass (:func:`~hexaleg.simulation.model.timestep_limit`, MuJoCo's
-``body_invweight0``) moves with less at the foot point, whose lever about the knee its body's
-mass does not see: HyQ's 0.34-kg foot point on a 2-kg shank (example-robot-data) lost 9–39 % of
-its stance samples at the automatic 0.24 ms and spent twice its plan, none at 0.12 ms, where
-every other walking run tried loses at most 0.5 %
-(``analysis/bench_logs/newcomers_simulate.log``)."""
-REFINEMENTS = 2
-"""Halvings of the automatic timestep at most (:data:`CHATTER`): a quarter of it."""
 
 
 def step_bytes(robot: Robot) -> int:
@@ -94,23 +81,3 @@ def automatic_timestep(robot: Robot, motion: Motion, motor: Any, servo: Servo,
     probe = probe or build_model(robot, motion, motor, servo=servo, ground=ground, check=False)
     limit, _ = timestep_limit(probe, motion)
     return min(TIMESTEP, motion.dt / 2, 0.8 * limit)
-
-
-def chattered(losses: list[float], timestep: float) -> str:
-    """Why a simulation at the automatic ``timestep`` (s) must be run again at half of it, or
-    "" when it need not: the largest of its runs' ``losses`` (contact losses, fractions, one a
-    run that did not fall) is above :data:`CHATTER`."""
-    lost = max(losses, default=0.0)
-    if lost <= CHATTER:
-        return ""
-    return (f"the feet lost the ground in {lost:.0%} of their stance samples at the automatic "
-            f"timestep {timestep:.3g} s (over {CHATTER:.0%}: the contacts chattered)")
-
-
-def converged(before: list[float], after: list[float]) -> bool:
-    """Whether runs at half the timestep lost the ground for the timestep's sake: their largest
-    contact loss ``after`` (fractions) is within :data:`CHATTER` or under half of ``before``'s —
-    a contact that chattered numerically settles as the step shrinks (HyQ: 39 % → 0 %), where
-    a foot the motion itself lifts (an open-loop trot rocking on its diagonals) loses about as
-    much at any timestep, and those runs stand as first simulated."""
-    return max(after) <= CHATTER or max(after) < max(before) / 2

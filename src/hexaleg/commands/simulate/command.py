@@ -87,7 +87,7 @@ def run(args: argparse.Namespace) -> int:
         motions = ", ".join(str(folder.directory / m.name)
                             for m in write_motions(folder.staging, s))
         folder.publish()
-    for note in (*study.notes, *s.refined):
+    for note in study.notes:
         print(f"note: {note}")
     print_warnings(study.warnings)
     print(summary(data))

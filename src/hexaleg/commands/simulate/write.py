@@ -111,7 +111,7 @@ def simulation_data(s: Simulation, *, design: str = "", notes: tuple[str, ...] =
         "feedback": feedback_data(s),
         "runs": {"springs": _run_data(s.with_springs), "baseline": _run_data(s.baseline)},
         "warnings": list(warnings), "gait_defaults": gait_defaults,
-        "notes": [*notes, *s.refined, *sim.notes],
+        "notes": [*notes, *sim.notes],
     }
     if sensitivity is not None:
         data["sensitivity"] = [sensitivity_row(r) for r in sensitivity]
