@@ -145,7 +145,7 @@ that breaks the criterion, every :data:`LOOP_MARGIN` of the limit (a whole numbe
 Unitree G1 (example-robot-data, 33 kg, its 3.8-kg pelvis under a 3-joint waist): r = 60.7 on
 the pelvis' pitch (the registered robots 2.4–5.1, Talos 16.8, every one below the limit at
 100 Hz), the criterion 15.6 at 100 Hz: its stance hip's torque flipped sign at every update,
-±100 N·m by 0.1 s, and it fell within 2.6 s at any timestep; at 2.05 ms it walks
+±100 N·m by 0.1 s, and it fell within 2.6 s at any timestep; at 2.08 ms it walks
 (``analysis/bench_logs/newcomers_simulate.log``, the G1 block).
 
 **Gains** (:func:`size_gains`): ``k_p = ω²``, ``k_d = 2 ζ ω`` with ζ = 1 (critically damped) and
