@@ -217,7 +217,8 @@ def test_a_contact_points_own_mass_is_mujocos_and_sets_its_limit():
     from hexaleg.simulation.mjcf import contact_sites
     from hexaleg.simulation.model import contact_point_limit
 
-    p = Scenario.load(str(Path(__file__).parents[1] / "data" / "biped6.toml")).prepare()
+    p = Scenario.from_tables(str(Path(__file__).parents[1] / "data" / "biped6.toml"),
+                             {"gait": {"samples": 100}}).prepare()
     robot, motion = p.robot, p.motion
     ground = Ground(stiffness=2.4e5, damping=1.2e3)
     sim = build_model(robot, motion, p.motor, ground=ground, check=False)
