@@ -1058,3 +1058,33 @@ def test_simulate_page_quotes_the_foot_points_mass():
         assert f" {open_cpu} " in rows[0] and f" {closed_cpu} " in rows[1], rows
         assert saving.replace(" ", "") in rows[1], rows
         assert f"| {open_cpu} |" in table and f"| {saving} | {closed_cpu} |" in table, label
+
+
+def test_simulate_page_quotes_g1s_log():
+    """docs/simulate.md's Unitree G1 (#54: its ZMP gait on soles closed loop, the controller's
+    rate and its toe corners) is analysis/bench_logs/newcomers_simulate.log's G1 block: each
+    table row and figure beside the log's line (its runs about 30 s of CPU each, by hand)."""
+    log = (ROOT / "analysis" / "bench_logs" / "newcomers_simulate.log").read_text()
+    now = log[log.index("# ===== Unitree G1 on soles"):]
+    page = (DOCS / "simulate.md").read_text()
+    part = " ".join(page[page.index("### Unitree G1"):
+                         page.index("### Position servos on soles")].split())
+    robots = " ".join((DOCS / "robots.md").read_text().split())
+    summary = ("g1 ({} servo, balance feedback): predicted saving +39.08 % (electrical 649.2 J "
+               "vs 1066 J per cycle); simulated {}")
+    assert_quoted(part, now, (
+        ("| feedforward + PD | 200.0 / 200.0 mm | +39.08 % → +39.00 % |",
+         summary.format("feedforward", "+39.00 %")),
+        ("| position | 200.5 / 200.5 mm | +39.08 % → +38.65 % |",
+         summary.format("position", "+38.65 %")),
+        ("every 2.08 ms", "g1 position baseline: walks, 200.5 mm per cycle of 200.0 mm (100.3 %)"),
+        ("every 2.08 ms", "controller period 2.08 ms"),
+        ("r = 60.7", "g1 r 60.7"), ("is 15.6", "criterion 15.6"),
+        ("0.000101 s of the ground contact of L1's sole corner 0 at its own effective mass "
+         "0.124 kg", "0.000101 s of the ground contact of L1's sole corner 0 at its own "
+                     "effective mass 0.124 kg")))
+    for line in ("g1 feedforward springs: walks, 200.0 mm", "g1 feedforward baseline: walks, "
+                 "200.0 mm", "g1 position springs: walks, 200.5 mm"):
+        assert line in now, line
+    assert "200.0 mm per cycle of the planned 200 mm, the saving +39.00 %" in robots
+    assert "+39.08 % predicted; under position servos 200.5 mm, +38.65 %" in robots

@@ -42,9 +42,11 @@ def _model(prepared, controller: str):
 
 
 def test_gains_are_a_critically_damped_loop_at_the_gaits_frequency(trot):
-    """k_p = ω², k_d = 2ζω with ω = BANDWIDTH · 2π / period; bad gains are named."""
+    """k_p = ω², k_d = 2ζω with ω = BANDWIDTH · 2π / period, updated at 100 Hz (the trot's
+    sampled loop is well within its limit); bad gains are named."""
     prepared, _ = trot
-    g = balance.size_gains(prepared.motion)
+    g = balance.size_gains(prepared.robot, prepared.motion)
+    assert g.period == balance.CONTROL_PERIOD
     assert g.omega == pytest.approx(balance.BANDWIDTH * 2 * np.pi / 0.4)
     assert g.kp == pytest.approx(g.omega**2) and g.kd == pytest.approx(2 * g.omega)
     with pytest.raises(InvalidParameterError, match="capture"):
@@ -612,3 +614,86 @@ def test_a_cycle_of_integrated_knots_closes_at_its_own_next_knot(robot):
     miss = np.linalg.norm(balance._skew_log(want.T @ explicit))
     assert miss == pytest.approx(10.0 * dt**2, rel=1e-6)
     assert miss > balance.TURN
+
+
+def _held_loop_radius(r: float, gains: balance.Gains, period: float) -> float:
+    """The spectral radius of the error loop ``ë = −r (k_p e + k_d ė)`` with the correction held
+    over ``period`` and integrated exactly in between (zero-order hold: ``e ← e + T ė + T²/2 u``,
+    ``ė ← ė + T u``; Franklin, Powell & Workman, *Digital Control of Dynamic Systems*, 1998,
+    §4.3) — not the explicit step :func:`balance.control_period` bounds."""
+    u = -r * np.array([gains.kp, gains.kd])
+    step = np.array([[1.0, period], [0.0, 1.0]]) + np.outer([period**2 / 2, period], u)
+    return float(np.max(np.abs(np.linalg.eigvals(step))))
+
+
+def test_the_base_answers_a_wrench_r_times_faster_than_the_model_it_is_sized_for():
+    """``loop_ratio``: the base's acceleration under the controller's wrench (Pinocchio's ABA
+    with the joints free, gravity and velocity off: a formulation without ``M⁻¹``) along the
+    slowest model direction is r times what the model (m, I_c) assumes; on the biped on soles
+    the 100-Hz loop is within the limit, so its controller keeps 100 Hz."""
+    import pinocchio as pin
+
+    prepared = Scenario.from_tables(BIPED6, {"gait": {"samples": 100}}).prepare()
+    robot, q = prepared.robot, prepared.motion.q[0]
+    r = balance.loop_ratio(robot, q)
+    model = robot.model.copy()
+    model.gravity.linear[:] = 0.0
+    data = model.createData()
+    pin.ccrba(model, data, q, np.zeros(model.nv))
+    rot = pin.Quaternion(q[6], *q[3:6]).toRotationMatrix()
+    inertia = rot.T @ np.asarray(data.Ig.inertia) @ rot
+    seen = []
+    for rows, scale in ((slice(0, 3), robot.mass * np.eye(3)), (slice(3, 6), inertia)):
+        for axis in np.eye(3):
+            tau = np.zeros(model.nv)
+            tau[rows] = scale @ axis  # the model's wrench for a unit acceleration
+            accel = pin.aba(model, data, q, np.zeros(model.nv), tau)[rows]
+            seen.append(accel @ axis)
+    assert r == pytest.approx(5.03, abs=0.01)  # angular (5.02 at the default 1000 samples)
+    assert max(seen) <= r * (1 + 1e-9) and max(seen) > 0.9 * r, (seen, r)
+    gains = balance.size_gains(robot, prepared.motion)
+    assert gains.period == balance.CONTROL_PERIOD
+    assert _held_loop_radius(r, gains, gains.period) < 1.0
+
+
+G1 = "".join(
+    f'[[robot.legs]]\nname = "{name}"\njoints = ['
+    + ", ".join(f'"{side}_{j}_joint"' for j in ("hip_pitch", "hip_roll", "hip_yaw", "knee",
+                                                 "ankle_pitch", "ankle_roll"))
+    + f']\nfoot = {{link = "{side}_ankle_roll_link", point = [0.035, 0.0, -0.035]}}\n'
+    for name, side in (("L1", "left"), ("R1", "right")))
+"""Unitree G1's legs (example-robot-data's g1_29dof_rev_1_0.urdf; docs/robots.md)."""
+
+
+@pytest.mark.slow
+def test_g1_walks_its_zmp_gait_closed_loop_at_its_loops_rate(tmp_path):
+    """Unitree G1 (33 kg; docs/robots.md, "Humanoids with six-joint legs"): its 3.8-kg pelvis
+    turns 60.7 × faster under the controller's wrench than the centroidal model says, so held
+    over 10 ms the loop is unstable (its stance hip's torque flipped sign at every update and it
+    fell within 2.6 s at any timestep); at its own period, 0.8 of the loop's limit, the loop
+    held exactly is stable, and the baseline walks three cycles of its 0.2-m stride on its
+    soles under feedforward servos, distance within 2 % (timestep 40 µs: 0.8 of the explicit
+    limit at its toe corners' own 0.12-kg effective mass, which the automatic timestep does not
+    see; 21 s of CPU). On main, at 10 ms, that run fell by 2.6 s."""
+    from hexaleg.simulation.run import simulate_run
+
+    lines = ('urdf = "g1_description/urdf/g1_29dof_rev_1_0.urdf"\n'
+             'stand = {body_height = 0.68}\ngait = {duty_factor = 0.6}\nsole = [0.17, 0.05]\n'
+             + G1)
+    study = _newcomer(tmp_path, "g1", lines, '[gait]\nstride_length = 0.2\nstep_height = 0.05\n'
+                      '[simulate]\ntimestep = 4e-5\ncycles = 3\nevaluate = 1\nforce_samples = 0\n')
+    prepared = study.prepared
+    robot, motion = prepared.robot, prepared.motion
+    r = balance.loop_ratio(robot, motion.q[0])
+    gains = balance.size_gains(robot, motion)
+    assert r == pytest.approx(60.7, abs=0.1)
+    assert gains.period == pytest.approx(2.08e-3, abs=1e-5)
+    assert _held_loop_radius(r, gains, balance.CONTROL_PERIOD) > 1.0
+    assert _held_loop_radius(r, gains, gains.period) < 1.0
+    settings = study.settings.sized(robot.mass)
+    sim = build_model(robot, motion, prepared.motor, servo=settings.servo(),
+                      ground=settings.ground(prepared.contact.mu),
+                      timestep=cycle_timestep(4e-5, motion.period))
+    run = simulate_run("baseline", sim, motion, prepared.evaluate(None), settings, feedback=True)
+    assert run.verdict == "walks", run.message
+    assert run.walk.distance_per_cycle == pytest.approx(motion.distance, rel=0.02)

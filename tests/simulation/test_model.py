@@ -211,3 +211,37 @@ def test_a_geoms_lowest_point_is_its_lowest_surface_point():
             mujoco.mj_kinematics(m, d)
             gap = mujoco.mj_geomDistance(m, d, 0, 1, 1.0, None)
             assert abs(gap) < 1e-9, (kind, gap)
+
+
+def test_a_contact_points_own_mass_is_mujocos_and_sets_its_limit():
+    """``contact_point_limit`` on the biped on soles: each sole corner's effective mass along the
+    normal (Pinocchio's ``M⁻¹`` and frame Jacobians) is MuJoCo's ``1/(J M⁻¹ Jᵀ)`` at the corner's
+    site (``mj_jacSite``, ``mj_solveM``) to 1e-9, the lightest sets the limit, and at it the
+    explicit step sits on its bound ``b dt² + 2 a dt = 4``. The corner moves with 0.137 kg where
+    its body's ``body_invweight0`` says 1.04 kg (the foot turning about its ankle)."""
+    from pathlib import Path
+
+    from hexaleg.scenario.scenario import Scenario
+    from hexaleg.simulation.mjcf import contact_sites
+    from hexaleg.simulation.model import contact_point_limit
+
+    p = Scenario.from_tables(str(Path(__file__).parents[1] / "data" / "biped6.toml"),
+                             {"gait": {"samples": 100}}).prepare()
+    robot, motion = p.robot, p.motion
+    ground = Ground(stiffness=2.4e5, damping=1.2e3)
+    sim = build_model(robot, motion, p.motor, ground=ground, check=False)
+    limit, point, mass = contact_point_limit(sim, motion)
+    m, data = sim.model, mujoco.MjData(sim.model)
+    data.qpos[:], data.qvel[:] = sim.joints.to_mujoco(motion.q[0], motion.v[0])
+    mujoco.mj_forward(m, data)
+    masses = []
+    for site in contact_sites(robot):
+        jac = np.zeros((3, m.nv))
+        mujoco.mj_jacSite(m, data, jac, None, mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_SITE, site))
+        x = np.zeros((1, m.nv))
+        mujoco.mj_solveM(m, data, x, jac[2:3].copy())
+        masses.append(1.0 / float(jac[2] @ x[0]))
+    assert mass == pytest.approx(min(masses), rel=1e-9) and mass == pytest.approx(0.137, abs=1e-3)
+    assert point == "R1's sole corner 0"
+    a, b = ground.damping / mass, ground.stiffness / mass
+    assert b * limit**2 + 2 * a * limit == pytest.approx(4.0, rel=1e-12)

@@ -14,7 +14,7 @@ import numpy as np
 
 from hexaleg.motion.stands import HOLDS, Stand, longest_stand
 from hexaleg.motion.trajectory import Motion
-from hexaleg.simulation.model import SimModel
+from hexaleg.simulation.model import STABILITY, SimModel, contact_point_limit
 from hexaleg.simulation.stepping import Trajectory
 
 SATURATED = 0.1
@@ -117,6 +117,7 @@ def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory, feedback: bool =
     says so with both torques and when the stall began and the fall came, then gives the cause
     the run shows otherwise (a stronger actuator would not be the first fix; issue #55: a
     planned peak a third of the stall torque was told to buy a stronger one)."""
+    chatter = _chattered(sim, motion)
     at_stall = np.abs(traj.servo) >= sim.stall * (1.0 - 1e-6)
     share = float(at_stall.any(axis=1).mean())
     stalled = ""
@@ -129,9 +130,9 @@ def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory, feedback: bool =
             need = ("" if peak is None else f"; its planned peak command {peak:.3g} N·m, "
                     f"{peak / stall:.0%} of it")
             return FallCause(
-                f"the servos were at their stall torque in {share:.0%} of the steps ({name} "
-                f"most, {stall:.3g} N·m{need}): the gait needs a stronger actuator ([motor], "
-                "or the robot's own), a slower or shorter gait, or a lighter robot")
+                f"{chatter}the servos were at their stall torque in {share:.0%} of the steps "
+                f"({name} most, {stall:.3g} N·m{need}): the gait needs a stronger actuator "
+                "([motor], or the robot's own), a slower or shorter gait, or a lighter robot")
         first = float(traj.t[int(np.flatnonzero(at_stall.any(axis=1))[0])])
         stalled = (f"the servos were at their stall torque in {share:.0%} of the steps "
                    f"({name} most, {stall:.3g} N·m) from {first:.2f} s, the fall at "
@@ -139,7 +140,28 @@ def fall_cause(sim: SimModel, motion: Motion, traj: Trajectory, feedback: bool =
                    f"N·m, {peak / stall:.0%} of it: they stalled correcting an error that "
                    "grew, not for the gait's demand, so a stronger actuator is not the fix; ")
     cause = _unbalanced(sim, motion, feedback)
-    return dataclasses.replace(cause, message=stalled + cause.message)
+    return dataclasses.replace(cause, message=chatter + stalled + cause.message)
+
+
+def _chattered(sim: SimModel, motion: Motion) -> str:
+    """Where the timestep is past a ground contact's explicit-stability limit at its contact
+    point's own effective mass (:func:`hexaleg.simulation.model.contact_point_limit`), a
+    clause saying so with the timestep to give, else "". Unitree G1's toe corners at the
+    automatic 0.2 ms (limit 0.1 ms): their forces jumped 0 ↔ 1.6 kN between steps from the
+    start, and it fell within 0.6 s under either servo, open or closed loop; at 40 µs they load
+    smoothly. Not claimed as the cause: ANYmal's point feet are past it at the automatic
+    timestep too and walk."""
+    limit, point, mass = contact_point_limit(sim, motion)
+    dt = sim.timestep
+    if dt <= limit:
+        return ""
+    safe, _, _ = contact_point_limit(sim, motion, STABILITY)
+    return (f"the timestep {dt:.3g} s is past the explicit-stability limit {limit:.3g} s of the "
+            f"ground contact of {point} at its own effective mass {mass:.3g} kg (the foot "
+            "turning about the joint above it; b dt² + 2 a dt < 4, a = B/m, b = K/m, "
+            "hexaleg.simulation.model.contact_point_limit), where its force can chatter: "
+            f"[simulate] timestep = {0.8 * safe:.2g} (0.8 of the limit at hexaleg's margin "
+            f"b dt² + 2 a dt ≤ {STABILITY:g}, as the automatic timestep's) rules that out; ")
 
 
 def _unbalanced(sim: SimModel, motion: Motion, feedback: bool) -> FallCause:

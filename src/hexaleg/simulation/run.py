@@ -323,7 +323,7 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
         analysis: Its analysis with the same springs (feedforward torques, predicted forces).
         settings: The settings.
         feedback: Close the loop on the body (:class:`~hexaleg.simulation.balance.Balance`,
-            every :data:`~hexaleg.simulation.balance.CONTROL_PERIOD`).
+            every :func:`~hexaleg.simulation.balance.control_period`).
         stop: Set from another thread, the stepping ends at its next chunk
             (:class:`~hexaleg.simulation.stepping.Stopped`).
     """
@@ -339,7 +339,7 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
     start, cpu = time.perf_counter(), time.thread_time()
     traj = stepping.run(sim, ctrl, qpos0, qvel0, float(np.mean(motion.q[:, 2])),
                         None if controller is None else controller.correction,
-                        max(1, round(balance.CONTROL_PERIOD / dt)), stop)
+                        max(1, round(controller.gains.period / dt)) if controller else 1, stop)
     wall, cpu = time.perf_counter() - start, time.thread_time() - cpu
     bound = controller.constrained / max(controller.updates, 1) if controller else 0.0
     if traj.verdict == "fell":

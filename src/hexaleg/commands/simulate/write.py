@@ -137,11 +137,11 @@ def feedback_data(s: Simulation) -> dict[str, Any]:
                 + (" (auto: the gait stands on three or more feet and did not fall)"
                    if setting == "auto" else ""))
     else:
-        g = balance.size_gains(s.motion)
+        g = balance.size_gains(s.robot, s.motion)
         why = ("" if setting != "auto" else " (auto: the gait stands on fewer than three feet"
                " at times)" if balance.needed(s.motion) else " (auto: open loop fell)")
         text = (f"on{why}: the body's pose and velocity (MuJoCo's, a perfect estimator) fed "
-                f"back at {1 / balance.CONTROL_PERIOD:.0f} Hz, ω {g.omega:.3g} rad/s, "
+                f"back at {1 / g.period:.0f} Hz, ω {g.omega:.3g} rad/s, "
                 "stance forces by a QP within the friction cones and torque limits, swing feet "
                 + ("set down at Raibert's neutral point from the measured hip and velocity"
                    if balance.needed(s.motion) and len(s.robot.soles) < len(s.robot.legs)
@@ -149,7 +149,7 @@ def feedback_data(s: Simulation) -> dict[str, Any]:
                 + ", through the servos' references")
     out: dict[str, Any] = {"setting": setting, "runs": ran, "text": text}
     if any(ran.values()):
-        g = balance.size_gains(s.motion)
+        g = balance.size_gains(s.robot, s.motion)
         out["gains"] = {"omega": quantity(g.omega, "rad/s"), "zeta": quantity(g.zeta, "1"),
                         "capture": quantity(g.capture, "s"), "hold": quantity(balance.HOLD, "1"),
                         "period": quantity(g.period, "s")}
