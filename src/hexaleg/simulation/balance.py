@@ -31,13 +31,21 @@ plan's inverse dynamics are already the feedforward):
    feedback ``k (ẋ − ẋ*)``; Di Carlo et al. 2018, §IV, their foot placement: ``p = p_hip +
    (T_stance/2) v + k (v − v*)``, whose centripetal term ``½ (h/g) v × ω*`` vanishes here: the
    controller refuses a turning gait). The plan already sets each foot down at its own neutral
-   point ``(T_stance/2) v*`` from its planned hip, so the change of the landing point from the
-   plan's is, horizontally,
+   point from its planned hip, so the change of the landing point from the plan's is,
+   horizontally,
 
-       Δx = (p_hip − p*_hip) + (T_stance/2 + k) (v − v*),     p_hip = p + R r_hip
+       Δx = (p_hip − p*_hip) + (tanh(ω₀ T_stance/2)/ω₀ + k) (v − v*),     p_hip = p + R r_hip
 
    (``r_hip`` the leg's first joint in the base frame, ``T_stance`` the stance that follows the
-   swing, v the base's velocity); vertically the foot keeps its planned height in the body (a
+   swing, v the base's velocity, ω₀ = √(g/h) of the centre of mass's height h over the feet):
+   the linear inverted pendulum's neutral point per m/s (:func:`neutral_lead`), whose limit
+   for a short stance (ω₀ T_stance → 0) is Raibert's and the MIT controllers' ``T_stance/2``.
+   On a long stance of a low body ``T_stance/2`` asks twice the pendulum's lead and the body
+   rocks from step to step: Solo-12's co-designed trot (duty 0.7, 0.92 s, T_stance = 0.64 s,
+   ω₀ T_stance = 4.0; ``analysis/bench_logs/newcomers_simulate.log``, block "placement") spent
+   14.51 J a cycle with it against the plan's 8.42 (feedforward + PD) and ran short with the
+   co-design's springs under both servos; with the pendulum's lead it walks at 9.74 J
+   (8.80 J under position servos). Vertically the foot keeps its planned height in the body (a
    position servo's body sags by τ/kp: a foot aimed at the ground's planned height from a sagged
    body is set down late and pushed down at touchdown, and Laikago fell so). The swing's joint
    reference moves by ``Δq = b(φ) J_b⁺ Rᵀ (x̃ − p̃)``, the step from the planned foot carried by
@@ -155,6 +163,7 @@ import pinocchio as pin
 from hexaleg.checks import positive
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.recorded.base import rotation_from_quaternion
+from hexaleg.motion.stands import longest_stand
 from hexaleg.motion.trajectory import SEMI_IMPLICIT, Motion
 from hexaleg.simulation.distribution import TorqueBounds, distribute, wrench_map
 from hexaleg.simulation.model import SimModel
@@ -194,7 +203,8 @@ class Gains:
         omega: ω, the body's closed-loop natural frequency, rad/s, > 0.
         zeta: ζ, its damping ratio, > 0.
         capture: k, s, ≥ 0: the landing point's lead per m/s of the body's velocity error
-            beyond the stance's own T_stance/2 (module docstring, "Swing feet"; 0 by default).
+            beyond the stance's own tanh(ω₀ T_stance/2)/ω₀ (module docstring, "Swing feet";
+            0 by default).
         period: The controller's period, s, > 0.
     """
 
@@ -399,10 +409,13 @@ class Balance:
         self.stance_at, self.stance_of = runs(~swinging)
         """The same of each stance, from touchdown to lift-off."""
         landing = (np.arange(n)[:, None] + self.swing_of - self.swing_at).astype(int) % n
-        self.lead = (np.take_along_axis(self.stance_of, landing, axis=0) * self.dt / 2
+        stand = longest_stand(robot, motion) if self.placed.any() else None
+        self.lead = (neutral_lead(np.take_along_axis(self.stance_of, landing, axis=0) * self.dt,
+                                  0.0 if stand is None else stand.omega)
                      + self.gains.capture)
-        """Per sample and leg, (T, n_legs), s: T_stance/2 (the stance after the swing) + k,
-        the landing point's shift per m/s of the body's velocity error (module docstring)."""
+        """Per sample and leg, (T, n_legs), s: tanh(ω₀ T_stance/2)/ω₀ (the stance after the
+        swing, :func:`neutral_lead`) + k, the landing point's shift per m/s of the body's
+        velocity error (module docstring)."""
         self.landing = np.zeros(nj)
         """Each joint's swing correction at its last update (its leg's landing correction
         once the foot is down), rad."""
@@ -516,6 +529,33 @@ class Balance:
                 rows = self.leg_rows[leg]
                 out[rows] += (1.0 - _smoothstep(at)) * self.landing[rows]
         return out
+
+
+def neutral_lead(stance: np.ndarray, omega: float) -> np.ndarray:
+    """The linear inverted pendulum's neutral point per m/s, ``tanh(ω₀ T/2) / ω₀``, s, of a
+    stance of duration T (module docstring, "Swing feet").
+
+    A centre of mass at height h over a point foot moves as ``ẍ = ω₀² x``, ``ω₀ = √(g/h)``
+    (x from the foot; Kajita et al., "The 3D linear inverted pendulum mode", IROS 2001, eq.
+    5–6): ``x(t) = x₀ cosh ω₀t + (v₀/ω₀) sinh ω₀t``. The stance is symmetric — the body
+    leaves it at the speed it came, ``v(T) = v₀`` — where the foot is set down
+    ``−x₀ = (v₀/ω₀) tanh(ω₀ T/2)`` ahead of the centre of mass. Raibert's ``v T/2`` (*Legged
+    Robots That Balance*, 1986, ch. 2) is its limit for ``ω₀ T → 0`` (within 12 % for
+    ω₀ T ≤ 1.2), the capture point's ``v/ω₀`` (Pratt et al., Humanoids 2006) its limit for
+    ``ω₀ T → ∞``. A long stance of a low body (Solo-12's co-designed trot: T = 0.645 s,
+    ω₀ T = 3.8) would be over-corrected ×2 by ``T/2``.
+
+    Args:
+        stance: Stance durations, s, any shape.
+        omega: ω₀, 1/s, ≥ 0 (0: Raibert's ``T/2``).
+
+    Returns:
+        The lead per m/s, s, the shape of ``stance``.
+    """
+    stance = np.asarray(stance, dtype=float)
+    if omega <= 0.0:
+        return stance / 2
+    return np.asarray(np.tanh(omega * stance / 2) / omega)
 
 
 def _smoothstep(u: np.ndarray | float) -> np.ndarray:
