@@ -101,80 +101,6 @@ def test_on_the_plan_the_correction_is_zero_and_a_low_body_is_pushed_up(trot):
         assert df[:, 2].sum() == pytest.approx(push, rel=0.02)
 
 
-def test_the_runs_of_a_periodic_mask_wrap_around_the_cycle():
-    """:func:`balance.runs`: the run that ends the cycle continues into its start."""
-    mask = np.array([[1, 1, 1], [1, 0, 1], [0, 0, 1], [0, 1, 1], [1, 1, 1]], dtype=bool)
-    at, of = balance.runs(mask)
-    assert at[:, 0].tolist() == [1, 2, 0, 0, 0] and of[:, 0].tolist() == [3, 3, 1, 1, 3]
-    assert at[:, 1].tolist() == [2, 0, 0, 0, 1] and of[:, 1].tolist() == [3, 1, 1, 3, 3]
-    assert at[:, 2].tolist() == [0, 1, 2, 3, 4] and (of[:, 2] == 5).all()
-
-
-def test_a_fast_body_sets_its_swing_foot_down_ahead_and_holds_it_at_touchdown(trot):
-    """Raibert's foot placement (module docstring, 4.): a body faster than planned by δv
-    moves a swinging foot, in the base frame, by b(φ) tanh(ω₀ T_stance/2)/ω₀ δv horizontally —
-    none at lift-off, all of it at touchdown; T_stance = 0.2 s on Solo-12's trot at duty 0.5,
-    its centre of mass 0.19 m over its feet (ω₀ = 7.1 /s), so 0.086 s, not Raibert's 0.1 — and
-    the stance leg keeps that correction at touchdown and has released it after HOLD of its
-    stance (a wrong sign or a missing lead fails it)."""
-    prepared, analysis = trot
-    sim = _model(prepared, "feedforward")
-    motion = prepared.motion
-    b = balance.Balance(sim, motion, analysis.forces, analysis.tau_motor)
-    leg = 0
-    swinging = np.flatnonzero(b.swing_of[:, leg] > 1)
-    n = motion.n_samples
-    last = int(swinging[np.argmax(b.swing_at[swinging, leg])])
-    touchdown = (last + 1) % n
-    rows = b.leg_rows[leg]
-    fast = np.array([0.1, 0.05, 0.0])
-
-    def correction(k: int, faster: np.ndarray) -> np.ndarray:
-        q = motion.q[k].copy()
-        q[:3] += b.offset
-        qpos, qvel = sim.joints.to_mujoco(q, motion.v[k])
-        qvel[:3] += faster
-        return b.correction(motion.t[k] + motion.period, qpos, qvel, motion.feet[k] + b.offset)
-
-    lift = int(swinging[np.argmin(b.swing_at[swinging, leg])])
-    assert np.abs(correction(lift, fast)[rows]).max() < 1e-12
-    step = correction(last, fast)[rows]
-    jac = np.linalg.pinv(b.swing_map[last][rows][:, leg])
-    rot = balance.rotation_from_quaternion(motion.q[last:last + 1, 3:7])[0]
-    phase = b.swing_at[last, leg] / b.swing_of[last, leg]
-    stand = balance.longest_stand(prepared.robot, motion)
-    lead = np.tanh(stand.omega * 0.1) / stand.omega
-    assert lead == pytest.approx(0.086, abs=0.001)
-    assert b.lead[last, leg] == pytest.approx(lead, abs=2 * motion.dt)
-    expected = 3 * phase**2 - 2 * phase**3
-    assert phase > 0.9 and jac @ step == pytest.approx(
-        expected * b.lead[last, leg] * (rot.T @ fast), abs=1e-9)
-    assert correction(touchdown, 0 * fast)[rows] == pytest.approx(step, abs=1e-12)
-    later = (touchdown + int(np.ceil(balance.HOLD * b.stance_of[touchdown, leg]))) % n
-    assert np.abs(correction(later, 0 * fast)[rows]).max() < 1e-9
-
-
-def test_the_neutral_lead_makes_the_pendulums_stance_symmetric():
-    """:func:`balance.neutral_lead`: a linear inverted pendulum ``ẍ = ω₀² x`` set down
-    ``v tanh(ω₀ T/2)/ω₀`` behind its centre of mass leaves the stance at the speed it came,
-    as far ahead of the foot (integrated numerically, not by the closed form); Raibert's
-    ``v T/2`` there leaves it slower (the foot too far ahead: it over-corrects), and the lead
-    tends to ``T/2`` for a short stance and to the capture point's ``1/ω₀`` for a long one."""
-    from scipy.integrate import solve_ivp
-
-    omega, stance, v = 6.25, 0.644, 0.3  # Solo-12's co-designed trot (ω₀ T = 4.0)
-    for lead in (float(balance.neutral_lead(np.array(stance), omega)), stance / 2):
-        end = solve_ivp(lambda _, y: [y[1], omega**2 * y[0]], (0, stance), [-v * lead, v],
-                        rtol=1e-11, atol=1e-12).y[:, -1]
-        if lead < stance / 2:
-            assert end == pytest.approx([v * lead, v], rel=1e-6)
-        else:  # Raibert's: the body comes back to a stop
-            assert end[1] < 0.1 * v
-    assert balance.neutral_lead(np.array([1e-4, 100.0]), omega) == pytest.approx(
-        [0.5e-4, 1 / omega], rel=1e-6)
-    assert balance.neutral_lead(np.array([0.2]), 0.0) == pytest.approx([0.1])
-
-
 def test_a_turning_gait_is_refused(trot):
     prepared, analysis = trot
     motion = prepared.motion
@@ -309,29 +235,6 @@ def test_quadrupeds_new_to_hexaleg_walk_eight_cycles(robot, controller, tmp_path
     s = load_study(Scenario.load(str(path), config)).run()
     for run in (s.with_springs, s.baseline):
         assert run.feedback and run.verdict == "walks", (run.name, run.verdict, run.message)
-
-
-CODESIGNED = ('[gait]\nduty_factor = 0.7\nperiod = 0.9219\nspeed = 0.3\nstep_height = 0.015\n'
-              'body_height = 0.2807\n')
-"""Solo-12's co-designed trot (``analysis/bench_logs/bench_optimal_rows_solo12_placement.log``):
-fast, low, its stances 0.64 s long (ω₀ T = 4.0)."""
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("controller", ["feedforward", "position"])
-def test_a_long_stance_of_a_low_body_walks_near_its_plan(controller, tmp_path):
-    """Solo-12's co-designed trot walks under both servos with and without springs, the
-    springs' run within 20 % of the plan's energy: with Raibert's ``T_stance/2`` lead (twice
-    the pendulum's, :func:`balance.neutral_lead`) it spent 14.51 J a cycle against the plan's
-    8.42 under feedforward + PD, and with the co-design's springs ran short under both."""
-    from hexaleg.commands.simulate.study import load_study
-
-    config = tmp_path / "run.toml"
-    config.write_text(CODESIGNED + f'[simulate]\ncontroller = "{controller}"\n')
-    s = load_study(Scenario.load("solo12", config)).run()
-    for run in (s.with_springs, s.baseline):
-        assert run.feedback and run.verdict == "walks", (run.name, run.verdict, run.message)
-    assert s.simulated()[0] < 1.2 * s.predicted()[0]
 
 
 def _newcomer(tmp_path, name: str, lines: str, config: str):
