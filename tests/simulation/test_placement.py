@@ -24,8 +24,9 @@ def test_the_runs_of_a_periodic_mask_wrap_around_the_cycle():
 
 
 def test_a_fast_body_sets_its_swing_foot_down_ahead_and_holds_it_at_touchdown(trot):  # noqa: F811
-    """Raibert's foot placement (:mod:`hexaleg.simulation.placement`): a body faster than planned by δv
-    moves a swinging foot, in the base frame, by b(φ) tanh(ω₀ T_stance/2)/ω₀ δv horizontally —
+    """Raibert's foot placement (:mod:`hexaleg.simulation.placement`): a body faster than
+    planned by δv moves a swinging foot, in the base frame, by b(φ) tanh(ω₀ T_stance/2)/ω₀ δv
+    horizontally —
     none at lift-off, all of it at touchdown; T_stance = 0.2 s on Solo-12's trot at duty 0.5,
     its centre of mass 0.19 m over its feet (ω₀ = 7.1 /s), so 0.086 s, not Raibert's 0.1 — and
     the stance leg keeps that correction at touchdown and has released it after HOLD of its
@@ -72,7 +73,7 @@ def test_the_neutral_lead_makes_the_pendulums_stance_symmetric():
     """:func:`placement.neutral_lead`: a linear inverted pendulum ``ẍ = ω₀² x`` set down
     ``v tanh(ω₀ T/2)/ω₀`` behind its centre of mass leaves the stance at the speed it came,
     as far ahead of the foot (integrated numerically, not by the closed form); Raibert's
-    ``v T/2`` there leaves it slower (the foot too far ahead: it over-corrects), and the lead
+    ``v T/2`` there (ω₀ T = 4.0) sends it back at −28 v (it over-corrects), and the lead
     tends to ``T/2`` for a short stance and to the capture point's ``1/ω₀`` for a long one."""
     from scipy.integrate import solve_ivp
 
@@ -82,8 +83,8 @@ def test_the_neutral_lead_makes_the_pendulums_stance_symmetric():
                         rtol=1e-11, atol=1e-12).y[:, -1]
         if lead < stance / 2:
             assert end == pytest.approx([v * lead, v], rel=1e-6)
-        else:  # Raibert's: the body comes back to a stop
-            assert end[1] < 0.1 * v
+        else:  # Raibert's: the velocity comes back reversed, 28 times as large
+            assert end[1] == pytest.approx(-28.4 * v, rel=0.01)
     assert placement.neutral_lead(np.array([1e-4, 100.0]), omega) == pytest.approx(
         [0.5e-4, 1 / omega], rel=1e-6)
     assert placement.neutral_lead(np.array([0.2]), 0.0) == pytest.approx([0.1])

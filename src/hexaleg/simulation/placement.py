@@ -160,10 +160,14 @@ def neutral_lead(stance: np.ndarray, omega: float) -> np.ndarray:
     5–6): ``x(t) = x₀ cosh ω₀t + (v₀/ω₀) sinh ω₀t``. The stance is symmetric — the body
     leaves it at the speed it came, ``v(T) = v₀`` — where the foot is set down
     ``−x₀ = (v₀/ω₀) tanh(ω₀ T/2)`` ahead of the centre of mass. Raibert's ``v T/2`` (*Legged
-    Robots That Balance*, 1986, ch. 2) is its limit for ``ω₀ T → 0`` (within 12 % for
+    Robots That Balance*, 1986, ch. 2) is its limit for ``ω₀ T → 0`` (within 11 % for
     ω₀ T ≤ 1.2), the capture point's ``v/ω₀`` (Pratt et al., Humanoids 2006) its limit for
-    ``ω₀ T → ∞``. A long stance of a low body (Solo-12's co-designed trot: T = 0.645 s,
-    ω₀ T = 3.8) would be over-corrected ×2 by ``T/2``.
+    ``ω₀ T → ∞``. A foot set down ``L v₀`` ahead returns the body at ``v(T) = v₀ (cosh ω₀T −
+    ω₀ L sinh ω₀T)``: ×1 at this lead, so a velocity error is carried over and the body's PD
+    removes it; ×0.80 with ``T/2`` on Solo-12's trot (T = 0.2 s, ω₀ T = 1.4: Raibert's law
+    corrects a little), but ×−28 with ``T/2`` on its co-designed trot (T = 0.644 s, ω₀ T =
+    4.0: the error comes back reversed and 28 times larger, and the body rocks from step to
+    step; there ``T/2`` is 2.1 times this lead).
 
     Args:
         stance: Stance durations, s, any shape.
