@@ -864,6 +864,80 @@ def test_design_page_quotes_solo12s_answer_under_foot_placement():
                                                  "position    walks  +43.21 % +42.26 %")))
 
 
+def test_design_page_quotes_solo12s_answer_under_the_pendulums_lead():
+    """docs/design.md's Solo-12 answer once the swing feet's lead is the pendulum's neutral
+    point is design_solo12.log's block "branch placement" (a run of 1 CPU minute, by hand)."""
+    log = (ROOT / "analysis" / "bench_logs" / "design_solo12.log").read_text()
+    block = log[log.index("## branch placement"):]
+    page = " ".join((DOCS / "design.md").read_text().split())
+    assert_quoted(page, block, (
+        ("(+40.50 % position only, against +40.19 % for spring torque ≤ 0.4086 N·m)",
+         "one_sided                                position    walks  +45.07 % +44.85 % "
+         "+40.50 %"),
+        ("(+40.50 % position only, against +40.19 % for spring torque ≤ 0.4086 N·m)",
+         "one_sided, spring torque ≤ 0.4086 N·m    position    walks  +43.21 % +42.78 % "
+         "+40.19 %"),
+        ("+43.48 % predicted (+39.49 % net of 68.8 g of springs)",
+         "fit one_sided springs on hfe LH/RH, hfe LF/RF, kfe LF/RF, kfe LH/RH: electrical "
+         "saving +43.48 % (+39.49 % net of 68.8 g of springs)"),
+        ("+43.96 % under feedforward + PD and +42.12 % position only",
+         "feedforward + PD  walks simulated +43.96 %"),
+        ("+43.96 % under feedforward + PD and +42.12 % position only",
+         "position only     walks simulated +42.12 %")))
+
+
+def test_simulate_page_quotes_the_pendulums_lead_block():
+    """docs/simulate.md's paragraph on the pendulum's neutral lead is newcomers_simulate.log's
+    block "placement" (scratch runs of 2–20 s of CPU each, by hand): each figure beside the
+    log's line."""
+    log = (ROOT / "analysis" / "bench_logs" / "newcomers_simulate.log").read_text()
+    block = log[log.index("# ===== placement"):]
+    page = (DOCS / "simulate.md").read_text()
+    part = " ".join(page[page.index("**The pendulum's neutral lead**"):].split())
+    assert_quoted(part, block, (
+        ("feet landed 15.4 mm from the plan's on average (39.5 mm at most)",
+         "raibert: verdict walks; touchdown shifts |dx| mean 15.4 mm, max 39.5 mm; |v - v*| "
+         "there mean 47 mm/s, max 122 mm/s; electrical 14.5 J"),
+        ("the feet land 5.7 mm off (8.2 mm at most) at 25 mm/s",
+         "pendulum: verdict walks; touchdown shifts |dx| mean 5.7 mm, max 8.2 mm; |v - v*| "
+         "there mean 25 mm/s, max 35 mm/s"),
+        ("spent 14.51 J a cycle against the plan's 8.418 J",
+         "old        cd       feed | walks 14.51J"),
+        ("9.739 and 13.13 J a cycle under feedforward + PD",
+         "code       cd       feed | walks 9.739J 99% tr16 roll0.012 | walks 13.13J"),
+        ("8.797 and 12.6 J under position servos (planned 8.418 and 12.85 J)",
+         "code       cd       posi | walks 8.797J 100% tr10 roll0.008 | walks 12.6J 100% tr6 "
+         "roll0.004 | pred 8.418/12.85"),
+        ("with the co-design's springs 8.802 J and 8.328 J",
+         "pendulum    feedforward springs  walks     E   8.802 J"),
+        ("with the co-design's springs 8.802 J and 8.328 J",
+         "pendulum    position    springs  walks     E   8.328 J"),
+        ("ran short under both servos (86 % of its stride at most)",
+         "T/2         feedforward springs  short     E  37.868 J  dist  237.2/276.6 mm"),
+        ("the two-foot stands alone walked less near the plan (10.19 J)",
+         "lip_few    cd       feed | walks 10.19J"),
+        ("ran short (33.39 J)", "HOLD 0.001  feedforward springs  short     E  33.388 J"),
+        ("Laikago +32.28 % and +32.16 %", "simulated +32.28 % (390.8 J vs 577.1 J)"),
+        ("Laikago +32.28 % and +32.16 %", "simulated +32.16 % (389.7 J vs 574.4 J)"),
+        ("B1 spends 1839 J a cycle with springs under both servos",
+         "code       b1       feed | walks 1839J"),
+        ("B1 spends 1839 J a cycle with springs under both servos",
+         "code       b1       posi | walks 1839J"),
+        ("+21.21 % simulated under position servos against +33.34 % predicted",
+         "predicted saving +33.34 % (electrical 1313 J vs 1970 J per cycle); simulated "
+         "+21.21 % (1839 J vs 2333 J)"),
+        ("Go1 158 J under feedforward + PD", "code       go1      feed | walks 158J"),
+        ("Go2 rolls 0.022 rad under position servos (0.013 with `T_stance/2`, 4 cycles)",
+         "code       go2      posi | walks 122J 101% tr15 roll0.022"),
+        ("Go2 rolls 0.022 rad under position servos (0.013 with `T_stance/2`, 4 cycles)",
+         "old        go2      posi | walks 121.5J 101% tr14 roll0.013"),
+        ("now covers 90 % of its stride under position servos (83 % and 84 %",
+         "code       pry52    posi | short 10.37J 90%"),
+        ("its 0.6-s trot 77 % (53 and 55 %)", "code       pry60    posi | short 12.27J 77%"),
+        ("its 0.6-s trot 77 % (53 and 55 %)", "old        pry60    posi | short 17.04J 53%")))
+    assert "fell" not in block[block.index("## (4)"):block.index("## (5)")]
+
+
 def test_design_page_quotes_the_solo12_design_log():
     """docs/design.md's Solo-12 answer and how it followed the position servo's simulation are
     analysis/bench_logs/design_solo12.log's (two runs of 4 minutes, by hand): each figure
