@@ -936,6 +936,12 @@ def test_simulate_page_quotes_the_pendulums_lead_block():
         ("its 0.6-s trot 77 % (53 and 55 %)", "code       pry60    posi | short 12.27J 77%"),
         ("its 0.6-s trot 77 % (53 and 55 %)", "old        pry60    posi | short 17.04J 53%")))
     assert "fell" not in block[block.index("## (4)"):block.index("## (5)")]
+    optimal = " ".join((DOCS / "optimal.md").read_text().split())
+    assert_quoted(optimal, block, (
+        ("8.802 J a cycle over 274.7 mm under feedforward + PD",
+         "pendulum    feedforward springs  walks     E   8.802 J  dist  274.7/276.6 mm"),
+        ("8.328 J over 275.4 mm position only",
+         "pendulum    position    springs  walks     E   8.328 J  dist  275.4/276.6 mm")))
 
 
 def test_design_page_quotes_the_solo12_design_log():
