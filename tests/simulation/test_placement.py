@@ -1,5 +1,5 @@
 """Raibert's foot placement of the balance controller's swing feet
-(:mod:`hexaleg.simulation.placement`): the runs of a mask, the pendulum's neutral lead, the
+(:mod:`hexaleg.simulation.placement`): the runs of a mask, the lead and its deadbeat bound, the
 blend into the swing and the release over the stance, and the trot it was changed for."""
 
 from __future__ import annotations
@@ -25,11 +25,10 @@ def test_the_runs_of_a_periodic_mask_wrap_around_the_cycle():
 
 def test_a_fast_body_sets_its_swing_foot_down_ahead_and_holds_it_at_touchdown(trot):  # noqa: F811
     """Raibert's foot placement (:mod:`hexaleg.simulation.placement`): a body faster than
-    planned by δv moves a swinging foot, in the base frame, by b(φ) tanh(ω₀ T_stance/2)/ω₀ δv
-    horizontally —
-    none at lift-off, all of it at touchdown; T_stance = 0.2 s on Solo-12's trot at duty 0.5,
-    its centre of mass 0.19 m over its feet (ω₀ = 7.1 /s), so 0.086 s, not Raibert's 0.1 — and
-    the stance leg keeps that correction at touchdown and has released it after HOLD of its
+    planned by δv moves a swinging foot, in the base frame, by b(φ) (T_stance/2) δv
+    horizontally — none at lift-off, all of it at touchdown, T_stance/2 = 0.1 s on Solo-12's
+    trot at duty 0.5 (ω₀ T_stance = 1.4: short of the deadbeat step's 0.158 s) — and the
+    stance leg keeps that correction at touchdown and has released it after HOLD of its
     stance (a wrong sign or a missing lead fails it)."""
     prepared, analysis = trot
     sim = _model(prepared, "feedforward")
@@ -58,9 +57,8 @@ def test_a_fast_body_sets_its_swing_foot_down_ahead_and_holds_it_at_touchdown(tr
     rot = balance.rotation_from_quaternion(motion.q[last:last + 1, 3:7])[0]
     phase = pl.swing_at[last, leg] / pl.swing_of[last, leg]
     stand = longest_stand(prepared.robot, motion)
-    lead = np.tanh(stand.omega * 0.1) / stand.omega
-    assert lead == pytest.approx(0.086, abs=0.001)
-    assert pl.lead[last, leg] == pytest.approx(lead, abs=2 * motion.dt)
+    assert 1 / (stand.omega * np.tanh(stand.omega * 0.2)) == pytest.approx(0.158, abs=0.001)
+    assert pl.lead[last, leg] == pytest.approx(0.1, abs=2 * motion.dt)
     expected = 3 * phase**2 - 2 * phase**3
     assert phase > 0.9 and jac @ step == pytest.approx(
         expected * pl.lead[last, leg] * (rot.T @ fast), abs=1e-9)
@@ -69,25 +67,32 @@ def test_a_fast_body_sets_its_swing_foot_down_ahead_and_holds_it_at_touchdown(tr
     assert np.abs(correction(later, 0 * fast)[rows]).max() < 1e-9
 
 
-def test_the_neutral_lead_makes_the_pendulums_stance_symmetric():
-    """:func:`placement.neutral_lead`: a linear inverted pendulum ``ẍ = ω₀² x`` set down
-    ``v tanh(ω₀ T/2)/ω₀`` behind its centre of mass leaves the stance at the speed it came,
-    as far ahead of the foot (integrated numerically, not by the closed form); Raibert's
-    ``v T/2`` there (ω₀ T = 4.0) sends it back at −28 v (it over-corrects), and the lead
-    tends to ``T/2`` for a short stance and to the capture point's ``1/ω₀`` for a long one."""
+def test_the_lead_is_raiberts_up_to_the_pendulums_deadbeat_step():
+    """:func:`placement.lead`: on a linear inverted pendulum ``ẍ = ω₀² x`` (integrated
+    numerically, not by the closed form) a velocity error e with the foot set down ``L e``
+    further ahead leaves a long stance (Solo-12's co-designed trot, ω₀ T = 4.0) at zero with
+    the lead, where Raibert's ``T/2`` sends it back at −28 e; on a short stance (its registered
+    trot, ω₀ T = 1.4) the lead is ``T/2``, which leaves 0.81 e (the deadbeat step there,
+    0.158 s, would ask 58 % more); they meet at ω₀ T = 2.07."""
     from scipy.integrate import solve_ivp
 
-    omega, stance, v = 6.25, 0.644, 0.3  # Solo-12's co-designed trot (ω₀ T = 4.0)
-    for lead in (float(placement.neutral_lead(np.array(stance), omega)), stance / 2):
-        end = solve_ivp(lambda _, y: [y[1], omega**2 * y[0]], (0, stance), [-v * lead, v],
+    def error_after(omega: float, stance: float, lead: float) -> float:
+        end = solve_ivp(lambda _, y: [y[1], omega**2 * y[0]], (0, stance), [-lead, 1.0],
                         rtol=1e-11, atol=1e-12).y[:, -1]
-        if lead < stance / 2:
-            assert end == pytest.approx([v * lead, v], rel=1e-6)
-        else:  # Raibert's: the velocity comes back reversed, 28 times as large
-            assert end[1] == pytest.approx(-28.4 * v, rel=0.01)
-    assert placement.neutral_lead(np.array([1e-4, 100.0]), omega) == pytest.approx(
-        [0.5e-4, 1 / omega], rel=1e-6)
-    assert placement.neutral_lead(np.array([0.2]), 0.0) == pytest.approx([0.1])
+        return float(end[1])
+
+    omega, stance = 6.25, 0.644
+    lead = float(placement.lead(np.array(stance), omega))
+    assert lead < stance / 2 and error_after(omega, stance, lead) == pytest.approx(0, abs=1e-6)
+    assert error_after(omega, stance, stance / 2) == pytest.approx(-28.4, rel=0.01)
+    omega, stance = 7.12, 0.2
+    assert float(placement.lead(np.array(stance), omega)) == stance / 2
+    assert error_after(omega, stance, stance / 2) == pytest.approx(0.81, abs=0.01)
+    meet = 2.0653 / omega
+    assert placement.lead(np.array([meet * 0.999, meet * 1.001]), omega) == pytest.approx(
+        [meet * 0.999 / 2, meet * 1.001 / 2], rel=3e-3)  # continuous where they meet
+    assert placement.lead(np.array([0.0, 100.0]), omega) == pytest.approx([0.0, 1 / omega])
+    assert placement.lead(np.array([0.2]), 0.0) == pytest.approx([0.1])
 
 
 CODESIGNED = ('[gait]\nduty_factor = 0.7\nperiod = 0.9219\nspeed = 0.3\nstep_height = 0.015\n'
@@ -101,7 +106,7 @@ fast, low, its stances 0.64 s long (ω₀ T = 4.0)."""
 def test_a_long_stance_of_a_low_body_walks_near_its_plan(controller, tmp_path):
     """Solo-12's co-designed trot walks under both servos with and without springs, the
     springs' run within 20 % of the plan's energy: with Raibert's ``T_stance/2`` lead (twice
-    the pendulum's, :func:`placement.neutral_lead`) it spent 14.51 J a cycle against the plan's
+    the deadbeat step, :func:`placement.lead`) it spent 14.51 J a cycle against the plan's
     8.42 under feedforward + PD, and with the co-design's springs ran short under both."""
     from hexaleg.commands.simulate.study import load_study
 

@@ -26,8 +26,8 @@ plan's inverse dynamics are already the feedforward):
    Jacobians' joint columns — MIT's ``τ = Jᵀ Rᵀ f`` with the sign of the ground's force on the
    foot), at the plan's joint angles.
 4. **Swing feet: foot placement** (a gait on two point feet at times and never on one: a trot, a
-   pace, a bound; "Footholds" below): Raibert's foot placement with the linear inverted
-   pendulum's neutral point, blended into the swing and released over the next stance
+   pace, a bound; "Footholds" below): Raibert's foot placement, its lead bounded by the linear
+   inverted pendulum's deadbeat step, blended into the swing and released over the next stance
    (:mod:`hexaleg.simulation.placement`).
 
 **Soles** (:mod:`hexaleg.robot.soles`). A foot with a sole enters the force program as its four
@@ -165,8 +165,7 @@ class Gains:
         omega: ω, the body's closed-loop natural frequency, rad/s, > 0.
         zeta: ζ, its damping ratio, > 0.
         capture: k, s, ≥ 0: the landing point's lead per m/s of the body's velocity error
-            beyond the stance's own tanh(ω₀ T_stance/2)/ω₀ (module docstring, "Swing feet";
-            0 by default).
+            beyond :func:`hexaleg.simulation.placement.lead` (0 by default).
         period: The controller's period, s, > 0.
     """
 

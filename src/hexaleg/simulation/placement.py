@@ -9,18 +9,21 @@ point ``ẋ T_s / 2`` ahead of the hip, plus a velocity feedback ``k (ẋ − �
 each foot down at its own neutral point from its planned hip, so the change of the landing point
 from the plan's is, horizontally,
 
-    Δx = (p_hip − p*_hip) + (tanh(ω₀ T_stance/2)/ω₀ + k) (v − v*),     p_hip = p + R r_hip
+    Δx = (p_hip − p*_hip) + (L + k) (v − v*),     L = min(T_stance/2, coth(ω₀ T_stance)/ω₀),
+                                                  p_hip = p + R r_hip
 
 (``r_hip`` the leg's first joint in the base frame, ``T_stance`` the stance that follows the
 swing, v the base's velocity, ω₀ = √(g/h) of the centre of mass's height h over the feet):
-the linear inverted pendulum's neutral point per m/s (:func:`neutral_lead`), whose limit
-for a short stance (ω₀ T_stance → 0) is Raibert's and the MIT controllers' ``T_stance/2``.
-On a long stance of a low body ``T_stance/2`` asks twice the pendulum's lead and the body
-rocks from step to step: Solo-12's co-designed trot (duty 0.7, 0.92 s, T_stance = 0.64 s,
-ω₀ T_stance = 4.0; ``analysis/bench_logs/newcomers_simulate.log``, block "placement") spent
-14.51 J a cycle with it against the plan's 8.42 (feedforward + PD) and ran short with the
-co-design's springs under both servos; with the pendulum's lead it walks at 9.74 J
-(8.80 J under position servos). Vertically the foot keeps its planned height in the body (a
+Raibert's and the MIT controllers' ``T_stance/2``, but never past the linear inverted
+pendulum's deadbeat step (:func:`lead`), the lead that leaves a velocity error at zero by the
+end of the stance. They meet at ω₀ T_stance = 2.07; beyond it ``T_stance/2`` sends the error
+back reversed and larger: Solo-12's co-designed trot (duty 0.7, 0.92 s, T_stance = 0.64 s,
+ω₀ T_stance = 4.0; ``analysis/bench_logs/newcomers_simulate.log``, block "placement") set its
+feet down 15 mm from the plan's on average while its body ran 47 mm/s off its planned
+velocity, spent 14.51 J a cycle against the plan's 8.42 (feedforward + PD) and ran short
+with the co-design's springs under both servos; at the deadbeat step (0.160 s, half of
+``T_stance/2``) it walks near its plan. Every trot with shorter stances keeps ``T_stance/2``
+and its figures. Vertically the foot keeps its planned height in the body (a
 position servo's body sags by τ/kp: a foot aimed at the ground's planned height from a sagged
 body is set down late and pushed down at touchdown, and Laikago fell so). The swing's joint
 reference moves by ``Δq = b(φ) J_b⁺ Rᵀ (x̃ − p̃)``, the step from the planned foot carried by
@@ -70,7 +73,7 @@ class Placement:
         motion: The plan (``stance``, shape (T, n_legs); ``q[0]``).
         placed: Whether each leg's foot is placed, (n_legs,), bool.
         leg_rows: Each leg's joints among the robot's, (n_legs, nj), bool.
-        capture: k, s, ≥ 0: the lead per m/s beyond the pendulum's neutral point.
+        capture: k, s, ≥ 0: the lead per m/s beyond :func:`lead`'s.
     """
 
     def __init__(self, robot: Robot, motion: Motion, placed: np.ndarray, leg_rows: np.ndarray,
@@ -96,12 +99,12 @@ class Placement:
         """The same of each stance, from touchdown to lift-off."""
         landing = (np.arange(n)[:, None] + self.swing_of - self.swing_at).astype(int) % n
         stand = longest_stand(robot, motion) if self.placed.any() else None
-        self.lead = (neutral_lead(np.take_along_axis(self.stance_of, landing, axis=0)
-                                  * motion.dt, 0.0 if stand is None else stand.omega)
+        self.lead = (lead(np.take_along_axis(self.stance_of, landing, axis=0) * motion.dt,
+                          0.0 if stand is None else stand.omega)
                      + capture)
-        """Per sample and leg, (T, n_legs), s: tanh(ω₀ T_stance/2)/ω₀ (the stance after the
-        swing, :func:`neutral_lead`) + k, the landing point's shift per m/s of the body's
-        velocity error (module docstring)."""
+        """Per sample and leg, (T, n_legs), s: min(T_stance/2, coth(ω₀ T_stance)/ω₀) (the
+        stance after the swing, :func:`lead`) + k, the landing point's shift per m/s of the
+        body's velocity error (module docstring)."""
         self.landing = np.zeros(leg_rows.shape[1])
         """Each joint's swing correction at its last update (its leg's landing correction
         once the foot is down), rad."""
@@ -151,27 +154,31 @@ class Placement:
         return out
 
 
-def neutral_lead(stance: np.ndarray, omega: float) -> np.ndarray:
-    """The linear inverted pendulum's neutral point per m/s, ``tanh(ω₀ T/2) / ω₀``, s, of a
-    stance of duration T (module docstring).
+def lead(stance: np.ndarray, omega: float) -> np.ndarray:
+    """The landing point's lead per m/s of the body's velocity error, s, for a stance of
+    duration T: Raibert's ``T/2``, but never past the linear inverted pendulum's deadbeat
+    step ``coth(ω₀ T) / ω₀`` (module docstring).
 
     A centre of mass at height h over a point foot moves as ``ẍ = ω₀² x``, ``ω₀ = √(g/h)``
     (x from the foot; Kajita et al., "The 3D linear inverted pendulum mode", IROS 2001, eq.
-    5–6): ``x(t) = x₀ cosh ω₀t + (v₀/ω₀) sinh ω₀t``. The stance is symmetric — the body
-    leaves it at the speed it came, ``v(T) = v₀`` — where the foot is set down
-    ``−x₀ = (v₀/ω₀) tanh(ω₀ T/2)`` ahead of the centre of mass. Raibert's ``v T/2`` (*Legged
-    Robots That Balance*, 1986, ch. 2) is its limit for ``ω₀ T → 0`` (within 11 % for
-    ω₀ T ≤ 1.2), the capture point's ``v/ω₀`` (Pratt et al., Humanoids 2006) its limit for
-    ``ω₀ T → ∞``. A foot set down ``L v₀`` ahead returns the body at ``v(T) = v₀ (cosh ω₀T −
-    ω₀ L sinh ω₀T)``: ×1 at this lead, so a velocity error is carried over and the body's PD
-    removes it; ×0.80 with ``T/2`` on Solo-12's trot (T = 0.2 s, ω₀ T = 1.4: Raibert's law
-    corrects a little), but ×−28 with ``T/2`` on its co-designed trot (T = 0.644 s, ω₀ T =
-    4.0: the error comes back reversed and 28 times larger, and the body rocks from step to
-    step; there ``T/2`` is 2.1 times this lead).
+    5–6). The plan sets each foot down at its own neutral point; a velocity error e at
+    touchdown with the foot set down ``L e`` further ahead leaves the stance as
+    ``e (cosh ω₀T − ω₀ L sinh ω₀T)``. At ``L = coth(ω₀ T)/ω₀`` it leaves as 0 (deadbeat: the
+    capture point's ``1/ω₀``, Pratt et al., Humanoids 2006, is its limit for a long stance;
+    the capturability of a finite stance: Koolen et al., IJRR 31(9), 2012, §5). Raibert's
+    ``T/2`` (*Legged Robots That Balance*, 1986, ch. 2) leaves it as ``cosh x − (x/2) sinh x``,
+    ``x = ω₀T``: between 1 and 0 up to ``x = 2.07``, where the two leads meet (Solo-12's trot:
+    x = 1.4, ×0.81; the sized trots x = 2.0, ×0.14), and beyond it past zero — ×−1.4 at
+    x = 2.5, ×−28 at 4.0 (Solo-12's co-designed trot, T = 0.644 s): the error comes back
+    reversed and larger, step after step. For a short stance the deadbeat step grows as
+    ``1/(ω₀² T)`` without bound (a pendulum that hardly moves in a stance is corrected over
+    several), so the lead is the smaller of the two: Raibert's where it measured (every trot
+    of ``docs/simulate.md``, "Balance feedback"), the deadbeat step where ``T/2`` would
+    overshoot.
 
     Args:
-        stance: Stance durations, s, any shape.
-        omega: ω₀, 1/s, ≥ 0 (0: Raibert's ``T/2``).
+        stance: Stance durations T, s, any shape.
+        omega: ω₀, 1/s, ≥ 0 (0: no pendulum known, Raibert's ``T/2``).
 
     Returns:
         The lead per m/s, s, the shape of ``stance``.
@@ -179,7 +186,9 @@ def neutral_lead(stance: np.ndarray, omega: float) -> np.ndarray:
     stance = np.asarray(stance, dtype=float)
     if omega <= 0.0:
         return stance / 2
-    return np.asarray(np.tanh(omega * stance / 2) / omega)
+    with np.errstate(divide="ignore"):
+        deadbeat = 1.0 / (omega * np.tanh(omega * stance))
+    return np.asarray(np.minimum(stance / 2, deadbeat))
 
 
 def smoothstep(u: np.ndarray | float) -> np.ndarray:
