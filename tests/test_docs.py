@@ -928,6 +928,16 @@ def test_simulate_page_quotes_the_deadbeat_bound_block():
          "branch      feedforward springs  walks     E   8.822 J  dist  274.7/276.6 mm"),
         ("8.388 J over 275.7 mm position only",
          "branch      position    springs  walks     E   8.388 J  dist  275.7/276.6 mm")))
+    rows = (ROOT / "analysis" / "bench_logs" / "bench_optimal_rows_solo12_placement.log"
+            ).read_text()
+    check = rows[rows.index("# ===== branch placement"):]
+    assert_quoted(optimal, check, (
+        ("every one of its six finalists walking under both servos",
+         "6 finalists simulated under both servos, by the worse: chose finalist 2"),
+        ("duty factor 0.644, period 0.875 s, 30.77 J/m predicted, simulated feedforward 31.29, "
+         "position 30.44", "→ 2. duty factor 0.644, period 0.875 s: predicted 30.77 J/m, "
+                           "simulated feedforward 31.29, position 30.44")))
+    assert check.count("simulated feedforward") == 6 and "—" not in check
 
 
 def test_design_page_quotes_the_solo12_design_log():
