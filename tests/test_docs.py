@@ -899,6 +899,82 @@ def test_design_page_quotes_solo12s_answer_at_its_foot_points_timestep():
         ("simulates at 0.203 ms, was 0.325 ms", "now simulates at 0.2029 ms, was 0.3249 ms")))
 
 
+def test_simulate_page_quotes_the_deadbeat_bound_block():
+    """docs/simulate.md's paragraph on the lead bounded by the pendulum's deadbeat step, and
+    docs/optimal.md's co-design row under it, are newcomers_simulate.log's block "placement"
+    (scratch runs of 2–20 s of CPU each, by hand): each figure beside the log's line."""
+    log = (ROOT / "analysis" / "bench_logs" / "newcomers_simulate.log").read_text()
+    block = log[log.index("# ===== placement"):]
+    page = (DOCS / "simulate.md").read_text()
+    start = page.index("**The lead bounded by the pendulum's deadbeat step**")
+    part = " ".join(page[start:page.index("The newcomers' servos are generic")].split())
+    law = block[block.index("## (7)"):]
+    assert_quoted(part, block, (
+        ("feet landed 15.4 mm from the plan's on average (39.5 mm at most)",
+         "raibert: verdict walks; touchdown shifts |dx| mean 15.4 mm, max 39.5 mm; |v - v*| "
+         "there mean 47 mm/s, max 122 mm/s; electrical 14.5 J"),
+        ("the feet land 5.6 mm off (8.1 mm at most) at 24 mm/s",
+         "deadbeat: verdict walks; touchdown shifts |dx| mean 5.6 mm, max 8.1 mm; |v - v*| "
+         "there mean 24 mm/s, max 34 mm/s"),
+        ("spent 14.51 J a cycle against the plan's 8.418 J",
+         "old        cd       feed | walks 14.51J"),
+        ("ran short under both servos (86 % of its stride at most)",
+         "T/2         feedforward springs  short     E  37.868 J  dist  237.2/276.6 mm"),
+        ("with the co-design's springs 8.822 J and 8.388 J",
+         "branch      feedforward springs  walks     E   8.822 J"),
+        ("with the co-design's springs 8.822 J and 8.388 J",
+         "branch      position    springs  walks     E   8.388 J"),
+        ("(10.19 J a cycle with the pendulum's neutral point over them)",
+         "lip_few    cd       feed | walks 10.19J"),
+        ("ran short (33.39 J)", "HOLD 0.001  feedforward springs  short     E  33.388 J"),
+        ("walked it too (9.739 J)", "neutral    cd       feed | walks 9.739J"),
+        ("B1 spent 1839 J a cycle with springs under both servos",
+         "neutral    b1       feed | walks 1839J"),
+        ("B1 spent 1839 J a cycle with springs under both servos",
+         "neutral    b1       posi | walks 1839J"),
+        ("(+13.19 % simulated under feedforward + PD against +33.34 % predicted)",
+         "predicted saving +33.34 % (electrical 1313 J vs 1970 J per cycle); simulated "
+         "+13.19 % (1839 J vs 2118 J)"),
+        ("Go2 rolled 0.022 rad (0.013 at `T_stance/2`)",
+         "neutral    go2      posi | walks 122J 101% tr15 roll0.022"),
+        ("Go2 rolled 0.022 rad (0.013 at `T_stance/2`)",
+         "old        go2      posi | walks 121.5J 101% tr14 roll0.013")))
+    assert_quoted(part, law, (
+        ("9.672 and 13.11 J a cycle under feedforward + PD",
+         "code       cd       feed | walks 9.672J 99% tr16 roll0.012 | walks 13.11J"),
+        ("8.768 and 12.6 J under position servos (planned 8.418 and 12.85 J)",
+         "code       cd       posi | walks 8.768J 100% tr10 roll0.008 | walks 12.6J 100% tr6 "
+         "roll0.004 | pred 8.418/12.85"),
+        ("covers 83 % and 84 % of its stride under position servos",
+         "code       pry52    posi | short 12.78J 83% tr53 roll0.071 | short 13.54J 84%"),
+        ("walks under feedforward + PD at 7.596 J a cycle",
+         "code       pry60    feed | walks 7.596J"),
+        ("covers 67 % of its stride under position servos (53 %)",
+         "code       pry60    posi | short 13.99J 67%"),
+        ("the same to the last digit", "code       go2      posi | walks 121.5J 101% tr14 "
+                                       "roll0.013 | walks 163.3J 101% tr14 roll0.013")))
+    assert_quoted(part, log, (("(9.172 J at `T_stance/2`)", "simulated +13.71 % (9.172 J"),))
+    assert "old        pry60    posi | short 17.04J 53%" in block
+    law_runs = law[:law.index("## (7) hexaleg")] if "## (7) hexaleg" in law else law
+    assert law_runs.count("walks") >= 40 and "fell" not in law_runs
+    optimal = " ".join((DOCS / "optimal.md").read_text().split())
+    assert_quoted(optimal, block, (
+        ("8.822 J a cycle over 274.7 mm under feedforward + PD",
+         "branch      feedforward springs  walks     E   8.822 J  dist  274.7/276.6 mm"),
+        ("8.388 J over 275.7 mm position only",
+         "branch      position    springs  walks     E   8.388 J  dist  275.7/276.6 mm")))
+    rows = (ROOT / "analysis" / "bench_logs" / "bench_optimal_rows_solo12_placement.log"
+            ).read_text()
+    check = rows[rows.index("# ===== branch placement"):]
+    assert_quoted(optimal, check, (
+        ("every one of its six finalists walking under both servos",
+         "6 finalists simulated under both servos, by the worse: chose finalist 2"),
+        ("duty factor 0.644, period 0.875 s, 30.77 J/m predicted, simulated feedforward 31.29, "
+         "position 30.44", "→ 2. duty factor 0.644, period 0.875 s: predicted 30.77 J/m, "
+                           "simulated feedforward 31.29, position 30.44")))
+    assert check.count("simulated feedforward") == 6 and "—" not in check
+
+
 def test_design_page_quotes_the_solo12_design_log():
     """docs/design.md's Solo-12 answer and how it followed the position servo's simulation are
     analysis/bench_logs/design_solo12.log's (two runs of 4 minutes, by hand): each figure

@@ -103,55 +103,6 @@ def test_on_the_plan_the_correction_is_zero_and_a_low_body_is_pushed_up(trot):
         assert df[:, 2].sum() == pytest.approx(push, rel=0.02)
 
 
-def test_the_runs_of_a_periodic_mask_wrap_around_the_cycle():
-    """:func:`balance.runs`: the run that ends the cycle continues into its start."""
-    mask = np.array([[1, 1, 1], [1, 0, 1], [0, 0, 1], [0, 1, 1], [1, 1, 1]], dtype=bool)
-    at, of = balance.runs(mask)
-    assert at[:, 0].tolist() == [1, 2, 0, 0, 0] and of[:, 0].tolist() == [3, 3, 1, 1, 3]
-    assert at[:, 1].tolist() == [2, 0, 0, 0, 1] and of[:, 1].tolist() == [3, 1, 1, 3, 3]
-    assert at[:, 2].tolist() == [0, 1, 2, 3, 4] and (of[:, 2] == 5).all()
-
-
-def test_a_fast_body_sets_its_swing_foot_down_ahead_and_holds_it_at_touchdown(trot):
-    """Raibert's foot placement (module docstring, 4.): a body faster than planned by δv
-    moves a swinging foot, in the base frame, by b(φ) (T_stance/2) δv horizontally — none at
-    lift-off, all of it at touchdown, T_stance/2 = 0.1 s on Solo-12's trot at duty 0.5 — and
-    the stance leg keeps that correction at touchdown and has released it after HOLD of its
-    stance (a wrong sign or a missing lead fails it)."""
-    prepared, analysis = trot
-    sim = _model(prepared, "feedforward")
-    motion = prepared.motion
-    b = balance.Balance(sim, motion, analysis.forces, analysis.tau_motor)
-    leg = 0
-    swinging = np.flatnonzero(b.swing_of[:, leg] > 1)
-    n = motion.n_samples
-    last = int(swinging[np.argmax(b.swing_at[swinging, leg])])
-    touchdown = (last + 1) % n
-    rows = b.leg_rows[leg]
-    fast = np.array([0.1, 0.05, 0.0])
-
-    def correction(k: int, faster: np.ndarray) -> np.ndarray:
-        q = motion.q[k].copy()
-        q[:3] += b.offset
-        qpos, qvel = sim.joints.to_mujoco(q, motion.v[k])
-        qvel[:3] += faster
-        return b.correction(motion.t[k] + motion.period, qpos, qvel, motion.feet[k] + b.offset)
-
-    lift = int(swinging[np.argmin(b.swing_at[swinging, leg])])
-    assert np.abs(correction(lift, fast)[rows]).max() < 1e-12
-    step = correction(last, fast)[rows]
-    jac = np.linalg.pinv(b.swing_map[last][rows][:, leg])
-    rot = balance.rotation_from_quaternion(motion.q[last:last + 1, 3:7])[0]
-    phase = b.swing_at[last, leg] / b.swing_of[last, leg]
-    assert b.lead[last, leg] == pytest.approx(0.1, abs=2 * motion.dt)
-    expected = 3 * phase**2 - 2 * phase**3
-    assert phase > 0.9 and jac @ step == pytest.approx(
-        expected * b.lead[last, leg] * (rot.T @ fast), abs=1e-9)
-    assert correction(touchdown, 0 * fast)[rows] == pytest.approx(step, abs=1e-12)
-    later = (touchdown + int(np.ceil(balance.HOLD * b.stance_of[touchdown, leg]))) % n
-    assert np.abs(correction(later, 0 * fast)[rows]).max() < 1e-9
-
-
 def test_a_turning_gait_is_refused(trot):
     prepared, analysis = trot
     motion = prepared.motion

@@ -26,33 +26,9 @@ plan's inverse dynamics are already the feedforward):
    Jacobians' joint columns — MIT's ``τ = Jᵀ Rᵀ f`` with the sign of the ground's force on the
    foot), at the plan's joint angles.
 4. **Swing feet: foot placement** (a gait on two point feet at times and never on one: a trot, a
-   pace, a bound; "Footholds" below. Raibert, *Legged Robots That Balance*, MIT Press 1986, ch.
-   2: the foot set down at the neutral point ``ẋ T_s / 2`` ahead of the hip, plus a velocity
-   feedback ``k (ẋ − ẋ*)``; Di Carlo et al. 2018, §IV, their foot placement: ``p = p_hip +
-   (T_stance/2) v + k (v − v*)``, whose centripetal term ``½ (h/g) v × ω*`` vanishes here: the
-   controller refuses a turning gait). The plan already sets each foot down at its own neutral
-   point ``(T_stance/2) v*`` from its planned hip, so the change of the landing point from the
-   plan's is, horizontally,
-
-       Δx = (p_hip − p*_hip) + (T_stance/2 + k) (v − v*),     p_hip = p + R r_hip
-
-   (``r_hip`` the leg's first joint in the base frame, ``T_stance`` the stance that follows the
-   swing, v the base's velocity); vertically the foot keeps its planned height in the body (a
-   position servo's body sags by τ/kp: a foot aimed at the ground's planned height from a sagged
-   body is set down late and pushed down at touchdown, and Laikago fell so). The swing's joint
-   reference moves by ``Δq = b(φ) J_b⁺ Rᵀ (x̃ − p̃)``, the step from the planned foot carried by
-   the measured body ``p̃ = p + R R*ᵀ (x* − p*)`` to the landing target ``x̃ = x* + Δx`` (its
-   height that of p̃), one Newton step of inverse kinematics (J_b the foot's base-frame Jacobian
-   at the plan's angles; Siciliano et al., *Robotics*, 2009, §3.7), with ``b(φ) = 3φ² − 2φ³`` of
-   the swing's elapsed share φ (0 at lift-off, 1 at touchdown, zero slope at both: the reference
-   does not jump, as the MIT controllers' Bézier swing). At touchdown the stance leg keeps that
-   correction and releases it over the first :data:`HOLD` of its stance by ``1 − b``: a step of
-   a position reference at contact is a kick (Go2's trot rolled 0.032 rad with the correction
-   dropped at touchdown, 0.018 rad with it released; HOLD chosen by measurement, not derived).
-   The gain ``k``: 0 — the body's PD (1.) already regulates the velocity through the stance
-   forces, and the capture point's ``k = √(h/g)`` (Pratt et al., "Capture point", Humanoids
-   2006) on top of it over-corrects: B1's baseline rolled 0.53 rad and ran untracked (measured
-   without the hold, ``analysis/bench_logs/newcomers_simulate.log``, the last block).
+   pace, a bound; "Footholds" below): Raibert's foot placement, its lead bounded by the linear
+   inverted pendulum's deadbeat step, blended into the swing and released over the next stance
+   (:mod:`hexaleg.simulation.placement`).
 
 **Soles** (:mod:`hexaleg.robot.soles`). A foot with a sole enters the force program as its four
 corners, each with its own force in its own friction cone — the exact contact wrench of a
@@ -172,6 +148,7 @@ from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.recorded.base import rotation_from_quaternion
 from hexaleg.motion.trajectory import SEMI_IMPLICIT, Motion
 from hexaleg.robot.model import Robot
+from hexaleg.simulation import placement
 from hexaleg.simulation.distribution import TorqueBounds, distribute, wrench_map
 from hexaleg.simulation.model import SimModel
 
@@ -188,9 +165,6 @@ FOOTHOLD = 0.3
 """The fraction of a swing foot's task-space error to its planned world pose corrected per
 update where the foot is not placed for balance: a sole, or any foot of a gait always on
 :data:`FEWEST_STATIC` feet or more (module docstring, "Footholds")."""
-HOLD = 0.5
-"""The share of a stance over which a swing foot's landing correction is released (module
-docstring, "Swing feet")."""
 MODES: tuple[str, ...] = ("auto", "on", "off")
 """``[simulate] feedback``: ``"auto"`` (default) runs the controller where the gait needs it
 (fewer than three stance feet at some instant, or an open-loop run that fell); ``"on"``,
@@ -201,9 +175,6 @@ later cycles are not translations of the first); the one-sample extrapolation th
 cycle is exact to about ½ |ω̇| dt² (5e-6 rad at 10 rad/s² and 1 ms)."""
 FEWEST_STATIC = 3
 """A gait always on at least this many feet can stand without balance feedback."""
-FEWEST_PLACED = 2
-"""A gait whose fewest stance feet are this many (a trot, a pace, a bound) has its point feet
-placed for balance (module docstring 4.); on one point foot they keep their footholds."""
 
 
 @dataclass(frozen=True)
@@ -214,7 +185,7 @@ class Gains:
         omega: ω, the body's closed-loop natural frequency, rad/s, > 0.
         zeta: ζ, its damping ratio, > 0.
         capture: k, s, ≥ 0: the landing point's lead per m/s of the body's velocity error
-            beyond the stance's own T_stance/2 (module docstring, "Swing feet"; 0 by default).
+            beyond :func:`hexaleg.simulation.placement.lead` (0 by default).
         period: The controller's period, s, > 0.
     """
 
@@ -392,7 +363,7 @@ class Balance:
                 if leg.name in robot.soles}
         fewest = int(stance.sum(axis=1).min())
         self.placed = (np.array([i not in turn for i in range(n_legs)])
-                       & (FEWEST_PLACED <= fewest < FEWEST_STATIC))
+                       & (placement.FEWEST_PLACED <= fewest < FEWEST_STATIC))
         """Whether each leg's foot is placed for balance (Raibert's placement, module docstring
         4.: a point foot of a gait on two feet at times, never on one), or aims at its planned
         world pose ("Footholds"), (n_legs,)."""
@@ -436,27 +407,9 @@ class Balance:
                 self.swing_turn[:, cols, i, :] = inverse[..., 3:]
             else:
                 self.swing_map[:, cols, i, :] = np.linalg.pinv(jac[i], rcond=1e-3)
-        self.hips = np.zeros((n_legs, 3))
-        """Each leg's first joint in the base frame (its hip), m, (n_legs, 3)."""
-        neutral = q[0].copy()
-        neutral[:7] = [0, 0, 0, 0, 0, 0, 1]
-        pin.forwardKinematics(model, data, neutral)
-        for i, leg in enumerate(robot.legs):
-            self.hips[i] = data.oMi[leg.joint_ids[0]].translation
-        swinging = ~(stance & np.roll(stance, -1, axis=0))  # as :meth:`_sample` splits them
-        self.swing_at, self.swing_of = runs(swinging)
-        """Per sample and leg, (T, n_legs): the samples since its swing's lift-off and the
-        swing's samples from lift-off to touchdown (:func:`runs`)."""
-        self.stance_at, self.stance_of = runs(~swinging)
-        """The same of each stance, from touchdown to lift-off."""
-        landing = (np.arange(n)[:, None] + self.swing_of - self.swing_at).astype(int) % n
-        self.lead = (np.take_along_axis(self.stance_of, landing, axis=0) * self.dt / 2
-                     + self.gains.capture)
-        """Per sample and leg, (T, n_legs), s: T_stance/2 (the stance after the swing) + k,
-        the landing point's shift per m/s of the body's velocity error (module docstring)."""
-        self.landing = np.zeros(nj)
-        """Each joint's swing correction at its last update (its leg's landing correction
-        once the foot is down), rad."""
+        self.placement = placement.Placement(robot, motion, self.placed, self.leg_rows,
+                                             self.gains.capture)
+        """The swing feet's placement (:mod:`hexaleg.simulation.placement`)."""
         pin.ccrba(model, data, q[0], np.zeros(model.nv))
         inertia = np.asarray(data.Ig.inertia)  # world-aligned at the plan's first sample
         self.inertia = rot[0].T @ inertia @ rot[0]
@@ -549,57 +502,7 @@ class Balance:
                     out += FOOTHOLD * (st.reshape(len(st), -1)
                                        @ np.tile(_skew_log(rot.T @ r_plan), len(swing)))
             if placed.any():  # Raibert's foot placement, blended into the swing (4.)
-                blend = _smoothstep((self.swing_at[k, swing] + s) / self.swing_of[k, swing])
-                blend[~placed] = 0.0
-                carried = p + (x - p_plan) @ r_plan @ rot.T  # the planned foot, carried
-                shift = (x - carried + (p + self.hips[swing] @ rot.T)
-                         - (p_plan + self.hips[swing] @ r_plan.T)
-                         + self.lead[k, swing, None] * (qvel[:3] - track[3:6]))
-                shift[:, 2] = 0.0  # the foot's height in the body as planned
-                step = swing_map @ (blend[:, None] * (shift @ rot)).ravel()
-                out += step
-                rows = self.leg_rows[swing[placed]].any(axis=0)
-                self.landing[rows] = step[rows]
-        # a point foot's landing correction, released over its stance's first HOLD
-        for leg in np.flatnonzero(self.stance[k] & self.stance[k + 1] & self.placed):
-            at = (self.stance_at[k, leg] + s) / (HOLD * self.stance_of[k, leg])
-            if at < 1.0:
-                rows = self.leg_rows[leg]
-                out[rows] += (1.0 - _smoothstep(at)) * self.landing[rows]
+                out += self.placement.step(k, s, swing, x, p, rot, p_plan, r_plan,
+                                           qvel[:3] - track[3:6], swing_map)
+        out += self.placement.release(k, s, self.stance[k] & self.stance[k + 1])
         return out
-
-
-def _smoothstep(u: np.ndarray | float) -> np.ndarray:
-    """3u² − 2u³ of u clipped to [0, 1]: from 0 to 1 with zero slope at both ends (the swing
-    foot's blend: no jump of the servo's reference at lift-off or touchdown)."""
-    u = np.clip(u, 0.0, 1.0)
-    return np.asarray(u * u * (3.0 - 2.0 * u))
-
-
-def runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The runs of True of each column of a periodic mask (sample T − 1 followed by 0).
-
-    Args:
-        mask: (T, n_legs), bool.
-
-    Returns:
-        ``(at, of)``, each (T, n_legs): at a True sample, the samples since its run began and
-        the run's length in samples; 0 and 1 elsewhere (and 0, T for a column all True).
-    """
-    n, n_legs = mask.shape
-    at, of = np.zeros((n, n_legs)), np.ones((n, n_legs))
-    for i in range(n_legs):
-        column = mask[:, i]
-        if column.all():
-            at[:, i], of[:, i] = np.arange(n), n
-            continue
-        start = int(np.flatnonzero(~column)[0]) + 1  # read from a sample after a False one
-        run: list[int] = []
-        for j in range(n + 1):
-            k = (start + j) % n
-            if j < n and column[k]:
-                run.append(k)
-            elif run:
-                at[run, i], of[run, i] = np.arange(len(run)), len(run)
-                run = []
-    return at, of
