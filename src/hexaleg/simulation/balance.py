@@ -28,7 +28,7 @@ plan's inverse dynamics are already the feedforward):
 4. **Swing feet: foot placement** (a gait on two point feet at times and never on one: a trot, a
    pace, a bound; "Footholds" below): Raibert's foot placement, its lead bounded by the linear
    inverted pendulum's deadbeat step, blended into the swing and released over the next stance
-   (:mod:`hexaleg.simulation.placement`).
+   (:mod:`hexaleg.simulation.foot_placement`).
 
 **Soles** (:mod:`hexaleg.robot.soles`). A foot with a sole enters the force program as its four
 corners, each with its own force in its own friction cone — the exact contact wrench of a
@@ -148,7 +148,7 @@ from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.recorded.base import rotation_from_quaternion
 from hexaleg.motion.trajectory import SEMI_IMPLICIT, Motion
 from hexaleg.robot.model import Robot
-from hexaleg.simulation import placement
+from hexaleg.simulation import foot_placement
 from hexaleg.simulation.distribution import TorqueBounds, distribute, wrench_map
 from hexaleg.simulation.model import SimModel
 
@@ -185,7 +185,7 @@ class Gains:
         omega: ω, the body's closed-loop natural frequency, rad/s, > 0.
         zeta: ζ, its damping ratio, > 0.
         capture: k, s, ≥ 0: the landing point's lead per m/s of the body's velocity error
-            beyond :func:`hexaleg.simulation.placement.lead` (0 by default).
+            beyond :func:`hexaleg.simulation.foot_placement.lead` (0 by default).
         period: The controller's period, s, > 0.
     """
 
@@ -363,7 +363,7 @@ class Balance:
                 if leg.name in robot.soles}
         fewest = int(stance.sum(axis=1).min())
         self.placed = (np.array([i not in turn for i in range(n_legs)])
-                       & (placement.FEWEST_PLACED <= fewest < FEWEST_STATIC))
+                       & (foot_placement.FEWEST_PLACED <= fewest < FEWEST_STATIC))
         """Whether each leg's foot is placed for balance (Raibert's placement, module docstring
         4.: a point foot of a gait on two feet at times, never on one), or aims at its planned
         world pose ("Footholds"), (n_legs,)."""
@@ -407,9 +407,9 @@ class Balance:
                 self.swing_turn[:, cols, i, :] = inverse[..., 3:]
             else:
                 self.swing_map[:, cols, i, :] = np.linalg.pinv(jac[i], rcond=1e-3)
-        self.placement = placement.Placement(robot, motion, self.placed, self.leg_rows,
+        self.placement = foot_placement.Placement(robot, motion, self.placed, self.leg_rows,
                                              self.gains.capture)
-        """The swing feet's placement (:mod:`hexaleg.simulation.placement`)."""
+        """The swing feet's placement (:mod:`hexaleg.simulation.foot_placement`)."""
         pin.ccrba(model, data, q[0], np.zeros(model.nv))
         inertia = np.asarray(data.Ig.inertia)  # world-aligned at the plan's first sample
         self.inertia = rot[0].T @ inertia @ rot[0]

@@ -22,7 +22,7 @@ from hexaleg.design.chain.design_file import design_table
 from hexaleg.errors import OutputError
 from hexaleg.outputs.html import render_simulate_html
 from hexaleg.quantities import comparison, file_data, json_text, quantity
-from hexaleg.simulation import balance, placement
+from hexaleg.simulation import balance, foot_placement
 from hexaleg.simulation.run import Run, Simulation
 from hexaleg.simulation.sensitivity import sensitivity_row
 
@@ -151,7 +151,8 @@ def feedback_data(s: Simulation) -> dict[str, Any]:
     if any(ran.values()):
         g = balance.size_gains(s.robot, s.motion)
         out["gains"] = {"omega": quantity(g.omega, "rad/s"), "zeta": quantity(g.zeta, "1"),
-                        "capture": quantity(g.capture, "s"), "hold": quantity(placement.HOLD, "1"),
+                        "capture": quantity(g.capture, "s"),
+                        "hold": quantity(foot_placement.HOLD, "1"),
                         "period": quantity(g.period, "s")}
     return out
 
