@@ -32,18 +32,48 @@ import pinocchio as pin
 from hexaleg.robot.model import Robot
 
 
-def contact_inverse_inertia(robot: Robot, q: np.ndarray) -> np.ndarray:
-    """Each foot point's contact-space inverse inertia ``J M⁻¹ Jᵀ`` at configuration ``q``
-    (nq,), world axes, shape (n_legs, 3, 3), 1/kg (module docstring)."""
+def _jacobians(robot: Robot, q: np.ndarray, corners: bool
+               ) -> tuple[list[str], np.ndarray, np.ndarray]:
+    """The contact points' names, translation Jacobians (world axes, shape (k, 3, nv)) and
+    ``M⁻¹`` (nv, nv) at ``q``: each leg's foot point, or with ``corners`` each corner of a
+    leg's sole, ``J_v − [R_f c]× J_ω`` (the sole's corner ``c`` in the foot frame)."""
     model = robot.model
     data = model.createData()
     pin.computeJointJacobians(model, data, q)
     pin.updateFramePlacements(model, data)
     minv = pin.computeMinverse(model, model.createData(), q)
     minv = np.triu(minv) + np.triu(minv, 1).T  # Pinocchio fills the upper triangle
-    jac = np.stack([pin.getFrameJacobian(model, data, leg.foot_frame_id,
-                                         pin.LOCAL_WORLD_ALIGNED)[:3] for leg in robot.legs])
+    names, jacs = [], []
+    for leg in robot.legs:
+        full = pin.getFrameJacobian(model, data, leg.foot_frame_id, pin.LOCAL_WORLD_ALIGNED)
+        sole = robot.soles.get(leg.name) if corners else None
+        if sole is None:
+            names.append(f"{leg.name}'s foot")
+            jacs.append(full[:3])
+            continue
+        for j, lever in enumerate(sole.corners() @ data.oMf[leg.foot_frame_id].rotation.T):
+            skew = np.array([[0.0, -lever[2], lever[1]], [lever[2], 0.0, -lever[0]],
+                             [-lever[1], lever[0], 0.0]])
+            names.append(f"{leg.name}'s sole corner {j}")
+            jacs.append(full[:3] - skew @ full[3:])
+    return names, np.stack(jacs), minv
+
+
+def contact_inverse_inertia(robot: Robot, q: np.ndarray) -> np.ndarray:
+    """Each foot point's contact-space inverse inertia ``J M⁻¹ Jᵀ`` at configuration ``q``
+    (nq,), world axes, shape (n_legs, 3, 3), 1/kg (module docstring)."""
+    _, jac, minv = _jacobians(robot, q, corners=False)
     return np.asarray(jac @ minv @ jac.transpose(0, 2, 1))
+
+
+def point_sliding_masses(robot: Robot, q: np.ndarray) -> tuple[list[str], np.ndarray]:
+    """Each ground contact point's mass along the normal, free to slide, ``1 / (J M⁻¹ Jᵀ)_zz``
+    (kg): a point foot's foot point, a sole's every corner (where MuJoCo puts its contact
+    spheres), with their names. Unitree G1's toe corner moves 0.124 kg on a 0.61-kg foot that
+    turns about its ankle."""
+    names, jac, minv = _jacobians(robot, q, corners=True)
+    rows = jac[:, 2]
+    return names, 1.0 / np.einsum("ki,ij,kj->k", rows, minv, rows)
 
 
 def held_masses(robot: Robot, q: np.ndarray) -> np.ndarray:

@@ -59,7 +59,7 @@ from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
 from hexaleg.simulation.controllers import Servo, ServoMotor, servo_xml
-from hexaleg.simulation.foot_mass import held_masses
+from hexaleg.simulation.foot_mass import held_masses, point_sliding_masses
 from hexaleg.simulation.ground import FOOT_RADIUS, IMPRATIO, Ground
 from hexaleg.simulation.mjcf import (
     FOOT_CLASS,
@@ -386,41 +386,25 @@ CONTACT_BOUND = 4.0
 def contact_point_limit(sim: SimModel, motion: Motion, bound: float = CONTACT_BOUND
                         ) -> tuple[float, str, float]:
     """The explicit-stability limit of the ground contacts at each contact point's own
-    effective mass, s, the point and that mass (kg): ``m = 1/(n M⁻¹ nᵀ)`` of its normal row
-    ``n = J_z`` at the motion's start (Pinocchio's ``computeMinverse``; a point foot's foot
-    frame, a sole's corner ``J_v − [R_f c]× J_ω``), ``a = B/m``, ``b = K/m``, the largest dt
-    with ``b dt² + 2 a dt ≤ bound``.
+    effective mass free to slide, s, the point and that mass (kg): ``m = 1/(J M⁻¹ Jᵀ)_zz`` at
+    the motion's start (:func:`~hexaleg.simulation.foot_mass.point_sliding_masses`: a point
+    foot's foot point, a sole's every corner), ``a = B/m``, ``b = K/m``, the largest dt with
+    ``b dt² + 2 a dt ≤ bound``.
 
-    :func:`timestep_limit` sizes a contact by its body's ``body_invweight0`` (the translation of
-    its centre of mass), which does not see the foot turning about its joint under the point: a
+    :func:`timestep_limit` sizes a contact by the mass its foot point moves held by its friction
+    (:func:`~hexaleg.simulation.foot_mass.held_masses`), not a sole's corners free to slide: a
     sole's toe corner on Unitree G1's 0.61-kg foot moves with 0.124 kg (``body_invweight0``
     1.31 kg), and at the automatic 0.2 ms the contact is past this bound (7.9 against 4): its
     forces jump 0 ↔ 4 kN between samples and the robot falls. Point feet on shanks move with a
     fifth of their body's mass too (``analysis/bench_logs/newcomers_simulate.log``) and walk at
     the automatic timestep, so this limit names a cause after a fall
     (:func:`hexaleg.simulation.falls.fall_cause`) and does not set the timestep."""
-    robot = sim.robot
-    model, q = robot.model, motion.q[0]
-    data = model.createData()
-    upper = pin.computeMinverse(model, data, q)
-    minv = np.triu(upper) + np.triu(upper, 1).T  # Pinocchio fills the upper triangle
-    pin.computeJointJacobians(model, data, q)
-    pin.updateFramePlacements(model, data)
     worst = (np.inf, "", 0.0)
-    for leg in robot.legs:
-        full = pin.getFrameJacobian(model, data, leg.foot_frame_id,
-                                    pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
-        sole = robot.soles.get(leg.name)
-        levers = (sole.corners() @ data.oMf[leg.foot_frame_id].rotation.T if sole is not None
-                  else np.zeros((1, 3)))
-        for j, lever in enumerate(levers):
-            row = full[2] + lever[1] * full[3] - lever[0] * full[4]  # z of J_v − [r]× J_ω
-            mass = 1.0 / float(row @ minv @ row)
-            b, a = sim.ground.explicit_rate(1.0 / mass)
-            limit = (float((-2 * a + np.sqrt(4 * a * a + 4 * b * bound)) / (2 * b)) if b > 0
-                     else bound / (2 * a) if a > 0 else np.inf)
-            what = f"{leg.name}'s sole corner {j}" if sole is not None else f"{leg.name}'s foot"
-            worst = min(worst, (limit, what, mass))
+    for what, mass in zip(*point_sliding_masses(sim.robot, motion.q[0]), strict=True):
+        b, a = sim.ground.explicit_rate(float(mass))
+        limit = (float((-2 * a + np.sqrt(4 * a * a + 4 * b * bound)) / (2 * b)) if b > 0
+                 else bound / (2 * a) if a > 0 else np.inf)
+        worst = min(worst, (limit, what, float(mass)))
     return worst
 
 
