@@ -9,7 +9,7 @@ then the automatic timestep sized at the body's mass (before) and at the held fo
 (now: :func:`hexaleg.simulation.timestep.automatic_timestep`), each rounded to divide the
 period, and what sets it.
 
-    cd analysis && python foot_masses.py hexaleg solo12 a1:trot_a1.toml ...
+    cd analysis && python bench_foot_masses.py hexaleg solo12 a1:trot_a1.toml ...
 """
 
 from __future__ import annotations
