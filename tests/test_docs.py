@@ -1032,10 +1032,10 @@ def test_codesign_page_quotes_the_codesign_bench_log():
 def test_simulate_page_quotes_the_foot_points_mass():
     """docs/simulate.md's stability bound at the mass each foot point moves (#54): the masses
     and timesteps are analysis/bench_logs/bench_foot_masses.log's (python
-    analysis/bench_foot_masses.py), HyQ's default trot at its new automatic timestep newcomers_simulate.log's block "the foot
-    point's mass" (each row beside its run's summary line), what the retry it replaces printed
-    the block "integration", and the registered trots' table bench_simulate_trots.log's last
-    block."""
+    analysis/bench_foot_masses.py), HyQ's default trot at its new automatic timestep
+    newcomers_simulate.log's block "the foot point's mass" (each row beside its run's summary
+    line), what the retry it replaces printed the block "integration", and the registered
+    trots' table bench_simulate_trots.log's last block."""
     masses = (ROOT / "analysis" / "bench_logs" / "bench_foot_masses.log").read_text()
     log = (ROOT / "analysis" / "bench_logs" / "newcomers_simulate.log").read_text()
     now = log[log.index("# ===== the foot point's mass"):]
