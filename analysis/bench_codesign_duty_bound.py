@@ -6,10 +6,11 @@ on (log: analysis/bench_logs/bench_codesign_duty_bound.log; not an example study
 Run:  python analysis/bench_codesign_duty_bound.py [--duty-high 0.9] [--chosen out.pkl]
 
 The co-design's search box (:func:`hexaleg.design.codesign.gait_search.default_space`) bounds
-the duty factor at 0.8; the optimal motion's timing search (``codesign --motion optimal``) may
-reach 0.9, so the parametric family at the same bound is the fair baseline. Runs
-``hexaleg.codesign`` (no rules, no simulated finalists, no curve: the search's best gait and its
-inner springs, as analysis/bench_optimal_rows.py's ``cd.pkl``) with the bound raised, then the
+the duty factor at 0.8 by default (``[codesign] duty_high``, ``--duty-high``); the optimal
+motion's timing search (``codesign --motion optimal``) may reach 0.9, so the parametric family at
+the same bound is the fair baseline. Runs ``hexaleg.codesign`` (no rules, no simulated
+finalists, no curve: the search's best gait and its inner springs, as
+analysis/bench_optimal_rows.py's ``cd.pkl``) with ``duty_high`` raised, then the
 chosen gait with its springs simulated under each servo, closed loop. ``--chosen`` writes the
 gait and springs as a pickle that analysis/bench_optimal_rows.py and bench_optimal_duty.py read.
 """
@@ -17,14 +18,11 @@ gait and springs as a pickle that analysis/bench_optimal_rows.py and bench_optim
 from __future__ import annotations
 
 import argparse
-import functools
 import os
 import pickle
 import time
 
 import hexaleg
-from hexaleg.design.codesign import build
-from hexaleg.design.codesign.gait_search import default_space
 from hexaleg.design.codesign.servo import simulated_run
 
 
@@ -34,8 +32,8 @@ def main() -> None:
     parser.add_argument("--chosen", help="write the chosen gait and springs to this pickle")
     args = parser.parse_args()
     t0 = time.perf_counter()
-    build.default_space = functools.partial(default_space, duty_high=args.duty_high)
     para = hexaleg.codesign("hexaleg", 0.06, rules=False, simulate=False, curve=False,
+                            duty_high=args.duty_high,
                             progress=lambda line: print(line, flush=True))
     chosen, springs = para.chosen, para.springs
     rows = [(r.label, r.per_metre) for r in para.rows]
