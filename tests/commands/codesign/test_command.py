@@ -72,6 +72,20 @@ def test_timing_is_a_decision_of_the_optimal_rows_only(tmp_path, capsys):
     assert "free" in err and "search" in err
 
 
+def test_starts_are_a_decision_of_the_optimal_rows_only(tmp_path, capsys):
+    """``--starts lattice`` tries other starts of the optimal motion: without ``--motion
+    optimal`` it is refused by name before any work; an unknown value is named."""
+    args = build_parser().parse_args(["codesign", "--motion", "optimal", "--starts", "lattice"])
+    assert args.starts == "lattice" and build_parser().parse_args(["codesign"]).starts is None
+    assert main(["codesign", "--starts", "lattice", "--out", str(tmp_path / "o")]) == 2
+    assert "starts = 'lattice'" in capsys.readouterr().err
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[codesign]\nmotion = "optimal"\nstarts = "random"\n')
+    assert main(["codesign", "--config", str(bad), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert "random" in err and "lattice" in err
+
+
 def test_the_duty_factor_bound_is_an_option_and_a_key(tmp_path, capsys):
     """``--duty-high`` and ``[codesign] duty_high`` are one setting (the command line wins);
     out of range it is one line naming the value and the range."""

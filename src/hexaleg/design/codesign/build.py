@@ -59,6 +59,7 @@ from hexaleg.design.codesign.gait_search import RESTARTS, default_space, search
 from hexaleg.design.codesign.optimal_stage import keep_parametric, kept_parametric, with_optimal
 from hexaleg.design.codesign.result import CodesignResult, Row, SpeedPoint
 from hexaleg.design.codesign.servo import choose, screen
+from hexaleg.design.codesign.starts import STARTS
 from hexaleg.design.codesign.timing import TIMINGS
 from hexaleg.design.families import FAMILIES
 from hexaleg.design.search.optimal import Groups
@@ -127,7 +128,7 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
              restarts: int = RESTARTS, grouping: str = "class", curve: bool = True,
              simulate: bool = True, rules: bool = True, design: DesignParams | None = None,
              controller: str = BOTH, motion: str = "gait", feedback: str = "auto",
-             timing: str = "gait", duty_high: float | None = None,
+             timing: str = "gait", starts: str = "gait", duty_high: float | None = None,
              progress: Callable[[str], None] | None = None,
              stages: StageFiles | None = None) -> CodesignResult:
     """The gait and springs that cover a metre at ``speed`` for the least electrical energy
@@ -175,6 +176,11 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             TIMINGS`): ``"gait"``, the chosen gait's; ``"search"``, a small deterministic
             search about it (:mod:`hexaleg.design.codesign.timing`: five solves more, each
             judged by the prediction of its rebuilt cycle); only with ``motion="optimal"``.
+        starts: The optimal motion's starts (:data:`~hexaleg.design.codesign.starts.STARTS`):
+            ``"gait"``, the gait at the timing used; ``"lattice"``, a small fixed lattice of
+            starts about it (:mod:`hexaleg.design.codesign.starts`: step height, body height,
+            swing weight; four solves more, each judged by the prediction of its rebuilt
+            cycle), the alternation run from the best; only with ``motion="optimal"``.
         duty_high: The co-design search's (and the gait-alone search's) highest duty factor
             (:func:`~hexaleg.design.codesign.gait_search.default_space`), in [the default
             gait's duty factor + 0.05, 0.95]; None: :data:`DUTY_HIGH`, or the default gait's
@@ -191,10 +197,10 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
         InvalidParameterError: a speed not > 0, sample counts out of range, a ``duty_high``
             outside its range (named, with the range at this pattern); the default gait itself
             cannot be made at this speed (named, with its error).
-        UnknownNameError: an unknown robot, pattern, family, controller, motion, feedback or
-            timing.
-        ConfigError: a ``feedback`` other than ``"auto"`` or a ``timing`` other than
-            ``"gait"`` without ``motion="optimal"``.
+        UnknownNameError: an unknown robot, pattern, family, controller, motion, feedback,
+            timing or starts.
+        ConfigError: a ``feedback`` other than ``"auto"``, or a ``timing`` or ``starts``
+            other than ``"gait"``, without ``motion="optimal"``.
         BackendError: ``motion="optimal"`` without a usable Crocoddyl (names the extra).
     """
     servo = one_of("[codesign] controller", controller, SERVOS)
@@ -206,6 +212,9 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
     if one_of("[codesign] timing", timing, TIMINGS) != "gait" and motion != "optimal":
         raise ConfigError(f"[codesign] timing = {timing!r} searches the optimal motion's "
                           "contact timing: it needs motion = \"optimal\" (--motion optimal)")
+    if one_of("[codesign] starts", starts, STARTS) != "gait" and motion != "optimal":
+        raise ConfigError(f"[codesign] starts = {starts!r} tries other starts of the optimal "
+                          "motion: it needs motion = \"optimal\" (--motion optimal)")
     if motion == "optimal":
         from hexaleg.optimal.backend import crocoddyl_module
 
@@ -230,7 +239,8 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
     if kept is not None:
         say(f"co-design: {kept.rows[3].per_metre:.2f} J/m, read back from the kept stage of "
             f"this run ({stages.directory if stages is not None else ''})")
-        return with_optimal(kept, model, motor, groups, servo, say, stages, loop, timing)
+        return with_optimal(kept, model, motor, groups, servo, say, stages, loop, timing,
+                            starts)
     free = functools.partial(evaluate_gait, model, family=family, constraints=c, motor=motor)
     first = free(base, groups=groups, min_margin=0.0)
     if first.error is not None:
@@ -305,7 +315,8 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
         if motion != "optimal":
             return result
         keep_parametric(stages, result, model)
-        return with_optimal(result, model, motor, groups, servo, say, stages, loop, timing)
+        return with_optimal(result, model, motor, groups, servo, say, stages, loop, timing,
+                            starts)
     finally:
         if ruled is not None:
             ruled.close()
@@ -371,7 +382,8 @@ def simulated(robot: Robot, chosen: GaitParams, springs: SpringSet, c: Constrain
 
 CODESIGN_KEYS = ("speed", "pattern", "family", "samples", "final_samples", "max_evaluations",
                  "restarts", "grouping", "rules", "curve", "simulate", "controller",
-                 "motion", "feedback", "timing", "duty_high", "constraints", "design")
+                 "motion", "feedback", "timing", "starts", "duty_high", "constraints",
+                 "design")
 """The keys of a ``[codesign]`` table: :func:`codesign`'s keywords."""
 
 
