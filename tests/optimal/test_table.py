@@ -314,3 +314,40 @@ def test_the_breakdown_is_the_kept_log():
     dead = (LOGS / "bench_optimal_breakdown_dead_zone.log").read_text(encoding="utf-8")
     zone = re.search(r"dead_zone springs one design a class: ([0-9.]+) J/m", dead)
     assert zone and f"class {zone[1]} (above" in doc
+
+
+def test_the_starts_are_the_kept_log():
+    """The multi-start's section prints its kept log: each start's predicted and solver J/m,
+    the answer's alternation, its simulated J/m, the baseline's and the ratios; and each
+    motion's split into Joule heat and the rest."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("## Starts of the optimal motion"):doc.index("## How it compares")]
+    log = (LOGS / "bench_optimal_starts.log").read_text(encoding="utf-8")
+    tried = re.findall(r"^\S+ +(\S.*?): ([0-9.]+) J/m predicted rebuilt \(the solver's "
+                       r"([0-9.]+)\)$", log, re.MULTILINE)
+    table = text[text.index("| start (G at duty factor 0.85, with S) |"):].split(
+        "\n\n")[0].splitlines()[2:]
+    assert len(tried) == len(table) >= 4
+    for (label, predicted, solver), row in zip(tried, table, strict=True):
+        cells = [c.strip() for c in row.strip("|").split("|")]
+        assert cells[0].startswith(label), (cells[0], label)
+        assert cells[1].strip("*") == predicted and cells[2] == solver, row
+    for pattern in (r"^\S+ the answer .*: alternation ([0-9.]+) → ([0-9.]+) → ([0-9.]+) → "
+                    r"([0-9.]+) J/m predicted .* feedforward ([0-9.]+), position ([0-9.]+)$",
+                    r"residual (\S+) N·m, stationarity (\S+) after",
+                    r"^\S+ baseline: .*: ([0-9.]+) J/m "
+                    r"predicted, simulated with balance feedback feedforward ([0-9.]+), "
+                    r"position ([0-9.]+)$", r"predicted ([0-9.]+)× \(target ≤ 0.8\), simulated "
+                    r"under the worse servo ([0-9.]+)×"):
+        m = re.search(pattern, log, re.MULTILINE)
+        assert m, pattern
+        assert all(v in text for v in m.groups()), (pattern, m.groups())
+    motions = re.findall(r"^\S+ (.*?): ([0-9.]+) J/m electrical, Joule ([0-9.]+), the rest "
+                         r"([0-9.]+); motors' positive work ([0-9.]+) J/m\n\S+ +coxa +electrical "
+                         r"+([0-9.]+).*\n\S+ +femur +electrical +([0-9.]+).*\n\S+ +tibia +"
+                         r"electrical +([0-9.]+)", log, re.MULTILINE)
+    split = text[text.index("| motion (duty bound 0.9) |"):].split("\n\n")[0].splitlines()[2:]
+    assert len(motions) == len(split) == 4
+    for (_, e, joule, rest, work, coxa, femur, tibia), row in zip(motions, split, strict=True):
+        cells = [c.strip() for c in row.strip("|").split("|")][1:]
+        assert cells == [e, joule, rest, work, femur, tibia, coxa], row
