@@ -351,3 +351,25 @@ def test_the_starts_are_the_kept_log():
     for (_, e, joule, rest, work, coxa, femur, tibia), row in zip(motions, split, strict=True):
         cells = [c.strip() for c in row.strip("|").split("|")][1:]
         assert cells == [e, joule, rest, work, femur, tibia, coxa], row
+
+
+def test_the_end_to_end_run_is_the_kept_log():
+    """The end-to-end run's table, its alternation and its times are the kept log's."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("**End to end.**"):doc.index("## Starts of the optimal motion")]
+    log = (LOGS / "codesign_motion_optimal_timing.log").read_text(encoding="utf-8")
+    rows = re.findall(r"^\S+     ((?:default gait|parametric|optimal motion)[^0-9]*?) +([0-9.]+) +"
+                      r"([0-9.]+) \(balance feedback\), ([0-9.]+) \(balance feedback\)$", log,
+                      re.MULTILINE)
+    table = text[text.index("| row (the command's own table"):].split("\n\n")[0].splitlines()[2:]
+    assert len(rows) == len(table) == 4
+    for (label, *numbers), row in zip(rows, table, strict=True):
+        assert [c.strip() for c in row.strip("|").split("|")] == [label.strip(), *numbers], row
+    trail = re.search(r"alternation ([0-9.]+) → ([0-9.]+) → ([0-9.]+) → ([0-9.]+) J/m", log)
+    assert trail and " → ".join(trail.groups()) in text.replace("\n", " ").replace(
+        "(that gait with S) ", "")
+    user = float(re.search(r"User time \(seconds\): ([0-9.]+)", log)[1])
+    system = float(re.search(r"System time \(seconds\): ([0-9.]+)", log)[1])
+    wall = re.search(r"Elapsed .*: ([0-9]+):([0-9.]+)$", log, re.MULTILINE)
+    assert f"{60 * int(wall[1]) + float(wall[2]):.0f} s wall" in text
+    assert f"{user + system:.0f} s of CPU" in text and f"user {user:.0f} s" in text
