@@ -179,8 +179,8 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
         starts: The optimal motion's starts (:data:`~hexaleg.design.codesign.starts.STARTS`):
             ``"gait"``, the gait at the timing used; ``"lattice"``, a small fixed lattice of
             starts about it (:mod:`hexaleg.design.codesign.starts`: step height, body height,
-            swing weight; four solves more, each judged by the prediction of its rebuilt
-            cycle), the alternation run from the best; only with ``motion="optimal"``.
+            swing weight; four or five solves more, each judged by the prediction of its
+            rebuilt cycle), the alternation run from the best; only with ``motion="optimal"``.
         duty_high: The co-design search's (and the gait-alone search's) highest duty factor
             (:func:`~hexaleg.design.codesign.gait_search.default_space`), in [the default
             gait's duty factor + 0.05, 0.95]; None: :data:`DUTY_HIGH`, or the default gait's
