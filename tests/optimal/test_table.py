@@ -373,3 +373,22 @@ def test_the_end_to_end_run_is_the_kept_log():
     wall = re.search(r"Elapsed .*: ([0-9]+):([0-9.]+)$", log, re.MULTILINE)
     assert f"{60 * int(wall[1]) + float(wall[2]):.0f} s wall" in text
     assert f"{user + system:.0f} s of CPU" in text and f"user {user:.0f} s" in text
+
+
+def test_the_body_bound_is_the_kept_log():
+    """The parametric co-design with its body-height box widened: the starts' section prints
+    the kept log's chosen gait and its predicted and simulated J/m."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("## Starts of the optimal motion"):doc.index("## How it compares")]
+    log = (LOGS / "bench_codesign_body_bound.log").read_text(encoding="utf-8")
+    rows = re.search(r"rows [0-9.]+ / [0-9.]+ / [0-9.]+ / ([0-9.]+) J/m", log)
+    chosen = re.search(r"duty factor ([0-9.]+), period ([0-9.]+) s, step height [0-9.]+ m, body "
+                       r"height ([0-9.]+) m \(box top \3 m\)", log)
+    sims = re.search(r"body height ≤ 1.5 × the default: [0-9.]+ J/m predicted, simulated with "
+                     r"balance feedback: feedforward ([0-9.]+), position ([0-9.]+)$", log,
+                     re.MULTILINE)
+    assert rows and chosen and sims
+    flat = text.replace("\n", " ")
+    assert f"predicts {rows[1]} J/m" in flat
+    assert f"duty factor {chosen[1]}, period {chosen[2]} s, body height {chosen[3]} m" in flat
+    assert f"for {sims[1]} (feedforward) and {sims[2]} (position)" in flat
