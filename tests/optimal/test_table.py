@@ -314,3 +314,81 @@ def test_the_breakdown_is_the_kept_log():
     dead = (LOGS / "bench_optimal_breakdown_dead_zone.log").read_text(encoding="utf-8")
     zone = re.search(r"dead_zone springs one design a class: ([0-9.]+) J/m", dead)
     assert zone and f"class {zone[1]} (above" in doc
+
+
+def test_the_starts_are_the_kept_log():
+    """The multi-start's section prints its kept log: each start's predicted and solver J/m,
+    the answer's alternation, its simulated J/m, the baseline's and the ratios; and each
+    motion's split into Joule heat and the rest."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("## Starts of the optimal motion"):doc.index("## How it compares")]
+    log = (LOGS / "bench_optimal_starts.log").read_text(encoding="utf-8")
+    tried = re.findall(r"^\S+ +(\S.*?): ([0-9.]+) J/m predicted rebuilt \(the solver's "
+                       r"([0-9.]+)\)$", log, re.MULTILINE)
+    table = text[text.index("| start (G at duty factor 0.85, with S) |"):].split(
+        "\n\n")[0].splitlines()[2:]
+    assert len(tried) == len(table) >= 4
+    for (label, predicted, solver), row in zip(tried, table, strict=True):
+        cells = [c.strip() for c in row.strip("|").split("|")]
+        assert cells[0].startswith(label), (cells[0], label)
+        assert cells[1].strip("*") == predicted and cells[2] == solver, row
+    for pattern in (r"^\S+ the answer .*: alternation ([0-9.]+) → ([0-9.]+) → ([0-9.]+) → "
+                    r"([0-9.]+) J/m predicted .* feedforward ([0-9.]+), position ([0-9.]+)$",
+                    r"residual (\S+) N·m, stationarity (\S+) after",
+                    r"^\S+ baseline: .*: ([0-9.]+) J/m "
+                    r"predicted, simulated with balance feedback feedforward ([0-9.]+), "
+                    r"position ([0-9.]+)$", r"predicted ([0-9.]+)× \(target ≤ 0.8\), simulated "
+                    r"under the worse servo ([0-9.]+)×"):
+        m = re.search(pattern, log, re.MULTILINE)
+        assert m, pattern
+        assert all(v in text for v in m.groups()), (pattern, m.groups())
+    motions = re.findall(r"^\S+ (.*?): ([0-9.]+) J/m electrical, Joule ([0-9.]+), the rest "
+                         r"([0-9.]+); motors' positive work ([0-9.]+) J/m\n\S+ +coxa +electrical "
+                         r"+([0-9.]+).*\n\S+ +femur +electrical +([0-9.]+).*\n\S+ +tibia +"
+                         r"electrical +([0-9.]+)", log, re.MULTILINE)
+    split = text[text.index("| motion (duty bound 0.9) |"):].split("\n\n")[0].splitlines()[2:]
+    assert len(motions) == len(split) == 4
+    for (_, e, joule, rest, work, coxa, femur, tibia), row in zip(motions, split, strict=True):
+        cells = [c.strip() for c in row.strip("|").split("|")][1:]
+        assert cells == [e, joule, rest, work, femur, tibia, coxa], row
+
+
+def test_the_end_to_end_run_is_the_kept_log():
+    """The end-to-end run's table, its alternation and its times are the kept log's."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("**End to end.**"):doc.index("## Starts of the optimal motion")]
+    log = (LOGS / "codesign_motion_optimal_timing.log").read_text(encoding="utf-8")
+    rows = re.findall(r"^\S+     ((?:default gait|parametric|optimal motion)[^0-9]*?) +([0-9.]+) +"
+                      r"([0-9.]+) \(balance feedback\), ([0-9.]+) \(balance feedback\)$", log,
+                      re.MULTILINE)
+    table = text[text.index("| row (the command's own table"):].split("\n\n")[0].splitlines()[2:]
+    assert len(rows) == len(table) == 4
+    for (label, *numbers), row in zip(rows, table, strict=True):
+        assert [c.strip() for c in row.strip("|").split("|")] == [label.strip(), *numbers], row
+    trail = re.search(r"alternation ([0-9.]+) → ([0-9.]+) → ([0-9.]+) → ([0-9.]+) J/m", log)
+    assert trail and " → ".join(trail.groups()) in text.replace("\n", " ").replace(
+        "(that gait with S) ", "")
+    user = float(re.search(r"User time \(seconds\): ([0-9.]+)", log)[1])
+    system = float(re.search(r"System time \(seconds\): ([0-9.]+)", log)[1])
+    wall = re.search(r"Elapsed .*: ([0-9]+):([0-9.]+)$", log, re.MULTILINE)
+    assert f"{60 * int(wall[1]) + float(wall[2]):.0f} s wall" in text
+    assert f"{user + system:.0f} s of CPU" in text and f"user {user:.0f} s" in text
+
+
+def test_the_body_bound_is_the_kept_log():
+    """The parametric co-design with its body-height box widened: the starts' section prints
+    the kept log's chosen gait and its predicted and simulated J/m."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("## Starts of the optimal motion"):doc.index("## How it compares")]
+    log = (LOGS / "bench_codesign_body_bound.log").read_text(encoding="utf-8")
+    rows = re.search(r"rows [0-9.]+ / [0-9.]+ / [0-9.]+ / ([0-9.]+) J/m", log)
+    chosen = re.search(r"duty factor ([0-9.]+), period ([0-9.]+) s, step height [0-9.]+ m, body "
+                       r"height ([0-9.]+) m \(box top \3 m\)", log)
+    sims = re.search(r"body height ≤ 1.5 × the default: [0-9.]+ J/m predicted, simulated with "
+                     r"balance feedback: feedforward ([0-9.]+), position ([0-9.]+)$", log,
+                     re.MULTILINE)
+    assert rows and chosen and sims
+    flat = text.replace("\n", " ")
+    assert f"predicts {rows[1]} J/m" in flat
+    assert f"duty factor {chosen[1]}, period {chosen[2]} s, body height {chosen[3]} m" in flat
+    assert f"for {sims[1]} (feedforward) and {sims[2]} (position)" in flat

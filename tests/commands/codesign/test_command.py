@@ -72,6 +72,36 @@ def test_timing_is_a_decision_of_the_optimal_rows_only(tmp_path, capsys):
     assert "free" in err and "search" in err
 
 
+def test_starts_are_a_decision_of_the_optimal_rows_only(tmp_path, capsys):
+    """``--starts lattice`` tries other starts of the optimal motion: without ``--motion
+    optimal`` it is refused by name before any work; an unknown value is named."""
+    args = build_parser().parse_args(["codesign", "--motion", "optimal", "--starts", "lattice"])
+    assert args.starts == "lattice" and build_parser().parse_args(["codesign"]).starts is None
+    assert main(["codesign", "--starts", "lattice", "--out", str(tmp_path / "o")]) == 2
+    assert "starts = 'lattice'" in capsys.readouterr().err
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[codesign]\nmotion = "optimal"\nstarts = "random"\n')
+    assert main(["codesign", "--config", str(bad), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert "random" in err and "lattice" in err
+
+
+def test_the_duty_factor_bound_is_an_option_and_a_key(tmp_path, capsys):
+    """``--duty-high`` and ``[codesign] duty_high`` are one setting (the command line wins);
+    out of range it is one line naming the value and the range."""
+    assert build_parser().parse_args(["codesign"]).duty_high is None  # the config's, or 0.8
+    assert build_parser().parse_args(["codesign", "--duty-high", "0.9"]).duty_high == 0.9
+    config = tmp_path / "c.toml"
+    config.write_text("[codesign]\nduty_high = 0.9\n")
+    assert settings(config)["duty_high"] == 0.9
+    config.write_text('[codesign]\nduty_high = "high"\n')
+    with pytest.raises(ConfigError, match="duty_high"):
+        settings(config)
+    assert main(["codesign", "--duty-high", "0.97", "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert "duty_high" in err and "0.97" in err and "[0.55, 0.95]" in err
+
+
 def test_config_table_is_checked(tmp_path):
     bad = tmp_path / "bad.toml"
     bad.write_text("[codesign]\nspeeed = 0.1\n")
@@ -136,8 +166,11 @@ def test_runs_and_writes(tmp_path, capsys):
     data = json.loads((out / "codesign.json").read_text())
     assert data["speed"] == {"value": 0.06, "unit": "m/s"}
     assert data["search"]["codesign"]["evaluations"] <= 10
+    assert data["settings"]["duty_high"] == {"value": 0.8, "unit": "1"}  # the default bound
+    assert "Duty factor searched up to 0.8 " in (out / "codesign.html").read_text()
     assert data["full_rules"] is None and "inner program" in data["recommended"]["source"]
-    assert "J/m" in capsys.readouterr().out
+    printed = capsys.readouterr().out
+    assert "J/m" in printed and "search: duty factor ≤ 0.8 ([codesign] duty_high)" in printed
 
 
 def test_bad_speed_is_one_line(capsys):

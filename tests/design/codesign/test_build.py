@@ -107,3 +107,35 @@ def test_the_optimal_motion_without_its_extra_names_the_extra(monkeypatch):
         backend.crocoddyl_module.cache_clear()
     with pytest.raises(UnknownNameError, match="optimal"):
         codesign(motion="optimised")
+
+
+def test_the_duty_factor_bound_is_the_search_box_s(monkeypatch):
+    """``duty_high`` is the searches' highest duty factor: the box the search gets reaches it
+    (0.8 by default, the default gait's + 0.05 where that is higher: a wave's 5/6); a value
+    outside [the default gait's + 0.05, 0.95] is refused naming it and that range, before any
+    evaluation."""
+    from hexaleg.design.codesign import build
+
+    seen = []
+
+    def stop(_evaluate, _base, _speed, space, **_):
+        seen.append(space.bounds["duty_factor"])
+        raise InvalidParameterError("search", "stopped here", "the test's stop")
+
+    monkeypatch.setattr(build, "search", stop)
+    for kwargs, high in (({}, 0.8), ({"duty_high": 0.9}, 0.9),
+                         ({"pattern": "wave"}, round(5 / 6 + 0.05, 12))):
+        with pytest.raises(InvalidParameterError, match="stopped here"):
+            codesign(speed=0.06, curve=False, simulate=False, rules=False, **kwargs)
+        assert seen[-1] == (pytest.approx(seen[-1][0]), pytest.approx(high))
+    assert seen[0][0] == pytest.approx(0.5)  # the tripod's β₀: the box's low end unchanged
+    count = len(seen)
+    for bad in (0.99, 0.52, float("nan")):
+        with pytest.raises(InvalidParameterError,
+                           match=r"\[codesign\] duty_high.*\[0\.55, 0\.95\]"):
+            codesign(speed=0.06, curve=False, simulate=False, rules=False, duty_high=bad)
+    with pytest.raises(InvalidParameterError, match=r"duty_high.*'0\.9'.*number"):
+        codesign(speed=0.06, duty_high="0.9")  # type: ignore[arg-type]
+    with pytest.raises(InvalidParameterError, match=r"duty_high.*\[0\.8833.*, 0\.95\]"):
+        codesign(speed=0.06, pattern="wave", duty_high=0.85)
+    assert len(seen) == count  # refused before the search

@@ -138,3 +138,65 @@ def test_the_four_rows_of_a_small_problem():
     assert any(line.startswith("alternation: start") for line in lines)
     data = json.loads(json_text(table.data()))
     assert data["residual"]["value"] <= 1e-6 and len(data["rows"]) == 4
+
+
+def test_the_alternation_and_the_bare_cycle_run_from_the_start_chosen(monkeypatch, robot):
+    """With ``starts="lattice"`` the multi-start's chosen start — its gait, solver settings and
+    solved cycle — is where both optimal motions start (the alternation from that cycle), and
+    the table and codesign.json say the starts; with ``"gait"`` no multi-start runs."""
+    pytest.importorskip("crocoddyl")
+    import dataclasses
+
+    import hexaleg.optimal.problem
+    import hexaleg.optimal.solve
+    from hexaleg.design.codesign import optimal_rows as rows_module
+    from hexaleg.design.codesign.build import default_gait
+    from hexaleg.design.codesign.starts import Start, StartSearch
+
+    run = hexaleg.Scenario.load("hexaleg")
+    chosen = dataclasses.replace(default_gait(robot, "hexaleg", 0.06, None, 100),
+                                 duty_factor=0.8)
+    moved = dataclasses.replace(chosen, step_height=1.3 * chosen.step_height)
+    settings = hexaleg.optimal.problem.OptimalParams(iterations=3)
+    picked = _solved(8.5)
+    seen: dict[str, object] = {}
+
+    def starts(_robot, timed, _motor, _springs, _contact, params, min_step, **kwargs):
+        seen["starts"] = (timed, params, min_step, kwargs["first"])
+        return StartSearch((Start("the gait", timed, params, _solved(9.0), 9.4, ""),
+                            Start("step height × 1.3", moved, settings, picked, 9.3, "")), 1)
+
+    def alternate(_robot, motion, _motor, _contact, **kwargs):
+        seen["alternation"] = (motion, kwargs["params"], kwargs["first"])
+        return Alternation(motion, 9.5, picked, 9.3, picked, hexaleg.SpringSet(), (), 0.0,
+                           False)
+
+    def solve(_robot, built, **_kwargs):
+        seen["bare"] = built
+        return SimpleNamespace(**{**vars(_solved(15.0)), "task_space": built})
+
+    monkeypatch.setattr(rows_module, "search_starts", starts)
+    monkeypatch.setattr(rows_module, "alternate", alternate)
+    monkeypatch.setattr(hexaleg.optimal.problem, "build_problem",
+                        lambda _r, motion, _m, _s, params: (motion, params))
+    monkeypatch.setattr(hexaleg.optimal.solve, "solve", solve)
+    monkeypatch.setattr(rows_module, "simulated_run",
+                        lambda *_args: (10.0, "walks", True))
+    monkeypatch.setattr(rows_module, "predicted_per_metre", lambda *_args: (15.0, ""))
+    monkeypatch.setattr(rows_module, "gait", lambda _robot, g: SimpleNamespace(params=g))
+    table = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen,
+                                     hexaleg.SpringSet(), (28.0, 9.9), params=settings,
+                                     starts="lattice", min_step=0.015)
+    timed, params, min_step, first = seen["starts"]
+    assert timed == chosen and params == settings and min_step == 0.015 and first is None
+    motion, params, first = seen["alternation"]
+    assert motion.params == moved and params == settings and first is picked
+    bare_motion, bare_params = seen["bare"]
+    assert bare_motion.params == moved and bare_params == settings
+    assert table.starts is not None and table.starts.chosen.label == "step height × 1.3"
+    assert any("→ step height × 1.3: 9.300" in line for line in table.lines())
+    assert json.loads(json_text(table.data()))["starts"]["chosen"] == 1
+    seen.clear()
+    plain = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen,
+                                     hexaleg.SpringSet(), (28.0, 9.9), params=settings)
+    assert "starts" not in seen and plain.starts is None and plain.data()["starts"] is None

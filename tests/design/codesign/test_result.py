@@ -56,3 +56,23 @@ def test_load_design_reads_the_chosen_gait_and_springs(codesigned, tmp_path):
 def test_summary_names_the_rows(codesigned):
     text = codesigned.summary()
     assert "co-design" in text and "J/m" in text and "evaluations" in text
+
+
+def test_a_timing_searched_past_the_duty_bound_is_said():
+    """The optimal rows' timing chosen above the parametric search's duty-factor bound is said
+    (the co-design row then comes from a narrower family); at or under it, or with the timing
+    not searched, nothing is said."""
+    from types import SimpleNamespace
+
+    from hexaleg.design.codesign.result import CodesignResult
+
+    def result(duty: float | None, bound: float) -> SimpleNamespace:
+        timing = None if duty is None else SimpleNamespace(
+            chosen=SimpleNamespace(params=SimpleNamespace(duty_factor=duty)))
+        return SimpleNamespace(optimal=SimpleNamespace(timing=timing), duty_high=bound)
+
+    said = CodesignResult.bound_lines(result(0.85, 0.8))  # type: ignore[arg-type]
+    assert len(said) == 1 and "duty factor 0.85" in said[0] and "bound (0.8)" in said[0]
+    assert "--duty-high 0.85" in said[0]
+    for duty, bound in ((0.85, 0.9), (0.8, 0.8), (None, 0.8)):
+        assert CodesignResult.bound_lines(result(duty, bound)) == []  # type: ignore[arg-type]

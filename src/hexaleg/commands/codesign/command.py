@@ -3,13 +3,14 @@
 
 ``--config F`` reads a ``[codesign]`` table: ``speed``, ``pattern``, ``family``, ``samples``,
 ``final_samples``, ``max_evaluations``, ``restarts``, ``grouping``, ``rules``, ``curve``,
-``simulate``, ``controller``, ``motion``, ``feedback``, ``timing``, a ``[codesign.constraints]``
+``simulate``, ``controller``, ``motion``, ``feedback``, ``timing``, ``starts``, ``duty_high``, a
+``[codesign.constraints]``
 table of :class:`~hexaleg.design.codesign.gait_evaluation.Constraints` and a
 ``[codesign.design]`` table of
 the full spring rules' ``[design]`` keys
 (:func:`~hexaleg.design.codesign.full_rules.rule_params`); the command line's ``--speed``,
-``--pattern``, ``--controller``, ``--motion``, ``--feedback``, ``--timing`` and ``--no-rules``
-win over the file.
+``--pattern``, ``--controller``, ``--motion``, ``--feedback``, ``--timing``, ``--starts``,
+``--duty-high`` and ``--no-rules`` win over the file.
 ``--motion optimal`` adds the optimal motion's rows
 (:mod:`hexaleg.design.codesign.optimal_rows`) and writes each optimal motion as a motion log
 (``optimal_no_springs.csv``, ``optimal_springs.csv``) that every command's ``--motion`` reads.
@@ -20,6 +21,7 @@ from __future__ import annotations
 import argparse
 
 from hexaleg.commands.options import add_quiet
+from hexaleg.design.codesign.starts import STARTS
 from hexaleg.design.codesign.timing import TIMINGS
 from hexaleg.simulation.balance import MODES as FEEDBACK  # no MuJoCo: it loads with a model
 from hexaleg.simulation.controllers import SERVOS  # no MuJoCo either
@@ -52,6 +54,15 @@ def add(sub: argparse._SubParsersAction) -> None:
                         "chosen gait's) or search (duty factor and period searched about it, "
                         "five solves more, each judged by its rebuilt cycle's prediction) "
                         "(default: gait, or the config's)")
+    p.add_argument("--starts", choices=STARTS,
+                   help="with --motion optimal: the optimal motion's starts: gait (the gait at "
+                        "the timing used) or lattice (step height, body height and swing "
+                        "weight moved, four or five solves more, each judged by its rebuilt "
+                        "cycle's prediction; the alternation from the best) (default: gait, or "
+                        "the config's)")
+    p.add_argument("--duty-high", dest="duty_high", type=float,
+                   help="the searches' highest duty factor, in [the default gait's + 0.05, 0.95] "
+                        "(default 0.8, or the config's)")
     p.add_argument("--no-rules", dest="rules", action="store_false", default=None,
                    help="leave out hexaleg design's full spring rules (tolerance, envelope, "
                         "fatigue, arbor, parsimony) on the chosen gait, about a minute: the "
@@ -84,7 +95,8 @@ def run(args: argparse.Namespace) -> int:
                               f"— {instead}")
     kwargs = codesign_settings(scenario.table("codesign"), f"{scenario.where} [codesign]",
                                scenario)
-    for key in ("speed", "pattern", "controller", "motion", "feedback", "timing"):
+    for key in ("speed", "pattern", "controller", "motion", "feedback", "timing", "starts",
+                "duty_high"):
         if getattr(args, key) is not None:
             kwargs[key] = getattr(args, key)
     if args.rules is not None:

@@ -59,6 +59,7 @@ from hexaleg.design.codesign.gait_search import RESTARTS, default_space, search
 from hexaleg.design.codesign.optimal_stage import keep_parametric, kept_parametric, with_optimal
 from hexaleg.design.codesign.result import CodesignResult, Row, SpeedPoint
 from hexaleg.design.codesign.servo import choose, screen
+from hexaleg.design.codesign.starts import STARTS
 from hexaleg.design.codesign.timing import TIMINGS
 from hexaleg.design.families import FAMILIES
 from hexaleg.design.search.optimal import Groups
@@ -80,6 +81,31 @@ MOTIONS = ("gait", "optimal")
 """What ``motion`` may be: the parametric gait alone, or also the optimal motion's rows."""
 SPEED_FACTORS = (0.5, 0.75, 1.0, 1.25, 1.5)
 """The speed curve's speeds, as factors of the required speed."""
+DUTY_HIGH = 0.8
+"""The searches' highest duty factor by default (``[codesign] duty_high``, ``--duty-high``).
+It stays at 0.8, though the default robot's co-design sits on it and a bound of 0.9 finds a
+cheaper gait (docs/optimal.md: 9.10 against 9.99 J/m predicted): every co-design figure the
+docs and tests pin was searched to 0.8, and a tripod past it swings each leg in a tenth of the
+cycle or less, which the servo check has only partly simulated."""
+DUTY_CEILING = 0.95
+"""The highest ``duty_high`` allowed (the search box's own ceiling: a swing of a twentieth of
+the cycle)."""
+
+
+def duty_bound(value: Any, lowest: float) -> float:
+    """``duty_high`` checked against the default gait's duty factor ``lowest`` (the search
+    box's low end): in [``lowest`` + 0.05, :data:`DUTY_CEILING`]; None: :data:`DUTY_HIGH`, or
+    ``lowest`` + 0.05 where that is higher.
+
+    Raises:
+        InvalidParameterError: not a number, or outside that range (both named).
+    """
+    low = round(lowest + 0.05, 12)
+    if value is None:
+        return max(DUTY_HIGH, low)
+    return real("[codesign] duty_high", value, low=low, high=DUTY_CEILING,
+                allowed=f"a duty factor in [{low:g}, {DUTY_CEILING:g}] (the default gait's "
+                        f"{lowest:g} plus 0.05, up to {DUTY_CEILING:g})")
 def default_gait(robot: Robot, name: str, speed: float, pattern: str | None, samples: int
                  ) -> GaitParams:
     """The robot's default gait at ``speed`` with its body height and foot radius resolved
@@ -102,7 +128,7 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
              restarts: int = RESTARTS, grouping: str = "class", curve: bool = True,
              simulate: bool = True, rules: bool = True, design: DesignParams | None = None,
              controller: str = BOTH, motion: str = "gait", feedback: str = "auto",
-             timing: str = "gait",
+             timing: str = "gait", starts: str = "gait", duty_high: float | None = None,
              progress: Callable[[str], None] | None = None,
              stages: StageFiles | None = None) -> CodesignResult:
     """The gait and springs that cover a metre at ``speed`` for the least electrical energy
@@ -150,6 +176,16 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             TIMINGS`): ``"gait"``, the chosen gait's; ``"search"``, a small deterministic
             search about it (:mod:`hexaleg.design.codesign.timing`: five solves more, each
             judged by the prediction of its rebuilt cycle); only with ``motion="optimal"``.
+        starts: The optimal motion's starts (:data:`~hexaleg.design.codesign.starts.STARTS`):
+            ``"gait"``, the gait at the timing used; ``"lattice"``, a small fixed lattice of
+            starts about it (:mod:`hexaleg.design.codesign.starts`: step height, body height,
+            swing weight; four or five solves more, each judged by the prediction of its
+            rebuilt cycle), the alternation run from the best; only with ``motion="optimal"``.
+        duty_high: The co-design search's (and the gait-alone search's) highest duty factor
+            (:func:`~hexaleg.design.codesign.gait_search.default_space`), in [the default
+            gait's duty factor + 0.05, 0.95]; None: :data:`DUTY_HIGH`, or the default gait's
+            + 0.05 where that is higher (a wave's 5/6). The optimal rows' parametric co-design
+            is the one searched to it.
         progress: Called with one status line per stage.
         stages: Where the parametric co-design is kept when it is done, before the optimal
             motion's stage (``motion="optimal"``: minutes more), and read back from instead of
@@ -158,12 +194,13 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             ``hexaleg codesign`` after a kill); None: nothing kept.
 
     Raises:
-        InvalidParameterError: a speed not > 0, sample counts out of range; the default gait
-            itself cannot be made at this speed (named, with its error).
-        UnknownNameError: an unknown robot, pattern, family, controller, motion, feedback or
-            timing.
-        ConfigError: a ``feedback`` other than ``"auto"`` or a ``timing`` other than
-            ``"gait"`` without ``motion="optimal"``.
+        InvalidParameterError: a speed not > 0, sample counts out of range, a ``duty_high``
+            outside its range (named, with the range at this pattern); the default gait itself
+            cannot be made at this speed (named, with its error).
+        UnknownNameError: an unknown robot, pattern, family, controller, motion, feedback,
+            timing or starts.
+        ConfigError: a ``feedback`` other than ``"auto"``, or a ``timing`` or ``starts``
+            other than ``"gait"``, without ``motion="optimal"``.
         BackendError: ``motion="optimal"`` without a usable Crocoddyl (names the extra).
     """
     servo = one_of("[codesign] controller", controller, SERVOS)
@@ -175,6 +212,9 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
     if one_of("[codesign] timing", timing, TIMINGS) != "gait" and motion != "optimal":
         raise ConfigError(f"[codesign] timing = {timing!r} searches the optimal motion's "
                           "contact timing: it needs motion = \"optimal\" (--motion optimal)")
+    if one_of("[codesign] starts", starts, STARTS) != "gait" and motion != "optimal":
+        raise ConfigError(f"[codesign] starts = {starts!r} tries other starts of the optimal "
+                          "motion: it needs motion = \"optimal\" (--motion optimal)")
     if motion == "optimal":
         from hexaleg.optimal.backend import crocoddyl_module
 
@@ -192,13 +232,15 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
     model = run.model
     motor = run.actuator  # [motor], else the robot's own, as hexaleg design uses
     base = default_gait(model, run.robot, v, pattern, n)
+    duty_high = duty_bound(duty_high, base.duty_factor)
     groups = design_groups(model, tuple(model.joint_classes),
                            one_of("grouping", grouping, ("class", "mirrored", "joint")))
     kept = kept_parametric(stages, model) if motion == "optimal" else None
     if kept is not None:
         say(f"co-design: {kept.rows[3].per_metre:.2f} J/m, read back from the kept stage of "
             f"this run ({stages.directory if stages is not None else ''})")
-        return with_optimal(kept, model, motor, groups, servo, say, stages, loop, timing)
+        return with_optimal(kept, model, motor, groups, servo, say, stages, loop, timing,
+                            starts)
     free = functools.partial(evaluate_gait, model, family=family, constraints=c, motor=motor)
     first = free(base, groups=groups, min_margin=0.0)
     if first.error is not None:
@@ -210,7 +252,7 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
     c = dataclasses.replace(c, min_static_margin=margin)
     free = functools.partial(evaluate_gait, model, family=family, constraints=c,
                              min_margin=margin, motor=motor)
-    space = default_space(base, c.min_foot_clearance)
+    space = default_space(base, c.min_foot_clearance, duty_high=duty_high)
     say(f"{model.name}: default gait {first.per_metre:.2f} J/m at {v:g} m/s")
     spread = functools.partial(fork_map, shared=robot_objects(model))
     joint = search(functools.partial(free, groups=groups), base, v, space, springs=True,
@@ -269,11 +311,12 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             sequential=sequential, search=joint, gait_search=alone, curve=points,
             simulation=simulation, rules=buy, samples=n, wall=time.perf_counter() - t0,
             generic=uses_generic(motor), servo=servo, finalists=finalists, floors=floors,
-            optimal=None)
+            optimal=None, duty_high=duty_high)
         if motion != "optimal":
             return result
         keep_parametric(stages, result, model)
-        return with_optimal(result, model, motor, groups, servo, say, stages, loop, timing)
+        return with_optimal(result, model, motor, groups, servo, say, stages, loop, timing,
+                            starts)
     finally:
         if ruled is not None:
             ruled.close()
@@ -339,7 +382,8 @@ def simulated(robot: Robot, chosen: GaitParams, springs: SpringSet, c: Constrain
 
 CODESIGN_KEYS = ("speed", "pattern", "family", "samples", "final_samples", "max_evaluations",
                  "restarts", "grouping", "rules", "curve", "simulate", "controller",
-                 "motion", "feedback", "timing", "constraints", "design")
+                 "motion", "feedback", "timing", "starts", "duty_high", "constraints",
+                 "design")
 """The keys of a ``[codesign]`` table: :func:`codesign`'s keywords."""
 
 
@@ -407,5 +451,6 @@ def codesign_settings(table: Any, where: str = "[codesign]",
     return out
 
 
-__all__ = ["CODESIGN_KEYS", "FLOOR_KEYS", "MOTIONS", "SPEED_FACTORS", "codesign",
-           "codesign_settings", "default_gait", "floor_constraints", "simulated", "speed_curve"]
+__all__ = ["CODESIGN_KEYS", "DUTY_CEILING", "DUTY_HIGH", "FLOOR_KEYS", "MOTIONS", "SPEED_FACTORS",
+           "codesign", "codesign_settings", "default_gait", "duty_bound", "floor_constraints",
+           "simulated", "speed_curve"]

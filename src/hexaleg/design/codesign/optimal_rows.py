@@ -55,6 +55,7 @@ from hexaleg.design.codesign.alternation import (
     predicted_per_metre,
 )
 from hexaleg.design.codesign.servo import simulated_run
+from hexaleg.design.codesign.starts import STARTS, StartSearch, search_starts
 from hexaleg.design.codesign.timing import TIMINGS, TimingSearch, search_timing
 from hexaleg.design.search.optimal import Groups
 from hexaleg.design.springs.law_json import spring_entry
@@ -128,6 +129,8 @@ class OptimalRows:
             (:data:`~hexaleg.simulation.balance.MODES`).
         timing: The contact timing's search, when the optimal motions' timing was searched
             (:class:`~hexaleg.design.codesign.timing.TimingSearch`); None: the chosen gait's.
+        starts: The multi-start, when the optimal motions' start was searched
+            (:class:`~hexaleg.design.codesign.starts.StartSearch`); None: the gait's.
     """
 
     rows: tuple[MotionRow, ...]
@@ -140,6 +143,7 @@ class OptimalRows:
     wall: float
     feedback: str = "auto"
     timing: TimingSearch | None = None
+    starts: StartSearch | None = None
 
     @property
     def best(self) -> Any:
@@ -179,6 +183,7 @@ class OptimalRows:
             "rows": [r.data() for r in self.rows], "servo": self.servo,
             "feedback": self.feedback,
             "timing": None if self.timing is None else self.timing.data(),
+            "starts": None if self.starts is None else self.starts.data(),
             "springs": [spring_entry(j, s) for j, s in self.springs.items()],
             "family": self.family, "proven": self.proven,
             "residual": q(max(self.bare.residual, self.best.residual), "N·m"),
@@ -206,6 +211,8 @@ class OptimalRows:
             out.append(f"    {r.label:46s} {said}   {sims}")
         if self.timing is not None:
             out.append(self.timing.line())
+        if self.starts is not None:
+            out.append(self.starts.line())
         b = self.best
         trail = " → ".join("—" if e is None else f"{e:.3f}" for e in self.alternation.energies)
         out.append(f"    the solver's own J/m at its knots: {self.bare.energy_per_metre:.2f} (no "
@@ -229,7 +236,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
                  chosen: GaitParams, springs: SpringSet, predicted: tuple[float, float], *,
                  family: str = "linear", groups: Groups | None = None, servo: str = "both",
                  params: Any = None, rounds: int = 4, feedback: str = "auto",
-                 timing: str = "gait",
+                 timing: str = "gait", starts: str = "gait", min_step: float = 0.0,
                  say: Callable[[str], None] | None = None, keep: Keep | None = None
                  ) -> OptimalRows:
     """The four rows (module docstring).
@@ -255,6 +262,12 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
             ``"search"``: the timing searched about it
             (:func:`~hexaleg.design.codesign.timing.search_timing`, with the alternation's
             starting springs), and both optimal motions take the timing chosen.
+        starts: ``"gait"``: the optimal motions start from the gait at that timing;
+            ``"lattice"``: from the best of a fixed lattice of starts about it
+            (:func:`~hexaleg.design.codesign.starts.search_starts`, with the alternation's
+            starting springs: its gait and solver settings), the alternation run from it.
+        min_step: The least step height a start may take, m (the co-design's least foot
+            clearance).
         say: Where progress lines go.
         keep: Runs each optimal-control solve, given what defines it
             (:data:`~hexaleg.design.codesign.alternation.Keep`; a kept one reads back the
@@ -266,6 +279,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
     """
     feedback = one_of("feedback", feedback, FEEDBACK)
     timing = one_of("timing", timing, TIMINGS)
+    starts = one_of("starts", starts, STARTS)
     from hexaleg.optimal.problem import OptimalParams, build_problem  # needs Crocoddyl
     from hexaleg.optimal.solve import solve
 
@@ -283,11 +297,20 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
                                  say=lambda line: tell(f"timing: {line}"), keep=keep)
         timed = searched.chosen.params
         tell(f"timing chosen: duty factor {timed.duty_factor:.3g}, period {timed.period:.4g} s")
+    first = None if searched is None else searched.chosen.result
+    multi = None
+    if starts == "lattice":
+        tell("starts of the optimal motion tried at that timing, with the co-design's springs")
+        multi = search_starts(robot, timed, motor, start, contact, params, min_step,
+                              first=first, say=lambda line: tell(f"starts: {line}"), keep=keep)
+        timed, params, first = multi.chosen.params, multi.chosen.settings, multi.chosen.result
+        tell(f"start chosen: {multi.chosen.label}")
     motion = gait(robot, timed)
     tell("optimal motion without springs, from the co-design's gait"
          + ("" if searched is None else " at the timing chosen"))
     bare = (keep or computed)(
-        ("no springs", SpringSet(), params, *(() if searched is None else (timed,))),
+        ("no springs", SpringSet(), params,
+         *(() if searched is None and multi is None else (timed,))),
         lambda: solve(robot, build_problem(robot, motion, motor, SpringSet(), params),
                       say=lambda line: tell(f"no springs: {line}"), every=PROGRESS))
     tell(f"optimal motion without springs: {bare.energy_per_metre:.3f} J/m "
@@ -295,7 +318,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
     tell("optimal motion with springs (alternation), from the co-design's gait and springs")
     alt = alternate(robot, motion, motor, contact, springs=start, params=params, family=family,
                     groups=groups, rounds=rounds, say=lambda line: tell(f"alternation: {line}"),
-                    keep=keep, first=None if searched is None else searched.chosen.result)
+                    keep=keep, first=first)
     controllers = controllers_of(servo)
     cases = ((LABELS[0], predicted[0], gait(robot, default), SpringSet()),
              (LABELS[1], predicted[1], gait(robot, chosen), springs),
@@ -316,7 +339,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
         rows.append(MotionRow(label, value, sims, verdicts, loops, why))
         tell(f"simulated {label} under {' and '.join(controllers)}")
     return OptimalRows(tuple(rows), alt.springs, family, bare, alt, robot, servo,
-                       time.perf_counter() - began, feedback, searched)
+                       time.perf_counter() - began, feedback, searched, multi)
 
 
 __all__ = ["LABELS", "MotionRow", "OptimalRows", "optimal_rows"]

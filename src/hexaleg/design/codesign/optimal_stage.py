@@ -96,10 +96,11 @@ class KeptSolves:
 def with_optimal(result: CodesignResult, model: Robot, motor: Any, groups: Groups,
                  servo: str, say: Callable[[str], None],
                  stages: StageFiles | None = None, feedback: str = "auto",
-                 timing: str = "gait") -> CodesignResult:
+                 timing: str = "gait", starts: str = "gait") -> CodesignResult:
     """``result`` with the optimal motion's rows (:mod:`hexaleg.design.codesign.optimal_rows`)
     from its chosen gait and springs (at its contact timing, or the one ``timing="search"``
-    chooses), each row simulated with the balance ``feedback`` setting,
+    chooses; from that gait, or from the best start of ``starts="lattice"``), each row
+    simulated with the balance ``feedback`` setting,
     each solve kept in ``stages`` (:class:`KeptSolves`); its wall time the two stages'
     together."""
     from hexaleg.design.codesign.optimal_rows import optimal_rows  # the optimal extra's rows
@@ -111,7 +112,8 @@ def with_optimal(result: CodesignResult, model: Robot, motor: Any, groups: Group
                            result.chosen, result.springs,
                            (result.rows[0].per_metre, result.rows[3].per_metre),
                            family=result.family, groups=groups, servo=servo,
-                           feedback=feedback, timing=timing, say=tell,
+                           feedback=feedback, timing=timing, starts=starts,
+                           min_step=result.constraints.min_foot_clearance, say=tell,
                            keep=KeptSolves(stages, model, tell))
     return dataclasses.replace(result, optimal=optimal, wall=result.wall + optimal.wall)
 

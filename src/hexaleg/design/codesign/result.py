@@ -100,6 +100,7 @@ class CodesignResult:
             :data:`~hexaleg.design.codesign.floors.FLOORS`.
         optimal: The optimal motion's rows (:class:`~hexaleg.design.codesign.optimal_rows.
             OptimalRows`), or None when not asked (``motion="gait"``).
+        duty_high: The searches' highest duty factor (``[codesign] duty_high``).
     """
 
     robot: str
@@ -128,6 +129,7 @@ class CodesignResult:
     finalists: tuple[Screened, ...] = ()
     floors: tuple[Floor, ...] = ()
     optimal: OptimalRows | None = None
+    duty_high: float = 0.8
 
     @property
     def chosen_finalist(self) -> int | None:
@@ -178,7 +180,8 @@ class CodesignResult:
                          f"{self.constraints.mu:g} (at most "
                          f"{self.constraints.friction_margin:g}: [codesign.constraints] "
                          "friction_margin)")
-        lines.append(f"  search: {self.search.evaluations} evaluations, "
+        lines.append(f"  search: duty factor ≤ {self.duty_high:g} ([codesign] duty_high), "
+                     f"{self.search.evaluations} evaluations, "
                      f"{self.search.wall:.1f} s, restarts {self.search.spread:.3f} J/m apart; "
                      f"total {self.wall:.1f} s")
         if isinstance(self.rules, str):
@@ -192,6 +195,7 @@ class CodesignResult:
         lines += self.floor_lines()
         if self.optimal is not None:
             lines += self.optimal.lines()
+            lines += self.bound_lines()
         if not self.plausibility.plausible:
             lines.append(f"WARNING default gait's energy {self.plausibility.message}")
         return "\n".join(lines)
@@ -216,6 +220,20 @@ class CodesignResult:
             out.append(f"{head}predicted {f.point.per_metre_springs:.2f} J/m, simulated {sims}")
         return out
 
+    def bound_lines(self) -> list[str]:
+        """Where the optimal motion's contact timing was searched past the parametric search's
+        duty-factor bound, a line that says so: the co-design row was then searched in a
+        narrower family than the optimal motion's (none otherwise)."""
+        timing = self.optimal.timing if self.optimal is not None else None
+        if timing is None:
+            return []
+        duty = timing.chosen.params.duty_factor
+        if duty <= self.duty_high:
+            return []
+        return [f"    the timing chosen (duty factor {duty:.3g}) lies above the parametric "
+                f"search's bound ({self.duty_high:g}): the co-design row was searched in a "
+                f"narrower family (--duty-high {duty:.3g} or more compares them at one bound)"]
+
     def floor_lines(self) -> list[str]:
         """The springs to buy on other floors: the saving at each μ and the worst."""
         if not self.floors:
@@ -239,7 +257,8 @@ class CodesignResult:
             "robot": {"name": self.robot, "title": self.title, "mass": q(self.mass, "kg")},
             "speed": q(self.speed, "m/s"), "pattern": self.pattern,
             "settings": {"metric": "electrical", "family": self.family,
-                         "samples": self.samples, "final_samples": self.chosen.samples},
+                         "samples": self.samples, "final_samples": self.chosen.samples,
+                         "duty_high": q(self.duty_high, "1")},
             "constraints": {k: (q(v, _CONSTRAINT_UNITS[k]) if isinstance(v, float) else v)
                             for k, v in asdict(self.constraints).items()},
             "gait": {"parameters": gait_parameters(self.chosen),

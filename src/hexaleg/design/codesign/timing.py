@@ -14,7 +14,8 @@ timing first. It is an
 enumeration, not a descent: the same inputs give the same candidates and the same choice on any
 machine, and its answer is the best of the lattice (not of the continuum between).
 
-The lattice widens the family past the parametric search's own duty-factor bound (0.8,
+The lattice widens the family past the parametric search's own duty-factor bound (0.8 by default,
+``[codesign] duty_high``,
 :func:`~hexaleg.design.codesign.gait_search.default_space`): the parametric gait at the same
 duty factors is a baseline of its own (the alternation's first figure, the chosen timing's gait
 with the co-design's springs, is that gait).
