@@ -954,6 +954,15 @@ def test_simulate_page_quotes_the_deadbeat_bound_block():
         ("the same to the last digit", "code       go2      posi | walks 121.5J 101% tr14 "
                                        "roll0.013 | walks 163.3J 101% tr14 roll0.013")))
     assert_quoted(part, log, (("(9.172 J at `T_stance/2`)", "simulated +13.71 % (9.172 J"),))
+    merged = log[log.index("# ===== integration, this stop"):]
+    for run in ("simulated +25.60 % (9.836 J vs 13.22 J)",
+                "simulated +30.17 % (8.817 J vs 12.63 J)"):
+        assert run in merged, run
+    assert ("9.836 and 13.22 J under feedforward + PD, 8.817 and 12.63 J under position servos, "
+            "all four runs walking — the feedforward saving +25.60 % against +34.48 % "
+            "predicted") in part
+    assert ("feedforward springs walks, baseline walks; position springs walks, baseline walks"
+            in merged)
     assert "old        pry60    posi | short 17.04J 53%" in block
     law_runs = law[:law.index("## (7) hexaleg")] if "## (7) hexaleg" in law else law
     assert law_runs.count("walks") >= 40 and "fell" not in law_runs
