@@ -13,6 +13,7 @@ from hexaleg.design.codesign.alternation import (
     Alternation,
     Round,
     alternate,
+    least,
     predicted_per_metre,
 )
 from hexaleg.errors import InvalidParameterError, UnknownNameError
@@ -179,3 +180,14 @@ def test_the_springs_are_designed_on_the_given_groups(solver):
     assert springs["FL_HFE"].stiffness != springs["HL_HFE"].stiffness  # front ≠ hind
     assert result.rounds[0].designed < 0.7 * result.baseline  # a class design: 0.96×
     assert result.rounds[0].accepted and result.predicted == result.rounds[0].predicted
+
+
+def test_the_least_prediction_wins_a_tie_and_none_keep_the_earlier():
+    """``least``, the timing search's and the starts' choice: the least prediction; a tie keeps
+    the earlier in the lattice's order, a missing prediction never wins, and with none at all
+    the first (the gait itself) is kept."""
+    assert least([9.0, 8.0, 8.5]) == 1
+    assert least([9.0, 8.0, 8.0]) == 1
+    assert least([None, 9.0, None, 8.9]) == 3
+    assert least([None, None]) == 0
+    assert least([8.0, None, 8.0]) == 0

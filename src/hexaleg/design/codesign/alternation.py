@@ -35,7 +35,7 @@ from __future__ import annotations
 
 import functools
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -97,6 +97,18 @@ def judged(robot: Robot, result: Any, gait: Motion, motor: Any, springs: SpringS
 def _below(new: float | None, old: float | None) -> bool:
     """Whether the prediction ``new`` beats ``old`` (None: no prediction, beaten by any)."""
     return new is not None and (old is None or new < old)
+
+
+def least(predicted: Sequence[float | None]) -> int:
+    """The index of the least prediction in a lattice's order; a tie, or no prediction, keeps
+    the earlier (the first when none has one): the choice of the contact timing search and of
+    the starts (:mod:`~hexaleg.design.codesign.timing`, :mod:`~hexaleg.design.codesign.starts`),
+    the same on any machine."""
+    best = 0
+    for k, value in enumerate(predicted):
+        if _below(value, predicted[best]):
+            best = k
+    return best
 
 
 def computed(_inputs: tuple[Any, ...], compute: Callable[[], Any]) -> Any:

@@ -29,7 +29,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from hexaleg.design.codesign.alternation import PROGRESS, Keep, computed, judged
+from hexaleg.design.codesign.alternation import PROGRESS, Keep, computed, judged, least
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import HexalegError
 from hexaleg.motion.legged import gait
@@ -187,11 +187,7 @@ def search_starts(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringS
         tell(f"{label}: " + (f"{value:.4g} J/m predicted rebuilt" if value is not None else
                              f"no prediction ({why})")
              + f" (the solver's {result.energy_per_metre:.4g})")
-    best = 0
-    for k, s in enumerate(tried):
-        least = tried[best].predicted
-        if s.predicted is not None and (least is None or s.predicted < least):
-            best = k
+    best = least([t.predicted for t in tried])
     return StartSearch(tuple(tried), best)
 
 

@@ -29,7 +29,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from hexaleg.design.codesign.alternation import PROGRESS, Keep, computed, judged
+from hexaleg.design.codesign.alternation import PROGRESS, Keep, computed, judged, least
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.motion.legged import gait
 from hexaleg.motion.params import GaitParams
@@ -158,11 +158,7 @@ def search_timing(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringS
         tell(f"duty factor {g.duty_factor:.3g}, period {g.period:.4g} s: "
              + (f"{value:.4g} J/m predicted rebuilt" if value is not None else
                 f"no prediction ({why})") + f" (the solver's {result.energy_per_metre:.4g})")
-    best = 0
-    for k, c in enumerate(tried):
-        least = tried[best].predicted
-        if c.predicted is not None and (least is None or c.predicted < least):
-            best = k
+    best = least([t.predicted for t in tried])
     return TimingSearch(tuple(tried), best)
 
 
