@@ -41,13 +41,6 @@ moves the tests elsewhere)."""
 
 LONG_FIRST = ("test_examples.py", "test_notebooks.py")
 """Modules whose tests each run a whole study (a kept example, a notebook: up to ~100 s)."""
-LONGEST = ("test_example_prints_its_log[codesign_hexaleg]",)
-"""The slow suite's longest study (the full co-design: 175 s in a quiet fresh-clone CI run,
-whose slow suite took 8 min 41 s on two cores; the next longest, 42 s): first of all, so that
-the other worker runs the rest meanwhile. It is not the suite's critical path: with that run's
-durations the two workers' shares differ by about 10 s in this order and in a
-longest-first order of every test alike (the 84 tests under 7 s decide the last seconds)."""
-
 
 SHARING = ("tests/design/search/test_tolerance.py", "tests/test_docs_motion.py",
            "tests/test_faults.py", "tests/commands/design/test_logged_walks.py")
@@ -59,15 +52,15 @@ whole studies and before the rest (each a minute or so of work)."""
 
 @pytest.hookimpl(optionalhook=True)
 def pytest_xdist_make_scheduler(config: pytest.Config, log: Any) -> Any:
-    """The slow studies (``pytest -m slow``: ~125 tests of 1–200 s) are handed to the xdist
+    """The slow studies (``pytest -m slow``: ~130 tests of 1–35 s) are handed to the xdist
     workers a test at a time, in the order :func:`pytest_collection_modifyitems` gives them, a
     worker holding at most three (pytest-xdist's scope scheduler, each test its own scope but
     those of a :data:`SHARING` module one). The default load scheduler sends each worker a
     quarter of its share at once and more only when it has run out: the worker that started
-    the 200-s co-design example also held the next 14 whole studies, which the other worker
-    could not take; and it splits a module's tests between the workers, each then building
-    its module fixture. The README's suite (3000 short tests) keeps the default, whose chunks
-    of one module share its fixtures."""
+    a 200-s example (the co-design's, now run by hand) also held the next 14 whole studies,
+    which the other worker could not take; and it splits a module's tests between the
+    workers, each then building its module fixture. The README's suite (3000 short tests)
+    keeps the default, whose chunks of one module share its fixtures."""
     if config.option.markexpr != "slow":
         return None  # the default (load) scheduler
     from xdist.scheduler import LoadScopeScheduling
@@ -85,13 +78,13 @@ def pytest_xdist_make_scheduler(config: pytest.Config, log: Any) -> Any:
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
-    """The longest study first, then the whole-study tests, then the modules that share a
-    fixture (:data:`SHARING`), the rest in their order:
+    """The whole-study tests first, then the modules that share a fixture (:data:`SHARING`),
+    the rest in their order:
     pytest-xdist hands tests to its workers in collection order, and these come last
     alphabetically, so one worker ran a 100-s example while the other had finished
     (longest-processing-time-first scheduling, Graham, "Bounds on multiprocessing timing
     anomalies", SIAM J. Appl. Math. 17, 1969)."""
-    items.sort(key=lambda item: (item.name not in LONGEST, item.path.name not in LONG_FIRST,
+    items.sort(key=lambda item: (item.path.name not in LONG_FIRST,
                                  item.nodeid.split("::", 1)[0] not in SHARING))
 
 

@@ -140,8 +140,15 @@ def _zombie(pid: int) -> bool:
         return True
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("script", SCRIPTS, ids=lambda p: p.stem)
+STUDIES = ("codesign_hexaleg",)
+"""Kept examples run by hand (``pytest -m study``), not in CI's slow suite: the full co-design of
+the default robot alone took 192 s of one of CI's two workers and 206 s of CPU (its gait searches
+fork two more), a fifth of the slow studies, whose CI run had reached 901 s of its 900."""
+
+
+@pytest.mark.parametrize("script", [
+    pytest.param(p, marks=pytest.mark.study if p.stem in STUDIES else pytest.mark.slow)
+    for p in SCRIPTS], ids=lambda p: p.stem)
 def test_example_prints_its_log(script: Path, tmp_path: Path):
     log = LOGS / f"{script.stem}.log"
     regenerate = f"python analysis/{script.name} > analysis/logs/{log.name}"
