@@ -30,32 +30,14 @@ import pickle
 import time
 from typing import Any
 
-import numpy as np
+from bench_optimal_breakdown import breakdown  # the per-joint-class split, printed alike
 
 import hexaleg
 from hexaleg.design.codesign.alternation import alternate, predicted_per_metre
 from hexaleg.design.codesign.gait_evaluation import Constraints
 from hexaleg.design.codesign.servo import simulated_run
 from hexaleg.design.codesign.starts import search_starts
-from hexaleg.dynamics.prepare import prepare
 from hexaleg.optimal.problem import OptimalParams
-
-
-def split(name: str, robot: Any, motion: Any, motor: Any, springs: Any, contact: Any) -> None:
-    """Print ``motion`` with ``springs`` split per joint class (module docstring)."""
-    m = prepare(robot, motion, motor=motor, contact=contact).evaluate(springs, "joule").metrics
-    names = list(m["joint_names"])
-    d = motion.distance
-    total = m["total"]["electrical"] / d
-    print(f"{name}: {total:.3f} J/m electrical, Joule {m['total']['joule'] / d:.3f}, the rest "
-          f"{(m['total']['electrical'] - m['total']['joule']) / d:.3f}; motors' positive work "
-          f"{m['total']['positive_work'] / d:.3f} J/m", flush=True)
-    for cls, joints in robot.joint_classes.items():
-        rows = [names.index(j) for j in joints]
-        e, j_, w = (float(np.sum(np.asarray(m["joint"][k])[rows])) / d
-                    for k in ("electrical", "joule", "positive_work"))
-        print(f"  {cls:6s} electrical {e:6.3f} J/m: Joule {j_:6.3f}, the rest {e - j_:6.3f}; "
-              f"positive work {w:6.3f}", flush=True)
 
 
 def simulated(robot: Any, motion: Any, motor: Any, springs: Any, contact: Any) -> dict[str, Any]:
@@ -116,10 +98,10 @@ def main() -> None:
         print(f"against the co-design at the same duty bound: predicted {value / b_pred:.3f}× "
               f"(target ≤ 0.8), simulated under the worse servo {worse / b_worse:.3f}× "
               f"(target ≤ 0.85)", flush=True)
-    split("the timed gait with S", robot, hexaleg.gait(robot, timed), motor, s, contact)
-    split("the answer with its springs", robot, alt.motion, motor, alt.springs, contact)
-    split("the answer without springs", robot, alt.motion, motor, hexaleg.SpringSet(), contact)
-    split("the co-design at the bound with its springs", robot, b_motion, motor,
+    breakdown("the timed gait with S", robot, hexaleg.gait(robot, timed), motor, s, contact)
+    breakdown("the answer with its springs", robot, alt.motion, motor, alt.springs, contact)
+    breakdown("the answer without springs", robot, alt.motion, motor, hexaleg.SpringSet(), contact)
+    breakdown("the co-design at the bound with its springs", robot, b_motion, motor,
           base["springs"], contact)
     times = os.times()
     print(f"wall {time.perf_counter() - t0:.0f} s, CPU {times.user + times.system:.0f} s",
