@@ -14,7 +14,7 @@ import pinocchio as pin
 import pytest
 
 import hexaleg
-from hexaleg.errors import InvalidParameterError
+from hexaleg.errors import InvalidParameterError, UnreachableTargetError
 from hexaleg.optimal.task_space import task_space_motion
 from hexaleg.robot.springs import SpringSet
 
@@ -98,6 +98,35 @@ def test_bad_footholds_and_turning_cycles_are_refused(robot, knots, footholds):
                              info=info)
     with pytest.raises(InvalidParameterError, match="straight stride"):
         task_space_motion(robot, turning, footholds)
+
+
+def test_a_foot_out_of_reach_between_knots_is_said_of_the_cycle(robot, knots, footholds):
+    """A swing knot's foot moved 0.3 m out (the stand-in for a solver's knot no leg reaches
+    the way between): the rebuild refuses it as an UnreachableTargetError that keeps the
+    leg's fields and says it is the optimal cycle's rebuild, between which knots, in which
+    swing and why. The leg solver's bare message (leg, time, target) said none of it: Solo-12's
+    ``codesign --motion optimal`` stopped so after five minutes of co-design."""
+    j = 0
+    swing = np.flatnonzero(~knots.stance[:, j])
+    lift = int(swing[0])
+    while not knots.stance[(lift - 1) % knots.n_samples, j]:
+        lift -= 1
+    mid = int(swing[len(swing) // 2])
+    feet = knots.feet.copy()
+    feet[mid, j, :2] *= 1.0 + 0.3 / np.linalg.norm(feet[mid, j, :2])
+    far = hexaleg.Motion(t=knots.t, q=knots.q, v=knots.v, a=knots.a, stance=knots.stance,
+                         feet=feet, period=knots.period, distance=knots.distance,
+                         info=dict(knots.info))
+    name = robot.legs[j].name
+    with pytest.raises(UnreachableTargetError, match=(
+            rf"^the optimal cycle rebuilt in task space: leg {name} at t = .* out of reach.* "
+            rf"where leg {name} swings \(its swing from knot {lift % knots.n_samples},"
+            r".*bounds a leg's reach at its knots only")) as caught:
+        task_space_motion(robot, far, footholds, per_knot=PER_KNOT)
+    err = caught.value
+    assert err.leg == name and err.distance is not None and err.distance > 0
+    assert abs(err.t - knots.t[mid]) < knots.dt
+    assert isinstance(err.__cause__, UnreachableTargetError)
 
 
 @pytest.fixture(scope="module")

@@ -49,7 +49,7 @@ import pinocchio as pin
 from scipy.interpolate import CubicSpline
 
 from hexaleg.checks import integer
-from hexaleg.errors import InvalidParameterError
+from hexaleg.errors import InvalidParameterError, UnreachableTargetError
 from hexaleg.motion.body import Body, in_base_frame
 from hexaleg.motion.kinematics import leg_ik
 from hexaleg.motion.legged import sole_turn
@@ -260,6 +260,42 @@ def _balanced(robot: Robot, whole: _Whole, base: BasePath, feet: FeetPath, stanc
     return th, thd, thdd, point, axis, skipped
 
 
+def _between_knots(err: UnreachableTargetError, robot: Robot, knots: Motion
+                   ) -> UnreachableTargetError:
+    """The rebuild's out-of-reach foot target ``err`` (a leg's inverse kinematics) said of the
+    optimal cycle: the knots the sample lies between, whether its leg stands or swings there
+    (the swing's lift-off and touch-down knots), and why the knots can reach where the cycle
+    through them cannot — the problem bounds a leg's reach at its knots only, and between
+    them the rebuild's base spline carries the body on while a foot rests at its lift-off and
+    touch-down or holds its foothold. The fields (leg, time, target, distance) are ``err``'s."""
+    names = [leg.name for leg in robot.legs]
+    if err.t is None or err.leg not in names:
+        return err
+    n, dt = knots.n_samples, knots.dt
+    at = err.t / dt
+    k = int(np.floor(round(at, 9)))
+    on = np.asarray(knots.stance, dtype=bool)[:, names.index(err.leg)]
+    if on[k % n]:
+        phase = "holds its foothold (a stance knot)"
+    else:
+        lift, down = k, k
+        while not on[(lift - 1) % n]:
+            lift -= 1
+        while not on[down % n]:
+            down += 1
+        phase = (f"swings (its swing from knot {lift % n}, its lift-off at "
+                 f"{lift * dt % knots.period:.4g} s, to knot {down % n}, its touch-down)")
+    return UnreachableTargetError(
+        f"the optimal cycle rebuilt in task space: {err} — at {at - k:.2f} of the way from "
+        f"knot {k % n} to knot {(k + 1) % n} ({dt * 1e3:.4g} ms apart), where leg {err.leg} "
+        f"{phase}. Every knot reaches its feet (it is a configuration); the cycle through "
+        "them does not: the optimal-control problem bounds a leg's reach at its knots only, "
+        "and between them the base moves on while the foot rests at its lift-off or "
+        "touch-down or holds its foothold (a leg stretched to within a fraction of a "
+        "millimetre at a knot is then out of reach)",
+        leg=err.leg, t=err.t, index=err.index, target=err.target, distance=err.distance)
+
+
 def task_space_motion(robot: Robot, knots: Motion, footholds: np.ndarray, *,
                       per_knot: int = 8) -> Motion:
     """The optimal cycle ``knots`` rebuilt in task space (module docstring), ``per_knot``
@@ -274,7 +310,8 @@ def task_space_motion(robot: Robot, knots: Motion, footholds: np.ndarray, *,
 
     Raises:
         InvalidParameterError: a cycle that turns, footholds of another shape.
-        UnreachableTargetError: a foot target no leg reaches within its joint limits.
+        UnreachableTargetError: a foot target no leg reaches within its joint limits; the
+            message says between which knots and in which phase of the leg.
         InfeasibleForcesError: a two-point phase whose roll cannot be brought back to the knots
             (:func:`~hexaleg.optimal.support_line.balance`).
     """
@@ -292,12 +329,15 @@ def task_space_motion(robot: Robot, knots: Motion, footholds: np.ndarray, *,
     feet = _feet_path(knots.stance, knots.feet, footholds, dt, stride)
     whole = _Whole(robot, knots)
     point_feet = not any(leg.name in robot.soles for leg in robot.legs)
-    th, thd, thdd, point, axis, skipped = (
-        _balanced(robot, whole, base, feet, knots.stance, footholds, dt, per_knot, stride)
-        if point_feet else (np.zeros(m),) * 3 + (np.zeros((m, 3)),) * 2 + ([],))
-    body = roll(base(t), point, axis, th, thd, thdd)
-    p, pd, pdd = feet(t)
-    q, v, a = whole(t, body, p, pd, pdd)
+    try:
+        th, thd, thdd, point, axis, skipped = (
+            _balanced(robot, whole, base, feet, knots.stance, footholds, dt, per_knot, stride)
+            if point_feet else (np.zeros(m),) * 3 + (np.zeros((m, 3)),) * 2 + ([],))
+        body = roll(base(t), point, axis, th, thd, thdd)
+        p, pd, pdd = feet(t)
+        q, v, a = whole(t, body, p, pd, pdd)
+    except UnreachableTargetError as err:
+        raise _between_knots(err, robot, knots) from err
     info = {k: val for k, val in knots.info.items() if k != "integrator"}
     info |= {"rebuilt": "task space", "per_knot": per_knot,
              "largest roll about a support line": float(np.abs(th).max())}
