@@ -16,7 +16,10 @@ simulation's sensitivity, not a servo's bill. Printed per run: J/m walked (or th
 share of the planned swing samples whose foot the ground pushes (> 0.05 N: scuffing), the peak
 ground force in the first 30 ms of a stance (the touchdown's impact), and per motion the plan's
 largest friction use (the force program at the floor's μ, the feedforward the servos get) and
-its swing feet's least apex over the floor.
+its swing feet's least apex over the floor. Then the same runs with the swing feet aimed at
+their planned footholds (``foot_placement.FEWEST_PLACED`` raised past a trot's two stance feet:
+the balance controller's law for the feet it does not place, :mod:`hexaleg.simulation.balance`,
+"Footholds"; Raibert's placement off), to tell the placement's share.
 """
 
 from __future__ import annotations
@@ -37,7 +40,7 @@ from hexaleg.motion.legged import gait
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
-from hexaleg.simulation import measures
+from hexaleg.simulation import foot_placement, measures
 from hexaleg.simulation.run import Settings, simulate
 
 TIMESTEPS = (None, 2e-4, 1e-4)
@@ -110,7 +113,8 @@ def main() -> None:
     weight = robot.mass * 9.81
     print(f"each row's motion simulated with balance feedback at the automatic timestep, 0.2 "
           f"and 0.1 ms (weight {weight:.1f} N):", flush=True)
-    for row, motion, s in zip(table.rows, played, fitted, strict=True):
+    rows = list(zip(table.rows, played, fitted, strict=True))
+    for row, motion, s in rows:
         plan = prepare(robot, motion, motor=run.actuator, contact=run.contact).evaluate(s, "joule")
         on = motion.stance.astype(bool)
         use = np.linalg.norm(plan.forces[..., :2], axis=2) / np.maximum(
@@ -121,6 +125,15 @@ def main() -> None:
         print(f"    {row.label}: predicted {row.predicted:.2f} J/m; the plan's friction use "
               f"at most {use[on].max():.2f} of μ {run.contact.mu:g}; swing apex "
               f"{min(apex) * 1e3:.1f} to {max(apex) * 1e3:.1f} mm", flush=True)
+        for timestep in TIMESTEPS:
+            for controller in ("feedforward", "position"):
+                print(run_line(robot, motion, run.actuator, s, run.contact, controller,
+                               timestep), flush=True)
+    print("the same runs with the swing feet aimed at their planned footholds (Raibert's "
+          "placement off):", flush=True)
+    foot_placement.FEWEST_PLACED = 3  # a trot's two stance feet no longer placed
+    for row, motion, s in rows:
+        print(f"    {row.label}: predicted {row.predicted:.2f} J/m", flush=True)
         for timestep in TIMESTEPS:
             for controller in ("feedforward", "position"):
                 print(run_line(robot, motion, run.actuator, s, run.contact, controller,
