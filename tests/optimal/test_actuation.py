@@ -79,6 +79,66 @@ def test_derivatives_match_finite_differences(robot, seed):
     np.testing.assert_allclose(ju, fdu, atol=1e-6)
 
 
+MANY = hexaleg.SpringSet({
+    **SPRINGS,
+    "LM_femur": hexaleg.DeadZoneSpring(0.3, theta_k=0.15, neutral=0.2, alpha=1.3,
+                                       convention="eq14"),
+    "RF_tibia": hexaleg.OneSidedSpring(0.2, contact=-0.1, side="above", preload=0.05),
+    "RH_femur": hexaleg.PreloadedSpring(0.5, 0.04, theta_k=0.05),
+    "LF_coxa": hexaleg.LinearSpring(0.07514952938680902, reference=0.013408641197613785,
+                                    torque_at_reference=-1.4215499839611968e-18),
+    "RM_femur": hexaleg.LinearSpring(3.418777983426041e-13, reference=0.5463761917680798,
+                                     torque_at_reference=-0.042832338802230405),
+})
+
+
+def _one_by_one(spring, q, v):
+    """A law's torque, stiffness and damping at one joint, as the actuation took them joint by
+    joint before its laws were grouped: the law's own methods on one-element arrays, the
+    stiffness summed term by term."""
+    qa, one = np.array([q]), np.array([1.0])
+    k = 0.0
+    for term, x in zip(spring.terms(), spring.magnitudes(), strict=True):
+        d = q - term.angle
+        engaged = {"above": d > 0.0, "below": d < 0.0}.get(term.kind, True)
+        k += float(x) * {"above": -1.0, "below": -1.0, "linear": -1.0}.get(term.kind,
+                                                                           0.0) * engaged
+    return (float(spring.torque(qa, np.array([v]))[0]), k,
+            float(spring.torque(qa, one)[0] - spring.torque(qa, 0 * one)[0]))
+
+
+@pytest.mark.parametrize("seed", [5, 6, 7])
+def test_the_grouped_laws_are_each_laws_own_numbers_to_the_bit(robot, seed):
+    """The actuation evaluates the laws a group at a time (:class:`LawGroup`); its torques,
+    stiffnesses and damping are exactly (not approximately) each law's own on its joint — a dead
+    zone taken by its joint-side terms (``a k⁺`` as one magnitude: it rounds otherwise, and
+    has no damping) fails here."""
+    state = crocoddyl.StateMultibody(robot.model)
+    act = SpringActuation(state, sprung_joints(robot, MANY))
+    data = act.createData()
+    rng = np.random.default_rng(seed)
+    nq, nv = robot.model.nq, robot.model.nv
+    for _ in range(50):
+        x = _state(robot, rng)
+        tau = act.spring_torques(x)
+        act.calcDiff(data, x, np.zeros(robot.nj))
+        for s in act.sprung:
+            torque, k, damping = _one_by_one(s.spring, x[s.iq], x[nq + s.iv])
+            assert tau[s.column] == torque
+            assert data.dtau_dx[6 + s.column, s.iv] == k
+            assert data.dtau_dx[6 + s.column, nv + s.iv] == damping
+    assert 1 < len(act.groups) < len(act.sprung)  # groups of several laws and sizes
+
+
+def test_a_non_finite_state_is_named(robot):
+    state = crocoddyl.StateMultibody(robot.model)
+    act = SpringActuation(state, sprung_joints(robot, SPRINGS))
+    x = _state(robot, np.random.default_rng(8))
+    x[act.sprung[0].iq] = np.nan
+    with pytest.raises(hexaleg.errors.InvalidParameterError, match="q"):
+        act.spring_torques(x)
+
+
 def test_stiffness_is_the_slope_of_each_law():
     """Analytic cases: a dead zone is stiff only past its contact angles (k₂ everywhere), a
     linear spring everywhere, a preload's step has no slope."""

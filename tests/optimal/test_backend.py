@@ -55,3 +55,21 @@ def test_a_misreading_crocoddyl_is_counted():
     moved = sum(not np.allclose(f.placement.homogeneous, np.eye(4))
                 for f in list(model.frames)[1:])
     assert backend.misread_frames(fake, pinocchio) == moved >= backend.PROBES
+
+
+def test_the_backend_runs_one_openmp_thread():
+    """Eigen's split products spin on a shared machine (module docstring of the backend): the
+    checked Crocoddyl leaves the process on one OpenMP thread, whatever it was set to before."""
+    pytest.importorskip("crocoddyl")
+    import ctypes
+    try:
+        runtime = ctypes.CDLL(backend.OPENMP)
+    except OSError:
+        pytest.skip("no GNU OpenMP runtime")
+    runtime.omp_set_num_threads(3)
+    backend.crocoddyl_module.cache_clear()
+    try:
+        backend.crocoddyl_module()
+        assert runtime.omp_get_max_threads() == 1
+    finally:
+        backend.crocoddyl_module.cache_clear()

@@ -23,15 +23,17 @@ A free flyer's configuration tangent is its velocity index, so a revolute joint'
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
+from hexaleg.checks import finite_array
 from hexaleg.errors import InvalidParameterError
 from hexaleg.optimal.backend import crocoddyl_module
 from hexaleg.robot.model import Robot
-from hexaleg.robot.springs import SpringSet
+from hexaleg.robot.springs import DeadZoneSpring, SpringSet
 from hexaleg.robot.springs.spring_set import Spring
 
 crocoddyl = crocoddyl_module()
@@ -41,18 +43,6 @@ _ActuationModelAbstract: Any = crocoddyl.ActuationModelAbstract
 _SLOPE = {"above": -1.0, "below": -1.0, "linear": -1.0, "step_above": 0.0, "step_below": 0.0,
           "constant": 0.0}
 """dφ/dq of each term kind where it is differentiable (see the module docstring)."""
-
-
-def stiffness(spring: Spring, angle: float) -> float:
-    """Tangent stiffness ``dτ_s/dq`` of ``spring`` at ``angle``, N·m/rad (≤ 0 for a restoring
-    spring): ``Σ_b x_b φ_b'(q)`` over its terms (:mod:`hexaleg.robot.springs.terms`); a ramp
-    counts on its engaged side only (strictly past its angle)."""
-    k = 0.0
-    for term, x in zip(spring.terms(), spring.magnitudes(), strict=True):
-        d = angle - term.angle
-        engaged = {"above": d > 0.0, "below": d < 0.0}.get(term.kind, True)
-        k += float(x) * _SLOPE[term.kind] * engaged
-    return k
 
 
 @dataclass(frozen=True)
@@ -83,6 +73,105 @@ def sprung_joints(robot: Robot, springs: SpringSet) -> tuple[SprungJoint, ...]:
     return tuple(out)
 
 
+class LawGroup:
+    """The sprung joints of one kind of law with one number of terms, evaluated together.
+
+    Every array operation is the one the law's own method does on one joint
+    (:meth:`~hexaleg.robot.springs.law.TermSpring.torque`: the basis terms of
+    :mod:`hexaleg.robot.springs.terms` dotted with the magnitudes;
+    :meth:`~hexaleg.robot.springs.DeadZoneSpring.torque`), applied to the group's joints at once:
+    the numbers are the same to the bit (tested), the Python calls one per group instead of a
+    dozen per joint. The dot of a term law is NumPy's ``matmul`` of each joint's row, as the law's
+    ``basis @ magnitudes`` takes it (a sum in another order, or fused multiply-adds, may round
+    otherwise).
+
+    Args:
+        joints: The group's sprung joints (one law class, one number of terms), m of them.
+    """
+
+    def __init__(self, joints: tuple[SprungJoint, ...]) -> None:
+        self.columns = np.array([j.column for j in joints], dtype=int)
+        self.iq = np.array([j.iq for j in joints], dtype=int)
+        self.iv = np.array([j.iv for j in joints], dtype=int)
+        terms = [j.spring.terms() for j in joints]
+        kinds = np.array([[t.kind for t in row] for row in terms])
+        self.kinds = {kind: kinds == kind for kind in np.unique(kinds)}
+        """Where each term kind sits, (m, n_terms) bool each."""
+        self.angles = np.array([[t.angle for t in row] for row in terms])
+        self.magnitudes = np.array([np.asarray(j.spring.magnitudes(), float) for j in joints])
+        self.slopes = self.magnitudes * np.vectorize(_SLOPE.__getitem__, otypes=[float])(kinds)
+        """``x_b φ_b'``, (m, n_terms) (:func:`stiffness`)."""
+        springs = [j.spring for j in joints]
+        self.zone = all(isinstance(s, DeadZoneSpring) for s in springs)
+        if self.zone:
+            zones = [s for s in springs if isinstance(s, DeadZoneSpring)]
+            self.neutral = np.array([s.neutral for s in zones])
+            self.plus = np.array([s.th_plus for s in zones])
+            self.minus = np.array([s.th_minus for s in zones])
+            self.transmission = np.array([s.transmission for s in zones])
+            self.k_plus = np.array([s.stiffness for s in zones])
+            self.k_minus = np.array([s.k_minus for s in zones])
+            self.k2 = np.array([s.k2 for s in zones])
+            self.damping = np.array([s.damping for s in zones])
+
+    def torques(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """The springs' torques at their joints' angles ``q`` and speeds ``v`` (m,), N·m."""
+        if self.zone:  # DeadZoneSpring.torque and its torque_basis, term by term
+            d = q - self.neutral
+            a = self.transmission
+            plus = -a * np.maximum(d - self.plus, 0.0)
+            minus = -a * np.minimum(d - self.minus, 0.0)
+            engaged = (d > self.plus) | (d < self.minus)
+            damp = np.where(engaged, -a * v, 0.0)
+            return (self.k_plus * plus + self.k_minus * minus + self.k2 * -d
+                    + self.damping * damp)
+        d = q[:, None] - self.angles  # Term.torque of every term, then basis @ magnitudes
+        phi = np.ones_like(d)
+        for kind, where in self.kinds.items():
+            phi[where] = _PHI[kind](d[where])
+        return np.matmul(phi[:, None, :], self.magnitudes[:, :, None])[:, 0, 0]
+
+    def stiffness(self, q: np.ndarray) -> np.ndarray:
+        """``dτ_s/dq`` at the joints' angles ``q`` (m,), N·m/rad: :func:`stiffness`'s sum, in
+        its order."""
+        d = q[:, None] - self.angles
+        engaged = np.ones_like(d, dtype=bool)
+        if "above" in self.kinds:
+            engaged[self.kinds["above"]] = d[self.kinds["above"]] > 0.0
+        if "below" in self.kinds:
+            engaged[self.kinds["below"]] = d[self.kinds["below"]] < 0.0
+        k = np.zeros(len(q))
+        for b in range(d.shape[1]):
+            k = k + self.slopes[:, b] * engaged[:, b]
+        return k
+
+
+_PHI: dict[str, Callable[[np.ndarray], np.ndarray]] = {
+    "above": lambda d: -np.maximum(d, 0.0), "below": lambda d: np.maximum(-d, 0.0),
+    "step_above": lambda d: -(d > 0).astype(float), "step_below": lambda d: (d < 0).astype(float),
+    "linear": lambda d: -d, "constant": np.ones_like}
+"""φ of each term kind at ``d = q − a``, as :meth:`~hexaleg.robot.springs.terms.Term.torque`
+computes it."""
+
+
+def law_groups(sprung: tuple[SprungJoint, ...]) -> tuple[LawGroup, ...]:
+    """``sprung`` grouped by law class and number of terms (:class:`LawGroup`), in order of
+    first appearance."""
+    keys: dict[tuple[bool, int], list[SprungJoint]] = {}
+    for j in sprung:
+        keys.setdefault((isinstance(j.spring, DeadZoneSpring), len(j.spring.terms())),
+                        []).append(j)
+    return tuple(LawGroup(tuple(group)) for group in keys.values())
+
+
+def stiffness(spring: Spring, angle: float) -> float:
+    """Tangent stiffness ``dτ_s/dq`` of ``spring`` at ``angle``, N·m/rad (≤ 0 for a restoring
+    spring): ``Σ_b x_b φ_b'(q)`` over its terms (:mod:`hexaleg.robot.springs.terms`); a ramp
+    counts on its engaged side only (strictly past its angle)."""
+    group = LawGroup((SprungJoint(0, 0, 0, spring),))
+    return float(group.stiffness(np.array([float(angle)]))[0])
+
+
 class SpringActuation(_ActuationModelAbstract):
     """Actuation with springs: ``τ = [0_b; u + τ_s(q, q̇)]`` (module docstring), ``b`` the
     unactuated base's velocity dimensions (6 for a free flyer, 0 for a fixed base).
@@ -98,16 +187,29 @@ class SpringActuation(_ActuationModelAbstract):
         nv = state.nv
         crocoddyl.ActuationModelAbstract.__init__(self, state, nv - base)
         self.sprung = sprung
+        self.groups = law_groups(sprung)
         self._nv = nv
         self._base = base
+        self._du = np.zeros((nv, nv - base))
+        self._du[base:, :] = np.eye(nv - base)
+
+    def _angles(self, group: LawGroup, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The group's joint angles and speeds in state ``x``, each (m,).
+
+        Raises:
+            InvalidParameterError: a value is not finite (as the laws' own checks say).
+        """
+        q, v = x[group.iq], x[self.state.nq + group.iv]
+        if not (np.isfinite(q).all() and np.isfinite(v).all()):
+            finite_array("q", q)
+            finite_array("v", v)
+        return q, v
 
     def spring_torques(self, x: np.ndarray) -> np.ndarray:
         """``τ_s`` of every actuated joint at state ``x`` (nq + nv,), shape (nv − b,), N·m."""
-        nq = self.state.nq
         out = np.zeros(self._nv - self._base)
-        for s in self.sprung:
-            q, v = np.array([x[s.iq]]), np.array([x[nq + s.iv]])
-            out[s.column] = float(s.spring.torque(q, v)[0])
+        for group in self.groups:
+            out[group.columns] = group.torques(*self._angles(group, x))
         return out
 
     def calc(self, data: Any, x: np.ndarray,
@@ -119,20 +221,18 @@ class SpringActuation(_ActuationModelAbstract):
 
     def calcDiff(self, data: Any, x: np.ndarray,
                  u: np.ndarray | None = None) -> None:
-        """``dtau_du = S``; ``dtau_dx`` the springs' stiffness and damping (module docstring)."""
+        """``dtau_du = S``; ``dtau_dx`` the springs' stiffness and damping (module docstring):
+        the damping as ``τ_s(q, 1) − τ_s(q, 0)``."""
         nv, b = self._nv, self._base
         dx = np.zeros((nv, 2 * nv))
-        for s in self.sprung:
-            q = x[s.iq]
-            dx[b + s.column, s.iv] = stiffness(s.spring, q)
-            one, zero = np.array([1.0]), np.array([0.0])
-            qa = np.array([q])
-            dx[b + s.column, nv + s.iv] = float(s.spring.torque(qa, one)[0]
-                                                - s.spring.torque(qa, zero)[0])
+        for group in self.groups:
+            q, _ = self._angles(group, x)
+            rows = b + group.columns
+            dx[rows, group.iv] = group.stiffness(q)
+            dx[rows, nv + group.iv] = (group.torques(q, np.ones_like(q))
+                                       - group.torques(q, np.zeros_like(q)))
         data.dtau_dx[...] = np.reshape(dx, np.shape(data.dtau_dx))
-        du = np.zeros((nv, nv - b))
-        du[b:, :] = np.eye(nv - b)
-        data.dtau_du[...] = np.reshape(du, np.shape(data.dtau_du))
+        data.dtau_du[...] = np.reshape(self._du, np.shape(data.dtau_du))
 
     def commands(self, data: Any, x: np.ndarray,
                  tau: np.ndarray) -> None:

@@ -14,10 +14,23 @@ workaround reaches inside Crocoddyl's compiled residuals; only a crocoddyl built
 would. So before
 any problem is built, :func:`crocoddyl_module` builds a contact on every frame of a Pinocchio
 sample model and compares the placement Crocoddyl read (``ContactData3D.jMf``) with Pinocchio's.
+
+The crocoddyl wheel is compiled with GNU OpenMP, and Eigen then splits every large enough matrix
+product over ``omp_get_max_threads()`` threads (Eigen's ``parallelize_gemm``,
+``Eigen/src/Core/products/Parallelizer.h``: above 50 000 multiply-adds, e.g. box-FDDP's backward
+pass on the hexapod's 48 state dimensions), whose threads then spin at the next barrier. Measured
+on the default robot's 40-knot solve with springs (2 cores, load 4–6): 45 % of the CPU in
+libgomp's spin-wait, 11.5 s CPU for 10 iterations on two threads against 1.9 s on one, the
+iterates equal bit for bit (the products of these sizes sum each entry in one order either way).
+:func:`crocoddyl_module` therefore sets the process's OpenMP threads to one
+(:func:`single_threaded`); the optimal stage's independent solves run in forked processes instead
+(:mod:`hexaleg.parallel.forked`), and a forked child never meets a pool of OpenMP threads its
+parent made (GNU OpenMP's pool does not survive a fork).
 """
 
 from __future__ import annotations
 
+import ctypes
 from functools import cache
 from types import ModuleType
 from typing import Any
@@ -66,6 +79,22 @@ def misread_frames(crocoddyl: ModuleType, pinocchio: ModuleType) -> int:
     return bad
 
 
+OPENMP = "libgomp.so.1"
+"""The GNU OpenMP runtime the crocoddyl and Pinocchio wheels link (module docstring)."""
+
+
+def single_threaded() -> bool:
+    """Set this process's OpenMP threads to one (``omp_set_num_threads(1)``, the OpenMP API,
+    read by Eigen at each product; module docstring); False where no GNU OpenMP runtime
+    can be loaded (then no product is split)."""
+    try:
+        runtime = ctypes.CDLL(OPENMP)
+    except OSError:
+        return False
+    runtime.omp_set_num_threads(1)
+    return True
+
+
 @cache
 def crocoddyl_module() -> ModuleType:
     """The ``crocoddyl`` module, checked (module docstring).
@@ -87,4 +116,5 @@ def crocoddyl_module() -> ModuleType:
                            f"of a pin {pinocchio.__version__} model (a binary mismatch): install "
                            "the pair the optimal extra pins, pip install \"hexaleg[optimal]\" "
                            f"({PAIR})")
+    single_threaded()
     return crocoddyl

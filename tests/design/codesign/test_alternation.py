@@ -191,3 +191,60 @@ def test_the_least_prediction_wins_a_tie_and_none_keep_the_earlier():
     assert least([None, 9.0, None, 8.9]) == 3
     assert least([None, None]) == 0
     assert least([8.0, None, 8.0]) == 0
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_side_by_side_solves_are_kept_as_they_end_and_resume(tmp_path, monkeypatch, workers):
+    """:func:`apart` on one and on two workers: the results in the jobs' order with the work
+    after each; a job that fails after another ended leaves that one kept (by this process, in
+    the run's stage files), and the next run computes only the others (a map that kept nothing
+    until the end, or kept in the workers' copies of the stage files, fails here)."""
+    import os
+
+    from hexaleg.design.chain.checkpoint import StageFiles
+    from hexaleg.design.codesign.alternation import apart
+    from hexaleg.design.codesign.optimal_stage import KeptSolves
+    from hexaleg.parallel import workers as workers_module
+
+    monkeypatch.setattr(workers_module, "default_workers", lambda: workers)
+    robot = hexaleg.load()
+    stages = tmp_path / "stages"
+    computes = tmp_path / "computes"
+    computes.mkdir()
+
+    def job(k: int, fail: bool) -> tuple[tuple[object, ...], object]:
+        def compute() -> np.ndarray:
+            (computes / f"{k}-{os.getpid()}-{len(list(computes.iterdir()))}").touch()
+            if fail:
+                for _ in range(10**6):  # job 0 kept first (else the test fails, not hangs)
+                    if any(stages.glob("optimal-solve-*.pickle")):
+                        break
+                    os.sched_yield()
+                raise RuntimeError("killed")
+            return np.arange(3.0) * k
+        return ("round", k), compute
+
+    files: list[StageFiles] = []
+
+    def run(fail: bool) -> list:
+        files.append(StageFiles(stages, "k"))
+        return apart([job(0, False), job(1, fail), job(2, False)], robot,
+                     KeptSolves(files[-1], robot, lambda _line: None),
+                     lambda index, result: float(result.sum()) + index)
+
+    with pytest.raises(RuntimeError, match="killed"):
+        run(True)
+    assert len(list(stages.glob("optimal-solve-*.pickle"))) >= 1
+    first = {p.name.split("-")[0] for p in computes.iterdir()}
+    for p in computes.iterdir():
+        p.unlink()
+    out = run(False)
+    assert [r.tolist() for r, _ in out] == [[0.0, 0.0, 0.0], [0.0, 1.0, 2.0], [0.0, 2.0, 4.0]]
+    assert [after for _, after in out] == [0.0, 4.0, 8.0]
+    again = {p.name.split("-")[0] for p in computes.iterdir()}
+    assert "0" in first and "0" not in again and "1" in again
+    assert len(files[-1].written) == 3  # read back or kept by this process's stage files
+    for p in computes.iterdir():
+        p.unlink()
+    run(False)
+    assert not list(computes.iterdir())  # every solve read back

@@ -50,14 +50,12 @@ def test_the_least_prediction_is_chosen_and_a_first_solve_is_reused(monkeypatch,
     import hexaleg.optimal.problem
     import hexaleg.optimal.solve
 
-    solved: list[object] = []
-
     def build(_robot, motion, _motor, _springs, _params):
         return motion
 
-    def solve(_robot, motion, **_kwargs):
-        solved.append(motion)
-        return SimpleNamespace(energy_per_metre=1.0, task_space=motion, x=np.zeros((2, 43)))
+    def solve(_robot, motion, **_kwargs):  # marked: the solves run in forked workers
+        return SimpleNamespace(energy_per_metre=1.0, task_space=motion, x=np.zeros((2, 43)),
+                               solved=True)
 
     monkeypatch.setattr(hexaleg.optimal.problem, "build_problem", build)
     monkeypatch.setattr(hexaleg.optimal.solve, "solve", solve)
@@ -70,7 +68,9 @@ def test_the_least_prediction_is_chosen_and_a_first_solve_is_reused(monkeypatch,
     found = search_starts(robot, chosen, run.actuator, springs, run.contact, Settings(), 0.015,
                           first=first, say=lines.append)
     lattice = starts(chosen, Settings(), 0.015)
-    assert len(solved) == len(lattice) - 1  # the gait's own cycle was given
+    solved = [getattr(s.result, "solved", False) for s in found.starts]
+    assert solved == [False] + [True] * (len(lattice) - 1)  # the gait's own cycle was given
+    assert found.starts[0].result is first
     expected = [predicted_per_metre(robot, hexaleg.gait(robot, g), run.actuator, springs,
                                     run.contact)[0] for _, g, _ in lattice]
     assert [s.predicted for s in found.starts] == pytest.approx(expected, rel=1e-12)

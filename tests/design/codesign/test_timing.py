@@ -53,3 +53,31 @@ def test_the_least_prediction_is_chosen(monkeypatch, robot):
     assert found.best == int(np.argmin(expected)) and found.chosen.predicted == min(expected)
     assert len(lines) == len(expected) and "predicted rebuilt" in lines[0]
     assert "→ duty" in found.line() and found.data()["chosen"] == found.best
+
+
+@pytest.mark.slow  # five tiny box-FDDP solves, twice: ~10 s of CPU
+def test_the_lattice_solved_side_by_side_is_the_lattice_solved_in_turn(monkeypatch, robot):
+    """The timing lattice's solves on two forked workers give the serial run's cycles bit for
+    bit, and the same predictions and choice (a map that mixed up the results' order, or a
+    worker that solved another candidate, fails here)."""
+    pytest.importorskip("crocoddyl")
+    from hexaleg.optimal.problem import OptimalParams
+    from hexaleg.parallel import workers
+
+    run = hexaleg.Scenario.load("hexaleg")
+    chosen = hexaleg.GaitParams(samples=100)
+    params = OptimalParams(nodes=10, iterations=3)
+    found = {}
+    lines: list[str] = []
+    for n in (1, 2):
+        monkeypatch.setattr(workers, "default_workers", lambda n=n: n)
+        found[n] = search_timing(robot, chosen, run.actuator, hexaleg.SpringSet(), run.contact,
+                                 params, say=lines.append if n == 1 else None)
+    progress = [line for line in lines if "iteration" in line]  # each named by its timing
+    assert len({line.split(": iteration")[0] for line in progress}) == 5
+    for serial, parallel in zip(found[1].candidates, found[2].candidates, strict=True):
+        assert parallel.params == serial.params
+        np.testing.assert_array_equal(parallel.result.x, serial.result.x)
+        assert parallel.predicted == serial.predicted
+    assert found[2].best == found[1].best
+    assert len({c.result.energy_per_metre for c in found[1].candidates}) == 5  # five cycles

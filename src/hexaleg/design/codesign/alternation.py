@@ -47,6 +47,7 @@ from hexaleg.dynamics.contact import ContactParams
 from hexaleg.dynamics.prepare import prepare
 from hexaleg.errors import HexalegError
 from hexaleg.motion.trajectory import Motion
+from hexaleg.parallel.forked import fork_map, robot_objects
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
 
@@ -114,6 +115,60 @@ def least(predicted: Sequence[float | None]) -> int:
 def computed(_inputs: tuple[Any, ...], compute: Callable[[], Any]) -> Any:
     """Every solve computed (:data:`Keep`)."""
     return compute()
+
+
+class _NotKept(Exception):
+    """The probe of :func:`apart`: a solve ``keep`` would have to compute."""
+
+
+def _not_kept() -> Any:
+    raise _NotKept
+
+
+Job = tuple[tuple[Any, ...], Callable[[], Any]]
+"""One solve of :func:`apart`: its inputs (:data:`Keep`'s) and how it is computed."""
+
+
+def apart(jobs: Sequence[Job], robot: Robot, keep: Keep | None = None,
+          then: Callable[[int, Any], Any] | None = None) -> list[tuple[Any, Any]]:
+    """Independent solves on the command's workers: each job's ``keep(inputs, compute)`` and
+    ``then(index, result)``, in the order of ``jobs``.
+
+    The solves kept already are read back here first (``keep`` probed with a compute that
+    raises before anything is kept); the others are computed in forked workers
+    (:func:`~hexaleg.parallel.forked.fork_map`: one per core, the robot shared, the workers
+    killed with this process, results in order and the same as computed here), and each is
+    passed through ``keep`` in this process as it ends — a run killed meanwhile keeps the solves
+    that ended and repeats only the others. ``then`` (the judging of a result, seconds) runs in
+    the workers too.
+
+    Args:
+        jobs: The solves.
+        robot: The run's robot (its objects are sent back as references, not copies).
+        keep: How each solve is kept (:data:`Keep`); None: computed.
+        then: Work on each result in the worker (None: none).
+
+    Returns:
+        ``(result, then(index, result))`` of each job, in order.
+    """
+    once = keep or computed
+    after = then or (lambda _index, _result: None)
+    kept: dict[int, Any] = {}
+    for index, (inputs, _) in enumerate(jobs):
+        try:
+            kept[index] = once(inputs, _not_kept)
+        except _NotKept:
+            pass
+
+    def work(index: int) -> tuple[Any, Any]:
+        result = kept[index] if index in kept else jobs[index][1]()
+        return result, after(index, result)
+
+    def done(index: int, out: tuple[Any, Any]) -> None:
+        if index not in kept:
+            once(jobs[index][0], lambda: out[0])
+
+    return fork_map(work, range(len(jobs)), shared=robot_objects(robot), done=done)
 
 
 @dataclass(frozen=True)

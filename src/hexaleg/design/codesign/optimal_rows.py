@@ -51,6 +51,7 @@ from hexaleg.design.codesign.alternation import (
     Alternation,
     Keep,
     alternate,
+    apart,
     computed,
     predicted_per_metre,
 )
@@ -308,11 +309,20 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
     motion = gait(robot, timed)
     tell("optimal motion without springs, from the co-design's gait"
          + ("" if searched is None else " at the timing chosen"))
-    bare = (keep or computed)(
-        ("no springs", SpringSet(), params,
-         *(() if searched is None and multi is None else (timed,))),
-        lambda: solve(robot, build_problem(robot, motion, motor, SpringSet(), params),
-                      say=lambda line: tell(f"no springs: {line}"), every=PROGRESS))
+    bare_job = (("no springs", SpringSet(), params,
+                 *(() if searched is None and multi is None else (timed,))),
+                lambda: solve(robot, build_problem(robot, motion, motor, SpringSet(), params),
+                              say=lambda line: tell(f"no springs: {line}"), every=PROGRESS))
+    if first is None:  # the alternation's start beside it: the two solves are independent
+        tell("optimal motion with springs (alternation), from the co-design's gait and springs:"
+             " its start solved beside the motion without springs")
+        start_job = (("start", start, params),
+                     lambda: solve(robot, build_problem(robot, motion, motor, start, params),
+                                   say=lambda line: tell(f"alternation: start: {line}"),
+                                   every=PROGRESS))
+        (bare, _), (first, _) = apart([bare_job, start_job], robot, keep)
+    else:
+        bare = (keep or computed)(*bare_job)
     tell(f"optimal motion without springs: {bare.energy_per_metre:.3f} J/m "
          f"({bare.iterations} iterations, {bare.seconds:.0f} s)")
     tell("optimal motion with springs (alternation), from the co-design's gait and springs")

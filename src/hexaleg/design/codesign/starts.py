@@ -29,7 +29,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from hexaleg.design.codesign.alternation import PROGRESS, Keep, computed, judged, least
+from hexaleg.design.codesign.alternation import PROGRESS, Keep, apart, judged, least
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import HexalegError
 from hexaleg.motion.legged import gait
@@ -144,8 +144,9 @@ def search_starts(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringS
                   contact: ContactParams, params: Any, min_step: float, *,
                   first: Any = None, say: Callable[[str], None] | None = None,
                   keep: Keep | None = None) -> StartSearch:
-    """Each start of :func:`starts` solved with ``springs`` and predicted rebuilt; the least
-    prediction chosen (module docstring).
+    """Each start of :func:`starts` solved with ``springs`` and predicted rebuilt, the solves
+    side by side on the command's workers (:func:`~hexaleg.design.codesign.alternation.apart`);
+    the least prediction chosen (module docstring).
 
     Args:
         robot: The robot. chosen: The gait (at the contact timing chosen). motor: Its motors.
@@ -165,24 +166,40 @@ def search_starts(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringS
     from hexaleg.optimal.solve import solve
 
     tell = say or (lambda _line: None)
-    once = keep or computed
 
-    def solved(g: GaitParams, settings: Any) -> Any:
-        """The optimal cycle of the gait ``g`` with ``springs`` and ``settings``."""
+    def solved(label: str, g: GaitParams, settings: Any) -> Any:
+        """The optimal cycle of the gait ``g`` with ``springs`` and ``settings`` (its progress
+        lines named by its start: the lattice's solves run side by side)."""
         built = build_problem(robot, gait(robot, g), motor, springs, settings)
-        return solve(robot, built, say=tell, every=PROGRESS)
+        return solve(robot, built, say=lambda line: tell(f"{label}: {line}"), every=PROGRESS)
 
-    tried = []
-    for k, (label, g, settings) in enumerate(starts(chosen, params, min_step)):
+    lattice = starts(chosen, params, min_step)
+    motions: dict[int, Any] = {}
+    unmade: dict[int, str] = {}
+    for k, (_, g, _) in enumerate(lattice):
         try:
-            motion = gait(robot, g)
+            motions[k] = gait(robot, g)
         except HexalegError as err:  # a body height the legs cannot reach
-            tried.append(Start(label, g, settings, None, None, f"{type(err).__name__}: {err}"))
-            tell(f"{label}: no gait ({tried[-1].why})")
+            unmade[k] = f"{type(err).__name__}: {err}"
+    given = 0 in motions and first is not None
+    run = [k for k in motions if not (k == 0 and given)]
+
+    def judge(index: int, result: Any) -> tuple[float | None, str]:
+        return judged(robot, result, motions[run[index]], motor, springs, contact)
+
+    done = dict(zip(run, apart(
+        [(("start", lattice[k][1], springs, lattice[k][2]),
+          functools.partial(solved, *lattice[k])) for k in run], robot, keep, judge),
+        strict=True))
+    if given:
+        done[0] = (first, judged(robot, first, motions[0], motor, springs, contact))
+    tried = []
+    for k, (label, g, settings) in enumerate(lattice):
+        if k in unmade:
+            tried.append(Start(label, g, settings, None, None, unmade[k]))
+            tell(f"{label}: no gait ({unmade[k]})")
             continue
-        result = first if k == 0 and first is not None else once(
-            ("start", g, springs, settings), functools.partial(solved, g, settings))
-        value, why = judged(robot, result, motion, motor, springs, contact)
+        result, (value, why) = done[k]
         tried.append(Start(label, g, settings, result, value, why))
         tell(f"{label}: " + (f"{value:.4g} J/m predicted rebuilt" if value is not None else
                              f"no prediction ({why})")

@@ -29,7 +29,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from hexaleg.design.codesign.alternation import PROGRESS, Keep, computed, judged, least
+from hexaleg.design.codesign.alternation import PROGRESS, Keep, apart, judged, least
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.motion.legged import gait
 from hexaleg.motion.params import GaitParams
@@ -125,8 +125,10 @@ def search_timing(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringS
                   contact: ContactParams, params: Any, *,
                   say: Callable[[str], None] | None = None,
                   keep: Keep | None = None) -> TimingSearch:
-    """Each timing of :func:`candidates` solved with ``springs`` and predicted rebuilt; the
-    least prediction chosen (module docstring).
+    """Each timing of :func:`candidates` solved with ``springs`` and predicted rebuilt, the
+    solves side by side on the command's workers
+    (:func:`~hexaleg.design.codesign.alternation.apart`); the least prediction chosen (module
+    docstring).
 
     Args:
         robot: The robot. chosen: The co-design's gait. motor: Its motors.
@@ -143,17 +145,22 @@ def search_timing(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringS
     from hexaleg.optimal.solve import solve
 
     tell = say or (lambda _line: None)
-    once = keep or computed
+    lattice = candidates(chosen)
 
     def solved(g: GaitParams) -> Any:
-        """The optimal cycle of the gait ``g`` with ``springs``."""
+        """The optimal cycle of the gait ``g`` with ``springs`` (its progress lines named by
+        its timing: the lattice's solves run side by side)."""
         built = build_problem(robot, gait(robot, g), motor, springs, params)
-        return solve(robot, built, say=tell, every=PROGRESS)
+        label = f"duty factor {g.duty_factor:.3g}, period {g.period:.4g} s"
+        return solve(robot, built, say=lambda line: tell(f"{label}: {line}"), every=PROGRESS)
 
+    def judge(index: int, result: Any) -> tuple[float | None, str]:
+        return judged(robot, result, gait(robot, lattice[index]), motor, springs, contact)
+
+    done = apart([(("timing", g, springs, params), functools.partial(solved, g))
+                  for g in lattice], robot, keep, judge)
     tried = []
-    for g in candidates(chosen):
-        result = once(("timing", g, springs, params), functools.partial(solved, g))
-        value, why = judged(robot, result, gait(robot, g), motor, springs, contact)
+    for g, (result, (value, why)) in zip(lattice, done, strict=True):
         tried.append(Candidate(g, result, value, why))
         tell(f"duty factor {g.duty_factor:.3g}, period {g.period:.4g} s: "
              + (f"{value:.4g} J/m predicted rebuilt" if value is not None else
