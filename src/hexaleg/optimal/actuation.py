@@ -132,8 +132,9 @@ class LawGroup:
         return np.matmul(phi[:, None, :], self.magnitudes[:, :, None])[:, 0, 0]
 
     def stiffness(self, q: np.ndarray) -> np.ndarray:
-        """``dτ_s/dq`` at the joints' angles ``q`` (m,), N·m/rad: :func:`stiffness`'s sum, in
-        its order."""
+        """``dτ_s/dq = Σ_b x_b φ_b'(q)`` at the joints' angles ``q`` (m,), N·m/rad (module
+        docstring), summed term by term in each law's order from 0; a ramp counts strictly past
+        its angle."""
         d = q[:, None] - self.angles
         engaged = np.ones_like(d, dtype=bool)
         if "above" in self.kinds:
