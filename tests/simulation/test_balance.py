@@ -12,7 +12,7 @@ import pytest
 from hexaleg.errors import InvalidParameterError, UnknownNameError
 from hexaleg.robot.springs import SpringSet
 from hexaleg.scenario.scenario import Scenario
-from hexaleg.simulation import balance, stepping
+from hexaleg.simulation import balance, control_rate, stepping
 from hexaleg.simulation.controllers import controls, reference
 from hexaleg.simulation.model import build_model
 from hexaleg.simulation.run import Settings, simulate
@@ -46,7 +46,7 @@ def test_gains_are_a_critically_damped_loop_at_the_gaits_frequency(trot):
     sampled loop is well within its limit); bad gains are named."""
     prepared, _ = trot
     g = balance.size_gains(prepared.robot, prepared.motion)
-    assert g.period == balance.CONTROL_PERIOD
+    assert g.period == control_rate.CONTROL_PERIOD
     assert g.omega == pytest.approx(balance.BANDWIDTH * 2 * np.pi / 0.4)
     assert g.kp == pytest.approx(g.omega**2) and g.kd == pytest.approx(2 * g.omega)
     with pytest.raises(InvalidParameterError, match="capture"):
@@ -137,7 +137,7 @@ def test_a_push_is_recovered_with_feedback_and_not_without(trot):
         b = balance.Balance(sim, motion, analysis.forces, analysis.tau_motor)
         traj = stepping.run(sim, ctrl.copy(), qpos0, qvel0, float(motion.q[:, 2].mean()),
                             b.correction if closed else None,
-                            round(balance.CONTROL_PERIOD / dt))
+                            round(control_rate.CONTROL_PERIOD / dt))
         assert traj.verdict == "ran"
         ends[closed] = traj.qpos[-1, :2] - motion.q[0, :2]
     planned = 4 * motion.distance
@@ -351,7 +351,7 @@ def test_a_position_servo_is_asked_for_the_plans_torque_at_every_step(tmp_path, 
         np.testing.assert_array_equal(controls(sim.servo, ref, sim.kp, sim.kd), ref.q)
         traj = simulate_run("baseline", sim, motion, analysis, settings, feedback=True).trajectory
         ref = reference(motion, analysis.tau_motor, traj.t)
-        every = round(balance.CONTROL_PERIOD / sim.timestep)
+        every = round(control_rate.CONTROL_PERIOD / sim.timestep)
         n = traj.n // every * every
         held = (traj.controls - ref.q - ref.tau / sim.kp)[:n].reshape(-1, every, sim.robot.nj)
         np.testing.assert_allclose(held, np.repeat(held[:, :1], every, axis=1), rtol=0,
@@ -506,7 +506,7 @@ def _pushed(motion, analysis, sim, push: np.ndarray, cycles: int, feedback: bool
     controller = balance.Balance(sim, motion, analysis.forces, analysis.tau_motor)
     traj = stepping.run(sim, ctrl, qpos0, qvel0, float(motion.q[:, 2].mean()),
                         controller.correction if feedback else None,
-                        round(balance.CONTROL_PERIOD / dt))
+                        round(control_rate.CONTROL_PERIOD / dt))
     k = np.floor(traj.t / motion.dt + 1e-9).astype(int)
     planned = motion.q[k % motion.n_samples, :2] + (k // motion.n_samples)[:, None] \
         * controller.offset[:2]
@@ -571,7 +571,7 @@ def _held_loop_radius(r: float, gains: balance.Gains, period: float) -> float:
     """The spectral radius of the error loop ``ë = −r (k_p e + k_d ė)`` with the correction held
     over ``period`` and integrated exactly in between (zero-order hold: ``e ← e + T ė + T²/2 u``,
     ``ė ← ė + T u``; Franklin, Powell & Workman, *Digital Control of Dynamic Systems*, 1998,
-    §4.3) — not the explicit step :func:`balance.control_period` bounds."""
+    §4.3) — not the explicit step :func:`control_rate.control_period` bounds."""
     u = -r * np.array([gains.kp, gains.kd])
     step = np.array([[1.0, period], [0.0, 1.0]]) + np.outer([period**2 / 2, period], u)
     return float(np.max(np.abs(np.linalg.eigvals(step))))
@@ -586,7 +586,7 @@ def test_the_base_answers_a_wrench_r_times_faster_than_the_model_it_is_sized_for
 
     prepared = Scenario.from_tables(BIPED6, {"gait": {"samples": 100}}).prepare()
     robot, q = prepared.robot, prepared.motion.q[0]
-    r = balance.loop_ratio(robot, q)
+    r = control_rate.loop_ratio(robot, q)
     model = robot.model.copy()
     model.gravity.linear[:] = 0.0
     data = model.createData()
@@ -603,7 +603,7 @@ def test_the_base_answers_a_wrench_r_times_faster_than_the_model_it_is_sized_for
     assert r == pytest.approx(5.03, abs=0.01)  # angular (5.02 at the default 1000 samples)
     assert max(seen) <= r * (1 + 1e-9) and max(seen) > 0.9 * r, (seen, r)
     gains = balance.size_gains(robot, prepared.motion)
-    assert gains.period == balance.CONTROL_PERIOD
+    assert gains.period == control_rate.CONTROL_PERIOD
     assert _held_loop_radius(r, gains, gains.period) < 1.0
 
 
@@ -635,11 +635,11 @@ def test_g1_walks_its_zmp_gait_closed_loop_at_its_loops_rate(tmp_path):
                       '[simulate]\ntimestep = 4e-5\ncycles = 3\nevaluate = 1\nforce_samples = 0\n')
     prepared = study.prepared
     robot, motion = prepared.robot, prepared.motion
-    r = balance.loop_ratio(robot, motion.q[0])
+    r = control_rate.loop_ratio(robot, motion.q[0])
     gains = balance.size_gains(robot, motion)
     assert r == pytest.approx(60.7, abs=0.1)
     assert gains.period == pytest.approx(2.08e-3, abs=1e-5)
-    assert _held_loop_radius(r, gains, balance.CONTROL_PERIOD) > 1.0
+    assert _held_loop_radius(r, gains, control_rate.CONTROL_PERIOD) > 1.0
     assert _held_loop_radius(r, gains, gains.period) < 1.0
     settings = study.settings.sized(robot.mass)
     sim = build_model(robot, motion, prepared.motor, servo=settings.servo(),

@@ -103,26 +103,9 @@ the sag").
 
 **What is measured.** The base's pose and velocity and the feet's positions are MuJoCo's ground
 truth (``qpos``, ``qvel``, the foot sites): a perfect state estimator, stated in
-``docs/simulate.md``. The controller runs every :data:`CONTROL_PERIOD` (100 Hz: the rate of a
-Dynamixel bus's position commands to 18 servos, and within the 30–500 Hz of the MIT Cheetahs'
-MPC and WBIC loops), holding its correction in between; the servos' own loop and the plan's
-references run every simulation step. At 100 Hz the controller costs ≤ 3× the open-loop step
-(``analysis/bench_simulate.py``); 200 Hz walks the same four trots with the same verdicts.
-
-**Its rate** (:func:`control_period`). The correction is held over the period T, so the loop is
-a sampled one, and the base it acts on answers faster than the model the wrench assumes (m and
-the centroidal inertia): over one period the servos' forces hold the joints only through their
-motion, so the base moves with the base block ``B`` of ``M⁻¹`` (the joints free, the plan's
-first sample). Its error then follows ``ë = −r (k_p e + k_d ė)``, r the largest eigenvalue of
-``m B_lin`` and of ``B_ang I_c`` — a held correction is the explicit step of that loop, stable
-while ``r k_p T² + 2 r k_d T < 4`` (the Jury criterion of the step, as the integration's in
-:mod:`hexaleg.simulation.model`). The controller runs every :data:`CONTROL_PERIOD` or, where
-that breaks the criterion, every :data:`LOOP_MARGIN` of the limit (a whole number of steps).
-Unitree G1 (example-robot-data, 33 kg, its 3.8-kg pelvis under a 3-joint waist): r = 60.7 on
-the pelvis' pitch (the registered robots 2.4–5.1, Talos 16.8, every one below the limit at
-100 Hz), the criterion 15.6 at 100 Hz: its stance hip's torque flipped sign at every update,
-±100 N·m by 0.1 s, and it fell within 2.6 s at any timestep; at 2.08 ms it walks
-(``analysis/bench_logs/newcomers_simulate.log``, the G1 block).
+``docs/simulate.md``. The controller runs at the rate :mod:`hexaleg.simulation.control_rate` sets
+(100 Hz, or faster where its sampled loop needs it), holding its correction in between; the
+servos' own loop and the plan's references run every simulation step.
 
 **Gains** (:func:`size_gains`): ``k_p = ω²``, ``k_d = 2 ζ ω`` with ζ = 1 (critically damped) and
 ``ω = BANDWIDTH · 2π / period``: the body's closed loop at the gait's frequency, so an error
@@ -149,15 +132,10 @@ from hexaleg.motion.recorded.base import rotation_from_quaternion
 from hexaleg.motion.trajectory import SEMI_IMPLICIT, Motion
 from hexaleg.robot.model import Robot
 from hexaleg.simulation import foot_placement
+from hexaleg.simulation.control_rate import CONTROL_PERIOD, control_period
 from hexaleg.simulation.distribution import TorqueBounds, distribute, wrench_map
 from hexaleg.simulation.model import SimModel
 
-CONTROL_PERIOD = 1e-2
-"""s: the balance controller's period (100 Hz; module docstring)."""
-LOOP_MARGIN = 0.8
-"""The controller's period is at most this share of its sampled loop's stability limit (module
-docstring, "Its rate"), as the automatic timestep is of the integration's
-(:func:`hexaleg.simulation.timestep.automatic_timestep`)."""
 BANDWIDTH = 1.0
 """The body's closed-loop natural frequency in multiples of the gait's frequency (module
 docstring, "Gains")."""
@@ -186,7 +164,8 @@ class Gains:
         zeta: ζ, its damping ratio, > 0.
         capture: k, s, ≥ 0: the landing point's lead per m/s of the body's velocity error
             beyond :func:`hexaleg.simulation.foot_placement.lead` (0 by default).
-        period: The controller's period, s, > 0.
+        period: The controller's period, s, > 0
+            (:func:`~hexaleg.simulation.control_rate.control_period`).
     """
 
     omega: float
@@ -217,35 +196,6 @@ def size_gains(robot: Robot, motion: Motion) -> Gains:
     and the period :func:`control_period` (module docstring)."""
     omega = BANDWIDTH * 2 * math.pi / motion.period
     return Gains(omega=omega, period=control_period(robot, motion, omega))
-
-
-def loop_ratio(robot: Robot, q: np.ndarray) -> float:
-    """r: how much faster the base answers the controller's wrench than the model it is sized
-    for (module docstring, "Its rate"): the largest eigenvalue of ``m B_lin`` and of
-    ``B_ang I_c``, B the base's block of ``M⁻¹`` at ``q`` (the joints free; Pinocchio's
-    ``computeMinverse``, the base frame) and I_c the centroidal inertia (``ccrba``, turned into
-    the base frame), ≥ 0."""
-    model = robot.model
-    data = model.createData()
-    upper = pin.computeMinverse(model, data, q)
-    minv = np.triu(upper) + np.triu(upper, 1).T  # Pinocchio fills the upper triangle
-    pin.ccrba(model, data, q, np.zeros(model.nv))
-    rot = rotation_from_quaternion(q[None, 3:7])[0]
-    inertia = rot.T @ np.asarray(data.Ig.inertia) @ rot
-    linear = np.linalg.eigvals(minv[:3, :3] * robot.mass).real
-    angular = np.linalg.eigvals(minv[3:6, 3:6] @ inertia).real
-    return float(max(linear.max(), angular.max()))
-
-
-def control_period(robot: Robot, motion: Motion, omega: float, zeta: float = 1.0) -> float:
-    """The balance controller's period, s: :data:`CONTROL_PERIOD`, or :data:`LOOP_MARGIN` of the
-    sampled loop's limit where that is shorter — the T with ``r k_p T² + 2 r k_d T = 4``,
-    k_p = ω², k_d = 2 ζ ω and r :func:`loop_ratio` at the plan's first sample (module
-    docstring, "Its rate")."""
-    r = loop_ratio(robot, motion.q[0])
-    a, b = r * 2 * zeta * omega, r * omega**2
-    limit = (-2 * a + math.sqrt(4 * a * a + 16 * b)) / (2 * b)
-    return min(CONTROL_PERIOD, LOOP_MARGIN * limit)
 
 
 def needed(motion: Motion) -> bool:

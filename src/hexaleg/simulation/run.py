@@ -323,7 +323,7 @@ def simulate_run(name: str, sim: SimModel, motion: Motion, analysis: Analysis,
         analysis: Its analysis with the same springs (feedforward torques, predicted forces).
         settings: The settings.
         feedback: Close the loop on the body (:class:`~hexaleg.simulation.balance.Balance`,
-            every :func:`~hexaleg.simulation.balance.control_period`).
+            every :func:`~hexaleg.simulation.control_rate.control_period`).
         stop: Set from another thread, the stepping ends at its next chunk
             (:class:`~hexaleg.simulation.stepping.Stopped`).
     """
