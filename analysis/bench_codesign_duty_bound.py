@@ -16,35 +16,21 @@ chosen gait with its springs simulated under each servo, closed loop. ``--chosen
 gait and springs as a pickle that analysis/bench_optimal_rows.py and bench_optimal_duty.py read.
 
 ``--body-high F`` widens the search box's body height from 1.3 × the default gait's to F × it
-(a patch of :func:`~hexaleg.design.codesign.gait_search.default_space` in this process: the
-command has no option for it): the optimal motion's multi-start chose a body height above 1.3 ×
-(docs/optimal.md, "Starts of the optimal motion"), so the parametric family with that box
-widened is the fair baseline there (log: analysis/bench_logs/bench_codesign_body_bound.log).
+(``[codesign] body_high``, ``--body-high``): the optimal motion's multi-start chose a body
+height above 1.3 × (docs/optimal.md, "Starts of the optimal motion"), so the parametric family
+with that box widened is the fair baseline there (log:
+analysis/bench_logs/bench_codesign_body_bound.log).
 """
 
 from __future__ import annotations
 
 import argparse
-import functools
 import os
 import pickle
 import time
 
 import hexaleg
-from hexaleg.design.codesign import build
-from hexaleg.design.codesign.gait_search import Space, default_space
 from hexaleg.design.codesign.servo import simulated_run
-
-
-def widened(body_high: float, gait: hexaleg.GaitParams, min_step: float,
-            *args: object, **kwargs: object) -> Space:
-    """:func:`default_space` with the body height's top at ``body_high`` × the default gait's
-    (its own: 1.3 ×)."""
-    space = default_space(gait, min_step, *args, **kwargs)  # type: ignore[arg-type]
-    bounds = dict(space.bounds)
-    assert gait.body_height is not None
-    bounds["body_height"] = (bounds["body_height"][0], body_high * gait.body_height)
-    return Space(bounds)
 
 
 def main() -> None:
@@ -55,10 +41,8 @@ def main() -> None:
     parser.add_argument("--chosen", help="write the chosen gait and springs to this pickle")
     args = parser.parse_args()
     t0 = time.perf_counter()
-    if args.body_high != 1.3:
-        build.default_space = functools.partial(widened, args.body_high)  # type: ignore
     para = hexaleg.codesign("hexaleg", 0.06, rules=False, simulate=False, curve=False,
-                            duty_high=args.duty_high,
+                            duty_high=args.duty_high, body_high=args.body_high,
                             progress=lambda line: print(line, flush=True))
     chosen, springs = para.chosen, para.springs
     rows = [(r.label, r.per_metre) for r in para.rows]
@@ -66,7 +50,7 @@ def main() -> None:
           + " J/m", flush=True)
     print(f"chosen gait: duty factor {chosen.duty_factor:.4g}, period {chosen.period:.4g} s, "
           f"step height {chosen.step_height:.4g} m, body height {chosen.body_height:.4g} m "
-          f"(box top {args.body_high * para.default.body_height:.4g} m)", flush=True)
+          f"(box top {para.body_high * para.default.body_height:.4g} m)", flush=True)
     if args.chosen:
         with open(args.chosen + ".part", "wb") as f:
             pickle.dump({"chosen": chosen, "springs": springs, "per_metre": rows[3][1],

@@ -102,6 +102,24 @@ def test_the_duty_factor_bound_is_an_option_and_a_key(tmp_path, capsys):
     assert "duty_high" in err and "0.97" in err and "[0.55, 0.95]" in err
 
 
+def test_the_body_height_bound_is_an_option_and_a_key(tmp_path, capsys):
+    """``--body-high`` and ``[codesign] body_high`` are one setting (the command line wins);
+    out of range it is one line naming the value and the range."""
+    assert build_parser().parse_args(["codesign"]).body_high is None  # the config's, or 1.3
+    assert build_parser().parse_args(["codesign", "--body-high", "1.5"]).body_high == 1.5
+    config = tmp_path / "c.toml"
+    config.write_text("[codesign]\nbody_high = 1.5\n")
+    assert settings(config)["body_high"] == 1.5
+    config.write_text('[codesign]\nbody_high = "high"\n')
+    with pytest.raises(ConfigError, match="body_high"):
+        settings(config)
+    config.write_text("[codesign]\nbody_high = 1.5\n")
+    assert main(["codesign", "--config", str(config), "--body-high", "2.5",
+                 "--out", str(tmp_path / "o")]) == 2  # the command line's value wins
+    err = capsys.readouterr().err
+    assert "body_high" in err and "2.5" in err and "[1, 2]" in err
+
+
 def test_config_table_is_checked(tmp_path):
     bad = tmp_path / "bad.toml"
     bad.write_text("[codesign]\nspeeed = 0.1\n")
@@ -167,10 +185,14 @@ def test_runs_and_writes(tmp_path, capsys):
     assert data["speed"] == {"value": 0.06, "unit": "m/s"}
     assert data["search"]["codesign"]["evaluations"] <= 10
     assert data["settings"]["duty_high"] == {"value": 0.8, "unit": "1"}  # the default bound
-    assert "Duty factor searched up to 0.8 " in (out / "codesign.html").read_text()
+    assert data["settings"]["body_high"] == {"value": 1.3, "unit": "1"}  # the default box
+    page = (out / "codesign.html").read_text()
+    assert "Duty factor searched up to 0.8 " in page
+    assert "body height up to 1.3 × the default gait's" in page
     assert data["full_rules"] is None and "inner program" in data["recommended"]["source"]
     printed = capsys.readouterr().out
     assert "J/m" in printed and "search: duty factor ≤ 0.8 ([codesign] duty_high)" in printed
+    assert "body height ≤ 1.3 × the default gait's ([codesign] body_high)" in printed
 
 
 def test_bad_speed_is_one_line(capsys):

@@ -139,3 +139,33 @@ def test_the_duty_factor_bound_is_the_search_box_s(monkeypatch):
     with pytest.raises(InvalidParameterError, match=r"duty_high.*\[0\.8833.*, 0\.95\]"):
         codesign(speed=0.06, pattern="wave", duty_high=0.85)
     assert len(seen) == count  # refused before the search
+
+
+def test_the_body_height_bound_is_the_search_box_s(monkeypatch):
+    """``body_high`` is the searches' highest body height, × the default gait's: the box the
+    search gets reaches it (1.3 × by default), its low end stays 0.7 ×; a value outside [1, 2]
+    is refused naming it and that range, before any evaluation. Catches a box whose top stays
+    1.3 × whatever is asked (the option ignored), or one scaled by the wrong height."""
+    from hexaleg.design.codesign import build
+
+    seen = []
+
+    def stop(_evaluate, base, _speed, space, **_):
+        seen.append((space.bounds["body_height"], base.body_height))
+        raise InvalidParameterError("search", "stopped here", "the test's stop")
+
+    monkeypatch.setattr(build, "search", stop)
+    for kwargs, high in (({}, 1.3), ({"body_high": 1.5}, 1.5), ({"body_high": 1}, 1.0)):
+        with pytest.raises(InvalidParameterError, match="stopped here"):
+            codesign(speed=0.06, curve=False, simulate=False, rules=False, **kwargs)
+        (low, top), body = seen[-1]
+        assert (low, top) == (pytest.approx(0.7 * body), pytest.approx(high * body))
+    assert seen[0][1] == pytest.approx(0.0913, abs=1e-4)  # the default gait's body height
+    count = len(seen)
+    for bad in (2.01, 0.99, float("inf")):
+        with pytest.raises(InvalidParameterError,
+                           match=r"\[codesign\] body_high.*\[1, 2\]"):
+            codesign(speed=0.06, curve=False, simulate=False, rules=False, body_high=bad)
+    with pytest.raises(InvalidParameterError, match=r"body_high.*'1\.5'.*number"):
+        codesign(speed=0.06, body_high="1.5")  # type: ignore[arg-type]
+    assert len(seen) == count  # refused before the search

@@ -69,10 +69,34 @@ def test_a_timing_searched_past_the_duty_bound_is_said():
     def result(duty: float | None, bound: float) -> SimpleNamespace:
         timing = None if duty is None else SimpleNamespace(
             chosen=SimpleNamespace(params=SimpleNamespace(duty_factor=duty)))
-        return SimpleNamespace(optimal=SimpleNamespace(timing=timing), duty_high=bound)
+        return SimpleNamespace(optimal=SimpleNamespace(timing=timing, starts=None),
+                               duty_high=bound)
 
     said = CodesignResult.bound_lines(result(0.85, 0.8))  # type: ignore[arg-type]
     assert len(said) == 1 and "duty factor 0.85" in said[0] and "bound (0.8)" in said[0]
     assert "--duty-high 0.85" in said[0]
     for duty, bound in ((0.85, 0.9), (0.8, 0.8), (None, 0.8)):
         assert CodesignResult.bound_lines(result(duty, bound)) == []  # type: ignore[arg-type]
+
+
+def test_a_start_above_the_body_box_is_said():
+    """The optimal rows' start chosen with its body above the parametric search's box
+    (``body_high`` × the default gait's) is said, with the ``--body-high`` that holds it
+    (rounded up: 1.3 × 1.05 = 1.365 needs 1.37, not 1.36); within the box, or with the starts
+    not searched, nothing is said. Catches a start compared with the box in metres against a
+    factor, or a suggested bound rounded below the start."""
+    from types import SimpleNamespace
+
+    from hexaleg.design.codesign.result import CodesignResult
+
+    def result(body: float | None, box: float) -> SimpleNamespace:
+        starts = None if body is None else SimpleNamespace(
+            chosen=SimpleNamespace(params=SimpleNamespace(body_height=body)))
+        return SimpleNamespace(optimal=SimpleNamespace(timing=None, starts=starts),
+                               body_high=box, default=SimpleNamespace(body_height=0.0913))
+
+    said = CodesignResult.bound_lines(result(0.0913 * 1.3 * 1.05, 1.3))  # type: ignore[arg-type]
+    assert len(said) == 1 and "1.365 × the default gait's" in said[0]
+    assert "box (1.3 ×)" in said[0] and "--body-high 1.37 " in said[0]
+    for body, box in ((0.0913 * 1.365, 1.5), (0.0913 * 1.3, 1.3), (None, 1.3)):
+        assert CodesignResult.bound_lines(result(body, box)) == []  # type: ignore[arg-type]

@@ -3,14 +3,14 @@
 
 ``--config F`` reads a ``[codesign]`` table: ``speed``, ``pattern``, ``family``, ``samples``,
 ``final_samples``, ``max_evaluations``, ``restarts``, ``grouping``, ``rules``, ``curve``,
-``simulate``, ``controller``, ``motion``, ``feedback``, ``timing``, ``starts``, ``duty_high``, a
-``[codesign.constraints]``
+``simulate``, ``controller``, ``motion``, ``feedback``, ``timing``, ``starts``, ``duty_high``,
+``body_high``, a ``[codesign.constraints]``
 table of :class:`~hexaleg.design.codesign.gait_evaluation.Constraints` and a
 ``[codesign.design]`` table of
 the full spring rules' ``[design]`` keys
 (:func:`~hexaleg.design.codesign.full_rules.rule_params`); the command line's ``--speed``,
 ``--pattern``, ``--controller``, ``--motion``, ``--feedback``, ``--timing``, ``--starts``,
-``--duty-high`` and ``--no-rules`` win over the file.
+``--duty-high``, ``--body-high`` and ``--no-rules`` win over the file.
 ``--motion optimal`` adds the optimal motion's rows
 (:mod:`hexaleg.design.codesign.optimal_rows`) and writes each optimal motion as a motion log
 (``optimal_no_springs.csv``, ``optimal_springs.csv``) that every command's ``--motion`` reads.
@@ -63,6 +63,9 @@ def add(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--duty-high", dest="duty_high", type=float,
                    help="the searches' highest duty factor, in [the default gait's + 0.05, 0.95] "
                         "(default 0.8, or the config's)")
+    p.add_argument("--body-high", dest="body_high", type=float,
+                   help="the searches' highest body height, × the default gait's, in [1, 2] "
+                        "(default 1.3, or the config's)")
     p.add_argument("--no-rules", dest="rules", action="store_false", default=None,
                    help="leave out hexaleg design's full spring rules (tolerance, envelope, "
                         "fatigue, arbor, parsimony) on the chosen gait, about a minute: the "
@@ -96,7 +99,7 @@ def run(args: argparse.Namespace) -> int:
     kwargs = codesign_settings(scenario.table("codesign"), f"{scenario.where} [codesign]",
                                scenario)
     for key in ("speed", "pattern", "controller", "motion", "feedback", "timing", "starts",
-                "duty_high"):
+                "duty_high", "body_high"):
         if getattr(args, key) is not None:
             kwargs[key] = getattr(args, key)
     if args.rules is not None:

@@ -125,14 +125,14 @@ class Space:
 
 
 def default_space(gait: GaitParams, min_step: float, free: Sequence[str] = PARAMETERS,
-                  duty_high: float = 0.8) -> Space:
-    """The default box about a robot's gait ``gait`` (its resolved values): body height and
-    foot radius ×[0.7, 1.3], step height [``min_step``, 1.5 × default], duty factor [the
-    pattern's β₀, max(β₀ + 0.05, ``duty_high``)] (β₀ is the least that keeps the pattern's
-    support: 0.5 for a tripod or trot, 0.75 for a crawl), period ×[0.5, 2]."""
+                  duty_high: float = 0.8, body_high: float = 1.3) -> Space:
+    """The default box about a robot's gait ``gait`` (its resolved values): body height
+    ×[0.7, ``body_high``], foot radius ×[0.7, 1.3], step height [``min_step``, 1.5 × default],
+    duty factor [the pattern's β₀, max(β₀ + 0.05, ``duty_high``)] (β₀ is the least that keeps
+    the pattern's support: 0.5 for a tripod or trot, 0.75 for a crawl), period ×[0.5, 2]."""
     assert gait.body_height is not None and gait.foot_radius is not None
     beta = gait.duty_factor
-    box = {"body_height": (0.7 * gait.body_height, 1.3 * gait.body_height),
+    box = {"body_height": (0.7 * gait.body_height, body_high * gait.body_height),
            "foot_radius": (0.7 * gait.foot_radius, 1.3 * gait.foot_radius),
            "step_height": (min_step, max(1.5 * gait.step_height, 2 * min_step)),
            "duty_factor": (beta, max(beta + 0.05, min(duty_high, 0.95))),

@@ -15,6 +15,7 @@ program's optimum (``inner_springs`` holds it either way).
 
 from __future__ import annotations
 
+import math
 from dataclasses import asdict, dataclass
 from typing import Any
 
@@ -101,6 +102,8 @@ class CodesignResult:
         optimal: The optimal motion's rows (:class:`~hexaleg.design.codesign.optimal_rows.
             OptimalRows`), or None when not asked (``motion="gait"``).
         duty_high: The searches' highest duty factor (``[codesign] duty_high``).
+        body_high: The searches' highest body height, × the default gait's (``[codesign]
+            body_high``).
     """
 
     robot: str
@@ -130,6 +133,7 @@ class CodesignResult:
     floors: tuple[Floor, ...] = ()
     optimal: OptimalRows | None = None
     duty_high: float = 0.8
+    body_high: float = 1.3
 
     @property
     def chosen_finalist(self) -> int | None:
@@ -181,6 +185,8 @@ class CodesignResult:
                          f"{self.constraints.friction_margin:g}: [codesign.constraints] "
                          "friction_margin)")
         lines.append(f"  search: duty factor ≤ {self.duty_high:g} ([codesign] duty_high), "
+                     f"body height ≤ {self.body_high:g} × the default gait's ([codesign] "
+                     f"body_high), "
                      f"{self.search.evaluations} evaluations, "
                      f"{self.search.wall:.1f} s, restarts {self.search.spread:.3f} J/m apart; "
                      f"total {self.wall:.1f} s")
@@ -221,18 +227,32 @@ class CodesignResult:
         return out
 
     def bound_lines(self) -> list[str]:
-        """Where the optimal motion's contact timing was searched past the parametric search's
-        duty-factor bound, a line that says so: the co-design row was then searched in a
-        narrower family than the optimal motion's (none otherwise)."""
+        """Where the optimal motion's contact timing or start was searched past the parametric
+        search's box, a line for each that says so: the co-design row was then searched in a
+        narrower family than the optimal motion's (none otherwise). The timing is past it when
+        its duty factor is above ``duty_high``; the start when its body height is above
+        ``body_high`` × the default gait's."""
+        out: list[str] = []
         timing = self.optimal.timing if self.optimal is not None else None
-        if timing is None:
-            return []
-        duty = timing.chosen.params.duty_factor
-        if duty <= self.duty_high:
-            return []
-        return [f"    the timing chosen (duty factor {duty:.3g}) lies above the parametric "
-                f"search's bound ({self.duty_high:g}): the co-design row was searched in a "
-                f"narrower family (--duty-high {duty:.3g} or more compares them at one bound)"]
+        if timing is not None and timing.chosen.params.duty_factor > self.duty_high:
+            duty = timing.chosen.params.duty_factor
+            out.append(f"    the timing chosen (duty factor {duty:.3g}) lies above the parametric "
+                       f"search's bound ({self.duty_high:g}): the co-design row was searched in "
+                       f"a narrower family (--duty-high {duty:.3g} or more compares them at one "
+                       "bound)")
+        starts = self.optimal.starts if self.optimal is not None else None
+        if starts is not None:
+            body = starts.chosen.params.body_height
+            assert body is not None and self.default.body_height is not None
+            ratio = body / self.default.body_height
+            if ratio > self.body_high * (1 + 1e-9):
+                wider = math.ceil(ratio * 100 - 1e-9) / 100
+                out.append(f"    the start chosen (body height {1e3 * body:.1f} mm, {ratio:.4g} × "
+                           f"the default gait's) lies above the parametric search's box "
+                           f"({self.body_high:g} ×): the co-design row was searched in a "
+                           f"narrower family (--body-high {wider:g} or more compares them in "
+                           "one box)")
+        return out
 
     def floor_lines(self) -> list[str]:
         """The springs to buy on other floors: the saving at each μ and the worst."""
@@ -258,7 +278,8 @@ class CodesignResult:
             "speed": q(self.speed, "m/s"), "pattern": self.pattern,
             "settings": {"metric": "electrical", "family": self.family,
                          "samples": self.samples, "final_samples": self.chosen.samples,
-                         "duty_high": q(self.duty_high, "1")},
+                         "duty_high": q(self.duty_high, "1"),
+                         "body_high": q(self.body_high, "1")},
             "constraints": {k: (q(v, _CONSTRAINT_UNITS[k]) if isinstance(v, float) else v)
                             for k, v in asdict(self.constraints).items()},
             "gait": {"parameters": gait_parameters(self.chosen),
