@@ -13,6 +13,7 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
 import pytest
 from hypothesis import settings
 from hypothesis.configuration import set_hypothesis_home_dir
@@ -423,3 +424,14 @@ def independent(robot: hexaleg.Robot, walk200: hexaleg.Motion
     springs = paper_style_springs(robot, walk200, "femur")
     a = analyze(robot, walk200, springs, motor=DEFAULT_MOTOR, objective="joule")
     return walk200, springs, a
+
+
+def held_loop_radius(r: float, gains: Any, period: float) -> float:
+    """The spectral radius of the error loop ``ë = −r (k_p e + k_d ė)`` with the correction held
+    over ``period`` and integrated exactly in between (zero-order hold: ``e ← e + T ė + T²/2 u``,
+    ``ė ← ė + T u``; Franklin, Powell & Workman, *Digital Control of Dynamic Systems*, 1998,
+    §4.3) — not the explicit step :func:`hexaleg.simulation.control_rate.control_period` bounds
+    (``gains``: a :class:`hexaleg.simulation.balance.Gains`)."""
+    u = -r * np.array([gains.kp, gains.kd])
+    step = np.array([[1.0, period], [0.0, 1.0]]) + np.outer([period**2 / 2, period], u)
+    return float(np.max(np.abs(np.linalg.eigvals(step))))

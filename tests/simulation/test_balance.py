@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import held_loop_radius
 
 from hexaleg.errors import InvalidParameterError, UnknownNameError
 from hexaleg.robot.springs import SpringSet
@@ -567,46 +568,6 @@ def test_a_cycle_of_integrated_knots_closes_at_its_own_next_knot(robot):
     assert miss > balance.TURN
 
 
-def _held_loop_radius(r: float, gains: balance.Gains, period: float) -> float:
-    """The spectral radius of the error loop ``ë = −r (k_p e + k_d ė)`` with the correction held
-    over ``period`` and integrated exactly in between (zero-order hold: ``e ← e + T ė + T²/2 u``,
-    ``ė ← ė + T u``; Franklin, Powell & Workman, *Digital Control of Dynamic Systems*, 1998,
-    §4.3) — not the explicit step :func:`control_rate.control_period` bounds."""
-    u = -r * np.array([gains.kp, gains.kd])
-    step = np.array([[1.0, period], [0.0, 1.0]]) + np.outer([period**2 / 2, period], u)
-    return float(np.max(np.abs(np.linalg.eigvals(step))))
-
-
-def test_the_base_answers_a_wrench_r_times_faster_than_the_model_it_is_sized_for():
-    """``loop_ratio``: the base's acceleration under the controller's wrench (Pinocchio's ABA
-    with the joints free, gravity and velocity off: a formulation without ``M⁻¹``) along the
-    slowest model direction is r times what the model (m, I_c) assumes; on the biped on soles
-    the 100-Hz loop is within the limit, so its controller keeps 100 Hz."""
-    import pinocchio as pin
-
-    prepared = Scenario.from_tables(BIPED6, {"gait": {"samples": 100}}).prepare()
-    robot, q = prepared.robot, prepared.motion.q[0]
-    r = control_rate.loop_ratio(robot, q)
-    model = robot.model.copy()
-    model.gravity.linear[:] = 0.0
-    data = model.createData()
-    pin.ccrba(model, data, q, np.zeros(model.nv))
-    rot = pin.Quaternion(q[6], *q[3:6]).toRotationMatrix()
-    inertia = rot.T @ np.asarray(data.Ig.inertia) @ rot
-    seen = []
-    for rows, scale in ((slice(0, 3), robot.mass * np.eye(3)), (slice(3, 6), inertia)):
-        for axis in np.eye(3):
-            tau = np.zeros(model.nv)
-            tau[rows] = scale @ axis  # the model's wrench for a unit acceleration
-            accel = pin.aba(model, data, q, np.zeros(model.nv), tau)[rows]
-            seen.append(accel @ axis)
-    assert r == pytest.approx(5.03, abs=0.01)  # angular (5.02 at the default 1000 samples)
-    assert max(seen) <= r * (1 + 1e-9) and max(seen) > 0.9 * r, (seen, r)
-    gains = balance.size_gains(robot, prepared.motion)
-    assert gains.period == control_rate.CONTROL_PERIOD
-    assert _held_loop_radius(r, gains, gains.period) < 1.0
-
-
 G1 = "".join(
     f'[[robot.legs]]\nname = "{name}"\njoints = ['
     + ", ".join(f'"{side}_{j}_joint"' for j in ("hip_pitch", "hip_roll", "hip_yaw", "knee",
@@ -639,8 +600,8 @@ def test_g1_walks_its_zmp_gait_closed_loop_at_its_loops_rate(tmp_path):
     gains = balance.size_gains(robot, motion)
     assert r == pytest.approx(60.7, abs=0.1)
     assert gains.period == pytest.approx(2.08e-3, abs=1e-5)
-    assert _held_loop_radius(r, gains, control_rate.CONTROL_PERIOD) > 1.0
-    assert _held_loop_radius(r, gains, gains.period) < 1.0
+    assert held_loop_radius(r, gains, control_rate.CONTROL_PERIOD) > 1.0
+    assert held_loop_radius(r, gains, gains.period) < 1.0
     settings = study.settings.sized(robot.mass)
     sim = build_model(robot, motion, prepared.motor, servo=settings.servo(),
                       ground=settings.ground(prepared.contact.mu),
