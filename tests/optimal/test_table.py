@@ -392,3 +392,46 @@ def test_the_body_bound_is_the_kept_log():
     assert f"predicts {rows[1]} J/m" in flat
     assert f"duty factor {chosen[1]}, period {chosen[2]} s, body height {chosen[3]} m" in flat
     assert f"for {sims[1]} (feedforward) and {sims[2]} (position)" in flat
+
+
+def test_the_second_round_is_the_kept_log():
+    """The target's second round prints its kept log: every probe's gait, optimal cycle, solver
+    figure, ratios to the three co-designs, simulated J/m and friction use, and both
+    alternations, row for row in the log's order."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("## The 0.8× target, second round"):doc.index("## How it compares")]
+    log = (LOGS / "bench_optimal_target2.log").read_text(encoding="utf-8")
+    log = log[:log.index("\nwall ")]
+    three = (r"([0-9.]+)× the default co-design, ([0-9.]+)× the widened co-design, "
+             r"([0-9.]+)× the widest co-design")
+    worse = (r"(?:\n    simulated with balance feedback: feedforward ([0-9.]+), position "
+             r"([0-9.]+); under the worse servo ([0-9.]+)× the default co-design, ([0-9.]+)× "
+             r"the widened co-design, ([0-9.]+)× the widest co-design)?")
+    probes = re.findall(r"^  (.+?): its start gait ([0-9.]+) J/m predicted; the optimal cycle "
+                        r"predicted rebuilt ([0-9.]+) J/m \(" + three + r"\); the solver's "
+                        r"([0-9.]+) J/m; friction use ([0-9.]+) of μ.*$" + worse, log,
+                        re.MULTILINE)
+    alternations = re.findall(r"^the alternation from (.+?): ([0-9.]+) → [0-9.]+ → [0-9.]+ → "
+                              r"([0-9.]+) J/m predicted \(the gait kept: False\); "
+                              + three + r"; its solve: friction use "
+                              r"([0-9.]+) of μ.*$" + worse, log, re.MULTILINE)
+    want = []
+    for label, gait, opt, d, w, v, solver, mu, ff, pos, wd, ww, wv in probes:
+        sims = [f"{ff} / {pos}", f"{wd} / {ww} / {wv}"] if ff else ["", ""]
+        want.append([label, gait, opt, solver, d, w, v, *sims, mu])
+    for label, gait, opt, d, w, v, mu, ff, pos, wd, ww, wv in alternations:
+        want.append([f"the alternation from {label}", gait, opt, "—", d, w, v, f"{ff} / {pos}",
+                     f"{wd} / {ww} / {wv}", mu])
+    table = text[text.index("| start (with its co-design's springs) |"):].split(
+        "\n\n")[0].splitlines()[2:]
+    assert len(probes) >= 20 and len(alternations) == 2 and len(table) == len(want)
+    for row, cells in zip(table, want, strict=True):
+        assert [c.strip() for c in row.strip("|").split("|")] == cells, row
+    flat = " ".join(text.split())
+    for quoted in ("0.722× predicted and 0.753× under the worse servo",
+                   "0.932× predicted and 0.951× under the worse servo",
+                   "the best is 0.887× and 0.866×"):
+        assert quoted in flat, quoted
+    v_alt = next(a for a in alternations if a[0] == "V")
+    assert (v_alt[3], v_alt[9]) == ("0.722", "0.753") and (v_alt[5], v_alt[11]) == (
+        "0.932", "0.951")
