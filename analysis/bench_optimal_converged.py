@@ -1,28 +1,30 @@
 """Convergence levers of the optimal motion now that a solve is fast (issue #56's 0.8× target):
 from the co-design's gait G and springs S at duty factor 0.85 with the best start of the starts
 lattice (body height × 1.05), the solve run longer (iterations), on finer knots, from combined
-start moves, from taller bodies, and from the widened co-design's gait; the alternation with
+start moves, from taller bodies, and from the widened co-designs' gaits; the alternation with
 more rounds. Each judged by hexaleg's prediction of its cycle rebuilt in task space (the
-alternation's judge), against both baselines predicted the same way; the alternation's answers
-simulated with balance feedback under both servos (log:
+alternation's judge), against three parametric co-designs predicted the same way; the
+alternation's answers simulated with balance feedback under both servos (log:
 analysis/bench_logs/bench_optimal_converged.log; not an example study: it needs the optimal
 extra and minutes).
 
 Run:  python analysis/bench_optimal_converged.py --chosen cd.pkl --widened cd0915.pkl
+                                                 --widest cd0917.pkl
                                                  [--duty 0.85] [--rounds 6] [--work DIR]
 
 Needs the ``optimal`` extra. G and S from the pickle ``--chosen`` (the co-design searched to duty
 factor 0.8: analysis/bench_optimal_rows.py ``--chosen`` or
 analysis/bench_codesign_duty_bound.py ``--duty-high 0.8 --chosen``); the widened baseline from
-``--widened`` (``bench_codesign_duty_bound.py --duty-high 0.9 --body-high 1.5 --chosen``).
-Both baselines are predicted and simulated here, in the same process. Each row: one box-FDDP
+``--widened`` (``bench_codesign_duty_bound.py --duty-high 0.9 --body-high 1.5 --chosen``) and
+the widest from ``--widest`` (the same with ``--body-high 1.7``).
+The three baselines are predicted and simulated here, in the same process. Each row: one box-FDDP
 solve with S in its dynamics (:class:`~hexaleg.optimal.problem.OptimalParams` as the row says,
 every other setting the default), its rebuilt cycle's prediction with S
 (:func:`~hexaleg.design.codesign.alternation.judged`), the solver's own J/m at its knots, its
 stationarity (threshold 1e-8), largest friction use of the cone, largest stance slip at a knot,
 and the solve's CPU seconds (this process's, one OpenMP thread; a solve read back shows the CPU
 it took when it ran). The row with the least prediction from G on 40 knots, the one on 80, and
-the one from the widened gait are then each alternated (springs designed on its rebuilt cycle,
+the one from each widened gait are then each alternated (springs designed on its rebuilt cycle,
 the cycle re-solved with them) for up to ``--rounds`` rounds with no tolerance (it stops at the
 first round that does not gain), and each answer simulated under both servos with balance
 feedback on. Each solve is kept in ``--work`` as it ends
@@ -57,12 +59,12 @@ Row = tuple[str, hexaleg.GaitParams, hexaleg.SpringSet, OptimalParams]
 """``(label, gait, springs, settings)``: one solve of the table."""
 
 
-def rows(timed: hexaleg.GaitParams, springs: hexaleg.SpringSet, wide: hexaleg.GaitParams,
-         wide_springs: hexaleg.SpringSet) -> list[Row]:
+def rows(timed: hexaleg.GaitParams, springs: hexaleg.SpringSet,
+         wider: dict[str, dict[str, Any]]) -> list[Row]:
     """The levers: the best start at the command's settings first (the reference), each lever
-    moved alone from it, the body height's trend on 40 and 80 knots, then the widened
-    co-design's gait ``wide`` with its springs as the start (the optimal control's own gain
-    over the parametric family searched as widely)."""
+    moved alone from it, the body height's trend on 40 and 80 knots, then each widened
+    co-design's gait (``wider``: name → its pickle) with its springs as the start (the optimal
+    control's own gain over the parametric family searched as widely)."""
     assert timed.body_height is not None
 
     def body(f: float) -> hexaleg.GaitParams:
@@ -91,9 +93,8 @@ def rows(timed: hexaleg.GaitParams, springs: hexaleg.SpringSet, wide: hexaleg.Ga
         ("body × 1.20, 80 knots, 100 iterations", body(1.20), springs, k80),
         ("body × 1.25, 40 knots, 100 iterations", body(1.25), springs, d),
         ("body × 1.30, 40 knots, 100 iterations", body(1.30), springs, d),
-        ("widened gait, its springs, 40 knots", wide, wide_springs, d),
-        ("widened gait, its springs, 80 knots", wide, wide_springs, k80),
-    ]
+    ] + [(f"{name} gait, its springs, {k.nodes} knots", w["chosen"], w["springs"], k)
+         for name, w in wider.items() for k in (d, k80)]
 
 
 def simulated(robot: Any, motion: Any, motor: Any, springs: Any, contact: Any
@@ -116,6 +117,8 @@ def shown(sims: dict[str, float | None]) -> str:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--chosen", required=True, help="pickle of G and S (duty ≤ 0.8)")
+    parser.add_argument("--widest", required=True,
+                        help="pickle of the co-design with duty ≤ 0.9, body ≤ 1.7 × default")
     parser.add_argument("--widened", required=True,
                         help="pickle of the co-design with duty ≤ 0.9, body ≤ 1.5 × default")
     parser.add_argument("--duty", type=float, default=0.85, help="the timing's duty factor")
@@ -126,19 +129,21 @@ def main() -> None:
     t0, c0 = time.perf_counter(), os.times()
     with open(args.chosen, "rb") as f:
         saved = pickle.load(f)
-    with open(args.widened, "rb") as f:
-        wide = pickle.load(f)
+    wider = {}
+    for name, path in (("widened", args.widened), ("widest", args.widest)):
+        with open(path, "rb") as f:
+            wider[name] = pickle.load(f)
     run = hexaleg.Scenario.load("hexaleg")
     robot, motor, contact = run.model, run.actuator, run.contact
     g, s = saved["chosen"], saved["springs"]
-    stages = StageFiles(args.work, f"{args.chosen} {args.widened} {args.duty!r}")
+    stages = StageFiles(args.work, f"{args.chosen} {args.widened} {args.widest} {args.duty!r}")
     keep = KeptSolves(stages, robot, lambda line: print(f"  {line}", flush=True))
 
     def out(line: str) -> None:
         print(line, flush=True)
 
     base: dict[str, tuple[float, dict[str, float | None]]] = {}
-    for name, data in (("default", saved), ("widened", wide)):
+    for name, data in (("default", saved), *wider.items()):
         motion = hexaleg.gait(robot, data["chosen"])
         value, _ = predicted_per_metre(robot, motion, motor, data["springs"], contact)
         assert value is not None
@@ -148,7 +153,6 @@ def main() -> None:
             f"{p.body_height:.4g} m: {value:.3f} J/m predicted (the co-design's own figure "
             f"{data['per_metre']:.3f}), simulated with balance feedback "
             f"{shown(base[name][1])}")
-    (b0, s0), (b1, s1) = base["default"], base["widened"]
 
     timed = dataclasses.replace(g, duty_factor=args.duty)
     out(f"G at duty factor {args.duty} with S: "
@@ -158,10 +162,11 @@ def main() -> None:
     from hexaleg.optimal.solve import solve
 
     out(f"{'row (G at duty ' + str(args.duty) + ', with S)':42s} {'rebuilt':>8s} "
-        f"{'× 9.99':>7s} {'× wide':>7s} {'solver':>7s} {'stationarity':>12s} {'its':>5s} "
-        f"{'friction':>8s} {'slip mm/s':>9s} {'CPU s':>6s}")
+        + "".join(f"{'× ' + n:>10s}" for n in base)
+        + f" {'solver':>7s} {'stationarity':>12s} {'its':>5s} {'friction':>8s} "
+        f"{'slip mm/s':>9s} {'CPU s':>6s}")
     found: list[tuple[Row, Any, float]] = []
-    for row in rows(timed, s, wide["chosen"], wide["springs"]):
+    for row in rows(timed, s, wider):
         label, gp, springs, settings = row
         try:
             motion = hexaleg.gait(robot, gp)
@@ -178,17 +183,18 @@ def main() -> None:
         value, why = judged(robot, result, motion, motor, springs, contact)
         if value is not None:
             found.append((row, result, value))
-        ratio = ("—", "—") if value is None else (f"{value / b0:.3f}", f"{value / b1:.3f}")
-        out(f"{label:42s} {'—' if value is None else f'{value:8.3f}'} {ratio[0]:>7s} "
-            f"{ratio[1]:>7s} {result.energy_per_metre:7.3f} {result.stationarity:12.2g} "
+        ratio = "".join(f"{'—' if value is None else f'{value / b:.3f}':>10s}"
+                        for b, _ in base.values())
+        out(f"{label:42s} {'—' if value is None else f'{value:8.3f}'}{ratio} "
+            f"{result.energy_per_metre:7.3f} {result.stationarity:12.2g} "
             f"{result.iterations:5d} {result.friction_use:8.3f} {1e3 * result.slip:9.1f} "
             f"{cpu:6.1f}" + (f"  ({why})" if why else ""))
-    groups = (("from G, 40 knots", lambda r: r[0].startswith("body") and r[3].nodes == 40),
-              ("from G, 80 knots", lambda r: r[0].startswith("body") and r[3].nodes == 80),
-              ("from the widened gait", lambda r: r[0].startswith("widened")))
-    for name, member in groups:
+    groups = [("from G, 40 knots", "body", 40), ("from G, 80 knots", "body", 80),
+              *((f"from the {n} gait", n, 0) for n in wider)]  # 0: any knots
+    for name, first, nodes in groups:
         (label, gp, springs, settings), result, _ = min(
-            (f for f in found if member(f[0])), key=lambda f: f[2])
+            (f for f in found if f[0][0].startswith(first) and nodes in (0, f[0][3].nodes)),
+            key=lambda f: f[2])
         out(f"alternation from the best row {name}: {label}")
         c = time.process_time()
 
@@ -211,11 +217,10 @@ def main() -> None:
         value = alt.predicted
         assert value is not None
         out(f"the answer simulated with balance feedback: {shown(sims)}")
-        out(f"against the default co-design ({b0:.3f} predicted, worse servo {worse(s0):.2f}): "
-            f"predicted {value / b0:.3f}× (target ≤ 0.8), worse servo "
-            f"{worse(sims) / worse(s0):.3f}× (target ≤ 0.85)")
-        out(f"against the widened co-design ({b1:.3f} predicted, worse servo {worse(s1):.2f}): "
-            f"predicted {value / b1:.3f}×, worse servo {worse(sims) / worse(s1):.3f}×")
+        for n, (b, sb) in base.items():
+            out(f"against the {n} co-design ({b:.3f} predicted, worse servo {worse(sb):.2f}): "
+                f"predicted {value / b:.3f}×, worse servo {worse(sims) / worse(sb):.3f}×"
+                + (" (targets ≤ 0.8 and ≤ 0.85)" if n == "default" else ""))
     c1 = os.times()
     cpu = (c1.user - c0.user) + (c1.system - c0.system)
     out(f"wall {time.perf_counter() - t0:.0f} s, CPU {cpu:.0f} s")
