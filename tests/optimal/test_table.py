@@ -435,3 +435,36 @@ def test_the_second_round_is_the_kept_log():
     v_alt = next(a for a in alternations if a[0] == "V")
     assert (v_alt[3], v_alt[9]) == ("0.722", "0.753") and (v_alt[5], v_alt[11]) == (
         "0.932", "0.951")
+
+
+def test_the_converged_probes_are_the_kept_log():
+    """The convergence paragraph quotes bench_optimal_converged.log: iterations and knots from
+    G's taller start, the alternation from G at V's height, its simulation and its ratios."""
+    doc = " ".join(DOC.read_text(encoding="utf-8").split())
+    text = doc[doc.index("**Converged, finer, taller**"):doc.index("The starts lattice is")]
+    log = (LOGS / "bench_optimal_converged.log").read_text(encoding="utf-8")
+
+    def row(label: str) -> list[str]:
+        line = next(x for x in log.splitlines() if f" {label}  " in x)
+        return line.split(label)[1].split()
+
+    first, many = row("body × 1.05, 40 knots, 100 iterations"), row(
+        "body × 1.05, 40 knots, 1000 iterations")
+    assert f"stationarity {many[5]} and move the judged figure from {first[0]} to {many[0]}" \
+        in text
+    assert f"(the solver's own from {first[4]} to {many[4]})" in text
+    assert f"80 knots give {row('body × 1.05, 80 knots, 100 iterations')[0]} and 120 knots " \
+        f"{row('body × 1.05, 120 knots, 100 iterations')[0]}" in text
+    trail = re.search(r"alternation: 7\.898 → [0-9.]+ →.* → ([0-9.]+) J/m predicted rebuilt",
+                      log)
+    sims = re.search(r"simulated with balance feedback: feedforward ([0-9.]+), position "
+                     r"([0-9.]+)", log)
+    default = re.search(r"against the default co-design .*: predicted ([0-9.]+)×, worse servo "
+                        r"([0-9.]+)×", log)
+    widest = re.search(r"against the widest co-design .*: predicted ([0-9.]+)×, worse servo "
+                       r"([0-9.]+)×", log)
+    assert trail and sims and default and widest
+    assert f"reaches {trail[1]} J/m predicted and walks for {sims[1]}" in text
+    assert f"and {sims[2]} (position)" in text
+    assert f"{default[1]}× the default co-design predicted and {default[2]}×" in text
+    assert f"but {widest[1]}× and {widest[2]}× the co-design searched as tall" in text
