@@ -80,7 +80,10 @@ class OptimalParams:
             or leaves it) must stay in reach. 3 mm: without it Solo-12's optimal trot at 0.3 m/s
             (0.875 s, duty factor 0.644, 7.6 mm of base travel a knot) held leg RH 0.5 mm short
             of its reach at its lift-off knot and the rebuild asked 1.1 mm beyond it 2.6 ms
-            later (1.6 mm between knots); 3 mm keeps Solo-12's knees 0.28 rad off straight.
+            later (1.6 mm between knots); 3 mm keeps Solo-12's knees 0.28 rad off straight
+            at the knots, and that cycle's rebuild then bent leg RH's knee to 0.17 rad
+            between them (1.2 mm short of its reach: the margin is used, 2 mm would be
+            marginal).
         periodic_weight: Weight of the terminal periodicity cost.
         iterations: Box-FDDP iterations at most.
         stop: Box-FDDP's stopping threshold ``th_stop`` (:mod:`~hexaleg.optimal.solve`); the
