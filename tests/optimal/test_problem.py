@@ -171,3 +171,59 @@ def test_a_swing_foot_below_the_ground_is_penalised(run, built):
     assert all(f"{leg.name}_clearance" not in built.problem.runningModels[k].differential
                .costs.costs.todict() for leg, down in zip(robot.legs, built.stance[k],
                                                           strict=True) if down)
+
+
+def _hip_to_foot(robot, leg, q):
+    """Distance from the joint before the leg's knee to its foot at ``q``, m."""
+    import pinocchio as pin
+
+    pin.framesForwardKinematics(robot.model, robot.data, q)
+    return float(np.linalg.norm(robot.data.oMf[leg.foot_frame_id].translation
+                                - robot.data.oMi[leg.joint_ids[-2]].translation))
+
+
+@pytest.mark.parametrize("name", ["hexaleg", "solo12"])
+def test_the_knee_bound_holds_the_foot_the_margin_short_of_full_stretch(name):
+    """At the bound the hip-to-foot distance is the leg's reach less the margin, the reach
+    being the largest distance over a sweep of the knee (Solo-12's front and hind knees bend
+    opposite ways: each is bounded on its own side). Catches a bound on the wrong side of the
+    stretched angle, a margin taken as an angle, or a stretched angle that is not the reach's."""
+    from hexaleg.optimal.problem import knee_bounds
+
+    run = hexaleg.Scenario.load(name)
+    robot, q = run.model, run.motion().q[:1]
+    lower, upper = knee_bounds(robot, q, 3e-3)
+    for leg in robot.legs:
+        i = leg.q_index[-1]
+        sweep = np.linspace(-np.pi, np.pi, 20001)
+        reach = max(_hip_to_foot(robot, leg, np.concatenate([q[0, :i], [t], q[0, i + 1:]]))
+                    for t in sweep)
+        bent_up = lower[0, i] > robot.model.lowerPositionLimit[i]
+        bound = lower[0, i] if bent_up else upper[0, i]
+        assert (q[0, i] >= bound) if bent_up else (q[0, i] <= bound)  # the warm start's side
+        at = q[0].copy()
+        at[i] = bound
+        assert _hip_to_foot(robot, leg, at) == pytest.approx(reach - 3e-3, abs=1e-6)
+        assert lower[0, i] == robot.model.lowerPositionLimit[i] or \
+            upper[0, i] == robot.model.upperPositionLimit[i]  # one side bounded
+
+
+def test_a_knot_at_full_stretch_is_penalised():
+    """Solo-12's knee straightened at a knot (its foot at full stretch) is in the limits'
+    barrier; the warm start's knee, well bent, is not. Catches a problem without the margin:
+    the URDF's knee limits (±10 rad) allow a straight knee."""
+    run = hexaleg.Scenario.load("solo12")
+    built = build_problem(run.model, run.motion(), run.actuator, hexaleg.SpringSet(),
+                          OptimalParams(nodes=20))
+    model = built.problem.runningModels[0]
+    data = model.createData()
+
+    def cost(x):
+        model.calc(data, x, np.zeros(model.nu))
+        return data.differential.costs.costs["limits"].cost
+
+    x = built.x_warm[0].copy()
+    assert cost(x) == 0.0
+    for leg in run.model.legs:
+        x[leg.q_index[-1]] = 0.0
+    assert cost(x) > 0.0

@@ -118,3 +118,22 @@ def test_the_cycle_closes_at_the_solvers_last_knot(run, optimal):
     assert np.abs(position - result.x[-1, :3]).max() < 1e-12
     want = pin.Quaternion(result.x[-1, 3:7]).toRotationMatrix()
     assert np.abs(end - want).max() < 1e-12
+
+
+def test_a_cycle_that_cannot_be_rebuilt_is_still_the_solvers_answer(run, monkeypatch):
+    """The rebuild's out-of-reach error does not lose the solve: the result has no task-space
+    cycle and says why (the error's message); the solver's knots are kept. Catches a solve that
+    raises (the command stopped there) or drops the why."""
+    import hexaleg.optimal.solve as solve_module
+    from hexaleg.errors import UnreachableTargetError
+
+    def unreachable(*_args, **_kwargs):
+        raise UnreachableTargetError("leg RH out of reach between knots 26 and 27", leg="RH")
+
+    monkeypatch.setattr(solve_module, "task_space_motion", unreachable)
+    built = build_problem(run.model, run.motion(), run.actuator, hexaleg.SpringSet(),
+                          OptimalParams(nodes=20, iterations=1))
+    result = solve(run.model, built)
+    assert result.task_space is None
+    assert result.unbuilt == "leg RH out of reach between knots 26 and 27"
+    assert result.motion.n_samples == 20 and np.isfinite(result.energy_per_metre)

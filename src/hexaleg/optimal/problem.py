@@ -21,6 +21,9 @@ costs), here with
   ``k_p = 1/dt², k_d = 1/dt`` of the semi-implicit Euler step, :func:`contact_gains`), landing
   there (a cost on the foot's distance to its foothold at its touch-down knot) at rest (a cost
   on its linear velocity there; no impact model);
+* each leg kept ``reach_margin`` short of full stretch at every knot (its last joint, the knee,
+  held off its stretched angle by a barrier on the side the warm start bends it,
+  :func:`knee_bounds`), so the cycle rebuilt in task space between knots stays in reach;
 * each swing foot above the ground at every knot (a barrier on the foot frame's height, as
   Crocoddyl's own bounds on a residual are written: ``ActivationModelQuadraticBarrier`` on a
   ``ResidualModelFrameTranslation``, zero above the ground's height, :func:`ground_heights`);
@@ -70,7 +73,17 @@ class OptimalParams:
             1e8 holds them within 0.002 mm but its Hessian, which switches on where a foot
             leaves the ground, kept a 40-iteration solve of Solo-12's trot on 16 knots from
             closing its dynamics gap (1.6e-4).
-        limit_weight: Weight of the position, speed and friction barriers.
+        limit_weight: Weight of the position, speed, reach and friction barriers.
+        reach_margin: How far short of its full stretch each leg's knee holds the foot at every
+            knot, m (:func:`knee_bounds`): the solver bounds the legs only at its knots, and
+            the cycle rebuilt between them (its base moving on while a foot holds its foothold
+            or leaves it) must stay in reach. 3 mm: without it Solo-12's optimal trot at 0.3 m/s
+            (0.875 s, duty factor 0.644, 7.6 mm of base travel a knot) held leg RH 0.5 mm short
+            of its reach at its lift-off knot and the rebuild asked 1.1 mm beyond it 2.6 ms
+            later (1.6 mm between knots); 3 mm keeps Solo-12's knees 0.28 rad off straight
+            at the knots, and that cycle's rebuild then bent leg RH's knee to 0.17 rad
+            between them (1.2 mm short of its reach: the margin is used, 2 mm would be
+            marginal).
         periodic_weight: Weight of the terminal periodicity cost.
         iterations: Box-FDDP iterations at most.
         stop: Box-FDDP's stopping threshold ``th_stop`` (:mod:`~hexaleg.optimal.solve`); the
@@ -88,6 +101,7 @@ class OptimalParams:
     foothold_weight: float = 1e8
     clearance_weight: float = 1e7
     limit_weight: float = 1e3
+    reach_margin: float = 3e-3
     periodic_weight: float = 1e4
     iterations: int = 100
     stop: float = 1e-8
@@ -100,6 +114,7 @@ class OptimalParams:
         for key in ("stop", "smoothing", "mu", "state_weight", "swing_weight", "landing_weight",
                     "foothold_weight", "clearance_weight", "limit_weight", "periodic_weight"):
             positive(f"OptimalParams.{key}", getattr(self, key))
+        real("OptimalParams.reach_margin", self.reach_margin, low=0.0)
 
 
 @dataclass
@@ -217,6 +232,67 @@ def contact_gains(dt: float) -> np.ndarray:
     return np.array([1.0 / dt**2, 1.0 / dt])
 
 
+def knee_bounds(robot: Robot, qs: np.ndarray, margin: float) -> tuple[np.ndarray, np.ndarray]:
+    """Bounds on the configuration that keep each foot ``margin`` short of its leg's full
+    stretch, (N, nq) lower and upper (the model's position limits, a knee's narrowed).
+
+    A leg's knee is its last joint, revolute about the unit axis ``a`` through its origin ``o``.
+    The distance ``d`` from the joint before it (origin ``h``, the hip) to the foot ``f`` depends
+    on the knee angle ``θ`` alone (a joint rotates about an axis through its own origin, so the
+    joints before the knee keep every distance to ``h``). With ``u = o − h`` and ``w = f − o``
+    each split into a part along ``a`` (``u_a``, ``w_a``) and across it (lengths ``r_u``,
+    ``r_w``), the law of cosines gives
+
+        d(θ)² = (u_a + w_a)² + r_u² + r_w² + 2 r_u r_w cos(θ − θ*),
+
+    ``θ*`` the angle that lines the across parts up: the leg stretched, ``d`` its reach
+    ``d* = √((u_a + w_a)² + (r_u + r_w)²)`` (Craig, *Introduction to Robotics*, 3rd ed., §4.2,
+    the two-link arm's workspace). ``d ≤ d* − margin`` holds where ``|θ − θ*| ≥ δ``,
+    ``cos δ = ((d* − margin)² − (u_a + w_a)² − r_u² − r_w²) / (2 r_u r_w)``: at each knot the
+    knee is kept at least ``δ`` off ``θ*`` on the side the warm start ``qs`` bends it to (a
+    front and a hind knee may bend opposite ways). A leg whose hip or foot lies on the knee's
+    axis cannot be stretched by it: no bound.
+
+    Args:
+        robot: The robot; every leg's last joint revolute (one coordinate), with a joint
+            before it.
+        qs: The warm start's configurations at the knots, (N, nq).
+        margin: How far short of its reach each foot is held, m, ≥ 0.
+
+    Raises:
+        InvalidParameterError: a leg of one joint, or whose last joint is not revolute.
+    """
+    model, data = robot.model, robot.data
+    lower = np.tile(model.lowerPositionLimit, (len(qs), 1))
+    upper = np.tile(model.upperPositionLimit, (len(qs), 1))
+    pin.computeJointJacobians(model, data, qs[0])
+    pin.framesForwardKinematics(model, data, qs[0])
+    for leg in robot.legs:
+        knee = leg.joint_ids[-1]
+        motion = pin.getJointJacobian(model, data, knee, pin.LOCAL)[:, leg.v_index[-1]]
+        if len(leg.joint_ids) < 2 or model.joints[knee].nq != 1 or \
+                np.linalg.norm(motion[:3]) > 1e-12:
+            raise InvalidParameterError(f"leg {leg.name}'s joints", leg.joint_names,
+                                        "two joints or more, the last revolute")
+        axis = motion[3:] / np.linalg.norm(motion[3:])  # in the knee's frame
+        u = -data.oMi[knee].actInv(data.oMi[leg.joint_ids[-2]].translation)
+        w = data.oMi[knee].actInv(data.oMf[leg.foot_frame_id].translation)
+        u_t, w_t = u - (u @ axis) * axis, w - (w @ axis) * axis
+        r_u, r_w = float(np.linalg.norm(u_t)), float(np.linalg.norm(w_t))
+        if r_u * r_w < 1e-12:
+            continue
+        along = float((u + w) @ axis)
+        i = int(leg.q_index[-1])
+        stretched = float(qs[0, i]) + float(np.arctan2(axis @ np.cross(w_t, u_t), w_t @ u_t))
+        reach = float(np.hypot(along, r_u + r_w))
+        cos_delta = ((reach - margin) ** 2 - along**2 - r_u**2 - r_w**2) / (2.0 * r_u * r_w)
+        delta = float(np.arccos(np.clip(cos_delta, -1.0, 1.0)))
+        off = np.angle(np.exp(1j * (qs[:, i] - stretched)))  # θ − θ*, wrapped to (−π, π]
+        lower[off >= 0.0, i] = np.maximum(lower[off >= 0.0, i], stretched + delta)
+        upper[off < 0.0, i] = np.minimum(upper[off < 0.0, i], stretched - delta)
+    return lower, upper
+
+
 def _barrier(residual: Any, lower: np.ndarray, upper: np.ndarray) -> Any:
     """``residual`` under a quadratic barrier that is zero inside ``[lower, upper]``."""
     bounds = crocoddyl.ActivationBounds(np.asarray(lower, float), np.asarray(upper, float))
@@ -264,10 +340,11 @@ def build_problem(robot: Robot, motion: Motion, actuator: Any, springs: SpringSe
     speed = np.broadcast_to(np.asarray(actuator.no_load_speed, float), (nu,))
     dt = motion.period / n
     gains = contact_gains(dt)
-    lo = np.concatenate([np.full(6, -1e6), robot.model.lowerPositionLimit[7:],
-                         np.full(6, -1e6), -speed])
-    hi = np.concatenate([np.full(6, 1e6), robot.model.upperPositionLimit[7:],
-                         np.full(6, 1e6), speed])
+    bent_lo, bent_hi = knee_bounds(robot, motion.q[samples], params.reach_margin)
+    lo = np.hstack([np.full((n, 6), -1e6), bent_lo[:, 7:], np.full((n, 6), -1e6),
+                    np.tile(-speed, (n, 1))])
+    hi = np.hstack([np.full((n, 6), 1e6), bent_hi[:, 7:], np.full((n, 6), 1e6),
+                    np.tile(speed, (n, 1))])
     zero_x = np.concatenate([pin.neutral(robot.model), np.zeros(robot.model.nv)])
     models, names = [], []
     for k in range(n + 1):
@@ -320,7 +397,7 @@ def build_problem(robot: Robot, motion: Motion, actuator: Any, springs: SpringSe
             costs.addCost("regularisation", crocoddyl.CostModelResidual(
                 state, crocoddyl.ResidualModelState(state, x_warm[k], nu)), params.state_weight)
             costs.addCost("limits", _barrier(crocoddyl.ResidualModelState(state, zero_x, nu),
-                                             lo, hi), params.limit_weight)
+                                             lo[k], hi[k]), params.limit_weight)
         dam = crocoddyl.DifferentialActionModelContactFwdDynamics(state, actuation, contacts,
                                                                   costs, 0.0, True)
         dam.u_lb, dam.u_ub = -limit.copy(), limit.copy()

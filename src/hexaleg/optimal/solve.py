@@ -25,6 +25,7 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.checks import integer
+from hexaleg.errors import InfeasibleForcesError, UnreachableTargetError
 from hexaleg.motion.trajectory import SEMI_IMPLICIT, Motion
 from hexaleg.optimal.backend import crocoddyl_module
 from hexaleg.optimal.periodic import periodicity_gap
@@ -48,7 +49,8 @@ class OptimalResult:
             booked, not a motion to play (between its knots the stance feet are not held).
         task_space: The cycle rebuilt in task space (:mod:`~hexaleg.optimal.task_space`,
             :data:`PER_KNOT` samples a knot): the optimal motion that hexaleg's pipeline predicts,
-            a simulation plays and a motion file holds.
+            a simulation plays and a motion file holds; None where it cannot be rebuilt
+            (:attr:`unbuilt` says why).
         torques: Motor torque of every joint at every knot, (N, nj), N·m.
         spring_torques: Spring torque of every joint at every knot, (N, nj), N·m.
         forces: Each leg's foot force in world axes, (N, n_legs, 3), N (zero in swing).
@@ -69,10 +71,12 @@ class OptimalResult:
         drift: Largest distance of a stance foot from its foothold at a knot, m
             (:attr:`~hexaleg.optimal.problem.OptimalProblem.footholds`).
         seconds: Wall time of the solve, s.
+        unbuilt: Why :attr:`task_space` is None (the rebuild's error: a foot out of reach
+            between knots, a two-point phase it cannot balance), else ``""``.
     """
 
     motion: Motion
-    task_space: Motion
+    task_space: Motion | None
     torques: np.ndarray
     spring_torques: np.ndarray
     forces: np.ndarray
@@ -90,6 +94,7 @@ class OptimalResult:
     slip: float
     drift: float
     seconds: float
+    unbuilt: str = ""
 
 
 PER_KNOT = 8
@@ -181,9 +186,15 @@ def solve(robot: Robot, built: OptimalProblem, *, say: Callable[[str], None] | N
                           "cycle": built.displacement.tolist(),
                           "knots": n, "energy_per_metre": energy / built.distance
                           if built.distance > 0 else float("nan")})
+    try:  # a cycle that is not rebuilt is still the solver's answer: the caller says why
+        rebuilt: Motion | None = task_space_motion(robot, motion, built.footholds,
+                                                   per_knot=PER_KNOT)
+        unbuilt = ""
+    except (UnreachableTargetError, InfeasibleForcesError) as err:
+        rebuilt, unbuilt = None, str(err)
     return OptimalResult(
         motion=motion,
-        task_space=task_space_motion(robot, motion, built.footholds, per_knot=PER_KNOT),
+        task_space=rebuilt, unbuilt=unbuilt,
         torques=u, spring_torques=springs, forces=forces, x=x, energy=energy,
         energy_per_metre=energy / built.distance if built.distance > 0 else float("inf"),
         residual=float(np.abs(residual).max()), iterations=int(solver.iter),

@@ -35,10 +35,10 @@ def test_the_best_energy_never_rises():
 
 class _Solver:
     """Stands in for Crocoddyl: each solve returns the next of ``cycles`` (the solver's own
-    figure and the motion its cycle rebuilds to), so the alternation's verdicts can be checked
-    against hexaleg's predictions of given motions."""
+    figure and the motion its cycle rebuilds to, None: not rebuilt), so the alternation's
+    verdicts can be checked against hexaleg's predictions of given motions."""
 
-    def __init__(self, cycles: list[tuple[float, hexaleg.Motion]]) -> None:
+    def __init__(self, cycles: list[tuple[float, hexaleg.Motion | None]]) -> None:
         self.cycles = list(cycles)
         self.built: list[hexaleg.SpringSet] = []
 
@@ -50,7 +50,8 @@ class _Solver:
         figure, played = self.cycles.pop(0)
         return SimpleNamespace(energy_per_metre=figure, task_space=played, x=np.zeros((3, 43)),
                                torques=np.zeros((2, 18)), spring_torques=np.zeros((2, 18)),
-                               iterations=1, seconds=0.0)
+                               iterations=1, seconds=0.0,
+                               unbuilt="" if played is not None else "leg RH out of reach")
 
 
 @pytest.fixture
@@ -113,6 +114,27 @@ def test_it_never_ends_worse_than_the_gait_it_starts_from(robot, motions, solver
     assert result.kept_gait and result.motion is walk and result.springs is springs
     assert result.predicted == result.baseline == result.energies[-1]
     assert "the gait and its springs kept" in lines[-1]
+
+
+def test_a_cycle_not_rebuilt_leaves_the_gait_and_its_springs(robot, motions, solver):
+    """A start whose cycle cannot be rebuilt in task space has no prediction (its why says
+    not rebuilt), no springs are designed on it, and the answer is the gait with the starting
+    springs: the command goes on. Catches an alternation that designs on a missing cycle
+    (AttributeError) or answers with a motion it cannot play."""
+    from hexaleg.design.codesign.alternation import judged
+
+    walk, _, springs = motions
+    run = hexaleg.Scenario.load("hexaleg")
+    solver([(10.0, None)])
+    lines: list[str] = []
+    result = alternate(robot, walk, run.actuator, run.contact, springs=springs, rounds=2,
+                       say=lines.append)
+    assert result.rounds == () and result.start_predicted is None
+    assert result.kept_gait and result.motion is walk and result.springs is springs
+    assert result.predicted == result.baseline
+    assert any("no springs designed: the cycle is not rebuilt" in line for line in lines)
+    assert judged(robot, result.start, walk, run.actuator, springs, run.contact) == (
+        None, "not rebuilt: leg RH out of reach")
 
 
 def test_a_cycle_short_of_its_stride_is_not_judged(robot, motions):

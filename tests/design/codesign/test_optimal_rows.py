@@ -200,3 +200,60 @@ def test_the_alternation_and_the_bare_cycle_run_from_the_start_chosen(monkeypatc
     plain = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen,
                                      hexaleg.SpringSet(), (28.0, 9.9), params=settings)
     assert "starts" not in seen and plain.starts is None and plain.data()["starts"] is None
+
+
+def test_a_cycle_not_rebuilt_is_a_row_that_says_why(monkeypatch, robot):
+    """The optimal cycle without springs that cannot be rebuilt in task space does not stop the
+    table: its row has no prediction nor simulation and says ``not rebuilt`` and why, the other
+    rows are computed, its motion file is left out and the springs to buy are the last row's.
+    Catches rows that play or predict a missing cycle."""
+    pytest.importorskip("crocoddyl")
+    import dataclasses
+
+    import hexaleg.optimal.problem
+    import hexaleg.optimal.solve
+    from hexaleg.design.codesign import optimal_rows as rows_module
+    from hexaleg.design.codesign.build import default_gait
+
+    run = hexaleg.Scenario.load("hexaleg")
+    chosen = dataclasses.replace(default_gait(robot, "hexaleg", 0.06, None, 100),
+                                 duty_factor=0.8)
+    springs = hexaleg.SpringSet({"femur": hexaleg.LinearSpring(stiffness=0.5)})
+    why = "leg RH at t = 0.57 s: out of reach between knots 26 and 27"
+    played: list[object] = []
+
+    def solve(_robot, _built, **_kwargs):
+        return SimpleNamespace(**{**vars(_solved(15.0)), "unbuilt": why})
+
+    def alternate(_robot, motion, _motor, _contact, **_kwargs):
+        return Alternation(motion, 9.5, _solved(9.0), None, _solved(9.0), springs, (), 0.0,
+                           True)
+
+    def simulated(_robot, motion, *_args):
+        played.append(motion)
+        return 10.0, "walks", True
+
+    monkeypatch.setattr(rows_module, "alternate", alternate)
+    monkeypatch.setattr(hexaleg.optimal.problem, "build_problem", lambda *_args: None)
+    monkeypatch.setattr(hexaleg.optimal.solve, "solve", solve)
+    monkeypatch.setattr(rows_module, "simulated_run", simulated)
+    monkeypatch.setattr(rows_module, "apart",  # the two solves in this process, one by one
+                        lambda jobs, _robot, _keep: [(job[1](), None) for job in jobs])
+    monkeypatch.setattr(rows_module, "gait", lambda _robot, g: SimpleNamespace(params=g))
+    table = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen, springs,
+                                     (28.0, 9.9))
+    bare = table.rows[2]
+    assert bare.predicted is None and bare.unpredicted == f"not rebuilt: {why}"
+    assert set(bare.simulated.values()) == {None} and not bare.walks
+    assert set(bare.verdicts.values()) == {f"not rebuilt: {why}"}
+    assert [r.predicted for r in table.rows] == [28.0, 9.9, None, 9.5]
+    assert len(played) == 3 * 2 and None not in played  # three rows under two servos
+    assert table.proven and list(table.motions) == ["optimal_springs"]
+    lines = table.lines()
+    assert any("optimal motion, no springs" in line and f"— (not rebuilt: {why})" in line
+               for line in lines)
+    assert ("    the optimal cycle with springs was not rebuilt in task space: the last row is "
+            "that gait with its springs") in lines
+    assert lines[-1].endswith("springs to buy for it (linear): femur")
+    assert json.loads(json_text(table.data()))["rows"][2]["unpredicted"].startswith(
+        "not rebuilt")

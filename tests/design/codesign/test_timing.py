@@ -55,6 +55,44 @@ def test_the_least_prediction_is_chosen(monkeypatch, robot):
     assert "→ duty" in found.line() and found.data()["chosen"] == found.best
 
 
+def test_a_timing_whose_gait_cannot_be_made_is_kept_unsolved(monkeypatch, robot):
+    """A timing whose gait raises (Solo-12's co-design trot at period × 1.15: a foot out of reach
+    in swing) is a candidate without a solve nor a prediction, saying why; the others are solved
+    and the least of them chosen. Catches a search that stops the command there."""
+    pytest.importorskip("crocoddyl")
+    import hexaleg.optimal.problem
+    import hexaleg.optimal.solve
+    from hexaleg.design.codesign import timing as timing_module
+    from hexaleg.errors import UnreachableTargetError
+
+    chosen = hexaleg.GaitParams(samples=100)
+    longest = candidates(chosen)[-1]
+    made = timing_module.gait
+
+    def gait(robot, g):
+        if g == longest:
+            raise UnreachableTargetError("leg LF: out of reach in swing", leg="LF")
+        return made(robot, g)
+
+    monkeypatch.setattr(timing_module, "gait", gait)
+    monkeypatch.setattr(hexaleg.optimal.problem, "build_problem",
+                        lambda _robot, motion, *_args: motion)
+    monkeypatch.setattr(hexaleg.optimal.solve, "solve", lambda _robot, motion, **_kwargs:
+                        SimpleNamespace(energy_per_metre=1.0, task_space=motion,
+                                        x=np.zeros((2, 43))))
+    run = hexaleg.Scenario.load("hexaleg")
+    lines: list[str] = []
+    found = search_timing(robot, chosen, run.actuator, hexaleg.SpringSet(), run.contact, None,
+                          say=lines.append)
+    last = found.candidates[-1]
+    assert last.params == longest and last.result is None and last.predicted is None
+    assert last.why == "UnreachableTargetError: leg LF: out of reach in swing"
+    assert all(c.predicted is not None for c in found.candidates[:-1])
+    assert found.best == int(np.argmin([c.predicted for c in found.candidates[:-1]]))
+    assert found.data()["candidates"][-1]["solver"] is None
+    assert lines[-1].endswith("no gait (UnreachableTargetError: leg LF: out of reach in swing)")
+
+
 @pytest.mark.slow  # five tiny box-FDDP solves, twice: ~10 s of CPU
 def test_the_lattice_solved_side_by_side_is_the_lattice_solved_in_turn(monkeypatch, robot):
     """The timing lattice's solves on two forked workers give the serial run's cycles bit for

@@ -87,8 +87,10 @@ def judged(robot: Robot, result: Any, gait: Motion, motor: Any, springs: SpringS
            contact: ContactParams) -> tuple[float | None, str]:
     """The figure an optimal cycle is judged by: :func:`predicted_per_metre` of its cycle
     rebuilt in task space with ``springs``, where it covers ``gait``'s distance within
-    :data:`COVERED`; else None and why."""
+    :data:`COVERED`; else (or where it is not rebuilt) None and why."""
     played = result.task_space
+    if played is None:
+        return None, f"not rebuilt: {result.unbuilt}"
     if abs(played.distance / gait.distance - 1.0) > COVERED:
         return None, (f"its rebuilt cycle covers {played.distance / gait.distance:.1%} of the "
                       f"gait's {gait.distance:.4g} m a cycle (not the required speed)")
@@ -215,8 +217,8 @@ class Alternation:
         gap: The last round's relative gain ``1 − E_new / E_best`` of the predictions (≤
             ``tolerance`` when it stopped by converging; negative for a round that rose; 0
             where the round has no prediction, 1 where only the round has one).
-        kept_gait: Whether no optimal cycle was predicted below :attr:`baseline`: the answer
-            is then the gait with the starting springs.
+        kept_gait: Whether no optimal cycle was predicted below :attr:`baseline`, or none
+            was rebuilt in task space: the answer is then the gait with the starting springs.
     """
 
     gait: Motion
@@ -314,6 +316,9 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
     for k in range(rounds):
         began = time.perf_counter()
         played = best.task_space
+        if played is None:  # the start's cycle: the rounds design springs on a rebuilt one
+            tell(f"round {k + 1}: no springs designed: the cycle is not rebuilt")
+            break
         try:
             design = optimal_springs(prepare(robot, played, motor=actuator, contact=contact),
                                      groups or list(robot.joint_classes), family=family,
@@ -339,7 +344,8 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
             best, current, best_predicted = candidate, design.springs, value
         if gap < tolerance:
             break
-    kept = baseline is not None and not _below(best_predicted, baseline)
+    kept = best.task_space is None or (baseline is not None
+                                       and not _below(best_predicted, baseline))
     if kept:
         tell(f"no optimal cycle predicted below the gait ({_shown(best_predicted)} against "
              f"{_shown(baseline)} J/m): the gait and its springs kept")

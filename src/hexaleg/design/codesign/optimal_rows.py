@@ -34,7 +34,10 @@ energy per metre walked under each controller of the servo, every row with the s
 open loop; ``"on"``: every row closed loop, where a position servo is asked for the plan's
 torque); each row says which ran (``loops``). A row that does not walk under a controller has
 no simulated number there and says why; the springs of row 4 are proven only when it walks
-under every controller.
+under every controller. An optimal cycle that cannot be rebuilt in task space
+(:attr:`~hexaleg.optimal.solve.OptimalResult.unbuilt`) is neither predicted nor played: its row
+says ``not rebuilt`` and why, the other rows are computed, and row 4 is then the co-design's gait
+with its springs (the alternation keeps the gait when its cycle is not rebuilt).
 """
 
 from __future__ import annotations
@@ -160,9 +163,10 @@ class OptimalRows:
     def motions(self) -> dict[str, Motion]:
         """The optimal motions by file stem, ``optimal_no_springs`` and ``optimal_springs``: each
         cycle rebuilt in task space, as the rows play it (the latter the co-design's gait when
-        the alternation kept it)."""
-        return {"optimal_no_springs": self.bare.task_space,
-                "optimal_springs": self.alternation.motion}
+        the alternation kept it; the former left out when it is not rebuilt)."""
+        bare = {} if self.bare.task_space is None else {
+            "optimal_no_springs": self.bare.task_space}
+        return bare | {"optimal_springs": self.alternation.motion}
 
     def data(self) -> dict[str, Any]:
         """codesign.json's ``optimal`` key: the rows, the springs to buy and whether a
@@ -204,6 +208,9 @@ class OptimalRows:
                "J/m predicted, simulated " + ", ".join(controllers)
                + f" (balance feedback {self.feedback})"]
         for r in self.rows:
+            if r.unpredicted and set(r.verdicts.values()) == {r.unpredicted}:
+                out.append(f"    {r.label:46s}       — ({r.unpredicted})")  # not rebuilt
+                continue
             sims = ", ".join((f"{v:.2f}" if v is not None else f"— ({r.verdicts[k]})")
                              + (f" ({r.loops[k]})" if r.loops.get(k) else "")
                              for k, v in r.simulated.items())
@@ -224,8 +231,10 @@ class OptimalRows:
                    f"{b.threshold:.2g}), friction use {b.friction_use:.2f}, alternation "
                    f"{trail} J/m predicted (from the gait's)")
         if self.alternation.kept_gait:
-            out.append("    no optimal cycle was predicted below the co-design's gait: the last "
-                       "row is that gait with its springs")
+            why = ("no optimal cycle was predicted below the co-design's gait"
+                   if self.best.task_space is not None else
+                   "the optimal cycle with springs was not rebuilt in task space")
+            out.append(f"    {why}: the last row is that gait with its springs")
         names = ", ".join(self.springs) or "none"
         out.append(f"    springs to buy for it ({self.family}): {names}" + (
             "" if self.proven else f" — unproven: it does not walk under "
@@ -330,15 +339,21 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
                     groups=groups, rounds=rounds, say=lambda line: tell(f"alternation: {line}"),
                     keep=keep, first=first)
     controllers = controllers_of(servo)
-    cases = ((LABELS[0], predicted[0], gait(robot, default), SpringSet()),
-             (LABELS[1], predicted[1], gait(robot, chosen), springs),
-             (LABELS[2], None, bare.task_space, SpringSet()),
-             (LABELS[3], alt.predicted, alt.motion, alt.springs))
+    unbuilt = "" if bare.task_space is not None else f"not rebuilt: {bare.unbuilt}"
+    cases = ((LABELS[0], predicted[0], gait(robot, default), SpringSet(), ""),
+             (LABELS[1], predicted[1], gait(robot, chosen), springs, ""),
+             (LABELS[2], None, bare.task_space, SpringSet(), unbuilt),
+             (LABELS[3], alt.predicted, alt.motion, alt.springs, ""))
     rows = []
-    for label, value, played, fitted in cases:
+    for label, value, played, fitted, unplayed in cases:
         sims: dict[str, float | None] = {}
         verdicts: dict[str, str] = {}
         loops: dict[str, str] = {}
+        if unplayed:  # the bare cycle not rebuilt: nothing to predict or play
+            rows.append(MotionRow(label, None, dict.fromkeys(controllers), dict.fromkeys(
+                controllers, unplayed), {}, unplayed))
+            tell(f"{label}: {unplayed}")
+            continue
         for k in controllers:
             sims[k], verdicts[k], closed = simulated_run(robot, played, motor, fitted, k,
                                                          contact, feedback)

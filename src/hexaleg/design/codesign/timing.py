@@ -8,7 +8,9 @@ candidates (:func:`candidates`: the gait itself, its duty factor longer by :data
 up to :data:`DUTY_HIGH`, its period scaled by :data:`PERIOD_FACTORS`), each solved with the
 co-design's springs in its dynamics and judged by hexaleg's prediction of its cycle rebuilt in
 task space (:func:`~hexaleg.design.codesign.alternation.judged`: the rows' prediction, where
-the cycle covers its stride; the figure the alternation judges). The least prediction wins; a
+the cycle covers its stride; the figure the alternation judges). A timing whose gait cannot be
+made (a longer period's stride out of the legs' reach) is kept unsolved with its why, as the
+starts keep theirs (:mod:`~hexaleg.design.codesign.starts`). The least prediction wins; a
 tie or no prediction keeps the earlier candidate in the lattice's order, the co-design's own
 timing first. It is an
 enumeration, not a descent: the same inputs give the same candidates and the same choice on any
@@ -31,6 +33,7 @@ from typing import Any
 
 from hexaleg.design.codesign.alternation import PROGRESS, Keep, apart, judged, least
 from hexaleg.dynamics.contact import ContactParams
+from hexaleg.errors import HexalegError
 from hexaleg.motion.legged import gait
 from hexaleg.motion.params import GaitParams
 from hexaleg.quantities import quantity as q
@@ -58,7 +61,8 @@ class Candidate:
     Attributes:
         params: The gait at that timing.
         result: Its optimal cycle with the co-design's springs
-            (:class:`~hexaleg.optimal.solve.OptimalResult`).
+            (:class:`~hexaleg.optimal.solve.OptimalResult`); None where its gait could not be
+            made (:attr:`why`).
         predicted: Its cycle rebuilt in task space predicted with them, J/m; None where the
             analysis has no answer (:attr:`why`).
         why: Why there is no prediction, else ``""``.
@@ -73,7 +77,8 @@ class Candidate:
         """codesign.json's entry."""
         return {"duty_factor": q(self.params.duty_factor, "1"),
                 "period": q(self.params.period, "s"), "predicted": q(self.predicted, "J/m"),
-                "solver": q(self.result.energy_per_metre, "J/m"),
+                "solver": None if self.result is None else q(self.result.energy_per_metre,
+                                                             "J/m"),
                 **({"unpredicted": self.why} if self.why else {})}
 
 
@@ -154,13 +159,29 @@ def search_timing(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringS
         label = f"duty factor {g.duty_factor:.3g}, period {g.period:.4g} s"
         return solve(robot, built, say=lambda line: tell(f"{label}: {line}"), every=PROGRESS)
 
-    def judge(index: int, result: Any) -> tuple[float | None, str]:
-        return judged(robot, result, gait(robot, lattice[index]), motor, springs, contact)
+    motions: dict[int, Any] = {}
+    unmade: dict[int, str] = {}
+    for k, g in enumerate(lattice):
+        try:
+            motions[k] = gait(robot, g)
+        except HexalegError as err:  # a longer stride the legs cannot reach
+            unmade[k] = f"{type(err).__name__}: {err}"
+    run = list(motions)
 
-    done = apart([(("timing", g, springs, params), functools.partial(solved, g))
-                  for g in lattice], robot, keep, judge)
+    def judge(index: int, result: Any) -> tuple[float | None, str]:
+        return judged(robot, result, motions[run[index]], motor, springs, contact)
+
+    done = dict(zip(run, apart([(("timing", lattice[k], springs, params),
+                                 functools.partial(solved, lattice[k])) for k in run],
+                               robot, keep, judge), strict=True))
     tried = []
-    for g, (result, (value, why)) in zip(lattice, done, strict=True):
+    for k, g in enumerate(lattice):
+        if k in unmade:
+            tried.append(Candidate(g, None, None, unmade[k]))
+            tell(f"duty factor {g.duty_factor:.3g}, period {g.period:.4g} s: no gait "
+                 f"({unmade[k]})")
+            continue
+        result, (value, why) = done[k]
         tried.append(Candidate(g, result, value, why))
         tell(f"duty factor {g.duty_factor:.3g}, period {g.period:.4g} s: "
              + (f"{value:.4g} J/m predicted rebuilt" if value is not None else
