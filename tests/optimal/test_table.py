@@ -468,3 +468,20 @@ def test_the_converged_probes_are_the_kept_log():
     assert f"and {sims[2]} (position)" in text
     assert f"{default[1]}× the default co-design predicted and {default[2]}×" in text
     assert f"but {widest[1]}× and {widest[2]}× the co-design searched as tall" in text
+
+
+def test_solo12s_command_tables_are_the_kept_log():
+    """Solo-12's whole command on today's code (the kept log's last two blocks: the timing fixed,
+    then searched): the docs print each table's four rows, a trot that falls short a dash."""
+    lines = (LOGS / "codesign_motion_optimal_solo12.log").read_text(encoding="utf-8").splitlines()
+    heads = [k for k, line in enumerate(lines) if "optimal motion (whole-body" in line]
+    for head, first in zip(heads[-2:], ("Solo-12 row (the command's own table, timing fixed)",
+                                        "Solo-12 row (the command's own table, timing searched)"),
+                           strict=True):
+        logged, documented = _parsed(lines[head + 1:head + 5]), _documented(first)
+        assert len(logged) == len(documented) == 4
+        for a, b in zip(logged, documented, strict=True):
+            assert a == pytest.approx(b, abs=0.005, nan_ok=True), (first, a, b)
+    doc = " ".join(DOC.read_text(encoding="utf-8").split())
+    trail = re.search(r"alternation ((?:[0-9.]+ → )+[0-9.]+) J/m", lines[heads[-1] + 7])
+    assert trail and f"the alternation went {trail[1]} J/m" in doc
