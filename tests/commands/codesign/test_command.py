@@ -86,38 +86,27 @@ def test_starts_are_a_decision_of_the_optimal_rows_only(tmp_path, capsys):
     assert "random" in err and "lattice" in err
 
 
-def test_the_duty_factor_bound_is_an_option_and_a_key(tmp_path, capsys):
-    """``--duty-high`` and ``[codesign] duty_high`` are one setting (the command line wins);
-    out of range it is one line naming the value and the range."""
-    assert build_parser().parse_args(["codesign"]).duty_high is None  # the config's, or 0.8
-    assert build_parser().parse_args(["codesign", "--duty-high", "0.9"]).duty_high == 0.9
+@pytest.mark.parametrize(("key", "good", "bad", "allowed"), [
+    ("duty_high", "0.9", "0.97", "[0.55, 0.95]"),  # default: the config's, or 0.8
+    ("body_high", "1.5", "2.5", "[1, 2]")])  # default: the config's, or 1.3
+def test_a_search_bound_is_an_option_and_a_key(tmp_path, capsys, key, good, bad, allowed):
+    """``--duty-high`` / ``[codesign] duty_high`` and ``--body-high`` / ``[codesign] body_high``
+    are each one setting, the command line winning over the config; out of range it is one line
+    naming the value and the range."""
+    option = "--" + key.replace("_", "-")
+    assert getattr(build_parser().parse_args(["codesign"]), key) is None
+    assert getattr(build_parser().parse_args(["codesign", option, good]), key) == float(good)
     config = tmp_path / "c.toml"
-    config.write_text("[codesign]\nduty_high = 0.9\n")
-    assert settings(config)["duty_high"] == 0.9
-    config.write_text('[codesign]\nduty_high = "high"\n')
-    with pytest.raises(ConfigError, match="duty_high"):
+    config.write_text(f"[codesign]\n{key} = {good}\n")
+    assert settings(config)[key] == float(good)
+    config.write_text(f'[codesign]\n{key} = "high"\n')
+    with pytest.raises(ConfigError, match=key):
         settings(config)
-    assert main(["codesign", "--duty-high", "0.97", "--out", str(tmp_path / "o")]) == 2
-    err = capsys.readouterr().err
-    assert "duty_high" in err and "0.97" in err and "[0.55, 0.95]" in err
-
-
-def test_the_body_height_bound_is_an_option_and_a_key(tmp_path, capsys):
-    """``--body-high`` and ``[codesign] body_high`` are one setting (the command line wins);
-    out of range it is one line naming the value and the range."""
-    assert build_parser().parse_args(["codesign"]).body_high is None  # the config's, or 1.3
-    assert build_parser().parse_args(["codesign", "--body-high", "1.5"]).body_high == 1.5
-    config = tmp_path / "c.toml"
-    config.write_text("[codesign]\nbody_high = 1.5\n")
-    assert settings(config)["body_high"] == 1.5
-    config.write_text('[codesign]\nbody_high = "high"\n')
-    with pytest.raises(ConfigError, match="body_high"):
-        settings(config)
-    config.write_text("[codesign]\nbody_high = 1.5\n")
-    assert main(["codesign", "--config", str(config), "--body-high", "2.5",
+    config.write_text(f"[codesign]\n{key} = {good}\n")
+    assert main(["codesign", "--config", str(config), option, bad,
                  "--out", str(tmp_path / "o")]) == 2  # the command line's value wins
     err = capsys.readouterr().err
-    assert "body_high" in err and "2.5" in err and "[1, 2]" in err
+    assert key in err and bad in err and allowed in err
 
 
 def test_config_table_is_checked(tmp_path):
