@@ -485,3 +485,32 @@ def test_solo12s_command_tables_are_the_kept_log():
     doc = " ".join(DOC.read_text(encoding="utf-8").split())
     trail = re.search(r"alternation ((?:[0-9.]+ → )+[0-9.]+) J/m", lines[heads[-1] + 7])
     assert trail and f"the alternation went {trail[1]} J/m" in doc
+
+
+def test_the_speed_section_is_the_kept_logs():
+    """The Speed section's figures are its logs': each solve's CPU and wall before and now and the
+    timing lattice's wall in turn and side by side (both runs of bench_optimal_speed.log), and
+    each whole command's wall and CPU (user + system) by /usr/bin/time."""
+    doc = " ".join(DOC.read_text(encoding="utf-8").split())
+    text = doc[doc.index("## Speed"):doc.index("## What is left")]
+    log = (LOGS / "bench_optimal_speed.log").read_text(encoding="utf-8")
+    solves = re.findall(r"one solve, (?:before|now): +100 iterations, [0-9.]+ J/m, wall ([0-9.]+) "
+                        r"s, CPU ([0-9.]+) s", log)
+    lattices = re.findall(r"timing lattice on [12] workers?: .* wall ([0-9.]+) s", log)
+    assert len(solves) == len(lattices) == 4
+    (wall_before, cpu_before), (wall_now, cpu_now), (_, cpu_before2), (_, cpu_now2) = solves
+    assert f"took {cpu_before} s of CPU ({float(wall_before):.0f} s wall" in text
+    assert f"it now takes {cpu_now} s ({wall_now} s wall)" in text
+    assert f"{cpu_before2} s against {cpu_now2} s" in text
+    turn, side, turn2, side2 = lattices
+    assert f"{side2} s wall on two workers against {turn2} s in turn" in text
+    assert f"{side} against {turn} s at load 5 to 6.5" in text
+    for name, words in (("codesign_motion_optimal_speed.log", "**4 min 14 s wall and 182 s of"),
+                        ("codesign_motion_optimal_timing_speed.log", "**3 min 33 s and 194 s")):
+        run = (LOGS / name).read_text(encoding="utf-8")
+        user = float(re.search(r"User time \(seconds\): ([0-9.]+)", run)[1])
+        system = float(re.search(r"System time \(seconds\): ([0-9.]+)", run)[1])
+        wall = re.search(r"Elapsed .*: ([0-9]+):([0-9.]+)$", run, re.MULTILINE)
+        minutes, seconds = int(wall[1]), round(float(wall[2]))
+        assert words.startswith(f"**{minutes} min {seconds} s")
+        assert f"{user + system:.0f} s" in words and words in text, name
