@@ -70,6 +70,10 @@ def test_bad_input_is_named(run):
         OptimalParams(nodes=3)
     with pytest.raises(InvalidParameterError, match="friction_use"):
         OptimalParams(friction_use=1.5)
+    with pytest.raises(InvalidParameterError, match="closing"):
+        OptimalParams(closing=-1)
+    with pytest.raises(InvalidParameterError, match="gap"):
+        OptimalParams(gap=0.0)
     motion = run.motion()
     with pytest.raises(InvalidParameterError, match="fixed_base"):
         build_problem(run.model, dataclasses.replace(motion, fixed_base=True), run.actuator,

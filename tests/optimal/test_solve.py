@@ -3,6 +3,8 @@ friction cones, repeats, stops on its stated criterion, and is a Motion the dyna
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -95,8 +97,6 @@ def test_a_gait_parameter_moved_by_1e_9_gives_the_same_cycle(run, optimal):
     """Same answer on any machine (RULES.md): the period moved by 1e-9 s — through the gait's own
     sampling, knots and contact timing — gives the same optimum to the digits the table prints
     (J/m to 4 significant digits; the solver is deterministic, no random start)."""
-    import dataclasses
-
     moved = hexaleg.gait(run.model, dataclasses.replace(run.gait, period=run.gait.period + 1e-9))
     built = build_problem(run.model, moved, run.actuator, hexaleg.SpringSet(),
                           OptimalParams(nodes=20, iterations=200, stop=5e-5))
@@ -132,8 +132,49 @@ def test_a_cycle_that_cannot_be_rebuilt_is_still_the_solvers_answer(run, monkeyp
 
     monkeypatch.setattr(solve_module, "task_space_motion", unreachable)
     built = build_problem(run.model, run.motion(), run.actuator, hexaleg.SpringSet(),
-                          OptimalParams(nodes=20, iterations=1))
+                          OptimalParams(nodes=20, iterations=1, closing=0))
     result = solve(run.model, built)
     assert result.task_space is None
     assert result.unbuilt == "leg RH out of reach between knots 26 and 27"
     assert result.motion.n_samples == 20 and np.isfinite(result.energy_per_metre)
+
+
+def test_the_solve_does_not_end_with_its_dynamics_gap_open(run):
+    """Three iterations leave the hexapod's gap open (1.03, Newton–Euler residual 0.13 N·m):
+    the solve goes on until the gap is under ``OptimalParams.gap`` and the residual with it,
+    its iterations counted and its progress lines numbered on. Catches a solve that stops at
+    ``iterations`` whatever its gap (as ``closing=0`` does, checked here too)."""
+    motion = run.motion()
+    params = OptimalParams(nodes=20, iterations=3)
+    open_ = solve(run.model, build_problem(run.model, motion, run.actuator, hexaleg.SpringSet(),
+                                           dataclasses.replace(params, closing=0)))
+    assert open_.iterations == 3 and open_.dynamic_gap > 0.1 and open_.residual > 1e-2
+    lines: list[str] = []
+    closed = solve(run.model, build_problem(run.model, motion, run.actuator, hexaleg.SpringSet(),
+                                            params), say=lines.append)
+    assert closed.dynamic_gap <= params.gap and closed.residual <= 1e-6
+    assert 3 < closed.iterations <= 3 + params.closing
+    numbers = [int(line.split(":")[0].split()[1]) for line in lines]
+    assert numbers == list(range(closed.iterations))
+
+
+def test_closing_the_gap_takes_the_iterates_of_one_longer_solve(run):
+    """The calls that close the gap go on from the iterate and the regularisation where the
+    last stopped: the states and torques are those of one box-FDDP call of as many iterations,
+    bit for bit. Six iterations end at a regularisation (0.1) above the first call's (0.01).
+    Catches a continuation that restarts the regularisation or the warm start."""
+    from hexaleg.optimal.backend import crocoddyl_module
+
+    motion = run.motion()
+    closed = solve(run.model, build_problem(run.model, motion, run.actuator,
+                                            hexaleg.SpringSet(),
+                                            OptimalParams(nodes=20, iterations=6, gap=1e-300)))
+    built = build_problem(run.model, motion, run.actuator, hexaleg.SpringSet(),
+                          OptimalParams(nodes=20, iterations=closed.iterations))
+    solver = crocoddyl_module().SolverBoxFDDP(built.problem)
+    solver.th_stop = built.params.stop
+    xs = [np.array(x) for x in built.x_warm]
+    solver.solve(xs, list(built.problem.quasiStatic(xs[:-1])), closed.iterations, False)
+    assert closed.iterations > 6 + 1  # more than one call
+    assert np.array_equal(np.array(solver.xs), closed.x)
+    assert np.array_equal(np.array(solver.us), closed.torques)

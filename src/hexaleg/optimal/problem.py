@@ -85,7 +85,16 @@ class OptimalParams:
             between them (1.2 mm short of its reach: the margin is used, 2 mm would be
             marginal).
         periodic_weight: Weight of the terminal periodicity cost.
-        iterations: Box-FDDP iterations at most.
+        iterations: Box-FDDP iterations; the solve ends after them once its dynamics gap is
+            closed (``gap``).
+        gap: The dynamics gap (Crocoddyl's ``ffeas``: the largest defect between a knot's
+            integrated state and the next) the solve closes before it ends: past
+            ``iterations`` it goes on while its gap is larger, ``closing`` iterations at most
+            (:func:`~hexaleg.optimal.solve.solve`). 1e-8: Solo-12's bare trot at 0.3 m/s left
+            a gap of 8.1e-06 after 100 iterations and a Newton–Euler residual of 4.5e-06 N·m,
+            over issue #56's 1e-6; box-FDDP's partial steps shrink the gap about 3 % an
+            iteration there, and 1e-8 took it 220 more (its residual then 2.7e-09 N·m).
+        closing: Iterations the solve may take past ``iterations`` to close its gap (≥ 0).
         stop: Box-FDDP's stopping threshold ``th_stop`` (:mod:`~hexaleg.optimal.solve`); the
             energy of a cycle of this small robot is about a joule, so Crocoddyl's default 5e-5
             stops it early.
@@ -104,15 +113,19 @@ class OptimalParams:
     reach_margin: float = 3e-3
     periodic_weight: float = 1e4
     iterations: int = 100
+    gap: float = 1e-8
+    closing: int = 400
     stop: float = 1e-8
 
     def __post_init__(self) -> None:
         integer("OptimalParams.nodes", self.nodes, low=8)
         integer("OptimalParams.iterations", self.iterations, low=1)
+        integer("OptimalParams.closing", self.closing, low=0)
         real("OptimalParams.friction_use", self.friction_use, low=0.0, high=1.0,
              low_open=True)
-        for key in ("stop", "smoothing", "mu", "state_weight", "swing_weight", "landing_weight",
-                    "foothold_weight", "clearance_weight", "limit_weight", "periodic_weight"):
+        for key in ("stop", "gap", "smoothing", "mu", "state_weight", "swing_weight",
+                    "landing_weight", "foothold_weight", "clearance_weight", "limit_weight",
+                    "periodic_weight"):
             positive(f"OptimalParams.{key}", getattr(self, key))
         real("OptimalParams.reach_margin", self.reach_margin, low=0.0)
 

@@ -9,6 +9,14 @@ improvement's gradient term, ``solver.stop``, met when ≤ ``solver.th_stop``, s
 largest defect between a knot's integration and the next state (``solver.ffeas``, 0 for a
 feasible trajectory), ``periodicity_gap`` :func:`~hexaleg.optimal.periodic.periodicity_gap`.
 
+Box-FDDP closes the dynamics gap only as fast as its line search takes full steps (a step of
+length α leaves ``(1 − α)`` of each gap, Mastalli et al. 2022, §IV); an iterate whose gap is
+still open is not a trajectory of the dynamics, and its Newton–Euler residual shows it. So
+the solve does not end with a gap above ``OptimalParams.gap``: past ``OptimalParams.iterations``
+it goes on, :data:`CLOSING` iterations a call from the iterate and regularisation where it
+stopped (the same iterates as one longer call), until the gap is closed or
+``OptimalParams.closing`` more iterations are spent; ``dynamic_gap`` states where it ended.
+
 The energy is the project's exact model (:meth:`~hexaleg.optimal.energy.JointPower.exact`) over
 the knots' motor torques and joint speeds, left Riemann sum, ``Σ_k dt Σ_j P_j`` — the integral
 the cost's Euler steps take, with the smoothing removed.
@@ -58,7 +66,7 @@ class OptimalResult:
         energy: Electrical energy of the cycle by the exact model, J.
         energy_per_metre: ``energy / distance``, J/m.
         residual: Largest Newton–Euler residual (:mod:`~hexaleg.optimal.residual`), N·m.
-        iterations: Box-FDDP iterations run.
+        iterations: Box-FDDP iterations run, those that closed the gap included.
         converged: Whether the solver met its stopping criterion (``stationarity ≤ threshold``).
         stationarity: The stopping criterion's value at the end (module docstring).
         threshold: The solver's stopping threshold ``th_stop``.
@@ -103,17 +111,24 @@ finer than the gaits' 200 samples a cycle; the simulation's reference interpolat
 them)."""
 
 
+CLOSING = 10
+"""Iterations of each call that closes the dynamics gap past ``OptimalParams.iterations``
+(module docstring)."""
+
+
 class _Progress(_CallbackAbstract):
-    """One line every ``every`` box-FDDP iterations to ``say``."""
+    """One line every ``every`` box-FDDP iterations to ``say``, the iterations of earlier calls
+    of the same solve (``done``) counted in."""
 
     def __init__(self, say: Callable[[str], None], every: int = 1) -> None:
         _CallbackAbstract.__init__(self)
-        self.say, self.every = say, every
+        self.say, self.every, self.done = say, every, 0
 
     def __call__(self, solver: Any) -> None:
-        if solver.iter % self.every:
+        count = self.done + solver.iter
+        if count % self.every:
             return
-        self.say(f"iteration {solver.iter}: cost {solver.cost:.6g}, stop {solver.stop:.3g}, "
+        self.say(f"iteration {count}: cost {solver.cost:.6g}, stop {solver.stop:.3g}, "
                  f"gap {solver.ffeas:.3g}")
 
 
@@ -145,16 +160,28 @@ def solve(robot: Robot, built: OptimalProblem, *, say: Callable[[str], None] | N
     """
     problem = built.problem
     solver = crocoddyl.SolverBoxFDDP(problem)
-    solver.th_stop = built.params.stop
-    if say is not None:
-        solver.setCallbacks([_Progress(say, integer("every", every, low=1))])
+    params = built.params
+    solver.th_stop = params.stop
+    progress = None if say is None else _Progress(say, integer("every", every, low=1))
+    if progress is not None:
+        solver.setCallbacks([progress])
     if warm is None:
         xs = [np.array(x) for x in built.x_warm]
         us = list(problem.quasiStatic(xs[:-1]))
     else:
         xs, us = [np.array(x) for x in warm[0]], [np.array(u) for u in warm[1]]
     start = time.perf_counter()
-    converged = bool(solver.solve(xs, us, built.params.iterations, False))
+    converged = bool(solver.solve(xs, us, params.iterations, False))
+    done = int(solver.iter)
+    budget = params.iterations + params.closing
+    while solver.ffeas > params.gap and done < budget:
+        if progress is not None:
+            progress.done = done
+        converged = bool(solver.solve(list(solver.xs), list(solver.us),
+                                      min(CLOSING, budget - done), False, solver.preg))
+        if not solver.iter:  # a call that took no step would take none again
+            break
+        done += int(solver.iter)
     seconds = time.perf_counter() - start
     x, u = np.array(solver.xs), np.array(solver.us)
     problem.calc(list(x), list(u))
@@ -197,7 +224,7 @@ def solve(robot: Robot, built: OptimalProblem, *, say: Callable[[str], None] | N
         task_space=rebuilt, unbuilt=unbuilt,
         torques=u, spring_torques=springs, forces=forces, x=x, energy=energy,
         energy_per_metre=energy / built.distance if built.distance > 0 else float("inf"),
-        residual=float(np.abs(residual).max()), iterations=int(solver.iter),
+        residual=float(np.abs(residual).max()), iterations=done,
         converged=converged, stationarity=float(solver.stop), threshold=float(solver.th_stop),
         dynamic_gap=float(solver.ffeas),
         periodicity=periodicity_gap(x, built.displacement, built.state.diff),
