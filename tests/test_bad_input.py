@@ -479,7 +479,11 @@ def log_csv(tmp_path_factory, robot, walk200):
 
 
 def _edited(path: Path, column: str, row: int, value: str, out: Path) -> Path:
+    """The log at ``path`` with ``value`` at ``row`` of ``column``; a ``contact_<LEG>`` column
+    is the writer's ``stance_<LEG>`` renamed (a switch's column, as a robot logs it)."""
     lines = path.read_text().splitlines()
+    if column.startswith("contact_"):
+        lines[0] = lines[0].replace("stance_", "contact_")
     col = lines[0].split(",").index(column)
     fields = lines[row].split(",")
     fields[col] = value
@@ -492,6 +496,7 @@ def _edited(path: Path, column: str, row: int, value: str, out: Path) -> Path:
     ("LF_femur", "inf", "column 'LF_femur', row 3 = inf"),
     ("contact_LF", "2", "column 'contact_LF', row 3 = 2.0; allowed: 0 (swing) or 1"),
     ("contact_LF", "0.3", "row 3 = 0.3"),
+    ("stance_LF", "2", "column 'stance_LF', row 3 = 2.0; allowed: 0 (swing) or 1"),
 ])
 def test_a_log_value_that_cannot_be_is_named_with_its_row(robot, log_csv, tmp_path, column,
                                                           value, says):

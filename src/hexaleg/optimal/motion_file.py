@@ -1,7 +1,8 @@
 """An optimal cycle written as a motion log that every command's ``--motion`` reads.
 
 The log format is hexaleg's own (:func:`hexaleg.motion.recorded.write.write_motion_log`: q, the
-exact v and a, ``contact_<LEG>``); :func:`hexaleg.load_motion` finds a log's period from two
+exact v and a, the stance as ``stance_<LEG>``, which it reads back as it is);
+:func:`hexaleg.load_motion` finds a log's period from two
 cycles or more, so the cycle is written ``cycles`` times, each the previous one moved by the
 cycle's rigid displacement ``H`` (:mod:`~hexaleg.optimal.periodic`): base placement
 ``H^c · oM_b``, feet ``H^c · p``, joints, stance and the base-frame velocities unchanged.

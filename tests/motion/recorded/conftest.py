@@ -19,7 +19,9 @@ def noisy_log(robot: hexaleg.Robot, motion: hexaleg.Motion, *, cycles: int = 10,
               contacts: bool = True, seed: int = 0) -> dict[str, np.ndarray]:
     """``cycles`` repeats of the periodic ``motion`` as log columns (SI), joints quantised to
     :data:`TICK` after Gaussian noise of ``noise`` rad; base position with ``base_noise`` m
-    (and its quaternion) when ``base``; contact columns when ``contacts``."""
+    (and its quaternion) when ``base``; contact columns when ``contacts`` (the motion's stance
+    as a robot's contact switches give it, ``contact_<LEG>``: the writer's ``stance_<LEG>`` is
+    a plan's, which the reader takes as it is)."""
     rng = np.random.default_rng(seed)
     one = log_columns(robot, motion, derivatives=False)
     cols: dict[str, np.ndarray] = {}
@@ -29,6 +31,7 @@ def noisy_log(robot: hexaleg.Robot, motion: hexaleg.Motion, *, cycles: int = 10,
     for name, values in one.items():
         if name == "time":
             continue
+        name = name.replace("stance_", "contact_", 1) if name.startswith("stance_") else name
         rep = np.tile(values, cycles)
         if name in robot.joint_names:
             rep = np.round((rep + rng.normal(0.0, noise, rep.shape)) / TICK) * TICK

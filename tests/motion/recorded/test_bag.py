@@ -70,7 +70,7 @@ def write_bag(path, robot, cols, *, pose="odometry", names=None):
 
 def _columns(robot, motion):
     cols = log_columns(robot, motion, derivatives=False)
-    return {k: v for k, v in cols.items() if not k.startswith("contact_")}
+    return {k: v for k, v in cols.items() if not k.startswith("stance_")}
 
 
 def _write_csv(path, cols):

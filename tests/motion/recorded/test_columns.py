@@ -20,6 +20,7 @@ from hexaleg.units import DEG, MM
 
 @pytest.mark.parametrize(("name", "kind"), [
     ("time", "time"), ("base_z", "length"), ("base_qw", "one"), ("contact_LF", "one"),
+    ("stance_RM", "one"),
     ("LF_femur", "angle"), ("v_LF_femur", "rate"), ("a_RH_tibia", "angular acceleration"),
     ("v_base_x", "speed"), ("a_base_y", "acceleration"), ("v_base_rz", "rate"),
     ("a_base_rx", "angular acceleration"),
@@ -29,7 +30,8 @@ def test_every_column_has_its_kind(robot, name, kind):
     assert kind in UNITS
 
 
-@pytest.mark.parametrize("name", ["LF_knee", "contact_XX", "v_base_qx", "a_time", "base"])
+@pytest.mark.parametrize("name", ["LF_knee", "contact_XX", "stance_XX", "v_base_qx", "a_time",
+                                  "base"])
 def test_a_name_that_is_no_column_of_the_robot_lists_the_valid_ones(robot, name):
     with pytest.raises(UnknownNameError, match="LF_femur") as info:
         column_kind(robot, name)

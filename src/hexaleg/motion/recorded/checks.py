@@ -11,6 +11,7 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.errors import InvalidParameterError
+from hexaleg.motion.recorded.columns import contact_columns, stance_columns
 from hexaleg.motion.recorded.read import BASE_POSITION, BASE_QUATERNION, BASE_VELOCITY, Log
 from hexaleg.robot.model import Robot
 from hexaleg.units import DEG
@@ -33,8 +34,9 @@ this many times a joint's largest step between rows, at most."""
 
 def check_columns(robot: Robot, log: Log, contacts: bool | None, where: str) -> bool:
     """Whether the log gives exact derivatives; checks that every joint has its column, that
-    the base's position and quaternion are whole, that derivatives are all given or none, and
-    that contact columns exist when ``contacts`` is True.
+    the base's position and quaternion are whole, that derivatives are all given or none, that
+    the planned stance's columns are all given or none, and that contact or stance columns
+    exist when ``contacts`` is True.
 
     Raises:
         InvalidParameterError: the missing columns named, with the robot's joints listed.
@@ -56,12 +58,17 @@ def check_columns(robot: Robot, log: Log, contacts: bool | None, where: str) -> 
         raise InvalidParameterError(f"{where} derivative columns", f"missing {absent[0]} "
                                     f"(and {len(absent) - 1} more)", "every v_ and a_ column "
                                     "of the base and the joints, or none (then smoothed)")
-    legs = [f"contact_{leg}" for leg in robot.leg_names]
-    if contacts is True and not log.has(legs):
+    planned = stance_columns(robot)
+    given = [c for c in planned if c in log.columns]
+    if given and len(given) != len(planned):
+        raise InvalidParameterError(f"{where} stance columns", ", ".join(given),
+                                    f"all of {', '.join(planned)} or none")
+    legs = contact_columns(robot)
+    if contacts is True and not log.has(legs) and not given:
         raise InvalidParameterError(
             f"{where} contact columns", f"missing {[c for c in legs if c not in log.columns]}",
-            "a contact_<LEG> column for every leg with contacts=True; or contacts=None to "
-            "find stance from the feet's motion")
+            "a contact_<LEG> (or stance_<LEG>) column for every leg with contacts=True; or "
+            "contacts=None to find stance from the feet's motion")
     return bool(present)
 
 

@@ -2,7 +2,9 @@
 
 Column names (docs/motion.md): ``time``; optional base pose ``base_x, base_y, base_z`` (world,
 m) and ``base_qx, base_qy, base_qz, base_qw``; one column per actuated joint named as the robot's
-joints (rad); optional ``contact_<LEG>`` (0/1); optional exact derivatives ``v_<name>`` and
+joints (rad); optional ``contact_<LEG>`` (0/1, a contact switch's: a foot that touches) or
+``stance_<LEG>`` (0/1, a plan's: the feet that carry the motion, as hexaleg writes a motion);
+optional exact derivatives ``v_<name>`` and
 ``a_<name>`` of every joint and of the base (LOCAL frame, Pinocchio's free-flyer convention);
 optional actuator measurements per joint (:data:`MEASURED`): ``current_<joint>`` (A),
 ``torque_<joint>`` (output torque, N·m) and ``power_<joint>`` (electrical power, W), which
@@ -31,6 +33,16 @@ BASE_QUATERNION = ("base_qx", "base_qy", "base_qz", "base_qw")
 MEASURED: tuple[str, ...] = ("current", "torque", "power")
 """The actuator measurements a log may hold per joint, as ``<kind>_<joint>`` columns: the
 current (A), the output torque (N·m) and the electrical power (W); each a kind of :data:`UNITS`."""
+def contact_columns(robot: Robot) -> list[str]:
+    """The contact switches' columns of ``robot``'s legs, ``contact_<LEG>``."""
+    return [f"contact_{leg}" for leg in robot.leg_names]
+
+
+def stance_columns(robot: Robot) -> list[str]:
+    """The planned stance's columns of ``robot``'s legs, ``stance_<LEG>``."""
+    return [f"stance_{leg}" for leg in robot.leg_names]
+
+
 BASE_VELOCITY = ("base_x", "base_y", "base_z", "base_rx", "base_ry", "base_rz")
 """Names of the base's six generalised-velocity components after ``v_``/``a_`` (LOCAL frame)."""
 
@@ -88,7 +100,8 @@ def column_kind(robot: Robot, name: str) -> str:
         return "time"
     if name in BASE_POSITION:
         return "length"
-    if name in BASE_QUATERNION or name in {f"contact_{leg}" for leg in robot.leg_names}:
+    if name in BASE_QUATERNION or name in contact_columns(robot) or \
+            name in stance_columns(robot):
         return "one"
     if name in joints:
         return "angle"
@@ -101,6 +114,6 @@ def column_kind(robot: Robot, name: str) -> str:
         if name.startswith(prefix) and (base in joints or base in BASE_VELOCITY):
             return kinds[0] if base in BASE_POSITION else kinds[1]
     valid = ["time", *BASE_POSITION, *BASE_QUATERNION, *robot.joint_names,
-             *(f"contact_{leg}" for leg in robot.leg_names), "v_<joint or base>",
+             *contact_columns(robot), *stance_columns(robot), "v_<joint or base>",
              "a_<joint or base>", *(f"{kind}_<joint>" for kind in MEASURED)]
     raise UnknownNameError(f"column of a {robot.name} motion log", name, valid)

@@ -2,10 +2,10 @@
 
 The pipeline (each step its module): read (CSV/NPZ or a ROS 2 bag, units to SI) → resample
 (uniform grid) → cycle (period by autocorrelation, cycles averaged; or a window, or the whole
-log) → smooth and differentiate (Savitzky–Golay, cut-off from the noise) → stance (contact
-columns or feet kinematics) → base (logged pose, or leg odometry) → checks (limits, stance, feet
-above ground) and a :class:`~hexaleg.motion.recorded.quality.MotionQuality` report in
-``motion.info``.
+log) → smooth and differentiate (Savitzky–Golay, cut-off from the noise) → stance (planned
+stance columns, contact columns or feet kinematics) → base (logged pose, or leg odometry) →
+checks (limits, stance, feet above ground) and a
+:class:`~hexaleg.motion.recorded.quality.MotionQuality` report in ``motion.info``.
 """
 
 from __future__ import annotations
@@ -34,7 +34,7 @@ from hexaleg.motion.recorded.checks import (
     feet_world,
     ground_tilt,
 )
-from hexaleg.motion.recorded.columns import MEASURED
+from hexaleg.motion.recorded.columns import MEASURED, contact_columns, stance_columns
 from hexaleg.motion.recorded.cycle import average_cycles, find_period, steady_start
 from hexaleg.motion.recorded.integrator import integrator_of
 from hexaleg.motion.recorded.quality import MotionQuality
@@ -115,8 +115,10 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
         cycle: ``"auto"`` (the period found and the log's cycles averaged into one periodic
             cycle), ``"whole"`` (the log as it is) or ``(t0, t1)`` (a window, s from the first
             stamp).
-        contacts: Use the ``contact_<LEG>`` columns (True: required; False: ignored, stance
-            from the feet's motion; None: when the log has them).
+        contacts: Use the log's stance columns — ``stance_<LEG>`` (a plan's, the stance as it
+            is) or else ``contact_<LEG>`` (a switch's, refined at its edges by the feet's
+            motion, :mod:`~hexaleg.motion.recorded.stance`) — (True: required; False: ignored,
+            stance from the feet's motion; None: when the log has them).
         periodic: Whether the result is periodic; default True for ``"auto"``, else False (a
             window of exactly one cycle may say True).
         max_gap: Longest gap (dropped rows, NaN run) interpolated, s.
@@ -151,8 +153,9 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
     res = resample(log, max_gap=max_gap)
     log, dt = res.log, res.dt
     joints = list(robot.joint_names)
-    legs = [f"contact_{leg}" for leg in robot.leg_names]
     given = check_columns(robot, log, contacts, where)
+    planned = contacts is not False and log.has(stance_columns(robot))
+    legs = stance_columns(robot) if planned else contact_columns(robot)
     has_base, has_quat = log.has(BASE_POSITION), log.has(BASE_QUATERNION)
     mode, span = _window(log.t, cycle, where)
     t = log.t[span]
@@ -277,7 +280,9 @@ def load_motion(robot: Robot, path: str | Path, *, cycle: Cycle = "auto",
         if tilted:  # stance on the ground the feet define, not on the attitude's
             caught += tilted
             level, com_l, height_noise, moving = feet_b, com_b, 0.0, False
-    if contact is not None:
+    if planned and contact is not None:
+        stance = _stance.from_plan(contact)
+    elif contact is not None:
         stance = _stance.from_contacts(contact, level, com_l, periodic=periodic,
                                        noise_height=height_noise)
     else:  # world feet walk on: their velocity is not periodic

@@ -40,7 +40,7 @@ class MotionQuality:
         spread: Largest rms deviation of a joint's cycles from their average, rad.
         steady_from: Where the steady gait begins in the log, s: the cycles before it (a
             settle, a stand, a transient) are left out of the average (``"auto"``; 0 otherwise).
-        stance_source: ``"contacts"`` or ``"kinematics"``.
+        stance_source: ``"plan"``, ``"contacts"`` or ``"kinematics"``.
         stance_height: The height threshold of kinematic stance, m (None from contacts).
         stance_speed: The speed threshold of kinematic stance, m/s (None from contacts).
         stance_fractions: Leg → fraction of the samples in stance (carrying load: what the

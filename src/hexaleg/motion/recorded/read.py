@@ -2,7 +2,8 @@
 
 Column names (docs/motion.md): ``time``; optional base pose ``base_x, base_y, base_z`` (world,
 m) and ``base_qx, base_qy, base_qz, base_qw``; one column per actuated joint named as the robot's
-joints (rad); optional ``contact_<LEG>`` (0/1); optional exact derivatives ``v_<name>`` and
+joints (rad); optional ``contact_<LEG>`` (0/1, a switch's) or ``stance_<LEG>`` (0/1, a plan's);
+optional exact derivatives ``v_<name>`` and
 ``a_<name>`` of every joint and of the base (``v_base_x … v_base_z`` the LOCAL linear velocity,
 ``v_base_rx … v_base_rz`` the LOCAL angular velocity, Pinocchio's free-flyer convention; ``a_``
 their time derivatives), as :func:`hexaleg.motion.recorded.write.write_motion_log` writes them.
@@ -151,11 +152,11 @@ def _npz_columns(data: bytes, where: str) -> tuple[list[str], np.ndarray]:
 
 def _check_values(name: str, x: np.ndarray, where: str) -> None:
     """A column's values: NaN marks a missing value (filled over short gaps), infinity is not
-    a value; a contact column is 0 or 1.
+    a value; a contact or stance column is 0 or 1.
 
     Raises:
-        InvalidParameterError: the first infinite value, or a contact value not 0 or 1, with its
-            row (1 = the first row under the header).
+        InvalidParameterError: the first infinite value, or a contact or stance value not 0 or
+            1, with its row (1 = the first row under the header).
     """
     bad = np.isinf(x)
     if bad.any():
@@ -163,13 +164,15 @@ def _check_values(name: str, x: np.ndarray, where: str) -> None:
         raise InvalidParameterError(f"{where}: column {name!r}, row {row + 1}", float(x[row]),
                                     "a finite number, or NaN / an empty field for a missing "
                                     "value")
-    if name.startswith("contact_"):
+    if name.startswith(("contact_", "stance_")):
         bad = ~np.isnan(x) & (x != 0.0) & (x != 1.0)
         if bad.any():
             row = int(np.argmax(bad))
             raise InvalidParameterError(f"{where}: column {name!r}, row {row + 1}",
-                                        float(x[row]), "0 (swing) or 1 (stance); a sensor's "
-                                        "reading is thresholded before it is logged as contact")
+                                        float(x[row]), "0 (swing) or 1 (stance)" + (
+                                            "; a sensor's reading is thresholded before it is "
+                                            "logged as contact" if name.startswith("contact_")
+                                            else ""))
 
 
 def read_log(robot: Robot, path: str | Path, *, ignore: tuple[str, ...] = ()) -> Log:

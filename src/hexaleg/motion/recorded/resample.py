@@ -1,9 +1,9 @@
 """Resampling a log onto a uniform grid: irregular stamps, dropped samples and short NaN runs.
 
 The grid spacing is the median stamp interval; every column is interpolated linearly onto it
-(a contact column to its nearest stamp; a quaternion renormalised afterwards). A gap — dropped
-rows or a run of missing values — longer than ``max_gap`` is not made up: it is an error that
-names the column, where the gap is and what to do.
+(a contact or stance column to its nearest stamp; a quaternion renormalised afterwards). A gap —
+dropped rows or a run of missing values — longer than ``max_gap`` is not made up: it is an error
+that names the column, where the gap is and what to do.
 """
 
 from __future__ import annotations
@@ -118,7 +118,7 @@ def resample(log: Log, *, max_gap: float = 0.05) -> Resampled:
                     f"{where} column {name!r}", f"{stop - start} missing values from "
                     f"t = {t[start] - t[0]:.4f} s", f"runs of NaN shorter than max_gap = "
                     f"{max_gap} s inside the log; cut the log (cycle=(t0, t1)) or fill them")
-        if name.startswith("contact_"):
+        if name.startswith(("contact_", "stance_")):
             index = np.searchsorted(t[ok], grid).clip(1, ok.sum() - 1)
             tk = t[ok]
             nearest = np.where(grid - tk[index - 1] < tk[index] - grid, index - 1, index)

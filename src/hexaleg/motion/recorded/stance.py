@@ -1,4 +1,9 @@
-"""Which feet are on the ground: from the log's contact columns, or from the feet's motion.
+"""Which feet are on the ground: from the log's planned stance, its contact columns, or from the
+feet's motion.
+
+A planned stance (``stance_<LEG>`` columns: a planner's, as hexaleg writes a motion) is the
+stance as it is (:func:`from_plan`): it says which feet carry the motion, so nothing in the
+feet's motion overrides it. Contact switches say which feet touch (:func:`from_contacts`).
 
 Without contact sensors stance is found in two steps.
 
@@ -58,7 +63,8 @@ class Stance:
 
     Attributes:
         stance: Feet in stance, shape (T, n_legs), bool.
-        source: ``"contacts"`` (the log's contact columns) or ``"kinematics"``.
+        source: ``"plan"`` (the log's stance columns), ``"contacts"`` (its contact columns) or
+            ``"kinematics"``.
         height: The height threshold h_c, m (None from contacts).
         speed: The speed threshold v_c, m/s (None from contacts).
         touch: Feet on the ground, carrying load or not, shape (T, n_legs), bool: step 1's low
@@ -82,6 +88,12 @@ class Stance:
     def touch_fractions(self) -> np.ndarray:
         """Fraction of the samples each foot touches the ground, shape (n_legs,)."""
         return (self.stance if self.touch is None else self.touch).mean(axis=0)
+
+
+def from_plan(columns: np.ndarray) -> Stance:
+    """Stance from planned stance columns (T, n_legs) of 0/1 values (or their cycle averages: a
+    foot stands where more than half the cycles had it down), as they are (module docstring)."""
+    return Stance(stance=np.asarray(columns, dtype=float) > 0.5, source="plan")
 
 
 def from_contacts(contacts: np.ndarray, feet: np.ndarray | None = None,

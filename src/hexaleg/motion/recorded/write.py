@@ -2,7 +2,9 @@
 
 The export of a hexaleg motion (to compare with a robot's own log, or to feed another tool), and
 the round trip the tests check: q, and with ``derivatives`` the exact v and a, stance as
-``contact_<LEG>``, at 17 significant digits (a float's exact decimal round trip).
+``stance_<LEG>`` (the motion's own, which the reader takes as it is; not ``contact_<LEG>``,
+a switch's, which it refines at the edges), at 17 significant digits (a float's exact decimal
+round trip).
 """
 
 from __future__ import annotations
@@ -21,14 +23,14 @@ from hexaleg.robot.model import Robot
 def log_columns(robot: Robot, motion: Motion, *, derivatives: bool = True
                 ) -> dict[str, np.ndarray]:
     """The columns of ``motion`` as a log, name → values (T,), SI (the names of
-    :mod:`hexaleg.motion.recorded.read`; stance as 0/1 ``contact_<LEG>``)."""
+    :mod:`hexaleg.motion.recorded.read`; stance as 0/1 ``stance_<LEG>``)."""
     cols: dict[str, np.ndarray] = {"time": motion.t}
     for i, name in enumerate((*BASE_POSITION, *BASE_QUATERNION)):
         cols[name] = motion.q[:, i]
     for j, name in enumerate(robot.joint_names):
         cols[name] = motion.q[:, 7 + j]
     for i, leg in enumerate(robot.leg_names):
-        cols[f"contact_{leg}"] = motion.stance[:, i].astype(float)
+        cols[f"stance_{leg}"] = motion.stance[:, i].astype(float)
     if derivatives:
         for prefix, arr in (("v_", motion.v), ("a_", motion.a)):
             for i, name in enumerate((*BASE_VELOCITY, *robot.joint_names)):
