@@ -39,15 +39,20 @@ def ground_heights(stance: np.ndarray, footholds: np.ndarray,
 
 
 def knee_bounds(robot: Robot, qs: np.ndarray, margin: float) -> tuple[np.ndarray, np.ndarray]:
-    """Bounds on the configuration that keep each foot ``margin`` short of its leg's full
+    """Bounds on the configuration that keep each leg's end ``margin`` short of its full
     stretch, (N, nq) lower and upper (the model's position limits, a knee's narrowed).
 
-    A leg's knee is its last joint, revolute about the unit axis ``a`` through its origin ``o``.
-    The distance ``d`` from the joint before it (origin ``h``, the hip) to the foot ``f`` depends
+    A leg's knee is the last of its joints that can stretch it: revolute about the unit axis
+    ``a`` through its origin ``o``, with the joint before it (origin ``h``, the hip) and the
+    leg's end past it (``f``: the foot for the last joint; for a joint before it, the next
+    joint's origin) both off that axis. The end is a point no later joint moves (a joint's
+    origin is fixed on the link before it), so the distance ``d`` from ``h`` to ``f`` depends
     on the knee angle ``θ`` alone (a joint rotates about an axis through its own origin, so the
-    joints before the knee keep every distance to ``h``). With ``u = o − h`` and ``w = f − o``
-    each split into a part along ``a`` (``u_a``, ``w_a``) and across it (lengths ``r_u``,
-    ``r_w``), the law of cosines gives
+    joints before the knee keep every distance to ``h``). A leg that ends in a knee holds its
+    foot; one that ends in ankle joints about axes through one point (tests/data/biped6.toml's
+    pitch and roll: neither can move that point off the hip) holds its ankle, the foot past it
+    turned by the ankle. With ``u = o − h`` and ``w = f − o`` each split into a part along
+    ``a`` (``u_a``, ``w_a``) and across it (lengths ``r_u``, ``r_w``), the law of cosines gives
 
         d(θ)² = (u_a + w_a)² + r_u² + r_w² + 2 r_u r_w cos(θ − θ*),
 
@@ -56,17 +61,18 @@ def knee_bounds(robot: Robot, qs: np.ndarray, margin: float) -> tuple[np.ndarray
     the two-link arm's workspace). ``d ≤ d* − margin`` holds where ``|θ − θ*| ≥ δ``,
     ``cos δ = ((d* − margin)² − (u_a + w_a)² − r_u² − r_w²) / (2 r_u r_w)``: at each knot the
     knee is kept at least ``δ`` off ``θ*`` on the side the warm start ``qs`` bends it to (a
-    front and a hind knee may bend opposite ways). A leg whose hip or foot lies on the knee's
-    axis cannot be stretched by it: no bound.
+    front and a hind knee may bend opposite ways). A leg none of whose joints can stretch it
+    (each with its hip or end on its axis): no bound.
 
     Args:
-        robot: The robot; every leg's last joint revolute (one coordinate), with a joint
-            before it.
+        robot: The robot; every leg of two joints or more, revolute from its knee on (one
+            coordinate each).
         qs: The warm start's configurations at the knots, (N, nq).
-        margin: How far short of its reach each foot is held, m, ≥ 0.
+        margin: How far short of its reach each leg's end is held, m, ≥ 0.
 
     Raises:
-        InvalidParameterError: a leg of one joint, or whose last joint is not revolute.
+        InvalidParameterError: a leg of one joint, or a joint after its knee (or the knee)
+            that is not revolute.
     """
     model, data = robot.model, robot.data
     lower = np.tile(model.lowerPositionLimit, (len(qs), 1))
@@ -74,21 +80,29 @@ def knee_bounds(robot: Robot, qs: np.ndarray, margin: float) -> tuple[np.ndarray
     pin.computeJointJacobians(model, data, qs[0])
     pin.framesForwardKinematics(model, data, qs[0])
     for leg in robot.legs:
-        knee = leg.joint_ids[-1]
-        motion = pin.getJointJacobian(model, data, knee, pin.LOCAL)[:, leg.v_index[-1]]
-        if len(leg.joint_ids) < 2 or model.joints[knee].nq != 1 or \
-                np.linalg.norm(motion[:3]) > 1e-12:
+        ids = leg.joint_ids
+        if len(ids) < 2:
             raise InvalidParameterError(f"leg {leg.name}'s joints", leg.joint_names,
-                                        "two joints or more, the last revolute")
-        axis = motion[3:] / np.linalg.norm(motion[3:])  # in the knee's frame
-        u = -data.oMi[knee].actInv(data.oMi[leg.joint_ids[-2]].translation)
-        w = data.oMi[knee].actInv(data.oMf[leg.foot_frame_id].translation)
-        u_t, w_t = u - (u @ axis) * axis, w - (w @ axis) * axis
-        r_u, r_w = float(np.linalg.norm(u_t)), float(np.linalg.norm(w_t))
-        if r_u * r_w < 1e-12:
+                                        "two joints or more, revolute from the knee on")
+        end = data.oMf[leg.foot_frame_id].translation  # the last joint's end: the foot
+        for b in range(len(ids) - 1, 0, -1):  # from the last joint back, to the knee
+            knee = ids[b]
+            motion = pin.getJointJacobian(model, data, knee, pin.LOCAL)[:, leg.v_index[b]]
+            if model.joints[knee].nq != 1 or np.linalg.norm(motion[:3]) > 1e-12:
+                raise InvalidParameterError(f"leg {leg.name}'s joints", leg.joint_names,
+                                            "two joints or more, revolute from the knee on")
+            axis = motion[3:] / np.linalg.norm(motion[3:])  # in the knee's frame
+            u = -data.oMi[knee].actInv(data.oMi[ids[b - 1]].translation)
+            w = data.oMi[knee].actInv(end)
+            u_t, w_t = u - (u @ axis) * axis, w - (w @ axis) * axis
+            r_u, r_w = float(np.linalg.norm(u_t)), float(np.linalg.norm(w_t))
+            if r_u * r_w >= 1e-12:
+                break
+            end = data.oMi[knee].translation.copy()  # the joint before: its end is this origin
+        else:
             continue
         along = float((u + w) @ axis)
-        i = int(leg.q_index[-1])
+        i = int(leg.q_index[b])
         stretched = float(qs[0, i]) + float(np.arctan2(axis @ np.cross(w_t, u_t), w_t @ u_t))
         reach = float(np.hypot(along, r_u + r_w))
         cos_delta = ((reach - margin) ** 2 - along**2 - r_u**2 - r_w**2) / (2.0 * r_u * r_w)
@@ -97,6 +111,5 @@ def knee_bounds(robot: Robot, qs: np.ndarray, margin: float) -> tuple[np.ndarray
         lower[off >= 0.0, i] = np.maximum(lower[off >= 0.0, i], stretched + delta)
         upper[off < 0.0, i] = np.minimum(upper[off < 0.0, i], stretched - delta)
     return lower, upper
-
 
 __all__ = ["ground_heights", "knee_bounds"]

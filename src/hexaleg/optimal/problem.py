@@ -21,10 +21,10 @@ costs), here with
   ``k_p = 1/dt², k_d = 1/dt`` of the semi-implicit Euler step, :func:`contact_gains`), landing
   there (a cost on the foot's distance to its foothold at its touch-down knot) at rest (a cost
   on its linear velocity there; no impact model);
-* each leg kept ``reach_margin`` short of full stretch at every knot (its last joint, the knee,
-  held off its stretched angle by a barrier on the side the warm start bends it,
-  :func:`~hexaleg.optimal.bounds.knee_bounds`), so the cycle rebuilt in task space between
-  knots stays in reach;
+* each leg kept ``reach_margin`` short of full stretch at every knot (its knee, the last joint
+  that can stretch it, held off its stretched angle by a barrier on the side the warm start
+  bends it, :func:`~hexaleg.optimal.bounds.knee_bounds`), so the cycle rebuilt in task space
+  between knots stays in reach;
 * each swing foot above the ground at every knot (a barrier on the foot frame's height, as
   Crocoddyl's own bounds on a residual are written: ``ActivationModelQuadraticBarrier`` on a
   ``ResidualModelFrameTranslation``, zero above the ground's height,
