@@ -6,7 +6,7 @@ on (log: analysis/bench_logs/bench_codesign_duty_bound.log; not an example study
 Run:  python analysis/bench_codesign_duty_bound.py [--duty-high 0.9] [--body-high 1.3]
                                                   [--chosen out.pkl]
 
-The co-design's search box (:func:`hexaleg.design.codesign.gait_search.default_space`) bounds
+The co-design's search box (:func:`hexaleg.design.codesign.box.default_space`) bounds
 the duty factor at 0.8 by default (``[codesign] duty_high``, ``--duty-high``); the optimal
 motion's timing search (``codesign --motion optimal``) may reach 0.9, so the parametric family at
 the same bound is the fair baseline. Runs ``hexaleg.codesign`` (no rules, no simulated

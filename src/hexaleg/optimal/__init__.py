@@ -6,7 +6,8 @@ feasibility-driven approach to control-limited DDP", Autonomous Robots 46, 2022)
 on its floating base, the contact sequence of a gait pattern, the springs' torques inside the
 dynamics (:mod:`~hexaleg.optimal.actuation`), the motor's electrical energy as the cost
 (:mod:`~hexaleg.optimal.energy`), the final state the first shifted by the stride
-(:mod:`~hexaleg.optimal.periodic`), built in :mod:`~hexaleg.optimal.problem` and solved into a
+(:mod:`~hexaleg.optimal.periodic`), built in :mod:`~hexaleg.optimal.problem` (its bounds at each
+knot, plain kinematics, in :mod:`~hexaleg.optimal.bounds`) and solved into a
 :class:`~hexaleg.motion.trajectory.Motion` in :mod:`~hexaleg.optimal.solve`, checked by
 :mod:`~hexaleg.optimal.residual`.
 

@@ -23,7 +23,6 @@ A free flyer's configuration tangent is its velocity index, so a revolute joint'
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -34,7 +33,9 @@ from hexaleg.errors import InvalidParameterError
 from hexaleg.optimal.backend import crocoddyl_module
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import DeadZoneSpring, SpringSet
+from hexaleg.robot.springs.dead_zone import zone_basis, zone_torque
 from hexaleg.robot.springs.spring_set import Spring
+from hexaleg.robot.springs.terms import basis_torque
 
 crocoddyl = crocoddyl_module()
 _ActuationModelAbstract: Any = crocoddyl.ActuationModelAbstract
@@ -76,14 +77,16 @@ def sprung_joints(robot: Robot, springs: SpringSet) -> tuple[SprungJoint, ...]:
 class LawGroup:
     """The sprung joints of one kind of law with one number of terms, evaluated together.
 
-    Every array operation is the one the law's own method does on one joint
-    (:meth:`~hexaleg.robot.springs.law.TermSpring.torque`: the basis terms of
-    :mod:`hexaleg.robot.springs.terms` dotted with the magnitudes;
-    :meth:`~hexaleg.robot.springs.DeadZoneSpring.torque`), applied to the group's joints at once:
-    the numbers are the same to the bit (tested), the Python calls one per group instead of a
-    dozen per joint. The dot of a term law is NumPy's ``matmul`` of each joint's row, as the law's
-    ``basis @ magnitudes`` takes it (a sum in another order, or fused multiply-adds, may round
-    otherwise).
+    The torques are the laws' own formulas, called with the group's parameters as arrays (one
+    entry a joint): a term's φ is :func:`~hexaleg.robot.springs.terms.basis_torque`, as
+    :meth:`~hexaleg.robot.springs.terms.Term.torque` takes it, a dead zone's torque
+    :func:`~hexaleg.robot.springs.dead_zone.zone_basis` and
+    :func:`~hexaleg.robot.springs.dead_zone.zone_torque`, as
+    :meth:`~hexaleg.robot.springs.DeadZoneSpring.torque` takes them: the numbers are the same
+    to the bit (tested), the Python calls one per group instead of a dozen per joint. The dot of
+    a term law is NumPy's ``matmul`` of each joint's row, as the law's ``basis @ magnitudes``
+    (:meth:`~hexaleg.robot.springs.law.TermSpring.elastic_torque`) takes it (a sum in another
+    order, or fused multiply-adds, may round otherwise).
 
     Args:
         joints: The group's sprung joints (one law class, one number of terms), m of them.
@@ -116,19 +119,14 @@ class LawGroup:
 
     def torques(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
         """The springs' torques at their joints' angles ``q`` and speeds ``v`` (m,), N·m."""
-        if self.zone:  # DeadZoneSpring.torque and its torque_basis, term by term
-            d = q - self.neutral
-            a = self.transmission
-            plus = -a * np.maximum(d - self.plus, 0.0)
-            minus = -a * np.minimum(d - self.minus, 0.0)
-            engaged = (d > self.plus) | (d < self.minus)
-            damp = np.where(engaged, -a * v, 0.0)
-            return (self.k_plus * plus + self.k_minus * minus + self.k2 * -d
-                    + self.damping * damp)
+        if self.zone:  # DeadZoneSpring.torque: its torque_basis, then its coefficients
+            return zone_torque(zone_basis(q - self.neutral, v, self.minus, self.plus,
+                                          self.transmission),
+                               self.k_plus, self.k_minus, self.k2, self.damping)
         d = q[:, None] - self.angles  # Term.torque of every term, then basis @ magnitudes
         phi = np.ones_like(d)
         for kind, where in self.kinds.items():
-            phi[where] = _PHI[kind](d[where])
+            phi[where] = basis_torque(kind, d[where])
         return np.matmul(phi[:, None, :], self.magnitudes[:, :, None])[:, 0, 0]
 
     def stiffness(self, q: np.ndarray) -> np.ndarray:
@@ -145,14 +143,6 @@ class LawGroup:
         for b in range(d.shape[1]):
             k = k + self.slopes[:, b] * engaged[:, b]
         return k
-
-
-_PHI: dict[str, Callable[[np.ndarray], np.ndarray]] = {
-    "above": lambda d: -np.maximum(d, 0.0), "below": lambda d: np.maximum(-d, 0.0),
-    "step_above": lambda d: -(d > 0).astype(float), "step_below": lambda d: (d < 0).astype(float),
-    "linear": lambda d: -d, "constant": np.ones_like}
-"""φ of each term kind at ``d = q − a``, as :meth:`~hexaleg.robot.springs.terms.Term.torque`
-computes it."""
 
 
 def law_groups(sprung: tuple[SprungJoint, ...]) -> tuple[LawGroup, ...]:

@@ -21,12 +21,14 @@ costs), here with
   ``k_p = 1/dt², k_d = 1/dt`` of the semi-implicit Euler step, :func:`contact_gains`), landing
   there (a cost on the foot's distance to its foothold at its touch-down knot) at rest (a cost
   on its linear velocity there; no impact model);
-* each leg kept ``reach_margin`` short of full stretch at every knot (its last joint, the knee,
-  held off its stretched angle by a barrier on the side the warm start bends it,
-  :func:`knee_bounds`), so the cycle rebuilt in task space between knots stays in reach;
+* each leg kept ``reach_margin`` short of full stretch at every knot (its knee, the last joint
+  that can stretch it, held off its stretched angle by a barrier on the side the warm start
+  bends it, :func:`~hexaleg.optimal.bounds.knee_bounds`), so the cycle rebuilt in task space
+  between knots stays in reach;
 * each swing foot above the ground at every knot (a barrier on the foot frame's height, as
   Crocoddyl's own bounds on a residual are written: ``ActivationModelQuadraticBarrier`` on a
-  ``ResidualModelFrameTranslation``, zero above the ground's height, :func:`ground_heights`);
+  ``ResidualModelFrameTranslation``, zero above the ground's height,
+  :func:`~hexaleg.optimal.bounds.ground_heights`);
 * the terminal periodicity cost (:mod:`~hexaleg.optimal.periodic`).
 """
 
@@ -43,6 +45,7 @@ from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.optimal.actuation import SpringActuation, sprung_joints
 from hexaleg.optimal.backend import crocoddyl_module
+from hexaleg.optimal.bounds import ground_heights, knee_bounds
 from hexaleg.optimal.energy import EnergyCost, JointPower
 from hexaleg.optimal.friction import FrictionPyramid
 from hexaleg.optimal.periodic import cycle_displacement, shifted_state
@@ -207,31 +210,6 @@ def _references(robot: Robot, qs: np.ndarray, stance: np.ndarray,
     return out
 
 
-def ground_heights(stance: np.ndarray, footholds: np.ndarray,
-                   displacement: np.ndarray) -> np.ndarray:
-    """The ground's height under each swing foot at each knot, (N, n_legs), m (NaN at a stance
-    knot): the lower of the footholds it lifted off and lands on (the cycle's displacement
-    applied to one in another cycle), so a swing foot between two footholds of one height stays
-    above that plane. A leg that never stands has no ground: NaN."""
-    n, legs = stance.shape
-    out = np.full((n, legs), np.nan)
-    for j in range(legs):
-        if not stance[:, j].any():
-            continue
-        for k in np.flatnonzero(~stance[:, j]):
-            ends = []
-            for step in (-1, 1):
-                s = k
-                while not stance[s % n, j]:
-                    s += step
-                p = np.append(footholds[s % n, j], 1.0)
-                wraps = s // n
-                shift = np.linalg.matrix_power(displacement, abs(wraps))
-                ends.append((shift if wraps >= 0 else np.linalg.inv(shift))[:3] @ p)
-            out[k, j] = min(e[2] for e in ends)
-    return out
-
-
 def contact_gains(dt: float) -> np.ndarray:
     """Baumgarte gains ``(k_p, k_d)`` that hold a contact point on its reference ``p*`` across
     one semi-implicit Euler knot of ``dt`` (Baumgarte, *Comput. Methods Appl. Mech. Eng.* 1,
@@ -243,67 +221,6 @@ def contact_gains(dt: float) -> np.ndarray:
     position is not held: the ``J̇ v dt²`` each knot leaves accumulates over the stance."""
     dt = positive("dt", dt)
     return np.array([1.0 / dt**2, 1.0 / dt])
-
-
-def knee_bounds(robot: Robot, qs: np.ndarray, margin: float) -> tuple[np.ndarray, np.ndarray]:
-    """Bounds on the configuration that keep each foot ``margin`` short of its leg's full
-    stretch, (N, nq) lower and upper (the model's position limits, a knee's narrowed).
-
-    A leg's knee is its last joint, revolute about the unit axis ``a`` through its origin ``o``.
-    The distance ``d`` from the joint before it (origin ``h``, the hip) to the foot ``f`` depends
-    on the knee angle ``θ`` alone (a joint rotates about an axis through its own origin, so the
-    joints before the knee keep every distance to ``h``). With ``u = o − h`` and ``w = f − o``
-    each split into a part along ``a`` (``u_a``, ``w_a``) and across it (lengths ``r_u``,
-    ``r_w``), the law of cosines gives
-
-        d(θ)² = (u_a + w_a)² + r_u² + r_w² + 2 r_u r_w cos(θ − θ*),
-
-    ``θ*`` the angle that lines the across parts up: the leg stretched, ``d`` its reach
-    ``d* = √((u_a + w_a)² + (r_u + r_w)²)`` (Craig, *Introduction to Robotics*, 3rd ed., §4.2,
-    the two-link arm's workspace). ``d ≤ d* − margin`` holds where ``|θ − θ*| ≥ δ``,
-    ``cos δ = ((d* − margin)² − (u_a + w_a)² − r_u² − r_w²) / (2 r_u r_w)``: at each knot the
-    knee is kept at least ``δ`` off ``θ*`` on the side the warm start ``qs`` bends it to (a
-    front and a hind knee may bend opposite ways). A leg whose hip or foot lies on the knee's
-    axis cannot be stretched by it: no bound.
-
-    Args:
-        robot: The robot; every leg's last joint revolute (one coordinate), with a joint
-            before it.
-        qs: The warm start's configurations at the knots, (N, nq).
-        margin: How far short of its reach each foot is held, m, ≥ 0.
-
-    Raises:
-        InvalidParameterError: a leg of one joint, or whose last joint is not revolute.
-    """
-    model, data = robot.model, robot.data
-    lower = np.tile(model.lowerPositionLimit, (len(qs), 1))
-    upper = np.tile(model.upperPositionLimit, (len(qs), 1))
-    pin.computeJointJacobians(model, data, qs[0])
-    pin.framesForwardKinematics(model, data, qs[0])
-    for leg in robot.legs:
-        knee = leg.joint_ids[-1]
-        motion = pin.getJointJacobian(model, data, knee, pin.LOCAL)[:, leg.v_index[-1]]
-        if len(leg.joint_ids) < 2 or model.joints[knee].nq != 1 or \
-                np.linalg.norm(motion[:3]) > 1e-12:
-            raise InvalidParameterError(f"leg {leg.name}'s joints", leg.joint_names,
-                                        "two joints or more, the last revolute")
-        axis = motion[3:] / np.linalg.norm(motion[3:])  # in the knee's frame
-        u = -data.oMi[knee].actInv(data.oMi[leg.joint_ids[-2]].translation)
-        w = data.oMi[knee].actInv(data.oMf[leg.foot_frame_id].translation)
-        u_t, w_t = u - (u @ axis) * axis, w - (w @ axis) * axis
-        r_u, r_w = float(np.linalg.norm(u_t)), float(np.linalg.norm(w_t))
-        if r_u * r_w < 1e-12:
-            continue
-        along = float((u + w) @ axis)
-        i = int(leg.q_index[-1])
-        stretched = float(qs[0, i]) + float(np.arctan2(axis @ np.cross(w_t, u_t), w_t @ u_t))
-        reach = float(np.hypot(along, r_u + r_w))
-        cos_delta = ((reach - margin) ** 2 - along**2 - r_u**2 - r_w**2) / (2.0 * r_u * r_w)
-        delta = float(np.arccos(np.clip(cos_delta, -1.0, 1.0)))
-        off = np.angle(np.exp(1j * (qs[:, i] - stretched)))  # θ − θ*, wrapped to (−π, π]
-        lower[off >= 0.0, i] = np.maximum(lower[off >= 0.0, i], stretched + delta)
-        upper[off < 0.0, i] = np.minimum(upper[off < 0.0, i], stretched - delta)
-    return lower, upper
 
 
 def _barrier(residual: Any, lower: np.ndarray, upper: np.ndarray) -> Any:

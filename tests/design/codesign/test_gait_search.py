@@ -13,6 +13,7 @@ from collections.abc import Callable
 import numpy as np
 import pytest
 
+from hexaleg.design.codesign.box import default_space
 from hexaleg.design.codesign.gait_evaluation import (
     Constraints,
     GaitPoint,
@@ -24,7 +25,6 @@ from hexaleg.design.codesign.gait_search import (
     MIN_STEP,
     TIE,
     Space,
-    default_space,
     penalised,
     search,
 )

@@ -132,3 +132,30 @@ def test_theta_k_zero_says_there_is_no_dead_zone_and_none_is_not_a_number():
     for name in ("neutral", "k2", "alpha", "damping"):
         with pytest.raises(InvalidParameterError, match=rf"{name} = None"):
             DeadZoneSpring(stiffness=1.0, theta_k=0.1, **{name: None})
+
+
+def test_many_laws_at_once_are_each_law_s_numbers_to_the_bit():
+    """:func:`zone_basis` and :func:`zone_torque` with parameter arrays (one entry a law, as the
+    optimal actuation's groups call them) give each law's own torque, with and without damping,
+    exactly. The law calls them with its scalars, so this checks the array form: each entry
+    computed from its own law's parameters alone (a formula that mixed entries, e.g. a
+    ``max`` over the array or a parameter taken as a scalar, fails); the formula itself is
+    checked against the energy above."""
+    from hexaleg.robot.springs.dead_zone import zone_basis, zone_torque
+
+    laws = [_asym(), DeadZoneSpring(0.3, theta_k=0.15, neutral=0.2, alpha=1.3, convention="eq14"),
+            DeadZoneSpring(50.0, theta_k=0.2, alpha=1.05, damping=2.0, neutral=0.1)]
+    rng = np.random.default_rng(3)
+    q, v = rng.uniform(-1.0, 1.5, (400, len(laws))), rng.uniform(-3.0, 3.0, (400, len(laws)))
+
+    def each(name):
+        return np.array([getattr(s, name) for s in laws])
+
+    neutral, minus, plus, a = each("neutral"), each("th_minus"), each("th_plus"), \
+        each("transmission")
+    coefficients = each("stiffness"), each("k_minus"), each("k2"), each("damping")
+    for speed in (v, None):
+        got = zone_torque(zone_basis(q - neutral, speed, minus, plus, a), *coefficients)
+        for j, s in enumerate(laws):
+            own = s.torque(q[:, j], None if speed is None else speed[:, j])
+            assert got[:, j].tobytes() == own.tobytes()

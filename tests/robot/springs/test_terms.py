@@ -41,3 +41,19 @@ def test_bad_terms():
         Term("above", float("nan"))
     with pytest.raises(InvalidParameterError, match="q"):
         basis((Term("above", 0.0),), [np.nan])
+
+
+def test_many_joints_terms_at_once_are_each_term_s_numbers_to_the_bit():
+    """:func:`basis_torque` of one kind at many terms' ``q − a`` at once (each column its own
+    angle, as the optimal actuation's groups call it) is each :meth:`Term.torque` exactly: each
+    entry its own (:meth:`Term.torque` calls it; each kind's φ is checked against its potential
+    above). A step counts strictly past its angle: catches ``>=`` for ``>``."""
+    from hexaleg.robot.springs.terms import basis_torque
+
+    angles = np.array([-0.4, 0.0, 0.3])
+    q = np.concatenate([np.linspace(-1, 1, 401), angles])  # the angles themselves: the steps
+    for kind in KINDS:
+        got = basis_torque(kind, q[:, None] - angles)
+        for j, a in enumerate(angles):
+            assert got[:, j].tobytes() == Term(kind, a).torque(q).tobytes()
+    assert basis_torque("step_above", np.array([0.0, 1e-9]))[0] == 0.0  # strictly past a

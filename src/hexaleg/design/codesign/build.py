@@ -46,6 +46,7 @@ from hexaleg.design.chain.checkpoint import StageFiles
 from hexaleg.design.chain.config import DesignParams
 from hexaleg.design.chain.groups import design_groups
 from hexaleg.design.chain.ranking import under
+from hexaleg.design.codesign.box import body_bound, default_space, duty_bound
 from hexaleg.design.codesign.floors import over_floors
 from hexaleg.design.codesign.full_rules import rule_params, started
 from hexaleg.design.codesign.gait_evaluation import (
@@ -55,7 +56,7 @@ from hexaleg.design.codesign.gait_evaluation import (
     evaluate_gait,
     with_values,
 )
-from hexaleg.design.codesign.gait_search import RESTARTS, default_space, search
+from hexaleg.design.codesign.gait_search import RESTARTS, search
 from hexaleg.design.codesign.optimal_stage import keep_parametric, kept_parametric, with_optimal
 from hexaleg.design.codesign.result import CodesignResult, Row, SpeedPoint
 from hexaleg.design.codesign.servo import choose, screen
@@ -81,59 +82,8 @@ MOTIONS = ("gait", "optimal")
 """What ``motion`` may be: the parametric gait alone, or also the optimal motion's rows."""
 SPEED_FACTORS = (0.5, 0.75, 1.0, 1.25, 1.5)
 """The speed curve's speeds, as factors of the required speed."""
-DUTY_HIGH = 0.8
-"""The searches' highest duty factor by default (``[codesign] duty_high``, ``--duty-high``).
-It stays at 0.8, though the default robot's co-design sits on it and a bound of 0.9 finds a
-cheaper gait (docs/optimal.md: 9.10 against 9.99 J/m predicted): every co-design figure the
-docs and tests pin was searched to 0.8, and a tripod past it swings each leg in a tenth of the
-cycle or less, which the servo check has only partly simulated."""
-DUTY_CEILING = 0.95
-"""The highest ``duty_high`` allowed (the search box's own ceiling: a swing of a twentieth of
-the cycle)."""
-BODY_HIGH = 1.3
-"""The searches' highest body height by default, × the default gait's (``[codesign]
-body_high``, ``--body-high``). It stays at 1.3, though the default robot's co-design sits on it
-and a top of 1.5 × finds a cheaper gait (docs/optimal.md, "Starts of the optimal motion": 8.545
-against 9.093 J/m predicted at duty factor ≤ 0.9): every co-design figure the docs and tests
-pin was searched to 1.3 ×."""
-BODY_FLOOR = 1.0
-"""The lowest ``body_high`` allowed: the box keeps the default gait, the search's first start."""
-BODY_CEILING = 2.0
-"""The highest ``body_high`` allowed: past the legs' reach of every registered robot (the
-default gait's body height × 1.7 still walks on the hexapod, × 2 does not; Solo-12's × 1.5 does
-not); a body the legs cannot reach is a gait the generator refuses, which the search
-penalises."""
 
 
-def duty_bound(value: Any, lowest: float) -> float:
-    """``duty_high`` checked against the default gait's duty factor ``lowest`` (the search
-    box's low end): in [``lowest`` + 0.05, :data:`DUTY_CEILING`]; None: :data:`DUTY_HIGH`, or
-    ``lowest`` + 0.05 where that is higher.
-
-    Raises:
-        InvalidParameterError: not a number, or outside that range (both named).
-    """
-    low = round(lowest + 0.05, 12)
-    if value is None:
-        return max(DUTY_HIGH, low)
-    return real("[codesign] duty_high", value, low=low, high=DUTY_CEILING,
-                allowed=f"a duty factor in [{low:g}, {DUTY_CEILING:g}] (the default gait's "
-                        f"{lowest:g} plus 0.05, up to {DUTY_CEILING:g})")
-
-
-def body_bound(value: Any) -> float:
-    """``body_high``, the search box's highest body height as a factor of the default gait's,
-    checked: in [:data:`BODY_FLOOR`, :data:`BODY_CEILING`]; None: :data:`BODY_HIGH`.
-
-    Raises:
-        InvalidParameterError: not a number, or outside that range (both named).
-    """
-    if value is None:
-        return BODY_HIGH
-    return real("[codesign] body_high", value, low=BODY_FLOOR, high=BODY_CEILING,
-                allowed=f"a factor of the default gait's body height in [{BODY_FLOOR:g}, "
-                        f"{BODY_CEILING:g}] (the box keeps the default gait; past "
-                        f"{BODY_CEILING:g} × the legs reach no robot's ground)")
 def default_gait(robot: Robot, name: str, speed: float, pattern: str | None, samples: int
                  ) -> GaitParams:
     """The robot's default gait at ``speed`` with its body height and foot radius resolved
@@ -210,13 +160,15 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             swing weight; four or five solves more, each judged by the prediction of its
             rebuilt cycle), the alternation run from the best; only with ``motion="optimal"``.
         duty_high: The co-design search's (and the gait-alone search's) highest duty factor
-            (:func:`~hexaleg.design.codesign.gait_search.default_space`), in [the default
-            gait's duty factor + 0.05, 0.95]; None: :data:`DUTY_HIGH`, or the default gait's
-            + 0.05 where that is higher (a wave's 5/6). The optimal rows' parametric co-design
-            is the one searched to it.
+            (:func:`~hexaleg.design.codesign.box.default_space`), in [the default gait's duty
+            factor + 0.05, 0.95]; None: :data:`~hexaleg.design.codesign.box.DUTY_HIGH`, or the
+            default gait's + 0.05 where that is higher (a wave's 5/6). The optimal rows'
+            parametric co-design is the one searched to it.
         body_high: The searches' highest body height, × the default gait's (the box's
-            lowest stays 0.7 ×), in [:data:`BODY_FLOOR`, :data:`BODY_CEILING`]; None:
-            :data:`BODY_HIGH`. The optimal rows' parametric co-design is the one searched to it.
+            lowest stays 0.7 ×), in [:data:`~hexaleg.design.codesign.box.BODY_FLOOR`,
+            :data:`~hexaleg.design.codesign.box.BODY_CEILING`]; None:
+            :data:`~hexaleg.design.codesign.box.BODY_HIGH`. The optimal rows' parametric
+            co-design is the one searched to it.
         progress: Called with one status line per stage.
         stages: Where the parametric co-design is kept when it is done, before the optimal
             motion's stage (``motion="optimal"``: minutes more), and read back from instead of
@@ -485,7 +437,5 @@ def codesign_settings(table: Any, where: str = "[codesign]",
     return out
 
 
-__all__ = ["BODY_CEILING", "BODY_FLOOR", "BODY_HIGH", "CODESIGN_KEYS", "DUTY_CEILING",
-           "DUTY_HIGH", "FLOOR_KEYS", "MOTIONS", "SPEED_FACTORS", "body_bound", "codesign",
-           "codesign_settings", "default_gait", "duty_bound", "floor_constraints", "simulated",
-           "speed_curve"]
+__all__ = ["CODESIGN_KEYS", "FLOOR_KEYS", "MOTIONS", "SPEED_FACTORS", "codesign",
+           "codesign_settings", "default_gait", "floor_constraints", "simulated", "speed_curve"]

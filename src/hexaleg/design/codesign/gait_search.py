@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -122,22 +122,6 @@ class Space:
         """The scaled point of parameter values (the inverse of :meth:`values`)."""
         return np.array([(values[n] - self.bounds[n][0])
                          / (self.bounds[n][1] - self.bounds[n][0]) for n in self.names])
-
-
-def default_space(gait: GaitParams, min_step: float, free: Sequence[str] = PARAMETERS,
-                  duty_high: float = 0.8, body_high: float = 1.3) -> Space:
-    """The default box about a robot's gait ``gait`` (its resolved values): body height
-    ×[0.7, ``body_high``], foot radius ×[0.7, 1.3], step height [``min_step``, 1.5 × default],
-    duty factor [the pattern's β₀, max(β₀ + 0.05, ``duty_high``)] (β₀ is the least that keeps
-    the pattern's support: 0.5 for a tripod or trot, 0.75 for a crawl), period ×[0.5, 2]."""
-    assert gait.body_height is not None and gait.foot_radius is not None
-    beta = gait.duty_factor
-    box = {"body_height": (0.7 * gait.body_height, body_high * gait.body_height),
-           "foot_radius": (0.7 * gait.foot_radius, 1.3 * gait.foot_radius),
-           "step_height": (min_step, max(1.5 * gait.step_height, 2 * min_step)),
-           "duty_factor": (beta, max(beta + 0.05, min(duty_high, 0.95))),
-           "period": (0.5 * gait.period, 2.0 * gait.period)}
-    return Space({n: box[n] for n in PARAMETERS if n in free})
 
 
 def penalised(point: GaitPoint, reference: float, distance: float, springs: bool) -> float:
@@ -324,4 +308,4 @@ def finalists(cache: Mapping[tuple[float, ...], tuple[float, GaitPoint]]
 
 
 __all__ = ["FAIL", "FINALISTS", "MIN_STEP", "RESTARTS", "SPACING", "STEP", "TIE", "WEIGHT",
-           "SearchResult", "Space", "default_space", "finalists", "penalised", "search"]
+           "SearchResult", "Space", "finalists", "penalised", "search"]

@@ -18,7 +18,7 @@ machine, and its answer is the best of the lattice (not of the continuum between
 
 The lattice widens the family past the parametric search's own duty-factor bound (0.8 by default,
 ``[codesign] duty_high``,
-:func:`~hexaleg.design.codesign.gait_search.default_space`): the parametric gait at the same
+:func:`~hexaleg.design.codesign.box.default_space`): the parametric gait at the same
 duty factors is a baseline of its own (the alternation's first figure, the chosen timing's gait
 with the co-design's springs, is that gait).
 """

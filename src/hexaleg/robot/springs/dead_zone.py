@@ -64,6 +64,39 @@ class TorqueBasis(NamedTuple):
     damping: np.ndarray
 
 
+Parameter = float | np.ndarray
+"""A law's parameter: one law's number, or many joints' laws' at once (an array that broadcasts
+with the angles)."""
+
+
+def zone_basis(d: np.ndarray, v: np.ndarray | None, th_minus: Parameter, th_plus: Parameter,
+               a: Parameter) -> TorqueBasis:
+    """:meth:`DeadZoneSpring.torque_basis` at ``d = q − neutral`` and speed ``v`` (rad and
+    rad/s, one shape; ``v`` None: no damping), for contact angles θ⁻ ``th_minus`` and θ⁺
+    ``th_plus`` (rad, relative to the neutral) and transmission ``a``
+    (:attr:`DeadZoneSpring.transmission`): one law's numbers, or many joints' laws at once
+    (:data:`Parameter`), the same arithmetic either way: the paper's eq. 8 and 14 per unit
+    coefficient, in the α convention of the module docstring (``a`` = α² or α). Unchecked: the
+    law checks its input."""
+    plus = -a * np.maximum(d - th_plus, 0.0)
+    minus = -a * np.minimum(d - th_minus, 0.0)
+    if v is None:
+        damp = np.zeros_like(d)
+    else:
+        engaged = (d > th_plus) | (d < th_minus)
+        damp = np.where(engaged, -a * v, 0.0)
+    return TorqueBasis(plus, minus, -d, damp)
+
+
+def zone_torque(basis: TorqueBasis, k_plus: Parameter, k_minus: Parameter, k2: Parameter,
+                damping: Parameter) -> np.ndarray:
+    """:meth:`DeadZoneSpring.torque` from its :func:`zone_basis` and coefficients k⁺, k⁻
+    (N·m/rad, the spring's), k₂ (N·m/rad) and damping (N·m·s/rad): one law's numbers, or many
+    joints' laws at once (:data:`Parameter`), N·m, the shape of the basis."""
+    return (k_plus * basis.plus + k_minus * basis.minus + k2 * basis.k2
+            + damping * basis.damping)
+
+
 @named_arguments
 @dataclass(frozen=True)
 class DeadZoneSpring(ContactAngles):
@@ -177,18 +210,12 @@ class DeadZoneSpring(ContactAngles):
             The four shapes, each the shape of q.
         """
         d = self._delta(q)
-        a = self.transmission
-        plus = -a * np.maximum(d - self.th_plus, 0.0)
-        minus = -a * np.minimum(d - self.th_minus, 0.0)
-        if v is None:
-            damp = np.zeros_like(d)
-        else:
+        va = None
+        if v is not None:
             va = finite_array("v", v)
             if va.shape != d.shape:
                 raise InvalidParameterError("v.shape", va.shape, f"the shape of q, {d.shape}")
-            eng = (d > self.th_plus) | (d < self.th_minus)
-            damp = np.where(eng, -a * va, 0.0)
-        return TorqueBasis(plus, minus, -d, damp)
+        return zone_basis(d, va, self.th_minus, self.th_plus, self.transmission)
 
     def terms(self) -> tuple[Term, ...]:
         """The elastic law as basis terms (:mod:`hexaleg.robot.springs.terms`): ramps at the two
@@ -214,9 +241,8 @@ class DeadZoneSpring(ContactAngles):
             q: Joint angles, rad, any shape.
             v: Joint velocities, rad/s, same shape, or None to omit damping.
         """
-        b = self.torque_basis(q, v)
-        return (self.stiffness * b.plus + self.k_minus * b.minus + self.k2 * b.k2
-                + self.damping * b.damping)
+        return zone_torque(self.torque_basis(q, v), self.stiffness, self.k_minus, self.k2,
+                           self.damping)
 
     def energy(self, q: ArrayLike) -> np.ndarray:
         """Stored potential energy U(q), J, shape of q (eq. 7 with Δθ = compression)."""

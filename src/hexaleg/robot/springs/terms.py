@@ -77,19 +77,8 @@ class Term:
         return self.kind not in SIGNED_KINDS
 
     def torque(self, q: np.ndarray) -> np.ndarray:
-        """φ(q) per unit magnitude, shape of ``q``."""
-        d = q - self.angle
-        if self.kind == "above":
-            return -np.maximum(d, 0.0)
-        if self.kind == "below":
-            return np.maximum(-d, 0.0)
-        if self.kind == "step_above":
-            return -(d > 0).astype(float)
-        if self.kind == "step_below":
-            return (d < 0).astype(float)
-        if self.kind == "linear":
-            return -d
-        return np.ones_like(d)
+        """φ(q) per unit magnitude, shape of ``q`` (:func:`basis_torque` at ``q − a``)."""
+        return basis_torque(self.kind, q - self.angle)
 
     def potential(self, q: np.ndarray) -> np.ndarray:
         """ψ(q) per unit magnitude, shape of ``q``; φ = −dψ/dq."""
@@ -105,6 +94,23 @@ class Term:
         if self.kind == "linear":
             return 0.5 * d**2
         return -d
+
+
+def basis_torque(kind: str, d: np.ndarray) -> np.ndarray:
+    """φ per unit magnitude of a term of ``kind`` (one of :data:`KINDS`) at ``d = q − a``, rad
+    (the module docstring's table), the shape of ``d``: one term's angles, or the terms of
+    ``kind`` of many joints at once (each its own ``a``), the same arithmetic either way."""
+    if kind == "above":
+        return -np.maximum(d, 0.0)
+    if kind == "below":
+        return np.maximum(-d, 0.0)
+    if kind == "step_above":
+        return -(d > 0).astype(float)
+    if kind == "step_below":
+        return (d < 0).astype(float)
+    if kind == "linear":
+        return -d
+    return np.ones_like(d)
 
 
 def basis(terms: Sequence[Term], q: ArrayLike) -> np.ndarray:
