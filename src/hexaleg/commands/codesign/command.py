@@ -21,6 +21,7 @@ from __future__ import annotations
 import argparse
 
 from hexaleg.commands.options import add_quiet
+from hexaleg.design.codesign.box import BODY_CEILING, BODY_FLOOR, BODY_HIGH, DUTY_CEILING, DUTY_HIGH
 from hexaleg.design.codesign.starts import STARTS
 from hexaleg.design.codesign.timing import TIMINGS
 from hexaleg.simulation.balance import MODES as FEEDBACK  # no MuJoCo: it loads with a model
@@ -62,11 +63,12 @@ def add(sub: argparse._SubParsersAction) -> None:
                         "cycle's prediction; the alternation from the best) (default: gait, or "
                         "the config's)")
     p.add_argument("--duty-high", dest="duty_high", type=float,
-                   help="the searches' highest duty factor, in [the default gait's + 0.05, 0.95] "
-                        "(default 0.8, or the config's)")
+                   help="the searches' highest duty factor, in [the default gait's + 0.05, "
+                        f"{DUTY_CEILING:g}] (default {DUTY_HIGH:g}, or the config's)")
     p.add_argument("--body-high", dest="body_high", type=float,
-                   help="the searches' highest body height, × the default gait's, in [1, 2] "
-                        "(default 1.3, or the config's)")
+                   help="the searches' highest body height, × the default gait's, in "
+                        f"[{BODY_FLOOR:g}, {BODY_CEILING:g}] (default {BODY_HIGH:g}, or the "
+                        "config's)")
     p.add_argument("--no-rules", dest="rules", action="store_false", default=None,
                    help="leave out hexaleg design's full spring rules (tolerance, envelope, "
                         "fatigue, arbor, parsimony) on the chosen gait, about a minute: the "
