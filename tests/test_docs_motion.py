@@ -29,7 +29,7 @@ CONFIG = '[design]\nfamilies = ["linear", "one_sided", "preloaded"]\n'
 def walk_log(path: Path, seed: int = SEED, cycles: int = 5) -> Path:
     """The page's ``walk.csv``: the default tripod gait at 100 samples per 1 s cycle, repeated,
     each joint plus Gaussian noise of half a tick rounded to whole ticks, written in degrees
-    (2 decimals) with time in ms and the gait's contacts."""
+    (2 decimals) with time in ms and the gait's stance as contact switches."""
     robot = hexaleg.load()
     gait = hexaleg.gait(robot, hexaleg.GaitParams(samples=100))
     one = log_columns(robot, gait, derivatives=False)
@@ -40,7 +40,7 @@ def walk_log(path: Path, seed: int = SEED, cycles: int = 5) -> Path:
         cols[f"{name} [deg]"] = np.rad2deg(np.round((q + rng.normal(0.0, TICK / 2, q.shape))
                                                     / TICK) * TICK)
     for leg in sorted(robot.leg_names):
-        cols[f"contact_{leg}"] = np.tile(one[f"contact_{leg}"], cycles)
+        cols[f"contact_{leg}"] = np.tile(one[f"stance_{leg}"], cycles)  # as switches give it
     rows = np.stack(list(cols.values()), axis=1)
     text = [",".join(cols)] + [",".join(f"{v:.2f}" if "[deg]" in k else f"{v:.0f}"
                                         for k, v in zip(cols, r, strict=True)) for r in rows]
