@@ -56,8 +56,10 @@ def write_log(robot: hexaleg.Robot, motion: hexaleg.Motion, path: Path, cycles: 
             cols[name] = np.round((rep + rng.normal(0.0, 0.5 * TICK, rep.shape)) / TICK) * TICK
         elif base and name in ("base_x", "base_y", "base_z"):
             cols[name] = rep + np.repeat(np.arange(cycles), n) * step["xyz".index(name[-1])]
-        elif base and (name.startswith("base_q") or name.startswith("contact_")):
+        elif base and name.startswith("base_q"):
             cols[name] = rep
+        elif base and name.startswith("stance_"):  # the gait's stance as contact switches
+            cols[name.replace("stance_", "contact_", 1)] = rep
     np.savetxt(path, np.stack(list(cols.values()), axis=1), delimiter=",",
                header=",".join(cols), comments="", fmt="%.9g")
 
