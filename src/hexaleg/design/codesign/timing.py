@@ -5,7 +5,7 @@ The optimal-control problem (:mod:`hexaleg.optimal.problem`) takes its contact t
 factor and period — fixed from the gait it starts from. This is a small deterministic outer
 search over that timing around the parametric co-design's chosen gait: a fixed lattice of
 candidates (:func:`candidates`: the gait itself, its duty factor longer by :data:`DUTY_STEPS`
-up to :data:`DUTY_HIGH`, its period scaled by :data:`PERIOD_FACTORS`), each solved with the
+up to :data:`LATTICE_DUTY_HIGH`, its period scaled by :data:`PERIOD_FACTORS`), each solved with the
 co-design's springs in its dynamics and judged by hexaleg's prediction of its cycle rebuilt in
 task space (:func:`~hexaleg.design.codesign.alternation.judged`: the rows' prediction, where
 the cycle covers its stride; the figure the alternation judges). A timing whose gait cannot be
@@ -44,8 +44,10 @@ DUTY_STEPS = (0.05, 0.1)
 """Duty factors tried beside the gait's: the gait's plus each of these (docs/optimal.md: a
 longer stance was the documented lever, 0.785× on the solver's figure at 0.9)."""
 
-DUTY_HIGH = 0.9
-"""The longest duty factor tried (a tripod's swing at 0.9 is a tenth of the cycle)."""
+LATTICE_DUTY_HIGH = 0.9
+"""The longest duty factor the lattice tries (a tripod's swing at 0.9 is a tenth of the cycle;
+above the parametric search's own default bound,
+:data:`~hexaleg.design.codesign.box.DUTY_HIGH`, module docstring)."""
 
 PERIOD_FACTORS = (0.85, 1.15)
 """Periods tried beside the gait's, as factors of it (at the gait's duty factor)."""
@@ -115,12 +117,12 @@ class TimingSearch:
 
 def candidates(chosen: GaitParams) -> list[GaitParams]:
     """The lattice about ``chosen`` (module docstring): itself first, then its duty factor plus
-    each of :data:`DUTY_STEPS` that stays ≤ :data:`DUTY_HIGH`, then its period times each of
+    each of :data:`DUTY_STEPS` that stays ≤ :data:`LATTICE_DUTY_HIGH`, then its period times each of
     :data:`PERIOD_FACTORS`."""
     out = [chosen]
     for step in DUTY_STEPS:
         duty = round(chosen.duty_factor + step, 12)  # 0.8 + 0.05 is 0.8500000000000001
-        if duty <= DUTY_HIGH:
+        if duty <= LATTICE_DUTY_HIGH:
             out.append(dataclasses.replace(chosen, duty_factor=duty))
     out += [dataclasses.replace(chosen, period=chosen.period * f) for f in PERIOD_FACTORS]
     return out
@@ -190,5 +192,5 @@ def search_timing(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringS
     return TimingSearch(tuple(tried), best)
 
 
-__all__ = ["DUTY_HIGH", "DUTY_STEPS", "PERIOD_FACTORS", "TIMINGS", "Candidate", "TimingSearch",
-           "candidates", "search_timing"]
+__all__ = ["DUTY_STEPS", "LATTICE_DUTY_HIGH", "PERIOD_FACTORS", "TIMINGS", "Candidate",
+           "TimingSearch", "candidates", "search_timing"]
