@@ -133,7 +133,7 @@ class FootholdSearch:
 
     step: float = 8e-3
     smallest: float = 2e-3
-    bound: float = 0.024
+    bound: float = 0.04
     polls: int = 40
 
     def __post_init__(self) -> None:
