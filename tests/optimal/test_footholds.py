@@ -136,6 +136,20 @@ def test_the_search_finds_the_least_on_its_lattice(robot):
     assert [v for _, v in again.tried] == [v for _, v in answer.tried]
 
 
+def test_a_search_started_at_its_least_stays_there(robot):
+    """Catches a start that is ignored (the search would walk from no offsets)."""
+    target = (-3, 2, 5, 0, 1, -4)
+    value, goal, _ = _quadratic(robot, target)
+    answer = search_footholds(robot, value, FootholdSearch(step=8e-3, smallest=2e-3,
+                                                           bound=0.02), start=target)
+    np.testing.assert_allclose(answer.offsets, goal, atol=1e-15)
+    assert answer.point == target
+    assert answer.start == pytest.approx(0.0, abs=1e-20)
+    assert len(answer.tried) == 1 + 2 * 6 * 3  # the start, then ± each coordinate at 3 steps
+    with pytest.raises(InvalidParameterError, match="start"):
+        search_footholds(robot, value, FootholdSearch(bound=0.02), start=(11, 0, 0, 0, 0, 0))
+
+
 def test_the_search_keeps_its_bound_and_skips_unreachable_candidates(robot):
     def value(offsets):
         if offsets[0, 0] > 0:  # a leg out of reach forward

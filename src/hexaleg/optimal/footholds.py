@@ -154,9 +154,10 @@ class FootholdAnswer:
         offsets: Each leg's offset, (n_legs, 2), m (world x, y).
         value: Its value (the least found), or None when no candidate, the start included, had
             one.
-        start: The start's value (no offsets).
+        start: The start's value.
         tried: Every candidate evaluated in order: ``(offsets (n_legs, 2) m, value or None)``.
         polls: Polls run.
+        point: The answer's lattice point (:func:`offsets_of`'s steps).
     """
 
     offsets: np.ndarray
@@ -164,6 +165,7 @@ class FootholdAnswer:
     start: float | None
     tried: list[tuple[np.ndarray, float | None]]
     polls: int
+    point: tuple[int, ...]
 
 
 def offsets_of(robot: Robot, point: tuple[int, ...], smallest: float) -> np.ndarray:
@@ -182,7 +184,8 @@ def offsets_of(robot: Robot, point: tuple[int, ...], smallest: float) -> np.ndar
 
 def search_footholds(robot: Robot, value: Callable[[np.ndarray], float | None],
                      params: FootholdSearch | None = None,
-                     say: Callable[[str], None] | None = None) -> FootholdAnswer:
+                     say: Callable[[str], None] | None = None,
+                     start: tuple[int, ...] | None = None) -> FootholdAnswer:
     """The compass search over the footholds' offsets (module docstring).
 
     Args:
@@ -191,11 +194,19 @@ def search_footholds(robot: Robot, value: Callable[[np.ndarray], float | None],
             a candidate with none (out of reach, not rebuilt). Called once per lattice point.
         params: The lattice and steps; defaults when None.
         say: Where one line per candidate goes.
+        start: The lattice point to start from (:func:`offsets_of`'s steps, two a
+            :func:`mirrored_legs` pair, each within the bound); None: no offsets.
+
+    Raises:
+        InvalidParameterError: a start of another length or beyond the bound.
     """
     params = params or FootholdSearch()
     tell = say or (lambda _line: None)
     dims = 2 * len(mirrored_legs(robot))
     limit = round(params.bound / params.smallest)
+    if start is not None and (len(start) != dims or any(abs(int(c)) > limit for c in start)):
+        raise InvalidParameterError("start", start, f"{dims} integer steps, each of at most "
+                                                    f"{limit} in size (the bound)")
     known: dict[tuple[int, ...], float | None] = {}
     tried: list[tuple[np.ndarray, float | None]] = []
 
@@ -209,8 +220,8 @@ def search_footholds(robot: Robot, value: Callable[[np.ndarray], float | None],
                  f"{shown}")
         return known[point]
 
-    best = tuple([0] * dims)
-    start = best_value = at(best)
+    best = tuple([0] * dims) if start is None else tuple(int(c) for c in start)
+    first = best_value = at(best)
     step = round(params.step / params.smallest)
     polls = 0
     while polls < params.polls:
@@ -230,5 +241,5 @@ def search_footholds(robot: Robot, value: Callable[[np.ndarray], float | None],
             if step == 1:
                 break
             step //= 2
-    return FootholdAnswer(offsets_of(robot, best, params.smallest), best_value, start, tried,
-                          polls)
+    return FootholdAnswer(offsets_of(robot, best, params.smallest), best_value, first, tried,
+                          polls, best)
