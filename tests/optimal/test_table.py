@@ -514,3 +514,37 @@ def test_the_speed_section_is_the_kept_logs():
         minutes, seconds = int(wall[1]), round(float(wall[2]))
         assert words.startswith(f"**{minutes} min {seconds} s")
         assert f"{user + system:.0f} s" in words and words in text, name
+
+
+def test_the_footholds_are_the_kept_log():
+    """The footholds' section prints bench_optimal_footholds.log: each alternation's figure and
+    ratios, its simulation and worse-servo ratios, row for row, and the figures its text quotes
+    (the relaxed hold's slide, the solver's trap, the 1e-9 move)."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("## The footholds as decisions"):doc.index("## How it compares")]
+    log = (LOGS / "bench_optimal_footholds.log").read_text(encoding="utf-8")
+    alternations = dict(
+        (label, (last, v, d)) for label, last, v, d in re.findall(
+            r"^\S+ alternation from (.+?): [0-9.]+ →.*?([0-9.]+) J/m predicted rebuilt "
+            r"\(.*?× V ([0-9.]+) × D ([0-9.]+);", log, re.MULTILINE))
+    simulated = dict(
+        (label, rest) for label, *rest in re.findall(
+            r"^\S+ alternation from (.+?) simulated with balance feedback: feedforward "
+            r"([0-9.]+), position ([0-9.]+); worse servo × V ([0-9.]+) × D ([0-9.]+)$", log,
+            re.MULTILINE))
+    table = text[text.index("| footholds |"):].split("\n\n")[0].splitlines()[2:]
+    assert len(table) == len(alternations) == len(simulated) == 4
+    for row in table:
+        label, *cells = (c.strip() for c in row.strip("|").split("|"))
+        ff, pos, wv, wd = simulated[label]
+        assert cells == [*alternations[label], f"{ff} / {pos}", wv, wd], row
+    flat = " ".join(text.split())
+    trap = re.search(r"searched by the solver's figure:$", log, re.MULTILINE)
+    solved = re.findall(r"the answer re-solved: judged ([0-9.]+) .*?solver ([0-9.]+),", log)
+    moved = re.findall(r"the answer's footholds moved by 1e-9 m .*?: judged ([0-9.]+)", log)
+    slide = re.search(r"relaxed foothold .*slip ([0-9.]+) mm/s", log)
+    assert trap is None and len(solved) == len(moved) == 3 and slide
+    assert f"{float(solved[1][1]):.2f} J/m by the solver's knots, {solved[1][0][:4]} rebuilt" \
+        in flat
+    assert f"({solved[2][0]} → {moved[2]} J/m predicted)" in flat
+    assert f"slide ({float(slide[1]):.0f} mm/s)" in flat
