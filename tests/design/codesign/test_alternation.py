@@ -10,9 +10,12 @@ import pytest
 
 import hexaleg
 from hexaleg.design.codesign.alternation import (
+    MOVES,
     Alternation,
     Round,
+    Spread,
     alternate,
+    decimals,
     least,
     predicted_per_metre,
 )
@@ -41,12 +44,14 @@ class _Solver:
     def __init__(self, cycles: list[tuple[float, hexaleg.Motion | None]]) -> None:
         self.cycles = list(cycles)
         self.built: list[hexaleg.SpringSet] = []
+        self.warms: list[object] = []
 
     def build_problem(self, _robot, _gait, _actuator, springs, _params):
         self.built.append(springs)
         return SimpleNamespace(actuation=SimpleNamespace(spring_torques=lambda _x: np.zeros(18)))
 
-    def solve(self, _robot, _built, **_kwargs):
+    def solve(self, _robot, _built, **kwargs):
+        self.warms.append(kwargs.get("warm"))
         figure, played = self.cycles.pop(0)
         return SimpleNamespace(energy_per_metre=figure, task_space=played, x=np.zeros((3, 43)),
                                torques=np.zeros((2, 18)), spring_torques=np.zeros((2, 18)),
@@ -270,3 +275,67 @@ def test_side_by_side_solves_are_kept_as_they_end_and_resume(tmp_path, monkeypat
         p.unlink()
     run(False)
     assert not list(computes.iterdir())  # every solve read back
+
+
+def test_the_answer_says_the_warm_start_it_was_solved_from(robot, motions, solver):
+    """What solves the answer again (its spread's moved starts): ``warm`` is the warm start of
+    the accepted round's solve, and ``()`` (the gait's start) while the start is the answer.
+    Catches a spread that repeats the answer's solve from another start (the start's, or the
+    last round's when that round was rejected)."""
+    walk, high, springs = motions
+    run = hexaleg.Scenario.load("hexaleg")
+    fake = solver([(10.0, high), (5.0, walk), (4.0, high)])
+    result = alternate(robot, walk, run.actuator, run.contact, springs=springs, rounds=2,
+                       tolerance=0.0)
+    assert [r.accepted for r in result.rounds] == [True, False]
+    assert fake.warms[0] is None and result.warm is fake.warms[1] is not fake.warms[2]
+    solver([(10.0, walk), (5.0, high)])
+    kept = alternate(robot, walk, run.actuator, run.contact, springs=springs, rounds=1)
+    assert kept.best is kept.start and kept.warm == ()
+
+
+def test_a_spread_is_its_judged_figures_largest_less_least():
+    """The spread of the judged figures (not the solver's own), the solves without a figure
+    counted apart; the digits a figure keeps are those whose last unit covers its spread.
+    Catches a spread of zero when the solves differ, or one taken from the solver's figures."""
+    spread = Spread(MOVES, (9.627, 9.6267, None, 9.6301, 9.6262), (9.33, 9.32, 9.31, 9.2, 9.3),
+                    (2e-3, 3e-2, 1e-3, 2e-3, 2e-3))
+    assert spread.value == pytest.approx(9.6301 - 9.6262) and spread.unjudged == 1
+    assert spread.solver_value == pytest.approx(0.13)
+    assert Spread(MOVES, (9.6, None, None, None, None), (9.0,) * 5, (1e-3,) * 5).value is None
+    assert [decimals(v) for v in (None, 0.0, 4e-4, 0.0039, 0.004, 0.03, 0.3, 3.0)] == [
+        2, 2, 2, 2, 2, 1, 0, 0]
+    assert decimals(4e-4, 3) == 3 and decimals(0.004, 3) == 2
+    data = spread.data()
+    assert data["value"]["unit"] == "J/m" and data["moves"] == {"value": list(MOVES), "unit": "m"}
+    assert data["judged"][2] == {"value": None, "unit": "J/m"} and data["unjudged"] == 1
+
+
+@pytest.mark.slow
+def test_the_spread_repeats_the_solve_from_its_start_moved():
+    """A short solve (16 knots, 40 iterations) repeated by :func:`spreads` from its start moved
+    by each of :data:`MOVES`: the first figure is the answer's own, the moved solves land
+    elsewhere (the solver parts them: a ``move`` ignored gives five equal figures and a spread
+    of zero), and the same solve repeated unmoved lands on the answer to the bit (deterministic)."""
+    pytest.importorskip("crocoddyl")
+    from hexaleg.design.codesign.alternation import spreads
+    from hexaleg.optimal.problem import OptimalParams, build_problem
+    from hexaleg.optimal.solve import solve
+
+    run = hexaleg.Scenario.load("hexaleg")
+    robot, motor = run.model, run.actuator
+    walk = hexaleg.gait(robot, hexaleg.GaitParams(samples=100))
+    params = OptimalParams(nodes=16, iterations=40)
+    answer = solve(robot, build_problem(robot, walk, motor, hexaleg.SpringSet(), params))
+
+    def judge(result):
+        return predicted_per_metre(robot, result.task_space, motor, hexaleg.SpringSet(),
+                                   run.contact)
+
+    (spread,) = spreads(robot, [(answer, walk, motor, hexaleg.SpringSet(), params, (), judge)])
+    assert spread.moves == MOVES and spread.judged[0] == judge(answer)[0]
+    assert spread.solver[0] == answer.energy_per_metre
+    assert len(set(spread.solver)) == len(MOVES) + 1 and spread.value > 0.0
+    again = solve(robot, build_problem(robot, walk, motor, hexaleg.SpringSet(), params),
+                  move=0.0)
+    assert np.array_equal(again.x, answer.x)

@@ -27,6 +27,23 @@ It never ends worse than the gait it starts from, by the same measure: the gait 
 starting springs is predicted first (:attr:`Alternation.baseline`), and when no optimal cycle is
 predicted below it the answer is that gait with those springs (:attr:`Alternation.kept_gait`).
 
+The answer is a local optimum of a nonconvex problem, and the solver stops at its iteration
+budget far from stationary (box-FDDP's stopping criterion 2e-3 to 3e-2 against a threshold of
+1e-8 on the default robot's co-design gait), where its iterates zig-zag, the line search's
+step alternating between 1/64 and 1/8: two solves whose starts are 1e-9 m apart in the base's
+height agree to 7e-7 for 30 iterations, then part by a factor of about 2 an iteration, to 1e-3
+in the knots' states by iteration 40, and end with their rebuilt cycles' predictions 3e-5 apart
+relative (1e-3 at a taller body, also after 1000 iterations;
+``analysis/bench_optimal_same_answer.py``). No start is guaranteed to land on the same digits, so the spread is
+stated (Nocedal & Wright, *Numerical Optimization*, 2nd ed., §2.1: a local method's answer
+depends on its start; the spread is measured, not bounded): :func:`spreads` solves the answer's
+own problem again from its own start moved by each of :data:`MOVES` (the base's height,
+:func:`hexaleg.optimal.solve.solve`'s ``move``), side by side on the command's workers, and
+:class:`Spread` holds the judged figure and the solver's of every solve; the rows print each
+optimal figure to the digits its spread leaves (:meth:`Spread.decimals`) with the spread beside
+it. It is the spread of the last solve, not of the whole alternation (whose rounds could accept
+or reject otherwise from another start).
+
 Only families whose torque is continuous in the angle enter DDP's dynamics well (``linear``,
 ``dead_zone``); a preload's step has no derivative, and the solver then lets a stance foot slip.
 """
@@ -34,6 +51,7 @@ Only families whose torque is continuous in the angle enter DDP's dynamics well 
 from __future__ import annotations
 
 import functools
+import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -48,12 +66,17 @@ from hexaleg.dynamics.prepare import prepare
 from hexaleg.errors import HexalegError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.parallel.forked import fork_map, robot_objects
+from hexaleg.quantities import quantity as q
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
 
 SMOOTH_FAMILIES = ("linear", "dead_zone")
 """Families whose torque is continuous in the angle (module docstring)."""
 
+
+MOVES = (-2e-9, -1e-9, 1e-9, 2e-9)
+"""The moves of a solve's start that measure its spread, m (module docstring): the base's
+height at every knot of the start, by the same-answer rule's 1e-9 and twice it, either way."""
 
 PROGRESS = 20
 """A solve's progress line every this many box-FDDP iterations (a hundred take minutes)."""
@@ -174,6 +197,101 @@ def apart(jobs: Sequence[Job], robot: Robot, keep: Keep | None = None,
 
 
 @dataclass(frozen=True)
+class Spread:
+    """How far a solve's figures move when its start moves (module docstring).
+
+    Attributes:
+        moves: The start's moves, m, in the order of the figures after the first
+            (:data:`MOVES`).
+        judged: The judged figure (the row's: hexaleg's prediction of the rebuilt cycle), J/m,
+            of the solve itself then of each moved one; None where one has no answer.
+        solver: The solver's own J/m at its knots, in the same order.
+        stationarity: The solver's stopping criterion at the end, in the same order.
+    """
+
+    moves: tuple[float, ...]
+    judged: tuple[float | None, ...]
+    solver: tuple[float, ...]
+    stationarity: tuple[float, ...]
+
+    @property
+    def value(self) -> float | None:
+        """The judged figures' spread, largest less least, J/m (None: fewer than two have an
+        answer)."""
+        known = [v for v in self.judged if v is not None]
+        return max(known) - min(known) if len(known) > 1 else None
+
+    @property
+    def unjudged(self) -> int:
+        """How many of the solves have no judged figure (a moved start whose cycle is not
+        rebuilt, or has no prediction: a spread the figures cannot show)."""
+        return sum(v is None for v in self.judged)
+
+    @property
+    def solver_value(self) -> float:
+        """The solver's own figures' spread, J/m."""
+        return max(self.solver) - min(self.solver)
+
+    def data(self) -> dict[str, Any]:
+        """codesign.json's record of the spread."""
+        return {"value": q(self.value, "J/m"), "moves": q(list(self.moves), "m"),
+                "judged": [q(v, "J/m") for v in self.judged],
+                "unjudged": self.unjudged, "solver_value": q(self.solver_value, "J/m"),
+                "solver": q(list(self.solver), "J/m"),
+                "stationarity": q(list(self.stationarity), "1")}
+
+
+def decimals(spread: float | None, most: int = 2) -> int:
+    """The decimals a figure of this ``spread`` (J/m) is printed to: the most, at most
+    ``most``, whose last digit's unit is at least the spread (a spread of 0.004 J/m leaves
+    two, 0.03 one; None or 0 leaves ``most``)."""
+    if spread is None or spread <= 0.0:
+        return most
+    return max(0, min(most, math.floor(-math.log10(spread))))
+
+
+def spreads(robot: Robot, cases: Sequence[tuple[Any, Motion, Any, SpringSet, Any,
+                                                tuple[Any, ...], Callable[[Any], Any]]],
+            keep: Keep | None = None) -> list[Spread]:
+    """Each case's :class:`Spread`: its problem solved again from its start moved by each of
+    :data:`MOVES`, every moved solve of every case side by side on the command's workers
+    (:func:`apart`, each judged there and kept by ``keep``).
+
+    Args:
+        robot: The robot.
+        cases: ``(result, gait, actuator, springs, params, warm, judge)`` of each solve: the
+            solve's answer (:class:`~hexaleg.optimal.solve.OptimalResult`), the gait, motors,
+            springs and :class:`~hexaleg.optimal.problem.OptimalParams` it was built from, the
+            warm start it was solved from (states and controls; ``()``: the gait's start), and
+            how its figure is judged (a result → ``(J/m or None, why)``).
+        keep: How each moved solve is kept (:data:`Keep`); None: computed.
+    """
+    from hexaleg.optimal.problem import build_problem  # needs Crocoddyl
+    from hexaleg.optimal.solve import solve
+
+    def moved(gait: Motion, actuator: Any, springs: SpringSet, params: Any,
+              warm: tuple[Any, ...], move: float) -> Any:
+        return solve(robot, build_problem(robot, gait, actuator, springs, params),
+                     warm=(warm[0], warm[1]) if warm else None, move=move)
+
+    jobs: list[Job] = []
+    judges: list[Callable[[Any], Any]] = []
+    for _result, gait, actuator, springs, params, warm, judge in cases:
+        for move in MOVES:
+            jobs.append((("moved", move, springs, params, gait.q, *warm),
+                         functools.partial(moved, gait, actuator, springs, params, warm, move)))
+            judges.append(judge)
+    out = apart(jobs, robot, keep, then=lambda index, result: judges[index](result)[0])
+    found = []
+    for k, (result, *_rest, judge) in enumerate(cases):
+        mine = out[k * len(MOVES):(k + 1) * len(MOVES)]
+        found.append(Spread(MOVES, (judge(result)[0], *(v for _, v in mine)),
+                            (result.energy_per_metre, *(r.energy_per_metre for r, _ in mine)),
+                            (result.stationarity, *(r.stationarity for r, _ in mine))))
+    return found
+
+
+@dataclass(frozen=True)
 class Round:
     """One round of the alternation.
 
@@ -219,6 +337,10 @@ class Alternation:
             where the round has no prediction, 1 where only the round has one).
         kept_gait: Whether no optimal cycle was predicted below :attr:`baseline`, or none
             was rebuilt in task space: the answer is then the gait with the starting springs.
+        warm: The warm start :attr:`best` was solved from, ``(states (N + 1, nx), controls
+            (N, nu))``, or ``()`` for the gait's start (the start's solve): with the best
+            cycle's springs and the solver's settings, what solves it again
+            (:func:`spreads`).
     """
 
     gait: Motion
@@ -230,6 +352,7 @@ class Alternation:
     rounds: tuple[Round, ...]
     gap: float
     kept_gait: bool
+    warm: tuple[Any, ...] = ()
 
     @property
     def energies(self) -> list[float | None]:
@@ -304,15 +427,15 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
          f"{_shown(baseline)}; the solver's {best.energy_per_metre:.4g} at its knots; "
          f"{best.iterations} iterations, {best.seconds:.0f} s)")
 
-    def warm_solve(springs: SpringSet, last: Any) -> Any:
-        """The cycle solved with ``springs``, warm-started from ``last`` (module docstring)."""
-        built = build_problem(robot, gait, actuator, springs, params)
+    def warm_of(built: Any, last: Any) -> tuple[np.ndarray, np.ndarray]:
+        """The warm start of the problem ``built`` from the cycle ``last`` (module
+        docstring)."""
         new_tau = np.array([built.actuation.spring_torques(x) for x in last.x[:-1]])
-        warm = (last.x, last.torques + last.spring_torques - new_tau)
-        return solve(robot, built, warm=warm, say=tell, every=PROGRESS)
+        return last.x, last.torques + last.spring_torques - new_tau
 
     done: list[Round] = []
     gap = 0.0
+    best_warm: tuple[Any, ...] = ()
     for k in range(rounds):
         began = time.perf_counter()
         played = best.task_space
@@ -327,9 +450,12 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
             tell(f"round {k + 1}: no springs designed on the rebuilt cycle "
                  f"({type(err).__name__}: {err})")
             break
+        built = build_problem(robot, gait, actuator, design.springs, params)
+        warm = warm_of(built, best)
         candidate = once(("round", design.springs, params, best.x, best.torques,
                           best.spring_torques),
-                         functools.partial(warm_solve, design.springs, best))
+                         functools.partial(solve, robot, built, warm=warm, say=tell,
+                                           every=PROGRESS))
         designed = design.analysis.metrics["total"]["electrical"] / played.distance
         value, _ = judged(robot, candidate, gait, actuator, design.springs, contact)
         gap = (0.0 if value is None else 1.0 if best_predicted is None
@@ -341,7 +467,7 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
              f"{_shown(value)} J/m predicted rebuilt (the solver's "
              f"{candidate.energy_per_metre:.4g}; {'accepted' if accepted else 'rejected'})")
         if accepted:
-            best, current, best_predicted = candidate, design.springs, value
+            best, current, best_predicted, best_warm = candidate, design.springs, value, warm
         if gap < tolerance:
             break
     kept = best.task_space is None or (baseline is not None
@@ -350,7 +476,7 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
         tell(f"no optimal cycle predicted below the gait ({_shown(best_predicted)} against "
              f"{_shown(baseline)} J/m): the gait and its springs kept")
     return Alternation(gait, baseline, start, start_predicted, best,
-                       given if kept else current, tuple(done), gap, kept)
+                       given if kept else current, tuple(done), gap, kept, best_warm)
 
 
 def _shown(value: float | None) -> str:
