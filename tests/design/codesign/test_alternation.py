@@ -44,14 +44,14 @@ class _Solver:
     def __init__(self, cycles: list[tuple[float, hexaleg.Motion | None]]) -> None:
         self.cycles = list(cycles)
         self.built: list[hexaleg.SpringSet] = []
-        self.warms: list[object] = []
+        self.moves: list[float] = []
 
     def build_problem(self, _robot, _gait, _actuator, springs, _params):
         self.built.append(springs)
         return SimpleNamespace(actuation=SimpleNamespace(spring_torques=lambda _x: np.zeros(18)))
 
     def solve(self, _robot, _built, **kwargs):
-        self.warms.append(kwargs.get("warm"))
+        self.moves.append(kwargs.get("move", 0.0))
         figure, played = self.cycles.pop(0)
         return SimpleNamespace(energy_per_metre=figure, task_space=played, x=np.zeros((3, 43)),
                                torques=np.zeros((2, 18)), spring_torques=np.zeros((2, 18)),
@@ -277,21 +277,18 @@ def test_side_by_side_solves_are_kept_as_they_end_and_resume(tmp_path, monkeypat
     assert not list(computes.iterdir())  # every solve read back
 
 
-def test_the_answer_says_the_warm_start_it_was_solved_from(robot, motions, solver):
-    """What solves the answer again (its spread's moved starts): ``warm`` is the warm start of
-    the accepted round's solve, and ``()`` (the gait's start) while the start is the answer.
-    Catches a spread that repeats the answer's solve from another start (the start's, or the
-    last round's when that round was rejected)."""
+def test_a_moved_alternation_moves_its_start_only(robot, motions, solver):
+    """``move`` reaches the start's solve (the rows' spread repeats the whole alternation from
+    its start moved), not the rounds' warm-started solves; without it no solve is moved.
+    Catches a spread whose alternation ignores the move (its figures all the answer's)."""
     walk, high, springs = motions
     run = hexaleg.Scenario.load("hexaleg")
-    fake = solver([(10.0, high), (5.0, walk), (4.0, high)])
-    result = alternate(robot, walk, run.actuator, run.contact, springs=springs, rounds=2,
-                       tolerance=0.0)
-    assert [r.accepted for r in result.rounds] == [True, False]
-    assert fake.warms[0] is None and result.warm is fake.warms[1] is not fake.warms[2]
-    solver([(10.0, walk), (5.0, high)])
-    kept = alternate(robot, walk, run.actuator, run.contact, springs=springs, rounds=1)
-    assert kept.best is kept.start and kept.warm == ()
+    fake = solver([(10.0, high), (5.0, walk)])
+    alternate(robot, walk, run.actuator, run.contact, springs=springs, rounds=1, move=2e-9)
+    assert fake.moves == [2e-9, 0.0]
+    fake = solver([(10.0, high), (5.0, walk)])
+    alternate(robot, walk, run.actuator, run.contact, springs=springs, rounds=1)
+    assert fake.moves == [0.0, 0.0]
 
 
 def test_a_spread_is_its_judged_figures_largest_less_least():
@@ -314,9 +311,10 @@ def test_a_spread_is_its_judged_figures_largest_less_least():
 @pytest.mark.slow
 def test_the_spread_repeats_the_solve_from_its_start_moved():
     """A short solve (16 knots, 40 iterations) repeated by :func:`spreads` from its start moved
-    by each of :data:`MOVES`: the first figure is the answer's own, the moved solves land
-    elsewhere (the solver parts them: a ``move`` ignored gives five equal figures and a spread
-    of zero), and the same solve repeated unmoved lands on the answer to the bit (deterministic)."""
+    by each of :data:`MOVES` on the workers: the first figure is the answer's own, the moved
+    solves land elsewhere (the solver parts them: a ``move`` ignored gives five equal figures
+    and a spread of zero), and the same solve repeated unmoved lands on the answer to the bit
+    (deterministic)."""
     pytest.importorskip("crocoddyl")
     from hexaleg.design.codesign.alternation import spreads
     from hexaleg.optimal.problem import OptimalParams, build_problem
@@ -328,12 +326,17 @@ def test_the_spread_repeats_the_solve_from_its_start_moved():
     params = OptimalParams(nodes=16, iterations=40)
     answer = solve(robot, build_problem(robot, walk, motor, hexaleg.SpringSet(), params))
 
-    def judge(result):
-        return predicted_per_metre(robot, result.task_space, motor, hexaleg.SpringSet(),
-                                   run.contact)
+    def moved(move):
+        return solve(robot, build_problem(robot, walk, motor, hexaleg.SpringSet(), params),
+                     move=move)
 
-    (spread,) = spreads(robot, [(answer, walk, motor, hexaleg.SpringSet(), params, (), judge)])
-    assert spread.moves == MOVES and spread.judged[0] == judge(answer)[0]
+    def read(result):
+        value, _ = predicted_per_metre(robot, result.task_space, motor, hexaleg.SpringSet(),
+                                       run.contact)
+        return value, result.energy_per_metre, result.stationarity
+
+    (spread,) = spreads(robot, [(read(answer), ("test",), moved, read)])
+    assert spread.moves == MOVES and spread.judged[0] == read(answer)[0]
     assert spread.solver[0] == answer.energy_per_metre
     assert len(set(spread.solver)) == len(MOVES) + 1 and spread.value > 0.0
     again = solve(robot, build_problem(robot, walk, motor, hexaleg.SpringSet(), params),

@@ -211,15 +211,17 @@ def test_the_alternation_and_the_bare_cycle_run_from_the_start_chosen(monkeypatc
     monkeypatch.setattr(rows_module, "gait", lambda _robot, g: SimpleNamespace(params=g))
 
     def spreads(_robot, cases, _keep):
-        seen["spreads"] = [(c[1].params, c[4], c[5]) for c in cases]
+        seen["spreads"] = [c[1] for c in cases]
         return [None] * len(cases)
 
     monkeypatch.setattr(rows_module, "spreads", spreads)
     table = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen,
                                      hexaleg.SpringSet(), (28.0, 9.9), params=settings,
                                      starts="lattice", min_step=0.015)
-    # both spreads repeat their solve's own problem: the start chosen, from the gait's start
-    assert seen["spreads"] == [(moved, settings, ())] * 2
+    # both spreads repeat their row's own answer: at the start chosen, with its settings
+    (bare_inputs, alt_inputs) = seen["spreads"]
+    assert bare_inputs == ("no springs", settings, moved)
+    assert alt_inputs[0] == "alternation" and alt_inputs[2] == settings and alt_inputs[-1] == moved
     timed, params, min_step, first = seen["starts"]
     assert timed == chosen and params == settings and min_step == 0.015 and first is None
     motion, params, first = seen["alternation"]

@@ -30,19 +30,19 @@ predicted below it the answer is that gait with those springs (:attr:`Alternatio
 The answer is a local optimum of a nonconvex problem, and the solver stops at its iteration
 budget far from stationary (box-FDDP's stopping criterion 2e-3 to 3e-2 against a threshold of
 1e-8 on the default robot's co-design gait), where its iterates zig-zag, the line search's
-step alternating between 1/64 and 1/8: two solves whose starts are 1e-9 m apart in the base's
+step jumping between 1/64 and 1/2: two solves whose starts are 1e-9 m apart in the base's
 height agree to 7e-7 for 30 iterations, then part by a factor of about 2 an iteration, to 1e-3
-in the knots' states by iteration 40, and end with their rebuilt cycles' predictions 3e-5 apart
-relative (1e-3 at a taller body, also after 1000 iterations;
-``analysis/bench_optimal_same_answer.py``). No start is guaranteed to land on the same digits, so the spread is
-stated (Nocedal & Wright, *Numerical Optimization*, 2nd ed., §2.1: a local method's answer
-depends on its start; the spread is measured, not bounded): :func:`spreads` solves the answer's
-own problem again from its own start moved by each of :data:`MOVES` (the base's height,
-:func:`hexaleg.optimal.solve.solve`'s ``move``), side by side on the command's workers, and
-:class:`Spread` holds the judged figure and the solver's of every solve; the rows print each
-optimal figure to the digits its spread leaves (:meth:`Spread.decimals`) with the spread beside
-it. It is the spread of the last solve, not of the whole alternation (whose rounds could accept
-or reject otherwise from another start).
+in the knots' states by iteration 40 (``analysis/bench_optimal_same_answer.py``); the command
+with its body height bound moved by 1e-9 printed this alternation's answer 10.39 J/m
+predicted where it printed 10.41. No start is guaranteed to land on the same digits, so the
+spread is stated (Nocedal & Wright, *Numerical Optimization*, 2nd ed., §2.1: a local method's
+answer depends on its start; the spread is measured, not bounded): :func:`spreads` computes a row's
+answer again — the solve without springs, or this whole alternation (``move``: its start's
+solve moved, its rounds after it) — from its start moved by each of :data:`MOVES` (the base's
+height, :func:`hexaleg.optimal.solve.solve`'s ``move``), side by side on the command's workers,
+and :class:`Spread` holds the judged figure, the solver's and its stationarity of every answer;
+the rows print each optimal figure to the digits its spread leaves (:func:`decimals`) with the
+unit of the last digit beside it.
 
 Only families whose torque is continuous in the angle enter DDP's dynamics well (``linear``,
 ``dead_zone``); a preload's step has no derivative, and the solver then lets a stance foot slip.
@@ -198,13 +198,13 @@ def apart(jobs: Sequence[Job], robot: Robot, keep: Keep | None = None,
 
 @dataclass(frozen=True)
 class Spread:
-    """How far a solve's figures move when its start moves (module docstring).
+    """How far a row's figures move when its start moves (module docstring).
 
     Attributes:
         moves: The start's moves, m, in the order of the figures after the first
             (:data:`MOVES`).
         judged: The judged figure (the row's: hexaleg's prediction of the rebuilt cycle), J/m,
-            of the solve itself then of each moved one; None where one has no answer.
+            of the answer itself then of each moved one; None where one has no answer.
         solver: The solver's own J/m at its knots, in the same order.
         stationarity: The solver's stopping criterion at the end, in the same order.
     """
@@ -250,44 +250,38 @@ def decimals(spread: float | None, most: int = 2) -> int:
     return max(0, min(most, math.floor(-math.log10(spread))))
 
 
-def spreads(robot: Robot, cases: Sequence[tuple[Any, Motion, Any, SpringSet, Any,
-                                                tuple[Any, ...], Callable[[Any], Any]]],
-            keep: Keep | None = None) -> list[Spread]:
-    """Each case's :class:`Spread`: its problem solved again from its start moved by each of
-    :data:`MOVES`, every moved solve of every case side by side on the command's workers
-    (:func:`apart`, each judged there and kept by ``keep``).
+Figures = tuple[float | None, float, float]
+"""A solve's figures a :class:`Spread` holds: judged (J/m or None), the solver's own J/m,
+stationarity."""
+
+Case = tuple[Figures, tuple[Any, ...], Callable[[float], Any], Callable[[Any], Figures]]
+"""One row's spread to measure: its answer's :data:`Figures`, what defines its moved solves
+beside the move (:data:`Keep`'s inputs), how the row's answer is computed again from its start
+moved by so many metres, and how that answer's figures are read."""
+
+
+def spreads(robot: Robot, cases: Sequence[Case], keep: Keep | None = None) -> list[Spread]:
+    """Each case's :class:`Spread`: its answer computed again from its start moved by each of
+    :data:`MOVES`, every moved answer of every case side by side on the command's workers
+    (:func:`apart`: each read there, and kept by ``keep`` as it ends).
 
     Args:
         robot: The robot.
-        cases: ``(result, gait, actuator, springs, params, warm, judge)`` of each solve: the
-            solve's answer (:class:`~hexaleg.optimal.solve.OptimalResult`), the gait, motors,
-            springs and :class:`~hexaleg.optimal.problem.OptimalParams` it was built from, the
-            warm start it was solved from (states and controls; ``()``: the gait's start), and
-            how its figure is judged (a result → ``(J/m or None, why)``).
-        keep: How each moved solve is kept (:data:`Keep`); None: computed.
+        cases: The rows' spreads to measure (:data:`Case`).
+        keep: How each moved answer is kept (:data:`Keep`); None: computed.
     """
-    from hexaleg.optimal.problem import build_problem  # needs Crocoddyl
-    from hexaleg.optimal.solve import solve
-
-    def moved(gait: Motion, actuator: Any, springs: SpringSet, params: Any,
-              warm: tuple[Any, ...], move: float) -> Any:
-        return solve(robot, build_problem(robot, gait, actuator, springs, params),
-                     warm=(warm[0], warm[1]) if warm else None, move=move)
-
     jobs: list[Job] = []
-    judges: list[Callable[[Any], Any]] = []
-    for _result, gait, actuator, springs, params, warm, judge in cases:
+    reads: list[Callable[[Any], Figures]] = []
+    for _answer, inputs, again, read in cases:
         for move in MOVES:
-            jobs.append((("moved", move, springs, params, gait.q, *warm),
-                         functools.partial(moved, gait, actuator, springs, params, warm, move)))
-            judges.append(judge)
-    out = apart(jobs, robot, keep, then=lambda index, result: judges[index](result)[0])
+            jobs.append((("moved", move, *inputs), functools.partial(again, move)))
+            reads.append(read)
+    out = apart(jobs, robot, keep, then=lambda index, result: reads[index](result))
     found = []
-    for k, (result, *_rest, judge) in enumerate(cases):
-        mine = out[k * len(MOVES):(k + 1) * len(MOVES)]
-        found.append(Spread(MOVES, (judge(result)[0], *(v for _, v in mine)),
-                            (result.energy_per_metre, *(r.energy_per_metre for r, _ in mine)),
-                            (result.stationarity, *(r.stationarity for r, _ in mine))))
+    for k, (answer, *_rest) in enumerate(cases):
+        figures = [answer, *(f for _, f in out[k * len(MOVES):(k + 1) * len(MOVES)])]
+        judged_, solver, stopped = zip(*figures, strict=True)
+        found.append(Spread(MOVES, tuple(judged_), tuple(solver), tuple(stopped)))
     return found
 
 
@@ -337,10 +331,6 @@ class Alternation:
             where the round has no prediction, 1 where only the round has one).
         kept_gait: Whether no optimal cycle was predicted below :attr:`baseline`, or none
             was rebuilt in task space: the answer is then the gait with the starting springs.
-        warm: The warm start :attr:`best` was solved from, ``(states (N + 1, nx), controls
-            (N, nu))``, or ``()`` for the gait's start (the start's solve): with the best
-            cycle's springs and the solver's settings, what solves it again
-            (:func:`spreads`).
     """
 
     gait: Motion
@@ -352,7 +342,6 @@ class Alternation:
     rounds: tuple[Round, ...]
     gap: float
     kept_gait: bool
-    warm: tuple[Any, ...] = ()
 
     @property
     def energies(self) -> list[float | None]:
@@ -378,7 +367,7 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
               springs: SpringSet | None = None, params: Any = None, family: str = "linear",
               groups: Groups | None = None, rounds: int = 4, tolerance: float = 0.01,
               say: Callable[[str], None] | None = None, keep: Keep | None = None,
-              first: Any = None) -> Alternation:
+              first: Any = None, move: float = 0.0) -> Alternation:
     """Alternate the optimal motion and its springs (module docstring).
 
     Args:
@@ -401,6 +390,8 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
             the run made before a kill; None: every solve computed.
         first: The optimal cycle of ``gait`` with ``springs`` and ``params`` when it is solved
             already (:mod:`~hexaleg.design.codesign.timing`'s choice); None: solved here.
+        move: The start's solve from the gait's start moved by this much, m
+            (:func:`hexaleg.optimal.solve.solve`'s ``move``: the rows' spread, :func:`spreads`).
 
     Raises:
         InvalidParameterError: a family outside :data:`SMOOTH_FAMILIES`, bad ``rounds`` or
@@ -417,9 +408,9 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
     once = keep or computed
     baseline, _ = predicted_per_metre(robot, gait, actuator, current, contact)
     best = first if first is not None else once(
-        ("start", current, params),
+        ("start", current, params, *((move,) if move else ())),
         lambda: solve(robot, build_problem(robot, gait, actuator, current, params), say=tell,
-                      every=PROGRESS))
+                      every=PROGRESS, move=move))
     start = best
     best_predicted, _ = judged(robot, best, gait, actuator, current, contact)
     start_predicted = best_predicted
@@ -427,15 +418,15 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
          f"{_shown(baseline)}; the solver's {best.energy_per_metre:.4g} at its knots; "
          f"{best.iterations} iterations, {best.seconds:.0f} s)")
 
-    def warm_of(built: Any, last: Any) -> tuple[np.ndarray, np.ndarray]:
-        """The warm start of the problem ``built`` from the cycle ``last`` (module
-        docstring)."""
+    def warm_solve(springs: SpringSet, last: Any) -> Any:
+        """The cycle solved with ``springs``, warm-started from ``last`` (module docstring)."""
+        built = build_problem(robot, gait, actuator, springs, params)
         new_tau = np.array([built.actuation.spring_torques(x) for x in last.x[:-1]])
-        return last.x, last.torques + last.spring_torques - new_tau
+        warm = (last.x, last.torques + last.spring_torques - new_tau)
+        return solve(robot, built, warm=warm, say=tell, every=PROGRESS)
 
     done: list[Round] = []
     gap = 0.0
-    best_warm: tuple[Any, ...] = ()
     for k in range(rounds):
         began = time.perf_counter()
         played = best.task_space
@@ -450,12 +441,9 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
             tell(f"round {k + 1}: no springs designed on the rebuilt cycle "
                  f"({type(err).__name__}: {err})")
             break
-        built = build_problem(robot, gait, actuator, design.springs, params)
-        warm = warm_of(built, best)
         candidate = once(("round", design.springs, params, best.x, best.torques,
                           best.spring_torques),
-                         functools.partial(solve, robot, built, warm=warm, say=tell,
-                                           every=PROGRESS))
+                         functools.partial(warm_solve, design.springs, best))
         designed = design.analysis.metrics["total"]["electrical"] / played.distance
         value, _ = judged(robot, candidate, gait, actuator, design.springs, contact)
         gap = (0.0 if value is None else 1.0 if best_predicted is None
@@ -467,7 +455,7 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
              f"{_shown(value)} J/m predicted rebuilt (the solver's "
              f"{candidate.energy_per_metre:.4g}; {'accepted' if accepted else 'rejected'})")
         if accepted:
-            best, current, best_predicted, best_warm = candidate, design.springs, value, warm
+            best, current, best_predicted = candidate, design.springs, value
         if gap < tolerance:
             break
     kept = best.task_space is None or (baseline is not None
@@ -476,7 +464,7 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
         tell(f"no optimal cycle predicted below the gait ({_shown(best_predicted)} against "
              f"{_shown(baseline)} J/m): the gait and its springs kept")
     return Alternation(gait, baseline, start, start_predicted, best,
-                       given if kept else current, tuple(done), gap, kept, best_warm)
+                       given if kept else current, tuple(done), gap, kept)
 
 
 def _shown(value: float | None) -> str:

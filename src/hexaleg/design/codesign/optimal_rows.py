@@ -53,13 +53,13 @@ from hexaleg.design.codesign.alternation import (
     PROGRESS,
     SMOOTH_FAMILIES,
     Alternation,
+    Case,
     Keep,
     Spread,
     alternate,
     apart,
     computed,
     decimals,
-    judged,
     predicted_per_metre,
     spreads,
 )
@@ -393,15 +393,30 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
             return None, f"not rebuilt: {result.unbuilt}"
         return predicted_per_metre(robot, result.task_space, motor, SpringSet(), contact)
 
-    def last_judge(result: Any) -> tuple[float | None, str]:
-        """Row 4's figure: the alternation's judge with its springs."""
-        return judged(robot, result, motion, motor, alt.springs, contact)
+    def bare_again(move: float) -> Any:
+        """Row 3's solve from its start moved by ``move`` m."""
+        return solve(robot, build_problem(robot, motion, motor, SpringSet(), params), move=move)
 
-    cases = ([] if unbuilt else [(bare, motion, motor, SpringSet(), params, (), bare_judge)])
+    def alt_again(move: float) -> Alternation:
+        """Row 4's alternation from its start moved by ``move`` m."""
+        return alternate(robot, motion, motor, contact, springs=start, params=params,
+                         family=family, groups=groups, rounds=rounds, move=move)
+
+    cases: list[Case] = []
+    if not unbuilt:
+        cases.append(((bare_judge(bare)[0], bare.energy_per_metre, bare.stationarity),
+                      ("no springs", params, timed), bare_again,
+                      lambda r: (bare_judge(r)[0], r.energy_per_metre, r.stationarity)))
     if not alt.kept_gait:
-        cases.append((alt.best, motion, motor, alt.springs, params, alt.warm, last_judge))
-    tell(f"spread: {len(cases)} solve(s) repeated from their starts moved by "
-         + ", ".join(f"{m:+.0e}" for m in MOVES) + " m")
+        cases.append(((alt.predicted, alt.best.energy_per_metre, alt.best.stationarity),
+                      ("alternation", start, params, family, groups, rounds, timed),
+                      alt_again,
+                      lambda a: (a.predicted, a.best.energy_per_metre, a.best.stationarity)))
+    again = [name for name, repeated in (("the solve without springs", not unbuilt),
+                                          ("the alternation", not alt.kept_gait)) if repeated]
+    if again:
+        tell(f"spread: {' and '.join(again)} again from {len(MOVES)} starts moved by "
+             + ", ".join(f"{m:+.0e}" for m in MOVES) + " m")
     measured = iter(spreads(robot, cases, keep))
     spread = (None if unbuilt else next(measured), None if alt.kept_gait else next(measured))
     table = ((LABELS[0], predicted[0], gait(robot, default), SpringSet(), "", None),
