@@ -300,9 +300,10 @@ def test_a_spread_is_its_judged_figures_largest_less_least():
     assert spread.value == pytest.approx(9.6301 - 9.6262) and spread.unjudged == 1
     assert spread.solver_value == pytest.approx(0.13)
     assert Spread(MOVES, (9.6, None, None, None, None), (9.0,) * 5, (1e-3,) * 5).value is None
-    assert [decimals(v) for v in (None, 0.0, 4e-4, 0.0039, 0.004, 0.03, 0.3, 3.0)] == [
-        2, 2, 2, 2, 2, 1, 0, 0]
-    assert decimals(4e-4, 3) == 3 and decimals(0.004, 3) == 2
+    # the last digit's unit at least MARGIN (4) times the spread
+    assert [decimals(v) for v in (None, 0.0, 4e-4, 0.002, 0.0026, 0.004, 0.02, 0.026, 3.0)] == [
+        2, 2, 2, 2, 1, 1, 1, 0, 0]
+    assert decimals(2e-4, 3) == 3 and decimals(4e-4, 3) == 2
     data = spread.data()
     assert data["value"]["unit"] == "J/m" and data["moves"] == {"value": list(MOVES), "unit": "m"}
     assert data["judged"][2] == {"value": None, "unit": "J/m"} and data["unjudged"] == 1

@@ -65,24 +65,26 @@ def test_the_table_says_what_backs_the_springs():
 
 
 def test_an_optimal_row_is_printed_to_the_digits_its_spread_leaves():
-    """An optimal row whose prediction moves by 0.03 J/m with its start is printed to one
-    decimal, predicted and simulated, with ``±0.1``; one that moves by 4e-4 to two with
-    ``±0.01``; the parametric rows as before, without ±; the alternation's trail to the last
-    row's digits and the solver's own figures to their own spread's; codesign.json holds each
-    spread. Catches a figure printed to digits its spread does not support."""
+    """An optimal row whose prediction moves by 0.04 J/m with its start is printed to no
+    decimal, predicted and simulated, with ``±1`` (its last digit's unit at least four times
+    the spread); one that moves by 2e-4 to two with ``±0.01``; the parametric rows as before,
+    without ±; the alternation's trail to the last row's digits and the solver's own figures to
+    their own spread's; a round-off residual as ``≤ 1e-12``; codesign.json holds each spread.
+    Catches a figure printed to digits its spread does not support."""
     table = _rows(11.0)
-    bare = Spread(MOVES, (9.6, 9.6004, 9.6, 9.6001, 9.6), (9.6, 9.63, 9.6, 9.6, 9.6),
+    bare = Spread(MOVES, (9.6, 9.6002, 9.6, 9.6001, 9.6), (9.6, 9.63, 9.6, 9.6, 9.6),
                   (5e-5,) * 5)
     last = Spread(MOVES, (9.0, 9.03, 8.99, 9.0, 9.01), (9.0,) * 5, (5e-5, 3e-2, 1e-3, 1e-3, 1e-3))
     rows = (*table.rows[:2], dataclasses.replace(table.rows[2], spread=bare),
             dataclasses.replace(table.rows[3], spread=last))
     lines = dataclasses.replace(table, rows=rows).lines()
-    assert "    optimal motion, its springs" in lines[4] and "    9.0 ±0.1   9.5, 11.0" in lines[4]
+    assert "    optimal motion, its springs" in lines[4] and "      9 ±1   10, 11" in lines[4]
     assert "   9.60 ±0.01   10.56 (open loop), 12.48 (balance" in lines[3]
     assert "  10.00   11.00 (open loop)" in lines[2] and "±" not in lines[1] + lines[2]
-    assert lines[5].startswith("    ±: the prediction's spread over the solve repeated")
-    assert "at its knots: 9.6 (no springs), 9.00 (its springs)" in lines[6]
-    assert "stationarity up to 3e-02" in lines[7] and "10.0 → 9.3 → 9.1 J/m" in lines[7]
+    assert lines[5].startswith("    ±: the prediction's spread over the row's answer repeated")
+    assert "at its knots: 10 (no springs), 9.00 (its springs)" in lines[6]
+    assert "stationarity up to 3e-02" in lines[7] and "10 → 9 → 9 J/m" in lines[7]
+    assert "residual ≤ 1e-12 N·m" in lines[7]
     data = json.loads(json_text(dataclasses.replace(table, rows=rows).data()))
     assert data["rows"][3]["spread"]["value"] == {"value": pytest.approx(0.04), "unit": "J/m"}
     assert "spread" not in data["rows"][1]

@@ -49,6 +49,7 @@ from typing import Any
 
 from hexaleg.checks import one_of
 from hexaleg.design.codesign.alternation import (
+    MARGIN,
     MOVES,
     PROGRESS,
     SMOOTH_FAMILIES,
@@ -242,10 +243,10 @@ class OptimalRows:
         b = self.best
         bare, last = self.rows[2].spread, self.rows[3].spread
         if bare is not None or last is not None:
-            out.append("    ±: the prediction's spread over the solve repeated from its start "
-                       "moved by " + ", ".join(f"{m:+.0e}" for m in MOVES) + " m (the base's "
-                       "height), rounded up to the digit printed; the simulated J/m to the "
-                       "same digit")
+            out.append("    ±: the prediction's spread over the row's answer repeated from its "
+                       "start moved by " + ", ".join(f"{m:+.0e}" for m in MOVES) + " m (the "
+                       f"base's height), times {MARGIN:g}, rounded up to the digit printed; the "
+                       "simulated J/m to the same digit")
         places = decimals(None if last is None else last.value, 3)
         trail = " → ".join("—" if e is None else f"{e:.{places}f}"
                            for e in self.alternation.energies)
@@ -254,7 +255,8 @@ class OptimalRows:
                    f"{_figure(b.energy_per_metre, last)} (its springs); the rows predict and "
                    "play each cycle rebuilt in task space")
         stopped = max([b.stationarity, *(() if last is None else last.stationarity)])
-        out.append(f"    residual {max(self.bare.residual, b.residual):.1g} N·m, stationarity "
+        residual = max(self.bare.residual, b.residual)
+        out.append(f"    residual {_residual(residual)} N·m, stationarity "
                    f"{'' if last is None else 'up to '}{stopped:.0e} after {b.iterations} "
                    f"iterations{'' if last is None else ' (its moved starts too)'} (threshold "
                    f"{b.threshold:.2g}), friction use {b.friction_use:.2f}, alternation "
@@ -280,6 +282,16 @@ def _stated(spread: Spread | None, places: int) -> str:
     missing = (f", {spread.unjudged} of {len(spread.judged)} not predicted"
                if spread.unjudged else "")
     return f" ±{10.0 ** -places:.{places}f}{missing}"
+
+
+ROUND_OFF = 1e-12
+"""A Newton–Euler residual below this is round-off, N·m: printed as ``≤ 1e-12`` (its digits
+are the floating point's, and move with any input; the issue's bound is 1e-6)."""
+
+
+def _residual(value: float) -> str:
+    """A residual for the table: its one digit, or ``≤ 1e-12`` at round-off (:data:`ROUND_OFF`)."""
+    return f"≤ {ROUND_OFF:.0e}" if value <= ROUND_OFF else f"{value:.1g}"
 
 
 def _figure(value: float, spread: Spread | None) -> str:
