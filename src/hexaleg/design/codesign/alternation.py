@@ -30,18 +30,19 @@ predicted below it the answer is that gait with those springs (:attr:`Alternatio
 The answer is a local optimum of a nonconvex problem, and the solver stops at its iteration
 budget far from stationary (box-FDDP's stopping criterion 2e-3 to 3e-2 against a threshold of
 1e-8 on the default robot's co-design gait), where its iterates zig-zag, the line search's
-step jumping between 1/64 and 1/2: two solves whose starts are 1e-9 m apart in the base's
-height agree to 7e-7 for 30 iterations, then part by a factor of about 2 an iteration, to 1e-3
-in the knots' states by iteration 40 (``analysis/bench_optimal_same_answer.py``); the command
-with its body height bound moved by 1e-9 printed this alternation's answer 10.39 J/m
-predicted where it printed 10.41. No start is guaranteed to land on the same digits, so the
-spread is stated (Nocedal & Wright, *Numerical Optimization*, 2nd ed., §2.1: a local method's
-answer depends on its start; the spread is measured, not bounded): :func:`spreads` computes a row's
-answer again — the solve without springs, or this whole alternation (``move``: its start's
-solve moved, its rounds after it) — from its start moved by each of :data:`MOVES` (the base's
-height, :func:`hexaleg.optimal.solve.solve`'s ``move``), side by side on the command's workers,
-and :class:`Spread` holds the judged figure, the solver's and its stationarity of every answer;
-the rows print each optimal figure to the digits its spread leaves (:func:`decimals`, with a
+step jumping between 1/64 and 1/2: two solves of gaits whose body heights are 1e-9 m apart
+(their starts 3e-8 apart) agree to 7e-7 for 30 iterations, then part by a factor of about 2 an
+iteration, to 1e-3 in the knots' states by iteration 38
+(``analysis/bench_optimal_same_answer.py``); the command with its body height bound moved by
+1e-9 printed this alternation's answer 10.39 J/m predicted where it printed 10.41. No start is
+guaranteed to land on the same digits, so the spread is stated (Nocedal & Wright, *Numerical
+Optimization*, 2nd ed., §2.1: a local method's answer depends on its start; the spread is
+measured, not bounded): :func:`spreads` computes a row's answer again — the solve without
+springs, or this whole alternation (``move``: its start's solve moved, its rounds after it) —
+from its start moved by each of :data:`MOVES` (the base's height,
+:func:`hexaleg.optimal.solve.solve`'s ``move``), side by side on the command's workers, and
+:class:`Spread` holds the judged figure, the solver's and its stationarity of every answer; the
+rows print each optimal figure to the digits its spread leaves (:func:`decimals`, with a
 margin: :data:`MARGIN`) with the unit of the last digit beside it.
 
 Only families whose torque is continuous in the angle enter DDP's dynamics well (``linear``,
