@@ -9,8 +9,8 @@ space with S: :func:`~hexaleg.design.codesign.alternation.judged`), its solver f
 stationarity; then that solve's spread as the rows measure it
 (:func:`~hexaleg.design.codesign.alternation.spreads`: the solve again from its start moved by
 ±1e-9 and ±2e-9 m in the base's height; the rows repeat the whole alternation this way). Log:
-analysis/bench_logs/bench_optimal_same_answer.log (not an example study: it needs the optimal
-extra and a minute).
+analysis/bench_logs/bench_optimal_same_answer.log, at 100 iterations then at 300 (not an example
+study: it needs the optimal extra and a minute or two).
 
 Run:  python analysis/bench_optimal_same_answer.py --chosen cd.pkl [--body 1.0] [--duty D]
                                                    [--iterations 100]
