@@ -88,6 +88,15 @@ def test_an_optimal_row_is_printed_to_the_digits_its_spread_leaves():
     data = json.loads(json_text(dataclasses.replace(table, rows=rows).data()))
     assert data["rows"][3]["spread"]["value"] == {"value": pytest.approx(0.04), "unit": "J/m"}
     assert "spread" not in data["rows"][1]
+    # moved starts without a prediction: said; with fewer than two predicted, no ± at all
+    some = dataclasses.replace(last, judged=(9.0, None, 8.99, None, 9.0))
+    none = dataclasses.replace(last, judged=(9.0, None, None, None, None))
+    lines = dataclasses.replace(table, rows=(*table.rows[:3], dataclasses.replace(
+        table.rows[3], spread=some))).lines()
+    assert "    9.0 ±0.1 (2 of 5 not predicted)   9.5, 11.0" in lines[4]
+    lines = dataclasses.replace(table, rows=(*table.rows[:3], dataclasses.replace(
+        table.rows[3], spread=none))).lines()
+    assert "   9.00 (no spread: 4 of 5 not predicted)   9.50, 11.00" in lines[4]
 
 
 def test_a_row_without_a_prediction_says_why_not_nan():

@@ -275,13 +275,16 @@ class OptimalRows:
 
 def _stated(spread: Spread | None, places: int) -> str:
     """The spread beside a figure printed to ``places`` decimals: the unit of its last digit
-    (at least the spread, :func:`~hexaleg.design.codesign.alternation.decimals`), and how many
-    moved starts have no prediction; ``""`` for a row without one."""
+    (at least :data:`~hexaleg.design.codesign.alternation.MARGIN` times the spread,
+    :func:`~hexaleg.design.codesign.alternation.decimals`), and how many moved starts have no
+    prediction (a spread over the others only; none to state with fewer than two predicted);
+    ``""`` for a row without one."""
     if spread is None:
         return ""
-    missing = (f", {spread.unjudged} of {len(spread.judged)} not predicted"
-               if spread.unjudged else "")
-    return f" ±{10.0 ** -places:.{places}f}{missing}"
+    missing = f"{spread.unjudged} of {len(spread.judged)} not predicted"
+    if spread.value is None:
+        return f" (no spread: {missing})"
+    return f" ±{10.0 ** -places:.{places}f}" + (f" ({missing})" if spread.unjudged else "")
 
 
 ROUND_OFF = 1e-12
