@@ -97,10 +97,10 @@ class MotionRow:
         verdicts: Controller → ``"walks"`` or what happened.
         loops: Controller → ``"balance feedback"``, ``"open loop"`` or ``""`` (it raised).
         unpredicted: Why there is no prediction (the analysis' error), else ``""``.
-        spread: How far an optimal motion's prediction moves with its solve's start
-            (:class:`~hexaleg.design.codesign.alternation.Spread`); None for a parametric gait
-            (a global design of a deterministic search, nothing to state) or a row not
-            predicted.
+        spread: How far an optimal motion's figures move with its start (its solve, or the
+            whole alternation, repeated from moved starts:
+            :class:`~hexaleg.design.codesign.alternation.Spread`); None for a parametric gait
+            (the co-design's rows, not an optimal-control solve) or a cycle not rebuilt.
     """
 
     label: str
@@ -417,9 +417,10 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
         return alternate(robot, motion, motor, contact, springs=start, params=params,
                          family=family, groups=groups, rounds=rounds, move=move)
 
+    bare_value, bare_why = (None, unbuilt) if unbuilt else bare_judge(bare)
     cases: list[Case] = []
     if not unbuilt:
-        cases.append(((bare_judge(bare)[0], bare.energy_per_metre, bare.stationarity),
+        cases.append(((bare_value, bare.energy_per_metre, bare.stationarity),
                       ("no springs", params, timed), bare_again,
                       lambda r: (bare_judge(r)[0], r.energy_per_metre, r.stationarity)))
     if not alt.kept_gait:
@@ -434,12 +435,12 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
              + ", ".join(f"{m:+.0e}" for m in MOVES) + " m")
     measured = iter(spreads(robot, cases, keep))
     spread = (None if unbuilt else next(measured), None if alt.kept_gait else next(measured))
-    table = ((LABELS[0], predicted[0], gait(robot, default), SpringSet(), "", None),
-             (LABELS[1], predicted[1], gait(robot, chosen), springs, "", None),
-             (LABELS[2], None, bare.task_space, SpringSet(), unbuilt, spread[0]),
-             (LABELS[3], alt.predicted, alt.motion, alt.springs, "", spread[1]))
+    table = ((LABELS[0], predicted[0], "", gait(robot, default), SpringSet(), "", None),
+             (LABELS[1], predicted[1], "", gait(robot, chosen), springs, "", None),
+             (LABELS[2], bare_value, bare_why, bare.task_space, SpringSet(), unbuilt, spread[0]),
+             (LABELS[3], alt.predicted, "", alt.motion, alt.springs, "", spread[1]))
     rows = []
-    for label, value, played, fitted, unplayed, stated in table:
+    for label, value, why, played, fitted, unplayed, stated in table:
         sims: dict[str, float | None] = {}
         verdicts: dict[str, str] = {}
         loops: dict[str, str] = {}
@@ -452,8 +453,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
             sims[k], verdicts[k], closed = simulated_run(robot, played, motor, fitted, k,
                                                          contact, feedback)
             loops[k] = "" if closed is None else "balance feedback" if closed else "open loop"
-        why = ""
-        if value is None:
+        if value is None and not why:  # row 3 was predicted above, with its spread
             value, why = predicted_per_metre(robot, played, motor, fitted, contact)
         rows.append(MotionRow(label, value, sims, verdicts, loops, why, stated))
         tell(f"simulated {label} under {' and '.join(controllers)}")
