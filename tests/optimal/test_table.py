@@ -73,11 +73,14 @@ def _logged(log: str) -> list[tuple[float, ...]]:
 
 def _parsed(lines: list[str]) -> list[tuple[float, ...]]:
     """Rows printed as ``label  predicted   sim, sim`` (each sim a number, maybe followed by
-    the controller that ran it in brackets, or ``— (why)``)."""
+    the controller that ran it in brackets, or ``— (why)``; an optimal row's predicted figure
+    maybe followed by its stated spread, ``±0.01``, and what of it is not predicted in
+    brackets)."""
     rows = []
     for line in lines:
         line = re.sub(r" \((?:open loop|balance feedback)\)", "", line)
-        m = re.match(r"^(?:\S+ )?\s+[a-z][^0-9]*?\s{2,}([0-9.]+)\s+(.*)$", line)
+        m = re.match(r"^(?:\S+ )?\s+[a-z][^0-9]*?\s{2,}([0-9.]+)(?: ±[0-9.]+)?(?: \([^)]*\))?"
+                     r"\s+(.*)$", line)
         if m:
             sims = [float(p) if re.fullmatch(r"[0-9.]+", p.strip()) else float("nan")
                     for p in re.split(r", (?=[0-9—])", m[2])]

@@ -17,6 +17,10 @@ it goes on, :data:`CLOSING` iterations a call from the iterate and regularisatio
 stopped (the same iterates as one longer call), until the gap is closed or
 ``OptimalParams.closing`` more iterations are spent; ``dynamic_gap`` states where it ended.
 
+A start can be moved (``move``): the base's height raised by ``move`` metres at every knot of
+the start, the rest of it unchanged — how the co-design's rows measure the spread of a solve's
+figures under starts a hair apart (:func:`~hexaleg.design.codesign.alternation.spreads`).
+
 The energy is the project's exact model (:meth:`~hexaleg.optimal.energy.JointPower.exact`) over
 the knots' motor torques and joint speeds, left Riemann sum, ``Σ_k dt Σ_j P_j`` — the integral
 the cost's Euler steps take, with the smoothing removed.
@@ -32,7 +36,7 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.checks import integer
+from hexaleg.checks import integer, real
 from hexaleg.errors import InfeasibleForcesError, UnreachableTargetError
 from hexaleg.motion.trajectory import SEMI_IMPLICIT, Motion
 from hexaleg.optimal.backend import crocoddyl_module
@@ -147,7 +151,8 @@ def _forces(robot: Robot, built: OptimalProblem) -> np.ndarray:
 
 
 def solve(robot: Robot, built: OptimalProblem, *, say: Callable[[str], None] | None = None,
-          warm: tuple[np.ndarray, np.ndarray] | None = None, every: int = 1) -> OptimalResult:
+          warm: tuple[np.ndarray, np.ndarray] | None = None, every: int = 1,
+          move: float = 0.0) -> OptimalResult:
     """Solve ``built`` by box-FDDP (module docstring).
 
     Args:
@@ -157,6 +162,8 @@ def solve(robot: Robot, built: OptimalProblem, *, say: Callable[[str], None] | N
         every: One line every this many iterations (≥ 1).
         warm: States (N + 1, nx) and controls (N, nu) to start from instead of the warm
             start's states and their quasi-static controls.
+        move: The start's base height raised by this much at every knot, m (module docstring;
+            the quasi-static controls of a fresh start are those of the moved states).
     """
     problem = built.problem
     solver = crocoddyl.SolverBoxFDDP(problem)
@@ -165,11 +172,12 @@ def solve(robot: Robot, built: OptimalProblem, *, say: Callable[[str], None] | N
     progress = None if say is None else _Progress(say, integer("every", every, low=1))
     if progress is not None:
         solver.setCallbacks([progress])
-    if warm is None:
-        xs = [np.array(x) for x in built.x_warm]
-        us = list(problem.quasiStatic(xs[:-1]))
-    else:
-        xs, us = [np.array(x) for x in warm[0]], [np.array(u) for u in warm[1]]
+    lift = real("move", move)
+    xs = [np.array(x) for x in (built.x_warm if warm is None else warm[0])]
+    for x in xs:
+        x[2] += lift  # the free flyer's z
+    us = (list(problem.quasiStatic(xs[:-1])) if warm is None
+          else [np.array(u) for u in warm[1]])
     start = time.perf_counter()
     converged = bool(solver.solve(xs, us, params.iterations, False))
     done = int(solver.iter)

@@ -10,9 +10,12 @@ import pytest
 
 import hexaleg
 from hexaleg.design.codesign.alternation import (
+    MOVES,
     Alternation,
     Round,
+    Spread,
     alternate,
+    decimals,
     least,
     predicted_per_metre,
 )
@@ -41,12 +44,14 @@ class _Solver:
     def __init__(self, cycles: list[tuple[float, hexaleg.Motion | None]]) -> None:
         self.cycles = list(cycles)
         self.built: list[hexaleg.SpringSet] = []
+        self.moves: list[float] = []
 
     def build_problem(self, _robot, _gait, _actuator, springs, _params):
         self.built.append(springs)
         return SimpleNamespace(actuation=SimpleNamespace(spring_torques=lambda _x: np.zeros(18)))
 
-    def solve(self, _robot, _built, **_kwargs):
+    def solve(self, _robot, _built, **kwargs):
+        self.moves.append(kwargs.get("move", 0.0))
         figure, played = self.cycles.pop(0)
         return SimpleNamespace(energy_per_metre=figure, task_space=played, x=np.zeros((3, 43)),
                                torques=np.zeros((2, 18)), spring_torques=np.zeros((2, 18)),
@@ -270,3 +275,71 @@ def test_side_by_side_solves_are_kept_as_they_end_and_resume(tmp_path, monkeypat
         p.unlink()
     run(False)
     assert not list(computes.iterdir())  # every solve read back
+
+
+def test_a_moved_alternation_moves_its_start_only(robot, motions, solver):
+    """``move`` reaches the start's solve (the rows' spread repeats the whole alternation from
+    its start moved), not the rounds' warm-started solves; without it no solve is moved.
+    Catches a spread whose alternation ignores the move (its figures all the answer's)."""
+    walk, high, springs = motions
+    run = hexaleg.Scenario.load("hexaleg")
+    fake = solver([(10.0, high), (5.0, walk)])
+    alternate(robot, walk, run.actuator, run.contact, springs=springs, rounds=1, move=2e-9)
+    assert fake.moves == [2e-9, 0.0]
+    fake = solver([(10.0, high), (5.0, walk)])
+    alternate(robot, walk, run.actuator, run.contact, springs=springs, rounds=1)
+    assert fake.moves == [0.0, 0.0]
+
+
+def test_a_spread_is_its_judged_figures_largest_less_least():
+    """The spread of the judged figures (not the solver's own), the solves without a figure
+    counted apart; the digits a figure keeps are those whose last unit covers its spread.
+    Catches a spread of zero when the solves differ, or one taken from the solver's figures."""
+    spread = Spread(MOVES, (9.627, 9.6267, None, 9.6301, 9.6262), (9.33, 9.32, 9.31, 9.2, 9.3),
+                    (2e-3, 3e-2, 1e-3, 2e-3, 2e-3))
+    assert spread.value == pytest.approx(9.6301 - 9.6262) and spread.unjudged == 1
+    assert spread.solver_value == pytest.approx(0.13)
+    assert Spread(MOVES, (9.6, None, None, None, None), (9.0,) * 5, (1e-3,) * 5).value is None
+    # the last digit's unit at least MARGIN (4) times the spread
+    assert [decimals(v) for v in (None, 0.0, 4e-4, 0.002, 0.0026, 0.004, 0.02, 0.026, 3.0)] == [
+        2, 2, 2, 2, 1, 1, 1, 0, 0]
+    assert decimals(2e-4, 3) == 3 and decimals(4e-4, 3) == 2
+    data = spread.data()
+    assert data["value"]["unit"] == "J/m" and data["moves"] == {"value": list(MOVES), "unit": "m"}
+    assert data["judged"][2] == {"value": None, "unit": "J/m"} and data["unjudged"] == 1
+
+
+@pytest.mark.slow
+def test_the_spread_repeats_the_solve_from_its_start_moved():
+    """A short solve (16 knots, 40 iterations) repeated by :func:`spreads` from its start moved
+    by each of :data:`MOVES` on the workers: the first figure is the answer's own, the moved
+    solves land elsewhere (the solver parts them: a ``move`` ignored gives five equal figures
+    and a spread of zero), and the same solve repeated unmoved lands on the answer to the bit
+    (deterministic)."""
+    pytest.importorskip("crocoddyl")
+    from hexaleg.design.codesign.alternation import spreads
+    from hexaleg.optimal.problem import OptimalParams, build_problem
+    from hexaleg.optimal.solve import solve
+
+    run = hexaleg.Scenario.load("hexaleg")
+    robot, motor = run.model, run.actuator
+    walk = hexaleg.gait(robot, hexaleg.GaitParams(samples=100))
+    params = OptimalParams(nodes=16, iterations=40)
+    answer = solve(robot, build_problem(robot, walk, motor, hexaleg.SpringSet(), params))
+
+    def moved(move):
+        return solve(robot, build_problem(robot, walk, motor, hexaleg.SpringSet(), params),
+                     move=move)
+
+    def read(result):
+        value, _ = predicted_per_metre(robot, result.task_space, motor, hexaleg.SpringSet(),
+                                       run.contact)
+        return value, result.energy_per_metre, result.stationarity
+
+    (spread,) = spreads(robot, [(read(answer), ("test",), moved, read)])
+    assert spread.moves == MOVES and spread.judged[0] == read(answer)[0]
+    assert spread.solver[0] == answer.energy_per_metre
+    assert len(set(spread.solver)) == len(MOVES) + 1 and spread.value > 0.0
+    again = solve(robot, build_problem(robot, walk, motor, hexaleg.SpringSet(), params),
+                  move=0.0)
+    assert np.array_equal(again.x, answer.x)

@@ -3,6 +3,7 @@ its proof; with Crocoddyl, the four rows of a small problem computed and simulat
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import json
 from types import SimpleNamespace
@@ -11,7 +12,7 @@ import numpy as np
 import pytest
 
 import hexaleg
-from hexaleg.design.codesign.alternation import Alternation, Round
+from hexaleg.design.codesign.alternation import MOVES, Alternation, Round, Spread
 from hexaleg.design.codesign.optimal_rows import LABELS, MotionRow, OptimalRows
 from hexaleg.quantities import json_text
 
@@ -61,6 +62,41 @@ def test_the_table_says_what_backs_the_springs():
     assert "(balance feedback)" in lines[1] and "(open loop)" in lines[1]
     assert any("the solver's own J/m at its knots: 9.60 (no springs), 9.00" in line
                for line in lines)
+
+
+def test_an_optimal_row_is_printed_to_the_digits_its_spread_leaves():
+    """An optimal row whose prediction moves by 0.04 J/m with its start is printed to no
+    decimal, predicted and simulated, with ``±1`` (its last digit's unit at least four times
+    the spread); one that moves by 2e-4 to two with ``±0.01``; the parametric rows as before,
+    without ±; the alternation's trail to the last row's digits and the solver's own figures to
+    their own spread's; a round-off residual as ``≤ 1e-12``; codesign.json holds each spread.
+    Catches a figure printed to digits its spread does not support."""
+    table = _rows(11.0)
+    bare = Spread(MOVES, (9.6, 9.6002, 9.6, 9.6001, 9.6), (9.6, 9.63, 9.6, 9.6, 9.6),
+                  (5e-5,) * 5)
+    last = Spread(MOVES, (9.0, 9.03, 8.99, 9.0, 9.01), (9.0,) * 5, (5e-5, 3e-2, 1e-3, 1e-3, 1e-3))
+    rows = (*table.rows[:2], dataclasses.replace(table.rows[2], spread=bare),
+            dataclasses.replace(table.rows[3], spread=last))
+    lines = dataclasses.replace(table, rows=rows).lines()
+    assert "    optimal motion, its springs" in lines[4] and "      9 ±1   10, 11" in lines[4]
+    assert "   9.60 ±0.01   10.56 (open loop), 12.48 (balance" in lines[3]
+    assert "  10.00   11.00 (open loop)" in lines[2] and "±" not in lines[1] + lines[2]
+    assert lines[5].startswith("    ±: the prediction's spread over the row's answer repeated")
+    assert "at its knots: 10 (no springs), 9.00 (its springs)" in lines[6]
+    assert "stationarity up to 3e-02" in lines[7] and "10 → 9 → 9 J/m" in lines[7]
+    assert "residual ≤ 1e-12 N·m" in lines[7]
+    data = json.loads(json_text(dataclasses.replace(table, rows=rows).data()))
+    assert data["rows"][3]["spread"]["value"] == {"value": pytest.approx(0.04), "unit": "J/m"}
+    assert "spread" not in data["rows"][1]
+    # moved starts without a prediction: said; with fewer than two predicted, no ± at all
+    some = dataclasses.replace(last, judged=(9.0, None, 8.99, None, 9.0))
+    none = dataclasses.replace(last, judged=(9.0, None, None, None, None))
+    lines = dataclasses.replace(table, rows=(*table.rows[:3], dataclasses.replace(
+        table.rows[3], spread=some))).lines()
+    assert "    9.0 ±0.1 (2 of 5 not predicted)   9.5, 11.0" in lines[4]
+    lines = dataclasses.replace(table, rows=(*table.rows[:3], dataclasses.replace(
+        table.rows[3], spread=none))).lines()
+    assert "   9.00 (no spread: 4 of 5 not predicted)   9.50, 11.00" in lines[4]
 
 
 def test_a_row_without_a_prediction_says_why_not_nan():
@@ -184,9 +220,19 @@ def test_the_alternation_and_the_bare_cycle_run_from_the_start_chosen(monkeypatc
                         lambda *_args: (10.0, "walks", True))
     monkeypatch.setattr(rows_module, "predicted_per_metre", lambda *_args: (15.0, ""))
     monkeypatch.setattr(rows_module, "gait", lambda _robot, g: SimpleNamespace(params=g))
+
+    def spreads(_robot, cases, _keep):
+        seen["spreads"] = [c[1] for c in cases]
+        return [None] * len(cases)
+
+    monkeypatch.setattr(rows_module, "spreads", spreads)
     table = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen,
                                      hexaleg.SpringSet(), (28.0, 9.9), params=settings,
                                      starts="lattice", min_step=0.015)
+    # both spreads repeat their row's own answer: at the start chosen, with its settings
+    (bare_inputs, alt_inputs) = seen["spreads"]
+    assert bare_inputs == ("no springs", settings, moved)
+    assert alt_inputs[0] == "alternation" and alt_inputs[2] == settings and alt_inputs[-1] == moved
     timed, params, min_step, first = seen["starts"]
     assert timed == chosen and params == settings and min_step == 0.015 and first is None
     motion, params, first = seen["alternation"]

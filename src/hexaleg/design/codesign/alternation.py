@@ -27,6 +27,24 @@ It never ends worse than the gait it starts from, by the same measure: the gait 
 starting springs is predicted first (:attr:`Alternation.baseline`), and when no optimal cycle is
 predicted below it the answer is that gait with those springs (:attr:`Alternation.kept_gait`).
 
+The answer is a local optimum of a nonconvex problem, and the solver stops at its iteration
+budget far from stationary (box-FDDP's stopping criterion 2e-3 to 3e-2 against a threshold of
+1e-8 on the default robot's co-design gait), where its iterates zig-zag, the line search's
+step jumping between 1/64 and 1/2: two solves of gaits whose body heights are 1e-9 m apart
+(their starts 3e-8 apart) agree to 7e-7 for 30 iterations, then part by a factor of about 2 an
+iteration, to 1e-3 in the knots' states by iteration 38
+(``analysis/bench_optimal_same_answer.py``); the command with its body height bound moved by
+1e-9 printed this alternation's answer 10.39 J/m predicted where it printed 10.41. No start is
+guaranteed to land on the same digits, so the spread is stated (Nocedal & Wright, *Numerical
+Optimization*, 2nd ed., §2.1: a local method's answer depends on its start; the spread is
+measured, not bounded): :func:`spreads` computes a row's answer again — the solve without
+springs, or this whole alternation (``move``: its start's solve moved, its rounds after it) —
+from its start moved by each of :data:`MOVES` (the base's height,
+:func:`hexaleg.optimal.solve.solve`'s ``move``), side by side on the command's workers, and
+:class:`Spread` holds the judged figure, the solver's and its stationarity of every answer; the
+rows print each optimal figure to the digits its spread leaves (:func:`decimals`, with a
+margin: :data:`MARGIN`) with the unit of the last digit beside it.
+
 Only families whose torque is continuous in the angle enter DDP's dynamics well (``linear``,
 ``dead_zone``); a preload's step has no derivative, and the solver then lets a stance foot slip.
 """
@@ -34,6 +52,7 @@ Only families whose torque is continuous in the angle enter DDP's dynamics well 
 from __future__ import annotations
 
 import functools
+import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -48,12 +67,17 @@ from hexaleg.dynamics.prepare import prepare
 from hexaleg.errors import HexalegError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.parallel.forked import fork_map, robot_objects
+from hexaleg.quantities import quantity as q
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
 
 SMOOTH_FAMILIES = ("linear", "dead_zone")
 """Families whose torque is continuous in the angle (module docstring)."""
 
+
+MOVES = (-2e-9, -1e-9, 1e-9, 2e-9)
+"""The moves of a solve's start that measure its spread, m (module docstring): the base's
+height at every knot of the start, by the same-answer rule's 1e-9 and twice it, either way."""
 
 PROGRESS = 20
 """A solve's progress line every this many box-FDDP iterations (a hundred take minutes)."""
@@ -174,6 +198,104 @@ def apart(jobs: Sequence[Job], robot: Robot, keep: Keep | None = None,
 
 
 @dataclass(frozen=True)
+class Spread:
+    """How far a row's figures move when its start moves (module docstring).
+
+    Attributes:
+        moves: The start's moves, m, in the order of the figures after the first
+            (:data:`MOVES`).
+        judged: The judged figure (the row's: hexaleg's prediction of the rebuilt cycle), J/m,
+            of the answer itself then of each moved one; None where one has no answer.
+        solver: The solver's own J/m at its knots, in the same order.
+        stationarity: The solver's stopping criterion at the end, in the same order.
+    """
+
+    moves: tuple[float, ...]
+    judged: tuple[float | None, ...]
+    solver: tuple[float, ...]
+    stationarity: tuple[float, ...]
+
+    @property
+    def value(self) -> float | None:
+        """The judged figures' spread, largest less least, J/m (None: fewer than two have an
+        answer)."""
+        known = [v for v in self.judged if v is not None]
+        return max(known) - min(known) if len(known) > 1 else None
+
+    @property
+    def unjudged(self) -> int:
+        """How many of the solves have no judged figure (a moved start whose cycle is not
+        rebuilt, or has no prediction: a spread the figures cannot show)."""
+        return sum(v is None for v in self.judged)
+
+    @property
+    def solver_value(self) -> float:
+        """The solver's own figures' spread, J/m."""
+        return max(self.solver) - min(self.solver)
+
+    def data(self) -> dict[str, Any]:
+        """codesign.json's record of the spread."""
+        return {"value": q(self.value, "J/m"), "moves": q(list(self.moves), "m"),
+                "judged": [q(v, "J/m") for v in self.judged],
+                "unjudged": self.unjudged, "solver_value": q(self.solver_value, "J/m"),
+                "solver": q(list(self.solver), "J/m"),
+                "stationarity": q(list(self.stationarity), "1")}
+
+
+MARGIN = 4.0
+"""How many times a spread the unit of a printed figure's last digit is at least
+(:func:`decimals`): the spread of five starts is itself a sample, and the command run twice
+with an input moved by 1e-9 measured 0.0042 and 0.0039 J/m on the optimal motion without
+springs, 0.0117 and 0.0111 with them, the solver's own figures 0.008 to 0.019; at four times
+the spread each lands on one decimal in both runs, where at once the spread the solver's own
+figure without springs was printed to one decimal in one run and two in the other."""
+
+
+def decimals(spread: float | None, most: int = 2) -> int:
+    """The decimals a figure of this ``spread`` (J/m) is printed to: the most, at most
+    ``most``, whose last digit's unit is at least :data:`MARGIN` times the spread (a spread of
+    0.002 J/m leaves two, 0.004 or 0.02 one, 0.03 none; None or 0 leaves ``most``)."""
+    if spread is None or spread <= 0.0:
+        return most
+    return max(0, min(most, math.floor(-math.log10(MARGIN * spread))))
+
+
+Figures = tuple[float | None, float, float]
+"""A solve's figures a :class:`Spread` holds: judged (J/m or None), the solver's own J/m,
+stationarity."""
+
+Case = tuple[Figures, tuple[Any, ...], Callable[[float], Any], Callable[[Any], Figures]]
+"""One row's spread to measure: its answer's :data:`Figures`, what defines its moved solves
+beside the move (:data:`Keep`'s inputs), how the row's answer is computed again from its start
+moved by so many metres, and how that answer's figures are read."""
+
+
+def spreads(robot: Robot, cases: Sequence[Case], keep: Keep | None = None) -> list[Spread]:
+    """Each case's :class:`Spread`: its answer computed again from its start moved by each of
+    :data:`MOVES`, every moved answer of every case side by side on the command's workers
+    (:func:`apart`: each read there, and kept by ``keep`` as it ends).
+
+    Args:
+        robot: The robot.
+        cases: The rows' spreads to measure (:data:`Case`).
+        keep: How each moved answer is kept (:data:`Keep`); None: computed.
+    """
+    jobs: list[Job] = []
+    reads: list[Callable[[Any], Figures]] = []
+    for _answer, inputs, again, read in cases:
+        for move in MOVES:
+            jobs.append((("moved", move, *inputs), functools.partial(again, move)))
+            reads.append(read)
+    out = apart(jobs, robot, keep, then=lambda index, result: reads[index](result))
+    found = []
+    for k, (answer, *_rest) in enumerate(cases):
+        figures = [answer, *(f for _, f in out[k * len(MOVES):(k + 1) * len(MOVES)])]
+        judged_, solver, stopped = zip(*figures, strict=True)
+        found.append(Spread(MOVES, tuple(judged_), tuple(solver), tuple(stopped)))
+    return found
+
+
+@dataclass(frozen=True)
 class Round:
     """One round of the alternation.
 
@@ -255,7 +377,7 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
               springs: SpringSet | None = None, params: Any = None, family: str = "linear",
               groups: Groups | None = None, rounds: int = 4, tolerance: float = 0.01,
               say: Callable[[str], None] | None = None, keep: Keep | None = None,
-              first: Any = None) -> Alternation:
+              first: Any = None, move: float = 0.0) -> Alternation:
     """Alternate the optimal motion and its springs (module docstring).
 
     Args:
@@ -278,6 +400,8 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
             the run made before a kill; None: every solve computed.
         first: The optimal cycle of ``gait`` with ``springs`` and ``params`` when it is solved
             already (:mod:`~hexaleg.design.codesign.timing`'s choice); None: solved here.
+        move: The start's solve from the gait's start moved by this much, m
+            (:func:`hexaleg.optimal.solve.solve`'s ``move``: the rows' spread, :func:`spreads`).
 
     Raises:
         InvalidParameterError: a family outside :data:`SMOOTH_FAMILIES`, bad ``rounds`` or
@@ -294,9 +418,9 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
     once = keep or computed
     baseline, _ = predicted_per_metre(robot, gait, actuator, current, contact)
     best = first if first is not None else once(
-        ("start", current, params),
+        ("start", current, params, *((move,) if move else ())),
         lambda: solve(robot, build_problem(robot, gait, actuator, current, params), say=tell,
-                      every=PROGRESS))
+                      every=PROGRESS, move=move))
     start = best
     best_predicted, _ = judged(robot, best, gait, actuator, current, contact)
     start_predicted = best_predicted

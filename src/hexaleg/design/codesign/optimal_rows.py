@@ -49,14 +49,20 @@ from typing import Any
 
 from hexaleg.checks import one_of
 from hexaleg.design.codesign.alternation import (
+    MARGIN,
+    MOVES,
     PROGRESS,
     SMOOTH_FAMILIES,
     Alternation,
+    Case,
     Keep,
+    Spread,
     alternate,
     apart,
     computed,
+    decimals,
     predicted_per_metre,
+    spreads,
 )
 from hexaleg.design.codesign.servo import simulated_run
 from hexaleg.design.codesign.starts import STARTS, StartSearch, search_starts
@@ -91,6 +97,10 @@ class MotionRow:
         verdicts: Controller → ``"walks"`` or what happened.
         loops: Controller → ``"balance feedback"``, ``"open loop"`` or ``""`` (it raised).
         unpredicted: Why there is no prediction (the analysis' error), else ``""``.
+        spread: How far an optimal motion's figures move with its start (its solve, or the
+            whole alternation, repeated from moved starts:
+            :class:`~hexaleg.design.codesign.alternation.Spread`); None for a parametric gait
+            (the co-design's rows, not an optimal-control solve) or a cycle not rebuilt.
     """
 
     label: str
@@ -99,6 +109,13 @@ class MotionRow:
     verdicts: Mapping[str, str]
     loops: Mapping[str, str] = field(default_factory=dict)
     unpredicted: str = ""
+    spread: Spread | None = None
+
+    @property
+    def decimals(self) -> int:
+        """The decimals its J/m are printed to: two, fewer where :attr:`spread` leaves fewer
+        (:func:`~hexaleg.design.codesign.alternation.decimals`)."""
+        return decimals(None if self.spread is None else self.spread.value)
 
     @property
     def walks(self) -> bool:
@@ -111,7 +128,8 @@ class MotionRow:
                 "simulated": {k: None if v is None else q(v, "J/m")
                               for k, v in self.simulated.items()},
                 "verdicts": dict(self.verdicts), "loops": dict(self.loops),
-                **({"unpredicted": self.unpredicted} if self.unpredicted else {})}
+                **({"unpredicted": self.unpredicted} if self.unpredicted else {}),
+                **({"spread": self.spread.data()} if self.spread is not None else {})}
 
 
 @dataclass(frozen=True, eq=False)
@@ -211,23 +229,36 @@ class OptimalRows:
             if r.unpredicted and set(r.verdicts.values()) == {r.unpredicted}:
                 out.append(f"    {r.label:46s}       — ({r.unpredicted})")  # not rebuilt
                 continue
-            sims = ", ".join((f"{v:.2f}" if v is not None else f"— ({r.verdicts[k]})")
+            d = r.decimals
+            sims = ", ".join((f"{v:.{d}f}" if v is not None else f"— ({r.verdicts[k]})")
                              + (f" ({r.loops[k]})" if r.loops.get(k) else "")
                              for k, v in r.simulated.items())
-            said = (f"{r.predicted:7.2f}" if r.predicted is not None else
+            said = (f"{r.predicted:7.{d}f}" if r.predicted is not None else
                     f"      — (no prediction: {r.unpredicted})")
-            out.append(f"    {r.label:46s} {said}   {sims}")
+            out.append(f"    {r.label:46s} {said}{_stated(r.spread, d)}   {sims}")
         if self.timing is not None:
             out.append(self.timing.line())
         if self.starts is not None:
             out.append(self.starts.line())
         b = self.best
-        trail = " → ".join("—" if e is None else f"{e:.3f}" for e in self.alternation.energies)
-        out.append(f"    the solver's own J/m at its knots: {self.bare.energy_per_metre:.2f} (no "
-                   f"springs), {b.energy_per_metre:.2f} (its springs); the rows predict and play "
-                   "each cycle rebuilt in task space")
-        out.append(f"    residual {max(self.bare.residual, b.residual):.1g} N·m, stationarity "
-                   f"{b.stationarity:.2g} after {b.iterations} iterations (threshold "
+        bare, last = self.rows[2].spread, self.rows[3].spread
+        if bare is not None or last is not None:
+            out.append("    ±: the prediction's spread over the row's answer repeated from its "
+                       "start moved by " + ", ".join(f"{m:+.0e}" for m in MOVES) + " m (the "
+                       f"base's height), times {MARGIN:g}, rounded up to the digit printed; the "
+                       "simulated J/m to the same digit")
+        places = decimals(None if last is None else last.value, 3)
+        trail = " → ".join("—" if e is None else f"{e:.{places}f}"
+                           for e in self.alternation.energies)
+        out.append("    the solver's own J/m at its knots: "
+                   f"{_figure(self.bare.energy_per_metre, bare)} (no springs), "
+                   f"{_figure(b.energy_per_metre, last)} (its springs); the rows predict and "
+                   "play each cycle rebuilt in task space")
+        stopped = max([b.stationarity, *(() if last is None else last.stationarity)])
+        residual = max(self.bare.residual, b.residual)
+        out.append(f"    residual {_residual(residual)} N·m, stationarity "
+                   f"{'' if last is None else 'up to '}{stopped:.0e} after {b.iterations} "
+                   f"iterations{'' if last is None else ' (its moved starts too)'} (threshold "
                    f"{b.threshold:.2g}), friction use {b.friction_use:.2f}, alternation "
                    f"{trail} J/m predicted (from the gait's)")
         if self.alternation.kept_gait:
@@ -240,6 +271,36 @@ class OptimalRows:
             "" if self.proven else f" — unproven: it does not walk under "
             f"{' and '.join(k for k, v in self.rows[-1].simulated.items() if v is None)}"))
         return out
+
+
+def _stated(spread: Spread | None, places: int) -> str:
+    """The spread beside a figure printed to ``places`` decimals: the unit of its last digit
+    (at least :data:`~hexaleg.design.codesign.alternation.MARGIN` times the spread,
+    :func:`~hexaleg.design.codesign.alternation.decimals`), and how many moved starts have no
+    prediction (a spread over the others only; none to state with fewer than two predicted);
+    ``""`` for a row without one."""
+    if spread is None:
+        return ""
+    missing = f"{spread.unjudged} of {len(spread.judged)} not predicted"
+    if spread.value is None:
+        return f" (no spread: {missing})"
+    return f" ±{10.0 ** -places:.{places}f}" + (f" ({missing})" if spread.unjudged else "")
+
+
+ROUND_OFF = 1e-12
+"""A Newton–Euler residual below this is round-off, N·m: printed as ``≤ 1e-12`` (its digits
+are the floating point's, and move with any input; the issue's bound is 1e-6)."""
+
+
+def _residual(value: float) -> str:
+    """A residual for the table: its one digit, or ``≤ 1e-12`` at round-off (:data:`ROUND_OFF`)."""
+    return f"≤ {ROUND_OFF:.0e}" if value <= ROUND_OFF else f"{value:.1g}"
+
+
+def _figure(value: float, spread: Spread | None) -> str:
+    """The solver's own J/m printed to the digits its spread leaves (two without one)."""
+    places = decimals(None if spread is None else spread.solver_value)
+    return f"{value:.{places}f}"
 
 
 def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: GaitParams,
@@ -340,12 +401,46 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
                     keep=keep, first=first)
     controllers = controllers_of(servo)
     unbuilt = "" if bare.task_space is not None else f"not rebuilt: {bare.unbuilt}"
-    cases = ((LABELS[0], predicted[0], gait(robot, default), SpringSet(), ""),
-             (LABELS[1], predicted[1], gait(robot, chosen), springs, ""),
-             (LABELS[2], None, bare.task_space, SpringSet(), unbuilt),
-             (LABELS[3], alt.predicted, alt.motion, alt.springs, ""))
+
+    def bare_judge(result: Any) -> tuple[float | None, str]:
+        """Row 3's figure of a cycle without springs: its rebuilt cycle predicted."""
+        if result.task_space is None:
+            return None, f"not rebuilt: {result.unbuilt}"
+        return predicted_per_metre(robot, result.task_space, motor, SpringSet(), contact)
+
+    def bare_again(move: float) -> Any:
+        """Row 3's solve from its start moved by ``move`` m."""
+        return solve(robot, build_problem(robot, motion, motor, SpringSet(), params), move=move)
+
+    def alt_again(move: float) -> Alternation:
+        """Row 4's alternation from its start moved by ``move`` m."""
+        return alternate(robot, motion, motor, contact, springs=start, params=params,
+                         family=family, groups=groups, rounds=rounds, move=move)
+
+    bare_value, bare_why = (None, unbuilt) if unbuilt else bare_judge(bare)
+    cases: list[Case] = []
+    if not unbuilt:
+        cases.append(((bare_value, bare.energy_per_metre, bare.stationarity),
+                      ("no springs", params, timed), bare_again,
+                      lambda r: (bare_judge(r)[0], r.energy_per_metre, r.stationarity)))
+    if not alt.kept_gait:
+        cases.append(((alt.predicted, alt.best.energy_per_metre, alt.best.stationarity),
+                      ("alternation", start, params, family, groups, rounds, timed),
+                      alt_again,
+                      lambda a: (a.predicted, a.best.energy_per_metre, a.best.stationarity)))
+    again = [name for name, repeated in (("the solve without springs", not unbuilt),
+                                          ("the alternation", not alt.kept_gait)) if repeated]
+    if again:
+        tell(f"spread: {' and '.join(again)} again from {len(MOVES)} starts moved by "
+             + ", ".join(f"{m:+.0e}" for m in MOVES) + " m")
+    measured = iter(spreads(robot, cases, keep))
+    spread = (None if unbuilt else next(measured), None if alt.kept_gait else next(measured))
+    table = ((LABELS[0], predicted[0], "", gait(robot, default), SpringSet(), "", None),
+             (LABELS[1], predicted[1], "", gait(robot, chosen), springs, "", None),
+             (LABELS[2], bare_value, bare_why, bare.task_space, SpringSet(), unbuilt, spread[0]),
+             (LABELS[3], alt.predicted, "", alt.motion, alt.springs, "", spread[1]))
     rows = []
-    for label, value, played, fitted, unplayed in cases:
+    for label, value, why, played, fitted, unplayed, stated in table:
         sims: dict[str, float | None] = {}
         verdicts: dict[str, str] = {}
         loops: dict[str, str] = {}
@@ -358,10 +453,9 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
             sims[k], verdicts[k], closed = simulated_run(robot, played, motor, fitted, k,
                                                          contact, feedback)
             loops[k] = "" if closed is None else "balance feedback" if closed else "open loop"
-        why = ""
-        if value is None:
+        if value is None and not why:  # row 3 was predicted above, with its spread
             value, why = predicted_per_metre(robot, played, motor, fitted, contact)
-        rows.append(MotionRow(label, value, sims, verdicts, loops, why))
+        rows.append(MotionRow(label, value, sims, verdicts, loops, why, stated))
         tell(f"simulated {label} under {' and '.join(controllers)}")
     return OptimalRows(tuple(rows), alt.springs, family, bare, alt, robot, servo,
                        time.perf_counter() - began, feedback, searched, multi)
