@@ -76,7 +76,7 @@ def test_design_on_the_log_equals_the_design_on_the_generated_gait(log: Path, tm
     quality = data["motion_quality"]
     _numbers_have_units(quality)
     assert quality["period"] == {"value": pytest.approx(1.0, rel=1e-12), "unit": "s"}
-    assert quality["stance_source"] == "contacts" and quality["derivatives"] == "given"
+    assert quality["stance_source"] == "plan" and quality["derivatives"] == "given"
     # design.json says the motion came from the log, not generated gait parameters
     gait = data["gait"]
     assert "parameters" not in gait and gait["motion"]["source"] == "log"
