@@ -551,3 +551,35 @@ def test_the_footholds_are_the_kept_log():
         in flat
     assert f"({solved[2][0]} → {moved[2]} J/m predicted)" in flat
     assert f"slide ({float(slide[1]):.0f} mm/s)" in flat
+
+
+def test_the_stated_spread_is_the_kept_logs():
+    """How it is checked quotes the probe of where two solves part, the spreads the command's
+    codesign.json holds and the rows it printed, and the one figure same-answer still moves."""
+    doc = " ".join(DOC.read_text(encoding="utf-8").split())
+    text = doc[doc.index("**The same answer, and the gap stated**"):doc.index("## The table")]
+    probe = (LOGS / "bench_optimal_same_answer.log").read_text(encoding="utf-8")
+    part = re.search(r"starts differ by ([0-9.e-]+) in the states.*?they part at iteration "
+                     r"([0-9]+) \(.*?\) and reach ([0-9.]+) at iteration ([0-9]+): × ([0-9.]+) "
+                     r"an iteration\nG: .*?stationarity ([0-9.]+)\nG moved: .*?stationarity "
+                     r"([0-9.]+)\n", probe, re.DOTALL)
+    assert part, "the probe's first block"
+    assert (f"{part[1]} apart (the co-design's gait with its body 1e-9 m higher) part at "
+            f"iteration {part[2]} and are {part[3]} apart by iteration {part[4]}, × {part[5]} "
+            f"an iteration; they end at stationarity {part[6]} and {part[7]}") in text
+    longer = probe[probe.index("--iterations 300"):]
+    assert f"end {re.search(r'judged .*? J/m, spread ([0-9.]+) J/m', longer)[1]} J/m apart" \
+        in text
+    command = (LOGS / "codesign_motion_optimal_spread.log").read_text(encoding="utf-8")
+    spreads = re.findall(r"^optimal motion, .*?: predicted [0-9.]+ J/m, spread ([0-9.]+) J/m",
+                         command, re.MULTILINE)
+    rows = re.findall(r"^    optimal motion, (?:no springs|its springs) +([0-9.]+ ±[0-9.]+) ",
+                      command, re.MULTILINE)
+    assert len(spreads) == len(rows) == 2
+    assert f"the spreads are {spreads[0]} and {spreads[1]} J/m and the rows print {rows[0]} and " \
+        f"{rows[1]}" in text
+    moved = (LOGS / "same_answer_codesign_motion_optimal.log").read_text(encoding="utf-8")
+    assert "17.5 and 17.6 J/m under position servos" in text
+    for walked in ("17\\.5", "17\\.6"):
+        assert re.search(r"optimal motion, its springs +10\.4 ±0\.1 +10\.3 \(open loop\), "
+                         + walked + " ", moved), walked
