@@ -580,6 +580,11 @@ def test_the_stated_spread_is_the_kept_logs():
         f"{rows[1]}" in text
     moved = (LOGS / "same_answer_codesign_motion_optimal.log").read_text(encoding="utf-8")
     assert "17.5 and 17.6 J/m under position servos" in text
+    head = (LOGS / "codesign_motion_optimal_spread.log").read_text(encoding="utf-8")
+    cost = re.search(r"/usr/bin/time -v: ([0-9.]+) s user \+ [0-9.]+ s system, (\d+ min \d+ s) "
+                     r"wall at load ([0-9.]+ to [0-9.]+) \(at 3ec0662, .*?: ([0-9.]+) \+", head)
+    assert cost and (f"took {cost[1]} s of user CPU and {cost[2]} wall at load {cost[3]}, "
+                     f"against {cost[4]} s at 3ec0662") in doc
     for walked in ("17\\.5", "17\\.6"):
         assert re.search(r"optimal motion, its springs +10\.4 ±0\.1 +10\.3 \(open loop\), "
                          + walked + " ", moved), walked
