@@ -57,11 +57,12 @@ def test_the_page_leads_with_the_worse_servo_and_draws_each_spring(ruled, tmp_pa
 def test_the_page_shows_the_optimal_motions_table(codesigned):
     """codesign.json's ``optimal`` key (``--motion optimal``) is a table on the page, the
     springs unproven where the last row did not walk under a servo, each simulation with the
-    controller that ran it and the solver's own figures beside the rebuilt cycles'."""
+    controller that ran it and the solver's own figures beside the rebuilt cycles'; a row with
+    a spread to the digits the table prints it to, with its ±."""
     from hexaleg.outputs.html import render_codesign_html
 
     def row(label, e, position):
-        return {"label": label, "predicted": {"value": e, "unit": "J/m"},
+        return {"label": label, "predicted": {"value": e, "unit": "J/m"}, "decimals": 2,
                 "simulated": {"feedforward": {"value": 1.5 * e, "unit": "J/m"},
                               "position": position},
                 "verdicts": {"feedforward": "walks", "position": "fell: at 1.2 s"},
@@ -95,6 +96,12 @@ def test_the_page_shows_the_optimal_motions_table(codesigned):
                                    "unpredicted": "InfeasibleForcesError: no forces"}
     table = render_codesign_html(data, {"speed": ""}, {})
     assert "— no prediction: InfeasibleForcesError: no forces" in table and "nan" not in table
+    data["optimal"]["rows"][3] |= {"decimals": 1,
+                                   "spread": {"value": {"value": 0.0117, "unit": "J/m"}}}
+    table = render_codesign_html(data, {"speed": ""}, {})
+    assert "9.1 ±0.1 J/m" in table and "13.7 ±0.1 J/m (balance feedback)" in table
+    data["optimal"]["rows"][3]["spread"]["value"]["value"] = None  # fewer than two predicted
+    assert "9.1 J/m" in render_codesign_html(data, {"speed": ""}, {})
 
 
 @pytest.mark.slow  # two small co-design searches: ~5 s of CPU

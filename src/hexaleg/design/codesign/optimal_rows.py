@@ -123,8 +123,9 @@ class MotionRow:
         return bool(self.simulated) and all(v is not None for v in self.simulated.values())
 
     def data(self) -> dict[str, Any]:
-        """codesign.json's row."""
+        """codesign.json's row; ``decimals``, those its J/m are printed to (:attr:`decimals`)."""
         return {"label": self.label, "predicted": q(self.predicted, "J/m"),
+                "decimals": self.decimals,
                 "simulated": {k: None if v is None else q(v, "J/m")
                               for k, v in self.simulated.items()},
                 "verdicts": dict(self.verdicts), "loops": dict(self.loops),
