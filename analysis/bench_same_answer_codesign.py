@@ -6,7 +6,7 @@ codesign.json. Log:
 analysis/bench_logs/same_answer_codesign_motion_optimal.log (minutes: two whole commands a
 move; not an example study: it needs the optimal extra).
 
-Run:  python analysis/same_answer_codesign.py [--tool ../shared/tools/same-answer]
+Run:  python analysis/bench_same_answer_codesign.py [--tool ../shared/tools/same-answer]
                                               [--param body_high=1.300000001 ...]
 
 The tool moves a ``[gait]`` parameter through ``--config``, and ``hexaleg codesign`` refuses a
