@@ -44,8 +44,7 @@ def add(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--motion", choices=("gait", "optimal"),
                    help="gait (default): the parametric gait; optimal: also the motion itself "
                         "optimised from the chosen gait without and with its springs, each row "
-                        "simulated (needs pip install \"hexaleg[optimal]\"; about half a minute "
-                        "more)")
+                        "simulated (needs pip install \"hexaleg[optimal]\"; about a minute more)")
     p.add_argument("--feedback", choices=FEEDBACK,
                    help="with --motion optimal: balance feedback on the body in every optimal "
                         "row's simulation, as hexaleg simulate's: auto (where the gait stands on "
