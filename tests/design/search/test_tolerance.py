@@ -257,3 +257,42 @@ def test_a_tie_goes_to_the_earlier_candidate():
     assert _first_best(values, 0.0) == 3
     assert _first_best(np.array([np.inf, 3.0, 3.0]), 1e-5) == 1
     assert _first_best(np.array([np.inf, np.inf]), 1e-5) == 0
+
+
+CODESIGNED = {"period": 1.28125, "duty_factor": 0.8, "step_height": 0.015,
+              "body_height": 0.11865140034872058, "foot_radius": 0.1889341801677807,
+              "samples": 200}
+"""The gait ``hexaleg codesign`` chooses on the default robot at 0.06 m/s (its codesign.json),
+without its speed."""
+
+
+@pytest.mark.slow  # two one-sided designs and their tolerant ones, ~40 s of CPU
+def test_a_nano_change_of_the_codesigned_speed_moves_no_tolerant_stop():
+    """The full rules' stop tolerance on the default co-design's chosen gait, its speed 0.06 and
+    0.060000001 m/s (the stride moved by 1.3e-9 m): the same tolerant stops and savings. The
+    coarse scan's strict comparisons of candidates exactly t/2 apart, decided by round-off,
+    moved the coxa's stop by 1.5e-4 rad and the springs to buy from +34.99 % to +35.65 %."""
+    from hexaleg.design.chain.chain import DesignChain
+    from hexaleg.design.chain.stages import stop_tolerance
+    from hexaleg.design.codesign.build import floor_constraints
+    from hexaleg.design.codesign.full_rules import rule_params
+    from hexaleg.motion.params import GaitParams
+
+    run = Scenario.load()
+    params = dataclasses.replace(rule_params(), samples=200, families=("one_sided",))
+    out = []
+    for speed in (0.06, 0.060000001):
+        gait = GaitParams(speed=speed, **CODESIGNED)
+        chain = DesignChain(run.replace(gait=gait, contact=floor_constraints(run).contact()),
+                            lambda _msg: None, design=params)
+        _, tolerant = stop_tolerance(chain.nominal(), chain.candidates()[0])
+        assert tolerant is not None and tolerant.chosen == "tolerant"
+        out.append(tolerant)
+    for g in GROUPS:
+        assert out[0].optimum.geometry[g]["side"] == out[1].optimum.geometry[g]["side"]
+        assert abs(out[0].optimum.geometry[g]["contact"]
+                   - out[1].optimum.geometry[g]["contact"]) < 1e-6
+    for name in ("tolerant", "blind"):
+        assert abs(out[0].worst[name] - out[1].worst[name]) < 1e-6
+        assert abs(out[0].nominal[name] - out[1].nominal[name]) < 1e-6
+
