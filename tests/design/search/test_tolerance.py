@@ -296,3 +296,38 @@ def test_a_nano_change_of_the_codesigned_speed_moves_no_tolerant_stop():
         assert abs(out[0].worst[name] - out[1].worst[name]) < 1e-6
         assert abs(out[0].nominal[name] - out[1].nominal[name]) < 1e-6
 
+
+@pytest.mark.slow  # the dead zone's search at two speeds, ~40 s of CPU
+def test_a_scan_without_a_best_polishes_nothing():
+    """The dead-zone search on the default co-design's chosen gait (the preloaded family's
+    contained start in the full rules): at 0.060000001 m/s a bounded scan with no candidate
+    solved polished the interval between its first two candidates, its first point infeasible,
+    and Brent's parabola made NaN of the inf (scipy's RuntimeWarning in the co-design's output,
+    not at 0.06 m/s). Now no RuntimeWarning, and the optimum is the same at both speeds (410
+    solves had been spent, 229 now)."""
+    import warnings
+
+    from hexaleg.design.chain.chain import DesignChain
+    from hexaleg.design.codesign.build import floor_constraints
+    from hexaleg.design.codesign.full_rules import rule_params
+    from hexaleg.design.search.optimal import optimal_springs as springs
+    from hexaleg.motion.params import GaitParams
+    from hexaleg.robot.mirror import mirror
+
+    run = Scenario.load()
+    params = rule_params()
+    out = []
+    for speed in (0.06, 0.060000001):
+        gait = GaitParams(speed=speed, **CODESIGNED)
+        chain = DesignChain(run.replace(gait=gait, contact=floor_constraints(run).contact()),
+                            lambda _msg: None, design=params)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", RuntimeWarning)
+            prepared = chain.nominal().prepared
+            out.append(springs(prepared, GROUPS, "dead_zone", "joule",
+                               max_deflection=params.deflection_bound, metric=params.metric,
+                               mirrored=mirror(prepared.robot).mirrored))
+    assert abs(out[0].saving - out[1].saving) < 1e-6
+    for g in GROUPS:
+        for k in ("theta_minus", "theta_plus"):
+            assert abs(out[0].geometry[g][k] - out[1].geometry[g][k]) < 1e-6

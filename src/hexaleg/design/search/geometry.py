@@ -22,8 +22,12 @@ resolution, no Lipschitz constant.
 **Families without** (``dead_zone``, ``stiffening``). The value is smooth between levels but
 not monotone: every level is scanned, and the interval around the best is polished by a
 bounded Brent search (:func:`scipy.optimize.minimize_scalar`, deterministic) to
-:data:`POLISH_TOLERANCE`. A stop may also sit beyond the motion's far end (engaged throughout,
-pre-wound by the distance): the scan reaches ``max_deflection`` past it, else :data:`WIND_UP`.
+:data:`POLISH_TOLERANCE` — when the scan has a best: a scan whose candidates are all
+infeasible or, bounded, all unsolved (no bound below the current value) polishes nothing (it
+had polished its first two candidates, an interval of no meaning, often infeasible: inf fed to
+Brent, scipy's "invalid value" warning). A stop may also sit beyond the motion's far end
+(engaged throughout, pre-wound by the distance): the scan reaches ``max_deflection`` past it,
+else :data:`WIND_UP`.
 
 **Over the groups**: coordinate descent to a fixed point. From the best start (the given
 geometries and "no stop engaged"), each group's angles are scanned in turn with the others held
@@ -343,7 +347,9 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
                 found = values([tr for _, tr in trials])
             i = _first_best(found, tie)
             trials = [(float(v), tr) for v, (_, tr) in zip(found, trials, strict=True)]
-            if not fam.preloaded_stops:  # smooth between levels: polish around the best
+            if not fam.preloaded_stops and np.isfinite(trials[i][0]):
+                # smooth between levels: polish around the best; none when no candidate was
+                # solved (every bound above the current value) or every one is infeasible
                 lo = float(trials[max(i - 1, 0)][1][g][angle])
                 hi = float(trials[min(i + 1, len(trials) - 1)][1][g][angle])
 
