@@ -25,6 +25,8 @@ from hexaleg.design.codesign.gait_search import (
     MIN_STEP,
     TIE,
     Space,
+    lattice_bounds,
+    lattice_point,
     penalised,
     search,
 )
@@ -156,6 +158,41 @@ def test_a_tiny_change_of_the_start_changes_nothing_printed():
     assert a.evaluations == b.evaluations
     for n in SPACE.names:
         assert getattr(a.best.params, n) == pytest.approx(getattr(b.best.params, n), abs=1e-8)
+
+
+def beyond(u: np.ndarray) -> float:
+    """Lowest beyond the body height's upper face (scaled 1.3): the optimum sits on the face,
+    as the default co-design's chosen gait does on ``body_high``."""
+    return 1.0 + float(np.sum((u - np.array([1.3, 0.6, 0.4])) ** 2))
+
+
+def test_a_nano_change_of_a_face_the_start_is_whole_steps_from_changes_nothing():
+    """The body height's upper bound moved by 1e-9 of itself, the default gait a whole number of
+    lattice steps (16) from it: the same evaluations and the same answer. The face had become
+    one integer more (ceil of 16.00000002), its point the face and the one before 8e-10 inside
+    it: two lattice points for one gait, the co-design's 138 evaluations 141."""
+    base = dataclasses.replace(BASE, body_height=0.1, duty_factor=0.7, period=1.25)
+    moved = Space({**SPACE.bounds, "body_height": (0.05, 0.15 * (1 + 1e-9))})
+    a = search(synthetic(beyond), base, 0.06, SPACE, springs=True, reference=1.0,
+               max_evaluations=300)
+    b = search(synthetic(beyond, moved), base, 0.06, moved, springs=True, reference=1.0,
+               max_evaluations=300)
+    assert a.evaluations == b.evaluations
+    assert a.best.params.body_height == 0.15
+    assert b.best.params.body_height == 0.15 * (1 + 1e-9)  # on the face, not 8e-10 inside
+    for n in ("duty_factor", "period"):
+        assert getattr(a.best.params, n) == getattr(b.best.params, n)
+
+
+def test_the_lattice_reaches_a_face_a_rounding_beyond_a_point_at_that_point():
+    """:func:`lattice_bounds`: no integer for a face within ``FACE`` of a step beyond a lattice
+    point; :func:`lattice_point` puts that point on the face."""
+    u0 = np.array([0.5 - 8e-10, 0.5, 0.0, 1 / 3, 8e-10])
+    low, high = lattice_bounds(u0)
+    assert high.tolist() == [16, 16, 32, 22, 32] and low.tolist() == [-16, -16, 0, -11, 0]
+    assert lattice_point(u0, (16, 16, 32, 22, 0)).tolist() == [1.0, 1.0, 1.0, 1.0, 0.0]
+    assert lattice_point(u0, (15, 0, 1, 0, 1)).tolist() == pytest.approx(
+        [1 - MIN_STEP - 8e-10, 0.5, MIN_STEP, 1 / 3, MIN_STEP + 8e-10], abs=1e-15)
 
 
 def test_the_order_a_poll_is_solved_in_changes_nothing():

@@ -7,9 +7,10 @@ import pytest
 
 import hexaleg
 from hexaleg.design.families import CONTAINS
-from hexaleg.design.search.geometry import EDGE, search_geometry, search_value
+from hexaleg.design.search.geometry import EDGE, _reached, search_geometry, search_value
 from hexaleg.design.search.optimal import optimal_springs
 from hexaleg.design.search.setup import design_setup
+from hexaleg.design.search.tolerance import REACH, TOLERANCE
 from hexaleg.motion.legged import gait
 from hexaleg.robot.mirror import mirror
 from hexaleg.robot.registry import load
@@ -116,6 +117,21 @@ def test_a_nanometre_of_step_height_moves_no_printed_digit(robot):
     for g in ("femur", "tibia"):
         for k in ("theta_minus", "theta_plus"):
             assert abs(out[0].geometry[g][k] - out[1].geometry[g][k]) < 1e-6
+
+
+def test_a_level_under_every_shift_is_reached_whatever_its_rounding():
+    """The stop-tolerant search's coarse scan (within REACH·t every t/2): one level moved by
+    each common shift (−t, −t/2, 0, t/2, t) gives candidates exactly t/2 apart, the outermost
+    2t apart, so from either end all five are kept, for any level — not as round-off decides.
+    The strict comparisons (``>= spacing``, ``<= reach``) dropped some in 3978 of these 4002
+    cases; a 1e-9 change of the default co-design's speed so changed its springs to buy
+    (+34.99 % against +35.65 %)."""
+    t = TOLERANCE
+    for level in np.linspace(-1.0, 1.0, 2001):
+        cands = np.unique([level - s * t + EDGE for s in (-1, -0.5, 0, 0.5, 1)])
+        for current in (cands[0], cands[-1]):
+            np.testing.assert_array_equal(
+                _reached(cands, float(current), REACH * t, t / 2), cands)
 
 
 def test_metric_stage_keeps_the_best_start(prepared200):

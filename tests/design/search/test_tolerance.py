@@ -257,3 +257,77 @@ def test_a_tie_goes_to_the_earlier_candidate():
     assert _first_best(values, 0.0) == 3
     assert _first_best(np.array([np.inf, 3.0, 3.0]), 1e-5) == 1
     assert _first_best(np.array([np.inf, np.inf]), 1e-5) == 0
+
+
+CODESIGNED = {"period": 1.28125, "duty_factor": 0.8, "step_height": 0.015,
+              "body_height": 0.11865140034872058, "foot_radius": 0.1889341801677807,
+              "samples": 200}
+"""The gait ``hexaleg codesign`` chooses on the default robot at 0.06 m/s (its codesign.json),
+without its speed."""
+
+
+@pytest.mark.slow  # two one-sided designs and their tolerant ones, ~40 s of CPU
+def test_a_nano_change_of_the_codesigned_speed_moves_no_tolerant_stop():
+    """The full rules' stop tolerance on the default co-design's chosen gait, its speed 0.06 and
+    0.060000001 m/s (the stride moved by 1.3e-9 m): the same tolerant stops and savings. The
+    coarse scan's strict comparisons of candidates exactly t/2 apart, decided by round-off,
+    moved the coxa's stop by 1.5e-4 rad and the springs to buy from +34.99 % to +35.65 %."""
+    from hexaleg.design.chain.chain import DesignChain
+    from hexaleg.design.chain.stages import stop_tolerance
+    from hexaleg.design.codesign.build import floor_constraints
+    from hexaleg.design.codesign.full_rules import rule_params
+    from hexaleg.motion.params import GaitParams
+
+    run = Scenario.load()
+    params = dataclasses.replace(rule_params(), samples=200, families=("one_sided",))
+    out = []
+    for speed in (0.06, 0.060000001):
+        gait = GaitParams(speed=speed, **CODESIGNED)
+        chain = DesignChain(run.replace(gait=gait, contact=floor_constraints(run).contact()),
+                            lambda _msg: None, design=params)
+        _, tolerant = stop_tolerance(chain.nominal(), chain.candidates()[0])
+        assert tolerant is not None and tolerant.chosen == "tolerant"
+        out.append(tolerant)
+    for g in GROUPS:
+        assert out[0].optimum.geometry[g]["side"] == out[1].optimum.geometry[g]["side"]
+        assert abs(out[0].optimum.geometry[g]["contact"]
+                   - out[1].optimum.geometry[g]["contact"]) < 1e-6
+    for name in ("tolerant", "blind"):
+        assert abs(out[0].worst[name] - out[1].worst[name]) < 1e-6
+        assert abs(out[0].nominal[name] - out[1].nominal[name]) < 1e-6
+
+
+@pytest.mark.slow  # the dead zone's search at two speeds, ~40 s of CPU
+def test_a_scan_without_a_best_polishes_nothing():
+    """The dead-zone search on the default co-design's chosen gait (the preloaded family's
+    contained start in the full rules): at 0.060000001 m/s a bounded scan with no candidate
+    solved polished the interval between its first two candidates, its first point infeasible,
+    and Brent's parabola made NaN of the inf (scipy's RuntimeWarning in the co-design's output,
+    not at 0.06 m/s). Now no RuntimeWarning, and the optimum is the same at both speeds (410
+    solves had been spent, 229 now)."""
+    import warnings
+
+    from hexaleg.design.chain.chain import DesignChain
+    from hexaleg.design.codesign.build import floor_constraints
+    from hexaleg.design.codesign.full_rules import rule_params
+    from hexaleg.design.search.optimal import optimal_springs as springs
+    from hexaleg.motion.params import GaitParams
+    from hexaleg.robot.mirror import mirror
+
+    run = Scenario.load()
+    params = rule_params()
+    out = []
+    for speed in (0.06, 0.060000001):
+        gait = GaitParams(speed=speed, **CODESIGNED)
+        chain = DesignChain(run.replace(gait=gait, contact=floor_constraints(run).contact()),
+                            lambda _msg: None, design=params)
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", RuntimeWarning)
+            prepared = chain.nominal().prepared
+            out.append(springs(prepared, GROUPS, "dead_zone", "joule",
+                               max_deflection=params.deflection_bound, metric=params.metric,
+                               mirrored=mirror(prepared.robot).mirrored))
+    assert abs(out[0].saving - out[1].saving) < 1e-6
+    for g in GROUPS:
+        for k in ("theta_minus", "theta_plus"):
+            assert abs(out[0].geometry[g][k] - out[1].geometry[g][k]) < 1e-6

@@ -22,8 +22,12 @@ resolution, no Lipschitz constant.
 **Families without** (``dead_zone``, ``stiffening``). The value is smooth between levels but
 not monotone: every level is scanned, and the interval around the best is polished by a
 bounded Brent search (:func:`scipy.optimize.minimize_scalar`, deterministic) to
-:data:`POLISH_TOLERANCE`. A stop may also sit beyond the motion's far end (engaged throughout,
-pre-wound by the distance): the scan reaches ``max_deflection`` past it, else :data:`WIND_UP`.
+:data:`POLISH_TOLERANCE` — when the scan has a best: a scan whose candidates are all
+infeasible or, bounded, all unsolved (no bound below the current value) polishes nothing (it
+had polished its first two candidates, an interval of no meaning, often infeasible: inf fed to
+Brent, scipy's "invalid value" warning). A stop may also sit beyond the motion's far end
+(engaged throughout, pre-wound by the distance): the scan reaches ``max_deflection`` past it,
+else :data:`WIND_UP`.
 
 **Over the groups**: coordinate descent to a fixed point. From the best start (the given
 geometries and "no stop engaged"), each group's angles are scanned in turn with the others held
@@ -169,11 +173,23 @@ def _off_state(setup: DesignSetup, axes: Mapping[str, _Axis]) -> State:
     return {g: setup.fam.off(*ax.off, OFF) for g, ax in axes.items()}
 
 
-def _thinned(cands: np.ndarray, spacing: float) -> np.ndarray:
-    """``cands`` (ascending) without those closer than ``spacing`` to the last one kept."""
+def _reached(cands: np.ndarray, current: float, reach: float, spacing: float) -> np.ndarray:
+    """The candidates (ascending) within ``reach`` of ``current``, thinned to ``spacing``: from
+    the lowest, each kept one the first at least ``spacing`` above the last kept, rad.
+
+    Both comparisons allow :data:`MERGE` (angles a stop cannot tell apart). The stop-tolerant
+    design (:mod:`hexaleg.design.search.tolerance`) scans levels moved by every shift, multiples
+    of t/2, within a reach of 2t every t/2: the same level under two shifts is *exactly* a
+    spacing or a reach apart, and without the margin floating-point round-off (~1e-18 rad)
+    decided whether it was kept. A 1e-9 change of an input flipped it: the default co-design's
+    chosen gait with its speed moved from 0.06 to 0.060000001 m/s thinned the coxa's stops to
+    −0.03946 rad instead of −0.03961 (t/2 above −0.04834 but for 2e-18 rad), and the springs to
+    buy went from +34.99 % to +35.65 %
+    (analysis/bench_logs/same_answer_codesign_motion_optimal.log, the speed's block).
+    """
     kept: list[float] = []
-    for c in cands:
-        if not kept or c - kept[-1] >= spacing:
+    for c in cands[np.abs(cands - current) <= reach + MERGE]:
+        if not kept or c - kept[-1] >= spacing - MERGE:
             kept.append(float(c))
     return np.array(kept)
 
@@ -210,7 +226,7 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
         window: Candidates each scan tries on each side of the current angle; None: all.
         reach: Only the candidates within this angle of the current one (rad); None: all.
         spacing: With ``reach``: candidates thinned to this spacing at least (rad), the
-            nearest-below kept.
+            nearest-below kept (both within :data:`MERGE`, :func:`_reached`).
         max_sweeps: Sweeps over the groups at most; 0: the best start alone.
         map_fn: How a scan's candidates are solved: ``map_fn(fn, states)`` is
             ``[fn(s) for s in states]`` in the order given (e.g. the design's forked map over
@@ -297,7 +313,7 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
                 at = int(np.searchsorted(cands, current))
                 cands = cands[max(0, at - window):at + window + 1]
             if reach is not None:
-                cands = _thinned(cands[np.abs(cands - current) <= reach], spacing)
+                cands = _reached(cands, current, reach, spacing)
             trials = [(float(t), tr) for t in cands
                       if (tr := moved(state, g, angle, float(t), side)) is not None]
             if not trials:
@@ -331,7 +347,9 @@ def search_geometry(setup: DesignSetup, starts: Sequence[Mapping[str, Geometry]]
                 found = values([tr for _, tr in trials])
             i = _first_best(found, tie)
             trials = [(float(v), tr) for v, (_, tr) in zip(found, trials, strict=True)]
-            if not fam.preloaded_stops:  # smooth between levels: polish around the best
+            if not fam.preloaded_stops and np.isfinite(trials[i][0]):
+                # smooth between levels: polish around the best; none when no candidate was
+                # solved (every bound above the current value) or every one is infeasible
                 lo = float(trials[max(i - 1, 0)][1][g][angle])
                 hi = float(trials[min(i + 1, len(trials) - 1)][1][g][angle])
 
