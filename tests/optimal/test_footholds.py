@@ -5,6 +5,8 @@ bound); bad input named."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pinocchio as pin
 import pytest
@@ -173,3 +175,26 @@ def test_bad_offsets_are_named(robot, walk200, offsets):
 def test_bad_search_settings_are_named(key, value):
     with pytest.raises(InvalidParameterError, match=key):
         FootholdSearch(**{key: value})
+
+
+@pytest.mark.parametrize("name", ["solo12", str(Path(__file__).resolve().parents[1] / "data"
+                                                 / "spider.toml")])
+def test_mirrored_legs_are_the_robots_mirror_twins(name):
+    """The search's pairs are the robot's mirror twins by the hips' geometry
+    (:func:`hexaleg.robot.mirror.mirror`), and a pair's outward step points away from the
+    sagittal plane on both sides, across the robot's heading (the spider walks along y).
+    Catches an outward step along world y whatever the heading."""
+    from hexaleg.robot.mirror import mirror
+
+    robot = hexaleg.load(name)
+    twins = mirror(robot).twins
+    pairs = mirrored_legs(robot)
+    assert all(m is not None and twins[robot.leg_names[j]] == robot.leg_names[m]
+               for j, m in pairs)
+    o = offsets_of(robot, (0, 1) * len(pairs), 2e-3)
+    pin.forwardKinematics(robot.model, robot.data, robot.pose("stand"))
+    left = np.cross([0.0, 0.0, 1.0], robot.heading)[:2]
+    for leg, step in zip(robot.legs, o, strict=True):
+        hip = robot.data.oMi[leg.joint_ids[0]].translation - robot.pose("stand")[:3]
+        side = np.sign(hip[:2] @ left)
+        np.testing.assert_allclose(step, 2e-3 * side * left, atol=1e-15, err_msg=leg.name)

@@ -37,6 +37,7 @@ from hexaleg.checks import integer, positive
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.kinematics import leg_ik
 from hexaleg.motion.trajectory import Motion
+from hexaleg.robot.mirror import mirror
 from hexaleg.robot.model import Robot
 
 
@@ -104,19 +105,36 @@ def moved_footholds(robot: Robot, motion: Motion, offsets: np.ndarray) -> Motion
 
 def mirrored_legs(robot: Robot) -> list[tuple[int, int | None]]:
     """The search's coordinates' legs: ``(j, m)`` pairs in leg order, ``m`` the leg mirrored
-    across the sagittal plane (the name with its leading ``L``/``R`` swapped) or None when the
-    robot has no such leg; each pair once."""
+    across the sagittal plane (its twin by the hips' geometry,
+    :func:`hexaleg.robot.mirror.mirror`, whatever the legs' names) or None when it has none;
+    each pair once."""
     names = robot.leg_names
+    twins = mirror(robot).twins
     out: list[tuple[int, int | None]] = []
     seen: set[int] = set()
     for j, name in enumerate(names):
         if j in seen:
             continue
-        other = {"L": "R", "R": "L"}.get(name[:1])
-        m = names.index(other + name[1:]) if other and other + name[1:] in names else None
+        m = None if twins[name] == name else names.index(twins[name])
         out.append((j, m))
         seen.update({j} if m is None else {j, m})
     return out
+
+
+def _sides(robot: Robot) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The robot's forward and left axes in the plane (its heading, and ``up × heading``), (2,)
+    each, and each leg's side, (n_legs,): +1 for a hip left of the base's sagittal plane or on
+    it, −1 right of it (the robot standing, its base at the origin: ``stand`` pose, else
+    Pinocchio's neutral)."""
+    q = robot.pose("stand") if "stand" in robot.poses else pin.neutral(robot.model)
+    q = np.array(q, dtype=float)
+    q[:7] = [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0]
+    pin.forwardKinematics(robot.model, robot.data, q)
+    forward = np.asarray(robot.heading, dtype=float)
+    left = np.cross([0.0, 0.0, 1.0], forward)
+    side = np.array([-1.0 if float(robot.data.oMi[leg.joint_ids[0]].translation @ left) < 0.0
+                     else 1.0 for leg in robot.legs])
+    return forward[:2], left[:2], side
 
 
 @dataclass(frozen=True)
@@ -169,16 +187,16 @@ class FootholdAnswer:
 
 
 def offsets_of(robot: Robot, point: tuple[int, ...], smallest: float) -> np.ndarray:
-    """The legs' offsets (n_legs, 2), m, of a lattice point: per :func:`mirrored_legs` pair its
-    fore-aft and outward (away from the sagittal plane, +y for a leg named ``L…`` or alone,
-    −y for ``R…``) steps; the mirrored leg takes the same fore-aft and the opposite y."""
+    """The legs' offsets in world x and y (n_legs, 2), m, of a lattice point: per
+    :func:`mirrored_legs` pair its fore-aft (along the robot's heading) and outward (away from
+    the sagittal plane) steps; the mirrored leg takes the same fore-aft step and the same outward
+    one on its own side."""
     out = np.zeros((len(robot.legs), 2))
+    forward, left, side = _sides(robot)
     for c, (j, m) in enumerate(mirrored_legs(robot)):
-        side = -1.0 if robot.leg_names[j].startswith("R") else 1.0
-        dx, dy = point[2 * c] * smallest, point[2 * c + 1] * smallest * side
-        out[j] = dx, dy
-        if m is not None:
-            out[m] = dx, -dy
+        ahead, outward = point[2 * c] * smallest, point[2 * c + 1] * smallest
+        for leg in (j,) if m is None else (j, m):
+            out[leg] = ahead * forward + outward * side[leg] * left
     return out
 
 
