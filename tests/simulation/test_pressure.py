@@ -61,7 +61,8 @@ def test_a_run_whose_sole_rode_its_edge_is_tipped_not_walks(prepared, monkeypatc
     not walk keeps its own verdict. The hexapod has no soles, so its margin is stood in for."""
     import dataclasses
 
-    from hexaleg.simulation.run import VERDICTS, Settings, simulate, verdict_meanings
+    from hexaleg.simulation.result import VERDICTS, verdict_meanings
+    from hexaleg.simulation.run import Settings, simulate
 
     assert set(verdict_meanings()) == set(VERDICTS) and "tipped" in VERDICTS
     edge = pressure.CopMargin(0.0, "LF", "toe", 1.0, 4.5)

@@ -50,7 +50,7 @@ from hexaleg.motion.trajectory import Motion
 from hexaleg.quantities import file_data, json_text, quantity
 from hexaleg.scenario.scenario import Scenario
 from hexaleg.simulation.controllers import controllers_of
-from hexaleg.simulation.run import verdict_meanings
+from hexaleg.simulation.result import verdict_meanings
 from hexaleg.simulation.sensitivity import sensitivity_row
 
 MIN_SAVING = 1e-4
