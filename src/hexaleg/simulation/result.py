@@ -10,8 +10,9 @@ from typing import Any
 
 import numpy as np
 
+from hexaleg.dynamics.analysis import Analysis
 from hexaleg.dynamics.energy import saving
-from hexaleg.dynamics.prepare import Analysis, Prepared
+from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import SimulationError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot

@@ -23,8 +23,9 @@ from typing import Any
 
 import numpy as np
 
+from hexaleg.dynamics.analysis import Analysis
 from hexaleg.dynamics.contact import ContactParams
-from hexaleg.dynamics.prepare import Analysis, Prepared, prepare
+from hexaleg.dynamics.prepare import Prepared, prepare
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
