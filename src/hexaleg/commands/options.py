@@ -95,7 +95,7 @@ def check_tables(tables: Mapping[str, Any], where: str, log: str | Path | None =
     from hexaleg.report.config import ReportConfig
     from hexaleg.scenario.logged import refuse_gait_table
     from hexaleg.scenario.scenario import TABLES
-    from hexaleg.simulation.run import Settings
+    from hexaleg.simulation.settings import Settings
 
     check_names(tables, tuple(TABLES), where)
     if log is not None:

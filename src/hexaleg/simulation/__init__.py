@@ -8,7 +8,8 @@ Pinocchio and MuJoCo, :mod:`~hexaleg.simulation.springs` builds hexaleg's spring
 model (with MuJoCo's stage timers off, :mod:`~hexaleg.simulation.timers`) at the timestep of
 :mod:`~hexaleg.simulation.timestep`,
 :mod:`~hexaleg.simulation.measures` judges a run, :mod:`~hexaleg.simulation.run` simulates
-with and without the springs beside the analysis, and
+with and without the springs beside the analysis (with the
+:mod:`~hexaleg.simulation.settings`, into a :mod:`~hexaleg.simulation.result`), and
 :mod:`~hexaleg.simulation.sensitivity` reruns it under changed settings and controllers.
 
 It sits below the design layer, so a design may simulate its candidates; the command and its
@@ -19,7 +20,9 @@ importing this package stays light. See ``docs/simulate.md``.
 from hexaleg.simulation.controllers import CONTROLLERS, Servo
 from hexaleg.simulation.ground import Ground
 from hexaleg.simulation.model import SimModel, build_model
-from hexaleg.simulation.run import Run, Settings, Simulation, simulate
+from hexaleg.simulation.result import Run, Simulation
+from hexaleg.simulation.run import simulate
+from hexaleg.simulation.settings import Settings
 
 __all__ = ["CONTROLLERS", "Ground", "Run", "Servo", "Settings", "SimModel", "Simulation",
            "build_model", "simulate"]

@@ -53,7 +53,7 @@ from hexaleg.errors import ConfigError, InvalidParameterError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 from hexaleg.simulation.measures import contact_forces, forward_states
-from hexaleg.simulation.run import Run, Simulation
+from hexaleg.simulation.result import Run, Simulation
 
 FORMAT = "hexaleg simulated motion 1"
 """The ``format`` entry of a motion file (a reader refuses other files)."""

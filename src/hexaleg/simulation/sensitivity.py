@@ -19,7 +19,9 @@ from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import HexalegError
 from hexaleg.quantities import quantity
 from hexaleg.robot.springs import SpringSet
-from hexaleg.simulation.run import Settings, Simulation, simulate
+from hexaleg.simulation.result import Simulation
+from hexaleg.simulation.run import simulate
+from hexaleg.simulation.settings import Settings
 
 Variant = tuple[str, Callable[[Settings], Settings]]
 """A label and how it changes the settings."""

@@ -42,7 +42,7 @@ from hexaleg.robot.model import Robot
 from hexaleg.simulation import measures, stepping
 from hexaleg.simulation.controllers import controls, reference
 from hexaleg.simulation.model import build_model
-from hexaleg.simulation.run import Settings
+from hexaleg.simulation.settings import Settings
 from hexaleg.simulation.timestep import automatic_timestep, cycle_timestep
 
 MEASURED_PREFIXES = tuple(f"{kind}_" for kind in MEASURED)

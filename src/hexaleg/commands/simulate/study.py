@@ -31,7 +31,9 @@ from hexaleg.report.config import ReportConfig
 from hexaleg.robot.springs import SpringSet
 from hexaleg.scenario.run_warnings import gait_defaults, run_warnings
 from hexaleg.scenario.scenario import Scenario
-from hexaleg.simulation.run import Settings, Simulation, simulate
+from hexaleg.simulation.result import Simulation
+from hexaleg.simulation.run import simulate
+from hexaleg.simulation.settings import Settings
 
 DEFAULT_FAMILY = "linear"
 """The spring family of the default design (its optimum has no geometry to search: global)."""

@@ -23,7 +23,7 @@ from hexaleg.errors import OutputError
 from hexaleg.outputs.html import render_simulate_html
 from hexaleg.quantities import comparison, file_data, json_text, quantity
 from hexaleg.simulation import balance, foot_placement
-from hexaleg.simulation.run import Run, Simulation
+from hexaleg.simulation.result import Run, Simulation
 from hexaleg.simulation.sensitivity import sensitivity_row
 
 METRICS: tuple[str, ...] = ("electrical", "joule")

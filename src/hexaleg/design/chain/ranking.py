@@ -25,7 +25,9 @@ from hexaleg.design.chain.candidates import Candidate
 from hexaleg.dynamics.prepare import Prepared
 from hexaleg.errors import HexalegError
 from hexaleg.simulation.controllers import BOTH, controllers_of
-from hexaleg.simulation.run import Settings, Simulation, simulate
+from hexaleg.simulation.result import Simulation
+from hexaleg.simulation.run import simulate
+from hexaleg.simulation.settings import Settings
 
 FLAG_FRACTION = 0.5
 """A simulated saving below this fraction of the predicted one is flagged on the page."""
