@@ -104,6 +104,41 @@ def test_the_page_shows_the_optimal_motions_table(codesigned):
     assert "9.1 J/m" in render_codesign_html(data, {"speed": ""}, {})
 
 
+def test_the_page_buys_the_optimal_motions_springs_by_the_full_rules(ruled):
+    """Where the full spring rules ran on the optimal motion, the page's answer for it is
+    their recommendation (its energy per metre, saving and simulation), proven or not as their
+    proof says; the alternation's own springs are named as the last row's."""
+    from hexaleg.design.codesign.optimal_rows import ON
+    from hexaleg.design.codesign.rules import rule_data
+    from hexaleg.outputs.html import render_codesign_html
+
+    rules = rule_data(ruled.rules, 0.1, ON)
+    solver = {"stationarity": {"value": 0.0097, "unit": "1"}, "iterations": 100,
+              "threshold": {"value": 1e-8, "unit": "1"},
+              "friction_use": {"value": 0.7, "unit": "1"},
+              "energy_per_metre": {"value": 8.87, "unit": "J/m"}}
+    data = ruled.to_dict()
+    data["optimal"] = {
+        "rows": [{"label": f"row {k}", "predicted": {"value": 9.0 + k, "unit": "J/m"},
+                  "decimals": 2, "simulated": {"feedforward": None}, "verdicts":
+                  {"feedforward": "fell"}, "loops": {}} for k in range(4)],
+        "springs": [{"family": "linear", "joint": "LF_femur", "parameters": {}}],
+        "family": "linear", "proven": True, "residual": {"value": 8e-15, "unit": "N·m"},
+        "springs_motion": solver, "no_springs": solver, "feedback": "auto",
+        "alternation": {"energies": [{"value": 9.5, "unit": "J/m"}], "rounds": 1,
+                        "kept_gait": False}, "full_rules": rules}
+    page = render_codesign_html(data, {"speed": ""}, {})
+    part = page[page.index("The optimal motion with its springs"):]
+    assert "Walk the optimal motion and fit these springs:" in part
+    assert f"<b>{rules['per_metre']['value']:.2f} J/m</b>" in part
+    assert "the alternation's own springs (linear on\nLF_femur)" in part
+    data["optimal"] |= {"proven": False, "full_rules": {"applied_to": ON, "pays": False,
+                                                         "error": "InvalidParameterError: x"}}
+    part = render_codesign_html(data, {"speed": ""}, {})
+    part = part[part.index("The optimal motion with its springs"):]
+    assert "Unproven" in part and "The full spring rules could not run on it" in part
+
+
 @pytest.mark.slow  # two small co-design searches: ~5 s of CPU
 def test_a_kill_in_the_optimal_stage_resumes_from_the_kept_co_design(tmp_path, monkeypatch):
     """``--motion optimal`` keeps the finished parametric co-design before the optimal motion's

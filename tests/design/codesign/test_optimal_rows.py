@@ -303,3 +303,51 @@ def test_a_cycle_not_rebuilt_is_a_row_that_says_why(monkeypatch, robot):
     assert lines[-1].endswith("springs to buy for it (linear): femur")
     assert json.loads(json_text(table.data()))["rows"][2]["unpredicted"].startswith(
         "not rebuilt")
+
+
+def _bought(rows: OptimalRows, rules: object, motion: hexaleg.Motion) -> OptimalRows:
+    """``rows`` whose alternation's answer is the cycle ``motion`` and whose springs to buy are
+    the full rules' ``rules``."""
+    best = dataclasses.replace(rows.alternation, best=SimpleNamespace(**{
+        **vars(rows.alternation.best), "task_space": motion}))
+    return dataclasses.replace(rows, alternation=best, rules=rules)
+
+
+def test_the_springs_to_buy_for_the_optimal_motion_are_the_full_rules(ruled, walk200):
+    """Where the full spring rules ran on the optimal motion, the springs to buy are theirs
+    (their parts, per metre of that motion, their proof), the alternation's own springs only the
+    row's: the table proves the springs by the rules' simulation, not by row 4's walk (which
+    fails under position servos here while the rules' springs are proven)."""
+    from hexaleg.design.codesign.optimal_rows import ON
+    from hexaleg.design.codesign.rules import per_metre
+
+    rules = ruled.rules
+    assert rules.pays and not rules.unproven  # the chosen gait's one-sided design, proven
+    table = _bought(_rows(None), rules, walk200)
+    assert table.proven and not table.rows[-1].walks
+    lines = table.lines()
+    assert "    its springs (linear, the alternation's): femur" in lines
+    head = next(line for line in lines if "full spring rules on the optimal motion" in line)
+    assert head.startswith("    springs to buy (full spring rules on the optimal motion: ")
+    assert f"{per_metre(rules, walk200.distance):.2f} J/m" in head
+    assert any("simulated electrical saving, the worse servo first" in line for line in lines)
+    data = json.loads(json_text(table.data()))
+    assert data["proven"] is True and data["full_rules"]["applied_to"] == ON
+    assert data["full_rules"]["per_metre"]["value"] == pytest.approx(
+        per_metre(rules, walk200.distance), rel=1e-12)
+    assert data["full_rules"]["recommended"]["label"] == rules.recommended.label
+    failed = _bought(_rows(None), "InvalidParameterError: too few samples", walk200)
+    assert not failed.proven and failed.data()["full_rules"]["error"].endswith("samples")
+    assert any("full spring rules could not run on the optimal motion "
+               "(InvalidParameterError: too few samples)" in line for line in failed.lines())
+    assert "unproven: it does not walk under position" in failed.lines()[-1]
+
+
+def test_a_kept_gait_buys_the_co_designs_springs():
+    """Where the alternation kept the co-design's gait, no rules run on it a second time: the
+    springs to buy are the co-design's."""
+    table = _rows(11.0)
+    kept = dataclasses.replace(table, alternation=dataclasses.replace(table.alternation,
+                                                                      kept_gait=True))
+    assert kept.lines()[-1] == "    springs to buy for it: the co-design's (above)"
+    assert kept.data()["full_rules"] is None

@@ -127,3 +127,39 @@ def test_an_alternation_killed_in_a_round_resumes_from_its_kept_solves(tmp_path,
     assert again.energies == resumed.energies
     assert repr(again.springs) == repr(resumed.springs)
     np.testing.assert_array_equal(again.best.x, resumed.best.x)
+
+
+def test_the_optimal_motions_springs_are_bought_once_and_kept(tmp_path, monkeypatch, ruled):
+    """with_optimal runs the full rules on the alternation's motion after the rows, keeps their
+    result, and a later process of the same run reads it back instead of designing again; no
+    rules run where the alternation kept the gait."""
+    from types import SimpleNamespace
+
+    from hexaleg.design.codesign import optimal_rows as rows_module
+    from hexaleg.design.codesign.optimal_stage import RULES, with_optimal
+
+    robot = hexaleg.load()
+    kept_gait = False
+    motion = hexaleg.gait(robot, hexaleg.GaitParams(samples=40))
+
+    def rows(*_args, **_kwargs):
+        alt = SimpleNamespace(kept_gait=kept_gait, motion=motion)
+        return rows_module.OptimalRows((), hexaleg.SpringSet(), "linear", None, alt, robot,
+                                       "both", 1.0)
+
+    monkeypatch.setattr(rows_module, "optimal_rows", rows)
+    calls: list[hexaleg.Motion] = []
+
+    def rules(m):
+        calls.append(m)
+        return "InvalidParameterError: a stand-in"
+
+    stages = StageFiles(tmp_path, "k")
+    first = with_optimal(ruled, robot, None, {}, "both", print, stages, rules=rules)
+    assert calls == [motion] and first.optimal.rules == "InvalidParameterError: a stand-in"
+    assert KeptSolves.name((RULES, motion)) in {p.stem for p in tmp_path.glob("*.pickle")}
+    again = with_optimal(ruled, robot, None, {}, "both", print, stages, rules=rules)
+    assert len(calls) == 1 and again.optimal.rules == first.optimal.rules
+    kept_gait = True
+    none = with_optimal(ruled, robot, None, {}, "both", print, None, rules=rules)
+    assert len(calls) == 1 and none.optimal.rules is None

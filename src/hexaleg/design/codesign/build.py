@@ -48,7 +48,7 @@ from hexaleg.design.chain.groups import design_groups
 from hexaleg.design.chain.ranking import under
 from hexaleg.design.codesign.box import body_bound, default_space, duty_bound
 from hexaleg.design.codesign.floors import over_floors
-from hexaleg.design.codesign.full_rules import rule_params, started
+from hexaleg.design.codesign.full_rules import motion_rules, rule_params, started
 from hexaleg.design.codesign.gait_evaluation import (
     PARAMETERS,
     Constraints,
@@ -133,8 +133,10 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             chosen gait; False: the search's best gait is chosen unsimulated.
         rules: Apply ``hexaleg design``'s full spring rules to the chosen gait and recommend
             what they choose (:func:`~hexaleg.design.codesign.full_rules.full_rules`, about a
-            minute); False: the search's answer alone, the inner program's springs
-            recommended.
+            minute), and with ``motion="optimal"`` to the optimal motion with its springs
+            (:func:`~hexaleg.design.codesign.full_rules.motion_rules`); False: the search's
+            answer alone, the inner program's springs recommended (the alternation's for the
+            optimal motion).
         design: The rules' ``[design]`` settings (default
             :func:`~hexaleg.design.codesign.full_rules.rule_params`); they run at
             ``final_samples``, ranked under ``controller``.
@@ -225,7 +227,8 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
         say(f"co-design: {kept.rows[3].per_metre:.2f} J/m, read back from the kept stage of "
             f"this run ({stages.directory if stages is not None else ''})")
         return with_optimal(kept, model, motor, groups, servo, say, stages, loop, timing,
-                            starts)
+                            starts, functools.partial(motion_rules, run, c=kept.constraints,
+                                                      say=say, design=design) if rules else None)
     free = functools.partial(evaluate_gait, model, family=family, constraints=c, motor=motor)
     first = free(base, groups=groups, min_margin=0.0)
     if first.error is not None:
@@ -302,7 +305,8 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             return result
         keep_parametric(stages, result, model)
         return with_optimal(result, model, motor, groups, servo, say, stages, loop, timing,
-                            starts)
+                            starts, functools.partial(motion_rules, run, c=c, say=say,
+                                                      design=design) if rules else None)
     finally:
         if ruled is not None:
             ruled.close()

@@ -23,6 +23,7 @@ from hexaleg.design.chain.config import DesignParams
 from hexaleg.design.codesign.gait_evaluation import Constraints
 from hexaleg.errors import HexalegError
 from hexaleg.motion.params import GaitParams
+from hexaleg.motion.trajectory import Motion
 from hexaleg.parallel.workers import watch_parent
 from hexaleg.scenario.scenario import Scenario
 
@@ -113,19 +114,37 @@ def full_rules(run: Scenario | str, chosen: GaitParams, c: Constraints,
     robustness maps nor robust box — neither is a rule, and on the co-designed gait the box
     alone cost a minute); its result, or the error's message when it cannot run there (the
     inner springs then stay recommended)."""
+    params = design if design is not None else rule_params()
+    # at the chosen gait's sampling: the design's run is its scenario at [design] samples
+    params = dataclasses.replace(params, samples=chosen.samples)
+    base = run if isinstance(run, Scenario) else Scenario.load(run)
+    return _ruled(base.replace(gait=chosen, contact=c.contact()), params, say,
+                  "the chosen gait")
+
+
+def motion_rules(run: Scenario, motion: Motion, c: Constraints, say: Callable[[str], None],
+                 design: DesignParams | None = None) -> Any:
+    """:func:`full_rules` on a motion that is not a gait of the parametric family — the
+    optimal motion with its springs (issue #56) — as ``hexaleg design --motion`` designs on a
+    logged cycle: the motion at its own sampling, the rules of ``design`` (default
+    :func:`rule_params`); its result, or the error's message when it cannot run there."""
+    params = design if design is not None else rule_params()
+    return _ruled(run.replace(recorded=motion, contact=c.contact()), params, say,
+                  "the optimal motion")
+
+
+def _ruled(run: Scenario, params: DesignParams, say: Callable[[str], None], on: str) -> Any:
+    """The design chain of ``run`` under ``params`` (the rules' settings), said to be ``on``
+    that motion; the error's message where it cannot run."""
     from hexaleg.design.chain.chain import DesignChain
 
-    params = design if design is not None else rule_params()
-    say(f"full spring rules on the chosen gait (hexaleg design: {', '.join(params.families)})")
+    say(f"full spring rules on {on} (hexaleg design: {', '.join(params.families)})")
     try:
-        # at the chosen gait's sampling: the design's run is its scenario at [design] samples
-        params = dataclasses.replace(params, samples=chosen.samples)
-        base = run if isinstance(run, Scenario) else Scenario.load(run)
-        return DesignChain(base.replace(gait=chosen, contact=c.contact()), say,
-                           design=params).run()
+        return DesignChain(run, say, design=params).run()
     except HexalegError as err:
-        say(f"full spring rules failed on the chosen gait: {err}")
+        say(f"full spring rules failed on {on}: {err}")
         return f"{type(err).__name__}: {err}"
 
 
-__all__ = ["RULE_FAMILIES", "Background", "full_rules", "rule_params", "started"]
+__all__ = ["RULE_FAMILIES", "Background", "full_rules", "motion_rules", "rule_params",
+           "started"]

@@ -9,9 +9,17 @@ rows, each in electrical J/m:
 1. the default gait without springs,
 2. the parametric co-design (its chosen gait with its inner-program springs),
 3. the optimal motion without springs,
-4. the optimal motion with its springs (the alternation's) — the springs to buy of this table;
-   the co-design's gait with its springs again when no optimal cycle is predicted below it (the
-   alternation never ends worse than the gait it starts from: ``kept_gait``).
+4. the optimal motion with its springs (the alternation's); the co-design's gait with its
+   springs again when no optimal cycle is predicted below it (the alternation never ends worse
+   than the gait it starts from: ``kept_gait``).
+
+The springs to buy for the optimal motion are, as the parametric co-design's are for its gait,
+what ``hexaleg design``'s full spring rules choose on that motion (:attr:`OptimalRows.rules`,
+:func:`~hexaleg.design.codesign.full_rules.motion_rules`: parsimony, stop tolerance, envelope and
+hard stop, fatigue, arbor, simulated under the servo); the alternation's own springs (a smooth
+family on every group: what the solver can differentiate) are row 4's, not parts. Where the rules
+could not run, the alternation's springs are the ones named, proven by row 4's simulation; where
+the alternation kept the gait, the springs to buy are the co-design's.
 
 An optimal motion is played and predicted as the cycle rebuilt in task space
 (:attr:`~hexaleg.optimal.solve.OptimalResult.task_space`: its base and swing feet through the
@@ -48,6 +56,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from hexaleg.checks import one_of
+from hexaleg.design.chain.result import DesignResult
 from hexaleg.design.codesign.alternation import (
     MARGIN,
     MOVES,
@@ -64,6 +73,7 @@ from hexaleg.design.codesign.alternation import (
     predicted_per_metre,
     spreads,
 )
+from hexaleg.design.codesign.rules import rule_data, rule_lines
 from hexaleg.design.codesign.servo import simulated_run
 from hexaleg.design.codesign.starts import STARTS, StartSearch, search_starts
 from hexaleg.design.codesign.timing import TIMINGS, TimingSearch, search_timing
@@ -139,7 +149,7 @@ class OptimalRows:
 
     Attributes:
         rows: The four rows (:data:`LABELS`).
-        springs: The springs to buy for the last row (the alternation's).
+        springs: The last row's springs (the alternation's).
         family: Their family.
         bare: The optimal motion without springs
             (:class:`~hexaleg.optimal.solve.OptimalResult`).
@@ -154,6 +164,10 @@ class OptimalRows:
             (:class:`~hexaleg.design.codesign.timing.TimingSearch`); None: the chosen gait's.
         starts: The multi-start, when the optimal motions' start was searched
             (:class:`~hexaleg.design.codesign.starts.StartSearch`); None: the gait's.
+        rules: The full spring rules on the optimal motion with its springs
+            (:class:`~hexaleg.design.chain.result.DesignResult`; module docstring), the error's
+            message where they could not run, None where none ran (the alternation kept the
+            co-design's gait, or none were asked for).
     """
 
     rows: tuple[MotionRow, ...]
@@ -167,6 +181,7 @@ class OptimalRows:
     feedback: str = "auto"
     timing: TimingSearch | None = None
     starts: StartSearch | None = None
+    rules: DesignResult | str | None = None
 
     @property
     def best(self) -> Any:
@@ -174,8 +189,17 @@ class OptimalRows:
         return self.alternation.best
 
     @property
+    def bought(self) -> DesignResult | None:
+        """The full spring rules' result on the optimal motion, where they ran (:attr:`rules`)."""
+        return self.rules if isinstance(self.rules, DesignResult) else None
+
+    @property
     def proven(self) -> bool:
-        """Whether the last row's motion walks with its springs under every controller."""
+        """Whether a simulation under every controller backs the springs to buy: the full
+        rules' recommendation on the optimal motion (their proof) where they ran, else the last
+        row's motion walking with its springs."""
+        if self.bought is not None:
+            return self.bought.pays and not self.bought.unproven
         return self.rows[-1].walks
 
     @property
@@ -210,6 +234,10 @@ class OptimalRows:
             "starts": None if self.starts is None else self.starts.data(),
             "springs": [spring_entry(j, s) for j, s in self.springs.items()],
             "family": self.family, "proven": self.proven,
+            "full_rules": None if self.rules is None else (
+                {"applied_to": ON, "error": self.rules, "pays": False}
+                if isinstance(self.rules, str) else
+                rule_data(self.rules, self.alternation.motion.distance, ON)),
             "residual": q(max(self.bare.residual, self.best.residual), "N·m"),
             "no_springs": solver(self.bare), "springs_motion": solver(self.best),
             "alternation": {"energies": [q(e, "J/m") for e in alt.energies],
@@ -268,6 +296,16 @@ class OptimalRows:
                    "the optimal cycle with springs was not rebuilt in task space")
             out.append(f"    {why}: the last row is that gait with its springs")
         names = ", ".join(self.springs) or "none"
+        if self.bought is not None:
+            out.append(f"    its springs ({self.family}, the alternation's): {names}")
+            return out + ["    " + line for line in rule_lines(
+                self.bought, self.alternation.motion.distance, "the optimal motion")]
+        if isinstance(self.rules, str):
+            out.append(f"    full spring rules could not run on the optimal motion "
+                       f"({self.rules}): its own springs named")
+        elif self.alternation.kept_gait and self.rules is None:
+            out.append("    springs to buy for it: the co-design's (above)")
+            return out
         out.append(f"    springs to buy for it ({self.family}): {names}" + (
             "" if self.proven else f" — unproven: it does not walk under "
             f"{' and '.join(k for k, v in self.rows[-1].simulated.items() if v is None)}"))
@@ -287,6 +325,9 @@ def _stated(spread: Spread | None, places: int) -> str:
         return f" (no spread: {missing})"
     return f" ±{10.0 ** -places:.{places}f}" + (f" ({missing})" if spread.unjudged else "")
 
+
+ON = "the optimal motion with its springs (its cycle rebuilt in task space)"
+"""What the full spring rules on the optimal motion ran on, as ``codesign.json`` says it."""
 
 ROUND_OFF = 1e-12
 """A Newton–Euler residual below this is round-off, N·m: printed as ``≤ 1e-12`` (its digits

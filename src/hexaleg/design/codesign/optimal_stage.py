@@ -13,7 +13,9 @@ Inside the optimal stage, each optimal-control solve (minutes each: the motion w
 the alternation's start and each of its rounds) is kept as it ends (:class:`KeptSolves`), as a
 stage file named by a digest of its inputs (its label, springs, solver settings and the cycle
 its warm start comes from): a run killed in a round reads back the solves before it, which
-give the same inputs to the next, and solves only from there.
+give the same inputs to the next, and solves only from there. The full spring rules on the
+optimal motion (the springs to buy for it, a minute or two) are kept the same way, defined by the
+motion they run on.
 """
 
 from __future__ import annotations
@@ -21,12 +23,15 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import pickle
+import time
 from collections.abc import Callable
 from typing import Any
 
 from hexaleg.design.chain.checkpoint import StageFiles
+from hexaleg.design.chain.result import DesignResult
 from hexaleg.design.codesign.result import CodesignResult
 from hexaleg.design.search.optimal import Groups
+from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
 
 PARAMETRIC = "parametric"
@@ -48,6 +53,10 @@ def kept_parametric(stages: StageFiles | None, robot: Robot) -> CodesignResult |
     kept = stages.load(PARAMETRIC, {"robot": robot})
     return kept if isinstance(kept, CodesignResult) else None
 
+
+RULES = "full spring rules on the optimal motion"
+"""The label of the springs to buy for the optimal motion among the kept results
+(:class:`KeptSolves`: defined by the motion they run on)."""
 
 SOLVE = "optimal-solve-"
 """The start of a kept solve's stage name (:class:`KeptSolves`), the rest its inputs' digest."""
@@ -96,27 +105,37 @@ class KeptSolves:
 def with_optimal(result: CodesignResult, model: Robot, motor: Any, groups: Groups,
                  servo: str, say: Callable[[str], None],
                  stages: StageFiles | None = None, feedback: str = "auto",
-                 timing: str = "gait", starts: str = "gait") -> CodesignResult:
+                 timing: str = "gait", starts: str = "gait",
+                 rules: Callable[[Motion], DesignResult | str] | None = None) -> CodesignResult:
     """``result`` with the optimal motion's rows (:mod:`hexaleg.design.codesign.optimal_rows`)
     from its chosen gait and springs (at its contact timing, or the one ``timing="search"``
     chooses; from that gait, or from the best start of ``starts="lattice"``), each row
-    simulated with the balance ``feedback`` setting,
-    each solve kept in ``stages`` (:class:`KeptSolves`); its wall time the two stages'
+    simulated with the balance ``feedback`` setting, then the springs to buy for the optimal
+    motion by ``rules`` (:func:`~hexaleg.design.codesign.full_rules.motion_rules` with the
+    run's settings; None: none) where the alternation did not keep the gait; each solve and the
+    rules' result kept in ``stages`` (:class:`KeptSolves`); its wall time the two stages'
     together."""
     from hexaleg.design.codesign.optimal_rows import optimal_rows  # the optimal extra's rows
 
     def tell(line: str) -> None:
         say(f"optimal motion: {line}")
 
+    keep = KeptSolves(stages, model, tell)
     optimal = optimal_rows(model, motor, result.constraints.contact(), result.default,
                            result.chosen, result.springs,
                            (result.rows[0].per_metre, result.rows[3].per_metre),
                            family=result.family, groups=groups, servo=servo,
                            feedback=feedback, timing=timing, starts=starts,
                            min_step=result.constraints.min_foot_clearance, say=tell,
-                           keep=KeptSolves(stages, model, tell))
+                           keep=keep)
+    if rules is not None and not optimal.alternation.kept_gait:
+        began = time.perf_counter()
+        motion = optimal.alternation.motion
+        bought = keep((RULES, motion), lambda: rules(motion))
+        optimal = dataclasses.replace(optimal, rules=bought,
+                                      wall=optimal.wall + time.perf_counter() - began)
     return dataclasses.replace(result, optimal=optimal, wall=result.wall + optimal.wall)
 
 
-__all__ = ["PARAMETRIC", "SOLVE", "KeptSolves", "keep_parametric", "kept_parametric",
+__all__ = ["PARAMETRIC", "RULES", "SOLVE", "KeptSolves", "keep_parametric", "kept_parametric",
            "with_optimal"]

@@ -37,8 +37,9 @@ def _pct(x: float) -> str:
     return f"{100 * x:+.2f} %"
 
 
-def rule_lines(r: DesignResult, stride: float) -> list[str]:
-    """The terminal lines of the springs to buy: the recommendation, then one line per rule's
+def rule_lines(r: DesignResult, stride: float, on: str = "the chosen gait") -> list[str]:
+    """The terminal lines of the springs to buy on ``on`` (the motion the rules ran on, as the
+    lines name it; ``stride`` its distance a cycle, m): the recommendation, then one line per rule's
     figures (stop tolerance; parsimony; per part the wire, worst static safety over the
     envelope, hard stop, fatigue safety and arbor clearance), then its simulation under the
     servo the robot runs, the worse first; "unproven" and why where that simulation does not
@@ -47,7 +48,7 @@ def rule_lines(r: DesignResult, stride: float) -> list[str]:
     why = r.unproven
     head = ("no springs pay; the best would be" if not r.pays else
             f"unproven ({why}): springs the analysis would buy" if why else "springs to buy")
-    out = [f"{head} (full spring rules on the chosen gait: {', '.join(RULES)}): {rec.label} on "
+    out = [f"{head} (full spring rules on {on}: {', '.join(RULES)}): {rec.label} on "
            f"{', '.join(rec.optimum.groups)}, {per_metre(r, stride):.2f} J/m, {m} saving "
            f"{_pct(rec.row[f'saving.{m}'])} ({_pct(rec.net[m])} net of "
            f"{1e3 * rec.spring_mass:.1f} g of springs)"]
@@ -80,8 +81,11 @@ def rule_lines(r: DesignResult, stride: float) -> list[str]:
     return out
 
 
-def rule_data(r: DesignResult, stride: float) -> dict[str, Any]:
-    """``codesign.json``'s ``full_rules``: the settings, the recommendation (savings, groups
+def rule_data(r: DesignResult, stride: float,
+              applied_to: str = "the chosen gait only (too slow for the search's inner loop)"
+              ) -> dict[str, Any]:
+    """``codesign.json``'s ``full_rules`` (``applied_to``: the motion they ran on, said): the
+    settings, the recommendation (savings, groups
     with their marginal saving, the groups left unfitted, the parts), where each part mounts on
     each joint (angles from the joint's zero), its energy per metre, the
     stop tolerance, the envelope and hard stops, fatigue, the ranking, the simulation (under the
@@ -89,7 +93,7 @@ def rule_data(r: DesignResult, stride: float) -> dict[str, Any]:
     stages' wall times and the notes."""
     d = r.design
     return {
-        "applied_to": "the chosen gait only (too slow for the search's inner loop)",
+        "applied_to": applied_to,
         "rules": list(RULES), "summary": r.summary(), "pays": r.pays,
         "settings": {"families": list(d.families), "metric": d.metric,
                      "samples": r.gait.samples,
