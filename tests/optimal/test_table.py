@@ -590,3 +590,56 @@ def test_the_stated_spread_is_the_kept_logs():
     for walked in ("17\\.5", "17\\.6"):
         assert re.search(r"optimal motion, its springs +10\.4 ±0\.1 +10\.3 \(open loop\), "
                          + walked + " ", moved), walked
+
+
+def _optimal_table(log: str) -> dict[str, list[str]]:
+    """A kept command log's optimal table: each row's label → its printed figures (predicted,
+    then simulated feedforward and position)."""
+    block = log[log.index("  optimal motion (whole-body optimal control"):]
+    rows = {}
+    for label, rest in re.findall(r"^    ((?:default gait|parametric co-design|optimal motion)"
+                                  r"[^0-9]*?)\s{2,}(.*)$", block, re.MULTILINE):
+        rows[label.strip()] = re.findall(r"([0-9]+\.[0-9]+)(?: ±[0-9.]+)?(?!\))", rest)
+    return rows
+
+
+def test_the_contact_sequence_is_the_kept_logs():
+    """The contact sequence's table prints the three patterns' kept command logs row for row
+    (the optimal motion with springs 'the gait kept' where the log says the alternation kept
+    it), and the gap its text quotes is the wave log's alternation."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("## The contact sequence"):doc.index("## How it compares")]
+    table = text[text.index("| pattern |"):].split("\n\n")[0].splitlines()[2:]
+    logs = {"tripod": "codesign_motion_optimal_spread.log",
+            "ripple": "codesign_motion_optimal_ripple.log",
+            "wave": "codesign_motion_optimal_wave.log"}
+    assert [row.strip("|").split("|")[0].strip() for row in table] == list(logs)
+    for row in table:
+        pattern, *cells = (c.strip() for c in row.strip("|").split("|"))
+        log = (LOGS / logs[pattern]).read_text(encoding="utf-8")
+        rows = _optimal_table(log)
+        kept = "the last row is that gait with its springs" in log
+        assert cells[0] == rows["default gait, no springs"][0], row
+        for cell, label in ((cells[1], "parametric co-design (its gait and springs)"),
+                            (cells[2], "optimal motion, no springs"),
+                            (cells[3], "optimal motion, its springs")):
+            if label.endswith("its springs") and kept:
+                assert cell == "the gait kept", row
+                continue
+            p, ff, pos = rows[label]
+            assert cell == f"{p} · {ff} / {pos}", row
+        solver = re.search(r"the solver's own J/m at its knots: \S+ \(no springs\), ([0-9.]+)",
+                           log)
+        assert cells[4] == solver[1], row
+    wave = (LOGS / logs["wave"]).read_text(encoding="utf-8")
+    start = re.search(r"alternation: start: ([0-9.]+) J/m predicted rebuilt \(the gait: "
+                      r"([0-9.]+); the solver's ([0-9.]+)", wave)
+    round_1 = re.search(r"round 1: springs [0-9.]+ J/m on the rebuilt cycle, re-optimised "
+                        r"([0-9.]+) J/m predicted rebuilt \(the solver's ([0-9.]+)", wave)
+    flat = " ".join(text.split())
+    assert (f"predicts {start[1]} J/m rebuilt where the solver books {start[3]} at its knots, "
+            f"and its round {round_1[1]} (the solver's {round_1[2]})") in flat
+    assert f"over the gait it started from ({start[2]})" in flat
+    ripple = (LOGS / logs["ripple"]).read_text(encoding="utf-8")
+    least = re.search(r"the least friction that admits forces here is μ = ([0-9.]+)", ripple)
+    assert f"needs μ = {least[1]} at one five-foot instant" in flat
