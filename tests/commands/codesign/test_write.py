@@ -54,6 +54,12 @@ def test_the_page_leads_with_the_worse_servo_and_draws_each_spring(ruled, tmp_pa
         assert (tmp_path / "out" / name).read_text() in page
 
 
+SOLVER = {"stationarity": {"value": 0.0097, "unit": "1"}, "iterations": 100,
+          "threshold": {"value": 1e-8, "unit": "1"}, "friction_use": {"value": 0.7, "unit": "1"},
+          "energy_per_metre": {"value": 8.87, "unit": "J/m"}}
+"""codesign.json's figures of an optimal solve, as the pages' tests give them."""
+
+
 def test_the_page_shows_the_optimal_motions_table(codesigned):
     """codesign.json's ``optimal`` key (``--motion optimal``) is a table on the page, the
     springs unproven where the last row did not walk under a servo, each simulation with the
@@ -68,10 +74,7 @@ def test_the_page_shows_the_optimal_motions_table(codesigned):
                 "verdicts": {"feedforward": "walks", "position": "fell: at 1.2 s"},
                 "loops": {"feedforward": "balance feedback", "position": "open loop"}}
 
-    solver = {"stationarity": {"value": 0.0097, "unit": "1"}, "iterations": 100,
-              "threshold": {"value": 1e-8, "unit": "1"},
-              "friction_use": {"value": 0.7, "unit": "1"},
-              "energy_per_metre": {"value": 8.87, "unit": "J/m"}}
+    solver = SOLVER
     data = codesigned.to_dict()
     data["optimal"] = {
         "rows": [row(f"row {k}", e, {"value": 2 * e, "unit": "J/m"} if k < 3 else None)
@@ -113,10 +116,7 @@ def test_the_page_buys_the_optimal_motions_springs_by_the_full_rules(ruled):
     from hexaleg.outputs.html import render_codesign_html
 
     rules = rule_data(ruled.rules, 0.1, ON)
-    solver = {"stationarity": {"value": 0.0097, "unit": "1"}, "iterations": 100,
-              "threshold": {"value": 1e-8, "unit": "1"},
-              "friction_use": {"value": 0.7, "unit": "1"},
-              "energy_per_metre": {"value": 8.87, "unit": "J/m"}}
+    solver = SOLVER
     data = ruled.to_dict()
     data["optimal"] = {
         "rows": [{"label": f"row {k}", "predicted": {"value": 9.0 + k, "unit": "J/m"},
