@@ -143,10 +143,15 @@ def render_codesign_html(data: Mapping[str, Any], images: Mapping[str, str],
         drawings: Drawing name → SVG of each spring to buy, as the writer wrote them.
 
     Returns:
-        The HTML page (self-contained, the drawings inline).
+        The HTML page (self-contained, the drawings inline). The optimal motion's figures are
+        printed to the digits their spread leaves by the rule the text table uses
+        (:func:`hexaleg.design.codesign.alternation.decimals`, handed to the template).
     """
+    from hexaleg.design.codesign.alternation import decimals  # lazily: no other page needs it
+
     return environment().get_template("codesign.html.j2").render(
-        d=data, images=images, drawings={k: markupsafe.Markup(v) for k, v in drawings.items()})
+        d=data, images=images, drawings={k: markupsafe.Markup(v) for k, v in drawings.items()},
+        decimals=decimals)
 
 
 def render_simulate_html(data: Mapping[str, Any]) -> str:
