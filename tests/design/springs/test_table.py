@@ -22,7 +22,7 @@ def test_an_angle_past_which_nothing_acts_has_no_value():
     geometry search's leftovers, +0.373 rad) are no property of the design. design.json wrote
     them as numbers and design.html printed them; now null with the reason, and — on the page."""
     geometry = {"above_1": -0.049, "above_2": 0.373, "below_1": 0.049, "below_2": -0.373}
-    magnitudes = {"k_above_1": 0.095, "k_above_2": 0.0, "k_below_1": 0.095, "k_below_2": 1e-13}
+    magnitudes = {"k_above_1": 0.095, "k_above_2": 0.0, "k_below_1": 0.095, "k_below_2": 6.8e-10}
     t = magnitudes_table(geometry, magnitudes, "stiffening")
     for idle in ("above_2", "below_2"):
         assert t[idle] == {"si": {"value": None, "unit": "rad"},
@@ -31,5 +31,8 @@ def test_an_angle_past_which_nothing_acts_has_no_value():
     assert t["k_above_2"]["si"] == {"value": 0.0, "unit": "N·m/rad"}  # the stiffness stays
     page = environment().from_string('{% import "design_macros.html.j2" as mc %}'
                                      "{{ mc.magnitudes(t) }}").render(t=t)
-    assert "above_2 — (nothing acts past it: any angle gives the same spring)" in page
-    assert "21.37" not in page and "above_1 -2.807 deg" in page
+    assert "above_1 -2.807 deg, above_2 —, below_1 2.807 deg, below_2 —" in page
+    assert page.count("(—: nothing acts past it: any angle gives the same spring)") == 1
+    # a solver's zero (the stiffening tibia's 6.8e-10 N·m/rad) reads 0, as its angle reads —; the
+    # page judged it in N·mm/deg and printed 0.00000001187 N·mm/deg beside the —
+    assert "21.37" not in page and "k_below_2 0 N·mm/deg" in page
