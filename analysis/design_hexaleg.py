@@ -14,14 +14,15 @@ Per joint class (the same spring on all six legs):
 * each family with its geometry searched (the linear family has none: its answer is global).
 
 Energies are the Joule energy per cycle (J); savings against the same gait without springs.
-Angles are from the centre of each joint's range of motion in the gait.
+Angles are from the centre of each joint's range of motion in the gait; an angle past which
+nothing acts (its stiffness and preload 0) prints "—": any angle gives the same spring.
 """
 
 from __future__ import annotations
 
 import hexaleg
 from hexaleg.design.evaluator import Evaluator
-from hexaleg.design.families import FAMILIES
+from hexaleg.design.families import FAMILIES, family
 from hexaleg.design.search.optimal import OptimalSprings
 from hexaleg.design.studies.optimise import optimise
 
@@ -32,8 +33,11 @@ ROUND_OFF = 1e-6
 
 
 def _magnitudes(res: OptimalSprings, group: str) -> str:
-    geometry = ", ".join(f"{k} {v:+.3f}" if isinstance(v, float) else f"{k} {v}"
-                         for k, v in res.geometry[group].items())
+    # an angle past which nothing acts prints —: the search left it anywhere, and any angle gives
+    # the same spring (Family.idle, with the magnitudes' own zero)
+    idle = family(res.family).idle(res.magnitudes[group], ROUND_OFF)
+    geometry = ", ".join(f"{k} —" if k in idle else f"{k} {v:+.3f}" if isinstance(v, float)
+                         else f"{k} {v}" for k, v in res.geometry[group].items())
     values = ", ".join(f"{k} {v:.4g}" if abs(v) > ROUND_OFF else f"{k} 0"
                        for k, v in res.magnitudes[group].items())
     return f"{values}" + (f"  [{geometry}]" if geometry else "")

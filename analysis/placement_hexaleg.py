@@ -12,12 +12,14 @@ geometry, the contact angles searched (:func:`hexaleg.optimal_springs`).
 "old" is the search hexaleg had before: each class alone, a symmetric dead zone (k, θ_k) with
 its neutral offset free in ±1 rad (grid + Nelder–Mead, :func:`optimise`), the classes of a
 set each at their own optimum. "gap" is the saving the old search left, in points of the
-baseline. The dead-zone family contains the old designs, so its gap is never negative.
+baseline. The dead-zone family contains the old designs, so its gap is never negative. An angle
+past which nothing acts (its stiffness and preload 0) prints "—": any angle gives the same spring.
 """
 
 from __future__ import annotations
 
 import hexaleg
+import hexaleg.design.families
 import hexaleg.design.studies.placement
 
 CLASSES = ("coxa", "femur", "tibia")
@@ -40,8 +42,10 @@ def main() -> None:
         best = result.optima[result.table["springs"].iloc[0]]
         print(f"  best set's springs ({best.family}, per class; rad from the centre of motion):")
         for g in best.groups:
-            geometry = ", ".join(f"{k} {v:+.3f}" for k, v in best.geometry[g].items()
-                                 if isinstance(v, float))
+            # an angle past which nothing acts prints —: any angle gives the same spring
+            idle = hexaleg.design.families.family(best.family).idle(best.magnitudes[g], ROUND_OFF)
+            geometry = ", ".join(f"{k} —" if k in idle else f"{k} {v:+.3f}"
+                                 for k, v in best.geometry[g].items() if isinstance(v, float))
             values = ", ".join(f"{k} {v:.4g}" if abs(v) > ROUND_OFF else f"{k} 0"
                                for k, v in best.magnitudes[g].items())
             print(f"    {g:6s} {values}  [{geometry}]")

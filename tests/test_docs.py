@@ -158,7 +158,8 @@ def test_the_build_runs_the_walker_and_ci_builds_it_strict():
 
 def test_design_page_quotes_the_design_study_log():
     """docs/design.md's table is analysis/logs/design_hexaleg.log (itself diffed against the
-    script by test_examples): every energy and saving of the log stands in the page's table."""
+    script by test_examples): every row of the log, energy, saving, magnitudes and geometry,
+    stands in the page's table."""
     import re
 
     root = Path(__file__).resolve().parents[1]
@@ -169,12 +170,42 @@ def test_design_page_quotes_the_design_study_log():
     for line in log.splitlines():
         if line in ("coxa", "femur", "tibia"):
             cls = line
-        m = re.match(r"  (.{26}) (\S+) J  saving\s+(\S+) %", line)
+        m = re.match(r"  (.{26}) (\S+) J  saving\s+(\S+) %  (.*)$", line)
         if m and cls:
-            label, energy, saving = (g.strip() for g in m.groups())
-            assert f"| {cls} | {label} | {energy} | {saving} % |" in page, line
+            label, energy, saving = (g.strip() for g in m.groups()[:3])
+            assert f"| {cls} | {label} | {energy} | {saving} % | {m.group(4)} |" in page, line
             rows += 1
     assert rows == 21
+
+
+def test_the_design_study_prints_no_angle_past_which_nothing_acts():
+    """analysis/logs/design_hexaleg.log (and the page that quotes it): an angle whose stiffness and
+    preload are 0 prints —, every other angle its value. The log printed the stiffening family's
+    unused second stages at whatever angle the geometry search left (coxa above_2 +0.373, any
+    angle giving the same 1.4851 J), and the dead zone's unused side likewise."""
+    import re
+
+    from hexaleg.design.families import family
+
+    root = Path(__file__).resolve().parents[1]
+    log = (root / "analysis" / "logs" / "design_hexaleg.log").read_text()
+    idle = 0
+    for line in log.splitlines():
+        m = re.match(r"  (\w+), searched .* %  (.*?)  \[(.*)\]$", line)
+        if not m:
+            continue
+        fam = family(m.group(1))
+        magnitudes = {k: float(v) for k, v in (e.split() for e in m.group(2).split(", "))}
+        for entry in m.group(3).split(", "):
+            name, value = entry.split()
+            if name not in fam.angles:
+                continue
+            if all(magnitudes[k] == 0 for k in fam.stops[name]):
+                assert value == "—", line
+                idle += 1
+            else:
+                assert re.fullmatch(r"[+-]\d\.\d{3}", value), line
+    assert idle == 9  # three stiffening designs' second stages (6), two dead zones, a preloaded
 
 
 def test_design_page_quotes_the_placement_study_log():

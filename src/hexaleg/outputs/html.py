@@ -20,6 +20,7 @@ import jinja2
 import markupsafe
 
 from hexaleg.checks import is_real
+from hexaleg.design.families.family import ZERO_MAGNITUDE
 from hexaleg.outputs.angles import format_degrees
 
 NOISE = 1e-12
@@ -87,7 +88,8 @@ def format_quantity(q: Mapping[str, Any] | None,
 
 def environment() -> jinja2.Environment:
     """The Jinja2 environment of the package's templates: HTML autoescaped, undefined names an
-    error, the ``num``, ``q`` and ``pct`` filters."""
+    error, the ``num``, ``q`` and ``pct`` filters, and the design's zero magnitude
+    (:data:`~hexaleg.design.families.family.ZERO_MAGNITUDE`)."""
     env = jinja2.Environment(loader=jinja2.PackageLoader("hexaleg.outputs", "templates"),
                              autoescape=jinja2.select_autoescape(("html", "j2")),
                              undefined=jinja2.StrictUndefined, trim_blocks=True,
@@ -96,6 +98,7 @@ def environment() -> jinja2.Environment:
     env.filters["q"] = format_quantity
     env.filters["pct"] = format_percent
     env.filters["deg"] = format_degrees
+    env.globals["ZERO_MAGNITUDE"] = ZERO_MAGNITUDE
     return env
 
 
@@ -143,10 +146,15 @@ def render_codesign_html(data: Mapping[str, Any], images: Mapping[str, str],
         drawings: Drawing name → SVG of each spring to buy, as the writer wrote them.
 
     Returns:
-        The HTML page (self-contained, the drawings inline).
+        The HTML page (self-contained, the drawings inline). The optimal motion's figures are
+        printed to the digits their spread leaves by the rule the text table uses
+        (:func:`hexaleg.design.codesign.alternation.decimals`, handed to the template).
     """
+    from hexaleg.design.codesign.alternation import decimals  # lazily: no other page needs it
+
     return environment().get_template("codesign.html.j2").render(
-        d=data, images=images, drawings={k: markupsafe.Markup(v) for k, v in drawings.items()})
+        d=data, images=images, drawings={k: markupsafe.Markup(v) for k, v in drawings.items()},
+        decimals=decimals)
 
 
 def render_simulate_html(data: Mapping[str, Any]) -> str:

@@ -100,7 +100,8 @@ def test_the_page_shows_the_optimal_motions_table(codesigned):
     table = render_codesign_html(data, {"speed": ""}, {})
     assert "— no prediction: InfeasibleForcesError: no forces" in table and "nan" not in table
     data["optimal"]["rows"][3] |= {"decimals": 1,
-                                   "spread": {"value": {"value": 0.0117, "unit": "J/m"}}}
+                                   "spread": {"value": {"value": 0.0117, "unit": "J/m"},
+                                              "solver_value": {"value": 0.0, "unit": "J/m"}}}
     table = render_codesign_html(data, {"speed": ""}, {})
     assert "9.1 ±0.1 J/m" in table and "13.7 ±0.1 J/m (balance feedback)" in table
     data["optimal"]["rows"][3]["spread"]["value"]["value"] = None  # fewer than two predicted
@@ -188,3 +189,60 @@ def test_a_kill_in_the_optimal_stage_resumes_from_the_kept_co_design(tmp_path, m
     assert repr(first[5]) == repr(again[5])  # springs
     with pytest.raises(Searched):
         write_codesign(out, **{**run, "speed": 0.05})
+
+
+def test_the_optimal_note_prints_the_solver_and_the_alternation_as_the_text_does(codesigned):
+    """codesign.html's note under the optimal table printed the solver's own J/m to two decimals
+    and the alternation's trail to three whatever their spread, while the text table prints
+    each to the digits its spread leaves (:func:`~hexaleg.design.codesign.alternation.decimals`):
+    the same figures now read the same on the page and in the terminal. Catches the fixed
+    ``%.2f``/``%.3f`` (15.12 and 9.14 J/m beside a spread of 0.03 J/m)."""
+    import dataclasses
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    import hexaleg
+    from hexaleg.design.codesign.alternation import MOVES, Alternation, Round, Spread
+    from hexaleg.design.codesign.optimal_rows import LABELS, MotionRow, OptimalRows
+    from hexaleg.outputs.html import render_codesign_html
+    from hexaleg.quantities import json_text
+
+    def solved(per_metre):
+        return SimpleNamespace(energy_per_metre=per_metre, residual=7e-15, iterations=100,
+                               converged=False, stationarity=5e-5, threshold=1e-8,
+                               dynamic_gap=0.0, periodicity=1e-3, friction_use=0.6, slip=4e-3,
+                               drift=2e-4, torques=np.zeros((40, 18)), seconds=60.0,
+                               motion=None, task_space=None)
+
+    springs = hexaleg.SpringSet({"femur": hexaleg.LinearSpring(stiffness=0.5)})
+    alt = Alternation(None, 10.0, solved(9.2), 9.3456, solved(9.0123), springs,
+                      (Round(springs, 8.9, 9.0, 9.1234, True, 1.0),), 0.02, False)
+    spreads = {  # the solver's figure moves by 0.03 without springs (no decimal left), by 1e-4
+        # with them (two), the last row's prediction by 0.01 (one, for the trail)
+        2: Spread(MOVES, (9.6, 9.6002, 9.6, 9.6001, 9.6), (15.12, 15.15, 15.12, 15.12, 15.12),
+                  (5e-5,) * 5),
+        3: Spread(MOVES, (9.0, 9.01, 9.0, 9.0, 9.0), (9.0123, 9.0124, 9.0123, 9.0123, 9.0123),
+                  (5e-5,) * 5)}
+    rows = tuple(MotionRow(label, e, {"feedforward": 1.1 * e}, {"feedforward": "walks"},
+                           {"feedforward": "open loop"}, spread=spreads.get(k))
+                 for k, (label, e) in enumerate(zip(LABELS, (28.4, 10.0, 9.6, 9.0),
+                                                    strict=True)))
+    table = OptimalRows(rows, springs, "linear", solved(15.12), alt, hexaleg.load(),
+                        "feedforward", 200.0, "on")
+    lines = table.lines()
+    data = codesigned.to_dict() | {"optimal": json.loads(json_text(table.data()))}
+    page = render_codesign_html(data, {"speed": ""}, {})
+    note = page[page.index("The optimal motion with its springs"):]
+    assert "at its knots: 15 (no springs), 9.01 (its springs)" in lines[6]
+    assert "the solver's own figure at its knots: 15\nand 9.01 J/m" in note
+    assert "alternation 10.0 → 9.3 → 9.1 J/m predicted" in lines[7]
+    assert "10.0 → 9.3 → 9.1 J/m" in note
+    # without a spread (the rows of a run that measured none), the figures' most digits
+    bare = dataclasses.replace(table, rows=tuple(dataclasses.replace(r, spread=None)
+                                                 for r in rows))
+    page = render_codesign_html(codesigned.to_dict() | {
+        "optimal": json.loads(json_text(bare.data()))}, {"speed": ""}, {})
+    assert "15.12\nand 9.01 J/m" in page and "10.000 → 9.346 → 9.123 J/m" in page
+    assert any("knots: 15.12 (no springs), 9.01" in line for line in bare.lines())
+    assert any("alternation 10.000 → 9.346 → 9.123 J/m" in line for line in bare.lines())

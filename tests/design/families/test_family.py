@@ -28,6 +28,32 @@ def test_spring_of_magnitudes_is_the_basis_times_them(name):
     assert fam.nonnegative().shape == (len(terms),)
 
 
+@pytest.mark.parametrize("name", [n for n in FAMILIES if family(n).angles])
+def test_idle_angles_are_exactly_those_that_do_not_change_the_law(name):
+    """Family.idle names an angle when its stop's magnitudes are 0 (or the solver's round-off of
+    0), and then moving that angle leaves the torque unchanged; an angle with a magnitude moves
+    the torque. Catches a rule that marks an angle by the wrong magnitudes (k_above_1's angle
+    for k_above_2), or that keeps printing an angle past which nothing acts."""
+    fam = family(name)
+    geometry = fam.check(GEOMETRY[name], "g")
+    q = np.linspace(-0.6, 0.6, 241)
+
+    def torque(g, m):
+        return fam.spring(g, 0.0, [m[k] for k in fam.magnitudes]).torque(q)
+
+    full = dict.fromkeys(fam.magnitudes, 0.7)
+    assert fam.idle(full) == ()
+    for angle in fam.angles:
+        moved = {**geometry, angle: float(geometry[angle]) + 0.03}
+        assert not np.allclose(torque(moved, full), torque(geometry, full))
+        unused = {**full, **dict.fromkeys(fam.stops[angle], 0.0)}
+        assert fam.idle(unused) == (angle,)
+        np.testing.assert_array_equal(torque(moved, unused), torque(geometry, unused))
+        assert fam.idle({**unused, fam.stops[angle][0]: 1e-13}) == (angle,)  # a solver's 0
+        small = {**unused, fam.stops[angle][0]: 1e-7}
+        assert fam.idle(small) == () and fam.idle(small, zero=1e-6) == (angle,)
+
+
 def test_only_the_linear_constant_may_be_negative():
     assert list(family("linear").nonnegative()) == [True, False]
     assert family("preloaded").nonnegative().all()

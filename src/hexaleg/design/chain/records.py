@@ -24,7 +24,6 @@ from hexaleg.design.evaluator import SAVING_METRICS
 from hexaleg.design.robust.maps import RobustnessMap
 from hexaleg.design.springs.law_json import spring_entry
 from hexaleg.design.springs.parts import SpringPart
-from hexaleg.design.springs.table import magnitudes_table
 from hexaleg.dynamics.energy import metric_unit
 from hexaleg.quantities import quantity
 
@@ -59,6 +58,7 @@ def candidate_data(c: Candidate, outer: dict[str, tuple[float, str]]) -> dict[st
     """One design: its savings (every metric, and net of the springs' mass), groups, the
     springs (JSON entries), the parts to buy."""
     o, a = c.optimum, c.optimum.analysis
+    table = o.table()
     return {
         "label": c.label, "family": c.family,
         "max_torque": None if c.max_torque is None else quantity(c.max_torque, "N·m"),
@@ -70,7 +70,7 @@ def candidate_data(c: Candidate, outer: dict[str, tuple[float, str]]) -> dict[st
         "peak_spring_torque": quantity(np.abs(a.tau_spring).max(), "N·m"),
         "peak_spring_energy": quantity(a.spring_energy.max(), "J"),
         "groups": {g: {"joints": list(js),
-                       "design": magnitudes_table(o.geometry[g], o.magnitudes[g]),
+                       "design": table[g],
                        "marginal_saving": quantity(100 * c.marginal[g], "%")}
                    for g, js in o.groups.items()},
         "springs": [spring_entry(j, s) for j, s in o.springs.items()],

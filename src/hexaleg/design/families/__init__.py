@@ -24,7 +24,7 @@ from collections.abc import Mapping, Sequence
 
 from hexaleg.checks import one_of
 from hexaleg.design.families.dead_zone import LINEAR_GAP, LINEAR_REACH, DeadZone
-from hexaleg.design.families.family import Element, Family, Geometry
+from hexaleg.design.families.family import IDLE, ZERO_MAGNITUDE, Element, Family, Geometry
 from hexaleg.design.families.linear import Linear
 from hexaleg.design.families.one_sided import OneSided
 from hexaleg.design.families.preloaded import Preloaded
@@ -78,5 +78,6 @@ def embed(outer: str, inner: str, geometry: Geometry, magnitudes: Mapping[str, f
     return family(outer).embed(family(inner), geometry, magnitudes, off)
 
 
-__all__ = ["CONTAINS", "FAMILIES", "LINEAR_GAP", "LINEAR_REACH", "STAGE_OFF", "Element", "Family",
-           "Geometry", "containment_waves", "embed", "family"]
+__all__ = ["CONTAINS", "FAMILIES", "IDLE", "LINEAR_GAP", "LINEAR_REACH", "STAGE_OFF",
+           "ZERO_MAGNITUDE", "Element", "Family", "Geometry", "containment_waves", "embed",
+           "family"]

@@ -24,6 +24,12 @@ from hexaleg.robot.springs import Spring, Term
 
 Geometry = Mapping[str, float | str]
 """A family's geometry: angle name → rad from the joint's centre of motion (and ``side``)."""
+ZERO_MAGNITUDE = 1e-9
+"""N·m/rad or N·m: a magnitude at or below this is none — the convex program's zeros come out
+exactly 0 or at its round-off (~1e-12), a real stiffness or preload is ~1e-3 or more."""
+IDLE = "nothing acts past it: any angle gives the same spring"
+"""Why an idle angle (:meth:`Family.idle`: zero stiffness and preload past it) has no value in a
+design's table."""
 
 
 @dataclass(frozen=True)
@@ -78,6 +84,16 @@ class Family:
     def side(self, angle: str, geometry: Geometry) -> str:
         """``"above"`` when the terms at ``angle`` act on angles above it, else ``"below"``."""
         return "above" if angle in self.above else "below"
+
+    def idle(self, magnitudes: Mapping[str, float], zero: float = ZERO_MAGNITUDE
+             ) -> tuple[str, ...]:
+        """The angles past which nothing acts: every magnitude of the terms at the angle
+        (:attr:`stops`) is at most ``zero`` in size, so each term's torque ``m · b(q; angle)``
+        (:mod:`hexaleg.robot.springs.terms`) is 0 wherever the angle is. Such an angle is
+        whatever the geometry search happened to leave there, not a property of the design:
+        outputs print none for it (:data:`IDLE`). In :attr:`angles` order."""
+        return tuple(a for a in self.angles
+                     if all(abs(float(magnitudes[m])) <= zero for m in self.stops[a]))
 
     def labels(self, geometry: Geometry, where: str) -> dict[str, float | str]:
         """The geometry's entries that are not angles, checked (none but a one-sided spring's
@@ -193,4 +209,4 @@ class Family:
                                     f"{', '.join(self.contains) or 'none'}")
 
 
-__all__ = ["Element", "Family", "Geometry"]
+__all__ = ["IDLE", "ZERO_MAGNITUDE", "Element", "Family", "Geometry"]

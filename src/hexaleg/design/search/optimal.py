@@ -91,8 +91,10 @@ class OptimalSprings:
 
     def table(self) -> dict[str, dict[str, Any]]:
         """Per group: geometry and magnitudes as ``{value, unit}``, in SI and the paper's units
-        (N·mm/deg, N·mm, deg)."""
-        return {g: magnitudes_table(self.geometry[g], self.magnitudes[g]) for g in self.groups}
+        (N·mm/deg, N·mm, deg); an angle past which nothing acts has none
+        (:func:`~hexaleg.design.springs.table.magnitudes_table`)."""
+        return {g: magnitudes_table(self.geometry[g], self.magnitudes[g], self.family)
+                for g in self.groups}
 
 
 @typed

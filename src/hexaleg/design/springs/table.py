@@ -9,19 +9,26 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
+from hexaleg.design import families
 from hexaleg.quantities import quantity
 from hexaleg.units import nm_per_rad_to_nmm_per_deg, nm_to_nmm, rad_to_deg
 
 
-def magnitudes_table(geometry: Mapping[str, float | str], magnitudes: Mapping[str, float]
-                     ) -> dict[str, Any]:
+def magnitudes_table(geometry: Mapping[str, float | str], magnitudes: Mapping[str, float],
+                     family: str) -> dict[str, Any]:
     """``{name: {"si": {value, unit}, "paper": {value, unit}}}`` for every angle (rad, deg),
-    stiffness (``k…``: N·m/rad, N·mm/deg) and torque (preloads and the constant: N·m, N·mm);
-    a one-sided spring's ``side`` as text."""
+    stiffness (``k…``: N·m/rad, N·mm/deg) and torque (preloads and the constant: N·m, N·mm) of a
+    design of ``family``; a one-sided spring's ``side`` as text. An angle past which nothing acts
+    (:meth:`~hexaleg.design.families.family.Family.idle`) has no value: both quantities' values
+    are None, and ``note`` says why (:data:`~hexaleg.design.families.family.IDLE`)."""
+    idle = families.family(family).idle(magnitudes)
     out: dict[str, Any] = {}
     for name, v in geometry.items():
         if isinstance(v, str):
             out[name] = v
+        elif name in idle:
+            out[name] = {"si": quantity(None, "rad"), "paper": quantity(None, "deg"),
+                         "note": families.IDLE}
         else:
             out[name] = {"si": quantity(v, "rad"), "paper": quantity(rad_to_deg(v), "deg")}
     for name, v in magnitudes.items():
