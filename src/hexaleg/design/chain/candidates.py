@@ -166,7 +166,8 @@ def candidate(optimum: OptimalSprings, prepared: Prepared, run: Scenario, gait: 
     a = optimum.analysis
     row = metric_row(a.metrics, a.baseline)
     masses = spring_masses(parts)
-    logged = prepared.motion if prepared.motion.info.get("source") == "load_motion" else None
+    # a run of a given motion (a log, an optimal motion) carries it unchanged, whatever made it
+    logged = prepared.motion if run.recorded is not None else None
     heavy = carried(run, gait, masses, logged).evaluate(optimum.springs,
                                                          "joule").metrics["total"]
     net = {m: saving(float(heavy[m]), float(a.baseline["total"][m])) for m in METRICS}
