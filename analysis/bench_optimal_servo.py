@@ -222,6 +222,13 @@ def offsets(robot: Any, err: np.ndarray, stance: np.ndarray) -> tuple[float, flo
     return float(np.sqrt(held / count)), float(np.sqrt(rest / count))
 
 
+def landing_step(k: np.ndarray, on: np.ndarray) -> int:
+    """The first step of a run whose planned sample ``k`` (n,) is a touch-down of the leg whose
+    planned stance is ``on`` (T,) bool (periodic)."""
+    td = np.flatnonzero(on & ~np.roll(on, 1))
+    return int(np.flatnonzero(np.isin(k, td))[0])
+
+
 def at_touchdown(robot: Any, values: np.ndarray, stance: np.ndarray, before: int) -> float:
     """RMS over every touch-down of the landing leg's joints' ``values`` (T, nj), ``before``
     samples before its first stance sample (0: at it); ``stance`` (T, n_legs) bool,
@@ -349,6 +356,15 @@ def examine(robot: Any, motion: Any, motor: Any, springs: Any, contact: Any,
               flush=True)
         print(f"    the landing leg's tracking error at its planned touch-down "
               f"{1e3 * landed:.1f} mrad RMS", flush=True)
+        legs_said = []
+        for i, leg in enumerate(robot.legs):
+            at = np.abs(err[landing_step(k, stance[:, i])][leg.columns]).max()
+            held_leg = err[st[:, i]][:, leg.columns].mean(0)
+            legs_said.append(f"{leg.name} {1e3 * at:.1f} ("
+                             + " ".join(f"{1e3 * v:+.1f}" for v in held_leg) + ")")
+        print("    per leg, its largest joint error at its first planned touch-down of the window "
+              "and each joint's mean error over its stances, mrad: " + "; ".join(legs_said),
+              flush=True)
         print(f"    stance error held through a stance (its mean: where the foot landed) "
               f"{1e3 * held:.1f} mrad RMS, the rest {1e3 * rest:.1f} mrad; feet slid "
               f"{1e3 * run.walk.slip_mean:.2f} mm a stance on average "
