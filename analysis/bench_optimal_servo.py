@@ -5,6 +5,7 @@ probe, not an example study: it needs the optimal extra and minutes).
 Run:  python analysis/bench_optimal_servo.py --codesign DIR/codesign.json [--cache FILE]
                                              [--rounds 4] [--finalist N]
                                              [--servo-landing W ...] [--landing-knots 1]
+                                             [--spread]
 
 Needs the ``optimal`` extra. The co-design's chosen gait G (``gait.parameters`` of a kept
 ``hexaleg codesign`` run's JSON, the servo-checked gait; ``--finalist N``: the search's N-th
@@ -13,9 +14,12 @@ finalist instead) and its inner-program springs S
 class), then the optimal motion with its springs as ``codesign --motion optimal`` computes it
 (:func:`~hexaleg.design.codesign.alternation.alternate` from G and S, up to ``--rounds`` rounds,
 40 knots, 100 iterations; kept in ``--cache`` as it ends, so a rerun after a kill skips it).
-Each motion with its springs is predicted (hexaleg's force program, objective ``joule``: the
-feedforward) and simulated open loop (``feedback = "auto"``, as the command's rows) under each
-servo (:mod:`hexaleg.simulation.controllers`), and the evaluated cycles are taken apart:
+The same alternation from its start moved by the command's spread
+(:data:`~hexaleg.design.codesign.alternation.MOVES`) is simulated too: the position servo's
+figure is not a hair's accident. Each motion with its springs is predicted (hexaleg's force
+program, objective ``joule``: the feedforward) and simulated open loop (``feedback = "auto"``,
+as the command's rows) under each servo (:mod:`hexaleg.simulation.controllers`), and the
+evaluated cycles are taken apart:
 
 * electrical energy per metre by joint class and by the joint's leg's planned phase (stance or
   swing), and the Joule part (``c τ²``) of each, planned against simulated: the electrical
@@ -35,7 +39,9 @@ servo (:mod:`hexaleg.simulation.controllers`), and the evaluated cycles are take
 ``--servo-landing W ...`` adds, for each weight W (> 0), the optimal motion with its springs
 from the same start and with
 :attr:`~hexaleg.optimal.problem.OptimalParams.servo_landing_weight` W (the landing leg's
-position-servo effort at its last ``--landing-knots`` swing knots), taken apart the same way.
+position-servo effort at its last ``--landing-knots`` swing knots), taken apart the same way;
+with ``--spread`` each also from its start moved by the command's spread
+(:data:`~hexaleg.design.codesign.alternation.MOVES`), simulated.
 """
 
 from __future__ import annotations
@@ -442,6 +448,8 @@ def main() -> None:
     parser.add_argument("--rounds", type=int, default=4, help="alternation rounds at most")
     parser.add_argument("--servo-landing", type=float, nargs="*", default=[],
                         help="weights of OptimalParams.servo_landing_weight to try")
+    parser.add_argument("--spread", action="store_true",
+                        help="each --servo-landing weight also from the moved starts")
     parser.add_argument("--landing-knots", type=int, default=1,
                         help="OptimalParams.servo_landing_knots of those solves")
     args = parser.parse_args()
@@ -488,6 +496,16 @@ def main() -> None:
               f"{other.best.stationarity:.2g}", flush=True)
         examine(robot, other.motion, motor, other.springs, contact,
                 f"optimal motion, its springs, {tag}")
+        if args.spread:
+            print(f"  {tag}, from its start moved by a hair: predicted J/m, then simulated",
+                  flush=True)
+            for m in MOVES:
+                moved = solved(robot, played, motor, contact, springs, groups,
+                               OptimalParams(servo_landing_weight=w,
+                                             servo_landing_knots=args.landing_knots),
+                               args.rounds, args.cache, f"{tag}, moved {m:+.0e} m", g, m)
+                print(f"  moved {m:+.0e} m: {moved.predicted:.4f}; "
+                      + brief(robot, moved.motion, motor, moved.springs, contact), flush=True)
     c1 = os.times()
     print(f"wall {time.perf_counter() - t0:.0f} s, CPU "
           f"{(c1.user - c0.user) + (c1.system - c0.system):.0f} s", flush=True)
