@@ -49,6 +49,7 @@ from hexaleg.optimal.bounds import ground_heights, knee_bounds
 from hexaleg.optimal.energy import EnergyCost, JointPower
 from hexaleg.optimal.friction import FrictionPyramid
 from hexaleg.optimal.periodic import cycle_displacement, shifted_state
+from hexaleg.optimal.servo_effort import ServoEffortCost, back_emf_damping
 from hexaleg.robot.model import Robot
 from hexaleg.robot.springs import SpringSet
 
@@ -101,6 +102,11 @@ class OptimalParams:
         stop: Box-FDDP's stopping threshold ``th_stop`` (:mod:`~hexaleg.optimal.solve`); the
             energy of a cycle of this small robot is about a joule, so Crocoddyl's default 5e-5
             stops it early.
+        servo_landing_weight: Weight of a landing leg's position-servo effort
+            ``½ Σ (u + D q̇)²`` at its last swing knots, W/(N·m)²
+            (:class:`~hexaleg.optimal.servo_effort.ServoEffortCost`: the lag a position servo
+            lands with); 0 (default): off, the problem unchanged.
+        servo_landing_knots: The last swing knots of each leg that cost is on (≥ 1).
     """
 
     nodes: int = 40
@@ -119,9 +125,13 @@ class OptimalParams:
     gap: float = 1e-8
     closing: int = 400
     stop: float = 1e-8
+    servo_landing_weight: float = 0.0
+    servo_landing_knots: int = 1
 
     def __post_init__(self) -> None:
         integer("OptimalParams.nodes", self.nodes, low=8)
+        integer("OptimalParams.servo_landing_knots", self.servo_landing_knots, low=1)
+        real("OptimalParams.servo_landing_weight", self.servo_landing_weight, low=0.0)
         integer("OptimalParams.iterations", self.iterations, low=1)
         integer("OptimalParams.closing", self.closing, low=0)
         real("OptimalParams.friction_use", self.friction_use, low=0.0, high=1.0,
@@ -223,6 +233,20 @@ def contact_gains(dt: float) -> np.ndarray:
     return np.array([1.0 / dt**2, 1.0 / dt])
 
 
+def _landing_knots(stance: np.ndarray, knots: int) -> np.ndarray:
+    """Whether each leg is at one of its last ``knots`` swing knots before a touch-down at each
+    knot of the cycle (cyclically), (N, n_legs) bool, from ``stance`` (N, n_legs) bool."""
+    n = stance.shape[0]
+    out = np.zeros(stance.shape, dtype=bool)
+    for k in range(n):
+        for j in range(stance.shape[1]):
+            if stance[k, j]:
+                continue
+            ahead = next((i for i in range(1, n + 1) if stance[(k + i) % n, j]), n + 1)
+            out[k, j] = ahead <= knots
+    return out
+
+
 def _barrier(residual: Any, lower: np.ndarray, upper: np.ndarray) -> Any:
     """``residual`` under a quadratic barrier that is zero inside ``[lower, upper]``."""
     bounds = crocoddyl.ActivationBounds(np.asarray(lower, float), np.asarray(upper, float))
@@ -276,6 +300,8 @@ def build_problem(robot: Robot, motion: Motion, actuator: Any, springs: SpringSe
     hi = np.hstack([np.full((n, 6), 1e6), bent_hi[:, 7:], np.full((n, 6), 1e6),
                     np.tile(speed, (n, 1))])
     zero_x = np.concatenate([pin.neutral(robot.model), np.zeros(robot.model.nv)])
+    landing = _landing_knots(stance, params.servo_landing_knots)
+    damping = back_emf_damping(actuator, nu) if params.servo_landing_weight > 0 else None
     models, names = [], []
     for k in range(n + 1):
         terminal = k == n
@@ -317,6 +343,10 @@ def build_problem(robot: Robot, motion: Motion, actuator: Any, springs: SpringSe
                     costs.addCost(f"{leg.name}_clearance", _barrier(
                         height, np.array([-1e6, -1e6, ground[k, j]]), np.full(3, 1e6)),
                         params.clearance_weight)
+                if damping is not None and landing[k, j]:
+                    costs.addCost(f"{leg.name}_servo_landing",
+                                  ServoEffortCost(state, leg.columns, damping),
+                                  params.servo_landing_weight)
         names.append(down)
         if terminal:
             costs.addCost("periodic", crocoddyl.CostModelResidual(
