@@ -643,3 +643,36 @@ def test_the_contact_sequence_is_the_kept_logs():
     ripple = (LOGS / logs["ripple"]).read_text(encoding="utf-8")
     least = re.search(r"the least friction that admits forces here is μ = ([0-9.]+)", ripple)
     assert f"needs μ = {least[1]} at one five-foot instant" in flat
+
+
+def test_the_landing_is_the_kept_log():
+    """Under position servos: the weights' table prints bench_optimal_servo.log's section A row
+    for row (predicted, then simulated under feedforward and position servos), and the figures
+    its diagnosis quotes are the log's."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("## Under position servos: the landing"):doc.index("## How it compares")]
+    log = (LOGS / "bench_optimal_servo.log").read_text(encoding="utf-8")
+    part = log[log.index("# ---- A"):log.index("# ---- B")]
+    runs = {}
+    for weight, body in re.findall(r"^optimal motion, its springs(?:, servo_landing_weight "
+                                   r"(\S+), servo_landing_knots 1)?:\n(.*?)(?=^\S|\Z)", part,
+                                   re.MULTILINE | re.DOTALL):
+        figures = [re.search(rf"{k} ([0-9.]+) J/m", body)[1]
+                   for k in ("predicted", "feedforward: simulated", "position: simulated")]
+        held = re.search(r"position: simulated.*?held through a stance .*? ([0-9.]+) mrad RMS",
+                         body, re.DOTALL)[1]
+        runs[weight or "off"] = (figures, held)
+    table = text[text.index("| landing effort's weight |"):].split("\n\n")[0].splitlines()[2:]
+    assert [row.strip("|").split("|")[0].strip() for row in table] == list(runs)
+    for row in table:
+        weight, *cells = (c.strip() for c in row.strip("|").split("|"))
+        assert cells == runs[weight][0], row
+    flat = " ".join(text.split())
+    assert f"where its foot landed ({runs['off'][1]} mrad RMS against 5.4)" in flat
+    start = part.index("parametric co-design (G with S):")
+    co = part[start:part.index("optimal motion, its springs:\n", start)]
+    assert re.search(r"position: simulated.*?held through a stance .*? 5.4 mrad RMS", co,
+                     re.DOTALL)
+    effort = re.findall(r"4 before ([0-9.]+)", part)
+    assert f"{effort[1]} N·m RMS four samples (26 ms) before touch-down against the " \
+           f"co-design's {effort[0]}" in flat
