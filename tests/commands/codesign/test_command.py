@@ -72,6 +72,28 @@ def test_timing_is_a_decision_of_the_optimal_rows_only(tmp_path, capsys):
     assert "free" in err and "search" in err
 
 
+def test_the_optimal_problem_is_set_by_a_codesign_optimal_table(tmp_path, capsys):
+    """``[codesign.optimal]`` sets the optimal motion's problem (OptimalParams' keys): refused
+    by name without ``motion = "optimal"`` and when it is not a table, before any work; with
+    Crocoddyl an unknown key or a bad value is named, with the allowed ones."""
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[codesign.optimal]\nservo_landing_weight = 30\n")
+    assert main(["codesign", "--config", str(bad), "--out", str(tmp_path / "o")]) == 2
+    assert "[codesign.optimal] sets the optimal motion's problem" in capsys.readouterr().err
+    bad.write_text('[codesign]\nmotion = "optimal"\noptimal = 3\n')
+    assert main(["codesign", "--config", str(bad), "--out", str(tmp_path / "o")]) == 2
+    assert "[codesign.optimal] must be a table" in capsys.readouterr().err
+    pytest.importorskip("crocoddyl")
+    bad.write_text('[codesign]\nmotion = "optimal"\n[codesign.optimal]\nservo_landing = 30\n')
+    assert main(["codesign", "--config", str(bad), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert "servo_landing" in err and "servo_landing_weight" in err
+    bad.write_text('[codesign]\nmotion = "optimal"\n[codesign.optimal]\n'
+                   "servo_landing_weight = -1\n")
+    assert main(["codesign", "--config", str(bad), "--out", str(tmp_path / "o")]) == 2
+    assert "servo_landing_weight" in capsys.readouterr().err
+
+
 def test_starts_are_a_decision_of_the_optimal_rows_only(tmp_path, capsys):
     """``--starts lattice`` tries other starts of the optimal motion: without ``--motion
     optimal`` it is refused by name before any work; an unknown value is named."""

@@ -142,7 +142,8 @@ def test_the_optimal_motions_springs_are_bought_once_and_kept(tmp_path, monkeypa
     kept_gait = False
     motion = hexaleg.gait(robot, hexaleg.GaitParams(samples=40))
 
-    def rows(*_args, **_kwargs):
+    def rows(*_args, **kwargs):
+        assert kwargs["params"] == "the problem's settings"  # with_optimal's, passed on
         alt = SimpleNamespace(kept_gait=kept_gait, motion=motion)
         return rows_module.OptimalRows((), hexaleg.SpringSet(), "linear", None, alt, robot,
                                        "both", 1.0)
@@ -155,11 +156,14 @@ def test_the_optimal_motions_springs_are_bought_once_and_kept(tmp_path, monkeypa
         return "InvalidParameterError: a stand-in"
 
     stages = StageFiles(tmp_path, "k")
-    first = with_optimal(ruled, robot, None, {}, "both", print, stages, rules=rules)
+    first = with_optimal(ruled, robot, None, {}, "both", print, stages, rules=rules,
+                         params="the problem's settings")
     assert calls == [motion] and first.optimal.rules == "InvalidParameterError: a stand-in"
     assert KeptSolves.name((RULES, motion)) in {p.stem for p in tmp_path.glob("*.pickle")}
-    again = with_optimal(ruled, robot, None, {}, "both", print, stages, rules=rules)
+    again = with_optimal(ruled, robot, None, {}, "both", print, stages, rules=rules,
+                         params="the problem's settings")
     assert len(calls) == 1 and again.optimal.rules == first.optimal.rules
     kept_gait = True
-    none = with_optimal(ruled, robot, None, {}, "both", print, None, rules=rules)
+    none = with_optimal(ruled, robot, None, {}, "both", print, None, rules=rules,
+                        params="the problem's settings")
     assert len(calls) == 1 and none.optimal.rules is None

@@ -35,7 +35,7 @@ import dataclasses
 import functools
 import time
 import warnings
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
@@ -107,7 +107,8 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
              simulate: bool = True, rules: bool = True, design: DesignParams | None = None,
              controller: str = BOTH, motion: str = "gait", feedback: str = "auto",
              timing: str = "gait", starts: str = "gait", duty_high: float | None = None,
-             body_high: float | None = None, progress: Callable[[str], None] | None = None,
+             body_high: float | None = None, optimal: Mapping[str, Any] | None = None,
+             progress: Callable[[str], None] | None = None,
              stages: StageFiles | None = None) -> CodesignResult:
     """The gait and springs that cover a metre at ``speed`` for the least electrical energy
     (module docstring).
@@ -171,6 +172,10 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             :data:`~hexaleg.design.codesign.box.BODY_CEILING`]; None:
             :data:`~hexaleg.design.codesign.box.BODY_HIGH`. The optimal rows' parametric
             co-design is the one searched to it.
+        optimal: The optimal motion's problem and solver settings, a ``[codesign.optimal]``
+            table: keys of :class:`~hexaleg.optimal.problem.OptimalParams` (``nodes``,
+            ``iterations``, ``servo_landing_weight``, …), the rest their defaults; only with
+            ``motion="optimal"``.
         progress: Called with one status line per stage.
         stages: Where the parametric co-design is kept when it is done, before the optimal
             motion's stage (``motion="optimal"``: minutes more), and read back from instead of
@@ -186,7 +191,7 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
         UnknownNameError: an unknown robot, pattern, family, controller, motion, feedback,
             timing or starts.
         ConfigError: a ``feedback`` other than ``"auto"``, or a ``timing`` or ``starts``
-            other than ``"gait"``, without ``motion="optimal"``.
+            other than ``"gait"``, or an ``optimal`` table, without ``motion="optimal"``.
         BackendError: ``motion="optimal"`` without a usable Crocoddyl (names the extra).
     """
     servo = one_of("[codesign] controller", controller, SERVOS)
@@ -201,10 +206,17 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
     if one_of("[codesign] starts", starts, STARTS) != "gait" and motion != "optimal":
         raise ConfigError(f"[codesign] starts = {starts!r} tries other starts of the optimal "
                           "motion: it needs motion = \"optimal\" (--motion optimal)")
+    if optimal is not None and motion != "optimal":
+        raise ConfigError("[codesign.optimal] sets the optimal motion's problem: it needs "
+                          "motion = \"optimal\" (--motion optimal)")
+    params = None
     if motion == "optimal":
         from hexaleg.optimal.backend import crocoddyl_module
 
         crocoddyl_module()  # before the search: a missing extra is said at once
+        from hexaleg.optimal.problem import OptimalParams
+
+        params = from_mapping(OptimalParams, dict(optimal or {}), "[codesign.optimal]")
     design = dataclasses.replace(design if design is not None else rule_params(),
                                  controller=servo)
     v = real("speed", speed, low=0.0, low_open=True, allowed="a speed > 0 (m/s)")
@@ -228,7 +240,8 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             f"this run ({stages.directory if stages is not None else ''})")
         return with_optimal(kept, model, motor, groups, servo, say, stages, loop, timing,
                             starts, functools.partial(motion_rules, run, c=kept.constraints,
-                                                      say=say, design=design) if rules else None)
+                                                      say=say, design=design) if rules else None,
+                            params)
     free = functools.partial(evaluate_gait, model, family=family, constraints=c, motor=motor)
     first = free(base, groups=groups, min_margin=0.0)
     if first.error is not None:
@@ -306,7 +319,8 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
         keep_parametric(stages, result, model)
         return with_optimal(result, model, motor, groups, servo, say, stages, loop, timing,
                             starts, functools.partial(motion_rules, run, c=c, say=say,
-                                                      design=design) if rules else None)
+                                                      design=design) if rules else None,
+                            params)
     finally:
         if ruled is not None:
             ruled.close()
@@ -373,7 +387,7 @@ def simulated(robot: Robot, chosen: GaitParams, springs: SpringSet, c: Constrain
 CODESIGN_KEYS = ("speed", "pattern", "family", "samples", "final_samples", "max_evaluations",
                  "restarts", "grouping", "rules", "curve", "simulate", "controller",
                  "motion", "feedback", "timing", "starts", "duty_high", "body_high",
-                 "constraints", "design")
+                 "constraints", "design", "optimal")
 """The keys of a ``[codesign]`` table: :func:`codesign`'s keywords."""
 
 
@@ -407,7 +421,7 @@ def codesign_settings(table: Any, where: str = "[codesign]",
     """
     if not isinstance(table, dict):
         raise ConfigError(f"{where} must be a table, got {table!r}")
-    plain = {k: v for k, v in table.items() if k not in ("constraints", "design")}
+    plain = {k: v for k, v in table.items() if k not in ("constraints", "design", "optimal")}
     out = {**table, **keywords(codesign, plain, where, CODESIGN_KEYS)}
     contact = run.table("contact") if run is not None else {}
     unplanned = sorted(set(contact) - set(FLOOR_KEYS))
@@ -438,6 +452,8 @@ def codesign_settings(table: Any, where: str = "[codesign]",
             raise ConfigError(f"{where[:-1]}.design] controller: the servo is set once, for the "
                               f"finalists and the spring rules alike, as {where} controller")
         out["design"] = rule_params(**out["design"])
+    if "optimal" in out and not isinstance(out["optimal"], dict):
+        raise ConfigError(f"{where[:-1]}.optimal] must be a table")
     return out
 
 

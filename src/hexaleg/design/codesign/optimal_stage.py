@@ -106,13 +106,16 @@ def with_optimal(result: CodesignResult, model: Robot, motor: Any, groups: Group
                  servo: str, say: Callable[[str], None],
                  stages: StageFiles | None = None, feedback: str = "auto",
                  timing: str = "gait", starts: str = "gait",
-                 rules: Callable[[Motion], DesignResult | str] | None = None) -> CodesignResult:
+                 rules: Callable[[Motion], DesignResult | str] | None = None,
+                 params: Any = None) -> CodesignResult:
     """``result`` with the optimal motion's rows (:mod:`hexaleg.design.codesign.optimal_rows`)
     from its chosen gait and springs (at its contact timing, or the one ``timing="search"``
     chooses; from that gait, or from the best start of ``starts="lattice"``), each row
     simulated with the balance ``feedback`` setting, then the springs to buy for the optimal
     motion by ``rules`` (:func:`~hexaleg.design.codesign.full_rules.motion_rules` with the
-    run's settings; None: none) where the alternation did not keep the gait; each solve and the
+    run's settings; None: none) where the alternation did not keep the gait, the optimal problem
+    set by ``params`` (:class:`~hexaleg.optimal.problem.OptimalParams`; None: its defaults); each
+    solve and the
     rules' result kept in ``stages`` (:class:`KeptSolves`); its wall time the two stages'
     together."""
     from hexaleg.design.codesign.optimal_rows import optimal_rows  # the optimal extra's rows
@@ -127,7 +130,7 @@ def with_optimal(result: CodesignResult, model: Robot, motor: Any, groups: Group
                            family=result.family, groups=groups, servo=servo,
                            feedback=feedback, timing=timing, starts=starts,
                            min_step=result.constraints.min_foot_clearance, say=tell,
-                           keep=keep)
+                           keep=keep, params=params)
     if rules is not None and not optimal.alternation.kept_gait:
         began = time.perf_counter()
         motion = optimal.alternation.motion
