@@ -594,12 +594,20 @@ def test_the_stated_spread_is_the_kept_logs():
 
 def _optimal_table(log: str) -> dict[str, list[str]]:
     """A kept command log's optimal table: each row's label → its printed figures (predicted,
-    then simulated feedforward and position)."""
+    then simulated under each servo; "—" where it has none), as printed."""
     block = log[log.index("  optimal motion (whole-body optimal control"):]
     rows = {}
-    for label, rest in re.findall(r"^    ((?:default gait|parametric co-design|optimal motion)"
-                                  r"[^0-9]*?)\s{2,}(.*)$", block, re.MULTILINE):
-        rows[label.strip()] = re.findall(r"([0-9]+\.[0-9]+)(?: ±[0-9.]+)?(?!\))", rest)
+    for label, figure, sims in re.findall(
+            r"^    ((?:default gait|parametric co-design|optimal motion)[^0-9—]*?)\s{2,}"
+            r"(\S+)(?: ±\S+)?\s+(.*)$", block, re.MULTILINE):
+        parts, depth, start = [], 0, 0
+        for i, ch in enumerate(sims):  # the servos' cells: ", " outside parentheses
+            depth += {"(": 1, ")": -1}.get(ch, 0)
+            if depth == 0 and sims.startswith(", ", i):
+                parts.append(sims[start:i])
+                start = i + 2
+        parts.append(sims[start:])
+        rows[label.strip()] = [figure, *(part.split()[0] for part in parts)]
     return rows
 
 
@@ -676,3 +684,24 @@ def test_the_landing_is_the_kept_log():
     effort = re.findall(r"4 before ([0-9.]+)", part)
     assert f"{effort[1]} N·m RMS four samples (26 ms) before touch-down against the " \
            f"co-design's {effort[0]}" in flat
+
+
+def test_the_landing_on_solo12_is_the_kept_logs():
+    """The landing section's Solo-12 figures are the two kept command logs' optimal rows (with
+    the weight, and the block of commit 33bcd0e without it)."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("## Under position servos: the landing"):doc.index("## How it compares")]
+    flat = " ".join(text.split())
+    landing = _optimal_table((LOGS / "codesign_motion_optimal_solo12_landing.log").read_text(
+        encoding="utf-8"))
+    log = (LOGS / "codesign_motion_optimal_solo12.log").read_text(encoding="utf-8")
+    block = log[log.index("on today's code (this stop's integration, its source as at 33bcd0e)"):]
+    block = block[:block.index("# =====")]
+    before = _optimal_table(re.sub(r"^\d\d:\d\d:\d\d ", "", block, flags=re.MULTILINE))
+    sprung, bare = landing["optimal motion, its springs"], landing["optimal motion, no springs"]
+    was_sprung, was_bare = (before["optimal motion, its springs"],
+                            before["optimal motion, no springs"])
+    assert f"predicts {sprung[0]} ±1 J/m ({was_sprung[0]} ±1 without it)" in flat
+    assert f"under position servos for {sprung[-1]} ({was_sprung[-1]})" in flat
+    assert f"walks for {bare[1]} and {bare[2]} J/m where it walked for {was_bare[1]} and " \
+           f"{was_bare[2]}" in flat
