@@ -110,8 +110,8 @@ def with_optimal(result: CodesignResult, model: Robot, motor: Any, groups: Group
 
     optimal = optimal_rows(model, motor, result.constraints.contact(), result.default,
                            result.chosen, result.springs,
-                           (result.rows[0].per_metre, result.rows[3].per_metre),
-                           family=result.family, groups=groups, servo=servo,
+                           margin=result.constraints.friction_margin, family=result.family,
+                           groups=groups, servo=servo,
                            feedback=feedback, timing=timing, starts=starts,
                            min_step=result.constraints.min_foot_clearance, say=tell,
                            keep=KeptSolves(stages, model, tell))
