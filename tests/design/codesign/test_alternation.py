@@ -380,3 +380,38 @@ def test_a_prediction_is_inside_the_friction_margin_or_says_it_is_not(robot, mot
     assert "; nor in the whole cone (InfeasibleForcesError" in said.why
     with pytest.raises(InvalidParameterError, match="friction margin"):
         predict(robot, walk, run.actuator, bare, floor(0.6), 1.5)
+
+
+def test_the_springs_are_designed_and_judged_inside_the_friction_margin(robot, motions, solver,
+                                                                        monkeypatch):
+    """The alternation's springs are designed by the force program inside ``margin · μ`` (as
+    the parametric co-design's inner program plans), and the gait, the start and each round
+    are judged there; on a floor where the gait has forces only beyond the margin (μ 0.02) no
+    cycle gets a verdict and no springs are designed. Catches a design or a verdict in the
+    whole cone."""
+    from hexaleg.design.codesign import alternation as module
+    from hexaleg.design.codesign.alternation import predict
+
+    walk, _, springs = motions
+    run = hexaleg.Scenario.load("hexaleg")
+    floor = dataclasses.replace(run.contact, mu=0.1)
+    designed: list[float] = []
+    real = module.optimal_springs
+
+    def design(prepared, *args, **kwargs):
+        designed.append(prepared.contact.mu)
+        return real(prepared, *args, **kwargs)
+
+    monkeypatch.setattr(module, "optimal_springs", design)
+    solver([(10.0, walk), (5.0, walk)])
+    result = alternate(robot, walk, run.actuator, floor, springs=springs, rounds=1, margin=0.7)
+    assert designed == [pytest.approx(0.07)]
+    inside = predict(robot, walk, run.actuator, springs, floor, 0.7)
+    assert inside.within and result.baseline == inside.value == result.start_predicted
+    solver([(10.0, walk)])
+    lines: list[str] = []
+    slippery = alternate(robot, walk, run.actuator, dataclasses.replace(run.contact, mu=0.02),
+                         rounds=1, margin=0.7, say=lines.append)
+    assert slippery.energies == [None, None] and slippery.rounds == ()
+    assert any("no springs designed on the rebuilt cycle (InfeasibleForcesError" in line
+               for line in lines)
