@@ -218,8 +218,8 @@ def test_the_alternation_and_the_bare_cycle_run_from_the_start_chosen(monkeypatc
     monkeypatch.setattr(hexaleg.optimal.solve, "solve", solve)
     monkeypatch.setattr(rows_module, "simulated_run",
                         lambda *_args: (10.0, "walks", True))
-    monkeypatch.setattr(rows_module, "predict", lambda *_args: Prediction(15.0, 0.5, 0.7, True))
-    monkeypatch.setattr(rows_module, "judged", lambda *_args: Prediction(15.0, 0.5, 0.7, True))
+    monkeypatch.setattr(rows_module, "predict", lambda *_args: Prediction(15.0, 0.5, True))
+    monkeypatch.setattr(rows_module, "judged", lambda *_args: Prediction(15.0, 0.5, True))
     monkeypatch.setattr(rows_module, "gait", lambda _robot, g: SimpleNamespace(params=g))
 
     def spreads(_robot, cases, _keep):
@@ -289,7 +289,7 @@ def test_a_cycle_not_rebuilt_is_a_row_that_says_why(monkeypatch, robot):
     monkeypatch.setattr(rows_module, "gait", lambda _robot, g: SimpleNamespace(params=g))
     monkeypatch.setattr(rows_module, "predict",  # the gaits' rows: 28.0 bare, 9.9 with springs
                         lambda _r, _m, _a, fitted, *_args: Prediction(
-                            9.9 if fitted else 28.0, 0.5, 0.7, True))
+                            9.9 if fitted else 28.0, 0.5, True))
     table = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen, springs)
     bare = table.rows[2]
     assert bare.predicted is None and bare.unpredicted == f"not rebuilt: {why}"

@@ -125,11 +125,11 @@ class Prediction:
     Attributes:
         value: Electrical energy per metre, J/m (:func:`predicted_per_metre`): with the foot
             forces inside ``margin · μ`` where the force program has an answer there
-            (:attr:`within`), else at the floor's full μ; None where it has none at all.
+            (:attr:`within`; ``[codesign.constraints] friction_margin``), else at the floor's
+            full μ; None where it has none at all.
         friction_use: The largest share of the floor's friction cone a stance foot's force
             behind :attr:`value` uses over the cycle, ``max |f_t| / (μ f_n)`` at the floor's μ
             (1: about to slip); None without a value.
-        margin: The planners' friction margin (``[codesign.constraints] friction_margin``).
         within: Whether :attr:`value` keeps the forces inside ``margin · μ``.
         why: Why there is no value inside the margin (the force program's error, or why an
             optimal cycle is not judged: :func:`judged`); ``""`` when :attr:`within`.
@@ -137,7 +137,6 @@ class Prediction:
 
     value: float | None
     friction_use: float | None
-    margin: float
     within: bool
     why: str = ""
 
@@ -165,10 +164,10 @@ def predict(robot: Robot, motion: Motion, motor: Any, springs: SpringSet,
     narrowed = dataclasses.replace(contact, mu=margin * contact.mu)
     value, why, use = _analysed(robot, motion, motor, springs, narrowed)
     if value is not None and use is not None:
-        return Prediction(value, margin * use, margin, True)
+        return Prediction(value, margin * use, True)
     inside = f"no admissible forces within {margin:g} of the friction cone ({why})"
     value, why, use = _analysed(robot, motion, motor, springs, contact)
-    return Prediction(value, use, margin, False,
+    return Prediction(value, use, False,
                       inside if value is not None else f"{inside}; nor in the whole cone ({why})")
 
 
@@ -186,9 +185,9 @@ def judged(robot: Robot, result: Any, gait: Motion, motor: Any, springs: SpringS
     within :data:`COVERED`; else (or where it is not rebuilt) no value, and why."""
     played = result.task_space
     if played is None:
-        return Prediction(None, None, margin, False, f"not rebuilt: {result.unbuilt}")
+        return Prediction(None, None, False, f"not rebuilt: {result.unbuilt}")
     if abs(played.distance / gait.distance - 1.0) > COVERED:
-        return Prediction(None, None, margin, False, (
+        return Prediction(None, None, False, (
             f"its rebuilt cycle covers {played.distance / gait.distance:.1%} of the "
             f"gait's {gait.distance:.4g} m a cycle (not the required speed)"))
     return predict(robot, played, motor, springs, contact, margin)
