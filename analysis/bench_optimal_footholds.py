@@ -52,6 +52,7 @@ import numpy as np
 
 import hexaleg
 from hexaleg.design.codesign.alternation import alternate, judged, predicted_per_metre
+from hexaleg.design.codesign.gait_evaluation import Constraints
 from hexaleg.design.codesign.servo import simulated_run
 from hexaleg.errors import HexalegError
 from hexaleg.optimal.footholds import FootholdSearch, moved_footholds, search_footholds
@@ -132,7 +133,7 @@ def main() -> None:
         built = build_problem(robot, motion, motor, sprung, params)
         result = solve(robot, built)
         value = judged(robot, result, motion, motor, sprung, contact,
-                       1.0).value  # the whole cone, as this log was measured
+                       Constraints.friction_margin).judged
         return built, result, value, time.process_time() - c
 
     def figures(result: Any, value: float | None, cpu: float) -> str:
