@@ -162,7 +162,7 @@ def test_a_kill_in_the_optimal_stage_resumes_from_the_kept_co_design(tmp_path, m
         write_codesign(out, progress=lines.append, **run)
     assert "read back from the kept stage" in lines[0]
     first, again = handed
-    assert first[3:5] == again[3:5] and first[6] == again[6]  # gaits, predicted rows
+    assert first[3:5] == again[3:5]  # gaits
     assert repr(first[5]) == repr(again[5])  # springs
     with pytest.raises(Searched):
         write_codesign(out, **{**run, "speed": 0.05})
