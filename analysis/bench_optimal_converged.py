@@ -44,6 +44,7 @@ from typing import Any
 import hexaleg
 from hexaleg.design.chain.checkpoint import StageFiles
 from hexaleg.design.codesign.alternation import alternate, judged, predicted_per_metre
+from hexaleg.design.codesign.gait_evaluation import Constraints
 from hexaleg.design.codesign.optimal_stage import KeptSolves
 from hexaleg.design.codesign.servo import simulated_run
 from hexaleg.errors import HexalegError
@@ -180,7 +181,9 @@ def main() -> None:
             built = build_problem(robot, motion, motor, springs, settings)
             return solve(robot, built), time.process_time() - c
         result, cpu = keep(("row", gp, springs, settings), compute)
-        value, why = judged(robot, result, motion, motor, springs, contact)
+        said = judged(robot, result, motion, motor, springs, contact,
+                      Constraints.friction_margin)
+        value, why = said.judged, said.why
         if value is not None:
             found.append((row, result, value))
         ratio = "".join(f"{'—' if value is None else f'{value / b:.3f}':>10s}"

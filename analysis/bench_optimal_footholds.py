@@ -52,6 +52,7 @@ import numpy as np
 
 import hexaleg
 from hexaleg.design.codesign.alternation import alternate, judged, predicted_per_metre
+from hexaleg.design.codesign.gait_evaluation import Constraints
 from hexaleg.design.codesign.servo import simulated_run
 from hexaleg.errors import HexalegError
 from hexaleg.optimal.footholds import FootholdSearch, moved_footholds, search_footholds
@@ -131,7 +132,8 @@ def main() -> None:
         c = time.process_time()
         built = build_problem(robot, motion, motor, sprung, params)
         result = solve(robot, built)
-        value, _ = judged(robot, result, motion, motor, sprung, contact)
+        value = judged(robot, result, motion, motor, sprung, contact,
+                       Constraints.friction_margin).judged
         return built, result, value, time.process_time() - c
 
     def figures(result: Any, value: float | None, cpu: float) -> str:

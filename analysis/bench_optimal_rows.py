@@ -82,8 +82,7 @@ def main() -> None:
     if args.chosen and os.path.exists(args.chosen):
         with open(args.chosen, "rb") as f:
             saved = pickle.load(f)
-        chosen, springs, per_metre = saved["chosen"], saved["springs"], saved["per_metre"]
-        default = dict(saved["rows"])["default gait, no springs"]
+        chosen, springs = saved["chosen"], saved["springs"]
         print(f"co-design from {args.chosen}", flush=True)
     else:
         para = hexaleg.codesign(args.robot, args.speed, rules=False, simulate=False,
@@ -91,7 +90,6 @@ def main() -> None:
                                 max_evaluations=args.max_evaluations, restarts=args.restarts,
                                 progress=lambda line: print(line, flush=True))
         chosen, springs, per_metre = para.chosen, para.springs, para.rows[3].per_metre
-        default = para.rows[0].per_metre
         rows = [(r.label, r.per_metre) for r in para.rows]
         print(f"co-design: {para.wall:.0f} s; rows "
               + " / ".join(f"{v:.4g}" for _, v in rows) + " J/m", flush=True)
@@ -106,7 +104,7 @@ def main() -> None:
     base = default_gait(robot, args.robot, args.speed, None, chosen.samples)
     groups = design_groups(robot, tuple(robot.joint_classes), args.grouping)
     table = optimal_rows(robot, run.actuator, run.contact, base, chosen, springs,
-                         (default, per_metre), groups=groups, rounds=1,
+                         groups=groups, rounds=1,
                          params=OptimalParams(iterations=args.iterations), timing=args.timing,
                          say=lambda line: print(line, flush=True))
     print("\n".join(table.lines()), flush=True)

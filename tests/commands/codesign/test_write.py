@@ -64,7 +64,8 @@ def test_the_page_shows_the_optimal_motions_table(codesigned):
     """codesign.json's ``optimal`` key (``--motion optimal``) is a table on the page, the
     springs unproven where the last row did not walk under a servo, each simulation with the
     controller that ran it and the solver's own figures beside the rebuilt cycles'; a row with
-    a spread to the digits the table prints it to, with its ±."""
+    a spread to the digits the table prints it to, with its ±; each row's friction use, a row
+    beyond the friction margin flagged with why, and why the springs are unproven."""
     from hexaleg.outputs.html import render_codesign_html
 
     def row(label, e, position):
@@ -72,7 +73,8 @@ def test_the_page_shows_the_optimal_motions_table(codesigned):
                 "simulated": {"feedforward": {"value": 1.5 * e, "unit": "J/m"},
                               "position": position},
                 "verdicts": {"feedforward": "walks", "position": "fell: at 1.2 s"},
-                "loops": {"feedforward": "balance feedback", "position": "open loop"}}
+                "loops": {"feedforward": "balance feedback", "position": "open loop"},
+                "friction_use": {"value": 0.55, "unit": "1"}, "within_margin": True}
 
     solver = SOLVER
     data = codesigned.to_dict()
@@ -80,7 +82,9 @@ def test_the_page_shows_the_optimal_motions_table(codesigned):
         "rows": [row(f"row {k}", e, {"value": 2 * e, "unit": "J/m"} if k < 3 else None)
                  for k, e in enumerate((28.45, 9.99, 15.36, 9.14))],
         "springs": [{"family": "linear", "joint": "LF_femur", "parameters": {}}],
-        "family": "linear", "proven": False, "residual": {"value": 8e-15, "unit": "N·m"},
+        "family": "linear", "proven": False, "unproven": "it does not walk under position",
+        "friction_margin": {"value": 0.7, "unit": "1"},
+        "residual": {"value": 8e-15, "unit": "N·m"},
         "springs_motion": solver,
         "no_springs": solver | {"energy_per_metre": {"value": 15.12, "unit": "J/m"}},
         "feedback": "on",
@@ -91,7 +95,10 @@ def test_the_page_shows_the_optimal_motions_table(codesigned):
     table = page[page.index("The optimal motion with its springs"):]
     assert "balance feedback setting: <b>on</b>, every row closed loop" in table
     assert "— → 9.140 J/m" in table and "the last row is that gait" not in table
-    assert "Unproven" in table and "LF_femur" in table and "fell: at 1.2 s" in table
+    assert "Unproven — it does not walk under position —" in table and "LF_femur" in table
+    assert "fell: at 1.2 s" in table
+    assert "predicted, forces inside 0.7 of the friction cone</th><th>friction use" in table
+    assert "<td>0.55</td>" in table and "beyond" not in table
     assert "13.71 J/m" in table and "0.32" in table  # 1.5 × 9.14, 9.14 / 28.45
     assert "13.71 J/m (balance feedback)" in table
     assert "15.12" in table and "8.87 J/m" in table  # the solver's own figures
@@ -99,6 +106,12 @@ def test_the_page_shows_the_optimal_motions_table(codesigned):
                                    "unpredicted": "InfeasibleForcesError: no forces"}
     table = render_codesign_html(data, {"speed": ""}, {})
     assert "— no prediction: InfeasibleForcesError: no forces" in table and "nan" not in table
+    data["optimal"]["rows"][2] |= {"predicted": {"value": 31.2, "unit": "J/m"},
+                                   "friction_use": {"value": 0.93, "unit": "1"},
+                                   "within_margin": False, "beyond": "no admissible forces"}
+    table = render_codesign_html(data, {"speed": ""}, {})
+    assert ("<td>0.93 — beyond the 0.7 margin, predicted in the whole cone: no admissible "
+            "forces</td>") in table
     data["optimal"]["rows"][3] |= {"decimals": 1,
                                    "spread": {"value": {"value": 0.0117, "unit": "J/m"},
                                               "solver_value": {"value": 0.0, "unit": "J/m"}}}
@@ -185,7 +198,7 @@ def test_a_kill_in_the_optimal_stage_resumes_from_the_kept_co_design(tmp_path, m
         write_codesign(out, progress=lines.append, **run)
     assert "read back from the kept stage" in lines[0]
     first, again = handed
-    assert first[3:5] == again[3:5] and first[6] == again[6]  # gaits, predicted rows
+    assert first[3:5] == again[3:5]  # gaits
     assert repr(first[5]) == repr(again[5])  # springs
     with pytest.raises(Searched):
         write_codesign(out, **{**run, "speed": 0.05})

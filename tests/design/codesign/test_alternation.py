@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 from types import SimpleNamespace
 
@@ -19,6 +20,7 @@ from hexaleg.design.codesign.alternation import (
     least,
     predicted_per_metre,
 )
+from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import InvalidParameterError, UnknownNameError
 
 
@@ -138,8 +140,8 @@ def test_a_cycle_not_rebuilt_leaves_the_gait_and_its_springs(robot, motions, sol
     assert result.kept_gait and result.motion is walk and result.springs is springs
     assert result.predicted == result.baseline
     assert any("no springs designed: the cycle is not rebuilt" in line for line in lines)
-    assert judged(robot, result.start, walk, run.actuator, springs, run.contact) == (
-        None, "not rebuilt: leg RH out of reach")
+    said = judged(robot, result.start, walk, run.actuator, springs, run.contact, 0.7)
+    assert said.value is None and said.why == "not rebuilt: leg RH out of reach"
 
 
 def test_a_cycle_short_of_its_stride_is_not_judged(robot, motions):
@@ -151,13 +153,14 @@ def test_a_cycle_short_of_its_stride_is_not_judged(robot, motions):
     run = hexaleg.Scenario.load("hexaleg")
     short = hexaleg.gait(robot, hexaleg.GaitParams(samples=100, stride_length=0.9 * walk.distance,
                                                    speed=None))
-    value, why = judged(robot, SimpleNamespace(task_space=short), walk, run.actuator, springs,
-                        run.contact)
-    assert value is None and "covers 90.0% of the gait's" in why
-    value, why = judged(robot, SimpleNamespace(task_space=walk), walk, run.actuator, springs,
-                        run.contact)
-    assert why == "" and value == predicted_per_metre(robot, walk, run.actuator, springs,
-                                                      run.contact)[0]
+    said = judged(robot, SimpleNamespace(task_space=short), walk, run.actuator, springs,
+                  run.contact, 0.7)
+    assert said.value is None and "covers 90.0% of the gait's" in said.why
+    said = judged(robot, SimpleNamespace(task_space=walk), walk, run.actuator, springs,
+                  run.contact, 0.7)
+    assert said.why == "" and said.value == predicted_per_metre(
+        robot, walk, run.actuator, springs,
+        dataclasses.replace(run.contact, mu=0.7 * run.contact.mu))[0]
 
 
 def test_bad_options_are_named(robot, walk):
@@ -343,3 +346,72 @@ def test_the_spread_repeats_the_solve_from_its_start_moved():
     again = solve(robot, build_problem(robot, walk, motor, hexaleg.SpringSet(), params),
                   move=0.0)
     assert np.array_equal(again.x, answer.x)
+
+
+def test_a_prediction_is_inside_the_friction_margin_or_says_it_is_not(robot, motions):
+    """On a floor of μ 0.1 the default tripod's forces lean on the cone: inside 0.7 of it the
+    prediction is the force program's at 0.07 (35.3 J/m, friction use 0.7 of the floor's
+    cone), not the whole cone's (33.3). On μ 0.02 there are no forces inside 0.7 of it: the
+    prediction is the whole cone's, said (``beyond``, friction use 1) and never a verdict
+    (``judged`` None); on μ 0.015 none at all, each cone's error said. Catches a prediction
+    made at the floor's full μ, and a friction use stated at the narrowed cone's μ."""
+    from hexaleg.design.codesign.alternation import predict
+
+    run = hexaleg.Scenario.load("hexaleg")
+    walk = motions[0]
+
+    def floor(mu: float) -> ContactParams:
+        return dataclasses.replace(run.contact, mu=mu)
+
+    bare = hexaleg.SpringSet()
+    said = predict(robot, walk, run.actuator, bare, floor(0.1), 0.7)
+    narrowed, _ = predicted_per_metre(robot, walk, run.actuator, bare, floor(0.7 * 0.1))
+    whole, _ = predicted_per_metre(robot, walk, run.actuator, bare, floor(0.1))
+    assert said.within and not said.beyond and said.why == ""
+    assert said.value == narrowed and said.judged == narrowed and whole < 0.97 * narrowed
+    assert said.friction_use == pytest.approx(0.7, abs=1e-9)
+    said = predict(robot, walk, run.actuator, bare, floor(0.02), 0.7)
+    assert said.beyond and said.judged is None and said.friction_use == pytest.approx(1.0)
+    assert said.value == predicted_per_metre(robot, walk, run.actuator, bare, floor(0.02))[0]
+    assert said.why.startswith("no admissible forces within 0.7 of the friction cone "
+                               "(InfeasibleForcesError")
+    said = predict(robot, walk, run.actuator, bare, floor(0.015), 0.7)
+    assert said.value is None and said.friction_use is None and not said.beyond
+    assert "; nor in the whole cone (InfeasibleForcesError" in said.why
+    with pytest.raises(InvalidParameterError, match="friction margin"):
+        predict(robot, walk, run.actuator, bare, floor(0.6), 1.5)
+
+
+def test_the_springs_are_designed_and_judged_inside_the_friction_margin(robot, motions, solver,
+                                                                        monkeypatch):
+    """The alternation's springs are designed by the force program inside ``margin · μ`` (as
+    the parametric co-design's inner program plans), and the gait, the start and each round
+    are judged there; on a floor where the gait has forces only beyond the margin (μ 0.02) no
+    cycle gets a verdict and no springs are designed. Catches a design or a verdict in the
+    whole cone."""
+    from hexaleg.design.codesign import alternation as module
+    from hexaleg.design.codesign.alternation import predict
+
+    walk, _, springs = motions
+    run = hexaleg.Scenario.load("hexaleg")
+    floor = dataclasses.replace(run.contact, mu=0.1)
+    designed: list[float] = []
+    real = module.optimal_springs
+
+    def design(prepared, *args, **kwargs):
+        designed.append(prepared.contact.mu)
+        return real(prepared, *args, **kwargs)
+
+    monkeypatch.setattr(module, "optimal_springs", design)
+    solver([(10.0, walk), (5.0, walk)])
+    result = alternate(robot, walk, run.actuator, floor, springs=springs, rounds=1, margin=0.7)
+    assert designed == [pytest.approx(0.07)]
+    inside = predict(robot, walk, run.actuator, springs, floor, 0.7)
+    assert inside.within and result.baseline == inside.value == result.start_predicted
+    solver([(10.0, walk)])
+    lines: list[str] = []
+    slippery = alternate(robot, walk, run.actuator, dataclasses.replace(run.contact, mu=0.02),
+                         rounds=1, margin=0.7, say=lines.append)
+    assert slippery.energies == [None, None] and slippery.rounds == ()
+    assert any("no springs designed on the rebuilt cycle (InfeasibleForcesError" in line
+               for line in lines)

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import hexaleg
-from hexaleg.design.codesign.alternation import MOVES, Alternation, Round, Spread
+from hexaleg.design.codesign.alternation import MOVES, Alternation, Prediction, Round, Spread
 from hexaleg.design.codesign.optimal_rows import LABELS, MotionRow, OptimalRows
 from hexaleg.quantities import json_text
 
@@ -134,7 +134,8 @@ def test_a_row_without_a_prediction_says_why_not_nan():
 def test_the_four_rows_of_a_small_problem():
     """The default gait as the 'chosen' one (no search), 16 knots, 40 iterations, one round:
     every row predicted and simulated under both servos, the residual at round-off, the
-    alternation never rising, the optimal motions written and read back."""
+    alternation never rising, the optimal motions written and read back; every row predicted
+    inside 0.7 of the cone (the gaits' rows as the co-design's inner program computes them)."""
     pytest.importorskip("crocoddyl")
     from hexaleg.design.codesign.build import default_gait
     from hexaleg.optimal.problem import OptimalParams
@@ -142,8 +143,9 @@ def test_the_four_rows_of_a_small_problem():
     run = hexaleg.Scenario.load("hexaleg")
     robot = run.model
     base = default_gait(robot, "hexaleg", 0.06, None, 100)
+    planning = dataclasses.replace(run.contact, mu=0.7 * run.contact.mu)
     prepared = hexaleg.prepare(robot, hexaleg.gait(robot, base), motor=run.actuator,
-                               contact=run.contact)
+                               contact=planning)
     design = hexaleg.optimal_springs(prepared, list(robot.joint_classes), family="linear",
                                      metric="electrical")
     e0 = prepared.evaluate(hexaleg.SpringSet()).metrics["total"]["electrical"]
@@ -154,8 +156,10 @@ def test_the_four_rows_of_a_small_problem():
     lines: list[str] = []
     d = prepared.motion.distance
     table = optimal_rows(robot, run.actuator, run.contact, base, base, design.springs,
-                         (e0 / d, e1 / d), params=OptimalParams(nodes=16, iterations=40),
+                         margin=0.7, params=OptimalParams(nodes=16, iterations=40),
                          rounds=1, say=lines.append)
+    assert table.rows[0].predicted == pytest.approx(e0 / d, rel=1e-9)
+    assert table.rows[1].predicted == pytest.approx(e1 / d, rel=1e-9)
     assert [r.label for r in table.rows] == list(LABELS)
     assert all(set(r.simulated) == {"feedforward", "position"} for r in table.rows)
     assert table.rows[0].walks and table.rows[1].walks  # the gaits walk under both servos
@@ -167,7 +171,7 @@ def test_the_four_rows_of_a_small_problem():
     assert table.alternation.predicted == energies[-1] and energies[-1] <= energies[0]
     for row, played, springs in ((table.rows[2], table.bare.task_space, hexaleg.SpringSet()),
                                  (table.rows[3], table.alternation.motion, table.springs)):
-        value, why = predicted_per_metre(robot, played, run.actuator, springs, run.contact)
+        value, why = predicted_per_metre(robot, played, run.actuator, springs, planning)
         assert why == row.unpredicted == "" and row.predicted == pytest.approx(value, rel=1e-12)
         assert set(row.loops.values()) <= {"open loop", "balance feedback"}
     assert table.motions["optimal_springs"] is table.alternation.motion
@@ -218,7 +222,8 @@ def test_the_alternation_and_the_bare_cycle_run_from_the_start_chosen(monkeypatc
     monkeypatch.setattr(hexaleg.optimal.solve, "solve", solve)
     monkeypatch.setattr(rows_module, "simulated_run",
                         lambda *_args: (10.0, "walks", True))
-    monkeypatch.setattr(rows_module, "predicted_per_metre", lambda *_args: (15.0, ""))
+    monkeypatch.setattr(rows_module, "predict", lambda *_args: Prediction(15.0, 0.5, True))
+    monkeypatch.setattr(rows_module, "judged", lambda *_args: Prediction(15.0, 0.5, True))
     monkeypatch.setattr(rows_module, "gait", lambda _robot, g: SimpleNamespace(params=g))
 
     def spreads(_robot, cases, _keep):
@@ -227,7 +232,7 @@ def test_the_alternation_and_the_bare_cycle_run_from_the_start_chosen(monkeypatc
 
     monkeypatch.setattr(rows_module, "spreads", spreads)
     table = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen,
-                                     hexaleg.SpringSet(), (28.0, 9.9), params=settings,
+                                     hexaleg.SpringSet(), params=settings,
                                      starts="lattice", min_step=0.015)
     # both spreads repeat their row's own answer: at the start chosen, with its settings
     (bare_inputs, alt_inputs) = seen["spreads"]
@@ -244,7 +249,7 @@ def test_the_alternation_and_the_bare_cycle_run_from_the_start_chosen(monkeypatc
     assert json.loads(json_text(table.data()))["starts"]["chosen"] == 1
     seen.clear()
     plain = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen,
-                                     hexaleg.SpringSet(), (28.0, 9.9), params=settings)
+                                     hexaleg.SpringSet(), params=settings)
     assert "starts" not in seen and plain.starts is None and plain.data()["starts"] is None
 
 
@@ -286,13 +291,15 @@ def test_a_cycle_not_rebuilt_is_a_row_that_says_why(monkeypatch, robot):
     monkeypatch.setattr(rows_module, "apart",  # the two solves in this process, one by one
                         lambda jobs, _robot, _keep: [(job[1](), None) for job in jobs])
     monkeypatch.setattr(rows_module, "gait", lambda _robot, g: SimpleNamespace(params=g))
-    table = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen, springs,
-                                     (28.0, 9.9))
+    monkeypatch.setattr(rows_module, "predict",  # the gaits' rows: 28.0 bare, 9.9 with springs
+                        lambda _r, _m, _a, fitted, *_args: Prediction(
+                            9.9 if fitted else 28.0, 0.5, True))
+    table = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen, springs)
     bare = table.rows[2]
     assert bare.predicted is None and bare.unpredicted == f"not rebuilt: {why}"
     assert set(bare.simulated.values()) == {None} and not bare.walks
     assert set(bare.verdicts.values()) == {f"not rebuilt: {why}"}
-    assert [r.predicted for r in table.rows] == [28.0, 9.9, None, 9.5]
+    assert [r.predicted for r in table.rows] == [28.0, 9.9, None, 9.9]
     assert len(played) == 3 * 2 and None not in played  # three rows under two servos
     assert table.proven and list(table.motions) == ["optimal_springs"]
     lines = table.lines()
@@ -351,3 +358,85 @@ def test_a_kept_gait_buys_the_co_designs_springs():
                                                                       kept_gait=True))
     assert kept.lines()[-1] == "    springs to buy for it: the co-design's (above)"
     assert kept.data()["full_rules"] is None
+
+
+def test_every_row_is_judged_inside_the_margin_row_3_by_the_alternations_judge(monkeypatch,
+                                                                               robot):
+    """Every row is predicted inside the friction margin of the floor, by the same judge: on a
+    floor of μ 0.1 the default gait's row is the force program's at 0.7 × 0.1 with its friction
+    use (0.7 of the floor's cone) beside it — predicted in the whole cone it would be 6 % lower;
+    the optimal cycle without springs, rebuilt short of its stride (90 %), gets no prediction
+    and says why, as the alternation's judge refuses it for row 4 — a row 3 that skips the
+    ``COVERED`` check would print its energy per metre of another task. codesign.json holds
+    each row's friction use and whether it is inside the margin."""
+    pytest.importorskip("crocoddyl")
+    import hexaleg.optimal.problem
+    import hexaleg.optimal.solve
+    from hexaleg.design.codesign import optimal_rows as rows_module
+    from hexaleg.design.codesign.alternation import predicted_per_metre
+    from hexaleg.design.codesign.build import default_gait
+
+    run = hexaleg.Scenario.load("hexaleg")
+    floor = dataclasses.replace(run.contact, mu=0.1)
+    base = default_gait(robot, "hexaleg", 0.06, None, 100)
+    walk = hexaleg.gait(robot, base)
+    short = hexaleg.gait(robot, dataclasses.replace(base, stride_length=0.9 * walk.distance,
+                                                    speed=None))
+
+    def solve(_robot, _built, **_kwargs):
+        return SimpleNamespace(**{**vars(_solved(15.0)), "task_space": short})
+
+    def alternate(_robot, motion, _motor, _contact, **_kwargs):
+        return Alternation(motion, None, _solved(9.0), None, _solved(9.0), hexaleg.SpringSet(),
+                           (), 0.0, True)
+
+    monkeypatch.setattr(rows_module, "alternate", alternate)
+    monkeypatch.setattr(hexaleg.optimal.problem, "build_problem", lambda *_args: None)
+    monkeypatch.setattr(hexaleg.optimal.solve, "solve", solve)
+    monkeypatch.setattr(rows_module, "simulated_run", lambda *_args: (10.0, "walks", True))
+    monkeypatch.setattr(rows_module, "apart",
+                        lambda jobs, _robot, _keep: [(job[1](), None) for job in jobs])
+    monkeypatch.setattr(rows_module, "spreads", lambda _robot, cases, _keep: [None] * len(cases))
+    table = rows_module.optimal_rows(robot, run.actuator, floor, base, base, hexaleg.SpringSet(),
+                                     margin=0.7)
+    first, _, bare, _ = table.rows
+    inside, _ = predicted_per_metre(robot, walk, run.actuator, hexaleg.SpringSet(),
+                                    dataclasses.replace(floor, mu=0.7 * 0.1))
+    whole, _ = predicted_per_metre(robot, walk, run.actuator, hexaleg.SpringSet(), floor)
+    assert first.predicted == inside and whole < 0.97 * inside and not first.beyond
+    assert first.friction_use == pytest.approx(0.7, abs=1e-9)
+    assert bare.predicted is None and "covers 90.0% of the gait's" in bare.unpredicted
+    assert bare.walks  # played all the same: only its prediction is refused
+    assert table.proven and table.margin == 0.7
+    assert "inside 0.7 of the friction cone (their friction use)" in table.lines()[0]
+    assert "(friction 0.70)" in table.lines()[1]
+    data = json.loads(json_text(table.data()))
+    assert data["friction_margin"] == {"value": 0.7, "unit": "1"}
+    assert data["rows"][0]["friction_use"]["unit"] == "1"
+    assert data["rows"][0]["within_margin"] is True and data["rows"][2]["within_margin"] is False
+    assert data["rows"][2]["friction_use"] == {"value": None, "unit": "1"}
+
+
+def test_springs_on_a_row_beyond_the_margin_are_unproven():
+    """A last row whose cycle has no forces inside the friction margin is predicted in the
+    whole cone and flagged — its friction use beside it, beyond the margin, and why — and its
+    springs are unproven though it walks under both servos (the table's line and
+    codesign.json). Catches a row beyond the margin printed as a silent number."""
+    table = _rows(11.0)
+    why = "no admissible forces within 0.7 of the friction cone (InfeasibleForcesError: …)"
+    last = dataclasses.replace(table.rows[3], friction_use=0.93, beyond=why)
+    rows = dataclasses.replace(table, rows=(*table.rows[:3], last))
+    assert table.proven and not rows.proven and last.walks
+    lines = rows.lines()
+    assert "   9.00 (friction 0.93, beyond the 0.7 margin)   9.50, 11.00" in lines[4]
+    assert f"    optimal motion, its springs: predicted in the whole friction cone, {why}" in lines
+    assert lines[-1].endswith("— unproven: its forces need 0.93 of the friction cone, beyond "
+                              "the 0.7 margin")
+    data = json.loads(json_text(rows.data()))
+    assert data["proven"] is False and data["unproven"].startswith("its forces need 0.93")
+    assert data["rows"][3]["within_margin"] is False and data["rows"][3]["beyond"] == why
+    assert data["rows"][3]["friction_use"] == {"value": 0.93, "unit": "1"}
+    both = dataclasses.replace(rows, rows=(*table.rows[:3], dataclasses.replace(
+        last, simulated={"feedforward": 9.5, "position": None})))
+    assert both.unproven == ("its forces need 0.93 of the friction cone, beyond the 0.7 margin; "
+                             "it does not walk under position")

@@ -12,10 +12,12 @@ Block-coordinate descent (Bertsekas, *Nonlinear Programming*, 3rd ed., §3.7) on
 Both steps, and the verdict on a round, work on the motion hexaleg plays and predicts: the
 solver's cycle rebuilt in task space (:attr:`~hexaleg.optimal.solve.OptimalResult.task_space`,
 its stance feet held on their footholds), not the solver's knots. The springs are designed on
-the rebuilt cycle, and a round is judged by :func:`judged` (:func:`predicted_per_metre`, where
-the rebuilt cycle covers its gait's stride) — the force program's
-electrical energy per metre of the rebuilt cycle with the round's springs, the figure the rows
-of ``codesign --motion optimal`` show — not by the solver's own figure at its knots (which books
+the rebuilt cycle, and a round is judged by :func:`judged` (:func:`predict`, where the rebuilt
+cycle covers its gait's stride) — the force program's electrical energy per metre of the
+rebuilt cycle with the round's springs, its foot forces inside the planners' friction margin
+(``[codesign.constraints] friction_margin``, 0.7 of the cone: the issue's friction-use target,
+as the parametric co-design and the solver plan), the figure the rows of ``codesign --motion
+optimal`` show — not by the solver's own figure at its knots (which books
 a spring's work by a left Riemann sum and lets a stance foot slide between knots: 9.21 J/m on
 the co-design's gait where the rebuilt cycle predicts 9.45). The two steps minimise different
 programs (the force program's energy, the optimal-control cost at the solver's own contact
@@ -51,6 +53,7 @@ Only families whose torque is continuous in the angle enter DDP's dynamics well 
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 import time
@@ -61,8 +64,9 @@ from typing import Any
 import numpy as np
 
 from hexaleg.checks import integer, one_of, real
+from hexaleg.design.codesign.gait_evaluation import Constraints
 from hexaleg.design.search.optimal import Groups, optimal_springs
-from hexaleg.dynamics.contact import ContactParams
+from hexaleg.dynamics.contact import ContactParams, friction_usage
 from hexaleg.dynamics.prepare import prepare
 from hexaleg.errors import HexalegError
 from hexaleg.motion.trajectory import Motion
@@ -94,11 +98,77 @@ def predicted_per_metre(robot: Robot, motion: Motion, motor: Any, springs: Sprin
     ``joule``, the simulation's feedforward) electrical energy per metre, J/m, and ``""``; or
     None and why, when the analysis has no answer (no admissible forces, a torque beyond the
     stall torque: the error's message)."""
+    value, why, _ = _analysed(robot, motion, motor, springs, contact)
+    return value, why
+
+
+def _analysed(robot: Robot, motion: Motion, motor: Any, springs: SpringSet,
+              contact: ContactParams) -> tuple[float | None, str, float | None]:
+    """:func:`predicted_per_metre` and its forces' friction use at ``contact``'s μ, the
+    largest ``|f_t| / (μ f_n)`` of a stance foot over the cycle
+    (:func:`hexaleg.dynamics.contact.friction_usage`; None without an answer)."""
     try:
         analysis = prepare(robot, motion, motor=motor, contact=contact).evaluate(springs, "joule")
     except HexalegError as err:
-        return None, f"{type(err).__name__}: {err}"
-    return float(analysis.metrics["total"]["electrical"]) / motion.distance, ""
+        return None, f"{type(err).__name__}: {err}", None
+    usage = friction_usage(analysis.forces, analysis.motion.stance.astype(bool), contact.mu,
+                           analysis.motion.normal)
+    return (float(analysis.metrics["total"]["electrical"]) / motion.distance, "",
+            float(usage.max()) if usage.size else 0.0)
+
+
+@dataclass(frozen=True)
+class Prediction:
+    """hexaleg's prediction of a motion inside the planners' friction margin (issue #56's
+    "friction use ≤ 0.7 of the cone"; :func:`predict`).
+
+    Attributes:
+        value: Electrical energy per metre, J/m (:func:`predicted_per_metre`): with the foot
+            forces inside ``margin · μ`` where the force program has an answer there
+            (:attr:`within`; ``[codesign.constraints] friction_margin``), else at the floor's
+            full μ; None where it has none at all.
+        friction_use: The largest share of the floor's friction cone a stance foot's force
+            behind :attr:`value` uses over the cycle, ``max |f_t| / (μ f_n)`` at the floor's μ
+            (1: about to slip); None without a value.
+        within: Whether :attr:`value` keeps the forces inside ``margin · μ``.
+        why: Why there is no value inside the margin (the force program's error, or why an
+            optimal cycle is not judged: :func:`judged`); ``""`` when :attr:`within`.
+    """
+
+    value: float | None
+    friction_use: float | None
+    within: bool
+    why: str = ""
+
+    @property
+    def judged(self) -> float | None:
+        """The figure a choice is made by: :attr:`value` inside the margin, else None (a
+        motion whose forces leave the margin is never chosen)."""
+        return self.value if self.within else None
+
+    @property
+    def beyond(self) -> bool:
+        """Whether the value is the floor's full cone's, its forces beyond the margin."""
+        return self.value is not None and not self.within
+
+
+def predict(robot: Robot, motion: Motion, motor: Any, springs: SpringSet,
+            contact: ContactParams, margin: float) -> Prediction:
+    """``motion`` with ``springs`` predicted inside ``margin`` of the floor's friction cone
+    (the force program at ``margin · μ``, as the parametric co-design's planning contact,
+    :meth:`~hexaleg.design.codesign.gait_evaluation.Constraints.planning_contact`), its
+    friction use stated at the floor's μ (``contact``); where the force program has no answer
+    inside the margin, at the floor's full μ, said (:class:`Prediction`)."""
+    margin = real("friction margin", margin, low=0.0, high=1.0, low_open=True,
+                  allowed="a fraction in (0, 1] of the friction cone")
+    narrowed = dataclasses.replace(contact, mu=margin * contact.mu)
+    value, why, use = _analysed(robot, motion, motor, springs, narrowed)
+    if value is not None and use is not None:
+        return Prediction(value, margin * use, True)
+    inside = f"no admissible forces within {margin:g} of the friction cone ({why})"
+    value, why, use = _analysed(robot, motion, motor, springs, contact)
+    return Prediction(value, use, False,
+                      inside if value is not None else f"{inside}; nor in the whole cone ({why})")
 
 
 COVERED = 0.01
@@ -108,17 +178,19 @@ its energy per metre is another task's (an unconverged solve covered 87 % of it)
 
 
 def judged(robot: Robot, result: Any, gait: Motion, motor: Any, springs: SpringSet,
-           contact: ContactParams) -> tuple[float | None, str]:
-    """The figure an optimal cycle is judged by: :func:`predicted_per_metre` of its cycle
-    rebuilt in task space with ``springs``, where it covers ``gait``'s distance within
-    :data:`COVERED`; else (or where it is not rebuilt) None and why."""
+           contact: ContactParams, margin: float) -> Prediction:
+    """The one judge of an optimal cycle — the alternation's rounds, the timing and the starts
+    searches, and the optimal rows: :func:`predict` of its cycle rebuilt in task space with
+    ``springs`` inside ``margin`` of ``contact``'s cone, where it covers ``gait``'s distance
+    within :data:`COVERED`; else (or where it is not rebuilt) no value, and why."""
     played = result.task_space
     if played is None:
-        return None, f"not rebuilt: {result.unbuilt}"
+        return Prediction(None, None, False, f"not rebuilt: {result.unbuilt}")
     if abs(played.distance / gait.distance - 1.0) > COVERED:
-        return None, (f"its rebuilt cycle covers {played.distance / gait.distance:.1%} of the "
-                      f"gait's {gait.distance:.4g} m a cycle (not the required speed)")
-    return predicted_per_metre(robot, played, motor, springs, contact)
+        return Prediction(None, None, False, (
+            f"its rebuilt cycle covers {played.distance / gait.distance:.1%} of the "
+            f"gait's {gait.distance:.4g} m a cycle (not the required speed)"))
+    return predict(robot, played, motor, springs, contact, margin)
 
 
 def _below(new: float | None, old: float | None) -> bool:
@@ -377,7 +449,8 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
               springs: SpringSet | None = None, params: Any = None, family: str = "linear",
               groups: Groups | None = None, rounds: int = 4, tolerance: float = 0.01,
               say: Callable[[str], None] | None = None, keep: Keep | None = None,
-              first: Any = None, move: float = 0.0) -> Alternation:
+              first: Any = None, move: float = 0.0,
+              margin: float = Constraints.friction_margin) -> Alternation:
     """Alternate the optimal motion and its springs (module docstring).
 
     Args:
@@ -385,7 +458,8 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
         gait: The gait whose contact timing and path the optimal-control problem takes, and
             the answer when no optimal cycle is predicted below it.
         actuator: The motors (:class:`~hexaleg.robot.motor.Motor` or a ``MotorSet``).
-        contact: The contact settings of the spring design's force program.
+        contact: The floor (its μ, the torque limits): the springs are designed and every
+            cycle judged inside ``margin`` of its friction cone (:func:`judged`).
         springs: The springs to start from (None: none).
         params: :class:`~hexaleg.optimal.problem.OptimalParams` (None: defaults).
         family: The spring family designed, one of :data:`SMOOTH_FAMILIES`.
@@ -402,10 +476,13 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
             already (:mod:`~hexaleg.design.codesign.timing`'s choice); None: solved here.
         move: The start's solve from the gait's start moved by this much, m
             (:func:`hexaleg.optimal.solve.solve`'s ``move``: the rows' spread, :func:`spreads`).
+        margin: The planners' friction margin, in (0, 1] (``[codesign.constraints]
+            friction_margin``): the force programs of the design and of every verdict plan
+            inside ``margin · μ``, and a cycle with no forces there is never accepted.
 
     Raises:
-        InvalidParameterError: a family outside :data:`SMOOTH_FAMILIES`, bad ``rounds`` or
-            ``tolerance``; BackendError: no usable Crocoddyl.
+        InvalidParameterError: a family outside :data:`SMOOTH_FAMILIES`, bad ``rounds``,
+            ``tolerance`` or ``margin``; BackendError: no usable Crocoddyl.
     """
     one_of("family", family, SMOOTH_FAMILIES)
     rounds = integer("rounds", rounds, low=1)
@@ -416,13 +493,14 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
     tell = say or (lambda _line: None)
     current = given = springs or SpringSet()
     once = keep or computed
-    baseline, _ = predicted_per_metre(robot, gait, actuator, current, contact)
+    baseline = predict(robot, gait, actuator, current, contact, margin).judged
+    planning = dataclasses.replace(contact, mu=margin * contact.mu)
     best = first if first is not None else once(
         ("start", current, params, *((move,) if move else ())),
         lambda: solve(robot, build_problem(robot, gait, actuator, current, params), say=tell,
                       every=PROGRESS, move=move))
     start = best
-    best_predicted, _ = judged(robot, best, gait, actuator, current, contact)
+    best_predicted = judged(robot, best, gait, actuator, current, contact, margin).judged
     start_predicted = best_predicted
     tell(f"start: {_shown(best_predicted)} J/m predicted rebuilt (the gait: "
          f"{_shown(baseline)}; the solver's {best.energy_per_metre:.4g} at its knots; "
@@ -444,7 +522,7 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
             tell(f"round {k + 1}: no springs designed: the cycle is not rebuilt")
             break
         try:
-            design = optimal_springs(prepare(robot, played, motor=actuator, contact=contact),
+            design = optimal_springs(prepare(robot, played, motor=actuator, contact=planning),
                                      groups or list(robot.joint_classes), family=family,
                                      metric="electrical")
         except HexalegError as err:  # a rebuilt cycle the force program has no answer for
@@ -455,7 +533,7 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
                           best.spring_torques),
                          functools.partial(warm_solve, design.springs, best))
         designed = design.analysis.metrics["total"]["electrical"] / played.distance
-        value, _ = judged(robot, candidate, gait, actuator, design.springs, contact)
+        value = judged(robot, candidate, gait, actuator, design.springs, contact, margin).judged
         gap = (0.0 if value is None else 1.0 if best_predicted is None
                else 1.0 - value / best_predicted)
         accepted = _below(value, best_predicted)

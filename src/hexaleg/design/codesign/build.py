@@ -174,8 +174,9 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             co-design is the one searched to it.
         optimal: The optimal motion's problem and solver settings, a ``[codesign.optimal]``
             table: keys of :class:`~hexaleg.optimal.problem.OptimalParams` (``nodes``,
-            ``iterations``, ``servo_landing_weight``, …), the rest their defaults; only with
-            ``motion="optimal"``.
+            ``iterations``, ``servo_landing_weight``, …), the rest their defaults, the friction
+            cone the floor's μ inside the constraints' ``friction_margin`` (``mu`` and
+            ``friction_use`` are refused here); only with ``motion="optimal"``.
         progress: Called with one status line per stage.
         stages: Where the parametric co-design is kept when it is done, before the optimal
             motion's stage (``motion="optimal"``: minutes more), and read back from instead of
@@ -209,14 +210,15 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
     if optimal is not None and motion != "optimal":
         raise ConfigError("[codesign.optimal] sets the optimal motion's problem: it needs "
                           "motion = \"optimal\" (--motion optimal)")
-    params = None
     if motion == "optimal":
         from hexaleg.optimal.backend import crocoddyl_module
 
         crocoddyl_module()  # before the search: a missing extra is said at once
-        from hexaleg.optimal.problem import OptimalParams
-
-        params = from_mapping(OptimalParams, dict(optimal or {}), "[codesign.optimal]")
+        floor = sorted({"mu", "friction_use"} & set(optimal or {}))
+        if floor:
+            raise ConfigError(f"[codesign.optimal] {', '.join(floor)}: the optimal motion plans "
+                              "on the run's floor, [contact] mu, inside [codesign.constraints] "
+                              "friction_margin (set them there)")
     design = dataclasses.replace(design if design is not None else rule_params(),
                                  controller=servo)
     v = real("speed", speed, low=0.0, low_open=True, allowed="a speed > 0 (m/s)")
@@ -225,6 +227,12 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
     run = robot if isinstance(robot, Scenario) else Scenario.load(robot)
     c = constraints or floor_constraints(run)
     family = one_of("[codesign] family", family, FAMILIES)
+    params = None
+    if motion == "optimal" and optimal is not None:  # checked before the search, on the floor
+        from hexaleg.optimal.problem import OptimalParams
+
+        params = from_mapping(OptimalParams, {"mu": c.mu, "friction_use": c.friction_margin,
+                                              **optimal}, "[codesign.optimal]")
     say = progress or (lambda _msg: None)
     t0 = time.perf_counter()
     model = run.model

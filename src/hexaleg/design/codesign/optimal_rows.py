@@ -29,9 +29,16 @@ knots and loads the legs against each other (on the default robot's co-design ga
 springs, 40 knots: the knots walk for 10.90 J/m under feedforward servos where the solver
 booked 9.21; the rebuilt cycle for 9.44, predicted 9.45).
 
-*Predicted* is hexaleg's analysis of each row's motion with its springs: the force program's
-electrical energy per metre (the co-design's rows as the co-design computes them; an optimal
-motion's on its task-space cycle, objective ``joule``, the simulation's feedforward). The
+*Predicted* is hexaleg's analysis of each row's motion with its springs, every row by the same
+function (:func:`~hexaleg.design.codesign.alternation.predict`; an optimal cycle through
+:func:`~hexaleg.design.codesign.alternation.judged`, the alternation's judge, which also refuses
+a cycle not rebuilt or short of its stride): the force program's electrical energy per metre
+(objective ``joule``, the simulation's feedforward; an optimal motion's on its task-space
+cycle) with the foot forces inside the planners' friction margin (``[codesign.constraints]
+friction_margin``, 0.7 of the cone: the issue's "friction use ≤ 0.7", where the parametric
+co-design and the solver plan), and the friction use of those forces at the floor's μ. A row
+whose motion has no forces inside the margin is predicted in the whole cone, its friction use
+beyond the margin said beside it; springs to buy on such a row are unproven. The
 solver's own figure at its knots (the exact energy model at its motor torques,
 :attr:`~hexaleg.optimal.solve.OptimalResult.energy_per_metre`) is reported beside it; the
 alternation designs its springs on the rebuilt cycle and judges its rounds by this prediction.
@@ -65,14 +72,17 @@ from hexaleg.design.codesign.alternation import (
     Alternation,
     Case,
     Keep,
+    Prediction,
     Spread,
     alternate,
     apart,
     computed,
     decimals,
-    predicted_per_metre,
+    judged,
+    predict,
     spreads,
 )
+from hexaleg.design.codesign.gait_evaluation import Constraints
 from hexaleg.design.codesign.rules import rule_data, rule_lines
 from hexaleg.design.codesign.servo import simulated_run
 from hexaleg.design.codesign.starts import STARTS, StartSearch, search_starts
@@ -111,6 +121,12 @@ class MotionRow:
             whole alternation, repeated from moved starts:
             :class:`~hexaleg.design.codesign.alternation.Spread`); None for a parametric gait
             (the co-design's rows, not an optimal-control solve) or a cycle not rebuilt.
+        friction_use: The largest share of the floor's friction cone a stance foot's planned
+            force behind :attr:`predicted` uses over the cycle, ``max |f_t| / (μ f_n)`` (1:
+            about to slip); None without a prediction.
+        beyond: Why :attr:`predicted` is the whole cone's: the force program has no answer
+            inside the planners' friction margin (its ``friction_use`` is above it); ``""``
+            for a prediction inside the margin.
     """
 
     label: str
@@ -120,6 +136,8 @@ class MotionRow:
     loops: Mapping[str, str] = field(default_factory=dict)
     unpredicted: str = ""
     spread: Spread | None = None
+    friction_use: float | None = None
+    beyond: str = ""
 
     @property
     def decimals(self) -> int:
@@ -139,6 +157,9 @@ class MotionRow:
                 "simulated": {k: None if v is None else q(v, "J/m")
                               for k, v in self.simulated.items()},
                 "verdicts": dict(self.verdicts), "loops": dict(self.loops),
+                "friction_use": q(self.friction_use, "1"),
+                "within_margin": self.predicted is not None and not self.beyond,
+                **({"beyond": self.beyond} if self.beyond else {}),
                 **({"unpredicted": self.unpredicted} if self.unpredicted else {}),
                 **({"spread": self.spread.data()} if self.spread is not None else {})}
 
@@ -164,6 +185,8 @@ class OptimalRows:
             (:class:`~hexaleg.design.codesign.timing.TimingSearch`); None: the chosen gait's.
         starts: The multi-start, when the optimal motions' start was searched
             (:class:`~hexaleg.design.codesign.starts.StartSearch`); None: the gait's.
+        margin: The planners' friction margin every row is predicted inside
+            (``[codesign.constraints] friction_margin``).
         rules: The full spring rules on the optimal motion with its springs
             (:class:`~hexaleg.design.chain.result.DesignResult`; module docstring), the error's
             message where they could not run, None where none ran (the alternation kept the
@@ -181,6 +204,7 @@ class OptimalRows:
     feedback: str = "auto"
     timing: TimingSearch | None = None
     starts: StartSearch | None = None
+    margin: float = Constraints.friction_margin
     rules: DesignResult | str | None = None
 
     @property
@@ -194,13 +218,32 @@ class OptimalRows:
         return self.rules if isinstance(self.rules, DesignResult) else None
 
     @property
-    def proven(self) -> bool:
-        """Whether a simulation under every controller backs the springs to buy: the full
-        rules' recommendation on the optimal motion (their proof) where they ran, else the last
-        row's motion walking with its springs."""
+    def unproven(self) -> str:
+        """Why the springs to buy are not proven, ``""`` when they are: the last row's forces
+        must be planned inside the friction margin, and the springs to buy must walk under
+        every controller — the full rules' on the optimal motion by their proof where they
+        ran, else the last row's motion with its springs."""
+        last = self.rows[-1]
+        why = []
+        if last.beyond:
+            use = "" if last.friction_use is None else f"{last.friction_use:.2f} of "
+            why.append(f"its forces need {use}the friction cone, beyond the {self.margin:g} "
+                       "margin")
         if self.bought is not None:
-            return self.bought.pays and not self.bought.unproven
-        return self.rows[-1].walks
+            if not self.bought.pays:
+                why.append("no springs pay on it net of their mass")
+            elif self.bought.unproven:
+                why.append(self.bought.unproven)
+        elif not last.walks:
+            why.append("it does not walk under " + " and ".join(
+                k for k, v in last.simulated.items() if v is None))
+        return "; ".join(why)
+
+    @property
+    def proven(self) -> bool:
+        """Whether a simulation backs the springs to buy and the last row's forces are planned
+        inside the friction margin (:attr:`unproven`)."""
+        return not self.unproven
 
     @property
     def motions(self) -> dict[str, Motion]:
@@ -234,6 +277,8 @@ class OptimalRows:
             "starts": None if self.starts is None else self.starts.data(),
             "springs": [spring_entry(j, s) for j, s in self.springs.items()],
             "family": self.family, "proven": self.proven,
+            **({"unproven": self.unproven} if self.unproven else {}),
+            "friction_margin": q(self.margin, "1"),
             "full_rules": None if self.rules is None else (
                 {"applied_to": ON, "error": self.rules, "pays": False}
                 if isinstance(self.rules, str) else
@@ -252,7 +297,8 @@ class OptimalRows:
         """Lines for the terminal: the rows and the springs' proof."""
         controllers = list(self.rows[0].simulated)
         out = ["  optimal motion (whole-body optimal control, the springs in the dynamics): "
-               "J/m predicted, simulated " + ", ".join(controllers)
+               f"J/m predicted with the foot forces inside {self.margin:g} of the friction cone "
+               "(their friction use), simulated " + ", ".join(controllers)
                + f" (balance feedback {self.feedback})"]
         for r in self.rows:
             if r.unpredicted and set(r.verdicts.values()) == {r.unpredicted}:
@@ -264,7 +310,10 @@ class OptimalRows:
                              for k, v in r.simulated.items())
             said = (f"{r.predicted:7.{d}f}" if r.predicted is not None else
                     f"      — (no prediction: {r.unpredicted})")
-            out.append(f"    {r.label:46s} {said}{_stated(r.spread, d)}   {sims}")
+            out.append(f"    {r.label:46s} {said}{_stated(r.spread, d)}"
+                       f"{self._friction(r)}   {sims}")
+        out += [f"    {r.label}: predicted in the whole friction cone, {r.beyond}"
+                for r in self.rows if r.beyond]
         if self.timing is not None:
             out.append(self.timing.line())
         if self.starts is not None:
@@ -298,8 +347,11 @@ class OptimalRows:
         names = ", ".join(self.springs) or "none"
         if self.bought is not None:
             out.append(f"    its springs ({self.family}, the alternation's): {names}")
-            return out + ["    " + line for line in rule_lines(
+            out += ["    " + line for line in rule_lines(
                 self.bought, self.alternation.motion.distance, "the optimal motion")]
+            if self.rows[-1].beyond:  # the rules' own head does not know the margin
+                out.append(f"    unproven: {self.unproven}")
+            return out
         if isinstance(self.rules, str):
             out.append(f"    full spring rules could not run on the optimal motion "
                        f"({self.rules}): its own springs named")
@@ -307,9 +359,18 @@ class OptimalRows:
             out.append("    springs to buy for it: the co-design's (above)")
             return out
         out.append(f"    springs to buy for it ({self.family}): {names}" + (
-            "" if self.proven else f" — unproven: it does not walk under "
-            f"{' and '.join(k for k, v in self.rows[-1].simulated.items() if v is None)}"))
+            "" if self.proven else f" — unproven: {self.unproven}"))
         return out
+
+
+    def _friction(self, row: MotionRow) -> str:
+        """A row's friction use beside its prediction, flagged where it is beyond the margin
+        (``""`` without a prediction)."""
+        if row.friction_use is None:
+            return ""
+        if row.beyond:
+            return f" (friction {row.friction_use:.2f}, beyond the {self.margin:g} margin)"
+        return f" (friction {row.friction_use:.2f})"
 
 
 def _stated(spread: Spread | None, places: int) -> str:
@@ -346,8 +407,9 @@ def _figure(value: float, spread: Spread | None) -> str:
 
 
 def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: GaitParams,
-                 chosen: GaitParams, springs: SpringSet, predicted: tuple[float, float], *,
-                 family: str = "linear", groups: Groups | None = None, servo: str = "both",
+                 chosen: GaitParams, springs: SpringSet, *,
+                 margin: float = Constraints.friction_margin, family: str = "linear",
+                 groups: Groups | None = None, servo: str = "both",
                  params: Any = None, rounds: int = 4, feedback: str = "auto",
                  timing: str = "gait", starts: str = "gait", min_step: float = 0.0,
                  say: Callable[[str], None] | None = None, keep: Keep | None = None
@@ -357,17 +419,23 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
     Args:
         robot: The robot (free flyer).
         motor: Its motors (a Motor or a MotorSet).
-        contact: The floor (the force program's and the simulation's contact).
+        contact: The floor (the simulation's contact; the force programs plan inside
+            ``margin`` of its friction cone).
         default: The default gait. chosen: The parametric co-design's gait.
         springs: The co-design's springs on ``chosen`` (the alternation's start).
-        predicted: The default gait's and the co-design's predicted J/m (their rows).
+        margin: The planners' friction margin (``[codesign.constraints] friction_margin``),
+            in (0, 1]: every row predicted inside ``margin · μ``
+            (:func:`~hexaleg.design.codesign.alternation.predict`), the alternation, the
+            timing and the starts judged there, and the solver's friction pyramid at
+            ``margin`` of the floor's μ when ``params`` is None.
         family: The spring family of the alternation: the co-design's when it is one of
             :data:`~hexaleg.design.codesign.alternation.SMOOTH_FAMILIES`, else ``linear``
             from no springs (a preload's step has no derivative for DDP).
         groups: The co-design's spring groups (its ``grouping``), which the alternation
             designs on; None: one per joint class.
         servo: The servo (:data:`~hexaleg.simulation.controllers.SERVOS`).
-        params: :class:`~hexaleg.optimal.problem.OptimalParams` (None: defaults).
+        params: :class:`~hexaleg.optimal.problem.OptimalParams` (None: defaults on the
+            floor's μ and ``margin``).
         rounds: The alternation's rounds at most.
         feedback: The simulations' balance feedback, the same for every row (``"auto"``,
             ``"on"``, ``"off"``: :class:`hexaleg.simulation.run.Settings`).
@@ -398,7 +466,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
 
     tell = say or (lambda _line: None)
     began = time.perf_counter()
-    params = params or OptimalParams()
+    params = params or OptimalParams(mu=contact.mu, friction_use=margin)
     start = springs
     if family not in SMOOTH_FAMILIES:
         family, start = "linear", SpringSet()
@@ -407,7 +475,8 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
     if timing == "search":
         tell("contact timing searched about the co-design's gait, with its springs")
         searched = search_timing(robot, chosen, motor, start, contact, params,
-                                 say=lambda line: tell(f"timing: {line}"), keep=keep)
+                                 say=lambda line: tell(f"timing: {line}"), keep=keep,
+                                 margin=margin)
         timed = searched.chosen.params
         tell(f"timing chosen: duty factor {timed.duty_factor:.3g}, period {timed.period:.4g} s")
     first = None if searched is None else searched.chosen.result
@@ -415,7 +484,8 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
     if starts == "lattice":
         tell("starts of the optimal motion tried at that timing, with the co-design's springs")
         multi = search_starts(robot, timed, motor, start, contact, params, min_step,
-                              first=first, say=lambda line: tell(f"starts: {line}"), keep=keep)
+                              first=first, say=lambda line: tell(f"starts: {line}"), keep=keep,
+                              margin=margin)
         timed, params, first = multi.chosen.params, multi.chosen.settings, multi.chosen.result
         tell(f"start chosen: {multi.chosen.label}")
     motion = gait(robot, timed)
@@ -440,15 +510,8 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
     tell("optimal motion with springs (alternation), from the co-design's gait and springs")
     alt = alternate(robot, motion, motor, contact, springs=start, params=params, family=family,
                     groups=groups, rounds=rounds, say=lambda line: tell(f"alternation: {line}"),
-                    keep=keep, first=first)
+                    keep=keep, first=first, margin=margin)
     controllers = controllers_of(servo)
-    unbuilt = "" if bare.task_space is not None else f"not rebuilt: {bare.unbuilt}"
-
-    def bare_judge(result: Any) -> tuple[float | None, str]:
-        """Row 3's figure of a cycle without springs: its rebuilt cycle predicted."""
-        if result.task_space is None:
-            return None, f"not rebuilt: {result.unbuilt}"
-        return predicted_per_metre(robot, result.task_space, motor, SpringSet(), contact)
 
     def bare_again(move: float) -> Any:
         """Row 3's solve from its start moved by ``move`` m."""
@@ -457,14 +520,19 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
     def alt_again(move: float) -> Alternation:
         """Row 4's alternation from its start moved by ``move`` m."""
         return alternate(robot, motion, motor, contact, springs=start, params=params,
-                         family=family, groups=groups, rounds=rounds, move=move)
+                         family=family, groups=groups, rounds=rounds, move=move, margin=margin)
 
-    bare_value, bare_why = (None, unbuilt) if unbuilt else bare_judge(bare)
+    def bare_judged(result: Any) -> Prediction:
+        """Row 3's prediction: the one judge of an optimal cycle, as row 4's."""
+        return judged(robot, result, motion, motor, SpringSet(), contact, margin)
+
+    unbuilt = "" if bare.task_space is not None else f"not rebuilt: {bare.unbuilt}"
+    bare_said = bare_judged(bare)
     cases: list[Case] = []
     if not unbuilt:
-        cases.append(((bare_value, bare.energy_per_metre, bare.stationarity),
+        cases.append(((bare_said.value, bare.energy_per_metre, bare.stationarity),
                       ("no springs", params, timed), bare_again,
-                      lambda r: (bare_judge(r)[0], r.energy_per_metre, r.stationarity)))
+                      lambda r: (bare_judged(r).value, r.energy_per_metre, r.stationarity)))
     if not alt.kept_gait:
         cases.append(((alt.predicted, alt.best.energy_per_metre, alt.best.stationarity),
                       ("alternation", start, params, family, groups, rounds, timed),
@@ -477,30 +545,35 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
              + ", ".join(f"{m:+.0e}" for m in MOVES) + " m")
     measured = iter(spreads(robot, cases, keep))
     spread = (None if unbuilt else next(measured), None if alt.kept_gait else next(measured))
-    table = ((LABELS[0], predicted[0], "", gait(robot, default), SpringSet(), "", None),
-             (LABELS[1], predicted[1], "", gait(robot, chosen), springs, "", None),
-             (LABELS[2], bare_value, bare_why, bare.task_space, SpringSet(), unbuilt, spread[0]),
-             (LABELS[3], alt.predicted, "", alt.motion, alt.springs, "", spread[1]))
+    walks = (gait(robot, default), gait(robot, chosen))
+    last = (predict(robot, alt.motion, motor, alt.springs, contact, margin) if alt.kept_gait
+            else judged(robot, alt.best, motion, motor, alt.springs, contact, margin))
+    table = ((LABELS[0], predict(robot, walks[0], motor, SpringSet(), contact, margin),
+              walks[0], SpringSet(), None),
+             (LABELS[1], predict(robot, walks[1], motor, springs, contact, margin), walks[1],
+              springs, None),
+             (LABELS[2], bare_said, bare.task_space, SpringSet(), spread[0]),
+             (LABELS[3], last, alt.motion, alt.springs, spread[1]))
     rows = []
-    for label, value, why, played, fitted, unplayed, stated in table:
+    for label, said, played, fitted, stated in table:
+        if played is None:  # the bare cycle not rebuilt: nothing to predict or play
+            rows.append(MotionRow(label, None, dict.fromkeys(controllers), dict.fromkeys(
+                controllers, unbuilt), {}, unbuilt))
+            tell(f"{label}: {unbuilt}")
+            continue
         sims: dict[str, float | None] = {}
         verdicts: dict[str, str] = {}
         loops: dict[str, str] = {}
-        if unplayed:  # the bare cycle not rebuilt: nothing to predict or play
-            rows.append(MotionRow(label, None, dict.fromkeys(controllers), dict.fromkeys(
-                controllers, unplayed), {}, unplayed))
-            tell(f"{label}: {unplayed}")
-            continue
         for k in controllers:
             sims[k], verdicts[k], closed = simulated_run(robot, played, motor, fitted, k,
                                                          contact, feedback)
             loops[k] = "" if closed is None else "balance feedback" if closed else "open loop"
-        if value is None and not why:  # row 3 was predicted above, with its spread
-            value, why = predicted_per_metre(robot, played, motor, fitted, contact)
-        rows.append(MotionRow(label, value, sims, verdicts, loops, why, stated))
+        rows.append(MotionRow(label, said.value, sims, verdicts, loops,
+                              said.why if said.value is None else "", stated,
+                              said.friction_use, said.why if said.beyond else ""))
         tell(f"simulated {label} under {' and '.join(controllers)}")
     return OptimalRows(tuple(rows), alt.springs, family, bare, alt, robot, servo,
-                       time.perf_counter() - began, feedback, searched, multi)
+                       time.perf_counter() - began, feedback, searched, multi, margin)
 
 
 __all__ = ["LABELS", "MotionRow", "OptimalRows", "optimal_rows"]

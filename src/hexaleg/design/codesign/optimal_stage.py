@@ -126,8 +126,8 @@ def with_optimal(result: CodesignResult, model: Robot, motor: Any, groups: Group
     keep = KeptSolves(stages, model, tell)
     optimal = optimal_rows(model, motor, result.constraints.contact(), result.default,
                            result.chosen, result.springs,
-                           (result.rows[0].per_metre, result.rows[3].per_metre),
-                           family=result.family, groups=groups, servo=servo,
+                           margin=result.constraints.friction_margin, family=result.family,
+                           groups=groups, servo=servo,
                            feedback=feedback, timing=timing, starts=starts,
                            min_step=result.constraints.min_foot_clearance, say=tell,
                            keep=keep, params=params)

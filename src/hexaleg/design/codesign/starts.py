@@ -30,6 +30,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from hexaleg.design.codesign.alternation import PROGRESS, Keep, apart, judged, least
+from hexaleg.design.codesign.gait_evaluation import Constraints
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import HexalegError
 from hexaleg.motion.legged import gait
@@ -143,7 +144,8 @@ def starts(chosen: GaitParams, params: Any, min_step: float
 def search_starts(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringSet,
                   contact: ContactParams, params: Any, min_step: float, *,
                   first: Any = None, say: Callable[[str], None] | None = None,
-                  keep: Keep | None = None) -> StartSearch:
+                  keep: Keep | None = None,
+                  margin: float = Constraints.friction_margin) -> StartSearch:
     """Each start of :func:`starts` solved with ``springs`` and predicted rebuilt, the solves
     side by side on the command's workers (:func:`~hexaleg.design.codesign.alternation.apart`);
     the least prediction chosen (module docstring).
@@ -158,6 +160,9 @@ def search_starts(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringS
             solved already (the timing search's); None: solved here.
         say: Where progress lines go.
         keep: Runs each solve given what defines it (its gait, springs and settings).
+        margin: The planners' friction margin: each cycle predicted inside ``margin · μ``
+            (:func:`~hexaleg.design.codesign.alternation.judged`; one with no forces there has
+            no prediction and is not chosen).
 
     Raises:
         BackendError: no usable Crocoddyl.
@@ -185,14 +190,18 @@ def search_starts(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringS
     run = [k for k in motions if not (k == 0 and given)]
 
     def judge(index: int, result: Any) -> tuple[float | None, str]:
-        return judged(robot, result, motions[run[index]], motor, springs, contact)
+        return figure(run[index], result)
+
+    def figure(k: int, result: Any) -> tuple[float | None, str]:
+        said = judged(robot, result, motions[k], motor, springs, contact, margin)
+        return said.judged, said.why
 
     done = dict(zip(run, apart(
         [(("start", lattice[k][1], springs, lattice[k][2]),
           functools.partial(solved, *lattice[k])) for k in run], robot, keep, judge),
         strict=True))
     if given:
-        done[0] = (first, judged(robot, first, motions[0], motor, springs, contact))
+        done[0] = (first, figure(0, first))
     tried = []
     for k, (label, g, settings) in enumerate(lattice):
         if k in unmade:

@@ -32,6 +32,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from hexaleg.design.codesign.alternation import PROGRESS, Keep, apart, judged, least
+from hexaleg.design.codesign.gait_evaluation import Constraints
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import HexalegError
 from hexaleg.motion.legged import gait
@@ -131,7 +132,8 @@ def candidates(chosen: GaitParams) -> list[GaitParams]:
 def search_timing(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringSet,
                   contact: ContactParams, params: Any, *,
                   say: Callable[[str], None] | None = None,
-                  keep: Keep | None = None) -> TimingSearch:
+                  keep: Keep | None = None,
+                  margin: float = Constraints.friction_margin) -> TimingSearch:
     """Each timing of :func:`candidates` solved with ``springs`` and predicted rebuilt, the
     solves side by side on the command's workers
     (:func:`~hexaleg.design.codesign.alternation.apart`); the least prediction chosen (module
@@ -144,6 +146,9 @@ def search_timing(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringS
         params: :class:`~hexaleg.optimal.problem.OptimalParams`.
         say: Where progress lines go.
         keep: Runs each solve given what defines it (its gait, springs and settings).
+        margin: The planners' friction margin: each cycle predicted inside ``margin · μ``
+            (:func:`~hexaleg.design.codesign.alternation.judged`; one with no forces there has
+            no prediction and is not chosen).
 
     Raises:
         BackendError: no usable Crocoddyl.
@@ -171,7 +176,8 @@ def search_timing(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringS
     run = list(motions)
 
     def judge(index: int, result: Any) -> tuple[float | None, str]:
-        return judged(robot, result, motions[run[index]], motor, springs, contact)
+        said = judged(robot, result, motions[run[index]], motor, springs, contact, margin)
+        return said.judged, said.why
 
     done = dict(zip(run, apart([(("timing", lattice[k], springs, params),
                                  functools.partial(solved, lattice[k])) for k in run],
