@@ -599,7 +599,7 @@ def _optimal_table(log: str) -> dict[str, list[str]]:
     rows = {}
     for label, figure, sims in re.findall(
             r"^    ((?:default gait|parametric co-design|optimal motion)[^0-9—]*?)\s{2,}"
-            r"(\S+)(?: ±\S+)?\s+(.*)$", block, re.MULTILINE):
+            r"(\S+)(?: ±\S+)?(?: \(friction [^)]*\))?\s+(.*)$", block, re.MULTILINE):
         parts, depth, start = [], 0, 0
         for i, ch in enumerate(sims):  # the servos' cells: ", " outside parentheses
             depth += {"(": 1, ")": -1}.get(ch, 0)
@@ -692,12 +692,10 @@ def test_the_landing_on_solo12_is_the_kept_logs():
     doc = DOC.read_text(encoding="utf-8")
     text = doc[doc.index("## Under position servos: the landing"):doc.index("## How it compares")]
     flat = " ".join(text.split())
-    landing = _optimal_table((LOGS / "codesign_motion_optimal_solo12_landing.log").read_text(
-        encoding="utf-8"))
-    log = (LOGS / "codesign_motion_optimal_solo12.log").read_text(encoding="utf-8")
-    block = log[log.index("on today's code (this stop's integration, its source as at 33bcd0e)"):]
-    block = block[:block.index("# =====")]
-    before = _optimal_table(re.sub(r"^\d\d:\d\d:\d\d ", "", block, flags=re.MULTILINE))
+    log = (LOGS / "codesign_motion_optimal_solo12_landing.log").read_text(encoding="utf-8")
+    cut = log.index("# ===== without the weight")
+    landing = _optimal_table(log[:cut])
+    before = _optimal_table(re.sub(r"^\d\d:\d\d:\d\d ", "", log[cut:], flags=re.MULTILINE))
     sprung, bare = landing["optimal motion, its springs"], landing["optimal motion, no springs"]
     was_sprung, was_bare = (before["optimal motion, its springs"],
                             before["optimal motion, no springs"])
