@@ -39,7 +39,7 @@ dynamics gap, friction use, slip, drift, periodicity and the solve's CPU seconds
 process's, one OpenMP thread).
 
 ``--alternate`` then runs the command's alternation (springs by class, 4 rounds, tolerance
-0.01) from the Euler row and from the RK4 row's first optimum, its rounds solved with that
+0.01) from the Euler row and from the first RK4 row that solved, its rounds solved with that
 integrator; ``--simulate`` simulates each alternation's answer with its springs under both servos
 (balance feedback ``auto``, as the command's rows). Each solve is kept in ``--work`` as it ends
 (:class:`~hexaleg.design.codesign.optimal_stage.KeptSolves`, keyed by the codesign.json's
@@ -151,21 +151,26 @@ def defect(built: OptimalProblem, x: np.ndarray, u: np.ndarray) -> float:
     return worst
 
 
-Row = tuple[str, str, str]
-"""``(label, integrator, start)``: one solve of the table; ``start`` ``"gait"`` (the command's:
-the gait's states and their quasi-static controls) or ``"euler"`` (the Euler row's optimum)."""
+Row = tuple[str, str, str, str]
+"""``(label, integrator, start, name)``: one solve of the table; ``start`` ``"gait"`` (the
+command's: the gait's states and their quasi-static controls) or the ``name`` of an earlier
+row whose optimum starts it; ``name`` the one this row's optimum takes when it is the first of
+that name to solve ("": none)."""
 
 ROWS: tuple[Row, ...] = (
-    ("euler (the command's solve)", "euler", "gait"),
-    ("euler again from its optimum", "euler", "euler"),
-    ("rk4 from the gait", "rk4", "gait"),
-    ("rk4 from euler's optimum", "rk4", "euler"),
-    ("rk2 from the gait", "rk2", "gait"),
-    ("rk2 from euler's optimum", "rk2", "euler"),
+    ("euler (the command's solve)", "euler", "gait", "euler"),
+    ("euler again from its optimum", "euler", "euler", ""),
+    ("rk2 from the gait", "rk2", "gait", ""),
+    ("rk2 from euler's optimum", "rk2", "euler", "rk2"),
+    ("rk4 from the gait", "rk4", "gait", "rk4"),
+    ("rk4 from euler's optimum", "rk4", "euler", "rk4"),
+    ("rk4 from rk2's optimum", "rk4", "rk2", "rk4"),
 )
 """The rows: each integrator from the command's start, and from the Euler optimum (its defect
 closed by the feasibility-driven solve), Euler itself given the same 100 iterations more as the
-fair reference of the latter."""
+fair reference of those; RK4 also from the RK2 optimum started from Euler's (a step between:
+box-FDDP's line search from Euler's optimum under RK4 can try a step whose rollout leaves the
+finite numbers, and the springs' actuation raises there instead of the step being refused)."""
 
 
 def main() -> None:
@@ -199,10 +204,15 @@ def main() -> None:
                                     OptimalParams(integrator=name))
                 for name in WEIGHTS}
     solved: dict[str, OptimalResult] = {}
+    source: dict[str, str] = {}
     lines = []
-    for label, name, origin in ROWS:
+    for label, name, origin, saved in ROWS:
         built = built_of[name]
-        warm = None if origin == "gait" else (solved["euler"].x, solved["euler"].torques)
+        if origin != "gait" and origin not in solved:
+            lines.append(f"{label:30s} not run: no {origin} optimum to start from")
+            out(lines[-1])
+            continue
+        warm = None if origin == "gait" else (solved[origin].x, solved[origin].torques)
 
         def compute(built: OptimalProblem = built, warm: Any = warm
                     ) -> tuple[OptimalResult | None, float, str]:
@@ -216,8 +226,8 @@ def main() -> None:
             lines.append(f"{label:30s} failed after {cpu:.1f} s CPU: {failed}")
             out(lines[-1])
             continue
-        if origin == "gait" or name not in solved:  # an integrator's first optimum
-            solved[name] = result
+        if saved and saved not in solved:
+            solved[saved], source[saved] = result, label
         x, u = result.x, result.torques
         defects = {n: defect(b, x, u) for n, b in built_of.items()}
         built.problem.calc(list(x), list(u))  # the row's own datas for the knots' figures
@@ -245,7 +255,7 @@ def main() -> None:
         "the solver's J/m by its knot's own quadrature; residual = Newton–Euler by "
         "(v_{k+1} − v_k)/dt (Euler's check), at knots = RNEA at each knot's own acceleration, "
         "N·m; → X = the knots' largest defect stepped by X (‖x_{k+1} ⊖ f(x_k, u_k)‖∞); "
-        "its = box-FDDP iterations of the row (from euler's optimum: after euler's 100); slip "
+        "its = box-FDDP iterations of the row (after those of the row it starts from); slip "
         "mm/s, drift mm, period. = periodicity gap")
     if args.alternate:
         groups = design_groups(robot, tuple(robot.joint_classes), "class")
@@ -259,8 +269,8 @@ def main() -> None:
                             first=first,
                             keep=keep, say=lambda line: None)
             r = alt.best
-            out(f"alternation from the {name} row (the command's: 4 rounds, tolerance 0.01, "
-                "springs by class): "
+            out(f"alternation from the row {source[name]} (the command's: 4 rounds, tolerance "
+                "0.01, springs by class): "
                 + " → ".join("—" if e is None else f"{e:.3f}" for e in alt.energies)
                 + f" J/m judged (first: the gait; {len(alt.rounds)} rounds, the gait kept: "
                 f"{alt.kept_gait}); its solver's {r.energy_per_metre:.3f} J/m at the knots, "
