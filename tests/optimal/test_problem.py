@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import hexaleg
-from hexaleg.errors import InvalidParameterError
+from hexaleg.errors import InvalidParameterError, UnknownNameError
 
 pytest.importorskip("crocoddyl")
 
@@ -116,6 +116,79 @@ def test_the_gains_are_dead_beat_for_the_knot():
     assert e + dt * v1 == pytest.approx(0.0, abs=1e-18)
     with pytest.raises(InvalidParameterError, match="dt"):
         contact_gains(0.0)
+
+
+@pytest.mark.parametrize("integrator, order", [("rk2", 2), ("rk3", 3), ("rk4", 4)])
+def test_the_runge_kutta_gains_are_dead_beat_for_their_knot(integrator, order):
+    """The error ODE ``ë = −k_p e − k_d ė`` stepped by the explicit Runge–Kutta of the knot's
+    order (its step matrix ``Σ_{i ≤ p} (dt A)ⁱ/i!``) lands on zero from any error and speed.
+    The Euler gains under RK4 leave 94 % of a 1 mm error (spectral radius 0.61)."""
+    import math
+
+    from hexaleg.optimal.problem import contact_gains
+
+    dt = 0.025
+    kp, kd = contact_gains(dt, integrator)
+    a = dt * np.array([[0.0, 1.0], [-kp, -kd]])
+    step = sum(np.linalg.matrix_power(a, i) / math.factorial(i) for i in range(order + 1))
+    np.testing.assert_allclose(step @ [1e-3, 0.02 * dt], 0.0, atol=1e-15)
+    with pytest.raises(UnknownNameError, match="integrator"):
+        contact_gains(dt, "rk5")
+
+
+def test_a_runge_kutta_knot_holds_its_stance_feet_on_their_footholds(run):
+    """``integrator="rk4"``: every running knot Crocoddyl's RK4 with its dead-beat gains (the
+    terminal knot Euler's of zero step); the whole robot moved 1 mm off its footholds is back on
+    them at the next knot, to a few per cent, as with Euler's knot. With the gains
+    ``k_p = 1/dt², k_d = 1/dt`` an RK4 knot leaves them 1.15 mm off (of 1.73 mm)."""
+    import crocoddyl
+    import pinocchio as pin
+
+    from hexaleg.optimal.problem import contact_gains
+
+    robot = run.model
+    nq = robot.model.nq
+    b = build_problem(robot, run.motion(), run.actuator, hexaleg.SpringSet(),
+                      OptimalParams(nodes=20, integrator="rk4"))
+    assert all(isinstance(m, crocoddyl.IntegratedActionModelRK)
+               for m in b.problem.runningModels)
+    assert isinstance(b.problem.terminalModel, crocoddyl.IntegratedActionModelEuler)
+    k = 3
+    model = b.problem.runningModels[k]
+    for item in model.differential.contacts.contacts.todict().values():
+        np.testing.assert_allclose(item.contact.gains, contact_gains(b.dt, "rk4"))
+    data = model.createData()
+    x = b.x_warm[k].copy()
+    x[:3] += [1e-3, -1e-3, 1e-3]
+    model.calc(data, x, model.quasiStatic(data, x))
+    pin.framesForwardKinematics(robot.model, robot.data, data.xnext[:nq])
+    for j in np.flatnonzero(b.stance[k]):
+        foot = robot.data.oMf[robot.legs[j].foot_frame_id].translation
+        assert np.linalg.norm(foot - b.footholds[k, j]) < 0.05 * np.sqrt(3) * 1e-3
+    with pytest.raises(UnknownNameError, match="integrator"):
+        OptimalParams(integrator="implicit")
+
+
+def test_a_runge_kutta_knots_forces_are_its_first_stages(run):
+    """The solve reads a Runge–Kutta knot's contact forces from its first stage (the dynamics
+    at the knot's own state), not its last, and none for a swing foot."""
+    from hexaleg.optimal.solve import _forces
+
+    robot = run.model
+    b = build_problem(robot, run.motion(), run.actuator, hexaleg.SpringSet(),
+                      OptimalParams(nodes=20, integrator="rk4"))
+    xs = list(b.x_warm)
+    b.problem.calc(xs, list(b.problem.quasiStatic(xs[:-1])))
+    forces = _forces(robot, b)
+    for k, data in enumerate(b.problem.runningDatas):
+        first = data.differential[0].multibody.contacts.contacts.todict()
+        last = data.differential[3].multibody.contacts.contacts.todict()
+        for j, leg in enumerate(robot.legs):
+            if b.stance[k, j]:
+                np.testing.assert_array_equal(forces[k, j], first[leg.name].f.linear)
+                assert np.abs(forces[k, j] - last[leg.name].f.linear).max() > 1e-6
+            else:
+                assert not forces[k, j].any()
 
 
 def test_a_swing_foot_below_the_ground_is_penalised(run, built):

@@ -18,7 +18,9 @@ costs), here with
   limits, the motor's no-load speed) as quadratic barriers, which are zero inside the bounds;
 * each stance foot held at its foothold, the point where the warm start's foot lands (the
   contact's Baumgarte stabilisation ``a_c = −k_p (p − p*) − k_d v_c`` with the dead-beat gains
-  ``k_p = 1/dt², k_d = 1/dt`` of the semi-implicit Euler step, :func:`contact_gains`), landing
+  ``k_p = 1/dt², k_d = 1/dt`` of the semi-implicit Euler step, :func:`contact_gains`; a
+  Runge–Kutta knot (``OptimalParams.integrator``, a probe: analysis/bench_optimal_integrator.py)
+  takes its own dead-beat gains), landing
   there (a cost on the foot's distance to its foothold at its touch-down knot) at rest (a cost
   on its linear velocity there; no impact model);
 * each leg kept ``reach_margin`` short of full stretch at every knot (its knee, the last joint
@@ -40,7 +42,7 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.checks import integer, positive, real
+from hexaleg.checks import integer, one_of, positive, real
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.trajectory import Motion
 from hexaleg.optimal.actuation import SpringActuation, sprung_joints
@@ -107,6 +109,12 @@ class OptimalParams:
             (:class:`~hexaleg.optimal.servo_effort.ServoEffortCost`: the lag a position servo
             lands with); 0 (default): off, the problem unchanged.
         servo_landing_knots: The last swing knots of each leg that cost is on (≥ 1).
+        integrator: How a knot integrates its dynamics and cost, one of :data:`INTEGRATORS`:
+            ``"euler"`` Crocoddyl's semi-implicit Euler (``IntegratedActionModelEuler``), or
+            ``"rk2"``, ``"rk3"``, ``"rk4"`` its explicit Runge–Kutta of that order
+            (``IntegratedActionModelRK``, the control held over the knot) — a probe of issue
+            #56 (analysis/bench_optimal_integrator.py): the Newton–Euler residual
+            (:mod:`~hexaleg.optimal.residual`) checks Euler knots only.
     """
 
     nodes: int = 40
@@ -127,8 +135,10 @@ class OptimalParams:
     stop: float = 1e-8
     servo_landing_weight: float = 0.0
     servo_landing_knots: int = 1
+    integrator: str = "euler"
 
     def __post_init__(self) -> None:
+        one_of("OptimalParams.integrator", self.integrator, INTEGRATORS)
         integer("OptimalParams.nodes", self.nodes, low=8)
         integer("OptimalParams.servo_landing_knots", self.servo_landing_knots, low=1)
         real("OptimalParams.servo_landing_weight", self.servo_landing_weight, low=0.0)
@@ -178,6 +188,20 @@ class OptimalProblem:
     contact_names: list[list[str]] = field(default_factory=list)
 
 
+INTEGRATORS = ("euler", "rk2", "rk3", "rk4")
+"""The knots' integrators (:attr:`OptimalParams.integrator`)."""
+
+
+RK_GAINS = {"rk2": (2.0, 2.0), "rk3": (3.759229759624812, 1.4039283620166814),
+            "rk4": (3.781252789774624, 3.4588884621354117)}
+"""``(k_p dt², k_d dt)`` of the dead-beat contact gains of each Runge–Kutta knot
+(:func:`contact_gains`)."""
+
+
+RK_ORDER = {"rk2": "two", "rk3": "three", "rk4": "four"}
+"""Crocoddyl's ``RKType`` of each Runge–Kutta integrator."""
+
+
 LINEAR = np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
 """Weights of a frame velocity's (linear, angular) parts in the landing cost: a round foot may
 roll as it lands, it must not slide."""
@@ -220,7 +244,7 @@ def _references(robot: Robot, qs: np.ndarray, stance: np.ndarray,
     return out
 
 
-def contact_gains(dt: float) -> np.ndarray:
+def contact_gains(dt: float, integrator: str = "euler") -> np.ndarray:
     """Baumgarte gains ``(k_p, k_d)`` that hold a contact point on its reference ``p*`` across
     one semi-implicit Euler knot of ``dt`` (Baumgarte, *Comput. Methods Appl. Mech. Eng.* 1,
     1972; the step as Crocoddyl's ``IntegratedActionModelEuler`` takes it): with the contact
@@ -228,9 +252,22 @@ def contact_gains(dt: float) -> np.ndarray:
     ``e' = e + dt v'``, so ``e' = (1 − k_p dt²) e + dt (1 − k_d dt) v_c``; ``k_p = 1/dt²``,
     ``k_d = 1/dt`` make it zero — the foot is back on its point at the next knot, to second
     order in the knot's change of the contact Jacobian. With ``k_p = 0`` (damping alone) the
-    position is not held: the ``J̇ v dt²`` each knot leaves accumulates over the stance."""
+    position is not held: the ``J̇ v dt²`` each knot leaves accumulates over the stance.
+
+    A Runge–Kutta knot of order ``p ≤ 4`` (``integrator`` ``"rk2"`` … ``"rk4"``) steps the
+    error's ODE ``ë = −k_p e − k_d ė`` (the contact acceleration is held to it at every
+    stage) by its stability function ``R(z) = Σ_{i ≤ p} zⁱ/i!`` at the eigenvalues ``z`` of
+    ``dt [[0, 1], [−k_p, −k_d]]`` (Hairer & Wanner, *Solving ODEs II*, §IV.2), the roots of
+    ``z² + k_d dt z + k_p dt² = 0``; gains that put those on a complex pair of ``R``'s roots
+    make the step dead-beat too (:data:`RK_GAINS`; RK4's better-damped pair
+    ``−1.729 ± 0.889 i``, damping ratio 0.89, not ``−0.271 ± 2.505 i``, 0.11, which rings
+    between the stages)."""
     dt = positive("dt", dt)
-    return np.array([1.0 / dt**2, 1.0 / dt])
+    one_of("integrator", integrator, INTEGRATORS)
+    if integrator == "euler":
+        return np.array([1.0 / dt**2, 1.0 / dt])
+    kp, kd = RK_GAINS[integrator]
+    return np.array([kp / dt**2, kd / dt])
 
 
 def _landing_knots(stance: np.ndarray, knots: int) -> np.ndarray:
@@ -293,7 +330,7 @@ def build_problem(robot: Robot, motion: Motion, actuator: Any, springs: SpringSe
     limit = np.broadcast_to(np.asarray(actuator.stall_torque, float), (nu,))
     speed = np.broadcast_to(np.asarray(actuator.no_load_speed, float), (nu,))
     dt = motion.period / n
-    gains = contact_gains(dt)
+    gains = contact_gains(dt, params.integrator)
     bent_lo, bent_hi = knee_bounds(robot, motion.q[samples], params.reach_margin)
     lo = np.hstack([np.full((n, 6), -1e6), bent_lo[:, 7:], np.full((n, 6), -1e6),
                     np.tile(-speed, (n, 1))])
@@ -361,7 +398,11 @@ def build_problem(robot: Robot, motion: Motion, actuator: Any, springs: SpringSe
         dam = crocoddyl.DifferentialActionModelContactFwdDynamics(state, actuation, contacts,
                                                                   costs, 0.0, True)
         dam.u_lb, dam.u_ub = -limit.copy(), limit.copy()
-        models.append(crocoddyl.IntegratedActionModelEuler(dam, 0.0 if terminal else dt))
+        if terminal or params.integrator == "euler":
+            models.append(crocoddyl.IntegratedActionModelEuler(dam, 0.0 if terminal else dt))
+        else:
+            models.append(crocoddyl.IntegratedActionModelRK(
+                dam, getattr(crocoddyl.RKType, RK_ORDER[params.integrator]), dt))
     problem = crocoddyl.ShootingProblem(x_warm[0].copy(), models[:-1], models[-1])
     return OptimalProblem(problem, state, actuation, x_warm, stance, dt, motion.period,
                           motion.distance, displacement, power, params, refs, names)

@@ -57,8 +57,9 @@ class OptimalResult:
 
     Attributes:
         motion: The solver's knots as a Motion (N samples ``dt`` apart, ``info["source"] =
-            "optimal"``, ``info["integrator"]`` semi-implicit): what the solver planned and
-            booked, not a motion to play (between its knots the stance feet are not held).
+            "optimal"``, ``info["integrator"]`` semi-implicit, absent for a Runge–Kutta knot):
+            what the solver planned and booked, not a motion to play (between its knots the
+            stance feet are not held).
         task_space: The cycle rebuilt in task space (:mod:`~hexaleg.optimal.task_space`,
             :data:`PER_KNOT` samples a knot): the optimal motion that hexaleg's pipeline predicts,
             a simulation plays and a motion file holds; None where it cannot be rebuilt
@@ -69,7 +70,9 @@ class OptimalResult:
         x: The states at the knots and the final one, (N + 1, nq + nv).
         energy: Electrical energy of the cycle by the exact model, J.
         energy_per_metre: ``energy / distance``, J/m.
-        residual: Largest Newton–Euler residual (:mod:`~hexaleg.optimal.residual`), N·m.
+        residual: Largest Newton–Euler residual (:mod:`~hexaleg.optimal.residual`), N·m; a
+            check of Euler knots only (of Runge–Kutta knots it measures their acceleration's
+            change within the knot, not an error).
         iterations: Box-FDDP iterations run, those that closed the gap included.
         converged: Whether the solver met its stopping criterion (``stationarity ≤ threshold``).
         stationarity: The stopping criterion's value at the end (module docstring).
@@ -139,11 +142,14 @@ class _Progress(_CallbackAbstract):
 def _forces(robot: Robot, built: OptimalProblem) -> np.ndarray:
     """Each leg's foot force in world axes at every running knot, (N, n_legs, 3): the contact
     data's ``f``, the force in the contact's own coordinates — world-aligned axes at the foot
-    for the ``LOCAL_WORLD_ALIGNED`` contacts of :mod:`~hexaleg.optimal.problem`."""
+    for the ``LOCAL_WORLD_ALIGNED`` contacts of :mod:`~hexaleg.optimal.problem`; of a
+    Runge–Kutta knot, its first stage's (the dynamics at the knot's state)."""
     n = len(built.problem.runningModels)
     out = np.zeros((n, len(robot.legs), 3))
     for k, data in enumerate(built.problem.runningDatas):
-        contacts = data.differential.multibody.contacts.contacts.todict()
+        differential = (data.differential if built.params.integrator == "euler"
+                        else data.differential[0])
+        contacts = differential.multibody.contacts.contacts.todict()
         for j, leg in enumerate(robot.legs):
             if leg.name in contacts:
                 out[k, j] = contacts[leg.name].f.linear
@@ -217,8 +223,9 @@ def solve(robot: Robot, built: OptimalProblem, *, say: Callable[[str], None] | N
     motion = Motion(t=np.arange(n) * built.dt, q=x[:-1, :nq].copy(), v=x[:-1, nq:].copy(),
                     a=np.diff(x[:, nq:], axis=0) / built.dt, stance=built.stance.copy(),
                     feet=feet, period=built.period, distance=built.distance,
-                    info={"source": "optimal", "integrator": SEMI_IMPLICIT,
-                          "cycle": built.displacement.tolist(),
+                    info={"source": "optimal", "cycle": built.displacement.tolist(),
+                          **({"integrator": SEMI_IMPLICIT} if params.integrator == "euler"
+                             else {}),
                           "knots": n, "energy_per_metre": energy / built.distance
                           if built.distance > 0 else float("nan")})
     try:  # a cycle that is not rebuilt is still the solver's answer: the caller says why

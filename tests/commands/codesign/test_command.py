@@ -95,6 +95,9 @@ def test_the_optimal_problem_is_set_by_a_codesign_optimal_table(tmp_path, capsys
     bad.write_text('[codesign]\nmotion = "optimal"\n[codesign.optimal]\nmu = 0.9\n')
     assert main(["codesign", "--config", str(bad), "--out", str(tmp_path / "o")]) == 2
     assert "the optimal motion plans on the run's floor, [contact] mu" in capsys.readouterr().err
+    bad.write_text('[codesign]\nmotion = "optimal"\n[codesign.optimal]\nintegrator = "rk4"\n')
+    assert main(["codesign", "--config", str(bad), "--out", str(tmp_path / "o")]) == 2
+    assert "integrator = 'rk4': the command solves Euler knots only" in capsys.readouterr().err
 
 
 def test_starts_are_a_decision_of_the_optimal_rows_only(tmp_path, capsys):
