@@ -703,3 +703,31 @@ def test_the_landing_on_solo12_is_the_kept_logs():
     assert f"under position servos for {sprung[-1]} ({was_sprung[-1]})" in flat
     assert f"walks for {bare[1]} and {bare[2]} J/m where it walked for {was_bare[1]} and " \
            f"{was_bare[2]}" in flat
+
+
+def test_the_integrator_probe_is_the_kept_log():
+    """The knots' integrator table prints bench_optimal_integrator.log row for row: each
+    pattern's first solve (rebuilt / solver), its alternation's answer and that answer
+    simulated, for the command's Euler knots and the RK4 row the alternation ran from."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("## The knots' integrator (a probe)"):
+               doc.index("## Under position servos: the landing")]
+    log = (LOGS / "bench_optimal_integrator.log").read_text(encoding="utf-8")
+    blocks = dict(zip(("tripod", "wave"), log.split("\n# wave: ")[:2], strict=True))
+    table = text[text.index("| pattern | knots |"):].split("\n\n")[0].splitlines()[2:]
+    assert len(table) == 4
+    for row in table:
+        pattern, knots, first, alternation, simulated = (
+            c.strip() for c in row.strip("|").split("|"))
+        block = blocks[pattern]
+        name = ("euler (the command's solve)" if knots.startswith("Euler") else
+                "rk4 from " + re.search(r"from (.+?)\)", knots)[1].lower())
+        solved = re.search(rf"^{re.escape(name)}\s+([0-9.]+)\s+([0-9.]+)\s", block,
+                           re.MULTILINE)
+        assert first == f"{solved[1]} / {solved[2]}", row
+        alt = re.search(rf"^alternation from the row {re.escape(name)} .*?→ ([0-9.]+) J/m "
+                        r"judged .*?the gait kept: (\w+)\);.*?\n  its answer simulated .*?"
+                        r"feedforward ([0-9.]+) .*?position ([0-9.]+)", block,
+                        re.MULTILINE | re.DOTALL)
+        kept = " (the gait kept)" if alt[2] == "True" else ""
+        assert alternation == f"{alt[1]}{kept}" and simulated == f"{alt[3]} / {alt[4]}", row
