@@ -135,7 +135,10 @@ def test_the_page_buys_the_optimal_motions_springs_by_the_full_rules(ruled):
     data["optimal"] = {
         "rows": [{"label": f"row {k}", "predicted": {"value": 9.0 + k, "unit": "J/m"},
                   "decimals": 2, "simulated": {"feedforward": None}, "verdicts":
-                  {"feedforward": "fell"}, "loops": {}} for k in range(4)],
+                  {"feedforward": "fell"}, "loops": {},
+                  "friction_use": {"value": 0.55, "unit": "1"}, "within_margin": True}
+                 for k in range(4)],
+        "friction_margin": {"value": 0.7, "unit": "1"},
         "springs": [{"family": "linear", "joint": "LF_femur", "parameters": {}}],
         "family": "linear", "proven": True, "residual": {"value": 8e-15, "unit": "N·m"},
         "springs_motion": solver, "no_springs": solver, "feedback": "auto",
