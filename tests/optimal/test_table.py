@@ -584,7 +584,7 @@ def test_the_stated_spread_is_the_kept_logs():
     assert "17.5 and 17.6 J/m under position servos" in text
     head = (LOGS / "codesign_motion_optimal_spread.log").read_text(encoding="utf-8")
     cost = re.search(r"/usr/bin/time -v: ([0-9.]+) s user \+ [0-9.]+ s system, (\d+ min \d+ s) "
-                     r"wall at load ([0-9.]+ to [0-9.]+) \(at 3ec0662, .*?: ([0-9.]+) \+", head)
+                     r"wall at load ([0-9.]+ to [0-9.]+) \(.*?at 3ec0662, .*?: ([0-9.]+) \+", head)
     assert cost and (f"took {cost[1]} s of user CPU and {cost[2]} wall at load {cost[3]}, "
                      f"against {cost[4]} s at 3ec0662") in doc
     for walked in ("17\\.5", "17\\.6"):
@@ -731,3 +731,16 @@ def test_the_integrator_probe_is_the_kept_log():
                         re.MULTILINE | re.DOTALL)
         kept = " (the gait kept)" if alt[2] == "True" else ""
         assert alternation == f"{alt[1]}{kept}" and simulated == f"{alt[3]} / {alt[4]}", row
+
+
+def test_the_landing_on_the_default_robot_is_the_kept_logs():
+    """The landing section's whole-command figures are the two default-robot logs' last rows
+    (with the weight and without)."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("## Under position servos: the landing"):doc.index("## How it compares")]
+    flat = " ".join(text.split())
+    with_, without = (_optimal_table((LOGS / name).read_text(encoding="utf-8"))[
+        "optimal motion, its springs"] for name in ("codesign_motion_optimal_landing.log",
+                                                    "codesign_motion_optimal_spread.log"))
+    assert (f"{with_[0]} ±0.1 J/m predicted, {with_[1]} under feedforward and {with_[2]} under "
+            f"position servos, against {without[1]} and {without[2]} without the weight") in flat
