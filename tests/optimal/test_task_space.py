@@ -153,7 +153,7 @@ def test_a_trots_rebuilt_base_balances_its_two_feet(trot, monkeypatch):
     solved with: ``u · (L̇_G + (G − c) × m (a_G − g)) = 0`` at every two-foot sample — the force
     program finds stance forces at every sample, and the base stays within 1 mm and 5 mrad of
     its knots (measured 0.56 mm and a roll of 3.5 mrad)."""
-    from hexaleg.design.codesign.optimal_rows import predicted_per_metre
+    from hexaleg.design.codesign.alternation import predicted_per_metre
 
     run, knots, footholds, rebuilt = trot
     robot = run.model
