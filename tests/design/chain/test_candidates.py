@@ -23,13 +23,19 @@ def nominal():
     return condition_prepared(RUN, Condition())
 
 
-def test_net_saving_pays_for_the_springs_mass(robot, nominal):
-    classes = design_groups(robot, ("femur", "tibia"), "class")
-    c = design_family(nominal, RUN, GAIT, classes, classes, "one_sided", DesignParams(), OUTER)
+def _masses(robot, c):
+    """Joint → the mass of the springs a candidate's parts put on it, kg."""
     masses = {j: 0.0 for j in robot.joint_names}
     for p in c.parts:
         for j in p.joints:
             masses[j] += p.spring.mass
+    return masses
+
+
+def test_net_saving_pays_for_the_springs_mass(robot, nominal):
+    classes = design_groups(robot, ("femur", "tibia"), "class")
+    c = design_family(nominal, RUN, GAIT, classes, classes, "one_sided", DesignParams(), OUTER)
+    masses = _masses(robot, c)
     assert c.spring_mass == pytest.approx(sum(masses.values()))
     heavy = with_point_masses(robot, masses)
     p = hexaleg.prepare(heavy, hexaleg.gait(heavy, GAIT), motor=RUN.actuator)
@@ -54,10 +60,7 @@ def test_a_given_motion_carries_the_springs_mass_as_given(robot):
     prepared = run.prepare()
     classes = design_groups(robot, ("femur", "tibia"), "class")
     c = design_family(prepared, run, GAIT, classes, classes, "linear", DesignParams(), OUTER)
-    masses = {j: 0.0 for j in robot.joint_names}
-    for p in c.parts:
-        for j in p.joints:
-            masses[j] += p.spring.mass
+    masses = _masses(robot, c)
     heavy = hexaleg.prepare(with_point_masses(robot, masses), other, motor=RUN.actuator)
     value = heavy.evaluate(c.optimum.springs).metrics["total"]["electrical"]
     base = prepared.baseline()["total"]["electrical"]
