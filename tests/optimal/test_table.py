@@ -587,6 +587,12 @@ def test_the_stated_spread_is_the_kept_logs():
                      r"wall at load ([0-9.]+ to [0-9.]+) \(.*?at 3ec0662, .*?: ([0-9.]+) \+", head)
     assert cost and (f"took {cost[1]} s of user CPU and {cost[2]} wall at load {cost[3]}, "
                      f"against {cost[4]} s at 3ec0662") in doc
+    quiet = re.search(r"Run again on a quiet machine .*?: ([0-9.]+) s user \+ ([0-9.]+) s system, "
+                      r"(\d+ min \d+ s) wall", head)
+    assert quiet and (f"running: {quiet[3]} wall and {quiet[1]} s of user CPU, the same output"
+                      in doc)
+    assert (f"takes {quiet[3]} wall and {float(quiet[1]) + float(quiet[2]):.0f} s of CPU"
+            in doc)
     for walked in ("17\\.5", "17\\.6"):
         assert re.search(r"optimal motion, its springs +10\.4 ±0\.1 +10\.3 \(open loop\), "
                          + walked + " ", moved), walked
