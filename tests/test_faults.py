@@ -72,6 +72,21 @@ def run(args: list[str], cwd: Path, preexec: Callable[[], None] | None = None
     return subprocess.CompletedProcess(args, proc.returncode, out, err)
 
 
+def wait_held(proc: subprocess.Popen, lock: Path) -> None:
+    """Wait until ``proc`` holds ``lock``: until the file names its pid, which a run writes only
+    once its ``flock`` is taken. The file itself appears a moment before (the run opens it,
+    then locks it), and a second run started in that moment takes the lock first: under CI's
+    load the refused run was then the first one, and the second designed on for 300 s."""
+    deadline = time.monotonic() + GUARD
+    while True:
+        assert proc.poll() is None, f"ended before it held {lock}: {proc.communicate()}"
+        with contextlib.suppress(FileNotFoundError, json.JSONDecodeError):
+            if json.loads(lock.read_text() or "{}").get("pid") == proc.pid:
+                return
+        assert time.monotonic() < deadline, "hang"
+        time.sleep(0.01)
+
+
 def wait_for(proc: subprocess.Popen, moment: str | Path) -> str:
     """Wait until ``proc`` prints a stderr line holding ``moment``, or until the path
     ``moment`` exists; the stderr read so far."""
@@ -167,7 +182,7 @@ def old_report(tmp_path_factory) -> tuple[Path, Path, dict[str, bytes]]:
     config = work / "other.toml"
     config.write_text(OTHER_GAIT)
     first = start(["report", "--config", str(config), "--out", "r"], work)
-    wait_for(first, work / "r" / LOCK)
+    wait_held(first, work / "r" / LOCK)
     second = run(["report", "--out", "r"], work)  # the default gait, into the same folder
     _, err = first.communicate(timeout=GUARD)
     assert first.returncode == 0, err
@@ -396,7 +411,7 @@ def test_an_interrupted_design_resumes_from_its_finished_stages(old_design, tmp_
 def test_two_designs_into_one_folder_one_runs_the_other_is_refused(tmp_path):
     (tmp_path / "small.toml").write_text(SMALL_DESIGN)
     first = start(DESIGN, tmp_path)
-    wait_for(first, tmp_path / "d" / LOCK)
+    wait_held(first, tmp_path / "d" / LOCK)
     second = run(DESIGN, tmp_path)
     assert second.returncode == 2 and f"another design (pid {first.pid} " in second.stderr
     first.send_signal(signal.SIGINT)  # the first need not finish: it leaves no result, at
