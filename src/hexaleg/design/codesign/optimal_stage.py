@@ -115,9 +115,8 @@ def with_optimal(result: CodesignResult, model: Robot, motor: Any, groups: Group
     motion by ``rules`` (:func:`~hexaleg.design.codesign.full_rules.motion_rules` with the
     run's settings; None: none) where the alternation did not keep the gait, the optimal problem
     set by ``params`` (:class:`~hexaleg.optimal.problem.OptimalParams`; None: its defaults); each
-    solve and the
-    rules' result kept in ``stages`` (:class:`KeptSolves`); its wall time the two stages'
-    together."""
+    solve and the rules' result kept in ``stages`` (:class:`KeptSolves`); its wall time the two
+    stages' together."""
     from hexaleg.design.codesign.optimal_rows import optimal_rows  # the optimal extra's rows
 
     def tell(line: str) -> None:
