@@ -76,6 +76,52 @@ def test_stop_workers_ends_the_items_being_computed():
     assert all(j.cancelled() or j.done() for j in jobs[2:])
 
 
+PARTIAL_WRITE = """
+import gc, os, signal, struct, sys, threading, time
+from multiprocessing.queues import SimpleQueue
+from hexaleg.parallel.forked import fork_map
+
+flag = sys.argv[1]
+
+def work(i):
+    if i == 0:  # a result half written when the worker is killed, made certain
+        (results,) = [o for o in gc.get_objects() if type(o) is SimpleQueue]
+        os.write(results._writer.fileno(), struct.pack("!i", 1 << 20) + b"part")
+        open(flag, "w").close()
+    time.sleep(60)
+
+def interrupt():
+    while not os.path.exists(flag):
+        time.sleep(0.01)
+    os.kill(os.getpid(), signal.SIGINT)
+
+threading.Thread(target=interrupt, daemon=True).start()
+try:
+    fork_map(work, [0, 1], workers=2)
+except KeyboardInterrupt:
+    print("interrupted")
+"""
+
+
+def test_a_worker_killed_while_it_writes_its_result_does_not_hang_the_exit(tmp_path):
+    """The pool's manager thread, reading a result half written, used to wait for the rest and
+    the interpreter to wait for it at exit: fails on :func:`interrupt.stop_workers` without the
+    result pipe's write end closed (the process then hangs until the guard kills it)."""
+    import subprocess
+    import sys
+
+    proc = subprocess.Popen([sys.executable, "-c", PARTIAL_WRITE, str(tmp_path / "written")],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    try:
+        out, err = proc.communicate(timeout=60)  # a hang guard, not a speed assertion
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.communicate()
+        pytest.fail("the interrupted map hung at exit")
+    assert proc.returncode == 0 and out == "interrupted\n" and "Traceback" not in err, err
+
+
 def test_an_interrupt_is_found_behind_the_error_it_caused():
     """Ctrl-C inside a C extension's import surfaces as ImportError("initialization failed")
     raised from it (seen importing MuJoCo)."""

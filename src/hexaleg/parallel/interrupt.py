@@ -160,12 +160,32 @@ def quiet_worker() -> None:
 
 def stop_workers(pool: ProcessPoolExecutor) -> None:
     """Cancel a process pool's queued work and kill its workers now: an interrupted run must
-    not wait for the items being computed (``shutdown(wait=True)`` would)."""
+    not wait for the items being computed (``shutdown(wait=True)`` would).
+
+    A worker killed while it writes its result leaves part of a message in the result pipe,
+    and the pool's manager thread, reading it, waits for the rest; the interpreter joins that
+    thread at exit, so the run hung after its interrupt (a ``hexaleg design`` stopped by
+    Ctrl-C, orphaned with two zombie workers; ``tests/parallel/test_interrupt.py`` sent it 30
+    times at random moments: 20 hung). The pool's result pipe is also open for writing in
+    this process; closing that end once the workers are killed lets the read end: the thread
+    reads end-of-file, takes the pool as broken and ends (CPython's own path for a worker that
+    died, ``_ExecutorManagerThread.terminate_broken``). It is waited for here: ending, it
+    closes its wake-up pipe, and the interpreter's exit, waking it at the same moment, wrote
+    to the pipe just closed (``OSError: Bad file descriptor``, printed as an exception ignored
+    in ``threading._shutdown``; 1 of 10 ``hexaleg design`` runs stopped at random moments)."""
     processes = dict(getattr(pool, "_processes", None) or {})  # no public way before 3.14
+    results = getattr(pool, "_result_queue", None)  # the same: the pipe's write end is ours
+    manager = getattr(pool, "_executor_manager_thread", None)  # the same
     pool.shutdown(wait=False, cancel_futures=True)  # forgets them
     for process in processes.values():
         with contextlib.suppress(OSError, ValueError):
             process.kill()
+    writer = getattr(results, "_writer", None)
+    if writer is not None:
+        with contextlib.suppress(OSError):
+            writer.close()
+    if manager is not None:
+        manager.join()
 
 
 __all__ = ["SIGNALS", "Interrupted", "check", "deferred", "found", "handled", "keep", "kept",
