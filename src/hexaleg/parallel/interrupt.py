@@ -165,8 +165,9 @@ def stop_workers(pool: ProcessPoolExecutor) -> None:
     A worker killed while it writes its result leaves part of a message in the result pipe,
     and the pool's manager thread, reading it, waits for the rest; the interpreter joins that
     thread at exit, so the run hung after its interrupt (a ``hexaleg design`` stopped by
-    Ctrl-C, orphaned with two zombie workers; ``tests/parallel/test_interrupt.py`` sent it 30
-    times at random moments: 20 hung). The pool's result pipe is also open for writing in
+    Ctrl-C, orphaned with two zombie workers; a map of 32-MB results interrupted 30 times at
+    random moments hung 20 times; ``tests/parallel/test_interrupt.py`` makes the half-written
+    result certain). The pool's result pipe is also open for writing in
     this process; closing that end once the workers are killed lets the read end: the thread
     reads end-of-file, takes the pool as broken and ends (CPython's own path for a worker that
     died, ``_ExecutorManagerThread.terminate_broken``). It is waited for here: ending, it
