@@ -167,10 +167,10 @@ def stop_workers(pool: ProcessPoolExecutor) -> None:
     thread at exit, so the run hung after its interrupt (a ``hexaleg design`` stopped by
     Ctrl-C, orphaned with two zombie workers; a map of 32-MB results interrupted 30 times at
     random moments hung 20 times; ``tests/parallel/test_interrupt.py`` makes the half-written
-    result certain). The pool's result pipe is also open for writing in
-    this process; closing that end once the workers are killed lets the read end: the thread
-    reads end-of-file, takes the pool as broken and ends (CPython's own path for a worker that
-    died, ``_ExecutorManagerThread.terminate_broken``). It is waited for here: ending, it
+    result certain). The pool's result pipe is also open for writing in this process; with
+    that end closed once the workers are killed, the thread reads end-of-file, takes the pool
+    as broken and ends (CPython's own path for a worker that died,
+    ``_ExecutorManagerThread.terminate_broken``). It is waited for here: ending, it
     closes its wake-up pipe, and the interpreter's exit, waking it at the same moment, wrote
     to the pipe just closed (``OSError: Bad file descriptor``, printed as an exception ignored
     in ``threading._shutdown``; 1 of 10 ``hexaleg design`` runs stopped at random moments)."""
