@@ -234,3 +234,26 @@ def test_reversed_urdf_axes_do_not_change_the_physical_design(tmp_path):
     for left, right in (("a_j3", "d_j3"), ("a_j2", "d_j2")):
         assert tau[flipped.column(left)] == pytest.approx(tau[flipped.column(right)], rel=1e-6)
     assert run(flipped, desc, ()).saving < 1e-6
+
+
+def test_the_constant_torque_note_reads_the_one_design_zero(prepared):
+    """The note "k = 0 with a constant torque" takes k at most ZERO_MAGNITUDE for 0 and a torque
+    above it for a torque: k exactly at the zero is noted (the old strict ``k < ZERO_STIFFNESS``
+    missed it), twice it is not, and a torque at the zero is no torque (the old ``> 0`` noted a
+    round-off torque)."""
+    from hexaleg.design.families import ZERO_MAGNITUDE
+    from hexaleg.design.search.optimal import springs_result
+    from hexaleg.design.search.program import DesignSolution
+    from hexaleg.design.search.setup import design_setup
+
+    setup = design_setup(prepared, ["femur"], "linear", "joule", None, None)
+
+    def notes(k, torque):
+        solution = DesignSolution(x=np.array([k, torque]), value=0.0, explicit=np.zeros(0),
+                                  rounds=0, forces=np.zeros((1, 18)))
+        return springs_result(setup, {"femur": {}}, solution, 1, 1.0).notes
+
+    assert any("constant-torque" in n for n in notes(ZERO_MAGNITUDE, 0.05))
+    assert not any("constant-torque" in n for n in notes(2 * ZERO_MAGNITUDE, 0.05))
+    assert not any("constant-torque" in n for n in notes(0.0, ZERO_MAGNITUDE))
+    assert any("constant-torque" in n for n in notes(0.0, 2 * ZERO_MAGNITUDE))
