@@ -75,3 +75,13 @@ def test_float_noise_reads_zero():
     assert format_quantity({"value": -3.759e-8, "unit": "J"}) == "-0.00000003759 J"
     assert format_quantity({"value": 1e-9, "unit": "J"}, {"value": None, "unit": "J"}) == \
         "0.000000001 J"
+
+
+def test_the_design_page_reads_the_one_design_zero():
+    """The pages' N·mm macro prints a torque at most ZERO_MAGNITUDE as 0 and twice it as its
+    value: the template's own ``< 1e-9`` printed the zero itself as 1e-06 N·mm."""
+    from hexaleg.design.families import ZERO_MAGNITUDE
+
+    macro = environment().from_string('{% import "design_macros.html.j2" as mc %}{{ mc.nmm(x) }}')
+    assert macro.render(x={"value": -ZERO_MAGNITUDE, "unit": "N·m"}).strip() == "0 N·mm"
+    assert macro.render(x={"value": 2 * ZERO_MAGNITUDE, "unit": "N·m"}).strip() != "0 N·mm"

@@ -130,3 +130,26 @@ def test_a_class_shares_one_physical_spring_across_the_mirror(tmp_path, robot):
     assert row["saving.joule"] == pytest.approx(shared.saving, rel=1e-9)
     assert shared.saving > unshared.saving
     assert row["saving.joule"] != pytest.approx(unshared.saving, rel=1e-4)
+
+
+def test_an_angle_past_which_nothing_acts_is_nan(tmp_path):
+    """A stop whose magnitudes are all at most the design's zero has no angle in the table (NaN,
+    as design.json's null and the terminal's —): the tibia's preloaded θ⁺ (k⁺ = P⁺ = 0) and the
+    femur's dead-zone θ⁻ (k⁻ = 0) were written as whatever the geometry search left there.
+    Every other angle of a sprung group keeps its value."""
+    from hexaleg.design.families import family
+
+    spec = SweepSpec.from_mapping({"optimal": {"family": ["preloaded", "dead_zone"]},
+                                   "gait": {"samples": 60},
+                                   "springs": {"tibia": {}, "femur": {}}})
+    table = run_sweep(spec, tmp_path / "s", executor="serial").table
+    idle = []
+    for _, row in table.iterrows():
+        fam, group = family(row["family"]), row["springs"]
+        magnitudes = {m: row[f"{group}.{m}"] for m in fam.magnitudes}
+        for angle in fam.angles:
+            value = row[f"{group}.{angle}"]
+            assert math.isnan(value) == (angle in fam.idle(magnitudes)), (group, angle)
+            idle += [(row["family"], group, angle)] * math.isnan(value)
+    assert ("preloaded", "tibia", "theta_plus") in idle
+    assert ("dead_zone", "femur", "theta_minus") in idle

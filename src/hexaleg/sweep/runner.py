@@ -40,6 +40,7 @@ from hexaleg.design.evaluator import (
     evaluator,
     metric_row,
 )
+from hexaleg.design.families import family
 from hexaleg.design.search.optimal import optimal_springs
 from hexaleg.errors import (
     HexalegWarning,
@@ -122,7 +123,8 @@ def optimal_chunk(run: Scenario, gait: Mapping[str, Any], groups: Mapping[str, S
     Returns:
         One row per point: ``point``, the gait parameters, ``springs`` (the sprung groups joined
         by ``+``), ``family``, the magnitudes and geometry (:meth:`OptimalSpec.columns`; SI,
-        angles from each joint's centre of motion, NaN where the point has none; a group's
+        angles from each joint's centre of motion, NaN where the point has none and for an angle
+        past which nothing acts, :meth:`~hexaleg.design.families.family.Family.idle`; a group's
         mirrored joints, :func:`hexaleg.robot.mirror.mirror`, get its spring mirrored, so a
         class shares one physical design as in ``hexaleg design``), the
         :func:`~hexaleg.design.evaluator.metric_row` columns and ``notes``. A point whose
@@ -149,8 +151,10 @@ def optimal_chunk(run: Scenario, gait: Mapping[str, Any], groups: Mapping[str, S
             row["notes"] = ""
         else:
             for g in sprung:
+                idle = family(fam).idle(res.magnitudes[g])
                 row.update({f"{g}.{n}": v for n, v in res.magnitudes[g].items()})
-                row.update({f"{g}.{n}": v for n, v in res.geometry[g].items()})
+                row.update({f"{g}.{n}": math.nan if n in idle else v
+                            for n, v in res.geometry[g].items()})
             row.update(metric_row(res.analysis.metrics, ev.baseline))
             row["notes"] = "; ".join(res.notes)
         rows.append(row)

@@ -19,6 +19,7 @@ from hexaleg.design.codesign.alternation import (
     decimals,
     least,
     predicted_per_metre,
+    shown,
 )
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import InvalidParameterError, UnknownNameError
@@ -415,3 +416,35 @@ def test_the_springs_are_designed_and_judged_inside_the_friction_margin(robot, m
     assert slippery.energies == [None, None] and slippery.rounds == ()
     assert any("no springs designed on the rebuilt cycle (InfeasibleForcesError" in line
                for line in lines)
+
+
+def test_progress_lines_show_no_digit_the_spread_moves():
+    """A progress line's J/m is printed before the row's spread is measured: the five starts'
+    figures of the kept command (codesign_motion_optimal_spread.log: the start as given and
+    moved by MOVES) print alike. Fails on the old four significant digits, which printed the
+    solver's figure with springs as 9.527 from the start as given and 9.524 from the start
+    moved by -1e-9 m."""
+    for figures in ((16.38369, 16.38345, 16.38332, 16.38751, 16.38747),  # judged, no springs
+                    (10.43899, 10.43394, 10.43353, 10.43014, 10.43021),  # judged, its springs
+                    (15.36681, 15.36443, 15.36293, 15.37410, 15.37355),  # the solver's
+                    (9.52677, 9.52363, 9.52373, 9.52214, 9.52234)):
+        assert len({shown(v) for v in figures}) == 1, figures
+    assert shown(9.52677) == "9.5" and shown(None) == "—"
+
+
+def test_the_alternations_lines_print_through_shown(robot, motions, solver):
+    """Every J/m of the alternation's own progress lines has one decimal (:func:`shown`), the
+    solver's figures too (they were printed to four digits beside the predictions)."""
+    import re
+
+    walk, high, springs = motions
+    run = hexaleg.Scenario.load("hexaleg")
+    solver([(10.04321, walk), (5.06789, high)])
+    lines: list[str] = []
+    alternate(robot, walk, run.actuator, run.contact, springs=springs, rounds=1,
+              say=lines.append)
+    own = [line for line in lines if line.startswith(("start:", "round", "no optimal"))]
+    assert len(own) >= 2 and "the solver's 10.0 at its knots" in own[0]
+    assert "(the solver's 5.1; rejected)" in own[1]
+    figures = [f for line in own for f in re.findall(r"\d+\.\d+", line)]
+    assert figures and all(len(f.split(".")[1]) == 1 for f in figures), own

@@ -77,4 +77,7 @@ def test_the_least_prediction_is_chosen_and_a_first_solve_is_reused(monkeypatch,
     assert found.best == int(np.argmin(expected)) and found.chosen.predicted == min(expected)
     assert found.chosen.params == lattice[found.best][1]
     assert len(lines) == len(expected) and "predicted rebuilt" in lines[0]
+    # progress lines to 0.1 J/m, no digit the spread moves (alternation.shown; was 4 digits)
+    assert all(f"{e:.1f} J/m predicted rebuilt (the solver's 1.0)" in line
+               for e, line in zip(expected, lines, strict=True))
     assert "→ " in found.line() and found.data()["chosen"] == found.best

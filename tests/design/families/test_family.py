@@ -135,3 +135,18 @@ def test_a_family_contains_only_what_it_says():
 
     with pytest.raises(InvalidParameterError, match="one_sided in dead_zone"):
         embed("dead_zone", "one_sided", {"contact": 0.1, "side": "above"}, {}, (-1.0, 1.0))
+
+
+def test_a_magnitude_at_the_design_zero_is_none_and_twice_it_is_one():
+    """``Family.idle`` reads the one design zero (ZERO_MAGNITUDE), inclusive: a stop whose
+    magnitudes are at most it has no angle, one with twice it keeps its angle. Fails on a strict
+    ``<`` (the old ZERO_STIFFNESS rule) and on any other threshold a decade off."""
+    from hexaleg.design.families import ZERO_MAGNITUDE
+
+    fam = family("preloaded")
+    at = {"k_plus": ZERO_MAGNITUDE, "preload_plus": -ZERO_MAGNITUDE, "k_minus": 0.02,
+          "preload_minus": 0.0}
+    assert fam.idle(at) == ("theta_plus",)
+    assert fam.idle({**at, "preload_plus": 2 * ZERO_MAGNITUDE}) == ()
+    assert fam.idle({**at, "k_plus": 10 * ZERO_MAGNITUDE}) == ()
+    assert family("one_sided").idle({"k": ZERO_MAGNITUDE / 10, "preload": 0.0}) == ("contact",)

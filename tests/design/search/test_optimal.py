@@ -10,7 +10,7 @@ import pytest
 
 import hexaleg
 from hexaleg.design.evaluator import Evaluator
-from hexaleg.design.families import FAMILIES, family
+from hexaleg.design.families import FAMILIES, ZERO_MAGNITUDE, family
 from hexaleg.design.search.optimal import design_problem, optimal_springs
 from hexaleg.design.studies.optimise import optimise
 from hexaleg.errors import InvalidParameterError, UnknownNameError
@@ -88,7 +88,8 @@ def test_evaluate_reproduces_the_optimum(prepared, fam):
 
 def test_linear_optimum_is_a_constant_torque_spring_and_says_so(prepared):
     res = optimal_springs(prepared, CLASSES, "linear")
-    assert res.magnitudes["femur"]["k"] < 1e-9 < abs(res.magnitudes["femur"]["torque_at_reference"])
+    femur = res.magnitudes["femur"]
+    assert femur["k"] <= ZERO_MAGNITUDE < abs(femur["torque_at_reference"])
     assert any("femur" in n and "constant-torque" in n for n in res.notes)
     assert res.saving > 0.3  # gravity compensation: a third of the Joule energy (measured 35 %)
 
@@ -234,3 +235,25 @@ def test_reversed_urdf_axes_do_not_change_the_physical_design(tmp_path):
     for left, right in (("a_j3", "d_j3"), ("a_j2", "d_j2")):
         assert tau[flipped.column(left)] == pytest.approx(tau[flipped.column(right)], rel=1e-6)
     assert run(flipped, desc, ()).saving < 1e-6
+
+
+def test_the_constant_torque_note_reads_the_one_design_zero(prepared):
+    """The note "k = 0 with a constant torque" takes k at most ZERO_MAGNITUDE for 0 and a torque
+    above it for a torque: k exactly at the zero is noted (the old strict ``k < ZERO_STIFFNESS``
+    missed it), twice it is not, and a torque at the zero is no torque (the old ``> 0`` noted a
+    round-off torque)."""
+    from hexaleg.design.search.optimal import springs_result
+    from hexaleg.design.search.program import DesignSolution
+    from hexaleg.design.search.setup import design_setup
+
+    setup = design_setup(prepared, ["femur"], "linear", "joule", None, None)
+
+    def notes(k, torque):
+        solution = DesignSolution(x=np.array([k, torque]), value=0.0, explicit=np.zeros(0),
+                                  rounds=0, forces=np.zeros((1, 18)))
+        return springs_result(setup, {"femur": {}}, solution, 1, 1.0).notes
+
+    assert any("constant-torque" in n for n in notes(ZERO_MAGNITUDE, 0.05))
+    assert not any("constant-torque" in n for n in notes(2 * ZERO_MAGNITUDE, 0.05))
+    assert not any("constant-torque" in n for n in notes(0.0, ZERO_MAGNITUDE))
+    assert any("constant-torque" in n for n in notes(0.0, 2 * ZERO_MAGNITUDE))

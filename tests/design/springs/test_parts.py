@@ -178,3 +178,28 @@ def test_a_round_off_spring_is_no_part(prepared200):
                                   geometry={"tibia": {"contact": near, "side": side}})
     (part,) = spring_parts(engaged, prepared200, OUTER)
     assert part.max_torque == pytest.approx(4e-9 * (hi - lo))
+
+
+def test_the_parts_read_the_one_design_zero():
+    """A stiffness or torque at most ZERO_MAGNITUDE is none, above it a spring: a linear term of
+    k = ZERO_MAGNITUDE with a torque is a constant-torque spring (the old strict ``k <
+    ZERO_STIFFNESS`` made it a single spring free 5e7 rad away), and one of 2·ZERO_MAGNITUDE is a
+    spring; a constant torque at the zero is no part, twice it is one; a one-sided stiffness at
+    the zero with a preload is a constant torque, twice it a one-sided spring."""
+    from hexaleg.design.families import ZERO_MAGNITUDE
+    from hexaleg.design.springs.parts import _elements
+
+    zero = ZERO_MAGNITUDE
+    (flat,) = _elements("linear", {}, np.array([zero, 0.05]), -0.5, 0.5)
+    assert flat["role"] == "constant torque" and flat["rate"] == 0.0
+    assert all(e["role"] != "constant torque"
+               for e in _elements("linear", {}, np.array([2 * zero, 0.05]), -0.5, 0.5))
+    assert _elements("linear", {}, np.array([0.0, zero]), -0.5, 0.5) == []
+    (held,) = _elements("linear", {}, np.array([0.0, 2 * zero]), -0.5, 0.5)
+    assert held["role"] == "constant torque"
+    geometry = {"contact": -0.2, "side": "above"}
+    (pushed,) = _elements("one_sided", geometry, np.array([zero, 0.05]), -0.5, 0.5)
+    assert pushed["role"] == "constant torque" and pushed["free"] is None
+    (sprung,) = _elements("one_sided", geometry, np.array([2 * zero, 0.05]), -0.5, 0.5)
+    assert sprung["role"] == "one-sided" and sprung["rate"] == 2 * zero
+    assert _elements("one_sided", geometry, np.array([0.0, zero]), -0.5, 0.5) == []

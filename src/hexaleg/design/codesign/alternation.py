@@ -502,8 +502,8 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
     start = best
     best_predicted = judged(robot, best, gait, actuator, current, contact, margin).judged
     start_predicted = best_predicted
-    tell(f"start: {_shown(best_predicted)} J/m predicted rebuilt (the gait: "
-         f"{_shown(baseline)}; the solver's {best.energy_per_metre:.4g} at its knots; "
+    tell(f"start: {shown(best_predicted)} J/m predicted rebuilt (the gait: "
+         f"{shown(baseline)}; the solver's {shown(best.energy_per_metre)} at its knots; "
          f"{best.iterations} iterations, {best.seconds:.0f} s)")
 
     def warm_solve(springs: SpringSet, last: Any) -> Any:
@@ -539,9 +539,9 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
         accepted = _below(value, best_predicted)
         done.append(Round(design.springs, designed, candidate.energy_per_metre, value,
                           accepted, time.perf_counter() - began))
-        tell(f"round {k + 1}: springs {designed:.4g} J/m on the rebuilt cycle, re-optimised "
-             f"{_shown(value)} J/m predicted rebuilt (the solver's "
-             f"{candidate.energy_per_metre:.4g}; {'accepted' if accepted else 'rejected'})")
+        tell(f"round {k + 1}: springs {shown(designed)} J/m on the rebuilt cycle, re-optimised "
+             f"{shown(value)} J/m predicted rebuilt (the solver's "
+             f"{shown(candidate.energy_per_metre)}; {'accepted' if accepted else 'rejected'})")
         if accepted:
             best, current, best_predicted = candidate, design.springs, value
         if gap < tolerance:
@@ -549,12 +549,19 @@ def alternate(robot: Robot, gait: Motion, actuator: Any, contact: ContactParams,
     kept = best.task_space is None or (baseline is not None
                                        and not _below(best_predicted, baseline))
     if kept:
-        tell(f"no optimal cycle predicted below the gait ({_shown(best_predicted)} against "
-             f"{_shown(baseline)} J/m): the gait and its springs kept")
+        tell(f"no optimal cycle predicted below the gait ({shown(best_predicted)} against "
+             f"{shown(baseline)} J/m): the gait and its springs kept")
     return Alternation(gait, baseline, start, start_predicted, best,
                        given if kept else current, tuple(done), gap, kept)
 
 
-def _shown(value: float | None) -> str:
-    """A prediction for a progress line (``—`` where there is none)."""
-    return "—" if value is None else f"{value:.4g}"
+def shown(value: float | None) -> str:
+    """An energy per metre for a progress line, J/m, to 0.1 J/m (``—`` where there is none).
+
+    A progress line is printed before its row's spread is measured (:data:`MOVES`), so it
+    shows no digit the spread moves: 0.1 J/m is at least :data:`MARGIN` times the default
+    robot's spreads (0.004–0.012 J/m on the rows, up to 0.019 on the solver's own figures; the
+    rows' rule, :func:`decimals`), where four significant digits printed the solver's 9.527 as
+    9.524 from a start moved by 1e-9 m. A robot whose rows spread wider (Solo-12's, about
+    0.3 J/m) reads its figures from the rows, which print to their spread."""
+    return "—" if value is None else f"{value:.1f}"

@@ -80,6 +80,7 @@ from hexaleg.design.codesign.alternation import (
     decimals,
     judged,
     predict,
+    shown,
     spreads,
 )
 from hexaleg.design.codesign.gait_evaluation import Constraints
@@ -505,7 +506,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
         (bare, _), (first, _) = apart([bare_job, start_job], robot, keep)
     else:
         bare = (keep or computed)(*bare_job)
-    tell(f"optimal motion without springs: {bare.energy_per_metre:.3f} J/m "
+    tell(f"optimal motion without springs: {shown(bare.energy_per_metre)} J/m "
          f"({bare.iterations} iterations, {bare.seconds:.0f} s)")
     tell("optimal motion with springs (alternation), from the co-design's gait and springs")
     alt = alternate(robot, motion, motor, contact, springs=start, params=params, family=family,

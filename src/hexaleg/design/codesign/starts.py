@@ -29,7 +29,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from hexaleg.design.codesign.alternation import PROGRESS, Keep, apart, judged, least
+from hexaleg.design.codesign.alternation import PROGRESS, Keep, apart, judged, least, shown
 from hexaleg.design.codesign.gait_evaluation import Constraints
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import HexalegError
@@ -210,9 +210,9 @@ def search_starts(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringS
             continue
         result, (value, why) = done[k]
         tried.append(Start(label, g, settings, result, value, why))
-        tell(f"{label}: " + (f"{value:.4g} J/m predicted rebuilt" if value is not None else
+        tell(f"{label}: " + (f"{shown(value)} J/m predicted rebuilt" if value is not None else
                              f"no prediction ({why})")
-             + f" (the solver's {result.energy_per_metre:.4g})")
+             + f" (the solver's {shown(result.energy_per_metre)})")
     best = least([t.predicted for t in tried])
     return StartSearch(tuple(tried), best)
 

@@ -31,7 +31,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from hexaleg.design.codesign.alternation import PROGRESS, Keep, apart, judged, least
+from hexaleg.design.codesign.alternation import PROGRESS, Keep, apart, judged, least, shown
 from hexaleg.design.codesign.gait_evaluation import Constraints
 from hexaleg.dynamics.contact import ContactParams
 from hexaleg.errors import HexalegError
@@ -192,8 +192,8 @@ def search_timing(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringS
         result, (value, why) = done[k]
         tried.append(Candidate(g, result, value, why))
         tell(f"duty factor {g.duty_factor:.3g}, period {g.period:.4g} s: "
-             + (f"{value:.4g} J/m predicted rebuilt" if value is not None else
-                f"no prediction ({why})") + f" (the solver's {result.energy_per_metre:.4g})")
+             + (f"{shown(value)} J/m predicted rebuilt" if value is not None else
+                f"no prediction ({why})") + f" (the solver's {shown(result.energy_per_metre)})")
     best = least([t.predicted for t in tried])
     return TimingSearch(tuple(tried), best)
 

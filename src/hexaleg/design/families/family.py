@@ -25,8 +25,16 @@ from hexaleg.robot.springs import Spring, Term
 Geometry = Mapping[str, float | str]
 """A family's geometry: angle name → rad from the joint's centre of motion (and ``side``)."""
 ZERO_MAGNITUDE = 1e-9
-"""N·m/rad or N·m: a magnitude at or below this is none — the convex program's zeros come out
-exactly 0 or at its round-off (~1e-12), a real stiffness or preload is ~1e-3 or more."""
+"""The design's zero, SI: a spring term's magnitude — a stiffness (N·m/rad), a preload or a
+constant torque (N·m) — or the largest torque one spring element gives over the motion (N·m), at
+or below this is none: the term is absent. The convex program's zeros come out exactly 0 or at its
+round-off (~1e-12), a real stiffness or preload is ~1e-3 or more. One value serves both units
+because they are one quantity here — the radian is dimensionless and a joint's motion is of order
+1 rad, so a stiffness at this zero gives a torque at this zero over the motion. Every "is this
+term absent" of the design reads it: :meth:`Family.idle` (an angle with no value), the parts to
+buy (:func:`hexaleg.design.springs.parts.spring_parts`: no part, or a constant-torque spring),
+the constant-torque note of :func:`hexaleg.design.search.optimal.optimal_springs`, the design
+page's 0 and the spring laws' JSON (:mod:`hexaleg.design.springs.law_json`)."""
 IDLE = "nothing acts past it: any angle gives the same spring"
 """Why an idle angle (:meth:`Family.idle`: zero stiffness and preload past it) has no value in a
 design's table."""

@@ -28,7 +28,14 @@ from typing import Any
 import numpy as np
 
 from hexaleg.checks import typed
-from hexaleg.design.families import CONTAINS, FAMILIES, Family, Geometry, embed
+from hexaleg.design.families import (
+    CONTAINS,
+    FAMILIES,
+    ZERO_MAGNITUDE,
+    Family,
+    Geometry,
+    embed,
+)
 from hexaleg.design.search.geometry import Mapper, off_angles, search_geometry
 from hexaleg.design.search.program import DesignProblem, DesignSolution
 from hexaleg.design.search.setup import (
@@ -50,8 +57,6 @@ from hexaleg.robot.springs import Spring, SpringSet
 OBJECTIVE_METRIC = {"joule": "joule", "torque_squared": "rms_torque", "electrical": "electrical",
                     "positive_work": "positive_work"}
 """The metric of ``Analysis.metrics["total"]`` each objective is judged by."""
-ZERO_STIFFNESS = 1e-9
-"""k below this (N·m/rad) with a nonzero constant torque reads as a constant-torque spring."""
 
 
 
@@ -288,7 +293,8 @@ def springs_result(setup: DesignSetup, geometry: dict[str, dict[str, float | str
                                         setup.mirrored)
     notes = []
     for g, m in magnitudes.items():
-        if fam.name == "linear" and m["k"] < ZERO_STIFFNESS and abs(m["torque_at_reference"]) > 0:
+        if (fam.name == "linear" and m["k"] <= ZERO_MAGNITUDE
+                and abs(m["torque_at_reference"]) > ZERO_MAGNITUDE):
             notes.append(f"group {g}: k = 0 with a constant torque of "
                          f"{m['torque_at_reference']:+.4g} N·m — a constant-torque spring; "
                          "bound how far a real spring may wind with max_deflection (hexaleg "

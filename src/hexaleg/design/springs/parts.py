@@ -13,7 +13,7 @@ holds up on every joint of the group — each element becomes a :class:`TorsionR
   it: the torque changes sign, which one torsion spring cannot give (it must be loaded in the
   sense that winds it up), so an antagonistic pair: two springs of rate k/2, each free at
   ``u_f ∓ e`` (e the farthest the motion gets from u_f), together exactly ``τ₀ − k u``;
-* k → 0 with a torque (below :data:`~hexaleg.design.search.optimal.ZERO_STIFFNESS`): a
+* k → 0 with a torque (k at most :data:`~hexaleg.design.families.family.ZERO_MAGNITUDE`): a
   constant torque, which needs a constant-torque spring (spiral or constant-force), not a
   torsion spring: flagged.
 
@@ -34,8 +34,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from hexaleg.design.families import family
-from hexaleg.design.search.optimal import ZERO_STIFFNESS, OptimalSprings
+from hexaleg.design.families import ZERO_MAGNITUDE, family
+from hexaleg.design.search.optimal import OptimalSprings
 from hexaleg.design.springs.fatigue import LIFE, wire_limit
 from hexaleg.design.springs.materials import MATERIALS
 from hexaleg.design.springs.torsion_spring import (
@@ -54,8 +54,6 @@ from hexaleg.robot.description import RobotDescription
 from hexaleg.robot.geometry import link_width
 from hexaleg.robot.model import Robot
 
-ZERO_TORQUE = 1e-9
-"""N·m: a preload or torque below this is none."""
 ARBOR_LINK_FRACTION = 0.25
 """The arbor rule when neither the description nor the servo's catalogue entry gives one: a pin
 of this fraction of the class's narrowest link (assumed: 5 mm in the default robot's 20 mm femur
@@ -218,8 +216,8 @@ def _elements(fam_name: str, geometry: Mapping[str, float | str], x: np.ndarray,
         k = float(x[e.stiffness])
         p = float(x[e.preload]) if e.preload is not None else 0.0
         if e.linear:
-            if k < ZERO_STIFFNESS:
-                if abs(p) > ZERO_TORQUE:
+            if k <= ZERO_MAGNITUDE:
+                if abs(p) > ZERO_MAGNITUDE:
                     out.append(dict(side="above" if p < 0 else "below", role="constant torque",
                                     rate=0.0, preload_torque=abs(p), max_torque=abs(p),
                                     engage=None, free=None))
@@ -243,17 +241,17 @@ def _elements(fam_name: str, geometry: Mapping[str, float | str], x: np.ndarray,
         a, side = float(term.angle), term.kind
         near, far = (lo, hi) if side == "above" else (hi, lo)
         reach = (far - a) if side == "above" else (a - far)
-        if (reach <= 0 or (k < ZERO_STIFFNESS and p <= ZERO_TORQUE)
-                or p + k * reach <= ZERO_TORQUE):
+        if (reach <= 0 or (k <= ZERO_MAGNITUDE and p <= ZERO_MAGNITUDE)
+                or p + k * reach <= ZERO_MAGNITUDE):
             continue  # never engaged in the motion, or nothing there: a torque of at most
-            # ZERO_TORQUE anywhere in it, the round-off of a magnitude the program set to 0
+            # ZERO_MAGNITUDE anywhere in it, the round-off of a magnitude the program set to 0
             # (Solo-12's 4e-9 N·m/rad carrying 5e-12 N·m was a 1.8-m coil of 14 g a joint)
         before = (near - a) if side == "above" else (a - near)  # > 0: engaged throughout
         start = p + k * max(before, 0.0)
         role = "stage" if fam_name == "stiffening" else "one-sided"
-        free_at = None if k < ZERO_STIFFNESS else (a - p / k if side == "above" else a + p / k)
-        out.append(dict(side=side, role=role if k >= ZERO_STIFFNESS else "constant torque",
-                        rate=k if k >= ZERO_STIFFNESS else 0.0, preload_torque=start,
+        free_at = None if k <= ZERO_MAGNITUDE else (a - p / k if side == "above" else a + p / k)
+        out.append(dict(side=side, role=role if k > ZERO_MAGNITUDE else "constant torque",
+                        rate=k if k > ZERO_MAGNITUDE else 0.0, preload_torque=start,
                         max_torque=p + k * reach, engage=None if before > 0 else a,
                         free=free_at, contact=a))
     return out
