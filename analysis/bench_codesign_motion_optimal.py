@@ -1,7 +1,8 @@
 """``hexaleg codesign --motion optimal`` run whole for a kept log: the command's output as printed
 (stdout and stderr, each line time-stamped with ``--stamp``), ``/usr/bin/time -v``'s figures,
 then what its codesign.json holds of each optimal row: its friction use and margin (issue #56's
-"friction use ≤ 0.7 of the cone") and its spread. Logs:
+"friction use ≤ 0.7 of the cone"), its spread, and its answers without and with the landing
+cost, simulated, and which it kept (the worse servo's). Logs:
 analysis/bench_logs/codesign_motion_optimal_spread.log (the default robot),
 analysis/bench_logs/codesign_motion_optimal_solo12.log's last two blocks (Solo-12, timing fixed
 and searched). Minutes; it needs the optimal extra.
@@ -50,7 +51,22 @@ def rows(data: dict) -> list[str]:
                    + ("—" if value is None else f"{value:.5f}") + f" J/m; judged {judged} J/m; "
                    f"solver {solver} J/m (spread {spread['solver_value']['value']:.5f}); "
                    f"stationarity {stopped}; {said}")
+    for r in optimal["rows"]:
+        landing = r.get("landing")
+        if landing is None:
+            continue
+        out.append(f"{r['label']}: landing cost's answers (optimal.rows[].landing), kept "
+                   f"{landing['kept']}: " + "; ".join(_answer(c) for c in landing["candidates"]))
     return out
+
+
+def _answer(candidate: dict) -> str:
+    """One answer of a row without or with the landing cost: weight, predicted, simulated."""
+    predicted = candidate["predicted"]["value"]
+    sims = ", ".join(f"{k} " + ("—" if v is None else f"{v['value']:.5f}")
+                     for k, v in candidate["simulated"].items())
+    return (f"weight {candidate['servo_landing_weight']['value']:g}: predicted "
+            + ("—" if predicted is None else f"{predicted:.5f}") + f" J/m, simulated {sims}")
 
 
 def main() -> int:

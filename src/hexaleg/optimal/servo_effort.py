@@ -15,6 +15,12 @@ effort a position servo gives at its reference; ``D = τ_s/ω₀`` is the motor'
 (the ideal DC motor's torque–speed line, Verstraten et al., IEEE RA-L 1(1), 2016; the
 controllers' ``D``). The residual is linear in ``(x, u)``, so the gradient and Hessian below are
 exact.
+
+The cost does not help every motion under position servos: on Solo-12's trot without springs
+the weighted plan is the same plan and its simulated figure, fragile with the timestep,
+doubles (``analysis/bench_logs/bench_optimal_landing.log``). So ``hexaleg codesign --motion
+optimal`` solves each optimal row without and with it and keeps the answer walking cheaper under
+the worse servo (:mod:`hexaleg.design.codesign.optimal_rows`).
 """
 
 from __future__ import annotations

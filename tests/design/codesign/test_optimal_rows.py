@@ -207,12 +207,12 @@ def test_the_alternation_and_the_bare_cycle_run_from_the_start_chosen(monkeypatc
                             Start("step height × 1.3", moved, settings, picked, 9.3, "")), 1)
 
     def alternate(_robot, motion, _motor, _contact, **kwargs):
-        seen["alternation"] = (motion, kwargs["params"], kwargs["first"])
+        seen.setdefault("alternation", []).append((motion, kwargs["params"], kwargs["first"]))
         return Alternation(motion, 9.5, picked, 9.3, picked, hexaleg.SpringSet(), (), 0.0,
                            False)
 
     def solve(_robot, built, **_kwargs):
-        seen["bare"] = built
+        seen.setdefault("solved", []).append(built)
         return SimpleNamespace(**{**vars(_solved(15.0)), "task_space": built})
 
     monkeypatch.setattr(rows_module, "search_starts", starts)
@@ -231,19 +231,28 @@ def test_the_alternation_and_the_bare_cycle_run_from_the_start_chosen(monkeypatc
         return [None] * len(cases)
 
     monkeypatch.setattr(rows_module, "spreads", spreads)
+    monkeypatch.setattr(rows_module, "apart",  # the solves in this process, one by one
+                        lambda jobs, _robot, _keep: [(job[1](), None) for job in jobs])
     table = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen,
                                      hexaleg.SpringSet(), params=settings,
                                      starts="lattice", min_step=0.015)
-    # both spreads repeat their row's own answer: at the start chosen, with its settings
+    # both spreads repeat their row's own answer: at the start chosen, with its settings (every
+    # answer walks for the same here: the one without the landing cost is kept)
+    landed = dataclasses.replace(settings, servo_landing_weight=rows_module.SERVO_LANDING)
     (bare_inputs, alt_inputs) = seen["spreads"]
     assert bare_inputs == ("no springs", settings, moved)
     assert alt_inputs[0] == "alternation" and alt_inputs[2] == settings and alt_inputs[-1] == moved
     timed, params, min_step, first = seen["starts"]
     assert timed == chosen and params == settings and min_step == 0.015 and first is None
-    motion, params, first = seen["alternation"]
+    # the alternation without the cost from the start chosen, the one with it from its own
+    # start: the start chosen solved again with the cost
+    (motion, params, first), (motion_landed, params_landed, first_landed) = seen["alternation"]
     assert motion.params == moved and params == settings and first is picked
-    bare_motion, bare_params = seen["bare"]
+    assert motion_landed.params == moved and params_landed == landed
+    bare_motion, bare_params = seen["solved"][0]
     assert bare_motion.params == moved and bare_params == settings
+    assert [built[1] for built in seen["solved"]] == [settings, landed, landed]
+    assert first_landed.task_space == seen["solved"][2]
     assert table.starts is not None and table.starts.chosen.label == "step height × 1.3"
     assert any("→ step height × 1.3: 9.300" in line for line in table.lines())
     assert json.loads(json_text(table.data()))["starts"]["chosen"] == 1
@@ -441,3 +450,148 @@ def test_springs_on_a_row_beyond_the_margin_are_unproven():
         last, simulated={"feedforward": 9.5, "position": None})))
     assert both.unproven == ("its forces need 0.93 of the friction cone, beyond the 0.7 margin; "
                              "it does not walk under position")
+
+
+def _answer(weight: float, predicted: float | None, feedforward: float | None,
+            position: float | None):
+    from hexaleg.design.codesign.optimal_rows import Candidate
+
+    sims = {"feedforward": feedforward, "position": position}
+    return Candidate(weight, predicted, sims,
+                     {k: "walks" if v is not None else "fell" for k, v in sims.items()})
+
+
+def test_a_row_keeps_the_answer_walking_cheaper_under_the_worse_servo():
+    """The hexapod's case (the landing cost's answer walks under position servos for 13.8
+    where the other walks for 18.2) keeps the answer with the cost; Solo-12's (78 / 76 with it
+    against 38 / 34) the one without. Catches a choice by the better servo (the first pair:
+    feedforward 10.0 against 11.0 would keep the answer without the cost), by the prediction,
+    or by the feedforward servo alone."""
+    from hexaleg.design.codesign.optimal_rows import by_worse_servo
+
+    assert by_worse_servo([_answer(0.0, 10.0, 10.0, 18.2),
+                           _answer(30.0, 10.5, 11.0, 13.8)]) == 1
+    assert by_worse_servo([_answer(0.0, 31.0, 38.0, 34.0),
+                           _answer(30.0, 30.0, 78.0, 76.0)]) == 0
+    # an answer that does not walk under one servo is never kept over one that walks
+    assert by_worse_servo([_answer(0.0, 9.0, 9.0, None), _answer(30.0, 12.0, 20.0, 30.0)]) == 1
+    # neither walks: the cheaper prediction; none predicted: the first (without the cost)
+    assert by_worse_servo([_answer(0.0, 12.0, None, 20.0), _answer(30.0, 11.0, 9.0, None)]) == 1
+    assert by_worse_servo([_answer(0.0, None, None, None), _answer(30.0, None, None, None)]) == 0
+
+
+def test_a_tie_under_the_worse_servo_goes_to_the_cheaper_prediction():
+    """Within the servo check's tie (0.2 % of the least, what a forward simulation's rounding
+    may move on another machine) the cheaper prediction is kept, and on equal predictions the
+    answer without the cost; beyond it the simulation decides. Catches a strict ``<`` on the
+    simulated figures (13.81 against 13.80 would keep the dearer prediction)."""
+    from hexaleg.design.codesign.optimal_rows import by_worse_servo
+    from hexaleg.design.codesign.servo import TIE
+
+    assert TIE == 0.002
+    assert by_worse_servo([_answer(0.0, 10.5, 10.0, 13.80),
+                           _answer(30.0, 10.4, 10.0, 13.81)]) == 1
+    assert by_worse_servo([_answer(0.0, 10.4, 10.0, 13.81),
+                           _answer(30.0, 10.4, 10.0, 13.80)]) == 0
+    assert by_worse_servo([_answer(0.0, 10.0, 10.0, 13.80),
+                           _answer(30.0, 10.5, 10.0, 13.80 * (1 + 2 * TIE) + 0.01)]) == 0
+    assert by_worse_servo([_answer(0.0, 10.0, 10.0, 14.00),
+                           _answer(30.0, 10.5, 10.0, 13.90)]) == 1
+
+
+def test_the_table_says_which_answer_each_optimal_row_kept():
+    """Each optimal row's line of the landing cost: which answer it kept, each one's J/m under
+    the worse servo and predicted; codesign.json holds both answers, the weight kept and the
+    rule."""
+    from hexaleg.design.codesign.optimal_rows import Landing
+
+    rows = _rows(12.0)
+    bare = Landing((_answer(0.0, 15.0, 16.0, 20.8), _answer(30.0, 15.1, 16.3, 20.5)), 1)
+    last = Landing((_answer(0.0, 10.4, 10.3, 18.2), _answer(30.0, 10.4, 10.2, 13.8)), 1)
+    solo = Landing((_answer(0.0, 31.0, 38.0, 34.0), _answer(30.0, 31.0, 78.0, 76.0)), 0)
+    table = dataclasses.replace(rows, rows=(
+        *rows.rows[:2], dataclasses.replace(rows.rows[2], landing=solo),
+        dataclasses.replace(rows.rows[3], landing=last)))
+    lines = table.lines()
+    assert ("    each optimal row solved without and with the landing legs' position-servo "
+            "effort in its cost (weight 30), kept the one walking cheaper under the worse "
+            "servo:") in lines
+    assert ("    optimal motion, no springs: kept the answer without the landing cost — without "
+            "it 38.00 under the worse servo (31.00 predicted); with it 78.00 under the worse "
+            "servo (31.00 predicted)") in lines
+    assert ("    optimal motion, its springs: kept the answer with the landing cost — with it "
+            "13.80 under the worse servo (10.40 predicted); without it 18.20 under the worse "
+            "servo (10.40 predicted)") in lines
+    data = json.loads(json_text(table.data()))["rows"]
+    assert "landing" not in data[0] and "landing" not in data[1]
+    assert data[3]["landing"]["kept"] == 1
+    assert data[3]["landing"]["servo_landing_weight"] == {"value": 30.0, "unit": "W/(N·m)^2"}
+    assert data[2]["landing"]["candidates"][1]["simulated"]["position"] == {
+        "value": 76.0, "unit": "J/m"}
+    assert bare.weight == 30.0 and solo.weight == 0.0
+
+
+@pytest.mark.parametrize("cheaper", [0.0, 30.0])
+def test_each_optimal_row_keeps_its_answer_by_the_worse_servo(monkeypatch, robot, cheaper):
+    """Both optimal rows are solved without and with the landing cost (the weight
+    :data:`SERVO_LANDING`, the alternation's start solved with each), played under both servos,
+    and each keeps the answer walking cheaper under the worse one — its cycle, springs, motion
+    files and spread (the spread repeats the answer kept, with its settings). Catches a row that
+    keeps the answer without the cost whatever it walks for, the other answer's cycle behind the
+    kept one's figures, or a spread measured on the answer not kept."""
+    pytest.importorskip("crocoddyl")
+    import hexaleg.optimal.problem
+    import hexaleg.optimal.solve
+    from hexaleg.design.codesign import optimal_rows as rows_module
+    from hexaleg.design.codesign.build import default_gait
+
+    run = hexaleg.Scenario.load("hexaleg")
+    chosen = dataclasses.replace(default_gait(robot, "hexaleg", 0.06, None, 100),
+                                 duty_factor=0.8)
+    springs = hexaleg.SpringSet({"femur": hexaleg.LinearSpring(stiffness=0.5)})
+    seen: dict[str, list[object]] = {"spreads": []}
+
+    def solve(_robot, built, **_kwargs):
+        weight = built[1].servo_landing_weight
+        return SimpleNamespace(**{**vars(_solved(15.0 + weight / 100)),
+                                  "task_space": ("cycle", weight)})
+
+    def alternate(_robot, motion, _motor, _contact, **kwargs):
+        weight = kwargs["params"].servo_landing_weight
+        best = SimpleNamespace(**{**vars(_solved(9.0)), "task_space": ("springs", weight)})
+        return Alternation(motion, 9.9, kwargs["first"], 9.5, best, springs, (), 0.0, False)
+
+    def simulated(_robot, motion, _motor, _springs, controller, *_args):
+        if not isinstance(motion, tuple):  # the gaits' rows
+            return 10.0, "walks", False
+        worse = 13.8 if motion[1] == cheaper else 18.2
+        return (10.0 if controller == "feedforward" else worse), "walks", False
+
+    def spreads(_robot, cases, _keep):
+        seen["spreads"] = [c[1] for c in cases]
+        return [None] * len(cases)
+
+    monkeypatch.setattr(rows_module, "alternate", alternate)
+    monkeypatch.setattr(hexaleg.optimal.problem, "build_problem",
+                        lambda _r, motion, _m, _s, params: (motion, params))
+    monkeypatch.setattr(hexaleg.optimal.solve, "solve", solve)
+    monkeypatch.setattr(rows_module, "simulated_run", simulated)
+    monkeypatch.setattr(rows_module, "apart",
+                        lambda jobs, _robot, _keep: [(job[1](), None) for job in jobs])
+    monkeypatch.setattr(rows_module, "spreads", spreads)
+    monkeypatch.setattr(rows_module, "gait", lambda _robot, g: SimpleNamespace(params=g))
+    monkeypatch.setattr(rows_module, "predict", lambda *_args: Prediction(9.9, 0.5, True))
+    monkeypatch.setattr(rows_module, "judged", lambda *_args: Prediction(9.5, 0.5, True))
+    table = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen, springs)
+    kept = 1 if cheaper else 0
+    bare, last = table.rows[2], table.rows[3]
+    assert bare.landing is not None and last.landing is not None
+    assert bare.landing.kept == kept and last.landing.kept == kept
+    assert [c.weight for c in last.landing.candidates] == [0.0, rows_module.SERVO_LANDING]
+    assert bare.simulated == last.simulated == {"feedforward": 10.0, "position": 13.8}
+    assert table.bare.task_space == ("cycle", cheaper)
+    assert table.motions["optimal_springs"] == ("springs", cheaper)
+    assert table.alternation.start.task_space == ("cycle", cheaper)  # its own start
+    bare_inputs, alt_inputs = seen["spreads"]
+    assert bare_inputs[1].servo_landing_weight == alt_inputs[2].servo_landing_weight == cheaper
+    assert table.rows[0].landing is None and table.rows[1].landing is None

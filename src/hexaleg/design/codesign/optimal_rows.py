@@ -29,6 +29,22 @@ knots and loads the legs against each other (on the default robot's co-design ga
 springs, 40 knots: the knots walk for 10.90 J/m under feedforward servos where the solver
 booked 9.21; the rebuilt cycle for 9.44, predicted 9.45).
 
+*Under the worse servo* (issue #56): each optimal row's answer — the motion without springs,
+and the alternation with its springs — is solved twice, without and with the landing legs'
+position-servo effort in the cost (:class:`~hexaleg.optimal.servo_effort.ServoEffortCost`,
+weight :data:`SERVO_LANDING`, or ``servo_landing_weight`` where the problem's parameters set
+one), both predicted and simulated under every controller, and the row keeps the one walking
+cheaper under its worse controller (:func:`by_worse_servo`, as the parametric co-design chooses
+its gait among its finalists, :func:`~hexaleg.design.codesign.servo.choose`; within
+:data:`~hexaleg.design.codesign.servo.TIE` of each other the cheaper prediction, then the one
+without the cost). The cost lets a position servo land the feet where the plan puts them (the
+hexapod's optimal motion with its springs walks under position servos for 13.9 J/m with it
+against 17.5 without, ``analysis/bench_logs/bench_optimal_servo.log``), but it does not help
+every motion: on Solo-12's trot without springs the weighted plan is the same plan to the
+prediction's digits and its simulated figure, which moves with the simulation's timestep by
+more than the weight moves it, doubles (``analysis/bench_logs/bench_optimal_landing.log``). The
+table says which each row kept (:class:`Landing`).
+
 *Predicted* is hexaleg's analysis of each row's motion with its springs, every row by the same
 function (:func:`~hexaleg.design.codesign.alternation.predict`; an optimal cycle through
 :func:`~hexaleg.design.codesign.alternation.judged`, the alternation's judge, which also refuses
@@ -57,8 +73,10 @@ with its springs (the alternation keeps the gait when its cycle is not rebuilt).
 
 from __future__ import annotations
 
+import dataclasses
+import math
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -76,7 +94,6 @@ from hexaleg.design.codesign.alternation import (
     Spread,
     alternate,
     apart,
-    computed,
     decimals,
     judged,
     predict,
@@ -85,7 +102,7 @@ from hexaleg.design.codesign.alternation import (
 )
 from hexaleg.design.codesign.gait_evaluation import Constraints
 from hexaleg.design.codesign.rules import rule_data, rule_lines
-from hexaleg.design.codesign.servo import simulated_run
+from hexaleg.design.codesign.servo import TIE, simulated_run
 from hexaleg.design.codesign.starts import STARTS, StartSearch, search_starts
 from hexaleg.design.codesign.timing import TIMINGS, TimingSearch, search_timing
 from hexaleg.design.search.optimal import Groups
@@ -103,6 +120,108 @@ from hexaleg.simulation.controllers import controllers_of
 LABELS = ("default gait, no springs", "parametric co-design (its gait and springs)",
           "optimal motion, no springs", "optimal motion, its springs")
 """The rows' labels, in order (module docstring)."""
+
+
+SERVO_LANDING = 30.0
+"""The landing effort's weight of each optimal row's second answer, W/(N·m)²
+(:attr:`~hexaleg.optimal.problem.OptimalParams.servo_landing_weight` where the problem's
+parameters set none): from the hexapod's optimal motion with its springs' sweep of 3 to 1000,
+the weight past which its position-servo bill stops falling (13.9 J/m at 30, 13.7 at 100, 13.9
+at 300: ``analysis/bench_logs/bench_optimal_servo.log``) and its feedforward bill has not yet
+risen (10.25, 10.33, 10.44)."""
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """One answer of an optimal row, solved without or with the landing effort in its cost,
+    predicted and simulated (module docstring).
+
+    Attributes:
+        weight: Its landing effort's weight, W/(N·m)² (0: without the cost).
+        predicted: Its J/m predicted (the rows' judge); None without a prediction.
+        simulated: Controller → J/m walked; None where it did not walk.
+        verdicts: Controller → ``"walks"`` or what happened.
+        loops: Controller → the balance feedback that ran (:attr:`MotionRow.loops`).
+    """
+
+    weight: float
+    predicted: float | None
+    simulated: Mapping[str, float | None]
+    verdicts: Mapping[str, str]
+    loops: Mapping[str, str] = field(default_factory=dict)
+
+    @property
+    def worst(self) -> float:
+        """J/m walked under its worse controller (∞ where it did not walk under one of them,
+        or was not simulated)."""
+        values = list(self.simulated.values())
+        if not values or any(v is None for v in values):
+            return math.inf
+        return max(float(v) for v in values if v is not None)
+
+    def data(self) -> dict[str, Any]:
+        """codesign.json's entry: the weight, the predicted and the simulated J/m."""
+        return {"servo_landing_weight": q(self.weight, "W/(N·m)^2"),
+                "predicted": q(self.predicted, "J/m"),
+                "simulated": {k: None if v is None else q(v, "J/m")
+                              for k, v in self.simulated.items()},
+                "verdicts": dict(self.verdicts)}
+
+
+def by_worse_servo(candidates: Sequence[Candidate]) -> int:
+    """The index of the candidate a row keeps: the least J/m walked under the worse controller
+    (:attr:`Candidate.worst`), as the parametric co-design chooses its gait
+    (:func:`~hexaleg.design.codesign.servo.choose`); among those within
+    :data:`~hexaleg.design.codesign.servo.TIE` of it — a forward simulation's rounding on
+    another machine cannot tell them apart — the cheaper prediction, then the first (the
+    answer without the cost). Where none walked under every controller, the cheaper
+    prediction, then the first."""
+    least = min(c.worst for c in candidates)
+    tied = [i for i, c in enumerate(candidates)
+            if c.worst <= least * (1.0 + TIE) or not math.isfinite(least)]
+    return min(tied, key=lambda i: (math.inf if candidates[i].predicted is None
+                                    else candidates[i].predicted, i))
+
+
+@dataclass(frozen=True)
+class Landing:
+    """Which answer an optimal row kept (module docstring).
+
+    Attributes:
+        candidates: The answers without and with the landing effort's cost
+            (:class:`Candidate`), in that order.
+        kept: The index of the one kept (:func:`by_worse_servo`).
+    """
+
+    candidates: tuple[Candidate, ...]
+    kept: int
+
+    @property
+    def weight(self) -> float:
+        """The landing effort's weight of the answer kept, W/(N·m)² (0: without the cost)."""
+        return self.candidates[self.kept].weight
+
+    def line(self, label: str, places: int) -> str:
+        """The table's line: which answer ``label``'s row kept, each one's worse-servo and
+        predicted J/m to ``places`` decimals."""
+        def said(c: Candidate) -> str:
+            worse = (f"{c.worst:.{places}f}" if math.isfinite(c.worst)
+                     else "not walking under both servos")
+            pred = "—" if c.predicted is None else f"{c.predicted:.{places}f}"
+            how = "with it" if c.weight > 0 else "without it"
+            return f"{how} {worse} under the worse servo ({pred} predicted)"
+
+        kept = self.candidates[self.kept]
+        others = [said(c) for i, c in enumerate(self.candidates) if i != self.kept]
+        return (f"    {label}: kept the answer {'with' if kept.weight > 0 else 'without'} "
+                f"the landing cost — {said(kept)}; " + "; ".join(others))
+
+    def data(self) -> dict[str, Any]:
+        """codesign.json's ``landing`` of a row: the candidates and the weight kept."""
+        return {"candidates": [c.data() for c in self.candidates], "kept": self.kept,
+                "servo_landing_weight": q(self.weight, "W/(N·m)^2"),
+                "rule": "the least J/m walked under the worse servo (within "
+                        f"{TIE:g} of it, the cheaper prediction, then without the cost)"}
 
 
 @dataclass(frozen=True)
@@ -128,6 +247,8 @@ class MotionRow:
         beyond: Why :attr:`predicted` is the whole cone's: the force program has no answer
             inside the planners' friction margin (its ``friction_use`` is above it); ``""``
             for a prediction inside the margin.
+        landing: For an optimal row, which of its answers without and with the landing
+            effort's cost it kept (:class:`Landing`); None for a parametric gait's row.
     """
 
     label: str
@@ -139,6 +260,7 @@ class MotionRow:
     spread: Spread | None = None
     friction_use: float | None = None
     beyond: str = ""
+    landing: Landing | None = None
 
     @property
     def decimals(self) -> int:
@@ -162,7 +284,8 @@ class MotionRow:
                 "within_margin": self.predicted is not None and not self.beyond,
                 **({"beyond": self.beyond} if self.beyond else {}),
                 **({"unpredicted": self.unpredicted} if self.unpredicted else {}),
-                **({"spread": self.spread.data()} if self.spread is not None else {})}
+                **({"spread": self.spread.data()} if self.spread is not None else {}),
+                **({"landing": self.landing.data()} if self.landing is not None else {})}
 
 
 @dataclass(frozen=True, eq=False)
@@ -315,6 +438,13 @@ class OptimalRows:
                        f"{self._friction(r)}   {sims}")
         out += [f"    {r.label}: predicted in the whole friction cone, {r.beyond}"
                 for r in self.rows if r.beyond]
+        chosen = [(r, r.landing) for r in self.rows if r.landing is not None]
+        if chosen:
+            weight = max(c.weight for _, landing in chosen for c in landing.candidates)
+            out.append("    each optimal row solved without and with the landing legs' "
+                       f"position-servo effort in its cost (weight {weight:g}), kept the one "
+                       "walking cheaper under the worse servo:")
+            out += [landing.line(r.label, r.decimals) for r, landing in chosen]
         if self.timing is not None:
             out.append(self.timing.line())
         if self.starts is not None:
@@ -468,6 +598,8 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
     tell = say or (lambda _line: None)
     began = time.perf_counter()
     params = params or OptimalParams(mu=contact.mu, friction_use=margin)
+    weight = params.servo_landing_weight or SERVO_LANDING
+    params = dataclasses.replace(params, servo_landing_weight=0.0)  # the searches' problem
     start = springs
     if family not in SMOOTH_FAMILIES:
         family, start = "linear", SpringSet()
@@ -489,30 +621,106 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
                               margin=margin)
         timed, params, first = multi.chosen.params, multi.chosen.settings, multi.chosen.result
         tell(f"start chosen: {multi.chosen.label}")
+    landed = dataclasses.replace(params, servo_landing_weight=weight)
+    settings = (params, landed)  # each optimal row's two answers: without, with the cost
     motion = gait(robot, timed)
+    moved_timing = () if searched is None and multi is None else (timed,)
+    named = ("", f", landing cost {weight:g}")
+
+    def bare_job(i: int) -> Any:
+        """Row 3's solve with ``settings[i]`` (a :data:`~hexaleg.design.codesign.alternation.
+        Job`)."""
+        return (("no springs", SpringSet(), settings[i], *moved_timing),
+                lambda: solve(robot, build_problem(robot, motion, motor, SpringSet(),
+                                                   settings[i]),
+                              say=lambda line: tell(f"no springs{named[i]}: {line}"),
+                              every=PROGRESS))
+
+    def start_job(i: int) -> Any:
+        """The alternation's start with ``settings[i]``."""
+        return (("start", start, settings[i]),
+                lambda: solve(robot, build_problem(robot, motion, motor, start, settings[i]),
+                              say=lambda line: tell(f"alternation{named[i]}: start: {line}"),
+                              every=PROGRESS))
+
     tell("optimal motion without springs, from the co-design's gait"
-         + ("" if searched is None else " at the timing chosen"))
-    bare_job = (("no springs", SpringSet(), params,
-                 *(() if searched is None and multi is None else (timed,))),
-                lambda: solve(robot, build_problem(robot, motion, motor, SpringSet(), params),
-                              say=lambda line: tell(f"no springs: {line}"), every=PROGRESS))
-    if first is None:  # the alternation's start beside it: the two solves are independent
-        tell("optimal motion with springs (alternation), from the co-design's gait and springs:"
-             " its start solved beside the motion without springs")
-        start_job = (("start", start, params),
-                     lambda: solve(robot, build_problem(robot, motion, motor, start, params),
-                                   say=lambda line: tell(f"alternation: start: {line}"),
-                                   every=PROGRESS))
-        (bare, _), (first, _) = apart([bare_job, start_job], robot, keep)
-    else:
-        bare = (keep or computed)(*bare_job)
-    tell(f"optimal motion without springs: {shown(bare.energy_per_metre)} J/m "
-         f"({bare.iterations} iterations, {bare.seconds:.0f} s)")
-    tell("optimal motion with springs (alternation), from the co-design's gait and springs")
-    alt = alternate(robot, motion, motor, contact, springs=start, params=params, family=family,
-                    groups=groups, rounds=rounds, say=lambda line: tell(f"alternation: {line}"),
-                    keep=keep, first=first, margin=margin)
+         + ("" if searched is None else " at the timing chosen")
+         + f", without and with the landing cost (weight {weight:g})")
+    starting = [1] if first is not None else [0, 1]  # the searches' start has no cost
+    tell("optimal motion with springs (alternation), from the co-design's gait and springs:"
+         " its start" + ("" if first is not None else "s") + " solved beside the motion without"
+         " springs")
+    solved = [r for r, _ in apart([bare_job(0), bare_job(1), *(start_job(i) for i in starting)],
+                                  robot, keep)]
+    bares = solved[:2]
+    firsts = [first, solved[2]] if first is not None else solved[2:]
+    for i, bare in enumerate(bares):
+        tell(f"optimal motion without springs{named[i]}: {shown(bare.energy_per_metre)} J/m "
+             f"({bare.iterations} iterations, {bare.seconds:.0f} s)")
+    def told(i: int) -> Callable[[str], None]:
+        """Where the alternation with ``settings[i]`` says its progress."""
+        return lambda line: tell(f"alternation{named[i]}: {line}")
+
+    alts = []
+    for i in range(2):
+        tell(f"optimal motion with springs (alternation{named[i]}), from the co-design's gait "
+             "and springs")
+        alts.append(alternate(robot, motion, motor, contact, springs=start, params=settings[i],
+                              family=family, groups=groups, rounds=rounds, say=told(i),
+                              keep=keep, first=firsts[i], margin=margin))
     controllers = controllers_of(servo)
+
+    def played(label: str, motion_played: Motion | None, fitted: SpringSet
+               ) -> tuple[dict[str, float | None], dict[str, str], dict[str, str]]:
+        """``motion_played`` with ``fitted`` simulated under each controller: J/m, verdicts,
+        loops (a cycle not rebuilt: none, its verdicts left to the caller)."""
+        sims: dict[str, float | None] = {}
+        verdicts: dict[str, str] = {}
+        loops: dict[str, str] = {}
+        if motion_played is None:
+            return sims, verdicts, loops
+        for k in controllers:
+            sims[k], verdicts[k], closed = simulated_run(robot, motion_played, motor, fitted, k,
+                                                         contact, feedback)
+            loops[k] = "" if closed is None else "balance feedback" if closed else "open loop"
+        tell(f"simulated {label} under {' and '.join(controllers)}")
+        return sims, verdicts, loops
+
+    def bare_judged(result: Any) -> Prediction:
+        """Row 3's prediction: the one judge of an optimal cycle, as row 4's."""
+        return judged(robot, result, motion, motor, SpringSet(), contact, margin)
+
+    def alt_judged(alt: Alternation) -> Prediction:
+        """Row 4's prediction: the gait with its springs where the alternation kept it."""
+        return (predict(robot, alt.motion, motor, alt.springs, contact, margin) if alt.kept_gait
+                else judged(robot, alt.best, motion, motor, alt.springs, contact, margin))
+
+    def chosen_of(label: str, answers: list[tuple[Prediction, Motion | None, SpringSet]]
+                  ) -> tuple[int, Landing, tuple[Any, ...]]:
+        """The answer ``label``'s row keeps among ``answers`` (without, with the cost), its
+        :class:`Landing` and its simulations."""
+        runs = [played(f"{label}{named[i]}", m, f) for i, (_, m, f) in enumerate(answers)]
+        landing = Landing(tuple(Candidate(settings[i].servo_landing_weight, said.value,
+                                          runs[i][0], runs[i][1], runs[i][2])
+                                for i, (said, _, _) in enumerate(answers)), 0)
+        kept = by_worse_servo(landing.candidates)
+        landing = dataclasses.replace(landing, kept=kept)
+        tell(f"{label}: kept the answer {'with' if kept else 'without'} the landing cost")
+        return kept, landing, runs[kept]
+
+    said_bare = [bare_judged(b) for b in bares]
+    k3, landing3, runs3 = chosen_of(LABELS[2], [(said_bare[i], bares[i].task_space,
+                                                  SpringSet()) for i in range(2)])
+    if all(a.kept_gait for a in alts):  # both the co-design's gait: one answer, nothing to keep
+        k4 = 0
+        said_alt = [alt_judged(alts[0])]
+        landing4, runs4 = None, played(LABELS[3], alts[0].motion, alts[0].springs)
+    else:
+        said_alt = [alt_judged(a) for a in alts]
+        k4, landing4, runs4 = chosen_of(LABELS[3], [(said_alt[i], alts[i].motion,
+                                                     alts[i].springs) for i in range(2)])
+    bare, alt, params = bares[k3], alts[k4], settings[k3]
+    alt_params = settings[k4]
 
     def bare_again(move: float) -> Any:
         """Row 3's solve from its start moved by ``move`` m."""
@@ -520,61 +728,50 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
 
     def alt_again(move: float) -> Alternation:
         """Row 4's alternation from its start moved by ``move`` m."""
-        return alternate(robot, motion, motor, contact, springs=start, params=params,
+        return alternate(robot, motion, motor, contact, springs=start, params=alt_params,
                          family=family, groups=groups, rounds=rounds, move=move, margin=margin)
 
-    def bare_judged(result: Any) -> Prediction:
-        """Row 3's prediction: the one judge of an optimal cycle, as row 4's."""
-        return judged(robot, result, motion, motor, SpringSet(), contact, margin)
-
     unbuilt = "" if bare.task_space is not None else f"not rebuilt: {bare.unbuilt}"
-    bare_said = bare_judged(bare)
     cases: list[Case] = []
     if not unbuilt:
-        cases.append(((bare_said.value, bare.energy_per_metre, bare.stationarity),
+        cases.append(((said_bare[k3].value, bare.energy_per_metre, bare.stationarity),
                       ("no springs", params, timed), bare_again,
                       lambda r: (bare_judged(r).value, r.energy_per_metre, r.stationarity)))
     if not alt.kept_gait:
         cases.append(((alt.predicted, alt.best.energy_per_metre, alt.best.stationarity),
-                      ("alternation", start, params, family, groups, rounds, timed),
+                      ("alternation", start, alt_params, family, groups, rounds, timed),
                       alt_again,
                       lambda a: (a.predicted, a.best.energy_per_metre, a.best.stationarity)))
     again = [name for name, repeated in (("the solve without springs", not unbuilt),
                                           ("the alternation", not alt.kept_gait)) if repeated]
     if again:
-        tell(f"spread: {' and '.join(again)} again from {len(MOVES)} starts moved by "
-             + ", ".join(f"{m:+.0e}" for m in MOVES) + " m")
+        tell(f"spread: {' and '.join(again)} (the answers kept) again from {len(MOVES)} starts "
+             "moved by " + ", ".join(f"{m:+.0e}" for m in MOVES) + " m")
     measured = iter(spreads(robot, cases, keep))
     spread = (None if unbuilt else next(measured), None if alt.kept_gait else next(measured))
     walks = (gait(robot, default), gait(robot, chosen))
-    last = (predict(robot, alt.motion, motor, alt.springs, contact, margin) if alt.kept_gait
-            else judged(robot, alt.best, motion, motor, alt.springs, contact, margin))
     table = ((LABELS[0], predict(robot, walks[0], motor, SpringSet(), contact, margin),
-              walks[0], SpringSet(), None),
+              walks[0], SpringSet(), None, None, None),
              (LABELS[1], predict(robot, walks[1], motor, springs, contact, margin), walks[1],
-              springs, None),
-             (LABELS[2], bare_said, bare.task_space, SpringSet(), spread[0]),
-             (LABELS[3], last, alt.motion, alt.springs, spread[1]))
+              springs, None, None, None),
+             (LABELS[2], said_bare[k3], bare.task_space, SpringSet(), spread[0], landing3,
+              runs3),
+             (LABELS[3], said_alt[k4], alt.motion, alt.springs, spread[1], landing4, runs4))
     rows = []
-    for label, said, played, fitted, stated in table:
-        if played is None:  # the bare cycle not rebuilt: nothing to predict or play
+    for label, said, motion_played, fitted, stated, landing, runs in table:
+        if motion_played is None:  # the bare cycle not rebuilt: nothing to predict or play
             rows.append(MotionRow(label, None, dict.fromkeys(controllers), dict.fromkeys(
-                controllers, unbuilt), {}, unbuilt))
+                controllers, unbuilt), {}, unbuilt, landing=landing))
             tell(f"{label}: {unbuilt}")
             continue
-        sims: dict[str, float | None] = {}
-        verdicts: dict[str, str] = {}
-        loops: dict[str, str] = {}
-        for k in controllers:
-            sims[k], verdicts[k], closed = simulated_run(robot, played, motor, fitted, k,
-                                                         contact, feedback)
-            loops[k] = "" if closed is None else "balance feedback" if closed else "open loop"
+        sims, verdicts, loops = runs if runs is not None else played(label, motion_played,
+                                                                     fitted)
         rows.append(MotionRow(label, said.value, sims, verdicts, loops,
                               said.why if said.value is None else "", stated,
-                              said.friction_use, said.why if said.beyond else ""))
-        tell(f"simulated {label} under {' and '.join(controllers)}")
+                              said.friction_use, said.why if said.beyond else "", landing))
     return OptimalRows(tuple(rows), alt.springs, family, bare, alt, robot, servo,
                        time.perf_counter() - began, feedback, searched, multi, margin)
 
 
-__all__ = ["LABELS", "MotionRow", "OptimalRows", "optimal_rows"]
+__all__ = ["LABELS", "SERVO_LANDING", "Candidate", "Landing", "MotionRow", "OptimalRows",
+           "by_worse_servo", "optimal_rows"]

@@ -114,9 +114,11 @@ def with_optimal(result: CodesignResult, model: Robot, motor: Any, groups: Group
     simulated with the balance ``feedback`` setting, then the springs to buy for the optimal
     motion by ``rules`` (:func:`~hexaleg.design.codesign.full_rules.motion_rules` with the
     run's settings; None: none) where the alternation did not keep the gait, the optimal problem
-    set by ``params`` (:class:`~hexaleg.optimal.problem.OptimalParams`; None: its defaults); each
-    solve and the rules' result kept in ``stages`` (:class:`KeptSolves`); its wall time the two
-    stages' together."""
+    set by ``params`` (:class:`~hexaleg.optimal.problem.OptimalParams`; None: its defaults), each
+    optimal row solved without and with the landing cost and kept by the worse servo
+    (:func:`~hexaleg.design.codesign.optimal_rows.by_worse_servo`; the rules run on the motion
+    kept); each solve and the rules' result kept in ``stages`` (:class:`KeptSolves`); its wall
+    time the two stages' together."""
     from hexaleg.design.codesign.optimal_rows import optimal_rows  # the optimal extra's rows
 
     def tell(line: str) -> None:
