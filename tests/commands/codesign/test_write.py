@@ -125,7 +125,7 @@ def test_the_page_buys_the_optimal_motions_springs_by_the_full_rules(ruled):
     """Where the full spring rules ran on the optimal motion, the page's answer for it is
     their recommendation (its energy per metre, saving and simulation), proven or not as their
     proof says; the alternation's own springs are named as the last row's."""
-    from hexaleg.design.codesign.optimal_rows import ON
+    from hexaleg.design.codesign.optimal_table import ON
     from hexaleg.design.codesign.rules import rule_data
     from hexaleg.outputs.html import render_codesign_html
 
@@ -220,7 +220,7 @@ def test_the_optimal_note_prints_the_solver_and_the_alternation_as_the_text_does
 
     import hexaleg
     from hexaleg.design.codesign.alternation import MOVES, Alternation, Round, Spread
-    from hexaleg.design.codesign.optimal_rows import LABELS, MotionRow, OptimalRows
+    from hexaleg.design.codesign.optimal_table import LABELS, MotionRow, OptimalRows
     from hexaleg.outputs.html import render_codesign_html
     from hexaleg.quantities import json_text
 

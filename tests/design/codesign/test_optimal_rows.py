@@ -1,5 +1,6 @@
-"""The optimal motion's rows of ``hexaleg codesign --motion optimal``: the table, its JSON and
-its proof; with Crocoddyl, the four rows of a small problem computed and simulated."""
+"""The optimal motion's rows of ``hexaleg codesign --motion optimal`` computed: from the start
+chosen, a cycle not rebuilt, every row judged inside the margin, each row's answer kept by the
+worse servo; with Crocoddyl, the four rows of a small problem computed and simulated."""
 
 from __future__ import annotations
 
@@ -8,126 +9,13 @@ import itertools
 import json
 from types import SimpleNamespace
 
-import numpy as np
 import pytest
+from optimal_records import solved
 
 import hexaleg
-from hexaleg.design.codesign.alternation import MOVES, Alternation, Prediction, Round, Spread
-from hexaleg.design.codesign.optimal_rows import LABELS, MotionRow, OptimalRows
+from hexaleg.design.codesign.alternation import Alternation, Prediction
+from hexaleg.design.codesign.optimal_table import LABELS
 from hexaleg.quantities import json_text
-
-
-def _solved(per_metre: float) -> SimpleNamespace:
-    """The figures of an optimal cycle the table reads (an OptimalResult's)."""
-    return SimpleNamespace(energy_per_metre=per_metre, residual=7e-15, iterations=100,
-                           converged=False, stationarity=5e-5, threshold=1e-8, dynamic_gap=0.0,
-                           periodicity=1e-3, friction_use=0.6, slip=4e-3, drift=2e-4,
-                           torques=np.zeros((40, 18)), seconds=60.0, motion=None,
-                           task_space=None)
-
-
-def _rows(position: float | None) -> OptimalRows:
-    springs = hexaleg.SpringSet({"femur": hexaleg.LinearSpring(stiffness=0.5)})
-    start, best = _solved(9.2), _solved(9.0)
-    alt = Alternation(None, 10.0, start, 9.3, best, springs,
-                      (Round(springs, 8.9, 9.0, 9.1, True, 1.0),), 0.02, False)
-    sims = [MotionRow(label, e, {"feedforward": 1.1 * e, "position": 1.3 * e},
-                      {"feedforward": "walks", "position": "walks"},
-                      {"feedforward": "open loop", "position": "balance feedback"})
-            for label, e in zip(LABELS[:3], (28.4, 10.0, 9.6), strict=True)]
-    last = MotionRow(LABELS[3], 9.0, {"feedforward": 9.5, "position": position},
-                     {"feedforward": "walks",
-                      "position": "walks" if position is not None else "fell: at 1 s"})
-    return OptimalRows((*sims, last), springs, "linear", _solved(9.6), alt, hexaleg.load(),
-                       "both", 200.0, "on")
-
-
-def test_the_table_says_what_backs_the_springs():
-    proven, unproven = _rows(11.0), _rows(None)
-    assert proven.proven and not unproven.proven
-    assert not any("unproven" in line for line in proven.lines())
-    assert "unproven: it does not walk under position" in unproven.lines()[-1]
-    data = json.loads(json_text(unproven.data()))
-    assert [r["label"] for r in data["rows"]] == list(LABELS)
-    assert data["rows"][3]["simulated"]["position"] is None
-    assert data["rows"][3]["verdicts"]["position"].startswith("fell")
-    assert data["residual"] == {"value": 7e-15, "unit": "N·m"}
-    assert [e["value"] for e in data["alternation"]["energies"]] == [10.0, 9.3, 9.1]
-    assert data["alternation"]["kept_gait"] is False
-    assert data["feedback"] == "on" and "(balance feedback on)" in unproven.lines()[0]
-    assert data["springs"][0]["joint"] == "femur" and data["proven"] is False
-    assert data["rows"][0]["loops"] == {"feedforward": "open loop",
-                                        "position": "balance feedback"}
-    lines = proven.lines()
-    assert "(balance feedback)" in lines[1] and "(open loop)" in lines[1]
-    assert any("the solver's own J/m at its knots: 9.60 (no springs), 9.00" in line
-               for line in lines)
-
-
-def test_an_optimal_row_is_printed_to_the_digits_its_spread_leaves():
-    """An optimal row whose prediction moves by 0.04 J/m with its start is printed to no
-    decimal, predicted and simulated, with ``±1`` (its last digit's unit at least four times
-    the spread); one that moves by 2e-4 to two with ``±0.01``; the parametric rows as before,
-    without ±; the alternation's trail to the last row's digits and the solver's own figures to
-    their own spread's; a round-off residual as ``≤ 1e-12``; codesign.json holds each spread.
-    Catches a figure printed to digits its spread does not support."""
-    table = _rows(11.0)
-    bare = Spread(MOVES, (9.6, 9.6002, 9.6, 9.6001, 9.6), (9.6, 9.63, 9.6, 9.6, 9.6),
-                  (5e-5,) * 5)
-    last = Spread(MOVES, (9.0, 9.03, 8.99, 9.0, 9.01), (9.0,) * 5, (5e-5, 3e-2, 1e-3, 1e-3, 1e-3))
-    rows = (*table.rows[:2], dataclasses.replace(table.rows[2], spread=bare),
-            dataclasses.replace(table.rows[3], spread=last))
-    lines = dataclasses.replace(table, rows=rows).lines()
-    assert "    optimal motion, its springs" in lines[4] and "      9 ±1   10, 11" in lines[4]
-    assert "   9.60 ±0.01   10.56 (open loop), 12.48 (balance" in lines[3]
-    assert "  10.00   11.00 (open loop)" in lines[2] and "±" not in lines[1] + lines[2]
-    assert lines[5].startswith("    ±: the prediction's spread over the row's answer repeated")
-    assert "at its knots: 10 (no springs), 9.00 (its springs)" in lines[6]
-    assert "stationarity up to 3e-02" in lines[7] and "10 → 9 → 9 J/m" in lines[7]
-    assert "residual ≤ 1e-12 N·m" in lines[7]
-    data = json.loads(json_text(dataclasses.replace(table, rows=rows).data()))
-    assert data["rows"][3]["spread"]["value"] == {"value": pytest.approx(0.04), "unit": "J/m"}
-    assert "spread" not in data["rows"][1]
-    # moved starts without a prediction: said; with fewer than two predicted, no ± at all
-    some = dataclasses.replace(last, judged=(9.0, None, 8.99, None, 9.0))
-    none = dataclasses.replace(last, judged=(9.0, None, None, None, None))
-    lines = dataclasses.replace(table, rows=(*table.rows[:3], dataclasses.replace(
-        table.rows[3], spread=some))).lines()
-    assert "    9.0 ±0.1 (2 of 5 not predicted)   9.5, 11.0" in lines[4]
-    lines = dataclasses.replace(table, rows=(*table.rows[:3], dataclasses.replace(
-        table.rows[3], spread=none))).lines()
-    assert "   9.00 (no spread: 4 of 5 not predicted)   9.50, 11.00" in lines[4]
-
-
-def test_a_row_without_a_prediction_says_why_not_nan():
-    """A rebuilt trot whose stance feet cannot push the base's wrench (Solo-12's optimal trots)
-    has no prediction: the row holds None and the analysis' error — the table prints a dash
-    and the reason, codesign.json a null and the reason — never NaN; ``predicted_per_metre``
-    returns the error's message where the force program has no answer."""
-    from hexaleg.design.codesign.alternation import predicted_per_metre
-    from hexaleg.dynamics.contact import ContactParams
-
-    run = hexaleg.Scenario.load("hexaleg")
-    motion = hexaleg.gait(run.model, hexaleg.GaitParams(samples=40))
-    value, why = predicted_per_metre(run.model, motion, run.actuator, hexaleg.SpringSet(),
-                                     ContactParams(mu=1e-3))
-    assert value is None and why.startswith("InfeasibleForcesError: ")
-    value, why = predicted_per_metre(run.model, motion, run.actuator, hexaleg.SpringSet(),
-                                     run.contact)
-    assert why == "" and value is not None and value > 0
-    table = _rows(11.0)
-    bare = MotionRow(LABELS[2], None, {"feedforward": None, "position": None},
-                     {"feedforward": "raised", "position": "raised"},
-                     unpredicted="InfeasibleForcesError: the stance feet LF, RH cannot produce "
-                                 "the base wrench")
-    rows = OptimalRows((*table.rows[:2], bare, table.rows[3]), table.springs, "linear",
-                       table.bare, table.alternation, table.robot, "both", 1.0)
-    line = rows.lines()[3]
-    assert "nan" not in line and "— (no prediction: InfeasibleForcesError: the stance" in line
-    data = json.loads(json_text(rows.data()))
-    assert data["rows"][2]["predicted"] == {"value": None, "unit": "J/m"}
-    assert data["rows"][2]["unpredicted"].startswith("InfeasibleForcesError")
-    assert "unpredicted" not in data["rows"][0]
 
 
 @pytest.mark.slow
@@ -198,12 +86,12 @@ def test_the_alternation_and_the_bare_cycle_run_from_the_start_chosen(monkeypatc
                                  duty_factor=0.8)
     moved = dataclasses.replace(chosen, step_height=1.3 * chosen.step_height)
     settings = hexaleg.optimal.problem.OptimalParams(iterations=3)
-    picked = _solved(8.5)
+    picked = solved(8.5)
     seen: dict[str, object] = {}
 
     def starts(_robot, timed, _motor, _springs, _contact, params, min_step, **kwargs):
         seen["starts"] = (timed, params, min_step, kwargs["first"])
-        return StartSearch((Start("the gait", timed, params, _solved(9.0), 9.4, ""),
+        return StartSearch((Start("the gait", timed, params, solved(9.0), 9.4, ""),
                             Start("step height × 1.3", moved, settings, picked, 9.3, "")), 1)
 
     def alternate(_robot, motion, _motor, _contact, **kwargs):
@@ -213,7 +101,7 @@ def test_the_alternation_and_the_bare_cycle_run_from_the_start_chosen(monkeypatc
 
     def solve(_robot, built, **_kwargs):
         seen.setdefault("solved", []).append(built)
-        return SimpleNamespace(**{**vars(_solved(15.0)), "task_space": built})
+        return SimpleNamespace(**{**vars(solved(15.0)), "task_space": built})
 
     monkeypatch.setattr(rows_module, "search_starts", starts)
     monkeypatch.setattr(rows_module, "alternate", alternate)
@@ -284,10 +172,10 @@ def test_a_cycle_not_rebuilt_is_a_row_that_says_why(monkeypatch, robot):
     played: list[object] = []
 
     def solve(_robot, _built, **_kwargs):
-        return SimpleNamespace(**{**vars(_solved(15.0)), "unbuilt": why})
+        return SimpleNamespace(**{**vars(solved(15.0)), "unbuilt": why})
 
     def alternate(_robot, motion, _motor, _contact, **_kwargs):
-        return Alternation(motion, 9.5, _solved(9.0), None, _solved(9.0), springs, (), 0.0,
+        return Alternation(motion, 9.5, solved(9.0), None, solved(9.0), springs, (), 0.0,
                            True)
 
     def simulated(_robot, motion, *_args):
@@ -322,54 +210,6 @@ def test_a_cycle_not_rebuilt_is_a_row_that_says_why(monkeypatch, robot):
         "not rebuilt")
 
 
-def _bought(rows: OptimalRows, rules: object, motion: hexaleg.Motion) -> OptimalRows:
-    """``rows`` whose alternation's answer is the cycle ``motion`` and whose springs to buy are
-    the full rules' ``rules``."""
-    best = dataclasses.replace(rows.alternation, best=SimpleNamespace(**{
-        **vars(rows.alternation.best), "task_space": motion}))
-    return dataclasses.replace(rows, alternation=best, rules=rules)
-
-
-def test_the_springs_to_buy_for_the_optimal_motion_are_the_full_rules(ruled, walk200):
-    """Where the full spring rules ran on the optimal motion, the springs to buy are theirs
-    (their parts, per metre of that motion, their proof), the alternation's own springs only the
-    row's: the table proves the springs by the rules' simulation, not by row 4's walk (which
-    fails under position servos here while the rules' springs are proven)."""
-    from hexaleg.design.codesign.optimal_rows import ON
-    from hexaleg.design.codesign.rules import per_metre
-
-    rules = ruled.rules
-    assert rules.pays and not rules.unproven  # the chosen gait's one-sided design, proven
-    table = _bought(_rows(None), rules, walk200)
-    assert table.proven and not table.rows[-1].walks
-    lines = table.lines()
-    assert "    its springs (linear, the alternation's): femur" in lines
-    head = next(line for line in lines if "full spring rules on the optimal motion" in line)
-    assert head.startswith("    springs to buy (full spring rules on the optimal motion: ")
-    assert f"{per_metre(rules, walk200.distance):.2f} J/m" in head
-    assert any("simulated electrical saving, the worse servo first" in line for line in lines)
-    data = json.loads(json_text(table.data()))
-    assert data["proven"] is True and data["full_rules"]["applied_to"] == ON
-    assert data["full_rules"]["per_metre"]["value"] == pytest.approx(
-        per_metre(rules, walk200.distance), rel=1e-12)
-    assert data["full_rules"]["recommended"]["label"] == rules.recommended.label
-    failed = _bought(_rows(None), "InvalidParameterError: too few samples", walk200)
-    assert not failed.proven and failed.data()["full_rules"]["error"].endswith("samples")
-    assert any("full spring rules could not run on the optimal motion "
-               "(InvalidParameterError: too few samples)" in line for line in failed.lines())
-    assert "unproven: it does not walk under position" in failed.lines()[-1]
-
-
-def test_a_kept_gait_buys_the_co_designs_springs():
-    """Where the alternation kept the co-design's gait, no rules run on it a second time: the
-    springs to buy are the co-design's."""
-    table = _rows(11.0)
-    kept = dataclasses.replace(table, alternation=dataclasses.replace(table.alternation,
-                                                                      kept_gait=True))
-    assert kept.lines()[-1] == "    springs to buy for it: the co-design's (above)"
-    assert kept.data()["full_rules"] is None
-
-
 def test_every_row_is_judged_inside_the_margin_row_3_by_the_alternations_judge(monkeypatch,
                                                                                robot):
     """Every row is predicted inside the friction margin of the floor, by the same judge: on a
@@ -394,10 +234,10 @@ def test_every_row_is_judged_inside_the_margin_row_3_by_the_alternations_judge(m
                                                     speed=None))
 
     def solve(_robot, _built, **_kwargs):
-        return SimpleNamespace(**{**vars(_solved(15.0)), "task_space": short})
+        return SimpleNamespace(**{**vars(solved(15.0)), "task_space": short})
 
     def alternate(_robot, motion, _motor, _contact, **_kwargs):
-        return Alternation(motion, None, _solved(9.0), None, _solved(9.0), hexaleg.SpringSet(),
+        return Alternation(motion, None, solved(9.0), None, solved(9.0), hexaleg.SpringSet(),
                            (), 0.0, True)
 
     monkeypatch.setattr(rows_module, "alternate", alternate)
@@ -427,110 +267,6 @@ def test_every_row_is_judged_inside_the_margin_row_3_by_the_alternations_judge(m
     assert data["rows"][2]["friction_use"] == {"value": None, "unit": "1"}
 
 
-def test_springs_on_a_row_beyond_the_margin_are_unproven():
-    """A last row whose cycle has no forces inside the friction margin is predicted in the
-    whole cone and flagged — its friction use beside it, beyond the margin, and why — and its
-    springs are unproven though it walks under both servos (the table's line and
-    codesign.json). Catches a row beyond the margin printed as a silent number."""
-    table = _rows(11.0)
-    why = "no admissible forces within 0.7 of the friction cone (InfeasibleForcesError: …)"
-    last = dataclasses.replace(table.rows[3], friction_use=0.93, beyond=why)
-    rows = dataclasses.replace(table, rows=(*table.rows[:3], last))
-    assert table.proven and not rows.proven and last.walks
-    lines = rows.lines()
-    assert "   9.00 (friction 0.93, beyond the 0.7 margin)   9.50, 11.00" in lines[4]
-    assert f"    optimal motion, its springs: predicted in the whole friction cone, {why}" in lines
-    assert lines[-1].endswith("— unproven: its forces need 0.93 of the friction cone, beyond "
-                              "the 0.7 margin")
-    data = json.loads(json_text(rows.data()))
-    assert data["proven"] is False and data["unproven"].startswith("its forces need 0.93")
-    assert data["rows"][3]["within_margin"] is False and data["rows"][3]["beyond"] == why
-    assert data["rows"][3]["friction_use"] == {"value": 0.93, "unit": "1"}
-    both = dataclasses.replace(rows, rows=(*table.rows[:3], dataclasses.replace(
-        last, simulated={"feedforward": 9.5, "position": None})))
-    assert both.unproven == ("its forces need 0.93 of the friction cone, beyond the 0.7 margin; "
-                             "it does not walk under position")
-
-
-def _answer(weight: float, predicted: float | None, feedforward: float | None,
-            position: float | None):
-    from hexaleg.design.codesign.optimal_rows import Candidate
-
-    sims = {"feedforward": feedforward, "position": position}
-    return Candidate(weight, predicted, sims,
-                     {k: "walks" if v is not None else "fell" for k, v in sims.items()})
-
-
-def test_a_row_keeps_the_answer_walking_cheaper_under_the_worse_servo():
-    """The hexapod's case (the landing cost's answer walks under position servos for 13.8
-    where the other walks for 18.2) keeps the answer with the cost; Solo-12's (78 / 76 with it
-    against 38 / 34) the one without. Catches a choice by the better servo (the first pair:
-    feedforward 10.0 against 11.0 would keep the answer without the cost), by the prediction,
-    or by the feedforward servo alone."""
-    from hexaleg.design.codesign.optimal_rows import by_worse_servo
-
-    assert by_worse_servo([_answer(0.0, 10.0, 10.0, 18.2),
-                           _answer(30.0, 10.5, 11.0, 13.8)]) == 1
-    assert by_worse_servo([_answer(0.0, 31.0, 38.0, 34.0),
-                           _answer(30.0, 30.0, 78.0, 76.0)]) == 0
-    # an answer that does not walk under one servo is never kept over one that walks
-    assert by_worse_servo([_answer(0.0, 9.0, 9.0, None), _answer(30.0, 12.0, 20.0, 30.0)]) == 1
-    # neither walks: the cheaper prediction; none predicted: the first (without the cost)
-    assert by_worse_servo([_answer(0.0, 12.0, None, 20.0), _answer(30.0, 11.0, 9.0, None)]) == 1
-    assert by_worse_servo([_answer(0.0, None, None, None), _answer(30.0, None, None, None)]) == 0
-
-
-def test_a_tie_under_the_worse_servo_goes_to_the_cheaper_prediction():
-    """Within the servo check's tie (0.2 % of the least, what a forward simulation's rounding
-    may move on another machine) the cheaper prediction is kept, and on equal predictions the
-    answer without the cost; beyond it the simulation decides. Catches a strict ``<`` on the
-    simulated figures (13.81 against 13.80 would keep the dearer prediction)."""
-    from hexaleg.design.codesign.optimal_rows import by_worse_servo
-    from hexaleg.design.codesign.servo import TIE
-
-    assert TIE == 0.002
-    assert by_worse_servo([_answer(0.0, 10.5, 10.0, 13.80),
-                           _answer(30.0, 10.4, 10.0, 13.81)]) == 1
-    assert by_worse_servo([_answer(0.0, 10.4, 10.0, 13.81),
-                           _answer(30.0, 10.4, 10.0, 13.80)]) == 0
-    assert by_worse_servo([_answer(0.0, 10.0, 10.0, 13.80),
-                           _answer(30.0, 10.5, 10.0, 13.80 * (1 + 2 * TIE) + 0.01)]) == 0
-    assert by_worse_servo([_answer(0.0, 10.0, 10.0, 14.00),
-                           _answer(30.0, 10.5, 10.0, 13.90)]) == 1
-
-
-def test_the_table_says_which_answer_each_optimal_row_kept():
-    """Each optimal row's line of the landing cost: which answer it kept, each one's J/m under
-    the worse servo and predicted; codesign.json holds both answers, the weight kept and the
-    rule."""
-    from hexaleg.design.codesign.optimal_rows import Landing
-
-    rows = _rows(12.0)
-    bare = Landing((_answer(0.0, 15.0, 16.0, 20.8), _answer(30.0, 15.1, 16.3, 20.5)), 1)
-    last = Landing((_answer(0.0, 10.4, 10.3, 18.2), _answer(30.0, 10.4, 10.2, 13.8)), 1)
-    solo = Landing((_answer(0.0, 31.0, 38.0, 34.0), _answer(30.0, 31.0, 78.0, 76.0)), 0)
-    table = dataclasses.replace(rows, rows=(
-        *rows.rows[:2], dataclasses.replace(rows.rows[2], landing=solo),
-        dataclasses.replace(rows.rows[3], landing=last)))
-    lines = table.lines()
-    assert ("    each optimal row solved without and with the landing legs' position-servo "
-            "effort in its cost (weight 30), kept the one walking cheaper under the worse "
-            "servo:") in lines
-    assert ("    optimal motion, no springs: kept the answer without the landing cost — without "
-            "it 38.00 under the worse servo (31.00 predicted); with it 78.00 under the worse "
-            "servo (31.00 predicted)") in lines
-    assert ("    optimal motion, its springs: kept the answer with the landing cost — with it "
-            "13.80 under the worse servo (10.40 predicted); without it 18.20 under the worse "
-            "servo (10.40 predicted)") in lines
-    data = json.loads(json_text(table.data()))["rows"]
-    assert "landing" not in data[0] and "landing" not in data[1]
-    assert data[3]["landing"]["kept"] == 1
-    assert data[3]["landing"]["servo_landing_weight"] == {"value": 30.0, "unit": "W/(N·m)^2"}
-    assert data[2]["landing"]["candidates"][1]["simulated"]["position"] == {
-        "value": 76.0, "unit": "J/m"}
-    assert bare.weight == 30.0 and solo.weight == 0.0
-
-
 @pytest.mark.parametrize("cheaper", [0.0, 30.0])
 def test_each_optimal_row_keeps_its_answer_by_the_worse_servo(monkeypatch, robot, cheaper):
     """Both optimal rows are solved without and with the landing cost (the weight
@@ -553,12 +289,12 @@ def test_each_optimal_row_keeps_its_answer_by_the_worse_servo(monkeypatch, robot
 
     def solve(_robot, built, **_kwargs):
         weight = built[1].servo_landing_weight
-        return SimpleNamespace(**{**vars(_solved(15.0 + weight / 100)),
+        return SimpleNamespace(**{**vars(solved(15.0 + weight / 100)),
                                   "task_space": ("cycle", weight)})
 
     def alternate(_robot, motion, _motor, _contact, **kwargs):
         weight = kwargs["params"].servo_landing_weight
-        best = SimpleNamespace(**{**vars(_solved(9.0)), "task_space": ("springs", weight)})
+        best = SimpleNamespace(**{**vars(solved(9.0)), "task_space": ("springs", weight)})
         return Alternation(motion, 9.9, kwargs["first"], 9.5, best, springs, (), 0.0, False)
 
     def simulated(_robot, motion, _motor, _springs, controller, *_args):

@@ -116,7 +116,7 @@ def with_optimal(result: CodesignResult, model: Robot, motor: Any, groups: Group
     run's settings; None: none) where the alternation did not keep the gait, the optimal problem
     set by ``params`` (:class:`~hexaleg.optimal.problem.OptimalParams`; None: its defaults), each
     optimal row solved without and with the landing cost and kept by the worse servo
-    (:func:`~hexaleg.design.codesign.optimal_rows.by_worse_servo`; the rules run on the motion
+    (:func:`~hexaleg.design.codesign.landing_choice.by_worse_servo`; the rules run on the motion
     kept); each solve and the rules' result kept in ``stages`` (:class:`KeptSolves`); its wall
     time the two stages' together."""
     from hexaleg.design.codesign.optimal_rows import optimal_rows  # the optimal extra's rows

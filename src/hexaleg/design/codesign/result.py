@@ -24,7 +24,7 @@ from hexaleg.design.chain.ranking import under
 from hexaleg.design.codesign.floors import Floor, worst
 from hexaleg.design.codesign.gait_evaluation import PARAMETERS, UNITS, Constraints, GaitPoint
 from hexaleg.design.codesign.gait_search import SearchResult
-from hexaleg.design.codesign.optimal_rows import OptimalRows
+from hexaleg.design.codesign.optimal_table import OptimalRows
 from hexaleg.design.codesign.rules import RULES, rule_data, rule_lines
 from hexaleg.design.codesign.servo import Screened, choose
 from hexaleg.design.springs.law_json import spring_entry
@@ -99,7 +99,7 @@ class CodesignResult:
             order (:mod:`hexaleg.design.codesign.servo`); empty when not simulated.
         floors: The springs to buy's predicted saving on the chosen gait at each μ of
             :data:`~hexaleg.design.codesign.floors.FLOORS`.
-        optimal: The optimal motion's rows (:class:`~hexaleg.design.codesign.optimal_rows.
+        optimal: The optimal motion's rows (:class:`~hexaleg.design.codesign.optimal_table.
             OptimalRows`), or None when not asked (``motion="gait"``).
         duty_high: The searches' highest duty factor (``[codesign] duty_high``).
         body_high: The searches' highest body height, × the default gait's (``[codesign]
