@@ -158,3 +158,53 @@ def test_bad_input_is_a_named_error(robot):
                            free=None, constant_torque=True, max_outer_diameter=0.02)
     assert ev.part_envelope(no_spring, {}, {}) is None
     assert ev.envelope([no_spring], {}, {}) == ()
+
+
+def _arbor_part(arbor: float) -> SpringPart:
+    """The femur part of this module's law with its spring designed to clear an ``arbor``-m
+    arbor over the gait (by the design's margin), engaged throughout the range ±2.5 rad."""
+    req = TorsionRequirement(rate=RATE, max_torque=MAX_TORQUE, preload_torque=PRELOAD,
+                             max_outer_diameter=0.02, arbor_diameter=arbor)
+    return SpringPart(group="femur", joints=FEMURS, side="above", role="one-sided", rate=RATE,
+                      preload_torque=PRELOAD, max_torque=MAX_TORQUE, engage=ENGAGE,
+                      free=ENGAGE - PRELOAD / RATE, constant_torque=False,
+                      max_outer_diameter=0.02, spring=design_torsion_spring(req))
+
+
+def test_a_coil_winding_past_its_arbors_clearance_gets_a_stop_there():
+    """A coil that the envelope winds down past the clearance the design demands over its
+    arbor is stopped where its inside diameter reaches that clearance (the wind-up found by
+    inverting §10-12, checked here forward), beyond the gait's wind-up; the design factor
+    holds there. Fails on an envelope that only stops for stress (no stop: the coil closes to
+    8.64 mm over an 8.2-mm arbor whose clearance is 9.02 mm) and on a wrong inversion."""
+
+    part = _arbor_part(0.0082)
+    spring = part.spring
+    assert spring is not None
+    centres = {j: 0.0 for j in FEMURS}
+    env = ev.part_envelope(part, centres, {j: (ev.AngleRange(-2.5, 2.5, "range"),)
+                                           for j in FEMURS})
+    assert env is not None and env.stop is not None and env.stop.limit == ev.ARBOR
+    clear = 0.0082 * (1 + spring.requirement.arbor_margin)
+    assert env.wound_inner_diameter < clear  # unstopped, the coil would close past it
+    d, D, nb, k = spring.wire_diameter, spring.mean_diameter, spring.body_turns, spring.rate
+    from hexaleg.design.springs.materials import material as wire
+    from hexaleg.design.springs.torsion_spring import deflection_turns, wound_diameter
+
+    E = wire(spring.material).young_modulus(d)
+    at_stop = float(wound_diameter(D, nb, deflection_turns(k * env.stop.windup, d, D, nb, E))) - d
+    assert at_stop == pytest.approx(clear, rel=1e-12)
+    assert env.held_inner_diameter == pytest.approx(clear, rel=1e-12) and env.clears_arbor
+    assert spring.max_deflection < env.stop.windup < env.max_windup  # the gait is untouched
+    assert float(bending_stress(env.stop.torque, d, D)) < spring.yield_strength / 1.2
+    assert env.table()["hard_stop"]["limit"] == ev.ARBOR
+
+
+def test_the_stop_is_the_nearer_of_stress_and_arbor():
+    """With a smaller arbor the design factor binds first: the stop is the stress stop, and
+    at it the coil still clears its arbor."""
+    part = _arbor_part(0.0075)
+    env = ev.part_envelope(part, {j: 0.0 for j in FEMURS},
+                           {j: (ev.AngleRange(-2.5, 2.5, "range"),) for j in FEMURS})
+    assert env is not None and env.stop is not None and env.stop.limit == ev.STRESS
+    assert env.clears_arbor and env.held_inner_diameter > 0.0075 * 1.1

@@ -35,7 +35,7 @@ from hexaleg.design.families import family
 from hexaleg.design.fold import Fold, Mission
 from hexaleg.design.robust.maps import RobustnessMap
 from hexaleg.design.search.tolerance import TolerantSprings
-from hexaleg.design.springs.envelope import PartEnvelope
+from hexaleg.design.springs.envelope import STRESS, PartEnvelope
 from hexaleg.design.springs.fatigue import FatigueCheck, cycles_per_year
 from hexaleg.design.springs.mounting import mountings
 from hexaleg.design.springs.parts import SpringPart
@@ -200,7 +200,10 @@ class DesignResult:
                     f"{self.worst[m][1]}" if self.maps else "no robustness maps ("
                     + ("logged motion" if self.run.log is not None else "left out") + ")"))
         stops = [f"{e.group} ({e.side}) at {math.degrees(e.stop.angle_from_centre):+.1f}° from "
-                 f"its centre of motion (S_y/σ {e.safety_factor:.2f} without)"
+                 "its centre of motion (" + (
+                     f"S_y/σ {e.safety_factor:.2f} without" if e.stop.limit == STRESS else
+                     f"its coil {1e3 * e.wound_inner_diameter:.2f} mm over its "
+                     f"{1e3 * e.arbor_diameter:.2f}-mm arbor without") + ")"
                  for e in self.envelope if e.stop is not None]
         unsafe = [f"{e.group} ({e.side}): {e.problem}" for e in self.envelope
                   if e.stop is None and not e.meets]

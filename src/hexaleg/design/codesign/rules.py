@@ -20,6 +20,7 @@ from typing import Any
 
 from hexaleg.design.chain.records import candidate_data, ranking_data
 from hexaleg.design.chain.result import DesignResult, mounting_data, proof_data, tolerance_data
+from hexaleg.design.springs.envelope import STRESS
 from hexaleg.quantities import quantity
 from hexaleg.simulation.sensitivity import sensitivity_row
 
@@ -65,13 +66,14 @@ def rule_lines(r: DesignResult, stride: float, on: str = "the chosen gait") -> l
         s = p.spring
         assert s is not None  # the envelope holds the bought parts only
         stop = ("no hard stop needed" if e.stop is None else
-                f"hard stop at {math.degrees(e.stop.angle_from_centre):+.1f}° from the centre")
+                f"hard stop at {math.degrees(e.stop.angle_from_centre):+.1f}° from the centre"
+                + ("" if e.stop.limit == STRESS else f" (set by its {e.stop.limit})"))
         arbor = ("clears its arbor" if e.clears_arbor else "does not clear its arbor")
         out.append(f"  {p.group} {p.side}: {s.material} d {1e3 * s.wire_diameter:.2f} mm, D "
                    f"{1e3 * s.mean_diameter:.2f} mm, {s.body_turns:g} turns; worst S_y/σ "
                    f"{e.safety_factor:.2f} (design factor {e.design_factor:g}), {stop}; fatigue "
                    f"n_f {f.safety_factor:.2f} at {d.life_cycles:,.0f} cycles; wound up it {arbor} "
-                   f"({1e3 * e.wound_inner_diameter:.2f} mm over {1e3 * e.arbor_diameter:.2f} mm)")
+                   f"({1e3 * e.held_inner_diameter:.2f} mm over {1e3 * e.arbor_diameter:.2f} mm)")
     rows = r.simulated()
     if rows:
         sims = [f"{row['label']} {_pct(row['simulated'])}" if row["simulated"] is not None

@@ -7,7 +7,8 @@ joint's absolute angle ranges with where they come from; :func:`part_envelope` f
 them, the largest wind-up of the part's torsion spring, its bending stress (Shigley Eq. 10-44,
 inner fibre) and static safety ``S_y/σ`` (Eq. 10-57's S_y, as the design uses), the coil's
 inside diameter wound up that far (§10-12, ``D' = N_b D/(N_b + θ'_c)``) against the arbor, and,
-when the safety is below the design factor, the **hard stop** that limits the wind-up.
+when the safety is below the design factor or the coil would close onto its arbor, the **hard
+stop** that limits the wind-up.
 
 The spring law on a joint whose centre of motion is c (u = q − c; s = +1 for a part acting
 ``above``, −1 ``below``; ``P`` the part's preload torque, k the bought spring's rate):
@@ -23,7 +24,13 @@ The hard stop (:class:`HardStop`): the allowed stress ``S_y / n_d`` (n_d the des
 the allowed moment ``M = π d³ S_y/(32 K_i n_d)`` (Eq. 10-44 inverted), wind-up ``M/k`` and the
 joint angle ``u = u_P + s (M/k − P/k)`` from each joint's centre. It is a stop on the spring's
 moving leg: past it the joint turns on and the spring stays at M, so the stop holds M (a stop on
-the joint instead also holds the servo's torque).
+the joint instead also holds the servo's torque). The arbor bounds the wind-up too: the body
+winds down to the inside diameter ``D' − d = D_p (1 + m)`` (the clearance the design demands
+over the gait, ``arbor_margin`` m) at ``θ'_c = N_b (D/(D_p (1 + m) + d) − 1)`` turns, the moment
+``M = θ'_c d⁴ E/(10.8 D N_b)`` (§10-12's deflection inverted); the stop is at the smaller of the
+two wind-ups, and says which bounds it (:attr:`HardStop.limit`). Without it a coil the envelope
+winds past that diameter closes onto its arbor (on the default robot's optimal motion the rules
+bought a coxa spring whose coil came to 7.34 mm over its 7.50-mm arbor at the URDF limit).
 """
 
 from __future__ import annotations
@@ -37,6 +44,7 @@ from hexaleg.checks import real
 from hexaleg.design.springs.materials import material
 from hexaleg.design.springs.parts import SpringPart, motion_centres
 from hexaleg.design.springs.torsion_spring import (
+    WAHL,
     bending_stress,
     deflection_turns,
     inner_fibre_factor,
@@ -48,6 +56,10 @@ from hexaleg.quantities import quantity
 from hexaleg.robot.model import Robot
 
 URDF = "URDF limits"
+STRESS = "design factor"
+"""A hard stop set by the spring's stress (:attr:`HardStop.limit`)."""
+ARBOR = "arbor"
+"""A hard stop set by the coil's clearance over its arbor (:attr:`HardStop.limit`)."""
 GAIT = "gait"
 POSES = ("stand", "sphere")
 """Poses of the robot checked by default (those it has)."""
@@ -112,18 +124,22 @@ def envelope_ranges(robot: Robot, joints: Iterable[str], *, prepared: Prepared |
 
 @dataclass(frozen=True)
 class HardStop:
-    """The stop limiting a spring's wind-up to the design factor (module docstring), SI.
+    """The stop limiting a spring's wind-up to the design factor and its arbor's clearance
+    (module docstring), SI.
 
     Attributes:
         angle_from_centre: Joint angle where it must act, rad from each joint's centre of motion.
         angles: Joint → that angle, absolute, rad.
         windup: The spring's wind-up there, rad. torque: The spring's torque it holds, N·m.
+        limit: What sets it: :data:`STRESS` (the design factor) or :data:`ARBOR` (the coil's
+            clearance over its arbor), whichever comes first.
     """
 
     angle_from_centre: float
     angles: Mapping[str, float]
     windup: float
     torque: float
+    limit: str = STRESS
 
 
 @dataclass(frozen=True)
@@ -140,8 +156,11 @@ class PartEnvelope:
         by_source: Range label → the smallest safety factor over the part's joints there.
         wound_inner_diameter: Inside coil diameter at ``max_windup``, m.
         arbor_diameter: The spring's arbor, m (0: none).
-        stop: The hard stop needed, or None when the safety meets the design factor.
+        stop: The hard stop needed, or None when the safety meets the design factor and the
+            coil clears its arbor over the whole envelope.
         problem: Why no stop can help ("" otherwise).
+        held_inner_diameter: Inside coil diameter at the largest wind-up the spring reaches —
+            its hard stop's where it has one, else ``max_windup``'s —, m.
     """
 
     group: str
@@ -162,6 +181,7 @@ class PartEnvelope:
     arbor_diameter: float
     stop: HardStop | None = None
     problem: str = field(default="")
+    held_inner_diameter: float = math.nan
 
     @property
     def meets(self) -> bool:
@@ -170,8 +190,9 @@ class PartEnvelope:
 
     @property
     def clears_arbor(self) -> bool:
-        """Whether the coil wound to ``max_windup`` still clears its arbor."""
-        return self.wound_inner_diameter > self.arbor_diameter
+        """Whether the coil wound as far as it goes (to its hard stop, where it has one) still
+        clears its arbor."""
+        return self.held_inner_diameter > self.arbor_diameter
 
     def table(self) -> dict[str, Any]:
         """Every number as ``{value, unit}`` (angles in rad, the wind-up also in deg), for
@@ -180,7 +201,7 @@ class PartEnvelope:
             "angle_from_centre": quantity(self.stop.angle_from_centre, "rad"),
             "angles": {j: quantity(a, "rad") for j, a in self.stop.angles.items()},
             "windup": quantity(self.stop.windup, "rad"),
-            "torque": quantity(self.stop.torque, "N·m"),
+            "torque": quantity(self.stop.torque, "N·m"), "limit": self.stop.limit,
             "note": "a stop on the spring's moving leg, holding the spring's torque; a stop on "
                     "the joint instead also holds the servo's torque"}
         return {"group": self.group, "side": self.side, "role": self.role,
@@ -196,6 +217,7 @@ class PartEnvelope:
                           "source": self.source},
                 "by_source": {s: quantity(v, "1") for s, v in self.by_source.items()},
                 "wound_inner_diameter": quantity(self.wound_inner_diameter, "m"),
+                "held_inner_diameter": quantity(self.held_inner_diameter, "m"),
                 "arbor_diameter": quantity(self.arbor_diameter, "m"),
                 "clears_arbor": self.clears_arbor, "hard_stop": stop, "problem": self.problem}
 
@@ -263,28 +285,45 @@ def part_envelope(part: SpringPart, centres: Mapping[str, float],
     torque = k * w
     sigma = float(bending_stress(torque, d, D))
     E = float(material(spring.material).young_modulus(d))
-    body = float(deflection_turns(torque, d, D, spring.body_turns, E))
-    inner = float(wound_diameter(D, spring.body_turns, body)) - d
-    stop, problem = None, ""
+    nb = spring.body_turns
+
+    def inner_at(windup: float) -> float:
+        return float(wound_diameter(D, nb, deflection_turns(k * windup, d, D, nb, E))) - d
+
+    inner = inner_at(w)
+    limits: list[tuple[float, str]] = []  # (the wind-up allowed, what sets it)
+    problem = ""
     if _safety(sy, sigma) < factor:
         m_allow = math.pi * d**3 * sy / (32 * float(inner_fibre_factor(D / d)) * factor)
-        w_allow = m_allow / k
-        if w_allow < pre:
+        limits.append((m_allow / k, STRESS))
+        if m_allow / k < pre:
             problem = (f"preloaded beyond the design factor: σ at the preload exceeds S_y/"
                        f"{factor:g}; no stop helps, the spring must be redesigned")
-        else:
-            u = u_p + s * (w_allow - pre)
-            stop = HardStop(angle_from_centre=u,
-                            angles={j: float(centres[j]) + (-u if j in mirrored else u)
-                                    for j in part.joints},
-                            windup=w_allow, torque=m_allow)
+    clear = spring.arbor_diameter * (1 + spring.requirement.arbor_margin)
+    if spring.arbor_diameter > 0 and inner < clear:
+        turns = nb * (D / (clear + d) - 1)  # §10-12 inverted (module docstring)
+        w_arbor = turns * d**4 * E / (WAHL * D * nb) / k
+        limits.append((w_arbor, ARBOR))
+        if w_arbor < floor and not problem:
+            problem = (f"its coil is on its arbor at the preload (inside diameter "
+                       f"{inner_at(floor) * 1e3:.2f} mm, the arbor with its clearance "
+                       f"{clear * 1e3:.2f} mm); no stop helps, the spring must be redesigned")
+    stop = None
+    if limits and not problem:
+        w_allow, limit = min(limits)
+        u = u_p + s * (w_allow - pre)
+        stop = HardStop(angle_from_centre=u,
+                        angles={j: float(centres[j]) + (-u if j in mirrored else u)
+                                for j in part.joints},
+                        windup=w_allow, torque=k * w_allow, limit=limit)
+    held = inner if stop is None else inner_at(min(w, stop.windup))
     return PartEnvelope(
         group=part.group, side=part.side, role=part.role, max_windup=w, max_torque=torque,
         stress=sigma, yield_strength=sy, safety_factor=_safety(sy, sigma), design_factor=factor,
         joint=joint, angle=angle, angle_from_centre=rel, source=source,
         by_source=dict(sorted(by_source.items(), key=lambda kv: kv[1])),
         wound_inner_diameter=inner, arbor_diameter=spring.arbor_diameter, stop=stop,
-        problem=problem)
+        problem=problem, held_inner_diameter=held)
 
 
 def envelope(parts: Iterable[SpringPart], centres: Mapping[str, float],
