@@ -226,6 +226,7 @@ def test_the_optimal_note_prints_the_solver_and_the_alternation_as_the_text_does
 
     def solved(per_metre):
         return SimpleNamespace(energy_per_metre=per_metre, residual=7e-15, iterations=100,
+                               residual_check="euler_step", defect=0.0,
                                converged=False, stationarity=5e-5, threshold=1e-8,
                                dynamic_gap=0.0, periodicity=1e-3, friction_use=0.6, slip=4e-3,
                                drift=2e-4, torques=np.zeros((40, 18)), seconds=60.0,
