@@ -1,8 +1,11 @@
 """``hexaleg codesign --motion optimal`` run whole for a kept log: the command's output as printed
 (stdout and stderr, each line time-stamped with ``--stamp``), ``/usr/bin/time -v``'s figures,
 then what its codesign.json holds of each optimal row: its friction use and margin (issue #56's
-"friction use ≤ 0.7 of the cone") and its spread. Logs:
+"friction use ≤ 0.7 of the cone") and its spread, and of each optimal motion its dynamics
+residual by the check it names and its knots' defect. Logs:
 analysis/bench_logs/codesign_motion_optimal_spread.log (the default robot),
+analysis/bench_logs/codesign_motion_optimal_rk4.log (the default robot on RK4 knots:
+``-- --config rk4.toml``, ``[codesign.optimal] integrator = "rk4"``),
 analysis/bench_logs/codesign_motion_optimal_solo12.log's last two blocks (Solo-12, timing fixed
 and searched). Minutes; it needs the optimal extra.
 
@@ -50,6 +53,13 @@ def rows(data: dict) -> list[str]:
                    + ("—" if value is None else f"{value:.5f}") + f" J/m; judged {judged} J/m; "
                    f"solver {solver} J/m (spread {spread['solver_value']['value']:.5f}); "
                    f"stationarity {stopped}; {said}")
+    for key in ("no_springs", "springs_motion"):
+        solved = optimal[key]
+        check = solved.get("residual_check", "euler_step (the key came later)")
+        defect = solved.get("defect", {"value": float("nan")})["value"]
+        out.append(f"optimal.{key}: residual {solved['residual']['value']:.2g} N·m by {check}, "
+                   f"the knots' defect {defect:.2g}, dynamic gap "
+                   f"{solved['dynamic_gap']['value']:.2g}, {solved['iterations']} iterations")
     return out
 
 
