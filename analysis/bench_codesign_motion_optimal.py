@@ -55,10 +55,12 @@ def rows(data: dict) -> list[str]:
                    f"stationarity {stopped}; {said}")
     for key in ("no_springs", "springs_motion"):
         solved = optimal[key]
-        check = solved.get("residual_check", "euler_step (the key came later)")
-        defect = solved.get("defect", {"value": float("nan")})["value"]
+        check = solved.get("residual_check", "a check codesign.json does not name")
+        defect = solved.get("defect")
         out.append(f"optimal.{key}: residual {solved['residual']['value']:.2g} N·m by {check}, "
-                   f"the knots' defect {defect:.2g}, dynamic gap "
+                   "the knots' defect "
+                   + ("not recorded" if defect is None else f"{defect['value']:.2g}")
+                   + ", dynamic gap "
                    f"{solved['dynamic_gap']['value']:.2g}, {solved['iterations']} iterations")
     return out
 
