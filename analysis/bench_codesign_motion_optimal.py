@@ -2,8 +2,11 @@
 (stdout and stderr, each line time-stamped with ``--stamp``), ``/usr/bin/time -v``'s figures,
 then what its codesign.json holds of each optimal row: its friction use and margin (issue #56's
 "friction use ≤ 0.7 of the cone"), its spread, and its answers without and with the landing
-cost, simulated, and which it kept (the worse servo's). Logs:
+cost, simulated, and which it kept (the worse servo's); and of each optimal motion its
+dynamics residual by the check it names and its knots' defect. Logs:
 analysis/bench_logs/codesign_motion_optimal_spread.log (the default robot),
+analysis/bench_logs/codesign_motion_optimal_rk4.log (the default robot on RK4 knots:
+``-- --config rk4.toml``, ``[codesign.optimal] integrator = "rk4"``),
 analysis/bench_logs/codesign_motion_optimal_solo12.log's last two blocks (Solo-12, timing fixed
 and searched). Minutes; it needs the optimal extra.
 
@@ -57,6 +60,15 @@ def rows(data: dict) -> list[str]:
             continue
         out.append(f"{r['label']}: landing cost's answers (optimal.rows[].landing), kept "
                    f"{landing['kept']}: " + "; ".join(_answer(c) for c in landing["candidates"]))
+    for key in ("no_springs", "springs_motion"):
+        solved = optimal[key]
+        check = solved.get("residual_check", "a check codesign.json does not name")
+        defect = solved.get("defect")
+        out.append(f"optimal.{key}: residual {solved['residual']['value']:.2g} N·m by {check}, "
+                   "the knots' defect "
+                   + ("not recorded" if defect is None else f"{defect['value']:.2g}")
+                   + ", dynamic gap "
+                   f"{solved['dynamic_gap']['value']:.2g}, {solved['iterations']} iterations")
     return out
 
 

@@ -16,6 +16,7 @@ from hexaleg.design.codesign.optimal_table import LABELS, MotionRow, OptimalRows
 def solved(per_metre: float) -> SimpleNamespace:
     """The figures of an optimal cycle the table reads (an OptimalResult's)."""
     return SimpleNamespace(energy_per_metre=per_metre, residual=7e-15, iterations=100,
+                           residual_check="euler_step", defect=0.0,
                            converged=False, stationarity=5e-5, threshold=1e-8, dynamic_gap=0.0,
                            periodicity=1e-3, friction_use=0.6, slip=4e-3, drift=2e-4,
                            torques=np.zeros((40, 18)), seconds=60.0, motion=None,

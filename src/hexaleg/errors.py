@@ -202,6 +202,12 @@ class ExecutorError(HexalegError):
     """A sweep executor (e.g. a Dask scheduler) cannot be reached or failed."""
 
 
+class DivergedSolveError(HexalegError):
+    """An optimal-control solve left the finite numbers: a rollout of its dynamics from the
+    start it was given reached non-finite states (the message says on which knots and what
+    start to give it)."""
+
+
 class SimulationError(HexalegError):
     """A forward simulation did not walk: the robot fell or the integration diverged (the
     message says when and how)."""

@@ -66,3 +66,26 @@ def test_bad_shapes_are_named(robot, made):
         dynamics_residual(robot, q, v, dt, tau, forces[:, :2])
     with pytest.raises(InvalidParameterError, match="trajectory shapes"):
         dynamics_residual(robot, q[:-1], v, dt, tau, forces)
+
+
+def test_the_check_at_given_accelerations_shows_a_wrong_one(robot, made):
+    """``rnea_residual`` at each knot's own acceleration (the forward model's ``Δv/dt`` here) is
+    round-off; an acceleration wrong by ``δa`` at one knot leaves exactly ``M(q_k) δa`` there and
+    nothing elsewhere. Catches a check that ignores the accelerations it is given (e.g. takes
+    ``Δv/dt`` again)."""
+    from hexaleg.optimal.residual import rnea_residual
+
+    q, v, dt, tau, forces = made
+    a = np.diff(v, axis=0) / dt
+    assert np.abs(rnea_residual(robot, q[:-1], v[:-1], a, tau, forces)).max() < 1e-9
+    wrong = a.copy()
+    delta = np.zeros(robot.model.nv)
+    delta[[2, 9]] = [0.5, -2.0]
+    wrong[4] += delta
+    r = rnea_residual(robot, q[:-1], v[:-1], wrong, tau, forces)
+    mass = pin.crba(robot.model, robot.data, q[4])
+    mass = np.triu(mass) + np.triu(mass, 1).T
+    np.testing.assert_allclose(r[4], mass @ delta, atol=1e-9)
+    assert np.abs(np.delete(r, 4, axis=0)).max() < 1e-9
+    with pytest.raises(InvalidParameterError, match="knot shapes"):
+        rnea_residual(robot, q, v[:-1], a, tau, forces)

@@ -178,3 +178,76 @@ def test_closing_the_gap_takes_the_iterates_of_one_longer_solve(run):
     assert closed.iterations > 6 + 1  # more than one call
     assert np.array_equal(np.array(solver.xs), closed.x)
     assert np.array_equal(np.array(solver.us), closed.torques)
+
+
+@pytest.fixture(scope="module")
+def stepped(run):
+    """A short RK4 problem with a spring in its dynamics (12 knots, 30 iterations a rung, no
+    gap closing) solved from the gait's start twice: by the continuation (Euler's knots, then
+    RK2's, then RK4's) and directly on RK4's knots (the gait's states, their quasi-static
+    controls as ``warm``); and on Euler's knots alone."""
+    springs = hexaleg.SpringSet({"LF_femur": hexaleg.LinearSpring(0.5, reference=0.3)})
+    params = OptimalParams(nodes=12, iterations=30, closing=0, integrator="rk4")
+    built = build_problem(run.model, run.motion(), run.actuator, springs, params)
+    xs = np.array(built.x_warm)
+    direct = solve(run.model, built, warm=(xs, np.array(built.problem.quasiStatic(list(xs[:-1])))))
+    lines: list[str] = []
+    continued = solve(run.model, built, say=lines.append, every=1000)
+    euler = solve(run.model, built.on_knots("euler"))
+    return built, direct, continued, euler, lines
+
+
+def test_a_runge_kutta_solve_steps_up_from_eulers_optimum(stepped):
+    """From the gait's start an RK4 solve goes nowhere (its gap 28 after 30 iterations, where
+    the continuation's is 8e-4; before the actuation let a line search's non-finite trial step
+    fail as a step, it raised ``InvalidParameterError: invalid v = nan`` at the first); the
+    continuation reaches RK4 knots whose defect stepped by RK4 is small, where Euler's optimum's
+    stepped by RK4 is 1.9 (its own Euler defect 0), and books less energy. Catches a solve on
+    RK knots that skips the lower rungs (the direct solve), or starts a rung from the start's
+    states instead of the last rung's states and controls."""
+    from hexaleg.optimal.solve import knot_defect
+
+    built, direct, continued, euler, lines = stepped
+    rungs = [line.split(" (")[0] for line in lines if line.startswith("solved")]
+    assert rungs == ["solved on euler knots", "solved on rk2 knots"]
+    assert continued.iterations == 3 * 30 and direct.iterations == 30
+    assert direct.dynamic_gap > 1.0 and direct.defect > 1.0
+    assert continued.defect < 1e-2 and continued.dynamic_gap < 1e-2
+    assert euler.defect < 1e-12 and knot_defect(built, euler.x, euler.torques) > 0.5
+    assert continued.energy_per_metre < 0.6 * direct.energy_per_metre
+    assert np.isfinite(continued.x).all()
+
+
+def test_runge_kutta_knots_are_checked_at_their_own_accelerations(run, stepped):
+    """On RK4 knots the residual is Newton–Euler at each knot's own acceleration
+    (``knot_acceleration``, round-off), not Euler's ``(v_{k+1} − v_k)/dt``, which reads
+    their stages' mean (tenths of N·m here); on Euler knots it is Euler's. Catches a solve that
+    checks RK knots by Euler's step (or Euler's by the knots' accelerations: the names)."""
+    from hexaleg.optimal.residual import EULER_STEP, KNOT_ACCELERATION, dynamics_residual
+
+    _, _, continued, euler, _ = stepped
+    nq = run.model.model.nq
+    assert continued.residual_check == KNOT_ACCELERATION and continued.residual <= 1e-9
+    by_step = dynamics_residual(run.model, continued.x[:, :nq], continued.x[:, nq:],
+                                continued.motion.dt,
+                                continued.torques + continued.spring_torques, continued.forces)
+    assert np.abs(by_step).max() > 1e-2
+    assert euler.residual_check == EULER_STEP and euler.residual <= 1e-9
+
+
+def test_a_non_finite_trial_state_is_a_failed_step_not_an_error(run):
+    """The actuation inside the solver's rollouts gives non-finite torques at a non-finite
+    state (Crocoddyl's line search then rejects that step length), while its public
+    ``spring_torques`` still names the bad value."""
+    from hexaleg.errors import InvalidParameterError
+
+    springs = hexaleg.SpringSet({"LF_femur": hexaleg.LinearSpring(0.5, reference=0.3)})
+    built = build_problem(run.model, run.motion(), run.actuator, springs,
+                          OptimalParams(nodes=8))
+    x = np.array(built.x_warm[0])
+    x[built.actuation.sprung[0].iq] = np.nan
+    data = built.actuation.createData()
+    built.actuation.calc(data, x, np.zeros(built.actuation.nu))
+    assert np.isnan(data.tau).any()
+    with pytest.raises(InvalidParameterError, match="nan"):
+        built.actuation.spring_torques(x)

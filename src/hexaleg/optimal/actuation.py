@@ -184,14 +184,16 @@ class SpringActuation(_ActuationModelAbstract):
         self._du = np.zeros((nv, nv - base))
         self._du[base:, :] = np.eye(nv - base)
 
-    def _angles(self, group: LawGroup, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def _angles(self, group: LawGroup, x: np.ndarray,
+                check: bool = True) -> tuple[np.ndarray, np.ndarray]:
         """The group's joint angles and speeds in state ``x``, each (m,).
 
         Raises:
-            InvalidParameterError: a value is not finite (as the laws' own checks say).
+            InvalidParameterError: a value is not finite (as the laws' own checks say), when
+                ``check``; the solver's own calls (:meth:`calc`, :meth:`calcDiff`) do not check.
         """
         q, v = x[group.iq], x[self.state.nq + group.iv]
-        if not (np.isfinite(q).all() and np.isfinite(v).all()):
+        if check and not (np.isfinite(q).all() and np.isfinite(v).all()):
             finite_array("q", q)
             finite_array("v", v)
         return q, v
@@ -205,9 +207,18 @@ class SpringActuation(_ActuationModelAbstract):
 
     def calc(self, data: Any, x: np.ndarray,
              u: np.ndarray | None = None) -> None:
-        """``data.tau = [0₆; u + τ_s(x)]`` (``u`` None: Crocoddyl's terminal node, u = 0)."""
+        """``data.tau = [0₆; u + τ_s(x)]`` (``u`` None: Crocoddyl's terminal node, u = 0).
+
+        A non-finite ``x`` (a line search's trial step rolled out beyond the finite numbers)
+        gives non-finite torques, not an error: Crocoddyl's forward pass then finds its cost
+        non-finite and its line search tries the next, shorter step (``SolverDDP::solve``
+        catches the forward pass's error); a Python error raised here would end the solve
+        instead."""
         tau = np.zeros(self._nv)
-        tau[self._base:] = self.spring_torques(x) + (0.0 if u is None else u)
+        springs = np.zeros(self._nv - self._base)
+        for group in self.groups:
+            springs[group.columns] = group.torques(*self._angles(group, x, check=False))
+        tau[self._base:] = springs + (0.0 if u is None else u)
         data.tau[...] = np.reshape(tau, np.shape(data.tau))
 
     def calcDiff(self, data: Any, x: np.ndarray,
@@ -217,7 +228,7 @@ class SpringActuation(_ActuationModelAbstract):
         nv, b = self._nv, self._base
         dx = np.zeros((nv, 2 * nv))
         for group in self.groups:
-            q, _ = self._angles(group, x)
+            q, _ = self._angles(group, x, check=False)
             rows = b + group.columns
             dx[rows, group.iv] = group.stiffness(q)
             dx[rows, nv + group.iv] = (group.torques(q, np.ones_like(q))

@@ -19,8 +19,7 @@ costs), here with
 * each stance foot held at its foothold, the point where the warm start's foot lands (the
   contact's Baumgarte stabilisation ``a_c = −k_p (p − p*) − k_d v_c`` with the dead-beat gains
   ``k_p = 1/dt², k_d = 1/dt`` of the semi-implicit Euler step, :func:`contact_gains`; a
-  Runge–Kutta knot (``OptimalParams.integrator``, a probe: analysis/bench_optimal_integrator.py)
-  takes its own dead-beat gains), landing
+  Runge–Kutta knot (``OptimalParams.integrator``) takes its own dead-beat gains), landing
   there (a cost on the foot's distance to its foothold at its touch-down knot) at rest (a cost
   on its linear velocity there; no impact model);
 * each leg kept ``reach_margin`` short of full stretch at every knot (its knee, the last joint
@@ -36,6 +35,7 @@ costs), here with
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -112,9 +112,11 @@ class OptimalParams:
         integrator: How a knot integrates its dynamics and cost, one of :data:`INTEGRATORS`:
             ``"euler"`` Crocoddyl's semi-implicit Euler (``IntegratedActionModelEuler``), or
             ``"rk2"``, ``"rk3"``, ``"rk4"`` its explicit Runge–Kutta of that order
-            (``IntegratedActionModelRK``, the control held over the knot) — a probe of issue
-            #56 (analysis/bench_optimal_integrator.py): the Newton–Euler residual
-            (:mod:`~hexaleg.optimal.residual`) checks Euler knots only.
+            (``IntegratedActionModelRK``, the control held over the knot), solved from a fresh
+            start by continuation through Euler's and RK2's knots
+            (:func:`~hexaleg.optimal.solve.solve`) and checked at each knot's own acceleration
+            with the knots' defect (:mod:`~hexaleg.optimal.residual`; issue #56's probe:
+            analysis/bench_optimal_integrator.py).
     """
 
     nodes: int = 40
@@ -171,6 +173,8 @@ class OptimalProblem:
         params: The parameters it was built with.
         footholds: Each stance foot's foothold at each knot, (N, n_legs, 3), m (zero in swing).
         contact_names: The legs in contact at each knot and the terminal one.
+        inputs: What it was built from beside ``params``: the robot, the motion, the motors
+            and the springs (:meth:`on_knots` builds it again on other knots).
     """
 
     problem: Any
@@ -186,6 +190,21 @@ class OptimalProblem:
     params: OptimalParams
     footholds: np.ndarray
     contact_names: list[list[str]] = field(default_factory=list)
+    inputs: tuple[Robot, Motion, Any, SpringSet] | None = None
+
+    def on_knots(self, integrator: str) -> OptimalProblem:
+        """The same problem with each knot integrated by ``integrator`` (one of
+        :data:`INTEGRATORS`; :attr:`OptimalParams.integrator`), every other parameter the same:
+        the rungs of a solve's continuation in the knots' order (:mod:`hexaleg.optimal.solve`).
+
+        Raises:
+            InvalidParameterError: a problem not built by :func:`build_problem`.
+        """
+        if self.inputs is None:
+            raise InvalidParameterError("OptimalProblem.inputs", None,
+                                        "a problem built by build_problem")
+        return build_problem(*self.inputs, dataclasses.replace(self.params,
+                                                               integrator=integrator))
 
 
 INTEGRATORS = ("euler", "rk2", "rk3", "rk4")
@@ -405,4 +424,5 @@ def build_problem(robot: Robot, motion: Motion, actuator: Any, springs: SpringSe
                 dam, getattr(crocoddyl.RKType, RK_ORDER[params.integrator]), dt))
     problem = crocoddyl.ShootingProblem(x_warm[0].copy(), models[:-1], models[-1])
     return OptimalProblem(problem, state, actuation, x_warm, stance, dt, motion.period,
-                          motion.distance, displacement, power, params, refs, names)
+                          motion.distance, displacement, power, params, refs, names,
+                          (robot, motion, actuator, springs))

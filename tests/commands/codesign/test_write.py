@@ -214,22 +214,14 @@ def test_the_optimal_note_prints_the_solver_and_the_alternation_as_the_text_does
     the same figures now read the same on the page and in the terminal. Catches the fixed
     ``%.2f``/``%.3f`` (15.12 and 9.14 J/m beside a spread of 0.03 J/m)."""
     import dataclasses
-    from types import SimpleNamespace
 
-    import numpy as np
+    from optimal_records import solved
 
     import hexaleg
     from hexaleg.design.codesign.alternation import MOVES, Alternation, Round, Spread
     from hexaleg.design.codesign.optimal_table import LABELS, MotionRow, OptimalRows
     from hexaleg.outputs.html import render_codesign_html
     from hexaleg.quantities import json_text
-
-    def solved(per_metre):
-        return SimpleNamespace(energy_per_metre=per_metre, residual=7e-15, iterations=100,
-                               converged=False, stationarity=5e-5, threshold=1e-8,
-                               dynamic_gap=0.0, periodicity=1e-3, friction_use=0.6, slip=4e-3,
-                               drift=2e-4, torques=np.zeros((40, 18)), seconds=60.0,
-                               motion=None, task_space=None)
 
     springs = hexaleg.SpringSet({"femur": hexaleg.LinearSpring(stiffness=0.5)})
     alt = Alternation(None, 10.0, solved(9.2), 9.3456, solved(9.0123), springs,

@@ -107,3 +107,34 @@ def test_the_optimal_motion_without_its_extra_names_the_extra(monkeypatch):
         backend.crocoddyl_module.cache_clear()
     with pytest.raises(UnknownNameError, match="optimal"):
         codesign(motion="optimised")
+
+
+def test_the_optimal_motion_on_runge_kutta_knots_is_accepted(monkeypatch):
+    """``[codesign.optimal] integrator = "rk4"`` reaches the optimal stage's problem (the
+    command once refused every integrator but Euler's); an unknown one is refused before any
+    work, naming the allowed ones. The parametric co-design is read back as kept (a stand-in)
+    so no search runs."""
+    pytest.importorskip("crocoddyl")
+    import hexaleg.design.codesign.build as build
+
+    seen = {}
+
+    class Reached(Exception):
+        pass
+
+    def stage(_kept, *args):
+        seen["params"] = args[-1]
+        raise Reached
+
+    from types import SimpleNamespace
+
+    kept = SimpleNamespace(rows=[SimpleNamespace(per_metre=1.0)] * 4, constraints=None)
+    monkeypatch.setattr(build, "kept_parametric", lambda _stages, _model: kept)
+    monkeypatch.setattr(build, "with_optimal", stage)
+    with pytest.raises(Reached):
+        codesign(motion="optimal", optimal={"integrator": "rk4"}, max_evaluations=1,
+                 restarts=1)
+    assert seen["params"].integrator == "rk4"
+    with pytest.raises(UnknownNameError, match="rk4"):
+        codesign(motion="optimal", optimal={"integrator": "implicit"}, max_evaluations=1,
+                 restarts=1)

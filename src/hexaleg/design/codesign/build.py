@@ -220,12 +220,6 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             raise ConfigError(f"[codesign.optimal] {', '.join(floor)}: the optimal motion plans "
                               "on the run's floor, [contact] mu, inside [codesign.constraints] "
                               "friction_margin (set them there)")
-        if given.get("integrator", "euler") != "euler":
-            raise ConfigError(f"[codesign.optimal] integrator = {given['integrator']!r}: the "
-                              "command solves Euler knots only — under Runge–Kutta knots its "
-                              "start from the gait fails and its Newton–Euler residual is "
-                              "Euler's (docs/optimal.md, \"The knots' integrator\"; the probe "
-                              "is analysis/bench_optimal_integrator.py)")
     design = dataclasses.replace(design if design is not None else rule_params(),
                                  controller=servo)
     v = real("speed", speed, low=0.0, low_open=True, allowed="a speed > 0 (m/s)")

@@ -196,11 +196,13 @@ class OptimalRows:
     def data(self) -> dict[str, Any]:
         """codesign.json's ``optimal`` key: the rows, the springs to buy and whether a
         simulation backs them, each optimal motion's solver figures and dynamics residual
-        (Newton–Euler of the trajectory against its motor plus spring torques), the
+        (Newton–Euler of the trajectory against its motor plus spring torques, by the check its
+        ``residual_check`` names, :mod:`~hexaleg.optimal.residual`; its knots' ``defect``), the
         alternation's energies."""
         def solver(r: Any) -> dict[str, Any]:
             return {"energy_per_metre": q(r.energy_per_metre, "J/m"),
-                    "residual": q(r.residual, "N·m"), "iterations": r.iterations,
+                    "residual": q(r.residual, "N·m"), "residual_check": r.residual_check,
+                    "defect": q(r.defect, "1"), "iterations": r.iterations,
                     "converged": r.converged, "stationarity": q(r.stationarity, "1"),
                     "threshold": q(r.threshold, "1"), "dynamic_gap": q(r.dynamic_gap, "1"),
                     "periodicity": q(r.periodicity, "1"),
