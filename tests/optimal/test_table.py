@@ -591,7 +591,7 @@ def test_the_stated_spread_is_the_kept_logs():
                       r"(\d+ min \d+ s) wall", head)
     assert quiet and (f"running: {quiet[3]} wall and {quiet[1]} s of user CPU, the same output"
                       in doc)
-    assert (f"takes {quiet[3]} wall and {float(quiet[1]) + float(quiet[2]):.0f} s of CPU"
+    assert (f"took {quiet[3]} wall and {float(quiet[1]) + float(quiet[2]):.0f} s of CPU"
             in doc)
     for walked in ("17\\.5", "17\\.6"):
         assert re.search(r"optimal motion, its springs +10\.4 ±0\.1 +10\.3 \(open loop\), "
@@ -716,7 +716,7 @@ def test_the_integrator_probe_is_the_kept_log():
     pattern's first solve (rebuilt / solver), its alternation's answer and that answer
     simulated, for the command's Euler knots and the RK4 row the alternation ran from."""
     doc = DOC.read_text(encoding="utf-8")
-    text = doc[doc.index("## The knots' integrator (a probe)"):
+    text = doc[doc.index("## The knots' integrator\n"):
                doc.index("## Under position servos: the landing")]
     log = (LOGS / "bench_optimal_integrator.log").read_text(encoding="utf-8")
     blocks = dict(zip(("tripod", "wave"), log.split("\n# wave: ")[:2], strict=True))
@@ -750,3 +750,38 @@ def test_the_landing_on_the_default_robot_is_the_kept_logs():
                                                     "codesign_motion_optimal_spread.log"))
     assert (f"{with_[0]} ±0.1 J/m predicted, {with_[1]} under feedforward and {with_[2]} under "
             f"position servos, against {without[1]} and {without[2]} without the weight") in flat
+
+
+def test_the_landing_choice_is_the_kept_logs():
+    """The table of each optimal row's two answers prints the two whole commands' logs
+    (codesign.json's ``optimal.rows[].landing``, by the bench's rows): each answer predicted,
+    then simulated under feedforward and position servos, and which one the row kept; and the
+    worse-servo ratios quoted under it are the kept answers' against the co-design's."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("**So each optimal row chooses**"):doc.index("## How it compares")]
+    expected = []
+    worse = {}
+    for robot, name in (("hexapod", "codesign_motion_optimal_worse_servo.log"),
+                        ("Solo-12", "codesign_motion_optimal_solo12_worse_servo.log")):
+        log = (LOGS / name).read_text(encoding="utf-8")
+        for label, kept, *figures in re.findall(
+                r"^(optimal motion, (?:no springs|its springs)): landing cost's answers "
+                r"\(optimal\.rows\[\]\.landing\), kept (\d): weight 0: predicted ([0-9.]+) J/m, "
+                r"simulated feedforward ([0-9.]+), position ([0-9.]+); weight 30: predicted "
+                r"([0-9.]+) J/m, simulated feedforward ([0-9.]+), position ([0-9.]+)$", log,
+                re.MULTILINE):
+            v = [float(f) for f in figures]
+            expected.append(f"| {robot} | {label} | {'with' if kept == '1' else 'without'} | "
+                            + " / ".join(f"{x:.2f}" for x in v[:3]) + " | "
+                            + " / ".join(f"{x:.2f}" for x in v[3:]) + " |")
+            if label.endswith("its springs"):
+                worse[robot] = max(v[4:6]) if kept == "1" else max(v[1:3])
+        co = _optimal_table(re.sub(r"^\d\d:\d\d:\d\d ", "", log, flags=re.MULTILINE))[
+            "parametric co-design (its gait and springs)"]
+        worse[robot] = (worse[robot], max(float(x) for x in co[1:3]))
+    table = text[text.index("| robot | row |"):].split("\n\n")[0].splitlines()[2:]
+    assert table == expected
+    flat = " ".join(text.split())
+    (h, hc), (s, sc) = worse["hexapod"], worse["Solo-12"]
+    assert f"for {h / hc:.2f}× the parametric co-design ({h:.2f} against {hc:.2f} J/m" in flat
+    assert f"Solo-12's for {s / sc:.2f}× ({s:.2f} against {sc:.2f}" in flat
