@@ -1,8 +1,12 @@
-"""Helpers of the tests that kill processes: which processes a process started, and waiting (with
-a generous hang guard, not a speed assertion) until processes have ended. Linux /proc only."""
+"""Helpers of the tests that kill processes: which processes a process started, waiting (with
+a generous hang guard, not a speed assertion) until processes have ended, and ending a command
+started in its own session with every process it started. Linux /proc only."""
 
 from __future__ import annotations
 
+import os
+import signal
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -46,3 +50,25 @@ def wait_gone(pids: set[int], guard: float = 60.0) -> set[int]:
         time.sleep(0.05)
         alive = {p for p in alive if running(p)}
     return alive
+
+
+def end_session(proc: subprocess.Popen) -> None:
+    """End ``proc`` and every process it started, however it stands, and reap it: ``proc`` was
+    started in a session of its own (``start_new_session=True``: its own process group, which
+    the workers it forks inherit), so one SIGKILL to the group reaches a hung command and its
+    workers alike (killing ``proc`` alone would leave them running, orphaned). A group with no
+    process left is no error (the command had ended with its workers); a running ``proc`` that
+    leads no group is (it would have been left running): it is killed alone and
+    ``AssertionError`` raised."""
+    leads = True
+    try:
+        os.killpg(proc.pid, signal.SIGKILL)
+    except ProcessLookupError:
+        leads = proc.poll() is not None
+        if not leads:
+            proc.kill()
+    proc.wait()
+    for stream in (proc.stdin, proc.stdout, proc.stderr):
+        if stream is not None:
+            stream.close()
+    assert leads, f"{proc.args} ran outside a session of its own: its workers may run on"

@@ -15,13 +15,13 @@ from __future__ import annotations
 import difflib
 import os
 import re
-import signal
 import subprocess
 import sys
 import time
 from pathlib import Path
 
 import pytest
+from processes import end_session
 
 ROOT = Path(__file__).resolve().parents[1]
 ANALYSIS = ROOT / "analysis"
@@ -99,8 +99,7 @@ def _run(script: Path, cwd: Path, timeout: float = TIMEOUT) -> subprocess.Comple
     try:
         out, err = proc.communicate(timeout=timeout)
     except subprocess.TimeoutExpired:
-        os.killpg(proc.pid, signal.SIGKILL)
-        proc.communicate()
+        end_session(proc)
         pytest.fail(f"{script.name} ran over {timeout:g} s; killed with its workers")
     return subprocess.CompletedProcess(proc.args, proc.returncode, out, err)
 

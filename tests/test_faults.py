@@ -34,7 +34,7 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import pytest
-from processes import HAS_PROC, children, wait_gone
+from processes import HAS_PROC, children, end_session, wait_gone
 
 from hexaleg.cli import main
 from hexaleg.outputs.directory import STAGING
@@ -61,8 +61,38 @@ def start(args: list[str], cwd: Path, preexec: Callable[[], None] | None = None
         if preexec is not None:
             preexec()
 
-    return subprocess.Popen([*CLI, *args], cwd=cwd, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, preexec_fn=setup)
+    proc = subprocess.Popen([*CLI, *args], cwd=cwd, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, preexec_fn=setup,
+                            start_new_session=True)
+    STARTED.append(proc)
+    return proc
+
+
+STARTED: list[subprocess.Popen] = []
+"""Every command :func:`start` started (each in a session of its own), for :func:`ending`."""
+
+
+@contextlib.contextmanager
+def ending() -> Iterator[None]:
+    """Every command started inside the block ends with it, with every process it started,
+    however the block ends (a command hung past :data:`GUARD`, an assertion failed before the
+    command was reaped): a hung run never outlives its test or fixture. One had: a design the
+    two-designs test interrupts hung in its pool's shutdown and ran on, orphaned, 29 minutes
+    after CI had ended."""
+    first = len(STARTED)
+    try:
+        yield
+    finally:
+        while len(STARTED) > first:
+            end_session(STARTED.pop())
+
+
+@pytest.fixture(autouse=True)
+def _ends_what_it_starts() -> Iterator[None]:
+    """Each test's commands end with the test (:func:`ending`); the module fixtures' end with
+    the fixture, which is made before this one."""
+    with ending():
+        yield
 
 
 def run(args: list[str], cwd: Path, preexec: Callable[[], None] | None = None
@@ -172,6 +202,37 @@ def small_disk(path: Path, size: int) -> Iterator[Callable[[], None] | None]:
             subprocess.run(["umount", "-l", str(path)], check=True)
 
 
+POOL_SWEEP = ("[sweep]\nchunk_size = 1\n[gait]\nsamples = 60\n[springs.tibia]\n"
+              "k = {start = 0.0, stop = 0.5, num = 4000}\ntheta_k = 0.02\n")
+"""A sweep of 4000 one-point parts over a process pool: it runs for minutes, its workers
+started within seconds."""
+
+
+def start_pool_sweep(cwd: Path) -> tuple[subprocess.Popen, set[int]]:
+    """:data:`POOL_SWEEP` started over two workers, once both run; (it, its workers)."""
+    (cwd / "spec.toml").write_text(POOL_SWEEP)
+    proc = start(["sweep", "spec.toml", "--out", "s", "--executor", "process", "--workers",
+                  "2"], cwd)
+    deadline = time.monotonic() + GUARD
+    while len(children(proc.pid)) < 2:
+        assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
+        time.sleep(0.01)
+    return proc, children(proc.pid)
+
+
+@pytest.mark.slow  # a pool sweep started: ~2 s the README's 5 minutes need
+def test_a_command_running_at_the_end_of_its_test_ends_with_its_workers(tmp_path):
+    """What :func:`ending` does for a command hung at the end of a test or fixture: killed
+    with its workers (its process group), not left running. Fails where :func:`start` leaves
+    the command in the test runner's process group (the group's kill finds nothing, and the
+    command sweeps on) or where nothing ends it; a kill of the command alone would end its
+    workers too (they die with their parent, prctl(2)), which this cannot tell apart."""
+    with ending():
+        proc, workers = start_pool_sweep(tmp_path)
+    assert proc.returncode == -signal.SIGKILL
+    assert wait_gone({proc.pid, *workers}) == set()
+
+
 # --- report: the quickest command that writes a folder ---------------------------------------
 
 @pytest.fixture(scope="module")
@@ -181,10 +242,11 @@ def old_report(tmp_path_factory) -> tuple[Path, Path, dict[str, bytes]]:
     work = tmp_path_factory.mktemp("old")
     config = work / "other.toml"
     config.write_text(OTHER_GAIT)
-    first = start(["report", "--config", str(config), "--out", "r"], work)
-    wait_held(first, work / "r" / LOCK)
-    second = run(["report", "--out", "r"], work)  # the default gait, into the same folder
-    _, err = first.communicate(timeout=GUARD)
+    with ending():
+        first = start(["report", "--config", str(config), "--out", "r"], work)
+        wait_held(first, work / "r" / LOCK)
+        second = run(["report", "--out", "r"], work)  # the default gait, into the same folder
+        _, err = first.communicate(timeout=GUARD)
     assert first.returncode == 0, err
     assert second.returncode == 2 and "Traceback" not in second.stderr
     assert second.stderr.startswith(f"hexaleg report: error: another report (pid {first.pid} "
@@ -340,7 +402,8 @@ def old_design(tmp_path_factory) -> Path:
     """A complete small design, made once for the slow cases."""
     work = tmp_path_factory.mktemp("design")
     (work / "small.toml").write_text(SMALL_DESIGN)
-    proc = run(DESIGN, work)
+    with ending():
+        proc = run(DESIGN, work)
     assert proc.returncode == 0, proc.stderr
     return work / "d"
 
@@ -447,16 +510,11 @@ def test_an_interrupted_paper_keeps_the_previous_one(tmp_path):
 
 @pytest.mark.slow
 def test_an_interrupted_pool_sweep_keeps_its_parts_and_leaves_no_worker(tmp_path):
-    spec = tmp_path / "spec.toml"
-    spec.write_text("[sweep]\nchunk_size = 1\n[gait]\nsamples = 60\n[springs.tibia]\n"
-                    "k = {start = 0.0, stop = 0.5, num = 4000}\ntheta_k = 0.02\n")
-    proc = start(["sweep", str(spec), "--out", "s", "--executor", "process", "--workers", "2"],
-                 tmp_path)
+    proc, workers = start_pool_sweep(tmp_path)
     deadline = time.monotonic() + GUARD
-    while len(list((tmp_path / "s").glob("part-*"))) < 3 or len(children(proc.pid)) < 2:
+    while len(list((tmp_path / "s").glob("part-*"))) < 3:
         assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
         time.sleep(0.01)
-    workers = children(proc.pid)
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=GUARD)
     assert proc.returncode == 130 and "Traceback" not in err, err

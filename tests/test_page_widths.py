@@ -75,21 +75,16 @@ def measure(page: Path, tmp: Path) -> dict:
 
 
 @pytest.fixture(scope="module")
-def pages(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
-    """design.html of a small design, and report.html of the default report led by it."""
-    from hexaleg.commands.design.write import write_design
+def pages(design_written, tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
+    """design.html of the run's small design (``design_written``: its two families, Pareto
+    point, maps and robust box, made once for the run; this fixture had designed a smaller one
+    of its own, 9 s of a worker), copied to ``design/`` beside the report, and report.html of
+    the default report led by it (it links the design page relatively)."""
     from hexaleg.commands.report.write import write_report
     from hexaleg.report.config import ReportConfig
-    from hexaleg.scenario.scenario import Scenario
 
     out = tmp_path_factory.mktemp("pages")
-    small = {"samples": 100, "families": ["linear", "one_sided"], "map_period": [1.0, 1.2],
-             "map_stride": [1.0], "map_payload": [0.0], "map_mu": [0.6], "map_slope": [0.0],
-             "map_pattern": ["tripod"], "robust_period": [1.0, 1.25],
-             "robust_stride": [1.0, 1.0], "robust_payload": [0.0, 0.0],
-             "robust_mu": [0.6, 0.6], "pareto_fractions": [0.5]}
-    write_design(out / "design", Scenario.from_tables("hexaleg", {"design": small}),
-                 progress=None)
+    shutil.copytree(design_written[1], out / "design")
     cfg = ReportConfig.from_mapping({"gait": {"samples": 200},
                                      "report": {"design": str(out / "design" / "design.json"),
                                                 "stiffness_points": 5}})

@@ -111,7 +111,9 @@ def test_every_robots_servo_is_stiff_against_its_gait(name):
     """The gains are the robot's own actuator's (kp = τ_s/θ_c): on every registered and test
     robot each joint's closed loop ω_n = √(kp/M_jj) at mid-cycle of its default gait (M_jj its
     inertia with the body held) is at least 5× the gait's frequency (docs/simulate.md quotes
-    the least per robot)."""
+    the least per robot; the test robots, which it does not quote, at 100 samples a cycle: the
+    same mid-cycle instant, their ratios within 0.11 % of the 1000 samples', where the biped's
+    ZMP gait took 4.7 s of CPU against 0.44)."""
     import pinocchio as pin
 
     from hexaleg.motion.legged import gait
@@ -124,7 +126,8 @@ def test_every_robots_servo_is_stiff_against_its_gait(name):
     robot = desc.load()
     kp = Servo("position").gains(desc.actuator(robot), len(robot.joint_names))[0]
     params = robot_gait(key)
-    q = gait(robot, params).q
+    sampled = params.updated({"samples": 100}) if name.endswith(".toml") else params
+    q = gait(robot, sampled).q
     inertia = np.diag(pin.crba(robot.model, robot.data, q[len(q) // 2]))[6:]
     ratio = np.sqrt(kp / inertia).min() / (2 * np.pi / params.period)
     assert ratio >= 5.0
