@@ -75,7 +75,7 @@ from hexaleg.optimal.problem import (
     build_problem,
     contact_gains,
 )
-from hexaleg.optimal.solve import OptimalResult, solve
+from hexaleg.optimal.solve import OptimalResult, knot_defect, solve
 
 WEIGHTS = {"euler": (1.0,), "rk2": (0.0, 1.0), "rk4": (1 / 6, 1 / 3, 1 / 3, 1 / 6)}
 """The stages' weights ``b_i`` of each integrator as Crocoddyl's knots take them (Butcher,
@@ -136,18 +136,6 @@ def knot_residual(robot: Any, built: OptimalProblem, result: OptimalResult) -> f
         tau = pin.rnea(model, data, q, v, np.asarray(stage.xout), fext)
         joints = result.torques[k] + result.spring_torques[k]
         worst = max(worst, float(np.abs(tau - np.concatenate([np.zeros(6), joints])).max()))
-    return worst
-
-
-def defect(built: OptimalProblem, x: np.ndarray, u: np.ndarray) -> float:
-    """Largest defect ``‖x_{k+1} ⊖ f(x_k, u_k)‖∞`` of the knots ``x``, ``u`` stepped by
-    ``built``'s integrator."""
-    problem = built.problem
-    worst = 0.0
-    for k, (model, data) in enumerate(zip(problem.runningModels, problem.runningDatas,
-                                          strict=True)):
-        model.calc(data, x[k], u[k])
-        worst = max(worst, float(np.abs(built.state.diff(data.xnext, x[k + 1])).max()))
     return worst
 
 
@@ -229,7 +217,7 @@ def main() -> None:
         if saved and saved not in solved:
             solved[saved], source[saved] = result, label
         x, u = result.x, result.torques
-        defects = {n: defect(b, x, u) for n, b in built_of.items()}
+        defects = {n: knot_defect(b, x, u) for n, b in built_of.items()}
         built.problem.calc(list(x), list(u))  # the row's own datas for the knots' figures
         value, why = judged(robot, result, motion, motor, springs, contact)
         ratio = "—" if value is None else f"{value / result.energy_per_metre:6.3f}"
