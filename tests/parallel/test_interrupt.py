@@ -81,6 +81,7 @@ import gc, os, signal, struct, sys, threading, time
 from multiprocessing.queues import SimpleQueue
 from hexaleg.parallel.forked import fork_map
 
+signal.signal(signal.SIGINT, signal.default_int_handler)  # ignored where the runner ignores it
 flag = sys.argv[1]
 
 def work(i):
