@@ -93,6 +93,22 @@ def test_the_page_shows_the_optimal_motions_table(codesigned):
                         "kept_gait": False}}
     page = render_codesign_html(data, {"speed": ""}, {})
     table = page[page.index("The optimal motion with its springs"):]
+    assert "landing legs' position-servo effort" not in table  # no row was solved twice
+    from hexaleg.design.codesign.landing_choice import Candidate, Landing
+    from hexaleg.quantities import json_text
+
+    def answer(weight, feedforward, position):
+        sims = {"feedforward": feedforward, "position": position}
+        return Candidate(weight, 10.4, sims, {k: "walks" if v else "fell" for k, v in sims.items()})
+
+    data["optimal"]["rows"][3]["landing"] = json.loads(json_text(Landing(
+        (answer(0.0, 10.26, 18.24), answer(30.0, 10.24, 13.85)), 1).data()))
+    data["optimal"]["rows"][2]["landing"] = json.loads(json_text(Landing(
+        (answer(0.0, 38.4, 33.51), answer(30.0, 78.25, None)), 0).data()))
+    landed = " ".join(render_codesign_html(data, {"speed": ""}, {}).split())
+    assert ("row 2, the answer without the cost (without it 38.40 J/m under the worse servo, "
+            "with it not walking under both servos); row 3, the answer with the cost (without it "
+            "18.24 J/m under the worse servo, with it 13.85 J/m under the worse servo).") in landed
     assert "balance feedback setting: <b>on</b>, every row closed loop" in table
     assert "— → 9.140 J/m" in table and "the last row is that gait" not in table
     assert "Unproven — it does not walk under position —" in table and "LF_femur" in table
