@@ -198,11 +198,12 @@ class SpringActuation(_ActuationModelAbstract):
             finite_array("v", v)
         return q, v
 
-    def spring_torques(self, x: np.ndarray) -> np.ndarray:
-        """``τ_s`` of every actuated joint at state ``x`` (nq + nv,), shape (nv − b,), N·m."""
+    def spring_torques(self, x: np.ndarray, check: bool = True) -> np.ndarray:
+        """``τ_s`` of every actuated joint at state ``x`` (nq + nv,), shape (nv − b,), N·m;
+        ``check`` as :meth:`_angles`."""
         out = np.zeros(self._nv - self._base)
         for group in self.groups:
-            out[group.columns] = group.torques(*self._angles(group, x))
+            out[group.columns] = group.torques(*self._angles(group, x, check))
         return out
 
     def calc(self, data: Any, x: np.ndarray,
@@ -215,10 +216,7 @@ class SpringActuation(_ActuationModelAbstract):
         catches the forward pass's error); a Python error raised here would end the solve
         instead."""
         tau = np.zeros(self._nv)
-        springs = np.zeros(self._nv - self._base)
-        for group in self.groups:
-            springs[group.columns] = group.torques(*self._angles(group, x, check=False))
-        tau[self._base:] = springs + (0.0 if u is None else u)
+        tau[self._base:] = self.spring_torques(x, check=False) + (0.0 if u is None else u)
         data.tau[...] = np.reshape(tau, np.shape(data.tau))
 
     def calcDiff(self, data: Any, x: np.ndarray,
