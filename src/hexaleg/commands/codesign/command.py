@@ -58,9 +58,9 @@ def add(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--starts", choices=STARTS,
                    help="with --motion optimal: the optimal motion's starts: gait (the gait at "
                         "the timing used) or lattice (step height, body height and swing "
-                        "weight moved, four or five solves more, each judged by its rebuilt "
-                        "cycle's prediction; the alternation from the best) (default: gait, or "
-                        "the config's)")
+                        "weight moved, six or seven solves more, each judged by its rebuilt "
+                        "cycle's prediction; the alternation from the best) (default: lattice, "
+                        "or the config's)")
     p.add_argument("--duty-high", dest="duty_high", type=float,
                    help="the searches' highest duty factor, in [the default gait's + 0.05, "
                         f"{DUTY_CEILING:g}] (default {DUTY_HIGH:g}, or the config's)")

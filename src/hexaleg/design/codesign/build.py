@@ -106,7 +106,7 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
              restarts: int = RESTARTS, grouping: str = "class", curve: bool = True,
              simulate: bool = True, rules: bool = True, design: DesignParams | None = None,
              controller: str = BOTH, motion: str = "gait", feedback: str = "auto",
-             timing: str = "gait", starts: str = "gait", duty_high: float | None = None,
+             timing: str = "gait", starts: str | None = None, duty_high: float | None = None,
              body_high: float | None = None, optimal: Mapping[str, Any] | None = None,
              progress: Callable[[str], None] | None = None,
              stages: StageFiles | None = None) -> CodesignResult:
@@ -160,8 +160,9 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
         starts: The optimal motion's starts (:data:`~hexaleg.design.codesign.starts.STARTS`):
             ``"gait"``, the gait at the timing used; ``"lattice"``, a small fixed lattice of
             starts about it (:mod:`hexaleg.design.codesign.starts`: step height, body height,
-            swing weight; four or five solves more, each judged by the prediction of its
+            swing weight; six or seven solves more, each judged by the prediction of its
             rebuilt cycle), the alternation run from the best; only with ``motion="optimal"``.
+            None: ``"lattice"`` with ``motion="optimal"``, else none.
         duty_high: The co-design search's (and the gait-alone search's) highest duty factor
             (:func:`~hexaleg.design.codesign.box.default_space`), in [the default gait's duty
             factor + 0.05, 0.95]; None: :data:`~hexaleg.design.codesign.box.DUTY_HIGH`, or the
@@ -204,7 +205,9 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
     if one_of("[codesign] timing", timing, TIMINGS) != "gait" and motion != "optimal":
         raise ConfigError(f"[codesign] timing = {timing!r} searches the optimal motion's "
                           "contact timing: it needs motion = \"optimal\" (--motion optimal)")
-    if one_of("[codesign] starts", starts, STARTS) != "gait" and motion != "optimal":
+    if starts is None:
+        starts = "lattice" if motion == "optimal" else "gait"
+    elif one_of("[codesign] starts", starts, STARTS) != "gait" and motion != "optimal":
         raise ConfigError(f"[codesign] starts = {starts!r} tries other starts of the optimal "
                           "motion: it needs motion = \"optimal\" (--motion optimal)")
     if optimal is not None and motion != "optimal":

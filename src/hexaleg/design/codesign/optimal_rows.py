@@ -106,7 +106,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
                  margin: float = Constraints.friction_margin, family: str = "linear",
                  groups: Groups | None = None, servo: str = "both",
                  params: Any = None, rounds: int = 4, feedback: str = "auto",
-                 timing: str = "gait", starts: str = "gait", min_step: float = 0.0,
+                 timing: str = "gait", starts: str = "lattice", min_step: float = 0.0,
                  say: Callable[[str], None] | None = None, keep: Keep | None = None
                  ) -> OptimalRows:
     """The four rows (module docstring).

@@ -105,7 +105,7 @@ class KeptSolves:
 def with_optimal(result: CodesignResult, model: Robot, motor: Any, groups: Groups,
                  servo: str, say: Callable[[str], None],
                  stages: StageFiles | None = None, feedback: str = "auto",
-                 timing: str = "gait", starts: str = "gait",
+                 timing: str = "gait", starts: str = "lattice",
                  rules: Callable[[Motion], DesignResult | str] | None = None,
                  params: Any = None) -> CodesignResult:
     """``result`` with the optimal motion's rows (:mod:`hexaleg.design.codesign.optimal_rows`)
