@@ -45,7 +45,7 @@ def test_the_four_rows_of_a_small_problem():
     d = prepared.motion.distance
     table = optimal_rows(robot, run.actuator, run.contact, base, base, design.springs,
                          margin=0.7, params=OptimalParams(nodes=16, iterations=40),
-                         rounds=1, say=lines.append)
+                         rounds=1, starts="gait", say=lines.append)
     assert table.rows[0].predicted == pytest.approx(e0 / d, rel=1e-9)
     assert table.rows[1].predicted == pytest.approx(e1 / d, rel=1e-9)
     assert [r.label for r in table.rows] == list(LABELS)
@@ -146,7 +146,7 @@ def test_the_alternation_and_the_bare_cycle_run_from_the_start_chosen(monkeypatc
     assert json.loads(json_text(table.data()))["starts"]["chosen"] == 1
     seen.clear()
     plain = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen,
-                                     hexaleg.SpringSet(), params=settings)
+                                     hexaleg.SpringSet(), params=settings, starts="gait")
     assert "starts" not in seen and plain.starts is None and plain.data()["starts"] is None
 
 
@@ -192,7 +192,8 @@ def test_a_cycle_not_rebuilt_is_a_row_that_says_why(monkeypatch, robot):
     monkeypatch.setattr(rows_module, "predict",  # the gaits' rows: 28.0 bare, 9.9 with springs
                         lambda _r, _m, _a, fitted, *_args: Prediction(
                             9.9 if fitted else 28.0, 0.5, True))
-    table = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen, springs)
+    table = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen, springs,
+                                     starts="gait")
     bare = table.rows[2]
     assert bare.predicted is None and bare.unpredicted == f"not rebuilt: {why}"
     assert set(bare.simulated.values()) == {None} and not bare.walks
@@ -248,7 +249,7 @@ def test_every_row_is_judged_inside_the_margin_row_3_by_the_alternations_judge(m
                         lambda jobs, _robot, _keep: [(job[1](), None) for job in jobs])
     monkeypatch.setattr(rows_module, "spreads", lambda _robot, cases, _keep: [None] * len(cases))
     table = rows_module.optimal_rows(robot, run.actuator, floor, base, base, hexaleg.SpringSet(),
-                                     margin=0.7)
+                                     margin=0.7, starts="gait")
     first, _, bare, _ = table.rows
     inside, _ = predicted_per_metre(robot, walk, run.actuator, hexaleg.SpringSet(),
                                     dataclasses.replace(floor, mu=0.7 * 0.1))
@@ -318,7 +319,8 @@ def test_each_optimal_row_keeps_its_answer_by_the_worse_servo(monkeypatch, robot
     monkeypatch.setattr(rows_module, "gait", lambda _robot, g: SimpleNamespace(params=g))
     monkeypatch.setattr(rows_module, "predict", lambda *_args: Prediction(9.9, 0.5, True))
     monkeypatch.setattr(rows_module, "judged", lambda *_args: Prediction(9.5, 0.5, True))
-    table = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen, springs)
+    table = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen, springs,
+                                     starts="gait")
     kept = 1 if cheaper else 0
     bare, last = table.rows[2], table.rows[3]
     assert bare.landing is not None and last.landing is not None

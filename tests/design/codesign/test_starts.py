@@ -30,12 +30,12 @@ def test_the_lattice_is_fixed_and_keeps_the_foot_clearance():
     lattice = starts(g, settings, 0.01)
     assert [label for label, _, _ in lattice] == [
         "the gait", "step height × 0.7", "step height × 1.3", "body height × 0.95",
-        "body height × 1.05", "swing weight × 0.01"]
+        "body height × 1.05", "body height × 1.15", "body height × 1.25", "swing weight × 0.01"]
     assert [s.step_height for _, s, _ in lattice] == pytest.approx(
-        [0.02, 0.014, 0.026, 0.02, 0.02, 0.02], rel=1e-12)
+        [0.02, 0.014, 0.026, 0.02, 0.02, 0.02, 0.02, 0.02], rel=1e-12)
     assert [s.body_height for _, s, _ in lattice] == pytest.approx(
-        [0.12, 0.12, 0.12, 0.114, 0.126, 0.12], rel=1e-12)
-    assert [p.swing_weight for _, _, p in lattice] == [100.0] * 5 + [1.0]
+        [0.12, 0.12, 0.12, 0.114, 0.126, 0.138, 0.15, 0.12], rel=1e-12)
+    assert [p.swing_weight for _, _, p in lattice] == [100.0] * 7 + [1.0]
     # at the least foot clearance a lower step is that clearance: a copy of the gait, left out
     at_floor = starts(g, settings, 0.02)
     assert [label for label, _, _ in at_floor][:2] == ["the gait", "step height × 1.3"]
