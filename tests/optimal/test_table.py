@@ -785,3 +785,96 @@ def test_the_landing_choice_is_the_kept_logs():
     (h, hc), (s, sc) = worse["hexapod"], worse["Solo-12"]
     assert f"for {h / hc:.2f}× the parametric co-design ({h:.2f} against {hc:.2f} J/m" in flat
     assert f"Solo-12's for {s / sc:.2f}× ({s:.2f} against {sc:.2f}" in flat
+
+
+def test_the_starts_above_the_box_are_the_kept_logs():
+    """The section on starts above the search box prints the default command's log (each
+    start's prediction, the chosen one, the rows, the ratios against its co-design, the springs
+    to buy), the co-design searched in one box with the start chosen and the ratios against it,
+    and the × 1.3 probes' spreads (with 100 and 200 iterations)."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("## Starts above the search box"):doc.index("## How it compares")]
+    flat = " ".join(text.split())
+    log = re.sub(r"^\d\d:\d\d:\d\d ", "", (LOGS / "codesign_motion_optimal_starts.log").read_text(
+        encoding="utf-8"), flags=re.MULTILINE)
+    line = re.search(r"^    starts of the optimal motion \(J/m predicted rebuilt, the co-design's "
+                     r"springs\): (.*)$", log, re.MULTILINE)
+    assert line
+    tried = [(label.removeprefix("→ "), value, label.startswith("→ "))
+             for label, value in (part.rsplit(": ", 1) for part in line[1].split("; "))]
+    table = text[text.index("| start (the co-design's gait, with its springs) |"):].split(
+        "\n\n")[0].splitlines()[2:]
+    assert len(table) == len(tried) == 7
+    for (label, value, chosen), row in zip(tried, table, strict=True):
+        assert row == (f"| {label} (chosen) | **{value}** |" if chosen else
+                       f"| {label} | {value} |"), row
+    rows = _optimal_table(log)
+    shown = text[text.index("| row (the command's own table) |"):].split(
+        "\n\n")[0].splitlines()[2:]
+    spreads = dict(re.findall(r"^    (optimal motion, (?:no springs|its springs)) +\S+ (±\S+) ",
+                              log, re.MULTILINE))
+    assert shown == [f"| {label} | {' '.join([figures[0], spreads.get(label, '')]).strip()} | "
+                     + " | ".join(figures[1:]) + " |" for label, figures in rows.items()]
+    judged = re.search(r"^optimal motion, its springs: predicted ([0-9.]+) J/m, spread [0-9.]+ "
+                       r"J/m; judged ([0-9., ]+) J/m;", log, re.MULTILINE)
+    landing = re.search(r"^optimal motion, its springs: landing cost's answers .*?kept 1: weight "
+                        r"0: predicted ([0-9.]+) J/m, simulated feedforward [0-9.]+, position "
+                        r"([0-9.]+); weight 30: predicted [0-9.]+ J/m, simulated feedforward "
+                        r"([0-9.]+), position ([0-9.]+)$", log, re.MULTILINE)
+    assert judged and landing
+    co = rows["parametric co-design (its gait and springs)"]
+    predicted, position = float(judged[1]), float(landing[4])
+    assert float(landing[4]) > float(landing[3])  # position is the worse servo
+    m = re.search(r"predicts ([0-9.]+) J/m, \*\*([0-9.]+)× the co-design's ([0-9.]+)\*\* \(its "
+                  r"four repeats from starts moved by a hair ([0-9.]+)× to ([0-9.]+)×", flat)
+    assert m and m[1] == f"{predicted:.3f}" and m[3] == co[0]
+    assert abs(float(m[2]) - predicted / float(co[0])) < 1e-3
+    repeats = [float(v) / float(co[0]) for v in judged[2].split(", ")]
+    assert abs(float(m[4]) - min(repeats)) < 1e-3 and abs(float(m[5]) - max(repeats)) < 1e-3
+    m = re.search(r"for ([0-9.]+) J/m, \*\*([0-9.]+)× the co-design's ([0-9.]+)\*\* under its "
+                  r"worse", flat)
+    assert m and m[1] == f"{position:.2f}" and m[3] == co[2]
+    assert abs(float(m[2]) - position / float(co[2])) < 1e-3
+    assert (f"without it {float(landing[1]):.2f} predicted and {float(landing[2]):.2f} under "
+            "position servos") in flat
+    buy = re.search(r"^    springs to buy \(full spring rules on the optimal motion: .*?\): (\w+) "
+                    r"on coxa, femur, tibia, ([0-9.]+) J/m, electrical saving \+([0-9.]+) % "
+                    r"\(\+([0-9.]+) % net of ([0-9.]+) g of springs\)$", log, re.MULTILINE)
+    sims = re.search(r"^      simulated electrical saving, the worse servo first: position only "
+                     r"\+([0-9.]+) %, feedforward \+ PD \+([0-9.]+) %", log, re.MULTILINE)
+    assert buy and sims
+    assert (f"{buy[1]} on coxa, femur and tibia, {buy[2]} J/m, +{buy[3]} % (+{buy[4]} % net of "
+            f"{buy[5]} g), simulated +{sims[1]} % under position servos and +{sims[2]} % under "
+            "feedforward") in flat
+    bound = re.search(r"^    the start chosen \(body height ([0-9.]+) mm, ([0-9.]+) × the default "
+                      r"gait's\) .*?\(--body-high ([0-9.]+) or more", log, re.MULTILINE)
+    assert bound and f"stands at {bound[1]} mm, {bound[2]} × the default gait's" in flat
+    assert f"`hexaleg codesign --body-high {bound[3]}`" in flat
+    box = (LOGS / "codesign_body_high_163.log").read_text(encoding="utf-8")
+    assert f"codesign --body-high {bound[3]} " in box.splitlines()[0] + " "
+    chosen = re.search(r"^  → \d\. duty factor ([0-9.]+), period ([0-9.]+) s: predicted ([0-9.]+) "
+                       r"J/m, simulated feedforward ([0-9.]+), position ([0-9.]+)$", box,
+                       re.MULTILINE)
+    top = re.search(r"^  chosen gait: body_height ([0-9.]+) m", box, re.MULTILINE)
+    assert chosen and top
+    assert (f"stands at its top too ({top[1]} m) and its servo check chooses duty factor "
+            f"{float(chosen[1]):g}, period {chosen[2]} s: {chosen[3]} J/m predicted, simulated "
+            f"{chosen[4]} (feedforward) and {chosen[5]} (position)") in flat
+    worse = max(float(chosen[4]), float(chosen[5]))
+    assert (f"**{predicted / float(chosen[3]):.3f}× predicted and {position / worse:.3f}× under "
+            "the worse servo**") in flat
+    for name, iterations in (("codesign_motion_optimal_starts_130.log", 100),
+                             ("codesign_motion_optimal_starts_130_it200.log", 200)):
+        probe = (LOGS / name).read_text(encoding="utf-8")
+        assert f"after {iterations} iterations" in probe
+        spread = re.search(r"^optimal motion, its springs: judged ([0-9., ]+) J/m, spread "
+                           r"([0-9.]+) J/m$", probe, re.MULTILINE)
+        assert spread
+        values = [float(v) for v in spread[1].split(", ")]
+        assert f"{float(spread[2]):.3f} J/m" in flat or f"{float(spread[2]):.2f} J/m" in flat
+        if iterations == 100:
+            assert f"the answer {values[0]:.2f}" in flat
+            assert f"({min(values):.2f} to {max(values):.2f}: the row prints 8 ±1" in flat
+    kept = re.search(r"^optimal motion, its springs: predicted [0-9.]+ J/m, spread ([0-9.]+) J/m",
+                     log, re.MULTILINE)
+    assert kept and f"At × 1.25 the spread is {float(kept[1]):.3f} J/m" in flat
