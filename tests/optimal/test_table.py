@@ -878,3 +878,34 @@ def test_the_starts_above_the_box_are_the_kept_logs():
     kept = re.search(r"^optimal motion, its springs: predicted [0-9.]+ J/m, spread ([0-9.]+) J/m",
                      log, re.MULTILINE)
     assert kept and f"At × 1.25 the spread is {float(kept[1]):.3f} J/m" in flat
+
+
+def test_solo12s_starts_are_the_kept_log():
+    """On Solo-12's trot the starts' paragraph prints its command's log: the starts the legs
+    cannot reach, the start chosen against the gait, the sprung trot's answer and its walks
+    against the co-design's worse servo, and the trot without springs past the margin."""
+    doc = " ".join(DOC.read_text(encoding="utf-8").split())
+    text = doc[doc.index("**On Solo-12's trot**"):doc.index("**Why the lattice stops at")]
+    log = re.sub(r"^\d\d:\d\d:\d\d ", "", (LOGS / "codesign_motion_optimal_solo12_starts.log")
+                 .read_text(encoding="utf-8"), flags=re.MULTILINE)
+    line = re.search(r"^    starts of the optimal motion .*?: (.*)$", log, re.MULTILINE)
+    assert line
+    tried = dict(part.removeprefix("→ ").rsplit(": ", 1) for part in line[1].split("; "))
+    chosen = next(p.removeprefix("→ ").rsplit(": ", 1) for p in line[1].split("; ")
+                  if p.startswith("→ "))
+    assert [k for k, v in tried.items() if v == "—"] == [
+        "body height × 1.05", "body height × 1.15", "body height × 1.25"]
+    assert (f"chooses the {chosen[0].replace('step height', 'step height')} ({chosen[1]} J/m "
+            f"with the co-design's springs, the gait {tried['the gait']})") in text
+    landing = re.search(r"^optimal motion, its springs: landing cost's answers .*?kept 1: .*; "
+                        r"weight 30: predicted ([0-9.]+) J/m, simulated feedforward ([0-9.]+), "
+                        r"position ([0-9.]+)$", log, re.MULTILINE)
+    assert landing
+    co = _optimal_table(log)["parametric co-design (its gait and springs)"]
+    worse = max(float(co[1]), float(co[2]))
+    assert (f"({float(landing[1]):.2f}; the gait's start gave 16.78) and walks for "
+            f"{float(landing[2]):.2f} under feedforward and {float(landing[3]):.2f} under "
+            f"position servos: {float(landing[3]) / worse:.3f}× the co-design's worse "
+            f"({worse:.2f})") in text
+    margin = re.search(r"the least friction that admits forces here is μ = ([0-9.]+)", log)
+    assert margin and f"needs μ {margin[1]} at one instant" in text
