@@ -207,11 +207,13 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
                               say=lambda line: tell(f"alternation{named[i]}: start: {line}"),
                               every=PROGRESS))
 
-    tell("optimal motion without springs, from the co-design's gait"
+    origin = ("the co-design's gait" if multi is None else
+              f"the start chosen ({multi.chosen.label})")
+    tell(f"optimal motion without springs, from {origin}"
          + ("" if searched is None else " at the timing chosen")
          + f", without and with the landing cost (weight {weight:g})")
     starting = [1] if first is not None else [0, 1]  # the searches' start has no cost
-    tell("optimal motion with springs (alternation), from the co-design's gait and springs:"
+    tell(f"optimal motion with springs (alternation), from {origin} and the co-design's springs:"
          " its start" + ("" if first is not None else "s") + " solved beside the motion without"
          " springs")
     solved = [r for r, _ in apart([bare_job(0), bare_job(1), *(start_job(i) for i in starting)],
@@ -227,8 +229,8 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
 
     alts = []
     for i in range(2):
-        tell(f"optimal motion with springs (alternation{named[i]}), from the co-design's gait "
-             "and springs")
+        tell(f"optimal motion with springs (alternation{named[i]}), from {origin} and the "
+             "co-design's springs")
         alts.append(alternate(robot, motion, motor, contact, springs=start, params=settings[i],
                               family=family, groups=groups, rounds=rounds, say=told(i),
                               keep=keep, first=firsts[i], margin=margin))
