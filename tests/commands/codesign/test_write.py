@@ -270,3 +270,54 @@ def test_the_optimal_note_prints_the_solver_and_the_alternation_as_the_text_does
     assert "15.12\nand 9.01 J/m" in page and "10.000 → 9.346 → 9.123 J/m" in page
     assert any("knots: 15.12 (no springs), 9.01" in line for line in bare.lines())
     assert any("alternation 10.000 → 9.346 → 9.123 J/m" in line for line in bare.lines())
+
+
+def test_the_page_says_the_start_chosen_and_a_start_above_the_box(codesigned):
+    """codesign.json's ``optimal.beyond_box`` is the terminal's bound lines (a start chosen
+    above the parametric search's box, the co-design row then from a narrower family), and
+    the page prints them and every start with its prediction, the chosen one marked; without
+    starts the page says the motion started from the chosen gait. Catches a page that hides
+    where the optimal motion's gain came from."""
+    import dataclasses
+    from types import SimpleNamespace
+
+    from hexaleg.outputs.html import render_codesign_html
+
+    assert codesigned.default.body_height is not None
+    body = codesigned.default.body_height * 1.625
+    table = {"rows": [], "springs": [], "family": "linear", "proven": True,
+             "friction_margin": {"value": 0.7, "unit": "1"}, "timing": None,
+             "starts": {"starts": [
+                 {"start": "the gait", "predicted": {"value": 10.506, "unit": "J/m"}},
+                 {"start": "body height × 1.25", "predicted": {"value": 8.913, "unit": "J/m"}},
+                 {"start": "body height × 1.5", "predicted": {"value": None, "unit": "J/m"},
+                  "unpredicted": "GaitReachError: out of reach"}], "chosen": 1}}
+    stand_in = SimpleNamespace(data=lambda: dict(table), timing=None, starts=SimpleNamespace(
+        chosen=SimpleNamespace(params=SimpleNamespace(body_height=body))))
+    data = dataclasses.replace(codesigned, optimal=stand_in).to_dict()
+    said = data["optimal"]["beyond_box"]
+    assert said == [line.strip() for line in dataclasses.replace(
+        codesigned, optimal=stand_in).bound_lines()]
+    assert len(said) == 1 and "1.625 × the default gait's" in said[0]
+    assert "--body-high 1.63" in said[0]
+    figures = {"predicted": {"value": 9.0, "unit": "J/m"}, "decimals": 2,
+               "simulated": {"feedforward": {"value": 9.5, "unit": "J/m"}},
+               "verdicts": {"feedforward": "walks"}, "loops": {"feedforward": "open loop"},
+               "friction_use": {"value": 0.7, "unit": "1"}, "within_margin": True}
+    data["optimal"] |= {"rows": [figures | {"label": f"row {k}"} for k in range(4)],
+                        "residual": {"value": 6e-15, "unit": "N·m"}, "springs_motion": SOLVER,
+                        "no_springs": SOLVER, "feedback": "auto",
+                        "alternation": {"energies": [], "kept_gait": False}}
+    page = render_codesign_html(json.loads(json.dumps(data)), {"speed": ""}, {})
+    import re
+
+    text = re.sub(r"<[^>]+>", "", page[page.index("The optimal motion with its springs"):])
+    assert "from the best start about the chosen gait (body height × 1.25)" in text
+    assert said[0][1:].replace("'", "&#39;") in text
+    assert ("the gait: 10.506; body height × 1.25: 8.913 (chosen); body height × 1.5: — "
+            "(GaitReachError: out of reach)") in " ".join(text.split())
+    data["optimal"] |= {"starts": None, "beyond_box": []}
+    plain = render_codesign_html(data, {"speed": ""}, {})
+    assert "from the chosen gait (contact timing the gait's)" in " ".join(
+        re.sub(r"<[^>]+>", "", plain).split())
+    assert "Starts of the optimal motion" not in plain

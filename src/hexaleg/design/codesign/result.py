@@ -312,7 +312,9 @@ class CodesignResult:
                 {"applied_to": "the chosen gait only", "error": self.rules, "pays": False}
                 if isinstance(self.rules, str) else rule_data(self.rules, self.chosen.stride)),
             "plausibility": self.plausibility.as_dict(),
-            "optimal": None if self.optimal is None else self.optimal.data(),
+            "optimal": None if self.optimal is None else {
+                **self.optimal.data(),
+                "beyond_box": [line.strip() for line in self.bound_lines()]},
             "wall": q(self.wall, "s"),
         })
 
