@@ -909,3 +909,28 @@ def test_solo12s_starts_are_the_kept_log():
             f"({worse:.2f})") in text
     margin = re.search(r"the least friction that admits forces here is μ = ([0-9.]+)", log)
     assert margin and f"needs μ {margin[1]} at one instant" in text
+
+
+def test_the_same_answer_of_the_starts_is_the_kept_log():
+    """The starts' same-answer paragraph prints its log: the rows' predictions and the
+    simulated figures of each run, and the two springs to buy with the front's two families."""
+    doc = " ".join(DOC.read_text(encoding="utf-8").split())
+    text = doc[doc.index("**The same answer, and what is not.**"):doc.index(
+        "**Why the lattice stops at")]
+    log = (LOGS / "same_answer_codesign_motion_optimal_starts.log").read_text(encoding="utf-8")
+    figures = re.findall(r"^(?:as given|moved): optimal motion, its springs: predicted ([0-9.]+) "
+                         r"J/m \(spread [0-9.]+\), simulated feedforward [0-9.]+, position "
+                         r"([0-9.]+)$", log, re.MULTILINE)
+    assert len(figures) == 2
+    (given, given_pos), (moved, moved_pos) = figures
+    assert f"({given} and {moved} J/m, inside the row's ±0.1)" in text
+    assert (f"({float(given_pos):.1f} and {float(moved_pos):.1f} under position servos: "
+            f"{float(given_pos):.3f} and {float(moved_pos):.3f})") in text
+    fronts = re.findall(r"^[-+]hexaleg codesign: Pareto front of (\w+) ", log, re.MULTILINE)
+    assert fronts == ["preloaded", "linear"]
+    buys = re.findall(r"^[-+]    springs to buy \(full spring rules on the optimal motion: .*?\): "
+                      r"(.*?) on coxa, femur, tibia, ([0-9.]+) J/m", log, re.MULTILINE)
+    assert buys == [("linear", "8.61"), ("linear, spring torque ≤ 0.05958 N·m", "8.71")]
+    assert ("linear, 8.61 J/m, on one run; linear with its spring torque bounded at 0.05958 N·m, "
+            "8.71 J/m, on the other") in text
+    assert "preloaded on one run and linear on the other" in text
