@@ -10,8 +10,10 @@ DesignResult`. The stages, in order (:data:`STAGES`; the work of each is in
    family's globally optimal springs (the magnitudes the global optimum of one convex program,
    the geometry searched), groups whose marginal saving is under ``[design] min_group_saving``
    left unfitted, each with its torsion springs and its saving net of their mass;
-2. ``pareto``: the best buildable family's optimum with the spring torque bounded to fractions
-   of its peak;
+2. ``pareto``: the front family's optimum with the spring torque bounded to fractions of its
+   peak; the front family is the one whose optimum simulates best under the servo (net of its
+   springs' mass, the worse controller's: the ranking's figure), or, without the ranking, the
+   best predicted buildable one;
 3. ``ranking``: every family optimum and Pareto point simulated forward in MuJoCo under the
    servo the robot runs (``[design] controller``, :mod:`hexaleg.design.chain.ranking`; by
    default under both controllers, each design judged by the worse); the recommendation is the
@@ -83,6 +85,7 @@ from hexaleg.errors import HexalegError, InvalidParameterError, UnknownNameError
 from hexaleg.robot.mirror import mirror
 from hexaleg.robot.springs import SpringSet
 from hexaleg.scenario.scenario import Scenario
+from hexaleg.simulation.controllers import controllers_of
 from hexaleg.simulation.sensitivity import controller_check
 
 STAGES: tuple[str, ...] = ("candidates", "pareto", "ranking", "tolerance", "envelope", "fold",
@@ -196,15 +199,33 @@ class DesignChain:
         return self._once("candidates", compute)
 
     def pareto(self) -> tuple[tuple[float, Candidate], ...]:
-        """The best buildable family's optimum with its spring torque bounded, ascending; the
-        last point (fraction 1) is the unbounded design itself."""
+        """The front family's optimum with its spring torque bounded, ascending; the last point
+        (fraction 1) is the unbounded design itself. The front family is the one whose optimum
+        the ranking would recommend among the family optima (:meth:`_optima`: the best
+        simulated net saving under the worse controller, the figure the recommendation is
+        chosen by); without the ranking stage, or where no buildable optimum walked, the best
+        predicted buildable one. (By the prediction alone the front's family flipped between
+        two families whose predicted net savings were close on a motion moved by a hair:
+        docs/optimal.md, "Starts above the search box".)"""
         def compute() -> tuple[tuple[float, Candidate], ...]:
             ranked = self.candidates()
-            front = pareto_front(self.nominal(),
-                                 next((c for c in ranked if c.buildable), ranked[0]))
+            walked = best_simulated(self._optima()) if "ranking" in self._wanted else None
+            family = (walked.candidate if walked is not None else
+                      next((c for c in ranked if c.buildable), ranked[0]))
+            front = pareto_front(self.nominal(), family)
             self._step("pareto", f"Pareto front of {front[-1][1].family} ({len(front)} points)")
             return tuple(front)
         return self._once("pareto", compute)
+
+    def _optima(self) -> tuple[Simulated, ...]:
+        """The family optima simulated under the design's servo (the ranking's first rows, in
+        its order: :func:`~hexaleg.design.chain.ranking.simulate_candidates`)."""
+        def compute() -> tuple[Simulated, ...]:
+            d = self.design
+            pool = sorted(self.candidates(), key=lambda c: -rank(c, d.metric))
+            return tuple(simulate_candidates(self.nominal().prepared, pool, d.controller,
+                                             d.metric))
+        return self._once("optima", compute)
 
     def ranking(self) -> tuple[tuple[Simulated, ...], Candidate, tuple[str, ...]]:
         """The family optima and Pareto points simulated under the design's servo, the
@@ -214,7 +235,12 @@ class DesignChain:
             d = self.design
             pool = sorted([*self.candidates(), *(c for _, c in self.pareto()[:-1])],
                           key=lambda c: -rank(c, d.metric))
-            rows = simulate_candidates(self.nominal().prepared, pool, d.controller, d.metric)
+            points = [c for _, c in self.pareto()[:-1]]
+            each = {(id(r.candidate), r.controller): r for r in (
+                *self._optima(), *simulate_candidates(self.nominal().prepared, points,
+                                                      d.controller, d.metric))}
+            rows = list({key: each[key] for key in ((id(c), k) for k in controllers_of(
+                d.controller) for c in pool)}.values())  # the controller's rows, pool order
             notes = [f"{r.candidate.label}: simulated under the {r.controller} servo it saves "
                      + (f"{100 * r.simulated:+.2f} % against {100 * r.predicted:+.2f} % "
                         "predicted — under half the prediction" if r.simulated is not None
