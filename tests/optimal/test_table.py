@@ -837,15 +837,16 @@ def test_the_starts_above_the_box_are_the_kept_logs():
     assert abs(float(m[2]) - position / float(co[2])) < 1e-3
     assert (f"without it {float(landing[1]):.2f} predicted and {float(landing[2]):.2f} under "
             "position servos") in flat
-    buy = re.search(r"^    springs to buy \(full spring rules on the optimal motion: .*?\): (\w+) "
-                    r"on coxa, femur, tibia, ([0-9.]+) J/m, electrical saving \+([0-9.]+) % "
-                    r"\(\+([0-9.]+) % net of ([0-9.]+) g of springs\)$", log, re.MULTILINE)
+    buy = re.search(r"^    springs to buy \(full spring rules on the optimal motion: .*?\): "
+                    r"(\w+)(, spring torque ≤ [0-9.]+ N·m)? on coxa, femur, tibia, ([0-9.]+) "
+                    r"J/m, electrical saving \+([0-9.]+) % \(\+([0-9.]+) % net of ([0-9.]+) g of "
+                    r"springs\)$", log, re.MULTILINE)
     sims = re.search(r"^      simulated electrical saving, the worse servo first: position only "
                      r"\+([0-9.]+) %, feedforward \+ PD \+([0-9.]+) %", log, re.MULTILINE)
     assert buy and sims
-    assert (f"{buy[1]} on coxa, femur and tibia, {buy[2]} J/m, +{buy[3]} % (+{buy[4]} % net of "
-            f"{buy[5]} g), simulated +{sims[1]} % under position servos and +{sims[2]} % under "
-            "feedforward") in flat
+    assert (f"{buy[1]}{buy[2] or ''}, on coxa, femur and tibia, {buy[3]} J/m, +{buy[4]} % "
+            f"(+{buy[5]} % net of {buy[6]} g), simulated +{sims[1]} % under position servos and "
+            f"+{sims[2]} % under feedforward") in flat
     bound = re.search(r"^    the start chosen \(body height ([0-9.]+) mm, ([0-9.]+) × the default "
                       r"gait's\) .*?\(--body-high ([0-9.]+) or more", log, re.MULTILINE)
     assert bound and f"stands at {bound[1]} mm, {bound[2]} × the default gait's" in flat
