@@ -935,3 +935,18 @@ def test_the_same_answer_of_the_starts_is_the_kept_log():
     assert ("linear, 8.61 J/m, on one run; linear with its spring torque bounded at 0.05958 N·m, "
             "8.71 J/m, on the other") in text
     assert "preloaded on one run and linear on the other" in text
+    after = (LOGS / "same_answer_codesign_motion_optimal_starts_front.log").read_text(
+        encoding="utf-8")
+    assert "Pareto front of" not in after.split("diff without progress lines")[1]
+    buys = re.findall(r"^[-+]    springs to buy \(full spring rules on the optimal motion: .*?\): "
+                      r"linear, spring torque ≤ ([0-9.]+) N·m on coxa, femur, tibia, ([0-9.]+) "
+                      r"J/m, electrical saving \+([0-9.]+) % \(\+([0-9.]+) % net", after,
+                      re.MULTILINE)
+    assert len(buys) == 2 and buys[0][1:3] == buys[1][1:3]
+    (bound, per_metre, saving, net), (bound2, _, _, net2) = buys
+    assert f"{per_metre} J/m, +{saving} %" in text
+    assert f"the torque bound ({bound} and {bound2} N·m)" in text
+    assert f"the net saving (+{net} and +{net2} %)" in text
+    wires = [re.findall(r"^[-+]      \w+ \w+: (\w+) d ([0-9.]+) mm, D [0-9.]+ mm, ([0-9.]+) turns",
+                        part, re.MULTILINE) for part in after.split("springs to buy (full")[1:3]]
+    assert wires[0] == wires[1] and len(wires[0]) == 4  # the same wires and turns
