@@ -233,9 +233,8 @@ class DesignChain:
         predicted one) and the notes of the ranking."""
         def compute() -> tuple[tuple[Simulated, ...], Candidate, tuple[str, ...]]:
             d = self.design
-            pool = sorted([*self.candidates(), *(c for _, c in self.pareto()[:-1])],
-                          key=lambda c: -rank(c, d.metric))
             points = [c for _, c in self.pareto()[:-1]]
+            pool = sorted([*self.candidates(), *points], key=lambda c: -rank(c, d.metric))
             each = {(id(r.candidate), r.controller): r for r in (
                 *self._optima(), *simulate_candidates(self.nominal().prepared, points,
                                                       d.controller, d.metric))}
