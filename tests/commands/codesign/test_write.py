@@ -321,3 +321,41 @@ def test_the_page_says_the_start_chosen_and_a_start_above_the_box(codesigned):
     assert "from the chosen gait (contact timing the gait's)" in " ".join(
         re.sub(r"<[^>]+>", "", plain).split())
     assert "Starts of the optimal motion" not in plain
+
+
+def test_a_chosen_gait_on_the_box_s_edge_is_said_everywhere(codesigned):
+    """A co-design whose chosen gait lies on its search box's top of body height and duty
+    factor says so in the terminal, codesign.json (``box.edges``, with the box's bounds) and
+    codesign.html, each edge with the option that widens it; a chosen gait inside the box says
+    nothing. Catches an answer on an edge printed as if the search had found it free, or the
+    page and the file disagreeing with the terminal."""
+    import dataclasses
+    import re
+
+    from hexaleg.outputs.html import render_codesign_html
+
+    assert codesigned.box is not None and codesigned.edges == ()
+    assert "search box's edge" not in codesigned.summary()
+    (_, body), (_, duty) = (codesigned.box.bounds[n] for n in ("body_height", "duty_factor"))
+    edged = dataclasses.replace(codesigned, chosen=dataclasses.replace(
+        codesigned.chosen, body_height=body, duty_factor=duty))
+    line = [x for x in edged.summary().splitlines() if "search box's edge" in x]
+    assert line == [
+        f"  on the search box's edge: body height {body:.4g} m at the box's top (--body-high, "
+        "up to 2 × the default gait's); duty factor 0.8 at the box's top (--duty-high, up to "
+        "0.95) — the co-design is this box's optimum; a cheaper gait may lie past an edge"]
+    data = json.loads(json.dumps(edged.to_dict()))
+    assert data["box"]["edges"] == [
+        {"parameter": "body_height", "side": "top", "value": {"value": body, "unit": "m"},
+         "moved_by": "--body-high, up to 2 × the default gait's"},
+        {"parameter": "duty_factor", "side": "top", "value": {"value": duty, "unit": "1"},
+         "moved_by": "--duty-high, up to 0.95"}]
+    assert data["box"]["bounds"]["duty_factor"] == [{"value": 0.5, "unit": "1"},
+                                                    {"value": 0.8, "unit": "1"}]
+    text = " ".join(re.sub(r"<[^>]+>", "", render_codesign_html(data, {"speed": ""}, {}))
+                    .split())
+    assert (f"On the search box's edge. The chosen gait lies on it: body height {body:.4g} m "
+            "at the box's top (--body-high, up to 2 × the default gait's); duty factor 0.8 at "
+            "the box's top (--duty-high, up to 0.95).") in text.replace("&#39;", "'")
+    plain = render_codesign_html(json.loads(json.dumps(codesigned.to_dict())), {"speed": ""}, {})
+    assert "On the search box" not in plain

@@ -4,10 +4,12 @@ evaluation."""
 
 from __future__ import annotations
 
+import dataclasses
+
 import pytest
 
 from hexaleg.design.codesign import build
-from hexaleg.design.codesign.box import DUTY_CEILING, default_space
+from hexaleg.design.codesign.box import DUTY_CEILING, default_space, edges
 from hexaleg.design.codesign.build import codesign
 from hexaleg.errors import InvalidParameterError
 from hexaleg.motion.params import GaitParams
@@ -81,3 +83,31 @@ def test_the_box_keeps_its_pattern_s_support_and_its_ceiling():
         (0.5, DUTY_CEILING)
     low, high = default_space(tripod, 0.015, duty_high=0.5).bounds["duty_factor"]
     assert (low, high) == (0.5, pytest.approx(0.55))
+
+
+def test_the_edges_are_the_bounds_the_chosen_gait_lies_on():
+    """:func:`edges` names each parameter of a gait that lies on its box's bound, the side and
+    the option that moves it: the body height at its top (``--body-high``), the duty factor at
+    its top (``--duty-high``), the step height at its floor (``min_foot_clearance``), the foot
+    radius at its fixed floor; a point one search step (1/32 of a range) inside lies on none,
+    and a top already at the options' ceiling has none to move it. Catches an edge tested on
+    the wrong side, a step inside taken for the edge, or an option named past its ceiling."""
+    tripod = GaitParams(duty_factor=0.5, body_height=0.1, foot_radius=0.2, step_height=0.03)
+    space = default_space(tripod, 0.015, duty_high=0.8, body_high=1.3)
+    # lo + 1.0 * (hi - lo), as the search's Space.values makes a clipped point: not hi bit for bit
+    top = space.values(space.scaled({"body_height": 0.13, "foot_radius": 0.14,
+                                     "step_height": 0.015, "duty_factor": 0.8, "period": 1.5}))
+    found = edges(space, dataclasses.replace(tripod, **top), duty_high=0.8, body_high=1.3)
+    assert [(e.parameter, e.side) for e in found] == [
+        ("body_height", "top"), ("foot_radius", "floor"), ("step_height", "floor"),
+        ("duty_factor", "top")]
+    assert [e.moved_by for e in found] == [
+        "--body-high, up to 2 × the default gait's", None,
+        "[codesign.constraints] min_foot_clearance", "--duty-high, up to 0.95"]
+    assert found[0].value == pytest.approx(0.13)
+    inside = {n: lo + (hi - lo) * (1 - 1 / 32) for n, (lo, hi) in space.bounds.items()}
+    assert edges(space, dataclasses.replace(tripod, **inside)) == ()
+    ceiling = default_space(tripod, 0.015, duty_high=DUTY_CEILING, body_high=2.0)
+    at_ceiling = {"body_height": 0.2, "duty_factor": DUTY_CEILING}
+    assert [e.moved_by for e in edges(ceiling, dataclasses.replace(tripod, **at_ceiling),
+                                      duty_high=DUTY_CEILING, body_high=2.0)] == [None, None]

@@ -2,11 +2,14 @@
 height (``[codesign] duty_high`` and ``body_high``, ``--duty-high`` and ``--body-high``), their
 defaults and allowed ranges, the checks that refuse a value outside them, and the box about the
 default gait they bound (:func:`default_space`), which both of ``hexaleg codesign``'s searches
-(:func:`~hexaleg.design.codesign.gait_search.search`: with springs and without) get."""
+(:func:`~hexaleg.design.codesign.gait_search.search`: with springs and without) get, and the
+box's edges a chosen gait lies on (:func:`edges`: where it does, the answer is the box's optimum
+and a cheaper gait may lie past that edge)."""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import Any
 
 from hexaleg.checks import real
@@ -86,5 +89,57 @@ def default_space(gait: GaitParams, min_step: float, free: Sequence[str] = PARAM
     return Space({n: box[n] for n in PARAMETERS if n in free})
 
 
-__all__ = ["BODY_CEILING", "BODY_FLOOR", "BODY_HIGH", "DUTY_CEILING", "DUTY_HIGH", "body_bound",
-           "default_space", "duty_bound"]
+EDGE = 1e-6
+"""How near its bound, as a fraction of its range, a parameter lies on it (:func:`edges`): the
+search's finest step is 1/32 of a range and it clips a point to the box, so a parameter the
+search left at its bound is there to rounding, and one a step inside is 0.03 of the range
+away."""
+
+
+@dataclass(frozen=True)
+class Edge:
+    """A parameter of a gait on its search box's edge.
+
+    Attributes:
+        parameter: One of :data:`~hexaleg.design.codesign.gait_evaluation.PARAMETERS`.
+        side: ``"top"`` or ``"floor"`` of its range.
+        value: The gait's value there, SI (:data:`~hexaleg.design.codesign.gait_evaluation.
+            UNITS`).
+        moved_by: The option that moves this bound and how far it may go, or None where the
+            bound is fixed (the box's own factor of the default gait, the pattern's least duty
+            factor, or an option already at its ceiling).
+    """
+
+    parameter: str
+    side: str
+    value: float
+    moved_by: str | None
+
+
+def edges(space: Space, params: GaitParams, duty_high: float = DUTY_HIGH,
+          body_high: float = BODY_HIGH) -> tuple[Edge, ...]:
+    """The edges of ``space`` (:func:`default_space` with ``duty_high`` and ``body_high``)
+    that the gait ``params`` lies on, within :data:`EDGE` of a range, in ``space``'s order.
+
+    The printed optimum of a search is the box's: where a parameter lies on an edge the box
+    binds it, and the gap to a gait past that edge is unknown; this says which edges, and which
+    option widens each (``--body-high`` to :data:`BODY_CEILING`, ``--duty-high`` to
+    :data:`DUTY_CEILING`, the step height's floor ``[codesign.constraints]
+    min_foot_clearance``)."""
+    moved = {("body_height", "top"): None if body_high >= BODY_CEILING else
+             f"--body-high, up to {BODY_CEILING:g} × the default gait's",
+             ("duty_factor", "top"): None if duty_high >= DUTY_CEILING else
+             f"--duty-high, up to {DUTY_CEILING:g}",
+             ("step_height", "floor"): "[codesign.constraints] min_foot_clearance"}
+    out = []
+    for name in space.names:
+        low, high = space.bounds[name]
+        value = float(getattr(params, name))
+        for side, bound in (("floor", low), ("top", high)):
+            if abs(value - bound) <= EDGE * (high - low):
+                out.append(Edge(name, side, value, moved.get((name, side))))
+    return tuple(out)
+
+
+__all__ = ["BODY_CEILING", "BODY_FLOOR", "BODY_HIGH", "DUTY_CEILING", "DUTY_HIGH", "EDGE", "Edge",
+           "body_bound", "default_space", "duty_bound", "edges"]

@@ -325,7 +325,7 @@ def codesign(robot: str | Scenario = "hexaleg", speed: float = 0.06, pattern: st
             sequential=sequential, search=joint, gait_search=alone, curve=points,
             simulation=simulation, rules=buy, samples=n, wall=time.perf_counter() - t0,
             generic=uses_generic(motor), servo=servo, finalists=finalists, floors=floors,
-            optimal=None, duty_high=duty_high, body_high=body_high)
+            optimal=None, duty_high=duty_high, body_high=body_high, box=space)
         if motion != "optimal":
             return result
         keep_parametric(stages, result, model)

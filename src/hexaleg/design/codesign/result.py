@@ -21,9 +21,10 @@ from typing import Any
 
 from hexaleg.design.chain.design_file import gait_parameters
 from hexaleg.design.chain.ranking import under
+from hexaleg.design.codesign.box import Edge, edges
 from hexaleg.design.codesign.floors import Floor, worst
 from hexaleg.design.codesign.gait_evaluation import PARAMETERS, UNITS, Constraints, GaitPoint
-from hexaleg.design.codesign.gait_search import SearchResult
+from hexaleg.design.codesign.gait_search import SearchResult, Space
 from hexaleg.design.codesign.optimal_table import OptimalRows
 from hexaleg.design.codesign.rules import RULES, rule_data, rule_lines
 from hexaleg.design.codesign.servo import Screened, choose
@@ -104,6 +105,8 @@ class CodesignResult:
         duty_high: The searches' highest duty factor (``[codesign] duty_high``).
         body_high: The searches' highest body height, × the default gait's (``[codesign]
             body_high``).
+        box: The box both searches searched (:func:`~hexaleg.design.codesign.box.
+            default_space`); None in a result kept before it was recorded.
     """
 
     robot: str
@@ -134,6 +137,28 @@ class CodesignResult:
     optimal: OptimalRows | None = None
     duty_high: float = 0.8
     body_high: float = 1.3
+    box: Space | None = None
+
+    @property
+    def edges(self) -> tuple[Edge, ...]:
+        """The box's edges the chosen gait lies on (:func:`~hexaleg.design.codesign.box.
+        edges`; none when the box was not recorded)."""
+        if self.box is None:
+            return ()
+        return edges(self.box, self.chosen, self.duty_high, self.body_high)
+
+    def edge_line(self) -> list[str]:
+        """A line naming the box's edges the chosen gait lies on and what moves each: the
+        co-design is then the box's optimum, a cheaper gait may lie past them (none when it
+        lies on no edge)."""
+        if not self.edges:
+            return []
+        each = "; ".join(
+            f"{e.parameter.replace('_', ' ')} {e.value:.4g}"
+            + ("" if UNITS[e.parameter] == "1" else f" {UNITS[e.parameter]}")
+            + f" at the box's {e.side} (" + (e.moved_by or "fixed") + ")" for e in self.edges)
+        return [f"  on the search box's edge: {each} — the co-design is this box's optimum; a "
+                "cheaper gait may lie past an edge"]
 
     @property
     def chosen_finalist(self) -> int | None:
@@ -190,6 +215,7 @@ class CodesignResult:
                      f"{self.search.evaluations} evaluations, "
                      f"{self.search.wall:.1f} s, restarts {self.search.spread:.3f} J/m apart; "
                      f"total {self.wall:.1f} s")
+        lines += self.edge_line()
         if isinstance(self.rules, str):
             lines.append(f"  full spring rules could not run on the chosen gait ({self.rules}):"
                          f" the inner program's springs are recommended")
@@ -299,6 +325,12 @@ class CodesignResult:
                               "restarts": [q(x, "J/m") for x in s.restarts],
                               "spread": q(s.spread, "J/m"), "value": q(s.value, "J/m")}
                        for name, s in (("codesign", self.search), ("gait", self.gait_search))},
+            "box": None if self.box is None else {
+                "bounds": {n: [q(lo, UNITS[n]), q(hi, UNITS[n])]
+                           for n, (lo, hi) in self.box.bounds.items()},
+                "edges": [{"parameter": e.parameter, "side": e.side,
+                           "value": q(e.value, UNITS[e.parameter]), "moved_by": e.moved_by}
+                          for e in self.edges]},
             "curve": [{"gait": p.label, "speed": q(p.speed, "m/s"),
                        "per_metre": q(p.per_metre, "J/m"),
                        "per_metre_springs": q(p.per_metre_springs, "J/m")} for p in self.curve],
