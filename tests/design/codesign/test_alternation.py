@@ -317,7 +317,7 @@ def test_a_spread_is_its_judged_figures_largest_less_least():
 def test_the_spread_repeats_the_solve_from_its_start_moved():
     """A short solve (16 knots, 40 iterations) repeated by :func:`spreads` from its start moved
     by each of :data:`MOVES` on the workers: the first figure is the answer's own, the moved
-    solves land elsewhere (the solver parts them: a ``move`` ignored gives five equal figures
+    answers come back in the moves' order, the moved solves land elsewhere (the solver parts them: a ``move`` ignored gives five equal figures
     and a spread of zero), and the same solve repeated unmoved lands on the answer to the bit
     (deterministic)."""
     pytest.importorskip("crocoddyl")
@@ -340,8 +340,9 @@ def test_the_spread_repeats_the_solve_from_its_start_moved():
                                        run.contact)
         return value, result.energy_per_metre, result.stationarity
 
-    (spread,) = spreads(robot, [(read(answer), ("test",), moved, read)])
+    ((spread, answers),) = spreads(robot, [(read(answer), ("test",), moved, read)])
     assert spread.moves == MOVES and spread.judged[0] == read(answer)[0]
+    assert [a.energy_per_metre for a in answers] == list(spread.solver[1:])
     assert spread.solver[0] == answer.energy_per_metre
     assert len(set(spread.solver)) == len(MOVES) + 1 and spread.value > 0.0
     again = solve(robot, build_problem(robot, walk, motor, hexaleg.SpringSet(), params),

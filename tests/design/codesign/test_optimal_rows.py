@@ -116,7 +116,7 @@ def test_the_alternation_and_the_bare_cycle_run_from_the_start_chosen(monkeypatc
 
     def spreads(_robot, cases, _keep):
         seen["spreads"] = [c[1] for c in cases]
-        return [None] * len(cases)
+        return [(None, ())] * len(cases)
 
     monkeypatch.setattr(rows_module, "spreads", spreads)
     monkeypatch.setattr(rows_module, "apart",  # the solves in this process, one by one
@@ -247,7 +247,8 @@ def test_every_row_is_judged_inside_the_margin_row_3_by_the_alternations_judge(m
     monkeypatch.setattr(rows_module, "simulated_run", lambda *_args: (10.0, "walks", True))
     monkeypatch.setattr(rows_module, "apart",
                         lambda jobs, _robot, _keep: [(job[1](), None) for job in jobs])
-    monkeypatch.setattr(rows_module, "spreads", lambda _robot, cases, _keep: [None] * len(cases))
+    monkeypatch.setattr(rows_module, "spreads",
+                        lambda _robot, cases, _keep: [(None, ())] * len(cases))
     table = rows_module.optimal_rows(robot, run.actuator, floor, base, base, hexaleg.SpringSet(),
                                      margin=0.7, starts="gait")
     first, _, bare, _ = table.rows
@@ -306,7 +307,7 @@ def test_each_optimal_row_keeps_its_answer_by_the_worse_servo(monkeypatch, robot
 
     def spreads(_robot, cases, _keep):
         seen["spreads"] = [c[1] for c in cases]
-        return [None] * len(cases)
+        return [(None, ())] * len(cases)
 
     monkeypatch.setattr(rows_module, "alternate", alternate)
     monkeypatch.setattr(hexaleg.optimal.problem, "build_problem",

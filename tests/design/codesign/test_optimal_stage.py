@@ -131,8 +131,9 @@ def test_an_alternation_killed_in_a_round_resumes_from_its_kept_solves(tmp_path,
 
 def test_the_optimal_motions_springs_are_bought_once_and_kept(tmp_path, monkeypatch, ruled):
     """with_optimal runs the full rules on the alternation's motion after the rows, keeps their
-    result, and a later process of the same run reads it back instead of designing again; no
-    rules run where the alternation kept the gait."""
+    result, then on each repeat of that motion (its spread's: a repeat that kept the gait
+    skipped), keeps each, and a later process of the same run reads them back instead of
+    designing again; no rules run where the alternation kept the gait."""
     from types import SimpleNamespace
 
     from hexaleg.design.codesign import optimal_rows as rows_module
@@ -141,12 +142,13 @@ def test_the_optimal_motions_springs_are_bought_once_and_kept(tmp_path, monkeypa
     robot = hexaleg.load()
     kept_gait = False
     motion = hexaleg.gait(robot, hexaleg.GaitParams(samples=40))
+    repeat = hexaleg.gait(robot, hexaleg.GaitParams(samples=40, step_height=0.031))
 
     def rows(*_args, **kwargs):
         assert kwargs["params"] == "the problem's settings"  # with_optimal's, passed on
         alt = SimpleNamespace(kept_gait=kept_gait, motion=motion)
         return rows_module.OptimalRows((), hexaleg.SpringSet(), "linear", None, alt, robot,
-                                       "both", 1.0)
+                                       "both", 1.0, repeats=(repeat, None))
 
     monkeypatch.setattr(rows_module, "optimal_rows", rows)
     calls: list[hexaleg.Motion] = []
@@ -158,12 +160,15 @@ def test_the_optimal_motions_springs_are_bought_once_and_kept(tmp_path, monkeypa
     stages = StageFiles(tmp_path, "k")
     first = with_optimal(ruled, robot, None, {}, "both", print, stages, rules=rules,
                          params="the problem's settings")
-    assert calls == [motion] and first.optimal.rules == "InvalidParameterError: a stand-in"
-    assert KeptSolves.name((RULES, motion)) in {p.stem for p in tmp_path.glob("*.pickle")}
+    assert calls == [motion, repeat]
+    assert first.optimal.rules == "InvalidParameterError: a stand-in"
+    assert first.optimal.rules_spread is None  # no springs bought to compare
+    kept = {p.stem for p in tmp_path.glob("*.pickle")}
+    assert {KeptSolves.name((RULES, m)) for m in (motion, repeat)} <= kept
     again = with_optimal(ruled, robot, None, {}, "both", print, stages, rules=rules,
                          params="the problem's settings")
-    assert len(calls) == 1 and again.optimal.rules == first.optimal.rules
+    assert len(calls) == 2 and again.optimal.rules == first.optimal.rules
     kept_gait = True
     none = with_optimal(ruled, robot, None, {}, "both", print, None, rules=rules,
                         params="the problem's settings")
-    assert len(calls) == 1 and none.optimal.rules is None
+    assert len(calls) == 2 and none.optimal.rules is None

@@ -342,10 +342,12 @@ beside the move (:data:`Keep`'s inputs), how the row's answer is computed again 
 moved by so many metres, and how that answer's figures are read."""
 
 
-def spreads(robot: Robot, cases: Sequence[Case], keep: Keep | None = None) -> list[Spread]:
-    """Each case's :class:`Spread`: its answer computed again from its start moved by each of
-    :data:`MOVES`, every moved answer of every case side by side on the command's workers
-    (:func:`apart`: each read there, and kept by ``keep`` as it ends).
+def spreads(robot: Robot, cases: Sequence[Case], keep: Keep | None = None
+            ) -> list[tuple[Spread, tuple[Any, ...]]]:
+    """Each case's :class:`Spread` and its moved answers (in :data:`MOVES`' order): its answer
+    computed again from its start moved by each of :data:`MOVES`, every moved answer of every
+    case side by side on the command's workers (:func:`apart`: each read there, and kept by
+    ``keep`` as it ends).
 
     Args:
         robot: The robot.
@@ -361,9 +363,10 @@ def spreads(robot: Robot, cases: Sequence[Case], keep: Keep | None = None) -> li
     out = apart(jobs, robot, keep, then=lambda index, result: reads[index](result))
     found = []
     for k, (answer, *_rest) in enumerate(cases):
-        figures = [answer, *(f for _, f in out[k * len(MOVES):(k + 1) * len(MOVES)])]
-        judged_, solver, stopped = zip(*figures, strict=True)
-        found.append(Spread(MOVES, tuple(judged_), tuple(solver), tuple(stopped)))
+        moved = out[k * len(MOVES):(k + 1) * len(MOVES)]
+        judged_, solver, stopped = zip(answer, *(f for _, f in moved), strict=True)
+        found.append((Spread(MOVES, tuple(judged_), tuple(solver), tuple(stopped)),
+                      tuple(r for r, _ in moved)))
     return found
 
 

@@ -314,7 +314,9 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
         tell(f"spread: {' and '.join(again)} (the answers kept) again from {len(MOVES)} starts "
              "moved by " + ", ".join(f"{m:+.0e}" for m in MOVES) + " m")
     measured = iter(spreads(robot, cases, keep))
-    spread = (None if unbuilt else next(measured), None if alt.kept_gait else next(measured))
+    bare_spread = None if unbuilt else next(measured)[0]
+    alt_spread, moved = (None, ()) if alt.kept_gait else next(measured)
+    spread = (bare_spread, alt_spread)
     walks = (gait(robot, default), gait(robot, chosen))
     table = ((LABELS[0], predict(robot, walks[0], motor, SpringSet(), contact, margin),
               walks[0], SpringSet(), None, None, None),
@@ -336,7 +338,8 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
                               said.why if said.value is None else "", stated,
                               said.friction_use, said.why if said.beyond else "", landing))
     return OptimalRows(tuple(rows), alt.springs, family, bare, alt, robot, servo,
-                       time.perf_counter() - began, feedback, searched, multi, margin)
+                       time.perf_counter() - began, feedback, searched, multi, margin,
+                       repeats=tuple(None if a.kept_gait else a.motion for a in moved))
 
 
 __all__ = ["optimal_rows"]

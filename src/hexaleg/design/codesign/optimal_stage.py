@@ -15,12 +15,15 @@ stage file named by a digest of its inputs (its label, springs, solver settings 
 its warm start comes from): a run killed in a round reads back the solves before it, which
 give the same inputs to the next, and solves only from there. The full spring rules on the
 optimal motion (the springs to buy for it, a minute or two) are kept the same way, defined by the
-motion they run on.
+motion they run on, and so are the rules on each repeat of that motion from its start moved by
+its spread's moves (:mod:`~hexaleg.design.codesign.rules_spread`: how far the springs to buy move
+with the motion).
 """
 
 from __future__ import annotations
 
 import dataclasses
+import functools
 import hashlib
 import pickle
 import time
@@ -29,7 +32,9 @@ from typing import Any
 
 from hexaleg.design.chain.checkpoint import StageFiles
 from hexaleg.design.chain.result import DesignResult
+from hexaleg.design.codesign.alternation import MOVES
 from hexaleg.design.codesign.result import CodesignResult
+from hexaleg.design.codesign.rules_spread import rules_spread
 from hexaleg.design.search.optimal import Groups
 from hexaleg.motion.trajectory import Motion
 from hexaleg.robot.model import Robot
@@ -117,8 +122,9 @@ def with_optimal(result: CodesignResult, model: Robot, motor: Any, groups: Group
     set by ``params`` (:class:`~hexaleg.optimal.problem.OptimalParams`; None: its defaults), each
     optimal row solved without and with the landing cost and kept by the worse servo
     (:func:`~hexaleg.design.codesign.landing_choice.by_worse_servo`; the rules run on the motion
-    kept); each solve and the rules' result kept in ``stages`` (:class:`KeptSolves`); its wall
-    time the two stages' together."""
+    kept, then on each repeat of it that measured its spread: how far the springs to buy move,
+    :func:`~hexaleg.design.codesign.rules_spread.rules_spread`); each solve and each rules'
+    result kept in ``stages`` (:class:`KeptSolves`); its wall time the two stages' together."""
     from hexaleg.design.codesign.optimal_rows import optimal_rows  # the optimal extra's rows
 
     def tell(line: str) -> None:
@@ -136,7 +142,15 @@ def with_optimal(result: CodesignResult, model: Robot, motor: Any, groups: Group
         began = time.perf_counter()
         motion = optimal.alternation.motion
         bought = keep((RULES, motion), lambda: rules(motion))
-        optimal = dataclasses.replace(optimal, rules=bought,
+        again: list[DesignResult | str | None] = []
+        for k, repeat in enumerate(optimal.repeats):
+            if repeat is None:
+                again.append(None)
+                continue
+            tell(f"springs to buy on the row's repeat {k + 1} of {len(optimal.repeats)}")
+            again.append(keep((RULES, repeat), functools.partial(rules, repeat)))
+        spread = rules_spread(bought, again, MOVES, motion.distance) if again else None
+        optimal = dataclasses.replace(optimal, rules=bought, rules_spread=spread,
                                       wall=optimal.wall + time.perf_counter() - began)
     return dataclasses.replace(result, optimal=optimal, wall=result.wall + optimal.wall)
 

@@ -26,6 +26,7 @@ from hexaleg.design.codesign.alternation import (
 from hexaleg.design.codesign.gait_evaluation import Constraints
 from hexaleg.design.codesign.landing_choice import Landing
 from hexaleg.design.codesign.rules import rule_data, rule_lines
+from hexaleg.design.codesign.rules_spread import RulesSpread
 from hexaleg.design.codesign.starts import StartSearch
 from hexaleg.design.codesign.timing import TimingSearch
 from hexaleg.design.springs.law_json import spring_entry
@@ -130,6 +131,11 @@ class OptimalRows:
             (:class:`~hexaleg.design.chain.result.DesignResult`; module docstring), the error's
             message where they could not run, None where none ran (the alternation kept the
             co-design's gait, or none were asked for).
+        repeats: The last row's answer repeated from its start moved by each of
+            :data:`~hexaleg.design.codesign.alternation.MOVES` (its spread): each repeat's
+            motion, None where that repeat kept the gait; empty where no spread was measured.
+        rules_spread: The springs to buy designed again on each of :attr:`repeats`
+            (:mod:`~hexaleg.design.codesign.rules_spread`); None where they were not.
     """
 
     rows: tuple[MotionRow, ...]
@@ -145,6 +151,8 @@ class OptimalRows:
     starts: StartSearch | None = None
     margin: float = Constraints.friction_margin
     rules: DesignResult | str | None = None
+    repeats: tuple[Motion | None, ...] = ()
+    rules_spread: RulesSpread | None = None
 
     @property
     def best(self) -> Any:
@@ -224,6 +232,7 @@ class OptimalRows:
                 {"applied_to": ON, "error": self.rules, "pays": False}
                 if isinstance(self.rules, str) else
                 rule_data(self.rules, self.alternation.motion.distance, ON)),
+            "rules_spread": None if self.rules_spread is None else self.rules_spread.data(),
             "residual": q(max(self.bare.residual, self.best.residual), "N·m"),
             "no_springs": solver(self.bare), "springs_motion": solver(self.best),
             "alternation": {"energies": [q(e, "J/m") for e in alt.energies],
@@ -297,6 +306,8 @@ class OptimalRows:
             out.append(f"    its springs ({self.family}, the alternation's): {names}")
             out += ["    " + line for line in rule_lines(
                 self.bought, self.alternation.motion.distance, "the optimal motion")]
+            if self.rules_spread is not None:
+                out.append("      " + self.rules_spread.line())
             if self.rows[-1].beyond:  # the rules' own head does not know the margin
                 out.append(f"    unproven: {self.unproven}")
             return out
