@@ -793,7 +793,7 @@ def test_the_starts_above_the_box_are_the_kept_logs():
     to buy), the co-design searched in one box with the start chosen and the ratios against it,
     and the × 1.3 probes' spreads (with 100 and 200 iterations)."""
     doc = DOC.read_text(encoding="utf-8")
-    text = doc[doc.index("## Starts above the search box"):doc.index("## How it compares")]
+    text = doc[doc.index("## Starts above the search box"):doc.index("## One wide box")]
     flat = " ".join(text.split())
     log = re.sub(r"^\d\d:\d\d:\d\d ", "", (LOGS / "codesign_motion_optimal_starts.log").read_text(
         encoding="utf-8"), flags=re.MULTILINE)
@@ -950,3 +950,78 @@ def test_the_same_answer_of_the_starts_is_the_kept_log():
     wires = [re.findall(r"^[-+]      \w+ \w+: (\w+) d ([0-9.]+) mm, D [0-9.]+ mm, ([0-9.]+) turns",
                         part, re.MULTILINE) for part in after.split("springs to buy (full")[1:3]]
     assert wires[0] == wires[1] and len(wires[0]) == 4  # the same wires and turns
+
+
+def test_the_wide_box_is_its_kept_log():
+    """The wide box's section prints its kept command log: the rows, the co-design's search and
+    chosen gait, the start chosen, the ratios against the co-design (predicted, and under the
+    worse servo the kept answer walks for), the springs to buy and their simulation, the
+    command's time; and the one-box ratios it sums up are those the sections before derive."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("## One wide box"):doc.index("## How it compares")]
+    flat = " ".join(text.split())
+    log = re.sub(r"^\d\d:\d\d:\d\d ", "", (LOGS / "codesign_motion_optimal_wide_box.log")
+                 .read_text(encoding="utf-8"), flags=re.MULTILINE)
+    assert "codesign --motion optimal --body-high 1.7 --duty-high 0.9 --out out" in log
+    assert "`hexaleg codesign --motion optimal --body-high 1.7 --duty-high 0.9`" in flat
+    rows = _optimal_table(log)
+    spreads = dict(re.findall(r"^    (optimal motion, (?:no springs|its springs)) +\S+ (±\S+) ",
+                              log, re.MULTILINE))
+    shown = text[text.index("| row (the command's own table) |"):].split(
+        "\n\n")[0].splitlines()[2:]
+    assert shown == [f"| {label} | {' '.join([figures[0], spreads.get(label, '')]).strip()} | "
+                     + " | ".join(figures[1:]) + " |" for label, figures in rows.items()]
+    search = re.search(r"^  search: .*?, (\d+) evaluations, [0-9.]+ s, restarts ([0-9.]+) J/m "
+                       r"apart", log, re.MULTILINE)
+    top = re.search(r"^  chosen gait: body_height ([0-9.]+) m, .*?duty_factor ([0-9.]+), period "
+                    r"([0-9.]+) s$", log, re.MULTILINE)
+    best = re.search(r"^    1\. duty factor ([0-9.]+), period ([0-9.]+) s: .*?position ([0-9.]+)$",
+                     log, re.MULTILINE)
+    assert search and top and best
+    assert f"({search[1]} evaluations, restarts {search[2]} J/m apart)" in flat
+    assert f"new top of the body height ({top[1]} m, 1.7 × the default gait's)" in flat
+    assert f"chooses duty factor {top[2]}, period {top[3]} s" in flat
+    assert (f"duty factor {float(best[1]):g} and period {float(best[2]):g} s, walks for "
+            f"{best[3]} under position servos") in flat
+    start = re.search(r"→ body height × ([0-9.]+): ", log)
+    bound = re.search(r"^    the start chosen \(body height ([0-9.]+) mm, ([0-9.]+) × the default "
+                      r"gait's\) lies above the parametric search's box \(1\.7 ×\)", log,
+                      re.MULTILINE)
+    assert start and bound
+    assert (f"body height × {start[1]} of that gait ({bound[1]} mm, {bound[2]} × the default "
+            "gait's: above this box too") in flat
+    for factor in ("1.15", "1.25"):
+        assert f"body height × {factor}: —" in log
+    judged = re.search(r"^optimal motion, its springs: predicted ([0-9.]+) J/m, spread", log,
+                       re.MULTILINE)
+    landing = re.search(r"^optimal motion, its springs: landing cost's answers .*?kept 1: .*?"
+                        r"weight 30: predicted [0-9.]+ J/m, simulated feedforward ([0-9.]+), "
+                        r"position ([0-9.]+)$", log, re.MULTILINE)
+    assert judged and landing and float(landing[2]) > float(landing[1])
+    co = rows["parametric co-design (its gait and springs)"]
+    predicted, position = float(judged[1]), float(landing[2])
+    assert (f"predicts {predicted:.3f} J/m, **{predicted / float(co[0]):.3f}× the co-design's "
+            f"{co[0]}**") in flat
+    assert (f"for {position:.2f} J/m, **{position / float(co[2]):.3f}× the co-design's "
+            f"{co[2]}**") in flat
+    assert f"and in this wide box {predicted / float(co[0]):.3f}× and " \
+           f"{position / float(co[2]):.3f}×" in flat
+    buy = re.search(r"^    springs to buy \(full spring rules on the optimal motion: .*?\): "
+                    r"(\w+)(, spring torque ≤ [0-9.]+ N·m)? on coxa, femur, tibia, ([0-9.]+) "
+                    r"J/m, electrical saving \+([0-9.]+) % \(\+([0-9.]+) % net of ([0-9.]+) g of "
+                    r"springs\)$", log, re.MULTILINE)
+    sims = re.search(r"^      simulated electrical saving, the worse servo first: position only "
+                     r"\+([0-9.]+) %, feedforward \+ PD \+([0-9.]+) %", log, re.MULTILINE)
+    assert buy and sims
+    assert (f"{buy[1]}{buy[2] or ''}, on coxa, femur and tibia, {buy[3]} J/m, +{buy[4]} % "
+            f"(+{buy[5]} % net of {buy[6]} g), simulated +{sims[1]} % under position servos and "
+            f"+{sims[2]} % under feedforward") in flat
+    user, system, wall = (re.search(pattern, log) for pattern in (
+        r"User time \(seconds\): ([0-9.]+)", r"System time \(seconds\): ([0-9.]+)",
+        r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): (\d+):([0-9.]+)"))
+    assert user and system and wall
+    assert (f"{wall[1]} min {round(float(wall[2])):02d} s wall and "
+            f"{round(float(user[1]) + float(system[1]))} s of CPU") in flat
+    assert "0.975× predicted and 0.921× under the worse servo (`--body-high 1.63`)" in flat
+    earlier = doc[doc.index("## Starts above the search box"):doc.index("## One wide box")]
+    assert "**0.975× predicted and 0.921× under the worse servo**" in " ".join(earlier.split())
