@@ -1025,3 +1025,60 @@ def test_the_wide_box_is_its_kept_log():
     assert "0.975× predicted and 0.921× under the worse servo (`--body-high 1.63`)" in flat
     earlier = doc[doc.index("## Starts above the search box"):doc.index("## One wide box")]
     assert "**0.975× predicted and 0.921× under the worse servo**" in " ".join(earlier.split())
+
+
+def _timed(log: str) -> str:
+    """A kept log's ``/usr/bin/time -v`` as the docs print it: "M min SS s wall and C s of CPU"
+    (user plus system, rounded)."""
+    user, system, wall = (re.search(pattern, log) for pattern in (
+        r"User time \(seconds\): ([0-9.]+)", r"System time \(seconds\): ([0-9.]+)",
+        r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): (\d+):([0-9.]+)"))
+    assert user and system and wall
+    return (f"{wall[1]} min {round(float(wall[2])):02d} s wall and "
+            f"{round(float(user[1]) + float(system[1]))} s of CPU")
+
+
+def test_how_far_the_springs_to_buy_move_is_its_kept_log():
+    """The paragraph on how far the springs to buy move prints its kept log's line (how many
+    repeats buy the same springs, each kind's range), the log's rows and springs to buy are the
+    starts log's (the same command, the spread added), and the command's times quoted are the
+    two logs'."""
+    doc = DOC.read_text(encoding="utf-8")
+    flat = " ".join(doc.split())
+    text = doc[doc.index("**How far the springs to buy move, said.**"):doc.index(
+        "**Why the lattice stops at × 1.25.**")]
+    said = " ".join(text.split())
+    logs = {name: (LOGS / f"{name}.log").read_text(encoding="utf-8")
+            for name in ("codesign_motion_optimal_rules_spread", "codesign_motion_optimal_starts")}
+    log = re.sub(r"^\d\d:\d\d:\d\d ", "", logs["codesign_motion_optimal_rules_spread"],
+                 flags=re.MULTILINE)
+    line = re.search(r"^      on the row's repeats \(its start moved by -2e-09, -1e-09, \+1e-09, "
+                     r"\+2e-09 m\) the full rules buy the same springs \(family, groups, each "
+                     r"part's wire and turns\) on (\d) of (\d); over those their figures move by "
+                     r"up to: (.*) — the digits above finer than that are not the method's$", log,
+                     re.MULTILINE)
+    assert line
+    moved = {kind: value for kind, value, _unit in (
+        re.fullmatch(r"([a-z -]+?) ([0-9.e-]+)(°| N·m| J/m| %| mm|)", part).groups()  # type: ignore[union-attr]
+        for part in line[3].split(", "))}
+    assert f"the same springs on {line[1]} of {line[2]}" in said
+    assert (f"{moved['torque bound']} N·m (the torque bound), {moved['coil diameter']} mm (coil "
+            f"diameters), {moved['hard stop']}° (hard stops), {moved['net saving']} points (the "
+            f"net saving) and {moved['energy per metre']} J/m") in said
+
+    def table(text: str) -> list[str]:
+        plain = re.sub(r"^\d\d:\d\d:\d\d ", "", text, flags=re.MULTILINE)
+        block = plain[plain.index("hexaleg at 0.06 m/s: electrical energy per metre"):
+                      plain.index("wrote ")]
+        return [x for x in block.splitlines() if "search: duty factor" not in x
+                and "on the row's repeats" not in x and "search box's edge" not in x]
+
+    assert table(logs["codesign_motion_optimal_rules_spread"]) == table(
+        logs["codesign_motion_optimal_starts"])
+    spread_time, starts_time = (_timed(logs[n]) for n in (
+        "codesign_motion_optimal_rules_spread", "codesign_motion_optimal_starts"))
+    assert f"It costs the command four more runs of the full rules: {spread_time}" in said
+    assert f"({starts_time.split(' wall')[0]} before)" in said
+    assert flat.count(f"its default, {starts_time} with nothing else running") == 1
+    assert f"four repeats (how far they move, said beside them), {spread_time}" in flat
+    assert f"codesign_motion_optimal_starts.log`; {starts_time} on the 2-core" in flat

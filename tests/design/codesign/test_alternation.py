@@ -317,9 +317,9 @@ def test_a_spread_is_its_judged_figures_largest_less_least():
 def test_the_spread_repeats_the_solve_from_its_start_moved():
     """A short solve (16 knots, 40 iterations) repeated by :func:`spreads` from its start moved
     by each of :data:`MOVES` on the workers: the first figure is the answer's own, the moved
-    answers come back in the moves' order, the moved solves land elsewhere (the solver parts them: a ``move`` ignored gives five equal figures
-    and a spread of zero), and the same solve repeated unmoved lands on the answer to the bit
-    (deterministic)."""
+    answers come back in the moves' order, the moved solves land elsewhere (the solver parts
+    them: a ``move`` ignored gives five equal figures and a spread of zero), and the same solve
+    repeated unmoved lands on the answer to the bit (deterministic)."""
     pytest.importorskip("crocoddyl")
     from hexaleg.design.codesign.alternation import spreads
     from hexaleg.optimal.problem import OptimalParams, build_problem
