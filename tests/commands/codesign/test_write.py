@@ -316,7 +316,16 @@ def test_the_page_says_the_start_chosen_and_a_start_above_the_box(codesigned):
     assert said[0][1:].replace("'", "&#39;") in text
     assert ("the gait: 10.506; body height × 1.25: 8.913 (chosen); body height × 1.5: — "
             "(GaitReachError: out of reach)") in " ".join(text.split())
-    data["optimal"] |= {"starts": None, "beyond_box": []}
+    data["optimal"]["starts_no_springs"] = {"starts": [
+        {"start": "the gait", "predicted": {"value": 12.9, "unit": "J/m"}},
+        {"start": "body height × 1.25", "predicted": {"value": 12.261, "unit": "J/m"}}],
+        "chosen": 1, "springs": "no springs"}
+    bare = " ".join(re.sub(r"<[^>]+>", "", render_codesign_html(data, {"speed": ""}, {}))
+                    .split())
+    assert ("Starts of the optimal motion without springs, the same lattice solved without "
+            "them (the row without springs runs from the one chosen; J/m): the gait: 12.900; "
+            "body height × 1.25: 12.261 (chosen).") in bare
+    data["optimal"] |= {"starts": None, "beyond_box": [], "starts_no_springs": None}
     plain = render_codesign_html(data, {"speed": ""}, {})
     assert "from the chosen gait (contact timing the gait's)" in " ".join(
         re.sub(r"<[^>]+>", "", plain).split())

@@ -68,10 +68,14 @@ def test_the_four_rows_of_a_small_problem():
     assert data["residual"]["value"] <= 1e-6 and len(data["rows"]) == 4
 
 
-def test_the_alternation_and_the_bare_cycle_run_from_the_start_chosen(monkeypatch, robot):
-    """With ``starts="lattice"`` the multi-start's chosen start — its gait, solver settings and
-    solved cycle — is where both optimal motions start (the alternation from that cycle), and
-    the table and codesign.json say the starts; with ``"gait"`` no multi-start runs."""
+def test_the_alternation_and_the_bare_cycle_run_from_their_own_starts(monkeypatch, robot):
+    """With ``starts="lattice"`` the lattice is solved twice, with the co-design's springs and
+    without: the alternation runs from the start chosen with the springs (its gait, solver
+    settings and solved cycle), the optimal motion without springs from the start chosen
+    without them (that start's solve its answer without the landing cost, not solved again), and
+    the table and codesign.json say both lattices; springs the alternation cannot hold (it then
+    starts without springs) share one lattice; with ``"gait"`` no multi-start runs. Catches a
+    row 3 taken from the sprung start (Solo-12's trot: beyond the friction margin there)."""
     pytest.importorskip("crocoddyl")
     import dataclasses
 
@@ -86,13 +90,22 @@ def test_the_alternation_and_the_bare_cycle_run_from_the_start_chosen(monkeypatc
                                  duty_factor=0.8)
     moved = dataclasses.replace(chosen, step_height=1.3 * chosen.step_height)
     settings = hexaleg.optimal.problem.OptimalParams(iterations=3)
+    freer = dataclasses.replace(settings, swing_weight=0.01 * settings.swing_weight)
+    springs = hexaleg.SpringSet({"femur": hexaleg.LinearSpring(stiffness=0.5)})
     picked = solved(8.5)
-    seen: dict[str, object] = {}
+    bare_picked = SimpleNamespace(**{**vars(solved(14.0)), "task_space": "its rebuilt cycle"})
+    seen: dict[str, list] = {}
 
-    def starts(_robot, timed, _motor, _springs, _contact, params, min_step, **kwargs):
-        seen["starts"] = (timed, params, min_step, kwargs["first"])
-        return StartSearch((Start("the gait", timed, params, solved(9.0), 9.4, ""),
-                            Start("step height × 1.3", moved, settings, picked, 9.3, "")), 1)
+    def starts(_robot, timed, _motor, fitted, _contact, params, min_step, **kwargs):
+        seen.setdefault("starts", []).append((timed, params, min_step, kwargs.get("first"),
+                                              fitted))
+        if fitted:  # the co-design's springs: the step height × 1.3 chosen
+            return StartSearch((Start("the gait", timed, params, solved(9.0), 9.4, ""),
+                                Start("step height × 1.3", moved, settings, picked, 9.3, "")),
+                               1)
+        return StartSearch((Start("the gait", timed, params, solved(15.0), 15.2, ""),
+                            Start("swing weight × 0.01", timed, freer, bare_picked, 14.1, "")),
+                           1, kwargs.get("springs_named", "the co-design's springs"))
 
     def alternate(_robot, motion, _motor, _contact, **kwargs):
         seen.setdefault("alternation", []).append((motion, kwargs["params"], kwargs["first"]))
@@ -122,32 +135,52 @@ def test_the_alternation_and_the_bare_cycle_run_from_the_start_chosen(monkeypatc
     monkeypatch.setattr(rows_module, "apart",  # the solves in this process, one by one
                         lambda jobs, _robot, _keep: [(job[1](), None) for job in jobs])
     table = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen,
-                                     hexaleg.SpringSet(), params=settings,
-                                     starts="lattice", min_step=0.015)
-    # both spreads repeat their row's own answer: at the start chosen, with its settings (every
-    # answer walks for the same here: the one without the landing cost is kept)
+                                     springs, params=settings, starts="lattice", min_step=0.015)
+    # both spreads repeat their row's own answer: at its own start chosen, with its settings
+    # (every answer walks for the same here: the one without the landing cost is kept)
     landed = dataclasses.replace(settings, servo_landing_weight=rows_module.SERVO_LANDING)
+    bare_landed = dataclasses.replace(freer, servo_landing_weight=rows_module.SERVO_LANDING)
     (bare_inputs, alt_inputs) = seen["spreads"]
-    assert bare_inputs == ("no springs", settings, moved)
+    assert bare_inputs == ("no springs", freer, chosen)
     assert alt_inputs[0] == "alternation" and alt_inputs[2] == settings and alt_inputs[-1] == moved
-    timed, params, min_step, first = seen["starts"]
+    (timed, params, min_step, first, fitted), (*bare_call, bare_fitted) = seen["starts"]
     assert timed == chosen and params == settings and min_step == 0.015 and first is None
+    assert fitted is springs and bare_call == [chosen, settings, 0.015, None]
+    assert bare_fitted == hexaleg.SpringSet()
     # the alternation without the cost from the start chosen, the one with it from its own
-    # start: the start chosen solved again with the cost
+    # start: the start chosen solved again with the cost; the bare motion's answer without the
+    # cost is its lattice's solve, the one with the cost solved from its start
     (motion, params, first), (motion_landed, params_landed, first_landed) = seen["alternation"]
     assert motion.params == moved and params == settings and first is picked
     assert motion_landed.params == moved and params_landed == landed
-    bare_motion, bare_params = seen["solved"][0]
-    assert bare_motion.params == moved and bare_params == settings
-    assert [built[1] for built in seen["solved"]] == [settings, landed, landed]
-    assert first_landed.task_space == seen["solved"][2]
+    (bare_motion, bare_params), (start_motion, start_params) = seen["solved"]
+    assert bare_motion.params == chosen and bare_params == bare_landed
+    assert start_motion.params == moved and start_params == landed
+    assert first_landed.task_space == seen["solved"][1]
+    assert table.bare is bare_picked  # the answer without the landing cost: its start's solve
     assert table.starts is not None and table.starts.chosen.label == "step height × 1.3"
-    assert any("→ step height × 1.3: 9.300" in line for line in table.lines())
-    assert json.loads(json_text(table.data()))["starts"]["chosen"] == 1
+    assert table.bare_starts is not None
+    assert table.bare_starts.chosen.label == "swing weight × 0.01"
+    lines = table.lines()
+    assert any("(J/m predicted rebuilt, the co-design's springs): the gait: 9.400; → step height "
+               "× 1.3: 9.300" in line for line in lines)
+    assert any("(J/m predicted rebuilt, no springs): the gait: 15.200; → swing weight × 0.01: "
+               "14.100" in line for line in lines)
+    data = json.loads(json_text(table.data()))
+    assert data["starts"]["chosen"] == 1 and data["starts_no_springs"]["chosen"] == 1
+    assert data["starts_no_springs"]["springs"] == "no springs"
+    seen.clear()
+    shared = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen,
+                                      springs, params=settings, starts="lattice",
+                                      min_step=0.015, family="one_sided")
+    assert len(seen["starts"]) == 1 and seen["starts"][0][-1] == hexaleg.SpringSet()
+    assert shared.bare_starts is not None and shared.bare_starts.springs == "no springs"
+    assert shared.bare_starts.starts == shared.starts.starts  # type: ignore[union-attr]
     seen.clear()
     plain = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen,
-                                     hexaleg.SpringSet(), params=settings, starts="gait")
+                                     springs, params=settings, starts="gait")
     assert "starts" not in seen and plain.starts is None and plain.data()["starts"] is None
+    assert plain.bare_starts is None and plain.data()["starts_no_springs"] is None
 
 
 def test_a_cycle_not_rebuilt_is_a_row_that_says_why(monkeypatch, robot):

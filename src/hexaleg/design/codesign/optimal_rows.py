@@ -177,26 +177,39 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
         timed = searched.chosen.params
         tell(f"timing chosen: duty factor {timed.duty_factor:.3g}, period {timed.period:.4g} s")
     first = None if searched is None else searched.chosen.result
-    multi = None
+    multi = bare_multi = None
+    bare_timed, bare_params, bare_first = timed, params, None
     if starts == "lattice":
         tell("starts of the optimal motion tried at that timing, with the co-design's springs")
         multi = search_starts(robot, timed, motor, start, contact, params, min_step,
                               first=first, say=lambda line: tell(f"starts: {line}"), keep=keep,
                               margin=margin)
-        timed, params, first = multi.chosen.params, multi.chosen.settings, multi.chosen.result
         tell(f"start chosen: {multi.chosen.label}")
+        if start:
+            tell("starts of the optimal motion without springs tried at that timing")
+            bare_multi = search_starts(robot, timed, motor, SpringSet(), contact, params,
+                                       min_step,
+                                       say=lambda line: tell(f"starts without springs: {line}"),
+                                       keep=keep, margin=margin, springs_named="no springs")
+        else:  # the alternation starts without springs (a family it cannot hold): one lattice
+            bare_multi = dataclasses.replace(multi, springs="no springs")
+        tell(f"start chosen without springs: {bare_multi.chosen.label}")
+        bare_timed, bare_params = bare_multi.chosen.params, bare_multi.chosen.settings
+        bare_first = bare_multi.chosen.result
+        timed, params, first = multi.chosen.params, multi.chosen.settings, multi.chosen.result
     landed = dataclasses.replace(params, servo_landing_weight=weight)
     settings = (params, landed)  # each optimal row's two answers: without, with the cost
-    motion = gait(robot, timed)
-    moved_timing = () if searched is None and multi is None else (timed,)
+    bare_settings = (bare_params, dataclasses.replace(bare_params, servo_landing_weight=weight))
+    motion, bare_motion = gait(robot, timed), gait(robot, bare_timed)
+    moved_bare = () if searched is None and bare_multi is None else (bare_timed,)
     named = ("", f", landing cost {weight:g}")
 
     def bare_job(i: int) -> Any:
-        """Row 3's solve with ``settings[i]`` (a :data:`~hexaleg.design.codesign.alternation.
-        Job`)."""
-        return (("no springs", SpringSet(), settings[i], *moved_timing),
-                lambda: solve(robot, build_problem(robot, motion, motor, SpringSet(),
-                                                   settings[i]),
+        """Row 3's solve with ``bare_settings[i]`` from its own start (a
+        :data:`~hexaleg.design.codesign.alternation.Job`)."""
+        return (("no springs", SpringSet(), bare_settings[i], *moved_bare),
+                lambda: solve(robot, build_problem(robot, bare_motion, motor, SpringSet(),
+                                                   bare_settings[i]),
                               say=lambda line: tell(f"no springs{named[i]}: {line}"),
                               every=PROGRESS))
 
@@ -209,17 +222,21 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
 
     origin = ("the co-design's gait" if multi is None else
               f"the start chosen ({multi.chosen.label})")
-    tell(f"optimal motion without springs, from {origin}"
+    bare_origin = ("the co-design's gait" if bare_multi is None else
+                   f"its own start chosen ({bare_multi.chosen.label})")
+    tell(f"optimal motion without springs, from {bare_origin}"
          + ("" if searched is None else " at the timing chosen")
          + f", without and with the landing cost (weight {weight:g})")
     starting = [1] if first is not None else [0, 1]  # the searches' start has no cost
+    bare_starting = [1] if bare_first is not None else [0, 1]
     tell(f"optimal motion with springs (alternation), from {origin} and the co-design's springs:"
          " its start" + ("" if first is not None else "s") + " solved beside the motion without"
          " springs")
-    solved = [r for r, _ in apart([bare_job(0), bare_job(1), *(start_job(i) for i in starting)],
-                                  robot, keep)]
-    bares = solved[:2]
-    firsts = [first, solved[2]] if first is not None else solved[2:]
+    solved = [r for r, _ in apart([*(bare_job(i) for i in bare_starting),
+                                   *(start_job(i) for i in starting)], robot, keep)]
+    bares = ([bare_first] if bare_first is not None else []) + solved[:len(bare_starting)]
+    solved = solved[len(bare_starting):]
+    firsts = [first, solved[0]] if first is not None else solved
     for i, bare in enumerate(bares):
         tell(f"optimal motion without springs{named[i]}: {shown(bare.energy_per_metre)} J/m "
              f"({bare.iterations} iterations, {bare.seconds:.0f} s)")
@@ -254,7 +271,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
 
     def bare_judged(result: Any) -> Prediction:
         """Row 3's prediction: the one judge of an optimal cycle, as row 4's."""
-        return judged(robot, result, motion, motor, SpringSet(), contact, margin)
+        return judged(robot, result, bare_motion, motor, SpringSet(), contact, margin)
 
     def alt_judged(alt: Alternation) -> Prediction:
         """Row 4's prediction: the gait with its springs where the alternation kept it."""
@@ -285,12 +302,13 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
         said_alt = [alt_judged(a) for a in alts]
         k4, landing4, runs4 = chosen_of(LABELS[3], [(said_alt[i], alts[i].motion,
                                                      alts[i].springs) for i in range(2)])
-    bare, alt, params = bares[k3], alts[k4], settings[k3]
+    bare, alt, params = bares[k3], alts[k4], bare_settings[k3]
     alt_params = settings[k4]
 
     def bare_again(move: float) -> Any:
         """Row 3's solve from its start moved by ``move`` m."""
-        return solve(robot, build_problem(robot, motion, motor, SpringSet(), params), move=move)
+        return solve(robot, build_problem(robot, bare_motion, motor, SpringSet(), params),
+                     move=move)
 
     def alt_again(move: float) -> Alternation:
         """Row 4's alternation from its start moved by ``move`` m."""
@@ -301,7 +319,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
     cases: list[Case] = []
     if not unbuilt:
         cases.append(((said_bare[k3].value, bare.energy_per_metre, bare.stationarity),
-                      ("no springs", params, timed), bare_again,
+                      ("no springs", params, bare_timed), bare_again,
                       lambda r: (bare_judged(r).value, r.energy_per_metre, r.stationarity)))
     if not alt.kept_gait:
         cases.append(((alt.predicted, alt.best.energy_per_metre, alt.best.stationarity),
@@ -339,6 +357,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
                               said.friction_use, said.why if said.beyond else "", landing))
     return OptimalRows(tuple(rows), alt.springs, family, bare, alt, robot, servo,
                        time.perf_counter() - began, feedback, searched, multi, margin,
+                       bare_starts=bare_multi,
                        repeats=tuple(None if a.kept_gait else a.motion for a in moved))
 
 

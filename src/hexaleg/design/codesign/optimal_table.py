@@ -124,7 +124,10 @@ class OptimalRows:
         timing: The contact timing's search, when the optimal motions' timing was searched
             (:class:`~hexaleg.design.codesign.timing.TimingSearch`); None: the chosen gait's.
         starts: The multi-start, when the optimal motions' start was searched
-            (:class:`~hexaleg.design.codesign.starts.StartSearch`); None: the gait's.
+            (:class:`~hexaleg.design.codesign.starts.StartSearch`); None: the gait's. The
+            alternation runs from its start chosen with the co-design's springs.
+        bare_starts: The same lattice solved without springs, whose start chosen the optimal
+            motion without springs runs from; None where no start was searched.
         margin: The planners' friction margin every row is predicted inside
             (``[codesign.constraints] friction_margin``).
         rules: The full spring rules on the optimal motion with its springs
@@ -151,6 +154,7 @@ class OptimalRows:
     starts: StartSearch | None = None
     margin: float = Constraints.friction_margin
     rules: DesignResult | str | None = None
+    bare_starts: StartSearch | None = None
     repeats: tuple[Motion | None, ...] = ()
     rules_spread: RulesSpread | None = None
 
@@ -224,6 +228,7 @@ class OptimalRows:
             "feedback": self.feedback,
             "timing": None if self.timing is None else self.timing.data(),
             "starts": None if self.starts is None else self.starts.data(),
+            "starts_no_springs": None if self.bare_starts is None else self.bare_starts.data(),
             "springs": [spring_entry(j, s) for j, s in self.springs.items()],
             "family": self.family, "proven": self.proven,
             **({"unproven": self.unproven} if self.unproven else {}),
@@ -275,6 +280,8 @@ class OptimalRows:
             out.append(self.timing.line())
         if self.starts is not None:
             out.append(self.starts.line())
+        if self.bare_starts is not None:
+            out.append(self.bare_starts.line())
         b = self.best
         bare, last = self.rows[2].spread, self.rows[3].spread
         if bare is not None or last is not None:

@@ -106,10 +106,12 @@ class StartSearch:
     Attributes:
         starts: Every start tried, in the lattice's order (:func:`starts`).
         best: The index of the chosen one.
+        springs: The springs each start was solved with, as the table names them.
     """
 
     starts: tuple[Start, ...]
     best: int
+    springs: str = "the co-design's springs"
 
     @property
     def chosen(self) -> Start:
@@ -118,14 +120,15 @@ class StartSearch:
 
     def data(self) -> dict[str, Any]:
         """codesign.json's ``starts`` entry."""
-        return {"starts": [s.data() for s in self.starts], "chosen": self.best}
+        return {"starts": [s.data() for s in self.starts], "chosen": self.best,
+                "springs": self.springs}
 
     def line(self) -> str:
         """One line for the terminal: each start's prediction, the chosen one marked."""
         def said(s: Start) -> str:
             return f"{s.label}: {'—' if s.predicted is None else f'{s.predicted:.3f}'}"
-        return ("    starts of the optimal motion (J/m predicted rebuilt, the co-design's "
-                "springs): " + "; ".join(("→ " if k == self.best else "") + said(s)
+        return (f"    starts of the optimal motion (J/m predicted rebuilt, {self.springs}): "
+                + "; ".join(("→ " if k == self.best else "") + said(s)
                                         for k, s in enumerate(self.starts)))
 
 
@@ -156,14 +159,16 @@ def search_starts(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringS
                   contact: ContactParams, params: Any, min_step: float, *,
                   first: Any = None, say: Callable[[str], None] | None = None,
                   keep: Keep | None = None,
-                  margin: float = Constraints.friction_margin) -> StartSearch:
+                  margin: float = Constraints.friction_margin,
+                  springs_named: str = "the co-design's springs") -> StartSearch:
     """Each start of :func:`starts` solved with ``springs`` and predicted rebuilt, the solves
     side by side on the command's workers (:func:`~hexaleg.design.codesign.alternation.apart`);
     the least prediction chosen (module docstring).
 
     Args:
         robot: The robot. chosen: The gait (at the contact timing chosen). motor: Its motors.
-        springs: The co-design's springs (in each start's dynamics and its prediction).
+        springs: The springs in each start's dynamics and its prediction: the co-design's, or
+            none for the optimal motion without springs (its own starts).
         contact: The floor of the prediction.
         params: :class:`~hexaleg.optimal.problem.OptimalParams`.
         min_step: The least step height, m (the co-design's least foot clearance).
@@ -174,6 +179,7 @@ def search_starts(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringS
         margin: The planners' friction margin: each cycle predicted inside ``margin · μ``
             (:func:`~hexaleg.design.codesign.alternation.judged`; one with no forces there has
             no prediction and is not chosen).
+        springs_named: How the table names ``springs`` (:attr:`StartSearch.springs`).
 
     Raises:
         BackendError: no usable Crocoddyl.
@@ -225,7 +231,7 @@ def search_starts(robot: Robot, chosen: GaitParams, motor: Any, springs: SpringS
                              f"no prediction ({why})")
              + f" (the solver's {shown(result.energy_per_metre)})")
     best = least([t.predicted for t in tried])
-    return StartSearch(tuple(tried), best)
+    return StartSearch(tuple(tried), best, springs_named)
 
 
 __all__ = ["BODY_FACTORS", "STARTS", "STEP_FACTORS", "SWING_FACTORS", "Start", "StartSearch",
