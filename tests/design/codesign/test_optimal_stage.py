@@ -131,9 +131,10 @@ def test_an_alternation_killed_in_a_round_resumes_from_its_kept_solves(tmp_path,
 
 def test_the_optimal_motions_springs_are_bought_once_and_kept(tmp_path, monkeypatch, ruled):
     """with_optimal runs the full rules on the alternation's motion after the rows, keeps their
-    result, then on each repeat of that motion (its spread's: a repeat that kept the gait
-    skipped), keeps each, and a later process of the same run reads them back instead of
-    designing again; no rules run where the alternation kept the gait."""
+    result, then, where they buy springs, on each repeat of that motion (its spread's: a
+    repeat that kept the gait skipped) and says how far the springs move, keeps each, and a
+    later process of the same run reads them back instead of designing again; rules that buy
+    nothing are not repeated, and none run where the alternation kept the gait."""
     from types import SimpleNamespace
 
     from hexaleg.design.codesign import optimal_rows as rows_module
@@ -153,22 +154,31 @@ def test_the_optimal_motions_springs_are_bought_once_and_kept(tmp_path, monkeypa
     monkeypatch.setattr(rows_module, "optimal_rows", rows)
     calls: list[hexaleg.Motion] = []
 
+    answer = ruled.rules  # a design that buys springs, on every motion here
+    assert answer.pays
+
     def rules(m):
         calls.append(m)
-        return "InvalidParameterError: a stand-in"
+        return answer
 
     stages = StageFiles(tmp_path, "k")
     first = with_optimal(ruled, robot, None, {}, "both", print, stages, rules=rules,
                          params="the problem's settings")
-    assert calls == [motion, repeat]
-    assert first.optimal.rules == "InvalidParameterError: a stand-in"
-    assert first.optimal.rules_spread is None  # no springs bought to compare
+    assert calls == [motion, repeat] and first.optimal.rules is answer
+    spread = first.optimal.rules_spread
+    assert spread is not None and spread.same == (True, None)
+    assert spread.why == ("", "the repeat kept the gait") and set(spread.moved.values()) == {0.0}
     kept = {p.stem for p in tmp_path.glob("*.pickle")}
     assert {KeptSolves.name((RULES, m)) for m in (motion, repeat)} <= kept
     again = with_optimal(ruled, robot, None, {}, "both", print, stages, rules=rules,
                          params="the problem's settings")
-    assert len(calls) == 2 and again.optimal.rules == first.optimal.rules
+    assert len(calls) == 2 and again.optimal.rules_spread == spread
+    calls.clear()
+    failed = with_optimal(ruled, robot, None, {}, "both", print, None,
+                          rules=lambda m: calls.append(m) or "InvalidParameterError: a stand-in",
+                          params="the problem's settings")
+    assert calls == [motion] and failed.optimal.rules_spread is None  # nothing to compare
     kept_gait = True
     none = with_optimal(ruled, robot, None, {}, "both", print, None, rules=rules,
                         params="the problem's settings")
-    assert len(calls) == 2 and none.optimal.rules is None
+    assert calls == [motion] and none.optimal.rules is None

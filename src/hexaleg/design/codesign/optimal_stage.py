@@ -122,9 +122,10 @@ def with_optimal(result: CodesignResult, model: Robot, motor: Any, groups: Group
     set by ``params`` (:class:`~hexaleg.optimal.problem.OptimalParams`; None: its defaults), each
     optimal row solved without and with the landing cost and kept by the worse servo
     (:func:`~hexaleg.design.codesign.landing_choice.by_worse_servo`; the rules run on the motion
-    kept, then on each repeat of it that measured its spread: how far the springs to buy move,
-    :func:`~hexaleg.design.codesign.rules_spread.rules_spread`); each solve and each rules'
-    result kept in ``stages`` (:class:`KeptSolves`); its wall time the two stages' together."""
+    kept, then, where they buy springs, on each repeat of it that measured its spread: how far
+    the springs to buy move, :func:`~hexaleg.design.codesign.rules_spread.rules_spread`); each
+    solve and each rules' result kept in ``stages`` (:class:`KeptSolves`); its wall time the two
+    stages' together."""
     from hexaleg.design.codesign.optimal_rows import optimal_rows  # the optimal extra's rows
 
     def tell(line: str) -> None:
@@ -143,11 +144,12 @@ def with_optimal(result: CodesignResult, model: Robot, motor: Any, groups: Group
         motion = optimal.alternation.motion
         bought = keep((RULES, motion), lambda: rules(motion))
         again: list[DesignResult | str | None] = []
-        for k, repeat in enumerate(optimal.repeats):
+        compared = optimal.repeats if isinstance(bought, DesignResult) and bought.pays else ()
+        for k, repeat in enumerate(compared):
             if repeat is None:
                 again.append(None)
                 continue
-            tell(f"springs to buy on the row's repeat {k + 1} of {len(optimal.repeats)}")
+            tell(f"springs to buy on the row's repeat {k + 1} of {len(compared)}")
             again.append(keep((RULES, repeat), functools.partial(rules, repeat)))
         spread = rules_spread(bought, again, MOVES, motion.distance) if again else None
         optimal = dataclasses.replace(optimal, rules=bought, rules_spread=spread,
