@@ -1082,3 +1082,55 @@ def test_how_far_the_springs_to_buy_move_is_its_kept_log():
     assert flat.count(f"its default, {starts_time} with nothing else running") == 1
     assert f"four repeats (how far they move, said beside them), {spread_time}" in flat
     assert f"codesign_motion_optimal_starts.log`; {starts_time} on the 2-core" in flat
+
+
+def test_each_optimal_row_from_its_own_start_is_the_kept_logs():
+    """The paragraph on each row's own start prints the two robots' kept logs: the lattice
+    without springs' choice and figures, the default robot's rows as the spread log's to every
+    digit, Solo-12's trot without springs from its own start (its prediction, spread and
+    friction use, the answer kept and its simulations), its sprung rows as before."""
+    doc = DOC.read_text(encoding="utf-8")
+    text = doc[doc.index("**Each optimal row from its own start.**"):doc.index(
+        "**Why the lattice stops at × 1.25.**")]
+    said = " ".join(text.split())
+
+    def read(name: str) -> str:
+        return re.sub(r"^\d\d:\d\d:\d\d ", "", (LOGS / f"{name}.log").read_text(
+            encoding="utf-8"), flags=re.MULTILINE)
+
+    def lattice(log: str) -> dict[str, str]:
+        line = re.search(r"^    starts of the optimal motion \(J/m predicted rebuilt, no "
+                         r"springs\): (.*)$", log, re.MULTILINE)
+        assert line
+        return dict(part.rsplit(": ", 1) for part in line[1].split("; "))
+
+    own, before = read("codesign_motion_optimal_own_starts"), read(
+        "codesign_motion_optimal_rules_spread")
+    bare = lattice(own)
+    assert bare["→ body height × 1.25"] == "12.297" and bare["the gait"] == "16.384"
+    assert "chooses the same start, body height × 1.25 (12.297 J/m against the gait's 16.384)" \
+        in said
+    assert "→ body height × 1.25: 8.913" in own  # the sprung lattice's choice: the same start
+    assert _optimal_table(own) == _optimal_table(before)
+    solo, solo_before = read("codesign_motion_optimal_solo12_own_starts"), read(
+        "codesign_motion_optimal_solo12_starts")
+    bare = lattice(solo)
+    predicted = {k: v for k, v in bare.items() if v != "—"}
+    assert predicted == {"→ body height × 0.95": "36.758"}
+    assert "only body height × 0.95 has forces inside the margin without springs (36.758 J/m" \
+        in said
+    rows = _optimal_table(solo)
+    row = re.search(r"^    optimal motion, no springs +(\S+ ±\S+) \(friction ([0-9.]+)\)", solo,
+                    re.MULTILINE)
+    landing = re.search(r"^optimal motion, no springs: landing cost's answers .*?kept 0: weight "
+                        r"0: predicted [0-9.]+ J/m, simulated feedforward ([0-9.]+), position "
+                        r"([0-9.]+);", solo, re.MULTILINE)
+    assert row and landing and "beyond" not in row[0]
+    assert (f"predicts {row[1]} J/m inside the margin (friction use {row[2]}) and walks under "
+            f"both servos, for {float(landing[1]):.2f} (feedforward) and "
+            f"{float(landing[2]):.2f} (position) J/m") in said
+    assert "μ 0.441" in solo_before and "falls short" in doc
+    old_rows = _optimal_table(solo_before)
+    for label in ("default gait, no springs", "parametric co-design (its gait and springs)",
+                  "optimal motion, its springs"):
+        assert rows[label] == old_rows[label], label
