@@ -598,6 +598,21 @@ def test_the_stated_spread_is_the_kept_logs():
                          + walked + " ", moved), walked
 
 
+def _bought(log: str) -> str:
+    """A kept command log's springs to buy for the optimal motion as the docs print them: the
+    family (and torque bound), J/m, the saving and the net saving, and their simulations."""
+    buy = re.search(r"^    springs to buy \(full spring rules on the optimal motion: .*?\): "
+                    r"(\w+)(, spring torque ≤ [0-9.]+ N·m)? on coxa, femur, tibia, ([0-9.]+) "
+                    r"J/m, electrical saving \+([0-9.]+) % \(\+([0-9.]+) % net of ([0-9.]+) g of "
+                    r"springs\)$", log, re.MULTILINE)
+    sims = re.search(r"^      simulated electrical saving, the worse servo first: position only "
+                     r"\+([0-9.]+) %, feedforward \+ PD \+([0-9.]+) %", log, re.MULTILINE)
+    assert buy and sims
+    return (f"{buy[1]}{buy[2] or ''}, on coxa, femur and tibia, {buy[3]} J/m, +{buy[4]} % "
+            f"(+{buy[5]} % net of {buy[6]} g), simulated +{sims[1]} % under position servos and "
+            f"+{sims[2]} % under feedforward")
+
+
 def _optimal_table(log: str) -> dict[str, list[str]]:
     """A kept command log's optimal table: each row's label → its printed figures (predicted,
     then simulated under each servo; "—" where it has none), as printed."""
@@ -837,16 +852,7 @@ def test_the_starts_above_the_box_are_the_kept_logs():
     assert abs(float(m[2]) - position / float(co[2])) < 1e-3
     assert (f"without it {float(landing[1]):.2f} predicted and {float(landing[2]):.2f} under "
             "position servos") in flat
-    buy = re.search(r"^    springs to buy \(full spring rules on the optimal motion: .*?\): "
-                    r"(\w+)(, spring torque ≤ [0-9.]+ N·m)? on coxa, femur, tibia, ([0-9.]+) "
-                    r"J/m, electrical saving \+([0-9.]+) % \(\+([0-9.]+) % net of ([0-9.]+) g of "
-                    r"springs\)$", log, re.MULTILINE)
-    sims = re.search(r"^      simulated electrical saving, the worse servo first: position only "
-                     r"\+([0-9.]+) %, feedforward \+ PD \+([0-9.]+) %", log, re.MULTILINE)
-    assert buy and sims
-    assert (f"{buy[1]}{buy[2] or ''}, on coxa, femur and tibia, {buy[3]} J/m, +{buy[4]} % "
-            f"(+{buy[5]} % net of {buy[6]} g), simulated +{sims[1]} % under position servos and "
-            f"+{sims[2]} % under feedforward") in flat
+    assert _bought(log) in flat
     bound = re.search(r"^    the start chosen \(body height ([0-9.]+) mm, ([0-9.]+) × the default "
                       r"gait's\) .*?\(--body-high ([0-9.]+) or more", log, re.MULTILINE)
     assert bound and f"stands at {bound[1]} mm, {bound[2]} × the default gait's" in flat
@@ -1006,22 +1012,8 @@ def test_the_wide_box_is_its_kept_log():
             f"{co[2]}**") in flat
     assert f"and in this wide box {predicted / float(co[0]):.3f}× and " \
            f"{position / float(co[2]):.3f}×" in flat
-    buy = re.search(r"^    springs to buy \(full spring rules on the optimal motion: .*?\): "
-                    r"(\w+)(, spring torque ≤ [0-9.]+ N·m)? on coxa, femur, tibia, ([0-9.]+) "
-                    r"J/m, electrical saving \+([0-9.]+) % \(\+([0-9.]+) % net of ([0-9.]+) g of "
-                    r"springs\)$", log, re.MULTILINE)
-    sims = re.search(r"^      simulated electrical saving, the worse servo first: position only "
-                     r"\+([0-9.]+) %, feedforward \+ PD \+([0-9.]+) %", log, re.MULTILINE)
-    assert buy and sims
-    assert (f"{buy[1]}{buy[2] or ''}, on coxa, femur and tibia, {buy[3]} J/m, +{buy[4]} % "
-            f"(+{buy[5]} % net of {buy[6]} g), simulated +{sims[1]} % under position servos and "
-            f"+{sims[2]} % under feedforward") in flat
-    user, system, wall = (re.search(pattern, log) for pattern in (
-        r"User time \(seconds\): ([0-9.]+)", r"System time \(seconds\): ([0-9.]+)",
-        r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): (\d+):([0-9.]+)"))
-    assert user and system and wall
-    assert (f"{wall[1]} min {round(float(wall[2])):02d} s wall and "
-            f"{round(float(user[1]) + float(system[1]))} s of CPU") in flat
+    assert _bought(log) in flat
+    assert _timed(log) in flat
     assert "0.975× predicted and 0.921× under the worse servo (`--body-high 1.63`)" in flat
     earlier = doc[doc.index("## Starts above the search box"):doc.index("## One wide box")]
     assert "**0.975× predicted and 0.921× under the worse servo**" in " ".join(earlier.split())
