@@ -300,6 +300,11 @@ def test_the_page_says_the_start_chosen_and_a_start_above_the_box(codesigned):
         codesigned, optimal=stand_in).bound_lines()]
     assert len(said) == 1 and "1.625 × the default gait's" in said[0]
     assert "--body-high 1.63" in said[0]
+    both = SimpleNamespace(**vars(stand_in), bare_starts=SimpleNamespace(
+        chosen=SimpleNamespace(params=SimpleNamespace(body_height=body * 1.02))))
+    own = dataclasses.replace(codesigned, optimal=both).bound_lines()
+    assert len(own) == 2 and own[1].startswith(
+        "    the start chosen without springs (body height ") and "1.657 ×" in own[1]
     figures = {"predicted": {"value": 9.0, "unit": "J/m"}, "decimals": 2,
                "simulated": {"feedforward": {"value": 9.5, "unit": "J/m"}},
                "verdicts": {"feedforward": "walks"}, "loops": {"feedforward": "open loop"},
@@ -322,6 +327,8 @@ def test_the_page_says_the_start_chosen_and_a_start_above_the_box(codesigned):
         "chosen": 1, "springs": "no springs"}
     bare = " ".join(re.sub(r"<[^>]+>", "", render_codesign_html(data, {"speed": ""}, {}))
                     .split())
+    assert ("from the best start about the chosen gait (body height × 1.25; the motion without "
+            "springs from its own, body height × 1.25)") in bare
     assert ("Starts of the optimal motion without springs, the same lattice solved without "
             "them (the row without springs runs from the one chosen; J/m): the gait: 12.900; "
             "body height × 1.25: 12.261 (chosen).") in bare

@@ -105,7 +105,7 @@ def test_the_alternation_and_the_bare_cycle_run_from_their_own_starts(monkeypatc
                                1)
         return StartSearch((Start("the gait", timed, params, solved(15.0), 15.2, ""),
                             Start("swing weight × 0.01", timed, freer, bare_picked, 14.1, "")),
-                           1, kwargs.get("springs_named", "the co-design's springs"))
+                           1, kwargs["springs_named"])
 
     def alternate(_robot, motion, _motor, _contact, **kwargs):
         seen.setdefault("alternation", []).append((motion, kwargs["params"], kwargs["first"]))
@@ -124,11 +124,16 @@ def test_the_alternation_and_the_bare_cycle_run_from_their_own_starts(monkeypatc
     monkeypatch.setattr(rows_module, "simulated_run",
                         lambda *_args: (10.0, "walks", True))
     monkeypatch.setattr(rows_module, "predict", lambda *_args: Prediction(15.0, 0.5, True))
-    monkeypatch.setattr(rows_module, "judged", lambda *_args: Prediction(15.0, 0.5, True))
+    def judge(_robot, result, motion, *_args):
+        seen.setdefault("judged", []).append((result, motion))
+        return Prediction(15.0, 0.5, True)
+
+    monkeypatch.setattr(rows_module, "judged", judge)
     monkeypatch.setattr(rows_module, "gait", lambda _robot, g: SimpleNamespace(params=g))
 
     def spreads(_robot, cases, _keep):
         seen["spreads"] = [c[1] for c in cases]
+        seen["again"] = [cases[0][2](1e-9)]  # row 3's repeat, solved
         return [(None, ())] * len(cases)
 
     monkeypatch.setattr(rows_module, "spreads", spreads)
@@ -136,6 +141,11 @@ def test_the_alternation_and_the_bare_cycle_run_from_their_own_starts(monkeypatc
                         lambda jobs, _robot, _keep: [(job[1](), None) for job in jobs])
     table = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen,
                                      springs, params=settings, starts="lattice", min_step=0.015)
+    # row 3 is judged and repeated on its own start's gait, the alternation on its own
+    judged_motions = {id(result): motion.params for result, motion in seen["judged"]}
+    assert judged_motions[id(bare_picked)] == chosen and judged_motions[id(picked)] == moved
+    repeated_bare = seen["again"][0].task_space
+    assert repeated_bare[0].params == chosen and repeated_bare[1] == freer
     # both spreads repeat their row's own answer: at its own start chosen, with its settings
     # (every answer walks for the same here: the one without the landing cost is kept)
     landed = dataclasses.replace(settings, servo_landing_weight=rows_module.SERVO_LANDING)
@@ -153,7 +163,7 @@ def test_the_alternation_and_the_bare_cycle_run_from_their_own_starts(monkeypatc
     (motion, params, first), (motion_landed, params_landed, first_landed) = seen["alternation"]
     assert motion.params == moved and params == settings and first is picked
     assert motion_landed.params == moved and params_landed == landed
-    (bare_motion, bare_params), (start_motion, start_params) = seen["solved"]
+    (bare_motion, bare_params), (start_motion, start_params), _repeat = seen["solved"]
     assert bare_motion.params == chosen and bare_params == bare_landed
     assert start_motion.params == moved and start_params == landed
     assert first_landed.task_space == seen["solved"][1]
@@ -174,8 +184,9 @@ def test_the_alternation_and_the_bare_cycle_run_from_their_own_starts(monkeypatc
                                       springs, params=settings, starts="lattice",
                                       min_step=0.015, family="one_sided")
     assert len(seen["starts"]) == 1 and seen["starts"][0][-1] == hexaleg.SpringSet()
-    assert shared.bare_starts is not None and shared.bare_starts.springs == "no springs"
-    assert shared.bare_starts.starts == shared.starts.starts  # type: ignore[union-attr]
+    assert shared.bare_starts is shared.starts and shared.starts.springs == "no springs"
+    assert sum("starts of the optimal motion (J/m predicted rebuilt, no springs)" in line
+               for line in shared.lines()) == 1  # one lattice, said once
     seen.clear()
     plain = rows_module.optimal_rows(robot, run.actuator, run.contact, chosen, chosen,
                                      springs, params=settings, starts="gait")

@@ -1,8 +1,9 @@
 """The optimal motion's rows of ``hexaleg codesign --motion optimal`` (issue #56).
 
 After the parametric co-design has chosen its gait and springs, the motion itself is optimised
-from that gait (:mod:`hexaleg.optimal`: the whole robot's cycle by box-FDDP, the gait's contact
-timing fixed) without springs, and with springs by the alternation
+from that gait, or from each row's best start about it (:mod:`hexaleg.design.codesign.starts`)
+(:mod:`hexaleg.optimal`: the whole robot's cycle by box-FDDP, the gait's contact timing fixed)
+without springs, and with springs by the alternation
 (:mod:`hexaleg.design.codesign.alternation`, warm-started from the co-design's springs). The four
 rows, each in electrical J/m:
 
@@ -139,9 +140,11 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
             (:func:`~hexaleg.design.codesign.timing.search_timing`, with the alternation's
             starting springs), and both optimal motions take the timing chosen.
         starts: ``"gait"``: the optimal motions start from the gait at that timing;
-            ``"lattice"``: from the best of a fixed lattice of starts about it
-            (:func:`~hexaleg.design.codesign.starts.search_starts`, with the alternation's
-            starting springs: its gait and solver settings), the alternation run from it.
+            ``"lattice"``: each from the best of a fixed lattice of starts about it
+            (:func:`~hexaleg.design.codesign.starts.search_starts`: a start's gait and solver
+            settings), the lattice solved with the alternation's starting springs for the
+            alternation and without springs for the motion without springs (once where the
+            alternation starts without springs).
         min_step: The least step height a start may take, m (the co-design's least foot
             clearance).
         say: Where progress lines go.
@@ -180,10 +183,11 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
     multi = bare_multi = None
     bare_timed, bare_params, bare_first = timed, params, None
     if starts == "lattice":
-        tell("starts of the optimal motion tried at that timing, with the co-design's springs")
+        named_springs = "the co-design's springs" if start else "no springs"
+        tell(f"starts of the optimal motion tried at that timing, with {named_springs}")
         multi = search_starts(robot, timed, motor, start, contact, params, min_step,
                               first=first, say=lambda line: tell(f"starts: {line}"), keep=keep,
-                              margin=margin)
+                              margin=margin, springs_named=named_springs)
         tell(f"start chosen: {multi.chosen.label}")
         if start:
             tell("starts of the optimal motion without springs tried at that timing")
@@ -192,7 +196,7 @@ def optimal_rows(robot: Robot, motor: Any, contact: ContactParams, default: Gait
                                        say=lambda line: tell(f"starts without springs: {line}"),
                                        keep=keep, margin=margin, springs_named="no springs")
         else:  # the alternation starts without springs (a family it cannot hold): one lattice
-            bare_multi = dataclasses.replace(multi, springs="no springs")
+            bare_multi = multi
         tell(f"start chosen without springs: {bare_multi.chosen.label}")
         bare_timed, bare_params = bare_multi.chosen.params, bare_multi.chosen.settings
         bare_first = bare_multi.chosen.result

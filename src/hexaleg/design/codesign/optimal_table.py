@@ -280,8 +280,9 @@ class OptimalRows:
             out.append(self.timing.line())
         if self.starts is not None:
             out.append(self.starts.line())
-        if self.bare_starts is not None:
-            out.append(self.bare_starts.line())
+        if self.bare_starts is not None and (self.starts is None
+                                             or self.bare_starts.springs != self.starts.springs):
+            out.append(self.bare_starts.line())  # not when both were solved without springs
         b = self.best
         bare, last = self.rows[2].spread, self.rows[3].spread
         if bare is not None or last is not None:

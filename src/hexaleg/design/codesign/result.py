@@ -256,8 +256,9 @@ class CodesignResult:
         """Where the optimal motion's contact timing or start was searched past the parametric
         search's box, a line for each that says so: the co-design row was then searched in a
         narrower family than the optimal motion's (none otherwise). The timing is past it when
-        its duty factor is above ``duty_high``; the start when its body height is above
-        ``body_high`` × the default gait's."""
+        its duty factor is above ``duty_high``; a start (the alternation's, and the motion
+        without springs' own) when its body height is above ``body_high`` × the default
+        gait's."""
         out: list[str] = []
         timing = self.optimal.timing if self.optimal is not None else None
         if timing is not None and timing.chosen.params.duty_factor > self.duty_high:
@@ -266,14 +267,17 @@ class CodesignResult:
                        f"search's bound ({self.duty_high:g}): the co-design row was searched in "
                        f"a narrower family (--duty-high {duty:.3g} or more compares them at one "
                        "bound)")
-        starts = self.optimal.starts if self.optimal is not None else None
-        if starts is not None:
+        for starts, which in (
+                (getattr(self.optimal, "starts", None), "the start chosen"),
+                (getattr(self.optimal, "bare_starts", None), "the start chosen without springs")):
+            if starts is None:
+                continue
             body = starts.chosen.params.body_height
             assert body is not None and self.default.body_height is not None
             ratio = body / self.default.body_height
             if ratio > self.body_high * (1 + 1e-9):
                 wider = math.ceil(ratio * 100 - 1e-9) / 100
-                out.append(f"    the start chosen (body height {1e3 * body:.1f} mm, {ratio:.4g} × "
+                out.append(f"    {which} (body height {1e3 * body:.1f} mm, {ratio:.4g} × "
                            f"the default gait's) lies above the parametric search's box "
                            f"({self.body_high:g} ×): the co-design row was searched in a "
                            f"narrower family (--body-high {wider:g} or more compares them in "

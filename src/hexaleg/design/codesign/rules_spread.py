@@ -85,7 +85,8 @@ class RulesSpread:
         why: Per repeat: why there is nothing to compare (its alternation kept the gait, its
             rules could not run, no springs pay there); "" where there is.
         moved: Each kind of :data:`KINDS` → the largest range of a figure of that kind over the
-            answer and the repeats that buy the same springs, in the kind's unit.
+            answer and the repeats that buy the same springs, in the kind's unit; empty where no
+            repeat buys them (nothing measured).
     """
 
     moves: tuple[float, ...]
@@ -148,7 +149,7 @@ def rules_spread(answer: DesignResult | str | None, repeats: Sequence[DesignResu
         if other.names == mine.names:
             agreeing.append(other)
     moved: dict[str, float] = {}
-    for key in mine.figures:
+    for key in mine.figures if len(agreeing) > 1 else ():
         values = [b.figures[key] for b in agreeing if key in b.figures]
         kind = key[0]
         moved[kind] = max(moved.get(kind, 0.0), max(values) - min(values))

@@ -9,18 +9,21 @@ this module moves what that lattice does not: the gait's step height, its body h
 strongly the swing feet are held to the gait's path (their shape). A fixed lattice of starts
 (:func:`starts`: the gait itself, then its step height × :data:`STEP_FACTORS` — none below the
 co-design's least foot clearance —, its body height × :data:`BODY_FACTORS`, then the gait with
-the swing weight × :data:`SWING_FACTORS`), each solved with the co-design's springs in its
+the swing weight × :data:`SWING_FACTORS`), each solved with the springs given in its
 dynamics and judged by hexaleg's prediction of its cycle rebuilt in task space
 (:func:`~hexaleg.design.codesign.alternation.judged`, the figure the alternation judges); the
-least prediction wins, a tie or no prediction keeps the earlier start (the gait first), and the
-alternation runs from it. An enumeration, not a descent: the same inputs give the same starts
-and the same choice on any machine, and its answer is the best of the lattice.
+least prediction wins, a tie or no prediction keeps the earlier start (the gait first). The
+optimal rows (:mod:`~hexaleg.design.codesign.optimal_rows`) solve the lattice twice: with the
+co-design's springs, whose start the alternation runs from, and without springs, whose start
+the optimal motion without springs runs from. An enumeration, not a descent: the same inputs
+give the same starts and the same choice on any machine, and its answer is the best of the
+lattice.
 
 A start that moves the step or body height is another parametric gait (above the foot
 clearance, and its body height possibly above the co-design's search box: the optimal problem
 is bounded by the legs' reach and joint limits, not by that box); the alternation then starts
 from that gait, and it is that gait with the co-design's springs that the optimal cycle must
-beat. A start above the box is said under the optimal table
+beat. A start above the box, either lattice's, is said under the optimal table
 (:meth:`~hexaleg.design.codesign.result.CodesignResult.bound_lines`), with the ``--body-high``
 that would search the parametric co-design in one box with it.
 """
