@@ -1204,3 +1204,23 @@ def test_simulate_page_quotes_g1s_log():
         assert line in now, line
     assert "200.0 mm per cycle of the planned 200 mm, the saving +39.00 %" in robots
     assert "+39.08 % predicted; under position servos 200.5 mm, +38.65 %" in robots
+
+
+def test_codesign_page_says_the_edges_the_kept_log_prints():
+    """docs/codesign.md's edges of the default robot's co-design are those its kept command log
+    prints (the tops of body height and duty factor, the step height's floor)."""
+    import re
+
+    page = " ".join((DOCS / "codesign.md").read_text().split())
+    log = (ROOT / "analysis" / "bench_logs" / "codesign_motion_optimal_own_starts.log"
+           ).read_text()
+    line = re.search(r"on the search box's edge: (.*) — the co-design is this box's optimum", log)
+    assert line
+    said = set()
+    for edge in line[1].split("; "):
+        found = re.match(r"([a-z ]+?) [0-9.]+(?: m)? at the box's (top|floor)", edge)
+        assert found, edge
+        said.add(found.groups())
+    assert said == {("body height", "top"), ("duty factor", "top"), ("step height", "floor")}
+    assert ("The default robot's co-design lies on the tops of its body height and duty factor "
+            "and on the step height's floor") in page
