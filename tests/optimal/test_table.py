@@ -1126,3 +1126,49 @@ def test_each_optimal_row_from_its_own_start_is_the_kept_logs():
     for label in ("default gait, no springs", "parametric co-design (its gait and springs)",
                   "optimal motion, its springs"):
         assert rows[label] == old_rows[label], label
+
+
+def test_the_springs_to_buy_move_within_their_stated_spread():
+    """In the kept same-answer log of the command with its input moved by 1e-9, both runs buy
+    the same springs, and every figure of them that moves between the two runs (the torque
+    bound, each coil diameter, hard stop and wound-up diameter, the net saving) moves by no more
+    than the range the line beside them states on the first run; docs/optimal.md says so."""
+    log = (LOGS / "same_answer_codesign_motion_optimal_rules_spread.log").read_text(
+        encoding="utf-8")
+    diff = log[log.index("the diff without progress lines:"):]
+
+    def run(sign: str) -> tuple[str, list[str], str]:
+        buy = re.search(rf"^\{sign}    springs to buy \(full spring rules on the optimal "
+                        r"motion: [^)]*\): (.*)$", diff, re.MULTILINE)
+        parts = re.findall(rf"^\{sign}      ((?:coxa|femur|tibia) (?:above|below): .*)$", diff,
+                           re.MULTILINE)
+        spread = re.search(rf"^\{sign}      on the row's repeats .*? on (\d) of (\d); over those "
+                           r"their figures move by up to: (.*) — ", diff, re.MULTILINE)
+        assert buy and parts and spread and spread[1] == spread[2]
+        return buy[1], parts, spread[3]
+
+    (buy_a, parts_a, said), (buy_b, parts_b, _) = run("-"), run("+")
+    ranges = {m[0]: float(m[1]) for m in re.findall(r"([a-z -]+?) ([0-9.]+)(?:°| N·m| J/m| %| "
+                                                   r"mm|)(?:, |$)", said)}
+    names = re.compile(r"^(\w+), spring torque ≤ [0-9.]+ N·m on (.*?), ([0-9.]+) J/m")
+    same = [names.match(b) for b in (buy_a, buy_b)]
+    assert same[0] and same[1] and same[0].groups() == same[1].groups()
+    bound = [float(re.search(r"≤ ([0-9.]+) N·m", b)[1]) for b in (buy_a, buy_b)]  # type: ignore[index]
+    net = [float(re.search(r"\(\+([0-9.]+) % net", b)[1]) for b in (buy_a, buy_b)]  # type: ignore[index]
+    assert 0 < abs(bound[0] - bound[1]) <= ranges["torque bound"]
+    assert abs(net[0] - net[1]) <= ranges["net saving"] + 0.005  # printed to 0.01
+    kinds = {"coil diameter": r"D ([0-9.]+) mm", "hard stop": r"hard stop at ([-+0-9.]+)°",
+             "wound-up inner diameter": r"clears its arbor \(([0-9.]+) mm"}
+    assert len(parts_a) == len(parts_b) == 4
+    for a, b in zip(parts_a, parts_b, strict=True):
+        assert re.sub(r"[0-9.]+", "#", a.split(";")[0].split(", D")[0]) == \
+            re.sub(r"[0-9.]+", "#", b.split(";")[0].split(", D")[0])  # the same wire and turns
+        assert a.split(", D")[0] == b.split(", D")[0]
+        for kind, pattern in kinds.items():
+            x, y = (float(re.search(pattern, p)[1]) for p in (a, b))  # type: ignore[index]
+            step = 0.05 if kind == "hard stop" else 0.005  # half the printed digit
+            assert abs(x - y) <= ranges[kind] + step, (kind, x, y)
+    flat = " ".join(DOC.read_text(encoding="utf-8").split())
+    assert ("each of their figures that moves between the runs moves within the range the line "
+            f"states (the torque bound by {abs(bound[0] - bound[1]):.5f} N·m of "
+            f"{ranges['torque bound']:g}") in flat
