@@ -238,8 +238,8 @@ class DesignChain:
             each = {(id(r.candidate), r.controller): r for r in (
                 *self._optima(), *simulate_candidates(self.nominal().prepared, points,
                                                       d.controller, d.metric))}
-            rows = list({key: each[key] for key in ((id(c), k) for k in controllers_of(
-                d.controller) for c in pool)}.values())  # the controller's rows, pool order
+            rows = [each[(id(c), k)] for k in controllers_of(d.controller)
+                    for c in pool]  # as simulate_candidates orders them: controller, pool
             notes = [f"{r.candidate.label}: simulated under the {r.controller} servo it saves "
                      + (f"{100 * r.simulated:+.2f} % against {100 * r.predicted:+.2f} % "
                         "predicted — under half the prediction" if r.simulated is not None

@@ -147,7 +147,7 @@ class CodesignResult:
             return ()
         return edges(self.box, self.chosen, self.duty_high, self.body_high)
 
-    def edge_line(self) -> list[str]:
+    def edge_lines(self) -> list[str]:
         """A line naming the box's edges the chosen gait lies on and what moves each: the
         co-design is then the box's optimum, a cheaper gait may lie past them (none when it
         lies on no edge)."""
@@ -215,7 +215,7 @@ class CodesignResult:
                      f"{self.search.evaluations} evaluations, "
                      f"{self.search.wall:.1f} s, restarts {self.search.spread:.3f} J/m apart; "
                      f"total {self.wall:.1f} s")
-        lines += self.edge_line()
+        lines += self.edge_lines()
         if isinstance(self.rules, str):
             lines.append(f"  full spring rules could not run on the chosen gait ({self.rules}):"
                          f" the inner program's springs are recommended")
