@@ -138,3 +138,35 @@ def test_the_optimal_motion_on_runge_kutta_knots_is_accepted(monkeypatch):
     with pytest.raises(UnknownNameError, match="rk4"):
         codesign(motion="optimal", optimal={"integrator": "implicit"}, max_evaluations=1,
                  restarts=1)
+
+
+def test_the_gait_alone_row_takes_its_best_gait_that_works_at_the_rows_sampling():
+    """The gait alone's row is its search's best gait where that works at the rows' sampling,
+    else the next of its finalists that does, each that fails said in a progress line; where
+    none does, a refusal that names ``final_samples`` and the best's error. Catches a row built
+    on a gait that leaves a joint's limit between the search's samples (Go2 at 0.3 m/s stopped
+    there with an error), or one that skips a best gait that works."""
+    from types import SimpleNamespace
+
+    from hexaleg.design.codesign.build import settled
+
+    gaits = [SimpleNamespace(params=name) for name in ("best", "second", "third")]
+    found = SimpleNamespace(best=gaits[0], finalists=tuple(gaits))
+    said: list[str] = []
+
+    def at_rows(works):
+        return lambda params: SimpleNamespace(
+            params=params, error=None if params in works else f"{params} leaves a limit")
+
+    assert settled(found, at_rows({"best", "second"}), 200, said.append).params == "best"
+    assert not said
+    assert settled(found, at_rows({"third"}), 200, said.append).params == "third"
+    assert said == ["gait alone: its gait 1 of 3 fails at 200 samples (best leaves a limit); "
+                    "the next taken", "gait alone: its gait 2 of 3 fails at 200 samples (second "
+                    "leaves a limit); the next taken"]
+    with pytest.raises(InvalidParameterError, match=r"final_samples.*200.*one of the gait "
+                                                    r"alone's 3 best gaits.*best leaves a limit"):
+        settled(found, at_rows(set()), 200, said.append)
+    alone = SimpleNamespace(best=gaits[0], finalists=())
+    with pytest.raises(InvalidParameterError, match="1 best gaits"):
+        settled(alone, at_rows(set()), 200, said.append)
